@@ -1,0 +1,20 @@
+//! The scalar and vector types of swarf, chosen once for the whole workspace.
+//!
+//! glam's `DVec3` is the same type parry3d-f64 uses, so meshes and ray casts from parry need no
+//! conversion.
+
+/// The scalar type: every computation in swarf is double precision.
+pub type Real = f64;
+/// A vector or a point in 3-D space (millimetres when it is a position).
+pub type Vec3 = glam::DVec3;
+/// A 3×3 matrix (rotations, frames).
+pub type Mat3 = glam::DMat3;
+/// A unit quaternion (rotations).
+pub type Quat = glam::DQuat;
+/// A vector in 2-D (profiles, arcs in their plane).
+pub type Vec2 = glam::DVec2;
+
+/// Default absolute tolerance for geometric equality of lengths, in millimetres.
+pub const LENGTH_EPS: Real = 1e-9;
+/// Default tolerance for comparing unit vectors and angles, in radians.
+pub const ANGLE_EPS: Real = 1e-12;

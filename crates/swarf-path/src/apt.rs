@@ -1,0 +1,1 @@
+//! APT CL data (CLDATA text) reader.

@@ -1,0 +1,1 @@
+//! Turns canonical events into the move stream.

@@ -1,0 +1,229 @@
+//! Canonical machining events: the vocabulary between the interpreters and everything after.
+//!
+//! These mirror LinuxCNC's canonical machining functions (`STRAIGHT_TRAVERSE`, `ARC_FEED`, …) so
+//! that swarf's G-code reading can be diffed against LinuxCNC's interpreter, and so that an APT
+//! reader and a G-code reader feed the same [`MoveBuilder`](crate::MoveBuilder).
+//!
+//! Conventions: lengths in millimetres, angles in degrees, positions in the program's *current*
+//! coordinate system (work offsets not applied; the [`Canon::Offsets`] event says what they are).
+
+use serde::Serialize;
+use std::borrow::Cow;
+
+/// Joint-space position as the program commands it: X Y Z in mm, A B C in degrees.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize)]
+pub struct Axes {
+    /// X, mm.
+    pub x: f64,
+    /// Y, mm.
+    pub y: f64,
+    /// Z, mm.
+    pub z: f64,
+    /// A (rotation about X), degrees.
+    pub a: f64,
+    /// B (rotation about Y), degrees.
+    pub b: f64,
+    /// C (rotation about Z), degrees.
+    pub c: f64,
+}
+
+impl Axes {
+    /// All six values as an array, in X Y Z A B C order.
+    pub fn to_array(self) -> [f64; 6] {
+        [self.x, self.y, self.z, self.a, self.b, self.c]
+    }
+    /// From an array in X Y Z A B C order.
+    pub fn from_array(v: [f64; 6]) -> Self {
+        Self { x: v[0], y: v[1], z: v[2], a: v[3], b: v[4], c: v[5] }
+    }
+    /// Component-wise sum.
+    pub fn add(self, o: Self) -> Self {
+        let (a, b) = (self.to_array(), o.to_array());
+        Self::from_array(std::array::from_fn(|i| a[i] + b[i]))
+    }
+    /// True when any rotary value differs from `o`.
+    pub fn rotary_differs(&self, o: &Self) -> bool {
+        self.a != o.a || self.b != o.b || self.c != o.c
+    }
+}
+
+/// Length units of a program.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Units {
+    /// Millimetres (G21, `UNITS/MM`).
+    Mm,
+    /// Inches (G20, `UNITS/INCHES`); converted to mm on input.
+    Inch,
+}
+
+impl Units {
+    /// Millimetres per program unit.
+    pub fn mm_per_unit(self) -> f64 {
+        match self {
+            Units::Mm => 1.0,
+            Units::Inch => 25.4,
+        }
+    }
+}
+
+/// The plane of circular interpolation (G17/G18/G19).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum Plane {
+    /// G17: arcs in XY about Z. First axis X, second Y.
+    XY,
+    /// G18: arcs in ZX about Y. First axis Z, second X (LinuxCNC's order).
+    XZ,
+    /// G19: arcs in YZ about X. First axis Y, second Z.
+    YZ,
+}
+
+impl Plane {
+    /// Indices (into X Y Z) of the first, second and normal axes, LinuxCNC's order.
+    pub fn axes(self) -> (usize, usize, usize) {
+        match self {
+            Plane::XY => (0, 1, 2),
+            Plane::XZ => (2, 0, 1),
+            Plane::YZ => (1, 2, 0),
+        }
+    }
+}
+
+/// How the F word is read.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum FeedMode {
+    /// G94: mm per minute (after unit conversion).
+    PerMinute,
+    /// G93: inverse time, the move takes 1/F minutes.
+    InverseTime,
+    /// G95: mm per spindle revolution.
+    PerRevolution,
+}
+
+/// Spindle direction.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+pub enum SpindleDir {
+    /// M3.
+    Clockwise,
+    /// M4.
+    CounterClockwise,
+    /// M5.
+    Stopped,
+}
+
+/// One canonical machining event. Borrowed text (comments) avoids allocation per event.
+#[derive(Clone, Debug, PartialEq)]
+pub enum Canon<'a> {
+    /// The program's length units changed (G20/G21, `UNITS/`).
+    Units(Units),
+    /// The active work offsets, in mm/degrees: `g5x` is the active G54–G59.x offset (index 1 =
+    /// G54), `g92` the G92 offset. Machine position = program position + g5x + g92.
+    Offsets {
+        /// 1 for G54 … 9 for G59.3.
+        index: u8,
+        /// The G5x offset.
+        g5x: Axes,
+        /// The G92 offset.
+        g92: Axes,
+    },
+    /// The arc plane changed.
+    Plane(Plane),
+    /// Feed rate: mm/min, 1/min (inverse time) or mm/rev as the feed mode says.
+    FeedRate(f64),
+    /// Feed mode changed.
+    FeedMode(FeedMode),
+    /// Spindle speed (rpm) and direction.
+    Spindle {
+        /// Revolutions per minute.
+        rpm: f64,
+        /// Direction.
+        dir: SpindleDir,
+    },
+    /// A tool was loaded into the spindle (M6 after T, `LOADTL/`).
+    ToolChange {
+        /// Tool number.
+        tool: u32,
+    },
+    /// Tool length offset now in effect (G43/G49), mm. Informational: swarf's programs are
+    /// tool-tip programs.
+    ToolLengthOffset(f64),
+    /// Rapid move to `end`.
+    Traverse {
+        /// End point.
+        end: Axes,
+    },
+    /// Linear feed move to `end`.
+    Feed {
+        /// End point.
+        end: Axes,
+    },
+    /// Circular or helical feed move (LinuxCNC's `ARC_FEED`).
+    Arc {
+        /// End point (including the helix axis and rotary axes).
+        end: Axes,
+        /// Centre: the coordinates along the plane's first and second axes.
+        center: [f64; 2],
+        /// Turns: positive counter-clockwise (G3), negative clockwise (G2) seen from the plane
+        /// normal's positive side; |rotation| − 1 extra full turns.
+        rotation: i32,
+        /// The plane.
+        plane: Plane,
+    },
+    /// A dwell of this many seconds.
+    Dwell(f64),
+    /// A comment or message from the program (borrowed while streaming, owned when kept).
+    Comment(Cow<'a, str>),
+    /// A definition of the active tool's geometry from the program (APT `CUTTER/`): the seven
+    /// APT numbers d, r, e, f, α, β, h (mm, degrees).
+    CutterDefinition([f64; 7]),
+    /// M2/M30/`FINI`: the end of the program.
+    ProgramEnd,
+}
+
+/// Receives canonical events in program order, with the source line of each.
+pub trait CanonSink {
+    /// Called once per event. `line` is the 1-based source line in the file being read.
+    fn emit(&mut self, line: u32, event: &Canon<'_>);
+    /// A harmless thing the reader did not act on.
+    fn warn(&mut self, warning: crate::Warning);
+}
+
+/// A sink that keeps every event (owned) — for tests and small programs.
+#[derive(Default, Debug)]
+pub struct Recorder {
+    /// The events, with their lines.
+    pub events: Vec<(u32, OwnedCanon)>,
+    /// The warnings.
+    pub warnings: Vec<crate::Warning>,
+}
+
+/// An owned copy of a [`Canon`] event.
+pub type OwnedCanon = Canon<'static>;
+
+impl CanonSink for Recorder {
+    fn emit(&mut self, line: u32, event: &Canon<'_>) {
+        let owned = match event {
+            Canon::Comment(c) => Canon::Comment(Cow::Owned(c.to_string())),
+            Canon::Units(u) => Canon::Units(*u),
+            Canon::Offsets { index, g5x, g92 } => Canon::Offsets { index: *index, g5x: *g5x, g92: *g92 },
+            Canon::Plane(p) => Canon::Plane(*p),
+            Canon::FeedRate(f) => Canon::FeedRate(*f),
+            Canon::FeedMode(m) => Canon::FeedMode(*m),
+            Canon::Spindle { rpm, dir } => Canon::Spindle { rpm: *rpm, dir: *dir },
+            Canon::ToolChange { tool } => Canon::ToolChange { tool: *tool },
+            Canon::ToolLengthOffset(l) => Canon::ToolLengthOffset(*l),
+            Canon::Traverse { end } => Canon::Traverse { end: *end },
+            Canon::Feed { end } => Canon::Feed { end: *end },
+            Canon::Arc { end, center, rotation, plane } => {
+                Canon::Arc { end: *end, center: *center, rotation: *rotation, plane: *plane }
+            }
+            Canon::Dwell(d) => Canon::Dwell(*d),
+            Canon::CutterDefinition(p) => Canon::CutterDefinition(*p),
+            Canon::ProgramEnd => Canon::ProgramEnd,
+        };
+        self.events.push((line, owned));
+    }
+    fn warn(&mut self, warning: crate::Warning) {
+        self.warnings.push(warning);
+    }
+}

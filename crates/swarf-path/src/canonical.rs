@@ -1,0 +1,1 @@
+//! Prints canonical events in the exact form of LinuxCNC interpreter tests.

@@ -1,0 +1,101 @@
+//! Source positions, errors and warnings of the program readers.
+
+use std::fmt;
+
+/// A place in a source file: the file name, 1-based line and 1-based column (in characters).
+#[derive(Clone, Debug, PartialEq, Eq, Default)]
+pub struct SourcePos {
+    /// File name as the user gave it (or `<input>` for text not read from a file).
+    pub file: String,
+    /// 1-based line number.
+    pub line: u32,
+    /// 1-based column number (0 when the whole line is meant).
+    pub column: u32,
+}
+
+impl fmt::Display for SourcePos {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        if self.column > 0 {
+            write!(f, "{}:{}:{}", self.file, self.line, self.column)
+        } else {
+            write!(f, "{}:{}", self.file, self.line)
+        }
+    }
+}
+
+/// What went wrong, so callers can react to classes of errors without parsing messages.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PathErrorKind {
+    /// The text could not be read as the language (bad word, bad number, unbalanced brackets…).
+    Syntax,
+    /// A well-formed statement that is wrong in context (missing axis word, arc radius mismatch…).
+    Semantic,
+    /// A feature swarf recognises but deliberately does not simulate (cutter compensation,
+    /// another controller's dialect).
+    Unsupported,
+    /// A hard limit was reached (loop iterations, call depth, repeat count): the program would
+    /// not end, or not in reasonable time.
+    Limit,
+    /// The file could not be read.
+    Io,
+}
+
+/// A reader error: where, what was found, what was expected.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub struct PathError {
+    /// Where the error is.
+    pub pos: SourcePos,
+    /// Its class.
+    pub kind: PathErrorKind,
+    /// What is wrong, in a machinist's words.
+    pub message: String,
+    /// The text found at the position (may be empty at end of line).
+    pub found: String,
+    /// What would have been accepted there (may be empty when nothing sensible can be said).
+    pub expected: String,
+}
+
+impl PathError {
+    /// Builds an error.
+    pub fn new(
+        pos: SourcePos,
+        kind: PathErrorKind,
+        message: impl Into<String>,
+        found: impl Into<String>,
+        expected: impl Into<String>,
+    ) -> Self {
+        Self { pos, kind, message: message.into(), found: found.into(), expected: expected.into() }
+    }
+}
+
+impl fmt::Display for PathError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.pos, self.message)?;
+        match (self.found.is_empty(), self.expected.is_empty()) {
+            (false, false) => write!(f, " (found `{}`, expected {})", self.found, self.expected),
+            (false, true) => write!(f, " (found `{}`)", self.found),
+            (true, false) => write!(f, " (found end of line, expected {})", self.expected),
+            (true, true) => Ok(()),
+        }
+    }
+}
+
+/// Something harmless the reader did not act on (an unsupported word, a coolant code…),
+/// reported rather than silently dropped.
+#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+pub struct Warning {
+    /// Where it is.
+    pub file: String,
+    /// 1-based line.
+    pub line: u32,
+    /// 1-based column (0 for the whole line).
+    pub column: u32,
+    /// What was ignored and why.
+    pub message: String,
+}
+
+impl fmt::Display for Warning {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}:{}:{}: warning: {}", self.file, self.line, self.column, self.message)
+    }
+}

@@ -1,0 +1,1 @@
+//! RS274/NGC (LinuxCNC) and common Fanuc G-code interpreter.

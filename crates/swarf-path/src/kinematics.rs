@@ -1,0 +1,1 @@
+//! Machine kinematics: joint values to tool tip and axis in the workpiece frame.

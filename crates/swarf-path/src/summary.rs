@@ -1,0 +1,1 @@
+//! Program summary: counts, lengths, bounding box, machining time.

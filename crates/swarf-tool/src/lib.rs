@@ -1,0 +1,1 @@
+//! The APT generic cutter, its surface pieces, holders and tool tables.
