@@ -1,1 +1,32 @@
-fn main() {}
+//! The `swarf` command line: argument parsing and printing over the swarf libraries.
+//!
+//! Exit status: 0 on success, 1 on bad input (the message names file, line and column), 2 on a
+//! usage error (clap's own exit code).
+
+mod cli;
+mod commands;
+mod output;
+
+use clap::Parser;
+
+fn main() {
+    let cli = cli::Cli::parse();
+    let result = match cli.command {
+        cli::Command::Tool(args) => commands::tool::run(&args),
+        cli::Command::Path(args) => commands::path::run(&args),
+        cli::Command::Demo(args) => commands::demo::run(&args),
+    };
+    if let Err(e) = result {
+        // A closed pipe (`swarf path x --json | head`) is the reader's choice, not an error.
+        let broken_pipe = e.chain().any(|c| {
+            c.downcast_ref::<std::io::Error>()
+                .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+        });
+        if broken_pipe {
+            std::process::exit(0);
+        }
+        // `{:#}` prints the whole context chain on one line: "reading X: X:3:7: message".
+        eprintln!("swarf: error: {e:#}");
+        std::process::exit(1);
+    }
+}

@@ -26,4 +26,17 @@
 //! assert!((f.z - Vec3::Z).length() < 1e-12);
 //! ```
 
+pub mod aabb;
+pub mod frame;
 pub mod math;
+pub mod motion;
+pub mod poly;
+pub mod primitive;
+pub mod ray;
+
+pub use aabb::Aabb;
+pub use frame::Frame;
+pub use motion::RigidMotion;
+pub use poly::RootTolerance;
+pub use primitive::{Cone, Cylinder, Implicit, Plane, Sphere, Torus};
+pub use ray::Ray;

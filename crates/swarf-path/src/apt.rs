@@ -1,1 +1,1018 @@
-//! APT CL data (CLDATA text) reader.
+//! APT CL data (CLDATA text) reader: the cutter-location files NX (`.cls`), CATIA and
+//! SolidWorks CAM (`.apt`) post-processors read.
+//!
+//! CL data is already tool tip and tool axis in the workpiece frame — there is no machine in
+//! it — so [`read_apt`] hands positions on as X Y Z (rotary words zero) and states the tool axis
+//! with [`Canon::ToolAxis`]; a [`MoveBuilder`](crate::builder::MoveBuilder) then takes the axis
+//! from the program rather than from kinematics.
+//!
+//! # Records
+//! A record is `MAJOR/minor,minor,…` or a bare `MAJOR`. `$$` starts a comment; a line ending in
+//! a single `$` continues on the next one. Words are case-insensitive.
+//!
+//! | record | effect |
+//! |---|---|
+//! | `GOTO/x,y,z[,i,j,k]` | move (feed, or rapid after `RAPID`); new axis when i,j,k given |
+//! | `FROM/x,y,z[,i,j,k]` | start position, no move ([`Canon::SetPosition`]) |
+//! | `GODLTA/dx,dy,dz` | move by a delta |
+//! | `RAPID` | the next motion only is a rapid |
+//! | `FEDRAT/f[,MMPM│IPM│MMPR│IPR]` (either order) | feed rate and mode |
+//! | `CIRCLE/xc,yc,zc,i,j,k[,r,…]` | the next `GOTO` is an arc about that centre and axis |
+//! | `CUTTER/d[,r,e,f,α,β,h]`, `TLDATA/MILL,d,r,h[,0,0]` | [`Canon::CutterDefinition`] |
+//! | `LOADTL/n`, `LOAD/TOOL,n` | tool change |
+//! | `SPINDL/rpm[,RPM][,CLW│CCW]`, `SPINDL/OFF│ON` | spindle |
+//! | `UNITS/MM│INCHES`, `UNIT/…` | units (inch data is converted to mm) |
+//! | `CSYS/` 3×4 matrix | applied to the following points (see below) |
+//! | `PARTNO`, `PPRINT`, `TOOL PATH`, `INSERT` | comments (`INSERT` also warns) |
+//! | `FINI` | end of program |
+//!
+//! `PAINT`, `COOLNT`, `MULTAX`, `SELCTL`, `END-OF-PATH`, `CUTCOM/OFF`, `STOP`, `OPSTOP` are
+//! accepted silently (they do not change the tool's path). `CUTCOM/LEFT│RIGHT` warns: CL points
+//! are normally the compensated cutter path already, and swarf simulates the points as written,
+//! not what a controller doing radius compensation would add. `MSYS/` (where the MCS sits in
+//! absolute coordinates) warns when it is not the identity: points stay in the MCS, which is
+//! swarf's workpiece frame. Other records are warnings; malformed records are [`PathError`]s.
+//!
+//! # Decisions
+//! * **The first point.** CL data has no home position: the first `GOTO` (or `FROM`) only places
+//!   the tool ([`Canon::SetPosition`]); a file with n `GOTO`s and no `FROM` gives n − 1 moves.
+//! * **Arc direction.** `CIRCLE/` gives an axis but not a direction; vendors differ. With
+//!   [`CircleSense::Auto`] the motion is counter-clockwise about the axis (right-hand rule),
+//!   except in NX CLSF files (recognised by `TOOL PATH/`, `TLDATA/`, `MSYS/` or `END-OF-PATH`),
+//!   where it is clockwise: NX writes the arc axis equal to the tool axis for clockwise (G2)
+//!   arcs. Arcs about ±X, ±Y or ±Z become [`Canon::Arc`]; others [`Canon::ArcAxis`].
+//! * **`CSYS/a,b,c,d,e,f,g,h,i,j,k,l`** states a rigid transform whose rows are `[a b c | d]`
+//!   … : the following points `p` are local and `M·p + t` is the workpiece frame. It is applied
+//!   (with a warning unless it is the identity) when [`AptOptions::apply_csys`] is set (the
+//!   default); otherwise points are kept local and it warns.
+//! * `GOTO` records with more than six values (NX contact data) use the first six and warn.
+//!
+//! ```
+//! use swarf_path::apt::{read_apt, AptOptions};
+//! use swarf_path::canon::Recorder;
+//! let text = "UNITS/MM\nFEDRAT/MMPM,500\nGOTO/0,0,5\nGOTO/10,0,5\nFINI\n";
+//! let mut rec = Recorder::default();
+//! read_apt(text, "demo.apt", &AptOptions::default(), &mut rec).unwrap();
+//! assert!(rec.events.iter().any(|(_, e)| matches!(e, swarf_path::Canon::Feed { .. })));
+//! ```
+
+use std::borrow::Cow;
+use std::path::Path;
+
+use swarf_geom::math::{Mat3, Vec3};
+
+use crate::canon::{Axes, Canon, CanonSink, FeedMode, Plane, SpindleDir, Units};
+use crate::error::{PathError, PathErrorKind, SourcePos};
+use crate::Warning;
+
+/// Default tolerance on arc radii (start, end and the `CIRCLE/` radius must agree), mm.
+pub const DEFAULT_ARC_TOLERANCE_MM: f64 = 0.01;
+
+/// Which way a `CIRCLE/` turns about its axis.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum CircleSense {
+    /// Decide from the file: clockwise for NX CLSF, counter-clockwise otherwise.
+    #[default]
+    Auto,
+    /// Counter-clockwise about the axis (right-hand rule).
+    CounterClockwise,
+    /// Clockwise about the axis.
+    Clockwise,
+}
+
+/// Options of [`read_apt`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AptOptions {
+    /// Arc direction convention.
+    pub circle_sense: CircleSense,
+    /// Apply `CSYS/` matrices to the points that follow.
+    pub apply_csys: bool,
+    /// Radius tolerance of arcs, mm ([`DEFAULT_ARC_TOLERANCE_MM`]); beyond it a warning.
+    pub arc_tolerance_mm: f64,
+}
+
+impl Default for AptOptions {
+    fn default() -> Self {
+        Self {
+            circle_sense: CircleSense::Auto,
+            apply_csys: true,
+            arc_tolerance_mm: DEFAULT_ARC_TOLERANCE_MM,
+        }
+    }
+}
+
+impl AptOptions {
+    /// With another arc direction convention.
+    pub fn with_circle_sense(mut self, sense: CircleSense) -> Self {
+        self.circle_sense = sense;
+        self
+    }
+    /// Applying `CSYS/` or not.
+    pub fn with_apply_csys(mut self, apply: bool) -> Self {
+        self.apply_csys = apply;
+        self
+    }
+    /// With another arc radius tolerance, mm.
+    pub fn with_arc_tolerance(mut self, tolerance_mm: f64) -> Self {
+        self.arc_tolerance_mm = tolerance_mm;
+        self
+    }
+}
+
+/// Reads a CL file from disk; see [`read_apt`].
+///
+/// # Errors
+/// [`PathErrorKind::Io`] when the file cannot be read, else as [`read_apt`].
+pub fn read_apt_file(
+    path: impl AsRef<Path>,
+    options: &AptOptions,
+    sink: &mut dyn CanonSink,
+) -> Result<(), PathError> {
+    let path = path.as_ref();
+    let name = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|e| {
+        let pos = SourcePos {
+            file: name.clone(),
+            line: 0,
+            column: 0,
+        };
+        PathError::new(
+            pos,
+            PathErrorKind::Io,
+            format!("cannot read the file: {e}"),
+            "",
+            "",
+        )
+    })?;
+    read_apt(&String::from_utf8_lossy(&bytes), &name, options, sink)
+}
+
+/// Reads CLDATA text, handing events to `sink`. See the [module documentation](self).
+///
+/// # Errors
+/// The first malformed record: file, line, column, the text found and what was expected.
+pub fn read_apt(
+    text: &str,
+    file_name: &str,
+    options: &AptOptions,
+    sink: &mut dyn CanonSink,
+) -> Result<(), PathError> {
+    // Editors on Windows may leave a byte-order mark in front of the first record.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    let clockwise = match options.circle_sense {
+        CircleSense::Clockwise => true,
+        CircleSense::CounterClockwise => false,
+        CircleSense::Auto => is_nx_clsf(text),
+    };
+    let mut r = Reader {
+        file: file_name,
+        options,
+        sink,
+        scale: 1.0,
+        feed_mode: FeedMode::PerMinute,
+        pos: None,
+        axis: Vec3::Z,
+        axis_stated: false,
+        rapid_next: false,
+        circle: None,
+        csys: None,
+        clockwise,
+        spindle_rpm: 0.0,
+        spindle_dir: SpindleDir::Clockwise,
+        extra_goto_warned: false,
+    };
+    let mut record = Record::default();
+    for (i, raw) in text.split('\n').enumerate() {
+        let line_no = u32::try_from(i + 1).unwrap_or(u32::MAX);
+        let raw = raw.strip_suffix('\r').unwrap_or(raw);
+        let content = match raw.find("$$") {
+            Some(k) => &raw[..k],
+            None => raw,
+        };
+        let trimmed = content.trim_end();
+        let (body, continues) = match trimmed.strip_suffix('$') {
+            Some(b) => (b, true),
+            None => (trimmed, false),
+        };
+        record.push(body, raw, line_no);
+        if continues {
+            continue;
+        }
+        let done = std::mem::take(&mut record);
+        if done.text.trim().is_empty() {
+            continue;
+        }
+        if r.record(&done)? == Flow::Stop {
+            return Ok(());
+        }
+    }
+    if !record.text.trim().is_empty() {
+        r.record(&record)?;
+    }
+    if let Some(c) = r.circle.take() {
+        r.warn(
+            c.line,
+            c.column,
+            "CIRCLE/ not followed by a GOTO/ before the end: ignored".into(),
+        );
+    }
+    Ok(())
+}
+
+/// NX CLSF markers (see the module documentation on arc direction).
+fn is_nx_clsf(text: &str) -> bool {
+    text.lines().any(|l| {
+        let l = l.trim_start().to_ascii_uppercase();
+        ["TOOL PATH/", "TLDATA/", "MSYS/", "END-OF-PATH"]
+            .iter()
+            .any(|m| l.starts_with(m))
+    })
+}
+
+/// A logical record: the text of one or more physical lines joined, with a map back to them.
+#[derive(Default)]
+struct Record<'t> {
+    text: String,
+    /// (offset in `text` where the piece starts, its line number, the whole physical line).
+    pieces: Vec<(usize, u32, &'t str)>,
+}
+
+impl<'t> Record<'t> {
+    /// Appends `body`, a prefix of the physical `line`.
+    fn push(&mut self, body: &'t str, line: &'t str, line_no: u32) {
+        self.pieces.push((self.text.len(), line_no, line));
+        self.text.push_str(body);
+    }
+    /// Line and 1-based column (in characters) of byte offset `off` in `text`.
+    fn locate(&self, off: usize) -> (u32, u32) {
+        let Some(&(start, line_no, line)) = self
+            .pieces
+            .iter()
+            .rev()
+            .find(|p| p.0 <= off)
+            .or(self.pieces.first())
+        else {
+            return (0, 0);
+        };
+        let k = off.saturating_sub(start).min(line.len());
+        let col = line.char_indices().take_while(|(b, _)| *b < k).count() + 1;
+        (line_no, u32::try_from(col).unwrap_or(u32::MAX))
+    }
+}
+
+/// One comma-separated value of a record, with its offset in the record's text.
+#[derive(Clone, Copy)]
+struct Field<'a> {
+    text: &'a str,
+    off: usize,
+}
+
+#[derive(PartialEq)]
+enum Flow {
+    Go,
+    Stop,
+}
+
+struct PendingCircle {
+    center: Vec3,
+    /// Unit normal about which the motion is counter-clockwise.
+    normal: Vec3,
+    radius: Option<f64>,
+    line: u32,
+    column: u32,
+}
+
+struct Reader<'o, 's> {
+    file: &'o str,
+    options: &'o AptOptions,
+    sink: &'s mut dyn CanonSink,
+    /// mm per program unit.
+    scale: f64,
+    feed_mode: FeedMode,
+    /// Current tip (workpiece frame, mm); `None` until the first point.
+    pos: Option<Vec3>,
+    axis: Vec3,
+    axis_stated: bool,
+    rapid_next: bool,
+    circle: Option<PendingCircle>,
+    csys: Option<(Mat3, Vec3)>,
+    clockwise: bool,
+    spindle_rpm: f64,
+    spindle_dir: SpindleDir,
+    extra_goto_warned: bool,
+}
+
+/// A point as joint values (X Y Z; rotary words are not used by CL data).
+fn axes(p: Vec3) -> Axes {
+    Axes {
+        x: p.x,
+        y: p.y,
+        z: p.z,
+        ..Axes::default()
+    }
+}
+
+impl Reader<'_, '_> {
+    fn warn(&mut self, line: u32, column: u32, message: String) {
+        self.sink.warn(Warning {
+            file: self.file.to_string(),
+            line,
+            column,
+            message,
+        });
+    }
+
+    fn error(
+        &self,
+        rec: &Record<'_>,
+        off: usize,
+        kind: PathErrorKind,
+        message: impl Into<String>,
+        found: &str,
+        expected: &str,
+    ) -> PathError {
+        let (line, column) = rec.locate(off);
+        PathError::new(
+            SourcePos {
+                file: self.file.to_string(),
+                line,
+                column,
+            },
+            kind,
+            message,
+            found,
+            expected,
+        )
+    }
+
+    fn number(&self, rec: &Record<'_>, f: Field<'_>, what: &str) -> Result<f64, PathError> {
+        let t = f.text;
+        let ok_chars = !t.is_empty()
+            && t.bytes().any(|b| b.is_ascii_digit())
+            && t.bytes()
+                .all(|b| b.is_ascii_digit() || b"+-.eE".contains(&b));
+        match t.parse::<f64>() {
+            Ok(v) if ok_chars && v.is_finite() => Ok(v),
+            _ => Err(self.error(
+                rec,
+                f.off,
+                PathErrorKind::Syntax,
+                format!("{what}: not a number"),
+                t,
+                "a number",
+            )),
+        }
+    }
+
+    fn numbers(
+        &self,
+        rec: &Record<'_>,
+        fields: &[Field<'_>],
+        what: &str,
+    ) -> Result<Vec<f64>, PathError> {
+        fields.iter().map(|f| self.number(rec, *f, what)).collect()
+    }
+
+    /// A point from program units and the CL frame to the workpiece frame, mm.
+    fn point(&self, p: Vec3) -> Vec3 {
+        let p = p * self.scale;
+        match self.csys {
+            Some((m, t)) => m * p + t * self.scale,
+            None => p,
+        }
+    }
+
+    fn vector(&self, v: Vec3) -> Vec3 {
+        match self.csys {
+            Some((m, _)) => m * v,
+            None => v,
+        }
+    }
+
+    fn record(&mut self, rec: &Record<'_>) -> Result<Flow, PathError> {
+        let text = rec.text.as_str();
+        let lead = text.len() - text.trim_start().len();
+        let (major_raw, minor, minor_off) = match text.find('/') {
+            Some(k) => (&text[..k], Some(&text[k + 1..]), k + 1),
+            None => (text, None, text.len()),
+        };
+        let major_raw = major_raw.trim();
+        if major_raw.is_empty()
+            || !major_raw
+                .chars()
+                .all(|c| c.is_ascii_alphanumeric() || "_- ".contains(c))
+        {
+            return Err(self.error(
+                rec,
+                lead,
+                PathErrorKind::Syntax,
+                "not an APT record",
+                major_raw,
+                "a major word such as GOTO, FEDRAT or CIRCLE",
+            ));
+        }
+        let major = major_raw.to_ascii_uppercase();
+        let (line, column) = rec.locate(lead);
+        let fields: Vec<Field<'_>> = match minor {
+            None => Vec::new(),
+            Some(m) if m.trim().is_empty() => Vec::new(),
+            Some(m) => {
+                let mut out = Vec::new();
+                let mut off = minor_off;
+                for piece in m.split(',') {
+                    let t = piece.trim();
+                    let pad = piece.len() - piece.trim_start().len();
+                    out.push(Field {
+                        text: t,
+                        off: off + pad,
+                    });
+                    off += piece.len() + 1;
+                }
+                out
+            }
+        };
+        let minor_text = minor.unwrap_or("").trim();
+        let word = |i: usize| fields.get(i).map(|f| f.text.to_ascii_uppercase());
+        match major.as_str() {
+            "GOTO" | "FROM" => self.goto(rec, &fields, major == "FROM")?,
+            "GODLTA" => {
+                let v = self.numbers(rec, &fields, "GODLTA/")?;
+                if v.len() != 3 {
+                    return Err(self.count_error(rec, &fields, minor_off, "GODLTA/", "dx,dy,dz"));
+                }
+                let d = self.vector(Vec3::new(v[0], v[1], v[2]) * self.scale);
+                let Some(p) = self.pos else {
+                    return Err(self.error(
+                        rec,
+                        lead,
+                        PathErrorKind::Semantic,
+                        "GODLTA/ before any position is known",
+                        major_raw,
+                        "a GOTO/ or FROM/ first",
+                    ));
+                };
+                self.motion(rec, line, column, p + d, None)?;
+            }
+            "RAPID" => self.rapid_next = true,
+            "FEDRAT" => self.fedrat(rec, &fields, minor_off, line)?,
+            "CIRCLE" => {
+                let v = self.numbers(rec, &fields, "CIRCLE/")?;
+                if v.len() < 6 {
+                    return Err(self.count_error(
+                        rec,
+                        &fields,
+                        minor_off,
+                        "CIRCLE/",
+                        "xc,yc,zc,i,j,k[,r,…]",
+                    ));
+                }
+                let axis = self.vector(Vec3::new(v[3], v[4], v[5]));
+                let Some(axis) = axis.try_normalize() else {
+                    return Err(self.error(
+                        rec,
+                        fields[3].off,
+                        PathErrorKind::Semantic,
+                        "CIRCLE/ with a zero axis",
+                        minor_text,
+                        "a non-zero axis vector i,j,k",
+                    ));
+                };
+                let normal = if self.clockwise { -axis } else { axis };
+                let center = self.point(Vec3::new(v[0], v[1], v[2]));
+                let radius = v.get(6).map(|r| r * self.scale);
+                if self.circle.is_some() {
+                    self.warn(
+                        line,
+                        column,
+                        "CIRCLE/ replaces an earlier one not yet used".into(),
+                    );
+                }
+                self.circle = Some(PendingCircle {
+                    center,
+                    normal,
+                    radius,
+                    line,
+                    column,
+                });
+            }
+            "CUTTER" => {
+                let v = self.numbers(rec, &fields, "CUTTER/")?;
+                if v.is_empty() || v.len() > 7 {
+                    return Err(self.count_error(
+                        rec,
+                        &fields,
+                        minor_off,
+                        "CUTTER/",
+                        "1 to 7 numbers d,r,e,f,α,β,h",
+                    ));
+                }
+                let mut c = [0.0; 7];
+                for (i, x) in v.iter().enumerate() {
+                    // α and β are angles; the rest lengths.
+                    c[i] = if i == 4 || i == 5 { *x } else { x * self.scale };
+                }
+                self.sink.emit(line, &Canon::CutterDefinition(c));
+            }
+            "TLDATA" => self.tldata(rec, &fields, line, column)?,
+            "MULTAX" | "PAINT" | "COOLNT" | "SELCTL" | "END-OF-PATH" | "STOP" | "OPSTOP" => {}
+            "UNITS" | "UNIT" => {
+                let u = match word(0).as_deref() {
+                    Some("MM" | "MILLIMETERS" | "MILLIMETRES") => Units::Mm,
+                    Some("INCHES" | "INCH" | "IN") => Units::Inch,
+                    _ => {
+                        let f = fields.first().map_or(("", minor_off), |f| (f.text, f.off));
+                        return Err(self.error(
+                            rec,
+                            f.1,
+                            PathErrorKind::Syntax,
+                            "unknown units",
+                            f.0,
+                            "MM or INCHES",
+                        ));
+                    }
+                };
+                self.scale = u.mm_per_unit();
+                self.sink.emit(line, &Canon::Units(u));
+            }
+            "LOADTL" => {
+                let f = fields.first().copied().unwrap_or(Field {
+                    text: "",
+                    off: minor_off,
+                });
+                let tool = self.tool_number(rec, f)?;
+                self.sink.emit(line, &Canon::ToolChange { tool });
+            }
+            "LOAD" => {
+                if word(0).as_deref() != Some("TOOL") || fields.len() < 2 {
+                    let f = fields.first().map_or(("", minor_off), |f| (f.text, f.off));
+                    return Err(self.error(
+                        rec,
+                        f.1,
+                        PathErrorKind::Syntax,
+                        "LOAD/ needs TOOL and a tool number",
+                        f.0,
+                        "TOOL,n",
+                    ));
+                }
+                let tool = self.tool_number(rec, fields[1])?;
+                self.sink.emit(line, &Canon::ToolChange { tool });
+            }
+            "SPINDL" => self.spindl(rec, &fields, line, column)?,
+            "PARTNO" | "PPRINT" | "TOOL PATH" => {
+                self.sink
+                    .emit(line, &Canon::Comment(Cow::Borrowed(minor_text)));
+            }
+            "INSERT" => {
+                self.sink
+                    .emit(line, &Canon::Comment(Cow::Borrowed(minor_text)));
+                self.warn(
+                    line,
+                    column,
+                    format!(
+                        "INSERT/{minor_text}: controller text passed on verbatim, not interpreted"
+                    ),
+                );
+            }
+            "CUTCOM" => match word(0).as_deref() {
+                Some("OFF") | None => {}
+                Some(side) => self.warn(
+                    line,
+                    column,
+                    format!(
+                        "CUTCOM/{side}: the controller is asked to offset the path by the cutter \
+                         radius from here; swarf simulates the CL points as written \
+                         (uncompensated). CL data is normally the compensated cutter path \
+                         already — check the post-processor"
+                    ),
+                ),
+            },
+            "MSYS" => {
+                let v = self.numbers(rec, &fields, "MSYS/")?;
+                let identity = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
+                let is_identity =
+                    v.len() == 9 && v.iter().zip(identity).all(|(a, b)| (a - b).abs() < 1e-9);
+                if !is_identity {
+                    self.warn(
+                        line,
+                        column,
+                        format!(
+                            "MSYS/{minor_text}: the MCS sits elsewhere in absolute coordinates; \
+                             points are used in the MCS, which is swarf's workpiece frame"
+                        ),
+                    );
+                }
+            }
+            "CSYS" => self.csys(rec, &fields, minor_off, line, column)?,
+            "TRNTYP" => {
+                if word(0).as_deref() != Some("WORLD") {
+                    self.warn(line, column, format!("TRNTYP/{minor_text} ignored"));
+                }
+            }
+            "FINI" => {
+                self.sink.emit(line, &Canon::ProgramEnd);
+                return Ok(Flow::Stop);
+            }
+            "DELAY" => {
+                let v = self.numbers(rec, &fields[..fields.len().min(1)], "DELAY/")?;
+                self.sink
+                    .emit(line, &Canon::Dwell(v.first().copied().unwrap_or(0.0)));
+            }
+            _ => self.warn(
+                line,
+                column,
+                format!("unknown record `{major_raw}` ignored"),
+            ),
+        }
+        Ok(Flow::Go)
+    }
+
+    fn count_error(
+        &self,
+        rec: &Record<'_>,
+        fields: &[Field<'_>],
+        minor_off: usize,
+        what: &str,
+        expected: &str,
+    ) -> PathError {
+        let found = rec.text.get(minor_off..).unwrap_or("").trim();
+        let off = fields.first().map_or(minor_off, |f| f.off);
+        self.error(
+            rec,
+            off,
+            PathErrorKind::Syntax,
+            format!("{what} with {} value(s)", fields.len()),
+            found,
+            expected,
+        )
+    }
+
+    fn tool_number(&self, rec: &Record<'_>, f: Field<'_>) -> Result<u32, PathError> {
+        let v = self.number(rec, f, "tool number")?;
+        if v < 0.0 || v.fract() != 0.0 || v > f64::from(u32::MAX) {
+            return Err(self.error(
+                rec,
+                f.off,
+                PathErrorKind::Semantic,
+                "bad tool number",
+                f.text,
+                "a non-negative whole number",
+            ));
+        }
+        Ok(v as u32)
+    }
+
+    fn goto(
+        &mut self,
+        rec: &Record<'_>,
+        fields: &[Field<'_>],
+        from: bool,
+    ) -> Result<(), PathError> {
+        let what = if from { "FROM/" } else { "GOTO/" };
+        let v = self.numbers(rec, fields, what)?;
+        let minor_off = fields.first().map_or(rec.text.len(), |f| f.off);
+        if !(v.len() == 3 || v.len() >= 6) {
+            return Err(self.count_error(rec, fields, minor_off, what, "x,y,z or x,y,z,i,j,k"));
+        }
+        let (line, column) = rec.locate(minor_off);
+        if v.len() > 6 && !self.extra_goto_warned {
+            self.extra_goto_warned = true;
+            self.warn(
+                line,
+                column,
+                format!("{what} values after the sixth ignored (first such record)"),
+            );
+        }
+        let p = self.point(Vec3::new(v[0], v[1], v[2]));
+        let axis = if v.len() >= 6 {
+            let a = self.vector(Vec3::new(v[3], v[4], v[5]));
+            match a.try_normalize() {
+                Some(a) => Some(a),
+                None => {
+                    return Err(self.error(
+                        rec,
+                        fields[3].off,
+                        PathErrorKind::Semantic,
+                        "zero tool axis",
+                        fields[3].text,
+                        "a non-zero tool axis i,j,k",
+                    ))
+                }
+            }
+        } else {
+            None
+        };
+        if from || self.pos.is_none() {
+            if let Some(c) = self.circle.take() {
+                self.warn(
+                    c.line,
+                    c.column,
+                    "CIRCLE/ before the first position ignored".into(),
+                );
+            }
+            self.rapid_next = false;
+            self.state_axis(line, axis);
+            self.sink.emit(line, &Canon::SetPosition(axes(p)));
+            self.pos = Some(p);
+            return Ok(());
+        }
+        self.motion(rec, line, column, p, axis)
+    }
+
+    /// Emits the tool axis when it is new (always once, before the first position).
+    fn state_axis(&mut self, line: u32, axis: Option<Vec3>) {
+        let a = axis.unwrap_or(self.axis);
+        if !self.axis_stated || a != self.axis {
+            self.axis = a;
+            self.axis_stated = true;
+            self.sink.emit(line, &Canon::ToolAxis(a.to_array()));
+        }
+    }
+
+    fn motion(
+        &mut self,
+        rec: &Record<'_>,
+        line: u32,
+        column: u32,
+        end: Vec3,
+        axis: Option<Vec3>,
+    ) -> Result<(), PathError> {
+        let start = self.pos.unwrap_or(end);
+        self.state_axis(line, axis);
+        let rapid = std::mem::take(&mut self.rapid_next);
+        let Some(c) = self.circle.take() else {
+            let e = axes(end);
+            let ev = if rapid {
+                Canon::Traverse { end: e }
+            } else {
+                Canon::Feed { end: e }
+            };
+            self.sink.emit(line, &ev);
+            self.pos = Some(end);
+            return Ok(());
+        };
+        if rapid {
+            self.warn(
+                line,
+                column,
+                "RAPID before a circular move ignored: the arc is a feed".into(),
+            );
+        }
+        let n = c.normal;
+        let r0 = ((start - c.center) - n * n.dot(start - c.center)).length();
+        let r1 = ((end - c.center) - n * n.dot(end - c.center)).length();
+        if r0 < 1e-9 {
+            return Err(self.error(
+                rec,
+                0,
+                PathErrorKind::Semantic,
+                format!("arc from CIRCLE/ on line {} starts at its centre", c.line),
+                rec.text.trim(),
+                "a start point away from the circle's axis",
+            ));
+        }
+        let tol = self.options.arc_tolerance_mm.max(1e-6 * r0);
+        let given = c.radius.unwrap_or(r0);
+        if (r0 - r1).abs() > tol || (r0 - given).abs() > tol {
+            self.warn(
+                line,
+                column,
+                format!(
+                    "arc radii disagree beyond {tol} mm: start {r0:.6}, end {r1:.6}, CIRCLE/ \
+                     {given:.6} (line {}); the tool spirals from start to end radius",
+                    c.line
+                ),
+            );
+        }
+        let e = axes(end);
+        let principal = [(Plane::YZ, 0), (Plane::XZ, 1), (Plane::XY, 2)]
+            .into_iter()
+            .find(|&(_, k)| (n[k].abs() - 1.0).abs() < 1e-12);
+        let ev = match principal {
+            Some((plane, k)) => {
+                let (i1, i2, _) = plane.axes();
+                Canon::Arc {
+                    end: e,
+                    center: [c.center[i1], c.center[i2]],
+                    rotation: if n[k] > 0.0 { 1 } else { -1 },
+                    plane,
+                }
+            }
+            None => Canon::ArcAxis {
+                end: e,
+                center: c.center.to_array(),
+                normal: n.to_array(),
+                turns: 1,
+            },
+        };
+        self.sink.emit(line, &ev);
+        self.pos = Some(end);
+        Ok(())
+    }
+
+    fn fedrat(
+        &mut self,
+        rec: &Record<'_>,
+        fields: &[Field<'_>],
+        minor_off: usize,
+        line: u32,
+    ) -> Result<(), PathError> {
+        let mut value = None;
+        let mut mode = None;
+        for f in fields {
+            match f.text.to_ascii_uppercase().as_str() {
+                "MMPM" => mode = Some((FeedMode::PerMinute, 1.0)),
+                "IPM" => mode = Some((FeedMode::PerMinute, 25.4)),
+                "MMPR" => mode = Some((FeedMode::PerRevolution, 1.0)),
+                "IPR" => mode = Some((FeedMode::PerRevolution, 25.4)),
+                _ if value.is_none() => value = Some(self.number(rec, *f, "FEDRAT/")?),
+                _ => {
+                    return Err(self.error(
+                        rec,
+                        f.off,
+                        PathErrorKind::Syntax,
+                        "unexpected FEDRAT/ value",
+                        f.text,
+                        "MMPM, IPM, MMPR or IPR",
+                    ))
+                }
+            }
+        }
+        let Some(v) = value else {
+            return Err(self.count_error(
+                rec,
+                fields,
+                minor_off,
+                "FEDRAT/",
+                "a feed rate, e.g. FEDRAT/MMPM,500",
+            ));
+        };
+        let (mode, scale) = mode.unwrap_or((FeedMode::PerMinute, self.scale));
+        if mode != self.feed_mode {
+            self.feed_mode = mode;
+            self.sink.emit(line, &Canon::FeedMode(mode));
+        }
+        self.sink.emit(line, &Canon::FeedRate(v * scale));
+        Ok(())
+    }
+
+    fn spindl(
+        &mut self,
+        rec: &Record<'_>,
+        fields: &[Field<'_>],
+        line: u32,
+        column: u32,
+    ) -> Result<(), PathError> {
+        let mut rpm = None;
+        let mut dir = self.spindle_dir;
+        for f in fields {
+            match f.text.to_ascii_uppercase().as_str() {
+                "RPM" | "" => {}
+                "CLW" => dir = SpindleDir::Clockwise,
+                "CCLW" | "CCW" => dir = SpindleDir::CounterClockwise,
+                "OFF" => {
+                    self.sink.emit(
+                        line,
+                        &Canon::Spindle {
+                            rpm: self.spindle_rpm,
+                            dir: SpindleDir::Stopped,
+                        },
+                    );
+                    return Ok(());
+                }
+                "ON" => {}
+                "SFM" | "SMM" => {
+                    self.warn(
+                        line,
+                        column,
+                        "SPINDL/ surface speed not supported: spindle unchanged".into(),
+                    );
+                    return Ok(());
+                }
+                "RANGE" | "MAXRPM" => break,
+                _ if rpm.is_none() => rpm = Some(self.number(rec, *f, "SPINDL/")?),
+                _ => {}
+            }
+        }
+        if let Some(r) = rpm {
+            self.spindle_rpm = r.abs();
+        }
+        self.spindle_dir = dir;
+        self.sink.emit(
+            line,
+            &Canon::Spindle {
+                rpm: self.spindle_rpm,
+                dir,
+            },
+        );
+        Ok(())
+    }
+
+    fn tldata(
+        &mut self,
+        rec: &Record<'_>,
+        fields: &[Field<'_>],
+        line: u32,
+        column: u32,
+    ) -> Result<(), PathError> {
+        let kind = fields
+            .first()
+            .map(|f| f.text.to_ascii_uppercase())
+            .unwrap_or_default();
+        if kind != "MILL" {
+            self.warn(line, column, format!("TLDATA/{kind}: tool type not converted; define it with CUTTER/ or a tool table"));
+            return Ok(());
+        }
+        let v = self.numbers(rec, &fields[1..], "TLDATA/MILL")?;
+        if v.len() < 2 {
+            return Err(self.count_error(
+                rec,
+                fields,
+                fields[0].off,
+                "TLDATA/",
+                "MILL,d,r[,h,taper,tip]",
+            ));
+        }
+        let (d, r) = (v[0] * self.scale, v[1] * self.scale);
+        let h = v.get(2).map_or(0.0, |h| h * self.scale);
+        let taper = v.get(3).copied().unwrap_or(0.0);
+        let tip = v.get(4).copied().unwrap_or(0.0);
+        if taper != 0.0 || tip != 0.0 {
+            self.warn(
+                line,
+                column,
+                "TLDATA/MILL with taper or tip angle not converted".into(),
+            );
+            return Ok(());
+        }
+        // A torus cutter: corner centre at e = d/2 − r from the axis, f = r above the tip.
+        self.sink.emit(
+            line,
+            &Canon::CutterDefinition([d, r, d / 2.0 - r, r, 0.0, 0.0, h]),
+        );
+        Ok(())
+    }
+
+    fn csys(
+        &mut self,
+        rec: &Record<'_>,
+        fields: &[Field<'_>],
+        minor_off: usize,
+        line: u32,
+        column: u32,
+    ) -> Result<(), PathError> {
+        let v = self.numbers(rec, fields, "CSYS/")?;
+        if v.len() != 12 {
+            return Err(self.count_error(
+                rec,
+                fields,
+                minor_off,
+                "CSYS/",
+                "12 numbers: a 3×4 matrix by rows",
+            ));
+        }
+        let m = Mat3::from_cols(
+            Vec3::new(v[0], v[4], v[8]),
+            Vec3::new(v[1], v[5], v[9]),
+            Vec3::new(v[2], v[6], v[10]),
+        );
+        let t = Vec3::new(v[3], v[7], v[11]);
+        let orthonormal = (m.transpose() * m - Mat3::IDENTITY)
+            .to_cols_array()
+            .iter()
+            .all(|x| x.abs() < 1e-6)
+            && (m.determinant() - 1.0).abs() < 1e-6;
+        if !orthonormal {
+            return Err(self.error(
+                rec,
+                minor_off,
+                PathErrorKind::Semantic,
+                "CSYS/ matrix is not a rotation",
+                rec.text.get(minor_off..).unwrap_or("").trim(),
+                "an orthonormal right-handed 3×3 part",
+            ));
+        }
+        let identity = (m - Mat3::IDENTITY)
+            .to_cols_array()
+            .iter()
+            .all(|x| x.abs() < 1e-12)
+            && t == Vec3::ZERO;
+        if identity {
+            self.csys = None;
+        } else if self.options.apply_csys {
+            self.csys = Some((m, t));
+            self.warn(
+                line,
+                column,
+                "CSYS/ applied: the points that follow are transformed into the workpiece frame"
+                    .into(),
+            );
+        } else {
+            self.warn(
+                line,
+                column,
+                "CSYS/ not applied (option): points are kept in the local system".into(),
+            );
+        }
+        Ok(())
+    }
+}

@@ -1,1 +1,317 @@
-//! Turns canonical events into the move stream.
+//! Turns canonical events into the move stream: [`MoveBuilder`] is the [`CanonSink`] that keeps
+//! a program's motion as [`Move`]s with poses in the workpiece frame.
+//!
+//! It tracks what the events state — work offsets, feed rate and mode, spindle, tool, the tool
+//! axis of CL data — and applies the [`Machine`] to every end point: joint values are the
+//! program position plus the G5x and G92 offsets; poses come from [`Machine::pose`], or, once a
+//! program states its own tool axis ([`Canon::ToolAxis`], APT CL data), directly from the
+//! program (tip = position, axis = the stated axis, no kinematics).
+//!
+//! Events are in millimetres already (the readers convert inch programs), so [`Canon::Units`] is
+//! informational here. Zero-length moves are kept as moves: later stages must cope with them,
+//! and counts stay the same whichever stage does the counting.
+//!
+//! ```
+//! use swarf_path::builder::MoveBuilder;
+//! use swarf_path::kinematics::Machine;
+//! use swarf_path::{Axes, Canon, CanonSink, Plane};
+//! let mut b = MoveBuilder::new(Machine::three_axis(), "demo.ngc");
+//! b.emit(1, &Canon::Feed { end: Axes { x: 10.0, ..Axes::default() } });
+//! // A full circle (end = start) counter-clockwise about (5, 0).
+//! b.emit(2, &Canon::Arc { end: Axes { x: 10.0, ..Axes::default() }, center: [5.0, 0.0], rotation: 1, plane: Plane::XY });
+//! let p = b.finish();
+//! assert_eq!(p.moves.len(), 2);
+//! let swarf_path::MoveKind::Arc(g) = p.moves[1].kind else { panic!() };
+//! assert!((g.sweep - std::f64::consts::TAU).abs() < 1e-12);
+//! ```
+
+use std::f64::consts::TAU;
+
+use swarf_geom::math::Vec3;
+
+use crate::canon::{Axes, Canon, CanonSink, FeedMode, SpindleDir};
+use crate::kinematics::Machine;
+use crate::moves::{ArcGeom, AxisSource, Move, MoveKind, Pose, Program};
+use crate::Warning;
+
+/// Builds a [`Program`] from canonical events. See the [module documentation](self).
+#[derive(Debug)]
+pub struct MoveBuilder {
+    machine: Machine,
+    file_name: String,
+    /// Program position (current coordinate system), mm / degrees.
+    pos: Axes,
+    g5x: Axes,
+    g92: Axes,
+    feed: f64,
+    feed_mode: FeedMode,
+    spindle_rpm: f64,
+    tool: u32,
+    /// Tool axis of the current position in CL mode.
+    axis: Vec3,
+    /// Tool axis the next CL move ends with.
+    target_axis: Vec3,
+    axis_source: AxisSource,
+    /// A `CUTTER/` definition not yet bound to a tool: it belongs to the tool loaded next, or to
+    /// the current one if motion comes first (CAM systems write it on either side of `LOADTL/`).
+    pending_cutter: Option<[f64; 7]>,
+    moves: Vec<Move>,
+    tools: Vec<u32>,
+    cutter_definitions: Vec<(u32, [f64; 7])>,
+    warnings: Vec<Warning>,
+}
+
+impl MoveBuilder {
+    /// A builder for a program read from `file_name`, on `machine`. The tool starts at the
+    /// program origin with all offsets zero, as LinuxCNC's interpreter does.
+    pub fn new(machine: Machine, file_name: &str) -> Self {
+        Self {
+            machine,
+            file_name: file_name.to_string(),
+            pos: Axes::default(),
+            g5x: Axes::default(),
+            g92: Axes::default(),
+            feed: 0.0,
+            feed_mode: FeedMode::PerMinute,
+            spindle_rpm: 0.0,
+            tool: 0,
+            axis: Vec3::Z,
+            target_axis: Vec3::Z,
+            axis_source: AxisSource::Machine,
+            pending_cutter: None,
+            moves: Vec::new(),
+            tools: Vec::new(),
+            cutter_definitions: Vec::new(),
+            warnings: Vec::new(),
+        }
+    }
+
+    /// The program read so far.
+    pub fn finish(mut self) -> Program {
+        if let Some(def) = self.pending_cutter.take() {
+            self.bind_cutter(self.tool, def);
+        }
+        Program {
+            moves: self.moves,
+            files: vec![self.file_name],
+            tools: self.tools,
+            cutter_definitions: self.cutter_definitions,
+            warnings: self.warnings,
+            machine: self.machine,
+            axis_source: self.axis_source,
+        }
+    }
+
+    fn joints(&self, p: &Axes) -> Axes {
+        p.add(self.g5x).add(self.g92)
+    }
+
+    fn pose(&self, joints: &Axes, axis: Vec3) -> Pose {
+        match self.axis_source {
+            AxisSource::Machine => self.machine.pose(joints),
+            AxisSource::Program => Pose {
+                tip: Vec3::new(joints.x, joints.y, joints.z),
+                axis,
+            },
+        }
+    }
+
+    fn bind_cutter(&mut self, tool: u32, def: [f64; 7]) {
+        match self.cutter_definitions.iter_mut().find(|(t, _)| *t == tool) {
+            Some(entry) => entry.1 = def,
+            None => self.cutter_definitions.push((tool, def)),
+        }
+    }
+
+    fn warn_at(&mut self, line: u32, message: String) {
+        self.warnings.push(Warning {
+            file: self.file_name.clone(),
+            line,
+            column: 0,
+            message,
+        });
+    }
+
+    /// Appends a move from the current position to `end` (program coordinates).
+    fn push(&mut self, line: u32, end: &Axes, kind: impl FnOnce(&Self, &Axes, &Axes) -> MoveKind) {
+        if let Some(def) = self.pending_cutter.take() {
+            self.bind_cutter(self.tool, def);
+        }
+        let start_joints = self.joints(&self.pos);
+        let end_joints = self.joints(end);
+        let kind = kind(self, &start_joints, &end_joints);
+        let m = Move {
+            kind,
+            start: self.pose(&start_joints, self.axis),
+            end: self.pose(&end_joints, self.target_axis),
+            start_joints,
+            end_joints,
+            feed: self.feed,
+            feed_mode: self.feed_mode,
+            spindle_rpm: self.spindle_rpm,
+            tool: self.tool,
+            file: 0,
+            line,
+        };
+        self.moves.push(m);
+        self.pos = *end;
+        self.axis = self.target_axis;
+    }
+
+    /// Arc geometry in the workpiece frame for an arc whose joint-space (X Y Z) centre is
+    /// `center` and whose motion is counter-clockwise about unit `normal`, with `turns` ≥ 1.
+    fn arc_geom(
+        &self,
+        start: &Axes,
+        end: &Axes,
+        center: Vec3,
+        normal: Vec3,
+        turns: u32,
+    ) -> MoveKind {
+        let q0 = Vec3::new(start.x, start.y, start.z);
+        let q1 = Vec3::new(end.x, end.y, end.z);
+        let r0 = (q0 - center) - normal * normal.dot(q0 - center);
+        let r1 = (q1 - center) - normal * normal.dot(q1 - center);
+        let mut sweep = normal.dot(r0.cross(r1)).atan2(r0.dot(r1));
+        // As LinuxCNC: an end at or before the start angle goes round; equal angles (start =
+        // end) make a full circle.
+        if sweep <= 0.0 {
+            sweep += TAU;
+        }
+        sweep += f64::from(turns.saturating_sub(1)) * TAU;
+        // The axis point in the start's plane.
+        let c_start = center + normal * normal.dot(q0 - center);
+        let (r, t) = match self.axis_source {
+            AxisSource::Machine => self.machine.joint_space_to_workpiece(start),
+            AxisSource::Program => (swarf_geom::math::Mat3::IDENTITY, Vec3::ZERO),
+        };
+        MoveKind::Arc(ArcGeom {
+            center: r * c_start + t,
+            normal: r * normal,
+            sweep,
+            start_radius: r0.length(),
+            end_radius: r1.length(),
+            helix: normal.dot(q1 - q0),
+        })
+    }
+}
+
+impl CanonSink for MoveBuilder {
+    fn emit(&mut self, line: u32, event: &Canon<'_>) {
+        match event {
+            Canon::Offsets { g5x, g92, .. } => {
+                self.g5x = *g5x;
+                self.g92 = *g92;
+            }
+            Canon::FeedRate(f) => self.feed = *f,
+            Canon::FeedMode(m) => self.feed_mode = *m,
+            Canon::Spindle { rpm, dir } => {
+                self.spindle_rpm = if *dir == SpindleDir::Stopped {
+                    0.0
+                } else {
+                    *rpm
+                };
+            }
+            Canon::ToolChange { tool } => {
+                self.tool = *tool;
+                if !self.tools.contains(tool) {
+                    self.tools.push(*tool);
+                }
+                if let Some(def) = self.pending_cutter.take() {
+                    self.bind_cutter(*tool, def);
+                }
+            }
+            Canon::CutterDefinition(def) => {
+                if let Some(prev) = self.pending_cutter.replace(*def) {
+                    self.bind_cutter(self.tool, prev);
+                }
+            }
+            Canon::Traverse { end } => self.push(line, end, |_, _, _| MoveKind::Rapid),
+            Canon::Feed { end } => self.push(line, end, |_, _, _| MoveKind::Linear),
+            Canon::Arc {
+                end,
+                center,
+                rotation,
+                plane,
+            } => {
+                if *rotation == 0 {
+                    self.warn_at(
+                        line,
+                        "arc with zero rotation taken as a straight feed".into(),
+                    );
+                    self.push(line, end, |_, _, _| MoveKind::Linear);
+                    return;
+                }
+                let (i1, i2, n) = plane.axes();
+                let (center, rotation) = (*center, *rotation);
+                self.push(line, end, |b, s, e| {
+                    let sj = s.to_array();
+                    let off = b.g5x.add(b.g92).to_array();
+                    let mut c = [0.0; 3];
+                    c[i1] = center[0] + off[i1];
+                    c[i2] = center[1] + off[i2];
+                    c[n] = sj[n];
+                    let mut normal = Vec3::ZERO;
+                    normal[n] = if rotation > 0 { 1.0 } else { -1.0 };
+                    b.arc_geom(s, e, Vec3::from_array(c), normal, rotation.unsigned_abs())
+                });
+            }
+            Canon::ArcAxis {
+                end,
+                center,
+                normal,
+                turns,
+            } => {
+                let n = Vec3::from_array(*normal);
+                let Some(n) = n.try_normalize() else {
+                    self.warn_at(
+                        line,
+                        "arc about a zero axis taken as a straight feed".into(),
+                    );
+                    self.push(line, end, |_, _, _| MoveKind::Linear);
+                    return;
+                };
+                let (center, turns) = (*center, (*turns).max(1));
+                self.push(line, end, |b, s, e| {
+                    let off = b.g5x.add(b.g92);
+                    let c = Vec3::from_array(center) + Vec3::new(off.x, off.y, off.z);
+                    b.arc_geom(s, e, c, n, turns)
+                });
+            }
+            Canon::ToolAxis(a) => {
+                let Some(a) = Vec3::from_array(*a).try_normalize() else {
+                    self.warn_at(line, "zero tool axis ignored".into());
+                    return;
+                };
+                if self.axis_source == AxisSource::Machine {
+                    if !self.moves.is_empty() {
+                        self.warn_at(
+                            line,
+                            "the program states its tool axis after moving: earlier moves used \
+                             the machine kinematics, later ones take the axis from the program"
+                                .into(),
+                        );
+                    } else {
+                        self.axis = a;
+                    }
+                    self.axis_source = AxisSource::Program;
+                }
+                self.target_axis = a;
+            }
+            Canon::SetPosition(p) => {
+                self.pos = *p;
+                self.axis = self.target_axis;
+            }
+            Canon::Units(_)
+            | Canon::Plane(_)
+            | Canon::ToolLengthOffset(_)
+            | Canon::Dwell(_)
+            | Canon::Comment(_)
+            | Canon::ProgramEnd => {}
+        }
+    }
+
+    fn warn(&mut self, warning: Warning) {
+        self.warnings.push(warning);
+    }
+}

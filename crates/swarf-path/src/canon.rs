@@ -34,9 +34,19 @@ impl Axes {
     }
     /// From an array in X Y Z A B C order.
     pub fn from_array(v: [f64; 6]) -> Self {
-        Self { x: v[0], y: v[1], z: v[2], a: v[3], b: v[4], c: v[5] }
+        Self {
+            x: v[0],
+            y: v[1],
+            z: v[2],
+            a: v[3],
+            b: v[4],
+            c: v[5],
+        }
     }
     /// Component-wise sum.
+    // A named method rather than `ops::Add`: joint vectors are added in one place (offsets),
+    // and an operator would suggest an algebra the type does not have.
+    #[allow(clippy::should_implement_trait)]
     pub fn add(self, o: Self) -> Self {
         let (a, b) = (self.to_array(), o.to_array());
         Self::from_array(std::array::from_fn(|i| a[i] + b[i]))
@@ -178,6 +188,29 @@ pub enum Canon<'a> {
     CutterDefinition([f64; 7]),
     /// M2/M30/`FINI`: the end of the program.
     ProgramEnd,
+    /// CL data only (APT `GOTO/x,y,z,i,j,k`): the tool axis — a unit vector from the tip towards
+    /// the spindle, in the workpiece frame — for the moves that follow. Once a program states
+    /// its axis this way, [`MoveBuilder`](crate::builder::MoveBuilder) takes the axis from the
+    /// program instead of from the machine's rotary joints (the positions are then tool tips in
+    /// the workpiece frame). The axis turns from the previous one to this one over the next move.
+    ToolAxis([f64; 3]),
+    /// CL data only (APT `FROM/`, or the first point of a CL file): the tool is at `pos` without
+    /// having moved there. No move is made.
+    SetPosition(Axes),
+    /// CL data only (APT `CIRCLE/` with an axis that is not ±X, ±Y or ±Z): a circular or helical
+    /// feed move about an arbitrary axis through `center`. The motion is counter-clockwise about
+    /// `normal` (right-hand rule); `turns` ≥ 1 counts full or partial turns as `|rotation|` does
+    /// in [`Canon::Arc`] (start = end with `turns` = 1 is one full circle).
+    ArcAxis {
+        /// End point.
+        end: Axes,
+        /// A point on the arc's axis, mm.
+        center: [f64; 3],
+        /// Unit normal; the motion is counter-clockwise about it.
+        normal: [f64; 3],
+        /// 1 for an arc of at most one turn, n for n − 1 extra full turns.
+        turns: u32,
+    },
 }
 
 /// Receives canonical events in program order, with the source line of each.
@@ -205,21 +238,49 @@ impl CanonSink for Recorder {
         let owned = match event {
             Canon::Comment(c) => Canon::Comment(Cow::Owned(c.to_string())),
             Canon::Units(u) => Canon::Units(*u),
-            Canon::Offsets { index, g5x, g92 } => Canon::Offsets { index: *index, g5x: *g5x, g92: *g92 },
+            Canon::Offsets { index, g5x, g92 } => Canon::Offsets {
+                index: *index,
+                g5x: *g5x,
+                g92: *g92,
+            },
             Canon::Plane(p) => Canon::Plane(*p),
             Canon::FeedRate(f) => Canon::FeedRate(*f),
             Canon::FeedMode(m) => Canon::FeedMode(*m),
-            Canon::Spindle { rpm, dir } => Canon::Spindle { rpm: *rpm, dir: *dir },
+            Canon::Spindle { rpm, dir } => Canon::Spindle {
+                rpm: *rpm,
+                dir: *dir,
+            },
             Canon::ToolChange { tool } => Canon::ToolChange { tool: *tool },
             Canon::ToolLengthOffset(l) => Canon::ToolLengthOffset(*l),
             Canon::Traverse { end } => Canon::Traverse { end: *end },
             Canon::Feed { end } => Canon::Feed { end: *end },
-            Canon::Arc { end, center, rotation, plane } => {
-                Canon::Arc { end: *end, center: *center, rotation: *rotation, plane: *plane }
-            }
+            Canon::Arc {
+                end,
+                center,
+                rotation,
+                plane,
+            } => Canon::Arc {
+                end: *end,
+                center: *center,
+                rotation: *rotation,
+                plane: *plane,
+            },
             Canon::Dwell(d) => Canon::Dwell(*d),
             Canon::CutterDefinition(p) => Canon::CutterDefinition(*p),
             Canon::ProgramEnd => Canon::ProgramEnd,
+            Canon::ToolAxis(a) => Canon::ToolAxis(*a),
+            Canon::SetPosition(p) => Canon::SetPosition(*p),
+            Canon::ArcAxis {
+                end,
+                center,
+                normal,
+                turns,
+            } => Canon::ArcAxis {
+                end: *end,
+                center: *center,
+                normal: *normal,
+                turns: *turns,
+            },
         };
         self.events.push((line, owned));
     }

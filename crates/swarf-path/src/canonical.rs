@@ -1,1 +1,202 @@
-//! Prints canonical events in the exact form of LinuxCNC interpreter tests.
+//! Prints canonical events in the exact form of LinuxCNC's interpreter tests, so swarf's G-code
+//! reading can be diffed line by line against LinuxCNC's `.expected` files.
+//!
+//! Each motion call is one line, prefixed with ` N..... ` as the tests print it (they mask the
+//! line numbers), values in program units (the printer follows [`Canon::Units`]: inch
+//! programs print inches) with four decimals, like the C `%.4f`:
+//!
+//! ```text
+//!  N..... STRAIGHT_TRAVERSE(1.0000, 1.0000, 2.0000, 0.0000, 0.0000, 0.0000)
+//!  N..... STRAIGHT_FEED(1.0000, 1.0000, -1.0000, 0.0000, 0.0000, 0.0000)
+//!  N..... ARC_FEED(0.0000, 1.0000, 0.0000, 0.0000, 1, 0.0000, 0.0000, 0.0000, 0.0000)
+//! ```
+//!
+//! `ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end_point, a, b, c)`
+//! uses LinuxCNC's plane order: X,Y about Z for G17; Z,X about Y for G18; Y,Z about X for G19.
+//! Only the three motion calls are printed for now; the other canonical calls (units, offsets,
+//! feeds, comments) differ in detail between LinuxCNC versions and are not needed to compare
+//! paths.
+
+use std::io::{self, Write};
+
+use crate::{Canon, CanonSink, Units, Warning};
+
+/// A [`CanonSink`] that writes LinuxCNC canonical motion calls to `W`.
+///
+/// Write errors do not stop the reader (a sink cannot fail); the first one is kept and later
+/// writes are skipped. Check [`CanonicalPrinter::io_error`] or use
+/// [`CanonicalPrinter::finish`].
+#[derive(Debug)]
+pub struct CanonicalPrinter<W: Write> {
+    out: W,
+    units: Units,
+    error: Option<io::Error>,
+}
+
+impl<W: Write> CanonicalPrinter<W> {
+    /// A printer writing to `out`, starting in millimetres (as LinuxCNC's canon does).
+    pub fn new(out: W) -> Self {
+        Self {
+            out,
+            units: Units::Mm,
+            error: None,
+        }
+    }
+
+    /// The first write error, if any.
+    pub fn io_error(&self) -> Option<&io::Error> {
+        self.error.as_ref()
+    }
+
+    /// Flushes and returns the writer, or the first write error.
+    ///
+    /// # Errors
+    /// The first error met while writing or flushing.
+    pub fn finish(mut self) -> io::Result<W> {
+        if let Some(e) = self.error.take() {
+            return Err(e);
+        }
+        self.out.flush()?;
+        Ok(self.out)
+    }
+
+    /// Program units from mm for linear axes.
+    fn u(&self, mm: f64) -> f64 {
+        match self.units {
+            Units::Mm => mm,
+            Units::Inch => mm / 25.4,
+        }
+    }
+
+    fn write_event(&mut self, event: &Canon<'_>) -> io::Result<()> {
+        match event {
+            Canon::Units(u) => self.units = *u,
+            Canon::Traverse { end } | Canon::Feed { end } => {
+                let name = if matches!(event, Canon::Traverse { .. }) {
+                    "STRAIGHT_TRAVERSE"
+                } else {
+                    "STRAIGHT_FEED"
+                };
+                writeln!(
+                    self.out,
+                    " N..... {name}({:.4}, {:.4}, {:.4}, {:.4}, {:.4}, {:.4})",
+                    self.u(end.x),
+                    self.u(end.y),
+                    self.u(end.z),
+                    end.a,
+                    end.b,
+                    end.c
+                )?;
+            }
+            Canon::Arc {
+                end,
+                center,
+                rotation,
+                plane,
+            } => {
+                let (f, s, n) = plane.axes();
+                let e = end.to_array();
+                writeln!(
+                    self.out,
+                    " N..... ARC_FEED({:.4}, {:.4}, {:.4}, {:.4}, {}, {:.4}, {:.4}, {:.4}, {:.4})",
+                    self.u(e[f]),
+                    self.u(e[s]),
+                    self.u(center[0]),
+                    self.u(center[1]),
+                    rotation,
+                    self.u(e[n]),
+                    end.a,
+                    end.b,
+                    end.c
+                )?;
+            }
+            _ => {}
+        }
+        Ok(())
+    }
+}
+
+impl<W: Write> CanonSink for CanonicalPrinter<W> {
+    fn emit(&mut self, _line: u32, event: &Canon<'_>) {
+        if self.error.is_some() {
+            // Keep following the units so a later reader of the state is not confused, but
+            // write nothing more after a failure.
+            if let Canon::Units(u) = event {
+                self.units = *u;
+            }
+            return;
+        }
+        if let Err(e) = self.write_event(event) {
+            self.error = Some(e);
+        }
+    }
+
+    fn warn(&mut self, _warning: Warning) {}
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Axes, Plane};
+
+    #[test]
+    fn prints_linuxcnc_form() {
+        let mut p = CanonicalPrinter::new(Vec::new());
+        p.emit(1, &Canon::Units(Units::Inch));
+        p.emit(
+            2,
+            &Canon::Traverse {
+                end: Axes {
+                    x: 25.4,
+                    y: -0.0,
+                    z: 50.8,
+                    a: 90.0,
+                    ..Axes::default()
+                },
+            },
+        );
+        p.emit(
+            3,
+            &Canon::Arc {
+                end: Axes {
+                    x: 25.4,
+                    y: 0.0,
+                    z: 2.54,
+                    ..Axes::default()
+                },
+                center: [12.7, 0.0],
+                rotation: -2,
+                plane: Plane::XZ,
+            },
+        );
+        let s = String::from_utf8(p.finish().unwrap()).unwrap();
+        assert_eq!(
+            s,
+            " N..... STRAIGHT_TRAVERSE(1.0000, -0.0000, 2.0000, 90.0000, 0.0000, 0.0000)\n \
+             N..... ARC_FEED(0.1000, 1.0000, 0.5000, 0.0000, -2, 0.0000, 0.0000, 0.0000, 0.0000)\n"
+        );
+    }
+
+    struct Broken;
+    impl Write for Broken {
+        fn write(&mut self, _: &[u8]) -> io::Result<usize> {
+            Err(io::Error::other("disk full"))
+        }
+        fn flush(&mut self) -> io::Result<()> {
+            Ok(())
+        }
+    }
+
+    #[test]
+    fn keeps_first_io_error() {
+        let mut p = CanonicalPrinter::new(Broken);
+        p.emit(
+            1,
+            &Canon::Feed {
+                end: Axes::default(),
+            },
+        );
+        assert!(p.io_error().is_some());
+        assert!(p.finish().is_err());
+    }
+}

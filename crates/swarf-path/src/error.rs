@@ -64,7 +64,13 @@ impl PathError {
         found: impl Into<String>,
         expected: impl Into<String>,
     ) -> Self {
-        Self { pos, kind, message: message.into(), found: found.into(), expected: expected.into() }
+        Self {
+            pos,
+            kind,
+            message: message.into(),
+            found: found.into(),
+            expected: expected.into(),
+        }
     }
 }
 
@@ -96,6 +102,10 @@ pub struct Warning {
 
 impl fmt::Display for Warning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}:{}:{}: warning: {}", self.file, self.line, self.column, self.message)
+        write!(
+            f,
+            "{}:{}:{}: warning: {}",
+            self.file, self.line, self.column, self.message
+        )
     }
 }

@@ -19,16 +19,20 @@
 //! Units: millimetres, degrees, minutes (feed in mm/min) at every interface; inch programs are
 //! converted on input. Every move carries the file and line it came from.
 
-pub mod canon;
-pub mod error;
-pub mod moves;
-
-pub use canon::{Axes, Canon, CanonSink, FeedMode, Plane, SpindleDir, Units};
-pub use error::{PathError, PathErrorKind, SourcePos, Warning};
-pub use moves::{ArcGeom, Move, MoveKind, Pose, Program};
 pub mod apt;
+pub mod builder;
+pub mod canon;
 pub mod canonical;
+pub mod error;
 pub mod gcode;
 pub mod kinematics;
-pub mod builder;
+pub mod load;
+pub mod moves;
 pub mod summary;
+
+pub use builder::MoveBuilder;
+pub use canon::{Axes, Canon, CanonSink, FeedMode, Plane, SpindleDir, Units};
+pub use error::{PathError, PathErrorKind, SourcePos, Warning};
+pub use kinematics::Machine;
+pub use moves::{ArcGeom, AxisSource, Move, MoveKind, Pose, Program};
+pub use summary::{summarize, ProgramSummary};

@@ -4,6 +4,7 @@ use serde::Serialize;
 use swarf_geom::math::Vec3;
 
 use crate::canon::{Axes, FeedMode};
+use crate::kinematics::Machine;
 use crate::Warning;
 
 /// Tool tip and tool axis in the workpiece frame. The axis is a unit vector pointing from the
@@ -39,6 +40,28 @@ pub struct ArcGeom {
 }
 
 impl ArcGeom {
+    /// The tip at parameter `s ∈ [0, 1]` of an arc starting at `start` (workpiece frame), by the
+    /// formula in the type's documentation.
+    pub fn point_at(&self, start: Vec3, s: f64) -> Vec3 {
+        let (u, v, h0) = self.start_frame(start);
+        let (sin, cos) = (s * self.sweep).sin_cos();
+        let rho = self.start_radius + s * (self.end_radius - self.start_radius);
+        self.center + (u * cos + v * sin) * rho + self.normal * (h0 + s * self.helix)
+    }
+
+    /// The in-plane unit vectors `u` (towards the start) and `v = normal × u`, and the start's
+    /// height along the normal above `center`. A start on the axis (radius 0) gets an arbitrary
+    /// `u` perpendicular to the normal.
+    pub fn start_frame(&self, start: Vec3) -> (Vec3, Vec3, f64) {
+        let d = start - self.center;
+        let h0 = self.normal.dot(d);
+        let radial = d - self.normal * h0;
+        let u = radial
+            .try_normalize()
+            .unwrap_or_else(|| self.normal.any_orthonormal_vector());
+        (u, self.normal.cross(u), h0)
+    }
+
     /// Length of the path (helix and spiral included), mm, integrated to 1e-9 relative.
     pub fn length(&self) -> f64 {
         let r = 0.5 * (self.start_radius + self.end_radius);
@@ -102,10 +125,112 @@ pub struct Program {
     pub cutter_definitions: Vec<(u32, [f64; 7])>,
     /// Harmless things the reader did not act on.
     pub warnings: Vec<Warning>,
+    /// The machine whose kinematics turned joints into poses (and interpolates between them).
+    pub machine: Machine,
+    /// Where the tool axis of the moves comes from.
+    pub axis_source: AxisSource,
+}
+
+/// Where a program's tool axis comes from, which decides how a move is interpolated.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "snake_case")]
+pub enum AxisSource {
+    /// From the machine's rotary joints (G-code): moves are linear in joint space and mapped
+    /// through [`Program::machine`].
+    #[default]
+    Machine,
+    /// From the program itself (APT CL data, [`Canon::ToolAxis`](crate::Canon::ToolAxis)): the
+    /// tip moves linearly (or along the arc) in the workpiece frame and the axis turns at
+    /// constant angular rate (slerp) from the start axis to the end axis.
+    Program,
+}
+
+impl Program {
+    /// The pose of move `m` at parameter `s ∈ [0, 1]` (`s` = 0 is `m.start`, 1 is `m.end`), as
+    /// the machine moves: arcs exactly; linear moves with rotary motion through
+    /// [`Program::machine`] at joints interpolated linearly; CL moves by a linear tip and a
+    /// slerped axis.
+    pub fn pose_at(&self, m: &Move, s: f64) -> Pose {
+        let cl = self.axis_source == AxisSource::Program;
+        let rotary = !cl && m.start_joints.rotary_differs(&m.end_joints);
+        let lerp_joints = |tip_joint: Option<Vec3>| {
+            let (a, b) = (m.start_joints.to_array(), m.end_joints.to_array());
+            let mut j = Axes::from_array(std::array::from_fn(|i| a[i] + s * (b[i] - a[i])));
+            if let Some(q) = tip_joint {
+                (j.x, j.y, j.z) = (q.x, q.y, q.z);
+            }
+            j
+        };
+        match m.kind {
+            MoveKind::Arc(g) => {
+                let tip = g.point_at(m.start.tip, s);
+                if cl {
+                    Pose {
+                        tip,
+                        axis: slerp(m.start.axis, m.end.axis, s),
+                    }
+                } else if rotary {
+                    // The arc is stated in the workpiece frame at the start's rotary position;
+                    // carry the point back to joint space there, then move all joints.
+                    let (r, t) = self.machine.joint_space_to_workpiece(&m.start_joints);
+                    let q = r.transpose() * (tip - t);
+                    self.machine.pose(&lerp_joints(Some(q)))
+                } else {
+                    Pose {
+                        tip,
+                        axis: m.start.axis,
+                    }
+                }
+            }
+            MoveKind::Rapid | MoveKind::Linear => {
+                if rotary {
+                    self.machine.pose(&lerp_joints(None))
+                } else {
+                    Pose {
+                        tip: m.start.tip.lerp(m.end.tip, s),
+                        axis: if cl {
+                            slerp(m.start.axis, m.end.axis, s)
+                        } else {
+                            m.start.axis
+                        },
+                    }
+                }
+            }
+        }
+    }
+
+    /// True when the tip of `m` may leave the straight line or arc between its end points (a
+    /// linear or arc move with rotary motion interpolated through the machine).
+    pub fn tip_path_is_curved(&self, m: &Move) -> bool {
+        self.axis_source == AxisSource::Machine
+            && m.start_joints.rotary_differs(&m.end_joints)
+            && !self.machine.tcp
+    }
+}
+
+/// Spherical linear interpolation between unit vectors `a` and `b` (constant angular rate). For
+/// opposite vectors the turn is about an arbitrary perpendicular.
+pub fn slerp(a: Vec3, b: Vec3, s: f64) -> Vec3 {
+    let d = a.dot(b).clamp(-1.0, 1.0);
+    let theta = d.acos();
+    if theta < 1e-12 {
+        return a;
+    }
+    let sin = theta.sin();
+    if sin < 1e-9 {
+        // Antiparallel: any great half-circle will do; pick one through a fixed perpendicular.
+        let p = a.any_orthonormal_vector();
+        let phi = s * std::f64::consts::PI;
+        return a * phi.cos() + p * phi.sin();
+    }
+    (a * ((1.0 - s) * theta).sin() + b * (s * theta).sin()) / sin
 }
 
 impl Default for Pose {
     fn default() -> Self {
-        Self { tip: Vec3::ZERO, axis: Vec3::Z }
+        Self {
+            tip: Vec3::ZERO,
+            axis: Vec3::Z,
+        }
     }
 }

@@ -1,1 +1,423 @@
-//! Program summary: counts, lengths, bounding box, machining time.
+//! Program summary: move counts, tip path lengths, the tip's bounding box, tools, warnings and
+//! machining time — what `swarf` prints about a program before simulating it.
+//!
+//! [`ProgramSummary`] serialises to JSON with stable snake_case keys; the CLI prints it, so the
+//! keys are a contract.
+//!
+//! # Accuracy
+//! Straight moves and arcs are measured exactly: an arc's bounding box includes its axis-aligned
+//! extreme points, found in closed form (and polished by Newton's method on the rare arc whose
+//! radius changes from start to end). A move whose tip leaves the straight line or arc between
+//! its ends — a non-TCP move with rotary motion, interpolated linearly in joint space — is
+//! sampled adaptively until every chord is within [`SummaryOptions::tolerance_mm`] of the curve
+//! at its midpoint; its length is the sum of those chords and its bounding box that of the
+//! samples, both within the tolerance, which the summary reports as `path_tolerance_mm`.
+//!
+//! # Machining time
+//! Feed moves only (rapids depend on the machine's rapid rates, which swarf does not know), as
+//! LinuxCNC plans them: with G94 the feed applies to the joint-space X Y Z length, or to the
+//! rotary angle in degrees for a purely rotary move; with G93 a move takes 1/F minutes; with G95
+//! the feed per revolution times the spindle speed gives the rate. Moves with no usable feed
+//! (F0, or G95 with the spindle stopped) are left out and counted in a note.
+
+use std::f64::consts::TAU;
+
+use serde::Serialize;
+use swarf_geom::math::Vec3;
+
+use crate::canon::FeedMode;
+use crate::moves::{ArcGeom, AxisSource, Move, MoveKind, Program};
+use crate::Warning;
+
+/// Default chordal tolerance for curved (joint-interpolated) tip paths, mm.
+pub const DEFAULT_PATH_TOLERANCE_MM: f64 = 1e-3;
+
+/// Lengths below this count as zero (zero-length moves), mm.
+pub const ZERO_LENGTH_MM: f64 = 1e-9;
+
+/// Deepest subdivision of one curved move piece: 2^20 chords, far below any useful tolerance
+/// on a real move.
+const MAX_DEPTH: u32 = 20;
+
+/// Most tip evaluations spent on one curved move — a bound on work for degenerate moves (huge
+/// or non-finite values); a move that hits it is counted in a note.
+const MAX_SAMPLES: usize = 1 << 18;
+
+/// Options of [`summarize_with`].
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SummaryOptions {
+    /// Chordal tolerance for curved tip paths, mm (default [`DEFAULT_PATH_TOLERANCE_MM`]).
+    pub tolerance_mm: f64,
+}
+
+impl Default for SummaryOptions {
+    fn default() -> Self {
+        Self {
+            tolerance_mm: DEFAULT_PATH_TOLERANCE_MM,
+        }
+    }
+}
+
+impl SummaryOptions {
+    /// These options with another chordal tolerance (mm; non-positive values are replaced by
+    /// the default).
+    pub fn with_tolerance(mut self, tolerance_mm: f64) -> Self {
+        self.tolerance_mm = if tolerance_mm > 0.0 {
+            tolerance_mm
+        } else {
+            DEFAULT_PATH_TOLERANCE_MM
+        };
+        self
+    }
+}
+
+/// What a program does, in numbers. Keys are stable (CLI contract).
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct ProgramSummary {
+    /// All moves, zero-length ones included.
+    pub moves: usize,
+    /// Rapid moves.
+    pub rapid_moves: usize,
+    /// Feed moves: linear and arc.
+    pub feed_moves: usize,
+    /// Arc (circular and helical) feed moves.
+    pub arc_moves: usize,
+    /// Moves whose tip and axis do not move (counted in the totals above too).
+    pub zero_length_moves: usize,
+    /// Tip path length of the feed moves, mm.
+    pub feed_length_mm: f64,
+    /// Tip path length of the rapid moves, mm.
+    pub rapid_length_mm: f64,
+    /// Lower corner of the tip's bounding box over all moves, mm (`null` without moves).
+    pub bbox_min: Option<[f64; 3]>,
+    /// Upper corner of the tip's bounding box over all moves, mm.
+    pub bbox_max: Option<[f64; 3]>,
+    /// Lower corner of the tip's bounding box over feed moves only, mm.
+    pub feed_bbox_min: Option<[f64; 3]>,
+    /// Upper corner of the tip's bounding box over feed moves only, mm.
+    pub feed_bbox_max: Option<[f64; 3]>,
+    /// Tool numbers loaded, in order of first use.
+    pub tools: Vec<u32>,
+    /// The readers' warnings.
+    pub warnings: Vec<Warning>,
+    /// Time spent in feed moves, seconds (rapids excluded; see the module documentation).
+    pub machining_time_s: f64,
+    /// Remarks on how the numbers were obtained (moves left out of the time, sampled paths).
+    pub notes: Vec<String>,
+    /// Chordal tolerance used for curved tip paths, mm.
+    pub path_tolerance_mm: f64,
+    /// The machine whose kinematics produced the poses.
+    pub machine: String,
+    /// Where the tool axis came from: `machine` (G-code) or `program` (CL data).
+    pub axis_source: AxisSource,
+}
+
+/// An axis-aligned box, grown point by point.
+#[derive(Clone, Copy, Debug)]
+struct Bbox {
+    min: Vec3,
+    max: Vec3,
+}
+
+impl Bbox {
+    fn empty() -> Self {
+        Self {
+            min: Vec3::splat(f64::INFINITY),
+            max: Vec3::splat(f64::NEG_INFINITY),
+        }
+    }
+    fn add(&mut self, p: Vec3) {
+        self.min = self.min.min(p);
+        self.max = self.max.max(p);
+    }
+    fn corners(&self) -> (Option<[f64; 3]>, Option<[f64; 3]>) {
+        if self.min.x <= self.max.x {
+            (Some(self.min.to_array()), Some(self.max.to_array()))
+        } else {
+            (None, None)
+        }
+    }
+}
+
+/// Summarises a program with the default options.
+pub fn summarize(program: &Program) -> ProgramSummary {
+    summarize_with(program, &SummaryOptions::default())
+}
+
+/// Summarises a program.
+pub fn summarize_with(program: &Program, options: &SummaryOptions) -> ProgramSummary {
+    let tol = options.tolerance_mm;
+    let mut s = ProgramSummary {
+        moves: program.moves.len(),
+        rapid_moves: 0,
+        feed_moves: 0,
+        arc_moves: 0,
+        zero_length_moves: 0,
+        feed_length_mm: 0.0,
+        rapid_length_mm: 0.0,
+        bbox_min: None,
+        bbox_max: None,
+        feed_bbox_min: None,
+        feed_bbox_max: None,
+        tools: program.tools.clone(),
+        warnings: program.warnings.clone(),
+        machining_time_s: 0.0,
+        notes: Vec::new(),
+        path_tolerance_mm: tol,
+        machine: program.machine.name.clone(),
+        axis_source: program.axis_source,
+    };
+    let (mut all, mut feed) = (Bbox::empty(), Bbox::empty());
+    let (mut no_feed, mut curved) = (0usize, Curved::default());
+    let mut minutes = 0.0;
+    for m in &program.moves {
+        let mut bb = Bbox::empty();
+        let length = move_extent(program, m, tol, &mut bb, &mut curved);
+        all.add(bb.min);
+        all.add(bb.max);
+        let zero = is_zero_length(m);
+        s.zero_length_moves += usize::from(zero);
+        match m.kind {
+            MoveKind::Rapid => {
+                s.rapid_moves += 1;
+                s.rapid_length_mm += length;
+            }
+            MoveKind::Linear | MoveKind::Arc(_) => {
+                s.feed_moves += 1;
+                s.arc_moves += usize::from(matches!(m.kind, MoveKind::Arc(_)));
+                s.feed_length_mm += length;
+                feed.add(bb.min);
+                feed.add(bb.max);
+                if !zero {
+                    match feed_minutes(program, m, length) {
+                        Some(t) => minutes += t,
+                        None => no_feed += 1,
+                    }
+                }
+            }
+        }
+    }
+    (s.bbox_min, s.bbox_max) = all.corners();
+    (s.feed_bbox_min, s.feed_bbox_max) = feed.corners();
+    s.machining_time_s = minutes * 60.0;
+    if no_feed > 0 {
+        s.notes.push(format!(
+            "{no_feed} feed move(s) without a usable feed rate (F0, or feed per revolution with \
+             the spindle stopped) are left out of machining_time_s"
+        ));
+    }
+    if curved.moves > 0 {
+        s.notes.push(format!(
+            "{} move(s) with rotary motion follow a curved tip path: length and bounding box \
+             sampled to {tol} mm",
+            curved.moves
+        ));
+    }
+    if curved.unconverged > 0 {
+        s.notes.push(format!(
+            "{} curved move(s) did not reach the {tol} mm tolerance within {MAX_SAMPLES} samples",
+            curved.unconverged
+        ));
+    }
+    s
+}
+
+/// True when neither the tip nor the joints move.
+fn is_zero_length(m: &Move) -> bool {
+    let (a, b) = (m.start_joints.to_array(), m.end_joints.to_array());
+    let joints_still = a
+        .iter()
+        .zip(&b)
+        .all(|(x, y)| (x - y).abs() <= ZERO_LENGTH_MM);
+    let arc_turns = matches!(m.kind, MoveKind::Arc(g) if g.length() > ZERO_LENGTH_MM);
+    joints_still
+        && !arc_turns
+        && (m.start.tip - m.end.tip).length() <= ZERO_LENGTH_MM
+        && (m.start.axis - m.end.axis).length() <= ZERO_LENGTH_MM
+}
+
+/// Counts of curved moves, and of those whose sampling ran out of budget.
+#[derive(Default)]
+struct Curved {
+    moves: usize,
+    unconverged: usize,
+}
+
+/// Tip path length of `m`, growing `bb` by the tip's path.
+fn move_extent(program: &Program, m: &Move, tol: f64, bb: &mut Bbox, curved: &mut Curved) -> f64 {
+    bb.add(m.start.tip);
+    bb.add(m.end.tip);
+    if program.tip_path_is_curved(m) {
+        curved.moves += 1;
+        let (length, converged) = Sampler {
+            program,
+            m,
+            tol,
+            budget: MAX_SAMPLES,
+        }
+        .run(bb);
+        curved.unconverged += usize::from(!converged);
+        return length;
+    }
+    match m.kind {
+        MoveKind::Arc(g) => {
+            arc_extremes(&g, m.start.tip, bb);
+            g.length()
+        }
+        MoveKind::Rapid | MoveKind::Linear => (m.end.tip - m.start.tip).length(),
+    }
+}
+
+/// Adds the arc's axis-aligned extreme points to `bb`.
+fn arc_extremes(g: &ArcGeom, start: Vec3, bb: &mut Bbox) {
+    if g.sweep <= 0.0 {
+        return;
+    }
+    let (u, v, _) = g.start_frame(start);
+    let r_mean = 0.5 * (g.start_radius + g.end_radius);
+    let dr = (g.end_radius - g.start_radius) / g.sweep;
+    let dh = g.helix / g.sweep;
+    for k in 0..3 {
+        let (uk, vk, nk) = (u[k], v[k], g.normal[k]);
+        // x_k(θ) = ρ(θ)(u_k cos θ + v_k sin θ) + n_k h(θ) + const, with ρ and h linear in θ.
+        let d1 = |t: f64| {
+            let rho = g.start_radius + dr * t;
+            let (s, c) = t.sin_cos();
+            dr * (uk * c + vk * s) + rho * (vk * c - uk * s) + nk * dh
+        };
+        let d2 = |t: f64| {
+            let rho = g.start_radius + dr * t;
+            let (s, c) = t.sin_cos();
+            2.0 * dr * (vk * c - uk * s) - rho * (uk * c + vk * s)
+        };
+        // Constant-radius critical points, closed form: r(v_k cos θ − u_k sin θ) = −n_k h' is
+        // R cos(θ + φ) = −m with R = r·|(u_k, v_k)|, φ = atan2(u_k, v_k).
+        let amp = r_mean * uk.hypot(vk);
+        if amp <= 1e-300 {
+            continue;
+        }
+        let ratio = -(nk * dh) / amp;
+        if ratio.abs() > 1.0 {
+            continue;
+        }
+        let phi = uk.atan2(vk);
+        let acos = ratio.acos();
+        // Each critical phase recurs once per turn, its value changing linearly (helix) or
+        // nearly so (spiral) from turn to turn: the extreme of a multi-turn arc is on its first
+        // or last turn, so those are the only ones visited.
+        let ranges = if g.sweep <= 2.0 * TAU {
+            [(0.0, g.sweep), (1.0, 0.0)]
+        } else {
+            [(0.0, TAU), (g.sweep - TAU, g.sweep)]
+        };
+        for base in [acos - phi, -acos - phi] {
+            for (lo, hi) in ranges {
+                let j0 = ((lo - base) / TAU).ceil() as i64;
+                let j1 = ((hi - base) / TAU).floor() as i64;
+                for j in j0..=j1 {
+                    let mut t = base + TAU * j as f64;
+                    if dr != 0.0 {
+                        // A spiral: polish on the exact derivative.
+                        for _ in 0..8 {
+                            let h = d2(t);
+                            if h.abs() < 1e-300 {
+                                break;
+                            }
+                            t -= d1(t) / h;
+                        }
+                    }
+                    if (0.0..=g.sweep).contains(&t) {
+                        bb.add(g.point_at(start, t / g.sweep));
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Adaptive sampling of one curved move.
+struct Sampler<'p> {
+    program: &'p Program,
+    m: &'p Move,
+    tol: f64,
+    /// Evaluations left before giving up on the tolerance.
+    budget: usize,
+}
+
+impl Sampler<'_> {
+    /// Chord length of the move, with every sample added to `bb`, and whether the tolerance
+    /// was reached within the budget (if not, the chords found so far are summed).
+    fn run(&mut self, bb: &mut Bbox) -> (f64, bool) {
+        // Start from pieces of at most 5° of rotary motion so that an S-shaped piece cannot
+        // hide behind a midpoint that happens to lie on its chord.
+        let (a, b) = (self.m.start_joints, self.m.end_joints);
+        let turn = (a.a - b.a)
+            .abs()
+            .max((a.b - b.b).abs())
+            .max((a.c - b.c).abs());
+        let pieces = if turn.is_finite() {
+            ((turn / 5.0).ceil() as usize).clamp(2, 1 << 12)
+        } else {
+            2
+        };
+        let mut length = 0.0;
+        let mut prev = self.program.pose_at(self.m, 0.0).tip;
+        for i in 1..=pieces {
+            let s0 = (i - 1) as f64 / pieces as f64;
+            let s1 = i as f64 / pieces as f64;
+            let p1 = self.program.pose_at(self.m, s1).tip;
+            length += self.refine((s0, prev), (s1, p1), bb, 0);
+            bb.add(p1);
+            prev = p1;
+        }
+        (length, self.budget > 0)
+    }
+
+    fn refine(
+        &mut self,
+        (s0, p0): (f64, Vec3),
+        (s1, p1): (f64, Vec3),
+        bb: &mut Bbox,
+        depth: u32,
+    ) -> f64 {
+        let sm = 0.5 * (s0 + s1);
+        let pm = self.program.pose_at(self.m, sm).tip;
+        bb.add(pm);
+        self.budget = self.budget.saturating_sub(1);
+        let deviation = (pm - 0.5 * (p0 + p1)).length();
+        // A NaN deviation also stops: no subdivision would cure it.
+        let within = deviation.partial_cmp(&self.tol) != Some(std::cmp::Ordering::Greater);
+        let done = depth >= MAX_DEPTH || self.budget == 0 || within;
+        if done {
+            return (pm - p0).length() + (p1 - pm).length();
+        }
+        self.refine((s0, p0), (sm, pm), bb, depth + 1)
+            + self.refine((sm, pm), (s1, p1), bb, depth + 1)
+    }
+}
+
+/// Minutes the feed move `m` (tip path length `length`) takes, or `None` without a usable feed.
+fn feed_minutes(program: &Program, m: &Move, length: f64) -> Option<f64> {
+    let (a, b) = (m.start_joints, m.end_joints);
+    // The length the controller applies the feed to: programmed X Y Z in joint space (the arc
+    // length for arcs, which the workpiece-frame arc keeps), else the rotary angle.
+    let programmed = if program.axis_source == AxisSource::Program {
+        length
+    } else {
+        let xyz = match m.kind {
+            MoveKind::Arc(g) => g.length(),
+            _ => Vec3::new(b.x - a.x, b.y - a.y, b.z - a.z).length(),
+        };
+        if xyz > ZERO_LENGTH_MM {
+            xyz
+        } else {
+            Vec3::new(b.a - a.a, b.b - a.b, b.c - a.c).length()
+        }
+    };
+    let t = match m.feed_mode {
+        FeedMode::PerMinute => programmed / m.feed,
+        FeedMode::InverseTime => 1.0 / m.feed,
+        FeedMode::PerRevolution => programmed / (m.feed * m.spindle_rpm),
+    };
+    (m.feed > 0.0 && t.is_finite() && t >= 0.0).then_some(t)
+}

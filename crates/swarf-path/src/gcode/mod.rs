@@ -1,1 +1,251 @@
-//! RS274/NGC (LinuxCNC) and common Fanuc G-code interpreter.
+//! The G-code reader: RS274/NGC as LinuxCNC's interpreter (rs274ngc) reads it, plus the common
+//! Fanuc forms (`M98 P.. L..` / `M99` subprograms, `O1234` labels).
+//!
+//! [`read_gcode`] streams over the program text line by line and hands each canonical event to
+//! a [`CanonSink`]; it never keeps the program's motion. Positions in the events are in the
+//! program's current coordinate system (work offsets are stated by [`Canon::Offsets`]
+//! events, not applied), lengths in millimetres (inch programs are converted), angles in degrees
+//! — the conventions of LinuxCNC's canon layer, so [`crate::canonical`] can print the events in
+//! the exact form LinuxCNC's interpreter tests use.
+//!
+//! The modules follow the way a line is read:
+//! [`lexer`] strips comments and spaces, [`expr`] evaluates numbers, parameters and bracketed
+//! expressions, [`block`] collects the words of one block into fixed slots, [`interp`] executes a
+//! block in LinuxCNC's order of execution, with [`arcs`] and [`cycles`] for circular moves and
+//! canned cycles, [`control`] runs O-word control flow and subprograms, [`params`] holds the
+//! numbered and named parameters and [`dialect`] recognises programs for other controllers.
+//!
+//! What is deliberately not simulated (cutter radius compensation, spindle-synchronised motion,
+//! probing, Siemens and Heidenhain programs) is rejected with [`PathErrorKind::Unsupported`];
+//! harmless codes swarf does not act on (coolant, overrides, user M codes) become warnings.
+//!
+//! ```
+//! use swarf_path::{gcode, canon::Recorder, Canon};
+//! let mut rec = Recorder::default();
+//! gcode::read_gcode("G20 G0 X1\nG1 Y2 F10\nM2\n", "demo.ngc", &gcode::GcodeOptions::default(), &mut rec)?;
+//! let feeds: Vec<_> = rec.events.iter().filter(|(_, e)| matches!(e, Canon::Feed { .. })).collect();
+//! assert_eq!(feeds.len(), 1);
+//! if let Canon::Feed { end } = &feeds[0].1 { assert!((end.y - 50.8).abs() < 1e-12) }
+//! # Ok::<(), swarf_path::PathError>(())
+//! ```
+
+mod arcs;
+mod block;
+mod control;
+mod cycles;
+mod dialect;
+mod expr;
+mod interp;
+mod lexer;
+mod params;
+
+use std::path::Path;
+
+use crate::{CanonSink, PathError, PathErrorKind, SourcePos, Units};
+
+#[cfg(doc)]
+use crate::Canon;
+
+pub use dialect::Dialect;
+
+/// How far the radius at the end of a centre-format arc may differ from the radius at its
+/// start, LinuxCNC's rule: an arc is rejected when the absolute difference exceeds
+/// `100 × abs`, or when it exceeds `abs` *and* the relative difference exceeds `relative`.
+///
+/// The defaults are LinuxCNC's `CENTER_ARC_RADIUS_TOLERANCE_INCH` (2 × 0.001 in),
+/// `CENTER_ARC_RADIUS_TOLERANCE_MM` (2 × 0.01 mm) and `SPIRAL_RELATIVE_TOLERANCE` (0.001).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArcTolerance {
+    /// Absolute tolerance for inch programs, inches.
+    pub abs_inch: f64,
+    /// Absolute tolerance for millimetre programs, mm.
+    pub abs_mm: f64,
+    /// Relative tolerance (difference over the larger radius).
+    pub relative: f64,
+}
+
+impl ArcTolerance {
+    /// LinuxCNC's values.
+    pub const LINUXCNC: Self = Self {
+        abs_inch: 2.0 * 0.001,
+        abs_mm: 2.0 * 0.01,
+        relative: 0.001,
+    };
+
+    /// The absolute tolerance in mm for a program in `units`.
+    pub fn abs_in_mm(&self, units: Units) -> f64 {
+        match units {
+            Units::Mm => self.abs_mm,
+            Units::Inch => self.abs_inch * 25.4,
+        }
+    }
+}
+
+impl Default for ArcTolerance {
+    fn default() -> Self {
+        Self::LINUXCNC
+    }
+}
+
+/// Options of the G-code reader. Every limit exists so that a hostile or broken program ends
+/// quickly with [`PathErrorKind::Limit`] instead of hanging or exhausting memory.
+#[derive(Clone, Debug, PartialEq)]
+pub struct GcodeOptions {
+    /// Length units in effect before the program's first G20/G21 (LinuxCNC: the machine's).
+    pub initial_units: Units,
+    /// Most backward jumps in one run: loop iterations (`while`, `do`, `repeat`), subroutine
+    /// calls, `M98`/`M99` repeats, canned-cycle repeats and pecks all count.
+    pub max_loop_iterations: u64,
+    /// Deepest nesting of subroutine calls (O-word `call` and `M98`).
+    pub max_call_depth: usize,
+    /// Largest count one `repeat`, `L` word or `M98 L` may ask for.
+    pub max_repeat: u64,
+    /// Arc end-radius tolerance.
+    pub arc_radius_tolerance: ArcTolerance,
+    /// When true (the default), lines starting with `/` are skipped, as with LinuxCNC's block
+    /// delete switch on.
+    pub block_delete: bool,
+}
+
+impl Default for GcodeOptions {
+    fn default() -> Self {
+        Self {
+            initial_units: Units::Mm,
+            max_loop_iterations: 10_000_000,
+            max_call_depth: 64,
+            max_repeat: 1_000_000,
+            arc_radius_tolerance: ArcTolerance::LINUXCNC,
+            block_delete: true,
+        }
+    }
+}
+
+impl GcodeOptions {
+    /// Sets [`Self::initial_units`].
+    pub fn with_initial_units(mut self, units: Units) -> Self {
+        self.initial_units = units;
+        self
+    }
+    /// Sets [`Self::max_loop_iterations`].
+    pub fn with_max_loop_iterations(mut self, n: u64) -> Self {
+        self.max_loop_iterations = n;
+        self
+    }
+    /// Sets [`Self::max_call_depth`].
+    pub fn with_max_call_depth(mut self, n: usize) -> Self {
+        self.max_call_depth = n;
+        self
+    }
+    /// Sets [`Self::max_repeat`].
+    pub fn with_max_repeat(mut self, n: u64) -> Self {
+        self.max_repeat = n;
+        self
+    }
+    /// Sets [`Self::arc_radius_tolerance`].
+    pub fn with_arc_radius_tolerance(mut self, tol: ArcTolerance) -> Self {
+        self.arc_radius_tolerance = tol;
+        self
+    }
+    /// Sets [`Self::block_delete`].
+    pub fn with_block_delete(mut self, on: bool) -> Self {
+        self.block_delete = on;
+        self
+    }
+}
+
+/// Reads a G-code program and hands its canonical events to `sink`, in program order.
+///
+/// `file_name` is only used in error positions and warnings. The first events state the
+/// initial state as LinuxCNC does: units, zero offsets (G54 active), plane XY. Reading stops at
+/// M2/M30 (which emit [`Canon::ProgramEnd`]), at a closing `%`, or at the end of the text.
+///
+/// # Errors
+/// A [`PathError`] with the file, 1-based line and column, the text found and what was
+/// expected, for the first line that cannot be read or executed.
+pub fn read_gcode(
+    text: &str,
+    file_name: &str,
+    options: &GcodeOptions,
+    sink: &mut dyn CanonSink,
+) -> Result<(), PathError> {
+    interp::Interp::new(text, file_name, options, sink).run()
+}
+
+/// Reads the G-code file at `path` (see [`read_gcode`]). Bytes that are not UTF-8 (Latin-1
+/// comments from old post-processors) are replaced, not rejected.
+///
+/// # Errors
+/// [`PathErrorKind::Io`] when the file cannot be read; otherwise as [`read_gcode`].
+pub fn read_gcode_file(
+    path: impl AsRef<Path>,
+    options: &GcodeOptions,
+    sink: &mut dyn CanonSink,
+) -> Result<(), PathError> {
+    let path = path.as_ref();
+    let name = path.display().to_string();
+    let bytes = std::fs::read(path).map_err(|e| {
+        PathError::new(
+            SourcePos {
+                file: name.clone(),
+                line: 0,
+                column: 0,
+            },
+            PathErrorKind::Io,
+            format!("cannot read the file: {e}"),
+            "",
+            "",
+        )
+    })?;
+    let text = String::from_utf8_lossy(&bytes);
+    read_gcode(&text, &name, options, sink)
+}
+
+/// Where inside the current line an internal error lies.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Span {
+    /// The whole line.
+    Line,
+    /// Indices `[start, end)` into the normalised code of the line (see [`lexer::LineBuf`]).
+    Code(usize, usize),
+    /// Byte offsets `[start, end)` into the raw line.
+    Raw(usize, usize),
+}
+
+/// An error inside the reader before it is placed in the file: what the line-level driver
+/// turns into a [`PathError`].
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Fault {
+    pub(crate) kind: PathErrorKind,
+    pub(crate) span: Span,
+    pub(crate) message: String,
+    pub(crate) expected: String,
+}
+
+impl Fault {
+    pub(crate) fn new(
+        kind: PathErrorKind,
+        span: Span,
+        message: impl Into<String>,
+        expected: impl Into<String>,
+    ) -> Self {
+        Self {
+            kind,
+            span,
+            message: message.into(),
+            expected: expected.into(),
+        }
+    }
+    pub(crate) fn syntax(
+        span: Span,
+        message: impl Into<String>,
+        expected: impl Into<String>,
+    ) -> Self {
+        Self::new(PathErrorKind::Syntax, span, message, expected)
+    }
+    pub(crate) fn semantic(span: Span, message: impl Into<String>) -> Self {
+        Self::new(PathErrorKind::Semantic, span, message, "")
+    }
+}
+
+/// Result of the reader's internal steps.
+pub(crate) type Res<T> = Result<T, Fault>;

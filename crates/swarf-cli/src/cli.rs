@@ -1,0 +1,80 @@
+//! The command-line grammar. Names here are a contract: options may be added, not renamed.
+
+use std::path::PathBuf;
+
+use clap::{Args, Parser, Subcommand, ValueEnum};
+
+/// swarf: a virtual-machining engine for multi-axis CNC milling.
+///
+/// Units: millimetres and degrees everywhere (inch programs are converted on input).
+#[derive(Debug, Parser)]
+#[command(name = "swarf", version, about, long_about = None)]
+pub(crate) struct Cli {
+    #[command(subcommand)]
+    pub(crate) command: Command,
+}
+
+#[derive(Debug, Subcommand)]
+pub(crate) enum Command {
+    /// Describe a cutter given by a tool spec (flat:d=12, ball:d=10, bull:d=16,r=2,
+    /// taper-ball:d=6,taper=3, taper-flat:d=10,taper=5, chamfer:d=10,angle=90,
+    /// drill:d=8,angle=118, apt:D,R,E,F,ALPHA,BETA,H).
+    Tool(ToolArgs),
+    /// Read a G-code or APT CL program and summarise its motion.
+    Path(PathArgs),
+    /// Run the built-in demo job.
+    Demo(DemoArgs),
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct ToolArgs {
+    /// The tool spec, e.g. `bull:d=16,r=2,flutes=4,helix=35`.
+    pub(crate) spec: String,
+    /// Print JSON (the default output is a short human-readable description).
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
+/// Length unit for tool tables that do not state their own (LinuxCNC `.tbl`).
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub(crate) enum TableUnits {
+    /// Millimetres.
+    Mm,
+    /// Inches.
+    Inch,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct PathArgs {
+    /// The program: G-code (.ngc .nc .gcode .tap .ptp …) or APT CL (.apt .cls .cl).
+    pub(crate) program: PathBuf,
+    /// Tool library: swarf TOML, LinuxCNC .tbl or CAMotics .camotics.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) tools: Option<PathBuf>,
+    /// Units of a LinuxCNC .tbl tool table.
+    #[arg(long, value_enum, default_value = "mm")]
+    pub(crate) table_units: TableUnits,
+    /// One cutter for every tool the program uses (overrides --tools).
+    #[arg(long, value_name = "SPEC")]
+    pub(crate) tool: Option<String>,
+    /// Machine kinematics: a built-in name (3axis, 4axis-a, 4axis-b, table-ac, table-bc,
+    /// head-ac, head-bc, head-table-ac, head-table-bc; add -tcp for TCP) or a TOML file.
+    #[arg(long, value_name = "FILE|NAME", default_value = "3axis")]
+    pub(crate) machine: String,
+    /// Length units before the program's first G20/G21.
+    #[arg(long, value_enum, default_value = "mm")]
+    pub(crate) initial_units: TableUnits,
+    /// Print the JSON summary.
+    #[arg(long, conflicts_with = "canonical")]
+    pub(crate) json: bool,
+    /// Print the motion as LinuxCNC canonical calls (program units, four decimals).
+    #[arg(long)]
+    pub(crate) canonical: bool,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct DemoArgs {
+    /// Also write the demo's program, tool library, canonical motion and summary here.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<PathBuf>,
+}

@@ -1,0 +1,5 @@
+//! One module per subcommand; each only calls the libraries and prints.
+
+pub(crate) mod demo;
+pub(crate) mod path;
+pub(crate) mod tool;

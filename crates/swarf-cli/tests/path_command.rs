@@ -1,0 +1,130 @@
+//! `swarf path PROGRAM`: the summary and canonical-output contracts.
+mod common;
+use common::*;
+
+const SUMMARY_KEYS: [&str; 11] = [
+    "moves",
+    "rapid_moves",
+    "feed_moves",
+    "arc_moves",
+    "feed_length_mm",
+    "rapid_length_mm",
+    "bbox_min",
+    "bbox_max",
+    "tools",
+    "warnings",
+    "machining_time_s",
+];
+
+#[test]
+fn summary_has_every_contract_key_for_every_shared_program() {
+    for f in [
+        "gcode/camotics_heart.ngc",
+        "gcode/camotics_heart_cutout.ngc",
+        "gcode/camotics_wave.gcode",
+        "gcode/linuxcnc_boat-xyzac.ngc",
+        "gcode/linuxcnc_interp_g17-g99-g81.ngc",
+        "gcode/linuxcnc_spiral.ngc",
+        "apt/nx_1_KONTUR_NAR_40_N2.cls",
+        "apt/swcam_Paralelipipedo.apt",
+    ] {
+        let o = swarf(&["path", &shared(f), "--json"]);
+        assert!(o.status.success(), "{f}: {}", stderr(&o));
+        let j = json(&o);
+        for k in SUMMARY_KEYS {
+            assert!(j.get(k).is_some(), "{f}: key {k} missing in {j}");
+        }
+        assert!(j["moves"].as_u64().unwrap() > 0, "{f}");
+    }
+}
+
+#[test]
+fn canonical_output_matches_linuxcnc_interpreter() {
+    let o = swarf(&[
+        "path",
+        &shared("gcode/linuxcnc_interp_g17-g99-g81.ngc"),
+        "--canonical",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let expected =
+        std::fs::read_to_string(shared("gcode/linuxcnc_interp_g17-g99-g81.expected")).unwrap();
+    let want: Vec<&str> = expected
+        .lines()
+        .filter(|l| {
+            l.contains("STRAIGHT_TRAVERSE(")
+                || l.contains("STRAIGHT_FEED(")
+                || l.contains("ARC_FEED(")
+        })
+        .collect();
+    let out = stdout(&o);
+    let got: Vec<&str> = out.lines().collect();
+    assert_eq!(got, want);
+}
+
+#[test]
+fn spiral_summary_is_worked_out_independently() {
+    // linuxcnc_spiral.ngc (G20): G0 Z1; G0 X2 Y0; G1 Z-.1 F24; then 800 incremental polar
+    // moves `G91 G1 @-.0025 ^4.5`: in G91 LinuxCNC adds @ to the current distance from the
+    // origin and ^ to the current angle, so point k is (2 - 0.0025 k) at 4.5 k degrees.
+    let o = swarf(&["path", &shared("gcode/linuxcnc_spiral.ngc"), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    assert_eq!(j["feed_moves"].as_u64(), Some(801), "{j}");
+    assert_eq!(j["rapid_moves"].as_u64(), Some(3), "{j}");
+    assert_eq!(j["arc_moves"].as_u64(), Some(0), "{j}");
+    let p = |k: f64| {
+        let (r, a) = (2.0 - 0.0025 * k, (4.5 * k).to_radians());
+        (r * a.cos(), r * a.sin())
+    };
+    let mut feed = 1.1;
+    for k in 1..=800 {
+        let (a, b) = (p(k as f64 - 1.0), p(k as f64));
+        feed += (b.0 - a.0).hypot(b.1 - a.1);
+    }
+    let feed_mm = feed * 25.4;
+    let got = j["feed_length_mm"].as_f64().unwrap();
+    assert!((got - feed_mm).abs() < 1e-6 * feed_mm, "{got} vs {feed_mm}");
+    // 24 in/min over the whole feed path.
+    let t = feed / 24.0 * 60.0;
+    assert!(
+        (j["machining_time_s"].as_f64().unwrap() - t).abs() < 1e-6 * t,
+        "{j}"
+    );
+    assert!(
+        (j["bbox_max"][0].as_f64().unwrap() - 50.8).abs() < 1e-9,
+        "{j}"
+    );
+    assert!(
+        (j["bbox_max"][2].as_f64().unwrap() - 25.4).abs() < 1e-9,
+        "{j}"
+    );
+    assert!(
+        (j["bbox_min"][2].as_f64().unwrap() + 2.54).abs() < 1e-9,
+        "{j}"
+    );
+}
+
+#[test]
+fn cutter_compensation_is_rejected_with_its_line() {
+    let o = swarf(&["path", &shared("gcode/nx_haas_vf3_testpart.ptp"), "--json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.contains("nx_haas_vf3_testpart.ptp:"), "{e}");
+    assert!(e.to_lowercase().contains("compensation"), "{e}");
+}
+
+#[test]
+fn malformed_program_names_file_line_and_column() {
+    let dir = std::env::temp_dir().join(format!("swarf-cli-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let p = dir.join("bad.ngc");
+    std::fs::write(&p, "G21 G90\nG1 X1.2.3 F100\n").unwrap();
+    let o = swarf(&["path", p.to_str().unwrap(), "--json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert!(e.contains("bad.ngc:2:"), "{e}");
+    let missing = dir.join("missing.ngc");
+    let o = swarf(&["path", missing.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("missing.ngc"));
+}

@@ -1,0 +1,408 @@
+//! One block (line) of G-code as words in fixed slots: letters with their values, the G codes of
+//! each modal group, the M codes, and the parameter assignments — no allocation per line.
+
+use super::expr::{param_index, read_name, read_real, Cur, ParamRead};
+use super::lexer::LineBuf;
+use super::params::{Target, MAX_ASSIGNS};
+use super::{Fault, Res, Span};
+use crate::PathErrorKind;
+
+/// Slot of a letter word: `a`..`z` are 0..25, `@` (polar radius) 26, `^` (polar angle) 27.
+pub(crate) const fn slot(c: u8) -> usize {
+    match c {
+        b'@' => 26,
+        b'^' => 27,
+        _ => (c - b'a') as usize,
+    }
+}
+
+/// Modal groups (LinuxCNC's numbering).
+pub(crate) mod group {
+    /// G4 G10 G28 G30 G53 G92…
+    pub(crate) const NON_MODAL: usize = 0;
+    /// G0 G1 G2 G3 G80–G89 G73.
+    pub(crate) const MOTION: usize = 1;
+    /// G17 G18 G19.
+    pub(crate) const PLANE: usize = 2;
+    /// G90 G91.
+    pub(crate) const DISTANCE: usize = 3;
+    /// G90.1 G91.1.
+    pub(crate) const ARC_DISTANCE: usize = 4;
+    /// G93 G94 G95.
+    pub(crate) const FEED_MODE: usize = 5;
+    /// G20 G21.
+    pub(crate) const UNITS: usize = 6;
+    /// G40 (G41 G42 are rejected).
+    pub(crate) const CUTTER_COMP: usize = 7;
+    /// G43 G43.1 G49.
+    pub(crate) const TOOL_LENGTH: usize = 8;
+    /// G98 G99.
+    pub(crate) const RETRACT: usize = 10;
+    /// G54–G59.3.
+    pub(crate) const COORD: usize = 12;
+    /// G61 G61.1 G64.
+    pub(crate) const PATH: usize = 13;
+    /// G96 G97.
+    pub(crate) const SPINDLE_MODE: usize = 14;
+    /// Number of groups.
+    pub(crate) const N: usize = 15;
+}
+
+/// The modal group of G code `code` (the G number × 10), or why it is not accepted.
+fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
+    use group::*;
+    let unsupported = |m| Err((PathErrorKind::Unsupported, m));
+    match code {
+        40 | 100 | 280 | 281 | 300 | 301 | 530 | 920 | 921 | 922 | 923 => Ok(NON_MODAL),
+        0 | 10 | 20 | 30 | 730 | 800 | 810 | 820 | 830 | 850 | 890 => Ok(MOTION),
+        170 | 180 | 190 => Ok(PLANE),
+        900 | 910 => Ok(DISTANCE),
+        901 | 911 => Ok(ARC_DISTANCE),
+        930 | 940 | 950 => Ok(FEED_MODE),
+        200 | 210 => Ok(UNITS),
+        400 => Ok(CUTTER_COMP),
+        410 | 420 | 411 | 421 => unsupported("cutter radius compensation is not simulated"),
+        430 | 431 | 490 => Ok(TOOL_LENGTH),
+        980 | 990 => Ok(RETRACT),
+        540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => Ok(COORD),
+        610 | 611 | 640 => Ok(PATH),
+        960 | 970 => Ok(SPINDLE_MODE),
+        330 | 331 | 760 | 840 | 740 | 860 | 870 | 880 => {
+            unsupported("spindle-synchronised motion, tapping and boring cycles other than G85/G89 are not simulated")
+        }
+        382..=385 => unsupported("probing is not simulated"),
+        50 | 51 | 52 => unsupported("splines (G5, G5.1, G5.2) are not supported"),
+        70 | 80 => unsupported("lathe diameter/radius modes (G7/G8) are not supported"),
+        150 | 160 => unsupported("Fanuc polar coordinate mode (G15/G16) is not supported; use `@` and `^`"),
+        171 | 181 | 191 => unsupported("UVW planes (G17.1, G18.1, G19.1) are not supported"),
+        432 | 433 => unsupported("G43.2 additional tool length offsets are not supported"),
+        500 | 510 | 511 => unsupported("scaling (G50/G51) is not supported"),
+        520 => unsupported("local coordinate systems (G52) are not supported"),
+        680 | 690 => unsupported("coordinate rotation (G68/G69) is not supported"),
+        _ => Err((PathErrorKind::Syntax, "unknown G code")),
+    }
+}
+
+/// The words of one block.
+#[derive(Debug)]
+pub(crate) struct Block {
+    /// Value of each letter word (see [`slot`]).
+    pub(crate) val: [f64; 28],
+    /// Code index of each letter word, for error positions.
+    pub(crate) at: [u32; 28],
+    /// Which letter words are present.
+    pub(crate) mask: u32,
+    /// G code (× 10) of each modal group.
+    pub(crate) g: [u16; group::N],
+    /// Code index of each G word.
+    pub(crate) g_at: [u32; group::N],
+    /// Which groups have a G code.
+    pub(crate) g_mask: u32,
+    /// M0 M1 M2 M30 M60.
+    pub(crate) m_stop: Option<u16>,
+    /// M3 M4 M5.
+    pub(crate) m_spindle: Option<u16>,
+    /// M6.
+    pub(crate) m6: bool,
+    /// M98 (Fanuc subprogram call).
+    pub(crate) m98: bool,
+    /// M99 (Fanuc subprogram return).
+    pub(crate) m99: bool,
+    /// Other M codes and their code index: reported as warnings.
+    pub(crate) m_other: [(u16, u32); 8],
+    /// How many of `m_other` are in use.
+    pub(crate) n_other: usize,
+    /// Parameter assignments, applied after the line is read.
+    pub(crate) assigns: [(Target, f64); MAX_ASSIGNS],
+    /// How many of `assigns` are in use.
+    pub(crate) n_assigns: usize,
+}
+
+impl Default for Block {
+    fn default() -> Self {
+        Self {
+            val: [0.0; 28],
+            at: [0; 28],
+            mask: 0,
+            g: [0; group::N],
+            g_at: [0; group::N],
+            g_mask: 0,
+            m_stop: None,
+            m_spindle: None,
+            m6: false,
+            m98: false,
+            m99: false,
+            m_other: [(0, 0); 8],
+            n_other: 0,
+            assigns: [(Target::Num(0), 0.0); MAX_ASSIGNS],
+            n_assigns: 0,
+        }
+    }
+}
+
+impl Block {
+    fn clear(&mut self) {
+        self.mask = 0;
+        self.g_mask = 0;
+        self.m_stop = None;
+        self.m_spindle = None;
+        self.m6 = false;
+        self.m98 = false;
+        self.m99 = false;
+        self.n_other = 0;
+        self.n_assigns = 0;
+    }
+    /// Whether letter `c` is present.
+    #[inline]
+    pub(crate) fn has(&self, c: u8) -> bool {
+        self.mask & (1 << slot(c)) != 0
+    }
+    /// The value of letter `c`, if present.
+    #[inline]
+    pub(crate) fn get(&self, c: u8) -> Option<f64> {
+        self.has(c).then(|| self.val[slot(c)])
+    }
+    /// The code span of letter `c` (its letter only).
+    pub(crate) fn span(&self, c: u8) -> Span {
+        let a = self.at[slot(c)] as usize;
+        Span::Code(a, a + 1)
+    }
+    /// The G code of group `grp`, if present.
+    #[inline]
+    pub(crate) fn g(&self, grp: usize) -> Option<u16> {
+        (self.g_mask & (1 << grp) != 0).then(|| self.g[grp])
+    }
+    /// The code span of the G word of group `grp`.
+    pub(crate) fn g_span(&self, grp: usize) -> Span {
+        let a = self.g_at[grp] as usize;
+        Span::Code(a, a + 1)
+    }
+}
+
+/// Reads the words of a normalised line into `b` (cleared first). Parameter references are
+/// evaluated with `params`' values from before the line.
+pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead) -> Res<()> {
+    b.clear();
+    let mut c = Cur::new(&lb.code);
+    let mut first = true;
+    while let Some(ch) = c.peek() {
+        let at = c.i;
+        c.word_start = at;
+        match ch {
+            b'n' if first => {
+                // Line number: digits (and a point, as LinuxCNC tolerates), value unused.
+                c.i += 1;
+                let s = c.i;
+                while matches!(c.peek(), Some(b'0'..=b'9' | b'.')) {
+                    c.i += 1;
+                }
+                if c.i == s {
+                    return Err(Fault::syntax(
+                        Span::Code(at, c.token_end(at)),
+                        "bad line number",
+                        "N followed by digits",
+                    ));
+                }
+            }
+            b'g' => {
+                c.i += 1;
+                let v = read_real(&mut c, params)?;
+                let code10 = (v * 10.0).round();
+                let span = Span::Code(at, c.i);
+                if (v * 10.0 - code10).abs() > 1e-6 || !(0.0..=9999.0).contains(&code10) {
+                    return Err(Fault::syntax(
+                        span,
+                        format!("unknown G code G{v}"),
+                        "a G code",
+                    ));
+                }
+                let code = code10 as u16;
+                let grp = g_group(code).map_err(|(kind, m)| {
+                    let name = g_name(code);
+                    Fault::new(kind, span, format!("{name}: {m}"), "")
+                })?;
+                if b.g_mask & (1 << grp) != 0 {
+                    return Err(Fault::semantic(
+                        span,
+                        format!(
+                            "{} and {} are in the same modal group",
+                            g_name(b.g[grp]),
+                            g_name(code)
+                        ),
+                    ));
+                }
+                b.g[grp] = code;
+                b.g_at[grp] = at as u32;
+                b.g_mask |= 1 << grp;
+            }
+            b'm' => {
+                c.i += 1;
+                let v = read_real(&mut c, params)?;
+                let span = Span::Code(at, c.i);
+                if v.fract() != 0.0 || !(0.0..=9999.0).contains(&v) {
+                    return Err(Fault::syntax(
+                        span,
+                        format!("bad M code M{v}"),
+                        "an integer M code",
+                    ));
+                }
+                let m = v as u16;
+                let dup =
+                    |what: &str| Fault::semantic(span, format!("two {what} M codes on one line"));
+                match m {
+                    0 | 1 | 2 | 30 | 60 => {
+                        if b.m_stop.replace(m).is_some() {
+                            return Err(dup("program stop"));
+                        }
+                    }
+                    3..=5 => {
+                        if b.m_spindle.replace(m).is_some() {
+                            return Err(dup("spindle"));
+                        }
+                    }
+                    6 => b.m6 = true,
+                    98 => b.m98 = true,
+                    99 => b.m99 = true,
+                    _ => {
+                        if b.n_other == b.m_other.len() {
+                            return Err(Fault::semantic(span, "too many M codes on one line"));
+                        }
+                        b.m_other[b.n_other] = (m, at as u32);
+                        b.n_other += 1;
+                    }
+                }
+            }
+            b'#' => {
+                c.i += 1;
+                let target = if c.peek() == Some(b'<') {
+                    let (x, y) = read_name(&mut c)?;
+                    Target::Named(x as u32, y as u32)
+                } else {
+                    let n = read_real(&mut c, params)?;
+                    Target::Num(param_index(n, Span::Code(at, c.i))?)
+                };
+                if c.peek() != Some(b'=') {
+                    return Err(c.unexpected("`=` in a parameter assignment"));
+                }
+                c.i += 1;
+                c.word_start = c.i;
+                let v = read_real(&mut c, params)?;
+                if b.n_assigns == MAX_ASSIGNS {
+                    return Err(Fault::new(
+                        PathErrorKind::Limit,
+                        Span::Code(at, c.i),
+                        format!("more than {MAX_ASSIGNS} parameter assignments on one line"),
+                        "",
+                    ));
+                }
+                b.assigns[b.n_assigns] = (target, v);
+                b.n_assigns += 1;
+            }
+            b'a'..=b'z' | b'@' | b'^' if !matches!(ch, b'n' | b'o') => {
+                c.i += 1;
+                let v = read_real(&mut c, params)?;
+                let s = slot(ch);
+                if b.mask & (1 << s) != 0 {
+                    return Err(Fault::semantic(
+                        Span::Code(at, c.i),
+                        format!(
+                            "two {} words on one line",
+                            (ch as char).to_ascii_uppercase()
+                        ),
+                    ));
+                }
+                if !v.is_finite() {
+                    return Err(Fault::semantic(
+                        Span::Code(at, c.i),
+                        "value is not a finite number",
+                    ));
+                }
+                b.val[s] = v;
+                b.at[s] = at as u32;
+                b.mask |= 1 << s;
+            }
+            _ => {
+                let end = c.token_end(at);
+                let what = if ch == b'o' {
+                    "an O word must start the line"
+                } else {
+                    "unexpected text"
+                };
+                return Err(Fault::syntax(
+                    Span::Code(at, end),
+                    what,
+                    "a letter starting a word (G1, X2.5…)",
+                ));
+            }
+        }
+        first = false;
+    }
+    Ok(())
+}
+
+/// `G59.1` from 591.
+pub(crate) fn g_name(code: u16) -> String {
+    if code % 10 == 0 {
+        format!("G{}", code / 10)
+    } else {
+        format!("G{}.{}", code / 10, code % 10)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::lexer::normalize;
+    use super::*;
+
+    struct Zero;
+    impl ParamRead for Zero {
+        fn numbered(&self, n: usize) -> f64 {
+            n as f64
+        }
+        fn named(&self, _: &str) -> Option<f64> {
+            None
+        }
+    }
+
+    fn parsed(s: &str) -> Res<Block> {
+        let mut lb = LineBuf::default();
+        normalize(s, &mut lb)?;
+        let mut b = Block::default();
+        parse(&lb, &mut b, &Zero)?;
+        Ok(b)
+    }
+
+    #[test]
+    fn words_and_groups() {
+        let b = parsed("N10 G1 g90 X1.5 y#2 Z[1+1] F100 M3 S1000 #3=4").unwrap();
+        assert_eq!(b.g(group::MOTION), Some(10));
+        assert_eq!(b.g(group::DISTANCE), Some(900));
+        assert_eq!(b.get(b'x'), Some(1.5));
+        assert_eq!(b.get(b'y'), Some(2.0));
+        assert_eq!(b.get(b'z'), Some(2.0));
+        assert_eq!(b.m_spindle, Some(3));
+        assert_eq!(b.n_assigns, 1);
+        let b = parsed("G59.1 G92.3 @1 ^45").unwrap();
+        assert_eq!(b.g(group::COORD), Some(591));
+        assert_eq!(b.g(group::NON_MODAL), Some(923));
+        assert_eq!(b.get(b'^'), Some(45.0));
+    }
+
+    #[test]
+    fn errors() {
+        let e = parsed("G1 X1 X2").unwrap_err();
+        assert_eq!(e.span, Span::Code(4, 6));
+        let e = parsed("G0 G1").unwrap_err();
+        assert_eq!(e.kind, PathErrorKind::Semantic);
+        let e = parsed("G41 X1").unwrap_err();
+        assert_eq!(e.kind, PathErrorKind::Unsupported);
+        assert!(e
+            .message
+            .contains("cutter radius compensation is not simulated"));
+        assert_eq!(parsed("G1.5").unwrap_err().kind, PathErrorKind::Syntax);
+        assert_eq!(parsed("G1 X1.2.3").unwrap_err().span, Span::Code(2, 8));
+        assert!(parsed("G1 X").is_err());
+        assert!(parsed("G1 %").is_err());
+        assert!(parsed("#1 2").is_err());
+    }
+}

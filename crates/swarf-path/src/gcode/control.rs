@@ -1,0 +1,663 @@
+//! O-word control flow (`sub`/`endsub`/`call`/`return`, `while`/`endwhile`, `do`/`while`,
+//! `repeat`/`endrepeat`, `if`/`elseif`/`else`/`endif`, `break`, `continue`) and Fanuc
+//! subprograms (`M98 P<n> L<count>` calling `O<n>` … `M99` in the same file).
+//!
+//! Like LinuxCNC, control lines are matched by their O name, not by nesting: `o100 if` ends at
+//! `o100 endif`. Jumps move the reading cursor; a forward jump scans lines until the matching
+//! O-word, a backward jump returns to a remembered cursor. Every backward jump counts against
+//! [`GcodeOptions::max_loop_iterations`](super::GcodeOptions) and calls against
+//! `max_call_depth`, so no program can run forever or exhaust memory.
+
+use std::collections::HashMap;
+
+use super::block::Block;
+use super::expr::{read_real, Cur};
+use super::interp::{skip_line_number, Cursor, Interp};
+use super::lexer::{normalize, split_line, LineBuf};
+use super::params::N_ARGS;
+use super::{Fault, Res, Span};
+use crate::PathErrorKind;
+
+/// The keyword after an O name.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Kw {
+    Sub,
+    Endsub,
+    Call,
+    Do,
+    While,
+    Endwhile,
+    If,
+    Elseif,
+    Else,
+    Endif,
+    Break,
+    Continue,
+    Repeat,
+    Endrepeat,
+    Return,
+    /// A bare `O1234`: a Fanuc program number or subprogram label.
+    Label,
+}
+
+const KEYWORDS: [(&[u8], Kw); 15] = [
+    (b"endsub", Kw::Endsub),
+    (b"endwhile", Kw::Endwhile),
+    (b"endif", Kw::Endif),
+    (b"endrepeat", Kw::Endrepeat),
+    (b"elseif", Kw::Elseif),
+    (b"else", Kw::Else),
+    (b"sub", Kw::Sub),
+    (b"call", Kw::Call),
+    (b"do", Kw::Do),
+    (b"while", Kw::While),
+    (b"if", Kw::If),
+    (b"break", Kw::Break),
+    (b"continue", Kw::Continue),
+    (b"repeat", Kw::Repeat),
+    (b"return", Kw::Return),
+];
+
+/// Loop kinds on the control stack.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum LoopKind {
+    While,
+    Do,
+    Repeat,
+}
+
+impl LoopKind {
+    /// The keyword that closes the loop.
+    fn end(self) -> Kw {
+        match self {
+            LoopKind::While => Kw::Endwhile,
+            LoopKind::Do => Kw::While,
+            LoopKind::Repeat => Kw::Endrepeat,
+        }
+    }
+}
+
+/// An open loop.
+#[derive(Clone, Debug)]
+pub(crate) struct Ctl {
+    pub(crate) kind: LoopKind,
+    pub(crate) name: Vec<u8>,
+    /// Before the head line (a `while` re-evaluates its condition there).
+    pub(crate) head: Cursor,
+    /// After the head line (where `do` and `repeat` bodies start).
+    pub(crate) body: Cursor,
+    /// Repeats left (`repeat`).
+    pub(crate) remaining: u64,
+}
+
+/// A subroutine call in progress.
+#[derive(Clone, Debug)]
+pub(crate) struct Frame {
+    /// Where the caller continues.
+    pub(crate) ret: Cursor,
+    /// The caller's `#1`–`#30` (O-word calls only).
+    pub(crate) saved: [f64; N_ARGS],
+    /// Height of the loop stack at the call.
+    pub(crate) ctl_len: usize,
+    /// For `M98`: the subprogram's start and the calls left.
+    pub(crate) fanuc: Option<(Cursor, u64)>,
+}
+
+/// Parses `o<name> keyword …` at code index `at`: the name's code range, the keyword and the
+/// index after the keyword.
+pub(crate) fn parse_oword(code: &[u8], at: usize) -> Res<(usize, usize, Kw, usize)> {
+    let mut i = at + 1;
+    let (a, b) = if code.get(i) == Some(&b'<') {
+        let a = i + 1;
+        while i < code.len() && code[i] != b'>' {
+            i += 1;
+        }
+        if i >= code.len() || i == a {
+            return Err(Fault::syntax(
+                Span::Code(at, i),
+                "bad O-word name",
+                "o<name> or o123",
+            ));
+        }
+        i += 1;
+        (a, i - 1)
+    } else {
+        let a = i;
+        while matches!(code.get(i), Some(b'0'..=b'9')) {
+            i += 1;
+        }
+        if i == a {
+            return Err(Fault::syntax(
+                Span::Code(at, (at + 2).min(code.len())),
+                "bad O-word name",
+                "o<name> or o123",
+            ));
+        }
+        (a, i)
+    };
+    let rest = &code[i..];
+    if rest.is_empty() {
+        return Ok((a, b, Kw::Label, i));
+    }
+    match KEYWORDS.iter().find(|(w, _)| rest.starts_with(w)) {
+        Some(&(w, kw)) => Ok((a, b, kw, i + w.len())),
+        None => Err(Fault::syntax(
+            Span::Code(i, code.len()),
+            "unknown O-word keyword",
+            "sub, endsub, call, return, do, while, endwhile, if, elseif, else, endif, repeat, endrepeat, break or continue",
+        )),
+    }
+}
+
+/// The name as compared: numeric names without leading zeros (`o0100` is `o100`).
+pub(crate) fn key(name: &[u8]) -> &[u8] {
+    if name.iter().all(u8::is_ascii_digit) {
+        let z = name
+            .iter()
+            .take_while(|&&c| c == b'0')
+            .count()
+            .min(name.len().saturating_sub(1));
+        &name[z..]
+    } else {
+        name
+    }
+}
+
+impl Interp<'_, '_> {
+    /// Executes an O-word line; `at` is the index of the `o` in the normalised code.
+    pub(crate) fn exec_oword(&mut self, lb: &LineBuf, at: usize) -> Res<()> {
+        let code = &lb.code[..];
+        let (a, b, kw, i) = parse_oword(code, at)?;
+        let name = key(&code[a..b]);
+        let span = Span::Code(at, i);
+        let here = Cursor {
+            pos: self.cur_start,
+            line: self.cur_line - 1,
+        };
+        let after = self.at;
+        let cond = |me: &Self| -> Res<f64> {
+            let mut c = Cur::new(code);
+            c.i = i;
+            if c.at_end() {
+                return Err(c.unexpected("a condition in brackets"));
+            }
+            let v = read_real(&mut c, me)?;
+            if !c.at_end() {
+                return Err(c.unexpected("end of line"));
+            }
+            Ok(v)
+        };
+        match kw {
+            Kw::Label => Ok(()),
+            Kw::Sub => {
+                self.subs.insert(name.to_vec(), after);
+                self.skip_to(name, &[Kw::Endsub], span).map(|_| ())
+            }
+            Kw::Endsub | Kw::Return => {
+                let value = if i < code.len() {
+                    Some(cond(self)?)
+                } else {
+                    None
+                };
+                self.sub_return(value, span)
+            }
+            Kw::Call => {
+                let mut args = [0.0; N_ARGS];
+                let mut n = 0;
+                let mut c = Cur::new(code);
+                c.i = i;
+                while !c.at_end() {
+                    if n == N_ARGS {
+                        return Err(Fault::semantic(
+                            Span::Code(c.i, code.len()),
+                            "more than 30 subroutine arguments",
+                        ));
+                    }
+                    c.word_start = c.i;
+                    args[n] = read_real(&mut c, self)?;
+                    n += 1;
+                }
+                self.call_sub(name, args, span)
+            }
+            Kw::Do => {
+                self.ctl.push(Ctl {
+                    kind: LoopKind::Do,
+                    name: name.to_vec(),
+                    head: here,
+                    body: after,
+                    remaining: 0,
+                });
+                Ok(())
+            }
+            Kw::While => {
+                let v = cond(self)?;
+                let top = self.top_loop();
+                if let Some(t) = top
+                    .clone()
+                    .filter(|t| t.kind == LoopKind::Do && t.name == name)
+                {
+                    // The tail of a do-while loop.
+                    if v != 0.0 {
+                        self.count_iteration(span)?;
+                        self.at = t.body;
+                    } else {
+                        self.ctl.pop();
+                    }
+                    return Ok(());
+                }
+                let reentry = top.is_some_and(|t| t.kind == LoopKind::While && t.head == here);
+                if v != 0.0 {
+                    if !reentry {
+                        self.ctl.push(Ctl {
+                            kind: LoopKind::While,
+                            name: name.to_vec(),
+                            head: here,
+                            body: after,
+                            remaining: 0,
+                        });
+                    }
+                    Ok(())
+                } else {
+                    if reentry {
+                        self.ctl.pop();
+                    }
+                    self.skip_to(name, &[Kw::Endwhile], span).map(|_| ())
+                }
+            }
+            Kw::Endwhile => {
+                let t = self.expect_loop(name, LoopKind::While, span, "endwhile")?;
+                self.count_iteration(span)?;
+                self.at = t.head;
+                Ok(())
+            }
+            Kw::Repeat => {
+                let v = cond(self)?.round();
+                if v > self.opts.max_repeat as f64 {
+                    return Err(Fault::new(
+                        PathErrorKind::Limit,
+                        span,
+                        format!(
+                            "repeat [{v}] asks for more than {} repeats (GcodeOptions::max_repeat)",
+                            self.opts.max_repeat
+                        ),
+                        "",
+                    ));
+                }
+                if v >= 1.0 {
+                    self.ctl.push(Ctl {
+                        kind: LoopKind::Repeat,
+                        name: name.to_vec(),
+                        head: here,
+                        body: after,
+                        remaining: v as u64,
+                    });
+                    Ok(())
+                } else {
+                    self.skip_to(name, &[Kw::Endrepeat], span).map(|_| ())
+                }
+            }
+            Kw::Endrepeat => {
+                let t = self.expect_loop(name, LoopKind::Repeat, span, "endrepeat")?;
+                let last = self.ctl.last_mut().expect("checked by expect_loop");
+                last.remaining -= 1;
+                if last.remaining > 0 {
+                    self.count_iteration(span)?;
+                    self.at = t.body;
+                } else {
+                    self.ctl.pop();
+                }
+                Ok(())
+            }
+            Kw::If => {
+                if cond(self)? == 0.0 {
+                    self.skip_if(name, span)?;
+                }
+                Ok(())
+            }
+            Kw::Elseif => {
+                if std::mem::take(&mut self.if_probe) {
+                    if cond(self)? == 0.0 {
+                        self.skip_if(name, span)?;
+                    }
+                    Ok(())
+                } else {
+                    // A branch was taken: the rest of the if is skipped.
+                    self.skip_to(name, &[Kw::Endif], span).map(|_| ())
+                }
+            }
+            Kw::Else => self.skip_to(name, &[Kw::Endif], span).map(|_| ()),
+            Kw::Endif => Ok(()),
+            Kw::Break | Kw::Continue => {
+                let floor = self.frames.last().map_or(0, |f| f.ctl_len);
+                let Some(k) = (floor..self.ctl.len())
+                    .rev()
+                    .find(|&k| self.ctl[k].name == name)
+                else {
+                    return Err(Fault::semantic(
+                        span,
+                        format!(
+                            "{} outside a loop named o{}",
+                            if kw == Kw::Break { "break" } else { "continue" },
+                            String::from_utf8_lossy(name)
+                        ),
+                    ));
+                };
+                let kind = self.ctl[k].kind;
+                if kw == Kw::Break {
+                    self.ctl.truncate(k);
+                    self.skip_to(name, &[kind.end()], span).map(|_| ())
+                } else {
+                    // Continue: run the loop's closing line, which loops or ends it.
+                    self.ctl.truncate(k + 1);
+                    let (_, at) = self.skip_to(name, &[kind.end()], span)?;
+                    self.at = at;
+                    Ok(())
+                }
+            }
+        }
+    }
+
+    fn top_loop(&self) -> Option<Ctl> {
+        let floor = self.frames.last().map_or(0, |f| f.ctl_len);
+        if self.ctl.len() > floor {
+            self.ctl.last().cloned()
+        } else {
+            None
+        }
+    }
+
+    fn expect_loop(&self, name: &[u8], kind: LoopKind, span: Span, what: &str) -> Res<Ctl> {
+        match self.top_loop() {
+            Some(t) if t.kind == kind && t.name == name => Ok(t),
+            _ => Err(Fault::semantic(
+                span,
+                format!(
+                    "{what} without a matching open loop o{}",
+                    String::from_utf8_lossy(name)
+                ),
+            )),
+        }
+    }
+
+    /// After a false `if`/`elseif`: on to the next `elseif` (to be tested), `else` or `endif`.
+    fn skip_if(&mut self, name: &[u8], span: Span) -> Res<()> {
+        let (kw, at) = self.skip_to(name, &[Kw::Elseif, Kw::Else, Kw::Endif], span)?;
+        if kw == Kw::Elseif {
+            self.if_probe = true;
+            self.at = at;
+        }
+        Ok(())
+    }
+
+    /// Moves the cursor past the next line `o<name> kw` with `kw` in `kws`. Returns the keyword
+    /// found and the cursor *before* that line.
+    fn skip_to(&mut self, name: &[u8], kws: &[Kw], span: Span) -> Res<(Kw, Cursor)> {
+        match self.scan(self.at, name, kws) {
+            Some((kw, before, after)) => {
+                self.at = after;
+                Ok((kw, before))
+            }
+            None => Err(Fault::new(
+                PathErrorKind::Semantic,
+                span,
+                format!(
+                    "o{} has no matching {:?}",
+                    String::from_utf8_lossy(name),
+                    kws[kws.len() - 1]
+                )
+                .to_lowercase(),
+                "",
+            )),
+        }
+    }
+
+    /// Finds the next line `o<name> kw` (kw in `kws`) from `from`: the keyword, the cursor
+    /// before that line and the cursor after it. Lines that do not normalise are not O-words.
+    fn scan(&mut self, from: Cursor, name: &[u8], kws: &[Kw]) -> Option<(Kw, Cursor, Cursor)> {
+        let mut buf = std::mem::take(&mut self.skip_buf);
+        let mut at = from;
+        let mut found = None;
+        while at.pos < self.text.len() {
+            let (raw, next) = split_line(self.text, at.pos);
+            let after = Cursor {
+                pos: next,
+                line: at.line + 1,
+            };
+            if raw.bytes().any(|c| c | 0x20 == b'o')
+                && normalize(raw, &mut buf).is_ok()
+                && !(buf.deleted && self.opts.block_delete)
+            {
+                let o = skip_line_number(&buf.code);
+                if buf.code.get(o) == Some(&b'o') {
+                    if let Ok((a, b, kw, _)) = parse_oword(&buf.code, o) {
+                        if key(&buf.code[a..b]) == name && kws.contains(&kw) {
+                            found = Some((kw, at, after));
+                            break;
+                        }
+                    }
+                }
+            }
+            at = after;
+        }
+        self.skip_buf = buf;
+        found
+    }
+
+    fn call_sub(&mut self, name: &[u8], args: [f64; N_ARGS], span: Span) -> Res<()> {
+        self.enter_call(span)?;
+        let body = match self.subs.get(name) {
+            Some(&c) => c,
+            None => {
+                // Not yet defined: LinuxCNC looks for it in the rest of the file, then from the top.
+                let hit = self
+                    .scan(self.at, name, &[Kw::Sub])
+                    .or_else(|| self.scan(Cursor { pos: 0, line: 0 }, name, &[Kw::Sub]));
+                let Some((_, _, after)) = hit else {
+                    return Err(Fault::semantic(
+                        span,
+                        format!(
+                            "subroutine o{} is not defined",
+                            String::from_utf8_lossy(name)
+                        ),
+                    ));
+                };
+                self.subs.insert(name.to_vec(), after);
+                after
+            }
+        };
+        let mut saved = [0.0; N_ARGS];
+        saved.copy_from_slice(&self.params.num[1..=N_ARGS]);
+        self.params.num[1..=N_ARGS].copy_from_slice(&args);
+        self.params.locals.push(HashMap::new());
+        self.frames.push(Frame {
+            ret: self.at,
+            saved,
+            ctl_len: self.ctl.len(),
+            fanuc: None,
+        });
+        self.at = body;
+        Ok(())
+    }
+
+    fn enter_call(&mut self, span: Span) -> Res<()> {
+        if self.frames.len() >= self.opts.max_call_depth {
+            return Err(Fault::new(
+                PathErrorKind::Limit,
+                span,
+                format!(
+                    "subroutine calls nested more than {} deep (GcodeOptions::max_call_depth)",
+                    self.opts.max_call_depth
+                ),
+                "",
+            ));
+        }
+        self.count_iteration(span)
+    }
+
+    fn sub_return(&mut self, value: Option<f64>, span: Span) -> Res<()> {
+        let Some(f) = self.frames.pop() else {
+            return Err(Fault::semantic(
+                span,
+                "endsub or return outside a subroutine call",
+            ));
+        };
+        if f.fanuc.is_some() {
+            self.frames.push(f);
+            return Err(Fault::semantic(
+                span,
+                "endsub or return inside an M98 subprogram (end it with M99)",
+            ));
+        }
+        self.params.num[1..=N_ARGS].copy_from_slice(&f.saved);
+        self.params.locals.pop();
+        self.ctl.truncate(f.ctl_len);
+        self.params
+            .set_named("_value_returned", f64::from(u8::from(value.is_some())));
+        if let Some(v) = value {
+            self.params.set_named("_value", v);
+        }
+        self.at = f.ret;
+        Ok(())
+    }
+
+    /// `M98 P<n> L<count>`: calls the subprogram labelled `O<n>`.
+    pub(crate) fn m98(&mut self, b: &Block) -> Res<()> {
+        let p = b.get(b'p').ok_or_else(|| {
+            Fault::new(
+                PathErrorKind::Semantic,
+                Span::Line,
+                "M98 needs a P word",
+                "P<program number>",
+            )
+        })?;
+        if p < 0.0 || p.fract() != 0.0 || p > 1e15 {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                b.span(b'p'),
+                "bad subprogram number",
+                "a non-negative integer",
+            ));
+        }
+        let count = match b.get(b'l') {
+            None => 1,
+            Some(l) if l.fract() == 0.0 && l >= 0.0 && l <= self.opts.max_repeat as f64 => l as u64,
+            Some(l) => {
+                return Err(Fault::new(
+                    if l > self.opts.max_repeat as f64 {
+                        PathErrorKind::Limit
+                    } else {
+                        PathErrorKind::Semantic
+                    },
+                    b.span(b'l'),
+                    format!("bad M98 repeat count L{l}"),
+                    format!("an integer from 0 to {}", self.opts.max_repeat),
+                ))
+            }
+        };
+        if count == 0 {
+            return Ok(());
+        }
+        let labels = match self.labels.take() {
+            Some(l) => l,
+            None => self.index_labels(),
+        };
+        let start = labels.get(&(p as u64)).copied();
+        self.labels = Some(labels);
+        let Some(start) = start else {
+            return Err(Fault::semantic(
+                b.span(b'p'),
+                format!("subprogram O{p} is not in this file"),
+            ));
+        };
+        self.enter_call(b.span(b'p'))?;
+        self.frames.push(Frame {
+            ret: self.at,
+            saved: [0.0; N_ARGS],
+            ctl_len: self.ctl.len(),
+            fanuc: Some((start, count)),
+        });
+        self.at = start;
+        Ok(())
+    }
+
+    /// `M99`: the end of an `M98` subprogram (repeat it or return).
+    pub(crate) fn m99(&mut self) -> Res<()> {
+        match self.frames.last_mut() {
+            Some(Frame {
+                fanuc: Some((start, left)),
+                ..
+            }) => {
+                *left -= 1;
+                if *left > 0 {
+                    let s = *start;
+                    self.count_iteration(Span::Line)?;
+                    self.at = s;
+                } else {
+                    let f = self.frames.pop().expect("just matched");
+                    self.ctl.truncate(f.ctl_len);
+                    self.at = f.ret;
+                }
+                Ok(())
+            }
+            Some(_) => Err(Fault::semantic(
+                Span::Line,
+                "M99 inside an O-word subroutine (end it with endsub)",
+            )),
+            None => {
+                self.warn_at(0, "M99 in the main program (endless restart on a Fanuc control) ends the simulation".into());
+                self.ended = true;
+                Ok(())
+            }
+        }
+    }
+
+    /// Every bare `O<n>` line of the file and the cursor after it.
+    fn index_labels(&mut self) -> HashMap<u64, Cursor> {
+        let mut map = HashMap::new();
+        let mut buf = std::mem::take(&mut self.skip_buf);
+        let mut at = Cursor { pos: 0, line: 0 };
+        while at.pos < self.text.len() {
+            let (raw, next) = split_line(self.text, at.pos);
+            at = Cursor {
+                pos: next,
+                line: at.line + 1,
+            };
+            if raw.bytes().any(|c| c | 0x20 == b'o') && normalize(raw, &mut buf).is_ok() {
+                let o = skip_line_number(&buf.code);
+                if buf.code.get(o) == Some(&b'o') {
+                    if let Ok((a, b, Kw::Label, _)) = parse_oword(&buf.code, o) {
+                        if let Ok(n) = std::str::from_utf8(&buf.code[a..b])
+                            .unwrap_or("")
+                            .parse::<u64>()
+                        {
+                            map.entry(n).or_insert(at);
+                        }
+                    }
+                }
+            }
+        }
+        self.skip_buf = buf;
+        map
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn parses_owords() {
+        let (a, b, kw, i) = parse_oword(b"o100while[#1lt3]", 0).unwrap();
+        assert_eq!((a, b, kw, i), (1, 4, Kw::While, 9));
+        let (a, b, kw, _) = parse_oword(b"o<my_sub>call[1]", 0).unwrap();
+        assert_eq!((a, b, kw), (2, 8, Kw::Call));
+        assert_eq!(parse_oword(b"o100elseif[1]", 0).unwrap().2, Kw::Elseif);
+        assert_eq!(parse_oword(b"o100else", 0).unwrap().2, Kw::Else);
+        assert_eq!(parse_oword(b"o0001", 0).unwrap().2, Kw::Label);
+        assert!(parse_oword(b"o100foo", 0).is_err());
+        assert!(parse_oword(b"o<>sub", 0).is_err());
+        assert!(parse_oword(b"osub", 0).is_err());
+        assert_eq!(key(b"0100"), b"100");
+        assert_eq!(key(b"000"), b"0");
+    }
+}

@@ -1,0 +1,257 @@
+//! Canned cycles G73 G81 G82 G83 G85 G89, expanded into traverses, feeds and dwells exactly as
+//! LinuxCNC's `convert_cycle_xy`/`_zx`/`_yz` and `CYCLE_MACRO` do, in any plane, absolute or
+//! incremental, with `L` repeats and G98/G99 retract modes.
+//!
+//! In the plane's own coordinates (`aa`, `bb` in the plane, `cc` along its normal — Z for G17):
+//! if the tool starts below the R level it first rises straight to R; then, for each repeat, it
+//! traverses to the hole at the current level, down to R if not there, runs the cycle body, and
+//! retracts to R (G99) or to the starting level (G98).
+
+use super::block::{group, Block};
+use super::interp::{Interp, AXIS_LETTERS};
+use super::{Fault, Res, Span};
+use crate::{Axes, Canon, FeedMode, PathErrorKind};
+
+/// LinuxCNC's `G83_RAPID_DELTA`: 0.010 inch, how far above the last depth a peck re-enters.
+const RAPID_DELTA_MM: f64 = 0.010 * 25.4;
+
+impl Interp<'_, '_> {
+    /// A point from the cycle's plane coordinates.
+    fn cycle_point(&self, aa: f64, bb: f64, cc: f64) -> [f64; 6] {
+        let (fi, si, ni) = self.plane.axes();
+        let mut p = self.p;
+        p[fi] = aa;
+        p[si] = bb;
+        p[ni] = cc;
+        p
+    }
+
+    fn cyc_traverse(&mut self, aa: f64, bb: f64, cc: f64) {
+        let p = self.cycle_point(aa, bb, cc);
+        self.emit(Canon::Traverse {
+            end: Axes::from_array(p),
+        });
+    }
+
+    fn cyc_feed(&mut self, aa: f64, bb: f64, cc: f64) {
+        let p = self.cycle_point(aa, bb, cc);
+        self.emit(Canon::Feed {
+            end: Axes::from_array(p),
+        });
+    }
+
+    /// Runs canned cycle `motion` (G code × 10) for one block; `old_motion` is the motion mode
+    /// before the block (a repeated cycle may omit R and the depth).
+    pub(crate) fn cycle(&mut self, b: &Block, motion: u16, old_motion: Option<u16>) -> Res<()> {
+        let gspan = b
+            .g(group::MOTION)
+            .map_or(Span::Line, |_| b.g_span(group::MOTION));
+        let (fi, si, ni) = self.plane.axes();
+        let (fl, sl, nl) = (AXIS_LETTERS[fi], AXIS_LETTERS[si], AXIS_LETTERS[ni]);
+        let nname = (nl as char).to_ascii_uppercase();
+        let same = old_motion == Some(motion);
+        if self.feed_mode == FeedMode::InverseTime {
+            return Err(Fault::semantic(
+                gspan,
+                "canned cycles cannot be used in inverse time feed mode (G93)",
+            ));
+        }
+        if b.has(b'@') || b.has(b'^') {
+            let c = if b.has(b'@') { b'@' } else { b'^' };
+            return Err(Fault::new(
+                PathErrorKind::Unsupported,
+                b.span(c),
+                "polar coordinates in canned cycles are not supported",
+                "",
+            ));
+        }
+        for c in [b'a', b'b', b'c'] {
+            if b.has(c) {
+                return Err(Fault::semantic(
+                    b.span(c),
+                    "rotary axis words cannot be used in a canned cycle",
+                ));
+            }
+        }
+        if !same && !b.has(nl) {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                gspan,
+                format!("{nname} value unspecified in canned cycle"),
+                format!("{nname}, the bottom of the hole"),
+            ));
+        }
+        let cc_word = b.get(nl).map_or(self.cycle.cc, |v| v * self.scale);
+        let r_word = match b.get(b'r') {
+            Some(r) => r * self.scale,
+            None if same => self.cycle.r,
+            None => {
+                return Err(Fault::new(
+                    PathErrorKind::Semantic,
+                    gspan,
+                    "R clearance plane unspecified in canned cycle",
+                    "R",
+                ))
+            }
+        };
+        let repeats = match b.get(b'l') {
+            None => 1,
+            Some(l) if l.fract() != 0.0 || l < 1.0 => {
+                return Err(Fault::new(
+                    PathErrorKind::Semantic,
+                    b.span(b'l'),
+                    "bad number of canned cycle repeats",
+                    "L, a positive integer",
+                ))
+            }
+            Some(l) if l > self.opts.max_repeat as f64 => {
+                return Err(Fault::new(
+                    PathErrorKind::Limit,
+                    b.span(b'l'),
+                    format!(
+                        "L{l} asks for more than {} repeats (GcodeOptions::max_repeat)",
+                        self.opts.max_repeat
+                    ),
+                    "",
+                ))
+            }
+            Some(l) => l as u64,
+        };
+        if self.feed <= 0.0 {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                gspan,
+                "canned cycle with zero feed rate",
+                "an F word",
+            ));
+        }
+        let dwell = if matches!(motion, 820 | 890) {
+            match b.get(b'p') {
+                Some(p) if p >= 0.0 => p,
+                Some(_) => return Err(Fault::semantic(b.span(b'p'), "negative dwell time")),
+                None if same => self.cycle.p,
+                None => {
+                    return Err(Fault::new(
+                        PathErrorKind::Semantic,
+                        gspan,
+                        "dwell time P missing in canned cycle",
+                        "P<seconds>",
+                    ))
+                }
+            }
+        } else {
+            0.0
+        };
+        let delta = if matches!(motion, 730 | 830) {
+            match b.get(b'q') {
+                Some(q) if q > 0.0 => q * self.scale,
+                Some(_) => {
+                    return Err(Fault::semantic(
+                        b.span(b'q'),
+                        "the peck increment Q must be positive",
+                    ))
+                }
+                None if same => self.cycle.q,
+                None => {
+                    return Err(Fault::new(
+                        PathErrorKind::Semantic,
+                        gspan,
+                        "Q word missing in peck cycle",
+                        "Q<increment>",
+                    ))
+                }
+            }
+        } else {
+            0.0
+        };
+        let mut old_cc = self.p[ni];
+        let (mut aa, mut bb, aa_inc, bb_inc, r, cc);
+        if self.absolute {
+            aa_inc = 0.0;
+            bb_inc = 0.0;
+            r = r_word;
+            cc = cc_word;
+            aa = b.get(fl).map_or(self.p[fi], |v| v * self.scale);
+            bb = b.get(sl).map_or(self.p[si], |v| v * self.scale);
+        } else {
+            aa_inc = b.get(fl).map_or(0.0, |v| v * self.scale);
+            bb_inc = b.get(sl).map_or(0.0, |v| v * self.scale);
+            r = r_word + old_cc;
+            cc = r + cc_word;
+            aa = self.p[fi];
+            bb = self.p[si];
+        }
+        if r < cc {
+            return Err(Fault::semantic(
+                b.get(b'r').map_or(gspan, |_| b.span(b'r')),
+                format!("R less than {nname} in canned cycle"),
+            ));
+        }
+        // Below the R level: rise to it first, where the tool is.
+        if old_cc < r {
+            let p = self.cycle_point(self.p[fi], self.p[si], r);
+            self.emit(Canon::Traverse {
+                end: Axes::from_array(p),
+            });
+            self.p = p;
+            old_cc = r;
+        }
+        let clear = if self.retract_r { r } else { old_cc };
+        for k in 0..repeats {
+            if k > 0 {
+                self.count_iteration(gspan)?;
+            }
+            aa += aa_inc;
+            bb += bb_inc;
+            self.cyc_traverse(aa, bb, old_cc);
+            if old_cc != r {
+                self.cyc_traverse(aa, bb, r);
+            }
+            match motion {
+                810 => {
+                    self.cyc_feed(aa, bb, cc);
+                    self.cyc_traverse(aa, bb, clear);
+                }
+                820 => {
+                    self.cyc_feed(aa, bb, cc);
+                    self.emit(Canon::Dwell(dwell));
+                    self.cyc_traverse(aa, bb, clear);
+                }
+                730 | 830 => {
+                    let mut depth = r - delta;
+                    while depth > cc {
+                        self.count_iteration(gspan)?;
+                        self.cyc_feed(aa, bb, depth);
+                        if motion == 830 {
+                            self.cyc_traverse(aa, bb, r);
+                        }
+                        self.cyc_traverse(aa, bb, depth + RAPID_DELTA_MM);
+                        depth -= delta;
+                    }
+                    self.cyc_feed(aa, bb, cc);
+                    self.cyc_traverse(aa, bb, clear);
+                }
+                _ => {
+                    // G85 and G89: feed out to R, then rapid to the clearance level if higher.
+                    self.cyc_feed(aa, bb, cc);
+                    if motion == 890 {
+                        self.emit(Canon::Dwell(dwell));
+                    }
+                    self.cyc_feed(aa, bb, r);
+                    if clear > r {
+                        self.cyc_traverse(aa, bb, clear);
+                    }
+                }
+            }
+            old_cc = clear;
+        }
+        self.p = self.cycle_point(aa, bb, clear);
+        self.cycle = super::interp::CycleMemory {
+            r: r_word,
+            cc: cc_word,
+            p: dwell,
+            q: delta,
+        };
+        Ok(())
+    }
+}

@@ -1,0 +1,1031 @@
+//! The interpreter proper: modal state, and the execution of one block in LinuxCNC's order of
+//! execution (feed mode, F, S, T, M6, spindle, coolant, dwell, plane, units, tool length,
+//! coordinate system, distance mode, retract mode, G10/G28/G30/G92, motion, stop).
+//!
+//! All lengths are kept in millimetres; program values are scaled on input (`scale` is 25.4
+//! under G20). Positions are in the current coordinate system, as LinuxCNC's canon calls
+//! receive them; machine position = program position + active G5x offset + G92 offset.
+
+use std::borrow::Cow;
+use std::collections::HashMap;
+
+use super::arcs::{center_r, check_ijk, r_tolerance_mm};
+use super::block::{self, group, Block};
+use super::control::{Ctl, Frame};
+use super::dialect::Dialect;
+use super::expr::ParamRead;
+use super::lexer::{column_of, normalize, split_line, LineBuf};
+use super::params::{Params, Target};
+use super::{Fault, GcodeOptions, Res, Span};
+use crate::{
+    Axes, Canon, CanonSink, FeedMode, PathError, PathErrorKind, Plane, SourcePos, SpindleDir,
+    Units, Warning,
+};
+
+/// A place in the text between lines: `pos` is the start of the next line to read, `line` the
+/// number of the line before it (so the next line read is `line + 1`).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Cursor {
+    pub(crate) pos: usize,
+    pub(crate) line: u32,
+}
+
+/// Letters of the six axes, in X Y Z A B C order.
+pub(crate) const AXIS_LETTERS: [u8; 6] = *b"xyzabc";
+
+/// Mask of the axis words (X Y Z A B C and the polar `@` `^`).
+fn axis_mask() -> u32 {
+    let mut m = 0;
+    for c in *b"xyzabc@^" {
+        m |= 1 << block::slot(c);
+    }
+    m
+}
+
+/// Canned-cycle values that persist between blocks of the same cycle (LinuxCNC's `cycle_*`).
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct CycleMemory {
+    /// R word as given (mm; incremental programs keep the increment).
+    pub(crate) r: f64,
+    /// Bottom word (Z in G17) as given, mm.
+    pub(crate) cc: f64,
+    /// Dwell, seconds.
+    pub(crate) p: f64,
+    /// Peck increment, mm.
+    pub(crate) q: f64,
+}
+
+/// The interpreter state for one program run.
+pub(crate) struct Interp<'t, 's> {
+    pub(crate) text: &'t str,
+    pub(crate) file: &'t str,
+    pub(crate) opts: &'t GcodeOptions,
+    pub(crate) sink: &'s mut dyn CanonSink,
+    /// Where reading continues.
+    pub(crate) at: Cursor,
+    /// The line being executed (events carry it) and where it starts.
+    pub(crate) cur_line: u32,
+    pub(crate) cur_start: usize,
+    pub(crate) units: Units,
+    /// mm per program unit.
+    pub(crate) scale: f64,
+    pub(crate) absolute: bool,
+    pub(crate) arc_absolute: bool,
+    pub(crate) plane: Plane,
+    pub(crate) feed_mode: FeedMode,
+    /// mm/min (G94), mm/rev (G95) or 1/min (G93).
+    pub(crate) feed: f64,
+    /// Active motion mode (G code × 10); `None` after G80.
+    pub(crate) motion: Option<u16>,
+    /// G99: retract to R; G98: retract to the old level.
+    pub(crate) retract_r: bool,
+    pub(crate) cycle: CycleMemory,
+    pub(crate) rpm: f64,
+    pub(crate) dir: SpindleDir,
+    pub(crate) tool: u32,
+    /// Current position, program coordinates, mm / degrees.
+    pub(crate) p: [f64; 6],
+    /// Active coordinate system, 1 (G54) … 9 (G59.3).
+    pub(crate) coord: usize,
+    /// The coordinate system table (parameters 5221…), mm.
+    pub(crate) g5x_table: [[f64; 6]; 9],
+    /// The G5x offset in effect (loaded from the table when the system is selected).
+    pub(crate) off: [f64; 6],
+    /// The G92 offset in effect.
+    pub(crate) g92: [f64; 6],
+    /// The stored G92 offset (parameters 5211–5216) and whether it is applied (5210).
+    pub(crate) g92_saved: [f64; 6],
+    pub(crate) g92_flag: bool,
+    /// G28 and G30 positions, machine coordinates, mm.
+    pub(crate) homes: [[f64; 6]; 2],
+    pub(crate) params: Params,
+    pub(crate) ctl: Vec<Ctl>,
+    pub(crate) frames: Vec<Frame>,
+    pub(crate) subs: HashMap<Vec<u8>, Cursor>,
+    pub(crate) labels: Option<HashMap<u64, Cursor>>,
+    pub(crate) iterations: u64,
+    pub(crate) ended: bool,
+    pub(crate) tape: bool,
+    pub(crate) seen_code: bool,
+    /// Set when a false `if` jumps to an `elseif`, whose condition must then be tested.
+    pub(crate) if_probe: bool,
+    pub(crate) skip_buf: LineBuf,
+}
+
+impl<'t, 's> Interp<'t, 's> {
+    pub(crate) fn new(
+        text: &'t str,
+        file: &'t str,
+        opts: &'t GcodeOptions,
+        sink: &'s mut dyn CanonSink,
+    ) -> Self {
+        Self {
+            text,
+            file,
+            opts,
+            sink,
+            at: Cursor { pos: 0, line: 0 },
+            cur_line: 0,
+            cur_start: 0,
+            units: opts.initial_units,
+            scale: opts.initial_units.mm_per_unit(),
+            absolute: true,
+            arc_absolute: false,
+            plane: Plane::XY,
+            feed_mode: FeedMode::PerMinute,
+            feed: 0.0,
+            motion: None,
+            retract_r: false,
+            cycle: CycleMemory::default(),
+            rpm: 0.0,
+            dir: SpindleDir::Stopped,
+            tool: 0,
+            p: [0.0; 6],
+            coord: 1,
+            g5x_table: [[0.0; 6]; 9],
+            off: [0.0; 6],
+            g92: [0.0; 6],
+            g92_saved: [0.0; 6],
+            g92_flag: false,
+            homes: [[0.0; 6]; 2],
+            params: Params::default(),
+            ctl: Vec::new(),
+            frames: Vec::new(),
+            subs: HashMap::new(),
+            labels: None,
+            iterations: 0,
+            ended: false,
+            tape: false,
+            seen_code: false,
+            if_probe: false,
+            skip_buf: LineBuf::default(),
+        }
+    }
+
+    /// Reads the whole program.
+    pub(crate) fn run(mut self) -> Result<(), PathError> {
+        if let Some((d, line)) = Dialect::detect(self.text, 200) {
+            let raw = self.text.lines().nth(line as usize - 1).unwrap_or("");
+            return Err(PathError::new(
+                SourcePos { file: self.file.to_string(), line, column: 1 },
+                PathErrorKind::Unsupported,
+                format!("this is a {d} program; swarf reads RS274/NGC (LinuxCNC) and Fanuc-style G-code"),
+                raw.trim(),
+                "RS274/NGC G-code",
+            ));
+        }
+        self.emit(Canon::Units(self.units));
+        self.emit_offsets();
+        self.emit(Canon::Plane(Plane::XY));
+        let mut lb = LineBuf::default();
+        let mut blk = Block::default();
+        while !self.ended && self.at.pos < self.text.len() {
+            let start = self.at.pos;
+            let (raw, next) = split_line(self.text, start);
+            self.at = Cursor {
+                pos: next,
+                line: self.at.line + 1,
+            };
+            self.cur_line = self.at.line;
+            self.cur_start = start;
+            if let Err(f) = self.exec_line(raw, &mut lb, &mut blk) {
+                return Err(self.to_error(f, raw, &lb));
+            }
+        }
+        if !self.ended {
+            if !self.frames.is_empty() {
+                return Err(PathError::new(
+                    SourcePos {
+                        file: self.file.to_string(),
+                        line: self.at.line,
+                        column: 0,
+                    },
+                    PathErrorKind::Semantic,
+                    "the file ends inside a subroutine call",
+                    "",
+                    "`endsub`, `return` or `M99`",
+                ));
+            }
+            self.warn_at(0, "the program has no M2/M30 end".to_string());
+        }
+        Ok(())
+    }
+
+    /// Turns an internal fault on the current line into a [`PathError`].
+    fn to_error(&self, f: Fault, raw: &str, lb: &LineBuf) -> PathError {
+        let (a, b) = match f.span {
+            Span::Line => (0, raw.len()),
+            Span::Code(x, y) => lb.raw_range(x, y, raw.len()),
+            Span::Raw(x, y) => (x.min(raw.len()), y.min(raw.len())),
+        };
+        let column = if f.span == Span::Line {
+            0
+        } else {
+            column_of(raw, a)
+        };
+        let found = raw.get(a..b).unwrap_or("").trim().to_string();
+        let (kind, message) = match (f.kind, Dialect::of_line(raw)) {
+            (PathErrorKind::Syntax, Some(d)) => (
+                PathErrorKind::Unsupported,
+                format!(
+                    "{} (this line is written for {d}, which swarf does not read)",
+                    f.message
+                ),
+            ),
+            _ => (f.kind, f.message),
+        };
+        PathError::new(
+            SourcePos {
+                file: self.file.to_string(),
+                line: self.cur_line,
+                column,
+            },
+            kind,
+            message,
+            found,
+            f.expected,
+        )
+    }
+
+    #[inline]
+    pub(crate) fn emit(&mut self, e: Canon<'_>) {
+        self.sink.emit(self.cur_line, &e);
+    }
+
+    pub(crate) fn emit_offsets(&mut self) {
+        let e = Canon::Offsets {
+            index: self.coord as u8,
+            g5x: Axes::from_array(self.off),
+            g92: Axes::from_array(self.g92),
+        };
+        self.emit(e);
+    }
+
+    /// A warning at raw byte offset `byte` of the current line (0: the whole line).
+    pub(crate) fn warn_at(&mut self, column: u32, message: String) {
+        self.sink.warn(Warning {
+            file: self.file.to_string(),
+            line: self.cur_line,
+            column,
+            message,
+        });
+    }
+
+    fn warn_code(&mut self, lb: &LineBuf, code_at: usize, message: String) {
+        let raw_at = lb.offs.get(code_at).map_or(0, |&o| o as usize);
+        let raw = split_line(self.text, self.cur_start).0;
+        self.warn_at(column_of(raw, raw_at), message);
+    }
+
+    /// Counts one backward jump (loop iteration, call, repeat).
+    pub(crate) fn count_iteration(&mut self, span: Span) -> Res<()> {
+        self.iterations += 1;
+        if self.iterations > self.opts.max_loop_iterations {
+            return Err(Fault::new(
+                PathErrorKind::Limit,
+                span,
+                format!(
+                    "more than {} loop iterations, calls and repeats: the program may never end \
+                     (GcodeOptions::max_loop_iterations)",
+                    self.opts.max_loop_iterations
+                ),
+                "",
+            ));
+        }
+        Ok(())
+    }
+
+    fn exec_line(&mut self, raw: &'t str, lb: &mut LineBuf, blk: &mut Block) -> Res<()> {
+        normalize(raw, lb)?;
+        if lb.deleted && self.opts.block_delete {
+            return Ok(());
+        }
+        if lb.code.first() == Some(&b'%') {
+            // Tape markers: the first opens the program, the next one ends it.
+            if self.tape || self.seen_code {
+                self.ended = true;
+            }
+            self.tape = true;
+            return Ok(());
+        }
+        for &(a, b) in &lb.comments {
+            let text: &'t str = &raw[a as usize..b as usize];
+            self.sink
+                .emit(self.cur_line, &Canon::Comment(Cow::Borrowed(text)));
+        }
+        if lb.code.is_empty() {
+            return Ok(());
+        }
+        self.seen_code = true;
+        let o_at = skip_line_number(&lb.code);
+        if lb.code.get(o_at) == Some(&b'o') {
+            return self.exec_oword(lb, o_at);
+        }
+        block::parse(lb, blk, &*self)?;
+        self.execute(blk, lb)
+    }
+
+    /// Program units → mm for axis `i` (rotary axes stay in degrees).
+    #[inline]
+    pub(crate) fn from_units(&self, i: usize, v: f64) -> f64 {
+        if i < 3 {
+            v * self.scale
+        } else {
+            v
+        }
+    }
+
+    #[inline]
+    pub(crate) fn to_units(&self, i: usize, v: f64) -> f64 {
+        if i < 3 {
+            v / self.scale
+        } else {
+            v
+        }
+    }
+
+    /// Numbered parameter with LinuxCNC's views onto the offset tables, in program units.
+    pub(crate) fn get_numbered(&self, n: usize) -> f64 {
+        match n {
+            5161..=5166 => self.to_units(n - 5161, self.homes[0][n - 5161]),
+            5181..=5186 => self.to_units(n - 5181, self.homes[1][n - 5181]),
+            5210 => f64::from(u8::from(self.g92_flag)),
+            5211..=5216 => self.to_units(n - 5211, self.g92_saved[n - 5211]),
+            5220 => self.coord as f64,
+            5221..=5386 if (n - 5221) % 20 < 6 => {
+                let (k, i) = ((n - 5221) / 20, (n - 5221) % 20);
+                self.to_units(i, self.g5x_table[k][i])
+            }
+            5420..=5425 => self.to_units(n - 5420, self.p[n - 5420]),
+            5400 => f64::from(self.tool),
+            _ => self.params.num[n],
+        }
+    }
+
+    pub(crate) fn set_numbered(&mut self, n: usize, v: f64) {
+        match n {
+            5161..=5166 => self.homes[0][n - 5161] = self.from_units(n - 5161, v),
+            5181..=5186 => self.homes[1][n - 5181] = self.from_units(n - 5181, v),
+            5211..=5216 => self.g92_saved[n - 5211] = self.from_units(n - 5211, v),
+            5221..=5386 if (n - 5221) % 20 < 6 => {
+                let (k, i) = ((n - 5221) / 20, (n - 5221) % 20);
+                self.g5x_table[k][i] = self.from_units(i, v);
+            }
+            // Read-only views: the position, the active system, the G92 flag, the tool.
+            5210 | 5220 | 5400 | 5420..=5425 => {}
+            _ => self.params.num[n] = v,
+        }
+    }
+
+    fn machine(&self) -> [f64; 6] {
+        std::array::from_fn(|i| self.p[i] + self.off[i] + self.g92[i])
+    }
+
+    /// Changes the offsets in effect keeping the machine position, and says so.
+    fn set_offsets(&mut self, off: [f64; 6], g92: [f64; 6]) {
+        let m = self.machine();
+        self.off = off;
+        self.g92 = g92;
+        self.p = std::array::from_fn(|i| m[i] - off[i] - g92[i]);
+        self.emit_offsets();
+    }
+
+    fn execute(&mut self, b: &Block, lb: &LineBuf) -> Res<()> {
+        // Parameters assigned on the line take effect now, after all of it was read.
+        for &(t, v) in &b.assigns[..b.n_assigns] {
+            match t {
+                Target::Num(n) => self.set_numbered(n, v),
+                Target::Named(x, y) => {
+                    let name = std::str::from_utf8(&lb.code[x as usize..y as usize]).unwrap_or("");
+                    self.params.set_named(name, v);
+                }
+            }
+        }
+        if let Some(g) = b.g(group::FEED_MODE) {
+            let m = match g {
+                930 => FeedMode::InverseTime,
+                940 => FeedMode::PerMinute,
+                _ => FeedMode::PerRevolution,
+            };
+            if m != self.feed_mode {
+                self.feed_mode = m;
+                // LinuxCNC forgets the feed rate when the feed mode changes.
+                self.feed = 0.0;
+                self.emit(Canon::FeedMode(m));
+            }
+        }
+        if let Some(f) = b.get(b'f') {
+            if f < 0.0 {
+                return Err(Fault::semantic(b.span(b'f'), "negative feed rate"));
+            }
+            self.feed = if self.feed_mode == FeedMode::InverseTime {
+                f
+            } else {
+                f * self.scale
+            };
+            self.emit(Canon::FeedRate(self.feed));
+        }
+        if let Some(s) = b.get(b's') {
+            if s < 0.0 {
+                return Err(Fault::semantic(b.span(b's'), "negative spindle speed"));
+            }
+            self.rpm = s;
+            if b.m_spindle.is_none() {
+                self.emit(Canon::Spindle {
+                    rpm: self.rpm,
+                    dir: self.dir,
+                });
+            }
+        }
+        if let Some(t) = b.get(b't') {
+            if t < 0.0 || t.fract() != 0.0 || t > f64::from(u32::MAX) {
+                return Err(Fault::new(
+                    PathErrorKind::Semantic,
+                    b.span(b't'),
+                    "bad tool number",
+                    "a non-negative integer",
+                ));
+            }
+            self.tool = t as u32;
+        }
+        if b.m6 {
+            self.emit(Canon::ToolChange { tool: self.tool });
+        }
+        if let Some(m) = b.m_spindle {
+            self.dir = match m {
+                3 => SpindleDir::Clockwise,
+                4 => SpindleDir::CounterClockwise,
+                _ => SpindleDir::Stopped,
+            };
+            self.emit(Canon::Spindle {
+                rpm: self.rpm,
+                dir: self.dir,
+            });
+        }
+        for &(m, at) in &b.m_other[..b.n_other] {
+            let what = match m {
+                7 => "M7 (mist coolant on)".to_string(),
+                8 => "M8 (flood coolant on)".to_string(),
+                9 => "M9 (coolant off)".to_string(),
+                19 => "M19 (spindle orientation)".to_string(),
+                48..=53 => format!("M{m} (override control)"),
+                61 => "M61 (set current tool)".to_string(),
+                62..=68 => format!("M{m} (digital/analog output)"),
+                70..=73 => format!("M{m} (modal state save/restore)"),
+                100..=199 => format!("M{m} (user-defined M code)"),
+                _ => format!("M{m} (unknown M code)"),
+            };
+            self.warn_code(
+                lb,
+                at as usize,
+                format!("{what} ignored: it does not move the tool"),
+            );
+        }
+        let nonmodal = b.g(group::NON_MODAL);
+        if nonmodal == Some(40) {
+            let p = b.get(b'p').ok_or_else(|| {
+                Fault::new(
+                    PathErrorKind::Semantic,
+                    b.g_span(group::NON_MODAL),
+                    "G4 needs a P word",
+                    "P<seconds>",
+                )
+            })?;
+            if p < 0.0 {
+                return Err(Fault::semantic(b.span(b'p'), "negative dwell time"));
+            }
+            self.emit(Canon::Dwell(p));
+        }
+        if let Some(g) = b.g(group::PLANE) {
+            self.plane = match g {
+                170 => Plane::XY,
+                180 => Plane::XZ,
+                _ => Plane::YZ,
+            };
+            self.emit(Canon::Plane(self.plane));
+        }
+        if let Some(g) = b.g(group::UNITS) {
+            self.units = if g == 200 { Units::Inch } else { Units::Mm };
+            self.scale = self.units.mm_per_unit();
+            self.emit(Canon::Units(self.units));
+        }
+        let mut axes_used_by_nonmotion = false;
+        match b.g(group::TOOL_LENGTH) {
+            Some(430) => {
+                if let Some(h) = b.get(b'h') {
+                    self.warn_code(
+                        lb,
+                        b.at[block::slot(b'h')] as usize,
+                        format!("G43 H{h}: the tool table is not known, so the tool length offset is taken as 0"),
+                    );
+                }
+                self.emit(Canon::ToolLengthOffset(0.0));
+            }
+            Some(431) => {
+                // G43.1: the offset is given along the tool axis (Z).
+                let z = b.get(b'z').ok_or_else(|| {
+                    Fault::new(
+                        PathErrorKind::Semantic,
+                        b.g_span(group::TOOL_LENGTH),
+                        "G43.1 needs a Z word",
+                        "Z<offset>",
+                    )
+                })?;
+                axes_used_by_nonmotion = true;
+                self.emit(Canon::ToolLengthOffset(z * self.scale));
+            }
+            Some(_) => self.emit(Canon::ToolLengthOffset(0.0)),
+            None => {}
+        }
+        if let Some(g) = b.g(group::COORD) {
+            let idx = match g {
+                591 => 7,
+                592 => 8,
+                593 => 9,
+                _ => (g / 10 - 53) as usize,
+            };
+            self.coord = idx;
+            let off = self.g5x_table[idx - 1];
+            self.set_offsets(off, self.g92);
+        }
+        if b.g(group::SPINDLE_MODE) == Some(960) {
+            self.warn_code(
+                lb,
+                b.g_at[group::SPINDLE_MODE] as usize,
+                "G96 constant surface speed is not simulated: S is taken as rpm".to_string(),
+            );
+        }
+        if let Some(g) = b.g(group::DISTANCE) {
+            self.absolute = g == 900;
+        }
+        if let Some(g) = b.g(group::ARC_DISTANCE) {
+            self.arc_absolute = g == 901;
+        }
+        if let Some(g) = b.g(group::RETRACT) {
+            self.retract_r = g == 990;
+        }
+        if b.mask & (1 << block::slot(b'u') | 1 << block::slot(b'v') | 1 << block::slot(b'w')) != 0
+        {
+            let c = [b'u', b'v', b'w']
+                .into_iter()
+                .find(|&c| b.has(c))
+                .unwrap_or(b'u');
+            return Err(Fault::new(
+                PathErrorKind::Unsupported,
+                b.span(c),
+                "U, V and W axes are not simulated",
+                "X Y Z A B C axis words",
+            ));
+        }
+        match nonmodal {
+            Some(100) => {
+                self.g10(b)?;
+                axes_used_by_nonmotion = true;
+            }
+            Some(280 | 300) => {
+                self.home(b, usize::from(nonmodal == Some(300)))?;
+                axes_used_by_nonmotion = true;
+            }
+            Some(281 | 301) => {
+                let k = usize::from(nonmodal == Some(301));
+                self.homes[k] = self.machine();
+            }
+            Some(920) => {
+                self.g92(b)?;
+                axes_used_by_nonmotion = true;
+            }
+            Some(921) => {
+                self.g92_saved = [0.0; 6];
+                self.g92_flag = false;
+                self.set_offsets(self.off, [0.0; 6]);
+            }
+            Some(922) => {
+                self.g92_flag = false;
+                self.set_offsets(self.off, [0.0; 6]);
+            }
+            Some(923) => {
+                self.g92_flag = true;
+                self.set_offsets(self.off, self.g92_saved);
+            }
+            _ => {}
+        }
+        self.motion_step(b, nonmodal == Some(530), axes_used_by_nonmotion)?;
+        match b.m_stop {
+            Some(0 | 1 | 60) => {
+                let m = b.m_stop.unwrap_or(0);
+                self.warn_at(
+                    0,
+                    format!("M{m} (program pause) ignored: the simulation runs on"),
+                );
+            }
+            Some(_) => {
+                self.emit(Canon::ProgramEnd);
+                self.ended = true;
+                return Ok(());
+            }
+            None => {}
+        }
+        if b.m98 {
+            self.m98(b)?;
+        } else if b.m99 {
+            self.m99()?;
+        }
+        Ok(())
+    }
+
+    fn motion_step(&mut self, b: &Block, g53: bool, axes_taken: bool) -> Res<()> {
+        let explicit = b.g(group::MOTION);
+        let has_axes = b.mask & axis_mask() != 0;
+        if axes_taken && has_axes && explicit.is_some_and(|m| m != 800) {
+            return Err(Fault::semantic(
+                b.g_span(group::MOTION),
+                "a motion G code and G10/G28/G30/G92/G43.1 both want the axis words of this line",
+            ));
+        }
+        let mode = match explicit {
+            Some(m) => Some(m),
+            None if has_axes && !axes_taken => match self.motion {
+                Some(m) => Some(m),
+                None => {
+                    let c = b"xyzabc@^"
+                        .iter()
+                        .copied()
+                        .find(|&c| b.has(c))
+                        .unwrap_or(b'x');
+                    return Err(Fault::new(
+                        PathErrorKind::Semantic,
+                        b.span(c),
+                        "axis words without a motion G code to use them (G80 is in effect)",
+                        "G0, G1, G2, G3 or a canned cycle",
+                    ));
+                }
+            },
+            None => None,
+        };
+        if g53 && !matches!(mode, Some(0 | 10)) {
+            return Err(Fault::semantic(
+                b.g_span(group::NON_MODAL),
+                "G53 needs G0 or G1",
+            ));
+        }
+        if g53 && !self.absolute {
+            return Err(Fault::semantic(
+                b.g_span(group::NON_MODAL),
+                "G53 cannot be used in incremental mode (G91)",
+            ));
+        }
+        let old_motion = self.motion;
+        if let Some(m) = explicit {
+            self.motion = (m != 800).then_some(m);
+        }
+        match mode {
+            None | Some(800) => {
+                if mode == Some(800) && has_axes && !axes_taken {
+                    return Err(Fault::semantic(
+                        b.g_span(group::MOTION),
+                        "G80 with axis words",
+                    ));
+                }
+            }
+            Some(0 | 10) => {
+                if has_axes {
+                    let end = self.find_ends(b, g53)?;
+                    let end_axes = Axes::from_array(end);
+                    if mode == Some(0) {
+                        self.emit(Canon::Traverse { end: end_axes });
+                    } else {
+                        self.check_feed(b)?;
+                        self.emit(Canon::Feed { end: end_axes });
+                    }
+                    self.p = end;
+                }
+            }
+            Some(m @ (20 | 30)) => self.arc(b, m == 20)?,
+            Some(m) => self.cycle(b, m, old_motion)?,
+        }
+        Ok(())
+    }
+
+    /// The G93 rule (F on every feed block) and the zero-feed rule.
+    pub(crate) fn check_feed(&self, b: &Block) -> Res<()> {
+        let span = b
+            .g(group::MOTION)
+            .map_or(Span::Line, |_| b.g_span(group::MOTION));
+        match self.feed_mode {
+            FeedMode::InverseTime if !b.has(b'f') => Err(Fault::new(
+                PathErrorKind::Semantic,
+                span,
+                "F word missing on a feed move in inverse time mode (G93)",
+                "F on every G1/G2/G3 line under G93",
+            )),
+            FeedMode::PerMinute | FeedMode::PerRevolution if self.feed <= 0.0 => Err(Fault::new(
+                PathErrorKind::Semantic,
+                span,
+                "feed move with zero feed rate",
+                "an F word",
+            )),
+            _ => Ok(()),
+        }
+    }
+
+    /// The end point of a straight or arc move (LinuxCNC's `find_ends`), including the polar
+    /// words `@` (radius) and `^` (angle, degrees) in the XY plane.
+    pub(crate) fn find_ends(&self, b: &Block, g53: bool) -> Res<[f64; 6]> {
+        let mut e = self.p;
+        for (i, &c) in AXIS_LETTERS.iter().enumerate() {
+            if let Some(v) = b.get(c) {
+                let v = self.from_units(i, v);
+                e[i] = if g53 {
+                    v - self.off[i] - self.g92[i]
+                } else if self.absolute {
+                    v
+                } else {
+                    self.p[i] + v
+                };
+            }
+        }
+        if b.has(b'@') || b.has(b'^') {
+            if b.has(b'x') || b.has(b'y') {
+                let c = if b.has(b'x') { b'x' } else { b'y' };
+                return Err(Fault::semantic(
+                    b.span(c),
+                    "X or Y cannot be used with polar coordinates (@ ^)",
+                ));
+            }
+            if g53 {
+                return Err(Fault::semantic(
+                    b.g_span(group::NON_MODAL),
+                    "polar coordinates cannot be used with G53",
+                ));
+            }
+            let (x, y) = (self.p[0], self.p[1]);
+            let (r, th) = if self.absolute {
+                (
+                    b.get(b'@').map_or_else(|| x.hypot(y), |r| r * self.scale),
+                    b.get(b'^').map_or_else(|| y.atan2(x), f64::to_radians),
+                )
+            } else {
+                if x == 0.0 && y == 0.0 {
+                    let c = if b.has(b'@') { b'@' } else { b'^' };
+                    return Err(Fault::semantic(
+                        b.span(c),
+                        "incremental motion with polar coordinates is indeterminate at the origin",
+                    ));
+                }
+                (
+                    x.hypot(y) + b.get(b'@').map_or(0.0, |r| r * self.scale),
+                    y.atan2(x) + b.get(b'^').map_or(0.0, f64::to_radians),
+                )
+            };
+            e[0] = r * th.cos();
+            e[1] = r * th.sin();
+        }
+        Ok(e)
+    }
+
+    fn arc(&mut self, b: &Block, cw: bool) -> Res<()> {
+        let (fi, si, ni) = self.plane.axes();
+        let names = ["X", "Y", "Z"];
+        let offs = [b'i', b'j', b'k'];
+        let gspan = b
+            .g(group::MOTION)
+            .map_or(Span::Line, |_| b.g_span(group::MOTION));
+        let polar = b.has(b'@') || b.has(b'^');
+        if !(b.has(AXIS_LETTERS[fi]) || b.has(AXIS_LETTERS[si]) || polar) {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                gspan,
+                format!(
+                    "{} and {} words missing for an arc in the {}{} plane",
+                    names[fi], names[si], names[fi], names[si]
+                ),
+                format!("{} or {}", names[fi], names[si]),
+            ));
+        }
+        let end = self.find_ends(b, false)?;
+        self.check_feed(b)?;
+        let turns = match b.get(b'p') {
+            None => 1,
+            Some(p) if p >= 1.0 && p.fract() == 0.0 && p <= self.opts.max_repeat as f64 => p as i32,
+            Some(_) => {
+                return Err(Fault::new(
+                    PathErrorKind::Semantic,
+                    b.span(b'p'),
+                    "bad number of arc turns",
+                    "P, a positive integer",
+                ))
+            }
+        };
+        let start2 = [self.p[fi], self.p[si]];
+        let end2 = [end[fi], end[si]];
+        let center = if let Some(r) = b.get(b'r') {
+            if let Some(&c) = offs.iter().find(|&&c| b.has(c)) {
+                return Err(Fault::semantic(
+                    b.span(c),
+                    "an arc cannot have both R and I/J/K words",
+                ));
+            }
+            center_r(start2, end2, r * self.scale, cw, r_tolerance_mm(self.units))
+                .map_err(|m| Fault::semantic(b.span(b'r'), m))?
+        } else {
+            if b.has(offs[ni]) {
+                return Err(Fault::semantic(
+                    b.span(offs[ni]),
+                    format!(
+                        "{} word given for an arc in the {}{} plane",
+                        (offs[ni] as char).to_ascii_uppercase(),
+                        names[fi],
+                        names[si]
+                    ),
+                ));
+            }
+            if !b.has(offs[fi]) && !b.has(offs[si]) {
+                let (a, c) = (
+                    (offs[fi] as char).to_ascii_uppercase(),
+                    (offs[si] as char).to_ascii_uppercase(),
+                );
+                return Err(Fault::new(
+                    PathErrorKind::Semantic,
+                    gspan,
+                    format!(
+                        "{a} and {c} words missing for an arc in the {}{} plane",
+                        names[fi], names[si]
+                    ),
+                    format!("{a}/{c} (centre) or R (radius)"),
+                ));
+            }
+            let oi = b.get(offs[fi]).unwrap_or(0.0) * self.scale;
+            let oj = b.get(offs[si]).unwrap_or(0.0) * self.scale;
+            let c = if self.arc_absolute {
+                [oi, oj]
+            } else {
+                [start2[0] + oi, start2[1] + oj]
+            };
+            let tol = self.opts.arc_radius_tolerance;
+            check_ijk(start2, end2, c, tol.abs_in_mm(self.units), tol.relative)
+                .map_err(|m| Fault::semantic(gspan, m))?;
+            c
+        };
+        self.emit(Canon::Arc {
+            end: Axes::from_array(end),
+            center,
+            rotation: if cw { -turns } else { turns },
+            plane: self.plane,
+        });
+        self.p = end;
+        Ok(())
+    }
+
+    fn g10(&mut self, b: &Block) -> Res<()> {
+        let span = b.g_span(group::NON_MODAL);
+        let l = b.get(b'l').ok_or_else(|| {
+            Fault::new(
+                PathErrorKind::Semantic,
+                span,
+                "G10 needs an L word",
+                "L2 or L20",
+            )
+        })?;
+        if l == 1.0 || l == 10.0 || l == 11.0 {
+            self.warn_at(
+                0,
+                format!("G10 L{l} (tool table) ignored: swarf takes tools from its own tool list"),
+            );
+            return Ok(());
+        }
+        if l != 2.0 && l != 20.0 {
+            return Err(Fault::new(
+                PathErrorKind::Unsupported,
+                b.span(b'l'),
+                format!("G10 L{l} is not supported"),
+                "L2 or L20",
+            ));
+        }
+        let p = b.get(b'p').unwrap_or(0.0);
+        if !(0.0..=9.0).contains(&p) || p.fract() != 0.0 {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                b.span(b'p'),
+                "bad coordinate system number",
+                "P0 to P9",
+            ));
+        }
+        if b.get(b'r').is_some_and(|r| r != 0.0) {
+            return Err(Fault::new(
+                PathErrorKind::Unsupported,
+                b.span(b'r'),
+                "rotated coordinate systems (G10 R) are not supported",
+                "",
+            ));
+        }
+        let k = if p == 0.0 { self.coord } else { p as usize };
+        let mut t = self.g5x_table[k - 1];
+        for (i, &c) in AXIS_LETTERS.iter().enumerate() {
+            if let Some(v) = b.get(c) {
+                let v = self.from_units(i, v);
+                t[i] = if l == 2.0 {
+                    v
+                } else {
+                    // L20: make the current position read `v` in system k.
+                    self.p[i] + self.off[i] - v
+                };
+            }
+        }
+        self.g5x_table[k - 1] = t;
+        if k == self.coord {
+            self.set_offsets(t, self.g92);
+        }
+        Ok(())
+    }
+
+    fn g92(&mut self, b: &Block) -> Res<()> {
+        if b.mask & axis_mask() == 0 {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                b.g_span(group::NON_MODAL),
+                "G92 needs axis words",
+                "X Y Z A B C",
+            ));
+        }
+        let mut g = self.g92;
+        for (i, &c) in AXIS_LETTERS.iter().enumerate() {
+            if let Some(v) = b.get(c) {
+                g[i] = self.p[i] + self.g92[i] - self.from_units(i, v);
+            }
+        }
+        self.g92_saved = g;
+        self.g92_flag = true;
+        self.set_offsets(self.off, g);
+        Ok(())
+    }
+
+    /// G28/G30: traverse through the given intermediate point, then to the stored position
+    /// for the given axes (all axes when none is given).
+    fn home(&mut self, b: &Block, k: usize) -> Res<()> {
+        let home: [f64; 6] = std::array::from_fn(|i| self.homes[k][i] - self.off[i] - self.g92[i]);
+        if b.mask & axis_mask() == 0 {
+            self.emit(Canon::Traverse {
+                end: Axes::from_array(home),
+            });
+            self.p = home;
+            return Ok(());
+        }
+        let mid = self.find_ends(b, false)?;
+        self.emit(Canon::Traverse {
+            end: Axes::from_array(mid),
+        });
+        let mut end = mid;
+        for (i, &c) in AXIS_LETTERS.iter().enumerate() {
+            if b.has(c) {
+                end[i] = home[i];
+            }
+        }
+        self.emit(Canon::Traverse {
+            end: Axes::from_array(end),
+        });
+        self.p = end;
+        Ok(())
+    }
+}
+
+impl ParamRead for Interp<'_, '_> {
+    fn numbered(&self, n: usize) -> f64 {
+        self.get_numbered(n)
+    }
+    fn named(&self, name: &str) -> Option<f64> {
+        let flag = |b: bool| Some(f64::from(u8::from(b)));
+        match name {
+            "_x" => Some(self.to_units(0, self.p[0])),
+            "_y" => Some(self.to_units(1, self.p[1])),
+            "_z" => Some(self.to_units(2, self.p[2])),
+            "_a" => Some(self.p[3]),
+            "_b" => Some(self.p[4]),
+            "_c" => Some(self.p[5]),
+            "_metric" => flag(self.units == Units::Mm),
+            "_imperial" => flag(self.units == Units::Inch),
+            "_absolute" => flag(self.absolute),
+            "_incremental" => flag(!self.absolute),
+            "_feed" => Some(if self.feed_mode == FeedMode::InverseTime {
+                self.feed
+            } else {
+                self.feed / self.scale
+            }),
+            "_rpm" => Some(self.rpm),
+            "_current_tool" => Some(f64::from(self.tool)),
+            "_line" => Some(f64::from(self.cur_line)),
+            _ => self.params.get_named(name),
+        }
+    }
+}
+
+/// Index of the first code byte after an optional `N123` line number.
+pub(crate) fn skip_line_number(code: &[u8]) -> usize {
+    if code.first() != Some(&b'n') {
+        return 0;
+    }
+    let mut i = 1;
+    while matches!(code.get(i), Some(b'0'..=b'9' | b'.')) {
+        i += 1;
+    }
+    i
+}

@@ -1,0 +1,153 @@
+//! Reading a program file of either language: format detection and the whole read into a
+//! [`Program`], or into any [`CanonSink`].
+
+use std::path::Path;
+
+use crate::apt::{read_apt, AptOptions};
+use crate::gcode::{read_gcode, GcodeOptions};
+use crate::{CanonSink, Machine, MoveBuilder, PathError, PathErrorKind, Program, SourcePos};
+
+/// The language of a program file.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ProgramFormat {
+    /// RS274/NGC G-code (LinuxCNC, Fanuc and alike).
+    Gcode,
+    /// APT CL data (CLDATA text).
+    Apt,
+}
+
+impl ProgramFormat {
+    /// Decides the language from the file extension, and for unknown extensions from the text:
+    /// a file whose first statements are APT records (`GOTO/`, `PARTNO`, `CUTTER/`, …) is APT.
+    pub fn detect(path: &Path, text: &str) -> Self {
+        let ext = path
+            .extension()
+            .and_then(|e| e.to_str())
+            .unwrap_or("")
+            .to_ascii_lowercase();
+        match ext.as_str() {
+            "apt" | "cls" | "cl" | "cldata" | "aptsource" => return ProgramFormat::Apt,
+            "ngc" | "nc" | "gcode" | "g" | "gc" | "tap" | "cnc" | "ptp" | "mpf" | "h" | "eia" => {
+                return ProgramFormat::Gcode
+            }
+            _ => {}
+        }
+        const APT_WORDS: [&str; 10] = [
+            "GOTO/",
+            "FROM/",
+            "PARTNO",
+            "CUTTER/",
+            "LOADTL",
+            "TOOL PATH/",
+            "FEDRAT/",
+            "MULTAX",
+            "UNITS/",
+            "TLDATA/",
+        ];
+        let first = text
+            .lines()
+            .map(str::trim)
+            .filter(|l| !l.is_empty() && !l.starts_with("$$"))
+            .take(20);
+        for line in first {
+            let upper = line.to_ascii_uppercase();
+            if APT_WORDS.iter().any(|w| upper.starts_with(w)) {
+                return ProgramFormat::Apt;
+            }
+        }
+        ProgramFormat::Gcode
+    }
+}
+
+/// Options for reading a program of either language.
+#[derive(Clone, Debug, Default)]
+pub struct ReadOptions {
+    /// G-code reader options.
+    pub gcode: GcodeOptions,
+    /// APT reader options.
+    pub apt: AptOptions,
+    /// Force a language instead of detecting it.
+    pub format: Option<ProgramFormat>,
+}
+
+/// Reads a program file's bytes (non-UTF-8 bytes are replaced, as old post-processors write
+/// Latin-1 comments).
+///
+/// # Errors
+/// [`PathErrorKind::Io`] naming the file.
+pub fn read_text(path: &Path) -> Result<String, PathError> {
+    let bytes = std::fs::read(path).map_err(|e| {
+        PathError::new(
+            SourcePos {
+                file: path.display().to_string(),
+                line: 0,
+                column: 0,
+            },
+            PathErrorKind::Io,
+            format!("cannot read the program: {e}"),
+            "",
+            "",
+        )
+    })?;
+    Ok(match String::from_utf8(bytes) {
+        Ok(s) => s,
+        Err(e) => String::from_utf8_lossy(e.as_bytes()).into_owned(),
+    })
+}
+
+/// Streams the program `text` (named `file` in messages) into `sink`.
+///
+/// # Errors
+/// The reader's first error.
+pub fn stream_program(
+    text: &str,
+    file: &str,
+    options: &ReadOptions,
+    sink: &mut dyn CanonSink,
+) -> Result<ProgramFormat, PathError> {
+    let format = options
+        .format
+        .unwrap_or_else(|| ProgramFormat::detect(Path::new(file), text));
+    match format {
+        ProgramFormat::Gcode => read_gcode(text, file, &options.gcode, sink)?,
+        ProgramFormat::Apt => read_apt(text, file, &options.apt, sink)?,
+    }
+    Ok(format)
+}
+
+/// Reads a program file into moves through `machine`.
+///
+/// ```
+/// use swarf_path::{load::{read_program_str, ReadOptions}, Machine, summarize};
+/// let p = read_program_str("G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X10\nM30\n", "a.ngc",
+///     Machine::three_axis(), &ReadOptions::default()).unwrap();
+/// let s = summarize(&p);
+/// assert_eq!(s.feed_moves, 2);
+/// assert!((s.feed_length_mm - 16.0).abs() < 1e-12);
+/// ```
+///
+/// # Errors
+/// The file cannot be read, or the reader's first error.
+pub fn read_program(
+    path: &Path,
+    machine: Machine,
+    options: &ReadOptions,
+) -> Result<Program, PathError> {
+    let text = read_text(path)?;
+    read_program_str(&text, &path.display().to_string(), machine, options)
+}
+
+/// Reads program text into moves through `machine` (see [`read_program`]).
+///
+/// # Errors
+/// The reader's first error.
+pub fn read_program_str(
+    text: &str,
+    file: &str,
+    machine: Machine,
+    options: &ReadOptions,
+) -> Result<Program, PathError> {
+    let mut builder = MoveBuilder::new(machine, file);
+    stream_program(text, file, options, &mut builder)?;
+    Ok(builder.finish())
+}

@@ -1,0 +1,319 @@
+//! APT records one by one: forms, conversions, errors with their positions, robustness.
+
+use proptest::prelude::*;
+use swarf_path::apt::{read_apt, AptOptions};
+use swarf_path::builder::MoveBuilder;
+use swarf_path::canon::Recorder;
+use swarf_path::kinematics::Machine;
+use swarf_path::summary::summarize;
+use swarf_path::{Axes, Canon, FeedMode, MoveKind, PathErrorKind, Plane, SpindleDir, Units};
+
+fn events(text: &str) -> Vec<Canon<'static>> {
+    let mut rec = Recorder::default();
+    read_apt(text, "t.apt", &AptOptions::default(), &mut rec).unwrap();
+    rec.events.into_iter().map(|(_, e)| e).collect()
+}
+
+fn err(text: &str) -> swarf_path::PathError {
+    let mut rec = Recorder::default();
+    read_apt(text, "t.apt", &AptOptions::default(), &mut rec).unwrap_err()
+}
+
+fn at(x: f64, y: f64, z: f64) -> Axes {
+    Axes {
+        x,
+        y,
+        z,
+        ..Axes::default()
+    }
+}
+
+#[test]
+fn first_point_places_the_tool_then_rapid_applies_once() {
+    let e = events("GOTO/1,2,3\nRAPID\nGOTO/1,2,10\nGOTO/4,2,10\n");
+    assert_eq!(
+        e,
+        vec![
+            Canon::ToolAxis([0.0, 0.0, 1.0]),
+            Canon::SetPosition(at(1.0, 2.0, 3.0)),
+            Canon::Traverse {
+                end: at(1.0, 2.0, 10.0)
+            },
+            Canon::Feed {
+                end: at(4.0, 2.0, 10.0)
+            },
+        ]
+    );
+}
+
+#[test]
+fn inches_are_converted_and_feeds_in_both_orders() {
+    let e =
+        events("UNITS/INCHES\nFROM/0,0,1\nFEDRAT/10,IPM\nFEDRAT/MMPR,0.1\nFEDRAT/2\nGOTO/1,0,1\n");
+    assert_eq!(e[0], Canon::Units(Units::Inch));
+    assert_eq!(e[3], Canon::FeedRate(254.0));
+    assert_eq!(e[4], Canon::FeedMode(FeedMode::PerRevolution));
+    assert_eq!(e[5], Canon::FeedRate(0.1));
+    assert_eq!(e[6], Canon::FeedMode(FeedMode::PerMinute));
+    // A bare number is per minute in the current units.
+    assert_eq!(e[7], Canon::FeedRate(2.0 * 25.4));
+    assert_eq!(
+        e[8],
+        Canon::Feed {
+            end: at(25.4, 0.0, 25.4)
+        }
+    );
+}
+
+#[test]
+fn continuation_comments_and_case() {
+    let e = events("goto/1,$\n  2,3 $$ a comment\n$$ only a comment\ngoto/4,5,6,0,0,1\n");
+    assert_eq!(e[1], Canon::SetPosition(at(1.0, 2.0, 3.0)));
+    assert_eq!(
+        e[2],
+        Canon::Feed {
+            end: at(4.0, 5.0, 6.0)
+        }
+    );
+}
+
+#[test]
+fn tools_spindle_and_cutter() {
+    let e = events(
+        "CUTTER/10,2\nLOADTL/7\nLOAD/TOOL,8\nSPINDL/RPM,1200,CCLW\nSPINDL/OFF\nSPINDL/900\n",
+    );
+    assert_eq!(
+        e[0],
+        Canon::CutterDefinition([10.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    );
+    assert_eq!(e[1], Canon::ToolChange { tool: 7 });
+    assert_eq!(e[2], Canon::ToolChange { tool: 8 });
+    assert_eq!(
+        e[3],
+        Canon::Spindle {
+            rpm: 1200.0,
+            dir: SpindleDir::CounterClockwise
+        }
+    );
+    assert_eq!(
+        e[4],
+        Canon::Spindle {
+            rpm: 1200.0,
+            dir: SpindleDir::Stopped
+        }
+    );
+    assert_eq!(
+        e[5],
+        Canon::Spindle {
+            rpm: 900.0,
+            dir: SpindleDir::CounterClockwise
+        }
+    );
+}
+
+#[test]
+fn circles_about_principal_axes_become_arcs() {
+    // Counter-clockwise about +Y (right-hand rule, not an NX file): plane XZ, rotation +1; the
+    // centre is given as (Z, X), LinuxCNC's order for G18.
+    let e = events("GOTO/10,0,0\nCIRCLE/0,0,0,0,1,0,10\nGOTO/0,0,-10\n");
+    assert_eq!(
+        e[2],
+        Canon::Arc {
+            end: at(0.0, 0.0, -10.0),
+            center: [0.0, 0.0],
+            rotation: 1,
+            plane: Plane::XZ
+        }
+    );
+    let e = events("GOTO/0,10,0\nCIRCLE/0,0,5,-1,0,0,10\nGOTO/0,0,10\n");
+    assert_eq!(
+        e[2],
+        Canon::Arc {
+            end: at(0.0, 0.0, 10.0),
+            center: [0.0, 5.0],
+            rotation: -1,
+            plane: Plane::YZ
+        }
+    );
+}
+
+#[test]
+fn circle_about_a_general_axis_is_exact() {
+    // A circle of radius 5 about n = (0, 1, 1)/√2 through the origin: from (5, 0, 0) a quarter
+    // turn counter-clockwise about n reaches 5·(n × X) = 5·(0, 1, −1)/√2.
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    let text = format!(
+        "GOTO/5,0,0\nCIRCLE/0,0,0,0,1,1,5\nGOTO/0,{},{}\n",
+        5.0 * s,
+        -5.0 * s
+    );
+    let e = events(&text);
+    let Canon::ArcAxis { normal, turns, .. } = e[2] else {
+        panic!("{:?}", e[2])
+    };
+    assert_eq!(turns, 1);
+    assert!((normal[1] - s).abs() < 1e-15 && (normal[2] - s).abs() < 1e-15);
+    let mut b = MoveBuilder::new(Machine::three_axis(), "t.apt");
+    read_apt(&text, "t.apt", &AptOptions::default(), &mut b).unwrap();
+    let p = b.finish();
+    let MoveKind::Arc(g) = p.moves[0].kind else {
+        panic!()
+    };
+    assert!(
+        (g.sweep - std::f64::consts::FRAC_PI_2).abs() < 1e-12,
+        "{}",
+        g.sweep
+    );
+    for i in 0..=10 {
+        let q = p.pose_at(&p.moves[0], f64::from(i) / 10.0).tip;
+        assert!((q.length() - 5.0).abs() < 1e-12);
+        assert!(q.dot(g.normal).abs() < 1e-12);
+    }
+}
+
+#[test]
+fn full_circle_when_the_goto_returns_to_the_start() {
+    let text = "FEDRAT/600\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10\nGOTO/10,0,0\n";
+    let mut b = MoveBuilder::new(Machine::three_axis(), "t.apt");
+    read_apt(text, "t.apt", &AptOptions::default(), &mut b).unwrap();
+    let s = summarize(&b.finish());
+    assert!((s.feed_length_mm - 20.0 * std::f64::consts::PI).abs() < 1e-12);
+    assert_eq!(s.bbox_min, Some([-10.0, -10.0, 0.0]));
+    assert_eq!(s.bbox_max, Some([10.0, 10.0, 0.0]));
+    assert!((s.machining_time_s - 20.0 * std::f64::consts::PI / 600.0 * 60.0).abs() < 1e-12);
+}
+
+#[test]
+fn tool_axis_changes_are_stated() {
+    let e = events("GOTO/0,0,0,0,0,1\nGOTO/1,0,0,0,1,1\nGOTO/2,0,0\n");
+    let axes: Vec<_> = e
+        .iter()
+        .filter(|x| matches!(x, Canon::ToolAxis(_)))
+        .collect();
+    assert_eq!(axes.len(), 2);
+    let s = std::f64::consts::FRAC_1_SQRT_2;
+    let Canon::ToolAxis(a) = axes[1] else {
+        unreachable!()
+    };
+    assert!((a[0]).abs() < 1e-15 && (a[1] - s).abs() < 1e-15 && (a[2] - s).abs() < 1e-15);
+}
+
+#[test]
+fn csys_transforms_following_points() {
+    // A quarter turn about Z and a shift of (100, 0, 0): local (1, 0, 0) is (100, 1, 0).
+    let text = "CSYS/0,-1,0,100,1,0,0,0,0,0,1,0\nGOTO/1,0,0,1,0,0\n";
+    let mut rec = Recorder::default();
+    read_apt(text, "t.apt", &AptOptions::default(), &mut rec).unwrap();
+    assert_eq!(rec.warnings.len(), 1);
+    let pos = rec.events.iter().find_map(|(_, e)| match e {
+        Canon::SetPosition(p) => Some(*p),
+        _ => None,
+    });
+    assert_eq!(pos, Some(at(100.0, 1.0, 0.0)));
+    assert!(rec
+        .events
+        .iter()
+        .any(|(_, e)| *e == Canon::ToolAxis([0.0, 1.0, 0.0])));
+    // Not applied on request.
+    let mut rec = Recorder::default();
+    read_apt(
+        text,
+        "t.apt",
+        &AptOptions::default().with_apply_csys(false),
+        &mut rec,
+    )
+    .unwrap();
+    assert!(rec
+        .events
+        .iter()
+        .any(|(_, e)| *e == Canon::SetPosition(at(1.0, 0.0, 0.0))));
+}
+
+#[test]
+fn byte_order_mark_and_crlf() {
+    let e = events("\u{feff}PARTNO/X\r\nGOTO/1,2,3\r\n");
+    assert_eq!(e[0], Canon::Comment("X".into()));
+    assert_eq!(e[2], Canon::SetPosition(at(1.0, 2.0, 3.0)));
+}
+
+#[test]
+fn fini_ends_reading() {
+    let e = events("GOTO/0,0,0\nFINI\nGOTO/garbage\n");
+    assert_eq!(e.last(), Some(&Canon::ProgramEnd));
+}
+
+#[test]
+fn errors_say_where_and_what() {
+    let e = err("GOTO/1,2,3\nGOTO/1, x2 ,3\n");
+    assert_eq!((e.pos.line, e.pos.column), (2, 9));
+    assert_eq!(e.kind, PathErrorKind::Syntax);
+    assert_eq!(e.found, "x2");
+    assert_eq!(e.expected, "a number");
+    assert_eq!(e.pos.file, "t.apt");
+
+    let e = err("GOTO/1,2\n");
+    assert_eq!((e.pos.line, e.pos.column), (1, 6));
+    assert_eq!(e.found, "1,2");
+
+    let e = err("FROM/0,0,0\n  CIRCLE/0,0,0,0,0,0,1\n");
+    assert_eq!(e.kind, PathErrorKind::Semantic);
+    assert_eq!(e.pos.line, 2);
+
+    // A continuation: the error is on the physical line where the bad value is.
+    let e = err("GOTO/1,$\n 2,z\n");
+    assert_eq!((e.pos.line, e.pos.column), (2, 4));
+
+    let e = err("@#!\n");
+    assert_eq!(e.pos.line, 1);
+    assert!(err("UNITS/FURLONGS\n").message.contains("units"));
+    assert!(err("LOADTL/-3\n").message.contains("tool number"));
+    assert!(err("CSYS/2,0,0,0,0,1,0,0,0,0,1,0\n")
+        .message
+        .contains("rotation"));
+    assert_eq!(
+        err("GOTO/1,2,3\nCIRCLE/1,2,3,0,0,1,0\nGOTO/2,2,3\n").kind,
+        PathErrorKind::Semantic
+    );
+}
+
+#[test]
+fn unknown_records_warn_with_their_position() {
+    let mut rec = Recorder::default();
+    read_apt(
+        "PAINT/COLOR,3\n  FOO/1,2\n",
+        "x.cls",
+        &AptOptions::default(),
+        &mut rec,
+    )
+    .unwrap();
+    assert_eq!(rec.warnings.len(), 1);
+    let w = &rec.warnings[0];
+    assert_eq!((w.file.as_str(), w.line, w.column), ("x.cls", 2, 3));
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+    /// Any text: an error or events, never a panic.
+    #[test]
+    fn never_panics(text in "(?s)[A-Z/,.0-9$ \n\\-+eE]{0,200}") {
+        let mut rec = Recorder::default();
+        let _ = read_apt(&text, "fuzz.apt", &AptOptions::default(), &mut rec);
+    }
+
+    /// Record-shaped text with random numbers reads and builds without panicking.
+    #[test]
+    fn records_build(
+        recs in prop::collection::vec(
+            (prop::sample::select(vec!["GOTO", "CIRCLE", "FROM", "RAPID", "FEDRAT", "CUTTER", "GODLTA", "SPINDL", "LOADTL", "CSYS"]),
+             prop::collection::vec(-1e3f64..1e3, 0..13)),
+            0..30)
+    ) {
+        let text: String = recs
+            .iter()
+            .map(|(w, v)| format!("{w}/{}\n", v.iter().map(|x| x.to_string()).collect::<Vec<_>>().join(",")))
+            .collect();
+        let mut b = MoveBuilder::new(Machine::three_axis(), "p.apt");
+        let _ = read_apt(&text, "p.apt", &AptOptions::default(), &mut b);
+        let _ = summarize(&b.finish());
+    }
+}

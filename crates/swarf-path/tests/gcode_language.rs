@@ -1,0 +1,610 @@
+//! The G-code language as swarf reads it, scenario by scenario: arcs, units, distance modes,
+//! offsets, parameters and expressions, control flow, subprograms, limits, dialects and error
+//! positions.
+
+use std::time::{Duration, Instant};
+
+use swarf_path::canon::{OwnedCanon, Recorder};
+use swarf_path::gcode::{read_gcode, GcodeOptions};
+use swarf_path::{Axes, Canon, PathError, PathErrorKind, Plane};
+
+fn run_with(src: &str, opts: &GcodeOptions) -> Result<Recorder, PathError> {
+    let mut rec = Recorder::default();
+    read_gcode(src, "t.ngc", opts, &mut rec)?;
+    Ok(rec)
+}
+
+fn run(src: &str) -> Recorder {
+    run_with(src, &GcodeOptions::default()).unwrap_or_else(|e| panic!("{e}"))
+}
+
+fn err(src: &str) -> PathError {
+    run_with(src, &GcodeOptions::default()).expect_err("should fail")
+}
+
+/// The motion events only.
+fn motion(rec: &Recorder) -> Vec<OwnedCanon> {
+    rec.events
+        .iter()
+        .filter(|(_, e)| {
+            matches!(
+                e,
+                Canon::Traverse { .. } | Canon::Feed { .. } | Canon::Arc { .. }
+            )
+        })
+        .map(|(_, e)| e.clone())
+        .collect()
+}
+
+fn end_of(e: &OwnedCanon) -> Axes {
+    match e {
+        Canon::Traverse { end } | Canon::Feed { end } | Canon::Arc { end, .. } => *end,
+        _ => panic!("not a move: {e:?}"),
+    }
+}
+
+fn last_pos(rec: &Recorder) -> Axes {
+    end_of(motion(rec).last().expect("a move"))
+}
+
+fn assert_xyz(a: Axes, x: f64, y: f64, z: f64) {
+    assert!(
+        (a.x - x).abs() < 1e-9 && (a.y - y).abs() < 1e-9 && (a.z - z).abs() < 1e-9,
+        "got ({}, {}, {}), want ({x}, {y}, {z})",
+        a.x,
+        a.y,
+        a.z
+    );
+}
+
+fn arc(e: &OwnedCanon) -> (Axes, [f64; 2], i32, Plane) {
+    match e {
+        Canon::Arc {
+            end,
+            center,
+            rotation,
+            plane,
+        } => (*end, *center, *rotation, *plane),
+        _ => panic!("not an arc: {e:?}"),
+    }
+}
+
+#[test]
+fn initial_events_state_units_offsets_plane() {
+    let rec = run("");
+    assert_eq!(rec.events[0].1, Canon::Units(swarf_path::Units::Mm));
+    assert!(matches!(rec.events[1].1, Canon::Offsets { index: 1, .. }));
+    assert_eq!(rec.events[2].1, Canon::Plane(Plane::XY));
+    assert_eq!(rec.warnings.len(), 1, "no program end is reported");
+}
+
+#[test]
+fn arcs_ijk_both_directions_and_full_circle() {
+    let rec = run("G0 X10 Y0\nG3 X0 Y10 I-10 J0 F100\nG2 X10 Y0 I0 J-10\nG2 X10 Y0 I-10\nM2");
+    let m = motion(&rec);
+    let (end, c, rot, plane) = arc(&m[1]);
+    assert_xyz(end, 0.0, 10.0, 0.0);
+    assert_eq!((c, rot, plane), ([0.0, 0.0], 1, Plane::XY));
+    let (_, c, rot, _) = arc(&m[2]);
+    assert_eq!((c, rot), ([0.0, 0.0], -1));
+    let (end, c, rot, _) = arc(&m[3]);
+    assert_xyz(end, 10.0, 0.0, 0.0);
+    assert_eq!((c, rot), ([0.0, 0.0], -1), "end = start: a full circle");
+}
+
+#[test]
+fn arcs_r_form_signs_and_errors() {
+    let rec = run("G0 X10 Y0\nG2 X0 Y10 R10 F100\nG0 X10 Y0\nG2 X0 Y10 R-10\n");
+    let m = motion(&rec);
+    let (_, c, rot, _) = arc(&m[1]);
+    assert!(
+        (c[0] - 10.0).abs() < 1e-9 && (c[1] - 10.0).abs() < 1e-9,
+        "short cw arc bulges away from the origin: {c:?}"
+    );
+    assert_eq!(rot, -1);
+    let (_, c, _, _) = arc(&m[3]);
+    assert!(
+        c[0].abs() < 1e-9 && c[1].abs() < 1e-9,
+        "negative R: the long way round: {c:?}"
+    );
+    let e = err("G0 X10 Y0\nG2 X10 Y0 R5 F100\n");
+    assert_eq!((e.kind, e.pos.line), (PathErrorKind::Semantic, 2));
+    assert!(e.message.contains("same as the end point"), "{e}");
+    let e = err("G2 X30 Y0 R5 F100\n");
+    assert!(e.message.contains("too small"), "{e}");
+}
+
+#[test]
+fn helix_turns_and_planes() {
+    let rec = run(
+        "G0 X10 Y0 Z0\nG3 X10 Y0 Z-3 I-10 P3 F100\nG18 G2 Z17 X10 K10 I0\nG19 G3 Y10 Z7 J0 K-10\n",
+    );
+    let m = motion(&rec);
+    let (end, c, rot, plane) = arc(&m[1]);
+    assert_xyz(end, 10.0, 0.0, -3.0);
+    assert_eq!((c, rot, plane), ([0.0, 0.0], 3, Plane::XY));
+    // G18: first axis Z, second X; from (x10, z-3) centre = (z-3+10, x10+0).
+    let (end, c, rot, plane) = arc(&m[2]);
+    assert_xyz(end, 10.0, 0.0, 17.0);
+    assert_eq!((c, rot, plane), ([7.0, 10.0], -1, Plane::XZ));
+    // G19: first Y, second Z; from (y0, z17), centre (y0, z7).
+    let (end, c, _, plane) = arc(&m[3]);
+    assert_xyz(end, 10.0, 10.0, 7.0);
+    assert_eq!((c, plane), ([0.0, 7.0], Plane::YZ));
+}
+
+#[test]
+fn arc_radius_mismatch_is_an_error_with_linuxcnc_tolerance() {
+    // 0.015 mm off on 10 mm: accepted. 0.05 mm off: rejected.
+    run("G0 X10 Y0\nG3 X0 Y10.015 I-10 F100\n");
+    let e = err("G0 X10 Y0\nG3 X0 Y10.05 I-10 F100\n");
+    assert_eq!(
+        (e.kind, e.pos.line, e.pos.column),
+        (PathErrorKind::Semantic, 2, 1)
+    );
+    assert!(e.message.contains("radius to end of arc differs"), "{e}");
+    // In inches the absolute tolerance is 0.002 in = 0.0508 mm: 0.0015 in off on 1 in passes.
+    run("G20 G0 X1 Y0\nG3 X0 Y1.0015 I-1 F10\n");
+    assert!(run_with(
+        "G20 G0 X1 Y0\nG3 X0 Y1.003 I-1 F10\n",
+        &GcodeOptions::default()
+    )
+    .is_err());
+    // Missing words.
+    assert!(err("G0 X1\nG2 I1 F10\n")
+        .message
+        .contains("X and Y words missing"));
+    assert!(err("G2 X1 F10\n").message.contains("I and J words missing"));
+    assert!(err("G2 X1 I1 K1 F10\n").message.contains("K word given"));
+    assert!(err("G2 X1 I1 R1 F10\n")
+        .message
+        .contains("both R and I/J/K"));
+}
+
+#[test]
+fn absolute_arc_centres_g90_1() {
+    let rec = run("G90.1 G0 X10 Y0\nG3 X0 Y10 I0 J0 F100\n");
+    let (_, c, _, _) = arc(&motion(&rec)[1]);
+    assert_eq!(c, [0.0, 0.0]);
+}
+
+#[test]
+fn units_and_distance_modes() {
+    let rec = run("G20 G0 X1 Y2\nG91 G1 X1 F10\nG21 X1\nG90 G1 Z-1\n");
+    let m = motion(&rec);
+    assert_xyz(end_of(&m[0]), 25.4, 50.8, 0.0);
+    assert_xyz(end_of(&m[1]), 50.8, 50.8, 0.0);
+    assert_xyz(end_of(&m[2]), 51.8, 50.8, 0.0);
+    assert_xyz(end_of(&m[3]), 51.8, 50.8, -1.0);
+    // Feed in inches per minute becomes mm per minute.
+    assert!(rec.events.iter().any(|(_, e)| *e == Canon::FeedRate(254.0)));
+}
+
+#[test]
+fn work_offsets_g54_g55_g10_g92_and_g53() {
+    let rec = run(
+        "G10 L2 P2 X100 Y50\nG0 X1 Y1\nG55\nG0 X1\nG92 X0 Y0\nG1 X1 F10\nG53 G0 X0 Y0\nG92.1\nG54\nG10 L20 P1 X5\nG0 X5\n",
+    );
+    let m = motion(&rec);
+    // Positions are in the current coordinate system.
+    assert_xyz(end_of(&m[0]), 1.0, 1.0, 0.0);
+    // After G55 the tool has not moved: machine (1, 1) is program (-99, -49).
+    assert_xyz(end_of(&m[1]), 1.0, -49.0, 0.0);
+    assert_xyz(end_of(&m[2]), 1.0, 0.0, 0.0);
+    // G53 X0 Y0 is machine zero: program = −G55 − G92 = (−100 − 1, −50 − (−49)).
+    assert_xyz(end_of(&m[3]), -101.0, -1.0, 0.0);
+    let offsets: Vec<_> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Offsets { index, g5x, g92 } => Some((*index, *g5x, *g92)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(offsets[1].0, 2);
+    assert_eq!((offsets[1].1.x, offsets[1].1.y), (100.0, 50.0));
+    assert_eq!((offsets[2].2.x, offsets[2].2.y), (1.0, -49.0));
+    assert_eq!(offsets[3].2, Axes::default(), "G92.1 clears G92");
+    // Back in G54 at machine (0, 0), G10 L20 P1 X5 makes that point X5: G54 x offset = −5.
+    let (_, g5x, _) = offsets[5];
+    assert_eq!(g5x.x, -5.0);
+    assert_xyz(end_of(m.last().unwrap()), 5.0, 0.0, 0.0);
+    assert!(err("G91 G53 G0 X0\n").message.contains("incremental"));
+}
+
+#[test]
+fn g28_goes_through_the_intermediate_point_to_the_stored_position() {
+    let rec = run("G0 X5 Y5 Z5\nG28.1\nG0 X0 Y0 Z0\nG28 Z2\nG28\n#5161=7\nG28 X1\n");
+    let m = motion(&rec);
+    assert_xyz(end_of(&m[2]), 0.0, 0.0, 2.0);
+    assert_xyz(end_of(&m[3]), 0.0, 0.0, 5.0);
+    assert_xyz(end_of(&m[4]), 5.0, 5.0, 5.0);
+    assert_xyz(end_of(&m[5]), 1.0, 5.0, 5.0);
+    assert_xyz(end_of(&m[6]), 7.0, 5.0, 5.0);
+}
+
+#[test]
+fn tool_length_and_spindle_events() {
+    let rec = run("T3 M6\nS1200 M3\nG43 H3\nG43.1 Z2.5\nG49\nM5\nG4 P0.5\n");
+    let ev: Vec<_> = rec.events.iter().map(|(_, e)| e.clone()).collect();
+    assert!(ev.contains(&Canon::ToolChange { tool: 3 }));
+    assert!(ev.contains(&Canon::Spindle {
+        rpm: 1200.0,
+        dir: swarf_path::SpindleDir::Clockwise
+    }));
+    assert!(ev.contains(&Canon::ToolLengthOffset(2.5)));
+    assert!(ev.contains(&Canon::Spindle {
+        rpm: 1200.0,
+        dir: swarf_path::SpindleDir::Stopped
+    }));
+    assert!(ev.contains(&Canon::Dwell(0.5)));
+    assert!(rec.warnings.iter().any(|w| w.message.contains("H3")));
+    assert!(
+        motion(&rec).is_empty(),
+        "tool-tip programs: G43 moves nothing"
+    );
+}
+
+#[test]
+fn coolant_and_unknown_m_codes_warn_with_position() {
+    let rec = run("G0 X1 M8\nM428\nM9\nM2\n");
+    let w: Vec<_> = rec
+        .warnings
+        .iter()
+        .map(|w| (w.line, w.column, w.message.clone()))
+        .collect();
+    assert_eq!(w.len(), 3, "{w:?}");
+    assert_eq!((w[0].0, w[0].1), (1, 7));
+    assert!(w[1].2.contains("M428"));
+}
+
+#[test]
+fn cutter_compensation_is_rejected_with_its_position() {
+    let e = err("G0 X0\nG1 F10 g42.1 X1\n");
+    assert_eq!(
+        (e.kind, e.pos.line, e.pos.column),
+        (PathErrorKind::Unsupported, 2, 8)
+    );
+    assert!(e
+        .message
+        .contains("cutter radius compensation is not simulated"));
+    run("G40 G64 G94 G97 G17 G80\n");
+}
+
+#[test]
+fn inverse_time_needs_f_on_every_feed_move() {
+    let rec = run("G93 G1 X1 F2\nG1 X2 F3\n");
+    assert_eq!(motion(&rec).len(), 2);
+    let e = err("G93 G1 X1 F2\nG1 X2\n");
+    assert_eq!(e.pos.line, 2);
+    let e = err("G1 X1\n");
+    assert!(e.message.contains("zero feed"), "{e}");
+}
+
+#[test]
+fn canned_cycles_peck_and_other_planes() {
+    // G83 Z-1 R1 Q0.4 from Z5: pecks at 0.6, 0.2, -0.2, -0.6, then the bottom.
+    let rec = run("F100 G0 Z5\nG98 G83 X1 Y1 Z-1 R1 Q0.4\n");
+    let m = motion(&rec);
+    let zs: Vec<f64> = m.iter().map(|e| end_of(e).z).collect();
+    let d = 0.254;
+    let want = [
+        5.0,
+        5.0,
+        1.0,
+        0.6,
+        1.0,
+        0.6 + d,
+        0.2,
+        1.0,
+        0.2 + d,
+        -0.2,
+        1.0,
+        -0.2 + d,
+        -0.6,
+        1.0,
+        -0.6 + d,
+        -1.0,
+        5.0,
+    ];
+    assert_eq!(zs.len(), want.len(), "{zs:?}");
+    for (g, w) in zs.iter().zip(want) {
+        assert!((g - w).abs() < 1e-9, "{zs:?}");
+    }
+    // G18 (drilling along Y) G82 with dwell, repeated with only X on the next line.
+    let rec = run("F100 G18 G0 Y5\nG99 G82 X1 Z2 Y-1 R1 P0.5\nX3\nG80\n");
+    let m = motion(&rec);
+    let ends: Vec<_> = m
+        .iter()
+        .map(|e| end_of(e))
+        .map(|a| (a.x, a.y, a.z))
+        .collect();
+    assert_eq!(
+        ends[1..],
+        [
+            (1.0, 5.0, 2.0),
+            (1.0, 1.0, 2.0),
+            (1.0, -1.0, 2.0),
+            (1.0, 1.0, 2.0),
+            (3.0, 1.0, 2.0),
+            (3.0, -1.0, 2.0),
+            (3.0, 1.0, 2.0)
+        ]
+    );
+    assert_eq!(
+        rec.events
+            .iter()
+            .filter(|(_, e)| *e == Canon::Dwell(0.5))
+            .count(),
+        2
+    );
+    let e = err("F100 G0 Z0\nG81 X1 Z1 R0.5\n");
+    assert!(e.message.contains("R less than Z"), "{e}");
+    assert!(err("F100 G81 X1 R1\n")
+        .message
+        .contains("Z value unspecified"));
+    assert!(err("G80 X1\n").message.contains("G80"));
+    assert!(err("G0 X0\nG80\nX1\n").message.contains("without a motion"));
+}
+
+#[test]
+fn parameters_take_effect_after_the_line() {
+    let rec = run("#1=1\n#1=2 #2=#1\nG0 X#1 Y#2\n");
+    let m = motion(&rec);
+    assert_xyz(end_of(&m[0]), 2.0, 1.0, 0.0);
+    let e = err("#1=1\n#<a>=3 G0 X#<a>\n");
+    assert_eq!((e.pos.line, e.pos.column, e.found.as_str()), (2, 12, "#<a>"));
+    assert!(e.message.contains("not defined"));
+}
+
+#[test]
+fn expressions_and_predefined_parameters() {
+    let rec =
+        run("G0 X[1+2*3] Y[2**3**2/64] Z[ATAN[1]/[1]]\nG0 X[#<_x>+1] Y#5421\nG20\nG0 X[#<_x>]\n");
+    let m = motion(&rec);
+    assert_xyz(end_of(&m[0]), 7.0, 1.0, 45.0);
+    assert_xyz(end_of(&m[1]), 8.0, 1.0, 45.0);
+    assert!(
+        (end_of(&m[2]).x - 8.0).abs() < 1e-12,
+        "#<_x> reads program units"
+    );
+    let e = err("G0 X[1/0]\n");
+    assert_eq!((e.pos.column, e.kind), (7, PathErrorKind::Semantic));
+}
+
+#[test]
+fn control_flow_while_do_repeat_if_break_continue() {
+    let src = "\
+#1=0
+o10 while [#1 LT 5]
+  #1=[#1+1]
+  o11 if [#1 EQ 2]
+    o10 continue
+  o11 elseif [#1 EQ 4]
+    G0 X[#1*100]
+  o11 else
+    G0 X#1
+  o11 endif
+o10 endwhile
+o20 do
+  G0 Y#1
+  #1=[#1-2]
+o20 while [#1 GT 0]
+o30 repeat [3]
+  G0 Z#1
+  #1=[#1+1]
+  o40 if [#1 GE 2]
+    o30 break
+  o40 endif
+o30 endrepeat
+M2
+";
+    let rec = run(src);
+    let got: Vec<(f64, f64, f64)> = motion(&rec)
+        .iter()
+        .map(|e| end_of(e))
+        .map(|a| (a.x, a.y, a.z))
+        .collect();
+    let want = vec![
+        (1.0, 0.0, 0.0),
+        (3.0, 0.0, 0.0),
+        (400.0, 0.0, 0.0),
+        (5.0, 0.0, 0.0),
+        (5.0, 5.0, 0.0),
+        (5.0, 3.0, 0.0),
+        (5.0, 1.0, 0.0),
+        (5.0, 1.0, -1.0),
+        (5.0, 1.0, 0.0),
+        (5.0, 1.0, 1.0),
+    ];
+    assert_eq!(got, want);
+}
+
+#[test]
+fn subroutines_with_arguments_locals_and_return_values() {
+    let src = "\
+o<square> sub
+  #<half> = [#1 / 2]
+  G1 X#<half> Y#2 F100
+  o<square> return [#1 * #1]
+o<square> endsub
+#1 = 7
+#<half> = 99
+o<square> call [4] [5]
+G0 X#<_value> Y#1 Z#<half>
+o100 call [3]
+G0 X#<_value>
+M30
+o100 sub
+  o<square> call [#1 + 1]
+o100 endsub [#<_value> + 1]
+";
+    let rec = run(src);
+    let got: Vec<(f64, f64, f64)> = motion(&rec)
+        .iter()
+        .map(|e| end_of(e))
+        .map(|a| (a.x, a.y, a.z))
+        .collect();
+    assert_eq!(
+        got,
+        vec![
+            (2.0, 5.0, 0.0),
+            (16.0, 7.0, 99.0),
+            (2.0, 0.0, 99.0),
+            (17.0, 0.0, 99.0)
+        ]
+    );
+    assert!(err("o<nope> call\n").message.contains("not defined"));
+    assert!(err("o1 return\n").message.contains("outside"));
+}
+
+#[test]
+fn fanuc_m98_m99_subprograms() {
+    let src = "%\nO0001\nG91 F100\nM98 P1000 L3\nG90 G0 X0\nM30\n\nO1000 (SUB)\nG1 X1\nM99\n%\n";
+    let rec = run(src);
+    let xs: Vec<f64> = motion(&rec).iter().map(|e| end_of(e).x).collect();
+    assert_eq!(xs, vec![1.0, 2.0, 3.0, 0.0]);
+    assert!(err("M98 P5\n").message.contains("O5"));
+}
+
+/// Counts events without keeping them: hostile programs can emit millions before a limit.
+#[derive(Default)]
+struct Counter(u64);
+impl swarf_path::CanonSink for Counter {
+    fn emit(&mut self, _: u32, _: &Canon<'_>) {
+        self.0 += 1;
+    }
+    fn warn(&mut self, _: swarf_path::Warning) {}
+}
+
+fn limit(src: &str, opts: &GcodeOptions) -> PathError {
+    let mut c = Counter::default();
+    let e = read_gcode(src, "t.ngc", opts, &mut c).expect_err("should hit a limit");
+    assert_eq!(e.kind, PathErrorKind::Limit, "{e}");
+    e
+}
+
+#[test]
+fn infinite_loop_ends_with_the_default_limit() {
+    let t = Instant::now();
+    let e = limit("o1 while [1]\no1 endwhile\n", &GcodeOptions::default());
+    assert_eq!(e.pos.line, 2);
+    assert!(e.message.contains("max_loop_iterations"), "{e}");
+    assert!(t.elapsed() < Duration::from_secs(30), "{:?}", t.elapsed());
+}
+
+#[test]
+fn hostile_programs_end_quickly_with_limit_errors() {
+    let t = Instant::now();
+    let opts = GcodeOptions::default().with_max_loop_iterations(200_000);
+    let e = limit("o1 sub\no1 call\no1 endsub\no1 call\n", &opts);
+    assert!(e.message.contains("deep"), "{e}");
+    // Doubly recursive: the depth stays low, the call count explodes.
+    limit("o1 sub\no2 if [#1 LT 40]\no1 call [#1+1]\no1 call [#1+1]\no2 endif\no1 endsub\no1 call [0]\n", &opts);
+    limit("o1 do\no1 while [1]\n", &opts);
+    limit("o1 repeat [1000000000000]\no1 endrepeat\n", &opts);
+    limit("F1 G81 X1 Z-1 R1 L100000000\n", &opts);
+    limit("F1 G83 X1 Z-1000000 R1 Q0.000001\n", &opts);
+    limit("F1 G73 X1 Z-1000000 R1 Q0.000001\n", &opts);
+    limit("M98 P1 L1000000\nM30\nO1\nM98 P1\nM99\n", &opts);
+    limit("M98 P1 L1000\nM30\nO1\nG0 X1\nM99\n", &opts.clone().with_max_loop_iterations(500));
+    limit(&format!("G0 X{}1{}\n", "[".repeat(100_000), "]".repeat(100_000)), &opts);
+    assert!(t.elapsed() < Duration::from_secs(10), "{:?}", t.elapsed());
+}
+
+#[test]
+fn other_dialects_are_named() {
+    let e = err("0 BEGIN PGM TEST MM\n1 BLK FORM 0.1 Z X+0 Y+0 Z-40\n2 L X+10 Y+5 R0 FMAX\n");
+    assert_eq!(e.kind, PathErrorKind::Unsupported);
+    assert!(e.message.contains("Heidenhain"), "{e}");
+    let e = err("N10 G0 X0 Y0\nN20 G2 X10 Y10 CR=5\n");
+    assert_eq!((e.kind, e.pos.line), (PathErrorKind::Unsupported, 2));
+    assert!(e.message.contains("Siemens"), "{e}");
+    assert!(err("TRAORI\n").message.contains("Siemens"));
+    assert!(err("CYCLE81(10, 0, 2, -5)\n").message.contains("Siemens"));
+}
+
+#[test]
+fn malformed_lines_give_line_column_found_and_expected() {
+    let e = err("G0 X0\nG1 X1.2.3 Y4\n");
+    assert_eq!(
+        (e.kind, e.pos.line, e.pos.column),
+        (PathErrorKind::Syntax, 2, 4)
+    );
+    assert_eq!(e.found, "X1.2.3");
+    assert_eq!(e.expected, "a number");
+    assert_eq!(e.pos.file, "t.ngc");
+    let e = err("G1 X1 (unclosed\n");
+    assert_eq!((e.pos.column, e.found.as_str()), (7, "(unclosed"));
+    let e = err("G1 Q X1\n");
+    assert_eq!((e.pos.line, e.pos.column), (1, 4));
+    let e = err("G1 X[1+2\n");
+    assert_eq!(e.pos.column, 9);
+    assert!(e.expected.contains("]"));
+    let e = err("\n\nG7.3\n");
+    assert_eq!(
+        (e.pos.line, e.pos.column, e.kind),
+        (3, 1, PathErrorKind::Syntax)
+    );
+    let e = err("G1 X1 X2\n");
+    assert_eq!((e.pos.column, e.found.as_str()), (7, "X2"));
+    let e = err("G0 U1\n");
+    assert_eq!(e.kind, PathErrorKind::Unsupported);
+    let e = err("o100 frobnicate\n");
+    assert_eq!(e.pos.column, 6);
+    let msg = e.to_string();
+    assert!(msg.starts_with("t.ngc:1:6: "), "{msg}");
+}
+
+#[test]
+fn case_and_spacing_do_not_matter() {
+    let a = motion(&run("G1 X1.5 Y-2 Z.25 F100\nG2 X3 Y-2 I.75 J0\n"));
+    let b = motion(&run("g1x1.5y-2z.25f100\ng 2 x 3 y - 2 i . 7 5 j 0\n"));
+    let c = motion(&run(
+        "N10 G01 X 1.5 Y-2.0 Z0.25 F100.\nN20 G02 X3. Y-2. I0.75 J0.\n",
+    ));
+    assert_eq!(a, b);
+    assert_eq!(a, c);
+}
+
+#[test]
+fn comments_block_delete_and_tape_markers() {
+    let rec = run("%\n(MSG, hello) G0 X1 ; not emitted\n/G0 X99\nG0 X2\n%\nG0 X3\n");
+    let comments: Vec<_> = rec
+        .events
+        .iter()
+        .filter(|(_, e)| matches!(e, Canon::Comment(_)))
+        .collect();
+    assert_eq!(comments.len(), 1);
+    assert_eq!(comments[0].1, Canon::Comment("MSG, hello".into()));
+    let xs: Vec<f64> = motion(&rec).iter().map(|e| end_of(e).x).collect();
+    assert_eq!(
+        xs,
+        vec![1.0, 2.0],
+        "block delete skips, the second % ends the program"
+    );
+    let rec = run_with(
+        "/G0 X99\n",
+        &GcodeOptions::default().with_block_delete(false),
+    )
+    .unwrap();
+    assert_eq!(motion(&rec).len(), 1);
+}
+
+#[test]
+fn polar_coordinates_absolute_and_incremental() {
+    let rec = run("G0 @10 ^90\nG91 G0 ^90\nG0 @-5\n");
+    let m = motion(&rec);
+    assert_xyz(end_of(&m[0]), 0.0, 10.0, 0.0);
+    assert_xyz(end_of(&m[1]), -10.0, 0.0, 0.0);
+    assert_xyz(end_of(&m[2]), -5.0, 0.0, 0.0);
+    assert!(err("G91 G0 @1\n").message.contains("origin"));
+    assert!(err("G0 @1 X1\n").message.contains("polar"));
+}
+
+#[test]
+fn rotary_axes_in_degrees() {
+    let rec = run("G20 G0 X1 A90 B-45 C370\n");
+    let a = last_pos(&rec);
+    assert_eq!((a.x, a.a, a.b, a.c), (25.4, 90.0, -45.0, 370.0));
+}

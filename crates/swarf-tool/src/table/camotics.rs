@@ -1,0 +1,232 @@
+//! CAMotics project files (`.camotics`, JSON): tools and workpiece bounds.
+//!
+//! Each tool has `units` (`imperial` = inches, `metric` = mm), `shape`, `length` (cutting
+//! length), `diameter` and, for `snubnose`, `snub_diameter`. Shapes map to APT cutters:
+//!
+//! * `cylindrical` → flat end mill of `diameter`, h = `length`;
+//! * `ballnose` → ball end mill of `diameter`, h = `length`;
+//! * `snubnose` → tapered flat: flat bottom of `snub_diameter`, widening linearly to
+//!   `diameter` at `length` (β = atan((diameter − snub_diameter) / (2·length)));
+//! * `conical` → V-bit whose cone reaches `diameter` at `length` (tip angle
+//!   2·atan(diameter / (2·length))).
+//!
+//! The workpiece `bounds` (project `units`) become [`ToolTable::workpiece`] unless
+//! `"automatic": true`, which means CAMotics computes them from the tool path: no bounds.
+
+use super::{line_col, ToolEntry, ToolTable};
+use crate::cutter::{Cutter, CutterKind, CutterOptions};
+use crate::error::TableError;
+use std::collections::BTreeMap;
+use swarf_geom::math::Vec3;
+use swarf_geom::Aabb;
+
+#[derive(serde::Deserialize)]
+struct Project {
+    #[serde(default)]
+    units: Option<Units>,
+    #[serde(default)]
+    tools: BTreeMap<String, Tool>,
+    #[serde(default)]
+    workpiece: Option<Workpiece>,
+}
+
+#[derive(serde::Deserialize, Clone, Copy, PartialEq)]
+#[serde(rename_all = "lowercase")]
+enum Units {
+    Imperial,
+    Metric,
+}
+
+impl Units {
+    fn to_mm(self) -> f64 {
+        match self {
+            Units::Imperial => 25.4,
+            Units::Metric => 1.0,
+        }
+    }
+}
+
+#[derive(serde::Deserialize, Clone, Copy)]
+#[serde(rename_all = "lowercase")]
+enum Shape {
+    Cylindrical,
+    Ballnose,
+    Snubnose,
+    Conical,
+}
+
+#[derive(serde::Deserialize)]
+struct Tool {
+    #[serde(default)]
+    units: Option<Units>,
+    shape: Shape,
+    length: f64,
+    diameter: f64,
+    #[serde(default)]
+    snub_diameter: Option<f64>,
+    #[serde(default)]
+    description: String,
+}
+
+#[derive(serde::Deserialize)]
+struct Workpiece {
+    #[serde(default)]
+    automatic: bool,
+    #[serde(default)]
+    bounds: Option<Bounds>,
+}
+
+#[derive(serde::Deserialize)]
+struct Bounds {
+    min: [f64; 3],
+    max: [f64; 3],
+}
+
+/// Parses a CAMotics project; `file` names the source in errors.
+pub fn parse_camotics(text: &str, file: &str) -> Result<ToolTable, TableError> {
+    let project: Project = serde_json::from_str(text).map_err(|e| TableError::Parse {
+        file: file.to_string(),
+        line: e.line(),
+        column: e.column(),
+        found: e.to_string(),
+        expected: "a CAMotics project (JSON with tools and workpiece)".into(),
+    })?;
+    // serde_json::Value keeps no positions; point semantic errors at the tool's key instead.
+    let locate = |key: &str| -> (usize, usize) {
+        let tools_at = text.find("\"tools\"").unwrap_or(0);
+        let needle = format!("\"{key}\"");
+        match text[tools_at..].find(&needle) {
+            Some(i) => line_col(text, tools_at + i),
+            None => (0, 0),
+        }
+    };
+    let project_unit = project.units.unwrap_or(Units::Metric);
+    let mut table = ToolTable::default();
+    for (key, tool) in &project.tools {
+        let (line, column) = locate(key);
+        let err = |found: String, expected: &str| TableError::Parse {
+            file: file.to_string(),
+            line,
+            column,
+            found,
+            expected: expected.to_string(),
+        };
+        let number: u32 = key
+            .parse()
+            .map_err(|_| err(format!("tool key {key:?}"), "a whole tool number"))?;
+        let unit = tool.units.unwrap_or(project_unit).to_mm();
+        let (d, len) = (tool.diameter * unit, tool.length * unit);
+        let opts = CutterOptions {
+            flute_length: Some(len),
+            ..CutterOptions::default()
+        };
+        let built = match tool.shape {
+            Shape::Cylindrical => Cutter::named(CutterKind::Flat, &[d], &opts),
+            Shape::Ballnose => Cutter::named(CutterKind::Ball, &[d], &opts),
+            Shape::Snubnose => {
+                let Some(snub) = tool.snub_diameter else {
+                    return Err(err(
+                        format!("snubnose tool {key} without snub_diameter"),
+                        "a snub_diameter for a snubnose tool",
+                    ));
+                };
+                let snub = snub * unit;
+                let taper = ((d - snub) / (2.0 * len)).atan().to_degrees();
+                Cutter::named(CutterKind::TaperFlat, &[snub, taper], &opts)
+            }
+            Shape::Conical => {
+                let tip = 2.0 * (d / (2.0 * len)).atan().to_degrees();
+                Cutter::named(CutterKind::Chamfer, &[d, tip], &opts)
+            }
+        };
+        let cutter = built.map_err(|e| err(format!("tool {key}: {e}"), "a valid tool"))?;
+        table.tools.insert(
+            number,
+            ToolEntry {
+                cutter,
+                description: tool.description.clone(),
+            },
+        );
+    }
+    if let Some(w) = &project.workpiece {
+        if !w.automatic {
+            match &w.bounds {
+                Some(b) => {
+                    let u = project_unit.to_mm();
+                    let min = Vec3::from_array(b.min) * u;
+                    let max = Vec3::from_array(b.max) * u;
+                    if !(min.is_finite() && max.is_finite() && min.cmple(max).all()) {
+                        let (line, column) = text
+                            .find("\"bounds\"")
+                            .map_or((0, 0), |i| line_col(text, i));
+                        return Err(TableError::Parse {
+                            file: file.to_string(),
+                            line,
+                            column,
+                            found: format!("bounds min {min} max {max}"),
+                            expected: "finite workpiece bounds with min ≤ max".into(),
+                        });
+                    }
+                    table.workpiece = Some(Aabb { min, max });
+                }
+                None => table.warnings.push(format!(
+                    "{file}: workpiece is not automatic but has no bounds; none used"
+                )),
+            }
+        }
+    }
+    Ok(table)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shapes_and_units() {
+        let text = r#"{"units":"metric","tools":{
+            "1":{"units":"metric","shape":"snubnose","length":10,"diameter":6,"snub_diameter":2},
+            "2":{"units":"imperial","shape":"conical","length":0.5,"diameter":1}},
+            "workpiece":{"automatic":true}}"#;
+        let t = parse_camotics(text, "p.camotics").unwrap();
+        let snub = &t.tools[&1].cutter;
+        assert!((snub.profile_radius(0.0).unwrap() - 1.0).abs() < 1e-12);
+        assert!((snub.profile_radius(10.0).unwrap() - 3.0).abs() < 1e-12);
+        let v = &t.tools[&2].cutter;
+        // Cone reaching Ø25.4 at 12.7 mm: a 90° V.
+        assert!((v.profile_radius(6.35).unwrap() - 6.35).abs() < 1e-9);
+        assert!(t.workpiece.is_none());
+    }
+
+    #[test]
+    fn errors_have_positions() {
+        let e = parse_camotics(
+            "{\"tools\":{\"1\":{\"shape\":\"square\",\"length\":1,\"diameter\":1}}}",
+            "p.camotics",
+        )
+        .unwrap_err();
+        assert!(
+            matches!(e, TableError::Parse { line: 1, column, .. } if column > 20),
+            "{e}"
+        );
+        let e = parse_camotics(
+            "{\"tools\":{\n\"7\":{\"shape\":\"ballnose\",\"length\":1,\"diameter\":-1}}}",
+            "p.camotics",
+        )
+        .unwrap_err();
+        assert!(
+            matches!(
+                e,
+                TableError::Parse {
+                    line: 2,
+                    column: 1,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(e.to_string().contains("d (diameter)"), "{e}");
+        assert!(parse_camotics("", "p").is_err());
+        assert!(parse_camotics("[1,2]", "p").is_err());
+    }
+}

@@ -1,0 +1,189 @@
+//! LinuxCNC tool tables (`.tbl`): one tool per line, `T1 P1 D0.125 Z+1.0 ;comment`.
+//!
+//! Words are a letter and a number: `T` tool number, `P` pocket, `X Y Z A B C U V W` offsets,
+//! `D` diameter, `I` front angle, `J` back angle, `Q` orientation; `;` starts the comment,
+//! which becomes the description. Lengths are in the machine's units, given by the caller.
+//! The table carries no shape, so every tool is taken as a **flat end mill** of diameter D
+//! (noted in the warnings); a positive Z offset (the tool length) becomes the overall length.
+//! Tools with no or zero diameter (probes, placeholders) are skipped with a warning.
+
+use super::{LengthUnit, ToolEntry, ToolTable};
+use crate::cutter::{Cutter, CutterKind, CutterOptions};
+use crate::error::TableError;
+
+/// Parses a LinuxCNC tool table whose lengths are in `unit`; `file` names the source in errors.
+pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTable, TableError> {
+    let mut table = ToolTable::default();
+    let scale = unit.to_mm();
+    for (li, raw) in text.lines().enumerate() {
+        let line = li + 1;
+        let err = |column: usize, found: String, expected: &str| TableError::Parse {
+            file: file.to_string(),
+            line,
+            column,
+            found,
+            expected: expected.to_string(),
+        };
+        let (body, comment) = match raw.find(';') {
+            Some(i) => (&raw[..i], raw[i + 1..].trim()),
+            None => (raw, ""),
+        };
+        if body.trim().is_empty() {
+            continue;
+        }
+        let mut number = None;
+        let mut diameter = None;
+        let mut z = None;
+        let mut offset = 0;
+        for word in body.split_whitespace() {
+            let start = offset + body[offset..].find(word).unwrap_or(0);
+            offset = start + word.len();
+            let column = body[..start].chars().count() + 1;
+            let mut chars = word.chars();
+            let letter = chars.next().unwrap_or(' ').to_ascii_uppercase();
+            let num_text = chars.as_str();
+            if !"TPXYZABCUVWDIJQ".contains(letter) || !letter.is_ascii_alphabetic() {
+                return Err(err(
+                    column,
+                    format!("{word:?}"),
+                    "a word starting with one of T P X Y Z A B C U V W D I J Q",
+                ));
+            }
+            let value: f64 = match num_text.parse() {
+                Ok(v) if f64::is_finite(v) => v,
+                _ => {
+                    return Err(err(
+                        column + 1,
+                        format!("{num_text:?} after {letter}"),
+                        "a number",
+                    ))
+                }
+            };
+            match letter {
+                'T' => {
+                    if value.fract() != 0.0 || !(0.0..=u32::MAX as f64).contains(&value) {
+                        return Err(err(
+                            column + 1,
+                            format!("T{num_text}"),
+                            "a whole tool number",
+                        ));
+                    }
+                    if number.is_some() {
+                        return Err(err(column, "a second T word".into(), "one T word per line"));
+                    }
+                    number = Some((value as u32, column));
+                }
+                'D' => diameter = Some(value * scale),
+                'Z' => z = Some(value * scale),
+                _ => {}
+            }
+        }
+        let Some((number, tcol)) = number else {
+            return Err(err(
+                1,
+                format!("{:?}", body.trim()),
+                "a tool line with a T word",
+            ));
+        };
+        if table.tools.contains_key(&number) {
+            return Err(err(
+                tcol,
+                format!("tool T{number} a second time"),
+                "unique tool numbers",
+            ));
+        }
+        let d = diameter.unwrap_or(0.0);
+        if d <= 0.0 {
+            table.warnings.push(format!(
+                "{file}:{line}: T{number} has no positive diameter (D); skipped"
+            ));
+            continue;
+        }
+        let overall = z.filter(|&z| z > 0.0);
+        let opts = CutterOptions {
+            overall_length: overall,
+            // A flute length of 3·d may exceed a short tool length: cap it.
+            flute_length: overall.map(|l| l.min(3.0 * d)),
+            ..CutterOptions::default()
+        };
+        let cutter = Cutter::named(CutterKind::Flat, &[d], &opts)
+            .map_err(|e| err(tcol, e.to_string(), "a valid tool"))?;
+        table.warnings.push(format!(
+            "{file}:{line}: T{number}: a LinuxCNC table has no shape information; assumed a flat end mill of diameter {d} mm"
+        ));
+        table.tools.insert(
+            number,
+            ToolEntry {
+                cutter,
+                description: comment.to_string(),
+            },
+        );
+    }
+    Ok(table)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn reads_inch_table() {
+        let text = "T1 P1 D0.125 Z+1.0 ;1/8 end mill\n\n; only a comment\nT2 P2 D0 Z0 ;probe\nt3 p3 d0.5\n";
+        let t = parse_linuxcnc(text, "tool.tbl", LengthUnit::Inch).unwrap();
+        assert_eq!(t.tools.len(), 2);
+        let c = &t.tools[&1].cutter;
+        assert!((c.apt_params().d - 3.175).abs() < 1e-12);
+        assert!((c.overall_length() - 25.4).abs() < 1e-12);
+        assert_eq!(t.tools[&1].description, "1/8 end mill");
+        assert!(t
+            .warnings
+            .iter()
+            .any(|w| w.contains("T2") && w.contains("skipped")));
+        assert!(t
+            .warnings
+            .iter()
+            .any(|w| w.contains("T1") && w.contains("flat end mill")));
+    }
+
+    #[test]
+    fn errors_name_line_and_column() {
+        let e = parse_linuxcnc("T1 D1\nT2 D1x\n", "a.tbl", LengthUnit::Mm).unwrap_err();
+        assert_eq!(
+            e,
+            TableError::Parse {
+                file: "a.tbl".into(),
+                line: 2,
+                column: 5,
+                found: "\"1x\" after D".into(),
+                expected: "a number".into()
+            }
+        );
+        let e = parse_linuxcnc("T1 D1\n  T1 D2\n", "a.tbl", LengthUnit::Mm).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                TableError::Parse {
+                    line: 2,
+                    column: 3,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        let e = parse_linuxcnc("T1 D1 K3\n", "a.tbl", LengthUnit::Mm).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                TableError::Parse {
+                    line: 1,
+                    column: 7,
+                    ..
+                }
+            ),
+            "{e}"
+        );
+        assert!(parse_linuxcnc("D1\n", "a.tbl", LengthUnit::Mm).is_err());
+        // Non-ASCII junk must not panic.
+        assert!(parse_linuxcnc("T1 Dé\né\n", "a.tbl", LengthUnit::Mm).is_err());
+    }
+}

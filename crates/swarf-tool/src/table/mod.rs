@@ -1,0 +1,103 @@
+//! Tool tables: numbered cutters read from swarf's TOML library, LinuxCNC `.tbl` files and
+//! CAMotics `.camotics` projects (one file per format).
+//!
+//! Every reader returns a [`ToolTable`] or a [`TableError`] carrying the file name, line and
+//! column, what was found and what was expected. Readers never panic; assumptions they make
+//! (a LinuxCNC table has no shape information, so its tools are taken as flat end mills) are
+//! listed in [`ToolTable::warnings`].
+
+mod camotics;
+mod linuxcnc;
+mod toml_lib;
+
+pub use camotics::parse_camotics;
+pub use linuxcnc::parse_linuxcnc;
+pub use toml_lib::parse_toml_library;
+
+use crate::cutter::Cutter;
+use crate::error::TableError;
+use std::collections::BTreeMap;
+use std::path::Path;
+use swarf_geom::Aabb;
+
+/// Length unit of a file that does not state its own.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, serde::Serialize, serde::Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum LengthUnit {
+    /// Millimetres.
+    Mm,
+    /// Inches (25.4 mm).
+    Inch,
+}
+
+impl LengthUnit {
+    /// Millimetres per unit.
+    pub fn to_mm(self) -> f64 {
+        match self {
+            LengthUnit::Mm => 1.0,
+            LengthUnit::Inch => 25.4,
+        }
+    }
+}
+
+/// One tool of a table.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ToolEntry {
+    /// The cutter (mm).
+    pub cutter: Cutter,
+    /// Free text from the file (may be empty).
+    pub description: String,
+}
+
+/// Numbered tools, and the workpiece bounds when the file gives them.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ToolTable {
+    /// Tools by number.
+    pub tools: BTreeMap<u32, ToolEntry>,
+    /// Workpiece bounds in mm (CAMotics projects with `"automatic": false`).
+    pub workpiece: Option<Aabb>,
+    /// Assumptions made while reading, one sentence each.
+    pub warnings: Vec<String>,
+}
+
+impl ToolTable {
+    /// Reads a table, choosing the format by extension: `.toml`, `.tbl` (LinuxCNC, in
+    /// `tbl_unit`), `.camotics`.
+    pub fn read(path: &Path, tbl_unit: LengthUnit) -> Result<ToolTable, TableError> {
+        let file = path.display().to_string();
+        let text = std::fs::read_to_string(path).map_err(|e| TableError::Io {
+            file: file.clone(),
+            message: e.to_string(),
+        })?;
+        match path
+            .extension()
+            .and_then(|e| e.to_str())
+            .map(str::to_ascii_lowercase)
+            .as_deref()
+        {
+            Some("toml") => parse_toml_library(&text, &file),
+            Some("tbl") => parse_linuxcnc(&text, &file, tbl_unit),
+            Some("camotics") => parse_camotics(&text, &file),
+            other => Err(TableError::Parse {
+                file,
+                line: 0,
+                column: 0,
+                found: format!("extension {:?}", other.unwrap_or("")),
+                expected: "a .toml, .tbl or .camotics tool table".into(),
+            }),
+        }
+    }
+}
+
+/// 1-based line and column of a byte offset.
+pub(crate) fn line_col(text: &str, byte: usize) -> (usize, usize) {
+    let byte = byte.min(text.len());
+    let mut b = byte;
+    while !text.is_char_boundary(b) {
+        b -= 1;
+    }
+    let before = &text[..b];
+    let line = before.matches('\n').count() + 1;
+    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
+    (line, col)
+}
