@@ -19,8 +19,11 @@ fn main() {
     if let Err(e) = result {
         // A closed pipe (`swarf path x --json | head`) is the reader's choice, not an error.
         let broken_pipe = e.chain().any(|c| {
-            c.downcast_ref::<std::io::Error>()
-                .is_some_and(|io| io.kind() == std::io::ErrorKind::BrokenPipe)
+            let kind = c
+                .downcast_ref::<std::io::Error>()
+                .map(std::io::Error::kind)
+                .or_else(|| c.downcast_ref::<serde_json::Error>()?.io_error_kind());
+            kind == Some(std::io::ErrorKind::BrokenPipe)
         });
         if broken_pipe {
             std::process::exit(0);

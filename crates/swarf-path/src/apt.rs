@@ -511,6 +511,15 @@ impl Reader<'_, '_> {
                     // α and β are angles; the rest lengths.
                     c[i] = if i == 4 || i == 5 { *x } else { x * self.scale };
                 }
+                // APT's short forms imply the corner centre: `CUTTER/d` is a flat end mill and
+                // `CUTTER/d,r` a toroidal one, e = d/2 − r and f = r. A missing h stays 0,
+                // which means "not given" to consumers (they choose a default length).
+                if v.len() < 3 {
+                    c[2] = 0.5 * c[0] - c[1];
+                }
+                if v.len() < 4 {
+                    c[3] = c[1];
+                }
                 self.sink.emit(line, &Canon::CutterDefinition(c));
             }
             "TLDATA" => self.tldata(rec, &fields, line, column)?,

@@ -184,7 +184,7 @@ pub enum Canon<'a> {
     /// A comment or message from the program (borrowed while streaming, owned when kept).
     Comment(Cow<'a, str>),
     /// A definition of the active tool's geometry from the program (APT `CUTTER/`): the seven
-    /// APT numbers d, r, e, f, α, β, h (mm, degrees).
+    /// APT numbers d, r, e, f, α, β, h (mm, degrees); h = 0 means the program did not give it.
     CutterDefinition([f64; 7]),
     /// M2/M30/`FINI`: the end of the program.
     ProgramEnd,

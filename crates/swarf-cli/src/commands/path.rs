@@ -139,7 +139,10 @@ fn resolve_tools(
                 cutter: e.cutter.describe(),
             })
         } else if let Some((_, p)) = from_program {
-            let c = Cutter::apt(p[0], p[1], p[2], p[3], p[4], p[5], p[6])
+            // h = 0: the program did not say how long the cutting part is; take the
+            // library's default for a named cutter (three diameters).
+            let h = if p[6] > 0.0 { p[6] } else { (3.0 * p[0]).max(p[3] + p[1]) };
+            let c = Cutter::apt(p[0], p[1], p[2], p[3], p[4], p[5], h)
                 .with_context(|| format!("CUTTER/ definition of tool {n} in the program"))?;
             Some(ToolReport {
                 source: "program",
@@ -187,6 +190,6 @@ fn print_human(s: &ProgramSummary, tools: &BTreeMap<u32, ToolReport>, undefined:
         println!("T{n}: not defined (give --tool or --tools)");
     }
     for w in &s.warnings {
-        println!("warning: {w}");
+        println!("{w}");
     }
 }
