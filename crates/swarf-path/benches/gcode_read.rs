@@ -31,7 +31,9 @@ fn program(lines: usize) -> String {
     // A deterministic walk: a linear congruential generator keeps the numbers varied.
     let mut seed: u64 = 0x2545_f491_4f6c_dd1d;
     let mut next = || {
-        seed = seed.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1_442_695_040_888_963_407);
+        seed = seed
+            .wrapping_mul(6_364_136_223_846_793_005)
+            .wrapping_add(1_442_695_040_888_963_407);
         ((seed >> 33) % 100_000) as f64 / 1000.0
     };
     let (mut x, mut y) = (0.0f64, 0.0f64);
@@ -42,13 +44,19 @@ fn program(lines: usize) -> String {
             s.push_str(&format!("G0 X{x:.4} Y{y:.4} Z5.0000\n"));
         } else if i % 10 == 0 {
             // A half circle of radius 2 to the right and back: start and end radii agree.
-            s.push_str(&format!("G2 X{:.4} Y{y:.4} I2.0000 J0.0000 F1200\n", x + 4.0));
+            s.push_str(&format!(
+                "G2 X{:.4} Y{y:.4} I2.0000 J0.0000 F1200\n",
+                x + 4.0
+            ));
             x += 4.0;
         } else {
             x = next();
             y = next();
             let z = -next() / 20.0;
-            s.push_str(&format!("G1 X{x:.4} Y{y:.4} Z{z:.4} F{}\n", 800 + (i % 7) * 100));
+            s.push_str(&format!(
+                "G1 X{x:.4} Y{y:.4} Z{z:.4} F{}\n",
+                800 + (i % 7) * 100
+            ));
         }
     }
     s.push_str("M30\n");

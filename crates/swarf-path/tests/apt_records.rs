@@ -82,9 +82,10 @@ fn tools_spindle_and_cutter() {
     let e = events(
         "CUTTER/10,2\nLOADTL/7\nLOAD/TOOL,8\nSPINDL/RPM,1200,CCLW\nSPINDL/OFF\nSPINDL/900\n",
     );
+    // APT's two-number form is a toroidal cutter: e = d/2 − r = 3, f = r = 2; h not given.
     assert_eq!(
         e[0],
-        Canon::CutterDefinition([10.0, 2.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+        Canon::CutterDefinition([10.0, 2.0, 3.0, 2.0, 0.0, 0.0, 0.0])
     );
     assert_eq!(e[1], Canon::ToolChange { tool: 7 });
     assert_eq!(e[2], Canon::ToolChange { tool: 8 });

@@ -314,11 +314,7 @@ fn canned_cycles_peck_and_other_planes() {
     // G18 (drilling along Y) G82 with dwell, repeated with only X on the next line.
     let rec = run("F100 G18 G0 Y5\nG99 G82 X1 Z2 Y-1 R1 P0.5\nX3\nG80\n");
     let m = motion(&rec);
-    let ends: Vec<_> = m
-        .iter()
-        .map(|e| end_of(e))
-        .map(|a| (a.x, a.y, a.z))
-        .collect();
+    let ends: Vec<_> = m.iter().map(end_of).map(|a| (a.x, a.y, a.z)).collect();
     assert_eq!(
         ends[1..],
         [
@@ -353,7 +349,10 @@ fn parameters_take_effect_after_the_line() {
     let m = motion(&rec);
     assert_xyz(end_of(&m[0]), 2.0, 1.0, 0.0);
     let e = err("#1=1\n#<a>=3 G0 X#<a>\n");
-    assert_eq!((e.pos.line, e.pos.column, e.found.as_str()), (2, 12, "#<a>"));
+    assert_eq!(
+        (e.pos.line, e.pos.column, e.found.as_str()),
+        (2, 12, "#<a>")
+    );
     assert!(e.message.contains("not defined"));
 }
 
@@ -402,7 +401,7 @@ M2
     let rec = run(src);
     let got: Vec<(f64, f64, f64)> = motion(&rec)
         .iter()
-        .map(|e| end_of(e))
+        .map(end_of)
         .map(|a| (a.x, a.y, a.z))
         .collect();
     let want = vec![
@@ -442,7 +441,7 @@ o100 endsub [#<_value> + 1]
     let rec = run(src);
     let got: Vec<(f64, f64, f64)> = motion(&rec)
         .iter()
-        .map(|e| end_of(e))
+        .map(end_of)
         .map(|a| (a.x, a.y, a.z))
         .collect();
     assert_eq!(
@@ -507,9 +506,29 @@ fn hostile_programs_end_quickly_with_limit_errors() {
     limit("F1 G83 X1 Z-1000000 R1 Q0.000001\n", &opts);
     limit("F1 G73 X1 Z-1000000 R1 Q0.000001\n", &opts);
     limit("M98 P1 L1000000\nM30\nO1\nM98 P1\nM99\n", &opts);
-    limit("M98 P1 L1000\nM30\nO1\nG0 X1\nM99\n", &opts.clone().with_max_loop_iterations(500));
-    limit(&format!("G0 X{}1{}\n", "[".repeat(100_000), "]".repeat(100_000)), &opts);
+    limit(
+        "M98 P1 L1000\nM30\nO1\nG0 X1\nM99\n",
+        &opts.clone().with_max_loop_iterations(500),
+    );
+    limit(
+        &format!("G0 X{}1{}\n", "[".repeat(100_000), "]".repeat(100_000)),
+        &opts,
+    );
     assert!(t.elapsed() < Duration::from_secs(10), "{:?}", t.elapsed());
+}
+
+#[test]
+fn loops_around_long_skipped_blocks_stay_fast() {
+    // Each iteration skips 20 000 lines of a false `if`: a rescan per iteration would take
+    // 10^9 line reads.
+    let body = "G1 X1\n".repeat(20_000);
+    let src = format!("#1=0\no1 while [#1 LT 50000]\n#1=[#1+1]\no2 if [0]\n{body}o2 endif\no1 endwhile\nG0 X#1\nM2\n");
+    let t = Instant::now();
+    let mut c = Counter::default();
+    read_gcode(&src, "t.ngc", &GcodeOptions::default(), &mut c).unwrap();
+    assert!(t.elapsed() < Duration::from_secs(10), "{:?}", t.elapsed());
+    let rec = run(&src);
+    assert_eq!(last_pos(&rec).x, 50000.0);
 }
 
 #[test]

@@ -23,10 +23,20 @@ fn leaf() -> impl Strategy<Value = E> {
 fn expr() -> impl Strategy<Value = E> {
     leaf().prop_recursive(5, 40, 3, |inner| {
         prop_oneof![
-            (inner.clone(), prop::sample::select(vec!["+", "-", "*", "/", "MOD", "**", "EQ", "NE", "GT", "GE", "LT", "LE", "AND", "OR", "XOR"]), inner.clone())
+            (
+                inner.clone(),
+                prop::sample::select(vec![
+                    "+", "-", "*", "/", "MOD", "**", "EQ", "NE", "GT", "GE", "LT", "LE", "AND",
+                    "OR", "XOR"
+                ]),
+                inner.clone()
+            )
                 .prop_map(|(a, op, b)| E::Bin(Box::new(a), op, Box::new(b))),
             inner.clone().prop_map(|a| E::Neg(Box::new(a))),
-            (prop::sample::select(vec!["ABS", "FIX", "FUP", "ROUND", "SIN", "COS"]), inner)
+            (
+                prop::sample::select(vec!["ABS", "FIX", "FUP", "ROUND", "SIN", "COS"]),
+                inner
+            )
                 .prop_map(|(f, a)| E::Fun(f, Box::new(a))),
         ]
     })
@@ -95,7 +105,12 @@ fn reference(e: &E) -> Option<f64> {
 /// Evaluates through the reader: `#1 = expr` then a move to X#1 in a mm program.
 fn via_reader(src: &str) -> Result<f64, swarf_path::PathError> {
     let mut rec = Recorder::default();
-    read_gcode(&format!("#1 = {src}\nG0 X#1\n"), "p.ngc", &GcodeOptions::default(), &mut rec)?;
+    read_gcode(
+        &format!("#1 = {src}\nG0 X#1\n"),
+        "p.ngc",
+        &GcodeOptions::default(),
+        &mut rec,
+    )?;
     Ok(rec
         .events
         .iter()
@@ -111,7 +126,10 @@ fn chain() -> impl Strategy<Value = (Vec<f64>, Vec<&'static str>)> {
     (2usize..7).prop_flat_map(|n| {
         (
             prop::collection::vec((1i32..50).prop_map(f64::from), n),
-            prop::collection::vec(prop::sample::select(vec!["+", "-", "*", "/", "**", "LT", "EQ", "AND", "OR"]), n - 1),
+            prop::collection::vec(
+                prop::sample::select(vec!["+", "-", "*", "/", "**", "LT", "EQ", "AND", "OR"]),
+                n - 1,
+            ),
         )
     })
 }
@@ -131,7 +149,10 @@ fn chain_reference(nums: &[f64], ops: &[&str]) -> Option<f64> {
         reference(&E::Bin(Box::new(E::Num(x)), leak(op), Box::new(E::Num(y))))
     }
     fn leak(op: &str) -> &'static str {
-        ["+", "-", "*", "/", "**", "LT", "EQ", "AND", "OR"].into_iter().find(|o| *o == op).unwrap()
+        ["+", "-", "*", "/", "**", "LT", "EQ", "AND", "OR"]
+            .into_iter()
+            .find(|o| *o == op)
+            .unwrap()
     }
     let mut vals = vec![nums[0]];
     let mut stack: Vec<&str> = Vec::new();

@@ -61,7 +61,9 @@ pub struct CutterDescription {
     pub kind: crate::cutter::CutterKind,
     /// Spec string that rebuilds the cutter.
     pub spec: String,
-    /// The seven APT numbers (e and f as implied by the others).
+    /// The seven APT numbers (e and f as implied by the others), flattened into the top level
+    /// of the JSON (`diameter_mm`, `corner_radius_mm`, …).
+    #[serde(flatten)]
     pub apt: AptDescription,
     /// Number of flutes.
     pub flutes: u32,

@@ -141,7 +141,11 @@ fn resolve_tools(
         } else if let Some((_, p)) = from_program {
             // h = 0: the program did not say how long the cutting part is; take the
             // library's default for a named cutter (three diameters).
-            let h = if p[6] > 0.0 { p[6] } else { (3.0 * p[0]).max(p[3] + p[1]) };
+            let h = if p[6] > 0.0 {
+                p[6]
+            } else {
+                (3.0 * p[0]).max(p[3] + p[1])
+            };
             let c = Cutter::apt(p[0], p[1], p[2], p[3], p[4], p[5], h)
                 .with_context(|| format!("CUTTER/ definition of tool {n} in the program"))?;
             Some(ToolReport {

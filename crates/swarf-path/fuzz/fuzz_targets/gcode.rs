@@ -15,7 +15,10 @@ impl CanonSink for Check {
         if let Canon::Traverse { end } | Canon::Feed { end } | Canon::Arc { end, .. } = event {
             // Infinite values can only come from overflowing arithmetic on huge inputs, which
             // is allowed; NaN would mean an unchecked domain error.
-            assert!(!end.to_array().iter().any(|v| v.is_nan()), "NaN position {event:?}");
+            assert!(
+                !end.to_array().iter().any(|v| v.is_nan()),
+                "NaN position {event:?}"
+            );
         }
     }
     fn warn(&mut self, _warning: Warning) {}
@@ -24,6 +27,8 @@ impl CanonSink for Check {
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data);
     // A small iteration budget keeps each run short; limits are reported as errors.
-    let opts = GcodeOptions::default().with_max_loop_iterations(20_000).with_max_repeat(20_000);
+    let opts = GcodeOptions::default()
+        .with_max_loop_iterations(20_000)
+        .with_max_repeat(20_000);
     let _ = read_gcode(&text, "fuzz.ngc", &opts, &mut Check);
 });

@@ -71,7 +71,7 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
             unsupported("spindle-synchronised motion, tapping and boring cycles other than G85/G89 are not simulated")
         }
         382..=385 => unsupported("probing is not simulated"),
-        50 | 51 | 52 => unsupported("splines (G5, G5.1, G5.2) are not supported"),
+        50..=52 => unsupported("splines (G5, G5.1, G5.2) are not supported"),
         70 | 80 => unsupported("lathe diameter/radius modes (G7/G8) are not supported"),
         150 | 160 => unsupported("Fanuc polar coordinate mode (G15/G16) is not supported; use `@` and `^`"),
         171 | 181 | 191 => unsupported("UVW planes (G17.1, G18.1, G19.1) are not supported"),

@@ -414,6 +414,27 @@ impl Interp<'_, '_> {
     /// Finds the next line `o<name> kw` (kw in `kws`) from `from`: the keyword, the cursor
     /// before that line and the cursor after it. Lines that do not normalise are not O-words.
     fn scan(&mut self, from: Cursor, name: &[u8], kws: &[Kw]) -> Option<(Kw, Cursor, Cursor)> {
+        // The text never changes, so a scan from the same place for the same O-word always
+        // ends at the same line: remember it, or a loop around a long false `if` would rescan
+        // the same lines on every iteration.
+        let mask = kws.iter().fold(0u32, |m, &k| m | 1 << k as u32);
+        if let Some((n, hit)) = self.scan_cache.get(&(from.pos, mask)) {
+            if n == name {
+                return *hit;
+            }
+        }
+        let found = self.scan_uncached(from, name, kws);
+        self.scan_cache
+            .insert((from.pos, mask), (name.to_vec(), found));
+        found
+    }
+
+    fn scan_uncached(
+        &mut self,
+        from: Cursor,
+        name: &[u8],
+        kws: &[Kw],
+    ) -> Option<(Kw, Cursor, Cursor)> {
         let mut buf = std::mem::take(&mut self.skip_buf);
         let mut at = from;
         let mut found = None;

@@ -181,6 +181,22 @@ impl Interp<'_, '_> {
             aa = self.p[fi];
             bb = self.p[si];
         }
+        if ![
+            aa,
+            bb,
+            r,
+            cc,
+            aa + aa_inc * repeats as f64,
+            bb + bb_inc * repeats as f64,
+        ]
+        .iter()
+        .all(|v| v.is_finite())
+        {
+            return Err(Fault::semantic(
+                gspan,
+                "canned cycle positions are out of range (not finite numbers)",
+            ));
+        }
         if r < cc {
             return Err(Fault::semantic(
                 b.get(b'r').map_or(gspan, |_| b.span(b'r')),

@@ -30,6 +30,9 @@ pub(crate) struct Cursor {
     pub(crate) line: u32,
 }
 
+/// A remembered forward scan: the O name looked for and what was found.
+pub(crate) type ScanHit = (Vec<u8>, Option<(super::control::Kw, Cursor, Cursor)>);
+
 /// Letters of the six axes, in X Y Z A B C order.
 pub(crate) const AXIS_LETTERS: [u8; 6] = *b"xyzabc";
 
@@ -103,6 +106,8 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) frames: Vec<Frame>,
     pub(crate) subs: HashMap<Vec<u8>, Cursor>,
     pub(crate) labels: Option<HashMap<u64, Cursor>>,
+    /// Results of forward scans for O-words, by start position and keyword set.
+    pub(crate) scan_cache: HashMap<(usize, u32), ScanHit>,
     pub(crate) iterations: u64,
     pub(crate) ended: bool,
     pub(crate) tape: bool,
@@ -153,6 +158,7 @@ impl<'t, 's> Interp<'t, 's> {
             frames: Vec::new(),
             subs: HashMap::new(),
             labels: None,
+            scan_cache: HashMap::new(),
             iterations: 0,
             ended: false,
             tape: false,
@@ -327,7 +333,7 @@ impl<'t, 's> Interp<'t, 's> {
 
     /// Program units → mm for axis `i` (rotary axes stay in degrees).
     #[inline]
-    pub(crate) fn from_units(&self, i: usize, v: f64) -> f64 {
+    pub(crate) fn mm_from_units(&self, i: usize, v: f64) -> f64 {
         if i < 3 {
             v * self.scale
         } else {
@@ -364,12 +370,12 @@ impl<'t, 's> Interp<'t, 's> {
 
     pub(crate) fn set_numbered(&mut self, n: usize, v: f64) {
         match n {
-            5161..=5166 => self.homes[0][n - 5161] = self.from_units(n - 5161, v),
-            5181..=5186 => self.homes[1][n - 5181] = self.from_units(n - 5181, v),
-            5211..=5216 => self.g92_saved[n - 5211] = self.from_units(n - 5211, v),
+            5161..=5166 => self.homes[0][n - 5161] = self.mm_from_units(n - 5161, v),
+            5181..=5186 => self.homes[1][n - 5181] = self.mm_from_units(n - 5181, v),
+            5211..=5216 => self.g92_saved[n - 5211] = self.mm_from_units(n - 5211, v),
             5221..=5386 if (n - 5221) % 20 < 6 => {
                 let (k, i) = ((n - 5221) / 20, (n - 5221) % 20);
-                self.g5x_table[k][i] = self.from_units(i, v);
+                self.g5x_table[k][i] = self.mm_from_units(i, v);
             }
             // Read-only views: the position, the active system, the G92 flag, the tool.
             5210 | 5220 | 5400 | 5420..=5425 => {}
@@ -734,7 +740,7 @@ impl<'t, 's> Interp<'t, 's> {
         let mut e = self.p;
         for (i, &c) in AXIS_LETTERS.iter().enumerate() {
             if let Some(v) = b.get(c) {
-                let v = self.from_units(i, v);
+                let v = self.mm_from_units(i, v);
                 e[i] = if g53 {
                     v - self.off[i] - self.g92[i]
                 } else if self.absolute {
@@ -779,6 +785,12 @@ impl<'t, 's> Interp<'t, 's> {
             };
             e[0] = r * th.cos();
             e[1] = r * th.sin();
+        }
+        if e.iter().any(|v| !v.is_finite()) {
+            return Err(Fault::semantic(
+                Span::Line,
+                "the end point is out of range (not a finite number)",
+            ));
         }
         Ok(e)
     }
@@ -922,7 +934,7 @@ impl<'t, 's> Interp<'t, 's> {
         let mut t = self.g5x_table[k - 1];
         for (i, &c) in AXIS_LETTERS.iter().enumerate() {
             if let Some(v) = b.get(c) {
-                let v = self.from_units(i, v);
+                let v = self.mm_from_units(i, v);
                 t[i] = if l == 2.0 {
                     v
                 } else {
@@ -950,7 +962,7 @@ impl<'t, 's> Interp<'t, 's> {
         let mut g = self.g92;
         for (i, &c) in AXIS_LETTERS.iter().enumerate() {
             if let Some(v) = b.get(c) {
-                g[i] = self.p[i] + self.g92[i] - self.from_units(i, v);
+                g[i] = self.p[i] + self.g92[i] - self.mm_from_units(i, v);
             }
         }
         self.g92_saved = g;

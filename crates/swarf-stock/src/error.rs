@@ -1,0 +1,81 @@
+//! Errors of stock construction and simulation.
+
+use thiserror::Error;
+
+/// What can go wrong building a stock or simulating a program on it.
+#[derive(Debug, Error, Clone, PartialEq)]
+pub enum StockError {
+    /// A resolution that is not a positive finite number.
+    #[error("resolution must be a positive finite number of mm, got {0}")]
+    BadResolution(f64),
+    /// A stock shape with non-positive or non-finite dimensions.
+    #[error("bad stock dimensions: {0}")]
+    BadDimensions(String),
+    /// The grid would hold more rays than [`crate::MAX_RAYS`].
+    #[error(
+        "resolution {h} mm over a {size} mm stock needs {rays} rays, more than the limit {limit}"
+    )]
+    TooManyRays {
+        /// Requested resolution.
+        h: f64,
+        /// Stock size, mm, as text.
+        size: String,
+        /// Rays needed.
+        rays: u64,
+        /// The limit.
+        limit: u64,
+    },
+    /// The mesh has boundary edges (it is not closed).
+    #[error("the mesh is not closed: {count} open edge(s), e.g. {examples}")]
+    OpenMesh {
+        /// Number of edges used by only one triangle (or more than two).
+        count: usize,
+        /// The first few edges' end points, as text.
+        examples: String,
+    },
+    /// The mesh has no triangles, or a triangle with a non-finite coordinate.
+    #[error("bad mesh: {0}")]
+    BadMesh(String),
+    /// A profile that does not close or join.
+    #[error("bad profile: {why}")]
+    BadProfile {
+        /// What is wrong.
+        why: String,
+    },
+    /// A profile that turns inwards at `(rho, z)`: the solid is not convex.
+    #[error("profile is not convex at rho = {rho} mm, z = {z} mm")]
+    NotConvex {
+        /// Radius of the offending joint.
+        rho: f64,
+        /// Height of the offending joint.
+        z: f64,
+    },
+    /// A move whose tool number has no cutter.
+    #[error("move {index} (line {line}): no cutter for tool {tool}")]
+    UnknownTool {
+        /// Move index in the program.
+        index: usize,
+        /// Source line.
+        line: u32,
+        /// Tool number.
+        tool: u32,
+    },
+    /// A move this version cannot cut (the tool axis changes along it: 5-axis simultaneous).
+    #[error("move {index} (line {line}): {why}")]
+    Unsupported {
+        /// Move index in the program.
+        index: usize,
+        /// Source line.
+        line: u32,
+        /// Why.
+        why: String,
+    },
+    /// A non-finite pose.
+    #[error("move {index} (line {line}): non-finite tool position or axis")]
+    NonFinite {
+        /// Move index in the program.
+        index: usize,
+        /// Source line.
+        line: u32,
+    },
+}

@@ -1,0 +1,61 @@
+//! The in-process workpiece of swarf: a tri-dexel stock and exact material removal.
+//!
+//! # Model
+//! The stock is a **tri-dexel** model (Aras 2008, §4.2): three families of parallel rays along
+//! X, Y and Z. The rays of a family pass through the **cell centres** of a grid over the
+//! stock's bounding box (cell size ≤ the requested resolution `h`, adjusted per axis so an
+//! integer number of cells spans the box exactly), and each ray holds the sorted, disjoint
+//! intervals `[enter, exit]` of material along it, in workpiece coordinates along the ray's
+//! axis. A ray holds two intervals inline and spills to the heap once when it needs more; rays
+//! are stored in 8 × 8 tiles, each with a conservative bound of its material, so that a move
+//! touches only the tiles and rays that cross its swept volume's bounding box and that hold
+//! material in its range (nothing scans the whole grid per move).
+//!
+//! Conventions: millimetres; the **workpiece frame** of `swarf-path` (tool tip and axis of
+//! each move); the tool axis points from the tip to the spindle; volumes come from the Z rays
+//! (`Σ lengths × cell area`), the X and Y estimates are reported as a cross-check.
+//!
+//! # Cutting
+//! For a straight move with a fixed tool axis (3-axis and 3+2), the interval of each touched
+//! ray inside the volume swept by the cutter's **cutting part** is computed exactly
+//! ([`sweep`]: caps, grazing-curve envelopes in closed form, torus by guaranteed root
+//! isolation) and subtracted. Arcs and helices are cut as chords through exact arc points,
+//! at most the chordal tolerance ([`DEFAULT_CHORDAL_TOLERANCE_MM`]) from the arc: the chords
+//! lie inside the arc's convex hull, so the removal **under-cuts** by at most that tolerance.
+//! Shank and holder sweeps are cut too and reported as collisions, as are rapids whose
+//! cutting part meets material. Moves whose tool axis turns (5-axis simultaneous) are refused
+//! with [`StockError::Unsupported`] naming the move.
+//!
+//! Everything else is exact up to floating point: the only discretisation is the ray grid
+//! itself (the volume error shrinks with `h`) and the chords of arcs.
+//!
+//! ```
+//! use swarf_geom::math::Vec3;
+//! use swarf_stock::{ToolShape, TriDexel};
+//! use swarf_tool::Cutter;
+//! let mut stock = TriDexel::from_box(Vec3::ZERO, Vec3::new(40.0, 20.0, 10.0), 0.25).unwrap();
+//! let v0 = stock.volume();
+//! assert!((v0 - 8000.0).abs() < 1e-9);
+//! // A 6 mm flat end mill cuts a 2 mm deep slot along X through the middle.
+//! let tool = ToolShape::new(&Cutter::flat(6.0).unwrap());
+//! let cut = stock.cut_linear(&tool, Vec3::new(-5.0, 10.0, 8.0), Vec3::new(45.0, 10.0, 8.0), Vec3::Z);
+//! let removed = v0 - stock.volume();
+//! assert!((removed - 40.0 * 6.0 * 2.0).abs() / 480.0 < 0.02, "{removed}");
+//! assert!(cut.non_cutting.removed_length == [0.0; 3]);
+//! ```
+
+pub mod cut;
+pub mod dexel;
+pub mod error;
+pub mod mesh;
+pub mod simulate;
+pub mod sweep;
+pub mod tridexel;
+
+pub use cut::{arc_chords, SegmentCut, ToolShape, DEFAULT_CHORDAL_TOLERANCE_MM};
+pub use dexel::{Dexel, Interval};
+pub use error::StockError;
+pub use mesh::MeshOptions;
+pub use simulate::{simulate, Collision, SimOptions, SimulationReport, Tools};
+pub use sweep::{ConvexProfile, Element, SweepShape, SweptConvex};
+pub use tridexel::{CutStats, DexelFamily, Grid, StockStats, TriDexel, MAX_RAYS, TILE};

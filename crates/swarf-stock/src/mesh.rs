@@ -1,0 +1,212 @@
+//! Stock from a closed triangle mesh (an STL part or casting): every ray of the three families
+//! is cast against the mesh through parry's BVH, **all** crossings along it are collected and
+//! paired into intervals by parity.
+//!
+//! Rays parallel to the axes pass through mesh vertices and edges often (meshes have round
+//! coordinates too); each cast is therefore made at the ray's position nudged by a tiny fixed
+//! offset ([`NUDGE`] of the cell size, the same for every ray) so that no crossing is counted
+//! twice or missed; a ray that still finds an odd number of crossings is cast again with a
+//! different nudge. The stored intervals belong to the ray at the cell centre; the nudge shifts
+//! the sampled surface by at most `NUDGE·h` (far below the grid's own error).
+
+use crate::dexel::Interval;
+use crate::error::StockError;
+use crate::tridexel::TriDexel;
+use parry3d_f64::shape::TriMesh;
+use std::collections::HashMap;
+use swarf_geom::math::Vec3;
+use swarf_geom::Aabb;
+
+/// Relative nudges (fractions of the cell size along u and v) tried in turn.
+pub const NUDGE: [(f64, f64); 3] = [
+    (3.183_098_861e-6, 7.071_067_812e-6),
+    (-5.772_156_649e-6, 2.718_281_828e-6),
+    (1.414_213_562e-6, -4.669_201_609e-6),
+];
+
+/// How to treat meshes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct MeshOptions {
+    /// Build even when the mesh is not closed (rays pair their crossings by parity anyway).
+    pub allow_open: bool,
+}
+
+/// Edges used by other than exactly two triangles (after welding identical vertices), with
+/// their end points.
+pub fn open_edges(vertices: &[Vec3], indices: &[[u32; 3]]) -> Vec<(Vec3, Vec3)> {
+    let mut count: HashMap<(u32, u32), u32> = HashMap::new();
+    for t in indices {
+        for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+            *count.entry((a.min(b), a.max(b))).or_insert(0) += 1;
+        }
+    }
+    let mut out: Vec<(u32, u32)> = count
+        .into_iter()
+        .filter(|&(_, c)| c != 2)
+        .map(|(e, _)| e)
+        .collect();
+    out.sort_unstable();
+    out.into_iter()
+        .map(|(a, b)| (vertices[a as usize], vertices[b as usize]))
+        .collect()
+}
+
+/// Welds vertices with identical coordinates; returns the vertex and index buffers.
+pub fn weld(triangles: &[[Vec3; 3]]) -> (Vec<Vec3>, Vec<[u32; 3]>) {
+    let mut map: HashMap<[u64; 3], u32> = HashMap::new();
+    let mut verts = Vec::new();
+    let mut idx = Vec::with_capacity(triangles.len());
+    for t in triangles {
+        let ids = t.map(|p| {
+            let key = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
+            *map.entry(key).or_insert_with(|| {
+                verts.push(p);
+                (verts.len() - 1) as u32
+            })
+        });
+        idx.push(ids);
+    }
+    (verts, idx)
+}
+
+impl TriDexel {
+    /// A stock from a closed triangle soup (identical vertices are welded), resolution `h`.
+    ///
+    /// Errors with [`StockError::OpenMesh`] (count and the first edges' coordinates) when some
+    /// edge is not shared by exactly two triangles, unless `opts.allow_open`.
+    pub fn from_triangles(
+        triangles: &[[Vec3; 3]],
+        h: f64,
+        opts: MeshOptions,
+    ) -> Result<Self, StockError> {
+        if triangles.is_empty() {
+            return Err(StockError::BadMesh("no triangles".into()));
+        }
+        if triangles.iter().flatten().any(|p| !p.is_finite()) {
+            return Err(StockError::BadMesh("a vertex is not finite".into()));
+        }
+        let (verts, idx) = weld(triangles);
+        let open = open_edges(&verts, &idx);
+        if !open.is_empty() && !opts.allow_open {
+            let examples = open
+                .iter()
+                .take(3)
+                .map(|(a, b)| format!("({}, {}, {})-({}, {}, {})", a.x, a.y, a.z, b.x, b.y, b.z))
+                .collect::<Vec<_>>()
+                .join(", ");
+            return Err(StockError::OpenMesh {
+                count: open.len(),
+                examples,
+            });
+        }
+        let mesh = TriMesh::new(verts.clone(), idx.clone())
+            .map_err(|e| StockError::BadMesh(format!("{e:?}")))?;
+        let bounds = Aabb::from_points(verts.iter().copied())
+            .ok_or_else(|| StockError::BadMesh("no vertices".into()))?;
+        let hk = Self::empty(bounds, h)?.grid().h;
+        Self::from_fn(bounds, h, |k, u, v, d| {
+            let (ku, kv) = ((k + 1) % 3, (k + 2) % 3);
+            let mut hits: Vec<f64> = Vec::new();
+            for &(nu, nv) in &NUDGE {
+                let (pu, pv) = (u + nu * hk[ku], v + nv * hk[kv]);
+                hits.clear();
+                for leaf in mesh.bvh().leaves(|node| {
+                    let (lo, hi) = (node.mins(), node.maxs());
+                    lo[ku] <= pu && pu <= hi[ku] && lo[kv] <= pv && pv <= hi[kv]
+                }) {
+                    let t = idx[leaf as usize].map(|i| verts[i as usize]);
+                    if let Some(x) = axis_line_triangle(k, pu, pv, &t) {
+                        hits.push(x);
+                    }
+                }
+                if hits.len() % 2 == 0 {
+                    break;
+                }
+            }
+            hits.sort_by(f64::total_cmp);
+            for pair in hits.chunks_exact(2) {
+                if pair[1] > pair[0] {
+                    d.push(Interval {
+                        enter: pair[0],
+                        exit: pair[1],
+                    });
+                }
+            }
+        })
+    }
+
+    /// A stock from a closed parry triangle mesh.
+    pub fn from_trimesh(mesh: &TriMesh, h: f64, opts: MeshOptions) -> Result<Self, StockError> {
+        let tris: Vec<[Vec3; 3]> = mesh.triangles().map(|t| [t.a, t.b, t.c]).collect();
+        Self::from_triangles(&tris, h, opts)
+    }
+}
+
+/// Where the line along axis `k` through cross coordinates `(pu, pv)` crosses triangle `t`
+/// (strictly inside its projection; the nudge keeps the line off edges), as the coordinate
+/// along `k`.
+fn axis_line_triangle(k: usize, pu: f64, pv: f64, t: &[Vec3; 3]) -> Option<f64> {
+    let (ku, kv) = ((k + 1) % 3, (k + 2) % 3);
+    let p2 = |p: Vec3| (p[ku] - pu, p[kv] - pv);
+    let (a, b, c) = (p2(t[0]), p2(t[1]), p2(t[2]));
+    let cross = |p: (f64, f64), q: (f64, f64)| p.0 * q.1 - p.1 * q.0;
+    let (wa, wb, wc) = (cross(b, c), cross(c, a), cross(a, b));
+    let pos = wa > 0.0 && wb > 0.0 && wc > 0.0;
+    let neg = wa < 0.0 && wb < 0.0 && wc < 0.0;
+    if !(pos || neg) {
+        return None;
+    }
+    let sum = wa + wb + wc;
+    Some((wa * t[0][k] + wb * t[1][k] + wc * t[2][k]) / sum)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The 12 triangles of a box.
+    fn box_tris(min: Vec3, max: Vec3) -> Vec<[Vec3; 3]> {
+        let c = |i: usize| {
+            Vec3::new(
+                if i & 1 == 0 { min.x } else { max.x },
+                if i & 2 == 0 { min.y } else { max.y },
+                if i & 4 == 0 { min.z } else { max.z },
+            )
+        };
+        let quads = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        quads
+            .iter()
+            .flat_map(|q| [[c(q[0]), c(q[1]), c(q[2])], [c(q[0]), c(q[2]), c(q[3])]])
+            .collect()
+    }
+
+    #[test]
+    fn box_mesh_matches_box_stock() {
+        let (a, b) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(10.0, 6.0, 4.0));
+        let s = TriDexel::from_triangles(&box_tris(a, b), 0.5, MeshOptions::default()).unwrap();
+        for v in s.volumes() {
+            assert!((v - 240.0).abs() < 1e-9, "{v}");
+        }
+    }
+
+    #[test]
+    fn open_mesh_rejected_with_edges() {
+        let mut t = box_tris(Vec3::ZERO, Vec3::ONE);
+        t.pop();
+        let e = TriDexel::from_triangles(&t, 0.1, MeshOptions::default()).unwrap_err();
+        let msg = e.to_string();
+        assert!(matches!(e, StockError::OpenMesh { count: 3, .. }), "{msg}");
+        assert!(
+            msg.contains("(1, 0, 1)") || msg.contains("(0, 1, 1)") || msg.contains("(1, 1, 1)"),
+            "{msg}"
+        );
+        assert!(TriDexel::from_triangles(&t, 0.1, MeshOptions { allow_open: true }).is_ok());
+    }
+}

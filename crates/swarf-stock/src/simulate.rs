@@ -1,0 +1,178 @@
+//! Running a whole program on a stock: tools, options, collisions and the report.
+
+use crate::cut::{ToolShape, COLLISION_EPS_MM, DEFAULT_CHORDAL_TOLERANCE_MM};
+use crate::error::StockError;
+use crate::tridexel::TriDexel;
+use std::collections::BTreeMap;
+use std::time::Instant;
+use swarf_path::{MoveKind, Program};
+use swarf_tool::Cutter;
+
+/// Simulation options; accuracy parameters with their defaults in one place.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct SimOptions {
+    /// Largest distance between an arc (or helix) and the chords that replace it, mm
+    /// (default [`DEFAULT_CHORDAL_TOLERANCE_MM`]).
+    pub chordal_tolerance: f64,
+}
+
+impl Default for SimOptions {
+    fn default() -> Self {
+        Self {
+            chordal_tolerance: DEFAULT_CHORDAL_TOLERANCE_MM,
+        }
+    }
+}
+
+impl SimOptions {
+    /// The options with another chordal tolerance.
+    pub fn with_chordal_tolerance(mut self, tol: f64) -> Self {
+        self.chordal_tolerance = tol;
+        self
+    }
+}
+
+/// The cutters of a program by tool number, with an optional default for numbers not listed
+/// (and for programs that never load a tool: tool 0).
+#[derive(Clone, Debug, Default)]
+pub struct Tools {
+    by_number: BTreeMap<u32, ToolShape>,
+    default: Option<ToolShape>,
+}
+
+impl Tools {
+    /// One cutter for every move.
+    pub fn single(cutter: &Cutter) -> Self {
+        Self {
+            by_number: BTreeMap::new(),
+            default: Some(ToolShape::new(cutter)),
+        }
+    }
+
+    /// Adds (or replaces) the cutter for tool number `n`.
+    pub fn with(mut self, n: u32, cutter: &Cutter) -> Self {
+        self.by_number.insert(n, ToolShape::new(cutter));
+        self
+    }
+
+    /// The shape for tool number `n`.
+    pub fn get(&self, n: u32) -> Option<&ToolShape> {
+        self.by_number.get(&n).or(self.default.as_ref())
+    }
+}
+
+/// A move that brought a non-cutting thing into the material.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Collision {
+    /// Move index in the program.
+    pub move_index: usize,
+    /// Source file name.
+    pub file: String,
+    /// 1-based source line.
+    pub line: u32,
+    /// Volume the offending part removed (from the Z rays), mm³.
+    pub volume_mm3: f64,
+}
+
+/// What a simulation did.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct SimulationReport {
+    /// Stock volume before the program (Z rays), mm³.
+    pub stock_volume_mm3: f64,
+    /// Removed volume (Z rays), mm³.
+    pub removed_volume_mm3: f64,
+    /// Stock volume after the program (Z rays), mm³.
+    pub final_volume_mm3: f64,
+    /// Final volume estimated from the X, Y and Z rays (a cross-check), mm³.
+    pub final_volume_xyz_mm3: [f64; 3],
+    /// Moves simulated.
+    pub moves: usize,
+    /// Rays in the stock.
+    pub rays: u64,
+    /// Intervals in the final stock.
+    pub intervals: u64,
+    /// Bytes per interval of the final stock.
+    pub bytes_per_interval: f64,
+    /// Rapids whose cutting part entered the material (the material is removed).
+    pub rapid_collisions: Vec<Collision>,
+    /// Moves whose shank or holder entered the material (the material is removed).
+    pub holder_collisions: Vec<Collision>,
+    /// Wall-clock time of the simulation, s.
+    pub elapsed_s: f64,
+    /// Removed volume per move (Z rays), mm³, in program order.
+    pub removed_per_move_mm3: Vec<f64>,
+    /// Rays whose exact swept interval was computed.
+    pub rays_tested: u64,
+    /// Rays whose material changed (summed over moves).
+    pub ray_updates: u64,
+    /// Chordal tolerance used for arcs, mm.
+    pub chordal_tolerance_mm: f64,
+    /// Grid cell sizes along X, Y, Z, mm.
+    pub resolution_mm: [f64; 3],
+}
+
+/// Runs every move of `program` through `stock`. Stops at the first move it cannot cut
+/// (unknown tool, 5-axis simultaneous move, non-finite pose) with that move's error.
+pub fn simulate(
+    program: &Program,
+    tools: &Tools,
+    stock: &mut TriDexel,
+    options: &SimOptions,
+) -> Result<SimulationReport, StockError> {
+    let t0 = Instant::now();
+    let stock_volume = stock.volume();
+    let area_z = stock.ray_area(2);
+    let mut per_move = Vec::with_capacity(program.moves.len());
+    let mut rapid_collisions = Vec::new();
+    let mut holder_collisions = Vec::new();
+    let (mut tested, mut updates) = (0u64, 0u64);
+    let file_of = |f: u16| program.files.get(f as usize).cloned().unwrap_or_default();
+    for (i, m) in program.moves.iter().enumerate() {
+        let tool = tools.get(m.tool).ok_or(StockError::UnknownTool {
+            index: i,
+            line: m.line,
+            tool: m.tool,
+        })?;
+        let cut = stock.cut_move(program, i, tool, options.chordal_tolerance)?;
+        let removed = (cut.cutting.removed_length[2] + cut.non_cutting.removed_length[2]) * area_z;
+        per_move.push(removed);
+        tested += cut.cutting.rays_tested + cut.non_cutting.rays_tested;
+        updates += cut.cutting.updates + cut.non_cutting.updates;
+        if matches!(m.kind, MoveKind::Rapid) && cut.cutting.removed_any(COLLISION_EPS_MM) {
+            rapid_collisions.push(Collision {
+                move_index: i,
+                file: file_of(m.file),
+                line: m.line,
+                volume_mm3: cut.cutting.removed_length[2] * area_z,
+            });
+        }
+        if cut.non_cutting.removed_any(COLLISION_EPS_MM) {
+            holder_collisions.push(Collision {
+                move_index: i,
+                file: file_of(m.file),
+                line: m.line,
+                volume_mm3: cut.non_cutting.removed_length[2] * area_z,
+            });
+        }
+    }
+    let final_volume = stock.volume();
+    let st = stock.stats();
+    Ok(SimulationReport {
+        stock_volume_mm3: stock_volume,
+        removed_volume_mm3: stock_volume - final_volume,
+        final_volume_mm3: final_volume,
+        final_volume_xyz_mm3: stock.volumes(),
+        moves: program.moves.len(),
+        rays: st.rays,
+        intervals: st.intervals,
+        bytes_per_interval: st.bytes_per_interval,
+        rapid_collisions,
+        holder_collisions,
+        elapsed_s: t0.elapsed().as_secs_f64(),
+        removed_per_move_mm3: per_move,
+        rays_tested: tested,
+        ray_updates: updates,
+        chordal_tolerance_mm: options.chordal_tolerance,
+        resolution_mm: stock.grid().h,
+    })
+}

@@ -1,0 +1,393 @@
+//! Profiles of convex solids of revolution, built from swarf-tool's pieces and checked for
+//! convexity; non-convex solids (holders with steps, unusual APT sets) are split into convex
+//! slabs.
+
+use super::{circle, line, sphere, torus, Acc, DirConsts, Scratch};
+use crate::error::StockError;
+use swarf_geom::math::{Vec2, Vec3};
+use swarf_tool::{AnyPiece, Piece, RevolvedSolid};
+
+/// Tolerance (mm) on profile joints and convexity turns when a profile is built.
+const PROFILE_EPS: f64 = 1e-7;
+
+/// One element of a profile in the meridian half-plane `(ρ, z)`, traversed from the axis at
+/// the bottom, outwards and up, back to the axis at the top.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Element {
+    /// Segment from `p` to `q`: a disc (horizontal), cylinder (vertical) or cone surface.
+    Line {
+        /// Start `(ρ, z)`.
+        p: Vec2,
+        /// End `(ρ, z)`.
+        q: Vec2,
+    },
+    /// Circular arc centred at `(e, f)` of radius `r`, profile point
+    /// `(e + r·sin φ, f − r·cos φ)` for `φ ∈ [phi0, phi1]`: a torus (e > 0) or sphere (e = 0).
+    Arc {
+        /// Distance from the axis to the centre.
+        e: f64,
+        /// Height of the centre.
+        f: f64,
+        /// Radius.
+        r: f64,
+        /// Start polar angle (radians, 0 = straight down from the centre).
+        phi0: f64,
+        /// End polar angle.
+        phi1: f64,
+    },
+}
+
+impl Element {
+    fn start(&self) -> Vec2 {
+        match *self {
+            Element::Line { p, .. } => p,
+            Element::Arc { e, f, r, phi0, .. } => Vec2::new(e + r * phi0.sin(), f - r * phi0.cos()),
+        }
+    }
+    fn end(&self) -> Vec2 {
+        match *self {
+            Element::Line { q, .. } => q,
+            Element::Arc { e, f, r, phi1, .. } => Vec2::new(e + r * phi1.sin(), f - r * phi1.cos()),
+        }
+    }
+    fn tangent_start(&self) -> Vec2 {
+        match *self {
+            Element::Line { p, q } => (q - p).normalize(),
+            Element::Arc { phi0, .. } => Vec2::new(phi0.cos(), phi0.sin()),
+        }
+    }
+    fn tangent_end(&self) -> Vec2 {
+        match *self {
+            Element::Line { p, q } => (q - p).normalize(),
+            Element::Arc { phi1, .. } => Vec2::new(phi1.cos(), phi1.sin()),
+        }
+    }
+    fn z_band(&self) -> (f64, f64) {
+        let (a, b) = (self.start().y, self.end().y);
+        (a.min(b), a.max(b))
+    }
+    fn max_rho(&self) -> f64 {
+        let m = self.start().x.max(self.end().x);
+        match *self {
+            Element::Arc {
+                e, r, phi0, phi1, ..
+            } if phi0 <= std::f64::consts::FRAC_PI_2 && phi1 >= std::f64::consts::FRAC_PI_2 => {
+                m.max(e + r)
+            }
+            _ => m,
+        }
+    }
+    fn from_piece(piece: &AnyPiece) -> Element {
+        match piece {
+            AnyPiece::Disc(d) => {
+                let (a, b) = (Vec2::new(d.inner, d.z), Vec2::new(d.outer, d.z));
+                if d.facing_up {
+                    Element::Line { p: b, q: a }
+                } else {
+                    Element::Line { p: a, q: b }
+                }
+            }
+            AnyPiece::Cylinder(c) => Element::Line {
+                p: Vec2::new(c.radius, c.z0),
+                q: Vec2::new(c.radius, c.z1),
+            },
+            AnyPiece::Cone(c) => Element::Line {
+                p: c.bottom,
+                q: c.top,
+            },
+            AnyPiece::Torus(t) => Element::Arc {
+                e: t.major,
+                f: t.center_z,
+                r: t.minor,
+                phi0: t.phi0,
+                phi1: t.phi1,
+            },
+            AnyPiece::Sphere(s) => Element::Arc {
+                e: 0.0,
+                f: s.center_z,
+                r: s.radius,
+                phi0: s.phi0,
+                phi1: s.phi1,
+            },
+        }
+    }
+}
+
+/// The closed profile of a convex solid of revolution about +Z (tool frame), with its joint
+/// circles, ready for swept-line queries.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ConvexProfile {
+    elements: Vec<Element>,
+    /// Joint circles `(ρ, z)` with `ρ > 0`.
+    joints: Vec<Vec2>,
+    z_min: f64,
+    z_max: f64,
+    r_max: f64,
+}
+
+impl ConvexProfile {
+    /// The profile of `elements` (axis-to-axis, bottom to top). Errors when the elements do not
+    /// join, do not start and end on the axis, or turn the wrong way (not convex).
+    pub fn new(elements: Vec<Element>) -> Result<Self, StockError> {
+        let first = elements.first().ok_or(StockError::BadProfile {
+            why: "no elements".into(),
+        })?;
+        let last = elements.last().unwrap_or(first);
+        if first.start().x.abs() > PROFILE_EPS || last.end().x.abs() > PROFILE_EPS {
+            return Err(StockError::BadProfile {
+                why: "the profile must start and end on the axis".into(),
+            });
+        }
+        let mut joints = Vec::new();
+        for w in elements.windows(2) {
+            let (a, b) = (w[0].end(), w[1].start());
+            if (a - b).length() > PROFILE_EPS {
+                return Err(StockError::BadProfile {
+                    why: format!(
+                        "elements do not join: ({}, {}) vs ({}, {})",
+                        a.x, a.y, b.x, b.y
+                    ),
+                });
+            }
+            let turn = w[0].tangent_end().perp_dot(w[1].tangent_start());
+            if turn < -PROFILE_EPS {
+                return Err(StockError::NotConvex { rho: a.x, z: a.y });
+            }
+            if a.x > 0.0 {
+                joints.push(a);
+            }
+        }
+        // z must be monotone along the profile (no overhang).
+        for el in &elements {
+            let (s, e) = (el.start(), el.end());
+            if e.y < s.y - PROFILE_EPS {
+                return Err(StockError::NotConvex { rho: s.x, z: s.y });
+            }
+        }
+        let z_min = elements
+            .iter()
+            .map(|e| e.z_band().0)
+            .fold(f64::INFINITY, f64::min);
+        let z_max = elements
+            .iter()
+            .map(|e| e.z_band().1)
+            .fold(f64::NEG_INFINITY, f64::max);
+        let r_max = elements.iter().map(Element::max_rho).fold(0.0, f64::max);
+        Ok(Self {
+            elements,
+            joints,
+            z_min,
+            z_max,
+            r_max,
+        })
+    }
+
+    /// The profile of a swarf-tool solid (cutting part, shank, one holder segment) when it is
+    /// convex.
+    pub fn from_solid(solid: &RevolvedSolid) -> Result<Self, StockError> {
+        Self::from_pieces(solid.pieces())
+    }
+
+    /// The profile of the pieces (bottom to top), when they bound a convex solid.
+    pub fn from_pieces(pieces: &[AnyPiece]) -> Result<Self, StockError> {
+        Self::new(pieces.iter().map(Element::from_piece).collect())
+    }
+
+    /// The elements, bottom to top.
+    pub fn elements(&self) -> &[Element] {
+        &self.elements
+    }
+
+    /// Lowest z.
+    pub fn z_min(&self) -> f64 {
+        self.z_min
+    }
+
+    /// Highest z.
+    pub fn z_max(&self) -> f64 {
+        self.z_max
+    }
+
+    /// Largest radius.
+    pub fn r_max(&self) -> f64 {
+        self.r_max
+    }
+
+    /// Radius of a cylinder about the axis holding the solid.
+    pub(crate) fn bound_radius(&self) -> f64 {
+        self.r_max
+    }
+
+    /// The joint circles `(ρ, z)` (ρ > 0) between consecutive elements.
+    pub fn joints(&self) -> &[Vec2] {
+        &self.joints
+    }
+
+    /// Height band and largest radius of element `i`.
+    pub(crate) fn element_extent(&self, i: usize) -> (f64, f64, f64) {
+        let el = &self.elements[i];
+        let (z0, z1) = el.z_band();
+        (z0, z1, el.max_rho())
+    }
+
+    /// Adds the line's crossings with element `i` (tool frame, unit `d`).
+    #[inline]
+    pub(crate) fn cap_element(&self, i: usize, o: Vec3, d: Vec3, acc: &mut Acc, scratch: &mut Scratch) {
+        let el = &self.elements[i];
+        match *el {
+            Element::Line { p, q } => line::cap(p, q, o, d, acc),
+            Element::Arc { e, f, r, phi0, phi1 } => {
+                let (z0, z1) = el.z_band();
+                if e == 0.0 {
+                    sphere::cap(f, r, z0, z1, o, d, acc);
+                } else {
+                    torus::cap(e, f, r, (phi0, phi1), (z0, z1), o, d, acc, scratch);
+                }
+            }
+        }
+    }
+
+    /// Adds the line's crossings with the envelope of element `i` swept by `dc.v`.
+    #[inline]
+    pub(crate) fn envelope_element(&self, i: usize, o: Vec3, dc: &DirConsts, acc: &mut Acc, scratch: &mut Scratch) {
+        let el = &self.elements[i];
+        match *el {
+            Element::Line { p, q } => line::envelope(p, q, o, dc, acc),
+            Element::Arc { e, f, r, phi0, phi1 } => {
+                let (z0, z1) = el.z_band();
+                if e == 0.0 {
+                    sphere::envelope(f, r, z0, z1, o, dc, acc);
+                } else {
+                    torus::envelope(e, f, r, (phi0, phi1), (z0, z1), o, dc, acc, scratch);
+                }
+            }
+        }
+    }
+
+    /// Adds the line's crossings with the extrusion of joint circle `j` along `dc.v`.
+    #[inline]
+    pub(crate) fn envelope_joint(&self, j: usize, o: Vec3, dc: &DirConsts, acc: &mut Acc) {
+        let c = self.joints[j];
+        circle::envelope(c.x, c.y, o, dc, acc);
+    }
+}
+
+/// A solid of revolution as a union of convex profiles: one when the solid is convex (the APT
+/// cutting part, a shank), else one convex slab per non-horizontal piece (stepped holders,
+/// unusual APT parameter sets). The swept volume of the union is the union of the sweeps, so
+/// every part is cut separately.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SweepShape {
+    parts: Vec<ConvexProfile>,
+}
+
+impl SweepShape {
+    /// The shape of `solid`: itself when convex, else its slabs. An empty solid gives an empty
+    /// shape.
+    pub fn from_solid(solid: &RevolvedSolid) -> Self {
+        if solid.pieces().is_empty() {
+            return Self { parts: Vec::new() };
+        }
+        if let Ok(p) = ConvexProfile::from_solid(solid) {
+            return Self { parts: vec![p] };
+        }
+        Self::slabs(solid.pieces())
+    }
+
+    /// One convex slab per non-horizontal piece: the piece closed by discs at its two ends.
+    pub fn slabs(pieces: &[AnyPiece]) -> Self {
+        let mut parts = Vec::new();
+        for piece in pieces {
+            if piece.is_horizontal() {
+                continue;
+            }
+            let el = Element::from_piece(piece);
+            let (a, b) = (el.start(), el.end());
+            let els = vec![
+                Element::Line {
+                    p: Vec2::new(0.0, a.y),
+                    q: a,
+                },
+                el,
+                Element::Line {
+                    p: b,
+                    q: Vec2::new(0.0, b.y),
+                },
+            ];
+            if let Ok(p) = ConvexProfile::new(els) {
+                parts.push(p);
+            }
+        }
+        Self { parts }
+    }
+
+    /// A shape made of the given convex parts (a union).
+    pub fn from_parts(parts: Vec<ConvexProfile>) -> Self {
+        Self { parts }
+    }
+
+    /// The convex parts.
+    pub fn parts(&self) -> &[ConvexProfile] {
+        &self.parts
+    }
+
+    /// True when the solid is a single convex part.
+    pub fn is_convex(&self) -> bool {
+        self.parts.len() == 1
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarf_tool::Cutter;
+
+    #[test]
+    fn every_named_cutter_is_convex() {
+        for spec in [
+            "flat:d=10",
+            "ball:d=10",
+            "bull:d=16,r=2",
+            "taper-flat:d=6,taper=10",
+            "taper-ball:d=6,taper=5",
+            "chamfer:d=12,angle=90",
+            "drill:d=8,angle=118",
+        ] {
+            let c = Cutter::from_spec(spec).unwrap();
+            let p = ConvexProfile::from_solid(c.cutting_solid());
+            assert!(p.is_ok(), "{spec}: {p:?}");
+            assert!((p.unwrap().r_max() - c.max_diameter() / 2.0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn stepped_holder_is_split_into_slabs() {
+        // Widening steps upwards make a non-convex profile.
+        let els = vec![
+            Element::Line {
+                p: Vec2::new(0.0, 0.0),
+                q: Vec2::new(2.0, 0.0),
+            },
+            Element::Line {
+                p: Vec2::new(2.0, 0.0),
+                q: Vec2::new(2.0, 5.0),
+            },
+            Element::Line {
+                p: Vec2::new(2.0, 5.0),
+                q: Vec2::new(6.0, 5.0),
+            },
+            Element::Line {
+                p: Vec2::new(6.0, 5.0),
+                q: Vec2::new(6.0, 9.0),
+            },
+            Element::Line {
+                p: Vec2::new(6.0, 9.0),
+                q: Vec2::new(0.0, 9.0),
+            },
+        ];
+        assert!(matches!(
+            ConvexProfile::new(els),
+            Err(StockError::NotConvex { .. })
+        ));
+    }
+}
