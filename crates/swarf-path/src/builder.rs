@@ -30,7 +30,7 @@ use std::f64::consts::TAU;
 use swarf_geom::math::Vec3;
 
 use crate::canon::{Axes, Canon, CanonSink, FeedMode, SpindleDir};
-use crate::kinematics::Machine;
+use crate::kinematics::{Machine, RotaryWord};
 use crate::moves::{ArcGeom, AxisSource, Move, MoveKind, Pose, Program};
 use crate::Warning;
 
@@ -59,6 +59,8 @@ pub struct MoveBuilder {
     tools: Vec<u32>,
     cutter_definitions: Vec<(u32, [f64; 7])>,
     warnings: Vec<Warning>,
+    /// Rotary words (A, B, C) already reported as not modelled by the machine.
+    unmodelled_warned: [bool; 3],
 }
 
 impl MoveBuilder {
@@ -83,6 +85,7 @@ impl MoveBuilder {
             tools: Vec::new(),
             cutter_definitions: Vec::new(),
             warnings: Vec::new(),
+            unmodelled_warned: [false; 3],
         }
     }
 
@@ -132,6 +135,38 @@ impl MoveBuilder {
         });
     }
 
+    /// A program that turns a rotary axis the machine does not have would silently be simulated
+    /// with a wrong tool axis: say so once per axis, naming the machine.
+    fn check_rotary_modelled(&mut self, line: u32, joints: &Axes) {
+        if self.axis_source == AxisSource::Program {
+            return;
+        }
+        let words = [
+            (RotaryWord::A, joints.a),
+            (RotaryWord::B, joints.b),
+            (RotaryWord::C, joints.c),
+        ];
+        for (i, (word, value)) in words.into_iter().enumerate() {
+            let modelled = self
+                .machine
+                .table
+                .iter()
+                .chain(&self.machine.head)
+                .any(|j| j.word == word);
+            if value != 0.0 && !modelled && !self.unmodelled_warned[i] {
+                self.unmodelled_warned[i] = true;
+                self.warn_at(
+                    line,
+                    format!(
+                        "{word:?} moves ({word:?}{value}) but machine `{}` has no {word:?} axis: \
+                         the tool axis ignores it (choose the machine with --machine)",
+                        self.machine.name
+                    ),
+                );
+            }
+        }
+    }
+
     /// Appends a move from the current position to `end` (program coordinates).
     fn push(&mut self, line: u32, end: &Axes, kind: impl FnOnce(&Self, &Axes, &Axes) -> MoveKind) {
         if let Some(def) = self.pending_cutter.take() {
@@ -139,6 +174,7 @@ impl MoveBuilder {
         }
         let start_joints = self.joints(&self.pos);
         let end_joints = self.joints(end);
+        self.check_rotary_modelled(line, &end_joints);
         let kind = kind(self, &start_joints, &end_joints);
         let m = Move {
             kind,

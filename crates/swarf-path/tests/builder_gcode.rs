@@ -39,3 +39,17 @@ fn two_half_circles() {
     assert_eq!(s.feed_bbox_min, Some([-10.0, 0.0, -1.0]));
     assert_eq!(s.feed_bbox_max, Some([10.0, 10.0, 0.0]));
 }
+
+#[test]
+fn rotary_words_on_a_machine_without_them_are_reported_once() {
+    use swarf_path::load::{read_program_str, ReadOptions};
+    let text = "G21 G90\nG1 X1 A10 F100\nG1 X2 A20 C5\nM30\n";
+    let p = read_program_str(text, "r.ngc", Machine::three_axis(), &ReadOptions::default())
+        .unwrap();
+    let about: Vec<_> = p.warnings.iter().filter(|w| w.message.contains("has no")).collect();
+    assert_eq!(about.len(), 2, "{about:?}");
+    assert_eq!((about[0].line, about[1].line), (2, 3));
+    let on_table = Machine::from_name("table-ac").unwrap();
+    let p = read_program_str(text, "r.ngc", on_table, &ReadOptions::default()).unwrap();
+    assert!(p.warnings.iter().all(|w| !w.message.contains("has no")));
+}

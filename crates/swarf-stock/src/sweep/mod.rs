@@ -450,4 +450,48 @@ mod tests {
             "{lo} {hi}"
         );
     }
+
+    #[test]
+    fn dexel_pruning_keeps_the_material_part_exact() {
+        // The pruned query must agree with the full one wherever the material is.
+        let mut seed = 7u64;
+        let mut rnd = move || {
+            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64) / ((1u64 << 53) as f64)
+        };
+        let cutters = ["ball:d=10", "flat:d=8", "bull:d=12,r=3", "drill:d=6,angle=118", "taper-ball:d=6,taper=8"];
+        let mut compared = 0;
+        for (ci, spec) in cutters.iter().cycle().take(60).enumerate() {
+            let c = Cutter::from_spec(spec).unwrap();
+            let prof = ConvexProfile::from_solid(c.cutting_solid()).unwrap();
+            let axis = if ci % 2 == 0 { Vec3::Z } else { Vec3::new(rnd() - 0.5, rnd() - 0.5, 1.0).normalize() };
+            let delta = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 10.0;
+            let sw = SweptConvex::new(&prof, Vec3::ZERO, axis, delta);
+            let bb = sw.bbox();
+            for k in 0..3 {
+                let dc = sw.dir_consts(Vec3::AXES[k]);
+                for _ in 0..200 {
+                    let mut o = bb.min + (bb.max - bb.min) * Vec3::new(rnd(), rnd(), rnd());
+                    o[k] = 0.0;
+                    let (a, b) = (bb.min[k] + rnd() * (bb.max[k] - bb.min[k]), bb.min[k] + rnd() * (bb.max[k] - bb.min[k]));
+                    let (m_lo, m_hi) = (a.min(b), a.max(b));
+                    let full = sw.line_interval(o, &dc, None, &mut Scratch::new());
+                    let pruned = sw.line_interval(o, &dc, Some((k, m_lo, m_hi)), &mut Scratch::new());
+                    let clip = |x: Option<(f64, f64)>| x.and_then(|(l, h)| {
+                        let (l, h) = (l.max(m_lo), h.min(m_hi));
+                        (l < h).then_some((l, h))
+                    });
+                    match (clip(full), clip(pruned)) {
+                        (None, None) => {}
+                        (Some(f), Some(p)) => {
+                            assert!((f.0 - p.0).abs() < 1e-9 && (f.1 - p.1).abs() < 1e-9, "{spec} {f:?} {p:?}");
+                            compared += 1;
+                        }
+                        (f, p) => panic!("{spec}: full {f:?} vs pruned {p:?}"),
+                    }
+                }
+            }
+        }
+        assert!(compared > 1000, "{compared}");
+    }
 }
