@@ -627,3 +627,19 @@ fn rotary_axes_in_degrees() {
     let a = last_pos(&rec);
     assert_eq!((a.x, a.a, a.b, a.c), (25.4, 90.0, -45.0, 370.0));
 }
+
+#[test]
+fn words_without_meaning_in_their_block_are_warned_not_dropped() {
+    let rec = run("G21\nG1 X1 E5 F100\nG0 X2 I3\nG2 X3 Y0 R5\nG4 P1\nG81 X1 Y1 Z-1 R1\nG80\nM30\n");
+    let ignored: Vec<(u32, u32, &str)> = rec
+        .warnings
+        .iter()
+        .filter(|w| w.message.contains("no meaning"))
+        .map(|w| (w.line, w.column, w.message.as_str()))
+        .collect();
+    assert_eq!(ignored.len(), 2, "{ignored:?}");
+    assert_eq!((ignored[0].0, ignored[0].1), (2, 7));
+    assert!(ignored[0].2.starts_with("E5"));
+    assert_eq!((ignored[1].0, ignored[1].1), (3, 7));
+    assert!(ignored[1].2.starts_with("I3"));
+}

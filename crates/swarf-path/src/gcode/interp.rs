@@ -615,6 +615,7 @@ impl<'t, 's> Interp<'t, 's> {
             }
             _ => {}
         }
+        self.warn_unused_words(b, lb, nonmodal);
         self.motion_step(b, nonmodal == Some(530), axes_used_by_nonmotion)?;
         match b.m_stop {
             Some(0 | 1 | 60) => {
@@ -637,6 +638,51 @@ impl<'t, 's> Interp<'t, 's> {
             self.m99()?;
         }
         Ok(())
+    }
+
+    /// Words that mean nothing in their block (an I without an arc, an E, an H without G43)
+    /// are reported, never silently dropped: they often betray a program written for another
+    /// machine or a post-processor bug.
+    fn warn_unused_words(&mut self, b: &Block, lb: &LineBuf, nonmodal: Option<u16>) {
+        let has_axes = b.mask & axis_mask() != 0;
+        let mode = b
+            .g(group::MOTION)
+            .or(if has_axes { self.motion } else { None });
+        let arc = matches!(mode, Some(20 | 30));
+        let cycle = matches!(mode, Some(730 | 810..=890));
+        let g10 = nonmodal == Some(100);
+        for c in *b"eijkrqplhd" {
+            if !b.has(c) {
+                continue;
+            }
+            let used = match c {
+                b'i' | b'j' | b'k' => arc,
+                b'r' => arc || cycle || g10,
+                b'q' => matches!(mode, Some(730 | 830)),
+                b'p' => {
+                    arc || cycle
+                        || g10
+                        || nonmodal == Some(40)
+                        || b.m98
+                        || b.g(group::PATH) == Some(640)
+                }
+                b'l' => cycle || g10 || b.m98,
+                b'h' => b.g(group::TOOL_LENGTH) == Some(430),
+                _ => false,
+            };
+            if !used {
+                let at = b.at[block::slot(c)] as usize;
+                let value = b.val[block::slot(c)];
+                self.warn_code(
+                    lb,
+                    at,
+                    format!(
+                        "{}{value} ignored: it has no meaning in this block",
+                        char::from(c.to_ascii_uppercase())
+                    ),
+                );
+            }
+        }
     }
 
     fn motion_step(&mut self, b: &Block, g53: bool, axes_taken: bool) -> Res<()> {
