@@ -128,3 +128,33 @@ fn malformed_program_names_file_line_and_column() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("missing.ngc"));
 }
+
+#[test]
+fn camotics_project_supplies_tools_and_workpiece() {
+    let o = swarf(&[
+        "path",
+        &shared("gcode/camotics_heart.ngc"),
+        "--tools",
+        &shared("gcode/camotics_heart.camotics"),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    assert_eq!(
+        j["workpiece"]["min"],
+        serde_json::json!([-40.0, -40.0, -12.7]),
+        "{j}"
+    );
+    assert_eq!(
+        j["workpiece"]["max"],
+        serde_json::json!([40.0, 40.0, 0.0]),
+        "{j}"
+    );
+    // Tool 1 is a 0.1 in ball nose in the project.
+    let t1 = &j["tool_definitions"]["1"]["cutter"];
+    assert!(
+        (t1["diameter_mm"].as_f64().unwrap() - 2.54).abs() < 1e-9,
+        "{j}"
+    );
+    assert_eq!(t1["kind"], "ball", "{j}");
+}

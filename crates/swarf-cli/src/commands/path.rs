@@ -24,6 +24,15 @@ pub(crate) struct PathReport {
     tool_definitions: BTreeMap<u32, ToolReport>,
     /// Tool numbers the program uses that nothing defines.
     undefined_tools: Vec<u32>,
+    /// Workpiece bounds stated by the tool table (CAMotics projects), mm; absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    workpiece: Option<Workpiece>,
+}
+
+#[derive(Serialize)]
+struct Workpiece {
+    min: [f64; 3],
+    max: [f64; 3],
 }
 
 #[derive(Serialize)]
@@ -97,10 +106,15 @@ impl PathReport {
         table: Option<&ToolTable>,
     ) -> Result<Self> {
         let (tool_definitions, undefined_tools) = resolve_tools(program, single, table)?;
+        let workpiece = table.and_then(|t| t.workpiece).map(|b| Workpiece {
+            min: b.min.to_array(),
+            max: b.max.to_array(),
+        });
         Ok(Self {
             summary: summarize(program),
             tool_definitions,
             undefined_tools,
+            workpiece,
         })
     }
 

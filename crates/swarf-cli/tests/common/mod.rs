@@ -4,7 +4,7 @@
 use std::process::{Command, Output};
 
 /// Runs `swarf` with the arguments and returns its output.
-pub fn swarf(args: &[&str]) -> Output {
+pub(crate) fn swarf(args: &[&str]) -> Output {
     Command::new(env!("CARGO_BIN_EXE_swarf"))
         .args(args)
         .output()
@@ -12,22 +12,22 @@ pub fn swarf(args: &[&str]) -> Output {
 }
 
 /// Path of a file in the shared developer data set.
-pub fn shared(rel: &str) -> String {
+pub(crate) fn shared(rel: &str) -> String {
     format!("{}/../../../shared/data/{rel}", env!("CARGO_MANIFEST_DIR"))
 }
 
 /// Stdout as text.
-pub fn stdout(o: &Output) -> String {
+pub(crate) fn stdout(o: &Output) -> String {
     String::from_utf8_lossy(&o.stdout).into_owned()
 }
 
 /// Stderr as text.
-pub fn stderr(o: &Output) -> String {
+pub(crate) fn stderr(o: &Output) -> String {
     String::from_utf8_lossy(&o.stderr).into_owned()
 }
 
 /// Parses stdout as JSON, failing the test with stderr when it is not.
-pub fn json(o: &Output) -> serde_json::Value {
+pub(crate) fn json(o: &Output) -> serde_json::Value {
     serde_json::from_slice(&o.stdout)
         .unwrap_or_else(|e| panic!("stdout is not JSON ({e}); stderr: {}", stderr(o)))
 }

@@ -86,6 +86,8 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) rpm: f64,
     pub(crate) dir: SpindleDir,
     pub(crate) tool: u32,
+    /// A tool has been loaded (M6, or assumed at the first motion after a lone T word).
+    tool_loaded: bool,
     /// Current position, program coordinates, mm / degrees.
     pub(crate) p: [f64; 6],
     /// Active coordinate system, 1 (G54) … 9 (G59.3).
@@ -145,6 +147,7 @@ impl<'t, 's> Interp<'t, 's> {
             rpm: 0.0,
             dir: SpindleDir::Stopped,
             tool: 0,
+            tool_loaded: false,
             p: [0.0; 6],
             coord: 1,
             g5x_table: [[0.0; 6]; 9],
@@ -255,7 +258,32 @@ impl<'t, 's> Interp<'t, 's> {
 
     #[inline]
     pub(crate) fn emit(&mut self, e: Canon<'_>) {
+        if !self.tool_loaded
+            && self.tool != 0
+            && matches!(
+                e,
+                Canon::Traverse { .. } | Canon::Feed { .. } | Canon::Arc { .. }
+            )
+        {
+            self.assume_prepared_tool_loaded();
+        }
         self.sink.emit(self.cur_line, &e);
+    }
+
+    /// Programs for CAMotics, GRBL and many hobby controllers select the tool with a lone `T`
+    /// word and never say M6. Rather than simulate with no cutter, the prepared tool is taken as
+    /// loaded when the first motion comes, and the assumption is reported.
+    #[cold]
+    fn assume_prepared_tool_loaded(&mut self) {
+        self.tool_loaded = true;
+        let tool = self.tool;
+        self.sink.emit(self.cur_line, &Canon::ToolChange { tool });
+        self.warn_at(
+            0,
+            format!(
+                "T{tool} was selected but never loaded with M6: it is assumed to be in the spindle"
+            ),
+        );
     }
 
     pub(crate) fn emit_offsets(&mut self) {
@@ -455,6 +483,7 @@ impl<'t, 's> Interp<'t, 's> {
             self.tool = t as u32;
         }
         if b.m6 {
+            self.tool_loaded = true;
             self.emit(Canon::ToolChange { tool: self.tool });
         }
         if let Some(m) = b.m_spindle {
