@@ -5,10 +5,10 @@
 //! `SWARF_BENCH_REPORT=1` it first prints a one-shot report (moves/s, ray-interval updates/s,
 //! extrapolation to 50,000 moves, peak memory from `/proc/self/status` VmHWM).
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use criterion::{criterion_main, BenchmarkId, Criterion, Throughput};
 use std::time::Instant;
 use swarf_geom::math::Vec3;
-use swarf_stock::{ToolShape, TriDexel};
+use swarf_stock::{ConvexProfile, CutStats, SweptConvex, ToolShape, TriDexel};
 use swarf_tool::Cutter;
 
 /// Height of the wavy finishing surface (tip of the ball), mm.
@@ -48,13 +48,14 @@ fn vm_hwm_kib() -> Option<u64> {
     line.split_whitespace().nth(1)?.parse().ok()
 }
 
-fn run(stock: &mut TriDexel, tool: &ToolShape, pts: &[Vec3]) -> u64 {
-    let mut updates = 0;
+/// Runs the moves; returns the summed statistics.
+fn run(stock: &mut TriDexel, tool: &ToolShape, pts: &[Vec3]) -> CutStats {
+    let mut st = CutStats::default();
     for w in pts.windows(2) {
         let c = stock.cut_linear(tool, w[0], w[1], Vec3::Z);
-        updates += c.cutting.updates + c.non_cutting.updates;
+        st = st.merged(c.cutting).merged(c.non_cutting);
     }
-    updates
+    st
 }
 
 fn new_stock(h: f64) -> TriDexel {
@@ -88,15 +89,22 @@ fn report() {
         st.bytes_per_interval,
         st.bytes as f64 / 1e6
     );
-    for (name, secs, u) in [
+    for (name, secs, st) in [
         ("first pass (raw block)", first, upd),
         ("second pass (same path)", second, upd2),
     ] {
+        let per = |a: [u64; 3]| a.map(|x| (x as f64 / n as f64).round() as u64);
         println!(
             "  {name}: {secs:.3} s, {:.0} moves/s, {:.3e} ray-interval updates/s, 50,000 moves ≈ {:.1} s",
             n as f64 / secs,
-            u as f64 / secs,
+            st.updates as f64 / secs,
             secs / n as f64 * 50_000.0
+        );
+        println!(
+            "    per move, X/Y/Z families: rays visited {:?}, exact queries {:?}, rays updated {:?}",
+            per(st.visited_per_family),
+            per(st.tested_per_family),
+            per(st.updates_per_family)
         );
     }
     if let Some(k) = vm_hwm_kib() {
@@ -104,7 +112,43 @@ fn report() {
     }
 }
 
+/// The exact-interval kernel alone: 10,000 parallel lines along X, Y or Z through a 0.5 mm
+/// finishing move of a Ø10 ball (no pruning: every piece is evaluated).
+fn bench_kernel(c: &mut Criterion) {
+    let cutter = Cutter::ball(10.0).unwrap();
+    let prof = ConvexProfile::from_solid(cutter.cutting_solid()).unwrap();
+    let sw = SweptConvex::new(
+        &prof,
+        Vec3::new(50.0, 50.0, 40.0),
+        Vec3::Z,
+        Vec3::new(0.5, 0.0, 0.02),
+    );
+    let mut g = c.benchmark_group("line_interval_ball10");
+    g.throughput(Throughput::Elements(10_000));
+    for (k, name) in ["x", "y", "z"].iter().enumerate() {
+        let origins: Vec<Vec3> = (0..10_000)
+            .map(|n| {
+                let (a, b) = (0.105 * (n % 100) as f64, 0.1 * (n / 100) as f64);
+                let mut o = Vec3::new(45.0 + a, 45.0 + b, 40.0 + b);
+                o[k] = 0.0;
+                if k == 2 {
+                    o.y = 45.0 + b;
+                }
+                o
+            })
+            .collect();
+        g.bench_with_input(BenchmarkId::new("family", name), &k, |bch, &k| {
+            bch.iter(|| {
+                let mut lb = sw.lines(Vec3::AXES[k]);
+                origins.iter().filter_map(|&o| lb.interval(o)).count()
+            })
+        });
+    }
+    g.finish();
+}
+
 fn bench(c: &mut Criterion) {
+    bench_kernel(c);
     if std::env::var_os("SWARF_BENCH_REPORT").is_some() {
         report();
     }
@@ -117,7 +161,7 @@ fn bench(c: &mut Criterion) {
         g.bench_with_input(BenchmarkId::new("500_moves_h", h), &h, |b, _| {
             b.iter_batched_ref(
                 || base.clone(),
-                |s| run(s, &tool, &pts),
+                |s| run(s, &tool, &pts).updates,
                 criterion::BatchSize::LargeInput,
             )
         });
@@ -125,5 +169,9 @@ fn bench(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, bench);
-criterion_main!(benches);
+// criterion_group! generates an undocumented public function.
+#[allow(missing_docs)]
+mod group {
+    criterion::criterion_group!(benches, super::bench);
+}
+criterion_main!(group::benches);

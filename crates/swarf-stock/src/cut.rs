@@ -63,14 +63,8 @@ pub struct SegmentCut {
 
 impl SegmentCut {
     fn add(&mut self, o: SegmentCut) {
-        for k in 0..3 {
-            self.cutting.removed_length[k] += o.cutting.removed_length[k];
-            self.non_cutting.removed_length[k] += o.non_cutting.removed_length[k];
-        }
-        self.cutting.rays_tested += o.cutting.rays_tested;
-        self.cutting.updates += o.cutting.updates;
-        self.non_cutting.rays_tested += o.non_cutting.rays_tested;
-        self.non_cutting.updates += o.non_cutting.updates;
+        self.cutting = self.cutting.merged(o.cutting);
+        self.non_cutting = self.non_cutting.merged(o.non_cutting);
     }
 }
 
@@ -152,7 +146,7 @@ impl TriDexel {
 /// is linear in the parameter on both the arc and the chord, so the distance between points of
 /// equal parameter is the in-plane sagitta of the larger radius (a bound).
 pub fn arc_chords(radius: f64, sweep: f64, tol: f64) -> usize {
-    if !(radius > tol && tol > 0.0) || !sweep.is_finite() {
+    if !(radius > tol && tol > 0.0 && sweep.is_finite()) {
         return 1.max((sweep / std::f64::consts::FRAC_PI_2).ceil() as usize);
     }
     let step = 2.0 * (1.0 - tol / radius).acos();

@@ -42,7 +42,7 @@ pub fn dexel_length(d: &[Interval]) -> f64 {
 
 /// Removes `[lo, hi]` from the dexel; returns the length removed.
 pub fn subtract(d: &mut Dexel, lo: f64, hi: f64) -> f64 {
-    if !(hi > lo) {
+    if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
         return 0.0;
     }
     let n = d.len();

@@ -29,6 +29,23 @@
 //! Everything else is exact up to floating point: the only discretisation is the ray grid
 //! itself (the volume error shrinks with `h`) and the chords of arcs.
 //!
+//! # Work per move
+//! Material first: a move visits only the tiles of rays that cross its swept bounding box;
+//! a tile is skipped when its material bound cannot meet a cheap range of the sweep along its
+//! rays ([`SweptConvex::block_range`]: for a tool axis along a world axis, the lowest reach of
+//! the profile at the tile's distance from the tip path, or the chord of the stadium of the
+//! largest radius at the tile's heights); then each ray is skipped the same way
+//! ([`SweptConvex::dexel_range`]); only rays whose material meets that range get the exact
+//! interval, and within it the pieces that cannot move its ends inside the material are not
+//! evaluated. Tile rows of the three families are cut in parallel (rayon); the per-ray loop
+//! does not allocate.
+//!
+//! # Accuracy parameters (one place)
+//! [`DEFAULT_CHORDAL_TOLERANCE_MM`] (arcs, reported in [`SimulationReport`]), the grid
+//! resolution (per stock), [`sweep::AXIS_SNAP`] and [`sweep::BAND_EPS`] (floating-point
+//! guards of the exact cut, far below any resolution), [`dexel::MIN_INTERVAL_MM`] (slivers
+//! dropped) and [`cut::COLLISION_EPS_MM`] (removal that counts as a collision).
+//!
 //! ```
 //! use swarf_geom::math::Vec3;
 //! use swarf_stock::{ToolShape, TriDexel};
@@ -57,5 +74,5 @@ pub use dexel::{Dexel, Interval};
 pub use error::StockError;
 pub use mesh::MeshOptions;
 pub use simulate::{simulate, Collision, SimOptions, SimulationReport, Tools};
-pub use sweep::{ConvexProfile, Element, SweepShape, SweptConvex};
+pub use sweep::{ConvexProfile, Element, LineBatch, SweepShape, SweptConvex};
 pub use tridexel::{CutStats, DexelFamily, Grid, StockStats, TriDexel, MAX_RAYS, TILE};

@@ -69,7 +69,61 @@ pub fn weld(triangles: &[[Vec3; 3]]) -> (Vec<Vec3>, Vec<[u32; 3]>) {
     (verts, idx)
 }
 
+/// Triangles of an STL file (binary or ASCII; normals are ignored, units taken as mm).
+pub fn read_stl(bytes: &[u8]) -> Result<Vec<[Vec3; 3]>, StockError> {
+    let bad = |why: &str| StockError::BadMesh(format!("STL: {why}"));
+    // Binary: 80-byte header, u32 count, 50 bytes per triangle — when the size matches.
+    if bytes.len() >= 84 {
+        let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
+        if bytes.len() == 84 + 50 * n {
+            let f = |o: usize| {
+                f32::from_le_bytes([bytes[o], bytes[o + 1], bytes[o + 2], bytes[o + 3]]) as f64
+            };
+            return Ok((0..n)
+                .map(|t| {
+                    let b = 84 + 50 * t + 12;
+                    [0, 1, 2]
+                        .map(|v| Vec3::new(f(b + 12 * v), f(b + 12 * v + 4), f(b + 12 * v + 8)))
+                })
+                .collect());
+        }
+    }
+    let text =
+        std::str::from_utf8(bytes).map_err(|_| bad("neither binary (size mismatch) nor ASCII"))?;
+    let mut tris = Vec::new();
+    let mut cur: Vec<Vec3> = Vec::with_capacity(3);
+    for (ln, line) in text.lines().enumerate() {
+        let mut w = line.split_whitespace();
+        if w.next() == Some("vertex") {
+            let c: Vec<f64> = w
+                .map(str::parse)
+                .collect::<Result<_, _>>()
+                .map_err(|_| bad(&format!("line {}: bad vertex", ln + 1)))?;
+            if c.len() != 3 {
+                return Err(bad(&format!(
+                    "line {}: a vertex needs 3 coordinates",
+                    ln + 1
+                )));
+            }
+            cur.push(Vec3::new(c[0], c[1], c[2]));
+            if cur.len() == 3 {
+                tris.push([cur[0], cur[1], cur[2]]);
+                cur.clear();
+            }
+        }
+    }
+    if tris.is_empty() {
+        return Err(bad("no triangles"));
+    }
+    Ok(tris)
+}
+
 impl TriDexel {
+    /// A stock from the bytes of an STL file (binary or ASCII), resolution `h`.
+    pub fn from_stl_bytes(bytes: &[u8], h: f64, opts: MeshOptions) -> Result<Self, StockError> {
+        Self::from_triangles(&read_stl(bytes)?, h, opts)
+    }
+
     /// A stock from a closed triangle soup (identical vertices are welded), resolution `h`.
     ///
     /// Errors with [`StockError::OpenMesh`] (count and the first edges' coordinates) when some
@@ -194,6 +248,31 @@ mod tests {
         for v in s.volumes() {
             assert!((v - 240.0).abs() < 1e-9, "{v}");
         }
+    }
+
+    #[test]
+    fn stl_binary_and_ascii() {
+        let tris = box_tris(Vec3::ZERO, Vec3::new(2.0, 3.0, 4.0));
+        let mut bin = vec![0u8; 80];
+        bin.extend_from_slice(&(tris.len() as u32).to_le_bytes());
+        let mut ascii = String::from("solid b\n");
+        for t in &tris {
+            bin.extend_from_slice(&[0u8; 12]);
+            ascii.push_str("facet normal 0 0 0\nouter loop\n");
+            for v in t {
+                for c in [v.x, v.y, v.z] {
+                    bin.extend_from_slice(&(c as f32).to_le_bytes());
+                }
+                ascii.push_str(&format!("vertex {} {} {}\n", v.x, v.y, v.z));
+            }
+            bin.extend_from_slice(&[0u8; 2]);
+            ascii.push_str("endloop\nendfacet\n");
+        }
+        for bytes in [bin.as_slice(), ascii.as_bytes()] {
+            let s = TriDexel::from_stl_bytes(bytes, 0.25, MeshOptions::default()).unwrap();
+            assert!((s.volume() - 24.0).abs() < 1e-9);
+        }
+        assert!(read_stl(b"solid x\nendsolid\n").is_err());
     }
 
     #[test]

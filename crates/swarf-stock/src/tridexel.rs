@@ -182,15 +182,28 @@ pub struct CutStats {
     pub rays_tested: u64,
     /// Rays whose intervals changed.
     pub updates: u64,
+    /// Rays visited per family (X, Y, Z): in a tile that survived the tile test, with material
+    /// in the sweep's bounding range.
+    pub visited_per_family: [u64; 3],
+    /// `rays_tested` per family (X, Y, Z).
+    pub tested_per_family: [u64; 3],
+    /// `updates` per family (X, Y, Z).
+    pub updates_per_family: [u64; 3],
 }
 
 impl CutStats {
-    fn add(mut self, o: CutStats) -> CutStats {
+    /// The sum of two.
+    pub fn merged(mut self, o: CutStats) -> CutStats {
         for k in 0..3 {
             self.removed_length[k] += o.removed_length[k];
         }
         self.rays_tested += o.rays_tested;
         self.updates += o.updates;
+        for k in 0..3 {
+            self.tested_per_family[k] += o.tested_per_family[k];
+            self.visited_per_family[k] += o.visited_per_family[k];
+            self.updates_per_family[k] += o.updates_per_family[k];
+        }
         self
     }
 
@@ -425,12 +438,12 @@ impl TriDexel {
             items
                 .into_iter()
                 .map(run)
-                .fold(CutStats::default(), CutStats::add)
+                .fold(CutStats::default(), CutStats::merged)
         } else {
             items
                 .into_par_iter()
                 .map(run)
-                .reduce(CutStats::default, CutStats::add)
+                .reduce(CutStats::default, CutStats::merged)
         }
     }
 }
@@ -466,6 +479,23 @@ impl Work<'_> {
                 continue;
             }
             let ti = self.ti0 + tn;
+            // Material-first at tile level: skip the tile when no part's sweep can reach its
+            // material range.
+            let half = 0.5 * TILE as f64 * grid.h[self.u].max(grid.h[self.v]);
+            let mut centre = Vec3::ZERO;
+            centre[self.u] = grid.min[self.u]
+                + (ti * TILE) as f64 * grid.h[self.u]
+                + 0.5 * TILE as f64 * grid.h[self.u];
+            centre[self.v] = grid.min[self.v]
+                + (self.tj * TILE) as f64 * grid.h[self.v]
+                + 0.5 * TILE as f64 * grid.h[self.v];
+            let reach = parts.iter().any(|p| {
+                p.block_range(self.k, centre, half)
+                    .is_some_and(|(a, b)| bound[0] < b && bound[1] > a)
+            });
+            if !reach {
+                continue;
+            }
             let mut changed = false;
             for jj in 0..TILE {
                 let j = self.tj * TILE + jj;
@@ -482,19 +512,36 @@ impl Work<'_> {
                     if !overlaps(d, tmin, tmax) {
                         continue;
                     }
-                    let (m_lo, m_hi) = (d[0].enter, d[d.len() - 1].exit);
+                    st.visited_per_family[self.k] += 1;
                     let mut origin = Vec3::ZERO;
                     origin[self.u] = grid.center(self.u, i);
                     origin[self.v] = cv;
-                    st.rays_tested += 1;
                     let mut removed = 0.0;
+                    let mut tested = false;
                     for (p, dc) in parts.iter().zip(&dcs) {
-                        if let Some((lo, hi)) = p.line_interval(origin, dc, Some((self.k, m_lo, m_hi)), &mut scratch) {
+                        // Material-first: a cheap range that holds the ray's part of this
+                        // sweep; no overlap with the material, no geometry.
+                        let Some((a, b)) = p.dexel_range(origin, self.k) else {
+                            continue;
+                        };
+                        if d.is_empty() || !overlaps(d, a, b) {
+                            continue;
+                        }
+                        tested = true;
+                        let (m_lo, m_hi) = (d[0].enter.max(a), d[d.len() - 1].exit.min(b));
+                        if let Some((lo, hi)) =
+                            p.line_interval(origin, dc, Some((self.k, m_lo, m_hi)), &mut scratch)
+                        {
                             removed += subtract(d, lo, hi);
                         }
                     }
+                    if tested {
+                        st.rays_tested += 1;
+                        st.tested_per_family[self.k] += 1;
+                    }
                     if removed > 0.0 {
                         st.updates += 1;
+                        st.updates_per_family[self.k] += 1;
                         st.removed_length[self.k] += removed;
                         changed = true;
                     }

@@ -4,7 +4,6 @@
 
 use super::{Acc, DirConsts, BAND_EPS};
 use swarf_geom::math::{Vec2, Vec3};
-use swarf_geom::poly::quadratic_roots;
 
 /// Crossings of the line `o + t·d` with the surface of revolution of the segment `p → q`.
 #[inline]
@@ -31,7 +30,8 @@ pub(crate) fn cap(p: Vec2, q: Vec2, o: Vec3, d: Vec3, acc: &mut Acc) {
     let qa = d.x * d.x + d.y * d.y - kd * kd;
     let qb = 2.0 * (o.x * d.x + o.y * d.y - kd * a0);
     let qc = o.x * o.x + o.y * o.y - a0 * a0;
-    for &t in quadratic_roots(qa, qb, qc).as_slice() {
+    let (rts, nr) = super::quad(qa, qb, qc);
+    for &t in &rts[..nr] {
         let z = o.z + t * d.z;
         if z >= lo.y - BAND_EPS && z <= hi.y + BAND_EPS && a0 + kd * t >= -BAND_EPS {
             acc.add(t);

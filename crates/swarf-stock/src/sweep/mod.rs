@@ -22,15 +22,15 @@
 //! (`v = (a, 0, b)`; `a = 0` for plunges along the axis, where any x axis does, unlike the
 //! frame of Aras eq. 4.20 which is undefined there):
 //! * sphere (ball corner): the great circle `⊥ v`; its extrusion is the cylinder of radius
-//!   `r` about the centre's path (a capsule side) — [`sphere`];
+//!   `r` about the centre's path (a capsule side) — `sphere.rs`;
 //! * cone and cylinder sides: the generator lines at `cos θ = −n_z·b / (n_ρ·a)`, whose
-//!   extrusions are parallelograms — [`line`];
+//!   extrusions are parallelograms — `line.rs`;
 //! * profile joints (sharp or smooth circles, the flat bottom's edge, the top cap's edge): the
-//!   circle extruded along `v`, an elliptic cylinder — [`circle`];
+//!   circle extruded along `v`, an elliptic cylinder — `circle.rs`;
 //! * torus (bull-nose corner): the spine circle offset by `±r·m(θ)`, `m = unit(c′ × v)`, a
 //!   degree-8 polynomial in `tan(θ/2)` solved by guaranteed root isolation
 //!   (`swarf_geom::poly`), with the horizontal move (where `m` is undefined on two meridians)
-//!   in closed form — [`torus`].
+//!   in closed form — `torus.rs`.
 //!
 //! Flat faces (discs) parallel to `v` are grazing as a whole, but their extrusion's boundary
 //! is made of the joint circles' extrusions and the caps, so they need no candidates of their
@@ -83,6 +83,27 @@ impl Acc {
     }
 }
 
+/// Real roots of `a·t² + b·t + c` (cancellation-free; linear when `a = 0`), inlined here for
+/// the per-ray loop (same convention as `swarf_geom::poly::quadratic_roots`).
+#[inline(always)]
+pub(crate) fn quad(a: f64, b: f64, c: f64) -> ([f64; 2], usize) {
+    if a == 0.0 {
+        if b != 0.0 {
+            return ([-c / b, 0.0], 1);
+        }
+        return ([0.0; 2], 0);
+    }
+    let disc = b * b - 4.0 * a * c;
+    if disc.is_nan() || disc < 0.0 {
+        return ([0.0; 2], 0);
+    }
+    if disc == 0.0 {
+        return ([-b / (2.0 * a), 0.0], 1);
+    }
+    let q = -0.5 * (b + b.signum() * disc.sqrt());
+    ([q / a, c / q], 2)
+}
+
 /// Per-thread scratch space (root lists) so the per-ray loop never allocates.
 #[derive(Debug, Default)]
 pub struct Scratch {
@@ -118,6 +139,19 @@ pub struct SweptConvex<'a> {
     v: Vec3,
     bbox: Aabb,
     units: SmallVec<[Unit; 10]>,
+    /// When the tool axis is a world axis `k` (+1 along it): the tip's cross coordinates at the
+    /// start and end, and its lowest coordinate along `k` over the move.
+    axial: Option<Axial>,
+}
+
+/// The move seen along a tool axis that is the world axis `k`.
+#[derive(Clone, Copy, Debug)]
+struct Axial {
+    k: usize,
+    c0: (f64, f64),
+    c1: (f64, f64),
+    low: f64,
+    high: f64,
 }
 
 /// Box of the band `z ∈ [z0, z1]` of radius ≤ `rho` about `axis` from `tip`, at the start and
@@ -136,8 +170,25 @@ fn band_box(tip: Vec3, axis: Vec3, delta: Vec3, z0: f64, z1: f64, rho: f64) -> A
     bbox.inflated(1e-9)
 }
 
+/// Line queries sharing one direction against one sweep (see [`SweptConvex::lines`]).
+#[derive(Debug)]
+pub struct LineBatch<'s, 'a> {
+    sweep: &'s SweptConvex<'a>,
+    dc: DirConsts,
+    scratch: Scratch,
+}
+
+impl LineBatch<'_, '_> {
+    /// The interval of the line through `origin` inside the sweep (as
+    /// [`SweptConvex::ray_interval`]).
+    pub fn interval(&mut self, origin: Vec3) -> Option<(f64, f64)> {
+        self.sweep
+            .line_interval(origin, &self.dc, None, &mut self.scratch)
+    }
+}
+
 /// Quantities of one line direction against one move, shared by all parallel lines.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub(crate) struct DirConsts {
     /// Direction in the move frame (unit).
     pub(crate) d: Vec3,
@@ -153,6 +204,29 @@ pub(crate) struct DirConsts {
     pub(crate) det: f64,
     /// False when the line is parallel to the move or the move has zero length.
     pub(crate) envelope: bool,
+    /// The pre-test's projection: basis of the plane ⊥ d, projected axis-segment start,
+    /// axis segment and move, the parallelogram's determinant and scale.
+    near: Near,
+    /// Order in which units are evaluated for axis-aligned rays: the unit reaching lowest
+    /// along the ray, the one reaching highest, then the rest (so the skip test of the
+    /// others usually succeeds).
+    order: [u8; MAX_UNITS],
+}
+
+/// Most units (elements + joints) a profile may have for the batched query.
+const MAX_UNITS: usize = 16;
+
+/// Precomputed projection for [`SweptConvex::near`].
+#[derive(Clone, Copy, Debug)]
+struct Near {
+    e1: Vec3,
+    e2: Vec3,
+    a: (f64, f64),
+    ax: (f64, f64),
+    vv: (f64, f64),
+    det: f64,
+    scale: f64,
+    rr: f64,
 }
 
 impl DirConsts {
@@ -205,12 +279,24 @@ impl<'a> SweptConvex<'a> {
                 bbox: band_box(tip, axis, delta, c.y, c.y, c.x),
             });
         }
+        let axial = (0..3).find(|&k| axis[k] == 1.0).map(|k| {
+            let (u, w) = ((k + 1) % 3, (k + 2) % 3);
+            let end = tip + delta;
+            Axial {
+                k,
+                c0: (tip[u], tip[w]),
+                c1: (end[u], end[w]),
+                low: tip[k].min(end[k]),
+                high: tip[k].max(end[k]),
+            }
+        });
         Self {
             prof,
             frame,
             v,
             bbox,
             units,
+            axial,
         }
     }
 
@@ -229,6 +315,112 @@ impl<'a> SweptConvex<'a> {
         self.line_interval(origin, &dc, None, &mut Scratch::new())
     }
 
+    /// A range along the ray through `origin` (with `origin[k] = 0`) parallel to world axis
+    /// `k` that holds the ray's whole intersection with the sweep; `None` when the ray misses
+    /// the sweep. Cheap bounds for the common 3-axis case (tool axis = a world axis):
+    /// * a ray along the tool axis: from the lowest tip height plus the profile's lower height
+    ///   at the ray's least distance from the tip's path (exact for moves perpendicular to the
+    ///   axis);
+    /// * a ray across the tool axis: the chord of the stadium around the tip's path whose
+    ///   radius is the largest profile radius at the heights the ray can meet (exact for moves
+    ///   perpendicular to the axis).
+    ///
+    /// Otherwise the sweep's bounding box.
+    pub fn dexel_range(&self, origin: Vec3, k: usize) -> Option<(f64, f64)> {
+        self.block_range(k, origin, 0.0)
+    }
+
+    /// [`SweptConvex::dexel_range`] for all the rays along axis `k` whose cross coordinates
+    /// are within `half` of those of `centre` (a square block of rays, e.g. a tile).
+    pub fn block_range(&self, k: usize, centre: Vec3, half: f64) -> Option<(f64, f64)> {
+        let origin = centre;
+        let bb = &self.bbox;
+        let full = (bb.min[k], bb.max[k]);
+        let Some(ax) = self.axial else {
+            return Some(full);
+        };
+        let (u, w) = ((ax.k + 1) % 3, (ax.k + 2) % 3);
+        if ax.k == k {
+            let q = (origin[u] - ax.c0.0, origin[w] - ax.c0.1);
+            let e = (ax.c1.0 - ax.c0.0, ax.c1.1 - ax.c0.1);
+            let ee = e.0 * e.0 + e.1 * e.1;
+            let t = if ee > 0.0 {
+                ((q.0 * e.0 + q.1 * e.1) / ee).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            let (dx, dy) = (q.0 - t * e.0, q.1 - t * e.1);
+            // Every ray of the block is within half·√2 of the centre's distance.
+            let rho = ((dx * dx + dy * dy).sqrt() - half * std::f64::consts::SQRT_2).max(0.0);
+            let z = self.prof.lower_z(rho)?;
+            return Some((ax.low + z, full.1));
+        }
+        // Across the axis: the ray's height along the tool axis is fixed (within ±half); a
+        // stadium grown by `half` holds the chords of all the block's rays.
+        let zr = origin[ax.k];
+        let r = self
+            .prof
+            .max_radius_in(zr - half - ax.high, zr + half - ax.low)?
+            * (1.0 + 1e-12)
+            + 1e-9
+            + half;
+        // 2-D, in the plane ⊥ tool axis: coordinates (along the ray, across it).
+        let j = 3 - k - ax.k;
+        let pick = |c: (f64, f64), axis: usize| if axis == u { c.0 } else { c.1 };
+        let (a0, b0) = (pick(ax.c0, k), pick(ax.c0, j));
+        let (a1, b1) = (pick(ax.c1, k), pick(ax.c1, j));
+        let qr = origin[j];
+        let mut lo = f64::INFINITY;
+        let mut hi = f64::NEG_INFINITY;
+        for (ca, cb) in [(a0, b0), (a1, b1)] {
+            let dq = qr - cb;
+            let h2 = r * r - dq * dq;
+            if h2 >= 0.0 {
+                let hh = h2.sqrt();
+                lo = lo.min(ca - hh);
+                hi = hi.max(ca + hh);
+            }
+        }
+        // The band around the segment: |(x − c0)·n| ≤ r and 0 ≤ (x − c0)·e ≤ |e|².
+        let (ea, eb) = (a1 - a0, b1 - b0);
+        let ee = ea * ea + eb * eb;
+        if ee > 0.0 {
+            let el = ee.sqrt();
+            let (na, nb) = (-eb / el, ea / el);
+            let dq = qr - b0;
+            let mut range = (f64::NEG_INFINITY, f64::INFINITY);
+            let mut clip = |coef: f64, off: f64, lo_v: f64, hi_v: f64| {
+                // lo_v ≤ coef·(p − a0) + off ≤ hi_v
+                if coef.abs() < 1e-300 {
+                    if off < lo_v || off > hi_v {
+                        range = (1.0, 0.0);
+                    }
+                } else {
+                    let (x0, x1) = ((lo_v - off) / coef + a0, (hi_v - off) / coef + a0);
+                    range.0 = range.0.max(x0.min(x1));
+                    range.1 = range.1.min(x0.max(x1));
+                }
+            };
+            clip(na, nb * dq, -r, r);
+            clip(ea, eb * dq, 0.0, ee);
+            if range.0 <= range.1 {
+                lo = lo.min(range.0);
+                hi = hi.max(range.1);
+            }
+        }
+        (lo <= hi).then_some((lo.max(full.0), hi.min(full.1)))
+    }
+
+    /// Queries for many lines sharing the direction `dir` (unit, workpiece frame): the
+    /// per-direction constants are computed once.
+    pub fn lines(&self, dir: Vec3) -> LineBatch<'_, 'a> {
+        LineBatch {
+            sweep: self,
+            dc: self.dir_consts(dir.normalize()),
+            scratch: Scratch::new(),
+        }
+    }
+
     /// Constants for lines with world direction `dir` (unit).
     pub(crate) fn dir_consts(&self, dir: Vec3) -> DirConsts {
         let d = self.frame.vector_to_local(dir);
@@ -237,6 +429,40 @@ impl<'a> SweptConvex<'a> {
         let vv = v.dot(v);
         let dv = d.dot(v);
         let det = w.length_squared();
+        let p = self.prof;
+        let (e1, e2) = d.any_orthonormal_pair();
+        let pr = |x: Vec3| (x.dot(e1), x.dot(e2));
+        let ax = pr(Vec3::new(0.0, 0.0, p.z_max() - p.z_min()));
+        let vp = pr(v);
+        let r = p.bound_radius() * (1.0 + 1e-12) + 1e-9;
+        let near = Near {
+            e1,
+            e2,
+            a: pr(Vec3::new(0.0, 0.0, p.z_min())),
+            ax,
+            vv: vp,
+            det: ax.0 * vp.1 - ax.1 * vp.0,
+            scale: (ax.0 * ax.0 + ax.1 * ax.1).max(vp.0 * vp.0 + vp.1 * vp.1),
+            rr: r * r,
+        };
+        let mut order = [0u8; MAX_UNITS];
+        let n = self.units.len().min(MAX_UNITS);
+        for (i, o) in order.iter_mut().enumerate().take(n) {
+            *o = i as u8;
+        }
+        if let Some(k) = (0..3).find(|&k| dir[k].abs() == 1.0) {
+            let lowest = (0..n)
+                .min_by(|&a, &b| self.units[a].bbox.min[k].total_cmp(&self.units[b].bbox.min[k]));
+            let highest = (0..n)
+                .max_by(|&a, &b| self.units[a].bbox.max[k].total_cmp(&self.units[b].bbox.max[k]));
+            let mut w = 0;
+            for first in [lowest, highest].into_iter().flatten() {
+                if let Some(pos) = order[w..n].iter().position(|&x| x as usize == first) {
+                    order.swap(w, w + pos);
+                    w += 1;
+                }
+            }
+        }
         DirConsts {
             d,
             v,
@@ -245,6 +471,8 @@ impl<'a> SweptConvex<'a> {
             vv,
             det,
             envelope: vv > 0.0 && det > 1e-20 * vv,
+            near,
+            order,
         }
     }
 
@@ -268,17 +496,39 @@ impl<'a> SweptConvex<'a> {
         // few mm instead of hundreds in the quartic and octic).
         let t0 = -o_full.dot(d);
         let o = o_full + d * t0;
-        if !self.near(o, dc) {
+        // (In dexel mode with the tool axis along a world axis, the caller's range test has
+        // already placed the ray near the sweep.)
+        let prechecked = dexel.is_some() && self.axial.is_some();
+        if !prechecked && !self.near(o, dc) {
             return None;
         }
         let mut acc = Acc::EMPTY;
         let prof = self.prof;
         let v = self.v;
-        for unit in &self.units {
+        // (Profiles of more than MAX_UNITS units — never built from APT cutters or holders —
+        // are evaluated without the skip test.)
+        let dexel = if self.units.len() > MAX_UNITS {
+            None
+        } else {
+            dexel
+        };
+        let all: SmallVec<[u8; 32]>;
+        let order: &[u8] = if dexel.is_some() {
+            &dc.order[..self.units.len()]
+        } else {
+            all = (0..self.units.len() as u8).collect();
+            &all
+        };
+        for &ui in order {
+            let unit = &self.units[ui as usize];
             if let Some((k, m_lo, m_hi)) = dexel {
                 let (u, w) = ((k + 1) % 3, (k + 2) % 3);
                 let b = &unit.bbox;
-                if origin[u] < b.min[u] || origin[u] > b.max[u] || origin[w] < b.min[w] || origin[w] > b.max[w] {
+                if origin[u] < b.min[u]
+                    || origin[u] > b.max[u]
+                    || origin[w] < b.min[w]
+                    || origin[w] > b.max[w]
+                {
                     continue;
                 }
                 // Local parameter = world coordinate along k − t0.
@@ -310,24 +560,15 @@ impl<'a> SweptConvex<'a> {
     /// segment `[z_min, z_max]`, hence misses the sweep; a conservative pre-test.
     #[inline]
     fn near(&self, o: Vec3, dc: &DirConsts) -> bool {
-        let p = self.prof;
-        let d = dc.d;
-        let r = p.bound_radius();
-        // Project along d onto the plane ⊥ d; 2-D coordinates in any basis of that plane.
-        let (e1, e2) = d.any_orthonormal_pair();
-        let pr = |x: Vec3| (x.dot(e1), x.dot(e2));
-        let q = pr(o);
-        let a = pr(Vec3::new(0.0, 0.0, p.z_min()));
-        let ax = pr(Vec3::new(0.0, 0.0, p.z_max() - p.z_min()));
-        let vv = pr(self.v);
+        let n = &dc.near;
+        let q = (o.dot(n.e1), o.dot(n.e2));
         let sub = |x: (f64, f64), y: (f64, f64)| (x.0 - y.0, x.1 - y.1);
+        let (a, ax, vv) = (n.a, n.ax, n.vv);
         let rel = sub(q, a);
         // Inside the projected parallelogram a + α·ax + s·vv (α, s ∈ [0, 1])?
-        let det = ax.0 * vv.1 - ax.1 * vv.0;
-        let scale = (ax.0 * ax.0 + ax.1 * ax.1).max(vv.0 * vv.0 + vv.1 * vv.1);
-        if det.abs() > 1e-12 * scale {
-            let al = (rel.0 * vv.1 - rel.1 * vv.0) / det;
-            let s = (ax.0 * rel.1 - ax.1 * rel.0) / det;
+        if n.det.abs() > 1e-12 * n.scale {
+            let al = (rel.0 * vv.1 - rel.1 * vv.0) / n.det;
+            let s = (ax.0 * rel.1 - ax.1 * rel.0) / n.det;
             if (0.0..=1.0).contains(&al) && (0.0..=1.0).contains(&s) {
                 return true;
             }
@@ -336,15 +577,18 @@ impl<'a> SweptConvex<'a> {
         let seg = |p0: (f64, f64), e: (f64, f64)| {
             let w = sub(q, p0);
             let ee = e.0 * e.0 + e.1 * e.1;
-            let t = if ee > 0.0 { ((w.0 * e.0 + w.1 * e.1) / ee).clamp(0.0, 1.0) } else { 0.0 };
+            let t = if ee > 0.0 {
+                ((w.0 * e.0 + w.1 * e.1) / ee).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
             let dx = (w.0 - t * e.0, w.1 - t * e.1);
             dx.0 * dx.0 + dx.1 * dx.1
         };
         let a2 = (a.0 + ax.0, a.1 + ax.1);
         let a3 = (a.0 + vv.0, a.1 + vv.1);
         let m = seg(a, ax).min(seg(a, vv)).min(seg(a2, vv)).min(seg(a3, ax));
-        let rr = r * (1.0 + 1e-12) + 1e-9;
-        m <= rr * rr
+        m <= n.rr
     }
 }
 
@@ -456,15 +700,27 @@ mod tests {
         // The pruned query must agree with the full one wherever the material is.
         let mut seed = 7u64;
         let mut rnd = move || {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             ((seed >> 11) as f64) / ((1u64 << 53) as f64)
         };
-        let cutters = ["ball:d=10", "flat:d=8", "bull:d=12,r=3", "drill:d=6,angle=118", "taper-ball:d=6,taper=8"];
+        let cutters = [
+            "ball:d=10",
+            "flat:d=8",
+            "bull:d=12,r=3",
+            "drill:d=6,angle=118",
+            "taper-ball:d=6,taper=8",
+        ];
         let mut compared = 0;
         for (ci, spec) in cutters.iter().cycle().take(60).enumerate() {
             let c = Cutter::from_spec(spec).unwrap();
             let prof = ConvexProfile::from_solid(c.cutting_solid()).unwrap();
-            let axis = if ci % 2 == 0 { Vec3::Z } else { Vec3::new(rnd() - 0.5, rnd() - 0.5, 1.0).normalize() };
+            let axis = if ci % 2 == 0 {
+                Vec3::Z
+            } else {
+                Vec3::new(rnd() - 0.5, rnd() - 0.5, 1.0).normalize()
+            };
             let delta = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 10.0;
             let sw = SweptConvex::new(&prof, Vec3::ZERO, axis, delta);
             let bb = sw.bbox();
@@ -473,18 +729,47 @@ mod tests {
                 for _ in 0..200 {
                     let mut o = bb.min + (bb.max - bb.min) * Vec3::new(rnd(), rnd(), rnd());
                     o[k] = 0.0;
-                    let (a, b) = (bb.min[k] + rnd() * (bb.max[k] - bb.min[k]), bb.min[k] + rnd() * (bb.max[k] - bb.min[k]));
+                    let (a, b) = (
+                        bb.min[k] + rnd() * (bb.max[k] - bb.min[k]),
+                        bb.min[k] + rnd() * (bb.max[k] - bb.min[k]),
+                    );
                     let (m_lo, m_hi) = (a.min(b), a.max(b));
                     let full = sw.line_interval(o, &dc, None, &mut Scratch::new());
-                    let pruned = sw.line_interval(o, &dc, Some((k, m_lo, m_hi)), &mut Scratch::new());
-                    let clip = |x: Option<(f64, f64)>| x.and_then(|(l, h)| {
-                        let (l, h) = (l.max(m_lo), h.min(m_hi));
-                        (l < h).then_some((l, h))
-                    });
+                    if let Some(f) = full {
+                        // Every block holding this ray must have a range holding its hit.
+                        let half = 0.4 * rnd();
+                        let mut centre = o;
+                        centre[(k + 1) % 3] += (2.0 * rnd() - 1.0) * half;
+                        centre[(k + 2) % 3] += (2.0 * rnd() - 1.0) * half;
+                        let br = sw
+                            .block_range(k, centre, half)
+                            .expect("block range misses a hit");
+                        assert!(
+                            f.0 >= br.0 - 1e-9 && f.1 <= br.1 + 1e-9,
+                            "{spec} k={k}: {f:?} not in block {br:?}"
+                        );
+                        // The cheap range must hold the whole intersection.
+                        let r = sw.dexel_range(o, k).expect("range misses a hit");
+                        assert!(
+                            f.0 >= r.0 - 1e-9 && f.1 <= r.1 + 1e-9,
+                            "{spec} k={k}: {f:?} not in {r:?}"
+                        );
+                    }
+                    let pruned =
+                        sw.line_interval(o, &dc, Some((k, m_lo, m_hi)), &mut Scratch::new());
+                    let clip = |x: Option<(f64, f64)>| {
+                        x.and_then(|(l, h)| {
+                            let (l, h) = (l.max(m_lo), h.min(m_hi));
+                            (l < h).then_some((l, h))
+                        })
+                    };
                     match (clip(full), clip(pruned)) {
                         (None, None) => {}
                         (Some(f), Some(p)) => {
-                            assert!((f.0 - p.0).abs() < 1e-9 && (f.1 - p.1).abs() < 1e-9, "{spec} {f:?} {p:?}");
+                            assert!(
+                                (f.0 - p.0).abs() < 1e-9 && (f.1 - p.1).abs() < 1e-9,
+                                "{spec} {f:?} {p:?}"
+                            );
                             compared += 1;
                         }
                         (f, p) => panic!("{spec}: full {f:?} vs pruned {p:?}"),

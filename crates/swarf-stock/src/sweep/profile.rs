@@ -120,9 +120,15 @@ pub struct ConvexProfile {
     elements: Vec<Element>,
     /// Joint circles `(ρ, z)` with `ρ > 0`.
     joints: Vec<Vec2>,
+    /// Per element: lowest z, highest z, largest ρ (precomputed: arcs need trigonometry).
+    extents: Vec<(f64, f64, f64)>,
     z_min: f64,
     z_max: f64,
     r_max: f64,
+    /// The heights where the radius is largest (an interval: a cylinder side, or a point).
+    z_of_max: (f64, f64),
+    /// Per element: `(sin φ0, sin φ1, cos φ1)` for arcs (zeros for lines).
+    trig: Vec<(f64, f64, f64)>,
 }
 
 impl ConvexProfile {
@@ -173,12 +179,55 @@ impl ConvexProfile {
             .map(|e| e.z_band().1)
             .fold(f64::NEG_INFINITY, f64::max);
         let r_max = elements.iter().map(Element::max_rho).fold(0.0, f64::max);
+        let (mut zm_lo, mut zm_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for el in &elements {
+            let mut note = |z: f64| {
+                zm_lo = zm_lo.min(z);
+                zm_hi = zm_hi.max(z);
+            };
+            match *el {
+                Element::Line { p, q } => {
+                    for pt in [p, q] {
+                        if pt.x == r_max {
+                            note(pt.y);
+                        }
+                    }
+                }
+                Element::Arc { e, f, r, .. } => {
+                    if el.max_rho() == r_max {
+                        note(if e + r == r_max { f } else { el.end().y });
+                    }
+                }
+            }
+        }
+        let z_of_max = if zm_lo <= zm_hi {
+            (zm_lo, zm_hi)
+        } else {
+            (z_min, z_min)
+        };
+        let trig = elements
+            .iter()
+            .map(|el| match *el {
+                Element::Arc { phi0, phi1, .. } => (phi0.sin(), phi1.sin(), phi1.cos()),
+                Element::Line { .. } => (0.0, 0.0, 0.0),
+            })
+            .collect();
+        let extents = elements
+            .iter()
+            .map(|e| {
+                let (z0, z1) = e.z_band();
+                (z0, z1, e.max_rho())
+            })
+            .collect();
         Ok(Self {
             elements,
             joints,
+            extents,
             z_min,
             z_max,
             r_max,
+            z_of_max,
+            trig,
         })
     }
 
@@ -218,6 +267,95 @@ impl ConvexProfile {
         self.r_max
     }
 
+    /// Height of the solid's lowest point at distance `rho` from the axis (the lower profile,
+    /// from the tip outwards while the radius grows); `None` beyond the largest radius. It is
+    /// non-decreasing in `rho` for a convex solid.
+    pub fn lower_z(&self, rho: f64) -> Option<f64> {
+        if rho > self.r_max {
+            return None;
+        }
+        for (el, &(s0, s1, c1)) in self.elements.iter().zip(&self.trig) {
+            match *el {
+                Element::Line { p, q } => {
+                    if q.x <= p.x {
+                        break;
+                    }
+                    if rho <= q.x {
+                        let t = ((rho - p.x) / (q.x - p.x)).clamp(0.0, 1.0);
+                        return Some(p.y + t * (q.y - p.y));
+                    }
+                }
+                Element::Arc { e, f, r, phi1, .. } => {
+                    let (rho1, top) = if phi1 >= std::f64::consts::FRAC_PI_2 {
+                        (e + r, f)
+                    } else {
+                        (e + r * s1, f - r * c1)
+                    };
+                    if rho <= rho1 {
+                        let dr = (rho - e).max(r * s0);
+                        return Some((f - (r * r - dr * dr).max(0.0).sqrt()).min(top));
+                    }
+                    if phi1 > std::f64::consts::FRAC_PI_2 {
+                        break;
+                    }
+                }
+            }
+        }
+        // At the largest radius, on a vertical side: its lowest point.
+        self.elements
+            .iter()
+            .filter_map(|el| match *el {
+                Element::Line { p, q }
+                    if p.x == q.x && (p.x - rho).abs() <= 1e-12 * self.r_max.max(1.0) =>
+                {
+                    Some(p.y.min(q.y))
+                }
+                _ => None,
+            })
+            .reduce(f64::min)
+            .or(Some(self.z_min))
+    }
+
+    /// Radius of the solid at height `z` (`None` outside `[z_min, z_max]`).
+    pub fn radius_at(&self, z: f64) -> Option<f64> {
+        if z < self.z_min || z > self.z_max {
+            return None;
+        }
+        let mut best: f64 = 0.0;
+        for (el, &(z0, z1, _)) in self.elements.iter().zip(&self.extents) {
+            if z < z0 || z > z1 {
+                continue;
+            }
+            let r = match *el {
+                Element::Line { p, q } => {
+                    if p.y == q.y {
+                        p.x.max(q.x)
+                    } else {
+                        p.x + (z - p.y) / (q.y - p.y) * (q.x - p.x)
+                    }
+                }
+                Element::Arc { e, f, r, .. } => e + (r * r - (z - f) * (z - f)).max(0.0).sqrt(),
+            };
+            best = best.max(r);
+        }
+        Some(best)
+    }
+
+    /// Largest radius over the heights `[lo, hi]` ∩ `[z_min, z_max]` (`None` when empty). The
+    /// radius is concave in z, so the maximum is at the clamp of a height of the largest
+    /// radius into the range.
+    pub fn max_radius_in(&self, lo: f64, hi: f64) -> Option<f64> {
+        let (lo, hi) = (lo.max(self.z_min), hi.min(self.z_max));
+        if lo > hi {
+            return None;
+        }
+        let (a, b) = self.z_of_max;
+        if lo <= b && hi >= a {
+            return Some(self.r_max);
+        }
+        self.radius_at(if hi < a { hi } else { lo })
+    }
+
     /// The joint circles `(ρ, z)` (ρ > 0) between consecutive elements.
     pub fn joints(&self) -> &[Vec2] {
         &self.joints
@@ -225,19 +363,30 @@ impl ConvexProfile {
 
     /// Height band and largest radius of element `i`.
     pub(crate) fn element_extent(&self, i: usize) -> (f64, f64, f64) {
-        let el = &self.elements[i];
-        let (z0, z1) = el.z_band();
-        (z0, z1, el.max_rho())
+        self.extents[i]
     }
 
     /// Adds the line's crossings with element `i` (tool frame, unit `d`).
     #[inline]
-    pub(crate) fn cap_element(&self, i: usize, o: Vec3, d: Vec3, acc: &mut Acc, scratch: &mut Scratch) {
+    pub(crate) fn cap_element(
+        &self,
+        i: usize,
+        o: Vec3,
+        d: Vec3,
+        acc: &mut Acc,
+        scratch: &mut Scratch,
+    ) {
         let el = &self.elements[i];
         match *el {
             Element::Line { p, q } => line::cap(p, q, o, d, acc),
-            Element::Arc { e, f, r, phi0, phi1 } => {
-                let (z0, z1) = el.z_band();
+            Element::Arc {
+                e,
+                f,
+                r,
+                phi0,
+                phi1,
+            } => {
+                let (z0, z1, _) = self.extents[i];
                 if e == 0.0 {
                     sphere::cap(f, r, z0, z1, o, d, acc);
                 } else {
@@ -249,12 +398,25 @@ impl ConvexProfile {
 
     /// Adds the line's crossings with the envelope of element `i` swept by `dc.v`.
     #[inline]
-    pub(crate) fn envelope_element(&self, i: usize, o: Vec3, dc: &DirConsts, acc: &mut Acc, scratch: &mut Scratch) {
+    pub(crate) fn envelope_element(
+        &self,
+        i: usize,
+        o: Vec3,
+        dc: &DirConsts,
+        acc: &mut Acc,
+        scratch: &mut Scratch,
+    ) {
         let el = &self.elements[i];
         match *el {
             Element::Line { p, q } => line::envelope(p, q, o, dc, acc),
-            Element::Arc { e, f, r, phi0, phi1 } => {
-                let (z0, z1) = el.z_band();
+            Element::Arc {
+                e,
+                f,
+                r,
+                phi0,
+                phi1,
+            } => {
+                let (z0, z1, _) = self.extents[i];
                 if e == 0.0 {
                     sphere::envelope(f, r, z0, z1, o, dc, acc);
                 } else {
@@ -340,6 +502,7 @@ impl SweepShape {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use swarf_geom::math::Vec3;
     use swarf_tool::Cutter;
 
     #[test]
@@ -357,6 +520,72 @@ mod tests {
             let p = ConvexProfile::from_solid(c.cutting_solid());
             assert!(p.is_ok(), "{spec}: {p:?}");
             assert!((p.unwrap().r_max() - c.max_diameter() / 2.0).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn lower_z_is_the_lowest_boundary_point() {
+        let specs = [
+            "flat:d=10",
+            "ball:d=10",
+            "bull:d=16,r=2",
+            "taper-flat:d=6,taper=10",
+            "taper-ball:d=6,taper=5",
+            "chamfer:d=12,angle=90",
+            "drill:d=8,angle=118",
+        ];
+        for spec in specs {
+            let c = Cutter::from_spec(spec).unwrap();
+            let p = ConvexProfile::from_solid(c.cutting_solid()).unwrap();
+            for i in 0..=200 {
+                let rho = p.r_max() * i as f64 / 200.0 * (1.0 - 1e-9);
+                let z = p.lower_z(rho).unwrap();
+                if z < p.z_max() - 1e-6 {
+                    assert!(
+                        c.contains(Vec3::new(rho, 0.0, z + 1e-7)),
+                        "{spec} ρ={rho} z={z}"
+                    );
+                }
+                assert!(
+                    !c.contains(Vec3::new(rho, 0.0, z - 1e-7)),
+                    "{spec} ρ={rho} z={z}"
+                );
+            }
+            assert!(p.lower_z(p.r_max() * 1.001).is_none());
+        }
+    }
+
+    #[test]
+    fn radius_queries_match_the_cutter() {
+        let specs = [
+            "flat:d=10",
+            "ball:d=10",
+            "bull:d=16,r=2",
+            "taper-flat:d=6,taper=10",
+            "taper-ball:d=6,taper=5",
+            "chamfer:d=12,angle=90",
+            "drill:d=8,angle=118",
+        ];
+        for spec in specs {
+            let c = Cutter::from_spec(spec).unwrap();
+            let p = ConvexProfile::from_solid(c.cutting_solid()).unwrap();
+            let n = 300;
+            let zs: Vec<f64> = (0..=n).map(|i| p.z_max() * i as f64 / n as f64).collect();
+            for &z in &zs {
+                let (a, b) = (p.radius_at(z).unwrap(), c.profile_radius(z).unwrap());
+                assert!((a - b).abs() < 1e-9, "{spec} z={z}: {a} vs {b}");
+            }
+            for w in zs.windows(37) {
+                let m = w
+                    .iter()
+                    .map(|&z| c.profile_radius(z).unwrap())
+                    .fold(0.0, f64::max);
+                let got = p.max_radius_in(w[0], w[36]).unwrap();
+                assert!(
+                    got >= m - 1e-9 && got <= c.max_diameter() / 2.0 + 1e-9,
+                    "{spec}: {got} < {m}"
+                );
+            }
         }
     }
 

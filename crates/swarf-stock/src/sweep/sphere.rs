@@ -3,7 +3,6 @@
 
 use super::{Acc, DirConsts, BAND_EPS};
 use swarf_geom::math::Vec3;
-use swarf_geom::poly::quadratic_roots;
 
 /// Crossings of the line `o + t·d` (unit `d`) with the sphere of radius `r` centred at
 /// `(0, 0, f)`, kept within the band `z ∈ [z0, z1]`.
@@ -12,7 +11,8 @@ pub(crate) fn cap(f: f64, r: f64, z0: f64, z1: f64, o: Vec3, d: Vec3, acc: &mut 
     let q = o - Vec3::new(0.0, 0.0, f);
     let b = q.dot(d);
     let c = q.length_squared() - r * r;
-    for &t in quadratic_roots(1.0, 2.0 * b, c).as_slice() {
+    let (rts, nr) = super::quad(1.0, 2.0 * b, c);
+    for &t in &rts[..nr] {
         let z = o.z + t * d.z;
         if z >= z0 - BAND_EPS && z <= z1 + BAND_EPS {
             acc.add(t);
@@ -37,7 +37,8 @@ pub(crate) fn envelope(f: f64, r: f64, z0: f64, z1: f64, o: Vec3, dc: &DirConsts
     let qb = 2.0 * qp.dot(dp);
     let qc = qp.length_squared() - r * r;
     let se = BAND_EPS / dc.vv.sqrt();
-    for &t in quadratic_roots(qa, qb, qc).as_slice() {
+    let (rts, nr) = super::quad(qa, qb, qc);
+    for &t in &rts[..nr] {
         let p = o + dc.d * t;
         let s = (p - c).dot(dc.v) / dc.vv;
         if s < -se || s > 1.0 + se {

@@ -25,7 +25,7 @@
 
 use super::{Acc, DirConsts, Scratch, BAND_EPS};
 use swarf_geom::math::Vec3;
-use swarf_geom::poly::{quadratic_roots, real_roots_in, RootTolerance};
+use swarf_geom::poly::{real_roots_in, RootTolerance};
 
 /// Root tolerance for the quartic and octic (in `t`, mm, and in `u`, dimensionless).
 const ROOT_TOL: RootTolerance = RootTolerance {
@@ -52,11 +52,11 @@ pub(crate) fn cap(
     let g = p.dot(d);
     let pp = p.length_squared();
     // Parameter range inside the bounding sphere of radius e + r.
-    let bs = quadratic_roots(1.0, 2.0 * g, pp - (e + r) * (e + r));
-    let bs = bs.as_slice();
-    if bs.len() < 2 {
+    let (bs, nb) = super::quad(1.0, 2.0 * g, pp - (e + r) * (e + r));
+    if nb < 2 {
         return;
     }
+    let bs = [bs[0].min(bs[1]), bs[0].max(bs[1])];
     let hh = pp + e * e - r * r;
     let dxy = d.x * d.x + d.y * d.y;
     let pdxy = p.x * d.x + p.y * d.y;
@@ -116,7 +116,8 @@ pub(crate) fn envelope(
             }
             let qb = 2.0 * (py * dc.d.y + pz * dc.d.z);
             let qc = py * py + pz * pz - r * r;
-            for &t in quadratic_roots(qa, qb, qc).as_slice() {
+            let (rts, nr) = super::quad(qa, qb, qc);
+            for &t in &rts[..nr] {
                 let p = o + dc.d * t;
                 let s = p.x / a;
                 if s < -se || s > 1.0 + se {

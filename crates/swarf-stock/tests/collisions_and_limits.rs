@@ -1,0 +1,182 @@
+//! Rapids into material, shank and holder collisions, moves this version refuses, and the
+//! simple stock shapes.
+
+mod common;
+
+use common::{gcode, moves};
+use swarf_geom::math::Vec3;
+use swarf_stock::{simulate, MeshOptions, SimOptions, StockError, Tools, TriDexel};
+use swarf_tool::{Cutter, CutterOptions, Holder, HolderSegment};
+
+#[test]
+fn rapid_through_material_is_reported_and_cuts() {
+    let mut s =
+        TriDexel::from_box(Vec3::new(10.0, 0.0, 0.0), Vec3::new(40.0, 20.0, 10.0), 0.2).unwrap();
+    let p = gcode("G21 G90\nG0 Z20\nG0 X5 Y10\nG0 Z5\nG0 X45\nG0 Z20\nM30\n");
+    let tools = Tools::single(&Cutter::flat(6.0).unwrap());
+    let r = simulate(&p, &tools, &mut s, &SimOptions::default()).unwrap();
+    assert_eq!(r.rapid_collisions.len(), 1, "{:?}", r.rapid_collisions);
+    let c = &r.rapid_collisions[0];
+    assert_eq!((c.move_index, c.line, c.file.as_str()), (3, 5, "test.ngc"));
+    // The rapid still removed its slot: 30 × 6 × 5.
+    assert!(
+        (r.removed_volume_mm3 - 900.0).abs() < 0.01 * 900.0,
+        "{}",
+        r.removed_volume_mm3
+    );
+    assert!((c.volume_mm3 - r.removed_volume_mm3).abs() < 1e-9);
+    assert!(r.holder_collisions.is_empty());
+    assert_eq!(r.removed_per_move_mm3.len(), r.moves);
+}
+
+#[test]
+fn shank_and_holder_collisions_are_reported() {
+    // A straight plunge never buries the shank (the flutes clear the hole first), but a side
+    // move 25 mm deep with an 18 mm cutting part pushes the shank into the wall above.
+    let mut s =
+        TriDexel::from_box(Vec3::new(10.0, 0.0, 0.0), Vec3::new(40.0, 20.0, 30.0), 0.25).unwrap();
+    let p = gcode("G21 G90\nG0 Z40\nG0 X0 Y10\nG1 Z5 F100\nG1 X25\nG0 Z40\nM30\n");
+    let tools = Tools::single(&Cutter::flat(6.0).unwrap());
+    let r = simulate(&p, &tools, &mut s, &SimOptions::default()).unwrap();
+    assert_eq!(r.holder_collisions.len(), 1, "{:?}", r.holder_collisions);
+    assert_eq!(r.holder_collisions[0].line, 5);
+    assert!(r.rapid_collisions.is_empty());
+    // Everything the tool occupied is gone (cutting part and shank have the same radius):
+    // 15 mm of slot 6 wide and 25 high plus a half cylinder at the end.
+    let exact = (15.0 * 6.0 + std::f64::consts::PI * 9.0 / 2.0) * 25.0;
+    assert!(
+        (r.removed_volume_mm3 - exact).abs() < 0.01 * exact,
+        "{}",
+        r.removed_volume_mm3
+    );
+
+    // A wide holder low on the tool hits the top of the block on a shallow slot.
+    let holder = Holder {
+        base_z_mm: 20.0,
+        segments: vec![HolderSegment {
+            length_mm: 30.0,
+            bottom_diameter_mm: 30.0,
+            top_diameter_mm: 40.0,
+        }],
+    };
+    let c = Cutter::flat(6.0)
+        .unwrap()
+        .with_options(&CutterOptions {
+            holder: Some(holder),
+            overall_length: Some(20.0),
+            ..CutterOptions::default()
+        })
+        .unwrap();
+    // (The block is well clear of the origin, where the program starts: the holder is 40 mm
+    // wide.)
+    let mut s =
+        TriDexel::from_box(Vec3::new(30.0, 0.0, 0.0), Vec3::new(60.0, 20.0, 30.0), 0.25).unwrap();
+    // Holder bottom at tip + 20: a plunge to z = 5 brings it 5 mm into the 30 mm block.
+    let p = gcode("G21 G90\nG0 Z60\nG0 X45 Y10\nG1 Z5 F100\nG0 Z60\nM30\n");
+    let r = simulate(&p, &Tools::single(&c), &mut s, &SimOptions::default()).unwrap();
+    assert_eq!(r.holder_collisions.len(), 1, "{:?}", r.holder_collisions);
+    assert_eq!(r.holder_collisions[0].line, 4);
+}
+
+#[test]
+fn five_axis_move_is_refused_with_its_line() {
+    let mut p = moves(
+        &[Vec3::new(0.0, 0.0, 20.0), Vec3::new(10.0, 0.0, 20.0)],
+        Vec3::Z,
+        false,
+    );
+    p.moves[0].end.axis = Vec3::new(0.1, 0.0, 1.0).normalize();
+    let mut s = TriDexel::from_box(Vec3::ZERO, Vec3::new(10.0, 10.0, 10.0), 0.5).unwrap();
+    let e = simulate(
+        &p,
+        &Tools::single(&Cutter::ball(6.0).unwrap()),
+        &mut s,
+        &SimOptions::default(),
+    )
+    .unwrap_err();
+    assert!(
+        matches!(
+            e,
+            StockError::Unsupported {
+                index: 0,
+                line: 1,
+                ..
+            }
+        ),
+        "{e}"
+    );
+    assert!(e.to_string().contains("line 1"), "{e}");
+}
+
+#[test]
+fn three_plus_two_equals_rotated_three_axis() {
+    // Rotate a block (as a closed mesh), the tool axis and the path together: the removed
+    // volume must be the 3-axis slot's exact volume, (l·d + π·d²/4)·depth.
+    use swarf_geom::math::Quat;
+    let rot =
+        Quat::from_rotation_x(30f64.to_radians()) * Quat::from_rotation_y(-20f64.to_radians());
+    let (lo, hi) = (Vec3::ZERO, Vec3::new(40.0, 20.0, 10.0));
+    let c = |i: usize| {
+        rot * Vec3::new(
+            if i & 1 == 0 { lo.x } else { hi.x },
+            if i & 2 == 0 { lo.y } else { hi.y },
+            if i & 4 == 0 { lo.z } else { hi.z },
+        )
+    };
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let tris: Vec<[Vec3; 3]> = quads
+        .iter()
+        .flat_map(|q| [[c(q[0]), c(q[1]), c(q[2])], [c(q[0]), c(q[2]), c(q[3])]])
+        .collect();
+    let mut s = TriDexel::from_triangles(&tris, 0.1, MeshOptions::default()).unwrap();
+    let v0 = s.volume();
+    assert!((v0 - 8000.0).abs() < 0.003 * 8000.0, "{v0}");
+    let tool = swarf_stock::ToolShape::new(&Cutter::flat(6.0).unwrap());
+    let (a, b) = (Vec3::new(8.03, 10.01, 7.0), Vec3::new(31.97, 10.01, 7.0));
+    let cut = s.cut_linear(&tool, rot * a, rot * b, rot * Vec3::Z);
+    assert_eq!(cut.non_cutting.removed_length, [0.0; 3]);
+    let removed = v0 - s.volume();
+    let exact = ((b.x - a.x) * 6.0 + std::f64::consts::PI * 9.0) * 3.0;
+    println!("3+2 slot: removed {removed:.3}, exact {exact:.3}");
+    assert!(
+        (removed - exact).abs() < 0.003 * exact,
+        "{removed} vs {exact}"
+    );
+}
+
+#[test]
+fn cylinder_and_mesh_stocks() {
+    let s = TriDexel::from_cylinder(5.0, -3.0, 1.0, 4.0, 6.0, 0.05).unwrap();
+    let exact = std::f64::consts::PI * 16.0 * 6.0;
+    for v in s.volumes() {
+        assert!((v - exact).abs() < 0.002 * exact, "{v} vs {exact}");
+    }
+    // A closed tetrahedron with vertices on round coordinates (rays meet its edges and
+    // vertices exactly at their nominal positions; the nudge keeps parity right).
+    let p = [
+        Vec3::ZERO,
+        Vec3::new(10.0, 0.0, 0.0),
+        Vec3::new(0.0, 10.0, 0.0),
+        Vec3::new(0.0, 0.0, 10.0),
+    ];
+    let tris = vec![
+        [p[0], p[2], p[1]],
+        [p[0], p[1], p[3]],
+        [p[0], p[3], p[2]],
+        [p[1], p[2], p[3]],
+    ];
+    let s = TriDexel::from_triangles(&tris, 0.1, MeshOptions::default()).unwrap();
+    let exact = 1000.0 / 6.0;
+    for v in s.volumes() {
+        assert!((v - exact).abs() < 0.003 * exact, "{v} vs {exact}");
+    }
+    let st = s.stats();
+    assert!(st.bytes_per_interval > 0.0 && st.intervals > 0 && st.rays == 3 * 100 * 100);
+}
