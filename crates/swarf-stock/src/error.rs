@@ -5,6 +5,24 @@ use thiserror::Error;
 /// What can go wrong building a stock or simulating a program on it.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum StockError {
+    /// A stock spec string that cannot be read.
+    #[error("stock spec column {column}: found {found}, expected {expected}")]
+    Spec {
+        /// 1-based column in the spec.
+        column: usize,
+        /// What was found.
+        found: String,
+        /// What would have been accepted.
+        expected: String,
+    },
+    /// A stock file that cannot be read.
+    #[error("{file}: {message}")]
+    Io {
+        /// File name.
+        file: String,
+        /// The system's message.
+        message: String,
+    },
     /// A resolution that is not a positive finite number.
     #[error("resolution must be a positive finite number of mm, got {0}")]
     BadResolution(f64),

@@ -66,6 +66,7 @@ pub mod dexel;
 pub mod error;
 pub mod mesh;
 pub mod simulate;
+pub mod spec;
 pub mod sweep;
 pub mod tridexel;
 
@@ -73,6 +74,7 @@ pub use cut::{arc_chords, SegmentCut, ToolShape, DEFAULT_CHORDAL_TOLERANCE_MM};
 pub use dexel::{Dexel, Interval};
 pub use error::StockError;
 pub use mesh::MeshOptions;
+pub use spec::StockSpec;
 pub use simulate::{simulate, Collision, SimOptions, SimulationReport, Tools};
 pub use sweep::{ConvexProfile, Element, LineBatch, SweepShape, SweptConvex};
 pub use tridexel::{CutStats, DexelFamily, Grid, StockStats, TriDexel, MAX_RAYS, TILE};

@@ -52,6 +52,22 @@ impl Cutter {
         spec::parse(spec)
     }
 
+    /// A cutter from the seven numbers of a program's `CUTTER/` record (mm, degrees), where
+    /// h = 0 means the program did not give the height of the cutting part: it is then taken
+    /// as three diameters (the named constructors' default), or the corner's top if higher.
+    ///
+    /// ```
+    /// let c = swarf_tool::Cutter::from_program_record([10.0, 2.0, 3.0, 2.0, 0.0, 0.0, 0.0]).unwrap();
+    /// assert_eq!(c.apt_params().h, 30.0);
+    /// ```
+    ///
+    /// # Errors
+    /// As [`Cutter::apt`].
+    pub fn from_program_record(p: [f64; 7]) -> Result<Cutter, ToolError> {
+        let h = if p[6] > 0.0 { p[6] } else { (3.0 * p[0]).max(p[3] + p[1]) };
+        Cutter::apt(p[0], p[1], p[2], p[3], p[4], p[5], h)
+    }
+
     /// The serialisable description (for `--json` output).
     pub fn describe(&self) -> CutterDescription {
         CutterDescription::of(self)

@@ -3,3 +3,4 @@
 pub(crate) mod demo;
 pub(crate) mod path;
 pub(crate) mod tool;
+pub(crate) mod tools;

@@ -2,17 +2,18 @@
 
 use std::collections::BTreeMap;
 use std::io::BufWriter;
-use std::path::Path;
 
 use anyhow::{Context, Result};
 use serde::Serialize;
 use swarf_path::canonical::CanonicalPrinter;
-use swarf_path::gcode::GcodeOptions;
-use swarf_path::load::{read_program_str, read_text, stream_program, ReadOptions};
-use swarf_path::{summarize, Machine, Program, ProgramSummary, Units};
-use swarf_tool::{Cutter, CutterDescription, LengthUnit, ToolTable};
+use swarf_path::load::{read_program_str, read_text, stream_program};
+use swarf_path::{summarize, Program, ProgramSummary};
+use swarf_tool::{Cutter, CutterDescription, ToolTable};
 
-use crate::cli::{PathArgs, TableUnits};
+use crate::cli::PathArgs;
+use crate::commands::tools::{
+    load_machine, load_tool_sources, read_options, resolve_tools, ToolSource,
+};
 use crate::output::print_json;
 
 /// The `--json` output: the summary's keys, plus the cutters the tools resolve to.
@@ -37,20 +38,14 @@ struct Workpiece {
 
 #[derive(Serialize)]
 struct ToolReport {
-    source: &'static str,
+    source: ToolSource,
     description: String,
     cutter: CutterDescription,
 }
 
 pub(crate) fn run(args: &PathArgs) -> Result<()> {
     let machine = load_machine(&args.machine)?;
-    let options = ReadOptions {
-        gcode: GcodeOptions::default().with_initial_units(match args.initial_units {
-            TableUnits::Mm => Units::Mm,
-            TableUnits::Inch => Units::Inch,
-        }),
-        ..ReadOptions::default()
-    };
+    let options = read_options(args.initial_units);
     let text = read_text(&args.program)?;
     let file = args.program.display().to_string();
 
@@ -63,38 +58,17 @@ pub(crate) fn run(args: &PathArgs) -> Result<()> {
     }
 
     let program = read_program_str(&text, &file, machine, &options)?;
-    let table_unit = match args.table_units {
-        TableUnits::Mm => LengthUnit::Mm,
-        TableUnits::Inch => LengthUnit::Inch,
-    };
-    let single = args
-        .tool
-        .as_deref()
-        .map(|s| Cutter::from_spec(s).with_context(|| format!("tool spec `{s}`")))
-        .transpose()?;
-    let table = args
-        .tools
-        .as_deref()
-        .map(|t| {
-            ToolTable::read(t, table_unit).with_context(|| format!("tool table {}", t.display()))
-        })
-        .transpose()?;
+    let (single, table) = load_tool_sources(
+        args.tool.as_deref(),
+        args.tools.as_deref(),
+        args.table_units,
+    )?;
     let report = PathReport::new(&program, single.as_ref(), table.as_ref())?;
     if args.json {
         return print_json(&report);
     }
     report.print_human();
     Ok(())
-}
-
-/// A built-in machine name, or a TOML machine file when the argument names an existing file.
-pub(crate) fn load_machine(arg: &str) -> Result<Machine> {
-    let p = Path::new(arg);
-    if p.is_file() {
-        Machine::from_file(p).with_context(|| format!("machine file {arg}"))
-    } else {
-        Machine::from_name(arg).with_context(|| format!("machine `{arg}`"))
-    }
 }
 
 impl PathReport {
@@ -105,7 +79,18 @@ impl PathReport {
         single: Option<&Cutter>,
         table: Option<&ToolTable>,
     ) -> Result<Self> {
-        let (tool_definitions, undefined_tools) = resolve_tools(program, single, table)?;
+        let (resolved, undefined_tools) = resolve_tools(program, single, table)?;
+        let tool_definitions = resolved
+            .into_iter()
+            .map(|(n, r)| {
+                let report = ToolReport {
+                    source: r.source,
+                    description: r.description,
+                    cutter: r.cutter.describe(),
+                };
+                (n, report)
+            })
+            .collect();
         let workpiece = table.and_then(|t| t.workpiece).map(|b| Workpiece {
             min: b.min.to_array(),
             max: b.max.to_array(),
@@ -121,63 +106,6 @@ impl PathReport {
     pub(crate) fn print_human(&self) {
         print_human(&self.summary, &self.tool_definitions, &self.undefined_tools);
     }
-}
-
-fn resolve_tools(
-    program: &Program,
-    single: Option<&Cutter>,
-    table: Option<&ToolTable>,
-) -> Result<(BTreeMap<u32, ToolReport>, Vec<u32>)> {
-    let mut used: Vec<u32> = program.tools.clone();
-    if used.is_empty() && !program.moves.is_empty() {
-        used.push(0);
-    }
-    let mut defs = BTreeMap::new();
-    let mut undefined = Vec::new();
-    for n in used {
-        let from_program = program
-            .cutter_definitions
-            .iter()
-            .rev()
-            .find(|(t, _)| *t == n);
-        let report = if let Some(c) = single {
-            Some(ToolReport {
-                source: "--tool",
-                description: String::new(),
-                cutter: c.describe(),
-            })
-        } else if let Some(e) = table.and_then(|t| t.tools.get(&n)) {
-            Some(ToolReport {
-                source: "--tools",
-                description: e.description.clone(),
-                cutter: e.cutter.describe(),
-            })
-        } else if let Some((_, p)) = from_program {
-            // h = 0: the program did not say how long the cutting part is; take the
-            // library's default for a named cutter (three diameters).
-            let h = if p[6] > 0.0 {
-                p[6]
-            } else {
-                (3.0 * p[0]).max(p[3] + p[1])
-            };
-            let c = Cutter::apt(p[0], p[1], p[2], p[3], p[4], p[5], h)
-                .with_context(|| format!("CUTTER/ definition of tool {n} in the program"))?;
-            Some(ToolReport {
-                source: "program",
-                description: String::new(),
-                cutter: c.describe(),
-            })
-        } else {
-            None
-        };
-        match report {
-            Some(r) => {
-                defs.insert(n, r);
-            }
-            None => undefined.push(n),
-        }
-    }
-    Ok((defs, undefined))
 }
 
 fn print_human(s: &ProgramSummary, tools: &BTreeMap<u32, ToolReport>, undefined: &[u32]) {
@@ -202,7 +130,7 @@ fn print_human(s: &ProgramSummary, tools: &BTreeMap<u32, ToolReport>, undefined:
         t as u64 % 60
     );
     for (n, r) in tools {
-        println!("T{n}: {} ({})", r.cutter.spec, r.source);
+        println!("T{n}: {} ({:?})", r.cutter.spec, r.source);
     }
     for n in undefined {
         println!("T{n}: not defined (give --tool or --tools)");

@@ -1,0 +1,126 @@
+//! What `path`, `simulate` and `demo` share: the machine, the reader options, and which cutter
+//! each tool number of a program is.
+
+use std::collections::BTreeMap;
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use swarf_path::gcode::GcodeOptions;
+use swarf_path::load::ReadOptions;
+use swarf_path::{Machine, Program, Units};
+use swarf_tool::{Cutter, LengthUnit, ToolTable};
+
+use crate::cli::TableUnits;
+
+/// A built-in machine name, or a TOML machine file when the argument names an existing file.
+pub(crate) fn load_machine(arg: &str) -> Result<Machine> {
+    let p = Path::new(arg);
+    if p.is_file() {
+        Machine::from_file(p).with_context(|| format!("machine file {arg}"))
+    } else {
+        Machine::from_name(arg).with_context(|| format!("machine `{arg}`"))
+    }
+}
+
+/// Reader options for programs whose units before the first G20/G21 are `initial`.
+pub(crate) fn read_options(initial: TableUnits) -> ReadOptions {
+    ReadOptions {
+        gcode: GcodeOptions::default().with_initial_units(match initial {
+            TableUnits::Mm => Units::Mm,
+            TableUnits::Inch => Units::Inch,
+        }),
+        ..ReadOptions::default()
+    }
+}
+
+/// `--tool SPEC` and `--tools FILE`, read.
+pub(crate) fn load_tool_sources(
+    spec: Option<&str>,
+    table: Option<&Path>,
+    units: TableUnits,
+) -> Result<(Option<Cutter>, Option<ToolTable>)> {
+    let single = spec
+        .map(|s| Cutter::from_spec(s).with_context(|| format!("tool spec `{s}`")))
+        .transpose()?;
+    let unit = match units {
+        TableUnits::Mm => LengthUnit::Mm,
+        TableUnits::Inch => LengthUnit::Inch,
+    };
+    let table = table
+        .map(|t| ToolTable::read(t, unit).with_context(|| format!("tool table {}", t.display())))
+        .transpose()?;
+    Ok((single, table))
+}
+
+/// Where a tool's cutter came from.
+#[derive(Clone, Copy, Debug, serde::Serialize)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum ToolSource {
+    /// `--tool SPEC`, for every tool.
+    Spec,
+    /// The `--tools` table.
+    Table,
+    /// The program's own `CUTTER/` definition.
+    Program,
+}
+
+/// One tool number's cutter.
+#[derive(Clone, Debug)]
+pub(crate) struct ResolvedTool {
+    pub(crate) cutter: Cutter,
+    pub(crate) source: ToolSource,
+    pub(crate) description: String,
+}
+
+/// Each tool number `program` uses (tool 0 when it never loads one), resolved to a cutter:
+/// `single` for all, else the table, else the program's own `CUTTER/`. Numbers nothing
+/// defines are returned apart.
+pub(crate) fn resolve_tools(
+    program: &Program,
+    single: Option<&Cutter>,
+    table: Option<&ToolTable>,
+) -> Result<(BTreeMap<u32, ResolvedTool>, Vec<u32>)> {
+    let mut used: Vec<u32> = program.tools.clone();
+    if program.moves.iter().any(|m| m.tool == 0) && !used.contains(&0) {
+        used.insert(0, 0);
+    }
+    let mut defs = BTreeMap::new();
+    let mut undefined = Vec::new();
+    for n in used {
+        let from_program = program
+            .cutter_definitions
+            .iter()
+            .rev()
+            .find(|(t, _)| *t == n);
+        let resolved = if let Some(c) = single {
+            Some(ResolvedTool {
+                cutter: c.clone(),
+                source: ToolSource::Spec,
+                description: String::new(),
+            })
+        } else if let Some(e) = table.and_then(|t| t.tools.get(&n)) {
+            Some(ResolvedTool {
+                cutter: e.cutter.clone(),
+                source: ToolSource::Table,
+                description: e.description.clone(),
+            })
+        } else if let Some((_, p)) = from_program {
+            let cutter = Cutter::from_program_record(*p)
+                .with_context(|| format!("CUTTER/ definition of tool {n} in the program"))?;
+            Some(ResolvedTool {
+                cutter,
+                source: ToolSource::Program,
+                description: String::new(),
+            })
+        } else {
+            None
+        };
+        match resolved {
+            Some(r) => {
+                defs.insert(n, r);
+            }
+            None => undefined.push(n),
+        }
+    }
+    Ok((defs, undefined))
+}

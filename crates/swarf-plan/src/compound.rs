@@ -1,0 +1,334 @@
+//! Compound surfaces: ordered sets of patches with their orientation and provenance, and the
+//! cutter-contact (CC) points the planner visits on them.
+
+use std::fmt;
+
+use swarf_geom::Aabb;
+
+use swarf_geom::math::Vec3;
+
+use crate::surface::{
+    differential, LocalGeometry, ParametricSurface, Surface, SurfaceNormal, Tolerances,
+};
+
+/// Where a patch came from.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum EntityRef {
+    /// Index of the patch in a swarf JSON file's `patches` array.
+    Json {
+        /// 0-based index.
+        index: usize,
+    },
+    /// A STEP surface instance, and the `ADVANCED_FACE` (or `FACE_SURFACE`) it bounds.
+    Step {
+        /// `#id` of the surface.
+        surface: u64,
+        /// `#id` of the face, when it belongs to one.
+        face: Option<u64>,
+    },
+    /// An IGES entity, by the sequence number of its first directory-entry line.
+    Iges {
+        /// Directory entry (the `D` sequence number).
+        de: usize,
+        /// Entity type (128).
+        entity_type: u32,
+    },
+    /// Built in code.
+    Built,
+}
+
+impl fmt::Display for EntityRef {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            EntityRef::Json { index } => write!(f, "patches[{index}]"),
+            EntityRef::Step {
+                surface,
+                face: Some(face),
+            } => write!(f, "#{surface} (face #{face})"),
+            EntityRef::Step {
+                surface,
+                face: None,
+            } => write!(f, "#{surface}"),
+            EntityRef::Iges { de, entity_type } => write!(f, "entity {entity_type} at D{de}"),
+            EntityRef::Built => write!(f, "built in code"),
+        }
+    }
+}
+
+/// Provenance of a patch: the file (when read from one) and the entity.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PatchSource {
+    /// The file path as given to the reader, if any.
+    pub file: Option<String>,
+    /// The entity in that file.
+    pub entity: EntityRef,
+}
+
+impl PatchSource {
+    /// A patch made in code.
+    pub const BUILT: PatchSource = PatchSource {
+        file: None,
+        entity: EntityRef::Built,
+    };
+}
+
+/// One patch of a compound surface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Patch {
+    /// Name from the file (JSON `name`, STEP face or surface name, IGES label), if any.
+    pub name: Option<String>,
+    /// The geometry, in millimetres.
+    pub surface: Surface,
+    /// When true the cutter comes from the side of `−(S_u × S_v)`.
+    pub flipped: bool,
+    /// Where it came from.
+    pub source: PatchSource,
+}
+
+impl Patch {
+    /// An unnamed, unflipped patch made in code.
+    pub fn new(surface: Surface) -> Self {
+        Self {
+            name: None,
+            surface,
+            flipped: false,
+            source: PatchSource::BUILT,
+        }
+    }
+
+    /// The differential geometry at `(u, v)`, with the normal pointing to the cutter side and
+    /// curvatures signed accordingly (see [`crate::surface::Curvature`]).
+    #[inline]
+    pub fn local(&self, u: f64, v: f64, tol: &Tolerances) -> LocalGeometry {
+        differential(&self.surface, u, v, self.flipped, tol)
+    }
+
+    /// Point and unit normal (towards the cutter) only — the cheaper query for solvers that do
+    /// not need curvature. Same normal as [`Patch::local`], including at degenerate points.
+    #[inline]
+    pub fn point_normal(&self, u: f64, v: f64, tol: &Tolerances) -> (Vec3, SurfaceNormal) {
+        let d = self.surface.derivs(u, v);
+        let cross = d.su.cross(d.sv);
+        let len = cross.length();
+        let scale = d.su.length_squared().max(d.sv.length_squared());
+        if len > tol.degenerate * scale && len.is_finite() {
+            let n = cross / len;
+            (
+                d.point,
+                SurfaceNormal::Regular(if self.flipped { -n } else { n }),
+            )
+        } else {
+            let g = self.local(u, v, tol);
+            (g.point(), g.normal)
+        }
+    }
+
+    /// A box containing the patch.
+    pub fn bounding_box(&self) -> Aabb {
+        self.surface.bounding_box()
+    }
+
+    /// The patch's name, or its index as text (the CSV convention of the planner).
+    pub fn label(&self, index: usize) -> String {
+        self.name.clone().unwrap_or_else(|| index.to_string())
+    }
+}
+
+/// Something a reader noticed but did not treat as an error.
+#[derive(Clone, Debug, PartialEq)]
+pub enum ReadNote {
+    /// A surface kind this crate does not evaluate was skipped.
+    UnsupportedSurface {
+        /// Entity (`#12` or `D7`).
+        entity: String,
+        /// Its type (`SURFACE_OF_REVOLUTION`, `IGES 118`, …).
+        kind: String,
+    },
+    /// The patch is trimmed in the file; the trim is reported but not honoured: the whole
+    /// untrimmed patch is used.
+    TrimNotHonoured {
+        /// Index of the patch.
+        patch: usize,
+        /// The trimming entity (`IGES 144 at D1`, …).
+        by: String,
+    },
+    /// The file declares no length unit; millimetres were assumed.
+    UnitsAssumed,
+    /// Lengths were scaled to millimetres by this factor.
+    UnitsConverted {
+        /// Declared unit.
+        unit: String,
+        /// Millimetres per file unit.
+        factor: f64,
+    },
+    /// An analytic patch's parameter box came from a default instead of the face bounds.
+    DefaultParameterBox {
+        /// Index of the patch.
+        patch: usize,
+        /// Which parameter(s).
+        what: String,
+    },
+}
+
+impl fmt::Display for ReadNote {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ReadNote::UnsupportedSurface { entity, kind } => {
+                write!(f, "{entity}: surface type {kind} is not supported; skipped")
+            }
+            ReadNote::TrimNotHonoured { patch, by } => write!(
+                f,
+                "patch {patch} is trimmed by {by}; trims are not honoured (the whole patch is used)"
+            ),
+            ReadNote::UnitsAssumed => write!(f, "no length unit declared; millimetres assumed"),
+            ReadNote::UnitsConverted { unit, factor } => {
+                write!(f, "lengths in {unit}, scaled by {factor} to millimetres")
+            }
+            ReadNote::DefaultParameterBox { patch, what } => {
+                write!(f, "patch {patch}: default parameter range for {what}")
+            }
+        }
+    }
+}
+
+/// A cutter-contact point: a patch index and parameters on it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CcPoint {
+    /// Index into [`CompoundSurface::patches`].
+    pub patch: usize,
+    /// u parameter.
+    pub u: f64,
+    /// v parameter.
+    pub v: f64,
+}
+
+/// Why a list of CC points is rejected.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum CcPointError {
+    /// No such patch.
+    #[error("point {index}: patch {patch} does not exist ({count} patches)")]
+    NoPatch {
+        /// Position in the list.
+        index: usize,
+        /// Patch asked for.
+        patch: usize,
+        /// Patches there are.
+        count: usize,
+    },
+    /// Parameters outside the patch's box.
+    #[error("point {index}: (u, v) = ({u}, {v}) is outside patch {patch}'s parameter box [{u0}, {u1}] × [{v0}, {v1}]")]
+    OutsideDomain {
+        /// Position in the list.
+        index: usize,
+        /// Patch.
+        patch: usize,
+        /// u.
+        u: f64,
+        /// v.
+        v: f64,
+        /// Box u0.
+        u0: f64,
+        /// Box u1.
+        u1: f64,
+        /// Box v0.
+        v0: f64,
+        /// Box v1.
+        v1: f64,
+    },
+}
+
+/// A surface made of patches, in millimetres, each with the side the cutter comes from.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct CompoundSurface {
+    /// The patches, in file order.
+    pub patches: Vec<Patch>,
+    /// What the reader noticed (units, skipped entities, trims).
+    pub notes: Vec<ReadNote>,
+}
+
+impl CompoundSurface {
+    /// A compound surface of these patches.
+    pub fn new(patches: Vec<Patch>) -> Self {
+        Self {
+            patches,
+            notes: Vec::new(),
+        }
+    }
+
+    /// Reverse the side the cutter comes from on every patch (the CLI's `--flip`).
+    pub fn flip_all(&mut self) {
+        for p in &mut self.patches {
+            p.flipped = !p.flipped;
+        }
+    }
+
+    /// One box per patch.
+    pub fn patch_boxes(&self) -> Vec<Aabb> {
+        self.patches.iter().map(Patch::bounding_box).collect()
+    }
+
+    /// A box containing every patch; `None` when there are none.
+    pub fn bounding_box(&self) -> Option<Aabb> {
+        self.patches
+            .iter()
+            .map(Patch::bounding_box)
+            .reduce(|a, b| a.union(&b))
+    }
+
+    /// The iso-parametric `n × n` grid of CC points of every patch (`n ≥ 2`; smaller `n` is
+    /// taken as 2): `u_i = u0 + i/(n−1)·(u1 − u0)`, likewise v, patch by patch, u outer, v
+    /// inner — the thesis's 21×21 and 41×41 grids.
+    pub fn grid(&self, n: usize) -> Vec<CcPoint> {
+        let n = n.max(2);
+        let mut out = Vec::with_capacity(self.patches.len() * n * n);
+        for (k, p) in self.patches.iter().enumerate() {
+            let d = p.surface.domain();
+            for i in 0..n {
+                let u = d.u_at(i as f64 / (n - 1) as f64);
+                for j in 0..n {
+                    let v = d.v_at(j as f64 / (n - 1) as f64);
+                    out.push(CcPoint { patch: k, u, v });
+                }
+            }
+        }
+        out
+    }
+
+    /// CC points from a list of `(patch, u, v)`, checked against the patches and their boxes.
+    pub fn points(&self, list: &[(usize, f64, f64)]) -> Result<Vec<CcPoint>, CcPointError> {
+        list.iter()
+            .enumerate()
+            .map(|(index, &(patch, u, v))| {
+                let p = self.patches.get(patch).ok_or(CcPointError::NoPatch {
+                    index,
+                    patch,
+                    count: self.patches.len(),
+                })?;
+                let d = p.surface.domain();
+                if !d.contains(u, v) {
+                    return Err(CcPointError::OutsideDomain {
+                        index,
+                        patch,
+                        u,
+                        v,
+                        u0: d.u[0],
+                        u1: d.u[1],
+                        v0: d.v[0],
+                        v1: d.v[1],
+                    });
+                }
+                Ok(CcPoint { patch, u, v })
+            })
+            .collect()
+    }
+
+    /// The differential geometry at a CC point (normal towards the cutter).
+    ///
+    /// # Panics
+    /// If `cc.patch` is not a patch index (points from [`Self::grid`] and [`Self::points`]
+    /// always are).
+    #[inline]
+    pub fn local(&self, cc: &CcPoint, tol: &Tolerances) -> LocalGeometry {
+        self.patches[cc.patch].local(cc.u, cc.v, tol)
+    }
+}

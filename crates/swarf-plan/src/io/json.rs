@@ -1,0 +1,227 @@
+//! swarf's JSON surface format (part of the CLI contract):
+//!
+//! ```json
+//! {"units": "mm", "patches": [{"name": "floor", "degree_u": 1, "degree_v": 1,
+//!   "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+//!   "control_points": [[[0, 0, 0, 1], [0, 10, 0, 1]], [[10, 0, 0, 1], [10, 10, 0, 1]]]}]}
+//! ```
+//!
+//! `control_points[i][j]` is indexed along u then v; each is `[x, y, z, w]` with x y z **not**
+//! multiplied by the weight w; `S_u × S_v` points to the side the cutter comes from. `units` is
+//! `"mm"` (the default when absent), `"inch"` or `"in"`; inches are converted to mm. `name` is
+//! optional. Unknown keys are errors (they are usually typos).
+
+use serde::{Deserialize, Serialize};
+use swarf_geom::math::Vec3;
+
+use super::{Format, ReadError};
+use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
+use crate::surface::{NurbsSurface, Surface};
+
+/// Millimetres per inch.
+pub const MM_PER_INCH: f64 = 25.4;
+
+#[derive(Deserialize, Serialize, Clone, Copy, Debug, PartialEq)]
+enum Units {
+    #[serde(rename = "mm")]
+    Mm,
+    #[serde(rename = "inch", alias = "in")]
+    Inch,
+}
+
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct JsonPatch {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    name: Option<String>,
+    degree_u: usize,
+    degree_v: usize,
+    knots_u: Vec<f64>,
+    knots_v: Vec<f64>,
+    control_points: Vec<Vec<[f64; 4]>>,
+}
+
+/// A validated patch; validation runs inside the deserializer so that errors carry the
+/// position (the end of the offending patch object).
+#[derive(Deserialize)]
+#[serde(try_from = "JsonPatch")]
+struct Checked {
+    name: Option<String>,
+    surface: NurbsSurface,
+}
+
+impl TryFrom<JsonPatch> for Checked {
+    type Error = String;
+    fn try_from(p: JsonPatch) -> Result<Self, String> {
+        let points: Vec<Vec<Vec3>> = p
+            .control_points
+            .iter()
+            .map(|r| r.iter().map(|c| Vec3::new(c[0], c[1], c[2])).collect())
+            .collect();
+        let weights: Vec<Vec<f64>> = p
+            .control_points
+            .iter()
+            .map(|r| r.iter().map(|c| c[3]).collect())
+            .collect();
+        let surface = NurbsSurface::new(
+            p.degree_u,
+            p.degree_v,
+            p.knots_u,
+            p.knots_v,
+            &points,
+            Some(&weights),
+        )
+        .map_err(|e| match &p.name {
+            Some(n) => format!("patch \"{n}\": {e}"),
+            None => format!("patch: {e}"),
+        })?;
+        Ok(Checked {
+            name: p.name,
+            surface,
+        })
+    }
+}
+
+#[derive(Deserialize)]
+#[serde(deny_unknown_fields)]
+struct CheckedFile {
+    #[serde(default)]
+    units: Option<Units>,
+    patches: Vec<Checked>,
+}
+
+/// Parse swarf JSON.
+pub fn parse(text: &str) -> Result<CompoundSurface, ReadError> {
+    let syntax = |e: serde_json::Error| ReadError::Syntax {
+        format: Format::Json,
+        line: e.line(),
+        column: e.column(),
+        message: strip_position(&e),
+    };
+    let file: CheckedFile = serde_json::from_str(text).map_err(syntax)?;
+    let factor = match file.units {
+        Some(Units::Inch) => MM_PER_INCH,
+        _ => 1.0,
+    };
+    let mut out = CompoundSurface::default();
+    match file.units {
+        None => out.notes.push(ReadNote::UnitsAssumed),
+        Some(Units::Inch) => out.notes.push(ReadNote::UnitsConverted {
+            unit: "inch".into(),
+            factor,
+        }),
+        Some(Units::Mm) => {}
+    }
+    if file.patches.is_empty() {
+        return Err(ReadError::Empty {
+            format: Format::Json,
+            detail: "; \"patches\" is empty".into(),
+        });
+    }
+    for (index, c) in file.patches.into_iter().enumerate() {
+        let surface = if factor == 1.0 {
+            c.surface
+        } else {
+            scaled(&c.surface, factor)
+        };
+        out.patches.push(Patch {
+            name: c.name,
+            surface: Surface::Nurbs(surface),
+            flipped: false,
+            source: PatchSource {
+                file: None,
+                entity: EntityRef::Json { index },
+            },
+        });
+    }
+    Ok(out)
+}
+
+/// A copy of `s` with every control point scaled by `factor` (weights kept).
+pub(crate) fn scaled(s: &NurbsSurface, factor: f64) -> NurbsSurface {
+    let (nu, nv) = s.net_size();
+    let points: Vec<Vec<Vec3>> = (0..nu)
+        .map(|i| (0..nv).map(|j| s.control_point(i, j) * factor).collect())
+        .collect();
+    let weights: Vec<Vec<f64>> = (0..nu)
+        .map(|i| (0..nv).map(|j| s.weight(i, j)).collect())
+        .collect();
+    // Scaling a valid surface by a positive finite factor keeps it valid.
+    NurbsSurface::new(
+        s.degree_u(),
+        s.degree_v(),
+        s.knots_u().to_vec(),
+        s.knots_v().to_vec(),
+        &points,
+        Some(&weights),
+    )
+    .unwrap_or_else(|_| s.clone())
+}
+
+fn strip_position(e: &serde_json::Error) -> String {
+    let s = e.to_string();
+    match s.rfind(" at line ") {
+        Some(i) => s[..i].to_string(),
+        None => s,
+    }
+}
+
+/// Why a compound surface cannot be written as swarf JSON.
+#[derive(Debug, thiserror::Error)]
+pub enum WriteError {
+    /// Only NURBS patches have a JSON form.
+    #[error("patch {index} is a {kind}; swarf JSON holds NURBS patches only")]
+    NotNurbs {
+        /// Patch index.
+        index: usize,
+        /// Its kind.
+        kind: &'static str,
+    },
+    /// serde_json failed (it does not for these types, but the error is not hidden).
+    #[error(transparent)]
+    Json(#[from] serde_json::Error),
+}
+
+#[derive(Serialize)]
+struct OutFile {
+    units: Units,
+    patches: Vec<JsonPatch>,
+}
+
+/// Write swarf JSON (units mm). A flipped patch is written with its u direction reversed, so
+/// that `S_u × S_v` points to the cutter side as the format requires.
+pub fn to_string(surface: &CompoundSurface) -> Result<String, WriteError> {
+    let mut patches = Vec::with_capacity(surface.patches.len());
+    for (index, p) in surface.patches.iter().enumerate() {
+        let Surface::Nurbs(s) = &p.surface else {
+            return Err(WriteError::NotNurbs {
+                index,
+                kind: p.surface.kind(),
+            });
+        };
+        let s = if p.flipped { s.reversed_u() } else { s.clone() };
+        let (nu, nv) = s.net_size();
+        let control_points = (0..nu)
+            .map(|i| {
+                (0..nv)
+                    .map(|j| {
+                        let c = s.control_point(i, j);
+                        [c.x, c.y, c.z, s.weight(i, j)]
+                    })
+                    .collect()
+            })
+            .collect();
+        patches.push(JsonPatch {
+            name: p.name.clone(),
+            degree_u: s.degree_u(),
+            degree_v: s.degree_v(),
+            knots_u: s.knots_u().to_vec(),
+            knots_v: s.knots_v().to_vec(),
+            control_points,
+        });
+    }
+    Ok(serde_json::to_string_pretty(&OutFile {
+        units: Units::Mm,
+        patches,
+    })?)
+}

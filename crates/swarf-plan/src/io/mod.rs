@@ -1,0 +1,157 @@
+//! Readers (and the JSON writer) of compound surfaces: swarf JSON, STEP AP203/AP214, IGES.
+//!
+//! Every reader converts lengths to millimetres, never panics on malformed input, and reports
+//! errors with the line and column (or IGES record) where they were found.
+
+pub mod iges;
+pub mod json;
+pub mod step;
+
+use std::fmt;
+use std::path::{Path, PathBuf};
+
+use crate::compound::CompoundSurface;
+use crate::surface::NurbsError;
+
+/// A surface file format.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    /// swarf's JSON.
+    Json,
+    /// STEP (ISO 10303-21).
+    Step,
+    /// IGES 5.3.
+    Iges,
+}
+
+impl fmt::Display for Format {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Format::Json => "JSON",
+            Format::Step => "STEP",
+            Format::Iges => "IGES",
+        })
+    }
+}
+
+impl Format {
+    /// The format a file name's extension names (`.json`; `.step`, `.stp`, `.p21`; `.igs`,
+    /// `.iges`), case-insensitive.
+    pub fn from_path(path: &Path) -> Option<Format> {
+        let ext = path.extension()?.to_str()?.to_ascii_lowercase();
+        match ext.as_str() {
+            "json" => Some(Format::Json),
+            "step" | "stp" | "p21" => Some(Format::Step),
+            "igs" | "iges" => Some(Format::Iges),
+            _ => None,
+        }
+    }
+}
+
+/// Why a surface file could not be read.
+#[derive(Debug, thiserror::Error)]
+pub enum ReadError {
+    /// The file could not be read.
+    #[error("{path}: {source}")]
+    Io {
+        /// The path.
+        path: PathBuf,
+        /// The OS error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The extension names no supported format.
+    #[error(
+        "{path}: unknown surface file type (expected .json, .step, .stp, .p21, .igs or .iges)"
+    )]
+    UnknownFormat {
+        /// The path.
+        path: PathBuf,
+    },
+    /// Malformed text: what was found where, and what was expected.
+    #[error("{format} line {line}, column {column}: {message}")]
+    Syntax {
+        /// The format.
+        format: Format,
+        /// 1-based line.
+        line: usize,
+        /// 1-based column.
+        column: usize,
+        /// Found / expected.
+        message: String,
+    },
+    /// Well-formed text that does not make a valid surface.
+    #[error("{format} line {line}: {entity}: {source}")]
+    Surface {
+        /// The format.
+        format: Format,
+        /// 1-based line where the entity starts.
+        line: usize,
+        /// The entity (`#55`, `D3`, `patch "floor"`).
+        entity: String,
+        /// What is wrong with it.
+        #[source]
+        source: NurbsError,
+    },
+    /// Well-formed text with an inconsistent or missing entity.
+    #[error("{format} line {line}: {entity}: {message}")]
+    Entity {
+        /// The format.
+        format: Format,
+        /// 1-based line where the entity starts.
+        line: usize,
+        /// The entity.
+        entity: String,
+        /// What is wrong.
+        message: String,
+    },
+    /// The file holds no surface this crate reads.
+    #[error("{format}: no supported surface in the file{detail}")]
+    Empty {
+        /// The format.
+        format: Format,
+        /// What was skipped, if anything (starts with "; ").
+        detail: String,
+    },
+}
+
+/// Read a compound surface from a file, choosing the reader by extension. Patches record the
+/// path in their [`crate::PatchSource`].
+pub fn read_file(path: &Path) -> Result<CompoundSurface, ReadError> {
+    let format = Format::from_path(path).ok_or_else(|| ReadError::UnknownFormat {
+        path: path.to_path_buf(),
+    })?;
+    let bytes = std::fs::read(path).map_err(|source| ReadError::Io {
+        path: path.to_path_buf(),
+        source,
+    })?;
+    let text = String::from_utf8_lossy(&bytes);
+    let mut s = parse(format, &text)?;
+    let name = path.display().to_string();
+    for p in &mut s.patches {
+        p.source.file = Some(name.clone());
+    }
+    Ok(s)
+}
+
+/// Parse text in the given format.
+pub fn parse(format: Format, text: &str) -> Result<CompoundSurface, ReadError> {
+    match format {
+        Format::Json => json::parse(text),
+        Format::Step => step::parse(text),
+        Format::Iges => iges::parse(text),
+    }
+}
+
+/// Line and column (1-based, in characters) of byte offset `pos` in `text`.
+pub(crate) fn line_col(text: &str, pos: usize) -> (usize, usize) {
+    let pos = pos.min(text.len());
+    let before = &text.as_bytes()[..pos];
+    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
+    let start = before
+        .iter()
+        .rposition(|&b| b == b'\n')
+        .map_or(0, |i| i + 1);
+    let column = String::from_utf8_lossy(&before[start..]).chars().count() + 1;
+    (line, column)
+}

@@ -1,0 +1,89 @@
+//! Triangle meshes of patch sets, for viewing (the writers live elsewhere).
+
+use swarf_geom::math::Vec3;
+
+use crate::compound::CompoundSurface;
+use crate::surface::Tolerances;
+
+/// An indexed triangle mesh with per-vertex normals (towards the cutter side), in mm.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriangleMesh {
+    /// Vertex positions.
+    pub positions: Vec<Vec3>,
+    /// Unit vertex normals, one per position.
+    pub normals: Vec<Vec3>,
+    /// Triangles as indices into `positions`, counter-clockwise seen from the normal side.
+    pub triangles: Vec<[u32; 3]>,
+    /// The patch each triangle belongs to.
+    pub triangle_patch: Vec<u32>,
+}
+
+impl TriangleMesh {
+    /// Every triangle as three positions (a flat triangle list).
+    pub fn triangle_list(&self) -> Vec<[Vec3; 3]> {
+        self.triangles
+            .iter()
+            .map(|t| t.map(|i| self.positions[i as usize]))
+            .collect()
+    }
+}
+
+/// Tessellate every patch on its `n × n` iso-parametric grid (`n ≥ 2`) into `2·(n−1)²`
+/// triangles. Vertex normals are the surface normals (limit normals at degenerate points);
+/// where the normal is undefined, the average of the adjacent triangles' normals is used.
+/// Triangles collapsed to a point or a segment (at poles) are kept, with zero area.
+pub fn tessellate(surface: &CompoundSurface, n: usize, tol: &Tolerances) -> TriangleMesh {
+    let n = n.max(2);
+    let mut m = TriangleMesh::default();
+    for (k, patch) in surface.patches.iter().enumerate() {
+        let base = m.positions.len();
+        let dom = crate::surface::ParametricSurface::domain(&patch.surface);
+        let mut undefined = Vec::new();
+        for i in 0..n {
+            let u = dom.u_at(i as f64 / (n - 1) as f64);
+            for j in 0..n {
+                let v = dom.v_at(j as f64 / (n - 1) as f64);
+                let g = patch.local(u, v, tol);
+                m.positions.push(g.point());
+                match g.normal.vector() {
+                    Some(nv) => m.normals.push(nv),
+                    None => {
+                        undefined.push(m.normals.len());
+                        m.normals.push(Vec3::ZERO);
+                    }
+                }
+            }
+        }
+        let idx = |i: usize, j: usize| (base + i * n + j) as u32;
+        let first_tri = m.triangles.len();
+        for i in 0..n - 1 {
+            for j in 0..n - 1 {
+                let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
+                // u along the first edge, v along the second: S_u × S_v is counter-clockwise.
+                let (t1, t2) = if patch.flipped {
+                    ([a, c, b], [a, d, c])
+                } else {
+                    ([a, b, c], [a, c, d])
+                };
+                m.triangles.push(t1);
+                m.triangles.push(t2);
+                m.triangle_patch.push(k as u32);
+                m.triangle_patch.push(k as u32);
+            }
+        }
+        if !undefined.is_empty() {
+            let mut acc = vec![Vec3::ZERO; m.positions.len() - base];
+            for t in &m.triangles[first_tri..] {
+                let p = t.map(|i| m.positions[i as usize]);
+                let fnorm = (p[1] - p[0]).cross(p[2] - p[0]);
+                for &i in t {
+                    acc[i as usize - base] += fnorm;
+                }
+            }
+            for i in undefined {
+                m.normals[i] = acc[i - base].normalize_or_zero();
+            }
+        }
+    }
+    m
+}
