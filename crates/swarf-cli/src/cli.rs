@@ -22,6 +22,8 @@ pub(crate) enum Command {
     Tool(ToolArgs),
     /// Read a G-code or APT CL program and summarise its motion.
     Path(PathArgs),
+    /// Simulate a program on a tri-dexel stock: removed volume, collisions, the machined part.
+    Simulate(SimulateArgs),
     /// Run the built-in demo job.
     Demo(DemoArgs),
 }
@@ -70,6 +72,47 @@ pub(crate) struct PathArgs {
     /// Print the motion as LinuxCNC canonical calls (program units, four decimals).
     #[arg(long)]
     pub(crate) canonical: bool,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct SimulateArgs {
+    /// The stock: `box:X0,Y0,Z0,X1,Y1,Z1`, `cyl:CX,CY,Z0,R,H` (axis +Z) or a closed STL file.
+    /// Default: the workpiece a CAMotics project (--tools FILE.camotics) states.
+    #[arg(long, value_name = "SPEC|FILE.stl")]
+    pub(crate) stock: Option<String>,
+    /// The program: G-code or APT CL.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) program: PathBuf,
+    /// One cutter for every tool the program uses.
+    #[arg(long, value_name = "SPEC")]
+    pub(crate) tool: Option<String>,
+    /// Tool library: swarf TOML, LinuxCNC .tbl or CAMotics .camotics.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) tools: Option<PathBuf>,
+    /// Units of a LinuxCNC .tbl tool table.
+    #[arg(long, value_enum, default_value = "mm")]
+    pub(crate) table_units: TableUnits,
+    /// Machine kinematics: a built-in name or a TOML file (see `swarf path --help`).
+    #[arg(long, value_name = "FILE|NAME", default_value = "3axis")]
+    pub(crate) machine: String,
+    /// Length units before the program's first G20/G21.
+    #[arg(long, value_enum, default_value = "mm")]
+    pub(crate) initial_units: TableUnits,
+    /// Ray spacing of the tri-dexel stock, mm.
+    #[arg(long, value_name = "H", default_value_t = 0.25)]
+    pub(crate) resolution: f64,
+    /// Largest distance between an arc or a 5-axis motion and what is cut for it, mm.
+    #[arg(long, value_name = "T", default_value_t = swarf_stock::DEFAULT_CHORDAL_TOLERANCE_MM)]
+    pub(crate) tolerance: f64,
+    /// Build the stock from an STL mesh even if it is not closed.
+    #[arg(long)]
+    pub(crate) allow_open_mesh: bool,
+    /// Write stock.stl, stock.glb, moves.csv and summary.json here.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<PathBuf>,
+    /// Print the JSON summary (the default output is a short human-readable report).
+    #[arg(long)]
+    pub(crate) json: bool,
 }
 
 #[derive(Debug, Args)]

@@ -14,6 +14,7 @@ fn main() {
     let result = match cli.command {
         cli::Command::Tool(args) => commands::tool::run(&args),
         cli::Command::Path(args) => commands::path::run(&args),
+        cli::Command::Simulate(args) => commands::simulate::run(&args),
         cli::Command::Demo(args) => commands::demo::run(&args),
     };
     if let Err(e) = result {

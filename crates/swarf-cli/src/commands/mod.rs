@@ -2,5 +2,6 @@
 
 pub(crate) mod demo;
 pub(crate) mod path;
+pub(crate) mod simulate;
 pub(crate) mod tool;
 pub(crate) mod tools;

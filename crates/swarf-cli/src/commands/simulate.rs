@@ -1,0 +1,234 @@
+//! `swarf simulate`: run a program on a tri-dexel stock and report what it removed.
+
+use std::fmt::Write as _;
+use std::path::Path;
+
+use anyhow::{bail, Context, Result};
+use serde::Serialize;
+use swarf_path::load::read_program;
+use swarf_path::{MoveKind, Program};
+use swarf_stock::{
+    simulate, Collision, MeshOptions, SimOptions, SimulationReport, StockSpec, Tools, TriDexel,
+};
+use swarf_tool::ToolTable;
+
+use crate::cli::SimulateArgs;
+use crate::commands::tools::{load_machine, load_tool_sources, read_options, resolve_tools};
+use crate::output::{print_json, write_atomic};
+
+/// The JSON summary. The first nine keys are a contract; the rest may grow.
+#[derive(Serialize)]
+pub(crate) struct SimulateSummary {
+    stock_volume_mm3: f64,
+    removed_volume_mm3: f64,
+    final_volume_mm3: f64,
+    moves: usize,
+    rays: u64,
+    intervals: u64,
+    /// Number of rapids whose cutting part entered the material.
+    rapid_collisions: usize,
+    /// Number of moves whose shank or holder entered the material.
+    holder_collisions: usize,
+    elapsed_s: f64,
+    /// Every collision: kind, move index, file, line, volume.
+    collisions: Vec<CollisionReport>,
+    /// Final volume from the X, Y and Z ray families (a cross-check of the discretisation).
+    final_volume_xyz_mm3: [f64; 3],
+    bytes_per_interval: f64,
+    resolution_mm: [f64; 3],
+    chordal_tolerance_mm: f64,
+    rays_tested: u64,
+    ray_updates: u64,
+}
+
+#[derive(Serialize)]
+struct CollisionReport {
+    kind: &'static str,
+    #[serde(flatten)]
+    collision: Collision,
+}
+
+impl SimulateSummary {
+    pub(crate) fn new(r: &SimulationReport) -> Self {
+        let kinded = |kind, cs: &[Collision]| {
+            cs.iter()
+                .map(move |c| CollisionReport {
+                    kind,
+                    collision: c.clone(),
+                })
+                .collect::<Vec<_>>()
+        };
+        let mut collisions = kinded("rapid", &r.rapid_collisions);
+        collisions.extend(kinded("holder", &r.holder_collisions));
+        collisions.sort_by_key(|c| c.collision.move_index);
+        Self {
+            stock_volume_mm3: r.stock_volume_mm3,
+            removed_volume_mm3: r.removed_volume_mm3,
+            final_volume_mm3: r.final_volume_mm3,
+            moves: r.moves,
+            rays: r.rays,
+            intervals: r.intervals,
+            rapid_collisions: r.rapid_collisions.len(),
+            holder_collisions: r.holder_collisions.len(),
+            elapsed_s: r.elapsed_s,
+            collisions,
+            final_volume_xyz_mm3: r.final_volume_xyz_mm3,
+            bytes_per_interval: r.bytes_per_interval,
+            resolution_mm: r.resolution_mm,
+            chordal_tolerance_mm: r.chordal_tolerance_mm,
+            rays_tested: r.rays_tested,
+            ray_updates: r.ray_updates,
+        }
+    }
+
+    fn print_human(&self) {
+        println!("stock   {:.3} mm³", self.stock_volume_mm3);
+        println!("removed {:.3} mm³", self.removed_volume_mm3);
+        println!("final   {:.3} mm³", self.final_volume_mm3);
+        println!(
+            "{} moves, {} rays, {} intervals, {:.2} s",
+            self.moves, self.rays, self.intervals, self.elapsed_s
+        );
+        for c in &self.collisions {
+            println!(
+                "{}:{}: {} collision, move {}, {:.3} mm³ removed",
+                c.collision.file,
+                c.collision.line,
+                c.kind,
+                c.collision.move_index,
+                c.collision.volume_mm3
+            );
+        }
+    }
+}
+
+pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
+    if !(args.resolution > 0.0 && args.resolution.is_finite()) {
+        bail!(
+            "--resolution must be a positive number of mm, got {}",
+            args.resolution
+        );
+    }
+    if !(args.tolerance > 0.0 && args.tolerance.is_finite()) {
+        bail!(
+            "--tolerance must be a positive number of mm, got {}",
+            args.tolerance
+        );
+    }
+    let machine = load_machine(&args.machine)?;
+    let program = read_program(&args.program, machine, &read_options(args.initial_units))?;
+    let (single, table) = load_tool_sources(
+        args.tool.as_deref(),
+        args.tools.as_deref(),
+        args.table_units,
+    )?;
+    let tools = tools_for(&program, single.as_ref(), table.as_ref())?;
+    let spec = stock_spec(args.stock.as_deref(), table.as_ref())?;
+    let mut stock = spec
+        .build(
+            args.resolution,
+            MeshOptions {
+                allow_open: args.allow_open_mesh,
+            },
+        )
+        .context("building the stock")?;
+    let options = SimOptions::default().with_chordal_tolerance(args.tolerance);
+    let report = simulate(&program, &tools, &mut stock, &options)
+        .with_context(|| format!("simulating {}", args.program.display()))?;
+    let summary = SimulateSummary::new(&report);
+    if let Some(dir) = &args.out {
+        write_outputs(dir, &program, &stock, &report, &summary)?;
+    }
+    if args.json {
+        print_json(&summary)
+    } else {
+        summary.print_human();
+        Ok(())
+    }
+}
+
+/// The cutters of every tool the program uses; a tool nothing defines is an error that says
+/// how to define it.
+pub(crate) fn tools_for(
+    program: &Program,
+    single: Option<&swarf_tool::Cutter>,
+    table: Option<&ToolTable>,
+) -> Result<Tools> {
+    let (resolved, undefined) = resolve_tools(program, single, table)?;
+    if let Some(n) = undefined.first() {
+        bail!(
+            "the program uses tool {n}, which nothing defines: give --tool SPEC for every tool, \
+             or --tools FILE with tool {n}"
+        );
+    }
+    Ok(resolved
+        .iter()
+        .fold(Tools::default(), |t, (n, r)| t.with(*n, &r.cutter)))
+}
+
+fn stock_spec(arg: Option<&str>, table: Option<&ToolTable>) -> Result<StockSpec> {
+    match (arg, table.and_then(|t| t.workpiece)) {
+        (Some(s), _) => StockSpec::parse(s).with_context(|| format!("stock `{s}`")),
+        (None, Some(b)) => Ok(StockSpec::Box {
+            min: b.min,
+            max: b.max,
+        }),
+        (None, None) => {
+            bail!("give the stock with --stock box:X0,Y0,Z0,X1,Y1,Z1, cyl:CX,CY,Z0,R,H or FILE.stl")
+        }
+    }
+}
+
+/// `moves.csv`: one row per move. The first three columns are a contract.
+fn moves_csv(program: &Program, report: &SimulationReport) -> String {
+    let mut out = String::from("move,line,removed_mm3,file,kind,tool\n");
+    for (i, (m, v)) in program
+        .moves
+        .iter()
+        .zip(&report.removed_per_move_mm3)
+        .enumerate()
+    {
+        let kind = match m.kind {
+            MoveKind::Rapid => "rapid",
+            MoveKind::Linear => "linear",
+            MoveKind::Arc(_) => "arc",
+        };
+        let file = program
+            .files
+            .get(usize::from(m.file))
+            .map_or("", String::as_str);
+        let _ = writeln!(
+            out,
+            "{i},{},{v},{},{kind},{}",
+            m.line,
+            csv_field(file),
+            m.tool
+        );
+    }
+    out
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+fn write_outputs(
+    dir: &Path,
+    program: &Program,
+    _stock: &TriDexel,
+    report: &SimulationReport,
+    summary: &SimulateSummary,
+) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    write_atomic(
+        &dir.join("moves.csv"),
+        moves_csv(program, report).as_bytes(),
+    )?;
+    let mut json = serde_json::to_vec_pretty(summary)?;
+    json.push(b'\n');
+    write_atomic(&dir.join("summary.json"), &json)
+}

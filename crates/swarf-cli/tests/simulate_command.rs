@@ -1,0 +1,125 @@
+//! `swarf simulate`: the summary contract, outputs and bad input.
+mod common;
+use common::*;
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("swarf-sim-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn flat_slot_removes_its_exact_volume_and_writes_outputs() {
+    let dir = temp_dir("slot");
+    let prog = dir.join("slot.ngc");
+    // A 10 mm flat end mill, 3 mm deep, from X10 to X50 across a 60 x 40 x 20 block: a
+    // stadium-shaped slot of 40 x 10 plus two half discs, 3 mm deep.
+    std::fs::write(
+        &prog,
+        "G21 G90\nG0 X10 Y20 Z5\nG1 Z-3 F200\nG1 X50\nG0 Z5\nM30\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = swarf(&[
+        "simulate",
+        "--stock",
+        "box:0,0,-20,60,40,0",
+        "--program",
+        prog.to_str().unwrap(),
+        "--tool",
+        "flat:d=10",
+        "--resolution",
+        "0.1",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    for k in [
+        "stock_volume_mm3",
+        "removed_volume_mm3",
+        "final_volume_mm3",
+        "moves",
+        "rays",
+        "intervals",
+        "rapid_collisions",
+        "holder_collisions",
+        "elapsed_s",
+    ] {
+        assert!(j.get(k).is_some(), "{k} missing: {j}");
+    }
+    let exact = 3.0 * (40.0 * 10.0 + std::f64::consts::PI * 25.0);
+    let got = j["removed_volume_mm3"].as_f64().unwrap();
+    assert!((got - exact).abs() / exact < 0.002, "{got} vs {exact}");
+    assert_eq!(j["rapid_collisions"], 0);
+    let csv = std::fs::read_to_string(out.join("moves.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert!(lines.next().unwrap().starts_with("move,line,removed_mm3"));
+    assert_eq!(lines.count(), j["moves"].as_u64().unwrap() as usize);
+}
+
+#[test]
+fn rapid_into_the_stock_is_reported_with_its_line() {
+    let dir = temp_dir("rapid");
+    let prog = dir.join("crash.ngc");
+    std::fs::write(&prog, "G21 G90\nG0 X10 Y10 Z5\nG0 Z-2\nG0 Z5\nM30\n").unwrap();
+    let o = swarf(&[
+        "simulate",
+        "--stock",
+        "box:0,0,-10,20,20,0",
+        "--program",
+        prog.to_str().unwrap(),
+        "--tool",
+        "ball:d=6",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    assert_eq!(j["rapid_collisions"], 1, "{j}");
+    assert_eq!(j["collisions"][0]["line"], 3, "{j}");
+    assert!(j["removed_volume_mm3"].as_f64().unwrap() > 0.0);
+}
+
+#[test]
+fn bad_input_is_exit_1_with_a_clear_message() {
+    let dir = temp_dir("bad");
+    let prog = dir.join("p.ngc");
+    std::fs::write(&prog, "G21 G90\nT3 M6\nG1 X1 F100\nM30\n").unwrap();
+    let p = prog.to_str().unwrap();
+    let o = swarf(&[
+        "simulate",
+        "--stock",
+        "box:0,0,0,1,1",
+        "--program",
+        p,
+        "--tool",
+        "flat:d=3",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("column"), "{}", stderr(&o));
+    let o = swarf(&["simulate", "--program", p, "--tool", "flat:d=3"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("--stock"), "{}", stderr(&o));
+    let o = swarf(&["simulate", "--stock", "box:0,0,0,5,5,5", "--program", p]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("tool 3"), "{}", stderr(&o));
+    let open = dir.join("open.stl");
+    std::fs::write(
+        &open,
+        "solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n",
+    )
+    .unwrap();
+    let o = swarf(&[
+        "simulate",
+        "--stock",
+        open.to_str().unwrap(),
+        "--program",
+        p,
+        "--tool",
+        "flat:d=3",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("open edge"), "{}", stderr(&o));
+}
