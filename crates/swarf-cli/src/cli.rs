@@ -117,7 +117,11 @@ pub(crate) struct SimulateArgs {
 
 #[derive(Debug, Args)]
 pub(crate) struct DemoArgs {
-    /// Also write the demo's program, tool library, canonical motion and summary here.
-    #[arg(long, value_name = "DIR")]
-    pub(crate) out: Option<PathBuf>,
+    /// Where to write the machined part (stock.stl, stock.glb), moves.csv, summary.json, the
+    /// program, its tool library and its canonical motion.
+    #[arg(long, value_name = "DIR", default_value = "swarf-demo")]
+    pub(crate) out: PathBuf,
+    /// Ray spacing of the stock, mm.
+    #[arg(long, value_name = "H", default_value_t = 0.25)]
+    pub(crate) resolution: f64,
 }

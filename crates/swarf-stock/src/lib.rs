@@ -23,11 +23,12 @@
 //! at most the chordal tolerance ([`DEFAULT_CHORDAL_TOLERANCE_MM`]) from the arc: the chords
 //! lie inside the arc's convex hull, so the removal **under-cuts** by at most that tolerance.
 //! Shank and holder sweeps are cut too and reported as collisions, as are rapids whose
-//! cutting part meets material. Moves whose tool axis turns (5-axis simultaneous) are refused
-//! with [`StockError::Unsupported`] naming the move.
+//! cutting part meets material. Moves whose tool axis turns (5-axis simultaneous) are cut as
+//! constant-axis straight sub-moves by adaptive bisection until a proven bound on the distance
+//! between their sweep and the true one is within the same tolerance ([`five_axis`]).
 //!
 //! Everything else is exact up to floating point: the only discretisation is the ray grid
-//! itself (the volume error shrinks with `h`) and the chords of arcs.
+//! itself (the volume error shrinks with `h`), the chords of arcs and the 5-axis sub-moves.
 //!
 //! # Work per move
 //! Material first: a move visits only the tiles of rays that cross its swept bounding box;
@@ -41,10 +42,11 @@
 //! does not allocate.
 //!
 //! # Accuracy parameters (one place)
-//! [`DEFAULT_CHORDAL_TOLERANCE_MM`] (arcs, reported in [`SimulationReport`]), the grid
-//! resolution (per stock), [`sweep::AXIS_SNAP`] and [`sweep::BAND_EPS`] (floating-point
-//! guards of the exact cut, far below any resolution), [`dexel::MIN_INTERVAL_MM`] (slivers
-//! dropped) and [`cut::COLLISION_EPS_MM`] (removal that counts as a collision).
+//! [`DEFAULT_CHORDAL_TOLERANCE_MM`] (arcs and 5-axis moves, reported in
+//! [`SimulationReport`]), the grid resolution (per stock), [`sweep::AXIS_SNAP`] and
+//! [`sweep::BAND_EPS`] (floating-point guards of the exact cut, far below any resolution),
+//! [`dexel::MIN_INTERVAL_MM`] (slivers dropped), [`cut::COLLISION_EPS_MM`] (removal that
+//! counts as a collision) and [`five_axis::MAX_SUB_MOVES`] (a guard, not an accuracy).
 //!
 //! ```
 //! use swarf_geom::math::Vec3;
@@ -61,9 +63,11 @@
 //! assert!(cut.non_cutting.removed_length == [0.0; 3]);
 //! ```
 
+pub mod contour;
 pub mod cut;
 pub mod dexel;
 pub mod error;
+pub mod five_axis;
 pub mod mesh;
 pub mod simulate;
 pub mod spec;
@@ -73,8 +77,11 @@ pub mod tridexel;
 pub use cut::{arc_chords, SegmentCut, ToolShape, DEFAULT_CHORDAL_TOLERANCE_MM};
 pub use dexel::{Dexel, Interval};
 pub use error::StockError;
+pub use five_axis::{MotionBound, SubMove};
 pub use mesh::MeshOptions;
-pub use spec::StockSpec;
 pub use simulate::{simulate, Collision, SimOptions, SimulationReport, Tools};
+pub use spec::StockSpec;
 pub use sweep::{ConvexProfile, Element, LineBatch, SweepShape, SweptConvex};
-pub use tridexel::{CutStats, DexelFamily, Grid, StockStats, TriDexel, MAX_RAYS, TILE};
+pub use tridexel::{
+    CutStats, DexelFamily, Grid, LinearMove, StockStats, TriDexel, MAX_RAYS, TILE,
+};

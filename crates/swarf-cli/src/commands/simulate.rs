@@ -5,6 +5,7 @@ use std::path::Path;
 
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
+use swarf_io::{ContourOptions, GlbOptions};
 use swarf_path::load::read_program;
 use swarf_path::{MoveKind, Program};
 use swarf_stock::{
@@ -216,14 +217,19 @@ fn csv_field(s: &str) -> String {
     }
 }
 
-fn write_outputs(
+/// Writes the machined part (`stock.stl`, `stock.glb`), `moves.csv` and `summary.json`.
+pub(crate) fn write_outputs(
     dir: &Path,
     program: &Program,
-    _stock: &TriDexel,
+    stock: &TriDexel,
     report: &SimulationReport,
     summary: &SimulateSummary,
 ) -> Result<()> {
     std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let (mesh, _) = stock.to_mesh(&ContourOptions::default());
+    swarf_io::write_stl(&dir.join("stock.stl"), &mesh).context("writing stock.stl")?;
+    swarf_io::write_glb(&dir.join("stock.glb"), &mesh, &GlbOptions::default())
+        .context("writing stock.glb")?;
     write_atomic(
         &dir.join("moves.csv"),
         moves_csv(program, report).as_bytes(),

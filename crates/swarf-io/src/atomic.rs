@@ -1,0 +1,54 @@
+//! Atomic file output: every writer of this crate writes a temporary file beside the target and
+//! renames it over the target only once everything is written and flushed, so a reader (or a
+//! user pressing Ctrl-C) never sees a half-written file. A failed write removes its temporary.
+
+use crate::error::IoError;
+use std::fs::File;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicU64, Ordering};
+
+static COUNTER: AtomicU64 = AtomicU64::new(0);
+
+/// Prefix of the temporary files (`.<file name>.swarf-tmp-<pid>-<n>`), so that stray ones
+/// (after a crash) are recognisable.
+pub const TEMP_MARKER: &str = ".swarf-tmp-";
+
+fn temp_path(path: &Path) -> PathBuf {
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_else(|| "out".to_string());
+    let n = COUNTER.fetch_add(1, Ordering::Relaxed);
+    let tmp = format!(".{name}{TEMP_MARKER}{}-{n}", std::process::id());
+    match path.parent() {
+        Some(dir) if !dir.as_os_str().is_empty() => dir.join(tmp),
+        _ => PathBuf::from(tmp),
+    }
+}
+
+/// Writes `path` atomically: `body` writes into a buffered temporary file in the same folder,
+/// which is flushed, synced and renamed over `path`. On any error the temporary is removed
+/// and `path` is left as it was.
+pub fn write_atomic<F>(path: &Path, body: F) -> Result<(), IoError>
+where
+    F: FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
+{
+    let tmp = temp_path(path);
+    let result = (|| {
+        let file = File::create(&tmp).map_err(|e| IoError::io(&tmp, e))?;
+        let mut w = BufWriter::new(file);
+        body(&mut w).map_err(|e| IoError::io(path, e))?;
+        w.flush().map_err(|e| IoError::io(path, e))?;
+        let file = w
+            .into_inner()
+            .map_err(|e| IoError::io(path, e.into_error()))?;
+        file.sync_all().map_err(|e| IoError::io(path, e))?;
+        drop(file);
+        std::fs::rename(&tmp, path).map_err(|e| IoError::io(path, e))
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
+}

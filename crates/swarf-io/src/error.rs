@@ -1,0 +1,61 @@
+//! The error type of every reader and writer in this crate.
+
+use std::path::PathBuf;
+
+/// What went wrong while reading or writing a mesh file.
+#[derive(Debug, thiserror::Error)]
+pub enum IoError {
+    /// The operating system refused (open, write, rename…).
+    #[error("{path}: {source}")]
+    Io {
+        /// The file concerned.
+        path: PathBuf,
+        /// The underlying error.
+        #[source]
+        source: std::io::Error,
+    },
+    /// The file's contents are not what the format requires.
+    #[error("{path}: {what} (expected {expected})")]
+    Malformed {
+        /// The file concerned.
+        path: PathBuf,
+        /// What was found, with its position (byte offset or line).
+        what: String,
+        /// What the format requires there.
+        expected: String,
+    },
+    /// The mesh cannot be written as it is (an index out of range, a colour count that does not
+    /// match the vertices, too many vertices for the format…).
+    #[error("invalid mesh: {0}")]
+    InvalidMesh(String),
+    /// JSON (de)serialisation of a glTF document failed.
+    #[error("{path}: glTF JSON: {source}")]
+    Json {
+        /// The file concerned.
+        path: PathBuf,
+        /// The underlying error.
+        #[source]
+        source: serde_json::Error,
+    },
+}
+
+impl IoError {
+    pub(crate) fn io(path: &std::path::Path, source: std::io::Error) -> Self {
+        IoError::Io {
+            path: path.to_path_buf(),
+            source,
+        }
+    }
+
+    pub(crate) fn malformed(
+        path: &std::path::Path,
+        what: impl Into<String>,
+        expected: impl Into<String>,
+    ) -> Self {
+        IoError::Malformed {
+            path: path.to_path_buf(),
+            what: what.into(),
+            expected: expected.into(),
+        }
+    }
+}

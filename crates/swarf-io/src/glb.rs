@@ -1,0 +1,340 @@
+//! glb: binary glTF 2.0, the format of the web and of most 3-D viewers (three.js, Blender,
+//! Windows' 3D Viewer). One scene, one node, one mesh with one triangle primitive: `POSITION`
+//! and `NORMAL` (`f32` VEC3), optional `COLOR_0` (`f32` VEC4), `u32` indices. The JSON is built
+//! with `gltf-json`'s types; the container follows the spec: 12-byte header, a JSON chunk padded
+//! with spaces and a BIN chunk padded with zeros to 4 bytes, every accessor 4-byte aligned,
+//! `POSITION` with exact `min`/`max` (computed from the `f32` values written).
+//!
+//! Flat shading (the default, right for machined parts with sharp edges) gives every triangle
+//! its own three vertices with the face normal; smooth shading keeps the mesh indexed with
+//! area-weighted vertex normals.
+
+use crate::atomic::write_atomic;
+use crate::error::IoError;
+use crate::mesh::TriMesh;
+use gltf_json as json;
+use json::validation::{Checked::Valid, USize64};
+use std::collections::BTreeMap;
+use std::io::Write;
+use std::path::Path;
+
+/// How normals are written.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Shading {
+    /// One normal per triangle (vertices are duplicated per triangle): crisp edges.
+    #[default]
+    Flat,
+    /// Area-weighted vertex normals on the indexed mesh.
+    Smooth,
+}
+
+/// Options of [`write_glb`].
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct GlbOptions {
+    /// Flat or smooth normals.
+    pub shading: Shading,
+}
+
+impl GlbOptions {
+    /// With the given shading.
+    pub fn with_shading(mut self, shading: Shading) -> Self {
+        self.shading = shading;
+        self
+    }
+}
+
+const GLB_MAGIC: &[u8; 4] = b"glTF";
+const CHUNK_JSON: u32 = 0x4E4F_534A;
+const CHUNK_BIN: u32 = 0x004E_4942;
+
+/// Positions, normals, colours and indices as written.
+type Streams = (
+    Vec<[f32; 3]>,
+    Vec<[f32; 3]>,
+    Option<Vec<[f32; 4]>>,
+    Vec<u32>,
+);
+
+fn pad4(n: usize) -> usize {
+    n.div_ceil(4) * 4
+}
+
+/// The glb file of `mesh` in memory.
+pub fn glb_bytes(mesh: &TriMesh, options: &GlbOptions) -> Result<Vec<u8>, IoError> {
+    mesh.validate()?;
+    // Vertex streams.
+    let (positions, normals, colors, indices): Streams = match options.shading {
+        Shading::Flat => {
+            let mut p = Vec::with_capacity(mesh.triangles.len() * 3);
+            let mut n = Vec::with_capacity(mesh.triangles.len() * 3);
+            let mut c = mesh
+                .colors
+                .as_ref()
+                .map(|_| Vec::with_capacity(mesh.triangles.len() * 3));
+            for (t, tri) in mesh.triangles.iter().enumerate() {
+                let nn = mesh.triangle_normal(t).as_vec3().to_array();
+                for &v in tri {
+                    p.push(mesh.vertices[v as usize].as_vec3().to_array());
+                    n.push(nn);
+                    if let (Some(c), Some(src)) = (&mut c, &mesh.colors) {
+                        c.push(src[v as usize]);
+                    }
+                }
+            }
+            let idx = (0..p.len() as u32).collect();
+            (p, n, c, idx)
+        }
+        Shading::Smooth => (
+            mesh.vertices
+                .iter()
+                .map(|v| v.as_vec3().to_array())
+                .collect(),
+            mesh.vertex_normals()
+                .iter()
+                .map(|v| v.as_vec3().to_array())
+                .collect(),
+            mesh.colors.clone(),
+            mesh.triangles.iter().flatten().copied().collect(),
+        ),
+    };
+    let count = positions.len();
+    if count > u32::MAX as usize {
+        return Err(IoError::InvalidMesh(format!(
+            "{count} glTF vertices exceed u32 indices"
+        )));
+    }
+    let mut bin: Vec<u8> = Vec::new();
+    let mut views: Vec<(usize, usize, json::buffer::Target)> = Vec::new();
+    let mut push_view = |bytes: Vec<u8>, target| {
+        let off = bin.len();
+        bin.extend_from_slice(&bytes);
+        bin.resize(pad4(bin.len()), 0);
+        views.push((off, bytes.len(), target));
+    };
+    let f32s =
+        |v: &mut dyn Iterator<Item = f32>| -> Vec<u8> { v.flat_map(f32::to_le_bytes).collect() };
+    push_view(
+        f32s(&mut positions.iter().flatten().copied()),
+        json::buffer::Target::ArrayBuffer,
+    );
+    push_view(
+        f32s(&mut normals.iter().flatten().copied()),
+        json::buffer::Target::ArrayBuffer,
+    );
+    if let Some(c) = &colors {
+        push_view(
+            f32s(&mut c.iter().flatten().copied()),
+            json::buffer::Target::ArrayBuffer,
+        );
+    }
+    push_view(
+        indices.iter().flat_map(|i| i.to_le_bytes()).collect(),
+        json::buffer::Target::ElementArrayBuffer,
+    );
+
+    let mut min = [f32::INFINITY; 3];
+    let mut max = [f32::NEG_INFINITY; 3];
+    for p in &positions {
+        for k in 0..3 {
+            min[k] = min[k].min(p[k]);
+            max[k] = max[k].max(p[k]);
+        }
+    }
+    let mut root = json::Root::default();
+    root.asset.generator = Some(format!("swarf-io {}", env!("CARGO_PKG_VERSION")));
+    let buffer = root.push(json::Buffer {
+        byte_length: USize64::from(bin.len()),
+        uri: None,
+        extensions: None,
+        extras: Default::default(),
+    });
+    let view_idx: Vec<_> = views
+        .iter()
+        .map(|&(off, len, target)| {
+            root.push(json::buffer::View {
+                buffer,
+                byte_length: USize64::from(len),
+                byte_offset: Some(USize64::from(off)),
+                byte_stride: None,
+                target: Some(Valid(target)),
+                extensions: None,
+                extras: Default::default(),
+            })
+        })
+        .collect();
+    let accessor = |root: &mut json::Root,
+                    view: usize,
+                    n: usize,
+                    ct: json::accessor::ComponentType,
+                    ty: json::accessor::Type,
+                    minmax: Option<([f32; 3], [f32; 3])>| {
+        root.push(json::Accessor {
+            buffer_view: Some(view_idx[view]),
+            byte_offset: Some(USize64(0)),
+            count: USize64::from(n),
+            component_type: Valid(json::accessor::GenericComponentType(ct)),
+            extensions: None,
+            extras: Default::default(),
+            type_: Valid(ty),
+            min: minmax.map(|(a, _)| json::Value::from(a.to_vec())),
+            max: minmax.map(|(_, b)| json::Value::from(b.to_vec())),
+            normalized: false,
+            sparse: None,
+        })
+    };
+    use json::accessor::{ComponentType as C, Type as T};
+    let pos = accessor(
+        &mut root,
+        0,
+        count,
+        C::F32,
+        T::Vec3,
+        (count > 0).then_some((min, max)),
+    );
+    let nor = accessor(&mut root, 1, count, C::F32, T::Vec3, None);
+    let col = colors
+        .as_ref()
+        .map(|_| accessor(&mut root, 2, count, C::F32, T::Vec4, None));
+    let idx = accessor(
+        &mut root,
+        views.len() - 1,
+        indices.len(),
+        C::U32,
+        T::Scalar,
+        None,
+    );
+    let mut attributes = BTreeMap::new();
+    attributes.insert(Valid(json::mesh::Semantic::Positions), pos);
+    attributes.insert(Valid(json::mesh::Semantic::Normals), nor);
+    if let Some(c) = col {
+        attributes.insert(Valid(json::mesh::Semantic::Colors(0)), c);
+    }
+    let mesh_idx = root.push(json::Mesh {
+        extensions: None,
+        extras: Default::default(),
+        primitives: vec![json::mesh::Primitive {
+            attributes,
+            extensions: None,
+            extras: Default::default(),
+            indices: Some(idx),
+            material: None,
+            mode: Valid(json::mesh::Mode::Triangles),
+            targets: None,
+        }],
+        weights: None,
+    });
+    let node = root.push(json::Node {
+        mesh: Some(mesh_idx),
+        ..Default::default()
+    });
+    let scene = root.push(json::Scene {
+        extensions: None,
+        extras: Default::default(),
+        nodes: vec![node],
+    });
+    root.scene = Some(scene);
+
+    let mut js = root.to_vec().map_err(|e| IoError::Json {
+        path: Default::default(),
+        source: e,
+    })?;
+    js.resize(pad4(js.len()), b' ');
+    let total = 12 + 8 + js.len() + 8 + bin.len();
+    let total32 = u32::try_from(total)
+        .map_err(|_| IoError::InvalidMesh(format!("{total} bytes exceed glb's 4 GiB limit")))?;
+    let mut out = Vec::with_capacity(total);
+    out.extend_from_slice(GLB_MAGIC);
+    out.extend_from_slice(&2u32.to_le_bytes());
+    out.extend_from_slice(&total32.to_le_bytes());
+    out.extend_from_slice(&(js.len() as u32).to_le_bytes());
+    out.extend_from_slice(&CHUNK_JSON.to_le_bytes());
+    out.extend_from_slice(&js);
+    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
+    out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
+    out.extend_from_slice(&bin);
+    Ok(out)
+}
+
+/// Writes `mesh` as a glb file, atomically.
+pub fn write_glb(path: &Path, mesh: &TriMesh, options: &GlbOptions) -> Result<(), IoError> {
+    let bytes = glb_bytes(mesh, options)?;
+    write_atomic(path, |w| w.write_all(&bytes))
+}
+
+/// A glb file taken apart: its parsed JSON document and its BIN chunk.
+#[derive(Debug)]
+pub struct Glb {
+    /// The glTF document.
+    pub root: json::Root,
+    /// The binary buffer.
+    pub bin: Vec<u8>,
+}
+
+/// Reads and checks a glb container: header, chunk lengths and types, padding; parses the JSON
+/// with `gltf-json` and runs its validation (indices in range, required fields).
+pub fn read_glb(path: &Path) -> Result<Glb, IoError> {
+    let bytes = std::fs::read(path).map_err(|e| IoError::io(path, e))?;
+    parse_glb(&bytes, path)
+}
+
+/// [`read_glb`] on bytes; `path` only names the source in errors.
+pub fn parse_glb(bytes: &[u8], path: &Path) -> Result<Glb, IoError> {
+    let bad = |what: String, expected: &str| IoError::malformed(path, what, expected);
+    let u32_at = |o: usize| -> Option<u32> {
+        bytes
+            .get(o..o + 4)
+            .map(|b| u32::from_le_bytes([b[0], b[1], b[2], b[3]]))
+    };
+    if bytes.len() < 20 || &bytes[0..4] != GLB_MAGIC {
+        return Err(bad(
+            format!("{} bytes without the `glTF` magic", bytes.len()),
+            "a glb header",
+        ));
+    }
+    if u32_at(4) != Some(2) || u32_at(8) != Some(bytes.len() as u32) {
+        return Err(bad(
+            format!(
+                "version {:?}, length {:?} for {} bytes",
+                u32_at(4),
+                u32_at(8),
+                bytes.len()
+            ),
+            "version 2 and the file's length",
+        ));
+    }
+    let jlen = u32_at(12).unwrap_or(0) as usize;
+    if u32_at(16) != Some(CHUNK_JSON) || jlen % 4 != 0 || 20 + jlen > bytes.len() {
+        return Err(bad(
+            format!("JSON chunk of {jlen} bytes"),
+            "a JSON chunk padded to 4 bytes",
+        ));
+    }
+    let js = &bytes[20..20 + jlen];
+    let mut bin = Vec::new();
+    let b0 = 20 + jlen;
+    if b0 < bytes.len() {
+        let blen = u32_at(b0).unwrap_or(0) as usize;
+        if u32_at(b0 + 4) != Some(CHUNK_BIN) || blen % 4 != 0 || b0 + 8 + blen != bytes.len() {
+            return Err(bad(
+                format!("BIN chunk of {blen} bytes at {b0}"),
+                "a BIN chunk padded to 4 bytes ending the file",
+            ));
+        }
+        bin = bytes[b0 + 8..].to_vec();
+    }
+    let root = json::Root::from_slice(js).map_err(|e| IoError::Json {
+        path: path.to_path_buf(),
+        source: e,
+    })?;
+    let mut errors = Vec::new();
+    json::validation::Validate::validate(&root, &root, json::Path::new, &mut |p, e| {
+        errors.push(format!("{}: {e}", p()))
+    });
+    if let Some(e) = errors.first() {
+        return Err(bad(
+            format!("glTF validation: {e} ({} errors)", errors.len()),
+            "a valid glTF 2.0 document",
+        ));
+    }
+    Ok(Glb { root, bin })
+}

@@ -1,0 +1,443 @@
+//! The indexed triangle mesh every writer takes and every reader returns, with the queries that
+//! prove a mesh is a valid solid boundary: signed volume, area, open or non-manifold edges,
+//! orientation, and the welding and merging that build one.
+//!
+//! Convention: a triangle's vertices are counter-clockwise seen from outside, so the right-hand
+//! normal `(b − a) × (c − a)` points out of the solid and the signed volume of a closed mesh is
+//! positive.
+
+use crate::error::IoError;
+use crate::tolerance::MAX_EDGE_EXAMPLES;
+use std::collections::HashMap;
+use swarf_geom::math::Vec3;
+use swarf_geom::Aabb;
+
+/// An indexed triangle mesh: positions in mm, triangles counter-clockwise seen from outside,
+/// optional linear RGBA colour per vertex.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct TriMesh {
+    /// Vertex positions.
+    pub vertices: Vec<Vec3>,
+    /// Triangles as indices into `vertices`, counter-clockwise seen from outside.
+    pub triangles: Vec<[u32; 3]>,
+    /// One RGBA colour (components in `[0, 1]`) per vertex, if any.
+    pub colors: Option<Vec<[f32; 4]>>,
+}
+
+/// An edge of a mesh used by other than exactly two triangles.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct BadEdge {
+    /// Vertex indices (smaller first).
+    pub indices: [u32; 2],
+    /// The end points.
+    pub points: [Vec3; 2],
+    /// How many triangles use it (1: open; 3 or more: non-manifold).
+    pub uses: u32,
+}
+
+/// The edges of a mesh that keep it from being a closed 2-manifold, and those whose two
+/// triangles disagree on orientation.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct EdgeReport {
+    /// Edges used by exactly one triangle.
+    pub open: usize,
+    /// Edges used by three or more triangles.
+    pub non_manifold: usize,
+    /// Edges used by exactly two triangles that traverse it in the same direction (the two
+    /// triangles are inconsistently oriented).
+    pub misoriented: usize,
+    /// The first few offending edges (at most [`MAX_EDGE_EXAMPLES`]), open and non-manifold
+    /// ones first.
+    pub examples: Vec<BadEdge>,
+}
+
+impl EdgeReport {
+    /// Open plus non-manifold edges.
+    pub fn boundary_count(&self) -> usize {
+        self.open + self.non_manifold
+    }
+
+    /// True when the mesh is closed, manifold at every edge and consistently oriented.
+    pub fn is_clean(&self) -> bool {
+        self.open == 0 && self.non_manifold == 0 && self.misoriented == 0
+    }
+}
+
+impl TriMesh {
+    /// An empty mesh.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// A mesh from positions and triangles, without colours.
+    pub fn from_parts(vertices: Vec<Vec3>, triangles: Vec<[u32; 3]>) -> Self {
+        Self {
+            vertices,
+            triangles,
+            colors: None,
+        }
+    }
+
+    /// Checks that every index is in range, every coordinate finite, and that the colour count
+    /// matches the vertex count.
+    pub fn validate(&self) -> Result<(), IoError> {
+        let n = self.vertices.len();
+        if n > u32::MAX as usize {
+            return Err(IoError::InvalidMesh(format!(
+                "{n} vertices, more than u32 indices can address"
+            )));
+        }
+        if let Some((i, t)) = self
+            .triangles
+            .iter()
+            .enumerate()
+            .find(|(_, t)| t.iter().any(|&v| v as usize >= n))
+        {
+            return Err(IoError::InvalidMesh(format!(
+                "triangle {i} has indices {t:?} but there are only {n} vertices"
+            )));
+        }
+        if let Some(i) = self.vertices.iter().position(|v| !v.is_finite()) {
+            return Err(IoError::InvalidMesh(format!(
+                "vertex {i} is not finite: {:?}",
+                self.vertices[i]
+            )));
+        }
+        if let Some(c) = &self.colors {
+            if c.len() != n {
+                return Err(IoError::InvalidMesh(format!(
+                    "{} colours for {n} vertices",
+                    c.len()
+                )));
+            }
+        }
+        Ok(())
+    }
+
+    /// Number of triangles.
+    pub fn len(&self) -> usize {
+        self.triangles.len()
+    }
+
+    /// True when there are no triangles.
+    pub fn is_empty(&self) -> bool {
+        self.triangles.is_empty()
+    }
+
+    /// The three corners of triangle `t`.
+    #[inline]
+    pub fn corners(&self, t: usize) -> [Vec3; 3] {
+        self.triangles[t].map(|i| self.vertices[i as usize])
+    }
+
+    /// Unit normal of triangle `t` (zero for a degenerate triangle).
+    pub fn triangle_normal(&self, t: usize) -> Vec3 {
+        let [a, b, c] = self.corners(t);
+        (b - a).cross(c - a).normalize_or_zero()
+    }
+
+    /// Signed volume enclosed (divergence theorem; positive for a closed, outward-oriented
+    /// mesh). Computed about the bounding-box centre, which keeps it accurate far from the origin.
+    pub fn volume(&self) -> f64 {
+        let o = self.aabb().map_or(Vec3::ZERO, |b| b.center());
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|i| self.vertices[i as usize] - o);
+                a.dot(b.cross(c))
+            })
+            .sum::<f64>()
+            / 6.0
+    }
+
+    /// Total surface area.
+    pub fn area(&self) -> f64 {
+        (0..self.triangles.len())
+            .map(|t| {
+                let [a, b, c] = self.corners(t);
+                0.5 * (b - a).cross(c - a).length()
+            })
+            .sum()
+    }
+
+    /// Bounding box of the vertices used by triangles (of all vertices when there are no
+    /// triangles), or `None` when there are none.
+    pub fn aabb(&self) -> Option<Aabb> {
+        if self.triangles.is_empty() {
+            return Aabb::from_points(self.vertices.iter().copied());
+        }
+        Aabb::from_points(
+            self.triangles
+                .iter()
+                .flat_map(|t| t.iter().map(|&i| self.vertices[i as usize])),
+        )
+    }
+
+    /// Open, non-manifold and misoriented edges (by vertex index: weld first if the mesh
+    /// repeats positions).
+    pub fn edge_report(&self) -> EdgeReport {
+        // (undirected key, direction bit) sorted so that uses of one edge are adjacent.
+        let mut keys: Vec<u64> = Vec::with_capacity(self.triangles.len() * 3);
+        for t in &self.triangles {
+            for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
+                let (lo, hi, dir) = if a < b { (a, b, 0) } else { (b, a, 1) };
+                keys.push(((lo as u64) << 33) | ((hi as u64) << 1) | dir);
+            }
+        }
+        keys.sort_unstable();
+        let mut rep = EdgeReport::default();
+        let mut bad: Vec<BadEdge> = Vec::new();
+        let mut misoriented: Vec<BadEdge> = Vec::new();
+        let mut i = 0;
+        while i < keys.len() {
+            let edge = keys[i] >> 1;
+            let mut j = i;
+            let mut forward = 0;
+            while j < keys.len() && keys[j] >> 1 == edge {
+                forward += (keys[j] & 1 == 0) as u32;
+                j += 1;
+            }
+            let uses = (j - i) as u32;
+            let a = (edge >> 32) as u32;
+            let b = (edge & 0xffff_ffff) as u32;
+            let e = BadEdge {
+                indices: [a, b],
+                points: [self.vertices[a as usize], self.vertices[b as usize]],
+                uses,
+            };
+            match uses {
+                2 if forward != 1 => {
+                    rep.misoriented += 1;
+                    if misoriented.len() < MAX_EDGE_EXAMPLES {
+                        misoriented.push(e);
+                    }
+                }
+                2 => {}
+                1 => {
+                    rep.open += 1;
+                    if bad.len() < MAX_EDGE_EXAMPLES {
+                        bad.push(e);
+                    }
+                }
+                _ => {
+                    rep.non_manifold += 1;
+                    if bad.len() < MAX_EDGE_EXAMPLES {
+                        bad.push(e);
+                    }
+                }
+            }
+            i = j;
+        }
+        bad.extend(misoriented);
+        bad.truncate(MAX_EDGE_EXAMPLES);
+        rep.examples = bad;
+        rep
+    }
+
+    /// Edges not shared by exactly two triangles (open or non-manifold): their count and the
+    /// first few.
+    pub fn boundary_edges(&self) -> (usize, Vec<BadEdge>) {
+        let rep = self.edge_report();
+        let ex = rep
+            .examples
+            .iter()
+            .filter(|e| e.uses != 2)
+            .copied()
+            .collect();
+        (rep.boundary_count(), ex)
+    }
+
+    /// True when every edge is shared by exactly two triangles.
+    pub fn is_closed(&self) -> bool {
+        self.edge_report().boundary_count() == 0
+    }
+
+    /// Merges vertices closer than `tolerance` (mm; `0` merges identical positions only),
+    /// drops triangles that collapse, and any vertex no longer used. Returns the number of
+    /// vertices removed. Each cluster keeps its first vertex (and its colour).
+    pub fn weld(&mut self, tolerance: f64) -> usize {
+        let n = self.vertices.len();
+        let mut remap = vec![u32::MAX; n];
+        let mut kept: Vec<u32> = Vec::new();
+        if tolerance > 0.0 {
+            let inv = 1.0 / tolerance;
+            let cell = |p: Vec3| -> [i64; 3] { [p.x, p.y, p.z].map(|c| (c * inv).floor() as i64) };
+            let mut buckets: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+            for (i, &p) in self.vertices.iter().enumerate() {
+                let c = cell(p);
+                let mut found = None;
+                'search: for dx in -1..=1 {
+                    for dy in -1..=1 {
+                        for dz in -1..=1 {
+                            if let Some(list) = buckets.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) {
+                                for &k in list {
+                                    if self.vertices[kept[k as usize] as usize].distance(p)
+                                        <= tolerance
+                                    {
+                                        found = Some(k);
+                                        break 'search;
+                                    }
+                                }
+                            }
+                        }
+                    }
+                }
+                remap[i] = found.unwrap_or_else(|| {
+                    let k = kept.len() as u32;
+                    kept.push(i as u32);
+                    buckets.entry(c).or_default().push(k);
+                    k
+                });
+            }
+        } else {
+            let mut map: HashMap<[u64; 3], u32> = HashMap::new();
+            for (i, p) in self.vertices.iter().enumerate() {
+                // -0.0 and 0.0 are the same point.
+                let key = [p.x + 0.0, p.y + 0.0, p.z + 0.0].map(f64::to_bits);
+                remap[i] = *map.entry(key).or_insert_with(|| {
+                    kept.push(i as u32);
+                    kept.len() as u32 - 1
+                });
+            }
+        }
+        let triangles: Vec<[u32; 3]> = self
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| remap[i as usize]))
+            .filter(|t| t[0] != t[1] && t[1] != t[2] && t[2] != t[0])
+            .collect();
+        // Compact: drop vertices no triangle uses any more.
+        let mut used = vec![u32::MAX; kept.len()];
+        let mut order: Vec<u32> = Vec::with_capacity(kept.len());
+        for t in &triangles {
+            for &v in t {
+                if used[v as usize] == u32::MAX {
+                    used[v as usize] = order.len() as u32;
+                    order.push(v);
+                }
+            }
+        }
+        let vertices: Vec<Vec3> = order
+            .iter()
+            .map(|&k| self.vertices[kept[k as usize] as usize])
+            .collect();
+        let colors = self.colors.as_ref().map(|c| {
+            order
+                .iter()
+                .map(|&k| c[kept[k as usize] as usize])
+                .collect()
+        });
+        self.triangles = triangles
+            .into_iter()
+            .map(|t| t.map(|v| used[v as usize]))
+            .collect();
+        let removed = n - vertices.len();
+        self.vertices = vertices;
+        self.colors = colors;
+        removed
+    }
+
+    /// Appends `other` (its indices shifted). Colours are kept when both meshes have them or
+    /// the result would otherwise have none; a mesh without colours contributes opaque white.
+    pub fn merge(&mut self, other: &TriMesh) {
+        let offset = self.vertices.len() as u32;
+        match (&mut self.colors, &other.colors) {
+            (Some(a), Some(b)) => a.extend_from_slice(b),
+            (Some(a), None) => a.resize(a.len() + other.vertices.len(), [1.0; 4]),
+            (None, Some(b)) => {
+                let mut c = vec![[1.0f32; 4]; self.vertices.len()];
+                c.extend_from_slice(b);
+                self.colors = Some(c);
+            }
+            (None, None) => {}
+        }
+        self.vertices.extend_from_slice(&other.vertices);
+        self.triangles
+            .extend(other.triangles.iter().map(|t| t.map(|i| i + offset)));
+    }
+
+    /// Area-weighted unit vertex normals (zero for unused vertices).
+    pub fn vertex_normals(&self) -> Vec<Vec3> {
+        let mut n = vec![Vec3::ZERO; self.vertices.len()];
+        for t in &self.triangles {
+            let [a, b, c] = t.map(|i| self.vertices[i as usize]);
+            let w = (b - a).cross(c - a);
+            for &i in t {
+                n[i as usize] += w;
+            }
+        }
+        n.iter().map(|v| v.normalize_or_zero()).collect()
+    }
+
+    /// Reverses every triangle (turns the mesh inside out).
+    pub fn flip(&mut self) {
+        for t in &mut self.triangles {
+            t.swap(1, 2);
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn tetra() -> TriMesh {
+        TriMesh::from_parts(
+            vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z],
+            vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+        )
+    }
+
+    #[test]
+    fn tetra_volume_area_closed() {
+        let m = tetra();
+        assert!((m.volume() - 1.0 / 6.0).abs() < 1e-15);
+        let area = 1.5 + 0.5 * 3f64.sqrt();
+        assert!((m.area() - area).abs() < 1e-14);
+        assert!(m.edge_report().is_clean());
+        let mut f = m.clone();
+        f.triangles[3].swap(1, 2);
+        let r = f.edge_report();
+        assert_eq!((r.open, r.non_manifold, r.misoriented), (0, 0, 3));
+        let mut o = m.clone();
+        o.triangles.pop();
+        let (count, ex) = o.boundary_edges();
+        assert_eq!(count, 3);
+        assert_eq!(ex.len(), 3);
+        assert!(ex.iter().all(|e| e.uses == 1));
+    }
+
+    #[test]
+    fn weld_and_merge() {
+        let m = tetra();
+        // Unweld: every triangle its own vertices, nudged by 1e-9.
+        let mut soup = TriMesh::new();
+        for t in 0..m.len() {
+            let c = m.corners(t);
+            let base = soup.vertices.len() as u32;
+            soup.vertices
+                .extend(c.iter().map(|&p| p + Vec3::splat(1e-9 * t as f64)));
+            soup.triangles.push([base, base + 1, base + 2]);
+        }
+        assert!(!soup.is_closed());
+        let mut exact = soup.clone();
+        assert_eq!(exact.weld(0.0), 0);
+        assert_eq!(soup.weld(1e-6), 8);
+        assert_eq!(soup.vertices.len(), 4);
+        assert!(soup.edge_report().is_clean());
+        let mut two = m.clone();
+        let mut moved = m.clone();
+        moved
+            .vertices
+            .iter_mut()
+            .for_each(|v| *v += Vec3::splat(5.0));
+        moved.colors = Some(vec![[1.0, 0.0, 0.0, 1.0]; 4]);
+        two.merge(&moved);
+        assert_eq!(two.vertices.len(), 8);
+        assert_eq!(two.colors.as_ref().unwrap()[0], [1.0; 4]);
+        assert!((two.volume() - 2.0 / 6.0).abs() < 1e-14);
+        assert!(two.validate().is_ok());
+        two.triangles.push([0, 1, 8]);
+        assert!(two.validate().is_err());
+    }
+}
