@@ -13,7 +13,6 @@ use crate::dexel::Interval;
 use crate::error::StockError;
 use crate::tridexel::TriDexel;
 use parry3d_f64::shape::TriMesh;
-use std::collections::HashMap;
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 
@@ -31,97 +30,13 @@ pub struct MeshOptions {
     pub allow_open: bool,
 }
 
-/// Edges used by other than exactly two triangles (after welding identical vertices), with
-/// their end points.
-pub fn open_edges(vertices: &[Vec3], indices: &[[u32; 3]]) -> Vec<(Vec3, Vec3)> {
-    let mut count: HashMap<(u32, u32), u32> = HashMap::new();
-    for t in indices {
-        for (a, b) in [(t[0], t[1]), (t[1], t[2]), (t[2], t[0])] {
-            *count.entry((a.min(b), a.max(b))).or_insert(0) += 1;
-        }
-    }
-    let mut out: Vec<(u32, u32)> = count
-        .into_iter()
-        .filter(|&(_, c)| c != 2)
-        .map(|(e, _)| e)
-        .collect();
-    out.sort_unstable();
-    out.into_iter()
-        .map(|(a, b)| (vertices[a as usize], vertices[b as usize]))
-        .collect()
-}
-
-/// Welds vertices with identical coordinates; returns the vertex and index buffers.
-pub fn weld(triangles: &[[Vec3; 3]]) -> (Vec<Vec3>, Vec<[u32; 3]>) {
-    let mut map: HashMap<[u64; 3], u32> = HashMap::new();
-    let mut verts = Vec::new();
-    let mut idx = Vec::with_capacity(triangles.len());
-    for t in triangles {
-        let ids = t.map(|p| {
-            let key = [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
-            *map.entry(key).or_insert_with(|| {
-                verts.push(p);
-                (verts.len() - 1) as u32
-            })
-        });
-        idx.push(ids);
-    }
-    (verts, idx)
-}
-
-/// Triangles of an STL file (binary or ASCII; normals are ignored, units taken as mm).
-pub fn read_stl(bytes: &[u8]) -> Result<Vec<[Vec3; 3]>, StockError> {
-    let bad = |why: &str| StockError::BadMesh(format!("STL: {why}"));
-    // Binary: 80-byte header, u32 count, 50 bytes per triangle — when the size matches.
-    if bytes.len() >= 84 {
-        let n = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as usize;
-        if bytes.len() == 84 + 50 * n {
-            let f = |o: usize| {
-                f32::from_le_bytes([bytes[o], bytes[o + 1], bytes[o + 2], bytes[o + 3]]) as f64
-            };
-            return Ok((0..n)
-                .map(|t| {
-                    let b = 84 + 50 * t + 12;
-                    [0, 1, 2]
-                        .map(|v| Vec3::new(f(b + 12 * v), f(b + 12 * v + 4), f(b + 12 * v + 8)))
-                })
-                .collect());
-        }
-    }
-    let text =
-        std::str::from_utf8(bytes).map_err(|_| bad("neither binary (size mismatch) nor ASCII"))?;
-    let mut tris = Vec::new();
-    let mut cur: Vec<Vec3> = Vec::with_capacity(3);
-    for (ln, line) in text.lines().enumerate() {
-        let mut w = line.split_whitespace();
-        if w.next() == Some("vertex") {
-            let c: Vec<f64> = w
-                .map(str::parse)
-                .collect::<Result<_, _>>()
-                .map_err(|_| bad(&format!("line {}: bad vertex", ln + 1)))?;
-            if c.len() != 3 {
-                return Err(bad(&format!(
-                    "line {}: a vertex needs 3 coordinates",
-                    ln + 1
-                )));
-            }
-            cur.push(Vec3::new(c[0], c[1], c[2]));
-            if cur.len() == 3 {
-                tris.push([cur[0], cur[1], cur[2]]);
-                cur.clear();
-            }
-        }
-    }
-    if tris.is_empty() {
-        return Err(bad("no triangles"));
-    }
-    Ok(tris)
-}
-
 impl TriDexel {
-    /// A stock from the bytes of an STL file (binary or ASCII), resolution `h`.
+    /// A stock from the bytes of an STL file (binary or ASCII, read by `swarf-io`),
+    /// resolution `h`.
     pub fn from_stl_bytes(bytes: &[u8], h: f64, opts: MeshOptions) -> Result<Self, StockError> {
-        Self::from_triangles(&read_stl(bytes)?, h, opts)
+        let mesh = swarf_io::stl::parse_stl(bytes, std::path::Path::new("<stl>"))
+            .map_err(|e| StockError::BadMesh(e.to_string()))?;
+        Self::from_mesh(&mesh, h, opts)
     }
 
     /// A stock from a closed triangle soup (identical vertices are welded), resolution `h`.
@@ -133,26 +48,48 @@ impl TriDexel {
         h: f64,
         opts: MeshOptions,
     ) -> Result<Self, StockError> {
-        if triangles.is_empty() {
+        let mut mesh = swarf_io::TriMesh::new();
+        for t in triangles {
+            let base = mesh.vertices.len() as u32;
+            mesh.vertices.extend_from_slice(t);
+            mesh.triangles.push([base, base + 1, base + 2]);
+        }
+        mesh.weld(0.0);
+        Self::from_mesh(&mesh, h, opts)
+    }
+
+    /// A stock from a closed indexed mesh, resolution `h`.
+    ///
+    /// Errors with [`StockError::OpenMesh`] (count and the first edges' coordinates) when some
+    /// edge is not shared by exactly two triangles, unless `opts.allow_open`.
+    pub fn from_mesh(
+        mesh: &swarf_io::TriMesh,
+        h: f64,
+        opts: MeshOptions,
+    ) -> Result<Self, StockError> {
+        if mesh.triangles.is_empty() {
             return Err(StockError::BadMesh("no triangles".into()));
         }
-        if triangles.iter().flatten().any(|p| !p.is_finite()) {
-            return Err(StockError::BadMesh("a vertex is not finite".into()));
-        }
-        let (verts, idx) = weld(triangles);
-        let open = open_edges(&verts, &idx);
-        if !open.is_empty() && !opts.allow_open {
-            let examples = open
+        mesh.validate()
+            .map_err(|e| StockError::BadMesh(e.to_string()))?;
+        let report = mesh.edge_report();
+        if report.boundary_count() > 0 && !opts.allow_open {
+            let examples = report
+                .examples
                 .iter()
                 .take(3)
-                .map(|(a, b)| format!("({}, {}, {})-({}, {}, {})", a.x, a.y, a.z, b.x, b.y, b.z))
+                .map(|e| {
+                    let [a, b] = e.points;
+                    format!("({}, {}, {})-({}, {}, {})", a.x, a.y, a.z, b.x, b.y, b.z)
+                })
                 .collect::<Vec<_>>()
                 .join(", ");
             return Err(StockError::OpenMesh {
-                count: open.len(),
+                count: report.boundary_count(),
                 examples,
             });
         }
+        let (verts, idx) = (&mesh.vertices, &mesh.triangles);
         let mesh = TriMesh::new(verts.clone(), idx.clone())
             .map_err(|e| StockError::BadMesh(format!("{e:?}")))?;
         let bounds = Aabb::from_points(verts.iter().copied())
@@ -268,11 +205,14 @@ mod tests {
             bin.extend_from_slice(&[0u8; 2]);
             ascii.push_str("endloop\nendfacet\n");
         }
+        ascii.push_str("endsolid b\n");
         for bytes in [bin.as_slice(), ascii.as_bytes()] {
             let s = TriDexel::from_stl_bytes(bytes, 0.25, MeshOptions::default()).unwrap();
             assert!((s.volume() - 24.0).abs() < 1e-9);
         }
-        assert!(read_stl(b"solid x\nendsolid\n").is_err());
+        assert!(
+            TriDexel::from_stl_bytes(b"solid x\nendsolid\n", 0.25, MeshOptions::default()).is_err()
+        );
     }
 
     #[test]
