@@ -123,3 +123,38 @@ fn bad_input_is_exit_1_with_a_clear_message() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("open edge"), "{}", stderr(&o));
 }
+
+#[test]
+fn ctrl_c_stops_the_run_and_writes_nothing() {
+    let dir = temp_dir("ctrlc");
+    let prog = dir.join("long.ngc");
+    let mut text = String::from("G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F1000\n");
+    for i in 0..400_000 {
+        let t = f64::from(i);
+        text.push_str(&format!(
+            "G1 X{:.3} Y{:.3}\n",
+            50.0 + 40.0 * (t * 0.01).sin(),
+            50.0 + 40.0 * (t * 0.013).cos()
+        ));
+    }
+    std::fs::write(&prog, text).unwrap();
+    let out = dir.join("out");
+    let child = std::process::Command::new(env!("CARGO_BIN_EXE_swarf"))
+        .args(["simulate", "--stock", "box:0,0,-10,100,100,0", "--program"])
+        .arg(&prog)
+        .args(["--tool", "ball:d=6", "--resolution", "0.2", "--out"])
+        .arg(&out)
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .unwrap();
+    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let kill = std::process::Command::new("kill")
+        .args(["-INT", &child.id().to_string()])
+        .status()
+        .unwrap();
+    assert!(kill.success());
+    let o = child.wait_with_output().unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("stopped by Ctrl-C"), "{}", stderr(&o));
+    assert!(!out.exists(), "nothing may be written after Ctrl-C");
+}

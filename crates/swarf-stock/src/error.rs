@@ -5,6 +5,12 @@ use thiserror::Error;
 /// What can go wrong building a stock or simulating a program on it.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum StockError {
+    /// The run was stopped (Ctrl-C) after `done` moves.
+    #[error("stopped after {done} moves")]
+    Cancelled {
+        /// Moves completed.
+        done: usize,
+    },
     /// A stock spec string that cannot be read.
     #[error("stock spec column {column}: found {found}, expected {expected}")]
     Spec {
@@ -78,7 +84,8 @@ pub enum StockError {
         /// Tool number.
         tool: u32,
     },
-    /// A move this version cannot cut (the tool axis changes along it: 5-axis simultaneous).
+    /// A move that cannot be cut within the tolerance (a 5-axis move with a non-positive
+    /// tolerance, or needing more than [`crate::five_axis::MAX_SUB_MOVES`] sub-moves).
     #[error("move {index} (line {line}): {why}")]
     Unsupported {
         /// Move index in the program.

@@ -77,9 +77,9 @@ pub mod tridexel;
 pub use cut::{arc_chords, SegmentCut, ToolShape, DEFAULT_CHORDAL_TOLERANCE_MM};
 pub use dexel::{Dexel, Interval};
 pub use error::StockError;
-pub use five_axis::{MotionBound, SubMove};
+pub use five_axis::{MotionBound, Reach, SubMove};
 pub use mesh::MeshOptions;
-pub use simulate::{simulate, Collision, SimOptions, SimulationReport, Tools};
+pub use simulate::{simulate, simulate_observed, Collision, SimOptions, SimulationReport, Tools};
 pub use spec::StockSpec;
 pub use sweep::{ConvexProfile, Element, LineBatch, SweepShape, SweptConvex};
 pub use tridexel::{

@@ -4,6 +4,7 @@ use crate::cut::{ToolShape, COLLISION_EPS_MM, DEFAULT_CHORDAL_TOLERANCE_MM};
 use crate::error::StockError;
 use crate::tridexel::TriDexel;
 use std::collections::BTreeMap;
+use std::ops::ControlFlow;
 use std::time::Instant;
 use swarf_path::{MoveKind, Program};
 use swarf_tool::Cutter;
@@ -105,19 +106,42 @@ pub struct SimulationReport {
     pub rays_tested: u64,
     /// Rays whose material changed (summed over moves).
     pub ray_updates: u64,
-    /// Chordal tolerance used for arcs, mm.
+    /// Chordal tolerance used for arcs and 5-axis moves, mm.
     pub chordal_tolerance_mm: f64,
+    /// Moves whose tool axis turned (5-axis simultaneous), cut by constant-axis sub-moves.
+    pub five_axis_moves: usize,
+    /// Constant-axis sub-moves the cutting part was cut as on those moves.
+    pub five_axis_sub_moves: u64,
+    /// Largest proven bound on the distance between a 5-axis sub-move's sweep and the true
+    /// one, mm (at most `chordal_tolerance_mm`; 0 without 5-axis moves).
+    pub five_axis_error_bound_mm: f64,
     /// Grid cell sizes along X, Y, Z, mm.
     pub resolution_mm: [f64; 3],
 }
 
 /// Runs every move of `program` through `stock`. Stops at the first move it cannot cut
-/// (unknown tool, 5-axis simultaneous move, non-finite pose) with that move's error.
+/// (unknown tool, non-finite pose, a 5-axis move needing more than
+/// [`crate::five_axis::MAX_SUB_MOVES`] sub-moves) with that move's error.
 pub fn simulate(
     program: &Program,
     tools: &Tools,
     stock: &mut TriDexel,
     options: &SimOptions,
+) -> Result<SimulationReport, StockError> {
+    simulate_observed(program, tools, stock, options, &mut |_| {
+        ControlFlow::Continue(())
+    })
+}
+
+/// [`simulate`], telling `observer` after each move how many of the program's moves are done;
+/// the observer may stop the run (Ctrl-C), which then ends with [`StockError::Cancelled`] and
+/// leaves the stock as the finished moves made it.
+pub fn simulate_observed(
+    program: &Program,
+    tools: &Tools,
+    stock: &mut TriDexel,
+    options: &SimOptions,
+    observer: &mut dyn FnMut(usize) -> ControlFlow<()>,
 ) -> Result<SimulationReport, StockError> {
     let t0 = Instant::now();
     let stock_volume = stock.volume();
@@ -126,14 +150,23 @@ pub fn simulate(
     let mut rapid_collisions = Vec::new();
     let mut holder_collisions = Vec::new();
     let (mut tested, mut updates) = (0u64, 0u64);
+    let (mut five_moves, mut five_subs, mut five_err) = (0usize, 0u64, 0.0f64);
     let file_of = |f: u16| program.files.get(f as usize).cloned().unwrap_or_default();
     for (i, m) in program.moves.iter().enumerate() {
+        if i > 0 && observer(i).is_break() {
+            return Err(StockError::Cancelled { done: i });
+        }
         let tool = tools.get(m.tool).ok_or(StockError::UnknownTool {
             index: i,
             line: m.line,
             tool: m.tool,
         })?;
         let cut = stock.cut_move(program, i, tool, options.chordal_tolerance)?;
+        if crate::five_axis::is_five_axis(program, m) {
+            five_moves += 1;
+            five_subs += cut.sub_moves;
+            five_err = five_err.max(cut.error_bound_mm);
+        }
         let removed = (cut.cutting.removed_length[2] + cut.non_cutting.removed_length[2]) * area_z;
         per_move.push(removed);
         tested += cut.cutting.rays_tested + cut.non_cutting.rays_tested;
@@ -173,6 +206,9 @@ pub fn simulate(
         rays_tested: tested,
         ray_updates: updates,
         chordal_tolerance_mm: options.chordal_tolerance,
+        five_axis_moves: five_moves,
+        five_axis_sub_moves: five_subs,
+        five_axis_error_bound_mm: five_err,
         resolution_mm: stock.grid().h,
     })
 }

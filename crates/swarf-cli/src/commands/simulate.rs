@@ -1,6 +1,10 @@
 //! `swarf simulate`: run a program on a tri-dexel stock and report what it removed.
 
 use std::fmt::Write as _;
+use std::ops::ControlFlow;
+use std::sync::atomic::{AtomicBool, Ordering};
+
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::Path;
 
 use anyhow::{bail, Context, Result};
@@ -9,7 +13,8 @@ use swarf_io::{ContourOptions, GlbOptions};
 use swarf_path::load::read_program;
 use swarf_path::{MoveKind, Program};
 use swarf_stock::{
-    simulate, Collision, MeshOptions, SimOptions, SimulationReport, StockSpec, Tools, TriDexel,
+    simulate_observed, Collision, MeshOptions, SimOptions, SimulationReport, StockError, StockSpec,
+    Tools, TriDexel,
 };
 use swarf_tool::ToolTable;
 
@@ -134,7 +139,7 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
         )
         .context("building the stock")?;
     let options = SimOptions::default().with_chordal_tolerance(args.tolerance);
-    let report = simulate(&program, &tools, &mut stock, &options)
+    let report = simulate_with_progress(&program, &tools, &mut stock, &options)
         .with_context(|| format!("simulating {}", args.program.display()))?;
     let summary = SimulateSummary::new(&report);
     if let Some(dir) = &args.out {
@@ -145,6 +150,46 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
     } else {
         summary.print_human();
         Ok(())
+    }
+}
+
+/// Runs the simulation with a progress bar on a terminal (nothing is drawn when stderr is piped)
+/// and stops cleanly on Ctrl-C: the run ends with an error before any output file is written.
+fn simulate_with_progress(
+    program: &Program,
+    tools: &Tools,
+    stock: &mut TriDexel,
+    options: &SimOptions,
+) -> Result<SimulationReport> {
+    static STOP: AtomicBool = AtomicBool::new(false);
+    // A second handler cannot be installed (demo and tests run one simulation per process);
+    // if it fails, Ctrl-C simply keeps its default meaning.
+    let _ = ctrlc::set_handler(|| STOP.store(true, Ordering::SeqCst));
+    let bar = ProgressBar::with_draw_target(
+        Some(program.moves.len() as u64),
+        ProgressDrawTarget::stderr_with_hz(10),
+    );
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} moves  {elapsed} (eta {eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let result = simulate_observed(program, tools, stock, options, &mut |done| {
+        bar.set_position(done as u64);
+        if STOP.load(Ordering::SeqCst) {
+            ControlFlow::Break(())
+        } else {
+            ControlFlow::Continue(())
+        }
+    });
+    bar.finish_and_clear();
+    match result {
+        Err(StockError::Cancelled { done }) => {
+            bail!(
+                "stopped by Ctrl-C after {done} of {} moves; no output written",
+                program.moves.len()
+            )
+        }
+        other => Ok(other?),
     }
 }
 
