@@ -44,9 +44,18 @@ fn two_half_circles() {
 fn rotary_words_on_a_machine_without_them_are_reported_once() {
     use swarf_path::load::{read_program_str, ReadOptions};
     let text = "G21 G90\nG1 X1 A10 F100\nG1 X2 A20 C5\nM30\n";
-    let p = read_program_str(text, "r.ngc", Machine::three_axis(), &ReadOptions::default())
-        .unwrap();
-    let about: Vec<_> = p.warnings.iter().filter(|w| w.message.contains("has no")).collect();
+    let p = read_program_str(
+        text,
+        "r.ngc",
+        Machine::three_axis(),
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    let about: Vec<_> = p
+        .warnings
+        .iter()
+        .filter(|w| w.message.contains("has no"))
+        .collect();
     assert_eq!(about.len(), 2, "{about:?}");
     assert_eq!((about[0].line, about[1].line), (2, 3));
     let on_table = Machine::from_name("table-ac").unwrap();
