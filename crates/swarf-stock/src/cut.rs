@@ -52,19 +52,27 @@ impl ToolShape {
     }
 }
 
-/// What one straight (sub-)move removed.
+/// What one move (or straight sub-move) removed.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct SegmentCut {
     /// By the cutting part.
     pub cutting: CutStats,
     /// By the shank and holder (non-zero means a holder collision).
     pub non_cutting: CutStats,
+    /// Straight fixed-axis pieces the cutting part was cut as: 1 for a line, the chords of an
+    /// arc, the constant-axis sub-moves of a 5-axis move ([`crate::five_axis`]).
+    pub sub_moves: u64,
+    /// Largest bound on the distance between the volume cut and the true swept volume of a
+    /// 5-axis move, mm (0 for other moves: exact, or arcs within the chordal tolerance).
+    pub error_bound_mm: f64,
 }
 
 impl SegmentCut {
     fn add(&mut self, o: SegmentCut) {
         self.cutting = self.cutting.merged(o.cutting);
         self.non_cutting = self.non_cutting.merged(o.non_cutting);
+        self.sub_moves += o.sub_moves;
+        self.error_bound_mm = self.error_bound_mm.max(o.error_bound_mm);
     }
 }
 
@@ -95,18 +103,15 @@ impl TriDexel {
         tip1: Vec3,
         axis: Vec3,
     ) -> SegmentCut {
-        let cutting = self.cut_shape_linear(&tool.cutting, tip0, tip1, axis);
-        let non_cutting = self.cut_shape_linear(&tool.non_cutting, tip0, tip1, axis);
-        SegmentCut {
-            cutting,
-            non_cutting,
-        }
+        let m = crate::tridexel::LinearMove { tip0, tip1, axis };
+        self.cut_linear_batch(tool, &[m])[0]
     }
 
     /// Cuts move `index` of `program` with `tool`: linear moves and rapids exactly (fixed
     /// axis), arcs and helices by chords through points of the exact arc such that the tip path
-    /// is within `chordal_tol` of the arc. Moves whose tool axis changes are refused with
-    /// [`StockError::Unsupported`] (5-axis simultaneous: not implemented in this version).
+    /// is within `chordal_tol` of the arc, and moves whose tool axis turns (5-axis simultaneous)
+    /// by constant-axis sub-moves within `chordal_tol` of the true sweep
+    /// ([`TriDexel::cut_five_axis`]).
     pub fn cut_move(
         &mut self,
         program: &Program,
@@ -115,7 +120,10 @@ impl TriDexel {
         chordal_tol: f64,
     ) -> Result<SegmentCut, StockError> {
         let m = &program.moves[index];
-        check_move(program, index, m)?;
+        check_move(index, m)?;
+        if crate::five_axis::is_five_axis(program, m) {
+            return self.cut_five_axis(program, index, tool, chordal_tol);
+        }
         let axis = m.start.axis.normalize();
         let mut total = SegmentCut::default();
         match m.kind {
@@ -155,31 +163,12 @@ pub fn arc_chords(radius: f64, sweep: f64, tol: f64) -> usize {
     n.max((sweep.abs() / std::f64::consts::FRAC_PI_2).ceil()) as usize
 }
 
-fn check_move(program: &Program, index: usize, m: &Move) -> Result<(), StockError> {
+fn check_move(index: usize, m: &Move) -> Result<(), StockError> {
     let finite = |p: &Pose| p.tip.is_finite() && p.axis.is_finite() && p.axis.length() > 0.5;
     if !finite(&m.start) || !finite(&m.end) {
         return Err(StockError::NonFinite {
             index,
             line: m.line,
-        });
-    }
-    let (a, b) = (m.start.axis.normalize(), m.end.axis.normalize());
-    let ang = a.cross(b).length().atan2(a.dot(b));
-    if ang > AXIS_ANGLE_EPS {
-        return Err(StockError::Unsupported {
-            index,
-            line: m.line,
-            why: format!(
-                "the tool axis turns by {:.6}° along the move (5-axis simultaneous moves are not cut by this version)",
-                ang.to_degrees()
-            ),
-        });
-    }
-    if program.tip_path_is_curved(m) {
-        return Err(StockError::Unsupported {
-            index,
-            line: m.line,
-            why: "rotary motion makes the tip path curved (5-axis simultaneous)".into(),
         });
     }
     Ok(())

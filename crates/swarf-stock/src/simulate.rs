@@ -2,7 +2,7 @@
 
 use crate::cut::{ToolShape, COLLISION_EPS_MM, DEFAULT_CHORDAL_TOLERANCE_MM};
 use crate::error::StockError;
-use crate::tridexel::TriDexel;
+use crate::tridexel::{LinearMove, TriDexel};
 use std::collections::BTreeMap;
 use std::ops::ControlFlow;
 use std::time::Instant;
@@ -133,7 +133,23 @@ pub fn simulate(
     })
 }
 
-/// [`simulate`], telling `observer` after each move how many of the program's moves are done;
+/// Most consecutive straight fixed-axis moves cut as one batch by [`simulate`] (a batch is
+/// the unit of progress reports and cancellation; about 50 ms of finishing moves).
+pub const BATCH_MOVES: usize = 256;
+
+/// True when move `m` is a straight move with a fixed tool axis and finite poses: what
+/// [`TriDexel::cut_move`] cuts as one [`TriDexel::cut_linear`].
+fn batchable(program: &Program, m: &swarf_path::Move) -> bool {
+    let finite =
+        |p: &swarf_path::Pose| p.tip.is_finite() && p.axis.is_finite() && p.axis.length() > 0.5;
+    matches!(m.kind, MoveKind::Rapid | MoveKind::Linear)
+        && finite(&m.start)
+        && finite(&m.end)
+        && !crate::five_axis::is_five_axis(program, m)
+}
+
+/// [`simulate`], telling `observer` between moves how many of the program's moves are done (after
+/// each move, or each batch of up to [`BATCH_MOVES`] straight moves);
 /// the observer may stop the run (Ctrl-C), which then ends with [`StockError::Cancelled`] and
 /// leaves the stock as the finished moves made it.
 pub fn simulate_observed(
@@ -152,40 +168,67 @@ pub fn simulate_observed(
     let (mut tested, mut updates) = (0u64, 0u64);
     let (mut five_moves, mut five_subs, mut five_err) = (0usize, 0u64, 0.0f64);
     let file_of = |f: u16| program.files.get(f as usize).cloned().unwrap_or_default();
-    for (i, m) in program.moves.iter().enumerate() {
-        if i > 0 && observer(i).is_break() {
-            return Err(StockError::Cancelled { done: i });
+    let mut next = 0;
+    while next < program.moves.len() {
+        let i0 = next;
+        if i0 > 0 && observer(i0).is_break() {
+            return Err(StockError::Cancelled { done: i0 });
         }
-        let tool = tools.get(m.tool).ok_or(StockError::UnknownTool {
-            index: i,
-            line: m.line,
-            tool: m.tool,
+        let m0 = &program.moves[i0];
+        let tool = tools.get(m0.tool).ok_or(StockError::UnknownTool {
+            index: i0,
+            line: m0.line,
+            tool: m0.tool,
         })?;
-        let cut = stock.cut_move(program, i, tool, options.chordal_tolerance)?;
-        if crate::five_axis::is_five_axis(program, m) {
-            five_moves += 1;
-            five_subs += cut.sub_moves;
-            five_err = five_err.max(cut.error_bound_mm);
-        }
-        let removed = (cut.cutting.removed_length[2] + cut.non_cutting.removed_length[2]) * area_z;
-        per_move.push(removed);
-        tested += cut.cutting.rays_tested + cut.non_cutting.rays_tested;
-        updates += cut.cutting.updates + cut.non_cutting.updates;
-        if matches!(m.kind, MoveKind::Rapid) && cut.cutting.removed_any(COLLISION_EPS_MM) {
-            rapid_collisions.push(Collision {
-                move_index: i,
-                file: file_of(m.file),
-                line: m.line,
-                volume_mm3: cut.cutting.removed_length[2] * area_z,
-            });
-        }
-        if cut.non_cutting.removed_any(COLLISION_EPS_MM) {
-            holder_collisions.push(Collision {
-                move_index: i,
-                file: file_of(m.file),
-                line: m.line,
-                volume_mm3: cut.non_cutting.removed_length[2] * area_z,
-            });
+        // A run of straight fixed-axis moves of one tool is cut as one batch (the same stock
+        // and per-move figures as move by move, without a parallel barrier per move).
+        let run = program.moves[i0..]
+            .iter()
+            .take(BATCH_MOVES)
+            .take_while(|m| m.tool == m0.tool && batchable(program, m))
+            .count();
+        let cuts = if run > 1 {
+            let lin: Vec<LinearMove> = program.moves[i0..i0 + run]
+                .iter()
+                .map(|m| LinearMove {
+                    tip0: m.start.tip,
+                    tip1: m.end.tip,
+                    axis: m.start.axis.normalize(),
+                })
+                .collect();
+            stock.cut_linear_batch(tool, &lin)
+        } else {
+            vec![stock.cut_move(program, i0, tool, options.chordal_tolerance)?]
+        };
+        next = i0 + cuts.len();
+        for (i, cut) in (i0..).zip(cuts) {
+            let m = &program.moves[i];
+            if crate::five_axis::is_five_axis(program, m) {
+                five_moves += 1;
+                five_subs += cut.sub_moves;
+                five_err = five_err.max(cut.error_bound_mm);
+            }
+            let removed =
+                (cut.cutting.removed_length[2] + cut.non_cutting.removed_length[2]) * area_z;
+            per_move.push(removed);
+            tested += cut.cutting.rays_tested + cut.non_cutting.rays_tested;
+            updates += cut.cutting.updates + cut.non_cutting.updates;
+            if matches!(m.kind, MoveKind::Rapid) && cut.cutting.removed_any(COLLISION_EPS_MM) {
+                rapid_collisions.push(Collision {
+                    move_index: i,
+                    file: file_of(m.file),
+                    line: m.line,
+                    volume_mm3: cut.cutting.removed_length[2] * area_z,
+                });
+            }
+            if cut.non_cutting.removed_any(COLLISION_EPS_MM) {
+                holder_collisions.push(Collision {
+                    move_index: i,
+                    file: file_of(m.file),
+                    line: m.line,
+                    volume_mm3: cut.non_cutting.removed_length[2] * area_z,
+                });
+            }
         }
     }
     let final_volume = stock.volume();

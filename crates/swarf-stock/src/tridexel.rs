@@ -2,9 +2,10 @@
 //! holding its material intervals; construction from simple shapes, volume, statistics and the
 //! localised, parallel subtraction of swept volumes.
 
+use crate::cut::{SegmentCut, ToolShape};
 use crate::dexel::{dexel_length, overlaps, subtract, Dexel, Interval};
 use crate::error::StockError;
-use crate::sweep::{Scratch, SweptConvex};
+use crate::sweep::{DexelRays, Scratch, SweepShape, SweptConvex};
 use rayon::prelude::*;
 use smallvec::SmallVec;
 use swarf_geom::math::Vec3;
@@ -382,175 +383,278 @@ impl TriDexel {
     /// Removes the union of the swept volumes `parts` (all sharing one move) from every ray
     /// that crosses their bounding box; returns what was removed.
     pub fn subtract_swept(&mut self, parts: &[SweptConvex<'_>]) -> CutStats {
-        if parts.is_empty() {
-            return CutStats::default();
-        }
-        let bb = parts
-            .iter()
-            .skip(1)
-            .fold(parts[0].bbox(), |b, p| b.union(&p.bbox()));
+        self.subtract_moves(&[[parts]])[0][0]
+    }
+
+    /// Removes, move after move, the swept volumes of a sequence of moves, each given as `G`
+    /// groups of parts (e.g. the cutting part and the shank), and returns what each group of
+    /// each move removed. The stock ends as if the moves were subtracted one by one in order,
+    /// and each move's figures are the ones it would have had then.
+    ///
+    /// Parallel without a barrier per move: the tile rows of each family are dealt to the
+    /// workers in turn (row `tj` to worker `tj mod n`), each worker runs the whole sequence
+    /// over its own rows, so every ray still sees the moves in order; a move's work is spread
+    /// over all workers because it spans consecutive rows.
+    pub fn subtract_moves<const G: usize>(
+        &mut self,
+        moves: &[[&[SweptConvex<'_>]; G]],
+    ) -> Vec<[CutStats; G]> {
         let grid = self.grid;
-        let mut items: Vec<Work<'_>> = Vec::new();
+        let plans: Vec<[Option<Plan>; G]> = moves
+            .iter()
+            .map(|groups| groups.map(|parts| Plan::new(&grid, parts)))
+            .collect();
+        // Tiles the sequence may touch: small work stays on the calling thread.
+        let tiles: usize = plans.iter().flatten().flatten().map(Plan::tiles).sum();
+        let workers = if tiles < PARALLEL_MIN_TILES {
+            1
+        } else {
+            rayon::current_num_threads().clamp(1, 64)
+        };
+        let mut rows: Vec<[Vec<Row<'_>>; 3]> = (0..workers).map(|_| Default::default()).collect();
         for fam in self.families.iter_mut() {
             let k = fam.axis;
-            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
-            let (Some((i0, i1)), Some((j0, j1))) = (
-                grid.centers_in(u, bb.min[u], bb.max[u]),
-                grid.centers_in(v, bb.min[v], bb.max[v]),
-            ) else {
-                continue;
-            };
-            let (tmin, tmax) = (bb.min[k], bb.max[k]);
-            let dir = Vec3::AXES[k];
-            let (ti0, ti1) = (i0 / TILE, i1 / TILE);
-            let ntu = fam.ntu;
-            let mut rest_r: &mut [Dexel] = &mut fam.rays[..];
-            let mut rest_b: &mut [[f64; 2]] = &mut fam.bounds[..];
-            let mut consumed = 0;
-            for tj in j0 / TILE..=j1 / TILE {
-                let start = tj * ntu + ti0;
-                let end = tj * ntu + ti1 + 1;
-                let (_, r) =
-                    std::mem::take(&mut rest_r).split_at_mut((start - consumed) * TILE_RAYS);
-                let (mine_r, r) = r.split_at_mut((end - start) * TILE_RAYS);
-                rest_r = r;
-                let (_, b) = std::mem::take(&mut rest_b).split_at_mut(start - consumed);
-                let (mine_b, b) = b.split_at_mut(end - start);
-                rest_b = b;
-                consumed = end;
-                items.push(Work {
-                    k,
-                    u,
-                    v,
-                    tj,
-                    ti0,
-                    i: (i0, i1),
-                    j: (j0, j1),
-                    t: (tmin, tmax),
-                    dir,
-                    rays: mine_r,
-                    bounds: mine_b,
-                });
+            let per_row = fam.ntu * TILE_RAYS;
+            for (tj, (r, b)) in fam
+                .rays
+                .chunks_mut(per_row)
+                .zip(fam.bounds.chunks_mut(fam.ntu))
+                .enumerate()
+            {
+                rows[tj % workers][k].push(Row { rays: r, bounds: b });
             }
         }
-        let run = |w: Work<'_>| -> CutStats { w.run(&grid, parts) };
-        if items.len() <= 2 {
-            items
-                .into_iter()
-                .map(run)
-                .fold(CutStats::default(), CutStats::merged)
+        let run = |(w, mut mine): (usize, [Vec<Row<'_>>; 3])| -> Vec<[CutStats; G]> {
+            let mut out = vec![[CutStats::default(); G]; moves.len()];
+            let mut scratch = Scratch::new();
+            for ((groups, plans), st) in moves.iter().zip(&plans).zip(out.iter_mut()) {
+                for ((parts, plan), st) in groups.iter().zip(plans).zip(st.iter_mut()) {
+                    let Some(plan) = plan else { continue };
+                    for (k, fam_rows) in mine.iter_mut().enumerate() {
+                        let Some(r) = plan.fam[k] else { continue };
+                        let rays: SmallVec<[DexelRays; 2]> =
+                            parts.iter().map(|p| p.dexel_rays(k)).collect();
+                        let cut = TileCut {
+                            grid: &grid,
+                            k,
+                            range: &r,
+                            parts,
+                            rays: &rays,
+                        };
+                        let (tj0, tj1) = (r.j.0 / TILE, r.j.1 / TILE);
+                        // This worker's first row at or after tj0.
+                        let first = tj0 + (w + workers - tj0 % workers) % workers;
+                        for tj in (first..=tj1).step_by(workers) {
+                            let row = &mut fam_rows[tj / workers];
+                            for ti in r.i.0 / TILE..=r.i.1 / TILE {
+                                let tile = &mut row.rays[ti * TILE_RAYS..(ti + 1) * TILE_RAYS];
+                                cut.run(ti, tj, tile, &mut row.bounds[ti], &mut scratch, st);
+                            }
+                        }
+                    }
+                }
+            }
+            out
+        };
+        let per_worker: Vec<Vec<[CutStats; G]>> = if workers == 1 {
+            rows.into_iter().enumerate().map(run).collect()
         } else {
-            items
-                .into_par_iter()
-                .map(run)
-                .reduce(CutStats::default, CutStats::merged)
+            rows.into_par_iter().enumerate().map(run).collect()
+        };
+        let mut total = vec![[CutStats::default(); G]; moves.len()];
+        for w in per_worker {
+            for (t, s) in total.iter_mut().zip(w) {
+                for g in 0..G {
+                    t[g] = t[g].merged(s[g]);
+                }
+            }
         }
+        total
     }
 }
 
-/// One row of tiles of one family, to be cut by one task.
-struct Work<'a> {
-    k: usize,
-    u: usize,
-    v: usize,
-    tj: usize,
-    ti0: usize,
-    i: (usize, usize),
-    j: (usize, usize),
-    t: (f64, f64),
-    dir: Vec3,
+/// A straight move with a fixed tool axis: the tip from `tip0` to `tip1`, unit `axis`.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct LinearMove {
+    /// Tip at the start, workpiece frame, mm.
+    pub tip0: Vec3,
+    /// Tip at the end.
+    pub tip1: Vec3,
+    /// Tool axis (unit, from the tip towards the spindle).
+    pub axis: Vec3,
+}
+
+/// Moves prepared and subtracted together by [`TriDexel::cut_linear_batch`] (bounds the
+/// memory of the prepared sweeps; large enough that the per-call overhead vanishes).
+const BATCH_MOVES: usize = 256;
+
+impl TriDexel {
+    /// Cuts a sequence of straight fixed-axis moves of one tool, in order, and returns what
+    /// each removed (as [`TriDexel::cut_linear`] would, move by move), with the moves of each
+    /// batch cut in parallel over disjoint rays (see [`TriDexel::subtract_moves`]).
+    pub fn cut_linear_batch(&mut self, tool: &ToolShape, moves: &[LinearMove]) -> Vec<SegmentCut> {
+        let mut out = Vec::with_capacity(moves.len());
+        for chunk in moves.chunks(BATCH_MOVES) {
+            fn sweep<'s>(shape: &'s SweepShape, m: &LinearMove) -> SmallVec<[SweptConvex<'s>; 2]> {
+                shape
+                    .parts()
+                    .iter()
+                    .map(|p| SweptConvex::new(p, m.tip0, m.axis, m.tip1 - m.tip0))
+                    .collect()
+            }
+            let prepared: Vec<[SmallVec<[SweptConvex<'_>; 2]>; 2]> = chunk
+                .iter()
+                .map(|m| [sweep(tool.cutting(), m), sweep(tool.non_cutting(), m)])
+                .collect();
+            let groups: Vec<[&[SweptConvex<'_>]; 2]> =
+                prepared.iter().map(|[a, b]| [&a[..], &b[..]]).collect();
+            out.extend(
+                self.subtract_moves(&groups)
+                    .into_iter()
+                    .map(|[cutting, non_cutting]| SegmentCut {
+                        cutting,
+                        non_cutting,
+                        sub_moves: 1,
+                        error_bound_mm: 0.0,
+                    }),
+            );
+        }
+        out
+    }
+}
+
+/// Below this many tiles (summed over the moves of a call) the work is not split.
+const PARALLEL_MIN_TILES: usize = 64;
+
+/// One tile row of one family, owned by one worker.
+struct Row<'a> {
     rays: &'a mut [Dexel],
     bounds: &'a mut [[f64; 2]],
 }
 
-impl Work<'_> {
-    fn run(self, grid: &Grid, parts: &[SweptConvex<'_>]) -> CutStats {
-        let mut st = CutStats::default();
-        let mut scratch = Scratch::new();
-        let dcs: SmallVec<[_; 4]> = parts.iter().map(|p| p.dir_consts(self.dir)).collect();
-        let (tmin, tmax) = self.t;
-        for (tn, (tile, bound)) in self
-            .rays
-            .chunks_mut(TILE_RAYS)
-            .zip(self.bounds.iter_mut())
-            .enumerate()
-        {
-            if !(bound[0] < tmax && bound[1] > tmin) {
-                continue;
-            }
-            let ti = self.ti0 + tn;
-            // Material-first at tile level: skip the tile when no part's sweep can reach its
-            // material range.
-            let half = 0.5 * TILE as f64 * grid.h[self.u].max(grid.h[self.v]);
-            let mut centre = Vec3::ZERO;
-            centre[self.u] = grid.min[self.u]
-                + (ti * TILE) as f64 * grid.h[self.u]
-                + 0.5 * TILE as f64 * grid.h[self.u];
-            centre[self.v] = grid.min[self.v]
-                + (self.tj * TILE) as f64 * grid.h[self.v]
-                + 0.5 * TILE as f64 * grid.h[self.v];
-            let reach = parts.iter().any(|p| {
-                p.block_range(self.k, centre, half)
-                    .is_some_and(|(a, b)| bound[0] < b && bound[1] > a)
-            });
-            if !reach {
-                continue;
-            }
-            let mut changed = false;
-            for jj in 0..TILE {
-                let j = self.tj * TILE + jj;
-                if j < self.j.0 || j > self.j.1 {
+/// The rays of one family a move may touch: cross index ranges and the range along the rays.
+#[derive(Clone, Copy, Debug)]
+struct FamilyRange {
+    i: (usize, usize),
+    j: (usize, usize),
+    t: (f64, f64),
+}
+
+/// What a move may touch, per family.
+struct Plan {
+    fam: [Option<FamilyRange>; 3],
+}
+
+impl Plan {
+    fn new(grid: &Grid, parts: &[SweptConvex<'_>]) -> Option<Plan> {
+        let bb = parts
+            .iter()
+            .map(SweptConvex::bbox)
+            .reduce(|a, b| a.union(&b))?;
+        let fam = [0, 1, 2].map(|k| {
+            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+            let i = grid.centers_in(u, bb.min[u], bb.max[u])?;
+            let j = grid.centers_in(v, bb.min[v], bb.max[v])?;
+            Some(FamilyRange {
+                i,
+                j,
+                t: (bb.min[k], bb.max[k]),
+            })
+        });
+        Some(Plan { fam })
+    }
+
+    fn tiles(&self) -> usize {
+        self.fam
+            .iter()
+            .flatten()
+            .map(|r| (r.i.1 / TILE - r.i.0 / TILE + 1) * (r.j.1 / TILE - r.j.0 / TILE + 1))
+            .sum()
+    }
+}
+
+/// The tiles of one family against one group of parts of one move.
+struct TileCut<'g, 'p, 'a> {
+    grid: &'g Grid,
+    k: usize,
+    range: &'g FamilyRange,
+    parts: &'p [SweptConvex<'a>],
+    /// Per part, what its dexel queries along this family share.
+    rays: &'g [DexelRays],
+}
+
+impl TileCut<'_, '_, '_> {
+    fn run(
+        &self,
+        ti: usize,
+        tj: usize,
+        tile: &mut [Dexel],
+        bound: &mut [f64; 2],
+        scratch: &mut Scratch,
+        st: &mut CutStats,
+    ) {
+        let (grid, k) = (self.grid, self.k);
+        let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+        let (tmin, tmax) = self.range.t;
+        if !(bound[0] < tmax && bound[1] > tmin) {
+            return;
+        }
+        // Material-first at tile level: skip the tile when no part's sweep can reach its
+        // material range.
+        let half = 0.5 * TILE as f64 * grid.h[u].max(grid.h[v]);
+        let mut centre = Vec3::ZERO;
+        centre[u] = grid.min[u] + (ti * TILE) as f64 * grid.h[u] + 0.5 * TILE as f64 * grid.h[u];
+        centre[v] = grid.min[v] + (tj * TILE) as f64 * grid.h[v] + 0.5 * TILE as f64 * grid.h[v];
+        let reach = self.parts.iter().any(|p| {
+            p.block_range(k, centre, half)
+                .is_some_and(|(a, b)| bound[0] < b && bound[1] > a)
+        });
+        if !reach {
+            return;
+        }
+        let (i_lo, i_hi) = (
+            self.range.i.0.max(ti * TILE) - ti * TILE,
+            self.range.i.1.min(ti * TILE + TILE - 1) - ti * TILE,
+        );
+        let (j_lo, j_hi) = (
+            self.range.j.0.max(tj * TILE) - tj * TILE,
+            self.range.j.1.min(tj * TILE + TILE - 1) - tj * TILE,
+        );
+        let mut changed = false;
+        for jj in j_lo..=j_hi {
+            let cv = grid.center(v, tj * TILE + jj);
+            for ii in i_lo..=i_hi {
+                let d = &mut tile[jj * TILE + ii];
+                if !overlaps(d, tmin, tmax) {
                     continue;
                 }
-                let cv = grid.center(self.v, j);
-                for ii in 0..TILE {
-                    let i = ti * TILE + ii;
-                    if i < self.i.0 || i > self.i.1 {
-                        continue;
-                    }
-                    let d = &mut tile[jj * TILE + ii];
-                    if !overlaps(d, tmin, tmax) {
-                        continue;
-                    }
-                    st.visited_per_family[self.k] += 1;
-                    let mut origin = Vec3::ZERO;
-                    origin[self.u] = grid.center(self.u, i);
-                    origin[self.v] = cv;
-                    let mut removed = 0.0;
-                    let mut tested = false;
-                    for (p, dc) in parts.iter().zip(&dcs) {
-                        // Material-first: a cheap range that holds the ray's part of this
-                        // sweep; no overlap with the material, no geometry.
-                        let Some((a, b)) = p.dexel_range(origin, self.k) else {
-                            continue;
-                        };
-                        if d.is_empty() || !overlaps(d, a, b) {
-                            continue;
-                        }
-                        tested = true;
-                        let (m_lo, m_hi) = (d[0].enter.max(a), d[d.len() - 1].exit.min(b));
-                        if let Some((lo, hi)) =
-                            p.line_interval(origin, dc, Some((self.k, m_lo, m_hi)), &mut scratch)
-                        {
-                            removed += subtract(d, lo, hi);
-                        }
-                    }
-                    if tested {
-                        st.rays_tested += 1;
-                        st.tested_per_family[self.k] += 1;
-                    }
-                    if removed > 0.0 {
-                        st.updates += 1;
-                        st.updates_per_family[self.k] += 1;
-                        st.removed_length[self.k] += removed;
-                        changed = true;
+                st.visited_per_family[k] += 1;
+                let mut origin = Vec3::ZERO;
+                origin[u] = grid.center(u, ti * TILE + ii);
+                origin[v] = cv;
+                let mut removed = 0.0;
+                let mut tested = false;
+                for (p, rays) in self.parts.iter().zip(self.rays) {
+                    let (t, hit) = p.dexel_cut(origin, k, d, rays, scratch);
+                    tested |= t;
+                    if let Some((lo, hi)) = hit {
+                        removed += subtract(d, lo, hi);
                     }
                 }
-            }
-            if changed {
-                *bound = tile_bound(tile);
+                if tested {
+                    st.rays_tested += 1;
+                    st.tested_per_family[k] += 1;
+                }
+                if removed > 0.0 {
+                    st.updates += 1;
+                    st.updates_per_family[k] += 1;
+                    st.removed_length[k] += removed;
+                    changed = true;
+                }
             }
         }
-        st
+        if changed {
+            *bound = tile_bound(tile);
+        }
     }
 }

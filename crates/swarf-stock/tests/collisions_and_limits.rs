@@ -1,5 +1,5 @@
-//! Rapids into material, shank and holder collisions, moves this version refuses, and the
-//! simple stock shapes.
+//! Rapids into material, shank and holder collisions, 5-axis moves in the report (and the
+//! tolerance they refuse), and the simple stock shapes.
 
 mod common;
 
@@ -79,21 +79,28 @@ fn shank_and_holder_collisions_are_reported() {
 }
 
 #[test]
-fn five_axis_move_is_refused_with_its_line() {
+fn five_axis_move_is_cut_and_reported() {
+    // A CL move whose axis tilts 5.7° while the tip crosses the block: cut in constant-axis
+    // sub-moves, counted in the report, every bound within the tolerance. A zero tolerance
+    // cannot be honoured and is refused naming the move's line.
     let mut p = moves(
-        &[Vec3::new(0.0, 0.0, 20.0), Vec3::new(10.0, 0.0, 20.0)],
+        &[Vec3::new(0.0, 5.0, 8.0), Vec3::new(10.0, 5.0, 8.0)],
         Vec3::Z,
         false,
     );
+    p.axis_source = swarf_path::AxisSource::Program;
     p.moves[0].end.axis = Vec3::new(0.1, 0.0, 1.0).normalize();
+    let tools = Tools::single(&Cutter::ball(6.0).unwrap());
     let mut s = TriDexel::from_box(Vec3::ZERO, Vec3::new(10.0, 10.0, 10.0), 0.5).unwrap();
-    let e = simulate(
-        &p,
-        &Tools::single(&Cutter::ball(6.0).unwrap()),
-        &mut s,
-        &SimOptions::default(),
-    )
-    .unwrap_err();
+    let opts = SimOptions::default().with_chordal_tolerance(0.01);
+    let r = simulate(&p, &tools, &mut s, &opts).unwrap();
+    assert_eq!(r.five_axis_moves, 1);
+    assert!(r.five_axis_sub_moves > 10, "{}", r.five_axis_sub_moves);
+    assert!(r.five_axis_error_bound_mm > 0.0 && r.five_axis_error_bound_mm <= 0.01);
+    assert!(r.removed_volume_mm3 > 0.0);
+
+    let mut s = TriDexel::from_box(Vec3::ZERO, Vec3::new(10.0, 10.0, 10.0), 0.5).unwrap();
+    let e = simulate(&p, &tools, &mut s, &opts.with_chordal_tolerance(0.0)).unwrap_err();
     assert!(
         matches!(
             e,

@@ -36,14 +36,18 @@
 //! is made of the joint circles' extrusions and the caps, so they need no candidates of their
 //! own.
 
+pub(crate) mod capsule;
 pub(crate) mod circle;
+pub(crate) mod fast;
 pub(crate) mod line;
 pub(crate) mod profile;
+pub(crate) mod slab;
 pub(crate) mod sphere;
 pub(crate) mod torus;
 
 pub use profile::{ConvexProfile, Element, SweepShape};
 
+use crate::dexel::{overlaps, Interval};
 use smallvec::SmallVec;
 use swarf_geom::math::Vec3;
 use swarf_geom::{Aabb, Frame};
@@ -142,6 +146,8 @@ pub struct SweptConvex<'a> {
     /// When the tool axis is a world axis `k` (+1 along it): the tip's cross coordinates at the
     /// start and end, and its lowest coordinate along `k` over the move.
     axial: Option<Axial>,
+    /// The closed-form kernels for dexels, when the profile and the move qualify.
+    fast: Option<fast::FastSweep>,
 }
 
 /// The move seen along a tool axis that is the world axis `k`.
@@ -211,6 +217,16 @@ pub(crate) struct DirConsts {
     /// along the ray, the one reaching highest, then the rest (so the skip test of the
     /// others usually succeeds).
     order: [u8; MAX_UNITS],
+}
+
+/// The per-direction state of dexel queries against one sweep (see
+/// [`SweptConvex::dexel_rays`]).
+#[derive(Clone, Debug)]
+pub(crate) enum DexelRays {
+    /// Closed-form kernels.
+    Fast(fast::FastRays),
+    /// The general candidates.
+    General(Box<DirConsts>),
 }
 
 /// Most units (elements + joints) a profile may have for the batched query.
@@ -290,6 +306,7 @@ impl<'a> SweptConvex<'a> {
                 high: tip[k].max(end[k]),
             }
         });
+        let fast = axial.and_then(|ax| fast::FastSweep::new(prof, ax.k, tip, delta));
         Self {
             prof,
             frame,
@@ -297,6 +314,7 @@ impl<'a> SweptConvex<'a> {
             bbox,
             units,
             axial,
+            fast,
         }
     }
 
@@ -313,6 +331,69 @@ impl<'a> SweptConvex<'a> {
         let dir = dir.normalize();
         let dc = self.dir_consts(dir);
         self.line_interval(origin, &dc, None, &mut Scratch::new())
+    }
+
+    /// The interval of the ray along world axis `k` through `origin` (`origin[k]` ignored)
+    /// inside the swept volume, in world coordinates along `k`: by the closed-form kernels
+    /// when [`SweptConvex::has_closed_form`], else as [`SweptConvex::ray_interval`].
+    pub fn axis_ray_interval(&self, origin: Vec3, k: usize) -> Option<(f64, f64)> {
+        let mut o = origin;
+        o[k] = 0.0;
+        match &self.fast {
+            Some(f) => f.rays(k).interval(o, None),
+            None => self.ray_interval(o, Vec3::AXES[k]),
+        }
+    }
+
+    /// True when rays along world axes are answered in closed form (a slab or ball-end
+    /// profile on a move whose tool axis is a world axis).
+    pub fn has_closed_form(&self) -> bool {
+        self.fast.is_some()
+    }
+
+    /// What the dexel queries along world axis `k` share: the closed-form kernels' constants
+    /// when available, else the general path's direction constants. (The one place where
+    /// the kind of kernel is chosen.)
+    pub(crate) fn dexel_rays(&self, k: usize) -> DexelRays {
+        match &self.fast {
+            Some(f) => DexelRays::Fast(f.rays(k)),
+            None => DexelRays::General(Box::new(self.dir_consts(Vec3::AXES[k]))),
+        }
+    }
+
+    /// The stock update's query for the dexel `d` along world axis `k` through `origin`
+    /// (`origin[k] = 0`; `rays` from [`SweptConvex::dexel_rays`] for `k`): whether an exact
+    /// query ran, and the interval to remove (exact where it meets the material). Closed
+    /// form when available; otherwise the material-first range test, then the general
+    /// candidates pruned to the material.
+    #[inline]
+    pub(crate) fn dexel_cut(
+        &self,
+        origin: Vec3,
+        k: usize,
+        d: &[Interval],
+        rays: &DexelRays,
+        scratch: &mut Scratch,
+    ) -> (bool, Option<(f64, f64)>) {
+        let (first, last) = match (d.first(), d.last()) {
+            (Some(f), Some(l)) => (f.enter, l.exit),
+            _ => return (false, None),
+        };
+        let dc = match rays {
+            DexelRays::Fast(f) => return (true, f.interval(origin, Some((first, last)))),
+            DexelRays::General(dc) => dc,
+        };
+        let Some((a, b)) = self.dexel_range(origin, k) else {
+            return (false, None);
+        };
+        if !overlaps(d, a, b) {
+            return (false, None);
+        }
+        let (m_lo, m_hi) = (first.max(a), last.min(b));
+        (
+            true,
+            self.line_interval(origin, dc, Some((k, m_lo, m_hi)), scratch),
+        )
     }
 
     /// A range along the ray through `origin` (with `origin[k] = 0`) parallel to world axis

@@ -2,6 +2,7 @@
 //! convexity; non-convex solids (holders with steps, unusual APT sets) are split into convex
 //! slabs.
 
+use super::fast::FastProfile;
 use super::{circle, line, sphere, torus, Acc, DirConsts, Scratch};
 use crate::error::StockError;
 use swarf_geom::math::{Vec2, Vec3};
@@ -129,6 +130,8 @@ pub struct ConvexProfile {
     z_of_max: (f64, f64),
     /// Per element: `(sin φ0, sin φ1, cos φ1)` for arcs (zeros for lines).
     trig: Vec<(f64, f64, f64)>,
+    /// What the closed-form kernels see in it, if anything.
+    fast: Option<FastProfile>,
 }
 
 impl ConvexProfile {
@@ -219,6 +222,7 @@ impl ConvexProfile {
                 (z0, z1, e.max_rho())
             })
             .collect();
+        let fast = FastProfile::classify(&elements);
         Ok(Self {
             elements,
             joints,
@@ -228,6 +232,7 @@ impl ConvexProfile {
             r_max,
             z_of_max,
             trig,
+            fast,
         })
     }
 
@@ -260,6 +265,11 @@ impl ConvexProfile {
     /// Largest radius.
     pub fn r_max(&self) -> f64 {
         self.r_max
+    }
+
+    /// The profile as the closed-form kernels see it (slab, or sphere on a slab).
+    pub(crate) fn fast(&self) -> Option<FastProfile> {
+        self.fast
     }
 
     /// Radius of a cylinder about the axis holding the solid.

@@ -1,0 +1,548 @@
+//! Closed-form kernels for the common case, chosen once per profile and once per move: a
+//! profile that is a cylinder slab (flat end mill, shank) or a sphere on a cylinder slab (ball
+//! end mill), on a move whose tool axis is a world axis, against rays along world axes (the
+//! dexels). They compute the same exact interval as the general candidates of
+//! [`super::SweptConvex::line_interval`] with a few square roots, and the property tests
+//! (`tests/fast_paths.rs`) hold them to it.
+//!
+//! This module is the one dispatch point: [`FastProfile::classify`] decides what a profile
+//! is, [`FastSweep::new`] whether a move qualifies, [`FastSweep::dexel`] answers the query.
+
+use super::capsule::line_capsule;
+use super::slab::{self, AxisMove};
+use super::{ConvexProfile, Element};
+use swarf_geom::math::Vec3;
+
+/// Relative tolerance with which profile parameters are taken as equal when a profile is
+/// classified (far below any geometric effect: 1e-12 of the tool size).
+const CLASSIFY_EPS: f64 = 1e-12;
+
+/// What a convex profile is, for the closed-form kernels. The solid is exactly the union of
+/// the listed parts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct FastProfile {
+    /// A full sphere `(centre height, radius)`.
+    pub(crate) sphere: Option<(f64, f64)>,
+    /// The slab `(radius, z0, z1)`.
+    pub(crate) slab: (f64, f64, f64),
+}
+
+impl FastProfile {
+    /// Recognises a slab (disc, cylinder, disc) and a ball end (sphere arc from the tip to the
+    /// equator, cylinder of the same radius, disc) whose cylinder reaches at least the top of
+    /// the sphere, so that the solid is the union of the whole sphere and the slab.
+    pub(crate) fn classify(els: &[Element]) -> Option<FastProfile> {
+        let same = |a: f64, b: f64, scale: f64| (a - b).abs() <= CLASSIFY_EPS * scale.max(1.0);
+        let side_and_top = |els: &[Element], r: f64, z0: f64| -> Option<f64> {
+            let [Element::Line { p: sp, q: sq }, Element::Line { p: tp, q: tq }] = els else {
+                return None;
+            };
+            let ok = same(sp.x, r, r)
+                && same(sq.x, r, r)
+                && same(sp.y, z0, r)
+                && sq.y > sp.y
+                && same(tp.x, r, r)
+                && same(tp.y, sq.y, r)
+                && tq.x == 0.0
+                && tq.y == tp.y;
+            ok.then_some(sq.y)
+        };
+        match els {
+            [Element::Line { p, q }, rest @ ..] => {
+                let (r, z0) = (q.x, q.y);
+                if !(p.x == 0.0 && p.y == q.y && r > 0.0) {
+                    return None;
+                }
+                let z1 = side_and_top(rest, r, z0)?;
+                Some(FastProfile {
+                    sphere: None,
+                    slab: (r, z0, z1),
+                })
+            }
+            [Element::Arc {
+                e,
+                f,
+                r,
+                phi0,
+                phi1,
+            }, rest @ ..] => {
+                let ok = *e == 0.0
+                    && *phi0 == 0.0
+                    && same(*phi1, std::f64::consts::FRAC_PI_2, 1.0)
+                    && *r > 0.0;
+                if !ok {
+                    return None;
+                }
+                let z1 = side_and_top(rest, *r, *f)?;
+                (z1 >= f + r).then_some(FastProfile {
+                    sphere: Some((*f, *r)),
+                    slab: (*r, *f, z1),
+                })
+            }
+            [] => None,
+        }
+    }
+}
+
+/// A move prepared for the closed-form kernels: tool axis `+e_kt`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct FastSweep {
+    kt: usize,
+    shape: FastProfile,
+    mv: AxisMove,
+    /// Sphere centre at the start and the move (world), when the profile has a sphere.
+    c0: Vec3,
+    delta: Vec3,
+}
+
+impl FastSweep {
+    /// The kernels for `prof` placed at `tip` with axis `+e_kt` moving by `delta`, when the
+    /// profile qualifies.
+    pub(crate) fn new(prof: &ConvexProfile, kt: usize, tip: Vec3, delta: Vec3) -> Option<Self> {
+        let shape = prof.fast()?;
+        let (u, w) = ((kt + 1) % 3, (kt + 2) % 3);
+        let c0 = tip + Vec3::AXES[kt] * shape.sphere.map_or(0.0, |s| s.0);
+        Some(Self {
+            kt,
+            shape,
+            mv: AxisMove {
+                p: [tip[u], tip[w], tip[kt]],
+                m: [delta[u], delta[w], delta[kt]],
+            },
+            c0,
+            delta,
+        })
+    }
+
+    /// The constants shared by all rays along world axis `k`.
+    pub(crate) fn rays(&self, k: usize) -> FastRays {
+        let (r, z0, z1) = self.shape.slab;
+        let (pa, ma) = (self.mv.p[2], self.mv.m[2]);
+        let baba = self.delta.length_squared();
+        let bard = self.delta[k];
+        let sphere = self.shape.sphere.map(|(_, sr)| CapsuleRays {
+            c0: self.c0,
+            ba: self.delta,
+            baba,
+            bard,
+            a: baba - bard * bard,
+            rr: sr * sr,
+        });
+        if k == self.kt {
+            let (mu, mw) = (self.mv.m[0], self.mv.m[1]);
+            let aa = mu * mu + mw * mw;
+            return FastRays::Along(AlongRays {
+                kt: self.kt,
+                mv: self.mv,
+                inv_aa: if aa > 0.0 { 1.0 / aa } else { 0.0 },
+                r,
+                z0,
+                z1,
+                hi_min: pa + z1 + ma.min(0.0),
+                low_base: match self.shape.sphere {
+                    Some((f, sr)) => pa + f + ma.min(0.0) - sr,
+                    None => pa + z0 + ma.min(0.0),
+                },
+                low_k: self.shape.sphere.map_or(0.0, |(_, sr)| 0.5 / sr),
+                sphere,
+            });
+        }
+        let ray = if k == (self.kt + 1) % 3 { 0 } else { 1 };
+        let o = 1 - ray;
+        let full = Stadium::new(
+            (self.mv.p[ray], self.mv.p[o]),
+            (self.mv.m[ray], self.mv.m[o]),
+            r,
+        );
+        let sr = self.shape.sphere.map_or(0.0, |s| s.1);
+        FastRays::Across(AcrossRays {
+            kt: self.kt,
+            ray,
+            mv: self.mv,
+            r,
+            z0,
+            z1,
+            full_band: (pa + z0 + ma.max(0.0), pa + z1 + ma.min(0.0)),
+            band: (pa + z0 + ma.min(0.0), pa + z1 + ma.max(0.0)),
+            full,
+            sphere_band: (
+                self.c0[self.kt] + ma.min(0.0) - sr,
+                self.c0[self.kt] + ma.max(0.0),
+            ),
+            sphere,
+        })
+    }
+}
+
+/// The kernels of one sweep for the rays along one world axis.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum FastRays {
+    /// Rays along the tool axis.
+    Along(AlongRays),
+    /// Rays across it.
+    Across(AcrossRays),
+}
+
+impl FastRays {
+    /// The interval of the ray through `o` (with `o[k] = 0`, `k` the rays' axis), in world
+    /// coordinates along the ray. With
+    /// `material = Some((lo, hi))`, the ray's material lies in `[lo, hi]` and the result is
+    /// exact where it meets that range (an end beyond the material may be replaced by a
+    /// cheaper bound beyond it).
+    #[inline]
+    pub(crate) fn interval(&self, o: Vec3, material: Option<(f64, f64)>) -> Option<(f64, f64)> {
+        match self {
+            FastRays::Along(a) => a.interval(o, material),
+            FastRays::Across(a) => a.interval(o),
+        }
+    }
+}
+
+/// A capsule (swept sphere) against lines along one world axis `d`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct CapsuleRays {
+    c0: Vec3,
+    ba: Vec3,
+    baba: f64,
+    /// `ba·d`.
+    bard: f64,
+    /// `|ba × d|²`.
+    a: f64,
+    rr: f64,
+}
+
+impl CapsuleRays {
+    /// The capsule's interval on the line through `o` along `d` (world coordinates along
+    /// `d`), computed as [`line_capsule`] does with the direction's constants shared.
+    #[inline]
+    fn interval<const LOW_ONLY: bool>(&self, o: Vec3, d: Vec3) -> Option<(f64, f64)> {
+        if self.a <= 1e-20 * self.baba {
+            return line_capsule::<LOW_ONLY>(o, d, self.c0, self.ba, self.rr.sqrt());
+        }
+        // Re-based at the point of the line level with c0 along d: oa ⊥ d.
+        let t0 = self.c0.dot(d) - o.dot(d);
+        let oa = o + d * t0 - self.c0;
+        let (ba, baba, bard, a, rr) = (self.ba, self.baba, self.bard, self.a, self.rr);
+        let baoa = ba.dot(oa);
+        let oaoa = oa.dot(oa);
+        let b = -baoa * bard;
+        let c = baba * oaoa - baoa * baoa - rr * baba;
+        let h = b * b - a * c;
+        if h < 0.0 {
+            return None;
+        }
+        // Which piece holds each end, decided before any square root: the side's crossing
+        // t = (−b ∓ √h)/a projects on the segment at y = baoa + t·bard, i.e.
+        // a·y = L ∓ bard·√h with L = baoa·a − bard·b; an end projecting beyond the segment
+        // lies on that end's sphere (one square root, no side root at all).
+        let l = baoa * a - bard * b;
+        let bh2 = bard * bard * h;
+        // x ≤ s·bard·√h, for s = ±1.
+        let le = |x: f64, s: f64| {
+            if s * bard >= 0.0 {
+                x <= 0.0 || x * x <= bh2
+            } else {
+                x <= 0.0 && x * x >= bh2
+            }
+        };
+        let sphere_end = |at_start: bool, low: bool| -> Option<f64> {
+            let oc = if at_start { oa } else { oa - ba };
+            let b = oc.dot(d);
+            let h = b * b - (oc.dot(oc) - rr);
+            (h >= 0.0).then(|| if low { -b - h.sqrt() } else { -b + h.sqrt() })
+        };
+        let side = |near: bool| -> f64 {
+            // Cancellation-free roots q/a and c/q.
+            let sh = h.sqrt();
+            let q = if b > 0.0 { -(b + sh) } else { -b + sh };
+            let other = if q != 0.0 { c / q } else { 0.0 };
+            match (near, b > 0.0) {
+                (true, true) | (false, false) => q / a,
+                _ => other,
+            }
+        };
+        let end = |s: f64, low: bool| -> Option<f64> {
+            // The end with a·y = L + s·bard·√h (s = −1 near, +1 far): y ≤ 0 iff
+            // L ≤ −s·bard·√h, y > |ba|² iff L − |ba|²·a > −s·bard·√h.
+            if le(l, -s) {
+                sphere_end(true, low)
+            } else if !le(l - baba * a, -s) {
+                sphere_end(false, low)
+            } else {
+                Some(side(low))
+            }
+        };
+        let lo = end(-1.0, true)?;
+        if LOW_ONLY {
+            return Some((lo + t0, lo + t0));
+        }
+        let hi = end(1.0, false)?;
+        Some((lo + t0, hi + t0))
+    }
+}
+
+/// Rays along the tool axis.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct AlongRays {
+    kt: usize,
+    mv: AxisMove,
+    inv_aa: f64,
+    r: f64,
+    z0: f64,
+    z1: f64,
+    /// The upper end is at least this for every ray that meets the sweep.
+    hi_min: f64,
+    /// The lower end is at least `low_base + ρ²·low_k` for a ray at distance ρ from the tip
+    /// path: `min centre height − r + ρ²/2r` under a sphere (`r − √(r² − ρ²) ≥ ρ²/2r`), the
+    /// lowest bottom under a flat slab.
+    low_base: f64,
+    low_k: f64,
+    sphere: Option<CapsuleRays>,
+}
+
+impl AlongRays {
+    #[inline]
+    fn interval(&self, o: Vec3, material: Option<(f64, f64)>) -> Option<(f64, f64)> {
+        let kt = self.kt;
+        let (qu, qw) = (o[(kt + 1) % 3], o[(kt + 2) % 3]);
+        let (du, dw) = (qu - self.mv.p[0], qw - self.mv.p[1]);
+        let (mu, mw) = (self.mv.m[0], self.mv.m[1]);
+        // The ray meets the sweep iff it is within r of the tip's path (both parts project to
+        // that stadium along the axis).
+        let s_near = ((du * mu + dw * mw) * self.inv_aa).clamp(0.0, 1.0);
+        let (eu, ew) = (du - s_near * mu, dw - s_near * mw);
+        let rho2 = eu * eu + ew * ew;
+        if rho2 > self.r * self.r {
+            return None;
+        }
+        // Material-first: the sweep's lowest point on this ray is at least `low_base +
+        // ρ²·low_k` (ρ the ray's distance from the tip path); material below it is untouched.
+        if material.is_some_and(|m| m.1 <= self.low_base + rho2 * self.low_k) {
+            return None;
+        }
+        let (pa, ma) = (self.mv.p[2], self.mv.m[2]);
+        // Positions whose disc holds the ray: the slab's ends come from them.
+        let span = || slab::disc_params(&self.mv, self.r, qu, qw).unwrap_or((s_near, s_near));
+        let need_hi = material.map_or(true, |m| m.1 > self.hi_min);
+        let mut spanned = None;
+        let hi = if need_hi {
+            let (s0, s1) = *spanned.get_or_insert_with(span);
+            pa + self.z1 + (s0 * ma).max(s1 * ma)
+        } else {
+            self.hi_min
+        };
+        let lo = match &self.sphere {
+            Some(c) => match c.interval::<true>(o, Vec3::AXES[kt]) {
+                Some((l, _)) => l,
+                None => {
+                    let (s0, s1) = *spanned.get_or_insert_with(span);
+                    pa + self.z0 + (s0 * ma).min(s1 * ma)
+                }
+            },
+            None => {
+                let (s0, s1) = *spanned.get_or_insert_with(span);
+                pa + self.z0 + (s0 * ma).min(s1 * ma)
+            }
+        };
+        Some((lo, hi))
+    }
+}
+
+/// Rays across the tool axis: along cross axis `ray` (0 = u, 1 = w) of the tool's frame.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct AcrossRays {
+    kt: usize,
+    ray: usize,
+    mv: AxisMove,
+    r: f64,
+    z0: f64,
+    z1: f64,
+    /// Heights (world, along the tool axis) at which every position's slab holds the ray.
+    full_band: (f64, f64),
+    /// Heights at which some position's slab holds it.
+    band: (f64, f64),
+    /// The cross-section of the whole move's slab sweep at a height of `full_band`.
+    full: Stadium,
+    /// Heights at which the capsule may stick out of the slab's sweep: from the lowest point
+    /// of the sphere to the highest centre (above it every sphere section lies in the slab's
+    /// disc of the same position).
+    sphere_band: (f64, f64),
+    sphere: Option<CapsuleRays>,
+}
+
+impl AcrossRays {
+    #[inline]
+    fn interval(&self, o: Vec3) -> Option<(f64, f64)> {
+        let kt = self.kt;
+        let za = o[kt];
+        let (along, across) = if self.ray == 0 {
+            ((kt + 1) % 3, (kt + 2) % 3)
+        } else {
+            ((kt + 2) % 3, (kt + 1) % 3)
+        };
+        let q = o[across];
+        let slab = if za >= self.full_band.0 && za <= self.full_band.1 {
+            self.full.chord(q)
+        } else if za >= self.band.0 && za <= self.band.1 {
+            slab::across(&self.mv, self.r, self.z0, self.z1, self.ray, q, za)
+        } else {
+            None
+        };
+        let Some(c) = &self.sphere else {
+            return slab;
+        };
+        if za < self.sphere_band.0 || za > self.sphere_band.1 {
+            return slab;
+        }
+        match (slab, c.interval::<false>(o, Vec3::AXES[along])) {
+            (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
+            (a, b) => a.or(b),
+        }
+    }
+}
+
+/// A stadium (the points within `r` of a segment) in a plane with coordinates (along the
+/// rays, across them), for chords of lines along the first coordinate.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Stadium {
+    /// Segment start and vector.
+    a: (f64, f64),
+    e: (f64, f64),
+    inv_ee: f64,
+    inv_ey: f64,
+    r_el: f64,
+    rr: f64,
+}
+
+impl Stadium {
+    pub(crate) fn new(a: (f64, f64), e: (f64, f64), r: f64) -> Self {
+        let ee = e.0 * e.0 + e.1 * e.1;
+        Self {
+            a,
+            e,
+            inv_ee: if ee > 0.0 { 1.0 / ee } else { 0.0 },
+            inv_ey: if e.1 != 0.0 { 1.0 / e.1 } else { 0.0 },
+            r_el: r * ee.sqrt(),
+            rr: r * r,
+        }
+    }
+
+    /// The chord of the end disc centred at `(ca, cb)` on the line at `q`.
+    #[inline(always)]
+    fn disc(&self, ca: f64, cb: f64, q: f64) -> Option<(f64, f64)> {
+        let dq = q - cb;
+        let h2 = self.rr - dq * dq;
+        (h2 >= 0.0).then(|| {
+            let h = h2.sqrt();
+            (ca - h, ca + h)
+        })
+    }
+
+    /// The chord on the line through `(·, q)` along the first coordinate.
+    #[inline]
+    pub(crate) fn chord(&self, q: f64) -> Option<(f64, f64)> {
+        let (a, e) = (self.a, self.e);
+        let b = (a.0 + e.0, a.1 + e.1);
+        if self.e.1 == 0.0 {
+            // The segment runs along the line (or is a point): both discs have the same chord
+            // half-width.
+            let (lo, hi) = self.disc(a.0, a.1, q)?;
+            return Some((lo.min(lo + e.0), hi.max(hi + e.0)));
+        }
+        // The strip |(x − a)·ey − (q − a_y)·ex| ≤ r·|e| about the segment's line.
+        let dq = q - a.1;
+        let x1 = a.0 + (dq * e.0 - self.r_el) * self.inv_ey;
+        let x2 = a.0 + (dq * e.0 + self.r_el) * self.inv_ey;
+        let (xl, xh) = (x1.min(x2), x1.max(x2));
+        // Where each end projects on the segment (0 at a, 1 at b).
+        let proj = |x: f64| ((x - a.0) * e.0 + dq * e.1) * self.inv_ee;
+        let (yl, yh) = (proj(xl), proj(xh));
+        if yl < 0.0 && yh < 0.0 {
+            return self.disc(a.0, a.1, q);
+        }
+        if yl > 1.0 && yh > 1.0 {
+            return self.disc(b.0, b.1, q);
+        }
+        // The line crosses the segment's normal band, so it meets the stadium; an end beyond
+        // the band is on that end's disc (which the line meets, up to rounding).
+        let end_disc = |y: f64| {
+            let (ca, cb) = if y < 0.0 { a } else { b };
+            let dq = q - cb;
+            (ca, (self.rr - dq * dq).max(0.0).sqrt())
+        };
+        let lo = if (0.0..=1.0).contains(&yl) {
+            xl
+        } else {
+            let (c, h) = end_disc(yl);
+            c - h
+        };
+        let hi = if (0.0..=1.0).contains(&yh) {
+            xh
+        } else {
+            let (c, h) = end_disc(yh);
+            c + h
+        };
+        Some((lo, hi))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarf_tool::Cutter;
+
+    /// With the ray's material range given, the kernels may skip work beyond it: the result
+    /// clipped to the material must not change.
+    #[test]
+    fn material_pruning_keeps_the_material_part_exact() {
+        let mut seed = 11u64;
+        let mut rnd = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64) / ((1u64 << 53) as f64)
+        };
+        let mut compared = 0;
+        for spec in ["ball:d=10", "flat:d=6", "ball:d=3,flute-length=20"] {
+            let c = Cutter::from_spec(spec).unwrap();
+            let prof = ConvexProfile::from_solid(c.cutting_solid()).unwrap();
+            for kt in 0..3 {
+                for _ in 0..40 {
+                    let tip = Vec3::new(rnd(), rnd(), rnd()) * 20.0;
+                    let delta = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 8.0;
+                    let fs = FastSweep::new(&prof, kt, tip, delta).unwrap();
+                    for k in 0..3 {
+                        let rays = fs.rays(k);
+                        for _ in 0..100 {
+                            let mut o =
+                                tip + Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 24.0;
+                            o[k] = 0.0;
+                            let (a, b) = ((rnd() - 0.2) * 60.0, (rnd() - 0.2) * 60.0);
+                            let m = (a.min(b), a.max(b));
+                            let clip = |x: Option<(f64, f64)>| {
+                                x.and_then(|(l, h)| {
+                                    let (l, h) = (l.max(m.0), h.min(m.1));
+                                    (l < h).then_some((l, h))
+                                })
+                            };
+                            let full = clip(rays.interval(o, None));
+                            let pruned = clip(rays.interval(o, Some(m)));
+                            match (full, pruned) {
+                                (None, None) => {}
+                                (Some(f), Some(p)) => {
+                                    assert!(
+                                        (f.0 - p.0).abs() < 1e-12 && (f.1 - p.1).abs() < 1e-12,
+                                        "{spec} {f:?} {p:?}"
+                                    );
+                                    compared += 1;
+                                }
+                                (f, p) => panic!("{spec}: full {f:?} vs pruned {p:?}"),
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(compared > 2000, "{compared}");
+    }
+}

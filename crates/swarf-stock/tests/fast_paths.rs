@@ -1,0 +1,156 @@
+//! The closed-form kernels (slab and ball-end profiles, tool axis along a world axis, rays
+//! along world axes) against the general exact candidates of the same sweep, on random moves
+//! of random cutters, special moves included (plunge and retract along the axis, moves along
+//! and across each ray family, zero length): the two agree to 1e-9 mm.
+
+use swarf_geom::math::Vec3;
+use swarf_stock::{ConvexProfile, SweepShape, SweptConvex};
+use swarf_tool::Cutter;
+
+/// A tiny deterministic generator (reproducible without extra crates).
+struct Lcg(u64);
+impl Lcg {
+    fn next_f64(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64)
+    }
+    fn range(&mut self, a: f64, b: f64) -> f64 {
+        a + (b - a) * self.next_f64()
+    }
+    fn pick(&mut self, n: usize) -> usize {
+        ((self.next_f64() * n as f64) as usize).min(n - 1)
+    }
+}
+
+/// Worst disagreement, and the count of compared hits, between the two paths on `rays`
+/// random axis-aligned rays near the sweep of `prof`.
+fn compare(
+    prof: &ConvexProfile,
+    tip: Vec3,
+    axis: Vec3,
+    delta: Vec3,
+    rng: &mut Lcg,
+    rays: usize,
+) -> (f64, usize) {
+    let sw = SweptConvex::new(prof, tip, axis, delta);
+    assert!(sw.has_closed_form(), "{:?} axis {axis}", prof.elements());
+    let bb = sw.bbox();
+    let (mut worst, mut hits) = (0.0f64, 0);
+    for _ in 0..rays {
+        let k = rng.pick(3);
+        let p = bb.min
+            + (bb.max - bb.min)
+                * Vec3::new(
+                    rng.range(-0.1, 1.1),
+                    rng.range(-0.1, 1.1),
+                    rng.range(-0.1, 1.1),
+                );
+        let fast = sw.axis_ray_interval(p, k);
+        let mut o = p;
+        o[k] = 0.0;
+        let general = sw.ray_interval(o, Vec3::AXES[k]);
+        match (fast, general) {
+            (None, None) => {}
+            (Some(f), Some(g)) => {
+                let e = (f.0 - g.0).abs().max((f.1 - g.1).abs());
+                assert!(
+                    e <= 1e-9,
+                    "{:?}: tip {tip} axis {axis} delta {delta}, ray along {k} through {o}: fast {f:?} vs general {g:?}",
+                    prof.elements()
+                );
+                worst = worst.max(e);
+                hits += 1;
+            }
+            (Some(x), None) | (None, Some(x)) => {
+                // Only a tangent line may be seen by one and not the other.
+                assert!(
+                    x.1 - x.0 <= 1e-6,
+                    "{:?}: tip {tip} axis {axis} delta {delta}, ray along {k} through {o}: fast {fast:?} vs general {general:?}",
+                    prof.elements()
+                );
+            }
+        }
+    }
+    (worst, hits)
+}
+
+fn cutters(rng: &mut Lcg) -> Vec<Cutter> {
+    let d = rng.range(1.0, 20.0);
+    let fl = rng.range(1.0, 4.0) * d;
+    ["ball", "flat"]
+        .iter()
+        .flat_map(|kind| {
+            [
+                format!("{kind}:d={d}"),
+                format!("{kind}:d={d},flute-length={fl}"),
+            ]
+        })
+        .map(|spec| Cutter::from_spec(&spec).unwrap())
+        .collect()
+}
+
+#[test]
+fn closed_form_matches_general_candidates() {
+    let mut rng = Lcg(0xfa57_2026);
+    let (mut worst, mut hits) = (0.0f64, 0);
+    for round in 0..40 {
+        for cutter in cutters(&mut rng) {
+            let mut profiles = vec![ConvexProfile::from_solid(cutter.cutting_solid()).unwrap()];
+            profiles.extend(
+                SweepShape::from_solid(cutter.shank_solid())
+                    .parts()
+                    .iter()
+                    .cloned(),
+            );
+            let kt = round % 3;
+            let axis = Vec3::AXES[kt];
+            let len = rng.range(0.01, 30.0);
+            let mut across = Vec3::ZERO;
+            across[(kt + 1 + rng.pick(2)) % 3] = 1.0;
+            let deltas = [
+                Vec3::new(
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                    rng.range(-1.0, 1.0),
+                ) * len,
+                axis * -len,
+                axis * len,
+                across * len,
+                (across + axis * 0.02) * len,
+                (across * 0.6 + Vec3::AXES[3 - kt - across.abs().max_position()] * 0.8) * len,
+                Vec3::ZERO,
+            ];
+            for delta in deltas {
+                let tip = Vec3::new(
+                    rng.range(-50.0, 50.0),
+                    rng.range(-50.0, 50.0),
+                    rng.range(-50.0, 50.0),
+                );
+                for prof in &profiles {
+                    let (w, n) = compare(prof, tip, axis, delta, &mut rng, 300);
+                    worst = worst.max(w);
+                    hits += n;
+                }
+            }
+        }
+    }
+    println!("compared {hits} hits; worst disagreement {worst:.3e} mm");
+    assert!(hits > 50_000, "{hits}");
+}
+
+#[test]
+fn other_profiles_and_tilted_axes_use_the_general_path() {
+    let bull = Cutter::bull(10.0, 2.0).unwrap();
+    let prof = ConvexProfile::from_solid(bull.cutting_solid()).unwrap();
+    let sw = SweptConvex::new(&prof, Vec3::ZERO, Vec3::Z, Vec3::X);
+    assert!(!sw.has_closed_form());
+    let ball = Cutter::ball(10.0).unwrap();
+    let prof = ConvexProfile::from_solid(ball.cutting_solid()).unwrap();
+    let sw = SweptConvex::new(&prof, Vec3::ZERO, Vec3::new(0.0, 0.6, 0.8), Vec3::X);
+    assert!(!sw.has_closed_form());
+    let sw = SweptConvex::new(&prof, Vec3::ZERO, Vec3::Z, Vec3::X);
+    assert!(sw.has_closed_form());
+}
