@@ -45,6 +45,12 @@ pub(crate) struct SimulateSummary {
     chordal_tolerance_mm: f64,
     rays_tested: u64,
     ray_updates: u64,
+    /// Moves whose tool axis turns (5-axis simultaneous).
+    five_axis_moves: usize,
+    /// Fixed-axis sub-moves they were cut as.
+    five_axis_sub_moves: u64,
+    /// Largest proven distance between a 5-axis move's true sweep and what was cut, mm.
+    five_axis_error_bound_mm: f64,
 }
 
 #[derive(Serialize)]
@@ -84,6 +90,9 @@ impl SimulateSummary {
             chordal_tolerance_mm: r.chordal_tolerance_mm,
             rays_tested: r.rays_tested,
             ray_updates: r.ray_updates,
+            five_axis_moves: r.five_axis_moves,
+            five_axis_sub_moves: r.five_axis_sub_moves,
+            five_axis_error_bound_mm: r.five_axis_error_bound_mm,
         }
     }
 

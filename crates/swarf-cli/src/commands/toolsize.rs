@@ -1,0 +1,196 @@
+//! `swarf toolsize`: the largest gouge- and interference-free cutter at every CC point of a
+//! compound surface (3-axis), as `DIR/toolsize.csv` and a JSON summary.
+
+use std::path::PathBuf;
+
+use anyhow::{bail, Context, Result};
+use clap::{Args, ValueEnum};
+use swarf_plan::size::{CutterFamily, MapOptions, ShankCheck, Solver};
+
+use crate::output::{print_json, write_atomic};
+
+/// Which solver computes the allowable size.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub(crate) enum SolverArg {
+    /// Branch-and-bound with a certificate (the default).
+    Certified,
+    /// The thesis's particle swarm + Nelder–Mead (seeded, no certificate).
+    Pso,
+}
+
+/// `swarf toolsize`.
+#[derive(Debug, Args)]
+pub(crate) struct ToolsizeArgs {
+    /// The surface: swarf JSON, STEP or IGES.
+    #[arg(long)]
+    pub(crate) surface: PathBuf,
+    /// Extra check geometry as a closed STL mesh (not yet supported).
+    #[arg(long)]
+    pub(crate) check: Option<PathBuf>,
+    /// The cutter family, its size solved for: `ball`, `ball-side` (with its cylindrical
+    /// flutes), `flat`, `bull:r=R`, `taper-ball:taper=T`, `apt:r=R,taper=T,cone=C`
+    /// (mm, degrees).
+    #[arg(long)]
+    pub(crate) cutter: String,
+    /// CC points: an N×N iso-parametric grid per patch.
+    #[arg(long, default_value_t = 21)]
+    pub(crate) grid: usize,
+    /// The solver.
+    #[arg(long, value_enum, default_value_t = SolverArg::Certified)]
+    pub(crate) solver: SolverArg,
+    /// Reverse the side the cutter comes from on every patch.
+    #[arg(long)]
+    pub(crate) flip: bool,
+    /// Also check the shank (the cutter's own diameter) above this flute length, mm.
+    #[arg(long)]
+    pub(crate) flute_length: Option<f64>,
+    /// Rotary axis for 4-axis mode (not yet supported).
+    #[arg(long)]
+    pub(crate) axis4: Option<String>,
+    /// Lead and tilt limits for 5-axis mode (not yet supported).
+    #[arg(long)]
+    pub(crate) five_axis: Option<String>,
+    /// Standard cutter diameters to select from (not yet supported).
+    #[arg(long)]
+    pub(crate) standard: Option<String>,
+    /// Output folder (created if missing); `toolsize.csv` is written there.
+    #[arg(long)]
+    pub(crate) out: PathBuf,
+    /// Print the JSON summary (the default prints one line).
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
+/// Parses `--cutter`.
+fn parse_family(spec: &str) -> Result<CutterFamily> {
+    let (name, params) = spec.split_once(':').unwrap_or((spec, ""));
+    let mut r = None;
+    let mut taper = None;
+    let mut cone = None;
+    for kv in params.split(',').filter(|s| !s.is_empty()) {
+        let (k, v) = kv
+            .split_once('=')
+            .with_context(|| format!("cutter `{spec}`: `{kv}` is not key=value"))?;
+        let v: f64 = v
+            .trim()
+            .parse()
+            .with_context(|| format!("cutter `{spec}`: `{v}` is not a number"))?;
+        match k.trim() {
+            "r" => r = Some(v),
+            "taper" => taper = Some(v),
+            "cone" => cone = Some(v),
+            other => bail!("cutter `{spec}`: unknown parameter `{other}` (r, taper, cone)"),
+        }
+    }
+    let fam = match name {
+        "ball" if params.is_empty() => CutterFamily::ball(),
+        "ball-side" if params.is_empty() => CutterFamily::ball_with_side(),
+        "flat" if params.is_empty() => CutterFamily::flat(),
+        "bull" => CutterFamily::bull(r.context("bull needs r=R (corner radius, mm)")?)?,
+        "taper-ball" => {
+            CutterFamily::taper_ball(taper.context("taper-ball needs taper=T (degrees)")?)?
+        }
+        "apt" => CutterFamily::apt(r.unwrap_or(0.0), taper.unwrap_or(0.0), cone.unwrap_or(0.0))?,
+        _ => bail!(
+            "cutter `{spec}`: expected ball, ball-side, flat, bull:r=R, taper-ball:taper=T or \
+             apt:r=R,taper=T,cone=C"
+        ),
+    };
+    Ok(fam)
+}
+
+pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
+    for (given, what) in [
+        (args.check.is_some(), "--check (STL check geometry)"),
+        (args.axis4.is_some(), "--axis4 (4-axis orientation)"),
+        (args.five_axis.is_some(), "--five-axis (5-axis orientation)"),
+        (
+            args.standard.is_some(),
+            "--standard (standard cutter selection)",
+        ),
+    ] {
+        if given {
+            bail!("{what} is not yet supported by swarf toolsize (issue 4, later parts)");
+        }
+    }
+    let family = parse_family(&args.cutter)?;
+    let mut surface = swarf_plan::io::read_file(&args.surface)
+        .with_context(|| format!("reading {}", args.surface.display()))?;
+    if surface.patches.is_empty() {
+        bail!("{}: no surface patches", args.surface.display());
+    }
+    if args.flip {
+        surface.flip_all();
+    }
+    for note in &surface.notes {
+        eprintln!("note: {note}");
+    }
+    let opts = MapOptions {
+        solver: match args.solver {
+            SolverArg::Certified => Solver::Certified,
+            SolverArg::Pso => Solver::Pso,
+        },
+        shank: args.flute_length.map(ShankCheck::new),
+        ..MapOptions::default()
+    };
+    let ccs = surface.grid(args.grid);
+    let map = swarf_plan::size::allowable_map(&surface, &family, &ccs, &opts);
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
+    let mut csv = Vec::new();
+    map.write_csv(&surface, &mut csv)
+        .context("formatting toolsize.csv")?;
+    write_atomic(&args.out.join("toolsize.csv"), &csv)?;
+    let summary = map.summary();
+    if args.json {
+        print_json(&summary)?;
+    } else {
+        println!(
+            "{} points, {} bounded, radius min {:?} median {:?} max {:?} mm, {:.0} evaluations/point, {:.2} s",
+            summary.points,
+            summary.bounded_points,
+            summary.min_radius_mm,
+            summary.median_radius_mm,
+            summary.max_radius_mm,
+            summary.evaluations_per_point,
+            summary.elapsed_s
+        );
+    }
+    let shank_hits = map
+        .points
+        .iter()
+        .filter(|p| {
+            matches!(
+                p.shank,
+                Some(swarf_plan::size::ShankStatus::Interferes { .. })
+            )
+        })
+        .count();
+    if shank_hits > 0 {
+        eprintln!("warning: the shank interferes at {shank_hits} points");
+    }
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn cutter_specs() {
+        assert_eq!(parse_family("ball").unwrap(), CutterFamily::ball());
+        assert_eq!(parse_family("flat").unwrap(), CutterFamily::flat());
+        assert_eq!(
+            parse_family("bull:r=2").unwrap(),
+            CutterFamily::bull(2.0).unwrap()
+        );
+        assert_eq!(
+            parse_family("taper-ball:taper=3").unwrap(),
+            CutterFamily::taper_ball(3.0).unwrap()
+        );
+        assert!(parse_family("bull").is_err());
+        assert!(parse_family("ball:r=1").is_err());
+        assert!(parse_family("taper-ball:taper=95").is_err());
+        assert!(parse_family("drill").is_err());
+    }
+}
