@@ -24,6 +24,9 @@ pub(crate) enum Command {
     Path(PathArgs),
     /// Simulate a program on a tri-dexel stock: removed volume, collisions, the machined part.
     Simulate(SimulateArgs),
+    /// The largest gouge- and interference-free cutter at every CC point of a compound surface
+    /// (3-axis).
+    Toolsize(crate::commands::toolsize::ToolsizeArgs),
     /// Run the built-in demo job.
     Demo(DemoArgs),
 }

@@ -22,6 +22,10 @@
 //!   `Undefined`, so callers must decide what to do.
 //! * **Tolerances** are named parameters: [`Tolerances`] (with documented defaults).
 //!
+//! [`size`] answers the planner's first question on top of this: the largest gouge- and
+//! interference-free cutter of a family at every CC point (3-axis), certified or by the
+//! thesis's particle swarm.
+//!
 //! Evaluation is allocation-free for degrees up to 7 and meant for hot loops:
 //! [`ParametricSurface::derivs`] gives the point with first and second partials;
 //! [`Patch::local`] adds the normal and principal curvatures.
@@ -47,6 +51,7 @@
 pub mod compound;
 pub mod io;
 pub mod mesh;
+pub mod size;
 pub mod surface;
 
 pub use compound::{

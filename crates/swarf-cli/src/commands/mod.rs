@@ -5,3 +5,4 @@ pub(crate) mod path;
 pub(crate) mod simulate;
 pub(crate) mod tool;
 pub(crate) mod tools;
+pub(crate) mod toolsize;

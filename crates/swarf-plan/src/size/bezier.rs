@@ -1,0 +1,399 @@
+//! Every patch as rational Bézier pieces in homogeneous form, for rigorous bounds: a piece lies
+//! in the convex hull of its control points (weights are positive), and halving a piece by de
+//! Casteljau gives the control nets of its halves, which converge to the surface.
+//!
+//! NURBS are cut at their knots by knot insertion (Boehm); the elementary surfaces are written
+//! exactly as rational Bézier pieces (circular arcs of at most 90° as rational quadratics, the
+//! sphere and torus as tensor products of two arcs), so the certified solver sees every patch
+//! kind through the same representation.
+
+use std::f64::consts::FRAC_PI_2;
+
+use glam::DVec4;
+use swarf_geom::math::Vec3;
+use swarf_geom::Aabb;
+
+use crate::{CompoundSurface, NurbsSurface, ParametricSurface, Surface};
+
+/// A rational Bézier patch of degrees `(p, q)` with homogeneous control points `(w·x, w·y,
+/// w·z, w)`, row-major `i·(q+1) + j`.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Piece {
+    /// Index of the patch it belongs to.
+    pub patch: usize,
+    pub p: usize,
+    pub q: usize,
+    pub net: Vec<DVec4>,
+}
+
+/// A compound surface cut into rational Bézier pieces, prepared once and shared by all CC
+/// points (the certified solver's input).
+#[derive(Clone, Debug, PartialEq)]
+pub struct PreparedSurface {
+    pub(crate) pieces: Vec<Piece>,
+    pub(crate) bbox: Option<Aabb>,
+}
+
+impl PreparedSurface {
+    /// Cut every patch of `surface` into rational Bézier pieces.
+    pub fn new(surface: &CompoundSurface) -> Self {
+        let mut pieces = Vec::new();
+        for (k, patch) in surface.patches.iter().enumerate() {
+            match &patch.surface {
+                Surface::Nurbs(s) => nurbs_pieces(k, s, &mut pieces),
+                other => analytic_pieces(k, other, &mut pieces),
+            }
+        }
+        Self {
+            pieces,
+            bbox: surface.bounding_box(),
+        }
+    }
+
+    /// Number of Bézier pieces.
+    pub fn piece_count(&self) -> usize {
+        self.pieces.len()
+    }
+
+    /// A box around the whole surface.
+    pub fn bounding_box(&self) -> Option<Aabb> {
+        self.bbox
+    }
+}
+
+impl Piece {
+    pub(crate) fn point(&self, i: usize, j: usize) -> Vec3 {
+        let h = self.net[i * (self.q + 1) + j];
+        Vec3::new(h.x, h.y, h.z) / h.w
+    }
+
+    /// Euclidean control points.
+    pub(crate) fn euclidean(&self, out: &mut Vec<Vec3>) {
+        out.clear();
+        out.extend(self.net.iter().map(|h| Vec3::new(h.x, h.y, h.z) / h.w));
+    }
+
+    /// The halves in u (`dir = 0`) or v (`dir = 1`) at the parameter midpoint.
+    pub(crate) fn split(&self, dir: usize) -> (Piece, Piece) {
+        let (p, q) = (self.p, self.q);
+        let mut a = self.clone();
+        let mut b = self.clone();
+        let (len, count) = if dir == 0 {
+            (p + 1, q + 1)
+        } else {
+            (q + 1, p + 1)
+        };
+        let idx = |line: usize, k: usize| {
+            if dir == 0 {
+                k * (q + 1) + line
+            } else {
+                line * (q + 1) + k
+            }
+        };
+        let mut tmp = [DVec4::ZERO; 16];
+        let mut buf: Vec<DVec4> = Vec::new();
+        let work: &mut [DVec4] = if len <= 16 {
+            &mut tmp[..len]
+        } else {
+            buf.resize(len, DVec4::ZERO);
+            &mut buf[..]
+        };
+        for line in 0..count {
+            for (k, w) in work.iter_mut().enumerate() {
+                *w = self.net[idx(line, k)];
+            }
+            a.net[idx(line, 0)] = work[0];
+            b.net[idx(line, len - 1)] = work[len - 1];
+            for level in 1..len {
+                for k in 0..len - level {
+                    work[k] = 0.5 * (work[k] + work[k + 1]);
+                }
+                a.net[idx(line, level)] = work[0];
+                b.net[idx(line, len - 1 - level)] = work[len - 1 - level];
+            }
+        }
+        (a, b)
+    }
+}
+
+/// Boehm insertion of every distinct knot in the domain until it has multiplicity `p`, then the
+/// Bézier segments (each `p + 1` homogeneous points) of a curve.
+fn curve_segments(p: usize, knots: &[f64], pts: &[DVec4]) -> Vec<Vec<DVec4>> {
+    let mut u = knots.to_vec();
+    let mut cp = pts.to_vec();
+    let n = pts.len();
+    let (a, b) = (knots[p], knots[n]);
+    let mut distinct: Vec<f64> = knots[p..=n].to_vec();
+    distinct.dedup();
+    for &t in &distinct {
+        loop {
+            let mult = u.iter().filter(|&&k| k == t).count();
+            if mult >= p {
+                break;
+            }
+            // Span k: u[k] ≤ t < u[k+1] (for t = b, the last non-empty span).
+            let m = cp.len();
+            let k = if t >= u[m] {
+                m - 1
+            } else {
+                (p..m).rev().find(|&k| u[k] <= t).unwrap_or(p)
+            };
+            let mut q = Vec::with_capacity(m + 1);
+            for i in 0..=m {
+                if i + p <= k {
+                    q.push(cp[i]);
+                } else if i > k {
+                    q.push(cp[i - 1]);
+                } else {
+                    let den = u[i + p] - u[i];
+                    let al = if den > 0.0 { (t - u[i]) / den } else { 0.0 };
+                    q.push(al * cp[i] + (1.0 - al) * cp[i - 1]);
+                }
+            }
+            u.insert(k + 1, t);
+            cp = q;
+        }
+    }
+    // Segments: for each span [u[k], u[k+1]) with a ≤ u[k] < b, points k−p..=k.
+    let mut out = Vec::new();
+    for k in p..cp.len() {
+        if u[k] < u[k + 1] && u[k] >= a && u[k + 1] <= b {
+            out.push(cp[k - p..=k].to_vec());
+        }
+    }
+    out
+}
+
+fn nurbs_pieces(patch: usize, s: &NurbsSurface, out: &mut Vec<Piece>) {
+    let (p, q) = (s.degree_u(), s.degree_v());
+    let (nu, nv) = s.net_size();
+    let h = |i: usize, j: usize| {
+        let w = s.weight(i, j);
+        let c = s.control_point(i, j);
+        DVec4::new(w * c.x, w * c.y, w * c.z, w)
+    };
+    // Along u for every column j.
+    let cols: Vec<Vec<Vec<DVec4>>> = (0..nv)
+        .map(|j| {
+            let col: Vec<DVec4> = (0..nu).map(|i| h(i, j)).collect();
+            curve_segments(p, s.knots_u(), &col)
+        })
+        .collect();
+    let nseg_u = cols.first().map_or(0, Vec::len);
+    for a in 0..nseg_u {
+        // Rows i = 0..=p of u-segment a, decomposed along v.
+        let rows: Vec<Vec<Vec<DVec4>>> = (0..=p)
+            .map(|i| {
+                let row: Vec<DVec4> = cols.iter().map(|col| col[a][i]).collect();
+                curve_segments(q, s.knots_v(), &row)
+            })
+            .collect();
+        for bseg in 0..rows[0].len() {
+            let mut net = Vec::with_capacity((p + 1) * (q + 1));
+            for row in &rows {
+                net.extend_from_slice(&row[bseg]);
+            }
+            out.push(Piece { patch, p, q, net });
+        }
+    }
+}
+
+/// Rational quadratic arcs of the unit circle over `[a, b]`, each ≤ 90°: `(x, y, w)` triples.
+fn arcs(a: f64, b: f64) -> Vec<[(f64, f64, f64); 3]> {
+    let n = ((b - a) / FRAC_PI_2 - 1e-12).ceil().max(1.0) as usize;
+    let step = (b - a) / n as f64;
+    (0..n)
+        .map(|k| {
+            let (t0, t1) = (a + k as f64 * step, a + (k + 1) as f64 * step);
+            let h = 0.5 * (t1 - t0);
+            let m = 0.5 * (t0 + t1);
+            [
+                (t0.cos(), t0.sin(), 1.0),
+                (m.cos() / h.cos(), m.sin() / h.cos(), h.cos()),
+                (t1.cos(), t1.sin(), 1.0),
+            ]
+        })
+        .collect()
+}
+
+/// A linear segment `[a, b]` as a degree-1 "arc" list (one piece, weights 1).
+fn push_tensor(
+    patch: usize,
+    us: &[(f64, f64, f64)],
+    vs: &[(f64, f64, f64)],
+    f: impl Fn((f64, f64), (f64, f64)) -> Vec3,
+    out: &mut Vec<Piece>,
+) {
+    let mut net = Vec::with_capacity(us.len() * vs.len());
+    for &(ux, uy, uw) in us {
+        for &(vx, vy, vw) in vs {
+            let w = uw * vw;
+            let c = f((ux, uy), (vx, vy));
+            net.push(DVec4::new(w * c.x, w * c.y, w * c.z, w));
+        }
+    }
+    out.push(Piece {
+        patch,
+        p: us.len() - 1,
+        q: vs.len() - 1,
+        net,
+    });
+}
+
+fn analytic_pieces(patch: usize, s: &Surface, out: &mut Vec<Piece>) {
+    let d = s.domain();
+    let line = |a: f64, b: f64| [(a, 0.0, 1.0), (b, 0.0, 1.0)];
+    match s {
+        Surface::Plane(pl) => {
+            let f = pl.frame;
+            push_tensor(
+                patch,
+                &line(d.u[0], d.u[1]),
+                &line(d.v[0], d.v[1]),
+                |(u, _), (v, _)| f.origin + u * f.x + v * f.y,
+                out,
+            );
+        }
+        Surface::Cylinder(c) => {
+            let (f, r) = (c.frame, c.radius);
+            for arc in arcs(d.u[0], d.u[1]) {
+                push_tensor(
+                    patch,
+                    &arc,
+                    &line(d.v[0], d.v[1]),
+                    |(x, y), (v, _)| f.origin + r * (x * f.x + y * f.y) + v * f.z,
+                    out,
+                );
+            }
+        }
+        Surface::Cone(c) => {
+            let (f, r, ta) = (c.frame, c.radius, c.semi_angle.tan());
+            for arc in arcs(d.u[0], d.u[1]) {
+                push_tensor(
+                    patch,
+                    &arc,
+                    &line(d.v[0], d.v[1]),
+                    // Bilinear in (arc point, v): (r + v tan α)(x, y) is linear in each.
+                    |(x, y), (v, _)| f.origin + (r + v * ta) * (x * f.x + y * f.y) + v * f.z,
+                    out,
+                );
+            }
+        }
+        Surface::Sphere(sp) => {
+            let (f, r) = (sp.frame, sp.radius);
+            for au in arcs(d.u[0], d.u[1]) {
+                for av in arcs(d.v[0], d.v[1]) {
+                    push_tensor(
+                        patch,
+                        &au,
+                        &av,
+                        |(x, y), (cv, sv)| f.origin + r * cv * (x * f.x + y * f.y) + r * sv * f.z,
+                        out,
+                    );
+                }
+            }
+        }
+        Surface::Torus(t) => {
+            let (f, big, r) = (t.frame, t.major, t.minor);
+            for au in arcs(d.u[0], d.u[1]) {
+                for av in arcs(d.v[0], d.v[1]) {
+                    push_tensor(
+                        patch,
+                        &au,
+                        &av,
+                        |(x, y), (cv, sv)| {
+                            f.origin + (big + r * cv) * (x * f.x + y * f.y) + r * sv * f.z
+                        },
+                        out,
+                    );
+                }
+            }
+        }
+        Surface::Nurbs(_) => unreachable!("NURBS are cut by nurbs_pieces"),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{Patch, SphericalSurface};
+    use swarf_geom::Frame;
+
+    /// Evaluate a rational Bézier piece by de Casteljau at (s, t).
+    fn eval(pc: &Piece, s: f64, t: f64) -> Vec3 {
+        let mut rows = Vec::new();
+        for i in 0..=pc.p {
+            let mut w: Vec<DVec4> = pc.net[i * (pc.q + 1)..(i + 1) * (pc.q + 1)].to_vec();
+            for l in 1..w.len() {
+                for k in 0..w.len() - l {
+                    w[k] = (1.0 - t) * w[k] + t * w[k + 1];
+                }
+            }
+            rows.push(w[0]);
+        }
+        for l in 1..rows.len() {
+            for k in 0..rows.len() - l {
+                rows[k] = (1.0 - s) * rows[k] + s * rows[k + 1];
+            }
+        }
+        Vec3::new(rows[0].x, rows[0].y, rows[0].z) / rows[0].w
+    }
+
+    #[test]
+    fn nurbs_pieces_reproduce_the_surface() {
+        let knots_u = vec![0.0, 0.0, 0.0, 0.0, 0.3, 0.7, 0.7, 1.0, 1.0, 1.0, 1.0];
+        let knots_v = vec![0.0, 0.0, 0.0, 0.5, 1.0, 1.0, 1.0];
+        let mut k = 7u64;
+        let mut r = || {
+            k = k
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (k >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let pts: Vec<Vec<Vec3>> = (0..7)
+            .map(|i| {
+                (0..4)
+                    .map(|j| Vec3::new(i as f64, j as f64, 3.0 * r()))
+                    .collect()
+            })
+            .collect();
+        let w: Vec<Vec<f64>> = (0..7)
+            .map(|_| (0..4).map(|_| 0.5 + r()).collect())
+            .collect();
+        let s = NurbsSurface::new(3, 2, knots_u, knots_v, &pts, Some(&w)).unwrap();
+        let mut out = Vec::new();
+        nurbs_pieces(0, &s, &mut out);
+        assert_eq!(out.len(), 3 * 2);
+        let us = [0.0, 0.3, 0.7, 1.0];
+        let vs = [0.0, 0.5, 1.0];
+        for (a, pc) in out.iter().enumerate() {
+            let (iu, iv) = (a / 2, a % 2);
+            for &(x, y) in &[(0.0, 0.0), (0.25, 0.6), (1.0, 1.0), (0.5, 0.1)] {
+                let u = us[iu] + x * (us[iu + 1] - us[iu]);
+                let v = vs[iv] + y * (vs[iv + 1] - vs[iv]);
+                assert!(
+                    (eval(pc, x, y) - s.point(u, v)).length() < 1e-12,
+                    "piece {a}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn sphere_pieces_lie_on_the_sphere_and_split_preserves_points() {
+        let s = SphericalSurface::new(Frame::WORLD, 5.0, SphericalSurface::FULL).unwrap();
+        let cs = CompoundSurface::new(vec![Patch::new(Surface::Sphere(s))]);
+        let prep = PreparedSurface::new(&cs);
+        assert_eq!(prep.piece_count(), 4 * 2);
+        for pc in &prep.pieces {
+            for &(a, b) in &[(0.0, 0.0), (0.3, 0.7), (1.0, 0.5), (0.5, 0.5)] {
+                assert!((eval(pc, a, b).length() - 5.0).abs() < 1e-12);
+            }
+            let (l, r) = pc.split(0);
+            assert!((eval(&l, 1.0, 0.3) - eval(pc, 0.5, 0.3)).length() < 1e-12);
+            assert!((eval(&r, 0.5, 0.3) - eval(pc, 0.75, 0.3)).length() < 1e-12);
+            let (l, _) = pc.split(1);
+            assert!((eval(&l, 0.2, 0.5) - eval(pc, 0.2, 0.25)).length() < 1e-12);
+        }
+    }
+}

@@ -1,0 +1,590 @@
+//! The certified allowable size: best-first branch-and-bound over rational Bézier sub-patches.
+//!
+//! # The certificate
+//! Every node is a rational Bézier sub-patch, contained in the convex hull of its control
+//! points. For a node the solver computes a **rigorous lower bound** of the imaginary size of
+//! every point of that hull, from two arguments:
+//!
+//! 1. *Separating planes.* The family is nested (`K(L) ⊂ K(L')` for `L < L'`) and each `K(L)`
+//!    is convex with a support function affine in `L` piece by piece
+//!    ([`CutterFamily`]'s `support`). If `min_i (P_i − C)·ν ≥ h_{K(L)}(ν) − C·ν` for a direction
+//!    `ν`, the plane separates the hull from `int K(L)`; solving for `L` gives a bound. Any `ν`
+//!    gives a valid bound; the solver tries `−n`, `−z` and the cutter's outward normal at the
+//!    node's centroid (which makes the bound converge quadratically under subdivision).
+//! 2. *Bernstein positivity* (ball family). A point is outside the ball of radius `L` tangent
+//!    at `C` iff `q_L = |S − C|² − 2L·n·(S − C) ≥ 0`. Multiplied by `w²`, `q_L` is a polynomial
+//!    of degree `(2p, 2q)` on the node, `A − 2L·B`, whose Bernstein coefficients follow from the
+//!    control net; if all of `A_k − 2L·B_k` are ≥ 0 so is `q_L`. This bound is exact where the
+//!    surface *is* a sphere (a concave spherical pocket, where every test point ties), which no
+//!    hull-based bound can certify. The ball's cylinder lies above the plane
+//!    `z = C_z + L·(n_z − sin θ)`, so a node below it only meets the sphere.
+//!
+//! The solver keeps the best imaginary size found at control-net corners (which are surface
+//! points) and the curvature bound at `C`, and expands the node of lowest bound until that
+//! bound is within the tolerance of the best value. Then no surface point outside the excluded
+//! neighbourhood of `C` (a ball of [`CertifiedOptions::neighbourhood`] where the imaginary size
+//! tends to the curvature bound, which is used there instead) can have an imaginary size below
+//! `size − gap`: that `gap` is the certificate. When the node budget runs out first, the result
+//! says so (`certified = false`) and the gap is still a valid bound.
+
+use std::cmp::Ordering;
+use std::collections::BinaryHeap;
+
+use glam::DVec4;
+use swarf_geom::math::Vec3;
+
+use super::bezier::Piece;
+use super::family::bound_from_support;
+use super::{
+    classify, AllowableSize, Contact, CutterFamily, Limit, PreparedSurface, Regime, SizeError,
+    SizeTolerances,
+};
+
+/// Options of the certified solver (builder style, documented defaults).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct CertifiedOptions {
+    /// Absolute tolerance of the certificate, mm. Default `1e-7`.
+    pub tol_abs: f64,
+    /// Relative tolerance of the certificate. Default `1e-8`.
+    pub tol_rel: f64,
+    /// Radius (mm) of the ball around the CC point where the curvature bound stands for the
+    /// surface. The imaginary size is `0/0` at the CC point and loses digits near it (its
+    /// denominator is quadratic in the distance): at `1e-3` mm on a 5 mm radius it is still good
+    /// to about `1e-8` mm. A crease through the CC point (a V-groove's bottom), where the true
+    /// size is 0, is therefore reported as a size of the order of this radius. Default `1e-3`.
+    pub neighbourhood: f64,
+    /// A limiting point within this distance (mm) of the CC point is a gouge limit, farther an
+    /// interference. Default `1e-2`.
+    pub gouge_radius: f64,
+    /// Sizes at or above this (mm) count as unbounded: a node whose lower bound reaches it is
+    /// pruned when nothing limits the size (a convex surface), and such a size is reported as
+    /// `∞`. No cutter is a kilometre wide. Default `1e6`.
+    pub unbounded_above: f64,
+    /// Node budget per CC point. Default `200 000`.
+    pub max_nodes: u64,
+    /// Tolerances of the imaginary-size model.
+    pub model: SizeTolerances,
+}
+
+impl CertifiedOptions {
+    /// The documented defaults.
+    pub const DEFAULT: CertifiedOptions = CertifiedOptions {
+        tol_abs: 1e-7,
+        tol_rel: 1e-8,
+        neighbourhood: 1e-3,
+        gouge_radius: 1e-2,
+        unbounded_above: 1e6,
+        max_nodes: 200_000,
+        model: SizeTolerances::DEFAULT,
+    };
+
+    /// With another absolute and relative tolerance.
+    pub fn with_tolerance(mut self, abs: f64, rel: f64) -> Self {
+        self.tol_abs = abs;
+        self.tol_rel = rel;
+        self
+    }
+
+    /// With another node budget.
+    pub fn with_max_nodes(mut self, n: u64) -> Self {
+        self.max_nodes = n;
+        self
+    }
+
+    /// With another excluded neighbourhood radius.
+    pub fn with_neighbourhood(mut self, r: f64) -> Self {
+        self.neighbourhood = r;
+        self
+    }
+
+    /// Checks the ranges.
+    ///
+    /// # Errors
+    /// When a tolerance is negative or not finite, or the budget is 0.
+    pub fn validate(&self) -> Result<(), SizeError> {
+        for (what, v) in [
+            ("tol_abs", self.tol_abs),
+            ("tol_rel", self.tol_rel),
+            ("neighbourhood", self.neighbourhood),
+            ("gouge_radius", self.gouge_radius),
+            ("unbounded_above", self.unbounded_above),
+        ] {
+            if !(v >= 0.0 && v.is_finite()) {
+                return Err(SizeError::Option {
+                    what,
+                    value: v,
+                    range: "finite, ≥ 0",
+                });
+            }
+        }
+        if self.max_nodes == 0 {
+            return Err(SizeError::Option {
+                what: "max_nodes",
+                value: 0.0,
+                range: "≥ 1",
+            });
+        }
+        Ok(())
+    }
+
+    fn tol(&self, best: f64) -> f64 {
+        self.tol_abs.max(self.tol_rel * best)
+    }
+}
+
+impl Default for CertifiedOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+struct Node {
+    lb: f64,
+    dir: usize,
+    piece: Piece,
+}
+
+impl PartialEq for Node {
+    fn eq(&self, o: &Self) -> bool {
+        self.lb == o.lb
+    }
+}
+impl Eq for Node {}
+impl PartialOrd for Node {
+    fn partial_cmp(&self, o: &Self) -> Option<Ordering> {
+        Some(self.cmp(o))
+    }
+}
+impl Ord for Node {
+    // Min-heap on the bound.
+    fn cmp(&self, o: &Self) -> Ordering {
+        o.lb.total_cmp(&self.lb)
+    }
+}
+
+struct Search<'a> {
+    family: &'a CutterFamily,
+    c: &'a Contact,
+    regime: Regime,
+    opts: &'a CertifiedOptions,
+    best: f64,
+    best_point: Option<Vec3>,
+    best_is_local: bool,
+    evaluations: u64,
+    nodes: u64,
+    cps: Vec<Vec3>,
+    clipped: Vec<Vec3>,
+}
+
+impl Search<'_> {
+    fn eval(&mut self, p: Vec3) {
+        if (p - self.c.point).length() < self.opts.neighbourhood {
+            return;
+        }
+        self.evaluations += 1;
+        let r = self
+            .family
+            .imaginary(self.c, &self.regime, p, &self.opts.model);
+        if r < self.best && r < self.opts.unbounded_above {
+            self.best = r;
+            self.best_point = Some(p);
+            self.best_is_local = false;
+        }
+    }
+
+    fn eval_corners(&mut self, pc: &Piece, which: &[(usize, usize)]) {
+        for &(i, j) in which {
+            self.eval(pc.point(i, j));
+        }
+    }
+
+    /// Rigorous lower bound of the imaginary size over the hull of the piece's control net, and
+    /// the direction in which to split the piece next (the parameter along which the control
+    /// net spreads most in the best separating direction: the other one does not limit the
+    /// bound, so splitting it would only multiply nodes along a line of ties).
+    fn lower_bound(&mut self, pc: &Piece) -> (f64, usize) {
+        self.nodes += 1;
+        let mut cps = std::mem::take(&mut self.cps);
+        pc.euclidean(&mut cps);
+        let c = self.c.point;
+        let slack = self.opts.model.contact;
+        let mut dirs: [Option<Vec3>; 3] = [Some(-self.c.normal), Some(-Vec3::Z), None];
+        // A flat-bottomed APT cutter never reaches below its bottom plane, whatever its size:
+        // clip the hull there (exactly, by the crossing points of the net's segments) so that
+        // nodes straddling the plane are bounded by what lies above it.
+        let bottom = match (*self.family, self.regime) {
+            (
+                CutterFamily::Apt {
+                    corner, cone: 0.0, ..
+                },
+                Regime::Corner { q, u },
+            ) => {
+                dirs[1] = Some(-u);
+                Some(q.z - corner)
+            }
+            (CutterFamily::Apt { cone: 0.0, .. }, Regime::Bottom) => Some(c.z),
+            _ => None,
+        };
+        let mut clipped = std::mem::take(&mut self.clipped);
+        let hull: &[Vec3] = match bottom {
+            Some(zb) => {
+                let zb = zb + slack;
+                clipped.clear();
+                clipped.extend(cps.iter().copied().filter(|p| p.z > zb));
+                if clipped.is_empty() {
+                    self.cps = cps;
+                    self.clipped = clipped;
+                    return (f64::INFINITY, 0);
+                }
+                for a in cps.iter().filter(|p| p.z > zb) {
+                    for b in cps.iter().filter(|p| p.z <= zb) {
+                        let t = (a.z - zb) / (a.z - b.z);
+                        clipped.push(*a + t * (*b - *a));
+                    }
+                }
+                &clipped
+            }
+            None => &cps,
+        };
+        // (Of the part above a flat bottom's plane: the rest cannot limit the size.)
+        let centroid = hull.iter().copied().sum::<Vec3>() / hull.len() as f64;
+        // The cutter that matters is the one of the current best size: a node is pruned when it
+        // is clear of it. Its outward normal nearest the node's centroid is the candidate plane.
+        let l_star = self
+            .family
+            .imaginary(self.c, &self.regime, centroid, &self.opts.model)
+            .min(self.best)
+            .min(self.opts.unbounded_above);
+        if l_star.is_finite() {
+            if let Some(k) = self.family.placed(self.c, &self.regime, l_star) {
+                let nu = k.outward_normal(centroid);
+                if nu.is_finite() {
+                    dirs[2] = Some(nu);
+                }
+            }
+        }
+        let mut lb: f64 = 0.0;
+        let mut best_nu = dirs[2].unwrap_or(-self.c.normal);
+        for nu in dirs.into_iter().flatten() {
+            let nu = self.family.in_polar_cone(nu);
+            if let Some(pieces) = self.family.support(self.c, &self.regime, nu) {
+                let m = hull
+                    .iter()
+                    .map(|p| (*p - c).dot(nu))
+                    .fold(f64::INFINITY, f64::min)
+                    + slack;
+                let b = bound_from_support(&pieces, m);
+                if b > lb {
+                    lb = b;
+                    best_nu = nu;
+                }
+            }
+        }
+        self.clipped = clipped;
+        let dir = split_direction(pc, &cps, c, best_nu);
+        if *self.family == CutterFamily::Sphere {
+            lb = lb.max(sphere_bound(pc, c, self.c.normal, slack));
+        } else if let (CutterFamily::TaperBall { taper }, Regime::Ball) =
+            (*self.family, self.regime)
+        {
+            let dz = self.c.normal.z - taper.sin();
+            let zmax = cps.iter().map(|p| p.z).fold(f64::NEG_INFINITY, f64::max);
+            let l_h = if dz > 0.0 {
+                ((zmax - c.z) / dz).max(0.0)
+            } else {
+                f64::INFINITY
+            };
+            // Below the plane z = C_z + L_h·(n_z − sin θ) the side cannot reach the node for
+            // L ≥ L_h; for L < L_h the side lies within L·(1 + |n_xy|) + (z − C_z)·tan θ of C's
+            // vertical, so a node horizontally farther than that is clear of it too.
+            let (mut lo, mut hi) = (Vec3::splat(f64::INFINITY), Vec3::splat(f64::NEG_INFINITY));
+            for p in &cps {
+                lo = lo.min(*p);
+                hi = hi.max(*p);
+            }
+            let dx = (lo.x - c.x).max(c.x - hi.x).max(0.0);
+            let dy = (lo.y - c.y).max(c.y - hi.y).max(0.0);
+            let nh = self.c.normal.truncate().length();
+            let far = l_h.is_finite()
+                && dx.hypot(dy) > l_h * (1.0 + nh) + (zmax - c.z).max(0.0) * taper.tan() + slack;
+            if lb >= l_h || far {
+                lb = lb.max(sphere_bound(pc, c, self.c.normal, slack));
+            }
+        }
+        self.cps = cps;
+        (lb, dir)
+    }
+
+    fn excluded(&self, pc: &Piece) -> (bool, f64) {
+        let bb = swarf_geom::Aabb::from_points(self.cps_of(pc)).expect("non-empty net");
+        let diag = bb.size().length();
+        let q = self.c.point.clamp(bb.min, bb.max);
+        let near = (q - self.c.point).length() < self.opts.neighbourhood;
+        (near && diag < self.opts.neighbourhood, diag)
+    }
+
+    fn cps_of<'p>(&self, pc: &'p Piece) -> impl Iterator<Item = Vec3> + 'p {
+        pc.net.iter().map(|h| Vec3::new(h.x, h.y, h.z) / h.w)
+    }
+}
+
+/// 0 for u, 1 for v: the parameter along which `(P_ij − C)·ν` varies most.
+fn split_direction(pc: &Piece, cps: &[Vec3], c: Vec3, nu: Vec3) -> usize {
+    let (p, q) = (pc.p, pc.q);
+    let f = |i: usize, j: usize| (cps[i * (q + 1) + j] - c).dot(nu);
+    let mut var_u: f64 = 0.0;
+    let mut var_v: f64 = 0.0;
+    for j in 0..=q {
+        var_u = var_u.max((f(p, j) - f(0, j)).abs());
+    }
+    for i in 0..=p {
+        var_v = var_v.max((f(i, q) - f(i, 0)).abs());
+    }
+    // Also the control nets' own extent, so that a node flat in ν still gets smaller.
+    let ext = |a: Vec3, b: Vec3| (a - b).length();
+    let eu = ext(cps[p * (q + 1)], cps[0]).max(ext(cps[p * (q + 1) + q], cps[q]));
+    let ev = ext(cps[q], cps[0]).max(ext(cps[p * (q + 1) + q], cps[p * (q + 1)]));
+    // Keep nodes from growing needle-thin: past an aspect ratio of 8, split the long side.
+    if eu > 8.0 * ev {
+        return 0;
+    }
+    if ev > 8.0 * eu {
+        return 1;
+    }
+    if var_u >= var_v {
+        0
+    } else {
+        1
+    }
+}
+
+/// Lower bound of the sphere-only imaginary size over a piece, by Bernstein positivity of
+/// `w²·(|S − C|² − 2L·n·(S − C))` (see the module docs). `slack` (mm): a coefficient of the
+/// normal offset this close to zero counts as touching.
+fn sphere_bound(pc: &Piece, c: Vec3, n: Vec3, slack: f64) -> f64 {
+    let (p, q) = (pc.p, pc.q);
+    let (du, dv) = (2 * p + 1, 2 * q + 1);
+    let mut a = vec![0.0; du * dv];
+    let mut b = vec![0.0; du * dv];
+    let y: Vec<(Vec3, f64)> = pc
+        .net
+        .iter()
+        .map(|h: &DVec4| (Vec3::new(h.x, h.y, h.z) - h.w * c, h.w))
+        .collect();
+    let bu = binomials(p);
+    let bv = binomials(q);
+    let bu2 = binomials(2 * p);
+    let bv2 = binomials(2 * q);
+    for i in 0..=p {
+        for j in 0..=q {
+            let (yij, wij) = y[i * (q + 1) + j];
+            for i2 in 0..=p {
+                for j2 in 0..=q {
+                    let (y2, _) = y[i2 * (q + 1) + j2];
+                    let (k, l) = (i + i2, j + j2);
+                    let f = bu[i] * bu[i2] / bu2[k] * bv[j] * bv[j2] / bv2[l];
+                    a[k * dv + l] += f * yij.dot(y2);
+                    b[k * dv + l] += f * wij * n.dot(y2);
+                }
+            }
+        }
+    }
+    let wmax = pc.net.iter().map(|h| h.w).fold(0.0, f64::max);
+    let b_slack = slack * wmax * wmax;
+    let mut lb = f64::INFINITY;
+    for (ak, bk) in a.iter().zip(&b) {
+        if *bk > b_slack {
+            lb = lb.min(ak / (2.0 * bk));
+        } else if *ak < 0.0 {
+            return 0.0;
+        }
+    }
+    lb.max(0.0)
+}
+
+fn binomials(n: usize) -> Vec<f64> {
+    let mut out = vec![1.0; n + 1];
+    for k in 1..=n {
+        out[k] = out[k - 1] * (n + 1 - k) as f64 / k as f64;
+    }
+    out
+}
+
+/// The allowable size at one contact, with its certificate (see the module docs).
+///
+/// ```
+/// use swarf_geom::math::Vec3;
+/// use swarf_plan::size::{allowable_certified, CertifiedOptions, Contact, CutterFamily, PreparedSurface};
+/// use swarf_plan::{io, Tolerances};
+/// // A floor with a 10 mm wall at x = 10: a flat end mill at the origin fits up to R = 10.
+/// let json = r#"{"units": "mm", "patches": [
+///   {"name": "floor", "degree_u": 1, "degree_v": 1, "knots_u": [0,0,1,1], "knots_v": [0,0,1,1],
+///    "control_points": [[[-10,-10,0,1],[-10,10,0,1]],[[10,-10,0,1],[10,10,0,1]]]},
+///   {"name": "wall", "degree_u": 1, "degree_v": 1, "knots_u": [0,0,1,1], "knots_v": [0,0,1,1],
+///    "control_points": [[[10,-10,0,1],[10,-10,10,1]],[[10,10,0,1],[10,10,10,1]]]}]}"#;
+/// let part = io::json::parse(json)?;
+/// let prep = PreparedSurface::new(&part);
+/// let cc = part.points(&[(0, 0.5, 0.5)]).unwrap()[0];
+/// let c = Contact::at(&part, &cc, &Tolerances::DEFAULT).unwrap();
+/// let a = allowable_certified(&prep, &CutterFamily::flat(), &c, &CertifiedOptions::DEFAULT);
+/// assert!((a.size - 10.0).abs() < 1e-6 && a.certified);
+/// # Ok::<(), swarf_plan::io::ReadError>(())
+/// ```
+pub fn allowable_certified(
+    prep: &PreparedSurface,
+    family: &CutterFamily,
+    c: &Contact,
+    opts: &CertifiedOptions,
+) -> AllowableSize {
+    let regime = family.regime(c, &opts.model);
+    if regime == Regime::Unreachable {
+        return AllowableSize {
+            size: 0.0,
+            limit: Some(Limit::Gouge),
+            limit_point: Some(c.point),
+            gap: 0.0,
+            certified: true,
+            evaluations: 0,
+            nodes: 0,
+        };
+    }
+    let local = family.local_bound(c, &regime);
+    // Beyond `unbounded_above` a size is as good as infinite.
+    let local = if local >= opts.unbounded_above {
+        f64::INFINITY
+    } else {
+        local
+    };
+    let mut s = Search {
+        family,
+        c,
+        regime,
+        opts,
+        best: local,
+        best_point: local.is_finite().then_some(c.point),
+        best_is_local: true,
+        evaluations: 0,
+        nodes: 0,
+        cps: Vec::new(),
+        clipped: Vec::new(),
+    };
+    let mut heap = BinaryHeap::new();
+    // Lowest bound of nodes given up on (below the size floor): they weaken the certificate.
+    let mut abandoned = f64::INFINITY;
+    // Lowest bound of the nodes pruned against an earlier (larger) best value.
+    let mut pruned = f64::INFINITY;
+    for pc in &prep.pieces {
+        let (p, q) = (pc.p, pc.q);
+        s.eval_corners(pc, &[(0, 0), (p, 0), (0, q), (p, q)]);
+        let (lb, dir) = s.lower_bound(pc);
+        heap.push(Node {
+            lb,
+            dir,
+            piece: pc.clone(),
+        });
+    }
+    let scale = prep
+        .bbox
+        .map_or(1.0, |b| b.size().length().max(f64::MIN_POSITIVE));
+    let min_diag = scale * 1e-13;
+    let mut exhausted = false;
+    while let Some(node) = heap.pop() {
+        let done = if s.best.is_finite() {
+            node.lb >= s.best - opts.tol(s.best)
+        } else {
+            node.lb >= opts.unbounded_above
+        };
+        if done || s.best == 0.0 {
+            heap.push(node);
+            break;
+        }
+        if s.nodes >= opts.max_nodes {
+            heap.push(node);
+            exhausted = true;
+            break;
+        }
+        let (excluded, diag) = s.excluded(&node.piece);
+        if excluded {
+            continue;
+        }
+        if diag < min_diag {
+            abandoned = abandoned.min(node.lb);
+            continue;
+        }
+        let (a, b) = node.piece.split(node.dir);
+        let (p, q) = (a.p, a.q);
+        // The two new surface points: the midpoints of the split edges.
+        if node.dir == 0 {
+            s.eval_corners(&a, &[(p, 0), (p, q)]);
+        } else {
+            s.eval_corners(&a, &[(0, q), (p, q)]);
+        }
+        for child in [a, b] {
+            let (lb, dir) = s.lower_bound(&child);
+            let keep = if s.best.is_finite() {
+                lb < s.best - opts.tol(s.best)
+            } else {
+                lb < opts.unbounded_above
+            };
+            if keep {
+                heap.push(Node {
+                    lb,
+                    dir,
+                    piece: child,
+                });
+            } else {
+                pruned = pruned.min(lb);
+            }
+        }
+    }
+    // A tie with the curvature bound (a sphere's every point gives its radius) is the gouge
+    // limit: the curvature governs. Values within the tolerance below it are round-off (the
+    // imaginary size loses digits near the CC point), so the curvature bound itself is
+    // reported, and the certificate's gap grows by the difference.
+    let mut raised = 0.0;
+    if !s.best_is_local && local.is_finite() && s.best >= local - opts.tol(local) {
+        raised = local - s.best;
+        s.best_is_local = true;
+        s.best_point = Some(c.point);
+        s.best = local;
+    }
+    let open = heap
+        .peek()
+        .map_or(f64::INFINITY, |n| n.lb)
+        .min(abandoned)
+        .min(pruned);
+    let gap = if s.best == 0.0
+        || open >= s.best
+        || (s.best.is_infinite() && open >= opts.unbounded_above)
+    {
+        0.0
+    } else {
+        s.best - open
+    };
+    let certified = !exhausted
+        && if s.best.is_infinite() {
+            open >= opts.unbounded_above
+        } else {
+            gap <= opts.tol(s.best) + raised
+        };
+    let limit = s.best.is_finite().then(|| {
+        if s.best_is_local {
+            Limit::Gouge
+        } else {
+            classify(c.point, s.best_point.unwrap_or(c.point), opts.gouge_radius)
+        }
+    });
+    AllowableSize {
+        size: s.best,
+        limit,
+        limit_point: if s.best.is_finite() {
+            s.best_point
+        } else {
+            None
+        },
+        gap,
+        certified,
+        evaluations: s.evaluations,
+        nodes: s.nodes,
+    }
+}

@@ -1,0 +1,126 @@
+//! The shank must be free too (Liu §2.3.1): after the allowable size is found, the cylinder of
+//! the shank diameter above the flute length is checked against the surface by subdivision of
+//! the same Bézier pieces, with separating planes (below the shank's bottom, or outside its
+//! radius) as the pruning test and surface points strictly inside as the evidence.
+
+use swarf_geom::math::Vec3;
+
+use super::bezier::Piece;
+use super::{Contact, CutterFamily, PreparedSurface, Regime, SizeTolerances};
+
+/// The shank to check.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ShankCheck {
+    /// Flute (cutting) length above the tip, mm: the shank starts there.
+    pub flute_length: f64,
+    /// Shank diameter, mm; `None`: the cutter's own nominal diameter.
+    pub diameter: Option<f64>,
+    /// Node budget. Default 20 000.
+    pub max_nodes: u64,
+}
+
+impl ShankCheck {
+    /// A shank of the cutter's own diameter above `flute_length` mm.
+    pub fn new(flute_length: f64) -> Self {
+        Self {
+            flute_length,
+            diameter: None,
+            max_nodes: 20_000,
+        }
+    }
+}
+
+/// The outcome of the shank check.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ShankStatus {
+    /// No surface point is inside the shank.
+    Free,
+    /// This surface point is inside the shank, `depth` mm from its side.
+    Interferes {
+        /// The point.
+        point: Vec3,
+        /// How far inside, mm.
+        depth: f64,
+    },
+    /// The budget ran out before every piece was proven free; no point found inside.
+    Unresolved,
+    /// Nothing to check (infinite or zero size, or unreachable contact).
+    NotApplicable,
+}
+
+/// Checks the shank of the cutter of `size` placed at the contact.
+pub fn check_shank(
+    prep: &PreparedSurface,
+    family: &CutterFamily,
+    c: &Contact,
+    size: f64,
+    shank: &ShankCheck,
+    tol: &SizeTolerances,
+) -> ShankStatus {
+    let regime = family.regime(c, tol);
+    if !(size.is_finite() && size > 0.0) || regime == Regime::Unreachable {
+        return ShankStatus::NotApplicable;
+    }
+    let Some(k) = family.placed(c, &regime, size) else {
+        return ShankStatus::NotApplicable;
+    };
+    let z0 = k.tip().z + shank.flute_length;
+    let radius = shank
+        .diameter
+        .map_or_else(|| family.nominal_radius(size), |d| 0.5 * d);
+    let axis = k.axis;
+    let inside = |p: Vec3| {
+        let rho = Vec3::new(p.x - axis.x, p.y - axis.y, 0.0).length();
+        let depth = (radius - rho).min(p.z - z0);
+        (depth > tol.contact).then_some(depth)
+    };
+    let free = |pc: &Piece| {
+        let pts: Vec<Vec3> = pc
+            .net
+            .iter()
+            .map(|h| Vec3::new(h.x, h.y, h.z) / h.w)
+            .collect();
+        if pts.iter().all(|p| p.z <= z0 + tol.contact) {
+            return true;
+        }
+        let centroid = pts.iter().copied().sum::<Vec3>() / pts.len() as f64;
+        let e = Vec3::new(centroid.x - axis.x, centroid.y - axis.y, 0.0);
+        if e.length() > 0.0 {
+            let e = e.normalize();
+            let m = pts
+                .iter()
+                .map(|p| (*p - axis).dot(e))
+                .fold(f64::INFINITY, f64::min);
+            return m >= radius - tol.contact;
+        }
+        false
+    };
+    let mut stack: Vec<Piece> = prep.pieces.clone();
+    let mut nodes = 0;
+    let mut unresolved = false;
+    while let Some(pc) = stack.pop() {
+        for (i, j) in [(0, 0), (pc.p, 0), (0, pc.q), (pc.p, pc.q)] {
+            let p = pc.point(i, j);
+            if let Some(depth) = inside(p) {
+                return ShankStatus::Interferes { point: p, depth };
+            }
+        }
+        if free(&pc) {
+            continue;
+        }
+        nodes += 1;
+        if nodes > shank.max_nodes {
+            unresolved = true;
+            break;
+        }
+        let (a, b) = pc.split(0);
+        let (a0, a1) = a.split(1);
+        let (b0, b1) = b.split(1);
+        stack.extend([a0, a1, b0, b1]);
+    }
+    if unresolved {
+        ShankStatus::Unresolved
+    } else {
+        ShankStatus::Free
+    }
+}
