@@ -7,78 +7,21 @@
 //! (1) every sampled interval must lie inside the exact one, and (2) both exact end points
 //! must lie within `δ` of some sampled instance.
 
-use rand_like::Lcg;
-use swarf_geom::math::{Vec2, Vec3};
+mod common;
+
+use common::{boundary_distance, Lcg};
+use swarf_geom::math::Vec3;
 use swarf_geom::{Frame, Ray};
 use swarf_stock::{ConvexProfile, Element, SweptConvex};
 use swarf_tool::Cutter;
 
-mod rand_like {
-    /// A tiny deterministic generator (keeps the test reproducible without extra crates).
-    pub(crate) struct Lcg(pub(crate) u64);
-    impl Lcg {
-        pub(crate) fn next_f64(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((self.0 >> 11) as f64) / ((1u64 << 53) as f64)
-        }
-        pub(crate) fn range(&mut self, a: f64, b: f64) -> f64 {
-            a + (b - a) * self.next_f64()
-        }
-        pub(crate) fn unit(&mut self) -> swarf_geom::math::Vec3 {
-            loop {
-                let v = swarf_geom::math::Vec3::new(
-                    self.range(-1.0, 1.0),
-                    self.range(-1.0, 1.0),
-                    self.range(-1.0, 1.0),
-                );
-                let l = v.length();
-                if l > 0.1 && l <= 1.0 {
-                    return v / l;
-                }
-            }
-        }
-    }
-}
-
 /// Distance from `(ρ, z)` to the closed profile region (0 inside).
 fn profile_distance(c: &Cutter, els: &[Element], rho: f64, z: f64) -> f64 {
     if c.contains(Vec3::new(rho, 0.0, z)) {
-        return 0.0;
+        0.0
+    } else {
+        boundary_distance(els, rho, z)
     }
-    let p = Vec2::new(rho, z);
-    let mut best = f64::INFINITY;
-    for el in els {
-        let d = match *el {
-            Element::Line { p: a, q: b } => {
-                let ab = b - a;
-                let t = ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
-                (a + ab * t - p).length()
-            }
-            Element::Arc {
-                e,
-                f,
-                r,
-                phi0,
-                phi1,
-            } => {
-                let c0 = Vec2::new(e, f);
-                let q = p - c0;
-                // Polar angle measured from straight down, towards +ρ.
-                let phi = q.x.atan2(-q.y);
-                if phi >= phi0 && phi <= phi1 {
-                    (q.length() - r).abs()
-                } else {
-                    let pt = |a: f64| c0 + Vec2::new(r * a.sin(), -r * a.cos());
-                    (pt(phi0) - p).length().min((pt(phi1) - p).length())
-                }
-            }
-        };
-        best = best.min(d);
-    }
-    best
 }
 
 struct Case {

@@ -12,71 +12,19 @@
 //! 1. material left by the simulation is nowhere deeper than `ε` inside any sampled instance;
 //! 2. every point the simulation removed is within `ε + δ` of some sampled instance.
 
-use swarf_geom::math::{Vec2, Vec3};
+mod common;
+
+use common::{boundary_distance, Lcg};
+use swarf_geom::math::Vec3;
 use swarf_geom::{Frame, Ray};
 use swarf_path::{Axes, AxisSource, FeedMode, Machine, Move, MoveKind, Pose, Program};
-use swarf_stock::{ConvexProfile, Element, ToolShape, TriDexel};
+use swarf_stock::{ConvexProfile, ToolShape, TriDexel};
 use swarf_tool::{Cutter, RevolvedSolid};
-
-/// A tiny deterministic generator (reproducible without extra crates).
-struct Lcg(u64);
-impl Lcg {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64)
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next_f64()
-    }
-    /// A unit vector within `max_deg` of +Z.
-    fn axis(&mut self, max_deg: f64) -> Vec3 {
-        let tilt = self.range(0.0, max_deg).to_radians();
-        let az = self.range(0.0, std::f64::consts::TAU);
-        Vec3::new(tilt.sin() * az.cos(), tilt.sin() * az.sin(), tilt.cos())
-    }
-}
 
 /// A convex solid of the tool with its profile, for distances.
 struct Solid<'a> {
     solid: &'a RevolvedSolid,
     prof: ConvexProfile,
-}
-
-/// Distance from `(ρ, z)` to the profile curve (the solid's boundary in the meridian plane).
-fn boundary_distance(els: &[Element], rho: f64, z: f64) -> f64 {
-    let p = Vec2::new(rho, z);
-    let mut best = f64::INFINITY;
-    for el in els {
-        let d = match *el {
-            Element::Line { p: a, q: b } => {
-                let ab = b - a;
-                let t = ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
-                (a + ab * t - p).length()
-            }
-            Element::Arc {
-                e,
-                f,
-                r,
-                phi0,
-                phi1,
-            } => {
-                let c0 = Vec2::new(e, f);
-                let q = p - c0;
-                let phi = q.x.atan2(-q.y);
-                if phi >= phi0 && phi <= phi1 {
-                    (q.length() - r).abs()
-                } else {
-                    let pt = |a: f64| c0 + Vec2::new(r * a.sin(), -r * a.cos());
-                    (pt(phi0) - p).length().min((pt(phi1) - p).length())
-                }
-            }
-        };
-        best = best.min(d);
-    }
-    best
 }
 
 impl Solid<'_> {

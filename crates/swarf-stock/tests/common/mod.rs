@@ -1,9 +1,10 @@
 //! Helpers shared by the scenario tests.
 #![allow(dead_code, unreachable_pub)]
 
-use swarf_geom::math::Vec3;
+use swarf_geom::math::{Vec2, Vec3};
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::{Axes, FeedMode, Machine, Move, MoveKind, Pose, Program};
+use swarf_stock::Element;
 
 /// Reads G-code text on a 3-axis machine.
 pub fn gcode(text: &str) -> Program {
@@ -48,4 +49,81 @@ pub fn moves(tips: &[Vec3], axis: Vec3, rapid: bool) -> Program {
 /// Relative error.
 pub fn rel(a: f64, b: f64) -> f64 {
     (a - b).abs() / b.abs()
+}
+
+/// A tiny deterministic generator (keeps the tests reproducible without extra crates).
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    /// Uniform in [0, 1).
+    pub fn next_f64(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64)
+    }
+
+    /// Uniform in [a, b).
+    pub fn range(&mut self, a: f64, b: f64) -> f64 {
+        a + (b - a) * self.next_f64()
+    }
+
+    /// A uniformly distributed unit vector.
+    pub fn unit(&mut self) -> Vec3 {
+        loop {
+            let v = Vec3::new(
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+                self.range(-1.0, 1.0),
+            );
+            let l = v.length();
+            if l > 0.1 && l <= 1.0 {
+                return v / l;
+            }
+        }
+    }
+
+    /// A unit vector within `max_deg` of +Z.
+    pub fn axis(&mut self, max_deg: f64) -> Vec3 {
+        let tilt = self.range(0.0, max_deg).to_radians();
+        let az = self.range(0.0, std::f64::consts::TAU);
+        Vec3::new(tilt.sin() * az.cos(), tilt.sin() * az.sin(), tilt.cos())
+    }
+}
+
+/// Distance from `(ρ, z)` to a cutter's profile curve (the solid's boundary in the meridian
+/// plane): the reference the brute-force tests measure sampled tools with.
+pub fn boundary_distance(els: &[Element], rho: f64, z: f64) -> f64 {
+    let p = Vec2::new(rho, z);
+    let mut best = f64::INFINITY;
+    for el in els {
+        let d = match *el {
+            Element::Line { p: a, q: b } => {
+                let ab = b - a;
+                let t = ((p - a).dot(ab) / ab.length_squared()).clamp(0.0, 1.0);
+                (a + ab * t - p).length()
+            }
+            Element::Arc {
+                e,
+                f,
+                r,
+                phi0,
+                phi1,
+            } => {
+                let c0 = Vec2::new(e, f);
+                let q = p - c0;
+                // Polar angle measured from straight down, towards +ρ.
+                let phi = q.x.atan2(-q.y);
+                if phi >= phi0 && phi <= phi1 {
+                    (q.length() - r).abs()
+                } else {
+                    let pt = |a: f64| c0 + Vec2::new(r * a.sin(), -r * a.cos());
+                    (pt(phi0) - p).length().min((pt(phi1) - p).length())
+                }
+            }
+        };
+        best = best.min(d);
+    }
+    best
 }
