@@ -27,6 +27,8 @@ pub(crate) enum Command {
     /// The largest gouge- and interference-free cutter at every CC point of a compound surface
     /// (3-axis).
     Toolsize(crate::commands::toolsize::ToolsizeArgs),
+    /// Write the swept envelope of a program's feed moves (whole tool) as STL and glb.
+    Envelope(crate::commands::envelope::EnvelopeArgs),
     /// Run the built-in demo job.
     Demo(DemoArgs),
 }

@@ -16,6 +16,7 @@ fn main() {
         cli::Command::Path(args) => commands::path::run(&args),
         cli::Command::Simulate(args) => commands::simulate::run(&args),
         cli::Command::Toolsize(args) => commands::toolsize::run(&args),
+        cli::Command::Envelope(args) => commands::envelope::run(&args),
         cli::Command::Demo(args) => commands::demo::run(&args),
     };
     if let Err(e) = result {

@@ -1,6 +1,7 @@
 //! One module per subcommand; each only calls the libraries and prints.
 
 pub(crate) mod demo;
+pub(crate) mod envelope;
 pub(crate) mod path;
 pub(crate) mod simulate;
 pub(crate) mod tool;

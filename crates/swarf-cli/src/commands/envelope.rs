@@ -1,0 +1,192 @@
+//! `swarf envelope`: the swept envelope of a program's feed moves as STL and glb.
+
+use std::collections::BTreeMap;
+use std::ops::Range;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use serde::Serialize;
+use swarf_io::{write_glb, write_stl, GlbOptions};
+use swarf_path::load::read_program;
+use swarf_sweep::{envelope, EnvelopeOptions, SelfIntersection};
+use swarf_tool::Cutter;
+
+use crate::cli::TableUnits;
+use crate::commands::tools::{load_machine, load_tool_sources, read_options, resolve_tools};
+use crate::output::{print_json, write_atomic};
+
+#[derive(Debug, Args)]
+pub(crate) struct EnvelopeArgs {
+    /// The program: G-code or APT CL.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) program: PathBuf,
+    /// One cutter for every tool the program uses.
+    #[arg(long, value_name = "SPEC")]
+    pub(crate) tool: Option<String>,
+    /// Tool library: swarf TOML, LinuxCNC .tbl or CAMotics .camotics.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) tools: Option<PathBuf>,
+    /// Units of a LinuxCNC .tbl tool table.
+    #[arg(long, value_enum, default_value = "mm")]
+    pub(crate) table_units: TableUnits,
+    /// Machine kinematics: a built-in name or a TOML file (see `swarf path --help`).
+    #[arg(long, value_name = "FILE|NAME", default_value = "3axis")]
+    pub(crate) machine: String,
+    /// Length units before the program's first G20/G21.
+    #[arg(long, value_enum, default_value = "mm")]
+    pub(crate) initial_units: TableUnits,
+    /// Moves to sweep, by index: `A..B` (B excluded), `A..=B`, `A..`, `..B` or `N`. Rapids in
+    /// the range are skipped. Default: all.
+    #[arg(long, value_name = "A..B")]
+    pub(crate) moves: Option<String>,
+    /// Lattice spacing of the envelope, mm.
+    #[arg(long, value_name = "H", default_value_t = swarf_sweep::DEFAULT_RESOLUTION_MM)]
+    pub(crate) resolution: f64,
+    /// Largest distance between an arc or a 5-axis motion and what is swept for it, mm.
+    #[arg(long, value_name = "T", default_value_t = swarf_sweep::DEFAULT_CHORDAL_TOLERANCE_MM)]
+    pub(crate) tolerance: f64,
+    /// Write envelope.stl, envelope.glb and summary.json here.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: PathBuf,
+    /// Print the JSON summary (the default output is a short human-readable report).
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
+/// The JSON summary.
+#[derive(Serialize)]
+struct EnvelopeSummary {
+    /// Feed moves swept.
+    moves: usize,
+    triangles: usize,
+    /// The mesh is closed.
+    closed: bool,
+    volume_mm3: f64,
+    /// Moves whose envelope folds into its own sweep.
+    self_intersections: Vec<SelfIntersection>,
+    elapsed_s: f64,
+    first_move: usize,
+    last_move: usize,
+    fixed_axis_pieces: usize,
+    volume_xyz_mm3: [f64; 3],
+    resolution_mm: f64,
+    tolerance_mm: f64,
+    max_piece_error_mm: f64,
+    lattice: [usize; 3],
+}
+
+/// Parses `A..B`, `A..=B`, `A..`, `..B` or `N` into a half-open range.
+fn parse_moves(text: &str, len: usize) -> Result<Range<usize>> {
+    let num = |s: &str| -> Result<usize> {
+        s.trim()
+            .parse::<usize>()
+            .with_context(|| format!("--moves `{text}`: `{s}` is not a move index"))
+    };
+    let range = if let Some((a, b)) = text.split_once("..") {
+        let start = if a.trim().is_empty() { 0 } else { num(a)? };
+        let end = match b.strip_prefix('=') {
+            Some(b) => num(b)? + 1,
+            None if b.trim().is_empty() => len,
+            None => num(b)?,
+        };
+        start..end
+    } else {
+        let n = num(text)?;
+        n..n + 1
+    };
+    if range.start >= range.end || range.start >= len {
+        bail!("--moves `{text}` selects no move (the program has {len} moves, indices 0..{len})");
+    }
+    Ok(range)
+}
+
+pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
+    let t0 = Instant::now();
+    let machine = load_machine(&args.machine)?;
+    let program = read_program(&args.program, machine, &read_options(args.initial_units))?;
+    let (single, table) = load_tool_sources(
+        args.tool.as_deref(),
+        args.tools.as_deref(),
+        args.table_units,
+    )?;
+    let (resolved, _undefined) = resolve_tools(&program, single.as_ref(), table.as_ref())?;
+    let cutters: BTreeMap<u32, Cutter> = resolved.into_iter().map(|(n, r)| (n, r.cutter)).collect();
+    let range = match &args.moves {
+        Some(m) => parse_moves(m, program.moves.len())?,
+        None => 0..program.moves.len(),
+    };
+    let options = EnvelopeOptions::default()
+        .with_resolution(args.resolution)
+        .with_tolerance(args.tolerance);
+    let env = envelope(&program, &cutters, range, &options).with_context(|| {
+        format!(
+            "sweeping {} (give --tool SPEC or --tools FILE for tools the program does not define)",
+            args.program.display()
+        )
+    })?;
+    std::fs::create_dir_all(&args.out)
+        .with_context(|| format!("creating {}", args.out.display()))?;
+    let stl = args.out.join("envelope.stl");
+    write_stl(&stl, &env.mesh).with_context(|| format!("writing {}", stl.display()))?;
+    let glb = args.out.join("envelope.glb");
+    write_glb(&glb, &env.mesh, &GlbOptions::default())
+        .with_context(|| format!("writing {}", glb.display()))?;
+    let r = env.report;
+    let summary = EnvelopeSummary {
+        moves: r.moves.len(),
+        triangles: r.triangles,
+        closed: r.closed,
+        volume_mm3: r.volume_mm3,
+        self_intersections: r.self_intersections,
+        elapsed_s: t0.elapsed().as_secs_f64(),
+        first_move: r.moves[0],
+        last_move: r.moves[r.moves.len() - 1],
+        fixed_axis_pieces: r.pieces,
+        volume_xyz_mm3: r.volume_xyz_mm3,
+        resolution_mm: r.resolution_mm,
+        tolerance_mm: r.tolerance_mm,
+        max_piece_error_mm: r.max_piece_error_mm,
+        lattice: r.lattice,
+    };
+    let json = serde_json::to_vec_pretty(&summary).context("encoding the summary")?;
+    write_atomic(&args.out.join("summary.json"), &json)?;
+    if args.json {
+        return print_json(&summary);
+    }
+    println!(
+        "{} feed moves (indices {}..={}), {} fixed-axis pieces",
+        summary.moves, summary.first_move, summary.last_move, summary.fixed_axis_pieces
+    );
+    println!(
+        "envelope: {} triangles, {:.3} mm³, h = {} mm, tolerance {} mm, {:.2} s",
+        summary.triangles,
+        summary.volume_mm3,
+        summary.resolution_mm,
+        summary.tolerance_mm,
+        summary.elapsed_s
+    );
+    for s in &summary.self_intersections {
+        println!("warning: {}", s.message);
+    }
+    println!("wrote {} and {}", stl.display(), glb.display());
+    Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_moves;
+
+    #[test]
+    fn move_ranges() {
+        assert_eq!(parse_moves("2..5", 10).unwrap(), 2..5);
+        assert_eq!(parse_moves("2..=5", 10).unwrap(), 2..6);
+        assert_eq!(parse_moves("3..", 10).unwrap(), 3..10);
+        assert_eq!(parse_moves("..4", 10).unwrap(), 0..4);
+        assert_eq!(parse_moves("7", 10).unwrap(), 7..8);
+        assert!(parse_moves("5..2", 10).is_err());
+        assert!(parse_moves("12", 10).is_err());
+        assert!(parse_moves("a..b", 10).is_err());
+    }
+}

@@ -1,0 +1,136 @@
+//! Sweeps with closed forms: a ball-nose along a line sweeps a capsule (below the ball's
+//! centre), a flat end mill along a horizontal line a stadium prism (two planes, two
+//! half-cylinders, floor and top); mesh vertices lie within a fraction of the lattice spacing of
+//! the exact surface and the volume converges as the spacing falls.
+
+mod common;
+
+use std::f64::consts::PI;
+
+use swarf_geom::math::Vec3;
+use swarf_sweep::{envelope, grazing_points, EnvelopeOptions, MotionState};
+use swarf_tool::{AnyPiece, Cutter};
+
+/// Distance from `p` to the segment `a`–`b`.
+fn seg_dist(p: Vec3, a: Vec3, b: Vec3) -> f64 {
+    let d = b - a;
+    let t = ((p - a).dot(d) / d.length_squared()).clamp(0.0, 1.0);
+    (p - (a + d * t)).length()
+}
+
+#[test]
+fn ball_along_a_line_sweeps_a_capsule() {
+    let r = 5.0;
+    let ball = Cutter::ball(2.0 * r).unwrap();
+    let (len, height) = (ball.overall_length(), ball.overall_length() - r);
+    // Diagonal in XY so no wall is aligned with the lattice.
+    let (a, b) = (Vec3::new(1.0, 2.0, 0.0), Vec3::new(21.0, 13.0, 0.0));
+    let program = common::gcode(&format!(
+        "G21 G90\nG0 X{} Y{} Z0\nG1 X{} Y{} F500\n",
+        a.x, a.y, b.x, b.y
+    ));
+    let d = (b - a).length();
+    // Whole tool: hemisphere + cylinder of the same radius to the shank's top.
+    let exact = 2.0 / 3.0 * PI * r.powi(3)
+        + PI * r * r * height
+        + d * (0.5 * PI * r * r + 2.0 * r * height);
+    assert!((ball.shank_diameter() - 2.0 * r).abs() < 1e-12 && len > r);
+    let mut errors = Vec::new();
+    for h in [0.8, 0.4, 0.2] {
+        let env = envelope(
+            &program,
+            &common::tools(&ball),
+            0..program.moves.len(),
+            &EnvelopeOptions::default().with_resolution(h),
+        )
+        .unwrap();
+        assert!(env.mesh.is_closed());
+        assert_eq!(env.report.moves, vec![1]);
+        let (ca, cb) = (a + Vec3::Z * r, b + Vec3::Z * r);
+        let mut worst = 0.0f64;
+        for &v in &env.mesh.vertices {
+            if v.z < r - 0.5 * h {
+                worst = worst.max((seg_dist(v, ca, cb) - r).abs());
+            }
+        }
+        assert!(worst < 0.1 * h, "h = {h}: capsule vertex error {worst}");
+        let err = (env.report.volume_mm3 - exact).abs() / exact;
+        let ray_err = (env.report.volume_xyz_mm3[2] - exact).abs() / exact;
+        eprintln!("capsule h = {h}: vertex error {worst:.4} mm, volume error mesh {err:.2e}, rays {ray_err:.2e}");
+        errors.push((err, ray_err));
+    }
+    assert!(
+        errors[2].0 < errors[0].0,
+        "mesh volume converges: {errors:?}"
+    );
+    assert!(errors[2].0 < 5e-4 && errors[2].1 < 1e-3, "{errors:?}");
+}
+
+#[test]
+fn flat_end_mill_along_a_horizontal_line_gives_planes_and_half_cylinders() {
+    let r = 4.0;
+    let flat = Cutter::flat(2.0 * r).unwrap();
+    let top = flat.overall_length();
+    let (a, b) = (Vec3::new(0.3, 0.7, -1.0), Vec3::new(18.3, 0.7, -1.0));
+    let program = common::gcode("G21 G90\nG0 X0.3 Y0.7 Z-1\nG1 X18.3 F300\n");
+    // Grazing set: the two side lines at y = ±r (the two planes), the whole bottom and top.
+    let st = MotionState::translation(a, Vec3::Z, b - a);
+    let set = grazing_points(flat.pieces(), &st, 9);
+    for g in set
+        .points
+        .iter()
+        .filter(|g| matches!(flat.pieces()[g.piece], AnyPiece::Cylinder(_)))
+    {
+        assert!(((g.point.y - a.y).abs() - r).abs() < 1e-12 && (g.point.x - a.x).abs() < 1e-12);
+    }
+    let h = 0.25;
+    let env = envelope(
+        &program,
+        &common::tools(&flat),
+        0..2,
+        &EnvelopeOptions::default().with_resolution(h),
+    )
+    .unwrap();
+    // Signed distance to the stadium prism: stadium of radius r about a–b in XY, z in [a.z, a.z + top].
+    let sdf = |p: Vec3| {
+        let qxy = seg_dist(
+            Vec3::new(p.x, p.y, 0.0),
+            Vec3::new(a.x, a.y, 0.0),
+            Vec3::new(b.x, b.y, 0.0),
+        ) - r;
+        let qz = (a.z - p.z).max(p.z - a.z - top);
+        let out = qxy.max(0.0).hypot(qz.max(0.0));
+        out + qxy.max(qz).min(0.0)
+    };
+    let worst = env
+        .mesh
+        .vertices
+        .iter()
+        .map(|&v| sdf(v).abs())
+        .fold(0.0, f64::max);
+    eprintln!(
+        "stadium prism h = {h}: vertex error {worst:.2e} mm, volume {} vs {}",
+        env.report.volume_mm3,
+        (PI * r * r + 2.0 * r * (b - a).length()) * top
+    );
+    assert!(worst < 0.05 * h, "stadium prism vertex error {worst}");
+    // The side walls are planes: their vertices lie on y = a.y ± r to rounding.
+    let walls: Vec<f64> = env
+        .mesh
+        .vertices
+        .iter()
+        .filter(|v| v.x > a.x + 1.0 && v.x < b.x - 1.0 && v.z > a.z + 1.0 && v.z < a.z + top - 1.0)
+        .map(|v| ((v.y - a.y).abs() - r).abs())
+        .collect();
+    assert!(
+        !walls.is_empty() && walls.iter().all(|&e| e < 1e-6),
+        "{:?}",
+        walls.iter().cloned().fold(0.0, f64::max)
+    );
+    let exact = (PI * r * r + 2.0 * r * (b - a).length()) * top;
+    assert!(
+        (env.report.volume_mm3 - exact).abs() / exact < 2e-3,
+        "{} vs {exact}",
+        env.report.volume_mm3
+    );
+}
