@@ -51,19 +51,19 @@ pub(crate) enum TableUnits {
     Inch,
 }
 
+/// What every command that reads a program needs besides the program: which cutter each tool
+/// is, the machine's kinematics and the program's initial units.
 #[derive(Debug, Args)]
-pub(crate) struct PathArgs {
-    /// The program: G-code (.ngc .nc .gcode .tap .ptp …) or APT CL (.apt .cls .cl).
-    pub(crate) program: PathBuf,
+pub(crate) struct SetupArgs {
+    /// One cutter for every tool the program uses.
+    #[arg(long, value_name = "SPEC")]
+    pub(crate) tool: Option<String>,
     /// Tool library: swarf TOML, LinuxCNC .tbl or CAMotics .camotics.
     #[arg(long, value_name = "FILE")]
     pub(crate) tools: Option<PathBuf>,
     /// Units of a LinuxCNC .tbl tool table.
     #[arg(long, value_enum, default_value = "mm")]
     pub(crate) table_units: TableUnits,
-    /// One cutter for every tool the program uses (overrides --tools).
-    #[arg(long, value_name = "SPEC")]
-    pub(crate) tool: Option<String>,
     /// Machine kinematics: a built-in name (3axis, 4axis-a, 4axis-b, table-ac, table-bc,
     /// head-ac, head-bc, head-table-ac, head-table-bc; add -tcp for TCP) or a TOML file.
     #[arg(long, value_name = "FILE|NAME", default_value = "3axis")]
@@ -71,6 +71,15 @@ pub(crate) struct PathArgs {
     /// Length units before the program's first G20/G21.
     #[arg(long, value_enum, default_value = "mm")]
     pub(crate) initial_units: TableUnits,
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct PathArgs {
+    /// The program: G-code (.ngc .nc .gcode .tap .ptp …) or APT CL (.apt .cls .cl).
+    pub(crate) program: PathBuf,
+    /// Cutters, tool library, machine and units.
+    #[command(flatten)]
+    pub(crate) setup: SetupArgs,
     /// Print the JSON summary.
     #[arg(long, conflicts_with = "canonical")]
     pub(crate) json: bool,
@@ -88,21 +97,9 @@ pub(crate) struct SimulateArgs {
     /// The program: G-code or APT CL.
     #[arg(long, value_name = "FILE")]
     pub(crate) program: PathBuf,
-    /// One cutter for every tool the program uses.
-    #[arg(long, value_name = "SPEC")]
-    pub(crate) tool: Option<String>,
-    /// Tool library: swarf TOML, LinuxCNC .tbl or CAMotics .camotics.
-    #[arg(long, value_name = "FILE")]
-    pub(crate) tools: Option<PathBuf>,
-    /// Units of a LinuxCNC .tbl tool table.
-    #[arg(long, value_enum, default_value = "mm")]
-    pub(crate) table_units: TableUnits,
-    /// Machine kinematics: a built-in name or a TOML file (see `swarf path --help`).
-    #[arg(long, value_name = "FILE|NAME", default_value = "3axis")]
-    pub(crate) machine: String,
-    /// Length units before the program's first G20/G21.
-    #[arg(long, value_enum, default_value = "mm")]
-    pub(crate) initial_units: TableUnits,
+    /// Cutters, tool library, machine and units.
+    #[command(flatten)]
+    pub(crate) setup: SetupArgs,
     /// Ray spacing of the tri-dexel stock, mm.
     #[arg(long, value_name = "H", default_value_t = 0.25)]
     pub(crate) resolution: f64,

@@ -13,7 +13,7 @@ use swarf_path::load::read_program;
 use swarf_sweep::{envelope, EnvelopeOptions, SelfIntersection};
 use swarf_tool::Cutter;
 
-use crate::cli::TableUnits;
+use crate::cli::SetupArgs;
 use crate::commands::tools::{load_machine, load_tool_sources, read_options, resolve_tools};
 use crate::output::{print_json, write_atomic};
 
@@ -22,21 +22,9 @@ pub(crate) struct EnvelopeArgs {
     /// The program: G-code or APT CL.
     #[arg(long, value_name = "FILE")]
     pub(crate) program: PathBuf,
-    /// One cutter for every tool the program uses.
-    #[arg(long, value_name = "SPEC")]
-    pub(crate) tool: Option<String>,
-    /// Tool library: swarf TOML, LinuxCNC .tbl or CAMotics .camotics.
-    #[arg(long, value_name = "FILE")]
-    pub(crate) tools: Option<PathBuf>,
-    /// Units of a LinuxCNC .tbl tool table.
-    #[arg(long, value_enum, default_value = "mm")]
-    pub(crate) table_units: TableUnits,
-    /// Machine kinematics: a built-in name or a TOML file (see `swarf path --help`).
-    #[arg(long, value_name = "FILE|NAME", default_value = "3axis")]
-    pub(crate) machine: String,
-    /// Length units before the program's first G20/G21.
-    #[arg(long, value_enum, default_value = "mm")]
-    pub(crate) initial_units: TableUnits,
+    /// Cutters, tool library, machine and units.
+    #[command(flatten)]
+    pub(crate) setup: SetupArgs,
     /// Moves to sweep, by index: `A..B` (B excluded), `A..=B`, `A..`, `..B` or `N`. Rapids in
     /// the range are skipped. Default: all.
     #[arg(long, value_name = "A..B")]
@@ -104,12 +92,16 @@ fn parse_moves(text: &str, len: usize) -> Result<Range<usize>> {
 
 pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
     let t0 = Instant::now();
-    let machine = load_machine(&args.machine)?;
-    let program = read_program(&args.program, machine, &read_options(args.initial_units))?;
+    let machine = load_machine(&args.setup.machine)?;
+    let program = read_program(
+        &args.program,
+        machine,
+        &read_options(args.setup.initial_units),
+    )?;
     let (single, table) = load_tool_sources(
-        args.tool.as_deref(),
-        args.tools.as_deref(),
-        args.table_units,
+        args.setup.tool.as_deref(),
+        args.setup.tools.as_deref(),
+        args.setup.table_units,
     )?;
     let (resolved, _undefined) = resolve_tools(&program, single.as_ref(), table.as_ref())?;
     let cutters: BTreeMap<u32, Cutter> = resolved.into_iter().map(|(n, r)| (n, r.cutter)).collect();

@@ -44,8 +44,8 @@ struct ToolReport {
 }
 
 pub(crate) fn run(args: &PathArgs) -> Result<()> {
-    let machine = load_machine(&args.machine)?;
-    let options = read_options(args.initial_units);
+    let machine = load_machine(&args.setup.machine)?;
+    let options = read_options(args.setup.initial_units);
     let text = read_text(&args.program)?;
     let file = args.program.display().to_string();
 
@@ -59,9 +59,9 @@ pub(crate) fn run(args: &PathArgs) -> Result<()> {
 
     let program = read_program_str(&text, &file, machine, &options)?;
     let (single, table) = load_tool_sources(
-        args.tool.as_deref(),
-        args.tools.as_deref(),
-        args.table_units,
+        args.setup.tool.as_deref(),
+        args.setup.tools.as_deref(),
+        args.setup.table_units,
     )?;
     let report = PathReport::new(&program, single.as_ref(), table.as_ref())?;
     if args.json {

@@ -130,12 +130,16 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
             args.tolerance
         );
     }
-    let machine = load_machine(&args.machine)?;
-    let program = read_program(&args.program, machine, &read_options(args.initial_units))?;
+    let machine = load_machine(&args.setup.machine)?;
+    let program = read_program(
+        &args.program,
+        machine,
+        &read_options(args.setup.initial_units),
+    )?;
     let (single, table) = load_tool_sources(
-        args.tool.as_deref(),
-        args.tools.as_deref(),
-        args.table_units,
+        args.setup.tool.as_deref(),
+        args.setup.tools.as_deref(),
+        args.setup.table_units,
     )?;
     let tools = tools_for(&program, single.as_ref(), table.as_ref())?;
     let spec = stock_spec(args.stock.as_deref(), table.as_ref())?;
