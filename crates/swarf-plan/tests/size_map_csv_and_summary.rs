@@ -64,22 +64,24 @@ fn csv_rows_and_summary() {
         "patch,u,v,x,y,z,nx,ny,nz,radius_mm,limit_x,limit_y,limit_z,limit"
     );
     let rows: Vec<Vec<&str>> = lines.map(|l| l.split(',').collect()).collect();
+    // Numbers are compared as numbers: the CSV writes shortest round-trip text.
+    let num = |s: &str| s.parse::<f64>().unwrap_or(f64::NAN);
     assert_eq!(rows.len(), 27);
     assert!(rows.iter().all(|r| r.len() == 14));
     // Floor centre (0, 0, 0): the wall at 10 mm limits, by interference.
     let centre = rows
         .iter()
-        .find(|r| r[0] == "floor" && r[1] == "0.5" && r[2] == "0.5")
+        .find(|r| r[0] == "floor" && num(r[1]) == 0.5 && num(r[2]) == 0.5)
         .unwrap();
     let radius: f64 = centre[9].parse().unwrap();
     assert!((radius - 10.0).abs() < 1e-6, "{centre:?}");
     assert_eq!(centre[13], "interference");
-    assert_eq!(centre[10], "10");
+    assert_eq!(num(centre[10]), 10.0);
     // On the floor at the wall's foot: 0 (a flat end mill's bottom cannot reach into the
     // corner it stands in: the wall is right there).
     let foot = rows
         .iter()
-        .find(|r| r[0] == "floor" && r[1] == "1" && r[2] == "0.5")
+        .find(|r| r[0] == "floor" && num(r[1]) == 1.0 && num(r[2]) == 0.5)
         .unwrap();
     let radius: f64 = foot[9].parse().unwrap();
     assert!(radius < 2e-3, "{foot:?}");
