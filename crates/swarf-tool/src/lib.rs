@@ -64,7 +64,11 @@ impl Cutter {
     /// # Errors
     /// As [`Cutter::apt`].
     pub fn from_program_record(p: [f64; 7]) -> Result<Cutter, ToolError> {
-        let h = if p[6] > 0.0 { p[6] } else { (3.0 * p[0]).max(p[3] + p[1]) };
+        let h = if p[6] > 0.0 {
+            p[6]
+        } else {
+            (3.0 * p[0]).max(p[3] + p[1])
+        };
         Cutter::apt(p[0], p[1], p[2], p[3], p[4], p[5], h)
     }
 

@@ -211,12 +211,7 @@ impl ToolSizeMap {
                 Some(r) => num(r),
             };
             let (lx, ly, lz, lim) = match p.size.and_then(|s| s.limit_point.zip(s.limit)) {
-                Some((q, l)) => (
-                    num(q.x),
-                    num(q.y),
-                    num(q.z),
-                    l.as_str().to_string(),
-                ),
+                Some((q, l)) => (num(q.x), num(q.y), num(q.z), l.as_str().to_string()),
                 None => Default::default(),
             };
             writeln!(
