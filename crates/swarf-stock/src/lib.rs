@@ -38,8 +38,14 @@
 //! largest radius at the tile's heights); then each ray is skipped the same way
 //! ([`SweptConvex::dexel_range`]); only rays whose material meets that range get the exact
 //! interval, and within it the pieces that cannot move its ends inside the material are not
-//! evaluated. Tile rows of the three families are cut in parallel (rayon); the per-ray loop
-//! does not allocate.
+//! evaluated. The common case — a ball or flat end mill (or a cylindrical shank) on a move
+//! whose tool axis is a world axis — skips all that for closed-form kernels, chosen once per
+//! move ([`SweptConvex::has_closed_form`]): a capsule and a swept slab, a few square roots
+//! per ray, held to the general candidates by `tests/fast_paths.rs`. Consecutive moves are
+//! cut in batches ([`TriDexel::cut_linear_batch`], used by [`simulate()`]): the tile rows of
+//! the three families are dealt to the threads (rayon), each thread runs the batch's moves in
+//! order over its own rows, so there is no barrier per move; the per-ray loop does not
+//! allocate.
 //!
 //! # Accuracy parameters (one place)
 //! [`DEFAULT_CHORDAL_TOLERANCE_MM`] (arcs and 5-axis moves, reported in
@@ -82,6 +88,4 @@ pub use mesh::MeshOptions;
 pub use simulate::{simulate, simulate_observed, Collision, SimOptions, SimulationReport, Tools};
 pub use spec::StockSpec;
 pub use sweep::{ConvexProfile, Element, LineBatch, SweepShape, SweptConvex};
-pub use tridexel::{
-    CutStats, DexelFamily, Grid, LinearMove, StockStats, TriDexel, MAX_RAYS, TILE,
-};
+pub use tridexel::{CutStats, DexelFamily, Grid, LinearMove, StockStats, TriDexel, MAX_RAYS, TILE};

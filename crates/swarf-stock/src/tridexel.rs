@@ -620,22 +620,22 @@ impl TileCut<'_, '_, '_> {
             self.range.j.0.max(tj * TILE) - tj * TILE,
             self.range.j.1.min(tj * TILE + TILE - 1) - tj * TILE,
         );
+        let (u_min, u_h, v_min, v_h) = (grid.min[u], grid.h[u], grid.min[v], grid.h[v]);
         let mut changed = false;
         for jj in j_lo..=j_hi {
-            let cv = grid.center(v, tj * TILE + jj);
+            // (Cell centres with the axes resolved once: `Grid::center` per ray costs.)
+            let cv = v_min + ((tj * TILE + jj) as f64 + 0.5) * v_h;
             for ii in i_lo..=i_hi {
                 let d = &mut tile[jj * TILE + ii];
                 if !overlaps(d, tmin, tmax) {
                     continue;
                 }
                 st.visited_per_family[k] += 1;
-                let mut origin = Vec3::ZERO;
-                origin[u] = grid.center(u, ti * TILE + ii);
-                origin[v] = cv;
+                let cu = u_min + ((ti * TILE + ii) as f64 + 0.5) * u_h;
                 let mut removed = 0.0;
                 let mut tested = false;
                 for (p, rays) in self.parts.iter().zip(self.rays) {
-                    let (t, hit) = p.dexel_cut(origin, k, d, rays, scratch);
+                    let (t, hit) = p.dexel_cut((cu, cv), k, d, rays, scratch);
                     tested |= t;
                     if let Some((lo, hi)) = hit {
                         removed += subtract(d, lo, hi);

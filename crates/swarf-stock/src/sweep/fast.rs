@@ -120,9 +120,13 @@ impl FastSweep {
         let (pa, ma) = (self.mv.p[2], self.mv.m[2]);
         let baba = self.delta.length_squared();
         let bard = self.delta[k];
+        // The capsule in the family's frame (along the rays, then its two cross axes), where
+        // the rays run along x from x = 0.
+        let (fu, fv) = ((k + 1) % 3, (k + 2) % 3);
+        let perm = |x: Vec3| Vec3::new(x[k], x[fu], x[fv]);
         let sphere = self.shape.sphere.map(|(_, sr)| CapsuleRays {
-            c0: self.c0,
-            ba: self.delta,
+            c0: perm(self.c0),
+            ba: perm(self.delta),
             baba,
             bard,
             a: baba - bard * bard,
@@ -132,7 +136,6 @@ impl FastSweep {
             let (mu, mw) = (self.mv.m[0], self.mv.m[1]);
             let aa = mu * mu + mw * mw;
             return FastRays::Along(AlongRays {
-                kt: self.kt,
                 mv: self.mv,
                 inv_aa: if aa > 0.0 { 1.0 / aa } else { 0.0 },
                 r,
@@ -156,7 +159,7 @@ impl FastSweep {
         );
         let sr = self.shape.sphere.map_or(0.0, |s| s.1);
         FastRays::Across(AcrossRays {
-            kt: self.kt,
+            height_is_u: fu == self.kt,
             ray,
             mv: self.mv,
             r,
@@ -184,21 +187,27 @@ pub(crate) enum FastRays {
 }
 
 impl FastRays {
-    /// The interval of the ray through `o` (with `o[k] = 0`, `k` the rays' axis), in world
-    /// coordinates along the ray. With
-    /// `material = Some((lo, hi))`, the ray's material lies in `[lo, hi]` and the result is
-    /// exact where it meets that range (an end beyond the material may be replaced by a
+    /// The interval of the ray whose coordinates on the family's cross axes (`(k+1) % 3`,
+    /// `(k+2) % 3`, `k` the rays' axis) are `(cu, cv)`, in world coordinates along the ray.
+    /// With `material = Some((lo, hi))`, the ray's material lies in `[lo, hi]` and the result
+    /// is exact where it meets that range (an end beyond the material may be replaced by a
     /// cheaper bound beyond it).
     #[inline]
-    pub(crate) fn interval(&self, o: Vec3, material: Option<(f64, f64)>) -> Option<(f64, f64)> {
+    pub(crate) fn interval(
+        &self,
+        cu: f64,
+        cv: f64,
+        material: Option<(f64, f64)>,
+    ) -> Option<(f64, f64)> {
         match self {
-            FastRays::Along(a) => a.interval(o, material),
-            FastRays::Across(a) => a.interval(o),
+            FastRays::Along(a) => a.interval(cu, cv, material),
+            FastRays::Across(a) => a.interval(cu, cv),
         }
     }
 }
 
-/// A capsule (swept sphere) against lines along one world axis `d`.
+/// A capsule (swept sphere) against the lines along x through `(0, y, z)`, in a rays' family
+/// frame.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct CapsuleRays {
     c0: Vec3,
@@ -215,16 +224,18 @@ impl CapsuleRays {
     /// The capsule's interval on the line through `o` along `d` (world coordinates along
     /// `d`), computed as [`line_capsule`] does with the direction's constants shared.
     #[inline]
-    fn interval<const LOW_ONLY: bool>(&self, o: Vec3, d: Vec3) -> Option<(f64, f64)> {
+    fn interval<const LOW_ONLY: bool>(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
         if self.a <= 1e-20 * self.baba {
-            return line_capsule::<LOW_ONLY>(o, d, self.c0, self.ba, self.rr.sqrt());
+            let o = Vec3::new(0.0, cu, cv);
+            return line_capsule::<LOW_ONLY>(o, Vec3::X, self.c0, self.ba, self.rr.sqrt());
         }
-        // Re-based at the point of the line level with c0 along d: oa ⊥ d.
-        let t0 = self.c0.dot(d) - o.dot(d);
-        let oa = o + d * t0 - self.c0;
+        // Re-based at the point of the line level with c0: oa = (0, oy, oz) ⊥ the line
+        // (components written out: IEEE products by the zeros of a unit vector do not fold).
+        let t0 = self.c0.x;
+        let (oy, oz) = (cu - self.c0.y, cv - self.c0.z);
         let (ba, baba, bard, a, rr) = (self.ba, self.baba, self.bard, self.a, self.rr);
-        let baoa = ba.dot(oa);
-        let oaoa = oa.dot(oa);
+        let baoa = ba.y * oy + ba.z * oz;
+        let oaoa = oy * oy + oz * oz;
         let b = -baoa * bard;
         let c = baba * oaoa - baoa * baoa - rr * baba;
         let h = b * b - a * c;
@@ -245,38 +256,57 @@ impl CapsuleRays {
                 x <= 0.0 && x * x >= bh2
             }
         };
-        let sphere_end = |at_start: bool, low: bool| -> Option<f64> {
-            let oc = if at_start { oa } else { oa - ba };
-            let b = oc.dot(d);
-            let h = b * b - (oc.dot(oc) - rr);
-            (h >= 0.0).then(|| if low { -b - h.sqrt() } else { -b + h.sqrt() })
+        // 0: the start sphere, 1: the end sphere, 2: the side; for the end with
+        // a·y = L + s·bard·√h (s = −1 near, +1 far): y ≤ 0 iff L ≤ −s·bard·√h, y > |ba|² iff
+        // L − |ba|²·a > −s·bard·√h.
+        let piece = |s: f64| {
+            if le(l, -s) {
+                0
+            } else if !le(l - baba * a, -s) {
+                1
+            } else {
+                2
+            }
         };
-        let side = |near: bool| -> f64 {
-            // Cancellation-free roots q/a and c/q.
+        // The chord of the sphere centred at (−x, −y, −z) from the line's base point.
+        let chord = |x: f64, y: f64, z: f64| -> Option<(f64, f64)> {
+            let h = rr - (y * y + z * z);
+            (h >= 0.0).then(|| {
+                let s = h.sqrt();
+                (-x - s, -x + s)
+            })
+        };
+        let side = || -> (f64, f64) {
+            // Cancellation-free roots q/a and c/q, (near, far).
             let sh = h.sqrt();
             let q = if b > 0.0 { -(b + sh) } else { -b + sh };
             let other = if q != 0.0 { c / q } else { 0.0 };
-            match (near, b > 0.0) {
-                (true, true) | (false, false) => q / a,
-                _ => other,
-            }
-        };
-        let end = |s: f64, low: bool| -> Option<f64> {
-            // The end with a·y = L + s·bard·√h (s = −1 near, +1 far): y ≤ 0 iff
-            // L ≤ −s·bard·√h, y > |ba|² iff L − |ba|²·a > −s·bard·√h.
-            if le(l, -s) {
-                sphere_end(true, low)
-            } else if !le(l - baba * a, -s) {
-                sphere_end(false, low)
+            if b > 0.0 {
+                (q / a, other)
             } else {
-                Some(side(low))
+                (other, q / a)
             }
         };
-        let lo = end(-1.0, true)?;
-        if LOW_ONLY {
-            return Some((lo + t0, lo + t0));
-        }
-        let hi = end(1.0, false)?;
+        let at = |p: u8| -> Option<(f64, f64)> {
+            match p {
+                0 => chord(0.0, oy, oz),
+                1 => chord(-ba.x, oy - ba.y, oz - ba.z),
+                _ => Some(side()),
+            }
+        };
+        let pn = piece(-1.0);
+        let (lo, hi) = if LOW_ONLY {
+            let lo = at(pn)?.0;
+            (lo, lo)
+        } else {
+            let pf = piece(1.0);
+            if pn == pf {
+                // Both ends on one piece: one square root.
+                at(pn)?
+            } else {
+                (at(pn)?.0, at(pf)?.1)
+            }
+        };
         Some((lo + t0, hi + t0))
     }
 }
@@ -284,7 +314,6 @@ impl CapsuleRays {
 /// Rays along the tool axis.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct AlongRays {
-    kt: usize,
     mv: AxisMove,
     inv_aa: f64,
     r: f64,
@@ -302,9 +331,7 @@ pub(crate) struct AlongRays {
 
 impl AlongRays {
     #[inline]
-    fn interval(&self, o: Vec3, material: Option<(f64, f64)>) -> Option<(f64, f64)> {
-        let kt = self.kt;
-        let (qu, qw) = (o[(kt + 1) % 3], o[(kt + 2) % 3]);
+    fn interval(&self, qu: f64, qw: f64, material: Option<(f64, f64)>) -> Option<(f64, f64)> {
         let (du, dw) = (qu - self.mv.p[0], qw - self.mv.p[1]);
         let (mu, mw) = (self.mv.m[0], self.mv.m[1]);
         // The ray meets the sweep iff it is within r of the tip's path (both parts project to
@@ -332,7 +359,7 @@ impl AlongRays {
             self.hi_min
         };
         let lo = match &self.sphere {
-            Some(c) => match c.interval::<true>(o, Vec3::AXES[kt]) {
+            Some(c) => match c.interval::<true>(qu, qw) {
                 Some((l, _)) => l,
                 None => {
                     let (s0, s1) = *spanned.get_or_insert_with(span);
@@ -351,7 +378,8 @@ impl AlongRays {
 /// Rays across the tool axis: along cross axis `ray` (0 = u, 1 = w) of the tool's frame.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct AcrossRays {
-    kt: usize,
+    /// True when the family's first cross axis is the tool axis.
+    height_is_u: bool,
     ray: usize,
     mv: AxisMove,
     r: f64,
@@ -372,15 +400,8 @@ pub(crate) struct AcrossRays {
 
 impl AcrossRays {
     #[inline]
-    fn interval(&self, o: Vec3) -> Option<(f64, f64)> {
-        let kt = self.kt;
-        let za = o[kt];
-        let (along, across) = if self.ray == 0 {
-            ((kt + 1) % 3, (kt + 2) % 3)
-        } else {
-            ((kt + 2) % 3, (kt + 1) % 3)
-        };
-        let q = o[across];
+    fn interval(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
+        let (za, q) = if self.height_is_u { (cu, cv) } else { (cv, cu) };
         let slab = if za >= self.full_band.0 && za <= self.full_band.1 {
             self.full.chord(q)
         } else if za >= self.band.0 && za <= self.band.1 {
@@ -394,7 +415,7 @@ impl AcrossRays {
         if za < self.sphere_band.0 || za > self.sphere_band.1 {
             return slab;
         }
-        match (slab, c.interval::<false>(o, Vec3::AXES[along])) {
+        match (slab, c.interval::<false>(cu, cv)) {
             (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
             (a, b) => a.or(b),
         }
@@ -525,8 +546,9 @@ mod tests {
                                     (l < h).then_some((l, h))
                                 })
                             };
-                            let full = clip(rays.interval(o, None));
-                            let pruned = clip(rays.interval(o, Some(m)));
+                            let (cu, cv) = (o[(k + 1) % 3], o[(k + 2) % 3]);
+                            let full = clip(rays.interval(cu, cv, None));
+                            let pruned = clip(rays.interval(cu, cv, Some(m)));
                             match (full, pruned) {
                                 (None, None) => {}
                                 (Some(f), Some(p)) => {

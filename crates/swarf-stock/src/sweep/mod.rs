@@ -35,6 +35,15 @@
 //! Flat faces (discs) parallel to `v` are grazing as a whole, but their extrusion's boundary
 //! is made of the joint circles' extrusions and the caps, so they need no candidates of their
 //! own.
+//!
+//! # Closed forms for the common case
+//! A ball end (a whole sphere on a cylinder slab that reaches its top) or a slab (flat end,
+//! shank) whose axis is a world axis, against rays along world axes, needs none of that: its
+//! sweep is a capsule (`capsule.rs`: one quadratic, or one end sphere chosen before any square
+//! root) united with a swept slab (`slab.rs`: the positions whose disc holds a ray along the
+//! axis; the stadium cross-section for a ray across it). `fast.rs` classifies the profile once,
+//! the move once, and shares the per-family constants among the rays
+//! ([`SweptConvex::has_closed_form`], [`SweptConvex::axis_ray_interval`]).
 
 pub(crate) mod capsule;
 pub(crate) mod circle;
@@ -222,6 +231,8 @@ pub(crate) struct DirConsts {
 /// The per-direction state of dexel queries against one sweep (see
 /// [`SweptConvex::dexel_rays`]).
 #[derive(Clone, Debug)]
+// The closed-form variant is the hot one; it stays inline (a few per move, never stored).
+#[allow(clippy::large_enum_variant)]
 pub(crate) enum DexelRays {
     /// Closed-form kernels.
     Fast(fast::FastRays),
@@ -340,7 +351,7 @@ impl<'a> SweptConvex<'a> {
         let mut o = origin;
         o[k] = 0.0;
         match &self.fast {
-            Some(f) => f.rays(k).interval(o, None),
+            Some(f) => f.rays(k).interval(o[(k + 1) % 3], o[(k + 2) % 3], None),
             None => self.ray_interval(o, Vec3::AXES[k]),
         }
     }
@@ -361,15 +372,15 @@ impl<'a> SweptConvex<'a> {
         }
     }
 
-    /// The stock update's query for the dexel `d` along world axis `k` through `origin`
-    /// (`origin[k] = 0`; `rays` from [`SweptConvex::dexel_rays`] for `k`): whether an exact
-    /// query ran, and the interval to remove (exact where it meets the material). Closed
-    /// form when available; otherwise the material-first range test, then the general
-    /// candidates pruned to the material.
+    /// The stock update's query for the dexel `d` along world axis `k` whose coordinates on
+    /// the cross axes `(k+1) % 3`, `(k+2) % 3` are `(cu, cv)` (`rays` from
+    /// [`SweptConvex::dexel_rays`] for `k`): whether an exact query ran, and the interval to
+    /// remove (exact where it meets the material). Closed form when available; otherwise the
+    /// material-first range test, then the general candidates pruned to the material.
     #[inline]
     pub(crate) fn dexel_cut(
         &self,
-        origin: Vec3,
+        (cu, cv): (f64, f64),
         k: usize,
         d: &[Interval],
         rays: &DexelRays,
@@ -380,9 +391,12 @@ impl<'a> SweptConvex<'a> {
             _ => return (false, None),
         };
         let dc = match rays {
-            DexelRays::Fast(f) => return (true, f.interval(origin, Some((first, last)))),
+            DexelRays::Fast(f) => return (true, f.interval(cu, cv, Some((first, last)))),
             DexelRays::General(dc) => dc,
         };
+        let mut origin = Vec3::ZERO;
+        origin[(k + 1) % 3] = cu;
+        origin[(k + 2) % 3] = cv;
         let Some((a, b)) = self.dexel_range(origin, k) else {
             return (false, None);
         };
