@@ -465,44 +465,7 @@ impl<'a> SweptConvex<'a> {
         let (a0, b0) = (pick(ax.c0, k), pick(ax.c0, j));
         let (a1, b1) = (pick(ax.c1, k), pick(ax.c1, j));
         let qr = origin[j];
-        let mut lo = f64::INFINITY;
-        let mut hi = f64::NEG_INFINITY;
-        for (ca, cb) in [(a0, b0), (a1, b1)] {
-            let dq = qr - cb;
-            let h2 = r * r - dq * dq;
-            if h2 >= 0.0 {
-                let hh = h2.sqrt();
-                lo = lo.min(ca - hh);
-                hi = hi.max(ca + hh);
-            }
-        }
-        // The band around the segment: |(x − c0)·n| ≤ r and 0 ≤ (x − c0)·e ≤ |e|².
-        let (ea, eb) = (a1 - a0, b1 - b0);
-        let ee = ea * ea + eb * eb;
-        if ee > 0.0 {
-            let el = ee.sqrt();
-            let (na, nb) = (-eb / el, ea / el);
-            let dq = qr - b0;
-            let mut range = (f64::NEG_INFINITY, f64::INFINITY);
-            let mut clip = |coef: f64, off: f64, lo_v: f64, hi_v: f64| {
-                // lo_v ≤ coef·(p − a0) + off ≤ hi_v
-                if coef.abs() < 1e-300 {
-                    if off < lo_v || off > hi_v {
-                        range = (1.0, 0.0);
-                    }
-                } else {
-                    let (x0, x1) = ((lo_v - off) / coef + a0, (hi_v - off) / coef + a0);
-                    range.0 = range.0.max(x0.min(x1));
-                    range.1 = range.1.min(x0.max(x1));
-                }
-            };
-            clip(na, nb * dq, -r, r);
-            clip(ea, eb * dq, 0.0, ee);
-            if range.0 <= range.1 {
-                lo = lo.min(range.0);
-                hi = hi.max(range.1);
-            }
-        }
+        let (lo, hi) = slab::stadium_chord((a0, b0), (a1, b1), r, qr)?;
         (lo <= hi).then_some((lo.max(full.0), hi.min(full.1)))
     }
 

@@ -69,6 +69,14 @@ pub(crate) fn across(
     // The stadium of radius r about the cross-section path from s0 to s1, in (along, across).
     let (a0, b0) = (mv.p[ray] + s0 * mv.m[ray], mv.p[o] + s0 * mv.m[o]);
     let (a1, b1) = (mv.p[ray] + s1 * mv.m[ray], mv.p[o] + s1 * mv.m[o]);
+    stadium_chord((a0, b0), (a1, b1), r, q)
+}
+
+/// The chord of the line `across = q` (parametrised by `along`) inside the 2-D stadium of
+/// radius `r` about the segment from `c0` to `c1` (points as `(along, across)`): the union of
+/// the two end discs and the strip between them. `None` when the line misses it.
+pub(crate) fn stadium_chord(c0: (f64, f64), c1: (f64, f64), r: f64, q: f64) -> Option<(f64, f64)> {
+    let ((a0, b0), (a1, b1)) = (c0, c1);
     let mut lo = f64::INFINITY;
     let mut hi = f64::NEG_INFINITY;
     for (ca, cb) in [(a0, b0), (a1, b1)] {
