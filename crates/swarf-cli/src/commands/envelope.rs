@@ -9,12 +9,11 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde::Serialize;
 use swarf_io::{write_glb, write_stl, GlbOptions};
-use swarf_path::load::read_program;
 use swarf_sweep::{envelope, EnvelopeOptions, SelfIntersection};
 use swarf_tool::Cutter;
 
 use crate::cli::SetupArgs;
-use crate::commands::tools::{load_machine, load_tool_sources, read_options, resolve_tools};
+use crate::commands::tools::{load_setup, resolve_tools, Setup};
 use crate::output::{print_json, write_atomic};
 
 #[derive(Debug, Args)]
@@ -92,17 +91,11 @@ fn parse_moves(text: &str, len: usize) -> Result<Range<usize>> {
 
 pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
     let t0 = Instant::now();
-    let machine = load_machine(&args.setup.machine)?;
-    let program = read_program(
-        &args.program,
-        machine,
-        &read_options(args.setup.initial_units),
-    )?;
-    let (single, table) = load_tool_sources(
-        args.setup.tool.as_deref(),
-        args.setup.tools.as_deref(),
-        args.setup.table_units,
-    )?;
+    let Setup {
+        program,
+        single,
+        table,
+    } = load_setup(&args.setup, &args.program)?;
     let (resolved, _undefined) = resolve_tools(&program, single.as_ref(), table.as_ref())?;
     let cutters: BTreeMap<u32, Cutter> = resolved.into_iter().map(|(n, r)| (n, r.cutter)).collect();
     let range = match &args.moves {

@@ -10,7 +10,6 @@ use std::path::Path;
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
 use swarf_io::{ContourOptions, GlbOptions};
-use swarf_path::load::read_program;
 use swarf_path::{MoveKind, Program};
 use swarf_stock::{
     simulate_observed, Collision, MeshOptions, SimOptions, SimulationReport, StockError, StockSpec,
@@ -19,7 +18,7 @@ use swarf_stock::{
 use swarf_tool::ToolTable;
 
 use crate::cli::SimulateArgs;
-use crate::commands::tools::{load_machine, load_tool_sources, read_options, resolve_tools};
+use crate::commands::tools::{load_setup, resolve_tools, Setup};
 use crate::output::{print_json, write_atomic};
 
 /// The JSON summary. The first nine keys are a contract; the rest may grow.
@@ -130,17 +129,11 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
             args.tolerance
         );
     }
-    let machine = load_machine(&args.setup.machine)?;
-    let program = read_program(
-        &args.program,
-        machine,
-        &read_options(args.setup.initial_units),
-    )?;
-    let (single, table) = load_tool_sources(
-        args.setup.tool.as_deref(),
-        args.setup.tools.as_deref(),
-        args.setup.table_units,
-    )?;
+    let Setup {
+        program,
+        single,
+        table,
+    } = load_setup(&args.setup, &args.program)?;
     let tools = tools_for(&program, single.as_ref(), table.as_ref())?;
     let spec = stock_spec(args.stock.as_deref(), table.as_ref())?;
     let mut stock = spec

@@ -10,7 +10,7 @@ use swarf_path::load::ReadOptions;
 use swarf_path::{Machine, Program, Units};
 use swarf_tool::{Cutter, LengthUnit, ToolTable};
 
-use crate::cli::TableUnits;
+use crate::cli::{SetupArgs, TableUnits};
 
 /// A built-in machine name, or a TOML machine file when the argument names an existing file.
 pub(crate) fn load_machine(arg: &str) -> Result<Machine> {
@@ -31,6 +31,30 @@ pub(crate) fn read_options(initial: TableUnits) -> ReadOptions {
         }),
         ..ReadOptions::default()
     }
+}
+
+/// A program read through the machine of `setup`, with the cutter sources it names.
+pub(crate) struct Setup {
+    pub(crate) program: Program,
+    pub(crate) single: Option<Cutter>,
+    pub(crate) table: Option<ToolTable>,
+}
+
+/// Reads `program` as `setup` says (machine, initial units) and loads `--tool`/`--tools`.
+pub(crate) fn load_setup(setup: &SetupArgs, program: &Path) -> Result<Setup> {
+    let machine = load_machine(&setup.machine)?;
+    let program =
+        swarf_path::load::read_program(program, machine, &read_options(setup.initial_units))?;
+    let (single, table) = load_tool_sources(
+        setup.tool.as_deref(),
+        setup.tools.as_deref(),
+        setup.table_units,
+    )?;
+    Ok(Setup {
+        program,
+        single,
+        table,
+    })
 }
 
 /// `--tool SPEC` and `--tools FILE`, read.

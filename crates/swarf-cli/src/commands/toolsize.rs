@@ -5,7 +5,10 @@ use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
-use swarf_plan::size::{CutterFamily, MapOptions, ShankCheck, Solver};
+use swarf_plan::size::{
+    Axes, Axis4Options, Axis5Options, CutterFamily, MapOptions, RotaryAxis, ShankCheck, Solver,
+};
+use swarf_plan::size::{StandardCutters, StandardOptions, StandardReport, ToolSizeMap};
 
 use crate::output::{print_json, write_atomic};
 
@@ -44,16 +47,20 @@ pub(crate) struct ToolsizeArgs {
     /// Also check the shank (the cutter's own diameter) above this flute length, mm.
     #[arg(long)]
     pub(crate) flute_length: Option<f64>,
-    /// Rotary axis for 4-axis mode (not yet supported).
+    /// 4-axis mode: the rotary axis, `X` or `Y`; each point gets the table angle that
+    /// maximises the size (CSV column `b_deg`).
     #[arg(long)]
     pub(crate) axis4: Option<String>,
-    /// Lead and tilt limits for 5-axis mode (not yet supported).
+    /// 5-axis mode: `LEAD_MAX,TILT_MAX` in degrees; each point gets the lead and tilt that
+    /// maximise the size (CSV columns `lead_deg,tilt_deg`).
     #[arg(long)]
     pub(crate) five_axis: Option<String>,
-    /// Standard cutter diameters to select from (not yet supported).
+    /// Standard cutter diameters to select from, mm (`D1,D2,...`): adds the `standard_d_mm`
+    /// column, `standard.json` and the `standard` key of the summary.
     #[arg(long)]
     pub(crate) standard: Option<String>,
-    /// Output folder (created if missing); `toolsize.csv` is written there.
+    /// Output folder (created if missing): `toolsize.csv`, `maps/patch_<name>.png` (colour map
+    /// of the radius per patch) and `part.glb` (the part coloured likewise) are written there.
     #[arg(long)]
     pub(crate) out: PathBuf,
     /// Print the JSON summary (the default prints one line).
@@ -99,21 +106,53 @@ fn parse_family(spec: &str) -> Result<CutterFamily> {
     Ok(fam)
 }
 
+/// Parses `--axis4` / `--five-axis` (at most one; 4/5-axis use the certified solver).
+fn parse_axes(args: &ToolsizeArgs) -> Result<Axes> {
+    let given = args.axis4.is_some() || args.five_axis.is_some();
+    if given && matches!(args.solver, SolverArg::Pso) {
+        bail!("--axis4 / --five-axis run the certified solver only (drop --solver pso)");
+    }
+    match (&args.axis4, &args.five_axis) {
+        (Some(_), Some(_)) => bail!("--axis4 and --five-axis exclude each other"),
+        (Some(a), None) => {
+            let rotary = match a.trim() {
+                "X" | "x" => RotaryAxis::X,
+                "Y" | "y" => RotaryAxis::Y,
+                other => bail!("--axis4 `{other}`: expected X or Y"),
+            };
+            Ok(Axes::Four(Axis4Options::DEFAULT.with_rotary(rotary)))
+        }
+        (None, Some(spec)) => {
+            let (l, t) = spec
+                .split_once(',')
+                .with_context(|| format!("--five-axis `{spec}`: expected LEAD_MAX,TILT_MAX"))?;
+            let parse = |x: &str| -> Result<f64> {
+                x.trim()
+                    .parse()
+                    .with_context(|| format!("--five-axis `{spec}`: `{x}` is not a number"))
+            };
+            let o = Axis5Options::DEFAULT.with_limits(parse(l)?, parse(t)?);
+            o.validate()
+                .with_context(|| format!("--five-axis `{spec}`"))?;
+            Ok(Axes::Five(o))
+        }
+        (None, None) => Ok(Axes::Three),
+    }
+}
+
 pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
-    for (given, what) in [
-        (args.check.is_some(), "--check (STL check geometry)"),
-        (args.axis4.is_some(), "--axis4 (4-axis orientation)"),
-        (args.five_axis.is_some(), "--five-axis (5-axis orientation)"),
-        (
-            args.standard.is_some(),
-            "--standard (standard cutter selection)",
-        ),
-    ] {
+    for (given, what) in [(args.check.is_some(), "--check (STL check geometry)")] {
         if given {
             bail!("{what} is not yet supported by swarf toolsize (issue 4, later parts)");
         }
     }
     let family = parse_family(&args.cutter)?;
+    let standard = args
+        .standard
+        .as_deref()
+        .map(StandardCutters::parse)
+        .transpose()
+        .context("--standard")?;
     let mut surface = swarf_plan::io::read_file(&args.surface)
         .with_context(|| format!("reading {}", args.surface.display()))?;
     if surface.patches.is_empty() {
@@ -125,7 +164,9 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
     for note in &surface.notes {
         eprintln!("note: {note}");
     }
+    let axes = parse_axes(args)?;
     let opts = MapOptions {
+        axes,
         solver: match args.solver {
             SolverArg::Certified => Solver::Certified,
             SolverArg::Pso => Solver::Pso,
@@ -138,12 +179,16 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
     let mut csv = Vec::new();
-    map.write_csv(&surface, &mut csv)
-        .context("formatting toolsize.csv")?;
+    match &standard {
+        Some(c) => c.write_csv(&map, &surface, &mut csv),
+        None => map.write_csv(&surface, &mut csv),
+    }
+    .context("formatting toolsize.csv")?;
     write_atomic(&args.out.join("toolsize.csv"), &csv)?;
+    let standard_report = write_standard_and_maps(args, &surface, &map, standard.as_ref())?;
     let summary = map.summary();
     if args.json {
-        print_json(&summary)?;
+        print_json(&with_standard(&summary, standard_report.as_ref())?)?;
     } else {
         println!(
             "{} points, {} bounded, radius min {:?} median {:?} max {:?} mm, {:.0} evaluations/point, {:.2} s",
@@ -170,6 +215,43 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
         eprintln!("warning: the shank interferes at {shank_hits} points");
     }
     Ok(())
+}
+
+/// Writes `DIR/maps/patch_<label>.png`, `DIR/part.glb` and, with `--standard`,
+/// `DIR/maps/standard_patch_<label>.png` and `DIR/standard.json` (the [`StandardReport`], also
+/// returned).
+fn write_standard_and_maps(
+    args: &ToolsizeArgs,
+    surface: &swarf_plan::CompoundSurface,
+    map: &ToolSizeMap,
+    standard: Option<&StandardCutters>,
+) -> Result<Option<StandardReport>> {
+    let plot = swarf_plan::plot::PlotOptions::default();
+    swarf_plan::plot::write_patch_maps(surface, map, args.grid, &args.out.join("maps"), &plot)?;
+    let tol = swarf_plan::Tolerances::DEFAULT;
+    swarf_plan::plot::write_part_glb(&args.out.join("part.glb"), surface, map, args.grid, &tol)?;
+    let Some(cutters) = standard else {
+        return Ok(None);
+    };
+    let maps = args.out.join("maps");
+    swarf_plan::plot::write_standard_maps(surface, map, args.grid, cutters, &maps, &plot)?;
+    let opts = StandardOptions::default();
+    let report = StandardReport::from_grid_map(cutters, surface, map, args.grid, &opts)?;
+    let json = serde_json::to_vec_pretty(&report).context("formatting standard.json")?;
+    write_atomic(&args.out.join("standard.json"), &json)?;
+    Ok(Some(report))
+}
+
+/// The JSON summary with the `standard` key added when there is a report.
+fn with_standard(
+    summary: &impl serde::Serialize,
+    report: Option<&StandardReport>,
+) -> Result<serde_json::Value> {
+    let mut v = serde_json::to_value(summary)?;
+    if let (Some(r), Some(obj)) = (report, v.as_object_mut()) {
+        obj.insert("standard".into(), serde_json::to_value(r)?);
+    }
+    Ok(v)
 }
 
 #[cfg(test)]
