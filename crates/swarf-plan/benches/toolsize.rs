@@ -11,8 +11,9 @@ use std::time::Instant;
 use criterion::{BenchmarkId, Criterion};
 use swarf_geom::math::Vec3;
 use swarf_plan::size::{
-    allowable_certified, allowable_map, allowable_pso, CertifiedOptions, Contact, CutterFamily,
-    MapOptions, PreparedSurface, PsoOptions,
+    allowable_certified, allowable_map, allowable_pso, best_lead_tilt, best_rotary_angle,
+    Axis4Options, Axis5Options, CertifiedOptions, Contact, CutterFamily, LeadTiltFrame, MapOptions,
+    PreparedSurface, PsoOptions,
 };
 use swarf_plan::{CcPoint, CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
 
@@ -158,10 +159,54 @@ fn bench(c: &mut Criterion, part: &CompoundSurface) {
     g.finish();
 }
 
+/// 4-axis (about Y, default search) and 5-axis (±15° lead and tilt, default search) time per CC
+/// point: every point is many certified solves (see `Orientation4::solves`).
+fn bench_orientation(c: &mut Criterion, part: &CompoundSurface) {
+    let prep = PreparedSurface::new(part);
+    let pts: Vec<(Contact, LeadTiltFrame)> = part
+        .grid(3)
+        .iter()
+        .filter_map(|cc| {
+            let c = Contact::at(part, cc, &Tolerances::DEFAULT)?;
+            let su = part.local(cc, &Tolerances::DEFAULT).derivs.su;
+            Some((c, LeadTiltFrame::new(c.normal, su)?))
+        })
+        .collect();
+    let mut g = c.benchmark_group("toolsize_orientation_per_point");
+    g.sample_size(10);
+    for (name, f) in [
+        ("ball", CutterFamily::ball()),
+        ("flat", CutterFamily::flat()),
+    ] {
+        g.bench_with_input(BenchmarkId::new("axis4_y", name), &f, |b, f| {
+            let mut k = 0;
+            b.iter(|| {
+                k = (k + 1) % pts.len();
+                black_box(best_rotary_angle(
+                    &prep,
+                    f,
+                    &pts[k].0,
+                    &Axis4Options::DEFAULT,
+                ))
+            });
+        });
+        g.bench_with_input(BenchmarkId::new("axis5_15x15", name), &f, |b, f| {
+            let mut k = 0;
+            b.iter(|| {
+                k = (k + 1) % pts.len();
+                let (c, frame) = &pts[k];
+                black_box(best_lead_tilt(&prep, f, c, frame, &Axis5Options::DEFAULT))
+            });
+        });
+    }
+    g.finish();
+}
+
 fn main() {
     let part = mould();
     report(&part);
     let mut c = Criterion::default().configure_from_args();
     bench(&mut c, &part);
+    bench_orientation(&mut c, &part);
     c.final_summary();
 }

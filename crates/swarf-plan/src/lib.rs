@@ -51,6 +51,7 @@
 pub mod compound;
 pub mod io;
 pub mod mesh;
+pub mod plot;
 pub mod size;
 pub mod surface;
 

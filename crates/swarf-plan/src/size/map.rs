@@ -1,5 +1,9 @@
-//! The 3-axis allowable-size map: every CC point of a grid (or list), in parallel, with the CSV
+//! The allowable-size map: every CC point of a grid (or list), in parallel, with the CSV
 //! of `swarf toolsize` and its JSON summary.
+//!
+//! In 4- and 5-axis mode ([`MapOptions::axes`]) each point also gets the orientation that
+//! maximises the size ([`super::orient4`], [`super::orient5`]; always the certified solver), and
+//! the CSV gets `b_deg` or `lead_deg,tilt_deg` after the 14 columns of [`CSV_HEADER`].
 //!
 //! `radius_mm` is half the nominal diameter of the largest allowable cutter
 //! ([`CutterFamily::nominal_radius`]): `inf` when nothing limits it, `0` when the point cannot
@@ -11,6 +15,8 @@ use std::time::Instant;
 use rayon::prelude::*;
 use swarf_geom::math::Vec3;
 
+use super::orient4::{axis_rotation, best_rotary_angle, in_tool_frame, Axis4Options};
+use super::orient5::{best_lead_tilt, Axis5Options, LeadTiltFrame};
 use super::shank::check_shank;
 use super::{
     allowable_certified, allowable_pso, AllowableSize, CertifiedOptions, Contact, CutterFamily,
@@ -28,6 +34,36 @@ pub enum Solver {
     Pso,
 }
 
+/// The machine's axes: which tool orientations the map may choose. The options inside must be
+/// valid ([`Axis4Options::validate`], [`Axis5Options::validate`]): the map panics otherwise.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub enum Axes {
+    /// 3-axis: the tool axis is `+Z` (the default).
+    #[default]
+    Three,
+    /// 4-axis: the table angle about the rotary axis that maximises the size.
+    Four(Axis4Options),
+    /// 5-axis: the lead and tilt within limits that maximise the size.
+    Five(Axis5Options),
+}
+
+/// The orientation chosen at a point in 4- or 5-axis mode.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ToolAngles {
+    /// The table angle, degrees in `[0, 360)`.
+    Rotary {
+        /// `B`, degrees.
+        b_deg: f64,
+    },
+    /// Lead and tilt, degrees ([`LeadTiltFrame`]).
+    LeadTilt {
+        /// Lead, degrees.
+        lead_deg: f64,
+        /// Tilt, degrees.
+        tilt_deg: f64,
+    },
+}
+
 /// Options of a map run.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct MapOptions {
@@ -41,6 +77,9 @@ pub struct MapOptions {
     pub shank: Option<ShankCheck>,
     /// Tolerances of the differential geometry.
     pub geometry: Tolerances,
+    /// 3-, 4- or 5-axis (4/5: the certified options inside [`Axes`] are used, whatever
+    /// `solver` says).
+    pub axes: Axes,
 }
 
 impl MapOptions {
@@ -51,6 +90,7 @@ impl MapOptions {
         pso: PsoOptions::DEFAULT,
         shank: None,
         geometry: Tolerances::DEFAULT,
+        axes: Axes::Three,
     };
 }
 
@@ -75,6 +115,8 @@ pub struct MapPoint {
     pub radius_mm: Option<f64>,
     /// The shank check, when asked for.
     pub shank: Option<ShankStatus>,
+    /// The tool orientation chosen (4-/5-axis mode), with its axis in the part frame.
+    pub orientation: Option<(ToolAngles, Vec3)>,
 }
 
 /// The map over all points.
@@ -84,6 +126,8 @@ pub struct ToolSizeMap {
     pub family: CutterFamily,
     /// One entry per CC point, in input order.
     pub points: Vec<MapPoint>,
+    /// The axes the map was computed for.
+    pub axes: Axes,
     /// Wall-clock time of the run, s.
     pub elapsed_s: f64,
 }
@@ -128,8 +172,12 @@ pub fn allowable_map(
                     size: None,
                     radius_mm: None,
                     shank: None,
+                    orientation: None,
                 };
             };
+            if opts.axes != Axes::Three {
+                return oriented_point(surface, &prep, family, cc, &c, opts);
+            }
             let size = match opts.solver {
                 Solver::Certified => allowable_certified(&prep, family, &c, &opts.certified),
                 Solver::Pso => allowable_pso(surface, family, &c, &opts.pso),
@@ -144,13 +192,72 @@ pub fn allowable_map(
                 size: Some(size),
                 radius_mm: Some(radius_of(family, &c, &size, &opts.certified.model)),
                 shank,
+                orientation: None,
             }
         })
         .collect();
     ToolSizeMap {
         family: *family,
         points,
+        axes: opts.axes,
         elapsed_s: start.elapsed().as_secs_f64(),
+    }
+}
+
+/// One CC point in 4- or 5-axis mode: the best orientation, then the radius and shank check in
+/// the tool frame of that orientation.
+fn oriented_point(
+    surface: &CompoundSurface,
+    prep: &PreparedSurface,
+    family: &CutterFamily,
+    cc: &CcPoint,
+    c: &Contact,
+    opts: &MapOptions,
+) -> MapPoint {
+    let (size, angles, axis, q, certified) = match opts.axes {
+        Axes::Three => unreachable!("3-axis points are solved in allowable_map"),
+        Axes::Four(o) => {
+            let best = best_rotary_angle(prep, family, c, &o);
+            let q = o.rotary.part_rotation(best.b_deg);
+            let angles = ToolAngles::Rotary { b_deg: best.b_deg };
+            (best.size, angles, best.axis, q, o.certified)
+        }
+        Axes::Five(o) => {
+            let d = surface.local(cc, &opts.geometry).derivs;
+            let frame = [d.su, d.sv, Vec3::X, Vec3::Y]
+                .into_iter()
+                .find_map(|t| LeadTiltFrame::new(c.normal, t))
+                .expect("some tangent is not along the normal");
+            let best = best_lead_tilt(prep, family, c, &frame, &o);
+            let angles = ToolAngles::LeadTilt {
+                lead_deg: best.lead_deg,
+                tilt_deg: best.tilt_deg,
+            };
+            (
+                best.size,
+                angles,
+                best.axis,
+                axis_rotation(best.axis),
+                o.certified,
+            )
+        }
+    };
+    let (rprep, rc) = in_tool_frame(prep, c, q);
+    let in_frame = AllowableSize {
+        limit_point: size.limit_point.map(|p| q * p),
+        ..size
+    };
+    let shank = opts
+        .shank
+        .map(|s| check_shank(&rprep, family, &rc, size.size, &s, &certified.model));
+    MapPoint {
+        cc: *cc,
+        point: c.point,
+        normal: Some(c.normal),
+        size: Some(size),
+        radius_mm: Some(radius_of(family, &rc, &in_frame, &certified.model)),
+        shank,
+        orientation: Some((angles, axis)),
     }
 }
 
@@ -189,7 +296,12 @@ impl ToolSizeMap {
     /// # Errors
     /// When writing fails.
     pub fn write_csv(&self, surface: &CompoundSurface, mut w: impl Write) -> io::Result<()> {
-        writeln!(w, "{CSV_HEADER}")?;
+        let extra = match self.axes {
+            Axes::Three => "",
+            Axes::Four(_) => ",b_deg",
+            Axes::Five(_) => ",lead_deg,tilt_deg",
+        };
+        writeln!(w, "{CSV_HEADER}{extra}")?;
         for p in &self.points {
             let label = surface
                 .patches
@@ -214,9 +326,18 @@ impl ToolSizeMap {
                 Some((q, l)) => (num(q.x), num(q.y), num(q.z), l.as_str().to_string()),
                 None => Default::default(),
             };
+            let angles = match (self.axes, p.orientation) {
+                (Axes::Three, _) => String::new(),
+                (_, Some((ToolAngles::Rotary { b_deg }, _))) => format!(",{}", num(b_deg)),
+                (_, Some((ToolAngles::LeadTilt { lead_deg, tilt_deg }, _))) => {
+                    format!(",{},{}", num(lead_deg), num(tilt_deg))
+                }
+                (Axes::Four(_), None) => ",".to_string(),
+                (Axes::Five(_), None) => ",,".to_string(),
+            };
             writeln!(
                 w,
-                "{label},{:?},{:?},{:?},{:?},{:?},{nx},{ny},{nz},{radius},{lx},{ly},{lz},{lim}",
+                "{label},{:?},{:?},{:?},{:?},{:?},{nx},{ny},{nz},{radius},{lx},{ly},{lz},{lim}{angles}",
                 p.cc.u, p.cc.v, p.point.x, p.point.y, p.point.z
             )?;
         }

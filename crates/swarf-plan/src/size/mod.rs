@@ -43,6 +43,11 @@
 //!
 //! [`map`] runs either over a grid of CC points and writes the CSV of the `swarf toolsize`
 //! command.
+//!
+//! # Other tool axes
+//! [`orient4`] solves for any tool axis by moving the part so that the axis is `+Z` (the same
+//! certified solver, unchanged) and searches the 4-axis table angle that maximises the size;
+//! [`orient5`] searches 5-axis lead and tilt within machine limits.
 
 mod bezier;
 pub mod certified;
@@ -51,17 +56,28 @@ mod imaginary_apt;
 mod imaginary_ball;
 mod imaginary_taper_ball;
 pub mod map;
+pub mod orient4;
+pub mod orient5;
 mod placed;
 pub mod pso;
 pub mod shank;
+pub mod standard;
 
 pub use bezier::PreparedSurface;
 pub use certified::{allowable_certified, CertifiedOptions};
 pub use family::{CutterFamily, Regime};
-pub use map::{allowable_map, MapOptions, MapPoint, MapSummary, Solver, ToolSizeMap};
+pub use map::{
+    allowable_map, Axes, MapOptions, MapPoint, MapSummary, Solver, ToolAngles, ToolSizeMap,
+};
+pub use orient4::{allowable_along, best_rotary_angle, Axis4Options, Orientation4, RotaryAxis};
+pub use orient5::{best_lead_tilt, Axis5Options, LeadTiltFrame, Orientation5};
 pub use placed::PlacedCutter;
 pub use pso::{allowable_pso, PsoOptions};
 pub use shank::{check_shank, ShankCheck, ShankStatus};
+pub use standard::{
+    grid_cell_areas, AreaRule, CutterShare, StandardCutters, StandardError, StandardOptions,
+    StandardReport,
+};
 
 use swarf_geom::math::Vec3;
 

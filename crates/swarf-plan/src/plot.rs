@@ -1,0 +1,819 @@
+//! Pictures of an allowable-size map: a PNG colour map per patch over its parameters `(u, v)`,
+//! and the whole part as a glb whose vertices carry the colour of the allowable radius.
+//!
+//! # Colours
+//! Finite positive radii go through [`ColorMap::Viridis`] on a **log scale** between the
+//! smallest and the largest finite positive radius of the whole map ([`RadiusScale`]; one scale
+//! for every patch and for the glb, so colours compare across them). The bottom is raised to
+//! [`SCALE_FLOOR_MM`] (1e-3 mm) when smaller radii occur: those get the bottom colour and the
+//! bottom label reads `<0.00100`. The other values have
+//! their own colours, outside viridis:
+//!
+//! | value                               | colour                          |
+//! |-------------------------------------|---------------------------------|
+//! | `inf` (nothing limits the cutter)   | [`INF_RGB`], light pink         |
+//! | `0` (unreachable, nothing fits)     | [`UNREACHABLE_RGB`], red        |
+//! | undefined (no normal)               | [`UNDEFINED_RGB`], mid grey     |
+//!
+//! The standard-cutter maps ([`patch_standard_image`], Liu's Fig. 4-2) colour each cell by the
+//! largest standard cutter that fits there instead.
+//!
+//! # The PNG
+//! Each CC point of the `n × n` grid is a square cell of [`PlotOptions::cell_px`] pixels, `u`
+//! to the right and `v` upwards, under a title (the patch label), with a vertical colour bar
+//! labelled at [`PlotOptions::ticks`] log-spaced radii and a legend of the three special
+//! colours. Text uses a built-in 5×7 pixel font (lower-case letters, digits, `.-+_()/:`),
+//! so no system font is needed: the picture is the same on every machine. The image is
+//! written with the `png` crate (8-bit RGB), atomically.
+
+use std::path::{Path, PathBuf};
+
+use swarf_io::{ColorMap, GlbOptions, IoError, TriMesh};
+
+use crate::size::{StandardCutters, ToolSizeMap};
+use crate::{tessellate, CompoundSurface, Tolerances};
+
+/// Colour of `inf` radii (nothing limits the cutter).
+pub const INF_RGB: [u8; 3] = [255, 170, 220];
+/// Colour of radius `0` (the point cannot be machined).
+pub const UNREACHABLE_RGB: [u8; 3] = [220, 20, 20];
+/// Colour of points whose normal is undefined.
+pub const UNDEFINED_RGB: [u8; 3] = [128, 128, 128];
+/// Background of the PNG.
+pub const BACKGROUND_RGB: [u8; 3] = [255, 255, 255];
+/// Colour of text and frames.
+pub const INK_RGB: [u8; 3] = [0, 0, 0];
+
+/// Default floor of the colour scale, mm: smaller positive radii (numerical zeros of a flat
+/// end mill in a concave corner, say) get the bottom colour instead of stretching the scale
+/// over meaningless decades.
+pub const SCALE_FLOOR_MM: f64 = 1e-3;
+
+/// The log colour scale of finite positive radii.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RadiusScale {
+    /// Radius at the bottom of the scale, mm (> 0).
+    pub lo: f64,
+    /// Radius at the top of the scale, mm (> `lo`).
+    pub hi: f64,
+    /// Whether some radii lie below `lo` (clamped to the bottom colour; the bottom label then
+    /// reads `<lo`).
+    pub clamped: bool,
+}
+
+impl RadiusScale {
+    /// [`RadiusScale::with_floor`] at [`SCALE_FLOOR_MM`].
+    pub fn from_radii(radii: impl IntoIterator<Item = Option<f64>>) -> Self {
+        Self::with_floor(radii, SCALE_FLOOR_MM)
+    }
+
+    /// The scale spanning the finite positive radii given, its bottom raised to `floor_mm`
+    /// when smaller radii occur; a single value `r` gives `[r/2, 2r]`, no value at all
+    /// `[1, 10]` mm.
+    pub fn with_floor(radii: impl IntoIterator<Item = Option<f64>>, floor_mm: f64) -> Self {
+        let (lo, hi) = radii
+            .into_iter()
+            .flatten()
+            .filter(|r| r.is_finite() && *r > 0.0)
+            .fold((f64::INFINITY, 0.0_f64), |(lo, hi), r| {
+                (lo.min(r), hi.max(r))
+            });
+        let floor = floor_mm.max(0.0);
+        if lo > hi {
+            return Self {
+                lo: 1.0,
+                hi: 10.0,
+                clamped: false,
+            };
+        }
+        let clamped = lo < floor;
+        let (lo, hi) = (lo.max(floor), hi.max(floor));
+        if lo == hi {
+            // One value (or everything below the floor): a band around it.
+            Self {
+                lo: if clamped { lo } else { 0.5 * lo },
+                hi: 2.0 * hi,
+                clamped,
+            }
+        } else {
+            Self { lo, hi, clamped }
+        }
+    }
+
+    /// Position of `r` on the scale in `[0, 1]` (log-linear, clamped).
+    pub fn t(&self, r: f64) -> f64 {
+        ((r.ln() - self.lo.ln()) / (self.hi.ln() - self.lo.ln())).clamp(0.0, 1.0)
+    }
+
+    /// The radius at position `t` of the scale.
+    pub fn at(&self, t: f64) -> f64 {
+        (self.lo.ln() + t * (self.hi.ln() - self.lo.ln())).exp()
+    }
+
+    /// Colour of an allowable radius (`None`: undefined), 8-bit sRGB as in the PNG.
+    pub fn rgb(&self, radius_mm: Option<f64>) -> [u8; 3] {
+        match radius_mm {
+            None => UNDEFINED_RGB,
+            Some(r) if r.is_infinite() => INF_RGB,
+            Some(r) if r <= 0.0 || r.is_nan() => UNREACHABLE_RGB,
+            Some(r) => to_u8(ColorMap::Viridis.rgba(self.t(r))),
+        }
+    }
+
+    /// Colour of an allowable radius as glTF `COLOR_0` (the same colour as the PNG).
+    pub fn rgba(&self, radius_mm: Option<f64>) -> [f32; 4] {
+        let [r, g, b] = self.rgb(radius_mm).map(|c| f32::from(c) / 255.0);
+        [r, g, b, 1.0]
+    }
+}
+
+fn to_u8(c: [f32; 4]) -> [u8; 3] {
+    [c[0], c[1], c[2]].map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8)
+}
+
+/// Options of the PNG maps.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct PlotOptions {
+    /// Pixels per CC point cell; `0` picks `max(4, 320 / n)`.
+    pub cell_px: usize,
+    /// Labelled ticks on the colour bar (at least 2).
+    pub ticks: usize,
+    /// Text magnification of the 5×7 font.
+    pub text_scale: usize,
+}
+
+impl PlotOptions {
+    /// The defaults: automatic cell size, 5 ticks, text at 2×.
+    pub const DEFAULT: PlotOptions = PlotOptions {
+        cell_px: 0,
+        ticks: 5,
+        text_scale: 2,
+    };
+}
+
+impl Default for PlotOptions {
+    fn default() -> Self {
+        Self::DEFAULT
+    }
+}
+
+/// An 8-bit RGB raster, rows from the top.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct RgbImage {
+    /// Width, px.
+    pub width: usize,
+    /// Height, px.
+    pub height: usize,
+    /// `width · height · 3` bytes, row-major from the top-left corner.
+    pub pixels: Vec<u8>,
+}
+
+impl RgbImage {
+    /// An image filled with `rgb`.
+    pub fn new(width: usize, height: usize, rgb: [u8; 3]) -> Self {
+        Self {
+            width,
+            height,
+            pixels: rgb.repeat(width * height),
+        }
+    }
+
+    /// The pixel at column `x`, row `y` (from the top).
+    pub fn get(&self, x: usize, y: usize) -> [u8; 3] {
+        let i = 3 * (y * self.width + x);
+        [self.pixels[i], self.pixels[i + 1], self.pixels[i + 2]]
+    }
+
+    /// Fills the rectangle `[x, x + w) × [y, y + h)`, clipped to the image.
+    pub fn fill(&mut self, x: usize, y: usize, w: usize, h: usize, rgb: [u8; 3]) {
+        for yy in y..(y + h).min(self.height) {
+            for xx in x..(x + w).min(self.width) {
+                let i = 3 * (yy * self.width + xx);
+                self.pixels[i..i + 3].copy_from_slice(&rgb);
+            }
+        }
+    }
+
+    /// A one-pixel frame around the rectangle `[x, x + w) × [y, y + h)`, outside it.
+    fn frame(&mut self, x: usize, y: usize, w: usize, h: usize, rgb: [u8; 3]) {
+        let (x0, y0) = (x.saturating_sub(1), y.saturating_sub(1));
+        self.fill(x0, y0, w + 2, 1, rgb);
+        self.fill(x0, y + h, w + 2, 1, rgb);
+        self.fill(x0, y0, 1, h + 2, rgb);
+        self.fill(x + w, y0, 1, h + 2, rgb);
+    }
+
+    /// Draws `text` with its top-left corner at `(x, y)` in the built-in font, `scale`× size.
+    pub fn text(&mut self, x: usize, y: usize, text: &str, scale: usize, rgb: [u8; 3]) {
+        for (k, ch) in text.chars().enumerate() {
+            let rows = glyph(ch);
+            let gx = x + k * GLYPH_ADVANCE * scale;
+            for (r, row) in rows.iter().enumerate() {
+                for (c, b) in row.bytes().enumerate() {
+                    if b == b'#' {
+                        self.fill(gx + c * scale, y + r * scale, scale, scale, rgb);
+                    }
+                }
+            }
+        }
+    }
+
+    /// The PNG file of the image in memory.
+    ///
+    /// # Errors
+    /// When the encoder fails (it does not for a consistent image).
+    pub fn png_bytes(&self) -> std::io::Result<Vec<u8>> {
+        let mut out = Vec::new();
+        let mut enc = png::Encoder::new(&mut out, self.width as u32, self.height as u32);
+        enc.set_color(png::ColorType::Rgb);
+        enc.set_depth(png::BitDepth::Eight);
+        let mut w = enc.write_header().map_err(std::io::Error::other)?;
+        w.write_image_data(&self.pixels)
+            .map_err(std::io::Error::other)?;
+        w.finish().map_err(std::io::Error::other)?;
+        Ok(out)
+    }
+
+    /// Writes the image as PNG, atomically.
+    ///
+    /// # Errors
+    /// When writing fails.
+    pub fn write_png(&self, path: &Path) -> Result<(), IoError> {
+        let bytes = self.png_bytes().map_err(|source| IoError::Io {
+            path: path.to_path_buf(),
+            source,
+        })?;
+        swarf_io::write_atomic(path, |w| std::io::Write::write_all(w, &bytes))
+    }
+}
+
+/// Width of a glyph cell including spacing, in font pixels.
+const GLYPH_ADVANCE: usize = 6;
+/// Height of a text line including spacing, in font pixels.
+const LINE_HEIGHT: usize = 9;
+
+/// The 5×7 glyph of `ch` (upper case drawn as lower case; unknown characters as a box).
+fn glyph(ch: char) -> [&'static str; 7] {
+    match ch.to_ascii_lowercase() {
+        '0' => [
+            " ### ", "#   #", "#  ##", "# # #", "##  #", "#   #", " ### ",
+        ],
+        '1' => [
+            "  #  ", " ##  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### ",
+        ],
+        '2' => [
+            " ### ", "#   #", "    #", "   # ", "  #  ", " #   ", "#####",
+        ],
+        '3' => [
+            "#####", "   # ", "  #  ", "   # ", "    #", "#   #", " ### ",
+        ],
+        '4' => [
+            "   # ", "  ## ", " # # ", "#  # ", "#####", "   # ", "   # ",
+        ],
+        '5' => [
+            "#####", "#    ", "#### ", "    #", "    #", "#   #", " ### ",
+        ],
+        '6' => [
+            "  ## ", " #   ", "#    ", "#### ", "#   #", "#   #", " ### ",
+        ],
+        '7' => [
+            "#####", "    #", "   # ", "  #  ", " #   ", " #   ", " #   ",
+        ],
+        '8' => [
+            " ### ", "#   #", "#   #", " ### ", "#   #", "#   #", " ### ",
+        ],
+        '9' => [
+            " ### ", "#   #", "#   #", " ####", "    #", "   # ", " ##  ",
+        ],
+        '.' => [
+            "     ", "     ", "     ", "     ", "     ", " ##  ", " ##  ",
+        ],
+        '-' => [
+            "     ", "     ", "     ", "#####", "     ", "     ", "     ",
+        ],
+        '+' => [
+            "     ", "  #  ", "  #  ", "#####", "  #  ", "  #  ", "     ",
+        ],
+        '_' => [
+            "     ", "     ", "     ", "     ", "     ", "     ", "#####",
+        ],
+        '(' => [
+            "   # ", "  #  ", " #   ", " #   ", " #   ", "  #  ", "   # ",
+        ],
+        ')' => [
+            " #   ", "  #  ", "   # ", "   # ", "   # ", "  #  ", " #   ",
+        ],
+        '/' => [
+            "     ", "    #", "   # ", "  #  ", " #   ", "#    ", "     ",
+        ],
+        '<' => [
+            "   # ", "  #  ", " #   ", "#    ", " #   ", "  #  ", "   # ",
+        ],
+        ':' => [
+            "     ", " ##  ", " ##  ", "     ", " ##  ", " ##  ", "     ",
+        ],
+        ' ' => ["     "; 7],
+        'a' => [
+            "     ", "     ", " ### ", "    #", " ####", "#   #", " ####",
+        ],
+        'b' => [
+            "#    ", "#    ", "# ## ", "##  #", "#   #", "#   #", "#### ",
+        ],
+        'c' => [
+            "     ", "     ", " ### ", "#    ", "#    ", "#   #", " ### ",
+        ],
+        'd' => [
+            "    #", "    #", " ## #", "#  ##", "#   #", "#   #", " ####",
+        ],
+        'e' => [
+            "     ", "     ", " ### ", "#   #", "#####", "#    ", " ### ",
+        ],
+        'f' => [
+            "  ## ", " #  #", " #   ", "###  ", " #   ", " #   ", " #   ",
+        ],
+        'g' => [
+            "     ", "     ", " ####", "#   #", " ####", "    #", " ### ",
+        ],
+        'h' => [
+            "#    ", "#    ", "# ## ", "##  #", "#   #", "#   #", "#   #",
+        ],
+        'i' => [
+            "  #  ", "     ", " ##  ", "  #  ", "  #  ", "  #  ", " ### ",
+        ],
+        'j' => [
+            "   # ", "     ", "  ## ", "   # ", "   # ", "#  # ", " ##  ",
+        ],
+        'k' => [
+            "#    ", "#    ", "#  # ", "# #  ", "##   ", "# #  ", "#  # ",
+        ],
+        'l' => [
+            " ##  ", "  #  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### ",
+        ],
+        'm' => [
+            "     ", "     ", "## # ", "# # #", "# # #", "#   #", "#   #",
+        ],
+        'n' => [
+            "     ", "     ", "# ## ", "##  #", "#   #", "#   #", "#   #",
+        ],
+        'o' => [
+            "     ", "     ", " ### ", "#   #", "#   #", "#   #", " ### ",
+        ],
+        'p' => [
+            "     ", "     ", "#### ", "#   #", "#### ", "#    ", "#    ",
+        ],
+        'q' => [
+            "     ", "     ", " ## #", "#  ##", " ####", "    #", "    #",
+        ],
+        'r' => [
+            "     ", "     ", "# ## ", "##  #", "#    ", "#    ", "#    ",
+        ],
+        's' => [
+            "     ", "     ", " ### ", "#    ", " ### ", "    #", "#### ",
+        ],
+        't' => [
+            " #   ", " #   ", "###  ", " #   ", " #   ", " #  #", "  ## ",
+        ],
+        'u' => [
+            "     ", "     ", "#   #", "#   #", "#   #", "#  ##", " ## #",
+        ],
+        'v' => [
+            "     ", "     ", "#   #", "#   #", "#   #", " # # ", "  #  ",
+        ],
+        'w' => [
+            "     ", "     ", "#   #", "#   #", "# # #", "# # #", " # # ",
+        ],
+        'x' => [
+            "     ", "     ", "#   #", " # # ", "  #  ", " # # ", "#   #",
+        ],
+        'y' => [
+            "     ", "     ", "#   #", "#   #", " ####", "    #", " ### ",
+        ],
+        'z' => [
+            "     ", "     ", "#####", "   # ", "  #  ", " #   ", "#####",
+        ],
+        _ => [
+            "#####", "#   #", "#   #", "#   #", "#   #", "#   #", "#####",
+        ],
+    }
+}
+
+/// `x` with three significant digits, in plain or exponent form.
+fn label(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let e = x.abs().log10().floor();
+    if !(-3.0..5.0).contains(&e) {
+        format!("{x:.2e}")
+    } else {
+        let dec = (2.0 - e).max(0.0) as usize;
+        format!("{x:.dec$}")
+    }
+}
+
+/// Where things are in a patch map picture (pixels, from the top-left corner).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct MapLayout {
+    /// Grid points per direction.
+    pub n: usize,
+    /// Side of a CC point's cell.
+    pub cell: usize,
+    /// Left edge of the plot area.
+    pub x0: usize,
+    /// Top edge of the plot area.
+    pub y0: usize,
+    /// Image width.
+    pub width: usize,
+    /// Image height.
+    pub height: usize,
+}
+
+impl MapLayout {
+    /// The top-left pixel of the cell of grid point `(u_i, v_j)` (`u` to the right, `v` up).
+    pub fn cell_origin(&self, i: usize, j: usize) -> (usize, usize) {
+        (
+            self.x0 + i * self.cell,
+            self.y0 + (self.n - 1 - j) * self.cell,
+        )
+    }
+}
+
+const LEGEND: [([u8; 3], &str); 3] = [
+    (INF_RGB, "inf"),
+    (UNREACHABLE_RGB, "0 unreachable"),
+    (UNDEFINED_RGB, "no normal"),
+];
+
+/// The tick positions on the bar and their labels.
+fn tick_labels(scale: &RadiusScale, opts: &PlotOptions) -> Vec<(f64, String)> {
+    let ticks = opts.ticks.max(2);
+    (0..ticks)
+        .map(|k| {
+            let t = k as f64 / (ticks - 1) as f64;
+            let text = label(scale.at(t));
+            if k == 0 && scale.clamped {
+                (t, format!("<{text}"))
+            } else {
+                (t, text)
+            }
+        })
+        .collect()
+}
+
+/// The layout of [`patch_radius_image`] for an `n × n` grid on `scale`.
+pub fn map_layout(n: usize, scale: &RadiusScale, opts: &PlotOptions) -> MapLayout {
+    let cell = if opts.cell_px == 0 {
+        (320 / n.max(1)).max(4)
+    } else {
+        opts.cell_px
+    };
+    let ts = opts.text_scale.max(1);
+    let (gw, lh) = (GLYPH_ADVANCE * ts, LINE_HEIGHT * ts);
+    let plot = n * cell;
+    let margin = 2 * gw;
+    let (x0, y0) = (margin + gw, margin + lh);
+    let bar_end = x0 + plot + 5 * gw;
+    let label_w = tick_labels(scale, opts)
+        .iter()
+        .map(|(_, s)| s.len())
+        .max()
+        .unwrap_or(0)
+        * gw;
+    let legend_w = 2 * gw + LEGEND.iter().map(|(_, s)| s.len()).max().unwrap_or(0) * gw;
+    MapLayout {
+        n,
+        cell,
+        x0,
+        y0,
+        width: (bar_end + gw + label_w + margin).max(x0 + legend_w + margin),
+        height: y0 + plot + lh + 2 + LEGEND.len() * lh + margin,
+    }
+}
+
+/// The colour map of one patch: `radii[i·n + j]` is the radius at grid point `(u_i, v_j)` (the
+/// order of [`CompoundSurface::grid`]), `None` where undefined; laid out as [`map_layout`].
+///
+/// # Panics
+/// When `radii.len() != n·n`.
+pub fn patch_radius_image(
+    radii: &[Option<f64>],
+    n: usize,
+    scale: &RadiusScale,
+    title: &str,
+    opts: &PlotOptions,
+) -> RgbImage {
+    assert_eq!(radii.len(), n * n, "one radius per grid point");
+    let lay = map_layout(n, scale, opts);
+    let (cell, x0, y0) = (lay.cell, lay.x0, lay.y0);
+    let ts = opts.text_scale.max(1);
+    let (gw, lh) = (GLYPH_ADVANCE * ts, LINE_HEIGHT * ts);
+    let plot = n * cell;
+    let margin = 2 * gw;
+    let bar_x = x0 + plot + 2 * gw;
+    let bar_w = 3 * gw;
+    let tick_labels = tick_labels(scale, opts);
+    let legend = LEGEND;
+    let (width, height) = (lay.width, lay.height);
+    let mut img = RgbImage::new(width, height, BACKGROUND_RGB);
+    img.text(
+        margin,
+        margin / 2,
+        &format!("{title}: radius mm (log scale)"),
+        ts,
+        INK_RGB,
+    );
+    for i in 0..n {
+        for j in 0..n {
+            let rgb = scale.rgb(radii[i * n + j]);
+            // u to the right, v upwards.
+            let (x, y) = lay.cell_origin(i, j);
+            img.fill(x, y, cell, cell, rgb);
+        }
+    }
+    img.frame(x0, y0, plot, plot, INK_RGB);
+    img.text(x0 + plot / 2 - gw / 2, y0 + plot + 3, "u", ts, INK_RGB);
+    img.text(x0 - gw - 2, y0 + plot / 2 - lh / 2, "v", ts, INK_RGB);
+    // The colour bar: low at the bottom.
+    for y in 0..plot {
+        let t = 1.0 - (y as f64 + 0.5) / plot as f64;
+        let c = to_u8(ColorMap::Viridis.rgba(t));
+        img.fill(bar_x, y0 + y, bar_w, 1, c);
+    }
+    img.frame(bar_x, y0, bar_w, plot, INK_RGB);
+    for (t, s) in &tick_labels {
+        let y = y0 + ((1.0 - t) * (plot - 1) as f64).round() as usize;
+        img.fill(bar_x + bar_w, y, gw / 2, 1, INK_RGB);
+        let ty = (y + 1).saturating_sub(7 * ts / 2).min(y0 + plot - 7 * ts);
+        img.text(bar_x + bar_w + gw, ty.max(y0), s, ts, INK_RGB);
+    }
+    let mut ly = y0 + plot + lh + 2;
+    for (rgb, s) in legend {
+        img.fill(x0, ly, gw, 7 * ts, rgb);
+        img.frame(x0, ly, gw, 7 * ts, INK_RGB);
+        img.text(x0 + 2 * gw, ly, s, ts, INK_RGB);
+        ly += lh;
+    }
+    img
+}
+
+/// Colour of standard cutter `k` of `count` (0 = the largest): viridis from yellow (largest)
+/// down to dark blue (smallest), evenly spaced; one cutter is yellow.
+pub fn standard_rgb(k: usize, count: usize) -> [u8; 3] {
+    let t = if count > 1 {
+        1.0 - k as f64 / (count - 1) as f64
+    } else {
+        1.0
+    };
+    to_u8(ColorMap::Viridis.rgba(t))
+}
+
+/// The standard-cutter map of one patch (Liu's Fig. 4-2): each grid cell in the colour of the
+/// largest standard cutter that fits there ([`standard_rgb`]), [`UNREACHABLE_RGB`] where none
+/// fits and [`UNDEFINED_RGB`] where the normal is undefined, with a legend of the diameters.
+/// `radii` as in [`patch_radius_image`]; cells are laid out as [`map_layout`] places them
+/// (the picture's width differs: the legend replaces the colour bar).
+///
+/// # Panics
+/// When `radii.len() != n·n`.
+pub fn patch_standard_image(
+    radii: &[Option<f64>],
+    n: usize,
+    cutters: &StandardCutters,
+    title: &str,
+    opts: &PlotOptions,
+) -> RgbImage {
+    assert_eq!(radii.len(), n * n, "one radius per grid point");
+    let d = cutters.diameters_mm();
+    let colour = |r: Option<f64>| match (r, cutters.largest_fitting(r)) {
+        (None, _) => UNDEFINED_RGB,
+        (Some(_), None) => UNREACHABLE_RGB,
+        (Some(_), Some(dd)) => {
+            let k = d.iter().position(|x| *x == dd).unwrap_or(0);
+            standard_rgb(k, d.len())
+        }
+    };
+    let mut legend: Vec<([u8; 3], String)> = d
+        .iter()
+        .enumerate()
+        .map(|(k, x)| (standard_rgb(k, d.len()), format!("{x} mm")))
+        .collect();
+    legend.push((UNREACHABLE_RGB, "none fits".into()));
+    legend.push((UNDEFINED_RGB, "no normal".into()));
+    let lay = map_layout(n, &RadiusScale::from_radii([]), opts);
+    let ts = opts.text_scale.max(1);
+    let (gw, lh) = (GLYPH_ADVANCE * ts, LINE_HEIGHT * ts);
+    let plot = n * lay.cell;
+    let lx = lay.x0 + plot + 2 * gw;
+    let legend_w = 2 * gw + legend.iter().map(|(_, s)| s.len()).max().unwrap_or(0) * gw;
+    let width = lx + legend_w + 2 * gw;
+    let height = (lay.y0 + plot + lh + 2 * gw).max(lay.y0 + legend.len() * lh + 2 * gw);
+    let mut img = RgbImage::new(width, height, BACKGROUND_RGB);
+    img.text(
+        2 * gw,
+        gw,
+        &format!("{title}: largest standard cutter"),
+        ts,
+        INK_RGB,
+    );
+    for i in 0..n {
+        for j in 0..n {
+            let (x, y) = lay.cell_origin(i, j);
+            img.fill(x, y, lay.cell, lay.cell, colour(radii[i * n + j]));
+        }
+    }
+    img.frame(lay.x0, lay.y0, plot, plot, INK_RGB);
+    img.text(
+        lay.x0 + plot / 2 - gw / 2,
+        lay.y0 + plot + 3,
+        "u",
+        ts,
+        INK_RGB,
+    );
+    img.text(
+        lay.x0 - gw - 2,
+        lay.y0 + plot / 2 - lh / 2,
+        "v",
+        ts,
+        INK_RGB,
+    );
+    for (k, (rgb, s)) in legend.iter().enumerate() {
+        let y = lay.y0 + k * lh;
+        img.fill(lx, y, gw, 7 * ts, *rgb);
+        img.frame(lx, y, gw, 7 * ts, INK_RGB);
+        img.text(lx + 2 * gw, y, s, ts, INK_RGB);
+    }
+    img
+}
+
+/// Writes `dir/standard_<patch_png_name>` ([`patch_standard_image`]) for every patch of a map
+/// over [`CompoundSurface::grid`]`(n)`; returns the paths.
+///
+/// # Errors
+/// When the map is not that grid, or writing fails.
+pub fn write_standard_maps(
+    surface: &CompoundSurface,
+    map: &ToolSizeMap,
+    n: usize,
+    cutters: &StandardCutters,
+    dir: &Path,
+    opts: &PlotOptions,
+) -> Result<Vec<PathBuf>, IoError> {
+    let n = n.max(2);
+    if !is_grid(surface, map, n) {
+        return Err(not_grid(dir));
+    }
+    std::fs::create_dir_all(dir).map_err(|source| IoError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let mut out = Vec::with_capacity(surface.patches.len());
+    for (k, chunk) in map.points.chunks(n * n).enumerate() {
+        let radii: Vec<Option<f64>> = chunk.iter().map(|p| p.radius_mm).collect();
+        let title = format!("patch {}", surface.patches[k].label(k));
+        let img = patch_standard_image(&radii, n, cutters, &title, opts);
+        let path = dir.join(format!("standard_{}", patch_png_name(surface, k)));
+        img.write_png(&path)?;
+        out.push(path);
+    }
+    Ok(out)
+}
+
+/// The file name of a patch's map: `patch_<label>.png`, the label (name, or index when
+/// unnamed) with every character outside `[A-Za-z0-9_-]` replaced by `_`.
+pub fn patch_png_name(surface: &CompoundSurface, patch: usize) -> String {
+    let label = surface.patches[patch].label(patch);
+    let safe: String = label
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect();
+    format!("patch_{safe}.png")
+}
+
+/// Whether `map` is [`CompoundSurface::grid`]`(n)` of `surface`.
+fn is_grid(surface: &CompoundSurface, map: &ToolSizeMap, n: usize) -> bool {
+    let g = surface.grid(n);
+    g.len() == map.points.len() && g.iter().zip(&map.points).all(|(a, p)| *a == p.cc)
+}
+
+fn not_grid(path: &Path) -> IoError {
+    IoError::InvalidMesh(format!(
+        "{}: the map is not the n×n grid of the surface",
+        path.display()
+    ))
+}
+
+/// Writes `dir/patch_<label>.png` for every patch of a map over [`CompoundSurface::grid`]`(n)`
+/// (creating `dir`), all on the scale of the whole map; returns the paths.
+///
+/// # Errors
+/// When the map is not that grid, or writing fails.
+pub fn write_patch_maps(
+    surface: &CompoundSurface,
+    map: &ToolSizeMap,
+    n: usize,
+    dir: &Path,
+    opts: &PlotOptions,
+) -> Result<Vec<PathBuf>, IoError> {
+    let n = n.max(2);
+    if !is_grid(surface, map, n) {
+        return Err(not_grid(dir));
+    }
+    std::fs::create_dir_all(dir).map_err(|source| IoError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    let scale = RadiusScale::from_radii(map.points.iter().map(|p| p.radius_mm));
+    let mut out = Vec::with_capacity(surface.patches.len());
+    for (k, chunk) in map.points.chunks(n * n).enumerate() {
+        let radii: Vec<Option<f64>> = chunk.iter().map(|p| p.radius_mm).collect();
+        let title = format!("patch {}", surface.patches[k].label(k));
+        let img = patch_radius_image(&radii, n, &scale, &title, opts);
+        let path = dir.join(patch_png_name(surface, k));
+        img.write_png(&path)?;
+        out.push(path);
+    }
+    Ok(out)
+}
+
+/// The part tessellated on the map's `n × n` grid ([`tessellate`], whose vertices are exactly
+/// the CC points of [`CompoundSurface::grid`]`(n)`), each vertex coloured by the allowable
+/// radius there on the scale of the whole map.
+///
+/// # Errors
+/// When the map is not that grid.
+pub fn part_mesh(
+    surface: &CompoundSurface,
+    map: &ToolSizeMap,
+    n: usize,
+    tol: &Tolerances,
+) -> Result<TriMesh, IoError> {
+    let n = n.max(2);
+    if !is_grid(surface, map, n) {
+        return Err(not_grid(Path::new("part")));
+    }
+    let scale = RadiusScale::from_radii(map.points.iter().map(|p| p.radius_mm));
+    let m = tessellate(surface, n, tol);
+    let mut mesh = TriMesh::from_parts(m.positions, m.triangles);
+    mesh.colors = Some(map.points.iter().map(|p| scale.rgba(p.radius_mm)).collect());
+    Ok(mesh)
+}
+
+/// Writes [`part_mesh`] as a glb (flat shading), atomically.
+///
+/// # Errors
+/// When the map is not the grid, or writing fails.
+pub fn write_part_glb(
+    path: &Path,
+    surface: &CompoundSurface,
+    map: &ToolSizeMap,
+    n: usize,
+    tol: &Tolerances,
+) -> Result<(), IoError> {
+    let mesh = part_mesh(surface, map, n, tol)?;
+    swarf_io::write_glb(path, &mesh, &GlbOptions::default())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_have_three_significant_digits() {
+        assert_eq!(label(12.345), "12.3");
+        assert_eq!(label(0.5), "0.500");
+        assert_eq!(label(1234.0), "1234");
+        assert_eq!(label(123_456.0), "1.23e5");
+        assert_eq!(label(0.000_123_4), "1.23e-4");
+    }
+
+    #[test]
+    fn scale_is_logarithmic_and_special_values_have_their_colours() {
+        let s = RadiusScale::from_radii([Some(1.0), Some(100.0), Some(f64::INFINITY), None]);
+        assert_eq!((s.lo, s.hi, s.clamped), (1.0, 100.0, false));
+        let c = RadiusScale::from_radii([Some(1e-9), Some(1.0)]);
+        assert_eq!((c.lo, c.hi, c.clamped), (SCALE_FLOOR_MM, 1.0, true));
+        assert_eq!(c.t(1e-9), 0.0);
+        let ticks = tick_labels(&c, &PlotOptions::DEFAULT);
+        assert_eq!(ticks[0].1, "<0.00100");
+        assert_eq!(ticks[4].1, "1.00");
+        assert!((s.t(10.0) - 0.5).abs() < 1e-12);
+        assert!((s.at(0.5) - 10.0).abs() < 1e-12);
+        assert_eq!(s.rgb(Some(f64::INFINITY)), INF_RGB);
+        assert_eq!(s.rgb(Some(0.0)), UNREACHABLE_RGB);
+        assert_eq!(s.rgb(None), UNDEFINED_RGB);
+        let specials = [INF_RGB, UNREACHABLE_RGB, UNDEFINED_RGB, BACKGROUND_RGB];
+        for k in 0..=100 {
+            let c = to_u8(ColorMap::Viridis.rgba(f64::from(k) / 100.0));
+            assert!(
+                !specials.contains(&c),
+                "viridis hits a reserved colour {c:?}"
+            );
+        }
+    }
+}
