@@ -13,7 +13,7 @@ use swarf_sweep::{envelope, EnvelopeOptions, SelfIntersection};
 use swarf_tool::Cutter;
 
 use crate::cli::SetupArgs;
-use crate::commands::tools::{load_setup, resolve_tools, Setup};
+use crate::commands::tools::{load_setup, resolve_all, Setup};
 use crate::output::{print_json, write_atomic};
 
 #[derive(Debug, Args)]
@@ -96,7 +96,7 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
         single,
         table,
     } = load_setup(&args.setup, &args.program)?;
-    let (resolved, _undefined) = resolve_tools(&program, single.as_ref(), table.as_ref())?;
+    let resolved = resolve_all(&program, single.as_ref(), table.as_ref())?;
     let cutters: BTreeMap<u32, Cutter> = resolved.into_iter().map(|(n, r)| (n, r.cutter)).collect();
     let range = match &args.moves {
         Some(m) => parse_moves(m, program.moves.len())?,
@@ -105,12 +105,8 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
     let options = EnvelopeOptions::default()
         .with_resolution(args.resolution)
         .with_tolerance(args.tolerance);
-    let env = envelope(&program, &cutters, range, &options).with_context(|| {
-        format!(
-            "sweeping {} (give --tool SPEC or --tools FILE for tools the program does not define)",
-            args.program.display()
-        )
-    })?;
+    let env = envelope(&program, &cutters, range, &options)
+        .with_context(|| format!("sweeping {}", args.program.display()))?;
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
     let stl = args.out.join("envelope.stl");

@@ -18,7 +18,7 @@ use swarf_stock::{
 use swarf_tool::ToolTable;
 
 use crate::cli::SimulateArgs;
-use crate::commands::tools::{load_setup, resolve_tools, Setup};
+use crate::commands::tools::{load_setup, resolve_all, Setup};
 use crate::output::{print_json, write_atomic};
 
 /// The JSON summary. The first nine keys are a contract; the rest may grow.
@@ -206,13 +206,7 @@ pub(crate) fn tools_for(
     single: Option<&swarf_tool::Cutter>,
     table: Option<&ToolTable>,
 ) -> Result<Tools> {
-    let (resolved, undefined) = resolve_tools(program, single, table)?;
-    if let Some(n) = undefined.first() {
-        bail!(
-            "the program uses tool {n}, which nothing defines: give --tool SPEC for every tool, \
-             or --tools FILE with tool {n}"
-        );
-    }
+    let resolved = resolve_all(program, single, table)?;
     Ok(resolved
         .iter()
         .fold(Tools::default(), |t, (n, r)| t.with(*n, &r.cutter)))

@@ -148,3 +148,20 @@ pub(crate) fn resolve_tools(
     }
     Ok((defs, undefined))
 }
+
+/// [`resolve_tools`], requiring every tool the program uses to be defined: the error says how
+/// to define the first one missing.
+pub(crate) fn resolve_all(
+    program: &Program,
+    single: Option<&Cutter>,
+    table: Option<&ToolTable>,
+) -> Result<BTreeMap<u32, ResolvedTool>> {
+    let (resolved, undefined) = resolve_tools(program, single, table)?;
+    if let Some(n) = undefined.first() {
+        anyhow::bail!(
+            "the program uses tool {n}, which nothing defines: give --tool SPEC for every tool, \
+             or --tools FILE with tool {n}"
+        );
+    }
+    Ok(resolved)
+}

@@ -6,7 +6,8 @@ use std::path::PathBuf;
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use swarf_plan::size::{
-    Axes, Axis4Options, Axis5Options, CutterFamily, MapOptions, RotaryAxis, ShankCheck, Solver,
+    Axes, Axis4Options, Axis5Options, CutterFamily, MapOptions, PreparedSurface, RotaryAxis,
+    ShankCheck, Solver,
 };
 use swarf_plan::size::{StandardCutters, StandardOptions, StandardReport, ToolSizeMap};
 
@@ -27,7 +28,8 @@ pub(crate) struct ToolsizeArgs {
     /// The surface: swarf JSON, STEP or IGES.
     #[arg(long)]
     pub(crate) surface: PathBuf,
-    /// Extra check geometry as a closed STL mesh (not yet supported).
+    /// Extra check geometry (fixtures, neighbouring parts) as a closed STL mesh: its points
+    /// limit the size too, as interference (certified solver only).
     #[arg(long)]
     pub(crate) check: Option<PathBuf>,
     /// The cutter family, its size solved for: `ball`, `ball-side` (with its cylindrical
@@ -141,10 +143,8 @@ fn parse_axes(args: &ToolsizeArgs) -> Result<Axes> {
 }
 
 pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
-    for (given, what) in [(args.check.is_some(), "--check (STL check geometry)")] {
-        if given {
-            bail!("{what} is not yet supported by swarf toolsize (issue 4, later parts)");
-        }
+    if args.check.is_some() && matches!(args.solver, SolverArg::Pso) {
+        bail!("--check needs --solver certified (the PSO solver samples the surface only)");
     }
     let family = parse_family(&args.cutter)?;
     let standard = args
@@ -175,7 +175,13 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
         ..MapOptions::default()
     };
     let ccs = surface.grid(args.grid);
-    let map = swarf_plan::size::allowable_map(&surface, &family, &ccs, &opts);
+    let mut prep = PreparedSurface::new(&surface);
+    if let Some(path) = &args.check {
+        let mesh =
+            swarf_io::read_stl(path).with_context(|| format!("reading {}", path.display()))?;
+        prep = prep.with_check_mesh(&path.display().to_string(), &mesh)?;
+    }
+    let map = swarf_plan::size::allowable_map_prepared(&surface, &prep, &family, &ccs, &opts);
     std::fs::create_dir_all(&args.out)
         .with_context(|| format!("creating {}", args.out.display()))?;
     let mut csv = Vec::new();
