@@ -6,12 +6,23 @@
 //! exactly as rational Bézier pieces (circular arcs of at most 90° as rational quadratics, the
 //! sphere and torus as tensor products of two arcs), so the certified solver sees every patch
 //! kind through the same representation.
+//!
+//! Check geometry (a closed triangle mesh: fixtures, neighbouring parts) enters the same way:
+//! a triangle `ABC` is the degenerate bilinear piece with control net `A A / B C` (one edge
+//! collapsed to the point `A`), `S(u, v) = (1 − u)·A + u·((1 − v)·B + v·C)`, whose control
+//! points' convex hull is the triangle itself. Check triangles are subdivided into triangles of
+//! the same form, so every node stays a triangle whose hull is exact: bisected through an edge
+//! midpoint ([`Piece::bisect_triangle`], the certified search, which picks the edge) or cut at
+//! all three edge midpoints into four ([`Piece::split_triangle`], the shank check). Such pieces
+//! are flagged [`Piece::check`]: a point found on them is never the CC point's own surface, so
+//! it always limits the size as interference.
 
 use std::f64::consts::FRAC_PI_2;
 
 use glam::DVec4;
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
+use swarf_io::TriMesh;
 
 use crate::{CompoundSurface, NurbsSurface, ParametricSurface, Surface};
 
@@ -19,8 +30,10 @@ use crate::{CompoundSurface, NurbsSurface, ParametricSurface, Surface};
 /// w·z, w)`, row-major `i·(q+1) + j`.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Piece {
-    /// Index of the patch it belongs to.
+    /// Index of the patch it belongs to (of the triangle, for check geometry).
     pub patch: usize,
+    /// True for a triangle of the check geometry (not the machined surface).
+    pub check: bool,
     pub p: usize,
     pub q: usize,
     pub net: Vec<DVec4>,
@@ -50,7 +63,39 @@ impl PreparedSurface {
         }
     }
 
-    /// Number of Bézier pieces.
+    /// This surface with a closed triangle mesh added as check geometry (fixtures, neighbouring
+    /// parts): every point of it limits the allowable size like a point of the surface, and
+    /// always as interference. `name` (the file, say) is only used in the error.
+    ///
+    /// # Errors
+    /// [`CheckMeshError::Open`] when the mesh has open or non-manifold edges: a mesh that is
+    /// not closed does not bound a solid, so it is refused rather than half-checked.
+    pub fn with_check_mesh(mut self, name: &str, mesh: &TriMesh) -> Result<Self, CheckMeshError> {
+        let report = mesh.edge_report();
+        if report.boundary_count() > 0 || mesh.is_empty() {
+            return Err(CheckMeshError::Open {
+                name: name.to_string(),
+                open: report.open,
+                non_manifold: report.non_manifold,
+            });
+        }
+        for t in 0..mesh.len() {
+            let [a, b, c] = mesh.corners(t);
+            self.pieces.push(triangle_piece(t, a, b, c));
+        }
+        self.bbox = match (self.bbox, mesh.aabb()) {
+            (Some(s), Some(m)) => Aabb::from_points([s.min, s.max, m.min, m.max]),
+            (s, m) => s.or(m),
+        };
+        Ok(self)
+    }
+
+    /// Number of triangles of check geometry among the pieces.
+    pub fn check_triangle_count(&self) -> usize {
+        self.pieces.iter().filter(|pc| pc.check).count()
+    }
+
+    /// Number of Bézier pieces (check triangles included).
     pub fn piece_count(&self) -> usize {
         self.pieces.len()
     }
@@ -58,6 +103,36 @@ impl PreparedSurface {
     /// A box around the whole surface.
     pub fn bounding_box(&self) -> Option<Aabb> {
         self.bbox
+    }
+}
+
+/// Why check geometry is refused.
+#[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
+pub enum CheckMeshError {
+    /// The mesh is not a closed 2-manifold (or has no triangles).
+    #[error(
+        "check mesh {name} is not closed: {open} open edge(s), {non_manifold} non-manifold edge(s)"
+    )]
+    Open {
+        /// The mesh's name (its file).
+        name: String,
+        /// Edges used by one triangle only.
+        open: usize,
+        /// Edges used by three or more triangles.
+        non_manifold: usize,
+    },
+}
+
+/// The triangle `ABC` as a degenerate bilinear piece (net `A A / B C`, weights 1): its control
+/// points' hull is the triangle (see the module docs).
+fn triangle_piece(index: usize, a: Vec3, b: Vec3, c: Vec3) -> Piece {
+    let h = |p: Vec3| DVec4::new(p.x, p.y, p.z, 1.0);
+    Piece {
+        patch: index,
+        check: true,
+        p: 1,
+        q: 1,
+        net: vec![h(a), h(a), h(b), h(c)],
     }
 }
 
@@ -71,6 +146,55 @@ impl Piece {
     pub(crate) fn euclidean(&self, out: &mut Vec<Vec3>) {
         out.clear();
         out.extend(self.net.iter().map(|h| Vec3::new(h.x, h.y, h.z) / h.w));
+    }
+
+    /// A check triangle's four children, cut at the edge midpoints (see the module docs), each
+    /// again `A A / B C`, and the three new points (the midpoints).
+    ///
+    /// # Panics
+    /// In debug builds, when the piece is not a check triangle.
+    pub(crate) fn split_triangle(&self) -> ([Piece; 4], [Vec3; 3]) {
+        debug_assert!(self.check && self.p == 1 && self.q == 1);
+        let (a, b, c) = (self.point(0, 0), self.point(1, 0), self.point(1, 1));
+        let (ab, bc, ca) = ((a + b) / 2.0, (b + c) / 2.0, (c + a) / 2.0);
+        let t = |x, y, z| triangle_piece(self.patch, x, y, z);
+        (
+            [t(a, ab, ca), t(ab, b, bc), t(ca, bc, c), t(ab, bc, ca)],
+            [ab, bc, ca],
+        )
+    }
+
+    /// The corners `A, B, C` of a check triangle.
+    pub(crate) fn triangle(&self) -> [Vec3; 3] {
+        [self.point(0, 0), self.point(1, 0), self.point(1, 1)]
+    }
+
+    /// A check triangle's two children, cut through the midpoint of edge `edge` (`0`: `AB`,
+    /// `1`: `BC`, `2`: `CA`) and the opposite corner, and that midpoint (the new point).
+    pub(crate) fn bisect_triangle(&self, edge: usize) -> ([Piece; 2], Vec3) {
+        debug_assert!(self.check && edge < 3);
+        let t = self.triangle();
+        let (x, y, z) = (t[edge], t[(edge + 1) % 3], t[(edge + 2) % 3]);
+        let m = (x + y) / 2.0;
+        (
+            [
+                triangle_piece(self.patch, x, m, z),
+                triangle_piece(self.patch, m, y, z),
+            ],
+            m,
+        )
+    }
+
+    /// Four children covering the piece: a check triangle's midpoint triangles, otherwise the
+    /// halves in u each halved in v.
+    pub(crate) fn quarters(&self) -> [Piece; 4] {
+        if self.check {
+            return self.split_triangle().0;
+        }
+        let (a, b) = self.split(0);
+        let (a0, a1) = a.split(1);
+        let (b0, b1) = b.split(1);
+        [a0, a1, b0, b1]
     }
 
     /// The halves in u (`dir = 0`) or v (`dir = 1`) at the parameter midpoint.
@@ -193,7 +317,13 @@ fn nurbs_pieces(patch: usize, s: &NurbsSurface, out: &mut Vec<Piece>) {
             for row in &rows {
                 net.extend_from_slice(&row[bseg]);
             }
-            out.push(Piece { patch, p, q, net });
+            out.push(Piece {
+                patch,
+                check: false,
+                p,
+                q,
+                net,
+            });
         }
     }
 }
@@ -234,6 +364,7 @@ fn push_tensor(
     }
     out.push(Piece {
         patch,
+        check: false,
         p: us.len() - 1,
         q: vs.len() - 1,
         net,
@@ -395,5 +526,33 @@ mod tests {
             let (l, _) = pc.split(1);
             assert!((eval(&l, 0.2, 0.5) - eval(pc, 0.2, 0.25)).length() < 1e-12);
         }
+    }
+
+    #[test]
+    fn a_check_triangle_is_its_own_hull_and_splits_into_four_triangles() {
+        let (a, b, c) = (
+            Vec3::new(1.0, 2.0, 3.0),
+            Vec3::new(4.0, -1.0, 0.5),
+            Vec3::new(-2.0, 0.0, 5.0),
+        );
+        let pc = triangle_piece(7, a, b, c);
+        // S(u, v) = (1 − u)·A + u·((1 − v)·B + v·C): the triangle.
+        for &(u, v) in &[(0.0, 0.3), (1.0, 0.0), (1.0, 1.0), (0.4, 0.7)] {
+            let want = (1.0 - u) * a + u * ((1.0 - v) * b + v * c);
+            assert!((eval(&pc, u, v) - want).length() < 1e-12);
+        }
+        let area = |t: &Piece| {
+            let (x, y, z) = (t.point(0, 0), t.point(1, 0), t.point(1, 1));
+            0.5 * (y - x).cross(z - x).length()
+        };
+        let (kids, mids) = pc.split_triangle();
+        assert_eq!(mids, [(a + b) / 2.0, (b + c) / 2.0, (c + a) / 2.0]);
+        let total: f64 = kids.iter().map(area).sum();
+        assert!((total - area(&pc)).abs() < 1e-12);
+        for k in &kids {
+            assert!(k.check && k.patch == 7 && k.point(0, 0) == k.point(0, 1));
+            assert!((area(k) - area(&pc) / 4.0).abs() < 1e-12);
+        }
+        assert_eq!(pc.quarters(), kids);
     }
 }

@@ -26,11 +26,20 @@
 //! tends to the curvature bound, which is used there instead) can have an imaginary size below
 //! `size − gap`: that `gap` is the certificate. When the node budget runs out first, the result
 //! says so (`certified = false`) and the gap is still a valid bound.
+//!
+//! # Check geometry
+//! Triangles of a check mesh ([`PreparedSurface::with_check_mesh`]) are nodes like any other:
+//! each is a degenerate bilinear piece whose control points' hull is the triangle, so the same
+//! bounds hold for it and for the two triangles it is bisected into through an edge midpoint
+//! (the edge along which the bound varies most), and the certificate covers the check geometry
+//! too (the excluded neighbourhood of `C` included, as for the surface). A limiting point found
+//! on check geometry is reported as [`Limit::Interference`].
 
 use std::cmp::Ordering;
 use std::collections::BinaryHeap;
 
 use glam::DVec4;
+use smallvec::{smallvec, SmallVec};
 use swarf_geom::math::Vec3;
 
 use super::bezier::Piece;
@@ -170,6 +179,8 @@ struct Search<'a> {
     best: f64,
     best_point: Option<Vec3>,
     best_is_local: bool,
+    /// The best point lies on check geometry (always interference).
+    best_is_check: bool,
     evaluations: u64,
     nodes: u64,
     cps: Vec<Vec3>,
@@ -177,7 +188,7 @@ struct Search<'a> {
 }
 
 impl Search<'_> {
-    fn eval(&mut self, p: Vec3) {
+    fn eval(&mut self, p: Vec3, check: bool) {
         if (p - self.c.point).length() < self.opts.neighbourhood {
             return;
         }
@@ -189,12 +200,13 @@ impl Search<'_> {
             self.best = r;
             self.best_point = Some(p);
             self.best_is_local = false;
+            self.best_is_check = check;
         }
     }
 
     fn eval_corners(&mut self, pc: &Piece, which: &[(usize, usize)]) {
         for &(i, j) in which {
-            self.eval(pc.point(i, j));
+            self.eval(pc.point(i, j), pc.check);
         }
     }
 
@@ -281,7 +293,11 @@ impl Search<'_> {
             }
         }
         self.clipped = clipped;
-        let dir = split_direction(pc, &cps, c, best_nu);
+        let dir = if pc.check {
+            triangle_split_edge(pc.triangle(), c, best_nu)
+        } else {
+            split_direction(pc, &cps, c, best_nu)
+        };
         if *self.family == CutterFamily::Sphere {
             lb = lb.max(sphere_bound(pc, c, self.c.normal, slack));
         } else if let (CutterFamily::TaperBall { taper }, Regime::Ball) =
@@ -345,10 +361,10 @@ fn split_direction(pc: &Piece, cps: &[Vec3], c: Vec3, nu: Vec3) -> usize {
     let eu = ext(cps[p * (q + 1)], cps[0]).max(ext(cps[p * (q + 1) + q], cps[q]));
     let ev = ext(cps[q], cps[0]).max(ext(cps[p * (q + 1) + q], cps[p * (q + 1)]));
     // Keep nodes from growing needle-thin: past an aspect ratio of 8, split the long side.
-    if eu > 8.0 * ev {
+    if eu > MAX_ASPECT * ev {
         return 0;
     }
-    if ev > 8.0 * eu {
+    if ev > MAX_ASPECT * eu {
         return 1;
     }
     if var_u >= var_v {
@@ -357,6 +373,36 @@ fn split_direction(pc: &Piece, cps: &[Vec3], c: Vec3, nu: Vec3) -> usize {
         1
     }
 }
+
+/// The edge of a check triangle to bisect (`0`: `AB`, `1`: `BC`, `2`: `CA`): the one along which
+/// `(P − C)·ν` varies most, as [`split_direction`] does for patches (a line of ties is then
+/// resolved by thin triangles along it, not by a crowd of small ones), unless the longest edge is
+/// more than [`MAX_ASPECT`] times longer, which is bisected instead.
+fn triangle_split_edge(t: [Vec3; 3], c: Vec3, nu: Vec3) -> usize {
+    let edge = |k: usize| (t[k], t[(k + 1) % 3]);
+    let var = |k: usize| {
+        let (x, y) = edge(k);
+        ((y - c).dot(nu) - (x - c).dot(nu)).abs()
+    };
+    let len = |k: usize| {
+        let (x, y) = edge(k);
+        (y - x).length()
+    };
+    let longest = (0..3)
+        .max_by(|&a, &b| len(a).total_cmp(&len(b)))
+        .unwrap_or(0);
+    let steepest = (0..3)
+        .max_by(|&a, &b| var(a).total_cmp(&var(b)))
+        .unwrap_or(0);
+    if len(longest) > MAX_ASPECT * len(steepest) {
+        longest
+    } else {
+        steepest
+    }
+}
+
+/// Largest ratio of a node's long side to its short side that the split choice tolerates.
+const MAX_ASPECT: f64 = 8.0;
 
 /// Lower bound of the sphere-only imaginary size over a piece, by Bernstein positivity of
 /// `w²·(|S − C|² − 2L·n·(S − C))` (see the module docs). `slack` (mm): a coefficient of the
@@ -463,6 +509,7 @@ pub fn allowable_certified(
         best: local,
         best_point: local.is_finite().then_some(c.point),
         best_is_local: true,
+        best_is_check: false,
         evaluations: 0,
         nodes: 0,
         cps: Vec::new(),
@@ -511,15 +558,23 @@ pub fn allowable_certified(
             abandoned = abandoned.min(node.lb);
             continue;
         }
-        let (a, b) = node.piece.split(node.dir);
-        let (p, q) = (a.p, a.q);
-        // The two new surface points: the midpoints of the split edges.
-        if node.dir == 0 {
-            s.eval_corners(&a, &[(p, 0), (p, q)]);
+        let children: SmallVec<[Piece; 2]> = if node.piece.check {
+            // A check triangle: bisected through the midpoint of the chosen edge (the new point).
+            let (children, m) = node.piece.bisect_triangle(node.dir);
+            s.eval(m, true);
+            SmallVec::from_iter(children)
         } else {
-            s.eval_corners(&a, &[(0, q), (p, q)]);
-        }
-        for child in [a, b] {
+            let (a, b) = node.piece.split(node.dir);
+            let (p, q) = (a.p, a.q);
+            // The two new surface points: the midpoints of the split edges.
+            if node.dir == 0 {
+                s.eval_corners(&a, &[(p, 0), (p, q)]);
+            } else {
+                s.eval_corners(&a, &[(0, q), (p, q)]);
+            }
+            smallvec![a, b]
+        };
+        for child in children {
             let (lb, dir) = s.lower_bound(&child);
             let keep = if s.best.is_finite() {
                 lb < s.best - opts.tol(s.best)
@@ -570,6 +625,9 @@ pub fn allowable_certified(
     let limit = s.best.is_finite().then(|| {
         if s.best_is_local {
             Limit::Gouge
+        } else if s.best_is_check {
+            // Check geometry is never the CC point's own surface.
+            Limit::Interference
         } else {
             classify(c.point, s.best_point.unwrap_or(c.point), opts.gouge_radius)
         }

@@ -251,12 +251,20 @@ impl CutterFamily {
             ) => imaginary_apt::bottom(self, corner, taper, cone, c, p, tol),
         }
     }
+}
 
+/// Principal curvatures (1/mm) at most this large count as zero under a flat bottom: a plane
+/// moved by a rigid motion gets curvatures of the order of `1e-19` from round-off, and a radius
+/// of curvature of `1e12` mm is far beyond any cutter (and beyond
+/// [`CertifiedOptions::unbounded_above`](super::CertifiedOptions::unbounded_above)).
+pub const FLAT_CURVATURE: f64 = 1e-12;
+
+impl CutterFamily {
     /// The limit of the imaginary size as the test point approaches the CC point along the
     /// surface (the local gouge bound), from the principal curvatures: the largest size whose
     /// normal curvatures at the contact dominate the surface's in every direction. `∞` when the
     /// surface is not concave enough to matter, `0` when no size fits (unreachable, or a
-    /// concave spot under a flat bottom).
+    /// concave spot under a flat bottom, concave meaning `k1 >` [`FLAT_CURVATURE`]).
     pub fn local_bound(&self, c: &Contact, regime: &Regime) -> f64 {
         let Some(k) = c.curvature else {
             return f64::INFINITY;
@@ -266,7 +274,12 @@ impl CutterFamily {
             (CutterFamily::Sphere | CutterFamily::TaperBall { .. }, _) if k.k1 > 0.0 => 1.0 / k.k1,
             (CutterFamily::Sphere | CutterFamily::TaperBall { .. }, _) => f64::INFINITY,
             // Flat bottom: any concavity under it gouges; a conical tip is sharp.
-            (CutterFamily::Apt { cone, .. }, Regime::Bottom) if cone == 0.0 && k.k1 > 0.0 => 0.0,
+            // (Concavity below `FLAT_CURVATURE` is the round-off of a plane: a rotated floor.)
+            (CutterFamily::Apt { cone, .. }, Regime::Bottom)
+                if cone == 0.0 && k.k1 > FLAT_CURVATURE =>
+            {
+                0.0
+            }
             (CutterFamily::Apt { .. }, Regime::Bottom) => f64::INFINITY,
             (CutterFamily::Apt { corner, .. }, Regime::Corner { u, .. }) => {
                 let n = c.normal;

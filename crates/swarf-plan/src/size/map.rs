@@ -160,6 +160,23 @@ pub fn allowable_map(
 ) -> ToolSizeMap {
     let start = Instant::now();
     let prep = PreparedSurface::new(surface);
+    let mut map = allowable_map_prepared(surface, &prep, family, ccs, opts);
+    map.elapsed_s = start.elapsed().as_secs_f64();
+    map
+}
+
+/// [`allowable_map`] against a surface already prepared, e.g. with check geometry added
+/// ([`PreparedSurface::with_check_mesh`]); `prep` must be `surface` prepared. The certified
+/// solver, the orientation searches and the shank check see everything in `prep`; the PSO
+/// solver samples `surface` only (it ignores check geometry).
+pub fn allowable_map_prepared(
+    surface: &CompoundSurface,
+    prep: &PreparedSurface,
+    family: &CutterFamily,
+    ccs: &[CcPoint],
+    opts: &MapOptions,
+) -> ToolSizeMap {
+    let start = Instant::now();
     let points = ccs
         .par_iter()
         .map(|cc| {
@@ -176,15 +193,15 @@ pub fn allowable_map(
                 };
             };
             if opts.axes != Axes::Three {
-                return oriented_point(surface, &prep, family, cc, &c, opts);
+                return oriented_point(surface, prep, family, cc, &c, opts);
             }
             let size = match opts.solver {
-                Solver::Certified => allowable_certified(&prep, family, &c, &opts.certified),
+                Solver::Certified => allowable_certified(prep, family, &c, &opts.certified),
                 Solver::Pso => allowable_pso(surface, family, &c, &opts.pso),
             };
             let shank = opts
                 .shank
-                .map(|s| check_shank(&prep, family, &c, size.size, &s, &opts.certified.model));
+                .map(|s| check_shank(prep, family, &c, size.size, &s, &opts.certified.model));
             MapPoint {
                 cc: *cc,
                 point: c.point,

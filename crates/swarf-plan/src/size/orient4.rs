@@ -53,6 +53,7 @@ use swarf_geom::Aabb;
 
 use super::{allowable_certified, AllowableSize, CertifiedOptions, Contact, CutterFamily, Regime};
 use super::{PreparedSurface, SizeError};
+use crate::Curvature;
 
 /// The allowable size with tool axis `axis` (part frame; normalised here) by the certified
 /// solver in the tool frame (see the module docs). `axis = +Z` is exactly
@@ -93,11 +94,7 @@ pub(crate) fn allowable_in_frame(
         return allowable_certified(prep, family, c, opts);
     }
     let rotated = rotate_prepared(prep, q);
-    let rc = Contact {
-        point: q * c.point,
-        normal: (q * c.normal).normalize(),
-        curvature: c.curvature,
-    };
+    let rc = rotate_contact(c, q);
     let mut a = allowable_certified(&rotated, family, &rc, opts);
     let back = q.inverse();
     a.limit_point = a
@@ -106,17 +103,27 @@ pub(crate) fn allowable_in_frame(
     a
 }
 
+/// The contact moved by the rotation `q`: point, normal and principal directions rotated
+/// (curvatures are invariant under a rigid motion).
+pub(crate) fn rotate_contact(c: &Contact, q: Quat) -> Contact {
+    Contact {
+        point: q * c.point,
+        normal: (q * c.normal).normalize(),
+        curvature: c.curvature.map(|k| Curvature {
+            dir1: q * k.dir1,
+            dir2: q * k.dir2,
+            ..k
+        }),
+    }
+}
+
 /// The part moved by `q`: the prepared surface and the contact (for checks in the tool frame).
 pub(crate) fn in_tool_frame(
     prep: &PreparedSurface,
     c: &Contact,
     q: Quat,
 ) -> (PreparedSurface, Contact) {
-    let rc = Contact {
-        point: q * c.point,
-        normal: (q * c.normal).normalize(),
-        curvature: c.curvature,
-    };
+    let rc = rotate_contact(c, q);
     (rotate_prepared(prep, q), rc)
 }
 
@@ -132,11 +139,7 @@ pub(crate) fn quick_upper_bound(
     q: Quat,
     opts: &CertifiedOptions,
 ) -> (f64, u64) {
-    let rc = Contact {
-        point: q * c.point,
-        normal: (q * c.normal).normalize(),
-        curvature: c.curvature,
-    };
+    let rc = rotate_contact(c, q);
     let regime = family.regime(&rc, &opts.model);
     if regime == Regime::Unreachable {
         return (0.0, 0);

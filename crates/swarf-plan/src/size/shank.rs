@@ -113,10 +113,7 @@ pub fn check_shank(
             unresolved = true;
             break;
         }
-        let (a, b) = pc.split(0);
-        let (a0, a1) = a.split(1);
-        let (b0, b1) = b.split(1);
-        stack.extend([a0, a1, b0, b1]);
+        stack.extend(pc.quarters());
     }
     if unresolved {
         ShankStatus::Unresolved
