@@ -14,7 +14,7 @@
 
 mod common;
 
-use common::{boundary_distance, Lcg};
+use common::{boundary_distance, every_cutter_kind, general_apt, Lcg};
 use swarf_geom::math::Vec3;
 use swarf_geom::{Frame, Ray};
 use swarf_path::{Axes, AxisSource, FeedMode, Machine, Move, MoveKind, Pose, Program};
@@ -239,26 +239,8 @@ fn check(p: &Program, cutter: &Cutter, tol: f64, samples: usize) -> Figures {
     }
 }
 
-/// A general APT cutter: bottom cone α = 10°, torus corner, back-tapered side β = −5°.
-fn general_apt() -> Cutter {
-    let (d, r, a, b) = (8.0f64, 1.5f64, 10f64.to_radians(), -5f64.to_radians());
-    let e = d / 2.0 - r * b.cos();
-    let f = (r + e * a.sin()) / a.cos();
-    Cutter::apt(d, r, e, f, 10.0, -5.0, 14.0).unwrap()
-}
-
 fn cutters(rng: &mut Lcg) -> Vec<Cutter> {
-    let d = rng.range(3.0, 8.0);
-    vec![
-        Cutter::flat(d).unwrap(),
-        Cutter::ball(d).unwrap(),
-        Cutter::bull(d, rng.range(0.1, 0.45) * d).unwrap(),
-        Cutter::taper_flat(d, rng.range(1.0, 15.0)).unwrap(),
-        Cutter::taper_ball(d, rng.range(1.0, 15.0)).unwrap(),
-        Cutter::chamfer(d, rng.range(60.0, 120.0)).unwrap(),
-        Cutter::drill(d, rng.range(100.0, 140.0)).unwrap(),
-        general_apt(),
-    ]
+    every_cutter_kind(rng, 3.0, 8.0, general_apt(8.0, 1.5, 14.0))
 }
 
 fn program(machine: Machine, source: AxisSource, mv: Move) -> Program {

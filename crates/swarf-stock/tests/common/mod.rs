@@ -5,6 +5,7 @@ use swarf_geom::math::{Vec2, Vec3};
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::{Axes, FeedMode, Machine, Move, MoveKind, Pose, Program};
 use swarf_stock::Element;
+use swarf_tool::Cutter;
 
 /// Reads G-code text on a 3-axis machine.
 pub fn gcode(text: &str) -> Program {
@@ -126,4 +127,28 @@ pub fn boundary_distance(els: &[Element], rho: f64, z: f64) -> f64 {
         best = best.min(d);
     }
     best
+}
+
+/// A general APT cutter of diameter `d`, corner `r` and height `h`: bottom cone α = 10°, torus
+/// corner, back-tapered side β = −5° (e and f as the APT relations imply).
+pub fn general_apt(d: f64, r: f64, h: f64) -> Cutter {
+    let (a, b) = (10f64.to_radians(), -5f64.to_radians());
+    let e = d / 2.0 - r * b.cos();
+    let f = (r + e * a.sin()) / a.cos();
+    Cutter::apt(d, r, e, f, 10.0, -5.0, h).unwrap()
+}
+
+/// One cutter of every kind, diameter drawn in `[d_lo, d_hi)`, then `general`.
+pub fn every_cutter_kind(rng: &mut Lcg, d_lo: f64, d_hi: f64, general: Cutter) -> Vec<Cutter> {
+    let d = rng.range(d_lo, d_hi);
+    vec![
+        Cutter::flat(d).unwrap(),
+        Cutter::ball(d).unwrap(),
+        Cutter::bull(d, rng.range(0.1, 0.45) * d).unwrap(),
+        Cutter::taper_flat(d, rng.range(1.0, 15.0)).unwrap(),
+        Cutter::taper_ball(d, rng.range(1.0, 15.0)).unwrap(),
+        Cutter::chamfer(d, rng.range(60.0, 120.0)).unwrap(),
+        Cutter::drill(d, rng.range(100.0, 140.0)).unwrap(),
+        general,
+    ]
 }
