@@ -23,8 +23,9 @@
 //! * **Tolerances** are named parameters: [`Tolerances`] (with documented defaults).
 //!
 //! [`size`] answers the planner's first question on top of this: the largest gouge- and
-//! interference-free cutter of a family at every CC point (3-axis), certified or by the
-//! thesis's particle swarm.
+//! interference-free cutter of a family at every CC point (3-, 4- and 5-axis), certified or by
+//! the thesis's particle swarm. [`gouge`] answers the converse for a given cutter and program:
+//! where, along every move, the cutter gouges the surface or the tool interferes, and how deep.
 //!
 //! Evaluation is allocation-free for degrees up to 7 and meant for hot loops:
 //! [`ParametricSurface::derivs`] gives the point with first and second partials;
@@ -49,6 +50,7 @@
 //! ```
 
 pub mod compound;
+pub mod gouge;
 pub mod io;
 pub mod mesh;
 pub mod plot;

@@ -87,5 +87,5 @@ pub use five_axis::{MotionBound, Reach, SubMove};
 pub use mesh::MeshOptions;
 pub use simulate::{simulate, simulate_observed, Collision, SimOptions, SimulationReport, Tools};
 pub use spec::StockSpec;
-pub use sweep::{ConvexProfile, Element, LineBatch, SweepShape, SweptConvex};
+pub use sweep::{ConvexProfile, Element, LineBatch, SignedDistance, SweepShape, SweptConvex};
 pub use tridexel::{CutStats, DexelFamily, Grid, LinearMove, StockStats, TriDexel, MAX_RAYS, TILE};

@@ -49,7 +49,7 @@
 //! certified solver, unchanged) and searches the 4-axis table angle that maximises the size;
 //! [`orient5`] searches 5-axis lead and tilt within machine limits.
 
-mod bezier;
+pub(crate) mod bezier;
 pub mod certified;
 mod family;
 mod imaginary_apt;

@@ -47,6 +47,7 @@
 
 pub(crate) mod capsule;
 pub(crate) mod circle;
+pub(crate) mod distance;
 pub(crate) mod fast;
 pub(crate) mod line;
 pub(crate) mod profile;
@@ -54,6 +55,7 @@ pub(crate) mod slab;
 pub(crate) mod sphere;
 pub(crate) mod torus;
 
+pub use distance::SignedDistance;
 pub use profile::{ConvexProfile, Element, SweepShape};
 
 use crate::dexel::{overlaps, Interval};
