@@ -25,10 +25,13 @@ pub(crate) enum Command {
     /// Simulate a program on a tri-dexel stock: removed volume, collisions, the machined part.
     Simulate(SimulateArgs),
     /// The largest gouge- and interference-free cutter at every CC point of a compound surface
-    /// (3-axis).
+    /// (3-, 4- and 5-axis).
     Toolsize(crate::commands::toolsize::ToolsizeArgs),
     /// Write the swept envelope of a program's feed moves (whole tool) as STL and glb.
     Envelope(crate::commands::envelope::EnvelopeArgs),
+    /// Check a program against the part surface: every point and every stretch of motion where
+    /// the cutter gouges or the tool interferes, and how deep (certified).
+    Gouge(crate::commands::gouge::GougeArgs),
     /// Run the built-in demo job.
     Demo(DemoArgs),
 }

@@ -1,6 +1,8 @@
 //! `swarf demo`: the built-in job — a 100 × 80 × 20 mm block, a roughing and a 3-D finishing
 //! program written for it, and their tool library, all embedded in the binary — read, simulated
-//! on a tri-dexel stock, and written out as a mesh and a summary.
+//! on a tri-dexel stock, and written out as a mesh and a summary; then the program is checked
+//! against the design surface of its finishing operation (`swarf gouge`), which shows where
+//! the naive finishing raster (ball tip put on the surface) gouges the slopes.
 
 use std::path::Path;
 
@@ -10,11 +12,17 @@ use swarf_path::canonical::CanonicalPrinter;
 use swarf_path::load::{read_program_str, stream_program, ReadOptions};
 use swarf_path::Machine;
 use swarf_stock::{simulate, MeshOptions, SimOptions, StockSpec};
+use swarf_geom::math::Vec3;
+use swarf_plan::gouge::{check_program, GougeOptions, GougeSummary, GougeSurface, GougeTools};
+use swarf_plan::size::PreparedSurface;
+use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface};
 use swarf_tool::table::parse_toml_library;
+use swarf_tool::ToolTable;
 
 use crate::cli::DemoArgs;
 use crate::commands::path::PathReport;
 use crate::commands::simulate::{tools_for, write_outputs, SimulateSummary};
+use crate::commands::tools::resolve_all;
 use crate::output::{print_json, write_atomic};
 
 /// The demo program (LinuxCNC G-code with parameters, loops, conditionals and arcs).
@@ -29,7 +37,58 @@ struct DemoReport<'a> {
     stock: &'static str,
     program: &'a PathReport,
     simulation: &'a SimulateSummary,
+    gouge: &'a GougeSummary,
     out_dir: String,
+}
+
+/// The design surface of Op 2, `z = −6 + 1.5·sin(9x°)·cos(9y°)` over the finished area
+/// `[20, 80] × [20, 60]` mm, as one bicubic NURBS: the Bézier form of the C¹ bicubic Hermite
+/// interpolant of the formula on a 2 mm grid (knots of multiplicity 3; the control point
+/// `h/3` from a node carries the first derivatives, the one `h/3` from two nodes' lines the
+/// twist). Within 1e-4 mm of the formula (tested).
+fn wavy_floor() -> CompoundSurface {
+    let k = 9f64.to_radians();
+    let f = |x: f64, y: f64| -6.0 + 1.5 * (k * x).sin() * (k * y).cos();
+    let fx = |x: f64, y: f64| 1.5 * k * (k * x).cos() * (k * y).cos();
+    let fy = |x: f64, y: f64| -1.5 * k * (k * x).sin() * (k * y).sin();
+    let fxy = |x: f64, y: f64| -1.5 * k * k * (k * x).cos() * (k * y).sin();
+    let h = 2.0;
+    let (nx, ny) = (30, 20);
+    // Index 3i + a along x: node i, offset a·h/3 (a = 0, 1) or node i + 1 at −h/3 (a = 2).
+    let node = |idx: usize, n: usize| -> (usize, f64) {
+        let (i, a) = (idx / 3, idx % 3);
+        match a {
+            0 => (i.min(n), 0.0),
+            1 => (i, h / 3.0),
+            _ => (i + 1, -h / 3.0),
+        }
+    };
+    let knots = |n: usize| -> Vec<f64> {
+        let mut v = vec![0.0; 4];
+        for i in 1..n {
+            v.extend([i as f64; 3]);
+        }
+        v.extend([n as f64; 4]);
+        v
+    };
+    let pts: Vec<Vec<Vec3>> = (0..=3 * nx)
+        .map(|i| {
+            let (ix, dx) = node(i, nx);
+            (0..=3 * ny)
+                .map(|j| {
+                    let (iy, dy) = node(j, ny);
+                    let (x, y) = (20.0 + h * ix as f64, 20.0 + h * iy as f64);
+                    let z = f(x, y) + dx * fx(x, y) + dy * fy(x, y) + dx * dy * fxy(x, y);
+                    Vec3::new(x + dx, y + dy, z)
+                })
+                .collect()
+        })
+        .collect();
+    let s = NurbsSurface::new(3, 3, knots(nx), knots(ny), &pts, None)
+        .expect("the demo floor is a valid NURBS");
+    let mut patch = Patch::new(Surface::Nurbs(s));
+    patch.name = Some("wavy_floor".into());
+    CompoundSurface::new(vec![patch])
 }
 
 pub(crate) fn run(args: &DemoArgs) -> Result<()> {
@@ -51,12 +110,38 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     let dir = &args.out;
     write_outputs(dir, &program, &stock, &report, &summary)?;
     write_sources(dir, &options)?;
+
+    let t0 = std::time::Instant::now();
+    let floor = wavy_floor();
+    let json = swarf_plan::io::json::to_string(&floor).context("encoding the floor surface")?;
+    write_atomic(&dir.join("floor.json"), json.as_bytes())?;
+    let gouge_tools = tools_for_gouge(&program, &table)?;
+    let surface = GougeSurface::new(&PreparedSurface::new(&floor));
+    let opts = GougeOptions::DEFAULT;
+    let gouge = check_program(&surface, &program, &gouge_tools, &opts)?;
+    let gouge_summary = gouge.summary(&opts, program.moves.len(), t0.elapsed().as_secs_f64());
+    crate::commands::gouge::write_outputs(
+        &dir.join("gouge"),
+        &floor,
+        &program,
+        &gouge,
+        &gouge_summary,
+    )?;
     print_json(&DemoReport {
         stock: STOCK,
         program: &path_report,
         simulation: &summary,
+        gouge: &gouge_summary,
         out_dir: dir.display().to_string(),
     })
+}
+
+/// The cutters of the demo's tools for the program check.
+fn tools_for_gouge(program: &swarf_path::Program, table: &ToolTable) -> Result<GougeTools> {
+    let resolved = resolve_all(program, None, Some(table))?;
+    Ok(resolved
+        .iter()
+        .fold(GougeTools::default(), |t, (n, r)| t.with(*n, &r.cutter)))
 }
 
 /// The program, its tool library and its LinuxCNC canonical motion, beside the results.
@@ -67,4 +152,30 @@ fn write_sources(dir: &Path, options: &ReadOptions) -> Result<()> {
     stream_program(PROGRAM, "demo/demo.ngc", options, &mut printer)?;
     let canonical = printer.finish().context("printing the canonical motion")?;
     write_atomic(&dir.join("canonical.txt"), &canonical)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarf_plan::ParametricSurface;
+
+    #[test]
+    fn the_demo_floor_follows_its_formula_within_1e_4_mm() {
+        let floor = wavy_floor();
+        let Surface::Nurbs(s) = &floor.patches[0].surface else {
+            panic!("not a NURBS");
+        };
+        let k = 9f64.to_radians();
+        let mut worst: f64 = 0.0;
+        for i in 0..=240 {
+            for j in 0..=160 {
+                let (u, v) = (30.0 * i as f64 / 240.0, 20.0 * j as f64 / 160.0);
+                let p = s.point(u, v);
+                let z = -6.0 + 1.5 * (k * p.x).sin() * (k * p.y).cos();
+                worst = worst.max((p.z - z).abs());
+            }
+        }
+        assert!(worst < 1e-4, "{worst}");
+        assert!(worst > 0.0);
+    }
 }

@@ -2,6 +2,7 @@
 
 pub(crate) mod demo;
 pub(crate) mod envelope;
+pub(crate) mod gouge;
 pub(crate) mod path;
 pub(crate) mod simulate;
 pub(crate) mod tool;

@@ -51,9 +51,11 @@
 //! the sub-moves down to [`GougeOptions::resolution`] of tool travel.
 
 mod program;
+mod report;
 pub(crate) mod search;
 
 pub use program::{check_program, check_program_observed, GougeTools};
+pub use report::{surface_label, GougeSummary};
 pub use search::GougeSurface;
 
 use serde::Serialize;

@@ -1,0 +1,169 @@
+//! `swarf gouge`: where a program's cutter gouges the part surface or the tool interferes with
+//! the part or the check geometry, and how deep (`DIR/violations.csv`, `DIR/points.csv`,
+//! `DIR/summary.json`).
+
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use swarf_path::Program;
+use swarf_plan::gouge::{
+    check_program_observed, GougeOptions, GougeReport, GougeSummary, GougeSurface, GougeTools,
+};
+use swarf_plan::CompoundSurface;
+use swarf_plan::size::PreparedSurface;
+
+use crate::cli::SetupArgs;
+use crate::commands::tools::{load_setup, resolve_all, Setup};
+use crate::output::{print_json, write_atomic};
+
+/// `swarf gouge`.
+#[derive(Debug, Args)]
+pub(crate) struct GougeArgs {
+    /// The part surface: swarf JSON, STEP or IGES (normals towards the cutter; see --flip).
+    #[arg(long)]
+    pub(crate) surface: PathBuf,
+    /// The program: G-code or APT CL.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) program: PathBuf,
+    /// Check geometry (fixtures, clamps, neighbouring parts) as a closed STL mesh: any part of
+    /// the tool reaching into it is interference.
+    #[arg(long)]
+    pub(crate) check: Option<PathBuf>,
+    /// Cutters, tool library, machine and units.
+    #[command(flatten)]
+    pub(crate) setup: SetupArgs,
+    /// Reverse the side the cutter comes from on every patch.
+    #[arg(long)]
+    pub(crate) flip: bool,
+    /// Depths at or below this are touching, not gouging, mm.
+    #[arg(long, value_name = "MM", default_value_t = GougeOptions::DEFAULT.tolerance)]
+    pub(crate) tolerance: f64,
+    /// Where violations start and end along a move is located to this much tool travel, mm.
+    #[arg(long, value_name = "MM", default_value_t = GougeOptions::DEFAULT.resolution)]
+    pub(crate) resolution: f64,
+    /// Output folder (created if missing).
+    #[arg(long)]
+    pub(crate) out: PathBuf,
+    /// Print the JSON summary (the default prints a short report).
+    #[arg(long)]
+    pub(crate) json: bool,
+}
+
+pub(crate) fn run(args: &GougeArgs) -> Result<()> {
+    let t0 = Instant::now();
+    let mut surface = swarf_plan::io::read_file(&args.surface)
+        .with_context(|| format!("reading {}", args.surface.display()))?;
+    if surface.patches.is_empty() {
+        bail!("{}: no surface patches", args.surface.display());
+    }
+    if args.flip {
+        surface.flip_all();
+    }
+    for note in &surface.notes {
+        eprintln!("note: {note}");
+    }
+    let mut prep = PreparedSurface::new(&surface);
+    if let Some(path) = &args.check {
+        let mesh =
+            swarf_io::read_stl(path).with_context(|| format!("reading {}", path.display()))?;
+        prep = prep.with_check_mesh(&path.display().to_string(), &mesh)?;
+    }
+    let Setup {
+        program,
+        single,
+        table,
+    } = load_setup(&args.setup, &args.program)?;
+    let resolved = resolve_all(&program, single.as_ref(), table.as_ref())?;
+    let tools = resolved
+        .iter()
+        .fold(GougeTools::default(), |t, (n, r)| t.with(*n, &r.cutter));
+    let opts = GougeOptions {
+        resolution: args.resolution,
+        ..GougeOptions::DEFAULT.with_tolerance(args.tolerance)
+    };
+    let gs = GougeSurface::new(&prep);
+    let bar = ProgressBar::with_draw_target(
+        Some(program.moves.len() as u64),
+        ProgressDrawTarget::stderr_with_hz(10),
+    );
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} moves  {elapsed} (eta {eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    let report = check_program_observed(&gs, &program, &tools, &opts, &|done, _| {
+        bar.set_position(done as u64);
+    })
+    .with_context(|| format!("checking {}", args.program.display()));
+    bar.finish_and_clear();
+    let report = report?;
+    let summary = report.summary(&opts, program.moves.len(), t0.elapsed().as_secs_f64());
+    write_outputs(&args.out, &surface, &program, &report, &summary)?;
+    if args.json {
+        return print_json(&summary);
+    }
+    println!(
+        "{} points, {} moves ({} sub-moves): {} gouging moves (deepest {:.4} mm), {} interfering \
+         moves (deepest {:.4} mm), tolerance {} mm, {:.2} s{}",
+        summary.points,
+        summary.moves,
+        summary.sub_moves,
+        summary.gouging_moves,
+        summary.max_gouge_mm,
+        summary.interfering_moves,
+        summary.max_interference_mm,
+        summary.tolerance_mm,
+        summary.elapsed_s,
+        if summary.certified {
+            ""
+        } else {
+            " (some searches ran out of budget: see unresolved_searches)"
+        }
+    );
+    for v in report.violations.iter().take(20) {
+        println!(
+            "  line {:>6}: {:<12} {:<7} {:.4} mm at s = {:.3} ({:.3}..{:.3}){}",
+            v.line,
+            v.kind.as_str(),
+            v.part.as_str(),
+            v.depth,
+            v.s_deepest,
+            v.s_start,
+            v.s_end,
+            if v.rapid { " rapid" } else { "" }
+        );
+    }
+    if report.violations.len() > 20 {
+        println!(
+            "  … {} more in {}",
+            report.violations.len() - 20,
+            args.out.join("violations.csv").display()
+        );
+    }
+    Ok(())
+}
+
+/// Writes `violations.csv`, `points.csv` and `summary.json` into `dir` (created if missing).
+pub(crate) fn write_outputs(
+    dir: &Path,
+    surface: &CompoundSurface,
+    program: &Program,
+    report: &GougeReport,
+    summary: &GougeSummary,
+) -> Result<()> {
+    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
+    let mut csv = Vec::new();
+    report
+        .write_violations_csv(surface, &program.files, &mut csv)
+        .context("formatting violations.csv")?;
+    write_atomic(&dir.join("violations.csv"), &csv)?;
+    csv.clear();
+    report
+        .write_points_csv(surface, &program.files, &mut csv)
+        .context("formatting points.csv")?;
+    write_atomic(&dir.join("points.csv"), &csv)?;
+    let json = serde_json::to_vec_pretty(summary).context("encoding the summary")?;
+    write_atomic(&dir.join("summary.json"), &json)
+}
