@@ -26,43 +26,6 @@ const WALLS: [[[f64; 3]; 2]; 4] = [
     [[-9.0, -15.0, 0.0], [9.0, -10.0, 8.0]],
 ];
 
-/// Closed boxes `[lo, hi]` as ASCII STL, counter-clockwise seen from outside; `drop` triangles
-/// left out at the end (an open mesh when > 0).
-fn boxes_stl(boxes: &[[[f64; 3]; 2]], drop: usize) -> String {
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    let mut tris: Vec<[[f64; 3]; 3]> = Vec::new();
-    for [lo, hi] in boxes {
-        let v = |k: usize| {
-            [
-                if k & 1 == 0 { lo[0] } else { hi[0] },
-                if k & 2 == 0 { lo[1] } else { hi[1] },
-                if k & 4 == 0 { lo[2] } else { hi[2] },
-            ]
-        };
-        for q in &quads {
-            tris.push([v(q[0]), v(q[1]), v(q[2])]);
-            tris.push([v(q[0]), v(q[2]), v(q[3])]);
-        }
-    }
-    let mut s = String::from("solid boxes\n");
-    for t in &tris[..tris.len() - drop] {
-        s.push_str("  facet normal 0 0 0\n    outer loop\n");
-        for p in t {
-            s.push_str(&format!("      vertex {} {} {}\n", p[0], p[1], p[2]));
-        }
-        s.push_str("    endloop\n  endfacet\n");
-    }
-    s.push_str("endsolid boxes\n");
-    s
-}
-
 /// A fresh folder with `floor.json` and `box.stl` (`boxes`, `drop` triangles missing).
 fn scene(tag: &str, boxes: &[[[f64; 3]; 2]], drop: usize) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("swarf-check-{tag}-{}", std::process::id()));

@@ -31,3 +31,40 @@ pub(crate) fn json(o: &Output) -> serde_json::Value {
     serde_json::from_slice(&o.stdout)
         .unwrap_or_else(|e| panic!("stdout is not JSON ({e}); stderr: {}", stderr(o)))
 }
+
+/// Closed boxes `[lo, hi]` as ASCII STL, counter-clockwise seen from outside; `drop` triangles
+/// left out at the end (an open mesh when > 0).
+pub(crate) fn boxes_stl(boxes: &[[[f64; 3]; 2]], drop: usize) -> String {
+    let quads = [
+        [0, 2, 3, 1],
+        [4, 5, 7, 6],
+        [0, 1, 5, 4],
+        [2, 6, 7, 3],
+        [0, 4, 6, 2],
+        [1, 3, 7, 5],
+    ];
+    let mut tris: Vec<[[f64; 3]; 3]> = Vec::new();
+    for [lo, hi] in boxes {
+        let v = |k: usize| {
+            [
+                if k & 1 == 0 { lo[0] } else { hi[0] },
+                if k & 2 == 0 { lo[1] } else { hi[1] },
+                if k & 4 == 0 { lo[2] } else { hi[2] },
+            ]
+        };
+        for q in &quads {
+            tris.push([v(q[0]), v(q[1]), v(q[2])]);
+            tris.push([v(q[0]), v(q[2]), v(q[3])]);
+        }
+    }
+    let mut s = String::from("solid boxes\n");
+    for t in &tris[..tris.len() - drop] {
+        s.push_str("  facet normal 0 0 0\n    outer loop\n");
+        for p in t {
+            s.push_str(&format!("      vertex {} {} {}\n", p[0], p[1], p[2]));
+        }
+        s.push_str("    endloop\n  endfacet\n");
+    }
+    s.push_str("endsolid boxes\n");
+    s
+}
