@@ -37,7 +37,9 @@ fn trough(r: f64, alpha: f64, len: f64) -> Patch {
         .iter()
         .map(|&x| arc.iter().map(|(p, _)| *p + Vec3::X * x).collect())
         .collect();
-    let ws: Vec<Vec<f64>> = (0..2).map(|_| arc.iter().map(|(_, w)| *w).collect()).collect();
+    let ws: Vec<Vec<f64>> = (0..2)
+        .map(|_| arc.iter().map(|(_, w)| *w).collect())
+        .collect();
     Patch::new(Surface::Nurbs(
         NurbsSurface::new(
             1,
@@ -61,8 +63,13 @@ fn run(s: &GougeSurface, program: &str, cutter: &Cutter) -> GougeReport {
     } else {
         "t.ngc"
     };
-    let p = read_program_str(program, file, Machine::three_axis(), &ReadOptions::default())
-        .unwrap();
+    let p = read_program_str(
+        program,
+        file,
+        Machine::three_axis(),
+        &ReadOptions::default(),
+    )
+    .unwrap();
     check_program(s, &p, &GougeTools::single(cutter), &GougeOptions::DEFAULT).unwrap()
 }
 
@@ -76,8 +83,7 @@ fn ball_larger_than_a_concave_trough_gouges_its_flanks() {
     let s = surface(vec![trough(rc, alpha, 40.0)]);
     let rb = 12.0;
     // Ball centre at height rb over the bottom: the flank edges at φ = ±α are deepest.
-    let expected =
-        rb - (rc * rc + (rb - rc).powi(2) + 2.0 * rc * (rb - rc) * alpha.cos()).sqrt();
+    let expected = rb - (rc * rc + (rb - rc).powi(2) + 2.0 * rc * (rb - rc) * alpha.cos()).sqrt();
     // The program starts at the origin, on the trough's end: both moves gouge all along.
     let r = run(&s, "G1 X5 Y0 Z0 F100\nG1 X35\n", &spec("ball:d=24"));
     assert_eq!(r.violations.len(), 2, "{:#?}", r.violations);
@@ -87,7 +93,11 @@ fn ball_larger_than_a_concave_trough_gouges_its_flanks() {
     assert_eq!(v.part, ToolPart::Cutting);
     assert_eq!(v.surface, SurfaceRef::Patch(0));
     assert!(v.s_start <= 1e-12 && v.s_end >= 1.0 - 1e-12, "{v:?}");
-    assert!((v.depth - expected).abs() <= 1e-4, "{} vs {expected}", v.depth);
+    assert!(
+        (v.depth - expected).abs() <= 1e-4,
+        "{} vs {expected}",
+        v.depth
+    );
     assert!(v.depth_upper >= expected - 1e-9 && v.depth_upper <= expected + 2e-4);
     // The program points gouge too.
     assert_eq!(r.points.len(), 3);
@@ -107,11 +117,7 @@ fn flat_end_mill_driven_into_a_wall_gouges_from_where_it_meets_it() {
     ]);
     // R = 5 from x = 40 to 48: the side reaches the wall at x = 45, 3 mm past it at the end.
     let r = run(&s, "G1 X40 Y25 Z0 F100\nG1 X48\n", &spec("flat:d=10"));
-    let gouges: Vec<_> = r
-        .violations
-        .iter()
-        .filter(|v| v.move_index == 1)
-        .collect();
+    let gouges: Vec<_> = r.violations.iter().filter(|v| v.move_index == 1).collect();
     assert_eq!(gouges.len(), 1, "{:#?}", r.violations);
     let v = gouges[0];
     assert_eq!(v.kind, ViolationKind::Gouge);
@@ -157,19 +163,11 @@ fn flat_end_mill_tilting_on_a_floor_dips_in_by_the_closed_form() {
         Vec3::Y * 100.0,
     )]);
     let th = 10f64.to_radians();
-    let cl = format!(
-        "GOTO/0,0,0,0,0,1\nGOTO/0,0,0,{},0,{}\n",
-        th.sin(),
-        th.cos()
-    );
+    let cl = format!("GOTO/0,0,0,0,0,1\nGOTO/0,0,0,{},0,{}\n", th.sin(), th.cos());
     let r = run(&s, &cl, &spec("flat:d=10"));
     // Floor points inside: depth min(s·sin θ, R − s·cos θ), largest R·sin θ/(sin θ + cos θ).
     let expected = 5.0 * th.sin() / (th.sin() + th.cos());
-    let deepest = r
-        .violations
-        .iter()
-        .map(|v| v.depth)
-        .fold(0.0, f64::max);
+    let deepest = r.violations.iter().map(|v| v.depth).fold(0.0, f64::max);
     let bound = GougeOptions::DEFAULT.motion_tolerance;
     assert!(
         (deepest - expected).abs() <= bound + 1e-4,

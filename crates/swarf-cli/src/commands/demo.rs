@@ -8,14 +8,14 @@ use std::path::Path;
 
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
+use swarf_geom::math::Vec3;
 use swarf_path::canonical::CanonicalPrinter;
 use swarf_path::load::{read_program_str, stream_program, ReadOptions};
 use swarf_path::Machine;
-use swarf_stock::{simulate, MeshOptions, SimOptions, StockSpec};
-use swarf_geom::math::Vec3;
 use swarf_plan::gouge::{check_program, GougeOptions, GougeSummary, GougeSurface, GougeTools};
 use swarf_plan::size::PreparedSurface;
 use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface};
+use swarf_stock::{simulate, MeshOptions, SimOptions, StockSpec};
 use swarf_tool::table::parse_toml_library;
 use swarf_tool::ToolTable;
 

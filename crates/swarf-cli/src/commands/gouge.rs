@@ -12,8 +12,8 @@ use swarf_path::Program;
 use swarf_plan::gouge::{
     check_program_observed, GougeOptions, GougeReport, GougeSummary, GougeSurface, GougeTools,
 };
-use swarf_plan::CompoundSurface;
 use swarf_plan::size::PreparedSurface;
+use swarf_plan::CompoundSurface;
 
 use crate::cli::SetupArgs;
 use crate::commands::tools::{load_setup, resolve_all, Setup};

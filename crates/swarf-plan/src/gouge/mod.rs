@@ -288,8 +288,14 @@ impl GougeTool {
                 }
             }
         };
-        add(ToolPart::Cutting, SweepShape::from_solid(cutter.cutting_solid()));
-        add(ToolPart::Shank, SweepShape::from_solid(cutter.shank_solid()));
+        add(
+            ToolPart::Cutting,
+            SweepShape::from_solid(cutter.cutting_solid()),
+        );
+        add(
+            ToolPart::Shank,
+            SweepShape::from_solid(cutter.shank_solid()),
+        );
         if let Some(h) = cutter.holder_solid() {
             add(ToolPart::Holder, SweepShape::from_solid(h));
         }

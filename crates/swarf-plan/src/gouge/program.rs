@@ -248,9 +248,18 @@ fn check_move(
                 });
             }
         }
-        merge_leaves(index, m.file, m.line, *part, rapid, leaves, &mut out.violations);
+        merge_leaves(
+            index,
+            m.file,
+            m.line,
+            *part,
+            rapid,
+            leaves,
+            &mut out.violations,
+        );
     }
-    out.violations.sort_by(|a, b| a.s_start.total_cmp(&b.s_start));
+    out.violations
+        .sort_by(|a, b| a.s_start.total_cmp(&b.s_start));
     Ok(out)
 }
 

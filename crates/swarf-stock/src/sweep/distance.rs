@@ -280,7 +280,12 @@ mod tests {
         let tip = Vec3::new(1.0, -2.0, 3.0);
         let axis = Vec3::new(0.3, -0.2, 1.0).normalize();
         let frame = swarf_geom::Frame::from_axis(tip, axis);
-        for (rho, z, ang) in [(1.0, 1.0, 0.3), (6.0, 1.0, 2.0), (4.0, -1.0, 4.0), (0.0, 9.0, 0.0)] {
+        for (rho, z, ang) in [
+            (1.0, 1.0, 0.3),
+            (6.0, 1.0, 2.0),
+            (4.0, -1.0, 4.0),
+            (0.0, 9.0, 0.0),
+        ] {
             let local = Vec3::new(rho * f64::cos(ang), rho * f64::sin(ang), z);
             let x = frame.to_world(local);
             let sd = p.signed_distance(tip, axis, x);
@@ -296,7 +301,12 @@ mod tests {
                 sd.distance,
                 sd.normal
             );
-            for n in [Vec3::X, Vec3::Y, -Vec3::Z, Vec3::new(1.0, 1.0, 1.0).normalize()] {
+            for n in [
+                Vec3::X,
+                Vec3::Y,
+                -Vec3::Z,
+                Vec3::new(1.0, 1.0, 1.0).normalize(),
+            ] {
                 assert!(n.dot(x) - p.support(tip, axis, n) <= sd.distance + 1e-12);
             }
         }
