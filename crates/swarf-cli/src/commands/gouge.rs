@@ -22,7 +22,8 @@ use crate::output::{print_json, write_atomic};
 /// `swarf gouge`.
 #[derive(Debug, Args)]
 pub(crate) struct GougeArgs {
-    /// The part surface: swarf JSON, STEP or IGES (normals towards the cutter; see --flip).
+    /// The part surface: swarf JSON, STEP or IGES (its orientation does not matter here: any
+    /// surface point inside the tool is a violation).
     #[arg(long)]
     pub(crate) surface: PathBuf,
     /// The program: G-code or APT CL.
@@ -35,9 +36,6 @@ pub(crate) struct GougeArgs {
     /// Cutters, tool library, machine and units.
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
-    /// Reverse the side the cutter comes from on every patch.
-    #[arg(long)]
-    pub(crate) flip: bool,
     /// Depths at or below this are touching, not gouging, mm.
     #[arg(long, value_name = "MM", default_value_t = GougeOptions::DEFAULT.tolerance)]
     pub(crate) tolerance: f64,
@@ -54,13 +52,10 @@ pub(crate) struct GougeArgs {
 
 pub(crate) fn run(args: &GougeArgs) -> Result<()> {
     let t0 = Instant::now();
-    let mut surface = swarf_plan::io::read_file(&args.surface)
+    let surface = swarf_plan::io::read_file(&args.surface)
         .with_context(|| format!("reading {}", args.surface.display()))?;
     if surface.patches.is_empty() {
         bail!("{}: no surface patches", args.surface.display());
-    }
-    if args.flip {
-        surface.flip_all();
     }
     for note in &surface.notes {
         eprintln!("note: {note}");

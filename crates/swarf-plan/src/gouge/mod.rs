@@ -9,7 +9,11 @@
 //! surface point `S` is inside a part `K` by the depth `−sd_K(S)`, `sd` the signed distance
 //! (negative inside). The *depth* of the pose is the largest over the surface, and the depth of
 //! a stretch of motion the largest over its poses: how far the tool reaches past the surface,
-//! the amount the part is overcut by (or the holder pushed into it).
+//! the amount the part is overcut by (or the holder pushed into it). The surface's orientation
+//! plays no part (a surface point inside the tool is a violation from either side), and a tool
+//! sunk deeper than its own radius reads at least its radius deep: the distance to the
+//! boundary saturates there, which only understates violations already far past any
+//! tolerance.
 //!
 //! * **Gouge**: the cutting part deeper than the tolerance in the machined surface at a feed
 //!   move.
