@@ -36,7 +36,7 @@ impl ConvexProfile {
     /// component `a ≥ 0` and axial component `b` (tool frame).
     pub fn support_meridian(&self, a: f64, b: f64) -> f64 {
         let mut best = f64::NEG_INFINITY;
-        for el in self.elements() {
+        for (i, el) in self.elements().iter().enumerate() {
             match *el {
                 Element::Line { p, q } => {
                     best = best.max(a * p.x + b * p.y).max(a * q.x + b * q.y);
@@ -48,13 +48,14 @@ impl ConvexProfile {
                     phi0,
                     phi1,
                 } => {
-                    // Profile point (e + r sin φ, f − r cos φ): a·sin φ − b·cos φ is largest
-                    // where (sin φ, −cos φ) points along (a, b).
-                    let at = |phi: f64| a * (e + r * phi.sin()) + b * (f - r * phi.cos());
-                    best = best.max(at(phi0)).max(at(phi1));
-                    let star = a.atan2(-b);
-                    if star > phi0 && star < phi1 {
-                        best = best.max(a * e + b * f + r * a.hypot(b));
+                    // Profile point c + r·u(φ), u = (sin φ, −cos φ): a·ρ + b·z is largest where
+                    // u points along (a, b), if that direction is on the arc, else at an end.
+                    let (u0, u1) = self.arc_ends(i);
+                    let w = Vec2::new(a, b);
+                    let base = a * e + b * f;
+                    best = best.max(base + r * w.dot(u0)).max(base + r * w.dot(u1));
+                    if on_arc(w, u0, u1, phi1 - phi0) {
+                        best = best.max(base + r * w.length());
                     }
                 }
             }
@@ -74,7 +75,7 @@ impl ConvexProfile {
     /// boundary, and the outward direction there in meridian coordinates.
     pub fn signed_distance_meridian(&self, q: Vec2) -> (f64, Vec2) {
         let mut best = (f64::INFINITY, Vec2::ZERO, Vec2::new(0.0, -1.0));
-        for el in self.elements() {
+        for (i, el) in self.elements().iter().enumerate() {
             let (pt, outward) = match *el {
                 Element::Line { p, q: end } => {
                     let seg = end - p;
@@ -101,23 +102,20 @@ impl ConvexProfile {
                 } => {
                     let c = Vec2::new(e, f);
                     let d = q - c;
-                    let phi = if d.length_squared() > 0.0 {
-                        d.x.atan2(-d.y)
-                    } else {
-                        0.5 * (phi0 + phi1)
-                    };
-                    let at = |phi: f64| {
-                        let u = Vec2::new(phi.sin(), -phi.cos());
+                    let (u0, u1) = self.arc_ends(i);
+                    let len = d.length();
+                    if len > 0.0 && on_arc(d, u0, u1, phi1 - phi0) {
+                        let u = d / len;
                         (c + r * u, u)
-                    };
-                    if phi >= phi0 && phi <= phi1 {
-                        at(phi)
+                    } else if len == 0.0 {
+                        // The centre: every point of the arc is as near; take its start.
+                        (c + r * u0, u0)
                     } else {
-                        let (a, b) = (at(phi0), at(phi1));
-                        if (q - a.0).length_squared() <= (q - b.0).length_squared() {
-                            a
+                        let (a, b) = (c + r * u0, c + r * u1);
+                        if (q - a).length_squared() <= (q - b).length_squared() {
+                            (a, u0)
                         } else {
-                            b
+                            (b, u1)
                         }
                     }
                 }
@@ -156,6 +154,18 @@ impl ConvexProfile {
             distance,
             normal: n.x * e + n.y * axis,
         }
+    }
+}
+
+/// True when the direction `w` (any length) lies on the arc running counter-clockwise from the
+/// unit direction `u0` to `u1` through the angle `span`.
+#[inline]
+fn on_arc(w: Vec2, u0: Vec2, u1: Vec2, span: f64) -> bool {
+    if span <= std::f64::consts::PI {
+        u0.perp_dot(w) >= 0.0 && w.perp_dot(u1) >= 0.0
+    } else {
+        // More than a half turn: on it unless strictly inside the complementary (short) arc.
+        !(u1.perp_dot(w) > 0.0 && w.perp_dot(u0) > 0.0)
     }
 }
 

@@ -130,6 +130,9 @@ pub struct ConvexProfile {
     z_of_max: (f64, f64),
     /// Per element: `(sin φ0, sin φ1, cos φ1)` for arcs (zeros for lines).
     trig: Vec<(f64, f64, f64)>,
+    /// Per element: the unit directions `(sin φ, −cos φ)` from an arc's centre to its two ends
+    /// (zeros for lines), so point queries need no trigonometry.
+    arc_ends: Vec<(Vec2, Vec2)>,
     /// What the closed-form kernels see in it, if anything.
     fast: Option<FastProfile>,
 }
@@ -215,6 +218,16 @@ impl ConvexProfile {
                 Element::Line { .. } => (0.0, 0.0, 0.0),
             })
             .collect();
+        let arc_ends = elements
+            .iter()
+            .map(|el| match *el {
+                Element::Arc { phi0, phi1, .. } => (
+                    Vec2::new(phi0.sin(), -phi0.cos()),
+                    Vec2::new(phi1.sin(), -phi1.cos()),
+                ),
+                Element::Line { .. } => (Vec2::ZERO, Vec2::ZERO),
+            })
+            .collect();
         let extents = elements
             .iter()
             .map(|e| {
@@ -232,6 +245,7 @@ impl ConvexProfile {
             r_max,
             z_of_max,
             trig,
+            arc_ends,
             fast,
         })
     }
@@ -369,6 +383,11 @@ impl ConvexProfile {
     /// The joint circles `(ρ, z)` (ρ > 0) between consecutive elements.
     pub fn joints(&self) -> &[Vec2] {
         &self.joints
+    }
+
+    /// Unit directions from arc `i`'s centre to its start and end (zeros for a line).
+    pub(crate) fn arc_ends(&self, i: usize) -> (Vec2, Vec2) {
+        self.arc_ends[i]
     }
 
     /// Height band and largest radius of element `i`.
