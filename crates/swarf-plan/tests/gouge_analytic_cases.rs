@@ -73,6 +73,12 @@ fn run(s: &GougeSurface, program: &str, cutter: &Cutter) -> GougeReport {
     check_program(s, &p, &GougeTools::single(cutter), &GougeOptions::DEFAULT).unwrap()
 }
 
+/// The certificate gap the reports promise at a depth.
+#[allow(non_snake_case)]
+fn GAP(depth: f64) -> f64 {
+    GougeOptions::DEFAULT.gap(depth)
+}
+
 fn spec(s: &str) -> Cutter {
     swarf_tool::spec::parse(s).unwrap()
 }
@@ -94,11 +100,11 @@ fn ball_larger_than_a_concave_trough_gouges_its_flanks() {
     assert_eq!(v.surface, SurfaceRef::Patch(0));
     assert!(v.s_start <= 1e-12 && v.s_end >= 1.0 - 1e-12, "{v:?}");
     assert!(
-        (v.depth - expected).abs() <= 1e-4,
+        (v.depth - expected).abs() <= GAP(expected),
         "{} vs {expected}",
         v.depth
     );
-    assert!(v.depth_upper >= expected - 1e-9 && v.depth_upper <= expected + 2e-4);
+    assert!(v.depth_upper >= expected - 1e-9 && v.depth_upper <= expected + 2.0 * GAP(expected));
     // The program points gouge too.
     assert_eq!(r.points.len(), 3);
     assert_eq!(r.points_with(ViolationKind::Gouge), 3);
@@ -125,11 +131,11 @@ fn flat_end_mill_driven_into_a_wall_gouges_from_where_it_meets_it() {
     let res = GougeOptions::DEFAULT.resolution / 8.0;
     assert!((v.s_start - 0.625).abs() <= res + 1e-9, "{v:?}");
     assert!((v.s_end - 1.0).abs() <= 1e-12);
-    assert!((v.depth - 3.0).abs() <= 1e-4, "{v:?}");
+    assert!((v.depth - 3.0).abs() <= GAP(3.0), "{v:?}");
     assert!((v.tip.x - 48.0).abs() <= 0.05, "{v:?}");
     assert!((v.point.x - 50.0).abs() < 1e-9);
     let end = r.points.last().unwrap();
-    assert!((end.depth - 3.0).abs() <= 1e-4);
+    assert!((end.depth - 3.0).abs() <= GAP(3.0));
     assert_eq!(end.status, Some(ViolationKind::Gouge));
 }
 
@@ -150,7 +156,7 @@ fn wide_shank_beside_a_wall_interferes_by_its_excess() {
     assert_eq!(v.len(), 1, "{:#?}", r.violations);
     assert_eq!(v[0].kind, ViolationKind::Interference);
     assert_eq!(v[0].part, ToolPart::Shank);
-    assert!((v[0].depth - 0.5).abs() <= 1e-4, "{:?}", v[0]);
+    assert!((v[0].depth - 0.5).abs() <= GAP(0.5), "{:?}", v[0]);
     // The cutting part never reaches the wall.
     assert!(r.violations.iter().all(|v| v.part == ToolPart::Shank));
 }
@@ -170,12 +176,12 @@ fn flat_end_mill_tilting_on_a_floor_dips_in_by_the_closed_form() {
     let deepest = r.violations.iter().map(|v| v.depth).fold(0.0, f64::max);
     let bound = GougeOptions::DEFAULT.motion_tolerance;
     assert!(
-        (deepest - expected).abs() <= bound + 1e-4,
+        (deepest - expected).abs() <= bound + GAP(expected),
         "{deepest} vs {expected}"
     );
     assert!(r.violations.iter().all(|v| v.kind == ViolationKind::Gouge));
     let end = r.points.last().unwrap();
-    assert!((end.depth - expected).abs() <= 1e-4, "{end:?}");
+    assert!((end.depth - expected).abs() <= GAP(expected), "{end:?}");
     assert!(r.sub_moves > 2);
 }
 
@@ -189,7 +195,7 @@ fn a_rapid_through_the_part_is_interference() {
         .iter()
         .all(|v| v.kind == ViolationKind::Interference && v.rapid));
     let v = &r.violations[0];
-    assert!((v.depth - 1.0).abs() <= 1e-4, "{v:?}");
+    assert!((v.depth - 1.0).abs() <= GAP(1.0), "{v:?}");
 }
 
 #[test]

@@ -1,6 +1,6 @@
 //! The benchmarks' part: a compound surface of 24 bicubic patches (a 6 × 4 mould-like height
 //! field with pockets, a rib and a gentle wave, 60 × 40 mm).
-#![allow(dead_code)]
+#![allow(dead_code, unreachable_pub)]
 
 use swarf_geom::math::Vec3;
 use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface};

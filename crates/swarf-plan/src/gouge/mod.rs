@@ -73,8 +73,11 @@ pub struct GougeOptions {
     /// Depths at or below this are touching, not gouging, mm. Default `0.001`.
     pub tolerance: f64,
     /// Certificate gap: the reported depth of a violation is within this of the deepest depth
-    /// of the (sub-)motion, mm. Default `1e-4`.
+    /// of the (sub-)motion, mm (or within [`GougeOptions::relative_accuracy`] of it, if
+    /// larger). Default `1e-4`.
     pub accuracy: f64,
+    /// Relative certificate gap, for deep violations. Default `1e-3`.
+    pub relative_accuracy: f64,
     /// Where a violation starts and ends along a move is located to this much tool travel, mm.
     /// Default `0.05`.
     pub resolution: f64,
@@ -90,10 +93,16 @@ impl GougeOptions {
     pub const DEFAULT: GougeOptions = GougeOptions {
         tolerance: 0.001,
         accuracy: 1e-4,
+        relative_accuracy: 1e-3,
         resolution: 0.05,
         motion_tolerance: 0.0005,
         max_nodes: 200_000,
     };
+
+    /// The certificate gap at `depth`: the larger of the absolute and the relative accuracy.
+    pub fn gap(&self, depth: f64) -> f64 {
+        self.accuracy.max(self.relative_accuracy * depth)
+    }
 
     /// These options with `tolerance` (and the motion tolerance at half of it when that is
     /// smaller than the current one would allow).

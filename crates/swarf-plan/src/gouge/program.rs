@@ -8,9 +8,10 @@ use rayon::prelude::*;
 use swarf_geom::math::Vec3;
 use swarf_path::{MoveKind, Pose, Program};
 use swarf_stock::five_axis::subdivide;
+use swarf_stock::SubMove;
 use swarf_tool::Cutter;
 
-use super::search::{deepest, Deepest, Query, SearchScratch, Segment};
+use super::search::{deepest, Deepest, Pieces, Query, SearchScratch, Segment};
 use super::{
     GougeError, GougeOptions, GougeReport, GougeSurface, GougeTool, PointCheck, SurfaceRef,
     ToolPart, Violation, ViolationKind,
@@ -135,18 +136,6 @@ struct MoveOutcome {
     unresolved: usize,
 }
 
-/// One leaf of the bisection: a stretch `[s0, s1]` of the move deeper than the tolerance.
-struct Leaf {
-    s0: f64,
-    s1: f64,
-    kind: ViolationKind,
-    found: Deepest,
-    s_deepest: f64,
-    tip: Vec3,
-    axis: Vec3,
-    motion_error: f64,
-}
-
 fn kind_of(part: ToolPart, rapid: bool, check: bool) -> ViolationKind {
     if part == ToolPart::Cutting && !rapid && !check {
         ViolationKind::Gouge
@@ -197,122 +186,167 @@ fn check_move(
     for (part, profile, reach) in tool.parts() {
         let subs = subdivide(program, index, *reach, opts.motion_tolerance)?;
         out.sub_moves += subs.len();
-        let mut leaves: Vec<Leaf> = Vec::new();
-        for sub in &subs {
-            let seg = Segment {
+        let segs: Vec<Segment> = subs
+            .iter()
+            .map(|sub| Segment {
                 part: profile,
                 tip0: sub.tip0,
                 delta: sub.tip1 - sub.tip0,
                 axis: sub.axis,
-            };
-            let mut stack = vec![(0.0, 1.0)];
-            // Depth-first, right half pushed first, so the leaves come out in order.
-            while let Some((t0, t1)) = stack.pop() {
-                let travel = seg.delta.length() * (t1 - t0);
-                let leaf = travel <= opts.resolution;
-                let q = Query {
-                    t0,
-                    t1,
-                    floor: opts.tolerance,
-                    stop_above: if leaf { f64::INFINITY } else { opts.tolerance },
-                    accuracy: opts.accuracy,
-                    max_nodes: opts.max_nodes,
-                };
-                let d = deepest(surface, &seg, &q, scratch);
-                out.nodes += d.nodes;
-                if !d.certified {
-                    out.unresolved += 1;
-                }
-                if d.upper <= opts.tolerance {
-                    continue;
-                }
-                if !leaf {
-                    let tm = 0.5 * (t0 + t1);
-                    stack.push((tm, t1));
-                    stack.push((t0, tm));
-                    continue;
-                }
-                if d.depth <= opts.tolerance {
-                    continue; // within the accuracy of the tolerance
-                }
-                let s_at = |t: f64| sub.s0 + t * (sub.s1 - sub.s0);
-                leaves.push(Leaf {
-                    s0: s_at(t0),
-                    s1: s_at(t1),
-                    kind: kind_of(*part, rapid, d.check),
-                    found: d,
-                    s_deepest: s_at(d.t),
-                    tip: seg.tip0 + d.t * seg.delta,
-                    axis: seg.axis,
-                    motion_error: sub.error_bound,
+            })
+            .collect();
+        // The cutting part at a feed move gouges the surface and interferes with the check
+        // geometry; everything else interferes with anything.
+        let classes: &[(Pieces, ViolationKind)] = if *part == ToolPart::Cutting && !rapid {
+            &[
+                (Pieces::Surface, ViolationKind::Gouge),
+                (Pieces::Check, ViolationKind::Interference),
+            ]
+        } else {
+            &[(Pieces::All, ViolationKind::Interference)]
+        };
+        for &(pieces, kind) in classes {
+            let leaves = scan(surface, &segs, pieces, opts, scratch, &mut out);
+            for stretch in stretches(&subs, &leaves) {
+                let found = deepest_in(surface, &segs, &stretch, pieces, opts, scratch, &mut out);
+                let Some((d, k)) = found else { continue };
+                let s_at = |k: usize, t: f64| subs[k].s0 + t * (subs[k].s1 - subs[k].s0);
+                let (first, last) = (stretch[0], stretch[stretch.len() - 1]);
+                out.violations.push(Violation {
+                    move_index: index,
+                    file: m.file,
+                    line: m.line,
+                    kind,
+                    part: *part,
+                    rapid,
+                    s_start: s_at(first.0, first.1),
+                    s_end: s_at(last.0, last.2),
+                    depth: d.depth,
+                    depth_upper: d.upper + subs[k].error_bound,
+                    s_deepest: s_at(k, d.t),
+                    tip: segs[k].tip0 + d.t * segs[k].delta,
+                    axis: segs[k].axis,
+                    point: d.point,
+                    surface: surface_ref(&d),
                 });
             }
         }
-        merge_leaves(
-            index,
-            m.file,
-            m.line,
-            *part,
-            rapid,
-            leaves,
-            &mut out.violations,
-        );
     }
     out.violations
         .sort_by(|a, b| a.s_start.total_cmp(&b.s_start));
     Ok(out)
 }
 
-/// Joins touching leaves of the same kind into violations.
-fn merge_leaves(
-    index: usize,
-    file: u16,
-    line: u32,
-    part: ToolPart,
-    rapid: bool,
-    leaves: Vec<Leaf>,
-    out: &mut Vec<Violation>,
-) {
-    let mut cur: Option<Violation> = None;
-    for l in leaves {
-        let v = Violation {
-            move_index: index,
-            file,
-            line,
-            kind: l.kind,
-            part,
-            rapid,
-            s_start: l.s0,
-            s_end: l.s1,
-            depth: l.found.depth,
-            depth_upper: l.found.upper + l.motion_error,
-            s_deepest: l.s_deepest,
-            tip: l.tip,
-            axis: l.axis,
-            point: l.found.point,
-            surface: surface_ref(&l.found),
-        };
-        match &mut cur {
-            Some(c) if c.kind == v.kind && (v.s_start - c.s_end).abs() <= 1e-12 => {
-                c.s_end = v.s_end;
-                c.depth_upper = c.depth_upper.max(v.depth_upper);
-                if v.depth > c.depth {
-                    let (s0, s1, up) = (c.s_start, c.s_end, c.depth_upper);
-                    *c = v;
-                    (c.s_start, c.s_end, c.depth_upper) = (s0, s1, up);
-                }
+/// A stretch `[t0, t1]` of sub-move `k`: `(k, t0, t1)`.
+type Span = (usize, f64, f64);
+
+/// The leaves of the bisection of every sub-move (in order) where the part is deeper than the
+/// tolerance in `pieces`, each `resolution` of travel or shorter. A search stops at the first
+/// point deeper than the tolerance: a leaf only needs to know that it violates.
+fn scan(
+    surface: &GougeSurface,
+    segs: &[Segment],
+    pieces: Pieces,
+    opts: &GougeOptions,
+    scratch: &mut SearchScratch,
+    out: &mut MoveOutcome,
+) -> Vec<Span> {
+    let mut leaves = Vec::new();
+    for (k, seg) in segs.iter().enumerate() {
+        let mut stack = vec![(0.0, 1.0)];
+        // Depth-first, right half pushed first, so the leaves come out in order.
+        while let Some((t0, t1)) = stack.pop() {
+            let q = Query {
+                t0,
+                t1,
+                pieces,
+                floor: opts.tolerance,
+                stop_above: opts.tolerance,
+                accuracy: opts.accuracy,
+                relative_accuracy: opts.relative_accuracy,
+                max_nodes: opts.max_nodes,
+            };
+            let d = deepest(surface, seg, &q, scratch);
+            out.nodes += d.nodes;
+            out.unresolved += usize::from(!d.certified);
+            if d.upper <= opts.tolerance {
+                continue;
             }
-            _ => {
-                if let Some(c) = cur.take() {
-                    out.push(c);
-                }
-                cur = Some(v);
+            if seg.delta.length() * (t1 - t0) > opts.resolution {
+                let tm = 0.5 * (t0 + t1);
+                stack.push((tm, t1));
+                stack.push((t0, tm));
+            } else if d.depth > opts.tolerance {
+                leaves.push((k, t0, t1));
             }
+            // Else the depth is within the accuracy of the tolerance: not reported.
         }
     }
-    if let Some(c) = cur {
-        out.push(c);
+    leaves
+}
+
+/// Leaves that touch (within a sub-move, or across the joint of two consecutive ones) joined
+/// into stretches.
+fn stretches(subs: &[SubMove], leaves: &[Span]) -> Vec<Vec<Span>> {
+    let mut out: Vec<Vec<Span>> = Vec::new();
+    for &l in leaves {
+        let joins = out
+            .last()
+            .and_then(|s| s.last())
+            .is_some_and(|&(k, _, t1)| {
+                let same = k == l.0 && t1 == l.1;
+                let next = k + 1 == l.0 && t1 == 1.0 && l.1 == 0.0 && subs[k].s1 == subs[l.0].s0;
+                same || next
+            });
+        match out.last_mut() {
+            Some(s) if joins => s.push(l),
+            _ => out.push(vec![l]),
+        }
     }
+    out
+}
+
+/// The deepest point of a stretch, searched to the full accuracy over each sub-move's part of
+/// it, with the sub-move it lies on; `None` when it is within the accuracy of the tolerance.
+fn deepest_in(
+    surface: &GougeSurface,
+    segs: &[Segment],
+    stretch: &[Span],
+    pieces: Pieces,
+    opts: &GougeOptions,
+    scratch: &mut SearchScratch,
+    out: &mut MoveOutcome,
+) -> Option<(Deepest, usize)> {
+    let mut best: Option<(Deepest, usize)> = None;
+    let mut upper = f64::NEG_INFINITY;
+    let mut i = 0;
+    while i < stretch.len() {
+        let (k, t0, mut t1) = stretch[i];
+        while i + 1 < stretch.len() && stretch[i + 1].0 == k {
+            i += 1;
+            t1 = stretch[i].2;
+        }
+        i += 1;
+        let q = Query {
+            t0,
+            t1,
+            pieces,
+            floor: opts.tolerance,
+            stop_above: f64::INFINITY,
+            accuracy: opts.accuracy,
+            relative_accuracy: opts.relative_accuracy,
+            max_nodes: opts.max_nodes,
+        };
+        let d = deepest(surface, &segs[k], &q, scratch);
+        out.nodes += d.nodes;
+        out.unresolved += usize::from(!d.certified);
+        upper = upper.max(d.upper);
+        if best.as_ref().map_or(true, |(b, _)| d.depth > b.depth) {
+            best = Some((d, k));
+        }
+    }
+    best.map(|(d, k)| (Deepest { upper, ..d }, k))
+        .filter(|(d, _)| d.depth > opts.tolerance)
 }
 
 /// The depth of every part of `tool` at one pose.
@@ -337,6 +371,8 @@ fn check_pose(
         let q = Query {
             t0: 0.0,
             t1: 0.0,
+            pieces: Pieces::All,
+            relative_accuracy: opts.relative_accuracy,
             floor: opts.tolerance,
             stop_above: f64::INFINITY,
             accuracy: opts.accuracy,
@@ -344,7 +380,7 @@ fn check_pose(
         };
         let d = deepest(surface, &seg, &q, scratch);
         upper = upper.max(d.upper);
-        if best.as_ref().is_none_or(|(b, _)| d.depth > b.depth) {
+        if best.as_ref().map_or(true, |(b, _)| d.depth > b.depth) {
             best = Some((d, *part));
         }
     }

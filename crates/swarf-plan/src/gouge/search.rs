@@ -89,6 +89,27 @@ impl Segment<'_> {
     }
 }
 
+/// Which pieces a search looks at.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Pieces {
+    /// The machined surface and the check geometry.
+    All,
+    /// The machined surface only.
+    Surface,
+    /// The check geometry only.
+    Check,
+}
+
+impl Pieces {
+    fn admits(self, pc: &Piece) -> bool {
+        match self {
+            Pieces::All => true,
+            Pieces::Surface => !pc.check,
+            Pieces::Check => pc.check,
+        }
+    }
+}
+
 /// What the search asks.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Query {
@@ -96,12 +117,16 @@ pub(crate) struct Query {
     pub t0: f64,
     /// End of it.
     pub t1: f64,
+    /// The pieces searched.
+    pub pieces: Pieces,
     /// Depths at or below this do not matter (the reporting tolerance).
     pub floor: f64,
     /// Stop as soon as a point deeper than this is found (the caller will split anyway).
     pub stop_above: f64,
-    /// Certificate gap on the depth, mm.
+    /// Certificate gap on the depth, mm, or `relative_accuracy` times the depth if larger.
     pub accuracy: f64,
+    /// The relative part of the gap.
+    pub relative_accuracy: f64,
     /// Node budget.
     pub max_nodes: u64,
 }
@@ -273,10 +298,14 @@ pub(crate) fn deepest(
         }
     };
     for &i in &scratch.roots {
-        push(&mut out, heap, surface.pieces[i].clone(), q.t0, q.t1);
+        let pc = &surface.pieces[i];
+        if q.pieces.admits(pc) {
+            push(&mut out, heap, pc.clone(), q.t0, q.t1);
+        }
     }
     while let Some(node) = heap.pop() {
-        let prune = (out.depth + q.accuracy).max(q.floor);
+        let gap = q.accuracy.max(q.relative_accuracy * out.depth);
+        let prune = (out.depth + gap).max(q.floor);
         if node.ub <= prune || out.depth > q.stop_above {
             out.upper = out.upper.max(node.ub).max(out.depth);
             heap.clear();
