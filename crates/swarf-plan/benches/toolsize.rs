@@ -4,54 +4,24 @@
 //! 10,000 CC points (rayon, all threads) printed before the criterion runs.
 //!
 //! `cargo bench -p swarf-plan --bench toolsize`
+//!
+//! `SWARF_TOOLSIZE_MAP_ONLY=1` prints the timed maps only (no per-point report, no criterion
+//! run), with the nodes per point (mean and largest) that explain them, and
+//! `SWARF_TOOLSIZE_FAMILY=bull_r2` (or `ball`, `flat`) maps that family only:
+//! `SWARF_TOOLSIZE_MAP_ONLY=1 cargo bench -p swarf-plan --bench toolsize`
+
+mod common;
 
 use std::hint::black_box;
 use std::time::Instant;
 
 use criterion::{BenchmarkId, Criterion};
-use swarf_geom::math::Vec3;
 use swarf_plan::size::{
     allowable_certified, allowable_map, allowable_pso, best_lead_tilt, best_rotary_angle,
     Axis4Options, Axis5Options, CertifiedOptions, Contact, CutterFamily, LeadTiltFrame, MapOptions,
     PreparedSurface, PsoOptions,
 };
-use swarf_plan::{CcPoint, CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
-
-/// The height field: two pockets, a rib and a gentle wave (mm).
-fn height(x: f64, y: f64) -> f64 {
-    let pocket = |cx: f64, cy: f64, r: f64, d: f64| {
-        let q = ((x - cx).powi(2) + (y - cy).powi(2)) / (r * r);
-        -d * (-q).exp()
-    };
-    8.0 + pocket(20.0, 15.0, 9.0, 6.0)
-        + pocket(45.0, 25.0, 7.0, 5.0)
-        + 4.0 * (-((x - 33.0) / 2.5).powi(2)).exp()
-        + 0.8 * (x / 9.0).sin() * (y / 7.0).cos()
-}
-
-/// 6 × 4 patches of 10 × 10 mm, each a bicubic Bézier through the height field.
-fn mould() -> CompoundSurface {
-    let knots = vec![0.0, 0.0, 0.0, 0.0, 1.0, 1.0, 1.0, 1.0];
-    let mut patches = Vec::new();
-    for a in 0..6 {
-        for b in 0..4 {
-            let (x0, y0) = (10.0 * a as f64, 10.0 * b as f64);
-            let pts: Vec<Vec<Vec3>> = (0..4)
-                .map(|i| {
-                    (0..4)
-                        .map(|j| {
-                            let (x, y) = (x0 + 10.0 * i as f64 / 3.0, y0 + 10.0 * j as f64 / 3.0);
-                            Vec3::new(x, y, height(x, y))
-                        })
-                        .collect()
-                })
-                .collect();
-            let s = NurbsSurface::new(3, 3, knots.clone(), knots.clone(), &pts, None).unwrap();
-            patches.push(Patch::new(Surface::Nurbs(s)));
-        }
-    }
-    CompoundSurface::new(patches)
-}
+use swarf_plan::{CcPoint, CompoundSurface, Tolerances};
 
 fn contacts(part: &CompoundSurface, n: usize) -> Vec<Contact> {
     part.grid(n)
@@ -69,6 +39,13 @@ fn families() -> [(&'static str, CutterFamily); 3] {
 }
 
 fn report(part: &CompoundSurface) {
+    if std::env::var_os("SWARF_TOOLSIZE_MAP_ONLY").is_none() {
+        report_points(part);
+    }
+    report_map(part);
+}
+
+fn report_points(part: &CompoundSurface) {
     let prep = PreparedSurface::new(part);
     let cs = contacts(part, 5);
     for (name, f) in families() {
@@ -102,9 +79,16 @@ fn report(part: &CompoundSurface) {
         1e3 * t.elapsed().as_secs_f64() / few.len() as f64,
         evals as f64 / few.len() as f64
     );
+}
+
+fn report_map(part: &CompoundSurface) {
     // 24 patches × 21² = 10,584 CC points, rayon over all threads.
     let ccs = part.grid(21);
+    let only = std::env::var("SWARF_TOOLSIZE_FAMILY").ok();
     for (name, f) in families() {
+        if only.as_deref().is_some_and(|o| o != name) {
+            continue;
+        }
         let t = Instant::now();
         let map = allowable_map(part, &f, &ccs, &MapOptions::default());
         let s = map.summary();
@@ -113,12 +97,19 @@ fn report(part: &CompoundSurface) {
             .iter()
             .filter(|p| p.size.is_some_and(|a| !a.certified))
             .count();
+        let nodes: Vec<u64> = map
+            .points
+            .iter()
+            .filter_map(|p| p.size.map(|a| a.nodes))
+            .collect();
         println!(
-            "map of {} points ({name}, certified, {} threads): {:.2} s, {:.0} evaluations/point, {uncertified} uncertified, radius {:?}..{:?} mm",
+            "map of {} points ({name}, certified, {} threads): {:.2} s, {:.0} evaluations/point, {:.0} bounds/point (max {}), {uncertified} uncertified, radius {:?}..{:?} mm",
             s.points,
             rayon::current_num_threads(),
             t.elapsed().as_secs_f64(),
             s.evaluations_per_point,
+            nodes.iter().sum::<u64>() as f64 / nodes.len().max(1) as f64,
+            nodes.iter().max().copied().unwrap_or(0),
             s.min_radius_mm,
             s.max_radius_mm
         );
@@ -203,8 +194,11 @@ fn bench_orientation(c: &mut Criterion, part: &CompoundSurface) {
 }
 
 fn main() {
-    let part = mould();
+    let part = common::mould();
     report(&part);
+    if std::env::var_os("SWARF_TOOLSIZE_MAP_ONLY").is_some() {
+        return;
+    }
     let mut c = Criterion::default().configure_from_args();
     bench(&mut c, &part);
     bench_orientation(&mut c, &part);

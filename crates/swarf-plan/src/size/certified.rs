@@ -10,7 +10,11 @@
 //!    ([`CutterFamily`]'s `support`). If `min_i (P_i − C)·ν ≥ h_{K(L)}(ν) − C·ν` for a direction
 //!    `ν`, the plane separates the hull from `int K(L)`; solving for `L` gives a bound. Any `ν`
 //!    gives a valid bound; the solver tries `−n`, `−z` and the cutter's outward normal at the
-//!    node's centroid (which makes the bound converge quadratically under subdivision).
+//!    node's centroid (which makes the bound converge quadratically under subdivision), and for
+//!    a bull-nose, where a node can still be pruned, the outward normal of the cutter of the
+//!    node's least control-point size (or the best size, if smaller) at that control point, then
+//!    at the hull point that stops that plane. The choice of directions only decides how tight
+//!    the bound is, never whether it is valid.
 //! 2. *Bernstein positivity* (ball family). A point is outside the ball of radius `L` tangent
 //!    at `C` iff `q_L = |S − C|² − 2L·n·(S − C) ≥ 0`. Multiplied by `w²`, `q_L` is a polynomial
 //!    of degree `(2p, 2q)` on the node, `A − 2L·B`, whose Bernstein coefficients follow from the
@@ -43,7 +47,7 @@ use smallvec::{smallvec, SmallVec};
 use swarf_geom::math::Vec3;
 
 use super::bezier::Piece;
-use super::family::bound_from_support;
+use super::family::{bound_from_support, FamilyTrig};
 use super::{
     classify, AllowableSize, Contact, CutterFamily, Limit, PreparedSurface, Regime, SizeError,
     SizeTolerances,
@@ -173,6 +177,9 @@ impl Ord for Node {
 
 struct Search<'a> {
     family: &'a CutterFamily,
+    /// The family with its angles' trigonometry computed once (support functions, the polar
+    /// cone and the imaginary size of control points, at every node).
+    trig: FamilyTrig,
     c: &'a Contact,
     regime: Regime,
     opts: &'a CertifiedOptions,
@@ -263,13 +270,13 @@ impl Search<'_> {
         // The cutter that matters is the one of the current best size: a node is pruned when it
         // is clear of it. Its outward normal nearest the node's centroid is the candidate plane.
         let l_star = self
-            .family
+            .trig
             .imaginary(self.c, &self.regime, centroid, &self.opts.model)
             .min(self.best)
             .min(self.opts.unbounded_above);
         if l_star.is_finite() {
             if let Some(k) = self.family.placed(self.c, &self.regime, l_star) {
-                let nu = k.outward_normal(centroid);
+                let nu = self.trig.outward_normal(&k, centroid);
                 if nu.is_finite() {
                     dirs[2] = Some(nu);
                 }
@@ -278,17 +285,48 @@ impl Search<'_> {
         let mut lb: f64 = 0.0;
         let mut best_nu = dirs[2].unwrap_or(-self.c.normal);
         for nu in dirs.into_iter().flatten() {
-            let nu = self.family.in_polar_cone(nu);
-            if let Some(pieces) = self.family.support(self.c, &self.regime, nu) {
-                let m = hull
-                    .iter()
-                    .map(|p| (*p - c).dot(nu))
-                    .fold(f64::INFINITY, f64::min)
-                    + slack;
-                let b = bound_from_support(&pieces, m);
+            if let Some((b, nu)) = self.plane_bound(hull, nu) {
                 if b > lb {
                     lb = b;
                     best_nu = nu;
+                }
+            }
+        }
+        // The plane that prunes a node the others miss: tangent to the cutter at the node's most
+        // threatening control point (least imaginary size), of that point's size or the current
+        // best if smaller. When that point is what limits the hull the plane separates it; when
+        // another point of the hull stops the plane (its witness), the next plane is tangent
+        // there. Near the CC point, where the hull spans many directions as seen from it, this
+        // halves the nodes of a bull-nose. It is only worth its cost where it can prune: no hull
+        // bound exceeds the least imaginary size of a control point (they are in the hull), so
+        // a control point below the pruning level ends the attempt (the node will be split
+        // anyway). Only the rounded APT cutters (bull-nose) gain: the ball's Bernstein bound
+        // needs no help, and a flat end mill saves 2 % of its nodes for 30 % more time each.
+        let target = self.prune_level();
+        let rounded = matches!(*self.family, CutterFamily::Apt { corner, .. } if corner > 0.0);
+        if rounded && lb < target && !self.surrounds_contact(hull) {
+            if let Some((l_min, p_min)) = self.threat(hull, target) {
+                let level = l_min.min(self.best).min(self.opts.unbounded_above);
+                if let Some(k) = self.family.placed(self.c, &self.regime, level) {
+                    let mut p = p_min;
+                    for step in 1..=WITNESS_STEPS {
+                        let nu = self.trig.outward_normal(&k, p);
+                        let Some((b, nu)) = self.plane_bound(hull, nu) else {
+                            break;
+                        };
+                        if b > lb {
+                            lb = b;
+                            best_nu = nu;
+                        }
+                        if lb >= target || step == WITNESS_STEPS {
+                            break;
+                        }
+                        let w = self.witness(hull, nu);
+                        if w == p {
+                            break;
+                        }
+                        p = w;
+                    }
                 }
             }
         }
@@ -329,6 +367,73 @@ impl Search<'_> {
         }
         self.cps = cps;
         (lb, dir)
+    }
+
+    /// Bounds at or above this prune a node: within the tolerance of the best size found, or
+    /// [`CertifiedOptions::unbounded_above`] while nothing limits the size.
+    fn prune_level(&self) -> f64 {
+        if self.best.is_finite() {
+            self.best - self.opts.tol(self.best)
+        } else {
+            self.opts.unbounded_above
+        }
+    }
+
+    /// True when the box of the hull contains the CC point: then (the hull about surrounds it)
+    /// no plane separates the hull from the cutter touching there, and none is worth trying.
+    fn surrounds_contact(&self, hull: &[Vec3]) -> bool {
+        let c = self.c.point;
+        let (mut lo, mut hi) = (c, c);
+        for p in hull {
+            lo = lo.min(*p);
+            hi = hi.max(*p);
+        }
+        lo.cmplt(c).all() && hi.cmpgt(c).all()
+    }
+
+    /// The control point of the hull with the least imaginary size, and that size; `None` as
+    /// soon as one is below `target` (then no bound over the hull reaches it).
+    fn threat(&self, hull: &[Vec3], target: f64) -> Option<(f64, Vec3)> {
+        let (mut l_min, mut p_min) = (f64::INFINITY, self.c.point);
+        for p in hull {
+            let l = self
+                .trig
+                .imaginary(self.c, &self.regime, *p, &self.opts.model);
+            if l < target {
+                return None;
+            }
+            if l < l_min {
+                l_min = l;
+                p_min = *p;
+            }
+        }
+        Some((l_min, p_min))
+    }
+
+    /// The separating-plane bound of the hull in direction `nu` (moved into the polar cone of
+    /// the cutter's side), with that direction; `None` when the direction bounds nothing (not
+    /// finite, or the support function is infinite there).
+    fn plane_bound(&self, hull: &[Vec3], nu: Vec3) -> Option<(f64, Vec3)> {
+        if !nu.is_finite() {
+            return None;
+        }
+        let nu = self.trig.in_polar_cone(nu);
+        let pieces = self.trig.support(self.c, &self.regime, nu)?;
+        let c = self.c.point;
+        let m = hull
+            .iter()
+            .map(|p| (*p - c).dot(nu))
+            .fold(f64::INFINITY, f64::min);
+        Some((bound_from_support(&pieces, m + self.opts.model.contact), nu))
+    }
+
+    /// The point of the hull nearest the plane of normal `nu` (the one that stops it).
+    fn witness(&self, hull: &[Vec3], nu: Vec3) -> Vec3 {
+        let c = self.c.point;
+        hull.iter()
+            .copied()
+            .min_by(|a, b| (*a - c).dot(nu).total_cmp(&(*b - c).dot(nu)))
+            .unwrap_or(c)
     }
 
     fn excluded(&self, pc: &Piece) -> (bool, f64) {
@@ -400,6 +505,10 @@ fn triangle_split_edge(t: [Vec3; 3], c: Vec3, nu: Vec3) -> usize {
         steepest
     }
 }
+
+/// Planes tried per node from the hull's most threatening control point on (see
+/// [`Search::lower_bound`]): each further step starts from the previous plane's witness.
+const WITNESS_STEPS: usize = 2;
 
 /// Largest ratio of a node's long side to its short side that the split choice tolerates.
 const MAX_ASPECT: f64 = 8.0;
@@ -503,6 +612,7 @@ pub fn allowable_certified(
     };
     let mut s = Search {
         family,
+        trig: FamilyTrig::new(*family),
         c,
         regime,
         opts,
@@ -536,11 +646,7 @@ pub fn allowable_certified(
     let min_diag = scale * 1e-13;
     let mut exhausted = false;
     while let Some(node) = heap.pop() {
-        let done = if s.best.is_finite() {
-            node.lb >= s.best - opts.tol(s.best)
-        } else {
-            node.lb >= opts.unbounded_above
-        };
+        let done = node.lb >= s.prune_level();
         if done || s.best == 0.0 {
             heap.push(node);
             break;
@@ -576,12 +682,7 @@ pub fn allowable_certified(
         };
         for child in children {
             let (lb, dir) = s.lower_bound(&child);
-            let keep = if s.best.is_finite() {
-                lb < s.best - opts.tol(s.best)
-            } else {
-                lb < opts.unbounded_above
-            };
-            if keep {
+            if lb < s.prune_level() {
                 heap.push(Node {
                     lb,
                     dir,

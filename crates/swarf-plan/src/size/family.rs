@@ -3,7 +3,7 @@
 //! the support function of the placed solid (for rigorous lower bounds).
 
 use smallvec::SmallVec;
-use swarf_geom::math::Vec3;
+use swarf_geom::math::{Vec2, Vec3};
 
 use super::{
     imaginary_apt, imaginary_ball, imaginary_taper_ball, Contact, PlacedCutter, SizeError,
@@ -312,37 +312,78 @@ impl CutterFamily {
         }
     }
 
+    /// The support function of the placed cutter `K(L)` in direction `ν`, relative to the CC
+    /// point, as `max_k (α_k + β_k·L)`; `None` when it is infinite (the cutter's side reaches up
+    /// without end, so only directions in the polar cone of the side bound it).
+    #[cfg(test)]
+    pub(crate) fn support(&self, c: &Contact, regime: &Regime, nu: Vec3) -> Option<Pieces> {
+        FamilyTrig::new(*self).support(c, regime, nu)
+    }
+}
+
+/// A family with the sines, cosines and tangents of its fixed angles computed once: the
+/// certified solver asks these questions at every node (a few planes each, and the imaginary
+/// size of every control point to choose them by), and libm calls would otherwise be most of
+/// its time. The values are those `f64::sin` etc. give, so the answers are the same bit for bit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct FamilyTrig {
+    family: CutterFamily,
+    /// `sin θ`, `cos θ`, `tan θ` of the side taper.
+    sin_t: f64,
+    cos_t: f64,
+    tan_t: f64,
+    /// `sin ψ`, `cos ψ`, `tan ψ` of the bottom cone (APT family; 0, 1, 0 otherwise).
+    sin_c: f64,
+    cos_c: f64,
+    tan_c: f64,
+}
+
+impl FamilyTrig {
+    pub(crate) fn new(family: CutterFamily) -> Self {
+        let th = family.taper();
+        let ps = match family {
+            CutterFamily::Apt { cone, .. } => cone,
+            _ => 0.0,
+        };
+        Self {
+            family,
+            sin_t: th.sin(),
+            cos_t: th.cos(),
+            tan_t: th.tan(),
+            sin_c: ps.sin(),
+            cos_c: ps.cos(),
+            tan_c: ps.tan(),
+        }
+    }
+
     /// `ν` moved into the polar cone of the cutter's side (`ν_z ≤ −tan θ·|ν_xy|`), where the
     /// support function is finite: the outward normal of the side lies on that cone's boundary
     /// and round-off would otherwise throw it out.
     pub(crate) fn in_polar_cone(&self, nu: Vec3) -> Vec3 {
-        if *self == CutterFamily::Sphere {
+        if self.family == CutterFamily::Sphere {
             return nu;
         }
         let h = Vec3::new(nu.x, nu.y, 0.0).length();
-        let zmax = -self.taper().tan() * h - 1e-12 * (h + nu.z.abs());
+        let zmax = -self.tan_t * h - 1e-12 * (h + nu.z.abs());
         Vec3::new(nu.x, nu.y, nu.z.min(zmax))
     }
 
-    /// The support function of the placed cutter `K(L)` in direction `ν`, relative to the CC
-    /// point, as `max_k (α_k + β_k·L)`; `None` when it is infinite (the cutter's side reaches up
-    /// without end, so only directions in the polar cone of the side bound it).
+    /// See [`CutterFamily::support`].
     pub(crate) fn support(&self, c: &Contact, regime: &Regime, nu: Vec3) -> Option<Pieces> {
-        let th = self.taper();
         let nuh = Vec3::new(nu.x, nu.y, 0.0);
         let nuh_len = nuh.length();
-        if *self == CutterFamily::Sphere {
+        if self.family == CutterFamily::Sphere {
             // A ball of radius L centred at C + L n: bounded in every direction.
             let mut out = Pieces::new();
             out.push((0.0, 1.0 + c.normal.dot(nu)));
             return Some(out);
         }
-        if th.sin() * nuh_len + th.cos() * nu.z > 0.0 {
+        if self.sin_t * nuh_len + self.cos_t * nu.z > 0.0 {
             return None;
         }
         let n = c.normal;
         let mut out = Pieces::new();
-        match (*self, *regime) {
+        match (self.family, *regime) {
             (CutterFamily::TaperBall { .. }, _) => {
                 // Cone with apex at C + L n, Minkowski ball of radius L.
                 out.push((0.0, 1.0 + n.dot(nu)));
@@ -352,14 +393,14 @@ impl CutterFamily {
                 out.push((r * n.dot(nu) + r, u.dot(nuh) + nuh_len));
                 if cone > 0.0 {
                     out.push((
-                        r * n.dot(nu) - r / cone.cos() * nu.z,
-                        u.dot(nuh) - cone.tan() * nu.z,
+                        r * n.dot(nu) - r / self.cos_c * nu.z,
+                        u.dot(nuh) - self.tan_c * nu.z,
                     ));
                 }
             }
             (CutterFamily::Apt { corner, cone, .. }, Regime::Bottom) => {
                 let r = corner;
-                out.push((r / cone.cos() * nu.z + r, nuh_len + cone.tan() * nu.z));
+                out.push((r / self.cos_c * nu.z + r, nuh_len + self.tan_c * nu.z));
                 if cone > 0.0 {
                     out.push((0.0, 0.0));
                 }
@@ -367,6 +408,125 @@ impl CutterFamily {
             _ => return None,
         }
         Some(out)
+    }
+
+    /// [`CutterFamily::imaginary`], with the APT family's closed forms (corner contact, and
+    /// bottom contact under a flat bottom) evaluated here on the stored trigonometry: the same
+    /// formulas as `imaginary_apt`, the same values. The solver only uses it to choose which
+    /// planes to try (any plane gives a valid bound), never as the objective.
+    pub(crate) fn imaginary(
+        &self,
+        c: &Contact,
+        regime: &Regime,
+        p: Vec3,
+        tol: &SizeTolerances,
+    ) -> f64 {
+        match (self.family, *regime) {
+            (CutterFamily::Apt { corner: r, .. }, Regime::Corner { q, u }) => {
+                let Some(t) = self.apt_t(r, p.z - q.z, tol) else {
+                    return f64::INFINITY;
+                };
+                let d = Vec3::new(p.x - q.x, p.y - q.y, 0.0);
+                let b = d.length_squared();
+                if b.sqrt() < t - tol.contact {
+                    return 0.0;
+                }
+                let den = d.dot(u) + t;
+                if den <= 0.0 {
+                    return f64::INFINITY;
+                }
+                ((b - t * t) / (2.0 * den)).max(0.0)
+            }
+            (
+                CutterFamily::Apt {
+                    corner: r,
+                    cone: 0.0,
+                    ..
+                },
+                Regime::Bottom,
+            ) => {
+                let rho = Vec3::new(p.x - c.point.x, p.y - c.point.y, 0.0).length();
+                let Some(t) = self.apt_t(r, p.z - c.point.z - r, tol) else {
+                    return f64::INFINITY;
+                };
+                if rho < t - tol.contact {
+                    0.0
+                } else {
+                    rho - t
+                }
+            }
+            _ => self.family.imaginary(c, regime, p, tol),
+        }
+    }
+
+    /// The outward unit normal of the placed cutter `k` (of this family) at the point of its
+    /// boundary nearest `p`: [`PlacedCutter::outward_normal`] on the stored trigonometry, the
+    /// corner arc's normal clamped to its ends without angles. Only ever a direction to try a
+    /// separating plane in (any direction gives a valid bound).
+    pub(crate) fn outward_normal(&self, k: &PlacedCutter, p: Vec3) -> Vec3 {
+        if k.sphere_only {
+            return k.outward_normal(p);
+        }
+        let (rho, z, e) = k.meridian(p);
+        let q = Vec2::new(rho, z);
+        let c = Vec2::new(k.big_r, 0.0);
+        let r = k.r;
+        let mut best = (f64::INFINITY, Vec2::new(0.0, -1.0));
+        let mut consider = |pt: Vec2, normal: Vec2| {
+            let d = (q - pt).length();
+            if d < best.0 {
+                best = (d, normal);
+            }
+        };
+        // Side ray from the top of the corner.
+        let n_side = Vec2::new(self.cos_t, -self.sin_t);
+        let s0 = c + r * n_side;
+        let dir = Vec2::new(self.sin_t, self.cos_t);
+        consider(s0 + (q - s0).dot(dir).max(0.0) * dir, n_side);
+        // Corner arc, normals from the bottom's to the side's (less than a quarter turn).
+        let n_bot = Vec2::new(self.sin_c, -self.cos_c);
+        let v = q - c;
+        let inside_arc = n_bot.perp_dot(v) >= 0.0 && v.perp_dot(n_side) >= 0.0;
+        let nrm = if inside_arc && v.length_squared() > 0.0 {
+            v.normalize()
+        } else if v.dot(n_bot) > v.dot(n_side) {
+            n_bot
+        } else {
+            n_side
+        };
+        consider(c + r * nrm, nrm);
+        // Bottom, from the corner's lowest tangent point to the axis.
+        let b0 = c + r * n_bot;
+        let seg = Vec2::new(0.0, b0.y - b0.x * self.tan_c) - b0;
+        let len2 = seg.length_squared();
+        let s = if len2 > 0.0 {
+            ((q - b0).dot(seg) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        consider(b0 + s * seg, n_bot);
+        let n = best.1;
+        (n.x * e + n.y * Vec3::Z).normalize()
+    }
+
+    /// The APT profile's `t(Δz)` (see `imaginary_apt`), `None` where nothing is inside.
+    fn apt_t(&self, r: f64, dz: f64, tol: &SizeTolerances) -> Option<f64> {
+        let cone = match self.family {
+            CutterFamily::Apt { cone, .. } => cone,
+            _ => 0.0,
+        };
+        if cone == 0.0 && dz <= -r + tol.contact {
+            return None;
+        }
+        if dz >= -r * self.sin_t {
+            Some(dz * self.tan_t + r / self.cos_t)
+        } else if dz > -r * self.cos_c {
+            Some((r * r - dz * dz).max(0.0).sqrt())
+        } else if cone > 0.0 {
+            Some(dz / self.tan_c + r / self.sin_c)
+        } else {
+            None
+        }
     }
 }
 
@@ -401,6 +561,50 @@ pub(crate) fn bound_from_support(pieces: &Pieces, m: f64) -> f64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The solver's imaginary size on stored trigonometry is the family's, bit for bit.
+    #[test]
+    fn imaginary_on_stored_trigonometry_is_the_same() {
+        let mut k = 7u64;
+        let mut r = || {
+            k = k
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            (k >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let fams = [
+            CutterFamily::flat(),
+            CutterFamily::bull(1.5).unwrap(),
+            CutterFamily::apt(1.0, 4.0, 10.0).unwrap(),
+            CutterFamily::apt(2.0, 12.0, 0.0).unwrap(),
+        ];
+        let tol = SizeTolerances::DEFAULT;
+        for f in &fams {
+            let ft = FamilyTrig::new(*f);
+            for trial in 0..4000 {
+                let n = if trial % 10 == 0 {
+                    Vec3::Z
+                } else {
+                    Vec3::new(0.6 * r(), 0.6 * r(), 1.0).normalize()
+                };
+                let c = Contact {
+                    point: Vec3::new(r(), r(), r()),
+                    normal: n,
+                    curvature: None,
+                };
+                let reg = f.regime(&c, &tol);
+                let p = c.point + Vec3::new(8.0 * r(), 8.0 * r(), 6.0 * r());
+                let (a, b) = (
+                    f.imaginary(&c, &reg, p, &tol),
+                    ft.imaginary(&c, &reg, p, &tol),
+                );
+                assert!(
+                    a == b || (a.is_nan() && b.is_nan()),
+                    "{f:?} {reg:?}: {a} ≠ {b}"
+                );
+            }
+        }
+    }
 
     /// The separating-plane bound of a single point never exceeds its imaginary size, for any
     /// direction: the support functions are right.
