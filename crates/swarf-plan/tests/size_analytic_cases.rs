@@ -7,8 +7,8 @@ use std::f64::consts::FRAC_1_SQRT_2;
 
 use swarf_geom::math::Vec3;
 use swarf_plan::size::{
-    allowable_certified, check_shank, AllowableSize, CertifiedOptions, Contact, CutterFamily,
-    Limit, PreparedSurface, ShankCheck, ShankStatus,
+    allowable_certified, check_shank, shank_limited, AllowableSize, CertifiedOptions, Contact,
+    CutterFamily, Limit, PreparedSurface, ShankCheck, ShankStatus,
 };
 use swarf_plan::{io, CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
 
@@ -218,6 +218,39 @@ fn shank_above_the_flutes_is_checked_against_the_wall() {
         check_shank(&prep, &f, &c, a.size, &long, &model),
         ShankStatus::Free
     );
+}
+
+#[test]
+fn shank_lowers_the_size_until_it_clears_the_wall() {
+    // A bare sphere of radius L tangent to the floor's centre, the wall 8 mm high at x = 10:
+    // the sphere meets the wall's top edge first, at L = (8² + 10²)/(2·8) = 10.25. Its shank
+    // (radius L above 5 mm of flutes) meets the wall as soon as L > 10, so the size is 10.
+    let part = floor_and_wall(10.0, 8.0);
+    let prep = PreparedSurface::new(&part);
+    let cc = part.points(&[(0, 0.5, 0.5)]).unwrap()[0];
+    let c = Contact::at(&part, &cc, &Tolerances::DEFAULT).unwrap();
+    let f = CutterFamily::ball();
+    let a = allowable_certified(&prep, &f, &c, &CertifiedOptions::DEFAULT);
+    assert!((a.size - 10.25).abs() < EPS, "{a:?}");
+    let model = CertifiedOptions::DEFAULT.model;
+    let (b, st) = shank_limited(&prep, &f, &c, a, &ShankCheck::new(5.0), &model);
+    assert!((b.size - 10.0).abs() < 1e-6 + model.contact, "{b:?}");
+    assert_eq!(b.limit, Some(Limit::Interference));
+    let p = b.limit_point.unwrap();
+    assert!(
+        (p.x - 10.0).abs() < 1e-9 && p.z >= 5.0 && p.z <= 8.0,
+        "{p:?}"
+    );
+    assert!(matches!(st, ShankStatus::Limits { cutting_size, .. } if cutting_size == a.size));
+    // Free at the answer, not just above it.
+    assert_eq!(
+        check_shank(&prep, &f, &c, b.size, &ShankCheck::new(5.0), &model),
+        ShankStatus::Free
+    );
+    // Flutes longer than the wall: the sphere's own size stands.
+    let (b, st) = shank_limited(&prep, &f, &c, a, &ShankCheck::new(9.0), &model);
+    assert_eq!(b, a);
+    assert_eq!(st, ShankStatus::Free);
 }
 
 #[test]

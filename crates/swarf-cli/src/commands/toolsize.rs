@@ -46,7 +46,8 @@ pub(crate) struct ToolsizeArgs {
     /// Reverse the side the cutter comes from on every patch.
     #[arg(long)]
     pub(crate) flip: bool,
-    /// Also check the shank (the cutter's own diameter) above this flute length, mm.
+    /// Also check the shank (the cutter's own diameter) above this flute length, mm: where it
+    /// reaches into the surface the size is lowered until it is free (limit `interference`).
     #[arg(long)]
     pub(crate) flute_length: Option<f64>,
     /// 4-axis mode: the rotary axis, `X` or `Y`; each point gets the table angle that
@@ -210,15 +211,13 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
     let shank_hits = map
         .points
         .iter()
-        .filter(|p| {
-            matches!(
-                p.shank,
-                Some(swarf_plan::size::ShankStatus::Interferes { .. })
-            )
-        })
+        .filter(|p| matches!(p.shank, Some(swarf_plan::size::ShankStatus::Limits { .. })))
         .count();
     if shank_hits > 0 {
-        eprintln!("warning: the shank interferes at {shank_hits} points");
+        eprintln!(
+            "note: the shank lowers the allowable size at {shank_hits} points (limit = \
+             interference at the shank's point)"
+        );
     }
     Ok(())
 }

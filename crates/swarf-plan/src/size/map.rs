@@ -17,7 +17,7 @@ use swarf_geom::math::Vec3;
 
 use super::orient4::{axis_rotation, best_rotary_angle, in_tool_frame, Axis4Options};
 use super::orient5::{best_lead_tilt, Axis5Options, LeadTiltFrame};
-use super::shank::check_shank;
+use super::shank::shank_limited;
 use super::{
     allowable_certified, allowable_pso, AllowableSize, CertifiedOptions, Contact, CutterFamily,
     PreparedSurface, PsoOptions, ShankCheck, ShankStatus, SizeTolerances,
@@ -199,9 +199,14 @@ pub fn allowable_map_prepared(
                 Solver::Certified => allowable_certified(prep, family, &c, &opts.certified),
                 Solver::Pso => allowable_pso(surface, family, &c, &opts.pso),
             };
-            let shank = opts
-                .shank
-                .map(|s| check_shank(prep, family, &c, size.size, &s, &opts.certified.model));
+            let (size, shank) = match opts.shank {
+                Some(s) => {
+                    let (size, st) =
+                        shank_limited(prep, family, &c, size, &s, &opts.certified.model);
+                    (size, Some(st))
+                }
+                None => (size, None),
+            };
             MapPoint {
                 cc: *cc,
                 point: c.point,
@@ -231,7 +236,7 @@ fn oriented_point(
     c: &Contact,
     opts: &MapOptions,
 ) -> MapPoint {
-    let (size, angles, axis, q, certified) = match opts.axes {
+    let (mut size, angles, axis, q, certified) = match opts.axes {
         Axes::Three => unreachable!("3-axis points are solved in allowable_map"),
         Axes::Four(o) => {
             let best = best_rotary_angle(prep, family, c, &o);
@@ -260,13 +265,35 @@ fn oriented_point(
         }
     };
     let (rprep, rc) = in_tool_frame(prep, c, q);
-    let in_frame = AllowableSize {
+    let mut in_frame = AllowableSize {
         limit_point: size.limit_point.map(|p| q * p),
         ..size
     };
-    let shank = opts
-        .shank
-        .map(|s| check_shank(&rprep, family, &rc, size.size, &s, &certified.model));
+    let mut shank = None;
+    if let Some(s) = opts.shank {
+        let (limited, st) = shank_limited(&rprep, family, &rc, in_frame, &s, &certified.model);
+        // Back to the part frame (the tool frame is the part turned by `q`).
+        let back = |p: Vec3| q.inverse() * p;
+        size = AllowableSize {
+            limit_point: limited.limit_point.map(back),
+            ..limited
+        };
+        shank = Some(match st {
+            ShankStatus::Interferes { point, depth } => ShankStatus::Interferes {
+                point: back(point),
+                depth,
+            },
+            ShankStatus::Limits {
+                point,
+                cutting_size,
+            } => ShankStatus::Limits {
+                point: back(point),
+                cutting_size,
+            },
+            other => other,
+        });
+        in_frame = limited;
+    }
     MapPoint {
         cc: *cc,
         point: c.point,

@@ -74,7 +74,7 @@ pub use orient4::{allowable_along, best_rotary_angle, Axis4Options, Orientation4
 pub use orient5::{best_lead_tilt, Axis5Options, LeadTiltFrame, Orientation5};
 pub use placed::PlacedCutter;
 pub use pso::{allowable_pso, PsoOptions};
-pub use shank::{check_shank, ShankCheck, ShankStatus};
+pub use shank::{check_shank, shank_limited, ShankCheck, ShankStatus};
 pub use standard::{
     grid_cell_areas, AreaRule, CutterShare, StandardCutters, StandardError, StandardOptions,
     StandardReport,

@@ -1,12 +1,13 @@
 //! The shank must be free too (Liu §2.3.1): after the allowable size is found, the cylinder of
 //! the shank diameter above the flute length is checked against the surface by subdivision of
 //! the same Bézier pieces, with separating planes (below the shank's bottom, or outside its
-//! radius) as the pruning test and surface points strictly inside as the evidence.
+//! radius) as the pruning test and surface points strictly inside as the evidence; where it
+//! interferes, [`shank_limited`] lowers the size by bisection until it is free.
 
 use swarf_geom::math::Vec3;
 
 use super::bezier::Piece;
-use super::{Contact, CutterFamily, PreparedSurface, Regime, SizeTolerances};
+use super::{AllowableSize, Contact, CutterFamily, Limit, PreparedSurface, Regime, SizeTolerances};
 
 /// The shank to check.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -46,6 +47,14 @@ pub enum ShankStatus {
     Unresolved,
     /// Nothing to check (infinite or zero size, or unreachable contact).
     NotApplicable,
+    /// The shank lowered the allowable size ([`shank_limited`]): at the cutting part's size
+    /// `cutting_size` it reached into the surface, last at `point` during the bisection.
+    Limits {
+        /// The shank's point that limits the size.
+        point: Vec3,
+        /// The cutting part's own allowable size (`L`), above the reported one.
+        cutting_size: f64,
+    },
 }
 
 /// Checks the shank of the cutter of `size` placed at the contact.
@@ -120,4 +129,64 @@ pub fn check_shank(
     } else {
         ShankStatus::Free
     }
+}
+
+/// Bisection stops when the bracket on the shank-limited size is this narrow, mm (or this
+/// fraction of the size).
+const SHANK_BISECTION_ABS: f64 = 1e-7;
+const SHANK_BISECTION_REL: f64 = 1e-9;
+
+/// The allowable size with the shank free too (Liu §2.3.1): `size` (the cutting part's
+/// allowable size, certified or not) when the shank is free at it, else the largest size found
+/// by bisection at which the shank is proven free, limited by interference at the shank's
+/// point, and the shank's status there ([`ShankStatus::Limits`] when it lowered the size).
+///
+/// Every size below the cutting part's allowable size keeps the cutting part free (the family
+/// is nested), so the result is safe for the whole tool. The shank's interference need not be
+/// monotone in the size (the shank moves with the cutter), so the result is the largest free
+/// size of the bracket the bisection keeps, not a certified maximum. An unbounded size is first
+/// cut to twice the diagonal of the surface's box: no larger cutter touches anything
+/// differently.
+pub fn shank_limited(
+    prep: &PreparedSurface,
+    family: &CutterFamily,
+    c: &Contact,
+    size: AllowableSize,
+    shank: &ShankCheck,
+    tol: &SizeTolerances,
+) -> (AllowableSize, ShankStatus) {
+    let reach = prep
+        .bounding_box()
+        .map_or(1e3, |b| 2.0 * (b.max - b.min).length().max(1.0));
+    let hi0 = size.size.min(reach);
+    let at_hi = check_shank(prep, family, c, hi0, shank, tol);
+    let ShankStatus::Interferes { point, .. } = at_hi else {
+        return (size, at_hi);
+    };
+    let (mut lo, mut hi, mut point) = (0.0, hi0, point);
+    while hi - lo > SHANK_BISECTION_ABS + SHANK_BISECTION_REL * hi {
+        let mid = 0.5 * (lo + hi);
+        match check_shank(prep, family, c, mid, shank, tol) {
+            ShankStatus::Free | ShankStatus::NotApplicable => lo = mid,
+            ShankStatus::Interferes { point: p, .. } => {
+                hi = mid;
+                point = p;
+            }
+            // Not proven free: keep it out of the answer.
+            ShankStatus::Unresolved | ShankStatus::Limits { .. } => hi = mid,
+        }
+    }
+    let limited = AllowableSize {
+        size: lo,
+        limit: Some(Limit::Interference),
+        limit_point: Some(point),
+        ..size
+    };
+    (
+        limited,
+        ShankStatus::Limits {
+            point,
+            cutting_size: size.size,
+        },
+    )
 }
