@@ -90,13 +90,14 @@ fn clamp_interference_and_floor_gouge_are_found_located_and_measured() {
     assert_eq!(s["moves"], 7);
     assert_eq!(s["points"], 8);
     assert_eq!(s["certified"], true);
-    // The plunge: 0.5 mm into the floor; the clamp: 1 mm deep at the end of line 3.
+    // The plunge: 0.5 mm into the floor; the clamp: 1 mm deep at the end of line 3 (each to
+    // the certificate gap, 1e-4 mm or 0.1 % of the depth).
     assert!(
-        (s["max_gouge_mm"].as_f64().unwrap() - 0.5).abs() < 1e-4,
+        (s["max_gouge_mm"].as_f64().unwrap() - 0.5).abs() <= 5e-4,
         "{s}"
     );
     assert!(
-        (s["max_interference_mm"].as_f64().unwrap() - 1.0).abs() < 1e-4,
+        (s["max_interference_mm"].as_f64().unwrap() - 1.0).abs() <= 1e-3,
         "{s}"
     );
     let v = rows(&dir.join("out/violations.csv"));
