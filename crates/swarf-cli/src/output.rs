@@ -5,6 +5,18 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 
+/// A progress bar over `moves` moves on stderr, drawn only on a terminal (nothing when piped).
+pub(crate) fn moves_bar(moves: usize) -> indicatif::ProgressBar {
+    use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+    let bar =
+        ProgressBar::with_draw_target(Some(moves as u64), ProgressDrawTarget::stderr_with_hz(10));
+    bar.set_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} moves  {elapsed} (eta {eta})")
+            .unwrap_or_else(|_| ProgressStyle::default_bar()),
+    );
+    bar
+}
+
 /// Prints a value as pretty JSON on stdout.
 pub(crate) fn print_json<T: serde::Serialize>(value: &T) -> Result<()> {
     let mut out = std::io::stdout().lock();

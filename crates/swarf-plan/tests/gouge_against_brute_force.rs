@@ -148,34 +148,6 @@ fn height_patch(field: &Field, x0: f64, y0: f64, w: f64, weights: Option<&mut Rn
     ))
 }
 
-/// A trough: the cylinder of radius `r` about the line `y = 0, z = r`, `x ∈ [0, len]`, polar
-/// angle within `±alpha` of the bottom, exactly (a rational quadratic arc); normal up.
-fn trough(r: f64, alpha: f64, len: f64) -> Patch {
-    let arc = [
-        (Vec3::new(0.0, -r * alpha.sin(), r - r * alpha.cos()), 1.0),
-        (Vec3::new(0.0, 0.0, r - r / alpha.cos()), alpha.cos()),
-        (Vec3::new(0.0, r * alpha.sin(), r - r * alpha.cos()), 1.0),
-    ];
-    let pts: Vec<Vec<Vec3>> = [0.0, len]
-        .iter()
-        .map(|&x| arc.iter().map(|(p, _)| *p + Vec3::X * x).collect())
-        .collect();
-    let ws: Vec<Vec<f64>> = (0..2)
-        .map(|_| arc.iter().map(|(_, w)| *w).collect())
-        .collect();
-    Patch::new(Surface::Nurbs(
-        NurbsSurface::new(
-            1,
-            2,
-            vec![0.0, 0.0, 1.0, 1.0],
-            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-            &pts,
-            Some(&ws),
-        )
-        .unwrap(),
-    ))
-}
-
 /// The test scenes: compound surfaces of polynomial, rational and analytic patches.
 fn scene_patches(k: usize) -> (&'static str, Vec<Patch>) {
     match k {
@@ -228,7 +200,7 @@ fn scene_patches(k: usize) -> (&'static str, Vec<Patch>) {
             (
                 "trough and torus",
                 vec![
-                    trough(12.0, 60f64.to_radians(), 40.0),
+                    common::trough(12.0, 60f64.to_radians(), 40.0),
                     Patch::new(Surface::Torus(torus)),
                 ],
             )

@@ -3,6 +3,8 @@
 //! wider than the cutter beside a wall, a flat end mill tilting on a floor along a 5-axis CL
 //! move, a rapid through the part, and a finishing pass that only touches (clear).
 
+mod common;
+
 use swarf_geom::math::Vec3;
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::Machine;
@@ -21,35 +23,6 @@ fn plane(o: Vec3, du: Vec3, dv: Vec3) -> Patch {
     let k = vec![0.0, 0.0, 1.0, 1.0];
     Patch::new(Surface::Nurbs(
         NurbsSurface::new(1, 1, k.clone(), k, &pts, None).unwrap(),
-    ))
-}
-
-/// A trough: the cylinder of radius `r` about the line `y = 0, z = r`, for `x ∈ [0, len]` and
-/// polar angle `φ ∈ [−α, α]` from the bottom, exactly (a rational quadratic arc); normal up,
-/// towards the axis.
-fn trough(r: f64, alpha: f64, len: f64) -> Patch {
-    let arc = [
-        (Vec3::new(0.0, -r * alpha.sin(), r - r * alpha.cos()), 1.0),
-        (Vec3::new(0.0, 0.0, r - r / alpha.cos()), alpha.cos()),
-        (Vec3::new(0.0, r * alpha.sin(), r - r * alpha.cos()), 1.0),
-    ];
-    let pts: Vec<Vec<Vec3>> = [0.0, len]
-        .iter()
-        .map(|&x| arc.iter().map(|(p, _)| *p + Vec3::X * x).collect())
-        .collect();
-    let ws: Vec<Vec<f64>> = (0..2)
-        .map(|_| arc.iter().map(|(_, w)| *w).collect())
-        .collect();
-    Patch::new(Surface::Nurbs(
-        NurbsSurface::new(
-            1,
-            2,
-            vec![0.0, 0.0, 1.0, 1.0],
-            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
-            &pts,
-            Some(&ws),
-        )
-        .unwrap(),
     ))
 }
 
@@ -86,7 +59,7 @@ fn spec(s: &str) -> Cutter {
 #[test]
 fn ball_larger_than_a_concave_trough_gouges_its_flanks() {
     let (rc, alpha) = (10.0_f64, 60f64.to_radians());
-    let s = surface(vec![trough(rc, alpha, 40.0)]);
+    let s = surface(vec![common::trough(rc, alpha, 40.0)]);
     let rb = 12.0;
     // Ball centre at height rb over the bottom: the flank edges at φ = ±α are deepest.
     let expected = rb - (rc * rc + (rb - rc).powi(2) + 2.0 * rc * (rb - rc) * alpha.cos()).sqrt();
@@ -200,7 +173,7 @@ fn a_rapid_through_the_part_is_interference() {
 
 #[test]
 fn a_tangent_finishing_pass_is_proven_clear() {
-    let s = surface(vec![trough(10.0, 60f64.to_radians(), 40.0)]);
+    let s = surface(vec![common::trough(10.0, 60f64.to_radians(), 40.0)]);
     // A 6 mm ball along the trough at several offsets, tangent to it everywhere: tip on the
     // offset surface (ball centre at distance 7 from the axis, 3 mm inside the cylinder).
     let mut prog = String::from("G1 X5 Y0 Z0 F100\n");

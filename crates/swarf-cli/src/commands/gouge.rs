@@ -7,7 +7,6 @@ use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use swarf_path::Program;
 use swarf_plan::gouge::{
     check_program_observed, GougeOptions, GougeReport, GougeSummary, GougeSurface, GougeTools,
@@ -80,14 +79,7 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         ..GougeOptions::DEFAULT.with_tolerance(args.tolerance)
     };
     let gs = GougeSurface::new(&prep);
-    let bar = ProgressBar::with_draw_target(
-        Some(program.moves.len() as u64),
-        ProgressDrawTarget::stderr_with_hz(10),
-    );
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} moves  {elapsed} (eta {eta})")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let bar = crate::output::moves_bar(program.moves.len());
     let report = check_program_observed(&gs, &program, &tools, &opts, &|done, _| {
         bar.set_position(done as u64);
     })

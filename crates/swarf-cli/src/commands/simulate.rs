@@ -4,7 +4,6 @@ use std::fmt::Write as _;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::path::Path;
 
 use anyhow::{bail, Context, Result};
@@ -171,14 +170,7 @@ fn simulate_with_progress(
     // A second handler cannot be installed (demo and tests run one simulation per process);
     // if it fails, Ctrl-C simply keeps its default meaning.
     let _ = ctrlc::set_handler(|| STOP.store(true, Ordering::SeqCst));
-    let bar = ProgressBar::with_draw_target(
-        Some(program.moves.len() as u64),
-        ProgressDrawTarget::stderr_with_hz(10),
-    );
-    bar.set_style(
-        ProgressStyle::with_template("{bar:40} {pos}/{len} moves  {elapsed} (eta {eta})")
-            .unwrap_or_else(|_| ProgressStyle::default_bar()),
-    );
+    let bar = crate::output::moves_bar(program.moves.len());
     let result = simulate_observed(program, tools, stock, options, &mut |done| {
         bar.set_position(done as u64);
         if STOP.load(Ordering::SeqCst) {

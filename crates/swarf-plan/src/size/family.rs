@@ -2,6 +2,7 @@
 //! the solvers ask: the imaginary size of a test point, the curvature (local gouge) bound, and
 //! the support function of the placed solid (for rigorous lower bounds).
 
+use super::imaginary_apt::AptTrig;
 use smallvec::SmallVec;
 use swarf_geom::math::{Vec2, Vec3};
 
@@ -240,7 +241,7 @@ impl CutterFamily {
                     cone,
                 },
                 Regime::Corner { q, u },
-            ) => imaginary_apt::corner(corner, taper, cone, q, u, p, tol),
+            ) => imaginary_apt::corner(&AptTrig::new(taper, cone), corner, q, u, p, tol),
             (
                 CutterFamily::Apt {
                     corner,
@@ -248,7 +249,7 @@ impl CutterFamily {
                     cone,
                 },
                 _,
-            ) => imaginary_apt::bottom(self, corner, taper, cone, c, p, tol),
+            ) => imaginary_apt::bottom(self, &AptTrig::new(taper, cone), corner, cone, c, p, tol),
         }
     }
 }
@@ -328,14 +329,8 @@ impl CutterFamily {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct FamilyTrig {
     family: CutterFamily,
-    /// `sin θ`, `cos θ`, `tan θ` of the side taper.
-    sin_t: f64,
-    cos_t: f64,
-    tan_t: f64,
-    /// `sin ψ`, `cos ψ`, `tan ψ` of the bottom cone (APT family; 0, 1, 0 otherwise).
-    sin_c: f64,
-    cos_c: f64,
-    tan_c: f64,
+    /// The side taper's and bottom cone's trigonometry (cone 0 outside the APT family).
+    apt: AptTrig,
 }
 
 impl FamilyTrig {
@@ -347,12 +342,7 @@ impl FamilyTrig {
         };
         Self {
             family,
-            sin_t: th.sin(),
-            cos_t: th.cos(),
-            tan_t: th.tan(),
-            sin_c: ps.sin(),
-            cos_c: ps.cos(),
-            tan_c: ps.tan(),
+            apt: AptTrig::new(th, ps),
         }
     }
 
@@ -364,7 +354,7 @@ impl FamilyTrig {
             return nu;
         }
         let h = Vec3::new(nu.x, nu.y, 0.0).length();
-        let zmax = -self.tan_t * h - 1e-12 * (h + nu.z.abs());
+        let zmax = -self.apt.tan_t * h - 1e-12 * (h + nu.z.abs());
         Vec3::new(nu.x, nu.y, nu.z.min(zmax))
     }
 
@@ -378,7 +368,7 @@ impl FamilyTrig {
             out.push((0.0, 1.0 + c.normal.dot(nu)));
             return Some(out);
         }
-        if self.sin_t * nuh_len + self.cos_t * nu.z > 0.0 {
+        if self.apt.sin_t * nuh_len + self.apt.cos_t * nu.z > 0.0 {
             return None;
         }
         let n = c.normal;
@@ -393,14 +383,17 @@ impl FamilyTrig {
                 out.push((r * n.dot(nu) + r, u.dot(nuh) + nuh_len));
                 if cone > 0.0 {
                     out.push((
-                        r * n.dot(nu) - r / self.cos_c * nu.z,
-                        u.dot(nuh) - self.tan_c * nu.z,
+                        r * n.dot(nu) - r / self.apt.cos_c * nu.z,
+                        u.dot(nuh) - self.apt.tan_c * nu.z,
                     ));
                 }
             }
             (CutterFamily::Apt { corner, cone, .. }, Regime::Bottom) => {
                 let r = corner;
-                out.push((r / self.cos_c * nu.z + r, nuh_len + self.tan_c * nu.z));
+                out.push((
+                    r / self.apt.cos_c * nu.z + r,
+                    nuh_len + self.apt.tan_c * nu.z,
+                ));
                 if cone > 0.0 {
                     out.push((0.0, 0.0));
                 }
@@ -423,19 +416,7 @@ impl FamilyTrig {
     ) -> f64 {
         match (self.family, *regime) {
             (CutterFamily::Apt { corner: r, .. }, Regime::Corner { q, u }) => {
-                let Some(t) = self.apt_t(r, p.z - q.z, tol) else {
-                    return f64::INFINITY;
-                };
-                let d = Vec3::new(p.x - q.x, p.y - q.y, 0.0);
-                let b = d.length_squared();
-                if b.sqrt() < t - tol.contact {
-                    return 0.0;
-                }
-                let den = d.dot(u) + t;
-                if den <= 0.0 {
-                    return f64::INFINITY;
-                }
-                ((b - t * t) / (2.0 * den)).max(0.0)
+                imaginary_apt::corner(&self.apt, r, q, u, p, tol)
             }
             (
                 CutterFamily::Apt {
@@ -444,17 +425,7 @@ impl FamilyTrig {
                     ..
                 },
                 Regime::Bottom,
-            ) => {
-                let rho = Vec3::new(p.x - c.point.x, p.y - c.point.y, 0.0).length();
-                let Some(t) = self.apt_t(r, p.z - c.point.z - r, tol) else {
-                    return f64::INFINITY;
-                };
-                if rho < t - tol.contact {
-                    0.0
-                } else {
-                    rho - t
-                }
-            }
+            ) => imaginary_apt::bottom(&self.family, &self.apt, r, 0.0, c, p, tol),
             _ => self.family.imaginary(c, regime, p, tol),
         }
     }
@@ -479,12 +450,12 @@ impl FamilyTrig {
             }
         };
         // Side ray from the top of the corner.
-        let n_side = Vec2::new(self.cos_t, -self.sin_t);
+        let n_side = Vec2::new(self.apt.cos_t, -self.apt.sin_t);
         let s0 = c + r * n_side;
-        let dir = Vec2::new(self.sin_t, self.cos_t);
+        let dir = Vec2::new(self.apt.sin_t, self.apt.cos_t);
         consider(s0 + (q - s0).dot(dir).max(0.0) * dir, n_side);
         // Corner arc, normals from the bottom's to the side's (less than a quarter turn).
-        let n_bot = Vec2::new(self.sin_c, -self.cos_c);
+        let n_bot = Vec2::new(self.apt.sin_c, -self.apt.cos_c);
         let v = q - c;
         let inside_arc = n_bot.perp_dot(v) >= 0.0 && v.perp_dot(n_side) >= 0.0;
         let nrm = if inside_arc && v.length_squared() > 0.0 {
@@ -497,7 +468,7 @@ impl FamilyTrig {
         consider(c + r * nrm, nrm);
         // Bottom, from the corner's lowest tangent point to the axis.
         let b0 = c + r * n_bot;
-        let seg = Vec2::new(0.0, b0.y - b0.x * self.tan_c) - b0;
+        let seg = Vec2::new(0.0, b0.y - b0.x * self.apt.tan_c) - b0;
         let len2 = seg.length_squared();
         let s = if len2 > 0.0 {
             ((q - b0).dot(seg) / len2).clamp(0.0, 1.0)
@@ -507,26 +478,6 @@ impl FamilyTrig {
         consider(b0 + s * seg, n_bot);
         let n = best.1;
         (n.x * e + n.y * Vec3::Z).normalize()
-    }
-
-    /// The APT profile's `t(Δz)` (see `imaginary_apt`), `None` where nothing is inside.
-    fn apt_t(&self, r: f64, dz: f64, tol: &SizeTolerances) -> Option<f64> {
-        let cone = match self.family {
-            CutterFamily::Apt { cone, .. } => cone,
-            _ => 0.0,
-        };
-        if cone == 0.0 && dz <= -r + tol.contact {
-            return None;
-        }
-        if dz >= -r * self.sin_t {
-            Some(dz * self.tan_t + r / self.cos_t)
-        } else if dz > -r * self.cos_c {
-            Some((r * r - dz * dz).max(0.0).sqrt())
-        } else if cone > 0.0 {
-            Some(dz / self.tan_c + r / self.sin_c)
-        } else {
-            None
-        }
     }
 }
 

@@ -27,34 +27,63 @@ const BISECTION_STEPS: u32 = 200;
 /// The largest finite size the bisection tries before answering `∞`, mm.
 const SIZE_CEILING: f64 = 1e12;
 
-fn t_of(r: f64, taper: f64, cone: f64, dz: f64, tol: &SizeTolerances) -> Option<f64> {
-    if cone == 0.0 && dz <= -r + tol.contact {
-        // On or below the flat bottom's plane: touching at most, never gouging.
-        return None;
+/// The sines, cosines and tangents of an APT cutter's side taper `θ` and bottom cone `ψ`,
+/// computed once: the solvers evaluate imaginary sizes by the million.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct AptTrig {
+    pub(super) sin_t: f64,
+    pub(super) cos_t: f64,
+    pub(super) tan_t: f64,
+    pub(super) sin_c: f64,
+    pub(super) cos_c: f64,
+    pub(super) tan_c: f64,
+    /// `ψ = 0`: a flat bottom.
+    pub(super) flat_bottom: bool,
+}
+
+impl AptTrig {
+    pub(super) fn new(taper: f64, cone: f64) -> Self {
+        Self {
+            sin_t: taper.sin(),
+            cos_t: taper.cos(),
+            tan_t: taper.tan(),
+            sin_c: cone.sin(),
+            cos_c: cone.cos(),
+            tan_c: cone.tan(),
+            flat_bottom: cone == 0.0,
+        }
     }
-    if dz >= -r * taper.sin() {
-        Some(dz * taper.tan() + r / taper.cos())
-    } else if dz > -r * cone.cos() {
-        Some((r * r - dz * dz).max(0.0).sqrt())
-    } else if cone > 0.0 {
-        Some(dz / cone.tan() + r / cone.sin())
-    } else {
-        None
+
+    /// The profile's radius beyond `R` at height `dz` above the corner-circle centre (`t(z)` of
+    /// [`super::PlacedCutter`]), `None` on or below a flat bottom's plane.
+    pub(super) fn t(&self, r: f64, dz: f64, tol: &SizeTolerances) -> Option<f64> {
+        if self.flat_bottom && dz <= -r + tol.contact {
+            // On or below the flat bottom's plane: touching at most, never gouging.
+            return None;
+        }
+        if dz >= -r * self.sin_t {
+            Some(dz * self.tan_t + r / self.cos_t)
+        } else if dz > -r * self.cos_c {
+            Some((r * r - dz * dz).max(0.0).sqrt())
+        } else if !self.flat_bottom {
+            Some(dz / self.tan_c + r / self.sin_c)
+        } else {
+            None
+        }
     }
 }
 
 /// Corner contact: closed form.
 pub(super) fn corner(
+    trig: &AptTrig,
     r: f64,
-    taper: f64,
-    cone: f64,
     q: Vec3,
     u: Vec3,
     p: Vec3,
     tol: &SizeTolerances,
 ) -> f64 {
     let dz = p.z - q.z;
-    let Some(t) = t_of(r, taper, cone, dz, tol) else {
+    let Some(t) = trig.t(r, dz, tol) else {
         return f64::INFINITY;
     };
     let d = Vec3::new(p.x - q.x, p.y - q.y, 0.0);
@@ -73,8 +102,8 @@ pub(super) fn corner(
 /// Bottom contact: the axis through the CC point.
 pub(super) fn bottom(
     family: &CutterFamily,
+    trig: &AptTrig,
     r: f64,
-    taper: f64,
     cone: f64,
     c: &Contact,
     p: Vec3,
@@ -83,7 +112,7 @@ pub(super) fn bottom(
     let rho = Vec3::new(p.x - c.point.x, p.y - c.point.y, 0.0).length();
     let z = p.z - c.point.z;
     if cone == 0.0 {
-        let Some(t) = t_of(r, taper, 0.0, z - r, tol) else {
+        let Some(t) = trig.t(r, z - r, tol) else {
             return f64::INFINITY;
         };
         return if rho < t - tol.contact { 0.0 } else { rho - t };

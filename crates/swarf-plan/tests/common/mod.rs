@@ -3,7 +3,7 @@
 
 use std::f64::consts::FRAC_1_SQRT_2;
 use swarf_geom::math::Vec3;
-use swarf_plan::{NurbsSurface, ParametricSurface};
+use swarf_plan::{NurbsSurface, ParametricSurface, Patch, Surface};
 
 /// Path of a file in the shared data set.
 #[macro_export]
@@ -135,4 +135,32 @@ pub fn max_fd_error<S: ParametricSurface>(s: &S, n: usize) -> f64 {
         }
     }
     worst
+}
+
+/// A trough: the cylinder of radius `r` about the line `y = 0, z = r`, `x ∈ [0, len]`, polar
+/// angle within `±alpha` of the bottom, exactly (a rational quadratic arc); normal up.
+pub fn trough(r: f64, alpha: f64, len: f64) -> Patch {
+    let arc = [
+        (Vec3::new(0.0, -r * alpha.sin(), r - r * alpha.cos()), 1.0),
+        (Vec3::new(0.0, 0.0, r - r / alpha.cos()), alpha.cos()),
+        (Vec3::new(0.0, r * alpha.sin(), r - r * alpha.cos()), 1.0),
+    ];
+    let pts: Vec<Vec<Vec3>> = [0.0, len]
+        .iter()
+        .map(|&x| arc.iter().map(|(p, _)| *p + Vec3::X * x).collect())
+        .collect();
+    let ws: Vec<Vec<f64>> = (0..2)
+        .map(|_| arc.iter().map(|(_, w)| *w).collect())
+        .collect();
+    Patch::new(Surface::Nurbs(
+        NurbsSurface::new(
+            1,
+            2,
+            vec![0.0, 0.0, 1.0, 1.0],
+            vec![0.0, 0.0, 0.0, 1.0, 1.0, 1.0],
+            &pts,
+            Some(&ws),
+        )
+        .unwrap(),
+    ))
 }
