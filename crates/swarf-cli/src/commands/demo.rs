@@ -12,17 +12,15 @@ use swarf_geom::math::Vec3;
 use swarf_path::canonical::CanonicalPrinter;
 use swarf_path::load::{read_program_str, stream_program, ReadOptions};
 use swarf_path::Machine;
-use swarf_plan::gouge::{check_program, GougeOptions, GougeSummary, GougeSurface, GougeTools};
+use swarf_plan::gouge::{check_program, GougeOptions, GougeSummary, GougeSurface};
 use swarf_plan::size::PreparedSurface;
 use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface};
 use swarf_stock::{simulate, MeshOptions, SimOptions, StockSpec};
 use swarf_tool::table::parse_toml_library;
-use swarf_tool::ToolTable;
 
 use crate::cli::DemoArgs;
 use crate::commands::path::PathReport;
 use crate::commands::simulate::{tools_for, write_outputs, SimulateSummary};
-use crate::commands::tools::resolve_all;
 use crate::output::{print_json, write_atomic};
 
 /// The demo program (LinuxCNC G-code with parameters, loops, conditionals and arcs).
@@ -115,7 +113,7 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     let floor = wavy_floor();
     let json = swarf_plan::io::json::to_string(&floor).context("encoding the floor surface")?;
     write_atomic(&dir.join("floor.json"), json.as_bytes())?;
-    let gouge_tools = tools_for_gouge(&program, &table)?;
+    let gouge_tools = crate::commands::gouge::tools_for(&program, None, Some(&table))?;
     let surface = GougeSurface::new(&PreparedSurface::new(&floor));
     let opts = GougeOptions::DEFAULT;
     let gouge = check_program(&surface, &program, &gouge_tools, &opts)?;
@@ -134,14 +132,6 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
         gouge: &gouge_summary,
         out_dir: dir.display().to_string(),
     })
-}
-
-/// The cutters of the demo's tools for the program check.
-fn tools_for_gouge(program: &swarf_path::Program, table: &ToolTable) -> Result<GougeTools> {
-    let resolved = resolve_all(program, None, Some(table))?;
-    Ok(resolved
-        .iter()
-        .fold(GougeTools::default(), |t, (n, r)| t.with(*n, &r.cutter)))
 }
 
 /// The program, its tool library and its LinuxCNC canonical motion, beside the results.

@@ -70,10 +70,7 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         single,
         table,
     } = load_setup(&args.setup, &args.program)?;
-    let resolved = resolve_all(&program, single.as_ref(), table.as_ref())?;
-    let tools = resolved
-        .iter()
-        .fold(GougeTools::default(), |t, (n, r)| t.with(*n, &r.cutter));
+    let tools = tools_for(&program, single.as_ref(), table.as_ref())?;
     let opts = GougeOptions {
         resolution: args.resolution,
         ..GougeOptions::DEFAULT.with_tolerance(args.tolerance)
@@ -130,6 +127,19 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         );
     }
     Ok(())
+}
+
+/// The cutters of every tool the program uses, for the check; a tool nothing defines is an
+/// error that says how to define it.
+pub(crate) fn tools_for(
+    program: &Program,
+    single: Option<&swarf_tool::Cutter>,
+    table: Option<&swarf_tool::ToolTable>,
+) -> Result<GougeTools> {
+    let resolved = resolve_all(program, single, table)?;
+    Ok(resolved
+        .iter()
+        .fold(GougeTools::default(), |t, (n, r)| t.with(*n, &r.cutter)))
 }
 
 /// Writes `violations.csv`, `points.csv` and `summary.json` into `dir` (created if missing).

@@ -104,8 +104,9 @@ impl GougeOptions {
         self.accuracy.max(self.relative_accuracy * depth)
     }
 
-    /// These options with `tolerance` (and the motion tolerance at half of it when that is
-    /// smaller than the current one would allow).
+    /// These options with `tolerance`, the motion tolerance at most half of it and the
+    /// accuracy at most a tenth of it (a violation just above the tolerance must still be told
+    /// from one just below).
     pub fn with_tolerance(mut self, tolerance: f64) -> Self {
         self.tolerance = tolerance;
         self.motion_tolerance = self.motion_tolerance.min(0.5 * tolerance);
