@@ -79,7 +79,9 @@ fn reference(e: &E) -> Option<f64> {
                 "/" => x / y,
                 "MOD" if y == 0.0 => return None,
                 "MOD" => {
-                    let r = x - y * (x / y).trunc();
+                    // fmod (exact, as LinuxCNC computes it); `x − y·trunc(x/y)` loses digits
+                    // once x/y is large.
+                    let r = x % y;
                     if r < 0.0 {
                         r + y.abs()
                     } else {
@@ -183,6 +185,22 @@ impl CanonSink for Null {
     fn warn(&mut self, _: Warning) {}
 }
 
+/// True when a SIN/COS argument is so large that one rounding in the degree-to-radian
+/// conversion (about `|x|·π/180·2⁻⁵³`) moves the result by more than [`close`] allows: there the
+/// reader's `x.to_radians()` and the reference's `x·π/180` may round differently, and neither
+/// value means anything.
+fn ill_conditioned(e: &E) -> bool {
+    match e {
+        E::Num(_) => false,
+        E::Neg(a) => ill_conditioned(a),
+        E::Fun(f, a) => {
+            ill_conditioned(a)
+                || (matches!(*f, "SIN" | "COS") && reference(a).is_some_and(|x| x.abs() > 1e6))
+        }
+        E::Bin(a, _, b) => ill_conditioned(a) || ill_conditioned(b),
+    }
+}
+
 fn close(a: f64, b: f64) -> bool {
     a == b || (a - b).abs() <= 1e-9 * a.abs().max(b.abs()).max(1.0) || (a.is_nan() && b.is_nan())
 }
@@ -192,6 +210,7 @@ proptest! {
 
     #[test]
     fn expressions_match_the_reference(e in expr()) {
+        prop_assume!(!ill_conditioned(&e));
         let src = print(&e);
         match (reference(&e), via_reader(&src)) {
             (Some(want), Ok(got)) if want.is_finite() => prop_assert!(close(got, want), "{src}: got {got}, want {want}"),
