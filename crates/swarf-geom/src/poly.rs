@@ -401,7 +401,13 @@ mod tests {
             real_roots_in(&c, -11.0, 11.0, RootTolerance::DEFAULT, &mut out);
             proptest::prop_assert_eq!(out.len(), rs.len(), "{:?} vs {:?}", out, rs);
             for (a, b) in out.iter().zip(&rs) {
-                proptest::prop_assert!((a - b).abs() < 1e-8, "{} vs {}", a, b);
+                // Clustered roots are ill-conditioned: rounding the coefficients' products by
+                // ε moves a root by about ε·Σ|c_i||r|^i / |p'(r)| (Horner's error is within 2n
+                // times that), whatever the solver does.
+                let spread: f64 = c.iter().enumerate().map(|(i, ci)| ci.abs() * b.abs().powi(i as i32)).sum();
+                let slope: f64 = rs.iter().filter(|r| *r != b).map(|r| (b - r).abs()).product();
+                let cond = 2.0 * c.len() as f64 * f64::EPSILON * spread / slope;
+                proptest::prop_assert!((a - b).abs() < 1e-8 + cond, "{} vs {} (conditioning {:e})", a, b, cond);
             }
         }
     }
