@@ -10,6 +10,7 @@ use swarf_geom::math::Vec3;
 use crate::surface::{
     differential, LocalGeometry, ParametricSurface, Surface, SurfaceNormal, Tolerances,
 };
+use crate::trim::Trim;
 
 /// Where a patch came from.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -83,6 +84,9 @@ pub struct Patch {
     pub flipped: bool,
     /// Where it came from.
     pub source: PatchSource,
+    /// The part of the parameter box that is on the part, when the file trims the patch
+    /// (`None`: all of it). Only NURBS patches are trimmed.
+    pub trim: Option<Trim>,
 }
 
 impl Patch {
@@ -93,6 +97,7 @@ impl Patch {
             surface,
             flipped: false,
             source: PatchSource::BUILT,
+            trim: None,
         }
     }
 

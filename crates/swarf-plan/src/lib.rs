@@ -56,6 +56,7 @@ pub mod mesh;
 pub mod plot;
 pub mod size;
 pub mod surface;
+pub mod trim;
 
 pub use compound::{
     CcPoint, CcPointError, CompoundSurface, EntityRef, Patch, PatchSource, ReadNote,
@@ -66,3 +67,4 @@ pub use surface::{
     NurbsSurface, ParamBox, ParametricSurface, PlaneSurface, SphericalSurface, Surface,
     SurfaceNormal, Tolerances, ToroidalSurface,
 };
+pub use trim::{Coverage, Trim, TrimError};

@@ -92,6 +92,7 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
                             entity_type: 128,
                         },
                     },
+                    trim: None,
                 });
             }
             126 => doc.curves.push(file.curve126(e, &entries, global.factor)?),

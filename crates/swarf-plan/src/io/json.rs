@@ -132,6 +132,7 @@ pub fn parse(text: &str) -> Result<CompoundSurface, ReadError> {
                 file: None,
                 entity: EntityRef::Json { index },
             },
+            trim: None,
         });
     }
     Ok(out)

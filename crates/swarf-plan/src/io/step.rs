@@ -742,6 +742,7 @@ impl Model<'_> {
                             face: None,
                         },
                     },
+                    trim: None,
                 });
             }
         } else {
@@ -780,6 +781,7 @@ impl Model<'_> {
                             face: Some(fid),
                         },
                     },
+                    trim: None,
                 });
             }
         }

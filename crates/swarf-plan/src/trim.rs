@@ -1,0 +1,538 @@
+//! Trimmed patches: the part of a patch's parameter box that belongs to the part.
+//!
+//! A [`Trim`] is an outer boundary (the patch's own parameter box when the file gives none) and
+//! holes, closed polygons in the patch's `(u, v)` parameters, as a reader sampled them from the
+//! file's trimming curves (IGES 144 and 142, a JSON patch's `trim`). A parameter point is on the
+//! part when a ray from it crosses the loops an odd number of times (the even–odd rule), so
+//! loops need no particular orientation. Nothing outside the outer boundary is on the part.
+//!
+//! The queries the planner asks are point containment (a CC point, a corner of a Bézier piece)
+//! and the [`Coverage`] of a parameter rectangle (a piece: wholly on the part, wholly off it, or
+//! crossing the boundary). Both are exact for the polygons; a uniform grid of cells, each
+//! listing the edges that may pass through it and, when none does, whether it is on the part,
+//! keeps them cheap: a rectangle far from the boundary is answered from one cell.
+//!
+//! The polygons stand for curves: a reader samples them to a chord tolerance, and the solvers
+//! treat a piece smaller than [`Trim::resolution`] that still crosses the boundary as on the
+//! part, so the boundary is honoured to within that resolution (on the conservative side: a
+//! point that close outside still limits the cutter).
+
+use crate::surface::ParamBox;
+
+/// Where a parameter rectangle lies relative to the trimmed region.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Coverage {
+    /// Every point of it is on the part.
+    Inside,
+    /// No point of it is on the part.
+    Outside,
+    /// The boundary passes through it.
+    Crossing,
+}
+
+/// Why a trim is refused.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum TrimError {
+    /// A loop with fewer than three distinct points encloses nothing.
+    #[error("trim loop {index} has {points} point(s); a loop needs at least 3")]
+    TooFewPoints {
+        /// Index of the loop.
+        index: usize,
+        /// Points it has (the closing repeat of the first not counted).
+        points: usize,
+    },
+    /// A coordinate is NaN or infinite.
+    #[error("trim loop {index}, point {point} is not finite")]
+    NotFinite {
+        /// Index of the loop.
+        index: usize,
+        /// Index of the point in the loop.
+        point: usize,
+    },
+}
+
+type Uv = [f64; 2];
+
+/// The trimmed region of a patch (see the module docs).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Trim {
+    loops: Vec<Vec<Uv>>,
+    /// Every edge of every loop, `[a, b]`.
+    edges: Vec<[Uv; 2]>,
+    /// The loops' box, `[u0, u1, v0, v1]`.
+    bbox: [f64; 4],
+    /// Cells per side.
+    n: usize,
+    /// Edge indices per cell (compressed rows: cell `c` owns `cell_edges[start[c]..start[c+1]]`).
+    start: Vec<u32>,
+    cell_edges: Vec<u32>,
+    /// For cells without edges: on the part or not (meaningless for the others).
+    cell_inside: Vec<bool>,
+    resolution: f64,
+}
+
+impl Trim {
+    /// Relative resolution of the boundary: a rectangle whose larger side is below this share of
+    /// the patch's parameter box diagonal counts as on the part even when the boundary crosses
+    /// it.
+    pub const RELATIVE_RESOLUTION: f64 = 1e-7;
+
+    /// The region inside `outer` (the whole of `domain` when `None`) and outside every hole, on
+    /// a patch whose parameter box is `domain`. A loop is a closed polygon; the closing repeat
+    /// of its first point is optional.
+    ///
+    /// # Errors
+    /// When a loop has fewer than 3 points or a coordinate is not finite. Loops are numbered
+    /// outer first (when given), then the holes.
+    pub fn new(
+        domain: &ParamBox,
+        outer: Option<Vec<Uv>>,
+        holes: Vec<Vec<Uv>>,
+    ) -> Result<Self, TrimError> {
+        let boxed = outer.is_none();
+        let outer = outer.unwrap_or_else(|| {
+            vec![
+                [domain.u[0], domain.v[0]],
+                [domain.u[1], domain.v[0]],
+                [domain.u[1], domain.v[1]],
+                [domain.u[0], domain.v[1]],
+            ]
+        });
+        let loops: Vec<Vec<Uv>> = std::iter::once(outer).chain(holes).collect();
+        let mut clean = Vec::with_capacity(loops.len());
+        for (k, mut l) in loops.into_iter().enumerate() {
+            // Error indices count the loops as given.
+            let index = if boxed { k.max(1) - 1 } else { k };
+            if let Some(point) = l
+                .iter()
+                .position(|p| !p[0].is_finite() || !p[1].is_finite())
+            {
+                return Err(TrimError::NotFinite { index, point });
+            }
+            l.dedup();
+            if l.len() > 1 && l.first() == l.last() {
+                l.pop();
+            }
+            if l.len() < 3 {
+                return Err(TrimError::TooFewPoints {
+                    index,
+                    points: l.len(),
+                });
+            }
+            clean.push(l);
+        }
+        let edges: Vec<[Uv; 2]> = clean
+            .iter()
+            .flat_map(|l| (0..l.len()).map(move |i| [l[i], l[(i + 1) % l.len()]]))
+            .collect();
+        let mut bbox = [
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for p in clean.iter().flatten() {
+            bbox = [
+                bbox[0].min(p[0]),
+                bbox[1].max(p[0]),
+                bbox[2].min(p[1]),
+                bbox[3].max(p[1]),
+            ];
+        }
+        // About two edges per cell row: a cell near the boundary lists a handful of edges.
+        let n = ((edges.len() as f64).sqrt() * 2.0).clamp(8.0, 256.0) as usize;
+        let mut t = Trim {
+            loops: clean,
+            edges,
+            bbox,
+            n,
+            start: Vec::new(),
+            cell_edges: Vec::new(),
+            cell_inside: Vec::new(),
+            resolution: Self::RELATIVE_RESOLUTION
+                * ((domain.u[1] - domain.u[0]).hypot(domain.v[1] - domain.v[0])),
+        };
+        t.build_cells();
+        Ok(t)
+    }
+
+    fn build_cells(&mut self) {
+        let n = self.n;
+        let mut lists: Vec<Vec<u32>> = vec![Vec::new(); n * n];
+        for (k, [a, b]) in self.edges.iter().enumerate() {
+            let (i0, i1) = self.cols(a[0].min(b[0]), a[0].max(b[0]));
+            let (j0, j1) = self.rows(a[1].min(b[1]), a[1].max(b[1]));
+            for i in i0..=i1 {
+                for j in j0..=j1 {
+                    if segment_meets_rect(*a, *b, self.cell_rect(i, j)) {
+                        lists[i * n + j].push(k as u32);
+                    }
+                }
+            }
+        }
+        self.start = Vec::with_capacity(n * n + 1);
+        self.start.push(0);
+        for l in &lists {
+            self.cell_edges.extend_from_slice(l);
+            self.start.push(self.cell_edges.len() as u32);
+        }
+        self.cell_inside = (0..n * n)
+            .map(|c| {
+                let r = self.cell_rect(c / n, c % n);
+                lists[c].is_empty() && self.crossings_odd(0.5 * (r[0] + r[1]), 0.5 * (r[2] + r[3]))
+            })
+            .collect();
+    }
+
+    /// The loops, outer boundary first (closing repeat dropped).
+    pub fn loops(&self) -> &[Vec<[f64; 2]>] {
+        &self.loops
+    }
+
+    /// Below this size (parameter units) a rectangle crossing the boundary counts as on the
+    /// part (see the module docs).
+    pub fn resolution(&self) -> f64 {
+        self.resolution
+    }
+
+    /// True when `(u, v)` is on the part (exact for the polygons; points on an edge fall to
+    /// either side).
+    pub fn contains(&self, u: f64, v: f64) -> bool {
+        let [u0, u1, v0, v1] = self.bbox;
+        if !(u >= u0 && u <= u1 && v >= v0 && v <= v1) {
+            return false;
+        }
+        let c = self.cell_of(u, v);
+        if self.start[c] == self.start[c + 1] {
+            return self.cell_inside[c];
+        }
+        self.crossings_odd(u, v)
+    }
+
+    /// Where the rectangle `[u0, u1] × [v0, v1]` lies (exact for the polygons).
+    pub fn coverage(&self, rect: [f64; 4]) -> Coverage {
+        let [bu0, bu1, bv0, bv1] = self.bbox;
+        if rect[1] < bu0 || rect[0] > bu1 || rect[3] < bv0 || rect[2] > bv1 {
+            return Coverage::Outside;
+        }
+        let (i0, i1) = self.cols(rect[0], rect[1]);
+        let (j0, j1) = self.rows(rect[2], rect[3]);
+        let mut free_cell = None;
+        for i in i0..=i1 {
+            for j in j0..=j1 {
+                let c = i * self.n + j;
+                let list = &self.cell_edges[self.start[c] as usize..self.start[c + 1] as usize];
+                if list.is_empty() {
+                    free_cell.get_or_insert(c);
+                }
+                for &k in list {
+                    let [a, b] = self.edges[k as usize];
+                    if segment_meets_rect(a, b, rect) {
+                        return Coverage::Crossing;
+                    }
+                }
+            }
+        }
+        // No edge meets the rectangle: it lies in one region, that of any of its points. A
+        // rectangle reaching past the loops' box has points off the part.
+        let past_box = rect[0] < bu0 || rect[1] > bu1 || rect[2] < bv0 || rect[3] > bv1;
+        let inside = if past_box {
+            false
+        } else if let Some(c) = free_cell {
+            self.cell_inside[c]
+        } else {
+            self.crossings_odd(0.5 * (rect[0] + rect[1]), 0.5 * (rect[2] + rect[3]))
+        };
+        if inside {
+            Coverage::Inside
+        } else {
+            Coverage::Outside
+        }
+    }
+
+    /// Even–odd count of the edges crossed by the ray from `(u, v)` towards `+u`.
+    fn crossings_odd(&self, u: f64, v: f64) -> bool {
+        let mut odd = false;
+        for [a, b] in &self.edges {
+            if (a[1] > v) != (b[1] > v) {
+                let x = a[0] + (v - a[1]) * (b[0] - a[0]) / (b[1] - a[1]);
+                if x > u {
+                    odd = !odd;
+                }
+            }
+        }
+        odd
+    }
+
+    fn cell_size(&self) -> (f64, f64) {
+        let [u0, u1, v0, v1] = self.bbox;
+        (
+            ((u1 - u0) / self.n as f64).max(f64::MIN_POSITIVE),
+            ((v1 - v0) / self.n as f64).max(f64::MIN_POSITIVE),
+        )
+    }
+
+    fn index(&self, x: f64, origin: f64, size: f64) -> usize {
+        (((x - origin) / size).floor().max(0.0) as usize).min(self.n - 1)
+    }
+
+    fn cols(&self, a: f64, b: f64) -> (usize, usize) {
+        let (du, _) = self.cell_size();
+        (
+            self.index(a, self.bbox[0], du),
+            self.index(b, self.bbox[0], du),
+        )
+    }
+
+    fn rows(&self, a: f64, b: f64) -> (usize, usize) {
+        let (_, dv) = self.cell_size();
+        (
+            self.index(a, self.bbox[2], dv),
+            self.index(b, self.bbox[2], dv),
+        )
+    }
+
+    fn cell_of(&self, u: f64, v: f64) -> usize {
+        let (du, dv) = self.cell_size();
+        self.index(u, self.bbox[0], du) * self.n + self.index(v, self.bbox[2], dv)
+    }
+
+    /// Cell `(i, j)` as `[u0, u1, v0, v1]`; the last row and column reach the box exactly.
+    fn cell_rect(&self, i: usize, j: usize) -> [f64; 4] {
+        let (du, dv) = self.cell_size();
+        let [u0, u1, v0, v1] = self.bbox;
+        let end = |k: usize, o: f64, d: f64, hi: f64| {
+            if k + 1 == self.n {
+                hi
+            } else {
+                o + (k + 1) as f64 * d
+            }
+        };
+        [
+            u0 + i as f64 * du,
+            end(i, u0, du, u1),
+            v0 + j as f64 * dv,
+            end(j, v0, dv, v1),
+        ]
+    }
+}
+
+/// True when the closed segment `ab` meets the closed rectangle `[u0, u1] × [v0, v1]`
+/// (Liang–Barsky clipping).
+fn segment_meets_rect(a: Uv, b: Uv, r: [f64; 4]) -> bool {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let (mut t0, mut t1) = (0.0f64, 1.0f64);
+    for (p, q) in [
+        (-d[0], a[0] - r[0]),
+        (d[0], r[1] - a[0]),
+        (-d[1], a[1] - r[2]),
+        (d[1], r[3] - a[1]),
+    ] {
+        if p == 0.0 {
+            if q < 0.0 {
+                return false;
+            }
+        } else {
+            let t = q / p;
+            if p < 0.0 {
+                t0 = t0.max(t);
+            } else {
+                t1 = t1.min(t);
+            }
+            if t0 > t1 {
+                return false;
+            }
+        }
+    }
+    true
+}
+
+/// Samples a parameter-space curve `f` over `[t0, t1]` into a polyline whose chords stay within
+/// `tol` of the curve at their midpoints (adaptive halving from `min_segments` equal steps, at
+/// most 2¹² segments per step); the first point is `f(t0)`, the last `f(t1)`.
+pub fn sample_curve(
+    f: impl Fn(f64) -> [f64; 2],
+    t0: f64,
+    t1: f64,
+    min_segments: usize,
+    tol: f64,
+) -> Vec<[f64; 2]> {
+    fn refine(
+        f: &impl Fn(f64) -> [f64; 2],
+        (ta, pa): (f64, Uv),
+        (tb, pb): (f64, Uv),
+        tol: f64,
+        depth: u32,
+        out: &mut Vec<Uv>,
+    ) {
+        let tm = 0.5 * (ta + tb);
+        let pm = f(tm);
+        let chord = [0.5 * (pa[0] + pb[0]), 0.5 * (pa[1] + pb[1])];
+        let dev = (pm[0] - chord[0]).hypot(pm[1] - chord[1]);
+        if depth < 12 && dev > tol {
+            refine(f, (ta, pa), (tm, pm), tol, depth + 1, out);
+            refine(f, (tm, pm), (tb, pb), tol, depth + 1, out);
+        } else {
+            out.push(pb);
+        }
+    }
+    let n = min_segments.max(1);
+    let mut out = vec![f(t0)];
+    let mut prev = (t0, out[0]);
+    for k in 1..=n {
+        let t = if k == n {
+            t1
+        } else {
+            t0 + (t1 - t0) * k as f64 / n as f64
+        };
+        let next = (t, f(t));
+        refine(&f, prev, next, tol, 0, &mut out);
+        prev = next;
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn unit() -> ParamBox {
+        ParamBox {
+            u: [0.0, 1.0],
+            v: [0.0, 1.0],
+        }
+    }
+
+    /// The unit square with a square hole `[0.4, 0.6]²` and a disc of radius 0.1 around
+    /// (0.2, 0.2) (a polygon within 1e-5 of the circle) removed.
+    fn holed() -> Trim {
+        let outer = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let hole = vec![[0.4, 0.4], [0.4, 0.6], [0.6, 0.6], [0.6, 0.4], [0.4, 0.4]];
+        let disc = sample_curve(
+            |t| [0.2 + 0.1 * t.cos(), 0.2 + 0.1 * t.sin()],
+            0.0,
+            std::f64::consts::TAU,
+            16,
+            1e-5,
+        );
+        Trim::new(&unit(), Some(outer), vec![hole, disc]).unwrap()
+    }
+
+    fn brute_contains(t: &Trim, u: f64, v: f64) -> bool {
+        t.crossings_odd(u, v)
+            && u >= t.bbox[0]
+            && u <= t.bbox[1]
+            && v >= t.bbox[2]
+            && v <= t.bbox[3]
+    }
+
+    #[test]
+    fn containment_matches_the_geometry_and_the_plain_crossing_count() {
+        let t = holed();
+        assert!(t.contains(0.9, 0.9));
+        assert!(!t.contains(0.5, 0.5));
+        assert!(!t.contains(0.2, 0.2));
+        assert!(t.contains(0.2, 0.32));
+        assert!(!t.contains(0.2, 0.29));
+        assert!(!t.contains(1.5, 0.5) && !t.contains(-0.1, 0.5));
+        for i in 0..200 {
+            for j in 0..200 {
+                let (u, v) = (i as f64 / 199.0 * 1.2 - 0.1, j as f64 / 199.0 * 1.2 - 0.1);
+                assert_eq!(t.contains(u, v), brute_contains(&t, u, v), "({u}, {v})");
+            }
+        }
+    }
+
+    #[test]
+    fn coverage_agrees_with_dense_samples_of_the_rectangle() {
+        let t = holed();
+        let mut state = 0x2545_f491_4f6c_dd1du64;
+        let mut rnd = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            (state >> 11) as f64 / (1u64 << 53) as f64
+        };
+        let mut seen = [0; 3];
+        for _ in 0..2000 {
+            let (u, v) = (rnd() * 1.2 - 0.1, rnd() * 1.2 - 0.1);
+            let (w, h) = (rnd() * rnd() * 0.5, rnd() * rnd() * 0.5);
+            let rect = [u, u + w, v, v + h];
+            let c = t.coverage(rect);
+            let mut ins = 0;
+            let mut outs = 0;
+            for a in 0..=20 {
+                for b in 0..=20 {
+                    let (x, y) = (u + w * a as f64 / 20.0, v + h * b as f64 / 20.0);
+                    if brute_contains(&t, x, y) {
+                        ins += 1;
+                    } else {
+                        outs += 1;
+                    }
+                }
+            }
+            match c {
+                Coverage::Inside => {
+                    seen[0] += 1;
+                    assert_eq!(outs, 0, "{rect:?}")
+                }
+                Coverage::Outside => {
+                    seen[1] += 1;
+                    assert_eq!(ins, 0, "{rect:?}")
+                }
+                // Samples may all fall on one side of a thin sliver, so nothing to assert but
+                // that the boundary really is near: some edge meets the rectangle.
+                Coverage::Crossing => {
+                    seen[2] += 1;
+                    assert!(t
+                        .edges
+                        .iter()
+                        .any(|[a, b]| segment_meets_rect(*a, *b, rect)));
+                }
+            }
+        }
+        assert!(seen.iter().all(|&s| s > 100), "{seen:?}");
+    }
+
+    #[test]
+    fn bad_loops_are_refused() {
+        assert_eq!(
+            Trim::new(
+                &unit(),
+                Some(vec![[0.0, 0.0], [1.0, 0.0], [0.0, 0.0]]),
+                vec![]
+            ),
+            Err(TrimError::TooFewPoints {
+                index: 0,
+                points: 2
+            })
+        );
+        assert_eq!(
+            Trim::new(
+                &unit(),
+                None,
+                vec![vec![[0.0, 0.0], [1.0, f64::NAN], [0.0, 1.0]]]
+            ),
+            Err(TrimError::NotFinite { index: 0, point: 1 })
+        );
+        // No outer loop: the parameter box.
+        let t = Trim::new(&unit(), None, vec![]).unwrap();
+        assert!(t.contains(0.5, 0.5) && !t.contains(1.01, 0.5));
+        assert_eq!(t.coverage([0.1, 0.9, 0.1, 0.9]), Coverage::Inside);
+    }
+
+    #[test]
+    fn sampled_circle_keeps_within_the_tolerance() {
+        let tol = 1e-6;
+        let pts = sample_curve(|t| [t.cos(), t.sin()], 0.0, std::f64::consts::PI, 2, tol);
+        assert_eq!(pts[0], [1.0, 0.0]);
+        for w in pts.windows(2) {
+            let m = [(w[0][0] + w[1][0]) / 2.0, (w[0][1] + w[1][1]) / 2.0];
+            // The sagitta of a chord of the unit circle is 1 − |midpoint|.
+            assert!(1.0 - m[0].hypot(m[1]) <= tol * 1.0001);
+        }
+        // The sagitta of a chord of angle a is a²/8: about π/sqrt(8 tol) chords are needed.
+        let need = std::f64::consts::PI / (8.0 * tol).sqrt();
+        assert!((pts.len() as f64) < 2.5 * need, "{} vs {need}", pts.len());
+    }
+}
