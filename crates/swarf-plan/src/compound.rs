@@ -128,6 +128,13 @@ impl Patch {
         }
     }
 
+    /// True when `(u, v)` is on the part: always for an untrimmed patch, inside the trim for a
+    /// trimmed one (the parameter box is not checked).
+    #[inline]
+    pub fn on_part(&self, u: f64, v: f64) -> bool {
+        self.trim.as_ref().is_none_or(|t| t.contains(u, v))
+    }
+
     /// A box containing the patch.
     pub fn bounding_box(&self) -> Aabb {
         self.surface.bounding_box()
@@ -149,13 +156,27 @@ pub enum ReadNote {
         /// Its type (`SURFACE_OF_REVOLUTION`, `IGES 118`, …).
         kind: String,
     },
-    /// The patch is trimmed in the file; the trim is reported but not honoured: the whole
+    /// The patch is trimmed in the file, but the trim is not honoured (a trimming curve the
+    /// reader does not evaluate, a face trim of a format that is not read): the whole
     /// untrimmed patch is used.
     TrimNotHonoured {
         /// Index of the patch.
         patch: usize,
+        /// The trimming entity and why it is not honoured (`IGES 144 at D1 (142 at D5 has no
+        /// parameter-space curve)`, …).
+        by: String,
+    },
+    /// The patch is trimmed in the file and the trim is honoured: [`Patch::trim`] holds it.
+    Trimmed {
+        /// Index of the patch.
+        patch: usize,
         /// The trimming entity (`IGES 144 at D1`, …).
         by: String,
+        /// Loops of the trim: the outer boundary (when the file gives one, not the parameter
+        /// box) and the holes.
+        loops: usize,
+        /// Points of the loops' polygons, all together.
+        points: usize,
     },
     /// The file declares no length unit; millimetres were assumed.
     UnitsAssumed,
@@ -183,7 +204,16 @@ impl fmt::Display for ReadNote {
             }
             ReadNote::TrimNotHonoured { patch, by } => write!(
                 f,
-                "patch {patch} is trimmed by {by}; trims are not honoured (the whole patch is used)"
+                "patch {patch} is trimmed by {by}; the trim is not honoured (the whole patch is used)"
+            ),
+            ReadNote::Trimmed {
+                patch,
+                by,
+                loops,
+                points,
+            } => write!(
+                f,
+                "patch {patch} is trimmed by {by}: {loops} loop(s), {points} point(s)"
             ),
             ReadNote::UnitsAssumed => write!(f, "no length unit declared; millimetres assumed"),
             ReadNote::UnitsConverted { unit, factor } => {
@@ -240,6 +270,18 @@ pub enum CcPointError {
         /// Box v1.
         v1: f64,
     },
+    /// Parameters inside the box but off the patch's trimmed region.
+    #[error("point {index}: (u, v) = ({u}, {v}) is off patch {patch}'s trimmed region")]
+    OffPart {
+        /// Position in the list.
+        index: usize,
+        /// Patch.
+        patch: usize,
+        /// u.
+        u: f64,
+        /// v.
+        v: f64,
+    },
 }
 
 /// A surface made of patches, in millimetres, each with the side the cutter comes from.
@@ -282,8 +324,19 @@ impl CompoundSurface {
 
     /// The iso-parametric `n × n` grid of CC points of every patch (`n ≥ 2`; smaller `n` is
     /// taken as 2): `u_i = u0 + i/(n−1)·(u1 − u0)`, likewise v, patch by patch, u outer, v
-    /// inner — the thesis's 21×21 and 41×41 grids.
+    /// inner — the thesis's 21×21 and 41×41 grids. Points off a trimmed patch are left out
+    /// ([`Self::lattice`] has them all).
     pub fn grid(&self, n: usize) -> Vec<CcPoint> {
+        self.lattice(n)
+            .into_iter()
+            .filter(|(_, on)| *on)
+            .map(|(c, _)| c)
+            .collect()
+    }
+
+    /// Every point of the `n × n` grid of every patch, in [`Self::grid`]'s order, each with
+    /// whether it is on the part (the layout maps and meshes are drawn on).
+    pub fn lattice(&self, n: usize) -> Vec<(CcPoint, bool)> {
         let n = n.max(2);
         let mut out = Vec::with_capacity(self.patches.len() * n * n);
         for (k, p) in self.patches.iter().enumerate() {
@@ -292,7 +345,7 @@ impl CompoundSurface {
                 let u = d.u_at(i as f64 / (n - 1) as f64);
                 for j in 0..n {
                     let v = d.v_at(j as f64 / (n - 1) as f64);
-                    out.push(CcPoint { patch: k, u, v });
+                    out.push((CcPoint { patch: k, u, v }, p.on_part(u, v)));
                 }
             }
         }
@@ -321,6 +374,9 @@ impl CompoundSurface {
                         v0: d.v[0],
                         v1: d.v[1],
                     });
+                }
+                if !p.on_part(u, v) {
+                    return Err(CcPointError::OffPart { index, patch, u, v });
                 }
                 Ok(CcPoint { patch, u, v })
             })

@@ -31,7 +31,10 @@ impl TriangleMesh {
 /// Tessellate every patch on its `n × n` iso-parametric grid (`n ≥ 2`) into `2·(n−1)²`
 /// triangles. Vertex normals are the surface normals (limit normals at degenerate points);
 /// where the normal is undefined, the average of the adjacent triangles' normals is used.
-/// Triangles collapsed to a point or a segment (at poles) are kept, with zero area.
+/// Triangles collapsed to a point or a segment (at poles) are kept, with zero area. On a trimmed
+/// patch only triangles whose three corners are on the part are kept (the boundary is drawn to
+/// the grid's resolution); every grid point stays a vertex, so vertex `k·n² + i·n + j` is always
+/// grid point `(u_i, v_j)` of patch `k`.
 pub fn tessellate(surface: &CompoundSurface, n: usize, tol: &Tolerances) -> TriangleMesh {
     let n = n.max(2);
     let mut m = TriangleMesh::default();
@@ -39,10 +42,12 @@ pub fn tessellate(surface: &CompoundSurface, n: usize, tol: &Tolerances) -> Tria
         let base = m.positions.len();
         let dom = crate::surface::ParametricSurface::domain(&patch.surface);
         let mut undefined = Vec::new();
+        let mut on = Vec::with_capacity(n * n);
         for i in 0..n {
             let u = dom.u_at(i as f64 / (n - 1) as f64);
             for j in 0..n {
                 let v = dom.v_at(j as f64 / (n - 1) as f64);
+                on.push(patch.on_part(u, v));
                 let g = patch.local(u, v, tol);
                 m.positions.push(g.point());
                 match g.normal.vector() {
@@ -59,16 +64,19 @@ pub fn tessellate(surface: &CompoundSurface, n: usize, tol: &Tolerances) -> Tria
         for i in 0..n - 1 {
             for j in 0..n - 1 {
                 let (a, b, c, d) = (idx(i, j), idx(i + 1, j), idx(i + 1, j + 1), idx(i, j + 1));
+                let kept = |t: &[u32; 3]| t.iter().all(|&x| on[x as usize - base]);
                 // u along the first edge, v along the second: S_u × S_v is counter-clockwise.
                 let (t1, t2) = if patch.flipped {
                     ([a, c, b], [a, d, c])
                 } else {
                     ([a, b, c], [a, c, d])
                 };
-                m.triangles.push(t1);
-                m.triangles.push(t2);
-                m.triangle_patch.push(k as u32);
-                m.triangle_patch.push(k as u32);
+                for t in [t1, t2] {
+                    if kept(&t) {
+                        m.triangles.push(t);
+                        m.triangle_patch.push(k as u32);
+                    }
+                }
             }
         }
         if !undefined.is_empty() {

@@ -14,6 +14,7 @@
 //! | `inf` (nothing limits the cutter)   | [`INF_RGB`], light pink         |
 //! | `0` (unreachable, nothing fits)     | [`UNREACHABLE_RGB`], red        |
 //! | undefined (no normal)               | [`UNDEFINED_RGB`], mid grey     |
+//! | off a trimmed patch (no CC point)   | [`OFF_PART_RGB`], light grey    |
 //!
 //! The standard-cutter maps ([`patch_standard_image`], Liu's Fig. 4-2) colour each cell by the
 //! largest standard cutter that fits there instead.
@@ -21,8 +22,7 @@
 //! # The PNG
 //! Each CC point of the `n × n` grid is a square cell of [`PlotOptions::cell_px`] pixels, `u`
 //! to the right and `v` upwards, under a title (the patch label), with a vertical colour bar
-//! labelled at [`PlotOptions::ticks`] log-spaced radii and a legend of the three special
-//! colours. Text uses a built-in 5×7 pixel font (lower-case letters, digits, `.-+_()/:`),
+//! labelled at [`PlotOptions::ticks`] log-spaced radii and a legend of the special colours. Text uses a built-in 5×7 pixel font (lower-case letters, digits, `.-+_()/:`),
 //! so no system font is needed: the picture is the same on every machine. The image is
 //! written with the `png` crate (8-bit RGB), atomically.
 
@@ -39,6 +39,8 @@ pub const INF_RGB: [u8; 3] = [255, 170, 220];
 pub const UNREACHABLE_RGB: [u8; 3] = [220, 20, 20];
 /// Colour of points whose normal is undefined.
 pub const UNDEFINED_RGB: [u8; 3] = [128, 128, 128];
+/// Colour of grid points off a trimmed patch (not on the part, so not CC points).
+pub const OFF_PART_RGB: [u8; 3] = [228, 228, 228];
 /// Background of the PNG.
 pub const BACKGROUND_RGB: [u8; 3] = [255, 255, 255];
 /// Colour of text and frames.
@@ -438,11 +440,21 @@ impl MapLayout {
     }
 }
 
-const LEGEND: [([u8; 3], &str); 3] = [
+const LEGEND: [([u8; 3], &str); 4] = [
     (INF_RGB, "inf"),
     (UNREACHABLE_RGB, "0 unreachable"),
     (UNDEFINED_RGB, "no normal"),
+    (OFF_PART_RGB, "off part (trimmed)"),
 ];
+
+/// What a map shows at a point of a patch's `n × n` grid.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum MapCell {
+    /// The point is off the trimmed patch: no CC point there.
+    Off,
+    /// The allowable radius, mm (`None` where the normal is undefined).
+    Radius(Option<f64>),
+}
 
 /// The tick positions on the bar and their labels.
 fn tick_labels(scale: &RadiusScale, opts: &PlotOptions) -> Vec<(f64, String)> {
@@ -490,19 +502,19 @@ pub fn map_layout(n: usize, scale: &RadiusScale, opts: &PlotOptions) -> MapLayou
     }
 }
 
-/// The colour map of one patch: `radii[i·n + j]` is the radius at grid point `(u_i, v_j)` (the
-/// order of [`CompoundSurface::grid`]), `None` where undefined; laid out as [`map_layout`].
+/// The colour map of one patch: `cells[i·n + j]` is grid point `(u_i, v_j)` (the order of
+/// [`CompoundSurface::lattice`]); laid out as [`map_layout`].
 ///
 /// # Panics
-/// When `radii.len() != n·n`.
+/// When `cells.len() != n·n`.
 pub fn patch_radius_image(
-    radii: &[Option<f64>],
+    cells: &[MapCell],
     n: usize,
     scale: &RadiusScale,
     title: &str,
     opts: &PlotOptions,
 ) -> RgbImage {
-    assert_eq!(radii.len(), n * n, "one radius per grid point");
+    assert_eq!(cells.len(), n * n, "one cell per grid point");
     let lay = map_layout(n, scale, opts);
     let (cell, x0, y0) = (lay.cell, lay.x0, lay.y0);
     let ts = opts.text_scale.max(1);
@@ -524,7 +536,10 @@ pub fn patch_radius_image(
     );
     for i in 0..n {
         for j in 0..n {
-            let rgb = scale.rgb(radii[i * n + j]);
+            let rgb = match cells[i * n + j] {
+                MapCell::Off => OFF_PART_RGB,
+                MapCell::Radius(r) => scale.rgb(r),
+            };
             // u to the right, v upwards.
             let (x, y) = lay.cell_origin(i, j);
             img.fill(x, y, cell, cell, rgb);
@@ -574,22 +589,27 @@ pub fn standard_rgb(k: usize, count: usize) -> [u8; 3] {
 /// (the picture's width differs: the legend replaces the colour bar).
 ///
 /// # Panics
-/// When `radii.len() != n·n`.
+/// When `cells.len() != n·n`.
 pub fn patch_standard_image(
-    radii: &[Option<f64>],
+    cells: &[MapCell],
     n: usize,
     cutters: &StandardCutters,
     title: &str,
     opts: &PlotOptions,
 ) -> RgbImage {
-    assert_eq!(radii.len(), n * n, "one radius per grid point");
+    assert_eq!(cells.len(), n * n, "one cell per grid point");
     let d = cutters.diameters_mm();
-    let colour = |r: Option<f64>| match (r, cutters.largest_fitting(r)) {
-        (None, _) => UNDEFINED_RGB,
-        (Some(_), None) => UNREACHABLE_RGB,
-        (Some(_), Some(dd)) => {
-            let k = d.iter().position(|x| *x == dd).unwrap_or(0);
-            standard_rgb(k, d.len())
+    let colour = |c: MapCell| {
+        let MapCell::Radius(r) = c else {
+            return OFF_PART_RGB;
+        };
+        match (r, cutters.largest_fitting(r)) {
+            (None, _) => UNDEFINED_RGB,
+            (Some(_), None) => UNREACHABLE_RGB,
+            (Some(_), Some(dd)) => {
+                let k = d.iter().position(|x| *x == dd).unwrap_or(0);
+                standard_rgb(k, d.len())
+            }
         }
     };
     let mut legend: Vec<([u8; 3], String)> = d
@@ -599,6 +619,9 @@ pub fn patch_standard_image(
         .collect();
     legend.push((UNREACHABLE_RGB, "none fits".into()));
     legend.push((UNDEFINED_RGB, "no normal".into()));
+    if cells.contains(&MapCell::Off) {
+        legend.push((OFF_PART_RGB, "off part (trimmed)".into()));
+    }
     let lay = map_layout(n, &RadiusScale::from_radii([]), opts);
     let ts = opts.text_scale.max(1);
     let (gw, lh) = (GLYPH_ADVANCE * ts, LINE_HEIGHT * ts);
@@ -618,7 +641,7 @@ pub fn patch_standard_image(
     for i in 0..n {
         for j in 0..n {
             let (x, y) = lay.cell_origin(i, j);
-            img.fill(x, y, lay.cell, lay.cell, colour(radii[i * n + j]));
+            img.fill(x, y, lay.cell, lay.cell, colour(cells[i * n + j]));
         }
     }
     img.frame(lay.x0, lay.y0, plot, plot, INK_RGB);
@@ -659,18 +682,15 @@ pub fn write_standard_maps(
     opts: &PlotOptions,
 ) -> Result<Vec<PathBuf>, IoError> {
     let n = n.max(2);
-    if !is_grid(surface, map, n) {
-        return Err(not_grid(dir));
-    }
+    let cells = map_cells(surface, map, n).ok_or_else(|| not_grid(dir))?;
     std::fs::create_dir_all(dir).map_err(|source| IoError::Io {
         path: dir.to_path_buf(),
         source,
     })?;
     let mut out = Vec::with_capacity(surface.patches.len());
-    for (k, chunk) in map.points.chunks(n * n).enumerate() {
-        let radii: Vec<Option<f64>> = chunk.iter().map(|p| p.radius_mm).collect();
+    for (k, chunk) in cells.chunks(n * n).enumerate() {
         let title = format!("patch {}", surface.patches[k].label(k));
-        let img = patch_standard_image(&radii, n, cutters, &title, opts);
+        let img = patch_standard_image(chunk, n, cutters, &title, opts);
         let path = dir.join(format!("standard_{}", patch_png_name(surface, k)));
         img.write_png(&path)?;
         out.push(path);
@@ -695,10 +715,22 @@ pub fn patch_png_name(surface: &CompoundSurface, patch: usize) -> String {
     format!("patch_{safe}.png")
 }
 
-/// Whether `map` is [`CompoundSurface::grid`]`(n)` of `surface`.
-fn is_grid(surface: &CompoundSurface, map: &ToolSizeMap, n: usize) -> bool {
-    let g = surface.grid(n);
-    g.len() == map.points.len() && g.iter().zip(&map.points).all(|(a, p)| *a == p.cc)
+/// The map's values on [`CompoundSurface::lattice`]`(n)` of `surface` (off-part points as
+/// [`MapCell::Off`]); `None` when the map is not over [`CompoundSurface::grid`]`(n)`.
+fn map_cells(surface: &CompoundSurface, map: &ToolSizeMap, n: usize) -> Option<Vec<MapCell>> {
+    let mut points = map.points.iter();
+    let cells = surface
+        .lattice(n)
+        .into_iter()
+        .map(|(cc, on)| {
+            if !on {
+                return Some(MapCell::Off);
+            }
+            let p = points.next()?;
+            (p.cc == cc).then_some(MapCell::Radius(p.radius_mm))
+        })
+        .collect::<Option<Vec<_>>>()?;
+    points.next().is_none().then_some(cells)
 }
 
 fn not_grid(path: &Path) -> IoError {
@@ -721,19 +753,16 @@ pub fn write_patch_maps(
     opts: &PlotOptions,
 ) -> Result<Vec<PathBuf>, IoError> {
     let n = n.max(2);
-    if !is_grid(surface, map, n) {
-        return Err(not_grid(dir));
-    }
+    let cells = map_cells(surface, map, n).ok_or_else(|| not_grid(dir))?;
     std::fs::create_dir_all(dir).map_err(|source| IoError::Io {
         path: dir.to_path_buf(),
         source,
     })?;
     let scale = RadiusScale::from_radii(map.points.iter().map(|p| p.radius_mm));
     let mut out = Vec::with_capacity(surface.patches.len());
-    for (k, chunk) in map.points.chunks(n * n).enumerate() {
-        let radii: Vec<Option<f64>> = chunk.iter().map(|p| p.radius_mm).collect();
+    for (k, chunk) in cells.chunks(n * n).enumerate() {
         let title = format!("patch {}", surface.patches[k].label(k));
-        let img = patch_radius_image(&radii, n, &scale, &title, opts);
+        let img = patch_radius_image(chunk, n, &scale, &title, opts);
         let path = dir.join(patch_png_name(surface, k));
         img.write_png(&path)?;
         out.push(path);
@@ -742,8 +771,9 @@ pub fn write_patch_maps(
 }
 
 /// The part tessellated on the map's `n × n` grid ([`tessellate`], whose vertices are exactly
-/// the CC points of [`CompoundSurface::grid`]`(n)`), each vertex coloured by the allowable
-/// radius there on the scale of the whole map.
+/// the points of [`CompoundSurface::lattice`]`(n)`), each vertex coloured by the allowable
+/// radius there on the scale of the whole map (off-part vertices, which no kept triangle uses,
+/// [`OFF_PART_RGB`]).
 ///
 /// # Errors
 /// When the map is not that grid.
@@ -754,13 +784,20 @@ pub fn part_mesh(
     tol: &Tolerances,
 ) -> Result<TriMesh, IoError> {
     let n = n.max(2);
-    if !is_grid(surface, map, n) {
-        return Err(not_grid(Path::new("part")));
-    }
+    let cells = map_cells(surface, map, n).ok_or_else(|| not_grid(Path::new("part")))?;
     let scale = RadiusScale::from_radii(map.points.iter().map(|p| p.radius_mm));
     let m = tessellate(surface, n, tol);
     let mut mesh = TriMesh::from_parts(m.positions, m.triangles);
-    mesh.colors = Some(map.points.iter().map(|p| scale.rgba(p.radius_mm)).collect());
+    let off = OFF_PART_RGB.map(|c| f32::from(c) / 255.0);
+    mesh.colors = Some(
+        cells
+            .iter()
+            .map(|c| match c {
+                MapCell::Off => [off[0], off[1], off[2], 1.0],
+                MapCell::Radius(r) => scale.rgba(*r),
+            })
+            .collect(),
+    );
     Ok(mesh)
 }
 

@@ -3,8 +3,11 @@
 //! A [`Trim`] is an outer boundary (the patch's own parameter box when the file gives none) and
 //! holes, closed polygons in the patch's `(u, v)` parameters, as a reader sampled them from the
 //! file's trimming curves (IGES 144 and 142, a JSON patch's `trim`). A parameter point is on the
-//! part when a ray from it crosses the loops an odd number of times (the even–odd rule), so
-//! loops need no particular orientation. Nothing outside the outer boundary is on the part.
+//! part when it lies in the parameter box and a ray from it crosses the outer loop and the holes
+//! an odd number of times — without an outer loop, the holes an even number of times (the
+//! even–odd rule, so loops need no particular orientation). The region is closed: a point on a
+//! loop (within a relative 1e-12) is on the part, so the corners of pieces along a boundary
+//! count; the box itself is no loop, so a hole may run off the patch's edge.
 //!
 //! The queries the planner asks are point containment (a CC point, a corner of a Bézier piece)
 //! and the [`Coverage`] of a parameter rectangle (a piece: wholly on the part, wholly off it, or
@@ -57,9 +60,14 @@ type Uv = [f64; 2];
 #[derive(Clone, Debug, PartialEq)]
 pub struct Trim {
     loops: Vec<Vec<Uv>>,
+    /// Whether `loops[0]` is an outer boundary (else every loop is a hole).
+    outer: bool,
+    /// Distance to a loop within which a point counts as on it.
+    on_edge: f64,
     /// Every edge of every loop, `[a, b]`.
     edges: Vec<[Uv; 2]>,
-    /// The loops' box, `[u0, u1, v0, v1]`.
+    /// The box holding the region, `[u0, u1, v0, v1]`: the parameter box, cut down to the outer
+    /// loop's box.
     bbox: [f64; 4],
     /// Cells per side.
     n: usize,
@@ -89,20 +97,10 @@ impl Trim {
         outer: Option<Vec<Uv>>,
         holes: Vec<Vec<Uv>>,
     ) -> Result<Self, TrimError> {
-        let boxed = outer.is_none();
-        let outer = outer.unwrap_or_else(|| {
-            vec![
-                [domain.u[0], domain.v[0]],
-                [domain.u[1], domain.v[0]],
-                [domain.u[1], domain.v[1]],
-                [domain.u[0], domain.v[1]],
-            ]
-        });
-        let loops: Vec<Vec<Uv>> = std::iter::once(outer).chain(holes).collect();
+        let has_outer = outer.is_some();
+        let loops: Vec<Vec<Uv>> = outer.into_iter().chain(holes).collect();
         let mut clean = Vec::with_capacity(loops.len());
-        for (k, mut l) in loops.into_iter().enumerate() {
-            // Error indices count the loops as given.
-            let index = if boxed { k.max(1) - 1 } else { k };
+        for (index, mut l) in loops.into_iter().enumerate() {
             if let Some(point) = l
                 .iter()
                 .position(|p| !p[0].is_finite() || !p[1].is_finite())
@@ -125,32 +123,44 @@ impl Trim {
             .iter()
             .flat_map(|l| (0..l.len()).map(move |i| [l[i], l[(i + 1) % l.len()]]))
             .collect();
-        let mut bbox = [
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ];
-        for p in clean.iter().flatten() {
+        let dom = [domain.u[0], domain.u[1], domain.v[0], domain.v[1]];
+        let mut bbox = dom;
+        if has_outer {
+            let mut lb = [
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+                f64::INFINITY,
+                f64::NEG_INFINITY,
+            ];
+            for p in &clean[0] {
+                lb = [
+                    lb[0].min(p[0]),
+                    lb[1].max(p[0]),
+                    lb[2].min(p[1]),
+                    lb[3].max(p[1]),
+                ];
+            }
             bbox = [
-                bbox[0].min(p[0]),
-                bbox[1].max(p[0]),
-                bbox[2].min(p[1]),
-                bbox[3].max(p[1]),
+                dom[0].max(lb[0]),
+                dom[1].min(lb[1]),
+                dom[2].max(lb[2]),
+                dom[3].min(lb[3]),
             ];
         }
+        let diag = (dom[1] - dom[0]).hypot(dom[3] - dom[2]);
         // About two edges per cell row: a cell near the boundary lists a handful of edges.
         let n = ((edges.len() as f64).sqrt() * 2.0).clamp(8.0, 256.0) as usize;
         let mut t = Trim {
             loops: clean,
+            outer: has_outer,
+            on_edge: 1e-12 * diag,
             edges,
             bbox,
             n,
             start: Vec::new(),
             cell_edges: Vec::new(),
             cell_inside: Vec::new(),
-            resolution: Self::RELATIVE_RESOLUTION
-                * ((domain.u[1] - domain.u[0]).hypot(domain.v[1] - domain.v[0])),
+            resolution: Self::RELATIVE_RESOLUTION * diag,
         };
         t.build_cells();
         Ok(t)
@@ -179,14 +189,24 @@ impl Trim {
         self.cell_inside = (0..n * n)
             .map(|c| {
                 let r = self.cell_rect(c / n, c % n);
-                lists[c].is_empty() && self.crossings_odd(0.5 * (r[0] + r[1]), 0.5 * (r[2] + r[3]))
+                lists[c].is_empty() && self.parity_inside(0.5 * (r[0] + r[1]), 0.5 * (r[2] + r[3]))
             })
             .collect();
     }
 
-    /// The loops, outer boundary first (closing repeat dropped).
+    /// The loops, the outer boundary first when there is one (closing repeat dropped).
     pub fn loops(&self) -> &[Vec<[f64; 2]>] {
         &self.loops
+    }
+
+    /// The outer boundary, `None` when it is the parameter box.
+    pub fn outer(&self) -> Option<&[[f64; 2]]> {
+        self.outer.then(|| &self.loops[0][..])
+    }
+
+    /// The holes.
+    pub fn holes(&self) -> &[Vec<[f64; 2]>] {
+        &self.loops[usize::from(self.outer)..]
     }
 
     /// Below this size (parameter units) a rectangle crossing the boundary counts as on the
@@ -195,18 +215,27 @@ impl Trim {
         self.resolution
     }
 
-    /// True when `(u, v)` is on the part (exact for the polygons; points on an edge fall to
-    /// either side).
+    /// True when `(u, v)` is on the part (exact for the polygons; a point on a loop is on it).
     pub fn contains(&self, u: f64, v: f64) -> bool {
         let [u0, u1, v0, v1] = self.bbox;
         if !(u >= u0 && u <= u1 && v >= v0 && v <= v1) {
             return false;
         }
         let c = self.cell_of(u, v);
-        if self.start[c] == self.start[c + 1] {
+        let list = &self.cell_edges[self.start[c] as usize..self.start[c + 1] as usize];
+        if list.is_empty() {
             return self.cell_inside[c];
         }
-        self.crossings_odd(u, v)
+        let near = |&k: &u32| {
+            let [a, b] = self.edges[k as usize];
+            segment_distance([u, v], a, b) <= self.on_edge
+        };
+        list.iter().any(near) || self.parity_inside(u, v)
+    }
+
+    /// On the part by the even–odd rule alone (see the module docs).
+    fn parity_inside(&self, u: f64, v: f64) -> bool {
+        self.crossings_odd(u, v) == self.outer
     }
 
     /// Where the rectangle `[u0, u1] × [v0, v1]` lies (exact for the polygons).
@@ -215,39 +244,80 @@ impl Trim {
         if rect[1] < bu0 || rect[0] > bu1 || rect[3] < bv0 || rect[2] > bv1 {
             return Coverage::Outside;
         }
+        // Only the inside counts: a loop along the rectangle's side leaves its inside in one
+        // region (the points on that side are on the part, and so in the neighbour's cover too).
+        let e = self.on_edge;
+        let inner = [rect[0] + e, rect[1] - e, rect[2] + e, rect[3] - e];
+        let (cu, cv) = (0.5 * (rect[0] + rect[1]), 0.5 * (rect[2] + rect[3]));
+        if inner[0] > inner[1] || inner[2] > inner[3] {
+            return if self.contains(cu, cv) {
+                Coverage::Inside
+            } else {
+                Coverage::Outside
+            };
+        }
         let (i0, i1) = self.cols(rect[0], rect[1]);
         let (j0, j1) = self.rows(rect[2], rect[3]);
-        let mut free_cell = None;
         for i in i0..=i1 {
             for j in j0..=j1 {
                 let c = i * self.n + j;
-                let list = &self.cell_edges[self.start[c] as usize..self.start[c + 1] as usize];
-                if list.is_empty() {
-                    free_cell.get_or_insert(c);
-                }
-                for &k in list {
+                for &k in &self.cell_edges[self.start[c] as usize..self.start[c + 1] as usize] {
                     let [a, b] = self.edges[k as usize];
-                    if segment_meets_rect(a, b, rect) {
+                    if segment_meets_rect(a, b, inner) {
                         return Coverage::Crossing;
                     }
                 }
             }
         }
-        // No edge meets the rectangle: it lies in one region, that of any of its points. A
-        // rectangle reaching past the loops' box has points off the part.
-        let past_box = rect[0] < bu0 || rect[1] > bu1 || rect[2] < bv0 || rect[3] > bv1;
-        let inside = if past_box {
-            false
-        } else if let Some(c) = free_cell {
+        // No loop passes through the inside: it lies in one region, that of its centre (inside
+        // the box). What reaches past the box is off the part.
+        let (ku, kv) = (cu.clamp(bu0, bu1), cv.clamp(bv0, bv1));
+        let c = self.cell_of(ku, kv);
+        let inside = if self.start[c] == self.start[c + 1] {
             self.cell_inside[c]
         } else {
-            self.crossings_odd(0.5 * (rect[0] + rect[1]), 0.5 * (rect[2] + rect[3]))
+            self.parity_inside(ku, kv)
         };
-        if inside {
-            Coverage::Inside
-        } else {
-            Coverage::Outside
+        let past_box = rect[0] < bu0 || rect[1] > bu1 || rect[2] < bv0 || rect[3] > bv1;
+        match (inside, past_box) {
+            (true, false) => Coverage::Inside,
+            (true, true) => Coverage::Crossing,
+            (false, _) => Coverage::Outside,
         }
+    }
+
+    /// A boundary edge along a parameter line through the inside of `rect` (not within 1 % of its
+    /// sides): `(0, u)` for an edge along `u = const`, `(1, v)` for `v = const`, the one nearest
+    /// the middle of the rectangle.
+    pub(crate) fn aligned_cut(&self, rect: [f64; 4]) -> Option<(usize, f64)> {
+        let (i0, i1) = self.cols(rect[0], rect[1]);
+        let (j0, j1) = self.rows(rect[2], rect[3]);
+        let mut best: Option<(f64, usize, f64)> = None;
+        for i in i0..=i1 {
+            for j in j0..=j1 {
+                let c = i * self.n + j;
+                for &k in &self.cell_edges[self.start[c] as usize..self.start[c + 1] as usize] {
+                    let [a, b] = self.edges[k as usize];
+                    if !segment_meets_rect(a, b, rect) {
+                        continue;
+                    }
+                    for dir in 0..2 {
+                        if (a[dir] - b[dir]).abs() > self.on_edge {
+                            continue;
+                        }
+                        let (lo, hi) = (rect[2 * dir], rect[2 * dir + 1]);
+                        let t = (a[dir] - lo) / (hi - lo);
+                        if t > 0.01 && t < 0.99 {
+                            let off = (t - 0.5).abs();
+                            if best.is_none_or(|(o, _, _)| off < o) {
+                                best = Some((off, dir, a[dir]));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        best.map(|(_, dir, at)| (dir, at))
     }
 
     /// Even–odd count of the edges crossed by the ray from `(u, v)` towards `+u`.
@@ -315,6 +385,18 @@ impl Trim {
             end(j, v0, dv, v1),
         ]
     }
+}
+
+/// Distance from `p` to the segment `ab`.
+fn segment_distance(p: Uv, a: Uv, b: Uv) -> f64 {
+    let d = [b[0] - a[0], b[1] - a[1]];
+    let len2 = d[0] * d[0] + d[1] * d[1];
+    let t = if len2 > 0.0 {
+        (((p[0] - a[0]) * d[0] + (p[1] - a[1]) * d[1]) / len2).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (p[0] - a[0] - t * d[0]).hypot(p[1] - a[1] - t * d[1])
 }
 
 /// True when the closed segment `ab` meets the closed rectangle `[u0, u1] × [v0, v1]`
@@ -418,8 +500,9 @@ mod tests {
         Trim::new(&unit(), Some(outer), vec![hole, disc]).unwrap()
     }
 
+    /// The plain even–odd count over every edge, no cells (points exactly on edges aside).
     fn brute_contains(t: &Trim, u: f64, v: f64) -> bool {
-        t.crossings_odd(u, v)
+        t.parity_inside(u, v)
             && u >= t.bbox[0]
             && u <= t.bbox[1]
             && v >= t.bbox[2]
@@ -519,6 +602,31 @@ mod tests {
         let t = Trim::new(&unit(), None, vec![]).unwrap();
         assert!(t.contains(0.5, 0.5) && !t.contains(1.01, 0.5));
         assert_eq!(t.coverage([0.1, 0.9, 0.1, 0.9]), Coverage::Inside);
+        assert_eq!(t.coverage([0.5, 1.5, 0.1, 0.9]), Coverage::Crossing);
+    }
+
+    #[test]
+    fn the_region_is_closed_and_a_hole_may_run_off_the_box() {
+        // A slot through the box, overhanging it on both sides.
+        let slot = vec![[-0.1, 0.25], [1.1, 0.25], [1.1, 0.75], [-0.1, 0.75]];
+        let t = Trim::new(&unit(), None, vec![slot]).unwrap();
+        for u in [0.0, 0.5, 1.0] {
+            assert!(!t.contains(u, 0.5), "{u}");
+            assert!(t.contains(u, 0.25) && t.contains(u, 0.75) && t.contains(u, 0.1));
+        }
+        assert!(t.contains(0.0, 0.0) && t.contains(1.0, 1.0) && t.contains(1.0, 0.0));
+        assert_eq!(t.coverage([0.0, 1.0, 0.3, 0.7]), Coverage::Outside);
+        assert_eq!(t.coverage([0.0, 1.0, 0.0, 0.2]), Coverage::Inside);
+        assert_eq!(t.coverage([0.0, 1.0, 0.0, 0.5]), Coverage::Crossing);
+        // An outer loop on the box's edges: every edge point is on the part.
+        let square = vec![[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let t = Trim::new(&unit(), Some(square), vec![]).unwrap();
+        for (u, v) in [(0.0, 0.5), (1.0, 0.5), (0.5, 0.0), (0.5, 1.0), (1.0, 1.0)] {
+            assert!(t.contains(u, v), "({u}, {v})");
+        }
+        // Its sides lie on the loop: the inside is on the part.
+        assert_eq!(t.coverage([0.0, 1.0, 0.0, 1.0]), Coverage::Inside);
+        assert_eq!(t.coverage([0.0, 0.5, 0.5, 1.0]), Coverage::Inside);
     }
 
     #[test]

@@ -203,19 +203,10 @@ fn assess(seg: &Segment, pc: &Piece, t0: f64, t1: f64) -> Assessed {
         .collect();
     let tm = 0.5 * (t0 + t1);
     let tip = seg.tip(tm);
-    // Evidence: the corners are surface points (A, B, C for a check triangle).
-    let corners: SmallVec<[Vec3; 4]> = if pc.check {
-        SmallVec::from_slice(&pc.triangle())
-    } else {
-        SmallVec::from_slice(&[
-            pc.point(0, 0),
-            pc.point(pc.p, 0),
-            pc.point(0, pc.q),
-            pc.point(pc.p, pc.q),
-        ])
-    };
+    // Evidence: the corners on the part are surface points (A, B, C for a check triangle).
+    let corners = pc.corners_on_part();
     let mut depth = f64::NEG_INFINITY;
-    let mut point = corners[0];
+    let mut point = pts[0];
     let mut n_corner = seg.axis;
     for &c in &corners {
         let sd = seg.part.signed_distance(tip, seg.axis, c);
@@ -326,7 +317,7 @@ pub(crate) fn deepest(
             push(&mut out, heap, node.piece.clone(), node.t0, tm);
             push(&mut out, heap, node.piece, tm, node.t1);
         } else {
-            for child in node.piece.quarters() {
+            for child in node.piece.children().into_iter().filter(Piece::on_part) {
                 push(&mut out, heap, child, node.t0, node.t1);
             }
         }

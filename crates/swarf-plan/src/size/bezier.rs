@@ -7,6 +7,13 @@
 //! sphere and torus as tensor products of two arcs), so the certified solver sees every patch
 //! kind through the same representation.
 //!
+//! A trimmed patch ([`crate::Trim`]) keeps only the pieces that reach the part: each piece
+//! knows its parameter rectangle and whether the trim boundary crosses it ([`OnPart`]); halves
+//! of a crossing piece are classified again (dropped when off the part), and only corners on
+//! the part count as surface points. Bounds computed from a crossing piece's whole control net
+//! stay valid (they bound a superset). Elementary surfaces are never trimmed (only NURBS
+//! patches carry trims).
+//!
 //! Check geometry (a closed triangle mesh: fixtures, neighbouring parts) enters the same way:
 //! a triangle `ABC` is the degenerate bilinear piece with control net `A A / B C` (one edge
 //! collapsed to the point `A`), `S(u, v) = (1 − u)·A + u·((1 − v)·B + v·C)`, whose control
@@ -18,12 +25,15 @@
 //! it always limits the size as interference.
 
 use std::f64::consts::FRAC_PI_2;
+use std::sync::Arc;
 
 use glam::DVec4;
+use smallvec::SmallVec;
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 use swarf_io::TriMesh;
 
+use crate::trim::{Coverage, Trim};
 use crate::{CompoundSurface, NurbsSurface, ParametricSurface, Surface};
 
 /// A rational Bézier patch of degrees `(p, q)` with homogeneous control points `(w·x, w·y,
@@ -37,6 +47,40 @@ pub(crate) struct Piece {
     pub p: usize,
     pub q: usize,
     pub net: Vec<DVec4>,
+    /// The parameter rectangle `[u0, u1, v0, v1]` the piece covers in its patch (NURBS pieces;
+    /// the Bézier parameters `[0, 1]²` of elementary and check pieces).
+    pub uv: [f64; 4],
+    /// How much of the piece is on the part.
+    pub on: OnPart,
+}
+
+/// How much of a piece lies on the (trimmed) part.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) enum OnPart {
+    /// All of it: untrimmed patches, check triangles, pieces inside the trim.
+    Whole,
+    /// The trim boundary crosses it: halves are classified again, corners tested.
+    Partly(Arc<Trim>),
+    /// None of it (a half of a crossing piece): callers drop it.
+    Off,
+}
+
+impl OnPart {
+    /// The state of a rectangle of a patch trimmed by `trim`: crossing rectangles smaller than
+    /// the trim's resolution count as on the part (the boundary is honoured to that size).
+    fn of(trim: &Arc<Trim>, rect: [f64; 4]) -> OnPart {
+        match trim.coverage(rect) {
+            Coverage::Inside => OnPart::Whole,
+            Coverage::Outside => OnPart::Off,
+            Coverage::Crossing => {
+                if (rect[1] - rect[0]).max(rect[3] - rect[2]) < trim.resolution() {
+                    OnPart::Whole
+                } else {
+                    OnPart::Partly(trim.clone())
+                }
+            }
+        }
+    }
 }
 
 /// A compound surface cut into rational Bézier pieces, prepared once and shared by all CC
@@ -53,7 +97,22 @@ impl PreparedSurface {
         let mut pieces = Vec::new();
         for (k, patch) in surface.patches.iter().enumerate() {
             match &patch.surface {
-                Surface::Nurbs(s) => nurbs_pieces(k, s, &mut pieces),
+                Surface::Nurbs(s) => {
+                    let first = pieces.len();
+                    nurbs_pieces(k, s, &mut pieces);
+                    if let Some(trim) = &patch.trim {
+                        let trim = Arc::new(trim.clone());
+                        let mut kept = first;
+                        for i in first..pieces.len() {
+                            pieces[i].on = OnPart::of(&trim, pieces[i].uv);
+                            if pieces[i].on != OnPart::Off {
+                                pieces.swap(kept, i);
+                                kept += 1;
+                            }
+                        }
+                        pieces.truncate(kept);
+                    }
+                }
                 other => analytic_pieces(k, other, &mut pieces),
             }
         }
@@ -133,6 +192,8 @@ fn triangle_piece(index: usize, a: Vec3, b: Vec3, c: Vec3) -> Piece {
         p: 1,
         q: 1,
         net: vec![h(a), h(a), h(b), h(c)],
+        uv: [0.0, 1.0, 0.0, 1.0],
+        on: OnPart::Whole,
     }
 }
 
@@ -140,6 +201,38 @@ impl Piece {
     pub(crate) fn point(&self, i: usize, j: usize) -> Vec3 {
         let h = self.net[i * (self.q + 1) + j];
         Vec3::new(h.x, h.y, h.z) / h.w
+    }
+
+    /// True unless the piece is a half of a crossing piece that lies off the part.
+    pub(crate) fn on_part(&self) -> bool {
+        self.on != OnPart::Off
+    }
+
+    /// True when corner `(i, j)` of the net (`i ∈ {0, p}`, `j ∈ {0, q}`), a surface point, is on
+    /// the part.
+    pub(crate) fn corner_on_part(&self, i: usize, j: usize) -> bool {
+        match &self.on {
+            OnPart::Whole => true,
+            OnPart::Off => false,
+            OnPart::Partly(t) => t.contains(
+                if i == 0 { self.uv[0] } else { self.uv[1] },
+                if j == 0 { self.uv[2] } else { self.uv[3] },
+            ),
+        }
+    }
+
+    /// The corners of the net that are surface points on the part (a check triangle's `A, B,
+    /// C`; a patch piece's four corners, those on the trimmed part).
+    pub(crate) fn corners_on_part(&self) -> SmallVec<[Vec3; 4]> {
+        if self.check {
+            return SmallVec::from_slice(&self.triangle());
+        }
+        let (p, q) = (self.p, self.q);
+        [(0, 0), (p, 0), (0, q), (p, q)]
+            .into_iter()
+            .filter(|&(i, j)| self.corner_on_part(i, j))
+            .map(|(i, j)| self.point(i, j))
+            .collect()
     }
 
     /// Euclidean control points.
@@ -185,6 +278,32 @@ impl Piece {
         )
     }
 
+    /// Where to cut a piece the trim boundary crosses along a boundary edge that runs along a
+    /// parameter line through it: `(dir, t)` for [`Piece::split_at`]. Halving such a piece
+    /// would leave the boundary inside one half at every level; cutting along it puts each
+    /// side in a child of its own, on or off the part.
+    pub(crate) fn trim_cut(&self) -> Option<(usize, f64)> {
+        let OnPart::Partly(trim) = &self.on else {
+            return None;
+        };
+        let (dir, at) = trim.aligned_cut(self.uv)?;
+        let (lo, hi) = (self.uv[2 * dir], self.uv[2 * dir + 1]);
+        Some((dir, (at - lo) / (hi - lo)))
+    }
+
+    /// Children covering the piece for searches that do not choose a direction: cut along the
+    /// trim boundary where [`Piece::trim_cut`] finds a line to cut along, otherwise
+    /// [`Piece::quarters`].
+    pub(crate) fn children(&self) -> SmallVec<[Piece; 4]> {
+        match self.trim_cut() {
+            Some((dir, t)) => {
+                let (a, b) = self.split_at(dir, t);
+                smallvec::smallvec![a, b]
+            }
+            None => SmallVec::from_iter(self.quarters()),
+        }
+    }
+
     /// Four children covering the piece: a check triangle's midpoint triangles, otherwise the
     /// halves in u each halved in v.
     pub(crate) fn quarters(&self) -> [Piece; 4] {
@@ -197,8 +316,15 @@ impl Piece {
         [a0, a1, b0, b1]
     }
 
-    /// The halves in u (`dir = 0`) or v (`dir = 1`) at the parameter midpoint.
+    /// The halves in u (`dir = 0`) or v (`dir = 1`) at the parameter midpoint, each classified
+    /// against the trim when the piece crosses it (a half may be [`OnPart::Off`]).
     pub(crate) fn split(&self, dir: usize) -> (Piece, Piece) {
+        self.split_at(dir, 0.5)
+    }
+
+    /// The parts before and after the local parameter `t ∈ (0, 1)` in u (`dir = 0`) or v
+    /// (`dir = 1`) (de Casteljau), classified like [`Piece::split`]'s halves.
+    pub(crate) fn split_at(&self, dir: usize, t: f64) -> (Piece, Piece) {
         let (p, q) = (self.p, self.q);
         let mut a = self.clone();
         let mut b = self.clone();
@@ -230,19 +356,27 @@ impl Piece {
             b.net[idx(line, len - 1)] = work[len - 1];
             for level in 1..len {
                 for k in 0..len - level {
-                    work[k] = 0.5 * (work[k] + work[k + 1]);
+                    work[k] = (1.0 - t) * work[k] + t * work[k + 1];
                 }
                 a.net[idx(line, level)] = work[0];
                 b.net[idx(line, len - 1 - level)] = work[len - 1 - level];
             }
+        }
+        let (lo, hi) = (2 * dir, 2 * dir + 1);
+        let mid = self.uv[lo] + t * (self.uv[hi] - self.uv[lo]);
+        a.uv[hi] = mid;
+        b.uv[lo] = mid;
+        if let OnPart::Partly(t) = &self.on {
+            a.on = OnPart::of(t, a.uv);
+            b.on = OnPart::of(t, b.uv);
         }
         (a, b)
     }
 }
 
 /// Boehm insertion of every distinct knot in the domain until it has multiplicity `p`, then the
-/// Bézier segments (each `p + 1` homogeneous points) of a curve.
-fn curve_segments(p: usize, knots: &[f64], pts: &[DVec4]) -> Vec<Vec<DVec4>> {
+/// Bézier segments (each `p + 1` homogeneous points) of a curve, with their knot spans.
+fn curve_segments(p: usize, knots: &[f64], pts: &[DVec4]) -> Vec<(Vec<DVec4>, [f64; 2])> {
     let mut u = knots.to_vec();
     let mut cp = pts.to_vec();
     let n = pts.len();
@@ -282,7 +416,7 @@ fn curve_segments(p: usize, knots: &[f64], pts: &[DVec4]) -> Vec<Vec<DVec4>> {
     let mut out = Vec::new();
     for k in p..cp.len() {
         if u[k] < u[k + 1] && u[k] >= a && u[k + 1] <= b {
-            out.push(cp[k - p..=k].to_vec());
+            out.push((cp[k - p..=k].to_vec(), [u[k], u[k + 1]]));
         }
     }
     out
@@ -297,7 +431,7 @@ fn nurbs_pieces(patch: usize, s: &NurbsSurface, out: &mut Vec<Piece>) {
         DVec4::new(w * c.x, w * c.y, w * c.z, w)
     };
     // Along u for every column j.
-    let cols: Vec<Vec<Vec<DVec4>>> = (0..nv)
+    let cols: Vec<Vec<(Vec<DVec4>, [f64; 2])>> = (0..nv)
         .map(|j| {
             let col: Vec<DVec4> = (0..nu).map(|i| h(i, j)).collect();
             curve_segments(p, s.knots_u(), &col)
@@ -306,23 +440,26 @@ fn nurbs_pieces(patch: usize, s: &NurbsSurface, out: &mut Vec<Piece>) {
     let nseg_u = cols.first().map_or(0, Vec::len);
     for a in 0..nseg_u {
         // Rows i = 0..=p of u-segment a, decomposed along v.
-        let rows: Vec<Vec<Vec<DVec4>>> = (0..=p)
+        let rows: Vec<Vec<(Vec<DVec4>, [f64; 2])>> = (0..=p)
             .map(|i| {
-                let row: Vec<DVec4> = cols.iter().map(|col| col[a][i]).collect();
+                let row: Vec<DVec4> = cols.iter().map(|col| col[a].0[i]).collect();
                 curve_segments(q, s.knots_v(), &row)
             })
             .collect();
         for bseg in 0..rows[0].len() {
             let mut net = Vec::with_capacity((p + 1) * (q + 1));
             for row in &rows {
-                net.extend_from_slice(&row[bseg]);
+                net.extend_from_slice(&row[bseg].0);
             }
+            let (su, sv) = (cols[0][a].1, rows[0][bseg].1);
             out.push(Piece {
                 patch,
                 check: false,
                 p,
                 q,
                 net,
+                uv: [su[0], su[1], sv[0], sv[1]],
+                on: OnPart::Whole,
             });
         }
     }
@@ -368,6 +505,8 @@ fn push_tensor(
         p: us.len() - 1,
         q: vs.len() - 1,
         net,
+        uv: [0.0, 1.0, 0.0, 1.0],
+        on: OnPart::Whole,
     });
 }
 

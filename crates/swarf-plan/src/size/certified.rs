@@ -31,6 +31,15 @@
 //! `size − gap`: that `gap` is the certificate. When the node budget runs out first, the result
 //! says so (`certified = false`) and the gap is still a valid bound.
 //!
+//! # Trimmed patches
+//! A trimmed patch enters as its pieces that reach the part ([`crate::Trim`]; see the bezier
+//! module): the bounds of a piece the trim boundary crosses are those of its whole net (a
+//! superset, so still valid), only corners on the part are candidates, and such a piece is cut
+//! along the boundary where the boundary follows a parameter line (halving it would keep the
+//! boundary inside a half at every level), otherwise halved as usual, its halves classified
+//! again. A crossing piece smaller than the trim's resolution counts as on the part, so the
+//! certificate holds for the part grown by that resolution in parameters (conservative).
+//!
 //! # Check geometry
 //! Triangles of a check mesh ([`PreparedSurface::with_check_mesh`]) are nodes like any other:
 //! each is a degenerate bilinear piece whose control points' hull is the triangle, so the same
@@ -211,9 +220,12 @@ impl Search<'_> {
         }
     }
 
+    /// Evaluates the corners `which` of the net that are on the (trimmed) part.
     fn eval_corners(&mut self, pc: &Piece, which: &[(usize, usize)]) {
         for &(i, j) in which {
-            self.eval(pc.point(i, j), pc.check);
+            if pc.corner_on_part(i, j) {
+                self.eval(pc.point(i, j), pc.check);
+            }
         }
     }
 
@@ -670,17 +682,20 @@ pub fn allowable_certified(
             s.eval(m, true);
             SmallVec::from_iter(children)
         } else {
-            let (a, b) = node.piece.split(node.dir);
+            // Along a trim boundary that follows a parameter line where there is one (see
+            // `Piece::trim_cut`), otherwise halved in the chosen direction.
+            let (dir, t) = node.piece.trim_cut().unwrap_or((node.dir, 0.5));
+            let (a, b) = node.piece.split_at(dir, t);
             let (p, q) = (a.p, a.q);
-            // The two new surface points: the midpoints of the split edges.
-            if node.dir == 0 {
+            // The two new surface points: the ends of the cut.
+            if dir == 0 {
                 s.eval_corners(&a, &[(p, 0), (p, q)]);
             } else {
                 s.eval_corners(&a, &[(0, q), (p, q)]);
             }
             smallvec![a, b]
         };
-        for child in children {
+        for child in children.into_iter().filter(Piece::on_part) {
             let (lb, dir) = s.lower_bound(&child);
             if lb < s.prune_level() {
                 heap.push(Node {

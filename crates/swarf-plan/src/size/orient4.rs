@@ -149,6 +149,9 @@ pub(crate) fn quick_upper_bound(
     for pc in &prep.pieces {
         let (p, qd) = (pc.p, pc.q);
         for (i, j) in [(0, 0), (p, 0), (0, qd), (p, qd)] {
+            if !pc.corner_on_part(i, j) {
+                continue;
+            }
             let x = q * pc.point(i, j);
             if (x - rc.point).length() >= opts.neighbourhood {
                 n += 1;

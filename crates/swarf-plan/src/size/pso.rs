@@ -336,6 +336,10 @@ pub fn allowable_pso(
     for (k, patch) in surface.patches.iter().enumerate() {
         let dom = patch.surface.domain();
         let f = |u: f64, v: f64| {
+            // Points off a trimmed patch are not on the part: they limit nothing.
+            if !patch.on_part(u, v) {
+                return f64::INFINITY;
+            }
             let p = patch.surface.point(u, v);
             if (p - c.point).length() < opts.neighbourhood {
                 f64::INFINITY

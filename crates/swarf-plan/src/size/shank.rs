@@ -108,8 +108,7 @@ pub fn check_shank(
     let mut nodes = 0;
     let mut unresolved = false;
     while let Some(pc) = stack.pop() {
-        for (i, j) in [(0, 0), (pc.p, 0), (0, pc.q), (pc.p, pc.q)] {
-            let p = pc.point(i, j);
+        for p in pc.corners_on_part() {
             if let Some(depth) = inside(p) {
                 return ShankStatus::Interferes { point: p, depth };
             }
@@ -122,7 +121,7 @@ pub fn check_shank(
             unresolved = true;
             break;
         }
-        stack.extend(pc.quarters());
+        stack.extend(pc.children().into_iter().filter(Piece::on_part));
     }
     if unresolved {
         ShankStatus::Unresolved

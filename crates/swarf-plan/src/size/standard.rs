@@ -16,7 +16,10 @@
 //!   edges, quarter cells at the corners). Its area `∫∫ |S_u × S_v| du dv` is integrated with
 //!   the tensor Gauss–Legendre rule of [`AreaRule`] (default 4 × 4 nodes, exact for
 //!   polynomial integrands of degree 7 in each parameter). The cells tile every patch, so the
-//!   cell areas add up to the patch area.
+//!   cell areas add up to the patch area. On a trimmed patch a point stands for its cell's
+//!   part on the part (the cell is quartered where the trim boundary crosses it, six levels
+//!   deep, and the last level's nodes off the part weigh nothing), and grid points off the
+//!   part are not CC points, so the sliver of the part in their cells is not counted.
 //! * **Share.** The share of a cutter is the area of the cells where it fits over the total
 //!   area of the map.
 //! * **Suggested set** ([`StandardOptions::min_gain_share`]): go through the cutters from the
@@ -33,6 +36,7 @@
 use swarf_geom::math::Vec3;
 
 use super::map::ToolSizeMap;
+use crate::trim::Coverage;
 use crate::{CcPoint, CompoundSurface, ParametricSurface};
 
 /// Errors of the standard-cutter list.
@@ -299,6 +303,56 @@ pub fn param_area(
     sum * hu * hv
 }
 
+/// `∫∫ |S_u × S_v| du dv` of patch `patch` over the part of `[u0, u1] × [v0, v1]` inside its
+/// trim (see the module rules; the whole rectangle for an untrimmed patch).
+pub fn trimmed_param_area(
+    surface: &CompoundSurface,
+    patch: usize,
+    u: [f64; 2],
+    v: [f64; 2],
+    rule: AreaRule,
+) -> f64 {
+    let Some(trim) = &surface.patches[patch].trim else {
+        return param_area(surface, patch, u, v, rule);
+    };
+    let mut stack = vec![(u, v, 0u32)];
+    let mut sum = 0.0;
+    while let Some((u, v, depth)) = stack.pop() {
+        match trim.coverage([u[0], u[1], v[0], v[1]]) {
+            Coverage::Outside => {}
+            Coverage::Inside => sum += param_area(surface, patch, u, v, rule),
+            Coverage::Crossing if depth < TRIM_AREA_LEVELS => {
+                let (um, vm) = (0.5 * (u[0] + u[1]), 0.5 * (v[0] + v[1]));
+                for (a, b) in [([u[0], um], [v[0], vm]), ([um, u[1]], [v[0], vm])] {
+                    stack.push((a, b, depth + 1));
+                }
+                for (a, b) in [([u[0], um], [vm, v[1]]), ([um, u[1]], [vm, v[1]])] {
+                    stack.push((a, b, depth + 1));
+                }
+            }
+            Coverage::Crossing => {
+                let s = &surface.patches[patch].surface;
+                let (x, w) = rule.nodes_weights();
+                let (hu, hv) = (0.5 * (u[1] - u[0]), 0.5 * (v[1] - v[0]));
+                let (cu, cv) = (0.5 * (u[0] + u[1]), 0.5 * (v[0] + v[1]));
+                for (xi, wi) in x.iter().zip(w) {
+                    for (xj, wj) in x.iter().zip(w) {
+                        let (pu, pv) = (cu + hu * xi, cv + hv * xj);
+                        if trim.contains(pu, pv) {
+                            let d = s.derivs(pu, pv);
+                            sum += wi * wj * d.su.cross(d.sv).length() * hu * hv;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    sum
+}
+
+/// Levels of quartering of a grid cell the trim boundary crosses (see the module rules).
+const TRIM_AREA_LEVELS: u32 = 6;
+
 /// The area (mm²) each point of [`CompoundSurface::grid`]`(n)` stands for, in the grid's
 /// order (see the module rules).
 pub fn grid_cell_areas(surface: &CompoundSurface, n: usize, rule: AreaRule) -> Vec<f64> {
@@ -326,9 +380,12 @@ pub fn grid_cell_areas(surface: &CompoundSurface, n: usize, rule: AreaRule) -> V
         };
         let ue = edges(&|s| d.u_at(s));
         let ve = edges(&|t| d.v_at(t));
-        for cu in &ue {
-            for cv in &ve {
-                out.push(param_area(surface, k, *cu, *cv, rule));
+        for (i, cu) in ue.iter().enumerate() {
+            let u = d.u_at(i as f64 / (n - 1) as f64);
+            for (j, cv) in ve.iter().enumerate() {
+                if p.on_part(u, d.v_at(j as f64 / (n - 1) as f64)) {
+                    out.push(trimmed_param_area(surface, k, *cu, *cv, rule));
+                }
             }
         }
     }
