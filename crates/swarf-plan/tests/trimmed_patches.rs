@@ -473,3 +473,76 @@ fn certified_matches_dense_sampling_on_random_trimmed_surfaces() {
     assert!(compared >= 30 && changed >= 5, "{compared} / {changed}");
     assert!(certified * 10 >= compared * 9, "{certified}/{compared}");
 }
+
+#[test]
+fn an_elementary_surface_is_trimmed_in_its_own_parameters() {
+    // The same slot in a wall that is a STEP-style plane (parameters in mm: u along z, v along
+    // y), and a quarter cylinder (parameters: angle, height) with a window in its angle range.
+    use swarf_geom::Frame;
+    use swarf_plan::{CylindricalSurface, ParamBox, PlaneSurface};
+    let frame = Frame::from_axis_and_x(Vec3::new(20.0, 0.0, 0.0), -Vec3::X, Vec3::Z);
+    let dom = ParamBox {
+        u: [0.0, 10.0],
+        v: [0.0, 20.0],
+    };
+    let mut wall = Patch::new(Surface::Plane(PlaneSurface::new(frame, dom)));
+    assert!((wall.surface.point(10.0, 20.0) - Vec3::new(20.0, 20.0, 10.0)).length() < 1e-12);
+    let hole = vec![[-1.0, 5.0], [11.0, 5.0], [11.0, 15.0], [-1.0, 15.0]];
+    wall.trim = Some(Trim::new(&dom, None, vec![hole]).unwrap());
+    let floor = plane(Vec3::ZERO, Vec3::X * 20.0, Vec3::Y * 20.0);
+    let part = CompoundSurface::new(vec![floor, wall]);
+    let c = centre_contact(&part);
+    let prep = PreparedSurface::new(&part);
+    let opts = CertifiedOptions::DEFAULT;
+    let a = allowable_certified(&prep, &CutterFamily::flat(), &c, &opts);
+    assert!(
+        (a.size - 125f64.sqrt()).abs() < 1e-5 && a.certified,
+        "{a:?}"
+    );
+
+    // A concave half cylinder of radius 10 around the line y = 0, z = 10 (its inside faces
+    // the cutter), its bottom (angles within 45° of straight down) cut away, over a floor at
+    // z = −2: whole, its bottom line 2 mm over the floor stops a ball at radius 1; cut, the
+    // ball reaches the cut edges (y, z) = (±10 sin 45°, 10 − 10 cos 45°).
+    let cyl = CylindricalSurface::new(
+        Frame::from_axis_and_x(Vec3::new(0.0, 0.0, 10.0), Vec3::X, -Vec3::Z),
+        10.0,
+        ParamBox {
+            u: [-std::f64::consts::FRAC_PI_2, std::f64::consts::FRAC_PI_2],
+            v: [0.0, 40.0],
+        },
+    )
+    .unwrap();
+    let mut trough = Patch::new(Surface::Cylinder(cyl));
+    let q = std::f64::consts::FRAC_PI_4;
+    let window = vec![[-q, -1.0], [q, -1.0], [q, 41.0], [-q, 41.0]];
+    trough.trim = Some(Trim::new(&trough.surface.domain(), None, vec![window]).unwrap());
+    let floor = plane(Vec3::new(0.0, -10.0, -2.0), Vec3::X * 40.0, Vec3::Y * 20.0);
+    let part = CompoundSurface::new(vec![floor, trough.clone()]);
+    let cc = part.points(&[(0, 0.5, 0.5)]).unwrap()[0];
+    let c = Contact::at(&part, &cc, &TOL).unwrap();
+    assert!((c.point - Vec3::new(20.0, 0.0, -2.0)).length() < 1e-12);
+    // Ball centre (20, 0, R − 2) through the edge (y, z) = (10 sin q, 10 − 10 cos q):
+    // y² + (z + 2 − R)² = R².
+    let (ey, ez) = (10.0 * q.sin(), 12.0 - 10.0 * q.cos());
+    let want = (ey * ey + ez * ez) / (2.0 * ez);
+    let a = allowable_certified(
+        &PreparedSurface::new(&part),
+        &CutterFamily::ball(),
+        &c,
+        &opts,
+    );
+    assert!(
+        (a.size - want).abs() < 1e-5 && a.certified,
+        "{a:?} vs {want}"
+    );
+    trough.trim = None;
+    let whole = CompoundSurface::new(vec![part.patches[0].clone(), trough]);
+    let a = allowable_certified(
+        &PreparedSurface::new(&whole),
+        &CutterFamily::ball(),
+        &c,
+        &opts,
+    );
+    assert!((a.size - 1.0).abs() < 1e-5, "{a:?}");
+}

@@ -8,11 +8,13 @@
 //! kind through the same representation.
 //!
 //! A trimmed patch ([`crate::Trim`]) keeps only the pieces that reach the part: each piece
-//! knows its parameter rectangle and whether the trim boundary crosses it ([`OnPart`]); halves
-//! of a crossing piece are classified again (dropped when off the part), and only corners on
-//! the part count as surface points. Bounds computed from a crossing piece's whole control net
-//! stay valid (they bound a superset). Elementary surfaces are never trimmed (only NURBS
-//! patches carry trims).
+//! knows its rectangle in the Bézier parameters of the piece it was cut from, and that root
+//! piece's map to the patch's parameters ([`Axis`]: affine over a knot span, or the angle of a
+//! rational quadratic arc, `θ = m + 2·atan(tan(h/2)·(2t − 1))`, both increasing, so rectangles map
+//! to rectangles exactly); whether the trim boundary crosses it ([`OnPart`]); halves of a
+//! crossing piece are classified again (dropped when off the part), and only corners on the part
+//! count as surface points. Bounds computed from a crossing piece's whole control net stay
+//! valid (they bound a superset).
 //!
 //! Check geometry (a closed triangle mesh: fixtures, neighbouring parts) enters the same way:
 //! a triangle `ABC` is the degenerate bilinear piece with control net `A A / B C` (one edge
@@ -47,8 +49,8 @@ pub(crate) struct Piece {
     pub p: usize,
     pub q: usize,
     pub net: Vec<DVec4>,
-    /// The parameter rectangle `[u0, u1, v0, v1]` the piece covers in its patch (NURBS pieces;
-    /// the Bézier parameters `[0, 1]²` of elementary and check pieces).
+    /// The rectangle `[t0, t1, s0, s1]` the piece covers in the Bézier parameters of the root
+    /// piece it was cut from (`[0, 1]²` for a root piece).
     pub uv: [f64; 4],
     /// How much of the piece is on the part.
     pub on: OnPart,
@@ -60,26 +62,75 @@ pub(crate) enum OnPart {
     /// All of it: untrimmed patches, check triangles, pieces inside the trim.
     Whole,
     /// The trim boundary crosses it: halves are classified again, corners tested.
-    Partly(Arc<Trim>),
+    Partly(Arc<TrimmedRoot>),
     /// None of it (a half of a crossing piece): callers drop it.
     Off,
 }
 
 impl OnPart {
-    /// The state of a rectangle of a patch trimmed by `trim`: crossing rectangles smaller than
-    /// the trim's resolution count as on the part (the boundary is honoured to that size).
-    fn of(trim: &Arc<Trim>, rect: [f64; 4]) -> OnPart {
-        match trim.coverage(rect) {
+    /// The state of the rectangle `local` (root Bézier parameters) of a piece of a trimmed
+    /// patch: crossing rectangles smaller than the trim's resolution count as on the part (the
+    /// boundary is honoured to that size).
+    fn of(root: &Arc<TrimmedRoot>, local: [f64; 4]) -> OnPart {
+        let rect = root.rect(local);
+        match root.trim.coverage(rect) {
             Coverage::Inside => OnPart::Whole,
             Coverage::Outside => OnPart::Off,
             Coverage::Crossing => {
-                if (rect[1] - rect[0]).max(rect[3] - rect[2]) < trim.resolution() {
+                if (rect[1] - rect[0]).max(rect[3] - rect[2]) < root.trim.resolution() {
                     OnPart::Whole
                 } else {
-                    OnPart::Partly(trim.clone())
+                    OnPart::Partly(root.clone())
                 }
             }
         }
+    }
+}
+
+/// A root piece's Bézier parameter mapped to its patch's parameter, one direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) enum Axis {
+    /// `a + t·(b − a)`: a knot span of a NURBS, a linear parameter of an elementary surface.
+    Affine(f64, f64),
+    /// The angle of the rational quadratic arc from `m − h` to `m + h` (weight `cos h` in the
+    /// middle): `m + 2·atan(tan(h/2)·(2t − 1))`.
+    Arc { m: f64, h: f64 },
+}
+
+impl Axis {
+    fn at(self, t: f64) -> f64 {
+        match self {
+            Axis::Affine(a, b) => a + t * (b - a),
+            Axis::Arc { m, h } => m + 2.0 * ((0.5 * h).tan() * (2.0 * t - 1.0)).atan(),
+        }
+    }
+
+    /// The inverse of [`Axis::at`].
+    fn local(self, x: f64) -> f64 {
+        match self {
+            Axis::Affine(a, b) => (x - a) / (b - a),
+            Axis::Arc { m, h } => 0.5 * ((0.5 * (x - m)).tan() / (0.5 * h).tan() + 1.0),
+        }
+    }
+}
+
+/// A root piece of a trimmed patch: the patch's trim and the piece's parameter map.
+#[derive(Debug, PartialEq)]
+pub(crate) struct TrimmedRoot {
+    trim: Arc<Trim>,
+    u: Axis,
+    v: Axis,
+}
+
+impl TrimmedRoot {
+    /// The patch-parameter rectangle of a rectangle of root Bézier parameters.
+    fn rect(&self, l: [f64; 4]) -> [f64; 4] {
+        [
+            self.u.at(l[0]),
+            self.u.at(l[1]),
+            self.v.at(l[2]),
+            self.v.at(l[3]),
+        ]
     }
 }
 
@@ -95,25 +146,30 @@ impl PreparedSurface {
     /// Cut every patch of `surface` into rational Bézier pieces.
     pub fn new(surface: &CompoundSurface) -> Self {
         let mut pieces = Vec::new();
+        let mut maps = Vec::new();
         for (k, patch) in surface.patches.iter().enumerate() {
+            let first = pieces.len();
+            maps.clear();
             match &patch.surface {
-                Surface::Nurbs(s) => {
-                    let first = pieces.len();
-                    nurbs_pieces(k, s, &mut pieces);
-                    if let Some(trim) = &patch.trim {
-                        let trim = Arc::new(trim.clone());
-                        let mut kept = first;
-                        for i in first..pieces.len() {
-                            pieces[i].on = OnPart::of(&trim, pieces[i].uv);
-                            if pieces[i].on != OnPart::Off {
-                                pieces.swap(kept, i);
-                                kept += 1;
-                            }
-                        }
-                        pieces.truncate(kept);
+                Surface::Nurbs(s) => nurbs_pieces(k, s, &mut pieces, &mut maps),
+                other => analytic_pieces(k, other, &mut pieces, &mut maps),
+            }
+            if let Some(trim) = &patch.trim {
+                let trim = Arc::new(trim.clone());
+                let mut kept = first;
+                for (i, &(u, v)) in (first..pieces.len()).zip(&maps) {
+                    let root = Arc::new(TrimmedRoot {
+                        trim: trim.clone(),
+                        u,
+                        v,
+                    });
+                    pieces[i].on = OnPart::of(&root, pieces[i].uv);
+                    if pieces[i].on != OnPart::Off {
+                        pieces.swap(kept, i);
+                        kept += 1;
                     }
                 }
-                other => analytic_pieces(k, other, &mut pieces),
+                pieces.truncate(kept);
             }
         }
         Self {
@@ -214,9 +270,9 @@ impl Piece {
         match &self.on {
             OnPart::Whole => true,
             OnPart::Off => false,
-            OnPart::Partly(t) => t.contains(
-                if i == 0 { self.uv[0] } else { self.uv[1] },
-                if j == 0 { self.uv[2] } else { self.uv[3] },
+            OnPart::Partly(root) => root.trim.contains(
+                root.u.at(if i == 0 { self.uv[0] } else { self.uv[1] }),
+                root.v.at(if j == 0 { self.uv[2] } else { self.uv[3] }),
             ),
         }
     }
@@ -283,12 +339,13 @@ impl Piece {
     /// would leave the boundary inside one half at every level; cutting along it puts each
     /// side in a child of its own, on or off the part.
     pub(crate) fn trim_cut(&self) -> Option<(usize, f64)> {
-        let OnPart::Partly(trim) = &self.on else {
+        let OnPart::Partly(root) = &self.on else {
             return None;
         };
-        let (dir, at) = trim.aligned_cut(self.uv)?;
+        let (dir, at) = root.trim.aligned_cut(root.rect(self.uv))?;
+        let at = if dir == 0 { root.u } else { root.v }.local(at);
         let (lo, hi) = (self.uv[2 * dir], self.uv[2 * dir + 1]);
-        Some((dir, (at - lo) / (hi - lo)))
+        Some((dir, ((at - lo) / (hi - lo)).clamp(0.0, 1.0)))
     }
 
     /// Children covering the piece for searches that do not choose a direction: cut along the
@@ -422,7 +479,12 @@ fn curve_segments(p: usize, knots: &[f64], pts: &[DVec4]) -> Vec<(Vec<DVec4>, [f
     out
 }
 
-fn nurbs_pieces(patch: usize, s: &NurbsSurface, out: &mut Vec<Piece>) {
+fn nurbs_pieces(
+    patch: usize,
+    s: &NurbsSurface,
+    out: &mut Vec<Piece>,
+    maps: &mut Vec<(Axis, Axis)>,
+) {
     let (p, q) = (s.degree_u(), s.degree_v());
     let (nu, nv) = s.net_size();
     let h = |i: usize, j: usize| {
@@ -458,15 +520,17 @@ fn nurbs_pieces(patch: usize, s: &NurbsSurface, out: &mut Vec<Piece>) {
                 p,
                 q,
                 net,
-                uv: [su[0], su[1], sv[0], sv[1]],
+                uv: [0.0, 1.0, 0.0, 1.0],
                 on: OnPart::Whole,
             });
+            maps.push((Axis::Affine(su[0], su[1]), Axis::Affine(sv[0], sv[1])));
         }
     }
 }
 
-/// Rational quadratic arcs of the unit circle over `[a, b]`, each ≤ 90°: `(x, y, w)` triples.
-fn arcs(a: f64, b: f64) -> Vec<[(f64, f64, f64); 3]> {
+/// Rational quadratic arcs of the unit circle over `[a, b]`, each ≤ 90°: `(x, y, w)` triples
+/// and the map of each arc's parameter to the angle.
+fn arcs(a: f64, b: f64) -> Vec<([(f64, f64, f64); 3], Axis)> {
     let n = ((b - a) / FRAC_PI_2 - 1e-12).ceil().max(1.0) as usize;
     let step = (b - a) / n as f64;
     (0..n)
@@ -474,22 +538,26 @@ fn arcs(a: f64, b: f64) -> Vec<[(f64, f64, f64); 3]> {
             let (t0, t1) = (a + k as f64 * step, a + (k + 1) as f64 * step);
             let h = 0.5 * (t1 - t0);
             let m = 0.5 * (t0 + t1);
-            [
-                (t0.cos(), t0.sin(), 1.0),
-                (m.cos() / h.cos(), m.sin() / h.cos(), h.cos()),
-                (t1.cos(), t1.sin(), 1.0),
-            ]
+            (
+                [
+                    (t0.cos(), t0.sin(), 1.0),
+                    (m.cos() / h.cos(), m.sin() / h.cos(), h.cos()),
+                    (t1.cos(), t1.sin(), 1.0),
+                ],
+                Axis::Arc { m, h },
+            )
         })
         .collect()
 }
 
-/// A linear segment `[a, b]` as a degree-1 "arc" list (one piece, weights 1).
+/// The tensor product of two point lists (arcs or degree-1 segments) through `f`, and its
+/// parameter maps.
 fn push_tensor(
     patch: usize,
-    us: &[(f64, f64, f64)],
-    vs: &[(f64, f64, f64)],
+    (us, mu): (&[(f64, f64, f64)], Axis),
+    (vs, mv): (&[(f64, f64, f64)], Axis),
     f: impl Fn((f64, f64), (f64, f64)) -> Vec3,
-    out: &mut Vec<Piece>,
+    (out, maps): (&mut Vec<Piece>, &mut Vec<(Axis, Axis)>),
 ) {
     let mut net = Vec::with_capacity(us.len() * vs.len());
     for &(ux, uy, uw) in us {
@@ -508,73 +576,78 @@ fn push_tensor(
         uv: [0.0, 1.0, 0.0, 1.0],
         on: OnPart::Whole,
     });
+    maps.push((mu, mv));
 }
 
-fn analytic_pieces(patch: usize, s: &Surface, out: &mut Vec<Piece>) {
+fn analytic_pieces(patch: usize, s: &Surface, out: &mut Vec<Piece>, maps: &mut Vec<(Axis, Axis)>) {
     let d = s.domain();
-    let line = |a: f64, b: f64| [(a, 0.0, 1.0), (b, 0.0, 1.0)];
+    let lu = [(d.u[0], 0.0, 1.0), (d.u[1], 0.0, 1.0)];
+    let lv = [(d.v[0], 0.0, 1.0), (d.v[1], 0.0, 1.0)];
+    let line_u = (&lu[..], Axis::Affine(d.u[0], d.u[1]));
+    let line_v = (&lv[..], Axis::Affine(d.v[0], d.v[1]));
+    let sink = (out, maps);
     match s {
         Surface::Plane(pl) => {
             let f = pl.frame;
             push_tensor(
                 patch,
-                &line(d.u[0], d.u[1]),
-                &line(d.v[0], d.v[1]),
+                line_u,
+                line_v,
                 |(u, _), (v, _)| f.origin + u * f.x + v * f.y,
-                out,
+                sink,
             );
         }
         Surface::Cylinder(c) => {
             let (f, r) = (c.frame, c.radius);
-            for arc in arcs(d.u[0], d.u[1]) {
+            for (arc, m) in arcs(d.u[0], d.u[1]) {
                 push_tensor(
                     patch,
-                    &arc,
-                    &line(d.v[0], d.v[1]),
+                    (&arc, m),
+                    line_v,
                     |(x, y), (v, _)| f.origin + r * (x * f.x + y * f.y) + v * f.z,
-                    out,
+                    (&mut *sink.0, &mut *sink.1),
                 );
             }
         }
         Surface::Cone(c) => {
             let (f, r, ta) = (c.frame, c.radius, c.semi_angle.tan());
-            for arc in arcs(d.u[0], d.u[1]) {
+            for (arc, m) in arcs(d.u[0], d.u[1]) {
                 push_tensor(
                     patch,
-                    &arc,
-                    &line(d.v[0], d.v[1]),
+                    (&arc, m),
+                    line_v,
                     // Bilinear in (arc point, v): (r + v tan α)(x, y) is linear in each.
                     |(x, y), (v, _)| f.origin + (r + v * ta) * (x * f.x + y * f.y) + v * f.z,
-                    out,
+                    (&mut *sink.0, &mut *sink.1),
                 );
             }
         }
         Surface::Sphere(sp) => {
             let (f, r) = (sp.frame, sp.radius);
-            for au in arcs(d.u[0], d.u[1]) {
-                for av in arcs(d.v[0], d.v[1]) {
+            for (au, mu) in arcs(d.u[0], d.u[1]) {
+                for (av, mv) in arcs(d.v[0], d.v[1]) {
                     push_tensor(
                         patch,
-                        &au,
-                        &av,
+                        (&au, mu),
+                        (&av, mv),
                         |(x, y), (cv, sv)| f.origin + r * cv * (x * f.x + y * f.y) + r * sv * f.z,
-                        out,
+                        (&mut *sink.0, &mut *sink.1),
                     );
                 }
             }
         }
         Surface::Torus(t) => {
             let (f, big, r) = (t.frame, t.major, t.minor);
-            for au in arcs(d.u[0], d.u[1]) {
-                for av in arcs(d.v[0], d.v[1]) {
+            for (au, mu) in arcs(d.u[0], d.u[1]) {
+                for (av, mv) in arcs(d.v[0], d.v[1]) {
                     push_tensor(
                         patch,
-                        &au,
-                        &av,
+                        (&au, mu),
+                        (&av, mv),
                         |(x, y), (cv, sv)| {
                             f.origin + (big + r * cv) * (x * f.x + y * f.y) + r * sv * f.z
                         },
-                        out,
+                        (&mut *sink.0, &mut *sink.1),
                     );
                 }
             }
@@ -632,12 +705,20 @@ mod tests {
             .collect();
         let s = NurbsSurface::new(3, 2, knots_u, knots_v, &pts, Some(&w)).unwrap();
         let mut out = Vec::new();
-        nurbs_pieces(0, &s, &mut out);
+        let mut maps = Vec::new();
+        nurbs_pieces(0, &s, &mut out, &mut maps);
         assert_eq!(out.len(), 3 * 2);
         let us = [0.0, 0.3, 0.7, 1.0];
         let vs = [0.0, 0.5, 1.0];
         for (a, pc) in out.iter().enumerate() {
             let (iu, iv) = (a / 2, a % 2);
+            assert_eq!(
+                maps[a],
+                (
+                    Axis::Affine(us[iu], us[iu + 1]),
+                    Axis::Affine(vs[iv], vs[iv + 1])
+                )
+            );
             for &(x, y) in &[(0.0, 0.0), (0.25, 0.6), (1.0, 1.0), (0.5, 0.1)] {
                 let u = us[iu] + x * (us[iu + 1] - us[iu]);
                 let v = vs[iv] + y * (vs[iv + 1] - vs[iv]);
@@ -664,6 +745,34 @@ mod tests {
             assert!((eval(&r, 0.5, 0.3) - eval(pc, 0.75, 0.3)).length() < 1e-12);
             let (l, _) = pc.split(1);
             assert!((eval(&l, 0.2, 0.5) - eval(pc, 0.2, 0.25)).length() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn arc_maps_give_the_angle_of_every_bezier_parameter() {
+        // A torus patch over uneven angle ranges: arcs of several sizes in both directions.
+        let dom = crate::ParamBox {
+            u: [0.3, 4.0],
+            v: [-1.0, 2.5],
+        };
+        let t = crate::ToroidalSurface::new(Frame::WORLD, 7.0, 2.0, dom).unwrap();
+        let s = Surface::Torus(t);
+        let (mut out, mut maps) = (Vec::new(), Vec::new());
+        analytic_pieces(0, &s, &mut out, &mut maps);
+        assert_eq!(out.len(), maps.len());
+        assert!(out.len() >= 6);
+        for (pc, &(mu, mv)) in out.iter().zip(&maps) {
+            for &(a, b) in &[
+                (0.0, 0.0),
+                (0.13, 0.77),
+                (0.5, 0.5),
+                (1.0, 0.31),
+                (0.9, 1.0),
+            ] {
+                let want = s.point(mu.at(a), mv.at(b));
+                assert!((eval(pc, a, b) - want).length() < 1e-12, "{a} {b}");
+                assert!((mu.local(mu.at(a)) - a).abs() < 1e-12);
+            }
         }
     }
 
