@@ -309,7 +309,7 @@ impl Trim {
                         let t = (a[dir] - lo) / (hi - lo);
                         if t > 0.01 && t < 0.99 {
                             let off = (t - 0.5).abs();
-                            if best.is_none_or(|(o, _, _)| off < o) {
+                            if best.map_or(true, |(o, _, _)| off < o) {
                                 best = Some((off, dir, a[dir]));
                             }
                         }

@@ -4,22 +4,15 @@
 //! what sampling can miss (bounded by the variation across the sample cells around the
 //! sampled minimum).
 
+mod common;
+
+use common::{sampled_min, Rng};
+
 use swarf_geom::math::Vec3;
 use swarf_plan::size::{
     allowable_certified, CertifiedOptions, Contact, CutterFamily, Limit, PreparedSurface,
 };
-use swarf_plan::{CompoundSurface, NurbsSurface, ParametricSurface, Patch, Surface, Tolerances};
-
-struct Rng(u64);
-impl Rng {
-    fn f(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
+use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
 
 /// A 2×2 arrangement of bicubic B-spline height fields (one interior knot each way), with
 /// random heights; one patch rational. Normals up.
@@ -54,56 +47,6 @@ fn random_surface(rng: &mut Rng) -> CompoundSurface {
     CompoundSurface::new(patches)
 }
 
-const N: usize = 160;
-
-/// The sampled minimum over all patches (and the curvature bound), and the sampling bound.
-fn brute(
-    part: &CompoundSurface,
-    f: &CutterFamily,
-    c: &Contact,
-    opts: &CertifiedOptions,
-) -> (f64, f64) {
-    let reg = f.regime(c, &opts.model);
-    let mut best = f.local_bound(c, &reg);
-    let mut spread: f64 = 0.0;
-    for p in &part.patches {
-        let d = p.surface.domain();
-        let val = |i: usize, j: usize| {
-            let q = p.surface.point(
-                d.u_at(i as f64 / (N - 1) as f64),
-                d.v_at(j as f64 / (N - 1) as f64),
-            );
-            if (q - c.point).length() < opts.neighbourhood {
-                f64::INFINITY
-            } else {
-                f.imaginary(c, &reg, q, &opts.model)
-            }
-        };
-        let grid: Vec<Vec<f64>> = (0..N)
-            .map(|i| (0..N).map(|j| val(i, j)).collect())
-            .collect();
-        for i in 0..N {
-            for j in 0..N {
-                let v = grid[i][j];
-                if v < best {
-                    best = v;
-                    // What sampling can miss around it: the variation over the adjacent cells.
-                    spread = 0.0;
-                    let rows = &grid[i.saturating_sub(1)..(i + 2).min(N)];
-                    for row in rows {
-                        for &w in &row[j.saturating_sub(1)..(j + 2).min(N)] {
-                            if w.is_finite() {
-                                spread = spread.max((w - v).abs());
-                            }
-                        }
-                    }
-                }
-            }
-        }
-    }
-    (best, spread)
-}
-
 #[test]
 fn certified_matches_dense_sampling_on_random_compound_surfaces() {
     let mut rng = Rng(20_260_521);
@@ -133,7 +76,7 @@ fn certified_matches_dense_sampling_on_random_compound_surfaces() {
             }
             for f in &families {
                 let a = allowable_certified(&prep, f, &c, &opts);
-                let (b, spread) = brute(&part, f, &c, &opts);
+                let (b, spread) = sampled_min(&part, f, &c, &opts, 160);
                 let t = opts.tol_abs.max(opts.tol_rel * b);
                 if b.is_infinite() {
                     assert!(a.size >= 1e5, "{f:?}: brute ∞, certified {a:?}");

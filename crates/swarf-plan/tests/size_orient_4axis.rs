@@ -8,6 +8,10 @@
 //!   axis gives the 3-axis answer of the original part; the optimum is never below 3-axis.
 //! * Against brute force: dense sampling of `B` on a random compound surface.
 
+mod common;
+
+use common::Rng;
+
 use std::f64::consts::FRAC_1_SQRT_2;
 
 use swarf_geom::math::{Quat, Vec3};
@@ -138,17 +142,6 @@ fn the_part_turned_about_z_and_machined_about_x_gives_the_same_size() {
     assert!((best.b_deg - 270.0).abs() < 1e-3, "{}", best.b_deg);
     assert!((RotaryAxis::X.tool_axis(270.0) - Vec3::Y).length() < 1e-12);
     assert!((RotaryAxis::Y.tool_axis(90.0) - Vec3::X).length() < 1e-12);
-}
-
-struct Rng(u64);
-impl Rng {
-    fn f(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 /// 2×2 bicubic Bézier height fields of 10 × 10 mm with random heights (amplitude 6 mm), mapped

@@ -9,6 +9,10 @@
 //!   `+Z`); the optimum is never below 3-axis when `+Z` is admissible.
 //! * Against brute force: a dense grid of lead and tilt on a random compound surface.
 
+mod common;
+
+use common::Rng;
+
 use swarf_geom::math::Vec3;
 use swarf_plan::size::{
     allowable_along, allowable_certified, best_lead_tilt, Axis5Options, CertifiedOptions, Contact,
@@ -117,17 +121,6 @@ fn tilting_towards_the_near_wall_grows_the_flat_end_mill_to_10_over_cos_tilt() {
     );
     assert_eq!(zero.size.size, three.size);
     assert_eq!((zero.lead_deg, zero.tilt_deg), (0.0, 0.0));
-}
-
-struct Rng(u64);
-impl Rng {
-    fn f(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 /// 2×2 bicubic Bézier height fields of 10 × 10 mm with random heights (amplitude 6 mm).

@@ -5,6 +5,9 @@
 //! that is gone; grid points, meshes, maps and areas leave the slot out. Then random trims
 //! against brute force.
 
+mod common;
+
+use common::{sampled_min, Rng};
 use swarf_geom::math::Vec3;
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::Machine;
@@ -204,17 +207,6 @@ fn the_program_check_sees_the_slot_edges_not_the_wall() {
     }
 }
 
-struct Rng(u64);
-impl Rng {
-    fn f(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 /// A bicubic height field over `[ox, ox + 10] × [oy, oy + 10]` with random heights, trimmed by
 /// a random star-shaped outer loop and a round hole.
 fn random_trimmed_patch(rng: &mut Rng, ox: f64, oy: f64) -> Patch {
@@ -250,8 +242,6 @@ fn random_trimmed_patch(rng: &mut Rng, ox: f64, oy: f64) -> Patch {
     p.trim = Some(Trim::new(&p.surface.domain(), Some(outer), vec![hole]).unwrap());
     p
 }
-
-const N: usize = 200;
 
 /// Distance in parameters from `(u, v)` to the nearest trim loop.
 fn distance_to_loops(trim: &Trim, u: f64, v: f64) -> f64 {
@@ -299,90 +289,6 @@ fn project(part: &CompoundSurface, p: Vec3) -> (usize, f64, f64, f64) {
     (k, u, v, (s.point(u, v) - p).length())
 }
 
-/// The sampled minimum over the on-part samples of all patches and dense samples of the trim
-/// loops (the region's boundary, which grid samples cannot reach), and the curvature bound;
-/// and what sampling can miss around it (the variation over the adjacent samples).
-fn brute(
-    part: &CompoundSurface,
-    f: &CutterFamily,
-    c: &Contact,
-    opts: &CertifiedOptions,
-) -> (f64, f64) {
-    let reg = f.regime(c, &opts.model);
-    let mut best = f.local_bound(c, &reg);
-    let mut spread: f64 = 0.0;
-    for p in &part.patches {
-        let d = p.surface.domain();
-        let grid: Vec<Vec<f64>> = (0..N)
-            .map(|i| {
-                (0..N)
-                    .map(|j| {
-                        let (u, v) = (
-                            d.u_at(i as f64 / (N - 1) as f64),
-                            d.v_at(j as f64 / (N - 1) as f64),
-                        );
-                        let q = p.surface.point(u, v);
-                        if !p.on_part(u, v) || (q - c.point).length() < opts.neighbourhood {
-                            f64::INFINITY
-                        } else {
-                            f.imaginary(c, &reg, q, &opts.model)
-                        }
-                    })
-                    .collect()
-            })
-            .collect();
-        if let Some(trim) = &p.trim {
-            let value = |[u, v]: [f64; 2]| {
-                let q = p.surface.point(u, v);
-                if !d.contains(u, v) || (q - c.point).length() < opts.neighbourhood {
-                    f64::INFINITY
-                } else {
-                    f.imaginary(c, &reg, q, &opts.model)
-                }
-            };
-            for l in trim.loops() {
-                let samples: Vec<f64> = (0..l.len())
-                    .flat_map(|e| {
-                        let (a, b) = (l[e], l[(e + 1) % l.len()]);
-                        (0..64).map(move |k| {
-                            let t = k as f64 / 64.0;
-                            [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
-                        })
-                    })
-                    .map(value)
-                    .collect();
-                for (k, &v) in samples.iter().enumerate() {
-                    if v < best {
-                        best = v;
-                        let m = samples.len();
-                        spread = [samples[(k + 1) % m], samples[(k + m - 1) % m]]
-                            .into_iter()
-                            .filter(|w| w.is_finite())
-                            .fold(0.0, |s: f64, w| s.max((w - v).abs()));
-                    }
-                }
-            }
-        }
-        for i in 0..N {
-            for j in 0..N {
-                let v = grid[i][j];
-                if v < best {
-                    best = v;
-                    spread = 0.0;
-                    for row in &grid[i.saturating_sub(1)..(i + 2).min(N)] {
-                        for &w in &row[j.saturating_sub(1)..(j + 2).min(N)] {
-                            if w.is_finite() {
-                                spread = spread.max((w - v).abs());
-                            }
-                        }
-                    }
-                }
-            }
-        }
-    }
-    (best, spread)
-}
-
 #[test]
 fn certified_matches_dense_sampling_on_random_trimmed_surfaces() {
     let mut rng = Rng(20_261_121);
@@ -422,7 +328,7 @@ fn certified_matches_dense_sampling_on_random_trimmed_surfaces() {
             }
             for f in &families {
                 let a = allowable_certified(&prep, f, &c, &opts);
-                let (b, spread) = brute(&part, f, &c, &opts);
+                let (b, spread) = sampled_min(&part, f, &c, &opts, 200);
                 if b.is_infinite() {
                     assert!(a.size >= 1e5, "{f:?}: brute ∞, certified {a:?}");
                     continue;

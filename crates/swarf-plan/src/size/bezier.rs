@@ -528,9 +528,12 @@ fn nurbs_pieces(
     }
 }
 
+/// A control point `(x, y, w)` of a rational quadratic arc of the unit circle.
+type ArcPoint = (f64, f64, f64);
+
 /// Rational quadratic arcs of the unit circle over `[a, b]`, each ≤ 90°: `(x, y, w)` triples
 /// and the map of each arc's parameter to the angle.
-fn arcs(a: f64, b: f64) -> Vec<([(f64, f64, f64); 3], Axis)> {
+fn arcs(a: f64, b: f64) -> Vec<([ArcPoint; 3], Axis)> {
     let n = ((b - a) / FRAC_PI_2 - 1e-12).ceil().max(1.0) as usize;
     let step = (b - a) / n as f64;
     (0..n)

@@ -288,6 +288,19 @@ pub fn param_area(
     v: [f64; 2],
     rule: AreaRule,
 ) -> f64 {
+    quadrature(surface, patch, u, v, rule, |_, _| true)
+}
+
+/// The tensor Gauss–Legendre rule for `∫∫ |S_u × S_v| du dv` over `[u0, u1] × [v0, v1]`, nodes
+/// where `keep` is false weighing nothing.
+fn quadrature(
+    surface: &CompoundSurface,
+    patch: usize,
+    u: [f64; 2],
+    v: [f64; 2],
+    rule: AreaRule,
+    keep: impl Fn(f64, f64) -> bool,
+) -> f64 {
     let s = &surface.patches[patch].surface;
     let (x, w) = rule.nodes_weights();
     let (hu, hv) = (0.5 * (u[1] - u[0]), 0.5 * (v[1] - v[0]));
@@ -295,9 +308,12 @@ pub fn param_area(
     let mut sum = 0.0;
     for (xi, wi) in x.iter().zip(w) {
         for (xj, wj) in x.iter().zip(w) {
-            let d = s.derivs(cu + hu * xi, cv + hv * xj);
-            let j: Vec3 = d.su.cross(d.sv);
-            sum += wi * wj * j.length();
+            let (pu, pv) = (cu + hu * xi, cv + hv * xj);
+            if keep(pu, pv) {
+                let d = s.derivs(pu, pv);
+                let j: Vec3 = d.su.cross(d.sv);
+                sum += wi * wj * j.length();
+            }
         }
     }
     sum * hu * hv
@@ -331,19 +347,7 @@ pub fn trimmed_param_area(
                 }
             }
             Coverage::Crossing => {
-                let s = &surface.patches[patch].surface;
-                let (x, w) = rule.nodes_weights();
-                let (hu, hv) = (0.5 * (u[1] - u[0]), 0.5 * (v[1] - v[0]));
-                let (cu, cv) = (0.5 * (u[0] + u[1]), 0.5 * (v[0] + v[1]));
-                for (xi, wi) in x.iter().zip(w) {
-                    for (xj, wj) in x.iter().zip(w) {
-                        let (pu, pv) = (cu + hu * xi, cv + hv * xj);
-                        if trim.contains(pu, pv) {
-                            let d = s.derivs(pu, pv);
-                            sum += wi * wj * d.su.cross(d.sv).length() * hu * hv;
-                        }
-                    }
-                }
+                sum += quadrature(surface, patch, u, v, rule, |a, b| trim.contains(a, b));
             }
         }
     }

@@ -3,7 +3,8 @@
 
 use std::f64::consts::FRAC_1_SQRT_2;
 use swarf_geom::math::Vec3;
-use swarf_plan::{NurbsSurface, ParametricSurface, Patch, Surface};
+use swarf_plan::size::{CertifiedOptions, Contact, CutterFamily};
+use swarf_plan::{CompoundSurface, NurbsSurface, ParametricSurface, Patch, Surface};
 
 /// Path of a file in the shared data set.
 #[macro_export]
@@ -180,4 +181,104 @@ pub fn trough(r: f64, alpha: f64, len: f64) -> Patch {
         )
         .unwrap(),
     ))
+}
+
+/// A linear congruential generator (Knuth's MMIX constants): reproducible random test inputs.
+pub struct Rng(pub u64);
+
+impl Rng {
+    /// Uniform in `[0, 1)`.
+    pub fn f(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+/// The brute-force reference of the certified solver: the minimum imaginary size over `n × n`
+/// samples of every patch (on the part only) and dense samples of the trim loops (the region's
+/// boundary, which grid samples cannot reach), and the curvature bound at `c`; and what
+/// sampling can miss around it (the variation over the adjacent samples).
+pub fn sampled_min(
+    part: &CompoundSurface,
+    f: &CutterFamily,
+    c: &Contact,
+    opts: &CertifiedOptions,
+    n: usize,
+) -> (f64, f64) {
+    let reg = f.regime(c, &opts.model);
+    let mut best = f.local_bound(c, &reg);
+    let mut spread: f64 = 0.0;
+    for p in &part.patches {
+        let d = p.surface.domain();
+        let grid: Vec<Vec<f64>> = (0..n)
+            .map(|i| {
+                (0..n)
+                    .map(|j| {
+                        let (u, v) = (
+                            d.u_at(i as f64 / (n - 1) as f64),
+                            d.v_at(j as f64 / (n - 1) as f64),
+                        );
+                        let q = p.surface.point(u, v);
+                        if !p.on_part(u, v) || (q - c.point).length() < opts.neighbourhood {
+                            f64::INFINITY
+                        } else {
+                            f.imaginary(c, &reg, q, &opts.model)
+                        }
+                    })
+                    .collect()
+            })
+            .collect();
+        if let Some(trim) = &p.trim {
+            let value = |[u, v]: [f64; 2]| {
+                let q = p.surface.point(u, v);
+                if !d.contains(u, v) || (q - c.point).length() < opts.neighbourhood {
+                    f64::INFINITY
+                } else {
+                    f.imaginary(c, &reg, q, &opts.model)
+                }
+            };
+            for l in trim.loops() {
+                let samples: Vec<f64> = (0..l.len())
+                    .flat_map(|e| {
+                        let (a, b) = (l[e], l[(e + 1) % l.len()]);
+                        (0..64).map(move |k| {
+                            let t = k as f64 / 64.0;
+                            [a[0] + t * (b[0] - a[0]), a[1] + t * (b[1] - a[1])]
+                        })
+                    })
+                    .map(value)
+                    .collect();
+                for (k, &v) in samples.iter().enumerate() {
+                    if v < best {
+                        best = v;
+                        let m = samples.len();
+                        spread = [samples[(k + 1) % m], samples[(k + m - 1) % m]]
+                            .into_iter()
+                            .filter(|w| w.is_finite())
+                            .fold(0.0, |s: f64, w| s.max((w - v).abs()));
+                    }
+                }
+            }
+        }
+        for i in 0..n {
+            for j in 0..n {
+                let v = grid[i][j];
+                if v < best {
+                    best = v;
+                    spread = 0.0;
+                    for row in &grid[i.saturating_sub(1)..(i + 2).min(n)] {
+                        for &w in &row[j.saturating_sub(1)..(j + 2).min(n)] {
+                            if w.is_finite() {
+                                spread = spread.max((w - v).abs());
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    (best, spread)
 }
