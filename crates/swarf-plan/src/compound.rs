@@ -85,7 +85,8 @@ pub struct Patch {
     /// Where it came from.
     pub source: PatchSource,
     /// The part of the parameter box that is on the part, when the file trims the patch
-    /// (`None`: all of it). Only NURBS patches are trimmed.
+    /// (`None`: all of it), in the patch's own parameters (radians for angles of elementary
+    /// surfaces).
     pub trim: Option<Trim>,
 }
 
@@ -132,7 +133,7 @@ impl Patch {
     /// trimmed one (the parameter box is not checked).
     #[inline]
     pub fn on_part(&self, u: f64, v: f64) -> bool {
-        self.trim.as_ref().is_none_or(|t| t.contains(u, v))
+        self.trim.as_ref().map_or(true, |t| t.contains(u, v))
     }
 
     /// A box containing the patch.

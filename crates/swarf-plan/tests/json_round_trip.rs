@@ -118,7 +118,7 @@ fn errors_name_the_position_what_was_found_and_what_was_expected() {
     let (l, c, m) = syntax(&bad);
     assert_eq!((l, c), (3, 86), "just past the patch's closing brace: {m}");
     assert!(
-        m.contains("patch \"floor\": 3 knots in v; expected 4"),
+        m.contains("patch 0 \"floor\": 3 knots in v; expected 4"),
         "{m}"
     );
     // A typo in a key.
@@ -130,6 +130,11 @@ fn errors_name_the_position_what_was_found_and_what_was_expected() {
         m.contains("control point [1][1]: weight is not a positive finite number"),
         "{m}"
     );
+    // A weight so small the derivatives end in 0/0 (found by fuzzing), and a wild coordinate.
+    let (_, _, m) = syntax(&FLOOR.replace("[10, 10, 0, 1]", "[10, 10, 0, 1.5e-310]"));
+    assert!(m.contains("weight outside [1e-12, 1e12]"), "{m}");
+    let (_, _, m) = syntax(&FLOOR.replace("[10, 10, 0, 1]", "[1e300, 10, 0, 1]"));
+    assert!(m.contains("coordinate beyond 1e9 mm"), "{m}");
     // Not JSON at all.
     let (l, c, _) = syntax("\n  units: mm");
     assert_eq!((l, c), (2, 3));

@@ -58,7 +58,7 @@ fn occt_example_is_one_degree_5x5_patch_on_a_6x6_net_finite_everywhere() {
     // The corners interpolate the corner control points (clamped knots).
     assert!((p.surface.point(d.u[0], d.v[0]) - n.control_point(0, 0)).length() < 1e-9);
     assert!((p.surface.point(d.u[1], d.v[1]) - n.control_point(5, 5)).length() < 1e-9);
-    // Trims: one 144 whose outer boundary is the 142 at D5; reported, not honoured.
+    // Trims: one 144 whose outer boundary is the 142 at D5; honoured (see iges_trims.rs).
     assert_eq!(doc.trims.len(), 1);
     assert_eq!(doc.trims[0].patch, Some(0));
     assert_eq!(doc.trims[0].outer, Some(5));
@@ -66,7 +66,8 @@ fn occt_example_is_one_degree_5x5_patch_on_a_6x6_net_finite_everywhere() {
     assert!(s
         .notes
         .iter()
-        .any(|n| matches!(n, ReadNote::TrimNotHonoured { patch: 0, .. })));
+        .any(|n| matches!(n, ReadNote::Trimmed { patch: 0, .. })));
+    assert!(p.trim.is_some());
     assert_eq!(doc.curves.len(), 15);
     assert!(doc
         .curves

@@ -1,24 +1,38 @@
-//! IGES 5.3 surfaces: entity 128 (rational B-spline surface) as patches; entity 126
-//! (rational B-spline curve) parsed for trims; 142 (curve on a parametric surface) and 144
-//! (trimmed parametric surface) parsed and reported — **trims are not honoured**: each trimmed
-//! 128 is used whole, with a [`ReadNote::TrimNotHonoured`], and the trim structure is returned in
-//! [`IgesDocument::trims`] for a later stage.
+//! IGES 5.3 surfaces: entity 128 (rational B-spline surface) as patches, trimmed by 144
+//! (trimmed parametric surface) and 142 (curve on a parametric surface); entity 126 (rational
+//! B-spline curve) parsed into [`IgesDocument::curves`].
+//!
+//! **Trims.** A 144 on a 128 gives the patch a [`Trim`]: the outer boundary is the patch's
+//! parameter box when PTO = 0, else the 142 at PTO; the inner boundaries are the 142s listed.
+//! Each 142 is read through its parameter-space curve (BPTR), in the surface's parameters
+//! (never scaled by the units), which may be a 126 (x and y of its control points are u and v),
+//! a 110 line, a 100 circular arc or a 102 composite of these (nested up to 8 deep), each with
+//! its 124 transformation if it names one. Curves are sampled to a chord of 1e-6 of the patch's
+//! parameter box diagonal, at least 4 segments per knot span (and per quarter turn of an arc),
+//! into closed polygons; a [`ReadNote::Trimmed`] says how many loops and points. A 142 without
+//! a parameter-space curve (BPTR = 0: only the model-space curve CPTR, which this reader does
+//! not project), a curve type not listed, or a trim needing more than 200 000 points leaves
+//! the patch untrimmed with a [`ReadNote::TrimNotHonoured`] saying why. A second 144 on the
+//! same 128 gets its own copy of the patch (at the end of the list). A boundary pointer that
+//! names no entry, or an entry of the wrong type, is an error at that parameter.
+//! [`IgesDocument::trims`] still lists every 144 as found.
 //!
 //! The fixed-column format: 80-column records, section letter in column 73 (S, G, D, P, T),
 //! sequence number in 74–80. The G section gives the parameter and record delimiters (defaults
 //! `,` and `;`), the units flag and unit name (field 14/15: inch, mm, foot, mile, metre, km,
 //! mil, micron, cm, microinch), converted to mm. The model-space scale (field 13) is not
 //! applied. Directory entries are two records of 8-column fields; parameter data lives in
-//! columns 1–64 of the P records. Transformation matrices (entity 124) referenced by a 128 or
-//! 126 are applied. Hollerith strings (`5HHello`) and `D` exponents are understood.
+//! columns 1–64 of the P records. Transformation matrices (entity 124) referenced by a 128 or a
+//! curve are applied. Hollerith strings (`5HHello`) and `D` exponents are understood.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use swarf_geom::math::Vec3;
 
 use super::{Format, ReadError};
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
-use crate::surface::{NurbsSurface, Surface};
+use crate::surface::{NurbsSurface, ParamBox, ParametricSurface, Surface};
+use crate::trim::{sample_curve, Trim, TrimError};
 
 /// A rational B-spline curve (entity 126), in mm (model-space curves) or in the surface's
 /// parameter space (curves referenced as a 142's parameter-space curve).
@@ -106,15 +120,22 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
         }
     }
     // Curves used in a surface's parameter space are not in model units: undo the scaling.
-    for e in entries.iter().filter(|e| e.kind == 142) {
-        let p = file.params(e)?;
-        let bptr = p.int(3, "BPTR")?;
-        if let Some(c) = doc.curves.iter_mut().find(|c| c.de as i64 == bptr) {
-            if global.factor != 1.0 {
+    if global.factor != 1.0 {
+        let mut param_space = HashSet::new();
+        for e in entries.iter().filter(|e| e.kind == 142) {
+            let p = file.params(e)?;
+            let bptr = p.int(3, "BPTR")?;
+            file.curves_126_under(&entries, bptr, 0, &mut param_space);
+        }
+        for c in doc.curves.iter_mut() {
+            if param_space.contains(&c.de) {
                 c.points.iter_mut().for_each(|q| *q /= global.factor);
             }
         }
     }
+    // A 128 trimmed by a 144 becomes a trimmed patch; a second 144 on the same 128 gets a copy.
+    let mut claimed = vec![false; doc.surface.patches.len()];
+    let mut points_left = MAX_FILE_TRIM_POINTS;
     for e in entries.iter().filter(|e| e.kind == 144) {
         let p = file.params(e)?;
         let pts = p.int(1, "PTS")?;
@@ -126,23 +147,62 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
         let inner = (0..n2 as usize)
             .map(|k| p.int(5 + k, "PTI").map(|v| v as usize))
             .collect::<Result<Vec<_>, _>>()?;
-        let patch = usize::try_from(pts)
+        let mut patch = usize::try_from(pts)
             .ok()
             .and_then(|d| patch_of_de.get(&d).copied());
         if let Some(k) = patch {
-            doc.surface.notes.push(ReadNote::TrimNotHonoured {
-                patch: k,
-                by: format!(
-                    "IGES 144 at D{} (outer boundary {}, {} inner)",
-                    e.de,
-                    if pto > 0 {
-                        format!("142 at D{pto}")
+            let by = format!("IGES 144 at D{}", e.de);
+            let domain = doc.surface.patches[k].surface.domain();
+            let mut sampler = Sampler {
+                file: &file,
+                entries: &entries,
+                tol: 1e-6 * (domain.u[1] - domain.u[0]).hypot(domain.v[1] - domain.v[0]),
+                points_left: points_left.min(MAX_TRIM_POINTS),
+                curves_left: MAX_TRIM_CURVES,
+                bounds: {
+                    let (mu, mv) = (
+                        BOX_MARGIN * (domain.u[1] - domain.u[0]),
+                        BOX_MARGIN * (domain.v[1] - domain.v[0]),
+                    );
+                    [
+                        domain.u[0] - mu,
+                        domain.u[1] + mu,
+                        domain.v[0] - mv,
+                        domain.v[1] + mv,
+                    ]
+                },
+            };
+            let budget = sampler.points_left;
+            match sampler.trim144(e, &p, &domain)? {
+                Ok(trim) => {
+                    points_left -= budget - sampler.points_left;
+                    let target = if claimed[k] {
+                        let copy = doc.surface.patches[k].clone();
+                        doc.surface.patches.push(copy);
+                        doc.surface.patches.len() - 1
                     } else {
-                        "the patch's own".into()
-                    },
-                    inner.len()
-                ),
-            });
+                        claimed[k] = true;
+                        k
+                    };
+                    doc.surface.notes.push(ReadNote::Trimmed {
+                        patch: target,
+                        by,
+                        loops: trim.loops().len(),
+                        points: trim.loops().iter().map(Vec::len).sum(),
+                    });
+                    doc.surface.patches[target].trim = Some(trim);
+                    patch = Some(target);
+                }
+                Err(why) => {
+                    points_left -= budget - sampler.points_left;
+                    // The whole patch stands for this face (once, however many 144s use it).
+                    claimed[k] = true;
+                    doc.surface.notes.push(ReadNote::TrimNotHonoured {
+                        patch: k,
+                        by: format!("{by} ({why})"),
+                    });
+                }
+            }
         }
         doc.trims.push(IgesTrim {
             de: e.de,
@@ -179,6 +239,341 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
     }
     doc.surface.notes.extend(skipped);
     Ok(doc)
+}
+
+/// Most points of one trim's loops; a trim that needs more is not honoured.
+const MAX_TRIM_POINTS: usize = 200_000;
+/// Most points of all the trims of a file (a guard against files that repeat a costly trim).
+const MAX_FILE_TRIM_POINTS: usize = 4_000_000;
+/// Most curve entities visited for one trim (a composite may list one curve many times).
+const MAX_TRIM_CURVES: usize = 20_000;
+/// Share of the parameter box's sides by which a trimming curve may stray outside it.
+const BOX_MARGIN: f64 = 0.01;
+/// Composite curves (102) nest at most this deep in a trimming curve.
+const MAX_NESTING: usize = 8;
+/// Parameter-space curve samples per knot span (and per quarter turn of an arc), at least.
+const SEGMENTS_PER_SPAN: usize = 4;
+
+type Uv = [f64; 2];
+
+/// The directory entry with sequence number `de`, if there is one.
+fn entry_at(entries: &[Entry], de: i64) -> Option<&Entry> {
+    let d = usize::try_from(de).ok().filter(|d| d % 2 == 1)?;
+    entries.get((d - 1) / 2).filter(|e| e.de == d)
+}
+
+/// `outer ∘ inner`, either possibly the identity (`None`).
+fn compose_opt(outer: &Option<[f64; 12]>, inner: &Option<[f64; 12]>) -> Option<[f64; 12]> {
+    match (outer, inner) {
+        (None, t) | (t, None) => *t,
+        (Some(a), Some(b)) => Some(compose(a, b)),
+    }
+}
+
+fn uv(p: Vec3) -> Uv {
+    [p.x, p.y]
+}
+
+/// Appends `more` to `out`, dropping the first point of `more` when it repeats the last of
+/// `out` (the junction of two members or spans).
+fn append(out: &mut Vec<Uv>, more: Vec<Uv>) {
+    let skip = usize::from(out.last().is_some() && out.last() == more.first());
+    out.extend(more.into_iter().skip(skip));
+}
+
+/// The point of a 126 curve (`points` already in parameter space) at `t`, its x and y.
+fn curve_point(c: &IgesCurve, t: f64) -> Uv {
+    let (m, n, k) = (c.degree, c.points.len(), &c.knots);
+    let t = t.clamp(k[m], k[n]);
+    // The span [k_s, k_{s+1}) holding t: the last one with k_s ≤ t, moved back off empty spans
+    // (t at the end of the range); the caller makes sure [k_m, k_n] is not empty.
+    let mut s = k[..n].partition_point(|&x| x <= t).saturating_sub(1).max(m);
+    while s > m && k[s] == k[s + 1] {
+        s -= 1;
+    }
+    let mut d: Vec<[f64; 3]> = (0..=m)
+        .map(|j| {
+            let (p, w) = (c.points[j + s - m], c.weights[j + s - m]);
+            [p.x * w, p.y * w, w]
+        })
+        .collect();
+    for r in 1..=m {
+        for j in (r..=m).rev() {
+            let i = j + s - m;
+            let a = (t - k[i]) / (k[i + m + 1 - r] - k[i]);
+            let prev = d[j - 1];
+            for (x, p) in d[j].iter_mut().zip(prev) {
+                *x = (1.0 - a) * p + a * *x;
+            }
+        }
+    }
+    [d[m][0] / d[m][2], d[m][1] / d[m][2]]
+}
+
+/// Builds the trims of 144s: samples their 142s' parameter-space curves into loops.
+struct Sampler<'s, 'a> {
+    file: &'s Sections<'a>,
+    entries: &'s [Entry],
+    /// Chord tolerance in the patch's parameters.
+    tol: f64,
+    points_left: usize,
+    /// Curve entities this trim may still visit.
+    curves_left: usize,
+    /// The patch's parameter box with a margin, `[u0, u1, v0, v1]`: a trimming curve that
+    /// leaves it is not in the patch's parameters.
+    bounds: [f64; 4],
+}
+
+/// A trim, or why it cannot be honoured.
+type Built<T> = Result<T, String>;
+
+impl Sampler<'_, '_> {
+    /// The trim of the 144 `e` (parameters `p`) on a patch over `domain`. `Ok(Err(why))` when it
+    /// cannot be honoured; `Err` when the file is wrong.
+    fn trim144(
+        &mut self,
+        e: &Entry,
+        p: &Params,
+        domain: &ParamBox,
+    ) -> Result<Built<Trim>, ReadError> {
+        let n2 = p.int(3, "N2")?.max(0) as usize;
+        let pto = p.int(4, "PTO")?;
+        let outer = if pto == 0 {
+            None
+        } else {
+            match self.boundary142(p, 4, "outer boundary PTO")? {
+                Ok(l) => Some(l),
+                Err(why) => return Ok(Err(why)),
+            }
+        };
+        let mut holes = Vec::with_capacity(n2);
+        for k in 0..n2 {
+            match self.boundary142(p, 5 + k, "inner boundary PTI")? {
+                Ok(l) => holes.push(l),
+                Err(why) => return Ok(Err(why)),
+            }
+        }
+        let boxed = outer.is_none();
+        Trim::new(domain, outer, holes).map(Ok).map_err(|err| {
+            // The 142 whose loop is refused: the outer boundary's, then the inner ones'.
+            let index = match err {
+                TrimError::TooFewPoints { index, .. } | TrimError::NotFinite { index, .. } => index,
+            };
+            let at = if boxed {
+                5 + index
+            } else if index == 0 {
+                4
+            } else {
+                4 + index
+            };
+            let c = p
+                .int(at, "boundary")
+                .ok()
+                .and_then(|de| entry_at(self.entries, de));
+            match c {
+                Some(c) => syntax(
+                    c.line,
+                    1,
+                    format!(
+                        "entity 142 at D{} (a boundary of the 144 at D{}): {err}",
+                        c.de, e.de
+                    ),
+                ),
+                None => syntax(e.line, 1, format!("entity 144 at D{}: {err}", e.de)),
+            }
+        })
+    }
+
+    /// The loop of the 142 named by parameter `i` of `p`.
+    fn boundary142(
+        &mut self,
+        p: &Params,
+        i: usize,
+        what: &str,
+    ) -> Result<Built<Vec<Uv>>, ReadError> {
+        let de = p.int(i, what)?;
+        let Some(e) = entry_at(self.entries, de).filter(|e| e.kind == 142) else {
+            return Err(p.error(
+                i,
+                match entry_at(self.entries, de) {
+                    Some(e) => format!(
+                        "{what} points at D{de}, an entity {}; expected a 142 (curve on a parametric surface)",
+                        e.kind
+                    ),
+                    None => format!("{what} points at D{de}, which is not a directory entry"),
+                },
+            ));
+        };
+        let q = self.file.params(e)?;
+        let bptr = q.int(3, "BPTR")?;
+        if bptr == 0 {
+            return Ok(Err(format!(
+                "142 at D{} has no parameter-space curve",
+                e.de
+            )));
+        }
+        self.curve(&q, 3, "BPTR", None, 0)
+            .map(|r| r.map_err(|why| format!("142 at D{}: {why}", e.de)))
+    }
+
+    /// The parameter-space curve named by parameter `i` of `p`, mapped by `outer` (the
+    /// transforms of the entities holding it), sampled.
+    fn curve(
+        &mut self,
+        p: &Params,
+        i: usize,
+        what: &str,
+        outer: Option<[f64; 12]>,
+        depth: usize,
+    ) -> Result<Built<Vec<Uv>>, ReadError> {
+        let de = p.int(i, what)?;
+        let Some(e) = entry_at(self.entries, de) else {
+            return Err(p.error(
+                i,
+                format!("{what} points at D{de}, which is not a directory entry"),
+            ));
+        };
+        if self.curves_left == 0 {
+            return Ok(Err(format!(
+                "its loops are made of more than {MAX_TRIM_CURVES} curves"
+            )));
+        }
+        self.curves_left -= 1;
+        let t = compose_opt(&outer, &self.file.transform(self.entries, e)?);
+        let tol = self.tol;
+        let pts = match e.kind {
+            126 => {
+                let mut c = self.file.curve126(e, self.entries, 1.0)?;
+                c.points.iter_mut().for_each(|q| *q = apply(&t, *q));
+                let (m, n) = (c.degree, c.points.len());
+                let lo = c.range[0].max(c.knots[m]);
+                let hi = c.range[1].min(c.knots[n]);
+                // Knots and range are finite (read as such).
+                if lo >= hi {
+                        return Err(self.file.params(e)?.error(
+                        7 + c.knots.len() + 4 * n,
+                        format!(
+                            "entity 126 at D{}: its range [{}, {}] leaves nothing of the knots' [{}, {}]",
+                            e.de, c.range[0], c.range[1], c.knots[m], c.knots[n]
+                        ),
+                    ));
+                }
+                let mut out = Vec::new();
+                for s in m..n {
+                    let (a, b) = (c.knots[s].max(lo), c.knots[s + 1].min(hi));
+                    if a < b {
+                        let piece =
+                            sample_curve(|x| curve_point(&c, x), a, b, SEGMENTS_PER_SPAN, tol);
+                        append(&mut out, piece);
+                        if out.len() > self.points_left {
+                            return Ok(Err(self.too_many()));
+                        }
+                        if let Some(why) = self.outside(&out, de) {
+                            return Ok(Err(why));
+                        }
+                    }
+                }
+                Ok(out)
+            }
+            110 => {
+                let q = self.file.params(e)?;
+                let mut v = [0.0; 6];
+                for (k, x) in v.iter_mut().enumerate() {
+                    *x = q.real(1 + k, "line coordinate")?;
+                }
+                Ok(vec![
+                    uv(apply(&t, Vec3::new(v[0], v[1], v[2]))),
+                    uv(apply(&t, Vec3::new(v[3], v[4], v[5]))),
+                ])
+            }
+            100 => {
+                let q = self.file.params(e)?;
+                let mut v = [0.0; 7];
+                for (k, x) in v.iter_mut().enumerate() {
+                    *x = q.real(1 + k, "arc parameter")?;
+                }
+                let [zt, cx, cy, x0, y0, x1, y1] = v;
+                let r = (x0 - cx).hypot(y0 - cy);
+                let a0 = (y0 - cy).atan2(x0 - cx);
+                let mut a1 = (y1 - cy).atan2(x1 - cx);
+                if a1 <= a0 || (x0, y0) == (x1, y1) {
+                    a1 += std::f64::consts::TAU;
+                }
+                if !r.is_finite() || r == 0.0 {
+                    return Err(q.error(
+                        2,
+                        format!("entity 100 at D{}: the arc has no radius", e.de),
+                    ));
+                }
+                let quarters = ((a1 - a0) / std::f64::consts::FRAC_PI_2).ceil().max(1.0) as usize;
+                Ok(sample_curve(
+                    |a| uv(apply(&t, Vec3::new(cx + r * a.cos(), cy + r * a.sin(), zt))),
+                    a0,
+                    a1,
+                    SEGMENTS_PER_SPAN * quarters,
+                    tol,
+                ))
+            }
+            102 => {
+                if depth >= MAX_NESTING {
+                    return Err(p.error(
+                        i,
+                        format!(
+                            "{what} D{de}: composite curves nest more than {MAX_NESTING} deep (a cycle?)"
+                        ),
+                    ));
+                }
+                let q = self.file.params(e)?;
+                let n = q.count(1, "N")?;
+                let mut out = Vec::new();
+                for k in 0..n {
+                    match self.curve(&q, 2 + k, "composite member", t, depth + 1)? {
+                        Ok(piece) => append(&mut out, piece),
+                        Err(why) => return Ok(Err(why)),
+                    }
+                }
+                Ok(out)
+            }
+            104 | 106 | 112 | 130 => Err(format!(
+                "its parameter-space curve D{de} is an entity {}, which is not supported",
+                e.kind
+            )),
+            k => {
+                return Err(p.error(
+                    i,
+                    format!("{what} points at D{de}, an entity {k}; expected a curve (100, 102, 110 or 126)"),
+                ))
+            }
+        };
+        Ok(match pts {
+            Ok(v) if v.len() > self.points_left => Err(self.too_many()),
+            Ok(v) if e.kind != 102 && self.outside(&v, de).is_some() => {
+                Err(self.outside(&v, de).unwrap_or_default())
+            }
+            Ok(v) => {
+                self.points_left -= v.len();
+                Ok(v)
+            }
+            Err(why) => Err(why),
+        })
+    }
+
+    /// Why `pts`, sampled from the curve at `de`, are not in the patch's parameters, if they
+    /// are not.
+    fn outside(&self, pts: &[Uv], de: i64) -> Option<String> {
+        let [u0, u1, v0, v1] = self.bounds;
+        let p = pts
+            .iter()
+            .find(|p| !(p[0] >= u0 && p[0] <= u1 && p[1] >= v0 && p[1] <= v1))?;
+        Some(format!(
+            "its parameter-space curve D{de} reaches ({}, {}), outside the patch's parameter box",
+            p[0], p[1]
+        ))
+    }
+
+    fn too_many(&self) -> String {
+        format!("its loops need more than {MAX_TRIM_POINTS} points, or the file's trims more than {MAX_FILE_TRIM_POINTS}")
+    }
 }
 
 /// One physical record: its 1-based line number, section letter, columns 1–72.
@@ -515,6 +910,35 @@ impl<'a> Sections<'a> {
             ptr = e.transform;
         }
         Ok(total)
+    }
+
+    /// Adds to `seen` the DEs of the 126 curves at `de` or among the members of the composite
+    /// curve (102) at `de`, nested up to [`MAX_NESTING`] deep, and of the composites visited
+    /// (each once); what cannot be read is passed over.
+    fn curves_126_under(
+        &self,
+        entries: &[Entry],
+        de: i64,
+        depth: usize,
+        seen: &mut HashSet<usize>,
+    ) {
+        let Some(e) = entry_at(entries, de) else {
+            return;
+        };
+        if !matches!(e.kind, 102 | 126) || depth > MAX_NESTING || !seen.insert(e.de) {
+            return;
+        }
+        if e.kind == 102 {
+            let Ok(q) = self.params(e) else {
+                return;
+            };
+            let n = q.count(1, "N").unwrap_or(0);
+            for k in 0..n {
+                if let Ok(m) = q.int(2 + k, "member") {
+                    self.curves_126_under(entries, m, depth + 1, seen);
+                }
+            }
+        }
     }
 
     fn surface128(

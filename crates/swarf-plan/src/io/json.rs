@@ -10,13 +10,25 @@
 //! multiplied by the weight w; `S_u × S_v` points to the side the cutter comes from. `units` is
 //! `"mm"` (the default when absent), `"inch"` or `"in"`; inches are converted to mm. `name` is
 //! optional. Unknown keys are errors (they are usually typos).
+//!
+//! A patch may be trimmed: `"trim": {"outer": [[u, v], ...], "holes": [[[u, v], ...], ...]}`,
+//! closed polygons in the patch's parameters (not lengths: `units` does not scale them; the
+//! closing repeat of the first point is optional). Both keys are optional: without `outer` the
+//! outer boundary is the patch's parameter box. A point is on the part when a ray from it
+//! crosses the loops an odd number of times (the even–odd rule), so loops need no particular
+//! orientation. See [`crate::trim::Trim`].
 
+use std::cell::Cell;
+use std::fmt;
+
+use serde::de::{self, Deserializer, SeqAccess, Visitor};
 use serde::{Deserialize, Serialize};
 use swarf_geom::math::Vec3;
 
 use super::{Format, ReadError};
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
-use crate::surface::{NurbsSurface, Surface};
+use crate::surface::{NurbsSurface, ParametricSurface, Surface};
+use crate::trim::{Trim, TrimError};
 
 /// Millimetres per inch.
 pub const MM_PER_INCH: f64 = 25.4;
@@ -39,20 +51,67 @@ struct JsonPatch {
     knots_u: Vec<f64>,
     knots_v: Vec<f64>,
     control_points: Vec<Vec<[f64; 4]>>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    trim: Option<JsonTrim>,
+}
+
+/// A patch's `trim`: loops of `[u, v]`.
+#[derive(Deserialize, Serialize)]
+#[serde(deny_unknown_fields)]
+struct JsonTrim {
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    outer: Option<Vec<[f64; 2]>>,
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    holes: Vec<Vec<[f64; 2]>>,
 }
 
 /// A validated patch; validation runs inside the deserializer so that errors carry the
 /// position (the end of the offending patch object).
-#[derive(Deserialize)]
-#[serde(try_from = "JsonPatch")]
 struct Checked {
     name: Option<String>,
     surface: NurbsSurface,
+    trim: Option<Trim>,
 }
 
-impl TryFrom<JsonPatch> for Checked {
-    type Error = String;
-    fn try_from(p: JsonPatch) -> Result<Self, String> {
+thread_local! {
+    /// Index of the patch being read while `patches` is read (`None` outside it, and once a
+    /// patch's validation has named it), so that `parse` can name the patch of a syntax error.
+    static READING_PATCH: Cell<Option<usize>> = const { Cell::new(None) };
+}
+
+/// `patches`, each patch validated knowing its index.
+fn checked_patches<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Checked>, D::Error> {
+    struct Patches;
+    impl<'de> Visitor<'de> for Patches {
+        type Value = Vec<Checked>;
+        fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+            f.write_str("an array of patches")
+        }
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<Checked>, A::Error> {
+            let mut out = Vec::new();
+            loop {
+                let index = out.len();
+                READING_PATCH.set(Some(index));
+                let Some(p) = seq.next_element::<JsonPatch>()? else {
+                    break;
+                };
+                READING_PATCH.set(None);
+                out.push(Checked::new(p, index).map_err(de::Error::custom)?);
+            }
+            READING_PATCH.set(None);
+            Ok(out)
+        }
+    }
+    d.deserialize_seq(Patches)
+}
+
+impl Checked {
+    /// Validates patch `index`; errors name it.
+    fn new(p: JsonPatch, index: usize) -> Result<Self, String> {
+        let who = match &p.name {
+            Some(n) => format!("patch {index} \"{n}\""),
+            None => format!("patch {index}"),
+        };
         let points: Vec<Vec<Vec3>> = p
             .control_points
             .iter()
@@ -71,13 +130,32 @@ impl TryFrom<JsonPatch> for Checked {
             &points,
             Some(&weights),
         )
-        .map_err(|e| match &p.name {
-            Some(n) => format!("patch \"{n}\": {e}"),
-            None => format!("patch: {e}"),
-        })?;
+        .map_err(|e| format!("{who}: {e}"))?;
+        let trim = match p.trim {
+            None => None,
+            Some(t) => {
+                let given_outer = t.outer.is_some();
+                let loop_name = |index: usize| match (given_outer, index) {
+                    (true, 0) => "trim.outer".to_string(),
+                    (true, k) => format!("trim.holes[{}]", k - 1),
+                    (false, k) => format!("trim.holes[{k}]"),
+                };
+                let trim = Trim::new(&surface.domain(), t.outer, t.holes).map_err(|e| match e {
+                    TrimError::TooFewPoints { index, points } => format!(
+                        "{who}: {} has {points} distinct point(s); a loop needs at least 3",
+                        loop_name(index)
+                    ),
+                    TrimError::NotFinite { index, point } => {
+                        format!("{who}: {} point {point} is not finite", loop_name(index))
+                    }
+                })?;
+                Some(trim)
+            }
+        };
         Ok(Checked {
             name: p.name,
             surface,
+            trim,
         })
     }
 }
@@ -87,6 +165,7 @@ impl TryFrom<JsonPatch> for Checked {
 struct CheckedFile {
     #[serde(default)]
     units: Option<Units>,
+    #[serde(deserialize_with = "checked_patches")]
     patches: Vec<Checked>,
 }
 
@@ -96,8 +175,12 @@ pub fn parse(text: &str) -> Result<CompoundSurface, ReadError> {
         format: Format::Json,
         line: e.line(),
         column: e.column(),
-        message: strip_position(&e),
+        message: match READING_PATCH.take() {
+            Some(index) => format!("patch {index}: {}", strip_position(&e)),
+            None => strip_position(&e),
+        },
     };
+    READING_PATCH.set(None);
     let file: CheckedFile = serde_json::from_str(text).map_err(syntax)?;
     let factor = match file.units {
         Some(Units::Inch) => MM_PER_INCH,
@@ -132,7 +215,7 @@ pub fn parse(text: &str) -> Result<CompoundSurface, ReadError> {
                 file: None,
                 entity: EntityRef::Json { index },
             },
-            trim: None,
+            trim: c.trim,
         });
     }
     Ok(out)
@@ -190,7 +273,8 @@ struct OutFile {
 }
 
 /// Write swarf JSON (units mm). A flipped patch is written with its u direction reversed, so
-/// that `S_u × S_v` points to the cutter side as the format requires.
+/// that `S_u × S_v` points to the cutter side as the format requires (its trim, mirrored to
+/// match). A trim without an outer loop (the parameter box) is written without `outer`.
 pub fn to_string(surface: &CompoundSurface) -> Result<String, WriteError> {
     let mut patches = Vec::with_capacity(surface.patches.len());
     for (index, p) in surface.patches.iter().enumerate() {
@@ -201,6 +285,17 @@ pub fn to_string(surface: &CompoundSurface) -> Result<String, WriteError> {
             });
         };
         let s = if p.flipped { s.reversed_u() } else { s.clone() };
+        // Reversing u maps u to a + b − u (the ends of the knot vector); the trim follows.
+        let (a, b) = (s.knots_u()[0], s.knots_u()[s.knots_u().len() - 1]);
+        let mirrored = |l: &[[f64; 2]]| -> Vec<[f64; 2]> {
+            l.iter()
+                .map(|&[u, v]| if p.flipped { [a + b - u, v] } else { [u, v] })
+                .collect()
+        };
+        let trim = p.trim.as_ref().map(|t| JsonTrim {
+            outer: t.outer().map(mirrored),
+            holes: t.holes().iter().map(|l| mirrored(l)).collect(),
+        });
         let (nu, nv) = s.net_size();
         let control_points = (0..nu)
             .map(|i| {
@@ -219,6 +314,7 @@ pub fn to_string(surface: &CompoundSurface) -> Result<String, WriteError> {
             knots_u: s.knots_u().to_vec(),
             knots_v: s.knots_v().to_vec(),
             control_points,
+            trim,
         });
     }
     Ok(serde_json::to_string_pretty(&OutFile {

@@ -12,6 +12,14 @@ use swarf_geom::Aabb;
 
 use super::{Derivs, ParamBox, ParametricSurface};
 
+/// Largest control-point coordinate accepted, mm (a kilometre-sized part is no part; beyond,
+/// products in the derivatives overflow).
+const MAX_COORDINATE: f64 = 1e9;
+
+/// Smallest weight accepted (and the reciprocal the largest): weights are relative, and a
+/// spread past 1e24 leaves no digits for the shape.
+const MIN_WEIGHT: f64 = 1e-12;
+
 /// Why a NURBS definition is rejected.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum NurbsError {
@@ -150,11 +158,28 @@ impl NurbsSurface {
                         reason: "coordinate is not finite",
                     });
                 }
+                if p.abs().max_element() > MAX_COORDINATE {
+                    return Err(NurbsError::ControlPoint {
+                        i,
+                        j,
+                        reason: "coordinate beyond 1e9 mm",
+                    });
+                }
                 if !(w > 0.0 && w.is_finite()) {
                     return Err(NurbsError::ControlPoint {
                         i,
                         j,
                         reason: "weight is not a positive finite number",
+                    });
+                }
+                // Derivatives divide by w²: a weight near the bottom of the floating-point range
+                // (or a spread of weights past the digits a double holds) decides the shape by
+                // rounding and ends in 0/0.
+                if !(MIN_WEIGHT..=1.0 / MIN_WEIGHT).contains(&w) {
+                    return Err(NurbsError::ControlPoint {
+                        i,
+                        j,
+                        reason: "weight outside [1e-12, 1e12]",
                     });
                 }
                 rational |= w != 1.0;
