@@ -78,3 +78,49 @@ fn inside_of_the_step_sphere_admits_a_ball_of_its_radius() {
         "{csv}"
     );
 }
+
+#[test]
+fn a_trimmed_wall_limits_only_where_it_is_left() {
+    // A 20 × 20 floor and a 10 mm wall at x = 20 facing it, a slot y ∈ [5, 15] cut out of the
+    // wall by its trim (JSON `trim`, wall parameters: u along z, v along y).
+    let dir = std::env::temp_dir().join(format!("swarf-toolsize-trim-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let surface = dir.join("slot.json");
+    std::fs::write(
+        &surface,
+        r#"{"units": "mm", "patches": [
+  {"name": "floor", "degree_u": 1, "degree_v": 1, "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+   "control_points": [[[0, 0, 0, 1], [0, 20, 0, 1]], [[20, 0, 0, 1], [20, 20, 0, 1]]]},
+  {"name": "wall", "degree_u": 1, "degree_v": 1, "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+   "control_points": [[[20, 0, 0, 1], [20, 20, 0, 1]], [[20, 0, 10, 1], [20, 20, 10, 1]]],
+   "trim": {"holes": [[[-0.1, 0.25], [1.1, 0.25], [1.1, 0.75], [-0.1, 0.75]]]}}]}"#,
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = swarf(&[
+        "toolsize",
+        "--surface",
+        surface.to_str().unwrap(),
+        "--cutter",
+        "flat",
+        "--grid",
+        "11",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // The wall's grid points with v = 0.3 … 0.7 are in the slot: 5 columns of 11.
+    assert_eq!(json(&o)["points"].as_u64(), Some(2 * 121 - 55));
+    let csv = std::fs::read_to_string(out.join("toolsize.csv")).unwrap();
+    assert_eq!(csv.lines().count(), 1 + 2 * 121 - 55);
+    let centre = csv
+        .lines()
+        .find(|r| r.starts_with("floor,0.5,0.5,"))
+        .expect("the floor's centre");
+    let radius: f64 = centre.split(',').nth(9).unwrap().parse().unwrap();
+    // Not the wall at 10 mm: the slot's edges at √(10² + 5²).
+    assert!((radius - 125f64.sqrt()).abs() < 1e-5, "{centre}");
+    assert!(out.join("maps/patch_wall.png").is_file() && out.join("part.glb").is_file());
+    std::fs::remove_dir_all(&dir).ok();
+}
