@@ -4,7 +4,7 @@ mod common;
 
 use common::*;
 use swarf_geom::math::Vec3;
-use swarf_plan::io::{json, Format, ReadError};
+use swarf_plan::io::{json, ReadError};
 use swarf_plan::{
     CompoundSurface, EntityRef, ParametricSurface, Patch, ReadNote, Surface, Tolerances,
 };
@@ -88,21 +88,9 @@ fn round_trip_keeps_every_number_and_the_cutter_side() {
         .contains("is a sphere"));
 }
 
-fn syntax(text: &str) -> (usize, usize, String) {
-    match json::parse(text).unwrap_err() {
-        ReadError::Syntax {
-            format: Format::Json,
-            line,
-            column,
-            message,
-        } => (line, column, message),
-        e => panic!("{e}"),
-    }
-}
-
 #[test]
 fn errors_name_the_position_what_was_found_and_what_was_expected() {
-    let (l, c, m) = syntax("{\"units\": \"cm\", \"patches\": []}");
+    let (l, c, m) = json_error("{\"units\": \"cm\", \"patches\": []}");
     assert_eq!((l, c), (1, 14), "the end of the offending value");
     assert!(
         m.contains("unknown variant `cm`, expected one of `mm`, `in`, `inch`"),
@@ -110,33 +98,33 @@ fn errors_name_the_position_what_was_found_and_what_was_expected() {
     );
     // A point with three numbers.
     let bad = FLOOR.replace("[10, 10, 0, 1]", "[10, 10, 0]");
-    let (l, _, m) = syntax(&bad);
+    let (l, _, m) = json_error(&bad);
     assert_eq!(l, 3);
     assert!(m.contains("expected an array of length 4"), "{m}");
     // A knot vector too short: validated inside the patch, reported at its end.
     let bad = FLOOR.replace("\"knots_v\": [0, 0, 1, 1]", "\"knots_v\": [0, 1, 1]");
-    let (l, c, m) = syntax(&bad);
+    let (l, c, m) = json_error(&bad);
     assert_eq!((l, c), (3, 86), "just past the patch's closing brace: {m}");
     assert!(
         m.contains("patch 0 \"floor\": 3 knots in v; expected 4"),
         "{m}"
     );
     // A typo in a key.
-    let (_, _, m) = syntax(&FLOOR.replace("degree_v", "degre_v"));
+    let (_, _, m) = json_error(&FLOOR.replace("degree_v", "degre_v"));
     assert!(m.contains("unknown field `degre_v`"), "{m}");
     // Negative weight.
-    let (_, _, m) = syntax(&FLOOR.replace("[10, 10, 0, 1]", "[10, 10, 0, -1]"));
+    let (_, _, m) = json_error(&FLOOR.replace("[10, 10, 0, 1]", "[10, 10, 0, -1]"));
     assert!(
         m.contains("control point [1][1]: weight is not a positive finite number"),
         "{m}"
     );
     // A weight so small the derivatives end in 0/0 (found by fuzzing), and a wild coordinate.
-    let (_, _, m) = syntax(&FLOOR.replace("[10, 10, 0, 1]", "[10, 10, 0, 1.5e-310]"));
+    let (_, _, m) = json_error(&FLOOR.replace("[10, 10, 0, 1]", "[10, 10, 0, 1.5e-310]"));
     assert!(m.contains("weight outside [1e-12, 1e12]"), "{m}");
-    let (_, _, m) = syntax(&FLOOR.replace("[10, 10, 0, 1]", "[1e300, 10, 0, 1]"));
+    let (_, _, m) = json_error(&FLOOR.replace("[10, 10, 0, 1]", "[1e300, 10, 0, 1]"));
     assert!(m.contains("coordinate beyond 1e9 mm"), "{m}");
     // Not JSON at all.
-    let (l, c, _) = syntax("\n  units: mm");
+    let (l, c, _) = json_error("\n  units: mm");
     assert_eq!((l, c), (2, 3));
     assert!(matches!(
         json::parse(r#"{"patches": []}"#),

@@ -4,7 +4,7 @@
 mod common;
 
 use common::*;
-use swarf_plan::io::{json, Format, ReadError};
+use swarf_plan::io::json;
 use swarf_plan::{CompoundSurface, Coverage, ParametricSurface, Patch, Surface, Trim};
 
 /// The 10 mm floor of the format's example with `trim` (JSON text) added.
@@ -15,18 +15,6 @@ fn floor(trim: &str) -> String {
   "control_points": [[[0, 0, 0, 1], [0, 10, 0, 1]], [[10, 0, 0, 1], [10, 10, 0, 1]]],
   "trim": {trim}}}]}}"#
     )
-}
-
-fn message(text: &str) -> (usize, usize, String) {
-    match json::parse(text).unwrap_err() {
-        ReadError::Syntax {
-            format: Format::Json,
-            line,
-            column,
-            message,
-        } => (line, column, message),
-        e => panic!("{e}"),
-    }
 }
 
 /// `contains` on a 41 × 41 grid over `[−0.1, 1.1]²` that keeps off the loops' edges.
@@ -159,13 +147,13 @@ fn trims_round_trip_through_the_writer_flipped_or_not() {
 #[test]
 fn bad_trims_are_refused_naming_the_patch() {
     // A loop of two points.
-    let (l, c, m) = message(&floor(r#"{"outer": [[0, 0], [1, 1]]}"#));
+    let (l, c, m) = json_error(&floor(r#"{"outer": [[0, 0], [1, 1]]}"#));
     assert_eq!(
         m,
         "patch 0 \"floor\": trim.outer has 2 distinct point(s); a loop needs at least 3"
     );
     assert_eq!((l, c), (4, 39), "just past the patch's closing brace");
-    let (_, _, m) = message(&floor(
+    let (_, _, m) = json_error(&floor(
         r#"{"holes": [[[0, 0], [1, 0], [1, 1]], [[0.5, 0.5], [0.5, 0.5], [0.5, 0.5], [0.5, 0.5]]]}"#,
     ));
     assert_eq!(
@@ -173,26 +161,26 @@ fn bad_trims_are_refused_naming_the_patch() {
         "patch 0 \"floor\": trim.holes[1] has 1 distinct point(s); a loop needs at least 3"
     );
     // Not a loop at all.
-    let (l, _, m) = message(&floor(r#"{"outer": 5}"#));
+    let (l, _, m) = json_error(&floor(r#"{"outer": 5}"#));
     assert_eq!(l, 4);
     assert!(
         m.starts_with("patch 0: invalid type: integer `5`, expected a sequence"),
         "{m}"
     );
     // A point of one number, of three; an unknown key; trim not an object.
-    let (_, _, m) = message(&floor(r#"{"outer": [[0], [1, 0], [0, 1]]}"#));
+    let (_, _, m) = json_error(&floor(r#"{"outer": [[0], [1, 0], [0, 1]]}"#));
     assert!(
         m.starts_with("patch 0: invalid length 1, expected an array of length 2"),
         "{m}"
     );
-    let (_, _, m) = message(&floor(r#"{"outer": [[0, 0, 0], [1, 0], [0, 1]]}"#));
+    let (_, _, m) = json_error(&floor(r#"{"outer": [[0, 0, 0], [1, 0], [0, 1]]}"#));
     assert_eq!(m, "patch 0: trailing characters");
-    let (_, _, m) = message(&floor(r#"{"outre": []}"#));
+    let (_, _, m) = json_error(&floor(r#"{"outre": []}"#));
     assert!(
         m.starts_with("patch 0: unknown field `outre`, expected `outer` or `holes`"),
         "{m}"
     );
-    let (_, _, m) = message(&floor("7"));
+    let (_, _, m) = json_error(&floor("7"));
     assert!(
         m.starts_with("patch 0: invalid type: integer `7`, expected struct JsonTrim"),
         "{m}"
@@ -204,12 +192,12 @@ fn bad_trims_are_refused_naming_the_patch() {
   "control_points": [[[0, 0, 0, 1], [0, 10, 0, 1]], [[10, 0, 0, 1], [10, 10, 0, 1]]],
   "trim": {"holes": [[[0.2, 0.2]]]}}]}"#,
     );
-    let (_, _, m) = message(&two);
+    let (_, _, m) = json_error(&two);
     assert_eq!(
         m,
         "patch 1: trim.holes[0] has 1 distinct point(s); a loop needs at least 3"
     );
     // Whatever the trim, a number too large for f64 is refused by the JSON reader.
-    let (_, _, m) = message(&floor(r#"{"outer": [[0, 0], [1e999, 0], [0, 1]]}"#));
+    let (_, _, m) = json_error(&floor(r#"{"outer": [[0, 0], [1e999, 0], [0, 1]]}"#));
     assert!(m.starts_with("patch 0: number out of range"), "{m}");
 }

@@ -7,7 +7,33 @@
 //! * **Patches**: when the file has faces (`ADVANCED_FACE`, `FACE_SURFACE`), one patch per face,
 //!   named after the face (or its surface), flipped when the face's `same_sense` is `.F.`;
 //!   faces on other surface kinds are skipped with a [`ReadNote::UnsupportedSurface`]. A file
-//!   without faces gives one patch per surface instance. Face trims are not honoured.
+//!   without faces gives one patch per surface instance.
+//! * **Face trims**: a face's bounds become the patch's [`Trim`] (in the surface's own
+//!   parameters), with a [`ReadNote::Trimmed`]: the `FACE_OUTER_BOUND` is the outer loop (no
+//!   such bound: the loop with the largest parameter box), the other bounds are holes;
+//!   `VERTEX_LOOP`s (a pole, an apex) enclose nothing and are left out, so a face bounded only
+//!   by them is untrimmed. An `EDGE_LOOP` is walked through its `ORIENTED_EDGE`s and their
+//!   `EDGE_CURVE`s (from the start to the end `VERTEX_POINT`, along or against the curve as
+//!   `same_sense` says); a `POLY_LOOP` is a polygon. Edge curves read: `LINE`, `CIRCLE`,
+//!   `ELLIPSE` (between the vertices' angles, a full turn when they are one vertex),
+//!   `B_SPLINE_CURVE_WITH_KNOTS` (simple or rational complex; between the vertices' parameters,
+//!   found by point inversion), `POLYLINE`, and through `SURFACE_CURVE`, `SEAM_CURVE`,
+//!   `INTERSECTION_CURVE` and `TRIMMED_CURVE` their 3-D curve. Each edge is sampled so that
+//!   the chords, in parameters, stay within min(1e-3 mm, 1e-5 of the surface's size) of the
+//!   curve on the surface (at least 4 steps per quarter turn, 8 per knot span), and each
+//!   sample is mapped to the surface's parameters: in closed form on the elementary surfaces,
+//!   by Newton inversion seeded from the previous sample (first: the nearest point of a grid)
+//!   on B-spline surfaces. Angles are unwrapped along a loop; a loop is moved whole turns to
+//!   lie in the parameter box (whose angle range may then start at the outer loop's), a hole
+//!   across the box's edge is copied to the other side, a seam edge met twice on the same
+//!   angle (through a pole or an apex) is moved a turn. A loop that winds once around the axis
+//!   (a circle bounding a cylinder) is cut at the box's edge: two of them make the outer loop
+//!   (the band between them), one is closed along the box's far edge on the face's side (by
+//!   the bound's orientation and the face's `same_sense`). Linear parameter ranges grow to
+//!   hold the loops. An edge curve of another kind, a sample more than 1e-4 of the surface's
+//!   size (+ 1e-3 mm) off the surface, edges that do not join, a loop that does not close in
+//!   the parameters or winds otherwise, or more than 200 000 points for a face (2 000 000 for
+//!   the file) leave the patch untrimmed with a [`ReadNote::TrimNotHonoured`] saying why.
 //! * **Units**: the length unit of the `GLOBAL_UNIT_ASSIGNED_CONTEXT` (`SI_UNIT` with any prefix,
 //!   or a `CONVERSION_BASED_UNIT` such as INCH or FOOT, resolved through its
 //!   `LENGTH_MEASURE_WITH_UNIT`) scales lengths to mm; the plane-angle unit scales cone angles.
@@ -27,9 +53,10 @@ use swarf_geom::Frame;
 use super::{line_col, Format, ReadError};
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
 use crate::surface::{
-    ConicalSurface, CylindricalSurface, NurbsSurface, ParamBox, PlaneSurface, SphericalSurface,
-    Surface, ToroidalSurface,
+    ConicalSurface, CylindricalSurface, NurbsSurface, ParamBox, ParametricSurface, PlaneSurface,
+    SphericalSurface, Surface, ToroidalSurface,
 };
+use crate::trim::Trim;
 
 /// Range (mm) of a linear parameter of an elementary surface when no face bounds it.
 pub const DEFAULT_LINEAR_RANGE: [f64; 2] = [-100.0, 100.0];
@@ -716,6 +743,7 @@ impl Model<'_> {
             })
             .collect();
         let mut skipped = Vec::new();
+        let mut budget = MAX_FILE_TRIM_POINTS;
         if faces.is_empty() {
             for &id in &ids {
                 let inst = &self.map[&id];
@@ -764,12 +792,34 @@ impl Model<'_> {
                 }
                 let index = out.patches.len();
                 let bounds = p.get(1).cloned();
-                let (surface, sname) = self.surface(
+                let (mut surface, sname) = self.surface(
                     sid,
                     bounds.as_ref().map(|b| (fid, b)),
                     index,
                     &mut out.notes,
                 )?;
+                let by = format!("STEP face #{fid}");
+                let trim =
+                    match self.face_trim(fid, bounds.as_ref(), same_sense, &surface, &mut budget) {
+                        Ok(Some(t)) => {
+                            out.notes.push(ReadNote::Trimmed {
+                                patch: index,
+                                by,
+                                loops: t.trim.loops().len(),
+                                points: t.trim.loops().iter().map(Vec::len).sum(),
+                            });
+                            set_domain(&mut surface, t.domain);
+                            Some(t.trim)
+                        }
+                        Ok(None) => None,
+                        Err(why) => {
+                            out.notes.push(ReadNote::TrimNotHonoured {
+                                patch: index,
+                                by: format!("{by} ({why})"),
+                            });
+                            None
+                        }
+                    };
                 out.patches.push(Patch {
                     name: Self::name(p.first()).or(sname),
                     surface,
@@ -781,7 +831,7 @@ impl Model<'_> {
                             face: Some(fid),
                         },
                     },
-                    trim: None,
+                    trim,
                 });
             }
         }
@@ -1076,6 +1126,1199 @@ impl Model<'_> {
         }
         Ok(out)
     }
+}
+
+// ---------------------------------------------------------------------------------------------
+// Face bounds as trims.
+
+/// Most points in one face's trim.
+const MAX_TRIM_POINTS: usize = 200_000;
+/// Most points in all the trims of a file.
+const MAX_FILE_TRIM_POINTS: usize = 2_000_000;
+/// Deepest nesting of curves (a SURFACE_CURVE of a TRIMMED_CURVE of …) and of edges.
+const MAX_CURVE_DEPTH: usize = 8;
+/// Halvings of one initial step when sampling an edge.
+const MAX_HALVINGS: u32 = 12;
+/// Grid searches (for a Newton seed on a B-spline surface) one face may make.
+const MAX_GRID_SEARCHES: usize = 256;
+/// Most control points of a B-spline edge curve, and most points of a POLYLINE or POLY_LOOP.
+const MAX_CURVE_POINTS: usize = 100_000;
+
+type Uv = [f64; 2];
+/// A trim (or a part of one), or why it cannot be honoured.
+type Built<T> = Result<T, String>;
+
+/// A model-space edge curve (mm).
+enum Curve {
+    /// `p + t·d`.
+    Line { p: Vec3, d: Vec3 },
+    /// `origin + a·cos t·x + b·sin t·y` (a circle when `a = b`).
+    Conic { f: Frame, a: f64, b: f64 },
+    Spline {
+        degree: usize,
+        knots: Vec<f64>,
+        /// Control points times weights, and the weights.
+        points: Vec<(Vec3, f64)>,
+    },
+    /// Vertices; `t ∈ [0, n − 1]`, vertex `k` at `t = k`.
+    Polyline(Vec<Vec3>),
+}
+
+impl Curve {
+    fn point(&self, t: f64) -> Vec3 {
+        match self {
+            Curve::Line { p, d } => *p + t * *d,
+            Curve::Conic { f, a, b } => f.origin + a * t.cos() * f.x + b * t.sin() * f.y,
+            Curve::Spline {
+                degree,
+                knots,
+                points,
+            } => {
+                let (m, n, k) = (*degree, points.len(), knots);
+                let t = t.clamp(k[m], k[n]);
+                let mut s = k[..n].partition_point(|&x| x <= t).saturating_sub(1).max(m);
+                while s > m && k[s] == k[s + 1] {
+                    s -= 1;
+                }
+                let mut d: Vec<(Vec3, f64)> = points[s - m..=s].to_vec();
+                for r in 1..=m {
+                    for j in (r..=m).rev() {
+                        let i = j + s - m;
+                        let den = k[i + m + 1 - r] - k[i];
+                        let a = if den > 0.0 { (t - k[i]) / den } else { 0.0 };
+                        let prev = d[j - 1];
+                        d[j] = (
+                            prev.0 * (1.0 - a) + d[j].0 * a,
+                            prev.1 * (1.0 - a) + d[j].1 * a,
+                        );
+                    }
+                }
+                d[m].0 / d[m].1
+            }
+            Curve::Polyline(p) => {
+                let last = p.len() - 1;
+                let t = t.clamp(0.0, last as f64);
+                let i = (t.floor() as usize).min(last.saturating_sub(1));
+                let s = t - i as f64;
+                if i + 1 > last {
+                    p[last]
+                } else {
+                    p[i] * (1.0 - s) + p[i + 1] * s
+                }
+            }
+        }
+    }
+
+    /// The parameter range of a bounded curve.
+    fn range(&self) -> Option<(f64, f64)> {
+        match self {
+            Curve::Line { .. } | Curve::Conic { .. } => None,
+            Curve::Spline {
+                degree,
+                knots,
+                points,
+            } => Some((knots[*degree], knots[points.len()])),
+            Curve::Polyline(p) => Some((0.0, (p.len() - 1) as f64)),
+        }
+    }
+
+    /// The parameter of the curve point nearest `q`, and its distance.
+    fn param_of(&self, q: Vec3) -> (f64, f64) {
+        let t = match self {
+            Curve::Line { p, d } => (q - *p).dot(*d) / d.length_squared(),
+            Curve::Conic { f, a, b } => {
+                let l = q - f.origin;
+                (l.dot(f.y) / b).atan2(l.dot(f.x) / a)
+            }
+            Curve::Polyline(p) => {
+                let mut best = (f64::INFINITY, 0.0);
+                for (i, w) in p.windows(2).enumerate() {
+                    let d = w[1] - w[0];
+                    let len2 = d.length_squared();
+                    let s = if len2 > 0.0 {
+                        ((q - w[0]).dot(d) / len2).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    let dist = (w[0] + s * d - q).length();
+                    if dist < best.0 {
+                        best = (dist, i as f64 + s);
+                    }
+                }
+                best.1
+            }
+            Curve::Spline { knots, .. } => {
+                let (t0, t1) = self.range().unwrap_or((0.0, 1.0));
+                let dist = |t: f64| (self.point(t) - q).length();
+                // Samples over the spans (at most 512), then golden-section search around the
+                // nearest.
+                let spans = knots.windows(2).filter(|w| w[1] > w[0]).count().max(1);
+                let n = (8 * spans).clamp(16, 512);
+                let mut best = (f64::INFINITY, t0);
+                for k in 0..=n {
+                    let t = t0 + (t1 - t0) * k as f64 / n as f64;
+                    let d = dist(t);
+                    if d < best.0 {
+                        best = (d, t);
+                    }
+                }
+                let h = (t1 - t0) / n as f64;
+                let (mut a, mut b) = ((best.1 - h).max(t0), (best.1 + h).min(t1));
+                let g = 0.5 * (5f64.sqrt() - 1.0);
+                let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
+                let (mut fc, mut fd) = (dist(c), dist(d));
+                for _ in 0..80 {
+                    if fc < fd {
+                        b = d;
+                        d = c;
+                        fd = fc;
+                        c = b - g * (b - a);
+                        fc = dist(c);
+                    } else {
+                        a = c;
+                        c = d;
+                        fc = fd;
+                        d = a + g * (b - a);
+                        fd = dist(d);
+                    }
+                }
+                let t = 0.5 * (a + b);
+                // The ends exactly, when they are as near.
+                [t0, t1, t]
+                    .into_iter()
+                    .min_by(|x, y| dist(*x).total_cmp(&dist(*y)))
+                    .unwrap_or(t)
+            }
+        };
+        (t, (self.point(t) - q).length())
+    }
+
+    /// Initial steps over `[a, b]`: 4 per quarter turn of a conic, 8 per knot span of a spline
+    /// (what the range covers of it), 1 per polyline segment, 4 for a line.
+    fn steps(&self, a: f64, b: f64) -> Vec<f64> {
+        let (lo, hi) = (a.min(b), a.max(b));
+        let mut ts: Vec<f64> = match self {
+            Curve::Line { .. } => (0..=4).map(|k| a + (b - a) * k as f64 / 4.0).collect(),
+            Curve::Conic { .. } => {
+                let n = ((hi - lo) / std::f64::consts::FRAC_PI_2 * 4.0)
+                    .ceil()
+                    .clamp(4.0, 1024.0) as usize;
+                (0..=n).map(|k| a + (b - a) * k as f64 / n as f64).collect()
+            }
+            Curve::Spline { knots, .. } => {
+                let mut breaks = vec![lo];
+                breaks.extend(knots.iter().copied().filter(|&k| k > lo && k < hi));
+                breaks.push(hi);
+                breaks.dedup();
+                let mut out = Vec::new();
+                for w in breaks.windows(2).take(MAX_CURVE_POINTS) {
+                    for k in 0..8 {
+                        out.push(w[0] + (w[1] - w[0]) * k as f64 / 8.0);
+                    }
+                }
+                out.push(hi);
+                if a > b {
+                    out.reverse();
+                }
+                out
+            }
+            Curve::Polyline(_) => {
+                let mut out = vec![lo];
+                let mut k = lo.floor() + 1.0;
+                while k < hi && out.len() < MAX_CURVE_POINTS {
+                    out.push(k);
+                    k += 1.0;
+                }
+                out.push(hi);
+                if a > b {
+                    out.reverse();
+                }
+                out
+            }
+        };
+        ts.dedup();
+        if ts.len() < 2 {
+            ts = vec![a, b];
+        }
+        ts
+    }
+}
+
+/// A trim loop point: its parameters, and whether its u (the angle around the axis) is free
+/// (a pole of a sphere, a cone's apex).
+#[derive(Clone, Copy, Debug)]
+struct Sample {
+    uv: Uv,
+    free: bool,
+}
+
+/// Maps model-space points of a face's edges to its surface's parameters.
+struct Mapper<'s> {
+    surface: &'s Surface,
+    /// Period of u and v (angles of elementary surfaces).
+    period: [Option<f64>; 2],
+    /// Chord tolerance (mm).
+    tol: f64,
+    /// Farthest a point may lie from the surface (mm).
+    tol_on: f64,
+    points_left: usize,
+    grid_searches_left: usize,
+    /// Parameters and points of a grid over a B-spline surface (Newton seeds), made when first
+    /// needed.
+    grid: Vec<(Uv, Vec3)>,
+}
+
+impl Mapper<'_> {
+    /// S(u, v), without clamping the angles into the parameter box.
+    fn eval(&self, [u, v]: Uv) -> Vec3 {
+        let e = |f: &Frame, u: f64| u.cos() * f.x + u.sin() * f.y;
+        match self.surface {
+            Surface::Nurbs(n) => n.point(u, v),
+            Surface::Plane(p) => p.frame.origin + u * p.frame.x + v * p.frame.y,
+            Surface::Cylinder(c) => c.frame.origin + c.radius * e(&c.frame, u) + v * c.frame.z,
+            Surface::Cone(c) => {
+                c.frame.origin
+                    + (c.radius + v * c.semi_angle.tan()) * e(&c.frame, u)
+                    + v * c.frame.z
+            }
+            Surface::Sphere(s) => {
+                s.frame.origin
+                    + s.radius * v.cos() * e(&s.frame, u)
+                    + s.radius * v.sin() * s.frame.z
+            }
+            Surface::Torus(t) => {
+                t.frame.origin
+                    + (t.major + t.minor * v.cos()) * e(&t.frame, u)
+                    + t.minor * v.sin() * t.frame.z
+            }
+        }
+    }
+
+    /// The parameters of `p` (the angles unwrapped to lie near `near`), or why not.
+    fn map(&mut self, p: Vec3, near: Option<Uv>) -> Built<Sample> {
+        if self.points_left == 0 {
+            return Err(format!(
+                "the trim needs more than {MAX_TRIM_POINTS} points (or the file more than {MAX_FILE_TRIM_POINTS})"
+            ));
+        }
+        self.points_left -= 1;
+        let local = |f: &Frame| {
+            let l = p - f.origin;
+            (l.dot(f.x), l.dot(f.y), l.dot(f.z))
+        };
+        let (mut uv, free, off) = match self.surface {
+            Surface::Nurbs(_) => {
+                let (uv, off) = self.invert(p, near)?;
+                (uv, false, off)
+            }
+            Surface::Plane(s) => {
+                let (x, y, z) = local(&s.frame);
+                ([x, y], false, z.abs())
+            }
+            Surface::Cylinder(s) => {
+                let (x, y, z) = local(&s.frame);
+                let rho = x.hypot(y);
+                ([y.atan2(x), z], false, (rho - s.radius).abs())
+            }
+            Surface::Cone(s) => {
+                let (x, y, z) = local(&s.frame);
+                let rho = x.hypot(y);
+                let r = s.radius + z * s.semi_angle.tan();
+                let mut u = y.atan2(x);
+                if r < 0.0 {
+                    u += std::f64::consts::PI;
+                }
+                let scale = s.radius.abs() + z.abs() + rho;
+                (
+                    [u, z],
+                    rho <= 1e-9 * scale,
+                    (rho - r.abs()).abs() * s.semi_angle.cos(),
+                )
+            }
+            Surface::Sphere(s) => {
+                let (x, y, z) = local(&s.frame);
+                let rho = x.hypot(y);
+                (
+                    [y.atan2(x), z.atan2(rho)],
+                    rho <= 1e-9 * s.radius,
+                    (rho.hypot(z) - s.radius).abs(),
+                )
+            }
+            Surface::Torus(s) => {
+                let (x, y, z) = local(&s.frame);
+                let rho = x.hypot(y);
+                (
+                    [y.atan2(x), z.atan2(rho - s.major)],
+                    rho <= 1e-9 * (s.major + s.minor),
+                    ((rho - s.major).hypot(z) - s.minor).abs(),
+                )
+            }
+        };
+        if off.is_nan() || off > self.tol_on {
+            return Err(format!(
+                "the point ({:.6}, {:.6}, {:.6}) is {off:.3e} mm off the surface",
+                p.x, p.y, p.z
+            ));
+        }
+        if let Some(near) = near {
+            if free {
+                uv[0] = near[0];
+            }
+            for d in 0..2 {
+                if let Some(t) = self.period[d] {
+                    uv[d] += t * ((near[d] - uv[d]) / t).round();
+                }
+            }
+        }
+        if !(uv[0].is_finite() && uv[1].is_finite()) {
+            return Err("a point maps to non-finite parameters".into());
+        }
+        Ok(Sample { uv, free })
+    }
+
+    /// Newton point inversion on a B-spline surface, seeded at `near` (else, or when that fails,
+    /// at the nearest point of a grid): the parameters and the distance left.
+    fn invert(&mut self, p: Vec3, near: Option<Uv>) -> Built<(Uv, f64)> {
+        let Surface::Nurbs(s) = self.surface else {
+            return Err("not a B-spline surface".into());
+        };
+        let dom = s.domain();
+        let newton = |seed: Uv| {
+            let [mut u, mut v] = seed;
+            let mut r = s.point(u, v) - p;
+            let mut dist = r.length();
+            for _ in 0..50 {
+                let d = s.derivs(u, v);
+                let (a11, a12, a22) = (d.su.dot(d.su), d.su.dot(d.sv), d.sv.dot(d.sv));
+                let (b1, b2) = (-d.su.dot(r), -d.sv.dot(r));
+                let eps = 1e-12 * (a11 + a22) + 1e-300;
+                let (a11, a22) = (a11 + eps, a22 + eps);
+                let det = a11 * a22 - a12 * a12;
+                if det.is_nan() || det <= 0.0 {
+                    break;
+                }
+                let mut du = (b1 * a22 - b2 * a12) / det;
+                let mut dv = (a11 * b2 - a12 * b1) / det;
+                let mut improved = false;
+                for _ in 0..12 {
+                    let (nu, nv) = dom.clamp(u + du, v + dv);
+                    if !(nu.is_finite() && nv.is_finite()) {
+                        break;
+                    }
+                    let nr = s.point(nu, nv) - p;
+                    if nr.length() <= dist {
+                        let step = (nu - u).abs() + (nv - v).abs();
+                        u = nu;
+                        v = nv;
+                        r = nr;
+                        dist = nr.length();
+                        improved = step > 1e-15 * (dom.span().0 + dom.span().1);
+                        break;
+                    }
+                    du *= 0.5;
+                    dv *= 0.5;
+                }
+                if !improved {
+                    break;
+                }
+            }
+            ([u, v], dist)
+        };
+        if let Some(seed) = near {
+            let (uv, dist) = newton(seed);
+            if dist <= self.tol_on {
+                return Ok((uv, dist));
+            }
+        }
+        if self.grid_searches_left == 0 {
+            return Err(format!(
+                "more than {MAX_GRID_SEARCHES} points needed a search for their parameters"
+            ));
+        }
+        self.grid_searches_left -= 1;
+        if self.grid.is_empty() {
+            let spans = |k: &[f64]| k.windows(2).filter(|w| w[1] > w[0]).count();
+            let nu = (4 * spans(s.knots_u()) + 1).clamp(9, 33);
+            let nv = (4 * spans(s.knots_v()) + 1).clamp(9, 33);
+            for i in 0..nu {
+                for j in 0..nv {
+                    let uv = [
+                        dom.u_at(i as f64 / (nu - 1) as f64),
+                        dom.v_at(j as f64 / (nv - 1) as f64),
+                    ];
+                    self.grid.push((uv, s.point(uv[0], uv[1])));
+                }
+            }
+        }
+        let seed = self
+            .grid
+            .iter()
+            .min_by(|a, b| (a.1 - p).length().total_cmp(&(b.1 - p).length()))
+            .map_or([dom.u[0], dom.v[0]], |g| g.0);
+        Ok(newton(seed))
+    }
+
+    /// Samples `curve` over the runs `(a, b)` (in that direction) to the chord tolerance: the
+    /// chord between neighbouring samples, in parameters, stays within `tol` of the curve's own
+    /// parameters on the surface. Each sample's angles are unwrapped to lie near the previous
+    /// one's.
+    fn sample(
+        &mut self,
+        curve: &Curve,
+        runs: &[(f64, f64)],
+        near: Option<Uv>,
+    ) -> Built<Vec<Sample>> {
+        let mut out: Vec<Sample> = Vec::new();
+        for &(a, b) in runs {
+            let ts = curve.steps(a, b);
+            let mut prev: Option<(f64, Sample)> = None;
+            for t in ts {
+                let seed = prev.map(|p| p.1.uv).or(out.last().map(|s| s.uv)).or(near);
+                let s = self.map(curve.point(t), seed)?;
+                match prev {
+                    None => {
+                        if out.is_empty() {
+                            out.push(s);
+                        }
+                    }
+                    Some(p) => {
+                        self.refine(curve, p, (t, s), 0, &mut out)?;
+                    }
+                }
+                prev = Some((t, s));
+            }
+        }
+        // A free first point takes the u of the next.
+        if out.len() > 1 && out[0].free {
+            out[0].uv[0] = out[1].uv[0];
+        }
+        Ok(out)
+    }
+
+    fn refine(
+        &mut self,
+        curve: &Curve,
+        (ta, sa): (f64, Sample),
+        (tb, sb): (f64, Sample),
+        depth: u32,
+        out: &mut Vec<Sample>,
+    ) -> Built<()> {
+        let tm = 0.5 * (ta + tb);
+        let sm = self.map(curve.point(tm), Some(sa.uv))?;
+        let chord = self.eval([0.5 * (sa.uv[0] + sb.uv[0]), 0.5 * (sa.uv[1] + sb.uv[1])]);
+        let dev = (chord - self.eval(sm.uv)).length();
+        if depth < MAX_HALVINGS && (dev.is_nan() || dev > self.tol) {
+            self.refine(curve, (ta, sa), (tm, sm), depth + 1, out)?;
+            self.refine(curve, (tm, sm), (tb, sb), depth + 1, out)?;
+        } else {
+            out.push(sb);
+        }
+        Ok(())
+    }
+}
+
+/// What a face's bounds give: the trim and the parameter box it needs (angles may start
+/// elsewhere than 0, linear ranges may grow to hold the loops).
+struct FaceTrim {
+    trim: Trim,
+    domain: ParamBox,
+}
+
+/// One bound of a face, sampled.
+struct Bound {
+    /// `FACE_OUTER_BOUND`.
+    outer: bool,
+    /// Its orientation, times the face's `same_sense`.
+    sense: bool,
+    samples: Vec<Sample>,
+}
+
+impl Model<'_> {
+    /// A curve for the edge geometry `id`.
+    fn curve(&self, from: u64, id: u64, depth: usize) -> Built<Curve> {
+        let wrap = |e: ReadError| e.to_string();
+        if depth > MAX_CURVE_DEPTH {
+            return Err(format!(
+                "#{id}: curves nest more than {MAX_CURVE_DEPTH} deep"
+            ));
+        }
+        let inst = self.get(from, id).map_err(wrap)?;
+        for name in ["SURFACE_CURVE", "SEAM_CURVE", "INTERSECTION_CURVE"] {
+            if let Some(p) = inst.part(name) {
+                let c = self.reference(id, p.get(1), "curve_3d").map_err(wrap)?;
+                return self.curve(id, c, depth + 1);
+            }
+        }
+        if let Some(p) = inst.part("TRIMMED_CURVE") {
+            // The edge's vertices bound it.
+            let c = self.reference(id, p.get(1), "basis_curve").map_err(wrap)?;
+            return self.curve(id, c, depth + 1);
+        }
+        if let Some(p) = inst.part("LINE") {
+            let origin = self.reference(id, p.get(1), "pnt").map_err(wrap)?;
+            let origin = self.point(id, origin).map_err(wrap)?;
+            let vid = self.reference(id, p.get(2), "dir").map_err(wrap)?;
+            let vi = self.get(id, vid).map_err(wrap)?;
+            let vp = vi
+                .part("VECTOR")
+                .ok_or_else(|| format!("#{vid}: found {}, expected VECTOR", vi.first_name()))?;
+            let dir = self.direction(vid, vp.get(1), Vec3::X).map_err(wrap)?;
+            let mag = self.num(vid, vp.get(2), "magnitude").map_err(wrap)? * self.length;
+            if !(mag.abs() > 0.0 && mag.is_finite()) {
+                return Err(format!("#{vid}: a line's vector has no length"));
+            }
+            return Ok(Curve::Line {
+                p: origin,
+                d: dir * mag.abs(),
+            });
+        }
+        if let Some(c) = inst.part("CIRCLE").or_else(|| inst.part("ELLIPSE")) {
+            let f = self.placement(id, c.get(1)).map_err(wrap)?;
+            let a = self.num(id, c.get(2), "radius").map_err(wrap)? * self.length;
+            let b = match c.get(3) {
+                Some(p) => self.num(id, Some(p), "semi_axis_2").map_err(wrap)? * self.length,
+                None => a,
+            };
+            if !(a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
+                return Err(format!("#{id}: a conic's radii must be positive"));
+            }
+            return Ok(Curve::Conic { f, a, b });
+        }
+        if let Some(p) = inst.part("POLYLINE") {
+            let pts = self.list(id, p.get(1), "points").map_err(wrap)?;
+            if pts.len() < 2 || pts.len() > MAX_CURVE_POINTS {
+                return Err(format!(
+                    "#{id}: a polyline needs 2 to {MAX_CURVE_POINTS} points"
+                ));
+            }
+            let pts = pts
+                .iter()
+                .map(|q| {
+                    let r = self.reference(id, Some(q), "point")?;
+                    self.point(id, r)
+                })
+                .collect::<R<Vec<Vec3>>>()
+                .map_err(wrap)?;
+            return Ok(Curve::Polyline(pts));
+        }
+        if let Some(k) = inst.part("B_SPLINE_CURVE_WITH_KNOTS") {
+            let (head, knots): (&[Param], &[Param]) = match inst.part("B_SPLINE_CURVE") {
+                Some(b) => (b, k),
+                None if k.len() >= 9 => (&k[1..6], &k[6..]),
+                None => {
+                    return Err(format!(
+                        "#{id}: B_SPLINE_CURVE_WITH_KNOTS has {} attributes, expected 9",
+                        k.len()
+                    ))
+                }
+            };
+            let degree = self.num(id, head.first(), "degree").map_err(wrap)?;
+            if !(degree >= 1.0
+                && degree <= NurbsSurface::MAX_DEGREE as f64
+                && degree.fract() == 0.0)
+            {
+                return Err(format!(
+                    "#{id}: curve degree {degree} is not 1 to {}",
+                    NurbsSurface::MAX_DEGREE
+                ));
+            }
+            let degree = degree as usize;
+            let cps = self
+                .list(id, head.get(1), "control_points_list")
+                .map_err(wrap)?;
+            if cps.len() < degree + 1 || cps.len() > MAX_CURVE_POINTS {
+                return Err(format!(
+                    "#{id}: {} control points for degree {degree}",
+                    cps.len()
+                ));
+            }
+            let pts = cps
+                .iter()
+                .map(|q| {
+                    let r = self.reference(id, Some(q), "control point")?;
+                    self.point(id, r)
+                })
+                .collect::<R<Vec<Vec3>>>()
+                .map_err(wrap)?;
+            let kv = self
+                .knots(
+                    id,
+                    knots.first(),
+                    knots.get(1),
+                    "curve",
+                    pts.len() + degree + 1,
+                )
+                .map_err(wrap)?;
+            if kv.iter().any(|k| !k.is_finite())
+                || kv.windows(2).any(|w| w[1] < w[0])
+                || kv[pts.len()] <= kv[degree]
+            {
+                return Err(format!("#{id}: knots are not increasing"));
+            }
+            let weights = match inst.part("RATIONAL_B_SPLINE_CURVE") {
+                Some(w) => {
+                    let ws = self.list(id, w.first(), "weights_data").map_err(wrap)?;
+                    if ws.len() != pts.len() {
+                        return Err(format!(
+                            "#{id}: {} weights for {} control points",
+                            ws.len(),
+                            pts.len()
+                        ));
+                    }
+                    ws.iter()
+                        .map(|x| self.num(id, Some(x), "weight"))
+                        .collect::<R<Vec<f64>>>()
+                        .map_err(wrap)?
+                }
+                None => vec![1.0; pts.len()],
+            };
+            if weights.iter().any(|w| !(*w > 0.0 && w.is_finite())) {
+                return Err(format!("#{id}: weights must be positive"));
+            }
+            return Ok(Curve::Spline {
+                degree,
+                knots: kv,
+                points: pts
+                    .into_iter()
+                    .zip(weights)
+                    .map(|(p, w)| (p * w, w))
+                    .collect(),
+            });
+        }
+        Err(format!(
+            "edge curve #{id} is a {}, which is not evaluated",
+            inst.first_name()
+        ))
+    }
+
+    /// The trim of face `fid` on `surface` from its bounds, `None` when they hold no loop (only
+    /// vertex loops), `Err(why)` when it cannot be honoured.
+    fn face_trim(
+        &self,
+        fid: u64,
+        bounds: Option<&Param>,
+        same_sense: bool,
+        surface: &Surface,
+        budget: &mut usize,
+    ) -> Built<Option<FaceTrim>> {
+        let Some(Param::List(bounds)) = bounds else {
+            return Ok(None);
+        };
+        let tau = std::f64::consts::TAU;
+        let period = match surface {
+            Surface::Cylinder(_) | Surface::Cone(_) | Surface::Sphere(_) => [Some(tau), None],
+            Surface::Torus(_) => [Some(tau), Some(tau)],
+            _ => [None, None],
+        };
+        let bb = surface.bounding_box();
+        let size = (bb.max - bb.min).length();
+        let size = if size.is_finite() { size } else { 1e3 };
+        let mut m = Mapper {
+            surface,
+            period,
+            tol: (1e-5 * size).clamp(1e-9, 1e-3),
+            tol_on: 1e-4 * size + 1e-3,
+            points_left: (*budget).min(MAX_TRIM_POINTS),
+            grid_searches_left: MAX_GRID_SEARCHES,
+            grid: Vec::new(),
+        };
+        let start_budget = m.points_left;
+        let result = self.face_loops(fid, bounds, same_sense, &mut m);
+        *budget -= start_budget - m.points_left;
+        let loops = result?;
+        if loops.is_empty() {
+            return Ok(None);
+        }
+        assemble(surface, period, loops).map(Some)
+    }
+
+    /// The sampled loops of a face's bounds (vertex loops left out).
+    fn face_loops(
+        &self,
+        fid: u64,
+        bounds: &[Param],
+        same_sense: bool,
+        m: &mut Mapper,
+    ) -> Built<Vec<Bound>> {
+        let wrap = |e: ReadError| e.to_string();
+        let mut out = Vec::new();
+        for b in bounds {
+            let bid = self.reference(fid, Some(b), "bound").map_err(wrap)?;
+            let bi = self.get(fid, bid).map_err(wrap)?;
+            let (outer, bp) = match (bi.part("FACE_OUTER_BOUND"), bi.part("FACE_BOUND")) {
+                (Some(p), _) => (true, p),
+                (None, Some(p)) => (false, p),
+                _ => return Err(format!("bound #{bid} is a {}", bi.first_name())),
+            };
+            let lid = self.reference(bid, bp.get(1), "bound").map_err(wrap)?;
+            let orientation = self.logical(bid, bp.get(2), "orientation").map_err(wrap)?;
+            let li = self.get(bid, lid).map_err(wrap)?;
+            let samples = if li.part("VERTEX_LOOP").is_some() {
+                continue;
+            } else if let Some(p) = li.part("POLY_LOOP") {
+                let pts = self.list(lid, p.get(1), "polygon").map_err(wrap)?;
+                if pts.len() > MAX_CURVE_POINTS {
+                    return Err(format!("poly loop #{lid} has too many points"));
+                }
+                let mut pts = pts
+                    .iter()
+                    .map(|q| {
+                        let r = self.reference(lid, Some(q), "point")?;
+                        self.point(lid, r)
+                    })
+                    .collect::<R<Vec<Vec3>>>()
+                    .map_err(wrap)?;
+                if let Some(&first) = pts.first() {
+                    pts.push(first);
+                }
+                if pts.len() < 4 {
+                    return Err(format!("poly loop #{lid} has fewer than 3 points"));
+                }
+                let c = Curve::Polyline(pts);
+                let (a, b) = c.range().unwrap_or((0.0, 1.0));
+                m.sample(&c, &[(a, b)], None)
+                    .map_err(|why| format!("poly loop #{lid}: {why}"))?
+            } else if let Some(p) = li.part("EDGE_LOOP") {
+                let edges = self.list(lid, p.get(1), "edge_list").map_err(wrap)?;
+                self.edge_loop(lid, edges, m)?
+            } else {
+                return Err(format!(
+                    "loop #{lid} is a {}, which is not read",
+                    li.first_name()
+                ));
+            };
+            out.push(Bound {
+                outer,
+                sense: orientation == same_sense,
+                samples,
+            });
+        }
+        Ok(out)
+    }
+
+    /// An EDGE_LOOP's samples in order, angles continuous; a seam edge met a second time on the
+    /// same parameters (through a pole) is moved a period over when that closes the loop.
+    fn edge_loop(&self, lid: u64, edges: &[Param], m: &mut Mapper) -> Built<Vec<Sample>> {
+        let wrap = |e: ReadError| e.to_string();
+        let mut out: Vec<Sample> = Vec::new();
+        let mut first_pass: HashMap<u64, (Sample, Sample)> = HashMap::new();
+        let mut split: Option<usize> = None;
+        let mut last_point: Option<Vec3> = None;
+        let join = m.tol_on * 10.0;
+        for e in edges {
+            let oid = self
+                .reference(lid, Some(e), "oriented edge")
+                .map_err(wrap)?;
+            let oi = self.get(lid, oid).map_err(wrap)?;
+            let op = oi.part("ORIENTED_EDGE").ok_or_else(|| {
+                format!(
+                    "edge #{oid} is a {}, expected ORIENTED_EDGE",
+                    oi.first_name()
+                )
+            })?;
+            let eid = self
+                .reference(oid, op.get(3), "edge_element")
+                .map_err(wrap)?;
+            let orientation = self.logical(oid, op.get(4), "orientation").map_err(wrap)?;
+            let ei = self.get(oid, eid).map_err(wrap)?;
+            let ep = ei.part("EDGE_CURVE").ok_or_else(|| {
+                format!("edge #{eid} is a {}, expected EDGE_CURVE", ei.first_name())
+            })?;
+            let vertex = |p: Option<&Param>| -> R<(u64, Vec3)> {
+                let vid = self.reference(eid, p, "vertex")?;
+                let vi = self.get(eid, vid)?;
+                let vp = vi.part("VERTEX_POINT").ok_or_else(|| {
+                    self.bad(
+                        vid,
+                        format!("found {}, expected VERTEX_POINT", vi.first_name()),
+                    )
+                })?;
+                let cid = self.reference(vid, vp.get(1), "vertex_geometry")?;
+                Ok((vid, self.point(vid, cid)?))
+            };
+            let (vs, ps) = vertex(ep.get(1)).map_err(wrap)?;
+            let (ve, pe) = vertex(ep.get(2)).map_err(wrap)?;
+            let gid = self
+                .reference(eid, ep.get(3), "edge_geometry")
+                .map_err(wrap)?;
+            let same = self.logical(eid, ep.get(4), "same_sense").map_err(wrap)?;
+            let curve = self.curve(eid, gid, 0)?;
+            let (ts, ds) = curve.param_of(ps);
+            let (te, de) = curve.param_of(pe);
+            if ds.is_nan() || de.is_nan() || ds.max(de) > join {
+                return Err(format!(
+                    "a vertex of edge #{eid} is {:.3e} mm off its curve",
+                    ds.max(de)
+                ));
+            }
+            let closed = vs == ve || (ps - pe).length() <= 1e-9 * (1.0 + ps.length());
+            let tau = std::f64::consts::TAU;
+            let runs: Vec<(f64, f64)> = match curve.range() {
+                None if matches!(curve, Curve::Conic { .. }) => {
+                    let mut te = te;
+                    if same {
+                        while te <= ts + if closed { 1e-12 } else { 0.0 } {
+                            te += tau;
+                        }
+                        while te > ts + tau + 1e-12 {
+                            te -= tau;
+                        }
+                    } else {
+                        while te >= ts - if closed { 1e-12 } else { 0.0 } {
+                            te -= tau;
+                        }
+                        while te < ts - tau - 1e-12 {
+                            te += tau;
+                        }
+                    }
+                    vec![(ts, te)]
+                }
+                None => vec![(ts, te)],
+                Some((t0, t1)) if closed => {
+                    let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (t1 - t0);
+                    let ring = (curve.point(t0) - curve.point(t1)).length() <= join;
+                    if !ring {
+                        return Err(format!(
+                            "edge #{eid} starts and ends at one vertex, but its curve is open"
+                        ));
+                    }
+                    let forward = if near(ts, t0) || near(ts, t1) {
+                        vec![(t0, t1)]
+                    } else {
+                        vec![(ts, t1), (t0, ts)]
+                    };
+                    if same {
+                        forward
+                    } else {
+                        forward.iter().rev().map(|&(a, b)| (b, a)).collect()
+                    }
+                }
+                Some(_) => vec![(ts, te)],
+            };
+            let mut s = m
+                .sample(&curve, &runs, out.last().map(|s| s.uv))
+                .map_err(|why| format!("edge #{eid}: {why}"))?;
+            // From the edge's start to its end, then as the loop uses it.
+            if !orientation {
+                s.reverse();
+            }
+            let (from, to) = if orientation { (ps, pe) } else { (pe, ps) };
+            if let Some(lp) = last_point {
+                if (lp - from).length() > join {
+                    return Err(format!(
+                        "edge #{eid} does not start where the previous edge ends"
+                    ));
+                }
+            }
+            last_point = Some(to);
+            // Angles continuous with the loop so far.
+            if let (Some(&prev), Some(&first)) = (out.last(), s.first()) {
+                for d in 0..2 {
+                    if let Some(t) = m.period[d] {
+                        let k = ((prev.uv[d] - first.uv[d]) / t).round() * t;
+                        if k != 0.0 {
+                            s.iter_mut().for_each(|q| q.uv[d] += k);
+                        }
+                    }
+                }
+            }
+            let at = out.len();
+            if let (Some(&(a, b)), Some(&f), Some(&l)) = (first_pass.get(&eid), s.first(), s.last())
+            {
+                let same_uv = |x: Sample, y: Sample| {
+                    (x.free || y.free || (x.uv[0] - y.uv[0]).abs() <= 1e-6)
+                        && (x.uv[1] - y.uv[1]).abs() <= 1e-6
+                };
+                if split.is_none()
+                    && m.period.iter().any(Option::is_some)
+                    && same_uv(f, b)
+                    && same_uv(l, a)
+                {
+                    split = Some(at);
+                }
+            } else if let (Some(&f), Some(&l)) = (s.first(), s.last()) {
+                first_pass.insert(eid, (f, l));
+            }
+            out.extend(s);
+        }
+        if let (Some(at), Some(&first)) = (split, out.first()) {
+            // Move the second pass over the seam (and what follows it) a period either way:
+            // whichever closes the loop.
+            let d = usize::from(m.period[0].is_none());
+            let t = m.period[d].unwrap_or(std::f64::consts::TAU);
+            for k in [-t, t] {
+                let last = out[out.len() - 1];
+                let moved = last.uv[d] + k;
+                let closes = (moved - first.uv[d]).abs() <= 1e-6 || (last.free && first.free);
+                if closes {
+                    out[at..].iter_mut().for_each(|q| q.uv[d] += k);
+                    break;
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
+/// The trim from a face's sampled bounds: closed loops moved a period to lie in the parameter
+/// box (holes across its edge copied to the other side), loops winding once around an angle
+/// paired into one outer loop (or closed along the box edge on the face's side), the outer
+/// loop the face's outer bound (else the loop with the largest box).
+fn assemble(surface: &Surface, period: [Option<f64>; 2], bounds: Vec<Bound>) -> Built<FaceTrim> {
+    let mut dom = surface.domain();
+    let span = [dom.u[1] - dom.u[0], dom.v[1] - dom.v[0]];
+    let close = [1e-6 * span[0].max(1e-300), 1e-6 * span[1].max(1e-300)];
+    // Closed loops, and loops winding around angle d (their direction times the bound's sense).
+    let mut closed: Vec<(bool, Vec<Uv>)> = Vec::new();
+    let mut winding: [Vec<(bool, Vec<Uv>)>; 2] = [Vec::new(), Vec::new()];
+    for (k, b) in bounds.into_iter().enumerate() {
+        let s = &b.samples;
+        let (Some(first), Some(last)) = (s.first(), s.last()) else {
+            return Err(format!("loop {k} has no points"));
+        };
+        let mut turns = [0.0; 2];
+        let mut ok = true;
+        for d in 0..2 {
+            let gap = last.uv[d] - first.uv[d];
+            if d == 0 && (first.free || last.free) {
+                continue;
+            }
+            if let Some(t) = period[d] {
+                turns[d] = (gap / t).round();
+                if (gap - turns[d] * t).abs() > close[d] {
+                    ok = false;
+                }
+            } else if gap.abs() > close[d] {
+                ok = false;
+            }
+        }
+        if !ok {
+            return Err(format!(
+                "loop {k} does not close in the surface's parameters"
+            ));
+        }
+        let pts: Vec<Uv> = s.iter().map(|q| q.uv).collect();
+        match turns {
+            [0.0, 0.0] => closed.push((b.outer, pts)),
+            [t, 0.0] if t.abs() == 1.0 => winding[0].push(((t > 0.0) == b.sense, pts)),
+            [0.0, t] if t.abs() == 1.0 => winding[1].push(((t > 0.0) == b.sense, pts)),
+            _ => return Err(format!("loop {k} winds around the surface more than once")),
+        }
+    }
+    let wound = winding.iter().map(Vec::len).sum::<usize>();
+    if wound > 0
+        && (winding[0].len() > 2
+            || winding[1].len() > 2
+            || (!winding[0].is_empty() && !winding[1].is_empty()))
+    {
+        return Err("the loops wind around the surface in a way not read".into());
+    }
+    // The outer closed loop (when no loop winds).
+    let outer_at = if wound > 0 {
+        None
+    } else {
+        closed.iter().position(|c| c.0).or_else(|| {
+            let area = |l: &Vec<Uv>| {
+                let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
+                for p in l {
+                    for d in 0..2 {
+                        lo[d] = lo[d].min(p[d]);
+                        hi[d] = hi[d].max(p[d]);
+                    }
+                }
+                (hi[0] - lo[0]) * (hi[1] - lo[1])
+            };
+            (0..closed.len()).max_by(|&a, &b| area(&closed[a].1).total_cmp(&area(&closed[b].1)))
+        })
+    };
+    let range = |l: &[Uv], d: usize| {
+        l.iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p[d]), b.max(p[d]))
+            })
+    };
+    let mut starts = [dom.u[0], dom.v[0]];
+    for d in 0..2 {
+        let Some(t) = period[d] else { continue };
+        let mut s = starts[d];
+        // Shift the outer loop in; when it still crosses the box's edge, start the box at it.
+        if let Some(o) = outer_at {
+            let (lo, hi) = range(&closed[o].1, d);
+            let k = ((s + 0.5 * t - 0.5 * (lo + hi)) / t).round() * t;
+            closed[o].1.iter_mut().for_each(|p| p[d] += k);
+            if lo + k < s - close[d] || hi + k > s + t + close[d] {
+                s = lo + k;
+            }
+        }
+        // Every closed loop into [s, s + t] by its middle; holes across an edge copied over.
+        let mut copies = Vec::new();
+        for (i, (_, l)) in closed.iter_mut().enumerate() {
+            let (lo, hi) = range(l, d);
+            let k = ((s + 0.5 * t - 0.5 * (lo + hi)) / t).round() * t;
+            l.iter_mut().for_each(|p| p[d] += k);
+            if Some(i) != outer_at {
+                if lo + k < s - close[d] {
+                    copies.push(l.iter().map(|p| with(*p, d, p[d] + t)).collect::<Vec<_>>());
+                }
+                if hi + k > s + t + close[d] {
+                    copies.push(l.iter().map(|p| with(*p, d, p[d] - t)).collect::<Vec<_>>());
+                }
+            }
+        }
+        closed.extend(copies.into_iter().map(|l| (false, l)));
+        starts[d] = s;
+        let r = [s, s + t];
+        if d == 0 {
+            dom.u = r;
+        } else {
+            dom.v = r;
+        }
+    }
+    // Linear parameters: snap to the box's edges, then grow the box to hold the loops.
+    for d in 0..2 {
+        if period[d].is_some() {
+            continue;
+        }
+        let (mut lo, mut hi) = if d == 0 {
+            (dom.u[0], dom.u[1])
+        } else {
+            (dom.v[0], dom.v[1])
+        };
+        let snap = 1e-9 * (hi - lo).abs().max(1e-300);
+        let all = closed.iter_mut().map(|c| &mut c.1).chain(
+            winding
+                .iter_mut()
+                .flat_map(|w| w.iter_mut().map(|c| &mut c.1)),
+        );
+        for l in all {
+            for p in l.iter_mut() {
+                if (p[d] - lo).abs() <= snap {
+                    p[d] = lo;
+                } else if (p[d] - hi).abs() <= snap {
+                    p[d] = hi;
+                }
+            }
+            let (a, b) = range(l, d);
+            lo = lo.min(a);
+            hi = hi.max(b);
+        }
+        if !matches!(surface, Surface::Nurbs(_) | Surface::Sphere(_)) {
+            if d == 0 {
+                dom.u = [lo, hi];
+            } else {
+                dom.v = [lo, hi];
+            }
+        }
+    }
+    // Winding loops: cut where they cross the box's edge, from one edge to the other.
+    let mut outer: Option<Vec<Uv>> = outer_at.map(|o| closed[o].1.clone());
+    for d in 0..2 {
+        if winding[d].is_empty() {
+            continue;
+        }
+        let t = period[d].unwrap_or(std::f64::consts::TAU);
+        let s = starts[d];
+        let cut: Vec<(bool, Vec<Uv>)> = winding[d]
+            .iter()
+            .map(|(up, l)| (*up, unroll(l, d, s, t)))
+            .collect();
+        let e = 1 - d;
+        let (lo, hi) = if e == 0 {
+            (dom.u[0], dom.u[1])
+        } else {
+            (dom.v[0], dom.v[1])
+        };
+        let poly = if cut.len() == 2 {
+            let mut p = cut[0].1.clone();
+            p.extend(cut[1].1.iter().rev());
+            p
+        } else {
+            // One loop: the face lies on its left (u right, v up); going +u that is +v, going
+            // +v it is −u.
+            let (up, l) = &cut[0];
+            let far = match (d, *up) {
+                (0, true) | (1, false) => hi,
+                _ => lo,
+            };
+            let mut p = l.clone();
+            p.push(with(with([0.0; 2], d, s + t), e, far));
+            p.push(with(with([0.0; 2], d, s), e, far));
+            p
+        };
+        outer = Some(poly);
+    }
+    let holes: Vec<Vec<Uv>> = closed
+        .into_iter()
+        .enumerate()
+        .filter(|(i, _)| Some(*i) != outer_at)
+        .map(|(_, c)| c.1)
+        .collect();
+    if !(dom.u[0] < dom.u[1] && dom.v[0] < dom.v[1]) {
+        return Err("the loops span no area".into());
+    }
+    let trim = Trim::new(&dom, outer, holes).map_err(|e| e.to_string())?;
+    Ok(FaceTrim { trim, domain: dom })
+}
+
+/// Sets the parameter box of an elementary surface (a B-spline surface keeps its knots').
+fn set_domain(surface: &mut Surface, domain: ParamBox) {
+    match surface {
+        Surface::Nurbs(_) => {}
+        Surface::Plane(s) => s.domain = domain,
+        Surface::Cylinder(s) => s.domain = domain,
+        Surface::Cone(s) => s.domain = domain,
+        Surface::Sphere(s) => s.domain = domain,
+        Surface::Torus(s) => s.domain = domain,
+    }
+}
+
+/// `p` with coordinate `d` set to `x`.
+fn with(mut p: Uv, d: usize, x: f64) -> Uv {
+    p[d] = x;
+    p
+}
+
+/// A loop winding once around angle `d` (period `t`, last point = first ± t) as a polyline from
+/// `d = s` to `d = s + t`: cut where it crosses `s` (mod t), going up.
+fn unroll(l: &[Uv], d: usize, s: f64, t: f64) -> Vec<Uv> {
+    let n = l.len();
+    let turn = ((l[n - 1][d] - l[0][d]) / t).round() * t;
+    let mut seq: Vec<Uv> = if turn < 0.0 {
+        l.iter().rev().copied().collect()
+    } else {
+        l.to_vec()
+    };
+    if turn == 0.0 {
+        return seq;
+    }
+    let g = |x: f64| (x - s) / t;
+    for i in 0..n - 1 {
+        let (a, b) = (seq[i], seq[i + 1]);
+        let (ga, gb) = (g(a[d]), g(b[d]));
+        let m = ga.min(gb).ceil();
+        if m <= ga.max(gb) {
+            let c = s + m * t;
+            let f = if b[d] != a[d] {
+                (c - a[d]) / (b[d] - a[d])
+            } else {
+                0.0
+            };
+            let e = 1 - d;
+            let cp = with(with([0.0; 2], d, c), e, a[e] + f * (b[e] - a[e]));
+            let mut out = vec![cp];
+            out.extend_from_slice(&seq[i + 1..]);
+            out.extend(seq[1..=i].iter().map(|p| with(*p, d, p[d] + t)));
+            out.push(with(cp, d, c + t));
+            let shift = -m * t;
+            out.iter_mut().for_each(|p| p[d] += shift);
+            let last = out.len() - 1;
+            out[0][d] = s;
+            out[last][d] = s + t;
+            seq = out;
+            return seq;
+        }
+    }
+    seq
 }
 
 fn refs(p: &Param, out: &mut Vec<u64>) {

@@ -282,3 +282,19 @@ pub fn sampled_min(
     }
     (best, spread)
 }
+
+/// Line, column and message of the syntax error the JSON reader gives for `text`.
+///
+/// # Panics
+/// When `text` reads, or fails otherwise.
+pub fn json_error(text: &str) -> (usize, usize, String) {
+    match swarf_plan::io::json::parse(text).unwrap_err() {
+        swarf_plan::io::ReadError::Syntax {
+            format: swarf_plan::io::Format::Json,
+            line,
+            column,
+            message,
+        } => (line, column, message),
+        e => panic!("{e}"),
+    }
+}
