@@ -49,9 +49,6 @@ pub(crate) struct Piece {
     pub p: usize,
     pub q: usize,
     pub net: Vec<DVec4>,
-    /// The rectangle `[t0, t1, s0, s1]` the piece covers in the Bézier parameters of the root
-    /// piece it was cut from (`[0, 1]²` for a root piece).
-    pub uv: [f64; 4],
     /// How much of the piece is on the part.
     pub on: OnPart,
 }
@@ -61,8 +58,9 @@ pub(crate) struct Piece {
 pub(crate) enum OnPart {
     /// All of it: untrimmed patches, check triangles, pieces inside the trim.
     Whole,
-    /// The trim boundary crosses it: halves are classified again, corners tested.
-    Partly(Arc<TrimmedRoot>),
+    /// The trim boundary crosses it: halves are classified again, corners tested. (Boxed: few
+    /// pieces cross, and every piece is cloned and moved in the searches' heaps.)
+    Partly(Box<Crossing>),
     /// None of it (a half of a crossing piece): callers drop it.
     Off,
 }
@@ -71,8 +69,8 @@ impl OnPart {
     /// The state of the rectangle `local` (root Bézier parameters) of a piece of a trimmed
     /// patch: crossing rectangles smaller than the trim's resolution count as on the part (the
     /// boundary is honoured to that size).
-    fn of(root: &Arc<TrimmedRoot>, local: [f64; 4]) -> OnPart {
-        let rect = root.rect(local);
+    fn of(root: &Arc<TrimmedRoot>, uv: [f64; 4]) -> OnPart {
+        let rect = root.rect(uv);
         match root.trim.coverage(rect) {
             Coverage::Inside => OnPart::Whole,
             Coverage::Outside => OnPart::Off,
@@ -80,7 +78,10 @@ impl OnPart {
                 if (rect[1] - rect[0]).max(rect[3] - rect[2]) < root.trim.resolution() {
                     OnPart::Whole
                 } else {
-                    OnPart::Partly(root.clone())
+                    OnPart::Partly(Box::new(Crossing {
+                        root: root.clone(),
+                        uv,
+                    }))
                 }
             }
         }
@@ -112,6 +113,14 @@ impl Axis {
             Axis::Arc { m, h } => 0.5 * ((0.5 * (x - m)).tan() / (0.5 * h).tan() + 1.0),
         }
     }
+}
+
+/// A piece the trim boundary crosses: its root, and the rectangle `[t0, t1, s0, s1]` it covers in
+/// the root's Bézier parameters.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct Crossing {
+    root: Arc<TrimmedRoot>,
+    uv: [f64; 4],
 }
 
 /// A root piece of a trimmed patch: the patch's trim and the piece's parameter map.
@@ -163,7 +172,7 @@ impl PreparedSurface {
                         u,
                         v,
                     });
-                    pieces[i].on = OnPart::of(&root, pieces[i].uv);
+                    pieces[i].on = OnPart::of(&root, [0.0, 1.0, 0.0, 1.0]);
                     if pieces[i].on != OnPart::Off {
                         pieces.swap(kept, i);
                         kept += 1;
@@ -248,7 +257,6 @@ fn triangle_piece(index: usize, a: Vec3, b: Vec3, c: Vec3) -> Piece {
         p: 1,
         q: 1,
         net: vec![h(a), h(a), h(b), h(c)],
-        uv: [0.0, 1.0, 0.0, 1.0],
         on: OnPart::Whole,
     }
 }
@@ -270,9 +278,9 @@ impl Piece {
         match &self.on {
             OnPart::Whole => true,
             OnPart::Off => false,
-            OnPart::Partly(root) => root.trim.contains(
-                root.u.at(if i == 0 { self.uv[0] } else { self.uv[1] }),
-                root.v.at(if j == 0 { self.uv[2] } else { self.uv[3] }),
+            OnPart::Partly(c) => c.root.trim.contains(
+                c.root.u.at(if i == 0 { c.uv[0] } else { c.uv[1] }),
+                c.root.v.at(if j == 0 { c.uv[2] } else { c.uv[3] }),
             ),
         }
     }
@@ -284,7 +292,12 @@ impl Piece {
             return SmallVec::from_slice(&self.triangle());
         }
         let (p, q) = (self.p, self.q);
-        [(0, 0), (p, 0), (0, q), (p, q)]
+        let corners = [(0, 0), (p, 0), (0, q), (p, q)];
+        if self.on == OnPart::Whole {
+            // The hot case (every piece of an untrimmed patch): no filter, no iterator.
+            return SmallVec::from_buf(corners.map(|(i, j)| self.point(i, j)));
+        }
+        corners
             .into_iter()
             .filter(|&(i, j)| self.corner_on_part(i, j))
             .map(|(i, j)| self.point(i, j))
@@ -339,12 +352,13 @@ impl Piece {
     /// would leave the boundary inside one half at every level; cutting along it puts each
     /// side in a child of its own, on or off the part.
     pub(crate) fn trim_cut(&self) -> Option<(usize, f64)> {
-        let OnPart::Partly(root) = &self.on else {
+        let OnPart::Partly(c) = &self.on else {
             return None;
         };
-        let (dir, at) = root.trim.aligned_cut(root.rect(self.uv))?;
+        let root = &c.root;
+        let (dir, at) = root.trim.aligned_cut(root.rect(c.uv))?;
         let at = if dir == 0 { root.u } else { root.v }.local(at);
-        let (lo, hi) = (self.uv[2 * dir], self.uv[2 * dir + 1]);
+        let (lo, hi) = (c.uv[2 * dir], c.uv[2 * dir + 1]);
         Some((dir, ((at - lo) / (hi - lo)).clamp(0.0, 1.0)))
     }
 
@@ -357,7 +371,7 @@ impl Piece {
                 let (a, b) = self.split_at(dir, t);
                 smallvec::smallvec![a, b]
             }
-            None => SmallVec::from_iter(self.quarters()),
+            None => SmallVec::from_buf(self.quarters()),
         }
     }
 
@@ -412,20 +426,28 @@ impl Piece {
             a.net[idx(line, 0)] = work[0];
             b.net[idx(line, len - 1)] = work[len - 1];
             for level in 1..len {
-                for k in 0..len - level {
-                    work[k] = (1.0 - t) * work[k] + t * work[k + 1];
+                if t == 0.5 {
+                    // The common halving: one multiply per coordinate, and exact.
+                    for k in 0..len - level {
+                        work[k] = 0.5 * (work[k] + work[k + 1]);
+                    }
+                } else {
+                    for k in 0..len - level {
+                        work[k] = (1.0 - t) * work[k] + t * work[k + 1];
+                    }
                 }
                 a.net[idx(line, level)] = work[0];
                 b.net[idx(line, len - 1 - level)] = work[len - 1 - level];
             }
         }
         let (lo, hi) = (2 * dir, 2 * dir + 1);
-        let mid = self.uv[lo] + t * (self.uv[hi] - self.uv[lo]);
-        a.uv[hi] = mid;
-        b.uv[lo] = mid;
-        if let OnPart::Partly(t) = &self.on {
-            a.on = OnPart::of(t, a.uv);
-            b.on = OnPart::of(t, b.uv);
+        if let OnPart::Partly(c) = &self.on {
+            let mid = c.uv[lo] + t * (c.uv[hi] - c.uv[lo]);
+            let (mut ua, mut ub) = (c.uv, c.uv);
+            ua[hi] = mid;
+            ub[lo] = mid;
+            a.on = OnPart::of(&c.root, ua);
+            b.on = OnPart::of(&c.root, ub);
         }
         (a, b)
     }
@@ -520,7 +542,6 @@ fn nurbs_pieces(
                 p,
                 q,
                 net,
-                uv: [0.0, 1.0, 0.0, 1.0],
                 on: OnPart::Whole,
             });
             maps.push((Axis::Affine(su[0], su[1]), Axis::Affine(sv[0], sv[1])));
@@ -576,7 +597,6 @@ fn push_tensor(
         p: us.len() - 1,
         q: vs.len() - 1,
         net,
-        uv: [0.0, 1.0, 0.0, 1.0],
         on: OnPart::Whole,
     });
     maps.push((mu, mv));
