@@ -18,7 +18,8 @@
 //!   `ELLIPSE` (between the vertices' angles, a full turn when they are one vertex),
 //!   `B_SPLINE_CURVE_WITH_KNOTS` (simple or rational complex; between the vertices' parameters,
 //!   found by point inversion), `POLYLINE`, and through `SURFACE_CURVE`, `SEAM_CURVE`,
-//!   `INTERSECTION_CURVE` and `TRIMMED_CURVE` their 3-D curve. Each edge is sampled so that
+//!   `INTERSECTION_CURVE` and `TRIMMED_CURVE` their 3-D curve (run backwards for a trimmed
+//!   curve whose `sense_agreement` is `.F.`). Each edge is sampled so that
 //!   the chords, in parameters, stay within min(1e-3 mm, 1e-5 of the surface's size) of the
 //!   curve on the surface (at least 4 steps per quarter turn, 8 per knot span), and each
 //!   sample is mapped to the surface's parameters: in closed form on the elementary surfaces,
@@ -26,10 +27,16 @@
 //!   on B-spline surfaces. Angles are unwrapped along a loop; a loop is moved whole turns to
 //!   lie in the parameter box (whose angle range may then start at the outer loop's), a hole
 //!   across the box's edge is copied to the other side, a seam edge met twice on the same
-//!   angle (through a pole or an apex) is moved a turn. A loop that winds once around the axis
-//!   (a circle bounding a cylinder) is cut at the box's edge: two of them make the outer loop
-//!   (the band between them), one is closed along the box's far edge on the face's side (by
-//!   the bound's orientation and the face's `same_sense`). Linear parameter ranges grow to
+//!   angle (through a pole or an apex) is moved a turn. Through a pole or an apex a loop runs
+//!   along the box's edge there the way the face's side says (left of the loop, by the bound's
+//!   orientation and the face's `same_sense`: towards −u along the top edge, +u along the
+//!   bottom, up to a whole turn), so lunes wider than a half turn and their complements are
+//!   told apart. A loop that winds once around the axis (a circle bounding a cylinder) is cut
+//!   at the box's edge: two of them make the outer loop (the band between them; on a torus, of
+//!   the two bands the one on the loops' face side, the box's other angle starting at it when
+//!   it does not fit), one is closed along the box's far edge on the face's side. The outer
+//!   loop's points on the box's edges across an angle sit a hair (1e-9 of a turn) outside it,
+//!   so points on the seam inside a hole across it are off the part. Linear parameter ranges grow to
 //!   hold the loops. An edge curve of another kind, a sample more than 1e-4 of the surface's
 //!   size (+ 1e-3 mm) off the surface, edges that do not join, a loop that does not close in
 //!   the parameters or winds otherwise, or more than 200 000 points for a face (2 000 000 for
@@ -1209,6 +1216,32 @@ impl Curve {
         }
     }
 
+    /// The same points run the other way (`t → −t`).
+    fn reversed(self) -> Curve {
+        match self {
+            Curve::Line { p, d } => Curve::Line { p, d: -d },
+            Curve::Conic { f, a, b } => Curve::Conic {
+                f: Frame {
+                    y: -f.y,
+                    z: -f.z,
+                    ..f
+                },
+                a,
+                b,
+            },
+            Curve::Spline {
+                degree,
+                knots,
+                points,
+            } => Curve::Spline {
+                degree,
+                knots: knots.iter().rev().map(|k| -k).collect(),
+                points: points.into_iter().rev().collect(),
+            },
+            Curve::Polyline(p) => Curve::Polyline(p.into_iter().rev().collect()),
+        }
+    }
+
     /// The parameter range of a bounded curve.
     fn range(&self) -> Option<(f64, f64)> {
         match self {
@@ -1650,9 +1683,12 @@ impl Model<'_> {
             }
         }
         if let Some(p) = inst.part("TRIMMED_CURVE") {
-            // The edge's vertices bound it.
+            // The edge's vertices bound it; its sense_agreement .F. runs it against the basis
+            // curve (the way round a conic between the vertices).
             let c = self.reference(id, p.get(1), "basis_curve").map_err(wrap)?;
-            return self.curve(id, c, depth + 1);
+            let curve = self.curve(id, c, depth + 1)?;
+            let against = matches!(p.get(4), Some(Param::Enum(e)) if e == "F");
+            return Ok(if against { curve.reversed() } else { curve });
         }
         if let Some(p) = inst.part("LINE") {
             let origin = self.reference(id, p.get(1), "pnt").map_err(wrap)?;
@@ -1887,9 +1923,14 @@ impl Model<'_> {
                     li.first_name()
                 ));
             };
+            let sense = orientation == same_sense;
+            let samples = match m.period {
+                [Some(t), None] => through_poles(samples, sense, t),
+                _ => samples,
+            };
             out.push(Bound {
                 outer,
-                sense: orientation == same_sense,
+                sense,
                 samples,
             });
         }
@@ -2060,6 +2101,83 @@ impl Model<'_> {
     }
 }
 
+/// A loop through a pole or an apex (a run of free samples, where every u is the same point):
+/// there it runs along the parameter box's edge at that v, from the u it arrives at to the u it
+/// leaves at. Whole turns either way reach the same points; which is meant follows from the
+/// face's side. The face lies on the loop's left in (u, v) (on its right when `sense` is false),
+/// so along the box's top edge the loop runs towards −u, along its bottom edge towards +u, by
+/// more than nothing and at most a turn (a seam met twice through the pole: a whole turn). The
+/// loop is rotated to start off the pole (its last sample repeats its first point).
+fn through_poles(s: Vec<Sample>, sense: bool, t: f64) -> Vec<Sample> {
+    let Some(a) = s.iter().position(|q| !q.free) else {
+        return s;
+    };
+    if !s.iter().any(|q| q.free) {
+        return s;
+    }
+    let seq: Vec<Sample> = if a == 0 {
+        s
+    } else {
+        // Off the pole to the end (less the last sample, the first's point), then round to
+        // where it started, continuing from the head's own angles (the passage below moves
+        // them).
+        let mut v = s[a..s.len() - 1].to_vec();
+        v.extend_from_slice(&s[..=a]);
+        v
+    };
+    let mut out: Vec<Sample> = Vec::with_capacity(seq.len() + 2);
+    let mut shift = 0.0;
+    let mut i = 0;
+    while i < seq.len() {
+        let Some(&before) = out.last().filter(|_| seq[i].free) else {
+            let mut q = seq[i];
+            q.uv[0] += shift;
+            out.push(q);
+            i += 1;
+            continue;
+        };
+        let mut j = i;
+        while j < seq.len() && seq[j].free {
+            j += 1;
+        }
+        let vf = seq[i].uv[1];
+        let Some(after) = seq.get(j) else {
+            // Ends on the pole: it stays at the u it arrives at.
+            out.extend(seq[i..].iter().map(|q| Sample {
+                uv: [before.uv[0], q.uv[1]],
+                free: true,
+            }));
+            break;
+        };
+        let u_out = after.uv[0] + shift;
+        let top = before.uv[1] < vf;
+        let r = (u_out - before.uv[0]).rem_euclid(t);
+        let r = if r <= 1e-9 * t || t - r <= 1e-9 * t {
+            0.0
+        } else {
+            r
+        };
+        let jump = match (top != sense, r == 0.0) {
+            (true, true) => t,
+            (true, false) => r,
+            (false, true) => -t,
+            (false, false) => r - t,
+        };
+        let u_new = before.uv[0] + jump;
+        shift += u_new - u_out;
+        out.push(Sample {
+            uv: [before.uv[0], vf],
+            free: true,
+        });
+        out.push(Sample {
+            uv: [u_new, vf],
+            free: true,
+        });
+        i = j;
+    }
+    out
+}
+
 /// The trim from a face's sampled bounds: closed loops moved a period to lie in the parameter
 /// box (holes across its edge copied to the other side), loops winding once around an angle
 /// paired into one outer loop (or closed along the box edge on the face's side), the outer
@@ -2138,9 +2256,48 @@ fn assemble(surface: &Surface, period: [Option<f64>; 2], bounds: Vec<Bound>) -> 
             })
     };
     let mut starts = [dom.u[0], dom.v[0]];
+    // Loops winding around angle d where the other parameter e is an angle too (a torus): of
+    // the two bands between them the face is the one on their face side (going +u it lies at
+    // +v, going +v at −u), from the loop with the face above it (in e) up to the other, less
+    // than a turn; the box starts at it when it does not fit. One such loop bounds nothing.
+    let mut band_start: [Option<f64>; 2] = [None, None];
+    for (d, w) in winding.iter_mut().enumerate() {
+        let e = 1 - d;
+        let Some(te) = period[e] else { continue };
+        if w.is_empty() {
+            continue;
+        }
+        let face_above = |up: bool| up == (d == 0);
+        let (a, b) = match w.as_slice() {
+            [(x, _), (y, _)] => match (face_above(*x), face_above(*y)) {
+                (true, false) => (0, 1),
+                (false, true) => (1, 0),
+                _ => return Err("the two loops around the surface face the same way".into()),
+            },
+            _ => return Err("one loop around both angles of the surface bounds nothing".into()),
+        };
+        let mean = |l: &[Uv]| l.iter().map(|p| p[e]).sum::<f64>() / l.len().max(1) as f64;
+        let (ma, mb) = (mean(&w[a].1), mean(&w[b].1));
+        let k = (((ma - mb) / te).floor() + 1.0) * te;
+        w[b].1.iter_mut().for_each(|p| p[e] += k);
+        let lo = range(&w[a].1, e).0;
+        let hi = range(&w[b].1, e).1;
+        if hi - lo > te + close[e] || (hi - lo).is_nan() {
+            return Err(
+                "the band between the loops around the surface is wider than a turn".into(),
+            );
+        }
+        let s = starts[e];
+        let k = ((s + 0.5 * te - 0.5 * (lo + hi)) / te).round() * te;
+        for (_, l) in w.iter_mut() {
+            l.iter_mut().for_each(|p| p[e] += k);
+        }
+        let fits = lo + k >= s - close[e] && hi + k <= s + te + close[e];
+        band_start[e] = Some(if fits { s } else { lo + k });
+    }
     for d in 0..2 {
         let Some(t) = period[d] else { continue };
-        let mut s = starts[d];
+        let mut s = band_start[d].unwrap_or(starts[d]);
         // Shift the outer loop in; when it still crosses the box's edge, start the box at it.
         if let Some(o) = outer_at {
             let (lo, hi) = range(&closed[o].1, d);
@@ -2246,6 +2403,24 @@ fn assemble(surface: &Surface, period: [Option<f64>; 2], bounds: Vec<Bound>) -> 
             p
         };
         outer = Some(poly);
+    }
+    // The outer loop's points on the box's edges across an angle (where a band is cut, where a
+    // seam runs) moved a little outside it: the box clips the region there, and a hole across
+    // the seam keeps its points on the seam off the part (on a loop they would count as on).
+    if let Some(o) = outer.as_mut() {
+        let diag = (dom.u[1] - dom.u[0]).hypot(dom.v[1] - dom.v[0]);
+        for d in 0..2 {
+            let Some(t) = period[d] else { continue };
+            let out = (1e-9 * t).max(1e-10 * diag);
+            let s = starts[d];
+            for p in o.iter_mut() {
+                if (p[d] - s).abs() <= close[d] {
+                    p[d] = s - out;
+                } else if (p[d] - s - t).abs() <= close[d] {
+                    p[d] = s + t + out;
+                }
+            }
+        }
     }
     let holes: Vec<Vec<Uv>> = closed
         .into_iter()
