@@ -1296,26 +1296,21 @@ impl Curve {
                     }
                 }
                 let h = (t1 - t0) / n as f64;
-                let (mut a, mut b) = ((best.1 - h).max(t0), (best.1 + h).min(t1));
-                let g = 0.5 * (5f64.sqrt() - 1.0);
-                let (mut c, mut d) = (b - g * (b - a), a + g * (b - a));
-                let (mut fc, mut fd) = (dist(c), dist(d));
-                for _ in 0..80 {
-                    if fc < fd {
-                        b = d;
-                        d = c;
-                        fd = fc;
-                        c = b - g * (b - a);
-                        fc = dist(c);
-                    } else {
-                        a = c;
-                        c = d;
-                        fc = fd;
-                        d = a + g * (b - a);
-                        fd = dist(d);
-                    }
-                }
-                let t = 0.5 * (a + b);
+                let (a, b) = ((best.1 - h).max(t0), (best.1 + h).min(t1));
+                let mut near = best;
+                crate::size::orient4::golden_max(
+                    &mut |t| {
+                        let d = dist(t);
+                        if d < near.0 {
+                            near = (d, t);
+                        }
+                        -d
+                    },
+                    a,
+                    b,
+                    1e-12 * (b - a) + 1e-15 * a.abs().max(b.abs()),
+                );
+                let t = near.1;
                 // The ends exactly, when they are as near.
                 [t0, t1, t]
                     .into_iter()

@@ -473,7 +473,9 @@ fn angle_gap(a: f64, b: f64) -> f64 {
     d.min(360.0 - d)
 }
 
-/// Golden-section search for a maximum of `f` on `[lo, hi]` down to a bracket of `tol`.
+/// Golden-section search for a maximum of `f` on `[lo, hi]` down to a bracket of `tol` (or 200
+/// steps, a bracket of 1e-42 of the start: a `tol` below the doubles' resolution cannot hang it).
+/// Stops early where `f` is infinite. The caller keeps the best value `f` was asked for.
 pub(crate) fn golden_max(f: &mut impl FnMut(f64) -> f64, lo: f64, hi: f64, tol: f64) {
     let g = (5f64.sqrt() - 1.0) / 2.0;
     let (mut a, mut b) = (lo, hi);
@@ -481,7 +483,10 @@ pub(crate) fn golden_max(f: &mut impl FnMut(f64) -> f64, lo: f64, hi: f64, tol: 
     let mut x2 = a + g * (b - a);
     let mut f1 = f(x1);
     let mut f2 = f(x2);
-    while b - a > tol {
+    for _ in 0..200 {
+        if b - a <= tol {
+            break;
+        }
         if f1.is_infinite() || f2.is_infinite() {
             return;
         }
