@@ -3,6 +3,8 @@
 
 mod common;
 
+use common::iges::{circle126, plate_with, polygon, Iges, PLATE};
+
 use swarf_geom::math::Vec3;
 use swarf_plan::io::{iges, ReadError};
 use swarf_plan::{Coverage, ParametricSurface, ReadNote};
@@ -175,144 +177,6 @@ fn occt_trim_maps_onto_the_model_space_boundary() {
     );
 }
 
-/// An IGES file built in code: entities in order (DE 1, 3, 5, …), each its type, its
-/// parameters (without the terminating `;`) and its transformation's DE (0: none).
-#[derive(Default)]
-struct Iges {
-    entities: Vec<(u32, String, usize)>,
-}
-
-impl Iges {
-    /// Adds an entity; returns its DE.
-    fn add(&mut self, kind: u32, params: &str) -> usize {
-        self.add_moved(kind, params, 0)
-    }
-
-    fn add_moved(&mut self, kind: u32, params: &str, transform: usize) -> usize {
-        self.entities
-            .push((kind, format!("{kind},{params};"), transform));
-        2 * self.entities.len() - 1
-    }
-
-    /// The file, in mm (`units = "2,2HMM"`) or other units (flag, name).
-    fn text(&self, units: &str) -> String {
-        let g = format!(
-            "1H,,1H;,4Hswrf,8Htest.igs,4Hswrf,4Hswrf,32,308,15,308,15,4Hswrf,1.,{units},1,0.01,15H20240101.000000,1e-6,100.,4Hswrf,,11,0,15H20240101.000000;"
-        );
-        let mut out = vec![format!("{:<72}S{:07}", "built by iges_trims.rs", 1)];
-        let gb = g.as_bytes();
-        let glines: Vec<&[u8]> = gb.chunks(72).collect();
-        for (k, c) in glines.iter().enumerate() {
-            out.push(format!(
-                "{:<72}G{:07}",
-                std::str::from_utf8(c).unwrap(),
-                k + 1
-            ));
-        }
-        let mut p_lines = Vec::new();
-        let mut d_lines = Vec::new();
-        for (k, (kind, params, transform)) in self.entities.iter().enumerate() {
-            let de = 2 * k + 1;
-            let start = p_lines.len() + 1;
-            let mut cur = String::new();
-            let mut recs = Vec::new();
-            for tok in params.split_inclusive(',') {
-                if cur.len() + tok.len() > 64 {
-                    recs.push(std::mem::take(&mut cur));
-                }
-                cur.push_str(tok);
-            }
-            recs.push(cur);
-            for r in &recs {
-                p_lines.push(format!("{r:<64}{de:>8}P{:07}", p_lines.len() + 1));
-            }
-            d_lines.push(format!(
-                "{kind:>8}{start:>8}{:>8}{:>8}{:>8}{:>8}{transform:>8}{:>8}{:>8}D{:07}",
-                0, 0, 0, 0, 0, "00000000", de
-            ));
-            d_lines.push(format!(
-                "{kind:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:07}",
-                0,
-                0,
-                recs.len(),
-                0,
-                "",
-                "",
-                "",
-                0,
-                de + 1
-            ));
-        }
-        out.extend(d_lines.iter().cloned());
-        out.extend(p_lines.iter().cloned());
-        out.push(format!(
-            "{:<72}T{:07}",
-            format!(
-                "S{:07}G{:07}D{:07}P{:07}",
-                1,
-                glines.len(),
-                d_lines.len(),
-                p_lines.len()
-            ),
-            1
-        ));
-        out.join("\n") + "\n"
-    }
-}
-
-/// A 10 mm square plate over `[0, 1]²` (u along x, v along y).
-const PLATE: &str = "1,1,1,1,0,0,1,0,0,0.,0.,1.,1.,0.,0.,1.,1.,1.,1.,1.,1.,0.,0.,0.,10.,0.,0.,0.,10.,0.,10.,10.,0.,0.,1.,0.,1.";
-
-/// A closed polygon of 110 lines as a 102; returns the 102's DE.
-fn polygon(f: &mut Iges, pts: &[[f64; 2]]) -> usize {
-    let members: Vec<String> = (0..pts.len())
-        .map(|i| {
-            let (a, b) = (pts[i], pts[(i + 1) % pts.len()]);
-            f.add(110, &format!("{},{},0.,{},{},0.", a[0], a[1], b[0], b[1]))
-                .to_string()
-        })
-        .collect();
-    f.add(102, &format!("{},{}", members.len(), members.join(",")))
-}
-
-/// A full circle as a rational quadratic 126 (9 control points, 4 spans).
-fn circle126(f: &mut Iges, c: [f64; 2], r: f64) -> usize {
-    let w = std::f64::consts::FRAC_1_SQRT_2;
-    let corners = [
-        [1.0, 0.0],
-        [1.0, 1.0],
-        [0.0, 1.0],
-        [-1.0, 1.0],
-        [-1.0, 0.0],
-        [-1.0, -1.0],
-        [0.0, -1.0],
-        [1.0, -1.0],
-        [1.0, 0.0],
-    ];
-    let knots = "0,0,0,1,1,2,2,3,3,4,4,4";
-    let weights: Vec<String> = (0..9)
-        .map(|i| {
-            if i % 2 == 1 {
-                w.to_string()
-            } else {
-                "1".into()
-            }
-        })
-        .collect();
-    let points: Vec<String> = corners
-        .iter()
-        .map(|q| format!("{},{},0", c[0] + r * q[0], c[1] + r * q[1]))
-        .collect();
-    f.add(
-        126,
-        &format!(
-            "8,2,1,1,0,0,{knots},{},{},0,4,0,0,1",
-            weights.join(","),
-            points.join(",")
-        ),
-    )
-}
-
 /// The plate with three holes: the square `[0.4, 0.6]²` (a 102 of 110s), the disc of radius
 /// 0.1 around (0.2, 0.2) (a 126) and around (0.8, 0.8) (a 100 about the origin moved by a 124).
 /// A second 144 on the same 128 keeps only `[0.1, 0.9]²` (its outer boundary, a 102).
@@ -399,29 +263,28 @@ fn built_plate_with_holes_from_lines_a_spline_and_a_moved_arc() {
     }
 }
 
-/// The plate with one hole whose 142 is built by `hole` (given the plate's DE; returns the
-/// 142's DE).
-fn plate_with(hole: impl FnOnce(&mut Iges, usize) -> usize) -> String {
-    let mut f = Iges::default();
-    let plate = f.add(128, PLATE);
-    let c = hole(&mut f, plate);
-    f.add(144, &format!("{plate},0,1,0,{c}"));
-    f.text("2,2HMM")
-}
-
 #[test]
 fn trims_that_cannot_be_honoured_leave_the_patch_whole_with_the_reason() {
-    // Only a model-space curve (BPTR = 0).
-    let text = plate_with(|f, plate| {
-        let model = f.add(110, "4.,4.,0.,6.,4.,0.");
-        f.add(142, &format!("0,{plate},0,{model},2"))
-    });
+    // Neither a parameter-space curve (BPTR = 0) nor a model-space one (CPTR = 0).
+    let text = plate_with(|f, plate| f.add(142, &format!("0,{plate},0,0,2")));
     let s = iges::parse(&text).unwrap();
     assert!(s.patches[0].trim.is_none());
     let notes: Vec<String> = s.notes.iter().map(ToString::to_string).collect();
     assert_eq!(
         notes,
-        ["patch 0 is trimmed by IGES 144 at D7 (142 at D5 has no parameter-space curve); the trim is not honoured (the whole patch is used)"],
+        ["patch 0 is trimmed by IGES 144 at D5 (142 at D3 has neither a parameter-space nor a model-space curve); the trim is not honoured (the whole patch is used)"],
+    );
+    // Only a model-space curve, of a type the reader does not evaluate (a 104 conic).
+    let text = plate_with(|f, plate| {
+        let conic = f.add(104, "1.,0.,1.,0.,0.,-1.,0.,1.,0.,1.,0.");
+        f.add(142, &format!("0,{plate},0,{conic},2"))
+    });
+    let s = iges::parse(&text).unwrap();
+    assert!(s.patches[0].trim.is_none());
+    assert!(
+        matches!(&s.notes[0], ReadNote::TrimNotHonoured { patch: 0, by } if by.contains("142 at D5: its model-space curve D3 is an entity 104, which is not supported")),
+        "{:?}",
+        s.notes
     );
     // A parameter-space curve of a type the reader does not evaluate (a 104 conic).
     let text = plate_with(|f, plate| {

@@ -9,13 +9,30 @@
 //! a 110 line, a 100 circular arc or a 102 composite of these (nested up to 8 deep), each with
 //! its 124 transformation if it names one. Curves are sampled to a chord of 1e-6 of the patch's
 //! parameter box diagonal, at least 4 segments per knot span (and per quarter turn of an arc),
-//! into closed polygons; a [`ReadNote::Trimmed`] says how many loops and points. A 142 without
-//! a parameter-space curve (BPTR = 0: only the model-space curve CPTR, which this reader does
-//! not project), a curve type not listed, or a trim needing more than 200 000 points leaves
-//! the patch untrimmed with a [`ReadNote::TrimNotHonoured`] saying why. A second 144 on the
-//! same 128 gets its own copy of the patch (at the end of the list). A boundary pointer that
-//! names no entry, or an entry of the wrong type, is an error at that parameter.
-//! [`IgesDocument::trims`] still lists every 144 as found.
+//! into closed polygons; a [`ReadNote::Trimmed`] says how many loops and points.
+//!
+//! **Model-space boundaries.** A 142 without a parameter-space curve (BPTR = 0, as exporters
+//! write with PREF = 2), or whose parameter-space curve is (or holds) a kind not evaluated
+//! (104, 106, 112, 130), is read through its model-space curve (CPTR) instead: the same kinds
+//! (126 in 3-D, 110, 100 at its ZT, 102 of these, with their 124s), scaled to mm like the
+//! surface, mapped onto the 128. The curve is sampled from 4 steps per knot span (per quarter
+//! turn of an arc, per line), halved until the surface point at the middle of each chord in
+//! parameters lies within min(1e-3 mm, 1e-5 of the surface's size) of the curve's own point
+//! there; every sample is mapped to the patch's parameters by point inversion (Newton seeded by
+//! the previous sample, the first from a coarse grid; at most 256 grid searches per 144). A
+//! sample farther than 1e-4 of the surface's size + 1e-3 mm from the surface, a curve that does
+//! not map to a continuous closed loop (a jump across a seam), fewer than 3 distinct points, or
+//! a model-space curve of a kind not read leaves the patch untrimmed with a
+//! [`ReadNote::TrimNotHonoured`] saying why (`model-space curve of 142 at D5 lies 1.000e0 mm
+//! off the surface …`). The [`ReadNote::Trimmed`] of a trim with such loops says so
+//! (`IGES 144 at D1, the loop of the 142 at D5 mapped from its model-space curve`).
+//!
+//! A 142 with neither curve, a parameter-space curve type not listed (and no model-space
+//! curve), or a trim needing more than 200 000 points leaves the patch untrimmed with a
+//! [`ReadNote::TrimNotHonoured`] saying why. A second 144 on the same 128 gets its own copy of
+//! the patch (at the end of the list). A boundary pointer that names no entry, or an entry of
+//! the wrong type, is an error at that parameter (in a model-space curve: a note, the patch
+//! untrimmed). [`IgesDocument::trims`] still lists every 144 as found.
 //!
 //! The fixed-column format: 80-column records, section letter in column 73 (S, G, D, P, T),
 //! sequence number in 74–80. The G section gives the parameter and record delimiters (defaults
@@ -31,6 +48,7 @@ use swarf_geom::math::Vec3;
 
 use super::{Format, ReadError};
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
+use crate::surface::invert::Inverter;
 use crate::surface::{NurbsSurface, ParamBox, ParametricSurface, Surface};
 use crate::trim::{sample_curve, Trim, TrimError};
 
@@ -151,8 +169,12 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
             .ok()
             .and_then(|d| patch_of_de.get(&d).copied());
         if let Some(k) = patch {
-            let by = format!("IGES 144 at D{}", e.de);
             let domain = doc.surface.patches[k].surface.domain();
+            let surface = &doc.surface.patches[k].surface;
+            let bb = surface.bounding_box();
+            let size = (bb.max - bb.min).length();
+            let size = if size.is_finite() { size } else { 1e3 };
+            let tol_on = 1e-4 * size + 1e-3;
             let mut sampler = Sampler {
                 file: &file,
                 entries: &entries,
@@ -171,11 +193,35 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
                         domain.v[1] + mv,
                     ]
                 },
+                unsupported: false,
+                model: ModelSpace {
+                    inverter: Inverter::new(surface, tol_on, MAX_GRID_SEARCHES),
+                    factor: global.factor,
+                    tol: (1e-5 * size).clamp(1e-9, 1e-3),
+                    tol_on,
+                    de: 0,
+                    last: None,
+                },
+                from_model: Vec::new(),
             };
             let budget = sampler.points_left;
-            match sampler.trim144(e, &p, &domain)? {
+            let result = sampler.trim144(e, &p, &domain)?;
+            points_left -= budget - sampler.points_left;
+            let by = match sampler.from_model.as_slice() {
+                [] => format!("IGES 144 at D{}", e.de),
+                des => format!(
+                    "IGES 144 at D{}, the loop{s} of the 142{s} at {} mapped from {} model-space curve{s}",
+                    e.de,
+                    des.iter()
+                        .map(|d| format!("D{d}"))
+                        .collect::<Vec<_>>()
+                        .join(", "),
+                    if des.len() == 1 { "its" } else { "their" },
+                    s = if des.len() == 1 { "" } else { "s" },
+                ),
+            };
+            match result {
                 Ok(trim) => {
-                    points_left -= budget - sampler.points_left;
                     let target = if claimed[k] {
                         let copy = doc.surface.patches[k].clone();
                         doc.surface.patches.push(copy);
@@ -194,12 +240,11 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
                     patch = Some(target);
                 }
                 Err(why) => {
-                    points_left -= budget - sampler.points_left;
                     // The whole patch stands for this face (once, however many 144s use it).
                     claimed[k] = true;
                     doc.surface.notes.push(ReadNote::TrimNotHonoured {
                         patch: k,
-                        by: format!("{by} ({why})"),
+                        by: format!("IGES 144 at D{} ({why})", e.de),
                     });
                 }
             }
@@ -251,8 +296,12 @@ const MAX_TRIM_CURVES: usize = 20_000;
 const BOX_MARGIN: f64 = 0.01;
 /// Composite curves (102) nest at most this deep in a trimming curve.
 const MAX_NESTING: usize = 8;
-/// Parameter-space curve samples per knot span (and per quarter turn of an arc), at least.
+/// Curve samples per knot span (and per quarter turn of an arc, per line), at least.
 const SEGMENTS_PER_SPAN: usize = 4;
+/// Points of one 144's model-space curves that may need a grid search for their parameters.
+const MAX_GRID_SEARCHES: usize = 256;
+/// Halvings of one initial step when sampling a model-space curve.
+const MAX_HALVINGS: u32 = 12;
 
 type Uv = [f64; 2];
 
@@ -281,8 +330,8 @@ fn append(out: &mut Vec<Uv>, more: Vec<Uv>) {
     out.extend(more.into_iter().skip(skip));
 }
 
-/// The point of a 126 curve (`points` already in parameter space) at `t`, its x and y.
-fn curve_point(c: &IgesCurve, t: f64) -> Uv {
+/// The point of a 126 curve at `t` (in the coordinates of its `points`).
+fn curve_point(c: &IgesCurve, t: f64) -> Vec3 {
     let (m, n, k) = (c.degree, c.points.len(), &c.knots);
     let t = t.clamp(k[m], k[n]);
     // The span [k_s, k_{s+1}) holding t: the last one with k_s ≤ t, moved back off empty spans
@@ -291,10 +340,10 @@ fn curve_point(c: &IgesCurve, t: f64) -> Uv {
     while s > m && k[s] == k[s + 1] {
         s -= 1;
     }
-    let mut d: Vec<[f64; 3]> = (0..=m)
+    let mut d: Vec<[f64; 4]> = (0..=m)
         .map(|j| {
             let (p, w) = (c.points[j + s - m], c.weights[j + s - m]);
-            [p.x * w, p.y * w, w]
+            [p.x * w, p.y * w, p.z * w, w]
         })
         .collect();
     for r in 1..=m {
@@ -307,10 +356,11 @@ fn curve_point(c: &IgesCurve, t: f64) -> Uv {
             }
         }
     }
-    [d[m][0] / d[m][2], d[m][1] / d[m][2]]
+    Vec3::new(d[m][0] / d[m][3], d[m][1] / d[m][3], d[m][2] / d[m][3])
 }
 
-/// Builds the trims of 144s: samples their 142s' parameter-space curves into loops.
+/// Builds the trims of 144s: samples their 142s' parameter-space curves into loops, or maps
+/// their model-space curves onto the patch.
 struct Sampler<'s, 'a> {
     file: &'s Sections<'a>,
     entries: &'s [Entry],
@@ -322,6 +372,180 @@ struct Sampler<'s, 'a> {
     /// The patch's parameter box with a margin, `[u0, u1, v0, v1]`: a trimming curve that
     /// leaves it is not in the patch's parameters.
     bounds: [f64; 4],
+    /// Set when a curve met is of a kind that is not evaluated (104, 106, 112, 130).
+    unsupported: bool,
+    /// Maps model-space curves onto the patch.
+    model: ModelSpace<'s>,
+    /// DEs of the 142s whose loops came from their model-space curves.
+    from_model: Vec<usize>,
+}
+
+/// Where a curve lives: in the patch's parameters (a 142's BPTR) or in model space (CPTR).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Space {
+    Parameter,
+    Model,
+}
+
+impl Space {
+    fn name(self) -> &'static str {
+        match self {
+            Space::Parameter => "parameter-space",
+            Space::Model => "model-space",
+        }
+    }
+}
+
+/// Maps samples of a model-space curve to the patch's parameters.
+struct ModelSpace<'s> {
+    /// Point inversion onto the patch's surface.
+    inverter: Inverter<'s>,
+    /// File units to mm.
+    factor: f64,
+    /// Chord tolerance (mm): the surface point at the middle of a chord in parameters stays
+    /// this close to the curve's own point there.
+    tol: f64,
+    /// Farthest a sample may lie from the surface (mm).
+    tol_on: f64,
+    /// The 142 being mapped.
+    de: usize,
+    /// The parameters of the loop's latest sample (the seed of the next).
+    last: Option<Uv>,
+}
+
+impl ModelSpace<'_> {
+    /// Samples `f` (in the file's coordinates, transforms applied) over `[a, b]`, from `n`
+    /// equal steps halved until the chords, in parameters, stay within [`ModelSpace::tol`] of
+    /// the curve on the surface; each sample mapped to the patch's parameters, seeded by the
+    /// previous one. `budget`: points that may still be mapped.
+    fn sample(
+        &mut self,
+        f: &impl Fn(f64) -> Vec3,
+        a: f64,
+        b: f64,
+        n: usize,
+        budget: &mut usize,
+    ) -> Built<Vec<Uv>> {
+        let n = n.max(1);
+        let mut out = Vec::new();
+        let mut prev: Option<(f64, Uv)> = None;
+        for k in 0..=n {
+            let t = if k == n {
+                b
+            } else {
+                a + (b - a) * k as f64 / n as f64
+            };
+            let seed = prev.map(|p| p.1).or(self.last);
+            let q = self.map(f(t), seed, budget)?;
+            match prev {
+                None => out.push(q),
+                Some(p) => self.refine(f, p, (t, q), 0, &mut out, budget)?,
+            }
+            prev = Some((t, q));
+        }
+        self.last = out.last().copied();
+        Ok(out)
+    }
+
+    fn refine(
+        &mut self,
+        f: &impl Fn(f64) -> Vec3,
+        (ta, qa): (f64, Uv),
+        (tb, qb): (f64, Uv),
+        depth: u32,
+        out: &mut Vec<Uv>,
+        budget: &mut usize,
+    ) -> Built<()> {
+        let tm = 0.5 * (ta + tb);
+        let qm = self.map(f(tm), Some(qa), budget)?;
+        let dev = self.chord_gap(qa, qb, qm);
+        if dev.is_nan() || dev > self.tol {
+            if depth < MAX_HALVINGS {
+                self.refine(f, (ta, qa), (tm, qm), depth + 1, out, budget)?;
+                return self.refine(f, (tm, qm), (tb, qb), depth + 1, out, budget);
+            }
+            if dev.is_nan() || dev > self.tol_on {
+                return Err(self.jumps());
+            }
+        }
+        out.push(qb);
+        Ok(())
+    }
+
+    /// How far the surface point at the middle of the chord `qa`–`qb` lies from that at `qm`.
+    fn chord_gap(&self, qa: Uv, qb: Uv, qm: Uv) -> f64 {
+        let s = self.inverter.surface();
+        let mid = s.point(0.5 * (qa[0] + qb[0]), 0.5 * (qa[1] + qb[1]));
+        (mid - s.point(qm[0], qm[1])).length()
+    }
+
+    fn jumps(&self) -> String {
+        format!(
+            "model-space curve of 142 at D{} does not map to a continuous loop in the surface's parameters (it crosses a seam or a pole?)",
+            self.de
+        )
+    }
+
+    /// The parameters of the surface point nearest `x` (file units), or why not.
+    fn map(&mut self, x: Vec3, seed: Option<Uv>, budget: &mut usize) -> Built<Uv> {
+        if *budget == 0 {
+            return Err(format!(
+                "model-space curve of 142 at D{} needs more than {MAX_TRIM_POINTS} points, or the file's trims more than {MAX_FILE_TRIM_POINTS}",
+                self.de
+            ));
+        }
+        *budget -= 1;
+        let x = x * self.factor;
+        let inv = self
+            .inverter
+            .invert(x, seed)
+            .map_err(|e| format!("model-space curve of 142 at D{}: {e}", self.de))?;
+        if inv.dist.is_nan() || inv.dist > self.tol_on {
+            return Err(format!(
+                "model-space curve of 142 at D{} lies {:.3e} mm off the surface (at ({:.6}, {:.6}, {:.6}) mm; more than {:.1e} mm)",
+                self.de, inv.dist, x.x, x.y, x.z, self.tol_on
+            ));
+        }
+        if !(inv.uv[0].is_finite() && inv.uv[1].is_finite()) {
+            return Err(format!(
+                "model-space curve of 142 at D{} maps to non-finite parameters",
+                self.de
+            ));
+        }
+        Ok(inv.uv)
+    }
+
+    /// Checks a mapped loop: it closes without a jump and has at least 3 distinct points.
+    fn check_loop(&self, l: &[Uv]) -> Built<()> {
+        let (Some(&first), Some(&last)) = (l.first(), l.last()) else {
+            return Err(format!(
+                "model-space curve of 142 at D{} maps to no point",
+                self.de
+            ));
+        };
+        // A curve closed in model space closes in the parameters: the closing chord's middle,
+        // on the surface, lies near its ends (not across the surface, past a seam).
+        let s = self.inverter.surface();
+        let (a, b) = (s.point(first[0], first[1]), s.point(last[0], last[1]));
+        let mid = s.point(0.5 * (first[0] + last[0]), 0.5 * (first[1] + last[1]));
+        let gap = (mid - 0.5 * (a + b)).length();
+        if (a - b).length() <= 2.0 * self.tol_on && (gap.is_nan() || gap > self.tol_on) {
+            return Err(self.jumps());
+        }
+        let mut d = l.to_vec();
+        d.dedup();
+        if d.len() > 1 && d.first() == d.last() {
+            d.pop();
+        }
+        if d.len() < 3 {
+            return Err(format!(
+                "model-space curve of 142 at D{} maps to {} distinct point(s) of the surface's parameters; a loop needs at least 3",
+                self.de,
+                d.len()
+            ));
+        }
+        Ok(())
+    }
 }
 
 /// A trim, or why it cannot be honoured.
@@ -384,7 +608,9 @@ impl Sampler<'_, '_> {
         })
     }
 
-    /// The loop of the 142 named by parameter `i` of `p`.
+    /// The loop of the 142 named by parameter `i` of `p`: from its parameter-space curve
+    /// (BPTR), or, when it has none or one of a kind not evaluated, from its model-space curve
+    /// (CPTR) mapped onto the patch.
     fn boundary142(
         &mut self,
         p: &Params,
@@ -406,18 +632,47 @@ impl Sampler<'_, '_> {
         };
         let q = self.file.params(e)?;
         let bptr = q.int(3, "BPTR")?;
-        if bptr == 0 {
+        let cptr = q.int(4, "CPTR")?;
+        let mut failed = None;
+        if bptr != 0 {
+            self.unsupported = false;
+            match self.curve(&q, 3, "BPTR", None, 0, Space::Parameter)? {
+                Ok(l) => return Ok(Ok(l)),
+                Err(why) if self.unsupported && cptr != 0 => failed = Some(why),
+                Err(why) => return Ok(Err(format!("142 at D{}: {why}", e.de))),
+            }
+        } else if cptr == 0 {
             return Ok(Err(format!(
-                "142 at D{} has no parameter-space curve",
+                "142 at D{} has neither a parameter-space nor a model-space curve",
                 e.de
             )));
         }
-        self.curve(&q, 3, "BPTR", None, 0)
-            .map(|r| r.map_err(|why| format!("142 at D{}: {why}", e.de)))
+        self.model.de = e.de;
+        self.model.last = None;
+        // A model-space curve that cannot be read leaves the patch untrimmed (as it was before
+        // such curves were read), not the file unread.
+        let mapped = match self.curve(&q, 4, "CPTR", None, 0, Space::Model) {
+            Ok(Ok(l)) => self.model.check_loop(&l).map(|()| l),
+            Ok(Err(why)) if why.starts_with("model-space curve of 142") => Err(why),
+            Ok(Err(why)) => Err(format!("142 at D{}: {why}", e.de)),
+            Err(err) => Err(format!(
+                "142 at D{}: its model-space curve cannot be read ({err})",
+                e.de
+            )),
+        };
+        Ok(match (mapped, failed) {
+            (Ok(l), _) => {
+                self.from_model.push(e.de);
+                Ok(l)
+            }
+            (Err(why), None) => Err(why),
+            (Err(why), Some(first)) => Err(format!("142 at D{}: {first}; {why}", e.de)),
+        })
     }
 
-    /// The parameter-space curve named by parameter `i` of `p`, mapped by `outer` (the
-    /// transforms of the entities holding it), sampled.
+    /// The curve named by parameter `i` of `p`, mapped by `outer` (the transforms of the
+    /// entities holding it), sampled: a parameter-space curve as it is, a model-space one mapped
+    /// onto the patch.
     fn curve(
         &mut self,
         p: &Params,
@@ -425,6 +680,7 @@ impl Sampler<'_, '_> {
         what: &str,
         outer: Option<[f64; 12]>,
         depth: usize,
+        space: Space,
     ) -> Result<Built<Vec<Uv>>, ReadError> {
         let de = p.int(i, what)?;
         let Some(e) = entry_at(self.entries, de) else {
@@ -440,17 +696,17 @@ impl Sampler<'_, '_> {
         }
         self.curves_left -= 1;
         let t = compose_opt(&outer, &self.file.transform(self.entries, e)?);
-        let tol = self.tol;
         let pts = match e.kind {
             126 => {
+                // `curve126` applies the curve's own transform; the outer ones are left.
                 let mut c = self.file.curve126(e, self.entries, 1.0)?;
-                c.points.iter_mut().for_each(|q| *q = apply(&t, *q));
+                c.points.iter_mut().for_each(|q| *q = apply(&outer, *q));
                 let (m, n) = (c.degree, c.points.len());
                 let lo = c.range[0].max(c.knots[m]);
                 let hi = c.range[1].min(c.knots[n]);
                 // Knots and range are finite (read as such).
                 if lo >= hi {
-                        return Err(self.file.params(e)?.error(
+                    return Err(self.file.params(e)?.error(
                         7 + c.knots.len() + 4 * n,
                         format!(
                             "entity 126 at D{}: its range [{}, {}] leaves nothing of the knots' [{}, {}]",
@@ -462,14 +718,24 @@ impl Sampler<'_, '_> {
                 for s in m..n {
                     let (a, b) = (c.knots[s].max(lo), c.knots[s + 1].min(hi));
                     if a < b {
-                        let piece =
-                            sample_curve(|x| curve_point(&c, x), a, b, SEGMENTS_PER_SPAN, tol);
+                        let piece = match self.piece(
+                            space,
+                            &|x| curve_point(&c, x),
+                            a,
+                            b,
+                            SEGMENTS_PER_SPAN,
+                        ) {
+                            Ok(piece) => piece,
+                            Err(why) => return Ok(Err(why)),
+                        };
                         append(&mut out, piece);
-                        if out.len() > self.points_left {
-                            return Ok(Err(self.too_many()));
-                        }
-                        if let Some(why) = self.outside(&out, de) {
-                            return Ok(Err(why));
+                        if space == Space::Parameter {
+                            if out.len() > self.points_left {
+                                return Ok(Err(self.too_many()));
+                            }
+                            if let Some(why) = self.outside(&out, de) {
+                                return Ok(Err(why));
+                            }
                         }
                     }
                 }
@@ -481,10 +747,16 @@ impl Sampler<'_, '_> {
                 for (k, x) in v.iter_mut().enumerate() {
                     *x = q.real(1 + k, "line coordinate")?;
                 }
-                Ok(vec![
-                    uv(apply(&t, Vec3::new(v[0], v[1], v[2]))),
-                    uv(apply(&t, Vec3::new(v[3], v[4], v[5]))),
-                ])
+                let (a, b) = (
+                    apply(&t, Vec3::new(v[0], v[1], v[2])),
+                    apply(&t, Vec3::new(v[3], v[4], v[5])),
+                );
+                match space {
+                    Space::Parameter => Ok(vec![uv(a), uv(b)]),
+                    Space::Model => {
+                        self.piece(space, &|s| a + (b - a) * s, 0.0, 1.0, SEGMENTS_PER_SPAN)
+                    }
+                }
             }
             100 => {
                 let q = self.file.params(e)?;
@@ -506,13 +778,13 @@ impl Sampler<'_, '_> {
                     ));
                 }
                 let quarters = ((a1 - a0) / std::f64::consts::FRAC_PI_2).ceil().max(1.0) as usize;
-                Ok(sample_curve(
-                    |a| uv(apply(&t, Vec3::new(cx + r * a.cos(), cy + r * a.sin(), zt))),
+                self.piece(
+                    space,
+                    &|a| apply(&t, Vec3::new(cx + r * a.cos(), cy + r * a.sin(), zt)),
                     a0,
                     a1,
                     SEGMENTS_PER_SPAN * quarters,
-                    tol,
-                ))
+                )
             }
             102 => {
                 if depth >= MAX_NESTING {
@@ -527,17 +799,21 @@ impl Sampler<'_, '_> {
                 let n = q.count(1, "N")?;
                 let mut out = Vec::new();
                 for k in 0..n {
-                    match self.curve(&q, 2 + k, "composite member", t, depth + 1)? {
+                    match self.curve(&q, 2 + k, "composite member", t, depth + 1, space)? {
                         Ok(piece) => append(&mut out, piece),
                         Err(why) => return Ok(Err(why)),
                     }
                 }
                 Ok(out)
             }
-            104 | 106 | 112 | 130 => Err(format!(
-                "its parameter-space curve D{de} is an entity {}, which is not supported",
-                e.kind
-            )),
+            104 | 106 | 112 | 130 => {
+                self.unsupported = true;
+                Err(format!(
+                    "its {} curve D{de} is an entity {}, which is not supported",
+                    space.name(),
+                    e.kind
+                ))
+            }
             k => {
                 return Err(p.error(
                     i,
@@ -545,6 +821,10 @@ impl Sampler<'_, '_> {
                 ))
             }
         };
+        if space == Space::Model {
+            // Points were counted as they were mapped; the patch's box holds them all.
+            return Ok(pts);
+        }
         Ok(match pts {
             Ok(v) if v.len() > self.points_left => Err(self.too_many()),
             Ok(v) if e.kind != 102 && self.outside(&v, de).is_some() => {
@@ -556,6 +836,22 @@ impl Sampler<'_, '_> {
             }
             Err(why) => Err(why),
         })
+    }
+
+    /// Samples one piece of a curve, `f` over `[a, b]` from at least `n` steps: in parameter
+    /// space its x and y to the chord tolerance, in model space mapped onto the patch.
+    fn piece(
+        &mut self,
+        space: Space,
+        f: &impl Fn(f64) -> Vec3,
+        a: f64,
+        b: f64,
+        n: usize,
+    ) -> Built<Vec<Uv>> {
+        match space {
+            Space::Parameter => Ok(sample_curve(|x| uv(f(x)), a, b, n, self.tol)),
+            Space::Model => self.model.sample(f, a, b, n, &mut self.points_left),
+        }
     }
 
     /// Why `pts`, sampled from the curve at `de`, are not in the patch's parameters, if they

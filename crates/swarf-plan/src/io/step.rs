@@ -59,6 +59,7 @@ use swarf_geom::Frame;
 
 use super::{line_col, Format, ReadError};
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
+use crate::surface::invert::Inverter;
 use crate::surface::{
     ConicalSurface, CylindricalSurface, NurbsSurface, ParamBox, ParametricSurface, PlaneSurface,
     SphericalSurface, Surface, ToroidalSurface,
@@ -1390,10 +1391,8 @@ struct Mapper<'s> {
     /// Farthest a point may lie from the surface (mm).
     tol_on: f64,
     points_left: usize,
-    grid_searches_left: usize,
-    /// Parameters and points of a grid over a B-spline surface (Newton seeds), made when first
-    /// needed.
-    grid: Vec<(Uv, Vec3)>,
+    /// Point inversion onto the surface (at most [`MAX_GRID_SEARCHES`] grid searches).
+    inverter: Inverter<'s>,
 }
 
 impl Mapper<'_> {
@@ -1430,58 +1429,8 @@ impl Mapper<'_> {
             ));
         }
         self.points_left -= 1;
-        let local = |f: &Frame| {
-            let l = p - f.origin;
-            (l.dot(f.x), l.dot(f.y), l.dot(f.z))
-        };
-        let (mut uv, free, off) = match self.surface {
-            Surface::Nurbs(_) => {
-                let (uv, off) = self.invert(p, near)?;
-                (uv, false, off)
-            }
-            Surface::Plane(s) => {
-                let (x, y, z) = local(&s.frame);
-                ([x, y], false, z.abs())
-            }
-            Surface::Cylinder(s) => {
-                let (x, y, z) = local(&s.frame);
-                let rho = x.hypot(y);
-                ([y.atan2(x), z], false, (rho - s.radius).abs())
-            }
-            Surface::Cone(s) => {
-                let (x, y, z) = local(&s.frame);
-                let rho = x.hypot(y);
-                let r = s.radius + z * s.semi_angle.tan();
-                let mut u = y.atan2(x);
-                if r < 0.0 {
-                    u += std::f64::consts::PI;
-                }
-                let scale = s.radius.abs() + z.abs() + rho;
-                (
-                    [u, z],
-                    rho <= 1e-9 * scale,
-                    (rho - r.abs()).abs() * s.semi_angle.cos(),
-                )
-            }
-            Surface::Sphere(s) => {
-                let (x, y, z) = local(&s.frame);
-                let rho = x.hypot(y);
-                (
-                    [y.atan2(x), z.atan2(rho)],
-                    rho <= 1e-9 * s.radius,
-                    (rho.hypot(z) - s.radius).abs(),
-                )
-            }
-            Surface::Torus(s) => {
-                let (x, y, z) = local(&s.frame);
-                let rho = x.hypot(y);
-                (
-                    [y.atan2(x), z.atan2(rho - s.major)],
-                    rho <= 1e-9 * (s.major + s.minor),
-                    ((rho - s.major).hypot(z) - s.minor).abs(),
-                )
-            }
-        };
+        let inv = self.inverter.invert(p, near).map_err(|e| e.to_string())?;
+        let (mut uv, free, off) = (inv.uv, inv.pole, inv.dist);
         if off.is_nan() || off > self.tol_on {
             return Err(format!(
                 "the point ({:.6}, {:.6}, {:.6}) is {off:.3e} mm off the surface",
@@ -1502,88 +1451,6 @@ impl Mapper<'_> {
             return Err("a point maps to non-finite parameters".into());
         }
         Ok(Sample { uv, free })
-    }
-
-    /// Newton point inversion on a B-spline surface, seeded at `near` (else, or when that fails,
-    /// at the nearest point of a grid): the parameters and the distance left.
-    fn invert(&mut self, p: Vec3, near: Option<Uv>) -> Built<(Uv, f64)> {
-        let Surface::Nurbs(s) = self.surface else {
-            return Err("not a B-spline surface".into());
-        };
-        let dom = s.domain();
-        let newton = |seed: Uv| {
-            let [mut u, mut v] = seed;
-            let mut r = s.point(u, v) - p;
-            let mut dist = r.length();
-            for _ in 0..50 {
-                let d = s.derivs(u, v);
-                let (a11, a12, a22) = (d.su.dot(d.su), d.su.dot(d.sv), d.sv.dot(d.sv));
-                let (b1, b2) = (-d.su.dot(r), -d.sv.dot(r));
-                let eps = 1e-12 * (a11 + a22) + 1e-300;
-                let (a11, a22) = (a11 + eps, a22 + eps);
-                let det = a11 * a22 - a12 * a12;
-                if det.is_nan() || det <= 0.0 {
-                    break;
-                }
-                let mut du = (b1 * a22 - b2 * a12) / det;
-                let mut dv = (a11 * b2 - a12 * b1) / det;
-                let mut improved = false;
-                for _ in 0..12 {
-                    let (nu, nv) = dom.clamp(u + du, v + dv);
-                    if !(nu.is_finite() && nv.is_finite()) {
-                        break;
-                    }
-                    let nr = s.point(nu, nv) - p;
-                    if nr.length() <= dist {
-                        let step = (nu - u).abs() + (nv - v).abs();
-                        u = nu;
-                        v = nv;
-                        r = nr;
-                        dist = nr.length();
-                        improved = step > 1e-15 * (dom.span().0 + dom.span().1);
-                        break;
-                    }
-                    du *= 0.5;
-                    dv *= 0.5;
-                }
-                if !improved {
-                    break;
-                }
-            }
-            ([u, v], dist)
-        };
-        if let Some(seed) = near {
-            let (uv, dist) = newton(seed);
-            if dist <= self.tol_on {
-                return Ok((uv, dist));
-            }
-        }
-        if self.grid_searches_left == 0 {
-            return Err(format!(
-                "more than {MAX_GRID_SEARCHES} points needed a search for their parameters"
-            ));
-        }
-        self.grid_searches_left -= 1;
-        if self.grid.is_empty() {
-            let spans = |k: &[f64]| k.windows(2).filter(|w| w[1] > w[0]).count();
-            let nu = (4 * spans(s.knots_u()) + 1).clamp(9, 33);
-            let nv = (4 * spans(s.knots_v()) + 1).clamp(9, 33);
-            for i in 0..nu {
-                for j in 0..nv {
-                    let uv = [
-                        dom.u_at(i as f64 / (nu - 1) as f64),
-                        dom.v_at(j as f64 / (nv - 1) as f64),
-                    ];
-                    self.grid.push((uv, s.point(uv[0], uv[1])));
-                }
-            }
-        }
-        let seed = self
-            .grid
-            .iter()
-            .min_by(|a, b| (a.1 - p).length().total_cmp(&(b.1 - p).length()))
-            .map_or([dom.u[0], dom.v[0]], |g| g.0);
-        Ok(newton(seed))
     }
 
     /// Samples `curve` over the runs `(a, b)` (in that direction) to the chord tolerance: the
@@ -1844,14 +1711,14 @@ impl Model<'_> {
         let bb = surface.bounding_box();
         let size = (bb.max - bb.min).length();
         let size = if size.is_finite() { size } else { 1e3 };
+        let tol_on = 1e-4 * size + 1e-3;
         let mut m = Mapper {
             surface,
             period,
             tol: (1e-5 * size).clamp(1e-9, 1e-3),
-            tol_on: 1e-4 * size + 1e-3,
+            tol_on,
             points_left: (*budget).min(MAX_TRIM_POINTS),
-            grid_searches_left: MAX_GRID_SEARCHES,
-            grid: Vec::new(),
+            inverter: Inverter::new(surface, tol_on, MAX_GRID_SEARCHES),
         };
         let start_budget = m.points_left;
         let result = self.face_loops(fid, bounds, same_sense, &mut m);

@@ -8,6 +8,7 @@
 
 mod cone;
 mod cylinder;
+pub(crate) mod invert;
 mod nurbs;
 mod plane;
 mod sphere;

@@ -1,6 +1,8 @@
 //! Shared builders for the integration tests: analytic surfaces written exactly as NURBS.
 #![allow(dead_code, unreachable_pub)]
 
+pub mod iges;
+
 use std::f64::consts::FRAC_1_SQRT_2;
 use swarf_geom::math::Vec3;
 use swarf_plan::size::{CertifiedOptions, Contact, CutterFamily};
