@@ -46,7 +46,7 @@ use std::collections::{HashMap, HashSet};
 
 use swarf_geom::math::Vec3;
 
-use super::{Format, ReadError};
+use super::{Format, ReadError, Uv, MAX_GRID_SEARCHES, MAX_HALVINGS, MAX_TRIM_POINTS};
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
 use crate::surface::invert::Inverter;
 use crate::surface::{NurbsSurface, ParamBox, ParametricSurface, Surface};
@@ -286,8 +286,6 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
     Ok(doc)
 }
 
-/// Most points of one trim's loops; a trim that needs more is not honoured.
-const MAX_TRIM_POINTS: usize = 200_000;
 /// Most points of all the trims of a file (a guard against files that repeat a costly trim).
 const MAX_FILE_TRIM_POINTS: usize = 4_000_000;
 /// Most curve entities visited for one trim (a composite may list one curve many times).
@@ -298,12 +296,6 @@ const BOX_MARGIN: f64 = 0.01;
 const MAX_NESTING: usize = 8;
 /// Curve samples per knot span (and per quarter turn of an arc, per line), at least.
 const SEGMENTS_PER_SPAN: usize = 4;
-/// Points of one 144's model-space curves that may need a grid search for their parameters.
-const MAX_GRID_SEARCHES: usize = 256;
-/// Halvings of one initial step when sampling a model-space curve.
-const MAX_HALVINGS: u32 = 12;
-
-type Uv = [f64; 2];
 
 /// The directory entry with sequence number `de`, if there is one.
 fn entry_at(entries: &[Entry], de: i64) -> Option<&Entry> {

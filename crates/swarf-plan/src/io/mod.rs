@@ -155,3 +155,13 @@ pub(crate) fn line_col(text: &str, pos: usize) -> (usize, usize) {
     let column = String::from_utf8_lossy(&before[start..]).chars().count() + 1;
     (line, column)
 }
+
+/// A point in a patch's parameters, `[u, v]`.
+type Uv = [f64; 2];
+
+/// Most points of one trim's loops (a patch or face); a trim that needs more is not honoured.
+const MAX_TRIM_POINTS: usize = 200_000;
+/// Halvings of one initial step when sampling a trimming curve.
+const MAX_HALVINGS: u32 = 12;
+/// Grid searches (for a Newton seed on a B-spline surface) one trimmed patch or face may make.
+const MAX_GRID_SEARCHES: usize = 256;

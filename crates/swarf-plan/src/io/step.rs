@@ -57,7 +57,7 @@ use std::collections::{HashMap, HashSet};
 use swarf_geom::math::Vec3;
 use swarf_geom::Frame;
 
-use super::{line_col, Format, ReadError};
+use super::{line_col, Format, ReadError, Uv, MAX_GRID_SEARCHES, MAX_HALVINGS, MAX_TRIM_POINTS};
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
 use crate::surface::invert::Inverter;
 use crate::surface::{
@@ -1139,20 +1139,13 @@ impl Model<'_> {
 // ---------------------------------------------------------------------------------------------
 // Face bounds as trims.
 
-/// Most points in one face's trim.
-const MAX_TRIM_POINTS: usize = 200_000;
 /// Most points in all the trims of a file.
 const MAX_FILE_TRIM_POINTS: usize = 2_000_000;
 /// Deepest nesting of curves (a SURFACE_CURVE of a TRIMMED_CURVE of …) and of edges.
 const MAX_CURVE_DEPTH: usize = 8;
-/// Halvings of one initial step when sampling an edge.
-const MAX_HALVINGS: u32 = 12;
-/// Grid searches (for a Newton seed on a B-spline surface) one face may make.
-const MAX_GRID_SEARCHES: usize = 256;
 /// Most control points of a B-spline edge curve, and most points of a POLYLINE or POLY_LOOP.
 const MAX_CURVE_POINTS: usize = 100_000;
 
-type Uv = [f64; 2];
 /// A trim (or a part of one), or why it cannot be honoured.
 type Built<T> = Result<T, String>;
 
