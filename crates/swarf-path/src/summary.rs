@@ -268,6 +268,11 @@ fn move_extent(program: &Program, m: &Move, tol: f64, bb: &mut Bbox, curved: &mu
     }
 }
 
+/// How far (radians, and in `|ratio|` past 1) a spiral's critical points are looked for beyond
+/// those of its mean circle: the phase shift is about `atan(ρ'/ρ)`, far below this for any arc a
+/// program describes.
+const SPIRAL_SLACK: f64 = 0.1;
+
 /// Adds the arc's axis-aligned extreme points to `bb`.
 fn arc_extremes(g: &ArcGeom, start: Vec3, bb: &mut Bbox) {
     if g.sweep <= 0.0 {
@@ -297,9 +302,16 @@ fn arc_extremes(g: &ArcGeom, start: Vec3, bb: &mut Bbox) {
             continue;
         }
         let ratio = -(nk * dh) / amp;
-        if ratio.abs() > 1.0 {
+        // A spiral's critical phases differ a little from the mean circle's: keep the nearly
+        // tangent case (|ratio| a little above 1) for the polish to settle.
+        let spiral = dr != 0.0;
+        let ratio = if spiral && ratio.abs() <= 1.0 + SPIRAL_SLACK {
+            ratio.clamp(-1.0, 1.0)
+        } else if ratio.abs() > 1.0 {
             continue;
-        }
+        } else {
+            ratio
+        };
         let phi = uk.atan2(vk);
         let acos = ratio.acos();
         // Each critical phase recurs once per turn, its value changing linearly (helix) or
@@ -310,13 +322,16 @@ fn arc_extremes(g: &ArcGeom, start: Vec3, bb: &mut Bbox) {
         } else {
             [(0.0, TAU), (g.sweep - TAU, g.sweep)]
         };
+        // Likewise a spiral's critical point may lie inside the arc while the circle's lies
+        // just outside it: candidates a little beyond the ends are polished, then kept if inside.
+        let reach = if spiral { SPIRAL_SLACK } else { 0.0 };
         for base in [acos - phi, -acos - phi] {
             for (lo, hi) in ranges {
-                let j0 = ((lo - base) / TAU).ceil() as i64;
-                let j1 = ((hi - base) / TAU).floor() as i64;
+                let j0 = ((lo - reach - base) / TAU).ceil() as i64;
+                let j1 = ((hi + reach - base) / TAU).floor() as i64;
                 for j in j0..=j1 {
                     let mut t = base + TAU * j as f64;
-                    if dr != 0.0 {
+                    if spiral {
                         // A spiral: polish on the exact derivative.
                         for _ in 0..8 {
                             let h = d2(t);
