@@ -1337,3 +1337,22 @@ proptest! {
         }
     }
 }
+
+/// The move a stress run found: a Ø10 flat end mill descending 1.1 mm into a slope, whose deepest
+/// point lies on a line of near-ties along the rim's medial ridge (bottom and side equally
+/// near). Single support planes leave a gap there at every node size (the search used to run
+/// out of its 200,000 nodes); the pair of planes closes it.
+#[test]
+fn a_flat_bottom_sunk_into_a_slope_is_resolved() {
+    let sc = prop_scene();
+    let opts = GougeOptions::DEFAULT;
+    let a = Vec3::new(16.99233087311153, 33.39428021648282, 1.1069719269855387);
+    let b = Vec3::new(21.710320615461477, 26.933585765335895, 0.024698064657972602);
+    let c = &sc.cutters[0];
+    assert!(format!("{c:?}").contains("Flat"));
+    let f = check(&sc.gs, &gcode(&[a, b]), c, &opts);
+    let r = check(&sc.gs, &gcode(&[b, a]), c, &opts);
+    assert_eq!((f.unresolved, r.unresolved), (0, 0));
+    let (df, dr) = (deepest_from(&f, 2), deepest_from(&r, 2));
+    assert!(df > 0.2 && same_depth(df, dr, &opts), "{df} vs {dr}");
+}

@@ -45,6 +45,13 @@
 //! node can beat the deepest point found by more than [`GougeOptions::accuracy`] (or reach the
 //! tolerance at all: a clear stretch is *proven* clear).
 //!
+//! Where two faces of the part are equally near — the medial ridge of a flat bottom's rim, along
+//! which a flat end mill sunk into a slope has a line of near-ties — either plane alone leaves a
+//! gap at every node size. The depth is at most the smaller of the two planes' gaps at every
+//! point, so the hull's largest such minimum (at a control point, or where the gaps cross on a
+//! segment between two) bounds the node too; a search that has expanded more than a few hundred
+//! nodes tries this pair of planes on every node it would expand.
+//!
 //! # Motion
 //! Every move is cut into fixed-axis straight sub-moves by
 //! [`swarf_stock::five_axis::subdivide`], which bounds the Hausdorff distance between the true

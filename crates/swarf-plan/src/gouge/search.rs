@@ -159,6 +159,8 @@ struct Node {
     t0: f64,
     t1: f64,
     piece: Piece,
+    /// Whether `ub` is already [`pair_bound`]'s.
+    tight: bool,
 }
 
 impl PartialEq for Node {
@@ -238,6 +240,59 @@ fn assess(seg: &Segment, pc: &Piece, t0: f64, t1: f64) -> Assessed {
     }
 }
 
+/// Expansions after which a search also tries [`pair_bound`] on every node it would expand: a
+/// search that has come this far is likely grinding through ties along a ridge, and the easy
+/// searches (nearly all) never pay for the pair.
+const PAIR_AFTER: u64 = 512;
+
+/// Cosine of the angle between two normals of the part beyond which their pair of planes is
+/// tried (30°: the ridges where two faces meet at an edge — a flat bottom's rim, 90°).
+const PAIR_COS: f64 = 0.866;
+
+/// The bound of a pair of planes over the node, when its corners are nearest to faces of the
+/// part with normals more than 30° apart. A node across the ridge where two faces are equally
+/// near (a flat bottom's rim, where a flat end mill sunk into a slope has a line of near-ties) is
+/// bounded loosely by either plane alone, but the depth is at most the smaller of the two plane
+/// gaps at every point, and the largest such minimum over the hull is reached at a control
+/// point or where the two gaps cross on a segment between two.
+fn pair_bound(seg: &Segment, pc: &Piece, t0: f64, t1: f64) -> Option<f64> {
+    let tip = seg.tip(0.5 * (t0 + t1));
+    let pts: SmallVec<[Vec3; 16]> = pc
+        .net
+        .iter()
+        .map(|h| Vec3::new(h.x, h.y, h.z) / h.w)
+        .collect();
+    let centroid = pts.iter().copied().sum::<Vec3>() / pts.len() as f64;
+    let n1 = seg.part.signed_distance(tip, seg.axis, centroid).normal;
+    let n2 = pc
+        .corners_on_part()
+        .iter()
+        .map(|&c| seg.part.signed_distance(tip, seg.axis, c).normal)
+        .min_by(|a, b| a.dot(n1).total_cmp(&b.dot(n1)))?;
+    if n2.dot(n1) >= PAIR_COS {
+        return None;
+    }
+    let dt = 0.5 * (t1 - t0);
+    let plane = |n: Vec3| seg.part.support(tip, seg.axis, n) + dt * n.dot(seg.delta).abs();
+    let (h1, h2) = (plane(n1), plane(n2));
+    let gaps: SmallVec<[(f64, f64); 16]> = pts
+        .iter()
+        .map(|p| (h1 - n1.dot(*p), h2 - n2.dot(*p)))
+        .collect();
+    let mut pair = f64::NEG_INFINITY;
+    for (i, &(a1, a2)) in gaps.iter().enumerate() {
+        pair = pair.max(a1.min(a2));
+        let da = a1 - a2;
+        for &(b1, b2) in &gaps[i + 1..] {
+            let db = b1 - b2;
+            if da * db < 0.0 {
+                pair = pair.max(a1 + da / (da - db) * (b1 - a1));
+            }
+        }
+    }
+    Some(pair)
+}
+
 /// Scratch reused between searches (one per thread).
 #[derive(Default)]
 pub(crate) struct SearchScratch {
@@ -285,6 +340,7 @@ pub(crate) fn deepest(
                 t0,
                 t1,
                 piece: pc,
+                tight: false,
             });
         }
     };
@@ -294,13 +350,29 @@ pub(crate) fn deepest(
             push(&mut out, heap, pc.clone(), q.t0, q.t1);
         }
     }
-    while let Some(node) = heap.pop() {
+    while let Some(mut node) = heap.pop() {
         let gap = q.accuracy.max(q.relative_accuracy * out.depth);
         let prune = (out.depth + gap).max(q.floor);
         if node.ub <= prune || out.depth > q.stop_above {
             out.upper = out.upper.max(node.ub).max(out.depth);
             heap.clear();
             return out;
+        }
+        if out.nodes > PAIR_AFTER && !node.tight {
+            node.tight = true;
+            if let Some(ub) = pair_bound(seg, &node.piece, node.t0, node.t1) {
+                if ub <= prune {
+                    // Pruned after all; its bound still counts towards the certificate.
+                    out.upper = out.upper.max(ub);
+                    continue;
+                }
+                if ub < node.ub {
+                    // Back in line at its tighter bound.
+                    node.ub = ub;
+                    heap.push(node);
+                    continue;
+                }
+            }
         }
         out.nodes += 1;
         if out.nodes > q.max_nodes {
@@ -322,7 +394,7 @@ pub(crate) fn deepest(
             }
         }
     }
-    // Everything was pruned against the floor.
-    out.upper = out.depth.max(q.floor);
+    // Everything was pruned against the floor (or by the pair bound, recorded above).
+    out.upper = out.upper.max(out.depth).max(q.floor);
     out
 }
