@@ -185,19 +185,46 @@ impl CanonSink for Null {
     fn warn(&mut self, _: Warning) {}
 }
 
-/// True when a SIN/COS argument is so large that one rounding in the degree-to-radian
-/// conversion (about `|x|·π/180·2⁻⁵³`) moves the result by more than [`close`] allows: there the
-/// reader's `x.to_radians()` and the reference's `x·π/180` may round differently, and neither
-/// value means anything.
+/// True when the comparison cannot decide: a SIN/COS argument so large that one rounding in the
+/// degree-to-radian conversion (about `|x|·π/180·2⁻⁵³`) moves the result by more than [`close`]
+/// allows (the reader's `x.to_radians()` and the reference's `x·π/180` may round differently, and
+/// neither value means anything), or a computed operand within rounding of a point where the
+/// operation jumps (ROUND at halves, FIX/FUP and MOD at whole multiples, comparisons at equality,
+/// EQ/NE at their 1e-4 threshold, the logic operators at zero): there the last bit decides, as
+/// `ROUND[COS[-780]]`, exactly ½, shows. Literal operands are exact and always compared.
 fn ill_conditioned(e: &E) -> bool {
+    // Within rounding of the jump at `d`, for a computed value.
+    let computed = |a: &E| !matches!(a, E::Num(_));
+    let near =
+        |computed: bool, x: f64, d: f64| computed && (x - d).abs() <= 1e-9 * x.abs().max(1.0);
     match e {
         E::Num(_) => false,
         E::Neg(a) => ill_conditioned(a),
         E::Fun(f, a) => {
+            let x = reference(a);
             ill_conditioned(a)
-                || (matches!(*f, "SIN" | "COS") && reference(a).is_some_and(|x| x.abs() > 1e6))
+                || x.is_some_and(|x| match *f {
+                    "SIN" | "COS" => x.abs() > 1e6,
+                    "ROUND" => near(computed(a), x, x.trunc() + 0.5 * x.signum()),
+                    "FIX" | "FUP" => near(computed(a), x, x.round()),
+                    _ => false,
+                })
         }
-        E::Bin(a, _, b) => ill_conditioned(a) || ill_conditioned(b),
+        E::Bin(a, op, b) => {
+            let (x, y) = (reference(a), reference(b));
+            ill_conditioned(a)
+                || ill_conditioned(b)
+                || x.zip(y).is_some_and(|(x, y)| {
+                    let (ca, cb) = (computed(a), computed(b));
+                    match *op {
+                        "EQ" | "NE" => near(true, (x - y).abs(), 1e-4),
+                        "GT" | "GE" | "LT" | "LE" => near(ca || cb, x - y, 0.0),
+                        "MOD" if y != 0.0 => near(true, x / y, (x / y).round()),
+                        "AND" | "OR" | "XOR" => near(ca, x, 0.0) || near(cb, y, 0.0),
+                        _ => false,
+                    }
+                })
+        }
     }
 }
 
