@@ -682,11 +682,7 @@ pub fn write_standard_maps(
     opts: &PlotOptions,
 ) -> Result<Vec<PathBuf>, IoError> {
     let n = n.max(2);
-    let cells = map_cells(surface, map, n).ok_or_else(|| not_grid(dir))?;
-    std::fs::create_dir_all(dir).map_err(|source| IoError::Io {
-        path: dir.to_path_buf(),
-        source,
-    })?;
+    let cells = cells_into(surface, map, n, dir)?;
     let mut out = Vec::with_capacity(surface.patches.len());
     for (k, chunk) in cells.chunks(n * n).enumerate() {
         let title = format!("patch {}", surface.patches[k].label(k));
@@ -733,6 +729,21 @@ fn map_cells(surface: &CompoundSurface, map: &ToolSizeMap, n: usize) -> Option<V
     points.next().is_none().then_some(cells)
 }
 
+/// [`map_cells`] for pictures to be written into `dir`, which is created.
+fn cells_into(
+    surface: &CompoundSurface,
+    map: &ToolSizeMap,
+    n: usize,
+    dir: &Path,
+) -> Result<Vec<MapCell>, IoError> {
+    let cells = map_cells(surface, map, n).ok_or_else(|| not_grid(dir))?;
+    std::fs::create_dir_all(dir).map_err(|source| IoError::Io {
+        path: dir.to_path_buf(),
+        source,
+    })?;
+    Ok(cells)
+}
+
 fn not_grid(path: &Path) -> IoError {
     IoError::InvalidMesh(format!(
         "{}: the map is not the n×n grid of the surface",
@@ -753,11 +764,7 @@ pub fn write_patch_maps(
     opts: &PlotOptions,
 ) -> Result<Vec<PathBuf>, IoError> {
     let n = n.max(2);
-    let cells = map_cells(surface, map, n).ok_or_else(|| not_grid(dir))?;
-    std::fs::create_dir_all(dir).map_err(|source| IoError::Io {
-        path: dir.to_path_buf(),
-        source,
-    })?;
+    let cells = cells_into(surface, map, n, dir)?;
     let scale = RadiusScale::from_radii(map.points.iter().map(|p| p.radius_mm));
     let mut out = Vec::with_capacity(surface.patches.len());
     for (k, chunk) in cells.chunks(n * n).enumerate() {

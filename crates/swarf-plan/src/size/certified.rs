@@ -605,15 +605,7 @@ pub fn allowable_certified(
 ) -> AllowableSize {
     let regime = family.regime(c, &opts.model);
     if regime == Regime::Unreachable {
-        return AllowableSize {
-            size: 0.0,
-            limit: Some(Limit::Gouge),
-            limit_point: Some(c.point),
-            gap: 0.0,
-            certified: true,
-            evaluations: 0,
-            nodes: 0,
-        };
+        return AllowableSize::unreachable(c.point, true);
     }
     let local = family.local_bound(c, &regime);
     // Beyond `unbounded_above` a size is as good as infinite.

@@ -439,44 +439,7 @@ impl FamilyTrig {
             return k.outward_normal(p);
         }
         let (rho, z, e) = k.meridian(p);
-        let q = Vec2::new(rho, z);
-        let c = Vec2::new(k.big_r, 0.0);
-        let r = k.r;
-        let mut best = (f64::INFINITY, Vec2::new(0.0, -1.0));
-        let mut consider = |pt: Vec2, normal: Vec2| {
-            let d = (q - pt).length();
-            if d < best.0 {
-                best = (d, normal);
-            }
-        };
-        // Side ray from the top of the corner.
-        let n_side = Vec2::new(self.apt.cos_t, -self.apt.sin_t);
-        let s0 = c + r * n_side;
-        let dir = Vec2::new(self.apt.sin_t, self.apt.cos_t);
-        consider(s0 + (q - s0).dot(dir).max(0.0) * dir, n_side);
-        // Corner arc, normals from the bottom's to the side's (less than a quarter turn).
-        let n_bot = Vec2::new(self.apt.sin_c, -self.apt.cos_c);
-        let v = q - c;
-        let inside_arc = n_bot.perp_dot(v) >= 0.0 && v.perp_dot(n_side) >= 0.0;
-        let nrm = if inside_arc && v.length_squared() > 0.0 {
-            v.normalize()
-        } else if v.dot(n_bot) > v.dot(n_side) {
-            n_bot
-        } else {
-            n_side
-        };
-        consider(c + r * nrm, nrm);
-        // Bottom, from the corner's lowest tangent point to the axis.
-        let b0 = c + r * n_bot;
-        let seg = Vec2::new(0.0, b0.y - b0.x * self.apt.tan_c) - b0;
-        let len2 = seg.length_squared();
-        let s = if len2 > 0.0 {
-            ((q - b0).dot(seg) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        consider(b0 + s * seg, n_bot);
-        let n = best.1;
+        let (_, n) = self.apt.closest_on_profile(k.big_r, k.r, Vec2::new(rho, z));
         (n.x * e + n.y * Vec3::Z).normalize()
     }
 }
@@ -513,16 +476,37 @@ pub(crate) fn bound_from_support(pieces: &Pieces, m: f64) -> f64 {
 mod tests {
     use super::*;
 
-    /// The solver's imaginary size on stored trigonometry is the family's, bit for bit.
-    #[test]
-    fn imaginary_on_stored_trigonometry_is_the_same() {
-        let mut k = 7u64;
-        let mut r = || {
+    /// Reproducible uniform numbers in `[−1, 1)` (Knuth's MMIX generator).
+    fn uniform(mut k: u64) -> impl FnMut() -> f64 {
+        move || {
             k = k
                 .wrapping_mul(6364136223846793005)
                 .wrapping_add(1442695040888963407);
             (k >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        }
+    }
+
+    /// A contact near the origin with its normal within about 40° of +z (exactly +z when
+    /// `vertical`), and a test point up to 8 mm beside and 6 mm above or below it.
+    fn contact_and_point(r: &mut impl FnMut() -> f64, vertical: bool) -> (Contact, Vec3) {
+        let normal = if vertical {
+            Vec3::Z
+        } else {
+            Vec3::new(0.6 * r(), 0.6 * r(), 1.0).normalize()
         };
+        let c = Contact {
+            point: Vec3::new(r(), r(), r()),
+            normal,
+            curvature: None,
+        };
+        let p = c.point + Vec3::new(8.0 * r(), 8.0 * r(), 6.0 * r());
+        (c, p)
+    }
+
+    /// The solver's imaginary size on stored trigonometry is the family's, bit for bit.
+    #[test]
+    fn imaginary_on_stored_trigonometry_is_the_same() {
+        let mut r = uniform(7);
         let fams = [
             CutterFamily::flat(),
             CutterFamily::bull(1.5).unwrap(),
@@ -533,18 +517,8 @@ mod tests {
         for f in &fams {
             let ft = FamilyTrig::new(*f);
             for trial in 0..4000 {
-                let n = if trial % 10 == 0 {
-                    Vec3::Z
-                } else {
-                    Vec3::new(0.6 * r(), 0.6 * r(), 1.0).normalize()
-                };
-                let c = Contact {
-                    point: Vec3::new(r(), r(), r()),
-                    normal: n,
-                    curvature: None,
-                };
+                let (c, p) = contact_and_point(&mut r, trial % 10 == 0);
                 let reg = f.regime(&c, &tol);
-                let p = c.point + Vec3::new(8.0 * r(), 8.0 * r(), 6.0 * r());
                 let (a, b) = (
                     f.imaginary(&c, &reg, p, &tol),
                     ft.imaginary(&c, &reg, p, &tol),
@@ -561,13 +535,7 @@ mod tests {
     /// direction: the support functions are right.
     #[test]
     fn support_bound_is_below_the_imaginary_size() {
-        let mut k = 99u64;
-        let mut r = || {
-            k = k
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (k >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-        };
+        let mut r = uniform(99);
         let fams = [
             CutterFamily::Sphere,
             CutterFamily::ball_with_side(),
@@ -580,18 +548,8 @@ mod tests {
         let tol = SizeTolerances::DEFAULT;
         for f in &fams {
             for trial in 0..4000 {
-                let n = if trial % 10 == 0 {
-                    Vec3::Z
-                } else {
-                    Vec3::new(0.6 * r(), 0.6 * r(), 1.0).normalize()
-                };
-                let c = Contact {
-                    point: Vec3::new(r(), r(), r()),
-                    normal: n,
-                    curvature: None,
-                };
+                let (c, p) = contact_and_point(&mut r, trial % 10 == 0);
                 let reg = f.regime(&c, &tol);
-                let p = c.point + Vec3::new(8.0 * r(), 8.0 * r(), 6.0 * r());
                 let l = f.imaginary(&c, &reg, p, &tol);
                 let nu = Vec3::new(r(), r(), r()).normalize();
                 if let Some(pieces) = f.support(&c, &reg, nu) {

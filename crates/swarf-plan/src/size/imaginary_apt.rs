@@ -18,7 +18,7 @@
 //! `C_z + r` and `R = ρ − t(Δz)`; for `ψ > 0` it rises with `R` and the size is found by
 //! bisection on the nested family (rare: conical bottoms under near-horizontal spots).
 
-use swarf_geom::math::Vec3;
+use swarf_geom::math::{Vec2, Vec3};
 
 use super::{Contact, CutterFamily, Regime, SizeTolerances};
 
@@ -52,6 +52,51 @@ impl AptTrig {
             tan_c: cone.tan(),
             flat_bottom: cone == 0.0,
         }
+    }
+
+    /// The point of the profile nearest `q` (meridian coordinates `(ρ, z − corner centre)`, the
+    /// corner circle of radius `r` centred at `(big_r, 0)`) and the outward normal there: the
+    /// nearest of the side ray, the corner arc (its normal clamped to the arc's ends without
+    /// angles: outside the arc the nearer end is the one whose normal leans more towards `q`) and
+    /// the bottom segment to the axis.
+    pub(super) fn closest_on_profile(&self, big_r: f64, r: f64, q: Vec2) -> (Vec2, Vec2) {
+        let c = Vec2::new(big_r, 0.0);
+        let mut best = (f64::INFINITY, Vec2::ZERO, Vec2::new(0.0, -1.0));
+        let mut consider = |pt: Vec2, normal: Vec2| {
+            let d = (q - pt).length();
+            if d < best.0 {
+                best = (d, pt, normal);
+            }
+        };
+        // Side ray from the top of the corner, direction (sin θ, cos θ).
+        let n_side = Vec2::new(self.cos_t, -self.sin_t);
+        let s0 = c + r * n_side;
+        let dir = Vec2::new(self.sin_t, self.cos_t);
+        consider(s0 + (q - s0).dot(dir).max(0.0) * dir, n_side);
+        // Corner arc, normals from the bottom's (sin ψ, −cos ψ) to the side's (less than a
+        // quarter turn).
+        let n_bot = Vec2::new(self.sin_c, -self.cos_c);
+        let v = q - c;
+        let inside_arc = n_bot.perp_dot(v) >= 0.0 && v.perp_dot(n_side) >= 0.0;
+        let nrm = if inside_arc && v.length_squared() > 0.0 {
+            v.normalize()
+        } else if v.dot(n_bot) > v.dot(n_side) {
+            n_bot
+        } else {
+            n_side
+        };
+        consider(c + r * nrm, nrm);
+        // Bottom, from the corner's lowest tangent point to the tip on the axis.
+        let b0 = c + r * n_bot;
+        let seg = Vec2::new(0.0, b0.y - b0.x * self.tan_c) - b0;
+        let len2 = seg.length_squared();
+        let s = if len2 > 0.0 {
+            ((q - b0).dot(seg) / len2).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        consider(b0 + s * seg, n_bot);
+        (best.1, best.2)
     }
 
     /// The profile's radius beyond `R` at height `dz` above the corner-circle centre (`t(z)` of

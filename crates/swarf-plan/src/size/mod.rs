@@ -200,6 +200,23 @@ pub struct AllowableSize {
     pub nodes: u64,
 }
 
+impl AllowableSize {
+    /// The answer at a point no cutter of the family can reach (size 0, a gouge at the point
+    /// itself): proven by the regime alone for the certified solver (`certified`, gap 0), merely
+    /// asserted by the swarm (gap `NaN`).
+    pub(crate) fn unreachable(point: Vec3, certified: bool) -> Self {
+        AllowableSize {
+            size: 0.0,
+            limit: Some(Limit::Gouge),
+            limit_point: Some(point),
+            gap: if certified { 0.0 } else { f64::NAN },
+            certified,
+            evaluations: 0,
+            nodes: 0,
+        }
+    }
+}
+
 /// Classification of a limiting test point: within `radius` of the CC point it is the gouge
 /// bound, otherwise interference.
 pub(crate) fn classify(c: Vec3, p: Vec3, radius: f64) -> Limit {

@@ -15,6 +15,8 @@
 
 use swarf_geom::math::{Vec2, Vec3};
 
+use super::imaginary_apt::AptTrig;
+
 /// An APT-family cutter placed with its axis along `+Z`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct PlacedCutter {
@@ -72,8 +74,7 @@ impl PlacedCutter {
         }
     }
 
-    /// The profile's boundary pieces for `ρ ≥ 0`: (side start, side direction), corner arc
-    /// angles, bottom segment.
+    /// The profile's point nearest `q` (meridian coordinates) and its outward normal.
     fn closest_on_profile(&self, q: Vec2) -> (Vec2, Vec2) {
         let (r, th, ps) = (self.r, self.taper, self.cone);
         let c = Vec2::new(self.big_r, 0.0);
@@ -86,38 +87,7 @@ impl PlacedCutter {
             };
             return (c + r * nrm, nrm);
         }
-        let mut best = (f64::INFINITY, Vec2::ZERO, Vec2::ZERO);
-        let mut consider = |pt: Vec2, normal: Vec2| {
-            let d = (q - pt).length();
-            if d < best.0 {
-                best = (d, pt, normal);
-            }
-        };
-        // Side ray from the top of the corner, direction (sin θ, cos θ).
-        let n_side = Vec2::new(th.cos(), -th.sin());
-        let s0 = c + r * n_side;
-        let dir = Vec2::new(th.sin(), th.cos());
-        let s = (q - s0).dot(dir).max(0.0);
-        consider(s0 + s * dir, n_side);
-        // Corner arc: normals between the bottom's (sin ψ, −cos ψ) and the side's.
-        let a_lo = -(std::f64::consts::FRAC_PI_2 - ps); // angle of (sin ψ, −cos ψ)
-        let a_hi = -th;
-        let ang = (q - c).y.atan2((q - c).x).clamp(a_lo, a_hi);
-        let nrm = Vec2::new(ang.cos(), ang.sin());
-        consider(c + r * nrm, nrm);
-        // Bottom: from the corner's lowest tangent point to the axis.
-        let n_bot = Vec2::new(ps.sin(), -ps.cos());
-        let b0 = c + r * n_bot;
-        let tip = Vec2::new(0.0, b0.y - b0.x * ps.tan());
-        let seg = tip - b0;
-        let len2 = seg.length_squared();
-        let s = if len2 > 0.0 {
-            ((q - b0).dot(seg) / len2).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        consider(b0 + s * seg, n_bot);
-        (best.1, best.2)
+        AptTrig::new(th, ps).closest_on_profile(self.big_r, r, q)
     }
 
     /// Signed distance from `p` to the solid's boundary: negative inside.

@@ -320,15 +320,7 @@ pub fn allowable_pso(
 ) -> AllowableSize {
     let regime = family.regime(c, &opts.model);
     if regime == Regime::Unreachable {
-        return AllowableSize {
-            size: 0.0,
-            limit: Some(Limit::Gouge),
-            limit_point: Some(c.point),
-            gap: f64::NAN,
-            certified: false,
-            evaluations: 0,
-            nodes: 0,
-        };
+        return AllowableSize::unreachable(c.point, false);
     }
     let local = family.local_bound(c, &regime);
     let (mut best, mut best_point, mut is_local) = (local, c.point, true);
