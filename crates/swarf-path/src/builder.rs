@@ -343,6 +343,7 @@ impl CanonSink for MoveBuilder {
             | Canon::ToolLengthOffset(_)
             | Canon::Dwell(_)
             | Canon::Comment(_)
+            | Canon::Message { .. }
             | Canon::ProgramEnd => {}
         }
     }

@@ -121,6 +121,18 @@ pub enum SpindleDir {
     Stopped,
 }
 
+/// What a program message is for (LinuxCNC's active comments).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MessageKind {
+    /// `(MSG,…)`: shown to the operator as written.
+    Msg,
+    /// `(DEBUG,…)`: shown with parameters (`#5420`, `#<name>`) replaced by their values.
+    Debug,
+    /// `(PRINT,…)`: written to the control's terminal, parameters replaced.
+    Print,
+}
+
 /// One canonical machining event. Borrowed text (comments) avoids allocation per event.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Canon<'a> {
@@ -183,6 +195,14 @@ pub enum Canon<'a> {
     Dwell(f64),
     /// A comment or message from the program (borrowed while streaming, owned when kept).
     Comment(Cow<'a, str>),
+    /// An operator message (`(MSG,…)`, `(DEBUG,…)`, `(PRINT,…)`), parameters already replaced
+    /// by their values as LinuxCNC prints them (`%f`).
+    Message {
+        /// Which kind of active comment.
+        kind: MessageKind,
+        /// The text after the comma.
+        text: Cow<'a, str>,
+    },
     /// A definition of the active tool's geometry from the program (APT `CUTTER/`): the seven
     /// APT numbers d, r, e, f, α, β, h (mm, degrees); h = 0 means the program did not give it.
     CutterDefinition([f64; 7]),
@@ -237,6 +257,10 @@ impl CanonSink for Recorder {
     fn emit(&mut self, line: u32, event: &Canon<'_>) {
         let owned = match event {
             Canon::Comment(c) => Canon::Comment(Cow::Owned(c.to_string())),
+            Canon::Message { kind, text } => Canon::Message {
+                kind: *kind,
+                text: Cow::Owned(text.to_string()),
+            },
             Canon::Units(u) => Canon::Units(*u),
             Canon::Offsets { index, g5x, g92 } => Canon::Offsets {
                 index: *index,

@@ -13,13 +13,13 @@
 //!
 //! `ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end_point, a, b, c)`
 //! uses LinuxCNC's plane order: X,Y about Z for G17; Z,X about Y for G18; Y,Z about X for G19.
-//! Only the three motion calls are printed for now; the other canonical calls (units, offsets,
-//! feeds, comments) differ in detail between LinuxCNC versions and are not needed to compare
-//! paths.
+//! The motion calls and the operator messages (`MESSAGE("…")` for `(MSG,…)` and `(DEBUG,…)`)
+//! are printed; the other canonical calls (units, offsets, feeds, comments) differ in detail
+//! between LinuxCNC versions and are not needed to compare paths.
 
 use std::io::{self, Write};
 
-use crate::{Canon, CanonSink, Units, Warning};
+use crate::{Canon, CanonSink, MessageKind, Units, Warning};
 
 /// A [`CanonSink`] that writes LinuxCNC canonical motion calls to `W`.
 ///
@@ -110,6 +110,10 @@ impl<W: Write> CanonicalPrinter<W> {
                     end.c
                 )?;
             }
+            Canon::Message {
+                kind: MessageKind::Msg | MessageKind::Debug,
+                text,
+            } => writeln!(self.out, " N..... MESSAGE(\"{text}\")")?,
             _ => {}
         }
         Ok(())

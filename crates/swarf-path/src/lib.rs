@@ -31,7 +31,7 @@ pub mod moves;
 pub mod summary;
 
 pub use builder::MoveBuilder;
-pub use canon::{Axes, Canon, CanonSink, FeedMode, Plane, SpindleDir, Units};
+pub use canon::{Axes, Canon, CanonSink, FeedMode, MessageKind, Plane, SpindleDir, Units};
 pub use error::{PathError, PathErrorKind, SourcePos, Warning};
 pub use kinematics::Machine;
 pub use moves::{ArcGeom, AxisSource, Move, MoveKind, Pose, Program};

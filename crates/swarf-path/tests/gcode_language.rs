@@ -6,7 +6,7 @@ use std::time::{Duration, Instant};
 
 use swarf_path::canon::{OwnedCanon, Recorder};
 use swarf_path::gcode::{read_gcode, GcodeOptions};
-use swarf_path::{Axes, Canon, PathError, PathErrorKind, Plane};
+use swarf_path::{Axes, Canon, MessageKind, PathError, PathErrorKind, Plane};
 
 fn run_with(src: &str, opts: &GcodeOptions) -> Result<Recorder, PathError> {
     let mut rec = Recorder::default();
@@ -586,16 +586,42 @@ fn case_and_spacing_do_not_matter() {
     assert_eq!(a, c);
 }
 
+/// LinuxCNC's active comments: `MSG` as written, `DEBUG` and `PRINT` with parameters replaced
+/// (`%f`, six decimals; LinuxCNC G-code manual, "Messages" and "Debug Messages").
+#[test]
+fn active_comments_are_messages() {
+    let rec = run("#1=2.5\n#<depth>=-1\n(MSG, hello #1)\n(debug,at #1 and #<depth> #<nope>)\n(PRINT,x=#1)\nM2\n");
+    let msgs: Vec<_> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Message { kind, text } => Some((*kind, text.to_string())),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        msgs,
+        vec![
+            (MessageKind::Msg, " hello #1".to_string()),
+            (
+                MessageKind::Debug,
+                "at 2.500000 and -1.000000 ######".to_string()
+            ),
+            (MessageKind::Print, "x=2.500000".to_string()),
+        ]
+    );
+}
+
 #[test]
 fn comments_block_delete_and_tape_markers() {
-    let rec = run("%\n(MSG, hello) G0 X1 ; not emitted\n/G0 X99\nG0 X2\n%\nG0 X3\n");
+    let rec = run("%\n(a note) G0 X1 ; not emitted\n/G0 X99\nG0 X2\n%\nG0 X3\n");
     let comments: Vec<_> = rec
         .events
         .iter()
         .filter(|(_, e)| matches!(e, Canon::Comment(_)))
         .collect();
     assert_eq!(comments.len(), 1);
-    assert_eq!(comments[0].1, Canon::Comment("MSG, hello".into()));
+    assert_eq!(comments[0].1, Canon::Comment("a note".into()));
     let xs: Vec<f64> = motion(&rec).iter().map(|e| end_of(e).x).collect();
     assert_eq!(
         xs,

@@ -534,9 +534,8 @@ impl Interp<'_, '_> {
         self.ctl.truncate(f.ctl_len);
         self.params
             .set_named("_value_returned", f64::from(u8::from(value.is_some())));
-        if let Some(v) = value {
-            self.params.set_named("_value", v);
-        }
+        // A call that returns nothing clears the value of the one before (LinuxCNC).
+        self.params.set_named("_value", value.unwrap_or(0.0));
         self.at = f.ret;
         Ok(())
     }

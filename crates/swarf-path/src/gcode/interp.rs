@@ -18,8 +18,8 @@ use super::lexer::{column_of, normalize, split_line, LineBuf};
 use super::params::{Params, Target};
 use super::{Fault, GcodeOptions, Res, Span};
 use crate::{
-    Axes, Canon, CanonSink, FeedMode, PathError, PathErrorKind, Plane, SourcePos, SpindleDir,
-    Units, Warning,
+    Axes, Canon, CanonSink, FeedMode, MessageKind, PathError, PathErrorKind, Plane, SourcePos,
+    SpindleDir, Units, Warning,
 };
 
 /// A place in the text between lines: `pos` is the start of the next line to read, `line` the
@@ -344,8 +344,18 @@ impl<'t, 's> Interp<'t, 's> {
         }
         for &(a, b) in &lb.comments {
             let text: &'t str = &raw[a as usize..b as usize];
-            self.sink
-                .emit(self.cur_line, &Canon::Comment(Cow::Borrowed(text)));
+            let event = match active_comment(text) {
+                Some((kind, body)) => Canon::Message {
+                    kind,
+                    text: if kind == MessageKind::Msg {
+                        Cow::Borrowed(body)
+                    } else {
+                        Cow::Owned(self.substitute_parameters(body))
+                    },
+                },
+                None => Canon::Comment(Cow::Borrowed(text)),
+            };
+            self.sink.emit(self.cur_line, &event);
         }
         if lb.code.is_empty() {
             return Ok(());
@@ -1100,8 +1110,66 @@ impl ParamRead for Interp<'_, '_> {
             "_rpm" => Some(self.rpm),
             "_current_tool" => Some(f64::from(self.tool)),
             "_line" => Some(f64::from(self.cur_line)),
+            // LinuxCNC starts with no value returned.
+            "_value" | "_value_returned" => Some(self.params.get_named(name).unwrap_or(0.0)),
             _ => self.params.get_named(name),
         }
+    }
+}
+
+/// LinuxCNC's active comments: `(MSG,…)`, `(DEBUG,…)`, `(PRINT,…)` (any case), and the text
+/// after the comma.
+fn active_comment(text: &str) -> Option<(MessageKind, &str)> {
+    let (head, body) = text.split_once(',')?;
+    let kind = match head.trim() {
+        h if h.eq_ignore_ascii_case("msg") => MessageKind::Msg,
+        h if h.eq_ignore_ascii_case("debug") => MessageKind::Debug,
+        h if h.eq_ignore_ascii_case("print") => MessageKind::Print,
+        _ => return None,
+    };
+    Some((kind, body))
+}
+
+impl Interp<'_, '_> {
+    /// A `(DEBUG,…)`/`(PRINT,…)` text with `#123` and `#<name>` replaced by their values as
+    /// LinuxCNC prints them (`%f`; an undefined name prints `######`).
+    fn substitute_parameters(&self, text: &str) -> String {
+        let mut out = String::with_capacity(text.len() + 16);
+        let mut rest = text;
+        while let Some(i) = rest.find('#') {
+            out.push_str(&rest[..i]);
+            let after = &rest[i + 1..];
+            if let Some(named) = after.strip_prefix('<') {
+                if let Some(j) = named.find('>') {
+                    let name: String = named[..j]
+                        .chars()
+                        .filter(|c| !c.is_whitespace())
+                        .map(|c| c.to_ascii_lowercase())
+                        .collect();
+                    match self.named(&name) {
+                        Some(v) => out.push_str(&format!("{v:.6}")),
+                        None => out.push_str("######"),
+                    }
+                    rest = &named[j + 1..];
+                    continue;
+                }
+            } else {
+                let digits = after.bytes().take_while(u8::is_ascii_digit).count();
+                if let Some(n) = after[..digits]
+                    .parse::<usize>()
+                    .ok()
+                    .filter(|n| (1..=super::expr::MAX_PARAM).contains(n))
+                {
+                    out.push_str(&format!("{:.6}", self.get_numbered(n)));
+                    rest = &after[digits..];
+                    continue;
+                }
+            }
+            out.push('#');
+            rest = after;
+        }
+        out.push_str(rest);
+        out
     }
 }
 
