@@ -119,27 +119,56 @@ impl TriDexel {
         tool: &ToolShape,
         chordal_tol: f64,
     ) -> Result<SegmentCut, StockError> {
+        self.cut_move_range(program, index, 0.0, 1.0, tool, chordal_tol)
+    }
+
+    /// Cuts the part `[s0, s1]` of move `index` (move parameter, 0 at its start, 1 at its end)
+    /// as [`TriDexel::cut_move`] cuts a whole move: cutting `[0, a]` then `[a, 1]` leaves the
+    /// stock as cutting `[0, 1]` does (up to the chords of arcs, which then pass through the
+    /// arc's point at `a` too).
+    pub fn cut_move_range(
+        &mut self,
+        program: &Program,
+        index: usize,
+        s0: f64,
+        s1: f64,
+        tool: &ToolShape,
+        chordal_tol: f64,
+    ) -> Result<SegmentCut, StockError> {
         let m = &program.moves[index];
         check_move(index, m)?;
         if crate::five_axis::is_five_axis(program, m) {
-            return self.cut_five_axis(program, index, tool, chordal_tol);
+            return self.cut_five_axis_range(program, index, (s0, s1), tool, chordal_tol);
         }
+        let pose = |s: f64| {
+            if s == 0.0 {
+                m.start.tip
+            } else if s == 1.0 {
+                m.end.tip
+            } else {
+                program.pose_at(m, s).tip
+            }
+        };
         let axis = m.start.axis.normalize();
         let mut total = SegmentCut::default();
         match m.kind {
             MoveKind::Rapid | MoveKind::Linear => {
-                total = self.cut_linear(tool, m.start.tip, m.end.tip, axis);
+                total = self.cut_linear(tool, pose(s0), pose(s1), axis);
             }
             MoveKind::Arc(g) => {
-                let n = arc_chords(g.start_radius.max(g.end_radius), g.sweep, chordal_tol);
-                let mut prev = m.start.tip;
+                let n = arc_chords(
+                    g.start_radius.max(g.end_radius),
+                    g.sweep * (s1 - s0),
+                    chordal_tol,
+                );
+                let mut prev = pose(s0);
                 for i in 1..=n {
-                    let s = i as f64 / n as f64;
-                    let p = if i == n {
-                        m.end.tip
+                    let s = if i == n {
+                        s1
                     } else {
-                        program.pose_at(m, s).tip
+                        s0 + (s1 - s0) * (i as f64 / n as f64)
                     };
+                    let p = pose(s);
                     total.add(self.cut_linear(tool, prev, p, axis));
                     prev = p;
                 }

@@ -576,6 +576,18 @@ impl TriDexel {
         tool: &ToolShape,
         tol: f64,
     ) -> Result<SegmentCut, StockError> {
+        self.cut_five_axis_range(program, index, (0.0, 1.0), tool, tol)
+    }
+
+    /// [`TriDexel::cut_five_axis`] on the part `range` of the move's parameter.
+    pub fn cut_five_axis_range(
+        &mut self,
+        program: &Program,
+        index: usize,
+        range: (f64, f64),
+        tool: &ToolShape,
+        tol: f64,
+    ) -> Result<SegmentCut, StockError> {
         check_tolerance(program, index, tol)?;
         let mut out = SegmentCut::default();
         for (k, shape) in [tool.cutting(), tool.non_cutting()].into_iter().enumerate() {
@@ -586,7 +598,16 @@ impl TriDexel {
             // sweep within `bound + tol` of its sweep, so if its box grown by that holds no
             // material they would remove nothing and are not made.
             let mut pieces = Vec::new();
-            for c in subdivide(program, index, r, tol.max(SCREEN_TOLERANCE_MM))? {
+            let mut screened = Vec::new();
+            subdivide_range(
+                program,
+                index,
+                r,
+                tol.max(SCREEN_TOLERANCE_MM),
+                range,
+                &mut screened,
+            )?;
+            for c in screened {
                 let Some(b) = piece_box(shape, &c) else {
                     continue;
                 };

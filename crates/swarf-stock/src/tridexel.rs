@@ -380,6 +380,25 @@ impl TriDexel {
         }
     }
 
+    /// A conservative range `[lowest, highest]` along family `k`'s rays of the material of the
+    /// rays that cross `bbox` (from the tiles' bounds: it may be wider than the material, never
+    /// narrower); `None` when those rays hold no material. Cost: one look per 8 × 8 tile.
+    pub fn material_range(&self, k: usize, bbox: &Aabb) -> Option<(f64, f64)> {
+        let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+        let fam = &self.families[k];
+        let (i0, i1) = self.grid.centers_in(u, bbox.min[u], bbox.max[u])?;
+        let (j0, j1) = self.grid.centers_in(v, bbox.min[v], bbox.max[v])?;
+        let mut b = EMPTY_BOUND;
+        for tj in j0 / TILE..=j1 / TILE {
+            for ti in i0 / TILE..=i1 / TILE {
+                let t = fam.bounds[tj * fam.ntu + ti];
+                b[0] = b[0].min(t[0]);
+                b[1] = b[1].max(t[1]);
+            }
+        }
+        (b[0] <= b[1]).then_some((b[0], b[1]))
+    }
+
     /// Removes the union of the swept volumes `parts` (all sharing one move) from every ray
     /// that crosses their bounding box; returns what was removed.
     pub fn subtract_swept(&mut self, parts: &[SweptConvex<'_>]) -> CutStats {

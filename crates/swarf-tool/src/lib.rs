@@ -37,6 +37,7 @@ pub mod piece;
 pub mod solid;
 pub mod spec;
 pub mod table;
+pub mod toolset;
 
 pub use cutter::{AptParams, Cutter, CutterKind, CutterOptions};
 pub use describe::CutterDescription;
@@ -45,6 +46,7 @@ pub use holder::{Holder, HolderSegment};
 pub use piece::{AnyPiece, Piece};
 pub use solid::RevolvedSolid;
 pub use table::{LengthUnit, ToolEntry, ToolTable};
+pub use toolset::{ResolveError, ResolvedTool, ToolSet, ToolSource};
 
 impl Cutter {
     /// Parses a tool spec string (see [`spec`]) into a validated cutter.

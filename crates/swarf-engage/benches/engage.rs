@@ -1,0 +1,2 @@
+//! Engagement benchmark (work in progress).
+fn main() {}

@@ -1,0 +1,365 @@
+//! The engagement at one cutter location: sampled on the cutter's circles, integrated over its
+//! surface.
+//!
+//! On every circle of a [`Strip`] the engagement indicator is sampled at `N = 360°/dφ`
+//! immersion angles through one signed, distance-like function
+//!
+//! ```text
+//! g(P) = min(δ(P), R·f(P))     where f > 0, and R·f − ε where f ≤ 0
+//! ```
+//!
+//! with `δ` the signed distance of the surface point `P` to the stock's boundary (positive in
+//! the material, [`crate::MaterialProbe`]), `f = N·V/|V|` the tangency function (positive on
+//! the kinematically feasible, forward side of the cutter, Aras eq. 5.18) and `R` the cutter's
+//! radius (so both terms are lengths). The engaged region is `{g > 0}`. Because `g` is
+//! distance-like on both kinds of boundary — where the cutter leaves the material and where the
+//! motion stops pushing into it — its zero crossings are located by linear interpolation
+//! between samples, to `O(dφ²)` in angle and `O(dz²)` in height, not to the sample spacing:
+//!
+//! * per circle, the engaged angle intervals have their ends interpolated between samples;
+//! * the area integrates, over every band between two circles and every angle step, the share
+//!   of the cell where the bilinear interpolant of `g` is positive (exact in angle, 8 sub-rows
+//!   in height) times the band's true surface area ([`Strip::band_area`]); the half bands at the
+//!   ends of a strip take their circle's share;
+//! * the axial depth runs from the lowest to the highest engaged height, interpolated between
+//!   discs the same way.
+
+use serde::Serialize;
+use swarf_geom::math::Vec3;
+
+use crate::strip::{Strip, StripKind};
+
+/// A closed interval of immersion angle, degrees: `start ∈ [0, 360)`, `end ∈ (start, start +
+/// 360]` (an interval through 0° has `end > 360`).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct PhiInterval {
+    /// First engaged angle in the rotation direction, degrees.
+    pub start_deg: f64,
+    /// Last engaged angle, degrees.
+    pub end_deg: f64,
+}
+
+impl PhiInterval {
+    /// Angular length, degrees.
+    pub fn len_deg(&self) -> f64 {
+        self.end_deg - self.start_deg
+    }
+
+    /// The interval as at most two pieces within `[0, 360]` (one through 0° is split there).
+    pub fn split_at_zero(&self) -> impl Iterator<Item = (f64, f64)> {
+        let (a, b) = (self.start_deg, self.end_deg);
+        let (first, second) = if b > 360.0 {
+            ((a, 360.0), Some((0.0, b - 360.0)))
+        } else {
+            ((a, b), None)
+        };
+        std::iter::once(first).chain(second)
+    }
+}
+
+/// The engaged angles on one circle of the cutter.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct CircleEngagement {
+    /// The circle's parameter, mm: height above the tip (axial discs) or radius (bottom rings).
+    pub at_mm: f64,
+    /// Engaged immersion-angle intervals, ascending.
+    pub intervals: Vec<PhiInterval>,
+}
+
+impl CircleEngagement {
+    /// Total engaged angle, degrees.
+    pub fn engaged_deg(&self) -> f64 {
+        self.intervals.iter().map(PhiInterval::len_deg).sum()
+    }
+
+    /// Entry and exit angles, degrees: the first engaged angle after the largest gap (in the
+    /// rotation direction) and the last one before it, both in `[0, 360)` (exit 360 when the
+    /// whole circle is engaged).
+    pub fn entry_exit(&self) -> Option<(f64, f64)> {
+        let iv = &self.intervals;
+        if iv.is_empty() {
+            return None;
+        }
+        if iv.len() == 1 && iv[0].len_deg() >= 360.0 - 1e-9 {
+            return Some((0.0, 360.0));
+        }
+        // The gap after interval i runs to the start of interval i + 1 (cyclically).
+        let mut best = (f64::NEG_INFINITY, 0);
+        for i in 0..iv.len() {
+            let next = if i + 1 < iv.len() {
+                iv[i + 1].start_deg
+            } else {
+                iv[0].start_deg + 360.0
+            };
+            let gap = next - iv[i].end_deg;
+            if gap > best.0 {
+                best = (gap, i);
+            }
+        }
+        let before = iv[best.1];
+        let after = iv[(best.1 + 1) % iv.len()];
+        Some((
+            after.start_deg.rem_euclid(360.0),
+            before.end_deg.rem_euclid(360.0),
+        ))
+    }
+}
+
+/// Sampled values of `g` on the rows `rows.0..rows.1` of a strip (other rows are not engaged).
+#[derive(Clone, Debug, Default)]
+pub(crate) struct StripSamples {
+    pub(crate) rows: (usize, usize),
+    pub(crate) n_phi: usize,
+    /// Row-major, `(rows.1 − rows.0) × n_phi`.
+    pub(crate) g: Vec<f64>,
+}
+
+impl StripSamples {
+    fn row(&self, k: usize) -> Option<&[f64]> {
+        (k >= self.rows.0 && k < self.rows.1)
+            .then(|| &self.g[(k - self.rows.0) * self.n_phi..(k - self.rows.0 + 1) * self.n_phi])
+    }
+}
+
+/// What a strip's samples integrate to.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct StripResult {
+    pub(crate) area: f64,
+    pub(crate) circles: Vec<CircleEngagement>,
+    /// Lowest and highest engaged parameter, mm.
+    pub(crate) extent: Option<(f64, f64)>,
+}
+
+/// Share of `[0, 1]` where the linear function from `a` (at 0) to `b` (at 1) is positive.
+#[inline]
+fn positive_share(a: f64, b: f64) -> f64 {
+    match (a > 0.0, b > 0.0) {
+        (true, true) => 1.0,
+        (false, false) => 0.0,
+        (true, false) => a / (a - b),
+        (false, true) => b / (b - a),
+    }
+}
+
+/// Sub-rows (in height) of the cell integration.
+const SUB_ROWS: usize = 8;
+
+/// Share of the cell where the bilinear interpolant of its corners is positive.
+fn cell_share(g00: f64, g01: f64, g10: f64, g11: f64) -> f64 {
+    let all_pos = g00 > 0.0 && g01 > 0.0 && g10 > 0.0 && g11 > 0.0;
+    if all_pos {
+        return 1.0;
+    }
+    if g00 <= 0.0 && g01 <= 0.0 && g10 <= 0.0 && g11 <= 0.0 {
+        return 0.0;
+    }
+    let mut s = 0.0;
+    for m in 0..SUB_ROWS {
+        let t = (m as f64 + 0.5) / SUB_ROWS as f64;
+        s += positive_share(g00 + (g10 - g00) * t, g01 + (g11 - g01) * t);
+    }
+    s / SUB_ROWS as f64
+}
+
+/// Engaged intervals of one sampled circle (angles `j·dφ`, cyclic).
+fn circle_intervals(g: &[f64], dphi_deg: f64) -> Vec<PhiInterval> {
+    let n = g.len();
+    let Some(first_out) = g.iter().position(|&v| v <= 0.0) else {
+        return vec![PhiInterval {
+            start_deg: 0.0,
+            end_deg: 360.0,
+        }];
+    };
+    let mut out = Vec::new();
+    let mut start: Option<f64> = None;
+    for step in 1..=n {
+        let j = (first_out + step) % n;
+        let jp = (first_out + step + n - 1) % n;
+        let (prev, cur) = (g[jp], g[j]);
+        let phi_prev = (first_out + step - 1) as f64 * dphi_deg;
+        if prev <= 0.0 && cur > 0.0 {
+            start = Some(phi_prev + dphi_deg * prev / (prev - cur));
+        } else if prev > 0.0 && cur <= 0.0 {
+            let end = phi_prev + dphi_deg * prev / (prev - cur);
+            if let Some(a) = start.take() {
+                let a0 = a.rem_euclid(360.0);
+                out.push(PhiInterval {
+                    start_deg: a0,
+                    end_deg: a0 + (end - a),
+                });
+            }
+        }
+    }
+    out.sort_by(|a, b| a.start_deg.total_cmp(&b.start_deg));
+    out
+}
+
+pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> StripResult {
+    let n = s.n_phi;
+    let dphi = dphi_deg.to_radians();
+    let mut res = StripResult::default();
+    let mut lo = f64::INFINITY;
+    let mut hi = f64::NEG_INFINITY;
+    let last = strip.len() - 1;
+    for k in s.rows.0..s.rows.1 {
+        let Some(row) = s.row(k) else { continue };
+        if strip.is_reported(k) {
+            let intervals = circle_intervals(row, dphi_deg);
+            if !intervals.is_empty() {
+                res.circles.push(CircleEngagement {
+                    at_mm: strip.param[k],
+                    intervals,
+                });
+            }
+        }
+        if k == last {
+            if row.iter().any(|&v| v > 0.0) {
+                lo = lo.min(strip.param[k]);
+                hi = hi.max(strip.param[k]);
+            }
+            continue;
+        }
+        // The band to the next circle (not sampled: not engaged).
+        let next = s.row(k + 1);
+        let (p0, p1) = (strip.param[k], strip.param[k + 1]);
+        let mut share = 0.0;
+        for j in 0..n {
+            let jn = (j + 1) % n;
+            let (g00, g01) = (row[j], row[jn]);
+            let (g10, g11) = next.map_or((-1.0, -1.0), |r| (r[j], r[jn]));
+            share += cell_share(g00, g01, g10, g11);
+            // The engaged extent along the parameter, interpolated on this column.
+            if g00 > 0.0 {
+                let t = if g10 > 0.0 { 1.0 } else { g00 / (g00 - g10) };
+                lo = lo.min(p0);
+                hi = hi.max(p0 + t * (p1 - p0));
+            } else if g10 > 0.0 {
+                let t = g00 / (g00 - g10);
+                lo = lo.min(p0 + t * (p1 - p0));
+                hi = hi.max(p1);
+            }
+        }
+        res.area += share * dphi * strip.band_area[k];
+    }
+    if lo <= hi {
+        res.extent = Some((lo, hi));
+    }
+    res
+}
+
+/// The engagement of the cutter at one cutter location.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct Engagement {
+    /// Index of the location in the program (0-based, feed moves only).
+    pub location: usize,
+    /// Index of the move in the program.
+    pub move_index: usize,
+    /// Source file name.
+    pub file: String,
+    /// 1-based source line.
+    pub line: u32,
+    /// Move parameter of the location, 0 at the move's start, 1 at its end.
+    pub s: f64,
+    /// Tool tip, workpiece frame, mm.
+    pub tip: Vec3,
+    /// Unit tool axis `z_L`.
+    pub axis: Vec3,
+    /// Feed direction `x_L` (unit, normal to the axis).
+    pub x_l: Vec3,
+    /// `y_L = z_L × x_L`.
+    pub y_l: Vec3,
+    /// Engaged intervals per axial disc (engaged discs only), by height above the tip.
+    pub discs: Vec<CircleEngagement>,
+    /// Engaged intervals per bottom ring (flat bottoms; engaged rings only), by radius.
+    pub bottom: Vec<CircleEngagement>,
+    /// Engaged area on the cutter surface, mm².
+    pub area_mm2: f64,
+    /// Axial depth: height of the engaged region along the axis, mm.
+    pub ap_mm: f64,
+    /// Entry angle on the disc (or ring) of largest engagement, degrees.
+    pub phi_entry_deg: Option<f64>,
+    /// Exit angle on that disc, degrees.
+    pub phi_exit_deg: Option<f64>,
+    /// Volume removed since the previous location, mm³.
+    pub removed_mm3: f64,
+    /// Material removal rate at the programmed feed, mm³/min.
+    pub mrr_mm3_min: f64,
+}
+
+impl Engagement {
+    /// True when any of the cutter is in the material.
+    pub fn is_engaged(&self) -> bool {
+        self.area_mm2 > 0.0
+    }
+
+    /// Fills area, depth, angles and circles from the strips' results.
+    pub(crate) fn set_from(&mut self, side: Option<StripResult>, bottom: Option<StripResult>) {
+        let (side, bottom) = (side.unwrap_or_default(), bottom.unwrap_or_default());
+        self.area_mm2 = side.area + bottom.area;
+        let z_lo = if bottom.extent.is_some() {
+            Some(0.0)
+        } else {
+            side.extent.map(|e| e.0)
+        };
+        self.ap_mm = match (z_lo, side.extent) {
+            (Some(lo), Some((_, hi))) => hi - lo,
+            _ => 0.0,
+        };
+        let widest = |c: &[CircleEngagement]| {
+            c.iter()
+                .max_by(|a, b| a.engaged_deg().total_cmp(&b.engaged_deg()))
+                .and_then(CircleEngagement::entry_exit)
+        };
+        let angles = widest(&side.circles).or_else(|| widest(&bottom.circles));
+        self.phi_entry_deg = angles.map(|a| a.0);
+        self.phi_exit_deg = angles.map(|a| a.1);
+        self.discs = side.circles;
+        self.bottom = bottom.circles;
+    }
+}
+
+/// Which strip a circle belongs to (for writers).
+pub fn strip_name(kind: StripKind) -> &'static str {
+    match kind {
+        StripKind::Side => "disc",
+        StripKind::Bottom => "ring",
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn intervals_with_interpolated_ends() {
+        // g = sin φ sampled every 10°: engaged (0°, 180°).
+        let g: Vec<f64> = (0..36)
+            .map(|j| (j as f64 * 10.0).to_radians().sin())
+            .collect();
+        let iv = circle_intervals(&g, 10.0);
+        assert_eq!(iv.len(), 1);
+        assert!(iv[0].start_deg.abs() < 1e-9 && (iv[0].end_deg - 180.0).abs() < 1e-6);
+        // Through zero: g = cos φ, engaged (270°, 450°) = (−90°, 90°).
+        let g: Vec<f64> = (0..36)
+            .map(|j| (j as f64 * 10.0).to_radians().cos())
+            .collect();
+        let iv = circle_intervals(&g, 10.0);
+        assert_eq!(iv.len(), 1);
+        assert!((iv[0].start_deg - 270.0).abs() < 1e-6 && (iv[0].end_deg - 450.0).abs() < 1e-6);
+        let parts: Vec<_> = iv[0].split_at_zero().collect();
+        assert_eq!(parts.len(), 2);
+        let c = CircleEngagement {
+            at_mm: 1.0,
+            intervals: iv,
+        };
+        let (a, b) = c.entry_exit().unwrap();
+        assert!((a - 270.0).abs() < 1e-6 && (b - 90.0).abs() < 1e-6);
+    }
+
+    #[test]
+    fn cell_share_of_a_diagonal_is_half() {
+        assert!((cell_share(1.0, 0.0, 0.0, -1.0) - 0.5).abs() < 1e-12);
+        assert!((cell_share(1.0, -1.0, 1.0, -1.0) - 0.5).abs() < 1e-12);
+        assert_eq!(cell_share(1.0, 1.0, 1.0, 1.0), 1.0);
+    }
+}

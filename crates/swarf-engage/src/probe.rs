@@ -1,0 +1,237 @@
+//! Where a point is with respect to the material of a tri-dexel stock, and how far from its
+//! boundary, read from the exact interval ends of the rays around it.
+//!
+//! Each family of rays (along X, Y or Z) sees the stock's boundary near a point `P` through the
+//! four rays around `P` (cell centres `(i, i+1) × (j, j+1)` across the family). On each of them
+//! the interval end nearest to `P`'s coordinate along the ray is an **exact** boundary point.
+//! When the four nearest ends are of one kind (all material-entries or all material-exits) they
+//! lie on one sheet of the boundary, which over the cell is the height field `t = e(u, v)`
+//! interpolated bilinearly between them; `P`'s signed distance to that sheet's tangent plane
+//! is `s·(t − e)/√(1 + |∇e|²)` (`s` = +1 when the material lies on the ray's positive side
+//! of the sheet). That is exact for a plane and within `O(h²·κ)` of the truth for a sheet of
+//! curvature `κ`. Near a sheet parallel to a family the four rays straddle it (some inside, some
+//! not): that family is not **coherent** there and says nothing; another, transverse to the
+//! sheet, does. Of the coherent families the nearest sheet wins (the distance to a solid's
+//! boundary is the distance to its nearest face). Only near an edge of the stock — within a ray
+//! spacing of two faces at once — may no family be coherent: the rays nearest to `P` then vote
+//! on the side, and the distance is reported as a fraction of the spacing.
+
+use swarf_geom::math::Vec3;
+use swarf_stock::{Interval, TriDexel};
+
+/// What the rays say about a point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Depth {
+    /// Signed distance to the stock's boundary, mm: positive inside the material.
+    pub distance: f64,
+    /// True when a coherent family measured it; false when the rays only voted on the side.
+    pub measured: bool,
+}
+
+/// Point queries against a stock. Cheap to make; borrows the stock.
+#[derive(Clone, Copy, Debug)]
+pub struct MaterialProbe<'a> {
+    stock: &'a TriDexel,
+    /// Distances beyond this (mm) need no precision: the point is deep inside or far outside.
+    cap: f64,
+}
+
+/// The nearest interval end to `t` on one ray: signed distance along the ray (positive in the
+/// material), and which kind of end it is (`+1`: an entry, the material on the ray's positive
+/// side; `−1`: an exit). `None` for a ray without material.
+#[inline]
+fn nearest_end(ray: &[Interval], t: f64) -> Option<(f64, f64, i8)> {
+    let mut best: Option<(f64, f64, i8)> = None;
+    let mut consider = |end: f64, kind: i8| {
+        let d = (t - end).abs();
+        if best.map_or(true, |(_, b, _)| d < (t - b).abs()) {
+            best = Some((0.0, end, kind));
+        }
+    };
+    for iv in ray {
+        consider(iv.enter, 1);
+        consider(iv.exit, -1);
+        if iv.enter > t {
+            break;
+        }
+    }
+    best.map(|(_, end, kind)| (f64::from(kind) * (t - end), end, kind))
+}
+
+impl<'a> MaterialProbe<'a> {
+    /// A probe of `stock`.
+    pub fn new(stock: &'a TriDexel) -> Self {
+        let h = stock.grid().h;
+        Self {
+            stock,
+            cap: 4.0 * h[0].max(h[1]).max(h[2]),
+        }
+    }
+
+    /// The stock probed.
+    pub fn stock(&self) -> &'a TriDexel {
+        self.stock
+    }
+
+    /// The signed distance of `p` to the boundary of the material (positive inside).
+    pub fn depth(&self, p: Vec3) -> Depth {
+        let mut best: Option<f64> = None;
+        let mut votes = 0i32;
+        let mut vote_scale = 0.0f64;
+        for k in 0..3 {
+            match self.family_depth(k, p) {
+                FamilyDepth::Coherent(d) => {
+                    if best.map_or(true, |b| d.abs() < b.abs()) {
+                        best = Some(d);
+                    }
+                }
+                FamilyDepth::Vote(inside, spacing) => {
+                    votes += if inside { 1 } else { -1 };
+                    vote_scale = vote_scale.max(spacing);
+                }
+            }
+        }
+        match best {
+            Some(d) => Depth {
+                distance: d.clamp(-self.cap, self.cap),
+                measured: true,
+            },
+            None => Depth {
+                // Three votes: a tie is impossible.
+                distance: f64::from(votes.signum()) * 0.25 * vote_scale,
+                measured: false,
+            },
+        }
+    }
+
+    /// True when `p` is inside the material (by [`MaterialProbe::depth`]).
+    pub fn inside(&self, p: Vec3) -> bool {
+        self.depth(p).distance > 0.0
+    }
+
+    fn family_depth(&self, k: usize, p: Vec3) -> FamilyDepth {
+        let g = self.stock.grid();
+        let fam = self.stock.family(k);
+        let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+        let (nu, nv) = fam.dims();
+        let fu = (p[u] - g.min[u]) / g.h[u] - 0.5;
+        let fv = (p[v] - g.min[v]) / g.h[v] - 0.5;
+        let (i0, j0) = (fu.floor(), fv.floor());
+        let (wu, wv) = (fu - i0, fv - j0);
+        let t = p[k];
+        let spacing = g.h[u].max(g.h[v]);
+        // The four rays: (di, dj) in {0,1}².
+        let mut ends = [0.0f64; 4];
+        let mut kind = 0i8;
+        let mut coherent = true;
+        let mut nearest = (f64::INFINITY, false);
+        for (r, (di, dj)) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]
+            .into_iter()
+            .enumerate()
+        {
+            let (i, j) = (i0 + di, j0 + dj);
+            let ray: &[Interval] = if i < 0.0 || j < 0.0 || i >= nu as f64 || j >= nv as f64 {
+                &[]
+            } else {
+                fam.ray(i as usize, j as usize)
+            };
+            let near = nearest_end(ray, t);
+            // The vote of the ray nearest to P across the family.
+            let dist2 = (wu - di).powi(2) + (wv - dj).powi(2);
+            if dist2 < nearest.0 {
+                nearest = (dist2, near.is_some_and(|(d, _, _)| d > 0.0));
+            }
+            match near {
+                Some((d, end, kd)) if d.abs() <= self.cap => {
+                    if kind == 0 {
+                        kind = kd;
+                    } else if kind != kd {
+                        coherent = false;
+                    }
+                    ends[r] = end;
+                }
+                _ => coherent = false,
+            }
+        }
+        if !coherent {
+            return FamilyDepth::Vote(nearest.1, spacing);
+        }
+        // Bilinear height field of the boundary sheet over the cell, and its gradient.
+        let e = ends[0] * (1.0 - wu) * (1.0 - wv)
+            + ends[1] * wu * (1.0 - wv)
+            + ends[2] * (1.0 - wu) * wv
+            + ends[3] * wu * wv;
+        let de_du = ((ends[1] - ends[0]) * (1.0 - wv) + (ends[3] - ends[2]) * wv) / g.h[u];
+        let de_dv = ((ends[2] - ends[0]) * (1.0 - wu) + (ends[3] - ends[1]) * wu) / g.h[v];
+        let s = f64::from(kind);
+        FamilyDepth::Coherent(s * (t - e) / (1.0 + de_du * de_du + de_dv * de_dv).sqrt())
+    }
+}
+
+enum FamilyDepth {
+    /// The signed distance to the sheet the four rays agree on.
+    Coherent(f64),
+    /// The rays disagree: only the nearest ray's side (inside?) and the ray spacing.
+    Vote(bool, f64),
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn nearest_end_kinds() {
+        let ray = [
+            Interval {
+                enter: 0.0,
+                exit: 1.0,
+            },
+            Interval {
+                enter: 2.0,
+                exit: 5.0,
+            },
+        ];
+        assert_eq!(nearest_end(&ray, 0.2), Some((0.2, 0.0, 1)));
+        assert_eq!(nearest_end(&ray, 0.9).map(|x| x.2), Some(-1));
+        let (d, e, k) = nearest_end(&ray, 1.4).unwrap();
+        assert!((d + 0.4).abs() < 1e-15 && e == 1.0 && k == -1);
+        let (d, e, k) = nearest_end(&ray, 1.7).unwrap();
+        assert!((d + 0.3).abs() < 1e-15 && e == 2.0 && k == 1);
+        assert_eq!(nearest_end(&[], 1.0), None);
+    }
+
+    #[test]
+    fn distance_to_an_oblique_plane_is_exact() {
+        // Material below the plane n·x = 3 with n oblique to every family.
+        let n = Vec3::new(0.3, -0.4, 0.866).normalize();
+        let h = 0.25;
+        let b = swarf_geom::Aabb::new(Vec3::splat(-5.0), Vec3::splat(5.0));
+        let stock = TriDexel::from_fn(b, h, |k, cu, cv, d| {
+            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+            // Along the ray: n_k t + n_u cu + n_v cv <= 3.
+            let rest = 3.0 - n[u] * cu - n[v] * cv;
+            let t = rest / n[k];
+            let (lo, hi) = if n[k] > 0.0 {
+                (-5.0, t.min(5.0))
+            } else {
+                (t.max(-5.0), 5.0)
+            };
+            if hi > lo {
+                d.push(Interval {
+                    enter: lo,
+                    exit: hi,
+                });
+            }
+        })
+        .unwrap();
+        let probe = MaterialProbe::new(&stock);
+        for (i, s) in [-0.4, -0.1, -0.01, 0.003, 0.05, 0.3].iter().enumerate() {
+            let base = Vec3::new(0.37 * i as f64 - 1.0, 0.11 * i as f64, 0.0);
+            let base = base + n * (3.0 - n.dot(base));
+            let p = base - n * *s; // depth s below the plane
+            let d = probe.depth(p);
+            assert!(d.measured);
+            assert!((d.distance - s).abs() < 1e-9, "{s}: {d:?}");
+        }
+    }
+}

@@ -1,0 +1,566 @@
+//! Engagement along a program: cutter locations, the stock cut up to each, the engagement at
+//! each — an iterator the force model consumes without files.
+
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+use swarf_geom::math::Vec3;
+use swarf_geom::Aabb;
+use swarf_path::{FeedMode, Move, MoveKind, Program};
+use swarf_stock::{StockError, ToolShape, TriDexel, DEFAULT_CHORDAL_TOLERANCE_MM};
+use swarf_sweep::MotionState;
+use swarf_tool::{Cutter, ToolSet};
+
+use crate::engagement::{integrate, Engagement, StripResult, StripSamples};
+use crate::probe::MaterialProbe;
+use crate::strip::Strip;
+
+/// Default spacing of cutter locations along a move, mm of tool-tip travel.
+pub const DEFAULT_STEP_MM: f64 = 1.0;
+/// Default height of the axial discs (and width of the bottom rings), mm.
+pub const DEFAULT_DZ_MM: f64 = 0.1;
+/// Default immersion-angle sampling, degrees.
+pub const DEFAULT_DPHI_DEG: f64 = 1.0;
+/// `f = N·V/|V|` at or below this is not pushing into the material (grazing or backward).
+pub const FEASIBLE_EPS: f64 = 1e-9;
+
+/// Engagement options; accuracy parameters with their defaults in one place.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct EngageOptions {
+    /// Cutter locations every `step_mm` of tool-tip travel along a feed move, and at its end;
+    /// 0: at move ends only.
+    pub step_mm: f64,
+    /// Height of the axial discs (and width of the bottom rings), mm.
+    pub dz_mm: f64,
+    /// Immersion-angle sampling, degrees (rounded so that a whole number of steps makes 360°).
+    pub dphi_deg: f64,
+    /// Chordal tolerance of arcs and 5-axis moves when cutting the stock, mm.
+    pub chordal_tolerance_mm: f64,
+}
+
+impl Default for EngageOptions {
+    fn default() -> Self {
+        Self {
+            step_mm: DEFAULT_STEP_MM,
+            dz_mm: DEFAULT_DZ_MM,
+            dphi_deg: DEFAULT_DPHI_DEG,
+            chordal_tolerance_mm: DEFAULT_CHORDAL_TOLERANCE_MM,
+        }
+    }
+}
+
+impl EngageOptions {
+    /// With another location spacing.
+    pub fn with_step(mut self, step_mm: f64) -> Self {
+        self.step_mm = step_mm;
+        self
+    }
+    /// With another disc height.
+    pub fn with_dz(mut self, dz_mm: f64) -> Self {
+        self.dz_mm = dz_mm;
+        self
+    }
+    /// With another angular sampling.
+    pub fn with_dphi(mut self, dphi_deg: f64) -> Self {
+        self.dphi_deg = dphi_deg;
+        self
+    }
+    /// With another chordal tolerance.
+    pub fn with_chordal_tolerance(mut self, tol: f64) -> Self {
+        self.chordal_tolerance_mm = tol;
+        self
+    }
+
+    fn check(&self) -> Result<(), EngageError> {
+        let bad = |name: &'static str, value: f64, want: &'static str| {
+            Err(EngageError::BadOption { name, value, want })
+        };
+        if !(self.step_mm.is_finite() && self.step_mm >= 0.0) {
+            return bad("step", self.step_mm, "a non-negative number of mm");
+        }
+        if !(self.dz_mm.is_finite() && self.dz_mm > 1e-4) {
+            return bad("dz", self.dz_mm, "a number of mm above 0.0001");
+        }
+        if !(self.dphi_deg.is_finite() && self.dphi_deg >= 0.01 && self.dphi_deg <= 30.0) {
+            return bad("dphi", self.dphi_deg, "between 0.01 and 30 degrees");
+        }
+        if !(self.chordal_tolerance_mm.is_finite() && self.chordal_tolerance_mm > 0.0) {
+            return bad(
+                "tolerance",
+                self.chordal_tolerance_mm,
+                "a positive number of mm",
+            );
+        }
+        Ok(())
+    }
+}
+
+/// Why an engagement run stopped.
+#[derive(Debug, thiserror::Error)]
+pub enum EngageError {
+    /// An option out of range.
+    #[error("--{name} must be {want}, got {value}")]
+    BadOption {
+        /// Option name.
+        name: &'static str,
+        /// Value given.
+        value: f64,
+        /// What it must be.
+        want: &'static str,
+    },
+    /// A move uses a tool nothing defines.
+    #[error("{file}:{line}: move {index} uses tool {tool}, which nothing defines")]
+    UnknownTool {
+        /// Source file.
+        file: String,
+        /// Source line.
+        line: u32,
+        /// Move index.
+        index: usize,
+        /// Tool number.
+        tool: u32,
+    },
+    /// Cutting the stock failed (non-finite pose, a 5-axis move beyond the sub-move limit).
+    #[error(transparent)]
+    Stock(#[from] StockError),
+}
+
+/// A cutter prepared for engagement: its sweep shapes and its surface strips.
+#[derive(Clone, Debug)]
+struct Prepared {
+    shape: ToolShape,
+    side: Option<Strip>,
+    bottom: Option<Strip>,
+    radius: f64,
+    /// Height of the cutting part, mm.
+    height: f64,
+}
+
+impl Prepared {
+    fn new(cutter: &Cutter, opts: &EngageOptions) -> Self {
+        Self {
+            shape: ToolShape::new(cutter),
+            side: Strip::side(cutter, opts.dz_mm),
+            bottom: Strip::bottom(cutter, opts.dz_mm),
+            radius: 0.5 * cutter.max_diameter(),
+            height: cutter.apt_params().h,
+        }
+    }
+}
+
+/// Figures of a run so far.
+#[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
+pub struct EngageStats {
+    /// Cutter locations produced.
+    pub locations: usize,
+    /// Of those, engaged ones.
+    pub engaged_locations: usize,
+    /// Volume removed by the program so far (rapids included), mm³.
+    pub removed_volume_mm3: f64,
+    /// Time spent cutting the stock, s.
+    pub simulate_elapsed_s: f64,
+    /// Surface points whose side was measured / voted (see [`MaterialProbe`]).
+    pub probes: u64,
+}
+
+/// The sampled angles `j·dφ` of a run.
+#[derive(Clone, Debug)]
+struct Angles {
+    dphi_deg: f64,
+    sin: Vec<f64>,
+    cos: Vec<f64>,
+}
+
+impl Angles {
+    fn new(dphi_deg: f64) -> Self {
+        let n = (360.0 / dphi_deg).round().max(12.0) as usize;
+        let d = 360.0 / n as f64;
+        let (sin, cos) = (0..n)
+            .map(|j| (j as f64 * d).to_radians().sin_cos())
+            .unzip();
+        Self {
+            dphi_deg: d,
+            sin,
+            cos,
+        }
+    }
+}
+
+/// The engagement at every cutter location of a program, in order: an iterator of
+/// [`Engagement`]s that cuts the stock as it goes (the stock ends as `swarf_stock::simulate`
+/// leaves it).
+///
+/// For each feed move the locations lie every [`EngageOptions::step_mm`] of tool-tip travel
+/// and at its end. The engagement at a location is taken against the stock with every earlier
+/// move and this move up to the previous location cut: the part of the move between the two
+/// locations only removes material behind the cutter's forward surface, so this is the stock
+/// "at that instant" on the surface that can touch it, and the material there is still whole
+/// around the surface (its boundary is not the surface itself). Then that part is cut.
+pub struct Engager<'a> {
+    program: &'a Program,
+    stock: &'a mut TriDexel,
+    opts: EngageOptions,
+    tools: BTreeMap<u32, Prepared>,
+    default_tool: Option<Prepared>,
+    angles: Angles,
+    next_move: usize,
+    /// The move being walked: index, its location parameters, how many are done.
+    current: Option<(usize, Vec<f64>, usize)>,
+    last_x: Option<Vec3>,
+    stats: EngageStats,
+    failed: bool,
+}
+
+impl<'a> Engager<'a> {
+    /// A run of `program` on `stock` with the cutters of `tools`.
+    ///
+    /// # Errors
+    /// Options out of range.
+    pub fn new(
+        program: &'a Program,
+        tools: &ToolSet,
+        stock: &'a mut TriDexel,
+        opts: EngageOptions,
+    ) -> Result<Self, EngageError> {
+        opts.check()?;
+        let mut prepared = BTreeMap::new();
+        let mut used: Vec<u32> = program.tools.clone();
+        used.extend(program.moves.iter().map(|m| m.tool));
+        used.sort_unstable();
+        used.dedup();
+        for n in used {
+            if let Some(c) = tools.resolved().get(&n) {
+                prepared.insert(n, Prepared::new(&c.cutter, &opts));
+            }
+        }
+        let default_tool = tools.fallback().map(|c| Prepared::new(c, &opts));
+        Ok(Self {
+            program,
+            stock,
+            opts,
+            tools: prepared,
+            default_tool,
+            angles: Angles::new(opts.dphi_deg),
+            next_move: 0,
+            current: None,
+            last_x: None,
+            stats: EngageStats::default(),
+            failed: false,
+        })
+    }
+
+    /// Figures so far (complete once the iterator has ended).
+    pub fn stats(&self) -> EngageStats {
+        self.stats
+    }
+
+    /// Moves of the program done so far.
+    pub fn moves_done(&self) -> usize {
+        self.next_move
+    }
+
+    fn tool(&self, index: usize) -> Result<&Prepared, EngageError> {
+        let m = &self.program.moves[index];
+        self.tools
+            .get(&m.tool)
+            .or(self.default_tool.as_ref())
+            .ok_or_else(|| EngageError::UnknownTool {
+                file: self.file_of(m),
+                line: m.line,
+                index,
+                tool: m.tool,
+            })
+    }
+
+    fn file_of(&self, m: &Move) -> String {
+        self.program
+            .files
+            .get(usize::from(m.file))
+            .cloned()
+            .unwrap_or_default()
+    }
+
+    /// Cuts `[s0, s1]` of move `index`; returns the volume removed (mm³).
+    fn cut(&mut self, index: usize, s0: f64, s1: f64) -> Result<f64, EngageError> {
+        let t0 = Instant::now();
+        let shape = self.tool(index)?.shape.clone();
+        let cut = self.stock.cut_move_range(
+            self.program,
+            index,
+            s0,
+            s1,
+            &shape,
+            self.opts.chordal_tolerance_mm,
+        )?;
+        self.stats.simulate_elapsed_s += t0.elapsed().as_secs_f64();
+        let area = self.stock.ray_area(2);
+        let removed = (cut.cutting.removed_length[2] + cut.non_cutting.removed_length[2]) * area;
+        self.stats.removed_volume_mm3 += removed;
+        Ok(removed)
+    }
+
+    /// The location parameters of feed move `m`: every `step` mm of tip travel, and 1.
+    fn locations(&self, m: &Move) -> Vec<f64> {
+        let len = path_length(self.program, m);
+        let mut out = Vec::new();
+        if self.opts.step_mm > 0.0 && len > self.opts.step_mm {
+            let n = (len / self.opts.step_mm).ceil() as usize;
+            for i in 1..n {
+                let s = i as f64 * self.opts.step_mm / len;
+                if s < 1.0 - 1e-9 {
+                    out.push(s);
+                }
+            }
+        }
+        out.push(1.0);
+        out
+    }
+
+    fn step(&mut self) -> Result<Option<Engagement>, EngageError> {
+        loop {
+            if let Some((index, ss, done)) = self.current.take() {
+                if done < ss.len() {
+                    let s0 = if done == 0 { 0.0 } else { ss[done - 1] };
+                    let s1 = ss[done];
+                    self.current = Some((index, ss, done + 1));
+                    let mut e = self.engagement_at(index, s1)?;
+                    e.removed_mm3 = self.cut(index, s0, s1)?;
+                    e.mrr_mm3_min = mrr(
+                        self.program,
+                        &self.program.moves[index],
+                        s0,
+                        s1,
+                        e.removed_mm3,
+                    );
+                    self.stats.locations += 1;
+                    if e.is_engaged() {
+                        self.stats.engaged_locations += 1;
+                    }
+                    return Ok(Some(e));
+                }
+                continue;
+            }
+            let index = self.next_move;
+            if index >= self.program.moves.len() {
+                return Ok(None);
+            }
+            self.next_move += 1;
+            let m = &self.program.moves[index];
+            if matches!(m.kind, MoveKind::Rapid) {
+                self.cut(index, 0.0, 1.0)?;
+                continue;
+            }
+            let ss = self.locations(m);
+            self.current = Some((index, ss, 0));
+        }
+    }
+
+    /// The engagement at parameter `s` of move `index`, against the stock as it is now.
+    fn engagement_at(&mut self, index: usize, s: f64) -> Result<Engagement, EngageError> {
+        let program = self.program;
+        let m = &program.moves[index];
+        let state = MotionState::of_move(program, m, s);
+        let pose = program.pose_at(m, s);
+        let z = pose.axis.normalize();
+        // x_L: the tip's feed direction across the axis; for a move along the axis the last
+        // such direction, else workpiece +X (or +Y) across the axis.
+        let across = state.v_tip - z * state.v_tip.dot(z);
+        let scale = state.v_tip.length().max(1e-300);
+        let x = if across.length() > 1e-9 * scale {
+            let x = across.normalize();
+            self.last_x = Some(x);
+            x
+        } else {
+            [self.last_x.unwrap_or(Vec3::X), Vec3::X, Vec3::Y]
+                .into_iter()
+                .map(|h| h - z * h.dot(z))
+                .find(|h| h.length() > 1e-6)
+                .unwrap_or(Vec3::X)
+                .normalize()
+        };
+        let y = z.cross(x);
+        let mut e = Engagement {
+            location: self.stats.locations,
+            move_index: index,
+            file: self.file_of(m),
+            line: m.line,
+            s,
+            tip: pose.tip,
+            axis: z,
+            x_l: x,
+            y_l: y,
+            discs: Vec::new(),
+            bottom: Vec::new(),
+            area_mm2: 0.0,
+            ap_mm: 0.0,
+            phi_entry_deg: None,
+            phi_exit_deg: None,
+            removed_mm3: 0.0,
+            mrr_mm3_min: 0.0,
+        };
+        let tool = self.tool(index)?;
+        let frame = LocalFrame {
+            tip: pose.tip,
+            x,
+            y,
+            z,
+        };
+        // The highest material over the cutter's footprint (conservative, from tile bounds):
+        // circles above it cannot be engaged.
+        let probe = MaterialProbe::new(self.stock);
+        let reach = tool.radius + tool.height;
+        let bbox = Aabb::new(pose.tip - Vec3::splat(reach), pose.tip + Vec3::splat(reach));
+        let Some(material) = self.stock.material_range(2, &bbox) else {
+            return Ok(e);
+        };
+        let sample = |strip: &Strip, probes: &mut u64| {
+            sample_strip(
+                strip,
+                &frame,
+                &state,
+                &probe,
+                &self.angles,
+                tool.radius,
+                material,
+                probes,
+            )
+        };
+        let mut probes = 0u64;
+        let side = tool.side.as_ref().map(|s| {
+            let samples = sample(s, &mut probes);
+            integrate(s, &samples, self.angles.dphi_deg)
+        });
+        let bottom = tool.bottom.as_ref().map(|s| {
+            let samples = sample(s, &mut probes);
+            integrate(s, &samples, self.angles.dphi_deg)
+        });
+        self.stats.probes += probes;
+        e.set_from(
+            side.filter(|r| r.area > 0.0 || !r.circles.is_empty()),
+            bottom.filter(|r: &StripResult| r.area > 0.0 || !r.circles.is_empty()),
+        );
+        Ok(e)
+    }
+}
+
+impl Iterator for Engager<'_> {
+    type Item = Result<Engagement, EngageError>;
+
+    fn next(&mut self) -> Option<Self::Item> {
+        if self.failed {
+            return None;
+        }
+        match self.step() {
+            Ok(e) => e.map(Ok),
+            Err(err) => {
+                self.failed = true;
+                Some(Err(err))
+            }
+        }
+    }
+}
+
+/// The tool frame at a location.
+#[derive(Clone, Copy, Debug)]
+struct LocalFrame {
+    tip: Vec3,
+    x: Vec3,
+    y: Vec3,
+    z: Vec3,
+}
+
+/// Samples `g` on the circles of `strip` that can reach the material (world heights up to
+/// `material.1`), growing the row range while its border rows are engaged.
+#[allow(clippy::too_many_arguments)]
+fn sample_strip(
+    strip: &Strip,
+    f: &LocalFrame,
+    state: &MotionState,
+    probe: &MaterialProbe<'_>,
+    angles: &Angles,
+    radius: f64,
+    material: (f64, f64),
+    probes: &mut u64,
+) -> StripSamples {
+    let n = angles.sin.len();
+    // Rows whose circle's lowest world point is below the highest material.
+    let horiz = (1.0 - f.z.z * f.z.z).max(0.0).sqrt();
+    let reachable = |k: usize| {
+        let c = strip.circles[k];
+        let centre_z = f.tip.z + c.z * f.z.z;
+        centre_z - c.rho * horiz <= material.1 + 1e-9
+            && centre_z + c.rho * horiz >= material.0 - 1e-9
+    };
+    let rows: Vec<usize> = (0..strip.len()).filter(|&k| reachable(k)).collect();
+    let (Some(&lo), Some(&hi)) = (rows.first(), rows.last()) else {
+        return StripSamples {
+            rows: (0, 0),
+            n_phi: n,
+            g: Vec::new(),
+        };
+    };
+    let (lo, hi) = (lo.saturating_sub(1), (hi + 2).min(strip.len()));
+    let mut g = vec![0.0; (hi - lo) * n];
+    let vscale = state.v_tip.length() + state.omega.length() * radius;
+    for (r, k) in (lo..hi).enumerate() {
+        let c = strip.circles[k];
+        let row = &mut g[r * n..(r + 1) * n];
+        for j in 0..n {
+            let radial = f.x * angles.sin[j] + f.y * angles.cos[j];
+            let p = f.tip + radial * c.rho + f.z * c.z;
+            let normal = radial * c.normal.x + f.z * c.normal.y;
+            let v = state.velocity_at(p);
+            let vl = v.length();
+            let feas = if vl > 1e-12 * vscale.max(1e-300) {
+                normal.dot(v) / vl
+            } else {
+                0.0
+            };
+            row[j] = if feas <= FEASIBLE_EPS {
+                radius * (feas - FEASIBLE_EPS)
+            } else {
+                *probes += 1;
+                probe.depth(p).distance.min(radius * feas)
+            };
+        }
+    }
+    StripSamples {
+        rows: (lo, hi),
+        n_phi: n,
+        g,
+    }
+}
+
+/// Tool-tip path length of `m`, mm (arcs exact; curved 5-axis tips by 64 chords).
+pub fn path_length(program: &Program, m: &Move) -> f64 {
+    match m.kind {
+        MoveKind::Arc(g) if !program.tip_path_is_curved(m) => g.length(),
+        _ if program.tip_path_is_curved(m) => {
+            let mut len = 0.0;
+            let mut prev = m.start.tip;
+            for i in 1..=64 {
+                let p = program.pose_at(m, i as f64 / 64.0).tip;
+                len += (p - prev).length();
+                prev = p;
+            }
+            len
+        }
+        _ => (m.end.tip - m.start.tip).length(),
+    }
+}
+
+/// Removal rate of `removed` mm³ over `[s0, s1]` of `m` at its programmed feed, mm³/min (0 at
+/// zero feed).
+fn mrr(program: &Program, m: &Move, s0: f64, s1: f64, removed: f64) -> f64 {
+    let travel = path_length(program, m) * (s1 - s0);
+    let minutes = match m.feed_mode {
+        FeedMode::PerMinute => travel / m.feed,
+        FeedMode::InverseTime => (s1 - s0) / m.feed,
+        FeedMode::PerRevolution => travel / (m.feed * m.spindle_rpm),
+    };
+    if minutes.is_finite() && minutes > 0.0 {
+        removed / minutes
+    } else {
+        0.0
+    }
+}

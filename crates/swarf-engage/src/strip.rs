@@ -1,0 +1,335 @@
+//! The cutter's surface cut into circles: axial discs on its side, rings on its flat bottom.
+//!
+//! Both are **strips**: a family of circles of the cutter's surface of revolution, ordered by a
+//! parameter (height `z` above the tip for the axial discs, radius `r` for the bottom rings),
+//! each knowing its radius `ρ`, height and outward profile normal, plus the true surface area
+//! per radian of the band between consecutive circles (and of the half bands at both ends). An
+//! engagement is sampled on the circles and integrated over the bands
+//! ([`crate::Engagement`]).
+//!
+//! Axial discs have height `dz` and their circles sit at the disc centres `z = (k + ½)·dz`
+//! inside the cutting part's side (every non-horizontal piece: cones, torus, sphere, cylinder).
+//! Bottom rings (a flat bottom of radius `e`, flat and bull-nose cutters) split `[0, e]` into
+//! `n = ⌈e/dz⌉` equal rings, circles at their mid radii. Each strip also has a circle at both
+//! ends of its range (the tip or the bottom's centre, the top of the cutting part, the bottom's
+//! rim): they are sampled for the integration (the area of a half band can be large where the
+//! surface turns flat, as at the bottom of a torus) but are not reported as discs or rings.
+
+use swarf_geom::math::Vec2;
+use swarf_tool::{AnyPiece, Cutter, Piece};
+
+/// One circle of the cutter's surface (cutter frame: tip at the origin, axis +Z).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Circle {
+    /// Height above the tip, mm.
+    pub z: f64,
+    /// Radius, mm.
+    pub rho: f64,
+    /// Outward unit profile normal `(n_ρ, n_z)`.
+    pub normal: Vec2,
+}
+
+/// Which surface a strip covers.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum StripKind {
+    /// The side, in axial discs (parameter: height `z`).
+    Side,
+    /// The flat bottom face, in rings (parameter: radius `r`).
+    Bottom,
+}
+
+/// Circles of one surface and the areas between them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Strip {
+    /// Side or bottom.
+    pub kind: StripKind,
+    /// The circles, by increasing parameter: the first and the last at the ends of the
+    /// strip's range, the others at the disc centres (or ring mid radii).
+    pub circles: Vec<Circle>,
+    /// Each circle's parameter (`z` or `r`), mm.
+    pub param: Vec<f64>,
+    /// Surface area per radian between circle `k` and `k + 1`, mm².
+    pub band_area: Vec<f64>,
+    /// Whether circle `k` is a reported disc (or ring); the others serve the integration.
+    pub reported: Vec<bool>,
+}
+
+impl Strip {
+    /// The side of `cutter`'s cutting part in axial discs of height `dz`; `None` when the
+    /// cutter has no side (never for a valid APT cutter).
+    pub fn side(cutter: &Cutter, dz: f64) -> Option<Strip> {
+        let pieces: Vec<&AnyPiece> = cutter
+            .pieces()
+            .iter()
+            .filter(|p| !p.is_horizontal())
+            .collect();
+        let lo = pieces.iter().map(|p| p.z_range().0).reduce(f64::min)?;
+        let hi = pieces.iter().map(|p| p.z_range().1).reduce(f64::max)?;
+        let n = ((hi / dz) - 0.5).ceil().max(0.0) as usize;
+        let mut param = vec![lo];
+        for k in 0..n {
+            let z = (k as f64 + 0.5) * dz;
+            if z > lo && z < hi {
+                param.push(z);
+            }
+        }
+        param.push(hi);
+        if param.len() < 3 {
+            return None;
+        }
+        // Integration circles between the discs wherever the profile runs longer than `dz`
+        // between two of them (a torus or sphere turning flat): every band is then at most
+        // `dz` long on the surface, so its area is sampled as finely as a cylinder's.
+        let mut reported = vec![false];
+        let mut refined = vec![lo];
+        for (i, w) in param.windows(2).enumerate() {
+            let len = arc_length(&pieces, w[0], w[1]);
+            let m = (len / (dz * (1.0 + 1e-9))).ceil().max(1.0) as usize;
+            for q in 1..m {
+                refined.push(z_at_arc_length(
+                    &pieces,
+                    w[0],
+                    w[1],
+                    len * q as f64 / m as f64,
+                ));
+                reported.push(false);
+            }
+            refined.push(w[1]);
+            reported.push(i + 2 < param.len());
+        }
+        let param = refined;
+        let circles = param
+            .iter()
+            .map(|&z| side_circle(&pieces, z))
+            .collect::<Option<Vec<_>>>()?;
+        let band_area = param
+            .windows(2)
+            .map(|w| side_area(&pieces, w[0], w[1]))
+            .collect();
+        Some(Strip {
+            kind: StripKind::Side,
+            circles,
+            param,
+            band_area,
+            reported,
+        })
+    }
+
+    /// The flat bottom face of `cutter` (a downward disc at the tip of radius `e > 0`) in rings
+    /// of width at most `dr`; `None` without one.
+    pub fn bottom(cutter: &Cutter, dr: f64) -> Option<Strip> {
+        let e = cutter.pieces().iter().find_map(|p| match p {
+            AnyPiece::Disc(d) if !d.facing_up && d.outer > 0.0 => Some(d.outer),
+            _ => None,
+        })?;
+        let n = ((e / dr) * (1.0 - 1e-12)).ceil().max(1.0) as usize;
+        let w = e / n as f64;
+        let mut param = vec![0.0];
+        param.extend((0..n).map(|i| (i as f64 + 0.5) * w));
+        param.push(e);
+        let mut reported = vec![true; param.len()];
+        (reported[0], reported[n + 1]) = (false, false);
+        let circles = param
+            .iter()
+            .map(|&r| Circle {
+                z: 0.0,
+                rho: r,
+                normal: Vec2::new(0.0, -1.0),
+            })
+            .collect();
+        Some(Strip {
+            kind: StripKind::Bottom,
+            circles,
+            band_area: param
+                .windows(2)
+                .map(|p| 0.5 * (p[1] * p[1] - p[0] * p[0]))
+                .collect(),
+            param,
+            reported,
+        })
+    }
+
+    /// Number of circles (the two end circles included).
+    pub fn len(&self) -> usize {
+        self.circles.len()
+    }
+
+    /// The parameter range `[lo, hi]`, mm.
+    pub fn range(&self) -> (f64, f64) {
+        (self.param[0], self.param[self.param.len() - 1])
+    }
+
+    /// True for the circles reported as discs or rings.
+    pub fn is_reported(&self, k: usize) -> bool {
+        self.reported[k]
+    }
+
+    /// True without circles (never for a built strip).
+    pub fn is_empty(&self) -> bool {
+        self.circles.is_empty()
+    }
+
+    /// Total area of the strip, mm² (all 2π).
+    pub fn total_area(&self) -> f64 {
+        std::f64::consts::TAU * self.band_area.iter().sum::<f64>()
+    }
+}
+
+/// The profile parameter of `piece` at height `z` (non-horizontal pieces are monotone in z).
+fn s_at(piece: &AnyPiece, z: f64) -> f64 {
+    let (mut a, mut b) = (0.0f64, 1.0f64);
+    for _ in 0..60 {
+        let m = 0.5 * (a + b);
+        if piece.profile_point(m).y < z {
+            a = m;
+        } else {
+            b = m;
+        }
+    }
+    0.5 * (a + b)
+}
+
+fn side_circle(pieces: &[&AnyPiece], z: f64) -> Option<Circle> {
+    let p = pieces.iter().find(|p| {
+        let (a, b) = p.z_range();
+        z >= a && z <= b
+    })?;
+    let s = s_at(p, z);
+    let q = p.profile_point(s);
+    Some(Circle {
+        z,
+        rho: q.x,
+        normal: p.profile_normal(s),
+    })
+}
+
+/// Profile speed `|dP/ds|` of a piece (constant: lines and arcs are parameterised uniformly).
+fn speed(p: &AnyPiece) -> f64 {
+    let eps = 1e-6;
+    (p.profile_point(0.5 + eps) - p.profile_point(0.5 - eps)).length() / (2.0 * eps)
+}
+
+/// Length of the side's profile between heights `a < b`, mm.
+fn arc_length(pieces: &[&AnyPiece], a: f64, b: f64) -> f64 {
+    pieces
+        .iter()
+        .map(|p| {
+            let (z0, z1) = p.z_range();
+            let (lo, hi) = (a.max(z0), b.min(z1));
+            if hi > lo {
+                speed(p) * (s_at(p, hi) - s_at(p, lo))
+            } else {
+                0.0
+            }
+        })
+        .sum()
+}
+
+/// The height between `a` and `b` where the profile length from `a` is `len`.
+fn z_at_arc_length(pieces: &[&AnyPiece], a: f64, b: f64, len: f64) -> f64 {
+    let (mut lo, mut hi) = (a, b);
+    for _ in 0..60 {
+        let m = 0.5 * (lo + hi);
+        if arc_length(pieces, a, m) < len {
+            lo = m;
+        } else {
+            hi = m;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// `∫ ρ ds` over the side between heights `a < b` (area per radian): 5-point Gauss–Legendre in
+/// each piece's profile parameter, exact for cones and cylinders and to ~1e-12 on arcs.
+fn side_area(pieces: &[&AnyPiece], a: f64, b: f64) -> f64 {
+    const X: [f64; 5] = [
+        -0.906_179_845_938_664,
+        -0.538_469_310_105_683,
+        0.0,
+        0.538_469_310_105_683,
+        0.906_179_845_938_664,
+    ];
+    const W: [f64; 5] = [
+        0.236_926_885_056_189,
+        0.478_628_670_499_366,
+        0.568_888_888_888_889,
+        0.478_628_670_499_366,
+        0.236_926_885_056_189,
+    ];
+    let mut area = 0.0;
+    for p in pieces {
+        let (z0, z1) = p.z_range();
+        let (lo, hi) = (a.max(z0), b.min(z1));
+        if hi <= lo {
+            continue;
+        }
+        let (s0, s1) = (s_at(p, lo), s_at(p, hi));
+        let half = 0.5 * (s1 - s0);
+        for (x, w) in X.iter().zip(W) {
+            let s = s0 + half * (1.0 + x);
+            let eps = 1e-6;
+            let d = (p.profile_point((s + eps).min(1.0)) - p.profile_point((s - eps).max(0.0)))
+                .length()
+                / ((s + eps).min(1.0) - (s - eps).max(0.0));
+            area += w * half * p.profile_point(s).x * d;
+        }
+    }
+    area
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::f64::consts::{PI, TAU};
+
+    #[test]
+    fn flat_end_mill_side_and_bottom_areas() {
+        let c = Cutter::flat(10.0).unwrap();
+        let side = Strip::side(&c, 0.1).unwrap();
+        let h = c.apt_params().h;
+        assert!((side.total_area() - TAU * 5.0 * h).abs() < 1e-9);
+        assert!((side.circles[1].z - 0.05).abs() < 1e-12 && side.circles[1].rho == 5.0);
+        assert_eq!(side.circles[0].z, 0.0);
+        assert_eq!(
+            side.reported.iter().filter(|&&r| r).count(),
+            (c.apt_params().h / 0.1).round() as usize
+        );
+        let bottom = Strip::bottom(&c, 0.1).unwrap();
+        assert_eq!(bottom.len(), 52);
+        assert!((bottom.total_area() - PI * 25.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn ball_zone_area_is_archimedes() {
+        let c = Cutter::ball(10.0).unwrap();
+        let side = Strip::side(&c, 0.1).unwrap();
+        // Between circles at z = 0.05 and z = 2.95: a zone of height 2.9 on a sphere of radius 5.
+        let k1 = side
+            .param
+            .iter()
+            .position(|&z| (z - 2.95).abs() < 1e-9)
+            .unwrap();
+        let k0 = side
+            .param
+            .iter()
+            .position(|&z| (z - 0.05).abs() < 1e-9)
+            .unwrap();
+        let a: f64 = side.band_area[k0..k1].iter().sum();
+        assert!((a - 5.0 * 2.9).abs() < 1e-9, "{a}");
+        assert!(Strip::bottom(&c, 0.1).is_none());
+        let s = side.circles[k1];
+        assert!((s.rho - (25.0f64 - 2.05 * 2.05).sqrt()).abs() < 1e-9);
+        assert!((s.normal - Vec2::new(s.rho / 5.0, -2.05 / 5.0)).length() < 1e-9);
+    }
+
+    #[test]
+    fn bull_nose_side_area() {
+        let c = Cutter::bull(10.0, 2.0).unwrap();
+        let side = Strip::side(&c, 0.1).unwrap();
+        // Quarter torus e = 3, r = 2: ∫(e + r sin ψ) r dψ over [0, π/2] = r(eπ/2 + r).
+        let torus = 2.0 * (3.0 * PI / 2.0 + 2.0);
+        let cyl = 5.0 * (c.apt_params().h - 2.0);
+        assert!((side.total_area() / TAU - (torus + cyl)).abs() < 1e-9);
+        assert!((Strip::bottom(&c, 0.1).unwrap().total_area() - 9.0 * PI).abs() < 1e-9);
+    }
+}

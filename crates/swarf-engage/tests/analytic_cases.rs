@@ -1,0 +1,210 @@
+//! Engagement against closed-form answers: 10 mm cutters, stock top at z = 0, the default
+//! settings (dz = 0.1 mm, dφ = 1°) and ray spacing h = 0.1 mm. Targets: area within 0.5 %,
+//! entry and exit angles within 0.5°.
+
+mod common;
+
+use std::f64::consts::PI;
+
+use common::*;
+use swarf_engage::EngageOptions;
+use swarf_tool::Cutter;
+
+const H: f64 = 0.1;
+const R: f64 = 5.0;
+
+#[test]
+fn up_milling_beside_a_wall() {
+    // Material on +y_L (the feed is +X, y_L = +Y) from y = R − a_e: up-milling, a_e = 2, a_p = 5.
+    let p = program("G21 G90\nG0 X-10 Y0 Z-5\nG1 X50 F600\n", "up.ngc");
+    let mut stock = block([0.0, 3.0, -10.0], [40.0, 20.0, 0.0], H);
+    let locs = run(
+        &p,
+        Cutter::flat(10.0).unwrap(),
+        &mut stock,
+        EngageOptions::default(),
+    );
+    let exit = (1.0f64 - 2.0 / R).acos();
+    let e = at(&locs, [20.0, 0.0, -5.0]);
+    check(e, R * exit * 5.0, 0.0, exit.to_degrees(), 0.005, 0.5);
+    assert!((e.ap_mm - 5.0).abs() < 0.01, "{}", e.ap_mm);
+    // 53.13° and 0°.
+    assert!((exit.to_degrees() - 53.130_102).abs() < 1e-5);
+}
+
+#[test]
+fn down_milling_beside_a_wall() {
+    let p = program("G21 G90\nG0 X-10 Y0 Z-5\nG1 X50 F600\n", "down.ngc");
+    let mut stock = block([0.0, -20.0, -10.0], [40.0, -3.0, 0.0], H);
+    let locs = run(
+        &p,
+        Cutter::flat(10.0).unwrap(),
+        &mut stock,
+        EngageOptions::default(),
+    );
+    let entry = 180.0 - (1.0f64 - 2.0 / R).acos().to_degrees();
+    let e = at(&locs, [20.0, 0.0, -5.0]);
+    check(
+        e,
+        R * (1.0f64 - 2.0 / R).acos() * 5.0,
+        entry,
+        180.0,
+        0.005,
+        0.5,
+    );
+    assert!((entry - 126.869_898).abs() < 1e-5);
+}
+
+#[test]
+fn full_slot_with_a_flat_end_mill() {
+    let p = program("G21 G90\nG0 X-10 Y10 Z-5\nG1 X50 F600\n", "slot.ngc");
+    let mut stock = block([0.0, 0.0, -10.0], [40.0, 20.0, 0.0], H);
+    let locs = run(
+        &p,
+        Cutter::flat(10.0).unwrap(),
+        &mut stock,
+        EngageOptions::default(),
+    );
+    let e = at(&locs, [20.0, 10.0, -5.0]);
+    check(e, PI * R * 5.0, 0.0, 180.0, 0.005, 0.5);
+    // Discs: every disc below the top is engaged 0°–180°; the bottom face grazes the floor.
+    assert_eq!(e.discs.len(), 50);
+    assert!(e.bottom.is_empty());
+    for d in &e.discs {
+        assert_eq!(d.intervals.len(), 1);
+        assert!(d.intervals[0].start_deg < 0.5 && (d.intervals[0].end_deg - 180.0).abs() < 0.5);
+    }
+    // MRR = a_e·a_p·F = 10 · 5 · 600 mm³/min, removed per 1 mm step = 50 mm³.
+    assert!(rel(e.removed_mm3, 50.0) < 0.01, "{}", e.removed_mm3);
+    assert!(rel(e.mrr_mm3_min, 30_000.0) < 0.01, "{}", e.mrr_mm3_min);
+}
+
+#[test]
+fn ball_end_mill_slot_at_depth_3() {
+    // The front half of the spherical zone of height d = 3 under the top: π·R·d.
+    let p = program("G21 G90\nG0 X-10 Y10 Z-3\nG1 X50 F600\n", "ball.ngc");
+    let mut stock = block([0.0, 0.0, -10.0], [40.0, 20.0, 0.0], H);
+    let locs = run(
+        &p,
+        Cutter::ball(10.0).unwrap(),
+        &mut stock,
+        EngageOptions::default(),
+    );
+    let e = at(&locs, [20.0, 10.0, -3.0]);
+    check(e, PI * R * 3.0, 0.0, 180.0, 0.005, 0.5);
+    assert!((e.ap_mm - 3.0).abs() < 0.01, "{}", e.ap_mm);
+}
+
+#[test]
+fn flat_end_mill_plunging() {
+    // The whole bottom disc π·R², nothing on the side (it slides along its own wall).
+    let p = program("G21 G90\nG0 X20 Y10 Z2\nG1 Z-4 F100\n", "plunge.ngc");
+    let mut stock = block([0.0, 0.0, -10.0], [40.0, 20.0, 0.0], H);
+    let locs = run(
+        &p,
+        Cutter::flat(10.0).unwrap(),
+        &mut stock,
+        EngageOptions::default(),
+    );
+    assert_eq!(locs.len(), 6);
+    for e in &locs[3..] {
+        println!("z {} area {} discs {}", e.tip.z, e.area_mm2, e.discs.len());
+        assert!(rel(e.area_mm2, PI * R * R) < 0.005, "{}", e.area_mm2);
+        assert!(e.discs.is_empty());
+        assert!(e.ap_mm.abs() < 1e-12);
+        // The plunge: the tip moves along the axis, x_L falls back to +X.
+        assert!((e.x_l - swarf_geom::math::Vec3::X).length() < 1e-12);
+    }
+    // Above the top nothing is engaged.
+    assert_eq!(locs[0].area_mm2, 0.0);
+    assert!(locs[0].phi_entry_deg.is_none());
+}
+
+#[test]
+fn circular_arc_around_a_boss() {
+    // A boss of radius 22 finished to 20 by a 10 mm flat end mill whose centre runs CCW on a
+    // circle of radius 25 (Aras fig. 6.42): the boss centre is on +y_L at distance 25, so the
+    // cutter is engaged from 0° to φ with cos φ = (R² + 25² − 22²)/(2·R·25), constant along
+    // the arc away from its start.
+    let p = program(
+        "G21 G90\nG0 X35 Y0 Z-5\nG1 X25 F600\nG3 X25 Y0 I-25 J0\n",
+        "boss.ngc",
+    );
+    let mut stock = swarf_stock::TriDexel::from_cylinder(0.0, 0.0, -10.0, 22.0, 10.0, H).unwrap();
+    let locs = run(
+        &p,
+        Cutter::flat(10.0).unwrap(),
+        &mut stock,
+        EngageOptions::default(),
+    );
+    let exit = ((R * R + 625.0 - 484.0) / (2.0 * R * 25.0)).acos();
+    let area = R * exit * 5.0;
+    let on_arc: Vec<_> = locs.iter().filter(|e| e.move_index == 2).collect();
+    assert!(on_arc.len() > 100);
+    // Away from the start (where the cut began) and the end (where it meets it again).
+    let steady = &on_arc[20..on_arc.len() - 20];
+    for e in steady {
+        check(e, area, 0.0, exit.to_degrees(), 0.005, 0.5);
+    }
+}
+
+#[test]
+fn tilted_flat_end_mill_on_a_plane() {
+    // 3+2: the axis tilted 20° about Y, feeding along +Y with the tip 3 mm under the top. The
+    // side point at angle φ and height z is under the plane while
+    // z < (d − R·sin t·cos φ)/cos t, which is > 0 on the whole front half (d > R sin t), so the
+    // area is ∫₀^π R·(d − R sin t cos φ)/cos t dφ = π·R·d/cos t; the bottom grazes (f = 0).
+    let t = 20f64.to_radians();
+    let (i, k) = (t.sin(), t.cos());
+    let text = format!(
+        "UNITS/MM\nRAPID\nGOTO/20,-20,20,{i},0,{k}\nRAPID\nGOTO/20,-20,-3,{i},0,{k}\nFEDRAT/600\nGOTO/20,60,-3,{i},0,{k}\n"
+    );
+    let p = program(&text, "tilted.apt");
+    let mut stock = block([0.0, 0.0, -10.0], [40.0, 40.0, 0.0], H);
+    let locs = run(
+        &p,
+        Cutter::flat(10.0).unwrap(),
+        &mut stock,
+        EngageOptions::default(),
+    );
+    let e = at(&locs, [20.0, 20.0, -3.0]);
+    check(e, PI * R * 3.0 / t.cos(), 0.0, 180.0, 0.005, 0.5);
+    let top = (3.0 + R * t.sin()) / t.cos();
+    assert!((e.ap_mm - top).abs() < 0.02, "{} vs {top}", e.ap_mm);
+    assert!(e.bottom.is_empty());
+}
+
+#[test]
+fn bull_nose_ramp() {
+    // Ramping down along +X at tan γ = 0.1 into a flat stock: the flat bottom (radius e = 3) is
+    // wholly engaged; on the corner torus f = sin ψ sin φ cos γ + cos ψ sin γ > 0 on the
+    // φ-measure π + 2·asin(min(1, cot ψ tan γ)) of each parallel ψ; the cylinder is engaged on
+    // its front half up to the top (tip at z = −3: from z = 2 to 3).
+    let p = program("G21 G90\nG0 X-5 Y10 Z1\nG1 X55 Z-5 F600\n", "ramp.ngc");
+    let mut stock = block([0.0, 0.0, -10.0], [50.0, 20.0, 0.0], H);
+    let locs = run(
+        &p,
+        Cutter::bull(10.0, 2.0).unwrap(),
+        &mut stock,
+        EngageOptions::default(),
+    );
+    let e = at(&locs, [35.0, 10.0, -3.0]);
+    let (ee, r, tg) = (3.0, 2.0, 0.1f64);
+    let n = 200_000;
+    let mut torus = 0.0;
+    for q in 0..n {
+        let psi = (q as f64 + 0.5) / n as f64 * PI / 2.0;
+        let c = (tg / psi.tan()).min(1.0);
+        torus += (ee + r * psi.sin()) * r * (PI + 2.0 * c.asin()) * (PI / 2.0 / n as f64);
+    }
+    let cylinder = PI * R * (e.tip.z.abs() - 2.0);
+    let bottom = PI * ee * ee;
+    let exact = bottom + torus + cylinder;
+    println!(
+        "tip {:?}: area {} exact {exact} (bottom {bottom}, torus {torus}, cylinder {cylinder}), ap {}",
+        e.tip, e.area_mm2, e.ap_mm
+    );
+    assert!(rel(e.area_mm2, exact) < 0.005);
+    assert!((e.ap_mm - e.tip.z.abs()).abs() < 0.01);
+    assert!(!e.bottom.is_empty());
+}
