@@ -27,6 +27,9 @@ pub(crate) enum Command {
     /// The largest gouge- and interference-free cutter at every CC point of a compound surface
     /// (3-, 4- and 5-axis).
     Toolsize(crate::commands::toolsize::ToolsizeArgs),
+    /// The cutter–workpiece engagement at every cutter location of a program: engaged angles per
+    /// axial disc, area, axial depth, entry/exit angles, removal rate.
+    Engage(crate::commands::engage::EngageArgs),
     /// Write the swept envelope of a program's feed moves (whole tool) as STL and glb.
     Envelope(crate::commands::envelope::EnvelopeArgs),
     /// Check a program against the part surface: every point and every stretch of motion where

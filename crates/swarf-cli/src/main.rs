@@ -17,6 +17,7 @@ fn main() {
         cli::Command::Simulate(args) => commands::simulate::run(&args),
         cli::Command::Toolsize(args) => commands::toolsize::run(&args),
         cli::Command::Envelope(args) => commands::envelope::run(&args),
+        cli::Command::Engage(args) => commands::engage::run(&args),
         cli::Command::Gouge(args) => commands::gouge::run(&args),
         cli::Command::Demo(args) => commands::demo::run(&args),
     };

@@ -208,3 +208,29 @@ fn bull_nose_ramp() {
     assert!((e.ap_mm - e.tip.z.abs()).abs() < 0.01);
     assert!(!e.bottom.is_empty());
 }
+
+#[test]
+fn constant_engagement_is_smooth_along_a_straight_cut() {
+    // Up-milling at a_e = 2 sampled every 0.37 mm (locations fall anywhere between rays): the
+    // area must not flicker with the ray grid.
+    let p = program("G21 G90\nG0 X-10 Y0 Z-5\nG1 X50 F600\n", "smooth.ngc");
+    let mut stock = block([0.0, 3.0, -10.0], [40.0, 20.0, 0.0], H);
+    let locs = run(
+        &p,
+        Cutter::flat(10.0).unwrap(),
+        &mut stock,
+        EngageOptions::default().with_step(0.37),
+    );
+    let areas: Vec<f64> = locs
+        .iter()
+        .filter(|e| e.tip.x > 6.0 && e.tip.x < 34.0)
+        .map(|e| e.area_mm2)
+        .collect();
+    assert!(areas.len() > 70);
+    let (lo, hi) = areas
+        .iter()
+        .fold((f64::INFINITY, 0.0f64), |(a, b), &x| (a.min(x), b.max(x)));
+    let mean = areas.iter().sum::<f64>() / areas.len() as f64;
+    println!("spread {:.4} % of {mean}", 100.0 * (hi - lo) / mean);
+    assert!((hi - lo) / mean < 0.005);
+}

@@ -146,7 +146,7 @@ impl ToolSet {
 
 /// A program's `CUTTER/` record that is not a valid cutter.
 #[derive(Debug, thiserror::Error)]
-#[error("CUTTER/ definition of tool {tool} in the program: {source}")]
+#[error("CUTTER/ definition of tool {tool} in the program")]
 pub struct ResolveError {
     /// The tool number.
     pub tool: u32,

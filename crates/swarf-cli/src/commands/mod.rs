@@ -1,6 +1,8 @@
 //! One module per subcommand; each only calls the libraries and prints.
 
 pub(crate) mod demo;
+pub(crate) mod engage;
+mod engage_plots;
 pub(crate) mod envelope;
 pub(crate) mod gouge;
 pub(crate) mod path;

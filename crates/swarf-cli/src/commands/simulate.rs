@@ -204,7 +204,7 @@ pub(crate) fn tools_for(
         .fold(Tools::default(), |t, (n, r)| t.with(*n, &r.cutter)))
 }
 
-fn stock_spec(arg: Option<&str>, table: Option<&ToolTable>) -> Result<StockSpec> {
+pub(crate) fn stock_spec(arg: Option<&str>, table: Option<&ToolTable>) -> Result<StockSpec> {
     match (arg, table.and_then(|t| t.workpiece)) {
         (Some(s), _) => StockSpec::parse(s).with_context(|| format!("stock `{s}`")),
         (None, Some(b)) => Ok(StockSpec::Box {

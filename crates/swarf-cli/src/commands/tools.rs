@@ -8,7 +8,7 @@ use anyhow::{Context, Result};
 use swarf_path::gcode::GcodeOptions;
 use swarf_path::load::ReadOptions;
 use swarf_path::{Machine, Program, Units};
-use swarf_tool::{Cutter, LengthUnit, ToolTable};
+use swarf_tool::{Cutter, LengthUnit, ToolSet, ToolTable};
 
 use crate::cli::{SetupArgs, TableUnits};
 
@@ -76,29 +76,11 @@ pub(crate) fn load_tool_sources(
     Ok((single, table))
 }
 
-/// Where a tool's cutter came from.
-#[derive(Clone, Copy, Debug, serde::Serialize)]
-#[serde(rename_all = "snake_case")]
-pub(crate) enum ToolSource {
-    /// `--tool SPEC`, for every tool.
-    Spec,
-    /// The `--tools` table.
-    Table,
-    /// The program's own `CUTTER/` definition.
-    Program,
-}
+pub(crate) use swarf_tool::{ResolvedTool, ToolSource};
 
-/// One tool number's cutter.
-#[derive(Clone, Debug)]
-pub(crate) struct ResolvedTool {
-    pub(crate) cutter: Cutter,
-    pub(crate) source: ToolSource,
-    pub(crate) description: String,
-}
-
-/// Each tool number `program` uses (tool 0 when it never loads one), resolved to a cutter:
-/// `single` for all, else the table, else the program's own `CUTTER/`. Numbers nothing
-/// defines are returned apart.
+/// Each tool number `program` uses (tool 0 when it never loads one), resolved to a cutter by
+/// [`ToolSet::resolve`]: `single` for all, else the table, else the program's own `CUTTER/`.
+/// Numbers nothing defines are returned apart.
 pub(crate) fn resolve_tools(
     program: &Program,
     single: Option<&Cutter>,
@@ -108,45 +90,21 @@ pub(crate) fn resolve_tools(
     if program.moves.iter().any(|m| m.tool == 0) && !used.contains(&0) {
         used.insert(0, 0);
     }
-    let mut defs = BTreeMap::new();
-    let mut undefined = Vec::new();
-    for n in used {
-        let from_program = program
-            .cutter_definitions
-            .iter()
-            .rev()
-            .find(|(t, _)| *t == n);
-        let resolved = if let Some(c) = single {
-            Some(ResolvedTool {
-                cutter: c.clone(),
-                source: ToolSource::Spec,
-                description: String::new(),
-            })
-        } else if let Some(e) = table.and_then(|t| t.tools.get(&n)) {
-            Some(ResolvedTool {
-                cutter: e.cutter.clone(),
-                source: ToolSource::Table,
-                description: e.description.clone(),
-            })
-        } else if let Some((_, p)) = from_program {
-            let cutter = Cutter::from_program_record(*p)
-                .with_context(|| format!("CUTTER/ definition of tool {n} in the program"))?;
-            Some(ResolvedTool {
-                cutter,
-                source: ToolSource::Program,
-                description: String::new(),
-            })
-        } else {
-            None
-        };
-        match resolved {
-            Some(r) => {
-                defs.insert(n, r);
-            }
-            None => undefined.push(n),
-        }
-    }
-    Ok((defs, undefined))
+    let (set, undefined) = ToolSet::resolve(&used, &program.cutter_definitions, single, table)?;
+    Ok((set.resolved().clone(), undefined))
+}
+
+/// The [`ToolSet`] of every tool the program uses, each required to be defined.
+pub(crate) fn tool_set(
+    program: &Program,
+    single: Option<&Cutter>,
+    table: Option<&ToolTable>,
+) -> Result<ToolSet> {
+    Ok(resolve_all(program, single, table)?
+        .into_iter()
+        .fold(ToolSet::default(), |set, (n, r)| {
+            set.with(n, r.cutter, r.source)
+        }))
 }
 
 /// [`resolve_tools`], requiring every tool the program uses to be defined: the error says how

@@ -1,0 +1,256 @@
+//! `swarf engage`: the cutter–workpiece engagement at every cutter location of a program.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use serde::Serialize;
+use swarf_engage::{EngageOptions, Engagement, Engager};
+use swarf_stock::MeshOptions;
+
+use crate::cli::SetupArgs;
+use crate::commands::engage_plots;
+use crate::commands::simulate::stock_spec;
+use crate::commands::tools::{load_setup, tool_set, Setup};
+use crate::output::{print_json, write_atomic};
+
+#[derive(Debug, Args)]
+pub(crate) struct EngageArgs {
+    /// The stock: `box:X0,Y0,Z0,X1,Y1,Z1`, `cyl:CX,CY,Z0,R,H` (axis +Z) or a closed STL file.
+    /// Default: the workpiece a CAMotics project (--tools FILE.camotics) states.
+    #[arg(long, value_name = "SPEC|FILE.stl")]
+    stock: Option<String>,
+    /// The program: G-code or APT CL.
+    #[arg(long, value_name = "FILE")]
+    program: PathBuf,
+    /// Cutters, tool library, machine and units.
+    #[command(flatten)]
+    setup: SetupArgs,
+    /// Ray spacing of the tri-dexel stock, mm (the engagement's accuracy follows it).
+    #[arg(
+        long,
+        value_name = "H",
+        default_value_t = 0.1,
+        allow_negative_numbers = true
+    )]
+    resolution: f64,
+    /// Cutter locations every STEP mm of tool-tip travel along a feed move (0: move ends only).
+    #[arg(long, value_name = "MM", default_value_t = swarf_engage::DEFAULT_STEP_MM, allow_negative_numbers = true)]
+    step: f64,
+    /// Height of the axial discs (and width of the bottom rings), mm.
+    #[arg(long, value_name = "MM", default_value_t = swarf_engage::DEFAULT_DZ_MM, allow_negative_numbers = true)]
+    dz: f64,
+    /// Immersion-angle sampling, degrees.
+    #[arg(long, value_name = "DEG", default_value_t = swarf_engage::DEFAULT_DPHI_DEG, allow_negative_numbers = true)]
+    dphi: f64,
+    /// Largest distance between an arc or a 5-axis motion and what is cut for it, mm.
+    #[arg(long, value_name = "T", default_value_t = swarf_stock::DEFAULT_CHORDAL_TOLERANCE_MM, allow_negative_numbers = true)]
+    tolerance: f64,
+    /// Build the stock from an STL mesh even if it is not closed.
+    #[arg(long)]
+    allow_open_mesh: bool,
+    /// Also draw the φ–z maps of these locations (comma-separated indices).
+    #[arg(long, value_name = "N,...", value_delimiter = ',')]
+    map_at: Vec<usize>,
+    /// Write engagement.csv, discs.csv, bottom.csv, maps/ and summary.json here.
+    #[arg(long, value_name = "DIR")]
+    out: PathBuf,
+    /// Print the JSON summary.
+    #[arg(long)]
+    json: bool,
+}
+
+/// The JSON summary (`summary.json`). The first seven keys are a contract.
+#[derive(Serialize)]
+struct EngageSummary {
+    locations: usize,
+    engaged_locations: usize,
+    max_area_mm2: f64,
+    max_ap_mm: f64,
+    removed_volume_mm3: f64,
+    elapsed_s: f64,
+    simulate_elapsed_s: f64,
+    /// Location of the largest area (its φ–z map is `maps/largest.png`).
+    max_area_location: Option<usize>,
+    resolution_mm: [f64; 3],
+    options: EngageOptions,
+}
+
+pub(crate) fn run(args: &EngageArgs) -> Result<()> {
+    let t0 = Instant::now();
+    if !(args.resolution > 0.0 && args.resolution.is_finite()) {
+        bail!(
+            "--resolution must be a positive number of mm, got {}",
+            args.resolution
+        );
+    }
+    let Setup {
+        program,
+        single,
+        table,
+    } = load_setup(&args.setup, &args.program)?;
+    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
+    let spec = stock_spec(args.stock.as_deref(), table.as_ref())?;
+    let mut stock = spec
+        .build(
+            args.resolution,
+            MeshOptions {
+                allow_open: args.allow_open_mesh,
+            },
+        )
+        .context("building the stock")?;
+    let opts = EngageOptions::default()
+        .with_step(args.step)
+        .with_dz(args.dz)
+        .with_dphi(args.dphi)
+        .with_chordal_tolerance(args.tolerance);
+    static STOP: AtomicBool = AtomicBool::new(false);
+    let _ = ctrlc::set_handler(|| STOP.store(true, Ordering::SeqCst));
+    let mut run = Engager::new(&program, &tools, &mut stock, opts)?;
+    let bar = crate::output::moves_bar(program.moves.len());
+    let mut locations: Vec<Engagement> = Vec::new();
+    while let Some(e) = run.next() {
+        locations.push(e.with_context(|| format!("engagement along {}", args.program.display()))?);
+        bar.set_position(run.moves_done() as u64);
+        if STOP.load(Ordering::SeqCst) {
+            bar.finish_and_clear();
+            bail!(
+                "stopped by Ctrl-C after {} cutter locations; no output written",
+                locations.len()
+            );
+        }
+    }
+    bar.finish_and_clear();
+    let stats = run.stats();
+    let resolution_mm = stock.grid().h;
+    let largest = locations
+        .iter()
+        .filter(|e| e.is_engaged())
+        .max_by(|a, b| a.area_mm2.total_cmp(&b.area_mm2));
+    let summary = EngageSummary {
+        locations: stats.locations,
+        engaged_locations: stats.engaged_locations,
+        max_area_mm2: largest.map_or(0.0, |e| e.area_mm2),
+        max_ap_mm: locations.iter().map(|e| e.ap_mm).fold(0.0, f64::max),
+        removed_volume_mm3: stats.removed_volume_mm3,
+        elapsed_s: t0.elapsed().as_secs_f64(),
+        simulate_elapsed_s: stats.simulate_elapsed_s,
+        max_area_location: largest.map(|e| e.location),
+        resolution_mm,
+        options: opts,
+    };
+    write_outputs(
+        &args.out,
+        &locations,
+        largest,
+        &args.map_at,
+        opts.dz_mm,
+        &summary,
+    )?;
+    if args.json {
+        print_json(&summary)
+    } else {
+        println!(
+            "{} cutter locations, {} engaged; largest area {:.3} mm², deepest {:.3} mm; {:.3} mm³ removed; {:.2} s ({:.2} s cutting the stock)",
+            summary.locations,
+            summary.engaged_locations,
+            summary.max_area_mm2,
+            summary.max_ap_mm,
+            summary.removed_volume_mm3,
+            summary.elapsed_s,
+            summary.simulate_elapsed_s
+        );
+        Ok(())
+    }
+}
+
+fn opt(x: Option<f64>) -> String {
+    x.map(|v| format!("{v}")).unwrap_or_default()
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}
+
+/// `engagement.csv`, `discs.csv`, `bottom.csv`.
+fn tables(locations: &[Engagement]) -> [String; 3] {
+    let mut main = String::from(
+        "location,move,file,line,s,x,y,z,i,j,k,area_mm2,ap_mm,phi_entry_deg,phi_exit_deg,removed_mm3,mrr_mm3_min\n",
+    );
+    let mut discs = String::from("location,z_mm,phi_start_deg,phi_end_deg\n");
+    let mut bottom = String::from("location,r_mm,phi_start_deg,phi_end_deg\n");
+    for e in locations {
+        let _ = writeln!(
+            main,
+            "{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{},{}",
+            e.location,
+            e.move_index,
+            csv_field(&e.file),
+            e.line,
+            e.s,
+            e.tip.x,
+            e.tip.y,
+            e.tip.z,
+            e.axis.x,
+            e.axis.y,
+            e.axis.z,
+            e.area_mm2,
+            e.ap_mm,
+            opt(e.phi_entry_deg),
+            opt(e.phi_exit_deg),
+            e.removed_mm3,
+            e.mrr_mm3_min
+        );
+        for (out, circles) in [(&mut discs, &e.discs), (&mut bottom, &e.bottom)] {
+            for c in circles {
+                for iv in &c.intervals {
+                    for (a, b) in iv.split_at_zero() {
+                        if b > a {
+                            let _ = writeln!(out, "{},{},{a},{b}", e.location, c.at_mm);
+                        }
+                    }
+                }
+            }
+        }
+    }
+    [main, discs, bottom]
+}
+
+fn write_outputs(
+    dir: &Path,
+    locations: &[Engagement],
+    largest: Option<&Engagement>,
+    map_at: &[usize],
+    dz: f64,
+    summary: &EngageSummary,
+) -> Result<()> {
+    let maps = dir.join("maps");
+    std::fs::create_dir_all(&maps).with_context(|| format!("creating {}", maps.display()))?;
+    let [main, discs, bottom] = tables(locations);
+    write_atomic(&dir.join("engagement.csv"), main.as_bytes())?;
+    write_atomic(&dir.join("discs.csv"), discs.as_bytes())?;
+    write_atomic(&dir.join("bottom.csv"), bottom.as_bytes())?;
+    if let Some(e) = largest {
+        engage_plots::phi_z_map(e, dz, &maps.join("largest.png"))?;
+    }
+    for &n in map_at {
+        let Some(e) = locations.get(n) else {
+            bail!(
+                "--map-at {n}: the program has {} cutter locations",
+                locations.len()
+            );
+        };
+        engage_plots::phi_z_map(e, dz, &maps.join(format!("location_{n}.png")))?;
+    }
+    engage_plots::along_program(locations, &maps)?;
+    let mut json = serde_json::to_vec_pretty(summary)?;
+    json.push(b'\n');
+    write_atomic(&dir.join("summary.json"), &json)
+}

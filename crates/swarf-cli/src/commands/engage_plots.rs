@@ -1,0 +1,154 @@
+//! The engagement's pictures: the φ–z map of a location, area and removal rate along the
+//! program. Drawn with the workspace's raster and pixel font so every swarf plot looks alike.
+
+use std::path::Path;
+
+use anyhow::{Context, Result};
+use swarf_engage::Engagement;
+use swarf_plan::plot::RgbImage;
+
+const INK: [u8; 3] = [0, 0, 0];
+const PAPER: [u8; 3] = [255, 255, 255];
+const GRID: [u8; 3] = [225, 225, 225];
+const ENGAGED: [u8; 3] = [200, 40, 30];
+const CURVE: [u8; 3] = [30, 80, 200];
+
+/// Plot area and margins, px.
+const W: usize = 720;
+const H: usize = 360;
+const LEFT: usize = 70;
+const TOP: usize = 40;
+const BOTTOM: usize = 50;
+
+fn axes(img: &mut RgbImage, title: &str, xlabel: &str, ylabel: &str) {
+    img.text(LEFT, 12, title, 2, INK);
+    img.fill(LEFT, TOP + H, W, 1, INK);
+    img.fill(LEFT - 1, TOP, 1, H + 1, INK);
+    img.text(
+        LEFT + W / 2 - 3 * xlabel.len(),
+        TOP + H + 30,
+        xlabel,
+        1,
+        INK,
+    );
+    img.text(4, TOP - 14, ylabel, 1, INK);
+}
+
+fn label(x: f64) -> String {
+    if x.abs() >= 100.0 {
+        format!("{x:.0}")
+    } else if x.abs() >= 1.0 {
+        format!("{x:.1}")
+    } else {
+        format!("{x:.3}")
+    }
+}
+
+fn y_ticks(img: &mut RgbImage, max: f64) {
+    for t in 0..=4 {
+        let v = max * t as f64 / 4.0;
+        let y = TOP + H - (H as f64 * t as f64 / 4.0) as usize;
+        img.fill(LEFT, y, W, 1, GRID);
+        img.fill(LEFT - 5, y, 5, 1, INK);
+        img.text(4, y.saturating_sub(3), &label(v), 1, INK);
+    }
+}
+
+/// The φ–z engagement map of one location: engaged angle intervals per axial disc.
+pub(crate) fn phi_z_map(e: &Engagement, dz: f64, path: &Path) -> Result<()> {
+    let mut img = RgbImage::new(LEFT + W + 30, TOP + H + BOTTOM, PAPER);
+    let z_top = e
+        .discs
+        .iter()
+        .map(|d| d.at_mm + dz)
+        .fold(dz, f64::max)
+        .max(1.0);
+    let z_max = (z_top * 1.1 * 10.0).ceil() / 10.0;
+    for t in 0..=8 {
+        let x = LEFT + W * t / 8;
+        img.fill(x, TOP, 1, H, GRID);
+        img.fill(x, TOP + H, 1, 5, INK);
+        let v = format!("{}", 45 * t);
+        img.text(x.saturating_sub(3 * v.len()), TOP + H + 10, &v, 1, INK);
+    }
+    y_ticks(&mut img, z_max);
+    let px = |phi: f64| LEFT + ((phi / 360.0) * W as f64).round() as usize;
+    let py = |z: f64| TOP + H - ((z / z_max) * H as f64).round().min(H as f64) as usize;
+    for d in &e.discs {
+        let (y0, y1) = (py(d.at_mm + 0.5 * dz), py(d.at_mm - 0.5 * dz));
+        for iv in &d.intervals {
+            for (a, b) in iv.split_at_zero() {
+                let (x0, x1) = (px(a), px(b));
+                img.fill(x0, y0, (x1 - x0).max(1), (y1 - y0).max(1), ENGAGED);
+            }
+        }
+    }
+    let title = format!(
+        "location {} (line {}): {:.2} mm2 - ap {:.2} mm{}",
+        e.location,
+        e.line,
+        e.area_mm2,
+        e.ap_mm,
+        if e.bottom.is_empty() {
+            String::new()
+        } else {
+            format!(" - {} bottom rings", e.bottom.len())
+        }
+    );
+    axes(
+        &mut img,
+        &title,
+        "immersion angle phi (deg) clockwise from +y_L",
+        "z above tip (mm)",
+    );
+    img.write_png(path)
+        .with_context(|| format!("writing {}", path.display()))
+}
+
+/// A curve of `values` over the locations.
+fn curve(values: &[f64], title: &str, ylabel: &str, path: &Path) -> Result<()> {
+    let mut img = RgbImage::new(LEFT + W + 30, TOP + H + BOTTOM, PAPER);
+    let max = values.iter().copied().fold(0.0, f64::max);
+    let max = if max > 0.0 { max * 1.05 } else { 1.0 };
+    y_ticks(&mut img, max);
+    let n = values.len().max(2);
+    for t in 0..=4 {
+        let x = LEFT + W * t / 4;
+        img.fill(x, TOP + H, 1, 5, INK);
+        let v = format!("{}", (n - 1) * t / 4);
+        img.text(x.saturating_sub(3 * v.len()), TOP + H + 10, &v, 1, INK);
+    }
+    let mut prev: Option<(usize, usize)> = None;
+    for (i, v) in values.iter().enumerate() {
+        let x = LEFT + (W as f64 * i as f64 / (n - 1) as f64).round() as usize;
+        let y = TOP + H - ((v / max) * H as f64).round().clamp(0.0, H as f64) as usize;
+        if let Some((x0, y0)) = prev {
+            let (a, b) = (y0.min(y), y0.max(y));
+            img.fill(x0, a, (x - x0).max(1), b - a + 2, CURVE);
+        } else {
+            img.fill(x, y, 2, 2, CURVE);
+        }
+        prev = Some((x, y));
+    }
+    axes(&mut img, title, "cutter location", ylabel);
+    img.write_png(path)
+        .with_context(|| format!("writing {}", path.display()))
+}
+
+/// Area and removal rate along the program.
+pub(crate) fn along_program(locations: &[Engagement], dir: &Path) -> Result<()> {
+    let area: Vec<f64> = locations.iter().map(|e| e.area_mm2).collect();
+    let mrr: Vec<f64> = locations.iter().map(|e| e.mrr_mm3_min).collect();
+    curve(
+        &area,
+        "engaged area along the program",
+        "area (mm2)",
+        &dir.join("area.png"),
+    )?;
+    curve(
+        &mrr,
+        "material removal rate along the program",
+        "MRR (mm3/min)",
+        &dir.join("mrr.png"),
+    )
+}
