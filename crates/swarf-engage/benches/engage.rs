@@ -1,2 +1,134 @@
-//! Engagement benchmark (work in progress).
-fn main() {}
+//! Engagement benchmark: the finishing program of `swarf-stock`'s `cut` bench (a 10 mm ball end
+//! mill raster of ~0.5 mm moves over a wavy surface in a 120 × 120 × 50 mm block, h = 0.1 mm),
+//! read as G-code, with one cutter location per move (`step` 0), against the plain simulation
+//! of the same program.
+//!
+//! `SWARF_BENCH_REPORT_ONLY=1 cargo bench -p swarf-engage --bench engage` prints the report
+//! alone: the median of 3 runs of each, the ratio engagement / simulation, µs per location and
+//! the extrapolation to 50,000 moves; `SWARF_BENCH_MOVES=N` sets the moves (default 3000).
+//! Without it, criterion also times 300 moves of each.
+
+use criterion::{criterion_main, Criterion};
+use std::fmt::Write as _;
+use std::time::Instant;
+use swarf_engage::{EngageOptions, Engager};
+use swarf_geom::math::Vec3;
+use swarf_path::load::{read_program_str, ReadOptions};
+use swarf_path::{Machine, Program};
+use swarf_stock::{simulate, SimOptions, Tools, TriDexel};
+use swarf_tool::{Cutter, ToolSet};
+
+/// The raster of the `cut` bench as a G-code program of `n` feed moves.
+fn program(n: usize) -> Program {
+    let z = |x: f64, y: f64| 40.0 + 3.0 * (x / 12.0).sin() * (y / 15.0).cos();
+    let mut text = String::from("G21 G90\nG0 Z60\nG0 X5 Y5\nG1 Z43 F2000\n");
+    let (seg, step_over) = (0.5, 0.6);
+    let per_pass = (110.0 / seg) as usize;
+    let (mut y, mut moves, mut pass) = (5.0, 0, 0);
+    while moves < n {
+        for i in 0..=per_pass {
+            let x = if pass % 2 == 0 {
+                5.0 + i as f64 * seg
+            } else {
+                115.0 - i as f64 * seg
+            };
+            let _ = writeln!(text, "G1 X{x:.4} Y{y:.4} Z{:.4}", z(x, y));
+            moves += 1;
+            if moves >= n {
+                break;
+            }
+        }
+        y += step_over;
+        pass += 1;
+    }
+    read_program_str(
+        &text,
+        "finish.ngc",
+        Machine::three_axis(),
+        &ReadOptions::default(),
+    )
+    .unwrap()
+}
+
+fn stock() -> TriDexel {
+    TriDexel::from_box(Vec3::ZERO, Vec3::new(120.0, 120.0, 50.0), 0.1).unwrap()
+}
+
+fn simulate_once(p: &Program) -> f64 {
+    let mut s = stock();
+    let t = Instant::now();
+    let tools = Tools::single(&Cutter::ball(10.0).unwrap());
+    simulate(p, &tools, &mut s, &SimOptions::default()).unwrap();
+    t.elapsed().as_secs_f64()
+}
+
+fn engage_once(p: &Program) -> (f64, usize) {
+    let mut s = stock();
+    let t = Instant::now();
+    let tools = ToolSet::single(Cutter::ball(10.0).unwrap());
+    let opts = EngageOptions::default().with_step(0.0);
+    let n = Engager::new(p, &tools, &mut s, opts)
+        .unwrap()
+        .map(Result::unwrap)
+        .filter(|e| e.is_engaged())
+        .count();
+    (t.elapsed().as_secs_f64(), n)
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn report() {
+    let n: usize = std::env::var("SWARF_BENCH_MOVES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(3000);
+    let p = program(n);
+    let sim = median((0..3).map(|_| simulate_once(&p)).collect());
+    let runs: Vec<(f64, usize)> = (0..3).map(|_| engage_once(&p)).collect();
+    let engaged = runs[0].1;
+    let eng = median(runs.into_iter().map(|r| r.0).collect());
+    let moves = p.moves.len();
+    println!(
+        "engage bench: {moves} moves, {engaged} engaged locations, h = 0.1 mm, {} threads",
+        rayon_threads()
+    );
+    println!(
+        "  simulate   median {sim:.3} s  ({:.1} µs/move, {:.1} s per 50,000)",
+        sim / moves as f64 * 1e6,
+        sim / moves as f64 * 5e4
+    );
+    println!(
+        "  engagement median {eng:.3} s  ({:.1} µs/location, {:.1} s per 50,000)",
+        eng / moves as f64 * 1e6,
+        eng / moves as f64 * 5e4
+    );
+    println!("  ratio engagement / simulation: {:.2}", eng / sim);
+}
+
+fn rayon_threads() -> String {
+    std::env::var("RAYON_NUM_THREADS").unwrap_or_else(|_| "all".into())
+}
+
+fn bench(c: &mut Criterion) {
+    let p = program(300);
+    let mut g = c.benchmark_group("finish300");
+    g.sample_size(10);
+    g.bench_function("simulate", |b| b.iter(|| simulate_once(&p)));
+    g.bench_function("engage", |b| b.iter(|| engage_once(&p)));
+    g.finish();
+}
+
+fn benches() {
+    report();
+    if std::env::var_os("SWARF_BENCH_REPORT_ONLY").is_some() {
+        return;
+    }
+    let mut c = Criterion::default().configure_from_args();
+    bench(&mut c);
+    c.final_summary();
+}
+
+criterion_main!(benches);

@@ -4,6 +4,8 @@
 use std::collections::BTreeMap;
 use std::time::Instant;
 
+use rayon::prelude::*;
+
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 use swarf_path::{FeedMode, Move, MoveKind, Program};
@@ -502,28 +504,35 @@ fn sample_strip(
     let (lo, hi) = (lo.saturating_sub(1), (hi + 2).min(strip.len()));
     let mut g = vec![0.0; (hi - lo) * n];
     let vscale = state.v_tip.length() + state.omega.length() * radius;
-    for (r, k) in (lo..hi).enumerate() {
-        let c = strip.circles[k];
-        let row = &mut g[r * n..(r + 1) * n];
-        for j in 0..n {
-            let radial = f.x * angles.sin[j] + f.y * angles.cos[j];
-            let p = f.tip + radial * c.rho + f.z * c.z;
-            let normal = radial * c.normal.x + f.z * c.normal.y;
-            let v = state.velocity_at(p);
-            let vl = v.length();
-            let feas = if vl > 1e-12 * vscale.max(1e-300) {
-                normal.dot(v) / vl
-            } else {
-                0.0
-            };
-            row[j] = if feas <= FEASIBLE_EPS {
-                radius * (feas - FEASIBLE_EPS)
-            } else {
-                *probes += 1;
-                probe.depth(p).distance.min(radius * feas)
-            };
-        }
-    }
+    // Circles are independent: sampled in parallel (each probe only reads the stock).
+    let counted: u64 = g
+        .par_chunks_mut(n)
+        .enumerate()
+        .map(|(r, row)| {
+            let c = strip.circles[lo + r];
+            let mut probed = 0u64;
+            for (j, out) in row.iter_mut().enumerate() {
+                let radial = f.x * angles.sin[j] + f.y * angles.cos[j];
+                let p = f.tip + radial * c.rho + f.z * c.z;
+                let normal = radial * c.normal.x + f.z * c.normal.y;
+                let v = state.velocity_at(p);
+                let vl = v.length();
+                let feas = if vl > 1e-12 * vscale.max(1e-300) {
+                    normal.dot(v) / vl
+                } else {
+                    0.0
+                };
+                *out = if feas <= FEASIBLE_EPS {
+                    radius * (feas - FEASIBLE_EPS)
+                } else {
+                    probed += 1;
+                    probe.depth(p).distance.min(radius * feas)
+                };
+            }
+            probed
+        })
+        .sum();
+    *probes += counted;
     StripSamples {
         rows: (lo, hi),
         n_phi: n,

@@ -9,17 +9,17 @@ use swarf_stock::TriDexel;
 use swarf_tool::{Cutter, ToolSet};
 
 /// Reads a program (G-code or APT by the file name's extension) on a 3-axis machine.
-pub fn program(text: &str, file: &str) -> Program {
+pub(crate) fn program(text: &str, file: &str) -> Program {
     read_program_str(text, file, Machine::three_axis(), &ReadOptions::default()).unwrap()
 }
 
 /// A box stock.
-pub fn block(min: [f64; 3], max: [f64; 3], h: f64) -> TriDexel {
+pub(crate) fn block(min: [f64; 3], max: [f64; 3], h: f64) -> TriDexel {
     TriDexel::from_box(Vec3::from(min), Vec3::from(max), h).unwrap()
 }
 
 /// Every location of `program` run with `cutter` on `stock`.
-pub fn run(
+pub(crate) fn run(
     program: &Program,
     cutter: Cutter,
     stock: &mut TriDexel,
@@ -33,7 +33,7 @@ pub fn run(
 }
 
 /// The location whose tip is nearest to `p`.
-pub fn at(locations: &[Engagement], p: [f64; 3]) -> &Engagement {
+pub(crate) fn at(locations: &[Engagement], p: [f64; 3]) -> &Engagement {
     let p = Vec3::from(p);
     locations
         .iter()
@@ -42,12 +42,12 @@ pub fn at(locations: &[Engagement], p: [f64; 3]) -> &Engagement {
 }
 
 /// Relative error.
-pub fn rel(got: f64, want: f64) -> f64 {
+pub(crate) fn rel(got: f64, want: f64) -> f64 {
     (got - want).abs() / want.abs()
 }
 
 /// Asserts the area within `rel_tol`, the angles within `deg_tol` and prints them.
-pub fn check(e: &Engagement, area: f64, entry: f64, exit: f64, rel_tol: f64, deg_tol: f64) {
+pub(crate) fn check(e: &Engagement, area: f64, entry: f64, exit: f64, rel_tol: f64, deg_tol: f64) {
     let (a, b) = (e.phi_entry_deg.unwrap(), e.phi_exit_deg.unwrap());
     println!(
         "area {:.5} (exact {area:.5}, {:.3} %), entry {a:.4}° (exact {entry:.4}°), exit {b:.4}° (exact {exit:.4}°), ap {:.4}",
