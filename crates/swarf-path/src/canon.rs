@@ -253,9 +253,11 @@ pub struct Recorder {
 /// An owned copy of a [`Canon`] event.
 pub type OwnedCanon = Canon<'static>;
 
-impl CanonSink for Recorder {
-    fn emit(&mut self, line: u32, event: &Canon<'_>) {
-        let owned = match event {
+impl Canon<'_> {
+    /// An owned copy of the event (borrowed comment text is copied).
+    pub fn to_owned_event(&self) -> OwnedCanon {
+        let event = self;
+        match event {
             Canon::Comment(c) => Canon::Comment(Cow::Owned(c.to_string())),
             Canon::Message { kind, text } => Canon::Message {
                 kind: *kind,
@@ -305,8 +307,13 @@ impl CanonSink for Recorder {
                 normal: *normal,
                 turns: *turns,
             },
-        };
-        self.events.push((line, owned));
+        }
+    }
+}
+
+impl CanonSink for Recorder {
+    fn emit(&mut self, line: u32, event: &Canon<'_>) {
+        self.events.push((line, event.to_owned_event()));
     }
     fn warn(&mut self, warning: crate::Warning) {
         self.warnings.push(warning);

@@ -259,15 +259,14 @@ fn coolant_and_unknown_m_codes_warn_with_position() {
 }
 
 #[test]
-fn cutter_compensation_is_rejected_with_its_position() {
-    let e = err("G0 X0\nG1 F10 g42.1 X1\n");
+fn cutter_compensation_needs_the_tool_radius() {
+    // G41 D1 takes tool 1's diameter from the tool table (LinuxCNC: the D word names a tool).
+    let e = err("G0 X0\nG1 F10 g41 D1 X1\n");
     assert_eq!(
         (e.kind, e.pos.line, e.pos.column),
-        (PathErrorKind::Unsupported, 2, 8)
+        (PathErrorKind::Semantic, 2, 12)
     );
-    assert!(e
-        .message
-        .contains("cutter radius compensation is not simulated"));
+    assert!(e.message.contains("diameter of tool 1"), "{e}");
     run("G40 G64 G94 G97 G17 G80\n");
 }
 

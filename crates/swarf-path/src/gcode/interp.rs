@@ -11,6 +11,7 @@ use std::collections::HashMap;
 
 use super::arcs::{center_r, check_ijk, r_tolerance_mm};
 use super::block::{self, group, Block};
+use super::comp::Comp;
 use super::control::{Ctl, Frame};
 use super::dialect::Dialect;
 use super::expr::ParamRead;
@@ -117,6 +118,10 @@ pub(crate) struct Interp<'t, 's> {
     /// Set when a false `if` jumps to an `elseif`, whose condition must then be tested.
     pub(crate) if_probe: bool,
     pub(crate) skip_buf: LineBuf,
+    /// Cutter radius compensation.
+    pub(crate) comp: Comp,
+    /// The warning about LinuxCNC's tapping axes outside G17 was given.
+    pub(crate) tap_quirk_warned: bool,
 }
 
 impl<'t, 's> Interp<'t, 's> {
@@ -168,6 +173,8 @@ impl<'t, 's> Interp<'t, 's> {
             seen_code: false,
             if_probe: false,
             skip_buf: LineBuf::default(),
+            comp: Comp::default(),
+            tap_quirk_warned: false,
         }
     }
 
@@ -201,6 +208,7 @@ impl<'t, 's> Interp<'t, 's> {
                 return Err(self.to_error(f, raw, &lb));
             }
         }
+        self.comp_flush();
         if !self.ended {
             if !self.frames.is_empty() {
                 return Err(PathError::new(
@@ -267,7 +275,12 @@ impl<'t, 's> Interp<'t, 's> {
         {
             self.assume_prepared_tool_loaded();
         }
-        self.sink.emit(self.cur_line, &e);
+        if self.comp.queue.is_empty() && self.comp.held_none() {
+            self.sink.emit(self.cur_line, &e);
+        } else {
+            // Behind a compensated move waiting for its corner.
+            self.comp.queue.push((self.cur_line, e.to_owned_event()));
+        }
     }
 
     /// Programs for CAMotics, GRBL and many hobby controllers select the tool with a lone `T`
@@ -493,6 +506,12 @@ impl<'t, 's> Interp<'t, 's> {
             self.tool = t as u32;
         }
         if b.m6 {
+            if self.comp.on() {
+                return Err(Fault::semantic(
+                    Span::Line,
+                    "cannot change tools with cutter radius compensation on",
+                ));
+            }
             self.tool_loaded = true;
             self.emit(Canon::ToolChange { tool: self.tool });
         }
@@ -542,6 +561,12 @@ impl<'t, 's> Interp<'t, 's> {
             self.emit(Canon::Dwell(p));
         }
         if let Some(g) = b.g(group::PLANE) {
+            if self.comp.on() {
+                return Err(Fault::semantic(
+                    b.g_span(group::PLANE),
+                    "cannot change planes with cutter radius compensation on",
+                ));
+            }
             self.plane = match g {
                 170 => Plane::XY,
                 180 => Plane::XZ,
@@ -550,9 +575,18 @@ impl<'t, 's> Interp<'t, 's> {
             self.emit(Canon::Plane(self.plane));
         }
         if let Some(g) = b.g(group::UNITS) {
+            if self.comp.on() {
+                return Err(Fault::semantic(
+                    b.g_span(group::UNITS),
+                    "cannot change units with cutter radius compensation on",
+                ));
+            }
             self.units = if g == 200 { Units::Inch } else { Units::Mm };
             self.scale = self.units.mm_per_unit();
             self.emit(Canon::Units(self.units));
+        }
+        if let Some(g) = b.g(group::CUTTER_COMP) {
+            self.comp_mode(b, g)?;
         }
         let mut axes_used_by_nonmotion = false;
         match b.g(group::TOOL_LENGTH) {
@@ -628,6 +662,12 @@ impl<'t, 's> Interp<'t, 's> {
                 axes_used_by_nonmotion = true;
             }
             Some(280 | 300) => {
+                if self.comp.on() {
+                    return Err(Fault::semantic(
+                        b.g_span(group::NON_MODAL),
+                        "cannot use G28 or G30 with cutter radius compensation on",
+                    ));
+                }
                 self.home(b, usize::from(nonmodal == Some(300)))?;
                 axes_used_by_nonmotion = true;
             }
@@ -665,6 +705,7 @@ impl<'t, 's> Interp<'t, 's> {
                 );
             }
             Some(_) => {
+                self.comp_flush();
                 self.emit(Canon::ProgramEnd);
                 self.ended = true;
                 return Ok(());
@@ -688,14 +729,15 @@ impl<'t, 's> Interp<'t, 's> {
             .g(group::MOTION)
             .or(if has_axes { self.motion } else { None });
         let arc = matches!(mode, Some(20 | 30));
-        let cycle = matches!(mode, Some(730 | 810..=890));
+        let cycle = matches!(mode, Some(730 | 740 | 810..=890));
         let g10 = nonmodal == Some(100);
+        let comp_d = b.g(group::CUTTER_COMP).is_some_and(|g| g != 400);
         for c in *b"eijkrqplhd" {
             if !b.has(c) {
                 continue;
             }
             let used = match c {
-                b'i' | b'j' | b'k' => arc,
+                b'i' | b'j' | b'k' => arc || mode == Some(870),
                 b'r' => arc || cycle || g10,
                 b'q' => matches!(mode, Some(730 | 830)),
                 b'p' => {
@@ -707,6 +749,7 @@ impl<'t, 's> Interp<'t, 's> {
                 }
                 b'l' => cycle || g10 || b.m98,
                 b'h' => b.g(group::TOOL_LENGTH) == Some(430),
+                b'd' => comp_d,
                 _ => false,
             };
             if !used {
@@ -781,6 +824,18 @@ impl<'t, 's> Interp<'t, 's> {
             Some(0 | 10) => {
                 if has_axes {
                     let end = self.find_ends(b, g53)?;
+                    if self.comp.on() {
+                        if g53 {
+                            return Err(Fault::semantic(
+                                b.g_span(group::NON_MODAL),
+                                "cannot use G53 with cutter radius compensation on",
+                            ));
+                        }
+                        if mode == Some(10) {
+                            self.check_feed(b)?;
+                        }
+                        return self.comp_move(b, end, mode == Some(0), None);
+                    }
                     let end_axes = Axes::from_array(end);
                     if mode == Some(0) {
                         self.emit(Canon::Traverse { end: end_axes });
@@ -963,10 +1018,14 @@ impl<'t, 's> Interp<'t, 's> {
                 .map_err(|m| Fault::semantic(gspan, m))?;
             c
         };
+        let rotation = if cw { -turns } else { turns };
+        if self.comp.on() {
+            return self.comp_move(b, end, false, Some((center, rotation)));
+        }
         self.emit(Canon::Arc {
             end: Axes::from_array(end),
             center,
-            rotation: if cw { -turns } else { turns },
+            rotation,
             plane: self.plane,
         });
         self.p = end;
