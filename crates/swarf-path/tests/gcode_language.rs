@@ -74,7 +74,8 @@ fn initial_events_state_units_offsets_plane() {
     let rec = run("");
     assert_eq!(rec.events[0].1, Canon::Units(swarf_path::Units::Mm));
     assert!(matches!(rec.events[1].1, Canon::Offsets { index: 1, .. }));
-    assert_eq!(rec.events[2].1, Canon::Plane(Plane::XY));
+    assert_eq!(rec.events[2].1, Canon::XyRotation(0.0));
+    assert_eq!(rec.events[3].1, Canon::Plane(Plane::XY));
     assert_eq!(rec.warnings.len(), 1, "no program end is reported");
 }
 
@@ -218,9 +219,11 @@ fn g28_goes_through_the_intermediate_point_to_the_stored_position() {
     let m = motion(&rec);
     assert_xyz(end_of(&m[2]), 0.0, 0.0, 2.0);
     assert_xyz(end_of(&m[3]), 0.0, 0.0, 5.0);
-    assert_xyz(end_of(&m[4]), 5.0, 5.0, 5.0);
-    assert_xyz(end_of(&m[5]), 1.0, 5.0, 5.0);
-    assert_xyz(end_of(&m[6]), 7.0, 5.0, 5.0);
+    // G28 alone: through the current point (LinuxCNC's zero-length traverse), then home.
+    assert_xyz(end_of(&m[4]), 0.0, 0.0, 5.0);
+    assert_xyz(end_of(&m[5]), 5.0, 5.0, 5.0);
+    assert_xyz(end_of(&m[6]), 1.0, 5.0, 5.0);
+    assert_xyz(end_of(&m[7]), 7.0, 5.0, 5.0);
 }
 
 #[test]

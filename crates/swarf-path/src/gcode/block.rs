@@ -53,7 +53,7 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
     use group::*;
     let unsupported = |m| Err((PathErrorKind::Unsupported, m));
     match code {
-        40 | 100 | 280 | 281 | 300 | 301 | 530 | 920 | 921 | 922 | 923 => Ok(NON_MODAL),
+        40 | 100 | 280 | 281 | 300 | 301 | 520 | 530 | 920 | 921 | 922 | 923 => Ok(NON_MODAL),
         0 | 10 | 20 | 30 | 730 | 740 | 800 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880
         | 890 => Ok(MOTION),
         170 | 180 | 190 => Ok(PLANE),
@@ -77,7 +77,6 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
         171 | 181 | 191 => unsupported("UVW planes (G17.1, G18.1, G19.1) are not supported"),
         432 | 433 => unsupported("G43.2 additional tool length offsets are not supported"),
         500 | 510 | 511 => unsupported("scaling (G50/G51) is not supported"),
-        520 => unsupported("local coordinate systems (G52) are not supported"),
         680 | 690 => unsupported("coordinate rotation (G68/G69) is not supported"),
         _ => Err((PathErrorKind::Syntax, "unknown G code")),
     }
