@@ -33,6 +33,7 @@ pub mod motion;
 pub mod poly;
 pub mod primitive;
 pub mod ray;
+pub mod search;
 
 pub use aabb::Aabb;
 pub use frame::Frame;

@@ -3,7 +3,7 @@
 //!
 //! It tracks what the events state — work offsets, feed rate and mode, spindle, tool, the tool
 //! axis of CL data — and applies the [`Machine`] to every end point: joint values are the
-//! program position plus the G5x and G92 offsets; poses come from [`Machine::pose`], or, once a
+//! program position plus the G92 offset, turned by the XY rotation, plus the G5x offset; poses come from [`Machine::pose`], or, once a
 //! program states its own tool axis ([`Canon::ToolAxis`], APT CL data), directly from the
 //! program (tip = position, axis = the stated axis, no kinematics).
 //!
@@ -43,6 +43,8 @@ pub struct MoveBuilder {
     pos: Axes,
     g5x: Axes,
     g92: Axes,
+    /// Rotation of the XY plane about the G5x origin (G10 L2 R), as cosine and sine.
+    xy_rotation: (f64, f64),
     feed: f64,
     feed_mode: FeedMode,
     spindle_rpm: f64,
@@ -73,6 +75,7 @@ impl MoveBuilder {
             pos: Axes::default(),
             g5x: Axes::default(),
             g92: Axes::default(),
+            xy_rotation: (1.0, 0.0),
             feed: 0.0,
             feed_mode: FeedMode::PerMinute,
             spindle_rpm: 0.0,
@@ -105,8 +108,17 @@ impl MoveBuilder {
         }
     }
 
+    /// Joint values of a program position: the G92 offset, then the XY rotation, then the G5x
+    /// offset (LinuxCNC's canon layer).
     fn joints(&self, p: &Axes) -> Axes {
-        p.add(self.g5x).add(self.g92)
+        let q = p.add(self.g92);
+        let (c, s) = self.xy_rotation;
+        let r = Axes {
+            x: c * q.x - s * q.y,
+            y: s * q.x + c * q.y,
+            ..q
+        };
+        r.add(self.g5x)
     }
 
     fn pose(&self, joints: &Axes, axis: Vec3) -> Pose {
@@ -235,6 +247,10 @@ impl MoveBuilder {
 impl CanonSink for MoveBuilder {
     fn emit(&mut self, line: u32, event: &Canon<'_>) {
         match event {
+            Canon::XyRotation(deg) => {
+                let a = deg.to_radians();
+                self.xy_rotation = (a.cos(), a.sin());
+            }
             Canon::Offsets { g5x, g92, .. } => {
                 self.g5x = *g5x;
                 self.g92 = *g92;
@@ -280,16 +296,27 @@ impl CanonSink for MoveBuilder {
                 }
                 let (i1, i2, n) = plane.axes();
                 let (center, rotation) = (*center, *rotation);
+                let start = self.pos.to_array();
                 self.push(line, end, |b, s, e| {
-                    let sj = s.to_array();
-                    let off = b.g5x.add(b.g92).to_array();
-                    let mut c = [0.0; 3];
-                    c[i1] = center[0] + off[i1];
-                    c[i2] = center[1] + off[i2];
-                    c[n] = sj[n];
+                    let mut c = start;
+                    c[i1] = center[0];
+                    c[i2] = center[1];
+                    let c = b.joints(&Axes::from_array(c));
                     let mut normal = Vec3::ZERO;
                     normal[n] = if rotation > 0 { 1.0 } else { -1.0 };
-                    b.arc_geom(s, e, Vec3::from_array(c), normal, rotation.unsigned_abs())
+                    let (cos, sin) = b.xy_rotation;
+                    let normal = Vec3::new(
+                        cos * normal.x - sin * normal.y,
+                        sin * normal.x + cos * normal.y,
+                        normal.z,
+                    );
+                    b.arc_geom(
+                        s,
+                        e,
+                        Vec3::new(c.x, c.y, c.z),
+                        normal,
+                        rotation.unsigned_abs(),
+                    )
                 });
             }
             Canon::ArcAxis {

@@ -139,7 +139,9 @@ pub enum Canon<'a> {
     /// The program's length units changed (G20/G21, `UNITS/`).
     Units(Units),
     /// The active work offsets, in mm/degrees: `g5x` is the active G54–G59.x offset (index 1 =
-    /// G54), `g92` the G92 offset. Machine position = program position + g5x + g92.
+    /// G54), `g92` the G92 (and G52) offset. Machine position = program position + g5x + g92,
+    /// with the XY part of program position + g92 turned by the [`Canon::XyRotation`] that
+    /// follows.
     Offsets {
         /// 1 for G54 … 9 for G59.3.
         index: u8,
@@ -148,6 +150,10 @@ pub enum Canon<'a> {
         /// The G92 offset.
         g92: Axes,
     },
+    /// The rotation of the XY plane (degrees, counter-clockwise about Z) of the active
+    /// coordinate system (G10 L2 R), stated after every [`Canon::Offsets`] (LinuxCNC's
+    /// `SET_XY_ROTATION`). Machine position = rotate(program position + g92) + g5x.
+    XyRotation(f64),
     /// The arc plane changed.
     Plane(Plane),
     /// Feed rate: mm/min, 1/min (inverse time) or mm/rev as the feed mode says.
@@ -253,9 +259,11 @@ pub struct Recorder {
 /// An owned copy of a [`Canon`] event.
 pub type OwnedCanon = Canon<'static>;
 
-impl CanonSink for Recorder {
-    fn emit(&mut self, line: u32, event: &Canon<'_>) {
-        let owned = match event {
+impl Canon<'_> {
+    /// An owned copy of the event (borrowed comment text is copied).
+    pub fn to_owned_event(&self) -> OwnedCanon {
+        let event = self;
+        match event {
             Canon::Comment(c) => Canon::Comment(Cow::Owned(c.to_string())),
             Canon::Message { kind, text } => Canon::Message {
                 kind: *kind,
@@ -268,6 +276,7 @@ impl CanonSink for Recorder {
                 g92: *g92,
             },
             Canon::Plane(p) => Canon::Plane(*p),
+            Canon::XyRotation(r) => Canon::XyRotation(*r),
             Canon::FeedRate(f) => Canon::FeedRate(*f),
             Canon::FeedMode(m) => Canon::FeedMode(*m),
             Canon::Spindle { rpm, dir } => Canon::Spindle {
@@ -305,8 +314,13 @@ impl CanonSink for Recorder {
                 normal: *normal,
                 turns: *turns,
             },
-        };
-        self.events.push((line, owned));
+        }
+    }
+}
+
+impl CanonSink for Recorder {
+    fn emit(&mut self, line: u32, event: &Canon<'_>) {
+        self.events.push((line, event.to_owned_event()));
     }
     fn warn(&mut self, warning: crate::Warning) {
         self.warnings.push(warning);

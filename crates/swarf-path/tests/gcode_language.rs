@@ -74,7 +74,8 @@ fn initial_events_state_units_offsets_plane() {
     let rec = run("");
     assert_eq!(rec.events[0].1, Canon::Units(swarf_path::Units::Mm));
     assert!(matches!(rec.events[1].1, Canon::Offsets { index: 1, .. }));
-    assert_eq!(rec.events[2].1, Canon::Plane(Plane::XY));
+    assert_eq!(rec.events[2].1, Canon::XyRotation(0.0));
+    assert_eq!(rec.events[3].1, Canon::Plane(Plane::XY));
     assert_eq!(rec.warnings.len(), 1, "no program end is reported");
 }
 
@@ -218,9 +219,11 @@ fn g28_goes_through_the_intermediate_point_to_the_stored_position() {
     let m = motion(&rec);
     assert_xyz(end_of(&m[2]), 0.0, 0.0, 2.0);
     assert_xyz(end_of(&m[3]), 0.0, 0.0, 5.0);
-    assert_xyz(end_of(&m[4]), 5.0, 5.0, 5.0);
-    assert_xyz(end_of(&m[5]), 1.0, 5.0, 5.0);
-    assert_xyz(end_of(&m[6]), 7.0, 5.0, 5.0);
+    // G28 alone: through the current point (LinuxCNC's zero-length traverse), then home.
+    assert_xyz(end_of(&m[4]), 0.0, 0.0, 5.0);
+    assert_xyz(end_of(&m[5]), 5.0, 5.0, 5.0);
+    assert_xyz(end_of(&m[6]), 1.0, 5.0, 5.0);
+    assert_xyz(end_of(&m[7]), 7.0, 5.0, 5.0);
 }
 
 #[test]
@@ -259,15 +262,14 @@ fn coolant_and_unknown_m_codes_warn_with_position() {
 }
 
 #[test]
-fn cutter_compensation_is_rejected_with_its_position() {
-    let e = err("G0 X0\nG1 F10 g42.1 X1\n");
+fn cutter_compensation_needs_the_tool_radius() {
+    // G41 D1 takes tool 1's diameter from the tool table (LinuxCNC: the D word names a tool).
+    let e = err("G0 X0\nG1 F10 g41 D1 X1\n");
     assert_eq!(
         (e.kind, e.pos.line, e.pos.column),
-        (PathErrorKind::Unsupported, 2, 8)
+        (PathErrorKind::Semantic, 2, 12)
     );
-    assert!(e
-        .message
-        .contains("cutter radius compensation is not simulated"));
+    assert!(e.message.contains("diameter of tool 1"), "{e}");
     run("G40 G64 G94 G97 G17 G80\n");
 }
 

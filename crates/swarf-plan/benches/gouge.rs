@@ -16,8 +16,8 @@ use swarf_geom::math::Vec3;
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::Machine;
 use swarf_plan::gouge::{check_program, GougeOptions, GougeSurface, GougeTools, ViolationKind};
-use swarf_plan::size::PreparedSurface;
-use swarf_plan::{CompoundSurface, Tolerances};
+use swarf_surface::PreparedSurface;
+use swarf_surface::{CompoundSurface, Tolerances};
 
 const RADIUS: f64 = 3.0;
 

@@ -19,9 +19,10 @@ use criterion::{BenchmarkId, Criterion};
 use swarf_plan::size::{
     allowable_certified, allowable_map, allowable_pso, best_lead_tilt, best_rotary_angle,
     Axis4Options, Axis5Options, CertifiedOptions, Contact, CutterFamily, LeadTiltFrame, MapOptions,
-    PreparedSurface, PsoOptions,
+    PsoOptions,
 };
-use swarf_plan::{CcPoint, CompoundSurface, Tolerances};
+use swarf_surface::PreparedSurface;
+use swarf_surface::{CcPoint, CompoundSurface, Tolerances};
 
 fn contacts(part: &CompoundSurface, n: usize) -> Vec<Contact> {
     part.grid(n)

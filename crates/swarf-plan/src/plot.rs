@@ -31,7 +31,7 @@ use std::path::{Path, PathBuf};
 use swarf_io::{ColorMap, GlbOptions, IoError, TriMesh};
 
 use crate::size::{StandardCutters, ToolSizeMap};
-use crate::{tessellate, CompoundSurface, Tolerances};
+use swarf_surface::{tessellate, CompoundSurface, Tolerances};
 
 /// Colour of `inf` radii (nothing limits the cutter).
 pub const INF_RGB: [u8; 3] = [255, 170, 220];
@@ -794,7 +794,7 @@ pub fn part_mesh(
     let cells = map_cells(surface, map, n).ok_or_else(|| not_grid(Path::new("part")))?;
     let scale = RadiusScale::from_radii(map.points.iter().map(|p| p.radius_mm));
     let m = tessellate(surface, n, tol);
-    let mut mesh = TriMesh::from_parts(m.positions, m.triangles);
+    let mut mesh = m.mesh;
     let off = OFF_PART_RGB.map(|c| f32::from(c) / 255.0);
     mesh.colors = Some(
         cells

@@ -12,8 +12,8 @@ use swarf_plan::gouge::{
     check_program, GougeOptions, GougeReport, GougeSurface, GougeTools, SurfaceRef, ToolPart,
     ViolationKind,
 };
-use swarf_plan::size::PreparedSurface;
-use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface};
+use swarf_surface::PreparedSurface;
+use swarf_surface::{CompoundSurface, NurbsSurface, Patch, Surface};
 use swarf_tool::Cutter;
 
 /// A planar bilinear patch with corners `o`, `o + du`, `o + dv`, `o + du + dv`; its normal is

@@ -9,10 +9,9 @@ mod common;
 use common::{sampled_min, Rng};
 
 use swarf_geom::math::Vec3;
-use swarf_plan::size::{
-    allowable_certified, CertifiedOptions, Contact, CutterFamily, Limit, PreparedSurface,
-};
-use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
+use swarf_plan::size::{allowable_certified, CertifiedOptions, Contact, CutterFamily, Limit};
+use swarf_surface::PreparedSurface;
+use swarf_surface::{CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
 
 /// A 2×2 arrangement of bicubic B-spline height fields (one interior knot each way), with
 /// random heights; one patch rational. Normals up.

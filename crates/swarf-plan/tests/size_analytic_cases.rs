@@ -8,9 +8,10 @@ use std::f64::consts::FRAC_1_SQRT_2;
 use swarf_geom::math::Vec3;
 use swarf_plan::size::{
     allowable_certified, check_shank, shank_limited, AllowableSize, CertifiedOptions, Contact,
-    CutterFamily, Limit, PreparedSurface, ShankCheck, ShankStatus,
+    CutterFamily, Limit, ShankCheck, ShankStatus,
 };
-use swarf_plan::{io, CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
+use swarf_surface::PreparedSurface;
+use swarf_surface::{io, CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
 
 const EPS: f64 = 1e-6;
 

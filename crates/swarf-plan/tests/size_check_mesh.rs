@@ -13,10 +13,10 @@
 use swarf_geom::math::{Quat, Vec3};
 use swarf_io::TriMesh;
 use swarf_plan::size::{
-    allowable_along, allowable_certified, CertifiedOptions, CheckMeshError, Contact, CutterFamily,
-    Limit, PreparedSurface,
+    allowable_along, allowable_certified, CertifiedOptions, Contact, CutterFamily, Limit,
 };
-use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
+use swarf_surface::{CheckMeshError, PreparedSurface};
+use swarf_surface::{CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
 
 /// Agreement with the analytic answers, mm.
 const TOL: f64 = 1e-6;

@@ -5,7 +5,7 @@
 use swarf_geom::math::Vec3;
 use swarf_plan::size::map::CSV_HEADER;
 use swarf_plan::size::{allowable_map, CutterFamily, MapOptions, Solver};
-use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface};
+use swarf_surface::{CompoundSurface, NurbsSurface, Patch, Surface};
 
 fn bilinear(p00: Vec3, p10: Vec3, p01: Vec3, p11: Vec3) -> NurbsSurface {
     NurbsSurface::new(

@@ -11,7 +11,7 @@ use swarf_plan::plot::{
 };
 use swarf_plan::size::StandardCutters;
 use swarf_plan::size::{allowable_map, CutterFamily, MapOptions, ToolSizeMap};
-use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
+use swarf_surface::{CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
 
 fn bilinear(p00: Vec3, p10: Vec3, p01: Vec3, p11: Vec3) -> Patch {
     Patch::new(Surface::Nurbs(

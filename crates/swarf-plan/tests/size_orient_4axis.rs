@@ -17,9 +17,10 @@ use std::f64::consts::FRAC_1_SQRT_2;
 use swarf_geom::math::{Quat, Vec3};
 use swarf_plan::size::{
     allowable_along, allowable_certified, best_rotary_angle, Axis4Options, CertifiedOptions,
-    Contact, CutterFamily, PreparedSurface, RotaryAxis,
+    Contact, CutterFamily, RotaryAxis,
 };
-use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
+use swarf_surface::PreparedSurface;
+use swarf_surface::{CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
 
 const R: f64 = 5.0;
 

@@ -16,9 +16,10 @@ use common::Rng;
 use swarf_geom::math::Vec3;
 use swarf_plan::size::{
     allowable_along, allowable_certified, best_lead_tilt, Axis5Options, CertifiedOptions, Contact,
-    CutterFamily, LeadTiltFrame, PreparedSurface,
+    CutterFamily, LeadTiltFrame,
 };
-use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
+use swarf_surface::PreparedSurface;
+use swarf_surface::{CompoundSurface, NurbsSurface, Patch, Surface, Tolerances};
 
 fn bilinear(p00: Vec3, p10: Vec3, p01: Vec3, p11: Vec3) -> Patch {
     let k = vec![0.0, 0.0, 1.0, 1.0];

@@ -7,9 +7,10 @@ use swarf_geom::math::Vec3;
 use swarf_plan::size::map::CSV_HEADER;
 use swarf_plan::size::{
     allowable_along, allowable_map, Axes, Axis4Options, Axis5Options, CutterFamily, MapOptions,
-    PreparedSurface, RotaryAxis, ToolAngles,
+    RotaryAxis, ToolAngles,
 };
-use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface};
+use swarf_surface::PreparedSurface;
+use swarf_surface::{CompoundSurface, NurbsSurface, Patch, Surface};
 
 /// The trough of `size_orient_4axis.rs` (radius 5, along Y, open towards +X), normal inwards.
 fn trough() -> CompoundSurface {

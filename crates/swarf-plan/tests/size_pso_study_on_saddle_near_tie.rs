@@ -7,10 +7,9 @@
 
 use swarf_geom::math::Vec3;
 use swarf_plan::size::pso::{nelder_mead, particle_swarm, PsoOptions};
-use swarf_plan::size::{
-    allowable_certified, CertifiedOptions, Contact, CutterFamily, Limit, PreparedSurface,
-};
-use swarf_plan::{CompoundSurface, NurbsSurface, ParametricSurface, Patch, Surface, Tolerances};
+use swarf_plan::size::{allowable_certified, CertifiedOptions, Contact, CutterFamily, Limit};
+use swarf_surface::PreparedSurface;
+use swarf_surface::{CompoundSurface, NurbsSurface, ParametricSurface, Patch, Surface, Tolerances};
 
 /// Horizontal distance of the wall from the origin at angle φ (degrees) and height fraction t:
 /// two bulges (at −30° and +30°, the second 0.025 mm shallower) on a saddle that rises away

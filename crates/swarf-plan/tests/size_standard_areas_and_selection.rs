@@ -10,7 +10,7 @@ use swarf_plan::size::{
     allowable_map, grid_cell_areas, AreaRule, CutterFamily, MapOptions, StandardCutters,
     StandardOptions, StandardReport,
 };
-use swarf_plan::{
+use swarf_surface::{
     CompoundSurface, CylindricalSurface, ParamBox, Patch, PlaneSurface, SphericalSurface, Surface,
 };
 

@@ -15,9 +15,10 @@ use swarf_plan::gouge::{check_program, GougeOptions, GougeSurface, GougeTools, S
 use swarf_plan::plot::{write_patch_maps, PlotOptions, OFF_PART_RGB};
 use swarf_plan::size::{
     allowable_certified, allowable_map, allowable_pso, grid_cell_areas, AreaRule, CertifiedOptions,
-    Contact, CutterFamily, Limit, MapOptions, PreparedSurface, PsoOptions,
+    Contact, CutterFamily, Limit, MapOptions, PsoOptions,
 };
-use swarf_plan::{
+use swarf_surface::PreparedSurface;
+use swarf_surface::{
     tessellate, CcPointError, CompoundSurface, NurbsSurface, ParametricSurface, Patch, Surface,
     Tolerances, Trim,
 };
@@ -119,9 +120,9 @@ fn grid_mesh_areas_and_maps_leave_the_slot_out() {
     );
     // The mesh keeps no triangle over the slot.
     let m = tessellate(&slotted, n, &TOL);
-    for (t, &k) in m.triangles.iter().zip(&m.triangle_patch) {
+    for (t, &k) in m.mesh.triangles.iter().zip(&m.triangle_patch) {
         if k == 1 {
-            let y = t.map(|i| m.positions[i as usize].y);
+            let y = t.map(|i| m.mesh.vertices[i as usize].y);
             assert!(y.iter().all(|&y| y <= 5.0 + 1e-9) || y.iter().all(|&y| y >= 15.0 - 1e-9));
         }
     }
@@ -385,7 +386,7 @@ fn an_elementary_surface_is_trimmed_in_its_own_parameters() {
     // The same slot in a wall that is a STEP-style plane (parameters in mm: u along z, v along
     // y), and a quarter cylinder (parameters: angle, height) with a window in its angle range.
     use swarf_geom::Frame;
-    use swarf_plan::{CylindricalSurface, ParamBox, PlaneSurface};
+    use swarf_surface::{CylindricalSurface, ParamBox, PlaneSurface};
     let frame = Frame::from_axis_and_x(Vec3::new(20.0, 0.0, 0.0), -Vec3::X, Vec3::Z);
     let dom = ParamBox {
         u: [0.0, 10.0],

@@ -8,14 +8,13 @@ use std::path::Path;
 
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
-use swarf_geom::math::Vec3;
 use swarf_path::canonical::CanonicalPrinter;
 use swarf_path::load::{read_program_str, stream_program, ReadOptions};
 use swarf_path::Machine;
 use swarf_plan::gouge::{check_program, GougeOptions, GougeSummary, GougeSurface};
-use swarf_plan::size::PreparedSurface;
-use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface};
 use swarf_stock::{simulate, MeshOptions, SimOptions, StockSpec};
+use swarf_surface::build::{hermite_height_field, HeightGrid};
+use swarf_surface::{CompoundSurface, Patch, PreparedSurface, Surface};
 use swarf_tool::table::parse_toml_library;
 
 use crate::cli::DemoArgs;
@@ -40,50 +39,25 @@ struct DemoReport<'a> {
 }
 
 /// The design surface of Op 2, `z = −6 + 1.5·sin(9x°)·cos(9y°)` over the finished area
-/// `[20, 80] × [20, 60]` mm, as one bicubic NURBS: the Bézier form of the C¹ bicubic Hermite
-/// interpolant of the formula on a 2 mm grid (knots of multiplicity 3; the control point
-/// `h/3` from a node carries the first derivatives, the one `h/3` from two nodes' lines the
-/// twist). Within 1e-4 mm of the formula (tested).
+/// `[20, 80] × [20, 60]` mm, as one bicubic NURBS on a 2 mm grid
+/// ([`hermite_height_field`]). Within 1e-4 mm of the formula (tested).
 fn wavy_floor() -> CompoundSurface {
     let k = 9f64.to_radians();
-    let f = |x: f64, y: f64| -6.0 + 1.5 * (k * x).sin() * (k * y).cos();
-    let fx = |x: f64, y: f64| 1.5 * k * (k * x).cos() * (k * y).cos();
-    let fy = |x: f64, y: f64| -1.5 * k * (k * x).sin() * (k * y).sin();
-    let fxy = |x: f64, y: f64| -1.5 * k * k * (k * x).cos() * (k * y).sin();
-    let h = 2.0;
-    let (nx, ny) = (30, 20);
-    // Index 3i + a along x: node i, offset a·h/3 (a = 0, 1) or node i + 1 at −h/3 (a = 2).
-    let node = |idx: usize, n: usize| -> (usize, f64) {
-        let (i, a) = (idx / 3, idx % 3);
-        match a {
-            0 => (i.min(n), 0.0),
-            1 => (i, h / 3.0),
-            _ => (i + 1, -h / 3.0),
-        }
+    let jet = |x: f64, y: f64| {
+        let (sx, cx, sy, cy) = ((k * x).sin(), (k * x).cos(), (k * y).sin(), (k * y).cos());
+        [
+            -6.0 + 1.5 * sx * cy,
+            1.5 * k * cx * cy,
+            -1.5 * k * sx * sy,
+            -1.5 * k * k * cx * sy,
+        ]
     };
-    let knots = |n: usize| -> Vec<f64> {
-        let mut v = vec![0.0; 4];
-        for i in 1..n {
-            v.extend([i as f64; 3]);
-        }
-        v.extend([n as f64; 4]);
-        v
+    let grid = HeightGrid {
+        origin: [20.0, 20.0],
+        h: 2.0,
+        cells: [30, 20],
     };
-    let pts: Vec<Vec<Vec3>> = (0..=3 * nx)
-        .map(|i| {
-            let (ix, dx) = node(i, nx);
-            (0..=3 * ny)
-                .map(|j| {
-                    let (iy, dy) = node(j, ny);
-                    let (x, y) = (20.0 + h * ix as f64, 20.0 + h * iy as f64);
-                    let z = f(x, y) + dx * fx(x, y) + dy * fy(x, y) + dx * dy * fxy(x, y);
-                    Vec3::new(x + dx, y + dy, z)
-                })
-                .collect()
-        })
-        .collect();
-    let s = NurbsSurface::new(3, 3, knots(nx), knots(ny), &pts, None)
-        .expect("the demo floor is a valid NURBS");
+    let s = hermite_height_field(&grid, jet).expect("the demo floor is a valid NURBS");
     let mut patch = Patch::new(Surface::Nurbs(s));
     patch.name = Some("wavy_floor".into());
     CompoundSurface::new(vec![patch])
@@ -111,7 +85,7 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
 
     let t0 = std::time::Instant::now();
     let floor = wavy_floor();
-    let json = swarf_plan::io::json::to_string(&floor).context("encoding the floor surface")?;
+    let json = swarf_surface::io::json::to_string(&floor).context("encoding the floor surface")?;
     write_atomic(&dir.join("floor.json"), json.as_bytes())?;
     let gouge_tools = crate::commands::gouge::tools_for(&program, None, Some(&table))?;
     let surface = GougeSurface::new(&PreparedSurface::new(&floor));
@@ -147,7 +121,7 @@ fn write_sources(dir: &Path, options: &ReadOptions) -> Result<()> {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use swarf_plan::ParametricSurface;
+    use swarf_surface::ParametricSurface;
 
     #[test]
     fn the_demo_floor_follows_its_formula_within_1e_4_mm() {

@@ -11,8 +11,7 @@ use swarf_path::Program;
 use swarf_plan::gouge::{
     check_program_observed, GougeOptions, GougeReport, GougeSummary, GougeSurface, GougeTools,
 };
-use swarf_plan::size::PreparedSurface;
-use swarf_plan::CompoundSurface;
+use swarf_surface::{CompoundSurface, PreparedSurface};
 
 use crate::cli::SetupArgs;
 use crate::commands::tools::{load_setup, resolve_all, Setup};
@@ -51,7 +50,7 @@ pub(crate) struct GougeArgs {
 
 pub(crate) fn run(args: &GougeArgs) -> Result<()> {
     let t0 = Instant::now();
-    let surface = swarf_plan::io::read_file(&args.surface)
+    let surface = swarf_surface::io::read_file(&args.surface)
         .with_context(|| format!("reading {}", args.surface.display()))?;
     if surface.patches.is_empty() {
         bail!("{}: no surface patches", args.surface.display());

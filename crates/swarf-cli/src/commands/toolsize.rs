@@ -6,10 +6,10 @@ use std::path::PathBuf;
 use anyhow::{bail, Context, Result};
 use clap::{Args, ValueEnum};
 use swarf_plan::size::{
-    Axes, Axis4Options, Axis5Options, CutterFamily, MapOptions, PreparedSurface, RotaryAxis,
-    ShankCheck, Solver,
+    Axes, Axis4Options, Axis5Options, CutterFamily, MapOptions, RotaryAxis, ShankCheck, Solver,
 };
 use swarf_plan::size::{StandardCutters, StandardOptions, StandardReport, ToolSizeMap};
+use swarf_surface::PreparedSurface;
 
 use crate::output::{print_json, write_atomic};
 
@@ -154,7 +154,7 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
         .map(StandardCutters::parse)
         .transpose()
         .context("--standard")?;
-    let mut surface = swarf_plan::io::read_file(&args.surface)
+    let mut surface = swarf_surface::io::read_file(&args.surface)
         .with_context(|| format!("reading {}", args.surface.display()))?;
     if surface.patches.is_empty() {
         bail!("{}: no surface patches", args.surface.display());
@@ -227,13 +227,13 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
 /// returned).
 fn write_standard_and_maps(
     args: &ToolsizeArgs,
-    surface: &swarf_plan::CompoundSurface,
+    surface: &swarf_surface::CompoundSurface,
     map: &ToolSizeMap,
     standard: Option<&StandardCutters>,
 ) -> Result<Option<StandardReport>> {
     let plot = swarf_plan::plot::PlotOptions::default();
     swarf_plan::plot::write_patch_maps(surface, map, args.grid, &args.out.join("maps"), &plot)?;
-    let tol = swarf_plan::Tolerances::DEFAULT;
+    let tol = swarf_surface::Tolerances::DEFAULT;
     swarf_plan::plot::write_part_glb(&args.out.join("part.glb"), surface, map, args.grid, &tol)?;
     let Some(cutters) = standard else {
         return Ok(None);

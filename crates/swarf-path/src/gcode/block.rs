@@ -20,7 +20,7 @@ pub(crate) const fn slot(c: u8) -> usize {
 pub(crate) mod group {
     /// G4 G10 G28 G30 G53 G92…
     pub(crate) const NON_MODAL: usize = 0;
-    /// G0 G1 G2 G3 G80–G89 G73.
+    /// G0 G1 G2 G3 G80–G89 G73 G74.
     pub(crate) const MOTION: usize = 1;
     /// G17 G18 G19.
     pub(crate) const PLANE: usize = 2;
@@ -32,7 +32,7 @@ pub(crate) mod group {
     pub(crate) const FEED_MODE: usize = 5;
     /// G20 G21.
     pub(crate) const UNITS: usize = 6;
-    /// G40 (G41 G42 are rejected).
+    /// G40 G41 G42 G41.1 G42.1.
     pub(crate) const CUTTER_COMP: usize = 7;
     /// G43 G43.1 G49.
     pub(crate) const TOOL_LENGTH: usize = 8;
@@ -53,23 +53,23 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
     use group::*;
     let unsupported = |m| Err((PathErrorKind::Unsupported, m));
     match code {
-        40 | 100 | 280 | 281 | 300 | 301 | 530 | 920 | 921 | 922 | 923 => Ok(NON_MODAL),
-        0 | 10 | 20 | 30 | 730 | 800 | 810 | 820 | 830 | 850 | 890 => Ok(MOTION),
+        40 | 100 | 280 | 281 | 300 | 301 | 520 | 530 | 920 | 921 | 922 | 923 => Ok(NON_MODAL),
+        0 | 10 | 20 | 30 | 730 | 740 | 800 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880
+        | 890 => Ok(MOTION),
         170 | 180 | 190 => Ok(PLANE),
         900 | 910 => Ok(DISTANCE),
         901 | 911 => Ok(ARC_DISTANCE),
         930 | 940 | 950 => Ok(FEED_MODE),
         200 | 210 => Ok(UNITS),
-        400 => Ok(CUTTER_COMP),
-        410 | 420 | 411 | 421 => unsupported("cutter radius compensation is not simulated"),
+        400 | 410 | 420 | 411 | 421 => Ok(CUTTER_COMP),
         430 | 431 | 490 => Ok(TOOL_LENGTH),
         980 | 990 => Ok(RETRACT),
         540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => Ok(COORD),
         610 | 611 | 640 => Ok(PATH),
         960 | 970 => Ok(SPINDLE_MODE),
-        330 | 331 | 760 | 840 | 740 | 860 | 870 | 880 => {
-            unsupported("spindle-synchronised motion, tapping and boring cycles other than G85/G89 are not simulated")
-        }
+        330 | 331 | 760 => unsupported(
+            "spindle-synchronised motion (G33, G33.1 rigid tapping, G76 threading) is not simulated",
+        ),
         382..=385 => unsupported("probing is not simulated"),
         50..=52 => unsupported("splines (G5, G5.1, G5.2) are not supported"),
         70 | 80 => unsupported("lathe diameter/radius modes (G7/G8) are not supported"),
@@ -77,7 +77,6 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
         171 | 181 | 191 => unsupported("UVW planes (G17.1, G18.1, G19.1) are not supported"),
         432 | 433 => unsupported("G43.2 additional tool length offsets are not supported"),
         500 | 510 | 511 => unsupported("scaling (G50/G51) is not supported"),
-        520 => unsupported("local coordinate systems (G52) are not supported"),
         680 | 690 => unsupported("coordinate rotation (G68/G69) is not supported"),
         _ => Err((PathErrorKind::Syntax, "unknown G code")),
     }
@@ -394,11 +393,9 @@ mod tests {
         assert_eq!(e.span, Span::Code(4, 6));
         let e = parsed("G0 G1").unwrap_err();
         assert_eq!(e.kind, PathErrorKind::Semantic);
-        let e = parsed("G41 X1").unwrap_err();
+        let e = parsed("G38.2 X1").unwrap_err();
         assert_eq!(e.kind, PathErrorKind::Unsupported);
-        assert!(e
-            .message
-            .contains("cutter radius compensation is not simulated"));
+        assert!(e.message.contains("probing is not simulated"));
         assert_eq!(parsed("G1.5").unwrap_err().kind, PathErrorKind::Syntax);
         assert_eq!(parsed("G1 X1.2.3").unwrap_err().span, Span::Code(2, 8));
         assert!(parsed("G1 X").is_err());

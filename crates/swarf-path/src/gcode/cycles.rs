@@ -1,6 +1,14 @@
-//! Canned cycles G73 G81 G82 G83 G85 G89, expanded into traverses, feeds and dwells exactly as
-//! LinuxCNC's `convert_cycle_xy`/`_zx`/`_yz` and `CYCLE_MACRO` do, in any plane, absolute or
-//! incremental, with `L` repeats and G98/G99 retract modes.
+//! Canned cycles G73 G74 G81–G89, expanded into traverses, feeds, dwells and spindle events
+//! exactly as LinuxCNC's `convert_cycle_xy`/`_zx`/`_yz` and `CYCLE_MACRO` do, in any plane,
+//! absolute or incremental, with `L` repeats and G98/G99 retract modes.
+//!
+//! Tapping (G84 right hand, G74 left hand) feeds down, reverses the spindle, dwells `P` and
+//! feeds back out at the same feed to the clearance level (R for G99, the starting level for
+//! G98), then restores the spindle. Boring: G86 stops the spindle at the bottom and rapids out;
+//! G88 stops it, pauses (the operator retracts by hand; swarf rapids out) and restarts it; G87
+//! (back boring) moves off by `I`/`J`, stops the spindle, rapids down to the bottom, comes back
+//! to the hole, starts the spindle, feeds up to `K`, feeds back down, stops, moves off again and
+//! rapids out — the twelve steps of the LinuxCNC manual's G87.
 //!
 //! In the plane's own coordinates (`aa`, `bb` in the plane, `cc` along its normal — Z for G17):
 //! if the tool starts below the R level it first rises straight to R; then, for each repeat, it
@@ -10,7 +18,7 @@
 use super::block::{group, Block};
 use super::interp::{Interp, AXIS_LETTERS};
 use super::{Fault, Res, Span};
-use crate::{Axes, Canon, FeedMode, PathErrorKind};
+use crate::{Axes, Canon, FeedMode, PathErrorKind, Plane, SpindleDir};
 
 /// LinuxCNC's `G83_RAPID_DELTA`: 0.010 inch, how far above the last depth a peck re-enters.
 const RAPID_DELTA_MM: f64 = 0.010 * 25.4;
@@ -33,6 +41,38 @@ impl Interp<'_, '_> {
         });
     }
 
+    /// A tapping feed. LinuxCNC (its `g84` tests, G18 and G19) writes the feed moves of a
+    /// tapping cycle in the ZX plane with the YZ plane's axes and the other way round; the
+    /// control moves as its canonical calls say, so swarf does the same (and says so).
+    fn tap_feed(&mut self, aa: f64, bb: f64, cc: f64) {
+        let swapped = match self.plane {
+            Plane::XY => Plane::XY,
+            Plane::XZ => Plane::YZ,
+            Plane::YZ => Plane::XZ,
+        };
+        let (fi, si, ni) = swapped.axes();
+        let mut p = self.p;
+        p[fi] = aa;
+        p[si] = bb;
+        p[ni] = cc;
+        if swapped != self.plane && !self.tap_quirk_warned {
+            self.tap_quirk_warned = true;
+            self.warn_at(
+                0,
+                "tapping outside G17: the feed moves follow LinuxCNC, which swaps the axes of \
+                 the ZX and YZ planes in them"
+                    .into(),
+            );
+        }
+        self.emit(Canon::Feed {
+            end: Axes::from_array(p),
+        });
+    }
+
+    fn cyc_spindle(&mut self, dir: SpindleDir) {
+        self.emit(Canon::Spindle { rpm: self.rpm, dir });
+    }
+
     fn cyc_feed(&mut self, aa: f64, bb: f64, cc: f64) {
         let p = self.cycle_point(aa, bb, cc);
         self.emit(Canon::Feed {
@@ -50,6 +90,12 @@ impl Interp<'_, '_> {
         let (fl, sl, nl) = (AXIS_LETTERS[fi], AXIS_LETTERS[si], AXIS_LETTERS[ni]);
         let nname = (nl as char).to_ascii_uppercase();
         let same = old_motion == Some(motion);
+        if self.comp.on() {
+            return Err(Fault::semantic(
+                gspan,
+                "cannot use canned cycles with cutter radius compensation on",
+            ));
+        }
         if self.feed_mode == FeedMode::InverseTime {
             return Err(Fault::semantic(
                 gspan,
@@ -125,7 +171,14 @@ impl Interp<'_, '_> {
                 "an F word",
             ));
         }
-        let dwell = if matches!(motion, 820 | 890) {
+        let dwell = if matches!(motion, 740 | 840 | 860 | 880) {
+            match b.get(b'p') {
+                Some(p) if p >= 0.0 => p,
+                Some(_) => return Err(Fault::semantic(b.span(b'p'), "negative dwell time")),
+                None if same => self.cycle.p,
+                None => 0.0,
+            }
+        } else if matches!(motion, 820 | 890) {
             match b.get(b'p') {
                 Some(p) if p >= 0.0 => p,
                 Some(_) => return Err(Fault::semantic(b.span(b'p'), "negative dwell time")),
@@ -163,6 +216,28 @@ impl Interp<'_, '_> {
             }
         } else {
             0.0
+        };
+        let (back_bore_offset, back_bore_k) = if motion == 870 {
+            let off = [b'i', b'j', b'k'];
+            let (oi, oj, ok) = (off[fi], off[si], off[ni]);
+            let need = |c: u8| {
+                b.get(c).map(|v| v * self.scale).ok_or_else(|| {
+                    Fault::new(
+                        PathErrorKind::Semantic,
+                        gspan,
+                        format!(
+                            "{} word missing in G87 back boring",
+                            (c as char).to_ascii_uppercase()
+                        ),
+                        "I, J (the offset to pass the hole) and K (the back bore's level)",
+                    )
+                })
+            };
+            let (i, j, k) = (need(oi)?, need(oj)?, need(ok)?);
+            let k = if self.absolute { k } else { self.p[ni] + k };
+            (Some((i, j)), k)
+        } else {
+            (None, 0.0)
         };
         let mut old_cc = self.p[ni];
         let (mut aa, mut bb, aa_inc, bb_inc, r, cc);
@@ -246,6 +321,54 @@ impl Interp<'_, '_> {
                     }
                     self.cyc_feed(aa, bb, cc);
                     self.cyc_traverse(aa, bb, clear);
+                }
+                740 | 840 => {
+                    // Tapping: reverse at the bottom and feed out at the same feed.
+                    let (down, up) = if motion == 840 {
+                        (SpindleDir::Clockwise, SpindleDir::CounterClockwise)
+                    } else {
+                        (SpindleDir::CounterClockwise, SpindleDir::Clockwise)
+                    };
+                    self.tap_feed(aa, bb, cc);
+                    self.cyc_spindle(SpindleDir::Stopped);
+                    self.cyc_spindle(up);
+                    self.emit(Canon::Dwell(dwell));
+                    self.tap_feed(aa, bb, clear);
+                    self.cyc_spindle(SpindleDir::Stopped);
+                    self.cyc_spindle(down);
+                }
+                860 | 880 => {
+                    let dir = self.dir;
+                    self.cyc_feed(aa, bb, cc);
+                    self.emit(Canon::Dwell(dwell));
+                    self.cyc_spindle(SpindleDir::Stopped);
+                    if motion == 880 {
+                        self.warn_at(
+                            0,
+                            "G88 pauses for the operator to retract the tool by hand: the \
+                             simulation rapids out"
+                                .into(),
+                        );
+                    }
+                    self.cyc_traverse(aa, bb, clear);
+                    self.cyc_spindle(dir);
+                }
+                870 => {
+                    let dir = self.dir;
+                    let (oi, oj) = back_bore_offset.unwrap_or((0.0, 0.0));
+                    // The hole's clearance level was reached above; the tool is at R.
+                    self.cyc_traverse(aa + oi, bb + oj, r);
+                    self.cyc_spindle(SpindleDir::Stopped);
+                    self.cyc_traverse(aa + oi, bb + oj, cc);
+                    self.cyc_traverse(aa, bb, cc);
+                    self.cyc_spindle(dir);
+                    self.cyc_feed(aa, bb, back_bore_k);
+                    self.cyc_feed(aa, bb, cc);
+                    self.cyc_spindle(SpindleDir::Stopped);
+                    self.cyc_traverse(aa + oi, bb + oj, cc);
+                    self.cyc_traverse(aa + oi, bb + oj, clear);
+                    self.cyc_traverse(aa, bb, clear);
+                    self.cyc_spindle(dir);
                 }
                 _ => {
                     // G85 and G89: feed out to R, then rapid to the clearance level if higher.

@@ -11,6 +11,7 @@ use std::collections::HashMap;
 
 use super::arcs::{center_r, check_ijk, r_tolerance_mm};
 use super::block::{self, group, Block};
+use super::comp::Comp;
 use super::control::{Ctl, Frame};
 use super::dialect::Dialect;
 use super::expr::ParamRead;
@@ -96,6 +97,10 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) g5x_table: [[f64; 6]; 9],
     /// The G5x offset in effect (loaded from the table when the system is selected).
     pub(crate) off: [f64; 6],
+    /// The XY rotation of each coordinate system (G10 L2 R, parameters 5230, 5250, …), degrees.
+    pub(crate) rot_table: [f64; 9],
+    /// The XY rotation in effect, degrees.
+    pub(crate) rot: f64,
     /// The G92 offset in effect.
     pub(crate) g92: [f64; 6],
     /// The stored G92 offset (parameters 5211–5216) and whether it is applied (5210).
@@ -117,6 +122,10 @@ pub(crate) struct Interp<'t, 's> {
     /// Set when a false `if` jumps to an `elseif`, whose condition must then be tested.
     pub(crate) if_probe: bool,
     pub(crate) skip_buf: LineBuf,
+    /// Cutter radius compensation.
+    pub(crate) comp: Comp,
+    /// The warning about LinuxCNC's tapping axes outside G17 was given.
+    pub(crate) tap_quirk_warned: bool,
 }
 
 impl<'t, 's> Interp<'t, 's> {
@@ -152,6 +161,8 @@ impl<'t, 's> Interp<'t, 's> {
             coord: 1,
             g5x_table: [[0.0; 6]; 9],
             off: [0.0; 6],
+            rot_table: [0.0; 9],
+            rot: 0.0,
             g92: [0.0; 6],
             g92_saved: [0.0; 6],
             g92_flag: false,
@@ -168,6 +179,8 @@ impl<'t, 's> Interp<'t, 's> {
             seen_code: false,
             if_probe: false,
             skip_buf: LineBuf::default(),
+            comp: Comp::default(),
+            tap_quirk_warned: false,
         }
     }
 
@@ -201,6 +214,7 @@ impl<'t, 's> Interp<'t, 's> {
                 return Err(self.to_error(f, raw, &lb));
             }
         }
+        self.comp_flush();
         if !self.ended {
             if !self.frames.is_empty() {
                 return Err(PathError::new(
@@ -267,7 +281,12 @@ impl<'t, 's> Interp<'t, 's> {
         {
             self.assume_prepared_tool_loaded();
         }
-        self.sink.emit(self.cur_line, &e);
+        if self.comp.queue.is_empty() && self.comp.held_none() {
+            self.sink.emit(self.cur_line, &e);
+        } else {
+            // Behind a compensated move waiting for its corner.
+            self.comp.queue.push((self.cur_line, e.to_owned_event()));
+        }
     }
 
     /// Programs for CAMotics, GRBL and many hobby controllers select the tool with a lone `T`
@@ -293,6 +312,7 @@ impl<'t, 's> Interp<'t, 's> {
             g92: Axes::from_array(self.g92),
         };
         self.emit(e);
+        self.emit(Canon::XyRotation(self.rot));
     }
 
     /// A warning at raw byte offset `byte` of the current line (0: the whole line).
@@ -400,7 +420,10 @@ impl<'t, 's> Interp<'t, 's> {
                 let (k, i) = ((n - 5221) / 20, (n - 5221) % 20);
                 self.to_units(i, self.g5x_table[k][i])
             }
+            5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20],
             5420..=5425 => self.to_units(n - 5420, self.p[n - 5420]),
+            // The machine position (G53 coordinates).
+            5021..=5026 => self.to_units(n - 5021, self.machine()[n - 5021]),
             5400 => f64::from(self.tool),
             _ => self.params.num[n],
         }
@@ -415,22 +438,46 @@ impl<'t, 's> Interp<'t, 's> {
                 let (k, i) = ((n - 5221) / 20, (n - 5221) % 20);
                 self.g5x_table[k][i] = self.mm_from_units(i, v);
             }
+            5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20] = v,
+            5021..=5026 => {}
             // Read-only views: the position, the active system, the G92 flag, the tool.
             5210 | 5220 | 5400 | 5420..=5425 => {}
             _ => self.params.num[n] = v,
         }
     }
 
-    fn machine(&self) -> [f64; 6] {
-        std::array::from_fn(|i| self.p[i] + self.off[i] + self.g92[i])
+    /// The machine position of program position `p`: the G92 offset, the XY rotation, the
+    /// G5x offset (LinuxCNC's canon layer).
+    pub(crate) fn machine_of(&self, p: &[f64; 6]) -> [f64; 6] {
+        let q: [f64; 6] = std::array::from_fn(|i| p[i] + self.g92[i]);
+        let q = rotate_xy(q, self.rot);
+        std::array::from_fn(|i| q[i] + self.off[i])
+    }
+
+    /// The program position of machine position `m` under offsets `off`, `g92` and rotation
+    /// `rot` (degrees).
+    pub(crate) fn program_of(m: &[f64; 6], off: &[f64; 6], g92: &[f64; 6], rot: f64) -> [f64; 6] {
+        let q: [f64; 6] = std::array::from_fn(|i| m[i] - off[i]);
+        let q = rotate_xy(q, -rot);
+        std::array::from_fn(|i| q[i] - g92[i])
+    }
+
+    pub(crate) fn machine(&self) -> [f64; 6] {
+        self.machine_of(&self.p)
     }
 
     /// Changes the offsets in effect keeping the machine position, and says so.
     fn set_offsets(&mut self, off: [f64; 6], g92: [f64; 6]) {
+        self.set_frame(off, g92, self.rot);
+    }
+
+    /// Changes the offsets and the XY rotation in effect keeping the machine position.
+    fn set_frame(&mut self, off: [f64; 6], g92: [f64; 6], rot: f64) {
         let m = self.machine();
         self.off = off;
         self.g92 = g92;
-        self.p = std::array::from_fn(|i| m[i] - off[i] - g92[i]);
+        self.rot = rot;
+        self.p = Self::program_of(&m, &off, &g92, rot);
         self.emit_offsets();
     }
 
@@ -493,6 +540,12 @@ impl<'t, 's> Interp<'t, 's> {
             self.tool = t as u32;
         }
         if b.m6 {
+            if self.comp.on() {
+                return Err(Fault::semantic(
+                    Span::Line,
+                    "cannot change tools with cutter radius compensation on",
+                ));
+            }
             self.tool_loaded = true;
             self.emit(Canon::ToolChange { tool: self.tool });
         }
@@ -542,6 +595,12 @@ impl<'t, 's> Interp<'t, 's> {
             self.emit(Canon::Dwell(p));
         }
         if let Some(g) = b.g(group::PLANE) {
+            if self.comp.on() {
+                return Err(Fault::semantic(
+                    b.g_span(group::PLANE),
+                    "cannot change planes with cutter radius compensation on",
+                ));
+            }
             self.plane = match g {
                 170 => Plane::XY,
                 180 => Plane::XZ,
@@ -550,9 +609,18 @@ impl<'t, 's> Interp<'t, 's> {
             self.emit(Canon::Plane(self.plane));
         }
         if let Some(g) = b.g(group::UNITS) {
+            if self.comp.on() {
+                return Err(Fault::semantic(
+                    b.g_span(group::UNITS),
+                    "cannot change units with cutter radius compensation on",
+                ));
+            }
             self.units = if g == 200 { Units::Inch } else { Units::Mm };
             self.scale = self.units.mm_per_unit();
             self.emit(Canon::Units(self.units));
+        }
+        if let Some(g) = b.g(group::CUTTER_COMP) {
+            self.comp_mode(b, g)?;
         }
         let mut axes_used_by_nonmotion = false;
         match b.g(group::TOOL_LENGTH) {
@@ -591,7 +659,7 @@ impl<'t, 's> Interp<'t, 's> {
             };
             self.coord = idx;
             let off = self.g5x_table[idx - 1];
-            self.set_offsets(off, self.g92);
+            self.set_frame(off, self.g92, self.rot_table[idx - 1]);
         }
         if b.g(group::SPINDLE_MODE) == Some(960) {
             self.warn_code(
@@ -628,6 +696,12 @@ impl<'t, 's> Interp<'t, 's> {
                 axes_used_by_nonmotion = true;
             }
             Some(280 | 300) => {
+                if self.comp.on() {
+                    return Err(Fault::semantic(
+                        b.g_span(group::NON_MODAL),
+                        "cannot use G28 or G30 with cutter radius compensation on",
+                    ));
+                }
                 self.home(b, usize::from(nonmodal == Some(300)))?;
                 axes_used_by_nonmotion = true;
             }
@@ -637,6 +711,19 @@ impl<'t, 's> Interp<'t, 's> {
             }
             Some(920) => {
                 self.g92(b)?;
+                axes_used_by_nonmotion = true;
+            }
+            Some(520) => {
+                // G52: a local origin, kept in LinuxCNC's G92 offset (parameters 5210–5219).
+                let mut g = self.g92;
+                for (i, &c) in AXIS_LETTERS.iter().enumerate() {
+                    if let Some(v) = b.get(c) {
+                        g[i] = self.mm_from_units(i, v);
+                    }
+                }
+                self.g92_saved = g;
+                self.g92_flag = true;
+                self.set_offsets(self.off, g);
                 axes_used_by_nonmotion = true;
             }
             Some(921) => {
@@ -665,6 +752,7 @@ impl<'t, 's> Interp<'t, 's> {
                 );
             }
             Some(_) => {
+                self.comp_flush();
                 self.emit(Canon::ProgramEnd);
                 self.ended = true;
                 return Ok(());
@@ -688,14 +776,15 @@ impl<'t, 's> Interp<'t, 's> {
             .g(group::MOTION)
             .or(if has_axes { self.motion } else { None });
         let arc = matches!(mode, Some(20 | 30));
-        let cycle = matches!(mode, Some(730 | 810..=890));
+        let cycle = matches!(mode, Some(730 | 740 | 810..=890));
         let g10 = nonmodal == Some(100);
+        let comp_d = b.g(group::CUTTER_COMP).is_some_and(|g| g != 400);
         for c in *b"eijkrqplhd" {
             if !b.has(c) {
                 continue;
             }
             let used = match c {
-                b'i' | b'j' | b'k' => arc,
+                b'i' | b'j' | b'k' => arc || mode == Some(870),
                 b'r' => arc || cycle || g10,
                 b'q' => matches!(mode, Some(730 | 830)),
                 b'p' => {
@@ -707,6 +796,7 @@ impl<'t, 's> Interp<'t, 's> {
                 }
                 b'l' => cycle || g10 || b.m98,
                 b'h' => b.g(group::TOOL_LENGTH) == Some(430),
+                b'd' => comp_d,
                 _ => false,
             };
             if !used {
@@ -781,6 +871,18 @@ impl<'t, 's> Interp<'t, 's> {
             Some(0 | 10) => {
                 if has_axes {
                     let end = self.find_ends(b, g53)?;
+                    if self.comp.on() {
+                        if g53 {
+                            return Err(Fault::semantic(
+                                b.g_span(group::NON_MODAL),
+                                "cannot use G53 with cutter radius compensation on",
+                            ));
+                        }
+                        if mode == Some(10) {
+                            self.check_feed(b)?;
+                        }
+                        return self.comp_move(b, end, mode == Some(0), None);
+                    }
                     let end_axes = Axes::from_array(end);
                     if mode == Some(0) {
                         self.emit(Canon::Traverse { end: end_axes });
@@ -827,13 +929,24 @@ impl<'t, 's> Interp<'t, 's> {
             if let Some(v) = b.get(c) {
                 let v = self.mm_from_units(i, v);
                 e[i] = if g53 {
-                    v - self.off[i] - self.g92[i]
+                    // Machine coordinates: converted below, with the rotation.
+                    v
                 } else if self.absolute {
                     v
                 } else {
                     self.p[i] + v
                 };
             }
+        }
+        if g53 {
+            // The given axes in machine coordinates, the others where the machine is.
+            let mut m = self.machine();
+            for (i, &c) in AXIS_LETTERS.iter().enumerate() {
+                if b.has(c) {
+                    m[i] = e[i];
+                }
+            }
+            e = Self::program_of(&m, &self.off, &self.g92, self.rot);
         }
         if b.has(b'@') || b.has(b'^') {
             if b.has(b'x') || b.has(b'y') {
@@ -963,10 +1076,14 @@ impl<'t, 's> Interp<'t, 's> {
                 .map_err(|m| Fault::semantic(gspan, m))?;
             c
         };
+        let rotation = if cw { -turns } else { turns };
+        if self.comp.on() {
+            return self.comp_move(b, end, false, Some((center, rotation)));
+        }
         self.emit(Canon::Arc {
             end: Axes::from_array(end),
             center,
-            rotation: if cw { -turns } else { turns },
+            rotation,
             plane: self.plane,
         });
         self.p = end;
@@ -1007,30 +1124,32 @@ impl<'t, 's> Interp<'t, 's> {
                 "P0 to P9",
             ));
         }
-        if b.get(b'r').is_some_and(|r| r != 0.0) {
-            return Err(Fault::new(
-                PathErrorKind::Unsupported,
-                b.span(b'r'),
-                "rotated coordinate systems (G10 R) are not supported",
-                "",
-            ));
-        }
         let k = if p == 0.0 { self.coord } else { p as usize };
         let mut t = self.g5x_table[k - 1];
-        for (i, &c) in AXIS_LETTERS.iter().enumerate() {
-            if let Some(v) = b.get(c) {
-                let v = self.mm_from_units(i, v);
-                t[i] = if l == 2.0 {
-                    v
-                } else {
-                    // L20: make the current position read `v` in system k.
-                    self.p[i] + self.off[i] - v
-                };
+        // R: the system's XY rotation (kept when not given).
+        let rot = b.get(b'r').unwrap_or(self.rot_table[k - 1]);
+        if l == 2.0 {
+            for (i, &c) in AXIS_LETTERS.iter().enumerate() {
+                if let Some(v) = b.get(c) {
+                    t[i] = self.mm_from_units(i, v);
+                }
             }
+        } else {
+            // L20: make the current position read the given values in system k.
+            let m = self.machine();
+            let mut q = Self::program_of(&m, &t, &self.g92, rot);
+            for (i, &c) in AXIS_LETTERS.iter().enumerate() {
+                if let Some(v) = b.get(c) {
+                    q[i] = self.mm_from_units(i, v);
+                }
+            }
+            let r: [f64; 6] = rotate_xy(std::array::from_fn(|i| q[i] + self.g92[i]), rot);
+            t = std::array::from_fn(|i| m[i] - r[i]);
         }
         self.g5x_table[k - 1] = t;
+        self.rot_table[k - 1] = rot;
         if k == self.coord {
-            self.set_offsets(t, self.g92);
+            self.set_frame(t, self.g92, rot);
         }
         Ok(())
     }
@@ -1059,8 +1178,12 @@ impl<'t, 's> Interp<'t, 's> {
     /// G28/G30: traverse through the given intermediate point, then to the stored position
     /// for the given axes (all axes when none is given).
     fn home(&mut self, b: &Block, k: usize) -> Res<()> {
-        let home: [f64; 6] = std::array::from_fn(|i| self.homes[k][i] - self.off[i] - self.g92[i]);
+        let home = Self::program_of(&self.homes[k], &self.off, &self.g92, self.rot);
         if b.mask & axis_mask() == 0 {
+            // LinuxCNC moves through the current point (a move of length zero), then home.
+            self.emit(Canon::Traverse {
+                end: Axes::from_array(self.p),
+            });
             self.emit(Canon::Traverse {
                 end: Axes::from_array(home),
             });
@@ -1095,6 +1218,13 @@ impl ParamRead for Interp<'_, '_> {
             "_x" => Some(self.to_units(0, self.p[0])),
             "_y" => Some(self.to_units(1, self.p[1])),
             "_z" => Some(self.to_units(2, self.p[2])),
+            "_abs_x" | "_abs_y" | "_abs_z" | "_abs_a" | "_abs_b" | "_abs_c" => {
+                let i = AXIS_LETTERS
+                    .iter()
+                    .position(|&c| c == name.as_bytes()[5])
+                    .unwrap_or(0);
+                Some(self.to_units(i, self.machine()[i]))
+            }
             "_a" => Some(self.p[3]),
             "_b" => Some(self.p[4]),
             "_c" => Some(self.p[5]),
@@ -1115,6 +1245,17 @@ impl ParamRead for Interp<'_, '_> {
             _ => self.params.get_named(name),
         }
     }
+}
+
+/// `v` with its X and Y turned by `deg` degrees counter-clockwise about Z.
+pub(crate) fn rotate_xy(mut v: [f64; 6], deg: f64) -> [f64; 6] {
+    if deg != 0.0 {
+        let (s, c) = deg.to_radians().sin_cos();
+        let (x, y) = (v[0], v[1]);
+        v[0] = c * x - s * y;
+        v[1] = s * x + c * y;
+    }
+    v
 }
 
 /// LinuxCNC's active comments: `(MSG,…)`, `(DEBUG,…)`, `(PRINT,…)` (any case), and the text

@@ -46,6 +46,7 @@
 
 mod arcs;
 mod block;
+mod comp;
 mod control;
 mod cycles;
 mod dialect;
@@ -54,6 +55,7 @@ mod interp;
 mod lexer;
 mod params;
 
+use std::collections::BTreeMap;
 use std::path::Path;
 
 use crate::{CanonSink, PathError, PathErrorKind, SourcePos, Units};
@@ -120,6 +122,9 @@ pub struct GcodeOptions {
     /// When true (the default), lines starting with `/` are skipped, as with LinuxCNC's block
     /// delete switch on.
     pub block_delete: bool,
+    /// Tool diameters by tool number, mm: what cutter radius compensation (`G41`/`G42`, with
+    /// `D<tool>` or the loaded tool) offsets by. LinuxCNC takes them from its tool table.
+    pub tool_diameters: BTreeMap<u32, f64>,
 }
 
 impl Default for GcodeOptions {
@@ -131,6 +136,7 @@ impl Default for GcodeOptions {
             max_repeat: 1_000_000,
             arc_radius_tolerance: ArcTolerance::LINUXCNC,
             block_delete: true,
+            tool_diameters: BTreeMap::new(),
         }
     }
 }
@@ -164,6 +170,11 @@ impl GcodeOptions {
     /// Sets [`Self::block_delete`].
     pub fn with_block_delete(mut self, on: bool) -> Self {
         self.block_delete = on;
+        self
+    }
+    /// Adds tool `tool`'s diameter (mm) to [`Self::tool_diameters`].
+    pub fn with_tool_diameter(mut self, tool: u32, diameter_mm: f64) -> Self {
+        self.tool_diameters.insert(tool, diameter_mm);
         self
     }
 }

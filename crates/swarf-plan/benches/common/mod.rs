@@ -3,7 +3,7 @@
 #![allow(dead_code, unreachable_pub)]
 
 use swarf_geom::math::Vec3;
-use swarf_plan::{CompoundSurface, NurbsSurface, Patch, Surface};
+use swarf_surface::{CompoundSurface, NurbsSurface, Patch, Surface};
 
 /// The height field: two pockets, a rib and a gentle wave (mm).
 pub fn height(x: f64, y: f64) -> f64 {

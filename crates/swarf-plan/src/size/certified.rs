@@ -32,7 +32,7 @@
 //! says so (`certified = false`) and the gap is still a valid bound.
 //!
 //! # Trimmed patches
-//! A trimmed patch enters as its pieces that reach the part ([`crate::Trim`]; see the bezier
+//! A trimmed patch enters as its pieces that reach the part ([`swarf_surface::Trim`]; see the bezier
 //! module): the bounds of a piece the trim boundary crosses are those of its whole net (a
 //! superset, so still valid), only corners on the part are candidates, and such a piece is cut
 //! along the boundary where the boundary follows a parameter line (halving it would keep the
@@ -55,12 +55,12 @@ use glam::DVec4;
 use smallvec::{smallvec, SmallVec};
 use swarf_geom::math::Vec3;
 
-use super::bezier::Piece;
 use super::family::{bound_from_support, FamilyTrig};
 use super::{
     classify, AllowableSize, Contact, CutterFamily, Limit, PreparedSurface, Regime, SizeError,
     SizeTolerances,
 };
+use swarf_surface::bezier::Piece;
 
 /// Options of the certified solver (builder style, documented defaults).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -581,8 +581,8 @@ fn binomials(n: usize) -> Vec<f64> {
 ///
 /// ```
 /// use swarf_geom::math::Vec3;
-/// use swarf_plan::size::{allowable_certified, CertifiedOptions, Contact, CutterFamily, PreparedSurface};
-/// use swarf_plan::{io, Tolerances};
+/// use swarf_plan::size::{allowable_certified, CertifiedOptions, Contact, CutterFamily};
+/// use swarf_surface::{io, PreparedSurface, Tolerances};
 /// // A floor with a 10 mm wall at x = 10: a flat end mill at the origin fits up to R = 10.
 /// let json = r#"{"units": "mm", "patches": [
 ///   {"name": "floor", "degree_u": 1, "degree_v": 1, "knots_u": [0,0,1,1], "knots_v": [0,0,1,1],
@@ -595,7 +595,7 @@ fn binomials(n: usize) -> Vec<f64> {
 /// let c = Contact::at(&part, &cc, &Tolerances::DEFAULT).unwrap();
 /// let a = allowable_certified(&prep, &CutterFamily::flat(), &c, &CertifiedOptions::DEFAULT);
 /// assert!((a.size - 10.0).abs() < 1e-6 && a.certified);
-/// # Ok::<(), swarf_plan::io::ReadError>(())
+/// # Ok::<(), swarf_surface::io::ReadError>(())
 /// ```
 pub fn allowable_certified(
     prep: &PreparedSurface,
@@ -645,7 +645,7 @@ pub fn allowable_certified(
         });
     }
     let scale = prep
-        .bbox
+        .bounding_box()
         .map_or(1.0, |b| b.size().length().max(f64::MIN_POSITIVE));
     let min_diag = scale * 1e-13;
     let mut exhausted = false;

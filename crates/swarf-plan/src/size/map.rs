@@ -22,7 +22,7 @@ use super::{
     allowable_certified, allowable_pso, AllowableSize, CertifiedOptions, Contact, CutterFamily,
     PreparedSurface, PsoOptions, ShankCheck, ShankStatus, SizeTolerances,
 };
-use crate::{CcPoint, CompoundSurface, Tolerances};
+use swarf_surface::{CcPoint, CompoundSurface, Tolerances};
 
 /// Which solver computes the allowable size.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]

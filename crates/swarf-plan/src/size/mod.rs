@@ -49,7 +49,6 @@
 //! certified solver, unchanged) and searches the 4-axis table angle that maximises the size;
 //! [`orient5`] searches 5-axis lead and tilt within machine limits.
 
-pub(crate) mod bezier;
 pub mod certified;
 mod family;
 mod imaginary_apt;
@@ -63,7 +62,10 @@ pub mod pso;
 pub mod shank;
 pub mod standard;
 
-pub use bezier::{CheckMeshError, PreparedSurface};
+/// The Bézier pieces the searches walk, under the path the program check names them by.
+pub(crate) mod bezier {
+    pub(crate) use swarf_surface::bezier::Piece;
+}
 pub use certified::{allowable_certified, CertifiedOptions};
 pub use family::{CutterFamily, Regime, FLAT_CURVATURE};
 pub use map::{
@@ -79,10 +81,11 @@ pub use standard::{
     grid_cell_areas, AreaRule, CutterShare, StandardCutters, StandardError, StandardOptions,
     StandardReport,
 };
+pub(crate) use swarf_surface::PreparedSurface;
 
 use swarf_geom::math::Vec3;
 
-use crate::{CcPoint, CompoundSurface, Curvature, Tolerances};
+use swarf_surface::{CcPoint, CompoundSurface, Curvature, Tolerances};
 
 /// Tolerances of the imaginary-size model, in one place.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -49,11 +49,11 @@
 //! evaluations and nodes of all of it are summed in the returned [`AllowableSize`].
 
 use swarf_geom::math::{Quat, Vec3};
-use swarf_geom::Aabb;
+use swarf_geom::search::golden_max;
 
 use super::{allowable_certified, AllowableSize, CertifiedOptions, Contact, CutterFamily, Regime};
 use super::{PreparedSurface, SizeError};
-use crate::Curvature;
+use swarf_surface::Curvature;
 
 /// The allowable size with tool axis `axis` (part frame; normalised here) by the certified
 /// solver in the tool frame (see the module docs). `axis = +Z` is exactly
@@ -93,7 +93,7 @@ pub(crate) fn allowable_in_frame(
     if q == Quat::IDENTITY {
         return allowable_certified(prep, family, c, opts);
     }
-    let rotated = rotate_prepared(prep, q);
+    let rotated = prep.rotated(q);
     let rc = rotate_contact(c, q);
     let mut a = allowable_certified(&rotated, family, &rc, opts);
     let back = q.inverse();
@@ -124,7 +124,7 @@ pub(crate) fn in_tool_frame(
     q: Quat,
 ) -> (PreparedSurface, Contact) {
     let rc = rotate_contact(c, q);
-    (rotate_prepared(prep, q), rc)
+    (prep.rotated(q), rc)
 }
 
 /// A cheap upper bound of the allowable size after moving the part by `q`, and the imaginary
@@ -160,26 +160,6 @@ pub(crate) fn quick_upper_bound(
         }
     }
     (ub + opts.tol_abs.max(opts.tol_rel * ub), n)
-}
-
-/// The prepared surface moved by the rotation `q` (homogeneous control points rotated, weights
-/// kept; the box recomputed from the rotated control points, which enclose the surface).
-pub(crate) fn rotate_prepared(prep: &PreparedSurface, q: Quat) -> PreparedSurface {
-    let mut pieces = prep.pieces.clone();
-    for pc in &mut pieces {
-        for h in &mut pc.net {
-            let v = q * Vec3::new(h.x, h.y, h.z);
-            h.x = v.x;
-            h.y = v.y;
-            h.z = v.z;
-        }
-    }
-    let bbox = Aabb::from_points(
-        pieces
-            .iter()
-            .flat_map(|pc| pc.net.iter().map(|h| Vec3::new(h.x, h.y, h.z) / h.w)),
-    );
-    PreparedSurface { pieces, bbox }
 }
 
 /// The rotary axis of a 4-axis machine.
@@ -471,37 +451,4 @@ pub fn best_rotary_angle(
 fn angle_gap(a: f64, b: f64) -> f64 {
     let d = (a - b).rem_euclid(360.0);
     d.min(360.0 - d)
-}
-
-/// Golden-section search for a maximum of `f` on `[lo, hi]` down to a bracket of `tol` (or 200
-/// steps, a bracket of 1e-42 of the start: a `tol` below the doubles' resolution cannot hang it).
-/// Stops early where `f` is infinite. The caller keeps the best value `f` was asked for.
-pub(crate) fn golden_max(f: &mut impl FnMut(f64) -> f64, lo: f64, hi: f64, tol: f64) {
-    let g = (5f64.sqrt() - 1.0) / 2.0;
-    let (mut a, mut b) = (lo, hi);
-    let mut x1 = b - g * (b - a);
-    let mut x2 = a + g * (b - a);
-    let mut f1 = f(x1);
-    let mut f2 = f(x2);
-    for _ in 0..200 {
-        if b - a <= tol {
-            break;
-        }
-        if f1.is_infinite() || f2.is_infinite() {
-            return;
-        }
-        if f1 >= f2 {
-            b = x2;
-            x2 = x1;
-            f2 = f1;
-            x1 = b - g * (b - a);
-            f1 = f(x1);
-        } else {
-            a = x1;
-            x1 = x2;
-            f1 = f2;
-            x2 = a + g * (b - a);
-            f2 = f(x2);
-        }
-    }
 }

@@ -16,9 +16,9 @@ use std::cell::Cell;
 use super::{
     classify, AllowableSize, Contact, CutterFamily, Limit, Regime, SizeError, SizeTolerances,
 };
-use crate::{CompoundSurface, ParamBox, ParametricSurface};
 use argmin::core::{CostFunction, Executor, State};
 use argmin::solver::neldermead::NelderMead;
+use swarf_surface::{CompoundSurface, ParamBox, ParametricSurface};
 
 /// Options of the hybrid solver, defaulting to the thesis's settings.
 #[derive(Clone, Copy, Debug, PartialEq)]

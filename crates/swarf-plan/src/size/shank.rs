@@ -6,8 +6,8 @@
 
 use swarf_geom::math::Vec3;
 
-use super::bezier::Piece;
 use super::{AllowableSize, Contact, CutterFamily, Limit, PreparedSurface, Regime, SizeTolerances};
+use swarf_surface::bezier::Piece;
 
 /// The shank to check.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -36,8 +36,8 @@
 use swarf_geom::math::Vec3;
 
 use super::map::ToolSizeMap;
-use crate::trim::Coverage;
-use crate::{CcPoint, CompoundSurface, ParametricSurface};
+use swarf_surface::Coverage;
+use swarf_surface::{CcPoint, CompoundSurface, ParametricSurface};
 
 /// Errors of the standard-cutter list.
 #[derive(Debug, thiserror::Error, PartialEq)]

@@ -1,12 +1,10 @@
-//! Shared builders for the integration tests: analytic surfaces written exactly as NURBS.
+//! Shared builders for the planner's integration tests: analytic surfaces written exactly as
+//! NURBS, a reproducible random source, and the brute-force reference of the solvers.
 #![allow(dead_code, unreachable_pub)]
 
-pub mod iges;
-
-use std::f64::consts::FRAC_1_SQRT_2;
 use swarf_geom::math::Vec3;
 use swarf_plan::size::{CertifiedOptions, Contact, CutterFamily};
-use swarf_plan::{CompoundSurface, NurbsSurface, ParametricSurface, Patch, Surface};
+use swarf_surface::{build, CompoundSurface, NurbsSurface, ParametricSurface, Patch, Surface};
 
 /// Path of a file in the shared data set.
 #[macro_export]
@@ -16,145 +14,19 @@ macro_rules! data {
     };
 }
 
-pub const QUAD_KNOTS: [f64; 6] = [0.0, 0.0, 0.0, 1.0, 1.0, 1.0];
-
-/// A profile point (ρ, z) with its weight, revolved by a quarter turn about +z (from +x to +y)
-/// as a rational quadratic arc: returns the three (point, weight) pairs along u.
-fn revolve_quarter(rho: f64, z: f64, w: f64) -> [(Vec3, f64); 3] {
-    [
-        (Vec3::new(rho, 0.0, z), w),
-        (Vec3::new(rho, rho, z), w * FRAC_1_SQRT_2),
-        (Vec3::new(0.0, rho, z), w),
-    ]
-}
-
-/// A surface of revolution: a quarter turn (u) of a rational profile (v) given as
-/// (ρ, z, weight) with its knot vector and degree.
+/// [`build::revolved`], for profiles the tests know to be valid.
 pub fn revolved(profile: &[(f64, f64, f64)], knots_v: Vec<f64>, degree_v: usize) -> NurbsSurface {
-    let mut pts = vec![Vec::new(), Vec::new(), Vec::new()];
-    let mut ws = vec![Vec::new(), Vec::new(), Vec::new()];
-    for &(rho, z, w) in profile {
-        for (i, (p, wi)) in revolve_quarter(rho, z, w).into_iter().enumerate() {
-            pts[i].push(p);
-            ws[i].push(wi);
-        }
-    }
-    NurbsSurface::new(2, degree_v, QUAD_KNOTS.to_vec(), knots_v, &pts, Some(&ws)).unwrap()
+    build::revolved(profile, knots_v, degree_v).unwrap()
 }
 
-/// Quarter cylinder of radius `r`, height `h`: u the arc from +x to +y, v the height; the
-/// normal S_u × S_v points outwards.
+/// [`build::quarter_cylinder`], which cannot fail for finite sizes.
 pub fn quarter_cylinder(r: f64, h: f64) -> NurbsSurface {
-    let mut pts = Vec::new();
-    let mut ws = Vec::new();
-    for (p, w) in revolve_quarter(r, 0.0, 1.0) {
-        pts.push(vec![p, p + Vec3::new(0.0, 0.0, h)]);
-        ws.push(vec![w, w]);
-    }
-    NurbsSurface::new(
-        2,
-        1,
-        QUAD_KNOTS.to_vec(),
-        vec![0.0, 0.0, 1.0, 1.0],
-        &pts,
-        Some(&ws),
-    )
-    .unwrap()
+    build::quarter_cylinder(r, h).unwrap()
 }
 
-/// Sphere octant of radius `r` (x, y, z ≥ 0): u the longitude arc, v from the equator (v = 0)
-/// to the north pole (v = 1, a collapsed edge); normal outwards.
+/// [`build::sphere_octant`], which cannot fail for a finite radius.
 pub fn sphere_octant(r: f64) -> NurbsSurface {
-    revolved(
-        &[(r, 0.0, 1.0), (r, r, FRAC_1_SQRT_2), (0.0, r, 1.0)],
-        QUAD_KNOTS.to_vec(),
-        2,
-    )
-}
-
-/// A quarter (in u) of a torus with major radius `big` and tube radius `r`, the full tube in v
-/// (v = 0 outer equator, 0.25 top, 0.5 inner equator, 0.75 bottom); normal outwards.
-pub fn torus_quarter(big: f64, r: f64) -> NurbsSurface {
-    let h = FRAC_1_SQRT_2;
-    let profile = [
-        (big + r, 0.0, 1.0),
-        (big + r, r, h),
-        (big, r, 1.0),
-        (big - r, r, h),
-        (big - r, 0.0, 1.0),
-        (big - r, -r, h),
-        (big, -r, 1.0),
-        (big + r, -r, h),
-        (big + r, 0.0, 1.0),
-    ];
-    let knots = vec![
-        0.0, 0.0, 0.0, 0.25, 0.25, 0.5, 0.5, 0.75, 0.75, 1.0, 1.0, 1.0,
-    ];
-    revolved(&profile, knots, 2)
-}
-
-/// A planar but non-affine bilinear patch (a trapezoid in the plane z = 2x + 3y).
-pub fn bilinear_plane() -> NurbsSurface {
-    let z = |x: f64, y: f64| Vec3::new(x, y, 2.0 * x + 3.0 * y);
-    let pts = vec![
-        vec![z(0.0, 0.0), z(1.0, 4.0)],
-        vec![z(6.0, 0.0), z(3.0, 5.0)],
-    ];
-    NurbsSurface::new(
-        1,
-        1,
-        vec![0.0, 0.0, 1.0, 1.0],
-        vec![0.0, 0.0, 1.0, 1.0],
-        &pts,
-        None,
-    )
-    .unwrap()
-}
-
-/// Largest deviation of the analytic partials from central differences over an interior grid,
-/// relative to the partials' size.
-pub fn max_fd_error<S: ParametricSurface>(s: &S, n: usize) -> f64 {
-    max_fd_error_between(s, n, &[], &[])
-}
-
-/// [`max_fd_error`] for a surface whose higher derivatives jump at the parameters `breaks_u` and
-/// `breaks_v` (knots): a central difference straddling a jump measures the jump, not an error
-/// of the partials, so a sample closer to a break than the stencil is moved off it.
-pub fn max_fd_error_between<S: ParametricSurface>(
-    s: &S,
-    n: usize,
-    breaks_u: &[f64],
-    breaks_v: &[f64],
-) -> f64 {
-    let d = s.domain();
-    let (hu, hv) = (1e-5 * (d.u[1] - d.u[0]), 1e-5 * (d.v[1] - d.v[0]));
-    let clear =
-        |x: f64, h: f64, breaks: &[f64]| match breaks.iter().find(|&&b| (x - b).abs() < 4.0 * h) {
-            Some(&b) => b + 4.0 * h,
-            None => x,
-        };
-    let mut worst: f64 = 0.0;
-    for i in 1..n {
-        for j in 1..n {
-            let u = clear(d.u_at(i as f64 / n as f64 + 0.013), hu, breaks_u);
-            let v = clear(d.v_at(j as f64 / n as f64 + 0.007), hv, breaks_v);
-            let a = s.derivs(u, v);
-            let (up, um) = (s.derivs(u + hu, v), s.derivs(u - hu, v));
-            let (vp, vm) = (s.derivs(u, v + hv), s.derivs(u, v - hv));
-            let scale = 1.0 + a.su.length().max(a.sv.length());
-            let scale2 = 1.0 + a.suu.length().max(a.svv.length()).max(a.suv.length());
-            let checks = [
-                ((up.point - um.point) / (2.0 * hu) - a.su).length() / scale,
-                ((vp.point - vm.point) / (2.0 * hv) - a.sv).length() / scale,
-                ((up.su - um.su) / (2.0 * hu) - a.suu).length() / scale2,
-                ((vp.sv - vm.sv) / (2.0 * hv) - a.svv).length() / scale2,
-                ((vp.su - vm.su) / (2.0 * hv) - a.suv).length() / scale2,
-                ((up.sv - um.sv) / (2.0 * hu) - a.suv).length() / scale2,
-            ];
-            worst = checks.into_iter().fold(worst, f64::max);
-        }
-    }
-    worst
+    build::sphere_octant(r).unwrap()
 }
 
 /// A trough: the cylinder of radius `r` about the line `y = 0, z = r`, `x ∈ [0, len]`, polar
@@ -283,20 +155,4 @@ pub fn sampled_min(
         }
     }
     (best, spread)
-}
-
-/// Line, column and message of the syntax error the JSON reader gives for `text`.
-///
-/// # Panics
-/// When `text` reads, or fails otherwise.
-pub fn json_error(text: &str) -> (usize, usize, String) {
-    match swarf_plan::io::json::parse(text).unwrap_err() {
-        swarf_plan::io::ReadError::Syntax {
-            format: swarf_plan::io::Format::Json,
-            line,
-            column,
-            message,
-        } => (line, column, message),
-        e => panic!("{e}"),
-    }
 }

@@ -1,0 +1,224 @@
+//! IGES reader: the shared trimmed 128 example, units, transforms and malformed input.
+
+mod common;
+
+use swarf_surface::io::{iges, Format, ReadError};
+use swarf_surface::{EntityRef, ParametricSurface, ReadNote, Surface, Tolerances};
+
+const TOL: Tolerances = Tolerances::DEFAULT;
+
+fn example() -> String {
+    std::fs::read_to_string(data!("iges/occt_bug29356.igs")).unwrap()
+}
+
+#[test]
+fn occt_example_is_one_degree_5x5_patch_on_a_6x6_net_finite_everywhere() {
+    let doc = iges::parse_document(&example()).unwrap();
+    let s = &doc.surface;
+    assert_eq!(s.patches.len(), 1);
+    let p = &s.patches[0];
+    assert_eq!(
+        p.source.entity,
+        EntityRef::Iges {
+            de: 3,
+            entity_type: 128
+        }
+    );
+    let Surface::Nurbs(n) = &p.surface else {
+        panic!()
+    };
+    assert_eq!((n.degree_u(), n.degree_v()), (5, 5));
+    assert_eq!(n.net_size(), (6, 6));
+    assert!(!n.is_rational());
+    // Control point (0,0) and (1,0) as listed (u runs fastest in IGES).
+    assert_eq!(
+        n.control_point(0, 0).to_array(),
+        [-481.5300241, 394.2815039, -67.99341879]
+    );
+    assert_eq!(
+        n.control_point(1, 0).to_array(),
+        [-482.351216, 394.2668485, -67.57032814]
+    );
+    assert_eq!(
+        n.control_point(0, 1).to_array(),
+        [-482.1593728, 393.3425867, -69.15092165]
+    );
+    let d = n.domain();
+    assert_eq!(d.u, [1.437351814e6, 1.437358332e6]);
+    assert_eq!(d.v, [0.0, 13.06506657]);
+    let bb = s.bounding_box().unwrap().inflated(1e-9);
+    for cc in s.grid(41) {
+        let g = s.local(&cc, &TOL);
+        assert!(g.point().is_finite() && bb.contains(g.point()));
+        let nrm = g.normal.vector().expect("regular patch");
+        assert!(nrm.is_finite() && (nrm.length() - 1.0).abs() < 1e-12);
+        let c = g.curvature.unwrap();
+        assert!(c.k1.is_finite() && c.k2.is_finite() && c.k1 >= c.k2);
+    }
+    // The corners interpolate the corner control points (clamped knots).
+    assert!((p.surface.point(d.u[0], d.v[0]) - n.control_point(0, 0)).length() < 1e-9);
+    assert!((p.surface.point(d.u[1], d.v[1]) - n.control_point(5, 5)).length() < 1e-9);
+    // Trims: one 144 whose outer boundary is the 142 at D5; honoured (see iges_trims.rs).
+    assert_eq!(doc.trims.len(), 1);
+    assert_eq!(doc.trims[0].patch, Some(0));
+    assert_eq!(doc.trims[0].outer, Some(5));
+    assert!(doc.trims[0].inner.is_empty());
+    assert!(s
+        .notes
+        .iter()
+        .any(|n| matches!(n, ReadNote::Trimmed { patch: 0, .. })));
+    assert!(p.trim.is_some());
+    assert_eq!(doc.curves.len(), 15);
+    assert!(doc
+        .curves
+        .iter()
+        .all(|c| c.points.len() + c.degree + 1 == c.knots.len()));
+}
+
+/// Replace the record with sequence `seq` of section `sec`, columns 1–72, by `data`.
+fn patch_record(text: &str, sec: char, seq: usize, data: &str) -> String {
+    let tag = format!("{sec}{seq:07}");
+    text.lines()
+        .map(|l| {
+            if l.len() >= 80 && l[72..80] == tag {
+                format!("{:<72}{}", data, &l[72..])
+            } else {
+                l.to_string()
+            }
+        })
+        .collect::<Vec<_>>()
+        .join("\n")
+}
+
+#[test]
+fn units_flag_converts_to_millimetres_and_transforms_apply() {
+    // Units flag 1 (inch): every coordinate × 25.4. (Records keep their 72 data columns.)
+    let t = example();
+    let inch = patch_record(
+        &t,
+        'G',
+        3,
+        ",1.,1,2HIN,1,0.01,15H20171129.170415,0.000370156,488.943514,5HBoris,,11,",
+    );
+    let s = iges::parse(&inch).unwrap();
+    let Surface::Nurbs(n) = &s.patches[0].surface else {
+        panic!()
+    };
+    assert!((n.control_point(0, 0).x - (-481.5300241 * 25.4)).abs() < 1e-9);
+    assert!(matches!(&s.notes[0], ReadNote::UnitsConverted { factor, .. } if *factor == 25.4));
+    // Units flag 3 names the unit.
+    let named = patch_record(
+        &t,
+        'G',
+        3,
+        ",1.,3,2HCM,1,0.01,15H20171129.170415,0.000370156,488.943514,5HBoris,,11,",
+    );
+    let s = iges::parse(&named).unwrap();
+    let Surface::Nurbs(n) = &s.patches[0].surface else {
+        panic!()
+    };
+    assert!((n.control_point(0, 0).x - (-4815.300241)).abs() < 1e-9);
+    // A 124 transformation (rotate 90° about z, then shift x by 5) referenced by the 128.
+    let mut lines: Vec<String> = t.lines().map(str::to_string).collect();
+    let d_end = lines
+        .iter()
+        .rposition(|l| l.as_bytes().get(72) == Some(&b'D'))
+        .unwrap();
+    lines.insert(
+        d_end + 1,
+        format!(
+            "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:07}",
+            124, 247, 0, 0, 0, 0, 0, 0, "00010000", 43
+        ),
+    );
+    lines.insert(
+        d_end + 2,
+        format!(
+            "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:07}",
+            124, 0, 0, 1, 0, "", "", "", 0, 44
+        ),
+    );
+    let p_end = lines
+        .iter()
+        .rposition(|l| l.as_bytes().get(72) == Some(&b'P'))
+        .unwrap();
+    lines.insert(
+        p_end + 1,
+        format!(
+            "{:<64} {:>7}P{:07}",
+            "124,0.,-1.,0.,5.,1.,0.,0.,0.,0.,0.,1.,0.;", 43, 247
+        ),
+    );
+    let moved = patch_record(
+        &lines.join("\n"),
+        'D',
+        3,
+        "     128       2       0       0       0       0      43       000010000",
+    );
+    let s = iges::parse(&moved).unwrap();
+    let Surface::Nurbs(m) = &s.patches[0].surface else {
+        panic!()
+    };
+    let (a, b) = (n.control_point(2, 3) / 10.0, m.control_point(2, 3));
+    assert!(
+        (b - swarf_geom::math::Vec3::new(5.0 - a.y, a.x, a.z)).length() < 1e-9,
+        "{a:?} → {b:?}"
+    );
+}
+
+#[test]
+fn malformed_iges_gives_record_positions() {
+    let t = example();
+    // A letter where the degree M1 belongs (P record 2, the 128's data).
+    let bad = patch_record(
+        &t,
+        'P',
+        2,
+        "128,5,5,X,5,0,0,1,0,0,1.437351814E+006,1.437351814E+006,        0000003",
+    );
+    match iges::parse(&bad).unwrap_err() {
+        ReadError::Syntax {
+            format: Format::Iges,
+            line,
+            column,
+            message,
+        } => {
+            assert_eq!((line, column), (49, 9), "{message}");
+            assert!(
+                message.contains("found `X`, expected an integer (M1)"),
+                "{message}"
+            );
+        }
+        e => panic!("{e}"),
+    }
+    // K1 absurdly large: refused before allocating.
+    let bad = patch_record(
+        &t,
+        'P',
+        2,
+        "128,999999999,5,5,5,0,0,1,0,0,1.437351814E+006,1.437351814E+006,",
+    );
+    let e = iges::parse(&bad).unwrap_err().to_string();
+    assert!(e.contains("K1 = 999999999 is impossible"), "{e}");
+    // A directory entry pointing past the P section.
+    let bad = patch_record(
+        &t,
+        'D',
+        3,
+        "     128     999       0       0       0       0       0       000010000",
+    );
+    let e = iges::parse(&bad).unwrap_err().to_string();
+    assert!(
+        e.starts_with("IGES line 8, column 9: entity 128 at D3: parameter data at P999"),
+        "{e}"
+    );
+    // A short record.
+    let e = iges::parse("hello\n").unwrap_err().to_string();
+    assert!(e.contains("expected 80 ASCII columns"), "{e}");
+    // Knots that decrease: the NURBS validation names the entity.
+    let bad = patch_record(&t, 'P', 6, "0.E+000,9.0,0.E+000,0.E+000,0.E+000,0.E+000,");
+    match iges::parse(&bad).unwrap_err() {
+        ReadError::Surface { entity, .. } => assert_eq!(entity, "entity 128 at D3"),
+        e => panic!("{e}"),
+    }
+}

@@ -1,0 +1,275 @@
+//! STEP reader: the shared fuselage and revolved-sphere files, units, rational complex
+//! entities, elementary faces, orientation and malformed input.
+
+mod common;
+
+use swarf_geom::math::Vec3;
+use swarf_surface::io::{self, step, Format, ReadError};
+use swarf_surface::{EntityRef, ParametricSurface, ReadNote, Surface, SurfaceNormal, Tolerances};
+
+const TOL: Tolerances = Tolerances::DEFAULT;
+
+#[test]
+fn fuselage_has_eight_bicubic_10x4_patches_in_feet_converted_to_mm() {
+    let path = std::path::Path::new(data!("step/occt_bug28366_fuselage.stp"));
+    let s = io::read_file(path).unwrap();
+    assert_eq!(s.patches.len(), 8);
+    assert!(
+        s.notes
+            .iter()
+            .any(|n| matches!(n, ReadNote::UnitsConverted { factor, .. } if *factor == 304.8)),
+        "{:?}",
+        s.notes
+    );
+    let bb = s.bounding_box().unwrap().inflated(1e-9);
+    for (k, p) in s.patches.iter().enumerate() {
+        let Surface::Nurbs(n) = &p.surface else {
+            panic!("patch {k} is {}", p.surface.kind())
+        };
+        assert_eq!((n.degree_u(), n.degree_v()), (3, 3));
+        assert_eq!(n.net_size(), (10, 4));
+        assert!(!n.is_rational());
+        assert!(matches!(
+            p.source.entity,
+            EntityRef::Step { face: None, .. }
+        ));
+        assert!(p
+            .source
+            .file
+            .as_deref()
+            .unwrap()
+            .ends_with("occt_bug28366_fuselage.stp"));
+    }
+    // First patch, first interior control point: (0.146…, 8.364…, −3) ft.
+    let Surface::Nurbs(n) = &s.patches[0].surface else {
+        unreachable!()
+    };
+    let c = n.control_point(1, 0);
+    assert!((c - Vec3::new(0.146011067419878, 8.36496845015109, -3.0) * 304.8).length() < 1e-9);
+    let mut finite = 0;
+    for cc in s.grid(21) {
+        let g = s.local(&cc, &TOL);
+        assert!(bb.contains(g.point()), "{cc:?} outside the overall box");
+        assert!(g.point().is_finite());
+        if let Some(n) = g.normal.vector() {
+            assert!((n.length() - 1.0).abs() < 1e-12);
+            finite += 1;
+        }
+    }
+    // The nose is a collapsed edge (row 0 of the net is one point): it gets a limit normal.
+    assert_eq!(finite, 8 * 21 * 21);
+    let g = s.patches[0].local(0.0, 0.5, &TOL);
+    assert!(
+        matches!(g.normal, SurfaceNormal::Limit(_)),
+        "{:?}",
+        g.normal
+    );
+}
+
+#[test]
+fn revolved_sphere_is_a_radius_5_sphere_with_curvature_one_fifth() {
+    let s = io::read_file(std::path::Path::new(data!(
+        "step/llnl_revolved_sphere.step"
+    )))
+    .unwrap();
+    assert_eq!(s.patches.len(), 1);
+    let p = &s.patches[0];
+    let Surface::Sphere(sph) = &p.surface else {
+        panic!("{}", p.surface.kind())
+    };
+    assert_eq!(sph.radius, 5.0);
+    assert!(!p.flipped, "same_sense .T.");
+    assert_eq!(
+        p.source.entity,
+        EntityRef::Step {
+            surface: 22,
+            face: Some(17)
+        }
+    );
+    assert!(s.notes.is_empty(), "mm file: {:?}", s.notes);
+    for cc in s.grid(21) {
+        let g = s.local(&cc, &TOL);
+        assert!((g.point().length() - 5.0).abs() < 1e-12);
+        let c = g.curvature.unwrap();
+        // Outward normal: the convex outside bends away from the cutter.
+        assert!(
+            (c.k1 + 0.2).abs() < 1e-7 && (c.k2 + 0.2).abs() < 1e-7,
+            "{cc:?}: {c:?}"
+        );
+        assert!(g.normal.vector().unwrap().dot(g.point()) > 0.0);
+    }
+    // Machining the inside: --flip gives +1/5.
+    let mut inside = s.clone();
+    inside.flip_all();
+    let c = inside.patches[0].local(1.0, 0.3, &TOL).curvature.unwrap();
+    assert!((c.k1 - 0.2).abs() < 1e-12 && (c.k2 - 0.2).abs() < 1e-12);
+}
+
+const HEAD: &str = "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n";
+
+fn inch_context() -> &'static str {
+    "#90=(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.));\n\
+     #91=LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(25.4),#90);\n\
+     #92=(CONVERSION_BASED_UNIT('INCH',#91) LENGTH_UNIT() NAMED_UNIT(#93));\n\
+     #93=DIMENSIONAL_EXPONENTS(1.,0.,0.,0.,0.,0.,0.);\n\
+     #94=(NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.));\n\
+     #95=(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#92,#94)) REPRESENTATION_CONTEXT('',''));\n"
+}
+
+#[test]
+fn rational_complex_entity_in_inches() {
+    // A quarter cylinder of radius 1 in, height 2 in, as the complex rational B-spline entity.
+    let w = std::f64::consts::FRAC_1_SQRT_2;
+    let text = format!(
+        "{HEAD}{}#1=CARTESIAN_POINT('',(1.,0.,0.));#2=CARTESIAN_POINT('',(1.,0.,2.));\
+         #3=CARTESIAN_POINT('',(1.,1.,0.));#4=CARTESIAN_POINT('',(1.,1.,2.));\
+         #5=CARTESIAN_POINT('',(0.,1.,0.));#6=CARTESIAN_POINT('',(0.,1.,2.));\n\
+         #10=( BOUNDED_SURFACE() B_SPLINE_SURFACE(2,1,((#1,#2),(#3,#4),(#5,#6)),.UNSPECIFIED.,.F.,.F.,.F.)\n\
+         B_SPLINE_SURFACE_WITH_KNOTS((3,3),(2,2),(0.,1.),(0.,1.),.UNSPECIFIED.) GEOMETRIC_REPRESENTATION_ITEM()\n\
+         RATIONAL_B_SPLINE_SURFACE(((1.,1.),({w},{w}),(1.,1.))) REPRESENTATION_ITEM('wall') SURFACE() );\n\
+         ENDSEC;\nEND-ISO-10303-21;\n",
+        inch_context()
+    );
+    let s = step::parse(&text).unwrap();
+    assert_eq!(s.patches.len(), 1);
+    assert_eq!(s.patches[0].name.as_deref(), Some("wall"));
+    let Surface::Nurbs(n) = &s.patches[0].surface else {
+        panic!()
+    };
+    assert!(n.is_rational());
+    for k in 0..=10 {
+        let g = s.patches[0].local(k as f64 / 10.0, 0.5, &TOL);
+        let p = g.point();
+        assert!((p.x.hypot(p.y) - 25.4).abs() < 1e-12 && (p.z - 25.4).abs() < 1e-12);
+        let c = g.curvature.unwrap();
+        assert!((c.k2 + 1.0 / 25.4).abs() < 1e-12 && c.k1.abs() < 1e-12);
+    }
+    assert!(s.notes.iter().any(|n| matches!(n, ReadNote::UnitsConverted { unit, factor } if unit == "INCH" && *factor == 25.4)));
+}
+
+#[test]
+fn elementary_faces_take_their_bounds_and_orientation() {
+    // A cylinder face (radius 3, between z = 1 and z = 4, two circle edges) with same_sense .F.
+    // (material outside: the cutter is inside), a conical face and a plane face bounded by a
+    // circle, in mm, with an unsupported face kind among them.
+    let text = format!(
+        "{HEAD}\
+         #1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));\n\
+         #4=AXIS2_PLACEMENT_3D('',#1,#2,#3);\n\
+         #5=CYLINDRICAL_SURFACE('',#4,3.);\n\
+         #6=CARTESIAN_POINT('',(0.,0.,1.));#7=AXIS2_PLACEMENT_3D('',#6,#2,#3);#8=CIRCLE('',#7,3.);\n\
+         #9=CARTESIAN_POINT('',(0.,0.,4.));#10=AXIS2_PLACEMENT_3D('',#9,#2,#3);#11=CIRCLE('',#10,3.);\n\
+         #12=CARTESIAN_POINT('',(3.,0.,1.));#13=VERTEX_POINT('',#12);\n\
+         #14=CARTESIAN_POINT('',(3.,0.,4.));#15=VERTEX_POINT('',#14);\n\
+         #16=EDGE_CURVE('',#13,#13,#8,.T.);#17=EDGE_CURVE('',#15,#15,#11,.T.);\n\
+         #18=ORIENTED_EDGE('',*,*,#16,.T.);#19=ORIENTED_EDGE('',*,*,#17,.F.);\n\
+         #20=EDGE_LOOP('',(#18));#21=EDGE_LOOP('',(#19));\n\
+         #22=FACE_BOUND('',#20,.T.);#23=FACE_BOUND('',#21,.T.);\n\
+         #24=ADVANCED_FACE('bore',(#22,#23),#5,.F.);\n\
+         #30=PLANE('',#7);#31=FACE_OUTER_BOUND('',#20,.T.);#32=ADVANCED_FACE('',(#31),#30,.T.);\n\
+         #40=CONICAL_SURFACE('',#4,3.,0.5);#41=ADVANCED_FACE('',(#22,#23),#40,.T.);\n\
+         #50=SURFACE_OF_REVOLUTION('',#8,#4);#51=ADVANCED_FACE('odd',(#22),#50,.T.);\n\
+         #60=TOROIDAL_SURFACE('',#4,10.,2.);#61=ADVANCED_FACE('',(#22),#60,.T.);\n\
+         ENDSEC;\nEND-ISO-10303-21;\n"
+    );
+    let s = step::parse(&text).unwrap();
+    assert_eq!(s.patches.len(), 4);
+    assert!(s.notes.iter().any(|n| matches!(n, ReadNote::UnitsAssumed)));
+    assert!(s.notes.iter().any(|n| matches!(n, ReadNote::UnsupportedSurface { kind, .. } if kind == "SURFACE_OF_REVOLUTION")));
+    // Bore: flipped, v from 1 to 4, normal towards the axis, concave curvature +1/3.
+    let bore = &s.patches[0];
+    assert_eq!(bore.name.as_deref(), Some("bore"));
+    assert!(bore.flipped);
+    let d = bore.surface.domain();
+    assert!(
+        (d.v[0] - 1.0).abs() < 1e-12 && (d.v[1] - 4.0).abs() < 1e-12,
+        "{d:?}"
+    );
+    let g = bore.local(0.0, 2.0, &TOL);
+    assert_eq!(g.normal, SurfaceNormal::Regular(-Vec3::X));
+    assert!((g.curvature.unwrap().k1 - 1.0 / 3.0).abs() < 1e-12);
+    // Plane bounded by the circle of radius 3 at z = 1: u, v ∈ [−3, 3].
+    let d = s.patches[1].surface.domain();
+    assert!(
+        (d.u[0] + 3.0).abs() < 1e-12 && (d.u[1] - 3.0).abs() < 1e-12,
+        "{d:?}"
+    );
+    assert!(
+        (d.v[0] + 3.0).abs() < 1e-12 && (d.v[1] - 3.0).abs() < 1e-12,
+        "{d:?}"
+    );
+    assert!(matches!(s.patches[2].surface, Surface::Cone(_)));
+    // The torus face is bounded only in angle: full parameter box, no default needed.
+    assert!(matches!(s.patches[3].surface, Surface::Torus(_)));
+}
+
+fn err(text: &str) -> ReadError {
+    step::parse(text).unwrap_err()
+}
+
+#[test]
+fn malformed_step_files_give_positions_and_reasons() {
+    match err("ISO-10303-21;\nDATA;\n#1=CARTESIAN_POINT('',(1.,2.,3.);\nENDSEC;") {
+        ReadError::Syntax {
+            format: Format::Step,
+            line: 3,
+            column,
+            message,
+        } => {
+            assert_eq!(column, 33, "{message}");
+            assert!(message.contains("expected `,` or `)`"), "{message}");
+        }
+        e => panic!("{e}"),
+    }
+    match err("ISO-10303-21;\nDATA;\n#1=PLANE('',#2);\n#1=PLANE('',#2);\nENDSEC;") {
+        ReadError::Syntax {
+            line: 4, message, ..
+        } => assert!(message.contains("defined twice")),
+        e => panic!("{e}"),
+    }
+    match err("ISO-10303-21;\nDATA;\n#7=PLANE('',#2);\nENDSEC;") {
+        ReadError::Entity {
+            line: 3,
+            entity,
+            message,
+            ..
+        } => {
+            assert_eq!(entity, "#7");
+            assert!(message.contains("#2, which is not defined"), "{message}");
+        }
+        e => panic!("{e}"),
+    }
+    // Knot multiplicities that do not match the net.
+    let t = "ISO-10303-21;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));\n\
+             #2=B_SPLINE_SURFACE_WITH_KNOTS('',1,1,((#1,#1),(#1,#1)),.UNSPECIFIED.,.F.,.F.,.F.,(2,2),(2,1),(0.,1.),(0.,1.),.UNSPECIFIED.);\nENDSEC;";
+    match err(t) {
+        ReadError::Entity {
+            line: 4, message, ..
+        } => assert!(
+            message.contains("v multiplicities add up to 3; expected 4"),
+            "{message}"
+        ),
+        e => panic!("{e}"),
+    }
+    // Decreasing knots are caught by the NURBS validation, with the entity.
+    let t = t.replace("(2,1),(0.,1.),(0.,1.)", "(2,2),(0.,1.),(1.,0.)");
+    match err(&t) {
+        ReadError::Surface {
+            line: 4, entity, ..
+        } => assert_eq!(entity, "#2"),
+        e => panic!("{e}"),
+    }
+    match err("no step here") {
+        ReadError::Syntax { message, .. } => assert!(message.contains("DATA section"), "{message}"),
+        e => panic!("{e}"),
+    }
+    match err("ISO-10303-21;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));\nENDSEC;") {
+        ReadError::Empty { .. } => {}
+        e => panic!("{e}"),
+    }
+    let msg = err("ISO-10303-21;\nDATA;\n#1=X('abc);\nENDSEC;").to_string();
+    assert!(
+        msg.starts_with("STEP line 3, column 6: unterminated string"),
+        "{msg}"
+    );
+}
