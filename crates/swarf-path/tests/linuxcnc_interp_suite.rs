@@ -54,12 +54,16 @@ const PASSING: &[&str] = &[
     "m98m99-07-nested-subs",
     "m98m99-10-M98-P001",
     "m98m99-13-named-program",
+    "m98m99-14-o-expression-call",
     "machine-coord-params",
     "namedparam-bug424",
+    "oword-unwind",
     "return-value",
     "rotation-abs-pts",
     "rotation-g28",
     "rotation-g53",
+    "sequence-number",
+    "sub-call-from-sub",
 ];
 
 /// Folders whose program ends in an error in LinuxCNC: the file and line of the error and a
@@ -239,9 +243,43 @@ fn message_of(event: &Canon<'_>) -> Option<(bool, String)> {
     }
 }
 
+/// What `rs274` was given: the INI's `SUBROUTINE_PATH` (relative to the test folder, where
+/// `rs274` ran) and the tool table's diameters (`T1 P1 D0.25 …`, in the table's units: the
+/// standalone interpreter's are inches).
 fn options_for(dir: &Path, run: &Run) -> GcodeOptions {
-    let _ = (dir, run);
-    GcodeOptions::default()
+    let mut o = GcodeOptions::default().with_subroutine_dir(dir);
+    if let Some(ini) = &run.ini {
+        let text = std::fs::read_to_string(dir.join(ini)).unwrap_or_default();
+        for line in text.lines() {
+            if let Some((k, v)) = line.split_once('=') {
+                if k.trim() == "SUBROUTINE_PATH" {
+                    for d in v.trim().split(':') {
+                        o = o.with_subroutine_dir(dir.join(d));
+                    }
+                }
+            }
+        }
+    }
+    if let Some(tbl) = &run.tool_table {
+        let text = std::fs::read_to_string(dir.join(tbl)).unwrap_or_default();
+        for line in text.lines() {
+            let words = line.split(';').next().unwrap_or("");
+            let mut tool = None;
+            let mut dia = None;
+            for w in words.split_whitespace() {
+                let (k, v) = w.split_at(1);
+                match k {
+                    "T" | "t" => tool = v.parse::<u32>().ok(),
+                    "D" | "d" => dia = v.parse::<f64>().ok(),
+                    _ => {}
+                }
+            }
+            if let (Some(t), Some(d)) = (tool, dia) {
+                o = o.with_tool_diameter(t, d * 25.4);
+            }
+        }
+    }
+    o
 }
 
 enum Verdict {

@@ -8,6 +8,7 @@
 
 use std::borrow::Cow;
 use std::collections::HashMap;
+use std::rc::Rc;
 
 use super::arcs::{center_r, check_ijk, r_tolerance_mm};
 use super::block::{self, group, Block};
@@ -29,6 +30,8 @@ use crate::{
 pub(crate) struct Cursor {
     pub(crate) pos: usize,
     pub(crate) line: u32,
+    /// Index of the file (0: the program; then subroutine files as they are loaded).
+    pub(crate) file: u32,
 }
 
 /// A remembered forward scan: the O name looked for and what was found.
@@ -61,8 +64,13 @@ pub(crate) struct CycleMemory {
 
 /// The interpreter state for one program run.
 pub(crate) struct Interp<'t, 's> {
-    pub(crate) text: &'t str,
-    pub(crate) file: &'t str,
+    /// The text and name of the file being executed.
+    pub(crate) text: Rc<str>,
+    pub(crate) file: Rc<str>,
+    /// Every file read: the program, then subroutine files (`o<name> call` of `name.ngc`).
+    pub(crate) files: Vec<(Rc<str>, Rc<str>)>,
+    /// Which of `files` is being executed.
+    pub(crate) cur_file: u32,
     pub(crate) opts: &'t GcodeOptions,
     pub(crate) sink: &'s mut dyn CanonSink,
     /// Where reading continues.
@@ -114,7 +122,7 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) subs: HashMap<Vec<u8>, Cursor>,
     pub(crate) labels: Option<HashMap<u64, Cursor>>,
     /// Results of forward scans for O-words, by start position and keyword set.
-    pub(crate) scan_cache: HashMap<(usize, u32), ScanHit>,
+    pub(crate) scan_cache: HashMap<(u32, usize, u32), ScanHit>,
     pub(crate) iterations: u64,
     pub(crate) ended: bool,
     pub(crate) tape: bool,
@@ -130,17 +138,24 @@ pub(crate) struct Interp<'t, 's> {
 
 impl<'t, 's> Interp<'t, 's> {
     pub(crate) fn new(
-        text: &'t str,
-        file: &'t str,
+        text: &str,
+        file: &str,
         opts: &'t GcodeOptions,
         sink: &'s mut dyn CanonSink,
     ) -> Self {
+        let (text, file): (Rc<str>, Rc<str>) = (Rc::from(text), Rc::from(file));
         Self {
+            files: vec![(file.clone(), text.clone())],
+            cur_file: 0,
             text,
             file,
             opts,
             sink,
-            at: Cursor { pos: 0, line: 0 },
+            at: Cursor {
+                pos: 0,
+                line: 0,
+                file: 0,
+            },
             cur_line: 0,
             cur_start: 0,
             units: opts.initial_units,
@@ -186,7 +201,7 @@ impl<'t, 's> Interp<'t, 's> {
 
     /// Reads the whole program.
     pub(crate) fn run(mut self) -> Result<(), PathError> {
-        if let Some((d, line)) = Dialect::detect(self.text, 200) {
+        if let Some((d, line)) = Dialect::detect(&self.text, 200) {
             let raw = self.text.lines().nth(line as usize - 1).unwrap_or("");
             return Err(PathError::new(
                 SourcePos { file: self.file.to_string(), line, column: 1 },
@@ -201,12 +216,20 @@ impl<'t, 's> Interp<'t, 's> {
         self.emit(Canon::Plane(Plane::XY));
         let mut lb = LineBuf::default();
         let mut blk = Block::default();
-        while !self.ended && self.at.pos < self.text.len() {
+        loop {
+            if self.at.file != self.cur_file {
+                self.enter_file(self.at.file);
+            }
+            if self.ended || self.at.pos >= self.text.len() {
+                break;
+            }
+            let text = self.text.clone();
             let start = self.at.pos;
-            let (raw, next) = split_line(self.text, start);
+            let (raw, next) = split_line(&text, start);
             self.at = Cursor {
                 pos: next,
                 line: self.at.line + 1,
+                file: self.cur_file,
             };
             self.cur_line = self.at.line;
             self.cur_start = start;
@@ -315,6 +338,15 @@ impl<'t, 's> Interp<'t, 's> {
         self.emit(Canon::XyRotation(self.rot));
     }
 
+    /// Continues in file `index` of [`Self::files`], and says so to the sink.
+    fn enter_file(&mut self, index: u32) {
+        let (name, text) = self.files[index as usize].clone();
+        self.cur_file = index;
+        self.text = text;
+        self.file = name.clone();
+        self.emit(Canon::SourceFile(Cow::Borrowed(&name)));
+    }
+
     /// A warning at raw byte offset `byte` of the current line (0: the whole line).
     pub(crate) fn warn_at(&mut self, column: u32, message: String) {
         self.sink.warn(Warning {
@@ -327,7 +359,8 @@ impl<'t, 's> Interp<'t, 's> {
 
     fn warn_code(&mut self, lb: &LineBuf, code_at: usize, message: String) {
         let raw_at = lb.offs.get(code_at).map_or(0, |&o| o as usize);
-        let raw = split_line(self.text, self.cur_start).0;
+        let text = self.text.clone();
+        let raw = split_line(&text, self.cur_start).0;
         self.warn_at(column_of(raw, raw_at), message);
     }
 
@@ -349,7 +382,7 @@ impl<'t, 's> Interp<'t, 's> {
         Ok(())
     }
 
-    fn exec_line(&mut self, raw: &'t str, lb: &mut LineBuf, blk: &mut Block) -> Res<()> {
+    fn exec_line(&mut self, raw: &str, lb: &mut LineBuf, blk: &mut Block) -> Res<()> {
         normalize(raw, lb)?;
         if lb.deleted && self.opts.block_delete {
             return Ok(());
@@ -363,7 +396,7 @@ impl<'t, 's> Interp<'t, 's> {
             return Ok(());
         }
         for &(a, b) in &lb.comments {
-            let text: &'t str = &raw[a as usize..b as usize];
+            let text = &raw[a as usize..b as usize];
             let event = match active_comment(text) {
                 Some((kind, body)) => Canon::Message {
                     kind,

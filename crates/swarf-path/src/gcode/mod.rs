@@ -56,7 +56,7 @@ mod lexer;
 mod params;
 
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use crate::{CanonSink, PathError, PathErrorKind, SourcePos, Units};
 
@@ -125,6 +125,9 @@ pub struct GcodeOptions {
     /// Tool diameters by tool number, mm: what cutter radius compensation (`G41`/`G42`, with
     /// `D<tool>` or the loaded tool) offsets by. LinuxCNC takes them from its tool table.
     pub tool_diameters: BTreeMap<u32, f64>,
+    /// Folders searched, after the program's own, for `name.ngc` when `o<name> call` names a
+    /// subroutine the program does not define (LinuxCNC's `SUBROUTINE_PATH`).
+    pub subroutine_path: Vec<PathBuf>,
 }
 
 impl Default for GcodeOptions {
@@ -137,6 +140,7 @@ impl Default for GcodeOptions {
             arc_radius_tolerance: ArcTolerance::LINUXCNC,
             block_delete: true,
             tool_diameters: BTreeMap::new(),
+            subroutine_path: Vec::new(),
         }
     }
 }
@@ -170,6 +174,11 @@ impl GcodeOptions {
     /// Sets [`Self::block_delete`].
     pub fn with_block_delete(mut self, on: bool) -> Self {
         self.block_delete = on;
+        self
+    }
+    /// Adds a folder to [`Self::subroutine_path`].
+    pub fn with_subroutine_dir(mut self, dir: impl Into<PathBuf>) -> Self {
+        self.subroutine_path.push(dir.into());
         self
     }
     /// Adds tool `tool`'s diameter (mm) to [`Self::tool_diameters`].
