@@ -113,7 +113,7 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) g92: [f64; 6],
     /// The stored G92 offset (parameters 5211–5216) and whether it is applied (5210).
     pub(crate) g92_saved: [f64; 6],
-    pub(crate) g92_flag: bool,
+    pub(crate) g92_flag: f64,
     /// G28 and G30 positions, machine coordinates, mm.
     pub(crate) homes: [[f64; 6]; 2],
     pub(crate) params: Params,
@@ -180,7 +180,7 @@ impl<'t, 's> Interp<'t, 's> {
             rot: 0.0,
             g92: [0.0; 6],
             g92_saved: [0.0; 6],
-            g92_flag: false,
+            g92_flag: 0.0,
             homes: [[0.0; 6]; 2],
             params: Params::default(),
             ctl: Vec::new(),
@@ -210,6 +210,15 @@ impl<'t, 's> Interp<'t, 's> {
                 raw.trim(),
                 "RS274/NGC G-code",
             ));
+        }
+        for &(n, v) in &self.opts.parameters {
+            if (1..=super::expr::MAX_PARAM).contains(&n) {
+                self.set_numbered(n, v);
+            }
+        }
+        if self.g92_flag != 0.0 {
+            // LinuxCNC applies a G92 offset stored in the parameters at start-up.
+            self.g92 = self.g92_saved;
         }
         self.emit(Canon::Units(self.units));
         self.emit_offsets();
@@ -444,14 +453,14 @@ impl<'t, 's> Interp<'t, 's> {
     /// Numbered parameter with LinuxCNC's views onto the offset tables, in program units.
     pub(crate) fn get_numbered(&self, n: usize) -> f64 {
         match n {
-            5161..=5166 => self.to_units(n - 5161, self.homes[0][n - 5161]),
-            5181..=5186 => self.to_units(n - 5181, self.homes[1][n - 5181]),
-            5210 => f64::from(u8::from(self.g92_flag)),
-            5211..=5216 => self.to_units(n - 5211, self.g92_saved[n - 5211]),
+            5161..=5166 => self.to_param_units(n - 5161, self.homes[0][n - 5161]),
+            5181..=5186 => self.to_param_units(n - 5181, self.homes[1][n - 5181]),
+            5210 => self.g92_flag,
+            5211..=5216 => self.to_param_units(n - 5211, self.g92_saved[n - 5211]),
             5220 => self.coord as f64,
             5221..=5386 if (n - 5221) % 20 < 6 => {
                 let (k, i) = ((n - 5221) / 20, (n - 5221) % 20);
-                self.to_units(i, self.g5x_table[k][i])
+                self.to_param_units(i, self.g5x_table[k][i])
             }
             5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20],
             5420..=5425 => self.to_units(n - 5420, self.p[n - 5420]),
@@ -464,18 +473,36 @@ impl<'t, 's> Interp<'t, 's> {
 
     pub(crate) fn set_numbered(&mut self, n: usize, v: f64) {
         match n {
-            5161..=5166 => self.homes[0][n - 5161] = self.mm_from_units(n - 5161, v),
-            5181..=5186 => self.homes[1][n - 5181] = self.mm_from_units(n - 5181, v),
-            5211..=5216 => self.g92_saved[n - 5211] = self.mm_from_units(n - 5211, v),
+            5161..=5166 => self.homes[0][n - 5161] = self.mm_from_param_units(n - 5161, v),
+            5181..=5186 => self.homes[1][n - 5181] = self.mm_from_param_units(n - 5181, v),
+            5210 => self.g92_flag = v,
+            5211..=5216 => self.g92_saved[n - 5211] = self.mm_from_param_units(n - 5211, v),
             5221..=5386 if (n - 5221) % 20 < 6 => {
                 let (k, i) = ((n - 5221) / 20, (n - 5221) % 20);
-                self.g5x_table[k][i] = self.mm_from_units(i, v);
+                self.g5x_table[k][i] = self.mm_from_param_units(i, v);
             }
             5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20] = v,
-            5021..=5026 => {}
-            // Read-only views: the position, the active system, the G92 flag, the tool.
-            5210 | 5220 | 5400 | 5420..=5425 => {}
+            // Read-only views: the machine position, the active system, the tool, the position.
+            5021..=5026 | 5220 | 5400 | 5420..=5425 => {}
             _ => self.params.num[n] = v,
+        }
+    }
+
+    /// mm → the units of the offset parameters (LinuxCNC keeps them in the machine's units,
+    /// whatever G20/G21 says).
+    fn to_param_units(&self, i: usize, v: f64) -> f64 {
+        if i < 3 {
+            v / self.opts.parameter_units().mm_per_unit()
+        } else {
+            v
+        }
+    }
+
+    fn mm_from_param_units(&self, i: usize, v: f64) -> f64 {
+        if i < 3 {
+            v * self.opts.parameter_units().mm_per_unit()
+        } else {
+            v
         }
     }
 
@@ -755,21 +782,21 @@ impl<'t, 's> Interp<'t, 's> {
                     }
                 }
                 self.g92_saved = g;
-                self.g92_flag = true;
+                self.g92_flag = 1.0;
                 self.set_offsets(self.off, g);
                 axes_used_by_nonmotion = true;
             }
             Some(921) => {
                 self.g92_saved = [0.0; 6];
-                self.g92_flag = false;
+                self.g92_flag = 0.0;
                 self.set_offsets(self.off, [0.0; 6]);
             }
             Some(922) => {
-                self.g92_flag = false;
+                self.g92_flag = 0.0;
                 self.set_offsets(self.off, [0.0; 6]);
             }
             Some(923) => {
-                self.g92_flag = true;
+                self.g92_flag = 1.0;
                 self.set_offsets(self.off, self.g92_saved);
             }
             _ => {}
@@ -1203,7 +1230,7 @@ impl<'t, 's> Interp<'t, 's> {
             }
         }
         self.g92_saved = g;
-        self.g92_flag = true;
+        self.g92_flag = 1.0;
         self.set_offsets(self.off, g);
         Ok(())
     }
