@@ -38,7 +38,9 @@ use crate::Warning;
 #[derive(Debug)]
 pub struct MoveBuilder {
     machine: Machine,
-    file_name: String,
+    /// The files moves come from (the program first), and the current one.
+    files: Vec<String>,
+    file: u16,
     /// Program position (current coordinate system), mm / degrees.
     pos: Axes,
     g5x: Axes,
@@ -71,7 +73,8 @@ impl MoveBuilder {
     pub fn new(machine: Machine, file_name: &str) -> Self {
         Self {
             machine,
-            file_name: file_name.to_string(),
+            files: vec![file_name.to_string()],
+            file: 0,
             pos: Axes::default(),
             g5x: Axes::default(),
             g92: Axes::default(),
@@ -99,7 +102,7 @@ impl MoveBuilder {
         }
         Program {
             moves: self.moves,
-            files: vec![self.file_name],
+            files: self.files,
             tools: self.tools,
             cutter_definitions: self.cutter_definitions,
             warnings: self.warnings,
@@ -140,7 +143,7 @@ impl MoveBuilder {
 
     fn warn_at(&mut self, line: u32, message: String) {
         self.warnings.push(Warning {
-            file: self.file_name.clone(),
+            file: self.files[usize::from(self.file)].clone(),
             line,
             column: 0,
             message,
@@ -198,7 +201,7 @@ impl MoveBuilder {
             feed_mode: self.feed_mode,
             spindle_rpm: self.spindle_rpm,
             tool: self.tool,
-            file: 0,
+            file: self.file,
             line,
         };
         self.moves.push(m);
@@ -247,6 +250,15 @@ impl MoveBuilder {
 impl CanonSink for MoveBuilder {
     fn emit(&mut self, line: u32, event: &Canon<'_>) {
         match event {
+            Canon::SourceFile(name) => {
+                self.file = match self.files.iter().position(|f| f == name) {
+                    Some(i) => i as u16,
+                    None => {
+                        self.files.push(name.to_string());
+                        (self.files.len() - 1) as u16
+                    }
+                };
+            }
             Canon::XyRotation(deg) => {
                 let a = deg.to_radians();
                 self.xy_rotation = (a.cos(), a.sin());

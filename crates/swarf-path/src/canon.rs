@@ -214,6 +214,9 @@ pub enum Canon<'a> {
     CutterDefinition([f64; 7]),
     /// M2/M30/`FINI`: the end of the program.
     ProgramEnd,
+    /// The events that follow come from this file (a subroutine file of a G-code program, or
+    /// back to the program); their lines are lines of it.
+    SourceFile(Cow<'a, str>),
     /// CL data only (APT `GOTO/x,y,z,i,j,k`): the tool axis — a unit vector from the tip towards
     /// the spindle, in the workpiece frame — for the moves that follow. Once a program states
     /// its axis this way, [`MoveBuilder`](crate::builder::MoveBuilder) takes the axis from the
@@ -301,6 +304,7 @@ impl Canon<'_> {
             Canon::Dwell(d) => Canon::Dwell(*d),
             Canon::CutterDefinition(p) => Canon::CutterDefinition(*p),
             Canon::ProgramEnd => Canon::ProgramEnd,
+            Canon::SourceFile(f) => Canon::SourceFile(Cow::Owned(f.to_string())),
             Canon::ToolAxis(a) => Canon::ToolAxis(*a),
             Canon::SetPosition(p) => Canon::SetPosition(*p),
             Canon::ArcAxis {

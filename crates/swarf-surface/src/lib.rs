@@ -69,7 +69,7 @@ pub use bezier::{CheckMeshError, PreparedSurface};
 pub use compound::{
     CcPoint, CcPointError, CompoundSurface, EntityRef, Patch, PatchSource, ReadNote,
 };
-pub use curve::BSplineCurve;
+pub use curve::{BSplineCurve, CurveError};
 pub use mesh::{tessellate, SurfaceMesh};
 pub use surface::{
     differential, ConicalSurface, Curvature, CylindricalSurface, Derivs, LocalGeometry, NurbsError,

@@ -9,6 +9,7 @@
 //! `max_call_depth`, so no program can run forever or exhaust memory.
 
 use std::collections::HashMap;
+use std::rc::Rc;
 
 use super::block::Block;
 use super::expr::{read_real, Cur};
@@ -167,12 +168,16 @@ impl Interp<'_, '_> {
     /// Executes an O-word line; `at` is the index of the `o` in the normalised code.
     pub(crate) fn exec_oword(&mut self, lb: &LineBuf, at: usize) -> Res<()> {
         let code = &lb.code[..];
+        if code.get(at + 1) == Some(&b'[') {
+            return self.exec_computed_call(code, at);
+        }
         let (a, b, kw, i) = parse_oword(code, at)?;
         let name = key(&code[a..b]);
         let span = Span::Code(at, i);
         let here = Cursor {
             pos: self.cur_start,
             line: self.cur_line - 1,
+            file: self.cur_file,
         };
         let after = self.at;
         let cond = |me: &Self| -> Res<f64> {
@@ -357,6 +362,89 @@ impl Interp<'_, '_> {
         }
     }
 
+    /// `o[expression] call …`: calls the subroutine whose number the expression gives.
+    fn exec_computed_call(&mut self, code: &[u8], at: usize) -> Res<()> {
+        let mut c = Cur::new(code);
+        c.i = at + 1;
+        c.word_start = at;
+        let v = read_real(&mut c, self)?;
+        let span = Span::Code(at, c.i);
+        if !(0.0..1e15).contains(&v) || (v - v.round()).abs() > 1e-6 {
+            return Err(Fault::semantic(
+                span,
+                format!("o[…] gives {v}, not a subroutine number"),
+            ));
+        }
+        if !code[c.i..].starts_with(b"call") {
+            return Err(Fault::syntax(
+                Span::Code(c.i, code.len()),
+                "a computed O-word can only be called",
+                "call",
+            ));
+        }
+        let name = format!("{}", v.round() as u64).into_bytes();
+        let mut line = b"o".to_vec();
+        line.extend_from_slice(&name);
+        line.extend_from_slice(&code[c.i..]);
+        let (_, _, _, i) = parse_oword(&line, 0)?;
+        let mut args = [0.0; N_ARGS];
+        let mut n = 0;
+        let mut ac = Cur::new(&line);
+        ac.i = i;
+        while !ac.at_end() {
+            if n == N_ARGS {
+                return Err(Fault::semantic(span, "more than 30 subroutine arguments"));
+            }
+            ac.word_start = ac.i;
+            args[n] = read_real(&mut ac, self)
+                .map_err(|_| Fault::syntax(span, "bad subroutine argument", "[expression]"))?;
+            n += 1;
+        }
+        self.call_sub(&name, args, span)
+    }
+
+    /// The start of file `file`.
+    pub(crate) fn file_start(&self, file: u32) -> Cursor {
+        Cursor {
+            pos: 0,
+            line: 0,
+            file,
+        }
+    }
+
+    /// Finds `name.ngc` in the program's folder and the subroutine path (LinuxCNC's
+    /// `SUBROUTINE_PATH`), reads it and returns its index in `files`.
+    fn load_sub_file(&mut self, name: &[u8]) -> Option<u32> {
+        let name = std::str::from_utf8(name).ok()?;
+        if name.is_empty() || name.contains(['/', '\\']) || name.starts_with('.') {
+            return None;
+        }
+        let program = std::path::Path::new(&*self.files[0].0);
+        let dirs = program
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .into_iter()
+            .chain(
+                self.opts
+                    .subroutine_path
+                    .iter()
+                    .map(std::path::PathBuf::as_path),
+            );
+        for dir in dirs {
+            let path = dir.join(format!("{name}.ngc"));
+            let shown: Rc<str> = Rc::from(path.display().to_string());
+            if let Some(i) = self.files.iter().position(|(n, _)| *n == shown) {
+                return Some(i as u32);
+            }
+            if let Ok(bytes) = std::fs::read(&path) {
+                let text: Rc<str> = Rc::from(String::from_utf8_lossy(&bytes).as_ref());
+                self.files.push((shown, text));
+                return Some(self.files.len() as u32 - 1);
+            }
+        }
+        None
+    }
+
     fn top_loop(&self) -> Option<Ctl> {
         let floor = self.frames.last().map_or(0, |f| f.ctl_len);
         if self.ctl.len() > floor {
@@ -418,14 +506,14 @@ impl Interp<'_, '_> {
         // ends at the same line: remember it, or a loop around a long false `if` would rescan
         // the same lines on every iteration.
         let mask = kws.iter().fold(0u32, |m, &k| m | 1 << k as u32);
-        if let Some((n, hit)) = self.scan_cache.get(&(from.pos, mask)) {
+        if let Some((n, hit)) = self.scan_cache.get(&(from.file, from.pos, mask)) {
             if n == name {
                 return *hit;
             }
         }
         let found = self.scan_uncached(from, name, kws);
         self.scan_cache
-            .insert((from.pos, mask), (name.to_vec(), found));
+            .insert((from.file, from.pos, mask), (name.to_vec(), found));
         found
     }
 
@@ -438,11 +526,13 @@ impl Interp<'_, '_> {
         let mut buf = std::mem::take(&mut self.skip_buf);
         let mut at = from;
         let mut found = None;
-        while at.pos < self.text.len() {
-            let (raw, next) = split_line(self.text, at.pos);
+        let text = self.files[from.file as usize].1.clone();
+        while at.pos < text.len() {
+            let (raw, next) = split_line(&text, at.pos);
             let after = Cursor {
                 pos: next,
                 line: at.line + 1,
+                file: from.file,
             };
             if raw.bytes().any(|c| c | 0x20 == b'o')
                 && normalize(raw, &mut buf).is_ok()
@@ -472,7 +562,11 @@ impl Interp<'_, '_> {
                 // Not yet defined: LinuxCNC looks for it in the rest of the file, then from the top.
                 let hit = self
                     .scan(self.at, name, &[Kw::Sub])
-                    .or_else(|| self.scan(Cursor { pos: 0, line: 0 }, name, &[Kw::Sub]));
+                    .or_else(|| self.scan(self.file_start(self.cur_file), name, &[Kw::Sub]))
+                    .or_else(|| {
+                        let file = self.load_sub_file(name)?;
+                        self.scan(self.file_start(file), name, &[Kw::Sub])
+                    });
                 let Some((_, _, after)) = hit else {
                     return Err(Fault::semantic(
                         span,
@@ -635,12 +729,14 @@ impl Interp<'_, '_> {
     fn index_labels(&mut self) -> HashMap<u64, Cursor> {
         let mut map = HashMap::new();
         let mut buf = std::mem::take(&mut self.skip_buf);
-        let mut at = Cursor { pos: 0, line: 0 };
-        while at.pos < self.text.len() {
-            let (raw, next) = split_line(self.text, at.pos);
+        let mut at = self.file_start(self.cur_file);
+        let text = self.text.clone();
+        while at.pos < text.len() {
+            let (raw, next) = split_line(&text, at.pos);
             at = Cursor {
                 pos: next,
                 line: at.line + 1,
+                file: self.cur_file,
             };
             if raw.bytes().any(|c| c | 0x20 == b'o') && normalize(raw, &mut buf).is_ok() {
                 let o = skip_line_number(&buf.code);

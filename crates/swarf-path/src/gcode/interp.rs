@@ -8,6 +8,7 @@
 
 use std::borrow::Cow;
 use std::collections::HashMap;
+use std::rc::Rc;
 
 use super::arcs::{center_r, check_ijk, r_tolerance_mm};
 use super::block::{self, group, Block};
@@ -29,6 +30,8 @@ use crate::{
 pub(crate) struct Cursor {
     pub(crate) pos: usize,
     pub(crate) line: u32,
+    /// Index of the file (0: the program; then subroutine files as they are loaded).
+    pub(crate) file: u32,
 }
 
 /// A remembered forward scan: the O name looked for and what was found.
@@ -61,8 +64,13 @@ pub(crate) struct CycleMemory {
 
 /// The interpreter state for one program run.
 pub(crate) struct Interp<'t, 's> {
-    pub(crate) text: &'t str,
-    pub(crate) file: &'t str,
+    /// The text and name of the file being executed.
+    pub(crate) text: Rc<str>,
+    pub(crate) file: Rc<str>,
+    /// Every file read: the program, then subroutine files (`o<name> call` of `name.ngc`).
+    pub(crate) files: Vec<(Rc<str>, Rc<str>)>,
+    /// Which of `files` is being executed.
+    pub(crate) cur_file: u32,
     pub(crate) opts: &'t GcodeOptions,
     pub(crate) sink: &'s mut dyn CanonSink,
     /// Where reading continues.
@@ -105,7 +113,7 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) g92: [f64; 6],
     /// The stored G92 offset (parameters 5211–5216) and whether it is applied (5210).
     pub(crate) g92_saved: [f64; 6],
-    pub(crate) g92_flag: bool,
+    pub(crate) g92_flag: f64,
     /// G28 and G30 positions, machine coordinates, mm.
     pub(crate) homes: [[f64; 6]; 2],
     pub(crate) params: Params,
@@ -114,7 +122,7 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) subs: HashMap<Vec<u8>, Cursor>,
     pub(crate) labels: Option<HashMap<u64, Cursor>>,
     /// Results of forward scans for O-words, by start position and keyword set.
-    pub(crate) scan_cache: HashMap<(usize, u32), ScanHit>,
+    pub(crate) scan_cache: HashMap<(u32, usize, u32), ScanHit>,
     pub(crate) iterations: u64,
     pub(crate) ended: bool,
     pub(crate) tape: bool,
@@ -130,17 +138,24 @@ pub(crate) struct Interp<'t, 's> {
 
 impl<'t, 's> Interp<'t, 's> {
     pub(crate) fn new(
-        text: &'t str,
-        file: &'t str,
+        text: &str,
+        file: &str,
         opts: &'t GcodeOptions,
         sink: &'s mut dyn CanonSink,
     ) -> Self {
+        let (text, file): (Rc<str>, Rc<str>) = (Rc::from(text), Rc::from(file));
         Self {
+            files: vec![(file.clone(), text.clone())],
+            cur_file: 0,
             text,
             file,
             opts,
             sink,
-            at: Cursor { pos: 0, line: 0 },
+            at: Cursor {
+                pos: 0,
+                line: 0,
+                file: 0,
+            },
             cur_line: 0,
             cur_start: 0,
             units: opts.initial_units,
@@ -165,7 +180,7 @@ impl<'t, 's> Interp<'t, 's> {
             rot: 0.0,
             g92: [0.0; 6],
             g92_saved: [0.0; 6],
-            g92_flag: false,
+            g92_flag: 0.0,
             homes: [[0.0; 6]; 2],
             params: Params::default(),
             ctl: Vec::new(),
@@ -186,7 +201,7 @@ impl<'t, 's> Interp<'t, 's> {
 
     /// Reads the whole program.
     pub(crate) fn run(mut self) -> Result<(), PathError> {
-        if let Some((d, line)) = Dialect::detect(self.text, 200) {
+        if let Some((d, line)) = Dialect::detect(&self.text, 200) {
             let raw = self.text.lines().nth(line as usize - 1).unwrap_or("");
             return Err(PathError::new(
                 SourcePos { file: self.file.to_string(), line, column: 1 },
@@ -196,17 +211,34 @@ impl<'t, 's> Interp<'t, 's> {
                 "RS274/NGC G-code",
             ));
         }
+        for &(n, v) in &self.opts.parameters {
+            if (1..=super::expr::MAX_PARAM).contains(&n) {
+                self.set_numbered(n, v);
+            }
+        }
+        if self.g92_flag != 0.0 {
+            // LinuxCNC applies a G92 offset stored in the parameters at start-up.
+            self.g92 = self.g92_saved;
+        }
         self.emit(Canon::Units(self.units));
         self.emit_offsets();
         self.emit(Canon::Plane(Plane::XY));
         let mut lb = LineBuf::default();
         let mut blk = Block::default();
-        while !self.ended && self.at.pos < self.text.len() {
+        loop {
+            if self.at.file != self.cur_file {
+                self.enter_file(self.at.file);
+            }
+            if self.ended || self.at.pos >= self.text.len() {
+                break;
+            }
+            let text = self.text.clone();
             let start = self.at.pos;
-            let (raw, next) = split_line(self.text, start);
+            let (raw, next) = split_line(&text, start);
             self.at = Cursor {
                 pos: next,
                 line: self.at.line + 1,
+                file: self.cur_file,
             };
             self.cur_line = self.at.line;
             self.cur_start = start;
@@ -315,6 +347,15 @@ impl<'t, 's> Interp<'t, 's> {
         self.emit(Canon::XyRotation(self.rot));
     }
 
+    /// Continues in file `index` of [`Self::files`], and says so to the sink.
+    fn enter_file(&mut self, index: u32) {
+        let (name, text) = self.files[index as usize].clone();
+        self.cur_file = index;
+        self.text = text;
+        self.file = name.clone();
+        self.emit(Canon::SourceFile(Cow::Borrowed(&name)));
+    }
+
     /// A warning at raw byte offset `byte` of the current line (0: the whole line).
     pub(crate) fn warn_at(&mut self, column: u32, message: String) {
         self.sink.warn(Warning {
@@ -327,7 +368,8 @@ impl<'t, 's> Interp<'t, 's> {
 
     fn warn_code(&mut self, lb: &LineBuf, code_at: usize, message: String) {
         let raw_at = lb.offs.get(code_at).map_or(0, |&o| o as usize);
-        let raw = split_line(self.text, self.cur_start).0;
+        let text = self.text.clone();
+        let raw = split_line(&text, self.cur_start).0;
         self.warn_at(column_of(raw, raw_at), message);
     }
 
@@ -349,7 +391,7 @@ impl<'t, 's> Interp<'t, 's> {
         Ok(())
     }
 
-    fn exec_line(&mut self, raw: &'t str, lb: &mut LineBuf, blk: &mut Block) -> Res<()> {
+    fn exec_line(&mut self, raw: &str, lb: &mut LineBuf, blk: &mut Block) -> Res<()> {
         normalize(raw, lb)?;
         if lb.deleted && self.opts.block_delete {
             return Ok(());
@@ -363,7 +405,7 @@ impl<'t, 's> Interp<'t, 's> {
             return Ok(());
         }
         for &(a, b) in &lb.comments {
-            let text: &'t str = &raw[a as usize..b as usize];
+            let text = &raw[a as usize..b as usize];
             let event = match active_comment(text) {
                 Some((kind, body)) => Canon::Message {
                     kind,
@@ -411,14 +453,14 @@ impl<'t, 's> Interp<'t, 's> {
     /// Numbered parameter with LinuxCNC's views onto the offset tables, in program units.
     pub(crate) fn get_numbered(&self, n: usize) -> f64 {
         match n {
-            5161..=5166 => self.to_units(n - 5161, self.homes[0][n - 5161]),
-            5181..=5186 => self.to_units(n - 5181, self.homes[1][n - 5181]),
-            5210 => f64::from(u8::from(self.g92_flag)),
-            5211..=5216 => self.to_units(n - 5211, self.g92_saved[n - 5211]),
+            5161..=5166 => self.to_param_units(n - 5161, self.homes[0][n - 5161]),
+            5181..=5186 => self.to_param_units(n - 5181, self.homes[1][n - 5181]),
+            5210 => self.g92_flag,
+            5211..=5216 => self.to_param_units(n - 5211, self.g92_saved[n - 5211]),
             5220 => self.coord as f64,
             5221..=5386 if (n - 5221) % 20 < 6 => {
                 let (k, i) = ((n - 5221) / 20, (n - 5221) % 20);
-                self.to_units(i, self.g5x_table[k][i])
+                self.to_param_units(i, self.g5x_table[k][i])
             }
             5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20],
             5420..=5425 => self.to_units(n - 5420, self.p[n - 5420]),
@@ -431,18 +473,36 @@ impl<'t, 's> Interp<'t, 's> {
 
     pub(crate) fn set_numbered(&mut self, n: usize, v: f64) {
         match n {
-            5161..=5166 => self.homes[0][n - 5161] = self.mm_from_units(n - 5161, v),
-            5181..=5186 => self.homes[1][n - 5181] = self.mm_from_units(n - 5181, v),
-            5211..=5216 => self.g92_saved[n - 5211] = self.mm_from_units(n - 5211, v),
+            5161..=5166 => self.homes[0][n - 5161] = self.mm_from_param_units(n - 5161, v),
+            5181..=5186 => self.homes[1][n - 5181] = self.mm_from_param_units(n - 5181, v),
+            5210 => self.g92_flag = v,
+            5211..=5216 => self.g92_saved[n - 5211] = self.mm_from_param_units(n - 5211, v),
             5221..=5386 if (n - 5221) % 20 < 6 => {
                 let (k, i) = ((n - 5221) / 20, (n - 5221) % 20);
-                self.g5x_table[k][i] = self.mm_from_units(i, v);
+                self.g5x_table[k][i] = self.mm_from_param_units(i, v);
             }
             5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20] = v,
-            5021..=5026 => {}
-            // Read-only views: the position, the active system, the G92 flag, the tool.
-            5210 | 5220 | 5400 | 5420..=5425 => {}
+            // Read-only views: the machine position, the active system, the tool, the position.
+            5021..=5026 | 5220 | 5400 | 5420..=5425 => {}
             _ => self.params.num[n] = v,
+        }
+    }
+
+    /// mm → the units of the offset parameters (LinuxCNC keeps them in the machine's units,
+    /// whatever G20/G21 says).
+    fn to_param_units(&self, i: usize, v: f64) -> f64 {
+        if i < 3 {
+            v / self.opts.parameter_units().mm_per_unit()
+        } else {
+            v
+        }
+    }
+
+    fn mm_from_param_units(&self, i: usize, v: f64) -> f64 {
+        if i < 3 {
+            v * self.opts.parameter_units().mm_per_unit()
+        } else {
+            v
         }
     }
 
@@ -722,21 +782,21 @@ impl<'t, 's> Interp<'t, 's> {
                     }
                 }
                 self.g92_saved = g;
-                self.g92_flag = true;
+                self.g92_flag = 1.0;
                 self.set_offsets(self.off, g);
                 axes_used_by_nonmotion = true;
             }
             Some(921) => {
                 self.g92_saved = [0.0; 6];
-                self.g92_flag = false;
+                self.g92_flag = 0.0;
                 self.set_offsets(self.off, [0.0; 6]);
             }
             Some(922) => {
-                self.g92_flag = false;
+                self.g92_flag = 0.0;
                 self.set_offsets(self.off, [0.0; 6]);
             }
             Some(923) => {
-                self.g92_flag = true;
+                self.g92_flag = 1.0;
                 self.set_offsets(self.off, self.g92_saved);
             }
             _ => {}
@@ -1170,7 +1230,7 @@ impl<'t, 's> Interp<'t, 's> {
             }
         }
         self.g92_saved = g;
-        self.g92_flag = true;
+        self.g92_flag = 1.0;
         self.set_offsets(self.off, g);
         Ok(())
     }

@@ -56,7 +56,7 @@ mod lexer;
 mod params;
 
 use std::collections::BTreeMap;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use crate::{CanonSink, PathError, PathErrorKind, SourcePos, Units};
 
@@ -69,8 +69,10 @@ pub use dialect::Dialect;
 /// start, LinuxCNC's rule: an arc is rejected when the absolute difference exceeds
 /// `100 × abs`, or when it exceeds `abs` *and* the relative difference exceeds `relative`.
 ///
-/// The defaults are LinuxCNC's `CENTER_ARC_RADIUS_TOLERANCE_INCH` (2 × 0.001 in),
-/// `CENTER_ARC_RADIUS_TOLERANCE_MM` (2 × 0.01 mm) and `SPIRAL_RELATIVE_TOLERANCE` (0.001).
+/// The defaults are LinuxCNC's `CENTER_ARC_RADIUS_TOLERANCE_INCH` (2 × 0.001 × √2 in),
+/// `CENTER_ARC_RADIUS_TOLERANCE_MM` (2 × 0.01 × √2 mm) and `SPIRAL_RELATIVE_TOLERANCE` (0.001):
+/// its `good-arc` tests move the centre of an arc by 0.99 of the tolerance along both axes
+/// (0.00099 × √2 in, 0.0099 × √2 mm) and must be accepted.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ArcTolerance {
     /// Absolute tolerance for inch programs, inches.
@@ -84,8 +86,8 @@ pub struct ArcTolerance {
 impl ArcTolerance {
     /// LinuxCNC's values.
     pub const LINUXCNC: Self = Self {
-        abs_inch: 2.0 * 0.001,
-        abs_mm: 2.0 * 0.01,
+        abs_inch: 2.0 * 0.001 * std::f64::consts::SQRT_2,
+        abs_mm: 2.0 * 0.01 * std::f64::consts::SQRT_2,
         relative: 0.001,
     };
 
@@ -125,6 +127,17 @@ pub struct GcodeOptions {
     /// Tool diameters by tool number, mm: what cutter radius compensation (`G41`/`G42`, with
     /// `D<tool>` or the loaded tool) offsets by. LinuxCNC takes them from its tool table.
     pub tool_diameters: BTreeMap<u32, f64>,
+    /// Folders searched, after the program's own, for `name.ngc` when `o<name> call` names a
+    /// subroutine the program does not define (LinuxCNC's `SUBROUTINE_PATH`).
+    pub subroutine_path: Vec<PathBuf>,
+    /// Units of the stored offset parameters (#5161–#5186, #5211–#5216, #5221–#5386): LinuxCNC
+    /// keeps them in the machine's units (its INI's `LINEAR_UNITS`) whatever G20/G21 say.
+    /// `None`: [`Self::initial_units`].
+    pub parameter_units: Option<Units>,
+    /// Numbered parameters set before the program starts (LinuxCNC's parameter file, `.var`),
+    /// in [`Self::parameter_units`] for the offset parameters. A G92 offset stored there with
+    /// #5210 set is in effect from the start, as in LinuxCNC.
+    pub parameters: Vec<(usize, f64)>,
 }
 
 impl Default for GcodeOptions {
@@ -137,6 +150,9 @@ impl Default for GcodeOptions {
             arc_radius_tolerance: ArcTolerance::LINUXCNC,
             block_delete: true,
             tool_diameters: BTreeMap::new(),
+            subroutine_path: Vec::new(),
+            parameter_units: None,
+            parameters: Vec::new(),
         }
     }
 }
@@ -170,6 +186,25 @@ impl GcodeOptions {
     /// Sets [`Self::block_delete`].
     pub fn with_block_delete(mut self, on: bool) -> Self {
         self.block_delete = on;
+        self
+    }
+    /// The units the offset parameters are kept in.
+    pub fn parameter_units(&self) -> Units {
+        self.parameter_units.unwrap_or(self.initial_units)
+    }
+    /// Sets [`Self::parameter_units`].
+    pub fn with_parameter_units(mut self, units: Units) -> Self {
+        self.parameter_units = Some(units);
+        self
+    }
+    /// Adds numbered parameter `n` = `v` to [`Self::parameters`].
+    pub fn with_parameter(mut self, n: usize, v: f64) -> Self {
+        self.parameters.push((n, v));
+        self
+    }
+    /// Adds a folder to [`Self::subroutine_path`].
+    pub fn with_subroutine_dir(mut self, dir: impl Into<PathBuf>) -> Self {
+        self.subroutine_path.push(dir.into());
         self
     }
     /// Adds tool `tool`'s diameter (mm) to [`Self::tool_diameters`].

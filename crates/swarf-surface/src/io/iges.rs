@@ -48,6 +48,7 @@ use swarf_geom::math::Vec3;
 
 use super::{Format, ReadError, Uv, MAX_GRID_SEARCHES, MAX_HALVINGS, MAX_TRIM_POINTS};
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
+use crate::curve::{BSplineCurve, CurveError};
 use crate::surface::invert::Inverter;
 use crate::surface::{NurbsSurface, ParamBox, ParametricSurface, Surface};
 use crate::trim::{sample_curve, Trim, TrimError};
@@ -69,6 +70,16 @@ pub struct IgesCurve {
     pub points: Vec<Vec3>,
     /// Parameter range `[V0, V1]`.
     pub range: [f64; 2],
+}
+
+impl IgesCurve {
+    /// The curve as a [`BSplineCurve`] (in the coordinates of its `points`), for evaluation.
+    ///
+    /// # Errors
+    /// When its numbers do not make a curve (the reader refuses those before).
+    pub fn spline(&self) -> Result<BSplineCurve, CurveError> {
+        BSplineCurve::new(self.degree, self.knots.clone(), &self.points, &self.weights)
+    }
 }
 
 /// A trimmed surface (entity 144) as found in the file.
@@ -320,35 +331,6 @@ fn uv(p: Vec3) -> Uv {
 fn append(out: &mut Vec<Uv>, more: Vec<Uv>) {
     let skip = usize::from(out.last().is_some() && out.last() == more.first());
     out.extend(more.into_iter().skip(skip));
-}
-
-/// The point of a 126 curve at `t` (in the coordinates of its `points`).
-fn curve_point(c: &IgesCurve, t: f64) -> Vec3 {
-    let (m, n, k) = (c.degree, c.points.len(), &c.knots);
-    let t = t.clamp(k[m], k[n]);
-    // The span [k_s, k_{s+1}) holding t: the last one with k_s ≤ t, moved back off empty spans
-    // (t at the end of the range); the caller makes sure [k_m, k_n] is not empty.
-    let mut s = k[..n].partition_point(|&x| x <= t).saturating_sub(1).max(m);
-    while s > m && k[s] == k[s + 1] {
-        s -= 1;
-    }
-    let mut d: Vec<[f64; 4]> = (0..=m)
-        .map(|j| {
-            let (p, w) = (c.points[j + s - m], c.weights[j + s - m]);
-            [p.x * w, p.y * w, p.z * w, w]
-        })
-        .collect();
-    for r in 1..=m {
-        for j in (r..=m).rev() {
-            let i = j + s - m;
-            let a = (t - k[i]) / (k[i + m + 1 - r] - k[i]);
-            let prev = d[j - 1];
-            for (x, p) in d[j].iter_mut().zip(prev) {
-                *x = (1.0 - a) * p + a * *x;
-            }
-        }
-    }
-    Vec3::new(d[m][0] / d[m][3], d[m][1] / d[m][3], d[m][2] / d[m][3])
 }
 
 /// Builds the trims of 144s: samples their 142s' parameter-space curves into loops, or maps
@@ -706,13 +688,17 @@ impl Sampler<'_, '_> {
                         ),
                     ));
                 }
+                let spline = match c.spline() {
+                    Ok(spline) => spline,
+                    Err(why) => return Ok(Err(format!("entity 126 at D{}: {why}", e.de))),
+                };
                 let mut out = Vec::new();
                 for s in m..n {
                     let (a, b) = (c.knots[s].max(lo), c.knots[s + 1].min(hi));
                     if a < b {
                         let piece = match self.piece(
                             space,
-                            &|x| curve_point(&c, x),
+                            &|x| spline.point(x),
                             a,
                             b,
                             SEGMENTS_PER_SPAN,

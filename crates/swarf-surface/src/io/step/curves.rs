@@ -1,0 +1,351 @@
+//! Model-space edge curves of face bounds: lines, conics, B-splines (the shared
+//! [`BSplineCurve`]) and polylines, read through surface, seam, intersection and trimmed curves.
+
+use swarf_geom::math::Vec3;
+use swarf_geom::Frame;
+
+use super::entities::{Model, R};
+use super::lex::Param;
+use super::trims::Built;
+use crate::curve::BSplineCurve;
+use crate::io::ReadError;
+use crate::surface::NurbsSurface;
+
+/// Deepest nesting of curves (a SURFACE_CURVE of a TRIMMED_CURVE of …) and of edges.
+pub(super) const MAX_CURVE_DEPTH: usize = 8;
+/// Most control points of a B-spline edge curve, and most points of a POLYLINE or POLY_LOOP.
+pub(super) const MAX_CURVE_POINTS: usize = 100_000;
+
+/// A model-space edge curve (mm).
+pub(super) enum Curve {
+    /// `p + t·d`.
+    Line { p: Vec3, d: Vec3 },
+    /// `origin + a·cos t·x + b·sin t·y` (a circle when `a = b`).
+    Conic { f: Frame, a: f64, b: f64 },
+    /// A rational B-spline.
+    Spline(BSplineCurve),
+    /// Vertices; `t ∈ [0, n − 1]`, vertex `k` at `t = k`.
+    Polyline(Vec<Vec3>),
+}
+
+impl Curve {
+    pub(super) fn point(&self, t: f64) -> Vec3 {
+        match self {
+            Curve::Line { p, d } => *p + t * *d,
+            Curve::Conic { f, a, b } => f.origin + a * t.cos() * f.x + b * t.sin() * f.y,
+            Curve::Spline(c) => c.point(t),
+            Curve::Polyline(p) => {
+                let last = p.len() - 1;
+                let t = t.clamp(0.0, last as f64);
+                let i = (t.floor() as usize).min(last.saturating_sub(1));
+                let s = t - i as f64;
+                if i + 1 > last {
+                    p[last]
+                } else {
+                    p[i] * (1.0 - s) + p[i + 1] * s
+                }
+            }
+        }
+    }
+
+    /// The same points run the other way (`t → −t`).
+    pub(super) fn reversed(self) -> Curve {
+        match self {
+            Curve::Line { p, d } => Curve::Line { p, d: -d },
+            Curve::Conic { f, a, b } => Curve::Conic {
+                f: Frame {
+                    y: -f.y,
+                    z: -f.z,
+                    ..f
+                },
+                a,
+                b,
+            },
+            Curve::Spline(c) => Curve::Spline(c.reversed()),
+            Curve::Polyline(p) => Curve::Polyline(p.into_iter().rev().collect()),
+        }
+    }
+
+    /// The parameter range of a bounded curve.
+    pub(super) fn range(&self) -> Option<(f64, f64)> {
+        match self {
+            Curve::Line { .. } | Curve::Conic { .. } => None,
+            Curve::Spline(c) => Some(c.domain()),
+            Curve::Polyline(p) => Some((0.0, (p.len() - 1) as f64)),
+        }
+    }
+
+    /// The parameter of the curve point nearest `q`, and its distance.
+    pub(super) fn param_of(&self, q: Vec3) -> (f64, f64) {
+        let t = match self {
+            Curve::Line { p, d } => (q - *p).dot(*d) / d.length_squared(),
+            Curve::Conic { f, a, b } => {
+                let l = q - f.origin;
+                (l.dot(f.y) / b).atan2(l.dot(f.x) / a)
+            }
+            Curve::Polyline(p) => {
+                let mut best = (f64::INFINITY, 0.0);
+                for (i, w) in p.windows(2).enumerate() {
+                    let d = w[1] - w[0];
+                    let len2 = d.length_squared();
+                    let s = if len2 > 0.0 {
+                        ((q - w[0]).dot(d) / len2).clamp(0.0, 1.0)
+                    } else {
+                        0.0
+                    };
+                    let dist = (w[0] + s * d - q).length();
+                    if dist < best.0 {
+                        best = (dist, i as f64 + s);
+                    }
+                }
+                best.1
+            }
+            Curve::Spline(c) => {
+                let knots = c.knots();
+                let (t0, t1) = self.range().unwrap_or((0.0, 1.0));
+                let dist = |t: f64| (self.point(t) - q).length();
+                // Samples over the spans (at most 512), then golden-section search around the
+                // nearest.
+                let spans = knots.windows(2).filter(|w| w[1] > w[0]).count().max(1);
+                let n = (8 * spans).clamp(16, 512);
+                let mut best = (f64::INFINITY, t0);
+                for k in 0..=n {
+                    let t = t0 + (t1 - t0) * k as f64 / n as f64;
+                    let d = dist(t);
+                    if d < best.0 {
+                        best = (d, t);
+                    }
+                }
+                let h = (t1 - t0) / n as f64;
+                let (a, b) = ((best.1 - h).max(t0), (best.1 + h).min(t1));
+                let mut near = best;
+                swarf_geom::search::golden_max(
+                    &mut |t| {
+                        let d = dist(t);
+                        if d < near.0 {
+                            near = (d, t);
+                        }
+                        -d
+                    },
+                    a,
+                    b,
+                    1e-12 * (b - a) + 1e-15 * a.abs().max(b.abs()),
+                );
+                let t = near.1;
+                // The ends exactly, when they are as near.
+                [t0, t1, t]
+                    .into_iter()
+                    .min_by(|x, y| dist(*x).total_cmp(&dist(*y)))
+                    .unwrap_or(t)
+            }
+        };
+        (t, (self.point(t) - q).length())
+    }
+
+    /// Initial steps over `[a, b]`: 4 per quarter turn of a conic, 8 per knot span of a spline
+    /// (what the range covers of it), 1 per polyline segment, 4 for a line.
+    pub(super) fn steps(&self, a: f64, b: f64) -> Vec<f64> {
+        let (lo, hi) = (a.min(b), a.max(b));
+        let mut ts: Vec<f64> = match self {
+            Curve::Line { .. } => (0..=4).map(|k| a + (b - a) * k as f64 / 4.0).collect(),
+            Curve::Conic { .. } => {
+                let n = ((hi - lo) / std::f64::consts::FRAC_PI_2 * 4.0)
+                    .ceil()
+                    .clamp(4.0, 1024.0) as usize;
+                (0..=n).map(|k| a + (b - a) * k as f64 / n as f64).collect()
+            }
+            Curve::Spline(c) => {
+                let mut breaks = vec![lo];
+                breaks.extend(c.knots().iter().copied().filter(|&k| k > lo && k < hi));
+                breaks.push(hi);
+                breaks.dedup();
+                let mut out = Vec::new();
+                for w in breaks.windows(2).take(MAX_CURVE_POINTS) {
+                    for k in 0..8 {
+                        out.push(w[0] + (w[1] - w[0]) * k as f64 / 8.0);
+                    }
+                }
+                out.push(hi);
+                if a > b {
+                    out.reverse();
+                }
+                out
+            }
+            Curve::Polyline(_) => {
+                let mut out = vec![lo];
+                let mut k = lo.floor() + 1.0;
+                while k < hi && out.len() < MAX_CURVE_POINTS {
+                    out.push(k);
+                    k += 1.0;
+                }
+                out.push(hi);
+                if a > b {
+                    out.reverse();
+                }
+                out
+            }
+        };
+        ts.dedup();
+        if ts.len() < 2 {
+            ts = vec![a, b];
+        }
+        ts
+    }
+}
+
+impl Model<'_> {
+    /// A curve for the edge geometry `id`.
+    pub(super) fn curve(&self, from: u64, id: u64, depth: usize) -> Built<Curve> {
+        let wrap = |e: ReadError| e.to_string();
+        if depth > MAX_CURVE_DEPTH {
+            return Err(format!(
+                "#{id}: curves nest more than {MAX_CURVE_DEPTH} deep"
+            ));
+        }
+        let inst = self.get(from, id).map_err(wrap)?;
+        for name in ["SURFACE_CURVE", "SEAM_CURVE", "INTERSECTION_CURVE"] {
+            if let Some(p) = inst.part(name) {
+                let c = self.reference(id, p.get(1), "curve_3d").map_err(wrap)?;
+                return self.curve(id, c, depth + 1);
+            }
+        }
+        if let Some(p) = inst.part("TRIMMED_CURVE") {
+            // The edge's vertices bound it; its sense_agreement .F. runs it against the basis
+            // curve (the way round a conic between the vertices).
+            let c = self.reference(id, p.get(1), "basis_curve").map_err(wrap)?;
+            let curve = self.curve(id, c, depth + 1)?;
+            let against = matches!(p.get(4), Some(Param::Enum(e)) if e == "F");
+            return Ok(if against { curve.reversed() } else { curve });
+        }
+        if let Some(p) = inst.part("LINE") {
+            let origin = self.reference(id, p.get(1), "pnt").map_err(wrap)?;
+            let origin = self.point(id, origin).map_err(wrap)?;
+            let vid = self.reference(id, p.get(2), "dir").map_err(wrap)?;
+            let vi = self.get(id, vid).map_err(wrap)?;
+            let vp = vi
+                .part("VECTOR")
+                .ok_or_else(|| format!("#{vid}: found {}, expected VECTOR", vi.first_name()))?;
+            let dir = self.direction(vid, vp.get(1), Vec3::X).map_err(wrap)?;
+            let mag = self.num(vid, vp.get(2), "magnitude").map_err(wrap)? * self.length;
+            if !(mag.abs() > 0.0 && mag.is_finite()) {
+                return Err(format!("#{vid}: a line's vector has no length"));
+            }
+            return Ok(Curve::Line {
+                p: origin,
+                d: dir * mag.abs(),
+            });
+        }
+        if let Some(c) = inst.part("CIRCLE").or_else(|| inst.part("ELLIPSE")) {
+            let f = self.placement(id, c.get(1)).map_err(wrap)?;
+            let a = self.num(id, c.get(2), "radius").map_err(wrap)? * self.length;
+            let b = match c.get(3) {
+                Some(p) => self.num(id, Some(p), "semi_axis_2").map_err(wrap)? * self.length,
+                None => a,
+            };
+            if !(a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
+                return Err(format!("#{id}: a conic's radii must be positive"));
+            }
+            return Ok(Curve::Conic { f, a, b });
+        }
+        if let Some(p) = inst.part("POLYLINE") {
+            let pts = self.list(id, p.get(1), "points").map_err(wrap)?;
+            if pts.len() < 2 || pts.len() > MAX_CURVE_POINTS {
+                return Err(format!(
+                    "#{id}: a polyline needs 2 to {MAX_CURVE_POINTS} points"
+                ));
+            }
+            let pts = pts
+                .iter()
+                .map(|q| {
+                    let r = self.reference(id, Some(q), "point")?;
+                    self.point(id, r)
+                })
+                .collect::<R<Vec<Vec3>>>()
+                .map_err(wrap)?;
+            return Ok(Curve::Polyline(pts));
+        }
+        if let Some(k) = inst.part("B_SPLINE_CURVE_WITH_KNOTS") {
+            let (head, knots): (&[Param], &[Param]) = match inst.part("B_SPLINE_CURVE") {
+                Some(b) => (b, k),
+                None if k.len() >= 9 => (&k[1..6], &k[6..]),
+                None => {
+                    return Err(format!(
+                        "#{id}: B_SPLINE_CURVE_WITH_KNOTS has {} attributes, expected 9",
+                        k.len()
+                    ))
+                }
+            };
+            let degree = self.num(id, head.first(), "degree").map_err(wrap)?;
+            if !(degree >= 1.0
+                && degree <= NurbsSurface::MAX_DEGREE as f64
+                && degree.fract() == 0.0)
+            {
+                return Err(format!(
+                    "#{id}: curve degree {degree} is not 1 to {}",
+                    NurbsSurface::MAX_DEGREE
+                ));
+            }
+            let degree = degree as usize;
+            let cps = self
+                .list(id, head.get(1), "control_points_list")
+                .map_err(wrap)?;
+            if cps.len() < degree + 1 || cps.len() > MAX_CURVE_POINTS {
+                return Err(format!(
+                    "#{id}: {} control points for degree {degree}",
+                    cps.len()
+                ));
+            }
+            let pts = cps
+                .iter()
+                .map(|q| {
+                    let r = self.reference(id, Some(q), "control point")?;
+                    self.point(id, r)
+                })
+                .collect::<R<Vec<Vec3>>>()
+                .map_err(wrap)?;
+            let kv = self
+                .knots(
+                    id,
+                    knots.first(),
+                    knots.get(1),
+                    "curve",
+                    pts.len() + degree + 1,
+                )
+                .map_err(wrap)?;
+            if kv.iter().any(|k| !k.is_finite())
+                || kv.windows(2).any(|w| w[1] < w[0])
+                || kv[pts.len()] <= kv[degree]
+            {
+                return Err(format!("#{id}: knots are not increasing"));
+            }
+            let weights = match inst.part("RATIONAL_B_SPLINE_CURVE") {
+                Some(w) => {
+                    let ws = self.list(id, w.first(), "weights_data").map_err(wrap)?;
+                    if ws.len() != pts.len() {
+                        return Err(format!(
+                            "#{id}: {} weights for {} control points",
+                            ws.len(),
+                            pts.len()
+                        ));
+                    }
+                    ws.iter()
+                        .map(|x| self.num(id, Some(x), "weight"))
+                        .collect::<R<Vec<f64>>>()
+                        .map_err(wrap)?
+                }
+                None => vec![1.0; pts.len()],
+            };
+            if weights.iter().any(|w| !(*w > 0.0 && w.is_finite())) {
+                return Err(format!("#{id}: weights must be positive"));
+            }
+            // Checked above with the reader's own messages; the curve checks the same.
+            return BSplineCurve::new(degree, kv, &pts, &weights)
+                .map(Curve::Spline)
+                .map_err(|e| format!("#{id}: {e}"));
+        }
+        Err(format!(
+            "edge curve #{id} is a {}, which is not evaluated",
+            inst.first_name()
+        ))
+    }
+}

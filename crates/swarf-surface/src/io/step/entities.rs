@@ -1,0 +1,715 @@
+//! From instances to surfaces: entity access with positioned errors, the file's units, faces
+//! and their surfaces (B-spline and elementary), the parameter boxes of elementary surfaces.
+
+use std::collections::{HashMap, HashSet};
+
+use swarf_geom::math::Vec3;
+use swarf_geom::Frame;
+
+use super::lex::{refs, show, Instance, Param};
+use super::trims::{set_domain, MAX_FILE_TRIM_POINTS};
+use super::DEFAULT_LINEAR_RANGE;
+use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
+use crate::io::{line_col, Format, ReadError};
+use crate::surface::{
+    ConicalSurface, CylindricalSurface, NurbsSurface, ParamBox, PlaneSurface, SphericalSurface,
+    Surface, ToroidalSurface,
+};
+
+/// The instances of a file and the units they are read in.
+pub(super) struct Model<'a> {
+    pub(super) text: &'a str,
+    pub(super) map: HashMap<u64, Instance>,
+    /// Millimetres per file length unit.
+    pub(super) length: f64,
+    /// Radians per file plane-angle unit.
+    pub(super) angle: f64,
+}
+
+pub(super) const SURFACES: [&str; 6] = [
+    "B_SPLINE_SURFACE_WITH_KNOTS",
+    "PLANE",
+    "CYLINDRICAL_SURFACE",
+    "CONICAL_SURFACE",
+    "SPHERICAL_SURFACE",
+    "TOROIDAL_SURFACE",
+];
+
+pub(super) const OTHER_SURFACES: [&str; 10] = [
+    "B_SPLINE_SURFACE",
+    "BEZIER_SURFACE",
+    "UNIFORM_SURFACE",
+    "QUASI_UNIFORM_SURFACE",
+    "SURFACE_OF_REVOLUTION",
+    "SURFACE_OF_LINEAR_EXTRUSION",
+    "OFFSET_SURFACE",
+    "RECTANGULAR_TRIMMED_SURFACE",
+    "CURVE_BOUNDED_SURFACE",
+    "DEGENERATE_TOROIDAL_SURFACE",
+];
+
+pub(super) fn supported(inst: &Instance) -> bool {
+    SURFACES.iter().any(|s| inst.part(s).is_some())
+}
+
+pub(super) fn is_surface(inst: &Instance) -> bool {
+    supported(inst) || OTHER_SURFACES.iter().any(|s| inst.part(s).is_some())
+}
+
+pub(super) fn kind_name(inst: &Instance) -> String {
+    inst.parts
+        .iter()
+        .map(|(n, _)| n.as_str())
+        .find(|n| SURFACES.contains(n) || OTHER_SURFACES.contains(n))
+        .unwrap_or(inst.first_name())
+        .to_string()
+}
+
+pub(super) type R<T> = Result<T, ReadError>;
+
+impl Model<'_> {
+    pub(super) fn line(&self, id: u64) -> usize {
+        self.map
+            .get(&id)
+            .map_or(0, |i| line_col(self.text, i.offset).0)
+    }
+
+    pub(super) fn bad(&self, id: u64, message: impl Into<String>) -> ReadError {
+        ReadError::Entity {
+            format: Format::Step,
+            line: self.line(id),
+            entity: format!("#{id}"),
+            message: message.into(),
+        }
+    }
+
+    pub(super) fn get(&self, from: u64, id: u64) -> R<&Instance> {
+        self.map
+            .get(&id)
+            .ok_or_else(|| self.bad(from, format!("refers to #{id}, which is not defined")))
+    }
+
+    pub(super) fn num(&self, id: u64, p: Option<&Param>, what: &str) -> R<f64> {
+        match p {
+            Some(Param::Num(v)) => Ok(*v),
+            Some(Param::Typed(_, inner)) if inner.len() == 1 => self.num(id, inner.first(), what),
+            other => Err(self.bad(
+                id,
+                format!("{what}: found {}, expected a number", show(other)),
+            )),
+        }
+    }
+
+    pub(super) fn reference(&self, id: u64, p: Option<&Param>, what: &str) -> R<u64> {
+        match p {
+            Some(Param::Ref(r)) => Ok(*r),
+            other => Err(self.bad(
+                id,
+                format!("{what}: found {}, expected a reference #n", show(other)),
+            )),
+        }
+    }
+
+    pub(super) fn list<'p>(&self, id: u64, p: Option<&'p Param>, what: &str) -> R<&'p [Param]> {
+        match p {
+            Some(Param::List(l)) => Ok(l),
+            other => Err(self.bad(
+                id,
+                format!("{what}: found {}, expected a list", show(other)),
+            )),
+        }
+    }
+
+    pub(super) fn logical(&self, id: u64, p: Option<&Param>, what: &str) -> R<bool> {
+        match p {
+            Some(Param::Enum(e)) if e == "T" => Ok(true),
+            Some(Param::Enum(e)) if e == "F" => Ok(false),
+            other => Err(self.bad(
+                id,
+                format!("{what}: found {}, expected .T. or .F.", show(other)),
+            )),
+        }
+    }
+
+    pub(super) fn name(p: Option<&Param>) -> Option<String> {
+        match p {
+            Some(Param::Str(s)) if !s.trim().is_empty() => Some(s.clone()),
+            _ => None,
+        }
+    }
+
+    /// A CARTESIAN_POINT's coordinates (file units).
+    pub(super) fn raw_point(&self, from: u64, id: u64) -> R<Vec3> {
+        let inst = self.get(from, id)?;
+        let p = inst.part("CARTESIAN_POINT").ok_or_else(|| {
+            self.bad(
+                id,
+                format!("found {}, expected CARTESIAN_POINT", inst.first_name()),
+            )
+        })?;
+        let c = self.list(id, p.get(1), "coordinates")?;
+        if c.len() != 3 {
+            return Err(self.bad(id, format!("{} coordinates, expected 3", c.len())));
+        }
+        Ok(Vec3::new(
+            self.num(id, c.first(), "x")?,
+            self.num(id, c.get(1), "y")?,
+            self.num(id, c.get(2), "z")?,
+        ))
+    }
+
+    pub(super) fn point(&self, from: u64, id: u64) -> R<Vec3> {
+        Ok(self.raw_point(from, id)? * self.length)
+    }
+
+    pub(super) fn direction(&self, from: u64, p: Option<&Param>, default: Vec3) -> R<Vec3> {
+        let id = match p {
+            Some(Param::Null) | None => return Ok(default),
+            other => self.reference(from, other, "direction")?,
+        };
+        let inst = self.get(from, id)?;
+        let d = inst.part("DIRECTION").ok_or_else(|| {
+            self.bad(
+                id,
+                format!("found {}, expected DIRECTION", inst.first_name()),
+            )
+        })?;
+        let c = self.list(id, d.get(1), "direction ratios")?;
+        if c.len() != 3 {
+            return Err(self.bad(id, format!("{} direction ratios, expected 3", c.len())));
+        }
+        let v = Vec3::new(
+            self.num(id, c.first(), "x")?,
+            self.num(id, c.get(1), "y")?,
+            self.num(id, c.get(2), "z")?,
+        );
+        if v.length() == 0.0 || !v.is_finite() {
+            return Err(self.bad(id, "zero-length direction"));
+        }
+        Ok(v.normalize())
+    }
+
+    pub(super) fn placement(&self, from: u64, p: Option<&Param>) -> R<Frame> {
+        let id = self.reference(from, p, "position")?;
+        let inst = self.get(from, id)?;
+        let a = inst.part("AXIS2_PLACEMENT_3D").ok_or_else(|| {
+            self.bad(
+                id,
+                format!("found {}, expected AXIS2_PLACEMENT_3D", inst.first_name()),
+            )
+        })?;
+        let loc = self.reference(id, a.get(1), "location")?;
+        let origin = self.point(id, loc)?;
+        let z = self.direction(id, a.get(2), Vec3::Z)?;
+        let x = self.direction(id, a.get(3), Vec3::X)?;
+        Ok(Frame::from_axis_and_x(origin, z, x))
+    }
+
+    /// Conversion factor of a unit: mm per length unit, or radians per angle unit.
+    pub(super) fn unit_factor(&self, from: u64, id: u64, depth: usize) -> R<(f64, String)> {
+        if depth > 8 {
+            return Err(self.bad(id, "unit definitions nest too deeply"));
+        }
+        let inst = self.get(from, id)?;
+        if let Some(si) = inst.part("SI_UNIT") {
+            let prefix = match si.first() {
+                Some(Param::Enum(p)) => {
+                    si_prefix(p).ok_or_else(|| self.bad(id, format!("unknown SI prefix .{p}.")))?
+                }
+                _ => 1.0,
+            };
+            let (base, name) = match si.get(1) {
+                Some(Param::Enum(n)) if n == "METRE" => (1000.0, n.clone()),
+                Some(Param::Enum(n)) => (1.0, n.clone()),
+                other => return Err(self.bad(id, format!("SI unit name: found {}", show(other)))),
+            };
+            let label = match si.first() {
+                Some(Param::Enum(p)) => format!("{p} {name}"),
+                _ => name,
+            };
+            return Ok((prefix * base, label));
+        }
+        if let Some(cb) = inst.part("CONVERSION_BASED_UNIT") {
+            let label = Self::name(cb.first()).unwrap_or_else(|| "conversion-based unit".into());
+            let m = self.reference(id, cb.get(1), "conversion factor")?;
+            let mi = self.get(id, m)?;
+            let mp = mi
+                .parts
+                .iter()
+                .find(|(n, _)| n.ends_with("MEASURE_WITH_UNIT"))
+                .map(|(_, p)| p.as_slice())
+                .filter(|p| p.len() >= 2)
+                .ok_or_else(|| self.bad(m, "expected a …_MEASURE_WITH_UNIT"))?;
+            let v = self.num(m, mp.first(), "value")?;
+            let u = self.reference(m, mp.get(1), "unit")?;
+            let (f, _) = self.unit_factor(m, u, depth + 1)?;
+            if (v * f).is_nan() || v * f <= 0.0 || !(v * f).is_finite() {
+                return Err(self.bad(m, "unit conversion factor is not positive"));
+            }
+            return Ok((v * f, label));
+        }
+        Err(self.bad(
+            id,
+            format!(
+                "found {}, expected SI_UNIT or CONVERSION_BASED_UNIT",
+                inst.first_name()
+            ),
+        ))
+    }
+
+    pub(super) fn units(&mut self, notes: &mut Vec<ReadNote>) -> R<()> {
+        let mut ids: Vec<u64> = self.map.keys().copied().collect();
+        ids.sort_unstable();
+        let mut length = None;
+        let mut angle = None;
+        for id in ids {
+            let Some(g) = self.map[&id].part("GLOBAL_UNIT_ASSIGNED_CONTEXT") else {
+                continue;
+            };
+            let units = self.list(id, g.first(), "units")?.to_vec();
+            for u in &units {
+                let uid = self.reference(id, Some(u), "unit")?;
+                let ui = self.get(id, uid)?;
+                if length.is_none() && ui.part("LENGTH_UNIT").is_some() {
+                    length = Some(self.unit_factor(id, uid, 0)?);
+                } else if angle.is_none() && ui.part("PLANE_ANGLE_UNIT").is_some() {
+                    angle = Some(self.unit_factor(id, uid, 0)?.0);
+                }
+            }
+        }
+        match length {
+            None => notes.push(ReadNote::UnitsAssumed),
+            Some((f, label)) => {
+                if f != 1.0 {
+                    notes.push(ReadNote::UnitsConverted {
+                        unit: label,
+                        factor: f,
+                    });
+                }
+                self.length = f;
+            }
+        }
+        self.angle = angle.unwrap_or(1.0);
+        Ok(())
+    }
+
+    pub(super) fn read(mut self) -> R<CompoundSurface> {
+        let mut out = CompoundSurface::default();
+        self.units(&mut out.notes)?;
+        let mut ids: Vec<u64> = self.map.keys().copied().collect();
+        ids.sort_unstable();
+        let faces: Vec<u64> = ids
+            .iter()
+            .copied()
+            .filter(|id| {
+                let i = &self.map[id];
+                i.part("ADVANCED_FACE").is_some() || i.part("FACE_SURFACE").is_some()
+            })
+            .collect();
+        let mut skipped = Vec::new();
+        let mut budget = MAX_FILE_TRIM_POINTS;
+        if faces.is_empty() {
+            for &id in &ids {
+                let inst = &self.map[&id];
+                if !is_surface(inst) {
+                    continue;
+                }
+                if !supported(inst) {
+                    skipped.push(ReadNote::UnsupportedSurface {
+                        entity: format!("#{id}"),
+                        kind: kind_name(inst),
+                    });
+                    continue;
+                }
+                let index = out.patches.len();
+                let (surface, name) = self.surface(id, None, index, &mut out.notes)?;
+                out.patches.push(Patch {
+                    name,
+                    surface,
+                    flipped: false,
+                    source: PatchSource {
+                        file: None,
+                        entity: EntityRef::Step {
+                            surface: id,
+                            face: None,
+                        },
+                    },
+                    trim: None,
+                });
+            }
+        } else {
+            for &fid in &faces {
+                let f = &self.map[&fid];
+                let p = f
+                    .part("ADVANCED_FACE")
+                    .or_else(|| f.part("FACE_SURFACE"))
+                    .unwrap_or(&[]);
+                let sid = self.reference(fid, p.get(2), "face geometry")?;
+                let same_sense = self.logical(fid, p.get(3), "same_sense")?;
+                let sinst = self.get(fid, sid)?;
+                if !supported(sinst) {
+                    skipped.push(ReadNote::UnsupportedSurface {
+                        entity: format!("#{sid} (face #{fid})"),
+                        kind: kind_name(sinst),
+                    });
+                    continue;
+                }
+                let index = out.patches.len();
+                let bounds = p.get(1).cloned();
+                let (mut surface, sname) = self.surface(
+                    sid,
+                    bounds.as_ref().map(|b| (fid, b)),
+                    index,
+                    &mut out.notes,
+                )?;
+                let by = format!("STEP face #{fid}");
+                let trim =
+                    match self.face_trim(fid, bounds.as_ref(), same_sense, &surface, &mut budget) {
+                        Ok(Some(t)) => {
+                            out.notes.push(ReadNote::Trimmed {
+                                patch: index,
+                                by,
+                                loops: t.trim.loops().len(),
+                                points: t.trim.loops().iter().map(Vec::len).sum(),
+                            });
+                            set_domain(&mut surface, t.domain);
+                            Some(t.trim)
+                        }
+                        Ok(None) => None,
+                        Err(why) => {
+                            out.notes.push(ReadNote::TrimNotHonoured {
+                                patch: index,
+                                by: format!("{by} ({why})"),
+                            });
+                            None
+                        }
+                    };
+                out.patches.push(Patch {
+                    name: Self::name(p.first()).or(sname),
+                    surface,
+                    flipped: !same_sense,
+                    source: PatchSource {
+                        file: None,
+                        entity: EntityRef::Step {
+                            surface: sid,
+                            face: Some(fid),
+                        },
+                    },
+                    trim,
+                });
+            }
+        }
+        if out.patches.is_empty() {
+            let detail = if skipped.is_empty() {
+                String::new()
+            } else {
+                format!(
+                    "; skipped: {}",
+                    skipped
+                        .iter()
+                        .map(ToString::to_string)
+                        .collect::<Vec<_>>()
+                        .join("; ")
+                )
+            };
+            return Err(ReadError::Empty {
+                format: Format::Step,
+                detail,
+            });
+        }
+        out.notes.extend(skipped);
+        Ok(out)
+    }
+
+    /// The surface `id`, bounded (for elementary kinds) by the face bounds when given.
+    pub(super) fn surface(
+        &self,
+        id: u64,
+        face: Option<(u64, &Param)>,
+        index: usize,
+        notes: &mut Vec<ReadNote>,
+    ) -> R<(Surface, Option<String>)> {
+        let inst = &self.map[&id];
+        if inst.part("B_SPLINE_SURFACE_WITH_KNOTS").is_some() {
+            return self.bspline(id, inst);
+        }
+        let (kind, p) = inst
+            .parts
+            .iter()
+            .find(|(n, _)| SURFACES.contains(&n.as_str()))
+            .map(|(n, p)| (n.as_str(), p.as_slice()))
+            .unwrap_or(("", &[]));
+        let name = Self::name(p.first());
+        let frame = self.placement(id, p.get(1))?;
+        let pts = match face {
+            Some((fid, bounds)) => self.boundary_points(fid, bounds)?,
+            None => Vec::new(),
+        };
+        let tau = std::f64::consts::TAU;
+        let mut range = |f: &dyn Fn(Vec3) -> f64, what: &str| {
+            let lo = pts.iter().map(|&q| f(q)).fold(f64::INFINITY, f64::min);
+            let hi = pts.iter().map(|&q| f(q)).fold(f64::NEG_INFINITY, f64::max);
+            if hi - lo > 1e-9 * (1.0 + hi.abs().max(lo.abs())) {
+                [lo, hi]
+            } else {
+                notes.push(ReadNote::DefaultParameterBox {
+                    patch: index,
+                    what: what.into(),
+                });
+                DEFAULT_LINEAR_RANGE
+            }
+        };
+        let along = |a: Vec3| move |q: Vec3| (q - frame.origin).dot(a);
+        let bad_radius = || self.bad(id, format!("{kind}: radius must be positive and finite"));
+        let surface = match kind {
+            "PLANE" => {
+                let u = range(&along(frame.x), "u");
+                let v = range(&along(frame.y), "v");
+                Surface::Plane(PlaneSurface::new(
+                    frame,
+                    ParamBox::new(u[0], u[1], v[0], v[1]),
+                ))
+            }
+            "CYLINDRICAL_SURFACE" => {
+                let r = self.num(id, p.get(2), "radius")? * self.length;
+                let v = range(&along(frame.z), "v");
+                Surface::Cylinder(
+                    CylindricalSurface::new(frame, r, ParamBox::new(0.0, tau, v[0], v[1]))
+                        .ok_or_else(bad_radius)?,
+                )
+            }
+            "CONICAL_SURFACE" => {
+                let r = self.num(id, p.get(2), "radius")? * self.length;
+                let a = self.num(id, p.get(3), "semi_angle")? * self.angle;
+                let v = range(&along(frame.z), "v");
+                Surface::Cone(
+                    ConicalSurface::new(frame, r, a, ParamBox::new(0.0, tau, v[0], v[1]))
+                        .ok_or_else(|| {
+                            self.bad(
+                                id,
+                                "CONICAL_SURFACE: needs radius ≥ 0 and 0 < semi_angle < 90°",
+                            )
+                        })?,
+                )
+            }
+            "SPHERICAL_SURFACE" => {
+                let r = self.num(id, p.get(2), "radius")? * self.length;
+                Surface::Sphere(
+                    SphericalSurface::new(frame, r, SphericalSurface::FULL)
+                        .ok_or_else(bad_radius)?,
+                )
+            }
+            "TOROIDAL_SURFACE" => {
+                let big = self.num(id, p.get(2), "major_radius")? * self.length;
+                let r = self.num(id, p.get(3), "minor_radius")? * self.length;
+                Surface::Torus(
+                    ToroidalSurface::new(frame, big, r, ToroidalSurface::FULL)
+                        .ok_or_else(bad_radius)?,
+                )
+            }
+            _ => return Err(self.bad(id, format!("unsupported surface {}", inst.first_name()))),
+        };
+        Ok((surface, name))
+    }
+
+    pub(super) fn bspline(&self, id: u64, inst: &Instance) -> R<(Surface, Option<String>)> {
+        // Simple entity: all attributes in one part; complex: split over parts.
+        let k = inst.part("B_SPLINE_SURFACE_WITH_KNOTS").unwrap_or(&[]);
+        let (name, head, knots): (Option<String>, &[Param], &[Param]) =
+            if let Some(b) = inst.part("B_SPLINE_SURFACE") {
+                let name = inst
+                    .part("REPRESENTATION_ITEM")
+                    .and_then(|r| Self::name(r.first()));
+                (name, b, k)
+            } else {
+                if k.len() < 13 {
+                    return Err(self.bad(
+                        id,
+                        format!(
+                            "B_SPLINE_SURFACE_WITH_KNOTS has {} attributes, expected 13",
+                            k.len()
+                        ),
+                    ));
+                }
+                (Self::name(k.first()), &k[1..8], &k[8..])
+            };
+        let degree = |p: Option<&Param>, what: &str| -> R<usize> {
+            let d = self.num(id, p, what)?;
+            if d >= 1.0 && d <= NurbsSurface::MAX_DEGREE as f64 && d.fract() == 0.0 {
+                Ok(d as usize)
+            } else {
+                Err(self.bad(
+                    id,
+                    format!("{what} is {d}; expected 1 to {}", NurbsSurface::MAX_DEGREE),
+                ))
+            }
+        };
+        let du = degree(head.first(), "u_degree")?;
+        let dv = degree(head.get(1), "v_degree")?;
+        let rows = self.list(id, head.get(2), "control_points_list")?;
+        let mut points = Vec::with_capacity(rows.len());
+        for r in rows {
+            let row = self.list(id, Some(r), "control point row")?;
+            let mut out = Vec::with_capacity(row.len());
+            for c in row {
+                out.push(self.point(id, self.reference(id, Some(c), "control point")?)?);
+            }
+            points.push(out);
+        }
+        let nu = points.len();
+        let nv = points.first().map_or(0, Vec::len);
+        let knots_u = self.knots(id, knots.first(), knots.get(2), "u", nu + du + 1)?;
+        let knots_v = self.knots(id, knots.get(1), knots.get(3), "v", nv + dv + 1)?;
+        let weights = match inst.part("RATIONAL_B_SPLINE_SURFACE") {
+            Some(w) => {
+                let rows = self.list(id, w.first(), "weights_data")?;
+                let mut ws = Vec::with_capacity(rows.len());
+                for r in rows {
+                    let row = self.list(id, Some(r), "weights row")?;
+                    ws.push(
+                        row.iter()
+                            .map(|x| self.num(id, Some(x), "weight"))
+                            .collect::<R<Vec<f64>>>()?,
+                    );
+                }
+                Some(ws)
+            }
+            None => None,
+        };
+        let s = NurbsSurface::new(du, dv, knots_u, knots_v, &points, weights.as_deref()).map_err(
+            |source| ReadError::Surface {
+                format: Format::Step,
+                line: self.line(id),
+                entity: format!("#{id}"),
+                source,
+            },
+        )?;
+        Ok((Surface::Nurbs(s), name))
+    }
+
+    /// Expand (multiplicities, knots) into a knot vector, refusing a total other than `expected`
+    /// before allocating it.
+    pub(super) fn knots(
+        &self,
+        id: u64,
+        mult: Option<&Param>,
+        vals: Option<&Param>,
+        dir: &str,
+        expected: usize,
+    ) -> R<Vec<f64>> {
+        let m = self.list(id, mult, &format!("{dir}_multiplicities"))?;
+        let k = self.list(id, vals, &format!("{dir}_knots"))?;
+        if m.len() != k.len() {
+            return Err(self.bad(
+                id,
+                format!(
+                    "{} {dir} multiplicities for {} {dir} knots",
+                    m.len(),
+                    k.len()
+                ),
+            ));
+        }
+        let mut total = 0.0;
+        let mut ms = Vec::with_capacity(m.len());
+        for x in m {
+            let v = self.num(id, Some(x), "multiplicity")?;
+            if v.is_nan() || v < 1.0 || v.fract() != 0.0 {
+                return Err(self.bad(
+                    id,
+                    format!("{dir} multiplicity {v} is not a positive integer"),
+                ));
+            }
+            total += v;
+            ms.push(v as usize);
+        }
+        if total != expected as f64 {
+            return Err(self.bad(
+                id,
+                format!("{dir} multiplicities add up to {total}; expected {expected} (control points + degree + 1)"),
+            ));
+        }
+        let mut out = Vec::with_capacity(expected);
+        for (x, &n) in k.iter().zip(&ms) {
+            let v = self.num(id, Some(x), "knot")?;
+            out.extend(std::iter::repeat(v).take(n));
+        }
+        Ok(out)
+    }
+
+    /// Points (mm) that bound a face: vertices, B-spline edge control points, circle and ellipse
+    /// samples reachable from its bounds (not through placements, lines or pcurves).
+    pub(super) fn boundary_points(&self, face: u64, bounds: &Param) -> R<Vec<Vec3>> {
+        const LIMIT: usize = 200_000;
+        let mut out = Vec::new();
+        let mut seen = HashSet::new();
+        let mut stack = Vec::new();
+        refs(bounds, &mut stack);
+        while let Some(id) = stack.pop() {
+            if !seen.insert(id) || seen.len() > LIMIT {
+                continue;
+            }
+            let inst = self.get(face, id)?;
+            let name = inst.first_name();
+            if is_surface(inst)
+                || matches!(
+                    name,
+                    "PCURVE"
+                        | "DEFINITIONAL_REPRESENTATION"
+                        | "AXIS2_PLACEMENT_3D"
+                        | "LINE"
+                        | "DIRECTION"
+                        | "VECTOR"
+                )
+            {
+                continue;
+            }
+            if let Some(c) = inst.part("CARTESIAN_POINT") {
+                if matches!(c.get(1), Some(Param::List(l)) if l.len() == 3) {
+                    out.push(self.point(face, id)?);
+                }
+                continue;
+            }
+            if let Some(c) = inst.part("CIRCLE").or_else(|| inst.part("ELLIPSE")) {
+                let f = self.placement(id, c.get(1))?;
+                let a = self.num(id, c.get(2), "radius")? * self.length;
+                let b = match c.get(3) {
+                    Some(p) => self.num(id, Some(p), "semi_axis_2")? * self.length,
+                    None => a,
+                };
+                for k in 0..32 {
+                    let t = k as f64 / 32.0 * std::f64::consts::TAU;
+                    out.push(f.origin + a * t.cos() * f.x + b * t.sin() * f.y);
+                }
+                continue;
+            }
+            for (_, ps) in &inst.parts {
+                for p in ps {
+                    refs(p, &mut stack);
+                }
+            }
+        }
+        Ok(out)
+    }
+}
+
+pub(super) fn si_prefix(p: &str) -> Option<f64> {
+    Some(match p {
+        "EXA" => 1e18,
+        "PETA" => 1e15,
+        "TERA" => 1e12,
+        "GIGA" => 1e9,
+        "MEGA" => 1e6,
+        "KILO" => 1e3,
+        "HECTO" => 1e2,
+        "DECA" => 1e1,
+        "DECI" => 1e-1,
+        "CENTI" => 1e-2,
+        "MILLI" => 1e-3,
+        "MICRO" => 1e-6,
+        "NANO" => 1e-9,
+        "PICO" => 1e-12,
+        "FEMTO" => 1e-15,
+        "ATTO" => 1e-18,
+        _ => return None,
+    })
+}

@@ -1,0 +1,117 @@
+//! STEP (ISO 10303-21, AP203/AP214) surfaces.
+//!
+//! Read: `B_SPLINE_SURFACE_WITH_KNOTS` (simple, and the complex rational form with
+//! `RATIONAL_B_SPLINE_SURFACE`), `PLANE`, `CYLINDRICAL_SURFACE`, `CONICAL_SURFACE`,
+//! `SPHERICAL_SURFACE`, `TOROIDAL_SURFACE`.
+//!
+//! * **Patches**: when the file has faces (`ADVANCED_FACE`, `FACE_SURFACE`), one patch per face,
+//!   named after the face (or its surface), flipped when the face's `same_sense` is `.F.`;
+//!   faces on other surface kinds are skipped with a [`ReadNote::UnsupportedSurface`]. A file
+//!   without faces gives one patch per surface instance.
+//! * **Face trims**: a face's bounds become the patch's [`Trim`] (in the surface's own
+//!   parameters), with a [`ReadNote::Trimmed`]: the `FACE_OUTER_BOUND` is the outer loop (no
+//!   such bound: the loop with the largest parameter box), the other bounds are holes;
+//!   `VERTEX_LOOP`s (a pole, an apex) enclose nothing and are left out, so a face bounded only
+//!   by them is untrimmed. An `EDGE_LOOP` is walked through its `ORIENTED_EDGE`s and their
+//!   `EDGE_CURVE`s (from the start to the end `VERTEX_POINT`, along or against the curve as
+//!   `same_sense` says); a `POLY_LOOP` is a polygon. Edge curves read: `LINE`, `CIRCLE`,
+//!   `ELLIPSE` (between the vertices' angles, a full turn when they are one vertex),
+//!   `B_SPLINE_CURVE_WITH_KNOTS` (simple or rational complex; between the vertices' parameters,
+//!   found by point inversion), `POLYLINE`, and through `SURFACE_CURVE`, `SEAM_CURVE`,
+//!   `INTERSECTION_CURVE` and `TRIMMED_CURVE` their 3-D curve (run backwards for a trimmed
+//!   curve whose `sense_agreement` is `.F.`). Each edge is sampled so that
+//!   the chords, in parameters, stay within min(1e-3 mm, 1e-5 of the surface's size) of the
+//!   curve on the surface (at least 4 steps per quarter turn, 8 per knot span), and each
+//!   sample is mapped to the surface's parameters: in closed form on the elementary surfaces,
+//!   by Newton inversion seeded from the previous sample (first: the nearest point of a grid)
+//!   on B-spline surfaces. Angles are unwrapped along a loop; a loop is moved whole turns to
+//!   lie in the parameter box (whose angle range may then start at the outer loop's), a hole
+//!   across the box's edge is copied to the other side, a seam edge met twice on the same
+//!   angle (through a pole or an apex) is moved a turn. Through a pole or an apex a loop runs
+//!   along the box's edge there the way the face's side says (left of the loop, by the bound's
+//!   orientation and the face's `same_sense`: towards −u along the top edge, +u along the
+//!   bottom, up to a whole turn), so lunes wider than a half turn and their complements are
+//!   told apart. A loop that winds once around the axis (a circle bounding a cylinder) is cut
+//!   at the box's edge: two of them make the outer loop (the band between them; on a torus, of
+//!   the two bands the one on the loops' face side, the box's other angle starting at it when
+//!   it does not fit), one is closed along the box's far edge on the face's side. The outer
+//!   loop's points on the box's edges across an angle sit a hair (1e-9 of a turn) outside it,
+//!   so points on the seam inside a hole across it are off the part. Linear parameter ranges grow to
+//!   hold the loops. An edge curve of another kind, a sample more than 1e-4 of the surface's
+//!   size (+ 1e-3 mm) off the surface, edges that do not join, a loop that does not close in
+//!   the parameters or winds otherwise, or more than 200 000 points for a face (2 000 000 for
+//!   the file) leave the patch untrimmed with a [`ReadNote::TrimNotHonoured`] saying why.
+//! * **Units**: the length unit of the `GLOBAL_UNIT_ASSIGNED_CONTEXT` (`SI_UNIT` with any prefix,
+//!   or a `CONVERSION_BASED_UNIT` such as INCH or FOOT, resolved through its
+//!   `LENGTH_MEASURE_WITH_UNIT`) scales lengths to mm; the plane-angle unit scales cone angles.
+//!   No unit: mm, with a [`ReadNote::UnitsAssumed`].
+//! * **Parameter boxes of elementary surfaces**: angles take their full range (u ∈ [0, 2π];
+//!   sphere v ∈ [−π/2, π/2]; torus v ∈ [0, 2π]); linear parameters (plane u, v; cylinder and
+//!   cone v) span the face's boundary: its vertices, the control points of its B-spline edges
+//!   and its circles and ellipses, projected — a range that holds the face, possibly larger.
+//!   Without a face, or with a boundary of zero extent, they take [`DEFAULT_LINEAR_RANGE`] and
+//!   a [`ReadNote::DefaultParameterBox`] says so.
+
+mod curves;
+mod entities;
+mod lex;
+mod trims;
+
+use super::ReadError;
+use crate::compound::CompoundSurface;
+use entities::Model;
+use lex::Lexer;
+
+/// Range (mm) of a linear parameter of an elementary surface when no face bounds it.
+pub const DEFAULT_LINEAR_RANGE: [f64; 2] = [-100.0, 100.0];
+
+/// Parse STEP text.
+pub fn parse(text: &str) -> Result<CompoundSurface, ReadError> {
+    let map = Lexer::new(text).instances()?;
+    Model {
+        text,
+        map,
+        length: 1.0,
+        angle: 1.0,
+    }
+    .read()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::lex::{Lexer, Param};
+    use super::*;
+
+    #[test]
+    fn lexer_handles_strings_comments_and_complex_instances() {
+        let t = "ISO-10303-21;\nHEADER;FILE_NAME('a''b;','x');ENDSEC;\nDATA;\n/* c */ #1=( A(1,2.5E1) B('it''s',.T.,$,*,(#2,-3.)) );\n#2=C(LENGTH_MEASURE(1.));\nENDSEC;END-ISO-10303-21;";
+        let m = Lexer::new(t).instances().unwrap();
+        assert_eq!(m.len(), 2);
+        let i = &m[&1];
+        assert_eq!(i.parts.len(), 2);
+        assert_eq!(i.part("A").unwrap(), &[Param::Num(1.0), Param::Num(25.0)]);
+        assert_eq!(i.part("B").unwrap()[0], Param::Str("it's".into()));
+        assert_eq!(i.part("B").unwrap()[1], Param::Enum("T".into()));
+        assert_eq!(
+            m[&2].part("C").unwrap()[0],
+            Param::Typed("LENGTH_MEASURE".into(), vec![Param::Num(1.0)])
+        );
+    }
+
+    #[test]
+    fn syntax_errors_have_positions() {
+        let t = "ISO-10303-21;\nDATA;\n#1=A(1,2;\nENDSEC;";
+        match Lexer::new(t).instances() {
+            Err(ReadError::Syntax {
+                line,
+                column,
+                message,
+                ..
+            }) => {
+                assert_eq!((line, column), (3, 9), "{message}");
+                assert!(message.contains("expected `,` or `)`"), "{message}");
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+}
