@@ -44,8 +44,12 @@ pub(crate) mod group {
     pub(crate) const PATH: usize = 13;
     /// G96 G97.
     pub(crate) const SPINDLE_MODE: usize = 14;
+    /// G50 G51 (Fanuc scaling).
+    pub(crate) const SCALING: usize = 15;
+    /// G68 G69 (Fanuc coordinate rotation).
+    pub(crate) const ROTATION: usize = 16;
     /// Number of groups.
-    pub(crate) const N: usize = 15;
+    pub(crate) const N: usize = 17;
 }
 
 /// The modal group of G code `code` (the G number × 10), or why it is not accepted.
@@ -73,11 +77,16 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
         382..=385 => unsupported("probing is not simulated"),
         50..=52 => unsupported("splines (G5, G5.1, G5.2) are not supported"),
         70 | 80 => unsupported("lathe diameter/radius modes (G7/G8) are not supported"),
+        700 | 710 => unsupported(
+            "G70/G71 (inch/mm on MillPlus and old controls, finishing and roughing cycles on Fanuc \
+             lathes) are not read: use G20 (inch) or G21 (mm)",
+        ),
         150 | 160 => unsupported("Fanuc polar coordinate mode (G15/G16) is not supported; use `@` and `^`"),
         171 | 181 | 191 => unsupported("UVW planes (G17.1, G18.1, G19.1) are not supported"),
         432 | 433 => unsupported("G43.2 additional tool length offsets are not supported"),
-        500 | 510 | 511 => unsupported("scaling (G50/G51) is not supported"),
-        680 | 690 => unsupported("coordinate rotation (G68/G69) is not supported"),
+        500 | 510 => Ok(SCALING),
+        511 => unsupported("mirroring (G51.1) is not supported"),
+        680 | 690 => Ok(ROTATION),
         _ => Err((PathErrorKind::Syntax, "unknown G code")),
     }
 }
@@ -111,6 +120,8 @@ pub(crate) struct Block {
     pub(crate) m_other: [(u16, u32); 8],
     /// How many of `m_other` are in use.
     pub(crate) n_other: usize,
+    /// Fanuc: G80 shared the block with another motion code (the cycle is cancelled first).
+    pub(crate) g80_too: bool,
     /// Parameter assignments, applied after the line is read.
     pub(crate) assigns: [(Target, f64); MAX_ASSIGNS],
     /// How many of `assigns` are in use.
@@ -133,6 +144,7 @@ impl Default for Block {
             m99: false,
             m_other: [(0, 0); 8],
             n_other: 0,
+            g80_too: false,
             assigns: [(Target::Num(0), 0.0); MAX_ASSIGNS],
             n_assigns: 0,
         }
@@ -150,6 +162,7 @@ impl Block {
         self.m99 = false;
         self.n_other = 0;
         self.n_assigns = 0;
+        self.g80_too = false;
     }
     /// Whether letter `c` is present.
     #[inline]
@@ -180,7 +193,9 @@ impl Block {
 
 /// Reads the words of a normalised line into `b` (cleared first). Parameter references are
 /// evaluated with `params`' values from before the line.
-pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead) -> Res<()> {
+///
+/// With `fanuc`, G80 may share the block with another motion code (`b.g80_too`).
+pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: bool) -> Res<()> {
     b.clear();
     let mut c = Cur::new(&lb.code);
     let mut first = true;
@@ -220,7 +235,20 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead) -> Res<
                     let name = g_name(code);
                     Fault::new(kind, span, format!("{name}: {m}"), "")
                 })?;
-                if b.g_mask & (1 << grp) != 0 {
+                let other = b.g[grp];
+                if fanuc
+                    && grp == group::MOTION
+                    && b.g_mask & (1 << grp) != 0
+                    && (code == 800) != (other == 800)
+                    && !b.g80_too
+                {
+                    // Fanuc: G80 (group 09) and G0–G3 (group 01) in one block.
+                    b.g80_too = true;
+                    if code == 800 {
+                        first = false;
+                        continue;
+                    }
+                } else if b.g_mask & (1 << grp) != 0 {
                     return Err(Fault::semantic(
                         span,
                         format!(
@@ -367,7 +395,7 @@ mod tests {
         let mut lb = LineBuf::default();
         normalize(s, &mut lb)?;
         let mut b = Block::default();
-        parse(&lb, &mut b, &Zero)?;
+        parse(&lb, &mut b, &Zero, false)?;
         Ok(b)
     }
 

@@ -652,8 +652,14 @@ impl Interp<'_, '_> {
                 "a non-negative integer",
             ));
         }
+        let (p, packed) = if self.fanuc && !b.has(b'l') && p >= 10_000.0 {
+            // Fanuc `M98 Pxxxxyyyy`: xxxx repeats of program yyyy.
+            ((p % 10_000.0).round(), Some((p / 10_000.0).floor() as u64))
+        } else {
+            (p, None)
+        };
         let count = match b.get(b'l') {
-            None => 1,
+            None => packed.unwrap_or(1).min(self.opts.max_repeat),
             Some(l) if l.fract() == 0.0 && l >= 0.0 && l <= self.opts.max_repeat as f64 => l as u64,
             Some(l) => {
                 return Err(Fault::new(

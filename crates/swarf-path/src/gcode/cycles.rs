@@ -96,6 +96,14 @@ impl Interp<'_, '_> {
                 "cannot use canned cycles with cutter radius compensation on",
             ));
         }
+        if self.g51.is_some() {
+            return Err(Fault::new(
+                PathErrorKind::Unsupported,
+                gspan,
+                "canned cycles under G51 scaling are not read",
+                "G50 before the cycle",
+            ));
+        }
         if self.feed_mode == FeedMode::InverseTime {
             return Err(Fault::semantic(
                 gspan,

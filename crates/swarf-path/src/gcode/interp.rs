@@ -18,7 +18,7 @@ use super::dialect::Dialect;
 use super::expr::ParamRead;
 use super::lexer::{column_of, normalize, split_line, LineBuf};
 use super::params::{Params, Target};
-use super::{Fault, GcodeOptions, Res, Span};
+use super::{Fault, GcodeDialect, GcodeOptions, Res, Span};
 use crate::{
     Axes, Canon, CanonSink, FeedMode, MessageKind, PathError, PathErrorKind, Plane, SourcePos,
     SpindleDir, Units, Warning,
@@ -130,6 +130,14 @@ pub(crate) struct Interp<'t, 's> {
     /// Set when a false `if` jumps to an `elseif`, whose condition must then be tested.
     pub(crate) if_probe: bool,
     pub(crate) skip_buf: LineBuf,
+    /// Read by Fanuc's rules (see [`GcodeDialect`]).
+    pub(crate) fanuc: bool,
+    /// Fanuc: the group 01 motion (G0–G3 × 10) that resumes after G80.
+    pub(crate) group1: u16,
+    /// Fanuc G68: the centre (X, Y, mm) and angle (degrees) of the coordinate rotation.
+    pub(crate) g68: Option<([f64; 2], f64)>,
+    /// Fanuc G51: the centre (mm) and factor of each axis of the scaling.
+    pub(crate) g51: Option<([f64; 3], [f64; 3])>,
     /// Cutter radius compensation.
     pub(crate) comp: Comp,
     /// The warning about LinuxCNC's tapping axes outside G17 was given.
@@ -143,8 +151,14 @@ impl<'t, 's> Interp<'t, 's> {
         opts: &'t GcodeOptions,
         sink: &'s mut dyn CanonSink,
     ) -> Self {
+        let fanuc =
+            opts.dialect.unwrap_or_else(|| GcodeDialect::detect(text)) == GcodeDialect::Fanuc;
         let (text, file): (Rc<str>, Rc<str>) = (Rc::from(text), Rc::from(file));
         Self {
+            fanuc,
+            group1: 0,
+            g68: None,
+            g51: None,
             files: vec![(file.clone(), text.clone())],
             cur_file: 0,
             text,
@@ -165,7 +179,8 @@ impl<'t, 's> Interp<'t, 's> {
             plane: Plane::XY,
             feed_mode: FeedMode::PerMinute,
             feed: 0.0,
-            motion: None,
+            // Fanuc powers on in G0; LinuxCNC needs a motion code first.
+            motion: fanuc.then_some(0),
             retract_r: false,
             cycle: CycleMemory::default(),
             rpm: 0.0,
@@ -338,13 +353,15 @@ impl<'t, 's> Interp<'t, 's> {
     }
 
     pub(crate) fn emit_offsets(&mut self) {
+        // A Fanuc G68 rotation is stated as part of the G92 offset and the XY rotation.
+        let (g92, rot) = self.effective_frame(&self.g92, self.rot);
         let e = Canon::Offsets {
             index: self.coord as u8,
             g5x: Axes::from_array(self.off),
-            g92: Axes::from_array(self.g92),
+            g92: Axes::from_array(g92),
         };
         self.emit(e);
-        self.emit(Canon::XyRotation(self.rot));
+        self.emit(Canon::XyRotation(rot));
     }
 
     /// Continues in file `index` of [`Self::files`], and says so to the sink.
@@ -427,7 +444,7 @@ impl<'t, 's> Interp<'t, 's> {
         if lb.code.get(o_at) == Some(&b'o') {
             return self.exec_oword(lb, o_at);
         }
-        block::parse(lb, blk, &*self)?;
+        block::parse(lb, blk, &*self, self.fanuc)?;
         self.execute(blk, lb)
     }
 
@@ -509,14 +526,22 @@ impl<'t, 's> Interp<'t, 's> {
     /// The machine position of program position `p`: the G92 offset, the XY rotation, the
     /// G5x offset (LinuxCNC's canon layer).
     pub(crate) fn machine_of(&self, p: &[f64; 6]) -> [f64; 6] {
-        let q: [f64; 6] = std::array::from_fn(|i| p[i] + self.g92[i]);
-        let q = rotate_xy(q, self.rot);
+        let (g92, rot) = self.effective_frame(&self.g92, self.rot);
+        let q: [f64; 6] = std::array::from_fn(|i| p[i] + g92[i]);
+        let q = rotate_xy(q, rot);
         std::array::from_fn(|i| q[i] + self.off[i])
     }
 
     /// The program position of machine position `m` under offsets `off`, `g92` and rotation
     /// `rot` (degrees).
-    pub(crate) fn program_of(m: &[f64; 6], off: &[f64; 6], g92: &[f64; 6], rot: f64) -> [f64; 6] {
+    pub(crate) fn program_of(
+        &self,
+        m: &[f64; 6],
+        off: &[f64; 6],
+        g92: &[f64; 6],
+        rot: f64,
+    ) -> [f64; 6] {
+        let (g92, rot) = self.effective_frame(g92, rot);
         let q: [f64; 6] = std::array::from_fn(|i| m[i] - off[i]);
         let q = rotate_xy(q, -rot);
         std::array::from_fn(|i| q[i] - g92[i])
@@ -537,7 +562,7 @@ impl<'t, 's> Interp<'t, 's> {
         self.off = off;
         self.g92 = g92;
         self.rot = rot;
-        self.p = Self::program_of(&m, &off, &g92, rot);
+        self.p = self.program_of(&m, &off, &g92, rot);
         self.emit_offsets();
     }
 
@@ -668,6 +693,7 @@ impl<'t, 's> Interp<'t, 's> {
             };
             self.emit(Canon::Plane(self.plane));
         }
+        let mut axes_used_by_nonmotion = false;
         if let Some(g) = b.g(group::UNITS) {
             if self.comp.on() {
                 return Err(Fault::semantic(
@@ -682,7 +708,14 @@ impl<'t, 's> Interp<'t, 's> {
         if let Some(g) = b.g(group::CUTTER_COMP) {
             self.comp_mode(b, g)?;
         }
-        let mut axes_used_by_nonmotion = false;
+        if let Some(g) = b.g(group::SCALING) {
+            self.scaling(b, g)?;
+            axes_used_by_nonmotion |= g == 510;
+        }
+        if let Some(g) = b.g(group::ROTATION) {
+            self.rotation(b, g)?;
+            axes_used_by_nonmotion |= g == 680;
+        }
         match b.g(group::TOOL_LENGTH) {
             Some(430) => {
                 if let Some(h) = b.get(b'h') {
@@ -844,11 +877,12 @@ impl<'t, 's> Interp<'t, 's> {
                 continue;
             }
             let used = match c {
-                b'i' | b'j' | b'k' => arc || mode == Some(870),
-                b'r' => arc || cycle || g10,
+                b'i' | b'j' | b'k' => arc || mode == Some(870) || b.g(group::SCALING) == Some(510),
+                b'r' => arc || cycle || g10 || b.g(group::ROTATION) == Some(680),
                 b'q' => matches!(mode, Some(730 | 830)),
                 b'p' => {
                     arc || cycle
+                        || b.g(group::SCALING) == Some(510)
                         || g10
                         || nonmodal == Some(40)
                         || b.m98
@@ -875,8 +909,18 @@ impl<'t, 's> Interp<'t, 's> {
     }
 
     fn motion_step(&mut self, b: &Block, g53: bool, axes_taken: bool) -> Res<()> {
-        let explicit = b.g(group::MOTION);
+        let mut explicit = b.g(group::MOTION);
         let has_axes = b.mask & axis_mask() != 0;
+        if self.fanuc && (explicit == Some(800) || b.g80_too) {
+            // Fanuc: G80 cancels the cycle (group 09); the group 01 motion resumes.
+            self.motion = Some(self.group1);
+            if explicit == Some(800) {
+                explicit = None;
+            }
+        }
+        if let Some(m @ (0 | 10 | 20 | 30)) = explicit {
+            self.group1 = m;
+        }
         if axes_taken && has_axes && explicit.is_some_and(|m| m != 800) {
             return Err(Fault::semantic(
                 b.g_span(group::MOTION),
@@ -992,9 +1036,9 @@ impl<'t, 's> Interp<'t, 's> {
                     // Machine coordinates: converted below, with the rotation.
                     v
                 } else if self.absolute {
-                    v
+                    self.scaled_position(i, v)
                 } else {
-                    self.p[i] + v
+                    self.p[i] + self.scaled_length(i, v)
                 };
             }
         }
@@ -1006,7 +1050,7 @@ impl<'t, 's> Interp<'t, 's> {
                     m[i] = e[i];
                 }
             }
-            e = Self::program_of(&m, &self.off, &self.g92, self.rot);
+            e = self.program_of(&m, &self.off, &self.g92, self.rot);
         }
         if b.has(b'@') || b.has(b'^') {
             if b.has(b'x') || b.has(b'y') {
@@ -1088,6 +1132,7 @@ impl<'t, 's> Interp<'t, 's> {
         };
         let start2 = [self.p[fi], self.p[si]];
         let end2 = [end[fi], end[si]];
+        let k = self.arc_scale(gspan)?;
         let center = if let Some(r) = b.get(b'r') {
             if let Some(&c) = offs.iter().find(|&&c| b.has(c)) {
                 return Err(Fault::semantic(
@@ -1095,8 +1140,14 @@ impl<'t, 's> Interp<'t, 's> {
                     "an arc cannot have both R and I/J/K words",
                 ));
             }
-            center_r(start2, end2, r * self.scale, cw, r_tolerance_mm(self.units))
-                .map_err(|m| Fault::semantic(b.span(b'r'), m))?
+            center_r(
+                start2,
+                end2,
+                r * self.scale * k,
+                cw,
+                r_tolerance_mm(self.units),
+            )
+            .map_err(|m| Fault::semantic(b.span(b'r'), m))?
         } else {
             if b.has(offs[ni]) {
                 return Err(Fault::semantic(
@@ -1127,9 +1178,9 @@ impl<'t, 's> Interp<'t, 's> {
             let oi = b.get(offs[fi]).unwrap_or(0.0) * self.scale;
             let oj = b.get(offs[si]).unwrap_or(0.0) * self.scale;
             let c = if self.arc_absolute {
-                [oi, oj]
+                [self.scaled_position(fi, oi), self.scaled_position(si, oj)]
             } else {
-                [start2[0] + oi, start2[1] + oj]
+                [start2[0] + k * oi, start2[1] + k * oj]
             };
             let tol = self.opts.arc_radius_tolerance;
             check_ijk(start2, end2, c, tol.abs_in_mm(self.units), tol.relative)
@@ -1197,7 +1248,7 @@ impl<'t, 's> Interp<'t, 's> {
         } else {
             // L20: make the current position read the given values in system k.
             let m = self.machine();
-            let mut q = Self::program_of(&m, &t, &self.g92, rot);
+            let mut q = self.program_of(&m, &t, &self.g92, rot);
             for (i, &c) in AXIS_LETTERS.iter().enumerate() {
                 if let Some(v) = b.get(c) {
                     q[i] = self.mm_from_units(i, v);
@@ -1238,7 +1289,7 @@ impl<'t, 's> Interp<'t, 's> {
     /// G28/G30: traverse through the given intermediate point, then to the stored position
     /// for the given axes (all axes when none is given).
     fn home(&mut self, b: &Block, k: usize) -> Res<()> {
-        let home = Self::program_of(&self.homes[k], &self.off, &self.g92, self.rot);
+        let home = self.program_of(&self.homes[k], &self.off, &self.g92, self.rot);
         if b.mask & axis_mask() == 0 {
             // LinuxCNC moves through the current point (a move of length zero), then home.
             self.emit(Canon::Traverse {

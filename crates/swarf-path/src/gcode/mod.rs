@@ -51,6 +51,7 @@ mod control;
 mod cycles;
 mod dialect;
 mod expr;
+mod frames;
 mod interp;
 mod lexer;
 mod params;
@@ -138,6 +139,89 @@ pub struct GcodeOptions {
     /// in [`Self::parameter_units`] for the offset parameters. A G92 offset stored there with
     /// #5210 set is in effect from the start, as in LinuxCNC.
     pub parameters: Vec<(usize, f64)>,
+    /// Read the program as LinuxCNC or as a Fanuc control does; `None`: decided from the
+    /// program ([`GcodeDialect::detect`]).
+    pub dialect: Option<GcodeDialect>,
+}
+
+/// The controller whose rules a G-code program is read by, where LinuxCNC and Fanuc differ.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum GcodeDialect {
+    /// LinuxCNC (RS274/NGC): G80 is a motion code (it cannot share a block with G0/G1) and
+    /// after it axis words need a new motion code.
+    LinuxCnc,
+    /// Fanuc (0i/30i-M style): canned cycles are their own modal group, so G80 and G0/G1 share
+    /// a block (the cycle is cancelled and the motion applies) and after G80 the last G0–G3
+    /// (G0 at power-on) moves the axes; `M98 P` with more than four digits carries the repeat
+    /// count in front of the program number (`M98 P30010` runs O0010 three times).
+    Fanuc,
+}
+
+impl GcodeDialect {
+    /// The dialect of a program: Fanuc when its first lines show Fanuc habits (a bare `O1234`
+    /// program number, `M98`/`M99`, `G80` sharing a block with `G0`/`G1`) and nothing only
+    /// LinuxCNC reads (`o<name>`, O-word keywords, `#<name>`); LinuxCNC otherwise.
+    pub fn detect(text: &str) -> Self {
+        let (mut fanuc, mut linuxcnc) = (false, false);
+        for line in text.lines().take(2000) {
+            let code: String = line
+                .split(';')
+                .next()
+                .unwrap_or("")
+                .chars()
+                .filter(|c| !c.is_whitespace())
+                .collect::<String>()
+                .to_ascii_lowercase();
+            let code = match code.find('(') {
+                Some(i) => code[..i].to_string(),
+                None => code,
+            };
+            let body = code
+                .trim_start_matches('/')
+                .strip_prefix('n')
+                .map_or(code.trim_start_matches('/'), |r| {
+                    r.trim_start_matches(|c: char| c.is_ascii_digit() || c == '.')
+                });
+            if body.contains("#<") || body.starts_with("o<") {
+                linuxcnc = true;
+            } else if let Some(rest) = body.strip_prefix('o') {
+                let after = rest.trim_start_matches(|c: char| c.is_ascii_digit());
+                if after.len() < rest.len() {
+                    if after.is_empty() {
+                        fanuc = true;
+                    } else {
+                        linuxcnc = true;
+                    }
+                }
+            }
+            if body.contains("m98") || body.contains("m99") {
+                fanuc = true;
+            }
+            // The G numbers of the block.
+            let gs: Vec<f64> = body
+                .match_indices('g')
+                .filter_map(|(i, _)| {
+                    let num: String = body[i + 1..]
+                        .chars()
+                        .take_while(|c| c.is_ascii_digit() || *c == '.')
+                        .collect();
+                    num.parse().ok()
+                })
+                .collect();
+            let g80_with_motion = gs.contains(&80.0)
+                && gs
+                    .iter()
+                    .any(|&g| matches!(g as u32, 0..=3) && g.fract() == 0.0);
+            if g80_with_motion {
+                fanuc = true;
+            }
+        }
+        if fanuc && !linuxcnc {
+            GcodeDialect::Fanuc
+        } else {
+            GcodeDialect::LinuxCnc
+        }
+    }
 }
 
 impl Default for GcodeOptions {
@@ -153,6 +237,7 @@ impl Default for GcodeOptions {
             subroutine_path: Vec::new(),
             parameter_units: None,
             parameters: Vec::new(),
+            dialect: None,
         }
     }
 }
@@ -200,6 +285,11 @@ impl GcodeOptions {
     /// Adds numbered parameter `n` = `v` to [`Self::parameters`].
     pub fn with_parameter(mut self, n: usize, v: f64) -> Self {
         self.parameters.push((n, v));
+        self
+    }
+    /// Sets [`Self::dialect`].
+    pub fn with_dialect(mut self, dialect: GcodeDialect) -> Self {
+        self.dialect = Some(dialect);
         self
     }
     /// Adds a folder to [`Self::subroutine_path`].

@@ -1,0 +1,178 @@
+//! Fanuc forms, each with a small program whose moves are written out from the control's rules
+//! (FANUC Series 0i-MF operator's manual: "Canned cycle cancel (G80)" with G00–G03 in group 01
+//! and the cycles in group 09; "Power-on modal state" G00; "Subprogram call (M98)"; "Reference
+//! position return (G28)"; "Coordinate system rotation (G68, G69)"; "Scaling (G50, G51)";
+//! "Optional block skip").
+
+use swarf_path::canon::Recorder;
+use swarf_path::gcode::{read_gcode, GcodeDialect, GcodeOptions};
+use swarf_path::load::{read_program_str, ReadOptions};
+use swarf_path::{Canon, Machine, PathError};
+
+/// The moves as (`R` rapid / `L` feed / `A` arc, x, y, z).
+fn moves(src: &str, options: &GcodeOptions) -> Result<Vec<(char, f64, f64, f64)>, PathError> {
+    let mut rec = Recorder::default();
+    read_gcode(src, "fanuc.nc", options, &mut rec)?;
+    Ok(rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Traverse { end } => Some(('R', end.x, end.y, end.z)),
+            Canon::Feed { end } => Some(('L', end.x, end.y, end.z)),
+            Canon::Arc { end, .. } => Some(('A', end.x, end.y, end.z)),
+            _ => None,
+        })
+        .collect())
+}
+
+fn fanuc() -> GcodeOptions {
+    GcodeOptions::default().with_dialect(GcodeDialect::Fanuc)
+}
+
+#[test]
+fn the_dialect_is_detected_and_can_be_forced() {
+    assert_eq!(
+        GcodeDialect::detect("%\nO1234\nG0 X0\nM98 P10\nM30\n"),
+        GcodeDialect::Fanuc
+    );
+    assert_eq!(GcodeDialect::detect("G80 G0 Z5\n"), GcodeDialect::Fanuc);
+    assert_eq!(
+        GcodeDialect::detect("O1234\no<side> sub\no<side> endsub\n"),
+        GcodeDialect::LinuxCnc
+    );
+    assert_eq!(
+        GcodeDialect::detect("G0 X1\nG1 X2 F3\n"),
+        GcodeDialect::LinuxCnc
+    );
+    // Forced: LinuxCNC rejects G80 with G0 in one block (both in its motion group).
+    let e = moves(
+        "G80 G0 Z5\n",
+        &GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc),
+    )
+    .unwrap_err();
+    assert!(e.message.contains("same modal group"), "{e}");
+}
+
+#[test]
+fn g80_and_g0_share_a_block_and_the_group_01_motion_resumes() {
+    let src = "O1234\nG90 G17 G21 G0 X0 Y0 Z10\nG81 X5 Y5 Z-2 R2 F100\nX10\nG80 G0 Z20\nX0 Y0\nG1 X1\nG81 X5 Y5 Z-2 R2\nG80\nX3\nM30\n";
+    let m = moves(src, &fanuc()).unwrap();
+    let want = [
+        ('R', 0.0, 0.0, 10.0),
+        // G81 at (5, 5): to the hole, down to R, feed to Z, back to the initial level (G98).
+        ('R', 5.0, 5.0, 10.0),
+        ('R', 5.0, 5.0, 2.0),
+        ('L', 5.0, 5.0, -2.0),
+        ('R', 5.0, 5.0, 10.0),
+        ('R', 10.0, 5.0, 10.0),
+        ('R', 10.0, 5.0, 2.0),
+        ('L', 10.0, 5.0, -2.0),
+        ('R', 10.0, 5.0, 10.0),
+        // G80 G0 Z20: the cycle is cancelled and G0 moves.
+        ('R', 10.0, 5.0, 20.0),
+        ('R', 0.0, 0.0, 20.0),
+        ('L', 1.0, 0.0, 20.0),
+        ('R', 5.0, 5.0, 20.0),
+        ('R', 5.0, 5.0, 2.0),
+        ('L', 5.0, 5.0, -2.0),
+        ('R', 5.0, 5.0, 20.0),
+        // After a lone G80 the last group 01 code (G1) moves the axes.
+        ('L', 3.0, 5.0, 20.0),
+    ];
+    assert_eq!(m, want);
+}
+
+#[test]
+fn power_on_motion_is_g0() {
+    // `G43 Z50 H1` with no motion code yet: a rapid on a Fanuc control.
+    let m = moves("O0001\nG90 G21\nG43 Z50 H1\nX10\nM30\n", &fanuc()).unwrap();
+    assert_eq!(m, vec![('R', 0.0, 0.0, 50.0), ('R', 10.0, 0.0, 50.0)]);
+    // LinuxCNC needs a motion code.
+    let e = moves(
+        "G90 G21\nG43 Z50 H1\nM30\n",
+        &GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc),
+    )
+    .unwrap_err();
+    assert!(e.message.contains("without a motion G code"), "{e}");
+}
+
+#[test]
+fn m98_packs_the_repeat_count_in_p_and_m99_returns() {
+    // M98 P30010: three runs of O0010; M98 P20 L2: two runs of O20.
+    let src = "O1\nG91 G21\nM98 P30010\nM98 P20 L2\nM30\nO0010\nG0 X1\nM99\nO20\nG0 Y1\nM99\n";
+    let m = moves(src, &fanuc()).unwrap();
+    let xs: Vec<_> = m.iter().map(|&(_, x, y, _)| (x, y)).collect();
+    assert_eq!(
+        xs,
+        vec![(1.0, 0.0), (2.0, 0.0), (3.0, 0.0), (3.0, 1.0), (3.0, 2.0)]
+    );
+}
+
+#[test]
+fn g28_with_g91_goes_home_through_the_current_point() {
+    // G91 G28 Z0: the intermediate point is 0 away (where the tool is), then Z to the home
+    // position (machine 0).
+    let m = moves("O1\nG90 G21 G0 X5 Y6 Z7\nG91 G28 Z0\nM30\n", &fanuc()).unwrap();
+    assert_eq!(
+        m,
+        vec![
+            ('R', 5.0, 6.0, 7.0),
+            ('R', 5.0, 6.0, 7.0),
+            ('R', 5.0, 6.0, 0.0)
+        ]
+    );
+}
+
+#[test]
+fn sequence_numbers_and_block_skip_on_every_kind_of_line() {
+    let src = "%\nO1\nN1 G90 G21\nN2 /G0 X99\n/N3 G0 X98\nN4 G0 X1\nN5 M98 P7\nN6 M30\nO7\nN70 G0 Y1\nN71 M99\n%\n";
+    let m = moves(src, &fanuc()).unwrap();
+    assert_eq!(m, vec![('R', 1.0, 0.0, 0.0), ('R', 1.0, 1.0, 0.0)]);
+}
+
+#[test]
+fn g68_turns_the_program_about_its_centre() {
+    // G68 X10 Y0 R90: X20 Y0 is (10, 10) on the part; G69 ends it.
+    let src = "O1\nG90 G17 G21\nG68 X10 Y0 R90\nG1 X20 Y0 F100\nG69\nG1 X20 Y0\nM30\n";
+    let read = ReadOptions {
+        gcode: fanuc(),
+        ..ReadOptions::default()
+    };
+    let p = read_program_str(src, "r.nc", Machine::three_axis(), &read).unwrap();
+    let tip = |i: usize| p.moves[i].end.tip;
+    assert!(
+        (tip(0).x - 10.0).abs() < 1e-9 && (tip(0).y - 10.0).abs() < 1e-9,
+        "{:?}",
+        tip(0)
+    );
+    assert!(
+        (tip(1).x - 20.0).abs() < 1e-9 && tip(1).y.abs() < 1e-9,
+        "{:?}",
+        tip(1)
+    );
+}
+
+#[test]
+fn g51_scales_about_its_centre_and_g50_ends_it() {
+    let src = "O1\nG90 G17 G21\nG51 X0 Y0 P2\nG1 X5 Y5 F100\nG91 X1\nG90 G2 X15 Y5 R5\nG50\nG1 X5 Y5\nM30\n";
+    let m = moves(src, &fanuc()).unwrap();
+    assert_eq!(
+        m,
+        vec![
+            ('L', 10.0, 10.0, 0.0),
+            ('L', 12.0, 10.0, 0.0),
+            ('A', 30.0, 10.0, 0.0),
+            ('L', 5.0, 5.0, 0.0),
+        ]
+    );
+    let e = moves("G51 X0 Y0 I1 J2\nG2 X1 Y1 R1 F1\n", &fanuc()).unwrap_err();
+    assert!(e.message.contains("ellipse"), "{e}");
+    // G50 alone is accepted anywhere.
+    moves("G50\nG0 X1\nM30\n", &GcodeOptions::default()).unwrap();
+}
+
+#[test]
+fn g70_and_g71_are_rejected_by_name() {
+    let e = moves("G70\n", &fanuc()).unwrap_err();
+    assert!(e.message.contains("use G20 (inch) or G21 (mm)"), "{e}");
+}
