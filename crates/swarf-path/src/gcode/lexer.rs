@@ -81,7 +81,26 @@ pub(crate) fn normalize(raw: &str, lb: &mut LineBuf) -> Res<()> {
         lb.deleted = true;
         i += 1;
     }
+    // Fanuc and many posts also write the slash after the sequence number: `N20 /G0 X5`.
+    let slash_after_n = {
+        let mut j = i;
+        if matches!(b.get(j), Some(b'n' | b'N')) {
+            j += 1;
+            while matches!(b.get(j), Some(b'0'..=b'9' | b'.')) {
+                j += 1;
+            }
+            while matches!(b.get(j), Some(b' ' | b'\t')) {
+                j += 1;
+            }
+        }
+        (j > i && b.get(j) == Some(&b'/')).then_some(j)
+    };
     while i < b.len() {
+        if Some(i) == slash_after_n {
+            lb.deleted = true;
+            i += 1;
+            continue;
+        }
         let c = b[i];
         match c {
             b'(' => {
