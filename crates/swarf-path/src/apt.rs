@@ -428,6 +428,10 @@ impl Reader<'_, '_> {
                     });
                     off += piece.len() + 1;
                 }
+                // Posts end records with a comma (`GOTO/1,2,3,`): the empty field is no field.
+                while out.len() > 1 && out.last().is_some_and(|f| f.text.is_empty()) {
+                    out.pop();
+                }
                 out
             }
         };
