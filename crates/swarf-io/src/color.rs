@@ -72,6 +72,12 @@ impl ColorMap {
     }
 }
 
+/// A linear RGBA colour in `[0, 1]` as 8-bit RGB (clamped, rounded; alpha dropped): how the
+/// PNG pictures store [`ColorMap`] colours.
+pub fn rgb8(c: [f32; 4]) -> [u8; 3] {
+    [c[0], c[1], c[2]].map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

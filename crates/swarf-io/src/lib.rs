@@ -1,7 +1,10 @@
-//! Meshes in and out of swarf: an indexed triangle mesh ([`TriMesh`]), its writers (binary and
-//! ASCII STL, glb, PLY) and readers (STL, and glb/PLY for checking round trips), a colour map
-//! for per-vertex colouring, and **dual contouring** of Hermite data on a regular lattice
-//! ([`dual_contour`]), which turns a tri-dexel stock into the closed mesh of the machined part.
+//! Meshes and pictures in and out of swarf: an indexed triangle mesh ([`TriMesh`], the one
+//! triangle-mesh type of the workspace), its writers (binary and ASCII STL, glb, PLY) and
+//! readers (STL, and glb/PLY for checking round trips), colour maps for per-vertex colouring,
+//! pictures ([`image`]: an RGB raster with a built-in pixel font, written as PNG, so every
+//! crate draws its plots the same way), and **dual contouring** of Hermite data on a regular
+//! lattice ([`dual_contour`]), which turns a tri-dexel stock into the closed mesh of the
+//! machined part.
 //!
 //! # Model and conventions
 //! - Positions are `f64` millimetres ([`swarf_geom::math::Vec3`]) in the workpiece frame; the
@@ -52,6 +55,7 @@ pub mod color;
 pub mod contour;
 pub mod error;
 pub mod glb;
+pub mod image;
 pub mod mesh;
 pub mod ply;
 pub mod stl;

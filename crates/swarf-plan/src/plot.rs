@@ -22,12 +22,17 @@
 //! # The PNG
 //! Each CC point of the `n × n` grid is a square cell of [`PlotOptions::cell_px`] pixels, `u`
 //! to the right and `v` upwards, under a title (the patch label), with a vertical colour bar
-//! labelled at [`PlotOptions::ticks`] log-spaced radii and a legend of the special colours. Text uses a built-in 5×7 pixel font (lower-case letters, digits, `.-+_()/:`),
-//! so no system font is needed: the picture is the same on every machine. The image is
-//! written with the `png` crate (8-bit RGB), atomically.
+//! labelled at [`PlotOptions::ticks`] log-spaced radii and a legend of the special colours,
+//! drawn with `swarf_io::image` (its built-in 5×7 pixel font, so no system font is needed and
+//! the picture is the same on every machine), 8-bit RGB, written atomically.
 
 use std::path::{Path, PathBuf};
 
+use swarf_io::color::rgb8;
+use swarf_io::image::font;
+/// The raster the maps are drawn on, now `swarf_io::image::RgbImage`; named here for one more
+/// release so callers of `swarf_plan::plot::RgbImage` keep compiling.
+pub use swarf_io::image::RgbImage;
 use swarf_io::{ColorMap, GlbOptions, IoError, TriMesh};
 
 use crate::size::{StandardCutters, ToolSizeMap};
@@ -118,7 +123,7 @@ impl RadiusScale {
             None => UNDEFINED_RGB,
             Some(r) if r.is_infinite() => INF_RGB,
             Some(r) if r <= 0.0 || r.is_nan() => UNREACHABLE_RGB,
-            Some(r) => to_u8(ColorMap::Viridis.rgba(self.t(r))),
+            Some(r) => rgb8(ColorMap::Viridis.rgba(self.t(r))),
         }
     }
 
@@ -127,10 +132,6 @@ impl RadiusScale {
         let [r, g, b] = self.rgb(radius_mm).map(|c| f32::from(c) / 255.0);
         [r, g, b, 1.0]
     }
-}
-
-fn to_u8(c: [f32; 4]) -> [u8; 3] {
-    [c[0], c[1], c[2]].map(|x| (x.clamp(0.0, 1.0) * 255.0).round() as u8)
 }
 
 /// Options of the PNG maps.
@@ -156,246 +157,6 @@ impl PlotOptions {
 impl Default for PlotOptions {
     fn default() -> Self {
         Self::DEFAULT
-    }
-}
-
-/// An 8-bit RGB raster, rows from the top.
-#[derive(Clone, Debug, PartialEq, Eq)]
-pub struct RgbImage {
-    /// Width, px.
-    pub width: usize,
-    /// Height, px.
-    pub height: usize,
-    /// `width · height · 3` bytes, row-major from the top-left corner.
-    pub pixels: Vec<u8>,
-}
-
-impl RgbImage {
-    /// An image filled with `rgb`.
-    pub fn new(width: usize, height: usize, rgb: [u8; 3]) -> Self {
-        Self {
-            width,
-            height,
-            pixels: rgb.repeat(width * height),
-        }
-    }
-
-    /// The pixel at column `x`, row `y` (from the top).
-    pub fn get(&self, x: usize, y: usize) -> [u8; 3] {
-        let i = 3 * (y * self.width + x);
-        [self.pixels[i], self.pixels[i + 1], self.pixels[i + 2]]
-    }
-
-    /// Fills the rectangle `[x, x + w) × [y, y + h)`, clipped to the image.
-    pub fn fill(&mut self, x: usize, y: usize, w: usize, h: usize, rgb: [u8; 3]) {
-        for yy in y..(y + h).min(self.height) {
-            for xx in x..(x + w).min(self.width) {
-                let i = 3 * (yy * self.width + xx);
-                self.pixels[i..i + 3].copy_from_slice(&rgb);
-            }
-        }
-    }
-
-    /// A one-pixel frame around the rectangle `[x, x + w) × [y, y + h)`, outside it.
-    fn frame(&mut self, x: usize, y: usize, w: usize, h: usize, rgb: [u8; 3]) {
-        let (x0, y0) = (x.saturating_sub(1), y.saturating_sub(1));
-        self.fill(x0, y0, w + 2, 1, rgb);
-        self.fill(x0, y + h, w + 2, 1, rgb);
-        self.fill(x0, y0, 1, h + 2, rgb);
-        self.fill(x + w, y0, 1, h + 2, rgb);
-    }
-
-    /// Draws `text` with its top-left corner at `(x, y)` in the built-in font, `scale`× size.
-    pub fn text(&mut self, x: usize, y: usize, text: &str, scale: usize, rgb: [u8; 3]) {
-        for (k, ch) in text.chars().enumerate() {
-            let rows = glyph(ch);
-            let gx = x + k * GLYPH_ADVANCE * scale;
-            for (r, row) in rows.iter().enumerate() {
-                for (c, b) in row.bytes().enumerate() {
-                    if b == b'#' {
-                        self.fill(gx + c * scale, y + r * scale, scale, scale, rgb);
-                    }
-                }
-            }
-        }
-    }
-
-    /// The PNG file of the image in memory.
-    ///
-    /// # Errors
-    /// When the encoder fails (it does not for a consistent image).
-    pub fn png_bytes(&self) -> std::io::Result<Vec<u8>> {
-        let mut out = Vec::new();
-        let mut enc = png::Encoder::new(&mut out, self.width as u32, self.height as u32);
-        enc.set_color(png::ColorType::Rgb);
-        enc.set_depth(png::BitDepth::Eight);
-        let mut w = enc.write_header().map_err(std::io::Error::other)?;
-        w.write_image_data(&self.pixels)
-            .map_err(std::io::Error::other)?;
-        w.finish().map_err(std::io::Error::other)?;
-        Ok(out)
-    }
-
-    /// Writes the image as PNG, atomically.
-    ///
-    /// # Errors
-    /// When writing fails.
-    pub fn write_png(&self, path: &Path) -> Result<(), IoError> {
-        let bytes = self.png_bytes().map_err(|source| IoError::Io {
-            path: path.to_path_buf(),
-            source,
-        })?;
-        swarf_io::write_atomic(path, |w| std::io::Write::write_all(w, &bytes))
-    }
-}
-
-/// Width of a glyph cell including spacing, in font pixels.
-const GLYPH_ADVANCE: usize = 6;
-/// Height of a text line including spacing, in font pixels.
-const LINE_HEIGHT: usize = 9;
-
-/// The 5×7 glyph of `ch` (upper case drawn as lower case; unknown characters as a box).
-fn glyph(ch: char) -> [&'static str; 7] {
-    match ch.to_ascii_lowercase() {
-        '0' => [
-            " ### ", "#   #", "#  ##", "# # #", "##  #", "#   #", " ### ",
-        ],
-        '1' => [
-            "  #  ", " ##  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### ",
-        ],
-        '2' => [
-            " ### ", "#   #", "    #", "   # ", "  #  ", " #   ", "#####",
-        ],
-        '3' => [
-            "#####", "   # ", "  #  ", "   # ", "    #", "#   #", " ### ",
-        ],
-        '4' => [
-            "   # ", "  ## ", " # # ", "#  # ", "#####", "   # ", "   # ",
-        ],
-        '5' => [
-            "#####", "#    ", "#### ", "    #", "    #", "#   #", " ### ",
-        ],
-        '6' => [
-            "  ## ", " #   ", "#    ", "#### ", "#   #", "#   #", " ### ",
-        ],
-        '7' => [
-            "#####", "    #", "   # ", "  #  ", " #   ", " #   ", " #   ",
-        ],
-        '8' => [
-            " ### ", "#   #", "#   #", " ### ", "#   #", "#   #", " ### ",
-        ],
-        '9' => [
-            " ### ", "#   #", "#   #", " ####", "    #", "   # ", " ##  ",
-        ],
-        '.' => [
-            "     ", "     ", "     ", "     ", "     ", " ##  ", " ##  ",
-        ],
-        '-' => [
-            "     ", "     ", "     ", "#####", "     ", "     ", "     ",
-        ],
-        '+' => [
-            "     ", "  #  ", "  #  ", "#####", "  #  ", "  #  ", "     ",
-        ],
-        '_' => [
-            "     ", "     ", "     ", "     ", "     ", "     ", "#####",
-        ],
-        '(' => [
-            "   # ", "  #  ", " #   ", " #   ", " #   ", "  #  ", "   # ",
-        ],
-        ')' => [
-            " #   ", "  #  ", "   # ", "   # ", "   # ", "  #  ", " #   ",
-        ],
-        '/' => [
-            "     ", "    #", "   # ", "  #  ", " #   ", "#    ", "     ",
-        ],
-        '<' => [
-            "   # ", "  #  ", " #   ", "#    ", " #   ", "  #  ", "   # ",
-        ],
-        ':' => [
-            "     ", " ##  ", " ##  ", "     ", " ##  ", " ##  ", "     ",
-        ],
-        ' ' => ["     "; 7],
-        'a' => [
-            "     ", "     ", " ### ", "    #", " ####", "#   #", " ####",
-        ],
-        'b' => [
-            "#    ", "#    ", "# ## ", "##  #", "#   #", "#   #", "#### ",
-        ],
-        'c' => [
-            "     ", "     ", " ### ", "#    ", "#    ", "#   #", " ### ",
-        ],
-        'd' => [
-            "    #", "    #", " ## #", "#  ##", "#   #", "#   #", " ####",
-        ],
-        'e' => [
-            "     ", "     ", " ### ", "#   #", "#####", "#    ", " ### ",
-        ],
-        'f' => [
-            "  ## ", " #  #", " #   ", "###  ", " #   ", " #   ", " #   ",
-        ],
-        'g' => [
-            "     ", "     ", " ####", "#   #", " ####", "    #", " ### ",
-        ],
-        'h' => [
-            "#    ", "#    ", "# ## ", "##  #", "#   #", "#   #", "#   #",
-        ],
-        'i' => [
-            "  #  ", "     ", " ##  ", "  #  ", "  #  ", "  #  ", " ### ",
-        ],
-        'j' => [
-            "   # ", "     ", "  ## ", "   # ", "   # ", "#  # ", " ##  ",
-        ],
-        'k' => [
-            "#    ", "#    ", "#  # ", "# #  ", "##   ", "# #  ", "#  # ",
-        ],
-        'l' => [
-            " ##  ", "  #  ", "  #  ", "  #  ", "  #  ", "  #  ", " ### ",
-        ],
-        'm' => [
-            "     ", "     ", "## # ", "# # #", "# # #", "#   #", "#   #",
-        ],
-        'n' => [
-            "     ", "     ", "# ## ", "##  #", "#   #", "#   #", "#   #",
-        ],
-        'o' => [
-            "     ", "     ", " ### ", "#   #", "#   #", "#   #", " ### ",
-        ],
-        'p' => [
-            "     ", "     ", "#### ", "#   #", "#### ", "#    ", "#    ",
-        ],
-        'q' => [
-            "     ", "     ", " ## #", "#  ##", " ####", "    #", "    #",
-        ],
-        'r' => [
-            "     ", "     ", "# ## ", "##  #", "#    ", "#    ", "#    ",
-        ],
-        's' => [
-            "     ", "     ", " ### ", "#    ", " ### ", "    #", "#### ",
-        ],
-        't' => [
-            " #   ", " #   ", "###  ", " #   ", " #   ", " #  #", "  ## ",
-        ],
-        'u' => [
-            "     ", "     ", "#   #", "#   #", "#   #", "#  ##", " ## #",
-        ],
-        'v' => [
-            "     ", "     ", "#   #", "#   #", "#   #", " # # ", "  #  ",
-        ],
-        'w' => [
-            "     ", "     ", "#   #", "#   #", "# # #", "# # #", " # # ",
-        ],
-        'x' => [
-            "     ", "     ", "#   #", " # # ", "  #  ", " # # ", "#   #",
-        ],
-        'y' => [
-            "     ", "     ", "#   #", "#   #", " ####", "    #", " ### ",
-        ],
-        'z' => [
-            "     ", "     ", "#####", "   # ", "  #  ", " #   ", "#####",
-        ],
-        _ => [
-            "#####", "#   #", "#   #", "#   #", "#   #", "#   #", "#####",
-        ],
     }
 }
 
@@ -480,7 +241,7 @@ pub fn map_layout(n: usize, scale: &RadiusScale, opts: &PlotOptions) -> MapLayou
         opts.cell_px
     };
     let ts = opts.text_scale.max(1);
-    let (gw, lh) = (GLYPH_ADVANCE * ts, LINE_HEIGHT * ts);
+    let (gw, lh) = (font::GLYPH_ADVANCE * ts, font::LINE_HEIGHT * ts);
     let plot = n * cell;
     let margin = 2 * gw;
     let (x0, y0) = (margin + gw, margin + lh);
@@ -518,7 +279,7 @@ pub fn patch_radius_image(
     let lay = map_layout(n, scale, opts);
     let (cell, x0, y0) = (lay.cell, lay.x0, lay.y0);
     let ts = opts.text_scale.max(1);
-    let (gw, lh) = (GLYPH_ADVANCE * ts, LINE_HEIGHT * ts);
+    let (gw, lh) = (font::GLYPH_ADVANCE * ts, font::LINE_HEIGHT * ts);
     let plot = n * cell;
     let margin = 2 * gw;
     let bar_x = x0 + plot + 2 * gw;
@@ -551,7 +312,7 @@ pub fn patch_radius_image(
     // The colour bar: low at the bottom.
     for y in 0..plot {
         let t = 1.0 - (y as f64 + 0.5) / plot as f64;
-        let c = to_u8(ColorMap::Viridis.rgba(t));
+        let c = rgb8(ColorMap::Viridis.rgba(t));
         img.fill(bar_x, y0 + y, bar_w, 1, c);
     }
     img.frame(bar_x, y0, bar_w, plot, INK_RGB);
@@ -579,7 +340,7 @@ pub fn standard_rgb(k: usize, count: usize) -> [u8; 3] {
     } else {
         1.0
     };
-    to_u8(ColorMap::Viridis.rgba(t))
+    rgb8(ColorMap::Viridis.rgba(t))
 }
 
 /// The standard-cutter map of one patch (Liu's Fig. 4-2): each grid cell in the colour of the
@@ -624,7 +385,7 @@ pub fn patch_standard_image(
     }
     let lay = map_layout(n, &RadiusScale::from_radii([]), opts);
     let ts = opts.text_scale.max(1);
-    let (gw, lh) = (GLYPH_ADVANCE * ts, LINE_HEIGHT * ts);
+    let (gw, lh) = (font::GLYPH_ADVANCE * ts, font::LINE_HEIGHT * ts);
     let plot = n * lay.cell;
     let lx = lay.x0 + plot + 2 * gw;
     let legend_w = 2 * gw + legend.iter().map(|(_, s)| s.len()).max().unwrap_or(0) * gw;
@@ -853,7 +614,7 @@ mod tests {
         assert_eq!(s.rgb(None), UNDEFINED_RGB);
         let specials = [INF_RGB, UNREACHABLE_RGB, UNDEFINED_RGB, BACKGROUND_RGB];
         for k in 0..=100 {
-            let c = to_u8(ColorMap::Viridis.rgba(f64::from(k) / 100.0));
+            let c = rgb8(ColorMap::Viridis.rgba(f64::from(k) / 100.0));
             assert!(
                 !specials.contains(&c),
                 "viridis hits a reserved colour {c:?}"
