@@ -47,6 +47,8 @@ pub struct MoveBuilder {
     g92: Axes,
     /// Rotation of the XY plane about the G5x origin (G10 L2 R), as cosine and sine.
     xy_rotation: (f64, f64),
+    /// Chordal tolerance splines are flattened within, mm.
+    spline_tolerance: f64,
     feed: f64,
     feed_mode: FeedMode,
     spindle_rpm: f64,
@@ -79,6 +81,7 @@ impl MoveBuilder {
             g5x: Axes::default(),
             g92: Axes::default(),
             xy_rotation: (1.0, 0.0),
+            spline_tolerance: crate::spline::DEFAULT_TOLERANCE_MM,
             feed: 0.0,
             feed_mode: FeedMode::PerMinute,
             spindle_rpm: 0.0,
@@ -93,6 +96,13 @@ impl MoveBuilder {
             warnings: Vec::new(),
             unmodelled_warned: [false; 3],
         }
+    }
+
+    /// Sets the chordal tolerance splines (G5, G5.1, G5.2) are flattened within, mm (default
+    /// [`crate::spline::DEFAULT_TOLERANCE_MM`]).
+    pub fn with_spline_tolerance(mut self, tolerance_mm: f64) -> Self {
+        self.spline_tolerance = tolerance_mm;
+        self
     }
 
     /// The program read so far.
@@ -289,6 +299,24 @@ impl CanonSink for MoveBuilder {
                 if let Some(prev) = self.pending_cutter.replace(*def) {
                     self.bind_cutter(self.tool, prev);
                 }
+            }
+            Canon::Spline {
+                end,
+                kind,
+                controls,
+            } => {
+                let start = [self.pos.x, self.pos.y];
+                let pts = crate::spline::flatten(start, *kind, controls, self.spline_tolerance);
+                for p in pts {
+                    let to = Axes {
+                        x: p[0],
+                        y: p[1],
+                        ..*end
+                    };
+                    self.push(line, &to, |_, _, _| MoveKind::Linear);
+                }
+                // The exact end, whatever the last piece's rounding.
+                self.pos = *end;
             }
             Canon::Traverse { end } => self.push(line, end, |_, _, _| MoveKind::Rapid),
             Canon::Feed { end } => self.push(line, end, |_, _, _| MoveKind::Linear),

@@ -197,6 +197,17 @@ pub enum Canon<'a> {
         /// The plane.
         plane: Plane,
     },
+    /// A spline feed in the XY plane (G5, G5.1, G5.2/G5.3) from the current position: the exact
+    /// curve (see [`crate::spline`]). The canonical print keeps it; the move stream flattens it
+    /// into straight feeds.
+    Spline {
+        /// End point (the last control point's X and Y; the other axes stay).
+        end: Axes,
+        /// Cubic, quadratic or NURBS.
+        kind: crate::spline::SplineKind,
+        /// The control points after the start, `(x, y, weight)`, mm, the end included.
+        controls: Cow<'a, [[f64; 3]]>,
+    },
     /// A dwell of this many seconds.
     Dwell(f64),
     /// A comment or message from the program (borrowed while streaming, owned when kept).
@@ -302,6 +313,15 @@ impl Canon<'_> {
                 plane: *plane,
             },
             Canon::Dwell(d) => Canon::Dwell(*d),
+            Canon::Spline {
+                end,
+                kind,
+                controls,
+            } => Canon::Spline {
+                end: *end,
+                kind: *kind,
+                controls: Cow::Owned(controls.to_vec()),
+            },
             Canon::CutterDefinition(p) => Canon::CutterDefinition(*p),
             Canon::ProgramEnd => Canon::ProgramEnd,
             Canon::SourceFile(f) => Canon::SourceFile(Cow::Owned(f.to_string())),

@@ -13,6 +13,9 @@
 //!
 //! `ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end_point, a, b, c)`
 //! uses LinuxCNC's plane order: X,Y about Z for G17; Z,X about Y for G18; Y,Z about X for G19.
+//! Splines print as LinuxCNC's canon calls for them: `SPLINE_FEED(x1, y1, x2, y2[, x3, y3])`
+//! with the control points of a quadratic or cubic, `NURBS_FEED(order, x, y, w, …)` with the
+//! control points after the start.
 //! The motion calls and the operator messages (`MESSAGE("…")` for `(MSG,…)` and `(DEBUG,…)`)
 //! are printed; the other canonical calls (units, offsets, feeds, comments) differ in detail
 //! between LinuxCNC versions and are not needed to compare paths.
@@ -109,6 +112,24 @@ impl<W: Write> CanonicalPrinter<W> {
                     end.b,
                     end.c
                 )?;
+            }
+            Canon::Spline { kind, controls, .. } => {
+                let xy: Vec<String> = controls
+                    .iter()
+                    .map(|c| format!("{:.4}, {:.4}", self.u(c[0]), self.u(c[1])))
+                    .collect();
+                match kind {
+                    crate::spline::SplineKind::Nurbs { order } => {
+                        let pts: Vec<String> = controls
+                            .iter()
+                            .map(|c| {
+                                format!("{:.4}, {:.4}, {:.4}", self.u(c[0]), self.u(c[1]), c[2])
+                            })
+                            .collect();
+                        writeln!(self.out, " N..... NURBS_FEED({order}, {})", pts.join(", "))?;
+                    }
+                    _ => writeln!(self.out, " N..... SPLINE_FEED({})", xy.join(", "))?,
+                }
             }
             Canon::Message {
                 kind: MessageKind::Msg | MessageKind::Debug,

@@ -58,8 +58,8 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
     let unsupported = |m| Err((PathErrorKind::Unsupported, m));
     match code {
         40 | 100 | 280 | 281 | 300 | 301 | 520 | 530 | 920 | 921 | 922 | 923 => Ok(NON_MODAL),
-        0 | 10 | 20 | 30 | 730 | 740 | 800 | 810 | 820 | 830 | 840 | 850 | 860 | 870 | 880
-        | 890 => Ok(MOTION),
+        0 | 10 | 20 | 30 | 50 | 51 | 52 | 53 | 730 | 740 | 800 | 810 | 820 | 830 | 840 | 850
+        | 860 | 870 | 880 | 890 => Ok(MOTION),
         170 | 180 | 190 => Ok(PLANE),
         900 | 910 => Ok(DISTANCE),
         901 | 911 => Ok(ARC_DISTANCE),
@@ -75,7 +75,6 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
             "spindle-synchronised motion (G33, G33.1 rigid tapping, G76 threading) is not simulated",
         ),
         382..=385 => unsupported("probing is not simulated"),
-        50..=52 => unsupported("splines (G5, G5.1, G5.2) are not supported"),
         70 | 80 => unsupported("lathe diameter/radius modes (G7/G8) are not supported"),
         700 | 710 => unsupported(
             "G70/G71 (inch/mm on MillPlus and old controls, finishing and roughing cycles on Fanuc \

@@ -138,6 +138,11 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) g68: Option<([f64; 2], f64)>,
     /// Fanuc G51: the centre (mm) and factor of each axis of the scaling.
     pub(crate) g51: Option<([f64; 3], [f64; 3])>,
+    /// The last G5's second control point (a G5 without I J mirrors it).
+    pub(crate) g5_last: Option<[f64; 2]>,
+    /// An open G5.2 NURBS: its control points and order, and where it starts.
+    pub(crate) nurbs: Option<(Vec<[f64; 3]>, u32)>,
+    pub(crate) nurbs_start: [f64; 2],
     /// Cutter radius compensation.
     pub(crate) comp: Comp,
     /// The warning about LinuxCNC's tapping axes outside G17 was given.
@@ -159,6 +164,9 @@ impl<'t, 's> Interp<'t, 's> {
             group1: 0,
             g68: None,
             g51: None,
+            g5_last: None,
+            nurbs: None,
+            nurbs_start: [0.0; 2],
             files: vec![(file.clone(), text.clone())],
             cur_file: 0,
             text,
@@ -877,18 +885,21 @@ impl<'t, 's> Interp<'t, 's> {
                 continue;
             }
             let used = match c {
-                b'i' | b'j' | b'k' => arc || mode == Some(870) || b.g(group::SCALING) == Some(510),
+                b'i' | b'j' | b'k' => {
+                    arc || matches!(mode, Some(50 | 51 | 870)) || b.g(group::SCALING) == Some(510)
+                }
                 b'r' => arc || cycle || g10 || b.g(group::ROTATION) == Some(680),
-                b'q' => matches!(mode, Some(730 | 830)),
+                b'q' => matches!(mode, Some(50 | 730 | 830)),
                 b'p' => {
                     arc || cycle
+                        || matches!(mode, Some(50 | 52))
                         || b.g(group::SCALING) == Some(510)
                         || g10
                         || nonmodal == Some(40)
                         || b.m98
                         || b.g(group::PATH) == Some(640)
                 }
-                b'l' => cycle || g10 || b.m98,
+                b'l' => cycle || g10 || b.m98 || mode == Some(52),
                 b'h' => b.g(group::TOOL_LENGTH) == Some(430),
                 b'd' => comp_d,
                 _ => false,
@@ -959,6 +970,15 @@ impl<'t, 's> Interp<'t, 's> {
                 "G53 cannot be used in incremental mode (G91)",
             ));
         }
+        if has_axes && mode != Some(50) {
+            self.g5_last = None;
+        }
+        if self.nurbs.is_some() && !matches!(mode, Some(52 | 53) | None) {
+            return Err(Fault::semantic(
+                b.g_span(group::MOTION),
+                "a NURBS (G5.2) must be closed with G5.3 before another motion",
+            ));
+        }
         let old_motion = self.motion;
         if let Some(m) = explicit {
             self.motion = (m != 800).then_some(m);
@@ -998,6 +1018,12 @@ impl<'t, 's> Interp<'t, 's> {
                 }
             }
             Some(m @ (20 | 30)) => self.arc(b, m == 20)?,
+            Some(m @ (50..=53)) => {
+                if m == 52 && explicit == Some(52) {
+                    self.nurbs_start = [self.p[0], self.p[1]];
+                }
+                self.spline(b, m, explicit == Some(m))?;
+            }
             Some(m) => self.cycle(b, m, old_motion)?,
         }
         Ok(())

@@ -55,6 +55,7 @@ mod frames;
 mod interp;
 mod lexer;
 mod params;
+mod splines;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

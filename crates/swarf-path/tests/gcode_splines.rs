@@ -1,0 +1,106 @@
+//! Spline feeds as the LinuxCNC G-code manual defines them ("G5 Cubic spline", "G5.1
+//! Quadratic B-spline", "G5.2 G5.3 NURBS Block"): the exact curve in the canonical events,
+//! flattened within the tolerance in the move stream.
+
+use swarf_path::canon::Recorder;
+use swarf_path::canonical::CanonicalPrinter;
+use swarf_path::gcode::{read_gcode, GcodeOptions};
+use swarf_path::load::{read_program_str, ReadOptions};
+use swarf_path::spline::SplineKind;
+use swarf_path::{Canon, Machine, MoveKind, Program};
+
+fn program(src: &str) -> Program {
+    read_program_str(src, "s.ngc", Machine::three_axis(), &ReadOptions::default()).unwrap()
+}
+
+fn splines(src: &str) -> Vec<(SplineKind, Vec<[f64; 3]>)> {
+    let mut rec = Recorder::default();
+    read_gcode(src, "s.ngc", &GcodeOptions::default(), &mut rec).unwrap();
+    rec.events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Spline { kind, controls, .. } => Some((*kind, controls.to_vec())),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn quadratic_spline_is_flattened_within_the_tolerance() {
+    let src = "G21 G17 G0 X0 Y0\nG5.1 X10 Y0 I5 J5 F100\nM2\n";
+    assert_eq!(
+        splines(src),
+        vec![(
+            SplineKind::Quadratic,
+            vec![[5.0, 5.0, 1.0], [10.0, 0.0, 1.0]]
+        )]
+    );
+    let p = program(src);
+    let feeds: Vec<_> = p.moves.iter().skip(1).collect();
+    assert!(feeds.len() > 10);
+    assert!(feeds.iter().all(|m| m.kind == MoveKind::Linear));
+    let end = feeds.last().unwrap().end.tip;
+    assert!((end.x - 10.0).abs() < 1e-12 && end.y.abs() < 1e-12);
+    // The curve is the parabola y = x (10 − x) / 10 (control point (5, 5)); every piece's
+    // midpoint is within 0.001 mm of it, below it (the curve is concave).
+    for m in &feeds {
+        let mid = (m.start.tip + m.end.tip) / 2.0;
+        let on = mid.x * (10.0 - mid.x) / 10.0;
+        assert!(on - mid.y >= -1e-9 && on - mid.y <= 1e-3 + 1e-9, "{mid:?}");
+    }
+}
+
+#[test]
+fn cubic_spline_without_ij_continues_smoothly() {
+    let src = "G21 G0 X0 Y0\nG5 X10 Y0 I0 J5 P0 Q5 F100\nG5 X20 Y0 P0 Q-5\nM2\n";
+    let s = splines(src);
+    assert_eq!(s.len(), 2);
+    // The second spline's first control point mirrors the first's second one about (10, 0).
+    assert_eq!(s[1].1[0], [10.0, -5.0, 1.0]);
+    let mut out = CanonicalPrinter::new(Vec::new());
+    read_gcode(src, "s.ngc", &GcodeOptions::default(), &mut out).unwrap();
+    let text = String::from_utf8(out.finish().unwrap()).unwrap();
+    assert!(
+        text.contains(" N..... SPLINE_FEED(0.0000, 5.0000, 10.0000, 5.0000, 10.0000, 0.0000)"),
+        "{text}"
+    );
+}
+
+#[test]
+fn nurbs_quarter_circle_stays_on_the_circle() {
+    // The rational quadratic quarter circle of radius 10: middle weight √½.
+    let src =
+        "G21 G0 X10 Y0\nG5.2 X10 Y10 P0.7071067811865476 L3 F100\nX0 Y10 P1\nG5.3\nG0 X0 Y0\nM2\n";
+    let p = program(src);
+    let arc: Vec<_> = p.moves[1..p.moves.len() - 1].iter().collect();
+    assert!(arc.len() > 10);
+    for m in &arc {
+        let r = m.end.tip.truncate().length();
+        assert!((r - 10.0).abs() < 1e-9, "{r}");
+        let mid = ((m.start.tip + m.end.tip) / 2.0).truncate().length();
+        assert!(10.0 - mid <= 1e-3 + 1e-9);
+    }
+    let end = arc.last().unwrap().end.tip;
+    assert!(end.x.abs() < 1e-12 && (end.y - 10.0).abs() < 1e-12);
+}
+
+#[test]
+fn spline_errors_name_their_line() {
+    let read = |src: &str| {
+        read_gcode(
+            src,
+            "s.ngc",
+            &GcodeOptions::default(),
+            &mut Recorder::default(),
+        )
+        .unwrap_err()
+    };
+    let e = read("G0 X0 Y0\nG5 X1 Y1 P0 Q0 F10\n");
+    assert_eq!((e.pos.line, e.pos.column), (2, 1));
+    assert!(e.message.contains("I and J"), "{e}");
+    let e = read("G18\nG5.1 X1 Y1 I1 J1 F10\n");
+    assert!(e.message.contains("XY plane"), "{e}");
+    let e = read("G5.2 X1 Y1 F10\nX2 Y2\nG1 X3\n");
+    assert_eq!(e.pos.line, 3);
+    assert!(e.message.contains("G5.3"), "{e}");
+}
