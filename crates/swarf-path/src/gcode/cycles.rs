@@ -110,13 +110,14 @@ impl Interp<'_, '_> {
                 "canned cycles cannot be used in inverse time feed mode (G93)",
             ));
         }
-        if b.has(b'@') || b.has(b'^') {
+        let polar = b.has(b'@') || b.has(b'^');
+        if polar && !(self.absolute && self.plane == Plane::XY) {
             let c = if b.has(b'@') { b'@' } else { b'^' };
             return Err(Fault::new(
                 PathErrorKind::Unsupported,
                 b.span(c),
-                "polar coordinates in canned cycles are not supported",
-                "",
+                "polar coordinates in canned cycles are read in G17 with G90 only",
+                "G17 G90, or X and Y",
             ));
         }
         for c in [b'a', b'b', b'c'] {
@@ -254,8 +255,14 @@ impl Interp<'_, '_> {
             bb_inc = 0.0;
             r = r_word;
             cc = cc_word;
-            aa = b.get(fl).map_or(self.p[fi], |v| v * self.scale);
-            bb = b.get(sl).map_or(self.p[si], |v| v * self.scale);
+            if polar {
+                // `@` radius and `^` angle from the origin, as for G0/G1.
+                let e = self.find_ends(b, false)?;
+                (aa, bb) = (e[0], e[1]);
+            } else {
+                aa = b.get(fl).map_or(self.p[fi], |v| v * self.scale);
+                bb = b.get(sl).map_or(self.p[si], |v| v * self.scale);
+            }
         } else {
             aa_inc = b.get(fl).map_or(0.0, |v| v * self.scale);
             bb_inc = b.get(sl).map_or(0.0, |v| v * self.scale);

@@ -113,7 +113,7 @@ impl Interp<'_, '_> {
                         vec![[start[0] + i, start[1] + j, 1.0], [end[0], end[1], 1.0]],
                     )
                 };
-                self.emit_spline(end, kind, controls);
+                self.emit_spline(end, kind, controls)?;
             }
             52 => {
                 self.g5_last = None;
@@ -183,13 +183,19 @@ impl Interp<'_, '_> {
                 };
                 self.p[0] = self.nurbs_start[0];
                 self.p[1] = self.nurbs_start[1];
-                self.emit_spline([last[0], last[1]], SplineKind::Nurbs { order }, pts);
+                self.emit_spline([last[0], last[1]], SplineKind::Nurbs { order }, pts)?;
             }
         }
         Ok(())
     }
 
-    fn emit_spline(&mut self, end: [f64; 2], kind: SplineKind, controls: Vec<[f64; 3]>) {
+    fn emit_spline(&mut self, end: [f64; 2], kind: SplineKind, controls: Vec<[f64; 3]>) -> Res<()> {
+        if controls.iter().flatten().any(|v| !v.is_finite()) {
+            return Err(Fault::semantic(
+                Span::Line,
+                "a spline control point is out of range (not a finite number)",
+            ));
+        }
         let mut e = self.p;
         e[0] = end[0];
         e[1] = end[1];
@@ -199,5 +205,6 @@ impl Interp<'_, '_> {
             controls: Cow::Owned(controls),
         });
         self.p = e;
+        Ok(())
     }
 }
