@@ -17,21 +17,29 @@
 //!
 //! # Language
 //! * Motion: G0 G1 G2 G3 (I/J/K or R centres, full circles, helices, `P` turns), polar `@` `^`,
-//!   G53, G28/G30 (+ G28.1/G30.1), canned cycles G73 G81 G82 G83 G85 G89 with G98/G99 and `L`.
-//! * State: G17–G19, G20/G21, G90/G91, G90.1/G91.1, G93/G94/G95, G54–G59.3, G10 L2/L20,
-//!   G92/G92.1/G92.2/G92.3, G43/G43.1/G49 (reported, positions not shifted: tool-tip
-//!   programs), G40, G61/G61.1/G64, G96/G97, G4, F S T M3 M4 M5 M6 M2 M30 (M0 M1 M60 M7 M8 M9
-//!   and every other M code: warnings).
-//! * Parameters `#1`–`#5601` (5161–5386 and 5420–5425 are views onto the G28/G30 positions,
-//!   offsets and position, in program units), `#<local>`, `#<_global>`, `#<_x>` … and
-//!   `#<_value>`; bracketed expressions with LinuxCNC's operators, precedence and functions.
-//! * O-words: `sub`/`endsub`/`call`/`return` (arguments `#1`–`#30`), `while`, `do`/`while`,
+//!   G53, G28/G30 (+ G28.1/G30.1), canned cycles G73 G74 G81–G89 with G98/G99 and `L`
+//!   (`cycles`), splines G5 G5.1 G5.2/G5.3 (`splines`, [`Canon::Spline`]).
+//! * Cutter radius compensation G40 G41 G42 G41.1 G42.1 in G17/G18 (`comp`), radii from
+//!   [`GcodeOptions::tool_diameters`].
+//! * State: G17–G19, G20/G21, G90/G91, G90.1/G91.1, G93/G94/G95, G54–G59.3, G10 L2/L20 with R
+//!   ([`Canon::XyRotation`]), G52, G92/G92.1/G92.2/G92.3, G43/G43.1/G49 (reported, positions not
+//!   shifted: tool-tip programs), G61/G61.1/G64, G96/G97, G4, F S T M3 M4 M5 M6 M2 M30 (M0 M1
+//!   M60 M7 M8 M9 and every other M code: warnings); Fanuc G68/G69 and G51/G50 (`frames`).
+//! * Parameters `#1`–`#5601` (5161–5386 are views onto the G28/G30 positions and offsets, in
+//!   [`GcodeOptions::parameter_units`]; 5021–5026 the machine position and 5420–5425 the
+//!   position, in program units), `#<local>`, `#<_global>`, `#<_x>`, `#<_abs_x>` … and
+//!   `#<_value>`/`#<_value_returned>`; bracketed expressions with LinuxCNC's operators,
+//!   precedence and functions.
+//! * O-words: `sub`/`endsub`/`call`/`return` (arguments `#1`–`#30`, return values), `o[expr]
+//!   call`, subroutine files on [`GcodeOptions::subroutine_path`], `while`, `do`/`while`,
 //!   `repeat`, `if`/`elseif`/`else`/`endif`, `break`, `continue`; Fanuc `M98 P L`/`M99`.
-//! * Comments in parentheses become [`Canon::Comment`]; `;` comments, `N` numbers, `/` block
-//!   delete and `%` tape markers are understood.
+//! * Comments in parentheses become [`Canon::Comment`], `(MSG,…)`/`(DEBUG,…)`/`(PRINT,…)`
+//!   [`Canon::Message`]; `;` comments, `N` numbers, `/` block delete and `%` tape markers are
+//!   understood.
+//! * Dialect: LinuxCNC or Fanuc rules where they differ ([`GcodeDialect`]).
 //!
-//! What is deliberately not simulated (cutter radius compensation, spindle-synchronised motion,
-//! probing, Siemens and Heidenhain programs) is rejected with [`PathErrorKind::Unsupported`];
+//! What is deliberately not simulated (spindle-synchronised motion, probing, U V W axes, Siemens
+//! and Heidenhain programs) is rejected with [`PathErrorKind::Unsupported`];
 //! harmless codes swarf does not act on (coolant, overrides, user M codes) become warnings.
 //!
 //! ```
