@@ -46,10 +46,10 @@ use std::collections::{HashMap, HashSet};
 
 use swarf_geom::math::Vec3;
 
-use super::{Format, ReadError, Uv, MAX_GRID_SEARCHES, MAX_HALVINGS, MAX_TRIM_POINTS};
+use super::{Format, ReadError, TrimFailure, Uv, MAX_GRID_SEARCHES, MAX_HALVINGS, MAX_TRIM_POINTS};
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
 use crate::curve::{BSplineCurve, CurveError};
-use crate::surface::invert::Inverter;
+use crate::surface::invert::{InvertError, Inverter};
 use crate::surface::{NurbsSurface, ParamBox, ParametricSurface, Surface};
 use crate::trim::{sample_curve, Trim, TrimError};
 
@@ -453,38 +453,36 @@ impl ModelSpace<'_> {
         (mid - s.point(qm[0], qm[1])).length()
     }
 
-    fn jumps(&self) -> String {
-        format!(
-            "model-space curve of 142 at D{} does not map to a continuous loop in the surface's parameters (it crosses a seam or a pole?)",
-            self.de
-        )
+    fn jumps(&self) -> TrimFailure {
+        TrimFailure::ModelJumps { de: self.de }
     }
 
     /// The parameters of the surface point nearest `x` (file units), or why not.
     fn map(&mut self, x: Vec3, seed: Option<Uv>, budget: &mut usize) -> Built<Uv> {
         if *budget == 0 {
-            return Err(format!(
-                "model-space curve of 142 at D{} needs more than {MAX_TRIM_POINTS} points, or the file's trims more than {MAX_FILE_TRIM_POINTS}",
-                self.de
-            ));
+            return Err(TrimFailure::ModelTooManyPoints {
+                de: self.de,
+                trim: MAX_TRIM_POINTS,
+                file: MAX_FILE_TRIM_POINTS,
+            });
         }
         *budget -= 1;
         let x = x * self.factor;
-        let inv = self
-            .inverter
-            .invert(x, seed)
-            .map_err(|e| format!("model-space curve of 142 at D{}: {e}", self.de))?;
+        let inv = self.inverter.invert(x, seed).map_err(|e| match e {
+            InvertError::GridSearchesSpent { limit } => {
+                TrimFailure::ModelSearchesSpent { de: self.de, limit }
+            }
+        })?;
         if inv.dist.is_nan() || inv.dist > self.tol_on {
-            return Err(format!(
-                "model-space curve of 142 at D{} lies {:.3e} mm off the surface (at ({:.6}, {:.6}, {:.6}) mm; more than {:.1e} mm)",
-                self.de, inv.dist, x.x, x.y, x.z, self.tol_on
-            ));
+            return Err(TrimFailure::ModelOffSurface {
+                de: self.de,
+                distance: inv.dist,
+                point: x,
+                tolerance: self.tol_on,
+            });
         }
         if !(inv.uv[0].is_finite() && inv.uv[1].is_finite()) {
-            return Err(format!(
-                "model-space curve of 142 at D{} maps to non-finite parameters",
-                self.de
-            ));
+            return Err(TrimFailure::ModelNonFinite { de: self.de });
         }
         Ok(inv.uv)
     }
@@ -492,10 +490,7 @@ impl ModelSpace<'_> {
     /// Checks a mapped loop: it closes without a jump and has at least 3 distinct points.
     fn check_loop(&self, l: &[Uv]) -> Built<()> {
         let (Some(&first), Some(&last)) = (l.first(), l.last()) else {
-            return Err(format!(
-                "model-space curve of 142 at D{} maps to no point",
-                self.de
-            ));
+            return Err(TrimFailure::ModelNoPoint { de: self.de });
         };
         // A curve closed in model space closes in the parameters: the closing chord's middle,
         // on the surface, lies near its ends (not across the surface, past a seam).
@@ -512,18 +507,17 @@ impl ModelSpace<'_> {
             d.pop();
         }
         if d.len() < 3 {
-            return Err(format!(
-                "model-space curve of 142 at D{} maps to {} distinct point(s) of the surface's parameters; a loop needs at least 3",
-                self.de,
-                d.len()
-            ));
+            return Err(TrimFailure::ModelTooFewPoints {
+                de: self.de,
+                points: d.len(),
+            });
         }
         Ok(())
     }
 }
 
 /// A trim, or why it cannot be honoured.
-type Built<T> = Result<T, String>;
+type Built<T> = Result<T, TrimFailure>;
 
 impl Sampler<'_, '_> {
     /// The trim of the 144 `e` (parameters `p`) on a patch over `domain`. `Ok(Err(why))` when it
@@ -613,13 +607,15 @@ impl Sampler<'_, '_> {
             match self.curve(&q, 3, "BPTR", None, 0, Space::Parameter)? {
                 Ok(l) => return Ok(Ok(l)),
                 Err(why) if self.unsupported && cptr != 0 => failed = Some(why),
-                Err(why) => return Ok(Err(format!("142 at D{}: {why}", e.de))),
+                Err(why) => {
+                    return Ok(Err(TrimFailure::Boundary {
+                        de: e.de,
+                        reason: Box::new(why),
+                    }))
+                }
             }
         } else if cptr == 0 {
-            return Ok(Err(format!(
-                "142 at D{} has neither a parameter-space nor a model-space curve",
-                e.de
-            )));
+            return Ok(Err(TrimFailure::NoCurve { de: e.de }));
         }
         self.model.de = e.de;
         self.model.last = None;
@@ -627,12 +623,15 @@ impl Sampler<'_, '_> {
         // such curves were read), not the file unread.
         let mapped = match self.curve(&q, 4, "CPTR", None, 0, Space::Model) {
             Ok(Ok(l)) => self.model.check_loop(&l).map(|()| l),
-            Ok(Err(why)) if why.starts_with("model-space curve of 142") => Err(why),
-            Ok(Err(why)) => Err(format!("142 at D{}: {why}", e.de)),
-            Err(err) => Err(format!(
-                "142 at D{}: its model-space curve cannot be read ({err})",
-                e.de
-            )),
+            Ok(Err(why)) if why.names_its_boundary() => Err(why),
+            Ok(Err(why)) => Err(TrimFailure::Boundary {
+                de: e.de,
+                reason: Box::new(why),
+            }),
+            Err(err) => Err(TrimFailure::ModelUnreadable {
+                de: e.de,
+                source: Box::new(err),
+            }),
         };
         Ok(match (mapped, failed) {
             (Ok(l), _) => {
@@ -640,7 +639,11 @@ impl Sampler<'_, '_> {
                 Ok(l)
             }
             (Err(why), None) => Err(why),
-            (Err(why), Some(first)) => Err(format!("142 at D{}: {first}; {why}", e.de)),
+            (Err(why), Some(first)) => Err(TrimFailure::BothCurves {
+                de: e.de,
+                parameter: Box::new(first),
+                model: Box::new(why),
+            }),
         })
     }
 
@@ -664,9 +667,9 @@ impl Sampler<'_, '_> {
             ));
         };
         if self.curves_left == 0 {
-            return Ok(Err(format!(
-                "its loops are made of more than {MAX_TRIM_CURVES} curves"
-            )));
+            return Ok(Err(TrimFailure::TooManyCurves {
+                max: MAX_TRIM_CURVES,
+            }));
         }
         self.curves_left -= 1;
         let t = compose_opt(&outer, &self.file.transform(self.entries, e)?);
@@ -690,7 +693,7 @@ impl Sampler<'_, '_> {
                 }
                 let spline = match c.spline() {
                     Ok(spline) => spline,
-                    Err(why) => return Ok(Err(format!("entity 126 at D{}: {why}", e.de))),
+                    Err(source) => return Ok(Err(TrimFailure::Curve126 { de: e.de, source })),
                 };
                 let mut out = Vec::new();
                 for s in m..n {
@@ -786,11 +789,11 @@ impl Sampler<'_, '_> {
             }
             104 | 106 | 112 | 130 => {
                 self.unsupported = true;
-                Err(format!(
-                    "its {} curve D{de} is an entity {}, which is not supported",
-                    space.name(),
-                    e.kind
-                ))
+                Err(TrimFailure::UnsupportedCurve {
+                    space: space.name(),
+                    de,
+                    kind: e.kind,
+                })
             }
             k => {
                 return Err(p.error(
@@ -803,16 +806,17 @@ impl Sampler<'_, '_> {
             // Points were counted as they were mapped; the patch's box holds them all.
             return Ok(pts);
         }
-        Ok(match pts {
-            Ok(v) if v.len() > self.points_left => Err(self.too_many()),
-            Ok(v) if e.kind != 102 && self.outside(&v, de).is_some() => {
-                Err(self.outside(&v, de).unwrap_or_default())
-            }
-            Ok(v) => {
+        let outside = match &pts {
+            Ok(v) if e.kind != 102 => self.outside(v, de),
+            _ => None,
+        };
+        Ok(match (pts, outside) {
+            (Ok(v), _) if v.len() > self.points_left => Err(self.too_many()),
+            (Ok(_), Some(why)) | (Err(why), _) => Err(why),
+            (Ok(v), None) => {
                 self.points_left -= v.len();
                 Ok(v)
             }
-            Err(why) => Err(why),
         })
     }
 
@@ -834,19 +838,23 @@ impl Sampler<'_, '_> {
 
     /// Why `pts`, sampled from the curve at `de`, are not in the patch's parameters, if they
     /// are not.
-    fn outside(&self, pts: &[Uv], de: i64) -> Option<String> {
+    fn outside(&self, pts: &[Uv], de: i64) -> Option<TrimFailure> {
         let [u0, u1, v0, v1] = self.bounds;
         let p = pts
             .iter()
             .find(|p| !(p[0] >= u0 && p[0] <= u1 && p[1] >= v0 && p[1] <= v1))?;
-        Some(format!(
-            "its parameter-space curve D{de} reaches ({}, {}), outside the patch's parameter box",
-            p[0], p[1]
-        ))
+        Some(TrimFailure::OutsideBox {
+            de,
+            u: p[0],
+            v: p[1],
+        })
     }
 
-    fn too_many(&self) -> String {
-        format!("its loops need more than {MAX_TRIM_POINTS} points, or the file's trims more than {MAX_FILE_TRIM_POINTS}")
+    fn too_many(&self) -> TrimFailure {
+        TrimFailure::LoopsTooManyPoints {
+            trim: MAX_TRIM_POINTS,
+            file: MAX_FILE_TRIM_POINTS,
+        }
     }
 }
 

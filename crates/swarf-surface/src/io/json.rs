@@ -27,7 +27,7 @@ use swarf_geom::math::Vec3;
 
 use super::{Format, ReadError};
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
-use crate::surface::{NurbsSurface, ParametricSurface, Surface};
+use crate::surface::{NurbsError, NurbsSurface, ParametricSurface, Surface};
 use crate::trim::{Trim, TrimError};
 
 /// Millimetres per inch.
@@ -107,7 +107,7 @@ fn checked_patches<'de, D: Deserializer<'de>>(d: D) -> Result<Vec<Checked>, D::E
 
 impl Checked {
     /// Validates patch `index`; errors name it.
-    fn new(p: JsonPatch, index: usize) -> Result<Self, String> {
+    fn new(p: JsonPatch, index: usize) -> Result<Self, PatchError> {
         let who = match &p.name {
             Some(n) => format!("patch {index} \"{n}\""),
             None => format!("patch {index}"),
@@ -130,7 +130,10 @@ impl Checked {
             &points,
             Some(&weights),
         )
-        .map_err(|e| format!("{who}: {e}"))?;
+        .map_err(|source| PatchError::Surface {
+            who: who.clone(),
+            source,
+        })?;
         let trim = match p.trim {
             None => None,
             Some(t) => {
@@ -140,13 +143,15 @@ impl Checked {
                     (true, k) => format!("trim.holes[{}]", k - 1),
                     (false, k) => format!("trim.holes[{k}]"),
                 };
-                let trim = Trim::new(&surface.domain(), t.outer, t.holes).map_err(|e| match e {
-                    TrimError::TooFewPoints { index, points } => format!(
-                        "{who}: {} has {points} distinct point(s); a loop needs at least 3",
-                        loop_name(index)
-                    ),
-                    TrimError::NotFinite { index, point } => {
-                        format!("{who}: {} point {point} is not finite", loop_name(index))
+                let trim = Trim::new(&surface.domain(), t.outer, t.holes).map_err(|e| {
+                    let index = match e {
+                        TrimError::TooFewPoints { index, .. }
+                        | TrimError::NotFinite { index, .. } => index,
+                    };
+                    PatchError::Trim {
+                        who,
+                        what: loop_name(index),
+                        source: e,
                     }
                 })?;
                 Some(trim)
@@ -157,6 +162,39 @@ impl Checked {
             surface,
             trim,
         })
+    }
+}
+
+/// Why a JSON patch is refused (the reader reports it at the patch's position).
+#[derive(Debug, thiserror::Error)]
+enum PatchError {
+    /// Its numbers do not make a NURBS.
+    #[error("{who}: {source}")]
+    Surface {
+        /// `patch 3 "floor"`.
+        who: String,
+        /// Why.
+        source: NurbsError,
+    },
+    /// Its trim is refused.
+    #[error("{who}: {what} {}", trim_problem(.source))]
+    Trim {
+        /// `patch 3 "floor"`.
+        who: String,
+        /// `trim.outer`, `trim.holes[2]`.
+        what: String,
+        /// Why.
+        source: TrimError,
+    },
+}
+
+/// The trim error's words after the loop's name.
+fn trim_problem(e: &TrimError) -> String {
+    match e {
+        TrimError::TooFewPoints { points, .. } => {
+            format!("has {points} distinct point(s); a loop needs at least 3")
+        }
+        TrimError::NotFinite { point, .. } => format!("point {point} is not finite"),
     }
 }
 

@@ -3,9 +3,12 @@
 //! Every reader converts lengths to millimetres, never panics on malformed input, and reports
 //! errors with the line and column (or IGES record) where they were found.
 
+mod failure;
 pub mod iges;
 pub mod json;
 pub mod step;
+
+pub use failure::TrimFailure;
 
 use std::fmt;
 use std::path::{Path, PathBuf};

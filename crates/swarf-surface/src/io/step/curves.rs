@@ -8,7 +8,7 @@ use super::entities::{Model, R};
 use super::lex::Param;
 use super::trims::Built;
 use crate::curve::BSplineCurve;
-use crate::io::ReadError;
+use crate::io::TrimFailure;
 use crate::surface::NurbsSurface;
 
 /// Deepest nesting of curves (a SURFACE_CURVE of a TRIMMED_CURVE of …) and of edges.
@@ -196,39 +196,40 @@ impl Curve {
 impl Model<'_> {
     /// A curve for the edge geometry `id`.
     pub(super) fn curve(&self, from: u64, id: u64, depth: usize) -> Built<Curve> {
-        let wrap = |e: ReadError| e.to_string();
         if depth > MAX_CURVE_DEPTH {
-            return Err(format!(
-                "#{id}: curves nest more than {MAX_CURVE_DEPTH} deep"
-            ));
+            return Err(TrimFailure::CurveNesting {
+                curve: id,
+                max: MAX_CURVE_DEPTH,
+            });
         }
-        let inst = self.get(from, id).map_err(wrap)?;
+        let inst = self.get(from, id)?;
         for name in ["SURFACE_CURVE", "SEAM_CURVE", "INTERSECTION_CURVE"] {
             if let Some(p) = inst.part(name) {
-                let c = self.reference(id, p.get(1), "curve_3d").map_err(wrap)?;
+                let c = self.reference(id, p.get(1), "curve_3d")?;
                 return self.curve(id, c, depth + 1);
             }
         }
         if let Some(p) = inst.part("TRIMMED_CURVE") {
             // The edge's vertices bound it; its sense_agreement .F. runs it against the basis
             // curve (the way round a conic between the vertices).
-            let c = self.reference(id, p.get(1), "basis_curve").map_err(wrap)?;
+            let c = self.reference(id, p.get(1), "basis_curve")?;
             let curve = self.curve(id, c, depth + 1)?;
             let against = matches!(p.get(4), Some(Param::Enum(e)) if e == "F");
             return Ok(if against { curve.reversed() } else { curve });
         }
         if let Some(p) = inst.part("LINE") {
-            let origin = self.reference(id, p.get(1), "pnt").map_err(wrap)?;
-            let origin = self.point(id, origin).map_err(wrap)?;
-            let vid = self.reference(id, p.get(2), "dir").map_err(wrap)?;
-            let vi = self.get(id, vid).map_err(wrap)?;
-            let vp = vi
-                .part("VECTOR")
-                .ok_or_else(|| format!("#{vid}: found {}, expected VECTOR", vi.first_name()))?;
-            let dir = self.direction(vid, vp.get(1), Vec3::X).map_err(wrap)?;
-            let mag = self.num(vid, vp.get(2), "magnitude").map_err(wrap)? * self.length;
+            let origin = self.reference(id, p.get(1), "pnt")?;
+            let origin = self.point(id, origin)?;
+            let vid = self.reference(id, p.get(2), "dir")?;
+            let vi = self.get(id, vid)?;
+            let vp = vi.part("VECTOR").ok_or_else(|| TrimFailure::NotVector {
+                vector: vid,
+                found: vi.first_name().to_string(),
+            })?;
+            let dir = self.direction(vid, vp.get(1), Vec3::X)?;
+            let mag = self.num(vid, vp.get(2), "magnitude")? * self.length;
             if !(mag.abs() > 0.0 && mag.is_finite()) {
-                return Err(format!("#{vid}: a line's vector has no length"));
+                return Err(TrimFailure::ZeroLine { vector: vid });
             }
             return Ok(Curve::Line {
                 p: origin,
@@ -236,23 +237,24 @@ impl Model<'_> {
             });
         }
         if let Some(c) = inst.part("CIRCLE").or_else(|| inst.part("ELLIPSE")) {
-            let f = self.placement(id, c.get(1)).map_err(wrap)?;
-            let a = self.num(id, c.get(2), "radius").map_err(wrap)? * self.length;
+            let f = self.placement(id, c.get(1))?;
+            let a = self.num(id, c.get(2), "radius")? * self.length;
             let b = match c.get(3) {
-                Some(p) => self.num(id, Some(p), "semi_axis_2").map_err(wrap)? * self.length,
+                Some(p) => self.num(id, Some(p), "semi_axis_2")? * self.length,
                 None => a,
             };
             if !(a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
-                return Err(format!("#{id}: a conic's radii must be positive"));
+                return Err(TrimFailure::ConicRadii { curve: id });
             }
             return Ok(Curve::Conic { f, a, b });
         }
         if let Some(p) = inst.part("POLYLINE") {
-            let pts = self.list(id, p.get(1), "points").map_err(wrap)?;
+            let pts = self.list(id, p.get(1), "points")?;
             if pts.len() < 2 || pts.len() > MAX_CURVE_POINTS {
-                return Err(format!(
-                    "#{id}: a polyline needs 2 to {MAX_CURVE_POINTS} points"
-                ));
+                return Err(TrimFailure::PolylinePoints {
+                    curve: id,
+                    max: MAX_CURVE_POINTS,
+                });
             }
             let pts = pts
                 .iter()
@@ -260,8 +262,7 @@ impl Model<'_> {
                     let r = self.reference(id, Some(q), "point")?;
                     self.point(id, r)
                 })
-                .collect::<R<Vec<Vec3>>>()
-                .map_err(wrap)?;
+                .collect::<R<Vec<Vec3>>>()?;
             return Ok(Curve::Polyline(pts));
         }
         if let Some(k) = inst.part("B_SPLINE_CURVE_WITH_KNOTS") {
@@ -269,31 +270,31 @@ impl Model<'_> {
                 Some(b) => (b, k),
                 None if k.len() >= 9 => (&k[1..6], &k[6..]),
                 None => {
-                    return Err(format!(
-                        "#{id}: B_SPLINE_CURVE_WITH_KNOTS has {} attributes, expected 9",
-                        k.len()
-                    ))
+                    return Err(TrimFailure::SplineAttributes {
+                        curve: id,
+                        count: k.len(),
+                    })
                 }
             };
-            let degree = self.num(id, head.first(), "degree").map_err(wrap)?;
+            let degree = self.num(id, head.first(), "degree")?;
             if !(degree >= 1.0
                 && degree <= NurbsSurface::MAX_DEGREE as f64
                 && degree.fract() == 0.0)
             {
-                return Err(format!(
-                    "#{id}: curve degree {degree} is not 1 to {}",
-                    NurbsSurface::MAX_DEGREE
-                ));
+                return Err(TrimFailure::SplineDegree {
+                    curve: id,
+                    degree,
+                    max: NurbsSurface::MAX_DEGREE,
+                });
             }
             let degree = degree as usize;
-            let cps = self
-                .list(id, head.get(1), "control_points_list")
-                .map_err(wrap)?;
+            let cps = self.list(id, head.get(1), "control_points_list")?;
             if cps.len() < degree + 1 || cps.len() > MAX_CURVE_POINTS {
-                return Err(format!(
-                    "#{id}: {} control points for degree {degree}",
-                    cps.len()
-                ));
+                return Err(TrimFailure::SplinePoints {
+                    curve: id,
+                    points: cps.len(),
+                    degree,
+                });
             }
             let pts = cps
                 .iter()
@@ -301,51 +302,47 @@ impl Model<'_> {
                     let r = self.reference(id, Some(q), "control point")?;
                     self.point(id, r)
                 })
-                .collect::<R<Vec<Vec3>>>()
-                .map_err(wrap)?;
-            let kv = self
-                .knots(
-                    id,
-                    knots.first(),
-                    knots.get(1),
-                    "curve",
-                    pts.len() + degree + 1,
-                )
-                .map_err(wrap)?;
+                .collect::<R<Vec<Vec3>>>()?;
+            let kv = self.knots(
+                id,
+                knots.first(),
+                knots.get(1),
+                "curve",
+                pts.len() + degree + 1,
+            )?;
             if kv.iter().any(|k| !k.is_finite())
                 || kv.windows(2).any(|w| w[1] < w[0])
                 || kv[pts.len()] <= kv[degree]
             {
-                return Err(format!("#{id}: knots are not increasing"));
+                return Err(TrimFailure::SplineKnots { curve: id });
             }
             let weights = match inst.part("RATIONAL_B_SPLINE_CURVE") {
                 Some(w) => {
-                    let ws = self.list(id, w.first(), "weights_data").map_err(wrap)?;
+                    let ws = self.list(id, w.first(), "weights_data")?;
                     if ws.len() != pts.len() {
-                        return Err(format!(
-                            "#{id}: {} weights for {} control points",
-                            ws.len(),
-                            pts.len()
-                        ));
+                        return Err(TrimFailure::SplineWeightCount {
+                            curve: id,
+                            weights: ws.len(),
+                            points: pts.len(),
+                        });
                     }
                     ws.iter()
                         .map(|x| self.num(id, Some(x), "weight"))
-                        .collect::<R<Vec<f64>>>()
-                        .map_err(wrap)?
+                        .collect::<R<Vec<f64>>>()?
                 }
                 None => vec![1.0; pts.len()],
             };
             if weights.iter().any(|w| !(*w > 0.0 && w.is_finite())) {
-                return Err(format!("#{id}: weights must be positive"));
+                return Err(TrimFailure::SplineWeights { curve: id });
             }
             // Checked above with the reader's own messages; the curve checks the same.
             return BSplineCurve::new(degree, kv, &pts, &weights)
                 .map(Curve::Spline)
-                .map_err(|e| format!("#{id}: {e}"));
+                .map_err(|source| TrimFailure::SplineCurve { curve: id, source });
         }
-        Err(format!(
-            "edge curve #{id} is a {}, which is not evaluated",
-            inst.first_name()
-        ))
+        Err(TrimFailure::CurveKind {
+            curve: id,
+            kind: inst.first_name().to_string(),
+        })
     }
 }

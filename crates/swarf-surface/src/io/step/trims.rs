@@ -9,7 +9,7 @@ use swarf_geom::Frame;
 use super::curves::{Curve, MAX_CURVE_POINTS};
 use super::entities::{Model, R};
 use super::lex::Param;
-use crate::io::{ReadError, Uv, MAX_GRID_SEARCHES, MAX_HALVINGS, MAX_TRIM_POINTS};
+use crate::io::{TrimFailure, Uv, MAX_GRID_SEARCHES, MAX_HALVINGS, MAX_TRIM_POINTS};
 use crate::surface::invert::Inverter;
 use crate::surface::{ParamBox, ParametricSurface, Surface};
 use crate::trim::Trim;
@@ -18,7 +18,7 @@ use crate::trim::Trim;
 pub(super) const MAX_FILE_TRIM_POINTS: usize = 2_000_000;
 
 /// A trim (or a part of one), or why it cannot be honoured.
-pub(super) type Built<T> = Result<T, String>;
+pub(super) type Built<T> = Result<T, TrimFailure>;
 
 /// A trim loop point: its parameters, and whether its u (the angle around the axis) is free
 /// (a pole of a sphere, a cone's apex).
@@ -71,18 +71,19 @@ impl Mapper<'_> {
     /// The parameters of `p` (the angles unwrapped to lie near `near`), or why not.
     pub(super) fn map(&mut self, p: Vec3, near: Option<Uv>) -> Built<Sample> {
         if self.points_left == 0 {
-            return Err(format!(
-                "the trim needs more than {MAX_TRIM_POINTS} points (or the file more than {MAX_FILE_TRIM_POINTS})"
-            ));
+            return Err(TrimFailure::TooManyPoints {
+                trim: MAX_TRIM_POINTS,
+                file: MAX_FILE_TRIM_POINTS,
+            });
         }
         self.points_left -= 1;
-        let inv = self.inverter.invert(p, near).map_err(|e| e.to_string())?;
+        let inv = self.inverter.invert(p, near)?;
         let (mut uv, free, off) = (inv.uv, inv.pole, inv.dist);
         if off.is_nan() || off > self.tol_on {
-            return Err(format!(
-                "the point ({:.6}, {:.6}, {:.6}) is {off:.3e} mm off the surface",
-                p.x, p.y, p.z
-            ));
+            return Err(TrimFailure::OffSurface {
+                point: p,
+                distance: off,
+            });
         }
         if let Some(near) = near {
             if free {
@@ -95,7 +96,7 @@ impl Mapper<'_> {
             }
         }
         if !(uv[0].is_finite() && uv[1].is_finite()) {
-            return Err("a point maps to non-finite parameters".into());
+            return Err(TrimFailure::NonFiniteParameters);
         }
         Ok(Sample { uv, free })
     }
@@ -225,25 +226,29 @@ impl Model<'_> {
         same_sense: bool,
         m: &mut Mapper,
     ) -> Built<Vec<Bound>> {
-        let wrap = |e: ReadError| e.to_string();
         let mut out = Vec::new();
         for b in bounds {
-            let bid = self.reference(fid, Some(b), "bound").map_err(wrap)?;
-            let bi = self.get(fid, bid).map_err(wrap)?;
+            let bid = self.reference(fid, Some(b), "bound")?;
+            let bi = self.get(fid, bid)?;
             let (outer, bp) = match (bi.part("FACE_OUTER_BOUND"), bi.part("FACE_BOUND")) {
                 (Some(p), _) => (true, p),
                 (None, Some(p)) => (false, p),
-                _ => return Err(format!("bound #{bid} is a {}", bi.first_name())),
+                _ => {
+                    return Err(TrimFailure::BoundKind {
+                        bound: bid,
+                        kind: bi.first_name().to_string(),
+                    })
+                }
             };
-            let lid = self.reference(bid, bp.get(1), "bound").map_err(wrap)?;
-            let orientation = self.logical(bid, bp.get(2), "orientation").map_err(wrap)?;
-            let li = self.get(bid, lid).map_err(wrap)?;
+            let lid = self.reference(bid, bp.get(1), "bound")?;
+            let orientation = self.logical(bid, bp.get(2), "orientation")?;
+            let li = self.get(bid, lid)?;
             let samples = if li.part("VERTEX_LOOP").is_some() {
                 continue;
             } else if let Some(p) = li.part("POLY_LOOP") {
-                let pts = self.list(lid, p.get(1), "polygon").map_err(wrap)?;
+                let pts = self.list(lid, p.get(1), "polygon")?;
                 if pts.len() > MAX_CURVE_POINTS {
-                    return Err(format!("poly loop #{lid} has too many points"));
+                    return Err(TrimFailure::PolyLoopTooLong { lp: lid });
                 }
                 let mut pts = pts
                     .iter()
@@ -251,26 +256,28 @@ impl Model<'_> {
                         let r = self.reference(lid, Some(q), "point")?;
                         self.point(lid, r)
                     })
-                    .collect::<R<Vec<Vec3>>>()
-                    .map_err(wrap)?;
+                    .collect::<R<Vec<Vec3>>>()?;
                 if let Some(&first) = pts.first() {
                     pts.push(first);
                 }
                 if pts.len() < 4 {
-                    return Err(format!("poly loop #{lid} has fewer than 3 points"));
+                    return Err(TrimFailure::PolyLoopTooShort { lp: lid });
                 }
                 let c = Curve::Polyline(pts);
                 let (a, b) = c.range().unwrap_or((0.0, 1.0));
                 m.sample(&c, &[(a, b)], None)
-                    .map_err(|why| format!("poly loop #{lid}: {why}"))?
+                    .map_err(|why| TrimFailure::InPolyLoop {
+                        lp: lid,
+                        reason: Box::new(why),
+                    })?
             } else if let Some(p) = li.part("EDGE_LOOP") {
-                let edges = self.list(lid, p.get(1), "edge_list").map_err(wrap)?;
+                let edges = self.list(lid, p.get(1), "edge_list")?;
                 self.edge_loop(lid, edges, m)?
             } else {
-                return Err(format!(
-                    "loop #{lid} is a {}, which is not read",
-                    li.first_name()
-                ));
+                return Err(TrimFailure::LoopKind {
+                    lp: lid,
+                    kind: li.first_name().to_string(),
+                });
             };
             let sense = orientation == same_sense;
             let samples = match m.period {
@@ -294,30 +301,28 @@ impl Model<'_> {
         edges: &[Param],
         m: &mut Mapper,
     ) -> Built<Vec<Sample>> {
-        let wrap = |e: ReadError| e.to_string();
         let mut out: Vec<Sample> = Vec::new();
         let mut first_pass: HashMap<u64, (Sample, Sample)> = HashMap::new();
         let mut split: Option<usize> = None;
         let mut last_point: Option<Vec3> = None;
         let join = m.tol_on * 10.0;
         for e in edges {
-            let oid = self
-                .reference(lid, Some(e), "oriented edge")
-                .map_err(wrap)?;
-            let oi = self.get(lid, oid).map_err(wrap)?;
-            let op = oi.part("ORIENTED_EDGE").ok_or_else(|| {
-                format!(
-                    "edge #{oid} is a {}, expected ORIENTED_EDGE",
-                    oi.first_name()
-                )
-            })?;
-            let eid = self
-                .reference(oid, op.get(3), "edge_element")
-                .map_err(wrap)?;
-            let orientation = self.logical(oid, op.get(4), "orientation").map_err(wrap)?;
-            let ei = self.get(oid, eid).map_err(wrap)?;
-            let ep = ei.part("EDGE_CURVE").ok_or_else(|| {
-                format!("edge #{eid} is a {}, expected EDGE_CURVE", ei.first_name())
+            let oid = self.reference(lid, Some(e), "oriented edge")?;
+            let oi = self.get(lid, oid)?;
+            let op = oi
+                .part("ORIENTED_EDGE")
+                .ok_or_else(|| TrimFailure::EdgeKind {
+                    edge: oid,
+                    found: oi.first_name().to_string(),
+                    expected: "ORIENTED_EDGE",
+                })?;
+            let eid = self.reference(oid, op.get(3), "edge_element")?;
+            let orientation = self.logical(oid, op.get(4), "orientation")?;
+            let ei = self.get(oid, eid)?;
+            let ep = ei.part("EDGE_CURVE").ok_or_else(|| TrimFailure::EdgeKind {
+                edge: eid,
+                found: ei.first_name().to_string(),
+                expected: "EDGE_CURVE",
             })?;
             let vertex = |p: Option<&Param>| -> R<(u64, Vec3)> {
                 let vid = self.reference(eid, p, "vertex")?;
@@ -331,20 +336,18 @@ impl Model<'_> {
                 let cid = self.reference(vid, vp.get(1), "vertex_geometry")?;
                 Ok((vid, self.point(vid, cid)?))
             };
-            let (vs, ps) = vertex(ep.get(1)).map_err(wrap)?;
-            let (ve, pe) = vertex(ep.get(2)).map_err(wrap)?;
-            let gid = self
-                .reference(eid, ep.get(3), "edge_geometry")
-                .map_err(wrap)?;
-            let same = self.logical(eid, ep.get(4), "same_sense").map_err(wrap)?;
+            let (vs, ps) = vertex(ep.get(1))?;
+            let (ve, pe) = vertex(ep.get(2))?;
+            let gid = self.reference(eid, ep.get(3), "edge_geometry")?;
+            let same = self.logical(eid, ep.get(4), "same_sense")?;
             let curve = self.curve(eid, gid, 0)?;
             let (ts, ds) = curve.param_of(ps);
             let (te, de) = curve.param_of(pe);
             if ds.is_nan() || de.is_nan() || ds.max(de) > join {
-                return Err(format!(
-                    "a vertex of edge #{eid} is {:.3e} mm off its curve",
-                    ds.max(de)
-                ));
+                return Err(TrimFailure::VertexOffCurve {
+                    edge: eid,
+                    distance: ds.max(de),
+                });
             }
             let closed = vs == ve || (ps - pe).length() <= 1e-9 * (1.0 + ps.length());
             let tau = std::f64::consts::TAU;
@@ -373,9 +376,7 @@ impl Model<'_> {
                     let near = |a: f64, b: f64| (a - b).abs() <= 1e-9 * (t1 - t0);
                     let ring = (curve.point(t0) - curve.point(t1)).length() <= join;
                     if !ring {
-                        return Err(format!(
-                            "edge #{eid} starts and ends at one vertex, but its curve is open"
-                        ));
+                        return Err(TrimFailure::OpenCurveOnOneVertex { edge: eid });
                     }
                     let forward = if near(ts, t0) || near(ts, t1) {
                         vec![(t0, t1)]
@@ -392,7 +393,10 @@ impl Model<'_> {
             };
             let mut s = m
                 .sample(&curve, &runs, out.last().map(|s| s.uv))
-                .map_err(|why| format!("edge #{eid}: {why}"))?;
+                .map_err(|why| TrimFailure::InEdge {
+                    edge: eid,
+                    reason: Box::new(why),
+                })?;
             // From the edge's start to its end, then as the loop uses it.
             if !orientation {
                 s.reverse();
@@ -400,9 +404,7 @@ impl Model<'_> {
             let (from, to) = if orientation { (ps, pe) } else { (pe, ps) };
             if let Some(lp) = last_point {
                 if (lp - from).length() > join {
-                    return Err(format!(
-                        "edge #{eid} does not start where the previous edge ends"
-                    ));
+                    return Err(TrimFailure::EdgesDoNotJoin { edge: eid });
                 }
             }
             last_point = Some(to);
@@ -550,7 +552,7 @@ pub(super) fn assemble(
     for (k, b) in bounds.into_iter().enumerate() {
         let s = &b.samples;
         let (Some(first), Some(last)) = (s.first(), s.last()) else {
-            return Err(format!("loop {k} has no points"));
+            return Err(TrimFailure::EmptyLoop { index: k });
         };
         let mut turns = [0.0; 2];
         let mut ok = true;
@@ -569,16 +571,14 @@ pub(super) fn assemble(
             }
         }
         if !ok {
-            return Err(format!(
-                "loop {k} does not close in the surface's parameters"
-            ));
+            return Err(TrimFailure::LoopNotClosed { index: k });
         }
         let pts: Vec<Uv> = s.iter().map(|q| q.uv).collect();
         match turns {
             [0.0, 0.0] => closed.push((b.outer, pts)),
             [t, 0.0] if t.abs() == 1.0 => winding[0].push(((t > 0.0) == b.sense, pts)),
             [0.0, t] if t.abs() == 1.0 => winding[1].push(((t > 0.0) == b.sense, pts)),
-            _ => return Err(format!("loop {k} winds around the surface more than once")),
+            _ => return Err(TrimFailure::LoopWindsTwice { index: k }),
         }
     }
     let wound = winding.iter().map(Vec::len).sum::<usize>();
@@ -587,7 +587,7 @@ pub(super) fn assemble(
             || winding[1].len() > 2
             || (!winding[0].is_empty() && !winding[1].is_empty()))
     {
-        return Err("the loops wind around the surface in a way not read".into());
+        return Err(TrimFailure::WindingNotRead);
     }
     // The outer closed loop (when no loop winds).
     let outer_at = if wound > 0 {
@@ -630,9 +630,9 @@ pub(super) fn assemble(
             [(x, _), (y, _)] => match (face_above(*x), face_above(*y)) {
                 (true, false) => (0, 1),
                 (false, true) => (1, 0),
-                _ => return Err("the two loops around the surface face the same way".into()),
+                _ => return Err(TrimFailure::BandEdgesAlike),
             },
-            _ => return Err("one loop around both angles of the surface bounds nothing".into()),
+            _ => return Err(TrimFailure::LoopAroundBothAngles),
         };
         let mean = |l: &[Uv]| l.iter().map(|p| p[e]).sum::<f64>() / l.len().max(1) as f64;
         let (ma, mb) = (mean(&w[a].1), mean(&w[b].1));
@@ -641,9 +641,7 @@ pub(super) fn assemble(
         let lo = range(&w[a].1, e).0;
         let hi = range(&w[b].1, e).1;
         if hi - lo > te + close[e] || (hi - lo).is_nan() {
-            return Err(
-                "the band between the loops around the surface is wider than a turn".into(),
-            );
+            return Err(TrimFailure::BandTooWide);
         }
         let s = starts[e];
         let k = ((s + 0.5 * te - 0.5 * (lo + hi)) / te).round() * te;
@@ -787,9 +785,9 @@ pub(super) fn assemble(
         .map(|(_, c)| c.1)
         .collect();
     if !(dom.u[0] < dom.u[1] && dom.v[0] < dom.v[1]) {
-        return Err("the loops span no area".into());
+        return Err(TrimFailure::NoArea);
     }
-    let trim = Trim::new(&dom, outer, holes).map_err(|e| e.to_string())?;
+    let trim = Trim::new(&dom, outer, holes)?;
     Ok(FaceTrim { trim, domain: dom })
 }
 

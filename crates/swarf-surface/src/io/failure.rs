@@ -1,0 +1,425 @@
+//! Why a trim in a file is not honoured: the reader then uses the whole patch (or face) and
+//! says why in a [`ReadNote::TrimNotHonoured`](crate::ReadNote::TrimNotHonoured), whose text is
+//! this error's. Entities are named as in their file: STEP instances `#id`, IGES directory
+//! entries `D<n>`.
+
+use swarf_geom::math::Vec3;
+
+use super::ReadError;
+use crate::curve::CurveError;
+use crate::surface::invert::InvertError;
+use crate::trim::TrimError;
+
+/// Why a file's trim (a STEP face's bounds, an IGES 144) is not honoured.
+#[derive(Debug, thiserror::Error)]
+pub enum TrimFailure {
+    /// An entity the trim needs is malformed or missing.
+    #[error(transparent)]
+    Entity(Box<ReadError>),
+    /// Too many points for one trim or for the file's trims.
+    #[error("the trim needs more than {trim} points (or the file more than {file})")]
+    TooManyPoints {
+        /// The limit for one trim.
+        trim: usize,
+        /// The limit for the file.
+        file: usize,
+    },
+    /// The loops are not a valid trim.
+    #[error(transparent)]
+    Trim(#[from] TrimError),
+    /// Points could not be mapped onto the surface.
+    #[error("more than {limit} points needed a search for their parameters")]
+    SearchesSpent {
+        /// How many searches a trim may make.
+        limit: usize,
+    },
+    /// A boundary point is not on the surface.
+    #[error("the point ({:.6}, {:.6}, {:.6}) is {distance:.3e} mm off the surface", .point.x, .point.y, .point.z)]
+    OffSurface {
+        /// The point, mm.
+        point: Vec3,
+        /// Its distance to the surface, mm.
+        distance: f64,
+    },
+    /// A boundary point maps to parameters that are not finite.
+    #[error("a point maps to non-finite parameters")]
+    NonFiniteParameters,
+
+    // STEP edge curves.
+    /// Curves nest too deep.
+    #[error("#{curve}: curves nest more than {max} deep")]
+    CurveNesting {
+        /// The curve.
+        curve: u64,
+        /// The deepest nesting read.
+        max: usize,
+    },
+    /// A line's direction is not a `VECTOR`.
+    #[error("#{vector}: found {found}, expected VECTOR")]
+    NotVector {
+        /// The entity.
+        vector: u64,
+        /// Its entity name.
+        found: String,
+    },
+    /// A line's direction vector has no length.
+    #[error("#{vector}: a line's vector has no length")]
+    ZeroLine {
+        /// The `VECTOR`.
+        vector: u64,
+    },
+    /// A circle or ellipse with a radius that is not positive.
+    #[error("#{curve}: a conic's radii must be positive")]
+    ConicRadii {
+        /// The conic.
+        curve: u64,
+    },
+    /// A polyline with too few or too many points.
+    #[error("#{curve}: a polyline needs 2 to {max} points")]
+    PolylinePoints {
+        /// The polyline.
+        curve: u64,
+        /// The most points read.
+        max: usize,
+    },
+    /// A simple `B_SPLINE_CURVE_WITH_KNOTS` with the wrong number of attributes.
+    #[error("#{curve}: B_SPLINE_CURVE_WITH_KNOTS has {count} attributes, expected 9")]
+    SplineAttributes {
+        /// The curve.
+        curve: u64,
+        /// Its attributes.
+        count: usize,
+    },
+    /// A B-spline curve's degree out of range.
+    #[error("#{curve}: curve degree {degree} is not 1 to {max}")]
+    SplineDegree {
+        /// The curve.
+        curve: u64,
+        /// The degree read.
+        degree: f64,
+        /// The highest degree read.
+        max: usize,
+    },
+    /// Too few (or too many) control points for the degree.
+    #[error("#{curve}: {points} control points for degree {degree}")]
+    SplinePoints {
+        /// The curve.
+        curve: u64,
+        /// Its control points.
+        points: usize,
+        /// Its degree.
+        degree: usize,
+    },
+    /// Knots not finite or decreasing, or an empty range.
+    #[error("#{curve}: knots are not increasing")]
+    SplineKnots {
+        /// The curve.
+        curve: u64,
+    },
+    /// Not one weight per control point.
+    #[error("#{curve}: {weights} weights for {points} control points")]
+    SplineWeightCount {
+        /// The curve.
+        curve: u64,
+        /// Its weights.
+        weights: usize,
+        /// Its control points.
+        points: usize,
+    },
+    /// A weight that is not positive.
+    #[error("#{curve}: weights must be positive")]
+    SplineWeights {
+        /// The curve.
+        curve: u64,
+    },
+    /// A STEP B-spline curve the evaluator refuses.
+    #[error("#{curve}: {source}")]
+    SplineCurve {
+        /// The curve.
+        curve: u64,
+        /// Why.
+        source: CurveError,
+    },
+    /// An edge curve of a kind that is not evaluated.
+    #[error("edge curve #{curve} is a {kind}, which is not evaluated")]
+    CurveKind {
+        /// The curve.
+        curve: u64,
+        /// Its entity name.
+        kind: String,
+    },
+
+    // STEP face bounds.
+    /// A face bound of another kind than `FACE_BOUND` / `FACE_OUTER_BOUND`.
+    #[error("bound #{bound} is a {kind}")]
+    BoundKind {
+        /// The bound.
+        bound: u64,
+        /// Its entity name.
+        kind: String,
+    },
+    /// A `POLY_LOOP` with too many points.
+    #[error("poly loop #{lp} has too many points")]
+    PolyLoopTooLong {
+        /// The loop.
+        lp: u64,
+    },
+    /// A `POLY_LOOP` with fewer than 3 points.
+    #[error("poly loop #{lp} has fewer than 3 points")]
+    PolyLoopTooShort {
+        /// The loop.
+        lp: u64,
+    },
+    /// A loop of another kind than edge, poly or vertex loop.
+    #[error("loop #{lp} is a {kind}, which is not read")]
+    LoopKind {
+        /// The loop.
+        lp: u64,
+        /// Its entity name.
+        kind: String,
+    },
+    /// An edge of a loop that is not the entity expected there.
+    #[error("edge #{edge} is a {found}, expected {expected}")]
+    EdgeKind {
+        /// The entity.
+        edge: u64,
+        /// Its entity name.
+        found: String,
+        /// What was expected (`ORIENTED_EDGE`, `EDGE_CURVE`).
+        expected: &'static str,
+    },
+    /// A poly loop that cannot be mapped, for `reason`.
+    #[error("poly loop #{lp}: {reason}")]
+    InPolyLoop {
+        /// The loop.
+        lp: u64,
+        /// Why.
+        reason: Box<TrimFailure>,
+    },
+    /// An edge that cannot be mapped, for `reason`.
+    #[error("edge #{edge}: {reason}")]
+    InEdge {
+        /// The edge.
+        edge: u64,
+        /// Why.
+        reason: Box<TrimFailure>,
+    },
+    /// An edge's vertex is not on its curve.
+    #[error("a vertex of edge #{edge} is {distance:.3e} mm off its curve")]
+    VertexOffCurve {
+        /// The edge.
+        edge: u64,
+        /// The larger of its vertices' distances, mm.
+        distance: f64,
+    },
+    /// An edge from a vertex to itself along an open curve.
+    #[error("edge #{edge} starts and ends at one vertex, but its curve is open")]
+    OpenCurveOnOneVertex {
+        /// The edge.
+        edge: u64,
+    },
+    /// Consecutive edges of a loop that do not join.
+    #[error("edge #{edge} does not start where the previous edge ends")]
+    EdgesDoNotJoin {
+        /// The edge.
+        edge: u64,
+    },
+    /// A bound that gave no point.
+    #[error("loop {index} has no points")]
+    EmptyLoop {
+        /// The bound's index in the face.
+        index: usize,
+    },
+    /// A loop that does not close in the surface's parameters.
+    #[error("loop {index} does not close in the surface's parameters")]
+    LoopNotClosed {
+        /// The bound's index in the face.
+        index: usize,
+    },
+    /// A loop winding around the surface more than once.
+    #[error("loop {index} winds around the surface more than once")]
+    LoopWindsTwice {
+        /// The bound's index in the face.
+        index: usize,
+    },
+    /// Loops winding around the surface other than as one or two bands' edges.
+    #[error("the loops wind around the surface in a way not read")]
+    WindingNotRead,
+    /// The two loops around a surface face the same way.
+    #[error("the two loops around the surface face the same way")]
+    BandEdgesAlike,
+    /// The band between two loops around a surface is wider than a turn.
+    #[error("the band between the loops around the surface is wider than a turn")]
+    BandTooWide,
+    /// One loop around both angles of a torus.
+    #[error("one loop around both angles of the surface bounds nothing")]
+    LoopAroundBothAngles,
+    /// The loops enclose no area.
+    #[error("the loops span no area")]
+    NoArea,
+
+    // IGES 142 boundaries.
+    /// A 142's model-space curve that jumps in the surface's parameters.
+    #[error("model-space curve of 142 at D{de} does not map to a continuous loop in the surface's parameters (it crosses a seam or a pole?)")]
+    ModelJumps {
+        /// The 142.
+        de: usize,
+    },
+    /// A 142's model-space curve needs too many points.
+    #[error("model-space curve of 142 at D{de} needs more than {trim} points, or the file's trims more than {file}")]
+    ModelTooManyPoints {
+        /// The 142.
+        de: usize,
+        /// The limit for one trim.
+        trim: usize,
+        /// The limit for the file.
+        file: usize,
+    },
+    /// A 142's model-space curve off the surface.
+    #[error("model-space curve of 142 at D{de} lies {distance:.3e} mm off the surface (at ({:.6}, {:.6}, {:.6}) mm; more than {tolerance:.1e} mm)", .point.x, .point.y, .point.z)]
+    ModelOffSurface {
+        /// The 142.
+        de: usize,
+        /// The distance, mm.
+        distance: f64,
+        /// The point, mm.
+        point: Vec3,
+        /// The largest distance accepted, mm.
+        tolerance: f64,
+    },
+    /// A 142's model-space curve needs more point searches than a trim may make.
+    #[error("model-space curve of 142 at D{de}: more than {limit} points needed a search for their parameters")]
+    ModelSearchesSpent {
+        /// The 142.
+        de: usize,
+        /// How many searches a trim may make.
+        limit: usize,
+    },
+    /// A 142's model-space curve maps to parameters that are not finite.
+    #[error("model-space curve of 142 at D{de} maps to non-finite parameters")]
+    ModelNonFinite {
+        /// The 142.
+        de: usize,
+    },
+    /// A 142's model-space curve gave no point.
+    #[error("model-space curve of 142 at D{de} maps to no point")]
+    ModelNoPoint {
+        /// The 142.
+        de: usize,
+    },
+    /// A 142's model-space curve maps to fewer than 3 distinct points.
+    #[error("model-space curve of 142 at D{de} maps to {points} distinct point(s) of the surface's parameters; a loop needs at least 3")]
+    ModelTooFewPoints {
+        /// The 142.
+        de: usize,
+        /// The distinct points.
+        points: usize,
+    },
+    /// A 142 whose curve fails, for `reason`.
+    #[error("142 at D{de}: {reason}")]
+    Boundary {
+        /// The 142.
+        de: usize,
+        /// Why.
+        reason: Box<TrimFailure>,
+    },
+    /// A 142 with neither curve.
+    #[error("142 at D{de} has neither a parameter-space nor a model-space curve")]
+    NoCurve {
+        /// The 142.
+        de: usize,
+    },
+    /// A 142's model-space curve that is malformed.
+    #[error("142 at D{de}: its model-space curve cannot be read ({source})")]
+    ModelUnreadable {
+        /// The 142.
+        de: usize,
+        /// Why.
+        source: Box<ReadError>,
+    },
+    /// A 142 whose parameter-space curve is of a kind not read and whose model-space curve
+    /// fails too.
+    #[error("142 at D{de}: {parameter}; {model}")]
+    BothCurves {
+        /// The 142.
+        de: usize,
+        /// Why the parameter-space curve is not used.
+        parameter: Box<TrimFailure>,
+        /// Why the model-space curve is not used.
+        model: Box<TrimFailure>,
+    },
+    /// More curves than a trim may have.
+    #[error("its loops are made of more than {max} curves")]
+    TooManyCurves {
+        /// The limit.
+        max: usize,
+    },
+    /// Too many points for the loops or the file's trims.
+    #[error("its loops need more than {trim} points, or the file's trims more than {file}")]
+    LoopsTooManyPoints {
+        /// The limit for one trim.
+        trim: usize,
+        /// The limit for the file.
+        file: usize,
+    },
+    /// A 126 the evaluator refuses.
+    #[error("entity 126 at D{de}: {source}")]
+    Curve126 {
+        /// The 126.
+        de: usize,
+        /// Why.
+        source: CurveError,
+    },
+    /// A curve entity of a kind not read.
+    #[error("its {space} curve D{de} is an entity {kind}, which is not supported")]
+    UnsupportedCurve {
+        /// `parameter-space` or `model-space`.
+        space: &'static str,
+        /// The curve.
+        de: i64,
+        /// Its entity type.
+        kind: u32,
+    },
+    /// A parameter-space curve outside the patch's parameter box.
+    #[error(
+        "its parameter-space curve D{de} reaches ({u}, {v}), outside the patch's parameter box"
+    )]
+    OutsideBox {
+        /// The curve.
+        de: i64,
+        /// The point's u.
+        u: f64,
+        /// The point's v.
+        v: f64,
+    },
+}
+
+impl TrimFailure {
+    /// True for the failures of a 142's model-space curve that name the 142 themselves.
+    pub(crate) fn names_its_boundary(&self) -> bool {
+        matches!(
+            self,
+            TrimFailure::ModelJumps { .. }
+                | TrimFailure::ModelTooManyPoints { .. }
+                | TrimFailure::ModelSearchesSpent { .. }
+                | TrimFailure::ModelOffSurface { .. }
+                | TrimFailure::ModelNonFinite { .. }
+                | TrimFailure::ModelNoPoint { .. }
+                | TrimFailure::ModelTooFewPoints { .. }
+        )
+    }
+}
+
+impl From<ReadError> for TrimFailure {
+    fn from(e: ReadError) -> Self {
+        TrimFailure::Entity(Box::new(e))
+    }
+}
+
+impl From<InvertError> for TrimFailure {
+    fn from(e: InvertError) -> Self {
+        match e {
+            InvertError::GridSearchesSpent { limit } => TrimFailure::SearchesSpent { limit },
+        }
+    }
+}
