@@ -46,7 +46,10 @@ use std::collections::{HashMap, HashSet};
 
 use swarf_geom::math::Vec3;
 
-use super::{Format, ReadError, TrimFailure, Uv, MAX_GRID_SEARCHES, MAX_HALVINGS, MAX_TRIM_POINTS};
+use super::{
+    skipped_detail, Format, ReadError, TrimFailure, Uv, MAX_GRID_SEARCHES, MAX_HALVINGS,
+    MAX_TRIM_POINTS,
+};
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
 use crate::curve::{BSplineCurve, CurveError};
 use crate::surface::invert::{InvertError, Inverter};
@@ -273,14 +276,7 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
             detail: if skipped.is_empty() {
                 "; no entity 128".into()
             } else {
-                format!(
-                    "; skipped: {}",
-                    skipped
-                        .iter()
-                        .map(ToString::to_string)
-                        .collect::<Vec<_>>()
-                        .join("; ")
-                )
+                skipped_detail(&skipped)
             },
         });
     }

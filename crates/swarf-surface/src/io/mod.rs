@@ -13,7 +13,7 @@ pub use failure::TrimFailure;
 use std::fmt;
 use std::path::{Path, PathBuf};
 
-use crate::compound::CompoundSurface;
+use crate::compound::{CompoundSurface, ReadNote};
 use crate::surface::NurbsError;
 
 /// A surface file format.
@@ -138,12 +138,37 @@ pub fn read_file(path: &Path) -> Result<CompoundSurface, ReadError> {
 }
 
 /// Parse text in the given format.
+///
+/// ```
+/// use swarf_surface::io::{parse, Format};
+/// use swarf_surface::{ParametricSurface, ReadNote, Surface};
+/// // A STEP file with one sphere of radius 5 and no units: millimetres are assumed.
+/// let step = "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n\
+///     #1=CARTESIAN_POINT('',(0.,0.,0.));\n#2=DIRECTION('',(0.,0.,1.));\n\
+///     #3=DIRECTION('',(1.,0.,0.));\n#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);\n\
+///     #5=SPHERICAL_SURFACE('ball',#4,5.);\nENDSEC;\nEND-ISO-10303-21;\n";
+/// let part = parse(Format::Step, step)?;
+/// assert_eq!(part.patches.len(), 1);
+/// assert!(matches!(part.patches[0].surface, Surface::Sphere(_)));
+/// assert!((part.patches[0].surface.point(0.0, 0.0).length() - 5.0).abs() < 1e-12);
+/// assert!(part.notes.contains(&ReadNote::UnitsAssumed));
+/// // Malformed text names where it went wrong.
+/// let e = parse(Format::Step, "ISO-10303-21;\nDATA;\n#1=A(1,2;\nENDSEC;").unwrap_err();
+/// assert!(e.to_string().starts_with("STEP line 3, column 9:"), "{e}");
+/// # Ok::<(), swarf_surface::io::ReadError>(())
+/// ```
 pub fn parse(format: Format, text: &str) -> Result<CompoundSurface, ReadError> {
     match format {
         Format::Json => json::parse(text),
         Format::Step => step::parse(text),
         Format::Iges => iges::parse(text),
     }
+}
+
+/// `; skipped: …` listing what a reader skipped, for [`ReadError::Empty`].
+pub(crate) fn skipped_detail(skipped: &[ReadNote]) -> String {
+    let list: Vec<String> = skipped.iter().map(ToString::to_string).collect();
+    format!("; skipped: {}", list.join("; "))
 }
 
 /// Line and column (1-based, in characters) of byte offset `pos` in `text`.

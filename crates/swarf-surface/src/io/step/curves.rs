@@ -237,12 +237,7 @@ impl Model<'_> {
             });
         }
         if let Some(c) = inst.part("CIRCLE").or_else(|| inst.part("ELLIPSE")) {
-            let f = self.placement(id, c.get(1))?;
-            let a = self.num(id, c.get(2), "radius")? * self.length;
-            let b = match c.get(3) {
-                Some(p) => self.num(id, Some(p), "semi_axis_2")? * self.length,
-                None => a,
-            };
+            let (f, a, b) = self.conic(id, c)?;
             if !(a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
                 return Err(TrimFailure::ConicRadii { curve: id });
             }

@@ -10,7 +10,7 @@ use super::lex::{refs, show, Instance, Param};
 use super::trims::{set_domain, MAX_FILE_TRIM_POINTS};
 use super::DEFAULT_LINEAR_RANGE;
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
-use crate::io::{line_col, Format, ReadError};
+use crate::io::{line_col, skipped_detail, Format, ReadError};
 use crate::surface::{
     ConicalSurface, CylindricalSurface, NurbsSurface, ParamBox, PlaneSurface, SphericalSurface,
     Surface, ToroidalSurface,
@@ -403,14 +403,7 @@ impl Model<'_> {
             let detail = if skipped.is_empty() {
                 String::new()
             } else {
-                format!(
-                    "; skipped: {}",
-                    skipped
-                        .iter()
-                        .map(ToString::to_string)
-                        .collect::<Vec<_>>()
-                        .join("; ")
-                )
+                skipped_detail(&skipped)
             };
             return Err(ReadError::Empty {
                 format: Format::Step,
@@ -636,6 +629,18 @@ impl Model<'_> {
         Ok(out)
     }
 
+    /// The placement and the semi-axes (mm) of the `CIRCLE` or `ELLIPSE` `id` with attributes
+    /// `c` (a circle's second semi-axis is its radius).
+    pub(super) fn conic(&self, id: u64, c: &[Param]) -> R<(Frame, f64, f64)> {
+        let f = self.placement(id, c.get(1))?;
+        let a = self.num(id, c.get(2), "radius")? * self.length;
+        let b = match c.get(3) {
+            Some(p) => self.num(id, Some(p), "semi_axis_2")? * self.length,
+            None => a,
+        };
+        Ok((f, a, b))
+    }
+
     /// Points (mm) that bound a face: vertices, B-spline edge control points, circle and ellipse
     /// samples reachable from its bounds (not through placements, lines or pcurves).
     pub(super) fn boundary_points(&self, face: u64, bounds: &Param) -> R<Vec<Vec3>> {
@@ -670,12 +675,7 @@ impl Model<'_> {
                 continue;
             }
             if let Some(c) = inst.part("CIRCLE").or_else(|| inst.part("ELLIPSE")) {
-                let f = self.placement(id, c.get(1))?;
-                let a = self.num(id, c.get(2), "radius")? * self.length;
-                let b = match c.get(3) {
-                    Some(p) => self.num(id, Some(p), "semi_axis_2")? * self.length,
-                    None => a,
-                };
+                let (f, a, b) = self.conic(id, c)?;
                 for k in 0..32 {
                     let t = k as f64 / 32.0 * std::f64::consts::TAU;
                     out.push(f.origin + a * t.cos() * f.x + b * t.sin() * f.y);
