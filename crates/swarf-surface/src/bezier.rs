@@ -9,7 +9,7 @@
 //!
 //! A trimmed patch ([`crate::Trim`]) keeps only the pieces that reach the part: each piece
 //! knows its rectangle in the Bézier parameters of the piece it was cut from, and that root
-//! piece's map to the patch's parameters ([`Axis`]: affine over a knot span, or the angle of a
+//! piece's map to the patch's parameters (`Axis`: affine over a knot span, or the angle of a
 //! rational quadratic arc, `θ = m + 2·atan(tan(h/2)·(2t − 1))`, both increasing, so rectangles map
 //! to rectangles exactly); whether the trim boundary crosses it ([`OnPart`]); halves of a
 //! crossing piece are classified again (dropped when off the part), and only corners on the part

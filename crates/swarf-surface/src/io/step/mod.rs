@@ -6,10 +6,10 @@
 //!
 //! * **Patches**: when the file has faces (`ADVANCED_FACE`, `FACE_SURFACE`), one patch per face,
 //!   named after the face (or its surface), flipped when the face's `same_sense` is `.F.`;
-//!   faces on other surface kinds are skipped with a [`ReadNote::UnsupportedSurface`]. A file
+//!   faces on other surface kinds are skipped with a [`ReadNote::UnsupportedSurface`](crate::ReadNote::UnsupportedSurface). A file
 //!   without faces gives one patch per surface instance.
-//! * **Face trims**: a face's bounds become the patch's [`Trim`] (in the surface's own
-//!   parameters), with a [`ReadNote::Trimmed`]: the `FACE_OUTER_BOUND` is the outer loop (no
+//! * **Face trims**: a face's bounds become the patch's [`Trim`](crate::Trim) (in the surface's own
+//!   parameters), with a [`ReadNote::Trimmed`](crate::ReadNote::Trimmed): the `FACE_OUTER_BOUND` is the outer loop (no
 //!   such bound: the loop with the largest parameter box), the other bounds are holes;
 //!   `VERTEX_LOOP`s (a pole, an apex) enclose nothing and are left out, so a face bounded only
 //!   by them is untrimmed. An `EDGE_LOOP` is walked through its `ORIENTED_EDGE`s and their
@@ -40,17 +40,17 @@
 //!   hold the loops. An edge curve of another kind, a sample more than 1e-4 of the surface's
 //!   size (+ 1e-3 mm) off the surface, edges that do not join, a loop that does not close in
 //!   the parameters or winds otherwise, or more than 200 000 points for a face (2 000 000 for
-//!   the file) leave the patch untrimmed with a [`ReadNote::TrimNotHonoured`] saying why.
+//!   the file) leave the patch untrimmed with a [`ReadNote::TrimNotHonoured`](crate::ReadNote::TrimNotHonoured) saying why.
 //! * **Units**: the length unit of the `GLOBAL_UNIT_ASSIGNED_CONTEXT` (`SI_UNIT` with any prefix,
 //!   or a `CONVERSION_BASED_UNIT` such as INCH or FOOT, resolved through its
 //!   `LENGTH_MEASURE_WITH_UNIT`) scales lengths to mm; the plane-angle unit scales cone angles.
-//!   No unit: mm, with a [`ReadNote::UnitsAssumed`].
+//!   No unit: mm, with a [`ReadNote::UnitsAssumed`](crate::ReadNote::UnitsAssumed).
 //! * **Parameter boxes of elementary surfaces**: angles take their full range (u ∈ [0, 2π];
 //!   sphere v ∈ [−π/2, π/2]; torus v ∈ [0, 2π]); linear parameters (plane u, v; cylinder and
 //!   cone v) span the face's boundary: its vertices, the control points of its B-spline edges
 //!   and its circles and ellipses, projected — a range that holds the face, possibly larger.
 //!   Without a face, or with a boundary of zero extent, they take [`DEFAULT_LINEAR_RANGE`] and
-//!   a [`ReadNote::DefaultParameterBox`] says so.
+//!   a [`ReadNote::DefaultParameterBox`](crate::ReadNote::DefaultParameterBox) says so.
 
 mod curves;
 mod entities;
