@@ -41,21 +41,20 @@ pub struct MaterialProbe<'a> {
 /// side; `−1`: an exit). `None` for a ray without material.
 #[inline]
 fn nearest_end(ray: &[Interval], t: f64) -> Option<(f64, f64, i8)> {
-    let mut best: Option<(f64, f64, i8)> = None;
-    let mut consider = |end: f64, kind: i8| {
-        let d = (t - end).abs();
-        if best.map_or(true, |(_, b, _)| d < (t - b).abs()) {
-            best = Some((0.0, end, kind));
-        }
-    };
+    // (end, kind) of the nearest end so far; the ends are sorted, so past the first interval
+    // that starts above t nothing nearer follows.
+    let mut best: Option<(f64, i8)> = None;
     for iv in ray {
-        consider(iv.enter, 1);
-        consider(iv.exit, -1);
+        for (end, kind) in [(iv.enter, 1), (iv.exit, -1)] {
+            if best.map_or(true, |(b, _)| (t - end).abs() < (t - b).abs()) {
+                best = Some((end, kind));
+            }
+        }
         if iv.enter > t {
             break;
         }
     }
-    best.map(|(_, end, kind)| (f64::from(kind) * (t - end), end, kind))
+    best.map(|(end, kind)| (f64::from(kind) * (t - end), end, kind))
 }
 
 impl<'a> MaterialProbe<'a> {

@@ -16,13 +16,12 @@ const R: f64 = 5.0;
 #[test]
 fn up_milling_beside_a_wall() {
     // Material on +y_L (the feed is +X, y_L = +Y) from y = R − a_e: up-milling, a_e = 2, a_p = 5.
-    let p = program("G21 G90\nG0 X-10 Y0 Z-5\nG1 X50 F600\n", "up.ngc");
-    let mut stock = block([0.0, 3.0, -10.0], [40.0, 20.0, 0.0], H);
-    let locs = run(
-        &p,
+    let locs = run_in_block(
+        "G21 G90\nG0 X-10 Y0 Z-5\nG1 X50 F600\n",
+        "up.ngc",
+        [0.0, 3.0, -10.0],
+        [40.0, 20.0, 0.0],
         Cutter::flat(10.0).unwrap(),
-        &mut stock,
-        EngageOptions::default(),
     );
     let exit = (1.0f64 - 2.0 / R).acos();
     let e = at(&locs, [20.0, 0.0, -5.0]);
@@ -34,13 +33,12 @@ fn up_milling_beside_a_wall() {
 
 #[test]
 fn down_milling_beside_a_wall() {
-    let p = program("G21 G90\nG0 X-10 Y0 Z-5\nG1 X50 F600\n", "down.ngc");
-    let mut stock = block([0.0, -20.0, -10.0], [40.0, -3.0, 0.0], H);
-    let locs = run(
-        &p,
+    let locs = run_in_block(
+        "G21 G90\nG0 X-10 Y0 Z-5\nG1 X50 F600\n",
+        "down.ngc",
+        [0.0, -20.0, -10.0],
+        [40.0, -3.0, 0.0],
         Cutter::flat(10.0).unwrap(),
-        &mut stock,
-        EngageOptions::default(),
     );
     let entry = 180.0 - (1.0f64 - 2.0 / R).acos().to_degrees();
     let e = at(&locs, [20.0, 0.0, -5.0]);
@@ -57,13 +55,12 @@ fn down_milling_beside_a_wall() {
 
 #[test]
 fn full_slot_with_a_flat_end_mill() {
-    let p = program("G21 G90\nG0 X-10 Y10 Z-5\nG1 X50 F600\n", "slot.ngc");
-    let mut stock = block([0.0, 0.0, -10.0], [40.0, 20.0, 0.0], H);
-    let locs = run(
-        &p,
+    let locs = run_in_block(
+        "G21 G90\nG0 X-10 Y10 Z-5\nG1 X50 F600\n",
+        "slot.ngc",
+        [0.0, 0.0, -10.0],
+        [40.0, 20.0, 0.0],
         Cutter::flat(10.0).unwrap(),
-        &mut stock,
-        EngageOptions::default(),
     );
     let e = at(&locs, [20.0, 10.0, -5.0]);
     check(e, PI * R * 5.0, 0.0, 180.0, 0.005, 0.5);
@@ -82,13 +79,12 @@ fn full_slot_with_a_flat_end_mill() {
 #[test]
 fn ball_end_mill_slot_at_depth_3() {
     // The front half of the spherical zone of height d = 3 under the top: π·R·d.
-    let p = program("G21 G90\nG0 X-10 Y10 Z-3\nG1 X50 F600\n", "ball.ngc");
-    let mut stock = block([0.0, 0.0, -10.0], [40.0, 20.0, 0.0], H);
-    let locs = run(
-        &p,
+    let locs = run_in_block(
+        "G21 G90\nG0 X-10 Y10 Z-3\nG1 X50 F600\n",
+        "ball.ngc",
+        [0.0, 0.0, -10.0],
+        [40.0, 20.0, 0.0],
         Cutter::ball(10.0).unwrap(),
-        &mut stock,
-        EngageOptions::default(),
     );
     let e = at(&locs, [20.0, 10.0, -3.0]);
     check(e, PI * R * 3.0, 0.0, 180.0, 0.005, 0.5);
@@ -98,13 +94,12 @@ fn ball_end_mill_slot_at_depth_3() {
 #[test]
 fn flat_end_mill_plunging() {
     // The whole bottom disc π·R², nothing on the side (it slides along its own wall).
-    let p = program("G21 G90\nG0 X20 Y10 Z2\nG1 Z-4 F100\n", "plunge.ngc");
-    let mut stock = block([0.0, 0.0, -10.0], [40.0, 20.0, 0.0], H);
-    let locs = run(
-        &p,
+    let locs = run_in_block(
+        "G21 G90\nG0 X20 Y10 Z2\nG1 Z-4 F100\n",
+        "plunge.ngc",
+        [0.0, 0.0, -10.0],
+        [40.0, 20.0, 0.0],
         Cutter::flat(10.0).unwrap(),
-        &mut stock,
-        EngageOptions::default(),
     );
     assert_eq!(locs.len(), 6);
     for e in &locs[3..] {
@@ -159,13 +154,12 @@ fn tilted_flat_end_mill_on_a_plane() {
     let text = format!(
         "UNITS/MM\nRAPID\nGOTO/20,-20,20,{i},0,{k}\nRAPID\nGOTO/20,-20,-3,{i},0,{k}\nFEDRAT/600\nGOTO/20,60,-3,{i},0,{k}\n"
     );
-    let p = program(&text, "tilted.apt");
-    let mut stock = block([0.0, 0.0, -10.0], [40.0, 40.0, 0.0], H);
-    let locs = run(
-        &p,
+    let locs = run_in_block(
+        &text,
+        "tilted.apt",
+        [0.0, 0.0, -10.0],
+        [40.0, 40.0, 0.0],
         Cutter::flat(10.0).unwrap(),
-        &mut stock,
-        EngageOptions::default(),
     );
     let e = at(&locs, [20.0, 20.0, -3.0]);
     check(e, PI * R * 3.0 / t.cos(), 0.0, 180.0, 0.005, 0.5);
@@ -180,13 +174,12 @@ fn bull_nose_ramp() {
     // wholly engaged; on the corner torus f = sin ψ sin φ cos γ + cos ψ sin γ > 0 on the
     // φ-measure π + 2·asin(min(1, cot ψ tan γ)) of each parallel ψ; the cylinder is engaged on
     // its front half up to the top (tip at z = −3: from z = 2 to 3).
-    let p = program("G21 G90\nG0 X-5 Y10 Z1\nG1 X55 Z-5 F600\n", "ramp.ngc");
-    let mut stock = block([0.0, 0.0, -10.0], [50.0, 20.0, 0.0], H);
-    let locs = run(
-        &p,
+    let locs = run_in_block(
+        "G21 G90\nG0 X-5 Y10 Z1\nG1 X55 Z-5 F600\n",
+        "ramp.ngc",
+        [0.0, 0.0, -10.0],
+        [50.0, 20.0, 0.0],
         Cutter::bull(10.0, 2.0).unwrap(),
-        &mut stock,
-        EngageOptions::default(),
     );
     let e = at(&locs, [35.0, 10.0, -3.0]);
     let (ee, r, tg) = (3.0, 2.0, 0.1f64);

@@ -30,9 +30,7 @@ use std::path::{Path, PathBuf};
 
 use swarf_io::color::rgb8;
 use swarf_io::image::font;
-/// The raster the maps are drawn on, now `swarf_io::image::RgbImage`; named here for one more
-/// release so callers of `swarf_plan::plot::RgbImage` keep compiling.
-pub use swarf_io::image::RgbImage;
+use swarf_io::image::RgbImage;
 use swarf_io::{ColorMap, GlbOptions, IoError, TriMesh};
 
 use crate::size::{StandardCutters, ToolSizeMap};
@@ -160,20 +158,6 @@ impl Default for PlotOptions {
     }
 }
 
-/// `x` with three significant digits, in plain or exponent form.
-fn label(x: f64) -> String {
-    if x == 0.0 || !x.is_finite() {
-        return format!("{x}");
-    }
-    let e = x.abs().log10().floor();
-    if !(-3.0..5.0).contains(&e) {
-        format!("{x:.2e}")
-    } else {
-        let dec = (2.0 - e).max(0.0) as usize;
-        format!("{x:.dec$}")
-    }
-}
-
 /// Where things are in a patch map picture (pixels, from the top-left corner).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct MapLayout {
@@ -223,7 +207,7 @@ fn tick_labels(scale: &RadiusScale, opts: &PlotOptions) -> Vec<(f64, String)> {
     (0..ticks)
         .map(|k| {
             let t = k as f64 / (ticks - 1) as f64;
-            let text = label(scale.at(t));
+            let text = swarf_io::image::label(scale.at(t));
             if k == 0 && scale.clamped {
                 (t, format!("<{text}"))
             } else {
@@ -587,15 +571,6 @@ pub fn write_part_glb(
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn labels_have_three_significant_digits() {
-        assert_eq!(label(12.345), "12.3");
-        assert_eq!(label(0.5), "0.500");
-        assert_eq!(label(1234.0), "1234");
-        assert_eq!(label(123_456.0), "1.23e5");
-        assert_eq!(label(0.000_123_4), "1.23e-4");
-    }
 
     #[test]
     fn scale_is_logarithmic_and_special_values_have_their_colours() {

@@ -9,13 +9,12 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde::Serialize;
 use swarf_engage::{EngageOptions, Engagement, Engager};
-use swarf_stock::MeshOptions;
 
 use crate::cli::SetupArgs;
 use crate::commands::engage_plots;
-use crate::commands::simulate::stock_spec;
+use crate::commands::simulate::{build_stock, positive_mm};
 use crate::commands::tools::{load_setup, tool_set, Setup};
-use crate::output::{print_json, write_atomic};
+use crate::output::{csv_field, print_json, write_atomic};
 
 #[derive(Debug, Args)]
 pub(crate) struct EngageArgs {
@@ -81,27 +80,19 @@ struct EngageSummary {
 
 pub(crate) fn run(args: &EngageArgs) -> Result<()> {
     let t0 = Instant::now();
-    if !(args.resolution > 0.0 && args.resolution.is_finite()) {
-        bail!(
-            "--resolution must be a positive number of mm, got {}",
-            args.resolution
-        );
-    }
+    positive_mm("resolution", args.resolution)?;
     let Setup {
         program,
         single,
         table,
     } = load_setup(&args.setup, &args.program)?;
     let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
-    let spec = stock_spec(args.stock.as_deref(), table.as_ref())?;
-    let mut stock = spec
-        .build(
-            args.resolution,
-            MeshOptions {
-                allow_open: args.allow_open_mesh,
-            },
-        )
-        .context("building the stock")?;
+    let mut stock = build_stock(
+        args.stock.as_deref(),
+        table.as_ref(),
+        args.resolution,
+        args.allow_open_mesh,
+    )?;
     let opts = EngageOptions::default()
         .with_step(args.step)
         .with_dz(args.dz)
@@ -169,14 +160,6 @@ pub(crate) fn run(args: &EngageArgs) -> Result<()> {
 
 fn opt(x: Option<f64>) -> String {
     x.map(|v| format!("{v}")).unwrap_or_default()
-}
-
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
 }
 
 /// `engagement.csv`, `discs.csv`, `bottom.csv`.

@@ -5,7 +5,7 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 use swarf_engage::Engagement;
-use swarf_plan::plot::RgbImage;
+use swarf_io::image::{label, RgbImage};
 
 const INK: [u8; 3] = [0, 0, 0];
 const PAPER: [u8; 3] = [255, 255, 255];
@@ -32,16 +32,6 @@ fn axes(img: &mut RgbImage, title: &str, xlabel: &str, ylabel: &str) {
         INK,
     );
     img.text(4, TOP - 14, ylabel, 1, INK);
-}
-
-fn label(x: f64) -> String {
-    if x.abs() >= 100.0 {
-        format!("{x:.0}")
-    } else if x.abs() >= 1.0 {
-        format!("{x:.1}")
-    } else {
-        format!("{x:.3}")
-    }
 }
 
 fn y_ticks(img: &mut RgbImage, max: f64) {

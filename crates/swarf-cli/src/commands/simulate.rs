@@ -116,33 +116,20 @@ impl SimulateSummary {
 }
 
 pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
-    if !(args.resolution > 0.0 && args.resolution.is_finite()) {
-        bail!(
-            "--resolution must be a positive number of mm, got {}",
-            args.resolution
-        );
-    }
-    if !(args.tolerance > 0.0 && args.tolerance.is_finite()) {
-        bail!(
-            "--tolerance must be a positive number of mm, got {}",
-            args.tolerance
-        );
-    }
+    positive_mm("resolution", args.resolution)?;
+    positive_mm("tolerance", args.tolerance)?;
     let Setup {
         program,
         single,
         table,
     } = load_setup(&args.setup, &args.program)?;
     let tools = tools_for(&program, single.as_ref(), table.as_ref())?;
-    let spec = stock_spec(args.stock.as_deref(), table.as_ref())?;
-    let mut stock = spec
-        .build(
-            args.resolution,
-            MeshOptions {
-                allow_open: args.allow_open_mesh,
-            },
-        )
-        .context("building the stock")?;
+    let mut stock = build_stock(
+        args.stock.as_deref(),
+        table.as_ref(),
+        args.resolution,
+        args.allow_open_mesh,
+    )?;
     let options = SimOptions::default().with_chordal_tolerance(args.tolerance);
     let report = simulate_with_progress(&program, &tools, &mut stock, &options)
         .with_context(|| format!("simulating {}", args.program.display()))?;
@@ -204,7 +191,33 @@ pub(crate) fn tools_for(
         .fold(Tools::default(), |t, (n, r)| t.with(*n, &r.cutter)))
 }
 
-pub(crate) fn stock_spec(arg: Option<&str>, table: Option<&ToolTable>) -> Result<StockSpec> {
+/// A usage error unless `value` (option `--name`) is a positive, finite number of mm.
+pub(crate) fn positive_mm(name: &str, value: f64) -> Result<()> {
+    if value > 0.0 && value.is_finite() {
+        Ok(())
+    } else {
+        bail!("--{name} must be a positive number of mm, got {value}")
+    }
+}
+
+/// The stock `--stock` gives (or the CAMotics project's workpiece) at ray spacing `resolution`.
+pub(crate) fn build_stock(
+    arg: Option<&str>,
+    table: Option<&ToolTable>,
+    resolution: f64,
+    allow_open_mesh: bool,
+) -> Result<TriDexel> {
+    stock_spec(arg, table)?
+        .build(
+            resolution,
+            MeshOptions {
+                allow_open: allow_open_mesh,
+            },
+        )
+        .context("building the stock")
+}
+
+fn stock_spec(arg: Option<&str>, table: Option<&ToolTable>) -> Result<StockSpec> {
     match (arg, table.and_then(|t| t.workpiece)) {
         (Some(s), _) => StockSpec::parse(s).with_context(|| format!("stock `{s}`")),
         (None, Some(b)) => Ok(StockSpec::Box {
@@ -239,19 +252,11 @@ fn moves_csv(program: &Program, report: &SimulationReport) -> String {
             out,
             "{i},{},{v},{},{kind},{}",
             m.line,
-            csv_field(file),
+            crate::output::csv_field(file),
             m.tool
         );
     }
     out
-}
-
-fn csv_field(s: &str) -> String {
-    if s.contains([',', '"', '\n']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
 }
 
 /// Writes the machined part (`stock.stl`, `stock.glb`), `moves.csv` and `summary.json`.

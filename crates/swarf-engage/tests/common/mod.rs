@@ -32,6 +32,20 @@ pub(crate) fn run(
         .collect()
 }
 
+/// Every location of the program `text` (file name `file`) with `cutter` in the block from
+/// `min` to `max` at the tests' ray spacing of 0.1 mm, default options.
+pub(crate) fn run_in_block(
+    text: &str,
+    file: &str,
+    min: [f64; 3],
+    max: [f64; 3],
+    cutter: Cutter,
+) -> Vec<Engagement> {
+    let p = program(text, file);
+    let mut stock = block(min, max, 0.1);
+    run(&p, cutter, &mut stock, EngageOptions::default())
+}
+
 /// The location whose tip is nearest to `p`.
 pub(crate) fn at(locations: &[Engagement], p: [f64; 3]) -> &Engagement {
     let p = Vec3::from(p);

@@ -107,3 +107,31 @@ impl RgbImage {
         crate::write_atomic(path, |w| std::io::Write::write_all(w, &bytes))
     }
 }
+
+/// `x` with three significant digits, in plain or exponent form: the tick labels of every plot.
+pub fn label(x: f64) -> String {
+    if x == 0.0 || !x.is_finite() {
+        return format!("{x}");
+    }
+    let e = x.abs().log10().floor();
+    if !(-3.0..5.0).contains(&e) {
+        format!("{x:.2e}")
+    } else {
+        let dec = (2.0 - e).max(0.0) as usize;
+        format!("{x:.dec$}")
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn labels_have_three_significant_digits() {
+        assert_eq!(label(12.345), "12.3");
+        assert_eq!(label(0.5), "0.500");
+        assert_eq!(label(1234.0), "1234");
+        assert_eq!(label(123_456.0), "1.23e5");
+        assert_eq!(label(0.000_123_4), "1.23e-4");
+    }
+}
