@@ -69,6 +69,6 @@ pub use engagement::{CircleEngagement, Engagement, PhiInterval};
 pub use probe::{Depth, MaterialProbe};
 pub use run::{
     path_length, EngageError, EngageOptions, EngageStats, Engager, DEFAULT_DPHI_DEG, DEFAULT_DZ_MM,
-    DEFAULT_STEP_MM,
+    DEFAULT_STEP_MM, MAX_LOCATIONS_PER_MOVE,
 };
 pub use strip::{Circle, Strip, StripKind};

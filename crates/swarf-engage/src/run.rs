@@ -122,6 +122,18 @@ pub enum EngageError {
         /// Tool number.
         tool: u32,
     },
+    /// A move would have more cutter locations than [`MAX_LOCATIONS_PER_MOVE`].
+    #[error("{file}:{line}: --step {step} mm gives {locations} cutter locations on this move, more than {max}; give a larger --step", max = MAX_LOCATIONS_PER_MOVE)]
+    TooManyLocations {
+        /// Source file.
+        file: String,
+        /// Source line.
+        line: u32,
+        /// Locations the move would have.
+        locations: f64,
+        /// The step asked for, mm.
+        step: f64,
+    },
     /// Cutting the stock failed (non-finite pose, a 5-axis move beyond the sub-move limit).
     #[error(transparent)]
     Stock(#[from] StockError),
@@ -148,6 +160,64 @@ impl Prepared {
             height: cutter.apt_params().h,
         }
     }
+}
+
+/// The prepared cutters by tool number, and the one for every other number.
+#[derive(Clone, Debug, Default)]
+struct PreparedTools {
+    by_number: BTreeMap<u32, Prepared>,
+    fallback: Option<Prepared>,
+}
+
+impl PreparedTools {
+    /// The cutter of move `index`.
+    fn of(&self, program: &Program, index: usize) -> Result<&Prepared, EngageError> {
+        let m = &program.moves[index];
+        self.by_number
+            .get(&m.tool)
+            .or(self.fallback.as_ref())
+            .ok_or_else(|| EngageError::UnknownTool {
+                file: file_of(program, m),
+                line: m.line,
+                index,
+                tool: m.tool,
+            })
+    }
+}
+
+/// A feed move being walked: its index, tip path length, the spacing and number of its
+/// locations, and how many of them are done.
+#[derive(Clone, Copy, Debug)]
+struct Walk {
+    index: usize,
+    length: f64,
+    step: f64,
+    count: usize,
+    done: usize,
+}
+
+impl Walk {
+    /// The move parameter of location `i` (the last is the move's end).
+    fn s(&self, i: usize) -> f64 {
+        if i + 1 >= self.count {
+            1.0
+        } else {
+            (i + 1) as f64 * self.step / self.length
+        }
+    }
+}
+
+/// Most cutter locations one move may have (a `step` far below the move's length would
+/// otherwise run for days).
+pub const MAX_LOCATIONS_PER_MOVE: usize = 1_000_000;
+
+/// The source file name of `m`.
+fn file_of(program: &Program, m: &Move) -> String {
+    program
+        .files
+        .get(usize::from(m.file))
+        .cloned()
+        .unwrap_or_default()
 }
 
 /// Figures of a run so far.
@@ -202,12 +272,11 @@ pub struct Engager<'a> {
     program: &'a Program,
     stock: &'a mut TriDexel,
     opts: EngageOptions,
-    tools: BTreeMap<u32, Prepared>,
-    default_tool: Option<Prepared>,
+    tools: PreparedTools,
     angles: Angles,
     next_move: usize,
-    /// The move being walked: index, its location parameters, how many are done.
-    current: Option<(usize, Vec<f64>, usize)>,
+    /// The feed move being walked.
+    current: Option<Walk>,
     last_x: Option<Vec3>,
     stats: EngageStats,
     failed: bool,
@@ -225,23 +294,25 @@ impl<'a> Engager<'a> {
         opts: EngageOptions,
     ) -> Result<Self, EngageError> {
         opts.check()?;
-        let mut prepared = BTreeMap::new();
+        let mut by_number = BTreeMap::new();
         let mut used: Vec<u32> = program.tools.clone();
         used.extend(program.moves.iter().map(|m| m.tool));
         used.sort_unstable();
         used.dedup();
         for n in used {
             if let Some(c) = tools.resolved().get(&n) {
-                prepared.insert(n, Prepared::new(&c.cutter, &opts));
+                by_number.insert(n, Prepared::new(&c.cutter, &opts));
             }
         }
-        let default_tool = tools.fallback().map(|c| Prepared::new(c, &opts));
+        let tools = PreparedTools {
+            by_number,
+            fallback: tools.fallback().map(|c| Prepared::new(c, &opts)),
+        };
         Ok(Self {
             program,
             stock,
             opts,
-            tools: prepared,
-            default_tool,
+            tools,
             angles: Angles::new(opts.dphi_deg),
             next_move: 0,
             current: None,
@@ -261,37 +332,16 @@ impl<'a> Engager<'a> {
         self.next_move
     }
 
-    fn tool(&self, index: usize) -> Result<&Prepared, EngageError> {
-        let m = &self.program.moves[index];
-        self.tools
-            .get(&m.tool)
-            .or(self.default_tool.as_ref())
-            .ok_or_else(|| EngageError::UnknownTool {
-                file: self.file_of(m),
-                line: m.line,
-                index,
-                tool: m.tool,
-            })
-    }
-
-    fn file_of(&self, m: &Move) -> String {
-        self.program
-            .files
-            .get(usize::from(m.file))
-            .cloned()
-            .unwrap_or_default()
-    }
-
     /// Cuts `[s0, s1]` of move `index`; returns the volume removed (mm³).
     fn cut(&mut self, index: usize, s0: f64, s1: f64) -> Result<f64, EngageError> {
         let t0 = Instant::now();
-        let shape = self.tool(index)?.shape.clone();
+        let shape = &self.tools.of(self.program, index)?.shape;
         let cut = self.stock.cut_move_range(
             self.program,
             index,
             s0,
             s1,
-            &shape,
+            shape,
             self.opts.chordal_tolerance_mm,
         )?;
         self.stats.simulate_elapsed_s += t0.elapsed().as_secs_f64();
@@ -301,39 +351,48 @@ impl<'a> Engager<'a> {
         Ok(removed)
     }
 
-    /// The location parameters of feed move `m`: every `step` mm of tip travel, and 1.
-    fn locations(&self, m: &Move) -> Vec<f64> {
-        let len = path_length(self.program, m);
-        let mut out = Vec::new();
-        if self.opts.step_mm > 0.0 && len > self.opts.step_mm {
-            let n = (len / self.opts.step_mm).ceil() as usize;
-            for i in 1..n {
-                let s = i as f64 * self.opts.step_mm / len;
-                if s < 1.0 - 1e-9 {
-                    out.push(s);
-                }
+    /// The walk of feed move `index`, whose tip path is `length` mm long: a location every
+    /// `step` mm of tip travel and at the end.
+    fn walk(&self, index: usize, length: f64) -> Result<Walk, EngageError> {
+        let step = self.opts.step_mm;
+        let inner = if step > 0.0 && length > step {
+            // Locations i·step for i = 1 … while short of the end by more than a hair.
+            let n = (length / step * (1.0 - 1e-9)).ceil() - 1.0;
+            if n + 1.0 > MAX_LOCATIONS_PER_MOVE as f64 {
+                let m = &self.program.moves[index];
+                return Err(EngageError::TooManyLocations {
+                    file: file_of(self.program, m),
+                    line: m.line,
+                    locations: n + 1.0,
+                    step,
+                });
             }
-        }
-        out.push(1.0);
-        out
+            n.max(0.0) as usize
+        } else {
+            0
+        };
+        Ok(Walk {
+            index,
+            length,
+            step,
+            count: inner + 1,
+            done: 0,
+        })
     }
 
     fn step(&mut self) -> Result<Option<Engagement>, EngageError> {
         loop {
-            if let Some((index, ss, done)) = self.current.take() {
-                if done < ss.len() {
-                    let s0 = if done == 0 { 0.0 } else { ss[done - 1] };
-                    let s1 = ss[done];
-                    self.current = Some((index, ss, done + 1));
+            if let Some(mut walk) = self.current.take() {
+                if walk.done < walk.count {
+                    let (index, done) = (walk.index, walk.done);
+                    let s0 = if done == 0 { 0.0 } else { walk.s(done - 1) };
+                    let s1 = walk.s(done);
+                    let travel = walk.length * (s1 - s0);
+                    walk.done += 1;
+                    self.current = Some(walk);
                     let mut e = self.engagement_at(index, s1)?;
                     e.removed_mm3 = self.cut(index, s0, s1)?;
-                    e.mrr_mm3_min = mrr(
-                        self.program,
-                        &self.program.moves[index],
-                        s0,
-                        s1,
-                        e.removed_mm3,
-                    );
+                    e.mrr_mm3_min = mrr(&self.program.moves[index], s1 - s0, travel, e.removed_mm3);
                     self.stats.locations += 1;
                     if e.is_engaged() {
                         self.stats.engaged_locations += 1;
@@ -352,8 +411,8 @@ impl<'a> Engager<'a> {
                 self.cut(index, 0.0, 1.0)?;
                 continue;
             }
-            let ss = self.locations(m);
-            self.current = Some((index, ss, 0));
+            let length = path_length(self.program, m);
+            self.current = Some(self.walk(index, length)?);
         }
     }
 
@@ -384,7 +443,7 @@ impl<'a> Engager<'a> {
         let mut e = Engagement {
             location: self.stats.locations,
             move_index: index,
-            file: self.file_of(m),
+            file: file_of(program, m),
             line: m.line,
             s,
             tip: pose.tip,
@@ -400,7 +459,7 @@ impl<'a> Engager<'a> {
             removed_mm3: 0.0,
             mrr_mm3_min: 0.0,
         };
-        let tool = self.tool(index)?;
+        let tool = self.tools.of(program, index)?;
         let frame = LocalFrame {
             tip: pose.tip,
             x,
@@ -558,13 +617,12 @@ pub fn path_length(program: &Program, m: &Move) -> f64 {
     }
 }
 
-/// Removal rate of `removed` mm³ over `[s0, s1]` of `m` at its programmed feed, mm³/min (0 at
-/// zero feed).
-fn mrr(program: &Program, m: &Move, s0: f64, s1: f64, removed: f64) -> f64 {
-    let travel = path_length(program, m) * (s1 - s0);
+/// Removal rate of `removed` mm³ over a part `ds` of move `m` (`travel` mm of tip path) at its
+/// programmed feed, mm³/min (0 at zero feed).
+fn mrr(m: &Move, ds: f64, travel: f64, removed: f64) -> f64 {
     let minutes = match m.feed_mode {
         FeedMode::PerMinute => travel / m.feed,
-        FeedMode::InverseTime => (s1 - s0) / m.feed,
+        FeedMode::InverseTime => ds / m.feed,
         FeedMode::PerRevolution => travel / (m.feed * m.spindle_rpm),
     };
     if minutes.is_finite() && minutes > 0.0 {
