@@ -258,6 +258,8 @@ pub struct Engagement {
     pub file: String,
     /// 1-based source line.
     pub line: u32,
+    /// The tool number of the move.
+    pub tool: u32,
     /// Move parameter of the location, 0 at the move's start, 1 at its end.
     pub s: f64,
     /// Tool tip, workpiece frame, mm.
@@ -268,6 +270,18 @@ pub struct Engagement {
     pub x_l: Vec3,
     /// `y_L = z_L × x_L`.
     pub y_l: Vec3,
+    /// Unit direction of the tip's velocity (workpiece frame): the feed direction before its
+    /// projection across the axis, so it keeps the axial part of a ramp or plunge.
+    pub tip_direction: Vec3,
+    /// Angular velocity of the tool axis per millimetre of tip travel, rad/mm (workpiece
+    /// frame; zero on 3-axis and 3+2 moves): a point at `r` from the tip moves
+    /// `tip_direction + axis_rate × r` per millimetre of tip travel.
+    pub axis_rate: Vec3,
+    /// Programmed tip feed rate at the location, mm/min (G93 inverse time and G95 per
+    /// revolution converted; 0 when it is not defined).
+    pub feed_mm_min: f64,
+    /// Spindle speed, rpm (0 when stopped).
+    pub spindle_rpm: f64,
     /// Engaged intervals per axial disc (engaged discs only), by height above the tip.
     pub discs: Vec<CircleEngagement>,
     /// Engaged intervals per bottom ring (flat bottoms; engaged rings only), by radius.
@@ -276,6 +290,9 @@ pub struct Engagement {
     pub area_mm2: f64,
     /// Axial depth: height of the engaged region along the axis, mm.
     pub ap_mm: f64,
+    /// Lowest and highest engaged height on the side, mm above the tip (interpolated between
+    /// discs like `ap_mm`); `None` when the side is not engaged.
+    pub side_extent_mm: Option<(f64, f64)>,
     /// Entry angle on the disc (or ring) of largest engagement, degrees.
     pub phi_entry_deg: Option<f64>,
     /// Exit angle on that disc, degrees.
@@ -296,6 +313,7 @@ impl Engagement {
     pub(crate) fn set_from(&mut self, side: Option<StripResult>, bottom: Option<StripResult>) {
         let (side, bottom) = (side.unwrap_or_default(), bottom.unwrap_or_default());
         self.area_mm2 = side.area + bottom.area;
+        self.side_extent_mm = side.extent;
         let z_lo = if bottom.extent.is_some() {
             Some(0.0)
         } else {

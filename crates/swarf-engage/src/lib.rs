@@ -68,7 +68,7 @@ pub mod strip;
 pub use engagement::{CircleEngagement, Engagement, PhiInterval};
 pub use probe::{Depth, MaterialProbe};
 pub use run::{
-    path_length, EngageError, EngageOptions, EngageStats, Engager, DEFAULT_DPHI_DEG, DEFAULT_DZ_MM,
-    DEFAULT_STEP_MM, MAX_LOCATIONS_PER_MOVE,
+    feed_rate, path_length, EngageError, EngageOptions, EngageStats, Engager, DEFAULT_DPHI_DEG,
+    DEFAULT_DZ_MM, DEFAULT_STEP_MM, MAX_LOCATIONS_PER_MOVE,
 };
 pub use strip::{Circle, Strip, StripKind};

@@ -384,13 +384,13 @@ impl<'a> Engager<'a> {
         loop {
             if let Some(mut walk) = self.current.take() {
                 if walk.done < walk.count {
-                    let (index, done) = (walk.index, walk.done);
+                    let (index, done, walk_length) = (walk.index, walk.done, walk.length);
                     let s0 = if done == 0 { 0.0 } else { walk.s(done - 1) };
                     let s1 = walk.s(done);
                     let travel = walk.length * (s1 - s0);
                     walk.done += 1;
                     self.current = Some(walk);
-                    let mut e = self.engagement_at(index, s1)?;
+                    let mut e = self.engagement_at(index, s1, walk_length)?;
                     e.removed_mm3 = self.cut(index, s0, s1)?;
                     e.mrr_mm3_min = mrr(&self.program.moves[index], s1 - s0, travel, e.removed_mm3);
                     self.stats.locations += 1;
@@ -417,10 +417,21 @@ impl<'a> Engager<'a> {
     }
 
     /// The engagement at parameter `s` of move `index`, against the stock as it is now.
-    fn engagement_at(&mut self, index: usize, s: f64) -> Result<Engagement, EngageError> {
+    fn engagement_at(
+        &mut self,
+        index: usize,
+        s: f64,
+        length: f64,
+    ) -> Result<Engagement, EngageError> {
         let program = self.program;
         let m = &program.moves[index];
         let state = MotionState::of_move(program, m, s);
+        let speed = state.v_tip.length();
+        let (tip_direction, axis_rate) = if speed > 0.0 {
+            (state.v_tip / speed, state.omega / speed)
+        } else {
+            (Vec3::ZERO, Vec3::ZERO)
+        };
         let pose = program.pose_at(m, s);
         let z = pose.axis.normalize();
         // x_L: the tip's feed direction across the axis; for a move along the axis the last
@@ -445,15 +456,21 @@ impl<'a> Engager<'a> {
             move_index: index,
             file: file_of(program, m),
             line: m.line,
+            tool: m.tool,
             s,
             tip: pose.tip,
             axis: z,
             x_l: x,
             y_l: y,
+            tip_direction,
+            axis_rate,
+            feed_mm_min: feed_rate(m, length),
+            spindle_rpm: m.spindle_rpm,
             discs: Vec::new(),
             bottom: Vec::new(),
             area_mm2: 0.0,
             ap_mm: 0.0,
+            side_extent_mm: None,
             phi_entry_deg: None,
             phi_exit_deg: None,
             removed_mm3: 0.0,
@@ -614,6 +631,20 @@ pub fn path_length(program: &Program, m: &Move) -> f64 {
             len
         }
         _ => (m.end.tip - m.start.tip).length(),
+    }
+}
+
+/// The tip feed rate of `m` (tip path `length` mm), mm/min; 0 when undefined.
+pub fn feed_rate(m: &Move, length: f64) -> f64 {
+    let f = match m.feed_mode {
+        FeedMode::PerMinute => m.feed,
+        FeedMode::InverseTime => m.feed * length,
+        FeedMode::PerRevolution => m.feed * m.spindle_rpm,
+    };
+    if f.is_finite() && f > 0.0 {
+        f
+    } else {
+        0.0
     }
 }
 

@@ -52,6 +52,15 @@ pub struct Strip {
     pub band_area: Vec<f64>,
     /// Whether circle `k` is a reported disc (or ring); the others serve the integration.
     pub reported: Vec<bool>,
+    /// The slice of the surface a reported circle stands for: its parameter range (axial discs:
+    /// `[k·dz, (k+1)·dz]`, the first from the strip's start, the last to its end; rings: the
+    /// ring), so the slabs of the reported circles tile the strip. Empty for the others.
+    pub slab: Vec<(f64, f64)>,
+    /// Profile length of each slab, mm (the chip width a force model integrates over).
+    pub slab_width: Vec<f64>,
+    /// `∫ dz/ρ` from the strip's start to both ends of each slab (side only; 0 on the bottom):
+    /// the angle by which a helical edge of helix angle `i` lags, divided by `tan i`.
+    pub slab_turn: Vec<(f64, f64)>,
 }
 
 impl Strip {
@@ -106,12 +115,44 @@ impl Strip {
             .windows(2)
             .map(|w| side_area(&pieces, w[0], w[1]))
             .collect();
+        let first = reported.iter().position(|&r| r);
+        let last = reported.iter().rposition(|&r| r);
+        let mut slab = Vec::with_capacity(param.len());
+        let mut slab_width = Vec::with_capacity(param.len());
+        let mut slab_turn = Vec::with_capacity(param.len());
+        let mut turn = 0.0;
+        let mut turn_at = lo;
+        for (k, &z) in param.iter().enumerate() {
+            if !reported[k] {
+                slab.push((z, z));
+                slab_width.push(0.0);
+                slab_turn.push((0.0, 0.0));
+                continue;
+            }
+            let disc = (z / dz - 0.5).round();
+            let a = if Some(k) == first { lo } else { disc * dz };
+            let b = if Some(k) == last {
+                hi
+            } else {
+                (disc + 1.0) * dz
+            };
+            turn += turn_between(&pieces, turn_at, a);
+            let ta = turn;
+            turn += turn_between(&pieces, a, b);
+            turn_at = b;
+            slab.push((a, b));
+            slab_width.push(arc_length(&pieces, a, b));
+            slab_turn.push((ta, turn));
+        }
         Some(Strip {
             kind: StripKind::Side,
             circles,
             param,
             band_area,
             reported,
+            slab,
+            slab_width,
+            slab_turn,
         })
     }
 
@@ -129,6 +170,19 @@ impl Strip {
         param.push(e);
         let mut reported = vec![true; param.len()];
         (reported[0], reported[n + 1]) = (false, false);
+        let slab: Vec<(f64, f64)> = param
+            .iter()
+            .zip(&reported)
+            .map(|(&r, &rep)| {
+                if rep {
+                    (r - 0.5 * w, r + 0.5 * w)
+                } else {
+                    (r, r)
+                }
+            })
+            .collect();
+        let slab_width = slab.iter().map(|s| s.1 - s.0).collect();
+        let slab_turn = vec![(0.0, 0.0); param.len()];
         let circles = param
             .iter()
             .map(|&r| Circle {
@@ -146,7 +200,17 @@ impl Strip {
                 .collect(),
             param,
             reported,
+            slab,
+            slab_width,
+            slab_turn,
         })
+    }
+
+    /// Index of the circle at parameter `at` (a disc's height or a ring's radius as an
+    /// engagement reports it), if there is one.
+    pub fn circle_at(&self, at: f64) -> Option<usize> {
+        let k = self.param.partition_point(|&p| p < at - 1e-12);
+        (k < self.param.len() && (self.param[k] - at).abs() <= 1e-9).then_some(k)
     }
 
     /// Number of circles (the two end circles included).
@@ -239,23 +303,56 @@ fn z_at_arc_length(pieces: &[&AnyPiece], a: f64, b: f64, len: f64) -> f64 {
     0.5 * (lo + hi)
 }
 
+/// `∫ dz/ρ` over the side between heights `a < b`: Gauss–Legendre in each piece's profile
+/// parameter, where the integrand `z'(s)/ρ(s)` stays finite even at a ball's tip (`ρ → 0` as
+/// `z' → 0`), so a helical edge's lag is finite there.
+fn turn_between(pieces: &[&AnyPiece], a: f64, b: f64) -> f64 {
+    const PANELS: usize = 4;
+    let mut turn = 0.0;
+    for p in pieces {
+        let (z0, z1) = p.z_range();
+        let (lo, hi) = (a.max(z0), b.min(z1));
+        if hi <= lo {
+            continue;
+        }
+        let (s0, s1) = (s_at(p, lo), s_at(p, hi));
+        let panel = (s1 - s0) / PANELS as f64;
+        for q in 0..PANELS {
+            let half = 0.5 * panel;
+            let mid = s0 + panel * (q as f64 + 0.5);
+            for (x, w) in GL5_X.iter().zip(GL5_W) {
+                let s = mid + half * x;
+                let eps = 1e-7;
+                let (sa, sb) = ((s - eps).max(0.0), (s + eps).min(1.0));
+                let dz = (p.profile_point(sb).y - p.profile_point(sa).y) / (sb - sa);
+                let rho = p.profile_point(s).x;
+                if rho > 0.0 {
+                    turn += w * half * dz / rho;
+                }
+            }
+        }
+    }
+    turn
+}
+
+const GL5_X: [f64; 5] = [
+    -0.906_179_845_938_664,
+    -0.538_469_310_105_683,
+    0.0,
+    0.538_469_310_105_683,
+    0.906_179_845_938_664,
+];
+const GL5_W: [f64; 5] = [
+    0.236_926_885_056_189,
+    0.478_628_670_499_366,
+    0.568_888_888_888_889,
+    0.478_628_670_499_366,
+    0.236_926_885_056_189,
+];
+
 /// `∫ ρ ds` over the side between heights `a < b` (area per radian): 5-point Gauss–Legendre in
 /// each piece's profile parameter, exact for cones and cylinders and to ~1e-12 on arcs.
 fn side_area(pieces: &[&AnyPiece], a: f64, b: f64) -> f64 {
-    const X: [f64; 5] = [
-        -0.906_179_845_938_664,
-        -0.538_469_310_105_683,
-        0.0,
-        0.538_469_310_105_683,
-        0.906_179_845_938_664,
-    ];
-    const W: [f64; 5] = [
-        0.236_926_885_056_189,
-        0.478_628_670_499_366,
-        0.568_888_888_888_889,
-        0.478_628_670_499_366,
-        0.236_926_885_056_189,
-    ];
     let mut area = 0.0;
     for p in pieces {
         let (z0, z1) = p.z_range();
@@ -265,7 +362,7 @@ fn side_area(pieces: &[&AnyPiece], a: f64, b: f64) -> f64 {
         }
         let (s0, s1) = (s_at(p, lo), s_at(p, hi));
         let half = 0.5 * (s1 - s0);
-        for (x, w) in X.iter().zip(W) {
+        for (x, w) in GL5_X.iter().zip(GL5_W) {
             let s = s0 + half * (1.0 + x);
             let eps = 1e-6;
             let d = (p.profile_point((s + eps).min(1.0)) - p.profile_point((s - eps).max(0.0)))
@@ -320,6 +417,43 @@ mod tests {
         let s = side.circles[k1];
         assert!((s.rho - (25.0f64 - 2.05 * 2.05).sqrt()).abs() < 1e-9);
         assert!((s.normal - Vec2::new(s.rho / 5.0, -2.05 / 5.0)).length() < 1e-9);
+    }
+
+    #[test]
+    fn slabs_tile_the_strip_and_turn_is_exact() {
+        // Flat: slabs [k·dz, (k+1)·dz], the last to h; turn = z/R.
+        let c = Cutter::flat(10.0).unwrap();
+        let side = Strip::side(&c, 0.1).unwrap();
+        let rep: Vec<usize> = (0..side.len()).filter(|&k| side.reported[k]).collect();
+        let h = c.apt_params().h;
+        assert_eq!(side.slab[rep[0]].0, 0.0);
+        assert!((side.slab[*rep.last().unwrap()].1 - h).abs() < 1e-12);
+        for w in rep.windows(2) {
+            assert_eq!(side.slab[w[0]].1, side.slab[w[1]].0);
+        }
+        let width: f64 = rep.iter().map(|&k| side.slab_width[k]).sum();
+        assert!((width - h).abs() < 1e-9);
+        let k = side.circle_at(2.05).unwrap();
+        assert!(side.slab[k].0 == 2.0 && (side.slab[k].1 - 2.1).abs() < 1e-12);
+        assert!((side.slab_turn[k].0 - 2.0 / 5.0).abs() < 1e-9);
+        assert!((side.slab_turn[k].1 - 2.1 / 5.0).abs() < 1e-9);
+        // Ball of radius 5: z = 5(1 − cos θ), ρ = 5 sin θ, so ∫dz/ρ = θ (finite at the tip).
+        let c = Cutter::ball(10.0).unwrap();
+        let side = Strip::side(&c, 0.1).unwrap();
+        for z in [0.05, 1.05, 4.95] {
+            let k = side.circle_at(z).unwrap();
+            let (a, b) = side.slab[k];
+            let theta = |z: f64| (1.0 - z / 5.0).acos();
+            assert!((side.slab_turn[k].0 - theta(a)).abs() < 1e-6, "{z}");
+            assert!((side.slab_turn[k].1 - theta(b)).abs() < 1e-6, "{z}");
+            let arc = 5.0 * (theta(b) - theta(a));
+            assert!((side.slab_width[k] - arc).abs() < 1e-6, "{z}");
+        }
+        // Bottom rings tile [0, e].
+        let c = Cutter::bull(10.0, 2.0).unwrap();
+        let bottom = Strip::bottom(&c, 0.1).unwrap();
+        let w: f64 = bottom.slab_width.iter().sum();
+        assert!((w - 3.0).abs() < 1e-12);
     }
 
     #[test]

@@ -129,6 +129,9 @@ pub struct CutterOptions {
     pub flutes: Option<u32>,
     /// Helix angle, degrees (default [`DEFAULT_HELIX_DEG`]; 0 for chamfer bits).
     pub helix_deg: Option<f64>,
+    /// Normal rake angle of the cutting edges, degrees (no default: only the force model's
+    /// coefficient prediction needs it, and it asks for it by name).
+    pub rake_deg: Option<f64>,
     /// Cutting (flute) length, mm (default: the APT height h).
     pub flute_length: Option<f64>,
     /// Shank diameter, mm (default: the cutting part's diameter at its top, = d for untapered
@@ -153,7 +156,10 @@ pub struct Cutter {
     cutting: RevolvedSolid,
     shank: RevolvedSolid,
     flutes: u32,
+    /// Whether the flute count was given (a force model refuses the default).
+    flutes_given: bool,
     helix_deg: f64,
+    rake_deg: Option<f64>,
     flute_length: f64,
     shank_diameter: f64,
     overall_length: f64,
@@ -505,6 +511,14 @@ impl Cutter {
             helix_deg,
             "in (-90°, 90°)",
         )?;
+        let rake_deg = match opts.rake_deg {
+            Some(r) => {
+                finite("rake", r)?;
+                require(r > -90.0 && r < 90.0, "rake", r, "in (-90°, 90°)")?;
+                Some(r)
+            }
+            None => None,
+        };
         let flute_length = finite("flute length", opts.flute_length.unwrap_or(h))?;
         require(flute_length > 0.0, "flute length", flute_length, "> 0 mm")?;
         let shank_diameter = finite(
@@ -565,7 +579,9 @@ impl Cutter {
             cutting,
             shank,
             flutes,
+            flutes_given: opts.flutes.is_some(),
             helix_deg,
+            rake_deg,
             flute_length,
             shank_diameter,
             overall_length,
@@ -599,9 +615,20 @@ impl Cutter {
         self.beta
     }
 
-    /// Number of flutes.
+    /// Number of flutes (the default [`DEFAULT_FLUTES`] when none was given).
     pub fn flutes(&self) -> u32 {
         self.flutes
+    }
+
+    /// Number of flutes as given by the spec or tool library; `None` when it was left to the
+    /// default (geometry does not need it; a force model does).
+    pub fn flutes_given(&self) -> Option<u32> {
+        self.flutes_given.then_some(self.flutes)
+    }
+
+    /// Normal rake angle of the edges, degrees, when given.
+    pub fn rake_deg(&self) -> Option<f64> {
+        self.rake_deg
     }
 
     /// Helix angle, degrees.

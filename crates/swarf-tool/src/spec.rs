@@ -13,7 +13,7 @@
 //! | `chamfer`    | `d`           | `angle` (90, included tip angle)        |
 //! | `drill`      | `d`           | `angle` (118, point angle)              |
 //!
-//! and for all kinds `flutes`, `helix` (deg), `flute-length`, `shank` (diameter), `length`
+//! and for all kinds `flutes`, `helix` (deg), `rake` (normal rake, deg), `flute-length`, `shank` (diameter), `length`
 //! (overall), all in mm. For the named kinds `flute-length` is also the height h of the modelled
 //! cutting part (default 3·d); for `apt` h is the seventh number and `flute-length` defaults to
 //! it. Errors carry the 1-based column of the offending text.
@@ -21,7 +21,7 @@
 use crate::cutter::{Cutter, CutterKind, CutterOptions};
 use crate::error::SpecError;
 
-const COMMON_KEYS: [&str; 5] = ["flutes", "helix", "flute-length", "shank", "length"];
+const COMMON_KEYS: [&str; 6] = ["flutes", "helix", "rake", "flute-length", "shank", "length"];
 
 struct Item<'a> {
     text: &'a str,
@@ -201,6 +201,7 @@ pub fn parse(spec: &str) -> Result<Cutter, SpecError> {
     let opts = CutterOptions {
         flutes,
         helix_deg: get("helix"),
+        rake_deg: get("rake"),
         flute_length: get("flute-length"),
         shank_diameter: get("shank"),
         overall_length: get("length"),
@@ -240,6 +241,9 @@ pub(crate) fn to_spec(c: &Cutter) -> String {
         c.shank_diameter(),
         c.overall_length()
     ));
+    if let Some(r) = c.rake_deg() {
+        s.push_str(&format!(",rake={r}"));
+    }
     if c.kind() == CutterKind::Apt && c.flute_length() != a.h {
         s.push_str(&format!(",flute-length={}", c.flute_length()));
     }

@@ -11,6 +11,7 @@
 //! apt = [10, 2, 3, 2, 0, 0, 30]   # or the seven APT numbers (d, r, e, f, α°, β°, h)
 //! flutes = 4                      # optional, override the spec's values
 //! helix_deg = 35
+//! rake_deg = 12                   # optional, normal rake (force coefficient prediction)
 //! flute_length_mm = 25
 //! shank_diameter_mm = 10
 //! overall_length_mm = 75
@@ -43,6 +44,7 @@ struct ToolRow {
     description: String,
     flutes: Option<u32>,
     helix_deg: Option<f64>,
+    rake_deg: Option<f64>,
     flute_length_mm: Option<f64>,
     shank_diameter_mm: Option<f64>,
     overall_length_mm: Option<f64>,
@@ -132,8 +134,9 @@ pub fn parse_toml_library(text: &str, file: &str) -> Result<ToolTable, TableErro
             }
         };
         let opts = CutterOptions {
-            flutes: Some(row.flutes.unwrap_or(cutter.flutes())),
+            flutes: row.flutes.or(cutter.flutes_given()),
             helix_deg: Some(row.helix_deg.unwrap_or(cutter.helix_deg())),
+            rake_deg: row.rake_deg.or(cutter.rake_deg()),
             flute_length: Some(row.flute_length_mm.unwrap_or(cutter.flute_length())),
             shank_diameter: Some(row.shank_diameter_mm.unwrap_or(cutter.shank_diameter())),
             overall_length: Some(row.overall_length_mm.unwrap_or(cutter.overall_length())),

@@ -1,0 +1,185 @@
+//! Forces through the whole chain — program, tri-dexel stock, engagement, force model — against
+//! the closed-form mean forces of REFERENCE.md, within the engagement's accuracy.
+
+use std::f64::consts::PI;
+
+use swarf_engage::{EngageOptions, Engagement, Engager};
+use swarf_force::{CoefficientSource, Coefficients, ForceModel, LocationForces, Material};
+use swarf_geom::math::Vec3;
+use swarf_path::load::{read_program_str, ReadOptions};
+use swarf_path::Machine;
+use swarf_stock::TriDexel;
+use swarf_tool::{Cutter, ToolSet};
+
+const K: Coefficients = Coefficients {
+    ktc: 796.0,
+    krc: 168.8,
+    kac: 222.0,
+    kte: 27.7,
+    kre: 30.8,
+    kae: 1.8,
+};
+
+fn material() -> Material {
+    Material {
+        name: "test".into(),
+        coefficients: CoefficientSource::Fixed(K),
+        source: "test".into(),
+    }
+}
+
+/// The forces at the location nearest `p` of `text` cut in the block `[min, max]`.
+fn forces_at(
+    text: &str,
+    min: [f64; 3],
+    max: [f64; 3],
+    spec: &str,
+    p: [f64; 3],
+) -> (Engagement, LocationForces) {
+    let program = read_program_str(
+        text,
+        "t.ngc",
+        Machine::three_axis(),
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    let mut stock = TriDexel::from_box(Vec3::from(min), Vec3::from(max), 0.1).unwrap();
+    let tools = ToolSet::single(Cutter::from_spec(spec).unwrap());
+    let opts = EngageOptions::default();
+    let model = ForceModel::new(material(), &tools, &program.tools, &opts, 360).unwrap();
+    let p = Vec3::from(p);
+    let e = Engager::new(&program, &tools, &mut stock, opts)
+        .unwrap()
+        .map(Result::unwrap)
+        .min_by(|a, b| (a.tip - p).length().total_cmp(&(b.tip - p).length()))
+        .unwrap();
+    let ev = model.evaluate(&e);
+    let (f, _) = model.forces(&ev, None);
+    (e, f)
+}
+
+fn closed_form(n: f64, a: f64, c: f64, st: f64, ex: f64) -> [f64; 3] {
+    let br = |f: &dyn Fn(f64) -> f64| f(ex) - f(st);
+    [
+        n * a * c / (8.0 * PI)
+            * br(&|p| K.ktc * (2.0 * p).cos() - K.krc * (2.0 * p - (2.0 * p).sin()))
+            + n * a / (2.0 * PI) * br(&|p| -K.kte * p.sin() + K.kre * p.cos()),
+        n * a * c / (8.0 * PI)
+            * br(&|p| K.ktc * (2.0 * p - (2.0 * p).sin()) + K.krc * (2.0 * p).cos())
+            - n * a / (2.0 * PI) * br(&|p| K.kte * p.cos() + K.kre * p.sin()),
+        n * a / (2.0 * PI) * br(&|p| -K.kac * c * p.cos() + K.kae * p),
+    ]
+}
+
+fn check(got: [f64; 3], want: [f64; 3], tol: f64, what: &str) {
+    let scale = want.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    for o in 0..3 {
+        println!(
+            "{what}: F{o} {:.3} N (closed form {:.3} N)",
+            got[o], want[o]
+        );
+        assert!(
+            (got[o] - want[o]).abs() <= tol * scale,
+            "{what}: F{o} {} vs {}",
+            got[o],
+            want[o]
+        );
+    }
+}
+
+#[test]
+fn slot_up_and_down_milling_match_the_closed_forms() {
+    // 4 flutes, F 400 mm/min at 1000 rpm: c = 0.1 mm. Depth 4.03 mm: not a whole number of
+    // discs, so the top disc's slab is stretched to the interpolated extent.
+    let spec = "flat:d=10,flutes=4,helix=30";
+    let head = "G21 G90 G94\nS1000 M3\n";
+    let (e, f) = forces_at(
+        &format!("{head}G0 X-10 Y10 Z-4.03\nG1 X50 F400\n"),
+        [0.0, 0.0, -10.0],
+        [40.0, 20.0, 0.0],
+        spec,
+        [20.0, 10.0, -4.03],
+    );
+    assert!((f.feed_per_tooth_mm - 0.1).abs() < 1e-12);
+    assert_eq!(e.tool, 0);
+    check(
+        f.mean_n,
+        closed_form(4.0, 4.03, 0.1, 0.0, PI),
+        0.001,
+        "slot",
+    );
+    // Workpiece frame: x_L = +X, y_L = +Y.
+    for o in 0..3 {
+        assert!((f.mean_world_n[o] - f.mean_n[o]).abs() < 1e-9 * f.peak_resultant_n);
+    }
+    // Torque = R·F̄t; power = T·ω.
+    assert!((f.power_mean_w - f.torque_mean_nm * 1000.0 * 2.0 * PI / 60.0).abs() < 1e-9);
+
+    let ae: f64 = 2.0;
+    let w = (1.0 - ae / 5.0).acos();
+    let (_, f) = forces_at(
+        &format!("{head}G0 X-10 Y0 Z-5\nG1 X50 F400\n"),
+        [0.0, 3.0, -10.0],
+        [40.0, 20.0, 0.0],
+        spec,
+        [20.0, 0.0, -5.0],
+    );
+    check(
+        f.mean_n,
+        closed_form(4.0, 5.0, 0.1, 0.0, w),
+        0.001,
+        "up-milling",
+    );
+    let (_, f) = forces_at(
+        &format!("{head}G0 X-10 Y0 Z-5\nG1 X50 F400\n"),
+        [0.0, -20.0, -10.0],
+        [40.0, -3.0, 0.0],
+        spec,
+        [20.0, 0.0, -5.0],
+    );
+    check(
+        f.mean_n,
+        closed_form(4.0, 5.0, 0.1, PI - w, PI),
+        0.001,
+        "down-milling",
+    );
+}
+
+#[test]
+fn plunging_loads_the_flat_bottom() {
+    // A flat end mill plunging: the bottom's edges cut h = c (κ = 0), the radial direction is
+    // the axis. F̄z = N·R·(Krc·c + Kre), torque N·R²/2·(Ktc·c + Kte), no side force.
+    let spec = "flat:d=10,flutes=2,helix=30";
+    let (e, f) = forces_at(
+        "G21 G90\nS2000 M3\nG0 X20 Y10 Z2\nG1 Z-4 F200\n",
+        [0.0, 0.0, -10.0],
+        [40.0, 20.0, 0.0],
+        spec,
+        [20.0, 10.0, -3.0],
+    );
+    assert!(!e.bottom.is_empty() && e.discs.is_empty());
+    let c = 200.0 / (2000.0 * 2.0);
+    let fz = 2.0 * 5.0 * (K.krc * c + K.kre);
+    let t = 2.0 * 12.5 * (K.ktc * c + K.kte) * 1e-3;
+    println!(
+        "plunge: Fz {:.3} (exact {fz:.3}), T {:.4} (exact {t:.4})",
+        f.mean_n[2], f.torque_mean_nm
+    );
+    assert!((f.mean_n[2] - fz).abs() < 0.005 * fz);
+    assert!((f.torque_mean_nm - t).abs() < 0.005 * t);
+    assert!(f.mean_n[0].abs() < 1e-6 * fz && f.mean_n[1].abs() < 1e-6 * fz);
+}
+
+#[test]
+fn air_cuts_and_a_stopped_spindle_give_no_force() {
+    let (e, f) = forces_at(
+        "G21 G90\nS1000 M3\nG0 X-10 Y10 Z5\nG1 X50 F400\n",
+        [0.0, 0.0, -10.0],
+        [40.0, 20.0, 0.0],
+        "flat:d=10,flutes=3",
+        [20.0, 10.0, 5.0],
+    );
+    assert!(!e.is_engaged());
+    assert_eq!(f.peak_resultant_n, 0.0);
+    assert_eq!(f.power_peak_w, 0.0);
+}
