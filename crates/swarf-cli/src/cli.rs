@@ -30,6 +30,9 @@ pub(crate) enum Command {
     /// The cutter–workpiece engagement at every cutter location of a program: engaged angles per
     /// axial disc, area, axial depth, entry/exit angles, removal rate.
     Engage(crate::commands::engage::EngageArgs),
+    /// Cutting forces, torque and power at every cutter location of a program (mechanistic
+    /// model on the engagement), with force-versus-angle curves.
+    Forces(crate::commands::forces::ForcesArgs),
     /// Write the swept envelope of a program's feed moves (whole tool) as STL and glb.
     Envelope(crate::commands::envelope::EnvelopeArgs),
     /// Check a program against the part surface: every point and every stretch of motion where

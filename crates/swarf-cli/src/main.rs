@@ -18,6 +18,7 @@ fn main() {
         cli::Command::Toolsize(args) => commands::toolsize::run(&args),
         cli::Command::Envelope(args) => commands::envelope::run(&args),
         cli::Command::Engage(args) => commands::engage::run(&args),
+        cli::Command::Forces(args) => commands::forces::run(&args),
         cli::Command::Gouge(args) => commands::gouge::run(&args),
         cli::Command::Demo(args) => commands::demo::run(&args),
     };

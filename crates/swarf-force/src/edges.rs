@@ -50,7 +50,6 @@ impl CutterEdges {
     pub fn new(cutter: &Cutter, opts: &EngageOptions, label: &str) -> Result<Self, ForceError> {
         let flutes = cutter.flutes_given().ok_or_else(|| ForceError::NoFlutes {
             tool: label.to_string(),
-            spec: cutter.spec(),
         })?;
         Ok(Self {
             flutes,

@@ -44,18 +44,18 @@ pub use coefficients::{
 pub use edges::{CutterEdges, Slab};
 pub use location::{Evaluated, ForceModel, Limit, LocationForces, DEFAULT_SAMPLES_PER_REV};
 pub use model::{unit_forces, ForceCurves, UnitForces};
-pub use schedule::{schedule_feeds, MoveCaps, MoveFeed, ScheduleOptions, ScheduleResult};
+pub use schedule::{
+    schedule_feeds, LocationCap, MoveCaps, MoveFeed, ScheduleOptions, ScheduleResult,
+};
 
 /// What can go wrong computing forces.
 #[derive(Debug, thiserror::Error)]
 pub enum ForceError {
     /// A cutter with no flute count.
-    #[error("{tool} ({spec}) has no flute count: the force model needs it — add flutes=N to its spec or `flutes = N` to its tool-library entry")]
+    #[error("{tool} has no flute count: the force model needs it — add flutes=N to its spec or `flutes = N` to its tool-library entry")]
     NoFlutes {
         /// Which tool.
         tool: String,
-        /// Its spec.
-        spec: String,
     },
     /// A predicted material and a cutter with no rake angle.
     #[error("{tool} has no rake angle, which the coefficient prediction of material {material} needs — add rake=DEG to its spec or `rake_deg = DEG` to its tool-library entry")]

@@ -123,15 +123,17 @@ impl ForceModel {
         let mut edges = BTreeMap::new();
         for &n in tool_numbers {
             if let Some(c) = tools.resolved().get(&n) {
-                let e = CutterEdges::new(&c.cutter, opts, &format!("T{n}"))?;
-                check_rake(&material, &e, &format!("T{n}"))?;
+                let label = format!("tool {n} ({})", short(&c.cutter));
+                let e = CutterEdges::new(&c.cutter, opts, &label)?;
+                check_rake(&material, &e, &label)?;
                 edges.insert(n, e);
             }
         }
         let fallback = match tools.fallback() {
             Some(c) => {
-                let e = CutterEdges::new(c, opts, "the --tool cutter")?;
-                check_rake(&material, &e, "the --tool cutter")?;
+                let label = format!("the cutter ({})", short(c));
+                let e = CutterEdges::new(c, opts, &label)?;
+                check_rake(&material, &e, &label)?;
                 Some(e)
             }
             None => None,
@@ -245,6 +247,11 @@ impl ForceModel {
         }
         Some(lo)
     }
+}
+
+/// A cutter in a few words: `flat Ø10 mm`.
+fn short(c: &swarf_tool::Cutter) -> String {
+    format!("{} Ø{} mm", c.kind().spec_name(), c.apt_params().d)
 }
 
 fn check_rake(material: &Material, e: &CutterEdges, label: &str) -> Result<(), ForceError> {

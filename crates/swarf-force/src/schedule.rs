@@ -71,27 +71,41 @@ impl MoveCaps {
     }
 
     /// Takes a location of move `index` into account.
-    pub fn add(
-        &mut self,
-        model: &ForceModel,
-        index: usize,
-        ev: &Evaluated,
-        limit: Limit,
-        c_max: f64,
-    ) {
-        if !ev.unit.engaged || ev.spindle_rpm <= 0.0 {
-            return;
-        }
-        let per_tooth_to_feed = ev.spindle_rpm * ev.flutes as f64;
-        let cap = match model.max_feed_per_tooth(ev, limit, c_max) {
-            Some(c) => c * per_tooth_to_feed,
-            None => {
+    pub fn add(&mut self, index: usize, cap: LocationCap) {
+        let cap = match cap {
+            LocationCap::Unloaded => return,
+            LocationCap::Feed(f) => f,
+            LocationCap::OverAtAnyFeed => {
                 self.infeasible[index] = true;
                 0.0
             }
         };
         let slot = &mut self.caps[index];
         *slot = Some(slot.map_or(cap, |c: f64| c.min(cap)));
+    }
+}
+
+/// What one location allows.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum LocationCap {
+    /// Not engaged, or no spindle: no bound.
+    Unloaded,
+    /// The fastest feed under the limit, mm/min.
+    Feed(f64),
+    /// Over the limit even as the feed goes to zero (edge forces alone).
+    OverAtAnyFeed,
+}
+
+impl LocationCap {
+    /// The cap of an evaluated location, searching feeds per tooth up to `c_max` mm.
+    pub fn of(model: &ForceModel, ev: &Evaluated, limit: Limit, c_max: f64) -> Self {
+        if !ev.unit.engaged || ev.spindle_rpm <= 0.0 {
+            return LocationCap::Unloaded;
+        }
+        match model.max_feed_per_tooth(ev, limit, c_max) {
+            Some(c) => LocationCap::Feed(c * ev.spindle_rpm * ev.flutes as f64),
+            None => LocationCap::OverAtAnyFeed,
+        }
     }
 }
 

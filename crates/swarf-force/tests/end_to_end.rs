@@ -1,6 +1,9 @@
 //! Forces through the whole chain — program, tri-dexel stock, engagement, force model — against
 //! the closed-form mean forces of REFERENCE.md, within the engagement's accuracy.
 
+// Components are indexed by number, as in the formulas.
+#![allow(clippy::needless_range_loop)]
+
 use std::f64::consts::PI;
 
 use swarf_engage::{EngageOptions, Engagement, Engager};

@@ -3,6 +3,9 @@
 //!
 //! Closed forms: ../shared/data/forces/REFERENCE.md (Altintas, Manufacturing Automation, ch. 2).
 
+// Components are indexed by number, as in the formulas.
+#![allow(clippy::needless_range_loop)]
+
 use std::f64::consts::{PI, TAU};
 
 use swarf_engage::{CircleEngagement, EngageOptions, Engagement, PhiInterval};

@@ -28,6 +28,7 @@ pub mod gcode;
 pub mod kinematics;
 pub mod load;
 pub mod moves;
+pub mod rewrite;
 pub mod spline;
 pub mod summary;
 

@@ -9,22 +9,27 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde::Serialize;
 use swarf_engage::{EngageOptions, Engagement, Engager};
+use swarf_path::Program;
+use swarf_stock::TriDexel;
+use swarf_tool::ToolSet;
 
 use crate::cli::SetupArgs;
-use crate::commands::engage_plots;
+use crate::commands::plots;
 use crate::commands::simulate::{build_stock, positive_mm};
 use crate::commands::tools::{load_setup, tool_set, Setup};
 use crate::output::{csv_field, print_json, write_atomic};
 
+/// What a run along a program needs: the stock, the program, its tools and the engagement's
+/// sampling. Shared by `engage`, `forces` and `schedule`.
 #[derive(Debug, Args)]
-pub(crate) struct EngageArgs {
+pub(crate) struct RunArgs {
     /// The stock: `box:X0,Y0,Z0,X1,Y1,Z1`, `cyl:CX,CY,Z0,R,H` (axis +Z) or a closed STL file.
     /// Default: the workpiece a CAMotics project (--tools FILE.camotics) states.
     #[arg(long, value_name = "SPEC|FILE.stl")]
     stock: Option<String>,
-    /// The program: G-code or APT CL.
+    /// The program: G-code or APT CL (required).
     #[arg(long, value_name = "FILE")]
-    program: PathBuf,
+    program: Option<PathBuf>,
     /// Cutters, tool library, machine and units.
     #[command(flatten)]
     setup: SetupArgs,
@@ -51,6 +56,83 @@ pub(crate) struct EngageArgs {
     /// Build the stock from an STL mesh even if it is not closed.
     #[arg(long)]
     allow_open_mesh: bool,
+}
+
+/// A run's inputs, read and checked.
+pub(crate) struct Prepared {
+    pub(crate) program: Program,
+    pub(crate) tools: ToolSet,
+    pub(crate) stock: TriDexel,
+    pub(crate) opts: EngageOptions,
+}
+
+impl RunArgs {
+    /// The program file.
+    pub(crate) fn program(&self) -> Result<&Path> {
+        match &self.program {
+            Some(p) => Ok(p),
+            None => bail!("--program FILE is required (the G-code or APT CL program to run)"),
+        }
+    }
+
+    /// Reads the program and tools, builds the stock and checks the options.
+    pub(crate) fn prepare(&self) -> Result<Prepared> {
+        positive_mm("resolution", self.resolution)?;
+        let Setup {
+            program,
+            single,
+            table,
+        } = load_setup(&self.setup, self.program()?)?;
+        let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
+        let stock = build_stock(
+            self.stock.as_deref(),
+            table.as_ref(),
+            self.resolution,
+            self.allow_open_mesh,
+        )?;
+        let opts = EngageOptions::default()
+            .with_step(self.step)
+            .with_dz(self.dz)
+            .with_dphi(self.dphi)
+            .with_chordal_tolerance(self.tolerance);
+        Ok(Prepared {
+            program,
+            tools,
+            stock,
+            opts,
+        })
+    }
+}
+
+/// Walks the engagement along the program, handing each location to `each`, with a progress
+/// bar and Ctrl-C (which stops the run with an error: no output is written).
+pub(crate) fn walk(
+    run: &mut Prepared,
+    file: &Path,
+    mut each: impl FnMut(Engagement) -> Result<()>,
+) -> Result<swarf_engage::EngageStats> {
+    static STOP: AtomicBool = AtomicBool::new(false);
+    let _ = ctrlc::set_handler(|| STOP.store(true, Ordering::SeqCst));
+    let mut engager = Engager::new(&run.program, &run.tools, &mut run.stock, run.opts)?;
+    let bar = crate::output::moves_bar(run.program.moves.len());
+    let mut count = 0usize;
+    while let Some(e) = engager.next() {
+        each(e.with_context(|| format!("engagement along {}", file.display()))?)?;
+        count += 1;
+        bar.set_position(engager.moves_done() as u64);
+        if STOP.load(Ordering::SeqCst) {
+            bar.finish_and_clear();
+            bail!("stopped by Ctrl-C after {count} cutter locations; no output written");
+        }
+    }
+    bar.finish_and_clear();
+    Ok(engager.stats())
+}
+
+#[derive(Debug, Args)]
+pub(crate) struct EngageArgs {
+    #[command(flatten)]
+    run: RunArgs,
     /// Also draw the φ–z maps of these locations (comma-separated indices).
     #[arg(long, value_name = "N,...", value_delimiter = ',')]
     map_at: Vec<usize>,
@@ -80,43 +162,14 @@ struct EngageSummary {
 
 pub(crate) fn run(args: &EngageArgs) -> Result<()> {
     let t0 = Instant::now();
-    positive_mm("resolution", args.resolution)?;
-    let Setup {
-        program,
-        single,
-        table,
-    } = load_setup(&args.setup, &args.program)?;
-    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
-    let mut stock = build_stock(
-        args.stock.as_deref(),
-        table.as_ref(),
-        args.resolution,
-        args.allow_open_mesh,
-    )?;
-    let opts = EngageOptions::default()
-        .with_step(args.step)
-        .with_dz(args.dz)
-        .with_dphi(args.dphi)
-        .with_chordal_tolerance(args.tolerance);
-    static STOP: AtomicBool = AtomicBool::new(false);
-    let _ = ctrlc::set_handler(|| STOP.store(true, Ordering::SeqCst));
-    let mut run = Engager::new(&program, &tools, &mut stock, opts)?;
-    let bar = crate::output::moves_bar(program.moves.len());
+    let mut run = args.run.prepare()?;
+    let opts = run.opts;
     let mut locations: Vec<Engagement> = Vec::new();
-    while let Some(e) = run.next() {
-        locations.push(e.with_context(|| format!("engagement along {}", args.program.display()))?);
-        bar.set_position(run.moves_done() as u64);
-        if STOP.load(Ordering::SeqCst) {
-            bar.finish_and_clear();
-            bail!(
-                "stopped by Ctrl-C after {} cutter locations; no output written",
-                locations.len()
-            );
-        }
-    }
-    bar.finish_and_clear();
-    let stats = run.stats();
-    let resolution_mm = stock.grid().h;
+    let stats = walk(&mut run, args.run.program()?, |e| {
+        locations.push(e);
+        Ok(())
+    })?;
+    let resolution_mm = run.stock.grid().h;
     let largest = locations
         .iter()
         .filter(|e| e.is_engaged())
@@ -221,7 +274,7 @@ fn write_outputs(
     write_atomic(&dir.join("discs.csv"), discs.as_bytes())?;
     write_atomic(&dir.join("bottom.csv"), bottom.as_bytes())?;
     if let Some(e) = largest {
-        engage_plots::phi_z_map(e, dz, &maps.join("largest.png"))?;
+        plots::phi_z_map(e, dz, &maps.join("largest.png"))?;
     }
     for &n in map_at {
         let Some(e) = locations.get(n) else {
@@ -230,9 +283,9 @@ fn write_outputs(
                 locations.len()
             );
         };
-        engage_plots::phi_z_map(e, dz, &maps.join(format!("location_{n}.png")))?;
+        plots::phi_z_map(e, dz, &maps.join(format!("location_{n}.png")))?;
     }
-    engage_plots::along_program(locations, &maps)?;
+    plots::along_program(locations, &maps)?;
     let mut json = serde_json::to_vec_pretty(summary)?;
     json.push(b'\n');
     write_atomic(&dir.join("summary.json"), &json)

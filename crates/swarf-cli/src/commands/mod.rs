@@ -2,10 +2,11 @@
 
 pub(crate) mod demo;
 pub(crate) mod engage;
-mod engage_plots;
 pub(crate) mod envelope;
+pub(crate) mod forces;
 pub(crate) mod gouge;
 pub(crate) mod path;
+mod plots;
 pub(crate) mod simulate;
 pub(crate) mod tool;
 pub(crate) mod tools;

@@ -1,5 +1,6 @@
-//! The engagement's pictures: the φ–z map of a location, area and removal rate along the
-//! program. Drawn with the workspace's raster and pixel font so every swarf plot looks alike.
+//! The pictures of a run along a program: the φ–z engagement map of a location, curves along
+//! the program and over a spindle revolution. Drawn with the workspace's raster and pixel font
+//! so every swarf plot looks alike.
 
 use std::path::Path;
 
@@ -95,34 +96,87 @@ pub(crate) fn phi_z_map(e: &Engagement, dz: f64, path: &Path) -> Result<()> {
         .with_context(|| format!("writing {}", path.display()))
 }
 
-/// A curve of `values` over the locations.
-fn curve(values: &[f64], title: &str, ylabel: &str, path: &Path) -> Result<()> {
+/// One curve of a line plot: a legend name, its values at evenly spaced x, a colour.
+pub(crate) struct Series<'a> {
+    pub(crate) name: &'a str,
+    pub(crate) values: &'a [f64],
+    pub(crate) colour: [u8; 3],
+}
+
+/// Colours for up to four curves.
+pub(crate) const PALETTE: [[u8; 3]; 4] = [CURVE, [200, 40, 30], [40, 150, 60], [120, 60, 160]];
+
+/// Curves over `x ∈ [x0, x1]` (evenly spaced samples), y from the data (0 always shown).
+pub(crate) fn lines(
+    series: &[Series<'_>],
+    x: (f64, f64),
+    title: &str,
+    xlabel: &str,
+    ylabel: &str,
+    path: &Path,
+) -> Result<()> {
     let mut img = RgbImage::new(LEFT + W + 30, TOP + H + BOTTOM, PAPER);
-    let max = values.iter().copied().fold(0.0, f64::max);
-    let max = if max > 0.0 { max * 1.05 } else { 1.0 };
-    y_ticks(&mut img, max);
-    let n = values.len().max(2);
+    let all = series.iter().flat_map(|s| s.values.iter().copied());
+    let (lo, hi) = all.fold((0.0f64, 0.0f64), |(a, b), v| (a.min(v), b.max(v)));
+    let span = if hi > lo { (hi - lo) * 1.05 } else { 1.0 };
+    let (lo, hi) = if lo < 0.0 {
+        (lo - 0.025 * span, hi + 0.025 * span)
+    } else {
+        (0.0, lo + span)
+    };
     for t in 0..=4 {
-        let x = LEFT + W * t / 4;
-        img.fill(x, TOP + H, 1, 5, INK);
-        let v = format!("{}", (n - 1) * t / 4);
-        img.text(x.saturating_sub(3 * v.len()), TOP + H + 10, &v, 1, INK);
+        let v = lo + (hi - lo) * t as f64 / 4.0;
+        let y = TOP + H - (H as f64 * t as f64 / 4.0) as usize;
+        img.fill(LEFT, y, W, 1, GRID);
+        img.fill(LEFT - 5, y, 5, 1, INK);
+        img.text(4, y.saturating_sub(3), &label(v), 1, INK);
+        let xv = x.0 + (x.1 - x.0) * t as f64 / 4.0;
+        let xp = LEFT + W * t / 4;
+        img.fill(xp, TOP + H, 1, 5, INK);
+        let s = label(xv);
+        img.text(xp.saturating_sub(3 * s.len()), TOP + H + 10, &s, 1, INK);
     }
-    let mut prev: Option<(usize, usize)> = None;
-    for (i, v) in values.iter().enumerate() {
-        let x = LEFT + (W as f64 * i as f64 / (n - 1) as f64).round() as usize;
-        let y = TOP + H - ((v / max) * H as f64).round().clamp(0.0, H as f64) as usize;
-        if let Some((x0, y0)) = prev {
-            let (a, b) = (y0.min(y), y0.max(y));
-            img.fill(x0, a, (x - x0).max(1), b - a + 2, CURVE);
-        } else {
-            img.fill(x, y, 2, 2, CURVE);
+    let py = |v: f64| {
+        TOP + H
+            - (((v - lo) / (hi - lo)) * H as f64)
+                .round()
+                .clamp(0.0, H as f64) as usize
+    };
+    for (k, s) in series.iter().enumerate() {
+        let n = s.values.len().max(2);
+        let mut prev: Option<(usize, usize)> = None;
+        for (i, &v) in s.values.iter().enumerate() {
+            let xp = LEFT + (W as f64 * i as f64 / (n - 1) as f64).round() as usize;
+            let yp = py(v);
+            if let Some((x0, y0)) = prev {
+                let (a, b) = (y0.min(yp), y0.max(yp));
+                img.fill(x0, a, (xp - x0).max(1), b - a + 2, s.colour);
+            } else {
+                img.fill(xp, yp, 2, 2, s.colour);
+            }
+            prev = Some((xp, yp));
         }
-        prev = Some((x, y));
+        if series.len() > 1 {
+            let lx = LEFT + W - 150;
+            let ly = TOP + 8 + 14 * k;
+            img.fill(lx, ly + 2, 16, 3, s.colour);
+            img.text(lx + 22, ly, s.name, 1, INK);
+        }
     }
-    axes(&mut img, title, "cutter location", ylabel);
+    axes(&mut img, title, xlabel, ylabel);
     img.write_png(path)
         .with_context(|| format!("writing {}", path.display()))
+}
+
+/// A curve of `values` over the cutter locations.
+pub(crate) fn curve(values: &[f64], title: &str, ylabel: &str, path: &Path) -> Result<()> {
+    let series = [Series {
+        name: ylabel,
+        values,
+        colour: CURVE,
+    }];
+    let last = values.len().saturating_sub(1).max(1) as f64;
+    lines(&series, (0.0, last), title, "cutter location", ylabel, path)
 }
 
 /// Area and removal rate along the program.

@@ -1,0 +1,351 @@
+//! Writing a program back with new feeds and every other byte as it was.
+//!
+//! A feed schedule gives each source line with feed moves a factor `r` (new feed / old feed).
+//! The rewrite walks the text in order, tracking the feed word in effect in the original
+//! (`F` in G-code, the first number of `FEDRAT/` in APT) and in the rewritten program: a line
+//! with moves gets the original value times `r` — in its own F word, replaced in place, or in
+//! one added at the end of its code (before any comment) when the value in effect differs; an
+//! APT move gets a `FEDRAT/` record inserted before it, in the form of the last one. Because the
+//! F word is scaled, units (G20/G21, `IPM`/`MMPM`) and feed modes (G93 inverse time, G95 per
+//! revolution) need no special case: each is proportional to the feed rate.
+//!
+//! The text is rewritten in source order, so the moves must come from the lines in the order
+//! they are executed (no loops or subroutine calls over feed moves): the caller checks that.
+
+use std::collections::BTreeMap;
+
+use crate::load::ProgramFormat;
+use crate::{PathError, PathErrorKind, SourcePos};
+
+/// The rewritten text and what changed.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Rewritten {
+    /// The new program.
+    pub text: String,
+    /// Lines whose feed word was changed or added (1-based, of the original text).
+    pub lines_changed: Vec<u32>,
+}
+
+/// A feed word's number: where it is in its line and its value.
+#[derive(Clone, Copy, Debug)]
+struct FeedWord {
+    /// Byte range of the number.
+    start: usize,
+    end: usize,
+    value: f64,
+}
+
+/// What a G-code line holds: its F word (`Err` with a column when it is not a plain number)
+/// and where its code ends (before a trailing comment).
+fn scan_gcode(line: &str) -> (Option<Result<FeedWord, usize>>, usize) {
+    let b = line.as_bytes();
+    let (mut i, mut depth) = (0usize, 0usize);
+    let mut code_end = line.trim_end().len();
+    let mut feed = None;
+    while i < b.len() {
+        match b[i] {
+            b'(' if depth == 0 => match line[i..].find(')') {
+                Some(k) => i += k + 1,
+                None => {
+                    code_end = code_end.min(i);
+                    break;
+                }
+            },
+            b';' if depth == 0 => {
+                code_end = code_end.min(line[..i].trim_end().len());
+                break;
+            }
+            b'[' => {
+                depth += 1;
+                i += 1;
+            }
+            b']' => {
+                depth = depth.saturating_sub(1);
+                i += 1;
+            }
+            b'#' => {
+                // A parameter: skip a named one `#<…>`.
+                if b.get(i + 1) == Some(&b'<') {
+                    i += line[i..].find('>').map_or(b.len() - i, |k| k + 1);
+                } else {
+                    i += 1;
+                }
+            }
+            b'f' | b'F' if depth == 0 => {
+                let mut j = i + 1;
+                while j < b.len() && b[j] == b' ' {
+                    j += 1;
+                }
+                let start = j;
+                while j < b.len() && (b[j].is_ascii_digit() || matches!(b[j], b'.' | b'+' | b'-')) {
+                    j += 1;
+                }
+                feed = Some(match line[start..j].parse::<f64>() {
+                    Ok(v) if v.is_finite() => Ok(FeedWord {
+                        start,
+                        end: j,
+                        value: v,
+                    }),
+                    _ => Err(i + 1),
+                });
+                i = j.max(i + 1);
+            }
+            _ => i += 1,
+        }
+    }
+    (feed, code_end)
+}
+
+/// An APT record's `FEDRAT/` number.
+fn scan_apt(line: &str) -> Option<Result<FeedWord, usize>> {
+    let t = line.trim_start();
+    let lead = line.len() - t.len();
+    if !t.to_ascii_uppercase().starts_with("FEDRAT") {
+        return None;
+    }
+    let slash = t.find('/')?;
+    // The first numeric field after the slash.
+    let mut pos = lead + slash + 1;
+    for field in line[pos..].split(',') {
+        let trimmed = field.trim();
+        if let Ok(v) = trimmed.parse::<f64>() {
+            let start = pos + field.find(trimmed).unwrap_or(0);
+            return Some(Ok(FeedWord {
+                start,
+                end: start + trimmed.len(),
+                value: v,
+            }));
+        }
+        pos += field.len() + 1;
+    }
+    Some(Err(lead + slash + 2))
+}
+
+/// A feed word's number with about six significant digits, no trailing zeros.
+pub fn format_feed(v: f64) -> String {
+    let digits = if v.abs() >= 1.0 {
+        v.abs().log10().floor() as i32 + 1
+    } else {
+        0
+    };
+    let decimals = (6 - digits).clamp(1, 9) as usize;
+    let s = format!("{v:.decimals$}");
+    let s = s.trim_end_matches('0');
+    s.strip_suffix('.').unwrap_or(s).to_string()
+}
+
+/// Rewrites the feed words of `text` (`file` names it in errors) so that the moves of each line
+/// in `factors` run at their original feed times its factor. Every line with feed moves should
+/// be in `factors` (factor 1 to keep its feed), so that a changed feed does not carry over.
+///
+/// # Errors
+/// A line with moves and a feed word that is not a plain number (an expression or parameter),
+/// or moves before any feed word.
+pub fn rewrite_feeds(
+    text: &str,
+    file: &str,
+    format: ProgramFormat,
+    factors: &BTreeMap<u32, f64>,
+) -> Result<Rewritten, PathError> {
+    let mut out = String::with_capacity(text.len() + 16 * factors.len());
+    let mut changed = Vec::new();
+    let (mut original, mut current): (Option<f64>, Option<f64>) = (None, None);
+    // The last FEDRAT record, as a template for inserted ones.
+    let mut template: Option<(String, FeedWord)> = None;
+    let err = |line: u32, column: usize, message: &str, found: &str| {
+        PathError::new(
+            SourcePos {
+                file: file.to_string(),
+                line,
+                column: column as u32,
+            },
+            PathErrorKind::Unsupported,
+            message,
+            found,
+            "a plain number, which swarf schedule can rescale",
+        )
+    };
+    for (k, raw) in text.split_inclusive('\n').enumerate() {
+        let n = k as u32 + 1;
+        let body_len = raw.trim_end_matches(['\n', '\r']).len();
+        let (body, eol) = raw.split_at(body_len);
+        let (word, code_end) = match format {
+            ProgramFormat::Gcode => scan_gcode(body),
+            ProgramFormat::Apt => (scan_apt(body), body.len()),
+        };
+        let word = match word {
+            Some(Ok(w)) => Some(w),
+            Some(Err(col)) if factors.contains_key(&n) || format == ProgramFormat::Apt => {
+                return Err(err(
+                    n,
+                    col,
+                    "the feed word is not a plain number",
+                    body.get(col.saturating_sub(1)..).unwrap_or("").trim(),
+                ));
+            }
+            // An expression F on a line without feed moves: its value is unknown from here on.
+            Some(Err(_)) => {
+                original = None;
+                current = None;
+                out.push_str(raw);
+                continue;
+            }
+            None => None,
+        };
+        if let Some(w) = word {
+            original = Some(w.value);
+            if format == ProgramFormat::Apt {
+                template = Some((body.to_string(), w));
+            }
+        }
+        let Some(&factor) = factors.get(&n) else {
+            if let Some(w) = word {
+                current = Some(w.value);
+            }
+            out.push_str(raw);
+            continue;
+        };
+        let Some(base) = original else {
+            return Err(err(n, 1, "feed moves before any feed word", body.trim()));
+        };
+        let target = base * factor;
+        let new_text = format_feed(target);
+        let value = new_text.parse::<f64>().unwrap_or(target);
+        match (word, format) {
+            (Some(w), _) => {
+                if (w.value - value).abs() > 0.0 {
+                    changed.push(n);
+                }
+                out.push_str(&body[..w.start]);
+                out.push_str(if (w.value - value).abs() > 0.0 {
+                    &new_text
+                } else {
+                    &body[w.start..w.end]
+                });
+                out.push_str(&body[w.end..]);
+                out.push_str(eol);
+            }
+            (None, ProgramFormat::Gcode) => {
+                if current != Some(value) {
+                    changed.push(n);
+                    out.push_str(&body[..code_end]);
+                    out.push_str(" F");
+                    out.push_str(&new_text);
+                    out.push_str(&body[code_end..]);
+                    out.push_str(eol);
+                } else {
+                    out.push_str(raw);
+                }
+            }
+            (None, ProgramFormat::Apt) => {
+                if current != Some(value) {
+                    changed.push(n);
+                    let record = match &template {
+                        Some((t, w)) => format!("{}{}{}", &t[..w.start], new_text, &t[w.end..]),
+                        None => format!("FEDRAT/{new_text}"),
+                    };
+                    out.push_str(&record);
+                    out.push_str(if eol.is_empty() { "\n" } else { eol });
+                }
+                out.push_str(raw);
+            }
+        }
+        current = Some(value);
+    }
+    Ok(Rewritten {
+        text: out,
+        lines_changed: changed,
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn factors(v: &[(u32, f64)]) -> BTreeMap<u32, f64> {
+        v.iter().copied().collect()
+    }
+
+    #[test]
+    fn gcode_feeds_replaced_added_and_restored() {
+        let text = "G21 G90\r\nG1 X10 F600 (first)\r\nG1 X20\r\nG1 X30 ; last\r\nG0 Z5\r\n";
+        let r = rewrite_feeds(
+            text,
+            "t.ngc",
+            ProgramFormat::Gcode,
+            &factors(&[(2, 0.5), (3, 1.0), (4, 1.0)]),
+        )
+        .unwrap();
+        assert_eq!(
+            r.text,
+            "G21 G90\r\nG1 X10 F300 (first)\r\nG1 X20 F600\r\nG1 X30 ; last\r\nG0 Z5\r\n"
+        );
+        assert_eq!(r.lines_changed, vec![2, 3]);
+        // Unchanged factors change nothing.
+        let same = rewrite_feeds(
+            text,
+            "t.ngc",
+            ProgramFormat::Gcode,
+            &factors(&[(2, 1.0), (3, 1.0), (4, 1.0)]),
+        )
+        .unwrap();
+        assert_eq!(same.text, text);
+        assert!(same.lines_changed.is_empty());
+    }
+
+    #[test]
+    fn gcode_f_in_comments_and_expressions() {
+        let text = "G1 X1 F100 (F999)\nG1 X2 [#<f>*2]\n#1 = [FIX[2.5]]\nG1 X3\n";
+        let r = rewrite_feeds(
+            text,
+            "t.ngc",
+            ProgramFormat::Gcode,
+            &factors(&[(1, 2.0), (2, 2.0), (4, 1.0)]),
+        )
+        .unwrap();
+        assert_eq!(
+            r.text,
+            "G1 X1 F200 (F999)\nG1 X2 [#<f>*2]\n#1 = [FIX[2.5]]\nG1 X3 F100\n"
+        );
+        let e = rewrite_feeds(
+            "G1 X1 F[#1]\n",
+            "t.ngc",
+            ProgramFormat::Gcode,
+            &factors(&[(1, 2.0)]),
+        )
+        .unwrap_err();
+        assert_eq!((e.pos.line, e.pos.column), (1, 7));
+        let e = rewrite_feeds(
+            "G1 X1\n",
+            "t.ngc",
+            ProgramFormat::Gcode,
+            &factors(&[(1, 2.0)]),
+        )
+        .unwrap_err();
+        assert!(e.message.contains("before any feed word"));
+    }
+
+    #[test]
+    fn apt_fedrat_records_rescaled_and_inserted() {
+        let text = "FEDRAT/ 500.0000,MMPM\nGOTO/1,0,0\nGOTO/2,0,0\nRAPID\nGOTO/2,0,9\n";
+        let r = rewrite_feeds(
+            text,
+            "t.apt",
+            ProgramFormat::Apt,
+            &factors(&[(2, 0.5), (3, 1.0)]),
+        )
+        .unwrap();
+        assert_eq!(
+            r.text,
+            "FEDRAT/ 500.0000,MMPM\nFEDRAT/ 250,MMPM\nGOTO/1,0,0\nFEDRAT/ 500,MMPM\nGOTO/2,0,0\nRAPID\nGOTO/2,0,9\n"
+        );
+    }
+
+    #[test]
+    fn feed_numbers_keep_six_digits() {
+        assert_eq!(format_feed(1234.5678), "1234.57");
+        assert_eq!(format_feed(600.0), "600");
+        assert_eq!(format_feed(0.0123456), "0.012346");
+        assert_eq!(format_feed(25.0), "25");
+    }
+}
