@@ -33,6 +33,9 @@ pub(crate) enum Command {
     /// Cutting forces, torque and power at every cutter location of a program (mechanistic
     /// model on the engagement), with force-versus-angle curves.
     Forces(crate::commands::forces::ForcesArgs),
+    /// Force-limited feed scheduling: a feed per move that keeps the peak force, torque or
+    /// power under a limit, written back into the program (only feed words change).
+    Schedule(crate::commands::schedule::ScheduleArgs),
     /// Write the swept envelope of a program's feed moves (whole tool) as STL and glb.
     Envelope(crate::commands::envelope::EnvelopeArgs),
     /// Check a program against the part surface: every point and every stretch of motion where

@@ -19,6 +19,7 @@ fn main() {
         cli::Command::Envelope(args) => commands::envelope::run(&args),
         cli::Command::Engage(args) => commands::engage::run(&args),
         cli::Command::Forces(args) => commands::forces::run(&args),
+        cli::Command::Schedule(args) => commands::schedule::run(&args),
         cli::Command::Gouge(args) => commands::gouge::run(&args),
         cli::Command::Demo(args) => commands::demo::run(&args),
     };

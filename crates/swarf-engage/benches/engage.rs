@@ -9,7 +9,6 @@
 //! Without it, criterion also times 300 moves of each.
 
 use criterion::{criterion_main, Criterion};
-use std::fmt::Write as _;
 use std::time::Instant;
 use swarf_engage::{EngageOptions, Engager};
 use swarf_geom::math::Vec3;
@@ -18,31 +17,9 @@ use swarf_path::{Machine, Program};
 use swarf_stock::{simulate, SimOptions, Tools, TriDexel};
 use swarf_tool::{Cutter, ToolSet};
 
-/// The raster of the `cut` bench as a G-code program of `n` feed moves.
 fn program(n: usize) -> Program {
-    let z = |x: f64, y: f64| 40.0 + 3.0 * (x / 12.0).sin() * (y / 15.0).cos();
-    let mut text = String::from("G21 G90\nG0 Z60\nG0 X5 Y5\nG1 Z43 F2000\n");
-    let (seg, step_over) = (0.5, 0.6);
-    let per_pass = (110.0 / seg) as usize;
-    let (mut y, mut moves, mut pass) = (5.0, 0, 0);
-    while moves < n {
-        for i in 0..=per_pass {
-            let x = if pass % 2 == 0 {
-                5.0 + i as f64 * seg
-            } else {
-                115.0 - i as f64 * seg
-            };
-            let _ = writeln!(text, "G1 X{x:.4} Y{y:.4} Z{:.4}", z(x, y));
-            moves += 1;
-            if moves >= n {
-                break;
-            }
-        }
-        y += step_over;
-        pass += 1;
-    }
     read_program_str(
-        &text,
+        &swarf_engage::bench::finishing_gcode(n),
         "finish.ngc",
         Machine::three_axis(),
         &ReadOptions::default(),

@@ -60,6 +60,7 @@
 //! assert!((at_20mm.ap_mm - 5.0).abs() < 0.01);
 //! ```
 
+pub mod bench;
 pub mod engagement;
 pub mod probe;
 pub mod run;

@@ -16,7 +16,7 @@ use swarf_tool::ToolSet;
 use crate::cli::SetupArgs;
 use crate::commands::plots;
 use crate::commands::simulate::{build_stock, positive_mm};
-use crate::commands::tools::{load_setup, tool_set, Setup};
+use crate::commands::tools::{load_machine, load_setup, read_options, tool_set, Setup};
 use crate::output::{csv_field, print_json, write_atomic};
 
 /// What a run along a program needs: the stock, the program, its tools and the engagement's
@@ -73,6 +73,17 @@ impl RunArgs {
             Some(p) => Ok(p),
             None => bail!("--program FILE is required (the G-code or APT CL program to run)"),
         }
+    }
+
+    /// Reads program text (`name` in messages) with this run's machine and units.
+    pub(crate) fn read_program_str(&self, text: &str, name: &str) -> Result<Program> {
+        let machine = load_machine(&self.setup.machine)?;
+        Ok(swarf_path::load::read_program_str(
+            text,
+            name,
+            machine,
+            &read_options(self.setup.initial_units),
+        )?)
     }
 
     /// Reads the program and tools, builds the stock and checks the options.

@@ -1,0 +1,266 @@
+//! `swarf schedule`: feeds per move that keep the predicted peak force, torque or power under a
+//! limit, written back into the program with only its feed words changed.
+
+use std::collections::BTreeMap;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use anyhow::{bail, Context, Result};
+use clap::Args;
+use rayon::prelude::*;
+use serde::Serialize;
+use swarf_force::{schedule_feeds, Limit, LocationCap, MoveCaps, ScheduleOptions};
+use swarf_path::load::ProgramFormat;
+use swarf_path::{MoveKind, Program};
+
+use crate::commands::engage::RunArgs;
+use crate::commands::forces::{model, walk_batches, MaterialArgs};
+use crate::output::{print_json, write_atomic};
+
+#[derive(Debug, Args)]
+#[command(group(clap::ArgGroup::new("limit").required(true).args(["limit_force", "limit_torque", "limit_power"])))]
+pub(crate) struct ScheduleArgs {
+    #[command(flatten)]
+    run: RunArgs,
+    #[command(flatten)]
+    material: MaterialArgs,
+    /// Largest peak resultant force on the tool, N.
+    #[arg(long, value_name = "N")]
+    limit_force: Option<f64>,
+    /// Largest peak spindle torque, N·m.
+    #[arg(long, value_name = "NM")]
+    limit_torque: Option<f64>,
+    /// Largest peak spindle power, W.
+    #[arg(long, value_name = "W")]
+    limit_power: Option<f64>,
+    /// Slowest feed, mm/min.
+    #[arg(long, value_name = "MM_MIN", default_value_t = 1.0)]
+    min_feed: f64,
+    /// Fastest feed, mm/min (default: never faster than programmed).
+    #[arg(long, value_name = "MM_MIN")]
+    max_feed: Option<f64>,
+    /// Largest change of feed between consecutive feed moves, percent.
+    #[arg(long, value_name = "P")]
+    max_step_percent: Option<f64>,
+    /// The scheduled program (G-code or APT, as the input). A JSON summary goes beside it
+    /// (FILE.schedule.json).
+    #[arg(long, value_name = "FILE")]
+    out: PathBuf,
+    /// Print the JSON summary.
+    #[arg(long)]
+    json: bool,
+}
+
+/// A move still over the limit at the scheduled feed.
+#[derive(Serialize)]
+struct Over {
+    #[serde(rename = "move")]
+    move_index: usize,
+    file: String,
+    line: u32,
+    feed_mm_min: f64,
+    /// The feed the limit allows (0: even the edge forces alone exceed it).
+    cap_mm_min: f64,
+}
+
+/// The JSON summary; the first four keys are a contract.
+#[derive(Serialize)]
+struct ScheduleSummary {
+    moves_changed: usize,
+    time_before_s: f64,
+    time_after_s: f64,
+    still_over_limit: Vec<Over>,
+    lines_changed: usize,
+    limit: Limit,
+    material: String,
+    elapsed_s: f64,
+}
+
+/// Feed moves must run in the order of their lines in the program's own file: the rewrite
+/// works on the text.
+fn check_straight_line(program: &Program) -> Result<()> {
+    let mut last = 0u32;
+    for m in &program.moves {
+        if matches!(m.kind, MoveKind::Rapid) {
+            continue;
+        }
+        let file = program
+            .files
+            .get(m.file as usize)
+            .map_or("?", String::as_str);
+        if m.file != 0 {
+            bail!(
+                "{file}:{}: a feed move in another file (a called subroutine): swarf schedule rewrites the feeds of one file, whose feed moves run in line order",
+                m.line
+            );
+        }
+        if m.line < last {
+            bail!(
+                "{file}:{}: this feed move runs after line {last} (a loop or subroutine): swarf schedule rewrites the feeds of straight-line programs, whose feed moves run in line order",
+                m.line
+            );
+        }
+        last = m.line;
+    }
+    Ok(())
+}
+
+pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
+    let t0 = Instant::now();
+    let limit = match (args.limit_force, args.limit_torque, args.limit_power) {
+        (Some(v), None, None) => Limit::Force(v),
+        (None, Some(v), None) => Limit::Torque(v),
+        (None, None, Some(v)) => Limit::Power(v),
+        _ => bail!("give exactly one of --limit-force, --limit-torque, --limit-power"),
+    };
+    if !(limit.value().is_finite() && limit.value() > 0.0) {
+        bail!("the limit must be a positive number, got {}", limit.value());
+    }
+    if !(args.min_feed.is_finite() && args.min_feed > 0.0) {
+        bail!(
+            "--min-feed must be a positive feed in mm/min, got {}",
+            args.min_feed
+        );
+    }
+    if let Some(m) = args.max_feed {
+        if !(m.is_finite() && m >= args.min_feed) {
+            bail!(
+                "--max-feed must be at least --min-feed ({}), got {m}",
+                args.min_feed
+            );
+        }
+    }
+    if let Some(p) = args.max_step_percent {
+        if !(p.is_finite() && p > 0.0) {
+            bail!("--max-step-percent must be positive, got {p}");
+        }
+    }
+    let material = args.material.load()?;
+    let file = args.run.program()?.to_path_buf();
+    let text = swarf_path::load::read_text(&file)?;
+    let format = ProgramFormat::detect(&file, &text);
+    let mut run = args.run.prepare()?;
+    check_straight_line(&run.program)?;
+    let model = model(&run, material, args.material.samples_per_rev)?;
+    let mut caps = MoveCaps::new(run.program.moves.len());
+    let max_feed = args.max_feed;
+    walk_batches(&mut run, &file, |batch| {
+        let found: Vec<(usize, LocationCap)> = batch
+            .par_iter()
+            .map(|e| {
+                let ev = model.evaluate(e);
+                let per_tooth = e.spindle_rpm * ev.flutes as f64;
+                let ceiling = max_feed.unwrap_or(e.feed_mm_min).max(args.min_feed);
+                let c_max = if per_tooth > 0.0 {
+                    ceiling / per_tooth
+                } else {
+                    0.0
+                };
+                (e.move_index, LocationCap::of(&model, &ev, limit, c_max))
+            })
+            .collect();
+        for (i, c) in found {
+            caps.add(i, c);
+        }
+        Ok(())
+    })?;
+    let opts = ScheduleOptions {
+        limit,
+        min_feed_mm_min: args.min_feed,
+        max_feed_mm_min: args.max_feed,
+        max_step_percent: args.max_step_percent,
+    };
+    let schedule = schedule_feeds(&run.program, &caps, &opts);
+    // One factor per line: moves sharing a line share its feed word, so the slowest wins.
+    let mut factors: BTreeMap<u32, f64> = BTreeMap::new();
+    for m in &schedule.moves {
+        if m.old_feed_mm_min <= 0.0 {
+            continue;
+        }
+        let line = run.program.moves[m.move_index].line;
+        let f = m.new_feed_mm_min / m.old_feed_mm_min;
+        factors
+            .entry(line)
+            .and_modify(|x| *x = x.min(f))
+            .or_insert(f);
+    }
+    let name = file.display().to_string();
+    let rewritten = swarf_path::rewrite::rewrite_feeds(&text, &name, format, &factors)?;
+    // The new program must read back with the scheduled feeds and the same motion.
+    let again = args
+        .run
+        .read_program_str(&rewritten.text, &args.out.display().to_string())
+        .context("reading the scheduled program back")?;
+    if again.moves.len() != run.program.moves.len() {
+        bail!(
+            "internal error: the scheduled program has {} moves, the input {}; nothing written",
+            again.moves.len(),
+            run.program.moves.len()
+        );
+    }
+    let mut moves_changed = 0;
+    for m in &schedule.moves {
+        let new = &again.moves[m.move_index];
+        let got = swarf_engage::feed_rate(new, swarf_engage::path_length(&again, new));
+        let want = m.old_feed_mm_min * factors.get(&new.line).copied().unwrap_or(1.0);
+        if (got - want).abs() > 1e-5 * want.max(1.0) {
+            bail!(
+                "internal error: {name}:{}: the scheduled program reads back at {got} mm/min, not {want}; nothing written",
+                new.line
+            );
+        }
+        if (got - m.old_feed_mm_min).abs() > 1e-9 * m.old_feed_mm_min {
+            moves_changed += 1;
+        }
+    }
+    write_atomic(&args.out, rewritten.text.as_bytes())?;
+    let still_over_limit: Vec<Over> = schedule
+        .moves
+        .iter()
+        .filter(|m| m.over_limit)
+        .map(|m| {
+            let mv = &run.program.moves[m.move_index];
+            Over {
+                move_index: m.move_index,
+                file: name.clone(),
+                line: mv.line,
+                feed_mm_min: m.new_feed_mm_min,
+                cap_mm_min: m.cap_mm_min.unwrap_or(0.0),
+            }
+        })
+        .collect();
+    let summary = ScheduleSummary {
+        moves_changed,
+        time_before_s: swarf_path::summarize(&run.program).machining_time_s,
+        time_after_s: swarf_path::summarize(&again).machining_time_s,
+        still_over_limit,
+        lines_changed: rewritten.lines_changed.len(),
+        limit,
+        material: model.material().name.clone(),
+        elapsed_s: t0.elapsed().as_secs_f64(),
+    };
+    let mut json = serde_json::to_vec_pretty(&summary)?;
+    json.push(b'\n');
+    let mut side = args.out.clone().into_os_string();
+    side.push(".schedule.json");
+    write_atomic(&PathBuf::from(side), &json)?;
+    if args.json {
+        return print_json(&summary);
+    }
+    println!(
+        "{} of {} feed moves changed on {} lines; machining time {:.1} s -> {:.1} s; {} moves still over the limit at the minimum feed",
+        summary.moves_changed,
+        schedule.moves.len(),
+        summary.lines_changed,
+        summary.time_before_s,
+        summary.time_after_s,
+        summary.still_over_limit.len()
+    );
+    for o in summary.still_over_limit.iter().take(10) {
+        eprintln!(
+            "swarf: warning: {}:{}: over the limit at {:.1} mm/min (the limit allows {:.1})",
+            o.file, o.line, o.feed_mm_min, o.cap_mm_min
+        );
+    }
+    Ok(())
+}

@@ -1,0 +1,304 @@
+//! `swarf forces` and `swarf schedule` end to end: files, figures against the closed form, the
+//! schedule's contract (only feed words change, every location under the limit afterwards,
+//! idempotent), and errors.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{json, stderr, swarf};
+
+const MATERIAL: &str = "name = \"Al7075-T6 (test)\"\nktc = 796\nkrc = 168.8\nkac = 222\nkte = 27.7\nkre = 30.8\nkae = 1.8\nsource = \"test values\"\n";
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("swarf-forces-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn write(d: &Path, name: &str, text: &str) -> String {
+    let p = d.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_str().unwrap().to_string()
+}
+
+const SLOT: &str = "G21 G90 G94\nS1000 M3\nG0 X-10 Y10 Z-4\nG1 X50 F400\nG0 Z10\n";
+
+#[test]
+fn slot_forces_files_and_figures() {
+    let d = dir("slot");
+    let prog = write(&d, "slot.ngc", SLOT);
+    let mat = write(&d, "al.toml", MATERIAL);
+    let out = d.join("out");
+    let o = swarf(&[
+        "forces",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        &prog,
+        "--tool",
+        "flat:d=10,flutes=4,helix=30",
+        "--coefficients",
+        &mat,
+        "--curves-at",
+        "25",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = json(&o);
+    for key in [
+        "locations",
+        "max_force_n",
+        "max_torque_nm",
+        "max_power_w",
+        "mean_power_w",
+        "elapsed_s",
+    ] {
+        assert!(s.get(key).is_some(), "{key}");
+    }
+    assert_eq!(s["locations"], 60);
+    let csv = std::fs::read_to_string(out.join("forces.csv")).unwrap();
+    let mut lines = csv.lines();
+    assert_eq!(
+        lines.next().unwrap(),
+        "location,move,file,line,x,y,z,feed_per_tooth_mm,fx_mean_n,fy_mean_n,fz_mean_n,fx_peak_n,fy_peak_n,fz_peak_n,f_peak_n,wx_mean_n,wy_mean_n,wz_mean_n,torque_mean_nm,torque_peak_nm,power_mean_w,power_peak_w"
+    );
+    // Location 25 (x = 16): a full slot 4 mm deep, c = 0.1 mm: F̄y = N·a·(c·Ktc/4 + Kte/π).
+    let row: Vec<f64> = lines
+        .nth(25)
+        .unwrap()
+        .split(',')
+        .enumerate()
+        .filter(|(i, _)| *i != 2)
+        .map(|(_, v)| v.parse().unwrap())
+        .collect();
+    // (file dropped: columns shift by one after index 1.)
+    assert!((row[6] - 0.1).abs() < 1e-12, "feed per tooth {}", row[6]);
+    let fy = 4.0 * 4.0 * (0.1 * 796.0 / 4.0 + 27.7 / std::f64::consts::PI);
+    assert!((row[8] - fy).abs() < 1e-3 * fy, "{} vs {fy}", row[8]);
+    let curves = std::fs::read_to_string(out.join("curves.csv")).unwrap();
+    assert_eq!(curves.lines().count(), 1 + 360);
+    assert!(curves.starts_with("location,angle_deg,fx_n,fy_n,fz_n,torque_nm\n25,0,"));
+    for f in [
+        "plots/peak_force.png",
+        "plots/torque.png",
+        "plots/power.png",
+        "plots/curves_location_25.png",
+        "summary.json",
+    ] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+}
+
+#[test]
+fn schedule_keeps_every_location_under_the_limit_and_only_touches_feeds() {
+    let d = dir("schedule");
+    let text = "G21 G90 G94\r\nS1000 M3\r\nG0 X-10 Y10 Z-4\r\nG1 X50 F800 (slot)\r\nG1 Y12\r\nG1 X-10\r\nG0 Z10\r\nG0 X-10 Y0\r\nG1 Z-2 F300\r\nG1 X50 ; light pass\r\nG0 Z10\r\nM30\r\n";
+    let prog = write(&d, "job.ngc", text);
+    let mat = write(&d, "al.toml", MATERIAL);
+    let common = |out: &str, program: &str| -> Vec<String> {
+        [
+            "--stock",
+            "box:0,0,-10,40,20,0",
+            "--program",
+            program,
+            "--tool",
+            "flat:d=10,flutes=4,helix=30",
+            "--coefficients",
+            &mat,
+            "--out",
+            out,
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect()
+    };
+    let sched = |program: &str, out: &Path| {
+        let mut a = vec!["schedule".to_string()];
+        a.extend(common(out.to_str().unwrap(), program));
+        a.extend(
+            [
+                "--limit-force",
+                "600",
+                "--max-feed",
+                "1200",
+                "--max-step-percent",
+                "50",
+                "--json",
+            ]
+            .iter()
+            .map(|s| s.to_string()),
+        );
+        let args: Vec<&str> = a.iter().map(String::as_str).collect();
+        swarf(&args)
+    };
+    let out1 = d.join("job1.ngc");
+    let o = sched(&prog, &out1);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = json(&o);
+    assert!(s["moves_changed"].as_u64().unwrap() > 0);
+    assert!(s["time_after_s"].as_f64().unwrap() > 0.0);
+    assert!(s["time_before_s"].as_f64().is_some());
+    assert_eq!(s["still_over_limit"].as_array().unwrap().len(), 0);
+    let new = std::fs::read_to_string(&out1).unwrap();
+    // Only F words differ: removing them (and the space before an added one) gives the input.
+    let strip = |t: &str| -> String {
+        t.split("\r\n")
+            .map(|l| {
+                let mut out = String::new();
+                let mut chars = l.chars().peekable();
+                while let Some(c) = chars.next() {
+                    if c == 'F' {
+                        while chars
+                            .peek()
+                            .is_some_and(|c| c.is_ascii_digit() || *c == '.')
+                        {
+                            chars.next();
+                        }
+                        continue;
+                    }
+                    out.push(c);
+                }
+                out.trim_end().replace("  ", " ")
+            })
+            .collect::<Vec<_>>()
+            .join("\r\n")
+    };
+    assert_eq!(strip(&new), strip(text));
+    assert_ne!(new, text);
+    assert!(new.contains("(slot)") && new.contains("; light pass\r\n"));
+    // Every location of the new program at or under the limit (within 1 %).
+    let fo = d.join("forces");
+    let mut a = vec!["forces".to_string()];
+    a.extend(common(fo.to_str().unwrap(), out1.to_str().unwrap()));
+    a.push("--json".into());
+    let args: Vec<&str> = a.iter().map(String::as_str).collect();
+    let o = swarf(&args);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let peak = json(&o)["max_force_n"].as_f64().unwrap();
+    assert!(peak <= 606.0, "{peak}");
+    // The original exceeds it.
+    let fo0 = d.join("forces0");
+    let mut a = vec!["forces".to_string()];
+    a.extend(common(fo0.to_str().unwrap(), &prog));
+    a.push("--json".into());
+    let args: Vec<&str> = a.iter().map(String::as_str).collect();
+    let before = json(&swarf(&args))["max_force_n"].as_f64().unwrap();
+    assert!(before > 700.0, "{before}");
+    // Running it again changes nothing.
+    let out2 = d.join("job2.ngc");
+    let o = sched(out1.to_str().unwrap(), &out2);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&out2).unwrap(), new);
+    assert_eq!(json(&o)["moves_changed"], 0);
+}
+
+#[test]
+fn schedule_reports_what_even_the_minimum_feed_cannot_fix() {
+    let d = dir("over");
+    let prog = write(&d, "slot.ngc", SLOT);
+    let mat = write(&d, "al.toml", MATERIAL);
+    let out = d.join("slow.ngc");
+    let o = swarf(&[
+        "schedule",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        &prog,
+        "--tool",
+        "flat:d=10,flutes=4,helix=30",
+        "--coefficients",
+        &mat,
+        "--limit-force",
+        "300",
+        "--min-feed",
+        "200",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = json(&o);
+    let over = s["still_over_limit"].as_array().unwrap();
+    assert_eq!(over.len(), 1);
+    assert_eq!(over[0]["line"], 4);
+    assert_eq!(over[0]["feed_mm_min"], 200.0);
+    assert!(std::fs::read_to_string(&out)
+        .unwrap()
+        .contains("G1 X50 F200\n"));
+}
+
+#[test]
+fn errors_name_what_is_missing() {
+    let d = dir("errors");
+    let prog = write(&d, "slot.ngc", SLOT);
+    let o_dir = d.join("o");
+    let base = [
+        "forces",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        &prog,
+        "--out",
+        o_dir.to_str().unwrap(),
+    ];
+    let run = |extra: &[&str]| {
+        let mut a: Vec<&str> = base.to_vec();
+        a.extend_from_slice(extra);
+        swarf(&a)
+    };
+    let o = run(&["--tool", "flat:d=10", "--material", "ti6al4v"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("no flute count"), "{}", stderr(&o));
+    let o = run(&["--tool", "flat:d=10,flutes=3", "--material", "ti6al4v"]);
+    assert!(stderr(&o).contains("no rake angle"), "{}", stderr(&o));
+    let o = run(&["--tool", "flat:d=10,flutes=3", "--material", "unobtainium"]);
+    assert!(stderr(&o).contains("ti6al4v"), "{}", stderr(&o));
+    let o = run(&["--tool", "flat:d=10,flutes=3"]);
+    assert!(stderr(&o).contains("--material"), "{}", stderr(&o));
+    let bad = write(&d, "bad.toml", "name = \"x\"\nktc = 796\nkrc = nope\n");
+    let o = run(&["--tool", "flat:d=10,flutes=3", "--coefficients", &bad]);
+    assert!(stderr(&o).contains("bad.toml:3:"), "{}", stderr(&o));
+    // A predicted material with a rake: works, and names its source.
+    let o = run(&[
+        "--tool",
+        "flat:d=10,flutes=3,rake=12",
+        "--material",
+        "ti6al4v",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(json(&o)["material_source"]
+        .as_str()
+        .unwrap()
+        .contains("Budak"));
+    let o = swarf(&["forces", "--list-materials"]);
+    assert!(o.status.success());
+    // A schedule over a loop is refused (the rewrite works on straight-line text).
+    let looped = write(
+        &d,
+        "loop.ngc",
+        "G21 G90\nS1000 M3\nG0 X-10 Y10 Z-4\n#1 = 0\no100 while [#1 LT 2]\nG1 X50 F400\nG1 X-10\n#1 = [#1 + 1]\no100 endwhile\nM30\n",
+    );
+    let mat = write(&d, "al.toml", MATERIAL);
+    let o = swarf(&[
+        "schedule",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        &looped,
+        "--tool",
+        "flat:d=10,flutes=4",
+        "--coefficients",
+        &mat,
+        "--limit-power",
+        "100",
+        "--out",
+        d.join("x.ngc").to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("loop.ngc:6:"), "{}", stderr(&o));
+    assert!(!d.join("x.ngc").exists());
+}
