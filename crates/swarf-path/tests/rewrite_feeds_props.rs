@@ -1,0 +1,70 @@
+//! Properties of the feed rewrite on arbitrary text: it never panics, a factor of 1 everywhere
+//! changes nothing, and whatever it writes differs from the input only in feed numbers (G-code:
+//! the text with every F word's number removed is unchanged, up to added ` F` words).
+
+use std::collections::BTreeMap;
+
+use proptest::prelude::*;
+use swarf_path::load::ProgramFormat;
+use swarf_path::rewrite::rewrite_feeds;
+
+fn line() -> impl Strategy<Value = String> {
+    prop_oneof![
+        Just("G1 X1 F100".to_string()),
+        Just("G1 X2".to_string()),
+        Just("G0 Z5".to_string()),
+        Just("F250".to_string()),
+        Just("G1 Y3 F[#1*2]".to_string()),
+        Just("(F comment) G1 X4".to_string()),
+        Just("G1 X5 ; F9".to_string()),
+        Just("FEDRAT/ 300,MMPM".to_string()),
+        Just("GOTO/1,2,3".to_string()),
+        "[ -~]{0,20}",
+    ]
+}
+
+fn drop_feed_numbers(t: &str) -> String {
+    let mut out = String::new();
+    let mut chars = t.chars().peekable();
+    while let Some(c) = chars.next() {
+        out.push(c);
+        if matches!(c, 'F' | 'f' | '/' | ',') {
+            while chars
+                .peek()
+                .is_some_and(|&d| d.is_ascii_digit() || matches!(d, '.' | '+' | '-'))
+            {
+                chars.next();
+            }
+        }
+    }
+    // An F word (kept, replaced or added before a comment) reads the same.
+    out.replace(" F", "")
+}
+
+proptest! {
+    #[test]
+    fn rewrite_is_safe_and_changes_only_feeds(
+        lines in proptest::collection::vec(line(), 0..12),
+        picks in proptest::collection::vec((0u32..14, 0.1f64..4.0), 0..8),
+        apt in any::<bool>(),
+    ) {
+        let text = lines.join("\n") + "\n";
+        let format = if apt { ProgramFormat::Apt } else { ProgramFormat::Gcode };
+        let ones: BTreeMap<u32, f64> = picks.iter().map(|&(l, _)| (l, 1.0)).collect();
+        if let Ok(r) = rewrite_feeds(&text, "p", format, &ones) {
+            // Factor 1: lines whose feed is in effect keep it; only restoring words may appear.
+            prop_assert_eq!(drop_feed_numbers(&r.text), drop_feed_numbers(&text));
+        }
+        let factors: BTreeMap<u32, f64> = picks.iter().copied().collect();
+        if let Ok(r) = rewrite_feeds(&text, "p", format, &factors) {
+            if !apt {
+                prop_assert_eq!(drop_feed_numbers(&r.text), drop_feed_numbers(&text));
+                prop_assert_eq!(r.text.lines().count(), text.lines().count());
+            } else {
+                // APT: only FEDRAT records are added.
+                let extra: Vec<&str> = r.text.lines().filter(|l| !text.lines().any(|t| t == *l)).collect();
+                prop_assert!(extra.iter().all(|l| l.to_ascii_uppercase().contains("FEDRAT")), "{:?}", extra);
+            }
+        }
+    }
+}
