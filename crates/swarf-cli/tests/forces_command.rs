@@ -302,3 +302,40 @@ fn errors_name_what_is_missing() {
     assert!(stderr(&o).contains("loop.ngc:6:"), "{}", stderr(&o));
     assert!(!d.join("x.ngc").exists());
 }
+
+#[test]
+fn schedule_rewrites_apt_fedrat_records_and_g95_feeds() {
+    let d = dir("apt");
+    let mat = write(&d, "al.toml", MATERIAL);
+    let apt = "PARTNO TEST\nUNITS/MM\nSPINDL/1000,RPM,CLW\nRAPID\nGOTO/-10,10,-4\nFEDRAT/ 800.0000,MMPM\nGOTO/50,10,-4\nGOTO/50,12,-4\nGOTO/-10,12,-4\nRAPID\nGOTO/-10,12,10\nFINI\n";
+    let g95 = "G21 G90 G95\nS1000 M3\nG0 X-10 Y10 Z-4\nG1 X50 F0.8\nG0 Z10\n";
+    for (name, text, want) in [
+        (
+            "job.apt",
+            apt,
+            "FEDRAT/ 432.158,MMPM\nGOTO/50,10,-4\nFEDRAT/ 800,MMPM\nGOTO/50,12,-4\n",
+        ),
+        ("rev.ngc", g95, "G1 X50 F0.431694\n"),
+    ] {
+        let prog = write(&d, name, text);
+        let out = d.join(format!("s-{name}"));
+        let o = swarf(&[
+            "schedule",
+            "--stock",
+            "box:0,0,-10,40,20,0",
+            "--program",
+            &prog,
+            "--tool",
+            "flat:d=10,flutes=4,helix=30",
+            "--coefficients",
+            &mat,
+            "--limit-force",
+            "600",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        let new = std::fs::read_to_string(&out).unwrap();
+        assert!(new.contains(want), "{name}:\n{new}");
+    }
+}

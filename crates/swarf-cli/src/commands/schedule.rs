@@ -201,12 +201,12 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
     let mut moves_changed = 0;
     for m in &schedule.moves {
         let new = &again.moves[m.move_index];
+        let line = run.program.moves[m.move_index].line;
         let got = swarf_engage::feed_rate(new, swarf_engage::path_length(&again, new));
-        let want = m.old_feed_mm_min * factors.get(&new.line).copied().unwrap_or(1.0);
+        let want = m.old_feed_mm_min * factors.get(&line).copied().unwrap_or(1.0);
         if (got - want).abs() > 1e-5 * want.max(1.0) {
             bail!(
-                "internal error: {name}:{}: the scheduled program reads back at {got} mm/min, not {want}; nothing written",
-                new.line
+                "internal error: {name}:{line}: the scheduled program reads back at {got} mm/min, not {want}; nothing written"
             );
         }
         if (got - m.old_feed_mm_min).abs() > 1e-9 * m.old_feed_mm_min {
