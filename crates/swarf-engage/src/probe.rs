@@ -15,6 +15,14 @@
 //! boundary is the distance to its nearest face). Only near an edge of the stock — within a ray
 //! spacing of two faces at once — may no family be coherent: the rays nearest to `P` then vote
 //! on the side, and the distance is reported as a fraction of the spacing.
+//!
+//! Far from the boundary no family is coherent either, but then all twelve rays agree on the
+//! side and their nearest ends are all farther than the probe's precision cap `D₀ = 4h`: the
+//! point is **deep**, and `D/√3 − 2h` (`D` the nearest of those ends along its ray) is a lower
+//! bound of its distance to any boundary the rays resolve — a sheet at distance `δ` crosses the
+//! rays of the family most aligned with its normal (within 54.7°) at most `√3·(δ + √2·h)` away —
+//! reported as at least `D₀`. The engagement uses that bound to skip samples that cannot be near
+//! the boundary.
 
 use swarf_geom::math::Vec3;
 use swarf_stock::{Interval, TriDexel};
@@ -77,6 +85,8 @@ impl<'a> MaterialProbe<'a> {
         let mut best: Option<f64> = None;
         let mut votes = 0i32;
         let mut vote_scale = 0.0f64;
+        // Deep families: how many, and the nearest end among them.
+        let (mut deep, mut deep_inside, mut deep_near) = (0, 0, f64::INFINITY);
         for k in 0..3 {
             match self.family_depth(k, p) {
                 FamilyDepth::Coherent(d) => {
@@ -88,7 +98,21 @@ impl<'a> MaterialProbe<'a> {
                     votes += if inside { 1 } else { -1 };
                     vote_scale = vote_scale.max(spacing);
                 }
+                FamilyDepth::Deep(inside, near, spacing) => {
+                    votes += if inside { 1 } else { -1 };
+                    vote_scale = vote_scale.max(spacing);
+                    deep += 1;
+                    deep_inside += i32::from(inside);
+                    deep_near = deep_near.min(near);
+                }
             }
+        }
+        if deep == 3 && (deep_inside == 0 || deep_inside == 3) {
+            let bound = (deep_near / 3f64.sqrt() - 2.0 * vote_scale).max(self.cap);
+            return Depth {
+                distance: if deep_inside == 3 { bound } else { -bound },
+                measured: true,
+            };
         }
         match best {
             Some(d) => Depth {
@@ -124,6 +148,9 @@ impl<'a> MaterialProbe<'a> {
         let mut kind = 0i8;
         let mut coherent = true;
         let mut nearest = (f64::INFINITY, false);
+        // Whether all four rays are far from any end on one side, and the nearest end.
+        let (mut far_side, mut far_near) = (None::<bool>, f64::INFINITY);
+        let mut far = true;
         for (r, (di, dj)) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]
             .into_iter()
             .enumerate()
@@ -140,6 +167,10 @@ impl<'a> MaterialProbe<'a> {
             if dist2 < nearest.0 {
                 nearest = (dist2, near.is_some_and(|(d, _, _)| d > 0.0));
             }
+            let (side, gap) = near.map_or((false, f64::INFINITY), |(d, _, _)| (d > 0.0, d.abs()));
+            far &= gap > self.cap && far_side.map_or(true, |s| s == side);
+            far_side = Some(side);
+            far_near = far_near.min(gap);
             match near {
                 Some((d, end, kd)) if d.abs() <= self.cap => {
                     if kind == 0 {
@@ -151,6 +182,9 @@ impl<'a> MaterialProbe<'a> {
                 }
                 _ => coherent = false,
             }
+        }
+        if far {
+            return FamilyDepth::Deep(far_side.unwrap_or(false), far_near, spacing);
         }
         if !coherent {
             return FamilyDepth::Vote(nearest.1, spacing);
@@ -172,6 +206,9 @@ enum FamilyDepth {
     Coherent(f64),
     /// The rays disagree: only the nearest ray's side (inside?) and the ray spacing.
     Vote(bool, f64),
+    /// All four rays on one side (inside?), their nearest end farther than the cap: that
+    /// nearest end's distance along its ray, and the ray spacing.
+    Deep(bool, f64, f64),
 }
 
 #[cfg(test)]

@@ -38,6 +38,10 @@ pub struct EngageOptions {
     pub dphi_deg: f64,
     /// Chordal tolerance of arcs and 5-axis moves when cutting the stock, mm.
     pub chordal_tolerance_mm: f64,
+    /// Probe every sample: no skipping of samples that a Lipschitz bound proves far from the
+    /// boundary (the results are the same; this is the reference the fast path is tested
+    /// against).
+    pub exhaustive: bool,
 }
 
 impl Default for EngageOptions {
@@ -47,6 +51,7 @@ impl Default for EngageOptions {
             dz_mm: DEFAULT_DZ_MM,
             dphi_deg: DEFAULT_DPHI_DEG,
             chordal_tolerance_mm: DEFAULT_CHORDAL_TOLERANCE_MM,
+            exhaustive: false,
         }
     }
 }
@@ -70,6 +75,11 @@ impl EngageOptions {
     /// With another chordal tolerance.
     pub fn with_chordal_tolerance(mut self, tol: f64) -> Self {
         self.chordal_tolerance_mm = tol;
+        self
+    }
+    /// Probing every sample (see [`EngageOptions::exhaustive`]).
+    pub fn with_exhaustive(mut self, exhaustive: bool) -> Self {
+        self.exhaustive = exhaustive;
         self
     }
 
@@ -500,6 +510,7 @@ impl<'a> Engager<'a> {
                 &self.angles,
                 tool.radius,
                 material,
+                self.opts.exhaustive,
                 probes,
             )
         };
@@ -558,6 +569,7 @@ fn sample_strip(
     angles: &Angles,
     radius: f64,
     material: (f64, f64),
+    exhaustive: bool,
     probes: &mut u64,
 ) -> StripSamples {
     let n = angles.sin.len();
@@ -580,6 +592,27 @@ fn sample_strip(
     let (lo, hi) = (lo.saturating_sub(1), (hi + 2).min(strip.len()));
     let mut g = vec![0.0; (hi - lo) * n];
     let vscale = state.v_tip.length() + state.omega.length() * radius;
+    // Lipschitz bounds of g for skipping samples that cannot be near a sign change: g changes
+    // by at most `lphi` per radian along a circle and by `lz[k]` to a neighbouring circle.
+    let w = state.omega.length();
+    let vmin = state.v_tip.length() - w * (radius + strip.circles[strip.len() - 1].z.abs());
+    let skippable = vmin > 0.0 && !exhaustive;
+    let spin = if skippable { 2.0 * w / vmin } else { 0.0 };
+    let lz: Vec<f64> = (lo..hi)
+        .map(|k| {
+            let c = strip.circles[k];
+            [k.wrapping_sub(1), k + 1]
+                .into_iter()
+                .filter(|&m| m < strip.len())
+                .map(|m| {
+                    let o = strip.circles[m];
+                    let chord = ((c.rho - o.rho).powi(2) + (c.z - o.z).powi(2)).sqrt();
+                    chord + radius * ((c.normal - o.normal).length() + spin * chord)
+                })
+                .fold(0.0, f64::max)
+        })
+        .collect();
+    let dphi = std::f64::consts::TAU / n as f64;
     // Circles are independent: sampled in parallel (each probe only reads the stock).
     let counted: u64 = g
         .par_chunks_mut(n)
@@ -587,7 +620,7 @@ fn sample_strip(
         .map(|(r, row)| {
             let c = strip.circles[lo + r];
             let mut probed = 0u64;
-            for (j, out) in row.iter_mut().enumerate() {
+            let mut eval = |j: usize| {
                 let radial = f.x * angles.sin[j] + f.y * angles.cos[j];
                 let p = f.tip + radial * c.rho + f.z * c.z;
                 let normal = radial * c.normal.x + f.z * c.normal.y;
@@ -598,12 +631,46 @@ fn sample_strip(
                 } else {
                     0.0
                 };
-                *out = if feas <= FEASIBLE_EPS {
+                if feas <= FEASIBLE_EPS {
                     radius * (feas - FEASIBLE_EPS)
                 } else {
                     probed += 1;
                     probe.depth(p).distance.min(radius * feas)
-                };
+                }
+            };
+            if !skippable || n % SPAN != 0 {
+                for (j, out) in row.iter_mut().enumerate() {
+                    *out = eval(j);
+                }
+                return probed;
+            }
+            // Anchors every SPAN samples; a span whose two ends are far enough from zero (and
+            // of one sign) for no sample inside, nor any neighbour across circles, to change
+            // sign is filled by interpolation; else it is halved.
+            let lphi = (c.rho + radius * (1.0 + spin * c.rho)) * dphi;
+            let margin = lphi + lz[r];
+            for a in (0..n).step_by(SPAN) {
+                row[a] = eval(a);
+            }
+            let mut stack: Vec<(usize, usize)> =
+                (0..n).step_by(SPAN).map(|a| (a, a + SPAN)).collect();
+            while let Some((a, b)) = stack.pop() {
+                if b - a < 2 {
+                    continue;
+                }
+                let (ga, gb) = (row[a], row[b % n]);
+                let width = (b - a) as f64;
+                if ga * gb > 0.0 && ga.abs().min(gb.abs()) >= lphi * (0.5 * width + 1.0) + margin {
+                    for j in a + 1..b {
+                        let t = (j - a) as f64 / width;
+                        row[j] = ga + (gb - ga) * t;
+                    }
+                    continue;
+                }
+                let m = (a + b) / 2;
+                row[m] = eval(m);
+                stack.push((a, m));
+                stack.push((m, b));
             }
             probed
         })
@@ -615,6 +682,9 @@ fn sample_strip(
         g,
     }
 }
+
+/// Samples between the anchors of the adaptive sampling along a circle.
+const SPAN: usize = 8;
 
 /// Tool-tip path length of `m`, mm (arcs exact; curved 5-axis tips by 64 chords).
 pub fn path_length(program: &Program, m: &Move) -> f64 {
