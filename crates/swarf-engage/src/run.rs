@@ -661,9 +661,8 @@ fn sample_strip(
                 let (ga, gb) = (row[a], row[b % n]);
                 let width = (b - a) as f64;
                 if ga * gb > 0.0 && ga.abs().min(gb.abs()) >= lphi * (0.5 * width + 1.0) + margin {
-                    for j in a + 1..b {
-                        let t = (j - a) as f64 / width;
-                        row[j] = ga + (gb - ga) * t;
+                    for (q, out) in row[a + 1..b].iter_mut().enumerate() {
+                        *out = ga + (gb - ga) * (q + 1) as f64 / width;
                     }
                     continue;
                 }
