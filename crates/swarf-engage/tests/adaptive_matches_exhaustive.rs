@@ -96,10 +96,13 @@ fn same(fast: &[Engagement], slow: &[Engagement], what: &str) {
     assert!(engaged > 0, "{what}: nothing engaged, nothing compared");
 }
 
+/// Name, program, stock corners, cutter.
+type Case = (&'static str, String, [f64; 3], [f64; 3], Cutter);
+
 #[test]
 fn adaptive_sampling_changes_nothing() {
     let block_min = [0.0, 0.0, -10.0];
-    let cases: Vec<(&str, String, [f64; 3], [f64; 3], Cutter)> = vec![
+    let cases: Vec<Case> = vec![
         (
             "slot",
             "G21 G90\nG0 X-10 Y10 Z-5\nG1 X50 F600\n".into(),
