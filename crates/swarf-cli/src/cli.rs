@@ -83,6 +83,22 @@ pub(crate) struct SetupArgs {
     /// Length units before the program's first G20/G21.
     #[arg(long, value_enum, default_value = "mm")]
     pub(crate) initial_units: TableUnits,
+    /// A folder searched for `name.ngc` when the program calls a subroutine it does not define
+    /// (after the program's own folder; LinuxCNC's SUBROUTINE_PATH). May be repeated.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) subroutine_path: Vec<PathBuf>,
+    /// Read G-code as this control does (default: decided from the program).
+    #[arg(long, value_enum)]
+    pub(crate) dialect: Option<Dialect>,
+}
+
+/// The G-code dialects.
+#[derive(Clone, Copy, Debug, ValueEnum)]
+pub(crate) enum Dialect {
+    /// LinuxCNC (RS274/NGC).
+    Linuxcnc,
+    /// Fanuc 0i/30i-M style.
+    Fanuc,
 }
 
 #[derive(Debug, Args)]

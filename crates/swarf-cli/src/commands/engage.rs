@@ -16,7 +16,9 @@ use swarf_tool::ToolSet;
 use crate::cli::SetupArgs;
 use crate::commands::plots;
 use crate::commands::simulate::{build_stock, positive_mm};
-use crate::commands::tools::{load_machine, load_setup, read_options, tool_set, Setup};
+use crate::commands::tools::{
+    load_machine, load_setup, load_tool_sources, read_options, tool_set, Setup,
+};
 use crate::output::{csv_field, print_json, write_atomic};
 
 /// What a run along a program needs: the stock, the program, its tools and the engagement's
@@ -78,11 +80,14 @@ impl RunArgs {
     /// Reads program text (`name` in messages) with this run's machine and units.
     pub(crate) fn read_program_str(&self, text: &str, name: &str) -> Result<Program> {
         let machine = load_machine(&self.setup.machine)?;
+        let (single, table) = load_tool_sources(
+            self.setup.tool.as_deref(),
+            self.setup.tools.as_deref(),
+            self.setup.table_units,
+        )?;
+        let options = read_options(&self.setup, single.as_ref(), table.as_ref());
         Ok(swarf_path::load::read_program_str(
-            text,
-            name,
-            machine,
-            &read_options(self.setup.initial_units),
+            text, name, machine, &options,
         )?)
     }
 

@@ -45,7 +45,12 @@ struct ToolReport {
 
 pub(crate) fn run(args: &PathArgs) -> Result<()> {
     let machine = load_machine(&args.setup.machine)?;
-    let options = read_options(args.setup.initial_units);
+    let (single, table) = load_tool_sources(
+        args.setup.tool.as_deref(),
+        args.setup.tools.as_deref(),
+        args.setup.table_units,
+    )?;
+    let options = read_options(&args.setup, single.as_ref(), table.as_ref());
     let text = read_text(&args.program)?;
     let file = args.program.display().to_string();
 
@@ -58,11 +63,6 @@ pub(crate) fn run(args: &PathArgs) -> Result<()> {
     }
 
     let program = read_program_str(&text, &file, machine, &options)?;
-    let (single, table) = load_tool_sources(
-        args.setup.tool.as_deref(),
-        args.setup.tools.as_deref(),
-        args.setup.table_units,
-    )?;
     let report = PathReport::new(&program, single.as_ref(), table.as_ref())?;
     if args.json {
         return print_json(&report);

@@ -5,12 +5,12 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use anyhow::{Context, Result};
-use swarf_path::gcode::GcodeOptions;
+use swarf_path::gcode::{GcodeDialect, GcodeOptions};
 use swarf_path::load::ReadOptions;
 use swarf_path::{Machine, Program, Units};
 use swarf_tool::{Cutter, LengthUnit, ToolSet, ToolTable};
 
-use crate::cli::{SetupArgs, TableUnits};
+use crate::cli::{Dialect, SetupArgs, TableUnits};
 
 /// A built-in machine name, or a TOML machine file when the argument names an existing file.
 pub(crate) fn load_machine(arg: &str) -> Result<Machine> {
@@ -22,13 +22,36 @@ pub(crate) fn load_machine(arg: &str) -> Result<Machine> {
     }
 }
 
-/// Reader options for programs whose units before the first G20/G21 are `initial`.
-pub(crate) fn read_options(initial: TableUnits) -> ReadOptions {
+/// Reader options from `setup`: initial units, subroutine folders, dialect, and the tool
+/// diameters cutter compensation needs (from the library, or `--tool`'s for every tool).
+pub(crate) fn read_options(
+    setup: &SetupArgs,
+    single: Option<&Cutter>,
+    table: Option<&ToolTable>,
+) -> ReadOptions {
+    let mut gcode = GcodeOptions::default().with_initial_units(match setup.initial_units {
+        TableUnits::Mm => Units::Mm,
+        TableUnits::Inch => Units::Inch,
+    });
+    for dir in &setup.subroutine_path {
+        gcode = gcode.with_subroutine_dir(dir.clone());
+    }
+    if let Some(d) = setup.dialect {
+        gcode = gcode.with_dialect(match d {
+            Dialect::Linuxcnc => GcodeDialect::LinuxCnc,
+            Dialect::Fanuc => GcodeDialect::Fanuc,
+        });
+    }
+    match single {
+        Some(c) => gcode = gcode.with_default_tool_diameter(c.apt_params().d),
+        None => {
+            for (n, t) in table.map(|t| &t.tools).into_iter().flatten() {
+                gcode = gcode.with_tool_diameter(*n, t.cutter.apt_params().d);
+            }
+        }
+    }
     ReadOptions {
-        gcode: GcodeOptions::default().with_initial_units(match initial {
-            TableUnits::Mm => Units::Mm,
-            TableUnits::Inch => Units::Inch,
-        }),
+        gcode,
         ..ReadOptions::default()
     }
 }
@@ -43,13 +66,13 @@ pub(crate) struct Setup {
 /// Reads `program` as `setup` says (machine, initial units) and loads `--tool`/`--tools`.
 pub(crate) fn load_setup(setup: &SetupArgs, program: &Path) -> Result<Setup> {
     let machine = load_machine(&setup.machine)?;
-    let program =
-        swarf_path::load::read_program(program, machine, &read_options(setup.initial_units))?;
     let (single, table) = load_tool_sources(
         setup.tool.as_deref(),
         setup.tools.as_deref(),
         setup.table_units,
     )?;
+    let options = read_options(setup, single.as_ref(), table.as_ref());
+    let program = swarf_path::load::read_program(program, machine, &options)?;
     Ok(Setup {
         program,
         single,

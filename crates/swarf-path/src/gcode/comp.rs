@@ -236,7 +236,13 @@ impl Interp<'_, '_> {
             if tool == 0 {
                 0.0
             } else {
-                match self.opts.tool_diameters.get(&tool) {
+                match self
+                    .opts
+                    .tool_diameters
+                    .get(&tool)
+                    .copied()
+                    .or(self.opts.default_tool_diameter)
+                {
                     Some(d) => d / 2.0,
                     None => {
                         return Err(Fault::new(

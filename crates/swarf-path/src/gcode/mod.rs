@@ -137,6 +137,9 @@ pub struct GcodeOptions {
     /// Tool diameters by tool number, mm: what cutter radius compensation (`G41`/`G42`, with
     /// `D<tool>` or the loaded tool) offsets by. LinuxCNC takes them from its tool table.
     pub tool_diameters: BTreeMap<u32, f64>,
+    /// The diameter of a tool [`Self::tool_diameters`] does not list, mm (one cutter given for
+    /// every tool); `None`: such a tool is an error when compensation needs it.
+    pub default_tool_diameter: Option<f64>,
     /// Folders searched, after the program's own, for `name.ngc` when `o<name> call` names a
     /// subroutine the program does not define (LinuxCNC's `SUBROUTINE_PATH`).
     pub subroutine_path: Vec<PathBuf>,
@@ -243,6 +246,7 @@ impl Default for GcodeOptions {
             arc_radius_tolerance: ArcTolerance::LINUXCNC,
             block_delete: true,
             tool_diameters: BTreeMap::new(),
+            default_tool_diameter: None,
             subroutine_path: Vec::new(),
             parameter_units: None,
             parameters: Vec::new(),
@@ -304,6 +308,11 @@ impl GcodeOptions {
     /// Adds a folder to [`Self::subroutine_path`].
     pub fn with_subroutine_dir(mut self, dir: impl Into<PathBuf>) -> Self {
         self.subroutine_path.push(dir.into());
+        self
+    }
+    /// With the diameter of every tool not in [`Self::tool_diameters`], mm.
+    pub fn with_default_tool_diameter(mut self, diameter_mm: f64) -> Self {
+        self.default_tool_diameter = Some(diameter_mm);
         self
     }
     /// Adds tool `tool`'s diameter (mm) to [`Self::tool_diameters`].

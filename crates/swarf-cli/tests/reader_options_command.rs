@@ -1,0 +1,100 @@
+//! The reader options every program command takes: `--subroutine-path`, `--dialect`, and the
+//! tool diameters cutter compensation reads from `--tools` (or `--tool` for every tool).
+
+mod common;
+
+use std::path::PathBuf;
+
+use common::{json, stderr, swarf};
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("swarf-readopts-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+#[test]
+fn subroutines_are_found_on_the_subroutine_path() {
+    let d = dir("sub");
+    let lib = d.join("lib");
+    std::fs::create_dir_all(&lib).unwrap();
+    std::fs::write(
+        lib.join("square.ngc"),
+        "o<square> sub\nG1 X#1 F100\nG1 Y#1\no<square> endsub\nM2\n",
+    )
+    .unwrap();
+    let prog = d.join("main.ngc");
+    std::fs::write(&prog, "G21 G90\nG0 X0 Y0 Z1\no<square> call [10]\nM2\n").unwrap();
+    let p = prog.to_str().unwrap();
+    let o = swarf(&["path", p, "--json"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("square"), "{}", stderr(&o));
+    let o = swarf(&[
+        "path",
+        p,
+        "--subroutine-path",
+        lib.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(json(&o)["feed_moves"], 2);
+}
+
+#[test]
+fn the_dialect_can_be_forced() {
+    // G80 sharing a block with G0: a Fanuc habit LinuxCNC refuses (one modal group).
+    let d = dir("dialect");
+    let prog = d.join("cycle.nc");
+    std::fs::write(
+        &prog,
+        "G21 G90 G17\nG0 X0 Y0 Z5\nG81 X0 Y0 Z-1 R1 F100\nX10\nG80 G0 X20\nM30\n",
+    )
+    .unwrap();
+    let p = prog.to_str().unwrap();
+    let o = swarf(&["path", p, "--dialect", "fanuc", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = swarf(&["path", p, "--dialect", "linuxcnc", "--json"]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let o = swarf(&["path", p, "--dialect", "heidenhain"]);
+    assert_eq!(o.status.code(), Some(2));
+}
+
+#[test]
+fn compensation_takes_the_diameter_from_the_tools() {
+    let d = dir("comp");
+    let prog = d.join("comp.ngc");
+    // A 20 mm square contour with G41 D7: the compensated tip path is offset by the radius.
+    std::fs::write(
+        &prog,
+        "G21 G90 F100 T7 M6\nG0 X10 Y5\nG41 D7\nG1 Y0\nX20\nY20\nX0\nY0\nX10\nG40\nG1 Y5\nM2\n",
+    )
+    .unwrap();
+    let p = prog.to_str().unwrap();
+    let o = swarf(&["path", p, "--json"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("diameter of tool 7"), "{}", stderr(&o));
+    let lib = d.join("tools.toml");
+    std::fs::write(&lib, "[[tool]]\nnumber = 7\nspec = \"flat:d=6\"\n").unwrap();
+    let bbox = |args: &[&str]| {
+        let mut a = vec!["path", p, "--json"];
+        a.extend_from_slice(args);
+        let o = swarf(&a);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let j = json(&o);
+        (
+            j["feed_bbox_min"][0].as_f64().unwrap(),
+            j["feed_bbox_max"][0].as_f64().unwrap(),
+        )
+    };
+    // G41 keeps the tool left of the path: inside this counter-clockwise square, by the radius.
+    let (lo, hi) = bbox(&["--tools", lib.to_str().unwrap()]);
+    assert!(
+        (lo - 3.0).abs() < 1e-9 && (hi - 17.0).abs() < 1e-9,
+        "{lo} {hi}"
+    );
+    let (lo, hi) = bbox(&["--tool", "flat:d=4"]);
+    assert!(
+        (lo - 2.0).abs() < 1e-9 && (hi - 18.0).abs() < 1e-9,
+        "{lo} {hi}"
+    );
+}
