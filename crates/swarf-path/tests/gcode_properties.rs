@@ -233,7 +233,7 @@ fn close(a: f64, b: f64) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 400, .. ProptestConfig::default() })]
+    #![proptest_config(swarf_testdata::proptest_config(400))]
 
     #[test]
     fn expressions_match_the_reference(e in expr()) {
