@@ -38,9 +38,13 @@ const PROJECT: &str = r#"{
 }
 "#;
 
-/// [`PROJECT`] written to a file of its own.
+/// [`PROJECT`] written to a file of the calling test's own (tests run in parallel).
 fn path() -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("swarf-tool-camotics-{}", std::process::id()));
+    let dir = std::env::temp_dir().join(format!(
+        "swarf-tool-camotics-{}-{:?}",
+        std::process::id(),
+        std::thread::current().id()
+    ));
     std::fs::create_dir_all(&dir).unwrap();
     let p = dir.join("heart.camotics");
     std::fs::write(&p, PROJECT).unwrap();
@@ -77,13 +81,9 @@ fn reads_tools_and_workpiece() {
 
 #[test]
 fn automatic_workpiece_has_no_bounds_and_bad_json_has_a_position() {
-    let text = std::fs::read_to_string(path())
-        .unwrap()
-        .replace("\"automatic\": false", "\"automatic\": true");
+    let text = PROJECT.replace("\"automatic\": false", "\"automatic\": true");
     assert!(parse_camotics(&text, "heart").unwrap().workpiece.is_none());
-    let broken = std::fs::read_to_string(path())
-        .unwrap()
-        .replace("\"length\": 1,", "\"length\": one,");
+    let broken = PROJECT.replace("\"length\": 1,", "\"length\": one,");
     match parse_camotics(&broken, "heart.camotics") {
         Err(swarf_tool::TableError::Parse {
             file, line, column, ..
