@@ -58,6 +58,15 @@ pub enum StockError {
         /// The first few edges' end points, as text.
         examples: String,
     },
+    /// An open mesh (allowed by [`crate::MeshOptions::allow_open`]) that encloses no material.
+    #[error(
+        "the open mesh ({count} open edge(s)) encloses no material: no ray enters and leaves \
+         it; close the mesh"
+    )]
+    EmptyOpenMesh {
+        /// Number of open edges.
+        count: usize,
+    },
     /// The mesh has no triangles, or a triangle with a non-finite coordinate.
     #[error("bad mesh: {0}")]
     BadMesh(String),

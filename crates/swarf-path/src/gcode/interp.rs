@@ -428,7 +428,7 @@ impl<'t, 's> Interp<'t, 's> {
                 span,
                 format!(
                     "more than {} loop iterations, calls and repeats: the program may never end \
-                     (GcodeOptions::max_loop_iterations)",
+                     (the reader's limit on iterations)",
                     self.opts.max_loop_iterations
                 ),
                 "",
