@@ -619,6 +619,7 @@ fn cutters() -> Vec<Cutter> {
             shank_diameter: Some(c.shank_diameter()),
             overall_length: Some(c.overall_length()),
             holder: Some(h),
+            ..CutterOptions::default()
         })
         .unwrap()
     };
