@@ -129,10 +129,15 @@ pub(crate) struct SimulateArgs {
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
     /// Ray spacing of the tri-dexel stock, mm.
-    #[arg(long, value_name = "H", default_value_t = 0.25)]
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "H",
+        default_value_t = 0.25
+    )]
     pub(crate) resolution: f64,
     /// Largest distance between an arc or a 5-axis motion and what is cut for it, mm.
-    #[arg(long, value_name = "T", default_value_t = swarf_stock::DEFAULT_CHORDAL_TOLERANCE_MM)]
+    #[arg(allow_negative_numbers = true, long, value_name = "T", default_value_t = swarf_stock::DEFAULT_CHORDAL_TOLERANCE_MM)]
     pub(crate) tolerance: f64,
     /// Build the stock from an STL mesh even if it is not closed.
     #[arg(long)]
@@ -152,6 +157,11 @@ pub(crate) struct DemoArgs {
     #[arg(long, value_name = "DIR", default_value = "swarf-demo")]
     pub(crate) out: PathBuf,
     /// Ray spacing of the stock, mm.
-    #[arg(long, value_name = "H", default_value_t = 0.25)]
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "H",
+        default_value_t = 0.25
+    )]
     pub(crate) resolution: f64,
 }

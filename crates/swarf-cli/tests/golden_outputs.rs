@@ -22,7 +22,8 @@
 //! `SWARF_RECORD_GOLDEN=1 cargo test -p swarf-cli --release --test golden_outputs`.
 //!
 //! The shared data is read from `SWARF_TEST_DATA` (default `../shared/data`, relative to the
-//! repository root); where it is absent the cases that need it are skipped with a printed reason.
+//! repository root; see `swarf-testdata`); where it is absent the cases that need it are skipped
+//! with a printed reason.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -45,24 +46,8 @@ const TIMING_KEYS: &[&str] = &["elapsed_s"];
 /// Files compared by the hash of their bytes.
 const BINARY_EXTENSIONS: &[&str] = &["stl", "glb", "png", "ply"];
 
-fn repo_root() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("../..")
-}
-
 fn golden_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/golden")
-}
-
-/// The shared data folder, or why it is not there.
-fn shared_data() -> Result<PathBuf, String> {
-    let rel = std::env::var("SWARF_TEST_DATA").unwrap_or_else(|_| "../shared/data".into());
-    let dir = repo_root().join(&rel);
-    dir.canonicalize().map_err(|e| {
-        format!(
-            "no shared data at {} ({e}; set SWARF_TEST_DATA)",
-            dir.display()
-        )
-    })
 }
 
 /// One group of cases: a temporary folder, the data folder, and what went wrong so far.
@@ -644,23 +629,16 @@ fn tool_specs() {
     g.finish();
 }
 
-/// Skips (with the reason) when the shared data is absent.
-fn with_shared_data(group: &str) -> Option<Golden> {
-    match shared_data() {
-        Ok(d) => Some(Golden::new(group, Some(d))),
-        Err(why) => {
-            println!("skipped: {why}");
-            None
-        }
-    }
+/// The group's cases, or `None` after the printed skip line when a file of `needs` is absent
+/// from the third-party data.
+fn with_shared_data<const N: usize>(group: &str, needs: [&str; N]) -> Option<Golden> {
+    swarf_testdata::paths(needs)?;
+    Some(Golden::new(group, Some(swarf_testdata::data_root())))
 }
 
 #[test]
 fn shared_programs() {
-    let Some(mut g) = with_shared_data("programs") else {
-        return;
-    };
-    for (name, file, setup) in [
+    let programs = [
         (
             "camotics_heart",
             "gcode/camotics_heart.ngc",
@@ -690,7 +668,12 @@ fn shared_programs() {
             "apt/swcam_Paralelipipedo.apt",
             &[][..],
         ),
-    ] {
+    ];
+    let needs = programs.map(|(_, file, _)| file);
+    let Some(mut g) = with_shared_data("programs", needs) else {
+        return;
+    };
+    for (name, file, setup) in programs {
         let file = format!("$DATA/{file}");
         for flag in ["--json", "--canonical"] {
             let mut args = vec!["path", &file, flag];
@@ -704,10 +687,7 @@ fn shared_programs() {
 
 #[test]
 fn shared_surfaces() {
-    let Some(mut g) = with_shared_data("surfaces") else {
-        return;
-    };
-    for (name, file, extra) in [
+    let surfaces = [
         (
             "toolsize_sphere_ball_inside",
             "step/llnl_revolved_sphere.step",
@@ -728,7 +708,11 @@ fn shared_surfaces() {
             "iges/occt_bug29356.igs",
             &["--cutter", "flat", "--grid", "9"][..],
         ),
-    ] {
+    ];
+    let Some(mut g) = with_shared_data("surfaces", surfaces.map(|(_, file, _)| file)) else {
+        return;
+    };
+    for (name, file, extra) in surfaces {
         let (file, dir) = (format!("$DATA/{file}"), format!("$OUT/{name}"));
         let mut args = vec!["toolsize", "--json", "--surface", &file];
         args.extend(extra);

@@ -18,7 +18,7 @@ const SUMMARY_KEYS: [&str; 11] = [
 
 #[test]
 fn summary_has_every_contract_key_for_every_shared_program() {
-    for f in [
+    let Some(files) = swarf_testdata::paths([
         "gcode/camotics_heart.ngc",
         "gcode/camotics_heart_cutout.ngc",
         "gcode/camotics_wave.gcode",
@@ -27,8 +27,12 @@ fn summary_has_every_contract_key_for_every_shared_program() {
         "gcode/linuxcnc_spiral.ngc",
         "apt/nx_1_KONTUR_NAR_40_N2.cls",
         "apt/swcam_Paralelipipedo.apt",
-    ] {
-        let o = swarf(&["path", &shared(f), "--json"]);
+    ]) else {
+        return;
+    };
+    for f in files {
+        let f = f.display().to_string();
+        let o = swarf(&["path", &f, "--json"]);
         assert!(o.status.success(), "{f}: {}", stderr(&o));
         let j = json(&o);
         for k in SUMMARY_KEYS {
@@ -40,14 +44,15 @@ fn summary_has_every_contract_key_for_every_shared_program() {
 
 #[test]
 fn canonical_output_matches_linuxcnc_interpreter() {
-    let o = swarf(&[
-        "path",
-        &shared("gcode/linuxcnc_interp_g17-g99-g81.ngc"),
-        "--canonical",
-    ]);
+    let Some([ngc, expected]) = swarf_testdata::paths([
+        "gcode/linuxcnc_interp_g17-g99-g81.ngc",
+        "gcode/linuxcnc_interp_g17-g99-g81.expected",
+    ]) else {
+        return;
+    };
+    let o = swarf(&["path", ngc.to_str().unwrap(), "--canonical"]);
     assert!(o.status.success(), "{}", stderr(&o));
-    let expected =
-        std::fs::read_to_string(shared("gcode/linuxcnc_interp_g17-g99-g81.expected")).unwrap();
+    let expected = std::fs::read_to_string(expected).unwrap();
     let want: Vec<&str> = expected
         .lines()
         .filter(|l| {
@@ -63,10 +68,19 @@ fn canonical_output_matches_linuxcnc_interpreter() {
 
 #[test]
 fn spiral_summary_is_worked_out_independently() {
-    // linuxcnc_spiral.ngc (G20): G0 Z1; G0 X2 Y0; G1 Z-.1 F24; then 800 incremental polar
-    // moves `G91 G1 @-.0025 ^4.5`: in G91 LinuxCNC adds @ to the current distance from the
-    // origin and ^ to the current angle, so point k is (2 - 0.0025 k) at 4.5 k degrees.
-    let o = swarf(&["path", &shared("gcode/linuxcnc_spiral.ngc"), "--json"]);
+    // The spiral of LinuxCNC's nc_files/spiral.ngc, written here (G20): G0 Z1; G0 X2 Y0;
+    // G1 Z-.1 F24; then 800 incremental polar moves `G91 G1 @-.0025 ^4.5` in an O-word repeat:
+    // in G91 LinuxCNC adds @ to the current distance from the origin and ^ to the current
+    // angle, so point k is (2 - 0.0025 k) at 4.5 k degrees.
+    let dir = temp_dir("spiral");
+    let program = dir.join("spiral.ngc");
+    std::fs::write(
+        &program,
+        "G20 G90 G17\nG0 Z1\nG0 X2 Y0\nG1 Z-.1 F24\no100 repeat [800]\n  G91 G1 @-.0025 ^4.5\n\
+         o100 endrepeat\nG90 G0 Z1\nM2\n",
+    )
+    .unwrap();
+    let o = swarf(&["path", program.to_str().unwrap(), "--json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let j = json(&o);
     assert_eq!(j["feed_moves"].as_u64(), Some(801), "{j}");
@@ -106,7 +120,10 @@ fn spiral_summary_is_worked_out_independently() {
 
 #[test]
 fn cutter_compensation_is_rejected_with_its_line() {
-    let o = swarf(&["path", &shared("gcode/nx_haas_vf3_testpart.ptp"), "--json"]);
+    let Some(ptp) = shared("gcode/nx_haas_vf3_testpart.ptp") else {
+        return;
+    };
+    let o = swarf(&["path", &ptp, "--json"]);
     assert_eq!(o.status.code(), Some(1));
     let e = stderr(&o);
     assert!(e.contains("nx_haas_vf3_testpart.ptp:"), "{e}");
@@ -131,11 +148,16 @@ fn malformed_program_names_file_line_and_column() {
 
 #[test]
 fn camotics_project_supplies_tools_and_workpiece() {
+    let Some([ngc, project]) =
+        swarf_testdata::paths(["gcode/camotics_heart.ngc", "gcode/camotics_heart.camotics"])
+    else {
+        return;
+    };
     let o = swarf(&[
         "path",
-        &shared("gcode/camotics_heart.ngc"),
+        ngc.to_str().unwrap(),
         "--tools",
-        &shared("gcode/camotics_heart.camotics"),
+        project.to_str().unwrap(),
         "--json",
     ]);
     assert!(o.status.success(), "{}", stderr(&o));

@@ -4,11 +4,12 @@ use common::*;
 
 #[test]
 fn inside_of_the_step_sphere_admits_a_ball_of_its_radius() {
+    let sphere = sphere_step(&temp_dir("toolsize-sphere"), 5.0);
     let dir = std::env::temp_dir().join(format!("swarf-toolsize-{}", std::process::id()));
     let o = swarf(&[
         "toolsize",
         "--surface",
-        &shared("step/llnl_revolved_sphere.step"),
+        &sphere,
         "--cutter",
         "ball",
         "--flip",
@@ -60,7 +61,7 @@ fn inside_of_the_step_sphere_admits_a_ball_of_its_radius() {
     let o = swarf(&[
         "toolsize",
         "--surface",
-        &shared("step/llnl_revolved_sphere.step"),
+        &sphere,
         "--cutter",
         "ball",
         "--grid",

@@ -5,12 +5,13 @@ use common::*;
 
 #[test]
 fn standard_cutters_inside_the_step_sphere() {
+    let sphere = sphere_step(&temp_dir("toolsize-std-sphere"), 5.0);
     let dir = std::env::temp_dir().join(format!("swarf-toolsize-std-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     let o = swarf(&[
         "toolsize",
         "--surface",
-        &shared("step/llnl_revolved_sphere.step"),
+        &sphere,
         "--cutter",
         "ball",
         "--flip",

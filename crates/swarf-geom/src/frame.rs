@@ -158,6 +158,7 @@ mod tests {
     }
 
     proptest! {
+        #![proptest_config(swarf_testdata::proptest_config(256))]
         #[test]
         fn round_trip(zx in -1.0f64..1.0, zy in -1.0f64..1.0, zz in -1.0f64..1.0,
                       px in -100.0f64..100.0, py in -100.0f64..100.0, pz in -100.0f64..100.0) {

@@ -18,3 +18,9 @@ pub type Vec2 = glam::DVec2;
 pub const LENGTH_EPS: Real = 1e-9;
 /// Default tolerance for comparing unit vectors and angles, in radians.
 pub const ANGLE_EPS: Real = 1e-12;
+
+/// The machine range: no coordinate of a program, a stock or a tool position in swarf lies
+/// farther than this from the origin, in millimetres (a kilometre; the largest machining
+/// centres travel a few tens of metres). Readers refuse coordinates beyond it with their
+/// position, so that no later stage meets an infinite or absurd length.
+pub const MACHINE_RANGE_MM: Real = 1e6;

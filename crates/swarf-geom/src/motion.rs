@@ -87,6 +87,7 @@ mod tests {
     }
 
     proptest! {
+        #![proptest_config(swarf_testdata::proptest_config(256))]
         #[test]
         fn compose_and_inverse(a in -3.0f64..3.0, b in -3.0f64..3.0, tx in -10.0f64..10.0,
                                px in -10.0f64..10.0, py in -10.0f64..10.0, pz in -10.0f64..10.0) {

@@ -389,6 +389,7 @@ mod tests {
     }
 
     proptest::proptest! {
+        #![proptest_config(swarf_testdata::proptest_config(256))]
         #[test]
         fn finds_all_planted_roots(mut rs in proptest::collection::vec(-10.0f64..10.0, 1..=4)) {
             rs.sort_by(f64::total_cmp);

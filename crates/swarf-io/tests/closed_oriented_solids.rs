@@ -238,7 +238,7 @@ fn blob_strategy() -> impl Strategy<Value = (Vec<Blob>, f64)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(swarf_testdata::proptest_config(64))]
     #[test]
     fn random_unions_are_closed_and_oriented((blobs, h) in blob_strategy()) {
         let shapes: Vec<_> = blobs.clone();

@@ -1,6 +1,6 @@
 //! Writers and readers: STL (binary and ASCII), glb and PLY round trips of a contoured solid;
-//! atomic writes (no temporary left behind, a failed write leaves no file); the STL files in
-//! shared/data; garbage never panics a reader.
+//! atomic writes (no temporary left behind, a failed write leaves no file); the third-party STL
+//! files of `SWARF_TEST_DATA` (skipped, saying so, without them); garbage never panics a reader.
 
 mod common;
 use common::*;
@@ -15,15 +15,6 @@ use swarf_io::{
     dual_contour, read_glb, read_ply, read_stl, write_glb, write_ply, write_stl, write_stl_ascii,
     ColorMap, ContourOptions, FnGrid, GlbOptions, IoError, Lattice, Shading, TriMesh,
 };
-
-const OCL: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../../shared/data/stl/ocl_ktoolcor.stl"
-);
-const SWCAM: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../../shared/data/stl/swcam_Paralelipipedo.stl"
-);
 
 fn temp_dir(name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("swarf-io-{name}-{}", std::process::id()));
@@ -220,16 +211,24 @@ fn failed_writes_leave_nothing_behind() {
 
 #[test]
 fn shared_stl_files_read_closed_with_known_volumes() {
+    let Some([ocl, swcam]) =
+        swarf_testdata::paths(["stl/ocl_ktoolcor.stl", "stl/swcam_Paralelipipedo.stl"])
+    else {
+        return;
+    };
     // Binary, although its header starts with "solid".
-    let m = read_stl(Path::new(OCL)).unwrap();
+    let m = read_stl(&ocl).unwrap();
     assert_eq!(m.triangles.len(), 3802);
     assert!(m.edge_report().is_clean(), "{:?}", m.edge_report());
     assert!((m.volume() - 12.01).abs() < 0.01, "{}", m.volume());
-    let m = read_stl(Path::new(SWCAM)).unwrap();
+    let m = read_stl(&swcam).unwrap();
     assert_eq!(m.triangles.len(), 3170);
     println!("swcam: volume {} closed {:?}", m.volume(), m.edge_report());
     assert!((m.volume() / 3.006e7 - 1.0).abs() < 1e-3, "{}", m.volume());
-    // Missing file: an error naming it.
+}
+
+#[test]
+fn a_missing_stl_file_is_named() {
     let e = read_stl(Path::new("/nonexistent/x.stl"))
         .unwrap_err()
         .to_string();
@@ -238,7 +237,20 @@ fn shared_stl_files_read_closed_with_known_volumes() {
 
 #[test]
 fn truncated_binary_stl_is_reported() {
-    let bytes = std::fs::read(OCL).unwrap();
+    // A binary STL whose 80-byte header starts with "solid", as some exporters write them.
+    let d = temp_dir("truncated");
+    let file = d.join("part.stl");
+    write_stl(&file, &part()).unwrap();
+    let mut bytes = std::fs::read(&file).unwrap();
+    std::fs::remove_dir_all(&d).unwrap();
+    bytes[..10].copy_from_slice(b"solid part");
+    assert_eq!(
+        parse_stl(&bytes, Path::new("whole.stl"))
+            .unwrap()
+            .triangles
+            .len(),
+        part().triangles.len()
+    );
     let e = parse_stl(&bytes[..bytes.len() - 7], Path::new("cut.stl"))
         .unwrap_err()
         .to_string();
@@ -253,7 +265,7 @@ fn truncated_binary_stl_is_reported() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 400, failure_persistence: None, ..ProptestConfig::default() })]
+    #![proptest_config(swarf_testdata::proptest_config(400))]
     #[test]
     fn garbage_never_panics(bytes in prop::collection::vec(any::<u8>(), 0..600), solid in any::<bool>(), count in 0u32..20) {
         let mut b = bytes.clone();

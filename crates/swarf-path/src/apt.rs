@@ -59,7 +59,7 @@
 use std::borrow::Cow;
 use std::path::Path;
 
-use swarf_geom::math::{Mat3, Vec3};
+use swarf_geom::math::{Mat3, Vec3, MACHINE_RANGE_MM};
 
 use crate::canon::{Axes, Canon, CanonSink, FeedMode, Plane, SpindleDir, Units};
 use crate::error::{PathError, PathErrorKind, SourcePos};
@@ -364,6 +364,42 @@ impl Reader<'_, '_> {
         }
     }
 
+    /// Refuses a point (`raw` as written, `p` in the workpiece frame, mm) with a coordinate
+    /// beyond [`MACHINE_RANGE_MM`], at the field that holds it.
+    fn check_range(
+        &self,
+        rec: &Record<'_>,
+        fields: &[Field<'_>],
+        raw: &[f64],
+        p: Vec3,
+        what: &str,
+    ) -> Result<(), PathError> {
+        let out = |v: f64| !(v.is_finite() && v.abs() <= MACHINE_RANGE_MM);
+        let Some(k) = raw
+            .iter()
+            .position(|&v| out(v * self.scale))
+            .or_else(|| p.to_array().into_iter().position(out))
+        else {
+            return Ok(());
+        };
+        let v = if out(raw[k] * self.scale) {
+            raw[k] * self.scale
+        } else {
+            p[k]
+        };
+        Err(self.error(
+            rec,
+            fields[k].off,
+            PathErrorKind::Semantic,
+            format!(
+                "{what} coordinate {v:e} mm is beyond the machine range of \
+                 ±{MACHINE_RANGE_MM:e} mm"
+            ),
+            fields[k].text,
+            "a coordinate within ±1e6 mm",
+        ))
+    }
+
     fn numbers(
         &self,
         rec: &Record<'_>,
@@ -455,6 +491,7 @@ impl Reader<'_, '_> {
                         "a GOTO/ or FROM/ first",
                     ));
                 };
+                self.check_range(rec, &fields, &v, p + d, "GODLTA/")?;
                 self.motion(rec, line, column, p + d, None)?;
             }
             "RAPID" => self.rapid_next = true,
@@ -483,6 +520,7 @@ impl Reader<'_, '_> {
                 };
                 let normal = if self.clockwise { -axis } else { axis };
                 let center = self.point(Vec3::new(v[0], v[1], v[2]));
+                self.check_range(rec, &fields, &v[..3], center, "CIRCLE/")?;
                 let radius = v.get(6).map(|r| r * self.scale);
                 if self.circle.is_some() {
                     self.warn(
@@ -696,6 +734,7 @@ impl Reader<'_, '_> {
             );
         }
         let p = self.point(Vec3::new(v[0], v[1], v[2]));
+        self.check_range(rec, fields, &v[..3], p, what)?;
         let axis = if v.len() >= 6 {
             let a = self.vector(Vec3::new(v[3], v[4], v[5]));
             match a.try_normalize() {

@@ -1,4 +1,5 @@
-//! The APT CL files in `shared/data/apt` read into the expected moves.
+//! The APT CL files of the third-party test data (`SWARF_TEST_DATA`, `apt/`) read into the
+//! expected moves; each test skips, saying so, without the data.
 //!
 //! Expected numbers come from an independent Python pass over each file (not from swarf): it
 //! counts GOTO/CIRCLE/RAPID records, treats the first GOTO as the start point, turns each
@@ -19,19 +20,15 @@ use swarf_path::moves::AxisSource;
 use swarf_path::summary::summarize;
 use swarf_path::{Canon, MoveKind, Program};
 
-const NX: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../../shared/data/apt/nx_1_KONTUR_NAR_40_N2.cls"
-);
-const SW: &str = concat!(
-    env!("CARGO_MANIFEST_DIR"),
-    "/../../../shared/data/apt/swcam_Paralelipipedo.apt"
-);
+const NX: &str = "apt/nx_1_KONTUR_NAR_40_N2.cls";
+const SW: &str = "apt/swcam_Paralelipipedo.apt";
 
-fn read(path: &str, options: &AptOptions) -> Program {
-    let mut b = MoveBuilder::new(Machine::three_axis(), path);
-    read_apt_file(std::path::Path::new(path), options, &mut b).unwrap();
-    b.finish()
+/// The data file `rel` read, or `None` (the test skips, saying so) without it.
+fn read(rel: &str, options: &AptOptions) -> Option<Program> {
+    let path = swarf_testdata::path(rel)?;
+    let mut b = MoveBuilder::new(Machine::three_axis(), &path.display().to_string());
+    read_apt_file(&path, options, &mut b).unwrap();
+    Some(b.finish())
 }
 
 fn assert_close(a: f64, b: f64, tol: f64, what: &str) {
@@ -47,7 +44,9 @@ fn assert_vec(a: Option<[f64; 3]>, b: [f64; 3], tol: f64, what: &str) {
 
 #[test]
 fn nx_contour() {
-    let p = read(NX, &AptOptions::default());
+    let Some(p) = read(NX, &AptOptions::default()) else {
+        return;
+    };
     let s = summarize(&p);
     assert_eq!(p.axis_source, AxisSource::Program);
     // 46 GOTOs, the first places the tool: 45 moves; 2 RAPIDs; 19 CIRCLEs.
@@ -93,7 +92,9 @@ fn nx_contour() {
 
 #[test]
 fn swcam_pocket() {
-    let p = read(SW, &AptOptions::default());
+    let Some(p) = read(SW, &AptOptions::default()) else {
+        return;
+    };
     let s = summarize(&p);
     assert_eq!(s.moves, 193);
     assert_eq!(s.rapid_moves, 49);
@@ -143,10 +144,12 @@ fn swcam_pocket() {
 #[test]
 fn forcing_the_other_sense_makes_reflex_arcs() {
     // Guards the NX detection: with the right-hand convention forced, NX's corners go the long way.
-    let p = read(
+    let Some(p) = read(
         NX,
         &AptOptions::default().with_circle_sense(CircleSense::CounterClockwise),
-    );
+    ) else {
+        return;
+    };
     for m in &p.moves {
         if let MoveKind::Arc(g) = m.kind {
             assert!(g.sweep > PI, "line {}", m.line);
@@ -156,7 +159,10 @@ fn forcing_the_other_sense_makes_reflex_arcs() {
 
 #[test]
 fn events_of_the_first_records() {
-    let text = std::fs::read_to_string(SW).unwrap();
+    let Some(sw) = swarf_testdata::path(SW) else {
+        return;
+    };
+    let text = std::fs::read_to_string(sw).unwrap();
     let mut rec = Recorder::default();
     read_apt(&text, "sw.apt", &AptOptions::default(), &mut rec).unwrap();
     let ev: Vec<&Canon> = rec.events.iter().map(|(_, e)| e).collect();
@@ -178,7 +184,9 @@ fn events_of_the_first_records() {
 
 #[test]
 fn every_file_in_the_data_folder_reads() {
-    let dir = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data/apt");
+    let Some(dir) = swarf_testdata::path("apt") else {
+        return;
+    };
     let mut n = 0;
     for entry in std::fs::read_dir(dir).unwrap() {
         let path = entry.unwrap().path();

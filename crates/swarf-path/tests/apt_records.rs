@@ -293,7 +293,7 @@ fn unknown_records_warn_with_their_position() {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(512))]
+    #![proptest_config(swarf_testdata::proptest_config(512))]
     /// Any text: an error or events, never a panic.
     #[test]
     fn never_panics(text in "(?s)[A-Z/,.0-9$ \n\\-+eE]{0,200}") {

@@ -384,7 +384,7 @@ fn pt() -> impl Strategy<Value = [f64; 3]> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(128))]
+    #![proptest_config(swarf_testdata::proptest_config(128))]
     #[test]
     fn polyline_lengths_and_boxes(points in prop::collection::vec(pt(), 2..20), feed in 1.0f64..5000.0, k in 0usize..18) {
         let p = polyline(&points, feed);
@@ -451,7 +451,7 @@ proptest! {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(128))]
+    #![proptest_config(swarf_testdata::proptest_config(128))]
     /// Arcs about arbitrary axes (APT `CIRCLE/`), spiralling a little (end radius ≠ start
     /// radius, the Newton-polished case): the box is that of a dense sampling up to its
     /// chordal error.

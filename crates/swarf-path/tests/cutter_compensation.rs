@@ -315,7 +315,7 @@ fn star() -> impl Strategy<Value = Vec<[f64; 2]>> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(swarf_testdata::proptest_config(256))]
 
     /// Around a closed profile, inside (G41) or outside (G42), every point of the compensated
     /// path between the entry and the exit is exactly the tool radius from the programmed

@@ -1,10 +1,9 @@
 //! The canonical motion printed for LinuxCNC's own interpreter test programs equals, byte for
-//! byte, the motion lines of the `.expected` output LinuxCNC produced.
+//! byte, the motion lines of the `.expected` output LinuxCNC produced (third-party data from
+//! `SWARF_TEST_DATA`: the test skips, saying so, without it).
 
 use swarf_path::canonical::CanonicalPrinter;
 use swarf_path::gcode::{read_gcode, GcodeOptions};
-
-const DATA: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data/gcode/");
 
 fn motion_lines(expected: &str) -> String {
     expected
@@ -21,8 +20,14 @@ fn motion_lines(expected: &str) -> String {
 #[test]
 fn g17_g99_g81_canned_cycles_match_linuxcnc() {
     let name = "linuxcnc_interp_g17-g99-g81";
-    let ngc = std::fs::read_to_string(format!("{DATA}{name}.ngc")).unwrap();
-    let expected = std::fs::read_to_string(format!("{DATA}{name}.expected")).unwrap();
+    let Some([ngc, expected]) = swarf_testdata::paths([
+        format!("gcode/{name}.ngc").as_str(),
+        format!("gcode/{name}.expected").as_str(),
+    ]) else {
+        return;
+    };
+    let ngc = std::fs::read_to_string(ngc).unwrap();
+    let expected = std::fs::read_to_string(expected).unwrap();
     let mut printer = CanonicalPrinter::new(Vec::new());
     read_gcode(
         &ngc,

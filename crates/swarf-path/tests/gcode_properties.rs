@@ -106,21 +106,34 @@ fn reference(e: &E) -> Option<f64> {
 
 /// Evaluates through the reader: `#1 = expr` then a move to X#1 in a mm program.
 fn via_reader(src: &str) -> Result<f64, swarf_path::PathError> {
-    let mut rec = Recorder::default();
-    read_gcode(
-        &format!("#1 = {src}\nG0 X#1\n"),
-        "p.ngc",
-        &GcodeOptions::default(),
-        &mut rec,
-    )?;
-    Ok(rec
-        .events
-        .iter()
-        .find_map(|(_, e)| match e {
-            Canon::Traverse { end } => Some(end.x),
-            _ => None,
-        })
-        .unwrap())
+    // A value beyond the machine range (1e6 mm) is no coordinate: it is read divided by 2³²
+    // as many times as it takes (exact: a power of two), and multiplied back.
+    let mut last = None;
+    for k in 0..=32 {
+        let scaled = format!("#1{}", " / 4294967296".repeat(k));
+        let mut rec = Recorder::default();
+        match read_gcode(
+            &format!("#1 = {src}\nG0 X[{scaled}]\n"),
+            "p.ngc",
+            &GcodeOptions::default(),
+            &mut rec,
+        ) {
+            Ok(()) => {
+                let x = rec
+                    .events
+                    .iter()
+                    .find_map(|(_, e)| match e {
+                        Canon::Traverse { end } => Some(end.x),
+                        _ => None,
+                    })
+                    .unwrap();
+                return Ok((0..k).fold(x, |x, _| x * 4294967296.0));
+            }
+            Err(e) if e.message.contains("machine range") => last = Some(e),
+            Err(e) => return Err(e),
+        }
+    }
+    Err(last.unwrap())
 }
 
 /// Binary chains without brackets, to test precedence: `a op b op c …`.
@@ -233,7 +246,7 @@ fn close(a: f64, b: f64) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 400, .. ProptestConfig::default() })]
+    #![proptest_config(swarf_testdata::proptest_config(400))]
 
     #[test]
     fn expressions_match_the_reference(e in expr()) {

@@ -103,7 +103,7 @@ fn program() -> impl Strategy<Value = String> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(512))]
+    #![proptest_config(swarf_testdata::proptest_config(512))]
 
     #[test]
     fn new_words_never_panic(src in program(), fanuc in any::<bool>(), tools in any::<bool>()) {

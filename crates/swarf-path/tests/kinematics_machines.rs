@@ -244,7 +244,7 @@ fn angle_close(a: f64, b: f64) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(256))]
+    #![proptest_config(swarf_testdata::proptest_config(256))]
     /// inverse ∘ forward is the identity for every built-in machine, TCP or not, away from the
     /// singular tilt (where the free joint keeps the hint's value, tested above).
     #[test]

@@ -21,7 +21,7 @@
 //! skips.
 
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 use swarf_path::canon::{Canon, CanonSink};
 use swarf_path::canonical::CanonicalPrinter;
@@ -87,13 +87,6 @@ const MOTION_CALLS: [&str; 6] = [
     "SPLINE_FEED(",
     "RIGID_TAP(",
 ];
-
-fn data_dir() -> PathBuf {
-    match std::env::var_os("SWARF_TEST_DATA") {
-        Some(d) => PathBuf::from(d),
-        None => Path::new(env!("CARGO_MANIFEST_DIR")).join("../../../shared/data"),
-    }
-}
 
 /// What one `rs274` run printed (or what swarf printed for it).
 #[derive(Debug, Default, Clone, PartialEq)]
@@ -518,14 +511,9 @@ fn split_runs(expected: &str, n: usize, i: usize) -> String {
 
 #[test]
 fn linuxcnc_interpreter_tests() {
-    let root = data_dir().join("gcode/linuxcnc-interp");
-    if !root.is_dir() {
-        eprintln!(
-            "SKIPPED: the LinuxCNC interpreter tests are not at {} (set SWARF_TEST_DATA)",
-            root.display()
-        );
+    let Some(root) = swarf_testdata::path("gcode/linuxcnc-interp") else {
         return;
-    }
+    };
     let mut names: Vec<String> = std::fs::read_dir(&root)
         .unwrap()
         .filter_map(|e| e.ok())

@@ -1238,7 +1238,7 @@ fn same_depth(a: f64, b: f64, opts: &GougeOptions) -> bool {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 16, ..ProptestConfig::default() })]
+    #![proptest_config(swarf_testdata::proptest_config(16))]
 
     #[test]
     fn reversing_a_move_keeps_its_depth(seed in any::<u64>(), ci in 0usize..6) {

@@ -2,6 +2,7 @@
 //! to 1e-6 mm, with the certified solver (and the certificate checked).
 
 mod common;
+use common::sphere_step_file;
 
 use std::f64::consts::FRAC_1_SQRT_2;
 
@@ -358,8 +359,7 @@ fn convex_surfaces_are_unbounded() {
 
 #[test]
 fn step_sphere_concave_inside_is_five_convex_outside_unbounded() {
-    let path = std::path::Path::new(common_data());
-    let mut part = io::read_file(path).unwrap();
+    let mut part = io::read_file(&sphere_step_file()).unwrap();
     let prep = PreparedSurface::new(&part);
     let outside = part.grid(7);
     let tol = Tolerances::DEFAULT;
@@ -401,8 +401,4 @@ fn step_sphere_concave_inside_is_five_convex_outside_unbounded() {
         checked += 1;
     }
     assert!(checked >= 10);
-}
-
-fn common_data() -> &'static str {
-    data!("step/llnl_revolved_sphere.step")
 }

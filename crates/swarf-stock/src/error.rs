@@ -37,15 +37,16 @@ pub enum StockError {
     BadDimensions(String),
     /// The grid would hold more rays than [`crate::MAX_RAYS`].
     #[error(
-        "resolution {h} mm over a {size} mm stock needs {rays} rays, more than the limit {limit}"
+        "resolution {h} mm over a {size} mm stock needs {rays:.3e} rays, more than the limit \
+         {limit}; give a coarser resolution"
     )]
     TooManyRays {
         /// Requested resolution.
         h: f64,
         /// Stock size, mm, as text.
         size: String,
-        /// Rays needed.
-        rays: u64,
+        /// Rays needed (counted in floating point: it may exceed every integer type).
+        rays: f64,
         /// The limit.
         limit: u64,
     },
@@ -56,6 +57,15 @@ pub enum StockError {
         count: usize,
         /// The first few edges' end points, as text.
         examples: String,
+    },
+    /// An open mesh (allowed by [`crate::MeshOptions::allow_open`]) that encloses no material.
+    #[error(
+        "the open mesh ({count} open edge(s)) encloses no material: no ray enters and leaves \
+         it; close the mesh"
+    )]
+    EmptyOpenMesh {
+        /// Number of open edges.
+        count: usize,
     },
     /// The mesh has no triangles, or a triangle with a non-finite coordinate.
     #[error("bad mesh: {0}")]

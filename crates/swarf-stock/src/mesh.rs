@@ -95,7 +95,7 @@ impl TriDexel {
         let bounds = Aabb::from_points(verts.iter().copied())
             .ok_or_else(|| StockError::BadMesh("no vertices".into()))?;
         let hk = Self::empty(bounds, h)?.grid().h;
-        Self::from_fn(bounds, h, |k, u, v, d| {
+        let stock = Self::from_fn(bounds, h, |k, u, v, d| {
             let (ku, kv) = ((k + 1) % 3, (k + 2) % 3);
             let mut hits: Vec<f64> = Vec::new();
             for &(nu, nv) in &NUDGE {
@@ -123,7 +123,15 @@ impl TriDexel {
                     });
                 }
             }
-        })
+        })?;
+        // An open mesh whose rays find no way in and out (a box without its top) would be a
+        // stock of no material, reported as "-0.000 mm³" and cut by nothing.
+        if report.boundary_count() > 0 && stock.volumes().iter().any(|&v| v <= 0.0) {
+            return Err(StockError::EmptyOpenMesh {
+                count: report.boundary_count(),
+            });
+        }
+        Ok(stock)
     }
 
     /// A stock from a closed parry triangle mesh.
@@ -227,5 +235,16 @@ mod tests {
             "{msg}"
         );
         assert!(TriDexel::from_triangles(&t, 0.1, MeshOptions { allow_open: true }).is_ok());
+    }
+
+    #[test]
+    fn an_open_mesh_enclosing_nothing_is_an_error_even_when_allowed() {
+        // A box without its top: rays along Z cross only the bottom. Was a stock of
+        // "-0.000 mm³" with no word said.
+        let mut t = box_tris(Vec3::ZERO, Vec3::new(10.0, 10.0, 5.0));
+        t.drain(2..4);
+        let e = TriDexel::from_triangles(&t, 0.5, MeshOptions { allow_open: true }).unwrap_err();
+        assert!(matches!(e, StockError::EmptyOpenMesh { count: 4 }), "{e:?}");
+        assert!(e.to_string().contains("encloses no material"), "{e}");
     }
 }

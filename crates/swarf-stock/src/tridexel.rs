@@ -8,7 +8,7 @@ use crate::error::StockError;
 use crate::sweep::{DexelRays, Scratch, SweepShape, SweptConvex};
 use rayon::prelude::*;
 use smallvec::SmallVec;
-use swarf_geom::math::Vec3;
+use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_geom::Aabb;
 
 /// Side of the square tiles of rays (tiles are stored contiguously and carry a conservative
@@ -41,15 +41,23 @@ impl Grid {
             return Err(StockError::BadResolution(h));
         }
         let size = bounds.size();
+        let (lo, hi) = (bounds.min.to_array(), bounds.max.to_array());
         if !(size.min_element() > 0.0 && size.is_finite() && bounds.min.is_finite()) {
             return Err(StockError::BadDimensions(format!(
-                "bounding box {:?} .. {:?} is empty or not finite",
-                bounds.min, bounds.max
+                "the box from {lo:?} to {hi:?} mm is empty or not finite"
             )));
         }
-        let n = [0, 1, 2].map(|k| ((size[k] / h) * (1.0 - 1e-12)).ceil().max(1.0) as usize);
-        let rays = (n[1] * n[2] + n[2] * n[0] + n[0] * n[1]) as u64;
-        if rays > MAX_RAYS {
+        let reach = bounds.min.abs().max(bounds.max.abs()).max_element();
+        if reach > MACHINE_RANGE_MM {
+            return Err(StockError::BadDimensions(format!(
+                "the box from {lo:?} to {hi:?} mm reaches {reach:e} mm from the origin, beyond \
+                 the machine range of {MACHINE_RANGE_MM:e} mm"
+            )));
+        }
+        // Counted in f64 before anything is converted or allocated: no count can wrap.
+        let n = [0, 1, 2].map(|k| ((size[k] / h) * (1.0 - 1e-12)).ceil().max(1.0));
+        let rays = n[1] * n[2] + n[2] * n[0] + n[0] * n[1];
+        if rays > MAX_RAYS as f64 {
             return Err(StockError::TooManyRays {
                 h,
                 size: format!("{} x {} x {}", size.x, size.y, size.z),
@@ -57,6 +65,7 @@ impl Grid {
                 limit: MAX_RAYS,
             });
         }
+        let n = n.map(|c| c as usize);
         let hk = [0, 1, 2].map(|k| size[k] / n[k] as f64);
         Ok(Grid {
             min: bounds.min,
@@ -276,6 +285,14 @@ impl TriDexel {
 
     /// A box from `min` to `max`, resolution `h`.
     pub fn from_box(min: Vec3, max: Vec3, h: f64) -> Result<Self, StockError> {
+        if !(min.is_finite() && max.is_finite()) {
+            // Checked here: ordering the corners would drop a NaN.
+            return Err(StockError::BadDimensions(format!(
+                "the box from {:?} to {:?} mm is not finite",
+                min.to_array(),
+                max.to_array()
+            )));
+        }
         let b = Aabb::new(min, max);
         Self::from_fn(b, h, |k, _, _, d| {
             d.push(Interval {

@@ -39,7 +39,7 @@ fn arb_axis() -> impl Strategy<Value = Vec3> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 24, .. ProptestConfig::default() })]
+    #![proptest_config(swarf_testdata::proptest_config(24))]
 
     #[test]
     fn removal_invariants(kind in 0u8..5, d in 2.0f64..8.0, a in arb_point(), b in arb_point(),

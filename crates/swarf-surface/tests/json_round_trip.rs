@@ -78,10 +78,8 @@ fn round_trip_keeps_every_number_and_the_cutter_side() {
         assert!((ca.k1 - cb.k1).abs() < 1e-12 && (ca.k2 - cb.k2).abs() < 1e-12);
     }
     // Analytic patches have no JSON form.
-    let sphere = swarf_surface::io::step::parse(
-        &std::fs::read_to_string(data!("step/llnl_revolved_sphere.step")).unwrap(),
-    )
-    .unwrap();
+    let sphere =
+        swarf_surface::io::step::parse(&swarf_testdata::fixtures::sphere_step(5.0)).unwrap();
     assert!(json::to_string(&sphere)
         .unwrap_err()
         .to_string()

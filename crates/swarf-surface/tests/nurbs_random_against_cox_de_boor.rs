@@ -123,7 +123,7 @@ fn surface() -> impl Strategy<Value = (NurbsSurface, Naive)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig { cases: 64, ..ProptestConfig::default() })]
+    #![proptest_config(swarf_testdata::proptest_config(64))]
 
     #[test]
     fn random_nurbs_match_the_naive_evaluation((s, naive) in surface()) {

@@ -10,6 +10,7 @@
 //! is off the part.
 
 mod common;
+use common::{data, sphere_step_file};
 
 use std::f64::consts::{PI, TAU};
 
@@ -519,14 +520,23 @@ fn bspline_face_with_a_bspline_hole() {
 }
 
 #[test]
-fn shared_files_keep_their_natural_boundaries() {
-    for (file, patches) in [
-        (data!("step/occt_bug28366_fuselage.stp"), 8),
-        (data!("step/llnl_revolved_sphere.step"), 1),
-    ] {
-        let s = io::read_file(std::path::Path::new(file)).unwrap();
+fn sphere_keeps_its_natural_boundary() {
+    natural_boundaries(&sphere_step_file(), 1);
+}
+
+#[test]
+fn fuselage_keeps_its_natural_boundaries() {
+    if let Some(file) = data("step/occt_bug28366_fuselage.stp") {
+        natural_boundaries(&file, 8);
+    }
+}
+
+/// Every patch of `file` (`patches` of them) is untrimmed: no face trim, nothing cut off.
+fn natural_boundaries(file: &std::path::Path, patches: usize) {
+    {
+        let s = io::read_file(file).unwrap();
         assert_eq!(s.patches.len(), patches);
-        println!("{file}: notes {:?}", s.notes);
+        println!("{}: notes {:?}", file.display(), s.notes);
         for (k, p) in s.patches.iter().enumerate() {
             let frac = fraction(p, 41, true);
             println!(

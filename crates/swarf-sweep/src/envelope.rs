@@ -113,15 +113,22 @@ impl EnvelopeGrid {
                 value: h,
             });
         }
-        let lattice = Lattice::covering(bounds.inflated(2.0 * h), h);
-        let points = lattice.n.iter().map(|&k| k as u64).product::<u64>();
-        if points > MAX_LATTICE_POINTS {
+        let box_ = bounds.inflated(2.0 * h);
+        // Counted in f64 before the lattice is made or anything allocated: no count can wrap,
+        // and a non-finite box fails the comparison.
+        let size = box_.size();
+        let points: f64 = [size.x, size.y, size.z]
+            .iter()
+            .map(|s| (s / h).ceil().max(1.0))
+            .product();
+        if !points.is_finite() || points > MAX_LATTICE_POINTS as f64 {
             return Err(SweepError::TooFine {
                 points,
                 max: MAX_LATTICE_POINTS,
                 h,
             });
         }
+        let lattice = Lattice::covering(box_, h);
         let n = lattice.n;
         let lines = [0, 1, 2].map(|k| vec![Vec::new(); n[(k + 1) % 3] * n[(k + 2) % 3]]);
         Ok(Self { lattice, lines })

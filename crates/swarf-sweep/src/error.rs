@@ -34,10 +34,10 @@ pub enum SweepError {
         value: f64,
     },
     /// The swept box needs more lattice points than [`crate::MAX_LATTICE_POINTS`].
-    #[error("the envelope lattice would hold {points} points (more than {max}); use a coarser resolution than {h} mm")]
+    #[error("the envelope lattice would hold {points:.3e} points (more than {max}); use a coarser resolution than {h} mm")]
     TooFine {
-        /// Points needed.
-        points: u64,
+        /// Points needed (counted in floating point: it may exceed every integer type).
+        points: f64,
         /// The limit.
         max: u64,
         /// The resolution asked for, mm.

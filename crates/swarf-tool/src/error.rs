@@ -103,9 +103,16 @@ pub enum SpecError {
         /// What was expected.
         expected: String,
     },
-    /// The numbers parse but describe no valid cutter.
-    #[error("tool spec: {0}")]
-    Tool(#[from] ToolError),
+    /// The numbers parse but describe no valid cutter. (Not a `source`: its text is the
+    /// whole message, and a report that prints the chain would print it twice.)
+    #[error("{0}")]
+    Tool(ToolError),
+}
+
+impl From<ToolError> for SpecError {
+    fn from(e: ToolError) -> Self {
+        Self::Tool(e)
+    }
 }
 
 /// A tool table file that cannot be read.

@@ -5,6 +5,7 @@ use swarf_tool::table::{parse_camotics, parse_linuxcnc, parse_toml_library};
 use swarf_tool::{Cutter, LengthUnit};
 
 proptest! {
+    #![proptest_config(swarf_testdata::proptest_config(256))]
     #[test]
     fn spec_parser(s in "\\PC{0,40}") {
         let _ = Cutter::from_spec(&s);

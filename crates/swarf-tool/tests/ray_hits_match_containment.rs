@@ -147,7 +147,7 @@ fn apt_params() -> impl Strategy<Value = (f64, f64, f64, f64, f64, f64, f64)> {
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(200))]
+    #![proptest_config(swarf_testdata::proptest_config(200))]
 
     #[test]
     fn random_apt_cutters_join_and_agree(p in apt_params(), ox in -1.0f64..1.0, oy in -1.0f64..1.0,

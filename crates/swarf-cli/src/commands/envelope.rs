@@ -29,10 +29,10 @@ pub(crate) struct EnvelopeArgs {
     #[arg(long, value_name = "A..B")]
     pub(crate) moves: Option<String>,
     /// Lattice spacing of the envelope, mm.
-    #[arg(long, value_name = "H", default_value_t = swarf_sweep::DEFAULT_RESOLUTION_MM)]
+    #[arg(allow_negative_numbers = true, long, value_name = "H", default_value_t = swarf_sweep::DEFAULT_RESOLUTION_MM)]
     pub(crate) resolution: f64,
     /// Largest distance between an arc or a 5-axis motion and what is swept for it, mm.
-    #[arg(long, value_name = "T", default_value_t = swarf_sweep::DEFAULT_CHORDAL_TOLERANCE_MM)]
+    #[arg(allow_negative_numbers = true, long, value_name = "T", default_value_t = swarf_sweep::DEFAULT_CHORDAL_TOLERANCE_MM)]
     pub(crate) tolerance: f64,
     /// Write envelope.stl, envelope.glb and summary.json here.
     #[arg(long, value_name = "DIR")]

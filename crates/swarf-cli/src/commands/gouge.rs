@@ -35,10 +35,10 @@ pub(crate) struct GougeArgs {
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
     /// Depths at or below this are touching, not gouging, mm.
-    #[arg(long, value_name = "MM", default_value_t = GougeOptions::DEFAULT.tolerance)]
+    #[arg(allow_negative_numbers = true, long, value_name = "MM", default_value_t = GougeOptions::DEFAULT.tolerance)]
     pub(crate) tolerance: f64,
     /// Where violations start and end along a move is located to this much tool travel, mm.
-    #[arg(long, value_name = "MM", default_value_t = GougeOptions::DEFAULT.resolution)]
+    #[arg(allow_negative_numbers = true, long, value_name = "MM", default_value_t = GougeOptions::DEFAULT.resolution)]
     pub(crate) resolution: f64,
     /// Output folder (created if missing).
     #[arg(long)]

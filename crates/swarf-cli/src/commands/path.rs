@@ -64,6 +64,11 @@ pub(crate) fn run(args: &PathArgs) -> Result<()> {
 
     let program = read_program_str(&text, &file, machine, &options)?;
     let report = PathReport::new(&program, single.as_ref(), table.as_ref())?;
+    // What the summary leaves out or approximates (feed moves at F0 left out of the time…)
+    // is said on stderr too, not only inside the JSON.
+    for note in &report.summary.notes {
+        eprintln!("note: {note}");
+    }
     if args.json {
         return print_json(&report);
     }

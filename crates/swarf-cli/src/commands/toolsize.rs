@@ -48,7 +48,7 @@ pub(crate) struct ToolsizeArgs {
     pub(crate) flip: bool,
     /// Also check the shank (the cutter's own diameter) above this flute length, mm: where it
     /// reaches into the surface the size is lowered until it is free (limit `interference`).
-    #[arg(long)]
+    #[arg(allow_negative_numbers = true, long)]
     pub(crate) flute_length: Option<f64>,
     /// 4-axis mode: the rotary axis, `X` or `Y`; each point gets the table angle that
     /// maximises the size (CSV column `b_deg`).

@@ -11,9 +11,26 @@ pub(crate) fn swarf(args: &[&str]) -> Output {
         .expect("swarf runs")
 }
 
-/// Path of a file in the shared developer data set.
-pub(crate) fn shared(rel: &str) -> String {
-    format!("{}/../../../shared/data/{rel}", env!("CARGO_MANIFEST_DIR"))
+/// Path of a file in the third-party test data (`SWARF_TEST_DATA`), or `None` after the
+/// printed line that says why the calling test skips.
+pub(crate) fn shared(rel: &str) -> Option<String> {
+    swarf_testdata::path(rel).map(|p| p.display().to_string())
+}
+
+/// A folder of its own for the calling test under the system's temporary folder, empty.
+pub(crate) fn temp_dir(name: &str) -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!("swarf-cli-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Writes `dir/sphere.step`, [`swarf_testdata::fixtures::sphere_step`] of radius `r` mm;
+/// returns its path.
+pub(crate) fn sphere_step(dir: &std::path::Path, r: f64) -> String {
+    let path = dir.join("sphere.step");
+    std::fs::write(&path, swarf_testdata::fixtures::sphere_step(r)).unwrap();
+    path.display().to_string()
 }
 
 /// Stdout as text.

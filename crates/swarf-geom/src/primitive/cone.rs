@@ -102,6 +102,7 @@ mod tests {
     }
 
     proptest! {
+        #![proptest_config(swarf_testdata::proptest_config(256))]
         #[test]
         fn matches_brute_force(ax in -1.0f64..1.0, ay in -1.0f64..1.0, az in -1.0f64..1.0, ang in 0.05f64..1.5,
                                ox in -10.0f64..10.0, oy in -10.0f64..10.0, oz in -10.0f64..10.0,

@@ -282,6 +282,7 @@ mod tests {
     }
 
     proptest! {
+        #![proptest_config(swarf_testdata::proptest_config(256))]
         #[test]
         fn matches_brute_force(ax in -1.0f64..1.0, ay in -1.0f64..1.0, az in -1.0f64..1.0,
                                big_r in 0.0f64..6.0, r in 0.2f64..3.0,

@@ -282,7 +282,7 @@ impl Interp<'_, '_> {
                         PathErrorKind::Limit,
                         span,
                         format!(
-                            "repeat [{v}] asks for more than {} repeats (GcodeOptions::max_repeat)",
+                            "repeat [{v}] asks for more than {} repeats (the reader's limit on repeats)",
                             self.opts.max_repeat
                         ),
                         "",
@@ -600,7 +600,7 @@ impl Interp<'_, '_> {
                 PathErrorKind::Limit,
                 span,
                 format!(
-                    "subroutine calls nested more than {} deep (GcodeOptions::max_call_depth)",
+                    "subroutine calls nested more than {} deep (the reader's limit on nesting)",
                     self.opts.max_call_depth
                 ),
                 "",

@@ -164,7 +164,7 @@ impl Interp<'_, '_> {
                     PathErrorKind::Limit,
                     b.span(b'l'),
                     format!(
-                        "L{l} asks for more than {} repeats (GcodeOptions::max_repeat)",
+                        "L{l} asks for more than {} repeats (the reader's limit on repeats)",
                         self.opts.max_repeat
                     ),
                     "",

@@ -10,6 +10,8 @@ use std::borrow::Cow;
 use std::collections::HashMap;
 use std::rc::Rc;
 
+use swarf_geom::math::MACHINE_RANGE_MM;
+
 use super::arcs::{center_r, check_ijk, r_tolerance_mm};
 use super::block::{self, group, Block};
 use super::comp::Comp;
@@ -39,6 +41,25 @@ pub(crate) type ScanHit = (Vec<u8>, Option<(super::control::Kw, Cursor, Cursor)>
 
 /// Letters of the six axes, in X Y Z A B C order.
 pub(crate) const AXIS_LETTERS: [u8; 6] = *b"xyzabc";
+
+/// A coordinate swarf accepts: finite and within [`MACHINE_RANGE_MM`] of the origin (mm for
+/// X Y Z, degrees for A B C).
+fn in_machine_range(v: f64) -> bool {
+    v.is_finite() && v.abs() <= MACHINE_RANGE_MM
+}
+
+/// The error for coordinate `v` of axis `name` out of the machine range, at `span`.
+fn out_of_range(span: Span, what: &str, v: f64, unit: &str) -> Fault {
+    Fault::new(
+        PathErrorKind::Semantic,
+        span,
+        format!(
+            "{what} {v:e} {unit} is beyond the machine range of ±{MACHINE_RANGE_MM:e} {unit} \
+             (or not a finite number)"
+        ),
+        format!("a coordinate within ±{MACHINE_RANGE_MM:e} {unit}"),
+    )
+}
 
 /// Mask of the axis words (X Y Z A B C and the polar `@` `^`).
 fn axis_mask() -> u32 {
@@ -407,7 +428,7 @@ impl<'t, 's> Interp<'t, 's> {
                 span,
                 format!(
                     "more than {} loop iterations, calls and repeats: the program may never end \
-                     (GcodeOptions::max_loop_iterations)",
+                     (the reader's limit on iterations)",
                     self.opts.max_loop_iterations
                 ),
                 "",
@@ -1114,10 +1135,22 @@ impl<'t, 's> Interp<'t, 's> {
             e[0] = r * th.cos();
             e[1] = r * th.sin();
         }
-        if e.iter().any(|v| !v.is_finite()) {
-            return Err(Fault::semantic(
-                Span::Line,
-                "the end point is out of range (not a finite number)",
+        if let Some(i) = e.iter().position(|&v| !in_machine_range(v)) {
+            // The word that put it there, when the block has one (else offsets or polar words).
+            let letter = AXIS_LETTERS[i];
+            let span = if b.has(letter) {
+                b.span(letter)
+            } else if i < 2 && (b.has(b'@') || b.has(b'^')) {
+                b.span(if b.has(b'@') { b'@' } else { b'^' })
+            } else {
+                Span::Line
+            };
+            let what = format!("the end point's {}", (letter as char).to_ascii_uppercase());
+            return Err(out_of_range(
+                span,
+                &what,
+                e[i],
+                if i < 3 { "mm" } else { "°" },
             ));
         }
         Ok(e)
@@ -1209,10 +1242,21 @@ impl<'t, 's> Interp<'t, 's> {
                 [start2[0] + k * oi, start2[1] + k * oj]
             };
             let tol = self.opts.arc_radius_tolerance;
+            for (k, &ck) in c.iter().enumerate() {
+                if !in_machine_range(ck) {
+                    let letter = [offs[fi], offs[si]][k];
+                    let span = if b.has(letter) { b.span(letter) } else { gspan };
+                    return Err(out_of_range(span, "the arc centre's coordinate", ck, "mm"));
+                }
+            }
             check_ijk(start2, end2, c, tol.abs_in_mm(self.units), tol.relative)
                 .map_err(|m| Fault::semantic(gspan, m))?;
             c
         };
+        if let Some(&ck) = center.iter().find(|&&v| !in_machine_range(v)) {
+            let span = if b.has(b'r') { b.span(b'r') } else { gspan };
+            return Err(out_of_range(span, "the arc centre's coordinate", ck, "mm"));
+        }
         let rotation = if cw { -turns } else { turns };
         if self.comp.on() {
             return self.comp_move(b, end, false, Some((center, rotation)));

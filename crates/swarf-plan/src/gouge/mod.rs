@@ -350,4 +350,19 @@ pub enum GougeError {
     /// A move could not be cut into sub-moves.
     #[error(transparent)]
     Motion(#[from] swarf_stock::StockError),
+    /// A move with a coordinate that is not finite or lies beyond the machine range
+    /// ([`swarf_geom::math::MACHINE_RANGE_MM`]): no search over it could certify anything, so
+    /// the check refuses it rather than skip it.
+    #[error(
+        "line {line}: the move ends at {end:?} mm, not finite or beyond the machine range of \
+         ±{range:e} mm; it cannot be checked"
+    )]
+    BadMove {
+        /// Source line of the move.
+        line: u32,
+        /// Its end (or start) tip, mm.
+        end: [f64; 3],
+        /// The machine range, mm.
+        range: f64,
+    },
 }

@@ -5,7 +5,7 @@
 use std::sync::atomic::{AtomicUsize, Ordering};
 
 use rayon::prelude::*;
-use swarf_geom::math::Vec3;
+use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_path::{MoveKind, Pose, Program};
 use swarf_stock::five_axis::subdivide;
 use swarf_stock::SubMove;
@@ -161,6 +161,16 @@ fn check_move(
     scratch: &mut SearchScratch,
 ) -> Result<MoveOutcome, GougeError> {
     let m = &program.moves[index];
+    for pose in [m.start, m.end] {
+        let sane = |v: Vec3| v.is_finite() && v.abs().max_element() <= MACHINE_RANGE_MM;
+        if !(sane(pose.tip) && sane(pose.axis)) {
+            return Err(GougeError::BadMove {
+                line: m.line,
+                end: pose.tip.to_array(),
+                range: MACHINE_RANGE_MM,
+            });
+        }
+    }
     let rapid = matches!(m.kind, MoveKind::Rapid);
     let tool = tools.get(m.tool).ok_or(GougeError::UnknownTool {
         tool: m.tool,

@@ -6,12 +6,24 @@ pub mod iges;
 use swarf_geom::math::Vec3;
 use swarf_surface::{build, NurbsSurface, ParametricSurface};
 
-/// Path of a file in the shared data set.
-#[macro_export]
-macro_rules! data {
-    ($rel:literal) => {
-        concat!(env!("CARGO_MANIFEST_DIR"), "/../../../shared/data/", $rel)
-    };
+/// The third-party data file `rel` (`SWARF_TEST_DATA`), or `None` after the printed line that
+/// says why the calling test skips.
+pub fn data(rel: &str) -> Option<std::path::PathBuf> {
+    swarf_testdata::path(rel)
+}
+
+/// A radius-5 STEP sphere ([`swarf_testdata::fixtures::sphere_step`]) written to a file of its
+/// own; its path.
+pub fn sphere_step_file() -> std::path::PathBuf {
+    let dir = std::env::temp_dir().join(format!(
+        "swarf-sphere-{}-{:?}",
+        std::process::id(),
+        std::thread::current().id()
+    ));
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("sphere.step");
+    std::fs::write(&path, swarf_testdata::fixtures::sphere_step(5.0)).unwrap();
+    path
 }
 
 /// [`build::quarter_cylinder`], which cannot fail for finite sizes.

@@ -5,7 +5,9 @@
 //! which becomes the description. Lengths are in the machine's units, given by the caller.
 //! The table carries no shape, so every tool is taken as a **flat end mill** of diameter D
 //! (noted in the warnings); a positive Z offset (the tool length) becomes the overall length.
-//! Tools with no or zero diameter (probes, placeholders) are skipped with a warning.
+//! A tool with no diameter, or a diameter that is not positive (probes, placeholders), is an
+//! error at its line, as in swarf's TOML library: a table the simulation cannot use whole is
+//! not used in part (remove the line, or give the tool its diameter).
 
 use super::{LengthUnit, ToolEntry, ToolTable};
 use crate::cutter::{Cutter, CutterKind, CutterOptions};
@@ -73,7 +75,7 @@ pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTa
                     }
                     number = Some((value as u32, column));
                 }
-                'D' => diameter = Some(value * scale),
+                'D' => diameter = Some((value * scale, column)),
                 'Z' => z = Some(value * scale),
                 _ => {}
             }
@@ -92,13 +94,24 @@ pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTa
                 "unique tool numbers",
             ));
         }
-        let d = diameter.unwrap_or(0.0);
-        if d <= 0.0 {
-            table.warnings.push(format!(
-                "{file}:{line}: T{number} has no positive diameter (D); skipped"
-            ));
-            continue;
-        }
+        let d = match diameter {
+            Some((d, _)) if d > 0.0 => d,
+            Some((_, column)) => {
+                let word = body[column - 1..].split_whitespace().next().unwrap_or("D");
+                return Err(err(
+                    column + 1,
+                    format!("T{number} with diameter {word}"),
+                    "a positive diameter (D) for every tool in the table",
+                ));
+            }
+            None => {
+                return Err(err(
+                    body.chars().count() + 1,
+                    format!("T{number} without a diameter"),
+                    "a D word giving the tool's diameter",
+                ))
+            }
+        };
         let overall = z.filter(|&z| z > 0.0);
         let opts = CutterOptions {
             overall_length: overall,
@@ -128,7 +141,7 @@ mod tests {
 
     #[test]
     fn reads_inch_table() {
-        let text = "T1 P1 D0.125 Z+1.0 ;1/8 end mill\n\n; only a comment\nT2 P2 D0 Z0 ;probe\nt3 p3 d0.5\n";
+        let text = "T1 P1 D0.125 Z+1.0 ;1/8 end mill\n\n; only a comment\nt3 p3 d0.5\n";
         let t = parse_linuxcnc(text, "tool.tbl", LengthUnit::Inch).unwrap();
         assert_eq!(t.tools.len(), 2);
         let c = &t.tools[&1].cutter;
@@ -138,11 +151,37 @@ mod tests {
         assert!(t
             .warnings
             .iter()
-            .any(|w| w.contains("T2") && w.contains("skipped")));
-        assert!(t
-            .warnings
-            .iter()
             .any(|w| w.contains("T1") && w.contains("flat end mill")));
+    }
+
+    #[test]
+    fn a_tool_without_a_positive_diameter_is_an_error_at_its_line() {
+        // Was skipped with a warning nobody printed: the program then failed on an unknown tool.
+        let text = "T1 P1 D0.125\nT2 P2 D0 Z0 ;probe\n";
+        let e = parse_linuxcnc(text, "tool.tbl", LengthUnit::Inch).unwrap_err();
+        let TableError::Parse {
+            line,
+            column,
+            ref found,
+            ..
+        } = e
+        else {
+            panic!("{e:?}")
+        };
+        assert_eq!((line, column), (2, 8), "{e}");
+        assert_eq!(found, "T2 with diameter D0");
+        let s = e.to_string();
+        assert!(
+            s.starts_with("tool.tbl:2:8") && s.contains("positive diameter"),
+            "{s}"
+        );
+        let e = parse_linuxcnc("T1 D1\nT4 D-3\n", "t.tbl", LengthUnit::Mm).unwrap_err();
+        assert!(e.to_string().starts_with("t.tbl:2:5"), "{e}");
+        let e = parse_linuxcnc("T1 D1\nT5 P5 Z1\n", "t.tbl", LengthUnit::Mm).unwrap_err();
+        assert!(
+            e.to_string().starts_with("t.tbl:2:9") && e.to_string().contains("without a diameter"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -1,0 +1,195 @@
+//! What the user reads for bad input: no silent drops, no Rust internals, every message once,
+//! and the stock or program that cannot be used named with what was expected.
+mod common;
+use common::*;
+
+/// A one-line program in a folder of its own; its path.
+fn program(name: &str, text: &str) -> String {
+    let p = temp_dir(name).join(format!("{name}.ngc"));
+    std::fs::write(&p, text).unwrap();
+    p.display().to_string()
+}
+
+fn no_internals(e: &str) {
+    for bad in [
+        "Some(",
+        "None",
+        "GcodeOptions",
+        "18446744073709551615",
+        "panicked",
+    ] {
+        assert!(!e.contains(bad), "{bad:?} in {e}");
+    }
+}
+
+#[test]
+fn a_bad_tool_spec_is_said_once() {
+    let o = swarf(&["tool", "bull:d=16,r=9"]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert_eq!(
+        e.matches("corner radius r = 9 mm is too large").count(),
+        1,
+        "{e}"
+    );
+    no_internals(&e);
+}
+
+#[test]
+fn a_negative_resolution_says_it_must_be_positive() {
+    let p = program("negres", "G21 G90 G0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X5\nM2\n");
+    for args in [
+        &[
+            "simulate",
+            "--stock",
+            "box:0,0,-5,10,10,0",
+            "--program",
+            &p,
+            "--tool",
+            "flat:d=6",
+            "--resolution",
+            "-1",
+        ][..],
+        &[
+            "simulate",
+            "--stock",
+            "box:0,0,-5,10,10,0",
+            "--program",
+            &p,
+            "--tool",
+            "flat:d=6",
+            "--tolerance",
+            "-0.5",
+        ][..],
+    ] {
+        let o = swarf(args);
+        let e = stderr(&o);
+        assert_ne!(o.status.code(), Some(0), "{e}");
+        assert!(e.contains("must be a positive"), "{e}");
+        assert!(!e.contains("unexpected argument"), "{e}");
+    }
+}
+
+#[test]
+fn a_huge_stock_is_an_error_not_a_panic() {
+    let p = program("hugestock", "G21 G90 G0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X5\nM2\n");
+    let o = swarf(&[
+        "simulate",
+        "--stock",
+        "box:0,0,-1e30,1,1,0",
+        "--program",
+        &p,
+        "--tool",
+        "flat:d=6",
+    ]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("machine range"), "{e}");
+    no_internals(&e);
+}
+
+#[test]
+fn absurd_coordinates_are_an_error_at_their_position() {
+    let p = program(
+        "absurd",
+        &format!("G21 G90 G0 X0 Y0 Z5\nG1 X1{} F100\nM2\n", "0".repeat(300)),
+    );
+    for cmd in [
+        &["path", &p, "--json"][..],
+        &[
+            "simulate",
+            "--stock",
+            "box:0,0,-5,10,10,0",
+            "--program",
+            &p,
+            "--tool",
+            "flat:d=6",
+        ][..],
+    ] {
+        let o = swarf(cmd);
+        let e = stderr(&o);
+        assert_eq!(o.status.code(), Some(1), "{e}");
+        assert!(
+            e.contains("absurd.ngc:2:4") && e.contains("machine range"),
+            "{e}"
+        );
+    }
+}
+
+#[test]
+fn a_loop_limit_message_speaks_the_users_language() {
+    let p = program("endless", "G21 G90\no1 while [1]\no1 endwhile\nM2\n");
+    let o = swarf(&["path", &p]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("loop iterations"), "{e}");
+    no_internals(&e);
+}
+
+#[test]
+fn a_zero_feed_is_said_on_stderr_too() {
+    let dir = temp_dir("fedrat0");
+    let p = dir.join("f0.apt");
+    std::fs::write(&p, "UNITS/MM\nFEDRAT/0\nGOTO/0,0,5\nGOTO/10,0,5\nFINI\n").unwrap();
+    // In the JSON (under "notes") and in the text summary alike, stderr says it.
+    for args in [
+        &["path", p.to_str().unwrap(), "--json"][..],
+        &["path", p.to_str().unwrap()][..],
+    ] {
+        let o = swarf(args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let e = stderr(&o);
+        assert!(
+            e.contains("note: 1 feed move(s) without a usable feed rate"),
+            "{args:?}: {e}"
+        );
+    }
+}
+
+#[test]
+fn a_linuxcnc_tool_without_a_positive_diameter_is_an_error_at_its_line() {
+    let dir = temp_dir("tbl");
+    let tbl = dir.join("tools.tbl");
+    std::fs::write(&tbl, "T1 P1 D6 Z50\nT2 P2 D0 Z0 ;probe\n").unwrap();
+    let p = program(
+        "tbl-program",
+        "G21 G90 T1 M6\nG0 X0 Y0 Z5\nG1 Z-1 F100\nM2\n",
+    );
+    let o = swarf(&["path", &p, "--tools", tbl.to_str().unwrap()]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(
+        e.contains("tools.tbl:2:8") && e.contains("positive diameter"),
+        "{e}"
+    );
+}
+
+#[test]
+fn an_open_stock_mesh_that_encloses_nothing_is_an_error() {
+    let dir = temp_dir("openmesh");
+    let stl = dir.join("open.stl");
+    // A box missing its +X face: rays along X find no way out.
+    std::fs::write(
+        &stl,
+        boxes_stl(&[[[0.0, 0.0, -10.0], [20.0, 20.0, 0.0]]], 2),
+    )
+    .unwrap();
+    let p = program(
+        "openmesh-program",
+        "G21 G90 G0 X5 Y5 Z5\nG1 Z-1 F100\nG1 X10\nM2\n",
+    );
+    let o = swarf(&[
+        "simulate",
+        "--stock",
+        stl.to_str().unwrap(),
+        "--allow-open-mesh",
+        "--program",
+        &p,
+        "--tool",
+        "flat:d=6",
+        "--json",
+    ]);
+    let e = stderr(&o);
+    assert_eq!(o.status.code(), Some(1), "{e}");
+    assert!(e.contains("encloses no material"), "{e}");
+}
