@@ -42,6 +42,7 @@ fn drop_feed_numbers(t: &str) -> String {
 }
 
 proptest! {
+    #![proptest_config(swarf_testdata::proptest_config(256))]
     #[test]
     fn rewrite_is_safe_and_changes_only_feeds(
         lines in proptest::collection::vec(line(), 0..12),
