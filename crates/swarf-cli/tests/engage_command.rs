@@ -78,3 +78,31 @@ fn full_slot_files_and_figures() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+#[test]
+fn a_ramp_draws_the_bottom_face_map() {
+    let dir = std::env::temp_dir().join(format!("swarf-engage-ramp-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let prog = dir.join("ramp.ngc");
+    std::fs::write(&prog, "G21 G90\nG0 X5 Y10 Z2\nG1 X30 Z-4 F300\n").unwrap();
+    let out = dir.join("out");
+    let o = swarf(&[
+        "engage",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        prog.to_str().unwrap(),
+        "--tool",
+        "bull:d=10,r=2",
+        "--map-at",
+        "20",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    for f in ["maps/largest_bottom.png", "maps/location_20_bottom.png"] {
+        assert!(out.join(f).is_file(), "{f}");
+    }
+    let bottom = std::fs::read_to_string(out.join("bottom.csv")).unwrap();
+    assert!(bottom.lines().count() > 10, "{bottom}");
+}

@@ -291,6 +291,7 @@ fn write_outputs(
     write_atomic(&dir.join("bottom.csv"), bottom.as_bytes())?;
     if let Some(e) = largest {
         plots::phi_z_map(e, dz, &maps.join("largest.png"))?;
+        plots::bottom_map(e, dz, &maps.join("largest_bottom.png"))?;
     }
     for &n in map_at {
         let Some(e) = locations.get(n) else {
@@ -300,6 +301,7 @@ fn write_outputs(
             );
         };
         plots::phi_z_map(e, dz, &maps.join(format!("location_{n}.png")))?;
+        plots::bottom_map(e, dz, &maps.join(format!("location_{n}_bottom.png")))?;
     }
     plots::along_program(locations, &maps)?;
     let mut json = serde_json::to_vec_pretty(summary)?;

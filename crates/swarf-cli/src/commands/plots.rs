@@ -96,6 +96,57 @@ pub(crate) fn phi_z_map(e: &Engagement, dz: f64, path: &Path) -> Result<()> {
         .with_context(|| format!("writing {}", path.display()))
 }
 
+/// The engaged rings of a flat bottom seen from the spindle (polar: `x_L` right, `y_L` up, φ
+/// clockwise from `+y_L`), written only when the bottom is engaged.
+pub(crate) fn bottom_map(e: &Engagement, dr: f64, path: &Path) -> Result<()> {
+    let Some(r_max) = e.bottom.iter().map(|c| c.at_mm + 0.5 * dr).reduce(f64::max) else {
+        return Ok(());
+    };
+    const SIDE: usize = 360;
+    let mut img = RgbImage::new(SIDE + 2 * LEFT, SIDE + TOP + BOTTOM, PAPER);
+    let (cx, cy) = (LEFT + SIDE / 2, TOP + SIDE / 2);
+    let scale = (SIDE / 2) as f64 / r_max;
+    for py in 0..SIDE {
+        for px in 0..SIDE {
+            let x = (px as f64 + 0.5 - (SIDE / 2) as f64) / scale;
+            let y = ((SIDE / 2) as f64 - py as f64 - 0.5) / scale;
+            let r = x.hypot(y);
+            if r > r_max {
+                continue;
+            }
+            let phi = x.atan2(y).to_degrees().rem_euclid(360.0);
+            let ring = e.bottom.iter().find(|c| (c.at_mm - r).abs() <= 0.5 * dr);
+            let engaged = ring.is_some_and(|c| {
+                c.intervals
+                    .iter()
+                    .any(|iv| iv.split_at_zero().any(|(a, b)| phi >= a && phi <= b))
+            });
+            let colour = if engaged { ENGAGED } else { GRID };
+            img.fill(LEFT + px, TOP + py, 1, 1, colour);
+        }
+    }
+    // The feed direction x_L and the φ = 0 direction y_L.
+    img.fill(cx, cy, SIDE / 2 + 10, 1, INK);
+    img.text(
+        cx + SIDE / 2 + 12,
+        cy.saturating_sub(3),
+        "x_L (feed)",
+        1,
+        INK,
+    );
+    img.fill(cx, TOP - 10, 1, SIDE / 2 + 10, INK);
+    img.text(cx + 4, TOP - 12, "y_L (phi 0)", 1, INK);
+    let title = format!(
+        "location {} (line {}): bottom face seen from the spindle - radius {} mm",
+        e.location,
+        e.line,
+        label(r_max)
+    );
+    img.text(8, 12, &title, 1, INK);
+    img.write_png(path)
+        .with_context(|| format!("writing {}", path.display()))
+}
+
 /// One curve of a line plot: a legend name, its values at evenly spaced x, a colour.
 pub(crate) struct Series<'a> {
     pub(crate) name: &'a str,
