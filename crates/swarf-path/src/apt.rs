@@ -17,7 +17,7 @@
 //! | `GODLTA/dx,dy,dz` | move by a delta |
 //! | `RAPID` | the next motion only is a rapid |
 //! | `FEDRAT/f[,MMPM│IPM│MMPR│IPR]` (either order) | feed rate and mode |
-//! | `CIRCLE/xc,yc,zc,i,j,k[,r,…]` | the next `GOTO` is an arc about that centre and axis |
+//! | `CIRCLE/xc,yc,zc,i,j,k[,r,…][,CLW│CCLW]` | the next `GOTO` is an arc about that centre and axis (a direction word states its sense) |
 //! | `CUTTER/d[,r,e,f,α,β,h]`, `TLDATA/MILL,d,r,h[,0,0]` | [`Canon::CutterDefinition`] |
 //! | `LOADTL/n`, `LOAD/TOOL,n` | tool change |
 //! | `SPINDL/rpm[,RPM][,CLW│CCW]`, `SPINDL/OFF│ON` | spindle |
@@ -31,12 +31,15 @@
 //! are normally the compensated cutter path already, and swarf simulates the points as written,
 //! not what a controller doing radius compensation would add. `MSYS/` (where the MCS sits in
 //! absolute coordinates) warns when it is not the identity: points stay in the MCS, which is
-//! swarf's workpiece frame. Other records are warnings; malformed records are [`PathError`]s.
+//! swarf's workpiece frame. `CYCLE/` (other than `CYCLE/OFF`) and `NURBS/`, `KNOT/`, `CNTRL/` are
+//! errors: they make motion swarf does not generate, which a warning would silently drop. Other
+//! records are warnings; malformed records are [`PathError`]s.
 //!
 //! # Decisions
 //! * **The first point.** CL data has no home position: the first `GOTO` (or `FROM`) only places
 //!   the tool ([`Canon::SetPosition`]); a file with n `GOTO`s and no `FROM` gives n − 1 moves.
-//! * **Arc direction.** `CIRCLE/` gives an axis but not a direction; vendors differ. With
+//! * **Arc direction.** `CIRCLE/` gives an axis, and a direction only when it ends in a word
+//!   (`CLW`/`CLOCKWISE`, `CCLW`/`COUNTERCLOCKWISE`, as SolidWorks CAM writes); vendors differ. With
 //!   [`CircleSense::Auto`] the motion is counter-clockwise about the axis (right-hand rule),
 //!   except in NX CLSF files (recognised by `TOOL PATH/`, `TLDATA/`, `MSYS/` or `END-OF-PATH`),
 //!   where it is clockwise: NX writes the arc axis equal to the tool axis for clockwise (G2)
@@ -497,6 +500,18 @@ impl Reader<'_, '_> {
             "RAPID" => self.rapid_next = true,
             "FEDRAT" => self.fedrat(rec, &fields, minor_off, line)?,
             "CIRCLE" => {
+                // A trailing direction word (SolidWorks CAM: `…,COUNTERCLOCKWISE`) states the
+                // sense and overrides the file's convention.
+                let mut fields = fields.clone();
+                let mut sense = None;
+                while let Some(f) = fields.last() {
+                    match f.text.to_ascii_uppercase().as_str() {
+                        "CLW" | "CW" | "CLOCKWISE" => sense = Some(true),
+                        "CCLW" | "CCW" | "COUNTERCLOCKWISE" => sense = Some(false),
+                        _ => break,
+                    }
+                    fields.pop();
+                }
                 let v = self.numbers(rec, &fields, "CIRCLE/")?;
                 if v.len() < 6 {
                     return Err(self.count_error(
@@ -518,7 +533,11 @@ impl Reader<'_, '_> {
                         "a non-zero axis vector i,j,k",
                     ));
                 };
-                let normal = if self.clockwise { -axis } else { axis };
+                let normal = if sense.unwrap_or(self.clockwise) {
+                    -axis
+                } else {
+                    axis
+                };
                 let center = self.point(Vec3::new(v[0], v[1], v[2]));
                 self.check_range(rec, &fields, &v[..3], center, "CIRCLE/")?;
                 let radius = v.get(6).map(|r| r * self.scale);
@@ -667,6 +686,30 @@ impl Reader<'_, '_> {
                 let v = self.numbers(rec, &fields[..fields.len().min(1)], "DELAY/")?;
                 self.sink
                     .emit(line, &Canon::Dwell(v.first().copied().unwrap_or(0.0)));
+            }
+            // Motion swarf does not generate: going on would leave it out of the simulation.
+            "CYCLE" if word(0).as_deref() != Some("OFF") => {
+                return Err(self.error(
+                    rec,
+                    lead,
+                    PathErrorKind::Unsupported,
+                    "CYCLE/ (a canned drilling cycle) is not expanded, so the holes it drills \
+                     would be missing from the simulation",
+                    text.trim(),
+                    "the cycle posted as GOTO/ points (or G-code with G81–G89)",
+                ));
+            }
+            "CYCLE" => {}
+            "NURBS" | "KNOT" | "CNTRL" => {
+                return Err(self.error(
+                    rec,
+                    lead,
+                    PathErrorKind::Unsupported,
+                    "NURBS/ tool paths (KNOT/, CNTRL/ records) are not read, so their motion \
+                     would be missing from the simulation",
+                    text.trim(),
+                    "the path output as GOTO/ points (linearised in the CAM system)",
+                ));
             }
             _ => self.warn(
                 line,

@@ -318,3 +318,46 @@ proptest! {
         let _ = summarize(&b.finish());
     }
 }
+
+#[test]
+fn circle_direction_words_override_the_convention() {
+    let rotation = |text: &str| {
+        events(text)
+            .into_iter()
+            .find_map(|e| match e {
+                Canon::Arc { rotation, .. } => Some(rotation),
+                _ => None,
+            })
+            .unwrap()
+    };
+    let base = "FEDRAT/100\nGOTO/10,0,0\nCIRCLE/0,0,0,0,0,1,10";
+    // Counter-clockwise about +Z by default (not an NX file), either way when stated.
+    assert_eq!(rotation(&format!("{base}\nGOTO/0,10,0\n")), 1);
+    assert_eq!(rotation(&format!("{base},CLW\nGOTO/0,10,0\n")), -1);
+    assert_eq!(rotation(&format!("{base},CLOCKWISE\nGOTO/0,10,0\n")), -1);
+    assert_eq!(
+        rotation(&format!("{base},COUNTERCLOCKWISE\nGOTO/0,10,0\n")),
+        1
+    );
+    assert_eq!(rotation(&format!("{base},CCLW,\nGOTO/0,10,0\n")), 1);
+    // Any other word is still an error at its field.
+    let e = err(&format!("{base},SIDEWAYS\nGOTO/0,10,0\n"));
+    assert_eq!((e.pos.line, e.pos.column), (3, 23));
+    // SolidWorks CAM's trailing comma after CUTTER/.
+    assert!(events("CUTTER/10.000000,0.000000,\nGOTO/0,0,0\n")
+        .iter()
+        .any(|e| matches!(e, Canon::CutterDefinition(c) if c[0] == 10.0)));
+}
+
+#[test]
+fn motion_swarf_cannot_generate_is_an_error_not_a_warning() {
+    let e = err("FEDRAT/100\nGOTO/0,0,5\nCYCLE/DRILL,5,MMPM,100,2\nGOTO/10,10,0\nCYCLE/OFF\n");
+    assert_eq!(e.kind, PathErrorKind::Unsupported);
+    assert_eq!((e.pos.line, e.pos.column), (3, 1));
+    assert!(e.message.contains("CYCLE/"), "{}", e.message);
+    let e = err("FEDRAT/100\nGOTO/0,0,5\nNURBS/\nKNOT/0,0,0,0,1,1,1,1\nCNTRL/0,0,0\n");
+    assert_eq!(e.pos.line, 3);
+    assert!(e.message.contains("NURBS/"), "{}", e.message);
+    // CYCLE/OFF alone changes nothing.
+    assert!(events("GOTO/0,0,5\nCYCLE/OFF\nGOTO/1,0,5\n").len() > 2);
+}
