@@ -125,3 +125,54 @@ fn a_trimmed_wall_limits_only_where_it_is_left() {
     assert!(out.join("maps/patch_wall.png").is_file() && out.join("part.glb").is_file());
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn faces_that_share_a_name_keep_their_own_rows_and_maps() {
+    // CAD systems name every face after the product ("PartBody"): each face must still get its
+    // own patch value in the CSV and its own map.
+    let dir = std::env::temp_dir().join(format!("swarf-toolsize-names-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let surface = dir.join("same.json");
+    std::fs::write(
+        &surface,
+        r#"{"units": "mm", "patches": [
+  {"name": "PartBody", "degree_u": 1, "degree_v": 1, "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+   "control_points": [[[0, 0, 0, 1], [0, 20, 0, 1]], [[20, 0, 0, 1], [20, 20, 0, 1]]]},
+  {"name": "PartBody", "degree_u": 1, "degree_v": 1, "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+   "control_points": [[[20, 0, 0, 1], [20, 20, 0, 1]], [[20, 0, 10, 1], [20, 20, 10, 1]]]},
+  {"name": "PartBody#1", "degree_u": 1, "degree_v": 1, "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+   "control_points": [[[0, 20, 0, 1], [20, 20, 0, 1]], [[0, 20, 10, 1], [20, 20, 10, 1]]]}]}"#,
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let o = swarf(&[
+        "toolsize",
+        "--surface",
+        surface.to_str().unwrap(),
+        "--cutter",
+        "flat",
+        "--grid",
+        "3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let csv = std::fs::read_to_string(out.join("toolsize.csv")).unwrap();
+    let mut labels: Vec<&str> = csv
+        .lines()
+        .skip(1)
+        .map(|r| r.split(',').next().unwrap())
+        .collect();
+    labels.dedup();
+    assert_eq!(labels, ["PartBody#0", "#1", "#2"], "{csv}");
+    let mut maps: Vec<String> = std::fs::read_dir(out.join("maps"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    maps.sort();
+    assert_eq!(
+        maps,
+        ["patch_PartBody_0.png", "patch__1.png", "patch__2.png"]
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -430,7 +430,7 @@ pub fn write_standard_maps(
     let cells = cells_into(surface, map, n, dir)?;
     let mut out = Vec::with_capacity(surface.patches.len());
     for (k, chunk) in cells.chunks(n * n).enumerate() {
-        let title = format!("patch {}", surface.patches[k].label(k));
+        let title = format!("patch {}", surface.patch_label(k));
         let img = patch_standard_image(chunk, n, cutters, &title, opts);
         let path = dir.join(format!("standard_{}", patch_png_name(surface, k)));
         img.write_png(&path)?;
@@ -442,18 +442,10 @@ pub fn write_standard_maps(
 /// The file name of a patch's map: `patch_<label>.png`, the label (name, or index when
 /// unnamed) with every character outside `[A-Za-z0-9_-]` replaced by `_`.
 pub fn patch_png_name(surface: &CompoundSurface, patch: usize) -> String {
-    let label = surface.patches[patch].label(patch);
-    let safe: String = label
-        .chars()
-        .map(|c| {
-            if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
-                c
-            } else {
-                '_'
-            }
-        })
-        .collect();
-    format!("patch_{safe}.png")
+    format!(
+        "patch_{}.png",
+        swarf_surface::compound::file_safe(&surface.patch_label(patch))
+    )
 }
 
 /// The map's values on [`CompoundSurface::lattice`]`(n)` of `surface` (off-part points as
@@ -513,7 +505,7 @@ pub fn write_patch_maps(
     let scale = RadiusScale::from_radii(map.points.iter().map(|p| p.radius_mm));
     let mut out = Vec::with_capacity(surface.patches.len());
     for (k, chunk) in cells.chunks(n * n).enumerate() {
-        let title = format!("patch {}", surface.patches[k].label(k));
+        let title = format!("patch {}", surface.patch_label(k));
         let img = patch_radius_image(chunk, n, &scale, &title, opts);
         let path = dir.join(patch_png_name(surface, k));
         img.write_png(&path)?;

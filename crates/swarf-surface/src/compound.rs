@@ -294,7 +294,76 @@ pub struct CompoundSurface {
     pub notes: Vec<ReadNote>,
 }
 
+/// A label's file-name form: ASCII letters, digits, `_` and `-` kept, anything else `_`.
+pub fn file_safe(label: &str) -> String {
+    label
+        .chars()
+        .map(|c| {
+            if c.is_ascii_alphanumeric() || c == '_' || c == '-' {
+                c
+            } else {
+                '_'
+            }
+        })
+        .collect()
+}
+
 impl CompoundSurface {
+    /// One label per patch, unique even in file-name form: the patch's name, or its index when
+    /// it has none; a name several patches share (CAD systems give every face the product's
+    /// name) gets the index appended, `PartBody#3`.
+    pub fn patch_labels(&self) -> Vec<String> {
+        use std::collections::HashMap;
+        let first: Vec<String> = self
+            .patches
+            .iter()
+            .enumerate()
+            .map(|(k, p)| p.label(k))
+            .collect();
+        let count = |labels: &[String]| {
+            let mut c: HashMap<String, usize> = HashMap::new();
+            for l in labels {
+                *c.entry(file_safe(l)).or_default() += 1;
+            }
+            c
+        };
+        let seen = count(&first);
+        let second: Vec<String> = first
+            .iter()
+            .enumerate()
+            .map(|(k, l)| {
+                if seen[&file_safe(l)] > 1 {
+                    format!("{l}#{k}")
+                } else {
+                    l.clone()
+                }
+            })
+            .collect();
+        // A name that happens to equal another's `name#k` form: the bare index settles it.
+        let seen = count(&second);
+        second
+            .into_iter()
+            .enumerate()
+            .map(|(k, l)| {
+                if seen[&file_safe(&l)] > 1 {
+                    format!("#{k}")
+                } else {
+                    l
+                }
+            })
+            .collect()
+    }
+
+    /// The unique label of patch `k` ([`CompoundSurface::patch_labels`]); its index when out of
+    /// range.
+    pub fn patch_label(&self, k: usize) -> String {
+        if k < self.patches.len() {
+            self.patch_labels().swap_remove(k)
+        } else {
+            k.to_string()
+        }
+    }
+
     /// A compound surface of these patches.
     pub fn new(patches: Vec<Patch>) -> Self {
         Self {

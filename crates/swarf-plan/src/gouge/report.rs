@@ -176,10 +176,7 @@ fn file_name(files: &[String], index: u16) -> &str {
 /// The patch's label or `check:<triangle>`.
 pub fn surface_label(surface: &CompoundSurface, s: SurfaceRef) -> String {
     match s {
-        SurfaceRef::Patch(i) => surface
-            .patches
-            .get(i)
-            .map_or_else(|| i.to_string(), |p| p.label(i)),
+        SurfaceRef::Patch(i) => surface.patch_label(i),
         SurfaceRef::Check(t) => format!("check:{t}"),
     }
 }

@@ -346,11 +346,12 @@ impl ToolSizeMap {
             Axes::Five(_) => ",lead_deg,tilt_deg",
         };
         writeln!(w, "{CSV_HEADER}{extra}")?;
+        let labels = surface.patch_labels();
         for p in &self.points {
-            let label = surface
-                .patches
+            let label = labels
                 .get(p.cc.patch)
-                .map_or_else(|| p.cc.patch.to_string(), |pt| pt.label(p.cc.patch));
+                .cloned()
+                .unwrap_or_else(|| p.cc.patch.to_string());
             let label = if label.contains([',', '"', '\n']) {
                 format!("\"{}\"", label.replace('"', "\"\""))
             } else {
