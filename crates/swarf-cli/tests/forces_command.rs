@@ -339,3 +339,82 @@ fn schedule_rewrites_apt_fedrat_records_and_g95_feeds() {
         assert!(new.contains(want), "{name}:\n{new}");
     }
 }
+
+#[test]
+fn split_moves_get_their_own_feeds_and_stay_under_the_limit() {
+    let d = dir("split");
+    let mat = write(&d, "al.toml", MATERIAL);
+    // A long pass that runs in the air, then half in a slot, then in solid material.
+    let text = "G21 G90 G94\nS1000 M3\nG0 X-10 Y10 Z-4\nG1 X12 F800\nG1 Y14\nG0 Z10\nG0 X-10 Y2\nG1 Z-4\nG1 X50 (half in a pocket, half in solid)\nG0 Z10\nM30\n";
+    let prog = write(&d, "split.ngc", text);
+    let out = d.join("split-s.ngc");
+    let args = |program: &str, o: &Path, extra: &[&str]| -> Vec<String> {
+        let mut a: Vec<String> = [
+            "--stock",
+            "box:0,0,-10,40,20,0",
+            "--program",
+            program,
+            "--tool",
+            "flat:d=10,flutes=4,helix=30",
+            "--coefficients",
+            &mat,
+            "--out",
+            o.to_str().unwrap(),
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        a.extend(extra.iter().map(|s| s.to_string()));
+        a
+    };
+    let mut a = vec!["schedule".to_string()];
+    a.extend(args(
+        &prog,
+        &out,
+        &[
+            "--limit-force",
+            "500",
+            "--max-feed",
+            "1500",
+            "--split",
+            "--json",
+        ],
+    ));
+    let o = swarf(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = json(&o);
+    assert!(s["moves_split"].as_u64().unwrap() >= 1, "{s}");
+    let new = std::fs::read_to_string(&out).unwrap();
+    // Every original line is still there, in order, up to its feed word.
+    let plain = |l: &str| l.split(" F").next().unwrap().to_string();
+    let kept: Vec<String> = new.lines().map(plain).collect();
+    let mut at = 0;
+    for l in text.lines() {
+        at += kept[at..]
+            .iter()
+            .position(|k| *k == plain(l))
+            .unwrap_or_else(|| panic!("{l} lost:\n{new}"));
+    }
+    assert!(new.contains("G91 G1 X") && new.contains("\nG90\n"), "{new}");
+    // The split program stays under the limit (1 %) and is faster than one feed for the move.
+    let fo = d.join("forces");
+    let mut a = vec!["forces".to_string()];
+    a.extend(args(out.to_str().unwrap(), &fo, &["--json"]));
+    let o = swarf(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    assert!(o.status.success(), "{}", stderr(&o));
+    let peak = json(&o)["max_force_n"].as_f64().unwrap();
+    assert!(peak <= 505.0, "{peak}");
+    let whole = d.join("whole.ngc");
+    let mut a = vec!["schedule".to_string()];
+    a.extend(args(
+        &prog,
+        &whole,
+        &["--limit-force", "500", "--max-feed", "1500", "--json"],
+    ));
+    let o = swarf(&a.iter().map(String::as_str).collect::<Vec<_>>());
+    let t_whole = json(&o)["time_after_s"].as_f64().unwrap();
+    assert!(
+        s["time_after_s"].as_f64().unwrap() < t_whole,
+        "{s} vs {t_whole}"
+    );
+}

@@ -29,6 +29,25 @@ pub struct ScheduleOptions {
     pub max_feed_mm_min: Option<f64>,
     /// Largest change between consecutive feed moves, percent; `None`: unbounded.
     pub max_step_percent: Option<f64>,
+    /// Split a long move whose locations allow different feeds into pieces with their own
+    /// feeds (at location boundaries, neighbours within [`SPLIT_MERGE`] of each other merged).
+    pub split: bool,
+}
+
+/// Neighbouring locations whose feed caps differ by less than this ratio share a piece.
+pub const SPLIT_MERGE: f64 = 0.1;
+
+/// One piece of a feed move: the part up to move parameter `s_end` at one feed.
+#[derive(Clone, Debug, PartialEq, Serialize)]
+pub struct FeedPiece {
+    /// Move parameter where the piece ends (the last piece ends at 1).
+    pub s_end: f64,
+    /// Its feed, mm/min.
+    pub feed_mm_min: f64,
+    /// The limit's cap over its locations (`None`: not engaged).
+    pub cap_mm_min: Option<f64>,
+    /// Still over the limit at its feed.
+    pub over_limit: bool,
 }
 
 /// The scheduled feed of one feed move.
@@ -45,6 +64,9 @@ pub struct MoveFeed {
     /// Still over the limit at the scheduled feed: the minimum feed is above the cap, or the
     /// edge forces alone exceed the limit.
     pub over_limit: bool,
+    /// The move's pieces in order: one (the whole move at `new_feed_mm_min`) unless it was
+    /// split; `new_feed_mm_min` is then the slowest piece's feed.
+    pub pieces: Vec<FeedPiece>,
 }
 
 /// A schedule.
@@ -59,6 +81,8 @@ pub struct ScheduleResult {
 pub struct MoveCaps {
     caps: Vec<Option<f64>>,
     infeasible: Vec<bool>,
+    /// Per move, its locations' parameters and caps, in order.
+    locations: Vec<Vec<(f64, LocationCap)>>,
 }
 
 impl MoveCaps {
@@ -67,11 +91,14 @@ impl MoveCaps {
         Self {
             caps: vec![None; moves],
             infeasible: vec![false; moves],
+            locations: vec![Vec::new(); moves],
         }
     }
 
-    /// Takes a location of move `index` into account.
-    pub fn add(&mut self, index: usize, cap: LocationCap) {
+    /// Takes the location at parameter `s` of move `index` into account (locations of a move
+    /// arrive in order).
+    pub fn add(&mut self, index: usize, s: f64, cap: LocationCap) {
+        self.locations[index].push((s, cap));
         let cap = match cap {
             LocationCap::Unloaded => return,
             LocationCap::Feed(f) => f,
@@ -109,26 +136,83 @@ impl LocationCap {
     }
 }
 
-/// The feeds of `program`'s feed moves from the caps its locations gave.
+/// Groups a move's locations into pieces: neighbours whose caps are within [`SPLIT_MERGE`] of
+/// the piece's smallest share it. `(s_end, cap, infeasible)` per piece; an unloaded location
+/// counts as uncapped.
+fn pieces_of(locations: &[(f64, LocationCap)]) -> Vec<(f64, Option<f64>, bool)> {
+    let mut out: Vec<(f64, Option<f64>, bool)> = Vec::new();
+    let mut span: Option<(f64, f64)> = None;
+    for &(s, cap) in locations {
+        let (c, bad) = match cap {
+            LocationCap::Unloaded => (None, false),
+            LocationCap::Feed(f) => (Some(f), false),
+            LocationCap::OverAtAnyFeed => (Some(0.0), true),
+        };
+        let key = c.unwrap_or(f64::INFINITY);
+        let joins = match (out.last(), span) {
+            (Some(_), Some((lo, hi))) => {
+                let (lo, hi) = (lo.min(key), hi.max(key));
+                (lo.is_infinite() && hi.is_infinite())
+                    || (lo.is_finite() && hi <= lo * (1.0 + SPLIT_MERGE))
+            }
+            _ => false,
+        };
+        if joins {
+            let last = out.last_mut().expect("joined a piece");
+            last.0 = s;
+            last.1 = match (last.1, c) {
+                (Some(a), Some(b)) => Some(a.min(b)),
+                (a, b) => a.or(b),
+            };
+            last.2 |= bad;
+            span = span.map(|(lo, hi)| (lo.min(key), hi.max(key)));
+        } else {
+            out.push((s, c, bad));
+            span = Some((key, key));
+        }
+    }
+    if let Some(last) = out.last_mut() {
+        last.0 = 1.0;
+    }
+    out
+}
+
+/// The feeds of `program`'s feed moves from the caps its locations gave; with
+/// [`ScheduleOptions::split`], moves for which `can_split` says yes may be split into pieces.
 pub fn schedule_feeds(
     program: &Program,
     caps: &MoveCaps,
     opts: &ScheduleOptions,
+    can_split: &dyn Fn(usize) -> bool,
 ) -> ScheduleResult {
     let mut out = ScheduleResult::default();
     let step = opts.max_step_percent.map(|p| 1.0 + p / 100.0);
     let mut run: Vec<MoveFeed> = Vec::new();
     let flush = |run: &mut Vec<MoveFeed>, out: &mut ScheduleResult| {
+        // The pieces of the run, in order, bounded in their change and from below.
+        let mut feeds: Vec<&mut FeedPiece> =
+            run.iter_mut().flat_map(|m| m.pieces.iter_mut()).collect();
         if let Some(q) = step {
-            for i in 1..run.len() {
-                run[i].new_feed_mm_min = run[i].new_feed_mm_min.min(run[i - 1].new_feed_mm_min * q);
+            for i in 1..feeds.len() {
+                feeds[i].feed_mm_min = feeds[i].feed_mm_min.min(feeds[i - 1].feed_mm_min * q);
             }
-            for i in (0..run.len().saturating_sub(1)).rev() {
-                run[i].new_feed_mm_min = run[i].new_feed_mm_min.min(run[i + 1].new_feed_mm_min * q);
+            for i in (0..feeds.len().saturating_sub(1)).rev() {
+                feeds[i].feed_mm_min = feeds[i].feed_mm_min.min(feeds[i + 1].feed_mm_min * q);
+            }
+        }
+        for p in feeds {
+            p.feed_mm_min = p.feed_mm_min.max(opts.min_feed_mm_min);
+            if let Some(c) = p.cap_mm_min {
+                p.over_limit |= p.feed_mm_min > c * (1.0 + 1e-9);
             }
         }
         for m in run.iter_mut() {
-            m.new_feed_mm_min = m.new_feed_mm_min.max(opts.min_feed_mm_min);
+            m.new_feed_mm_min = m
+                .pieces
+                .iter()
+                .map(|p| p.feed_mm_min)
+                .fold(f64::INFINITY, f64::min);
+            m.over_limit = m.pieces.iter().any(|p| p.over_limit);
         }
         out.moves.append(run);
     };
@@ -143,19 +227,70 @@ pub fn schedule_feeds(
             .unwrap_or(old)
             .max(opts.min_feed_mm_min);
         let cap = caps.caps[i];
+        let whole = vec![(1.0, cap, caps.infeasible[i])];
+        let parts = if opts.split && can_split(i) {
+            let p = pieces_of(&caps.locations[i]);
+            if p.len() > 1 {
+                p
+            } else {
+                whole
+            }
+        } else {
+            whole
+        };
+        let pieces = parts
+            .into_iter()
+            .map(|(s_end, cap, bad)| FeedPiece {
+                s_end,
+                feed_mm_min: cap.map_or(ceiling, |c| c.min(ceiling)),
+                cap_mm_min: cap,
+                over_limit: bad,
+            })
+            .collect();
         run.push(MoveFeed {
             move_index: i,
             old_feed_mm_min: old,
-            new_feed_mm_min: cap.map_or(ceiling, |c| c.min(ceiling)),
+            new_feed_mm_min: 0.0,
             cap_mm_min: cap,
-            over_limit: caps.infeasible[i],
+            over_limit: false,
+            pieces,
         });
     }
     flush(&mut run, &mut out);
-    for m in &mut out.moves {
-        if let Some(c) = m.cap_mm_min {
-            m.over_limit |= m.new_feed_mm_min > c * (1.0 + 1e-9);
-        }
-    }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn locations_group_into_pieces_by_their_caps() {
+        use LocationCap::{Feed, OverAtAnyFeed, Unloaded};
+        let locs = [
+            (0.1, Unloaded),
+            (0.2, Unloaded),
+            (0.3, Feed(500.0)),
+            (0.4, Feed(540.0)),
+            (0.5, Feed(560.0)), // 560 > 500·1.1: a new piece
+            (0.6, OverAtAnyFeed),
+            (0.7, OverAtAnyFeed),
+            (0.8, Unloaded),
+        ];
+        let p = pieces_of(&locs);
+        assert_eq!(
+            p,
+            vec![
+                (0.2, None, false),
+                (0.4, Some(500.0), false),
+                (0.5, Some(560.0), false),
+                (0.7, Some(0.0), true),
+                (1.0, None, false),
+            ]
+        );
+        assert_eq!(
+            pieces_of(&[(0.5, Feed(100.0)), (1.0, Feed(105.0))]),
+            vec![(1.0, Some(100.0), false)]
+        );
+    }
 }

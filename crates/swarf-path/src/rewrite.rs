@@ -134,9 +134,113 @@ pub fn format_feed(v: f64) -> String {
     s.strip_suffix('.').unwrap_or(s).to_string()
 }
 
+/// A piece of a G-code feed line moved out in front of it by a split: the displacement of the
+/// tip over the piece in program units (X, Y, Z) and the factor of its feed.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SplitPiece {
+    /// Displacement, program units.
+    pub delta: [f64; 3],
+    /// New feed / old feed over the piece.
+    pub factor: f64,
+}
+
+/// The modes a G-code line runs in, as far as splitting it needs them.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct LineModes {
+    /// Absolute distances (G90) after the line's own words.
+    pub absolute: bool,
+    /// Inch units (G20) after the line's own words.
+    pub inch: bool,
+    /// A rotation or scaling of the program frame (G68, G51, G10 L2/L20 with R) was seen on
+    /// this line or before it.
+    pub transformed: bool,
+}
+
+/// The letter–number words of a G-code line's code (comments and bracketed expressions
+/// skipped), upper case.
+fn words(line: &str) -> Vec<(char, f64)> {
+    let b = line.as_bytes();
+    let (mut i, mut depth) = (0usize, 0usize);
+    let mut out = Vec::new();
+    while i < b.len() {
+        match b[i] {
+            b'(' if depth == 0 => i += line[i..].find(')').map_or(b.len() - i, |k| k + 1),
+            b';' if depth == 0 => break,
+            b'[' => {
+                depth += 1;
+                i += 1;
+            }
+            b']' => {
+                depth = depth.saturating_sub(1);
+                i += 1;
+            }
+            c if depth == 0 && c.is_ascii_alphabetic() => {
+                let mut j = i + 1;
+                while j < b.len() && b[j] == b' ' {
+                    j += 1;
+                }
+                let start = j;
+                while j < b.len() && (b[j].is_ascii_digit() || matches!(b[j], b'.' | b'+' | b'-')) {
+                    j += 1;
+                }
+                if let Ok(v) = line[start..j].parse::<f64>() {
+                    out.push((char::from(c).to_ascii_uppercase(), v));
+                }
+                i = j.max(i + 1);
+            }
+            _ => i += 1,
+        }
+    }
+    out
+}
+
+/// The [`LineModes`] after each line of a straight-line G-code program (1-based: index 0 is
+/// line 1), starting from G90 and `initial_inch`.
+pub fn gcode_line_modes(text: &str, initial_inch: bool) -> Vec<LineModes> {
+    let mut m = LineModes {
+        absolute: true,
+        inch: initial_inch,
+        transformed: false,
+    };
+    text.split('\n')
+        .map(|line| {
+            let w = words(line);
+            let g = |x: f64| w.iter().any(|&(c, v)| c == 'G' && (v - x).abs() < 1e-9);
+            m.absolute = if g(91.0) {
+                false
+            } else {
+                m.absolute || g(90.0)
+            };
+            m.inch = if g(20.0) { true } else { m.inch && !g(21.0) };
+            let l = |x: f64| w.iter().any(|&(c, v)| c == 'L' && (v - x).abs() < 1e-9);
+            m.transformed |= g(68.0)
+                || g(51.0)
+                || (g(10.0) && (l(2.0) || l(20.0)) && w.iter().any(|&(c, _)| c == 'R'));
+            m
+        })
+        .collect()
+}
+
+/// A coordinate with six decimals, no trailing zeros, no negative zero.
+fn format_coordinate(v: f64) -> String {
+    let s = format!("{v:.6}");
+    let s = s.trim_end_matches('0');
+    let s = s.strip_suffix('.').unwrap_or(s);
+    if s == "-0" {
+        "0".to_string()
+    } else {
+        s.to_string()
+    }
+}
+
 /// Rewrites the feed words of `text` (`file` names it in errors) so that the moves of each line
 /// in `factors` run at their original feed times its factor. Every line with feed moves should
 /// be in `factors` (factor 1 to keep its feed), so that a changed feed does not carry over.
+///
+/// A G-code line in `splits` (a straight 3-axis feed in absolute mode, without rotation or
+/// scaling in effect: the caller checks) is preceded by its pieces as incremental moves — `G91
+/// G1 X… Y… Z… F…` — then `G90`; the line itself, unchanged but for its feed, ends the move
+/// exactly where it did.
 ///
 /// # Errors
 /// A line with moves and a feed word that is not a plain number (an expression or parameter),
@@ -146,6 +250,7 @@ pub fn rewrite_feeds(
     file: &str,
     format: ProgramFormat,
     factors: &BTreeMap<u32, f64>,
+    splits: &BTreeMap<u32, Vec<SplitPiece>>,
 ) -> Result<Rewritten, PathError> {
     let mut out = String::with_capacity(text.len() + 16 * factors.len());
     let mut changed = Vec::new();
@@ -208,6 +313,27 @@ pub fn rewrite_feeds(
         let Some(base) = original else {
             return Err(err(n, 1, "feed moves before any feed word", body.trim()));
         };
+        if let (Some(pieces), ProgramFormat::Gcode) = (splits.get(&n), format) {
+            let nl = if eol.is_empty() { "\n" } else { eol };
+            for (k, p) in pieces.iter().enumerate() {
+                let f = format_feed(base * p.factor);
+                out.push_str(if k == 0 { "G91 G1" } else { "G1" });
+                for (axis, d) in ["X", "Y", "Z"].iter().zip(p.delta) {
+                    out.push(' ');
+                    out.push_str(axis);
+                    out.push_str(&format_coordinate(d));
+                }
+                out.push_str(" F");
+                out.push_str(&f);
+                out.push_str(nl);
+                current = f.parse().ok();
+            }
+            if !pieces.is_empty() {
+                out.push_str("G90");
+                out.push_str(nl);
+                changed.push(n);
+            }
+        }
         let target = base * factor;
         let new_text = format_feed(target);
         let value = new_text.parse::<f64>().unwrap_or(target);
@@ -274,6 +400,7 @@ mod tests {
             "t.ngc",
             ProgramFormat::Gcode,
             &factors(&[(2, 0.5), (3, 1.0), (4, 1.0)]),
+            &BTreeMap::new(),
         )
         .unwrap();
         assert_eq!(
@@ -287,6 +414,7 @@ mod tests {
             "t.ngc",
             ProgramFormat::Gcode,
             &factors(&[(2, 1.0), (3, 1.0), (4, 1.0)]),
+            &BTreeMap::new(),
         )
         .unwrap();
         assert_eq!(same.text, text);
@@ -301,6 +429,7 @@ mod tests {
             "t.ngc",
             ProgramFormat::Gcode,
             &factors(&[(1, 2.0), (2, 2.0), (4, 1.0)]),
+            &BTreeMap::new(),
         )
         .unwrap();
         assert_eq!(
@@ -312,6 +441,7 @@ mod tests {
             "t.ngc",
             ProgramFormat::Gcode,
             &factors(&[(1, 2.0)]),
+            &BTreeMap::new(),
         )
         .unwrap_err();
         assert_eq!((e.pos.line, e.pos.column), (1, 7));
@@ -320,6 +450,7 @@ mod tests {
             "t.ngc",
             ProgramFormat::Gcode,
             &factors(&[(1, 2.0)]),
+            &BTreeMap::new(),
         )
         .unwrap_err();
         assert!(e.message.contains("before any feed word"));
@@ -333,11 +464,44 @@ mod tests {
             "t.apt",
             ProgramFormat::Apt,
             &factors(&[(2, 0.5), (3, 1.0)]),
+            &BTreeMap::new(),
         )
         .unwrap();
         assert_eq!(
             r.text,
             "FEDRAT/ 500.0000,MMPM\nFEDRAT/ 250,MMPM\nGOTO/1,0,0\nFEDRAT/ 500,MMPM\nGOTO/2,0,0\nRAPID\nGOTO/2,0,9\n"
+        );
+    }
+
+    #[test]
+    fn a_split_line_gets_incremental_pieces_in_front() {
+        let text = "G21 G90\nG1 X0 Y0 F600\nG1 X30 Y0\nG0 Z5\n";
+        let splits: BTreeMap<u32, Vec<SplitPiece>> = [(
+            3,
+            vec![
+                SplitPiece {
+                    delta: [10.0, 0.0, 0.0],
+                    factor: 0.5,
+                },
+                SplitPiece {
+                    delta: [10.0, -0.0, 0.0],
+                    factor: 0.25,
+                },
+            ],
+        )]
+        .into_iter()
+        .collect();
+        let r = rewrite_feeds(
+            text,
+            "t.ngc",
+            ProgramFormat::Gcode,
+            &factors(&[(2, 1.0), (3, 1.0)]),
+            &splits,
+        )
+        .unwrap();
+        assert_eq!(
+            r.text,
+            "G21 G90\nG1 X0 Y0 F600\nG91 G1 X10 Y0 Z0 F300\nG1 X10 Y0 Z0 F150\nG90\nG1 X30 Y0 F600\nG0 Z5\n"
         );
     }
 

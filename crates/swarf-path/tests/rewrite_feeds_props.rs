@@ -52,12 +52,12 @@ proptest! {
         let text = lines.join("\n") + "\n";
         let format = if apt { ProgramFormat::Apt } else { ProgramFormat::Gcode };
         let ones: BTreeMap<u32, f64> = picks.iter().map(|&(l, _)| (l, 1.0)).collect();
-        if let Ok(r) = rewrite_feeds(&text, "p", format, &ones) {
+        if let Ok(r) = rewrite_feeds(&text, "p", format, &ones, &BTreeMap::new()) {
             // Factor 1: lines whose feed is in effect keep it; only restoring words may appear.
             prop_assert_eq!(drop_feed_numbers(&r.text), drop_feed_numbers(&text));
         }
         let factors: BTreeMap<u32, f64> = picks.iter().copied().collect();
-        if let Ok(r) = rewrite_feeds(&text, "p", format, &factors) {
+        if let Ok(r) = rewrite_feeds(&text, "p", format, &factors, &BTreeMap::new()) {
             if !apt {
                 prop_assert_eq!(drop_feed_numbers(&r.text), drop_feed_numbers(&text));
                 prop_assert_eq!(r.text.lines().count(), text.lines().count());

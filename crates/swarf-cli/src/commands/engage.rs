@@ -77,6 +77,11 @@ impl RunArgs {
         }
     }
 
+    /// Whether the program starts in inches (before its first G20/G21).
+    pub(crate) fn initial_inch(&self) -> bool {
+        matches!(self.setup.initial_units, crate::cli::TableUnits::Inch)
+    }
+
     /// Reads program text (`name` in messages) with this run's machine and units.
     pub(crate) fn read_program_str(&self, text: &str, name: &str) -> Result<Program> {
         let machine = load_machine(&self.setup.machine)?;

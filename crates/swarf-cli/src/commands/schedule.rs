@@ -11,6 +11,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 use swarf_force::{schedule_feeds, Limit, LocationCap, MoveCaps, ScheduleOptions};
 use swarf_path::load::ProgramFormat;
+use swarf_path::rewrite::SplitPiece;
 use swarf_path::{MoveKind, Program};
 
 use crate::commands::engage::RunArgs;
@@ -42,6 +43,11 @@ pub(crate) struct ScheduleArgs {
     /// Largest change of feed between consecutive feed moves, percent.
     #[arg(long, value_name = "P")]
     max_step_percent: Option<f64>,
+    /// Split a straight G-code feed move whose engagement varies into pieces with their own
+    /// feeds (at the cutter locations, every --step mm; pieces whose caps are within 10 % of
+    /// each other merged). The pieces are written as incremental moves in front of the line.
+    #[arg(long)]
+    split: bool,
     /// The scheduled program (G-code or APT, as the input). A JSON summary goes beside it
     /// (FILE.schedule.json).
     #[arg(long, value_name = "FILE")]
@@ -71,6 +77,9 @@ struct ScheduleSummary {
     time_after_s: f64,
     still_over_limit: Vec<Over>,
     lines_changed: usize,
+    /// Feed moves split into pieces (`--split`), and the pieces added.
+    moves_split: usize,
+    pieces_added: usize,
     limit: Limit,
     material: String,
     elapsed_s: f64,
@@ -145,7 +154,7 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
     let mut caps = MoveCaps::new(run.program.moves.len());
     let max_feed = args.max_feed;
     walk_batches(&mut run, &file, |batch| {
-        let found: Vec<(usize, LocationCap)> = batch
+        let found: Vec<(usize, f64, LocationCap)> = batch
             .par_iter()
             .map(|e| {
                 let ev = model.evaluate(e);
@@ -156,11 +165,15 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
                 } else {
                     0.0
                 };
-                (e.move_index, LocationCap::of(&model, &ev, limit, c_max))
+                (
+                    e.move_index,
+                    e.s,
+                    LocationCap::of(&model, &ev, limit, c_max),
+                )
             })
             .collect();
-        for (i, c) in found {
-            caps.add(i, c);
+        for (i, s, c) in found {
+            caps.add(i, s, c);
         }
         Ok(())
     })?;
@@ -169,49 +182,113 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
         min_feed_mm_min: args.min_feed,
         max_feed_mm_min: args.max_feed,
         max_step_percent: args.max_step_percent,
+        split: args.split,
     };
-    let schedule = schedule_feeds(&run.program, &caps, &opts);
-    // One factor per line: moves sharing a line share its feed word, so the slowest wins.
+    let program = &run.program;
+    let modes = swarf_path::rewrite::gcode_line_modes(&text, args.run.initial_inch());
+    let mut per_line: BTreeMap<u32, usize> = BTreeMap::new();
+    for m in &program.moves {
+        *per_line.entry(m.line).or_default() += 1;
+    }
+    // A move can be split when its pieces can be written as incremental straight moves: a
+    // straight 3-axis G-code feed alone on its line, in G90, with no rotation or scaling of
+    // the program frame, not in inverse time.
+    let can_split = |i: usize| {
+        let m = &program.moves[i];
+        let mode = modes.get(m.line as usize - 1);
+        format == ProgramFormat::Gcode
+            && matches!(m.kind, MoveKind::Linear)
+            && m.feed_mode != swarf_path::FeedMode::InverseTime
+            && (m.start.axis - m.end.axis).length() < 1e-12
+            && m.start_joints.to_array()[3..] == m.end_joints.to_array()[3..]
+            && per_line.get(&m.line) == Some(&1)
+            && mode.is_some_and(|md| md.absolute && !md.transformed)
+    };
+    let schedule = schedule_feeds(program, &caps, &opts, &can_split);
+    // One factor per line: moves sharing a line share its feed word, so the slowest wins; a
+    // split move's line gets its last piece's factor and its other pieces go in front of it.
     let mut factors: BTreeMap<u32, f64> = BTreeMap::new();
+    let mut splits: BTreeMap<u32, Vec<SplitPiece>> = BTreeMap::new();
     for m in &schedule.moves {
         if m.old_feed_mm_min <= 0.0 {
             continue;
         }
-        let line = run.program.moves[m.move_index].line;
-        let f = m.new_feed_mm_min / m.old_feed_mm_min;
+        let mv = &program.moves[m.move_index];
+        let last = m.pieces.last().map_or(m.new_feed_mm_min, |p| p.feed_mm_min);
+        let f = last / m.old_feed_mm_min;
         factors
-            .entry(line)
+            .entry(mv.line)
             .and_modify(|x| *x = x.min(f))
             .or_insert(f);
+        if m.pieces.len() > 1 {
+            let unit = if modes[mv.line as usize - 1].inch {
+                25.4
+            } else {
+                1.0
+            };
+            let d = (mv.end.tip - mv.start.tip) / unit;
+            let mut s0 = 0.0;
+            let pieces = m.pieces[..m.pieces.len() - 1]
+                .iter()
+                .map(|p| {
+                    let part = d * (p.s_end - s0);
+                    s0 = p.s_end;
+                    SplitPiece {
+                        delta: [part.x, part.y, part.z],
+                        factor: p.feed_mm_min / m.old_feed_mm_min,
+                    }
+                })
+                .collect();
+            splits.insert(mv.line, pieces);
+        }
     }
     let name = file.display().to_string();
-    let rewritten = swarf_path::rewrite::rewrite_feeds(&text, &name, format, &factors)?;
+    let rewritten = swarf_path::rewrite::rewrite_feeds(&text, &name, format, &factors, &splits)?;
     // The new program must read back with the scheduled feeds and the same motion.
     let again = args
         .run
         .read_program_str(&rewritten.text, &args.out.display().to_string())
         .context("reading the scheduled program back")?;
-    if again.moves.len() != run.program.moves.len() {
+    let inserted: usize = schedule.moves.iter().map(|m| m.pieces.len() - 1).sum();
+    if again.moves.len() != program.moves.len() + inserted {
         bail!(
-            "internal error: the scheduled program has {} moves, the input {}; nothing written",
+            "internal error: the scheduled program has {} moves, not {} ({} input moves, {inserted} pieces added); nothing written",
             again.moves.len(),
-            run.program.moves.len()
+            program.moves.len() + inserted,
+            program.moves.len()
         );
     }
     let mut moves_changed = 0;
-    for m in &schedule.moves {
-        let new = &again.moves[m.move_index];
-        let line = run.program.moves[m.move_index].line;
-        let got = swarf_engage::feed_rate(new, swarf_engage::path_length(&again, new));
-        let want = m.old_feed_mm_min * factors.get(&line).copied().unwrap_or(1.0);
-        if (got - want).abs() > 1e-5 * want.max(1.0) {
-            bail!(
-                "internal error: {name}:{line}: the scheduled program reads back at {got} mm/min, not {want}; nothing written"
-            );
+    let mut shift = 0usize;
+    let mut scheduled = schedule.moves.iter().peekable();
+    for (i, old) in program.moves.iter().enumerate() {
+        let Some(m) = scheduled.next_if(|m| m.move_index == i) else {
+            continue;
+        };
+        let line = old.line;
+        let n = m.pieces.len();
+        let mut changed = false;
+        for (k, p) in m.pieces.iter().enumerate() {
+            let new = &again.moves[i + shift + k];
+            let got = swarf_engage::feed_rate(new, swarf_engage::path_length(&again, new));
+            let want = if k + 1 == n {
+                m.old_feed_mm_min * factors.get(&line).copied().unwrap_or(1.0)
+            } else {
+                p.feed_mm_min
+            };
+            if (got - want).abs() > 1e-5 * want.max(1.0) {
+                bail!(
+                    "internal error: {name}:{line}: the scheduled program reads back at {got} mm/min, not {want}; nothing written"
+                );
+            }
+            changed |= (got - m.old_feed_mm_min).abs() > 1e-9 * m.old_feed_mm_min;
         }
-        if (got - m.old_feed_mm_min).abs() > 1e-9 * m.old_feed_mm_min {
-            moves_changed += 1;
+        let end = &again.moves[i + shift + n - 1];
+        if (end.end.tip - old.end.tip).length() > 1e-6 {
+            bail!("internal error: {name}:{line}: the split move ends elsewhere; nothing written");
         }
+        shift += n - 1;
+        moves_changed += usize::from(changed);
     }
     write_atomic(&args.out, rewritten.text.as_bytes())?;
     let still_over_limit: Vec<Over> = schedule
@@ -235,6 +312,8 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
         time_after_s: swarf_path::summarize(&again).machining_time_s,
         still_over_limit,
         lines_changed: rewritten.lines_changed.len(),
+        moves_split: schedule.moves.iter().filter(|m| m.pieces.len() > 1).count(),
+        pieces_added: inserted,
         limit,
         material: model.material().name.clone(),
         elapsed_s: t0.elapsed().as_secs_f64(),
