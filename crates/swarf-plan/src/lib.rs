@@ -30,6 +30,3 @@
 pub mod gouge;
 pub mod plot;
 pub mod size;
-
-/// The surface type the program check reports on (`gouge` names it from the crate root).
-pub(crate) use swarf_surface::CompoundSurface;

@@ -6,7 +6,7 @@ use std::io::{self, Write};
 use serde::Serialize;
 
 use super::{GougeOptions, GougeReport, SurfaceRef, ViolationKind};
-use crate::CompoundSurface;
+use swarf_surface::CompoundSurface;
 
 /// The JSON summary (field names are a contract).
 #[derive(Clone, Debug, PartialEq, Serialize)]

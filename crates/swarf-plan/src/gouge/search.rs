@@ -13,8 +13,8 @@ use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 use swarf_stock::{ConvexProfile, SweptConvex};
 
-use crate::size::bezier::Piece;
-use crate::size::PreparedSurface;
+use swarf_surface::bezier::Piece;
+use swarf_surface::PreparedSurface;
 
 /// The surface (and check geometry) prepared for the gouge search: its rational Bézier pieces
 /// and a bounding-volume hierarchy over their control-net boxes.

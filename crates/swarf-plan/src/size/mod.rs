@@ -62,10 +62,6 @@ pub mod pso;
 pub mod shank;
 pub mod standard;
 
-/// The Bézier pieces the searches walk, under the path the program check names them by.
-pub(crate) mod bezier {
-    pub(crate) use swarf_surface::bezier::Piece;
-}
 pub use certified::{allowable_certified, CertifiedOptions};
 pub use family::{CutterFamily, Regime, FLAT_CURVATURE};
 pub use map::{
