@@ -32,6 +32,7 @@
 pub mod cutter;
 pub mod describe;
 pub mod error;
+pub mod family;
 pub mod holder;
 pub mod piece;
 pub mod solid;
@@ -42,6 +43,7 @@ pub mod toolset;
 pub use cutter::{AptParams, Cutter, CutterKind, CutterOptions};
 pub use describe::CutterDescription;
 pub use error::{SpecError, TableError, ToolError};
+pub use family::FamilySpec;
 pub use holder::{Holder, HolderSegment};
 pub use piece::{AnyPiece, Piece};
 pub use solid::RevolvedSolid;

@@ -10,6 +10,7 @@ use swarf_plan::size::{
 };
 use swarf_plan::size::{StandardCutters, StandardOptions, StandardReport, ToolSizeMap};
 use swarf_surface::PreparedSurface;
+use swarf_tool::FamilySpec;
 
 use crate::output::{print_json, write_atomic};
 
@@ -71,42 +72,10 @@ pub(crate) struct ToolsizeArgs {
     pub(crate) json: bool,
 }
 
-/// Parses `--cutter`.
+/// Parses `--cutter` (the grammar is `swarf_tool::FamilySpec`'s).
 fn parse_family(spec: &str) -> Result<CutterFamily> {
-    let (name, params) = spec.split_once(':').unwrap_or((spec, ""));
-    let mut r = None;
-    let mut taper = None;
-    let mut cone = None;
-    for kv in params.split(',').filter(|s| !s.is_empty()) {
-        let (k, v) = kv
-            .split_once('=')
-            .with_context(|| format!("cutter `{spec}`: `{kv}` is not key=value"))?;
-        let v: f64 = v
-            .trim()
-            .parse()
-            .with_context(|| format!("cutter `{spec}`: `{v}` is not a number"))?;
-        match k.trim() {
-            "r" => r = Some(v),
-            "taper" => taper = Some(v),
-            "cone" => cone = Some(v),
-            other => bail!("cutter `{spec}`: unknown parameter `{other}` (r, taper, cone)"),
-        }
-    }
-    let fam = match name {
-        "ball" if params.is_empty() => CutterFamily::ball(),
-        "ball-side" if params.is_empty() => CutterFamily::ball_with_side(),
-        "flat" if params.is_empty() => CutterFamily::flat(),
-        "bull" => CutterFamily::bull(r.context("bull needs r=R (corner radius, mm)")?)?,
-        "taper-ball" => {
-            CutterFamily::taper_ball(taper.context("taper-ball needs taper=T (degrees)")?)?
-        }
-        "apt" => CutterFamily::apt(r.unwrap_or(0.0), taper.unwrap_or(0.0), cone.unwrap_or(0.0))?,
-        _ => bail!(
-            "cutter `{spec}`: expected ball, ball-side, flat, bull:r=R, taper-ball:taper=T or \
-             apt:r=R,taper=T,cone=C"
-        ),
-    };
-    Ok(fam)
+    let parsed = FamilySpec::parse(spec).with_context(|| format!("--cutter `{spec}`"))?;
+    Ok(CutterFamily::from_spec(&parsed).with_context(|| format!("--cutter `{spec}`"))?)
 }
 
 /// Parses `--axis4` / `--five-axis` (at most one; 4/5-axis use the certified solver).

@@ -109,6 +109,33 @@ impl CutterFamily {
         })
     }
 
+    /// The family a spec names ([`swarf_tool::FamilySpec`], `swarf toolsize --cutter`).
+    ///
+    /// ```
+    /// use swarf_plan::size::CutterFamily;
+    /// use swarf_tool::FamilySpec;
+    /// let f = CutterFamily::from_spec(&FamilySpec::parse("bull:r=2").unwrap()).unwrap();
+    /// assert_eq!(f, CutterFamily::bull(2.0).unwrap());
+    /// ```
+    ///
+    /// # Errors
+    /// A parameter out of range.
+    pub fn from_spec(spec: &swarf_tool::FamilySpec) -> Result<Self, SizeError> {
+        use swarf_tool::FamilySpec as F;
+        match *spec {
+            F::Ball => Ok(Self::ball()),
+            F::BallWithSide => Ok(Self::ball_with_side()),
+            F::Flat => Ok(Self::flat()),
+            F::Bull { corner_radius } => Self::bull(corner_radius),
+            F::TaperBall { taper_deg } => Self::taper_ball(taper_deg),
+            F::Apt {
+                corner_radius,
+                taper_deg,
+                cone_deg,
+            } => Self::apt(corner_radius, taper_deg, cone_deg),
+        }
+    }
+
     /// The tapered ball end mill with a taper in degrees.
     ///
     /// # Errors
