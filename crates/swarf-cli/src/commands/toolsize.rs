@@ -75,7 +75,7 @@ pub(crate) struct ToolsizeArgs {
 /// Parses `--cutter` (the grammar is `swarf_tool::FamilySpec`'s).
 fn parse_family(spec: &str) -> Result<CutterFamily> {
     let parsed = FamilySpec::parse(spec).with_context(|| format!("--cutter `{spec}`"))?;
-    Ok(CutterFamily::from_spec(&parsed).with_context(|| format!("--cutter `{spec}`"))?)
+    CutterFamily::from_spec(&parsed).with_context(|| format!("--cutter `{spec}`"))
 }
 
 /// Parses `--axis4` / `--five-axis` (at most one; 4/5-axis use the certified solver).
