@@ -91,7 +91,16 @@ use serde::{Deserialize, Serialize};
 use swarf_geom::math::{Mat3, Vec3};
 
 use crate::canon::Axes;
-use crate::moves::Pose;
+
+/// Tool tip and tool axis in the workpiece frame. The axis is a unit vector pointing from the
+/// tip up the tool, towards the spindle (+Z on a 3-axis machine).
+#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
+pub struct Pose {
+    /// Tool tip (the cutter's lowest point on its axis, the APT reference point), mm.
+    pub tip: Vec3,
+    /// Unit tool axis, tip towards spindle.
+    pub axis: Vec3,
+}
 
 /// The names [`Machine::from_name`] accepts (each also with a `-tcp` suffix).
 pub const BUILTIN_NAMES: &[&str] = &[

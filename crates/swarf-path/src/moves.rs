@@ -5,17 +5,8 @@ use swarf_geom::math::Vec3;
 
 use crate::canon::{Axes, FeedMode};
 use crate::kinematics::Machine;
+pub use crate::kinematics::Pose;
 use crate::Warning;
-
-/// Tool tip and tool axis in the workpiece frame. The axis is a unit vector pointing from the
-/// tip up the tool, towards the spindle (+Z on a 3-axis machine).
-#[derive(Clone, Copy, Debug, PartialEq, Serialize)]
-pub struct Pose {
-    /// Tool tip (the cutter's lowest point on its axis, the APT reference point), mm.
-    pub tip: Vec3,
-    /// Unit tool axis, tip towards spindle.
-    pub axis: Vec3,
-}
 
 /// The geometry of a circular or helical move, in the workpiece frame.
 ///

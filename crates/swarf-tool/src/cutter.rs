@@ -700,11 +700,6 @@ impl Cutter {
     pub fn corner_center(&self) -> Vec2 {
         Vec2::new(self.apt.e, self.apt.f)
     }
-
-    /// The spec string that rebuilds this cutter (with its options).
-    pub fn spec(&self) -> String {
-        crate::spec::to_spec(self)
-    }
 }
 
 /// The profile pieces bottom to top, closed by the top cap (see the module doc).

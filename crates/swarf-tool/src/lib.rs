@@ -56,6 +56,12 @@ impl Cutter {
         spec::parse(spec)
     }
 
+    /// The spec string that rebuilds this cutter (with its options); the grammar lives in
+    /// [`spec`], above the cutter model, which knows nothing of it.
+    pub fn spec(&self) -> String {
+        spec::to_spec(self)
+    }
+
     /// A cutter from the seven numbers of a program's `CUTTER/` record (mm, degrees), where
     /// h = 0 means the program did not give the height of the cutting part: it is then taken
     /// as three diameters (the named constructors' default), or the corner's top if higher.
