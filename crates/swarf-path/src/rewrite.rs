@@ -335,8 +335,17 @@ pub fn rewrite_feeds(
             }
         }
         let target = base * factor;
-        let new_text = format_feed(target);
-        let value = new_text.parse::<f64>().unwrap_or(target);
+        // A feed that does not change keeps its own digits (and its exact value).
+        let unchanged = |v: f64| (v - target).abs() <= 1e-9 * target.abs();
+        let (new_text, value) = match word {
+            Some(w) if unchanged(w.value) => (body[w.start..w.end].to_string(), w.value),
+            _ if unchanged(base) && current == Some(base) => (format_feed(base), base),
+            _ => {
+                let t = format_feed(target);
+                let v = t.parse::<f64>().unwrap_or(target);
+                (t, v)
+            }
+        };
         match (word, format) {
             (Some(w), _) => {
                 if (w.value - value).abs() > 0.0 {
@@ -503,6 +512,17 @@ mod tests {
             r.text,
             "G21 G90\nG1 X0 Y0 F600\nG91 G1 X10 Y0 Z0 F300\nG1 X10 Y0 Z0 F150\nG90\nG1 X30 Y0 F600\nG0 Z5\n"
         );
+    }
+
+    #[test]
+    fn an_unchanged_feed_keeps_its_digits() {
+        // Found by the fuzzer: F317.2802 at factor 1 was rounded to six digits.
+        let text = "G1 X1 F317.2802\nG1 X2\nFEDRAT/ 123.456789\n";
+        let ones = factors(&[(1, 1.0), (2, 1.0)]);
+        let r =
+            rewrite_feeds(text, "t.ngc", ProgramFormat::Gcode, &ones, &BTreeMap::new()).unwrap();
+        assert_eq!(r.text, text);
+        assert!(r.lines_changed.is_empty());
     }
 
     #[test]
