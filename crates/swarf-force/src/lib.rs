@@ -24,6 +24,48 @@
 //! ([`mod@coefficients`]). The feed per tooth is `F/(S·N)` (G95 and G93 converted by the
 //! engagement). Units: mm, degrees at interfaces, N, N·m, W.
 //!
+//! # Example
+//! A 10 mm, 4-flute end mill slots 4 mm deep at 400 mm/min and 1000 rpm (0.1 mm per tooth):
+//! the mean forces equal the closed form of a full slot, `F̄y = N·a·(c·Ktc/4 + Kte/π)`.
+//!
+//! ```
+//! use swarf_engage::{EngageOptions, Engager};
+//! use swarf_force::{CoefficientSource, Coefficients, ForceModel, Material};
+//! use swarf_geom::math::Vec3;
+//! use swarf_path::load::{read_program_str, ReadOptions};
+//! use swarf_path::Machine;
+//! use swarf_stock::TriDexel;
+//! use swarf_tool::{Cutter, ToolSet};
+//!
+//! let program = read_program_str(
+//!     "G21 G90\nS1000 M3\nG0 X-10 Y10 Z-4\nG1 X50 F400\n",
+//!     "slot.ngc",
+//!     Machine::three_axis(),
+//!     &ReadOptions::default(),
+//! )
+//! .unwrap();
+//! let k = Coefficients { ktc: 796.0, krc: 168.8, kac: 222.0, kte: 27.7, kre: 30.8, kae: 1.8 };
+//! let material = Material {
+//!     name: "Al7075".into(),
+//!     coefficients: CoefficientSource::Fixed(k),
+//!     source: "example".into(),
+//! };
+//! let tools = ToolSet::single(Cutter::from_spec("flat:d=10,flutes=4,helix=30").unwrap());
+//! let opts = EngageOptions::default();
+//! let model = ForceModel::new(material, &tools, &[0], &opts, 360).unwrap();
+//! let mut stock =
+//!     TriDexel::from_box(Vec3::new(0.0, 0.0, -10.0), Vec3::new(40.0, 20.0, 0.0), 0.1).unwrap();
+//! let at_20mm = Engager::new(&program, &tools, &mut stock, opts)
+//!     .unwrap()
+//!     .map(Result::unwrap)
+//!     .find(|e| (e.tip.x - 20.0).abs() < 1e-9)
+//!     .unwrap();
+//! let (f, _curves) = model.forces(&model.evaluate(&at_20mm), None);
+//! let fy = 4.0 * 4.0 * (0.1 * 796.0 / 4.0 + 27.7 / std::f64::consts::PI);
+//! assert!((f.mean_n[1] - fy).abs() < 1e-3 * fy);
+//! assert!(f.torque_peak_nm > f.torque_mean_nm && f.power_mean_w > 0.0);
+//! ```
+//!
 //! # Layout
 //! - [`coefficients`]: materials and coefficient prediction;
 //! - [`edges`]: a cutter's flutes, helix and slabs;
