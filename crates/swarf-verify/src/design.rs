@@ -41,6 +41,10 @@ pub trait Design: Sync {
     /// cell sizes there) and returns true; returns false when the design bounds no solid.
     fn solid_intervals(&self, k: usize, u: f64, v: f64, cell: (f64, f64), out: &mut Dexel) -> bool;
 
+    /// True when the design bounds a solid (a closed mesh); false for a surface, which only
+    /// says which side is outside near it.
+    fn bounds_solid(&self) -> bool;
+
     /// The design's bounding box.
     fn bounding_box(&self) -> Aabb;
 
@@ -153,6 +157,10 @@ impl Design for MeshDesign {
 
     fn solid_intervals(&self, k: usize, u: f64, v: f64, cell: (f64, f64), out: &mut Dexel) -> bool {
         swarf_stock::axis_line_intervals(&self.mesh, k, u, v, cell, &mut Vec::new(), out);
+        true
+    }
+
+    fn bounds_solid(&self) -> bool {
         true
     }
 

@@ -42,11 +42,13 @@
 pub mod design;
 pub mod deviation;
 pub mod error;
+pub mod surface;
 pub mod verify;
 
 pub use design::{Design, MeshDesign, Projection};
 pub use deviation::{deviation_mesh, Legend};
 pub use error::VerifyError;
+pub use surface::{SurfaceDesign, DEFAULT_SURFACE_ACCURACY_MM};
 pub use verify::{
     verify, DefectEnd, DefectKind, Histogram, Region, RegionMove, Verification, VerifyOptions,
     DEFAULT_EXCESS_TOLERANCE_MM, DEFAULT_GOUGE_TOLERANCE_MM, DEFAULT_LINK_CELLS,

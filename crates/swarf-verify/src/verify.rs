@@ -188,7 +188,8 @@ pub struct Verification {
     pub max_excess_mm: f64,
     /// Ray ends compared with the design.
     pub ends_checked: u64,
-    /// Ray ends about which the design says nothing (beyond an open surface's edge).
+    /// Ray ends about which the design says nothing: beyond a surface's edge, or (for a
+    /// surface, with provenance) uncut stock behind it.
     pub ends_unmatched: u64,
     /// Ray ends beyond the gouge tolerance.
     pub gouge_ends: u64,
@@ -262,6 +263,9 @@ pub fn verify(
     let t0 = Instant::now();
     let grid = *stock.grid();
     let (gt, et) = (options.gouge_tolerance, options.excess_tolerance);
+    // Behind a surface that bounds no solid, the stock's own faces that no move cut are the
+    // material under the part, not a gouge (only known when the stock tracked provenance).
+    let skip_uncut_behind = !design.bounds_solid() && stock.tracks_provenance();
     let all = (0..3usize)
         .map(|k| {
             let fam = stock.family(k);
@@ -291,8 +295,12 @@ pub fn verify(
                                     acc.unmatched += 1;
                                     continue;
                                 };
-                                acc.checked += 1;
                                 let d = pr.distance;
+                                if skip_uncut_behind && d < 0.0 && tag == UNCUT {
+                                    acc.unmatched += 1;
+                                    continue;
+                                }
+                                acc.checked += 1;
                                 acc.deviations.push(d as f32);
                                 acc.max_gouge = acc.max_gouge.max(-d);
                                 acc.max_excess = acc.max_excess.max(d);
@@ -515,14 +523,7 @@ fn measure_volumes(
     let (nu, nv) = fam.dims();
     let area = stock.ray_area(2);
     let cell = (grid.h[0], grid.h[1]);
-    // Probe once: a design without a solid says so on any line.
-    if !design.solid_intervals(
-        2,
-        grid.center(0, 0),
-        grid.center(1, 0),
-        cell,
-        &mut Dexel::new(),
-    ) {
+    if !design.bounds_solid() {
         return None;
     }
     let key = |p: Vec3| {
