@@ -183,3 +183,56 @@ fn bad_designs_are_refused_with_the_file_named() {
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("--tolerance"), "{}", stderr(&o));
 }
+
+/// The demo job: the finishing raster's known overcut (0.080 mm on the steepest slope of the
+/// wavy floor) is found by `swarf gouge` (from the tool positions) and by `swarf verify` (from
+/// the machined stock against the floor surface), the two within the ray spacing's error.
+#[test]
+fn demo_overcut_agrees_with_the_program_check() {
+    let dir = temp_dir("demo");
+    let d = dir.join("demo");
+    let o = swarf(&["demo", "--out", d.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let gouge: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.join("gouge/summary.json")).unwrap()).unwrap();
+    let g = gouge["max_gouge_mm"].as_f64().unwrap();
+    assert!((g - 0.080).abs() < 0.001, "{g}");
+    let o = swarf(&[
+        "verify",
+        "--stock",
+        "box:0,0,-20,100,80,0",
+        "--program",
+        d.join("demo.ngc").to_str().unwrap(),
+        "--tools",
+        d.join("tools.toml").to_str().unwrap(),
+        "--design",
+        d.join("floor.json").to_str().unwrap(),
+        "--out",
+        dir.join("v").to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    let v = j["max_gouge_mm"].as_f64().unwrap();
+    // At h = 0.25 the deepest ray end lies within h/2 of the deepest point; on this floor
+    // (curvature ≤ 0.04/mm, the ball's 1/3) that costs well under 0.005 mm.
+    assert!(
+        (v - g).abs() < 0.005 && v <= g + 1e-3,
+        "verify {v} vs gouge {g}"
+    );
+    assert!(j["gouge_regions"].as_u64().unwrap() > 0);
+    assert_eq!(j["volume_method"], "surface-integral");
+    // Every gouge was cut by the finishing raster (tool 2's moves), never by the roughing.
+    let program = std::fs::read_to_string(d.join("demo.ngc")).unwrap();
+    let finishing_starts = program
+        .lines()
+        .position(|l| l.contains("Op 2") && l.starts_with("(----"))
+        .unwrap() as u64;
+    for r in j["regions"].as_array().unwrap() {
+        if r["kind"] == "gouge" {
+            for m in r["moves"].as_array().unwrap() {
+                assert!(m["line"].as_u64().unwrap() > finishing_starts, "{m}");
+            }
+        }
+    }
+}

@@ -290,12 +290,17 @@ fn print_human(v: &Verification, s: &VerifySummary<'_>, out: &Path) {
         s.elapsed_s
     );
     for r in v.regions.iter().take(20) {
-        let lines: Vec<String> = r
-            .moves
-            .iter()
-            .take(5)
-            .map(|m| format!("{}:{}", m.file, m.line))
-            .collect();
+        // The distinct lines, deepest first (a loop runs one line as many moves).
+        let mut lines: Vec<String> = Vec::new();
+        for m in &r.moves {
+            let l = format!("{}:{}", m.file, m.line);
+            if !lines.contains(&l) {
+                lines.push(l);
+            }
+            if lines.len() == 5 {
+                break;
+            }
+        }
         println!(
             "  region {:>4}: {:<6} {:.4} mm, {:.3} mm², {:.4} mm³ at ({:.3}, {:.3}, {:.3}){}",
             r.id,
