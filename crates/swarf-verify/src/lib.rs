@@ -42,12 +42,14 @@
 pub mod design;
 pub mod deviation;
 pub mod error;
+pub mod report;
 pub mod surface;
 pub mod verify;
 
 pub use design::{Design, MeshDesign, Projection};
 pub use deviation::{deviation_mesh, Legend};
 pub use error::VerifyError;
+pub use report::{html_report, ReportInputs};
 pub use surface::{SurfaceDesign, DEFAULT_SURFACE_ACCURACY_MM};
 pub use verify::{
     verify, DefectEnd, DefectKind, Histogram, Region, RegionMove, Verification, VerifyOptions,

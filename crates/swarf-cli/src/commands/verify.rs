@@ -12,15 +12,15 @@ use swarf_io::{GlbOptions, Shading};
 use swarf_path::Program;
 use swarf_stock::SimOptions;
 use swarf_verify::{
-    deviation_mesh, verify, Design, Legend, MeshDesign, Region, SurfaceDesign, Verification,
-    VerifyOptions,
+    deviation_mesh, html_report, verify, Design, Legend, MeshDesign, Region, ReportInputs,
+    SurfaceDesign, Verification, VerifyOptions,
 };
 
 use crate::cli::SetupArgs;
 use crate::commands::simulate::{
     build_stock, positive_mm, simulate_with_progress, tools_for, SimulateSummary,
 };
-use crate::commands::tools::{load_setup, Setup};
+use crate::commands::tools::{load_setup, resolve_all, Setup};
 use crate::output::{csv_field, print_json, write_atomic};
 
 /// `swarf verify`.
@@ -62,6 +62,10 @@ pub(crate) struct VerifyArgs {
     /// Build the stock from an STL mesh even if it is not closed.
     #[arg(long)]
     pub(crate) allow_open_mesh: bool,
+    /// Also write one self-contained HTML report here (3-D view, deviation histogram, figures,
+    /// defects linked to the program's lines; opens offline).
+    #[arg(long, value_name = "FILE.html")]
+    pub(crate) report: Option<PathBuf>,
     /// Output folder (created if missing).
     #[arg(long, value_name = "DIR")]
     pub(crate) out: PathBuf,
@@ -125,6 +129,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
         table,
     } = load_setup(&args.setup, &args.program)?;
     let tools = tools_for(&program, single.as_ref(), table.as_ref())?;
+    let resolved = resolve_all(&program, single.as_ref(), table.as_ref())?;
     let mut stock = build_stock(
         args.stock.as_deref(),
         table.as_ref(),
@@ -198,6 +203,47 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
     let mut json = serde_json::to_vec_pretty(&summary)?;
     json.push(b'\n');
     write_atomic(&args.out.join("summary.json"), &json)?;
+    if let Some(path) = &args.report {
+        let sources: Vec<(String, String)> = program
+            .files
+            .iter()
+            .filter_map(|f| std::fs::read_to_string(f).ok().map(|t| (f.clone(), t)))
+            .collect();
+        let value = serde_json::to_value(&summary)?;
+        let inputs = ReportInputs {
+            program: &program,
+            sources: &sources,
+            inputs: vec![
+                ("program".into(), args.program.display().to_string()),
+                (
+                    "stock".into(),
+                    args.stock
+                        .clone()
+                        .unwrap_or_else(|| "from the tool project".into()),
+                ),
+                (
+                    "design".into(),
+                    format!("{} ({})", args.design.display(), design.describe()),
+                ),
+                ("machine".into(), args.setup.machine.clone()),
+                ("resolution".into(), format!("{} mm", args.resolution)),
+            ],
+            tools: resolved
+                .iter()
+                .map(|(n, r)| {
+                    let d = if r.description.is_empty() {
+                        r.cutter.spec()
+                    } else {
+                        r.description.clone()
+                    };
+                    (*n, d, &r.cutter)
+                })
+                .collect(),
+            summary: &value,
+            part: (&mesh, &legend),
+        };
+        write_atomic(path, html_report(&v, &inputs).as_bytes())?;
+    }
     if args.json {
         return print_json(&summary);
     }
