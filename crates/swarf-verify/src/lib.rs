@@ -53,7 +53,7 @@ pub use report::{html_report, ReportInputs};
 pub use surface::{SurfaceDesign, DEFAULT_SURFACE_ACCURACY_MM};
 pub use verify::{
     verify, DefectEnd, DefectKind, Histogram, Region, RegionMove, Verification, VerifyOptions,
-    DEFAULT_EXCESS_TOLERANCE_MM, DEFAULT_GOUGE_TOLERANCE_MM, DEFAULT_LINK_CELLS,
+    DEFAULT_EXCESS_TOLERANCE_MM, DEFAULT_GOUGE_TOLERANCE_MM, DEFAULT_LINK_CELLS, MAX_REGION_MOVES,
 };
 
 use swarf_geom::math::Vec3;

@@ -164,9 +164,14 @@ pub struct Region {
     pub bbox_min: Vec3,
     /// Upper corner.
     pub bbox_max: Vec3,
-    /// The moves that cut its ends, deepest first.
+    /// The moves that cut its ends, deepest first (at most [`MAX_REGION_MOVES`]).
     pub moves: Vec<RegionMove>,
+    /// How many moves cut its ends (`moves` lists the deepest of them).
+    pub move_count: usize,
 }
+
+/// Most moves a region lists (the deepest); [`Region::move_count`] counts them all.
+pub const MAX_REGION_MOVES: usize = 100;
 
 /// A histogram of the signed deviation of every ray end.
 #[derive(Clone, Debug, PartialEq, serde::Serialize)]
@@ -458,6 +463,7 @@ fn summarise(
             bbox_min: Vec3::splat(f64::INFINITY),
             bbox_max: Vec3::splat(f64::NEG_INFINITY),
             moves: Vec::new(),
+            move_count: 0,
         })
         .collect();
     let mut per_move: Vec<HashMap<MoveTag, (f64, usize)>> = vec![HashMap::new(); count];
@@ -501,6 +507,8 @@ fn summarise(
                 .total_cmp(&a.depth_mm)
                 .then(a.move_index.cmp(&b.move_index))
         });
+        r.move_count = list.len();
+        list.truncate(MAX_REGION_MOVES);
         r.moves = list;
     }
     regions
