@@ -237,7 +237,7 @@ pub fn html_report(v: &Verification, inputs: &ReportInputs<'_>) -> String {
                 .sources
                 .iter()
                 .find(|(f, _)| f == file)
-                .and_then(|(_, t)| t.lines().nth(*line as usize - 1))
+                .and_then(|(_, t)| t.lines().nth((*line as usize).checked_sub(1)?))
                 .unwrap_or("")
                 .to_string(),
         })
