@@ -41,6 +41,9 @@ pub(crate) enum Command {
     /// Check a program against the part surface: every point and every stretch of motion where
     /// the cutter gouges or the tool interferes, and how deep (certified).
     Gouge(crate::commands::gouge::GougeArgs),
+    /// Simulate a program and compare the machined part with the design part: gouge and excess
+    /// regions with depth, area, volume and the program lines that cut them, a deviation map.
+    Verify(crate::commands::verify::VerifyArgs),
     /// Run the built-in demo job.
     Demo(DemoArgs),
 }

@@ -21,6 +21,7 @@ fn main() {
         cli::Command::Forces(args) => commands::forces::run(&args),
         cli::Command::Schedule(args) => commands::schedule::run(&args),
         cli::Command::Gouge(args) => commands::gouge::run(&args),
+        cli::Command::Verify(args) => commands::verify::run(&args),
         cli::Command::Demo(args) => commands::demo::run(&args),
     };
     if let Err(e) = result {

@@ -33,12 +33,21 @@ pub enum Shading {
 pub struct GlbOptions {
     /// Flat or smooth normals.
     pub shading: Shading,
+    /// Application data written as the document's top-level `extras` (glTF 2.0 §3.8: any
+    /// JSON; viewers ignore it). `None` (the default) writes none.
+    pub extras: Option<serde_json::Value>,
 }
 
 impl GlbOptions {
     /// With the given shading.
     pub fn with_shading(mut self, shading: Shading) -> Self {
         self.shading = shading;
+        self
+    }
+
+    /// With `extras` as the document's top-level `extras`.
+    pub fn with_extras(mut self, extras: serde_json::Value) -> Self {
+        self.extras = Some(extras);
         self
     }
 }
@@ -234,10 +243,18 @@ pub fn glb_bytes(mesh: &TriMesh, options: &GlbOptions) -> Result<Vec<u8>, IoErro
     });
     root.scene = Some(scene);
 
-    let mut js = root.to_vec().map_err(|e| IoError::Json {
+    let json_error = |e| IoError::Json {
         path: Default::default(),
         source: e,
-    })?;
+    };
+    let mut js = root.to_vec().map_err(json_error)?;
+    if let Some(extras) = &options.extras {
+        let mut doc: serde_json::Value = serde_json::from_slice(&js).map_err(json_error)?;
+        if let Some(obj) = doc.as_object_mut() {
+            obj.insert("extras".into(), extras.clone());
+        }
+        js = serde_json::to_vec(&doc).map_err(json_error)?;
+    }
     js.resize(pad4(js.len()), b' ');
     let total = 12 + 8 + js.len() + 8 + bin.len();
     let total32 = u32::try_from(total)

@@ -55,6 +55,7 @@ pub mod color;
 pub mod contour;
 pub mod error;
 pub mod glb;
+pub mod html;
 pub mod image;
 pub mod mesh;
 pub mod ply;

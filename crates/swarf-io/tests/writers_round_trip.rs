@@ -83,6 +83,29 @@ fn stl_binary_and_ascii_round_trip() {
 }
 
 #[test]
+fn glb_extras_are_written_and_only_when_asked() {
+    let m = TriMesh::from_parts(
+        vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z],
+        vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+    );
+    let plain = glb_bytes(&m, &GlbOptions::default()).unwrap();
+    let legend = serde_json::json!({"range_mm": [-0.5, 0.5], "note": "<b>"});
+    let with = glb_bytes(&m, &GlbOptions::default().with_extras(legend.clone())).unwrap();
+    let json_of = |b: &[u8]| -> serde_json::Value {
+        let n = u32::from_le_bytes([b[12], b[13], b[14], b[15]]) as usize;
+        serde_json::from_slice(&b[20..20 + n]).unwrap()
+    };
+    assert!(json_of(&plain).get("extras").is_none());
+    assert_eq!(json_of(&with)["extras"], legend);
+    // Still a valid glb, and the geometry is untouched.
+    let (a, b) = (
+        parse_glb(&plain, Path::new("a")).unwrap(),
+        parse_glb(&with, Path::new("b")).unwrap(),
+    );
+    assert_eq!(a.bin, b.bin);
+}
+
+#[test]
 fn glb_reparses_with_consistent_accessors() {
     let d = temp_dir("glb");
     let m = part();

@@ -7,6 +7,7 @@
 //! first prints a one-shot report (moves/s, ray-interval updates/s, CPU time, extrapolation to
 //! 50,000 moves, peak memory from `/proc/self/status` VmHWM, the scaling table, the ratio to
 //! the brute-force reference). `SWARF_BENCH_REPORT_ONLY=1` prints the report alone;
+//! `SWARF_BENCH_PROVENANCE=1` makes its stock keep the provenance of every interval end;
 //! `SWARF_BENCH_MOVES=N` sets its number of moves (default 3000) and leaves out the
 //! scaling table and the brute-force comparison. `RAYON_NUM_THREADS` sets
 //! the threads.
@@ -97,8 +98,12 @@ fn report() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(3000);
+    let provenance = std::env::var_os("SWARF_BENCH_PROVENANCE").is_some();
     let t = Instant::now();
     let mut stock = new_stock(h);
+    if provenance {
+        stock.track_provenance();
+    }
     let build = t.elapsed().as_secs_f64();
     let tool = ToolShape::new(&Cutter::ball(10.0).unwrap());
     let pts = finishing_path(n, 0.5, 0.5);
@@ -118,7 +123,12 @@ fn report() {
     );
     let st = stock.stats();
     println!(
-        "finishing bench: stock 120x120x50 mm, h = {h} mm, ball d = 10 mm, {n} moves of 0.5 mm"
+        "finishing bench: stock 120x120x50 mm, h = {h} mm, ball d = 10 mm, {n} moves of 0.5 mm{}",
+        if provenance {
+            ", provenance tracked"
+        } else {
+            ""
+        }
     );
     println!(
         "  build {build:.3} s; rays {}, intervals {}, {:.1} bytes/interval, {:.1} MB",

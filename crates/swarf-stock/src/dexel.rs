@@ -40,8 +40,94 @@ pub fn dexel_length(d: &[Interval]) -> f64 {
     d.iter().map(Interval::len).sum()
 }
 
+/// Identifies the move that cut an interval end: the tag the stock was cutting under
+/// ([`crate::TriDexel::set_move_tag`]; `simulate` tags every cut with its move's index in the
+/// program), or [`UNCUT`] for an end that is still the original stock's boundary.
+pub type MoveTag = u32;
+
+/// The tag of an interval end no move has cut (the stock as built).
+pub const UNCUT: MoveTag = MoveTag::MAX;
+
+/// Provenance of one interval: the tag of the move that last cut each of its ends.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+pub struct EndTags {
+    /// Tag of the `enter` end.
+    pub enter: MoveTag,
+    /// Tag of the `exit` end.
+    pub exit: MoveTag,
+}
+
+impl EndTags {
+    /// Both ends uncut.
+    pub const UNCUT: EndTags = EndTags {
+        enter: UNCUT,
+        exit: UNCUT,
+    };
+}
+
+/// The provenance of one dexel, interval by interval (kept beside the dexel, in step with it,
+/// only by stocks that track provenance: one integer per interval end).
+pub type DexelTags = SmallVec<[EndTags; INLINE_INTERVALS]>;
+
+/// Where [`subtract_with`] keeps the provenance of the dexel it edits: `()` keeps none (and
+/// compiles to nothing), a [`DexelTags`] is edited in step with the dexel.
+pub(crate) trait EndStore {
+    fn get(&self, i: usize) -> EndTags;
+    fn set(&mut self, i: usize, e: EndTags);
+    fn insert(&mut self, i: usize, e: EndTags);
+    fn drain(&mut self, a: usize, b: usize);
+}
+
+impl EndStore for () {
+    #[inline(always)]
+    fn get(&self, _: usize) -> EndTags {
+        EndTags::UNCUT
+    }
+    #[inline(always)]
+    fn set(&mut self, _: usize, _: EndTags) {}
+    #[inline(always)]
+    fn insert(&mut self, _: usize, _: EndTags) {}
+    #[inline(always)]
+    fn drain(&mut self, _: usize, _: usize) {}
+}
+
+impl EndStore for DexelTags {
+    #[inline]
+    fn get(&self, i: usize) -> EndTags {
+        self[i]
+    }
+    #[inline]
+    fn set(&mut self, i: usize, e: EndTags) {
+        self[i] = e;
+    }
+    #[inline]
+    fn insert(&mut self, i: usize, e: EndTags) {
+        SmallVec::insert(self, i, e);
+    }
+    #[inline]
+    fn drain(&mut self, a: usize, b: usize) {
+        SmallVec::drain(self, a..b);
+    }
+}
+
 /// Removes `[lo, hi]` from the dexel; returns the length removed.
+#[inline]
 pub fn subtract(d: &mut Dexel, lo: f64, hi: f64) -> f64 {
+    subtract_with(d, &mut (), lo, hi, UNCUT, |_| {})
+}
+
+/// [`subtract`], keeping the provenance `ends` in step (the new ends get `tag`) and telling
+/// `removed` every piece of material it takes away (in ascending order; slivers shorter than
+/// [`MIN_INTERVAL_MM`] that the cut leaves behind are removed too, and reported).
+#[inline]
+pub(crate) fn subtract_with<E: EndStore, F: FnMut(Interval)>(
+    d: &mut Dexel,
+    ends: &mut E,
+    lo: f64,
+    hi: f64,
+    tag: MoveTag,
+    mut removed_piece: F,
+) -> f64 {
     if hi.partial_cmp(&lo) != Some(std::cmp::Ordering::Greater) {
         return 0.0;
     }
@@ -56,11 +142,14 @@ pub fn subtract(d: &mut Dexel, lo: f64, hi: f64) -> f64 {
     let mut k = i;
     let mut removed = 0.0;
     while k < n && d[k].enter < hi {
-        removed += d[k].exit.min(hi) - d[k].enter.max(lo);
+        let (a, b) = (d[k].enter.max(lo), d[k].exit.min(hi));
+        removed += b - a;
+        removed_piece(Interval { enter: a, exit: b });
         k += 1;
     }
     let first = d[i];
     let last = d[k - 1];
+    let (first_ends, last_ends) = (ends.get(i), ends.get(k - 1));
     let left = Interval {
         enter: first.enter,
         exit: lo,
@@ -76,26 +165,42 @@ pub fn subtract(d: &mut Dexel, lo: f64, hi: f64) -> f64 {
     let keep_right = keep_right && right.len() >= MIN_INTERVAL_MM;
     if first.enter < lo && !keep_left {
         removed += left.len();
+        removed_piece(left);
     }
     if last.exit > hi && !keep_right {
         removed += right.len();
+        removed_piece(right);
     }
     let mut w = i;
     if keep_left {
         d[w] = left;
+        ends.set(
+            w,
+            EndTags {
+                enter: first_ends.enter,
+                exit: tag,
+            },
+        );
         w += 1;
     }
     if keep_right {
+        let right_ends = EndTags {
+            enter: tag,
+            exit: last_ends.exit,
+        };
         if w < k {
             d[w] = right;
+            ends.set(w, right_ends);
         } else {
             d.insert(w, right);
+            ends.insert(w, right_ends);
             return removed;
         }
         w += 1;
     }
     if w < k {
         d.drain(w..k);
+        ends.drain(w, k);
     }
     removed
 }
@@ -143,5 +248,44 @@ mod tests {
         assert!((r - 1.0).abs() < 1e-15, "{r}");
         assert_eq!(d.as_slice(), &[iv(2.0, 3.0)]);
         assert!(overlaps(&d, 2.5, 2.6) && !overlaps(&d, 3.0, 4.0));
+    }
+
+    /// Applies the cut to a dexel with provenance and to one without; checks they agree and
+    /// that the reported pieces add up to the removed length.
+    fn cut_tracked(d: &mut Dexel, t: &mut DexelTags, lo: f64, hi: f64, tag: MoveTag) -> f64 {
+        let mut plain = d.clone();
+        let want = subtract(&mut plain, lo, hi);
+        let mut pieces = Vec::new();
+        let got = subtract_with(d, t, lo, hi, tag, |iv| pieces.push(iv));
+        assert_eq!(got, want);
+        assert_eq!(*d, plain);
+        assert_eq!(d.len(), t.len());
+        let sum: f64 = pieces.iter().map(Interval::len).sum();
+        assert!((sum - got).abs() < 1e-12, "{sum} {got}");
+        assert!(pieces.windows(2).all(|w| w[0].exit <= w[1].enter));
+        got
+    }
+
+    #[test]
+    fn provenance_follows_the_cuts() {
+        let e = |a, b| EndTags { enter: a, exit: b };
+        let mut d: Dexel = smallvec![iv(0.0, 10.0)];
+        let mut t: DexelTags = smallvec![EndTags::UNCUT];
+        cut_tracked(&mut d, &mut t, 2.0, 3.0, 7);
+        assert_eq!(t.as_slice(), &[e(UNCUT, 7), e(7, UNCUT)]);
+        cut_tracked(&mut d, &mut t, 8.0, 12.0, 8);
+        assert_eq!(t.as_slice(), &[e(UNCUT, 7), e(7, 8)]);
+        cut_tracked(&mut d, &mut t, 5.0, 6.0, 9);
+        assert_eq!(d.as_slice(), &[iv(0.0, 2.0), iv(3.0, 5.0), iv(6.0, 8.0)]);
+        assert_eq!(t.as_slice(), &[e(UNCUT, 7), e(7, 9), e(9, 8)]);
+        // One cut across two intervals joins their outer ends.
+        cut_tracked(&mut d, &mut t, 1.0, 4.0, 10);
+        assert_eq!(d.as_slice(), &[iv(0.0, 1.0), iv(4.0, 5.0), iv(6.0, 8.0)]);
+        assert_eq!(t.as_slice(), &[e(UNCUT, 10), e(10, 9), e(9, 8)]);
+        // A cut between intervals changes nothing; a cut of everything leaves nothing.
+        assert_eq!(cut_tracked(&mut d, &mut t, 5.5, 5.8, 11), 0.0);
+        assert_eq!(t.len(), 3);
+        cut_tracked(&mut d, &mut t, -1.0, 100.0, 12);
+        assert!(d.is_empty() && t.is_empty());
     }
 }

@@ -538,7 +538,7 @@ fn material_in(stock: &TriDexel, b: &Aabb) -> bool {
 impl TriDexel {
     /// Removes the volume `shape` sweeps along the sub-moves `pieces` (each a fixed-axis
     /// straight move, cut exactly), in order, [`PIECES_PER_BATCH`] at a time through
-    /// [`TriDexel::subtract_moves`].
+    /// [`TriDexel::subtract_moves`], all under the current move tag (they are pieces of one move).
     pub fn cut_shape_pieces(&mut self, shape: &SweepShape, pieces: &[SubMove]) -> CutStats {
         let mut total = CutStats::default();
         for chunk in pieces.chunks(PIECES_PER_BATCH) {
@@ -553,7 +553,7 @@ impl TriDexel {
                 })
                 .collect();
             let moves: Vec<[&[SweptConvex<'_>]; 1]> = sweeps.iter().map(|s| [&s[..]]).collect();
-            for [st] in self.subtract_moves(&moves) {
+            for [st] in self.subtract_pieces(&moves, None) {
                 total = total.merged(st);
             }
         }

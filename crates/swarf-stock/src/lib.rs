@@ -81,11 +81,14 @@ pub mod sweep;
 pub mod tridexel;
 
 pub use cut::{arc_chords, SegmentCut, ToolShape, DEFAULT_CHORDAL_TOLERANCE_MM};
-pub use dexel::{Dexel, Interval};
+pub use dexel::{Dexel, DexelTags, EndTags, Interval, MoveTag, UNCUT};
 pub use error::StockError;
 pub use five_axis::{MotionBound, Reach, SubMove};
-pub use mesh::MeshOptions;
+pub use mesh::{axis_line_intervals, MeshOptions};
 pub use simulate::{simulate, simulate_observed, Collision, SimOptions, SimulationReport, Tools};
 pub use spec::StockSpec;
 pub use sweep::{ConvexProfile, Element, LineBatch, SignedDistance, SweepShape, SweptConvex};
-pub use tridexel::{CutStats, DexelFamily, Grid, LinearMove, StockStats, TriDexel, MAX_RAYS, TILE};
+pub use tridexel::{
+    CutStats, DexelFamily, Grid, LinearMove, Removal, RemovalVisitor, StockStats, TriDexel,
+    MAX_RAYS, TILE,
+};

@@ -97,32 +97,7 @@ impl TriDexel {
         let hk = Self::empty(bounds, h)?.grid().h;
         let stock = Self::from_fn(bounds, h, |k, u, v, d| {
             let (ku, kv) = ((k + 1) % 3, (k + 2) % 3);
-            let mut hits: Vec<f64> = Vec::new();
-            for &(nu, nv) in &NUDGE {
-                let (pu, pv) = (u + nu * hk[ku], v + nv * hk[kv]);
-                hits.clear();
-                for leaf in mesh.bvh().leaves(|node| {
-                    let (lo, hi) = (node.mins(), node.maxs());
-                    lo[ku] <= pu && pu <= hi[ku] && lo[kv] <= pv && pv <= hi[kv]
-                }) {
-                    let t = idx[leaf as usize].map(|i| verts[i as usize]);
-                    if let Some(x) = axis_line_triangle(k, pu, pv, &t) {
-                        hits.push(x);
-                    }
-                }
-                if hits.len() % 2 == 0 {
-                    break;
-                }
-            }
-            hits.sort_by(f64::total_cmp);
-            for pair in hits.chunks_exact(2) {
-                if pair[1] > pair[0] {
-                    d.push(Interval {
-                        enter: pair[0],
-                        exit: pair[1],
-                    });
-                }
-            }
+            axis_line_intervals(&mesh, k, u, v, (hk[ku], hk[kv]), &mut Vec::new(), d);
         })?;
         // An open mesh whose rays find no way in and out (a box without its top) would be a
         // stock of no material, reported as "-0.000 mm³" and cut by nothing.
@@ -138,6 +113,49 @@ impl TriDexel {
     pub fn from_trimesh(mesh: &TriMesh, h: f64, opts: MeshOptions) -> Result<Self, StockError> {
         let tris: Vec<[Vec3; 3]> = mesh.triangles().map(|t| [t.a, t.b, t.c]).collect();
         Self::from_triangles(&tris, h, opts)
+    }
+}
+
+/// Pushes onto `out` the intervals of the closed mesh's solid along the line parallel to axis
+/// `k` through cross coordinates `(u, v)` (along `(k+1)%3` and `(k+2)%3`): every crossing
+/// found through the BVH, paired by parity, the line nudged by [`NUDGE`] times `cell` (the
+/// grid's cell sizes along the cross axes) and nudged again while the count is odd. `hits`
+/// is scratch space.
+pub fn axis_line_intervals(
+    mesh: &TriMesh,
+    k: usize,
+    u: f64,
+    v: f64,
+    cell: (f64, f64),
+    hits: &mut Vec<f64>,
+    out: &mut crate::Dexel,
+) {
+    let (ku, kv) = ((k + 1) % 3, (k + 2) % 3);
+    let (verts, idx) = (mesh.vertices(), mesh.indices());
+    for &(nu, nv) in &NUDGE {
+        let (pu, pv) = (u + nu * cell.0, v + nv * cell.1);
+        hits.clear();
+        for leaf in mesh.bvh().leaves(|node| {
+            let (lo, hi) = (node.mins(), node.maxs());
+            lo[ku] <= pu && pu <= hi[ku] && lo[kv] <= pv && pv <= hi[kv]
+        }) {
+            let t = idx[leaf as usize].map(|i| verts[i as usize]);
+            if let Some(x) = axis_line_triangle(k, pu, pv, &t) {
+                hits.push(x);
+            }
+        }
+        if hits.len() % 2 == 0 {
+            break;
+        }
+    }
+    hits.sort_by(f64::total_cmp);
+    for pair in hits.chunks_exact(2) {
+        if pair[1] > pair[0] {
+            out.push(Interval {
+                enter: pair[0],
+                exit: pair[1],
+            });
+        }
     }
 }
 

@@ -180,6 +180,9 @@ pub fn simulate_observed(
             line: m0.line,
             tool: m0.tool,
         })?;
+        // Interval ends this batch (or move) makes remember it: move `i0 + n` has tag
+        // `i0 + n` (the last tags saturate at `UNCUT − 1` on absurdly long programs).
+        stock.set_move_tag(i0.min(crate::dexel::UNCUT as usize - 1) as u32);
         // A run of straight fixed-axis moves of one tool is cut as one batch (the same stock
         // and per-move figures as move by move, without a parallel barrier per move).
         let run = program.moves[i0..]

@@ -3,7 +3,9 @@
 //! localised, parallel subtraction of swept volumes.
 
 use crate::cut::{SegmentCut, ToolShape};
-use crate::dexel::{dexel_length, overlaps, subtract, Dexel, Interval};
+use crate::dexel::{
+    dexel_length, overlaps, subtract, subtract_with, Dexel, DexelTags, EndTags, Interval, MoveTag,
+};
 use crate::error::StockError;
 use crate::sweep::{DexelRays, Scratch, SweepShape, SweptConvex};
 use rayon::prelude::*;
@@ -105,6 +107,9 @@ pub struct DexelFamily {
     /// Per tile, `[lowest enter, highest exit]` of its material (conservative: may be wider than
     /// the material after cuts until the tile is next visited).
     bounds: Vec<[f64; 2]>,
+    /// The provenance of every ray's intervals, indexed like `rays` (empty when the stock
+    /// does not track provenance).
+    tags: Vec<DexelTags>,
 }
 
 const EMPTY_BOUND: [f64; 2] = [f64::INFINITY, f64::NEG_INFINITY];
@@ -121,6 +126,7 @@ impl DexelFamily {
             ntu,
             rays: vec![Dexel::new(); ntu * ntv * TILE_RAYS],
             bounds: vec![EMPTY_BOUND; ntu * ntv],
+            tags: Vec::new(),
         }
     }
 
@@ -144,6 +150,13 @@ impl DexelFamily {
         &self.rays[self.index(i, j)]
     }
 
+    /// The provenance of ray `(i, j)`'s intervals (one [`EndTags`] per interval of
+    /// [`DexelFamily::ray`], in the same order), or `None` when the stock does not track
+    /// provenance ([`TriDexel::track_provenance`]).
+    pub fn ray_tags(&self, i: usize, j: usize) -> Option<&[EndTags]> {
+        self.tags.get(self.index(i, j)).map(|t| &t[..])
+    }
+
     /// Total material length over all rays, mm.
     pub fn total_length(&self) -> f64 {
         self.rays.iter().map(|d| dexel_length(d)).sum()
@@ -163,6 +176,13 @@ impl DexelFamily {
                 .map(|d| d.capacity() * std::mem::size_of::<Interval>())
                 .sum::<usize>()
             + self.bounds.capacity() * std::mem::size_of::<[f64; 2]>()
+            + self.tags.capacity() * std::mem::size_of::<DexelTags>()
+            + self
+                .tags
+                .iter()
+                .filter(|t| t.spilled())
+                .map(|t| t.capacity() * std::mem::size_of::<EndTags>())
+                .sum::<usize>()
     }
 
     fn refresh_bounds(&mut self) {
@@ -241,6 +261,8 @@ pub struct StockStats {
 pub struct TriDexel {
     grid: Grid,
     families: [DexelFamily; 3],
+    /// The tag the next cut gives the ends it makes ([`TriDexel::set_move_tag`]).
+    tag: MoveTag,
 }
 
 impl TriDexel {
@@ -250,6 +272,7 @@ impl TriDexel {
         Ok(Self {
             families: [0, 1, 2].map(|k| DexelFamily::new(k, &grid)),
             grid,
+            tag: 0,
         })
     }
 
@@ -349,6 +372,40 @@ impl TriDexel {
         })
     }
 
+    /// From now on, keep for every interval end the tag of the move that last cut it (one
+    /// [`MoveTag`] per end, beside the intervals; ends that exist now are [`crate::UNCUT`]).
+    /// Costs 8 bytes per interval and 24 per ray; a stock that does not track provenance
+    /// pays nothing. Idempotent.
+    pub fn track_provenance(&mut self) {
+        for fam in &mut self.families {
+            if fam.tags.len() != fam.rays.len() {
+                fam.tags = fam
+                    .rays
+                    .iter()
+                    .map(|d| d.iter().map(|_| EndTags::UNCUT).collect())
+                    .collect();
+            }
+        }
+    }
+
+    /// True when the stock keeps the provenance of its interval ends.
+    pub fn tracks_provenance(&self) -> bool {
+        !self.families[0].tags.is_empty() || self.families[0].rays.is_empty()
+    }
+
+    /// Sets the tag of the cuts that follow: the ends they make carry it (when provenance is
+    /// tracked) and [`Removal`]s report it. [`TriDexel::cut_linear_batch`] gives its `n`-th move
+    /// `tag + n`; every other cut (a move's chords, its 5-axis sub-moves, shank and holder)
+    /// carries `tag` itself. [`crate::simulate()`] sets the move's index in the program. Default 0.
+    pub fn set_move_tag(&mut self, tag: MoveTag) {
+        self.tag = tag;
+    }
+
+    /// The tag of the cuts that follow.
+    pub fn move_tag(&self) -> MoveTag {
+        self.tag
+    }
+
     /// The grid.
     pub fn grid(&self) -> &Grid {
         &self.grid
@@ -422,6 +479,15 @@ impl TriDexel {
         self.subtract_moves(&[[parts]])[0][0]
     }
 
+    /// [`TriDexel::subtract_moves`], all moves under the current tag (the pieces of one move).
+    pub(crate) fn subtract_pieces<const G: usize>(
+        &mut self,
+        moves: &[[&[SweptConvex<'_>]; G]],
+        visitor: Option<&dyn RemovalVisitor>,
+    ) -> Vec<[CutStats; G]> {
+        self.subtract_tagged(moves, 0, visitor)
+    }
+
     /// Removes, move after move, the swept volumes of a sequence of moves, each given as `G`
     /// groups of parts (e.g. the cutting part and the shank), and returns what each group of
     /// each move removed. The stock ends as if the moves were subtracted one by one in order,
@@ -435,7 +501,28 @@ impl TriDexel {
         &mut self,
         moves: &[[&[SweptConvex<'_>]; G]],
     ) -> Vec<[CutStats; G]> {
+        self.subtract_tagged(moves, 1, None)
+    }
+
+    /// [`TriDexel::subtract_moves`], telling `visitor` every piece of material removed (see
+    /// [`RemovalVisitor`]); the stock and the figures are the same as without it.
+    pub fn subtract_moves_visited<const G: usize>(
+        &mut self,
+        moves: &[[&[SweptConvex<'_>]; G]],
+        visitor: &dyn RemovalVisitor,
+    ) -> Vec<[CutStats; G]> {
+        self.subtract_tagged(moves, 1, Some(visitor))
+    }
+
+    /// The subtraction; move `m` of `moves` carries the tag `self.tag + step·m`.
+    fn subtract_tagged<const G: usize>(
+        &mut self,
+        moves: &[[&[SweptConvex<'_>]; G]],
+        step: MoveTag,
+        visitor: Option<&dyn RemovalVisitor>,
+    ) -> Vec<[CutStats; G]> {
         let grid = self.grid;
+        let base = self.tag;
         let plans: Vec<[Option<Plan>; G]> = moves
             .iter()
             .map(|groups| groups.map(|parts| Plan::new(&grid, parts)))
@@ -451,20 +538,33 @@ impl TriDexel {
         for fam in self.families.iter_mut() {
             let k = fam.axis;
             let per_row = fam.ntu * TILE_RAYS;
+            let mut tag_rows = fam.tags.chunks_mut(per_row);
             for (tj, (r, b)) in fam
                 .rays
                 .chunks_mut(per_row)
                 .zip(fam.bounds.chunks_mut(fam.ntu))
                 .enumerate()
             {
-                rows[tj % workers][k].push(Row { rays: r, bounds: b });
+                let tags = tag_rows.next().unwrap_or_default();
+                rows[tj % workers][k].push(Row {
+                    rays: r,
+                    bounds: b,
+                    tags,
+                });
             }
         }
         let run = |(w, mut mine): (usize, [Vec<Row<'_>>; 3])| -> Vec<[CutStats; G]> {
             let mut out = vec![[CutStats::default(); G]; moves.len()];
             let mut scratch = Scratch::new();
-            for ((groups, plans), st) in moves.iter().zip(&plans).zip(out.iter_mut()) {
-                for ((parts, plan), st) in groups.iter().zip(plans).zip(st.iter_mut()) {
+            for (m, ((groups, plans), st)) in
+                moves.iter().zip(&plans).zip(out.iter_mut()).enumerate()
+            {
+                let tag = base
+                    .saturating_add(step.saturating_mul(m as MoveTag))
+                    .min(crate::dexel::UNCUT - 1);
+                for (group, ((parts, plan), st)) in
+                    groups.iter().zip(plans).zip(st.iter_mut()).enumerate()
+                {
                     let Some(plan) = plan else { continue };
                     for (k, fam_rows) in mine.iter_mut().enumerate() {
                         let Some(r) = plan.fam[k] else { continue };
@@ -476,6 +576,8 @@ impl TriDexel {
                             range: &r,
                             parts,
                             rays: &rays,
+                            tag,
+                            visitor: visitor.map(|v| (v, m, group)),
                         };
                         let (tj0, tj1) = (r.j.0 / TILE, r.j.1 / TILE);
                         // This worker's first row at or after tj0.
@@ -483,8 +585,10 @@ impl TriDexel {
                         for tj in (first..=tj1).step_by(workers) {
                             let row = &mut fam_rows[tj / workers];
                             for ti in r.i.0 / TILE..=r.i.1 / TILE {
-                                let tile = &mut row.rays[ti * TILE_RAYS..(ti + 1) * TILE_RAYS];
-                                cut.run(ti, tj, tile, &mut row.bounds[ti], &mut scratch, st);
+                                let span = ti * TILE_RAYS..(ti + 1) * TILE_RAYS;
+                                let tile = &mut row.rays[span.clone()];
+                                let tags = row.tags.get_mut(span).unwrap_or_default();
+                                cut.run(ti, tj, tile, tags, &mut row.bounds[ti], &mut scratch, st);
                             }
                         }
                     }
@@ -529,6 +633,28 @@ impl TriDexel {
     /// each removed (as [`TriDexel::cut_linear`] would, move by move), with the moves of each
     /// batch cut in parallel over disjoint rays (see [`TriDexel::subtract_moves`]).
     pub fn cut_linear_batch(&mut self, tool: &ToolShape, moves: &[LinearMove]) -> Vec<SegmentCut> {
+        self.cut_linear_batch_with(tool, moves, None)
+    }
+
+    /// [`TriDexel::cut_linear_batch`], telling `visitor` every piece of material removed
+    /// ([`Removal::move_index`] is the index in `moves`; group 0 is the cutting part, 1 the
+    /// shank and holder).
+    pub fn cut_linear_batch_visited(
+        &mut self,
+        tool: &ToolShape,
+        moves: &[LinearMove],
+        visitor: &dyn RemovalVisitor,
+    ) -> Vec<SegmentCut> {
+        self.cut_linear_batch_with(tool, moves, Some(visitor))
+    }
+
+    fn cut_linear_batch_with(
+        &mut self,
+        tool: &ToolShape,
+        moves: &[LinearMove],
+        visitor: Option<&dyn RemovalVisitor>,
+    ) -> Vec<SegmentCut> {
+        let tag0 = self.tag;
         let mut out = Vec::with_capacity(moves.len());
         for chunk in moves.chunks(BATCH_MOVES) {
             fn sweep<'s>(shape: &'s SweepShape, m: &LinearMove) -> SmallVec<[SweptConvex<'s>; 2]> {
@@ -544,16 +670,26 @@ impl TriDexel {
                 .collect();
             let groups: Vec<[&[SweptConvex<'_>]; 2]> =
                 prepared.iter().map(|[a, b]| [&a[..], &b[..]]).collect();
-            out.extend(
-                self.subtract_moves(&groups)
-                    .into_iter()
-                    .map(|[cutting, non_cutting]| SegmentCut {
-                        cutting,
-                        non_cutting,
-                        sub_moves: 1,
-                        error_bound_mm: 0.0,
-                    }),
+            // Moves of later chunks continue the numbering, as one call would give it.
+            let first = out.len();
+            self.tag = tag0.saturating_add(first as MoveTag);
+            let offset = |r: &Removal| Removal {
+                move_index: r.move_index + first,
+                ..*r
+            };
+            let shifted = visitor.map(|v| move |r: &Removal| v.removed(&offset(r)));
+            let stats = self.subtract_tagged(
+                &groups,
+                1,
+                shifted.as_ref().map(|f| f as &dyn RemovalVisitor),
             );
+            self.tag = tag0;
+            out.extend(stats.into_iter().map(|[cutting, non_cutting]| SegmentCut {
+                cutting,
+                non_cutting,
+                sub_moves: 1,
+                error_bound_mm: 0.0,
+            }));
         }
         out
     }
@@ -566,6 +702,43 @@ const PARALLEL_MIN_TILES: usize = 64;
 struct Row<'a> {
     rays: &'a mut [Dexel],
     bounds: &'a mut [[f64; 2]],
+    /// The rays' provenance (empty when not tracked).
+    tags: &'a mut [DexelTags],
+}
+
+/// One piece of material a cut took from a ray, as [`RemovalVisitor`] hears of it.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Removal {
+    /// Index of the move in the call ([`TriDexel::subtract_moves_visited`]'s `moves`, or
+    /// [`TriDexel::cut_linear_batch_visited`]'s).
+    pub move_index: usize,
+    /// The tag the move cut under ([`TriDexel::set_move_tag`]).
+    pub tag: MoveTag,
+    /// Which group of the move's parts (for a [`crate::ToolShape`]: 0 the cutting part, 1 the
+    /// shank and holder).
+    pub group: usize,
+    /// The ray family (0 = X, 1 = Y, 2 = Z).
+    pub family: usize,
+    /// The ray: indices along the family's cross axes `(k+1)%3` and `(k+2)%3`
+    /// ([`DexelFamily::ray`]).
+    pub ray: (usize, usize),
+    /// The material removed, in the ray's coordinate, mm.
+    pub removed: Interval,
+}
+
+/// Hears of every piece of material a cut removes, ray by ray. Called from the cutting
+/// threads (hence `Sync` and `&self`): for one ray the calls come in the order the moves cut
+/// it; across rays in no particular order. A plain `Fn(&Removal) + Sync` closure is one. The
+/// cuts that take no visitor pay nothing for this.
+pub trait RemovalVisitor: Sync {
+    /// `r` was removed.
+    fn removed(&self, r: &Removal);
+}
+
+impl<F: Fn(&Removal) + Sync> RemovalVisitor for F {
+    fn removed(&self, r: &Removal) {
+        self(r)
+    }
 }
 
 /// The rays of one family a move may touch: cross index ranges and the range along the rays.
@@ -617,14 +790,20 @@ struct TileCut<'g, 'p, 'a> {
     parts: &'p [SweptConvex<'a>],
     /// Per part, what its dexel queries along this family share.
     rays: &'g [DexelRays],
+    /// The tag the ends this cut makes get.
+    tag: MoveTag,
+    /// Who hears of the removed material, with the move's index in the call and the group.
+    visitor: Option<(&'g dyn RemovalVisitor, usize, usize)>,
 }
 
 impl TileCut<'_, '_, '_> {
+    #[allow(clippy::too_many_arguments)]
     fn run(
         &self,
         ti: usize,
         tj: usize,
         tile: &mut [Dexel],
+        tags: &mut [DexelTags],
         bound: &mut [f64; 2],
         scratch: &mut Scratch,
         st: &mut CutStats,
@@ -662,7 +841,8 @@ impl TileCut<'_, '_, '_> {
             // (Cell centres with the axes resolved once: `Grid::center` per ray costs.)
             let cv = v_min + ((tj * TILE + jj) as f64 + 0.5) * v_h;
             for ii in i_lo..=i_hi {
-                let d = &mut tile[jj * TILE + ii];
+                let r = jj * TILE + ii;
+                let d = &mut tile[r];
                 if !overlaps(d, tmin, tmax) {
                     continue;
                 }
@@ -674,7 +854,28 @@ impl TileCut<'_, '_, '_> {
                     let (t, hit) = p.dexel_cut((cu, cv), k, d, rays, scratch);
                     tested |= t;
                     if let Some((lo, hi)) = hit {
-                        removed += subtract(d, lo, hi);
+                        removed += match (tags.get_mut(r), self.visitor) {
+                            (None, None) => subtract(d, lo, hi),
+                            (t, v) => {
+                                let ray = (ti * TILE + ii, tj * TILE + jj);
+                                let report = |iv: Interval| {
+                                    if let Some((v, move_index, group)) = v {
+                                        v.removed(&Removal {
+                                            move_index,
+                                            tag: self.tag,
+                                            group,
+                                            family: k,
+                                            ray,
+                                            removed: iv,
+                                        });
+                                    }
+                                };
+                                match t {
+                                    Some(t) => subtract_with(d, t, lo, hi, self.tag, report),
+                                    None => subtract_with(d, &mut (), lo, hi, self.tag, report),
+                                }
+                            }
+                        };
                     }
                 }
                 if tested {

@@ -12,3 +12,4 @@ pub(crate) mod simulate;
 pub(crate) mod tool;
 pub(crate) mod tools;
 pub(crate) mod toolsize;
+pub(crate) mod verify;

@@ -147,7 +147,7 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
 
 /// Runs the simulation with a progress bar on a terminal (nothing is drawn when stderr is piped)
 /// and stops cleanly on Ctrl-C: the run ends with an error before any output file is written.
-fn simulate_with_progress(
+pub(crate) fn simulate_with_progress(
     program: &Program,
     tools: &Tools,
     stock: &mut TriDexel,

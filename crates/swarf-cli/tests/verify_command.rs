@@ -1,0 +1,238 @@
+//! `swarf verify`: a known gouge found at its place, depth and line through the command; the
+//! summary contract; the deviation map's legend; bad designs and options refused with the
+//! file named and a non-zero exit.
+mod common;
+use common::*;
+use std::path::{Path, PathBuf};
+
+fn temp_dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("swarf-verify-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// Faces a 40 × 40 × 12 block at (20..60)² down to the design's top (z = 10) with a 10 mm
+/// flat end mill, then plunges to 9.7 and runs a slot from x = 30 to 50 at y = 40: a gouge
+/// 0.3 mm deep. Returns the program's path and the slot's line.
+fn gouging_program(dir: &Path) -> (PathBuf, usize) {
+    let mut s = String::from("G21 G90\nG0 Z20\nG0 X10 Y17\nG1 Z10 F500\n");
+    let mut y = 17.0;
+    let mut left = true;
+    while y <= 65.0 {
+        s += &format!("G1 X{} Y{y}\n", if left { 70 } else { 10 });
+        y += 8.0;
+        if y <= 65.0 {
+            s += &format!("G1 Y{y}\n");
+        }
+        left = !left;
+    }
+    s += "G0 Z20\nG0 X30 Y40\nG1 Z9.7 F200\n";
+    let line = s.lines().count() + 1;
+    s += "G1 X50 (too deep)\nG0 Z20\nM30\n";
+    let p = dir.join("gouge.ngc");
+    std::fs::write(&p, s).unwrap();
+    (p, line)
+}
+
+fn design(dir: &Path) -> PathBuf {
+    let p = dir.join("part.stl");
+    std::fs::write(&p, boxes_stl(&[[[20.0, 20.0, 0.0], [60.0, 60.0, 10.0]]], 0)).unwrap();
+    p
+}
+
+fn run(dir: &Path, program: &Path, design: &Path, extra: &[&str]) -> std::process::Output {
+    let out = dir.join("out");
+    let mut args = vec![
+        "verify",
+        "--stock",
+        "box:20,20,0,60,60,12",
+        "--program",
+        program.to_str().unwrap(),
+        "--tool",
+        "flat:d=10",
+        "--design",
+        design.to_str().unwrap(),
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    args.extend_from_slice(extra);
+    swarf(&args)
+}
+
+#[test]
+fn a_known_gouge_is_reported_with_its_line_and_the_outputs_hold_together() {
+    let dir = temp_dir("gouge");
+    let (prog, line) = gouging_program(&dir);
+    let o = run(&dir, &prog, &design(&dir), &["--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    for k in [
+        "max_gouge_mm",
+        "max_excess_mm",
+        "gouge_regions",
+        "excess_regions",
+        "excess_volume_mm3",
+        "tolerance_mm",
+        "collisions",
+        "elapsed_s",
+    ] {
+        assert!(j.get(k).is_some(), "summary lacks {k}: {j}");
+    }
+    assert!(
+        (j["max_gouge_mm"].as_f64().unwrap() - 0.3).abs() < 1e-6,
+        "{j}"
+    );
+    assert_eq!(j["gouge_regions"], 1);
+    assert_eq!(j["excess_regions"], 0);
+    assert_eq!(j["collisions"], 0);
+    assert_eq!(j["tolerance_mm"], 0.01);
+    // The file equals what was printed.
+    let out = dir.join("out");
+    let file: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(file["regions"], j["regions"]);
+    // defects.csv: one gouge row at the slot (its plunge or itself), 0.3 deep.
+    let csv = std::fs::read_to_string(out.join("defects.csv")).unwrap();
+    let rows: Vec<&str> = csv.lines().collect();
+    assert_eq!(
+        rows[0],
+        "region,kind,depth_mm,area_mm2,volume_mm3,x,y,z,move,file,line"
+    );
+    assert_eq!(rows.len(), 2, "{csv}");
+    let f: Vec<&str> = rows[1].split(',').collect();
+    assert_eq!(f[1], "gouge");
+    assert!((f[2].parse::<f64>().unwrap() - 0.3).abs() < 1e-6);
+    let vol: f64 = f[4].parse().unwrap();
+    let exact = (200.0 + std::f64::consts::PI * 25.0) * 0.3;
+    assert!((vol - exact).abs() < 2.4, "{vol} vs {exact}");
+    assert!(f[9].ends_with("gouge.ngc"), "{}", f[9]);
+    let l: usize = f[10].parse().unwrap();
+    assert!(l == line || l == line - 1, "{l} vs {line}");
+    let lines: Vec<u64> = j["regions"][0]["moves"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|m| m["line"].as_u64().unwrap())
+        .collect();
+    assert!(lines.contains(&(line as u64)), "{lines:?}");
+    // deviation.glb: a glb whose extras carry the legend, coloured per vertex.
+    let glb = std::fs::read(out.join("deviation.glb")).unwrap();
+    assert_eq!(&glb[0..4], b"glTF");
+    let n = u32::from_le_bytes([glb[12], glb[13], glb[14], glb[15]]) as usize;
+    let doc: serde_json::Value = serde_json::from_slice(&glb[20..20 + n]).unwrap();
+    let legend = &doc["extras"]["swarf_deviation_legend"];
+    assert!(
+        (legend["min_mm"].as_f64().unwrap() + 0.3).abs() < 1e-6,
+        "{legend}"
+    );
+    assert!((legend["max_mm"].as_f64().unwrap() - 0.3).abs() < 1e-6);
+    assert!(doc["meshes"][0]["primitives"][0]["attributes"]
+        .get("COLOR_0")
+        .is_some());
+    // The human report names the line.
+    let o = run(&dir, &prog, &design(&dir), &[]);
+    assert!(o.status.success());
+    assert!(
+        stdout(&o).contains(&format!("gouge.ngc:{line}")),
+        "{}",
+        stdout(&o)
+    );
+}
+
+#[test]
+fn bad_designs_are_refused_with_the_file_named() {
+    let dir = temp_dir("bad");
+    let (prog, _) = gouging_program(&dir);
+    let missing = dir.join("missing.stl");
+    let garbage = dir.join("garbage.stl");
+    std::fs::write(
+        &garbage,
+        "solid x\nfacet normal 0 0 1\nouter loop\nvertex 1 2\n",
+    )
+    .unwrap();
+    let open = dir.join("open.stl");
+    std::fs::write(
+        &open,
+        boxes_stl(&[[[20.0, 20.0, 0.0], [60.0, 60.0, 10.0]]], 1),
+    )
+    .unwrap();
+    let unknown = dir.join("part.obj");
+    std::fs::write(&unknown, "v 0 0 0\n").unwrap();
+    let bad_json = dir.join("part.json");
+    std::fs::write(&bad_json, "{\"units\": \"mm\", \"patches\": [{]}").unwrap();
+    for (path, expect) in [
+        (&missing, "missing.stl"),
+        (&garbage, "garbage.stl"),
+        (&open, "not a closed mesh"),
+        (&unknown, "unknown format"),
+        (&bad_json, "part.json"),
+    ] {
+        let o = run(&dir, &prog, path, &[]);
+        assert_eq!(o.status.code(), Some(1), "{}", path.display());
+        let e = stderr(&o);
+        assert!(e.contains(expect), "{}: {e}", path.display());
+        assert!(
+            e.contains(path.file_name().unwrap().to_str().unwrap()),
+            "{e}"
+        );
+        assert!(!e.contains("panicked"), "{e}");
+        assert!(!dir.join("out/summary.json").exists());
+    }
+    let o = run(&dir, &prog, &design(&dir), &["--tolerance=-1"]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("--tolerance"), "{}", stderr(&o));
+}
+
+/// The demo job: the finishing raster's known overcut (0.080 mm on the steepest slope of the
+/// wavy floor) is found by `swarf gouge` (from the tool positions) and by `swarf verify` (from
+/// the machined stock against the floor surface), the two within the ray spacing's error.
+#[test]
+fn demo_overcut_agrees_with_the_program_check() {
+    let dir = temp_dir("demo");
+    let d = dir.join("demo");
+    let o = swarf(&["demo", "--out", d.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let gouge: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.join("gouge/summary.json")).unwrap()).unwrap();
+    let g = gouge["max_gouge_mm"].as_f64().unwrap();
+    assert!((g - 0.080).abs() < 0.001, "{g}");
+    let o = swarf(&[
+        "verify",
+        "--stock",
+        "box:0,0,-20,100,80,0",
+        "--program",
+        d.join("demo.ngc").to_str().unwrap(),
+        "--tools",
+        d.join("tools.toml").to_str().unwrap(),
+        "--design",
+        d.join("floor.json").to_str().unwrap(),
+        "--out",
+        dir.join("v").to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    let v = j["max_gouge_mm"].as_f64().unwrap();
+    // At h = 0.25 the deepest ray end lies within h/2 of the deepest point; on this floor
+    // (curvature ≤ 0.04/mm, the ball's 1/3) that costs well under 0.005 mm.
+    assert!(
+        (v - g).abs() < 0.005 && v <= g + 1e-3,
+        "verify {v} vs gouge {g}"
+    );
+    assert!(j["gouge_regions"].as_u64().unwrap() > 0);
+    assert_eq!(j["volume_method"], "surface-integral");
+    // Every gouge was cut by the finishing raster (tool 2's moves), never by the roughing.
+    let program = std::fs::read_to_string(d.join("demo.ngc")).unwrap();
+    let finishing_starts = program
+        .lines()
+        .position(|l| l.contains("Op 2") && l.starts_with("(----"))
+        .unwrap() as u64;
+    for r in j["regions"].as_array().unwrap() {
+        if r["kind"] == "gouge" {
+            for m in r["moves"].as_array().unwrap() {
+                assert!(m["line"].as_u64().unwrap() > finishing_starts, "{m}");
+            }
+        }
+    }
+}

@@ -1,0 +1,178 @@
+//! The design part the machined stock is compared with, and the one question verification asks
+//! of it: the signed distance from a point, exact to the design's own geometry.
+//!
+//! [`MeshDesign`] is a closed triangle mesh (an STL part): the nearest point is the exact
+//! point–triangle projection found through parry's BVH, and the sign comes from the
+//! angle-weighted pseudo-normal of the nearest feature (face, edge or vertex; Bærentzen &
+//! Aanæs 2005), which is exact for a closed, consistently oriented mesh. Its solid also answers
+//! where an axis-parallel line crosses it, so volumes of excess and gouges are measured ray by
+//! ray like the stock's own volume.
+
+use std::path::Path;
+
+use parry3d_f64::query::PointQueryWithLocation;
+use parry3d_f64::shape::{TriMesh, TriMeshFlags};
+use swarf_geom::math::Vec3;
+use swarf_geom::Aabb;
+use swarf_stock::Dexel;
+
+use crate::error::VerifyError;
+
+/// The nearest point of the design to a query point.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct Projection {
+    /// Signed distance, mm: positive outside the design's solid, negative inside.
+    pub distance: f64,
+    /// The nearest point of the design.
+    pub closest: Vec3,
+    /// Unit outward normal of the design there (for a point off the design: the direction
+    /// from the nearest point to it, flipped inside; on it: the face's normal).
+    pub normal: Vec3,
+}
+
+/// A design part: what verification asks of it.
+pub trait Design: Sync {
+    /// The nearest point of the design to `p` and the signed distance, or `None` where the
+    /// design says nothing about `p` (beyond the edge of an open surface).
+    fn project(&self, p: Vec3) -> Option<Projection>;
+
+    /// Pushes onto `out` the intervals of the design's solid along the line parallel to axis
+    /// `k` through cross coordinates `(u, v)` (along `(k+1)%3`, `(k+2)%3`; `cell` the grid's
+    /// cell sizes there) and returns true; returns false when the design bounds no solid.
+    fn solid_intervals(&self, k: usize, u: f64, v: f64, cell: (f64, f64), out: &mut Dexel) -> bool;
+
+    /// True when the design bounds a solid (a closed mesh); false for a surface, which only
+    /// says which side is outside near it.
+    fn bounds_solid(&self) -> bool;
+
+    /// The design's bounding box.
+    fn bounding_box(&self) -> Aabb;
+
+    /// A short description for reports ("closed mesh, 12 triangles, 1000 mm³").
+    fn describe(&self) -> String;
+}
+
+/// A closed, outward-oriented triangle mesh as the design.
+#[derive(Clone)]
+pub struct MeshDesign {
+    mesh: TriMesh,
+    bbox: Aabb,
+    volume: f64,
+}
+
+impl std::fmt::Debug for MeshDesign {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "MeshDesign({})", self.describe())
+    }
+}
+
+impl MeshDesign {
+    /// Reads a closed STL part (binary or ASCII). Errors name the file.
+    pub fn read_stl(path: &Path) -> Result<Self, VerifyError> {
+        let mesh = swarf_io::read_stl(path)?;
+        Self::named(&mesh, path)
+    }
+
+    /// The design bounded by `mesh`, which must be closed (every edge shared by exactly two
+    /// triangles) and consistently oriented; an inward-oriented mesh (negative volume) is
+    /// turned outwards.
+    pub fn new(mesh: &swarf_io::TriMesh) -> Result<Self, VerifyError> {
+        Self::named(mesh, Path::new("<mesh>"))
+    }
+
+    fn named(mesh: &swarf_io::TriMesh, path: &Path) -> Result<Self, VerifyError> {
+        let bad = |what: String| VerifyError::BadMesh {
+            path: path.to_path_buf(),
+            what,
+        };
+        if mesh.triangles.is_empty() {
+            return Err(bad("no triangles".into()));
+        }
+        mesh.validate().map_err(|e| bad(e.to_string()))?;
+        let report = mesh.edge_report();
+        if report.boundary_count() > 0 {
+            let examples = report
+                .examples
+                .iter()
+                .take(3)
+                .map(|e| {
+                    let [a, b] = e.points;
+                    format!("({}, {}, {})-({}, {}, {})", a.x, a.y, a.z, b.x, b.y, b.z)
+                })
+                .collect::<Vec<_>>()
+                .join(", ");
+            return Err(VerifyError::OpenMesh {
+                path: path.to_path_buf(),
+                count: report.boundary_count(),
+                examples,
+            });
+        }
+        if !report.is_clean() {
+            return Err(bad(format!(
+                "{} edges whose two triangles disagree on orientation",
+                report.misoriented
+            )));
+        }
+        let mut m = mesh.clone();
+        let mut volume = m.volume();
+        if volume < 0.0 {
+            m.flip();
+            volume = -volume;
+        }
+        if !(volume > 0.0 && volume.is_finite()) {
+            return Err(bad(format!("encloses no volume ({volume} mm³)")));
+        }
+        let bbox = m.aabb().ok_or_else(|| bad("no vertices".into()))?;
+        let mesh = TriMesh::with_flags(m.vertices, m.triangles, TriMeshFlags::ORIENTED)
+            .map_err(|e| bad(format!("{e:?}")))?;
+        Ok(Self { mesh, bbox, volume })
+    }
+
+    /// The enclosed volume, mm³.
+    pub fn volume(&self) -> f64 {
+        self.volume
+    }
+}
+
+impl Design for MeshDesign {
+    fn project(&self, p: Vec3) -> Option<Projection> {
+        if !p.is_finite() {
+            return None;
+        }
+        let (proj, (tri, _)) = self.mesh.project_local_point_and_get_location(p, false);
+        let d = p - proj.point;
+        let len = d.length();
+        let sign = if proj.is_inside { -1.0 } else { 1.0 };
+        let normal = if len > 1e-12 {
+            d / len * sign
+        } else {
+            self.mesh.triangle(tri).normal().unwrap_or(Vec3::Z)
+        };
+        Some(Projection {
+            distance: sign * len,
+            closest: proj.point,
+            normal,
+        })
+    }
+
+    fn solid_intervals(&self, k: usize, u: f64, v: f64, cell: (f64, f64), out: &mut Dexel) -> bool {
+        swarf_stock::axis_line_intervals(&self.mesh, k, u, v, cell, &mut Vec::new(), out);
+        true
+    }
+
+    fn bounds_solid(&self) -> bool {
+        true
+    }
+
+    fn bounding_box(&self) -> Aabb {
+        self.bbox
+    }
+
+    fn describe(&self) -> String {
+        format!(
+            "closed mesh, {} triangles, {:.3} mm³",
+            self.mesh.indices().len(),
+            self.volume
+        )
+    }
+}

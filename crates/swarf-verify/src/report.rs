@@ -1,0 +1,284 @@
+//! The verification as one self-contained HTML page (`swarf_io::html`): inputs with the tools'
+//! profiles, the machined part coloured by deviation with the toolpath and the defects as
+//! markers in the 3-D view, the deviation histogram, the summary's figures and the defect list
+//! linked to the program's lines.
+
+use std::fmt::Write as _;
+
+use swarf_geom::math::Vec3;
+use swarf_io::html::{DefectRow, Marker, Plot, Report, Scene, SourceLine, ToolEntry};
+use swarf_io::TriMesh;
+use swarf_path::{MoveKind, Program};
+use swarf_tool::Cutter;
+
+use crate::deviation::Legend;
+use crate::verify::{DefectKind, Verification};
+
+/// Most defect rows (and markers) a report lists; the rest are in `defects.csv`.
+pub const MAX_REPORT_ROWS: usize = 2000;
+
+/// What the report shows besides the verification.
+#[derive(Clone, Debug)]
+pub struct ReportInputs<'a> {
+    /// The program.
+    pub program: &'a Program,
+    /// The program's files' text, by the names in `program.files` (lines are looked up here).
+    pub sources: &'a [(String, String)],
+    /// Labelled inputs (program, stock, design, machine…), shown as given.
+    pub inputs: Vec<(String, String)>,
+    /// The tools: number, description, cutter.
+    pub tools: Vec<(u32, String, &'a Cutter)>,
+    /// The command's JSON summary (the figures are read from it).
+    pub summary: &'a serde_json::Value,
+    /// The machined part coloured by deviation ([`crate::deviation_mesh`]) and its legend.
+    pub part: (&'a TriMesh, &'a Legend),
+}
+
+/// A cutter's half-profile `(radius, height)` from the tip to the end of the shank.
+pub fn tool_profile(c: &Cutter) -> Vec<(f64, f64)> {
+    let top = c.overall_length();
+    let n = 120;
+    let mut out: Vec<(f64, f64)> = (0..=n)
+        .map(|i| {
+            let z = top * i as f64 / n as f64;
+            let r = c
+                .profile_radius(z)
+                .unwrap_or(0.5 * c.shank_diameter())
+                .max(0.0);
+            (r, z)
+        })
+        .collect();
+    out.insert(0, (0.0, 0.0));
+    out.push((0.0, top));
+    out
+}
+
+/// The tool tip's path, as polylines of feed and of rapid motion (arcs in 8 chords each).
+pub fn toolpath(program: &Program) -> Vec<(Vec<Vec3>, bool)> {
+    let mut out: Vec<(Vec<Vec3>, bool)> = Vec::new();
+    for m in &program.moves {
+        let rapid = matches!(m.kind, MoveKind::Rapid);
+        let pts: Vec<Vec3> = match m.kind {
+            MoveKind::Arc(_) => (0..=8)
+                .map(|i| program.pose_at(m, i as f64 / 8.0).tip)
+                .collect(),
+            _ => vec![m.start.tip, m.end.tip],
+        };
+        if !pts.iter().all(|p| p.is_finite()) {
+            continue;
+        }
+        match out.last_mut() {
+            Some((line, r)) if *r == rapid && line.last() == pts.first() => {
+                line.extend_from_slice(&pts[1..])
+            }
+            _ => out.push((pts, rapid)),
+        }
+    }
+    out
+}
+
+/// The deviation histogram (and the colour scale) as an SVG.
+fn histogram_svg(v: &Verification, legend: &Legend) -> String {
+    let h = &v.histogram;
+    let (w, ht, pad) = (560.0, 220.0, 40.0);
+    let max = h.counts.iter().copied().max().unwrap_or(1).max(1) as f64;
+    let n = h.counts.len().max(1) as f64;
+    let bw = (w - 2.0 * pad) / n;
+    let mut s = format!(
+        "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"{w}\" height=\"{ht}\" \
+         viewBox=\"0 0 {w} {ht}\" font-size=\"11\">"
+    );
+    for (i, &c) in h.counts.iter().enumerate() {
+        let mid = 0.5 * (h.edges_mm[i] + h.edges_mm[i + 1]);
+        // log scale: one end in a million still shows.
+        let t = if c == 0 {
+            0.0
+        } else {
+            (1.0 + (c as f64).ln()) / (1.0 + max.ln())
+        };
+        let bh = t * (ht - 2.0 * pad);
+        let colour = swarf_io::color::rgb8(
+            swarf_io::ColorMap::Diverging.rgba(0.5 - mid / (2.0 * legend.max_mm.max(1e-12))),
+        );
+        let _ = write!(
+            s,
+            "<rect x=\"{:.1}\" y=\"{:.1}\" width=\"{:.1}\" height=\"{:.1}\" \
+             fill=\"rgb({},{},{})\" stroke=\"#555\" stroke-width=\"0.3\"><title>{:.4} mm: {} \
+             ends</title></rect>",
+            pad + i as f64 * bw,
+            ht - pad - bh,
+            bw,
+            bh,
+            colour[0],
+            colour[1],
+            colour[2],
+            mid,
+            c
+        );
+    }
+    let first = h.edges_mm.first().copied().unwrap_or(0.0);
+    let last = h.edges_mm.last().copied().unwrap_or(0.0);
+    let _ = write!(
+        s,
+        "<line x1=\"{pad}\" y1=\"{y}\" x2=\"{x2}\" y2=\"{y}\" stroke=\"#333\"/>\
+         <text x=\"{pad}\" y=\"{ty}\">{first:.4}</text>\
+         <text x=\"{xm}\" y=\"{ty}\" text-anchor=\"middle\">0 mm (gouge ← → excess)</text>\
+         <text x=\"{x2}\" y=\"{ty}\" text-anchor=\"end\">{last:.4}</text>\
+         <text x=\"{pad}\" y=\"14\">ray ends per signed deviation (log scale); colours as in the \
+         3-D view, ±{:.4} mm</text></svg>",
+        legend.max_mm,
+        y = ht - pad,
+        x2 = w - pad,
+        ty = ht - pad + 16.0,
+        xm = w / 2.0,
+    );
+    s
+}
+
+/// The figures of the summary, as its JSON writes them.
+const FIGURES: &[&str] = &[
+    "max_gouge_mm",
+    "max_excess_mm",
+    "gouge_regions",
+    "excess_regions",
+    "excess_volume_mm3",
+    "gouge_volume_mm3",
+    "tolerance_mm",
+    "excess_tolerance_mm",
+    "collisions",
+    "ends_checked",
+    "volume_method",
+    "elapsed_s",
+];
+
+/// The report page.
+pub fn html_report(v: &Verification, inputs: &ReportInputs<'_>) -> String {
+    let program = inputs.program;
+    let figures = FIGURES
+        .iter()
+        .filter_map(|k| {
+            inputs.summary.get(*k).map(|x| {
+                let text = match x {
+                    serde_json::Value::String(s) => s.clone(),
+                    other => other.to_string(),
+                };
+                (k.to_string(), text)
+            })
+        })
+        .collect();
+    let mut defects = vec![DefectRow {
+        cells: [
+            "region",
+            "kind",
+            "depth mm",
+            "area mm²",
+            "volume mm³",
+            "x",
+            "y",
+            "z",
+            "line",
+        ]
+        .map(String::from)
+        .to_vec(),
+        line: None,
+    }];
+    let mut markers = Vec::new();
+    let mut wanted: Vec<(String, u32)> = Vec::new();
+    for r in v.regions.iter().take(MAX_REPORT_ROWS) {
+        let m = r.deepest_move.and_then(|i| program.moves.get(i));
+        let line = m.map(|m| {
+            let file = program
+                .files
+                .get(usize::from(m.file))
+                .cloned()
+                .unwrap_or_default();
+            (file, m.line)
+        });
+        // The deepest end's line first, then every other line that cut the region.
+        for l in line
+            .iter()
+            .cloned()
+            .chain(r.moves.iter().map(|m| (m.file.clone(), m.line)))
+        {
+            if wanted.len() < MAX_REPORT_ROWS && !wanted.contains(&l) {
+                wanted.push(l);
+            }
+        }
+        markers.push(Marker {
+            position: r.deepest,
+            color: match r.kind {
+                DefectKind::Gouge => [0.85, 0.05, 0.05],
+                DefectKind::Excess => [0.05, 0.2, 0.85],
+            },
+            row: defects.len() - 1,
+        });
+        defects.push(DefectRow {
+            cells: vec![
+                r.id.to_string(),
+                r.kind.name().to_string(),
+                format!("{:.4}", r.depth_mm),
+                format!("{:.3}", r.area_mm2),
+                format!("{:.4}", r.volume_mm3),
+                format!("{:.3}", r.deepest.x),
+                format!("{:.3}", r.deepest.y),
+                format!("{:.3}", r.deepest.z),
+                line.as_ref()
+                    .map_or(String::new(), |(f, l)| format!("{f}:{l}")),
+            ],
+            line,
+        });
+    }
+    let source = wanted
+        .iter()
+        .map(|(file, line)| SourceLine {
+            file: file.clone(),
+            line: *line,
+            text: inputs
+                .sources
+                .iter()
+                .find(|(f, _)| f == file)
+                .and_then(|(_, t)| t.lines().nth((*line as usize).checked_sub(1)?))
+                .unwrap_or("")
+                .to_string(),
+        })
+        .collect();
+    let (part, legend) = inputs.part;
+    let mut all_inputs = inputs.inputs.clone();
+    all_inputs.push(("moves".into(), program.moves.len().to_string()));
+    if v.regions.len() > MAX_REPORT_ROWS {
+        all_inputs.push((
+            "note".into(),
+            format!(
+                "{} regions; the first {MAX_REPORT_ROWS} are listed, all are in defects.csv",
+                v.regions.len()
+            ),
+        ));
+    }
+    let report = Report {
+        title: "swarf verify".into(),
+        inputs: all_inputs,
+        tools: inputs
+            .tools
+            .iter()
+            .map(|(n, d, c)| ToolEntry {
+                number: *n,
+                description: d.clone(),
+                profile: tool_profile(c),
+            })
+            .collect(),
+        figures,
+        summary: inputs.summary.clone(),
+        scene: Scene {
+            meshes: vec![("machined part".into(), part.clone())],
+            paths: toolpath(program),
+            markers,
+        },
+        plots: vec![Plot::Svg {
+            title: "Deviation of the machined surface".into(),
+            svg: histogram_svg(v, legend),
+        }],
+        defects,
+        source,
+    };
+    swarf_io::html::render(&report)
+}

@@ -1,0 +1,695 @@
+//! The comparison: signed deviation at every exact ray end of the stock, gouge and excess ends
+//! grouped into connected regions, each region's depth, area, volume and moves.
+
+use std::collections::HashMap;
+use std::time::Instant;
+
+use rayon::prelude::*;
+use swarf_geom::math::Vec3;
+use swarf_path::Program;
+use swarf_stock::{Dexel, MoveTag, TriDexel, UNCUT};
+
+use crate::design::Design;
+use crate::error::VerifyError;
+
+/// Default gouge tolerance: material removed inside the part deeper than this is a gouge, mm.
+pub const DEFAULT_GOUGE_TOLERANCE_MM: f64 = 0.01;
+/// Default excess tolerance: material left outside the part thicker than this is excess, mm.
+pub const DEFAULT_EXCESS_TOLERANCE_MM: f64 = 0.01;
+/// Default link distance of regions, in cells (the largest cell size): defect ray ends closer
+/// than this belong to one region. Two cells join the ends of neighbouring rays of a family
+/// and of the other families on the same sheet (at most √3 cells apart on a flat face).
+pub const DEFAULT_LINK_CELLS: f64 = 2.0;
+
+/// Verification options; tolerances with their defaults in one place.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct VerifyOptions {
+    /// Gouge tolerance, mm (default [`DEFAULT_GOUGE_TOLERANCE_MM`]).
+    pub gouge_tolerance: f64,
+    /// Excess tolerance, mm (default [`DEFAULT_EXCESS_TOLERANCE_MM`]).
+    pub excess_tolerance: f64,
+    /// Link distance of regions, in cells (default [`DEFAULT_LINK_CELLS`]).
+    pub link_cells: f64,
+}
+
+impl Default for VerifyOptions {
+    fn default() -> Self {
+        Self {
+            gouge_tolerance: DEFAULT_GOUGE_TOLERANCE_MM,
+            excess_tolerance: DEFAULT_EXCESS_TOLERANCE_MM,
+            link_cells: DEFAULT_LINK_CELLS,
+        }
+    }
+}
+
+impl VerifyOptions {
+    /// With another gouge tolerance.
+    pub fn with_gouge_tolerance(mut self, t: f64) -> Self {
+        self.gouge_tolerance = t;
+        self
+    }
+
+    /// With another excess tolerance.
+    pub fn with_excess_tolerance(mut self, t: f64) -> Self {
+        self.excess_tolerance = t;
+        self
+    }
+
+    fn check(&self) -> Result<(), VerifyError> {
+        for (name, value) in [
+            ("gouge tolerance", self.gouge_tolerance),
+            ("excess tolerance", self.excess_tolerance),
+        ] {
+            if !(value >= 0.0 && value.is_finite()) {
+                return Err(VerifyError::BadTolerance { name, value });
+            }
+        }
+        if !(self.link_cells > 0.0 && self.link_cells.is_finite()) {
+            return Err(VerifyError::BadTolerance {
+                name: "link distance",
+                value: self.link_cells,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// Gouge or excess.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, serde::Serialize)]
+#[serde(rename_all = "lowercase")]
+pub enum DefectKind {
+    /// Material removed inside the part: the machined surface lies inside the design.
+    Gouge,
+    /// Material left outside the part: the machined surface lies outside the design.
+    Excess,
+}
+
+impl DefectKind {
+    /// `gouge` or `excess`.
+    pub fn name(self) -> &'static str {
+        match self {
+            DefectKind::Gouge => "gouge",
+            DefectKind::Excess => "excess",
+        }
+    }
+}
+
+/// One ray end of the stock beyond a tolerance.
+#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
+pub struct DefectEnd {
+    /// The ray end: a point of the machined surface, mm.
+    pub point: Vec3,
+    /// Signed deviation from the design, mm (positive: outside, excess; negative: gouge).
+    pub deviation: f64,
+    /// The design's outward normal at its nearest point.
+    pub normal: Vec3,
+    /// Ray family (0 = X, 1 = Y, 2 = Z).
+    pub family: u8,
+    /// The move that cut this end last ([`UNCUT`]: the stock as built, or no provenance).
+    pub tag: MoveTag,
+    /// The area of the design's surface this end stands for, mm²: the family's cell area times
+    /// the design normal's component along the ray (over the three families a surface element
+    /// counts once: Σₖ nₖ² = 1). A region's area is thus its footprint on the design: the walls
+    /// of a too-deep slot in a face project onto the face's edge and add nothing.
+    pub area: f64,
+}
+
+impl DefectEnd {
+    fn kind(&self) -> DefectKind {
+        if self.deviation < 0.0 {
+            DefectKind::Gouge
+        } else {
+            DefectKind::Excess
+        }
+    }
+}
+
+/// A move that cut part of a gouge (or left part of an excess).
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct RegionMove {
+    /// Move index in the program.
+    pub move_index: usize,
+    /// Source file (empty without a program).
+    pub file: String,
+    /// 1-based source line (0 without a program).
+    pub line: u32,
+    /// The deepest deviation among the ends this move made, mm.
+    pub depth_mm: f64,
+    /// How many of the region's ray ends it made.
+    pub ends: usize,
+}
+
+/// A connected region of gouge or excess.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Region {
+    /// 1-based number: gouges first, deepest first, then excess, thickest first.
+    pub id: usize,
+    /// Gouge or excess.
+    pub kind: DefectKind,
+    /// Largest |deviation| of its ray ends, mm.
+    pub depth_mm: f64,
+    /// Its footprint on the design's surface, mm² (see [`DefectEnd::area`]).
+    pub area_mm2: f64,
+    /// Volume of the gouge (part material missing) or excess (material left), mm³: with a
+    /// solid design, the Z rays' exact pieces of stock ∖ part (or part ∖ stock) that touch the
+    /// region, times their cell area; otherwise ∫ |deviation| dA over the region.
+    pub volume_mm3: f64,
+    /// The deepest ray end.
+    pub deepest: Vec3,
+    /// The move that cut the deepest end last, if any.
+    pub deepest_move: Option<usize>,
+    /// Ray ends in the region.
+    pub ends: usize,
+    /// Lower corner of the region's ray ends.
+    pub bbox_min: Vec3,
+    /// Upper corner.
+    pub bbox_max: Vec3,
+    /// The moves that cut its ends, deepest first (at most [`MAX_REGION_MOVES`]).
+    pub moves: Vec<RegionMove>,
+    /// How many moves cut its ends (`moves` lists the deepest of them).
+    pub move_count: usize,
+}
+
+/// Most moves a region lists (the deepest); [`Region::move_count`] counts them all.
+pub const MAX_REGION_MOVES: usize = 100;
+
+/// A histogram of the signed deviation of every ray end.
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Histogram {
+    /// Bin edges, mm (`counts.len() + 1` of them).
+    pub edges_mm: Vec<f64>,
+    /// Ray ends per bin (ends beyond the range in the first or last bin).
+    pub counts: Vec<u64>,
+}
+
+/// The result of [`verify`].
+#[derive(Clone, Debug, PartialEq, serde::Serialize)]
+pub struct Verification {
+    /// Regions, gouges first (deepest first), then excess (thickest first).
+    pub regions: Vec<Region>,
+    /// Deepest gouge of any ray end, mm (0 when none lies inside the design).
+    pub max_gouge_mm: f64,
+    /// Thickest excess of any ray end, mm (0 when none lies outside).
+    pub max_excess_mm: f64,
+    /// Ray ends compared with the design.
+    pub ends_checked: u64,
+    /// Ray ends about which the design says nothing: beyond a surface's edge, or (for a
+    /// surface, with provenance) uncut stock behind it.
+    pub ends_unmatched: u64,
+    /// Ray ends beyond the gouge tolerance.
+    pub gouge_ends: u64,
+    /// Ray ends beyond the excess tolerance.
+    pub excess_ends: u64,
+    /// Volume of material left outside the part (stock ∖ part, Z rays), mm³; `None` when the
+    /// design bounds no solid.
+    pub excess_volume_mm3: Option<f64>,
+    /// Volume of the part missing from the stock (part ∖ stock, Z rays), mm³.
+    pub gouge_volume_mm3: Option<f64>,
+    /// Histogram of the signed deviation (symmetric range of the largest deviation).
+    pub histogram: Histogram,
+    /// The options used.
+    pub options: VerifyOptions,
+    /// Grid cell sizes along X, Y, Z of the stock, mm.
+    pub resolution_mm: [f64; 3],
+    /// Wall-clock time, s.
+    pub elapsed_s: f64,
+}
+
+impl Verification {
+    /// Gouge regions.
+    pub fn gouges(&self) -> impl Iterator<Item = &Region> {
+        self.regions.iter().filter(|r| r.kind == DefectKind::Gouge)
+    }
+
+    /// Excess regions.
+    pub fn excesses(&self) -> impl Iterator<Item = &Region> {
+        self.regions.iter().filter(|r| r.kind == DefectKind::Excess)
+    }
+}
+
+/// Bins of [`Verification::histogram`].
+pub const HISTOGRAM_BINS: usize = 41;
+
+/// Per-row partial results.
+#[derive(Default)]
+struct Partial {
+    defects: Vec<DefectEnd>,
+    checked: u64,
+    unmatched: u64,
+    max_gouge: f64,
+    max_excess: f64,
+    deviations: Vec<f32>,
+}
+
+impl Partial {
+    fn merge(mut self, o: Partial) -> Partial {
+        self.defects.extend(o.defects);
+        self.checked += o.checked;
+        self.unmatched += o.unmatched;
+        self.max_gouge = self.max_gouge.max(o.max_gouge);
+        self.max_excess = self.max_excess.max(o.max_excess);
+        self.deviations.extend(o.deviations);
+        self
+    }
+}
+
+/// Compares the machined `stock` with `design`: the signed distance of every ray end (enter
+/// and exit of every interval of the three families), classified with the tolerances, grouped
+/// into connected regions. When the stock tracked provenance
+/// ([`TriDexel::track_provenance`]) every end knows the move that cut it; with `program`
+/// those moves are named by file and line.
+pub fn verify(
+    stock: &TriDexel,
+    design: &dyn Design,
+    program: Option<&Program>,
+    options: &VerifyOptions,
+) -> Result<Verification, VerifyError> {
+    options.check()?;
+    let t0 = Instant::now();
+    let grid = *stock.grid();
+    let (gt, et) = (options.gouge_tolerance, options.excess_tolerance);
+    // Behind a surface that bounds no solid, the stock's own faces that no move cut are the
+    // material under the part, not a gouge (only known when the stock tracked provenance).
+    let skip_uncut_behind = !design.bounds_solid() && stock.tracks_provenance();
+    let all = (0..3usize)
+        .map(|k| {
+            let fam = stock.family(k);
+            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+            let (nu, nv) = fam.dims();
+            let area = stock.ray_area(k);
+            (0..nv)
+                .into_par_iter()
+                .fold(Partial::default, |mut acc, j| {
+                    for i in 0..nu {
+                        let ray = fam.ray(i, j);
+                        if ray.is_empty() {
+                            continue;
+                        }
+                        let tags = fam.ray_tags(i, j);
+                        let mut p = Vec3::ZERO;
+                        p[u] = grid.center(u, i);
+                        p[v] = grid.center(v, j);
+                        for (n, iv) in ray.iter().enumerate() {
+                            let ends = tags.map(|t| t[n]);
+                            for (t, tag) in [
+                                (iv.enter, ends.map_or(UNCUT, |e| e.enter)),
+                                (iv.exit, ends.map_or(UNCUT, |e| e.exit)),
+                            ] {
+                                p[k] = t;
+                                let Some(pr) = design.project(p) else {
+                                    acc.unmatched += 1;
+                                    continue;
+                                };
+                                let d = pr.distance;
+                                if skip_uncut_behind && d < 0.0 && tag == UNCUT {
+                                    acc.unmatched += 1;
+                                    continue;
+                                }
+                                acc.checked += 1;
+                                acc.deviations.push(d as f32);
+                                acc.max_gouge = acc.max_gouge.max(-d);
+                                acc.max_excess = acc.max_excess.max(d);
+                                if d < -gt || d > et {
+                                    acc.defects.push(DefectEnd {
+                                        point: p,
+                                        deviation: d,
+                                        normal: pr.normal,
+                                        family: k as u8,
+                                        tag,
+                                        area: area * pr.normal[k].abs(),
+                                    });
+                                }
+                            }
+                        }
+                    }
+                    acc
+                })
+                .reduce(Partial::default, Partial::merge)
+        })
+        .fold(Partial::default(), Partial::merge);
+    let link = options.link_cells * grid.h.iter().copied().fold(0.0, f64::max);
+    let defects = all.defects;
+    let (labels, count) = connect(&defects, link);
+    let mut regions = summarise(&defects, &labels, count, program);
+    let volumes = measure_volumes(stock, design, &defects, &labels, &regions, link);
+    if let Some((per_region, _, _)) = &volumes {
+        for (r, v) in regions.iter_mut().zip(per_region) {
+            r.volume_mm3 = *v;
+        }
+    } else {
+        for (n, d) in defects.iter().enumerate() {
+            regions[labels[n]].volume_mm3 += d.area * d.deviation.abs();
+        }
+    }
+    // Deepest first within each kind, gouges first; numbered in that order.
+    regions.sort_by(|a, b| {
+        (a.kind == DefectKind::Excess)
+            .cmp(&(b.kind == DefectKind::Excess))
+            .then(b.depth_mm.total_cmp(&a.depth_mm))
+    });
+    for (n, r) in regions.iter_mut().enumerate() {
+        r.id = n + 1;
+    }
+    let gouge_ends = defects.iter().filter(|d| d.deviation < 0.0).count() as u64;
+    Ok(Verification {
+        max_gouge_mm: all.max_gouge.max(0.0),
+        max_excess_mm: all.max_excess.max(0.0),
+        ends_checked: all.checked,
+        ends_unmatched: all.unmatched,
+        gouge_ends,
+        excess_ends: defects.len() as u64 - gouge_ends,
+        excess_volume_mm3: volumes.as_ref().map(|v| v.1),
+        gouge_volume_mm3: volumes.as_ref().map(|v| v.2),
+        histogram: histogram(&all.deviations),
+        regions,
+        options: *options,
+        resolution_mm: grid.h,
+        elapsed_s: t0.elapsed().as_secs_f64(),
+    })
+}
+
+fn histogram(devs: &[f32]) -> Histogram {
+    let r = devs
+        .iter()
+        .fold(0.0f64, |m, &d| m.max(f64::from(d).abs()))
+        .max(1e-6);
+    let n = HISTOGRAM_BINS;
+    let edges_mm: Vec<f64> = (0..=n)
+        .map(|b| -r + 2.0 * r * b as f64 / n as f64)
+        .collect();
+    let mut counts = vec![0u64; n];
+    for &d in devs {
+        let b = ((f64::from(d) + r) / (2.0 * r) * n as f64).floor();
+        counts[(b.max(0.0) as usize).min(n - 1)] += 1;
+    }
+    Histogram { edges_mm, counts }
+}
+
+/// Union–find over the defect ends: ends of one kind within `link` mm are one region.
+/// Returns each end's region label (dense, `0..count`) and the count.
+fn connect(defects: &[DefectEnd], link: f64) -> (Vec<usize>, usize) {
+    let key = |p: Vec3| {
+        [
+            (p.x / link).floor() as i64,
+            (p.y / link).floor() as i64,
+            (p.z / link).floor() as i64,
+        ]
+    };
+    let mut cells: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    for (n, d) in defects.iter().enumerate() {
+        cells.entry(key(d.point)).or_default().push(n as u32);
+    }
+    let mut parent: Vec<u32> = (0..defects.len() as u32).collect();
+    fn find(parent: &mut [u32], mut a: u32) -> u32 {
+        while parent[a as usize] != a {
+            parent[a as usize] = parent[parent[a as usize] as usize];
+            a = parent[a as usize];
+        }
+        a
+    }
+    let link2 = link * link;
+    for (n, d) in defects.iter().enumerate() {
+        let c = key(d.point);
+        let kind = d.kind();
+        for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    let Some(bucket) = cells.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) else {
+                        continue;
+                    };
+                    for &m in bucket {
+                        if (m as usize) >= n {
+                            continue;
+                        }
+                        let o = &defects[m as usize];
+                        if o.kind() == kind && o.point.distance_squared(d.point) <= link2 {
+                            let (a, b) = (find(&mut parent, n as u32), find(&mut parent, m));
+                            if a != b {
+                                parent[a.max(b) as usize] = a.min(b);
+                            }
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let mut dense: HashMap<u32, usize> = HashMap::new();
+    let labels = (0..defects.len() as u32)
+        .map(|n| {
+            let root = find(&mut parent, n);
+            let next = dense.len();
+            *dense.entry(root).or_insert(next)
+        })
+        .collect();
+    (labels, dense.len())
+}
+
+fn summarise(
+    defects: &[DefectEnd],
+    labels: &[usize],
+    count: usize,
+    program: Option<&Program>,
+) -> Vec<Region> {
+    let mut regions: Vec<Region> = (0..count)
+        .map(|_| Region {
+            id: 0,
+            kind: DefectKind::Gouge,
+            depth_mm: -1.0,
+            area_mm2: 0.0,
+            volume_mm3: 0.0,
+            deepest: Vec3::ZERO,
+            deepest_move: None,
+            ends: 0,
+            bbox_min: Vec3::splat(f64::INFINITY),
+            bbox_max: Vec3::splat(f64::NEG_INFINITY),
+            moves: Vec::new(),
+            move_count: 0,
+        })
+        .collect();
+    let mut per_move: Vec<HashMap<MoveTag, (f64, usize)>> = vec![HashMap::new(); count];
+    for (d, &l) in defects.iter().zip(labels) {
+        let r = &mut regions[l];
+        let depth = d.deviation.abs();
+        r.kind = d.kind();
+        r.ends += 1;
+        r.area_mm2 += d.area;
+        r.bbox_min = r.bbox_min.min(d.point);
+        r.bbox_max = r.bbox_max.max(d.point);
+        if depth > r.depth_mm {
+            r.depth_mm = depth;
+            r.deepest = d.point;
+            r.deepest_move = (d.tag != UNCUT).then_some(d.tag as usize);
+        }
+        if d.tag != UNCUT {
+            let e = per_move[l].entry(d.tag).or_insert((0.0, 0));
+            e.0 = e.0.max(depth);
+            e.1 += 1;
+        }
+    }
+    for (r, moves) in regions.iter_mut().zip(per_move) {
+        let mut list: Vec<RegionMove> = moves
+            .into_iter()
+            .map(|(tag, (depth, ends))| {
+                let m = program.and_then(|p| p.moves.get(tag as usize).map(|m| (p, m)));
+                RegionMove {
+                    move_index: tag as usize,
+                    file: m
+                        .and_then(|(p, m)| p.files.get(usize::from(m.file)).cloned())
+                        .unwrap_or_default(),
+                    line: m.map_or(0, |(_, m)| m.line),
+                    depth_mm: depth,
+                    ends,
+                }
+            })
+            .collect();
+        list.sort_by(|a, b| {
+            b.depth_mm
+                .total_cmp(&a.depth_mm)
+                .then(a.move_index.cmp(&b.move_index))
+        });
+        r.move_count = list.len();
+        list.truncate(MAX_REGION_MOVES);
+        r.moves = list;
+    }
+    regions
+}
+
+/// Exact volumes from the Z rays when the design bounds a solid: per ray, the pieces of
+/// stock ∖ part (excess) and part ∖ stock (gouge); each piece goes to the region of the
+/// defect end that bounds it (or the nearest one of its kind within `2·link`). Returns the
+/// per-region volumes and the totals, or `None` for a design without a solid.
+fn measure_volumes(
+    stock: &TriDexel,
+    design: &dyn Design,
+    defects: &[DefectEnd],
+    labels: &[usize],
+    regions: &[Region],
+    link: f64,
+) -> Option<(Vec<f64>, f64, f64)> {
+    let grid = *stock.grid();
+    let fam = stock.family(2);
+    let (nu, nv) = fam.dims();
+    let area = stock.ray_area(2);
+    let cell = (grid.h[0], grid.h[1]);
+    if !design.bounds_solid() {
+        return None;
+    }
+    let key = |p: Vec3| {
+        [
+            (p.x / link).floor() as i64,
+            (p.y / link).floor() as i64,
+            (p.z / link).floor() as i64,
+        ]
+    };
+    let mut cells: HashMap<[i64; 3], Vec<u32>> = HashMap::new();
+    for (n, d) in defects.iter().enumerate() {
+        cells.entry(key(d.point)).or_default().push(n as u32);
+    }
+    // The region of the nearest defect end of `kind` within 2·link of `p`.
+    let nearest = |p: Vec3, kind: DefectKind| -> Option<usize> {
+        let c = key(p);
+        let mut best: Option<(f64, usize)> = None;
+        for dx in -2..=2 {
+            for dy in -2..=2 {
+                for dz in -2..=2 {
+                    let Some(bucket) = cells.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) else {
+                        continue;
+                    };
+                    for &m in bucket {
+                        let d = &defects[m as usize];
+                        let r = labels[m as usize];
+                        if regions[r].kind != kind {
+                            continue;
+                        }
+                        let dist = d.point.distance(p);
+                        if dist <= 2.0 * link && best.map_or(true, |(b, _)| dist < b) {
+                            best = Some((dist, r));
+                        }
+                    }
+                }
+            }
+        }
+        best.map(|(_, r)| r)
+    };
+    let (per_region, excess, gouge) = (0..nv)
+        .into_par_iter()
+        .fold(
+            || (vec![0.0; regions.len()], 0.0, 0.0),
+            |(mut per, mut ex, mut go), j| {
+                let mut part = Dexel::new();
+                let y = grid.center(1, j);
+                for i in 0..nu {
+                    let x = grid.center(0, i);
+                    part.clear();
+                    design.solid_intervals(2, x, y, cell, &mut part);
+                    let ray = fam.ray(i, j);
+                    for (kind, a, b) in [
+                        (DefectKind::Excess, ray, &part[..]),
+                        (DefectKind::Gouge, &part[..], ray),
+                    ] {
+                        for (lo, hi) in difference(a, b) {
+                            let len = hi - lo;
+                            match kind {
+                                DefectKind::Excess => ex += len,
+                                DefectKind::Gouge => go += len,
+                            }
+                            // The piece's ends that are stock ends, then its middle.
+                            let ends = [lo, hi]
+                                .into_iter()
+                                .filter(|t| ray.iter().any(|iv| iv.enter == *t || iv.exit == *t))
+                                .chain([0.5 * (lo + hi)]);
+                            if let Some(r) = ends
+                                .map(|t| nearest(Vec3::new(x, y, t), kind))
+                                .find(Option::is_some)
+                                .flatten()
+                            {
+                                per[r] += len;
+                            }
+                        }
+                    }
+                }
+                (per, ex, go)
+            },
+        )
+        .reduce(
+            || (vec![0.0; regions.len()], 0.0, 0.0),
+            |(mut a, ea, ga), (b, eb, gb)| {
+                for (x, y) in a.iter_mut().zip(b) {
+                    *x += y;
+                }
+                (a, ea + eb, ga + gb)
+            },
+        );
+    Some((
+        per_region.into_iter().map(|l| l * area).collect(),
+        excess * area,
+        gouge * area,
+    ))
+}
+
+/// The pieces of `a` not in `b` (both sorted, disjoint), as `(lo, hi)` pairs.
+fn difference(a: &[swarf_stock::Interval], b: &[swarf_stock::Interval]) -> Vec<(f64, f64)> {
+    let mut out = Vec::new();
+    for iv in a {
+        let mut lo = iv.enter;
+        for c in b {
+            if c.exit <= lo || c.enter >= iv.exit {
+                continue;
+            }
+            if c.enter > lo {
+                out.push((lo, c.enter));
+            }
+            lo = lo.max(c.exit);
+            if lo >= iv.exit {
+                break;
+            }
+        }
+        if lo < iv.exit {
+            out.push((lo, iv.exit));
+        }
+    }
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarf_stock::Interval;
+
+    fn iv(a: f64, b: f64) -> Interval {
+        Interval { enter: a, exit: b }
+    }
+
+    #[test]
+    fn interval_difference() {
+        let a = [iv(0.0, 10.0), iv(12.0, 14.0)];
+        let b = [iv(-1.0, 1.0), iv(3.0, 4.0), iv(9.0, 13.0)];
+        assert_eq!(
+            difference(&a, &b),
+            vec![(1.0, 3.0), (4.0, 9.0), (13.0, 14.0)]
+        );
+        assert_eq!(difference(&b, &a), vec![(-1.0, 0.0), (10.0, 12.0)]);
+        assert!(difference(&a, &a).is_empty());
+        assert_eq!(difference(&a, &[]), vec![(0.0, 10.0), (12.0, 14.0)]);
+    }
+
+    #[test]
+    fn histogram_counts_every_end() {
+        let h = histogram(&[-1.0, 0.0, 0.5, 1.0]);
+        assert_eq!(h.counts.iter().sum::<u64>(), 4);
+        assert_eq!(h.edges_mm.len(), HISTOGRAM_BINS + 1);
+        assert_eq!(h.counts[0], 1);
+        assert_eq!(h.counts[HISTOGRAM_BINS - 1], 1);
+    }
+
+    #[test]
+    fn bad_tolerances_are_errors() {
+        for o in [
+            VerifyOptions::default().with_gouge_tolerance(-1.0),
+            VerifyOptions::default().with_excess_tolerance(f64::NAN),
+        ] {
+            assert!(o.check().is_err());
+        }
+        assert!(VerifyOptions::default().check().is_ok());
+    }
+}
