@@ -190,6 +190,22 @@ impl Program {
         }
     }
 
+    /// True when the tool axis may turn along `m`, or its tip leave the straight line or arc:
+    /// the move is a 4-/5-axis simultaneous move. CL moves whose end axes differ (by more than
+    /// [`AXIS_ANGLE_EPS`]); machine moves that turn a rotary joint (the axis can come back to
+    /// where it started, or the tip follow a curve with an unchanged axis).
+    pub fn is_five_axis(&self, m: &Move) -> bool {
+        match self.axis_source {
+            AxisSource::Program => {
+                let (a, b) = (m.start.axis.normalize(), m.end.axis.normalize());
+                a.cross(b).length().atan2(a.dot(b)) > AXIS_ANGLE_EPS
+            }
+            AxisSource::Machine => {
+                self.machine.has_rotary() && m.start_joints.rotary_differs(&m.end_joints)
+            }
+        }
+    }
+
     /// True when the tip of `m` may leave the straight line or arc between its end points (a
     /// linear or arc move with rotary motion interpolated through the machine).
     pub fn tip_path_is_curved(&self, m: &Move) -> bool {
@@ -198,6 +214,9 @@ impl Program {
             && !self.machine.tcp
     }
 }
+
+/// Tool axes closer than this (radians) count as one: a move between them is not 4-/5-axis.
+pub const AXIS_ANGLE_EPS: f64 = 1e-9;
 
 /// Spherical linear interpolation between unit vectors `a` and `b` (constant angular rate). For
 /// opposite vectors the turn is about an arbitrary perpendicular.

@@ -12,7 +12,7 @@ use swarf_tool::Cutter;
 pub const DEFAULT_CHORDAL_TOLERANCE_MM: f64 = 0.001;
 
 /// Two axes closer than this angle (radians) are the same axis (a fixed-axis move).
-pub const AXIS_ANGLE_EPS: f64 = 1e-9;
+pub use swarf_path::moves::AXIS_ANGLE_EPS;
 
 /// Material removed below this length (mm, on any ray) does not count as a collision.
 pub const COLLISION_EPS_MM: f64 = 1e-6;
@@ -137,7 +137,7 @@ impl TriDexel {
     ) -> Result<SegmentCut, StockError> {
         let m = &program.moves[index];
         check_move(index, m)?;
-        if crate::five_axis::is_five_axis(program, m) {
+        if program.is_five_axis(m) {
             return self.cut_five_axis_range(program, index, (s0, s1), tool, chordal_tol);
         }
         let pose = |s: f64| {

@@ -148,22 +148,6 @@ impl Reach {
     }
 }
 
-/// True when the tool axis may turn along `m`, or its tip leave the straight line or arc: the
-/// move needs [`TriDexel::cut_five_axis`]. CL moves whose end axes differ; machine moves that
-/// turn a rotary joint (the axis can come back to where it started, or the tip follow a curve
-/// with an unchanged axis).
-pub fn is_five_axis(program: &Program, m: &Move) -> bool {
-    match program.axis_source {
-        AxisSource::Program => {
-            let (a, b) = (m.start.axis.normalize(), m.end.axis.normalize());
-            a.cross(b).length().atan2(a.dot(b)) > crate::cut::AXIS_ANGLE_EPS
-        }
-        AxisSource::Machine => {
-            program.machine.has_rotary() && m.start_joints.rotary_differs(&m.end_joints)
-        }
-    }
-}
-
 /// The tip (or, on a machine, the slides' X Y Z) as a function of `s`, with bounds on its first
 /// and second derivatives over the whole move.
 #[derive(Clone, Copy, Debug)]
@@ -560,7 +544,7 @@ impl TriDexel {
         total
     }
 
-    /// Cuts move `index` of `program`, a 5-axis simultaneous move ([`is_five_axis`]), as
+    /// Cuts move `index` of `program`, a 5-axis simultaneous move ([`Program::is_five_axis`]), as
     /// constant-axis sub-moves within `tol` mm of the true sweep (module documentation): the
     /// cutting part and the shank/holder are subdivided separately, each by its own [`Reach`].
     /// Pieces that cannot reach any material are screened out first ([`SCREEN_TOLERANCE_MM`]).
@@ -744,7 +728,7 @@ mod tests {
                     let s = i as f64 / 10.0;
                     let want = p.pose_at(m, s);
                     let Some((tip, axis)) = b.chain_pose(s) else {
-                        assert!(!is_five_axis(&p, m), "{name}{tcp}");
+                        assert!(!p.is_five_axis(m), "{name}{tcp}");
                         continue;
                     };
                     assert!((tip - want.tip).length() < 1e-9, "{name}{tcp} s={s}");
@@ -838,7 +822,7 @@ mod tests {
             joints(0.0, 0.0, 5.0, 0.0, 0.0, 0.0),
             joints(10.0, 0.0, 5.0, 0.0, 0.0, 270.0),
         );
-        assert!(is_five_axis(&p, &p.moves[0]));
+        assert!(p.is_five_axis(&p.moves[0]));
         let reach = Reach {
             pivot: 20.0,
             radius: 25.0,

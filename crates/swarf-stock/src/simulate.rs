@@ -145,7 +145,7 @@ fn batchable(program: &Program, m: &swarf_path::Move) -> bool {
     matches!(m.kind, MoveKind::Rapid | MoveKind::Linear)
         && finite(&m.start)
         && finite(&m.end)
-        && !crate::five_axis::is_five_axis(program, m)
+        && !program.is_five_axis(m)
 }
 
 /// [`simulate`], telling `observer` between moves how many of the program's moves are done (after
@@ -206,7 +206,7 @@ pub fn simulate_observed(
         next = i0 + cuts.len();
         for (i, cut) in (i0..).zip(cuts) {
             let m = &program.moves[i];
-            if crate::five_axis::is_five_axis(program, m) {
+            if program.is_five_axis(m) {
                 five_moves += 1;
                 five_subs += cut.sub_moves;
                 five_err = five_err.max(cut.error_bound_mm);

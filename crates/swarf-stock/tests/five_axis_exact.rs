@@ -111,7 +111,7 @@ fn removed(p: &Program, cutter: &Cutter, lo: Vec3, hi: Vec3, h: f64, tol: f64) -
 fn hemisphere_turning_about_its_centre_removes_ball_minus_wedge() {
     let (r, theta) = (5.0, 60.0f64);
     let (p, cutter, exact, area) = hemisphere_case(r, theta);
-    assert!(swarf_stock::five_axis::is_five_axis(&p, &p.moves[0]));
+    assert!(p.is_five_axis(&p.moves[0]));
     let (lo, hi) = (Vec3::splat(-6.0), Vec3::splat(6.0));
     println!("hemisphere R {r} turning {theta}° about its centre: exact {exact:.4} mm³");
     println!(

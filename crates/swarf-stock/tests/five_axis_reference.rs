@@ -345,7 +345,7 @@ fn five_axis_moves_match_sampled_instances() {
                 2 => ("CL straight", cl_move(&mut rng, false)),
                 _ => ("CL helix", cl_move(&mut rng, true)),
             };
-            assert!(swarf_stock::five_axis::is_five_axis(&p, &p.moves[0]));
+            assert!(p.is_five_axis(&p.moves[0]));
             let f = check(&p, &cutter, tol, 400);
             println!(
                 "{:<28} {:<16} {:>6} {:>8.4} {:>8.4} {:>10.2} {:>10.2} {:>9.2e} {:>9.2e}",

@@ -222,11 +222,7 @@ fn every_shared_program_simulates() {
                 );
             }
             // The boat is cut with the axis turning: the simultaneous moves are cut, not refused.
-            let five = p
-                .moves
-                .iter()
-                .filter(|m| swarf_stock::five_axis::is_five_axis(&p, m))
-                .count();
+            let five = p.moves.iter().filter(|m| p.is_five_axis(m)).count();
             assert!(five > 1000, "{five}");
             assert_eq!(r.five_axis_moves, five);
             assert!(r.five_axis_sub_moves >= five as u64);

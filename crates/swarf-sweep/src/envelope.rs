@@ -28,7 +28,7 @@ use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 use swarf_io::{dual_contour, ContourOptions, HermiteGrid, Lattice, Span, TriMesh};
 use swarf_path::{MoveKind, Program};
-use swarf_stock::five_axis::{is_five_axis, subdivide, Reach};
+use swarf_stock::five_axis::{subdivide, Reach};
 use swarf_stock::{arc_chords, SweepShape, SweptConvex, ToolShape};
 use swarf_tool::Cutter;
 
@@ -333,7 +333,7 @@ pub fn fixed_axis_pieces(
     tol: f64,
 ) -> Result<(Vec<FixedAxisPiece>, f64), SweepError> {
     let m = &program.moves[index];
-    if is_five_axis(program, m) {
+    if program.is_five_axis(m) {
         let Some(reach) = Reach::of(shape) else {
             return Ok((Vec::new(), 0.0));
         };

@@ -25,7 +25,6 @@
 use serde::Serialize;
 use swarf_geom::math::Vec3;
 use swarf_path::{Move, MoveKind, Program};
-use swarf_stock::five_axis::is_five_axis;
 use swarf_tool::{AnyPiece, Cutter};
 
 use crate::grazing::grazing_points;
@@ -138,7 +137,7 @@ pub fn fold_ratios(
 /// for moves whose envelope does not fold).
 pub fn fold_check(program: &Program, index: usize, cutter: &Cutter) -> Option<SelfIntersection> {
     let m = &program.moves[index];
-    if !(matches!(m.kind, MoveKind::Arc(_)) || is_five_axis(program, m)) {
+    if !(matches!(m.kind, MoveKind::Arc(_)) || program.is_five_axis(m)) {
         return None;
     }
     let pieces = whole_tool_pieces(cutter);

@@ -134,7 +134,7 @@ fn five_axis_through_machine_kinematics() {
         "G21 G90\nG0 X0 Y0 Z2 A0 C0\nG1 X6 Y3 Z2 A25 C20 F500\n",
         "table-ac",
     );
-    assert!(swarf_stock::five_axis::is_five_axis(&p, &p.moves[1]));
+    assert!(p.is_five_axis(&p.moves[1]));
     for (name, c) in common::cutters().into_iter().take(3) {
         check(&format!("{name} 5-axis table-ac"), &p, 1, &small(c));
     }
