@@ -559,16 +559,19 @@ impl Interp<'_, '_> {
         self.p = end;
     }
 
-    /// Moves the held move's end in the plane to `x`.
+    /// Moves the held move's end in the plane to `x`, and that of every move queued behind it
+    /// (moves along the plane's normal made where the held move ended: LinuxCNC's
+    /// `move_endpoint_and_flush` changes them all — "moving into a concave corner, then up and
+    /// back down, then continuing on: three moves to change").
     fn comp_move_held_end(&mut self, x: [f64; 2]) {
         let (f, s, _) = self.plane.axes();
-        if let Some((_, Canon::Traverse { end } | Canon::Feed { end } | Canon::Arc { end, .. })) =
-            self.comp.queue.first_mut()
-        {
-            let mut a = end.to_array();
-            a[f] = x[0];
-            a[s] = x[1];
-            *end = Axes::from_array(a);
+        for (_, e) in self.comp.queue.iter_mut() {
+            if let Canon::Traverse { end } | Canon::Feed { end } | Canon::Arc { end, .. } = e {
+                let mut a = end.to_array();
+                a[f] = x[0];
+                a[s] = x[1];
+                *end = Axes::from_array(a);
+            }
         }
         if let Some(h) = &mut self.comp.held {
             h.end = x;
