@@ -33,6 +33,7 @@ const PASSING: &[&str] = &[
     "do-while-break",
     "flowsnake",
     "fractional-linenumbers",
+    "g10-g10-l1-l10",
     "g10-g10-l2-while-active",
     "g10-g10-l20-while-active",
     "g10-g10-with-g92",

@@ -137,6 +137,13 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) g92_flag: f64,
     /// G28 and G30 positions, machine coordinates, mm.
     pub(crate) homes: [[f64; 6]; 2],
+    /// Tool offsets by tool number (G10 L1/L10, parameters 5401–5406 of the loaded tool),
+    /// machine frame, mm / degrees; a tool not listed has none.
+    pub(crate) tool_table: std::collections::BTreeMap<u32, [f64; 6]>,
+    /// The tool length offset in effect (G43, G43.1; G49 clears it), machine frame. swarf's
+    /// programs are tool-tip programs, so it moves no tip; it shifts the position the program
+    /// reads (parameters 5420–5425, incremental words) as LinuxCNC's does.
+    pub(crate) tlo: [f64; 6],
     pub(crate) params: Params,
     pub(crate) ctl: Vec<Ctl>,
     pub(crate) frames: Vec<Frame>,
@@ -226,6 +233,8 @@ impl<'t, 's> Interp<'t, 's> {
             g92_saved: [0.0; 6],
             g92_flag: 0.0,
             homes: [[0.0; 6]; 2],
+            tool_table: std::collections::BTreeMap::new(),
+            tlo: [0.0; 6],
             params: Params::default(),
             ctl: Vec::new(),
             frames: Vec::new(),
@@ -513,6 +522,11 @@ impl<'t, 's> Interp<'t, 's> {
             // The machine position (G53 coordinates).
             5021..=5026 => self.to_units(n - 5021, self.machine()[n - 5021]),
             5400 => f64::from(self.tool),
+            5401..=5406 => {
+                let e = self.tool_table.get(&self.tool).copied().unwrap_or([0.0; 6]);
+                self.to_units(n - 5401, e[n - 5401])
+            }
+            5407..=5409 => 0.0,
             _ => self.params.num[n],
         }
     }
@@ -529,7 +543,7 @@ impl<'t, 's> Interp<'t, 's> {
             }
             5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20] = v,
             // Read-only views: the machine position, the active system, the tool, the position.
-            5021..=5026 | 5220 | 5400 | 5420..=5425 => {}
+            5021..=5026 | 5220 | 5400..=5409 | 5420..=5425 => {}
             _ => self.params.num[n] = v,
         }
     }
@@ -593,6 +607,15 @@ impl<'t, 's> Interp<'t, 's> {
         self.rot = rot;
         self.p = self.program_of(&m, &off, &g92, rot);
         self.emit_offsets();
+    }
+
+    /// Puts tool length offset `t` in effect: the controlled point stays where it is, so the
+    /// program position reads the offset's change less.
+    fn set_tlo(&mut self, t: [f64; 6]) {
+        let m = self.machine();
+        let moved: [f64; 6] = std::array::from_fn(|i| m[i] - (t[i] - self.tlo[i]));
+        self.tlo = t;
+        self.p = self.program_of(&moved, &self.off, &self.g92, self.rot);
     }
 
     fn execute(&mut self, b: &Block, lb: &LineBuf) -> Res<()> {
@@ -747,14 +770,21 @@ impl<'t, 's> Interp<'t, 's> {
         }
         match b.g(group::TOOL_LENGTH) {
             Some(430) => {
-                if let Some(h) = b.get(b'h') {
+                let tool = match b.get(b'h') {
+                    Some(h) if h >= 0.0 && h.fract() == 0.0 && h <= f64::from(u32::MAX) => h as u32,
+                    _ => self.tool,
+                };
+                let entry = self.tool_table.get(&tool).copied();
+                if entry.is_none() && b.get(b'h').is_some() {
                     self.warn_code(
                         lb,
                         b.at[block::slot(b'h')] as usize,
-                        format!("G43 H{h}: the tool table is not known, so the tool length offset is taken as 0"),
+                        format!("G43 H{tool}: the tool table gives no offset for tool {tool}, so the tool length offset is taken as 0"),
                     );
                 }
-                self.emit(Canon::ToolLengthOffset(0.0));
+                let t = entry.unwrap_or([0.0; 6]);
+                self.set_tlo(t);
+                self.emit(Canon::ToolLengthOffset(t[2]));
             }
             Some(431) => {
                 // G43.1: the offset is given along the tool axis (Z).
@@ -767,9 +797,15 @@ impl<'t, 's> Interp<'t, 's> {
                     )
                 })?;
                 axes_used_by_nonmotion = true;
-                self.emit(Canon::ToolLengthOffset(z * self.scale));
+                let mut t = [0.0; 6];
+                t[2] = z * self.scale;
+                self.set_tlo(t);
+                self.emit(Canon::ToolLengthOffset(t[2]));
             }
-            Some(_) => self.emit(Canon::ToolLengthOffset(0.0)),
+            Some(_) => {
+                self.set_tlo([0.0; 6]);
+                self.emit(Canon::ToolLengthOffset(0.0));
+            }
             None => {}
         }
         if let Some(g) = b.g(group::COORD) {
@@ -1281,10 +1317,13 @@ impl<'t, 's> Interp<'t, 's> {
                 "L2 or L20",
             )
         })?;
-        if l == 1.0 || l == 10.0 || l == 11.0 {
+        if l == 1.0 || l == 10.0 {
+            return self.g10_tool(b, l == 10.0);
+        }
+        if l == 11.0 {
             self.warn_at(
                 0,
-                format!("G10 L{l} (tool table) ignored: swarf takes tools from its own tool list"),
+                "G10 L11 (tool offsets relative to the fixture) ignored".to_string(),
             );
             return Ok(());
         }
@@ -1332,6 +1371,47 @@ impl<'t, 's> Interp<'t, 's> {
         if k == self.coord {
             self.set_frame(t, self.g92, rot);
         }
+        Ok(())
+    }
+
+    /// G10 L1 (set tool P's offsets to the given values) and L10 (set them so that the current
+    /// position, with them in effect, reads the given values), as LinuxCNC: offsets are kept in
+    /// the machine frame, the given values are in the program's (the XY rotation of the active
+    /// system applies), and an axis not given keeps its offset.
+    fn g10_tool(&mut self, b: &Block, relative: bool) -> Res<()> {
+        let p = b.get(b'p').unwrap_or(-1.0);
+        if !(p >= 1.0 && p.fract() == 0.0 && p <= f64::from(u32::MAX)) {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                if b.has(b'p') {
+                    b.span(b'p')
+                } else {
+                    b.g_span(group::NON_MODAL)
+                },
+                "G10 L1/L10 needs the tool number in P",
+                "P<tool number ≥ 1>",
+            ));
+        }
+        let tool = p as u32;
+        let entry = self.tool_table.get(&tool).copied().unwrap_or([0.0; 6]);
+        let mut e = if relative {
+            rotate_xy(entry, -self.rot)
+        } else {
+            entry
+        };
+        // The position without the offset in effect, in the program frame.
+        let without: [f64; 6] = {
+            let back = rotate_xy(self.tlo, -self.rot);
+            std::array::from_fn(|i| self.p[i] + back[i])
+        };
+        for (i, &c) in AXIS_LETTERS.iter().enumerate() {
+            if let Some(v) = b.get(c) {
+                let v = self.mm_from_units(i, v);
+                e[i] = if relative { without[i] - v } else { v };
+            }
+        }
+        let e = if relative { rotate_xy(e, self.rot) } else { e };
+        self.tool_table.insert(tool, e);
         Ok(())
     }
 
