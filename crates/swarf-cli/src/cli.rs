@@ -93,6 +93,11 @@ pub(crate) struct SetupArgs {
     /// Read G-code as this control does (default: decided from the program).
     #[arg(long, value_enum)]
     pub(crate) dialect: Option<Dialect>,
+    /// Most moves a program may make: reading stops with an error at the first move over it,
+    /// which bounds the memory the moves take (about 300 bytes each). Default 4000000;
+    /// `swarf path` keeps no moves and has no limit unless this is given.
+    #[arg(long, value_name = "N")]
+    pub(crate) max_moves: Option<u64>,
 }
 
 /// The G-code dialects.

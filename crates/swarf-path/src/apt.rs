@@ -66,6 +66,7 @@ use swarf_geom::math::{Mat3, Vec3, MACHINE_RANGE_MM};
 
 use crate::canon::{Axes, Canon, CanonSink, FeedMode, Plane, SpindleDir, Units};
 use crate::error::{PathError, PathErrorKind, SourcePos};
+use crate::limit::{move_limit_error, MoveLimit};
 use crate::Warning;
 
 /// Default tolerance on arc radii (start, end and the `CIRCLE/` radius must agree), mm.
@@ -92,6 +93,10 @@ pub struct AptOptions {
     pub apply_csys: bool,
     /// Radius tolerance of arcs, mm ([`DEFAULT_ARC_TOLERANCE_MM`]); beyond it a warning.
     pub arc_tolerance_mm: f64,
+    /// Most motion records (`GOTO/`, arcs): the limit that bounds the memory of a consumer that
+    /// keeps the moves, default [`DEFAULT_MAX_MOVES`](crate::limit::DEFAULT_MAX_MOVES);
+    /// `u64::MAX` for consumers that stream. See [`crate::limit`].
+    pub max_moves: u64,
 }
 
 impl Default for AptOptions {
@@ -100,6 +105,7 @@ impl Default for AptOptions {
             circle_sense: CircleSense::Auto,
             apply_csys: true,
             arc_tolerance_mm: DEFAULT_ARC_TOLERANCE_MM,
+            max_moves: crate::limit::DEFAULT_MAX_MOVES,
         }
     }
 }
@@ -113,6 +119,11 @@ impl AptOptions {
     /// Applying `CSYS/` or not.
     pub fn with_apply_csys(mut self, apply: bool) -> Self {
         self.apply_csys = apply;
+        self
+    }
+    /// With another move limit ([`Self::max_moves`]).
+    pub fn with_max_moves(mut self, n: u64) -> Self {
+        self.max_moves = n;
         self
     }
     /// With another arc radius tolerance, mm.
@@ -170,7 +181,7 @@ pub fn read_apt(
     let mut r = Reader {
         file: file_name,
         options,
-        sink,
+        sink: MoveLimit::new(sink, options.max_moves),
         scale: 1.0,
         feed_mode: FeedMode::PerMinute,
         pos: None,
@@ -205,12 +216,15 @@ pub fn read_apt(
         if done.text.trim().is_empty() {
             continue;
         }
-        if r.record(&done)? == Flow::Stop {
+        let flow = r.record(&done)?;
+        r.check_move_limit(&done)?;
+        if flow == Flow::Stop {
             return Ok(());
         }
     }
     if !record.text.trim().is_empty() {
         r.record(&record)?;
+        r.check_move_limit(&record)?;
     }
     if let Some(c) = r.circle.take() {
         r.warn(
@@ -288,7 +302,8 @@ struct PendingCircle {
 struct Reader<'o, 's> {
     file: &'o str,
     options: &'o AptOptions,
-    sink: &'s mut dyn CanonSink,
+    /// The caller's sink behind the move limit.
+    sink: MoveLimit<'s>,
     /// mm per program unit.
     scale: f64,
     feed_mode: FeedMode,
@@ -316,6 +331,20 @@ fn axes(p: Vec3) -> Axes {
 }
 
 impl Reader<'_, '_> {
+    /// The move-limit error at `record` when it made a move over [`AptOptions::max_moves`].
+    fn check_move_limit(&self, record: &Record<'_>) -> Result<(), PathError> {
+        if !self.sink.over {
+            return Ok(());
+        }
+        let (line, column) = record.locate(0);
+        let pos = SourcePos {
+            file: self.file.to_string(),
+            line,
+            column,
+        };
+        Err(move_limit_error(pos, &record.text, self.sink.max()))
+    }
+
     fn warn(&mut self, line: u32, column: u32, message: String) {
         self.sink.warn(Warning {
             file: self.file.to_string(),

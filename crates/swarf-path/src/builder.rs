@@ -62,6 +62,10 @@ pub struct MoveBuilder {
     /// the current one if motion comes first (CAM systems write it on either side of `LOADTL/`).
     pending_cutter: Option<[f64; 7]>,
     moves: Vec<Move>,
+    /// Moves built, those taken by [`MoveBuilder::take_moves`] included.
+    built: u64,
+    /// A move of tool 0 (no tool loaded) was built.
+    tool_zero_moved: bool,
     tools: Vec<u32>,
     cutter_definitions: Vec<(u32, [f64; 7])>,
     warnings: Vec<Warning>,
@@ -91,6 +95,8 @@ impl MoveBuilder {
             axis_source: AxisSource::Machine,
             pending_cutter: None,
             moves: Vec::new(),
+            built: 0,
+            tool_zero_moved: false,
             tools: Vec::new(),
             cutter_definitions: Vec::new(),
             warnings: Vec::new(),
@@ -103,6 +109,29 @@ impl MoveBuilder {
     pub fn with_spline_tolerance(mut self, tolerance_mm: f64) -> Self {
         self.spline_tolerance = tolerance_mm;
         self
+    }
+
+    /// Takes the moves built since the last call out of the builder, for consumers that handle
+    /// moves as they come and need memory independent of the program's length (see
+    /// [`crate::summary::SummarySink`]). [`MoveBuilder::finish`] then holds only the moves
+    /// built after the last call.
+    pub fn take_moves(&mut self) -> std::vec::Drain<'_, Move> {
+        self.moves.drain(..)
+    }
+
+    /// Moves built so far, taken ones included.
+    pub fn moves_built(&self) -> u64 {
+        self.built
+    }
+
+    /// True when a move was built with no tool loaded (tool 0).
+    pub fn tool_zero_moved(&self) -> bool {
+        self.tool_zero_moved
+    }
+
+    /// The machine, and where the tool axis comes from now.
+    pub fn context(&self) -> (&Machine, AxisSource) {
+        (&self.machine, self.axis_source)
     }
 
     /// The program read so far.
@@ -214,7 +243,9 @@ impl MoveBuilder {
             file: self.file,
             line,
         };
+        self.tool_zero_moved |= m.tool == 0;
         self.moves.push(m);
+        self.built += 1;
         self.pos = *end;
         self.axis = self.target_axis;
     }
@@ -387,7 +418,7 @@ impl CanonSink for MoveBuilder {
                     return;
                 };
                 if self.axis_source == AxisSource::Machine {
-                    if !self.moves.is_empty() {
+                    if self.built > 0 {
                         self.warn_at(
                             line,
                             "the program states its tool axis after moving: earlier moves used \

@@ -26,6 +26,7 @@ pub mod canonical;
 pub mod error;
 pub mod gcode;
 pub mod kinematics;
+pub mod limit;
 pub mod load;
 pub mod moves;
 pub mod rewrite;

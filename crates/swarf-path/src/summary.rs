@@ -25,9 +25,9 @@ use std::f64::consts::TAU;
 use serde::Serialize;
 use swarf_geom::math::Vec3;
 
-use crate::canon::FeedMode;
+use crate::canon::{Canon, CanonSink, FeedMode};
 use crate::moves::{ArcGeom, AxisSource, Move, MoveKind, Program};
-use crate::Warning;
+use crate::{Machine, MoveBuilder, Warning};
 
 /// Default chordal tolerance for curved (joint-interpolated) tip paths, mm.
 pub const DEFAULT_PATH_TOLERANCE_MM: f64 = 1e-3;
@@ -146,80 +146,202 @@ pub fn summarize(program: &Program) -> ProgramSummary {
 
 /// Summarises a program.
 pub fn summarize_with(program: &Program, options: &SummaryOptions) -> ProgramSummary {
-    let tol = options.tolerance_mm;
-    let mut s = ProgramSummary {
-        moves: program.moves.len(),
-        rapid_moves: 0,
-        feed_moves: 0,
-        arc_moves: 0,
-        zero_length_moves: 0,
-        feed_length_mm: 0.0,
-        rapid_length_mm: 0.0,
-        bbox_min: None,
-        bbox_max: None,
-        feed_bbox_min: None,
-        feed_bbox_max: None,
-        tools: program.tools.clone(),
-        warnings: program.warnings.clone(),
-        machining_time_s: 0.0,
-        notes: Vec::new(),
-        path_tolerance_mm: tol,
-        machine: program.machine.name.clone(),
-        axis_source: program.axis_source,
-    };
-    let (mut all, mut feed) = (Bbox::empty(), Bbox::empty());
-    let (mut no_feed, mut curved) = (0usize, Curved::default());
-    let mut minutes = 0.0;
+    let mut acc = SummaryAccumulator::new(options);
     for m in &program.moves {
+        acc.add(program, m);
+    }
+    acc.finish(program)
+}
+
+/// The summary's sums, move by move: [`summarize_with`] over a program's moves, or
+/// [`SummarySink`] over moves as a reader makes them (memory independent of the program's
+/// length).
+#[derive(Clone, Debug)]
+pub struct SummaryAccumulator {
+    tol: f64,
+    moves: usize,
+    rapid_moves: usize,
+    feed_moves: usize,
+    arc_moves: usize,
+    zero_length_moves: usize,
+    feed_length_mm: f64,
+    rapid_length_mm: f64,
+    all: Bbox,
+    feed: Bbox,
+    no_feed: usize,
+    curved: Curved,
+    minutes: f64,
+}
+
+impl SummaryAccumulator {
+    /// No moves yet.
+    pub fn new(options: &SummaryOptions) -> Self {
+        Self {
+            tol: options.tolerance_mm,
+            moves: 0,
+            rapid_moves: 0,
+            feed_moves: 0,
+            arc_moves: 0,
+            zero_length_moves: 0,
+            feed_length_mm: 0.0,
+            rapid_length_mm: 0.0,
+            all: Bbox::empty(),
+            feed: Bbox::empty(),
+            no_feed: 0,
+            curved: Curved::default(),
+            minutes: 0.0,
+        }
+    }
+
+    /// Adds move `m`; `program` gives the machine and the axis source it is interpolated by
+    /// (its moves are not read).
+    pub fn add(&mut self, program: &Program, m: &Move) {
         let mut bb = Bbox::empty();
-        let length = move_extent(program, m, tol, &mut bb, &mut curved);
-        all.add(bb.min);
-        all.add(bb.max);
+        let length = move_extent(program, m, self.tol, &mut bb, &mut self.curved);
+        self.moves += 1;
+        self.all.add(bb.min);
+        self.all.add(bb.max);
         let zero = is_zero_length(m);
-        s.zero_length_moves += usize::from(zero);
+        self.zero_length_moves += usize::from(zero);
         match m.kind {
             MoveKind::Rapid => {
-                s.rapid_moves += 1;
-                s.rapid_length_mm += length;
+                self.rapid_moves += 1;
+                self.rapid_length_mm += length;
             }
             MoveKind::Linear | MoveKind::Arc(_) => {
-                s.feed_moves += 1;
-                s.arc_moves += usize::from(matches!(m.kind, MoveKind::Arc(_)));
-                s.feed_length_mm += length;
-                feed.add(bb.min);
-                feed.add(bb.max);
+                self.feed_moves += 1;
+                self.arc_moves += usize::from(matches!(m.kind, MoveKind::Arc(_)));
+                self.feed_length_mm += length;
+                self.feed.add(bb.min);
+                self.feed.add(bb.max);
                 if !zero {
                     match feed_minutes(program, m, length) {
-                        Some(t) => minutes += t,
-                        None => no_feed += 1,
+                        Some(t) => self.minutes += t,
+                        None => self.no_feed += 1,
                     }
                 }
             }
         }
     }
-    (s.bbox_min, s.bbox_max) = all.corners();
-    (s.feed_bbox_min, s.feed_bbox_max) = feed.corners();
-    s.machining_time_s = minutes * 60.0;
-    if no_feed > 0 {
-        s.notes.push(format!(
-            "{no_feed} feed move(s) without a usable feed rate (F0, or feed per revolution with \
-             the spindle stopped) are left out of machining_time_s"
-        ));
+
+    /// The summary of the moves added; tools, warnings, machine and axis source from `program`
+    /// (its moves are not read).
+    pub fn finish(self, program: &Program) -> ProgramSummary {
+        let tol = self.tol;
+        let (bbox_min, bbox_max) = self.all.corners();
+        let (feed_bbox_min, feed_bbox_max) = self.feed.corners();
+        let mut notes = Vec::new();
+        if self.no_feed > 0 {
+            notes.push(format!(
+                "{} feed move(s) without a usable feed rate (F0, or feed per revolution with \
+                 the spindle stopped) are left out of machining_time_s",
+                self.no_feed
+            ));
+        }
+        if self.curved.moves > 0 {
+            notes.push(format!(
+                "{} move(s) with rotary motion follow a curved tip path: length and bounding box \
+                 sampled to {tol} mm",
+                self.curved.moves
+            ));
+        }
+        if self.curved.unconverged > 0 {
+            notes.push(format!(
+                "{} curved move(s) did not reach the {tol} mm tolerance within {MAX_SAMPLES} \
+                 samples",
+                self.curved.unconverged
+            ));
+        }
+        ProgramSummary {
+            moves: self.moves,
+            rapid_moves: self.rapid_moves,
+            feed_moves: self.feed_moves,
+            arc_moves: self.arc_moves,
+            zero_length_moves: self.zero_length_moves,
+            feed_length_mm: self.feed_length_mm,
+            rapid_length_mm: self.rapid_length_mm,
+            bbox_min,
+            bbox_max,
+            feed_bbox_min,
+            feed_bbox_max,
+            tools: program.tools.clone(),
+            warnings: program.warnings.clone(),
+            machining_time_s: self.minutes * 60.0,
+            notes,
+            path_tolerance_mm: tol,
+            machine: program.machine.name.clone(),
+            axis_source: program.axis_source,
+        }
     }
-    if curved.moves > 0 {
-        s.notes.push(format!(
-            "{} move(s) with rotary motion follow a curved tip path: length and bounding box \
-             sampled to {tol} mm",
-            curved.moves
-        ));
+}
+
+/// A [`CanonSink`] that summarises a program as it is read, keeping no moves: a
+/// [`MoveBuilder`] whose moves are summed and dropped after every event. Memory does not grow
+/// with the program's length (only with its warnings), so a reader feeding it needs no move
+/// limit ([`crate::limit`]).
+///
+/// Its summary equals [`summarize_with`]'s of the program read whole, except for a program that
+/// states its tool axis after moving (warned): the moves before are summed with the machine's
+/// axis, as they were made, where the whole program's summary takes the program's.
+#[derive(Debug)]
+pub struct SummarySink {
+    builder: MoveBuilder,
+    context: Program,
+    acc: SummaryAccumulator,
+}
+
+/// What [`SummarySink::finish`] returns.
+#[derive(Debug)]
+pub struct StreamedSummary {
+    /// The summary.
+    pub summary: ProgramSummary,
+    /// The program without its moves: files, tools, cutter definitions, warnings, machine.
+    pub program: Program,
+    /// A move was made with no tool loaded (tool 0).
+    pub tool_zero_moved: bool,
+}
+
+impl SummarySink {
+    /// A summary of the program read from `file_name` on `machine`.
+    pub fn new(machine: Machine, file_name: &str, options: &SummaryOptions) -> Self {
+        Self {
+            context: Program {
+                machine: machine.clone(),
+                ..Program::default()
+            },
+            builder: MoveBuilder::new(machine, file_name),
+            acc: SummaryAccumulator::new(options),
+        }
     }
-    if curved.unconverged > 0 {
-        s.notes.push(format!(
-            "{} curved move(s) did not reach the {tol} mm tolerance within {MAX_SAMPLES} samples",
-            curved.unconverged
-        ));
+
+    /// The summary of what was read.
+    pub fn finish(mut self) -> StreamedSummary {
+        self.drain();
+        let tool_zero_moved = self.builder.tool_zero_moved();
+        let program = self.builder.finish();
+        StreamedSummary {
+            summary: self.acc.finish(&program),
+            program,
+            tool_zero_moved,
+        }
     }
-    s
+
+    fn drain(&mut self) {
+        self.context.axis_source = self.builder.context().1;
+        for m in self.builder.take_moves() {
+            self.acc.add(&self.context, &m);
+        }
+    }
+}
+
+impl CanonSink for SummarySink {
+    fn emit(&mut self, line: u32, event: &Canon<'_>) {
+        self.builder.emit(line, event);
+        self.drain();
+    }
+    fn warn(&mut self, warning: Warning) {
+        self.builder.warn(warning);
+    }
 }
 
 /// True when neither the tip nor the joints move.
@@ -237,7 +359,7 @@ fn is_zero_length(m: &Move) -> bool {
 }
 
 /// Counts of curved moves, and of those whose sampling ran out of budget.
-#[derive(Default)]
+#[derive(Clone, Copy, Debug, Default)]
 struct Curved {
     moves: usize,
     unconverged: usize,

@@ -17,7 +17,7 @@ use crate::cli::SetupArgs;
 use crate::commands::plots;
 use crate::commands::simulate::{build_stock, positive_mm};
 use crate::commands::tools::{
-    load_machine, load_setup, load_tool_sources, read_options, tool_set, Setup,
+    load_machine, load_setup, load_tool_sources, read_options, reader_error, tool_set, Setup,
 };
 use crate::output::{csv_field, print_json, write_atomic};
 
@@ -91,9 +91,8 @@ impl RunArgs {
             self.setup.table_units,
         )?;
         let options = read_options(&self.setup, single.as_ref(), table.as_ref());
-        Ok(swarf_path::load::read_program_str(
-            text, name, machine, &options,
-        )?)
+        swarf_path::load::read_program_str(text, name, machine, &options)
+            .map_err(|e| reader_error(e, &options))
     }
 
     /// Reads the program and tools, builds the stock and checks the options.

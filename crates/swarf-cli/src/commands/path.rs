@@ -6,13 +6,14 @@ use std::io::BufWriter;
 use anyhow::{Context, Result};
 use serde::Serialize;
 use swarf_path::canonical::CanonicalPrinter;
-use swarf_path::load::{read_program_str, read_text, stream_program};
+use swarf_path::load::{read_text, stream_program};
+use swarf_path::summary::{SummaryOptions, SummarySink};
 use swarf_path::{summarize, Program, ProgramSummary};
 use swarf_tool::{Cutter, CutterDescription, ToolTable};
 
 use crate::cli::PathArgs;
 use crate::commands::tools::{
-    load_machine, load_tool_sources, read_options, resolve_tools, ToolSource,
+    load_machine, load_tool_sources, read_options, reader_error, resolve_used_tools, ToolSource,
 };
 use crate::output::print_json;
 
@@ -50,20 +51,36 @@ pub(crate) fn run(args: &PathArgs) -> Result<()> {
         args.setup.tools.as_deref(),
         args.setup.table_units,
     )?;
-    let options = read_options(&args.setup, single.as_ref(), table.as_ref());
+    let mut options = read_options(&args.setup, single.as_ref(), table.as_ref());
+    if args.setup.max_moves.is_none() {
+        // Both outputs stream: no move is kept, so no move limit is needed (the loop limits
+        // still end a program that never ends).
+        options.gcode.max_moves = u64::MAX;
+        options.apt.max_moves = u64::MAX;
+    }
     let text = read_text(&args.program)?;
     let file = args.program.display().to_string();
 
     if args.canonical {
         let stdout = std::io::stdout().lock();
         let mut printer = CanonicalPrinter::new(BufWriter::new(stdout));
-        stream_program(&text, &file, &options, &mut printer)?;
+        stream_program(&text, &file, &options, &mut printer)
+            .map_err(|e| reader_error(e, &options))?;
         printer.finish().context("writing to stdout")?;
         return Ok(());
     }
 
-    let program = read_program_str(&text, &file, machine, &options)?;
-    let report = PathReport::new(&program, single.as_ref(), table.as_ref())?;
+    let mut sink = SummarySink::new(machine, &file, &SummaryOptions::default());
+    stream_program(&text, &file, &options, &mut sink).map_err(|e| reader_error(e, &options))?;
+    drop(text);
+    let streamed = sink.finish();
+    let report = PathReport::from_summary(
+        streamed.summary,
+        &streamed.program,
+        streamed.tool_zero_moved,
+        single.as_ref(),
+        table.as_ref(),
+    )?;
     // What the summary leaves out or approximates (feed moves at F0 left out of the time…)
     // is said on stderr too, not only inside the JSON.
     for note in &report.summary.notes {
@@ -84,7 +101,21 @@ impl PathReport {
         single: Option<&Cutter>,
         table: Option<&ToolTable>,
     ) -> Result<Self> {
-        let (resolved, undefined_tools) = resolve_tools(program, single, table)?;
+        let tool_zero_moved = program.moves.iter().any(|m| m.tool == 0);
+        Self::from_summary(summarize(program), program, tool_zero_moved, single, table)
+    }
+
+    /// The report of a program summarised already (`program`'s moves are not read:
+    /// `tool_zero_moved` says whether a move was made with no tool loaded).
+    pub(crate) fn from_summary(
+        summary: ProgramSummary,
+        program: &Program,
+        tool_zero_moved: bool,
+        single: Option<&Cutter>,
+        table: Option<&ToolTable>,
+    ) -> Result<Self> {
+        let (resolved, undefined_tools) =
+            resolve_used_tools(program, tool_zero_moved, single, table)?;
         let tool_definitions = resolved
             .into_iter()
             .map(|(n, r)| {
@@ -101,7 +132,7 @@ impl PathReport {
             max: b.max.to_array(),
         });
         Ok(Self {
-            summary: summarize(program),
+            summary,
             tool_definitions,
             undefined_tools,
             workpiece,

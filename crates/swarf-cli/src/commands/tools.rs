@@ -5,9 +5,11 @@ use std::collections::BTreeMap;
 use std::path::Path;
 
 use anyhow::{Context, Result};
+use swarf_path::apt::AptOptions;
 use swarf_path::gcode::{GcodeDialect, GcodeOptions};
+use swarf_path::limit::{is_move_limit, DEFAULT_MAX_MOVES};
 use swarf_path::load::ReadOptions;
-use swarf_path::{Machine, Program, Units};
+use swarf_path::{Machine, PathError, Program, Units};
 use swarf_tool::{Cutter, LengthUnit, ToolSet, ToolTable};
 
 use crate::cli::{Dialect, SetupArgs, TableUnits};
@@ -50,9 +52,21 @@ pub(crate) fn read_options(
             }
         }
     }
+    let max_moves = setup.max_moves.unwrap_or(DEFAULT_MAX_MOVES);
     ReadOptions {
-        gcode,
+        gcode: gcode.with_max_moves(max_moves),
+        apt: AptOptions::default().with_max_moves(max_moves),
         ..ReadOptions::default()
+    }
+}
+
+/// A reader error, with the option that raises the move limit named when that limit stopped
+/// the reading.
+pub(crate) fn reader_error(e: PathError, options: &ReadOptions) -> anyhow::Error {
+    if is_move_limit(&e, options.gcode.max_moves) || is_move_limit(&e, options.apt.max_moves) {
+        anyhow::anyhow!("{e}; --max-moves N raises the limit")
+    } else {
+        e.into()
     }
 }
 
@@ -72,7 +86,8 @@ pub(crate) fn load_setup(setup: &SetupArgs, program: &Path) -> Result<Setup> {
         setup.table_units,
     )?;
     let options = read_options(setup, single.as_ref(), table.as_ref());
-    let program = swarf_path::load::read_program(program, machine, &options)?;
+    let program = swarf_path::load::read_program(program, machine, &options)
+        .map_err(|e| reader_error(e, &options))?;
     Ok(Setup {
         program,
         single,
@@ -109,8 +124,20 @@ pub(crate) fn resolve_tools(
     single: Option<&Cutter>,
     table: Option<&ToolTable>,
 ) -> Result<(BTreeMap<u32, ResolvedTool>, Vec<u32>)> {
+    let tool_zero_moved = program.moves.iter().any(|m| m.tool == 0);
+    resolve_used_tools(program, tool_zero_moved, single, table)
+}
+
+/// [`resolve_tools`] for a program whose moves were not kept (`program.moves` is not read):
+/// `tool_zero_moved` says whether a move was made with no tool loaded.
+pub(crate) fn resolve_used_tools(
+    program: &Program,
+    tool_zero_moved: bool,
+    single: Option<&Cutter>,
+    table: Option<&ToolTable>,
+) -> Result<(BTreeMap<u32, ResolvedTool>, Vec<u32>)> {
     let mut used: Vec<u32> = program.tools.clone();
-    if program.moves.iter().any(|m| m.tool == 0) && !used.contains(&0) {
+    if tool_zero_moved && !used.contains(&0) {
         used.insert(0, 0);
     }
     let (set, undefined) = ToolSet::resolve(&used, &program.cutter_definitions, single, table)?;

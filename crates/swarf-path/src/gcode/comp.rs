@@ -30,7 +30,7 @@ use super::block::{group, Block};
 use super::interp::Interp;
 use super::{Fault, Res, Span};
 use crate::canon::OwnedCanon;
-use crate::{Axes, Canon, PathErrorKind, Plane};
+use crate::{Axes, Canon, CanonSink, PathErrorKind, Plane};
 
 /// LinuxCNC's `TOLERANCE_CONCAVE_CORNER` (radians): corners within this of tangent get neither
 /// an arc nor a cut-back.

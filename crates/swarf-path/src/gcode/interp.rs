@@ -21,6 +21,7 @@ use super::expr::ParamRead;
 use super::lexer::{column_of, normalize, split_line, LineBuf};
 use super::params::{Params, Target};
 use super::{Fault, GcodeDialect, GcodeOptions, Res, Span};
+use crate::limit::{move_limit_message, MoveLimit};
 use crate::{
     Axes, Canon, CanonSink, FeedMode, MessageKind, PathError, PathErrorKind, Plane, SourcePos,
     SpindleDir, Units, Warning,
@@ -93,7 +94,8 @@ pub(crate) struct Interp<'t, 's> {
     /// Which of `files` is being executed.
     pub(crate) cur_file: u32,
     pub(crate) opts: &'t GcodeOptions,
-    pub(crate) sink: &'s mut dyn CanonSink,
+    /// The caller's sink behind the move limit.
+    pub(crate) sink: MoveLimit<'s>,
     /// Where reading continues.
     pub(crate) at: Cursor,
     /// The line being executed (events carry it) and where it starts.
@@ -200,7 +202,7 @@ impl<'t, 's> Interp<'t, 's> {
             text,
             file,
             opts,
-            sink,
+            sink: MoveLimit::new(sink, opts.max_moves),
             at: Cursor {
                 pos: 0,
                 line: 0,
@@ -295,7 +297,11 @@ impl<'t, 's> Interp<'t, 's> {
             };
             self.cur_line = self.at.line;
             self.cur_start = start;
-            if let Err(f) = self.exec_line(raw, &mut lb, &mut blk) {
+            let mut result = self.exec_line(raw, &mut lb, &mut blk);
+            if result.is_ok() && self.sink.over {
+                result = Err(self.move_limit_fault());
+            }
+            if let Err(f) = result {
                 return Err(self.to_error(f, raw, &lb));
             }
         }
@@ -428,8 +434,18 @@ impl<'t, 's> Interp<'t, 's> {
         self.warn_at(column_of(raw, raw_at), message);
     }
 
+    /// The error for a line that made a move over [`GcodeOptions::max_moves`].
+    fn move_limit_fault(&self) -> Fault {
+        let (message, expected) = move_limit_message(self.sink.max());
+        Fault::new(PathErrorKind::Limit, Span::Line, message, expected)
+    }
+
     /// Counts one backward jump (loop iteration, call, repeat).
     pub(crate) fn count_iteration(&mut self, span: Span) -> Res<()> {
+        if self.sink.over {
+            // A loop that made a move over the limit stops at once.
+            return Err(self.move_limit_fault());
+        }
         self.iterations += 1;
         if self.iterations > self.opts.max_loop_iterations {
             return Err(Fault::new(

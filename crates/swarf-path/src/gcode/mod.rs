@@ -125,6 +125,11 @@ pub struct GcodeOptions {
     /// Most backward jumps in one run: loop iterations (`while`, `do`, `repeat`), subroutine
     /// calls, `M98`/`M99` repeats, canned-cycle repeats and pecks all count.
     pub max_loop_iterations: u64,
+    /// Most motion statements (rapids, feeds, arcs, splines; a canned cycle makes several):
+    /// the limit that bounds the memory of a consumer that keeps the moves, default
+    /// [`DEFAULT_MAX_MOVES`](crate::limit::DEFAULT_MAX_MOVES). `u64::MAX` for consumers that
+    /// stream. See [`crate::limit`].
+    pub max_moves: u64,
     /// Deepest nesting of subroutine calls (O-word `call` and `M98`).
     pub max_call_depth: usize,
     /// Largest count one `repeat`, `L` word or `M98 L` may ask for.
@@ -241,6 +246,7 @@ impl Default for GcodeOptions {
         Self {
             initial_units: Units::Mm,
             max_loop_iterations: 10_000_000,
+            max_moves: crate::limit::DEFAULT_MAX_MOVES,
             max_call_depth: 64,
             max_repeat: 1_000_000,
             arc_radius_tolerance: ArcTolerance::LINUXCNC,
@@ -264,6 +270,11 @@ impl GcodeOptions {
     /// Sets [`Self::max_loop_iterations`].
     pub fn with_max_loop_iterations(mut self, n: u64) -> Self {
         self.max_loop_iterations = n;
+        self
+    }
+    /// Sets [`Self::max_moves`].
+    pub fn with_max_moves(mut self, n: u64) -> Self {
+        self.max_moves = n;
         self
     }
     /// Sets [`Self::max_call_depth`].
