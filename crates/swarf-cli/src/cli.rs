@@ -150,9 +150,13 @@ pub(crate) struct SimulateArgs {
     /// Build the stock from an STL mesh even if it is not closed.
     #[arg(long)]
     pub(crate) allow_open_mesh: bool,
-    /// Write stock.stl, stock.glb, moves.csv and summary.json here.
+    /// Write stock.stl, stock.glb, moves.csv and summary.json here (all four or none).
     #[arg(long, value_name = "DIR")]
     pub(crate) out: Option<PathBuf>,
+    /// Largest total size of the files --out writes, MB: their sizes are estimated before
+    /// anything is written, and a larger set is refused.
+    #[arg(long, value_name = "MB", default_value_t = crate::output::DEFAULT_MAX_OUTPUT_MB)]
+    pub(crate) max_output_mb: u64,
     /// Print the JSON summary (the default output is a short human-readable report).
     #[arg(long)]
     pub(crate) json: bool,
@@ -164,6 +168,9 @@ pub(crate) struct DemoArgs {
     /// program, its tool library and its canonical motion.
     #[arg(long, value_name = "DIR", default_value = "swarf-demo")]
     pub(crate) out: PathBuf,
+    /// Largest total size of the files written, MB (estimated before anything is written).
+    #[arg(long, value_name = "MB", default_value_t = crate::output::DEFAULT_MAX_OUTPUT_MB)]
+    pub(crate) max_output_mb: u64,
     /// Ray spacing of the stock, mm.
     #[arg(
         allow_negative_numbers = true,

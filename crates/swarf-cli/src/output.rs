@@ -31,6 +31,25 @@ pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
         .with_context(|| format!("writing {}", path.display()))
 }
 
+/// The default of `--max-output-mb`: [`swarf_io::DEFAULT_MAX_OUTPUT_BYTES`] in MB.
+pub(crate) const DEFAULT_MAX_OUTPUT_MB: u64 = swarf_io::DEFAULT_MAX_OUTPUT_BYTES / 1_000_000;
+
+/// The files of one command, written together or not at all, `max_output_mb` MB in all.
+pub(crate) fn output_set(dir: &Path, max_output_mb: u64) -> Result<swarf_io::OutputSet> {
+    swarf_io::OutputSet::new(dir, max_output_mb.saturating_mul(1_000_000))
+        .with_context(|| format!("creating {}", dir.display()))
+}
+
+/// Checks the estimated sizes of the files about to be written; the error says how to get
+/// smaller files or a larger limit.
+pub(crate) fn check_sizes(set: &swarf_io::OutputSet, files: &[(&str, u64)]) -> Result<()> {
+    set.check_sizes(files).map_err(|e| {
+        anyhow::anyhow!(
+            "{e}: give a coarser --resolution, or raise the limit with --max-output-mb N"
+        )
+    })
+}
+
 /// A CSV field, quoted when it holds a comma, a quote or a line break.
 pub(crate) fn csv_field(s: &str) -> String {
     if s.contains([',', '"', '\n']) {

@@ -168,3 +168,54 @@ fn huge_coordinates_are_refused_under_2_gb() {
         refused(&o, &["stock"]);
     }
 }
+
+#[test]
+fn a_tiny_resolution_with_out_is_refused_before_anything_is_written() {
+    // At 0.02 mm the machined slot's mesh would be 2.3 GB of STL and 0.8 GB of glb.
+    let p = program(
+        "rl-tiny",
+        "slot.ngc",
+        "G21 G90\nG0 X10 Y20 Z5\nG1 Z-3 F200\nG1 X50\nG0 Z5\nM30\n",
+    );
+    let out = temp_dir("rl-tiny-out").join("out");
+    let o = limited(&[
+        "simulate",
+        "--stock",
+        "box:0,0,-20,60,40,0",
+        "--program",
+        &p,
+        "--tool",
+        "flat:d=10",
+        "--resolution",
+        "0.02",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    refused(
+        &o,
+        &[
+            "the outputs would take 3.11 GB (stock.stl 2.29 GB, stock.glb 824.4 MB",
+            "more than the limit of 2.00 GB; nothing was written",
+            "--max-output-mb",
+        ],
+    );
+    assert!(!out.exists(), "nothing written, not even the folder");
+    // A lower limit refuses a set the default would let through.
+    let o = limited(&[
+        "simulate",
+        "--stock",
+        "box:0,0,-20,60,40,0",
+        "--program",
+        &p,
+        "--tool",
+        "flat:d=10",
+        "--resolution",
+        "0.25",
+        "--out",
+        out.to_str().unwrap(),
+        "--max-output-mb",
+        "1",
+    ]);
+    refused(&o, &["more than the limit of 1.0 MB"]);
+    assert!(!out.exists());
+}

@@ -61,6 +61,69 @@ fn flat_slot_removes_its_exact_volume_and_writes_outputs() {
 }
 
 #[test]
+fn outputs_are_written_as_a_set_or_not_at_all() {
+    let dir = temp_dir("set");
+    let prog = dir.join("slot.ngc");
+    std::fs::write(
+        &prog,
+        "G21 G90\nG0 X10 Y20 Z5\nG1 Z-3 F200\nG1 X50\nG0 Z5\nM30\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    // A folder named like the third output: the run fails and no output appears.
+    std::fs::create_dir_all(out.join("moves.csv")).unwrap();
+    let run = || {
+        swarf(&[
+            "simulate",
+            "--stock",
+            "box:0,0,-20,60,40,0",
+            "--program",
+            prog.to_str().unwrap(),
+            "--tool",
+            "flat:d=10",
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
+    let o = run();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("moves.csv"), "{}", stderr(&o));
+    let left: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(left, ["moves.csv"], "no stock.stl/glb, no temporary");
+    std::fs::remove_dir(out.join("moves.csv")).unwrap();
+    let o = run();
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mut names: Vec<String> = std::fs::read_dir(&out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(
+        names,
+        ["moves.csv", "stock.glb", "stock.stl", "summary.json"]
+    );
+    // The glb is indexed: each vertex of the mesh once (flat normals left to the viewer).
+    let glb = swarf_io::read_glb(&out.join("stock.glb")).unwrap();
+    let stl = swarf_io::read_stl(&out.join("stock.stl")).unwrap();
+    let prim = &glb.root.meshes[0].primitives[0];
+    let positions = prim
+        .attributes
+        .iter()
+        .find(|(k, _)| format!("{k:?}").contains("Positions"))
+        .unwrap()
+        .1;
+    let count = glb.root.accessors[positions.value()].count.0;
+    assert_eq!(count, stl.vertices.len() as u64);
+    assert!(
+        3 * (stl.triangles.len() as u64) > 5 * count,
+        "{count} vertices"
+    );
+}
+
+#[test]
 fn rapid_into_the_stock_is_reported_with_its_line() {
     let dir = temp_dir("rapid");
     let prog = dir.join("crash.ngc");

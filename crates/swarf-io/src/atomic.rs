@@ -14,7 +14,8 @@ static COUNTER: AtomicU64 = AtomicU64::new(0);
 /// (after a crash) are recognisable.
 pub const TEMP_MARKER: &str = ".swarf-tmp-";
 
-fn temp_path(path: &Path) -> PathBuf {
+/// A fresh temporary path beside `path`.
+pub(crate) fn temp_path(path: &Path) -> PathBuf {
     let name = path
         .file_name()
         .map(|n| n.to_string_lossy().into_owned())

@@ -28,6 +28,18 @@ pub enum IoError {
     /// match the vertices, too many vertices for the format…).
     #[error("invalid mesh: {0}")]
     InvalidMesh(String),
+    /// A set of outputs would exceed its size limit (nothing was written).
+    #[error(
+        "{dir}: the outputs would take {what}, more than the limit of {limit}; nothing was written"
+    )]
+    TooLarge {
+        /// The folder of the outputs.
+        dir: PathBuf,
+        /// The estimated total, with each file's part.
+        what: String,
+        /// The limit.
+        limit: String,
+    },
     /// JSON (de)serialisation of a glTF document failed.
     #[error("{path}: glTF JSON: {source}")]
     Json {

@@ -5,9 +5,12 @@
 //! with spaces and a BIN chunk padded with zeros to 4 bytes, every accessor 4-byte aligned,
 //! `POSITION` with exact `min`/`max` (computed from the `f32` values written).
 //!
-//! Flat shading (the default, right for machined parts with sharp edges) gives every triangle
-//! its own three vertices with the face normal; smooth shading keeps the mesh indexed with
-//! area-weighted vertex normals.
+//! The mesh is written indexed, each vertex once (a machined part's vertices are shared by six
+//! triangles on average: a flat-shaded copy per triangle made files six times larger). Flat
+//! shading (the default, right for machined parts with sharp edges) writes no `NORMAL`: glTF
+//! 2.0 requires viewers to compute flat normals then (§3.7.2.1 "When normals are not specified,
+//! client implementations MUST calculate flat normals"). Smooth shading adds area-weighted
+//! vertex normals.
 
 use crate::atomic::write_atomic;
 use crate::error::IoError;
@@ -21,10 +24,10 @@ use std::path::Path;
 /// How normals are written.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub enum Shading {
-    /// One normal per triangle (vertices are duplicated per triangle): crisp edges.
+    /// No normals: viewers compute one per triangle (glTF's rule), crisp edges.
     #[default]
     Flat,
-    /// Area-weighted vertex normals on the indexed mesh.
+    /// Area-weighted vertex normals.
     Smooth,
 }
 
@@ -56,14 +59,6 @@ const GLB_MAGIC: &[u8; 4] = b"glTF";
 const CHUNK_JSON: u32 = 0x4E4F_534A;
 const CHUNK_BIN: u32 = 0x004E_4942;
 
-/// Positions, normals, colours and indices as written.
-type Streams = (
-    Vec<[f32; 3]>,
-    Vec<[f32; 3]>,
-    Option<Vec<[f32; 4]>>,
-    Vec<u32>,
-);
-
 fn pad4(n: usize) -> usize {
     n.div_ceil(4) * 4
 }
@@ -71,41 +66,19 @@ fn pad4(n: usize) -> usize {
 /// The glb file of `mesh` in memory.
 pub fn glb_bytes(mesh: &TriMesh, options: &GlbOptions) -> Result<Vec<u8>, IoError> {
     mesh.validate()?;
-    // Vertex streams.
-    let (positions, normals, colors, indices): Streams = match options.shading {
-        Shading::Flat => {
-            let mut p = Vec::with_capacity(mesh.triangles.len() * 3);
-            let mut n = Vec::with_capacity(mesh.triangles.len() * 3);
-            let mut c = mesh
-                .colors
-                .as_ref()
-                .map(|_| Vec::with_capacity(mesh.triangles.len() * 3));
-            for (t, tri) in mesh.triangles.iter().enumerate() {
-                let nn = mesh.triangle_normal(t).as_vec3().to_array();
-                for &v in tri {
-                    p.push(mesh.vertices[v as usize].as_vec3().to_array());
-                    n.push(nn);
-                    if let (Some(c), Some(src)) = (&mut c, &mesh.colors) {
-                        c.push(src[v as usize]);
-                    }
-                }
-            }
-            let idx = (0..p.len() as u32).collect();
-            (p, n, c, idx)
-        }
-        Shading::Smooth => (
-            mesh.vertices
-                .iter()
-                .map(|v| v.as_vec3().to_array())
-                .collect(),
-            mesh.vertex_normals()
-                .iter()
-                .map(|v| v.as_vec3().to_array())
-                .collect(),
-            mesh.colors.clone(),
-            mesh.triangles.iter().flatten().copied().collect(),
-        ),
-    };
+    let positions: Vec<[f32; 3]> = mesh
+        .vertices
+        .iter()
+        .map(|v| v.as_vec3().to_array())
+        .collect();
+    let normals: Option<Vec<[f32; 3]>> = (options.shading == Shading::Smooth).then(|| {
+        mesh.vertex_normals()
+            .iter()
+            .map(|v| v.as_vec3().to_array())
+            .collect()
+    });
+    let colors = mesh.colors.as_ref();
+    let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
     let count = positions.len();
     if count > u32::MAX as usize {
         return Err(IoError::InvalidMesh(format!(
@@ -126,11 +99,13 @@ pub fn glb_bytes(mesh: &TriMesh, options: &GlbOptions) -> Result<Vec<u8>, IoErro
         f32s(&mut positions.iter().flatten().copied()),
         json::buffer::Target::ArrayBuffer,
     );
-    push_view(
-        f32s(&mut normals.iter().flatten().copied()),
-        json::buffer::Target::ArrayBuffer,
-    );
-    if let Some(c) = &colors {
+    if let Some(n) = &normals {
+        push_view(
+            f32s(&mut n.iter().flatten().copied()),
+            json::buffer::Target::ArrayBuffer,
+        );
+    }
+    if let Some(c) = colors {
         push_view(
             f32s(&mut c.iter().flatten().copied()),
             json::buffer::Target::ArrayBuffer,
@@ -200,10 +175,11 @@ pub fn glb_bytes(mesh: &TriMesh, options: &GlbOptions) -> Result<Vec<u8>, IoErro
         T::Vec3,
         (count > 0).then_some((min, max)),
     );
-    let nor = accessor(&mut root, 1, count, C::F32, T::Vec3, None);
-    let col = colors
+    let nor = normals
         .as_ref()
-        .map(|_| accessor(&mut root, 2, count, C::F32, T::Vec4, None));
+        .map(|_| accessor(&mut root, 1, count, C::F32, T::Vec3, None));
+    let col_view = 1 + usize::from(normals.is_some());
+    let col = colors.map(|_| accessor(&mut root, col_view, count, C::F32, T::Vec4, None));
     let idx = accessor(
         &mut root,
         views.len() - 1,
@@ -214,7 +190,9 @@ pub fn glb_bytes(mesh: &TriMesh, options: &GlbOptions) -> Result<Vec<u8>, IoErro
     );
     let mut attributes = BTreeMap::new();
     attributes.insert(Valid(json::mesh::Semantic::Positions), pos);
-    attributes.insert(Valid(json::mesh::Semantic::Normals), nor);
+    if let Some(n) = nor {
+        attributes.insert(Valid(json::mesh::Semantic::Normals), n);
+    }
     if let Some(c) = col {
         attributes.insert(Valid(json::mesh::Semantic::Colors(0)), c);
     }
@@ -270,6 +248,14 @@ pub fn glb_bytes(mesh: &TriMesh, options: &GlbOptions) -> Result<Vec<u8>, IoErro
     out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
     out.extend_from_slice(&bin);
     Ok(out)
+}
+
+/// The size in bytes of [`glb_bytes`]'s file for a mesh of `vertices` vertices and
+/// `triangles` triangles, without building it: exact for the BIN chunk, the JSON chunk
+/// bounded above by 4 KiB.
+pub fn glb_size_bound(vertices: usize, triangles: usize, colors: bool, shading: Shading) -> u64 {
+    let per_vertex = 12 + 12 * u64::from(shading == Shading::Smooth) + 16 * u64::from(colors);
+    28 + 4096 + vertices as u64 * per_vertex + triangles as u64 * 12 + 16
 }
 
 /// Writes `mesh` as a glb file, atomically.

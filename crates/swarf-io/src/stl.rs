@@ -38,6 +38,23 @@ pub fn write_stl(path: &Path, mesh: &TriMesh) -> Result<(), IoError> {
     write_atomic(path, |w| stl_io::write_stl(w, stl_triangles(mesh)))
 }
 
+/// Writes `mesh` as binary STL to `w` (what [`write_stl`] puts in its file); for a file of an
+/// [`OutputSet`](crate::OutputSet).
+///
+/// # Errors
+/// An invalid mesh (as [`write_stl`]) as [`std::io::ErrorKind::InvalidData`], or the writer's.
+pub fn write_stl_to<W: std::io::Write>(w: &mut W, mesh: &TriMesh) -> std::io::Result<()> {
+    mesh.validate()
+        .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()))?;
+    if mesh.triangles.len() > u32::MAX as usize {
+        return Err(std::io::Error::new(
+            std::io::ErrorKind::InvalidData,
+            format!("{} triangles do not fit a binary STL", mesh.triangles.len()),
+        ));
+    }
+    stl_io::write_stl(w, stl_triangles(mesh))
+}
+
 /// Writes `mesh` as ASCII STL (`solid name` … `endsolid name`), atomically. Coordinates are
 /// written with enough digits to read back the same `f32` values as the binary form.
 pub fn write_stl_ascii(path: &Path, mesh: &TriMesh, name: &str) -> Result<(), IoError> {

@@ -124,13 +124,27 @@ fn glb_reparses_with_consistent_accessors() {
                 .unwrap_or_else(|| panic!("no {name}"));
             &root.accessors[idx.value()]
         };
-        let verts = match shading {
-            Shading::Flat => 3 * m.triangles.len(),
-            Shading::Smooth => m.vertices.len(),
-        } as u64;
-        for name in ["Positions", "Normals", "Colors"] {
+        // Indexed, each vertex once; normals only for smooth shading (viewers compute flat
+        // ones, as glTF requires).
+        let verts = m.vertices.len() as u64;
+        for name in ["Positions", "Colors"] {
             assert_eq!(get(name).count.0, verts, "{name}");
         }
+        let has_normals = prim
+            .attributes
+            .keys()
+            .any(|k| format!("{k:?}").contains("Normals"));
+        assert_eq!(has_normals, shading == Shading::Smooth);
+        if has_normals {
+            assert_eq!(get("Normals").count.0, verts);
+        }
+        let bytes = std::fs::metadata(&path).unwrap().len();
+        let bound =
+            swarf_io::glb::glb_size_bound(m.vertices.len(), m.triangles.len(), true, shading);
+        assert!(
+            bytes <= bound && bound - bytes <= 4096,
+            "{bytes} vs bound {bound}"
+        );
         let indices = &root.accessors[prim.indices.unwrap().value()];
         assert_eq!(indices.count.0, 3 * m.triangles.len() as u64);
         // POSITION min/max are those of the f32 positions written.

@@ -41,4 +41,26 @@ impl TriDexel {
     pub fn to_mesh(&self, options: &ContourOptions) -> (TriMesh, ContourStats) {
         dual_contour_with_stats(self, options)
     }
+
+    /// The size of [`TriDexel::to_mesh`]'s mesh, without building it: `(vertices, triangles)`.
+    ///
+    /// Dual contouring makes one quad (two triangles) per lattice edge the surface crosses, and
+    /// every crossing is an end of an interval of the ray that edge lies on: two triangles per
+    /// interval end bound the triangles from above (exact unless an interval begins and ends
+    /// within one edge). Vertices are estimated as a closed mesh of that many triangles has
+    /// them (Euler: V = T/2 + 2 for a sphere-like part).
+    ///
+    /// ```
+    /// use swarf_geom::math::Vec3;
+    /// use swarf_stock::TriDexel;
+    /// let stock = TriDexel::from_box(Vec3::ZERO, Vec3::new(10.0, 6.0, 4.0), 0.5).unwrap();
+    /// let (v, t) = stock.mesh_size_estimate();
+    /// let (mesh, _) = stock.to_mesh(&Default::default());
+    /// assert_eq!(t, mesh.triangles.len() as u64);
+    /// assert_eq!(v, mesh.vertices.len() as u64);
+    /// ```
+    pub fn mesh_size_estimate(&self) -> (u64, u64) {
+        let triangles = 4 * self.stats().intervals;
+        (triangles / 2 + 2, triangles)
+    }
 }

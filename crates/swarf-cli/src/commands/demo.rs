@@ -4,7 +4,7 @@
 //! against the design surface of its finishing operation (`swarf gouge`), which shows where
 //! the naive finishing raster (ball tip put on the surface) gouges the slopes.
 
-use std::path::Path;
+use swarf_io::OutputSet;
 
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
@@ -20,7 +20,7 @@ use swarf_tool::table::parse_toml_library;
 use crate::cli::DemoArgs;
 use crate::commands::path::PathReport;
 use crate::commands::simulate::{tools_for, write_outputs, SimulateSummary};
-use crate::output::{print_json, write_atomic};
+use crate::output::{output_set, print_json};
 
 /// The demo program (LinuxCNC G-code with parameters, loops, conditionals and arcs).
 const PROGRAM: &str = include_str!("../../demo/demo.ngc");
@@ -80,25 +80,29 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     let summary = SimulateSummary::new(&report);
 
     let dir = &args.out;
-    write_outputs(dir, &program, &stock, &report, &summary)?;
-    write_sources(dir, &options)?;
+    // Every file of the demo is written as one set: all of them, or none.
+    let mut set = output_set(dir, args.max_output_mb)?;
+    write_outputs(&mut set, &program, &stock, &report, &summary)?;
+    write_sources(&mut set, &options)?;
 
     let t0 = std::time::Instant::now();
     let floor = wavy_floor();
     let json = swarf_surface::io::json::to_string(&floor).context("encoding the floor surface")?;
-    write_atomic(&dir.join("floor.json"), json.as_bytes())?;
+    set.write_bytes("floor.json", json.as_bytes())?;
     let gouge_tools = crate::commands::gouge::tools_for(&program, None, Some(&table))?;
     let surface = GougeSurface::new(&PreparedSurface::new(&floor));
     let opts = GougeOptions::DEFAULT;
     let gouge = check_program(&surface, &program, &gouge_tools, &opts)?;
     let gouge_summary = gouge.summary(&opts, program.moves.len(), t0.elapsed().as_secs_f64());
     crate::commands::gouge::write_outputs(
-        &dir.join("gouge"),
+        &mut set,
+        "gouge/",
         &floor,
         &program,
         &gouge,
         &gouge_summary,
     )?;
+    set.commit()?;
     print_json(&DemoReport {
         stock: STOCK,
         program: &path_report,
@@ -109,13 +113,14 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
 }
 
 /// The program, its tool library and its LinuxCNC canonical motion, beside the results.
-fn write_sources(dir: &Path, options: &ReadOptions) -> Result<()> {
-    write_atomic(&dir.join("demo.ngc"), PROGRAM.as_bytes())?;
-    write_atomic(&dir.join("tools.toml"), TOOLS.as_bytes())?;
+fn write_sources(set: &mut OutputSet, options: &ReadOptions) -> Result<()> {
+    set.write_bytes("demo.ngc", PROGRAM.as_bytes())?;
+    set.write_bytes("tools.toml", TOOLS.as_bytes())?;
     let mut printer = CanonicalPrinter::new(Vec::new());
     stream_program(PROGRAM, "demo/demo.ngc", options, &mut printer)?;
     let canonical = printer.finish().context("printing the canonical motion")?;
-    write_atomic(&dir.join("canonical.txt"), &canonical)
+    set.write_bytes("canonical.txt", &canonical)?;
+    Ok(())
 }
 
 #[cfg(test)]

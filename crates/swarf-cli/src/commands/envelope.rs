@@ -8,13 +8,15 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde::Serialize;
-use swarf_io::{write_glb, write_stl, GlbOptions};
+use swarf_io::glb::{glb_bytes, glb_size_bound};
+use swarf_io::output_set::stl_size;
+use swarf_io::{write_stl_to, GlbOptions, Shading};
 use swarf_sweep::{envelope, EnvelopeOptions, SelfIntersection};
 use swarf_tool::Cutter;
 
 use crate::cli::SetupArgs;
 use crate::commands::tools::{load_setup, resolve_all, Setup};
-use crate::output::{print_json, write_atomic};
+use crate::output::{check_sizes, output_set, print_json};
 
 #[derive(Debug, Args)]
 pub(crate) struct EnvelopeArgs {
@@ -37,6 +39,9 @@ pub(crate) struct EnvelopeArgs {
     /// Write envelope.stl, envelope.glb and summary.json here.
     #[arg(long, value_name = "DIR")]
     pub(crate) out: PathBuf,
+    /// Largest total size of the files written, MB (checked before anything is written).
+    #[arg(long, value_name = "MB", default_value_t = crate::output::DEFAULT_MAX_OUTPUT_MB)]
+    pub(crate) max_output_mb: u64,
     /// Print the JSON summary (the default output is a short human-readable report).
     #[arg(long)]
     pub(crate) json: bool,
@@ -107,13 +112,22 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
         .with_tolerance(args.tolerance);
     let env = envelope(&program, &cutters, range, &options)
         .with_context(|| format!("sweeping {}", args.program.display()))?;
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
     let stl = args.out.join("envelope.stl");
-    write_stl(&stl, &env.mesh).with_context(|| format!("writing {}", stl.display()))?;
     let glb = args.out.join("envelope.glb");
-    write_glb(&glb, &env.mesh, &GlbOptions::default())
-        .with_context(|| format!("writing {}", glb.display()))?;
+    let mut set = output_set(&args.out, args.max_output_mb)?;
+    let (v, t) = (env.mesh.vertices.len(), env.mesh.triangles.len());
+    check_sizes(
+        &set,
+        &[
+            ("envelope.stl", stl_size(t as u64)),
+            ("envelope.glb", glb_size_bound(v, t, false, Shading::Flat)),
+        ],
+    )?;
+    set.write("envelope.stl", |w| write_stl_to(w, &env.mesh))
+        .context("writing envelope.stl")?;
+    let glb_data = glb_bytes(&env.mesh, &GlbOptions::default()).context("encoding envelope.glb")?;
+    set.write_bytes("envelope.glb", &glb_data)?;
+    drop(glb_data);
     let r = env.report;
     let summary = EnvelopeSummary {
         moves: r.moves.len(),
@@ -132,7 +146,8 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
         lattice: r.lattice,
     };
     let json = serde_json::to_vec_pretty(&summary).context("encoding the summary")?;
-    write_atomic(&args.out.join("summary.json"), &json)?;
+    set.write_bytes("summary.json", &json)?;
+    set.commit()?;
     if args.json {
         return print_json(&summary);
     }

@@ -2,11 +2,12 @@
 //! the part or the check geometry, and how deep (`DIR/violations.csv`, `DIR/points.csv`,
 //! `DIR/summary.json`).
 
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
 use clap::Args;
+use swarf_io::OutputSet;
 use swarf_path::Program;
 use swarf_plan::gouge::{
     check_program_observed, GougeOptions, GougeReport, GougeSummary, GougeSurface, GougeTools,
@@ -15,7 +16,7 @@ use swarf_surface::{CompoundSurface, PreparedSurface};
 
 use crate::cli::SetupArgs;
 use crate::commands::tools::{load_setup, resolve_all, Setup};
-use crate::output::{print_json, write_atomic};
+use crate::output::{check_sizes, output_set, print_json, DEFAULT_MAX_OUTPUT_MB};
 
 /// `swarf gouge`.
 #[derive(Debug, Args)]
@@ -83,7 +84,9 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
     bar.finish_and_clear();
     let report = report?;
     let summary = report.summary(&opts, program.moves.len(), t0.elapsed().as_secs_f64());
-    write_outputs(&args.out, &surface, &program, &report, &summary)?;
+    let mut set = output_set(&args.out, DEFAULT_MAX_OUTPUT_MB)?;
+    write_outputs(&mut set, "", &surface, &program, &report, &summary)?;
+    set.commit()?;
     if args.json {
         return print_json(&summary);
     }
@@ -143,23 +146,33 @@ pub(crate) fn tools_for(
 
 /// Writes `violations.csv`, `points.csv` and `summary.json` into `dir` (created if missing).
 pub(crate) fn write_outputs(
-    dir: &Path,
+    set: &mut OutputSet,
+    prefix: &str,
     surface: &CompoundSurface,
     program: &Program,
     report: &GougeReport,
     summary: &GougeSummary,
 ) -> Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    let mut csv = Vec::new();
+    let mut violations = Vec::new();
     report
-        .write_violations_csv(surface, &program.files, &mut csv)
+        .write_violations_csv(surface, &program.files, &mut violations)
         .context("formatting violations.csv")?;
-    write_atomic(&dir.join("violations.csv"), &csv)?;
-    csv.clear();
+    let mut points = Vec::new();
     report
-        .write_points_csv(surface, &program.files, &mut csv)
+        .write_points_csv(surface, &program.files, &mut points)
         .context("formatting points.csv")?;
-    write_atomic(&dir.join("points.csv"), &csv)?;
     let json = serde_json::to_vec_pretty(summary).context("encoding the summary")?;
-    write_atomic(&dir.join("summary.json"), &json)
+    let names = ["violations.csv", "points.csv", "summary.json"].map(|n| format!("{prefix}{n}"));
+    check_sizes(
+        set,
+        &[
+            (&names[0], violations.len() as u64),
+            (&names[1], points.len() as u64),
+            (&names[2], json.len() as u64),
+        ],
+    )?;
+    set.write_bytes(&names[0], &violations)?;
+    set.write_bytes(&names[1], &points)?;
+    set.write_bytes(&names[2], &json)?;
+    Ok(())
 }

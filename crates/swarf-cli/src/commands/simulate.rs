@@ -4,11 +4,11 @@ use std::fmt::Write as _;
 use std::ops::ControlFlow;
 use std::sync::atomic::{AtomicBool, Ordering};
 
-use std::path::Path;
-
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
-use swarf_io::{ContourOptions, GlbOptions};
+use swarf_io::glb::{glb_bytes, glb_size_bound};
+use swarf_io::output_set::stl_size;
+use swarf_io::{write_stl_to, ContourOptions, GlbOptions, OutputSet, Shading};
 use swarf_path::{MoveKind, Program};
 use swarf_stock::{
     simulate_observed, Collision, MeshOptions, SimOptions, SimulationReport, StockError, StockSpec,
@@ -18,7 +18,7 @@ use swarf_tool::ToolTable;
 
 use crate::cli::SimulateArgs;
 use crate::commands::tools::{load_setup, resolve_all, Setup};
-use crate::output::{print_json, write_atomic};
+use crate::output::{check_sizes, output_set, print_json};
 
 /// The JSON summary. The first nine keys are a contract; the rest may grow.
 #[derive(Serialize)]
@@ -135,7 +135,9 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
         .with_context(|| format!("simulating {}", args.program.display()))?;
     let summary = SimulateSummary::new(&report);
     if let Some(dir) = &args.out {
-        write_outputs(dir, &program, &stock, &report, &summary)?;
+        let mut set = output_set(dir, args.max_output_mb)?;
+        write_outputs(&mut set, &program, &stock, &report, &summary)?;
+        set.commit()?;
     }
     if args.json {
         print_json(&summary)
@@ -259,24 +261,41 @@ fn moves_csv(program: &Program, report: &SimulationReport) -> String {
     out
 }
 
-/// Writes the machined part (`stock.stl`, `stock.glb`), `moves.csv` and `summary.json`.
+/// Writes the machined part (`stock.stl`, `stock.glb`), `moves.csv` and `summary.json` into
+/// `set`, after checking their estimated sizes against its limit (the mesh is sized from the
+/// stock before it is built). The caller commits the set.
 pub(crate) fn write_outputs(
-    dir: &Path,
+    set: &mut OutputSet,
     program: &Program,
     stock: &TriDexel,
     report: &SimulationReport,
     summary: &SimulateSummary,
 ) -> Result<()> {
-    std::fs::create_dir_all(dir).with_context(|| format!("creating {}", dir.display()))?;
-    let (mesh, _) = stock.to_mesh(&ContourOptions::default());
-    swarf_io::write_stl(&dir.join("stock.stl"), &mesh).context("writing stock.stl")?;
-    swarf_io::write_glb(&dir.join("stock.glb"), &mesh, &GlbOptions::default())
-        .context("writing stock.glb")?;
-    write_atomic(
-        &dir.join("moves.csv"),
-        moves_csv(program, report).as_bytes(),
-    )?;
+    let (v, t) = stock.mesh_size_estimate();
+    let csv = moves_csv(program, report);
     let mut json = serde_json::to_vec_pretty(summary)?;
     json.push(b'\n');
-    write_atomic(&dir.join("summary.json"), &json)
+    let (v, t) = (
+        usize::try_from(v).unwrap_or(usize::MAX),
+        usize::try_from(t).unwrap_or(usize::MAX),
+    );
+    check_sizes(
+        set,
+        &[
+            ("stock.stl", stl_size(t as u64)),
+            ("stock.glb", glb_size_bound(v, t, false, Shading::Flat)),
+            ("moves.csv", csv.len() as u64),
+            ("summary.json", json.len() as u64),
+        ],
+    )?;
+    let (mesh, _) = stock.to_mesh(&ContourOptions::default());
+    set.write("stock.stl", |w| write_stl_to(w, &mesh))
+        .context("writing stock.stl")?;
+    let glb = glb_bytes(&mesh, &GlbOptions::default()).context("encoding stock.glb")?;
+    drop(mesh);
+    set.write_bytes("stock.glb", &glb)?;
+    drop(glb);
+    set.write_bytes("moves.csv", csv.as_bytes())?;
+    set.write_bytes("summary.json", &json)?;
+    Ok(())
 }

@@ -1,0 +1,106 @@
+//! Output sets: sizes refused before anything is written, all files or none, no temporaries
+//! left behind, earlier files kept when a new set fails.
+
+use std::io::Write;
+use swarf_io::{IoError, OutputSet};
+
+fn temp_dir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("swarf-io-set-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn names(dir: &std::path::Path) -> Vec<String> {
+    let mut v: Vec<String> = std::fs::read_dir(dir)
+        .map(|r| {
+            r.map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+                .collect()
+        })
+        .unwrap_or_default();
+    v.sort();
+    v
+}
+
+#[test]
+fn a_set_over_the_limit_writes_nothing_and_names_every_size() {
+    let d = temp_dir("limit");
+    let set = OutputSet::new(&d, 1000).unwrap();
+    let e = set
+        .check_sizes(&[("a.stl", 900), ("b.glb", 200)])
+        .unwrap_err();
+    assert!(matches!(e, IoError::TooLarge { .. }));
+    let m = e.to_string();
+    for part in [
+        "1.1 kB",
+        "a.stl 900 B",
+        "b.glb 200 B",
+        "limit of 1.0 kB",
+        "nothing was written",
+    ] {
+        assert!(m.contains(part), "{part:?} in {m}");
+    }
+    drop(set);
+    assert!(!d.exists(), "not even the folder is made");
+    set_ok(&d, 1100);
+}
+
+fn set_ok(d: &std::path::Path, limit: u64) {
+    let set = OutputSet::new(d, limit).unwrap();
+    set.check_sizes(&[("a.stl", 900), ("b.glb", 200)]).unwrap();
+}
+
+#[test]
+fn a_failing_file_leaves_the_previous_set_untouched() {
+    let d = temp_dir("fail");
+    let mut set = OutputSet::new(&d, u64::MAX).unwrap();
+    set.write_bytes("a.txt", b"old a").unwrap();
+    set.write_bytes("sub/b.txt", b"old b").unwrap();
+    set.commit().unwrap();
+    assert_eq!(names(&d), ["a.txt", "sub"]);
+
+    // The second file fails while being written: nothing changes.
+    let mut set = OutputSet::new(&d, u64::MAX).unwrap();
+    set.write_bytes("a.txt", b"new a").unwrap();
+    let e = set
+        .write("sub/b.txt", |w| {
+            w.write_all(b"half")?;
+            Err(std::io::Error::other("disk full"))
+        })
+        .unwrap_err();
+    assert!(e.to_string().contains("disk full"), "{e}");
+    drop(set);
+    assert_eq!(std::fs::read_to_string(d.join("a.txt")).unwrap(), "old a");
+    assert_eq!(
+        std::fs::read_to_string(d.join("sub/b.txt")).unwrap(),
+        "old b"
+    );
+    assert_eq!(names(&d), ["a.txt", "sub"], "no temporary left");
+    assert_eq!(names(&d.join("sub")), ["b.txt"]);
+
+    // A folder in the way of the last file: the set fails before any rename.
+    std::fs::create_dir_all(d.join("c.txt")).unwrap();
+    let mut set = OutputSet::new(&d, u64::MAX).unwrap();
+    set.write_bytes("a.txt", b"new a").unwrap();
+    assert!(set.write_bytes("c.txt", b"c").is_err());
+    drop(set);
+    assert_eq!(std::fs::read_to_string(d.join("a.txt")).unwrap(), "old a");
+    assert_eq!(names(&d), ["a.txt", "c.txt", "sub"]);
+
+    // A set that succeeds replaces every file.
+    let mut set = OutputSet::new(&d, u64::MAX).unwrap();
+    set.write_bytes("a.txt", b"new a").unwrap();
+    set.write_bytes("sub/b.txt", b"new b").unwrap();
+    assert_eq!(std::fs::read_to_string(d.join("a.txt")).unwrap(), "old a");
+    set.commit().unwrap();
+    assert_eq!(std::fs::read_to_string(d.join("a.txt")).unwrap(), "new a");
+    assert_eq!(
+        std::fs::read_to_string(d.join("sub/b.txt")).unwrap(),
+        "new b"
+    );
+    assert_eq!(
+        names(&d),
+        ["a.txt", "c.txt", "sub"],
+        "no temporary or backup left"
+    );
+    std::fs::remove_dir_all(&d).unwrap();
+}
