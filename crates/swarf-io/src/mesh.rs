@@ -12,6 +12,19 @@ use std::collections::HashMap;
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 
+/// What [`TriMesh::repair_degenerate_f32`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct DegenerateRepair {
+    /// Vertices merged into another at the same `f32` position.
+    pub merged_vertices: usize,
+    /// Triangles dropped because two of their corners merged.
+    pub collapsed_triangles: usize,
+    /// Zero-area triangles removed by splitting their neighbour.
+    pub split_caps: usize,
+    /// Zero-area triangles left (no neighbour could be split without a non-manifold edge).
+    pub remaining_flat: usize,
+}
+
 /// An indexed triangle mesh: positions in mm, triangles counter-clockwise seen from outside,
 /// optional linear RGBA colour per vertex.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -337,6 +350,127 @@ impl TriMesh {
         removed
     }
 
+    /// Makes the mesh the files store (`f32` positions) free of degenerate triangles without
+    /// opening it: vertices whose `f32` positions coincide are merged (a file cannot tell them
+    /// apart: its readers weld them, and edges of a closed mesh became shared by four or six
+    /// triangles), triangles that collapse are dropped, and each remaining triangle with zero
+    /// area at `f32` positions — three distinct corners on a line — is removed by splitting
+    /// the triangle across its longest edge at its middle corner (which keeps every edge in
+    /// two triangles). Positions stay `f64`; vertices no triangle uses any more are dropped
+    /// (the others keep their order). A mesh with nothing to repair is left exactly as it was.
+    pub fn repair_degenerate_f32(&mut self) -> DegenerateRepair {
+        let mut rep = DegenerateRepair::default();
+        let key = |p: Vec3| [p.x, p.y, p.z].map(|c| (c as f32 + 0.0).to_bits());
+        let mut first: HashMap<[u32; 3], u32> = HashMap::with_capacity(self.vertices.len());
+        let mut remap: Vec<u32> = Vec::with_capacity(self.vertices.len());
+        for (i, &p) in self.vertices.iter().enumerate() {
+            let k = *first.entry(key(p)).or_insert(i as u32);
+            rep.merged_vertices += usize::from(k != i as u32);
+            remap.push(k);
+        }
+        drop(first);
+        let mut tris: Vec<Option<[u32; 3]>> = Vec::with_capacity(self.triangles.len());
+        for t in &self.triangles {
+            let t = t.map(|i| remap[i as usize]);
+            if t[0] == t[1] || t[1] == t[2] || t[2] == t[0] {
+                rep.collapsed_triangles += 1;
+                tris.push(None);
+            } else {
+                tris.push(Some(t));
+            }
+        }
+        drop(remap);
+        let f = |p: Vec3| Vec3::new(p.x as f32 as f64, p.y as f32 as f64, p.z as f32 as f64);
+        let verts = &self.vertices;
+        let flat = |t: [u32; 3]| {
+            let [a, b, c] = t.map(|i| f(verts[i as usize]));
+            (b - a).cross(c - a) == Vec3::ZERO
+        };
+        let mut work: Vec<usize> = (0..tris.len())
+            .filter(|&i| tris[i].is_some_and(flat))
+            .collect();
+        if !work.is_empty() {
+            let mut edges: HashMap<(u32, u32), usize> = HashMap::with_capacity(3 * tris.len());
+            for (i, t) in tris.iter().enumerate() {
+                if let Some(t) = t {
+                    for k in 0..3 {
+                        edges.insert((t[k], t[(k + 1) % 3]), i);
+                    }
+                }
+            }
+            let mut budget = 4 * tris.len() + 16;
+            while let Some(i) = work.pop() {
+                budget = budget.saturating_sub(1);
+                let Some(t) = tris[i] else { continue };
+                if !flat(t) || budget == 0 {
+                    continue;
+                }
+                // The longest side (a, b) in the triangle's order; c lies between a and b.
+                let len = |k: usize| {
+                    (f(verts[t[k] as usize]) - f(verts[t[(k + 1) % 3] as usize])).length_squared()
+                };
+                let k = (0..3)
+                    .max_by(|&x, &y| len(x).total_cmp(&len(y)))
+                    .unwrap_or(0);
+                let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+                let Some(&j) = edges.get(&(b, a)) else {
+                    continue;
+                };
+                let Some(n) = tris[j] else { continue };
+                let d = n.iter().copied().find(|&v| v != a && v != b).unwrap_or(c);
+                if j == i || d == c || edges.contains_key(&(c, d)) || edges.contains_key(&(d, c)) {
+                    continue;
+                }
+                for old in [t, n] {
+                    for k in 0..3 {
+                        edges.remove(&(old[k], old[(k + 1) % 3]));
+                    }
+                }
+                tris[i] = Some([b, c, d]);
+                tris[j] = Some([c, a, d]);
+                for idx in [i, j] {
+                    let nt = tris[idx].unwrap_or([0; 3]);
+                    for k in 0..3 {
+                        edges.insert((nt[k], nt[(k + 1) % 3]), idx);
+                    }
+                    work.push(idx);
+                }
+                rep.split_caps += 1;
+            }
+            rep.remaining_flat = tris.iter().flatten().filter(|&&t| flat(t)).count();
+        }
+        if rep.merged_vertices == 0 && rep.collapsed_triangles == 0 && rep.split_caps == 0 {
+            return rep;
+        }
+        self.triangles = tris.into_iter().flatten().collect();
+        // Drop unused vertices, keeping the order of the others.
+        let mut used = vec![u32::MAX; self.vertices.len()];
+        for t in &self.triangles {
+            for &v in t {
+                used[v as usize] = 0;
+            }
+        }
+        let mut next = 0u32;
+        for u in used.iter_mut() {
+            if *u == 0 {
+                *u = next;
+                next += 1;
+            }
+        }
+        let keep = |i: usize| used[i] != u32::MAX;
+        self.vertices = (0..self.vertices.len())
+            .filter(|&i| keep(i))
+            .map(|i| self.vertices[i])
+            .collect();
+        if let Some(c) = &self.colors {
+            self.colors = Some((0..c.len()).filter(|&i| keep(i)).map(|i| c[i]).collect());
+        }
+        for t in &mut self.triangles {
+            *t = t.map(|v| used[v as usize]);
+        }
+        rep
+    }
+
     /// Appends `other` (its indices shifted). Colours are kept when both meshes have them or
     /// the result would otherwise have none; a mesh without colours contributes opaque white.
     pub fn merge(&mut self, other: &TriMesh) {
@@ -405,6 +539,40 @@ mod tests {
         assert_eq!(count, 3);
         assert_eq!(ex.len(), 3);
         assert!(ex.iter().all(|e| e.uses == 1));
+    }
+
+    #[test]
+    fn degenerate_triangles_are_repaired_without_opening_the_mesh() {
+        // A tetrahedron whose edge 0-1 carries a midpoint on one side only: closed, with a
+        // zero-area cap (0, 1, m) and a vertex 1e-12 mm from vertex 3 (one point in f32).
+        let m = tetra();
+        let mut v = m.vertices.clone();
+        v.push(0.5 * (v[0] + v[1])); // 4 = m
+        v.push(v[3] + Vec3::new(0.0, 0.0, 1e-12)); // 5 ~ 3 (1 + 1e-12 is 1 in f32)
+        let t = vec![[0, 2, 1], [0, 4, 5], [4, 1, 3], [0, 1, 4], [0, 3, 2], [1, 2, 3]];
+        let mut mesh = TriMesh::from_parts(v, t);
+        assert!(!mesh.edge_report().is_clean(), "vertex 5 is not vertex 3 yet");
+        let rep = mesh.repair_degenerate_f32();
+        assert_eq!(
+            rep,
+            DegenerateRepair {
+                merged_vertices: 1,
+                collapsed_triangles: 0,
+                split_caps: 1,
+                remaining_flat: 0
+            }
+        );
+        assert!(mesh.edge_report().is_clean(), "{:?}", mesh.edge_report());
+        assert_eq!((mesh.vertices.len(), mesh.triangles.len()), (5, 6));
+        assert!((mesh.volume() - 1.0 / 6.0).abs() < 1e-12);
+        for i in 0..mesh.len() {
+            let [a, b, c] = mesh.corners(i);
+            assert!((b - a).cross(c - a).length() > 1e-3, "triangle {i} is flat");
+        }
+        // Nothing to repair: nothing changes.
+        let before = mesh.clone();
+        assert_eq!(mesh.repair_degenerate_f32(), DegenerateRepair::default());
+        assert_eq!(mesh, before);
     }
 
     #[test]

@@ -393,7 +393,8 @@ pub struct EnvelopeReport {
     pub pieces: usize,
     /// Triangles of the mesh.
     pub triangles: usize,
-    /// The mesh is closed (every edge shared by exactly two triangles).
+    /// The mesh is closed (every edge shared by exactly two triangles, in opposite
+    /// directions), as its files store it (`f32` positions).
     pub closed: bool,
     /// Volume enclosed by the mesh, mm³.
     pub volume_mm3: f64,
@@ -518,7 +519,8 @@ pub fn envelope(
         moves: selected,
         pieces: work.len(),
         triangles: mesh.len(),
-        closed: mesh.is_closed(),
+        // Of the mesh as written: contouring leaves no two vertices at one `f32` position.
+        closed: mesh.edge_report().is_clean(),
         volume_mm3: mesh.volume(),
         volume_xyz_mm3: [0, 1, 2].map(|k| grid.volume_from(k)),
         resolution_mm: options.resolution,

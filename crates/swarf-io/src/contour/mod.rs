@@ -305,5 +305,11 @@ pub fn dual_contour_with_stats<G: HermiteGrid + ?Sized>(
         return (TriMesh::new(), ContourStats::default());
     }
     let store = lines::Store::build(grid, lattice);
-    extract::extract(&store, grid, options)
+    let (mut mesh, mut stats) = extract::extract(&store, grid, options);
+    // Cells whose vertices are clamped to a shared corner or edge can place two vertices at one
+    // point, or three on a line: what a file stores must stay a 2-manifold without them.
+    mesh.repair_degenerate_f32();
+    stats.vertices = mesh.vertices.len();
+    stats.triangles = mesh.triangles.len();
+    (mesh, stats)
 }
