@@ -219,3 +219,35 @@ fn a_tiny_resolution_with_out_is_refused_before_anything_is_written() {
     refused(&o, &["more than the limit of 1.0 MB"]);
     assert!(!out.exists());
 }
+
+#[test]
+fn tiny_resolutions_of_envelope_and_demo_are_refused_under_2_gb() {
+    let p = program(
+        "rl-tiny-env",
+        "slot.ngc",
+        "G21 G90\nG0 X10 Y20 Z5\nG1 Z-3 F200\nG1 X50\nG0 Z5\nM30\n",
+    );
+    let out = temp_dir("rl-tiny-env-out").join("out");
+    let o = limited(&[
+        "envelope",
+        "--program",
+        &p,
+        "--tool",
+        "flat:d=10",
+        "--resolution",
+        "0.01",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    refused(&o, &["envelope lattice would hold", "coarser resolution"]);
+    assert!(!out.exists());
+    let o = limited(&[
+        "demo",
+        "--resolution",
+        "0.02",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    refused(&o, &["stock.stl 6.39 GB", "nothing was written"]);
+    assert!(!out.exists());
+}

@@ -549,9 +549,19 @@ mod tests {
         let mut v = m.vertices.clone();
         v.push(0.5 * (v[0] + v[1])); // 4 = m
         v.push(v[3] + Vec3::new(0.0, 0.0, 1e-12)); // 5 ~ 3 (1 + 1e-12 is 1 in f32)
-        let t = vec![[0, 2, 1], [0, 4, 5], [4, 1, 3], [0, 1, 4], [0, 3, 2], [1, 2, 3]];
+        let t = vec![
+            [0, 2, 1],
+            [0, 4, 5],
+            [4, 1, 3],
+            [0, 1, 4],
+            [0, 3, 2],
+            [1, 2, 3],
+        ];
         let mut mesh = TriMesh::from_parts(v, t);
-        assert!(!mesh.edge_report().is_clean(), "vertex 5 is not vertex 3 yet");
+        assert!(
+            !mesh.edge_report().is_clean(),
+            "vertex 5 is not vertex 3 yet"
+        );
         let rep = mesh.repair_degenerate_f32();
         assert_eq!(
             rep,
