@@ -47,3 +47,86 @@ fn slotted_block_meshes_closed_with_the_dexel_volume_and_crisp_walls() {
     }
     assert!(n > 50, "{n} wall vertices");
 }
+
+/// The machined part as its STL stores it (`f32`, welded by position when read back) is a
+/// 2-manifold without degenerate triangles, on many random programs of lines, arcs, full
+/// circles, helices and plunges with several cutters.
+#[test]
+fn machined_parts_as_written_are_2_manifolds_on_random_programs() {
+    use swarf_path::load::{read_program_str, ReadOptions};
+    use swarf_path::Machine;
+    use swarf_stock::{simulate, SimOptions, Tools};
+    let cutters = [
+        Cutter::flat(6.0).unwrap(),
+        Cutter::ball(6.0).unwrap(),
+        Cutter::bull(8.0, 1.5).unwrap(),
+        Cutter::chamfer(8.0, 90.0).unwrap(),
+    ];
+    let mut seed = 0x5EED_0015_u64;
+    let mut next = move || {
+        seed ^= seed >> 12;
+        seed ^= seed << 25;
+        seed ^= seed >> 27;
+        (seed.wrapping_mul(0x2545_F491_4F6C_DD1D) >> 11) as f64 / (1u64 << 53) as f64
+    };
+    for case in 0..24 {
+        let q = |v: f64| (v * 4.0).round() / 4.0;
+        let mut text = String::from("G21 G90\nG0 X10 Y10 Z5\nG1 Z-1 F200\n");
+        let (mut x, mut y) = (10.0, 10.0);
+        for _ in 0..1 + (next() * 4.0) as usize {
+            let (nx, ny, nz) = (
+                q(2.0 + 16.0 * next()),
+                q(2.0 + 16.0 * next()),
+                q(-3.0 * next()),
+            );
+            match (next() * 4.0) as u32 {
+                0 => {
+                    text.push_str(&format!("G1 X{nx} Y{ny} Z{nz}\n"));
+                    (x, y) = (nx, ny);
+                }
+                1 => text.push_str(&format!(
+                    "G2 X{x} Y{y} I{} J0 Z{nz}\n",
+                    q(1.0 + 4.0 * next())
+                )),
+                2 => {
+                    let r = (nx - x).hypot(ny - y) / 2.0 + 0.5 + 4.0 * next();
+                    text.push_str(&format!("G3 X{nx} Y{ny} R{r:.3}\n"));
+                    (x, y) = (nx, ny);
+                }
+                _ => text.push_str(&format!("G1 Z{nz}\n")),
+            }
+        }
+        text.push_str("M30\n");
+        let program = read_program_str(
+            &text,
+            "r.ngc",
+            Machine::three_axis(),
+            &ReadOptions::default(),
+        )
+        .unwrap();
+        let cutter = &cutters[case % cutters.len()];
+        let tools = Tools::default().with(0, cutter);
+        let h = [0.25, 0.3, 0.2][case % 3];
+        let mut stock =
+            TriDexel::from_box(Vec3::new(0.0, 0.0, -6.0), Vec3::new(20.0, 20.0, 0.0), h).unwrap();
+        simulate(&program, &tools, &mut stock, &SimOptions::default()).unwrap();
+        let (mesh, _) = stock.to_mesh(&Default::default());
+        let mut bytes = Vec::new();
+        swarf_io::write_stl_to(&mut bytes, &mesh).unwrap();
+        let written = swarf_io::stl::parse_stl(&bytes, std::path::Path::new("stock.stl")).unwrap();
+        let what = format!("case {case}, h = {h}, {}:\n{text}", cutter.spec());
+        assert!(
+            written.edge_report().is_clean(),
+            "{what}: {:?}",
+            written.edge_report()
+        );
+        assert_eq!(written.triangles.len(), mesh.triangles.len(), "{what}");
+        for (i, t) in written.triangles.iter().enumerate() {
+            let [a, b, c] = t.map(|v| written.vertices[v as usize]);
+            assert!(
+                (b - a).cross(c - a) != Vec3::ZERO,
+                "{what}: triangle {i} is flat"
+            );
+        }
+    }
+}
