@@ -251,3 +251,15 @@ fn tiny_resolutions_of_envelope_and_demo_are_refused_under_2_gb() {
     refused(&o, &["stock.stl 6.39 GB", "nothing was written"]);
     assert!(!out.exists());
 }
+
+#[test]
+fn an_endless_loop_that_warns_at_every_iteration_ends_under_2_gb() {
+    // Before: ten million copies of the M8 warning (1.6 GB), then an allocation abort.
+    let p = program(
+        "rl-warn",
+        "warn.ngc",
+        "G21 G90\no100 while [1]\nM8\nG1 X1 F100\nG1 X0\no100 endwhile\nM30\n",
+    );
+    let o = limited(&["path", &p]);
+    refused(&o, &["warn.ngc:6", "more than 10000000 loop iterations"]);
+}

@@ -219,6 +219,7 @@ pub fn read_apt(
         let flow = r.record(&done)?;
         r.check_move_limit(&done)?;
         if flow == Flow::Stop {
+            r.sink.finish();
             return Ok(());
         }
     }
@@ -233,6 +234,7 @@ pub fn read_apt(
             "CIRCLE/ not followed by a GOTO/ before the end: ignored".into(),
         );
     }
+    r.sink.finish();
     Ok(())
 }
 

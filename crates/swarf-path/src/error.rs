@@ -88,7 +88,7 @@ impl fmt::Display for PathError {
 
 /// Something harmless the reader did not act on (an unsupported word, a coolant code…),
 /// reported rather than silently dropped.
-#[derive(Clone, Debug, PartialEq, Eq, serde::Serialize)]
+#[derive(Clone, Debug, PartialEq, Eq, Hash, serde::Serialize)]
 pub struct Warning {
     /// Where it is.
     pub file: String,

@@ -9,7 +9,14 @@
 //! limit, naming its file and line. Consumers that do not keep the moves (a streamed summary, the
 //! canonical print) may lift the limit (`u64::MAX`).
 
+use std::collections::HashSet;
+
 use crate::{Canon, CanonSink, PathError, PathErrorKind, SourcePos, Warning};
+
+/// Most distinct warnings a reader passes on (a warning repeated at the same place with the same
+/// words is passed on once: a loop that warns at every iteration would otherwise fill memory);
+/// the rest are counted and said in one last warning.
+pub const MAX_WARNINGS: usize = 10_000;
 
 /// Default of [`GcodeOptions::max_moves`](crate::gcode::GcodeOptions::max_moves) and
 /// [`AptOptions::max_moves`](crate::apt::AptOptions::max_moves): four million motion
@@ -18,13 +25,19 @@ use crate::{Canon, CanonSink, PathError, PathErrorKind, SourcePos, Warning};
 pub const DEFAULT_MAX_MOVES: u64 = 4_000_000;
 
 /// A sink in front of the reader's sink that counts motion events and drops every event from
-/// the first one over the limit on (the reader then stops with [`move_limit_error`]).
+/// the first one over the limit on (the reader then stops with [`move_limit_error`]), and
+/// passes each distinct warning on once, at most [`MAX_WARNINGS`] of them.
 pub(crate) struct MoveLimit<'s> {
     inner: &'s mut dyn CanonSink,
     moves: u64,
     max: u64,
     /// A motion event over the limit was met (and dropped).
     pub(crate) over: bool,
+    /// The warnings passed on.
+    warned: HashSet<Warning>,
+    /// Distinct warnings beyond [`MAX_WARNINGS`], and the file of the last one.
+    unreported: u64,
+    last_file: String,
 }
 
 impl<'s> MoveLimit<'s> {
@@ -34,6 +47,27 @@ impl<'s> MoveLimit<'s> {
             moves: 0,
             max,
             over: false,
+            warned: HashSet::new(),
+            unreported: 0,
+            last_file: String::new(),
+        }
+    }
+
+    /// Says how many warnings were not passed on, if any (at the end of reading).
+    pub(crate) fn finish(&mut self) {
+        if self.unreported > 0 {
+            let message = format!(
+                "{} more distinct warnings are not reported (the reader reports at most \
+                 {MAX_WARNINGS})",
+                self.unreported
+            );
+            self.inner.warn(Warning {
+                file: std::mem::take(&mut self.last_file),
+                line: 0,
+                column: 0,
+                message,
+            });
+            self.unreported = 0;
         }
     }
 
@@ -67,9 +101,16 @@ impl CanonSink for MoveLimit<'_> {
     }
 
     fn warn(&mut self, warning: Warning) {
-        if !self.over {
-            self.inner.warn(warning);
+        if self.over || self.warned.contains(&warning) {
+            return;
         }
+        if self.warned.len() >= MAX_WARNINGS {
+            self.unreported += 1;
+            self.last_file.clone_from(&warning.file);
+            return;
+        }
+        self.warned.insert(warning.clone());
+        self.inner.warn(warning);
     }
 }
 

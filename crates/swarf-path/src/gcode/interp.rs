@@ -306,6 +306,15 @@ impl<'t, 's> Interp<'t, 's> {
             }
         }
         self.comp_flush();
+        if self.sink.over {
+            // A compensated move held back for its corner, made at the end.
+            let pos = SourcePos {
+                file: self.file.to_string(),
+                line: self.cur_line,
+                column: 0,
+            };
+            return Err(crate::limit::move_limit_error(pos, "", self.sink.max()));
+        }
         if !self.ended {
             if !self.frames.is_empty() {
                 return Err(PathError::new(
@@ -322,6 +331,7 @@ impl<'t, 's> Interp<'t, 's> {
             }
             self.warn_at(0, "the program has no M2/M30 end".to_string());
         }
+        self.sink.finish();
         Ok(())
     }
 
