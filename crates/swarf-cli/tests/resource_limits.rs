@@ -263,3 +263,54 @@ fn an_endless_loop_that_warns_at_every_iteration_ends_under_2_gb() {
     let o = limited(&["path", &p]);
     refused(&o, &["warn.ngc:6", "more than 10000000 loop iterations"]);
 }
+
+#[test]
+fn absurd_grids_and_resolutions_of_toolsize_and_gouge_are_refused_under_2_gb() {
+    let d = temp_dir("rl-plan");
+    let o = limited(&["demo", "--out", d.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let f = |n: &str| d.join(n).display().to_string();
+    // Before: a 320 GB allocation and an abort.
+    let o = limited(&[
+        "toolsize",
+        "--surface",
+        &f("floor.json"),
+        "--cutter",
+        "ball",
+        "--grid",
+        "100000",
+        "--out",
+        &f("ts"),
+    ]);
+    refused(
+        &o,
+        &[
+            "--grid 100000 gives 10000000000 grid points",
+            "give a smaller --grid",
+        ],
+    );
+    // Before: bisection of every gouging stretch down to 1e-7 mm, for hours.
+    let o = limited(&[
+        "gouge",
+        "--surface",
+        &f("floor.json"),
+        "--program",
+        &f("demo.ngc"),
+        "--tools",
+        &f("tools.toml"),
+        "--resolution",
+        "0.0000001",
+        "--out",
+        &f("check"),
+    ]);
+    refused(
+        &o,
+        &[
+            "5767.4 mm of tool travel",
+            "more than 1e7",
+            "coarser resolution",
+        ],
+    );
+    assert!(!d.join("ts").exists() && !d.join("check").exists());
+    let _ = std::fs::remove_dir_all(&d);
+}

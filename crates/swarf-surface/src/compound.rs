@@ -12,6 +12,10 @@ use crate::surface::{
 };
 use crate::trim::Trim;
 
+/// Most grid points a command asks [`CompoundSurface::grid`] for (see
+/// [`CompoundSurface::lattice_len`]): four million, a 2000 × 2000 grid on one patch.
+pub const MAX_GRID_POINTS: u64 = 4_000_000;
+
 /// Where a patch came from.
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub enum EntityRef {
@@ -404,11 +408,19 @@ impl CompoundSurface {
             .collect()
     }
 
+    /// The number of points of [`Self::lattice`] for `n` (saturating): compare it with
+    /// [`MAX_GRID_POINTS`] before asking for a grid a user chose.
+    pub fn lattice_len(&self, n: usize) -> u64 {
+        let n = n.max(2) as u64;
+        (self.patches.len() as u64).saturating_mul(n.saturating_mul(n))
+    }
+
     /// Every point of the `n × n` grid of every patch, in [`Self::grid`]'s order, each with
     /// whether it is on the part (the layout maps and meshes are drawn on).
     pub fn lattice(&self, n: usize) -> Vec<(CcPoint, bool)> {
         let n = n.max(2);
-        let mut out = Vec::with_capacity(self.patches.len() * n * n);
+        let len = usize::try_from(self.lattice_len(n)).unwrap_or(usize::MAX);
+        let mut out = Vec::with_capacity(len.min(MAX_GRID_POINTS as usize));
         for (k, p) in self.patches.iter().enumerate() {
             let d = p.surface.domain();
             for i in 0..n {

@@ -144,6 +144,15 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
         shank: args.flute_length.map(ShankCheck::new),
         ..MapOptions::default()
     };
+    let points = surface.lattice_len(args.grid);
+    if points > swarf_surface::compound::MAX_GRID_POINTS {
+        bail!(
+            "--grid {} gives {points} grid points on {} patch(es), more than {}; give a smaller --grid",
+            args.grid,
+            surface.patches.len(),
+            swarf_surface::compound::MAX_GRID_POINTS
+        );
+    }
     let ccs = surface.grid(args.grid);
     let mut prep = PreparedSurface::new(&surface);
     if let Some(path) = &args.check {

@@ -328,6 +328,11 @@ impl GougeTool {
     }
 }
 
+/// Most pieces of [`GougeOptions::resolution`] the program's tool travel may be cut into while
+/// violations are located (each gouging stretch is bisected down to the resolution): ten
+/// million, a few hundred megabytes at most.
+pub const MAX_LOCATED_PIECES: f64 = 1e7;
+
 /// Why a program cannot be checked.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum GougeError {
@@ -346,6 +351,22 @@ pub enum GougeError {
         name: &'static str,
         /// Its value.
         value: f64,
+    },
+    /// The resolution is so fine that locating violations along the program's tool travel
+    /// could take more pieces than memory and time allow.
+    #[error(
+        "resolution {resolution} mm over {travel_mm:.1} mm of tool travel could locate \
+         violations in up to {pieces:.3e} pieces, more than {max:.0e}; give a coarser resolution"
+    )]
+    TooFine {
+        /// The resolution asked for, mm.
+        resolution: f64,
+        /// The program's tool travel (all moves), mm.
+        travel_mm: f64,
+        /// Travel over resolution.
+        pieces: f64,
+        /// The limit ([`MAX_LOCATED_PIECES`]).
+        max: f64,
     },
     /// A move could not be cut into sub-moves.
     #[error(transparent)]

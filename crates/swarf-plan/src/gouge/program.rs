@@ -86,6 +86,25 @@ pub fn check_program_observed(
             return Err(GougeError::BadOption { name, value });
         }
     }
+    let travel_mm: f64 = program
+        .moves
+        .iter()
+        .map(|m| match m.kind {
+            swarf_path::MoveKind::Arc(g) => g.length(),
+            _ => (m.end.tip - m.start.tip).length(),
+        })
+        // A move that is not finite is refused below, with its line.
+        .filter(|l| l.is_finite())
+        .sum();
+    let pieces = travel_mm / opts.resolution;
+    if pieces > super::MAX_LOCATED_PIECES {
+        return Err(GougeError::TooFine {
+            resolution: opts.resolution,
+            travel_mm,
+            pieces,
+            max: super::MAX_LOCATED_PIECES,
+        });
+    }
     for m in &program.moves {
         if tools.get(m.tool).is_none() {
             return Err(GougeError::UnknownTool {
