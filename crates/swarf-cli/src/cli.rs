@@ -46,6 +46,9 @@ pub(crate) enum Command {
     Verify(crate::commands::verify::VerifyArgs),
     /// Run the built-in demo job.
     Demo(DemoArgs),
+    /// Assemble one self-contained HTML report from a command's output folder (summary.json,
+    /// PNG plots, STL meshes, defects.csv or violations.csv).
+    Report(crate::commands::report::ReportArgs),
 }
 
 #[derive(Debug, Args)]
@@ -148,6 +151,10 @@ pub(crate) struct SimulateArgs {
     /// Write stock.stl, stock.glb, moves.csv and summary.json here.
     #[arg(long, value_name = "DIR")]
     pub(crate) out: Option<PathBuf>,
+    /// Also write one self-contained HTML report here (inputs, tools, the machined stock and
+    /// the toolpath in 3-D, collisions linked to their lines, the summary's figures).
+    #[arg(long, value_name = "FILE.html")]
+    pub(crate) report: Option<PathBuf>,
     /// Print the JSON summary (the default output is a short human-readable report).
     #[arg(long)]
     pub(crate) json: bool,
