@@ -46,6 +46,9 @@ pub(crate) enum Command {
     Verify(crate::commands::verify::VerifyArgs),
     /// Run the built-in demo job.
     Demo(DemoArgs),
+    /// Assemble one self-contained HTML report from a command's output folder (summary.json,
+    /// PNG plots, STL meshes, defects.csv or violations.csv).
+    Report(crate::commands::report::ReportArgs),
 }
 
 #[derive(Debug, Args)]
@@ -157,6 +160,10 @@ pub(crate) struct SimulateArgs {
     /// anything is written, and a larger set is refused.
     #[arg(long, value_name = "MB", default_value_t = crate::output::DEFAULT_MAX_OUTPUT_MB)]
     pub(crate) max_output_mb: u64,
+    /// Also write one self-contained HTML report here (inputs, tools, the machined stock and
+    /// the toolpath in 3-D, collisions linked to their lines, the summary's figures).
+    #[arg(long, value_name = "FILE.html")]
+    pub(crate) report: Option<PathBuf>,
     /// Print the JSON summary (the default output is a short human-readable report).
     #[arg(long)]
     pub(crate) json: bool,

@@ -23,6 +23,7 @@ fn main() {
         cli::Command::Gouge(args) => commands::gouge::run(&args),
         cli::Command::Verify(args) => commands::verify::run(&args),
         cli::Command::Demo(args) => commands::demo::run(&args),
+        cli::Command::Report(args) => commands::report::run(&args),
     };
     if let Err(e) = result {
         // A closed pipe (`swarf path x --json | head`) is the reader's choice, not an error.

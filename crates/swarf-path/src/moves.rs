@@ -137,6 +137,36 @@ pub enum AxisSource {
 }
 
 impl Program {
+    /// The tool tip's path as polylines of feed motion (`false`) and of rapid motion (`true`):
+    /// consecutive moves of one kind that join are one polyline; arcs (and moves whose axis
+    /// turns) in `chords` chords each, as the machine moves them ([`Program::pose_at`]). Moves
+    /// with a non-finite tip are left out. For drawing the toolpath.
+    pub fn tip_polylines(&self, chords: usize) -> Vec<(Vec<Vec3>, bool)> {
+        let chords = chords.max(1);
+        let mut out: Vec<(Vec<Vec3>, bool)> = Vec::new();
+        for m in &self.moves {
+            let rapid = matches!(m.kind, MoveKind::Rapid);
+            let curved = matches!(m.kind, MoveKind::Arc(_)) || m.start.axis != m.end.axis;
+            let pts: Vec<Vec3> = if curved {
+                (0..=chords)
+                    .map(|i| self.pose_at(m, i as f64 / chords as f64).tip)
+                    .collect()
+            } else {
+                vec![m.start.tip, m.end.tip]
+            };
+            if !pts.iter().all(|p| p.is_finite()) {
+                continue;
+            }
+            match out.last_mut() {
+                Some((line, r)) if *r == rapid && line.last() == pts.first() => {
+                    line.extend_from_slice(&pts[1..])
+                }
+                _ => out.push((pts, rapid)),
+            }
+        }
+        out
+    }
+
     /// The pose of move `m` at parameter `s ∈ [0, 1]` (`s` = 0 is `m.start`, 1 is `m.end`), as
     /// the machine moves: arcs exactly; linear moves with rotary motion through
     /// [`Program::machine`] at joints interpolated linearly; CL moves by a linear tip and a

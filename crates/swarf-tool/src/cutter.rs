@@ -691,6 +691,26 @@ impl Cutter {
         self.cutting.ray_intersections(ray, out)
     }
 
+    /// The half-profile `(radius, height)` from the tip (on the axis) up the cutting part and
+    /// the shank to the end of the shank (on the axis), `n + 1` heights evenly spaced, for
+    /// drawing the tool (a report's tool figure).
+    pub fn half_profile(&self, n: usize) -> Vec<(f64, f64)> {
+        let top = self.overall_length();
+        let n = n.max(1);
+        let mut out = Vec::with_capacity(n + 3);
+        out.push((0.0, 0.0));
+        out.extend((0..=n).map(|i| {
+            let z = top * i as f64 / n as f64;
+            let r = self
+                .profile_radius(z)
+                .unwrap_or(0.5 * self.shank_diameter())
+                .max(0.0);
+            (r, z)
+        }));
+        out.push((0.0, top));
+        out
+    }
+
     /// Largest diameter of the cutting part.
     pub fn max_diameter(&self) -> f64 {
         2.0 * self.cutting.max_radius()

@@ -5,10 +5,9 @@
 
 use std::fmt::Write as _;
 
-use swarf_geom::math::Vec3;
 use swarf_io::html::{DefectRow, Marker, Plot, Report, Scene, SourceLine, ToolEntry};
 use swarf_io::TriMesh;
-use swarf_path::{MoveKind, Program};
+use swarf_path::Program;
 use swarf_tool::Cutter;
 
 use crate::deviation::Legend;
@@ -32,49 +31,6 @@ pub struct ReportInputs<'a> {
     pub summary: &'a serde_json::Value,
     /// The machined part coloured by deviation ([`crate::deviation_mesh`]) and its legend.
     pub part: (&'a TriMesh, &'a Legend),
-}
-
-/// A cutter's half-profile `(radius, height)` from the tip to the end of the shank.
-pub fn tool_profile(c: &Cutter) -> Vec<(f64, f64)> {
-    let top = c.overall_length();
-    let n = 120;
-    let mut out: Vec<(f64, f64)> = (0..=n)
-        .map(|i| {
-            let z = top * i as f64 / n as f64;
-            let r = c
-                .profile_radius(z)
-                .unwrap_or(0.5 * c.shank_diameter())
-                .max(0.0);
-            (r, z)
-        })
-        .collect();
-    out.insert(0, (0.0, 0.0));
-    out.push((0.0, top));
-    out
-}
-
-/// The tool tip's path, as polylines of feed and of rapid motion (arcs in 8 chords each).
-pub fn toolpath(program: &Program) -> Vec<(Vec<Vec3>, bool)> {
-    let mut out: Vec<(Vec<Vec3>, bool)> = Vec::new();
-    for m in &program.moves {
-        let rapid = matches!(m.kind, MoveKind::Rapid);
-        let pts: Vec<Vec3> = match m.kind {
-            MoveKind::Arc(_) => (0..=8)
-                .map(|i| program.pose_at(m, i as f64 / 8.0).tip)
-                .collect(),
-            _ => vec![m.start.tip, m.end.tip],
-        };
-        if !pts.iter().all(|p| p.is_finite()) {
-            continue;
-        }
-        match out.last_mut() {
-            Some((line, r)) if *r == rapid && line.last() == pts.first() => {
-                line.extend_from_slice(&pts[1..])
-            }
-            _ => out.push((pts, rapid)),
-        }
-    }
-    out
 }
 
 /// The deviation histogram (and the colour scale) as an SVG.
@@ -263,14 +219,14 @@ pub fn html_report(v: &Verification, inputs: &ReportInputs<'_>) -> String {
             .map(|(n, d, c)| ToolEntry {
                 number: *n,
                 description: d.clone(),
-                profile: tool_profile(c),
+                profile: c.half_profile(120),
             })
             .collect(),
         figures,
         summary: inputs.summary.clone(),
         scene: Scene {
             meshes: vec![("machined part".into(), part.clone())],
-            paths: toolpath(program),
+            paths: program.tip_polylines(8),
             markers,
         },
         plots: vec![Plot::Svg {

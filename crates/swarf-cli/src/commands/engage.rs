@@ -95,6 +95,31 @@ impl RunArgs {
             .map_err(|e| reader_error(e, &options))
     }
 
+    /// The stock as given.
+    pub(crate) fn stock_label(&self) -> String {
+        self.stock
+            .clone()
+            .unwrap_or_else(|| "from the tool project".into())
+    }
+
+    /// A report page for a run: the program, its tools, the stock as given and as machined
+    /// (the run's stock after the walk), the toolpath.
+    pub(crate) fn report_page(
+        &self,
+        title: &str,
+        run: &Prepared,
+    ) -> Result<swarf_io::html::Report> {
+        use crate::commands::report;
+        let tools = report::program_tools(&run.program, &run.tools);
+        let (mesh, _) = run.stock.to_mesh(&swarf_io::ContourOptions::default());
+        Ok(
+            report::program_page(title, self.program()?, &run.program, &tools)?
+                .with_input("stock", self.stock_label())
+                .with_input("resolution", format!("{} mm", self.resolution))
+                .with_mesh("machined stock", mesh),
+        )
+    }
+
     /// Reads the program and tools, builds the stock and checks the options.
     pub(crate) fn prepare(&self) -> Result<Prepared> {
         positive_mm("resolution", self.resolution)?;
@@ -159,6 +184,10 @@ pub(crate) struct EngageArgs {
     /// Write engagement.csv, discs.csv, bottom.csv, maps/ and summary.json here.
     #[arg(long, value_name = "DIR")]
     out: PathBuf,
+    /// Also write one self-contained HTML report here (inputs, tools, the machined stock and
+    /// the toolpath in 3-D, the φ–z maps and the area and MRR curves, the summary's figures).
+    #[arg(long, value_name = "FILE.html")]
+    report: Option<PathBuf>,
     /// Print the JSON summary.
     #[arg(long)]
     json: bool,
@@ -214,6 +243,13 @@ pub(crate) fn run(args: &EngageArgs) -> Result<()> {
         opts.dz_mm,
         &summary,
     )?;
+    if let Some(path) = &args.report {
+        let page = args.run.report_page("swarf engage", &run)?;
+        let page = page
+            .with_pngs_in(&args.out.join("maps"))?
+            .with_summary(serde_json::to_value(&summary)?, SUMMARY_KEYS);
+        crate::commands::report::write(&page, path)?;
+    }
     if args.json {
         print_json(&summary)
     } else {
@@ -312,3 +348,14 @@ fn write_outputs(
     json.push(b'\n');
     write_atomic(&dir.join("summary.json"), &json)
 }
+
+/// The contract keys of the summary, shown first on the report page.
+const SUMMARY_KEYS: &[&str] = &[
+    "locations",
+    "engaged_locations",
+    "max_area_mm2",
+    "max_ap_mm",
+    "removed_volume_mm3",
+    "elapsed_s",
+    "simulate_elapsed_s",
+];

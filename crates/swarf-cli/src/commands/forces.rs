@@ -100,6 +100,10 @@ pub(crate) struct ForcesArgs {
     /// Write forces.csv, curves.csv, plots/ and summary.json here (required).
     #[arg(long, value_name = "DIR")]
     out: Option<PathBuf>,
+    /// Also write one self-contained HTML report here (inputs, tools, the machined stock and
+    /// the toolpath in 3-D, the force, torque and power curves, the summary's figures).
+    #[arg(long, value_name = "FILE.html")]
+    report: Option<PathBuf>,
     /// Print the JSON summary.
     #[arg(long)]
     json: bool,
@@ -223,6 +227,24 @@ pub(crate) fn run(args: &ForcesArgs) -> Result<()> {
         engage_elapsed_s: (t_engage.elapsed().as_secs_f64() - force_s).max(0.0),
     };
     write_outputs(out, &rows, &curves, &summary)?;
+    if let Some(path) = &args.report {
+        let page = run_args
+            .report_page("swarf forces", &run)?
+            .with_input("material", summary.material.clone())
+            .with_pngs_in(&out.join("plots"))?
+            .with_summary(
+                serde_json::to_value(&summary)?,
+                &[
+                    "locations",
+                    "max_force_n",
+                    "max_torque_nm",
+                    "max_power_w",
+                    "mean_power_w",
+                    "elapsed_s",
+                ],
+            );
+        crate::commands::report::write(&page, path)?;
+    }
     if args.json {
         print_json(&summary)
     } else {

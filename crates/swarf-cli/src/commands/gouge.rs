@@ -2,7 +2,7 @@
 //! the part or the check geometry, and how deep (`DIR/violations.csv`, `DIR/points.csv`,
 //! `DIR/summary.json`).
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
@@ -44,6 +44,11 @@ pub(crate) struct GougeArgs {
     /// Output folder (created if missing).
     #[arg(long)]
     pub(crate) out: PathBuf,
+    /// Also write one self-contained HTML report here (inputs, tools, the part surface, the
+    /// toolpath and the violations as markers in 3-D, violations linked to their lines, the
+    /// summary's figures).
+    #[arg(long, value_name = "FILE.html")]
+    pub(crate) report: Option<PathBuf>,
     /// Print the JSON summary (the default prints a short report).
     #[arg(long)]
     pub(crate) json: bool,
@@ -87,6 +92,10 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
     let mut set = output_set(&args.out, DEFAULT_MAX_OUTPUT_MB)?;
     write_outputs(&mut set, "", &surface, &program, &report, &summary)?;
     set.commit()?;
+    if let Some(path) = &args.report {
+        let resolved = resolve_all(&program, single.as_ref(), table.as_ref())?;
+        write_report(path, args, &surface, &program, &resolved, &report, &summary)?;
+    }
     if args.json {
         return print_json(&summary);
     }
@@ -175,4 +184,83 @@ pub(crate) fn write_outputs(
     set.write_bytes(&names[1], &points)?;
     set.write_bytes(&names[2], &json)?;
     Ok(())
+}
+
+/// Grid points per patch side of the surface drawn on the report page.
+const REPORT_GRID: usize = 24;
+
+/// `--report FILE.html`: the part surface, the toolpath, every violation (at its deepest
+/// surface point) linked to its line, the summary's figures.
+fn write_report(
+    path: &Path,
+    args: &GougeArgs,
+    surface: &CompoundSurface,
+    program: &Program,
+    resolved: &std::collections::BTreeMap<u32, swarf_tool::ResolvedTool>,
+    report: &GougeReport,
+    summary: &GougeSummary,
+) -> Result<()> {
+    use crate::commands::report as page;
+    let tools = page::resolved_tools(resolved);
+    let mesh = swarf_surface::tessellate(surface, REPORT_GRID, &swarf_surface::Tolerances::DEFAULT);
+    let rows = report.violations.iter().map(|v| {
+        let file = program
+            .files
+            .get(usize::from(v.file))
+            .cloned()
+            .unwrap_or_default();
+        let row = swarf_io::html::DefectRow {
+            cells: vec![
+                v.move_index.to_string(),
+                format!("{file}:{}", v.line),
+                v.kind.as_str().to_string(),
+                v.part.as_str().to_string(),
+                format!("{:.4}", v.depth),
+                format!("{:.3}", v.s_deepest),
+                if v.rapid { "rapid" } else { "feed" }.to_string(),
+            ],
+            line: Some((file, v.line)),
+        };
+        let colour = if v.kind.as_str() == "gouge" {
+            [0.85, 0.05, 0.05]
+        } else {
+            [0.9, 0.55, 0.0]
+        };
+        (row, Some((v.point, colour)))
+    });
+    let mut r = page::program_page("swarf gouge", &args.program, program, &tools)?
+        .with_input("surface", args.surface.display().to_string())
+        .with_mesh("part surface", mesh.mesh)
+        .with_rows(
+            &["move", "line", "kind", "part", "depth mm", "s", "motion"],
+            rows,
+        )
+        .with_sources(&page::sources(program))
+        .with_summary(
+            serde_json::to_value(summary)?,
+            &[
+                "max_gouge_mm",
+                "gouging_moves",
+                "max_interference_mm",
+                "interfering_moves",
+                "tolerance_mm",
+                "points",
+                "moves",
+                "certified",
+            ],
+        );
+    if let Some(check) = &args.check {
+        r = r.with_input("check geometry", check.display().to_string());
+    }
+    if report.violations.len() > swarf_io::html::MAX_ROWS {
+        r = r.with_input(
+            "note",
+            format!(
+                "{} violations; the first {} are listed, all are in violations.csv",
+                report.violations.len(),
+                swarf_io::html::MAX_ROWS
+            ),
+        );
+    }
+    page::write(&r, path)
 }

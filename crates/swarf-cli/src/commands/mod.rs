@@ -7,6 +7,7 @@ pub(crate) mod forces;
 pub(crate) mod gouge;
 pub(crate) mod path;
 mod plots;
+pub(crate) mod report;
 pub(crate) mod schedule;
 pub(crate) mod simulate;
 pub(crate) mod tool;

@@ -2,6 +2,7 @@
 
 use std::fmt::Write as _;
 use std::ops::ControlFlow;
+use std::path::Path;
 use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::{bail, Context, Result};
@@ -138,6 +139,10 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
         let mut set = output_set(dir, args.max_output_mb)?;
         write_outputs(&mut set, &program, &stock, &report, &summary)?;
         set.commit()?;
+    }
+    if let Some(path) = &args.report {
+        let resolved = resolve_all(&program, single.as_ref(), table.as_ref())?;
+        write_report(path, args, &program, &resolved, &stock, &summary)?;
     }
     if args.json {
         print_json(&summary)
@@ -298,4 +303,59 @@ pub(crate) fn write_outputs(
     set.write_bytes("moves.csv", csv.as_bytes())?;
     set.write_bytes("summary.json", &json)?;
     Ok(())
+}
+
+/// The contract keys of the summary, shown first on the report page.
+const SUMMARY_KEYS: &[&str] = &[
+    "stock_volume_mm3",
+    "removed_volume_mm3",
+    "final_volume_mm3",
+    "moves",
+    "rays",
+    "intervals",
+    "rapid_collisions",
+    "holder_collisions",
+    "elapsed_s",
+];
+
+/// `--report FILE.html`: inputs, tools, the machined stock and the toolpath, the collisions
+/// linked to their lines, the summary's figures.
+fn write_report(
+    path: &Path,
+    args: &SimulateArgs,
+    program: &Program,
+    resolved: &std::collections::BTreeMap<u32, swarf_tool::ResolvedTool>,
+    stock: &TriDexel,
+    summary: &SimulateSummary,
+) -> Result<()> {
+    use crate::commands::report;
+    let tools = report::resolved_tools(resolved);
+    let (mesh, _) = stock.to_mesh(&ContourOptions::default());
+    let rows = summary.collisions.iter().map(|c| {
+        let cl = &c.collision;
+        let at = program.moves.get(cl.move_index).map(|m| m.end.tip);
+        let row = swarf_io::html::DefectRow {
+            cells: vec![
+                c.kind.to_string(),
+                cl.move_index.to_string(),
+                format!("{}:{}", cl.file, cl.line),
+                format!("{:.4}", cl.volume_mm3),
+            ],
+            line: Some((cl.file.clone(), cl.line)),
+        };
+        (row, at.map(|p| (p, [0.85, 0.05, 0.05])))
+    });
+    let page = report::program_page("swarf simulate", &args.program, program, &tools)?
+        .with_input(
+            "stock",
+            args.stock
+                .clone()
+                .unwrap_or_else(|| "from the tool project".into()),
+        )
+        .with_input("resolution", format!("{} mm", args.resolution))
+        .with_mesh("machined stock", mesh)
+        .with_rows(&["collision", "move", "line", "volume mm³"], rows)
+        .with_sources(&report::sources(program))
+        .with_summary(serde_json::to_value(summary)?, SUMMARY_KEYS);
+    report::write(&page, path)
 }

@@ -67,6 +67,10 @@ pub(crate) struct ToolsizeArgs {
     /// of the radius per patch) and `part.glb` (the part coloured likewise) are written there.
     #[arg(long)]
     pub(crate) out: PathBuf,
+    /// Also write one self-contained HTML report here (inputs, the part coloured by allowable
+    /// radius in 3-D, the tool-size maps, the summary's figures).
+    #[arg(long, value_name = "FILE.html")]
+    pub(crate) report: Option<PathBuf>,
     /// Print the JSON summary (the default prints one line).
     #[arg(long)]
     pub(crate) json: bool,
@@ -172,6 +176,10 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
     write_atomic(&args.out.join("toolsize.csv"), &csv)?;
     let standard_report = write_standard_and_maps(args, &surface, &map, standard.as_ref())?;
     let summary = map.summary();
+    if let Some(path) = &args.report {
+        let value = with_standard(&summary, standard_report.as_ref())?;
+        write_report(path, args, &surface, &map, value)?;
+    }
     if args.json {
         print_json(&with_standard(&summary, standard_report.as_ref())?)?;
     } else {
@@ -235,6 +243,50 @@ fn with_standard(
         obj.insert("standard".into(), serde_json::to_value(r)?);
     }
     Ok(v)
+}
+
+/// `--report FILE.html`: the part coloured by allowable radius, the maps written to
+/// `DIR/maps`, the summary's figures.
+fn write_report(
+    path: &std::path::Path,
+    args: &ToolsizeArgs,
+    surface: &swarf_surface::CompoundSurface,
+    map: &ToolSizeMap,
+    summary: serde_json::Value,
+) -> Result<()> {
+    let tol = swarf_surface::Tolerances::DEFAULT;
+    let mesh = swarf_plan::plot::part_mesh(surface, map, args.grid, &tol)
+        .context("the part coloured by allowable radius")?;
+    let mut page = swarf_io::html::Report::new("swarf toolsize")
+        .with_input("surface", args.surface.display().to_string())
+        .with_input("cutter family", args.cutter.clone())
+        .with_input("grid", format!("{0} × {0} per patch", args.grid))
+        .with_mesh("part coloured by allowable radius", mesh)
+        .with_pngs_in(&args.out.join("maps"))?
+        .with_summary(
+            summary,
+            &[
+                "points",
+                "bounded_points",
+                "min_radius_mm",
+                "median_radius_mm",
+                "max_radius_mm",
+            ],
+        );
+    for (label, value) in [
+        (
+            "check geometry",
+            args.check.as_ref().map(|p| p.display().to_string()),
+        ),
+        ("4-axis rotary", args.axis4.clone()),
+        ("5-axis lead,tilt", args.five_axis.clone()),
+        ("standard diameters", args.standard.clone()),
+    ] {
+        if let Some(v) = value {
+            page = page.with_input(label, v);
+        }
+    }
+    crate::commands::report::write(&page, path)
 }
 
 #[cfg(test)]

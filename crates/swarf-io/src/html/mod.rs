@@ -20,6 +20,9 @@ use swarf_geom::math::Vec3;
 
 use crate::mesh::TriMesh;
 
+mod page;
+pub use page::{figure_text, MAX_IMAGES, MAX_ROWS};
+
 /// The viewer's script, embedded in every report.
 pub const VIEWER_JS: &str = include_str!("viewer.js");
 
@@ -305,7 +308,8 @@ tr.row{cursor:pointer}tr.row:hover{background:#eef}tr.sel{background:#dde6ff}\
 #view{width:100%;height:520px;display:block;background:#fff;border:1px solid #ccc;touch-action:none}\
 #line{font-family:monospace;white-space:pre-wrap;background:#f3f3f3;padding:6px;min-height:1.4em}\
 .tools{display:flex;gap:12px;flex-wrap:wrap}.tools figure{margin:0;text-align:center}\
-.controls{display:flex;gap:8px;align-items:center;margin:6px 0}pre.src{margin:0}";
+.controls{display:flex;gap:8px;align-items:center;margin:6px 0}pre.src{margin:0}\
+section img{max-width:100%;height:auto}";
 
 /// The report as one HTML document.
 pub fn render(r: &Report) -> String {
@@ -359,8 +363,9 @@ pub fn render(r: &Report) -> String {
         );
     }
     h.push_str("</table></section>");
-    // Defects.
-    h.push_str("<section><h2>Defects</h2><table id=\"defects\">");
+    // Defects (a page without rows has no such section).
+    let hidden = if r.defects.is_empty() { " hidden" } else { "" };
+    let _ = write!(h, "<section{hidden}><h2>Defects</h2><table id=\"defects\">");
     for (i, row) in r.defects.iter().enumerate() {
         let tag = if i == 0 { "th" } else { "td" };
         let attrs = if i == 0 {
@@ -392,7 +397,11 @@ pub fn render(r: &Report) -> String {
     }
     h.push_str("</div></section>");
     // Program lines.
-    h.push_str("<section><h2>Program lines</h2><pre class=\"src\" id=\"source\">");
+    let hidden = if r.source.is_empty() { " hidden" } else { "" };
+    let _ = write!(
+        h,
+        "<section{hidden}><h2>Program lines</h2><pre class=\"src\" id=\"source\">"
+    );
     for s in &r.source {
         let _ = writeln!(
             h,

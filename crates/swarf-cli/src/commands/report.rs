@@ -1,0 +1,122 @@
+//! `--report FILE.html` on the commands that run a program or size a tool, and `swarf report
+//! --from DIR`: the CLI collects what a command has (program, tools, stock, meshes, plots,
+//! summary) into a [`swarf_io::html::Report`], which builds and writes the page.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::{Context, Result};
+use clap::Args;
+use swarf_io::html::{Report, ToolEntry};
+use swarf_path::Program;
+use swarf_tool::Cutter;
+
+/// Points per tool profile drawn on the page.
+const PROFILE_SAMPLES: usize = 120;
+/// Chords per arc in the drawn toolpath.
+const ARC_CHORDS: usize = 8;
+
+/// A page titled `title` with the program's summary and its file as inputs, its toolpath in the
+/// 3-D view, and the tools `tools` (number, description, cutter) drawn.
+pub(crate) fn program_page(
+    title: &str,
+    file: &Path,
+    program: &Program,
+    tools: &[(u32, String, &Cutter)],
+) -> Result<Report> {
+    let summary = serde_json::to_value(swarf_path::summarize(program))?;
+    let mut r = Report::new(title)
+        .with_input("program", file.display().to_string())
+        .with_json_inputs("program", &summary);
+    r.scene.paths = program.tip_polylines(ARC_CHORDS);
+    r.tools = tools
+        .iter()
+        .map(|(n, d, c)| ToolEntry {
+            number: *n,
+            description: d.clone(),
+            profile: c.half_profile(PROFILE_SAMPLES),
+        })
+        .collect();
+    Ok(r)
+}
+
+/// The tools a tool set gives the program, with their descriptions (the library's, or the
+/// cutter's spec).
+pub(crate) fn program_tools<'a>(
+    program: &Program,
+    tools: &'a swarf_tool::ToolSet,
+) -> Vec<(u32, String, &'a Cutter)> {
+    let mut used: Vec<u32> = program.tools.clone();
+    used.extend(program.moves.iter().map(|m| m.tool));
+    used.sort_unstable();
+    used.dedup();
+    used.into_iter()
+        .filter_map(|n| {
+            let c = tools.get(n)?;
+            let d = tools
+                .resolved()
+                .get(&n)
+                .map(|r| r.description.clone())
+                .filter(|d| !d.is_empty())
+                .unwrap_or_else(|| c.spec());
+            Some((n, d, c))
+        })
+        .collect()
+}
+
+/// Resolved tools with their descriptions (the library's, or the cutter's spec).
+pub(crate) fn resolved_tools(
+    resolved: &std::collections::BTreeMap<u32, swarf_tool::ResolvedTool>,
+) -> Vec<(u32, String, &Cutter)> {
+    resolved
+        .iter()
+        .map(|(n, r)| {
+            let d = if r.description.is_empty() {
+                r.cutter.spec()
+            } else {
+                r.description.clone()
+            };
+            (*n, d, &r.cutter)
+        })
+        .collect()
+}
+
+/// The text of the program's files (for the lines a page links to); unreadable ones are left
+/// out.
+pub(crate) fn sources(program: &Program) -> Vec<(String, String)> {
+    program
+        .files
+        .iter()
+        .filter_map(|f| std::fs::read_to_string(f).ok().map(|t| (f.clone(), t)))
+        .collect()
+}
+
+/// Writes the page.
+pub(crate) fn write(report: &Report, path: &Path) -> Result<()> {
+    report
+        .write(path)
+        .with_context(|| format!("writing the report {}", path.display()))
+}
+
+/// `swarf report`.
+#[derive(Debug, Args)]
+pub(crate) struct ReportArgs {
+    /// A command's output folder (`--out DIR` of simulate, engage, forces, toolsize, gouge,
+    /// verify): its summary.json, PNG plots, STL meshes and defects.csv / violations.csv.
+    #[arg(long, value_name = "DIR")]
+    pub(crate) from: PathBuf,
+    /// The page to write (default: DIR/report.html).
+    #[arg(long, value_name = "FILE.html")]
+    pub(crate) out: Option<PathBuf>,
+}
+
+pub(crate) fn run(args: &ReportArgs) -> Result<()> {
+    let page = Report::from_dir(&args.from)
+        .with_context(|| format!("reading the output folder {}", args.from.display()))?;
+    let out = args
+        .out
+        .clone()
+        .unwrap_or_else(|| args.from.join("report.html"));
+    write(&page, &out)?;
+    println!("{}", out.display());
+    Ok(())
+}

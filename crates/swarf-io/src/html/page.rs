@@ -1,0 +1,354 @@
+//! Building a [`Report`] from what a command produced: its JSON summary (the figures are read
+//! from it, so the numbers on the page are the JSON's own text), labelled inputs, PNG plots
+//! already written to disk, defect rows linked to program lines, and writing the page
+//! atomically. [`Report::from_dir`] assembles a page from a command's output folder alone
+//! (`swarf report --from DIR`).
+
+use std::path::{Path, PathBuf};
+
+use super::{DefectRow, Marker, Plot, Report, SourceLine};
+use crate::error::IoError;
+use crate::TriMesh;
+use swarf_geom::math::Vec3;
+
+/// Most rows (and markers) a page lists from a CSV table.
+pub const MAX_ROWS: usize = 2000;
+
+/// Most PNG images a page embeds (a folder with more lists the first ones, sorted by path).
+pub const MAX_IMAGES: usize = 64;
+
+/// A summary value as the page shows it: a string as it is, anything else as its JSON text
+/// (`serde_json` writes a number the same way in the page and in the printed JSON).
+pub fn figure_text(v: &serde_json::Value) -> String {
+    match v {
+        serde_json::Value::String(s) => s.clone(),
+        other => other.to_string(),
+    }
+}
+
+/// A value small enough to be a figure: a number, string, boolean or null, or an array of up
+/// to four of these.
+fn is_figure(v: &serde_json::Value) -> bool {
+    match v {
+        serde_json::Value::Object(_) => false,
+        serde_json::Value::Array(a) => {
+            a.len() <= 4
+                && a.iter().all(|x| {
+                    !matches!(
+                        x,
+                        serde_json::Value::Array(_) | serde_json::Value::Object(_)
+                    )
+                })
+        }
+        _ => true,
+    }
+}
+
+impl Report {
+    /// An empty report titled `title`.
+    pub fn new(title: &str) -> Self {
+        Self {
+            title: title.to_string(),
+            ..Self::default()
+        }
+    }
+
+    /// Embeds `summary` and shows its figures: the keys `first` (those present) in that order,
+    /// then every other top-level figure (number, string, boolean, null, short array) in the
+    /// summary's order. Nested objects and long arrays stay in the embedded JSON only.
+    pub fn with_summary(mut self, summary: serde_json::Value, first: &[&str]) -> Self {
+        let mut figures: Vec<(String, String)> = Vec::new();
+        if let Some(obj) = summary.as_object() {
+            for k in first {
+                if let Some(v) = obj.get(*k).filter(|v| is_figure(v)) {
+                    figures.push((k.to_string(), figure_text(v)));
+                }
+            }
+            for (k, v) in obj {
+                if is_figure(v) && !first.contains(&k.as_str()) {
+                    figures.push((k.clone(), figure_text(v)));
+                }
+            }
+        }
+        self.figures = figures;
+        self.summary = summary;
+        self
+    }
+
+    /// Adds an input row.
+    pub fn with_input(mut self, label: &str, value: impl Into<String>) -> Self {
+        self.inputs.push((label.to_string(), value.into()));
+        self
+    }
+
+    /// Adds the figures of a JSON object as inputs labelled `prefix key` (a program's summary,
+    /// a tool's description…); nested objects and long arrays are left out.
+    pub fn with_json_inputs(mut self, prefix: &str, v: &serde_json::Value) -> Self {
+        if let Some(obj) = v.as_object() {
+            for (k, x) in obj {
+                let empty = matches!(x, serde_json::Value::Array(a) if a.is_empty());
+                if is_figure(x) && !x.is_null() && !empty {
+                    self.inputs.push((format!("{prefix} {k}"), figure_text(x)));
+                }
+            }
+        }
+        self
+    }
+
+    /// Adds a mesh to the 3-D view.
+    pub fn with_mesh(mut self, name: &str, mesh: TriMesh) -> Self {
+        self.scene.meshes.push((name.to_string(), mesh));
+        self
+    }
+
+    /// Adds a PNG plot.
+    pub fn with_png(mut self, title: &str, bytes: Vec<u8>) -> Self {
+        self.plots.push(Plot::Png {
+            title: title.to_string(),
+            bytes,
+        });
+        self
+    }
+
+    /// Adds every PNG under `dir` (recursively, sorted by path, at most [`MAX_IMAGES`]), each
+    /// captioned with its path relative to `dir`. A missing folder adds nothing.
+    pub fn with_pngs_in(mut self, dir: &Path) -> Result<Self, IoError> {
+        let mut files = Vec::new();
+        collect_files(dir, "png", &mut files)?;
+        files.sort();
+        for f in files.into_iter().take(MAX_IMAGES) {
+            let bytes = std::fs::read(&f).map_err(|e| IoError::io(&f, e))?;
+            let title = f.strip_prefix(dir).unwrap_or(&f).display().to_string();
+            self = self.with_png(&title, bytes);
+        }
+        Ok(self)
+    }
+
+    /// Adds a table of rows linked to program lines: `header`, then each row's cells, its
+    /// line, and a marker (position, colour) in the 3-D view. At most [`MAX_ROWS`] rows are
+    /// kept; the caller says where the rest are.
+    pub fn with_rows(mut self, header: &[&str], rows: impl IntoIterator<Item = Row>) -> Self {
+        self.defects = vec![DefectRow {
+            cells: header.iter().map(|s| s.to_string()).collect(),
+            line: None,
+        }];
+        self.scene.markers.clear();
+        for (row, marker) in rows.into_iter().take(MAX_ROWS) {
+            if let Some((position, color)) = marker.filter(|(p, _)| p.is_finite()) {
+                self.scene.markers.push(Marker {
+                    position,
+                    color,
+                    row: self.defects.len() - 1,
+                });
+            }
+            self.defects.push(row);
+        }
+        self
+    }
+
+    /// Fills the program lines the rows name from the files' text `sources` (file name, text),
+    /// in order of first mention, at most [`MAX_ROWS`]; a file not given shows empty lines.
+    pub fn with_sources(mut self, sources: &[(String, String)]) -> Self {
+        let mut wanted: Vec<(String, u32)> = Vec::new();
+        for (f, l) in self.defects.iter().filter_map(|d| d.line.as_ref()) {
+            if wanted.len() < MAX_ROWS && !wanted.iter().any(|(g, m)| g == f && m == l) {
+                wanted.push((f.clone(), *l));
+            }
+        }
+        self.source = wanted
+            .into_iter()
+            .map(|(file, line)| {
+                let text = sources
+                    .iter()
+                    .find(|(f, _)| *f == file)
+                    .and_then(|(_, t)| t.lines().nth((line as usize).checked_sub(1)?))
+                    .unwrap_or("")
+                    .to_string();
+                SourceLine { file, line, text }
+            })
+            .collect();
+        self
+    }
+
+    /// The page, written atomically to `path`.
+    pub fn write(&self, path: &Path) -> Result<(), IoError> {
+        let html = super::render(self);
+        crate::write_atomic(path, |w| std::io::Write::write_all(w, html.as_bytes()))
+    }
+
+    /// A page from a command's output folder: `summary.json` (required: its figures, embedded
+    /// whole), every PNG under the folder, the meshes `*.stl` in it (the machined stock of
+    /// `swarf simulate --out`), and the rows of `defects.csv` (`swarf verify`) or
+    /// `violations.csv` (`swarf gouge`), linked to their `file` and `line` columns and marked at
+    /// their `x,y,z` columns when it has them. The program lines' text is read from the files
+    /// the rows name when they can be read.
+    pub fn from_dir(dir: &Path) -> Result<Self, IoError> {
+        let summary_path = dir.join("summary.json");
+        let text =
+            std::fs::read_to_string(&summary_path).map_err(|e| IoError::io(&summary_path, e))?;
+        let summary: serde_json::Value = serde_json::from_str(&text).map_err(|e| {
+            IoError::malformed(&summary_path, e.to_string(), "a command's JSON summary")
+        })?;
+        let name = dir
+            .file_name()
+            .map_or_else(|| dir.display().to_string(), |n| n.to_string_lossy().into());
+        let mut r = Report::new(&format!("swarf report: {name}"))
+            .with_summary(summary, &[])
+            .with_input("folder", dir.display().to_string())
+            .with_pngs_in(dir)?;
+        let mut stls = Vec::new();
+        let entries = std::fs::read_dir(dir).map_err(|e| IoError::io(dir, e))?;
+        for e in entries {
+            let p = e.map_err(|e| IoError::io(dir, e))?.path();
+            if p.is_file() && has_ext(&p, "stl") {
+                stls.push(p);
+            }
+        }
+        stls.sort();
+        for p in stls {
+            let mesh = crate::read_stl(&p)?;
+            let name = p
+                .file_name()
+                .map_or(String::new(), |n| n.to_string_lossy().into());
+            r = r.with_mesh(&name, mesh);
+        }
+        for table in ["defects.csv", "violations.csv"] {
+            let p = dir.join(table);
+            if p.is_file() {
+                let text = std::fs::read_to_string(&p).map_err(|e| IoError::io(&p, e))?;
+                let n = text.lines().count().saturating_sub(1);
+                r = r.with_input("rows", format!("{n} in {table}"));
+                r = csv_rows(r, &text);
+                break;
+            }
+        }
+        let mut files: Vec<String> = r
+            .defects
+            .iter()
+            .filter_map(|d| d.line.as_ref().map(|(f, _)| f.clone()))
+            .collect();
+        files.sort();
+        files.dedup();
+        let sources: Vec<(String, String)> = files
+            .into_iter()
+            .filter_map(|f| std::fs::read_to_string(&f).ok().map(|t| (f, t)))
+            .collect();
+        Ok(r.with_sources(&sources))
+    }
+}
+
+fn has_ext(p: &Path, ext: &str) -> bool {
+    p.extension()
+        .and_then(|e| e.to_str())
+        .is_some_and(|e| e.eq_ignore_ascii_case(ext))
+}
+
+fn collect_files(dir: &Path, ext: &str, out: &mut Vec<PathBuf>) -> Result<(), IoError> {
+    let Ok(entries) = std::fs::read_dir(dir) else {
+        return Ok(());
+    };
+    for e in entries {
+        let p = e.map_err(|e| IoError::io(dir, e))?.path();
+        if p.is_dir() {
+            collect_files(&p, ext, out)?;
+        } else if has_ext(&p, ext) {
+            out.push(p);
+        }
+    }
+    Ok(())
+}
+
+/// One CSV record's fields (RFC 4180 quoting, as swarf writes it).
+fn csv_fields(line: &str) -> Vec<String> {
+    let mut out = Vec::new();
+    let mut cur = String::new();
+    let mut quoted = false;
+    let mut chars = line.chars().peekable();
+    while let Some(c) = chars.next() {
+        match c {
+            '"' if quoted && chars.peek() == Some(&'"') => {
+                cur.push('"');
+                chars.next();
+            }
+            '"' => quoted = !quoted,
+            ',' if !quoted => out.push(std::mem::take(&mut cur)),
+            c => cur.push(c),
+        }
+    }
+    out.push(cur);
+    out
+}
+
+/// A row and its marker (position, colour).
+type Row = (DefectRow, Option<(Vec3, [f32; 3])>);
+
+/// The rows of a swarf CSV table (one record per line), linked and marked by their columns.
+fn csv_rows(r: Report, text: &str) -> Report {
+    let mut lines = text.lines();
+    let header = lines.next().map(csv_fields).unwrap_or_default();
+    let col = |name: &str| header.iter().position(|h| h == name);
+    let (file, line) = (col("file"), col("line"));
+    let xyz = [col("x"), col("y"), col("z")];
+    let kind = col("kind");
+    let rows: Vec<Row> = lines
+        .map(|l| {
+            let cells = csv_fields(l);
+            let get = |c: Option<usize>| c.and_then(|i| cells.get(i)).map(String::as_str);
+            let link = match (get(file), get(line).and_then(|l| l.parse::<u32>().ok())) {
+                (Some(f), Some(l)) if l > 0 => Some((f.to_string(), l)),
+                _ => None,
+            };
+            let p = xyz.map(|c| get(c).and_then(|v| v.parse::<f64>().ok()));
+            let colour = match get(kind) {
+                Some("excess") => [0.05, 0.2, 0.85],
+                _ => [0.85, 0.05, 0.05],
+            };
+            let marker = match p {
+                [Some(x), Some(y), Some(z)] => Some((Vec3::new(x, y, z), colour)),
+                _ => None,
+            };
+            (DefectRow { cells, line: link }, marker)
+        })
+        .collect();
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    r.with_rows(&header, rows)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn figures_are_the_json_text_and_first_keys_lead() {
+        let s = serde_json::json!({"b": 0.1 + 0.2, "a": "x<y", "nested": {"c": 1}, "v": [1, 2, 3]});
+        let r = Report::new("t").with_summary(s, &["v", "missing"]);
+        let keys: Vec<&str> = r.figures.iter().map(|(k, _)| k.as_str()).collect();
+        assert_eq!(keys[0], "v");
+        assert!(!keys.contains(&"nested") && !keys.contains(&"missing"));
+        let b = r.figures.iter().find(|(k, _)| k == "b").unwrap();
+        assert_eq!(b.1, "0.30000000000000004");
+        assert_eq!(
+            r.figures.iter().find(|(k, _)| k == "v").unwrap().1,
+            "[1,2,3]"
+        );
+        let html = super::super::render(&r);
+        assert!(html.contains("<td data-key=\"a\">x&lt;y</td>"));
+    }
+
+    #[test]
+    fn csv_rows_link_lines_and_markers() {
+        assert_eq!(csv_fields("1,\"a,\"\"b\"\"\",3"), ["1", "a,\"b\"", "3"]);
+        let r = csv_rows(
+            Report::new("t"),
+            "region,kind,x,y,z,file,line\n1,gouge,1,2,3,p.ngc,7\n2,excess,,,,,\n",
+        );
+        assert_eq!(r.defects.len(), 3);
+        assert_eq!(r.defects[1].line, Some(("p.ngc".into(), 7)));
+        assert_eq!(r.defects[2].line, None);
+        assert_eq!(r.scene.markers.len(), 1);
+        assert_eq!(r.scene.markers[0].row, 0);
+        let r = r.with_sources(&[("p.ngc".into(), "a\nb\nc\nd\ne\nf\nG1 X1 (<b>)\n".into())]);
+        assert_eq!(r.source.len(), 1);
+        assert_eq!(r.source[0].text, "G1 X1 (<b>)");
+    }
+}
