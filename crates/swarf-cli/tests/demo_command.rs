@@ -28,9 +28,18 @@ fn demo_simulates_and_writes_a_closed_mesh_of_the_final_stock() {
         "summary.json",
         "canonical.txt",
         "demo.ngc",
+        "report.html",
     ] {
         assert!(dir.join(f).is_file(), "{f} missing");
     }
+    // The report shows the demo's figures as its JSON prints them, the gouges linked to lines.
+    let page = std::fs::read_to_string(dir.join("report.html")).unwrap();
+    let gouge = format!("{}", j["gouge"]["max_gouge_mm"]);
+    assert!(
+        page.contains("gouge.max_gouge_mm") && page.contains(&gouge),
+        "{gouge}"
+    );
+    assert!(page.contains("demo/demo.ngc"));
     let mesh = swarf_io::read_stl(&dir.join("stock.stl")).unwrap();
     assert!(mesh.is_closed());
     let final_volume = sim["final_volume_mm3"].as_f64().unwrap();

@@ -6,6 +6,8 @@
 
 use swarf_io::OutputSet;
 
+use std::path::Path;
+
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
 use swarf_path::canonical::CanonicalPrinter;
@@ -102,14 +104,79 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
         &gouge,
         &gouge_summary,
     )?;
-    set.commit()?;
-    print_json(&DemoReport {
+    let demo = DemoReport {
         stock: STOCK,
         program: &path_report,
         simulation: &summary,
         gouge: &gouge_summary,
         out_dir: dir.display().to_string(),
-    })
+    };
+    let page = report_page(&program, &table, &stock, &floor, &gouge, &demo)?;
+    set.write_bytes("report.html", swarf_io::html::render(&page).as_bytes())?;
+    set.commit()?;
+    print_json(&demo)
+}
+
+/// The demo's summary with its sections' figures lifted to the top (`simulation.removed_volume_mm3`,
+/// `gouge.max_gouge_mm`, …): the figures a page shows are top-level values.
+fn flat_figures(v: &serde_json::Value) -> serde_json::Value {
+    let mut out = serde_json::Map::new();
+    if let Some(obj) = v.as_object() {
+        for (k, x) in obj {
+            match x.as_object() {
+                Some(inner) if k != "program" => {
+                    for (k2, y) in inner {
+                        out.insert(format!("{k}.{k2}"), y.clone());
+                    }
+                }
+                _ => {
+                    out.insert(k.clone(), x.clone());
+                }
+            }
+        }
+    }
+    serde_json::Value::Object(out)
+}
+
+/// The demo's HTML report: the program and its tools, the machined stock, the floor surface
+/// and the toolpath in 3-D, the finishing raster's gouges linked to their lines, the figures.
+fn report_page(
+    program: &swarf_path::Program,
+    table: &swarf_tool::ToolTable,
+    stock: &swarf_stock::TriDexel,
+    floor: &CompoundSurface,
+    gouge: &swarf_plan::gouge::GougeReport,
+    demo: &DemoReport<'_>,
+) -> Result<swarf_io::html::Report> {
+    use crate::commands::report as page;
+    let tools: Vec<(u32, String, &swarf_tool::Cutter)> = table
+        .tools
+        .iter()
+        .map(|(n, t)| (*n, t.description.clone(), &t.cutter))
+        .collect();
+    let (mesh, _) = stock.to_mesh(&swarf_io::ContourOptions::default());
+    let part = swarf_surface::tessellate(floor, 61, &swarf_surface::Tolerances::DEFAULT);
+    let rows = gouge.violations.iter().map(|v| {
+        let row = swarf_io::html::DefectRow {
+            cells: vec![
+                v.move_index.to_string(),
+                format!("demo/demo.ngc:{}", v.line),
+                v.kind.as_str().to_string(),
+                format!("{:.4}", v.depth),
+            ],
+            line: Some(("demo/demo.ngc".to_string(), v.line)),
+        };
+        (row, Some((v.point, [0.85, 0.05, 0.05])))
+    });
+    Ok(
+        page::program_page("swarf demo", Path::new("demo/demo.ngc"), program, &tools)?
+            .with_input("stock", STOCK)
+            .with_mesh("machined stock", mesh)
+            .with_mesh("design floor", part.mesh)
+            .with_rows(&["move", "line", "kind", "depth mm"], rows)
+            .with_sources(&[("demo/demo.ngc".to_string(), PROGRAM.to_string())])
+            .with_summary(flat_figures(&serde_json::to_value(demo)?), &[]),
+    )
 }
 
 /// The program, its tool library and its LinuxCNC canonical motion, beside the results.
