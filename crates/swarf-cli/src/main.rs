@@ -10,7 +10,20 @@ mod output;
 use clap::Parser;
 
 fn main() {
+    output::install_stop_handler();
     let cli = cli::Cli::parse();
+    // The runs that poll for Ctrl-C between moves stop cleanly (no output written); the
+    // others end at once, as without a handler.
+    if matches!(
+        cli.command,
+        cli::Command::Simulate(_)
+            | cli::Command::Verify(_)
+            | cli::Command::Engage(_)
+            | cli::Command::Forces(_)
+            | cli::Command::Schedule(_)
+    ) {
+        output::listen_for_stop();
+    }
     let result = match cli.command {
         cli::Command::Tool(args) => commands::tool::run(&args),
         cli::Command::Path(args) => commands::path::run(&args),

@@ -5,6 +5,42 @@ use std::path::Path;
 
 use anyhow::{Context, Result};
 
+use std::sync::atomic::{AtomicBool, Ordering};
+
+static STOP: AtomicBool = AtomicBool::new(false);
+static LISTENING: AtomicBool = AtomicBool::new(false);
+
+/// Installs the one Ctrl-C handler of the process (first thing in `main`, before any input is
+/// read). While a long run listens ([`listen_for_stop`]), Ctrl-C only asks it to stop
+/// ([`stop_requested`]) and it ends with an error before writing anything; otherwise Ctrl-C
+/// ends the process at once, as it would without a handler (exit 130). With
+/// `SWARF_READY_FILE=PATH` in the environment the file is created once the handler is in
+/// place, for scripts (and tests) that send the signal.
+pub(crate) fn install_stop_handler() {
+    // If it cannot be installed, Ctrl-C keeps its default meaning.
+    let _ = ctrlc::set_handler(|| {
+        if LISTENING.load(Ordering::SeqCst) {
+            STOP.store(true, Ordering::SeqCst);
+        } else {
+            std::process::exit(130);
+        }
+    });
+    if let Some(path) = std::env::var_os("SWARF_READY_FILE") {
+        let _ = std::fs::write(path, b"ready\n");
+    }
+}
+
+/// From now on Ctrl-C asks this run to stop instead of ending the process; a Ctrl-C pressed
+/// before (while the input was read) counts too.
+pub(crate) fn listen_for_stop() {
+    LISTENING.store(true, Ordering::SeqCst);
+}
+
+/// True once Ctrl-C was pressed while listening.
+pub(crate) fn stop_requested() -> bool {
+    STOP.load(Ordering::SeqCst)
+}
+
 /// A progress bar over `moves` moves on stderr, drawn only on a terminal (nothing when piped).
 pub(crate) fn moves_bar(moves: usize) -> indicatif::ProgressBar {
     use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};

@@ -187,6 +187,7 @@ fn bad_input_is_exit_1_with_a_clear_message() {
     assert!(stderr(&o).contains("open edge"), "{}", stderr(&o));
 }
 
+#[cfg(unix)]
 #[test]
 fn ctrl_c_stops_the_run_and_writes_nothing() {
     let dir = temp_dir("ctrlc");
@@ -202,15 +203,23 @@ fn ctrl_c_stops_the_run_and_writes_nothing() {
     }
     std::fs::write(&prog, text).unwrap();
     let out = dir.join("out");
+    // The binary says when its handler is in place: the signal is sent after that, never
+    // before (which would kill it), and not after a guessed delay.
+    let ready = dir.join("ready");
     let child = std::process::Command::new(env!("CARGO_BIN_EXE_swarf"))
         .args(["simulate", "--stock", "box:0,0,-10,100,100,0", "--program"])
         .arg(&prog)
         .args(["--tool", "ball:d=6", "--resolution", "0.2", "--out"])
         .arg(&out)
+        .env("SWARF_READY_FILE", &ready)
         .stderr(std::process::Stdio::piped())
         .spawn()
         .unwrap();
-    std::thread::sleep(std::time::Duration::from_millis(1500));
+    let t0 = std::time::Instant::now();
+    while !ready.exists() {
+        assert!(t0.elapsed().as_secs() < 60, "the binary never became ready");
+        std::thread::yield_now();
+    }
     let kill = std::process::Command::new("kill")
         .args(["-INT", &child.id().to_string()])
         .status()

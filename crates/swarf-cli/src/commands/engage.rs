@@ -2,7 +2,6 @@
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::Instant;
 
 use anyhow::{bail, Context, Result};
@@ -156,8 +155,6 @@ pub(crate) fn walk(
     file: &Path,
     mut each: impl FnMut(Engagement) -> Result<()>,
 ) -> Result<swarf_engage::EngageStats> {
-    static STOP: AtomicBool = AtomicBool::new(false);
-    let _ = ctrlc::set_handler(|| STOP.store(true, Ordering::SeqCst));
     let mut engager = Engager::new(&run.program, &run.tools, &mut run.stock, run.opts)?;
     let bar = crate::output::moves_bar(run.program.moves.len());
     let mut count = 0usize;
@@ -165,7 +162,7 @@ pub(crate) fn walk(
         each(e.with_context(|| format!("engagement along {}", file.display()))?)?;
         count += 1;
         bar.set_position(engager.moves_done() as u64);
-        if STOP.load(Ordering::SeqCst) {
+        if crate::output::stop_requested() {
             bar.finish_and_clear();
             bail!("stopped by Ctrl-C after {count} cutter locations; no output written");
         }

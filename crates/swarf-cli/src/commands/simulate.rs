@@ -3,7 +3,6 @@
 use std::fmt::Write as _;
 use std::ops::ControlFlow;
 use std::path::Path;
-use std::sync::atomic::{AtomicBool, Ordering};
 
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
@@ -160,14 +159,10 @@ pub(crate) fn simulate_with_progress(
     stock: &mut TriDexel,
     options: &SimOptions,
 ) -> Result<SimulationReport> {
-    static STOP: AtomicBool = AtomicBool::new(false);
-    // A second handler cannot be installed (demo and tests run one simulation per process);
-    // if it fails, Ctrl-C simply keeps its default meaning.
-    let _ = ctrlc::set_handler(|| STOP.store(true, Ordering::SeqCst));
     let bar = crate::output::moves_bar(program.moves.len());
     let result = simulate_observed(program, tools, stock, options, &mut |done| {
         bar.set_position(done as u64);
-        if STOP.load(Ordering::SeqCst) {
+        if crate::output::stop_requested() {
             ControlFlow::Break(())
         } else {
             ControlFlow::Continue(())
