@@ -106,3 +106,30 @@ fn a_ramp_draws_the_bottom_face_map() {
     let bottom = std::fs::read_to_string(out.join("bottom.csv")).unwrap();
     assert!(bottom.lines().count() > 10, "{bottom}");
 }
+
+#[test]
+fn outputs_are_written_as_a_set_or_not_at_all() {
+    // `maps` already exists as a file: the maps cannot be written, so nothing may be.
+    let dir = std::env::temp_dir().join(format!("swarf-engage-set-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let prog = dir.join("slot.ngc");
+    std::fs::write(&prog, "G21 G90\nG0 X-10 Y10 Z-5\nG1 X50 F600\n").unwrap();
+    let out = dir.join("out");
+    std::fs::create_dir_all(&out).unwrap();
+    std::fs::write(out.join("maps"), "in the way").unwrap();
+    let o = swarf(&[
+        "engage",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        prog.to_str().unwrap(),
+        "--tool",
+        "flat:d=10",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    for f in ["engagement.csv", "discs.csv", "summary.json"] {
+        assert!(!out.join(f).exists(), "{f} written although the set failed");
+    }
+}

@@ -18,7 +18,7 @@ use crate::commands::simulate::{build_stock, positive_mm};
 use crate::commands::tools::{
     load_machine, load_setup, load_tool_sources, read_options, reader_error, tool_set, Setup,
 };
-use crate::output::{csv_field, print_json, write_atomic};
+use crate::output::{csv_field, output_set, print_json, DEFAULT_MAX_OUTPUT_MB};
 
 /// What a run along a program needs: the stock, the program, its tools and the engagement's
 /// sampling. Shared by `engage`, `forces` and `schedule`.
@@ -312,6 +312,7 @@ fn tables(locations: &[Engagement]) -> [String; 3] {
     [main, discs, bottom]
 }
 
+/// Every output as one set: all of the files, or none.
 fn write_outputs(
     dir: &Path,
     locations: &[Engagement],
@@ -320,30 +321,34 @@ fn write_outputs(
     dz: f64,
     summary: &EngageSummary,
 ) -> Result<()> {
-    let maps = dir.join("maps");
-    std::fs::create_dir_all(&maps).with_context(|| format!("creating {}", maps.display()))?;
-    let [main, discs, bottom] = tables(locations);
-    write_atomic(&dir.join("engagement.csv"), main.as_bytes())?;
-    write_atomic(&dir.join("discs.csv"), discs.as_bytes())?;
-    write_atomic(&dir.join("bottom.csv"), bottom.as_bytes())?;
-    if let Some(e) = largest {
-        plots::phi_z_map(e, dz, &maps.join("largest.png"))?;
-        plots::bottom_map(e, dz, &maps.join("largest_bottom.png"))?;
-    }
     for &n in map_at {
-        let Some(e) = locations.get(n) else {
+        if n >= locations.len() {
             bail!(
                 "--map-at {n}: the program has {} cutter locations",
                 locations.len()
             );
-        };
-        plots::phi_z_map(e, dz, &maps.join(format!("location_{n}.png")))?;
-        plots::bottom_map(e, dz, &maps.join(format!("location_{n}_bottom.png")))?;
+        }
     }
-    plots::along_program(locations, &maps)?;
+    let mut set = output_set(dir, DEFAULT_MAX_OUTPUT_MB)?;
+    let [main, discs, bottom] = tables(locations);
+    set.write_bytes("engagement.csv", main.as_bytes())?;
+    set.write_bytes("discs.csv", discs.as_bytes())?;
+    set.write_bytes("bottom.csv", bottom.as_bytes())?;
+    if let Some(e) = largest {
+        plots::phi_z_map(e, dz, &mut set, "maps/largest.png")?;
+        plots::bottom_map(e, dz, &mut set, "maps/largest_bottom.png")?;
+    }
+    for &n in map_at {
+        let e = &locations[n];
+        plots::phi_z_map(e, dz, &mut set, &format!("maps/location_{n}.png"))?;
+        plots::bottom_map(e, dz, &mut set, &format!("maps/location_{n}_bottom.png"))?;
+    }
+    plots::along_program(locations, &mut set, "maps/")?;
     let mut json = serde_json::to_vec_pretty(summary)?;
     json.push(b'\n');
-    write_atomic(&dir.join("summary.json"), &json)
+    set.write_bytes("summary.json", &json)?;
+    set.commit()?;
+    Ok(())
 }
 
 /// The contract keys of the summary, shown first on the report page.

@@ -13,7 +13,7 @@ use swarf_force::{ForceCurves, ForceModel, LocationForces, Material};
 
 use crate::commands::engage::{walk, Prepared, RunArgs};
 use crate::commands::plots::{self, Series, PALETTE};
-use crate::output::{csv_field, print_json, write_atomic};
+use crate::output::{csv_field, output_set, print_json, DEFAULT_MAX_OUTPUT_MB};
 
 /// The work material: a built-in name or a coefficient file.
 #[derive(Debug, Args)]
@@ -321,10 +321,9 @@ fn write_outputs(
     curves: &[(usize, ForceCurves)],
     summary: &ForcesSummary,
 ) -> Result<()> {
-    let plots_dir = dir.join("plots");
-    std::fs::create_dir_all(&plots_dir)
-        .with_context(|| format!("creating {}", plots_dir.display()))?;
-    write_atomic(&dir.join("forces.csv"), forces_csv(rows).as_bytes())?;
+    // Every output as one set: all of the files, or none.
+    let mut set = output_set(dir, DEFAULT_MAX_OUTPUT_MB)?;
+    set.write_bytes("forces.csv", forces_csv(rows).as_bytes())?;
     let mut csv = String::from("location,angle_deg,fx_n,fy_n,fz_n,torque_nm\n");
     for (loc, c) in curves {
         let full: Vec<[f64; 4]> = (0..c.samples)
@@ -359,30 +358,36 @@ fn write_outputs(
             &format!("forces over one revolution at location {loc}"),
             "spindle angle (deg)",
             "force on the tool (N)",
-            &plots_dir.join(format!("curves_location_{loc}.png")),
+            &mut set,
+            &format!("plots/curves_location_{loc}.png"),
         )?;
     }
-    write_atomic(&dir.join("curves.csv"), csv.as_bytes())?;
+    set.write_bytes("curves.csv", csv.as_bytes())?;
     let along = |f: fn(&LocationForces) -> f64| rows.iter().map(|r| f(&r.f)).collect::<Vec<f64>>();
     plots::curve(
         &along(|f| f.peak_resultant_n),
         "peak resultant force along the program",
         "force (N)",
-        &plots_dir.join("peak_force.png"),
+        &mut set,
+        "plots/peak_force.png",
     )?;
     plots::curve(
         &along(|f| f.torque_peak_nm),
         "peak spindle torque along the program",
         "torque (N m)",
-        &plots_dir.join("torque.png"),
+        &mut set,
+        "plots/torque.png",
     )?;
     plots::curve(
         &along(|f| f.power_peak_w),
         "peak spindle power along the program",
         "power (W)",
-        &plots_dir.join("power.png"),
+        &mut set,
+        "plots/power.png",
     )?;
     let mut json = serde_json::to_vec_pretty(summary)?;
     json.push(b'\n');
-    write_atomic(&dir.join("summary.json"), &json)
+    set.write_bytes("summary.json", &json)?;
+    set.commit()?;
+    Ok(())
 }

@@ -2,7 +2,7 @@
 //! the program and over a spindle revolution. Drawn with the workspace's raster and pixel font
 //! so every swarf plot looks alike.
 
-use std::path::Path;
+use swarf_io::OutputSet;
 
 use anyhow::{Context, Result};
 use swarf_engage::Engagement;
@@ -46,7 +46,7 @@ fn y_ticks(img: &mut RgbImage, max: f64) {
 }
 
 /// The φ–z engagement map of one location: engaged angle intervals per axial disc.
-pub(crate) fn phi_z_map(e: &Engagement, dz: f64, path: &Path) -> Result<()> {
+pub(crate) fn phi_z_map(e: &Engagement, dz: f64, set: &mut OutputSet, name: &str) -> Result<()> {
     let mut img = RgbImage::new(LEFT + W + 30, TOP + H + BOTTOM, PAPER);
     let z_top = e
         .discs
@@ -92,13 +92,12 @@ pub(crate) fn phi_z_map(e: &Engagement, dz: f64, path: &Path) -> Result<()> {
         "immersion angle phi (deg) clockwise from +y_L",
         "z above tip (mm)",
     );
-    img.write_png(path)
-        .with_context(|| format!("writing {}", path.display()))
+    put(set, name, &img)
 }
 
 /// The engaged rings of a flat bottom seen from the spindle (polar: `x_L` right, `y_L` up, φ
 /// clockwise from `+y_L`), written only when the bottom is engaged.
-pub(crate) fn bottom_map(e: &Engagement, dr: f64, path: &Path) -> Result<()> {
+pub(crate) fn bottom_map(e: &Engagement, dr: f64, set: &mut OutputSet, name: &str) -> Result<()> {
     let Some(r_max) = e.bottom.iter().map(|c| c.at_mm + 0.5 * dr).reduce(f64::max) else {
         return Ok(());
     };
@@ -143,8 +142,16 @@ pub(crate) fn bottom_map(e: &Engagement, dr: f64, path: &Path) -> Result<()> {
         label(r_max)
     );
     img.text(8, 12, &title, 1, INK);
-    img.write_png(path)
-        .with_context(|| format!("writing {}", path.display()))
+    put(set, name, &img)
+}
+
+/// Puts `img` into the output set as PNG file `name`.
+fn put(set: &mut OutputSet, name: &str, img: &RgbImage) -> Result<()> {
+    let bytes = img
+        .png_bytes()
+        .with_context(|| format!("encoding {name}"))?;
+    set.write_bytes(name, &bytes)?;
+    Ok(())
 }
 
 /// One curve of a line plot: a legend name, its values at evenly spaced x, a colour.
@@ -164,7 +171,8 @@ pub(crate) fn lines(
     title: &str,
     xlabel: &str,
     ylabel: &str,
-    path: &Path,
+    set: &mut OutputSet,
+    name: &str,
 ) -> Result<()> {
     let mut img = RgbImage::new(LEFT + W + 30, TOP + H + BOTTOM, PAPER);
     let all = series.iter().flat_map(|s| s.values.iter().copied());
@@ -215,35 +223,54 @@ pub(crate) fn lines(
         }
     }
     axes(&mut img, title, xlabel, ylabel);
-    img.write_png(path)
-        .with_context(|| format!("writing {}", path.display()))
+    put(set, name, &img)
 }
 
 /// A curve of `values` over the cutter locations.
-pub(crate) fn curve(values: &[f64], title: &str, ylabel: &str, path: &Path) -> Result<()> {
+pub(crate) fn curve(
+    values: &[f64],
+    title: &str,
+    ylabel: &str,
+    set: &mut OutputSet,
+    name: &str,
+) -> Result<()> {
     let series = [Series {
         name: ylabel,
         values,
         colour: CURVE,
     }];
     let last = values.len().saturating_sub(1).max(1) as f64;
-    lines(&series, (0.0, last), title, "cutter location", ylabel, path)
+    lines(
+        &series,
+        (0.0, last),
+        title,
+        "cutter location",
+        ylabel,
+        set,
+        name,
+    )
 }
 
 /// Area and removal rate along the program.
-pub(crate) fn along_program(locations: &[Engagement], dir: &Path) -> Result<()> {
+pub(crate) fn along_program(
+    locations: &[Engagement],
+    set: &mut OutputSet,
+    dir: &str,
+) -> Result<()> {
     let area: Vec<f64> = locations.iter().map(|e| e.area_mm2).collect();
     let mrr: Vec<f64> = locations.iter().map(|e| e.mrr_mm3_min).collect();
     curve(
         &area,
         "engaged area along the program",
         "area (mm2)",
-        &dir.join("area.png"),
+        set,
+        &format!("{dir}area.png"),
     )?;
     curve(
         &mrr,
         "material removal rate along the program",
         "MRR (mm3/min)",
-        &dir.join("mrr.png"),
+        set,
+        &format!("{dir}mrr.png"),
     )
 }

@@ -16,7 +16,7 @@ use swarf_path::{MoveKind, Program};
 
 use crate::commands::engage::RunArgs;
 use crate::commands::forces::{model, walk_batches, MaterialArgs};
-use crate::output::{print_json, write_atomic};
+use crate::output::{output_set, print_json, DEFAULT_MAX_OUTPUT_MB};
 
 #[derive(Debug, Args)]
 #[command(group(clap::ArgGroup::new("limit").required(true).args(["limit_force", "limit_torque", "limit_power"])))]
@@ -290,7 +290,6 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
         shift += n - 1;
         moves_changed += usize::from(changed);
     }
-    write_atomic(&args.out, rewritten.text.as_bytes())?;
     let still_over_limit: Vec<Over> = schedule
         .moves
         .iter()
@@ -320,9 +319,22 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
     };
     let mut json = serde_json::to_vec_pretty(&summary)?;
     json.push(b'\n');
-    let mut side = args.out.clone().into_os_string();
-    side.push(".schedule.json");
-    write_atomic(&PathBuf::from(side), &json)?;
+    // The program and its summary as one set: both, or neither.
+    let Some(out_name) = args
+        .out
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+    else {
+        bail!("--out {}: not a file name", args.out.display());
+    };
+    let parent = match args.out.parent() {
+        Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+        _ => PathBuf::from("."),
+    };
+    let mut set = output_set(&parent, DEFAULT_MAX_OUTPUT_MB)?;
+    set.write_bytes(&out_name, rewritten.text.as_bytes())?;
+    set.write_bytes(&format!("{out_name}.schedule.json"), &json)?;
+    set.commit()?;
     if args.json {
         return print_json(&summary);
     }
