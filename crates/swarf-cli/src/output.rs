@@ -76,6 +76,64 @@ pub(crate) fn output_set(dir: &Path, max_output_mb: u64) -> Result<swarf_io::Out
         .with_context(|| format!("creating {}", dir.display()))
 }
 
+/// A hidden folder beside an output folder, for library writers that take paths (maps, meshes):
+/// what they write there is moved into the output folder as one set by [`Staging::commit`], and
+/// the folder is removed whatever happens.
+pub(crate) struct Staging {
+    path: std::path::PathBuf,
+}
+
+impl Staging {
+    /// A fresh staging folder for `dir`.
+    pub(crate) fn for_dir(dir: &Path) -> Result<Self> {
+        let name = dir
+            .file_name()
+            .map_or_else(|| "out".into(), |n| n.to_string_lossy().into_owned());
+        let parent = match dir.parent() {
+            Some(p) if !p.as_os_str().is_empty() => p.to_path_buf(),
+            _ => std::path::PathBuf::from("."),
+        };
+        let path = parent.join(format!(".{name}.swarf-staging-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&path);
+        std::fs::create_dir_all(&path).with_context(|| format!("creating {}", path.display()))?;
+        Ok(Self { path })
+    }
+
+    /// The staging folder.
+    pub(crate) fn path(&self) -> &Path {
+        &self.path
+    }
+
+    /// Moves every file written into the staging folder into `dir` as one set (sizes checked
+    /// against `max_output_mb`).
+    pub(crate) fn commit(self, dir: &Path, max_output_mb: u64) -> Result<()> {
+        let mut set = output_set(dir, max_output_mb)?;
+        let mut stack = vec![self.path.clone()];
+        while let Some(d) = stack.pop() {
+            for e in std::fs::read_dir(&d).with_context(|| format!("reading {}", d.display()))? {
+                let p = e?.path();
+                if p.is_dir() {
+                    stack.push(p);
+                    continue;
+                }
+                let rel = p.strip_prefix(&self.path).unwrap_or(&p);
+                let name = rel.to_string_lossy().replace('\\', "/");
+                let bytes =
+                    std::fs::read(&p).with_context(|| format!("reading {}", p.display()))?;
+                set.write_bytes(&name, &bytes)?;
+            }
+        }
+        set.commit()?;
+        Ok(())
+    }
+}
+
+impl Drop for Staging {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.path);
+    }
+}
+
 /// Checks the estimated sizes of the files about to be written; the error says how to get
 /// smaller files or a larger limit.
 pub(crate) fn check_sizes(set: &swarf_io::OutputSet, files: &[(&str, u64)]) -> Result<()> {

@@ -176,3 +176,41 @@ fn faces_that_share_a_name_keep_their_own_rows_and_maps() {
     );
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn outputs_are_written_as_a_set_or_not_at_all() {
+    // `part.glb` is in the way as a folder: that file cannot be written, so none may be.
+    let dir = std::env::temp_dir().join(format!("swarf-toolsize-set-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let surface = dir.join("floor.json");
+    std::fs::write(
+        &surface,
+        r#"{"units": "mm", "patches": [
+  {"name": "floor", "degree_u": 1, "degree_v": 1, "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+   "control_points": [[[0, 0, 0, 1], [0, 20, 0, 1]], [[20, 0, 0, 1], [20, 20, 0, 1]]]}]}"#,
+    )
+    .unwrap();
+    let out = dir.join("out");
+    std::fs::create_dir_all(out.join("part.glb")).unwrap();
+    let o = swarf(&[
+        "toolsize",
+        "--surface",
+        surface.to_str().unwrap(),
+        "--cutter",
+        "ball",
+        "--grid",
+        "3",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(!out.join("toolsize.csv").exists() && !out.join("maps").exists());
+    // No staging folder is left behind.
+    let left: Vec<_> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.contains("staging"))
+        .collect();
+    assert!(left.is_empty(), "{left:?}");
+    std::fs::remove_dir_all(&dir).ok();
+}

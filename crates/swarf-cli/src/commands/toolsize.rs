@@ -165,16 +165,19 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
         prep = prep.with_check_mesh(&path.display().to_string(), &mesh)?;
     }
     let map = swarf_plan::size::allowable_map_prepared(&surface, &prep, &family, &ccs, &opts);
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
+    // The library writes maps and meshes to paths: into a staging folder, moved into --out as
+    // one set at the end (all of the files, or none).
+    let stage = crate::output::Staging::for_dir(&args.out)?;
     let mut csv = Vec::new();
     match &standard {
         Some(c) => c.write_csv(&map, &surface, &mut csv),
         None => map.write_csv(&surface, &mut csv),
     }
     .context("formatting toolsize.csv")?;
-    write_atomic(&args.out.join("toolsize.csv"), &csv)?;
-    let standard_report = write_standard_and_maps(args, &surface, &map, standard.as_ref())?;
+    write_atomic(&stage.path().join("toolsize.csv"), &csv)?;
+    let standard_report =
+        write_standard_and_maps(args, stage.path(), &surface, &map, standard.as_ref())?;
+    stage.commit(&args.out, crate::output::DEFAULT_MAX_OUTPUT_MB)?;
     let summary = map.summary();
     if let Some(path) = &args.report {
         let value = with_standard(&summary, standard_report.as_ref())?;
@@ -213,23 +216,24 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
 /// returned).
 fn write_standard_and_maps(
     args: &ToolsizeArgs,
+    out: &std::path::Path,
     surface: &swarf_surface::CompoundSurface,
     map: &ToolSizeMap,
     standard: Option<&StandardCutters>,
 ) -> Result<Option<StandardReport>> {
     let plot = swarf_plan::plot::PlotOptions::default();
-    swarf_plan::plot::write_patch_maps(surface, map, args.grid, &args.out.join("maps"), &plot)?;
+    swarf_plan::plot::write_patch_maps(surface, map, args.grid, &out.join("maps"), &plot)?;
     let tol = swarf_surface::Tolerances::DEFAULT;
-    swarf_plan::plot::write_part_glb(&args.out.join("part.glb"), surface, map, args.grid, &tol)?;
+    swarf_plan::plot::write_part_glb(&out.join("part.glb"), surface, map, args.grid, &tol)?;
     let Some(cutters) = standard else {
         return Ok(None);
     };
-    let maps = args.out.join("maps");
+    let maps = out.join("maps");
     swarf_plan::plot::write_standard_maps(surface, map, args.grid, cutters, &maps, &plot)?;
     let opts = StandardOptions::default();
     let report = StandardReport::from_grid_map(cutters, surface, map, args.grid, &opts)?;
     let json = serde_json::to_vec_pretty(&report).context("formatting standard.json")?;
-    write_atomic(&args.out.join("standard.json"), &json)?;
+    write_atomic(&out.join("standard.json"), &json)?;
     Ok(Some(report))
 }
 

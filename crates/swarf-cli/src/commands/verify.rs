@@ -152,22 +152,18 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
             .max(2.0 * args.tolerance.max(args.excess_tolerance))
     });
     let (mesh, legend) = deviation_mesh(&stock, design.as_ref(), range);
-    std::fs::create_dir_all(&args.out)
-        .with_context(|| format!("creating {}", args.out.display()))?;
-    let glb = args.out.join("deviation.glb");
+    // Every output as one set: all of the files, or none.
+    let mut set = crate::output::output_set(&args.out, crate::output::DEFAULT_MAX_OUTPUT_MB)?;
     let extras = serde_json::json!({ "swarf_deviation_legend": &legend });
-    swarf_io::write_glb(
-        &glb,
+    let glb = swarf_io::glb::glb_bytes(
         &mesh,
         &GlbOptions::default()
             .with_shading(Shading::Smooth)
             .with_extras(extras),
     )
-    .with_context(|| format!("writing {}", glb.display()))?;
-    write_atomic(
-        &args.out.join("defects.csv"),
-        defects_csv(&v, &program).as_bytes(),
-    )?;
+    .context("encoding deviation.glb")?;
+    set.write_bytes("deviation.glb", &glb)?;
+    set.write_bytes("defects.csv", defects_csv(&v, &program).as_bytes())?;
     let (excess_volume, gouge_volume, method) = match (v.excess_volume_mm3, v.gouge_volume_mm3) {
         (Some(e), Some(g)) => (e, g, "z-rays"),
         _ => (
@@ -202,7 +198,8 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
     };
     let mut json = serde_json::to_vec_pretty(&summary)?;
     json.push(b'\n');
-    write_atomic(&args.out.join("summary.json"), &json)?;
+    set.write_bytes("summary.json", &json)?;
+    set.commit()?;
     if let Some(path) = &args.report {
         let sources: Vec<(String, String)> = program
             .files
