@@ -10,22 +10,12 @@
 
 use criterion::{criterion_main, Criterion};
 use std::time::Instant;
+use swarf_engage::bench::{finishing_program as program, median};
 use swarf_engage::{EngageOptions, Engager};
 use swarf_geom::math::Vec3;
-use swarf_path::load::{read_program_str, ReadOptions};
-use swarf_path::{Machine, Program};
+use swarf_path::Program;
 use swarf_stock::{simulate, SimOptions, Tools, TriDexel};
 use swarf_tool::{Cutter, ToolSet};
-
-fn program(n: usize) -> Program {
-    read_program_str(
-        &swarf_engage::bench::finishing_gcode(n),
-        "finish.ngc",
-        Machine::three_axis(),
-        &ReadOptions::default(),
-    )
-    .unwrap()
-}
 
 fn stock() -> TriDexel {
     TriDexel::from_box(Vec3::ZERO, Vec3::new(120.0, 120.0, 50.0), 0.1).unwrap()
@@ -50,11 +40,6 @@ fn engage_once(p: &Program) -> (f64, usize) {
         .filter(|e| e.is_engaged())
         .count();
     (t.elapsed().as_secs_f64(), n)
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 fn report() {

@@ -2,6 +2,26 @@
 
 use std::fmt::Write as _;
 
+use swarf_path::load::{read_program_str, ReadOptions};
+use swarf_path::{Machine, Program};
+
+/// [`finishing_gcode`] read on a 3-axis machine.
+pub fn finishing_program(n: usize) -> Program {
+    read_program_str(
+        &finishing_gcode(n),
+        "finish.ngc",
+        Machine::three_axis(),
+        &ReadOptions::default(),
+    )
+    .expect("the generated finishing program reads")
+}
+
+/// The median of some timings.
+pub fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
 /// The raster of `swarf-stock`'s `cut` bench as G-code with `n` feed moves: a 10 mm ball end
 /// mill's ~0.5 mm moves over a wavy surface `z = 40 + 3·sin(x/12)·cos(y/15)` in a
 /// 120 × 120 × 50 mm block, 0.6 mm step-over, F2000 at S10000.

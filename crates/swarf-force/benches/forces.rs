@@ -11,23 +11,13 @@ use std::time::Instant;
 
 use criterion::{criterion_main, Criterion};
 use rayon::prelude::*;
+use swarf_engage::bench::{finishing_program as program, median};
 use swarf_engage::{EngageOptions, Engagement, Engager};
 use swarf_force::{CoefficientSource, Coefficients, ForceModel, Material};
 use swarf_geom::math::Vec3;
-use swarf_path::load::{read_program_str, ReadOptions};
-use swarf_path::{Machine, Program};
+use swarf_path::Program;
 use swarf_stock::TriDexel;
 use swarf_tool::{Cutter, ToolSet};
-
-fn program(n: usize) -> Program {
-    read_program_str(
-        &swarf_engage::bench::finishing_gcode(n),
-        "finish.ngc",
-        Machine::three_axis(),
-        &ReadOptions::default(),
-    )
-    .unwrap()
-}
 
 fn tools() -> ToolSet {
     ToolSet::single(Cutter::from_spec("ball:d=10,flutes=2,helix=30").unwrap())
@@ -72,11 +62,6 @@ fn forces(model: &ForceModel, all: &[Engagement]) -> (f64, f64) {
         .map(|e| model.forces(&model.evaluate(e), None).0.peak_resultant_n)
         .reduce(|| 0.0, f64::max);
     (t.elapsed().as_secs_f64(), peak)
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 fn report() {

@@ -323,8 +323,8 @@ pub fn unit_forces(e: &Engagement, edges: &CutterEdges, samples: usize) -> UnitF
             continue;
         }
         u.engaged = true;
-        let v = e.tip_direction + e.axis_rate.cross(e.axis * slab.z);
-        let load = SlabLoad::new(&slab, frame(v), intervals);
+        let f = frame(e.tip_direction + e.axis_rate.cross(e.axis * slab.z));
+        let load = SlabLoad::new(&slab, f, intervals);
         // Exact mean: N/2π ∫ over the engaged angles.
         let full = integrate_span(&load.intervals, 0.0, TAU);
         for k in 0..COEFFS {
@@ -335,7 +335,6 @@ pub fn unit_forces(e: &Engagement, edges: &CutterEdges, samples: usize) -> UnitF
         }
         // Mean chip: h weights (coefficient ktc, tangential, torque-free) → use h directly.
         let (sk, ck) = slab.kappa.sin_cos();
-        let f = frame(v);
         let h_int = -f.z * ck * full[0] + f.x * sk * full[1] + f.y * sk * full[2];
         chip += slab.width * h_int;
         engaged_len += slab.width * full[0];

@@ -5,7 +5,11 @@
 //! the ray grid's error. The entry is made above the stock and the cutter plunges at the
 //! compensated start (LinuxCNC moves a move queued behind a cut-back corner with it).
 
+mod common;
+
 use std::f64::consts::{PI, TAU};
+
+use common::Lcg;
 
 use swarf_geom::math::Vec3;
 use swarf_path::gcode::GcodeOptions;
@@ -14,28 +18,16 @@ use swarf_path::Machine;
 use swarf_stock::{simulate, SimOptions, Tools, TriDexel};
 use swarf_tool::Cutter;
 
-struct Lcg(u64);
-
-impl Lcg {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6_364_136_223_846_793_005)
-            .wrapping_add(1_442_695_040_888_963_407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-}
-
 #[test]
 fn g41_leaves_the_programmed_contour_as_the_wall() {
     let (r, depth, c) = (3.0f64, 4.0f64, [25.0f64, 25.0f64]);
     let mut rng = Lcg(41);
     for case in 0..5 {
         // A convex polygon: 5–8 vertices at sorted random angles, radius 8–12 about c.
-        let n = 5 + (rng.next() * 4.0) as usize;
-        let mut angles: Vec<f64> = (0..n).map(|_| rng.next() * TAU).collect();
+        let n = 5 + (rng.next_f64() * 4.0) as usize;
+        let mut angles: Vec<f64> = (0..n).map(|_| rng.next_f64() * TAU).collect();
         angles.sort_by(f64::total_cmp);
-        let rad = 8.0 + 4.0 * rng.next();
+        let rad = 8.0 + 4.0 * rng.next_f64();
         // Clockwise (decreasing angle): the left of the motion is outside.
         let poly: Vec<[f64; 2]> = angles
             .iter()
