@@ -9,8 +9,9 @@ use rayon::prelude::*;
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 use swarf_path::{FeedMode, Move, MoveKind, Program};
-use swarf_stock::{StockError, ToolShape, TriDexel, DEFAULT_CHORDAL_TOLERANCE_MM};
+use swarf_stock::{StockError, TriDexel, DEFAULT_CHORDAL_TOLERANCE_MM};
 use swarf_sweep::MotionState;
+use swarf_sweep::ToolShape;
 use swarf_tool::{Cutter, ToolSet};
 
 use crate::engagement::{integrate, Engagement, StripResult, StripSamples};

@@ -35,12 +35,12 @@ use swarf_path::{Machine, MoveKind, Program};
 use swarf_plan::gouge::{
     check_program, GougeOptions, GougeReport, GougeSurface, GougeTools, ToolPart, ViolationKind,
 };
-use swarf_stock::{ConvexProfile, SweepShape};
 use swarf_surface::PreparedSurface;
 use swarf_surface::{
     CompoundSurface, CylindricalSurface, NurbsSurface, ParamBox, ParametricSurface, Patch, Surface,
     Tolerances, ToroidalSurface,
 };
+use swarf_sweep::{ConvexProfile, SweepShape};
 use swarf_tool::{Cutter, CutterOptions, Holder, HolderSegment};
 
 mod common;

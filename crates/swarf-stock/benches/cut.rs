@@ -16,7 +16,8 @@ use criterion::{criterion_main, BenchmarkId, Criterion, Throughput};
 use std::time::Instant;
 use swarf_geom::math::Vec3;
 use swarf_geom::{Frame, Ray};
-use swarf_stock::{ConvexProfile, CutStats, LinearMove, SweptConvex, ToolShape, TriDexel};
+use swarf_stock::{CutStats, LinearMove, TriDexel};
+use swarf_sweep::{ConvexProfile, SweptConvex, ToolShape};
 use swarf_tool::Cutter;
 
 /// Height of the wavy finishing surface (tip of the ball), mm.

@@ -9,27 +9,7 @@ pub const MIN_INTERVAL_MM: f64 = 1e-9;
 /// per interval).
 pub const INLINE_INTERVALS: usize = 2;
 
-/// A closed interval `[enter, exit]` of material along a ray, in the ray's coordinate (the
-/// workpiece coordinate along the ray's axis), mm.
-#[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
-pub struct Interval {
-    /// Where the ray enters the material.
-    pub enter: f64,
-    /// Where it leaves (`> enter`).
-    pub exit: f64,
-}
-
-impl Interval {
-    /// Length, mm.
-    pub fn len(&self) -> f64 {
-        self.exit - self.enter
-    }
-
-    /// True when empty (never for a stored interval).
-    pub fn is_empty(&self) -> bool {
-        self.exit <= self.enter
-    }
-}
+pub use swarf_sweep::swept::{overlaps, Interval};
 
 /// The intervals of one ray: sorted ascending, disjoint, each longer than
 /// [`MIN_INTERVAL_MM`]. The first [`INLINE_INTERVALS`] live inline.
@@ -203,12 +183,6 @@ pub(crate) fn subtract_with<E: EndStore, F: FnMut(Interval)>(
         ends.drain(w, k);
     }
     removed
-}
-
-/// True when some interval of `d` overlaps the open range `(lo, hi)`.
-#[inline]
-pub fn overlaps(d: &[Interval], lo: f64, hi: f64) -> bool {
-    d.iter().any(|iv| iv.enter < hi && iv.exit > lo)
 }
 
 #[cfg(test)]

@@ -70,20 +70,6 @@ pub enum StockError {
     /// The mesh has no triangles, or a triangle with a non-finite coordinate.
     #[error("bad mesh: {0}")]
     BadMesh(String),
-    /// A profile that does not close or join.
-    #[error("bad profile: {why}")]
-    BadProfile {
-        /// What is wrong.
-        why: String,
-    },
-    /// A profile that turns inwards at `(rho, z)`: the solid is not convex.
-    #[error("profile is not convex at rho = {rho} mm, z = {z} mm")]
-    NotConvex {
-        /// Radius of the offending joint.
-        rho: f64,
-        /// Height of the offending joint.
-        z: f64,
-    },
     /// A move whose tool number has no cutter.
     #[error("move {index} (line {line}): no cutter for tool {tool}")]
     UnknownTool {
@@ -94,17 +80,10 @@ pub enum StockError {
         /// Tool number.
         tool: u32,
     },
-    /// A move that cannot be cut within the tolerance (a 5-axis move with a non-positive
-    /// tolerance, or needing more than [`crate::five_axis::MAX_SUB_MOVES`] sub-moves).
-    #[error("move {index} (line {line}): {why}")]
-    Unsupported {
-        /// Move index in the program.
-        index: usize,
-        /// Source line.
-        line: u32,
-        /// Why.
-        why: String,
-    },
+    /// A shape that cannot be swept exactly or a 5-axis move that cannot be split within the
+    /// tolerance (from the sweep kernel).
+    #[error(transparent)]
+    Sweep(#[from] swarf_sweep::SweepError),
     /// A non-finite pose.
     #[error("move {index} (line {line}): non-finite tool position or axis")]
     NonFinite {

@@ -18,14 +18,14 @@
 //! # Cutting
 //! For a straight move with a fixed tool axis (3-axis and 3+2), the interval of each touched
 //! ray inside the volume swept by the cutter's **cutting part** is computed exactly
-//! ([`sweep`]: caps, grazing-curve envelopes in closed form, torus by guaranteed root
+//! (`swarf_sweep::swept`: caps, grazing-curve envelopes in closed form, torus by guaranteed root
 //! isolation) and subtracted. Arcs and helices are cut as chords through exact arc points,
 //! at most the chordal tolerance ([`DEFAULT_CHORDAL_TOLERANCE_MM`]) from the arc: the chords
 //! lie inside the arc's convex hull, so the removal **under-cuts** by at most that tolerance.
 //! Shank and holder sweeps are cut too and reported as collisions, as are rapids whose
 //! cutting part meets material. Moves whose tool axis turns (5-axis simultaneous) are cut as
 //! constant-axis straight sub-moves by adaptive bisection until a proven bound on the distance
-//! between their sweep and the true one is within the same tolerance ([`five_axis`]).
+//! between their sweep and the true one is within the same tolerance (`swarf_sweep::five_axis`, cut by [`cut`]).
 //!
 //! Everything else is exact up to floating point: the only discretisation is the ray grid
 //! itself (the volume error shrinks with `h`), the chords of arcs and the 5-axis sub-moves.
@@ -33,14 +33,14 @@
 //! # Work per move
 //! Material first: a move visits only the tiles of rays that cross its swept bounding box;
 //! a tile is skipped when its material bound cannot meet a cheap range of the sweep along its
-//! rays ([`SweptConvex::block_range`]: for a tool axis along a world axis, the lowest reach of
+//! rays (`SweptConvex::block_range`: for a tool axis along a world axis, the lowest reach of
 //! the profile at the tile's distance from the tip path, or the chord of the stadium of the
 //! largest radius at the tile's heights); then each ray is skipped the same way
-//! ([`SweptConvex::dexel_range`]); only rays whose material meets that range get the exact
+//! (`SweptConvex::dexel_range`); only rays whose material meets that range get the exact
 //! interval, and within it the pieces that cannot move its ends inside the material are not
 //! evaluated. The common case — a ball or flat end mill (or a cylindrical shank) on a move
 //! whose tool axis is a world axis — skips all that for closed-form kernels, chosen once per
-//! move ([`SweptConvex::has_closed_form`]): a capsule and a swept slab, a few square roots
+//! move (`SweptConvex::has_closed_form`): a capsule and a swept slab, a few square roots
 //! per ray, held to the general candidates by `tests/fast_paths.rs`. Consecutive moves are
 //! cut in batches ([`TriDexel::cut_linear_batch`], used by [`simulate()`]): the tile rows of
 //! the three families are dealt to the threads (rayon), each thread runs the batch's moves in
@@ -49,14 +49,15 @@
 //!
 //! # Accuracy parameters (one place)
 //! [`DEFAULT_CHORDAL_TOLERANCE_MM`] (arcs and 5-axis moves, reported in
-//! [`SimulationReport`]), the grid resolution (per stock), [`sweep::AXIS_SNAP`] and
-//! [`sweep::BAND_EPS`] (floating-point guards of the exact cut, far below any resolution),
+//! [`SimulationReport`]), the grid resolution (per stock), `swarf_sweep::swept::AXIS_SNAP` and
+//! `swarf_sweep::swept::BAND_EPS` (floating-point guards of the exact cut, far below any resolution),
 //! [`dexel::MIN_INTERVAL_MM`] (slivers dropped), [`cut::COLLISION_EPS_MM`] (removal that
-//! counts as a collision) and [`five_axis::MAX_SUB_MOVES`] (a guard, not an accuracy).
+//! counts as a collision) and `swarf_sweep::five_axis::MAX_SUB_MOVES` (a guard, not an accuracy).
 //!
 //! ```
 //! use swarf_geom::math::Vec3;
-//! use swarf_stock::{ToolShape, TriDexel};
+//! use swarf_stock::TriDexel;
+//! use swarf_sweep::ToolShape;
 //! use swarf_tool::Cutter;
 //! let mut stock = TriDexel::from_box(Vec3::ZERO, Vec3::new(40.0, 20.0, 10.0), 0.25).unwrap();
 //! let v0 = stock.volume();
@@ -73,22 +74,18 @@ pub mod contour;
 pub mod cut;
 pub mod dexel;
 pub mod error;
-pub mod five_axis;
 pub mod mesh;
 pub mod simulate;
 pub mod spec;
-pub mod sweep;
 pub mod tridexel;
 
-pub use cut::{arc_chords, SegmentCut, ToolShape, DEFAULT_CHORDAL_TOLERANCE_MM};
+pub use cut::{DEFAULT_CHORDAL_TOLERANCE_MM, PIECES_PER_BATCH, SCREEN_TOLERANCE_MM};
 pub use dexel::{Dexel, DexelTags, EndTags, Interval, MoveTag, UNCUT};
 pub use error::StockError;
-pub use five_axis::{MotionBound, Reach, SubMove};
 pub use mesh::{axis_line_intervals, MeshOptions};
 pub use simulate::{simulate, simulate_observed, Collision, SimOptions, SimulationReport, Tools};
 pub use spec::StockSpec;
-pub use sweep::{ConvexProfile, Element, LineBatch, SignedDistance, SweepShape, SweptConvex};
 pub use tridexel::{
-    CutStats, DexelFamily, Grid, LinearMove, Removal, RemovalVisitor, StockStats, TriDexel,
-    MAX_RAYS, TILE,
+    CutStats, DexelFamily, Grid, LinearMove, Removal, RemovalVisitor, SegmentCut, StockStats,
+    TriDexel, MAX_RAYS, TILE,
 };

@@ -1,12 +1,13 @@
 //! Running a whole program on a stock: tools, options, collisions and the report.
 
-use crate::cut::{ToolShape, COLLISION_EPS_MM, DEFAULT_CHORDAL_TOLERANCE_MM};
+use crate::cut::{COLLISION_EPS_MM, DEFAULT_CHORDAL_TOLERANCE_MM};
 use crate::error::StockError;
 use crate::tridexel::{LinearMove, TriDexel};
 use std::collections::BTreeMap;
 use std::ops::ControlFlow;
 use std::time::Instant;
 use swarf_path::{MoveKind, Program};
+use swarf_sweep::ToolShape;
 use swarf_tool::Cutter;
 
 /// Simulation options; accuracy parameters with their defaults in one place.
@@ -121,7 +122,7 @@ pub struct SimulationReport {
 
 /// Runs every move of `program` through `stock`. Stops at the first move it cannot cut
 /// (unknown tool, non-finite pose, a 5-axis move needing more than
-/// [`crate::five_axis::MAX_SUB_MOVES`] sub-moves) with that move's error.
+/// [`swarf_sweep::five_axis::MAX_SUB_MOVES`] sub-moves) with that move's error.
 pub fn simulate(
     program: &Program,
     tools: &Tools,

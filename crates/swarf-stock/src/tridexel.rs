@@ -2,16 +2,16 @@
 //! holding its material intervals; construction from simple shapes, volume, statistics and the
 //! localised, parallel subtraction of swept volumes.
 
-use crate::cut::{SegmentCut, ToolShape};
 use crate::dexel::{
     dexel_length, overlaps, subtract, subtract_with, Dexel, DexelTags, EndTags, Interval, MoveTag,
 };
 use crate::error::StockError;
-use crate::sweep::{DexelRays, Scratch, SweepShape, SweptConvex};
 use rayon::prelude::*;
 use smallvec::SmallVec;
 use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_geom::Aabb;
+use swarf_sweep::swept::{DexelRays, Scratch};
+use swarf_sweep::{SweepShape, SweptConvex, ToolShape};
 
 /// Side of the square tiles of rays (tiles are stored contiguously and carry a conservative
 /// bound of their material along the ray, so whole tiles are skipped without touching rays).
@@ -240,6 +240,30 @@ impl CutStats {
     /// True when any family lost more than `eps` mm of material.
     pub fn removed_any(&self, eps: f64) -> bool {
         self.removed_length.iter().any(|&l| l > eps)
+    }
+}
+
+/// What one move (or straight sub-move) removed.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct SegmentCut {
+    /// By the cutting part.
+    pub cutting: CutStats,
+    /// By the shank and holder (non-zero means a holder collision).
+    pub non_cutting: CutStats,
+    /// Straight fixed-axis pieces the cutting part was cut as: 1 for a line, the chords of an
+    /// arc, the constant-axis sub-moves of a 5-axis move ([`swarf_sweep::five_axis`]).
+    pub sub_moves: u64,
+    /// Largest bound on the distance between the volume cut and the true swept volume of a
+    /// 5-axis move, mm (0 for other moves: exact, or arcs within the chordal tolerance).
+    pub error_bound_mm: f64,
+}
+
+impl SegmentCut {
+    pub(crate) fn add(&mut self, o: SegmentCut) {
+        self.cutting = self.cutting.merged(o.cutting);
+        self.non_cutting = self.non_cutting.merged(o.non_cutting);
+        self.sub_moves += o.sub_moves;
+        self.error_bound_mm = self.error_bound_mm.max(o.error_bound_mm);
     }
 }
 
@@ -714,7 +738,7 @@ pub struct Removal {
     pub move_index: usize,
     /// The tag the move cut under ([`TriDexel::set_move_tag`]).
     pub tag: MoveTag,
-    /// Which group of the move's parts (for a [`crate::ToolShape`]: 0 the cutting part, 1 the
+    /// Which group of the move's parts (for a [`swarf_sweep::ToolShape`]: 0 the cutting part, 1 the
     /// shank and holder).
     pub group: usize,
     /// The ray family (0 = X, 1 = Y, 2 = Z).

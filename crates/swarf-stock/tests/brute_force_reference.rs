@@ -12,7 +12,7 @@ mod common;
 use common::{boundary_distance, every_cutter_kind, general_apt, Lcg};
 use swarf_geom::math::Vec3;
 use swarf_geom::{Frame, Ray};
-use swarf_stock::{ConvexProfile, Element, SweptConvex};
+use swarf_sweep::{ConvexProfile, Element, SweptConvex};
 use swarf_tool::Cutter;
 
 /// Distance from `(ρ, z)` to the closed profile region (0 inside).

@@ -6,6 +6,7 @@ mod common;
 use common::{gcode, moves};
 use swarf_geom::math::Vec3;
 use swarf_stock::{simulate, MeshOptions, SimOptions, StockError, Tools, TriDexel};
+use swarf_sweep::SweepError;
 use swarf_tool::{Cutter, CutterOptions, Holder, HolderSegment};
 
 #[test]
@@ -104,11 +105,11 @@ fn five_axis_move_is_cut_and_reported() {
     assert!(
         matches!(
             e,
-            StockError::Unsupported {
+            StockError::Sweep(SweepError::Unsupported {
                 index: 0,
                 line: 1,
                 ..
-            }
+            })
         ),
         "{e}"
     );
@@ -145,7 +146,7 @@ fn three_plus_two_equals_rotated_three_axis() {
     let mut s = TriDexel::from_triangles(&tris, 0.1, MeshOptions::default()).unwrap();
     let v0 = s.volume();
     assert!((v0 - 8000.0).abs() < 0.003 * 8000.0, "{v0}");
-    let tool = swarf_stock::ToolShape::new(&Cutter::flat(6.0).unwrap());
+    let tool = swarf_sweep::ToolShape::new(&Cutter::flat(6.0).unwrap());
     let (a, b) = (Vec3::new(8.03, 10.01, 7.0), Vec3::new(31.97, 10.01, 7.0));
     let cut = s.cut_linear(&tool, rot * a, rot * b, rot * Vec3::Z);
     assert_eq!(cut.non_cutting.removed_length, [0.0; 3]);

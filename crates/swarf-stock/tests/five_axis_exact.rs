@@ -19,7 +19,8 @@
 use std::f64::consts::PI;
 use swarf_geom::math::Vec3;
 use swarf_path::{Axes, AxisSource, FeedMode, Machine, Move, MoveKind, Pose, Program};
-use swarf_stock::{ToolShape, TriDexel};
+use swarf_stock::TriDexel;
+use swarf_sweep::ToolShape;
 use swarf_tool::{Cutter, CutterKind, CutterOptions};
 
 /// Ray grid resolution, mm.

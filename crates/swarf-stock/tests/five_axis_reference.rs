@@ -18,7 +18,8 @@ use common::{boundary_distance, every_cutter_kind, general_apt, Lcg};
 use swarf_geom::math::Vec3;
 use swarf_geom::{Frame, Ray};
 use swarf_path::{Axes, AxisSource, FeedMode, Machine, Move, MoveKind, Pose, Program};
-use swarf_stock::{ConvexProfile, ToolShape, TriDexel};
+use swarf_stock::TriDexel;
+use swarf_sweep::{ConvexProfile, ToolShape};
 use swarf_tool::{Cutter, RevolvedSolid};
 
 /// A convex solid of the tool with its profile, for distances.

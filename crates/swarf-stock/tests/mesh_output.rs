@@ -1,7 +1,8 @@
 //! The machined part as a mesh: closed, outward, and the same solid as the dexels.
 
 use swarf_geom::math::Vec3;
-use swarf_stock::{ToolShape, TriDexel};
+use swarf_stock::TriDexel;
+use swarf_sweep::ToolShape;
 use swarf_tool::Cutter;
 
 #[test]

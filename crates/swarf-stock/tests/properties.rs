@@ -4,7 +4,8 @@
 
 use proptest::prelude::*;
 use swarf_geom::math::Vec3;
-use swarf_stock::{ToolShape, TriDexel};
+use swarf_stock::TriDexel;
+use swarf_sweep::ToolShape;
 use swarf_tool::Cutter;
 
 fn stock() -> TriDexel {
@@ -102,7 +103,7 @@ proptest! {
                 let mut sw: Vec<(f64, f64)> = Vec::new();
                 for sh in shapes {
                     for p in sh.parts() {
-                        let sc = swarf_stock::SweptConvex::new(p, a, axis, b - a);
+                        let sc = swarf_sweep::SweptConvex::new(p, a, axis, b - a);
                         if let Some(iv) = sc.ray_interval(o, Vec3::Z) {
                             sw.push(iv);
                         }

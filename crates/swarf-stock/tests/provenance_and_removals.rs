@@ -6,7 +6,8 @@ mod common;
 
 use std::sync::Mutex;
 use swarf_geom::math::Vec3;
-use swarf_stock::{simulate, LinearMove, Removal, SimOptions, ToolShape, Tools, TriDexel, UNCUT};
+use swarf_stock::{simulate, LinearMove, Removal, SimOptions, Tools, TriDexel, UNCUT};
+use swarf_sweep::ToolShape;
 use swarf_tool::Cutter;
 
 /// Two slots (y = 10 at depth 2, y = 30 at depth 4, moves 3 and 7) and a 270° arc (move 11)

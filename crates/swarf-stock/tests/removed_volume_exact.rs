@@ -6,7 +6,8 @@ mod common;
 use common::{gcode, rel};
 use std::f64::consts::PI;
 use swarf_geom::math::Vec3;
-use swarf_stock::{simulate, SimOptions, ToolShape, Tools, TriDexel};
+use swarf_stock::{simulate, SimOptions, Tools, TriDexel};
+use swarf_sweep::ToolShape;
 use swarf_tool::Cutter;
 
 const TOP: f64 = 10.0;

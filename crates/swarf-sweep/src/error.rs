@@ -1,49 +1,34 @@
-//! Errors of envelope construction, each naming the move (index and source line) it concerns.
+//! Errors of the sweep kernel: profiles that cannot be swept exactly and 5-axis moves that
+//! cannot be split within a tolerance.
 
 use thiserror::Error;
 
-/// What can stop an envelope from being built.
-#[derive(Debug, Error)]
+/// What can stop a shape from being swept or a move from being split into fixed-axis pieces.
+#[derive(Debug, Error, Clone, PartialEq)]
 pub enum SweepError {
-    /// A move uses a tool number no cutter was given for.
-    #[error("move {index} (line {line}) uses tool T{tool}, for which no cutter was given")]
-    UnknownTool {
+    /// A profile that does not close or join.
+    #[error("bad profile: {why}")]
+    BadProfile {
+        /// What is wrong.
+        why: String,
+    },
+    /// A profile that turns inwards at `(rho, z)`: the solid is not convex.
+    #[error("profile is not convex at rho = {rho} mm, z = {z} mm")]
+    NotConvex {
+        /// Radius of the offending joint.
+        rho: f64,
+        /// Height of the offending joint.
+        z: f64,
+    },
+    /// A move that cannot be cut within the tolerance (a 5-axis move with a non-positive
+    /// tolerance, or needing more than [`crate::five_axis::MAX_SUB_MOVES`] sub-moves).
+    #[error("move {index} (line {line}): {why}")]
+    Unsupported {
         /// Move index in the program.
         index: usize,
-        /// Source line of the move.
+        /// Source line.
         line: u32,
-        /// The tool number.
-        tool: u32,
+        /// Why.
+        why: String,
     },
-    /// The selected move range is empty or outside the program.
-    #[error("move range {start}..{end} selects no feed move of the {len} moves of the program")]
-    NoMoves {
-        /// First index asked for.
-        start: usize,
-        /// One past the last index asked for.
-        end: usize,
-        /// Number of moves in the program.
-        len: usize,
-    },
-    /// An accuracy parameter is not a positive finite number.
-    #[error("{name} must be a positive finite number, got {value}")]
-    BadParameter {
-        /// The parameter's name.
-        name: &'static str,
-        /// Its value.
-        value: f64,
-    },
-    /// The swept box needs more lattice points than [`crate::MAX_LATTICE_POINTS`].
-    #[error("the envelope lattice would hold {points:.3e} points (more than {max}); use a coarser resolution than {h} mm")]
-    TooFine {
-        /// Points needed (counted in floating point: it may exceed every integer type).
-        points: f64,
-        /// The limit.
-        max: u64,
-        /// The resolution asked for, mm.
-        h: f64,
-    },
-    /// A 5-axis move could not be split into fixed-axis sub-moves (from `swarf-stock`).
-    #[error(transparent)]
-    Stock(#[from] swarf_stock::StockError),
 }

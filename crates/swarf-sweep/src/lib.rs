@@ -1,4 +1,5 @@
-//! Swept envelopes, grazing curves and feasible contact surfaces of the APT generic cutter.
+//! The moving cutter: exact swept solids, grazing curves and feasible contact surfaces of the APT
+//! generic cutter.
 //!
 //! # Model
 //! The cutter (`swarf_tool::Cutter`: tip at the origin, axis +Z, a stack of surface-of-revolution
@@ -14,11 +15,15 @@
 //! ch. 3), cylinders and tori as pipe surfaces (`N = m_t × m_u`), discs by their affine
 //! tangency and their rims as edges.
 //!
-//! The **swept envelope** of moves and programs ([`mod@envelope`]) is the boundary of the union of
-//! exact fixed-axis sweeps, sampled along the lines of a cubic lattice in X, Y and Z and
-//! contoured into a closed mesh; arcs and 5-axis moves are split into fixed-axis pieces within
-//! a chordal tolerance. Where the envelope of a move folds into its own sweep (tight turns) the
-//! [`fold`] test reports the move.
+//! The **exact swept solid** of a straight move with a fixed tool axis ([`swept`]) is what the
+//! stock (`swarf-stock`), the envelope mesh (`swarf-envelope`) and the engagement cut and query:
+//! for a line, the one interval inside the sweep of a convex solid of revolution (caps and
+//! grazing-curve extrusions in closed form, the torus by guaranteed root isolation), with
+//! closed-form kernels for the common ball and flat cutters. A cutter is swept as the union of
+//! its convex parts ([`ToolShape`]: cutting part; shank and holder). Arcs and helices are cut as
+//! chords ([`arc_chords`]), and 5-axis moves as constant-axis sub-moves with a proven Hausdorff
+//! bound ([`five_axis`]), both within a chordal tolerance. Where the envelope of a move folds
+//! into its own sweep (tight turns) the [`fold`] test reports the move.
 //!
 //! # Conventions
 //! Millimetres and radians; the workpiece frame of `swarf_path`; the tool axis points from the
@@ -54,24 +59,27 @@
 //! }
 //! ```
 
-pub mod envelope;
+pub mod chords;
 pub mod error;
+pub mod five_axis;
 pub mod fold;
 pub mod grazing;
 pub mod kinematics;
+pub mod swept;
 pub mod tangency;
 pub mod tolerance;
+pub mod tool_shape;
 
-pub use envelope::{
-    envelope, fixed_axis_pieces, Envelope, EnvelopeGrid, EnvelopeOptions, EnvelopeReport,
-    FixedAxisPiece,
-};
+pub use chords::arc_chords;
 pub use error::SweepError;
+pub use five_axis::{MotionBound, Reach, SubMove};
 pub use fold::{fold_check, SelfIntersection};
 pub use grazing::{grazing_points, GrazingPoint, GrazingSet, Harmonic, Roots};
 pub use kinematics::MotionState;
+pub use swept::{ConvexProfile, Element, LineBatch, SignedDistance, SweepShape, SweptConvex};
 pub use tangency::{
     aras_angles, feasible_contact, feed_angle, feed_range, motion_class, roles, tangency,
     Feasibility, FeedRange, MotionClass, PieceEngagement, PieceRole, Side,
 };
 pub use tolerance::*;
+pub use tool_shape::ToolShape;

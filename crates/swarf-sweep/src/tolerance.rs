@@ -1,21 +1,12 @@
-//! Every accuracy parameter of the crate, with its default, in one place.
+//! Every accuracy parameter of the sweep kernel, with its default, in one place.
 //!
-//! The envelope mesh has three error sources, each a named parameter reported in
-//! [`crate::EnvelopeReport`]: the lattice spacing `h` of the ray grid
-//! ([`DEFAULT_RESOLUTION_MM`]), the chordal tolerance with which arcs become chords and 5-axis
-//! moves become fixed-axis sub-moves ([`DEFAULT_CHORDAL_TOLERANCE_MM`], a proven Hausdorff bound
-//! from `swarf_stock::five_axis`), and the contouring of the union of exact ray intervals
-//! (vertices within about `h` of the true surface). The other constants are floating-point
-//! guards and finite-difference steps.
+//! The exact fixed-axis sweep has no discretisation of its own. Arcs become chords and 5-axis
+//! moves fixed-axis sub-moves within a chordal tolerance ([`DEFAULT_CHORDAL_TOLERANCE_MM`], a
+//! proven Hausdorff bound, [`crate::five_axis`]). The other constants are floating-point guards
+//! and finite-difference steps.
 
-/// Default ray spacing of the envelope lattice, mm.
-pub const DEFAULT_RESOLUTION_MM: f64 = 0.25;
-
-/// Default chordal tolerance for arcs and 5-axis sub-moves, mm: a tenth of
-/// [`DEFAULT_RESOLUTION_MM`], the size of the contouring error at that spacing. The number of
-/// 5-axis sub-moves, and the envelope time of 5-axis moves, grows like `1/tolerance` (their
-/// error is first order in the sub-move length).
-pub const DEFAULT_CHORDAL_TOLERANCE_MM: f64 = 0.025;
+/// Default chordal tolerance for arcs, helices and 5-axis moves, mm (what the stock cuts with).
+pub const DEFAULT_CHORDAL_TOLERANCE_MM: f64 = 0.001;
 
 /// Step in the move parameter `s ∈ [0, 1]` of the central differences used where a pose is
 /// not differentiated analytically (rotary motion interpolated through machine kinematics).
@@ -43,6 +34,3 @@ pub const FOLD_PARALLELS: usize = 12;
 /// zero (speed: the largest point speed over the piece). Rounding of the closed forms is near
 /// 1e-15 relative, so this only absorbs floating point.
 pub const TANGENCY_REL_EPS: f64 = 1e-9;
-
-/// Largest number of lattice points of an envelope grid (a guard against runaway memory).
-pub const MAX_LATTICE_POINTS: u64 = 400_000_000;

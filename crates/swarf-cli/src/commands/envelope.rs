@@ -8,10 +8,11 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde::Serialize;
+use swarf_envelope::{envelope, EnvelopeOptions};
 use swarf_io::glb::{glb_bytes, glb_size_bound};
 use swarf_io::output_set::stl_size;
 use swarf_io::{write_stl_to, GlbOptions, Shading};
-use swarf_sweep::{envelope, EnvelopeOptions, SelfIntersection};
+use swarf_sweep::SelfIntersection;
 use swarf_tool::Cutter;
 
 use crate::cli::SetupArgs;
@@ -31,10 +32,10 @@ pub(crate) struct EnvelopeArgs {
     #[arg(long, value_name = "A..B")]
     pub(crate) moves: Option<String>,
     /// Lattice spacing of the envelope, mm.
-    #[arg(allow_negative_numbers = true, long, value_name = "H", default_value_t = swarf_sweep::DEFAULT_RESOLUTION_MM)]
+    #[arg(allow_negative_numbers = true, long, value_name = "H", default_value_t = swarf_envelope::DEFAULT_RESOLUTION_MM)]
     pub(crate) resolution: f64,
     /// Largest distance between an arc or a 5-axis motion and what is swept for it, mm.
-    #[arg(allow_negative_numbers = true, long, value_name = "T", default_value_t = swarf_sweep::DEFAULT_CHORDAL_TOLERANCE_MM)]
+    #[arg(allow_negative_numbers = true, long, value_name = "T", default_value_t = swarf_envelope::DEFAULT_CHORDAL_TOLERANCE_MM)]
     pub(crate) tolerance: f64,
     /// Write envelope.stl, envelope.glb and summary.json here.
     #[arg(long, value_name = "DIR")]

@@ -5,7 +5,7 @@
 //!
 //! # What is measured
 //! The tool is its **cutting part**, its **shank** and its **holder**, each a union of convex
-//! solids of revolution ([`swarf_stock::SweepShape`]). At a pose (tip `T`, unit axis `a`) a
+//! solids of revolution ([`swarf_sweep::SweepShape`]). At a pose (tip `T`, unit axis `a`) a
 //! surface point `S` is inside a part `K` by the depth `−sd_K(S)`, `sd` the signed distance
 //! (negative inside). The *depth* of the pose is the largest over the surface, and the depth of
 //! a stretch of motion the largest over its poses: how far the tool reaches past the surface,
@@ -26,7 +26,7 @@
 //!
 //! # The bound (why the answer is certified)
 //! A convex part's signed distance is `sd_K(x) = max_n (n·x − h_K(n))` over unit `n`, `h_K`
-//! its support function ([`swarf_stock::ConvexProfile::support`]). A rational Bézier sub-patch
+//! its support function ([`swarf_sweep::ConvexProfile::support`]). A rational Bézier sub-patch
 //! lies in the convex hull of its control points `b_i` (positive weights), so for any fixed
 //! `n` no point of it is deeper than `h_K(n) − min_i n·b_i`. While the tool moves along a
 //! fixed-axis straight stretch `T(t) = T₀ + t·Δ`, `t ∈ [t₀, t₁]`, the support is
@@ -39,7 +39,7 @@
 //!
 //! With `n` the outward direction of `K` at the point nearest to the sub-patch the bound is
 //! tight to second order in the sub-patch's size and the interval's length. The search
-//! ([`search`]) keeps (sub-patch × interval) nodes in a heap ordered by this bound, evaluates
+//! (`search`) keeps (sub-patch × interval) nodes in a heap ordered by this bound, evaluates
 //! real surface points (the sub-patch corners) as evidence, splits whichever — the sub-patch
 //! into quarters, or the interval into halves — holds most of a node's gap, and stops when no
 //! node can beat the deepest point found by more than [`GougeOptions::accuracy`] (or reach the
@@ -54,7 +54,7 @@
 //!
 //! # Motion
 //! Every move is cut into fixed-axis straight sub-moves by
-//! [`swarf_stock::five_axis::subdivide`], which bounds the Hausdorff distance between the true
+//! [`swarf_sweep::five_axis::subdivide`], which bounds the Hausdorff distance between the true
 //! motion of each part (arcs, helices, 5-axis joint or CL interpolation) and the sub-moves by
 //! [`GougeOptions::motion_tolerance`] (a straight fixed-axis move is one exact sub-move). A
 //! depth is therefore within that bound of the true motion's depth; the report's upper bounds
@@ -71,7 +71,7 @@ pub use search::GougeSurface;
 
 use serde::Serialize;
 use swarf_geom::math::Vec3;
-use swarf_stock::{ConvexProfile, Reach, SweepShape};
+use swarf_sweep::{ConvexProfile, Reach, SweepShape};
 use swarf_tool::Cutter;
 
 /// Options of the program check (documented defaults).
@@ -370,7 +370,7 @@ pub enum GougeError {
     },
     /// A move could not be cut into sub-moves.
     #[error(transparent)]
-    Motion(#[from] swarf_stock::StockError),
+    Motion(#[from] swarf_sweep::SweepError),
     /// A move with a coordinate that is not finite or lies beyond the machine range
     /// ([`swarf_geom::math::MACHINE_RANGE_MM`]): no search over it could certify anything, so
     /// the check refuses it rather than skip it.

@@ -7,8 +7,8 @@ use std::sync::atomic::{AtomicUsize, Ordering};
 use rayon::prelude::*;
 use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_path::{MoveKind, Pose, Program};
-use swarf_stock::five_axis::subdivide;
-use swarf_stock::SubMove;
+use swarf_sweep::five_axis::subdivide;
+use swarf_sweep::SubMove;
 use swarf_tool::Cutter;
 
 use super::search::{deepest, Deepest, Pieces, Query, SearchScratch, Segment};

@@ -11,7 +11,7 @@ use parry3d_f64::partitioning::{Bvh, BvhBuildStrategy};
 use smallvec::SmallVec;
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
-use swarf_stock::{ConvexProfile, SweptConvex};
+use swarf_sweep::{ConvexProfile, SweptConvex};
 
 use swarf_surface::bezier::Piece;
 use swarf_surface::PreparedSurface;

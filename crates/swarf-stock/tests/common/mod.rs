@@ -4,7 +4,7 @@
 use swarf_geom::math::{Vec2, Vec3};
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::{Axes, FeedMode, Machine, Move, MoveKind, Pose, Program};
-use swarf_stock::Element;
+use swarf_sweep::Element;
 use swarf_tool::Cutter;
 
 /// Reads G-code text on a 3-axis machine.

@@ -5,13 +5,13 @@
 //! moves is sampled exactly along the lines of a cubic lattice in three directions (X, Y, Z),
 //! then contoured: an [`EnvelopeGrid`] starts **empty** over the swept bounding box and each
 //! line accumulates the **union** of its exact intervals inside the sweeps of fixed-axis
-//! straight (sub-)moves — the closed-form grazing-curve kernels of `swarf_stock::sweep` that the
+//! straight (sub-)moves — the closed-form grazing-curve kernels of `swarf_sweep::swept` that the
 //! stock also cuts with. Arcs and helices become chords through exact arc points
-//! (`swarf_stock::arc_chords`), and 5-axis moves constant-axis sub-moves with a proven Hausdorff
-//! bound (`swarf_stock::five_axis::subdivide`), both within the chordal tolerance. Dual
+//! (`swarf_sweep::arc_chords`), and 5-axis moves constant-axis sub-moves with a proven Hausdorff
+//! bound (`swarf_sweep::five_axis::subdivide`), both within the chordal tolerance. Dual
 //! contouring (`swarf_io`) turns the lines' Hermite data into a closed, outward-oriented mesh:
 //! ingress, envelope and egress surfaces alike, and self-intersecting envelopes are resolved by
-//! the union itself (the fold test, [`crate::fold`], reports where they occur).
+//! the union itself (the fold test, `swarf_sweep::fold`, reports where they occur).
 //!
 //! # Accuracy
 //! Interval ends are exact to floating point for each fixed-axis piece; arcs and 5-axis moves
@@ -28,12 +28,13 @@ use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 use swarf_io::{dual_contour, ContourOptions, HermiteGrid, Lattice, Span, TriMesh};
 use swarf_path::{MoveKind, Program};
-use swarf_stock::five_axis::{subdivide, Reach};
-use swarf_stock::{arc_chords, SweepShape, SweptConvex, ToolShape};
+use swarf_sweep::five_axis::{subdivide, Reach};
+use swarf_sweep::{
+    arc_chords, fold_check, ConvexProfile, SelfIntersection, SweepShape, SweptConvex, ToolShape,
+};
 use swarf_tool::Cutter;
 
-use crate::error::SweepError;
-use crate::fold::{fold_check, SelfIntersection};
+use crate::error::EnvelopeError;
 use crate::tolerance::{DEFAULT_CHORDAL_TOLERANCE_MM, DEFAULT_RESOLUTION_MM, MAX_LATTICE_POINTS};
 
 /// Parameters of [`envelope`]; defaults from [`crate::tolerance`].
@@ -43,7 +44,7 @@ pub struct EnvelopeOptions {
     pub resolution: f64,
     /// Chordal tolerance of arcs and 5-axis sub-moves, mm ([`DEFAULT_CHORDAL_TOLERANCE_MM`]).
     pub tolerance: f64,
-    /// Run the fold test on arcs and moves whose axis turns ([`crate::fold`]).
+    /// Run the fold test on arcs and moves whose axis turns (`swarf_sweep::fold`).
     pub check_folds: bool,
     /// Contouring parameters.
     pub contour: ContourOptions,
@@ -104,11 +105,11 @@ impl EnvelopeGrid {
     /// An empty grid of spacing `h` covering `bounds` with a margin of two spacings.
     ///
     /// # Errors
-    /// [`SweepError::BadParameter`] for a spacing that is not positive and finite,
-    /// [`SweepError::TooFine`] beyond [`MAX_LATTICE_POINTS`].
-    pub fn new(bounds: Aabb, h: f64) -> Result<Self, SweepError> {
+    /// [`EnvelopeError::BadParameter`] for a spacing that is not positive and finite,
+    /// [`EnvelopeError::TooFine`] beyond [`MAX_LATTICE_POINTS`].
+    pub fn new(bounds: Aabb, h: f64) -> Result<Self, EnvelopeError> {
         if !(h > 0.0 && h.is_finite()) {
-            return Err(SweepError::BadParameter {
+            return Err(EnvelopeError::BadParameter {
                 name: "resolution",
                 value: h,
             });
@@ -122,7 +123,7 @@ impl EnvelopeGrid {
             .map(|s| (s / h).ceil().max(1.0))
             .product();
         if !points.is_finite() || points > MAX_LATTICE_POINTS as f64 {
-            return Err(SweepError::TooFine {
+            return Err(EnvelopeError::TooFine {
                 points,
                 max: MAX_LATTICE_POINTS,
                 h,
@@ -268,7 +269,7 @@ pub struct SweepBound {
 
 impl SweepBound {
     /// The bound of `prof` placed at `tip` with unit `axis`, moving by `delta`.
-    pub fn new(prof: &swarf_stock::ConvexProfile, tip: Vec3, axis: Vec3, delta: Vec3) -> Self {
+    pub fn new(prof: &ConvexProfile, tip: Vec3, axis: Vec3, delta: Vec3) -> Self {
         let g = delta.length() + BOUND_SLACK_MM;
         Self {
             tip,
@@ -325,13 +326,13 @@ const BOUND_SLACK_MM: f64 = 1e-6;
 /// chords of an arc, or 5-axis sub-moves, within `tol`; with the largest error bound.
 ///
 /// # Errors
-/// As `swarf_stock::five_axis::subdivide`.
+/// As `swarf_sweep::five_axis::subdivide`.
 pub fn fixed_axis_pieces(
     program: &Program,
     index: usize,
     shape: &SweepShape,
     tol: f64,
-) -> Result<(Vec<FixedAxisPiece>, f64), SweepError> {
+) -> Result<(Vec<FixedAxisPiece>, f64), EnvelopeError> {
     let m = &program.moves[index];
     if program.is_five_axis(m) {
         let Some(reach) = Reach::of(shape) else {
@@ -426,17 +427,17 @@ pub struct Envelope {
 /// holder).
 ///
 /// # Errors
-/// [`SweepError::NoMoves`] when the range selects no feed move, [`SweepError::UnknownTool`],
-/// [`SweepError::BadParameter`], [`SweepError::TooFine`], and 5-axis subdivision failures.
+/// [`EnvelopeError::NoMoves`] when the range selects no feed move, [`EnvelopeError::UnknownTool`],
+/// [`EnvelopeError::BadParameter`], [`EnvelopeError::TooFine`], and 5-axis subdivision failures.
 pub fn envelope(
     program: &Program,
     tools: &BTreeMap<u32, Cutter>,
     moves: Range<usize>,
     options: &EnvelopeOptions,
-) -> Result<Envelope, SweepError> {
+) -> Result<Envelope, EnvelopeError> {
     let tol = options.tolerance;
     if !(tol > 0.0 && tol.is_finite()) {
-        return Err(SweepError::BadParameter {
+        return Err(EnvelopeError::BadParameter {
             name: "tolerance",
             value: tol,
         });
@@ -446,7 +447,7 @@ pub fn envelope(
         .filter(|&i| !matches!(program.moves[i].kind, MoveKind::Rapid))
         .collect();
     if selected.is_empty() {
-        return Err(SweepError::NoMoves {
+        return Err(EnvelopeError::NoMoves {
             start: moves.start,
             end: moves.end,
             len: program.moves.len(),
@@ -456,7 +457,7 @@ pub fn envelope(
     for &i in &selected {
         let m = &program.moves[i];
         let Some(c) = tools.get(&m.tool) else {
-            return Err(SweepError::UnknownTool {
+            return Err(EnvelopeError::UnknownTool {
                 index: i,
                 line: m.line,
                 tool: m.tool,

@@ -4,7 +4,8 @@
 
 mod common;
 
-use swarf_sweep::{envelope, fold_check, EnvelopeOptions};
+use swarf_envelope::{envelope, EnvelopeOptions};
+use swarf_sweep::fold_check;
 use swarf_tool::Cutter;
 
 #[test]

@@ -7,8 +7,9 @@ mod common;
 
 use std::f64::consts::PI;
 
+use swarf_envelope::{envelope, EnvelopeOptions};
 use swarf_geom::math::Vec3;
-use swarf_sweep::{envelope, grazing_points, EnvelopeOptions, MotionState};
+use swarf_sweep::{grazing_points, MotionState};
 use swarf_tool::{AnyPiece, Cutter};
 
 /// Distance from `p` to the segment `a`–`b`.

@@ -4,7 +4,7 @@
 
 use super::fast::FastProfile;
 use super::{circle, line, sphere, torus, Acc, DirConsts, Scratch};
-use crate::error::StockError;
+use crate::error::SweepError;
 use swarf_geom::math::{Vec2, Vec3};
 use swarf_tool::{AnyPiece, Piece, RevolvedSolid};
 
@@ -140,13 +140,13 @@ pub struct ConvexProfile {
 impl ConvexProfile {
     /// The profile of `elements` (axis-to-axis, bottom to top). Errors when the elements do not
     /// join, do not start and end on the axis, or turn the wrong way (not convex).
-    pub fn new(elements: Vec<Element>) -> Result<Self, StockError> {
-        let first = elements.first().ok_or(StockError::BadProfile {
+    pub fn new(elements: Vec<Element>) -> Result<Self, SweepError> {
+        let first = elements.first().ok_or(SweepError::BadProfile {
             why: "no elements".into(),
         })?;
         let last = elements.last().unwrap_or(first);
         if first.start().x.abs() > PROFILE_EPS || last.end().x.abs() > PROFILE_EPS {
-            return Err(StockError::BadProfile {
+            return Err(SweepError::BadProfile {
                 why: "the profile must start and end on the axis".into(),
             });
         }
@@ -154,7 +154,7 @@ impl ConvexProfile {
         for w in elements.windows(2) {
             let (a, b) = (w[0].end(), w[1].start());
             if (a - b).length() > PROFILE_EPS {
-                return Err(StockError::BadProfile {
+                return Err(SweepError::BadProfile {
                     why: format!(
                         "elements do not join: ({}, {}) vs ({}, {})",
                         a.x, a.y, b.x, b.y
@@ -163,7 +163,7 @@ impl ConvexProfile {
             }
             let turn = w[0].tangent_end().perp_dot(w[1].tangent_start());
             if turn < -PROFILE_EPS {
-                return Err(StockError::NotConvex { rho: a.x, z: a.y });
+                return Err(SweepError::NotConvex { rho: a.x, z: a.y });
             }
             if a.x > 0.0 {
                 joints.push(a);
@@ -173,7 +173,7 @@ impl ConvexProfile {
         for el in &elements {
             let (s, e) = (el.start(), el.end());
             if e.y < s.y - PROFILE_EPS {
-                return Err(StockError::NotConvex { rho: s.x, z: s.y });
+                return Err(SweepError::NotConvex { rho: s.x, z: s.y });
             }
         }
         let z_min = elements
@@ -252,12 +252,12 @@ impl ConvexProfile {
 
     /// The profile of a swarf-tool solid (cutting part, shank, one holder segment) when it is
     /// convex.
-    pub fn from_solid(solid: &RevolvedSolid) -> Result<Self, StockError> {
+    pub fn from_solid(solid: &RevolvedSolid) -> Result<Self, SweepError> {
         Self::from_pieces(solid.pieces())
     }
 
     /// The profile of the pieces (bottom to top), when they bound a convex solid.
-    pub fn from_pieces(pieces: &[AnyPiece]) -> Result<Self, StockError> {
+    pub fn from_pieces(pieces: &[AnyPiece]) -> Result<Self, SweepError> {
         Self::new(pieces.iter().map(Element::from_piece).collect())
     }
 
@@ -645,7 +645,7 @@ mod tests {
         ];
         assert!(matches!(
             ConvexProfile::new(els),
-            Err(StockError::NotConvex { .. })
+            Err(SweepError::NotConvex { .. })
         ));
     }
 }

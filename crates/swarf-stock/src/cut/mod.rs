@@ -1,80 +1,24 @@
 //! Cutting moves into the stock: linear moves with a fixed tool axis exactly, arcs and helices
 //! by chords within a chordal tolerance, with the shank and holder checked for collisions.
 
+mod five_axis;
+
+pub use five_axis::{PIECES_PER_BATCH, SCREEN_TOLERANCE_MM};
+
 use crate::error::StockError;
-use crate::sweep::{SweepShape, SweptConvex};
-use crate::tridexel::{CutStats, TriDexel};
+use crate::tridexel::{CutStats, SegmentCut, TriDexel};
 use swarf_geom::math::Vec3;
 use swarf_path::{Move, MoveKind, Pose, Program};
-use swarf_tool::Cutter;
-
-/// Default chordal tolerance for arcs and helices, mm.
-pub const DEFAULT_CHORDAL_TOLERANCE_MM: f64 = 0.001;
+use swarf_sweep::{arc_chords, SweepShape, SweptConvex, ToolShape};
 
 /// Two axes closer than this angle (radians) are the same axis (a fixed-axis move).
 pub use swarf_path::moves::AXIS_ANGLE_EPS;
 
+/// Default chordal tolerance for arcs, helices and 5-axis moves, mm.
+pub use swarf_sweep::DEFAULT_CHORDAL_TOLERANCE_MM;
+
 /// Material removed below this length (mm, on any ray) does not count as a collision.
 pub const COLLISION_EPS_MM: f64 = 1e-6;
-
-/// A cutter prepared for sweeping: its cutting part and its non-cutting parts (shank and
-/// holder) as unions of convex profiles.
-#[derive(Clone, Debug)]
-pub struct ToolShape {
-    cutting: SweepShape,
-    non_cutting: SweepShape,
-}
-
-impl ToolShape {
-    /// The shapes of `cutter` (cutting part; shank plus holder).
-    pub fn new(cutter: &Cutter) -> Self {
-        let cutting = SweepShape::from_solid(cutter.cutting_solid());
-        let mut nc = SweepShape::from_solid(cutter.shank_solid())
-            .parts()
-            .to_vec();
-        if let Some(h) = cutter.holder_solid() {
-            nc.extend_from_slice(SweepShape::from_solid(h).parts());
-        }
-        Self {
-            cutting,
-            non_cutting: SweepShape::from_parts(nc),
-        }
-    }
-
-    /// The cutting part.
-    pub fn cutting(&self) -> &SweepShape {
-        &self.cutting
-    }
-
-    /// Shank and holder.
-    pub fn non_cutting(&self) -> &SweepShape {
-        &self.non_cutting
-    }
-}
-
-/// What one move (or straight sub-move) removed.
-#[derive(Clone, Copy, Debug, Default, PartialEq)]
-pub struct SegmentCut {
-    /// By the cutting part.
-    pub cutting: CutStats,
-    /// By the shank and holder (non-zero means a holder collision).
-    pub non_cutting: CutStats,
-    /// Straight fixed-axis pieces the cutting part was cut as: 1 for a line, the chords of an
-    /// arc, the constant-axis sub-moves of a 5-axis move ([`crate::five_axis`]).
-    pub sub_moves: u64,
-    /// Largest bound on the distance between the volume cut and the true swept volume of a
-    /// 5-axis move, mm (0 for other moves: exact, or arcs within the chordal tolerance).
-    pub error_bound_mm: f64,
-}
-
-impl SegmentCut {
-    fn add(&mut self, o: SegmentCut) {
-        self.cutting = self.cutting.merged(o.cutting);
-        self.non_cutting = self.non_cutting.merged(o.non_cutting);
-        self.sub_moves += o.sub_moves;
-        self.error_bound_mm = self.error_bound_mm.max(o.error_bound_mm);
-    }
-}
 
 impl TriDexel {
     /// Removes the volume swept by `shape` (tool frame: tip at the origin, axis +Z) with its
@@ -178,20 +122,6 @@ impl TriDexel {
     }
 }
 
-/// Number of equal chords for an arc of radius `radius` sweeping `sweep` radians so that the
-/// sagitta `radius·(1 − cos(Δ/2))` is at most `tol`. For a helix or spiral, the axial travel
-/// is linear in the parameter on both the arc and the chord, so the distance between points of
-/// equal parameter is the in-plane sagitta of the larger radius (a bound).
-pub fn arc_chords(radius: f64, sweep: f64, tol: f64) -> usize {
-    if !(radius > tol && tol > 0.0 && sweep.is_finite()) {
-        return 1.max((sweep / std::f64::consts::FRAC_PI_2).ceil() as usize);
-    }
-    let step = 2.0 * (1.0 - tol / radius).acos();
-    let n = (sweep.abs() / step).ceil().max(1.0);
-    // Never coarser than quarter turns (keeps each chord's sweep convex-hull argument simple).
-    n.max((sweep.abs() / std::f64::consts::FRAC_PI_2).ceil()) as usize
-}
-
 fn check_move(index: usize, m: &Move) -> Result<(), StockError> {
     let finite = |p: &Pose| p.tip.is_finite() && p.axis.is_finite() && p.axis.length() > 0.5;
     if !finite(&m.start) || !finite(&m.end) {
@@ -201,30 +131,4 @@ fn check_move(index: usize, m: &Move) -> Result<(), StockError> {
         });
     }
     Ok(())
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn chord_count_honours_tolerance() {
-        for (r, sweep, tol) in [
-            (10.0, std::f64::consts::PI, 0.001),
-            (3.0, 7.0, 0.01),
-            (50.0, 0.1, 1e-4),
-        ] {
-            let n = arc_chords(r, sweep, tol);
-            let d = sweep / n as f64;
-            assert!(
-                r * (1.0 - (d / 2.0).cos()) <= tol * (1.0 + 1e-12),
-                "{r} {sweep} {tol} {n}"
-            );
-            // And not wastefully fine: one chord fewer would break it (when not capped).
-            if n > (sweep / std::f64::consts::FRAC_PI_2).ceil() as usize {
-                let d1 = sweep / (n - 1) as f64;
-                assert!(r * (1.0 - (d1 / 2.0).cos()) > tol);
-            }
-        }
-    }
 }

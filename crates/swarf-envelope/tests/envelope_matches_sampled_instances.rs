@@ -6,11 +6,11 @@
 
 mod common;
 
+use swarf_envelope::envelope::SweepBound;
+use swarf_envelope::{fixed_axis_pieces, EnvelopeGrid};
 use swarf_geom::math::Vec3;
 use swarf_path::Program;
-use swarf_stock::{SweptConvex, ToolShape};
-use swarf_sweep::envelope::SweepBound;
-use swarf_sweep::{fixed_axis_pieces, EnvelopeGrid};
+use swarf_sweep::{SweptConvex, ToolShape};
 use swarf_tool::Cutter;
 
 /// The envelope lines of move `index` (lattice spacing `h`, chordal tolerance `tol`).

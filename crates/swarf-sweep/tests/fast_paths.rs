@@ -4,7 +4,7 @@
 //! and across each ray family, zero length): the two agree to 1e-9 mm.
 
 use swarf_geom::math::Vec3;
-use swarf_stock::{ConvexProfile, SweepShape, SweptConvex};
+use swarf_sweep::{ConvexProfile, SweepShape, SweptConvex};
 use swarf_tool::Cutter;
 
 /// A tiny deterministic generator (reproducible without extra crates).

@@ -49,6 +49,7 @@ pub(crate) mod capsule;
 pub(crate) mod circle;
 pub(crate) mod distance;
 pub(crate) mod fast;
+pub(crate) mod interval;
 pub(crate) mod line;
 pub(crate) mod profile;
 pub(crate) mod slab;
@@ -56,9 +57,9 @@ pub(crate) mod sphere;
 pub(crate) mod torus;
 
 pub use distance::SignedDistance;
+pub use interval::{overlaps, Interval};
 pub use profile::{ConvexProfile, Element, SweepShape};
 
-use crate::dexel::{overlaps, Interval};
 use smallvec::SmallVec;
 use swarf_geom::math::Vec3;
 use swarf_geom::{Aabb, Frame};
@@ -231,11 +232,15 @@ pub(crate) struct DirConsts {
 }
 
 /// The per-direction state of dexel queries against one sweep (see
-/// [`SweptConvex::dexel_rays`]).
+/// [`SweptConvex::dexel_rays`]); opaque, made once per sweep and ray family.
+#[derive(Clone, Debug)]
+pub struct DexelRays(RaysKind);
+
+/// Which kernel answers a family's rays.
 #[derive(Clone, Debug)]
 // The closed-form variant is the hot one; it stays inline (a few per move, never stored).
 #[allow(clippy::large_enum_variant)]
-pub(crate) enum DexelRays {
+enum RaysKind {
     /// Closed-form kernels.
     Fast(fast::FastRays),
     /// The general candidates.
@@ -367,11 +372,11 @@ impl<'a> SweptConvex<'a> {
     /// What the dexel queries along world axis `k` share: the closed-form kernels' constants
     /// when available, else the general path's direction constants. (The one place where
     /// the kind of kernel is chosen.)
-    pub(crate) fn dexel_rays(&self, k: usize) -> DexelRays {
-        match &self.fast {
-            Some(f) => DexelRays::Fast(f.rays(k)),
-            None => DexelRays::General(Box::new(self.dir_consts(Vec3::AXES[k]))),
-        }
+    pub fn dexel_rays(&self, k: usize) -> DexelRays {
+        DexelRays(match &self.fast {
+            Some(f) => RaysKind::Fast(f.rays(k)),
+            None => RaysKind::General(Box::new(self.dir_consts(Vec3::AXES[k]))),
+        })
     }
 
     /// The stock update's query for the dexel `d` along world axis `k` whose coordinates on
@@ -380,7 +385,7 @@ impl<'a> SweptConvex<'a> {
     /// remove (exact where it meets the material). Closed form when available; otherwise the
     /// material-first range test, then the general candidates pruned to the material.
     #[inline]
-    pub(crate) fn dexel_cut(
+    pub fn dexel_cut(
         &self,
         (cu, cv): (f64, f64),
         k: usize,
@@ -392,9 +397,9 @@ impl<'a> SweptConvex<'a> {
             (Some(f), Some(l)) => (f.enter, l.exit),
             _ => return (false, None),
         };
-        let dc = match rays {
-            DexelRays::Fast(f) => return (true, f.interval(cu, cv, Some((first, last)))),
-            DexelRays::General(dc) => dc,
+        let dc = match &rays.0 {
+            RaysKind::Fast(f) => return (true, f.interval(cu, cv, Some((first, last)))),
+            RaysKind::General(dc) => dc,
         };
         let mut origin = Vec3::ZERO;
         origin[(k + 1) % 3] = cu;

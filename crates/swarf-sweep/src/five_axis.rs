@@ -11,7 +11,7 @@
 //! `S = ∪ C(s)`.
 //!
 //! A sub-move replaces it by the swept volume `S̃` of a fixed-axis straight move (cut exactly by
-//! [`crate::sweep`]). It keeps a **pivot**, the point `c(s) = T(s) + λ·a(s)` at height `λ` on
+//! [`crate::swept`]). It keeps a **pivot**, the point `c(s) = T(s) + λ·a(s)` at height `λ` on
 //! the tool axis, on the chord `L(t) = c(s0) + t·(c(s1) − c(s0))` with the fixed axis
 //! `ā = a(s_m)` of the middle parameter `s_m = (s0 + s1)/2` (so its tip runs from
 //! `c(s0) − λ·ā` to `c(s1) − λ·ā`). Aras (2008, §4.2.4) pivots on the tip (`λ = 0`), takes the
@@ -73,29 +73,18 @@
 //! `ρ_λ·W/(2·tol)`. Sweeping the convex hull of the start and end instances would make it
 //! second order, but needs line queries against the hull of two differently oriented solids,
 //! which the exact fixed-axis kernel does not provide; the sub-moves are cheap (each touches only
-//! the rays near it), so the simple bounded scheme is used. Before the fine bisection a move is
-//! split at [`SCREEN_TOLERANCE_MM`] and the pieces whose grown box holds no material are dropped
-//! (a rotation in the air, a shank above the part): this changes the time, not the result.
+//! the rays near it), so the simple bounded scheme is used. (The stock screens a move against its
+//! material at a coarse tolerance before the fine bisection, `swarf_stock::cut`; that changes
+//! the time, not the result.)
 
-use crate::cut::{SegmentCut, ToolShape};
-use crate::error::StockError;
-use crate::sweep::{SweepShape, SweptConvex};
-use crate::tridexel::{CutStats, TriDexel};
+use crate::error::SweepError;
+use crate::swept::SweepShape;
 use swarf_geom::math::{Mat3, Vec3};
-use swarf_geom::Aabb;
 use swarf_path::{AxisSource, Move, MoveKind, Program};
 
 /// Most sub-moves one bisection may make; beyond it the move is refused (a tolerance far below
 /// what the rays can resolve, or a huge rotation) rather than run for hours.
 pub const MAX_SUB_MOVES: usize = 1 << 20;
-
-/// Bound (mm) with which a 5-axis move is first split to screen it against the material: the
-/// pieces whose swept box, grown by this bound and the tolerance, holds no material are not
-/// subdivided further (they could not remove anything). Affects speed only, never the result.
-pub const SCREEN_TOLERANCE_MM: f64 = 1.0;
-
-/// Sub-moves prepared and subtracted together (bounds the memory of the prepared sweeps).
-pub const PIECES_PER_BATCH: usize = 256;
 
 /// One constant-axis straight piece of a 5-axis move.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -398,28 +387,31 @@ impl MotionBound {
 /// [`MotionBound::error_bound`] `≤ tol`. In order of `s`.
 ///
 /// # Errors
-/// [`StockError::Unsupported`] (naming the move) when `tol` is not a positive finite number or
+/// [`SweepError::Unsupported`] (naming the move) when `tol` is not a positive finite number or
 /// more than [`MAX_SUB_MOVES`] would be needed.
 pub fn subdivide(
     program: &Program,
     index: usize,
     reach: Reach,
     tol: f64,
-) -> Result<Vec<SubMove>, StockError> {
+) -> Result<Vec<SubMove>, SweepError> {
     let mut out = Vec::new();
     subdivide_range(program, index, reach, tol, (0.0, 1.0), &mut out)?;
     Ok(out)
 }
 
 /// [`subdivide`] on the parameter range `range` only, appending to `out`.
-fn subdivide_range(
+///
+/// # Errors
+/// As [`subdivide`].
+pub fn subdivide_range(
     program: &Program,
     index: usize,
     reach: Reach,
     tol: f64,
     range: (f64, f64),
     out: &mut Vec<SubMove>,
-) -> Result<(), StockError> {
+) -> Result<(), SweepError> {
     check_tolerance(program, index, tol)?;
     let m = &program.moves[index];
     let bound = MotionBound::new(program, m);
@@ -452,7 +444,7 @@ fn subdivide_range(
                 error_bound: e,
             });
         } else if !e.is_finite() || out.len() + stack.len() >= MAX_SUB_MOVES {
-            return Err(StockError::Unsupported {
+            return Err(SweepError::Unsupported {
                 index,
                 line: m.line,
                 why: format!(
@@ -468,154 +460,19 @@ fn subdivide_range(
     Ok(())
 }
 
-fn check_tolerance(program: &Program, index: usize, tol: f64) -> Result<(), StockError> {
+/// `Ok` when `tol` is a positive finite chordal tolerance for move `index`.
+///
+/// # Errors
+/// [`SweepError::Unsupported`] naming the move otherwise.
+pub fn check_tolerance(program: &Program, index: usize, tol: f64) -> Result<(), SweepError> {
     if tol.is_finite() && tol > 0.0 {
         return Ok(());
     }
-    Err(StockError::Unsupported {
+    Err(SweepError::Unsupported {
         index,
         line: program.moves[index].line,
         why: format!("a 5-axis move needs a positive chordal tolerance, got {tol} mm"),
     })
-}
-
-/// Box holding the sweep of `shape` along the fixed-axis piece `p`.
-fn piece_box(shape: &SweepShape, p: &SubMove) -> Option<Aabb> {
-    shape
-        .parts()
-        .iter()
-        .map(|part| SweptConvex::new(part, p.tip0, p.axis, p.tip1 - p.tip0).bbox())
-        .reduce(|a, b| a.union(&b))
-}
-
-/// True when some ray of `stock` crossing `b` holds material inside `b`. When false, no cut
-/// within `b` can change the stock.
-fn material_in(stock: &TriDexel, b: &Aabb) -> bool {
-    let g = stock.grid();
-    // Cell-centre indices along axis `a` within [lo, hi].
-    let centres = |a: usize, lo: f64, hi: f64| {
-        let i0 = ((lo - g.min[a]) / g.h[a] - 0.5).ceil().max(0.0);
-        let i1 = ((hi - g.min[a]) / g.h[a] - 0.5)
-            .floor()
-            .min(g.n[a] as f64 - 1.0);
-        (i0 <= i1).then_some((i0 as usize, i1 as usize))
-    };
-    (0..3).any(|k| {
-        let (u, v) = ((k + 1) % 3, (k + 2) % 3);
-        let (Some((i0, i1)), Some((j0, j1))) = (
-            centres(u, b.min[u], b.max[u]),
-            centres(v, b.min[v], b.max[v]),
-        ) else {
-            return false;
-        };
-        let fam = stock.family(k);
-        (j0..=j1).any(|j| {
-            (i0..=i1).any(|i| {
-                fam.ray(i, j)
-                    .iter()
-                    .any(|iv| iv.enter < b.max[k] && iv.exit > b.min[k])
-            })
-        })
-    })
-}
-
-impl TriDexel {
-    /// Removes the volume `shape` sweeps along the sub-moves `pieces` (each a fixed-axis
-    /// straight move, cut exactly), in order, [`PIECES_PER_BATCH`] at a time through
-    /// [`TriDexel::subtract_moves`], all under the current move tag (they are pieces of one move).
-    pub fn cut_shape_pieces(&mut self, shape: &SweepShape, pieces: &[SubMove]) -> CutStats {
-        let mut total = CutStats::default();
-        for chunk in pieces.chunks(PIECES_PER_BATCH) {
-            let sweeps: Vec<Vec<SweptConvex<'_>>> = chunk
-                .iter()
-                .map(|p| {
-                    shape
-                        .parts()
-                        .iter()
-                        .map(|part| SweptConvex::new(part, p.tip0, p.axis, p.tip1 - p.tip0))
-                        .collect()
-                })
-                .collect();
-            let moves: Vec<[&[SweptConvex<'_>]; 1]> = sweeps.iter().map(|s| [&s[..]]).collect();
-            for [st] in self.subtract_pieces(&moves, None) {
-                total = total.merged(st);
-            }
-        }
-        total
-    }
-
-    /// Cuts move `index` of `program`, a 5-axis simultaneous move ([`Program::is_five_axis`]), as
-    /// constant-axis sub-moves within `tol` mm of the true sweep (module documentation): the
-    /// cutting part and the shank/holder are subdivided separately, each by its own [`Reach`].
-    /// Pieces that cannot reach any material are screened out first ([`SCREEN_TOLERANCE_MM`]).
-    /// [`SegmentCut::sub_moves`] counts the cutting part's sub-moves that were cut and
-    /// [`SegmentCut::error_bound_mm`] is the largest bound of any of them.
-    ///
-    /// # Errors
-    /// As [`subdivide`].
-    pub fn cut_five_axis(
-        &mut self,
-        program: &Program,
-        index: usize,
-        tool: &ToolShape,
-        tol: f64,
-    ) -> Result<SegmentCut, StockError> {
-        self.cut_five_axis_range(program, index, (0.0, 1.0), tool, tol)
-    }
-
-    /// [`TriDexel::cut_five_axis`] on the part `range` of the move's parameter.
-    pub fn cut_five_axis_range(
-        &mut self,
-        program: &Program,
-        index: usize,
-        range: (f64, f64),
-        tool: &ToolShape,
-        tol: f64,
-    ) -> Result<SegmentCut, StockError> {
-        check_tolerance(program, index, tol)?;
-        let mut out = SegmentCut::default();
-        for (k, shape) in [tool.cutting(), tool.non_cutting()].into_iter().enumerate() {
-            let Some(r) = Reach::of(shape) else {
-                continue; // no shank or holder
-            };
-            // Screen coarse pieces against the material first: the fine pieces of a coarse one
-            // sweep within `bound + tol` of its sweep, so if its box grown by that holds no
-            // material they would remove nothing and are not made.
-            let mut pieces = Vec::new();
-            let mut screened = Vec::new();
-            subdivide_range(
-                program,
-                index,
-                r,
-                tol.max(SCREEN_TOLERANCE_MM),
-                range,
-                &mut screened,
-            )?;
-            for c in screened {
-                let Some(b) = piece_box(shape, &c) else {
-                    continue;
-                };
-                if !material_in(self, &b.inflated(c.error_bound + tol)) {
-                    continue;
-                }
-                if c.error_bound <= tol {
-                    pieces.push(c);
-                } else {
-                    subdivide_range(program, index, r, tol, (c.s0, c.s1), &mut pieces)?;
-                }
-            }
-            let stats = self.cut_shape_pieces(shape, &pieces);
-            let worst = pieces.iter().map(|p| p.error_bound).fold(0.0, f64::max);
-            out.error_bound_mm = out.error_bound_mm.max(worst);
-            if k == 0 {
-                out.cutting = stats;
-                out.sub_moves = pieces.len() as u64;
-            } else {
-                out.non_cutting = stats;
-            }
-        }
-        Ok(out)
-    }
 }
 
 #[cfg(test)]

@@ -7,9 +7,9 @@
 mod common;
 
 use common::{cutters, gcode, tools, Rng};
+use swarf_envelope::{envelope, EnvelopeOptions};
 use swarf_geom::math::Vec3;
 use swarf_io::TriMesh;
-use swarf_sweep::{envelope, EnvelopeOptions};
 
 /// The mesh as an STL file stores it, read back (the reader welds equal positions).
 fn as_written(mesh: &TriMesh) -> TriMesh {

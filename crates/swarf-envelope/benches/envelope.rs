@@ -1,0 +1,57 @@
+//! Full-program envelope meshing time (by lattice spacing).
+
+use std::collections::BTreeMap;
+
+use criterion::{criterion_main, BenchmarkId, Criterion};
+use swarf_envelope::{envelope, EnvelopeOptions};
+use swarf_path::load::{read_program_str, ReadOptions};
+use swarf_path::Machine;
+use swarf_tool::Cutter;
+
+/// A pocketing program: a spiral of lines and arcs with plunges, 3-axis, then a 5-axis pass.
+fn program_text() -> String {
+    let mut t = String::from("G21 G90\nG0 X0 Y0 Z5\nG1 Z-2 F300\n");
+    for i in 0..10 {
+        let r = 4.0 + 2.0 * i as f64;
+        t += &format!("G1 X{r} Y0\nG3 X-{r} Y0 I-{r} J0\nG3 X{r} Y0 I{r} J0\n");
+    }
+    t += "G1 X30 Y0 Z-3\nG1 X30 Y30\nG1 X0 Y30 Z-1\n";
+    t
+}
+
+fn meshing(c: &mut Criterion) {
+    let mut g = c.benchmark_group("program_envelope");
+    g.sample_size(10);
+    let program = read_program_str(
+        &program_text(),
+        "bench.ngc",
+        Machine::three_axis(),
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    let tools = BTreeMap::from([(0, Cutter::ball(6.0).unwrap())]);
+    for h in [0.5, 0.25] {
+        g.bench_with_input(BenchmarkId::new("ball6_pocket", h), &h, |b, &h| {
+            let opts = EnvelopeOptions::default().with_resolution(h);
+            b.iter(|| envelope(&program, &tools, 0..program.moves.len(), &opts).unwrap())
+        });
+    }
+    let five = read_program_str(
+        "GOTO/0,0,0,0,0,1\nGOTO/20,0,0,0.3420201,0,0.9396926\nGOTO/20,20,0,0,0.3420201,0.9396926\n",
+        "bench.apt",
+        Machine::three_axis(),
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    g.bench_function("ball6_5axis_h0.25", |b| {
+        let opts = EnvelopeOptions::default();
+        b.iter(|| envelope(&five, &tools, 0..five.moves.len(), &opts).unwrap())
+    });
+    g.finish();
+}
+
+#[allow(missing_docs)]
+mod group {
+    criterion::criterion_group!(benches, super::meshing);
+}
+criterion_main!(group::benches);

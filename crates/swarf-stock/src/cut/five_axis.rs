@@ -1,0 +1,156 @@
+//! Cutting 5-axis simultaneous moves: the constant-axis sub-moves of `swarf_sweep::five_axis`
+//! (with its proven bound), screened against the material first and cut exactly.
+
+use crate::error::StockError;
+use crate::tridexel::{CutStats, SegmentCut, TriDexel};
+use swarf_geom::Aabb;
+use swarf_path::Program;
+use swarf_sweep::five_axis::{check_tolerance, subdivide_range, Reach, SubMove};
+use swarf_sweep::{SweepShape, SweptConvex, ToolShape};
+
+/// Bound (mm) with which a 5-axis move is first split to screen it against the material: the
+/// pieces whose swept box, grown by this bound and the tolerance, holds no material are not
+/// subdivided further (they could not remove anything). Affects speed only, never the result.
+pub const SCREEN_TOLERANCE_MM: f64 = 1.0;
+
+/// Sub-moves prepared and subtracted together (bounds the memory of the prepared sweeps).
+pub const PIECES_PER_BATCH: usize = 256;
+
+/// Box holding the sweep of `shape` along the fixed-axis piece `p`.
+fn piece_box(shape: &SweepShape, p: &SubMove) -> Option<Aabb> {
+    shape
+        .parts()
+        .iter()
+        .map(|part| SweptConvex::new(part, p.tip0, p.axis, p.tip1 - p.tip0).bbox())
+        .reduce(|a, b| a.union(&b))
+}
+
+/// True when some ray of `stock` crossing `b` holds material inside `b`. When false, no cut
+/// within `b` can change the stock.
+fn material_in(stock: &TriDexel, b: &Aabb) -> bool {
+    let g = stock.grid();
+    // Cell-centre indices along axis `a` within [lo, hi].
+    let centres = |a: usize, lo: f64, hi: f64| {
+        let i0 = ((lo - g.min[a]) / g.h[a] - 0.5).ceil().max(0.0);
+        let i1 = ((hi - g.min[a]) / g.h[a] - 0.5)
+            .floor()
+            .min(g.n[a] as f64 - 1.0);
+        (i0 <= i1).then_some((i0 as usize, i1 as usize))
+    };
+    (0..3).any(|k| {
+        let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+        let (Some((i0, i1)), Some((j0, j1))) = (
+            centres(u, b.min[u], b.max[u]),
+            centres(v, b.min[v], b.max[v]),
+        ) else {
+            return false;
+        };
+        let fam = stock.family(k);
+        (j0..=j1).any(|j| {
+            (i0..=i1).any(|i| {
+                fam.ray(i, j)
+                    .iter()
+                    .any(|iv| iv.enter < b.max[k] && iv.exit > b.min[k])
+            })
+        })
+    })
+}
+
+impl TriDexel {
+    /// Removes the volume `shape` sweeps along the sub-moves `pieces` (each a fixed-axis
+    /// straight move, cut exactly), in order, [`PIECES_PER_BATCH`] at a time through
+    /// [`TriDexel::subtract_moves`], all under the current move tag (they are pieces of one move).
+    pub fn cut_shape_pieces(&mut self, shape: &SweepShape, pieces: &[SubMove]) -> CutStats {
+        let mut total = CutStats::default();
+        for chunk in pieces.chunks(PIECES_PER_BATCH) {
+            let sweeps: Vec<Vec<SweptConvex<'_>>> = chunk
+                .iter()
+                .map(|p| {
+                    shape
+                        .parts()
+                        .iter()
+                        .map(|part| SweptConvex::new(part, p.tip0, p.axis, p.tip1 - p.tip0))
+                        .collect()
+                })
+                .collect();
+            let moves: Vec<[&[SweptConvex<'_>]; 1]> = sweeps.iter().map(|s| [&s[..]]).collect();
+            for [st] in self.subtract_pieces(&moves, None) {
+                total = total.merged(st);
+            }
+        }
+        total
+    }
+
+    /// Cuts move `index` of `program`, a 5-axis simultaneous move ([`Program::is_five_axis`]), as
+    /// constant-axis sub-moves within `tol` mm of the true sweep (module documentation): the
+    /// cutting part and the shank/holder are subdivided separately, each by its own [`Reach`].
+    /// Pieces that cannot reach any material are screened out first ([`SCREEN_TOLERANCE_MM`]).
+    /// [`SegmentCut::sub_moves`] counts the cutting part's sub-moves that were cut and
+    /// [`SegmentCut::error_bound_mm`] is the largest bound of any of them.
+    ///
+    /// # Errors
+    /// As [`swarf_sweep::five_axis::subdivide`].
+    pub fn cut_five_axis(
+        &mut self,
+        program: &Program,
+        index: usize,
+        tool: &ToolShape,
+        tol: f64,
+    ) -> Result<SegmentCut, StockError> {
+        self.cut_five_axis_range(program, index, (0.0, 1.0), tool, tol)
+    }
+
+    /// [`TriDexel::cut_five_axis`] on the part `range` of the move's parameter.
+    pub fn cut_five_axis_range(
+        &mut self,
+        program: &Program,
+        index: usize,
+        range: (f64, f64),
+        tool: &ToolShape,
+        tol: f64,
+    ) -> Result<SegmentCut, StockError> {
+        check_tolerance(program, index, tol)?;
+        let mut out = SegmentCut::default();
+        for (k, shape) in [tool.cutting(), tool.non_cutting()].into_iter().enumerate() {
+            let Some(r) = Reach::of(shape) else {
+                continue; // no shank or holder
+            };
+            // Screen coarse pieces against the material first: the fine pieces of a coarse one
+            // sweep within `bound + tol` of its sweep, so if its box grown by that holds no
+            // material they would remove nothing and are not made.
+            let mut pieces = Vec::new();
+            let mut screened = Vec::new();
+            subdivide_range(
+                program,
+                index,
+                r,
+                tol.max(SCREEN_TOLERANCE_MM),
+                range,
+                &mut screened,
+            )?;
+            for c in screened {
+                let Some(b) = piece_box(shape, &c) else {
+                    continue;
+                };
+                if !material_in(self, &b.inflated(c.error_bound + tol)) {
+                    continue;
+                }
+                if c.error_bound <= tol {
+                    pieces.push(c);
+                } else {
+                    subdivide_range(program, index, r, tol, (c.s0, c.s1), &mut pieces)?;
+                }
+            }
+            let stats = self.cut_shape_pieces(shape, &pieces);
+            let worst = pieces.iter().map(|p| p.error_bound).fold(0.0, f64::max);
+            out.error_bound_mm = out.error_bound_mm.max(worst);
+            if k == 0 {
+                out.cutting = stats;
+                out.sub_moves = pieces.len() as u64;
+            } else {
+                out.non_cutting = stats;
+            }
+        }
+        Ok(out)
+    }
+}
