@@ -1,12 +1,10 @@
 //! Full-program envelope meshing time (by lattice spacing).
 
-use std::collections::BTreeMap;
-
 use criterion::{criterion_main, BenchmarkId, Criterion};
 use swarf_envelope::{envelope, EnvelopeOptions};
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::Machine;
-use swarf_tool::Cutter;
+use swarf_tool::{Cutter, ToolSet};
 
 /// A pocketing program: a spiral of lines and arcs with plunges, 3-axis, then a 5-axis pass.
 fn program_text() -> String {
@@ -29,7 +27,7 @@ fn meshing(c: &mut Criterion) {
         &ReadOptions::default(),
     )
     .unwrap();
-    let tools = BTreeMap::from([(0, Cutter::ball(6.0).unwrap())]);
+    let tools = ToolSet::single(Cutter::ball(6.0).unwrap());
     for h in [0.5, 0.25] {
         g.bench_with_input(BenchmarkId::new("ball6_pocket", h), &h, |b, &h| {
             let opts = EnvelopeOptions::default().with_resolution(h);

@@ -43,6 +43,9 @@ pub enum EnvelopeError {
         /// The resolution asked for, mm.
         h: f64,
     },
+    /// The ray grid could not be made (from `swarf-stock`).
+    #[error(transparent)]
+    Stock(#[from] swarf_stock::StockError),
     /// A 5-axis move could not be split into fixed-axis sub-moves (from `swarf-sweep`).
     #[error(transparent)]
     Sweep(#[from] swarf_sweep::SweepError),

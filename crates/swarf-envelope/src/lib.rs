@@ -5,7 +5,8 @@
 //! tool (cutting part, shank, holder) sweeps along them. Each move is split into fixed-axis
 //! straight pieces (`swarf_sweep`: a line as it is, arcs as chords, 5-axis moves as constant-axis
 //! sub-moves with a proven Hausdorff bound) whose exact sweeps are sampled along the lines of a
-//! ray grid in X, Y and Z; the union of their intervals on every line is contoured into a
+//! tri-dexel (`swarf_stock`'s ray grid, starting empty) in X, Y and Z; the union of their
+//! intervals on every ray is contoured into a
 //! closed, outward-oriented mesh (`swarf_io`'s dual contouring). Where the envelope of a move
 //! folds into its own sweep (tight turns) the fold test of `swarf_sweep` reports the move; the
 //! union resolves it.
@@ -16,11 +17,10 @@
 //!
 //! # Example
 //! ```
-//! use std::collections::BTreeMap;
 //! use swarf_envelope::{envelope, EnvelopeOptions};
 //! use swarf_path::load::{read_program_str, ReadOptions};
 //! use swarf_path::Machine;
-//! use swarf_tool::Cutter;
+//! use swarf_tool::{Cutter, ToolSet};
 //!
 //! let program = read_program_str(
 //!     "G21 G90\nG0 X0 Y0 Z0\nG1 X20 F300\n",
@@ -29,7 +29,7 @@
 //!     &ReadOptions::default(),
 //! )
 //! .unwrap();
-//! let tools = BTreeMap::from([(0, Cutter::ball(10.0).unwrap())]);
+//! let tools = ToolSet::single(Cutter::ball(10.0).unwrap());
 //! let options = EnvelopeOptions::default().with_resolution(0.5);
 //! let env = envelope(&program, &tools, 0..program.moves.len(), &options).unwrap();
 //! assert!(env.mesh.is_closed());
@@ -40,7 +40,7 @@ pub mod error;
 pub mod tolerance;
 
 pub use envelope::{
-    envelope, fixed_axis_pieces, Envelope, EnvelopeGrid, EnvelopeOptions, EnvelopeReport,
+    envelope, envelope_rays, fixed_axis_pieces, Envelope, EnvelopeOptions, EnvelopeReport,
     FixedAxisPiece,
 };
 pub use error::EnvelopeError;

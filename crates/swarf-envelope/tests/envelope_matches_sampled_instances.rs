@@ -6,21 +6,15 @@
 
 mod common;
 
-use swarf_envelope::envelope::SweepBound;
-use swarf_envelope::{fixed_axis_pieces, EnvelopeGrid};
+use swarf_envelope::{envelope_rays, fixed_axis_pieces};
 use swarf_geom::math::Vec3;
 use swarf_path::Program;
-use swarf_sweep::{SweptConvex, ToolShape};
+use swarf_stock::TriDexel;
+use swarf_sweep::{SweepBound, SweptConvex, ToolShape};
 use swarf_tool::Cutter;
 
-/// The envelope lines of move `index` (lattice spacing `h`, chordal tolerance `tol`).
-fn envelope_grid(
-    program: &Program,
-    index: usize,
-    cutter: &Cutter,
-    h: f64,
-    tol: f64,
-) -> EnvelopeGrid {
+/// The envelope rays of move `index` (lattice spacing `h`, chordal tolerance `tol`).
+fn envelope_grid(program: &Program, index: usize, cutter: &Cutter, h: f64, tol: f64) -> TriDexel {
     let shape = ToolShape::new(cutter);
     let mut pieces = Vec::new();
     for part in [shape.cutting(), shape.non_cutting()] {
@@ -50,8 +44,8 @@ fn envelope_grid(
         .map(SweptConvex::bbox)
         .reduce(|a, b| a.union(&b))
         .unwrap();
-    let mut g = EnvelopeGrid::new(b, h).unwrap();
-    g.add_bounded(&sweeps, &bounds);
+    let mut g = envelope_rays(b, h).unwrap();
+    g.unite_swept(&sweeps, &bounds);
     g
 }
 

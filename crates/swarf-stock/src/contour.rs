@@ -6,7 +6,7 @@
 //! The lattice is the grid of ray crossings: lattice point (i, j, k) is where the X ray (j, k),
 //! the Y ray (k, i) and the Z ray (i, j) meet, at cell centres of the stock's grid.
 
-use swarf_geom::Aabb;
+use swarf_geom::math::Vec3;
 use swarf_io::{
     dual_contour_with_stats, ContourOptions, ContourStats, HermiteGrid, Lattice, Span, TriMesh,
 };
@@ -15,8 +15,11 @@ use crate::TriDexel;
 
 impl HermiteGrid for TriDexel {
     fn lattice(&self) -> Lattice {
+        // The grid's own cell size (for a stock grid, what `Lattice::cell_centres` of its box
+        // computes; for a cubic grid, exactly its `h`).
         let g = self.grid();
-        Lattice::cell_centres(Aabb::new(g.min, g.max), g.n)
+        let h = Vec3::from(g.h);
+        Lattice::new(g.min + 0.5 * h, h, g.n)
     }
 
     fn line_spans(&self, axis: usize, u: usize, v: usize, out: &mut Vec<Span>) {

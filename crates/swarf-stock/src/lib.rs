@@ -78,6 +78,7 @@ pub mod mesh;
 pub mod simulate;
 pub mod spec;
 pub mod tridexel;
+pub mod unite;
 
 pub use cut::{DEFAULT_CHORDAL_TOLERANCE_MM, PIECES_PER_BATCH, SCREEN_TOLERANCE_MM};
 pub use dexel::{Dexel, DexelTags, EndTags, Interval, MoveTag, UNCUT};

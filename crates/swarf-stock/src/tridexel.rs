@@ -16,7 +16,7 @@ use swarf_sweep::{SweepShape, SweptConvex, ToolShape};
 /// Side of the square tiles of rays (tiles are stored contiguously and carry a conservative
 /// bound of their material along the ray, so whole tiles are skipped without touching rays).
 pub const TILE: usize = 8;
-const TILE_RAYS: usize = TILE * TILE;
+pub(crate) const TILE_RAYS: usize = TILE * TILE;
 
 /// The most rays a stock may have (about 40 bytes each before any material).
 pub const MAX_RAYS: u64 = 60_000_000;
@@ -77,6 +77,19 @@ impl Grid {
         })
     }
 
+    /// The grid of `n` cubic cells of side `h` from `min` (rays through `min + (i + ½)·h`): for
+    /// sampling on a lattice chosen by the caller (the envelope's, centred on what it covers).
+    ///
+    /// # Errors
+    /// As [`Grid::new`].
+    pub fn cubic(min: Vec3, h: f64, n: [usize; 3]) -> Result<Grid, StockError> {
+        let size = Vec3::new(n[0] as f64, n[1] as f64, n[2] as f64) * h;
+        let mut g = Grid::new(Aabb::new(min, min + size), h)?;
+        g.n = n.map(|c| c.max(1));
+        g.h = [h; 3];
+        Ok(g)
+    }
+
     /// Coordinate of the centre of cell `i` along axis `k`.
     #[inline]
     pub fn center(&self, k: usize, i: usize) -> f64 {
@@ -84,7 +97,7 @@ impl Grid {
     }
 
     /// Indices of the cell centres along axis `k` within `[a, b]`, if any.
-    fn centers_in(&self, k: usize, a: f64, b: f64) -> Option<(usize, usize)> {
+    pub(crate) fn centers_in(&self, k: usize, a: f64, b: f64) -> Option<(usize, usize)> {
         let lo = ((a - self.min[k]) / self.h[k] - 0.5).ceil().max(0.0);
         let hi = ((b - self.min[k]) / self.h[k] - 0.5).floor();
         let hi = hi.min(self.n[k] as f64 - 1.0);
@@ -96,20 +109,20 @@ impl Grid {
 #[derive(Clone, Debug)]
 pub struct DexelFamily {
     /// Ray direction: 0 = X, 1 = Y, 2 = Z.
-    axis: usize,
+    pub(crate) axis: usize,
     /// Rays along the first cross axis `(axis+1) % 3` and the second `(axis+2) % 3`.
-    nu: usize,
-    nv: usize,
+    pub(crate) nu: usize,
+    pub(crate) nv: usize,
     /// Tiles along u.
-    ntu: usize,
+    pub(crate) ntu: usize,
     /// Tile-major storage: tile `(ti, tj)` holds rays `(tj·ntu + ti)·TILE² ..`, row-major inside.
-    rays: Vec<Dexel>,
+    pub(crate) rays: Vec<Dexel>,
     /// Per tile, `[lowest enter, highest exit]` of its material (conservative: may be wider than
     /// the material after cuts until the tile is next visited).
-    bounds: Vec<[f64; 2]>,
+    pub(crate) bounds: Vec<[f64; 2]>,
     /// The provenance of every ray's intervals, indexed like `rays` (empty when the stock
     /// does not track provenance).
-    tags: Vec<DexelTags>,
+    pub(crate) tags: Vec<DexelTags>,
 }
 
 const EMPTY_BOUND: [f64; 2] = [f64::INFINITY, f64::NEG_INFINITY];
@@ -284,7 +297,7 @@ pub struct StockStats {
 #[derive(Clone, Debug)]
 pub struct TriDexel {
     grid: Grid,
-    families: [DexelFamily; 3],
+    pub(crate) families: [DexelFamily; 3],
     /// The tag the next cut gives the ends it makes ([`TriDexel::set_move_tag`]).
     tag: MoveTag,
 }
@@ -292,12 +305,16 @@ pub struct TriDexel {
 impl TriDexel {
     /// An empty stock (no material) on the grid over `bounds` with resolution `h` (mm).
     pub fn empty(bounds: Aabb, h: f64) -> Result<Self, StockError> {
-        let grid = Grid::new(bounds, h)?;
-        Ok(Self {
+        Ok(Self::on_grid(Grid::new(bounds, h)?))
+    }
+
+    /// An empty stock (no material) on `grid`.
+    pub fn on_grid(grid: Grid) -> Self {
+        Self {
             families: [0, 1, 2].map(|k| DexelFamily::new(k, &grid)),
             grid,
             tag: 0,
-        })
+        }
     }
 
     /// A stock whose ray along axis `k` at cross coordinates `(u, v)` (cell centres; `u` along

@@ -76,7 +76,9 @@ pub use five_axis::{MotionBound, Reach, SubMove};
 pub use fold::{fold_check, SelfIntersection};
 pub use grazing::{grazing_points, GrazingPoint, GrazingSet, Harmonic, Roots};
 pub use kinematics::MotionState;
-pub use swept::{ConvexProfile, Element, LineBatch, SignedDistance, SweepShape, SweptConvex};
+pub use swept::{
+    ConvexProfile, Element, LineBatch, SignedDistance, SweepBound, SweepShape, SweptConvex,
+};
 pub use tangency::{
     aras_angles, feasible_contact, feed_angle, feed_range, motion_class, roles, tangency,
     Feasibility, FeedRange, MotionClass, PieceEngagement, PieceRole, Side,

@@ -1,6 +1,5 @@
 //! `swarf envelope`: the swept envelope of a program's feed moves as STL and glb.
 
-use std::collections::BTreeMap;
 use std::ops::Range;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -13,10 +12,9 @@ use swarf_io::glb::{glb_bytes, glb_size_bound};
 use swarf_io::output_set::stl_size;
 use swarf_io::{write_stl_to, GlbOptions, Shading};
 use swarf_sweep::SelfIntersection;
-use swarf_tool::Cutter;
 
 use crate::cli::SetupArgs;
-use crate::commands::tools::{load_setup, resolve_all, Setup};
+use crate::commands::tools::{load_setup, tool_set, Setup};
 use crate::output::{check_sizes, output_set, print_json};
 
 #[derive(Debug, Args)]
@@ -102,8 +100,7 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
         single,
         table,
     } = load_setup(&args.setup, &args.program)?;
-    let resolved = resolve_all(&program, single.as_ref(), table.as_ref())?;
-    let cutters: BTreeMap<u32, Cutter> = resolved.into_iter().map(|(n, r)| (n, r.cutter)).collect();
+    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
     let range = match &args.moves {
         Some(m) => parse_moves(m, program.moves.len())?,
         None => 0..program.moves.len(),
@@ -111,7 +108,7 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
     let options = EnvelopeOptions::default()
         .with_resolution(args.resolution)
         .with_tolerance(args.tolerance);
-    let env = envelope(&program, &cutters, range, &options)
+    let env = envelope(&program, &tools, range, &options)
         .with_context(|| format!("sweeping {}", args.program.display()))?;
     let stl = args.out.join("envelope.stl");
     let glb = args.out.join("envelope.glb");

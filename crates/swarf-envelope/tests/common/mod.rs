@@ -4,14 +4,13 @@
 //! intersections).
 #![allow(dead_code, unreachable_pub)]
 
-use std::collections::BTreeMap;
-
-use swarf_envelope::EnvelopeGrid;
 use swarf_geom::math::{Vec2, Vec3};
 use swarf_geom::{Frame, Ray};
+use swarf_io::HermiteGrid;
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::{Machine, Program};
-use swarf_tool::{AnyPiece, Cutter, Piece, RevolvedSolid};
+use swarf_stock::TriDexel;
+use swarf_tool::{AnyPiece, Cutter, Piece, RevolvedSolid, ToolSet, ToolSource};
 
 #[path = "../../../swarf-sweep/tests/common/mod.rs"]
 mod sweep_common;
@@ -43,8 +42,9 @@ pub fn apt(text: &str) -> Program {
     .unwrap()
 }
 
-pub fn tools(c: &Cutter) -> BTreeMap<u32, Cutter> {
-    BTreeMap::from([(0, c.clone())])
+/// `c` as tool 0 (and no other tool).
+pub fn tools(c: &Cutter) -> ToolSet {
+    ToolSet::default().with(0, c.clone(), ToolSource::Spec)
 }
 
 /// The solids of the whole tool.
@@ -133,9 +133,9 @@ pub fn distance_to_instances(c: &Cutter, poses: &[(Vec3, Vec3)], x: Vec3) -> f64
 /// The largest distance from a boundary point of the envelope (an interval end on a lattice
 /// line: an exact point of the swept volume's boundary) to the union of the instances. The
 /// instances lie inside the sweep, so this is the Hausdorff distance between the two volumes.
-pub fn envelope_to_instances(grid: &EnvelopeGrid, c: &Cutter, poses: &[(Vec3, Vec3)]) -> f64 {
+pub fn envelope_to_instances(grid: &TriDexel, c: &Cutter, poses: &[(Vec3, Vec3)]) -> f64 {
     use rayon::prelude::*;
-    let lat = *grid.lattice();
+    let lat = grid.lattice();
     let rows: Vec<(usize, usize)> = (0..3)
         .flat_map(|k| (0..lat.n[(k + 2) % 3]).map(move |v| (k, v)))
         .collect();
@@ -144,7 +144,7 @@ pub fn envelope_to_instances(grid: &EnvelopeGrid, c: &Cutter, poses: &[(Vec3, Ve
             let (ua, va) = ((k + 1) % 3, (k + 2) % 3);
             let mut worst = 0.0f64;
             for u in 0..lat.n[ua] {
-                for sp in grid.line(k, u, v) {
+                for sp in grid.family(k).ray(u, v) {
                     for t in [sp.enter, sp.exit] {
                         let mut x = Vec3::ZERO;
                         x[ua] = lat.coord(ua, u as isize);
@@ -160,8 +160,8 @@ pub fn envelope_to_instances(grid: &EnvelopeGrid, c: &Cutter, poses: &[(Vec3, Ve
 }
 
 /// Volume of the union of the instances from the Z lines of `grid`, mm³.
-pub fn instance_volume(grid: &EnvelopeGrid, c: &Cutter, poses: &[(Vec3, Vec3)]) -> f64 {
-    let lat = *grid.lattice();
+pub fn instance_volume(grid: &TriDexel, c: &Cutter, poses: &[(Vec3, Vec3)]) -> f64 {
+    let lat = grid.lattice();
     let mut total = 0.0;
     for v in 0..lat.n[1] {
         for u in 0..lat.n[0] {

@@ -45,6 +45,7 @@
 //! the move once, and shares the per-family constants among the rays
 //! ([`SweptConvex::has_closed_form`], [`SweptConvex::axis_ray_interval`]).
 
+pub(crate) mod bound;
 pub(crate) mod capsule;
 pub(crate) mod circle;
 pub(crate) mod distance;
@@ -56,6 +57,7 @@ pub(crate) mod slab;
 pub(crate) mod sphere;
 pub(crate) mod torus;
 
+pub use bound::SweepBound;
 pub use distance::SignedDistance;
 pub use interval::{overlaps, Interval};
 pub use profile::{ConvexProfile, Element, SweepShape};
