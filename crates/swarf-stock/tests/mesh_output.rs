@@ -131,3 +131,85 @@ fn machined_parts_as_written_are_2_manifolds_on_random_programs() {
         }
     }
 }
+
+/// Panics unless `m` is a 2-manifold as an STL file stores it (`f32` positions welded when read
+/// back): every edge in two triangles in opposite directions, no degenerate triangle, and the
+/// triangles around every vertex one fan (no two cones touching at a point).
+fn assert_manifold_as_written(m: &swarf_io::TriMesh, what: &str) {
+    let mut bytes = Vec::new();
+    swarf_io::write_stl_to(&mut bytes, m).unwrap();
+    let w = swarf_io::stl::parse_stl(&bytes, std::path::Path::new("stock.stl")).unwrap();
+    let rep = w.edge_report();
+    assert!(rep.is_clean(), "{what}: {rep:?}");
+    assert_eq!(
+        w.triangles.len(),
+        m.triangles.len(),
+        "{what}: triangles lost"
+    );
+    let mut around: Vec<Vec<usize>> = vec![Vec::new(); w.vertices.len()];
+    for (i, t) in w.triangles.iter().enumerate() {
+        let [a, b, c] = t.map(|v| w.vertices[v as usize]);
+        assert!(
+            t[0] != t[1] && t[1] != t[2] && t[2] != t[0] && (b - a).cross(c - a) != Vec3::ZERO,
+            "{what}: triangle {i} is degenerate: {a} {b} {c}"
+        );
+        for &v in t {
+            around[v as usize].push(i);
+        }
+    }
+    for (v, fan) in around.iter().enumerate() {
+        // Walk the fan across edges through v: on a 2-manifold it reaches every triangle at v.
+        let shares = |i: usize, j: usize| {
+            let (a, b) = (w.triangles[i], w.triangles[j]);
+            a.iter()
+                .filter(|&&x| x as usize != v && b.contains(&x))
+                .count()
+                > 0
+        };
+        let mut seen = vec![false; fan.len()];
+        let mut stack = vec![0];
+        seen[0] = true;
+        while let Some(k) = stack.pop() {
+            for j in 0..fan.len() {
+                if !seen[j] && shares(fan[k], fan[j]) {
+                    seen[j] = true;
+                    stack.push(j);
+                }
+            }
+        }
+        assert!(seen.iter().all(|&s| s), "{what}: vertex {v} joins two fans");
+    }
+}
+
+#[test]
+fn stock_meshes_of_real_stl_parts_are_2_manifolds() {
+    // Issue 16 item 5: STL stocks meshed with edges in four or six triangles. The shared parts
+    // (a mould core and a SolidWorks part) at several resolutions, as built and after a cut.
+    let Some([core, part]) =
+        swarf_testdata::paths(["stl/ocl_ktoolcor.stl", "stl/swcam_Paralelipipedo.stl"])
+    else {
+        return;
+    };
+    let cases = [(core, [0.05, 0.037], 1.0), (part, [5.0, 3.3], 40.0)];
+    for (file, resolutions, d) in cases {
+        let bytes = std::fs::read(&file).unwrap();
+        for h in resolutions {
+            let mut stock = TriDexel::from_stl_bytes(&bytes, h, Default::default()).unwrap();
+            let what = format!("{} at h = {h}", file.display());
+            assert_manifold_as_written(&stock.to_mesh(&Default::default()).0, &what);
+            // A ball groove across the top, through the part's skin.
+            let g = *stock.grid();
+            let (lo, hi) = (g.min, g.max);
+            let y = 0.5 * (lo.y + hi.y);
+            let tool = ToolShape::new(&Cutter::ball(d).unwrap());
+            stock.cut_linear(
+                &tool,
+                Vec3::new(lo.x - d, y, hi.z - 0.3 * d),
+                Vec3::new(hi.x + d, y + 0.1 * (hi.y - lo.y), hi.z - 0.3 * d),
+                Vec3::Z,
+            );
+            let what = format!("{what}, grooved");
+            assert_manifold_as_written(&stock.to_mesh(&Default::default()).0, &what);
+        }
+    }
+}
