@@ -4,8 +4,8 @@ use crate::cut::{ToolShape, COLLISION_EPS_MM, DEFAULT_CHORDAL_TOLERANCE_MM};
 use crate::error::StockError;
 use crate::tridexel::{LinearMove, TriDexel};
 use std::collections::BTreeMap;
-use std::ops::ControlFlow;
 use std::time::Instant;
+use swarf_geom::progress::{Observer, Quiet};
 use swarf_path::{MoveKind, Program};
 use swarf_tool::Cutter;
 
@@ -128,9 +128,7 @@ pub fn simulate(
     stock: &mut TriDexel,
     options: &SimOptions,
 ) -> Result<SimulationReport, StockError> {
-    simulate_observed(program, tools, stock, options, &mut |_| {
-        ControlFlow::Continue(())
-    })
+    simulate_observed(program, tools, stock, options, &Quiet)
 }
 
 /// Most consecutive straight fixed-axis moves cut as one batch by [`simulate`] (a batch is
@@ -148,16 +146,17 @@ fn batchable(program: &Program, m: &swarf_path::Move) -> bool {
         && !program.is_five_axis(m)
 }
 
-/// [`simulate`], telling `observer` between moves how many of the program's moves are done (after
-/// each move, or each batch of up to [`BATCH_MOVES`] straight moves);
-/// the observer may stop the run (Ctrl-C), which then ends with [`StockError::Cancelled`] and
-/// leaves the stock as the finished moves made it.
+/// [`simulate`], telling `observer` between moves how many of the program's moves are done
+/// (`progress(done, moves)`, after each move or each batch of up to [`BATCH_MOVES`] straight
+/// moves; not before the first nor after the last); the observer may stop the run (Ctrl-C),
+/// which then ends with [`StockError::Cancelled`] and leaves the stock as the finished moves
+/// made it.
 pub fn simulate_observed(
     program: &Program,
     tools: &Tools,
     stock: &mut TriDexel,
     options: &SimOptions,
-    observer: &mut dyn FnMut(usize) -> ControlFlow<()>,
+    observer: &dyn Observer,
 ) -> Result<SimulationReport, StockError> {
     let t0 = Instant::now();
     let stock_volume = stock.volume();
@@ -168,10 +167,11 @@ pub fn simulate_observed(
     let (mut tested, mut updates) = (0u64, 0u64);
     let (mut five_moves, mut five_subs, mut five_err) = (0usize, 0u64, 0.0f64);
     let file_of = |f: u16| program.files.get(f as usize).cloned().unwrap_or_default();
+    let total = program.moves.len() as u64;
     let mut next = 0;
     while next < program.moves.len() {
         let i0 = next;
-        if i0 > 0 && observer(i0).is_break() {
+        if i0 > 0 && observer.progress(i0 as u64, total).is_break() {
             return Err(StockError::Cancelled { done: i0 });
         }
         let m0 = &program.moves[i0];
@@ -257,4 +257,72 @@ pub fn simulate_observed(
         five_axis_error_bound_mm: five_err,
         resolution_mm: stock.grid().h,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::ops::ControlFlow;
+    use std::sync::atomic::{AtomicU64, Ordering};
+    use swarf_geom::math::Vec3;
+    use swarf_path::load::{read_program_str, ReadOptions};
+    use swarf_path::Machine;
+
+    /// A plunge and ten arcs: every arc is cut on its own, so the observer hears of each.
+    fn arcs() -> Program {
+        let mut text = String::from("G21 G90\nG0 X0 Y10 Z5\nG1 Z-1 F600\n");
+        for k in 0..10 {
+            let g = if k % 2 == 0 { "G2" } else { "G3" };
+            text += &format!("{g} X{} Y10 I2 J0\n", 4 * (k + 1));
+        }
+        read_program_str(
+            &text,
+            "arcs.ngc",
+            Machine::three_axis(),
+            &ReadOptions::default(),
+        )
+        .unwrap()
+    }
+
+    fn stock() -> TriDexel {
+        TriDexel::from_box(Vec3::new(-5.0, 0.0, -5.0), Vec3::new(45.0, 20.0, 0.0), 0.5).unwrap()
+    }
+
+    #[test]
+    fn an_observer_that_breaks_stops_the_run_and_a_quiet_one_changes_nothing() {
+        let program = arcs();
+        let tools = Tools::single(&Cutter::flat(4.0).unwrap());
+        let opts = SimOptions::default();
+        let moves = program.moves.len() as u64;
+
+        // Counting only: told after every batch, never before the first or after the last.
+        let calls = AtomicU64::new(0);
+        let count = |done: u64, total: u64| {
+            assert!(done > 0 && done < total && total == moves);
+            calls.fetch_add(1, Ordering::Relaxed);
+            ControlFlow::Continue(())
+        };
+        let mut observed = stock();
+        let a = simulate_observed(&program, &tools, &mut observed, &opts, &count).unwrap();
+        // The rapid and the plunge are one batch, then one call per arc but the last.
+        assert_eq!(calls.load(Ordering::Relaxed), 10);
+        let mut quiet = stock();
+        let b = simulate(&program, &tools, &mut quiet, &opts).unwrap();
+        assert_eq!(a.removed_per_move_mm3, b.removed_per_move_mm3);
+        assert_eq!(a.final_volume_xyz_mm3, b.final_volume_xyz_mm3);
+        assert_eq!(a.intervals, b.intervals);
+        assert!(b.removed_volume_mm3 > 0.0);
+
+        // Stopped at the first report: one call, nothing after it cut.
+        let calls = AtomicU64::new(0);
+        let stop = |_: u64, _: u64| {
+            calls.fetch_add(1, Ordering::Relaxed);
+            ControlFlow::Break(())
+        };
+        let mut stopped = stock();
+        let r = simulate_observed(&program, &tools, &mut stopped, &opts, &stop);
+        assert_eq!(r, Err(StockError::Cancelled { done: 2 }));
+        assert_eq!(calls.load(Ordering::Relaxed), 1);
+        assert!(stopped.volume() > quiet.volume());
+    }
 }

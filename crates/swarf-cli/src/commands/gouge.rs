@@ -81,12 +81,12 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         ..GougeOptions::DEFAULT.with_tolerance(args.tolerance)
     };
     let gs = GougeSurface::new(&prep);
-    let bar = crate::output::moves_bar(program.moves.len());
-    let report = check_program_observed(&gs, &program, &tools, &opts, &|done, _| {
-        bar.set_position(done as u64);
-    })
-    .with_context(|| format!("checking {}", args.program.display()));
-    bar.finish_and_clear();
+    // Ctrl-C ends `swarf gouge` at once (it does not listen for a stop), so the observer only
+    // draws the bar.
+    let progress = crate::output::MovesProgress::new(program.moves.len());
+    let report = check_program_observed(&gs, &program, &tools, &opts, &progress)
+        .with_context(|| format!("checking {}", args.program.display()));
+    progress.finish();
     let report = report?;
     let summary = report.summary(&opts, program.moves.len(), t0.elapsed().as_secs_f64());
     let mut set = output_set(&args.out, DEFAULT_MAX_OUTPUT_MB)?;

@@ -1,7 +1,6 @@
 //! `swarf simulate`: run a program on a tri-dexel stock and report what it removed.
 
 use std::fmt::Write as _;
-use std::ops::ControlFlow;
 use std::path::Path;
 
 use anyhow::{bail, Context, Result};
@@ -159,16 +158,9 @@ pub(crate) fn simulate_with_progress(
     stock: &mut TriDexel,
     options: &SimOptions,
 ) -> Result<SimulationReport> {
-    let bar = crate::output::moves_bar(program.moves.len());
-    let result = simulate_observed(program, tools, stock, options, &mut |done| {
-        bar.set_position(done as u64);
-        if crate::output::stop_requested() {
-            ControlFlow::Break(())
-        } else {
-            ControlFlow::Continue(())
-        }
-    });
-    bar.finish_and_clear();
+    let progress = crate::output::MovesProgress::new(program.moves.len());
+    let result = simulate_observed(program, tools, stock, options, &progress);
+    progress.finish();
     match result {
         Err(StockError::Cancelled { done }) => {
             bail!(
