@@ -85,7 +85,7 @@ pub use dexel::{Dexel, DexelTags, EndTags, Interval, MoveTag, UNCUT};
 pub use error::StockError;
 pub use five_axis::{MotionBound, Reach, SubMove};
 pub use mesh::{axis_line_intervals, MeshOptions};
-pub use simulate::{simulate, simulate_observed, Collision, SimOptions, SimulationReport, Tools};
+pub use simulate::{simulate, simulate_observed, Collision, SimOptions, SimulationReport};
 pub use spec::StockSpec;
 pub use sweep::{ConvexProfile, Element, LineBatch, SignedDistance, SweepShape, SweptConvex};
 pub use tridexel::{

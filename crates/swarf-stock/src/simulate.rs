@@ -7,7 +7,7 @@ use std::collections::BTreeMap;
 use std::time::Instant;
 use swarf_geom::progress::{Observer, Quiet};
 use swarf_path::{MoveKind, Program};
-use swarf_tool::Cutter;
+use swarf_tool::ToolSet;
 
 /// Simulation options; accuracy parameters with their defaults in one place.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -33,33 +33,18 @@ impl SimOptions {
     }
 }
 
-/// The cutters of a program by tool number, with an optional default for numbers not listed
-/// (and for programs that never load a tool: tool 0).
-#[derive(Clone, Debug, Default)]
-pub struct Tools {
-    by_number: BTreeMap<u32, ToolShape>,
-    default: Option<ToolShape>,
-}
-
-impl Tools {
-    /// One cutter for every move.
-    pub fn single(cutter: &Cutter) -> Self {
-        Self {
-            by_number: BTreeMap::new(),
-            default: Some(ToolShape::new(cutter)),
+/// The sweep shapes of the cutters `program`'s moves use, each built once from `tools`; a
+/// number `tools` has no cutter for is left out.
+fn shapes_of(program: &Program, tools: &ToolSet) -> BTreeMap<u32, ToolShape> {
+    let mut shapes = BTreeMap::new();
+    for m in &program.moves {
+        if let std::collections::btree_map::Entry::Vacant(e) = shapes.entry(m.tool) {
+            if let Some(c) = tools.get(m.tool) {
+                e.insert(ToolShape::new(c));
+            }
         }
     }
-
-    /// Adds (or replaces) the cutter for tool number `n`.
-    pub fn with(mut self, n: u32, cutter: &Cutter) -> Self {
-        self.by_number.insert(n, ToolShape::new(cutter));
-        self
-    }
-
-    /// The shape for tool number `n`.
-    pub fn get(&self, n: u32) -> Option<&ToolShape> {
-        self.by_number.get(&n).or(self.default.as_ref())
-    }
+    shapes
 }
 
 /// A move that brought a non-cutting thing into the material.
@@ -119,12 +104,12 @@ pub struct SimulationReport {
     pub resolution_mm: [f64; 3],
 }
 
-/// Runs every move of `program` through `stock`. Stops at the first move it cannot cut
-/// (unknown tool, non-finite pose, a 5-axis move needing more than
+/// Runs every move of `program` through `stock`, each with its tool's cutter from `tools`
+/// ([`ToolSet::get`]). Stops at the first move it cannot cut (a tool `tools` has no cutter for, non-finite pose, a 5-axis move needing more than
 /// [`crate::five_axis::MAX_SUB_MOVES`] sub-moves) with that move's error.
 pub fn simulate(
     program: &Program,
-    tools: &Tools,
+    tools: &ToolSet,
     stock: &mut TriDexel,
     options: &SimOptions,
 ) -> Result<SimulationReport, StockError> {
@@ -153,7 +138,7 @@ fn batchable(program: &Program, m: &swarf_path::Move) -> bool {
 /// made it.
 pub fn simulate_observed(
     program: &Program,
-    tools: &Tools,
+    tools: &ToolSet,
     stock: &mut TriDexel,
     options: &SimOptions,
     observer: &dyn Observer,
@@ -167,6 +152,7 @@ pub fn simulate_observed(
     let (mut tested, mut updates) = (0u64, 0u64);
     let (mut five_moves, mut five_subs, mut five_err) = (0usize, 0u64, 0.0f64);
     let file_of = |f: u16| program.files.get(f as usize).cloned().unwrap_or_default();
+    let shapes = shapes_of(program, tools);
     let total = program.moves.len() as u64;
     let mut next = 0;
     while next < program.moves.len() {
@@ -175,7 +161,7 @@ pub fn simulate_observed(
             return Err(StockError::Cancelled { done: i0 });
         }
         let m0 = &program.moves[i0];
-        let tool = tools.get(m0.tool).ok_or(StockError::UnknownTool {
+        let tool = shapes.get(&m0.tool).ok_or(StockError::UnknownTool {
             index: i0,
             line: m0.line,
             tool: m0.tool,
@@ -291,7 +277,7 @@ mod tests {
     #[test]
     fn an_observer_that_breaks_stops_the_run_and_a_quiet_one_changes_nothing() {
         let program = arcs();
-        let tools = Tools::single(&Cutter::flat(4.0).unwrap());
+        let tools = ToolSet::single(swarf_tool::Cutter::flat(4.0).unwrap());
         let opts = SimOptions::default();
         let moves = program.moves.len() as u64;
 

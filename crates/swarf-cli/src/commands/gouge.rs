@@ -10,12 +10,12 @@ use clap::Args;
 use swarf_io::OutputSet;
 use swarf_path::Program;
 use swarf_plan::gouge::{
-    check_program_observed, GougeOptions, GougeReport, GougeSummary, GougeSurface, GougeTools,
+    check_program_observed, GougeOptions, GougeReport, GougeSummary, GougeSurface,
 };
 use swarf_surface::{CompoundSurface, PreparedSurface};
 
 use crate::cli::SetupArgs;
-use crate::commands::tools::{load_setup, resolve_all, Setup};
+use crate::commands::tools::{load_setup, resolve_all, tool_set, Setup};
 use crate::output::{check_sizes, output_set, print_json, DEFAULT_MAX_OUTPUT_MB};
 
 /// `swarf gouge`.
@@ -75,7 +75,7 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         single,
         table,
     } = load_setup(&args.setup, &args.program)?;
-    let tools = tools_for(&program, single.as_ref(), table.as_ref())?;
+    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
     let opts = GougeOptions {
         resolution: args.resolution,
         ..GougeOptions::DEFAULT.with_tolerance(args.tolerance)
@@ -138,19 +138,6 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         );
     }
     Ok(())
-}
-
-/// The cutters of every tool the program uses, for the check; a tool nothing defines is an
-/// error that says how to define it.
-pub(crate) fn tools_for(
-    program: &Program,
-    single: Option<&swarf_tool::Cutter>,
-    table: Option<&swarf_tool::ToolTable>,
-) -> Result<GougeTools> {
-    let resolved = resolve_all(program, single, table)?;
-    Ok(resolved
-        .iter()
-        .fold(GougeTools::default(), |t, (n, r)| t.with(*n, &r.cutter)))
 }
 
 /// Writes `violations.csv`, `points.csv` and `summary.json` into `dir` (created if missing).

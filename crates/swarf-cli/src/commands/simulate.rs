@@ -11,12 +11,12 @@ use swarf_io::{write_stl_to, ContourOptions, GlbOptions, OutputSet, Shading};
 use swarf_path::{MoveKind, Program};
 use swarf_stock::{
     simulate_observed, Collision, MeshOptions, SimOptions, SimulationReport, StockError, StockSpec,
-    Tools, TriDexel,
+    TriDexel,
 };
-use swarf_tool::ToolTable;
+use swarf_tool::{ToolSet, ToolTable};
 
 use crate::cli::SimulateArgs;
-use crate::commands::tools::{load_setup, resolve_all, Setup};
+use crate::commands::tools::{load_setup, resolve_all, tool_set, Setup};
 use crate::output::{check_sizes, output_set, print_json};
 
 /// The JSON summary. The first nine keys are a contract; the rest may grow.
@@ -122,7 +122,7 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
         single,
         table,
     } = load_setup(&args.setup, &args.program)?;
-    let tools = tools_for(&program, single.as_ref(), table.as_ref())?;
+    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
     let mut stock = build_stock(
         args.stock.as_deref(),
         table.as_ref(),
@@ -154,7 +154,7 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
 /// and stops cleanly on Ctrl-C: the run ends with an error before any output file is written.
 pub(crate) fn simulate_with_progress(
     program: &Program,
-    tools: &Tools,
+    tools: &ToolSet,
     stock: &mut TriDexel,
     options: &SimOptions,
 ) -> Result<SimulationReport> {
@@ -170,19 +170,6 @@ pub(crate) fn simulate_with_progress(
         }
         other => Ok(other?),
     }
-}
-
-/// The cutters of every tool the program uses; a tool nothing defines is an error that says
-/// how to define it.
-pub(crate) fn tools_for(
-    program: &Program,
-    single: Option<&swarf_tool::Cutter>,
-    table: Option<&ToolTable>,
-) -> Result<Tools> {
-    let resolved = resolve_all(program, single, table)?;
-    Ok(resolved
-        .iter()
-        .fold(Tools::default(), |t, (n, r)| t.with(*n, &r.cutter)))
 }
 
 /// A usage error unless `value` (option `--name`) is a positive, finite number of mm.

@@ -65,7 +65,7 @@ mod program;
 mod report;
 pub(crate) mod search;
 
-pub use program::{check_program, check_program_observed, GougeTools};
+pub use program::{check_program, check_program_observed};
 pub use report::{surface_label, GougeSummary};
 pub use search::GougeSurface;
 

@@ -2,6 +2,8 @@
 //! searched part by part, stretches deeper than the tolerance located by bisection, and every
 //! program point checked as a pose; moves in parallel (rayon).
 
+use std::collections::btree_map::Entry;
+use std::collections::BTreeMap;
 use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use rayon::prelude::*;
@@ -10,7 +12,7 @@ use swarf_geom::progress::{Observer, Quiet};
 use swarf_path::{MoveKind, Pose, Program};
 use swarf_stock::five_axis::subdivide;
 use swarf_stock::SubMove;
-use swarf_tool::Cutter;
+use swarf_tool::ToolSet;
 
 use super::search::{deepest, Deepest, Pieces, Query, SearchScratch, Segment};
 use super::{
@@ -18,36 +20,18 @@ use super::{
     ToolPart, Violation, ViolationKind,
 };
 
-/// The cutters of a program by tool number, with an optional default for every other number.
-#[derive(Clone, Debug, Default)]
-pub struct GougeTools {
-    default: Option<GougeTool>,
-    numbered: Vec<(u32, GougeTool)>,
-}
-
-impl GougeTools {
-    /// One cutter for every move.
-    pub fn single(cutter: &Cutter) -> Self {
-        Self {
-            default: Some(GougeTool::new(cutter)),
-            numbered: Vec::new(),
+/// The parts of the cutters `program`'s moves use, each built once from `tools`; a number
+/// `tools` has no cutter for is left out.
+fn tools_of(program: &Program, tools: &ToolSet) -> BTreeMap<u32, GougeTool> {
+    let mut parts = BTreeMap::new();
+    for m in &program.moves {
+        if let Entry::Vacant(e) = parts.entry(m.tool) {
+            if let Some(c) = tools.get(m.tool) {
+                e.insert(GougeTool::new(c));
+            }
         }
     }
-
-    /// These tools with `cutter` as tool `n`.
-    pub fn with(mut self, n: u32, cutter: &Cutter) -> Self {
-        self.numbered.retain(|(k, _)| *k != n);
-        self.numbered.push((n, GougeTool::new(cutter)));
-        self
-    }
-
-    fn get(&self, n: u32) -> Option<&GougeTool> {
-        self.numbered
-            .iter()
-            .find(|(k, _)| *k == n)
-            .map(|(_, t)| t)
-            .or(self.default.as_ref())
-    }
+    parts
 }
 
 /// [`check_program_observed`] without progress reports.
@@ -57,13 +41,14 @@ impl GougeTools {
 pub fn check_program(
     surface: &GougeSurface,
     program: &Program,
-    tools: &GougeTools,
+    tools: &ToolSet,
     opts: &GougeOptions,
 ) -> Result<GougeReport, GougeError> {
     check_program_observed(surface, program, tools, opts, &Quiet)
 }
 
-/// Checks every point and move of `program` against `surface` (see the module docs), telling
+/// Checks every point and move of `program`, each with its tool's cutter from `tools`
+/// ([`ToolSet::get`]), against `surface` (see the module docs), telling
 /// `observer` `progress(done, moves)` as moves finish (from any thread, in any order). When it
 /// answers `Break` no further move is started and the check ends with
 /// [`GougeError::Cancelled`].
@@ -76,7 +61,7 @@ pub fn check_program(
 pub fn check_program_observed(
     surface: &GougeSurface,
     program: &Program,
-    tools: &GougeTools,
+    tools: &ToolSet,
     opts: &GougeOptions,
     observer: &dyn Observer,
 ) -> Result<GougeReport, GougeError> {
@@ -109,8 +94,9 @@ pub fn check_program_observed(
             max: super::MAX_LOCATED_PIECES,
         });
     }
+    let tools = tools_of(program, tools);
     for m in &program.moves {
-        if tools.get(m.tool).is_none() {
+        if !tools.contains_key(&m.tool) {
             return Err(GougeError::UnknownTool {
                 tool: m.tool,
                 line: m.line,
@@ -126,7 +112,7 @@ pub fn check_program_observed(
             if stopped.load(Ordering::Relaxed) {
                 return None;
             }
-            let r = check_move(surface, program, tools, opts, i, scratch);
+            let r = check_move(surface, program, &tools, opts, i, scratch);
             let n = done.fetch_add(1, Ordering::Relaxed) + 1;
             if observer.progress(n as u64, total as u64).is_break() {
                 stopped.store(true, Ordering::Relaxed);
@@ -192,7 +178,7 @@ fn surface_ref(d: &Deepest) -> SurfaceRef {
 fn check_move(
     surface: &GougeSurface,
     program: &Program,
-    tools: &GougeTools,
+    tools: &BTreeMap<u32, GougeTool>,
     opts: &GougeOptions,
     index: usize,
     scratch: &mut SearchScratch,
@@ -209,7 +195,7 @@ fn check_move(
         }
     }
     let rapid = matches!(m.kind, MoveKind::Rapid);
-    let tool = tools.get(m.tool).ok_or(GougeError::UnknownTool {
+    let tool = tools.get(&m.tool).ok_or(GougeError::UnknownTool {
         tool: m.tool,
         line: m.line,
     })?;
@@ -492,7 +478,7 @@ mod tests {
         let surface = floor();
         let gs = GougeSurface::new(&PreparedSurface::new(&surface));
         let p = program();
-        let tools = GougeTools::single(&Cutter::ball(6.0).unwrap());
+        let tools = ToolSet::single(swarf_tool::Cutter::ball(6.0).unwrap());
         let opts = GougeOptions::DEFAULT;
         let total = p.moves.len();
 
