@@ -53,6 +53,37 @@ pub(crate) fn moves_bar(moves: usize) -> indicatif::ProgressBar {
     bar
 }
 
+/// The observer the CLI gives a long library run over a program's moves: it moves a
+/// [`moves_bar`] and asks the run to stop once Ctrl-C was pressed ([`stop_requested`]).
+pub(crate) struct MovesProgress {
+    bar: indicatif::ProgressBar,
+}
+
+impl MovesProgress {
+    /// A bar over `moves` moves.
+    pub(crate) fn new(moves: usize) -> Self {
+        Self {
+            bar: moves_bar(moves),
+        }
+    }
+
+    /// Clears the bar (when the run is over, stopped or not).
+    pub(crate) fn finish(&self) {
+        self.bar.finish_and_clear();
+    }
+}
+
+impl swarf_geom::Observer for MovesProgress {
+    fn progress(&self, done: u64, _total: u64) -> std::ops::ControlFlow<()> {
+        self.bar.set_position(done);
+        if stop_requested() {
+            std::ops::ControlFlow::Break(())
+        } else {
+            std::ops::ControlFlow::Continue(())
+        }
+    }
+}
+
 /// Prints a value as pretty JSON on stdout.
 pub(crate) fn print_json<T: serde::Serialize>(value: &T) -> Result<()> {
     let mut out = std::io::stdout().lock();

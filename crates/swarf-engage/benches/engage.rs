@@ -14,7 +14,7 @@ use swarf_engage::bench::{finishing_program as program, median};
 use swarf_engage::{EngageOptions, Engager};
 use swarf_geom::math::Vec3;
 use swarf_path::Program;
-use swarf_stock::{simulate, SimOptions, Tools, TriDexel};
+use swarf_stock::{simulate, SimOptions, TriDexel};
 use swarf_tool::{Cutter, ToolSet};
 
 fn stock() -> TriDexel {
@@ -24,7 +24,7 @@ fn stock() -> TriDexel {
 fn simulate_once(p: &Program) -> f64 {
     let mut s = stock();
     let t = Instant::now();
-    let tools = Tools::single(&Cutter::ball(10.0).unwrap());
+    let tools = ToolSet::single(Cutter::ball(10.0).unwrap());
     simulate(p, &tools, &mut s, &SimOptions::default()).unwrap();
     t.elapsed().as_secs_f64()
 }

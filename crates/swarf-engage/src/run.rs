@@ -7,6 +7,7 @@ use std::time::Instant;
 use rayon::prelude::*;
 
 use swarf_geom::math::Vec3;
+use swarf_geom::progress::{Observer, Quiet};
 use swarf_geom::Aabb;
 use swarf_path::{FeedMode, Move, MoveKind, Program};
 use swarf_stock::{StockError, TriDexel, DEFAULT_CHORDAL_TOLERANCE_MM};
@@ -111,6 +112,13 @@ impl EngageOptions {
 /// Why an engagement run stopped.
 #[derive(Debug, thiserror::Error)]
 pub enum EngageError {
+    /// The observer ([`Engager::observed`]) stopped the run after `locations` cutter
+    /// locations.
+    #[error("stopped after {locations} cutter locations")]
+    Cancelled {
+        /// Cutter locations handed out before the stop.
+        locations: usize,
+    },
     /// An option out of range.
     #[error("--{name} must be {want}, got {value}")]
     BadOption {
@@ -291,6 +299,7 @@ pub struct Engager<'a> {
     last_x: Option<Vec3>,
     stats: EngageStats,
     failed: bool,
+    observer: &'a dyn Observer,
 }
 
 impl<'a> Engager<'a> {
@@ -330,7 +339,17 @@ impl<'a> Engager<'a> {
             last_x: None,
             stats: EngageStats::default(),
             failed: false,
+            observer: &Quiet,
         })
+    }
+
+    /// This run, telling `observer` `progress(moves done, moves)` after each cutter location
+    /// (before the next is computed). When it answers `Break` the iterator yields
+    /// [`EngageError::Cancelled`] and ends; the stock is left cut up to the last location.
+    #[must_use]
+    pub fn observed(mut self, observer: &'a dyn Observer) -> Self {
+        self.observer = observer;
+        self
     }
 
     /// Figures so far (complete once the iterator has ended).
@@ -539,6 +558,13 @@ impl Iterator for Engager<'_> {
     fn next(&mut self) -> Option<Self::Item> {
         if self.failed {
             return None;
+        }
+        let (done, total) = (self.next_move as u64, self.program.moves.len() as u64);
+        if self.stats.locations > 0 && self.observer.progress(done, total).is_break() {
+            self.failed = true;
+            return Some(Err(EngageError::Cancelled {
+                locations: self.stats.locations,
+            }));
         }
         match self.step() {
             Ok(e) => e.map(Ok),

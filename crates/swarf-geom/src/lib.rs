@@ -13,6 +13,9 @@
 //! them ([`Implicit::ray_intersections`]) and how far a point is from them
 //! ([`Implicit::signed_distance`], negative inside).
 //!
+//! Long computations everywhere in swarf report progress and may be stopped through one
+//! [`Observer`] type ([`progress`]).
+//!
 //! ```
 //! use swarf_geom::math::Vec3;
 //! use swarf_geom::{Frame, Implicit, Ray, Sphere};
@@ -32,6 +35,7 @@ pub mod math;
 pub mod motion;
 pub mod poly;
 pub mod primitive;
+pub mod progress;
 pub mod ray;
 pub mod search;
 
@@ -40,4 +44,5 @@ pub use frame::Frame;
 pub use motion::RigidMotion;
 pub use poly::RootTolerance;
 pub use primitive::{Cone, Cylinder, Implicit, Plane, Sphere, Torus};
+pub use progress::{Cancelled, Observer, Quiet};
 pub use ray::Ray;

@@ -15,7 +15,7 @@ use criterion::Criterion;
 use swarf_geom::math::Vec3;
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::Machine;
-use swarf_plan::gouge::{check_program, GougeOptions, GougeSurface, GougeTools, ViolationKind};
+use swarf_plan::gouge::{check_program, GougeOptions, GougeSurface, ViolationKind};
 use swarf_surface::PreparedSurface;
 use swarf_surface::{CompoundSurface, Tolerances};
 
@@ -62,7 +62,7 @@ fn main() {
     )
     .unwrap();
     let cutter = swarf_tool::Cutter::ball(2.0 * RADIUS).unwrap();
-    let tools = GougeTools::single(&cutter);
+    let tools = swarf_tool::ToolSet::single(cutter.clone());
     let opts = GougeOptions::DEFAULT;
     let mut times = Vec::new();
     let mut last = None;

@@ -33,7 +33,7 @@ use swarf_geom::Frame;
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::{Machine, MoveKind, Program};
 use swarf_plan::gouge::{
-    check_program, GougeOptions, GougeReport, GougeSurface, GougeTools, ToolPart, ViolationKind,
+    check_program, GougeOptions, GougeReport, GougeSurface, ToolPart, ViolationKind,
 };
 use swarf_surface::PreparedSurface;
 use swarf_surface::{
@@ -41,7 +41,7 @@ use swarf_surface::{
     Tolerances, ToroidalSurface,
 };
 use swarf_sweep::{ConvexProfile, SweepShape};
-use swarf_tool::{Cutter, CutterOptions, Holder, HolderSegment};
+use swarf_tool::{Cutter, CutterOptions, Holder, HolderSegment, ToolSet};
 
 mod common;
 
@@ -754,7 +754,7 @@ fn read(text: &str) -> Program {
 }
 
 fn check(s: &GougeSurface, p: &Program, c: &Cutter, opts: &GougeOptions) -> GougeReport {
-    check_program(s, p, &GougeTools::single(c), opts).unwrap()
+    check_program(s, p, &ToolSet::single(c.clone()), opts).unwrap()
 }
 
 // ---------------------------------------------------------------------------------------------

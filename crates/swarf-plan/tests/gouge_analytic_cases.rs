@@ -9,12 +9,11 @@ use swarf_geom::math::Vec3;
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::Machine;
 use swarf_plan::gouge::{
-    check_program, GougeOptions, GougeReport, GougeSurface, GougeTools, SurfaceRef, ToolPart,
-    ViolationKind,
+    check_program, GougeOptions, GougeReport, GougeSurface, SurfaceRef, ToolPart, ViolationKind,
 };
 use swarf_surface::PreparedSurface;
 use swarf_surface::{CompoundSurface, NurbsSurface, Patch, Surface};
-use swarf_tool::Cutter;
+use swarf_tool::{Cutter, ToolSet};
 
 /// A planar bilinear patch with corners `o`, `o + du`, `o + dv`, `o + du + dv`; its normal is
 /// `du × dv`.
@@ -43,7 +42,13 @@ fn run(s: &GougeSurface, program: &str, cutter: &Cutter) -> GougeReport {
         &ReadOptions::default(),
     )
     .unwrap();
-    check_program(s, &p, &GougeTools::single(cutter), &GougeOptions::DEFAULT).unwrap()
+    check_program(
+        s,
+        &p,
+        &ToolSet::single(cutter.clone()),
+        &GougeOptions::DEFAULT,
+    )
+    .unwrap()
 }
 
 /// The certificate gap the reports promise at a depth.

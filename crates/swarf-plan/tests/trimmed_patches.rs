@@ -11,7 +11,7 @@ use common::{sampled_min, Rng};
 use swarf_geom::math::Vec3;
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::Machine;
-use swarf_plan::gouge::{check_program, GougeOptions, GougeSurface, GougeTools, SurfaceRef};
+use swarf_plan::gouge::{check_program, GougeOptions, GougeSurface, SurfaceRef};
 use swarf_plan::plot::{write_patch_maps, PlotOptions, OFF_PART_RGB};
 use swarf_plan::size::{
     allowable_certified, allowable_map, allowable_pso, grid_cell_areas, AreaRule, CertifiedOptions,
@@ -170,7 +170,7 @@ fn the_program_check_sees_the_slot_edges_not_the_wall() {
         check_program(
             &s,
             &program,
-            &GougeTools::single(&cutter),
+            &swarf_tool::ToolSet::single(cutter.clone()),
             &GougeOptions::DEFAULT,
         )
         .unwrap()

@@ -5,7 +5,8 @@ use thiserror::Error;
 /// What can go wrong building a stock or simulating a program on it.
 #[derive(Debug, Error, Clone, PartialEq)]
 pub enum StockError {
-    /// The run was stopped (Ctrl-C) after `done` moves.
+    /// The run was stopped by its observer ([`swarf_geom::progress::Observer`], e.g. on
+    /// Ctrl-C) after `done` moves.
     #[error("stopped after {done} moves")]
     Cancelled {
         /// Moves completed.

@@ -84,7 +84,7 @@ pub use cut::{DEFAULT_CHORDAL_TOLERANCE_MM, PIECES_PER_BATCH, SCREEN_TOLERANCE_M
 pub use dexel::{Dexel, DexelTags, EndTags, Interval, MoveTag, UNCUT};
 pub use error::StockError;
 pub use mesh::{axis_line_intervals, MeshOptions};
-pub use simulate::{simulate, simulate_observed, Collision, SimOptions, SimulationReport, Tools};
+pub use simulate::{simulate, simulate_observed, Collision, SimOptions, SimulationReport};
 pub use spec::StockSpec;
 pub use tridexel::{
     CutStats, DexelFamily, Grid, LinearMove, Removal, RemovalVisitor, SegmentCut, StockStats,

@@ -4,11 +4,11 @@ use crate::cut::{COLLISION_EPS_MM, DEFAULT_CHORDAL_TOLERANCE_MM};
 use crate::error::StockError;
 use crate::tridexel::{LinearMove, TriDexel};
 use std::collections::BTreeMap;
-use std::ops::ControlFlow;
 use std::time::Instant;
+use swarf_geom::progress::{Observer, Quiet};
 use swarf_path::{MoveKind, Program};
 use swarf_sweep::ToolShape;
-use swarf_tool::Cutter;
+use swarf_tool::ToolSet;
 
 /// Simulation options; accuracy parameters with their defaults in one place.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -34,33 +34,18 @@ impl SimOptions {
     }
 }
 
-/// The cutters of a program by tool number, with an optional default for numbers not listed
-/// (and for programs that never load a tool: tool 0).
-#[derive(Clone, Debug, Default)]
-pub struct Tools {
-    by_number: BTreeMap<u32, ToolShape>,
-    default: Option<ToolShape>,
-}
-
-impl Tools {
-    /// One cutter for every move.
-    pub fn single(cutter: &Cutter) -> Self {
-        Self {
-            by_number: BTreeMap::new(),
-            default: Some(ToolShape::new(cutter)),
+/// The sweep shapes of the cutters `program`'s moves use, each built once from `tools`; a
+/// number `tools` has no cutter for is left out.
+fn shapes_of(program: &Program, tools: &ToolSet) -> BTreeMap<u32, ToolShape> {
+    let mut shapes = BTreeMap::new();
+    for m in &program.moves {
+        if let std::collections::btree_map::Entry::Vacant(e) = shapes.entry(m.tool) {
+            if let Some(c) = tools.get(m.tool) {
+                e.insert(ToolShape::new(c));
+            }
         }
     }
-
-    /// Adds (or replaces) the cutter for tool number `n`.
-    pub fn with(mut self, n: u32, cutter: &Cutter) -> Self {
-        self.by_number.insert(n, ToolShape::new(cutter));
-        self
-    }
-
-    /// The shape for tool number `n`.
-    pub fn get(&self, n: u32) -> Option<&ToolShape> {
-        self.by_number.get(&n).or(self.default.as_ref())
-    }
+    shapes
 }
 
 /// A move that brought a non-cutting thing into the material.
@@ -120,18 +105,17 @@ pub struct SimulationReport {
     pub resolution_mm: [f64; 3],
 }
 
-/// Runs every move of `program` through `stock`. Stops at the first move it cannot cut
-/// (unknown tool, non-finite pose, a 5-axis move needing more than
+/// Runs every move of `program` through `stock`, each with its tool's cutter from `tools`
+/// ([`ToolSet::get`]). Stops at the first move it cannot cut (a tool `tools` has no cutter for,
+/// non-finite pose, a 5-axis move needing more than
 /// [`swarf_sweep::five_axis::MAX_SUB_MOVES`] sub-moves) with that move's error.
 pub fn simulate(
     program: &Program,
-    tools: &Tools,
+    tools: &ToolSet,
     stock: &mut TriDexel,
     options: &SimOptions,
 ) -> Result<SimulationReport, StockError> {
-    simulate_observed(program, tools, stock, options, &mut |_| {
-        ControlFlow::Continue(())
-    })
+    simulate_observed(program, tools, stock, options, &Quiet)
 }
 
 /// Most consecutive straight fixed-axis moves cut as one batch by [`simulate`] (a batch is
@@ -149,16 +133,17 @@ fn batchable(program: &Program, m: &swarf_path::Move) -> bool {
         && !program.is_five_axis(m)
 }
 
-/// [`simulate`], telling `observer` between moves how many of the program's moves are done (after
-/// each move, or each batch of up to [`BATCH_MOVES`] straight moves);
-/// the observer may stop the run (Ctrl-C), which then ends with [`StockError::Cancelled`] and
-/// leaves the stock as the finished moves made it.
+/// [`simulate`], telling `observer` between moves how many of the program's moves are done
+/// (`progress(done, moves)`, after each move or each batch of up to [`BATCH_MOVES`] straight
+/// moves; not before the first nor after the last); the observer may stop the run (Ctrl-C),
+/// which then ends with [`StockError::Cancelled`] and leaves the stock as the finished moves
+/// made it.
 pub fn simulate_observed(
     program: &Program,
-    tools: &Tools,
+    tools: &ToolSet,
     stock: &mut TriDexel,
     options: &SimOptions,
-    observer: &mut dyn FnMut(usize) -> ControlFlow<()>,
+    observer: &dyn Observer,
 ) -> Result<SimulationReport, StockError> {
     let t0 = Instant::now();
     let stock_volume = stock.volume();
@@ -169,14 +154,16 @@ pub fn simulate_observed(
     let (mut tested, mut updates) = (0u64, 0u64);
     let (mut five_moves, mut five_subs, mut five_err) = (0usize, 0u64, 0.0f64);
     let file_of = |f: u16| program.files.get(f as usize).cloned().unwrap_or_default();
+    let shapes = shapes_of(program, tools);
+    let total = program.moves.len() as u64;
     let mut next = 0;
     while next < program.moves.len() {
         let i0 = next;
-        if i0 > 0 && observer(i0).is_break() {
+        if i0 > 0 && observer.progress(i0 as u64, total).is_break() {
             return Err(StockError::Cancelled { done: i0 });
         }
         let m0 = &program.moves[i0];
-        let tool = tools.get(m0.tool).ok_or(StockError::UnknownTool {
+        let tool = shapes.get(&m0.tool).ok_or(StockError::UnknownTool {
             index: i0,
             line: m0.line,
             tool: m0.tool,
@@ -258,4 +245,72 @@ pub fn simulate_observed(
         five_axis_error_bound_mm: five_err,
         resolution_mm: stock.grid().h,
     })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::ops::ControlFlow;
+    use std::sync::atomic::{AtomicU64, Ordering};
+    use swarf_geom::math::Vec3;
+    use swarf_path::load::{read_program_str, ReadOptions};
+    use swarf_path::Machine;
+
+    /// A plunge and ten arcs: every arc is cut on its own, so the observer hears of each.
+    fn arcs() -> Program {
+        let mut text = String::from("G21 G90\nG0 X0 Y10 Z5\nG1 Z-1 F600\n");
+        for k in 0..10 {
+            let g = if k % 2 == 0 { "G2" } else { "G3" };
+            text += &format!("{g} X{} Y10 I2 J0\n", 4 * (k + 1));
+        }
+        read_program_str(
+            &text,
+            "arcs.ngc",
+            Machine::three_axis(),
+            &ReadOptions::default(),
+        )
+        .unwrap()
+    }
+
+    fn stock() -> TriDexel {
+        TriDexel::from_box(Vec3::new(-5.0, 0.0, -5.0), Vec3::new(45.0, 20.0, 0.0), 0.5).unwrap()
+    }
+
+    #[test]
+    fn an_observer_that_breaks_stops_the_run_and_a_quiet_one_changes_nothing() {
+        let program = arcs();
+        let tools = ToolSet::single(swarf_tool::Cutter::flat(4.0).unwrap());
+        let opts = SimOptions::default();
+        let moves = program.moves.len() as u64;
+
+        // Counting only: told after every batch, never before the first or after the last.
+        let calls = AtomicU64::new(0);
+        let count = |done: u64, total: u64| {
+            assert!(done > 0 && done < total && total == moves);
+            calls.fetch_add(1, Ordering::Relaxed);
+            ControlFlow::Continue(())
+        };
+        let mut observed = stock();
+        let a = simulate_observed(&program, &tools, &mut observed, &opts, &count).unwrap();
+        // The rapid and the plunge are one batch, then one call per arc but the last.
+        assert_eq!(calls.load(Ordering::Relaxed), 10);
+        let mut quiet = stock();
+        let b = simulate(&program, &tools, &mut quiet, &opts).unwrap();
+        assert_eq!(a.removed_per_move_mm3, b.removed_per_move_mm3);
+        assert_eq!(a.final_volume_xyz_mm3, b.final_volume_xyz_mm3);
+        assert_eq!(a.intervals, b.intervals);
+        assert!(b.removed_volume_mm3 > 0.0);
+
+        // Stopped at the first report: one call, nothing after it cut.
+        let calls = AtomicU64::new(0);
+        let stop = |_: u64, _: u64| {
+            calls.fetch_add(1, Ordering::Relaxed);
+            ControlFlow::Break(())
+        };
+        let mut stopped = stock();
+        let r = simulate_observed(&program, &tools, &mut stopped, &opts, &stop);
+        assert_eq!(r, Err(StockError::Cancelled { done: 2 }));
+        assert_eq!(calls.load(Ordering::Relaxed), 1);
+        assert!(stopped.volume() > quiet.volume());
+    }
 }

@@ -5,16 +5,16 @@ mod common;
 
 use common::{gcode, moves};
 use swarf_geom::math::Vec3;
-use swarf_stock::{simulate, MeshOptions, SimOptions, StockError, Tools, TriDexel};
+use swarf_stock::{simulate, MeshOptions, SimOptions, StockError, TriDexel};
 use swarf_sweep::SweepError;
-use swarf_tool::{Cutter, CutterOptions, Holder, HolderSegment};
+use swarf_tool::{Cutter, CutterOptions, Holder, HolderSegment, ToolSet};
 
 #[test]
 fn rapid_through_material_is_reported_and_cuts() {
     let mut s =
         TriDexel::from_box(Vec3::new(10.0, 0.0, 0.0), Vec3::new(40.0, 20.0, 10.0), 0.2).unwrap();
     let p = gcode("G21 G90\nG0 Z20\nG0 X5 Y10\nG0 Z5\nG0 X45\nG0 Z20\nM30\n");
-    let tools = Tools::single(&Cutter::flat(6.0).unwrap());
+    let tools = ToolSet::single(Cutter::flat(6.0).unwrap());
     let r = simulate(&p, &tools, &mut s, &SimOptions::default()).unwrap();
     assert_eq!(r.rapid_collisions.len(), 1, "{:?}", r.rapid_collisions);
     let c = &r.rapid_collisions[0];
@@ -37,7 +37,7 @@ fn shank_and_holder_collisions_are_reported() {
     let mut s =
         TriDexel::from_box(Vec3::new(10.0, 0.0, 0.0), Vec3::new(40.0, 20.0, 30.0), 0.25).unwrap();
     let p = gcode("G21 G90\nG0 Z40\nG0 X0 Y10\nG1 Z5 F100\nG1 X25\nG0 Z40\nM30\n");
-    let tools = Tools::single(&Cutter::flat(6.0).unwrap());
+    let tools = ToolSet::single(Cutter::flat(6.0).unwrap());
     let r = simulate(&p, &tools, &mut s, &SimOptions::default()).unwrap();
     assert_eq!(r.holder_collisions.len(), 1, "{:?}", r.holder_collisions);
     assert_eq!(r.holder_collisions[0].line, 5);
@@ -74,7 +74,13 @@ fn shank_and_holder_collisions_are_reported() {
         TriDexel::from_box(Vec3::new(30.0, 0.0, 0.0), Vec3::new(60.0, 20.0, 30.0), 0.25).unwrap();
     // Holder bottom at tip + 20: a plunge to z = 5 brings it 5 mm into the 30 mm block.
     let p = gcode("G21 G90\nG0 Z60\nG0 X45 Y10\nG1 Z5 F100\nG0 Z60\nM30\n");
-    let r = simulate(&p, &Tools::single(&c), &mut s, &SimOptions::default()).unwrap();
+    let r = simulate(
+        &p,
+        &ToolSet::single(c.clone()),
+        &mut s,
+        &SimOptions::default(),
+    )
+    .unwrap();
     assert_eq!(r.holder_collisions.len(), 1, "{:?}", r.holder_collisions);
     assert_eq!(r.holder_collisions[0].line, 4);
 }
@@ -91,7 +97,7 @@ fn five_axis_move_is_cut_and_reported() {
     );
     p.axis_source = swarf_path::AxisSource::Program;
     p.moves[0].end.axis = Vec3::new(0.1, 0.0, 1.0).normalize();
-    let tools = Tools::single(&Cutter::ball(6.0).unwrap());
+    let tools = ToolSet::single(Cutter::ball(6.0).unwrap());
     let mut s = TriDexel::from_box(Vec3::ZERO, Vec3::new(10.0, 10.0, 10.0), 0.5).unwrap();
     let opts = SimOptions::default().with_chordal_tolerance(0.01);
     let r = simulate(&p, &tools, &mut s, &opts).unwrap();

@@ -15,8 +15,8 @@ use swarf_geom::math::Vec3;
 use swarf_path::gcode::GcodeOptions;
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::Machine;
-use swarf_stock::{simulate, SimOptions, Tools, TriDexel};
-use swarf_tool::Cutter;
+use swarf_stock::{simulate, SimOptions, TriDexel};
+use swarf_tool::{Cutter, ToolSet};
 
 #[test]
 fn g41_leaves_the_programmed_contour_as_the_wall() {
@@ -66,7 +66,7 @@ fn g41_leaves_the_programmed_contour_as_the_wall() {
         let mut stock =
             TriDexel::from_box(Vec3::new(0.0, 0.0, -depth), Vec3::new(50.0, 50.0, 0.0), 0.1)
                 .unwrap();
-        let tools = Tools::single(&Cutter::flat(2.0 * r).unwrap());
+        let tools = ToolSet::single(Cutter::flat(2.0 * r).unwrap());
         let report = simulate(&program, &tools, &mut stock, &SimOptions::default()).unwrap();
         let d = 2.0 * r;
         let exact = (perimeter * d + PI * d * d) * depth;

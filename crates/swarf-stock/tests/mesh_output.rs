@@ -56,7 +56,8 @@ fn slotted_block_meshes_closed_with_the_dexel_volume_and_crisp_walls() {
 fn machined_parts_as_written_are_2_manifolds_on_random_programs() {
     use swarf_path::load::{read_program_str, ReadOptions};
     use swarf_path::Machine;
-    use swarf_stock::{simulate, SimOptions, Tools};
+    use swarf_stock::{simulate, SimOptions};
+    use swarf_tool::{ToolSet, ToolSource};
     let cutters = [
         Cutter::flat(6.0).unwrap(),
         Cutter::ball(6.0).unwrap(),
@@ -106,7 +107,7 @@ fn machined_parts_as_written_are_2_manifolds_on_random_programs() {
         )
         .unwrap();
         let cutter = &cutters[case % cutters.len()];
-        let tools = Tools::default().with(0, cutter);
+        let tools = ToolSet::default().with(0, cutter.clone(), ToolSource::Spec);
         let h = [0.25, 0.3, 0.2][case % 3];
         let mut stock =
             TriDexel::from_box(Vec3::new(0.0, 0.0, -6.0), Vec3::new(20.0, 20.0, 0.0), h).unwrap();

@@ -6,9 +6,9 @@ mod common;
 
 use std::sync::Mutex;
 use swarf_geom::math::Vec3;
-use swarf_stock::{simulate, LinearMove, Removal, SimOptions, Tools, TriDexel, UNCUT};
+use swarf_stock::{simulate, LinearMove, Removal, SimOptions, TriDexel, UNCUT};
 use swarf_sweep::ToolShape;
-use swarf_tool::Cutter;
+use swarf_tool::{Cutter, ToolSet};
 
 /// Two slots (y = 10 at depth 2, y = 30 at depth 4, moves 3 and 7) and a 270° arc (move 11)
 /// in a 40 × 40 × 10 block with a 6 mm flat end mill.
@@ -48,7 +48,7 @@ fn z_tags(s: &TriDexel, x: f64, y: f64) -> Vec<(u32, u32)> {
 fn every_end_names_the_move_that_cut_it() {
     let program = common::gcode(PROGRAM);
     assert_eq!(program.moves.len(), 13, "{:#?}", program.moves.len());
-    let tools = Tools::single(&Cutter::flat(6.0).unwrap());
+    let tools = ToolSet::single(Cutter::flat(6.0).unwrap());
     let mut s = block();
     s.track_provenance();
     simulate(&program, &tools, &mut s, &SimOptions::default()).unwrap();
@@ -86,7 +86,7 @@ fn every_end_names_the_move_that_cut_it() {
 #[test]
 fn tracking_changes_nothing_else() {
     let program = common::gcode(PROGRAM);
-    let tools = Tools::single(&Cutter::ball(5.0).unwrap());
+    let tools = ToolSet::single(Cutter::ball(5.0).unwrap());
     let mut plain = block();
     let mut tracked = block();
     tracked.track_provenance();

@@ -6,9 +6,9 @@ mod common;
 use common::{gcode, rel};
 use std::f64::consts::PI;
 use swarf_geom::math::Vec3;
-use swarf_stock::{simulate, SimOptions, Tools, TriDexel};
+use swarf_stock::{simulate, SimOptions, TriDexel};
 use swarf_sweep::ToolShape;
-use swarf_tool::Cutter;
+use swarf_tool::{Cutter, ToolSet};
 
 const TOP: f64 = 10.0;
 
@@ -157,7 +157,7 @@ fn helical_bore_by_arcs() {
         "G21 G90 G17\nG0 Z30\nG0 X23 Y10\nG0 Z11\nG1 Z10 F300\nG3 X23 Y10 Z6 I-3 J0 P4\nG3 X23 Y10 I-3 J0\nG0 Z30\nM30\n",
     );
     let exact = PI * 36.0 * 4.0;
-    let tools = Tools::single(&Cutter::flat(6.0).unwrap());
+    let tools = ToolSet::single(Cutter::flat(6.0).unwrap());
     for h in [0.2, 0.1] {
         let mut s = bore_stock(h);
         let opts = SimOptions::default();
@@ -189,7 +189,7 @@ fn helical_bore_by_arcs() {
 fn coarse_chords_undercut_by_at_most_the_tolerance() {
     // With a 0.05 mm chordal tolerance the bore is smaller, by at most tolerance × wall area.
     let p = gcode("G21 G90 G17\nG0 Z30\nG0 X23 Y10\nG0 Z11\nG1 Z6 F300\nG3 X23 Y10 I-3 J0\nM30\n");
-    let tools = Tools::single(&Cutter::flat(6.0).unwrap());
+    let tools = ToolSet::single(Cutter::flat(6.0).unwrap());
     let run = |tol: f64| {
         let mut s = bore_stock(0.1);
         simulate(

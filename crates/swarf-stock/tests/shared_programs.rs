@@ -18,8 +18,8 @@ use std::time::Instant;
 use swarf_geom::math::Vec3;
 use swarf_path::load::{read_program, ReadOptions};
 use swarf_path::{summarize, Machine, MoveKind, PathErrorKind, Program};
-use swarf_stock::{simulate, SimOptions, SimulationReport, Tools, TriDexel};
-use swarf_tool::{Cutter, LengthUnit, ToolTable};
+use swarf_stock::{simulate, SimOptions, SimulationReport, TriDexel};
+use swarf_tool::{Cutter, LengthUnit, ToolSet, ToolSource, ToolTable};
 
 /// The data files the tests read.
 const FILES: [&str; 9] = [
@@ -67,10 +67,11 @@ fn stock_box(p: &Program) -> (Vec3, Vec3) {
 }
 
 /// The program's own cutter definitions (APT `CUTTER/`, `TLDATA/`), by tool number.
-fn program_tools(p: &Program) -> Tools {
-    let mut tools = Tools::default();
+fn program_tools(p: &Program) -> ToolSet {
+    let mut tools = ToolSet::default();
     for (n, [d, r, e, f, a, b, h]) in &p.cutter_definitions {
-        tools = tools.with(*n, &Cutter::apt(*d, *r, *e, *f, *a, *b, *h).unwrap());
+        let c = Cutter::apt(*d, *r, *e, *f, *a, *b, *h).unwrap();
+        tools = tools.with(*n, c, ToolSource::Program);
     }
     tools
 }
@@ -115,7 +116,7 @@ fn check(name: &str, p: &Program, r: &SimulationReport, tol: f64) {
 fn run(
     name: &str,
     p: &Program,
-    tools: &Tools,
+    tools: &ToolSet,
     lo: Vec3,
     hi: Vec3,
     h: f64,
@@ -143,9 +144,9 @@ fn every_shared_program_simulates() {
         LengthUnit::Mm,
     )
     .unwrap();
-    let mut heart_tools = Tools::default();
+    let mut heart_tools = ToolSet::default();
     for (n, entry) in &project.tools {
-        heart_tools = heart_tools.with(*n, &entry.cutter);
+        heart_tools = heart_tools.with(*n, entry.cutter.clone(), ToolSource::Table);
     }
     let wp = project.workpiece.unwrap();
     let mut stock = TriDexel::from_box(wp.min, wp.max, 0.4).unwrap();
@@ -207,7 +208,7 @@ fn every_shared_program_simulates() {
     for (rel, machine, cutter, h, tol) in others {
         let p = read(rel, machine);
         let tools = match &cutter {
-            Some(c) => Tools::single(c),
+            Some(c) => ToolSet::single(c.clone()),
             None => program_tools(&p),
         };
         let (lo, hi) = stock_box(&p);
@@ -258,7 +259,7 @@ fn rapids_into_a_raised_stock_are_reported_by_line() {
     let p = read(rel, "3axis");
     let text = std::fs::read_to_string(path(rel)).unwrap();
     let lines: Vec<&str> = text.lines().collect();
-    let tools = Tools::single(&Cutter::ball(2.54).unwrap());
+    let tools = ToolSet::single(Cutter::ball(2.54).unwrap());
     let r = run(
         "heart, plate top raised to z = 6",
         &p,

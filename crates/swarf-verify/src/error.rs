@@ -5,6 +5,15 @@ use std::path::PathBuf;
 /// Errors of the verification.
 #[derive(Debug, thiserror::Error)]
 pub enum VerifyError {
+    /// The observer ([`swarf_geom::progress::Observer`]) stopped the verification after `done`
+    /// of `total` rows of rays; nothing is reported.
+    #[error("stopped after {done} of {total} rows of rays")]
+    Cancelled {
+        /// Rows of rays compared.
+        done: u64,
+        /// Rows of rays in the three families.
+        total: u64,
+    },
     /// The design file could not be read (the reader's error names the file and what it
     /// expected).
     #[error(transparent)]

@@ -52,8 +52,9 @@ pub use error::VerifyError;
 pub use report::{html_report, ReportInputs};
 pub use surface::{SurfaceDesign, DEFAULT_SURFACE_ACCURACY_MM};
 pub use verify::{
-    verify, DefectEnd, DefectKind, Histogram, Region, RegionMove, Verification, VerifyOptions,
-    DEFAULT_EXCESS_TOLERANCE_MM, DEFAULT_GOUGE_TOLERANCE_MM, DEFAULT_LINK_CELLS, MAX_REGION_MOVES,
+    verify, verify_observed, DefectEnd, DefectKind, Histogram, Region, RegionMove, Verification,
+    VerifyOptions, DEFAULT_EXCESS_TOLERANCE_MM, DEFAULT_GOUGE_TOLERANCE_MM, DEFAULT_LINK_CELLS,
+    MAX_REGION_MOVES,
 };
 
 use swarf_geom::math::Vec3;

@@ -2,10 +2,12 @@
 //! grouped into connected regions, each region's depth, area, volume and moves.
 
 use std::collections::HashMap;
+use std::sync::atomic::{AtomicBool, AtomicU64, Ordering};
 use std::time::Instant;
 
 use rayon::prelude::*;
 use swarf_geom::math::Vec3;
+use swarf_geom::progress::{Observer, Quiet};
 use swarf_path::Program;
 use swarf_stock::{Dexel, MoveTag, TriDexel, UNCUT};
 
@@ -264,8 +266,26 @@ pub fn verify(
     program: Option<&Program>,
     options: &VerifyOptions,
 ) -> Result<Verification, VerifyError> {
+    verify_observed(stock, design, program, options, &Quiet)
+}
+
+/// [`verify`], telling `observer` `progress(done, rows)` as rows of rays (of the three
+/// families together) are compared, from any thread, in any order. When it answers `Break` no
+/// further row is started and the verification ends with [`VerifyError::Cancelled`].
+///
+/// # Errors
+/// A tolerance out of range, or [`VerifyError::Cancelled`].
+pub fn verify_observed(
+    stock: &TriDexel,
+    design: &dyn Design,
+    program: Option<&Program>,
+    options: &VerifyOptions,
+    observer: &dyn Observer,
+) -> Result<Verification, VerifyError> {
     options.check()?;
     let t0 = Instant::now();
+    let rows: u64 = (0..3).map(|k| stock.family(k).dims().1 as u64).sum();
+    let (rows_done, stopped) = (AtomicU64::new(0), AtomicBool::new(false));
     let grid = *stock.grid();
     let (gt, et) = (options.gouge_tolerance, options.excess_tolerance);
     // Behind a surface that bounds no solid, the stock's own faces that no move cut are the
@@ -280,6 +300,9 @@ pub fn verify(
             (0..nv)
                 .into_par_iter()
                 .fold(Partial::default, |mut acc, j| {
+                    if stopped.load(Ordering::Relaxed) {
+                        return acc;
+                    }
                     for i in 0..nu {
                         let ray = fam.ray(i, j);
                         if ray.is_empty() {
@@ -322,11 +345,21 @@ pub fn verify(
                             }
                         }
                     }
+                    let done = rows_done.fetch_add(1, Ordering::Relaxed) + 1;
+                    if observer.progress(done, rows).is_break() {
+                        stopped.store(true, Ordering::Relaxed);
+                    }
                     acc
                 })
                 .reduce(Partial::default, Partial::merge)
         })
         .fold(Partial::default(), Partial::merge);
+    if stopped.load(Ordering::Relaxed) {
+        return Err(VerifyError::Cancelled {
+            done: rows_done.load(Ordering::Relaxed),
+            total: rows,
+        });
+    }
     let link = options.link_cells * grid.h.iter().copied().fold(0.0, f64::max);
     let defects = all.defects;
     let (labels, count) = connect(&defects, link);

@@ -7,8 +7,8 @@ use proptest::prelude::*;
 use swarf_geom::math::Vec3;
 use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::{Machine, Program};
-use swarf_stock::{simulate, SimOptions, Tools, TriDexel};
-use swarf_tool::Cutter;
+use swarf_stock::{simulate, SimOptions, TriDexel};
+use swarf_tool::{Cutter, ToolSet};
 use swarf_verify::{box_mesh, verify, DefectKind, MeshDesign, VerifyOptions};
 
 fn gcode(text: &str) -> Program {
@@ -54,7 +54,7 @@ fn machined(program: &Program) -> TriDexel {
     )
     .unwrap();
     stock.track_provenance();
-    let tools = Tools::single(&Cutter::flat(10.0).unwrap());
+    let tools = ToolSet::single(Cutter::flat(10.0).unwrap());
     simulate(program, &tools, &mut stock, &SimOptions::default()).unwrap();
     stock
 }

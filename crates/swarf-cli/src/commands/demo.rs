@@ -21,7 +21,8 @@ use swarf_tool::table::parse_toml_library;
 
 use crate::cli::DemoArgs;
 use crate::commands::path::PathReport;
-use crate::commands::simulate::{tools_for, write_outputs, SimulateSummary};
+use crate::commands::simulate::{write_outputs, SimulateSummary};
+use crate::commands::tools::tool_set;
 use crate::output::{output_set, print_json};
 
 /// The demo program (LinuxCNC G-code with parameters, loops, conditionals and arcs).
@@ -76,7 +77,7 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     let table = parse_toml_library(TOOLS, "demo/tools.toml")?;
     let program = read_program_str(PROGRAM, "demo/demo.ngc", Machine::three_axis(), &options)?;
     let path_report = PathReport::new(&program, None, Some(&table))?;
-    let tools = tools_for(&program, None, Some(&table))?;
+    let tools = tool_set(&program, None, Some(&table))?;
     let mut stock = StockSpec::parse(STOCK)?.build(args.resolution, MeshOptions::default())?;
     let report = simulate(&program, &tools, &mut stock, &SimOptions::default())?;
     let summary = SimulateSummary::new(&report);
@@ -91,10 +92,9 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     let floor = wavy_floor();
     let json = swarf_surface::io::json::to_string(&floor).context("encoding the floor surface")?;
     set.write_bytes("floor.json", json.as_bytes())?;
-    let gouge_tools = crate::commands::gouge::tools_for(&program, None, Some(&table))?;
     let surface = GougeSurface::new(&PreparedSurface::new(&floor));
     let opts = GougeOptions::DEFAULT;
-    let gouge = check_program(&surface, &program, &gouge_tools, &opts)?;
+    let gouge = check_program(&surface, &program, &tools, &opts)?;
     let gouge_summary = gouge.summary(&opts, program.moves.len(), t0.elapsed().as_secs_f64());
     crate::commands::gouge::write_outputs(
         &mut set,

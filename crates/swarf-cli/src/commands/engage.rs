@@ -7,7 +7,7 @@ use std::time::Instant;
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde::Serialize;
-use swarf_engage::{EngageOptions, Engagement, Engager};
+use swarf_engage::{EngageError, EngageOptions, Engagement, Engager};
 use swarf_path::Program;
 use swarf_stock::TriDexel;
 use swarf_tool::ToolSet;
@@ -155,19 +155,20 @@ pub(crate) fn walk(
     file: &Path,
     mut each: impl FnMut(Engagement) -> Result<()>,
 ) -> Result<swarf_engage::EngageStats> {
-    let mut engager = Engager::new(&run.program, &run.tools, &mut run.stock, run.opts)?;
-    let bar = crate::output::moves_bar(run.program.moves.len());
-    let mut count = 0usize;
-    while let Some(e) = engager.next() {
-        each(e.with_context(|| format!("engagement along {}", file.display()))?)?;
-        count += 1;
-        bar.set_position(engager.moves_done() as u64);
-        if crate::output::stop_requested() {
-            bar.finish_and_clear();
-            bail!("stopped by Ctrl-C after {count} cutter locations; no output written");
-        }
+    let progress = crate::output::MovesProgress::new(run.program.moves.len());
+    let mut engager =
+        Engager::new(&run.program, &run.tools, &mut run.stock, run.opts)?.observed(&progress);
+    for e in engager.by_ref() {
+        let e = match e {
+            Err(EngageError::Cancelled { locations }) => {
+                progress.finish();
+                bail!("stopped by Ctrl-C after {locations} cutter locations; no output written");
+            }
+            e => e.with_context(|| format!("engagement along {}", file.display()))?,
+        };
+        each(e)?;
     }
-    bar.finish_and_clear();
+    progress.finish();
     Ok(engager.stats())
 }
 

@@ -10,12 +10,12 @@ use clap::Args;
 use swarf_io::OutputSet;
 use swarf_path::Program;
 use swarf_plan::gouge::{
-    check_program_observed, GougeOptions, GougeReport, GougeSummary, GougeSurface, GougeTools,
+    check_program_observed, GougeOptions, GougeReport, GougeSummary, GougeSurface,
 };
 use swarf_surface::{CompoundSurface, PreparedSurface};
 
 use crate::cli::SetupArgs;
-use crate::commands::tools::{load_setup, resolve_all, Setup};
+use crate::commands::tools::{load_setup, resolve_all, tool_set, Setup};
 use crate::output::{check_sizes, output_set, print_json, DEFAULT_MAX_OUTPUT_MB};
 
 /// `swarf gouge`.
@@ -75,18 +75,18 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         single,
         table,
     } = load_setup(&args.setup, &args.program)?;
-    let tools = tools_for(&program, single.as_ref(), table.as_ref())?;
+    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
     let opts = GougeOptions {
         resolution: args.resolution,
         ..GougeOptions::DEFAULT.with_tolerance(args.tolerance)
     };
     let gs = GougeSurface::new(&prep);
-    let bar = crate::output::moves_bar(program.moves.len());
-    let report = check_program_observed(&gs, &program, &tools, &opts, &|done, _| {
-        bar.set_position(done as u64);
-    })
-    .with_context(|| format!("checking {}", args.program.display()));
-    bar.finish_and_clear();
+    // Ctrl-C ends `swarf gouge` at once (it does not listen for a stop), so the observer only
+    // draws the bar.
+    let progress = crate::output::MovesProgress::new(program.moves.len());
+    let report = check_program_observed(&gs, &program, &tools, &opts, &progress)
+        .with_context(|| format!("checking {}", args.program.display()));
+    progress.finish();
     let report = report?;
     let summary = report.summary(&opts, program.moves.len(), t0.elapsed().as_secs_f64());
     let mut set = output_set(&args.out, DEFAULT_MAX_OUTPUT_MB)?;
@@ -138,19 +138,6 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         );
     }
     Ok(())
-}
-
-/// The cutters of every tool the program uses, for the check; a tool nothing defines is an
-/// error that says how to define it.
-pub(crate) fn tools_for(
-    program: &Program,
-    single: Option<&swarf_tool::Cutter>,
-    table: Option<&swarf_tool::ToolTable>,
-) -> Result<GougeTools> {
-    let resolved = resolve_all(program, single, table)?;
-    Ok(resolved
-        .iter()
-        .fold(GougeTools::default(), |t, (n, r)| t.with(*n, &r.cutter)))
 }
 
 /// Writes `violations.csv`, `points.csv` and `summary.json` into `dir` (created if missing).

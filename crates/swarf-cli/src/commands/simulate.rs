@@ -1,7 +1,6 @@
 //! `swarf simulate`: run a program on a tri-dexel stock and report what it removed.
 
 use std::fmt::Write as _;
-use std::ops::ControlFlow;
 use std::path::Path;
 
 use anyhow::{bail, Context, Result};
@@ -12,12 +11,12 @@ use swarf_io::{write_stl_to, ContourOptions, GlbOptions, OutputSet, Shading};
 use swarf_path::{MoveKind, Program};
 use swarf_stock::{
     simulate_observed, Collision, MeshOptions, SimOptions, SimulationReport, StockError, StockSpec,
-    Tools, TriDexel,
+    TriDexel,
 };
-use swarf_tool::ToolTable;
+use swarf_tool::{ToolSet, ToolTable};
 
 use crate::cli::SimulateArgs;
-use crate::commands::tools::{load_setup, resolve_all, Setup};
+use crate::commands::tools::{load_setup, resolve_all, tool_set, Setup};
 use crate::output::{check_sizes, output_set, print_json};
 
 /// The JSON summary. The first nine keys are a contract; the rest may grow.
@@ -123,7 +122,7 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
         single,
         table,
     } = load_setup(&args.setup, &args.program)?;
-    let tools = tools_for(&program, single.as_ref(), table.as_ref())?;
+    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
     let mut stock = build_stock(
         args.stock.as_deref(),
         table.as_ref(),
@@ -155,20 +154,13 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
 /// and stops cleanly on Ctrl-C: the run ends with an error before any output file is written.
 pub(crate) fn simulate_with_progress(
     program: &Program,
-    tools: &Tools,
+    tools: &ToolSet,
     stock: &mut TriDexel,
     options: &SimOptions,
 ) -> Result<SimulationReport> {
-    let bar = crate::output::moves_bar(program.moves.len());
-    let result = simulate_observed(program, tools, stock, options, &mut |done| {
-        bar.set_position(done as u64);
-        if crate::output::stop_requested() {
-            ControlFlow::Break(())
-        } else {
-            ControlFlow::Continue(())
-        }
-    });
-    bar.finish_and_clear();
+    let progress = crate::output::MovesProgress::new(program.moves.len());
+    let result = simulate_observed(program, tools, stock, options, &progress);
+    progress.finish();
     match result {
         Err(StockError::Cancelled { done }) => {
             bail!(
@@ -178,19 +170,6 @@ pub(crate) fn simulate_with_progress(
         }
         other => Ok(other?),
     }
-}
-
-/// The cutters of every tool the program uses; a tool nothing defines is an error that says
-/// how to define it.
-pub(crate) fn tools_for(
-    program: &Program,
-    single: Option<&swarf_tool::Cutter>,
-    table: Option<&ToolTable>,
-) -> Result<Tools> {
-    let resolved = resolve_all(program, single, table)?;
-    Ok(resolved
-        .iter()
-        .fold(Tools::default(), |t, (n, r)| t.with(*n, &r.cutter)))
 }
 
 /// A usage error unless `value` (option `--name`) is a positive, finite number of mm.

@@ -18,9 +18,9 @@ use swarf_verify::{
 
 use crate::cli::SetupArgs;
 use crate::commands::simulate::{
-    build_stock, positive_mm, simulate_with_progress, tools_for, SimulateSummary,
+    build_stock, positive_mm, simulate_with_progress, SimulateSummary,
 };
-use crate::commands::tools::{load_setup, resolve_all, Setup};
+use crate::commands::tools::{load_setup, resolve_all, tool_set, Setup};
 use crate::output::{csv_field, print_json, write_atomic};
 
 /// `swarf verify`.
@@ -128,7 +128,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
         single,
         table,
     } = load_setup(&args.setup, &args.program)?;
-    let tools = tools_for(&program, single.as_ref(), table.as_ref())?;
+    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
     let resolved = resolve_all(&program, single.as_ref(), table.as_ref())?;
     let mut stock = build_stock(
         args.stock.as_deref(),

@@ -65,7 +65,7 @@ mod program;
 mod report;
 pub(crate) mod search;
 
-pub use program::{check_program, check_program_observed, GougeTools};
+pub use program::{check_program, check_program_observed};
 pub use report::{surface_label, GougeSummary};
 pub use search::GougeSurface;
 
@@ -336,6 +336,15 @@ pub const MAX_LOCATED_PIECES: f64 = 1e7;
 /// Why a program cannot be checked.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum GougeError {
+    /// The observer ([`swarf_geom::progress::Observer`]) stopped the check after `done` of
+    /// `total` moves; nothing is reported.
+    #[error("stopped after {done} of {total} moves")]
+    Cancelled {
+        /// Moves checked.
+        done: usize,
+        /// Moves in the program.
+        total: usize,
+    },
     /// A move uses a tool the caller gave no cutter for.
     #[error("line {line}: tool {tool} is not defined (give a cutter for it)")]
     UnknownTool {

@@ -2,14 +2,17 @@
 //! searched part by part, stretches deeper than the tolerance located by bisection, and every
 //! program point checked as a pose; moves in parallel (rayon).
 
-use std::sync::atomic::{AtomicUsize, Ordering};
+use std::collections::btree_map::Entry;
+use std::collections::BTreeMap;
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 
 use rayon::prelude::*;
 use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
+use swarf_geom::progress::{Observer, Quiet};
 use swarf_path::{MoveKind, Pose, Program};
 use swarf_sweep::five_axis::subdivide;
 use swarf_sweep::SubMove;
-use swarf_tool::Cutter;
+use swarf_tool::ToolSet;
 
 use super::search::{deepest, Deepest, Pieces, Query, SearchScratch, Segment};
 use super::{
@@ -17,36 +20,18 @@ use super::{
     ToolPart, Violation, ViolationKind,
 };
 
-/// The cutters of a program by tool number, with an optional default for every other number.
-#[derive(Clone, Debug, Default)]
-pub struct GougeTools {
-    default: Option<GougeTool>,
-    numbered: Vec<(u32, GougeTool)>,
-}
-
-impl GougeTools {
-    /// One cutter for every move.
-    pub fn single(cutter: &Cutter) -> Self {
-        Self {
-            default: Some(GougeTool::new(cutter)),
-            numbered: Vec::new(),
+/// The parts of the cutters `program`'s moves use, each built once from `tools`; a number
+/// `tools` has no cutter for is left out.
+fn tools_of(program: &Program, tools: &ToolSet) -> BTreeMap<u32, GougeTool> {
+    let mut parts = BTreeMap::new();
+    for m in &program.moves {
+        if let Entry::Vacant(e) = parts.entry(m.tool) {
+            if let Some(c) = tools.get(m.tool) {
+                e.insert(GougeTool::new(c));
+            }
         }
     }
-
-    /// These tools with `cutter` as tool `n`.
-    pub fn with(mut self, n: u32, cutter: &Cutter) -> Self {
-        self.numbered.retain(|(k, _)| *k != n);
-        self.numbered.push((n, GougeTool::new(cutter)));
-        self
-    }
-
-    fn get(&self, n: u32) -> Option<&GougeTool> {
-        self.numbered
-            .iter()
-            .find(|(k, _)| *k == n)
-            .map(|(_, t)| t)
-            .or(self.default.as_ref())
-    }
+    parts
 }
 
 /// [`check_program_observed`] without progress reports.
@@ -56,25 +41,29 @@ impl GougeTools {
 pub fn check_program(
     surface: &GougeSurface,
     program: &Program,
-    tools: &GougeTools,
+    tools: &ToolSet,
     opts: &GougeOptions,
 ) -> Result<GougeReport, GougeError> {
-    check_program_observed(surface, program, tools, opts, &|_, _| {})
+    check_program_observed(surface, program, tools, opts, &Quiet)
 }
 
-/// Checks every point and move of `program` against `surface` (see the module docs), calling
-/// `progress(done, total)` as moves finish (from any thread).
+/// Checks every point and move of `program`, each with its tool's cutter from `tools`
+/// ([`ToolSet::get`]), against `surface` (see the module docs), telling
+/// `observer` `progress(done, moves)` as moves finish (from any thread, in any order). When it
+/// answers `Break` no further move is started and the check ends with
+/// [`GougeError::Cancelled`].
 ///
 /// # Errors
 /// [`GougeError::UnknownTool`] for a move whose tool has no cutter, [`GougeError::BadOption`]
-/// for a non-positive tolerance, accuracy, resolution or motion tolerance, and
-/// [`GougeError::Motion`] when a move cannot be cut into sub-moves.
+/// for a non-positive tolerance, accuracy, resolution or motion tolerance,
+/// [`GougeError::Motion`] when a move cannot be cut into sub-moves, and
+/// [`GougeError::Cancelled`] when the observer stopped the check.
 pub fn check_program_observed(
     surface: &GougeSurface,
     program: &Program,
-    tools: &GougeTools,
+    tools: &ToolSet,
     opts: &GougeOptions,
-    progress: &(dyn Fn(usize, usize) + Sync),
+    observer: &dyn Observer,
 ) -> Result<GougeReport, GougeError> {
     for (name, value) in [
         ("tolerance", opts.tolerance),
@@ -105,8 +94,9 @@ pub fn check_program_observed(
             max: super::MAX_LOCATED_PIECES,
         });
     }
+    let tools = tools_of(program, tools);
     for m in &program.moves {
-        if tools.get(m.tool).is_none() {
+        if !tools.contains_key(&m.tool) {
             return Err(GougeError::UnknownTool {
                 tool: m.tool,
                 line: m.line,
@@ -115,14 +105,27 @@ pub fn check_program_observed(
     }
     let total = program.moves.len();
     let done = AtomicUsize::new(0);
-    let outcomes: Vec<Result<MoveOutcome, GougeError>> = (0..total)
+    let stopped = AtomicBool::new(false);
+    let outcomes: Vec<Option<Result<MoveOutcome, GougeError>>> = (0..total)
         .into_par_iter()
         .map_init(SearchScratch::default, |scratch, i| {
-            let r = check_move(surface, program, tools, opts, i, scratch);
-            progress(done.fetch_add(1, Ordering::Relaxed) + 1, total);
-            r
+            if stopped.load(Ordering::Relaxed) {
+                return None;
+            }
+            let r = check_move(surface, program, &tools, opts, i, scratch);
+            let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+            if observer.progress(n as u64, total as u64).is_break() {
+                stopped.store(true, Ordering::Relaxed);
+            }
+            Some(r)
         })
         .collect();
+    if stopped.load(Ordering::Relaxed) {
+        return Err(GougeError::Cancelled {
+            done: done.load(Ordering::Relaxed),
+            total,
+        });
+    }
     let mut report = GougeReport {
         points: Vec::with_capacity(total + 1),
         violations: Vec::new(),
@@ -130,7 +133,8 @@ pub fn check_program_observed(
         nodes: 0,
         unresolved: 0,
     };
-    for (i, o) in outcomes.into_iter().enumerate() {
+    // Not stopped: every move was checked (a `None` only follows a stop).
+    for (i, o) in outcomes.into_iter().flatten().enumerate() {
         let o = o?;
         if i == 0 {
             if let Some(p) = o.start_point {
@@ -174,7 +178,7 @@ fn surface_ref(d: &Deepest) -> SurfaceRef {
 fn check_move(
     surface: &GougeSurface,
     program: &Program,
-    tools: &GougeTools,
+    tools: &BTreeMap<u32, GougeTool>,
     opts: &GougeOptions,
     index: usize,
     scratch: &mut SearchScratch,
@@ -191,7 +195,7 @@ fn check_move(
         }
     }
     let rapid = matches!(m.kind, MoveKind::Rapid);
-    let tool = tools.get(m.tool).ok_or(GougeError::UnknownTool {
+    let tool = tools.get(&m.tool).ok_or(GougeError::UnknownTool {
         tool: m.tool,
         line: m.line,
     })?;
@@ -428,5 +432,84 @@ fn check_pose(
             .map(|d| kind_of(part, rapid, d.check)),
         part,
         surface: d.filter(|d| d.depth.is_finite()).map(|d| surface_ref(&d)),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use std::ops::ControlFlow;
+    use std::sync::atomic::AtomicU64;
+    use swarf_path::load::{read_program_str, ReadOptions};
+    use swarf_path::Machine;
+    use swarf_surface::{CompoundSurface, NurbsSurface, Patch, PreparedSurface, Surface};
+
+    /// The floor `z = 0` over `[0, 100] × [0, 20]`.
+    fn floor() -> CompoundSurface {
+        let (o, du, dv) = (
+            Vec3::ZERO,
+            Vec3::new(100.0, 0.0, 0.0),
+            Vec3::new(0.0, 20.0, 0.0),
+        );
+        let pts = vec![vec![o, o + dv], vec![o + du, o + du + dv]];
+        let k = vec![0.0, 0.0, 1.0, 1.0];
+        let s = NurbsSurface::new(1, 1, k.clone(), k, &pts, None).unwrap();
+        CompoundSurface::new(vec![Patch::new(Surface::Nurbs(s))])
+    }
+
+    /// Forty moves along the floor, every other one 0.5 mm into it.
+    fn program() -> Program {
+        let mut text = String::from("G21 G90\nG0 X0 Y10 Z5\nG1 Z0 F600\n");
+        for k in 0..40 {
+            let z = if k % 2 == 0 { -0.5 } else { 0.0 };
+            text += &format!("G1 X{} Z{z}\n", 2 * (k + 1));
+        }
+        read_program_str(
+            &text,
+            "floor.ngc",
+            Machine::three_axis(),
+            &ReadOptions::default(),
+        )
+        .unwrap()
+    }
+
+    #[test]
+    fn an_observer_that_breaks_stops_the_check_and_a_quiet_one_changes_nothing() {
+        let surface = floor();
+        let gs = GougeSurface::new(&PreparedSurface::new(&surface));
+        let p = program();
+        let tools = ToolSet::single(swarf_tool::Cutter::ball(6.0).unwrap());
+        let opts = GougeOptions::DEFAULT;
+        let total = p.moves.len();
+
+        let calls = AtomicU64::new(0);
+        let count = |done: u64, all: u64| {
+            assert!(done >= 1 && done <= all && all == total as u64);
+            calls.fetch_add(1, Ordering::Relaxed);
+            ControlFlow::Continue(())
+        };
+        let a = check_program_observed(&gs, &p, &tools, &opts, &count).unwrap();
+        assert_eq!(calls.load(Ordering::Relaxed), total as u64);
+        let b = check_program(&gs, &p, &tools, &opts).unwrap();
+        assert_eq!(a.points, b.points);
+        assert_eq!(a.violations, b.violations);
+        assert!(!b.violations.is_empty());
+
+        // Stopped at the first report: no further move starts, so only the moves already
+        // running on other threads report (at most one per thread).
+        let calls = AtomicU64::new(0);
+        let stop = |_: u64, _: u64| {
+            calls.fetch_add(1, Ordering::Relaxed);
+            ControlFlow::Break(())
+        };
+        let r = check_program_observed(&gs, &p, &tools, &opts, &stop);
+        let n = calls.load(Ordering::Relaxed) as usize;
+        assert!(n >= 1 && n <= rayon::current_num_threads(), "{n} calls");
+        match r {
+            Err(GougeError::Cancelled { done, total: t }) => {
+                assert_eq!((done, t), (n, total));
+            }
+            other => panic!("{other:?}"),
+        }
     }
 }

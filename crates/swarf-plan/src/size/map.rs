@@ -10,10 +10,12 @@
 //! be machined, empty where the normal is undefined.
 
 use std::io::{self, Write};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
 use std::time::Instant;
 
 use rayon::prelude::*;
 use swarf_geom::math::Vec3;
+use swarf_geom::progress::{Cancelled, Observer, Quiet};
 
 use super::orient4::{axis_rotation, best_rotary_angle, in_tool_frame, Axis4Options};
 use super::orient5::{best_lead_tilt, Axis5Options, LeadTiltFrame};
@@ -176,53 +178,98 @@ pub fn allowable_map_prepared(
     ccs: &[CcPoint],
     opts: &MapOptions,
 ) -> ToolSizeMap {
+    match allowable_map_observed(surface, prep, family, ccs, opts, &Quiet) {
+        Ok(map) => map,
+        Err(_) => unreachable!("the quiet observer never stops the map"),
+    }
+}
+
+/// [`allowable_map_prepared`], telling `observer` `progress(done, points)` as CC points are
+/// solved (from any thread, in any order). When it answers `Break` no further point is started
+/// and the map ends with [`Cancelled`] (CC points solved, of all).
+///
+/// # Errors
+/// [`Cancelled`] when the observer stopped the map.
+pub fn allowable_map_observed(
+    surface: &CompoundSurface,
+    prep: &PreparedSurface,
+    family: &CutterFamily,
+    ccs: &[CcPoint],
+    opts: &MapOptions,
+    observer: &dyn Observer,
+) -> Result<ToolSizeMap, Cancelled> {
     let start = Instant::now();
-    let points = ccs
-        .par_iter()
-        .map(|cc| {
-            let g = surface.local(cc, &opts.geometry);
-            let Some(c) = Contact::at(surface, cc, &opts.geometry) else {
-                return MapPoint {
-                    cc: *cc,
-                    point: g.point(),
-                    normal: None,
-                    size: None,
-                    radius_mm: None,
-                    shank: None,
-                    orientation: None,
-                };
-            };
-            if opts.axes != Axes::Three {
-                return oriented_point(surface, prep, family, cc, &c, opts);
-            }
-            let size = match opts.solver {
-                Solver::Certified => allowable_certified(prep, family, &c, &opts.certified),
-                Solver::Pso => allowable_pso(surface, family, &c, &opts.pso),
-            };
-            let (size, shank) = match opts.shank {
-                Some(s) => {
-                    let (size, st) =
-                        shank_limited(prep, family, &c, size, &s, &opts.certified.model);
-                    (size, Some(st))
-                }
-                None => (size, None),
-            };
-            MapPoint {
-                cc: *cc,
-                point: c.point,
-                normal: Some(c.normal),
-                size: Some(size),
-                radius_mm: Some(radius_of(family, &c, &size, &opts.certified.model)),
-                shank,
-                orientation: None,
-            }
-        })
-        .collect();
-    ToolSizeMap {
+    let (done, stopped) = (AtomicUsize::new(0), AtomicBool::new(false));
+    let total = ccs.len() as u64;
+    let point = |cc: &CcPoint| {
+        if stopped.load(Ordering::Relaxed) {
+            return None;
+        }
+        let p = map_point(surface, prep, family, cc, opts);
+        let n = done.fetch_add(1, Ordering::Relaxed) + 1;
+        if observer.progress(n as u64, total).is_break() {
+            stopped.store(true, Ordering::Relaxed);
+        }
+        Some(p)
+    };
+    let points: Vec<Option<MapPoint>> = ccs.par_iter().map(point).collect();
+    if stopped.load(Ordering::Relaxed) {
+        return Err(Cancelled {
+            done: done.load(Ordering::Relaxed) as u64,
+            total,
+        });
+    }
+    Ok(ToolSizeMap {
         family: *family,
-        points,
+        // Not stopped: every point was solved.
+        points: points.into_iter().flatten().collect(),
         axes: opts.axes,
         elapsed_s: start.elapsed().as_secs_f64(),
+    })
+}
+
+/// The allowable size (and orientation, shank check) at one CC point.
+fn map_point(
+    surface: &CompoundSurface,
+    prep: &PreparedSurface,
+    family: &CutterFamily,
+    cc: &CcPoint,
+    opts: &MapOptions,
+) -> MapPoint {
+    let g = surface.local(cc, &opts.geometry);
+    let Some(c) = Contact::at(surface, cc, &opts.geometry) else {
+        return MapPoint {
+            cc: *cc,
+            point: g.point(),
+            normal: None,
+            size: None,
+            radius_mm: None,
+            shank: None,
+            orientation: None,
+        };
+    };
+    if opts.axes != Axes::Three {
+        return oriented_point(surface, prep, family, cc, &c, opts);
+    }
+    let size = match opts.solver {
+        Solver::Certified => allowable_certified(prep, family, &c, &opts.certified),
+        Solver::Pso => allowable_pso(surface, family, &c, &opts.pso),
+    };
+    let (size, shank) = match opts.shank {
+        Some(s) => {
+            let (size, st) = shank_limited(prep, family, &c, size, &s, &opts.certified.model);
+            (size, Some(st))
+        }
+        None => (size, None),
+    };
+    MapPoint {
+        cc: *cc,
+        point: c.point,
+        normal: Some(c.normal),
+        size: Some(size),
+        radius_mm: Some(radius_of(family, &c, &size, &opts.certified.model)),
+        shank,
+        orientation: None,
     }
 }
 

@@ -65,8 +65,8 @@ pub mod standard;
 pub use certified::{allowable_certified, CertifiedOptions};
 pub use family::{CutterFamily, Regime, FLAT_CURVATURE};
 pub use map::{
-    allowable_map, allowable_map_prepared, Axes, MapOptions, MapPoint, MapSummary, Solver,
-    ToolAngles, ToolSizeMap,
+    allowable_map, allowable_map_observed, allowable_map_prepared, Axes, MapOptions, MapPoint,
+    MapSummary, Solver, ToolAngles, ToolSizeMap,
 };
 pub use orient4::{allowable_along, best_rotary_angle, Axis4Options, Orientation4, RotaryAxis};
 pub use orient5::{best_lead_tilt, Axis5Options, LeadTiltFrame, Orientation5};
