@@ -103,6 +103,29 @@ pub(crate) struct SetupArgs {
     pub(crate) max_moves: Option<u64>,
 }
 
+impl SetupArgs {
+    /// The job options these arguments give; `max_moves` when `--max-moves` is not given.
+    pub(crate) fn job_options(&self, max_moves: u64) -> swarf_job::JobOptions {
+        let units = |u: TableUnits| match u {
+            TableUnits::Mm => (swarf_path::Units::Mm, swarf_tool::LengthUnit::Mm),
+            TableUnits::Inch => (swarf_path::Units::Inch, swarf_tool::LengthUnit::Inch),
+        };
+        swarf_job::JobOptions {
+            machine: self.machine.clone(),
+            tool: self.tool.clone(),
+            tools: self.tools.clone(),
+            table_units: units(self.table_units).1,
+            initial_units: units(self.initial_units).0,
+            subroutine_dirs: self.subroutine_path.clone(),
+            dialect: self.dialect.map(|d| match d {
+                Dialect::Linuxcnc => swarf_path::gcode::GcodeDialect::LinuxCnc,
+                Dialect::Fanuc => swarf_path::gcode::GcodeDialect::Fanuc,
+            }),
+            max_moves: self.max_moves.unwrap_or(max_moves),
+        }
+    }
+}
+
 /// The G-code dialects.
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub(crate) enum Dialect {

@@ -10,8 +10,9 @@ use std::path::Path;
 
 use anyhow::{bail, Context, Result};
 use serde::Serialize;
+use swarf_job::JobSetup;
 use swarf_path::canonical::CanonicalPrinter;
-use swarf_path::load::{read_program_str, stream_program, ReadOptions};
+use swarf_path::load::{stream_program, ReadOptions};
 use swarf_path::Machine;
 use swarf_plan::gouge::{check_program, GougeOptions, GougeSummary, GougeSurface};
 use swarf_stock::{simulate, MeshOptions, SimOptions, StockSpec};
@@ -22,7 +23,7 @@ use swarf_tool::table::parse_toml_library;
 use crate::cli::DemoArgs;
 use crate::commands::path::PathReport;
 use crate::commands::simulate::{write_outputs, SimulateSummary};
-use crate::commands::tools::tool_set;
+use crate::commands::tools::defined_tools;
 use crate::output::{output_set, print_json};
 
 /// The demo program (LinuxCNC G-code with parameters, loops, conditionals and arcs).
@@ -73,20 +74,26 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
             args.resolution
         );
     }
-    let options = ReadOptions::default();
     let table = parse_toml_library(TOOLS, "demo/tools.toml")?;
-    let program = read_program_str(PROGRAM, "demo/demo.ngc", Machine::three_axis(), &options)?;
-    let path_report = PathReport::new(&program, None, Some(&table))?;
-    let tools = tool_set(&program, None, Some(&table))?;
+    let setup = JobSetup {
+        machine: Machine::three_axis(),
+        single: None,
+        table: Some(table.clone()),
+        read: ReadOptions::default(),
+    };
+    let job = setup.read_str(PROGRAM, "demo/demo.ngc")?;
+    let path_report = PathReport::new(&job);
+    let tools = defined_tools(&job)?;
+    let program = &job.program;
     let mut stock = StockSpec::parse(STOCK)?.build(args.resolution, MeshOptions::default())?;
-    let report = simulate(&program, &tools, &mut stock, &SimOptions::default())?;
+    let report = simulate(program, tools, &mut stock, &SimOptions::default())?;
     let summary = SimulateSummary::new(&report);
 
     let dir = &args.out;
     // Every file of the demo is written as one set: all of them, or none.
     let mut set = output_set(dir, args.max_output_mb)?;
-    write_outputs(&mut set, &program, &stock, &report, &summary)?;
-    write_sources(&mut set, &options)?;
+    write_outputs(&mut set, program, &stock, &report, &summary)?;
+    write_sources(&mut set, &job.setup.read)?;
 
     let t0 = std::time::Instant::now();
     let floor = wavy_floor();
@@ -94,13 +101,13 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     set.write_bytes("floor.json", json.as_bytes())?;
     let surface = GougeSurface::new(&PreparedSurface::new(&floor));
     let opts = GougeOptions::DEFAULT;
-    let gouge = check_program(&surface, &program, &tools, &opts)?;
+    let gouge = check_program(&surface, program, tools, &opts)?;
     let gouge_summary = gouge.summary(&opts, program.moves.len(), t0.elapsed().as_secs_f64());
     crate::commands::gouge::write_outputs(
         &mut set,
         "gouge/",
         &floor,
-        &program,
+        program,
         &gouge,
         &gouge_summary,
     )?;
@@ -111,7 +118,7 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
         gouge: &gouge_summary,
         out_dir: dir.display().to_string(),
     };
-    let page = report_page(&program, &table, &stock, &floor, &gouge, &demo)?;
+    let page = report_page(program, &table, &stock, &floor, &gouge, &demo)?;
     set.write_bytes("report.html", swarf_io::html::render(&page).as_bytes())?;
     set.commit()?;
     print_json(&demo)

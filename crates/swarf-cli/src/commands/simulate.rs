@@ -16,7 +16,7 @@ use swarf_stock::{
 use swarf_tool::{ToolSet, ToolTable};
 
 use crate::cli::SimulateArgs;
-use crate::commands::tools::{load_setup, resolve_all, tool_set, Setup};
+use crate::commands::tools::{defined_tools, load_job};
 use crate::output::{check_sizes, output_set, print_json};
 
 /// The JSON summary. The first nine keys are a contract; the rest may grow.
@@ -117,30 +117,26 @@ impl SimulateSummary {
 pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
     positive_mm("resolution", args.resolution)?;
     positive_mm("tolerance", args.tolerance)?;
-    let Setup {
-        program,
-        single,
-        table,
-    } = load_setup(&args.setup, &args.program)?;
-    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
+    let job = load_job(&args.setup, &args.program)?;
+    let tools = defined_tools(&job)?;
+    let program = &job.program;
     let mut stock = build_stock(
         args.stock.as_deref(),
-        table.as_ref(),
+        job.setup.table.as_ref(),
         args.resolution,
         args.allow_open_mesh,
     )?;
     let options = SimOptions::default().with_chordal_tolerance(args.tolerance);
-    let report = simulate_with_progress(&program, &tools, &mut stock, &options)
+    let report = simulate_with_progress(program, tools, &mut stock, &options)
         .with_context(|| format!("simulating {}", args.program.display()))?;
     let summary = SimulateSummary::new(&report);
     if let Some(dir) = &args.out {
         let mut set = output_set(dir, args.max_output_mb)?;
-        write_outputs(&mut set, &program, &stock, &report, &summary)?;
+        write_outputs(&mut set, program, &stock, &report, &summary)?;
         set.commit()?;
     }
     if let Some(path) = &args.report {
-        let resolved = resolve_all(&program, single.as_ref(), table.as_ref())?;
-        write_report(path, args, &program, &resolved, &stock, &summary)?;
+        write_report(path, args, program, tools.resolved(), &stock, &summary)?;
     }
     if args.json {
         print_json(&summary)
