@@ -6,9 +6,10 @@
 
 use swarf_io::OutputSet;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
+use clap::Args;
 use serde::Serialize;
 use swarf_job::JobSetup;
 use swarf_path::canonical::CanonicalPrinter;
@@ -20,11 +21,30 @@ use swarf_surface::build::{hermite_height_field, HeightGrid};
 use swarf_surface::{CompoundSurface, Patch, PreparedSurface, Surface};
 use swarf_tool::table::parse_toml_library;
 
-use crate::cli::DemoArgs;
 use crate::commands::path::PathReport;
 use crate::commands::simulate::{write_outputs, SimulateSummary};
 use crate::commands::tools::defined_tools;
 use crate::output::{output_set, print_json};
+
+/// `swarf demo`.
+#[derive(Debug, Args)]
+pub(crate) struct DemoArgs {
+    /// Where to write the machined part (stock.stl, stock.glb), moves.csv, summary.json, the
+    /// program, its tool library and its canonical motion.
+    #[arg(long, value_name = "DIR", default_value = "swarf-demo")]
+    pub(crate) out: PathBuf,
+    /// Largest total size of the files written, MB (estimated before anything is written).
+    #[arg(long, value_name = "MB", default_value_t = crate::output::DEFAULT_MAX_OUTPUT_MB)]
+    pub(crate) max_output_mb: u64,
+    /// Ray spacing of the stock, mm.
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "H",
+        default_value_t = 0.25
+    )]
+    pub(crate) resolution: f64,
+}
 
 /// The demo program (LinuxCNC G-code with parameters, loops, conditionals and arcs).
 const PROGRAM: &str = include_str!("../../demo/demo.ngc");

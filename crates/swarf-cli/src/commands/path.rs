@@ -2,8 +2,10 @@
 
 use std::collections::BTreeMap;
 use std::io::BufWriter;
+use std::path::PathBuf;
 
 use anyhow::{Context, Result};
+use clap::Args;
 use serde::Serialize;
 use swarf_job::{Job, JobSetup};
 use swarf_path::canonical::CanonicalPrinter;
@@ -12,9 +14,25 @@ use swarf_path::summary::{SummaryOptions, SummarySink};
 use swarf_path::{summarize, ProgramSummary};
 use swarf_tool::{CutterDescription, ToolSet, ToolSource};
 
-use crate::cli::PathArgs;
+use crate::cli::SetupArgs;
 use crate::commands::tools::job_error;
 use crate::output::print_json;
+
+/// `swarf path`.
+#[derive(Debug, Args)]
+pub(crate) struct PathArgs {
+    /// The program: G-code (.ngc .nc .gcode .tap .ptp …) or APT CL (.apt .cls .cl).
+    pub(crate) program: PathBuf,
+    /// Cutters, tool library, machine and units.
+    #[command(flatten)]
+    pub(crate) setup: SetupArgs,
+    /// Print the JSON summary.
+    #[arg(long, conflicts_with = "canonical")]
+    pub(crate) json: bool,
+    /// Print the motion as LinuxCNC canonical calls (program units, four decimals).
+    #[arg(long)]
+    pub(crate) canonical: bool,
+}
 
 /// The `--json` output: the summary's keys, plus the cutters the tools resolve to.
 #[derive(Serialize)]
