@@ -59,7 +59,13 @@ fn program_text(n: usize) -> String {
     while moves < n {
         let fwd = pass % 2 == 0;
         let f = if fwd { Vec3::X } else { -Vec3::X };
-        let x_at = |i: usize| if fwd { 5.0 + i as f64 * seg } else { 115.0 - i as f64 * seg };
+        let x_at = |i: usize| {
+            if fwd {
+                5.0 + i as f64 * seg
+            } else {
+                115.0 - i as f64 * seg
+            }
+        };
         let (p0, a0) = pose(x_at(0), y, f, d, r, lead);
         t += "RAPID\n";
         goto(&mut t, (p0 + a0 * 15.0, a0));

@@ -2,11 +2,13 @@
 //! cutter-contact (CC) points the planner visits on them.
 
 use std::fmt;
+use std::sync::Arc;
 
 use swarf_geom::Aabb;
 
 use swarf_geom::math::Vec3;
 
+use crate::io::TrimFailure;
 use crate::surface::{
     differential, LocalGeometry, ParametricSurface, Surface, SurfaceNormal, Tolerances,
 };
@@ -167,9 +169,9 @@ pub enum ReadNote {
     TrimNotHonoured {
         /// Index of the patch.
         patch: usize,
-        /// The trimming entity and why it is not honoured (`IGES 144 at D1 (142 at D5 has no
-        /// parameter-space curve)`, …).
-        by: String,
+        /// The trimming entity and why it is not honoured (shown as `IGES 144 at D1 (142 at
+        /// D5 has neither a parameter-space nor a model-space curve)`, …).
+        by: UnhonouredTrim,
     },
     /// The patch is trimmed in the file and the trim is honoured: [`Patch::trim`] holds it.
     Trimmed {
@@ -199,6 +201,62 @@ pub enum ReadNote {
         /// Which parameter(s).
         what: String,
     },
+}
+
+/// A trim in a file that a reader does not honour, and why: the entity that trims the patch
+/// and the [`TrimFailure`] its loops gave.
+#[derive(Clone, Debug)]
+pub enum UnhonouredTrim {
+    /// The bounds of a STEP face (`STEP face #12 (why)`).
+    StepFace {
+        /// The face's instance number.
+        face: u64,
+        /// Why its bounds are not a trim.
+        why: Arc<TrimFailure>,
+    },
+    /// An IGES 144 trimmed surface (`IGES 144 at D7 (why)`).
+    Iges144 {
+        /// The 144's directory entry.
+        de: usize,
+        /// Why its boundaries are not a trim.
+        why: Arc<TrimFailure>,
+    },
+}
+
+impl UnhonouredTrim {
+    /// Why the trim is not honoured.
+    pub fn why(&self) -> &TrimFailure {
+        match self {
+            UnhonouredTrim::StepFace { why, .. } | UnhonouredTrim::Iges144 { why, .. } => why,
+        }
+    }
+}
+
+impl PartialEq for UnhonouredTrim {
+    /// The same entity, not honoured for the same reason (told by its text: a failure may hold
+    /// an I/O error, which has no equality).
+    fn eq(&self, other: &Self) -> bool {
+        let same_entity = match (self, other) {
+            (
+                UnhonouredTrim::StepFace { face: a, .. },
+                UnhonouredTrim::StepFace { face: b, .. },
+            ) => a == b,
+            (UnhonouredTrim::Iges144 { de: a, .. }, UnhonouredTrim::Iges144 { de: b, .. }) => {
+                a == b
+            }
+            _ => false,
+        };
+        same_entity && self.why().to_string() == other.why().to_string()
+    }
+}
+
+impl fmt::Display for UnhonouredTrim {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            UnhonouredTrim::StepFace { face, why } => write!(f, "STEP face #{face} ({why})"),
+            UnhonouredTrim::Iges144 { de, why } => write!(f, "IGES 144 at D{de} ({why})"),
+        }
+    }
 }
 
 impl fmt::Display for ReadNote {
@@ -473,5 +531,40 @@ impl CompoundSurface {
     #[inline]
     pub fn local(&self, cc: &CcPoint, tol: &Tolerances) -> LocalGeometry {
         self.patches[cc.patch].local(cc.u, cc.v, tol)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_trim_not_honoured_reads_as_the_readers_always_wrote_it() {
+        let iges = ReadNote::TrimNotHonoured {
+            patch: 3,
+            by: UnhonouredTrim::Iges144 {
+                de: 7,
+                why: Arc::new(TrimFailure::NoCurve { de: 5 }),
+            },
+        };
+        assert_eq!(
+            iges.to_string(),
+            "patch 3 is trimmed by IGES 144 at D7 (142 at D5 has neither a parameter-space nor a \
+             model-space curve); the trim is not honoured (the whole patch is used)"
+        );
+        let step = ReadNote::TrimNotHonoured {
+            patch: 0,
+            by: UnhonouredTrim::StepFace {
+                face: 12,
+                why: Arc::new(TrimFailure::NoArea),
+            },
+        };
+        assert_eq!(
+            step.to_string(),
+            "patch 0 is trimmed by STEP face #12 (the loops span no area); the trim is not \
+             honoured (the whole patch is used)"
+        );
+        assert_eq!(step.clone(), step);
+        assert_ne!(step, iges);
     }
 }

@@ -6,12 +6,14 @@
 
 use swarf_io::OutputSet;
 
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
+use clap::Args;
 use serde::Serialize;
+use swarf_job::JobSetup;
 use swarf_path::canonical::CanonicalPrinter;
-use swarf_path::load::{read_program_str, stream_program, ReadOptions};
+use swarf_path::load::{stream_program, ReadOptions};
 use swarf_path::Machine;
 use swarf_plan::gouge::{check_program, GougeOptions, GougeSummary, GougeSurface};
 use swarf_stock::{simulate, MeshOptions, SimOptions, StockSpec};
@@ -19,11 +21,30 @@ use swarf_surface::build::{hermite_height_field, HeightGrid};
 use swarf_surface::{CompoundSurface, Patch, PreparedSurface, Surface};
 use swarf_tool::table::parse_toml_library;
 
-use crate::cli::DemoArgs;
 use crate::commands::path::PathReport;
 use crate::commands::simulate::{write_outputs, SimulateSummary};
-use crate::commands::tools::tool_set;
+use crate::commands::tools::defined_tools;
 use crate::output::{output_set, print_json};
+
+/// `swarf demo`.
+#[derive(Debug, Args)]
+pub(crate) struct DemoArgs {
+    /// Where to write the machined part (stock.stl, stock.glb), moves.csv, summary.json, the
+    /// program, its tool library and its canonical motion.
+    #[arg(long, value_name = "DIR", default_value = "swarf-demo")]
+    pub(crate) out: PathBuf,
+    /// Largest total size of the files written, MB (estimated before anything is written).
+    #[arg(long, value_name = "MB", default_value_t = crate::output::DEFAULT_MAX_OUTPUT_MB)]
+    pub(crate) max_output_mb: u64,
+    /// Ray spacing of the stock, mm.
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "H",
+        default_value_t = 0.25
+    )]
+    pub(crate) resolution: f64,
+}
 
 /// The demo program (LinuxCNC G-code with parameters, loops, conditionals and arcs).
 const PROGRAM: &str = include_str!("../../demo/demo.ngc");
@@ -73,20 +94,26 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
             args.resolution
         );
     }
-    let options = ReadOptions::default();
     let table = parse_toml_library(TOOLS, "demo/tools.toml")?;
-    let program = read_program_str(PROGRAM, "demo/demo.ngc", Machine::three_axis(), &options)?;
-    let path_report = PathReport::new(&program, None, Some(&table))?;
-    let tools = tool_set(&program, None, Some(&table))?;
+    let setup = JobSetup {
+        machine: Machine::three_axis(),
+        single: None,
+        table: Some(table.clone()),
+        read: ReadOptions::default(),
+    };
+    let job = setup.read_str(PROGRAM, "demo/demo.ngc")?;
+    let path_report = PathReport::new(&job);
+    let tools = defined_tools(&job)?;
+    let program = &job.program;
     let mut stock = StockSpec::parse(STOCK)?.build(args.resolution, MeshOptions::default())?;
-    let report = simulate(&program, &tools, &mut stock, &SimOptions::default())?;
+    let report = simulate(program, tools, &mut stock, &SimOptions::default())?;
     let summary = SimulateSummary::new(&report);
 
     let dir = &args.out;
     // Every file of the demo is written as one set: all of them, or none.
     let mut set = output_set(dir, args.max_output_mb)?;
-    write_outputs(&mut set, &program, &stock, &report, &summary)?;
-    write_sources(&mut set, &options)?;
+    write_outputs(&mut set, program, &stock, &report, &summary)?;
+    write_sources(&mut set, &job.setup.read)?;
 
     let t0 = std::time::Instant::now();
     let floor = wavy_floor();
@@ -94,13 +121,13 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     set.write_bytes("floor.json", json.as_bytes())?;
     let surface = GougeSurface::new(&PreparedSurface::new(&floor));
     let opts = GougeOptions::DEFAULT;
-    let gouge = check_program(&surface, &program, &tools, &opts)?;
+    let gouge = check_program(&surface, program, tools, &opts)?;
     let gouge_summary = gouge.summary(&opts, program.moves.len(), t0.elapsed().as_secs_f64());
     crate::commands::gouge::write_outputs(
         &mut set,
         "gouge/",
         &floor,
-        &program,
+        program,
         &gouge,
         &gouge_summary,
     )?;
@@ -111,7 +138,7 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
         gouge: &gouge_summary,
         out_dir: dir.display().to_string(),
     };
-    let page = report_page(&program, &table, &stock, &floor, &gouge, &demo)?;
+    let page = report_page(program, &table, &stock, &floor, &gouge, &demo)?;
     set.write_bytes("report.html", swarf_io::html::render(&page).as_bytes())?;
     set.commit()?;
     print_json(&demo)

@@ -8,6 +8,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde::Serialize;
 use swarf_engage::{EngageError, EngageOptions, Engagement, Engager};
+use swarf_job::Job;
 use swarf_path::Program;
 use swarf_stock::TriDexel;
 use swarf_tool::ToolSet;
@@ -15,9 +16,7 @@ use swarf_tool::ToolSet;
 use crate::cli::SetupArgs;
 use crate::commands::plots;
 use crate::commands::simulate::{build_stock, positive_mm};
-use crate::commands::tools::{
-    load_machine, load_setup, load_tool_sources, read_options, reader_error, tool_set, Setup,
-};
+use crate::commands::tools::{defined_tools, job_error, load_job, load_job_setup};
 use crate::output::{csv_field, output_set, print_json, DEFAULT_MAX_OUTPUT_MB};
 
 /// What a run along a program needs: the stock, the program, its tools and the engagement's
@@ -83,15 +82,9 @@ impl RunArgs {
 
     /// Reads program text (`name` in messages) with this run's machine and units.
     pub(crate) fn read_program_str(&self, text: &str, name: &str) -> Result<Program> {
-        let machine = load_machine(&self.setup.machine)?;
-        let (single, table) = load_tool_sources(
-            self.setup.tool.as_deref(),
-            self.setup.tools.as_deref(),
-            self.setup.table_units,
-        )?;
-        let options = read_options(&self.setup, single.as_ref(), table.as_ref());
-        swarf_path::load::read_program_str(text, name, machine, &options)
-            .map_err(|e| reader_error(e, &options))
+        load_job_setup(&self.setup)?
+            .read_program_str(text, name)
+            .map_err(job_error)
     }
 
     /// The stock as given.
@@ -122,15 +115,17 @@ impl RunArgs {
     /// Reads the program and tools, builds the stock and checks the options.
     pub(crate) fn prepare(&self) -> Result<Prepared> {
         positive_mm("resolution", self.resolution)?;
-        let Setup {
+        let job = load_job(&self.setup, self.program()?)?;
+        defined_tools(&job)?;
+        let Job {
             program,
-            single,
-            table,
-        } = load_setup(&self.setup, self.program()?)?;
-        let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
+            tools,
+            setup,
+            ..
+        } = job;
         let stock = build_stock(
             self.stock.as_deref(),
-            table.as_ref(),
+            setup.table.as_ref(),
             self.resolution,
             self.allow_open_mesh,
         )?;

@@ -14,7 +14,7 @@ use swarf_io::{write_stl_to, GlbOptions, Shading};
 use swarf_sweep::SelfIntersection;
 
 use crate::cli::SetupArgs;
-use crate::commands::tools::{load_setup, tool_set, Setup};
+use crate::commands::tools::{defined_tools, load_job};
 use crate::output::{check_sizes, output_set, print_json};
 
 #[derive(Debug, Args)]
@@ -95,12 +95,9 @@ fn parse_moves(text: &str, len: usize) -> Result<Range<usize>> {
 
 pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
     let t0 = Instant::now();
-    let Setup {
-        program,
-        single,
-        table,
-    } = load_setup(&args.setup, &args.program)?;
-    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
+    let job = load_job(&args.setup, &args.program)?;
+    let tools = defined_tools(&job)?;
+    let program = &job.program;
     let range = match &args.moves {
         Some(m) => parse_moves(m, program.moves.len())?,
         None => 0..program.moves.len(),
@@ -108,7 +105,7 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
     let options = EnvelopeOptions::default()
         .with_resolution(args.resolution)
         .with_tolerance(args.tolerance);
-    let env = envelope(&program, &tools, range, &options)
+    let env = envelope(program, tools, range, &options)
         .with_context(|| format!("sweeping {}", args.program.display()))?;
     let stl = args.out.join("envelope.stl");
     let glb = args.out.join("envelope.glb");

@@ -15,7 +15,7 @@ use swarf_plan::gouge::{
 use swarf_surface::{CompoundSurface, PreparedSurface};
 
 use crate::cli::SetupArgs;
-use crate::commands::tools::{load_setup, resolve_all, tool_set, Setup};
+use crate::commands::tools::{defined_tools, load_job};
 use crate::output::{check_sizes, output_set, print_json, DEFAULT_MAX_OUTPUT_MB};
 
 /// `swarf gouge`.
@@ -70,12 +70,9 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
             swarf_io::read_stl(path).with_context(|| format!("reading {}", path.display()))?;
         prep = prep.with_check_mesh(&path.display().to_string(), &mesh)?;
     }
-    let Setup {
-        program,
-        single,
-        table,
-    } = load_setup(&args.setup, &args.program)?;
-    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
+    let job = load_job(&args.setup, &args.program)?;
+    let tools = defined_tools(&job)?;
+    let program = &job.program;
     let opts = GougeOptions {
         resolution: args.resolution,
         ..GougeOptions::DEFAULT.with_tolerance(args.tolerance)
@@ -84,17 +81,17 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
     // Ctrl-C ends `swarf gouge` at once (it does not listen for a stop), so the observer only
     // draws the bar.
     let progress = crate::output::MovesProgress::new(program.moves.len());
-    let report = check_program_observed(&gs, &program, &tools, &opts, &progress)
+    let report = check_program_observed(&gs, program, tools, &opts, &progress)
         .with_context(|| format!("checking {}", args.program.display()));
     progress.finish();
     let report = report?;
     let summary = report.summary(&opts, program.moves.len(), t0.elapsed().as_secs_f64());
     let mut set = output_set(&args.out, DEFAULT_MAX_OUTPUT_MB)?;
-    write_outputs(&mut set, "", &surface, &program, &report, &summary)?;
+    write_outputs(&mut set, "", &surface, program, &report, &summary)?;
     set.commit()?;
     if let Some(path) = &args.report {
-        let resolved = resolve_all(&program, single.as_ref(), table.as_ref())?;
-        write_report(path, args, &surface, &program, &resolved, &report, &summary)?;
+        let resolved = tools.resolved();
+        write_report(path, args, &surface, program, resolved, &report, &summary)?;
     }
     if args.json {
         return print_json(&summary);

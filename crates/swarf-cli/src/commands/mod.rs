@@ -1,4 +1,5 @@
-//! One module per subcommand; each only calls the libraries and prints.
+//! One module per subcommand, with its arguments; each only calls the libraries and prints.
+//! The argument groups several share are in `crate::cli`, which knows no command.
 
 pub(crate) mod demo;
 pub(crate) mod engage;

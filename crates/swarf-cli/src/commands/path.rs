@@ -2,20 +2,37 @@
 
 use std::collections::BTreeMap;
 use std::io::BufWriter;
+use std::path::PathBuf;
 
 use anyhow::{Context, Result};
+use clap::Args;
 use serde::Serialize;
+use swarf_job::{Job, JobSetup};
 use swarf_path::canonical::CanonicalPrinter;
-use swarf_path::load::{read_text, stream_program};
+use swarf_path::load::read_text;
 use swarf_path::summary::{SummaryOptions, SummarySink};
-use swarf_path::{summarize, Program, ProgramSummary};
-use swarf_tool::{Cutter, CutterDescription, ToolTable};
+use swarf_path::{summarize, ProgramSummary};
+use swarf_tool::{CutterDescription, ToolSet, ToolSource};
 
-use crate::cli::PathArgs;
-use crate::commands::tools::{
-    load_machine, load_tool_sources, read_options, reader_error, resolve_used_tools, ToolSource,
-};
+use crate::cli::SetupArgs;
+use crate::commands::tools::job_error;
 use crate::output::print_json;
+
+/// `swarf path`.
+#[derive(Debug, Args)]
+pub(crate) struct PathArgs {
+    /// The program: G-code (.ngc .nc .gcode .tap .ptp …) or APT CL (.apt .cls .cl).
+    pub(crate) program: PathBuf,
+    /// Cutters, tool library, machine and units.
+    #[command(flatten)]
+    pub(crate) setup: SetupArgs,
+    /// Print the JSON summary.
+    #[arg(long, conflicts_with = "canonical")]
+    pub(crate) json: bool,
+    /// Print the motion as LinuxCNC canonical calls (program units, four decimals).
+    #[arg(long)]
+    pub(crate) canonical: bool,
+}
 
 /// The `--json` output: the summary's keys, plus the cutters the tools resolve to.
 #[derive(Serialize)]
@@ -45,42 +62,30 @@ struct ToolReport {
 }
 
 pub(crate) fn run(args: &PathArgs) -> Result<()> {
-    let machine = load_machine(&args.setup.machine)?;
-    let (single, table) = load_tool_sources(
-        args.setup.tool.as_deref(),
-        args.setup.tools.as_deref(),
-        args.setup.table_units,
-    )?;
-    let mut options = read_options(&args.setup, single.as_ref(), table.as_ref());
-    if args.setup.max_moves.is_none() {
-        // Both outputs stream: no move is kept, so no move limit is needed (the loop limits
-        // still end a program that never ends).
-        options.gcode.max_moves = u64::MAX;
-        options.apt.max_moves = u64::MAX;
-    }
+    // Both outputs stream: no move is kept, so no move limit is needed unless one is given
+    // (the loop limits still end a program that never ends).
+    let setup = JobSetup::load(&args.setup.job_options(u64::MAX)).map_err(job_error)?;
     let text = read_text(&args.program)?;
     let file = args.program.display().to_string();
 
     if args.canonical {
         let stdout = std::io::stdout().lock();
         let mut printer = CanonicalPrinter::new(BufWriter::new(stdout));
-        stream_program(&text, &file, &options, &mut printer)
-            .map_err(|e| reader_error(e, &options))?;
+        setup
+            .stream(&text, &file, &mut printer)
+            .map_err(job_error)?;
         printer.finish().context("writing to stdout")?;
         return Ok(());
     }
 
-    let mut sink = SummarySink::new(machine, &file, &SummaryOptions::default());
-    stream_program(&text, &file, &options, &mut sink).map_err(|e| reader_error(e, &options))?;
+    let mut sink = SummarySink::new(setup.machine.clone(), &file, &SummaryOptions::default());
+    setup.stream(&text, &file, &mut sink).map_err(job_error)?;
     drop(text);
     let streamed = sink.finish();
-    let report = PathReport::from_summary(
-        streamed.summary,
-        &streamed.program,
-        streamed.tool_zero_moved,
-        single.as_ref(),
-        table.as_ref(),
-    )?;
+    let (tools, undefined) = setup
+        .resolve(&streamed.program, streamed.tool_zero_moved)
+        .map_err(job_error)?;
+    let report = PathReport::from_parts(streamed.summary, &tools, undefined, &setup);
     // What the summary leaves out or approximates (feed moves at F0 left out of the time…)
     // is said on stderr too, not only inside the JSON.
     for note in &report.summary.notes {
@@ -94,49 +99,52 @@ pub(crate) fn run(args: &PathArgs) -> Result<()> {
 }
 
 impl PathReport {
-    /// Summarises `program` and resolves each tool number it uses to a cutter: `single` for
-    /// all, else the table, else the program's own `CUTTER/` definition.
-    pub(crate) fn new(
-        program: &Program,
-        single: Option<&Cutter>,
-        table: Option<&ToolTable>,
-    ) -> Result<Self> {
-        let tool_zero_moved = program.moves.iter().any(|m| m.tool == 0);
-        Self::from_summary(summarize(program), program, tool_zero_moved, single, table)
+    /// The summary of `job`'s program with the cutters its tools resolve to (`--tool` for
+    /// all, else the library, else the program's own `CUTTER/`).
+    pub(crate) fn new(job: &Job) -> Self {
+        Self::from_parts(
+            summarize(&job.program),
+            &job.tools,
+            job.undefined_tools.clone(),
+            &job.setup,
+        )
     }
 
-    /// The report of a program summarised already (`program`'s moves are not read:
-    /// `tool_zero_moved` says whether a move was made with no tool loaded).
-    pub(crate) fn from_summary(
+    /// The report of a program summarised already, with its resolved `tools`, the tool numbers
+    /// nothing defines and the setup it was read with (for the workpiece a CAMotics project
+    /// states).
+    fn from_parts(
         summary: ProgramSummary,
-        program: &Program,
-        tool_zero_moved: bool,
-        single: Option<&Cutter>,
-        table: Option<&ToolTable>,
-    ) -> Result<Self> {
-        let (resolved, undefined_tools) =
-            resolve_used_tools(program, tool_zero_moved, single, table)?;
-        let tool_definitions = resolved
-            .into_iter()
+        tools: &ToolSet,
+        undefined_tools: Vec<u32>,
+        setup: &JobSetup,
+    ) -> Self {
+        let tool_definitions = tools
+            .resolved()
+            .iter()
             .map(|(n, r)| {
                 let report = ToolReport {
                     source: r.source,
-                    description: r.description,
+                    description: r.description.clone(),
                     cutter: r.cutter.describe(),
                 };
-                (n, report)
+                (*n, report)
             })
             .collect();
-        let workpiece = table.and_then(|t| t.workpiece).map(|b| Workpiece {
-            min: b.min.to_array(),
-            max: b.max.to_array(),
-        });
-        Ok(Self {
+        let workpiece = setup
+            .table
+            .as_ref()
+            .and_then(|t| t.workpiece)
+            .map(|b| Workpiece {
+                min: b.min.to_array(),
+                max: b.max.to_array(),
+            });
+        Self {
             summary,
             tool_definitions,
             undefined_tools,
             workpiece,
-        })
+        }
     }
 
     pub(crate) fn print_human(&self) {

@@ -39,8 +39,9 @@ pub(crate) fn program_page(
     Ok(r)
 }
 
-/// The tools a tool set gives the program, with their descriptions (the library's, or the
-/// cutter's spec).
+/// The tools a tool set gives the program, each described by its cutter's spec (the pages of
+/// `engage`, `forces` and `schedule` have always shown the spec, not the library's
+/// description that [`resolved_tools`] shows).
 pub(crate) fn program_tools<'a>(
     program: &Program,
     tools: &'a swarf_tool::ToolSet,
@@ -52,13 +53,7 @@ pub(crate) fn program_tools<'a>(
     used.into_iter()
         .filter_map(|n| {
             let c = tools.get(n)?;
-            let d = tools
-                .resolved()
-                .get(&n)
-                .map(|r| r.description.clone())
-                .filter(|d| !d.is_empty())
-                .unwrap_or_else(|| c.spec());
-            Some((n, d, c))
+            Some((n, c.spec(), c))
         })
         .collect()
 }

@@ -1,9 +1,10 @@
 //! `swarf simulate`: run a program on a tri-dexel stock and report what it removed.
 
 use std::fmt::Write as _;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 use anyhow::{bail, Context, Result};
+use clap::Args;
 use serde::Serialize;
 use swarf_io::glb::{glb_bytes, glb_size_bound};
 use swarf_io::output_set::stl_size;
@@ -15,9 +16,52 @@ use swarf_stock::{
 };
 use swarf_tool::{ToolSet, ToolTable};
 
-use crate::cli::SimulateArgs;
-use crate::commands::tools::{load_setup, resolve_all, tool_set, Setup};
+use crate::cli::SetupArgs;
+use crate::commands::tools::{defined_tools, load_job};
 use crate::output::{check_sizes, output_set, print_json};
+
+/// `swarf simulate`.
+#[derive(Debug, Args)]
+pub(crate) struct SimulateArgs {
+    /// The stock: `box:X0,Y0,Z0,X1,Y1,Z1`, `cyl:CX,CY,Z0,R,H` (axis +Z) or a closed STL file.
+    /// Default: the workpiece a CAMotics project (--tools FILE.camotics) states.
+    #[arg(long, value_name = "SPEC|FILE.stl")]
+    pub(crate) stock: Option<String>,
+    /// The program: G-code or APT CL.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) program: PathBuf,
+    /// Cutters, tool library, machine and units.
+    #[command(flatten)]
+    pub(crate) setup: SetupArgs,
+    /// Ray spacing of the tri-dexel stock, mm.
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "H",
+        default_value_t = 0.25
+    )]
+    pub(crate) resolution: f64,
+    /// Largest distance between an arc or a 5-axis motion and what is cut for it, mm.
+    #[arg(allow_negative_numbers = true, long, value_name = "T", default_value_t = swarf_stock::DEFAULT_CHORDAL_TOLERANCE_MM)]
+    pub(crate) tolerance: f64,
+    /// Build the stock from an STL mesh even if it is not closed.
+    #[arg(long)]
+    pub(crate) allow_open_mesh: bool,
+    /// Write stock.stl, stock.glb, moves.csv and summary.json here (all four or none).
+    #[arg(long, value_name = "DIR")]
+    pub(crate) out: Option<PathBuf>,
+    /// Largest total size of the files --out writes, MB: their sizes are estimated before
+    /// anything is written, and a larger set is refused.
+    #[arg(long, value_name = "MB", default_value_t = crate::output::DEFAULT_MAX_OUTPUT_MB)]
+    pub(crate) max_output_mb: u64,
+    /// Also write one self-contained HTML report here (inputs, tools, the machined stock and
+    /// the toolpath in 3-D, collisions linked to their lines, the summary's figures).
+    #[arg(long, value_name = "FILE.html")]
+    pub(crate) report: Option<PathBuf>,
+    /// Print the JSON summary (the default output is a short human-readable report).
+    #[arg(long)]
+    pub(crate) json: bool,
+}
 
 /// The JSON summary. The first nine keys are a contract; the rest may grow.
 #[derive(Serialize)]
@@ -117,30 +161,26 @@ impl SimulateSummary {
 pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
     positive_mm("resolution", args.resolution)?;
     positive_mm("tolerance", args.tolerance)?;
-    let Setup {
-        program,
-        single,
-        table,
-    } = load_setup(&args.setup, &args.program)?;
-    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
+    let job = load_job(&args.setup, &args.program)?;
+    let tools = defined_tools(&job)?;
+    let program = &job.program;
     let mut stock = build_stock(
         args.stock.as_deref(),
-        table.as_ref(),
+        job.setup.table.as_ref(),
         args.resolution,
         args.allow_open_mesh,
     )?;
     let options = SimOptions::default().with_chordal_tolerance(args.tolerance);
-    let report = simulate_with_progress(&program, &tools, &mut stock, &options)
+    let report = simulate_with_progress(program, tools, &mut stock, &options)
         .with_context(|| format!("simulating {}", args.program.display()))?;
     let summary = SimulateSummary::new(&report);
     if let Some(dir) = &args.out {
         let mut set = output_set(dir, args.max_output_mb)?;
-        write_outputs(&mut set, &program, &stock, &report, &summary)?;
+        write_outputs(&mut set, program, &stock, &report, &summary)?;
         set.commit()?;
     }
     if let Some(path) = &args.report {
-        let resolved = resolve_all(&program, single.as_ref(), table.as_ref())?;
-        write_report(path, args, &program, &resolved, &stock, &summary)?;
+        write_report(path, args, program, tools.resolved(), &stock, &summary)?;
     }
     if args.json {
         print_json(&summary)

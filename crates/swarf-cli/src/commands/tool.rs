@@ -1,10 +1,20 @@
 //! `swarf tool SPEC`: describe a cutter.
 
 use anyhow::{Context, Result};
+use clap::Args;
 use swarf_tool::Cutter;
 
-use crate::cli::ToolArgs;
 use crate::output::print_json;
+
+/// `swarf tool`.
+#[derive(Debug, Args)]
+pub(crate) struct ToolArgs {
+    /// The tool spec, e.g. `bull:d=16,r=2,flutes=4,helix=35`.
+    pub(crate) spec: String,
+    /// Print JSON (the default output is a short human-readable description).
+    #[arg(long)]
+    pub(crate) json: bool,
+}
 
 pub(crate) fn run(args: &ToolArgs) -> Result<()> {
     let cutter =

@@ -20,7 +20,7 @@ use crate::cli::SetupArgs;
 use crate::commands::simulate::{
     build_stock, positive_mm, simulate_with_progress, SimulateSummary,
 };
-use crate::commands::tools::{load_setup, resolve_all, tool_set, Setup};
+use crate::commands::tools::{defined_tools, load_job};
 use crate::output::{csv_field, print_json, write_atomic};
 
 /// `swarf verify`.
@@ -123,28 +123,25 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
     }
     // The design first: a bad design file fails before any simulation.
     let design = load_design(&args.design, args.flip)?;
-    let Setup {
-        program,
-        single,
-        table,
-    } = load_setup(&args.setup, &args.program)?;
-    let tools = tool_set(&program, single.as_ref(), table.as_ref())?;
-    let resolved = resolve_all(&program, single.as_ref(), table.as_ref())?;
+    let job = load_job(&args.setup, &args.program)?;
+    let tools = defined_tools(&job)?;
+    let resolved = tools.resolved();
+    let program = &job.program;
     let mut stock = build_stock(
         args.stock.as_deref(),
-        table.as_ref(),
+        job.setup.table.as_ref(),
         args.resolution,
         args.allow_open_mesh,
     )?;
     stock.track_provenance();
     let options = SimOptions::default().with_chordal_tolerance(args.chordal_tolerance);
-    let report = simulate_with_progress(&program, &tools, &mut stock, &options)
+    let report = simulate_with_progress(program, tools, &mut stock, &options)
         .with_context(|| format!("simulating {}", args.program.display()))?;
     let sim = SimulateSummary::new(&report);
     let vopts = VerifyOptions::default()
         .with_gouge_tolerance(args.tolerance)
         .with_excess_tolerance(args.excess_tolerance);
-    let v = verify(&stock, design.as_ref(), Some(&program), &vopts)
+    let v = verify(&stock, design.as_ref(), Some(program), &vopts)
         .with_context(|| format!("verifying against {}", args.design.display()))?;
     let range = args.color_range.unwrap_or_else(|| {
         v.max_gouge_mm
@@ -163,7 +160,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
     )
     .context("encoding deviation.glb")?;
     set.write_bytes("deviation.glb", &glb)?;
-    set.write_bytes("defects.csv", defects_csv(&v, &program).as_bytes())?;
+    set.write_bytes("defects.csv", defects_csv(&v, program).as_bytes())?;
     let (excess_volume, gouge_volume, method) = match (v.excess_volume_mm3, v.gouge_volume_mm3) {
         (Some(e), Some(g)) => (e, g, "z-rays"),
         _ => (
@@ -208,7 +205,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
             .collect();
         let value = serde_json::to_value(&summary)?;
         let inputs = ReportInputs {
-            program: &program,
+            program,
             sources: &sources,
             inputs: vec![
                 ("program".into(), args.program.display().to_string()),

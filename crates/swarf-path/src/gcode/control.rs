@@ -13,33 +13,12 @@ use std::rc::Rc;
 
 use super::block::Block;
 use super::expr::{read_real, Cur};
-use super::interp::{skip_line_number, Cursor, Interp};
-use super::lexer::{normalize, split_line, LineBuf};
+use super::interp::Interp;
+use super::lexer::{normalize, skip_line_number, split_line, LineBuf};
 use super::params::N_ARGS;
+use super::stack::{Ctl, Cursor, Frame, Kw, LoopKind};
 use super::{Fault, Res, Span};
 use crate::PathErrorKind;
-
-/// The keyword after an O name.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum Kw {
-    Sub,
-    Endsub,
-    Call,
-    Do,
-    While,
-    Endwhile,
-    If,
-    Elseif,
-    Else,
-    Endif,
-    Break,
-    Continue,
-    Repeat,
-    Endrepeat,
-    Return,
-    /// A bare `O1234`: a Fanuc program number or subprogram label.
-    Label,
-}
 
 const KEYWORDS: [(&[u8], Kw); 15] = [
     (b"endsub", Kw::Endsub),
@@ -58,51 +37,6 @@ const KEYWORDS: [(&[u8], Kw); 15] = [
     (b"repeat", Kw::Repeat),
     (b"return", Kw::Return),
 ];
-
-/// Loop kinds on the control stack.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) enum LoopKind {
-    While,
-    Do,
-    Repeat,
-}
-
-impl LoopKind {
-    /// The keyword that closes the loop.
-    fn end(self) -> Kw {
-        match self {
-            LoopKind::While => Kw::Endwhile,
-            LoopKind::Do => Kw::While,
-            LoopKind::Repeat => Kw::Endrepeat,
-        }
-    }
-}
-
-/// An open loop.
-#[derive(Clone, Debug)]
-pub(crate) struct Ctl {
-    pub(crate) kind: LoopKind,
-    pub(crate) name: Vec<u8>,
-    /// Before the head line (a `while` re-evaluates its condition there).
-    pub(crate) head: Cursor,
-    /// After the head line (where `do` and `repeat` bodies start).
-    pub(crate) body: Cursor,
-    /// Repeats left (`repeat`).
-    pub(crate) remaining: u64,
-}
-
-/// A subroutine call in progress.
-#[derive(Clone, Debug)]
-pub(crate) struct Frame {
-    /// Where the caller continues.
-    pub(crate) ret: Cursor,
-    /// The caller's `#1`–`#30` (O-word calls only).
-    pub(crate) saved: [f64; N_ARGS],
-    /// Height of the loop stack at the call.
-    pub(crate) ctl_len: usize,
-    /// For `M98`: the subprogram's start and the calls left.
-    pub(crate) fanuc: Option<(Cursor, u64)>,
-}
 
 /// Parses `o<name> keyword …` at code index `at`: the name's code range, the keyword and the
 /// index after the keyword.

@@ -15,30 +15,17 @@ use swarf_geom::math::MACHINE_RANGE_MM;
 use super::arcs::{center_r, check_ijk, r_tolerance_mm};
 use super::block::{self, group, Block};
 use super::comp::Comp;
-use super::control::{Ctl, Frame};
 use super::dialect::Dialect;
 use super::expr::ParamRead;
-use super::lexer::{column_of, normalize, split_line, LineBuf};
+use super::lexer::{column_of, normalize, skip_line_number, split_line, LineBuf};
 use super::params::{Params, Target};
+use super::stack::{Ctl, Cursor, Frame, ScanHit};
 use super::{Fault, GcodeDialect, GcodeOptions, Res, Span};
 use crate::limit::{move_limit_message, MoveLimit};
 use crate::{
     Axes, Canon, CanonSink, FeedMode, MessageKind, PathError, PathErrorKind, Plane, SourcePos,
     SpindleDir, Units, Warning,
 };
-
-/// A place in the text between lines: `pos` is the start of the next line to read, `line` the
-/// number of the line before it (so the next line read is `line + 1`).
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Cursor {
-    pub(crate) pos: usize,
-    pub(crate) line: u32,
-    /// Index of the file (0: the program; then subroutine files as they are loaded).
-    pub(crate) file: u32,
-}
-
-/// A remembered forward scan: the O name looked for and what was found.
-pub(crate) type ScanHit = (Vec<u8>, Option<(super::control::Kw, Cursor, Cursor)>);
 
 /// Letters of the six axes, in X Y Z A B C order.
 pub(crate) const AXIS_LETTERS: [u8; 6] = *b"xyzabc";
@@ -1599,16 +1586,4 @@ impl Interp<'_, '_> {
         out.push_str(rest);
         out
     }
-}
-
-/// Index of the first code byte after an optional `N123` line number.
-pub(crate) fn skip_line_number(code: &[u8]) -> usize {
-    if code.first() != Some(&b'n') {
-        return 0;
-    }
-    let mut i = 1;
-    while matches!(code.get(i), Some(b'0'..=b'9' | b'.')) {
-        i += 1;
-    }
-    i
 }

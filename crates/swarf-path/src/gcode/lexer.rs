@@ -161,6 +161,18 @@ pub(crate) fn column_of(raw: &str, byte: usize) -> u32 {
     raw[..b].chars().count() as u32 + 1
 }
 
+/// Index of the first code byte after an optional `N123` line number.
+pub(crate) fn skip_line_number(code: &[u8]) -> usize {
+    if code.first() != Some(&b'n') {
+        return 0;
+    }
+    let mut i = 1;
+    while matches!(code.get(i), Some(b'0'..=b'9' | b'.')) {
+        i += 1;
+    }
+    i
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

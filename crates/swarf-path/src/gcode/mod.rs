@@ -12,8 +12,10 @@
 //! `lexer` strips comments and spaces, `expr` evaluates numbers, parameters and bracketed
 //! expressions, `block` collects the words of one block into fixed slots, `interp` executes a
 //! block in LinuxCNC's order of execution, with `arcs` and `cycles` for circular moves and
-//! canned cycles, `control` runs O-word control flow and subprograms, `params` holds the
-//! numbered and named parameters and `dialect` recognises programs for other controllers.
+//! canned cycles, `control` runs O-word control flow and subprograms over the reading cursor
+//! and control stack of `stack` (which `interp` keeps: `control` extends the interpreter,
+//! `interp` never reaches into `control`), `params` holds the numbered and named parameters
+//! and `dialect` recognises programs for other controllers.
 //!
 //! # Language
 //! * Motion: G0 G1 G2 G3 (I/J/K or R centres, full circles, helices, `P` turns), polar `@` `^`,
@@ -64,6 +66,7 @@ mod interp;
 mod lexer;
 mod params;
 mod splines;
+mod stack;
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};

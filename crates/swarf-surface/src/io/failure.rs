@@ -1,6 +1,6 @@
 //! Why a trim in a file is not honoured: the reader then uses the whole patch (or face) and
-//! says why in a [`ReadNote::TrimNotHonoured`](crate::ReadNote::TrimNotHonoured), whose text is
-//! this error's. Entities are named as in their file: STEP instances `#id`, IGES directory
+//! says why in a [`ReadNote::TrimNotHonoured`](crate::ReadNote::TrimNotHonoured), whose
+//! [`UnhonouredTrim`](crate::UnhonouredTrim) names the trimming entity and holds this error. Entities are named as in their file: STEP instances `#id`, IGES directory
 //! entries `D<n>`.
 
 use swarf_geom::math::Vec3;

@@ -43,6 +43,7 @@
 //! curve are applied. Hollerith strings (`5HHello`) and `D` exponents are understood.
 
 use std::collections::{HashMap, HashSet};
+use std::sync::Arc;
 
 use swarf_geom::math::Vec3;
 
@@ -50,7 +51,7 @@ use super::{
     skipped_detail, Format, ReadError, TrimFailure, Uv, MAX_GRID_SEARCHES, MAX_HALVINGS,
     MAX_TRIM_POINTS,
 };
-use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
+use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote, UnhonouredTrim};
 use crate::curve::{BSplineCurve, CurveError};
 use crate::surface::invert::{InvertError, Inverter};
 use crate::surface::{NurbsSurface, ParamBox, ParametricSurface, Surface};
@@ -258,7 +259,10 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
                     claimed[k] = true;
                     doc.surface.notes.push(ReadNote::TrimNotHonoured {
                         patch: k,
-                        by: format!("IGES 144 at D{} ({why})", e.de),
+                        by: UnhonouredTrim::Iges144 {
+                            de: e.de,
+                            why: Arc::new(why),
+                        },
                     });
                 }
             }

@@ -2,6 +2,7 @@
 //! and their surfaces (B-spline and elementary), the parameter boxes of elementary surfaces.
 
 use std::collections::{HashMap, HashSet};
+use std::sync::Arc;
 
 use swarf_geom::math::Vec3;
 use swarf_geom::Frame;
@@ -9,7 +10,7 @@ use swarf_geom::Frame;
 use super::lex::{refs, show, Instance, Param};
 use super::trims::{set_domain, MAX_FILE_TRIM_POINTS};
 use super::DEFAULT_LINEAR_RANGE;
-use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote};
+use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote, UnhonouredTrim};
 use crate::io::{line_col, skipped_detail, Format, ReadError};
 use crate::surface::{
     ConicalSurface, CylindricalSurface, NurbsSurface, ParamBox, PlaneSurface, SphericalSurface,
@@ -379,7 +380,10 @@ impl Model<'_> {
                         Err(why) => {
                             out.notes.push(ReadNote::TrimNotHonoured {
                                 patch: index,
-                                by: format!("{by} ({why})"),
+                                by: UnhonouredTrim::StepFace {
+                                    face: fid,
+                                    why: Arc::new(why),
+                                },
                             });
                             None
                         }

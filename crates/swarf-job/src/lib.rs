@@ -1,0 +1,393 @@
+//! A job: a program read through a machine, with the cutter of every tool it uses — what every
+//! operation on a program (simulate, check, engage, forces, verify) starts from.
+//!
+//! # Model
+//! [`JobOptions`] say what a job is made of besides the program, as a user names it: the
+//! machine (a built-in name or a TOML file), the cutters (one spec for every tool, or a tool
+//! library), the program's initial units, the folders searched for subroutines, the G-code
+//! dialect and the most moves a program may make. [`JobSetup::load`] loads them — the machine,
+//! then the cutter sources, then the reader options (the tool diameters cutter compensation
+//! needs come from the cutters) — and [`JobSetup::read`] reads a program with them into a
+//! [`Job`]: the [`Program`] (its moves, and the reader's warnings), its tools resolved to
+//! cutters by [`ToolSet::resolve`] (a spec for every tool, else the library's entry, else the
+//! program's own `CUTTER/`) and the tool numbers nothing defines, kept apart rather than
+//! guessed. A program that is only streamed (never kept as moves) is read by
+//! [`JobSetup::stream`] and its tools resolved by [`JobSetup::resolve`].
+//!
+//! This crate sits above `swarf-path` and `swarf-tool` so that neither knows the other: the
+//! readers take tool diameters as numbers, the tool tables know nothing of programs.
+//!
+//! ```
+//! use swarf_job::{JobOptions, JobSetup};
+//! let setup = JobSetup::load(&JobOptions {
+//!     tool: Some("ball:d=6".into()),
+//!     ..JobOptions::default()
+//! })
+//! .unwrap();
+//! let job = setup.read_str("G21 G90\nT1 M6\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X10\n", "a.ngc").unwrap();
+//! assert_eq!(job.program.moves.len(), 3);
+//! assert!(job.undefined_tools.is_empty());
+//! assert_eq!(job.tools.get(1).unwrap().max_diameter(), 6.0);
+//! ```
+
+use std::path::{Path, PathBuf};
+
+use swarf_path::apt::AptOptions;
+use swarf_path::gcode::{GcodeDialect, GcodeOptions};
+use swarf_path::kinematics::MachineError;
+use swarf_path::limit::{is_move_limit, DEFAULT_MAX_MOVES};
+use swarf_path::load::{read_program_str, read_text, stream_program, ProgramFormat, ReadOptions};
+use swarf_path::{CanonSink, Machine, PathError, Program, Units};
+use swarf_tool::{Cutter, LengthUnit, ResolveError, SpecError, TableError, ToolSet, ToolTable};
+
+/// What a job is made of besides the program, as a user names it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct JobOptions {
+    /// The machine's kinematics: a TOML machine file when this names an existing file, else a
+    /// built-in name ([`Machine::from_name`]). Default `3axis`.
+    pub machine: String,
+    /// One cutter spec for every tool the program uses.
+    pub tool: Option<String>,
+    /// A tool library: swarf TOML, LinuxCNC `.tbl` or CAMotics `.camotics`.
+    pub tools: Option<PathBuf>,
+    /// Length unit of a library that does not state its own (LinuxCNC `.tbl`). Default mm.
+    pub table_units: LengthUnit,
+    /// Length units before the program's first G20/G21. Default mm.
+    pub initial_units: Units,
+    /// Folders searched for `name.ngc` when a program calls a subroutine it does not define
+    /// (after the program's own folder).
+    pub subroutine_dirs: Vec<PathBuf>,
+    /// Read G-code as this control does (default: decided from the program).
+    pub dialect: Option<GcodeDialect>,
+    /// Most moves a program may make: reading stops with [`JobError::MoveLimit`] at the first
+    /// move over it. Default [`DEFAULT_MAX_MOVES`].
+    pub max_moves: u64,
+}
+
+impl Default for JobOptions {
+    fn default() -> Self {
+        Self {
+            machine: "3axis".into(),
+            tool: None,
+            tools: None,
+            table_units: LengthUnit::Mm,
+            initial_units: Units::Mm,
+            subroutine_dirs: Vec::new(),
+            dialect: None,
+            max_moves: DEFAULT_MAX_MOVES,
+        }
+    }
+}
+
+/// Why a job could not be set up or read. The messages name what the user gave (`machine
+/// file FILE`, ``tool spec `SPEC` ``, `tool table FILE`), with the cause as the error's
+/// source.
+#[derive(Debug, thiserror::Error)]
+pub enum JobError {
+    /// The machine file could not be read.
+    #[error("machine file {file}")]
+    MachineFile {
+        /// The file as given.
+        file: String,
+        /// Why.
+        #[source]
+        source: MachineError,
+    },
+    /// No built-in machine has this name.
+    #[error("machine `{name}`")]
+    MachineName {
+        /// The name as given.
+        name: String,
+        /// Why.
+        #[source]
+        source: MachineError,
+    },
+    /// The tool spec is not a valid cutter.
+    #[error("tool spec `{spec}`")]
+    ToolSpec {
+        /// The spec as given.
+        spec: String,
+        /// Why.
+        #[source]
+        source: SpecError,
+    },
+    /// The tool library could not be read.
+    #[error("tool table {}", .path.display())]
+    ToolTable {
+        /// The library file.
+        path: PathBuf,
+        /// Why.
+        #[source]
+        source: TableError,
+    },
+    /// The program could not be read (the reader's error names file, line and column).
+    #[error(transparent)]
+    Read(PathError),
+    /// The program makes more moves than [`JobOptions::max_moves`].
+    #[error(transparent)]
+    MoveLimit(PathError),
+    /// A `CUTTER/` record of the program is not a valid cutter.
+    #[error(transparent)]
+    Resolve(#[from] ResolveError),
+}
+
+/// A job's options loaded: the machine, the cutter sources and the reader options.
+#[derive(Clone, Debug)]
+pub struct JobSetup {
+    /// The machine programs are read through.
+    pub machine: Machine,
+    /// The cutter for every tool ([`JobOptions::tool`]), if given.
+    pub single: Option<Cutter>,
+    /// The tool library ([`JobOptions::tools`]), if given; a CAMotics project also states the
+    /// workpiece ([`ToolTable::workpiece`]).
+    pub table: Option<ToolTable>,
+    /// How programs are read: initial units, subroutine folders, dialect, move limit, and the
+    /// diameter of every tool for cutter compensation.
+    pub read: ReadOptions,
+}
+
+impl JobSetup {
+    /// Loads `options`: the machine first, then the tool spec and the tool library, then the
+    /// reader options.
+    ///
+    /// # Errors
+    /// The first of: a machine that cannot be loaded, a tool spec that is not a cutter, a tool
+    /// library that cannot be read.
+    pub fn load(options: &JobOptions) -> Result<Self, JobError> {
+        let machine = load_machine(&options.machine)?;
+        let single = options
+            .tool
+            .as_deref()
+            .map(|s| {
+                Cutter::from_spec(s).map_err(|source| JobError::ToolSpec {
+                    spec: s.to_string(),
+                    source,
+                })
+            })
+            .transpose()?;
+        let table = options
+            .tools
+            .as_deref()
+            .map(|t| {
+                ToolTable::read(t, options.table_units).map_err(|source| JobError::ToolTable {
+                    path: t.to_path_buf(),
+                    source,
+                })
+            })
+            .transpose()?;
+        let read = read_options(options, single.as_ref(), table.as_ref());
+        Ok(Self {
+            machine,
+            single,
+            table,
+            read,
+        })
+    }
+
+    /// Reads the program file `path` and resolves its tools.
+    ///
+    /// # Errors
+    /// The reader's error ([`JobError::Read`], [`JobError::MoveLimit`]) or a program `CUTTER/`
+    /// that is not a cutter.
+    pub fn read(self, path: &Path) -> Result<Job, JobError> {
+        let text = read_text(path).map_err(JobError::Read)?;
+        self.read_str(&text, &path.display().to_string())
+    }
+
+    /// [`JobSetup::read`] of program text named `file` in messages.
+    ///
+    /// # Errors
+    /// As [`JobSetup::read`].
+    pub fn read_str(self, text: &str, file: &str) -> Result<Job, JobError> {
+        let program = self.read_program_str(text, file)?;
+        let tool_zero_moved = program.moves.iter().any(|m| m.tool == 0);
+        let (tools, undefined_tools) = self.resolve(&program, tool_zero_moved)?;
+        Ok(Job {
+            program,
+            tools,
+            undefined_tools,
+            setup: self,
+        })
+    }
+
+    /// Program text named `file` in messages, read through the machine (its tools are not
+    /// resolved).
+    ///
+    /// # Errors
+    /// The reader's error ([`JobError::Read`], [`JobError::MoveLimit`]).
+    pub fn read_program_str(&self, text: &str, file: &str) -> Result<Program, JobError> {
+        read_program_str(text, file, self.machine.clone(), &self.read)
+            .map_err(|e| self.reader_error(e))
+    }
+
+    /// Streams program text named `file` in messages into `sink` (no move is kept).
+    ///
+    /// # Errors
+    /// The reader's error ([`JobError::Read`], [`JobError::MoveLimit`]).
+    pub fn stream(
+        &self,
+        text: &str,
+        file: &str,
+        sink: &mut dyn CanonSink,
+    ) -> Result<ProgramFormat, JobError> {
+        stream_program(text, file, &self.read, sink).map_err(|e| self.reader_error(e))
+    }
+
+    /// Resolves each tool number `program` uses (tool 0 too when `tool_zero_moved`: a move
+    /// was made before any tool was loaded) by [`ToolSet::resolve`]; returns the set and the
+    /// numbers nothing defines. `program.moves` is not read (it may be empty for a streamed
+    /// program).
+    ///
+    /// # Errors
+    /// A program `CUTTER/` that is not a cutter.
+    pub fn resolve(
+        &self,
+        program: &Program,
+        tool_zero_moved: bool,
+    ) -> Result<(ToolSet, Vec<u32>), JobError> {
+        Ok(resolve_tools(
+            program,
+            tool_zero_moved,
+            self.single.as_ref(),
+            self.table.as_ref(),
+        )?)
+    }
+
+    fn reader_error(&self, e: PathError) -> JobError {
+        if is_move_limit(&e, self.read.gcode.max_moves)
+            || is_move_limit(&e, self.read.apt.max_moves)
+        {
+            JobError::MoveLimit(e)
+        } else {
+            JobError::Read(e)
+        }
+    }
+}
+
+/// A program read through a machine, with its tools resolved.
+#[derive(Clone, Debug)]
+pub struct Job {
+    /// The program: moves, files, tools loaded, the reader's warnings.
+    pub program: Program,
+    /// The cutter of every tool number the program uses that something defines.
+    pub tools: ToolSet,
+    /// Tool numbers the program uses that nothing defines (tool 0 when a move was made before
+    /// any tool was loaded), in order of first use.
+    pub undefined_tools: Vec<u32>,
+    /// What it was read with.
+    pub setup: JobSetup,
+}
+
+impl Job {
+    /// Reads the program file `path` with `options` ([`JobSetup::load`], then
+    /// [`JobSetup::read`]).
+    ///
+    /// # Errors
+    /// As [`JobSetup::load`] and [`JobSetup::read`].
+    pub fn read(path: &Path, options: &JobOptions) -> Result<Self, JobError> {
+        JobSetup::load(options)?.read(path)
+    }
+}
+
+/// A built-in machine name, or a TOML machine file when `arg` names an existing file.
+fn load_machine(arg: &str) -> Result<Machine, JobError> {
+    let p = Path::new(arg);
+    if p.is_file() {
+        Machine::from_file(p).map_err(|source| JobError::MachineFile {
+            file: arg.to_string(),
+            source,
+        })
+    } else {
+        Machine::from_name(arg).map_err(|source| JobError::MachineName {
+            name: arg.to_string(),
+            source,
+        })
+    }
+}
+
+/// The reader options of `options`, with the tool diameters cutter compensation needs: the
+/// single cutter's for every tool, else the library's.
+fn read_options(
+    options: &JobOptions,
+    single: Option<&Cutter>,
+    table: Option<&ToolTable>,
+) -> ReadOptions {
+    let mut gcode = GcodeOptions::default().with_initial_units(options.initial_units);
+    for dir in &options.subroutine_dirs {
+        gcode = gcode.with_subroutine_dir(dir.clone());
+    }
+    if let Some(d) = options.dialect {
+        gcode = gcode.with_dialect(d);
+    }
+    match single {
+        Some(c) => gcode = gcode.with_default_tool_diameter(c.apt_params().d),
+        None => {
+            for (n, t) in table.map(|t| &t.tools).into_iter().flatten() {
+                gcode = gcode.with_tool_diameter(*n, t.cutter.apt_params().d);
+            }
+        }
+    }
+    ReadOptions {
+        gcode: gcode.with_max_moves(options.max_moves),
+        apt: AptOptions::default().with_max_moves(options.max_moves),
+        ..ReadOptions::default()
+    }
+}
+
+/// Each tool number `program` uses (`program.tools`, and tool 0 first when `tool_zero_moved`)
+/// resolved by [`ToolSet::resolve`] from `single`, `table` and the program's `CUTTER/`
+/// records: the set and the numbers nothing defines.
+///
+/// # Errors
+/// A program `CUTTER/` that is not a cutter.
+pub fn resolve_tools(
+    program: &Program,
+    tool_zero_moved: bool,
+    single: Option<&Cutter>,
+    table: Option<&ToolTable>,
+) -> Result<(ToolSet, Vec<u32>), ResolveError> {
+    let mut used: Vec<u32> = program.tools.clone();
+    if tool_zero_moved && !used.contains(&0) {
+        used.insert(0, 0);
+    }
+    ToolSet::resolve(&used, &program.cutter_definitions, single, table)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn undefined_tools_are_kept_apart_and_errors_name_what_was_given() {
+        let setup = JobSetup::load(&JobOptions::default()).unwrap();
+        let job = setup
+            .read_str("G21 G90\nG0 X0 Y0 Z5\nT2 M6\nG1 Z-1 F100\n", "t.ngc")
+            .unwrap();
+        // A move before any tool was loaded: tool 0, then tool 2.
+        assert_eq!(job.undefined_tools, vec![0, 2]);
+        assert!(job.tools.resolved().is_empty());
+
+        let e = JobSetup::load(&JobOptions {
+            machine: "no-such-machine".into(),
+            ..JobOptions::default()
+        })
+        .unwrap_err();
+        assert!(e.to_string() == "machine `no-such-machine`", "{e}");
+        let e = JobSetup::load(&JobOptions {
+            tool: Some("bogus:d=1".into()),
+            ..JobOptions::default()
+        })
+        .unwrap_err();
+        assert_eq!(e.to_string(), "tool spec `bogus:d=1`");
+
+        let setup = JobSetup::load(&JobOptions {
+            max_moves: 2,
+            ..JobOptions::default()
+        })
+        .unwrap();
+        let e = setup
+            .read_str("G0 X1\nG0 X2\nG0 X3\nG0 X4\n", "t.ngc")
+            .unwrap_err();
+        assert!(matches!(e, JobError::MoveLimit(_)), "{e:?}");
+    }
+}
