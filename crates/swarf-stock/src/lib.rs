@@ -80,7 +80,9 @@ pub mod spec;
 pub mod tridexel;
 pub mod unite;
 
-pub use cut::{DEFAULT_CHORDAL_TOLERANCE_MM, PIECES_PER_BATCH, SCREEN_TOLERANCE_MM};
+pub use cut::{
+    DEFAULT_CHORDAL_TOLERANCE_MM, PIECES_PER_BATCH, RAPID_TOLERANCE_MM, SCREEN_TOLERANCE_MM,
+};
 pub use dexel::{Dexel, DexelTags, EndTags, Interval, MoveTag, UNCUT};
 pub use error::StockError;
 pub use mesh::{axis_line_intervals, MeshOptions};

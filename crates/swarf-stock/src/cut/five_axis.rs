@@ -5,7 +5,7 @@ use crate::error::StockError;
 use crate::tridexel::{CutStats, SegmentCut, TriDexel};
 use swarf_geom::Aabb;
 use swarf_path::Program;
-use swarf_sweep::five_axis::{check_tolerance, subdivide_range, Reach, SubMove};
+use swarf_sweep::five_axis::{check_tolerance, subdivide_range, SubMove};
 use swarf_sweep::{SweepShape, SweptConvex, ToolShape};
 
 /// Bound (mm) with which a 5-axis move is first split to screen it against the material: the
@@ -83,7 +83,10 @@ impl TriDexel {
 
     /// Cuts move `index` of `program`, a 5-axis simultaneous move ([`Program::is_five_axis`]), as
     /// constant-axis sub-moves within `tol` mm of the true sweep (module documentation): the
-    /// cutting part and the shank/holder are subdivided separately, each by its own [`Reach`].
+    /// cutting part and the shank/holder are cut into bands no taller than their radius
+    /// ([`ToolShape::rotating_bands`]) and each band is subdivided by its own reach
+    /// (`swarf_sweep::five_axis::Reach`), which for a long part is a fraction of the whole
+    /// part's.
     /// Pieces that cannot reach any material are screened out first ([`SCREEN_TOLERANCE_MM`]).
     /// [`SegmentCut::sub_moves`] counts the cutting part's sub-moves that were cut and
     /// [`SegmentCut::error_bound_mm`] is the largest bound of any of them.
@@ -111,44 +114,45 @@ impl TriDexel {
     ) -> Result<SegmentCut, StockError> {
         check_tolerance(program, index, tol)?;
         let mut out = SegmentCut::default();
-        for (k, shape) in [tool.cutting(), tool.non_cutting()].into_iter().enumerate() {
-            let Some(r) = Reach::of(shape) else {
-                continue; // no shank or holder
-            };
-            // Screen coarse pieces against the material first: the fine pieces of a coarse one
-            // sweep within `bound + tol` of its sweep, so if its box grown by that holds no
-            // material they would remove nothing and are not made.
-            let mut pieces = Vec::new();
-            let mut screened = Vec::new();
-            subdivide_range(
-                program,
-                index,
-                r,
-                tol.max(SCREEN_TOLERANCE_MM),
-                range,
-                &mut screened,
-            )?;
-            for c in screened {
-                let Some(b) = piece_box(shape, &c) else {
-                    continue;
-                };
-                if !material_in(self, &b.inflated(c.error_bound + tol)) {
-                    continue;
+        for k in 0..2 {
+            // Each band of the part separately: the union of the bands' sweeps is the part's,
+            // and a band's bound scales with its own reach, not the part's length.
+            for (shape, r) in tool.rotating_bands(k) {
+                // Screen coarse pieces against the material first: the fine pieces of a coarse
+                // one sweep within `bound + tol` of its sweep, so if its box grown by that holds
+                // no material they would remove nothing and are not made.
+                let mut pieces = Vec::new();
+                let mut screened = Vec::new();
+                subdivide_range(
+                    program,
+                    index,
+                    *r,
+                    tol.max(SCREEN_TOLERANCE_MM),
+                    range,
+                    &mut screened,
+                )?;
+                for c in screened {
+                    let Some(b) = piece_box(shape, &c) else {
+                        continue;
+                    };
+                    if !material_in(self, &b.inflated(c.error_bound + tol)) {
+                        continue;
+                    }
+                    if c.error_bound <= tol {
+                        pieces.push(c);
+                    } else {
+                        subdivide_range(program, index, *r, tol, (c.s0, c.s1), &mut pieces)?;
+                    }
                 }
-                if c.error_bound <= tol {
-                    pieces.push(c);
+                let stats = self.cut_shape_pieces(shape, &pieces);
+                let worst = pieces.iter().map(|p| p.error_bound).fold(0.0, f64::max);
+                out.error_bound_mm = out.error_bound_mm.max(worst);
+                if k == 0 {
+                    out.cutting = out.cutting.merged(stats);
+                    out.sub_moves += pieces.len() as u64;
                 } else {
-                    subdivide_range(program, index, r, tol, (c.s0, c.s1), &mut pieces)?;
+                    out.non_cutting = out.non_cutting.merged(stats);
                 }
-            }
-            let stats = self.cut_shape_pieces(shape, &pieces);
-            let worst = pieces.iter().map(|p| p.error_bound).fold(0.0, f64::max);
-            out.error_bound_mm = out.error_bound_mm.max(worst);
-            if k == 0 {
-                out.cutting = stats;
-                out.sub_moves = pieces.len() as u64;
-            } else {
-                out.non_cutting = stats;
             }
         }
         Ok(out)

@@ -17,6 +17,11 @@ pub use swarf_path::moves::AXIS_ANGLE_EPS;
 /// Default chordal tolerance for arcs, helices and 5-axis moves, mm.
 pub use swarf_sweep::DEFAULT_CHORDAL_TOLERANCE_MM;
 
+/// Chordal tolerance of rapids whose tool axis turns, mm: a rapid cuts nothing in a correct
+/// program, so its sweep is refined only as far as collision reporting needs (a turning rapid
+/// passing within this distance of material may be reported as meeting it).
+pub const RAPID_TOLERANCE_MM: f64 = 0.01;
+
 /// Material removed below this length (mm, on any ray) does not count as a collision.
 pub const COLLISION_EPS_MM: f64 = 1e-6;
 
@@ -82,7 +87,12 @@ impl TriDexel {
         let m = &program.moves[index];
         check_move(index, m)?;
         if program.is_five_axis(m) {
-            return self.cut_five_axis_range(program, index, (s0, s1), tool, chordal_tol);
+            let tol = if matches!(m.kind, MoveKind::Rapid) {
+                chordal_tol.max(RAPID_TOLERANCE_MM)
+            } else {
+                chordal_tol
+            };
+            return self.cut_five_axis_range(program, index, (s0, s1), tool, tol);
         }
         let pose = |s: f64| {
             if s == 0.0 {

@@ -261,6 +261,70 @@ impl ConvexProfile {
         Self::new(pieces.iter().map(Element::from_piece).collect())
     }
 
+    /// The part of the solid between heights `za` and `zb` (the solid ∩ a slab: convex again),
+    /// closed by discs at the cut heights; `None` when the slab holds less than a sliver of it.
+    pub fn clipped(&self, za: f64, zb: f64) -> Option<ConvexProfile> {
+        let (za, zb) = (za.max(self.z_min), zb.min(self.z_max));
+        if zb - za <= PROFILE_EPS {
+            return None;
+        }
+        let mut els: Vec<Element> = Vec::new();
+        for el in &self.elements {
+            let (z0, z1) = el.z_band();
+            if z1 < za || z0 > zb {
+                continue;
+            }
+            let clipped = match *el {
+                Element::Line { p, q } => {
+                    if (q.y - p.y).abs() <= PROFILE_EPS {
+                        Element::Line { p, q }
+                    } else {
+                        let at = |z: f64| p + (q - p) * ((z - p.y) / (q.y - p.y)).clamp(0.0, 1.0);
+                        let (a, b) = if q.y > p.y { (za, zb) } else { (zb, za) };
+                        Element::Line { p: at(a), q: at(b) }
+                    }
+                }
+                Element::Arc {
+                    e,
+                    f,
+                    r,
+                    phi0,
+                    phi1,
+                } => {
+                    // z = f − r·cos φ grows with φ on [0, π].
+                    let phi = |z: f64| ((f - z) / r).clamp(-1.0, 1.0).acos();
+                    Element::Arc {
+                        e,
+                        f,
+                        r,
+                        phi0: phi0.max(phi(za)),
+                        phi1: phi1.min(phi(zb)),
+                    }
+                }
+            };
+            if (clipped.end() - clipped.start()).length() > PROFILE_EPS {
+                els.push(clipped);
+            }
+        }
+        let (first, last) = (els.first()?.start(), els.last()?.end());
+        if first.x > PROFILE_EPS {
+            els.insert(
+                0,
+                Element::Line {
+                    p: Vec2::new(0.0, first.y),
+                    q: first,
+                },
+            );
+        }
+        if last.x > PROFILE_EPS {
+            els.push(Element::Line {
+                p: last,
+                q: Vec2::new(0.0, last.y),
+            });
+        }
+        ConvexProfile::new(els).ok()
+    }
+
     /// The elements, bottom to top.
     pub fn elements(&self) -> &[Element] {
         &self.elements
@@ -526,13 +590,113 @@ impl SweepShape {
     pub fn is_convex(&self) -> bool {
         self.parts.len() == 1
     }
+
+    /// The shape cut into horizontal bands no taller than `height` (each part into equal
+    /// bands): the same solid as a union of shorter convex parts. A short part reaches less far
+    /// from a pivot at its middle, so a rotating tool's band needs fewer constant-axis pieces
+    /// ([`crate::five_axis`]).
+    pub fn bands(&self, height: f64) -> SweepShape {
+        let mut parts = Vec::new();
+        for p in &self.parts {
+            let span = p.z_max - p.z_min;
+            let n = if height > 0.0 && span.is_finite() {
+                ((span / height).ceil() as usize).clamp(1, 64)
+            } else {
+                1
+            };
+            if n == 1 {
+                parts.push(p.clone());
+                continue;
+            }
+            for i in 0..n {
+                let za = p.z_min + span * i as f64 / n as f64;
+                let zb = if i + 1 == n {
+                    p.z_max
+                } else {
+                    p.z_min + span * (i + 1) as f64 / n as f64
+                };
+                parts.extend(p.clipped(za, zb));
+            }
+        }
+        SweepShape { parts }
+    }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::SweptConvex;
     use swarf_geom::math::Vec3;
     use swarf_tool::Cutter;
+
+    #[test]
+    fn bands_are_the_same_solid() {
+        // Every line through a tilted, moving instance meets the union of the bands' sweeps in
+        // the one interval it meets the whole part's sweep in.
+        let mut seed = 0x2545_F491_4F6C_DD1Du64;
+        let mut rnd = |a: f64, b: f64| {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            a + (b - a) * (seed >> 11) as f64 / (1u64 << 53) as f64
+        };
+        for spec in [
+            "flat:d=10",
+            "ball:d=10",
+            "bull:d=16,r=2",
+            "taper-ball:d=6,taper=5",
+            "chamfer:d=12,angle=90",
+            "drill:d=8,angle=118",
+        ] {
+            let c = Cutter::from_spec(spec).unwrap();
+            let whole = SweepShape::from_solid(c.cutting_solid());
+            for height in [0.7, 2.5, 100.0] {
+                let bands = whole.bands(height);
+                let span = whole.parts()[0].z_max() - whole.parts()[0].z_min();
+                assert_eq!(
+                    bands.parts().len(),
+                    ((span / height).ceil() as usize).clamp(1, 64)
+                );
+                fn sweep(p: &ConvexProfile) -> SweptConvex<'_> {
+                    SweptConvex::new(
+                        p,
+                        Vec3::new(0.3, -0.2, 0.1),
+                        Vec3::new(0.3, -0.4, 1.0).normalize(),
+                        Vec3::new(2.0, 1.0, -0.5),
+                    )
+                }
+                let mut hits = 0;
+                for _ in 0..400 {
+                    let k = (rnd(0.0, 3.0) as usize).min(2);
+                    let mut o = Vec3::ZERO;
+                    o[(k + 1) % 3] = rnd(-9.0, 9.0);
+                    o[(k + 2) % 3] = rnd(-9.0, 9.0);
+                    let want = sweep(&whole.parts()[0]).axis_ray_interval(o, k);
+                    let mut got: Vec<(f64, f64)> = bands
+                        .parts()
+                        .iter()
+                        .filter_map(|p| sweep(p).axis_ray_interval(o, k))
+                        .collect();
+                    got.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    match want {
+                        None => assert!(got.is_empty(), "{spec} {height}: {got:?}"),
+                        Some((lo, hi)) => {
+                            hits += 1;
+                            let (glo, ghi) = (got[0].0, got.iter().map(|g| g.1).fold(lo, f64::max));
+                            assert!((glo - lo).abs() < 1e-9 && (ghi - hi).abs() < 1e-9, "{spec}");
+                            // No gap between consecutive bands' intervals.
+                            let mut reach = got[0].1;
+                            for g in &got[1..] {
+                                assert!(g.0 <= reach + 1e-9, "{spec} {height}: gap {got:?}");
+                                reach = reach.max(g.1);
+                            }
+                        }
+                    }
+                }
+                assert!(hits > 50, "{spec}: {hits}");
+            }
+        }
+    }
 
     #[test]
     fn every_named_cutter_is_convex() {
