@@ -9,6 +9,8 @@
 use crate::error::IoError;
 use crate::tolerance::MAX_EDGE_EXAMPLES;
 use std::collections::HashMap;
+
+use rayon::prelude::*;
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 
@@ -197,7 +199,7 @@ impl TriMesh {
                 keys.push(((lo as u64) << 33) | ((hi as u64) << 1) | dir);
             }
         }
-        keys.sort_unstable();
+        keys.par_sort_unstable();
         let mut rep = EdgeReport::default();
         let mut bad: Vec<BadEdge> = Vec::new();
         let mut misoriented: Vec<BadEdge> = Vec::new();
@@ -361,14 +363,25 @@ impl TriMesh {
     pub fn repair_degenerate_f32(&mut self) -> DegenerateRepair {
         let mut rep = DegenerateRepair::default();
         let key = |p: Vec3| [p.x, p.y, p.z].map(|c| (c as f32 + 0.0).to_bits());
-        let mut first: HashMap<[u32; 3], u32> = HashMap::with_capacity(self.vertices.len());
-        let mut remap: Vec<u32> = Vec::with_capacity(self.vertices.len());
-        for (i, &p) in self.vertices.iter().enumerate() {
-            let k = *first.entry(key(p)).or_insert(i as u32);
-            rep.merged_vertices += usize::from(k != i as u32);
-            remap.push(k);
+        // Each vertex to the first vertex at its `f32` position: sorted by (position, index),
+        // each run of one position maps to its first index.
+        let mut order: Vec<([u32; 3], u32)> = self
+            .vertices
+            .iter()
+            .enumerate()
+            .map(|(i, &p)| (key(p), i as u32))
+            .collect();
+        order.par_sort_unstable();
+        let mut remap: Vec<u32> = vec![0; self.vertices.len()];
+        let mut run_first = 0u32;
+        for (n, &(k, i)) in order.iter().enumerate() {
+            if n == 0 || order[n - 1].0 != k {
+                run_first = i;
+            }
+            remap[i as usize] = run_first;
+            rep.merged_vertices += usize::from(run_first != i);
         }
-        drop(first);
+        drop(order);
         let mut tris: Vec<Option<[u32; 3]>> = Vec::with_capacity(self.triangles.len());
         for t in &self.triangles {
             let t = t.map(|i| remap[i as usize]);
@@ -390,14 +403,27 @@ impl TriMesh {
             .filter(|&i| tris[i].is_some_and(flat))
             .collect();
         if !work.is_empty() {
-            let mut edges: HashMap<(u32, u32), usize> = HashMap::with_capacity(3 * tris.len());
-            for (i, t) in tris.iter().enumerate() {
-                if let Some(t) = t {
-                    for k in 0..3 {
-                        edges.insert((t[k], t[(k + 1) % 3]), i);
+            // Directed edge → triangle, for the few triangles around the flat ones only: a
+            // vertex's triangles (from `around`, built once without hashing) enter the map
+            // the first time an edge at that vertex is looked up; triangles made by a split
+            // enter it when they are made. (A map of every edge of a large mesh cost more
+            // than the contouring itself.)
+            let around = VertexTriangles::new(self.vertices.len(), &tris);
+            let mut loaded = vec![false; self.vertices.len()];
+            let mut edges: HashMap<(u32, u32), usize> = HashMap::new();
+            let mut load =
+                |v: u32, edges: &mut HashMap<(u32, u32), usize>, tris: &[Option<[u32; 3]>]| {
+                    if std::mem::replace(&mut loaded[v as usize], true) {
+                        return;
                     }
-                }
-            }
+                    for &i in around.of(v) {
+                        if let Some(t) = tris[i as usize] {
+                            for k in 0..3 {
+                                edges.insert((t[k], t[(k + 1) % 3]), i as usize);
+                            }
+                        }
+                    }
+                };
             let mut budget = 4 * tris.len() + 16;
             while let Some(i) = work.pop() {
                 budget = budget.saturating_sub(1);
@@ -413,11 +439,15 @@ impl TriMesh {
                     .max_by(|&x, &y| len(x).total_cmp(&len(y)))
                     .unwrap_or(0);
                 let (a, b, c) = (t[k], t[(k + 1) % 3], t[(k + 2) % 3]);
+                for v in [a, b, c] {
+                    load(v, &mut edges, &tris);
+                }
                 let Some(&j) = edges.get(&(b, a)) else {
                     continue;
                 };
                 let Some(n) = tris[j] else { continue };
                 let d = n.iter().copied().find(|&v| v != a && v != b).unwrap_or(c);
+                load(d, &mut edges, &tris);
                 if j == i || d == c || edges.contains_key(&(c, d)) || edges.contains_key(&(d, c)) {
                     continue;
                 }
@@ -508,6 +538,43 @@ impl TriMesh {
         for t in &mut self.triangles {
             t.swap(1, 2);
         }
+    }
+}
+
+/// The triangles around each vertex, as one array per mesh (compressed rows: counts, then
+/// offsets, then indices), built in two passes without hashing.
+struct VertexTriangles {
+    start: Vec<u32>,
+    index: Vec<u32>,
+}
+
+impl VertexTriangles {
+    fn new(vertices: usize, tris: &[Option<[u32; 3]>]) -> Self {
+        let mut start = vec![0u32; vertices + 1];
+        for t in tris.iter().flatten() {
+            for &v in t {
+                start[v as usize + 1] += 1;
+            }
+        }
+        for i in 0..vertices {
+            start[i + 1] += start[i];
+        }
+        let mut fill = start.clone();
+        let mut index = vec![0u32; start[vertices] as usize];
+        for (i, t) in tris.iter().enumerate() {
+            if let Some(t) = t {
+                for &v in t {
+                    index[fill[v as usize] as usize] = i as u32;
+                    fill[v as usize] += 1;
+                }
+            }
+        }
+        Self { start, index }
+    }
+
+    /// The triangles that had `v` as a corner when this was built.
+    fn of(&self, v: u32) -> &[u32] {
+        &self.index[self.start[v as usize] as usize..self.start[v as usize + 1] as usize]
     }
 }
 
