@@ -49,18 +49,22 @@ pub struct MaterialProbe<'a> {
 /// side; `−1`: an exit). `None` for a ray without material.
 #[inline]
 fn nearest_end(ray: &[Interval], t: f64) -> Option<(f64, f64, i8)> {
-    // (end, kind) of the nearest end so far; the ends are sorted, so past the first interval
-    // that starts above t nothing nearer follows.
+    // The ends are sorted: only the last interval starting at or below t (its two ends) and
+    // the first starting above it (its entry) can be nearest. Ties go to the lower end, as a
+    // scan from the start would give them.
+    let k = ray.partition_point(|iv| iv.enter <= t);
     let mut best: Option<(f64, i8)> = None;
-    for iv in ray {
-        for (end, kind) in [(iv.enter, 1), (iv.exit, -1)] {
-            if best.map_or(true, |(b, _)| (t - end).abs() < (t - b).abs()) {
-                best = Some((end, kind));
-            }
+    let mut consider = |end: f64, kind: i8| {
+        if best.map_or(true, |(b, _)| (t - end).abs() < (t - b).abs()) {
+            best = Some((end, kind));
         }
-        if iv.enter > t {
-            break;
-        }
+    };
+    if k > 0 {
+        consider(ray[k - 1].enter, 1);
+        consider(ray[k - 1].exit, -1);
+    }
+    if let Some(iv) = ray.get(k) {
+        consider(iv.enter, 1);
     }
     best.map(|(end, kind)| (f64::from(kind) * (t - end), end, kind))
 }
