@@ -37,6 +37,7 @@
 
 pub mod envelope;
 pub mod error;
+mod project;
 pub mod tolerance;
 
 pub use envelope::{

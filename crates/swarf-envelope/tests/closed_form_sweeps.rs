@@ -54,7 +54,7 @@ fn ball_along_a_line_sweeps_a_capsule() {
                 worst = worst.max((seg_dist(v, ca, cb) - r).abs());
             }
         }
-        assert!(worst < 0.1 * h, "h = {h}: capsule vertex error {worst}");
+        assert!(worst < 1e-9, "h = {h}: capsule vertex error {worst}");
         let err = (env.report.volume_mm3 - exact).abs() / exact;
         let ray_err = (env.report.volume_xyz_mm3[2] - exact).abs() / exact;
         eprintln!("capsule h = {h}: vertex error {worst:.4} mm, volume error mesh {err:.2e}, rays {ray_err:.2e}");
@@ -114,7 +114,8 @@ fn flat_end_mill_along_a_horizontal_line_gives_planes_and_half_cylinders() {
         env.report.volume_mm3,
         (PI * r * r + 2.0 * r * (b - a).length()) * top
     );
-    assert!(worst < 0.05 * h, "stadium prism vertex error {worst}");
+    // Every vertex is put on the exact envelope, sharp edges included.
+    assert!(worst < 1e-9, "stadium prism vertex error {worst}");
     // The side walls are planes: their vertices lie on y = a.y ± r to rounding.
     let walls: Vec<f64> = env
         .mesh
@@ -134,4 +135,51 @@ fn flat_end_mill_along_a_horizontal_line_gives_planes_and_half_cylinders() {
         "{} vs {exact}",
         env.report.volume_mm3
     );
+}
+
+/// The issue's case: one 36 mm line of a 10 mm ball end mill (shank of the same diameter), at
+/// the default resolution. The swept solid of a tool of revolution with a vertical axis along
+/// a horizontal segment is `{d ≤ ρ(z)}` with `d` the horizontal distance to the segment
+/// (`d` is 1-Lipschitz and an isometry across the segment), so the distance of a point to the
+/// envelope is the plane distance of `(d, z)` to the tool's half-profile: a rectangle
+/// `[−r, r] × [r, top]` united with the disc of radius `r` about `(0, r)`. For a point near the
+/// boundary the smaller of the two signed distances is never below the true distance.
+#[test]
+fn envelope_vertices_lie_on_the_exact_envelope_at_the_default_resolution() {
+    let r = 5.0;
+    let ball = Cutter::ball(2.0 * r).unwrap();
+    let top = ball.overall_length();
+    assert!((ball.shank_diameter() - 2.0 * r).abs() < 1e-12);
+    let (a, b) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(36.0, 0.0, 0.0));
+    let program = common::gcode("G21 G90\nG0 X0 Y0 Z0\nG1 X36 F300\n");
+    let distance = |p: Vec3| {
+        let d = seg_dist(Vec3::new(p.x, p.y, 0.0), a, b);
+        let disc = d.hypot(p.z - r) - r;
+        let (qx, qz) = (d - r, (r - p.z).max(p.z - top));
+        let rect = qx.max(0.0).hypot(qz.max(0.0)) + qx.max(qz).min(0.0);
+        disc.min(rect).abs()
+    };
+    let worst = |exact: bool| {
+        let opts = EnvelopeOptions::default().with_exact_vertices(exact);
+        let env = envelope(&program, &common::tools(&ball), 0..2, &opts).unwrap();
+        assert!(env.report.closed);
+        let w = env
+            .mesh
+            .vertices
+            .iter()
+            .map(|&v| distance(v))
+            .fold(0.0, f64::max);
+        (w, env.report.exact_vertices, env.mesh.vertices.len())
+    };
+    let (on, moved, n) = worst(true);
+    let (off, _, _) = worst(false);
+    eprintln!(
+        "36 mm ball line, h = {}: vertex error {on:.1e} mm exact ({moved} of {n} vertices \
+         moved), {off:.1e} mm as contoured",
+        swarf_envelope::DEFAULT_RESOLUTION_MM
+    );
+    assert_eq!(moved, n, "every vertex finds the envelope within a spacing");
+    assert!(on < 1e-9, "{on}");
+    // What the contouring alone gives: micrometres off on the curved parts.
+    assert!(off > 1e-4, "{off}");
 }

@@ -8,7 +8,8 @@
 
 use swarf_geom::math::Vec3;
 use swarf_io::{
-    dual_contour_with_stats, ContourOptions, ContourStats, HermiteGrid, Lattice, Span, TriMesh,
+    dual_contour_projected, dual_contour_with_stats, ContourOptions, ContourStats, HermiteGrid,
+    Lattice, Span, TriMesh,
 };
 
 use crate::TriDexel;
@@ -43,6 +44,20 @@ impl TriDexel {
     /// ```
     pub fn to_mesh(&self, options: &ContourOptions) -> (TriMesh, ContourStats) {
         dual_contour_with_stats(self, options)
+    }
+
+    /// [`TriDexel::to_mesh`] with every vertex moved by `project` (its position and unit
+    /// normal; `None` leaves it) before the mesh is made safe for `f32` storage: for a solid
+    /// whose surface is known exactly (`swarf_io::dual_contour_projected`).
+    pub fn to_mesh_projected<P>(
+        &self,
+        options: &ContourOptions,
+        project: P,
+    ) -> (TriMesh, ContourStats)
+    where
+        P: Fn(Vec3, Vec3) -> Option<Vec3> + Sync,
+    {
+        dual_contour_projected(self, options, project)
     }
 
     /// The size of [`TriDexel::to_mesh`]'s mesh, without building it: `(vertices, triangles)`.

@@ -66,6 +66,8 @@ struct EnvelopeSummary {
     tolerance_mm: f64,
     max_piece_error_mm: f64,
     lattice: [usize; 3],
+    /// Mesh vertices put on the exact envelope of the fixed-axis pieces.
+    exact_vertices: usize,
 }
 
 /// Parses `A..B`, `A..=B`, `A..`, `..B` or `N` into a half-open range.
@@ -139,6 +141,7 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
         tolerance_mm: r.tolerance_mm,
         max_piece_error_mm: r.max_piece_error_mm,
         lattice: r.lattice,
+        exact_vertices: r.exact_vertices,
     };
     let json = serde_json::to_vec_pretty(&summary).context("encoding the summary")?;
     set.write_bytes("summary.json", &json)?;

@@ -66,6 +66,7 @@ use crate::mesh::TriMesh;
 use crate::tolerance::{
     DEFAULT_CROSSING_SLACK, DEFAULT_EIGEN_THRESHOLD, DEFAULT_MAX_SLOPE, DEFAULT_WEIGHT_POWER,
 };
+use rayon::prelude::*;
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 
@@ -274,6 +275,8 @@ pub struct ContourStats {
     pub unknown_normals: usize,
     /// Vertices the QEF placed outside their cell (clamped when clamping is on).
     pub clamped_vertices: usize,
+    /// Vertices moved onto the exact surface ([`dual_contour_projected`]).
+    pub projected_vertices: usize,
 }
 
 impl ContourStats {
@@ -300,12 +303,56 @@ pub fn dual_contour_with_stats<G: HermiteGrid + ?Sized>(
     grid: &G,
     options: &ContourOptions,
 ) -> (TriMesh, ContourStats) {
+    contour(grid, options, None)
+}
+
+/// [`dual_contour_with_stats`] for a solid whose surface is known exactly: every vertex is
+/// handed to `project` with its unit normal (area-weighted over its triangles) before the
+/// mesh is made safe for `f32` storage, and moved where `project` says (`None`: left where the
+/// QEF put it). The Hermite data only places vertices within a fraction of the lattice
+/// spacing of a curved surface; a caller that can intersect lines with the true surface puts
+/// them on it. Moves are expected to be small against the spacing (the projection must not
+/// fold triangles over).
+pub fn dual_contour_projected<G, P>(
+    grid: &G,
+    options: &ContourOptions,
+    project: P,
+) -> (TriMesh, ContourStats)
+where
+    G: HermiteGrid + ?Sized,
+    P: Fn(Vec3, Vec3) -> Option<Vec3> + Sync,
+{
+    contour(grid, options, Some(&project))
+}
+
+type Projection<'a> = &'a (dyn Fn(Vec3, Vec3) -> Option<Vec3> + Sync);
+
+fn contour<G: HermiteGrid + ?Sized>(
+    grid: &G,
+    options: &ContourOptions,
+    project: Option<Projection<'_>>,
+) -> (TriMesh, ContourStats) {
     let lattice = grid.lattice();
     if !lattice.is_valid() {
         return (TriMesh::new(), ContourStats::default());
     }
     let store = lines::Store::build(grid, lattice);
     let (mut mesh, mut stats) = extract::extract(&store, grid, options);
+    if let Some(project) = project {
+        let normals = mesh.vertex_normals();
+        stats.projected_vertices = mesh
+            .vertices
+            .par_iter_mut()
+            .zip(normals.par_iter())
+            .map(|(v, &n)| match project(*v, n) {
+                Some(p) if n != Vec3::ZERO => {
+                    *v = p;
+                    1
+                }
+                _ => 0,
+            })
+            .sum();
+    }
     // Cells whose vertices are clamped to a shared corner or edge can place two vertices at one
     // point, or three on a line: what a file stores must stay a 2-manifold without them.
     mesh.repair_degenerate_f32();
