@@ -129,7 +129,7 @@ pub(crate) fn onto_envelope(
     limit: f64,
 ) -> Option<Vec3> {
     let k = (0..3).max_by(|&a, &b| n[a].abs().total_cmp(&n[b].abs()))?;
-    if !(n[k].abs() > 0.0) {
+    if n[k] == 0.0 || n[k].is_nan() {
         return None;
     }
     let along_axis = nearest_exit(
