@@ -29,17 +29,25 @@ fn simulate_once(p: &Program) -> f64 {
     t.elapsed().as_secs_f64()
 }
 
-fn engage_once(p: &Program) -> (f64, usize) {
+/// (wall s, engaged locations, cutting s, stock probes).
+fn engage_once(p: &Program) -> (f64, usize, f64, u64) {
     let mut s = stock();
     let t = Instant::now();
     let tools = ToolSet::single(Cutter::ball(10.0).unwrap());
     let opts = EngageOptions::default().with_step(0.0);
-    let n = Engager::new(p, &tools, &mut s, opts)
-        .unwrap()
+    let mut run = Engager::new(p, &tools, &mut s, opts).unwrap();
+    let n = run
+        .by_ref()
         .map(Result::unwrap)
         .filter(|e| e.is_engaged())
         .count();
-    (t.elapsed().as_secs_f64(), n)
+    let st = run.stats();
+    (
+        t.elapsed().as_secs_f64(),
+        n,
+        st.simulate_elapsed_s,
+        st.probes,
+    )
 }
 
 fn report() {
@@ -49,8 +57,9 @@ fn report() {
         .unwrap_or(3000);
     let p = program(n);
     let sim = median((0..3).map(|_| simulate_once(&p)).collect());
-    let runs: Vec<(f64, usize)> = (0..3).map(|_| engage_once(&p)).collect();
-    let engaged = runs[0].1;
+    let runs: Vec<(f64, usize, f64, u64)> = (0..3).map(|_| engage_once(&p)).collect();
+    let (engaged, probes) = (runs[0].1, runs[0].3);
+    let cutting = median(runs.iter().map(|r| r.2).collect());
     let eng = median(runs.into_iter().map(|r| r.0).collect());
     let moves = p.moves.len();
     println!(
@@ -66,6 +75,12 @@ fn report() {
         "  engagement median {eng:.3} s  ({:.1} µs/location, {:.1} s per 50,000)",
         eng / moves as f64 * 1e6,
         eng / moves as f64 * 5e4
+    );
+    println!(
+        "    of which cutting the stock {cutting:.3} s; {:.0} stock probes per location, \
+         {:.0} ns per probe (wall, all threads)",
+        probes as f64 / moves as f64,
+        (eng - cutting) * 1e9 / probes.max(1) as f64
     );
     println!("  ratio engagement / simulation: {:.2}", eng / sim);
 }

@@ -154,11 +154,13 @@ impl DexelFamily {
     }
 
     /// Number of rays (along the two cross axes).
+    #[inline]
     pub fn dims(&self) -> (usize, usize) {
         (self.nu, self.nv)
     }
 
     /// The intervals of ray `(i, j)` (indices along the cross axes `(axis+1)%3`, `(axis+2)%3`).
+    #[inline]
     pub fn ray(&self, i: usize, j: usize) -> &[Interval] {
         &self.rays[self.index(i, j)]
     }
@@ -448,11 +450,13 @@ impl TriDexel {
     }
 
     /// The grid.
+    #[inline]
     pub fn grid(&self) -> &Grid {
         &self.grid
     }
 
     /// The ray family along axis `k` (0 = X, 1 = Y, 2 = Z).
+    #[inline]
     pub fn family(&self, k: usize) -> &DexelFamily {
         &self.families[k]
     }
