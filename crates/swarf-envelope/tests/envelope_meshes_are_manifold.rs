@@ -8,7 +8,6 @@ mod common;
 
 use common::{cutters, gcode, tools, Rng};
 use swarf_envelope::{envelope, EnvelopeOptions};
-use swarf_geom::math::Vec3;
 use swarf_io::TriMesh;
 
 /// The mesh as an STL file stores it, read back (the reader welds equal positions).
@@ -18,23 +17,11 @@ fn as_written(mesh: &TriMesh) -> TriMesh {
     swarf_io::stl::parse_stl(&bytes, std::path::Path::new("envelope.stl")).unwrap()
 }
 
-/// Panics unless `written` is a clean 2-manifold without degenerate triangles.
+/// Panics unless `written` is a 2-manifold without degenerate triangles
+/// (`TriMesh::manifold_defect`).
 fn check(written: &TriMesh, what: &str) {
-    let rep = written.edge_report();
-    assert!(
-        rep.is_clean(),
-        "{what}: {} open, {} non-manifold, {} misoriented edges, e.g. {:?}",
-        rep.open,
-        rep.non_manifold,
-        rep.misoriented,
-        rep.examples.first()
-    );
-    for (i, t) in written.triangles.iter().enumerate() {
-        let [a, b, c] = t.map(|v| written.vertices[v as usize]);
-        assert!(
-            t[0] != t[1] && t[1] != t[2] && t[2] != t[0] && (b - a).cross(c - a) != Vec3::ZERO,
-            "{what}: triangle {i} is degenerate: {a} {b} {c}"
-        );
+    if let Some(defect) = written.manifold_defect() {
+        panic!("{what}: {defect}");
     }
 }
 

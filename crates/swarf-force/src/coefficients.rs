@@ -253,12 +253,7 @@ pub fn parse_material(text: &str, file: &str) -> Result<Material, ForceError> {
     })
 }
 
-fn line_col(text: &str, byte: usize) -> (usize, usize) {
-    let before = &text[..byte.min(text.len())];
-    let line = before.matches('\n').count() + 1;
-    let column = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, column)
-}
+use swarf_geom::text::line_col;
 
 #[cfg(test)]
 mod tests {

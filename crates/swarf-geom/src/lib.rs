@@ -38,6 +38,7 @@ pub mod primitive;
 pub mod progress;
 pub mod ray;
 pub mod search;
+pub mod text;
 
 pub use aabb::Aabb;
 pub use frame::Frame;

@@ -267,6 +267,82 @@ impl TriMesh {
         self.edge_report().boundary_count() == 0
     }
 
+    /// The mesh as its files store it and a reader sees it: positions rounded to `f32`, equal
+    /// positions one vertex; every triangle kept, even one that collapses.
+    pub fn as_written(&self) -> TriMesh {
+        let key = |p: Vec3| [p.x as f32, p.y as f32, p.z as f32].map(f32::to_bits);
+        let mut order: Vec<u32> = (0..self.vertices.len() as u32).collect();
+        order.sort_unstable_by_key(|&i| (key(self.vertices[i as usize]), i));
+        let mut remap = vec![0u32; self.vertices.len()];
+        let mut vertices: Vec<Vec3> = Vec::new();
+        let mut last = None;
+        for &i in &order {
+            let k = key(self.vertices[i as usize]);
+            if last != Some(k) {
+                last = Some(k);
+                vertices.push(Vec3::from(k.map(|b| f64::from(f32::from_bits(b)))));
+            }
+            remap[i as usize] = vertices.len() as u32 - 1;
+        }
+        let triangles = self
+            .triangles
+            .iter()
+            .map(|t| t.map(|v| remap[v as usize]))
+            .collect();
+        TriMesh::from_parts(vertices, triangles)
+    }
+
+    /// Why the mesh is not a 2-manifold, or `None` when it is one: every edge in exactly two
+    /// triangles in opposite directions, no triangle with two corners at one point or three on
+    /// a line, and the triangles around every vertex a single fan (no two cones touching at a
+    /// point). Check [`TriMesh::as_written`] to judge a file.
+    pub fn manifold_defect(&self) -> Option<String> {
+        let rep = self.edge_report();
+        if !rep.is_clean() {
+            return Some(format!(
+                "{} open, {} non-manifold, {} misoriented edges, e.g. {:?}",
+                rep.open,
+                rep.non_manifold,
+                rep.misoriented,
+                rep.examples.first()
+            ));
+        }
+        // Around each vertex v, a triangle (v, b, c) leads to the one whose edge out of v is
+        // (v, c): on a 2-manifold those links close into one cycle through all of them.
+        let mut links: Vec<(u32, u32, u32)> = Vec::with_capacity(3 * self.triangles.len());
+        for (i, t) in self.triangles.iter().enumerate() {
+            let [a, b, c] = t.map(|v| self.vertices[v as usize]);
+            if t[0] == t[1] || t[1] == t[2] || t[2] == t[0] || (b - a).cross(c - a) == Vec3::ZERO {
+                return Some(format!("triangle {i} is degenerate: {a} {b} {c}"));
+            }
+            for r in 0..3 {
+                links.push((t[r], t[(r + 1) % 3], t[(r + 2) % 3]));
+            }
+        }
+        links.par_sort_unstable();
+        for fan in links.chunk_by(|x, y| x.0 == y.0) {
+            let mut at = fan[0].2;
+            let mut steps = 1;
+            while at != fan[0].1 && steps <= fan.len() {
+                // The edge report guarantees exactly one triangle with each outgoing edge.
+                let Ok(k) = fan.binary_search_by_key(&at, |l| l.1) else {
+                    break;
+                };
+                at = fan[k].2;
+                steps += 1;
+            }
+            if steps != fan.len() || at != fan[0].1 {
+                return Some(format!(
+                    "vertex {} ({}) joins {} triangles that are not one fan",
+                    fan[0].0,
+                    self.vertices[fan[0].0 as usize],
+                    fan.len()
+                ));
+            }
+        }
+        None
+    }
+
     /// Merges vertices closer than `tolerance` (mm; `0` merges identical positions only),
     /// drops triangles that collapse, and any vertex no longer used. Returns the number of
     /// vertices removed. Each cluster keeps its first vertex (and its colour).
@@ -587,6 +663,40 @@ mod tests {
             vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z],
             vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
         )
+    }
+
+    #[test]
+    fn manifold_defects_are_named() {
+        assert_eq!(tetra().manifold_defect(), None);
+        // Two tetrahedra touching at one vertex: every edge is fine, the vertex is not.
+        let mut two = tetra();
+        let far = tetra();
+        let offset = two.vertices.len() as u32;
+        two.vertices
+            .extend(far.vertices.iter().map(|&p| Vec3::splat(1.0) - p));
+        // Their shared corner: (1, 1, 1) − Z = (1, 1, 0) is not a corner of the first, so
+        // weld the second's vertex 0, (1, 1, 1), onto a new shared point instead.
+        two.vertices[offset as usize] = Vec3::ZERO;
+        two.triangles.extend(
+            far.triangles
+                .iter()
+                .map(|t| t.map(|v| if v == 0 { 0 } else { v + offset })),
+        );
+        let defect = two.manifold_defect().unwrap();
+        assert!(defect.contains("not one fan"), "{defect}");
+        // A triangle with three corners on a line.
+        let mut flat = tetra();
+        flat.vertices[3] = Vec3::new(0.5, 0.5, 0.0);
+        let defect = flat.manifold_defect().unwrap();
+        assert!(defect.contains("degenerate"), "{defect}");
+        // Two vertices one f32 apart become one when written.
+        let mut near = tetra();
+        near.vertices.push(Vec3::Z + Vec3::new(0.0, 0.0, 1e-12));
+        near.triangles[1] = [0, 1, 4];
+        assert!(!near.edge_report().is_clean());
+        let w = near.as_written();
+        assert_eq!(w.vertices.len(), 4);
+        assert_eq!(w.manifold_defect(), None);
     }
 
     #[test]

@@ -113,72 +113,24 @@ fn machined_parts_as_written_are_2_manifolds_on_random_programs() {
             TriDexel::from_box(Vec3::new(0.0, 0.0, -6.0), Vec3::new(20.0, 20.0, 0.0), h).unwrap();
         simulate(&program, &tools, &mut stock, &SimOptions::default()).unwrap();
         let (mesh, _) = stock.to_mesh(&Default::default());
-        let mut bytes = Vec::new();
-        swarf_io::write_stl_to(&mut bytes, &mesh).unwrap();
-        let written = swarf_io::stl::parse_stl(&bytes, std::path::Path::new("stock.stl")).unwrap();
         let what = format!("case {case}, h = {h}, {}:\n{text}", cutter.spec());
-        assert!(
-            written.edge_report().is_clean(),
-            "{what}: {:?}",
-            written.edge_report()
-        );
-        assert_eq!(written.triangles.len(), mesh.triangles.len(), "{what}");
-        for (i, t) in written.triangles.iter().enumerate() {
-            let [a, b, c] = t.map(|v| written.vertices[v as usize]);
-            assert!(
-                (b - a).cross(c - a) != Vec3::ZERO,
-                "{what}: triangle {i} is flat"
-            );
-        }
+        assert_manifold_as_written(&mesh, &what);
     }
 }
 
 /// Panics unless `m` is a 2-manifold as an STL file stores it (`f32` positions welded when read
-/// back): every edge in two triangles in opposite directions, no degenerate triangle, and the
-/// triangles around every vertex one fan (no two cones touching at a point).
+/// back; `TriMesh::manifold_defect`).
 fn assert_manifold_as_written(m: &swarf_io::TriMesh, what: &str) {
     let mut bytes = Vec::new();
     swarf_io::write_stl_to(&mut bytes, m).unwrap();
     let w = swarf_io::stl::parse_stl(&bytes, std::path::Path::new("stock.stl")).unwrap();
-    let rep = w.edge_report();
-    assert!(rep.is_clean(), "{what}: {rep:?}");
     assert_eq!(
         w.triangles.len(),
         m.triangles.len(),
         "{what}: triangles lost"
     );
-    let mut around: Vec<Vec<usize>> = vec![Vec::new(); w.vertices.len()];
-    for (i, t) in w.triangles.iter().enumerate() {
-        let [a, b, c] = t.map(|v| w.vertices[v as usize]);
-        assert!(
-            t[0] != t[1] && t[1] != t[2] && t[2] != t[0] && (b - a).cross(c - a) != Vec3::ZERO,
-            "{what}: triangle {i} is degenerate: {a} {b} {c}"
-        );
-        for &v in t {
-            around[v as usize].push(i);
-        }
-    }
-    for (v, fan) in around.iter().enumerate() {
-        // Walk the fan across edges through v: on a 2-manifold it reaches every triangle at v.
-        let shares = |i: usize, j: usize| {
-            let (a, b) = (w.triangles[i], w.triangles[j]);
-            a.iter()
-                .filter(|&&x| x as usize != v && b.contains(&x))
-                .count()
-                > 0
-        };
-        let mut seen = vec![false; fan.len()];
-        let mut stack = vec![0];
-        seen[0] = true;
-        while let Some(k) = stack.pop() {
-            for j in 0..fan.len() {
-                if !seen[j] && shares(fan[k], fan[j]) {
-                    seen[j] = true;
-                    stack.push(j);
-                }
-            }
-        }
-        assert!(seen.iter().all(|&s| s), "{what}: vertex {v} joins two fans");
+    if let Some(defect) = w.manifold_defect() {
+        panic!("{what}: {defect}");
     }
 }
 

@@ -171,18 +171,7 @@ pub(crate) fn skipped_detail(skipped: &[ReadNote]) -> String {
     format!("; skipped: {}", list.join("; "))
 }
 
-/// Line and column (1-based, in characters) of byte offset `pos` in `text`.
-pub(crate) fn line_col(text: &str, pos: usize) -> (usize, usize) {
-    let pos = pos.min(text.len());
-    let before = &text.as_bytes()[..pos];
-    let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
-    let start = before
-        .iter()
-        .rposition(|&b| b == b'\n')
-        .map_or(0, |i| i + 1);
-    let column = String::from_utf8_lossy(&before[start..]).chars().count() + 1;
-    (line, column)
-}
+pub(crate) use swarf_geom::text::line_col;
 
 /// A point in a patch's parameters, `[u, v]`.
 type Uv = [f64; 2];

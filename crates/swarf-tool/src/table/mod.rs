@@ -89,15 +89,4 @@ impl ToolTable {
     }
 }
 
-/// 1-based line and column of a byte offset.
-pub(crate) fn line_col(text: &str, byte: usize) -> (usize, usize) {
-    let byte = byte.min(text.len());
-    let mut b = byte;
-    while !text.is_char_boundary(b) {
-        b -= 1;
-    }
-    let before = &text[..b];
-    let line = before.matches('\n').count() + 1;
-    let col = before.rsplit('\n').next().map_or(0, |l| l.chars().count()) + 1;
-    (line, col)
-}
+pub(crate) use swarf_geom::text::line_col;
