@@ -49,6 +49,22 @@ pub struct MaterialProbe<'a> {
 /// side; `−1`: an exit). `None` for a ray without material.
 #[inline]
 fn nearest_end(ray: &[Interval], t: f64) -> Option<(f64, f64, i8)> {
+    if ray.len() <= SHORT_RAY {
+        // Short rays (nearly all of them): every end compared, without data-dependent
+        // branches; strict `<` keeps the lower of two equally near ends.
+        let (mut best, mut end, mut kind) = (f64::INFINITY, 0.0, 0i8);
+        for iv in ray {
+            let d = (t - iv.enter).abs();
+            if d < best {
+                (best, end, kind) = (d, iv.enter, 1);
+            }
+            let d = (t - iv.exit).abs();
+            if d < best {
+                (best, end, kind) = (d, iv.exit, -1);
+            }
+        }
+        return (kind != 0).then(|| (f64::from(kind) * (t - end), end, kind));
+    }
     // The ends are sorted: only the last interval starting at or below t (its two ends) and
     // the first starting above it (its entry) can be nearest. Ties go to the lower end, as a
     // scan from the start would give them.
@@ -68,6 +84,9 @@ fn nearest_end(ray: &[Interval], t: f64) -> Option<(f64, f64, i8)> {
     }
     best.map(|(end, kind)| (f64::from(kind) * (t - end), end, kind))
 }
+
+/// Rays with at most this many intervals are scanned whole for their nearest end.
+const SHORT_RAY: usize = 4;
 
 impl<'a> MaterialProbe<'a> {
     /// A probe of `stock`.
@@ -160,7 +179,8 @@ impl<'a> MaterialProbe<'a> {
             .enumerate()
         {
             let (i, j) = (i0 + di, j0 + dj);
-            let ray: &[Interval] = if i < 0.0 || j < 0.0 || i >= nu as f64 || j >= nv as f64 {
+            let outside = i < 0.0 || j < 0.0 || i >= nu as f64 || j >= nv as f64;
+            let ray: &[Interval] = if outside {
                 &[]
             } else {
                 fam.ray(i as usize, j as usize)
@@ -171,7 +191,16 @@ impl<'a> MaterialProbe<'a> {
             if dist2 < nearest.0 {
                 nearest = (dist2, near.is_some_and(|(d, _, _)| d > 0.0));
             }
-            let (side, gap) = near.map_or((false, f64::INFINITY), |(d, _, _)| (d > 0.0, d.abs()));
+            let (side, gap) = match near {
+                Some((d, _, _)) => (d > 0.0, d.abs()),
+                // No ray there to see a sheet: the material may come as near as the grid's
+                // edge, a ray spacing beyond the outermost rays.
+                None if outside => (
+                    false,
+                    beyond_rays(fu, nu, g.h[u]).hypot(beyond_rays(fv, nv, g.h[v])) - spacing,
+                ),
+                None => (false, f64::INFINITY),
+            };
             far &= gap > self.cap && far_side.map_or(true, |s| s == side);
             far_side = Some(side);
             far_near = far_near.min(gap);
@@ -203,6 +232,12 @@ impl<'a> MaterialProbe<'a> {
         let s = f64::from(kind);
         FamilyDepth::Coherent(s * (t - e) / (1.0 + de_du * de_du + de_dv * de_dv).sqrt())
     }
+}
+
+/// How far (mm) a point at fractional ray index `f` lies beyond the outermost of `n` rays
+/// spaced `h` apart (0 between them).
+fn beyond_rays(f: f64, n: usize, h: f64) -> f64 {
+    ((-f).max(f - (n as f64 - 1.0))).max(0.0) * h
 }
 
 enum FamilyDepth {
@@ -238,6 +273,23 @@ mod tests {
         let (d, e, k) = nearest_end(&ray, 1.7).unwrap();
         assert!((d + 0.3).abs() < 1e-15 && e == 2.0 && k == 1);
         assert_eq!(nearest_end(&[], 1.0), None);
+    }
+
+    #[test]
+    fn beside_an_edge_of_the_grid_is_not_deep() {
+        // Beyond the outermost rays of two families and between none of the third: no ray
+        // sees the box, yet it is 0.42 mm away; the probe must not call the point far outside
+        // (the engagement interpolates depths between samples it calls far).
+        let b = swarf_geom::Aabb::new(Vec3::ZERO, Vec3::splat(10.0));
+        let stock = TriDexel::from_box(b.min, b.max, 0.25).unwrap();
+        let probe = MaterialProbe::new(&stock);
+        let p = Vec3::new(10.3, 10.3, 5.0);
+        let d = probe.depth(p).distance;
+        let truth = 0.3f64.hypot(0.3);
+        assert!(d < 0.0 && -d <= truth, "{d}");
+        // Far from the box it is deep, and says so.
+        let d = probe.depth(Vec3::new(20.0, 20.0, 5.0)).distance;
+        assert!(d <= -probe.cap, "{d}");
     }
 
     #[test]

@@ -617,14 +617,45 @@ fn sample_strip(
         };
     };
     let (lo, hi) = (lo.saturating_sub(1), (hi + 2).min(strip.len()));
-    let mut g = vec![0.0; (hi - lo) * n];
+    let rows = hi - lo;
     let vscale = state.v_tip.length() + state.omega.length() * radius;
-    // Lipschitz bounds of g for skipping samples that cannot be near a sign change: g changes
-    // by at most `lphi` per radian along a circle and by `lz[k]` to a neighbouring circle.
-    let w = state.omega.length();
-    let vmin = state.v_tip.length() - w * (radius + strip.circles[strip.len() - 1].z.abs());
-    let skippable = vmin > 0.0 && !exhaustive;
-    let spin = if skippable { 2.0 * w / vmin } else { 0.0 };
+    let dphi = std::f64::consts::TAU / n as f64;
+    // The surface point of circle `k` at angle `j`, and its outward normal.
+    let point = |k: usize, j: usize| {
+        let c = strip.circles[k];
+        let radial = f.x * angles.sin[j] + f.y * angles.cos[j];
+        (
+            f.tip + radial * c.rho + f.z * c.z,
+            radial * c.normal.x + f.z * c.normal.y,
+        )
+    };
+    // Pass 1, every sample, no stock: `R·f` where the motion pushes into the material (> 0),
+    // `R·(f − ε)` (≤ 0) where it does not.
+    let mut rf = vec![0.0; rows * n];
+    rf.par_chunks_mut(n).enumerate().for_each(|(r, row)| {
+        for (j, out) in row.iter_mut().enumerate() {
+            let (p, normal) = point(lo + r, j);
+            let v = state.velocity_at(p);
+            let vl = v.length();
+            let feas = if vl > 1e-12 * vscale.max(1e-300) {
+                normal.dot(v) / vl
+            } else {
+                0.0
+            };
+            *out = radius
+                * (feas
+                    - if feas > FEASIBLE_EPS {
+                        0.0
+                    } else {
+                        FEASIBLE_EPS
+                    });
+        }
+    });
+    // Pass 2, the depth δ where f > ε, so g = min(δ, R·f) there. δ is 1-Lipschitz in space:
+    // along a circle it changes by at most `ρ·dφ` per sample, to a neighbouring circle by at
+    // most the distance `lz` between the two at one angle. A span between two probed anchors
+    // whose depths have one sign and are far enough from zero holds no sign change of δ, nor
+    // does any sample next to it on the neighbouring circles: its depths are interpolated.
     let lz: Vec<f64> = (lo..hi)
         .map(|k| {
             let c = strip.circles[k];
@@ -633,70 +664,103 @@ fn sample_strip(
                 .filter(|&m| m < strip.len())
                 .map(|m| {
                     let o = strip.circles[m];
-                    let chord = ((c.rho - o.rho).powi(2) + (c.z - o.z).powi(2)).sqrt();
-                    chord + radius * ((c.normal - o.normal).length() + spin * chord)
+                    ((c.rho - o.rho).powi(2) + (c.z - o.z).powi(2)).sqrt()
                 })
                 .fold(0.0, f64::max)
         })
         .collect();
-    let dphi = std::f64::consts::TAU / n as f64;
-    // Circles are independent: sampled in parallel (each probe only reads the stock).
+    let feasible_around = |r: usize, j: usize| {
+        // All nine samples around (r, j) pushing into the material (rows outside: no).
+        r >= 1
+            && r + 1 < rows
+            && (r - 1..=r + 1).all(|q| {
+                let row = &rf[q * n..(q + 1) * n];
+                row[(j + n - 1) % n] > 0.0 && row[j] > 0.0 && row[(j + 1) % n] > 0.0
+            })
+    };
+    let mut g = vec![0.0; rows * n];
+    // Per sample: 0 no δ needed or not known, 1 probed, 2 interpolated; and for an
+    // interpolated positive δ, a lower bound of the true one.
+    let mut how = vec![0u8; rows * n];
+    let mut floor = vec![0.0; rows * n];
     let counted: u64 = g
         .par_chunks_mut(n)
+        .zip(how.par_chunks_mut(n))
+        .zip(floor.par_chunks_mut(n))
         .enumerate()
-        .map(|(r, row)| {
-            let c = strip.circles[lo + r];
+        .map(|(r, ((row, how), floor))| {
+            let rfr = &rf[r * n..(r + 1) * n];
             let mut probed = 0u64;
-            let mut eval = |j: usize| {
-                let radial = f.x * angles.sin[j] + f.y * angles.cos[j];
-                let p = f.tip + radial * c.rho + f.z * c.z;
-                let normal = radial * c.normal.x + f.z * c.normal.y;
-                let v = state.velocity_at(p);
-                let vl = v.length();
-                let feas = if vl > 1e-12 * vscale.max(1e-300) {
-                    normal.dot(v) / vl
-                } else {
-                    0.0
-                };
-                if feas <= FEASIBLE_EPS {
-                    radius * (feas - FEASIBLE_EPS)
-                } else {
-                    probed += 1;
-                    probe.depth(p).distance.min(radius * feas)
-                }
+            let mut depth = |j: usize| {
+                probed += 1;
+                let (p, normal) = point(lo + r, j);
+                // Finite, so that depths interpolate (a point far from every ray is ±∞ deep).
+                probe.depth(p).distance.clamp(-FAR_MM, FAR_MM)
             };
-            if !skippable || n % SPAN != 0 {
+            if exhaustive || n % SPAN != 0 {
                 for (j, out) in row.iter_mut().enumerate() {
-                    *out = eval(j);
+                    *out = if rfr[j] > 0.0 {
+                        depth(j).min(rfr[j])
+                    } else {
+                        rfr[j]
+                    };
                 }
                 return probed;
             }
-            // Anchors every SPAN samples; a span whose two ends are far enough from zero (and
-            // of one sign) for no sample inside, nor any neighbour across circles, to change
-            // sign is filled by interpolation; else it is halved.
-            let lphi = (c.rho + radius * (1.0 + spin * c.rho)) * dphi;
-            let margin = lphi + lz[r];
-            for a in (0..n).step_by(SPAN) {
-                row[a] = eval(a);
-            }
+            // `row` holds δ while the spans are walked: NaN where not known yet.
+            row.fill(f64::NAN);
+            let rho = [r.wrapping_sub(1), r, r + 1]
+                .into_iter()
+                .filter(|&q| q < rows)
+                .map(|q| strip.circles[lo + q].rho)
+                .fold(0.0, f64::max);
+            let lphi = DEPTH_SLOPE * rho * dphi;
             let mut stack: Vec<(usize, usize)> =
                 (0..n).step_by(SPAN).map(|a| (a, a + SPAN)).collect();
             while let Some((a, b)) = stack.pop() {
+                if (a..=b).all(|j| rfr[j % n] <= 0.0) {
+                    continue;
+                }
+                for e in [a, b % n] {
+                    if how[e] != 1 {
+                        row[e] = depth(e);
+                        how[e] = 1;
+                    }
+                }
                 if b - a < 2 {
                     continue;
                 }
-                let (ga, gb) = (row[a], row[b % n]);
+                let (da, db) = (row[a], row[b % n]);
                 let width = (b - a) as f64;
-                if ga * gb > 0.0 && ga.abs().min(gb.abs()) >= lphi * (0.5 * width + 1.0) + margin {
-                    for (q, out) in row[a + 1..b].iter_mut().enumerate() {
-                        *out = ga + (gb - ga) * (q + 1) as f64 / width;
+                let low = da.abs().min(db.abs());
+                if da * db > 0.0 && low > lphi * (0.5 * width + 1.0) + DEPTH_SLOPE * lz[r] {
+                    for q in a + 1..b {
+                        let t = (q - a) as f64;
+                        row[q] = da + (db - da) * t / width;
+                        how[q] = 2;
+                        floor[q] = low - lphi * t.min(width - t);
                     }
                     continue;
                 }
                 let m = (a + b) / 2;
-                row[m] = eval(m);
                 stack.push((a, m));
                 stack.push((m, b));
+            }
+            // g from δ and R·f: exact wherever a cell around the sample can change sign.
+            for j in 0..n {
+                let (d, rfj) = (row[j], rfr[j]);
+                row[j] = if rfj <= 0.0 {
+                    rfj
+                } else if how[j] == 1 || d < 0.0 || feasible_around(r, j) {
+                    // Probed; or δ < 0 with every neighbour's δ < 0 too (g < 0 all around);
+                    // or every cell around positive: the value only needs its sign.
+                    d.min(rfj)
+                } else if rfj <= floor[j] {
+                    // δ ≥ floor ≥ R·f: g = R·f exactly.
+                    rfj
+                } else {
+                    depth(j).min(rfj)
+                };
             }
             probed
         })
@@ -708,6 +772,15 @@ fn sample_strip(
         g,
     }
 }
+
+/// The slope assumed of the probed depth per unit distance. A true distance has slope 1; the
+/// probe's is a tangent-plane distance to the nearest sheet its rays see, which can change
+/// faster where the sheet curves or another family's sheet takes over, so the skipping keeps a
+/// factor of safety.
+const DEPTH_SLOPE: f64 = 1.0;
+
+/// Depths beyond this (mm) are reported as this: far enough from any boundary for any cutter.
+const FAR_MM: f64 = 1e6;
 
 /// Samples between the anchors of the adaptive sampling along a circle.
 const SPAN: usize = 8;
