@@ -693,7 +693,7 @@ fn sample_strip(
             let mut probed = 0u64;
             let mut depth = |j: usize| {
                 probed += 1;
-                let (p, normal) = point(lo + r, j);
+                let (p, _) = point(lo + r, j);
                 // Finite, so that depths interpolate (a point far from every ray is ±∞ deep).
                 probe.depth(p).distance.clamp(-FAR_MM, FAR_MM)
             };
