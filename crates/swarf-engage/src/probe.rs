@@ -40,16 +40,18 @@ pub struct Depth {
 #[derive(Clone, Copy, Debug)]
 pub struct MaterialProbe<'a> {
     stock: &'a TriDexel,
+    /// Each family's ray lattice, in the form the per-probe arithmetic wants.
+    lattice: [Lattice; 3],
     /// Distances beyond this (mm) need no precision: the point is deep inside or far outside.
     cap: f64,
 }
 
 /// The nearest interval end to `t` on one ray: signed distance along the ray (positive in the
-/// material), and which kind of end it is (`+1`: an entry, the material on the ray's positive
-/// side; `−1`: an exit). `None` for a ray without material.
+/// material), the end, and which kind of end it is (`+1`: an entry, the material on the ray's
+/// positive side; `−1`: an exit; `0`: the ray holds no material).
 #[inline]
-fn nearest_end(ray: &[Interval], t: f64) -> Option<(f64, f64, i8)> {
-    if ray.len() <= SHORT_RAY {
+fn nearest_end(ray: &[Interval], t: f64) -> (f64, f64, i8) {
+    let (end, kind) = if ray.len() <= SHORT_RAY {
         // Short rays (nearly all of them): every end compared, without data-dependent
         // branches; strict `<` keeps the lower of two equally near ends.
         let (mut best, mut end, mut kind) = (f64::INFINITY, 0.0, 0i8);
@@ -63,26 +65,40 @@ fn nearest_end(ray: &[Interval], t: f64) -> Option<(f64, f64, i8)> {
                 (best, end, kind) = (d, iv.exit, -1);
             }
         }
-        return (kind != 0).then(|| (f64::from(kind) * (t - end), end, kind));
-    }
-    // The ends are sorted: only the last interval starting at or below t (its two ends) and
-    // the first starting above it (its entry) can be nearest. Ties go to the lower end, as a
-    // scan from the start would give them.
-    let k = ray.partition_point(|iv| iv.enter <= t);
-    let mut best: Option<(f64, i8)> = None;
-    let mut consider = |end: f64, kind: i8| {
-        if best.map_or(true, |(b, _)| (t - end).abs() < (t - b).abs()) {
-            best = Some((end, kind));
+        (end, kind)
+    } else {
+        // The ends are sorted: only the last interval starting at or below t (its two ends)
+        // and the first starting above it (its entry) can be nearest. Ties go to the lower
+        // end, as a scan from the start would give them.
+        let k = ray.partition_point(|iv| iv.enter <= t);
+        let (mut end, mut kind) = (f64::NAN, 0i8);
+        let mut consider = |e: f64, kd: i8| {
+            if kind == 0 || (t - e).abs() < (t - end).abs() {
+                (end, kind) = (e, kd);
+            }
+        };
+        if k > 0 {
+            consider(ray[k - 1].enter, 1);
+            consider(ray[k - 1].exit, -1);
         }
+        if let Some(iv) = ray.get(k) {
+            consider(iv.enter, 1);
+        }
+        (end, kind)
     };
-    if k > 0 {
-        consider(ray[k - 1].enter, 1);
-        consider(ray[k - 1].exit, -1);
-    }
-    if let Some(iv) = ray.get(k) {
-        consider(iv.enter, 1);
-    }
-    best.map(|(end, kind)| (f64::from(kind) * (t - end), end, kind))
+    (f64::from(kind) * (t - end), end, kind)
+}
+
+/// One family's ray lattice: its cross axes `u`, `v`, and the centres of its rays at
+/// `min + (i + ½)·h` along each.
+#[derive(Clone, Copy, Debug)]
+struct Lattice {
+    u: usize,
+    v: usize,
+    min: [f64; 2],
+    h: [f64; 2],
+    n: [f64; 2],
+    n_rays: [usize; 2],
 }
 
 /// Rays with at most this many intervals are scanned whole for their nearest end.
@@ -91,9 +107,23 @@ const SHORT_RAY: usize = 4;
 impl<'a> MaterialProbe<'a> {
     /// A probe of `stock`.
     pub fn new(stock: &'a TriDexel) -> Self {
-        let h = stock.grid().h;
+        let g = stock.grid();
+        let h = g.h;
+        let lattice = std::array::from_fn(|k| {
+            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+            let (nu, nv) = stock.family(k).dims();
+            Lattice {
+                u,
+                v,
+                min: [g.min[u], g.min[v]],
+                h: [h[u], h[v]],
+                n: [nu as f64, nv as f64],
+                n_rays: [nu, nv],
+            }
+        });
         Self {
             stock,
+            lattice,
             cap: 4.0 * h[0].max(h[1]).max(h[2]),
         }
     }
@@ -155,80 +185,77 @@ impl<'a> MaterialProbe<'a> {
         self.depth(p).distance > 0.0
     }
 
+    #[inline]
     fn family_depth(&self, k: usize, p: Vec3) -> FamilyDepth {
-        let g = self.stock.grid();
+        let l = &self.lattice[k];
         let fam = self.stock.family(k);
-        let (u, v) = ((k + 1) % 3, (k + 2) % 3);
-        let (nu, nv) = fam.dims();
-        let fu = (p[u] - g.min[u]) / g.h[u] - 0.5;
-        let fv = (p[v] - g.min[v]) / g.h[v] - 0.5;
+        let pa = [p.x, p.y, p.z];
+        let fu = (pa[l.u] - l.min[0]) / l.h[0] - 0.5;
+        let fv = (pa[l.v] - l.min[1]) / l.h[1] - 0.5;
         let (i0, j0) = (fu.floor(), fv.floor());
         let (wu, wv) = (fu - i0, fv - j0);
-        let t = p[k];
-        let spacing = g.h[u].max(g.h[v]);
-        // The four rays: (di, dj) in {0,1}².
-        let mut ends = [0.0f64; 4];
-        let mut kind = 0i8;
-        let mut coherent = true;
-        let mut nearest = (f64::INFINITY, false);
-        // Whether all four rays are far from any end on one side, and the nearest end.
-        let (mut far_side, mut far_near) = (None::<bool>, f64::INFINITY);
-        let mut far = true;
-        for (r, (di, dj)) in [(0.0, 0.0), (1.0, 0.0), (0.0, 1.0), (1.0, 1.0)]
-            .into_iter()
-            .enumerate()
-        {
-            let (i, j) = (i0 + di, j0 + dj);
-            let outside = i < 0.0 || j < 0.0 || i >= nu as f64 || j >= nv as f64;
-            let ray: &[Interval] = if outside {
-                &[]
-            } else {
-                fam.ray(i as usize, j as usize)
-            };
-            let near = nearest_end(ray, t);
-            // The vote of the ray nearest to P across the family.
-            let dist2 = (wu - di).powi(2) + (wv - dj).powi(2);
-            if dist2 < nearest.0 {
-                nearest = (dist2, near.is_some_and(|(d, _, _)| d > 0.0));
-            }
-            let (side, gap) = match near {
-                Some((d, _, _)) => (d > 0.0, d.abs()),
-                // No ray there to see a sheet: the material may come as near as the grid's
-                // edge, a ray spacing beyond the outermost rays.
-                None if outside => (
-                    false,
-                    beyond_rays(fu, nu, g.h[u]).hypot(beyond_rays(fv, nv, g.h[v])) - spacing,
-                ),
-                None => (false, f64::INFINITY),
-            };
-            far &= gap > self.cap && far_side.map_or(true, |s| s == side);
-            far_side = Some(side);
-            far_near = far_near.min(gap);
-            match near {
-                Some((d, end, kd)) if d.abs() <= self.cap => {
-                    if kind == 0 {
-                        kind = kd;
-                    } else if kind != kd {
-                        coherent = false;
-                    }
-                    ends[r] = end;
+        let t = pa[k];
+        let spacing = l.h[0].max(l.h[1]);
+        // The four rays (i0 + (r & 1), j0 + (r >> 1)): signed distance to the nearest end,
+        // the end, its kind (0: no material, or no ray there).
+        let mut near = [(0.0, 0.0, 0i8); 4];
+        let inside = |i: f64, j: f64| i >= 0.0 && j >= 0.0 && i < l.n[0] && j < l.n[1];
+        let all_inside = inside(i0, j0) && inside(i0 + 1.0, j0 + 1.0);
+        let mut outside = [false; 4];
+        if all_inside {
+            let (i, j) = (i0 as usize, j0 as usize);
+            near[0] = nearest_end(fam.ray(i, j), t);
+            near[1] = nearest_end(fam.ray(i + 1, j), t);
+            near[2] = nearest_end(fam.ray(i, j + 1), t);
+            near[3] = nearest_end(fam.ray(i + 1, j + 1), t);
+        } else {
+            for (r, out) in outside.iter_mut().enumerate() {
+                let (i, j) = (i0 + (r & 1) as f64, j0 + (r >> 1) as f64);
+                if inside(i, j) {
+                    near[r] = nearest_end(fam.ray(i as usize, j as usize), t);
+                } else {
+                    *out = true;
+                    near[r] = (0.0, 0.0, 0);
                 }
-                _ => coherent = false,
             }
         }
-        if far {
-            return FamilyDepth::Deep(far_side.unwrap_or(false), far_near, spacing);
+        // No ray there to see a sheet: the material may come as near as the grid's edge, a
+        // ray spacing beyond the outermost rays.
+        let beyond = || {
+            beyond_rays(fu, l.n_rays[0], l.h[0]).hypot(beyond_rays(fv, l.n_rays[1], l.h[1]))
+                - spacing
+        };
+        let side = |r: usize| near[r].2 != 0 && near[r].0 > 0.0;
+        let gap = |r: usize| match near[r] {
+            (d, _, kd) if kd != 0 => d.abs(),
+            _ if outside[r] => beyond(),
+            _ => f64::INFINITY,
+        };
+        // All four rays far from any end, on one side: deep.
+        let gaps = [gap(0), gap(1), gap(2), gap(3)];
+        let s0 = side(0);
+        if gaps.iter().all(|&x| x > self.cap) && (1..4).all(|r| side(r) == s0) {
+            let far_near = gaps[0].min(gaps[1]).min(gaps[2]).min(gaps[3]);
+            return FamilyDepth::Deep(s0, far_near, spacing);
         }
+        let kind = near[0].2;
+        let coherent = kind != 0
+            && near
+                .iter()
+                .all(|&(d, _, kd)| kd == kind && d.abs() <= self.cap);
         if !coherent {
-            return FamilyDepth::Vote(nearest.1, spacing);
+            // The vote of the ray nearest to P across the family (ties to the lower index).
+            let r = usize::from(wu > 0.5) + 2 * usize::from(wv > 0.5);
+            return FamilyDepth::Vote(side(r), spacing);
         }
+        let ends = [near[0].1, near[1].1, near[2].1, near[3].1];
         // Bilinear height field of the boundary sheet over the cell, and its gradient.
         let e = ends[0] * (1.0 - wu) * (1.0 - wv)
             + ends[1] * wu * (1.0 - wv)
             + ends[2] * (1.0 - wu) * wv
             + ends[3] * wu * wv;
-        let de_du = ((ends[1] - ends[0]) * (1.0 - wv) + (ends[3] - ends[2]) * wv) / g.h[u];
-        let de_dv = ((ends[2] - ends[0]) * (1.0 - wu) + (ends[3] - ends[1]) * wu) / g.h[v];
+        let de_du = ((ends[1] - ends[0]) * (1.0 - wv) + (ends[3] - ends[2]) * wv) / l.h[0];
+        let de_dv = ((ends[2] - ends[0]) * (1.0 - wu) + (ends[3] - ends[1]) * wu) / l.h[1];
         let s = f64::from(kind);
         FamilyDepth::Coherent(s * (t - e) / (1.0 + de_du * de_du + de_dv * de_dv).sqrt())
     }
@@ -266,13 +293,34 @@ mod tests {
                 exit: 5.0,
             },
         ];
-        assert_eq!(nearest_end(&ray, 0.2), Some((0.2, 0.0, 1)));
-        assert_eq!(nearest_end(&ray, 0.9).map(|x| x.2), Some(-1));
-        let (d, e, k) = nearest_end(&ray, 1.4).unwrap();
+        assert_eq!(nearest_end(&ray, 0.2), (0.2, 0.0, 1));
+        assert_eq!(nearest_end(&ray, 0.9).2, -1);
+        let (d, e, k) = nearest_end(&ray, 1.4);
         assert!((d + 0.4).abs() < 1e-15 && e == 1.0 && k == -1);
-        let (d, e, k) = nearest_end(&ray, 1.7).unwrap();
+        let (d, e, k) = nearest_end(&ray, 1.7);
         assert!((d + 0.3).abs() < 1e-15 && e == 2.0 && k == 1);
-        assert_eq!(nearest_end(&[], 1.0), None);
+        assert_eq!(nearest_end(&[], 1.0).2, 0);
+        // A long ray (binary search) answers as a scan of its ends would, ties to the lower.
+        let long: Vec<Interval> = (0..9)
+            .map(|i| Interval {
+                enter: 3.0 * i as f64,
+                exit: 3.0 * i as f64 + 1.0 + 0.1 * i as f64,
+            })
+            .collect();
+        for q in 0..300 {
+            let t = -1.0 + 0.1 * q as f64;
+            let mut scan = (f64::INFINITY, 0.0, 0i8);
+            for iv in &long {
+                for (e, kd) in [(iv.enter, 1), (iv.exit, -1)] {
+                    if (t - e).abs() < scan.0 {
+                        scan = ((t - e).abs(), e, kd);
+                    }
+                }
+            }
+            let (d, e, k) = nearest_end(&long, t);
+            assert_eq!((e, k), (scan.1, scan.2), "t = {t}");
+            assert_eq!(d, f64::from(k) * (t - e));
+        }
     }
 
     #[test]
