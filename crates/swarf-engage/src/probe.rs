@@ -192,7 +192,7 @@ impl<'a> MaterialProbe<'a> {
         let pa = [p.x, p.y, p.z];
         let fu = (pa[l.u] - l.min[0]) / l.h[0] - 0.5;
         let fv = (pa[l.v] - l.min[1]) / l.h[1] - 0.5;
-        let (i0, j0) = (fu.floor(), fv.floor());
+        let (i0, j0) = (floor(fu), floor(fv));
         let (wu, wv) = (fu - i0, fv - j0);
         let t = pa[k];
         let spacing = l.h[0].max(l.h[1]);
@@ -261,6 +261,18 @@ impl<'a> MaterialProbe<'a> {
     }
 }
 
+/// `x.floor()` for the finite `x` of ray indices, inline (the library call is a tenth of a
+/// probe's time on targets without a rounding instruction in their baseline).
+#[inline(always)]
+fn floor(x: f64) -> f64 {
+    let i = x as i64 as f64;
+    if i > x {
+        i - 1.0
+    } else {
+        i
+    }
+}
+
 /// How far (mm) a point at fractional ray index `f` lies beyond the outermost of `n` rays
 /// spaced `h` apart (0 between them).
 fn beyond_rays(f: f64, n: usize, h: f64) -> f64 {
@@ -320,6 +332,13 @@ mod tests {
             let (d, e, k) = nearest_end(&long, t);
             assert_eq!((e, k), (scan.1, scan.2), "t = {t}");
             assert_eq!(d, f64::from(k) * (t - e));
+        }
+    }
+
+    #[test]
+    fn inline_floor_is_floor() {
+        for x in [-3.5, -3.0, -2.9999, -0.5, -0.0, 0.0, 1e-300, 0.5, 2.0, 2.5, 1e12 + 0.5] {
+            assert_eq!(floor(x), x.floor(), "{x}");
         }
     }
 

@@ -300,6 +300,17 @@ pub struct Engager<'a> {
     stats: EngageStats,
     failed: bool,
     observer: &'a dyn Observer,
+    /// Sample buffers kept from one location to the next (no allocation per location).
+    scratch: Scratch,
+}
+
+/// The per-sample buffers of [`sample_strip`], reused.
+#[derive(Default)]
+struct Scratch {
+    rf: Vec<f64>,
+    how: Vec<u8>,
+    floor: Vec<f64>,
+    g: Vec<f64>,
 }
 
 impl<'a> Engager<'a> {
@@ -337,6 +348,7 @@ impl<'a> Engager<'a> {
             next_move: 0,
             current: None,
             last_x: None,
+            scratch: Scratch::default(),
             stats: EngageStats::default(),
             failed: false,
             observer: &Quiet,
@@ -521,8 +533,9 @@ impl<'a> Engager<'a> {
         let Some(material) = self.stock.material_range(2, &bbox) else {
             return Ok(e);
         };
-        let sample = |strip: &Strip, probes: &mut u64| {
-            sample_strip(
+        let mut probes = 0u64;
+        let mut run_strip = |strip: &Strip, scratch: &mut Scratch| {
+            let samples = sample_strip(
                 strip,
                 &frame,
                 &state,
@@ -531,18 +544,18 @@ impl<'a> Engager<'a> {
                 tool.radius,
                 material,
                 self.opts.exhaustive,
-                probes,
-            )
+                &mut probes,
+                scratch,
+            );
+            let result = integrate(strip, &samples, self.angles.dphi_deg);
+            scratch.g = samples.g;
+            result
         };
-        let mut probes = 0u64;
-        let side = tool.side.as_ref().map(|s| {
-            let samples = sample(s, &mut probes);
-            integrate(s, &samples, self.angles.dphi_deg)
-        });
-        let bottom = tool.bottom.as_ref().map(|s| {
-            let samples = sample(s, &mut probes);
-            integrate(s, &samples, self.angles.dphi_deg)
-        });
+        let side = tool.side.as_ref().map(|s| run_strip(s, &mut self.scratch));
+        let bottom = tool
+            .bottom
+            .as_ref()
+            .map(|s| run_strip(s, &mut self.scratch));
         self.stats.probes += probes;
         e.set_from(
             side.filter(|r| r.area > 0.0 || !r.circles.is_empty()),
@@ -598,6 +611,7 @@ fn sample_strip(
     material: (f64, f64),
     exhaustive: bool,
     probes: &mut u64,
+    scratch: &mut Scratch,
 ) -> StripSamples {
     let n = angles.sin.len();
     // Rows whose circle's lowest world point is below the highest material.
@@ -613,7 +627,7 @@ fn sample_strip(
         return StripSamples {
             rows: (0, 0),
             n_phi: n,
-            g: Vec::new(),
+            g: std::mem::take(&mut scratch.g),
         };
     };
     let (lo, hi) = (lo.saturating_sub(1), (hi + 2).min(strip.len()));
@@ -631,8 +645,39 @@ fn sample_strip(
     };
     // Pass 1, every sample, no stock: `R·f` where the motion pushes into the material (> 0),
     // `R·(f − ε)` (≤ 0) where it does not.
-    let mut rf = vec![0.0; rows * n];
+    let mut rf = std::mem::take(&mut scratch.rf);
+    rf.clear();
+    rf.resize(rows * n, 0.0);
+    let translating = state.omega == Vec3::ZERO;
+    let speed = state.v_tip.length();
     rf.par_chunks_mut(n).enumerate().for_each(|(r, row)| {
+        let feasibility = |feas: f64| {
+            radius
+                * (feas
+                    - if feas > FEASIBLE_EPS {
+                        0.0
+                    } else {
+                        FEASIBLE_EPS
+                    })
+        };
+        if translating {
+            // One velocity for every point: f = n_ρ·(sin φ·x̂ + cos φ·ŷ)·v̂ + n_z·ẑ·v̂.
+            let c = strip.circles[lo + r];
+            let v = if speed > 0.0 {
+                state.v_tip / speed
+            } else {
+                Vec3::ZERO
+            };
+            let (a, b, z) = (
+                c.normal.x * f.x.dot(v),
+                c.normal.x * f.y.dot(v),
+                c.normal.y * f.z.dot(v),
+            );
+            for (j, out) in row.iter_mut().enumerate() {
+                *out = feasibility(a * angles.sin[j] + b * angles.cos[j] + z);
+            }
+            return;
+        }
         for (j, out) in row.iter_mut().enumerate() {
             let (p, normal) = point(lo + r, j);
             let v = state.velocity_at(p);
@@ -642,13 +687,7 @@ fn sample_strip(
             } else {
                 0.0
             };
-            *out = radius
-                * (feas
-                    - if feas > FEASIBLE_EPS {
-                        0.0
-                    } else {
-                        FEASIBLE_EPS
-                    });
+            *out = feasibility(feas);
         }
     });
     // Pass 2, the depth δ where f > ε, so g = min(δ, R·f) there. δ is 1-Lipschitz in space:
@@ -678,11 +717,17 @@ fn sample_strip(
                 row[(j + n - 1) % n] > 0.0 && row[j] > 0.0 && row[(j + 1) % n] > 0.0
             })
     };
-    let mut g = vec![0.0; rows * n];
+    let mut g = std::mem::take(&mut scratch.g);
+    g.clear();
+    g.resize(rows * n, 0.0);
     // Per sample: 0 no δ needed or not known, 1 probed, 2 interpolated; and for an
     // interpolated positive δ, a lower bound of the true one.
-    let mut how = vec![0u8; rows * n];
-    let mut floor = vec![0.0; rows * n];
+    let mut how = std::mem::take(&mut scratch.how);
+    how.clear();
+    how.resize(rows * n, 0);
+    let mut floor = std::mem::take(&mut scratch.floor);
+    floor.clear();
+    floor.resize(rows * n, 0.0);
     let counted: u64 = g
         .par_chunks_mut(n)
         .zip(how.par_chunks_mut(n))
@@ -766,6 +811,7 @@ fn sample_strip(
         })
         .sum();
     *probes += counted;
+    (scratch.rf, scratch.how, scratch.floor) = (rf, how, floor);
     StripSamples {
         rows: (lo, hi),
         n_phi: n,
