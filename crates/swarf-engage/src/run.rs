@@ -308,8 +308,8 @@ pub struct Engager<'a> {
 #[derive(Default)]
 struct Scratch {
     rf: Vec<f64>,
-    how: Vec<u8>,
-    floor: Vec<f64>,
+    filled: Vec<bool>,
+    fix: Vec<f64>,
     g: Vec<f64>,
 }
 
@@ -643,6 +643,9 @@ fn sample_strip(
             radial * c.normal.x + f.z * c.normal.y,
         )
     };
+    // The probed depth at a sample, finite so that depths interpolate (a point far from every
+    // ray is ±∞ deep).
+    let depth_at = |k: usize, j: usize| probe.depth(point(k, j).0).distance.clamp(-FAR_MM, FAR_MM);
     // Pass 1, every sample, no stock: `R·f` where the motion pushes into the material (> 0),
     // `R·(f − ε)` (≤ 0) where it does not.
     let mut rf = std::mem::take(&mut scratch.rf);
@@ -690,57 +693,28 @@ fn sample_strip(
             *out = feasibility(feas);
         }
     });
-    // Pass 2, the depth δ where f > ε, so g = min(δ, R·f) there. δ is 1-Lipschitz in space:
-    // along a circle it changes by at most `ρ·dφ` per sample, to a neighbouring circle by at
-    // most the distance `lz` between the two at one angle. A span between two probed anchors
-    // whose depths have one sign and are far enough from zero holds no sign change of δ, nor
-    // does any sample next to it on the neighbouring circles: its depths are interpolated.
-    let lz: Vec<f64> = (lo..hi)
-        .map(|k| {
-            let c = strip.circles[k];
-            [k.wrapping_sub(1), k + 1]
-                .into_iter()
-                .filter(|&m| m < strip.len())
-                .map(|m| {
-                    let o = strip.circles[m];
-                    ((c.rho - o.rho).powi(2) + (c.z - o.z).powi(2)).sqrt()
-                })
-                .fold(0.0, f64::max)
-        })
-        .collect();
-    let feasible_around = |r: usize, j: usize| {
-        // All nine samples around (r, j) pushing into the material (rows outside: no).
-        r >= 1
-            && r + 1 < rows
-            && (r - 1..=r + 1).all(|q| {
-                let row = &rf[q * n..(q + 1) * n];
-                row[(j + n - 1) % n] > 0.0 && row[j] > 0.0 && row[(j + 1) % n] > 0.0
-            })
-    };
+    // Pass 2, the depth δ where f > ε, so g = min(δ, R·f) there. δ changes along a circle by
+    // at most `ρ·dφ` per sample (it is a distance, 1-Lipschitz in space): a span between two
+    // probed anchors whose depths have one sign and are far enough from zero holds no sign
+    // change of δ, and its depths are interpolated. So the sign of g is exact at every
+    // sample; only its value is not where δ was interpolated.
     let mut g = std::mem::take(&mut scratch.g);
     g.clear();
     g.resize(rows * n, 0.0);
-    // Per sample: 0 no δ needed or not known, 1 probed, 2 interpolated; and for an
-    // interpolated positive δ, a lower bound of the true one.
-    let mut how = std::mem::take(&mut scratch.how);
-    how.clear();
-    how.resize(rows * n, 0);
-    let mut floor = std::mem::take(&mut scratch.floor);
-    floor.clear();
-    floor.resize(rows * n, 0.0);
-    let counted: u64 = g
+    // Per sample: whether g holds an interpolated δ (not a probed one).
+    let mut filled = std::mem::take(&mut scratch.filled);
+    filled.clear();
+    filled.resize(rows * n, false);
+    let mut counted: u64 = g
         .par_chunks_mut(n)
-        .zip(how.par_chunks_mut(n))
-        .zip(floor.par_chunks_mut(n))
+        .zip(filled.par_chunks_mut(n))
         .enumerate()
-        .map(|(r, ((row, how), floor))| {
+        .map(|(r, (row, filled))| {
             let rfr = &rf[r * n..(r + 1) * n];
             let mut probed = 0u64;
             let mut depth = |j: usize| {
                 probed += 1;
-                let (p, _) = point(lo + r, j);
-                // Finite, so that depths interpolate (a point far from every ray is ±∞ deep).
-                probe.depth(p).distance.clamp(-FAR_MM, FAR_MM)
+                depth_at(lo + r, j)
             };
             if exhaustive || n % SPAN != 0 {
                 for (j, out) in row.iter_mut().enumerate() {
@@ -754,12 +728,7 @@ fn sample_strip(
             }
             // `row` holds δ while the spans are walked: NaN where not known yet.
             row.fill(f64::NAN);
-            let rho = [r.wrapping_sub(1), r, r + 1]
-                .into_iter()
-                .filter(|&q| q < rows)
-                .map(|q| strip.circles[lo + q].rho)
-                .fold(0.0, f64::max);
-            let lphi = DEPTH_SLOPE * rho * dphi;
+            let lphi = DEPTH_SLOPE * strip.circles[lo + r].rho * dphi;
             let mut stack: Vec<(usize, usize)> =
                 (0..n).step_by(SPAN).map(|a| (a, a + SPAN)).collect();
             while let Some((a, b)) = stack.pop() {
@@ -767,9 +736,8 @@ fn sample_strip(
                     continue;
                 }
                 for e in [a, b % n] {
-                    if how[e] != 1 {
+                    if row[e].is_nan() {
                         row[e] = depth(e);
-                        how[e] = 1;
                     }
                 }
                 if b - a < 2 {
@@ -777,13 +745,10 @@ fn sample_strip(
                 }
                 let (da, db) = (row[a], row[b % n]);
                 let width = (b - a) as f64;
-                let low = da.abs().min(db.abs());
-                if da * db > 0.0 && low > lphi * (0.5 * width + 1.0) + DEPTH_SLOPE * lz[r] {
+                if da * db > 0.0 && da.abs().min(db.abs()) > lphi * (0.5 * width + 1.0) {
                     for q in a + 1..b {
-                        let t = (q - a) as f64;
-                        row[q] = da + (db - da) * t / width;
-                        how[q] = 2;
-                        floor[q] = low - lphi * t.min(width - t);
+                        row[q] = da + (db - da) * (q - a) as f64 / width;
+                        filled[q] = true;
                     }
                     continue;
                 }
@@ -791,27 +756,60 @@ fn sample_strip(
                 stack.push((a, m));
                 stack.push((m, b));
             }
-            // g from δ and R·f: exact wherever a cell around the sample can change sign.
-            for j in 0..n {
-                let (d, rfj) = (row[j], rfr[j]);
-                row[j] = if rfj <= 0.0 {
-                    rfj
-                } else if how[j] == 1 || d < 0.0 || feasible_around(r, j) {
-                    // Probed; or δ < 0 with every neighbour's δ < 0 too (g < 0 all around);
-                    // or every cell around positive: the value only needs its sign.
-                    d.min(rfj)
-                } else if rfj <= floor[j] {
-                    // δ ≥ floor ≥ R·f: g = R·f exactly.
-                    rfj
+            for (j, out) in row.iter_mut().enumerate() {
+                let rfj = rfr[j];
+                if rfj <= 0.0 {
+                    *out = rfj;
+                    filled[j] = false;
                 } else {
-                    depth(j).min(rfj)
-                };
+                    *out = out.min(rfj);
+                }
             }
             probed
         })
         .sum();
+    // Pass 3: the value of g matters only where a cell or a circle changes sign (the boundary
+    // is interpolated there); an interpolated sample next to a sample of the other sign (on
+    // its circle or the neighbouring ones; rows outside the range count as not engaged) is
+    // probed. Its sign does not change, so neither does any other sample's need.
+    if !exhaustive {
+        let mut fix = std::mem::take(&mut scratch.fix);
+        fix.clear();
+        fix.resize(rows * n, f64::NAN);
+        let gs = &g;
+        counted += fix
+            .par_chunks_mut(n)
+            .enumerate()
+            .map(|(r, fix)| {
+                let mut probed = 0u64;
+                for j in 0..n {
+                    if !filled[r * n + j] {
+                        continue;
+                    }
+                    let positive = gs[r * n + j] > 0.0;
+                    let other = [r.wrapping_sub(1), r, r + 1].into_iter().any(|q| {
+                        [(j + n - 1) % n, j, (j + 1) % n].into_iter().any(|i| {
+                            let gq = if q < rows { gs[q * n + i] } else { -1.0 };
+                            (gq > 0.0) != positive
+                        })
+                    });
+                    if other {
+                        probed += 1;
+                        fix[j] = depth_at(lo + r, j).min(rf[r * n + j]);
+                    }
+                }
+                probed
+            })
+            .sum::<u64>();
+        for (gv, fv) in g.iter_mut().zip(&fix) {
+            if !fv.is_nan() {
+                *gv = *fv;
+            }
+        }
+        scratch.fix = fix;
+    }
     *probes += counted;
-    (scratch.rf, scratch.how, scratch.floor) = (rf, how, floor);
+    (scratch.rf, scratch.filled) = (rf, filled);
     StripSamples {
         rows: (lo, hi),
         n_phi: n,
@@ -819,10 +817,8 @@ fn sample_strip(
     }
 }
 
-/// The slope assumed of the probed depth per unit distance. A true distance has slope 1; the
-/// probe's is a tangent-plane distance to the nearest sheet its rays see, which can change
-/// faster where the sheet curves or another family's sheet takes over, so the skipping keeps a
-/// factor of safety.
+/// The slope assumed of the probed depth per unit distance along a circle (a true distance
+/// has slope 1).
 const DEPTH_SLOPE: f64 = 1.0;
 
 /// Depths beyond this (mm) are reported as this: far enough from any boundary for any cutter.
