@@ -19,6 +19,14 @@
 //! placed between samples by interpolation ([`mod@engagement`]), so the error shrinks with the
 //! ray spacing `h`, with `dφ` and with `dz` (README: convergence table).
 //!
+//! Most of the work is probing, so only the samples that matter are probed: the tangency `f`
+//! is computed at every sample (it needs no stock), the depth only where `f > 0`, and there
+//! only at anchors along each circle and between anchors whose depths could hide a sign change
+//! (the depth is a distance: it changes by at most `ρ·dφ` per sample). Elsewhere the depths are
+//! interpolated, so every sample's sign is exact; an interpolated sample next to one of the
+//! other sign is then probed, so every value the interpolation of the boundary uses is exact
+//! too: the result is the one of probing every sample ([`EngageOptions::exhaustive`], tested).
+//!
 //! # Frame and angles
 //! Tool frame at a location: `z_L` the tool axis (tip → spindle); `x_L` the tip's feed
 //! direction projected normal to `z_L` (for a move along the axis: the previous such

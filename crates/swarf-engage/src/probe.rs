@@ -22,7 +22,8 @@
 //! bound of its distance to any boundary the rays resolve — a sheet at distance `δ` crosses the
 //! rays of the family most aligned with its normal (within 54.7°) at most `√3·(δ + √2·h)` away —
 //! reported as at least `D₀`. The engagement uses that bound to skip samples that cannot be near
-//! the boundary.
+//! the boundary. Beside the grid (where a family has no rays) the material may be as near as the
+//! grid's edge: such rays count as near, never as far.
 
 use swarf_geom::math::Vec3;
 use swarf_stock::{Interval, TriDexel};
