@@ -1,6 +1,8 @@
 //! Invariants of material removal, on random moves of random cutters with random fixed axes:
 //! volume never increases; cutting a move twice removes nothing more; splitting a move in two
-//! gives the same stock; moves commute; nothing outside the sweep is removed.
+//! gives the same stock; moves commute; nothing outside the sweep is removed; and whatever the
+//! stock's state, a batch leaves every ray exactly as an exact subtraction would (no bound ever
+//! skips a ray the sweep changes).
 
 use proptest::prelude::*;
 use swarf_geom::math::Vec3;
@@ -126,5 +128,92 @@ proptest! {
         }
         let removed_v = before.volume() - s.volume();
         prop_assert!(removed_v <= swept_total * s.ray_area(2) + 1e-9);
+    }
+}
+
+/// `ray` minus the intervals `cut`, slivers under the stock's minimum dropped: what an exact
+/// subtraction leaves.
+fn subtract_all(ray: &[swarf_stock::Interval], cut: &[(f64, f64)]) -> Vec<(f64, f64)> {
+    let mut left: Vec<(f64, f64)> = ray.iter().map(|m| (m.enter, m.exit)).collect();
+    for &(lo, hi) in cut {
+        left = left
+            .into_iter()
+            .flat_map(|(a, b)| [(a, b.min(lo)), (a.max(hi), b)])
+            .filter(|(a, b)| b - a > swarf_stock::dexel::MIN_INTERVAL_MM)
+            .collect();
+    }
+    left
+}
+
+fn arb_move() -> impl Strategy<Value = (Vec3, Vec3, Vec3)> {
+    (arb_point(), arb_point(), arb_axis())
+}
+
+proptest! {
+    #![proptest_config(swarf_testdata::proptest_config(16))]
+
+    /// Issue 14's guard on the skipping: whatever the stock's state (random cuts before, in
+    /// batches, with the tile bounds they leave behind), a batch of moves leaves on every ray
+    /// of every family exactly the material minus the exact swept intervals of its moves —
+    /// so no tile or ray bound ever skipped a ray the sweep changes (nor did it cut one it
+    /// does not).
+    #[test]
+    fn bounds_never_skip_a_ray_the_sweep_changes(
+        kind in 0u8..5,
+        d in 2.0f64..8.0,
+        before in prop::collection::vec(arb_move(), 1..5),
+        batch in prop::collection::vec(arb_move(), 1..4),
+        batch_kind in 0u8..5,
+    ) {
+        let mut s = stock();
+        // A random state: earlier batches of another cutter.
+        let earlier = ToolShape::new(&cutter(kind, d));
+        for chunk in before.chunks(2) {
+            let moves: Vec<_> = chunk
+                .iter()
+                .map(|&(tip0, tip1, axis)| swarf_stock::LinearMove { tip0, tip1, axis })
+                .collect();
+            s.cut_linear_batch(&earlier, &moves);
+        }
+        let state = s.clone();
+        let c = cutter(batch_kind, d.min(6.0));
+        let tool = ToolShape::new(&c);
+        let moves: Vec<_> = batch
+            .iter()
+            .map(|&(tip0, tip1, axis)| swarf_stock::LinearMove { tip0, tip1, axis })
+            .collect();
+        s.cut_linear_batch(&tool, &moves);
+        let g = *s.grid();
+        let shapes = [tool.cutting(), tool.non_cutting()];
+        for k in 0..3 {
+            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+            let mut dir = Vec3::ZERO;
+            dir[k] = 1.0;
+            let (nu, nv) = s.family(k).dims();
+            for j in 0..nv {
+                for i in 0..nu {
+                    let mut o = Vec3::ZERO;
+                    o[u] = g.center(u, i);
+                    o[v] = g.center(v, j);
+                    let mut sw = Vec::new();
+                    for m in &moves {
+                        for sh in shapes {
+                            for p in sh.parts() {
+                                let sc = swarf_sweep::SweptConvex::new(p, m.tip0, m.axis, m.tip1 - m.tip0);
+                                sw.extend(sc.ray_interval(o, dir));
+                            }
+                        }
+                    }
+                    let was = state.family(k).ray(i, j);
+                    let want = subtract_all(was, &sw);
+                    let got = s.family(k).ray(i, j);
+                    prop_assert_eq!(got.len(), want.len(), "family {} ray ({}, {}): {:?} vs {:?}", k, i, j, got, want);
+                    for (a, b) in got.iter().zip(&want) {
+                        prop_assert!((a.enter - b.0).abs() <= 1e-9 && (a.exit - b.1).abs() <= 1e-9,
+                            "family {} ray ({}, {}): {:?} vs {:?}", k, i, j, got, want);
+                    }
+                }
+            }
+        }
     }
 }
