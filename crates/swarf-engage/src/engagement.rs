@@ -201,8 +201,18 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
     let mut lo = f64::INFINITY;
     let mut hi = f64::NEG_INFINITY;
     let last = strip.len() - 1;
+    let engaged = |row: &[f64]| row.iter().any(|&v| v > 0.0);
+    let mut this_engaged = s.row(s.rows.0).is_some_and(engaged);
     for k in s.rows.0..s.rows.1 {
         let Some(row) = s.row(k) else { continue };
+        let next = s.row(k + 1);
+        let next_engaged = next.is_some_and(engaged);
+        if !this_engaged && !next_engaged {
+            // Nothing on this circle nor on the band to the next one.
+            this_engaged = next_engaged;
+            continue;
+        }
+        this_engaged = next_engaged;
         if strip.is_reported(k) {
             let intervals = circle_intervals(row, dphi_deg);
             if !intervals.is_empty() {
@@ -220,7 +230,6 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
             continue;
         }
         // The band to the next circle (not sampled: not engaged).
-        let next = s.row(k + 1);
         let (p0, p1) = (strip.param[k], strip.param[k + 1]);
         let mut share = 0.0;
         for j in 0..n {

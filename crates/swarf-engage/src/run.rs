@@ -646,14 +646,14 @@ fn sample_strip(
     // The probed depth at a sample, finite so that depths interpolate (a point far from every
     // ray is ±∞ deep).
     let depth_at = |k: usize, j: usize| probe.depth(point(k, j).0).distance.clamp(-FAR_MM, FAR_MM);
-    // Pass 1, every sample, no stock: `R·f` where the motion pushes into the material (> 0),
-    // `R·(f − ε)` (≤ 0) where it does not.
+    // Pass 1 (per circle, before its depths), no stock: `R·f` where the motion pushes into the
+    // material (> 0), `R·(f − ε)` (≤ 0) where it does not.
     let mut rf = std::mem::take(&mut scratch.rf);
     rf.clear();
     rf.resize(rows * n, 0.0);
     let translating = state.omega == Vec3::ZERO;
     let speed = state.v_tip.length();
-    rf.par_chunks_mut(n).enumerate().for_each(|(r, row)| {
+    let tangency = |r: usize, row: &mut [f64]| {
         let feasibility = |feas: f64| {
             radius
                 * (feas
@@ -692,7 +692,7 @@ fn sample_strip(
             };
             *out = feasibility(feas);
         }
-    });
+    };
     // Pass 2, the depth δ where f > ε, so g = min(δ, R·f) there. δ changes along a circle by
     // at most `ρ·dφ` per sample (it is a distance, 1-Lipschitz in space): a span between two
     // probed anchors whose depths have one sign and are far enough from zero holds no sign
@@ -708,9 +708,11 @@ fn sample_strip(
     let mut counted: u64 = g
         .par_chunks_mut(n)
         .zip(filled.par_chunks_mut(n))
+        .zip(rf.par_chunks_mut(n))
         .enumerate()
-        .map(|(r, (row, filled))| {
-            let rfr = &rf[r * n..(r + 1) * n];
+        .map(|(r, ((row, filled), rfr))| {
+            tangency(r, rfr);
+            let rfr = &*rfr;
             let mut probed = 0u64;
             let mut depth = |j: usize| {
                 probed += 1;
