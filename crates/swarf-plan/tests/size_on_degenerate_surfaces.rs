@@ -1,7 +1,8 @@
 //! The certified size on surfaces that fold through themselves or collapse to a point (issue 16
 //! item 1): self-intersecting ("spindle") tori whose tube radius exceeds the ring radius — as
 //! the analytic torus of STEP and as the rational B-splines CAD systems write (four 90° arcs,
-//! three 120° arcs) — and a cone whose apex lies inside its parameter box. At every grid point
+//! three 120° arcs, and one written as an IGES type-128 entity with its knots in radians) — and a
+//! cone whose apex lies inside its parameter box. At every grid point
 //! of each, from both sides, the certified size never exceeds what dense sampling of the whole
 //! surface allows (a certificate is never wrong), and every search ends within its node budget.
 
@@ -50,6 +51,97 @@ fn nurbs_torus(big: f64, small: f64, arcs: usize) -> Surface {
     Surface::Nurbs(NurbsSurface::new(2, 2, knots.clone(), knots, &pts, Some(&ws)).unwrap())
 }
 
+/// The 9 × 9 rational biquadratic spindle torus of [`nurbs_torus`] (four 90° arcs) written as an
+/// IGES file with one type-128 entity, its knots in radians (`0, 0, 0, π/2, π/2, …, 2π`) as CAD
+/// kernels write them, and its axis along +X: the file path of issue 16 item 1.
+fn iges_torus(big: f64, small: f64) -> String {
+    let h = std::f64::consts::FRAC_PI_2;
+    let s2 = 0.5f64.sqrt();
+    let circle = [
+        (1.0, 0.0, 1.0),
+        (1.0, 1.0, s2),
+        (0.0, 1.0, 1.0),
+        (-1.0, 1.0, s2),
+        (-1.0, 0.0, 1.0),
+        (-1.0, -1.0, s2),
+        (0.0, -1.0, 1.0),
+        (1.0, -1.0, s2),
+        (1.0, 0.0, 1.0),
+    ];
+    let knots: Vec<f64> = [0.0, 0.0, 0.0, 1.0, 1.0, 2.0, 2.0, 3.0, 3.0, 4.0, 4.0, 4.0]
+        .iter()
+        .map(|k| k * h)
+        .collect();
+    let mut params: Vec<String> = ["128", "8", "8", "2", "2", "0", "0", "1", "0", "0"]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+    params.extend(knots.iter().chain(&knots).map(|k| format!("{k:e}")));
+    let (mut ws, mut xyz) = (Vec::new(), Vec::new());
+    for &(tx, tz, tw) in &circle {
+        for &(cx, cy, cw) in &circle {
+            let rho = big + small * tx;
+            ws.push(format!("{:e}", cw * tw));
+            // Axis +X: (x, y, z) of the +Z torus written as (z, y, x).
+            xyz.extend([small * tz, rho * cy, rho * cx].map(|c| format!("{c:e}")));
+        }
+    }
+    params.extend(ws);
+    params.extend(xyz);
+    params.extend([0.0, 4.0 * h, 0.0, 4.0 * h].map(|c| format!("{c:e}")));
+    let mut p_lines = Vec::new();
+    let mut line = String::new();
+    for (i, tok) in params.iter().enumerate() {
+        let tok = format!("{tok}{}", if i + 1 == params.len() { ';' } else { ',' });
+        if line.len() + tok.len() > 64 {
+            p_lines.push(std::mem::take(&mut line));
+        }
+        line.push_str(&tok);
+    }
+    p_lines.push(line);
+    let global = "1H,,1H;,5Htorus,9Htorus.igs,5Hswarf,5Hswarf,32,308,15,308,15,,1.,2,2HMM,1,\
+                  0.01,15H20261126.120000,1e-06,100.,5Hswarf,,11,0,15H20261126.120000,;";
+    let mut out = format!("{:<72}S{:07}\n", "spindle torus", 1);
+    let g_lines: Vec<&str> = global
+        .as_bytes()
+        .chunks(72)
+        .map(|c| std::str::from_utf8(c).unwrap())
+        .collect();
+    for (i, l) in g_lines.iter().enumerate() {
+        out += &format!("{l:<72}G{:07}\n", i + 1);
+    }
+    out += &format!(
+        "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:07}\n",
+        128, 1, 0, 0, 0, 0, 0, 0, "00000000", 1
+    );
+    out += &format!(
+        "{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}{:>8}D{:07}\n",
+        128,
+        0,
+        0,
+        p_lines.len(),
+        0,
+        "",
+        "",
+        "",
+        "",
+        2
+    );
+    for (i, l) in p_lines.iter().enumerate() {
+        out += &format!("{l:<64}{:>8}P{:07}\n", 1, i + 1);
+    }
+    out += &format!(
+        "S{:07}G{:07}D{:07}P{:07}{:40}T{:07}\n",
+        1,
+        g_lines.len(),
+        2,
+        p_lines.len(),
+        "",
+        1
+    );
+    out
+}
+
 fn analytic_torus(big: f64, small: f64) -> Surface {
     let frame = Frame::from_axis(Vec3::ZERO, Vec3::Z);
     let tau = std::f64::consts::TAU;
@@ -68,25 +160,46 @@ fn cone_through_apex() -> Surface {
 
 #[test]
 fn certificates_hold_on_self_intersecting_tori_and_through_a_cone_apex() {
+    let one = |s: Surface| CompoundSurface::new(vec![Patch::new(s)]);
+    let iges = swarf_surface::io::iges::parse(&iges_torus(20.0, 30.0))
+        .expect("the generated IGES torus reads");
+    // It is the torus meant: every point on the tube about the ring in the plane x = 0.
+    let d = iges.patches[0].surface.domain();
+    for k in 0..7 {
+        let (u, v) = (
+            d.u[0] + 0.13 * k as f64 * (d.u[1] - d.u[0]),
+            d.v[0] + 0.11 * k as f64,
+        );
+        let q = iges.patches[0].surface.point(u, v);
+        let ring = q.y.hypot(q.z) - 20.0;
+        assert!((ring.hypot(q.x) - 30.0).abs() < 1e-9, "{q:?}");
+    }
     let surfaces = [
-        ("analytic spindle torus 10/15", analytic_torus(10.0, 15.0)),
+        (
+            "IGES 128 spindle torus 20/30, axis +X, knots in radians",
+            iges,
+        ),
+        (
+            "analytic spindle torus 10/15",
+            one(analytic_torus(10.0, 15.0)),
+        ),
         (
             "nurbs spindle torus 10/15, 90° arcs",
-            nurbs_torus(10.0, 15.0, 4),
+            one(nurbs_torus(10.0, 15.0, 4)),
         ),
         (
             "nurbs spindle torus 20/21, 120° arcs",
-            nurbs_torus(20.0, 21.0, 3),
+            one(nurbs_torus(20.0, 21.0, 3)),
         ),
-        ("analytic horn torus 12/12", analytic_torus(12.0, 12.0)),
-        ("cone through its apex", cone_through_apex()),
+        ("analytic horn torus 12/12", one(analytic_torus(12.0, 12.0))),
+        ("cone through its apex", one(cone_through_apex())),
     ];
     let families = [CutterFamily::ball(), CutterFamily::flat()];
     let opts = CertifiedOptions::DEFAULT;
     let tol = Tolerances::DEFAULT;
     let (mut compared, mut finite) = (0, 0);
-    for (name, surface) in surfaces {
-        let part = CompoundSurface::new(vec![Patch::new(surface)]);
+    for (name, part) in surfaces {
+        assert_eq!(part.patches.len(), 1, "{name}");
         let prep = PreparedSurface::new(&part);
         let d = part.patches[0].surface.domain();
         let n = 5;
