@@ -60,17 +60,39 @@ impl TriDexel {
     /// Removes the volume `shape` sweeps along the sub-moves `pieces` (each a fixed-axis
     /// straight move, cut exactly), in order, [`PIECES_PER_BATCH`] at a time through
     /// [`TriDexel::subtract_moves`], all under the current move tag (they are pieces of one move).
-    pub fn cut_shape_pieces(&mut self, shape: &SweepShape, pieces: &[SubMove]) -> CutStats {
+    ///
+    /// A piece whose bound leaves room under `tol` spends it on its tori: a torus band's
+    /// envelope is left out where that moves the piece's sweep by no more than the room
+    /// (`SweptConvex::with_envelope_slack`: a few nanometres on pieces a few µm long, for
+    /// the degree-8 root isolation that was nearly all of a bull-nose's time). Returns the
+    /// removal and the largest bound of any piece, the envelope's share included.
+    pub fn cut_shape_pieces(
+        &mut self,
+        shape: &SweepShape,
+        pieces: &[SubMove],
+        tol: f64,
+    ) -> (CutStats, f64) {
         let mut total = CutStats::default();
+        let mut worst = 0.0f64;
         for chunk in pieces.chunks(PIECES_PER_BATCH) {
             let sweeps: Vec<Vec<SweptConvex<'_>>> = chunk
                 .iter()
                 .map(|p| {
-                    shape
+                    let room = (tol - p.error_bound).max(0.0);
+                    let mut moved = 0.0f64;
+                    let parts = shape
                         .parts()
                         .iter()
-                        .map(|part| SweptConvex::new(part, p.tip0, p.axis, p.tip1 - p.tip0))
-                        .collect()
+                        .map(|part| {
+                            let (sweep, m) =
+                                SweptConvex::new(part, p.tip0, p.axis, p.tip1 - p.tip0)
+                                    .with_envelope_slack(room);
+                            moved = moved.max(m);
+                            sweep
+                        })
+                        .collect();
+                    worst = worst.max(p.error_bound + moved);
+                    parts
                 })
                 .collect();
             let moves: Vec<[&[SweptConvex<'_>]; 1]> = sweeps.iter().map(|s| [&s[..]]).collect();
@@ -78,7 +100,7 @@ impl TriDexel {
                 total = total.merged(st);
             }
         }
-        total
+        (total, worst)
     }
 
     /// Cuts move `index` of `program`, a 5-axis simultaneous move ([`Program::is_five_axis`]), as
@@ -144,8 +166,7 @@ impl TriDexel {
                         subdivide_range(program, index, *r, tol, (c.s0, c.s1), &mut pieces)?;
                     }
                 }
-                let stats = self.cut_shape_pieces(shape, &pieces);
-                let worst = pieces.iter().map(|p| p.error_bound).fold(0.0, f64::max);
+                let (stats, worst) = self.cut_shape_pieces(shape, &pieces, tol);
                 out.error_bound_mm = out.error_bound_mm.max(worst);
                 if k == 0 {
                     out.cutting = out.cutting.merged(stats);

@@ -162,6 +162,9 @@ pub struct SweptConvex<'a> {
     axial: Option<Axial>,
     /// The closed-form kernels for dexels, when the profile and the move qualify.
     fast: Option<fast::FastSweep>,
+    /// Elements (bit `i`: element `i`) whose envelope is left out
+    /// ([`SweptConvex::with_envelope_slack`]).
+    skip_envelope: u64,
 }
 
 /// The move seen along a tool axis that is the world axis `k`.
@@ -335,7 +338,38 @@ impl<'a> SweptConvex<'a> {
             units,
             axial,
             fast,
+            skip_envelope: 0,
         }
+    }
+
+    /// The same sweep, except that the envelope of each torus band whose neighbours join it
+    /// tangentially is left out where that moves the swept solid by at most `slack` mm
+    /// (Hausdorff distance), and the largest such distance.
+    ///
+    /// Why that bound: the envelope of a band is made of the points `g + s·v` with `g` on its
+    /// grazing curve (normal `⊥ v`) and `s ∈ [0, 1]`. Such a point lies in the band's tangent
+    /// plane at `g`, at `s·|v|` from `g` along it; the surface, whose curvature is at most
+    /// `1/r` there (`r` the tube radius: the other principal radius of an outer torus band is
+    /// larger), and — the joints being tangent — on its smooth neighbours too, comes within
+    /// `(s·|v|)²/(2r)` of it at the start instance, and within `((1 − s)·|v|)²/(2r)` at the end
+    /// one: within `|v|²/(8r)` of the caps, which stay. So leaving the envelope out removes
+    /// only points of the true sweep that lie within that distance of what is kept: the cut
+    /// can only leave that much more material, never take more. The short fixed-axis pieces
+    /// of a 5-axis move (a few µm each) are where it pays: their tori's envelopes (a
+    /// degree-8 root isolation per ray) move the solid by ~10⁻¹¹ mm.
+    pub fn with_envelope_slack(mut self, slack: f64) -> (Self, f64) {
+        let vv = self.v.length_squared();
+        let mut worst = 0.0f64;
+        for i in 0..self.prof.elements().len().min(64) {
+            if let Some(r) = self.prof.smooth_torus_radius(i) {
+                let moved = vv / (8.0 * r);
+                if moved <= slack {
+                    self.skip_envelope |= 1 << i;
+                    worst = worst.max(moved);
+                }
+            }
+        }
+        (self, worst)
     }
 
     /// Bounding box of the swept volume, workpiece frame.
@@ -614,7 +648,7 @@ impl<'a> SweptConvex<'a> {
                 if v != Vec3::ZERO {
                     prof.cap_element(unit.index, o - v, d, &mut acc, scratch);
                 }
-                if dc.envelope {
+                if dc.envelope && self.skip_envelope & (1 << unit.index) == 0 {
                     prof.envelope_element(unit.index, o, dc, &mut acc, scratch);
                 }
             }

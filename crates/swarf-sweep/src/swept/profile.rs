@@ -444,6 +444,31 @@ impl ConvexProfile {
         self.radius_at(if hi < a { hi } else { lo })
     }
 
+    /// The tube radius of element `i` when it is a torus band (an arc off the axis) whose
+    /// neighbours on both sides continue it tangentially (as a bull-nose's bottom disc and
+    /// side do); `None` otherwise.
+    pub fn smooth_torus_radius(&self, i: usize) -> Option<f64> {
+        let Element::Arc {
+            e, r, phi0, phi1, ..
+        } = self.elements[i]
+        else {
+            return None;
+        };
+        if e <= 0.0 || i == 0 || i + 1 >= self.elements.len() {
+            return None;
+        }
+        // Tangent directions of the profile, bottom to top.
+        let arc_tangent = |phi: f64| Vec2::new(phi.cos(), phi.sin());
+        let direction = |el: &Element, at_start: bool| match *el {
+            Element::Line { p, q } => (q - p).normalize(),
+            Element::Arc { phi0, phi1, .. } => arc_tangent(if at_start { phi0 } else { phi1 }),
+        };
+        let tangent = |a: Vec2, b: Vec2| (a - b).length() <= 1e-9;
+        (tangent(direction(&self.elements[i - 1], false), arc_tangent(phi0))
+            && tangent(direction(&self.elements[i + 1], true), arc_tangent(phi1)))
+        .then_some(r)
+    }
+
     /// The joint circles `(ρ, z)` (ρ > 0) between consecutive elements.
     pub fn joints(&self) -> &[Vec2] {
         &self.joints
