@@ -5,36 +5,12 @@
 //! within that distance of the start or end instance of the cutter. Long moves, sharp joints
 //! and slack below the bound keep the exact envelope.
 
+mod common;
+
+use common::Rng;
 use swarf_geom::math::Vec3;
 use swarf_sweep::{ConvexProfile, SweptConvex};
 use swarf_tool::Cutter;
-
-/// A tiny deterministic generator (reproducible without extra crates).
-struct Lcg(u64);
-impl Lcg {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64)
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next_f64()
-    }
-    fn unit(&mut self) -> Vec3 {
-        loop {
-            let v = Vec3::new(
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-                self.range(-1.0, 1.0),
-            );
-            if v.length() > 0.2 && v.length() < 1.0 {
-                return v.normalize();
-            }
-        }
-    }
-}
 
 fn torus_index(prof: &ConvexProfile) -> usize {
     (0..prof.elements().len())
@@ -58,7 +34,7 @@ fn a_bull_noses_band_is_smooth_and_a_clipped_one_is_not() {
 
 #[test]
 fn leaving_the_envelope_out_moves_the_sweep_by_at_most_the_bound() {
-    let mut rng = Lcg(0x5eed_2026_1126);
+    let mut rng = Rng(0x5eed_2026_1126);
     let (mut differing, mut compared, mut worst_seen) = (0usize, 0usize, 0.0f64);
     for case in 0..40 {
         let r = rng.range(0.5, 3.0);

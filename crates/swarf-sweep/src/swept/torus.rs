@@ -57,13 +57,10 @@ pub(crate) fn cap(
     _scratch: &mut Scratch,
 ) {
     let p = o - Vec3::new(0.0, 0.0, f);
-    // Parameter range inside the bounding sphere of radius e + r …
-    let g = p.dot(d);
-    let (bs, nb) = super::quad(1.0, 2.0 * g, p.length_squared() - (e + r) * (e + r));
-    if nb < 2 {
+    // Parameter range inside the bounding sphere …
+    let Some((mut lo, mut hi)) = sphere_span(e, r, p, d) else {
         return;
-    }
-    let (mut lo, mut hi) = (bs[0].min(bs[1]), bs[0].max(bs[1]));
+    };
     // … and within the tube's heights |z − f| ≤ r.
     if d.z != 0.0 {
         let (ta, tb) = ((-r - p.z) / d.z, (r - p.z) / d.z);
@@ -78,11 +75,7 @@ pub(crate) fn cap(
     let tube = TubeLine::new(e, r, p, d);
     let (f_lo, f_hi) = (tube.value(lo), tube.value(hi));
     let mut add = |t: f64| {
-        let q = o + d * t;
-        if q.z >= z0 - BAND_EPS
-            && q.z <= z1 + BAND_EPS
-            && (q.x * q.x + q.y * q.y).sqrt() >= e - BAND_EPS
-        {
+        if on_band(o + d * t, e, (z0, z1)) {
             acc.add(t);
         }
     };
@@ -115,6 +108,21 @@ pub(crate) fn cap(
             add(tube.zero_between(t_min, hi, f_min));
         }
     }
+}
+
+/// The parameter range of the line `p + t·d` (unit `d`, torus frame: centre at the origin)
+/// inside the torus's bounding sphere of radius `e + r`, if it meets it.
+#[inline]
+fn sphere_span(e: f64, r: f64, p: Vec3, d: Vec3) -> Option<(f64, f64)> {
+    let (bs, nb) = super::quad(1.0, 2.0 * p.dot(d), p.length_squared() - (e + r) * (e + r));
+    (nb == 2).then(|| (bs[0].min(bs[1]), bs[0].max(bs[1])))
+}
+
+/// Whether a point of the torus (cutter frame) lies on the band: within its heights and on the
+/// tube's outer half.
+#[inline]
+fn on_band(q: Vec3, e: f64, (z0, z1): (f64, f64)) -> bool {
+    q.z >= z0 - BAND_EPS && q.z <= z1 + BAND_EPS && (q.x * q.x + q.y * q.y).sqrt() >= e - BAND_EPS
 }
 
 /// `F(t) = ρ(t) − e − √(r² − z(t)²)` along a line `p + t·d` (torus frame: centre at the
@@ -297,12 +305,9 @@ pub(crate) fn cap_quartic(
     let p = o - Vec3::new(0.0, 0.0, f);
     let g = p.dot(d);
     let pp = p.length_squared();
-    // Parameter range inside the bounding sphere of radius e + r.
-    let (bs, nb) = super::quad(1.0, 2.0 * g, pp - (e + r) * (e + r));
-    if nb < 2 {
+    let Some(bs) = sphere_span(e, r, p, d) else {
         return;
-    }
-    let bs = [bs[0].min(bs[1]), bs[0].max(bs[1])];
+    };
     let hh = pp + e * e - r * r;
     let dxy = d.x * d.x + d.y * d.y;
     let pdxy = p.x * d.x + p.y * d.y;
@@ -316,15 +321,11 @@ pub(crate) fn cap_quartic(
         1.0,
     ];
     scratch.roots.clear();
-    real_roots_in(&c, bs[0], bs[1], ROOT_TOL, &mut scratch.roots);
+    real_roots_in(&c, bs.0, bs.1, ROOT_TOL, &mut scratch.roots);
     for &t in &scratch.roots {
         let q = o + d * t;
         let outer = e + (r * r - (q.z - f).powi(2)).max(0.0).sqrt();
-        if q.z >= z0 - BAND_EPS
-            && q.z <= z1 + BAND_EPS
-            && q.x.hypot(q.y) >= e - BAND_EPS
-            && (q.x.hypot(q.y) - outer).abs() <= 1e-6
-        {
+        if on_band(q, e, (z0, z1)) && (q.x.hypot(q.y) - outer).abs() <= 1e-6 {
             acc.add(t);
         }
     }
