@@ -315,3 +315,53 @@ fn volume_never_increases_and_a_second_pass_removes_nothing() {
         v = v1;
     }
 }
+
+/// Round tools (ball, bull-nose) turning while they move are cut as exact instances whose
+/// spacing is set by a second-order bound (`swarf_sweep::five_axis`, "Instances"): the cuts
+/// grow like `1/√T`, where constant-axis pieces (first order) grow like `1/T`. The removal
+/// converges, and an instance never cuts outside the true sweep, so a finer tolerance never
+/// removes less than a coarser one by more than the coarser one's gap over the boundary.
+#[test]
+fn round_tools_turning_need_cuts_growing_as_one_over_root_t() {
+    let turn = 20f64.to_radians();
+    let start = Pose {
+        tip: Vec3::new(-1.5, 0.0, 0.0),
+        axis: Vec3::Z,
+    };
+    let end = Pose {
+        tip: Vec3::new(1.5, 0.0, 0.0),
+        axis: Vec3::new(turn.sin(), 0.0, turn.cos()),
+    };
+    let p = one_move(
+        Machine::three_axis(),
+        AxisSource::Program,
+        start,
+        end,
+        Axes::default(),
+        Axes::default(),
+    );
+    let (lo, hi) = (Vec3::new(-12.0, -7.0, -1.0), Vec3::new(12.0, 7.0, 8.0));
+    for cutter in [
+        Cutter::ball(10.0).unwrap(),
+        Cutter::bull(10.0, 2.0).unwrap(),
+    ] {
+        let block = TriDexel::from_box(lo, hi, 0.2).unwrap();
+        let v0 = block.volume();
+        let tool = ToolShape::new(&cutter);
+        let mut runs = Vec::new();
+        for tol in [0.01, 0.001, 0.0001] {
+            let mut s = block.clone();
+            let cut = s.cut_move(&p, 0, &tool, tol).unwrap();
+            assert!(cut.error_bound_mm <= tol);
+            runs.push((tol, cut.sub_moves, v0 - s.volume()));
+        }
+        println!("{cutter:?}: (tol, cuts, removed) {runs:?}");
+        for w in runs.windows(2) {
+            let ((t0, n0, v0), (_, n1, v1)) = (w[0], w[1]);
+            // √10 ≈ 3.2 per decade (the pieces' 10 would fail).
+            assert!(n1 as f64 <= 4.5 * n0 as f64, "{cutter:?}: {n0} → {n1} cuts");
+            // The boundary of the removal is under 2000 mm² here.
+            assert!(v1 >= v0 - t0 * 2000.0, "{cutter:?}: {v0} → {v1}");
+        }
+    }
+}

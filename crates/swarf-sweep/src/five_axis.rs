@@ -76,6 +76,39 @@
 //! the rays near it), so the simple bounded scheme is used. (The stock screens a move against its
 //! material at a coarse tolerance before the fine bisection, `swarf_stock::cut`; that changes
 //! the time, not the result.)
+//!
+//! # Instances
+//! A round tool needs far fewer cuts as a union of exact **instances** `C(s_i)`, second order
+//! in their spacing. Where every point of the tool lies in a ball of radius `ρ` inside the tool
+//! (a ball or bull-nose end mill and a shank of its diameter, up to `2ρ` below the first sharp
+//! edge: `ToolShape::round_region`), write the tool as the union of those balls, centres `p`
+//! (`|p| ≤ r_c` from the tip). Take `R(s)` the rotation that carries +Z to `a(s)` by parallel
+//! transport (angular velocity `ω = a × a'`, so `|ω| ≤ W` and `|ω'| ≤ |a''| ≤ V₂`; any rotation
+//! taking +Z to `a` gives the same solid of revolution). A centre moves on
+//! `x(s) = T(s) + R(s)·p`, with
+//!
+//! ```text
+//! |x'| ≤ M₁ + W·r_c,      |x''| ≤ M₂ + (V₂ + W²)·r_c.
+//! ```
+//!
+//! Over `[s0, s1]` the centre stays within `e = |x''|max·Δ²/8` of the chord between its ends,
+//! which are `d ≤ |x'|max·Δ` apart. Two balls of radius `ρ` at the ends of a segment of length
+//! `d` contain the ball of radius `√(ρ² − d²/4)` about any point of it; so the ball about
+//! `x(s)` lies within
+//!
+//! ```text
+//! g = e + ρ − √(ρ² − d²/4)       (≈ e + d²/(8ρ))
+//! ```
+//!
+//! of `C(s0) ∪ C(s1)` ([`MotionBound::instance_gap`]), and a point deeper than `g` inside
+//! `C(s)` is inside the union (it lies in the ball of radius `ρ − depth` about the centre of the
+//! ball touching its nearest boundary point). The instances are the true tool, so they never
+//! remove anything outside the true sweep. `g` is second order in `Δ`: the count grows as
+//! `1/√T` where constant-axis pieces grow as `1/T`, and a short move that turns (a 5-axis
+//! finishing path) needs a few instances where it needs tens of pieces; a long move that barely
+//! turns is still cheaper as pieces (they follow the translation exactly), and the stock takes
+//! whichever is fewer. [`instance_times`] splits a range into equal parts, as many as the whole
+//! range's rates ask for, each checked on its own rates.
 
 use crate::error::SweepError;
 use crate::swept::SweepShape;
@@ -307,16 +340,24 @@ impl MotionBound {
     /// Bound on the Hausdorff distance between the volume a shape of reach `reach` sweeps over
     /// `[s0, s1]` and the sweep of its sub-move (axis at the middle, pivot along the chord), mm.
     pub fn error_bound(&self, s0: f64, s1: f64, reach: Reach) -> f64 {
-        let (m2, w, v2) = self.rates(s0, s1);
+        let (_, m2, w, v2) = self.rates(s0, s1);
         let d = s1 - s0;
         (m2 + reach.pivot.abs() * v2) * d * d / 8.0 + reach.radius * w * d / 2.0
     }
 
-    /// `(M₂, W, V₂)` on `[s0, s1]`: bounds on the tip's second derivative, the axis' speed and
-    /// the axis' second derivative.
-    fn rates(&self, s0: f64, s1: f64) -> (f64, f64, f64) {
+    /// Bound on how deep material the union of the true instances at `s0` and `s1` can leave
+    /// inside the true sweep of `[s0, s1]` of a tool region whose every point lies in a ball of
+    /// radius `rho` inside the tool, the balls' centres within `centre_reach` of the tip, mm
+    /// (module documentation, "Instances"); infinite when the instances are too far apart.
+    pub fn instance_gap(&self, s0: f64, s1: f64, rho: f64, centre_reach: f64) -> f64 {
+        gap_with(self.rates(s0, s1), s1 - s0, rho, centre_reach)
+    }
+
+    /// `(M₁, M₂, W, V₂)` on `[s0, s1]`: bounds on the tip's first and second derivatives, the
+    /// axis' speed and the axis' second derivative.
+    fn rates(&self, s0: f64, s1: f64) -> (f64, f64, f64, f64) {
         match &self.motion {
-            Motion::Program { tip, rate } => (tip.d2, *rate, rate * rate),
+            Motion::Program { tip, rate } => (tip.d1, tip.d2, *rate, rate * rate),
             Motion::Machine {
                 steps,
                 slides,
@@ -350,7 +391,11 @@ impl MotionBound {
                         }
                     }
                 }
-                (if *tcp { slides.d2 } else { b2 }, w, v2)
+                if *tcp {
+                    (slides.d1, slides.d2, w, v2)
+                } else {
+                    (b1, b2, w, v2)
+                }
             }
         }
     }
@@ -458,6 +503,89 @@ pub fn subdivide_range(
         }
     }
     Ok(())
+}
+
+/// [`MotionBound::instance_gap`] for the rates `(M₁, M₂, W, V₂)` and a part of length `d`.
+fn gap_with((m1, m2, w, v2): (f64, f64, f64, f64), d: f64, rho: f64, centre_reach: f64) -> f64 {
+    let travel = (m1 + w * centre_reach) * d;
+    let chord = (m2 + (v2 + w * w) * centre_reach) * d * d / 8.0;
+    let half = 0.5 * travel;
+    // (NaN rates fail too.)
+    if half.partial_cmp(&rho) != Some(std::cmp::Ordering::Less) {
+        return f64::INFINITY;
+    }
+    // ρ − √(ρ² − (d/2)²), written without cancellation.
+    chord + half * half / (rho + (rho * rho - half * half).sqrt())
+}
+
+/// The parameters in `range` of move `index` of `program` at which exact instances of a tool
+/// region of rolling radius `rho` (balls' centres within `centre_reach` of the tip) leave no
+/// material deeper than `tol` (mm) inside the region's true sweep, by bisecting `range` until
+/// [`MotionBound::instance_gap`] `≤ tol` on every part; appended to `times` in increasing order,
+/// both ends of `range` included. Returns the largest gap of any part.
+///
+/// # Errors
+/// As [`subdivide`].
+pub fn instance_times(
+    program: &Program,
+    index: usize,
+    (rho, centre_reach): (f64, f64),
+    tol: f64,
+    range: (f64, f64),
+    times: &mut Vec<f64>,
+) -> Result<f64, SweepError> {
+    check_tolerance(program, index, tol)?;
+    let m = &program.moves[index];
+    let bound = MotionBound::new(program, m);
+    let mut worst = 0.0f64;
+    let first = times.len();
+    times.push(range.0);
+    // Equal parts, as many as the whole range's rates ask for (fewer than bisection's powers
+    // of two); each is then checked on its own rates, and bisected if need be.
+    let (len, rates) = (range.1 - range.0, bound.rates(range.0, range.1));
+    let fits = |n: f64| gap_with(rates, len / n, rho, centre_reach) <= tol;
+    let mut n = 1.0f64;
+    while !fits(n) && n < MAX_SUB_MOVES as f64 {
+        n *= 2.0;
+    }
+    let (mut lo, mut hi) = (0.5 * n, n);
+    while hi - lo > 1.0 {
+        let mid = (0.5 * (lo + hi)).floor();
+        if fits(mid) {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    let n = hi.max(1.0) as usize;
+    let at = |i: usize| {
+        if i == n {
+            range.1
+        } else {
+            range.0 + len * i as f64 / n as f64
+        }
+    };
+    let mut stack: Vec<(f64, f64)> = (0..n).rev().map(|i| (at(i), at(i + 1))).collect();
+    while let Some((s0, s1)) = stack.pop() {
+        let g = bound.instance_gap(s0, s1, rho, centre_reach);
+        if g <= tol {
+            worst = worst.max(g);
+            times.push(s1);
+        } else if times.len() - first + stack.len() >= MAX_SUB_MOVES || s1 - s0 < 1e-12 {
+            return Err(SweepError::Unsupported {
+                index,
+                line: m.line,
+                why: format!(
+                    "the 5-axis move needs more than {MAX_SUB_MOVES} tool instances to stay within {tol} mm (gap bound {g:.3e} mm on [{s0}, {s1}])"
+                ),
+            });
+        } else {
+            let sm = 0.5 * (s0 + s1);
+            stack.push((sm, s1));
+            stack.push((s0, sm));
+        }
+    }
+    Ok(worst)
 }
 
 /// `Ok` when `tol` is a positive finite chordal tolerance for move `index`.

@@ -84,4 +84,4 @@ pub use tangency::{
     Feasibility, FeedRange, MotionClass, PieceEngagement, PieceRole, Side,
 };
 pub use tolerance::*;
-pub use tool_shape::ToolShape;
+pub use tool_shape::{InstanceBand, ToolShape};

@@ -1,12 +1,13 @@
 //! Cutting 5-axis simultaneous moves: the constant-axis sub-moves of `swarf_sweep::five_axis`
-//! (with its proven bound), screened against the material first and cut exactly.
+//! (with its proven bound), or for a round tool its exact instances (second order), screened
+//! against the material first and cut exactly.
 
 use crate::error::StockError;
 use crate::tridexel::{CutStats, SegmentCut, TriDexel};
 use swarf_geom::Aabb;
 use swarf_path::Program;
-use swarf_sweep::five_axis::{check_tolerance, subdivide_range, SubMove};
-use swarf_sweep::{SweepShape, SweptConvex, ToolShape};
+use swarf_sweep::five_axis::{check_tolerance, instance_times, subdivide_range, SubMove};
+use swarf_sweep::{InstanceBand, Reach, SweepShape, SweptConvex, ToolShape};
 
 /// Bound (mm) with which a 5-axis move is first split to screen it against the material: the
 /// pieces whose swept box, grown by this bound and the tolerance, holds no material are not
@@ -103,6 +104,112 @@ impl TriDexel {
         (total, worst)
     }
 
+    /// The constant-axis pieces of the band `shape` (reach `reach`) along `range` of move
+    /// `index` that can reach material. Coarse pieces are screened first: the fine pieces of a
+    /// coarse one sweep within `bound + tol` of its sweep, so if its box grown by that holds no
+    /// material they would remove nothing and are not made.
+    fn screened_pieces(
+        &self,
+        program: &Program,
+        index: usize,
+        range: (f64, f64),
+        shape: &SweepShape,
+        reach: Reach,
+        tol: f64,
+    ) -> Result<Vec<SubMove>, StockError> {
+        let mut pieces = Vec::new();
+        let mut screened = Vec::new();
+        subdivide_range(
+            program,
+            index,
+            reach,
+            tol.max(SCREEN_TOLERANCE_MM),
+            range,
+            &mut screened,
+        )?;
+        for c in screened {
+            let Some(b) = piece_box(shape, &c) else {
+                continue;
+            };
+            if !material_in(self, &b.inflated(c.error_bound + tol)) {
+                continue;
+            }
+            if c.error_bound <= tol {
+                pieces.push(c);
+            } else {
+                subdivide_range(program, index, reach, tol, (c.s0, c.s1), &mut pieces)?;
+            }
+        }
+        Ok(pieces)
+    }
+
+    /// Cuts the tool around a round region (`region`) as exact tool instances along `range` of
+    /// move `index` (`swarf_sweep::five_axis`, "Instances") when they are fewer than `pieces`,
+    /// the constant-axis pieces they replace; returns whether it did. Instances whose box holds
+    /// no material are skipped (they could remove nothing).
+    #[allow(clippy::too_many_arguments)]
+    fn cut_instances(
+        &mut self,
+        program: &Program,
+        index: usize,
+        range: (f64, f64),
+        region: &InstanceBand,
+        pieces: usize,
+        tol: f64,
+        out: &mut SegmentCut,
+    ) -> Result<bool, StockError> {
+        let mut times = Vec::new();
+        let gap = instance_times(
+            program,
+            index,
+            (region.rho, region.centre_reach),
+            tol,
+            range,
+            &mut times,
+        )?;
+        if times.len() >= pieces {
+            return Ok(false);
+        }
+        let m = &program.moves[index];
+        let instances: Vec<SubMove> = times
+            .iter()
+            .map(|&s| {
+                // The end poses as the program states them.
+                let pose = if s == 0.0 {
+                    m.start
+                } else if s == 1.0 {
+                    m.end
+                } else {
+                    program.pose_at(m, s)
+                };
+                SubMove {
+                    s0: s,
+                    s1: s,
+                    tip0: pose.tip,
+                    tip1: pose.tip,
+                    axis: pose.axis.normalize(),
+                    error_bound: gap,
+                }
+            })
+            .collect();
+        for (w, slab) in region.slabs.iter().enumerate() {
+            let live: Vec<SubMove> = instances
+                .iter()
+                .filter(|c| piece_box(slab, c).is_some_and(|b| material_in(self, &b)))
+                .copied()
+                .collect();
+            let (stats, worst) = self.cut_shape_pieces(slab, &live, tol);
+            out.error_bound_mm = out.error_bound_mm.max(worst);
+            if w == 0 {
+                out.cutting = out.cutting.merged(stats);
+                out.sub_moves += live.len() as u64;
+            } else {
+                out.non_cutting = out.non_cutting.merged(stats);
+            }
+        }
+        Ok(true)
+    }
+
     /// Cuts move `index` of `program`, a 5-axis simultaneous move ([`Program::is_five_axis`]), as
     /// constant-axis sub-moves within `tol` mm of the true sweep (module documentation): the
     /// cutting part and the shank/holder are cut into bands no taller than their radius
@@ -110,8 +217,11 @@ impl TriDexel {
     /// (`swarf_sweep::five_axis::Reach`), which for a long part is a fraction of the whole
     /// part's.
     /// Pieces that cannot reach any material are screened out first ([`SCREEN_TOLERANCE_MM`]).
-    /// [`SegmentCut::sub_moves`] counts the cutting part's sub-moves that were cut and
-    /// [`SegmentCut::error_bound_mm`] is the largest bound of any of them.
+    /// The bands that can, and lie in the tool's round region (`ToolShape::round_region`), are
+    /// cut together as exact tool instances instead when that takes fewer cuts
+    /// (`swarf_sweep::five_axis`, "Instances": second order, never outside the true sweep).
+    /// [`SegmentCut::sub_moves`] counts the cutting part's sub-moves and instances that were cut
+    /// and [`SegmentCut::error_bound_mm`] is the largest bound of any of them.
     ///
     /// # Errors
     /// As [`swarf_sweep::five_axis::subdivide`].
@@ -136,44 +246,44 @@ impl TriDexel {
     ) -> Result<SegmentCut, StockError> {
         check_tolerance(program, index, tol)?;
         let mut out = SegmentCut::default();
+        // Each band of a part separately: the union of the bands' sweeps is the part's, and a
+        // band's bound scales with its own reach, not the part's length. First the pieces of
+        // every band that can reach material.
+        let mut live = Vec::new();
         for k in 0..2 {
-            // Each band of the part separately: the union of the bands' sweeps is the part's,
-            // and a band's bound scales with its own reach, not the part's length.
-            for (shape, r) in tool.rotating_bands(k) {
-                // Screen coarse pieces against the material first: the fine pieces of a coarse
-                // one sweep within `bound + tol` of its sweep, so if its box grown by that holds
-                // no material they would remove nothing and are not made.
-                let mut pieces = Vec::new();
-                let mut screened = Vec::new();
-                subdivide_range(
-                    program,
-                    index,
-                    *r,
-                    tol.max(SCREEN_TOLERANCE_MM),
-                    range,
-                    &mut screened,
-                )?;
-                for c in screened {
-                    let Some(b) = piece_box(shape, &c) else {
-                        continue;
-                    };
-                    if !material_in(self, &b.inflated(c.error_bound + tol)) {
-                        continue;
-                    }
-                    if c.error_bound <= tol {
-                        pieces.push(c);
-                    } else {
-                        subdivide_range(program, index, *r, tol, (c.s0, c.s1), &mut pieces)?;
-                    }
+            for ((shape, r), round) in tool.rotating_bands(k).iter().zip(tool.instance_bands(k)) {
+                let pieces = self.screened_pieces(program, index, range, shape, *r, tol)?;
+                if !pieces.is_empty() {
+                    live.push((k, shape, pieces, *round));
                 }
-                let (stats, worst) = self.cut_shape_pieces(shape, &pieces, tol);
-                out.error_bound_mm = out.error_bound_mm.max(worst);
-                if k == 0 {
-                    out.cutting = out.cutting.merged(stats);
-                    out.sub_moves += pieces.len() as u64;
-                } else {
-                    out.non_cutting = out.non_cutting.merged(stats);
-                }
+            }
+        }
+        // The live bands round enough for instances, cut together as instances of the tool
+        // around them when that takes fewer cuts than their pieces.
+        let (mut lo, mut hi, mut round_pieces) = (f64::INFINITY, f64::NEG_INFINITY, 0);
+        for (_, _, pieces, round) in &live {
+            if let Some((a, b)) = round {
+                (lo, hi) = (lo.min(*a), hi.max(*b));
+                round_pieces += pieces.len();
+            }
+        }
+        let by_instances = match tool.round_region((lo, hi)) {
+            Some(region) => {
+                self.cut_instances(program, index, range, &region, round_pieces, tol, &mut out)?
+            }
+            None => false,
+        };
+        for (k, shape, pieces, round) in live {
+            if by_instances && round.is_some() {
+                continue;
+            }
+            let (stats, worst) = self.cut_shape_pieces(shape, &pieces, tol);
+            out.error_bound_mm = out.error_bound_mm.max(worst);
+            if k == 0 {
+                out.cutting = out.cutting.merged(stats);
+                out.sub_moves += pieces.len() as u64;
+            } else {
+                out.non_cutting = out.non_cutting.merged(stats);
             }
         }
         Ok(out)
