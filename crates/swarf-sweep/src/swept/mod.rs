@@ -101,6 +101,10 @@ impl Acc {
     }
 }
 
+/// Two crossings of a line with a tool instance this far apart (mm) are its entry and exit
+/// (closer ones may be one crossing found on two elements meeting there).
+const INSTANCE_CROSSINGS_APART: f64 = 1e-6;
+
 /// Real roots of `a·t² + b·t + c` (cancellation-free; linear when `a = 0`), inlined here for
 /// the per-ray loop (same convention as `swarf_geom::poly::quadratic_roots`).
 #[inline(always)]
@@ -564,6 +568,15 @@ impl<'a> SweptConvex<'a> {
                 }
             }
         }
+        if v == Vec3::ZERO {
+            // An instance: its crossings are final once two are found (below), so the cheap
+            // elements go first and the tori, a tenth of a microsecond each, last.
+            let torus = |ui: u8| {
+                let unit = &self.units[ui as usize];
+                !unit.joint && matches!(p.elements()[unit.index], Element::Arc { e, .. } if e > 0.0)
+            };
+            order[..n].sort_by_key(|&ui| torus(ui));
+        }
         DirConsts {
             d,
             v,
@@ -638,6 +651,11 @@ impl<'a> SweptConvex<'a> {
                 if !(need_lo || need_hi) {
                     continue;
                 }
+            }
+            if v == Vec3::ZERO && acc.hi - acc.lo > INSTANCE_CROSSINGS_APART {
+                // A line meets the boundary of a convex solid twice, unless it lies in a face:
+                // two crossings apart are its entry and exit.
+                break;
             }
             if unit.joint {
                 if dc.envelope {
