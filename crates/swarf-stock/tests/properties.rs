@@ -149,6 +149,80 @@ fn arb_move() -> impl Strategy<Value = (Vec3, Vec3, Vec3)> {
     (arb_point(), arb_point(), arb_axis())
 }
 
+/// A step of a chained path: anywhere, level (no change along Z), straight up or down, or
+/// along one world axis — the cases the trailing-start skip tells apart.
+fn arb_step() -> impl Strategy<Value = Vec3> {
+    prop_oneof![
+        (-3.0f64..3.0, -3.0f64..3.0, -2.0f64..2.0).prop_map(|(x, y, z)| Vec3::new(x, y, z)),
+        (-3.0f64..3.0, -3.0f64..3.0).prop_map(|(x, y)| Vec3::new(x, y, 0.0)),
+        (-2.0f64..2.0).prop_map(|z| Vec3::new(0.0, 0.0, z)),
+        (-3.0f64..3.0, 0usize..3).prop_map(|(t, k)| {
+            let mut v = Vec3::ZERO;
+            v[k] = t;
+            v
+        }),
+        Just(Vec3::ZERO),
+    ]
+}
+
+/// Every ray of `s` is `state` less the exact swept intervals of `moves` (both groups).
+fn check_exact(
+    s: &TriDexel,
+    state: &TriDexel,
+    tool: &ToolShape,
+    moves: &[swarf_stock::LinearMove],
+) -> Result<(), TestCaseError> {
+    let g = *s.grid();
+    let shapes = [tool.cutting(), tool.non_cutting()];
+    for k in 0..3 {
+        let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+        let mut dir = Vec3::ZERO;
+        dir[k] = 1.0;
+        let (nu, nv) = s.family(k).dims();
+        for j in 0..nv {
+            for i in 0..nu {
+                let mut o = Vec3::ZERO;
+                o[u] = g.center(u, i);
+                o[v] = g.center(v, j);
+                let mut sw = Vec::new();
+                for m in moves {
+                    for sh in shapes {
+                        for p in sh.parts() {
+                            let sc =
+                                swarf_sweep::SweptConvex::new(p, m.tip0, m.axis, m.tip1 - m.tip0);
+                            sw.extend(sc.ray_interval(o, dir));
+                        }
+                    }
+                }
+                let want = subtract_all(state.family(k).ray(i, j), &sw);
+                let got = s.family(k).ray(i, j);
+                prop_assert_eq!(
+                    got.len(),
+                    want.len(),
+                    "family {} ray ({}, {}): {:?} vs {:?}",
+                    k,
+                    i,
+                    j,
+                    got,
+                    want
+                );
+                for (a, b) in got.iter().zip(&want) {
+                    prop_assert!(
+                        (a.enter - b.0).abs() <= 1e-9 && (a.exit - b.1).abs() <= 1e-9,
+                        "family {} ray ({}, {}): {:?} vs {:?}",
+                        k,
+                        i,
+                        j,
+                        got,
+                        want
+                    );
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
 proptest! {
     #![proptest_config(swarf_testdata::proptest_config(16))]
 
@@ -183,37 +257,67 @@ proptest! {
             .map(|&(tip0, tip1, axis)| swarf_stock::LinearMove { tip0, tip1, axis })
             .collect();
         s.cut_linear_batch(&tool, &moves);
-        let g = *s.grid();
-        let shapes = [tool.cutting(), tool.non_cutting()];
-        for k in 0..3 {
-            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
-            let mut dir = Vec3::ZERO;
-            dir[k] = 1.0;
-            let (nu, nv) = s.family(k).dims();
-            for j in 0..nv {
-                for i in 0..nu {
-                    let mut o = Vec3::ZERO;
-                    o[u] = g.center(u, i);
-                    o[v] = g.center(v, j);
-                    let mut sw = Vec::new();
-                    for m in &moves {
-                        for sh in shapes {
-                            for p in sh.parts() {
-                                let sc = swarf_sweep::SweptConvex::new(p, m.tip0, m.axis, m.tip1 - m.tip0);
-                                sw.extend(sc.ray_interval(o, dir));
-                            }
-                        }
-                    }
-                    let was = state.family(k).ray(i, j);
-                    let want = subtract_all(was, &sw);
-                    let got = s.family(k).ray(i, j);
-                    prop_assert_eq!(got.len(), want.len(), "family {} ray ({}, {}): {:?} vs {:?}", k, i, j, got, want);
-                    for (a, b) in got.iter().zip(&want) {
-                        prop_assert!((a.enter - b.0).abs() <= 1e-9 && (a.exit - b.1).abs() <= 1e-9,
-                            "family {} ray ({}, {}): {:?} vs {:?}", k, i, j, got, want);
-                    }
-                }
-            }
-        }
+        check_exact(&s, &state, &tool, &moves)?;
+    }
+
+    /// Along a chained path (each move starting where the last ended, in one call or across
+    /// two; level, vertical and axis-aligned steps included; tools short enough that the tops
+    /// of both parts are inside the stock), every ray ends exactly as the material less the
+    /// moves' exact swept intervals — the guard any skipping of rays a move's start instance
+    /// already cut must pass.
+    #[test]
+    fn chained_moves_skip_only_rays_already_cut(
+        kind in 0u8..5,
+        d in 2.0f64..8.0,
+        before in prop::collection::vec(arb_move(), 0..3),
+        start in arb_point(),
+        steps in prop::collection::vec(arb_step(), 1..6),
+        axis in prop_oneof![Just(Vec3::Z), Just(Vec3::X), Just(Vec3::Y), arb_axis()],
+        batch_kind in 0u8..5,
+        split in 0usize..6,
+        short in any::<bool>(),
+    ) {
+        let mut s = stock();
+        let earlier = ToolShape::new(&cutter(kind, d));
+        let moves: Vec<_> = before
+            .iter()
+            .map(|&(tip0, tip1, axis)| swarf_stock::LinearMove { tip0, tip1, axis })
+            .collect();
+        s.cut_linear_batch(&earlier, &moves);
+        let state = s.clone();
+        // A short tool (flutes one diameter long, the shank half that) puts the tops of both
+        // parts inside the stock, where a rising tool's tops lead.
+        let c = cutter(batch_kind, d.min(6.0));
+        let c = if short {
+            let (d, h) = (c.max_diameter(), c.apt_params().h.min(c.max_diameter()));
+            let opts = swarf_tool::CutterOptions {
+                flute_length: Some(h),
+                overall_length: Some(1.5 * h),
+                ..swarf_tool::CutterOptions::default()
+            };
+            let nums: Vec<f64> = match batch_kind % 5 {
+                2 => vec![d, d / 4.0],
+                3 => vec![d, 118.0],
+                4 => vec![d, 6.0],
+                _ => vec![d],
+            };
+            Cutter::named(c.kind(), &nums, &opts).unwrap_or(c)
+        } else {
+            c
+        };
+        let tool = ToolShape::new(&c);
+        let mut tip = start;
+        let chain: Vec<_> = steps
+            .iter()
+            .map(|&v| {
+                let m = swarf_stock::LinearMove { tip0: tip, tip1: tip + v, axis };
+                tip += v;
+                m
+            })
+            .collect();
+        let cut = split.min(chain.len());
+        s.cut_linear_batch(&tool, &chain[..cut]);
+        s.cut_linear_batch(&tool, &chain[cut..]);
+        check_exact(&s, &state, &tool, &chain)?;
     }
 }
