@@ -165,6 +165,14 @@ fn arb_step() -> impl Strategy<Value = Vec3> {
     ]
 }
 
+/// The moves `(tip0, tip1, axis)` as the stock takes them.
+fn linear(moves: &[(Vec3, Vec3, Vec3)]) -> Vec<swarf_stock::LinearMove> {
+    moves
+        .iter()
+        .map(|&(tip0, tip1, axis)| swarf_stock::LinearMove { tip0, tip1, axis })
+        .collect()
+}
+
 /// Every ray of `s` is `state` less the exact swept intervals of `moves` (both groups).
 fn check_exact(
     s: &TriDexel,
@@ -243,19 +251,12 @@ proptest! {
         // A random state: earlier batches of another cutter.
         let earlier = ToolShape::new(&cutter(kind, d));
         for chunk in before.chunks(2) {
-            let moves: Vec<_> = chunk
-                .iter()
-                .map(|&(tip0, tip1, axis)| swarf_stock::LinearMove { tip0, tip1, axis })
-                .collect();
-            s.cut_linear_batch(&earlier, &moves);
+            s.cut_linear_batch(&earlier, &linear(chunk));
         }
         let state = s.clone();
         let c = cutter(batch_kind, d.min(6.0));
         let tool = ToolShape::new(&c);
-        let moves: Vec<_> = batch
-            .iter()
-            .map(|&(tip0, tip1, axis)| swarf_stock::LinearMove { tip0, tip1, axis })
-            .collect();
+        let moves = linear(&batch);
         s.cut_linear_batch(&tool, &moves);
         check_exact(&s, &state, &tool, &moves)?;
     }
@@ -266,7 +267,7 @@ proptest! {
     /// moves' exact swept intervals — the guard any skipping of rays a move's start instance
     /// already cut must pass.
     #[test]
-    fn chained_moves_skip_only_rays_already_cut(
+    fn chained_moves_are_cut_exactly(
         kind in 0u8..5,
         d in 2.0f64..8.0,
         before in prop::collection::vec(arb_move(), 0..3),
@@ -279,11 +280,7 @@ proptest! {
     ) {
         let mut s = stock();
         let earlier = ToolShape::new(&cutter(kind, d));
-        let moves: Vec<_> = before
-            .iter()
-            .map(|&(tip0, tip1, axis)| swarf_stock::LinearMove { tip0, tip1, axis })
-            .collect();
-        s.cut_linear_batch(&earlier, &moves);
+        s.cut_linear_batch(&earlier, &linear(&before));
         let state = s.clone();
         // A short tool (flutes one diameter long, the shank half that) puts the tops of both
         // parts inside the stock, where a rising tool's tops lead.

@@ -26,6 +26,18 @@ fn piece_box(shape: &SweepShape, p: &SubMove) -> Option<Aabb> {
         .reduce(|a, b| a.union(&b))
 }
 
+/// Adds to `out` what `cuts` sub-moves or instances of the cutting part (`group` 0) or the
+/// shank and holder (1) removed, and their largest bound.
+fn record(out: &mut SegmentCut, group: usize, (stats, worst): (CutStats, f64), cuts: usize) {
+    out.error_bound_mm = out.error_bound_mm.max(worst);
+    if group == 0 {
+        out.cutting = out.cutting.merged(stats);
+        out.sub_moves += cuts as u64;
+    } else {
+        out.non_cutting = out.non_cutting.merged(stats);
+    }
+}
+
 /// True when some ray of `stock` crossing `b` holds material inside `b`. When false, no cut
 /// within `b` can change the stock.
 fn material_in(stock: &TriDexel, b: &Aabb) -> bool {
@@ -198,14 +210,8 @@ impl TriDexel {
                 .filter(|c| piece_box(slab, c).is_some_and(|b| material_in(self, &b)))
                 .copied()
                 .collect();
-            let (stats, worst) = self.cut_shape_pieces(slab, &live, tol);
-            out.error_bound_mm = out.error_bound_mm.max(worst);
-            if w == 0 {
-                out.cutting = out.cutting.merged(stats);
-                out.sub_moves += live.len() as u64;
-            } else {
-                out.non_cutting = out.non_cutting.merged(stats);
-            }
+            let cut = self.cut_shape_pieces(slab, &live, tol);
+            record(out, w, cut, live.len());
         }
         Ok(true)
     }
@@ -277,14 +283,8 @@ impl TriDexel {
             if by_instances && round.is_some() {
                 continue;
             }
-            let (stats, worst) = self.cut_shape_pieces(shape, &pieces, tol);
-            out.error_bound_mm = out.error_bound_mm.max(worst);
-            if k == 0 {
-                out.cutting = out.cutting.merged(stats);
-                out.sub_moves += pieces.len() as u64;
-            } else {
-                out.non_cutting = out.non_cutting.merged(stats);
-            }
+            let cut = self.cut_shape_pieces(shape, &pieces, tol);
+            record(&mut out, k, cut, pieces.len());
         }
         Ok(out)
     }
