@@ -302,6 +302,9 @@ pub struct TriDexel {
     pub(crate) families: [DexelFamily; 3],
     /// The tag the next cut gives the ends it makes ([`TriDexel::set_move_tag`]).
     tag: MoveTag,
+    /// The last tool instance a 5-axis move was cut with (`cut::five_axis`), while nothing
+    /// has put material back: the next move, starting there, need not cut it again.
+    pub(crate) last_instance: Option<crate::cut::five_axis::CutInstance>,
 }
 
 impl TriDexel {
@@ -316,6 +319,7 @@ impl TriDexel {
             families: [0, 1, 2].map(|k| DexelFamily::new(k, &grid)),
             grid,
             tag: 0,
+            last_instance: None,
         }
     }
 

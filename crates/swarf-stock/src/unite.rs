@@ -27,6 +27,8 @@ impl TriDexel {
         assert_eq!(sweeps.len(), bounds.len(), "one optional bound per sweep");
         let grid = *self.grid();
         let boxes: Vec<Aabb> = sweeps.iter().map(SweptConvex::bbox).collect();
+        // Material may come back where the last instance was cut.
+        self.last_instance = None;
         for fam in &mut self.families {
             fam.tags = Vec::new();
             let k = fam.axis;

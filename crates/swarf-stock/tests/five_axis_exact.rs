@@ -365,3 +365,72 @@ fn round_tools_turning_need_cuts_growing_as_one_over_root_t() {
         }
     }
 }
+
+/// A 5-axis move starting where the last one ended does not cut its first instance again (the
+/// last move cut it); every ray ends exactly as when that instance is cut twice.
+#[test]
+fn the_shared_instance_of_chained_moves_is_cut_once() {
+    let tilt = |deg: f64| {
+        let t = deg.to_radians();
+        Vec3::new(t.sin(), 0.0, t.cos())
+    };
+    let poses = [
+        (Vec3::new(-3.0, 0.0, 0.0), tilt(0.0)),
+        (Vec3::new(-1.0, 0.2, 0.3), tilt(8.0)),
+        (Vec3::new(1.0, 0.5, 0.1), tilt(15.0)),
+        (Vec3::new(3.0, 0.4, -0.2), tilt(12.0)),
+    ];
+    let mut p = one_move(
+        Machine::three_axis(),
+        AxisSource::Program,
+        Pose {
+            tip: poses[0].0,
+            axis: poses[0].1,
+        },
+        Pose {
+            tip: poses[1].0,
+            axis: poses[1].1,
+        },
+        Axes::default(),
+        Axes::default(),
+    );
+    for w in poses[1..].windows(2) {
+        let mut m = p.moves[0];
+        m.start = Pose {
+            tip: w[0].0,
+            axis: w[0].1,
+        };
+        m.end = Pose {
+            tip: w[1].0,
+            axis: w[1].1,
+        };
+        p.moves.push(m);
+    }
+    let (lo, hi) = (Vec3::new(-10.0, -7.0, -1.0), Vec3::new(10.0, 7.0, 6.0));
+    for cutter in [Cutter::ball(8.0).unwrap(), Cutter::bull(10.0, 2.0).unwrap()] {
+        let tool = ToolShape::new(&cutter);
+        let mut once = TriDexel::from_box(lo, hi, 0.2).unwrap();
+        let mut twice = once.clone();
+        let (mut n_once, mut n_twice) = (0, 0);
+        for i in 0..p.moves.len() {
+            n_once += once.cut_move(&p, i, &tool, 1e-3).unwrap().sub_moves;
+            // Uniting nothing forgets the last instance: every move cuts all of its own.
+            twice.unite_swept(&[], &[]);
+            n_twice += twice.cut_move(&p, i, &tool, 1e-3).unwrap().sub_moves;
+        }
+        assert!(n_once < n_twice, "{n_once} vs {n_twice} cuts");
+        for k in 0..3 {
+            let (nu, nv) = once.family(k).dims();
+            for j in 0..nv {
+                for i in 0..nu {
+                    assert_eq!(
+                        once.family(k).ray(i, j),
+                        twice.family(k).ray(i, j),
+                        "{:?}: family {k} ray ({i}, {j})",
+                        cutter.kind()
+                    );
+                }
+            }
+        }
+    }
+}

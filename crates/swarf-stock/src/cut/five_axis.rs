@@ -4,6 +4,7 @@
 
 use crate::error::StockError;
 use crate::tridexel::{CutStats, SegmentCut, TriDexel};
+use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 use swarf_path::Program;
 use swarf_sweep::five_axis::{check_tolerance, instance_times, subdivide_range, SubMove};
@@ -24,6 +25,15 @@ fn piece_box(shape: &SweepShape, p: &SubMove) -> Option<Aabb> {
         .iter()
         .map(|part| SweptConvex::new(part, p.tip0, p.axis, p.tip1 - p.tip0).bbox())
         .reduce(|a, b| a.union(&b))
+}
+
+/// A tool instance cut into the stock: the tool around a round region
+/// (`InstanceBand::slabs`) at one pose.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct CutInstance {
+    slabs: [SweepShape; 2],
+    tip: Vec3,
+    axis: Vec3,
 }
 
 /// Adds to `out` what `cuts` sub-moves or instances of the cutting part (`group` 0) or the
@@ -204,8 +214,23 @@ impl TriDexel {
                 }
             })
             .collect();
+        // A move starting where the last one ended need not cut that instance again (the
+        // stock only loses material; `unite` forgets it).
+        let first = instances[0];
+        let again = CutInstance {
+            slabs: region.slabs.clone(),
+            tip: first.tip0,
+            axis: first.axis,
+        };
+        let skip = usize::from(self.last_instance.as_ref() == Some(&again));
+        let last = instances[instances.len() - 1];
+        self.last_instance = Some(CutInstance {
+            slabs: region.slabs.clone(),
+            tip: last.tip0,
+            axis: last.axis,
+        });
         for (w, slab) in region.slabs.iter().enumerate() {
-            let live: Vec<SubMove> = instances
+            let live: Vec<SubMove> = instances[skip..]
                 .iter()
                 .filter(|c| piece_box(slab, c).is_some_and(|b| material_in(self, &b)))
                 .copied()

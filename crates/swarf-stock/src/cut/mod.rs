@@ -1,7 +1,7 @@
 //! Cutting moves into the stock: linear moves with a fixed tool axis exactly, arcs and helices
 //! by chords within a chordal tolerance, with the shank and holder checked for collisions.
 
-mod five_axis;
+pub(crate) mod five_axis;
 
 pub use five_axis::{PIECES_PER_BATCH, SCREEN_TOLERANCE_MM};
 
