@@ -465,16 +465,7 @@ pub fn subdivide_range(
     while let Some((s0, s1)) = stack.pop() {
         let e = bound.error_bound(s0, s1, reach);
         if e <= tol {
-            // The end poses as the program states them (pose_at reproduces them to rounding).
-            let pose = |s: f64| {
-                if s == 0.0 {
-                    m.start
-                } else if s == 1.0 {
-                    m.end
-                } else {
-                    program.pose_at(m, s)
-                }
-            };
+            let pose = |s: f64| stated_pose(program, m, s);
             let pivot = |s: f64| {
                 let p = pose(s);
                 p.tip + p.axis.normalize() * reach.pivot
@@ -503,6 +494,18 @@ pub fn subdivide_range(
         }
     }
     Ok(())
+}
+
+/// The pose of move `m` at parameter `s`: its end poses as the program states them
+/// ([`Program::pose_at`] reproduces them only to rounding), else interpolated.
+pub fn stated_pose(program: &Program, m: &Move, s: f64) -> swarf_path::Pose {
+    if s == 0.0 {
+        m.start
+    } else if s == 1.0 {
+        m.end
+    } else {
+        program.pose_at(m, s)
+    }
 }
 
 /// [`MotionBound::instance_gap`] for the rates `(M₁, M₂, W, V₂)` and a part of length `d`.
@@ -544,8 +547,22 @@ pub fn instance_times(
     // of two); each is then checked on its own rates, and bisected if need be.
     let (len, rates) = (range.1 - range.0, bound.rates(range.0, range.1));
     let fits = |n: f64| gap_with(rates, len / n, rho, centre_reach) <= tol;
+    let too_many = |g: f64, (s0, s1): (f64, f64)| {
+        SweepError::Unsupported {
+        index,
+        line: m.line,
+        why: format!(
+            "the 5-axis move needs more than {MAX_SUB_MOVES} tool instances to stay within {tol} mm (gap bound {g:.3e} mm on [{s0}, {s1}])"
+        ),
+    }
+    };
     let mut n = 1.0f64;
-    while !fits(n) && n < MAX_SUB_MOVES as f64 {
+    while !fits(n) {
+        if n >= MAX_SUB_MOVES as f64 {
+            // Refused before any part is made.
+            let g = gap_with(rates, len / n, rho, centre_reach);
+            return Err(too_many(g, (range.0, range.0 + len / n)));
+        }
         n *= 2.0;
     }
     let (mut lo, mut hi) = (0.5 * n, n);
@@ -572,13 +589,7 @@ pub fn instance_times(
             worst = worst.max(g);
             times.push(s1);
         } else if times.len() - first + stack.len() >= MAX_SUB_MOVES || s1 - s0 < 1e-12 {
-            return Err(SweepError::Unsupported {
-                index,
-                line: m.line,
-                why: format!(
-                    "the 5-axis move needs more than {MAX_SUB_MOVES} tool instances to stay within {tol} mm (gap bound {g:.3e} mm on [{s0}, {s1}])"
-                ),
-            });
+            return Err(too_many(g, (s0, s1)));
         } else {
             let sm = 0.5 * (s0 + s1);
             stack.push((sm, s1));

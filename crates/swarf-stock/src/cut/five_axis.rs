@@ -7,7 +7,9 @@ use crate::tridexel::{CutStats, SegmentCut, TriDexel};
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 use swarf_path::Program;
-use swarf_sweep::five_axis::{check_tolerance, instance_times, subdivide_range, SubMove};
+use swarf_sweep::five_axis::{
+    check_tolerance, instance_times, stated_pose, subdivide_range, SubMove,
+};
 use swarf_sweep::{InstanceBand, Reach, SweepShape, SweptConvex, ToolShape};
 
 /// Bound (mm) with which a 5-axis move is first split to screen it against the material: the
@@ -175,7 +177,7 @@ impl TriDexel {
         program: &Program,
         index: usize,
         range: (f64, f64),
-        region: &InstanceBand,
+        region: InstanceBand,
         pieces: usize,
         tol: f64,
         out: &mut SegmentCut,
@@ -196,14 +198,7 @@ impl TriDexel {
         let instances: Vec<SubMove> = times
             .iter()
             .map(|&s| {
-                // The end poses as the program states them.
-                let pose = if s == 0.0 {
-                    m.start
-                } else if s == 1.0 {
-                    m.end
-                } else {
-                    program.pose_at(m, s)
-                };
+                let pose = stated_pose(program, m, s);
                 SubMove {
                     s0: s,
                     s1: s,
@@ -217,18 +212,9 @@ impl TriDexel {
         // A move starting where the last one ended need not cut that instance again (the
         // stock only loses material; `unite` forgets it).
         let first = instances[0];
-        let again = CutInstance {
-            slabs: region.slabs.clone(),
-            tip: first.tip0,
-            axis: first.axis,
-        };
-        let skip = usize::from(self.last_instance.as_ref() == Some(&again));
-        let last = instances[instances.len() - 1];
-        self.last_instance = Some(CutInstance {
-            slabs: region.slabs.clone(),
-            tip: last.tip0,
-            axis: last.axis,
-        });
+        let skip = usize::from(self.last_instance.as_ref().is_some_and(|l| {
+            l.tip == first.tip0 && l.axis == first.axis && l.slabs == region.slabs
+        }));
         for (w, slab) in region.slabs.iter().enumerate() {
             let live: Vec<SubMove> = instances[skip..]
                 .iter()
@@ -238,6 +224,12 @@ impl TriDexel {
             let cut = self.cut_shape_pieces(slab, &live, tol);
             record(out, w, cut, live.len());
         }
+        let last = instances[instances.len() - 1];
+        self.last_instance = Some(CutInstance {
+            slabs: region.slabs,
+            tip: last.tip0,
+            axis: last.axis,
+        });
         Ok(true)
     }
 
@@ -300,7 +292,7 @@ impl TriDexel {
         }
         let by_instances = match tool.round_region((lo, hi)) {
             Some(region) => {
-                self.cut_instances(program, index, range, &region, round_pieces, tol, &mut out)?
+                self.cut_instances(program, index, range, region, round_pieces, tol, &mut out)?
             }
             None => false,
         };
