@@ -11,7 +11,7 @@ use smallvec::SmallVec;
 use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_geom::Aabb;
 use swarf_sweep::swept::{DexelRays, Scratch};
-use swarf_sweep::{SweepShape, SweptConvex, ToolShape};
+use swarf_sweep::{Front, FrontBlock, SweepShape, SweptConvex, ToolShape};
 
 /// Side of the square tiles of rays (tiles are stored contiguously and carry a conservative
 /// bound of their material along the ray, so whole tiles are skipped without touching rays).
@@ -302,9 +302,10 @@ pub struct TriDexel {
     pub(crate) families: [DexelFamily; 3],
     /// The tag the next cut gives the ends it makes ([`TriDexel::set_move_tag`]).
     tag: MoveTag,
-    /// The last tool instance a 5-axis move was cut with (`cut::five_axis`), while nothing
-    /// has put material back: the next move, starting there, need not cut it again.
-    pub(crate) last_instance: Option<crate::cut::five_axis::CutInstance>,
+    /// The last tool instance a move was cut with (a linear move's end, or a 5-axis move's
+    /// last instance, `cut::five_axis`), while nothing has put material back: the next move,
+    /// starting there, need not cut it again.
+    pub(crate) last_instance: Option<crate::cut::CutInstance>,
 }
 
 impl TriDexel {
@@ -534,7 +535,7 @@ impl TriDexel {
         moves: &[[&[SweptConvex<'_>]; G]],
         visitor: Option<&dyn RemovalVisitor>,
     ) -> Vec<[CutStats; G]> {
-        self.subtract_tagged(moves, 0, visitor)
+        self.subtract_tagged(moves, 0, visitor, &[])
     }
 
     /// Removes, move after move, the swept volumes of a sequence of moves, each given as `G`
@@ -550,7 +551,7 @@ impl TriDexel {
         &mut self,
         moves: &[[&[SweptConvex<'_>]; G]],
     ) -> Vec<[CutStats; G]> {
-        self.subtract_tagged(moves, 1, None)
+        self.subtract_tagged(moves, 1, None, &[])
     }
 
     /// [`TriDexel::subtract_moves`], telling `visitor` every piece of material removed (see
@@ -560,21 +561,30 @@ impl TriDexel {
         moves: &[[&[SweptConvex<'_>]; G]],
         visitor: &dyn RemovalVisitor,
     ) -> Vec<[CutStats; G]> {
-        self.subtract_tagged(moves, 1, Some(visitor))
+        self.subtract_tagged(moves, 1, Some(visitor), &[])
     }
 
-    /// The subtraction; move `m` of `moves` carries the tag `self.tag + step·m`.
+    /// The subtraction; move `m` of `moves` carries the tag `self.tag + step·m`. A move
+    /// with `chained[m]` true starts from an instance of its parts that has already been cut
+    /// (the end of the move before it, with the same parts and axis), so only the rays that
+    /// can meet the front of that instance swept along the move are queried
+    /// (`swarf_sweep::Front`); the others it cannot change.
     fn subtract_tagged<const G: usize>(
         &mut self,
         moves: &[[&[SweptConvex<'_>]; G]],
         step: MoveTag,
         visitor: Option<&dyn RemovalVisitor>,
+        chained: &[bool],
     ) -> Vec<[CutStats; G]> {
         let grid = self.grid;
         let base = self.tag;
         let plans: Vec<[Option<Plan>; G]> = moves
             .iter()
-            .map(|groups| groups.map(|parts| Plan::new(&grid, parts)))
+            .enumerate()
+            .map(|(m, groups)| {
+                let chained = chained.get(m).copied().unwrap_or(false);
+                groups.map(|parts| Plan::new(&grid, parts, chained))
+            })
             .collect();
         // Tiles the sequence may touch: small work stays on the calling thread.
         let tiles: usize = plans.iter().flatten().flatten().map(Plan::tiles).sum();
@@ -625,6 +635,7 @@ impl TriDexel {
                             range: &r,
                             parts,
                             rays: &rays,
+                            fronts: plan.fronts.as_deref(),
                             tag,
                             visitor: visitor.map(|v| (v, m, group)),
                         };
@@ -705,7 +716,17 @@ impl TriDexel {
     ) -> Vec<SegmentCut> {
         let tag0 = self.tag;
         let mut out = Vec::with_capacity(moves.len());
-        for chunk in moves.chunks(BATCH_MOVES) {
+        // A move starting where the tool last stood (the previous move's end, or the last
+        // instance the stock was cut with) only needs the rays its front can reach.
+        let mut chained = Vec::with_capacity(moves.len());
+        let at = self.last_instance.as_ref();
+        for (i, m) in moves.iter().enumerate() {
+            chained.push(match i {
+                0 => at.is_some_and(|l| l.is_tool_at(tool, m.tip0, m.axis)),
+                _ => moves[i - 1].tip1 == m.tip0 && moves[i - 1].axis == m.axis,
+            });
+        }
+        for (chunk, chained) in moves.chunks(BATCH_MOVES).zip(chained.chunks(BATCH_MOVES)) {
             fn sweep<'s>(shape: &'s SweepShape, m: &LinearMove) -> SmallVec<[SweptConvex<'s>; 2]> {
                 shape
                     .parts()
@@ -731,6 +752,7 @@ impl TriDexel {
                 &groups,
                 1,
                 shifted.as_ref().map(|f| f as &dyn RemovalVisitor),
+                chained,
             );
             self.tag = tag0;
             out.extend(stats.into_iter().map(|[cutting, non_cutting]| SegmentCut {
@@ -739,6 +761,13 @@ impl TriDexel {
                 sub_moves: 1,
                 error_bound_mm: 0.0,
             }));
+        }
+        if let Some(m) = moves.last() {
+            self.last_instance = Some(crate::cut::CutInstance {
+                slabs: [tool.cutting().clone(), tool.non_cutting().clone()],
+                tip: m.tip1,
+                axis: m.axis,
+            });
         }
         out
     }
@@ -801,10 +830,13 @@ struct FamilyRange {
 /// What a move may touch, per family.
 struct Plan {
     fam: [Option<FamilyRange>; 3],
+    /// Per part, the front of its start instance swept along the move, when that instance
+    /// has been cut already.
+    fronts: Option<SmallVec<[Front; 2]>>,
 }
 
 impl Plan {
-    fn new(grid: &Grid, parts: &[SweptConvex<'_>]) -> Option<Plan> {
+    fn new(grid: &Grid, parts: &[SweptConvex<'_>], chained: bool) -> Option<Plan> {
         let bb = parts
             .iter()
             .map(SweptConvex::bbox)
@@ -819,7 +851,8 @@ impl Plan {
                 t: (bb.min[k], bb.max[k]),
             })
         });
-        Some(Plan { fam })
+        let fronts = chained.then(|| parts.iter().map(SweptConvex::front).collect());
+        Some(Plan { fam, fronts })
     }
 
     fn tiles(&self) -> usize {
@@ -831,6 +864,16 @@ impl Plan {
     }
 }
 
+/// Which rays of a tile one part's move can change.
+enum Gate {
+    /// Any ray (the move's start instance may still hold material).
+    All,
+    /// The rays that can meet the front of the (cut) start instance swept along the move.
+    Front(FrontBlock),
+    /// None: the swept front misses the tile's material.
+    Never,
+}
+
 /// The tiles of one family against one group of parts of one move.
 struct TileCut<'g, 'p, 'a> {
     grid: &'g Grid,
@@ -839,6 +882,9 @@ struct TileCut<'g, 'p, 'a> {
     parts: &'p [SweptConvex<'a>],
     /// Per part, what its dexel queries along this family share.
     rays: &'g [DexelRays],
+    /// Per part, the front of its start instance swept along the move, when that instance
+    /// has been cut already: only the rays that can meet it are queried.
+    fronts: Option<&'g [Front]>,
     /// The tag the ends this cut makes get.
     tag: MoveTag,
     /// Who hears of the removed material, with the move's index in the call and the group.
@@ -876,6 +922,20 @@ impl TileCut<'_, '_, '_> {
         if !reach {
             return;
         }
+        // Per part, which rays of the tile its move can change.
+        let gates: SmallVec<[Gate; 2]> = match self.fronts {
+            None => self.parts.iter().map(|_| Gate::All).collect(),
+            Some(fronts) => fronts
+                .iter()
+                .map(|f| match f.block(k, centre, half, (bound[0], bound[1])) {
+                    Some(b) => Gate::Front(b),
+                    None => Gate::Never,
+                })
+                .collect(),
+        };
+        if gates.iter().all(|g| matches!(g, Gate::Never)) {
+            return;
+        }
         let (i_lo, i_hi) = (
             self.range.i.0.max(ti * TILE) - ti * TILE,
             self.range.i.1.min(ti * TILE + TILE - 1) - ti * TILE,
@@ -895,11 +955,22 @@ impl TileCut<'_, '_, '_> {
                 if !overlaps(d, tmin, tmax) {
                     continue;
                 }
-                st.visited_per_family[k] += 1;
                 let cu = u_min + ((ti * TILE + ii) as f64 + 0.5) * u_h;
+                let open = |g: &Gate| match g {
+                    Gate::All => true,
+                    Gate::Front(b) => b.reaches(cu, cv),
+                    Gate::Never => false,
+                };
+                if !gates.iter().any(open) {
+                    continue;
+                }
+                st.visited_per_family[k] += 1;
                 let mut removed = 0.0;
                 let mut tested = false;
-                for (p, rays) in self.parts.iter().zip(self.rays) {
+                for ((p, rays), gate) in self.parts.iter().zip(self.rays).zip(&gates) {
+                    if !open(gate) {
+                        continue;
+                    }
                     let (t, hit) = p.dexel_cut((cu, cv), k, d, rays, scratch);
                     tested |= t;
                     if let Some((lo, hi)) = hit {

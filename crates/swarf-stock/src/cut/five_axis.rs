@@ -2,9 +2,9 @@
 //! (with its proven bound), or for a round tool its exact instances (second order), screened
 //! against the material first and cut exactly.
 
+use super::CutInstance;
 use crate::error::StockError;
 use crate::tridexel::{CutStats, SegmentCut, TriDexel};
-use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 use swarf_path::Program;
 use swarf_sweep::five_axis::{
@@ -27,15 +27,6 @@ fn piece_box(shape: &SweepShape, p: &SubMove) -> Option<Aabb> {
         .iter()
         .map(|part| SweptConvex::new(part, p.tip0, p.axis, p.tip1 - p.tip0).bbox())
         .reduce(|a, b| a.union(&b))
-}
-
-/// A tool instance cut into the stock: the tool around a round region
-/// (`InstanceBand::slabs`) at one pose.
-#[derive(Clone, Debug, PartialEq)]
-pub(crate) struct CutInstance {
-    slabs: [SweepShape; 2],
-    tip: Vec3,
-    axis: Vec3,
 }
 
 /// Adds to `out` what `cuts` sub-moves or instances of the cutting part (`group` 0) or the

@@ -22,6 +22,28 @@ pub use swarf_sweep::DEFAULT_CHORDAL_TOLERANCE_MM;
 /// passing within this distance of material may be reported as meeting it).
 pub const RAPID_TOLERANCE_MM: f64 = 0.01;
 
+/// A tool instance the stock has been cut with, while nothing has put material back: two
+/// groups of parts (a tool's cutting part and its shank and holder, or the tool around the
+/// round region of a 5-axis move, `InstanceBand::slabs`) with the tip at `tip` and the axis
+/// `axis`. The stock holds no material inside it, so a move starting there need not cut it
+/// again.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct CutInstance {
+    pub(crate) slabs: [SweepShape; 2],
+    pub(crate) tip: Vec3,
+    pub(crate) axis: Vec3,
+}
+
+impl CutInstance {
+    /// Whether this is `tool` (both groups) at `tip` with `axis`.
+    pub(crate) fn is_tool_at(&self, tool: &ToolShape, tip: Vec3, axis: Vec3) -> bool {
+        self.tip == tip
+            && self.axis == axis
+            && self.slabs[0] == *tool.cutting()
+            && self.slabs[1] == *tool.non_cutting()
+    }
+}
+
 /// Material removed below this length (mm, on any ray) does not count as a collision.
 pub const COLLISION_EPS_MM: f64 = 1e-6;
 

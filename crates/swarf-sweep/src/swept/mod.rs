@@ -50,6 +50,7 @@ pub(crate) mod capsule;
 pub(crate) mod circle;
 pub(crate) mod distance;
 pub(crate) mod fast;
+pub(crate) mod front;
 pub(crate) mod interval;
 pub(crate) mod line;
 pub(crate) mod profile;
@@ -59,6 +60,7 @@ pub(crate) mod torus;
 
 pub use bound::SweepBound;
 pub use distance::SignedDistance;
+pub use front::{Front, FrontBlock};
 pub use interval::{overlaps, Interval};
 pub use profile::{ConvexProfile, Element, SweepShape};
 
@@ -374,6 +376,12 @@ impl<'a> SweptConvex<'a> {
             }
         }
         (self, worst)
+    }
+
+    /// Where this move can change a line when its start instance has already been cut (a
+    /// chained move): the front of the start instance swept along the move (`front.rs`).
+    pub fn front(&self) -> Front {
+        Front::of(self)
     }
 
     /// Bounding box of the swept volume, workpiece frame.
