@@ -874,6 +874,18 @@ enum Gate {
     Never,
 }
 
+impl Gate {
+    /// Whether the ray through `(cu, cv)` may be changed.
+    #[inline(always)]
+    fn open(&self, cu: f64, cv: f64) -> bool {
+        match self {
+            Gate::All => true,
+            Gate::Front(b) => b.reaches(cu, cv),
+            Gate::Never => false,
+        }
+    }
+}
+
 /// The tiles of one family against one group of parts of one move.
 struct TileCut<'g, 'p, 'a> {
     grid: &'g Grid,
@@ -892,6 +904,40 @@ struct TileCut<'g, 'p, 'a> {
 }
 
 impl TileCut<'_, '_, '_> {
+    /// Removes `[lo, hi]` from the dexel `d` of ray `ray` (its provenance `tags` kept in
+    /// step when tracked), telling the visitor; returns the length removed.
+    #[inline(always)]
+    fn remove(
+        &self,
+        d: &mut Dexel,
+        tags: Option<&mut DexelTags>,
+        ray: (usize, usize),
+        lo: f64,
+        hi: f64,
+    ) -> f64 {
+        match (tags, self.visitor) {
+            (None, None) => subtract(d, lo, hi),
+            (t, v) => {
+                let report = |iv: Interval| {
+                    if let Some((v, move_index, group)) = v {
+                        v.removed(&Removal {
+                            move_index,
+                            tag: self.tag,
+                            group,
+                            family: self.k,
+                            ray,
+                            removed: iv,
+                        });
+                    }
+                };
+                match t {
+                    Some(t) => subtract_with(d, t, lo, hi, self.tag, report),
+                    None => subtract_with(d, &mut (), lo, hi, self.tag, report),
+                }
+            }
+        }
+    }
+
     #[allow(clippy::too_many_arguments)]
     fn run(
         &self,
@@ -945,6 +991,11 @@ impl TileCut<'_, '_, '_> {
             self.range.j.1.min(tj * TILE + TILE - 1) - tj * TILE,
         );
         let (u_min, u_h, v_min, v_h) = (grid.min[u], grid.h[u], grid.min[v], grid.h[v]);
+        // One part (the common case) without the per-part bookkeeping.
+        let single = match (self.parts, self.rays, &gates[..]) {
+            ([p], [rays], [g]) => Some((p, rays, g)),
+            _ => None,
+        };
         let mut changed = false;
         for jj in j_lo..=j_hi {
             // (Cell centres with the axes resolved once: `Grid::center` per ray costs.)
@@ -956,48 +1007,37 @@ impl TileCut<'_, '_, '_> {
                     continue;
                 }
                 let cu = u_min + ((ti * TILE + ii) as f64 + 0.5) * u_h;
-                let open = |g: &Gate| match g {
-                    Gate::All => true,
-                    Gate::Front(b) => b.reaches(cu, cv),
-                    Gate::Never => false,
-                };
-                if !gates.iter().any(open) {
-                    continue;
-                }
-                st.visited_per_family[k] += 1;
-                let mut removed = 0.0;
-                let mut tested = false;
-                for ((p, rays), gate) in self.parts.iter().zip(self.rays).zip(&gates) {
-                    if !open(gate) {
+                let ray = (ti * TILE + ii, tj * TILE + jj);
+                let (tested, removed) = if let Some((p, rays, gate)) = single {
+                    if !gate.open(cu, cv) {
                         continue;
                     }
+                    st.visited_per_family[k] += 1;
                     let (t, hit) = p.dexel_cut((cu, cv), k, d, rays, scratch);
-                    tested |= t;
-                    if let Some((lo, hi)) = hit {
-                        removed += match (tags.get_mut(r), self.visitor) {
-                            (None, None) => subtract(d, lo, hi),
-                            (t, v) => {
-                                let ray = (ti * TILE + ii, tj * TILE + jj);
-                                let report = |iv: Interval| {
-                                    if let Some((v, move_index, group)) = v {
-                                        v.removed(&Removal {
-                                            move_index,
-                                            tag: self.tag,
-                                            group,
-                                            family: k,
-                                            ray,
-                                            removed: iv,
-                                        });
-                                    }
-                                };
-                                match t {
-                                    Some(t) => subtract_with(d, t, lo, hi, self.tag, report),
-                                    None => subtract_with(d, &mut (), lo, hi, self.tag, report),
-                                }
-                            }
-                        };
+                    let removed = match hit {
+                        Some((lo, hi)) => self.remove(d, tags.get_mut(r), ray, lo, hi),
+                        None => 0.0,
+                    };
+                    (t, removed)
+                } else {
+                    if !gates.iter().any(|g| g.open(cu, cv)) {
+                        continue;
                     }
-                }
+                    st.visited_per_family[k] += 1;
+                    let mut removed = 0.0;
+                    let mut tested = false;
+                    for ((p, rays), gate) in self.parts.iter().zip(self.rays).zip(&gates) {
+                        if !gate.open(cu, cv) {
+                            continue;
+                        }
+                        let (t, hit) = p.dexel_cut((cu, cv), k, d, rays, scratch);
+                        tested |= t;
+                        if let Some((lo, hi)) = hit {
+                            removed += self.remove(d, tags.get_mut(r), ray, lo, hi);
+                        }
+                    }
+                    (tested, removed)
+                };
                 if tested {
                     st.rays_tested += 1;
                     st.tested_per_family[k] += 1;
