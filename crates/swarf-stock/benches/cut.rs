@@ -8,6 +8,7 @@
 //! 50,000 moves, peak memory from `/proc/self/status` VmHWM, the scaling table, the ratio to
 //! the brute-force reference). `SWARF_BENCH_REPORT_ONLY=1` prints the report alone;
 //! `SWARF_BENCH_PROVENANCE=1` makes its stock keep the provenance of every interval end;
+//! `SWARF_BENCH_EXHAUSTIVE=1` turns the front test off (`TriDexel::set_exhaustive`);
 //! `SWARF_BENCH_MOVES=N` sets its number of moves (default 3000) and leaves out the
 //! scaling table and the brute-force comparison. `RAYON_NUM_THREADS` sets
 //! the threads.
@@ -102,6 +103,7 @@ fn report() {
     let provenance = std::env::var_os("SWARF_BENCH_PROVENANCE").is_some();
     let t = Instant::now();
     let mut stock = new_stock(h);
+    stock.set_exhaustive(std::env::var_os("SWARF_BENCH_EXHAUSTIVE").is_some());
     if provenance {
         stock.track_provenance();
     }

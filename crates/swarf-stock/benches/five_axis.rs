@@ -5,7 +5,8 @@
 //! chordal tolerance (0.001 mm), as `swarf simulate` runs it.
 //!
 //! `SWARF_BENCH_MOVES` (default 20,000) feed moves; `SWARF_BENCH_RUNS` (default 3) runs, median
-//! reported; the program is also written to `target/five_axis_finish.apt` so the command line
+//! reported; `SWARF_BENCH_EXHAUSTIVE=1` turns the front test off (`TriDexel::set_exhaustive`:
+//! every ray a cut may reach is queried, for timing the test); the program is also written to `target/five_axis_finish.apt` so the command line
 //! can be timed on it:
 //! `swarf simulate --program target/five_axis_finish.apt --stock box:0,0,0,120,120,50
 //! --resolution 0.2`.
@@ -103,6 +104,7 @@ fn main() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(3);
+    let exhaustive = std::env::var_os("SWARF_BENCH_EXHAUSTIVE").is_some();
     let h = 0.2;
     let text = program_text(n);
     let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../target");
@@ -127,6 +129,7 @@ fn main() {
     let mut last = None;
     for _ in 0..runs {
         let mut stock = TriDexel::from_box(Vec3::ZERO, Vec3::new(120.0, 120.0, 50.0), h).unwrap();
+        stock.set_exhaustive(exhaustive);
         let t = Instant::now();
         let rep = simulate(&program, &tools, &mut stock, &opts).expect("the program simulates");
         times.push(t.elapsed().as_secs_f64());

@@ -306,6 +306,8 @@ pub struct TriDexel {
     /// last instance, `cut::five_axis`), while nothing has put material back: the next move,
     /// starting there, need not cut it again.
     pub(crate) last_instance: Option<crate::cut::CutInstance>,
+    /// Query every ray a move may reach, without the front test ([`TriDexel::set_exhaustive`]).
+    exhaustive: bool,
 }
 
 impl TriDexel {
@@ -321,6 +323,7 @@ impl TriDexel {
             grid,
             tag: 0,
             last_instance: None,
+            exhaustive: false,
         }
     }
 
@@ -439,6 +442,13 @@ impl TriDexel {
     /// True when the stock keeps the provenance of its interval ends.
     pub fn tracks_provenance(&self) -> bool {
         !self.families[0].tags.is_empty() || self.families[0].rays.is_empty()
+    }
+
+    /// With `on`, every move queries every ray it may reach instead of only those the front
+    /// of an already cut start instance can reach (`swarf_sweep::Front`): the stock ends the
+    /// same (to rounding), slower. For checking the front test, and for timing it.
+    pub fn set_exhaustive(&mut self, on: bool) {
+        self.exhaustive = on;
     }
 
     /// Sets the tag of the cuts that follow: the ends they make carry it (when provenance is
@@ -565,25 +575,29 @@ impl TriDexel {
     }
 
     /// The subtraction; move `m` of `moves` carries the tag `self.tag + step·m`. A move
-    /// with `chained[m]` true starts from an instance of its parts that has already been cut
-    /// (the end of the move before it, with the same parts and axis), so only the rays that
-    /// can meet the front of that instance swept along the move are queried
-    /// (`swarf_sweep::Front`); the others it cannot change.
+    /// whose `starts[m]` is [`Start::Own`] (its start instance has already been cut: it starts
+    /// where the move before it ended, with the same parts and axis) queries only the rays
+    /// that can meet that instance's front swept along the move (`swarf_sweep::Front`); the
+    /// others it cannot change. A missing entry is [`Start::Unknown`].
     fn subtract_tagged<const G: usize>(
         &mut self,
         moves: &[[&[SweptConvex<'_>]; G]],
         step: MoveTag,
         visitor: Option<&dyn RemovalVisitor>,
-        chained: &[bool],
+        starts: &[Start],
     ) -> Vec<[CutStats; G]> {
         let grid = self.grid;
         let base = self.tag;
+        let exhaustive = self.exhaustive;
         let plans: Vec<[Option<Plan>; G]> = moves
             .iter()
             .enumerate()
             .map(|(m, groups)| {
-                let chained = chained.get(m).copied().unwrap_or(false);
-                groups.map(|parts| Plan::new(&grid, parts, chained))
+                let start = match starts.get(m) {
+                    Some(s) if !exhaustive => *s,
+                    _ => Start::Unknown,
+                };
+                groups.map(|parts| Plan::new(&grid, parts, start))
             })
             .collect();
         // Tiles the sequence may touch: small work stays on the calling thread.
@@ -718,15 +732,16 @@ impl TriDexel {
         let mut out = Vec::with_capacity(moves.len());
         // A move starting where the tool last stood (the previous move's end, or the last
         // instance the stock was cut with) only needs the rays its front can reach.
-        let mut chained = Vec::with_capacity(moves.len());
+        let mut starts = Vec::with_capacity(moves.len());
         let at = self.last_instance.as_ref();
         for (i, m) in moves.iter().enumerate() {
-            chained.push(match i {
+            let chained = match i {
                 0 => at.is_some_and(|l| l.is_tool_at(tool, m.tip0, m.axis)),
                 _ => moves[i - 1].tip1 == m.tip0 && moves[i - 1].axis == m.axis,
-            });
+            };
+            starts.push(if chained { Start::Own } else { Start::Unknown });
         }
-        for (chunk, chained) in moves.chunks(BATCH_MOVES).zip(chained.chunks(BATCH_MOVES)) {
+        for (chunk, starts) in moves.chunks(BATCH_MOVES).zip(starts.chunks(BATCH_MOVES)) {
             fn sweep<'s>(shape: &'s SweepShape, m: &LinearMove) -> SmallVec<[SweptConvex<'s>; 2]> {
                 shape
                     .parts()
@@ -752,7 +767,7 @@ impl TriDexel {
                 &groups,
                 1,
                 shifted.as_ref().map(|f| f as &dyn RemovalVisitor),
-                chained,
+                starts,
             );
             self.tag = tag0;
             out.extend(stats.into_iter().map(|[cutting, non_cutting]| SegmentCut {
@@ -827,6 +842,15 @@ struct FamilyRange {
     t: (f64, f64),
 }
 
+/// What is known to have been cut where a move of a subtraction starts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Start {
+    /// Nothing: every ray the move may reach is queried.
+    Unknown,
+    /// Its own start instance (a fixed-axis move chained to the one before).
+    Own,
+}
+
 /// What a move may touch, per family.
 struct Plan {
     fam: [Option<FamilyRange>; 3],
@@ -836,7 +860,7 @@ struct Plan {
 }
 
 impl Plan {
-    fn new(grid: &Grid, parts: &[SweptConvex<'_>], chained: bool) -> Option<Plan> {
+    fn new(grid: &Grid, parts: &[SweptConvex<'_>], start: Start) -> Option<Plan> {
         let bb = parts
             .iter()
             .map(SweptConvex::bbox)
@@ -851,7 +875,10 @@ impl Plan {
                 t: (bb.min[k], bb.max[k]),
             })
         });
-        let fronts = chained.then(|| parts.iter().map(SweptConvex::front).collect());
+        let fronts = match start {
+            Start::Unknown => None,
+            Start::Own => Some(parts.iter().map(SweptConvex::front).collect()),
+        };
         Some(Plan { fam, fronts })
     }
 
