@@ -82,8 +82,15 @@ pub(crate) fn cap(
     match (f_lo >= 0.0, f_hi >= 0.0) {
         // Convex: below zero at both ends, below zero between them.
         (false, false) => {}
-        // One zero, between the ends.
-        (true, false) | (false, true) => add(tube.zero_between(lo, hi, f_lo)),
+        // One zero, between the ends: walked to from the end above zero, else bracketed.
+        (true, false) => match tube.walk(lo, f_lo, hi) {
+            Walk::Zero(t) => add(t),
+            _ => add(tube.zero_between(lo, hi, f_lo)),
+        },
+        (false, true) => match tube.walk(hi, f_hi, lo) {
+            Walk::Zero(t) => add(t),
+            _ => add(tube.zero_between(lo, hi, f_lo)),
+        },
         // None or two, on both sides of the minimum.
         (true, true) => {
             if tube.slope(lo) >= 0.0 || tube.slope(hi) <= 0.0 {
@@ -94,6 +101,18 @@ pub(crate) fn cap(
                     }
                 }
                 return;
+            }
+            // Walking in from both ends finds both zeros without the minimum.
+            match tube.walk(lo, f_lo, hi) {
+                Walk::NoZero => return,
+                Walk::Zero(a) => {
+                    if let Walk::Zero(b) = tube.walk(hi, f_hi, lo) {
+                        add(a);
+                        add(b);
+                        return;
+                    }
+                }
+                Walk::Stuck => {}
             }
             let t_min = tube.min_between(lo, hi);
             let f_min = tube.value(t_min);
@@ -137,6 +156,19 @@ struct TubeLine {
     pd: f64,
     pp: f64,
 }
+
+/// Where [`TubeLine::walk`] ends.
+enum Walk {
+    /// At the zero.
+    Zero(f64),
+    /// There is no zero between the start and the end it walked towards.
+    NoZero,
+    /// It could not tell: bracket instead.
+    Stuck,
+}
+
+/// Newton steps at most in [`TubeLine::walk`] before it hands over to the bracketed search.
+const WALK_STEPS: usize = 40;
 
 /// Newton steps at most per zero or minimum (bisection takes over when a step leaves the
 /// bracket; convergence is quadratic, so this is only a guard).
@@ -239,6 +271,39 @@ impl TubeLine {
             }
         }
         t
+    }
+
+    /// Newton steps from `t` (where `F(t) = f ≥ 0`) towards `toward`: `F` being convex, its
+    /// tangent lies below it, so each step lands short of the nearest zero that way (or beyond
+    /// `toward`, or where `F` turns up, when there is none) and the steps close in on it from
+    /// one side. [`Walk::Stuck`] where a slope is infinite (the tube's top or bottom) or the
+    /// steps do not settle: the caller then brackets.
+    fn walk(&self, mut t: f64, mut f: f64, toward: f64) -> Walk {
+        let dir = if toward > t { 1.0 } else { -1.0 };
+        for _ in 0..WALK_STEPS {
+            if f <= 0.0 {
+                return Walk::Zero(t);
+            }
+            let g = self.slope(t);
+            if !g.is_finite() {
+                return Walk::Stuck;
+            }
+            if g * dir >= 0.0 {
+                // Rising the way it walks while above zero: no zero that way.
+                return Walk::NoZero;
+            }
+            let step = -f / g;
+            let next = t + step;
+            if (next - toward) * dir > 0.0 {
+                return Walk::NoZero;
+            }
+            if step.abs() <= ROOT_TOL.x_tol {
+                return Walk::Zero(next);
+            }
+            t = next;
+            f = self.value(t);
+        }
+        Walk::Stuck
     }
 
     /// The zero of `F` in `[a, b]`, where `F` is monotone and `F(a) = fa`, `F(b)` of the other
