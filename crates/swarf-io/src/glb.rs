@@ -65,189 +65,263 @@ fn pad4(n: usize) -> usize {
 
 /// The glb file of `mesh` in memory.
 pub fn glb_bytes(mesh: &TriMesh, options: &GlbOptions) -> Result<Vec<u8>, IoError> {
-    mesh.validate()?;
-    let positions: Vec<[f32; 3]> = mesh
-        .vertices
-        .iter()
-        .map(|v| v.as_vec3().to_array())
-        .collect();
-    let normals: Option<Vec<[f32; 3]>> = (options.shading == Shading::Smooth).then(|| {
-        mesh.vertex_normals()
-            .iter()
-            .map(|v| v.as_vec3().to_array())
-            .collect()
-    });
-    let colors = mesh.colors.as_ref();
-    let indices: Vec<u32> = mesh.triangles.iter().flatten().copied().collect();
-    let count = positions.len();
-    if count > u32::MAX as usize {
-        return Err(IoError::InvalidMesh(format!(
-            "{count} glTF vertices exceed u32 indices"
-        )));
-    }
-    let mut bin: Vec<u8> = Vec::new();
-    let mut views: Vec<(usize, usize, json::buffer::Target)> = Vec::new();
-    let mut push_view = |bytes: Vec<u8>, target| {
-        let off = bin.len();
-        bin.extend_from_slice(&bytes);
-        bin.resize(pad4(bin.len()), 0);
-        views.push((off, bytes.len(), target));
-    };
-    let f32s =
-        |v: &mut dyn Iterator<Item = f32>| -> Vec<u8> { v.flat_map(f32::to_le_bytes).collect() };
-    push_view(
-        f32s(&mut positions.iter().flatten().copied()),
-        json::buffer::Target::ArrayBuffer,
-    );
-    if let Some(n) = &normals {
-        push_view(
-            f32s(&mut n.iter().flatten().copied()),
-            json::buffer::Target::ArrayBuffer,
-        );
-    }
-    if let Some(c) = colors {
-        push_view(
-            f32s(&mut c.iter().flatten().copied()),
-            json::buffer::Target::ArrayBuffer,
-        );
-    }
-    push_view(
-        indices.iter().flat_map(|i| i.to_le_bytes()).collect(),
-        json::buffer::Target::ElementArrayBuffer,
-    );
+    let file = GlbFile::new(mesh, options)?;
+    let mut out = Vec::with_capacity(file.len());
+    file.write_to(&mut out)
+        .map_err(|e| IoError::io(Path::new("glb"), e))?;
+    Ok(out)
+}
 
-    let mut min = [f32::INFINITY; 3];
-    let mut max = [f32::NEG_INFINITY; 3];
-    for p in &positions {
-        for k in 0..3 {
-            min[k] = min[k].min(p[k]);
-            max[k] = max[k].max(p[k]);
+/// A glb file of a mesh, ready to be written: its JSON chunk and the layout of its BIN chunk,
+/// whose arrays [`GlbFile::write_to`] writes straight from the mesh a block at a time — the
+/// file is never held in memory (smooth shading keeps one `f32` array of vertex normals).
+#[derive(Debug)]
+pub struct GlbFile<'m> {
+    mesh: &'m TriMesh,
+    normals: Option<Vec<[f32; 3]>>,
+    /// The JSON chunk's data, padded with spaces.
+    json: Vec<u8>,
+    bin_len: usize,
+}
+
+impl<'m> GlbFile<'m> {
+    /// Checks `mesh` and lays out its file.
+    pub fn new(mesh: &'m TriMesh, options: &GlbOptions) -> Result<Self, IoError> {
+        mesh.validate()?;
+        let count = mesh.vertices.len();
+        if count > u32::MAX as usize {
+            return Err(IoError::InvalidMesh(format!(
+                "{count} glTF vertices exceed u32 indices"
+            )));
         }
-    }
-    let mut root = json::Root::default();
-    root.asset.generator = Some(format!("swarf-io {}", env!("CARGO_PKG_VERSION")));
-    let buffer = root.push(json::Buffer {
-        byte_length: USize64::from(bin.len()),
-        uri: None,
-        extensions: None,
-        extras: Default::default(),
-    });
-    let view_idx: Vec<_> = views
-        .iter()
-        .map(|&(off, len, target)| {
-            root.push(json::buffer::View {
-                buffer,
-                byte_length: USize64::from(len),
-                byte_offset: Some(USize64::from(off)),
-                byte_stride: None,
-                target: Some(Valid(target)),
+        let normals: Option<Vec<[f32; 3]>> = (options.shading == Shading::Smooth).then(|| {
+            mesh.vertex_normals()
+                .iter()
+                .map(|v| v.as_vec3().to_array())
+                .collect()
+        });
+        let colors = mesh.colors.as_ref();
+        let index_count = 3 * mesh.triangles.len();
+        // The BIN chunk's views, in order: positions, normals, colours, indices.
+        let mut views: Vec<(usize, usize, json::buffer::Target)> = Vec::new();
+        let mut bin_len = 0;
+        let mut push_view = |len: usize, target| {
+            views.push((bin_len, len, target));
+            bin_len = pad4(bin_len + len);
+        };
+        use json::buffer::Target::{ArrayBuffer, ElementArrayBuffer};
+        push_view(12 * count, ArrayBuffer);
+        if normals.is_some() {
+            push_view(12 * count, ArrayBuffer);
+        }
+        if colors.is_some() {
+            push_view(16 * count, ArrayBuffer);
+        }
+        push_view(4 * index_count, ElementArrayBuffer);
+
+        let mut min = [f32::INFINITY; 3];
+        let mut max = [f32::NEG_INFINITY; 3];
+        for v in &mesh.vertices {
+            let p = v.as_vec3().to_array();
+            for k in 0..3 {
+                min[k] = min[k].min(p[k]);
+                max[k] = max[k].max(p[k]);
+            }
+        }
+        let mut root = json::Root::default();
+        root.asset.generator = Some(format!("swarf-io {}", env!("CARGO_PKG_VERSION")));
+        let buffer = root.push(json::Buffer {
+            byte_length: USize64::from(bin_len),
+            uri: None,
+            extensions: None,
+            extras: Default::default(),
+        });
+        let view_idx: Vec<_> = views
+            .iter()
+            .map(|&(off, len, target)| {
+                root.push(json::buffer::View {
+                    buffer,
+                    byte_length: USize64::from(len),
+                    byte_offset: Some(USize64::from(off)),
+                    byte_stride: None,
+                    target: Some(Valid(target)),
+                    extensions: None,
+                    extras: Default::default(),
+                })
+            })
+            .collect();
+        let accessor = |root: &mut json::Root,
+                        view: usize,
+                        n: usize,
+                        ct: json::accessor::ComponentType,
+                        ty: json::accessor::Type,
+                        minmax: Option<([f32; 3], [f32; 3])>| {
+            root.push(json::Accessor {
+                buffer_view: Some(view_idx[view]),
+                byte_offset: Some(USize64(0)),
+                count: USize64::from(n),
+                component_type: Valid(json::accessor::GenericComponentType(ct)),
                 extensions: None,
                 extras: Default::default(),
+                type_: Valid(ty),
+                min: minmax.map(|(a, _)| json::Value::from(a.to_vec())),
+                max: minmax.map(|(_, b)| json::Value::from(b.to_vec())),
+                normalized: false,
+                sparse: None,
             })
-        })
-        .collect();
-    let accessor = |root: &mut json::Root,
-                    view: usize,
-                    n: usize,
-                    ct: json::accessor::ComponentType,
-                    ty: json::accessor::Type,
-                    minmax: Option<([f32; 3], [f32; 3])>| {
-        root.push(json::Accessor {
-            buffer_view: Some(view_idx[view]),
-            byte_offset: Some(USize64(0)),
-            count: USize64::from(n),
-            component_type: Valid(json::accessor::GenericComponentType(ct)),
-            extensions: None,
-            extras: Default::default(),
-            type_: Valid(ty),
-            min: minmax.map(|(a, _)| json::Value::from(a.to_vec())),
-            max: minmax.map(|(_, b)| json::Value::from(b.to_vec())),
-            normalized: false,
-            sparse: None,
-        })
-    };
-    use json::accessor::{ComponentType as C, Type as T};
-    let pos = accessor(
-        &mut root,
-        0,
-        count,
-        C::F32,
-        T::Vec3,
-        (count > 0).then_some((min, max)),
-    );
-    let nor = normals
-        .as_ref()
-        .map(|_| accessor(&mut root, 1, count, C::F32, T::Vec3, None));
-    let col_view = 1 + usize::from(normals.is_some());
-    let col = colors.map(|_| accessor(&mut root, col_view, count, C::F32, T::Vec4, None));
-    let idx = accessor(
-        &mut root,
-        views.len() - 1,
-        indices.len(),
-        C::U32,
-        T::Scalar,
-        None,
-    );
-    let mut attributes = BTreeMap::new();
-    attributes.insert(Valid(json::mesh::Semantic::Positions), pos);
-    if let Some(n) = nor {
-        attributes.insert(Valid(json::mesh::Semantic::Normals), n);
-    }
-    if let Some(c) = col {
-        attributes.insert(Valid(json::mesh::Semantic::Colors(0)), c);
-    }
-    let mesh_idx = root.push(json::Mesh {
-        extensions: None,
-        extras: Default::default(),
-        primitives: vec![json::mesh::Primitive {
-            attributes,
-            extensions: None,
-            extras: Default::default(),
-            indices: Some(idx),
-            material: None,
-            mode: Valid(json::mesh::Mode::Triangles),
-            targets: None,
-        }],
-        weights: None,
-    });
-    let node = root.push(json::Node {
-        mesh: Some(mesh_idx),
-        ..Default::default()
-    });
-    let scene = root.push(json::Scene {
-        extensions: None,
-        extras: Default::default(),
-        nodes: vec![node],
-    });
-    root.scene = Some(scene);
-
-    let json_error = |e| IoError::Json {
-        path: Default::default(),
-        source: e,
-    };
-    let mut js = root.to_vec().map_err(json_error)?;
-    if let Some(extras) = &options.extras {
-        let mut doc: serde_json::Value = serde_json::from_slice(&js).map_err(json_error)?;
-        if let Some(obj) = doc.as_object_mut() {
-            obj.insert("extras".into(), extras.clone());
+        };
+        use json::accessor::{ComponentType as C, Type as T};
+        let pos = accessor(
+            &mut root,
+            0,
+            count,
+            C::F32,
+            T::Vec3,
+            (count > 0).then_some((min, max)),
+        );
+        let nor = normals
+            .as_ref()
+            .map(|_| accessor(&mut root, 1, count, C::F32, T::Vec3, None));
+        let col_view = 1 + usize::from(normals.is_some());
+        let col = colors.map(|_| accessor(&mut root, col_view, count, C::F32, T::Vec4, None));
+        let idx = accessor(
+            &mut root,
+            views.len() - 1,
+            index_count,
+            C::U32,
+            T::Scalar,
+            None,
+        );
+        let mut attributes = BTreeMap::new();
+        attributes.insert(Valid(json::mesh::Semantic::Positions), pos);
+        if let Some(n) = nor {
+            attributes.insert(Valid(json::mesh::Semantic::Normals), n);
         }
-        js = serde_json::to_vec(&doc).map_err(json_error)?;
+        if let Some(c) = col {
+            attributes.insert(Valid(json::mesh::Semantic::Colors(0)), c);
+        }
+        let mesh_idx = root.push(json::Mesh {
+            extensions: None,
+            extras: Default::default(),
+            primitives: vec![json::mesh::Primitive {
+                attributes,
+                extensions: None,
+                extras: Default::default(),
+                indices: Some(idx),
+                material: None,
+                mode: Valid(json::mesh::Mode::Triangles),
+                targets: None,
+            }],
+            weights: None,
+        });
+        let node = root.push(json::Node {
+            mesh: Some(mesh_idx),
+            ..Default::default()
+        });
+        let scene = root.push(json::Scene {
+            extensions: None,
+            extras: Default::default(),
+            nodes: vec![node],
+        });
+        root.scene = Some(scene);
+
+        let json_error = |e| IoError::Json {
+            path: Default::default(),
+            source: e,
+        };
+        let mut js = root.to_vec().map_err(json_error)?;
+        if let Some(extras) = &options.extras {
+            let mut doc: serde_json::Value = serde_json::from_slice(&js).map_err(json_error)?;
+            if let Some(obj) = doc.as_object_mut() {
+                obj.insert("extras".into(), extras.clone());
+            }
+            js = serde_json::to_vec(&doc).map_err(json_error)?;
+        }
+        js.resize(pad4(js.len()), b' ');
+        let file = GlbFile {
+            mesh,
+            normals,
+            json: js,
+            bin_len,
+        };
+        u32::try_from(file.len()).map_err(|_| {
+            IoError::InvalidMesh(format!("{} bytes exceed glb's 4 GiB limit", file.len()))
+        })?;
+        Ok(file)
     }
-    js.resize(pad4(js.len()), b' ');
-    let total = 12 + 8 + js.len() + 8 + bin.len();
-    let total32 = u32::try_from(total)
-        .map_err(|_| IoError::InvalidMesh(format!("{total} bytes exceed glb's 4 GiB limit")))?;
-    let mut out = Vec::with_capacity(total);
-    out.extend_from_slice(GLB_MAGIC);
-    out.extend_from_slice(&2u32.to_le_bytes());
-    out.extend_from_slice(&total32.to_le_bytes());
-    out.extend_from_slice(&(js.len() as u32).to_le_bytes());
-    out.extend_from_slice(&CHUNK_JSON.to_le_bytes());
-    out.extend_from_slice(&js);
-    out.extend_from_slice(&(bin.len() as u32).to_le_bytes());
-    out.extend_from_slice(&CHUNK_BIN.to_le_bytes());
-    out.extend_from_slice(&bin);
-    Ok(out)
+
+    /// The file's size in bytes.
+    pub fn len(&self) -> usize {
+        12 + 8 + self.json.len() + 8 + self.bin_len
+    }
+
+    /// Never: a glb file has at least its header.
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// Writes the file to `w`, the mesh's arrays a block at a time.
+    pub fn write_to<W: Write>(&self, w: &mut W) -> std::io::Result<()> {
+        // Both sizes were checked against u32 in `new`.
+        let le = |n: usize| (n as u32).to_le_bytes();
+        w.write_all(GLB_MAGIC)?;
+        w.write_all(&2u32.to_le_bytes())?;
+        w.write_all(&le(self.len()))?;
+        w.write_all(&le(self.json.len()))?;
+        w.write_all(&CHUNK_JSON.to_le_bytes())?;
+        w.write_all(&self.json)?;
+        w.write_all(&le(self.bin_len))?;
+        w.write_all(&CHUNK_BIN.to_le_bytes())?;
+        let mut out = Words::new(w);
+        for v in &self.mesh.vertices {
+            for x in v.as_vec3().to_array() {
+                out.put(x.to_le_bytes())?;
+            }
+        }
+        for n in self.normals.iter().flatten().flatten() {
+            out.put(n.to_le_bytes())?;
+        }
+        for c in self.mesh.colors.iter().flatten().flatten() {
+            out.put(c.to_le_bytes())?;
+        }
+        for i in self.mesh.triangles.iter().flatten() {
+            out.put(i.to_le_bytes())?;
+        }
+        out.finish()
+    }
+}
+
+/// Four-byte words written through a block buffer (one `write_all` per 64 KiB, not per word).
+struct Words<'w, W: Write> {
+    w: &'w mut W,
+    buf: Vec<u8>,
+}
+
+impl<'w, W: Write> Words<'w, W> {
+    const BLOCK: usize = 1 << 16;
+
+    fn new(w: &'w mut W) -> Self {
+        Self {
+            w,
+            buf: Vec::with_capacity(Self::BLOCK),
+        }
+    }
+
+    #[inline]
+    fn put(&mut self, word: [u8; 4]) -> std::io::Result<()> {
+        self.buf.extend_from_slice(&word);
+        if self.buf.len() >= Self::BLOCK {
+            self.w.write_all(&self.buf)?;
+            self.buf.clear();
+        }
+        Ok(())
+    }
+
+    fn finish(mut self) -> std::io::Result<()> {
+        self.w.write_all(&self.buf)?;
+        self.buf.clear();
+        Ok(())
+    }
 }
 
 /// The size in bytes of [`glb_bytes`]'s file for a mesh of `vertices` vertices and
@@ -258,10 +332,10 @@ pub fn glb_size_bound(vertices: usize, triangles: usize, colors: bool, shading: 
     28 + 4096 + vertices as u64 * per_vertex + triangles as u64 * 12 + 16
 }
 
-/// Writes `mesh` as a glb file, atomically.
+/// Writes `mesh` as a glb file, atomically, without holding the file in memory.
 pub fn write_glb(path: &Path, mesh: &TriMesh, options: &GlbOptions) -> Result<(), IoError> {
-    let bytes = glb_bytes(mesh, options)?;
-    write_atomic(path, |w| w.write_all(&bytes))
+    let file = GlbFile::new(mesh, options)?;
+    write_atomic(path, |w| file.write_to(w))
 }
 
 /// A glb file taken apart: its parsed JSON document and its BIN chunk.

@@ -8,7 +8,7 @@ use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde::Serialize;
 use swarf_envelope::{envelope, EnvelopeOptions};
-use swarf_io::glb::{glb_bytes, glb_size_bound};
+use swarf_io::glb::{glb_size_bound, GlbFile};
 use swarf_io::output_set::stl_size;
 use swarf_io::{write_stl_to, GlbOptions, Shading};
 use swarf_sweep::SelfIntersection;
@@ -122,9 +122,10 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
     )?;
     set.write("envelope.stl", |w| write_stl_to(w, &env.mesh))
         .context("writing envelope.stl")?;
-    let glb_data = glb_bytes(&env.mesh, &GlbOptions::default()).context("encoding envelope.glb")?;
-    set.write_bytes("envelope.glb", &glb_data)?;
-    drop(glb_data);
+    let glb_file =
+        GlbFile::new(&env.mesh, &GlbOptions::default()).context("encoding envelope.glb")?;
+    set.write("envelope.glb", |w| glb_file.write_to(w))?;
+    drop(glb_file);
     let r = env.report;
     let summary = EnvelopeSummary {
         moves: r.moves.len(),

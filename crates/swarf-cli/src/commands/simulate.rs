@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use anyhow::{bail, Context, Result};
 use clap::Args;
 use serde::Serialize;
-use swarf_io::glb::{glb_bytes, glb_size_bound};
+use swarf_io::glb::{glb_size_bound, GlbFile};
 use swarf_io::output_set::stl_size;
 use swarf_io::{write_stl_to, ContourOptions, GlbOptions, OutputSet, Shading};
 use swarf_path::{MoveKind, Program};
@@ -310,10 +310,10 @@ pub(crate) fn write_outputs(
     let (mesh, _) = stock.to_mesh(&ContourOptions::default());
     set.write("stock.stl", |w| write_stl_to(w, &mesh))
         .context("writing stock.stl")?;
-    let glb = glb_bytes(&mesh, &GlbOptions::default()).context("encoding stock.glb")?;
-    drop(mesh);
-    set.write_bytes("stock.glb", &glb)?;
+    let glb = GlbFile::new(&mesh, &GlbOptions::default()).context("encoding stock.glb")?;
+    set.write("stock.glb", |w| glb.write_to(w))?;
     drop(glb);
+    drop(mesh);
     set.write_bytes("moves.csv", csv.as_bytes())?;
     set.write_bytes("summary.json", &json)?;
     Ok(())

@@ -152,14 +152,11 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
     // Every output as one set: all of the files, or none.
     let mut set = crate::output::output_set(&args.out, crate::output::DEFAULT_MAX_OUTPUT_MB)?;
     let extras = serde_json::json!({ "swarf_deviation_legend": &legend });
-    let glb = swarf_io::glb::glb_bytes(
-        &mesh,
-        &GlbOptions::default()
-            .with_shading(Shading::Smooth)
-            .with_extras(extras),
-    )
-    .context("encoding deviation.glb")?;
-    set.write_bytes("deviation.glb", &glb)?;
+    let options = GlbOptions::default()
+        .with_shading(Shading::Smooth)
+        .with_extras(extras);
+    let glb = swarf_io::glb::GlbFile::new(&mesh, &options).context("encoding deviation.glb")?;
+    set.write("deviation.glb", |w| glb.write_to(w))?;
     set.write_bytes("defects.csv", defects_csv(&v, program).as_bytes())?;
     let (excess_volume, gouge_volume, method) = match (v.excess_volume_mm3, v.gouge_volume_mm3) {
         (Some(e), Some(g)) => (e, g, "z-rays"),
