@@ -339,6 +339,10 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         }
         stats.cells = cells.len();
         stats.vertices = vertices.len();
+        // Thousands of slabs are held at once: no growth slack kept.
+        cells.shrink_to_fit();
+        vertices.shrink_to_fit();
+        owned.shrink_to_fit();
         SlabOut {
             cells,
             vertices,
@@ -377,7 +381,8 @@ fn vertex_of(slabs: &[SlabOut], base: &[u32], k: i32, key: u32, local: usize) ->
     base[s] + rec.first + p as u32
 }
 
-fn split_quad(q: [u32; 4], v: &[Vec3], mode: QuadSplit, out: &mut Vec<[u32; 3]>) {
+/// The two triangles of quad `q`.
+fn split_quad(q: [u32; 4], v: &[Vec3], mode: QuadSplit) -> [[u32; 3]; 2] {
     let p = q.map(|i| v[i as usize]);
     let first = || {
         let n1 = (p[1] - p[0]).cross(p[2] - p[0]);
@@ -390,11 +395,9 @@ fn split_quad(q: [u32; 4], v: &[Vec3], mode: QuadSplit, out: &mut Vec<[u32; 3]>)
         n1.normalize_or_zero().dot(n2.normalize_or_zero())
     };
     if mode == QuadSplit::Fixed || first() >= second() {
-        out.push([q[0], q[1], q[2]]);
-        out.push([q[0], q[2], q[3]]);
+        [[q[0], q[1], q[2]], [q[0], q[2], q[3]]]
     } else {
-        out.push([q[0], q[1], q[3]]);
-        out.push([q[1], q[2], q[3]]);
+        [[q[0], q[1], q[3]], [q[1], q[2], q[3]]]
     }
 }
 
@@ -410,7 +413,7 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
         opt,
         n,
     };
-    let slabs: Vec<SlabOut> = (-1..n[2])
+    let mut slabs: Vec<SlabOut> = (-1..n[2])
         .into_par_iter()
         .map_init(Scratch::default, |s, k| ctx.phase1(k, s))
         .collect();
@@ -419,54 +422,64 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
     for s in &slabs {
         base.push(base.last().copied().unwrap_or(0) + s.vertices.len() as u32);
     }
-    let vertices: Vec<Vec3> = slabs
-        .iter()
-        .flat_map(|s| s.vertices.iter().copied())
-        .collect();
+    // The slabs' vertices moved into one array, each slab's freed as it is copied (the peak
+    // of a large mesh is here).
+    let mut vertices: Vec<Vec3> = Vec::with_capacity(base[slabs.len()] as usize);
+    for s in &mut slabs {
+        vertices.append(&mut s.vertices);
+        s.vertices = Vec::new();
+    }
     let key = |ci: i32, cj: i32| ((ci + 1) + (n[0] + 1) * (cj + 1)) as u32;
     const AROUND: [(i32, i32); 4] = [(-1, -1), (0, -1), (0, 0), (-1, 0)];
-    let tris: Vec<Vec<[u32; 3]>> = (-1..n[2])
-        .into_par_iter()
-        .map(|k| {
-            let mut out = Vec::new();
-            for &e in &slabs[slab_index(k)].owned {
-                let q = AROUND.map(|(db, dc)| match e.axis {
-                    0 => vertex_of(
-                        &slabs,
-                        &base,
-                        e.k + dc,
-                        key(e.i, e.j + db),
-                        (-db - 2 * dc) as usize,
-                    ),
-                    1 => vertex_of(
-                        &slabs,
-                        &base,
-                        e.k + db,
-                        key(e.i + dc, e.j),
-                        (4 - dc - 2 * db) as usize,
-                    ),
-                    _ => vertex_of(
-                        &slabs,
-                        &base,
-                        k,
-                        key(e.i + db, e.j + dc),
-                        (8 - db - 2 * dc) as usize,
-                    ),
-                });
-                let q = if e.inside_low {
-                    q
-                } else {
-                    [q[3], q[2], q[1], q[0]]
-                };
-                split_quad(q, &vertices, opt.split, &mut out);
-            }
-            out
-        })
-        .collect();
+    // Two triangles per owned edge, written in place: slab by slab into its own stretch of
+    // the one array.
+    let mut triangles: Vec<[u32; 3]> =
+        vec![[0; 3]; 2 * slabs.iter().map(|s| s.owned.len()).sum::<usize>()];
+    let mut stretches: Vec<(i32, &mut [[u32; 3]])> = Vec::with_capacity(slabs.len());
+    let mut rest = &mut triangles[..];
+    for k in -1..n[2] {
+        let (mine, after) = rest.split_at_mut(2 * slabs[slab_index(k)].owned.len());
+        stretches.push((k, mine));
+        rest = after;
+    }
+    stretches.into_par_iter().for_each(|(k, out)| {
+        let owned = &slabs[slab_index(k)].owned;
+        for (&e, pair) in owned.iter().zip(out.chunks_exact_mut(2)) {
+            let q = AROUND.map(|(db, dc)| match e.axis {
+                0 => vertex_of(
+                    &slabs,
+                    &base,
+                    e.k + dc,
+                    key(e.i, e.j + db),
+                    (-db - 2 * dc) as usize,
+                ),
+                1 => vertex_of(
+                    &slabs,
+                    &base,
+                    e.k + db,
+                    key(e.i + dc, e.j),
+                    (4 - dc - 2 * db) as usize,
+                ),
+                _ => vertex_of(
+                    &slabs,
+                    &base,
+                    k,
+                    key(e.i + db, e.j + dc),
+                    (8 - db - 2 * dc) as usize,
+                ),
+            });
+            let q = if e.inside_low {
+                q
+            } else {
+                [q[3], q[2], q[1], q[0]]
+            };
+            pair.copy_from_slice(&split_quad(q, &vertices, opt.split));
+        }
+    });
     let mut stats = slabs
         .iter()
         .fold(ContourStats::default(), |a, s| a.add(s.stats));
-    let triangles: Vec<[u32; 3]> = tris.into_iter().flatten().collect();
+    drop(slabs);
     stats.triangles = triangles.len();
     stats.lines = store.line_count();
     stats.spans = store.span_count();
