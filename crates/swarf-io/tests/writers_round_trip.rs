@@ -105,6 +105,31 @@ fn glb_extras_are_written_and_only_when_asked() {
     assert_eq!(a.bin, b.bin);
 }
 
+/// The file written as it goes (`write_glb`) holds exactly the bytes built in memory, and its
+/// size is the one announced, for every shading and with colours.
+#[test]
+fn glb_written_as_it_goes_equals_the_one_in_memory() {
+    let d = temp_dir("glb_stream");
+    let mut coloured = part();
+    coloured.colors = Some(
+        (0..coloured.vertices.len())
+            .map(|i| [i as f32 / 7.0, 0.5, 0.25, 1.0])
+            .collect(),
+    );
+    for m in [part(), coloured] {
+        for shading in [Shading::Flat, Shading::Smooth] {
+            let opts = GlbOptions::default().with_shading(shading);
+            let path = d.join(format!("{shading:?}.glb"));
+            write_glb(&path, &m, &opts).unwrap();
+            let bytes = glb_bytes(&m, &opts).unwrap();
+            assert_eq!(std::fs::read(&path).unwrap(), bytes);
+            let file = swarf_io::glb::GlbFile::new(&m, &opts).unwrap();
+            assert_eq!(file.len(), bytes.len());
+            parse_glb(&bytes, &path).unwrap();
+        }
+    }
+}
+
 #[test]
 fn glb_reparses_with_consistent_accessors() {
     let d = temp_dir("glb");
