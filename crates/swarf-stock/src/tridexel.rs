@@ -117,15 +117,82 @@ pub struct DexelFamily {
     pub(crate) ntu: usize,
     /// Tile-major storage: tile `(ti, tj)` holds rays `(tj·ntu + ti)·TILE² ..`, row-major inside.
     pub(crate) rays: Vec<Dexel>,
-    /// Per tile, `[lowest enter, highest exit]` of its material (conservative: may be wider than
-    /// the material after cuts until the tile is next visited).
-    pub(crate) bounds: Vec<[f64; 2]>,
+    /// Per tile, where its material lies along the rays (conservative: may claim more than the
+    /// material after cuts until the tile is next visited).
+    pub(crate) bounds: Vec<TileBound>,
+    /// The bins of [`TileBound::bins`] along this family's rays.
+    pub(crate) bins: Bins,
     /// The provenance of every ray's intervals, indexed like `rays` (empty when the stock
     /// does not track provenance).
     pub(crate) tags: Vec<DexelTags>,
 }
 
-const EMPTY_BOUND: [f64; 2] = [f64::INFINITY, f64::NEG_INFINITY];
+/// Where a tile's material lies along its rays: `[lo, hi]` spans it, and bit `b` of `bins` is
+/// set when some of it lies in bin `b` of the family's 64 equal bins ([`Bins`]). The bins tell a
+/// tile whose rays hold material only near their two ends (slivers a finishing pass leaves at
+/// the stock's edges) from one with material in the middle, which `[lo, hi]` cannot.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct TileBound {
+    pub(crate) lo: f64,
+    pub(crate) hi: f64,
+    pub(crate) bins: u64,
+}
+
+const EMPTY_BOUND: TileBound = TileBound {
+    lo: f64::INFINITY,
+    hi: f64::NEG_INFINITY,
+    bins: 0,
+};
+
+impl TileBound {
+    /// Adds material `[lo, hi]`.
+    #[inline]
+    pub(crate) fn add(&mut self, lo: f64, hi: f64, bins: &Bins) {
+        self.lo = self.lo.min(lo);
+        self.hi = self.hi.max(hi);
+        self.bins |= bins.mask(lo, hi);
+    }
+
+    /// Whether the tile may hold material inside the open range `(lo, hi)`.
+    #[inline]
+    pub(crate) fn meets(&self, lo: f64, hi: f64, bins: &Bins) -> bool {
+        self.lo < hi && self.hi > lo && self.bins & bins.mask(lo, hi) != 0
+    }
+}
+
+/// 64 equal bins over a family's extent along its rays (coordinates beyond it fall in the end
+/// bins).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Bins {
+    origin: f64,
+    scale: f64,
+}
+
+impl Bins {
+    fn new(grid: &Grid, k: usize) -> Bins {
+        let extent = grid.n[k] as f64 * grid.h[k];
+        Bins {
+            origin: grid.min[k],
+            scale: 64.0 / extent,
+        }
+    }
+
+    #[inline]
+    fn bin(&self, t: f64) -> u32 {
+        // NaN (never a stored end) lands in bin 0, as the clamp's lower end would.
+        ((t - self.origin) * self.scale).clamp(0.0, 63.0) as u32
+    }
+
+    /// The bins that `[lo, hi]` touches.
+    #[inline]
+    pub(crate) fn mask(&self, lo: f64, hi: f64) -> u64 {
+        let (a, b) = (self.bin(lo), self.bin(hi));
+        if a > b {
+            return 0;
+        }
+        (u64::MAX >> (63 - b)) & (u64::MAX << a)
+    }
+}
 
 impl DexelFamily {
     fn new(axis: usize, grid: &Grid) -> Self {
@@ -139,6 +206,7 @@ impl DexelFamily {
             ntu,
             rays: vec![Dexel::new(); ntu * ntv * TILE_RAYS],
             bounds: vec![EMPTY_BOUND; ntu * ntv],
+            bins: Bins::new(grid, axis),
             tags: Vec::new(),
         }
     }
@@ -190,7 +258,7 @@ impl DexelFamily {
                 .filter(|d| d.spilled())
                 .map(|d| d.capacity() * std::mem::size_of::<Interval>())
                 .sum::<usize>()
-            + self.bounds.capacity() * std::mem::size_of::<[f64; 2]>()
+            + self.bounds.capacity() * std::mem::size_of::<TileBound>()
             + self.tags.capacity() * std::mem::size_of::<DexelTags>()
             + self
                 .tags
@@ -202,17 +270,16 @@ impl DexelFamily {
 
     fn refresh_bounds(&mut self) {
         for (t, b) in self.bounds.iter_mut().enumerate() {
-            *b = tile_bound(&self.rays[t * TILE_RAYS..(t + 1) * TILE_RAYS]);
+            *b = tile_bound(&self.rays[t * TILE_RAYS..(t + 1) * TILE_RAYS], &self.bins);
         }
     }
 }
 
-fn tile_bound(rays: &[Dexel]) -> [f64; 2] {
+fn tile_bound(rays: &[Dexel], bins: &Bins) -> TileBound {
     let mut b = EMPTY_BOUND;
     for d in rays {
-        if let (Some(f), Some(l)) = (d.first(), d.last()) {
-            b[0] = b[0].min(f.enter);
-            b[1] = b[1].max(l.exit);
+        for iv in d.iter() {
+            b.add(iv.enter, iv.exit, bins);
         }
     }
     b
@@ -522,12 +589,12 @@ impl TriDexel {
         let fam = &self.families[k];
         let (i0, i1) = self.grid.centers_in(u, bbox.min[u], bbox.max[u])?;
         let (j0, j1) = self.grid.centers_in(v, bbox.min[v], bbox.max[v])?;
-        let mut b = EMPTY_BOUND;
+        let mut b = [f64::INFINITY, f64::NEG_INFINITY];
         for tj in j0 / TILE..=j1 / TILE {
             for ti in i0 / TILE..=i1 / TILE {
                 let t = fam.bounds[tj * fam.ntu + ti];
-                b[0] = b[0].min(t[0]);
-                b[1] = b[1].max(t[1]);
+                b[0] = b[0].min(t.lo);
+                b[1] = b[1].max(t.hi);
             }
         }
         (b[0] <= b[1]).then_some((b[0], b[1]))
@@ -607,6 +674,7 @@ impl TriDexel {
         } else {
             rayon::current_num_threads().clamp(1, 64)
         };
+        let bins = [0, 1, 2].map(|k| self.families[k].bins);
         let mut rows: Vec<[Vec<Row<'_>>; 3]> = (0..workers).map(|_| Default::default()).collect();
         for fam in self.families.iter_mut() {
             let k = fam.axis;
@@ -650,6 +718,7 @@ impl TriDexel {
                             parts,
                             rays: &rays,
                             fronts: plan.fronts.as_deref(),
+                            bins: &bins[k],
                             tag,
                             visitor: visitor.map(|v| (v, m, group)),
                         };
@@ -794,7 +863,7 @@ const PARALLEL_MIN_TILES: usize = 64;
 /// One tile row of one family, owned by one worker.
 struct Row<'a> {
     rays: &'a mut [Dexel],
-    bounds: &'a mut [[f64; 2]],
+    bounds: &'a mut [TileBound],
     /// The rays' provenance (empty when not tracked).
     tags: &'a mut [DexelTags],
 }
@@ -921,6 +990,8 @@ struct TileCut<'g, 'p, 'a> {
     parts: &'p [SweptConvex<'a>],
     /// Per part, what its dexel queries along this family share.
     rays: &'g [DexelRays],
+    /// The family's bins of the tiles' bounds.
+    bins: &'g Bins,
     /// Per part, the front of its start instance swept along the move, when that instance
     /// has been cut already: only the rays that can meet it are queried.
     fronts: Option<&'g [Front]>,
@@ -972,14 +1043,14 @@ impl TileCut<'_, '_, '_> {
         tj: usize,
         tile: &mut [Dexel],
         tags: &mut [DexelTags],
-        bound: &mut [f64; 2],
+        bound: &mut TileBound,
         scratch: &mut Scratch,
         st: &mut CutStats,
     ) {
         let (grid, k) = (self.grid, self.k);
         let (u, v) = ((k + 1) % 3, (k + 2) % 3);
         let (tmin, tmax) = self.range.t;
-        if !(bound[0] < tmax && bound[1] > tmin) {
+        if !bound.meets(tmin, tmax, self.bins) {
             return;
         }
         // Material-first at tile level: skip the tile when no part's sweep can reach its
@@ -990,7 +1061,7 @@ impl TileCut<'_, '_, '_> {
         centre[v] = grid.min[v] + (tj * TILE) as f64 * grid.h[v] + 0.5 * TILE as f64 * grid.h[v];
         let reach = self.parts.iter().any(|p| {
             p.block_range(k, centre, half)
-                .is_some_and(|(a, b)| bound[0] < b && bound[1] > a)
+                .is_some_and(|(a, b)| bound.lo < b && bound.hi > a)
         });
         if !reach {
             return;
@@ -1000,7 +1071,7 @@ impl TileCut<'_, '_, '_> {
             None => self.parts.iter().map(|_| Gate::All).collect(),
             Some(fronts) => fronts
                 .iter()
-                .map(|f| match f.block(k, centre, half, (bound[0], bound[1])) {
+                .map(|f| match f.block(k, centre, half, (bound.lo, bound.hi)) {
                     Some(b) => Gate::Front(b),
                     None => Gate::Never,
                 })
@@ -1078,7 +1149,39 @@ impl TileCut<'_, '_, '_> {
             }
         }
         if changed {
-            *bound = tile_bound(tile);
+            *bound = tile_bound(tile, self.bins);
         }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bins never miss: material `[a, b]` and a range `(lo, hi)` that overlap always share
+    /// a bin, over and beyond the family's extent and on bin edges; far apart, they do not.
+    #[test]
+    fn tile_bins_are_conservative() {
+        let grid = Grid::cubic(Vec3::new(-3.0, 0.0, 1.0), 0.5, [40, 8, 8]).unwrap();
+        let bins = Bins::new(&grid, 0);
+        let at = |i: i32| -3.0 + 20.0 * i as f64 / 256.0 - 2.0;
+        let mut apart = 0;
+        for i in 0..300 {
+            for j in i..300 {
+                let mut b = EMPTY_BOUND;
+                b.add(at(i), at(j), &bins);
+                for (lo, hi) in [(at(j) - 0.01, at(j) + 0.3), (at(i) - 0.7, at(i) + 1e-9)] {
+                    assert!(
+                        b.meets(lo, hi, &bins),
+                        "[{}, {}] vs ({lo}, {hi})",
+                        at(i),
+                        at(j)
+                    );
+                }
+                let (lo, hi) = (at(j) + 1.0, at(j) + 2.0);
+                apart += usize::from(!b.meets(lo, hi, &bins));
+            }
+        }
+        assert!(apart > 20_000, "{apart}");
     }
 }

@@ -33,7 +33,7 @@ impl TriDexel {
             fam.tags = Vec::new();
             let k = fam.axis;
             let (ua, va) = ((k + 1) % 3, (k + 2) % 3);
-            let (nu, nv, ntu) = (fam.nu, fam.nv, fam.ntu);
+            let (nu, nv, ntu, bins) = (fam.nu, fam.nv, fam.ntu, fam.bins);
             fam.rays
                 .par_chunks_mut(TILE_RAYS)
                 .zip(fam.bounds.par_iter_mut())
@@ -69,8 +69,7 @@ impl TriDexel {
                                 let batch = batch.get_or_insert_with(|| sw.lines(Vec3::AXES[k]));
                                 if let Some((lo, hi)) = batch.interval(o) {
                                     unite(d, lo, hi);
-                                    tile_bound[0] = tile_bound[0].min(lo);
-                                    tile_bound[1] = tile_bound[1].max(hi);
+                                    tile_bound.add(lo, hi, &bins);
                                 }
                             }
                         }
