@@ -90,6 +90,40 @@ impl EndStore for DexelTags {
     }
 }
 
+/// What a cut leaves on one side of it.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Side {
+    /// Nothing: the material ends inside the cut.
+    Nothing,
+    /// A remainder, kept.
+    Keep,
+    /// A sliver below [`MIN_INTERVAL_MM`], removed with the cut.
+    Drop,
+}
+
+/// The remainders the cut `[lo, hi]` leaves of the material from `first` (the first interval
+/// it meets) to `last` (the last): left and right, each with what becomes of it.
+#[inline(always)]
+fn sides(first: Interval, last: Interval, lo: f64, hi: f64) -> [(Interval, Side); 2] {
+    let side = |piece: Interval, exists: bool| match (exists, piece.len() >= MIN_INTERVAL_MM) {
+        (false, _) => Side::Nothing,
+        (true, true) => Side::Keep,
+        (true, false) => Side::Drop,
+    };
+    let left = Interval {
+        enter: first.enter,
+        exit: lo,
+    };
+    let right = Interval {
+        enter: hi,
+        exit: last.exit,
+    };
+    [
+        (left, side(left, first.enter < lo)),
+        (right, side(right, last.exit > hi)),
+    ]
+}
+
 /// Removes `[lo, hi]` from the dexel; returns the length removed.
 #[inline]
 pub fn subtract(d: &mut Dexel, lo: f64, hi: f64) -> f64 {
@@ -102,24 +136,13 @@ pub fn subtract(d: &mut Dexel, lo: f64, hi: f64) -> f64 {
             return 0.0;
         }
         let mut removed = iv.exit.min(hi) - iv.enter.max(lo);
-        let left = Interval {
-            enter: iv.enter,
-            exit: lo,
-        };
-        let right = Interval {
-            enter: hi,
-            exit: iv.exit,
-        };
-        // Slivers below MIN_INTERVAL_MM are dropped and counted as removed.
-        let keep_left = iv.enter < lo && left.len() >= MIN_INTERVAL_MM;
-        let keep_right = iv.exit > hi && right.len() >= MIN_INTERVAL_MM;
-        if iv.enter < lo && !keep_left {
-            removed += left.len();
+        let [(left, l), (right, r)] = sides(iv, iv, lo, hi);
+        for (piece, side) in [(left, l), (right, r)] {
+            if side == Side::Drop {
+                removed += piece.len();
+            }
         }
-        if iv.exit > hi && !keep_right {
-            removed += right.len();
-        }
-        match (keep_left, keep_right) {
+        match (l == Side::Keep, r == Side::Keep) {
             (true, true) => {
                 d[0] = left;
                 d.push(right);
@@ -167,27 +190,14 @@ pub(crate) fn subtract_with<E: EndStore, F: FnMut(Interval)>(
     let first = d[i];
     let last = d[k - 1];
     let (first_ends, last_ends) = (ends.get(i), ends.get(k - 1));
-    let left = Interval {
-        enter: first.enter,
-        exit: lo,
-    };
-    let right = Interval {
-        enter: hi,
-        exit: last.exit,
-    };
-    let keep_left = first.enter < lo;
-    let keep_right = last.exit > hi;
-    // Slivers below MIN_INTERVAL_MM are dropped and counted as removed.
-    let keep_left = keep_left && left.len() >= MIN_INTERVAL_MM;
-    let keep_right = keep_right && right.len() >= MIN_INTERVAL_MM;
-    if first.enter < lo && !keep_left {
-        removed += left.len();
-        removed_piece(left);
+    let [(left, l), (right, r)] = sides(first, last, lo, hi);
+    for (piece, side) in [(left, l), (right, r)] {
+        if side == Side::Drop {
+            removed += piece.len();
+            removed_piece(piece);
+        }
     }
-    if last.exit > hi && !keep_right {
-        removed += right.len();
-        removed_piece(right);
-    }
+    let (keep_left, keep_right) = (l == Side::Keep, r == Side::Keep);
     let mut w = i;
     if keep_left {
         d[w] = left;
