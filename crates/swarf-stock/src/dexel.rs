@@ -101,15 +101,22 @@ enum Side {
     Drop,
 }
 
+/// What becomes of a remainder `piece` of a cut.
+#[inline(always)]
+fn side(piece: Interval) -> Side {
+    if piece.exit <= piece.enter {
+        Side::Nothing
+    } else if piece.len() >= MIN_INTERVAL_MM {
+        Side::Keep
+    } else {
+        Side::Drop
+    }
+}
+
 /// The remainders the cut `[lo, hi]` leaves of the material from `first` (the first interval
 /// it meets) to `last` (the last): left and right, each with what becomes of it.
 #[inline(always)]
 fn sides(first: Interval, last: Interval, lo: f64, hi: f64) -> [(Interval, Side); 2] {
-    let side = |piece: Interval, exists: bool| match (exists, piece.len() >= MIN_INTERVAL_MM) {
-        (false, _) => Side::Nothing,
-        (true, true) => Side::Keep,
-        (true, false) => Side::Drop,
-    };
     let left = Interval {
         enter: first.enter,
         exit: lo,
@@ -118,10 +125,7 @@ fn sides(first: Interval, last: Interval, lo: f64, hi: f64) -> [(Interval, Side)
         enter: hi,
         exit: last.exit,
     };
-    [
-        (left, side(left, first.enter < lo)),
-        (right, side(right, last.exit > hi)),
-    ]
+    [(left, side(left)), (right, side(right))]
 }
 
 /// Removes `[lo, hi]` from the dexel; returns the length removed.
@@ -137,12 +141,13 @@ pub fn subtract(d: &mut Dexel, lo: f64, hi: f64) -> f64 {
         }
         let mut removed = iv.exit.min(hi) - iv.enter.max(lo);
         let [(left, l), (right, r)] = sides(iv, iv, lo, hi);
-        for (piece, side) in [(left, l), (right, r)] {
-            if side == Side::Drop {
-                removed += piece.len();
-            }
+        if l == Side::Drop {
+            removed += left.len();
         }
-        match (l == Side::Keep, r == Side::Keep) {
+        if r == Side::Drop {
+            removed += right.len();
+        }
+        match (matches!(l, Side::Keep), matches!(r, Side::Keep)) {
             (true, true) => {
                 d[0] = left;
                 d.push(right);
@@ -191,11 +196,13 @@ pub(crate) fn subtract_with<E: EndStore, F: FnMut(Interval)>(
     let last = d[k - 1];
     let (first_ends, last_ends) = (ends.get(i), ends.get(k - 1));
     let [(left, l), (right, r)] = sides(first, last, lo, hi);
-    for (piece, side) in [(left, l), (right, r)] {
-        if side == Side::Drop {
-            removed += piece.len();
-            removed_piece(piece);
-        }
+    if l == Side::Drop {
+        removed += left.len();
+        removed_piece(left);
+    }
+    if r == Side::Drop {
+        removed += right.len();
+        removed_piece(right);
     }
     let (keep_left, keep_right) = (l == Side::Keep, r == Side::Keep);
     let mut w = i;
