@@ -642,16 +642,16 @@ impl TriDexel {
     }
 
     /// The subtraction; move `m` of `moves` carries the tag `self.tag + step·m`. A move
-    /// whose `starts[m]` is [`Start::Own`] (its start instance has already been cut: it starts
-    /// where the move before it ended, with the same parts and axis) queries only the rays
-    /// that can meet that instance's front swept along the move (`swarf_sweep::Front`); the
-    /// others it cannot change. A missing entry is [`Start::Unknown`].
+    /// with `chained[m]` true (its start instance has already been cut: it starts where the
+    /// move before it ended, with the same parts and axis) queries only the rays that can meet
+    /// that instance's front swept along the move (`swarf_sweep::Front`); the others it
+    /// cannot change. A missing entry is false.
     fn subtract_tagged<const G: usize>(
         &mut self,
         moves: &[[&[SweptConvex<'_>]; G]],
         step: MoveTag,
         visitor: Option<&dyn RemovalVisitor>,
-        starts: &[Start],
+        chained: &[bool],
     ) -> Vec<[CutStats; G]> {
         let grid = self.grid;
         let base = self.tag;
@@ -660,11 +660,8 @@ impl TriDexel {
             .iter()
             .enumerate()
             .map(|(m, groups)| {
-                let start = match starts.get(m) {
-                    Some(s) if !exhaustive => *s,
-                    _ => Start::Unknown,
-                };
-                groups.map(|parts| Plan::new(&grid, parts, start))
+                let chained = !exhaustive && chained.get(m).copied().unwrap_or(false);
+                groups.map(|parts| Plan::new(&grid, parts, chained))
             })
             .collect();
         // Tiles the sequence may touch: small work stays on the calling thread.
@@ -801,16 +798,19 @@ impl TriDexel {
         let mut out = Vec::with_capacity(moves.len());
         // A move starting where the tool last stood (the previous move's end, or the last
         // instance the stock was cut with) only needs the rays its front can reach.
-        let mut starts = Vec::with_capacity(moves.len());
-        let at = self.last_instance.as_ref();
-        for (i, m) in moves.iter().enumerate() {
-            let chained = match i {
-                0 => at.is_some_and(|l| l.is_tool_at(tool, m.tip0, m.axis)),
+        let groups = [tool.cutting(), tool.non_cutting()];
+        let chained: Vec<bool> = moves
+            .iter()
+            .enumerate()
+            .map(|(i, m)| match i {
+                0 => self
+                    .last_instance
+                    .as_ref()
+                    .is_some_and(|l| l.is(groups, m.tip0, m.axis)),
                 _ => moves[i - 1].tip1 == m.tip0 && moves[i - 1].axis == m.axis,
-            };
-            starts.push(if chained { Start::Own } else { Start::Unknown });
-        }
-        for (chunk, starts) in moves.chunks(BATCH_MOVES).zip(starts.chunks(BATCH_MOVES)) {
+            })
+            .collect();
+        for (chunk, chained) in moves.chunks(BATCH_MOVES).zip(chained.chunks(BATCH_MOVES)) {
             fn sweep<'s>(shape: &'s SweepShape, m: &LinearMove) -> SmallVec<[SweptConvex<'s>; 2]> {
                 shape
                     .parts()
@@ -836,7 +836,7 @@ impl TriDexel {
                 &groups,
                 1,
                 shifted.as_ref().map(|f| f as &dyn RemovalVisitor),
-                starts,
+                chained,
             );
             self.tag = tag0;
             out.extend(stats.into_iter().map(|[cutting, non_cutting]| SegmentCut {
@@ -847,11 +847,7 @@ impl TriDexel {
             }));
         }
         if let Some(m) = moves.last() {
-            self.last_instance = Some(crate::cut::CutInstance {
-                slabs: [tool.cutting().clone(), tool.non_cutting().clone()],
-                tip: m.tip1,
-                axis: m.axis,
-            });
+            crate::cut::CutInstance::record(&mut self.last_instance, groups, m.tip1, m.axis);
         }
         out
     }
@@ -911,15 +907,6 @@ struct FamilyRange {
     t: (f64, f64),
 }
 
-/// What is known to have been cut where a move of a subtraction starts.
-#[derive(Clone, Copy, Debug, PartialEq)]
-enum Start {
-    /// Nothing: every ray the move may reach is queried.
-    Unknown,
-    /// Its own start instance (a fixed-axis move chained to the one before).
-    Own,
-}
-
 /// What a move may touch, per family.
 struct Plan {
     fam: [Option<FamilyRange>; 3],
@@ -929,7 +916,7 @@ struct Plan {
 }
 
 impl Plan {
-    fn new(grid: &Grid, parts: &[SweptConvex<'_>], start: Start) -> Option<Plan> {
+    fn new(grid: &Grid, parts: &[SweptConvex<'_>], chained: bool) -> Option<Plan> {
         let bb = parts
             .iter()
             .map(SweptConvex::bbox)
@@ -944,10 +931,7 @@ impl Plan {
                 t: (bb.min[k], bb.max[k]),
             })
         });
-        let fronts = match start {
-            Start::Unknown => None,
-            Start::Own => Some(parts.iter().map(SweptConvex::front).collect()),
-        };
+        let fronts = chained.then(|| parts.iter().map(SweptConvex::front).collect());
         Some(Plan { fam, fronts })
     }
 

@@ -203,9 +203,12 @@ impl TriDexel {
         // A move starting where the last one ended need not cut that instance again (the
         // stock only loses material; `unite` forgets it).
         let first = instances[0];
-        let skip = usize::from(self.last_instance.as_ref().is_some_and(|l| {
-            l.tip == first.tip0 && l.axis == first.axis && l.slabs == region.slabs
-        }));
+        let slabs = [&region.slabs[0], &region.slabs[1]];
+        let skip = usize::from(
+            self.last_instance
+                .as_ref()
+                .is_some_and(|l| l.is(slabs, first.tip0, first.axis)),
+        );
         for (w, slab) in region.slabs.iter().enumerate() {
             let live: Vec<SubMove> = instances[skip..]
                 .iter()

@@ -35,12 +35,34 @@ pub(crate) struct CutInstance {
 }
 
 impl CutInstance {
-    /// Whether this is `tool` (both groups) at `tip` with `axis`.
-    pub(crate) fn is_tool_at(&self, tool: &ToolShape, tip: Vec3, axis: Vec3) -> bool {
+    /// Whether this is the instance of `slabs` at `tip` with `axis`.
+    pub(crate) fn is(&self, slabs: [&SweepShape; 2], tip: Vec3, axis: Vec3) -> bool {
         self.tip == tip
             && self.axis == axis
-            && self.slabs[0] == *tool.cutting()
-            && self.slabs[1] == *tool.non_cutting()
+            && self.slabs[0] == *slabs[0]
+            && self.slabs[1] == *slabs[1]
+    }
+
+    /// Makes `last` the instance of `slabs` at `tip` with `axis`, copying the shapes only when
+    /// they change (chained calls with one tool, e.g. an arc's chords, copy nothing).
+    pub(crate) fn record(
+        last: &mut Option<CutInstance>,
+        slabs: [&SweepShape; 2],
+        tip: Vec3,
+        axis: Vec3,
+    ) {
+        match last {
+            Some(l) if l.slabs[0] == *slabs[0] && l.slabs[1] == *slabs[1] => {
+                (l.tip, l.axis) = (tip, axis);
+            }
+            _ => {
+                *last = Some(CutInstance {
+                    slabs: slabs.map(SweepShape::clone),
+                    tip,
+                    axis,
+                })
+            }
+        }
     }
 }
 
