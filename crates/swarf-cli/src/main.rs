@@ -71,6 +71,7 @@ fn main() {
     ) {
         output::listen_for_stop();
     }
+    output::announce_ready();
     let result = match cli.command {
         Command::Tool(args) => commands::tool::run(&args),
         Command::Path(args) => commands::path::run(&args),

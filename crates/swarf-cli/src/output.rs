@@ -13,9 +13,7 @@ static LISTENING: AtomicBool = AtomicBool::new(false);
 /// Installs the one Ctrl-C handler of the process (first thing in `main`, before any input is
 /// read). While a long run listens ([`listen_for_stop`]), Ctrl-C only asks it to stop
 /// ([`stop_requested`]) and it ends with an error before writing anything; otherwise Ctrl-C
-/// ends the process at once, as it would without a handler (exit 130). With
-/// `SWARF_READY_FILE=PATH` in the environment the file is created once the handler is in
-/// place, for scripts (and tests) that send the signal.
+/// ends the process at once, as it would without a handler (exit 130).
 pub(crate) fn install_stop_handler() {
     // If it cannot be installed, Ctrl-C keeps its default meaning.
     let _ = ctrlc::set_handler(|| {
@@ -25,15 +23,21 @@ pub(crate) fn install_stop_handler() {
             std::process::exit(130);
         }
     });
+}
+
+/// From now on Ctrl-C asks this run to stop instead of ending the process (called before any
+/// input is read, so a Ctrl-C while the input is read counts too).
+pub(crate) fn listen_for_stop() {
+    LISTENING.store(true, Ordering::SeqCst);
+}
+
+/// With `SWARF_READY_FILE=PATH` in the environment, creates the file once Ctrl-C has its final
+/// meaning for this run (handler installed and, for long runs, listening), for scripts and tests
+/// that send the signal: one sent earlier could still end the process with exit 130.
+pub(crate) fn announce_ready() {
     if let Some(path) = std::env::var_os("SWARF_READY_FILE") {
         let _ = std::fs::write(path, b"ready\n");
     }
-}
-
-/// From now on Ctrl-C asks this run to stop instead of ending the process; a Ctrl-C pressed
-/// before (while the input was read) counts too.
-pub(crate) fn listen_for_stop() {
-    LISTENING.store(true, Ordering::SeqCst);
 }
 
 /// True once Ctrl-C was pressed while listening.
