@@ -696,8 +696,10 @@ fn sample_strip(
     // Pass 2, the depth δ where f > ε, so g = min(δ, R·f) there. δ changes along a circle by
     // at most `ρ·dφ` per sample (it is a distance, 1-Lipschitz in space): a span between two
     // probed anchors whose depths have one sign and are far enough from zero holds no sign
-    // change of δ, and its depths are interpolated. So the sign of g is exact at every
-    // sample; only its value is not where δ was interpolated.
+    // change of δ, and its depths are interpolated. (A zero at sample q of span [a, b] needs
+    // |δ_a| ≤ (q − a)·ρ·dφ and |δ_b| ≤ (b − q)·ρ·dφ, so |δ_a| + |δ_b| ≤ (b − a)·ρ·dφ; two samples'
+    // worth is added for the probe's own error.) So the sign of g is exact at every sample; only
+    // its value is not where δ was interpolated.
     let mut g = std::mem::take(&mut scratch.g);
     g.clear();
     g.resize(rows * n, 0.0);
@@ -747,7 +749,7 @@ fn sample_strip(
                 }
                 let (da, db) = (row[a], row[b % n]);
                 let width = (b - a) as f64;
-                if da * db > 0.0 && da.abs().min(db.abs()) > lphi * (0.5 * width + 1.0) {
+                if da * db > 0.0 && da.abs() + db.abs() > lphi * (width + 2.0) {
                     for q in a + 1..b {
                         row[q] = da + (db - da) * (q - a) as f64 / width;
                         filled[q] = true;
