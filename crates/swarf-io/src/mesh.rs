@@ -492,17 +492,18 @@ impl TriMesh {
             rep.merged_vertices += usize::from(run_first != i);
         }
         drop(order);
-        let mut tris: Vec<Option<[u32; 3]>> = Vec::with_capacity(self.triangles.len());
-        for t in &self.triangles {
-            let t = t.map(|i| remap[i as usize]);
+        // Remapped in place (a mesh with nothing merged keeps its triangles as they were);
+        // collapsed triangles become `GONE` until the end.
+        let mut tris = std::mem::take(&mut self.triangles);
+        for t in &mut tris {
+            *t = t.map(|i| remap[i as usize]);
             if t[0] == t[1] || t[1] == t[2] || t[2] == t[0] {
                 rep.collapsed_triangles += 1;
-                tris.push(None);
-            } else {
-                tris.push(Some(t));
+                *t = GONE;
             }
         }
         drop(remap);
+        let live = |t: [u32; 3]| (t != GONE).then_some(t);
         let f = |p: Vec3| Vec3::new(p.x as f32 as f64, p.y as f32 as f64, p.z as f32 as f64);
         let verts = &self.vertices;
         let flat = |t: [u32; 3]| {
@@ -510,7 +511,7 @@ impl TriMesh {
             (b - a).cross(c - a) == Vec3::ZERO
         };
         let mut work: Vec<usize> = (0..tris.len())
-            .filter(|&i| tris[i].is_some_and(flat))
+            .filter(|&i| live(tris[i]).is_some_and(flat))
             .collect();
         if !work.is_empty() {
             // Directed edge → triangle, for the few triangles around the flat ones only: a
@@ -521,23 +522,22 @@ impl TriMesh {
             let around = VertexTriangles::new(self.vertices.len(), &tris);
             let mut loaded = vec![false; self.vertices.len()];
             let mut edges: HashMap<(u32, u32), usize> = HashMap::new();
-            let mut load =
-                |v: u32, edges: &mut HashMap<(u32, u32), usize>, tris: &[Option<[u32; 3]>]| {
-                    if std::mem::replace(&mut loaded[v as usize], true) {
-                        return;
-                    }
-                    for &i in around.of(v) {
-                        if let Some(t) = tris[i as usize] {
-                            for k in 0..3 {
-                                edges.insert((t[k], t[(k + 1) % 3]), i as usize);
-                            }
+            let mut load = |v: u32, edges: &mut HashMap<(u32, u32), usize>, tris: &[[u32; 3]]| {
+                if std::mem::replace(&mut loaded[v as usize], true) {
+                    return;
+                }
+                for &i in around.of(v) {
+                    if let Some(t) = live(tris[i as usize]) {
+                        for k in 0..3 {
+                            edges.insert((t[k], t[(k + 1) % 3]), i as usize);
                         }
                     }
-                };
+                }
+            };
             let mut budget = 4 * tris.len() + 16;
             while let Some(i) = work.pop() {
                 budget = budget.saturating_sub(1);
-                let Some(t) = tris[i] else { continue };
+                let Some(t) = live(tris[i]) else { continue };
                 if !flat(t) || budget == 0 {
                     continue;
                 }
@@ -555,7 +555,7 @@ impl TriMesh {
                 let Some(&j) = edges.get(&(b, a)) else {
                     continue;
                 };
-                let Some(n) = tris[j] else { continue };
+                let Some(n) = live(tris[j]) else { continue };
                 let d = n.iter().copied().find(|&v| v != a && v != b).unwrap_or(c);
                 load(d, &mut edges, &tris);
                 if j == i || d == c || edges.contains_key(&(c, d)) || edges.contains_key(&(d, c)) {
@@ -566,10 +566,10 @@ impl TriMesh {
                         edges.remove(&(old[k], old[(k + 1) % 3]));
                     }
                 }
-                tris[i] = Some([b, c, d]);
-                tris[j] = Some([c, a, d]);
+                tris[i] = [b, c, d];
+                tris[j] = [c, a, d];
                 for idx in [i, j] {
-                    let nt = tris[idx].unwrap_or([0; 3]);
+                    let nt = tris[idx];
                     for k in 0..3 {
                         edges.insert((nt[k], nt[(k + 1) % 3]), idx);
                     }
@@ -577,12 +577,14 @@ impl TriMesh {
                 }
                 rep.split_caps += 1;
             }
-            rep.remaining_flat = tris.iter().flatten().filter(|&&t| flat(t)).count();
+            rep.remaining_flat = tris.iter().filter(|&&t| t != GONE && flat(t)).count();
         }
         if rep.merged_vertices == 0 && rep.collapsed_triangles == 0 && rep.split_caps == 0 {
+            self.triangles = tris;
             return rep;
         }
-        self.triangles = tris.into_iter().flatten().collect();
+        tris.retain(|&t| t != GONE);
+        self.triangles = tris;
         // Drop unused vertices, keeping the order of the others.
         let mut used = vec![u32::MAX; self.vertices.len()];
         for t in &self.triangles {
@@ -597,13 +599,20 @@ impl TriMesh {
                 next += 1;
             }
         }
-        let keep = |i: usize| used[i] != u32::MAX;
-        self.vertices = (0..self.vertices.len())
-            .filter(|&i| keep(i))
-            .map(|i| self.vertices[i])
-            .collect();
-        if let Some(c) = &self.colors {
-            self.colors = Some((0..c.len()).filter(|&i| keep(i)).map(|i| c[i]).collect());
+        // Compacted in place, in order.
+        fn keep_used<T: Copy>(items: &mut Vec<T>, used: &[u32]) {
+            let mut w = 0;
+            for i in 0..items.len() {
+                if used.get(i).is_some_and(|&u| u != u32::MAX) {
+                    items[w] = items[i];
+                    w += 1;
+                }
+            }
+            items.truncate(w);
+        }
+        keep_used(&mut self.vertices, &used);
+        if let Some(c) = &mut self.colors {
+            keep_used(c, &used);
         }
         for t in &mut self.triangles {
             *t = t.map(|v| used[v as usize]);
@@ -640,7 +649,10 @@ impl TriMesh {
                 n[i as usize] += w;
             }
         }
-        n.iter().map(|v| v.normalize_or_zero()).collect()
+        for v in &mut n {
+            *v = v.normalize_or_zero();
+        }
+        n
     }
 
     /// Reverses every triangle (turns the mesh inside out).
@@ -651,6 +663,9 @@ impl TriMesh {
     }
 }
 
+/// A triangle removed while a mesh is repaired in place.
+const GONE: [u32; 3] = [u32::MAX; 3];
+
 /// The triangles around each vertex, as one array per mesh (compressed rows: counts, then
 /// offsets, then indices), built in two passes without hashing.
 struct VertexTriangles {
@@ -659,9 +674,9 @@ struct VertexTriangles {
 }
 
 impl VertexTriangles {
-    fn new(vertices: usize, tris: &[Option<[u32; 3]>]) -> Self {
+    fn new(vertices: usize, tris: &[[u32; 3]]) -> Self {
         let mut start = vec![0u32; vertices + 1];
-        for t in tris.iter().flatten() {
+        for t in tris.iter().filter(|&&t| t != GONE) {
             for &v in t {
                 start[v as usize + 1] += 1;
             }
@@ -671,12 +686,10 @@ impl VertexTriangles {
         }
         let mut fill = start.clone();
         let mut index = vec![0u32; start[vertices] as usize];
-        for (i, t) in tris.iter().enumerate() {
-            if let Some(t) = t {
-                for &v in t {
-                    index[fill[v as usize] as usize] = i as u32;
-                    fill[v as usize] += 1;
-                }
+        for (i, t) in tris.iter().enumerate().filter(|(_, &t)| t != GONE) {
+            for &v in t {
+                index[fill[v as usize] as usize] = i as u32;
+                fill[v as usize] += 1;
             }
         }
         Self { start, index }

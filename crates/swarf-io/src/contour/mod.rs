@@ -338,6 +338,7 @@ fn contour<G: HermiteGrid + ?Sized>(
     }
     let store = lines::Store::build(grid, lattice);
     let (mut mesh, mut stats) = extract::extract(&store, grid, options);
+    drop(store);
     if let Some(project) = project {
         let normals = mesh.vertex_normals();
         stats.projected_vertices = mesh
