@@ -54,6 +54,7 @@ pub(crate) mod front;
 pub(crate) mod interval;
 pub(crate) mod line;
 pub(crate) mod profile;
+pub(crate) mod separation;
 pub(crate) mod slab;
 pub(crate) mod sphere;
 pub(crate) mod torus;
@@ -128,10 +129,12 @@ pub(crate) fn quad(a: f64, b: f64, c: f64) -> ([f64; 2], usize) {
     ([q / a, c / q], 2)
 }
 
-/// Per-thread scratch space (root lists) so the per-ray loop never allocates.
+/// Per-thread scratch space (root lists) so the per-ray loop never allocates, and the planes
+/// that last separated a family's rays from a sweep (`separation.rs`).
 #[derive(Debug, Default)]
 pub struct Scratch {
     pub(crate) roots: Vec<f64>,
+    pub(crate) planes: separation::Planes,
 }
 
 impl Scratch {
@@ -139,6 +142,7 @@ impl Scratch {
     pub fn new() -> Self {
         Self {
             roots: Vec::with_capacity(32),
+            planes: separation::Planes::default(),
         }
     }
 }
@@ -254,8 +258,9 @@ pub struct DexelRays(RaysKind);
 enum RaysKind {
     /// Closed-form kernels.
     Fast(fast::FastRays),
-    /// The general candidates.
-    General(Box<DirConsts>),
+    /// The general candidates, and a number no other `DexelRays` of the process has (the
+    /// separating planes found for its rays are kept under it).
+    General(Box<DirConsts>, u64),
 }
 
 /// Most units (elements + joints) a profile may have for the batched query.
@@ -423,7 +428,10 @@ impl<'a> SweptConvex<'a> {
     pub fn dexel_rays(&self, k: usize) -> DexelRays {
         DexelRays(match &self.fast {
             Some(f) => RaysKind::Fast(f.rays(k)),
-            None => RaysKind::General(Box::new(self.dir_consts(Vec3::AXES[k]))),
+            None => RaysKind::General(
+                Box::new(self.dir_consts(Vec3::AXES[k])),
+                separation::Planes::new_owner(),
+            ),
         })
     }
 
@@ -431,7 +439,8 @@ impl<'a> SweptConvex<'a> {
     /// the cross axes `(k+1) % 3`, `(k+2) % 3` are `(cu, cv)` (`rays` from
     /// [`SweptConvex::dexel_rays`] for `k`): whether an exact query ran, and the interval to
     /// remove (exact where it meets the material). Closed form when available; otherwise the
-    /// material-first range test, then the general candidates pruned to the material.
+    /// material-first range test, a separating plane between the material and the sweep
+    /// (`separation.rs`), then the general candidates pruned to the material.
     #[inline]
     pub fn dexel_cut(
         &self,
@@ -445,9 +454,9 @@ impl<'a> SweptConvex<'a> {
             (Some(f), Some(l)) => (f.enter, l.exit),
             _ => return (false, None),
         };
-        let dc = match &rays.0 {
+        let (dc, owner) = match &rays.0 {
             RaysKind::Fast(f) => return (true, f.interval(cu, cv, Some((first, last)))),
-            RaysKind::General(dc) => dc,
+            RaysKind::General(dc, owner) => (dc, *owner),
         };
         let mut origin = Vec3::ZERO;
         origin[(k + 1) % 3] = cu;
@@ -455,7 +464,7 @@ impl<'a> SweptConvex<'a> {
         let Some((a, b)) = self.dexel_range(origin, k) else {
             return (false, None);
         };
-        if !overlaps(d, a, b) {
+        if !overlaps(d, a, b) || self.misses_material(origin, k, d, (a, b), owner, scratch) {
             return (false, None);
         }
         let (m_lo, m_hi) = (first.max(a), last.min(b));
