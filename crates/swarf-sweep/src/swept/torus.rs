@@ -201,11 +201,24 @@ impl TubeLine {
         rho - self.e - s
     }
 
+    /// `(F(t), F′(t))` from one evaluation of the parts (the Newton steps need both).
+    #[inline]
+    fn value_slope(&self, t: f64) -> (f64, f64) {
+        let parts = self.parts(t);
+        let (_, rho, _, s) = parts;
+        (rho - self.e - s, self.slope_of(t, parts))
+    }
+
     /// `F′(t)`: `(q′/2)/ρ + z·d_z/√(r² − z²)` (±∞ at the tube's top and bottom, where the
     /// square root vanishes; a subgradient where the line crosses the axis).
     #[inline]
     fn slope(&self, t: f64) -> f64 {
-        let (_, rho, z, s) = self.parts(t);
+        self.slope_of(t, self.parts(t))
+    }
+
+    /// [`TubeLine::slope`] from the parts at `t`.
+    #[inline]
+    fn slope_of(&self, t: f64, (_, rho, z, s): (f64, f64, f64, f64)) -> f64 {
         let half_dq = self.pd + t * self.dd;
         let radial = if rho > 0.0 { half_dq / rho } else { 0.0 };
         let axial = if s > 0.0 {
@@ -280,11 +293,13 @@ impl TubeLine {
     /// steps do not settle: the caller then brackets.
     fn walk(&self, mut t: f64, mut f: f64, toward: f64) -> Walk {
         let dir = if toward > t { 1.0 } else { -1.0 };
+        // The slope at `t` (known with the value after the first step).
+        let mut slope = None;
         for _ in 0..WALK_STEPS {
             if f <= 0.0 {
                 return Walk::Zero(t);
             }
-            let g = self.slope(t);
+            let g = slope.take().unwrap_or_else(|| self.slope(t));
             if !g.is_finite() {
                 return Walk::Stuck;
             }
@@ -301,7 +316,8 @@ impl TubeLine {
                 return Walk::Zero(next);
             }
             t = next;
-            f = self.value(t);
+            let (fv, gv) = self.value_slope(t);
+            (f, slope) = (fv, Some(gv));
         }
         Walk::Stuck
     }
@@ -312,8 +328,7 @@ impl TubeLine {
         let rising = fa < 0.0;
         let mut t = 0.5 * (a + b);
         for _ in 0..MAX_STEPS {
-            let v = self.value(t);
-
+            let (v, g) = self.value_slope(t);
             if v == 0.0 {
                 return t;
             }
@@ -322,7 +337,6 @@ impl TubeLine {
             } else {
                 b = t;
             }
-            let g = self.slope(t);
             let newton = g.is_finite() && g != 0.0;
             let step = v / g;
             if newton && step.abs() <= ROOT_TOL.x_tol {
