@@ -479,6 +479,48 @@ impl ConvexProfile {
         self.arc_ends[i]
     }
 
+    /// The bull-nose corners (bit `i`: element `i`) whose lozenge lies in the solid
+    /// (`lozenge.rs`): quarter tori from the bottom (tangent to it, `f = r`) to a vertical side
+    /// that rises at least `r` above the spine.
+    pub(crate) fn lozenge_corners(&self) -> u64 {
+        let els = &self.elements;
+        let mut bits = 0u64;
+        for i in 0..els.len().min(64) {
+            let Element::Arc {
+                e,
+                f,
+                r,
+                phi0,
+                phi1,
+            } = els[i]
+            else {
+                continue;
+            };
+            let quarter = e > 0.0
+                && phi0 == 0.0
+                && (phi1 - std::f64::consts::FRAC_PI_2).abs() <= 1e-12
+                && (f - r).abs() <= 1e-12 * r.max(1.0);
+            let side_rises = matches!(els.get(i + 1), Some(Element::Line { p, q })
+                if p.x == q.x
+                    && (p.x - (e + r)).abs() <= 1e-12 * (e + r)
+                    && (p.y - f).abs() <= 1e-12 * r.max(1.0)
+                    && q.y >= f + r);
+            if quarter && side_rises {
+                bits |= 1 << i;
+            }
+        }
+        bits
+    }
+
+    /// Adds the ends of the line's chord through the lozenge of bull-nose corner `i` swept by
+    /// `v` (move frame; `lozenge.rs`).
+    #[inline]
+    pub(crate) fn swept_corner(&self, i: usize, o: Vec3, d: Vec3, v: Vec3, acc: &mut Acc) {
+        if let Element::Arc { e, f, r, .. } = self.elements[i] {
+            super::lozenge::swept_chord(e, f, r, o, d, v, acc);
+        }
+    }
+
     /// Height band and largest radius of element `i`.
     pub(crate) fn element_extent(&self, i: usize) -> (f64, f64, f64) {
         self.extents[i]

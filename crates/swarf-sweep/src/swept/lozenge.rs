@@ -1,0 +1,244 @@
+//! A bull-nose corner swept along a move, against a line, without the torus envelope's
+//! degree-8 polynomial.
+//!
+//! # Why it holds
+//! The corner of a bull-nose (a quarter torus of tube radius `r` about the spine circle of
+//! radius `e` at height `f = r`, tangent to the flat bottom and to the vertical side) lies on
+//! the boundary of the **lozenge** `L = D ⊕ B(r)`, `D` the disc of radius `e` at height `f`:
+//! the points within `r` of `D`. Where the side above the corner stays vertical up to `f + r`,
+//! `L` lies inside the tool (its lower half is the corner and the flat bottom, its upper half
+//! within the side's radius `e + r`), so `L ⊕ [0, v]` lies in the sweep `S`, and every point
+//! where a line leaves or enters `S` through the swept corner is where it leaves or enters
+//! `L ⊕ [0, v]`: the two ends of that chord are candidates that replace the corner's caps and
+//! envelope (`mod.rs`, "the geometry").
+//!
+//! `L ⊕ [0, v] = (D ⊕ [0, v]) ⊕ B(r)`, so along the line `p(t) = o + t·d` the chord is where
+//! `G(t) = dist(p(t), K) − r ≤ 0`, `K = D ⊕ [0, v]` — convex, as the distance to a convex set
+//! is. And `dist(p, K)² = min_{s ∈ [0, 1]} φ(s)`, `φ(s) = h(s)² + max(ρ(s) − e, 0)²` with
+//! `h = p_z − s·v_z − f` and `ρ` the distance of `p − s·v` from the axis: a convex function of
+//! `s` (sums of squares of convex non-negative functions), minimised by bracketed Newton steps.
+//! The derivative of `G` is that of `φ` in `t` at the minimising `s` (envelope theorem). Newton
+//! steps on the convex `G` from the ends of the bounding capsule (where `G ≥ 0`) close in on
+//! its zeros from outside, as for the torus caps (`torus.rs`).
+
+use super::capsule::line_capsule;
+use super::Acc;
+use swarf_geom::math::Vec3;
+
+/// Newton steps at most per walk before the bracketed search takes over.
+const WALK_STEPS: usize = 40;
+
+/// Steps at most of a bracketed search (bisection halves the bracket at least every other).
+const MAX_STEPS: usize = 120;
+
+/// A zero is accepted when the Newton step is below this (mm).
+const T_TOL: f64 = 1e-12;
+
+/// The corner `(e, f, r)` and the move `v`, in the move frame (tool axis +Z).
+struct Corner {
+    e: f64,
+    f: f64,
+    r: f64,
+    v: Vec3,
+}
+
+impl Corner {
+    /// `(min_s φ, ∂φ/∂p at the minimising s)` for the point `p`.
+    fn nearest(&self, p: Vec3) -> (f64, Vec3) {
+        let (a, b) = (self.v.x, self.v.z);
+        let phi = |s: f64| -> (f64, Vec3) {
+            let (ux, uy) = (p.x - s * a, p.y);
+            let h = p.z - s * b - self.f;
+            let rho = (ux * ux + uy * uy).sqrt();
+            let out = (rho - self.e).max(0.0);
+            // Gradient in p: 2h·ẑ + 2·out·(radial unit).
+            let radial = if rho > 0.0 {
+                Vec3::new(ux / rho, uy / rho, 0.0)
+            } else {
+                Vec3::ZERO
+            };
+            (h * h + out * out, 2.0 * h * Vec3::Z + 2.0 * out * radial)
+        };
+        // φ′(s) = −∂φ/∂p · v.
+        let slope = |s: f64| -> (f64, f64) {
+            let (ux, uy) = (p.x - s * a, p.y);
+            let h = p.z - s * b - self.f;
+            let rho2 = ux * ux + uy * uy;
+            let rho = rho2.sqrt();
+            let out = (rho - self.e).max(0.0);
+            let g = if rho > 0.0 {
+                -2.0 * b * h - 2.0 * a * out * ux / rho
+            } else {
+                -2.0 * b * h
+            };
+            let curv = 2.0 * b * b
+                + if out > 0.0 && rho > 0.0 {
+                    2.0 * a * a * (ux * ux / rho2 + out * uy * uy / (rho2 * rho))
+                } else {
+                    0.0
+                };
+            (g, curv)
+        };
+        let s = if slope(0.0).0 >= 0.0 {
+            0.0
+        } else if slope(1.0).0 <= 0.0 {
+            1.0
+        } else {
+            let (mut lo, mut hi) = (0.0, 1.0);
+            let mut s = 0.5;
+            for _ in 0..MAX_STEPS {
+                let (g, c) = slope(s);
+                if g == 0.0 {
+                    break;
+                }
+                if g < 0.0 {
+                    lo = s;
+                } else {
+                    hi = s;
+                }
+                let next = if c > 0.0 { s - g / c } else { f64::NAN };
+                let newton = next > lo && next < hi;
+                if newton && (next - s).abs() <= 1e-14 {
+                    s = next;
+                    break;
+                }
+                s = if newton { next } else { 0.5 * (lo + hi) };
+                if hi - lo <= 1e-15 {
+                    break;
+                }
+            }
+            s
+        };
+        phi(s)
+    }
+
+    /// `(G(t), G′(t))` along the line `o + t·d`.
+    fn g(&self, o: Vec3, d: Vec3, t: f64) -> (f64, f64) {
+        let (q, grad) = self.nearest(o + d * t);
+        let dist = q.sqrt();
+        let slope = if dist > 0.0 {
+            grad.dot(d) / (2.0 * dist)
+        } else {
+            0.0
+        };
+        (dist - self.r, slope)
+    }
+
+    /// Newton steps from `t` (where `G = f ≥ 0`, slope `g`) towards `toward`: the convex `G`'s
+    /// tangents lie below it, so the steps close in on the nearest zero that way from outside.
+    /// `Ok(Some(t))` at the zero, `Ok(None)` when there is none that way, `Err(())` when the
+    /// steps do not settle.
+    fn walk(&self, o: Vec3, d: Vec3, mut t: f64, (mut f, mut g): (f64, f64), toward: f64) -> Walk {
+        let dir = if toward > t { 1.0 } else { -1.0 };
+        for _ in 0..WALK_STEPS {
+            if f <= 0.0 {
+                return Walk::Zero(t);
+            }
+            if !g.is_finite() || g * dir >= 0.0 {
+                return if g.is_finite() {
+                    Walk::NoZero
+                } else {
+                    Walk::Stuck
+                };
+            }
+            let step = -f / g;
+            let next = t + step;
+            if (next - toward) * dir > 0.0 {
+                return Walk::NoZero;
+            }
+            if step.abs() <= T_TOL {
+                return Walk::Zero(next);
+            }
+            t = next;
+            (f, g) = self.g(o, d, t);
+        }
+        Walk::Stuck
+    }
+
+    /// The zero of `G` in `[a, b]`, where `G` changes sign once (`G(a) = fa`).
+    fn zero_between(&self, o: Vec3, d: Vec3, mut a: f64, mut b: f64, fa: f64) -> f64 {
+        let rising = fa < 0.0;
+        let mut t = 0.5 * (a + b);
+        for _ in 0..MAX_STEPS {
+            let (v, _) = self.g(o, d, t);
+            if v == 0.0 {
+                return t;
+            }
+            if (v < 0.0) == rising {
+                a = t;
+            } else {
+                b = t;
+            }
+            t = 0.5 * (a + b);
+            if b - a <= T_TOL {
+                break;
+            }
+        }
+        t
+    }
+
+    /// The minimum of `G` in `[a, b]` (`G′(a) < 0 < G′(b)`), by bisection on the slope.
+    fn min_between(&self, o: Vec3, d: Vec3, mut a: f64, mut b: f64) -> f64 {
+        for _ in 0..MAX_STEPS {
+            let t = 0.5 * (a + b);
+            let (_, g) = self.g(o, d, t);
+            if g < 0.0 {
+                a = t;
+            } else {
+                b = t;
+            }
+            if b - a <= T_TOL {
+                break;
+            }
+        }
+        0.5 * (a + b)
+    }
+}
+
+enum Walk {
+    Zero(f64),
+    NoZero,
+    Stuck,
+}
+
+/// Adds to `acc` the ends of the chord of the line `o + t·d` (unit `d`, move frame) through
+/// `(D ⊕ B(r)) ⊕ [0, v]`, `D` the disc of radius `e` at height `f` about the axis (module
+/// documentation), if the line meets it.
+pub(crate) fn swept_chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3, acc: &mut Acc) {
+    // Every point of it is within e + r of the disc centre's path.
+    let c0 = Vec3::new(0.0, 0.0, f);
+    let Some((lo, hi)) = line_capsule::<false>(o, d, c0, v, e + r) else {
+        return;
+    };
+    let corner = Corner { e, f, r, v };
+    let (at_lo, at_hi) = (corner.g(o, d, lo), corner.g(o, d, hi));
+    let lower = match corner.walk(o, d, lo, at_lo, hi) {
+        Walk::NoZero => return,
+        Walk::Zero(t) => Some(t),
+        Walk::Stuck => None,
+    };
+    let upper = match corner.walk(o, d, hi, at_hi, lo) {
+        Walk::NoZero => return,
+        Walk::Zero(t) => Some(t),
+        Walk::Stuck => None,
+    };
+    if let (Some(a), Some(b)) = (lower, upper) {
+        acc.add(a);
+        acc.add(b);
+        return;
+    }
+    // The walks did not settle (a line grazing the sweep): the minimum, then each side.
+    let t_min = if at_lo.1 >= 0.0 {
+        lo
+    } else if at_hi.1 <= 0.0 {
+        hi
+    } else {
+        corner.min_between(o, d, lo, hi)
+    };
+    let (f_min, _) = corner.g(o, d, t_min);
+    if f_min > 0.0 {
+        return;
+    }
+    acc.add(lower.unwrap_or_else(|| corner.zero_between(o, d, lo, t_min, at_lo.0)));
+    acc.add(upper.unwrap_or_else(|| corner.zero_between(o, d, t_min, hi, f_min)));
+}
