@@ -30,7 +30,13 @@
 //! * torus (bull-nose corner): the spine circle offset by `±r·m(θ)`, `m = unit(c′ × v)`, a
 //!   degree-8 polynomial in `tan(θ/2)` solved by guaranteed root isolation
 //!   (`swarf_geom::poly`), with the horizontal move (where `m` is undefined on two meridians)
-//!   in closed form — `torus.rs`.
+//!   in closed form — `torus.rs`. A bull-nose corner (a quarter torus between the flat bottom
+//!   and a vertical side) needs none of that: the lozenge it bounds lies in the tool, and the
+//!   ends of a line's chord through the lozenge swept along `v` replace its caps and envelope
+//!   (the zeros of a convex distance) — `lozenge.rs`.
+//!
+//! Before any candidate, the stock update tries to prove that a ray's material misses the
+//! sweep by a separating plane from the convex sweep's support function — `separation.rs`.
 //!
 //! Flat faces (discs) parallel to `v` are grazing as a whole, but their extrusion's boundary
 //! is made of the joint circles' extrusions and the caps, so they need no candidates of their
