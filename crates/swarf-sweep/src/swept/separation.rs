@@ -60,12 +60,17 @@ impl Planes {
         OWNERS.fetch_add(1, Ordering::Relaxed)
     }
 
-    /// The kept planes of `owner` (forgetting another owner's).
-    fn of(&mut self, owner: u64) -> &[(Vec3, f64)] {
+    /// Whether a kept plane of `owner` (another owner's are forgotten) leaves the segment
+    /// from `p0` along world axis `k` by `len` beyond it; the latest kept is tried first.
+    fn separate(&mut self, owner: u64, p0: Vec3, k: usize, len: f64) -> bool {
         if self.owner != owner {
             (self.owner, self.len, self.next, self.misses) = (owner, 0, 0, 0);
+            return false;
         }
-        &self.planes[..self.len]
+        (1..=self.len).any(|back| {
+            let plane = self.planes[(self.next + KEPT - back) % KEPT];
+            beyond(plane, p0, k, len)
+        })
     }
 
     /// Keeps `plane` (the oldest goes when full).
@@ -86,10 +91,11 @@ impl Planes {
     }
 }
 
-/// True when the segment from `p0` to `p1` lies beyond the plane `(n, h)` by the margin.
+/// True when the segment from `p0` along world axis `k` by `len ≥ 0` lies beyond the plane
+/// `(n, h)` by the margin (its lower end along `n` is `n·p0`, or `n·p0 + n_k·len`).
 #[inline]
-fn beyond((n, h): (Vec3, f64), p0: Vec3, p1: Vec3) -> bool {
-    n.dot(p0).min(n.dot(p1)) - h > SEPARATION_MARGIN_MM
+fn beyond((n, h): (Vec3, f64), p0: Vec3, k: usize, len: f64) -> bool {
+    n.dot(p0) + (n[k] * len).min(0.0) - h > SEPARATION_MARGIN_MM
 }
 
 impl SweptConvex<'_> {
@@ -111,15 +117,12 @@ impl SweptConvex<'_> {
             p
         };
         for iv in d.iter().filter(|iv| iv.enter < hi && iv.exit > lo) {
-            let (p0, p1) = (at(iv.enter.max(lo)), at(iv.exit.min(hi)));
-            if scratch
-                .planes
-                .of(owner)
-                .iter()
-                .any(|&plane| beyond(plane, p0, p1))
-            {
+            let (t0, t1) = (iv.enter.max(lo), iv.exit.min(hi));
+            let p0 = at(t0);
+            if scratch.planes.separate(owner, p0, k, t1 - t0) {
                 continue;
             }
+            let p1 = at(t1);
             if !scratch.planes.try_search() {
                 return false;
             }
@@ -153,6 +156,6 @@ impl SweptConvex<'_> {
         }
         let n = sd.normal;
         let plane = (n, self.prof.support(tip, axis, n) + n.dot(delta).max(0.0));
-        beyond(plane, p0, p1).then_some(plane)
+        beyond(plane, p0, k, p1[k] - p0[k]).then_some(plane)
     }
 }
