@@ -44,6 +44,9 @@ struct CellRec {
 
 struct SlabOut {
     cells: Vec<CellRec>,
+    /// Where each row of cells (`cj + 1`) starts in `cells` (sorted by key, so by row), and
+    /// the end: a vertex is looked up in its row only.
+    rows: Vec<u32>,
     vertices: Vec<Vec3>,
     /// Edges whose quads this slab emits: Z edges from its low level, X and Y edges on its top level.
     owned: Vec<Edge>,
@@ -337,6 +340,13 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
             }
             g = end;
         }
+        let mut rows = vec![0u32; n1 as usize + 3];
+        for c in &cells {
+            rows[(c.key / (n0 + 1) as u32) as usize + 1] += 1;
+        }
+        for r in 1..rows.len() {
+            rows[r] += rows[r - 1];
+        }
         stats.cells = cells.len();
         stats.vertices = vertices.len();
         // Thousands of slabs are held at once: no growth slack kept.
@@ -345,6 +355,7 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         owned.shrink_to_fit();
         SlabOut {
             cells,
+            rows,
             vertices,
             owned,
             stats,
@@ -370,11 +381,13 @@ fn slab_index(k: i32) -> usize {
     (k + 1) as usize
 }
 
-fn vertex_of(slabs: &[SlabOut], base: &[u32], k: i32, key: u32, local: usize) -> u32 {
+fn vertex_of(slabs: &[SlabOut], base: &[u32], stride: u32, k: i32, key: u32, local: usize) -> u32 {
     let s = slab_index(k);
-    let cells = &slabs[s].cells;
-    let c = cells.partition_point(|c| c.key < key);
-    let rec = cells[c];
+    let slab = &slabs[s];
+    let row = (key / stride) as usize;
+    let (a, b) = (slab.rows[row] as usize, slab.rows[row + 1] as usize);
+    let c = a + slab.cells[a..b].partition_point(|c| c.key < key);
+    let rec = slab.cells[c];
     debug_assert_eq!(rec.key, key);
     let p = cases()[rec.case as usize].patch[local];
     debug_assert!(p != NONE);
@@ -430,6 +443,7 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
         s.vertices = Vec::new();
     }
     let key = |ci: i32, cj: i32| ((ci + 1) + (n[0] + 1) * (cj + 1)) as u32;
+    let stride = (n[0] + 1) as u32;
     const AROUND: [(i32, i32); 4] = [(-1, -1), (0, -1), (0, 0), (-1, 0)];
     // Two triangles per owned edge, written in place: slab by slab into its own stretch of
     // the one array.
@@ -449,6 +463,7 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
                 0 => vertex_of(
                     &slabs,
                     &base,
+                    stride,
                     e.k + dc,
                     key(e.i, e.j + db),
                     (-db - 2 * dc) as usize,
@@ -456,6 +471,7 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
                 1 => vertex_of(
                     &slabs,
                     &base,
+                    stride,
                     e.k + db,
                     key(e.i + dc, e.j),
                     (4 - dc - 2 * db) as usize,
@@ -463,6 +479,7 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
                 _ => vertex_of(
                     &slabs,
                     &base,
+                    stride,
                     k,
                     key(e.i + db, e.j + dc),
                     (8 - db - 2 * dc) as usize,
