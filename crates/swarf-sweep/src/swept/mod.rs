@@ -693,6 +693,8 @@ impl<'a> SweptConvex<'a> {
                 && self.lozenges & (1 << unit.index) != 0
                 && self.skip_envelope & (1 << unit.index) == 0
             {
+                // (Only on a move: a static instance stops at its first two crossings, and
+                // the lozenge's chord may end inside the tool.)
                 prof.swept_corner(unit.index, o, d, v, &mut acc);
             } else {
                 prof.cap_element(unit.index, o, d, &mut acc, scratch);
@@ -765,8 +767,8 @@ mod tests {
 
     /// The bull-nose corner swept as a lozenge (`lozenge.rs`) gives the same intervals as its
     /// caps and the torus envelope's degree-8 polynomial: random lines in every direction
-    /// against sweeps rising, falling, level, oblique and along the axis, on vertical and
-    /// tilted axes, for corners small and large against the radius.
+    /// against sweeps rising, falling, level, oblique and along the axis, and static instances,
+    /// on vertical and tilted axes, for corners small and large against the radius.
     #[test]
     fn lozenge_corner_equals_caps_and_envelope() {
         let mut seed = 5u64;
@@ -790,6 +792,7 @@ mod tests {
                 let delta = match m % 5 {
                     0 => Vec3::new(rnd() - 0.5, rnd() - 0.5, 0.0) * 4.0,
                     1 => axis * (rnd() - 0.5) * 3.0,
+                    2 => Vec3::ZERO,
                     _ => Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 4.0,
                 };
                 let tip = Vec3::new(rnd(), rnd(), rnd()) * 5.0;
