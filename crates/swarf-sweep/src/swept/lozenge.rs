@@ -79,16 +79,21 @@ impl Corner {
                 };
             (g, curv)
         };
-        let s = if slope(0.0).0 >= 0.0 {
-            0.0
-        } else if slope(1.0).0 <= 0.0 {
-            1.0
+        // Newton steps kept in [0, 1] (a bracket of the minimiser once the slope's sign is
+        // seen at both ends of it), from the point of the move nearest to p across the axis,
+        // which is the minimiser of a level move and near it otherwise.
+        let start = if a != 0.0 {
+            (p.x / a).clamp(0.0, 1.0)
         } else {
+            0.5
+        };
+        let s = {
             let (mut lo, mut hi) = (0.0, 1.0);
-            let mut s = 0.5;
+            let mut s = start;
             for _ in 0..MAX_STEPS {
                 let (g, c) = slope(s);
-                if g == 0.0 {
+                if g == 0.0 || (g > 0.0 && s == 0.0) || (g < 0.0 && s == 1.0) {
+                    // The minimiser, or rising away from an end of the move.
                     break;
                 }
                 if g < 0.0 {
@@ -102,7 +107,16 @@ impl Corner {
                     s = next;
                     break;
                 }
-                s = if newton { next } else { 0.5 * (lo + hi) };
+                s = if newton {
+                    next
+                } else if next <= lo && lo == 0.0 && s != 0.0 {
+                    // Newton points past the start of the move: the minimiser may be there.
+                    0.0
+                } else if next >= hi && hi == 1.0 && s != 1.0 {
+                    1.0
+                } else {
+                    0.5 * (lo + hi)
+                };
                 if hi - lo <= 1e-15 {
                     break;
                 }
@@ -205,11 +219,22 @@ enum Walk {
 /// `(D ⊕ B(r)) ⊕ [0, v]`, `D` the disc of radius `e` at height `f` about the axis (module
 /// documentation), if the line meets it.
 pub(crate) fn swept_chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3, acc: &mut Acc) {
-    // Every point of it is within e + r of the disc centre's path.
+    // Every point of it is within e + r of the disc centre's path …
     let c0 = Vec3::new(0.0, 0.0, f);
-    let Some((lo, hi)) = line_capsule::<false>(o, d, c0, v, e + r) else {
+    let Some((mut lo, mut hi)) = line_capsule::<false>(o, d, c0, v, e + r) else {
         return;
     };
+    // … and between the planes of its lowest and highest points (the flat bottom's swept
+    // plane is reached at once by a line crossing it under the disc).
+    if d.z != 0.0 {
+        let (z_lo, z_hi) = (f - r + v.z.min(0.0), f + r + v.z.max(0.0));
+        let (ta, tb) = ((z_lo - o.z) / d.z, (z_hi - o.z) / d.z);
+        lo = lo.max(ta.min(tb));
+        hi = hi.min(ta.max(tb));
+        if lo > hi {
+            return;
+        }
+    }
     let corner = Corner { e, f, r, v };
     let (at_lo, at_hi) = (corner.g(o, d, lo), corner.g(o, d, hi));
     let lower = match corner.walk(o, d, lo, at_lo, hi) {
