@@ -1,28 +1,17 @@
 //! The separating-plane skip of the stock update's general query (`SweptConvex::dexel_cut`,
 //! `separation.rs`): a ray whose material the sweep would cut is never skipped — checked by
-//! brute force against the exact interval, for every cutter kind, moves level, rising,
+//! brute force against the exact interval, for every cutter kind (APT's generic one too), moves level, rising,
 //! oblique, along the axis and on tilted axes, and material ending at many distances from the
 //! sweep on either side, with one scratch shared by all the rays (and by two sweeps queried in
 //! turn, as the workers of a cut do), so the planes kept from earlier rays are put to the test
 //! too. And the skip must be worth having: most rays whose material stays clear of the sweep
 //! by a tenth of a millimetre are skipped.
 
+mod common;
+
 use swarf_geom::math::Vec3;
 use swarf_sweep::swept::{Interval, Scratch};
 use swarf_sweep::{SweptConvex, ToolShape};
-use swarf_tool::Cutter;
-
-fn cutters() -> Vec<Cutter> {
-    vec![
-        Cutter::flat(6.0).unwrap(),
-        Cutter::ball(6.0).unwrap(),
-        Cutter::bull(6.0, 1.5).unwrap(),
-        Cutter::taper_flat(6.0, 10.0).unwrap(),
-        Cutter::taper_ball(6.0, 8.0).unwrap(),
-        Cutter::chamfer(6.0, 90.0).unwrap(),
-        Cutter::drill(6.0, 118.0).unwrap(),
-    ]
-}
 
 /// `(axis, move)` pairs: tilted axes (the general query's own case), a world axis with an
 /// oblique move, a static instance.
@@ -116,7 +105,7 @@ fn no_ray_the_sweep_cuts_is_skipped_and_most_clear_ones_are() {
     let tip = Vec3::new(1.0, 2.0, 3.0);
     let (mut clear, mut skipped) = (0, 0);
     let mut scratch = Scratch::new();
-    for c in cutters() {
+    for (_, c) in common::cutters() {
         let tool = ToolShape::new(&c);
         for (axis, v) in moves() {
             for shape in [tool.cutting(), tool.non_cutting()] {

@@ -19,20 +19,16 @@
 //! `s` (sums of squares of convex non-negative functions), minimised by bracketed Newton steps.
 //! The derivative of `G` is that of `φ` in `t` at the minimising `s` (envelope theorem). Newton
 //! steps on the convex `G` from the ends of the bounding capsule (where `G ≥ 0`) close in on
-//! its zeros from outside, as for the torus caps (`torus.rs`).
+//! its zeros from outside, as for the torus caps (`convex.rs`).
 
 use super::capsule::line_capsule;
+use super::convex::{min_between, walk, zero_between, ConvexLine, Walk};
 use super::Acc;
 use swarf_geom::math::Vec3;
 
-/// Newton steps at most per walk before the bracketed search takes over.
-const WALK_STEPS: usize = 40;
-
-/// Steps at most of a bracketed search (bisection halves the bracket at least every other).
+/// Steps at most of the inner minimisation (bisection halves the bracket at least every
+/// other).
 const MAX_STEPS: usize = 120;
-
-/// A zero is accepted when the Newton step is below this (mm).
-const T_TOL: f64 = 1e-12;
 
 /// The corner `(e, f, r)` and the move `v`, in the move frame (tool axis +Z).
 struct Corner {
@@ -137,82 +133,19 @@ impl Corner {
         };
         (dist - self.r, slope)
     }
-
-    /// Newton steps from `t` (where `G = f ≥ 0`, slope `g`) towards `toward`: the convex `G`'s
-    /// tangents lie below it, so the steps close in on the nearest zero that way from outside.
-    /// `Ok(Some(t))` at the zero, `Ok(None)` when there is none that way, `Err(())` when the
-    /// steps do not settle.
-    fn walk(&self, o: Vec3, d: Vec3, mut t: f64, (mut f, mut g): (f64, f64), toward: f64) -> Walk {
-        let dir = if toward > t { 1.0 } else { -1.0 };
-        for _ in 0..WALK_STEPS {
-            if f <= 0.0 {
-                return Walk::Zero(t);
-            }
-            if !g.is_finite() || g * dir >= 0.0 {
-                return if g.is_finite() {
-                    Walk::NoZero
-                } else {
-                    Walk::Stuck
-                };
-            }
-            let step = -f / g;
-            let next = t + step;
-            if (next - toward) * dir > 0.0 {
-                return Walk::NoZero;
-            }
-            if step.abs() <= T_TOL {
-                return Walk::Zero(next);
-            }
-            t = next;
-            (f, g) = self.g(o, d, t);
-        }
-        Walk::Stuck
-    }
-
-    /// The zero of `G` in `[a, b]`, where `G` changes sign once (`G(a) = fa`).
-    fn zero_between(&self, o: Vec3, d: Vec3, mut a: f64, mut b: f64, fa: f64) -> f64 {
-        let rising = fa < 0.0;
-        let mut t = 0.5 * (a + b);
-        for _ in 0..MAX_STEPS {
-            let (v, _) = self.g(o, d, t);
-            if v == 0.0 {
-                return t;
-            }
-            if (v < 0.0) == rising {
-                a = t;
-            } else {
-                b = t;
-            }
-            t = 0.5 * (a + b);
-            if b - a <= T_TOL {
-                break;
-            }
-        }
-        t
-    }
-
-    /// The minimum of `G` in `[a, b]` (`G′(a) < 0 < G′(b)`), by bisection on the slope.
-    fn min_between(&self, o: Vec3, d: Vec3, mut a: f64, mut b: f64) -> f64 {
-        for _ in 0..MAX_STEPS {
-            let t = 0.5 * (a + b);
-            let (_, g) = self.g(o, d, t);
-            if g < 0.0 {
-                a = t;
-            } else {
-                b = t;
-            }
-            if b - a <= T_TOL {
-                break;
-            }
-        }
-        0.5 * (a + b)
-    }
 }
 
-enum Walk {
-    Zero(f64),
-    NoZero,
-    Stuck,
+/// `G` along one line.
+struct CornerLine<'c> {
+    corner: &'c Corner,
+    o: Vec3,
+    d: Vec3,
+}
+
+impl ConvexLine for CornerLine<'_> {
+    fn value_slope(&self, t: f64) -> (f64, f64) {
+        self.corner.g(self.o, self.d, t)
+    }
 }
 
 /// Adds to `acc` the ends of the chord of the line `o + t·d` (unit `d`, move frame) through
@@ -236,13 +169,18 @@ pub(crate) fn swept_chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3, acc
         }
     }
     let corner = Corner { e, f, r, v };
-    let (at_lo, at_hi) = (corner.g(o, d, lo), corner.g(o, d, hi));
-    let lower = match corner.walk(o, d, lo, at_lo, hi) {
+    let line = CornerLine {
+        corner: &corner,
+        o,
+        d,
+    };
+    let (at_lo, at_hi) = (line.value_slope(lo), line.value_slope(hi));
+    let lower = match walk(&line, lo, (at_lo.0, Some(at_lo.1)), hi) {
         Walk::NoZero => return,
         Walk::Zero(t) => Some(t),
         Walk::Stuck => None,
     };
-    let upper = match corner.walk(o, d, hi, at_hi, lo) {
+    let upper = match walk(&line, hi, (at_hi.0, Some(at_hi.1)), lo) {
         Walk::NoZero => return,
         Walk::Zero(t) => Some(t),
         Walk::Stuck => None,
@@ -258,12 +196,12 @@ pub(crate) fn swept_chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3, acc
     } else if at_hi.1 <= 0.0 {
         hi
     } else {
-        corner.min_between(o, d, lo, hi)
+        min_between(&line, lo, hi)
     };
-    let (f_min, _) = corner.g(o, d, t_min);
+    let f_min = line.value(t_min);
     if f_min > 0.0 {
         return;
     }
-    acc.add(lower.unwrap_or_else(|| corner.zero_between(o, d, lo, t_min, at_lo.0)));
-    acc.add(upper.unwrap_or_else(|| corner.zero_between(o, d, t_min, hi, f_min)));
+    acc.add(lower.unwrap_or_else(|| zero_between(&line, lo, t_min, at_lo.0)));
+    acc.add(upper.unwrap_or_else(|| zero_between(&line, t_min, hi, f_min)));
 }

@@ -54,6 +54,7 @@
 pub(crate) mod bound;
 pub(crate) mod capsule;
 pub(crate) mod circle;
+pub(crate) mod convex;
 pub(crate) mod distance;
 pub(crate) mod fast;
 pub(crate) mod front;

@@ -23,6 +23,7 @@
 //! then the bottom circle (a joint) and the two whole meridian arcs at `θ = ±π/2`, whose
 //! extrusions are circular cylinders about lines parallel to `v` — solved in closed form here.
 
+use super::convex::{min_between, walk, zero_between, ConvexLine, Walk};
 use super::{Acc, DirConsts, Scratch, BAND_EPS};
 use swarf_geom::math::Vec3;
 use swarf_geom::poly::{real_roots_in, RootTolerance};
@@ -83,13 +84,13 @@ pub(crate) fn cap(
         // Convex: below zero at both ends, below zero between them.
         (false, false) => {}
         // One zero, between the ends: walked to from the end above zero, else bracketed.
-        (true, false) => match tube.walk(lo, f_lo, hi) {
+        (true, false) => match walk(&tube, lo, (f_lo, None), hi) {
             Walk::Zero(t) => add(t),
-            _ => add(tube.zero_between(lo, hi, f_lo)),
+            _ => add(zero_between(&tube, lo, hi, f_lo)),
         },
-        (false, true) => match tube.walk(hi, f_hi, lo) {
+        (false, true) => match walk(&tube, hi, (f_hi, None), lo) {
             Walk::Zero(t) => add(t),
-            _ => add(tube.zero_between(lo, hi, f_lo)),
+            _ => add(zero_between(&tube, lo, hi, f_lo)),
         },
         // None or two, on both sides of the minimum.
         (true, true) => {
@@ -103,10 +104,10 @@ pub(crate) fn cap(
                 return;
             }
             // Walking in from both ends finds both zeros without the minimum.
-            match tube.walk(lo, f_lo, hi) {
+            match walk(&tube, lo, (f_lo, None), hi) {
                 Walk::NoZero => return,
                 Walk::Zero(a) => {
-                    if let Walk::Zero(b) = tube.walk(hi, f_hi, lo) {
+                    if let Walk::Zero(b) = walk(&tube, hi, (f_hi, None), lo) {
                         add(a);
                         add(b);
                         return;
@@ -114,7 +115,7 @@ pub(crate) fn cap(
                 }
                 Walk::Stuck => {}
             }
-            let t_min = tube.min_between(lo, hi);
+            let t_min = min_between(&tube, lo, hi);
             let f_min = tube.value(t_min);
             if f_min > 0.0 {
                 return;
@@ -123,8 +124,8 @@ pub(crate) fn cap(
                 add(t_min);
                 return;
             }
-            add(tube.zero_between(lo, t_min, f_lo));
-            add(tube.zero_between(t_min, hi, f_min));
+            add(zero_between(&tube, lo, t_min, f_lo));
+            add(zero_between(&tube, t_min, hi, f_min));
         }
     }
 }
@@ -157,23 +158,6 @@ struct TubeLine {
     pp: f64,
 }
 
-/// Where [`TubeLine::walk`] ends.
-enum Walk {
-    /// At the zero.
-    Zero(f64),
-    /// There is no zero between the start and the end it walked towards.
-    NoZero,
-    /// It could not tell: bracket instead.
-    Stuck,
-}
-
-/// Newton steps at most in [`TubeLine::walk`] before it hands over to the bracketed search.
-const WALK_STEPS: usize = 40;
-
-/// Newton steps at most per zero or minimum (bisection takes over when a step leaves the
-/// bracket; convergence is quadratic, so this is only a guard).
-const MAX_STEPS: usize = 100;
-
 impl TubeLine {
     fn new(e: f64, r: f64, p: Vec3, d: Vec3) -> Self {
         Self {
@@ -195,6 +179,23 @@ impl TubeLine {
         (q, q.sqrt(), z, (self.r * self.r - z * z).max(0.0).sqrt())
     }
 
+    /// `F′` from the parts at `t`.
+    #[inline]
+    fn slope_of(&self, t: f64, (_, rho, z, s): (f64, f64, f64, f64)) -> f64 {
+        let half_dq = self.pd + t * self.dd;
+        let radial = if rho > 0.0 { half_dq / rho } else { 0.0 };
+        let axial = if s > 0.0 {
+            z * self.d.z / s
+        } else if z * self.d.z == 0.0 {
+            0.0
+        } else {
+            f64::INFINITY.copysign(z * self.d.z)
+        };
+        radial + axial
+    }
+}
+
+impl ConvexLine for TubeLine {
     #[inline]
     fn value(&self, t: f64) -> f64 {
         let (_, rho, _, s) = self.parts(t);
@@ -216,24 +217,9 @@ impl TubeLine {
         self.slope_of(t, self.parts(t))
     }
 
-    /// [`TubeLine::slope`] from the parts at `t`.
-    #[inline]
-    fn slope_of(&self, t: f64, (_, rho, z, s): (f64, f64, f64, f64)) -> f64 {
-        let half_dq = self.pd + t * self.dd;
-        let radial = if rho > 0.0 { half_dq / rho } else { 0.0 };
-        let axial = if s > 0.0 {
-            z * self.d.z / s
-        } else if z * self.d.z == 0.0 {
-            0.0
-        } else {
-            f64::INFINITY.copysign(z * self.d.z)
-        };
-        radial + axial
-    }
-
     /// `F″(t) ≥ 0`: `(|d_xy|²·q − (q′/2)²)/ρ³ + d_z²·r²/√(r² − z²)³`.
     #[inline]
-    fn curvature(&self, t: f64) -> f64 {
+    fn curvature(&self, t: f64) -> Option<f64> {
         let (q, rho, _, s) = self.parts(t);
         let half_dq = self.pd + t * self.dd;
         let radial = if rho > 0.0 {
@@ -246,120 +232,7 @@ impl TubeLine {
         } else {
             0.0
         };
-        radial + axial
-    }
-
-    /// The zero of `F′` in `[a, b]` (`F′(a) < 0 < F′(b)`).
-    fn min_between(&self, mut a: f64, mut b: f64) -> f64 {
-        let mut t = 0.5 * (a + b);
-        for _ in 0..MAX_STEPS {
-            let g = self.slope(t);
-            if g == 0.0 {
-                return t;
-            }
-            if g < 0.0 {
-                a = t;
-            } else {
-                b = t;
-            }
-            let h = self.curvature(t);
-            let step = g / h;
-            if h > 0.0 && step.abs() <= ROOT_TOL.x_tol {
-                // Confirmed by the slope's sign on both sides (a tiny step may also come from a
-                // huge curvature near the tube's top or bottom, far from the minimum).
-                let x = (t - step).clamp(a, b);
-                let w = 2.0 * ROOT_TOL.x_tol;
-                if self.slope((x - w).max(a)) <= 0.0 && self.slope((x + w).min(b)) >= 0.0 {
-                    return x;
-                }
-            }
-            let next = t - step;
-            t = if h > 0.0 && next > a && next < b && step.abs() > ROOT_TOL.x_tol {
-                next
-            } else {
-                0.5 * (a + b)
-            };
-            if b - a <= ROOT_TOL.x_tol {
-                break;
-            }
-        }
-        t
-    }
-
-    /// Newton steps from `t` (where `F(t) = f ≥ 0`) towards `toward`: `F` being convex, its
-    /// tangent lies below it, so each step lands short of the nearest zero that way (or beyond
-    /// `toward`, or where `F` turns up, when there is none) and the steps close in on it from
-    /// one side. [`Walk::Stuck`] where a slope is infinite (the tube's top or bottom) or the
-    /// steps do not settle: the caller then brackets.
-    fn walk(&self, mut t: f64, mut f: f64, toward: f64) -> Walk {
-        let dir = if toward > t { 1.0 } else { -1.0 };
-        // The slope at `t` (known with the value after the first step).
-        let mut slope = None;
-        for _ in 0..WALK_STEPS {
-            if f <= 0.0 {
-                return Walk::Zero(t);
-            }
-            let g = slope.take().unwrap_or_else(|| self.slope(t));
-            if !g.is_finite() {
-                return Walk::Stuck;
-            }
-            if g * dir >= 0.0 {
-                // Rising the way it walks while above zero: no zero that way.
-                return Walk::NoZero;
-            }
-            let step = -f / g;
-            let next = t + step;
-            if (next - toward) * dir > 0.0 {
-                return Walk::NoZero;
-            }
-            if step.abs() <= ROOT_TOL.x_tol {
-                return Walk::Zero(next);
-            }
-            t = next;
-            let (fv, gv) = self.value_slope(t);
-            (f, slope) = (fv, Some(gv));
-        }
-        Walk::Stuck
-    }
-
-    /// The zero of `F` in `[a, b]`, where `F` is monotone and `F(a) = fa`, `F(b)` of the other
-    /// sign (or zero).
-    fn zero_between(&self, mut a: f64, mut b: f64, fa: f64) -> f64 {
-        let rising = fa < 0.0;
-        let mut t = 0.5 * (a + b);
-        for _ in 0..MAX_STEPS {
-            let (v, g) = self.value_slope(t);
-            if v == 0.0 {
-                return t;
-            }
-            if (v < 0.0) == rising {
-                a = t;
-            } else {
-                b = t;
-            }
-            let newton = g.is_finite() && g != 0.0;
-            let step = v / g;
-            if newton && step.abs() <= ROOT_TOL.x_tol {
-                // Confirmed by a change of sign around it (a tiny step may also come from a
-                // huge slope near the tube's top or bottom, far from the zero).
-                let x = (t - step).clamp(a, b);
-                let w = 2.0 * ROOT_TOL.x_tol;
-                let (l, r) = (self.value((x - w).max(a)), self.value((x + w).min(b)));
-                if l == 0.0 || r == 0.0 || (l < 0.0) != (r < 0.0) {
-                    return x;
-                }
-            }
-            let next = t - step;
-            t = if newton && next > a && next < b && step.abs() > ROOT_TOL.x_tol {
-                next
-            } else {
-                0.5 * (a + b)
-            };
-            if b - a <= ROOT_TOL.x_tol {
-                break;
-            }
-        }
-        t
+        Some(radial + axial)
     }
 }
 
