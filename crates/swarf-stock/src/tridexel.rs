@@ -1051,7 +1051,7 @@ impl TileCut<'_, '_, '_> {
             return;
         }
         // Per part, which rays of the tile its move can change.
-        let gates: SmallVec<[Gate; 2]> = match self.fronts {
+        let mut gates: SmallVec<[Gate; 2]> = match self.fronts {
             None => self.parts.iter().map(|_| Gate::All).collect(),
             Some(fronts) => fronts
                 .iter()
@@ -1061,6 +1061,15 @@ impl TileCut<'_, '_, '_> {
                 })
                 .collect(),
         };
+        // A plane that separated rays of this family from a part's sweep may clear the whole
+        // tile: the box of its rays' material within the move's reach.
+        let (mut lo, mut hi) = (centre - Vec3::splat(half), centre + Vec3::splat(half));
+        (lo[k], hi[k]) = (bound.lo.max(tmin), bound.hi.min(tmax));
+        for ((gate, p), rays) in gates.iter_mut().zip(self.parts).zip(self.rays) {
+            if !matches!(gate, Gate::Never) && p.box_clear(lo, hi, rays, scratch) {
+                *gate = Gate::Never;
+            }
+        }
         if gates.iter().all(|g| matches!(g, Gate::Never)) {
             return;
         }

@@ -23,7 +23,7 @@
 //! own acceptance of candidates just outside `S` (`BAND_EPS`) and above rounding: a ray it
 //! skips is one the exact query would have left unchanged.
 
-use super::{Interval, Scratch, SweptConvex};
+use super::{DexelRays, Interval, RaysKind, Scratch, SweptConvex};
 use std::sync::atomic::{AtomicU64, Ordering};
 use swarf_geom::math::Vec3;
 
@@ -81,6 +81,17 @@ impl Planes {
         self.misses = 0;
     }
 
+    /// Whether a kept plane of `owner` leaves the box `lo..hi` beyond it (by the margin).
+    fn separate_box(&self, owner: u64, lo: Vec3, hi: Vec3) -> bool {
+        if self.owner != owner || !(lo.cmple(hi).all()) {
+            return false;
+        }
+        let (centre, ext) = (0.5 * (lo + hi), 0.5 * (hi - lo));
+        self.planes[..self.len]
+            .iter()
+            .any(|&(n, h)| n.dot(centre) - n.abs().dot(ext) - h > SEPARATION_MARGIN_MM)
+    }
+
     /// Whether to look for a new plane for this ray. Where the search keeps failing the rays
     /// meet the sweep (most of them change): it is then tried on every
     /// [`RETRY_EVERY`]-th ray only, as the rays may leave the sweep again. (Speed only: a ray
@@ -99,6 +110,16 @@ fn beyond((n, h): (Vec3, f64), p0: Vec3, k: usize, len: f64) -> bool {
 }
 
 impl SweptConvex<'_> {
+    /// True when a plane kept for the rays of `rays` (in `scratch`, from earlier rays of the
+    /// family) separates the box `lo..hi` from the sweep: no ray's material inside the box can
+    /// meet it (a whole tile of rays skipped by one test). Never for closed-form rays.
+    pub fn box_clear(&self, lo: Vec3, hi: Vec3, rays: &DexelRays, scratch: &Scratch) -> bool {
+        match &rays.0 {
+            RaysKind::General(_, owner) => scratch.planes.separate_box(*owner, lo, hi),
+            RaysKind::Fast(_) => false,
+        }
+    }
+
     /// True when no material of the dexel `d` along world axis `k` through `origin` (whose
     /// coordinate `k` is ignored) within the range `(lo, hi)` can meet the sweep. `owner`
     /// identifies the `DexelRays` the query came with (its kept planes are this sweep's).
