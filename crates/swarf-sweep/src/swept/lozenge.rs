@@ -23,7 +23,7 @@
 
 use super::capsule::line_capsule;
 use super::convex::{min_between, walk, zero_between, ConvexLine, Walk};
-use super::Acc;
+use super::{Acc, BAND_EPS};
 use swarf_geom::math::Vec3;
 
 /// Steps at most of the inner minimisation (bisection halves the bracket at least every
@@ -75,6 +75,10 @@ impl Corner {
                 };
             (g, curv)
         };
+        if a == 0.0 && b == 0.0 {
+            // A static tool: the distance to the disc itself.
+            return phi(0.0);
+        }
         // Newton steps kept in [0, 1] (a bracket of the minimiser once the slope's sign is
         // seen at both ends of it), from the point of the move nearest to p across the axis,
         // which is the minimiser of a level move and near it otherwise.
@@ -152,11 +156,31 @@ impl ConvexLine for CornerLine<'_> {
 /// `(D ⊕ B(r)) ⊕ [0, v]`, `D` the disc of radius `e` at height `f` about the axis (module
 /// documentation), if the line meets it.
 pub(crate) fn swept_chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3, acc: &mut Acc) {
+    if let Some((a, b)) = chord(e, f, r, o, d, v) {
+        acc.add(a);
+        acc.add(b);
+    }
+}
+
+/// The corner of a static tool: the ends of the line's chord through the lozenge that lie on
+/// its lower half (`z ≤ f`), which is the tool's own boundary there (the torus band and the flat
+/// bottom) — so they are crossings of the tool, as a static instance's candidates must be (it
+/// stops at its first two); an end on the upper half lies inside the tool and is left out.
+pub(crate) fn instance_crossings(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, acc: &mut Acc) {
+    if let Some((a, b)) = chord(e, f, r, o, d, Vec3::ZERO) {
+        for t in [a, b] {
+            if o.z + t * d.z <= f + BAND_EPS {
+                acc.add(t);
+            }
+        }
+    }
+}
+
+/// The chord of the line `o + t·d` through the lozenge swept by `v`, if it meets it.
+fn chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3) -> Option<(f64, f64)> {
     // Every point of it is within e + r of the disc centre's path …
     let c0 = Vec3::new(0.0, 0.0, f);
-    let Some((mut lo, mut hi)) = line_capsule::<false>(o, d, c0, v, e + r) else {
-        return;
-    };
+    let (mut lo, mut hi) = line_capsule::<false>(o, d, c0, v, e + r)?;
     // … and between the planes of its lowest and highest points (the flat bottom's swept
     // plane is reached at once by a line crossing it under the disc).
     if d.z != 0.0 {
@@ -165,7 +189,7 @@ pub(crate) fn swept_chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3, acc
         lo = lo.max(ta.min(tb));
         hi = hi.min(ta.max(tb));
         if lo > hi {
-            return;
+            return None;
         }
     }
     let corner = Corner { e, f, r, v };
@@ -176,19 +200,17 @@ pub(crate) fn swept_chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3, acc
     };
     let (at_lo, at_hi) = (line.value_slope(lo), line.value_slope(hi));
     let lower = match walk(&line, lo, (at_lo.0, Some(at_lo.1)), hi) {
-        Walk::NoZero => return,
+        Walk::NoZero => return None,
         Walk::Zero(t) => Some(t),
         Walk::Stuck => None,
     };
     let upper = match walk(&line, hi, (at_hi.0, Some(at_hi.1)), lo) {
-        Walk::NoZero => return,
+        Walk::NoZero => return None,
         Walk::Zero(t) => Some(t),
         Walk::Stuck => None,
     };
     if let (Some(a), Some(b)) = (lower, upper) {
-        acc.add(a);
-        acc.add(b);
-        return;
+        return Some((a, b));
     }
     // The walks did not settle (a line grazing the sweep): the minimum, then each side.
     let t_min = if at_lo.1 >= 0.0 {
@@ -200,8 +222,10 @@ pub(crate) fn swept_chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3, acc
     };
     let f_min = line.value(t_min);
     if f_min > 0.0 {
-        return;
+        return None;
     }
-    acc.add(lower.unwrap_or_else(|| zero_between(&line, lo, t_min, at_lo.0)));
-    acc.add(upper.unwrap_or_else(|| zero_between(&line, t_min, hi, f_min)));
+    Some((
+        lower.unwrap_or_else(|| zero_between(&line, lo, t_min, at_lo.0)),
+        upper.unwrap_or_else(|| zero_between(&line, t_min, hi, f_min)),
+    ))
 }

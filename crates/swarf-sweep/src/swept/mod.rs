@@ -690,12 +690,9 @@ impl<'a> SweptConvex<'a> {
                 if dc.envelope {
                     prof.envelope_joint(unit.index, o, dc, &mut acc);
                 }
-            } else if dc.envelope
-                && self.lozenges & (1 << unit.index) != 0
-                && self.skip_envelope & (1 << unit.index) == 0
+            } else if self.lozenges & (1 << unit.index) != 0
+                && (v == Vec3::ZERO || (dc.envelope && self.skip_envelope & (1 << unit.index) == 0))
             {
-                // (Only on a move: a static instance stops at its first two crossings, and
-                // the lozenge's chord may end inside the tool.)
                 prof.swept_corner(unit.index, o, d, v, &mut acc);
             } else {
                 prof.cap_element(unit.index, o, d, &mut acc, scratch);

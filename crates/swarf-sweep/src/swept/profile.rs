@@ -513,11 +513,16 @@ impl ConvexProfile {
     }
 
     /// Adds the ends of the line's chord through the lozenge of bull-nose corner `i` swept by
-    /// `v` (move frame; `lozenge.rs`).
+    /// `v` (move frame; `lozenge.rs`); for a static tool (`v = 0`) only those on the tool's
+    /// boundary.
     #[inline]
     pub(crate) fn swept_corner(&self, i: usize, o: Vec3, d: Vec3, v: Vec3, acc: &mut Acc) {
         if let Element::Arc { e, f, r, .. } = self.elements[i] {
-            super::lozenge::swept_chord(e, f, r, o, d, v, acc);
+            if v == Vec3::ZERO {
+                super::lozenge::instance_crossings(e, f, r, o, d, acc);
+            } else {
+                super::lozenge::swept_chord(e, f, r, o, d, v, acc);
+            }
         }
     }
 
