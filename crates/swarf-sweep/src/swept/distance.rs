@@ -172,6 +172,7 @@ fn on_arc(w: Vec2, u0: Vec2, u1: Vec2, span: f64) -> bool {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::swept::test_rng;
     use swarf_tool::Cutter;
 
     fn profiles() -> Vec<(String, ConvexProfile)> {
@@ -247,13 +248,7 @@ mod tests {
 
     #[test]
     fn signed_distance_matches_dense_boundary_samples() {
-        let mut state = 12345u64;
-        let mut rnd = || {
-            state = state
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (state >> 11) as f64 / (1u64 << 53) as f64
-        };
+        let mut rnd = test_rng(12345);
         for (name, p) in profiles() {
             let pts = boundary_samples(&p);
             for _ in 0..300 {

@@ -510,19 +510,14 @@ impl Stadium {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::swept::test_rng;
     use swarf_tool::Cutter;
 
     /// With the ray's material range given, the kernels may skip work beyond it: the result
     /// clipped to the material must not change.
     #[test]
     fn material_pruning_keeps_the_material_part_exact() {
-        let mut seed = 11u64;
-        let mut rnd = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64) / ((1u64 << 53) as f64)
-        };
+        let mut rnd = test_rng(11);
         let mut compared = 0;
         for spec in ["ball:d=10", "flat:d=6", "ball:d=3,flute-length=20"] {
             let c = Cutter::from_spec(spec).unwrap();

@@ -744,6 +744,17 @@ impl<'a> SweptConvex<'a> {
     }
 }
 
+/// The unit tests' deterministic generator: uniform in `[0, 1)` from `seed` (a 64-bit LCG).
+#[cfg(test)]
+pub(crate) fn test_rng(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        ((seed >> 11) as f64) / ((1u64 << 53) as f64)
+    }
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -769,13 +780,7 @@ mod tests {
     /// on vertical and tilted axes, for corners small and large against the radius.
     #[test]
     fn lozenge_corner_equals_caps_and_envelope() {
-        let mut seed = 5u64;
-        let mut rnd = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64) / ((1u64 << 53) as f64)
-        };
+        let mut rnd = test_rng(5);
         let (mut compared, mut hits) = (0, 0);
         for spec in ["bull:d=10,r=2", "bull:d=6,r=0.5", "bull:d=20,r=4"] {
             let c = swarf_tool::spec::parse(spec).unwrap();
@@ -913,13 +918,7 @@ mod tests {
     #[test]
     fn dexel_pruning_keeps_the_material_part_exact() {
         // The pruned query must agree with the full one wherever the material is.
-        let mut seed = 7u64;
-        let mut rnd = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64) / ((1u64 << 53) as f64)
-        };
+        let mut rnd = test_rng(7);
         let cutters = [
             "ball:d=10",
             "flat:d=8",
