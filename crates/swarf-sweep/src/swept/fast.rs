@@ -21,16 +21,19 @@ const CLASSIFY_EPS: f64 = 1e-12;
 /// the listed parts.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct FastProfile {
-    /// A full sphere `(centre height, radius)`.
-    pub(crate) sphere: Option<(f64, f64)>,
+    /// The lozenge `(e, f, r)` of a ball (`e = 0`: a whole sphere) or bull-nose end: the
+    /// points within `r` of the disc of radius `e` at height `f`. Its upper half lies in the
+    /// slab, which starts at `f`.
+    pub(crate) lozenge: Option<(f64, f64, f64)>,
     /// The slab `(radius, z0, z1)`.
     pub(crate) slab: (f64, f64, f64),
 }
 
 impl FastProfile {
-    /// Recognises a slab (disc, cylinder, disc) and a ball end (sphere arc from the tip to the
-    /// equator, cylinder of the same radius, disc) whose cylinder reaches at least the top of
-    /// the sphere, so that the solid is the union of the whole sphere and the slab.
+    /// Recognises a slab (disc, cylinder, disc), a ball end (sphere arc from the tip to the
+    /// equator, cylinder of the same radius, disc) and a bull-nose end (disc, quarter torus
+    /// tangent to it and to the side, cylinder, disc) whose cylinder reaches at least `r` above
+    /// the arc's centre, so that the solid is the union of the whole lozenge and the slab.
     pub(crate) fn classify(els: &[Element]) -> Option<FastProfile> {
         let same = |a: f64, b: f64, scale: f64| (a - b).abs() <= CLASSIFY_EPS * scale.max(1.0);
         let side_and_top = |els: &[Element], r: f64, z0: f64| -> Option<f64> {
@@ -47,40 +50,56 @@ impl FastProfile {
                 && tq.y == tp.y;
             ok.then_some(sq.y)
         };
+        // A quarter arc from the bottom (radius `e0` there, at height `z0`) to the side.
+        let rounded = |els: &[Element], e0: f64, z0: f64| -> Option<FastProfile> {
+            let [Element::Arc {
+                e,
+                f,
+                r,
+                phi0,
+                phi1,
+            }, rest @ ..] = els
+            else {
+                return None;
+            };
+            let ok = same(*e, e0, *r)
+                && same(*f, z0 + r, *r)
+                && *phi0 == 0.0
+                && same(*phi1, std::f64::consts::FRAC_PI_2, 1.0)
+                && *r > 0.0;
+            if !ok {
+                return None;
+            }
+            let z1 = side_and_top(rest, e + r, *f)?;
+            (z1 >= f + r).then_some(FastProfile {
+                lozenge: Some((*e, *f, *r)),
+                slab: (e + r, *f, z1),
+            })
+        };
         match els {
             [Element::Line { p, q }, rest @ ..] => {
                 let (r, z0) = (q.x, q.y);
                 if !(p.x == 0.0 && p.y == q.y && r > 0.0) {
                     return None;
                 }
+                if let Some(bull) = rounded(rest, r, z0) {
+                    return Some(bull);
+                }
                 let z1 = side_and_top(rest, r, z0)?;
                 Some(FastProfile {
-                    sphere: None,
+                    lozenge: None,
                     slab: (r, z0, z1),
                 })
             }
-            [Element::Arc {
-                e,
-                f,
-                r,
-                phi0,
-                phi1,
-            }, rest @ ..] => {
-                let ok = *e == 0.0
-                    && *phi0 == 0.0
-                    && same(*phi1, std::f64::consts::FRAC_PI_2, 1.0)
-                    && *r > 0.0;
-                if !ok {
-                    return None;
-                }
-                let z1 = side_and_top(rest, *r, *f)?;
-                (z1 >= f + r).then_some(FastProfile {
-                    sphere: Some((*f, *r)),
-                    slab: (*r, *f, z1),
-                })
-            }
-            [] => None,
+            [Element::Arc { e, f, r, .. }, ..] if *e == 0.0 => rounded(els, 0.0, f - r),
+            _ => None,
         }
+    }
+
+    /// The sphere `(centre height, radius)` of a ball end.
+    pub(crate) fn sphere(&self) -> Option<(f64, f64)> {
+        self.lozenge
+            .and_then(|(e, f, r)| (e == 0.0).then_some((f, r)))
     }
 }
 
@@ -99,9 +118,12 @@ impl FastSweep {
     /// The kernels for `prof` placed at `tip` with axis `+e_kt` moving by `delta`, when the
     /// profile qualifies.
     pub(crate) fn new(prof: &ConvexProfile, kt: usize, tip: Vec3, delta: Vec3) -> Option<Self> {
-        let shape = prof.fast()?;
+        // (A bull-nose's swept lozenge has no closed form: the general path's.)
+        let shape = prof
+            .fast()
+            .filter(|s| s.lozenge.map_or(true, |l| l.0 == 0.0))?;
         let (u, w) = ((kt + 1) % 3, (kt + 2) % 3);
-        let c0 = tip + Vec3::AXES[kt] * shape.sphere.map_or(0.0, |s| s.0);
+        let c0 = tip + Vec3::AXES[kt] * shape.sphere().map_or(0.0, |s| s.0);
         Some(Self {
             kt,
             shape,
@@ -124,7 +146,7 @@ impl FastSweep {
         // the rays run along x from x = 0.
         let (fu, fv) = ((k + 1) % 3, (k + 2) % 3);
         let perm = |x: Vec3| Vec3::new(x[k], x[fu], x[fv]);
-        let sphere = self.shape.sphere.map(|(_, sr)| CapsuleRays {
+        let sphere = self.shape.sphere().map(|(_, sr)| CapsuleRays {
             c0: perm(self.c0),
             ba: perm(self.delta),
             baba,
@@ -142,11 +164,11 @@ impl FastSweep {
                 z0,
                 z1,
                 hi_min: pa + z1 + ma.min(0.0),
-                low_base: match self.shape.sphere {
+                low_base: match self.shape.sphere() {
                     Some((f, sr)) => pa + f + ma.min(0.0) - sr,
                     None => pa + z0 + ma.min(0.0),
                 },
-                low_k: self.shape.sphere.map_or(0.0, |(_, sr)| 0.5 / sr),
+                low_k: self.shape.sphere().map_or(0.0, |(_, sr)| 0.5 / sr),
                 sphere,
             });
         }
@@ -157,7 +179,7 @@ impl FastSweep {
             (self.mv.m[ray], self.mv.m[o]),
             r,
         );
-        let sr = self.shape.sphere.map_or(0.0, |s| s.1);
+        let sr = self.shape.sphere().map_or(0.0, |s| s.1);
         FastRays::Across(AcrossRays {
             height_is_u: fu == self.kt,
             ray,

@@ -176,6 +176,70 @@ pub(crate) fn instance_crossings(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, acc: 
     }
 }
 
+/// `G` of a static lozenge along one line `o + t·d` (unit `d`, tool frame): the distance to
+/// the disc of radius `e` at height `f`, less `r` — the tool instance's kernels (`instance.rs`).
+pub(crate) struct StaticLine {
+    pub(crate) e: f64,
+    pub(crate) f: f64,
+    pub(crate) r: f64,
+    pub(crate) o: Vec3,
+    pub(crate) d: Vec3,
+}
+
+impl ConvexLine for StaticLine {
+    #[inline]
+    fn value_slope(&self, t: f64) -> (f64, f64) {
+        let (o, d) = (self.o, self.d);
+        let p = o + d * t;
+        let rho = (p.x * p.x + p.y * p.y).sqrt();
+        let out = (rho - self.e).max(0.0);
+        let h = p.z - self.f;
+        let dist = (h * h + out * out).sqrt();
+        // d/dt of the distance: its gradient (h·ẑ + out·radial)/dist along d.
+        let radial = if out > 0.0 {
+            out * (p.x * d.x + p.y * d.y) / rho
+        } else {
+            0.0
+        };
+        let slope = if dist > 0.0 {
+            (h * d.z + radial) / dist
+        } else {
+            0.0
+        };
+        (dist - self.r, slope)
+    }
+
+    #[inline]
+    fn value(&self, t: f64) -> f64 {
+        let p = self.o + self.d * t;
+        let out = ((p.x * p.x + p.y * p.y).sqrt() - self.e).max(0.0);
+        let h = p.z - self.f;
+        (h * h + out * out).sqrt() - self.r
+    }
+}
+
+impl StaticLine {
+    /// The first zero of `G` from `from` (where `G ≥ 0`; its value and slope when known)
+    /// towards `toward` (where `G ≤ 0`).
+    pub(crate) fn entry(&self, from: f64, at: Option<(f64, f64)>, toward: f64) -> f64 {
+        let at = at.unwrap_or_else(|| self.value_slope(from));
+        match walk(self, from, (at.0, Some(at.1)), toward) {
+            Walk::Zero(t) => t,
+            // Rounding at `toward`, or a slope the steps cannot follow: the one change of
+            // sign between the two (G is convex, ≥ 0 at `from` and ≤ 0 at `toward`).
+            Walk::NoZero | Walk::Stuck => {
+                let (a, b) = (from.min(toward), from.max(toward));
+                zero_between(self, a, b, self.value(a))
+            }
+        }
+    }
+
+    /// The chord within `(lo, hi)`, where `G ≥ 0` at both ends.
+    pub(crate) fn chord_in(&self, lo: f64, hi: f64) -> Option<(f64, f64)> {
+        chord_between(self, lo, hi)
+    }
+}
+
 /// The chord of the line `o + t·d` through the lozenge swept by `v`, if it meets it.
 fn chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3) -> Option<(f64, f64)> {
     // Every point of it is within e + r of the disc centre's path …
@@ -198,13 +262,18 @@ fn chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3) -> Option<(f64, f64)
         o,
         d,
     };
+    chord_between(&line, lo, hi)
+}
+
+/// The chord `{G ≤ 0}` of a convex `G` within `(lo, hi)`, where `G ≥ 0` at both ends.
+fn chord_between<L: ConvexLine>(line: &L, lo: f64, hi: f64) -> Option<(f64, f64)> {
     let (at_lo, at_hi) = (line.value_slope(lo), line.value_slope(hi));
-    let lower = match walk(&line, lo, (at_lo.0, Some(at_lo.1)), hi) {
+    let lower = match walk(line, lo, (at_lo.0, Some(at_lo.1)), hi) {
         Walk::NoZero => return None,
         Walk::Zero(t) => Some(t),
         Walk::Stuck => None,
     };
-    let upper = match walk(&line, hi, (at_hi.0, Some(at_hi.1)), lo) {
+    let upper = match walk(line, hi, (at_hi.0, Some(at_hi.1)), lo) {
         Walk::NoZero => return None,
         Walk::Zero(t) => Some(t),
         Walk::Stuck => None,
@@ -218,14 +287,14 @@ fn chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3) -> Option<(f64, f64)
     } else if at_hi.1 <= 0.0 {
         hi
     } else {
-        min_between(&line, lo, hi)
+        min_between(line, lo, hi)
     };
     let f_min = line.value(t_min);
     if f_min > 0.0 {
         return None;
     }
     Some((
-        lower.unwrap_or_else(|| zero_between(&line, lo, t_min, at_lo.0)),
-        upper.unwrap_or_else(|| zero_between(&line, t_min, hi, f_min)),
+        lower.unwrap_or_else(|| zero_between(line, lo, t_min, at_lo.0)),
+        upper.unwrap_or_else(|| zero_between(line, t_min, hi, f_min)),
     ))
 }

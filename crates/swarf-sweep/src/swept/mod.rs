@@ -58,6 +58,7 @@ pub(crate) mod convex;
 pub(crate) mod distance;
 pub(crate) mod fast;
 pub(crate) mod front;
+pub(crate) mod instance;
 pub(crate) mod interval;
 pub(crate) mod line;
 pub(crate) mod lozenge;
@@ -180,6 +181,9 @@ pub struct SweptConvex<'a> {
     axial: Option<Axial>,
     /// The closed-form kernels for dexels, when the profile and the move qualify.
     fast: Option<fast::FastSweep>,
+    /// The closed-form kernels of a tool instance (no motion) at any other axis, when the
+    /// profile qualifies.
+    instance: Option<instance::InstanceShape>,
     /// Elements (bit `i`: element `i`) whose envelope is left out
     /// ([`SweptConvex::with_envelope_slack`]).
     skip_envelope: u64,
@@ -269,6 +273,8 @@ pub struct DexelRays(RaysKind);
 enum RaysKind {
     /// Closed-form kernels.
     Fast(fast::FastRays),
+    /// Closed-form kernels of an instance.
+    Instance(instance::InstanceRays),
     /// The general candidates, and a number no other `DexelRays` of the process has (the
     /// separating planes found for its rays are kept under it).
     General(Box<DirConsts>, u64),
@@ -352,6 +358,12 @@ impl<'a> SweptConvex<'a> {
             }
         });
         let fast = axial.and_then(|ax| fast::FastSweep::new(prof, ax.k, tip, delta));
+        let instance = match (&fast, prof.fast()) {
+            (None, Some(shape)) if v == Vec3::ZERO => {
+                Some(instance::InstanceShape::new(shape, frame))
+            }
+            _ => None,
+        };
         Self {
             prof,
             frame,
@@ -360,6 +372,7 @@ impl<'a> SweptConvex<'a> {
             units,
             axial,
             fast,
+            instance,
             skip_envelope: 0,
             lozenges: prof.lozenge_corners(),
         }
@@ -422,25 +435,29 @@ impl<'a> SweptConvex<'a> {
     pub fn axis_ray_interval(&self, origin: Vec3, k: usize) -> Option<(f64, f64)> {
         let mut o = origin;
         o[k] = 0.0;
-        match &self.fast {
-            Some(f) => f.rays(k).interval(o[(k + 1) % 3], o[(k + 2) % 3], None),
-            None => self.ray_interval(o, Vec3::AXES[k]),
+        let (cu, cv) = (o[(k + 1) % 3], o[(k + 2) % 3]);
+        match (&self.fast, &self.instance) {
+            (Some(f), _) => f.rays(k).interval(cu, cv, None),
+            (None, Some(i)) => i.rays(k).interval(cu, cv),
+            (None, None) => self.ray_interval(o, Vec3::AXES[k]),
         }
     }
 
-    /// True when rays along world axes are answered in closed form (a slab or ball-end
-    /// profile on a move whose tool axis is a world axis).
+    /// True when rays along world axes are answered in closed form: a slab or ball-end
+    /// profile on a move whose tool axis is a world axis, or a slab, ball-end or bull-nose
+    /// instance (no motion) at any axis.
     pub fn has_closed_form(&self) -> bool {
-        self.fast.is_some()
+        self.fast.is_some() || self.instance.is_some()
     }
 
     /// What the dexel queries along world axis `k` share: the closed-form kernels' constants
     /// when available, else the general path's direction constants. (The one place where
     /// the kind of kernel is chosen.)
     pub fn dexel_rays(&self, k: usize) -> DexelRays {
-        DexelRays(match &self.fast {
-            Some(f) => RaysKind::Fast(f.rays(k)),
-            None => RaysKind::General(
+        DexelRays(match (&self.fast, &self.instance) {
+            (Some(f), _) => RaysKind::Fast(f.rays(k)),
+            (None, Some(i)) => RaysKind::Instance(i.rays(k)),
+            (None, None) => RaysKind::General(
                 Box::new(self.dir_consts(Vec3::AXES[k])),
                 separation::Planes::new_owner(),
             ),
@@ -468,6 +485,7 @@ impl<'a> SweptConvex<'a> {
         };
         let (dc, owner) = match &rays.0 {
             RaysKind::Fast(f) => return (true, f.interval(cu, cv, Some((first, last)))),
+            RaysKind::Instance(i) => return i.cut(cu, cv, d),
             RaysKind::General(dc, owner) => (dc, *owner),
         };
         let mut origin = Vec3::ZERO;
@@ -496,7 +514,8 @@ impl<'a> SweptConvex<'a> {
     ///   radius is the largest profile radius at the heights the ray can meet (exact for moves
     ///   perpendicular to the axis).
     ///
-    /// Otherwise the sweep's bounding box.
+    /// For a tool instance (no motion) of a flat, ball or bull-nose profile at any other axis:
+    /// the chord of the cylinder holding it (`instance.rs`). Otherwise the sweep's bounding box.
     pub fn dexel_range(&self, origin: Vec3, k: usize) -> Option<(f64, f64)> {
         self.block_range(k, origin, 0.0)
     }
@@ -508,7 +527,15 @@ impl<'a> SweptConvex<'a> {
         let bb = &self.bbox;
         let full = (bb.min[k], bb.max[k]);
         let Some(ax) = self.axial else {
-            return Some(full);
+            return match &self.instance {
+                Some(i) => {
+                    let (lo, hi) =
+                        i.rays(k)
+                            .block(origin[(k + 1) % 3], origin[(k + 2) % 3], half)?;
+                    Some((lo.max(full.0), hi.min(full.1)))
+                }
+                None => Some(full),
+            };
         };
         let (u, w) = ((ax.k + 1) % 3, (ax.k + 2) % 3);
         if ax.k == k {

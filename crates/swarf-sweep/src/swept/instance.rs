@@ -1,0 +1,313 @@
+//! Closed forms for a tool **instance** (a sweep that does not move: the exact instances a
+//! 5-axis move is cut as) of a flat, ball or bull-nose profile at any axis, against the dexel
+//! rays — the general candidates' answer with one quadratic for most rays.
+//!
+//! # Why it holds
+//! The profiles of [`FastProfile`] are a slab `P` (radius `R`, heights `[z_s, z1]`) united,
+//! for a ball or bull-nose end, with the lozenge `L = D ⊕ B(r)` (`D` the disc of radius
+//! `e = R − r` at height `f = z_s`; `e = 0` for a ball: a sphere) whose upper half lies in the
+//! slab (`z1 ≥ f + r`). So above `f` the solid is the slab, below `f` it is the lower half of
+//! `L`, and the whole lies in the cylinder `C = {ρ ≤ R, z ∈ [z_b, z1]}`, `z_b` the lowest point
+//! (`f − r`, or `z_s` without a lozenge).
+//!
+//! Along a line `p(t) = o + t·d` (tool frame) the solid is convex, so its chord is one interval,
+//! and:
+//! * `C`'s chord — `ρ(t)² = R²` is a quadratic, the heights two divisions — holds it: a ray whose
+//!   material misses `C`'s chord is left at once (no exact query, no separating plane);
+//! * above `f` the chord is `C`'s: only the end on the side where the line goes below `f`
+//!   (`t_f`, where it crosses `z = f`, inside `C`) can differ. There the lower half of `L` is the
+//!   boundary: for a ball the sphere's chord, for a bull-nose the first zero of the convex
+//!   `G(t) = dist(p(t), D) − r` (`lozenge.rs`) walked from `C`'s end, where `G ≥ 0` (every
+//!   point of `C`'s boundary within `r` of the height `f` is at least `r` from `D`), towards
+//!   `t_f`, where `G ≤ 0` (the disc of radius `R` at height `f` lies in `L`);
+//! * that end is only computed when it can matter: when `C`'s end there lies beyond the ray's
+//!   material, every end between the two gives the same cut (the result is exact where it
+//!   meets the material, as the general path's);
+//! * a line that stays below `f` inside `C` meets only `L`: its chord is `L`'s.
+//!
+//! The property tests (`tests/instance_paths.rs`) hold the kernels to the general candidates of
+//! the same instance.
+
+use super::convex::ConvexLine;
+use super::fast::FastProfile;
+use super::interval::{overlaps, Interval};
+use super::lozenge::StaticLine;
+use super::BAND_EPS;
+use swarf_geom::math::Vec3;
+use swarf_geom::Frame;
+
+/// Below this `|d_⊥|²` a line runs along the tool axis (its distance from it changes by less
+/// than 10⁻¹² mm per mm of travel, far under the exact query's acceptance).
+const ALONG_AXIS: f64 = 1e-24;
+
+/// An instance's profile and pose, for [`InstanceRays`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct InstanceShape {
+    shape: FastProfile,
+    frame: Frame,
+}
+
+impl InstanceShape {
+    pub(crate) fn new(shape: FastProfile, frame: Frame) -> Self {
+        Self { shape, frame }
+    }
+
+    /// The constants shared by the rays along world axis `k`.
+    pub(crate) fn rays(&self, k: usize) -> InstanceRays {
+        let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+        let fr = &self.frame;
+        let d = fr.vector_to_local(Vec3::AXES[k]);
+        let (r, z_s, z1) = self.shape.slab;
+        let z_b = self.shape.lozenge.map_or(z_s, |(_, f, lr)| f - lr);
+        InstanceRays {
+            eu: fr.vector_to_local(Vec3::AXES[u]),
+            ev: fr.vector_to_local(Vec3::AXES[v]),
+            d,
+            tip: (fr.origin[u], fr.origin[v], fr.origin[k]),
+            a: d.x * d.x + d.y * d.y,
+            rr: r * r,
+            heights: (z_b, z1),
+            inv_dz: if d.z != 0.0 { 1.0 / d.z } else { 0.0 },
+            lozenge: self.shape.lozenge,
+        }
+    }
+}
+
+/// One instance against the rays along one world axis, in the tool frame: the ray through
+/// `(cu, cv)` on the family's cross axes is `o + t'·d` with `o = eu·(cu − tip_u) + ev·(cv −
+/// tip_v)` (its point level with the tip along the ray) and world coordinate `t' + tip_k`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct InstanceRays {
+    eu: Vec3,
+    ev: Vec3,
+    d: Vec3,
+    tip: (f64, f64, f64),
+    /// `|d_⊥|²`.
+    a: f64,
+    rr: f64,
+    /// `(z_b, z1)`: the heights of `C`.
+    heights: (f64, f64),
+    inv_dz: f64,
+    lozenge: Option<(f64, f64, f64)>,
+}
+
+impl InstanceRays {
+    /// The stock update's query for the dexel `dex` of the ray through `(cu, cv)`: whether an
+    /// exact query ran, and the interval to remove (world coordinates along the ray), exact
+    /// where it meets the material.
+    #[inline]
+    pub(crate) fn cut(&self, cu: f64, cv: f64, dex: &[Interval]) -> (bool, Option<(f64, f64)>) {
+        let (first, last) = match (dex.first(), dex.last()) {
+            (Some(f), Some(l)) => (f.enter, l.exit),
+            _ => return (false, None),
+        };
+        let (o, t0) = self.line(cu, cv);
+        let Some((lo, hi)) = self.cylinder(o) else {
+            return (false, None);
+        };
+        if !overlaps(dex, lo + t0, hi + t0) {
+            return (false, None);
+        }
+        let chord = self.chord(o, (lo, hi), (first - t0, last - t0));
+        (true, chord.map(|(a, b)| (a + t0, b + t0)))
+    }
+
+    /// The whole chord of the ray through `(cu, cv)` (world coordinates along it).
+    pub(crate) fn interval(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
+        let (o, t0) = self.line(cu, cv);
+        let c = self.cylinder(o)?;
+        let (a, b) = self.chord(o, c, (f64::NEG_INFINITY, f64::INFINITY))?;
+        Some((a + t0, b + t0))
+    }
+
+    /// The ray's base point (tool frame) and the world coordinate of `t' = 0`.
+    #[inline(always)]
+    fn line(&self, cu: f64, cv: f64) -> (Vec3, f64) {
+        let (tu, tv, tk) = self.tip;
+        (self.eu * (cu - tu) + self.ev * (cv - tv), tk)
+    }
+
+    /// `C`'s chord of the line `o + t·d`.
+    #[inline(always)]
+    fn cylinder(&self, o: Vec3) -> Option<(f64, f64)> {
+        self.cylinder_grown(o, self.rr, self.heights)
+    }
+
+    /// The chord of the line `o + t·d` through the cylinder of squared radius `rr` about the
+    /// axis between the heights `(z_b, z1)`.
+    #[inline(always)]
+    fn cylinder_grown(&self, o: Vec3, rr: f64, (z_b, z1): (f64, f64)) -> Option<(f64, f64)> {
+        let d = self.d;
+        let c = o.x * o.x + o.y * o.y - rr;
+        let (mut lo, mut hi) = if self.a > ALONG_AXIS {
+            let b = o.x * d.x + o.y * d.y;
+            let h = b * b - self.a * c;
+            if h < 0.0 {
+                return None;
+            }
+            // Cancellation-free roots q/a and c/q.
+            let q = -(b + b.signum() * h.sqrt());
+            let (r1, r2) = (q / self.a, if q != 0.0 { c / q } else { 0.0 });
+            (r1.min(r2), r1.max(r2))
+        } else if c <= 0.0 {
+            (f64::NEG_INFINITY, f64::INFINITY)
+        } else {
+            return None;
+        };
+        if d.z != 0.0 {
+            let (ta, tb) = ((z_b - o.z) * self.inv_dz, (z1 - o.z) * self.inv_dz);
+            lo = lo.max(ta.min(tb));
+            hi = hi.min(ta.max(tb));
+        } else if o.z < z_b || o.z > z1 {
+            return None;
+        }
+        (lo <= hi).then_some((lo, hi))
+    }
+
+    /// A range holding the chords of all the rays whose cross coordinates are within `half`
+    /// of `(cu, cv)` (a square block, e.g. a tile; world coordinates along the rays): such a
+    /// ray is within `half·√2` of the block's centre ray, across it, so the centre ray meets
+    /// `C` grown by that wherever the other meets `C`, at the same parameter.
+    pub(crate) fn block(&self, cu: f64, cv: f64, half: f64) -> Option<(f64, f64)> {
+        let grow = half * std::f64::consts::SQRT_2 + 1e-9;
+        let r = self.rr.sqrt() + grow;
+        let (z_b, z1) = self.heights;
+        let (o, t0) = self.line(cu, cv);
+        let (lo, hi) = self.cylinder_grown(o, r * r, (z_b - grow, z1 + grow))?;
+        Some((lo + t0, hi + t0))
+    }
+
+    /// The instance's chord from `C`'s chord `(lo, hi)`, exact where it meets `(m_lo, m_hi)`
+    /// (line parameters; the material overlaps `(lo, hi)`).
+    #[inline]
+    fn chord(&self, o: Vec3, (lo, hi): (f64, f64), material: (f64, f64)) -> Option<(f64, f64)> {
+        let Some((e, f, r)) = self.lozenge else {
+            return Some((lo, hi));
+        };
+        let d = self.d;
+        // Which ends of C's chord lie below the spine's level (there L's boundary is the
+        // tool's), and where the line crosses that level.
+        let (lo_below, hi_below, tf) = if d.z == 0.0 {
+            let below = o.z < f;
+            (below, below, f64::NAN)
+        } else {
+            let tf = (f - o.z) * self.inv_dz;
+            if d.z > 0.0 {
+                (lo < tf, hi < tf, tf)
+            } else {
+                (lo > tf, hi > tf, tf)
+            }
+        };
+        if !lo_below && !hi_below {
+            return Some((lo, hi));
+        }
+        if e == 0.0 {
+            // A ball: the sphere's chord, one square root (it holds the point at tf, up to
+            // rounding).
+            let (a, b) = sphere_chord(f, r, o, d)?;
+            return match (lo_below, hi_below) {
+                (true, true) => Some((a, b)),
+                (true, false) => Some((a.clamp(lo, hi), hi)),
+                _ => Some((lo, b.clamp(lo, hi))),
+            };
+        }
+        let line = StaticLine { e, f, r, o, d };
+        match (lo_below, hi_below) {
+            (true, true) => lozenge_chord(&line, (lo, hi), material),
+            (true, false) => Some((lozenge_end(&line, lo, tf, material, 1.0)?, hi)),
+            _ => Some((
+                lo,
+                lozenge_end(&line, hi, tf, (material.1, material.0), -1.0)?,
+            )),
+        }
+    }
+}
+
+/// Whether `x` comes before `y` walking along `dir` (±1).
+#[inline(always)]
+fn before(x: f64, y: f64, dir: f64) -> bool {
+    (y - x) * dir > 0.0
+}
+
+/// The end of the instance's chord that lies on the lozenge, walking along `dir` (+1: the
+/// lower end, −1: the upper end) from `C`'s end `c` to `tf`, inside the lozenge, given the
+/// ray's material from `near` to `far` in that order: `C`'s end where the true one lies before
+/// the material (the same cut), `None` where the material ends before the chord starts.
+#[inline]
+fn lozenge_end(
+    line: &StaticLine,
+    c: f64,
+    tf: f64,
+    (near, far): (f64, f64),
+    dir: f64,
+) -> Option<f64> {
+    if !before(near, tf, dir) {
+        // The chord holds tf, which the material does not come before.
+        return Some(c);
+    }
+    let mut from = (c, None);
+    if before(c, near, dir) {
+        let at = line.value_slope(near);
+        if at.0 <= 0.0 {
+            return Some(c);
+        }
+        // Outside, and before the chord (G ≤ 0 at tf further on): a nearer start.
+        from = (near, Some(at));
+    }
+    // The material ends before tf outside the lozenge: it ends before the chord starts (G is
+    // convex, ≤ 0 at tf).
+    if before(far, tf, dir) && line.value(far) > BAND_EPS {
+        return None;
+    }
+    Some(line.entry(from.0, from.1, tf))
+}
+
+/// The chord of a line that stays below the spine's level inside `C` (whose chord is
+/// `(lo, hi)`): `L`'s, exact where it meets the material `(m_lo, m_hi)`; `None` where they do
+/// not meet.
+///
+/// The material only decides whether the chord is needed: computed, it is walked from `C`'s
+/// ends whatever the material, so that cutting the same instance again finds the same ends
+/// (a start or an aim taken from the material's ends, which the first cut made, would find
+/// them again only up to rounding, and cut slivers of 1e-16 mm again).
+#[inline]
+fn lozenge_chord(
+    line: &StaticLine,
+    (lo, hi): (f64, f64),
+    (m_lo, m_hi): (f64, f64),
+) -> Option<(f64, f64)> {
+    let mut inside = [false; 2];
+    for (end, m) in [(0, m_lo), (1, m_hi)] {
+        if m <= lo || m >= hi {
+            continue;
+        }
+        let (g, slope) = line.value_slope(m);
+        // Outside and moving away from the material: the chord lies beyond it (past the
+        // material's upper end, still descending; before its lower end, already rising).
+        let away = if end == 1 { slope <= 0.0 } else { slope >= 0.0 };
+        if g > BAND_EPS && away {
+            return None;
+        }
+        inside[end] = g <= 0.0;
+    }
+    if inside == [true, true] {
+        // All the material between lies in the chord.
+        return Some((lo, hi));
+    }
+    line.chord_in(lo, hi)
+}
+
+/// The chord of the line `o + t·d` (unit `d`) through the sphere of radius `r` centred on the
+/// axis at height `f`.
+#[inline]
+fn sphere_chord(f: f64, r: f64, o: Vec3, d: Vec3) -> Option<(f64, f64)> {
+    let oc = Vec3::new(o.x, o.y, o.z - f);
+    // Re-based at the point nearest the centre.
+    let t0 = -oc.dot(d);
+    let p = oc + d * t0;
+    let h = r * r - p.dot(p);
+    (h >= 0.0).then(|| {
+        let s = h.sqrt();
+        (t0 - s, t0 + s)
+    })
+}
