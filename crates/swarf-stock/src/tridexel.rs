@@ -211,6 +211,32 @@ impl DexelFamily {
         }
     }
 
+    /// True when some ray `(i, j)`, `i ∈ is`, `j ∈ js`, holds material inside the open range
+    /// `(lo, hi)` along the rays; tiles whose bound rules it out are not looked into.
+    pub(crate) fn material_in(
+        &self,
+        (i0, i1): (usize, usize),
+        (j0, j1): (usize, usize),
+        (lo, hi): (f64, f64),
+    ) -> bool {
+        (j0 / TILE..=j1 / TILE).any(|tj| {
+            (i0 / TILE..=i1 / TILE).any(|ti| {
+                if !self.bounds[tj * self.ntu + ti].meets(lo, hi, &self.bins) {
+                    return false;
+                }
+                let (ja, jb) = (j0.max(tj * TILE), j1.min(tj * TILE + TILE - 1));
+                let (ia, ib) = (i0.max(ti * TILE), i1.min(ti * TILE + TILE - 1));
+                (ja..=jb).any(|j| {
+                    (ia..=ib).any(|i| {
+                        self.ray(i, j)
+                            .iter()
+                            .any(|iv| iv.enter < hi && iv.exit > lo)
+                    })
+                })
+            })
+        })
+    }
+
     #[inline]
     fn index(&self, i: usize, j: usize) -> usize {
         ((j / TILE) * self.ntu + i / TILE) * TILE_RAYS + (j % TILE) * TILE + i % TILE

@@ -61,14 +61,9 @@ fn material_in(stock: &TriDexel, b: &Aabb) -> bool {
         ) else {
             return false;
         };
-        let fam = stock.family(k);
-        (j0..=j1).any(|j| {
-            (i0..=i1).any(|i| {
-                fam.ray(i, j)
-                    .iter()
-                    .any(|iv| iv.enter < b.max[k] && iv.exit > b.min[k])
-            })
-        })
+        stock
+            .family(k)
+            .material_in((i0, i1), (j0, j1), (b.min[k], b.max[k]))
     })
 }
 

@@ -32,9 +32,13 @@ use super::convex::ConvexLine;
 use super::fast::FastProfile;
 use super::interval::{overlaps, Interval};
 use super::lozenge::StaticLine;
-use super::BAND_EPS;
 use swarf_geom::math::Vec3;
 use swarf_geom::Frame;
+
+/// Material ending less than this (mm) inside the lozenge is left where it is: no cut is
+/// worth less, and cutting the same instance again (whose ends the first cut made, found by
+/// whatever path, lie within rounding of the surface) removes nothing more.
+pub(crate) const SLIVER_MM: f64 = 1e-11;
 
 /// Below this `|d_⊥|²` a line runs along the tool axis (its distance from it changes by less
 /// than 10⁻¹² mm per mm of travel, far under the exact query's acceptance).
@@ -232,7 +236,8 @@ fn before(x: f64, y: f64, dir: f64) -> bool {
 /// The end of the instance's chord that lies on the lozenge, walking along `dir` (+1: the
 /// lower end, −1: the upper end) from `C`'s end `c` to `tf`, inside the lozenge, given the
 /// ray's material from `near` to `far` in that order: `C`'s end where the true one lies before
-/// the material (the same cut), `None` where the material ends before the chord starts.
+/// the material (the same cut), `None` where the material ends before the chord starts (or
+/// within [`SLIVER_MM`] of it).
 #[inline]
 fn lozenge_end(
     line: &StaticLine,
@@ -254,47 +259,63 @@ fn lozenge_end(
         // Outside, and before the chord (G ≤ 0 at tf further on): a nearer start.
         from = (near, Some(at));
     }
-    // The material ends before tf outside the lozenge: it ends before the chord starts (G is
-    // convex, ≤ 0 at tf).
-    if before(far, tf, dir) && line.value(far) > BAND_EPS {
+    if !before(far, tf, dir) {
+        return Some(line.entry(from.0, from.1, tf));
+    }
+    // The material ends before tf: outside the lozenge (or within a sliver inside) it ends
+    // before the chord starts (G is convex, ≤ 0 at tf); inside, the end lies between, and
+    // the tangent there gives a nearer start.
+    let at = line.value_slope(far);
+    if at.0 > -SLIVER_MM {
         return None;
     }
-    Some(line.entry(from.0, from.1, tf))
+    Some(line.entry_near(from, (far, at), dir))
 }
 
 /// The chord of a line that stays below the spine's level inside `C` (whose chord is
 /// `(lo, hi)`): `L`'s, exact where it meets the material `(m_lo, m_hi)`; `None` where they do
-/// not meet.
+/// not meet (or only within [`SLIVER_MM`]).
 ///
-/// The material only decides whether the chord is needed: computed, it is walked from `C`'s
-/// ends whatever the material, so that cutting the same instance again finds the same ends
-/// (a start or an aim taken from the material's ends, which the first cut made, would find
-/// them again only up to rounding, and cut slivers of 1e-16 mm again).
+/// Only ends that can lie inside the material are found, each walked from the nearest point
+/// known outside: the tangent's zero at a material end inside, the material's end before it
+/// when that lies outside, or `C`'s end.
 #[inline]
 fn lozenge_chord(
     line: &StaticLine,
     (lo, hi): (f64, f64),
     (m_lo, m_hi): (f64, f64),
 ) -> Option<(f64, f64)> {
-    let mut inside = [false; 2];
+    // Per end (lower, upper): a start outside L before it, and the material's end on that
+    // side when it lies inside L (that end of the chord then lies beyond the material).
+    let mut from = [(lo, None), (hi, None)];
+    let mut inside = [None; 2];
     for (end, m) in [(0, m_lo), (1, m_hi)] {
         if m <= lo || m >= hi {
             continue;
         }
         let (g, slope) = line.value_slope(m);
-        // Outside and moving away from the material: the chord lies beyond it (past the
-        // material's upper end, still descending; before its lower end, already rising).
-        let away = if end == 1 { slope <= 0.0 } else { slope >= 0.0 };
-        if g > BAND_EPS && away {
+        if g <= -SLIVER_MM {
+            inside[end] = Some((m, (g, slope)));
+            continue;
+        }
+        // Outside (or within a sliver): before the chord on its side (descending towards it
+        // from below, rising from above) it is a nearer start; past it, the material and the
+        // chord do not meet.
+        let towards = if end == 0 { slope < 0.0 } else { slope > 0.0 };
+        if !towards {
             return None;
         }
-        inside[end] = g <= 0.0;
+        if g >= 0.0 {
+            from[end] = (m, Some((g, slope)));
+        }
     }
-    if inside == [true, true] {
+    match inside {
         // All the material between lies in the chord.
-        return Some((lo, hi));
+        [Some(_), Some(_)] => Some((lo, hi)),
+        [None, Some(inner)] => Some((line.entry_near(from[0], inner, 1.0), hi)),
+        [Some(inner), None] => Some((lo, line.entry_near(from[1], inner, -1.0))),
+        [None, None] => line.chord_in(from[0].0, from[1].0),
     }
-    line.chord_in(lo, hi)
 }
 
 /// The chord of the line `o + t·d` (unit `d`) through the sphere of radius `r` centred on the
