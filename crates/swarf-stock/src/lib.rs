@@ -41,7 +41,11 @@
 //! evaluated. The common case — a ball or flat end mill (or a cylindrical shank) on a move
 //! whose tool axis is a world axis — skips all that for closed-form kernels, chosen once per
 //! move (`SweptConvex::has_closed_form`): a capsule and a swept slab, a few square roots
-//! per ray, held to the general candidates by `tests/fast_paths.rs`. Consecutive moves are
+//! per ray, held to the general candidates by `tests/fast_paths.rs`; so does a flat, ball or
+//! bull-nose tool *instance* at any axis (the cuts a 5-axis move is made of): its bounding
+//! cylinder's chord (one quadratic) leaves most rays at once, and only a chord end below the
+//! corner's spine inside the material needs the lozenge (`swept/instance.rs`, held to the
+//! general candidates by `tests/instance_paths.rs`). Consecutive moves are
 //! cut in batches ([`TriDexel::cut_linear_batch`], used by [`simulate()`]): the tile rows of
 //! the three families are dealt to the threads (rayon), each thread runs the batch's moves in
 //! order over its own rows, so there is no barrier per move; the per-ray loop does not
@@ -51,7 +55,8 @@
 //! [`DEFAULT_CHORDAL_TOLERANCE_MM`] (arcs and 5-axis moves, reported in
 //! [`SimulationReport`]), the grid resolution (per stock), `swarf_sweep::swept::AXIS_SNAP` and
 //! `swarf_sweep::swept::BAND_EPS` (floating-point guards of the exact cut, far below any resolution),
-//! [`dexel::MIN_INTERVAL_MM`] (slivers dropped), [`cut::COLLISION_EPS_MM`] (removal that
+//! [`dexel::MIN_INTERVAL_MM`] (slivers dropped), `swarf_sweep::swept::SLIVER_MM` (material
+//! ending within it inside a tool instance is left), [`cut::COLLISION_EPS_MM`] (removal that
 //! counts as a collision) and `swarf_sweep::five_axis::MAX_SUB_MOVES` (a guard, not an accuracy).
 //!
 //! ```

@@ -249,3 +249,60 @@ fn instance_cuts_are_exact_on_the_material() {
         "{compared} {skipped} {recut}"
     );
 }
+
+/// The tile test's range for a square block of rays holds the chord of every ray of the block
+/// (a tile skipped by it holds no ray the instance meets).
+#[test]
+fn block_range_holds_every_ray_of_the_block() {
+    let mut rng = Lcg(0xb10c_2026);
+    let mut checked = 0usize;
+    for _ in 0..30 {
+        for prof in profiles(&mut rng) {
+            let axis = axis(&mut rng);
+            let tip = Vec3::new(
+                rng.range(-30.0, 30.0),
+                rng.range(-30.0, 30.0),
+                rng.range(-30.0, 30.0),
+            );
+            let sw = SweptConvex::new(&prof, tip, axis, Vec3::ZERO);
+            let bb = sw.bbox();
+            for _ in 0..40 {
+                let k = rng.pick(3);
+                let half = rng.range(0.05, 3.0);
+                let centre = bb.min
+                    + (bb.max - bb.min)
+                        * Vec3::new(
+                            rng.range(-0.2, 1.2),
+                            rng.range(-0.2, 1.2),
+                            rng.range(-0.2, 1.2),
+                        );
+                let range = sw.block_range(k, centre, half);
+                for _ in 0..25 {
+                    let mut o = centre;
+                    o[(k + 1) % 3] += rng.range(-half, half);
+                    o[(k + 2) % 3] += rng.range(-half, half);
+                    let Some((lo, hi)) = sw.axis_ray_interval(o, k) else {
+                        continue;
+                    };
+                    let (a, b) = range.unwrap_or_else(|| {
+                        panic!("block at {centre} ±{half} along {k}: none, ray {o} has {lo}..{hi}")
+                    });
+                    assert!(
+                        a <= lo + 1e-9 && hi <= b + 1e-9,
+                        "block {a}..{b} misses the ray's {lo}..{hi}"
+                    );
+                    // (The bounding box holds it too: an axis within 1e-7 of a world axis
+                    // once made it 1e-8 mm short.)
+                    assert!(
+                        bb.min[k] <= lo + 1e-12 && hi <= bb.max[k] + 1e-12,
+                        "box {}..{} misses the ray's {lo}..{hi} (axis {axis})",
+                        bb.min[k],
+                        bb.max[k]
+                    );
+                    checked += 1;
+                }
+            }
+        }
+    }
+    assert!(checked > 5_000, "{checked}");
+}

@@ -38,7 +38,7 @@ use swarf_geom::Frame;
 /// Material ending less than this (mm) inside the lozenge is left where it is: no cut is
 /// worth less, and cutting the same instance again (whose ends the first cut made, found by
 /// whatever path, lie within rounding of the surface) removes nothing more.
-pub(crate) const SLIVER_MM: f64 = 1e-11;
+pub const SLIVER_MM: f64 = 1e-11;
 
 /// Below this `|d_⊥|²` a line runs along the tool axis (its distance from it changes by less
 /// than 10⁻¹² mm per mm of travel, far under the exact query's acceptance).

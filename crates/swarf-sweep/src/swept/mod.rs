@@ -71,6 +71,7 @@ pub(crate) mod torus;
 pub use bound::SweepBound;
 pub use distance::SignedDistance;
 pub use front::{Front, FrontBlock};
+pub use instance::SLIVER_MM;
 pub use interval::{overlaps, Interval};
 pub use profile::{ConvexProfile, Element, SweepShape};
 
@@ -205,10 +206,13 @@ struct Axial {
 /// Box of the band `z ∈ [z0, z1]` of radius ≤ `rho` about `axis` from `tip`, at the start and
 /// at the end (`tip + delta`) of a move: it holds the band's sweep (convex hull of the two).
 fn band_box(tip: Vec3, axis: Vec3, delta: Vec3, z0: f64, z1: f64, rho: f64) -> Aabb {
+    // A disc of radius rho ⊥ axis reaches rho·√(1 − a_k²) along k; written as the other two
+    // components (1 − a_k² cancels for an axis within 1e-7 of k: 1e-8 mm short on 10 mm).
+    let (x2, y2, z2) = (axis.x * axis.x, axis.y * axis.y, axis.z * axis.z);
     let ext = Vec3::new(
-        rho * (1.0 - axis.x * axis.x).max(0.0).sqrt(),
-        rho * (1.0 - axis.y * axis.y).max(0.0).sqrt(),
-        rho * (1.0 - axis.z * axis.z).max(0.0).sqrt(),
+        rho * (y2 + z2).sqrt(),
+        rho * (x2 + z2).sqrt(),
+        rho * (x2 + y2).sqrt(),
     );
     let c0 = tip + axis * z0;
     let mut bbox = Aabb::new(c0, c0);
@@ -528,12 +532,9 @@ impl<'a> SweptConvex<'a> {
         let full = (bb.min[k], bb.max[k]);
         let Some(ax) = self.axial else {
             return match &self.instance {
-                Some(i) => {
-                    let (lo, hi) =
-                        i.rays(k)
-                            .block(origin[(k + 1) % 3], origin[(k + 2) % 3], half)?;
-                    Some((lo.max(full.0), hi.min(full.1)))
-                }
+                Some(i) => i
+                    .rays(k)
+                    .block(origin[(k + 1) % 3], origin[(k + 2) % 3], half),
                 None => Some(full),
             };
         };
