@@ -27,6 +27,12 @@ pub(crate) trait ConvexLine {
     fn curvature(&self, _t: f64) -> Option<f64> {
         None
     }
+
+    /// A bound `K ≥ F″` wherever `F ≥ 0`, when known: [`walk`] then stops as soon as the
+    /// step it takes is proven to land within [`T_TOL`] of the zero, one evaluation earlier.
+    fn curvature_bound(&self) -> Option<f64> {
+        None
+    }
 }
 
 /// Zeros are located to this (in `t`, mm).
@@ -79,6 +85,16 @@ pub(crate) fn walk<F: ConvexLine + ?Sized>(
         }
         if step.abs() <= T_TOL {
             return Walk::Zero(next);
+        }
+        if let Some(k) = line.curvature_bound() {
+            // Past `next` the zero is at most F(next)/|F′| away, with F(next) ≤ K·s²/2
+            // (Taylor: the tangent's zero) and |F′| ≥ |g| − 2·K·s on the way (F″ ≤ K; the
+            // zero lies within s of next while this holds).
+            let s = step.abs();
+            let slope = g.abs() - 2.0 * k * s;
+            if slope > 0.0 && 0.5 * k * s * s <= T_TOL * slope {
+                return Walk::Zero(next);
+            }
         }
         t = next;
         let (fv, gv) = line.value_slope(t);

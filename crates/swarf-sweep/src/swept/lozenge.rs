@@ -209,6 +209,12 @@ impl ConvexLine for StaticLine {
         (dist - self.r, slope)
     }
 
+    /// `G` is a distance less `r`: its second derivative along a unit line is at most the
+    /// distance's Hessian norm, `1/dist ≤ 1/r` outside the lozenge.
+    fn curvature_bound(&self) -> Option<f64> {
+        Some(1.0 / self.r)
+    }
+
     #[inline]
     fn value(&self, t: f64) -> f64 {
         let p = self.o + self.d * t;
