@@ -1,7 +1,17 @@
 //! Closed-form kernels for the common case, chosen once per profile and once per move: a
-//! profile that is a cylinder slab (flat end mill, shank) or a sphere on a cylinder slab (ball
-//! end mill), on a move whose tool axis is a world axis, against rays along world axes (the
-//! dexels). They compute the same exact interval as the general candidates of
+//! profile that is a cylinder slab (flat end mill, shank), a sphere on a cylinder slab (ball
+//! end mill) or a lozenge on one (bull-nose), on a move whose tool axis is a world axis (for the
+//! bull-nose: a move across the axis or along it, not a ramp), against rays along world axes
+//! (the dexels).
+//!
+//! The bull-nose's corner is the lozenge `L = D ⊕ B(r)` (`D` the disc of radius `e` at the
+//! spine's height; `lozenge.rs`). Moved across the axis or along it, `D` sweeps the product
+//! `P × I` of a plane set `P` (the stadium of radius `e` about the spine centre's path, or the
+//! disc) and a height interval `I`, so `dist(x, P × I)² = d_P(x)² + d_I(x)²` and the swept
+//! lozenge is `{d_P² + d_I² ≤ r²}`: a ray along the axis (fixed `d_P`) leaves it at
+//! `min I − √(r² − d_P²)`, a ray across it (fixed `d_I`) is inside where `d_P ≤ √(r² − d_I²)`,
+//! the chord of the stadium of radius `e + √(r² − d_I²)`. A ramp mixes the two: the general
+//! path's (`lozenge.rs`). They compute the same exact interval as the general candidates of
 //! [`super::SweptConvex::line_interval`] with a few square roots, and the property tests
 //! (`tests/fast_paths.rs`) hold them to it.
 //!
@@ -106,6 +116,9 @@ impl FastProfile {
 /// A move prepared for the closed-form kernels: tool axis `+e_kt`.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct FastSweep {
+    /// The bull-nose's lozenge `(e, r)` and the spine centre's heights `I` (world, along the
+    /// axis), when the profile has one (`e > 0`).
+    lozenge: Option<(f64, f64, (f64, f64))>,
     kt: usize,
     shape: FastProfile,
     mv: AxisMove,
@@ -118,13 +131,24 @@ impl FastSweep {
     /// The kernels for `prof` placed at `tip` with axis `+e_kt` moving by `delta`, when the
     /// profile qualifies.
     pub(crate) fn new(prof: &ConvexProfile, kt: usize, tip: Vec3, delta: Vec3) -> Option<Self> {
-        // (A bull-nose's swept lozenge has no closed form: the general path's.)
-        let shape = prof
-            .fast()
-            .filter(|s| s.lozenge.map_or(true, |l| l.0 == 0.0))?;
+        let shape = prof.fast()?;
         let (u, w) = ((kt + 1) % 3, (kt + 2) % 3);
+        let lozenge = match shape.lozenge {
+            Some((e, f, r)) if e > 0.0 => {
+                // A ramp's swept lozenge is no product: the general path's. (The caller's
+                // move frame snaps a negligible part of either kind to exactly zero.)
+                let across = delta[u] != 0.0 || delta[w] != 0.0;
+                if across && delta[kt] != 0.0 {
+                    return None;
+                }
+                let h = tip[kt] + f;
+                Some((e, r, (h + delta[kt].min(0.0), h + delta[kt].max(0.0))))
+            }
+            _ => None,
+        };
         let c0 = tip + Vec3::AXES[kt] * shape.sphere().map_or(0.0, |s| s.0);
         Some(Self {
+            lozenge,
             kt,
             shape,
             mv: AxisMove {
@@ -154,6 +178,16 @@ impl FastSweep {
             a: baba - bard * bard,
             rr: sr * sr,
         });
+        let end = match (sphere, self.lozenge) {
+            (Some(c), _) => Some(RoundEnd::Sphere(c)),
+            (None, Some((e, lr, heights))) => Some(RoundEnd::Lozenge(LozengeRays {
+                e,
+                r: lr,
+                heights,
+                mv: self.mv,
+            })),
+            (None, None) => None,
+        };
         if k == self.kt {
             let (mu, mw) = (self.mv.m[0], self.mv.m[1]);
             let aa = mu * mu + mw * mw;
@@ -164,12 +198,14 @@ impl FastSweep {
                 z0,
                 z1,
                 hi_min: pa + z1 + ma.min(0.0),
-                low_base: match self.shape.sphere() {
-                    Some((f, sr)) => pa + f + ma.min(0.0) - sr,
-                    None => pa + z0 + ma.min(0.0),
+                // (Under a bull-nose: the lowest spine height less r, without the parabola.)
+                low_base: match (self.shape.sphere(), self.lozenge) {
+                    (Some((f, sr)), _) => pa + f + ma.min(0.0) - sr,
+                    (None, Some((_, lr, heights))) => heights.0 - lr,
+                    (None, None) => pa + z0 + ma.min(0.0),
                 },
                 low_k: self.shape.sphere().map_or(0.0, |(_, sr)| 0.5 / sr),
-                sphere,
+                end,
             });
         }
         let ray = if k == (self.kt + 1) % 3 { 0 } else { 1 };
@@ -179,7 +215,17 @@ impl FastSweep {
             (self.mv.m[ray], self.mv.m[o]),
             r,
         );
-        let sr = self.shape.sphere().map_or(0.0, |s| s.1);
+        // Heights where the rounded end may stick out of the slab's sweep: from its lowest
+        // point to the highest centre (above it every section lies in the slab's disc of the
+        // same position).
+        let end_band = match (self.shape.sphere(), self.lozenge) {
+            (Some((_, sr)), _) => (
+                self.c0[self.kt] + ma.min(0.0) - sr,
+                self.c0[self.kt] + ma.max(0.0),
+            ),
+            (None, Some((_, lr, heights))) => (heights.0 - lr, heights.1),
+            (None, None) => (f64::INFINITY, f64::NEG_INFINITY),
+        };
         FastRays::Across(AcrossRays {
             height_is_u: fu == self.kt,
             ray,
@@ -190,11 +236,8 @@ impl FastSweep {
             full_band: (pa + z0 + ma.max(0.0), pa + z1 + ma.min(0.0)),
             band: (pa + z0 + ma.min(0.0), pa + z1 + ma.max(0.0)),
             full,
-            sphere_band: (
-                self.c0[self.kt] + ma.min(0.0) - sr,
-                self.c0[self.kt] + ma.max(0.0),
-            ),
-            sphere,
+            end_band,
+            end,
         })
     }
 }
@@ -333,6 +376,84 @@ impl CapsuleRays {
     }
 }
 
+/// The rounded end of a ball or bull-nose, swept, for one family of rays.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum RoundEnd {
+    /// A ball's sphere: a capsule.
+    Sphere(CapsuleRays),
+    /// A bull-nose's lozenge moved across the axis or along it.
+    Lozenge(LozengeRays),
+}
+
+impl RoundEnd {
+    /// Where a ray along the tool axis through `(qu, qw)` enters it (world, along the axis).
+    #[inline]
+    fn lower(&self, qu: f64, qw: f64) -> Option<f64> {
+        match self {
+            RoundEnd::Sphere(c) => c.interval::<true>(qu, qw).map(|(l, _)| l),
+            RoundEnd::Lozenge(l) => l.lower(qu, qw),
+        }
+    }
+
+    /// The chord of the ray through `(cu, cv)` across the tool axis (along cross axis `ray`,
+    /// at height `za`, `q` its other cross coordinate).
+    #[inline]
+    fn across(&self, (cu, cv): (f64, f64), ray: usize, za: f64, q: f64) -> Option<(f64, f64)> {
+        match self {
+            RoundEnd::Sphere(c) => c.interval::<false>(cu, cv),
+            RoundEnd::Lozenge(l) => l.across(ray, za, q),
+        }
+    }
+}
+
+/// A bull-nose's lozenge (disc radius `e`, tube `r`) swept across the tool axis or along it:
+/// its spine centre on the path `mv` (cross coordinates), at heights `heights` (world).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct LozengeRays {
+    e: f64,
+    r: f64,
+    heights: (f64, f64),
+    mv: AxisMove,
+}
+
+impl LozengeRays {
+    /// Entry of the ray along the axis through `(qu, qw)`: `min I − √(r² − d_P²)`.
+    #[inline]
+    fn lower(&self, qu: f64, qw: f64) -> Option<f64> {
+        let (du, dw) = (qu - self.mv.p[0], qw - self.mv.p[1]);
+        let (mu, mw) = (self.mv.m[0], self.mv.m[1]);
+        let aa = mu * mu + mw * mw;
+        let s = if aa > 0.0 {
+            ((du * mu + dw * mw) / aa).clamp(0.0, 1.0)
+        } else {
+            0.0
+        };
+        let (eu, ew) = (du - s * mu, dw - s * mw);
+        let dp = ((eu * eu + ew * ew).sqrt() - self.e).max(0.0);
+        let h2 = self.r * self.r - dp * dp;
+        (h2 >= 0.0).then(|| self.heights.0 - h2.sqrt())
+    }
+
+    /// Chord of the ray across the axis along cross axis `ray` at height `za`, other cross
+    /// coordinate `q`: the stadium of radius `e + √(r² − d_I²)` about the spine centre's path.
+    #[inline]
+    fn across(&self, ray: usize, za: f64, q: f64) -> Option<(f64, f64)> {
+        let dz = (self.heights.0 - za).max(za - self.heights.1).max(0.0);
+        let h2 = self.r * self.r - dz * dz;
+        if h2 < 0.0 {
+            return None;
+        }
+        let o = 1 - ray;
+        let (p, m) = (self.mv.p, self.mv.m);
+        slab::stadium_chord(
+            (p[ray], p[o]),
+            (p[ray] + m[ray], p[o] + m[o]),
+            self.e + h2.sqrt(),
+            q,
+        )
+    }
+}
+
 /// Rays along the tool axis.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct AlongRays {
@@ -348,7 +469,7 @@ pub(crate) struct AlongRays {
     /// lowest bottom under a flat slab.
     low_base: f64,
     low_k: f64,
-    sphere: Option<CapsuleRays>,
+    end: Option<RoundEnd>,
 }
 
 impl AlongRays {
@@ -380,14 +501,8 @@ impl AlongRays {
         } else {
             self.hi_min
         };
-        let lo = match &self.sphere {
-            Some(c) => match c.interval::<true>(qu, qw) {
-                Some((l, _)) => l,
-                None => {
-                    let (s0, s1) = *spanned.get_or_insert_with(span);
-                    pa + self.z0 + (s0 * ma).min(s1 * ma)
-                }
-            },
+        let lo = match self.end.as_ref().and_then(|c| c.lower(qu, qw)) {
+            Some(l) => l,
             None => {
                 let (s0, s1) = *spanned.get_or_insert_with(span);
                 pa + self.z0 + (s0 * ma).min(s1 * ma)
@@ -413,11 +528,9 @@ pub(crate) struct AcrossRays {
     band: (f64, f64),
     /// The cross-section of the whole move's slab sweep at a height of `full_band`.
     full: Stadium,
-    /// Heights at which the capsule may stick out of the slab's sweep: from the lowest point
-    /// of the sphere to the highest centre (above it every sphere section lies in the slab's
-    /// disc of the same position).
-    sphere_band: (f64, f64),
-    sphere: Option<CapsuleRays>,
+    /// Heights at which the rounded end may stick out of the slab's sweep.
+    end_band: (f64, f64),
+    end: Option<RoundEnd>,
 }
 
 impl AcrossRays {
@@ -431,13 +544,13 @@ impl AcrossRays {
         } else {
             None
         };
-        let Some(c) = &self.sphere else {
+        let Some(c) = &self.end else {
             return slab;
         };
-        if za < self.sphere_band.0 || za > self.sphere_band.1 {
+        if za < self.end_band.0 || za > self.end_band.1 {
             return slab;
         }
-        match (slab, c.interval::<false>(cu, cv)) {
+        match (slab, c.across((cu, cv), self.ray, za, q)) {
             (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
             (a, b) => a.or(b),
         }
@@ -541,13 +654,26 @@ mod tests {
     fn material_pruning_keeps_the_material_part_exact() {
         let mut rnd = test_rng(11);
         let mut compared = 0;
-        for spec in ["ball:d=10", "flat:d=6", "ball:d=3,flute-length=20"] {
+        for spec in [
+            "ball:d=10",
+            "flat:d=6",
+            "ball:d=3,flute-length=20",
+            "bull:d=10,r=2",
+        ] {
             let c = Cutter::from_spec(spec).unwrap();
             let prof = ConvexProfile::from_solid(c.cutting_solid()).unwrap();
             for kt in 0..3 {
-                for _ in 0..40 {
+                for n in 0..40 {
                     let tip = Vec3::new(rnd(), rnd(), rnd()) * 20.0;
-                    let delta = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 8.0;
+                    let mut delta = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 8.0;
+                    if spec.starts_with("bull") {
+                        // Across the axis or along it (a ramp takes the general path).
+                        if n % 3 == 0 {
+                            delta = Vec3::AXES[kt] * delta[kt];
+                        } else {
+                            delta[kt] = 0.0;
+                        }
+                    }
                     let fs = FastSweep::new(&prof, kt, tip, delta).unwrap();
                     for k in 0..3 {
                         let rays = fs.rays(k);
