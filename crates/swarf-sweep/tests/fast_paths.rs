@@ -8,23 +8,8 @@ use swarf_geom::math::Vec3;
 use swarf_sweep::{ConvexProfile, SweepShape, SweptConvex};
 use swarf_tool::Cutter;
 
-/// A tiny deterministic generator (reproducible without extra crates).
-struct Lcg(u64);
-impl Lcg {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64)
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next_f64()
-    }
-    fn pick(&mut self, n: usize) -> usize {
-        ((self.next_f64() * n as f64) as usize).min(n - 1)
-    }
-}
+mod common;
+use common::{both_answers, Rng};
 
 /// Worst disagreement, and the count of compared hits, between the two paths on `rays`
 /// random axis-aligned rays near the sweep of `prof`.
@@ -33,7 +18,7 @@ fn compare(
     tip: Vec3,
     axis: Vec3,
     delta: Vec3,
-    rng: &mut Lcg,
+    rng: &mut Rng,
     rays: usize,
 ) -> (f64, usize) {
     let sw = SweptConvex::new(prof, tip, axis, delta);
@@ -52,43 +37,22 @@ fn compare(
     let (mut worst, mut hits) = (0.0f64, 0);
     for _ in 0..rays {
         let k = rng.pick(3);
-        let p = bb.min
-            + (bb.max - bb.min)
-                * Vec3::new(
-                    rng.range(-0.1, 1.1),
-                    rng.range(-0.1, 1.1),
-                    rng.range(-0.1, 1.1),
-                );
-        let fast = sw.axis_ray_interval(p, k);
-        let mut o = p;
-        o[k] = 0.0;
-        let general = sw.ray_interval(o, Vec3::AXES[k]);
-        match (fast, general) {
-            (None, None) => {}
-            (Some(f), Some(g)) => {
-                let e = (f.0 - g.0).abs().max((f.1 - g.1).abs());
-                assert!(
-                    e <= 1e-9,
-                    "{:?}: tip {tip} axis {axis} delta {delta}, ray along {k} through {o}: fast {f:?} vs general {g:?}",
-                    prof.elements()
-                );
-                worst = worst.max(e);
-                hits += 1;
-            }
-            (Some(x), None) | (None, Some(x)) => {
-                // Only a tangent line may be seen by one and not the other.
-                assert!(
-                    x.1 - x.0 <= 1e-6,
-                    "{:?}: tip {tip} axis {axis} delta {delta}, ray along {k} through {o}: fast {fast:?} vs general {general:?}",
-                    prof.elements()
-                );
-            }
+        let p = rng.point_in(&bb, 0.1);
+        let (fast, general, e) = both_answers(&sw, p, k);
+        assert!(
+            e.is_some_and(|e| e <= 1e-9),
+            "{:?}: tip {tip} axis {axis} delta {delta}, ray along {k} through {p}: fast {fast:?} vs general {general:?}",
+            prof.elements()
+        );
+        if fast.is_some() && general.is_some() {
+            worst = worst.max(e.unwrap_or(0.0));
+            hits += 1;
         }
     }
     (worst, hits)
 }
 
-fn cutters(rng: &mut Lcg) -> Vec<Cutter> {
+fn cutters(rng: &mut Rng) -> Vec<Cutter> {
     let d = rng.range(1.0, 20.0);
     let fl = rng.range(1.0, 4.0) * d;
     let r = rng.range(0.05, 0.45) * d;
@@ -116,7 +80,7 @@ fn cutters(rng: &mut Lcg) -> Vec<Cutter> {
 
 #[test]
 fn closed_form_matches_general_candidates() {
-    let mut rng = Lcg(0xfa57_2026);
+    let mut rng = Rng(0xfa57_2026);
     let (mut worst, mut hits) = (0.0f64, 0);
     for round in 0..40 {
         for cutter in cutters(&mut rng) {

@@ -8,26 +8,11 @@ use swarf_sweep::swept::{Interval, Scratch};
 use swarf_sweep::{ConvexProfile, SweepShape, SweptConvex};
 use swarf_tool::Cutter;
 
-/// A tiny deterministic generator (reproducible without extra crates).
-struct Lcg(u64);
-impl Lcg {
-    fn next_f64(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        ((self.0 >> 11) as f64) / ((1u64 << 53) as f64)
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.next_f64()
-    }
-    fn pick(&mut self, n: usize) -> usize {
-        ((self.next_f64() * n as f64) as usize).min(n - 1)
-    }
-}
+mod common;
+use common::{both_answers, Rng};
 
 /// Cutting parts and shank slabs of random flat, ball and bull-nose cutters.
-fn profiles(rng: &mut Lcg) -> Vec<ConvexProfile> {
+fn profiles(rng: &mut Rng) -> Vec<ConvexProfile> {
     let d = rng.range(1.0, 20.0);
     let r = rng.range(0.05, 0.5) * d;
     let fl = rng.range(1.0, 4.0) * d;
@@ -51,7 +36,7 @@ fn profiles(rng: &mut Lcg) -> Vec<ConvexProfile> {
 }
 
 /// Random unit axes: any direction, near a world axis, in a coordinate plane.
-fn axis(rng: &mut Lcg) -> Vec3 {
+fn axis(rng: &mut Rng) -> Vec3 {
     let a = match rng.pick(4) {
         0 => Vec3::new(1e-7, rng.range(-1e-7, 1e-7), 1.0),
         1 => Vec3::new(rng.range(-1.0, 1.0), 0.0, rng.range(-1.0, 1.0)),
@@ -68,69 +53,60 @@ fn axis(rng: &mut Lcg) -> Vec3 {
     }
 }
 
-#[test]
-fn instance_chords_match_general_candidates() {
-    let mut rng = Lcg(0x1257_2026);
-    let (mut worst, mut hits, mut corner) = (0.0f64, 0usize, 0usize);
-    for _ in 0..60 {
+/// Calls `f` with the generator and random instances: `rounds` rounds of [`profiles`], each at
+/// a random [`axis`] with its tip within `spread` of the origin.
+fn for_instances(
+    seed: u64,
+    rounds: usize,
+    spread: f64,
+    mut f: impl FnMut(&mut Rng, &ConvexProfile, Vec3, Vec3),
+) {
+    let mut rng = Rng(seed);
+    for _ in 0..rounds {
         for prof in profiles(&mut rng) {
             let axis = axis(&mut rng);
             let tip = Vec3::new(
-                rng.range(-80.0, 80.0),
-                rng.range(-80.0, 80.0),
-                rng.range(-80.0, 80.0),
+                rng.range(-spread, spread),
+                rng.range(-spread, spread),
+                rng.range(-spread, spread),
             );
-            let sw = SweptConvex::new(&prof, tip, axis, Vec3::ZERO);
-            assert!(sw.has_closed_form(), "{:?}", prof.elements());
-            let bb = sw.bbox();
-            for _ in 0..400 {
-                let k = rng.pick(3);
-                let p = bb.min
-                    + (bb.max - bb.min)
-                        * Vec3::new(
-                            rng.range(-0.1, 1.1),
-                            rng.range(-0.1, 1.1),
-                            rng.range(-0.1, 1.1),
-                        );
-                let fast = sw.axis_ray_interval(p, k);
-                let mut o = p;
-                o[k] = 0.0;
-                let general = sw.ray_interval(o, Vec3::AXES[k]);
-                match (fast, general) {
-                    (None, None) => {}
-                    (Some(f), Some(g)) => {
-                        let e = (f.0 - g.0).abs().max((f.1 - g.1).abs());
-                        assert!(
-                            e <= 1e-9,
-                            "{:?}: tip {tip} axis {axis}, ray along {k} through {o}: \
-                             instance {f:?} vs general {g:?}",
-                            prof.elements()
-                        );
-                        worst = worst.max(e);
-                        hits += 1;
-                        // Ends below the slab of a rounded end (the lozenge's part).
-                        let low = |t: f64| {
-                            let mut q = o;
-                            q[k] = t;
-                            (q - tip).dot(axis)
-                        };
-                        if low(f.0).min(low(f.1)) < 0.5 * bb.size().min_element() {
-                            corner += 1;
-                        }
-                    }
-                    (Some(x), None) | (None, Some(x)) => {
-                        // Only a tangent line may be seen by one and not the other.
-                        assert!(
-                            x.1 - x.0 <= 1e-6,
-                            "{:?}: tip {tip} axis {axis}, ray along {k} through {o}: \
-                             instance {fast:?} vs general {general:?}",
-                            prof.elements()
-                        );
-                    }
+            f(&mut rng, &prof, tip, axis);
+        }
+    }
+}
+
+#[test]
+fn instance_chords_match_general_candidates() {
+    let (mut worst, mut hits, mut corner) = (0.0f64, 0usize, 0usize);
+    for_instances(0x1257_2026, 60, 80.0, |rng, prof, tip, axis| {
+        let sw = SweptConvex::new(prof, tip, axis, Vec3::ZERO);
+        assert!(sw.has_closed_form(), "{:?}", prof.elements());
+        let bb = sw.bbox();
+        for _ in 0..400 {
+            let k = rng.pick(3);
+            let o = rng.point_in(&bb, 0.1);
+            let (fast, general, e) = both_answers(&sw, o, k);
+            assert!(
+                e.is_some_and(|e| e <= 1e-9),
+                "{:?}: tip {tip} axis {axis}, ray along {k} through {o}: \
+                 instance {fast:?} vs general {general:?}",
+                prof.elements()
+            );
+            if let (Some(f), Some(_)) = (fast, general) {
+                worst = worst.max(e.unwrap_or(0.0));
+                hits += 1;
+                // Ends below the slab of a rounded end (the lozenge's part).
+                let low = |t: f64| {
+                    let mut q = o;
+                    q[k] = t;
+                    (q - tip).dot(axis)
+                };
+                if low(f.0).min(low(f.1)) < 0.5 * bb.size().min_element() {
+                    corner += 1;
                 }
             }
         }
-    }
+    });
     println!("compared {hits} hits ({corner} near the end); worst {worst:.3e} mm");
     assert!(hits > 80_000 && corner > 10_000, "{hits} {corner}");
 }
@@ -141,108 +117,93 @@ fn instance_chords_match_general_candidates() {
 /// removes nothing.
 #[test]
 fn instance_cuts_are_exact_on_the_material() {
-    let mut rng = Lcg(0xc07_2026);
     let (mut compared, mut skipped, mut recut) = (0usize, 0usize, 0usize);
-    for _ in 0..40 {
-        for prof in profiles(&mut rng) {
-            let axis = axis(&mut rng);
-            let tip = Vec3::new(
-                rng.range(-30.0, 30.0),
-                rng.range(-30.0, 30.0),
-                rng.range(-30.0, 30.0),
-            );
-            let sw = SweptConvex::new(&prof, tip, axis, Vec3::ZERO);
-            let bb = sw.bbox();
-            let rays: Vec<_> = (0..3).map(|k| sw.dexel_rays(k)).collect();
-            let mut scratch = Scratch::new();
-            for _ in 0..300 {
-                let k = rng.pick(3);
-                let p = bb.min
-                    + (bb.max - bb.min)
-                        * Vec3::new(
-                            rng.range(-0.1, 1.1),
-                            rng.range(-0.1, 1.1),
-                            rng.range(-0.1, 1.1),
-                        );
-                let (cu, cv) = (p[(k + 1) % 3], p[(k + 2) % 3]);
-                // One or two material intervals anywhere along the box.
-                let (lo, hi) = (bb.min[k] - 5.0, bb.max[k] + 5.0);
-                let mut ts: Vec<f64> = (0..2 * (1 + rng.pick(2)))
-                    .map(|_| rng.range(lo, hi))
-                    .collect();
-                ts.sort_by(f64::total_cmp);
-                let dex: Vec<Interval> = ts
-                    .chunks(2)
-                    .map(|c| Interval {
-                        enter: c[0],
-                        exit: c[1],
-                    })
-                    .collect();
-                let mut o = p;
-                o[k] = 0.0;
-                let general = sw.ray_interval(o, Vec3::AXES[k]);
-                let (tested, cut) = sw.dexel_cut((cu, cv), k, &dex, &rays[k], &mut scratch);
-                let on_material = |c: Option<(f64, f64)>| -> Vec<(f64, f64)> {
-                    c.map(|(a, b)| {
-                        dex.iter()
-                            .map(|iv| (iv.enter.max(a), iv.exit.min(b)))
-                            .filter(|(x, y)| x < y)
-                            .collect()
-                    })
-                    .unwrap_or_default()
-                };
-                let (want, got) = (on_material(general), on_material(cut));
-                if !tested {
-                    skipped += 1;
-                    assert!(
-                        want.iter().all(|(a, b)| b - a <= 1e-6),
-                        "skipped a ray the instance cuts: {want:?}"
-                    );
-                    continue;
-                }
-                let close = |x: &[(f64, f64)], y: &[(f64, f64)]| {
-                    x.len() == y.len()
-                        && x.iter()
-                            .zip(y)
-                            .all(|(a, b)| (a.0 - b.0).abs() <= 1e-9 && (a.1 - b.1).abs() <= 1e-9)
-                };
-                // (A tangent line may leave a sliver in one and not the other.)
-                let slivers = |x: &[(f64, f64)]| -> Vec<(f64, f64)> {
-                    x.iter().copied().filter(|(a, b)| b - a > 1e-6).collect()
-                };
+    for_instances(0xc07_2026, 40, 30.0, |rng, prof, tip, axis| {
+        let sw = SweptConvex::new(prof, tip, axis, Vec3::ZERO);
+        let bb = sw.bbox();
+        let rays: Vec<_> = (0..3).map(|k| sw.dexel_rays(k)).collect();
+        let mut scratch = Scratch::new();
+        for _ in 0..300 {
+            let k = rng.pick(3);
+            let p = rng.point_in(&bb, 0.1);
+            let (cu, cv) = (p[(k + 1) % 3], p[(k + 2) % 3]);
+            // One or two material intervals anywhere along the box.
+            let (lo, hi) = (bb.min[k] - 5.0, bb.max[k] + 5.0);
+            let mut ts: Vec<f64> = (0..2 * (1 + rng.pick(2)))
+                .map(|_| rng.range(lo, hi))
+                .collect();
+            ts.sort_by(f64::total_cmp);
+            let dex: Vec<Interval> = ts
+                .chunks(2)
+                .map(|c| Interval {
+                    enter: c[0],
+                    exit: c[1],
+                })
+                .collect();
+            let mut o = p;
+            o[k] = 0.0;
+            let general = sw.ray_interval(o, Vec3::AXES[k]);
+            let (tested, cut) = sw.dexel_cut((cu, cv), k, &dex, &rays[k], &mut scratch);
+            let on_material = |c: Option<(f64, f64)>| -> Vec<(f64, f64)> {
+                c.map(|(a, b)| {
+                    dex.iter()
+                        .map(|iv| (iv.enter.max(a), iv.exit.min(b)))
+                        .filter(|(x, y)| x < y)
+                        .collect()
+                })
+                .unwrap_or_default()
+            };
+            let (want, got) = (on_material(general), on_material(cut));
+            if !tested {
+                skipped += 1;
                 assert!(
-                    close(&want, &got) || close(&slivers(&want), &slivers(&got)),
-                    "{:?}: tip {tip} axis {axis} ray {k} ({cu}, {cv}) material {dex:?}: \
-                     general {want:?} vs instance {got:?}",
-                    prof.elements()
+                    want.iter().all(|(a, b)| b - a <= 1e-6),
+                    "skipped a ray the instance cuts: {want:?}"
                 );
-                compared += 1;
-                // Cutting the same instance again removes nothing more (not even a sliver).
-                if let Some((a, b)) = cut {
-                    let mut left = Vec::new();
-                    for iv in &dex {
-                        for (x, y) in [(iv.enter, iv.exit.min(a)), (iv.enter.max(b), iv.exit)] {
-                            if x < y {
-                                left.push(Interval { enter: x, exit: y });
-                            }
+                continue;
+            }
+            let close = |x: &[(f64, f64)], y: &[(f64, f64)]| {
+                x.len() == y.len()
+                    && x.iter()
+                        .zip(y)
+                        .all(|(a, b)| (a.0 - b.0).abs() <= 1e-9 && (a.1 - b.1).abs() <= 1e-9)
+            };
+            // (A tangent line may leave a sliver in one and not the other.)
+            let slivers = |x: &[(f64, f64)]| -> Vec<(f64, f64)> {
+                x.iter().copied().filter(|(a, b)| b - a > 1e-6).collect()
+            };
+            assert!(
+                close(&want, &got) || close(&slivers(&want), &slivers(&got)),
+                "{:?}: tip {tip} axis {axis} ray {k} ({cu}, {cv}) material {dex:?}: \
+                 general {want:?} vs instance {got:?}",
+                prof.elements()
+            );
+            compared += 1;
+            // Cutting the same instance again removes nothing more (not even a sliver).
+            if let Some((a, b)) = cut {
+                let mut left = Vec::new();
+                for iv in &dex {
+                    for (x, y) in [(iv.enter, iv.exit.min(a)), (iv.enter.max(b), iv.exit)] {
+                        if x < y {
+                            left.push(Interval { enter: x, exit: y });
                         }
                     }
-                    let (_, again) = sw.dexel_cut((cu, cv), k, &left, &rays[k], &mut scratch);
-                    if let Some((a2, b2)) = again {
-                        for iv in &left {
-                            assert!(
-                                iv.enter.max(a2) >= iv.exit.min(b2),
-                                "{:?}: tip {tip} axis {axis} ray {k} ({cu}, {cv}): the second \
-                                 cut {again:?} meets {iv:?} (first {cut:?})",
-                                prof.elements()
-                            );
-                        }
-                    }
-                    recut += 1;
                 }
+                let (_, again) = sw.dexel_cut((cu, cv), k, &left, &rays[k], &mut scratch);
+                if let Some((a2, b2)) = again {
+                    for iv in &left {
+                        assert!(
+                            iv.enter.max(a2) >= iv.exit.min(b2),
+                            "{:?}: tip {tip} axis {axis} ray {k} ({cu}, {cv}): the second \
+                             cut {again:?} meets {iv:?} (first {cut:?})",
+                            prof.elements()
+                        );
+                    }
+                }
+                recut += 1;
             }
         }
-    }
+    });
     println!("compared {compared} cuts ({recut} cut again), {skipped} rays left without a query");
     assert!(
         compared > 20_000 && skipped > 5_000 && recut > 10_000,
@@ -254,55 +215,38 @@ fn instance_cuts_are_exact_on_the_material() {
 /// (a tile skipped by it holds no ray the instance meets).
 #[test]
 fn block_range_holds_every_ray_of_the_block() {
-    let mut rng = Lcg(0xb10c_2026);
     let mut checked = 0usize;
-    for _ in 0..30 {
-        for prof in profiles(&mut rng) {
-            let axis = axis(&mut rng);
-            let tip = Vec3::new(
-                rng.range(-30.0, 30.0),
-                rng.range(-30.0, 30.0),
-                rng.range(-30.0, 30.0),
-            );
-            let sw = SweptConvex::new(&prof, tip, axis, Vec3::ZERO);
-            let bb = sw.bbox();
-            for _ in 0..40 {
-                let k = rng.pick(3);
-                let half = rng.range(0.05, 3.0);
-                let centre = bb.min
-                    + (bb.max - bb.min)
-                        * Vec3::new(
-                            rng.range(-0.2, 1.2),
-                            rng.range(-0.2, 1.2),
-                            rng.range(-0.2, 1.2),
-                        );
-                let range = sw.block_range(k, centre, half);
-                for _ in 0..25 {
-                    let mut o = centre;
-                    o[(k + 1) % 3] += rng.range(-half, half);
-                    o[(k + 2) % 3] += rng.range(-half, half);
-                    let Some((lo, hi)) = sw.axis_ray_interval(o, k) else {
-                        continue;
-                    };
-                    let (a, b) = range.unwrap_or_else(|| {
-                        panic!("block at {centre} ±{half} along {k}: none, ray {o} has {lo}..{hi}")
-                    });
-                    assert!(
-                        a <= lo + 1e-9 && hi <= b + 1e-9,
-                        "block {a}..{b} misses the ray's {lo}..{hi}"
-                    );
-                    // (The bounding box holds it too: an axis within 1e-7 of a world axis
-                    // once made it 1e-8 mm short.)
-                    assert!(
-                        bb.min[k] <= lo + 1e-12 && hi <= bb.max[k] + 1e-12,
-                        "box {}..{} misses the ray's {lo}..{hi} (axis {axis})",
-                        bb.min[k],
-                        bb.max[k]
-                    );
-                    checked += 1;
-                }
+    for_instances(0xb10c_2026, 30, 30.0, |rng, prof, tip, axis| {
+        let sw = SweptConvex::new(prof, tip, axis, Vec3::ZERO);
+        let bb = sw.bbox();
+        for _ in 0..40 {
+            let k = rng.pick(3);
+            let half = rng.range(0.05, 3.0);
+            let centre = rng.point_in(&bb, 0.2);
+            let range = sw.block_range(k, centre, half);
+            for _ in 0..25 {
+                let o = rng.across(centre, k, half);
+                let Some((lo, hi)) = sw.axis_ray_interval(o, k) else {
+                    continue;
+                };
+                let (a, b) = range.unwrap_or_else(|| {
+                    panic!("block at {centre} ±{half} along {k}: none, ray {o} has {lo}..{hi}")
+                });
+                assert!(
+                    a <= lo + 1e-9 && hi <= b + 1e-9,
+                    "block {a}..{b} misses the ray's {lo}..{hi}"
+                );
+                // (The bounding box holds it too: an axis within 1e-7 of a world axis
+                // once made it 1e-8 mm short.)
+                assert!(
+                    bb.min[k] <= lo + 1e-12 && hi <= bb.max[k] + 1e-12,
+                    "box {}..{} misses the ray's {lo}..{hi} (axis {axis})",
+                    bb.min[k],
+                    bb.max[k]
+                );
+                checked += 1;
             }
         }
-    }
+    });
     assert!(checked > 5_000, "{checked}");
 }

@@ -3,6 +3,8 @@
 #![allow(dead_code, unreachable_pub)]
 
 use swarf_geom::math::Vec3;
+use swarf_geom::Aabb;
+use swarf_sweep::SweptConvex;
 use swarf_tool::Cutter;
 
 /// xorshift64*: deterministic, no dependency.
@@ -17,6 +19,22 @@ impl Rng {
     }
     pub fn range(&mut self, a: f64, b: f64) -> f64 {
         a + (b - a) * self.next()
+    }
+    /// One of `0..n`.
+    pub fn pick(&mut self, n: usize) -> usize {
+        ((self.next() * n as f64) as usize).min(n - 1)
+    }
+    /// A point of the box `bb` grown by `margin` times its size on every side.
+    pub fn point_in(&mut self, bb: &Aabb, margin: f64) -> Vec3 {
+        let (a, b) = (-margin, 1.0 + margin);
+        bb.min + (bb.max - bb.min) * Vec3::new(self.range(a, b), self.range(a, b), self.range(a, b))
+    }
+    /// A point within `half` of `centre` across world axis `k`.
+    pub fn across(&mut self, centre: Vec3, k: usize, half: f64) -> Vec3 {
+        let mut o = centre;
+        o[(k + 1) % 3] += self.range(-half, half);
+        o[(k + 2) % 3] += self.range(-half, half);
+        o
     }
     pub fn unit(&mut self) -> Vec3 {
         loop {
@@ -52,4 +70,29 @@ pub fn generic() -> Cutter {
     let e = d / 2.0 - r * b.cos();
     let f = (r + e * a.sin()) / a.cos();
     Cutter::apt(d, r, e, f, 20.0, 10.0, 25.0).unwrap()
+}
+
+/// A line's interval inside a solid, `None` when it misses.
+pub type Chord = Option<(f64, f64)>;
+
+/// How far two answers for one line (its interval inside a solid, or a miss) differ: the larger
+/// difference of their ends, 0 when both miss; `None` when one misses and the other holds more
+/// than a tangent's 1e-6 mm (only a tangent line may be seen by one and not the other).
+pub fn chord_difference(a: Chord, b: Chord) -> Option<f64> {
+    match (a, b) {
+        (None, None) => Some(0.0),
+        (Some(x), Some(y)) => Some((x.0 - y.0).abs().max((x.1 - y.1).abs())),
+        (Some(x), None) | (None, Some(x)) => (x.1 - x.0 <= 1e-6).then_some(0.0),
+    }
+}
+
+/// The ray along world axis `k` through `p` against `sw`: the closed-form answer
+/// ([`SweptConvex::axis_ray_interval`]), the general candidates' ([`SweptConvex::ray_interval`])
+/// and how far they differ ([`chord_difference`]).
+pub fn both_answers(sw: &SweptConvex<'_>, p: Vec3, k: usize) -> (Chord, Chord, Option<f64>) {
+    let fast = sw.axis_ray_interval(p, k);
+    let mut o = p;
+    o[k] = 0.0;
+    let general = sw.ray_interval(o, Vec3::AXES[k]);
+    (fast, general, chord_difference(fast, general))
 }
