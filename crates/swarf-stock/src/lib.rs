@@ -39,10 +39,11 @@
 //! (`SweptConvex::dexel_range`); only rays whose material meets that range get the exact
 //! interval, and within it the pieces that cannot move its ends inside the material are not
 //! evaluated. The common case — a ball or flat end mill (or a cylindrical shank) on a move
-//! whose tool axis is a world axis, or a bull-nose on such a move across its axis or along it
-//! (not a ramp) — skips all that for closed-form kernels, chosen once per move
-//! (`SweptConvex::has_closed_form`): a capsule, a swept slab, or the bull-nose's lozenge swept
-//! as a product of a stadium and a height interval, a few square roots per ray, held to the general candidates by `tests/fast_paths.rs`; so does a flat, ball or
+//! whose tool axis is a world axis, or a bull-nose on such a move — skips all that for
+//! closed-form kernels, chosen once per move (`SweptConvex::has_closed_form`): a capsule, a
+//! swept slab, or the bull-nose's lozenge swept across its axis or along it as a product of a
+//! stadium and a height interval (on a ramp: its Newton search alone), a few square roots per
+//! ray, held to the general candidates by `tests/fast_paths.rs`; so does a flat, ball or
 //! bull-nose tool *instance* at any axis (the cuts a 5-axis move is made of): its bounding
 //! cylinder's chord (one quadratic) leaves most rays at once, and only a chord end below the
 //! corner's spine inside the material needs the lozenge (`swept/instance.rs`, held to the

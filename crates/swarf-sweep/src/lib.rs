@@ -19,8 +19,8 @@
 //! stock (`swarf-stock`), the envelope mesh (`swarf-envelope`) and the engagement cut and query:
 //! for a line, the one interval inside the sweep of a convex solid of revolution (caps and
 //! grazing-curve extrusions in closed form, the torus by guaranteed root isolation), with
-//! closed-form kernels for the common ball and flat cutters (and the bull-nose on moves across
-//! or along its axis), and for flat, ball and bull-nose instances at any axis (the 5-axis
+//! closed-form kernels for the common ball, flat and bull-nose cutters (a bull-nose's ramps
+//! keep one Newton search for the corner), and for flat, ball and bull-nose instances at any axis (the 5-axis
 //! cuts). A cutter is swept as the union of
 //! its convex parts ([`ToolShape`]: cutting part; shank and holder). Arcs and helices are cut as
 //! chords ([`arc_chords`]), and 5-axis moves as constant-axis sub-moves with a proven Hausdorff

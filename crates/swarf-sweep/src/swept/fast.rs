@@ -1,8 +1,7 @@
 //! Closed-form kernels for the common case, chosen once per profile and once per move: a
 //! profile that is a cylinder slab (flat end mill, shank), a sphere on a cylinder slab (ball
-//! end mill) or a lozenge on one (bull-nose), on a move whose tool axis is a world axis (for the
-//! bull-nose: a move across the axis or along it, not a ramp), against rays along world axes
-//! (the dexels).
+//! end mill) or a lozenge on one (bull-nose), on a move whose tool axis is a world axis, against
+//! rays along world axes (the dexels).
 //!
 //! The bull-nose's corner is the lozenge `L = D ⊕ B(r)` (`D` the disc of radius `e` at the
 //! spine's height; `lozenge.rs`). Moved across the axis or along it, `D` sweeps the product
@@ -10,8 +9,9 @@
 //! disc) and a height interval `I`, so `dist(x, P × I)² = d_P(x)² + d_I(x)²` and the swept
 //! lozenge is `{d_P² + d_I² ≤ r²}`: a ray along the axis (fixed `d_P`) leaves it at
 //! `min I − √(r² − d_P²)`, a ray across it (fixed `d_I`) is inside where `d_P ≤ √(r² − d_I²)`,
-//! the chord of the stadium of radius `e + √(r² − d_I²)`. A ramp mixes the two: the general
-//! path's (`lozenge.rs`). They compute the same exact interval as the general candidates of
+//! the chord of the stadium of radius `e + √(r² − d_I²)`. A ramp mixes the two: its swept
+//! lozenge is the general path's (`lozenge.rs`: Newton steps on a convex distance), in the
+//! move's frame, and only where the slab's closed form cannot settle the ray. They compute the same exact interval as the general candidates of
 //! [`super::SweptConvex::line_interval`] with a few square roots, and the property tests
 //! (`tests/fast_paths.rs`) hold them to it.
 //!
@@ -19,9 +19,11 @@
 //! is, [`FastSweep::new`] whether a move qualifies, [`FastSweep::dexel`] answers the query.
 
 use super::capsule::line_capsule;
+use super::lozenge;
 use super::slab::{self, AxisMove};
 use super::{ConvexProfile, Element};
 use swarf_geom::math::Vec3;
+use swarf_geom::Frame;
 
 /// Relative tolerance with which profile parameters are taken as equal when a profile is
 /// classified (far below any geometric effect: 1e-12 of the tool size).
@@ -119,6 +121,9 @@ pub(crate) struct FastSweep {
     /// The bull-nose's lozenge `(e, r)` and the spine centre's heights `I` (world, along the
     /// axis), when the profile has one (`e > 0`).
     lozenge: Option<(f64, f64, (f64, f64))>,
+    /// On a ramp: the move's frame (tip at the origin, `x` across the axis along the move) and
+    /// the move in it, `(a, 0, b)`, for the swept lozenge of `lozenge.rs`.
+    ramp: Option<(Frame, Vec3)>,
     kt: usize,
     shape: FastProfile,
     mv: AxisMove,
@@ -133,22 +138,23 @@ impl FastSweep {
     pub(crate) fn new(prof: &ConvexProfile, kt: usize, tip: Vec3, delta: Vec3) -> Option<Self> {
         let shape = prof.fast()?;
         let (u, w) = ((kt + 1) % 3, (kt + 2) % 3);
-        let lozenge = match shape.lozenge {
-            Some((e, f, r)) if e > 0.0 => {
-                // A ramp's swept lozenge is no product: the general path's. (The caller's
-                // move frame snaps a negligible part of either kind to exactly zero.)
-                let across = delta[u] != 0.0 || delta[w] != 0.0;
-                if across && delta[kt] != 0.0 {
-                    return None;
-                }
-                let h = tip[kt] + f;
-                Some((e, r, (h + delta[kt].min(0.0), h + delta[kt].max(0.0))))
+        let (mut lozenge, mut ramp) = (None, None);
+        if let Some((e, f, r)) = shape.lozenge.filter(|l| l.0 > 0.0) {
+            let h = tip[kt] + f;
+            lozenge = Some((e, r, (h + delta[kt].min(0.0), h + delta[kt].max(0.0))));
+            // A ramp's swept lozenge is no product (the caller's move frame snaps a negligible
+            // part of either kind to exactly zero).
+            let mut across = delta;
+            across[kt] = 0.0;
+            if across != Vec3::ZERO && delta[kt] != 0.0 {
+                let frame = Frame::from_axis_and_x(tip, Vec3::AXES[kt], across);
+                ramp = Some((frame, Vec3::new(across.length(), 0.0, delta[kt])));
             }
-            _ => None,
-        };
+        }
         let c0 = tip + Vec3::AXES[kt] * shape.sphere().map_or(0.0, |s| s.0);
         Some(Self {
             lozenge,
+            ramp,
             kt,
             shape,
             mv: AxisMove {
@@ -178,15 +184,24 @@ impl FastSweep {
             a: baba - bard * bard,
             rr: sr * sr,
         });
-        let end = match (sphere, self.lozenge) {
-            (Some(c), _) => Some(RoundEnd::Sphere(c)),
-            (None, Some((e, lr, heights))) => Some(RoundEnd::Lozenge(LozengeRays {
+        let end = match (sphere, self.lozenge, self.ramp) {
+            (Some(c), _, _) => Some(RoundEnd::Sphere(c)),
+            (None, Some((e, lr, _)), Some((frame, v))) => Some(RoundEnd::Ramp(RampRays {
+                e,
+                f: self.shape.lozenge.map_or(0.0, |l| l.1),
+                r: lr,
+                frame,
+                v,
+                k,
+                d: frame.vector_to_local(Vec3::AXES[k]),
+            })),
+            (None, Some((e, lr, heights)), None) => Some(RoundEnd::Lozenge(LozengeRays {
                 e,
                 r: lr,
                 heights,
                 mv: self.mv,
             })),
-            (None, None) => None,
+            (None, None, _) => None,
         };
         if k == self.kt {
             let (mu, mw) = (self.mv.m[0], self.mv.m[1]);
@@ -383,6 +398,8 @@ pub(crate) enum RoundEnd {
     Sphere(CapsuleRays),
     /// A bull-nose's lozenge moved across the axis or along it.
     Lozenge(LozengeRays),
+    /// A bull-nose's lozenge on a ramp.
+    Ramp(RampRays),
 }
 
 impl RoundEnd {
@@ -392,6 +409,7 @@ impl RoundEnd {
         match self {
             RoundEnd::Sphere(c) => c.interval::<true>(qu, qw).map(|(l, _)| l),
             RoundEnd::Lozenge(l) => l.lower(qu, qw),
+            RoundEnd::Ramp(l) => l.chord(qu, qw).map(|(lo, _)| lo),
         }
     }
 
@@ -402,6 +420,7 @@ impl RoundEnd {
         match self {
             RoundEnd::Sphere(c) => c.interval::<false>(cu, cv),
             RoundEnd::Lozenge(l) => l.across(ray, za, q),
+            RoundEnd::Ramp(l) => l.chord(cu, cv),
         }
     }
 }
@@ -451,6 +470,35 @@ impl LozengeRays {
             self.e + h2.sqrt(),
             q,
         )
+    }
+}
+
+/// A bull-nose's lozenge (disc radius `e` at height `f`, tube `r`) on a ramp `v` (move frame
+/// `frame`), against the rays along world axis `k` (direction `d` in the move frame).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct RampRays {
+    e: f64,
+    f: f64,
+    r: f64,
+    frame: Frame,
+    v: Vec3,
+    k: usize,
+    d: Vec3,
+}
+
+impl RampRays {
+    /// The chord of the ray through `(cu, cv)` (world coordinates along it).
+    #[inline]
+    fn chord(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
+        let mut o = Vec3::ZERO;
+        o[(self.k + 1) % 3] = cu;
+        o[(self.k + 2) % 3] = cv;
+        // Re-based at the line's point nearest the tip (a few mm, not hundreds).
+        let o = self.frame.to_local(o);
+        let t0 = -o.dot(self.d);
+        let (a, b) =
+            lozenge::swept_interval(self.e, self.f, self.r, o + self.d * t0, self.d, self.v)?;
+        Some((a + t0, b + t0))
     }
 }
 
@@ -667,11 +715,11 @@ mod tests {
                     let tip = Vec3::new(rnd(), rnd(), rnd()) * 20.0;
                     let mut delta = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 8.0;
                     if spec.starts_with("bull") {
-                        // Across the axis or along it (a ramp takes the general path).
-                        if n % 3 == 0 {
-                            delta = Vec3::AXES[kt] * delta[kt];
-                        } else {
-                            delta[kt] = 0.0;
+                        // Ramps, moves across the axis and along it.
+                        match n % 3 {
+                            0 => delta = Vec3::AXES[kt] * delta[kt],
+                            1 => delta[kt] = 0.0,
+                            _ => {}
                         }
                     }
                     let fs = FastSweep::new(&prof, kt, tip, delta).unwrap();

@@ -162,6 +162,19 @@ pub(crate) fn swept_chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3, acc
     }
 }
 
+/// The chord of the line `o + t·d` (unit `d`, move frame) through `(D ⊕ B(r)) ⊕ [0, v]`, if it
+/// meets it (as [`swept_chord`], both ends at once).
+pub(crate) fn swept_interval(
+    e: f64,
+    f: f64,
+    r: f64,
+    o: Vec3,
+    d: Vec3,
+    v: Vec3,
+) -> Option<(f64, f64)> {
+    chord(e, f, r, o, d, v)
+}
+
 /// The corner of a static tool: the ends of the line's chord through the lozenge that lie on
 /// its lower half (`z ≤ f`), which is the tool's own boundary there (the torus band and the flat
 /// bottom) — so they are crossings of the tool, as a static instance's candidates must be (it
