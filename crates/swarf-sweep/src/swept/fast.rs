@@ -403,12 +403,13 @@ pub(crate) enum RoundEnd {
 }
 
 impl RoundEnd {
-    /// Where a ray along the tool axis through `(qu, qw)` enters it (world, along the axis).
+    /// Where a ray along the tool axis through `(qu, qw)`, `rho2` squared from the tip's path
+    /// across the axis, enters it (world, along the axis).
     #[inline]
-    fn lower(&self, qu: f64, qw: f64) -> Option<f64> {
+    fn lower(&self, qu: f64, qw: f64, rho2: f64) -> Option<f64> {
         match self {
             RoundEnd::Sphere(c) => c.interval::<true>(qu, qw).map(|(l, _)| l),
-            RoundEnd::Lozenge(l) => l.lower(qu, qw),
+            RoundEnd::Lozenge(l) => l.lower(rho2),
             RoundEnd::Ramp(l) => l.chord(qu, qw).map(|(lo, _)| lo),
         }
     }
@@ -436,19 +437,11 @@ pub(crate) struct LozengeRays {
 }
 
 impl LozengeRays {
-    /// Entry of the ray along the axis through `(qu, qw)`: `min I − √(r² − d_P²)`.
+    /// Entry of the ray along the axis at squared distance `rho2` from the spine centre's path
+    /// (the tip's, across the axis): `min I − √(r² − d_P²)`, `d_P = (ρ − e)⁺`.
     #[inline]
-    fn lower(&self, qu: f64, qw: f64) -> Option<f64> {
-        let (du, dw) = (qu - self.mv.p[0], qw - self.mv.p[1]);
-        let (mu, mw) = (self.mv.m[0], self.mv.m[1]);
-        let aa = mu * mu + mw * mw;
-        let s = if aa > 0.0 {
-            ((du * mu + dw * mw) / aa).clamp(0.0, 1.0)
-        } else {
-            0.0
-        };
-        let (eu, ew) = (du - s * mu, dw - s * mw);
-        let dp = ((eu * eu + ew * ew).sqrt() - self.e).max(0.0);
+    fn lower(&self, rho2: f64) -> Option<f64> {
+        let dp = (rho2.sqrt() - self.e).max(0.0);
         let h2 = self.r * self.r - dp * dp;
         (h2 >= 0.0).then(|| self.heights.0 - h2.sqrt())
     }
@@ -549,7 +542,7 @@ impl AlongRays {
         } else {
             self.hi_min
         };
-        let lo = match self.end.as_ref().and_then(|c| c.lower(qu, qw)) {
+        let lo = match self.end.as_ref().and_then(|c| c.lower(qu, qw, rho2)) {
             Some(l) => l,
             None => {
                 let (s0, s1) = *spanned.get_or_insert_with(span);

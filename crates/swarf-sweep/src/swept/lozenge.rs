@@ -156,23 +156,10 @@ impl ConvexLine for CornerLine<'_> {
 /// `(D ⊕ B(r)) ⊕ [0, v]`, `D` the disc of radius `e` at height `f` about the axis (module
 /// documentation), if the line meets it.
 pub(crate) fn swept_chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3, acc: &mut Acc) {
-    if let Some((a, b)) = chord(e, f, r, o, d, v) {
+    if let Some((a, b)) = swept_interval(e, f, r, o, d, v) {
         acc.add(a);
         acc.add(b);
     }
-}
-
-/// The chord of the line `o + t·d` (unit `d`, move frame) through `(D ⊕ B(r)) ⊕ [0, v]`, if it
-/// meets it (as [`swept_chord`], both ends at once).
-pub(crate) fn swept_interval(
-    e: f64,
-    f: f64,
-    r: f64,
-    o: Vec3,
-    d: Vec3,
-    v: Vec3,
-) -> Option<(f64, f64)> {
-    chord(e, f, r, o, d, v)
 }
 
 /// The corner of a static tool: the ends of the line's chord through the lozenge that lie on
@@ -180,7 +167,7 @@ pub(crate) fn swept_interval(
 /// bottom) — so they are crossings of the tool, as a static instance's candidates must be (it
 /// stops at its first two); an end on the upper half lies inside the tool and is left out.
 pub(crate) fn instance_crossings(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, acc: &mut Acc) {
-    if let Some((a, b)) = chord(e, f, r, o, d, Vec3::ZERO) {
+    if let Some((a, b)) = swept_interval(e, f, r, o, d, Vec3::ZERO) {
         for t in [a, b] {
             if o.z + t * d.z <= f + BAND_EPS {
                 acc.add(t);
@@ -281,8 +268,16 @@ impl StaticLine {
     }
 }
 
-/// The chord of the line `o + t·d` through the lozenge swept by `v`, if it meets it.
-fn chord(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, v: Vec3) -> Option<(f64, f64)> {
+/// The chord of the line `o + t·d` (unit `d`, move frame) through the lozenge swept by `v`,
+/// `(D ⊕ B(r)) ⊕ [0, v]`, if it meets it.
+pub(crate) fn swept_interval(
+    e: f64,
+    f: f64,
+    r: f64,
+    o: Vec3,
+    d: Vec3,
+    v: Vec3,
+) -> Option<(f64, f64)> {
     // Every point of it is within e + r of the disc centre's path …
     let c0 = Vec3::new(0.0, 0.0, f);
     let (mut lo, mut hi) = line_capsule::<false>(o, d, c0, v, e + r)?;
