@@ -5,7 +5,8 @@
 //!
 //! `SWARF_BENCH_REPORT_ONLY=1 cargo bench -p swarf-engage --bench engage` prints the report
 //! alone: the median of 3 runs of each, the ratio engagement / simulation, µs per location and
-//! the extrapolation to 50,000 moves; `SWARF_BENCH_MOVES=N` sets the moves (default 3000).
+//! the extrapolation to 50,000 moves; `SWARF_BENCH_MOVES=N` sets the moves (default 3000),
+//! `SWARF_BENCH_RUNS=N` the runs of each (default 3; 0: the engagement once, no simulation).
 //! Without it, criterion also times 300 moves of each.
 
 use criterion::{criterion_main, Criterion};
@@ -29,24 +30,25 @@ fn simulate_once(p: &Program) -> f64 {
     t.elapsed().as_secs_f64()
 }
 
-/// (wall s, engaged locations, cutting s, stock probes).
-fn engage_once(p: &Program) -> (f64, usize, f64, u64) {
+/// (wall s, engaged locations, cutting s, stock probes, sum of the engaged areas in mm²).
+fn engage_once(p: &Program) -> (f64, usize, f64, u64, f64) {
     let mut s = stock();
     let t = Instant::now();
     let tools = ToolSet::single(Cutter::ball(10.0).unwrap());
     let opts = EngageOptions::default().with_step(0.0);
     let mut run = Engager::new(p, &tools, &mut s, opts).unwrap();
-    let n = run
-        .by_ref()
-        .map(Result::unwrap)
-        .filter(|e| e.is_engaged())
-        .count();
+    let (mut n, mut area) = (0, 0.0);
+    for e in run.by_ref().map(Result::unwrap) {
+        n += usize::from(e.is_engaged());
+        area += e.area_mm2;
+    }
     let st = run.stats();
     (
         t.elapsed().as_secs_f64(),
         n,
         st.simulate_elapsed_s,
         st.probes,
+        area,
     )
 }
 
@@ -55,10 +57,21 @@ fn report() {
         .ok()
         .and_then(|s| s.parse().ok())
         .unwrap_or(3000);
+    // Runs of each (median reported); `SWARF_BENCH_RUNS=0` skips the simulation and runs the
+    // engagement once (for instruction counts of the engagement alone).
+    let reps: usize = std::env::var("SWARF_BENCH_RUNS")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(3);
     let p = program(n);
-    let sim = median((0..3).map(|_| simulate_once(&p)).collect());
-    let runs: Vec<(f64, usize, f64, u64)> = (0..3).map(|_| engage_once(&p)).collect();
-    let (engaged, probes) = (runs[0].1, runs[0].3);
+    let sim = if reps == 0 {
+        f64::NAN
+    } else {
+        median((0..reps).map(|_| simulate_once(&p)).collect())
+    };
+    let runs: Vec<(f64, usize, f64, u64, f64)> =
+        (0..reps.max(1)).map(|_| engage_once(&p)).collect();
+    let (engaged, probes, area) = (runs[0].1, runs[0].3, runs[0].4);
     let cutting = median(runs.iter().map(|r| r.2).collect());
     let eng = median(runs.into_iter().map(|r| r.0).collect());
     let moves = p.moves.len();
@@ -82,6 +95,7 @@ fn report() {
         probes as f64 / moves as f64,
         (eng - cutting) * 1e9 / probes.max(1) as f64
     );
+    println!("  sum of the engaged areas {area:.10} mm² (a check that a change kept the results)");
     println!("  ratio engagement / simulation: {:.2}", eng / sim);
 }
 

@@ -9,8 +9,9 @@
 //! interpolated bilinearly between them; `P`'s signed distance to that sheet's tangent plane
 //! is `s·(t − e)/√(1 + |∇e|²)` (`s` = +1 when the material lies on the ray's positive side
 //! of the sheet). That is exact for a plane and within `O(h²·κ)` of the truth for a sheet of
-//! curvature `κ`. Near a sheet parallel to a family the four rays straddle it (some inside, some
-//! not): that family is not **coherent** there and says nothing; another, transverse to the
+//! curvature `κ`. (The four ends must lie within `2·D₀` of `P`, the precision cap `D₀` below,
+//! and the distance is clamped to `D₀`.) Near a sheet parallel to a family the four rays
+//! straddle it (some inside, some not): that family is not **coherent** there and says nothing; another, transverse to the
 //! sheet, does. Of the coherent families the nearest sheet wins (the distance to a solid's
 //! boundary is the distance to its nearest face). Only near an edge of the stock — within a ray
 //! spacing of two faces at once — may no family be coherent: the rays nearest to `P` then vote
@@ -52,7 +53,21 @@ pub struct MaterialProbe<'a> {
 /// positive side; `−1`: an exit; `0`: the ray holds no material).
 #[inline]
 fn nearest_end(ray: &[Interval], t: f64) -> (f64, f64, i8) {
-    let (end, kind) = if ray.len() <= SHORT_RAY {
+    let (end, kind) = if let [iv] = ray {
+        // One interval (most rays): the scan below, unrolled.
+        let (de, dx) = ((t - iv.enter).abs(), (t - iv.exit).abs());
+        if de < f64::INFINITY {
+            if dx < de {
+                (iv.exit, -1)
+            } else {
+                (iv.enter, 1)
+            }
+        } else if dx < f64::INFINITY {
+            (iv.exit, -1)
+        } else {
+            (0.0, 0)
+        }
+    } else if ray.len() <= SHORT_RAY {
         // Short rays (nearly all of them): every end compared, without data-dependent
         // branches; strict `<` keeps the lower of two equally near ends.
         let (mut best, mut end, mut kind) = (f64::INFINITY, 0.0, 0i8);
@@ -102,6 +117,12 @@ struct Lattice {
     n_rays: [usize; 2],
 }
 
+/// A family is coherent when its four nearest ends, all of one kind, lie within this many
+/// precision caps of the point (the distance it measures is then clamped to the cap). One cap
+/// would leave points about a cap deep — where some of the four ends fall just inside it and
+/// some just beyond — to a vote, which reports them a quarter spacing from the boundary.
+const COHERENT_REACH: f64 = 2.0;
+
 /// Rays with at most this many intervals are scanned whole for their nearest end.
 const SHORT_RAY: usize = 4;
 
@@ -132,6 +153,13 @@ impl<'a> MaterialProbe<'a> {
     /// The stock probed.
     pub fn stock(&self) -> &'a TriDexel {
         self.stock
+    }
+
+    /// How far (mm) a depth measured near the boundary may be from the true distance, as the
+    /// adaptive sampling assumes: a quarter of a ray spacing, the magnitude a vote reports (a
+    /// coherent sheet errs by `O(h²κ)`, far less).
+    pub fn error(&self) -> f64 {
+        self.cap / 16.0
     }
 
     /// The signed distance of `p` to the boundary of the material (positive inside).
@@ -201,14 +229,12 @@ impl<'a> MaterialProbe<'a> {
         // the end, its kind (0: no material, or no ray there).
         let mut near = [(0.0, 0.0, 0i8); 4];
         let inside = |i: f64, j: f64| i >= 0.0 && j >= 0.0 && i < l.n[0] && j < l.n[1];
-        let all_inside = inside(i0, j0) && inside(i0 + 1.0, j0 + 1.0);
         let mut outside = [false; 4];
-        if all_inside {
-            let (i, j) = (i0 as usize, j0 as usize);
-            near[0] = nearest_end(fam.ray(i, j), t);
-            near[1] = nearest_end(fam.ray(i + 1, j), t);
-            near[2] = nearest_end(fam.ray(i, j + 1), t);
-            near[3] = nearest_end(fam.ray(i + 1, j + 1), t);
+        if i0 >= 0.0 && j0 >= 0.0 && i0 + 1.0 < l.n[0] && j0 + 1.0 < l.n[1] {
+            let rays = fam.ray_quad(i0 as usize, j0 as usize);
+            for (n, ray) in near.iter_mut().zip(rays) {
+                *n = nearest_end(ray, t);
+            }
         } else {
             for (r, out) in outside.iter_mut().enumerate() {
                 let (i, j) = (i0 + (r & 1) as f64, j0 + (r >> 1) as f64);
@@ -243,7 +269,7 @@ impl<'a> MaterialProbe<'a> {
         let coherent = kind != 0
             && near
                 .iter()
-                .all(|&(d, _, kd)| kd == kind && d.abs() <= self.cap);
+                .all(|&(d, _, kd)| kd == kind && d.abs() <= COHERENT_REACH * self.cap);
         if !coherent {
             // The vote of the ray nearest to P across the family (ties to the lower index).
             let r = usize::from(wu > 0.5) + 2 * usize::from(wv > 0.5);

@@ -697,8 +697,8 @@ fn sample_strip(
     // at most `ρ·dφ` per sample (it is a distance, 1-Lipschitz in space): a span between two
     // probed anchors whose depths have one sign and are far enough from zero holds no sign
     // change of δ, and its depths are interpolated. (A zero at sample q of span [a, b] needs
-    // |δ_a| ≤ (q − a)·ρ·dφ and |δ_b| ≤ (b − q)·ρ·dφ, so |δ_a| + |δ_b| ≤ (b − a)·ρ·dφ; two samples'
-    // worth is added for the probe's own error.) So the sign of g is exact at every sample; only
+    // |δ_a| ≤ (q − a)·ρ·dφ and |δ_b| ≤ (b − q)·ρ·dφ, so |δ_a| + |δ_b| ≤ (b − a)·ρ·dφ; the probe's
+    // own error, `MaterialProbe::error`, is added for each anchor.) So the sign of g is exact at every sample; only
     // its value is not where δ was interpolated.
     let mut g = std::mem::take(&mut scratch.g);
     g.clear();
@@ -733,10 +733,11 @@ fn sample_strip(
             // `row` holds δ while the spans are walked: NaN where not known yet.
             row.fill(f64::NAN);
             let lphi = DEPTH_SLOPE * strip.circles[lo + r].rho * dphi;
+            let probe_error = probe.error();
             let mut stack: Vec<(usize, usize)> =
                 (0..n).step_by(SPAN).map(|a| (a, a + SPAN)).collect();
             while let Some((a, b)) = stack.pop() {
-                if (a..=b).all(|j| rfr[j % n] <= 0.0) {
+                if rfr[a..b].iter().all(|&v| v <= 0.0) && rfr[b % n] <= 0.0 {
                     continue;
                 }
                 for e in [a, b % n] {
@@ -749,7 +750,7 @@ fn sample_strip(
                 }
                 let (da, db) = (row[a], row[b % n]);
                 let width = (b - a) as f64;
-                if da * db > 0.0 && da.abs() + db.abs() > lphi * (width + 2.0) {
+                if da * db > 0.0 && da.abs() + db.abs() > lphi * width + 2.0 * probe_error {
                     for q in a + 1..b {
                         row[q] = da + (db - da) * (q - a) as f64 / width;
                         filled[q] = true;
@@ -791,11 +792,13 @@ fn sample_strip(
                         continue;
                     }
                     let positive = gs[r * n + j] > 0.0;
+                    let (jm, jp) = (if j == 0 { n - 1 } else { j - 1 }, (j + 1) % n);
                     let other = [r.wrapping_sub(1), r, r + 1].into_iter().any(|q| {
-                        [(j + n - 1) % n, j, (j + 1) % n].into_iter().any(|i| {
-                            let gq = if q < rows { gs[q * n + i] } else { -1.0 };
-                            (gq > 0.0) != positive
-                        })
+                        q >= rows && positive
+                            || q < rows
+                                && [jm, j, jp]
+                                    .into_iter()
+                                    .any(|i| (gs[q * n + i] > 0.0) != positive)
                     });
                     if other {
                         probed += 1;

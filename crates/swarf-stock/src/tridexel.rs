@@ -259,6 +259,25 @@ impl DexelFamily {
         &self.rays[self.index(i, j)]
     }
 
+    /// The four rays `(i, j)`, `(i + 1, j)`, `(i, j + 1)`, `(i + 1, j + 1)` around a point
+    /// (`i + 1`, `j + 1` within [`DexelFamily::dims`]); one index computation when they share
+    /// a tile, as most do.
+    #[inline]
+    pub fn ray_quad(&self, i: usize, j: usize) -> [&[Interval]; 4] {
+        let a = self.index(i, j);
+        if i % TILE != TILE - 1 && j % TILE != TILE - 1 {
+            let r = &self.rays[a..a + TILE + 2];
+            [&r[0], &r[1], &r[TILE], &r[TILE + 1]]
+        } else {
+            [
+                &self.rays[a],
+                &self.rays[self.index(i + 1, j)],
+                &self.rays[self.index(i, j + 1)],
+                &self.rays[self.index(i + 1, j + 1)],
+            ]
+        }
+    }
+
     /// The provenance of ray `(i, j)`'s intervals (one [`EndTags`] per interval of
     /// [`DexelFamily::ray`], in the same order), or `None` when the stock does not track
     /// provenance ([`TriDexel::track_provenance`]).
