@@ -665,10 +665,10 @@ impl TriDexel {
     /// each move removed. The stock ends as if the moves were subtracted one by one in order,
     /// and each move's figures are the ones it would have had then.
     ///
-    /// Parallel without a barrier per move: the tile rows of each family are dealt to the
-    /// workers in turn (row `tj` to worker `tj mod n`), each worker runs the whole sequence
-    /// over its own rows, so every ray still sees the moves in order; a move's work is spread
-    /// over all workers because it spans consecutive rows.
+    /// Parallel without a barrier per move: each tile row of each family that a move reaches
+    /// is one unit of work, taken by whichever worker is free, that runs the whole sequence
+    /// over its row — every ray still sees the moves in order, and the row's tiles stay in
+    /// cache from one move to the next. The figures are summed in row order (deterministic).
     pub fn subtract_moves<const G: usize>(
         &mut self,
         moves: &[[&[SweptConvex<'_>]; G]],
@@ -711,15 +711,36 @@ impl TriDexel {
             .collect();
         // Tiles the sequence may touch: small work stays on the calling thread.
         let tiles: usize = plans.iter().flatten().flatten().map(Plan::tiles).sum();
-        let workers = if tiles < PARALLEL_MIN_TILES {
-            1
-        } else {
-            rayon::current_num_threads().clamp(1, 64)
-        };
         let bins = [0, 1, 2].map(|k| self.families[k].bins);
-        let mut rows: Vec<[Vec<Row<'_>>; 3]> = (0..workers).map(|_| Default::default()).collect();
+        // What each part's queries along each family share, made once per move and group.
+        let shared: Vec<[[SmallVec<[DexelRays; 2]>; 3]; G]> = moves
+            .iter()
+            .zip(&plans)
+            .map(|(groups, plans)| {
+                std::array::from_fn(|g| {
+                    std::array::from_fn(|k| match &plans[g] {
+                        Some(plan) if plan.fam[k].is_some() => {
+                            groups[g].iter().map(|p| p.dexel_rays(k)).collect()
+                        }
+                        _ => SmallVec::new(),
+                    })
+                })
+            })
+            .collect();
+        // The units of work: the tile rows of each family that some move reaches.
+        let mut units: Vec<(usize, usize, Row<'_>)> = Vec::new();
         for fam in self.families.iter_mut() {
             let k = fam.axis;
+            let Some((lo, hi)) = plans
+                .iter()
+                .flatten()
+                .flatten()
+                .filter_map(|p| p.fam[k])
+                .map(|r| (r.j.0 / TILE, r.j.1 / TILE))
+                .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))
+            else {
+                continue;
+            };
             let per_row = fam.ntu * TILE_RAYS;
             let mut tag_rows = fam.tags.chunks_mut(per_row);
             for (tj, (r, b)) in fam
@@ -729,70 +750,66 @@ impl TriDexel {
                 .enumerate()
             {
                 let tags = tag_rows.next().unwrap_or_default();
-                rows[tj % workers][k].push(Row {
-                    rays: r,
-                    bounds: b,
-                    tags,
-                });
+                if (lo..=hi).contains(&tj) {
+                    let row = Row {
+                        rays: r,
+                        bounds: b,
+                        tags,
+                    };
+                    units.push((k, tj, row));
+                }
             }
         }
-        let run = |(w, mut mine): (usize, [Vec<Row<'_>>; 3])| -> Vec<[CutStats; G]> {
-            let mut out = vec![[CutStats::default(); G]; moves.len()];
-            let mut scratch = Scratch::new();
-            for (m, ((groups, plans), st)) in
-                moves.iter().zip(&plans).zip(out.iter_mut()).enumerate()
+        // One tile row through the whole sequence: every ray sees the moves in order, and the
+        // row's tiles stay in cache from one move to the next. Returns what each (move, group)
+        // that reached the row removed from it.
+        let run = |scratch: &mut Scratch, (k, tj, row): (usize, usize, Row<'_>)| {
+            let mut out: Vec<(usize, usize, CutStats)> = Vec::new();
+            for (m, ((groups, plans), shared)) in moves.iter().zip(&plans).zip(&shared).enumerate()
             {
                 let tag = base
                     .saturating_add(step.saturating_mul(m as MoveTag))
                     .min(crate::dexel::UNCUT - 1);
-                for (group, ((parts, plan), st)) in
-                    groups.iter().zip(plans).zip(st.iter_mut()).enumerate()
-                {
+                for (group, (parts, plan)) in groups.iter().zip(plans).enumerate() {
                     let Some(plan) = plan else { continue };
-                    for (k, fam_rows) in mine.iter_mut().enumerate() {
-                        let Some(r) = plan.fam[k] else { continue };
-                        let rays: SmallVec<[DexelRays; 2]> =
-                            parts.iter().map(|p| p.dexel_rays(k)).collect();
-                        let cut = TileCut {
-                            grid: &grid,
-                            k,
-                            range: &r,
-                            parts,
-                            rays: &rays,
-                            fronts: plan.fronts.as_deref(),
-                            bins: &bins[k],
-                            tag,
-                            visitor: visitor.map(|v| (v, m, group)),
-                        };
-                        let (tj0, tj1) = (r.j.0 / TILE, r.j.1 / TILE);
-                        // This worker's first row at or after tj0.
-                        let first = tj0 + (w + workers - tj0 % workers) % workers;
-                        for tj in (first..=tj1).step_by(workers) {
-                            let row = &mut fam_rows[tj / workers];
-                            for ti in r.i.0 / TILE..=r.i.1 / TILE {
-                                let span = ti * TILE_RAYS..(ti + 1) * TILE_RAYS;
-                                let tile = &mut row.rays[span.clone()];
-                                let tags = row.tags.get_mut(span).unwrap_or_default();
-                                cut.run(ti, tj, tile, tags, &mut row.bounds[ti], &mut scratch, st);
-                            }
-                        }
+                    let Some(r) = plan.fam[k] else { continue };
+                    if tj < r.j.0 / TILE || tj > r.j.1 / TILE {
+                        continue;
                     }
+                    let cut = TileCut {
+                        grid: &grid,
+                        k,
+                        range: &r,
+                        parts,
+                        rays: &shared[group][k],
+                        fronts: plan.fronts.as_deref(),
+                        bins: &bins[k],
+                        tag,
+                        visitor: visitor.map(|v| (v, m, group)),
+                    };
+                    let mut st = CutStats::default();
+                    for ti in r.i.0 / TILE..=r.i.1 / TILE {
+                        let span = ti * TILE_RAYS..(ti + 1) * TILE_RAYS;
+                        let tile = &mut row.rays[span.clone()];
+                        let tags = row.tags.get_mut(span).unwrap_or_default();
+                        cut.run(ti, tj, tile, tags, &mut row.bounds[ti], scratch, &mut st);
+                    }
+                    out.push((m, group, st));
                 }
             }
             out
         };
-        let per_worker: Vec<Vec<[CutStats; G]>> = if workers == 1 {
-            rows.into_iter().enumerate().map(run).collect()
+        // Rows are taken by whichever worker is free (a move's rows differ in work); the
+        // figures are summed in row order, so they do not depend on who took what.
+        let per_row: Vec<Vec<(usize, usize, CutStats)>> = if tiles < PARALLEL_MIN_TILES {
+            let mut scratch = Scratch::new();
+            units.into_iter().map(|u| run(&mut scratch, u)).collect()
         } else {
-            rows.into_par_iter().enumerate().map(run).collect()
+            units.into_par_iter().map_init(Scratch::new, run).collect()
         };
         let mut total = vec![[CutStats::default(); G]; moves.len()];
-        for w in per_worker {
-            for (t, s) in total.iter_mut().zip(w) {
-                for g in 0..G {
-                    t[g] = t[g].merged(s[g]);
-                }
-            }
+        for (m, g, st) in per_row.into_iter().flatten() {
+            total[m][g] = total[m][g].merged(st);
         }
         total
     }
@@ -901,7 +918,7 @@ impl TriDexel {
 /// Below this many tiles (summed over the moves of a call) the work is not split.
 const PARALLEL_MIN_TILES: usize = 64;
 
-/// One tile row of one family, owned by one worker.
+/// One tile row of one family, owned by the worker that took it.
 struct Row<'a> {
     rays: &'a mut [Dexel],
     bounds: &'a mut [TileBound],
