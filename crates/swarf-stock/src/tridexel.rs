@@ -801,12 +801,13 @@ impl TriDexel {
         };
         // Rows are taken by whichever worker is free (a move's rows differ in work); the
         // figures are summed in row order, so they do not depend on who took what.
-        let per_row: Vec<Vec<(usize, usize, CutStats)>> = if tiles < PARALLEL_MIN_TILES {
-            let mut scratch = Scratch::new();
-            units.into_iter().map(|u| run(&mut scratch, u)).collect()
-        } else {
-            units.into_par_iter().map_init(Scratch::new, run).collect()
-        };
+        let per_row: Vec<Vec<(usize, usize, CutStats)>> =
+            if tiles < PARALLEL_MIN_TILES || rayon::current_num_threads() == 1 {
+                let mut scratch = Scratch::new();
+                units.into_iter().map(|u| run(&mut scratch, u)).collect()
+            } else {
+                units.into_par_iter().map_init(Scratch::new, run).collect()
+            };
         let mut total = vec![[CutStats::default(); G]; moves.len()];
         for (m, g, st) in per_row.into_iter().flatten() {
             total[m][g] = total[m][g].merged(st);
