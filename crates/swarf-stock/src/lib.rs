@@ -48,10 +48,12 @@
 //! cylinder's chord (one quadratic) leaves most rays at once, and only a chord end below the
 //! corner's spine inside the material needs the lozenge (`swept/instance.rs`, held to the
 //! general candidates by `tests/instance_paths.rs`). Consecutive moves are
-//! cut in batches ([`TriDexel::cut_linear_batch`], used by [`simulate()`]): the tile rows of
-//! the three families are dealt to the threads (rayon), each thread runs the batch's moves in
-//! order over its own rows, so there is no barrier per move; the per-ray loop does not
-//! allocate.
+//! cut in batches ([`TriDexel::cut_linear_batch`], used by [`simulate()`]; a 5-axis move's
+//! instances are such a batch too): each tile row of the three families that the batch
+//! reaches is one unit of work, taken by whichever thread is free (rayon), that runs the
+//! batch's moves in order over its row — no barrier per move, the row's tiles stay in cache
+//! from one move to the next, and the per-move figures are summed in row order; the per-ray
+//! loop does not allocate.
 //!
 //! # Accuracy parameters (one place)
 //! [`DEFAULT_CHORDAL_TOLERANCE_MM`] (arcs and 5-axis moves, reported in
