@@ -398,13 +398,10 @@ mod tests {
         assert!(d <= -probe.cap, "{d}");
     }
 
-    #[test]
-    fn distance_to_an_oblique_plane_is_exact() {
-        // Material below the plane n·x = 3 with n oblique to every family.
-        let n = Vec3::new(0.3, -0.4, 0.866).normalize();
-        let h = 0.25;
+    /// Material below the oblique plane `n·x = 3` in a 10 mm cube, rays `h` apart.
+    fn below_oblique_plane(n: Vec3, h: f64) -> TriDexel {
         let b = swarf_geom::Aabb::new(Vec3::splat(-5.0), Vec3::splat(5.0));
-        let stock = TriDexel::from_fn(b, h, |k, cu, cv, d| {
+        TriDexel::from_fn(b, h, |k, cu, cv, d| {
             let (u, v) = ((k + 1) % 3, (k + 2) % 3);
             // Along the ray: n_k t + n_u cu + n_v cv <= 3.
             let rest = 3.0 - n[u] * cu - n[v] * cv;
@@ -421,7 +418,42 @@ mod tests {
                 });
             }
         })
-        .unwrap();
+        .unwrap()
+    }
+
+    #[test]
+    fn points_about_a_cap_deep_are_measured_not_voted() {
+        // Where some of a family's four ends fall just inside the cap and some just beyond,
+        // the family still measures (clamped to the cap): a vote would report a quarter
+        // spacing and make the engagement probe every sample around the point.
+        let n = Vec3::new(0.3, -0.4, 0.866).normalize();
+        let h = 0.1;
+        let stock = below_oblique_plane(n, h);
+        let probe = MaterialProbe::new(&stock);
+        let mut measured = 0;
+        for i in 0..400 {
+            let s = 0.25 + 0.3 * i as f64 / 400.0; // 0.25–0.55 mm below the plane
+            let base = Vec3::new(0.0137 * i as f64 - 2.0, 0.0071 * i as f64 - 1.0, 0.0);
+            let base = base + n * (3.0 - n.dot(base));
+            let d = probe.depth(base - n * s);
+            assert!(d.distance > 0.0, "{s}: {d:?}");
+            // The truth, clamped to the cap (a deep point is reported at least the cap).
+            let (lo, hi) = (s.min(probe.cap), s.max(probe.cap));
+            assert!(
+                d.distance >= lo - 1e-9 && d.distance <= hi + 1e-9,
+                "{s}: {d:?}"
+            );
+            measured += usize::from(d.measured);
+        }
+        assert_eq!(measured, 400);
+    }
+
+    #[test]
+    fn distance_to_an_oblique_plane_is_exact() {
+        // Material below the plane n·x = 3 with n oblique to every family.
+        let n = Vec3::new(0.3, -0.4, 0.866).normalize();
+        let h = 0.25;
+        let stock = below_oblique_plane(n, h);
         let probe = MaterialProbe::new(&stock);
         for (i, s) in [-0.4, -0.1, -0.01, 0.003, 0.05, 0.3].iter().enumerate() {
             let base = Vec3::new(0.37 * i as f64 - 1.0, 0.11 * i as f64, 0.0);

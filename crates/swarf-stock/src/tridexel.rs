@@ -1214,6 +1214,35 @@ impl TileCut<'_, '_, '_> {
 mod tests {
     use super::*;
 
+    #[test]
+    fn ray_quad_is_the_four_rays() {
+        // Every cell, across tile borders too: the same slices as four `ray` calls.
+        let b = Aabb::new(Vec3::ZERO, Vec3::new(2.1, 1.7, 1.3));
+        let stock = TriDexel::from_fn(b, 0.1, |k, cu, cv, d| {
+            d.push(Interval {
+                enter: cu + 10.0 * cv + 100.0 * k as f64,
+                exit: cu + 10.0 * cv + 100.0 * k as f64 + 1.0,
+            });
+        })
+        .unwrap();
+        for k in 0..3 {
+            let fam = stock.family(k);
+            let (nu, nv) = fam.dims();
+            for j in 0..nv - 1 {
+                for i in 0..nu - 1 {
+                    let quad = fam.ray_quad(i, j);
+                    let each = [
+                        fam.ray(i, j),
+                        fam.ray(i + 1, j),
+                        fam.ray(i, j + 1),
+                        fam.ray(i + 1, j + 1),
+                    ];
+                    assert_eq!(quad, each, "family {k}, cell ({i}, {j})");
+                }
+            }
+        }
+    }
+
     /// The bins never miss: material `[a, b]` and a range `(lo, hi)` that overlap always share
     /// a bin, over and beyond the family's extent and on bin edges; far apart, they do not.
     #[test]
