@@ -24,6 +24,7 @@
 //! * the axial depth runs from the lowest to the highest engaged height, interpolated between
 //!   discs the same way.
 
+use rayon::prelude::*;
 use serde::Serialize;
 use swarf_geom::math::Vec3;
 
@@ -194,61 +195,84 @@ fn circle_intervals(g: &[f64], dphi_deg: f64) -> Vec<PhiInterval> {
     out
 }
 
+/// What one circle and the band above it add to a strip's result.
+#[derive(Default)]
+struct RowResult {
+    area: Option<f64>,
+    circle: Option<CircleEngagement>,
+    lo: f64,
+    hi: f64,
+}
+
 pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> StripResult {
     let n = s.n_phi;
     let dphi = dphi_deg.to_radians();
-    let mut res = StripResult::default();
-    let mut lo = f64::INFINITY;
-    let mut hi = f64::NEG_INFINITY;
     let last = strip.len() - 1;
     let engaged = |row: &[f64]| row.iter().any(|&v| v > 0.0);
-    let mut this_engaged = s.row(s.rows.0).is_some_and(engaged);
-    for k in s.rows.0..s.rows.1 {
-        let Some(row) = s.row(k) else { continue };
-        let next = s.row(k + 1);
-        let next_engaged = next.is_some_and(engaged);
-        if !this_engaged && !next_engaged {
-            // Nothing on this circle nor on the band to the next one.
-            this_engaged = next_engaged;
-            continue;
-        }
-        this_engaged = next_engaged;
-        if strip.is_reported(k) {
-            let intervals = circle_intervals(row, dphi_deg);
-            if !intervals.is_empty() {
-                res.circles.push(CircleEngagement {
-                    at_mm: strip.param[k],
-                    intervals,
-                });
+    // The rows in parallel, summed in order below (the same sum as row after row).
+    let rows: Vec<RowResult> = (s.rows.0..s.rows.1)
+        .into_par_iter()
+        .map(|k| {
+            let mut out = RowResult {
+                lo: f64::INFINITY,
+                hi: f64::NEG_INFINITY,
+                ..Default::default()
+            };
+            let Some(row) = s.row(k) else { return out };
+            let next = s.row(k + 1);
+            if !engaged(row) && !next.is_some_and(engaged) {
+                // Nothing on this circle nor on the band to the next one.
+                return out;
             }
-        }
-        if k == last {
-            if row.iter().any(|&v| v > 0.0) {
-                lo = lo.min(strip.param[k]);
-                hi = hi.max(strip.param[k]);
+            if strip.is_reported(k) {
+                let intervals = circle_intervals(row, dphi_deg);
+                if !intervals.is_empty() {
+                    out.circle = Some(CircleEngagement {
+                        at_mm: strip.param[k],
+                        intervals,
+                    });
+                }
             }
-            continue;
-        }
-        // The band to the next circle (not sampled: not engaged).
-        let (p0, p1) = (strip.param[k], strip.param[k + 1]);
-        let mut share = 0.0;
-        for j in 0..n {
-            let jn = (j + 1) % n;
-            let (g00, g01) = (row[j], row[jn]);
-            let (g10, g11) = next.map_or((-1.0, -1.0), |r| (r[j], r[jn]));
-            share += cell_share(g00, g01, g10, g11);
-            // The engaged extent along the parameter, interpolated on this column.
-            if g00 > 0.0 {
-                let t = if g10 > 0.0 { 1.0 } else { g00 / (g00 - g10) };
-                lo = lo.min(p0);
-                hi = hi.max(p0 + t * (p1 - p0));
-            } else if g10 > 0.0 {
-                let t = g00 / (g00 - g10);
-                lo = lo.min(p0 + t * (p1 - p0));
-                hi = hi.max(p1);
+            if k == last {
+                if row.iter().any(|&v| v > 0.0) {
+                    out.lo = strip.param[k];
+                    out.hi = strip.param[k];
+                }
+                return out;
             }
+            // The band to the next circle (not sampled: not engaged).
+            let (p0, p1) = (strip.param[k], strip.param[k + 1]);
+            let (mut lo, mut hi) = (out.lo, out.hi);
+            let mut share = 0.0;
+            for j in 0..n {
+                let jn = if j + 1 == n { 0 } else { j + 1 };
+                let (g00, g01) = (row[j], row[jn]);
+                let (g10, g11) = next.map_or((-1.0, -1.0), |r| (r[j], r[jn]));
+                share += cell_share(g00, g01, g10, g11);
+                // The engaged extent along the parameter, interpolated on this column.
+                if g00 > 0.0 {
+                    let t = if g10 > 0.0 { 1.0 } else { g00 / (g00 - g10) };
+                    lo = lo.min(p0);
+                    hi = hi.max(p0 + t * (p1 - p0));
+                } else if g10 > 0.0 {
+                    let t = g00 / (g00 - g10);
+                    lo = lo.min(p0 + t * (p1 - p0));
+                    hi = hi.max(p1);
+                }
+            }
+            (out.lo, out.hi) = (lo, hi);
+            out.area = Some(share * dphi * strip.band_area[k]);
+            out
+        })
+        .collect();
+    let mut res = StripResult::default();
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for r in rows {
+        if let Some(a) = r.area {
+            res.area += a;
         }
-        res.area += share * dphi * strip.band_area[k];
+        res.circles.extend(r.circle);
+        (lo, hi) = (lo.min(r.lo), hi.max(r.hi));
     }
     if lo <= hi {
         res.extent = Some((lo, hi));
