@@ -330,6 +330,8 @@ pub fn envelope(
     let mut rays = envelope_rays(bounds, options.resolution)?;
     rays.unite_swept(&sweeps, &outer);
     let h = options.resolution;
+    // What the report needs of the rays, taken before the contouring consumes them.
+    let (volume_xyz_mm3, lattice) = (rays.volumes(), rays.grid().n);
     let (mesh, stats) = if options.exact_vertices {
         let boxes: Vec<Aabb> = sweeps.iter().map(SweptConvex::bbox).collect();
         // Cells about half the narrowest extent of a typical sweep: each sweep is filed in a
@@ -343,7 +345,7 @@ pub fn envelope(
             .sum::<f64>()
             / boxes.len() as f64;
         let index = SweepIndex::new(boxes, h, (0.5 * typical).max(8.0 * h));
-        rays.to_mesh_projected(&options.contour, |p, n| {
+        rays.into_mesh_projected(&options.contour, |p, n| {
             onto_envelope(&sweeps, &index, p, n, h)
         })
     } else {
@@ -365,11 +367,11 @@ pub fn envelope(
         // Of the mesh as written: contouring leaves no two vertices at one `f32` position.
         closed: mesh.edge_report().is_clean(),
         volume_mm3: mesh.volume(),
-        volume_xyz_mm3: rays.volumes(),
+        volume_xyz_mm3,
         resolution_mm: options.resolution,
         tolerance_mm: tol,
         max_piece_error_mm: max_err,
-        lattice: rays.grid().n,
+        lattice,
         self_intersections,
     };
     Ok(Envelope { mesh, report })

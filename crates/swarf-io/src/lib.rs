@@ -66,8 +66,8 @@ pub mod tolerance;
 pub use atomic::write_atomic;
 pub use color::ColorMap;
 pub use contour::{
-    dual_contour, dual_contour_projected, dual_contour_with_stats, ContourOptions, ContourStats,
-    FnGrid, HermiteGrid, Lattice, QuadSplit, Span,
+    dual_contour, dual_contour_projected, dual_contour_projected_owned, dual_contour_with_stats,
+    ContourOptions, ContourStats, FnGrid, HermiteGrid, Lattice, QuadSplit, Span,
 };
 pub use error::IoError;
 pub use glb::{read_glb, write_glb, GlbOptions, Shading};

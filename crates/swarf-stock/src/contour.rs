@@ -8,8 +8,8 @@
 
 use swarf_geom::math::Vec3;
 use swarf_io::{
-    dual_contour_projected, dual_contour_with_stats, ContourOptions, ContourStats, HermiteGrid,
-    Lattice, Span, TriMesh,
+    dual_contour_projected, dual_contour_projected_owned, dual_contour_with_stats, ContourOptions,
+    ContourStats, HermiteGrid, Lattice, Span, TriMesh,
 };
 
 use crate::TriDexel;
@@ -60,6 +60,20 @@ impl TriDexel {
         dual_contour_projected(self, options, project)
     }
 
+    /// [`TriDexel::to_mesh_projected`] consuming the stock: its rays are dropped once the
+    /// contouring has read them, before the extraction where a large mesh peaks (the same
+    /// mesh; the rays' memory is free at the peak).
+    pub fn into_mesh_projected<P>(
+        self,
+        options: &ContourOptions,
+        project: P,
+    ) -> (TriMesh, ContourStats)
+    where
+        P: Fn(Vec3, Vec3) -> Option<Vec3> + Sync,
+    {
+        dual_contour_projected_owned(self, options, project)
+    }
+
     /// The size of [`TriDexel::to_mesh`]'s mesh, without building it: `(vertices, triangles)`.
     ///
     /// Dual contouring makes one quad (two triangles) per lattice edge the surface crosses, and
@@ -80,5 +94,46 @@ impl TriDexel {
     pub fn mesh_size_estimate(&self) -> (u64, u64) {
         let triangles = 4 * self.stats().intervals;
         (triangles / 2 + 2, triangles)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn consuming_the_stock_gives_the_same_mesh() {
+        // A block with a ball-shaped pocket, its vertices nudged by a projection: the rays
+        // dropped before the extraction change nothing.
+        let b = swarf_geom::Aabb::new(Vec3::ZERO, Vec3::new(6.0, 5.0, 4.0));
+        let centre = Vec3::new(3.0, 2.5, 4.0);
+        let stock = TriDexel::from_fn(b, 0.25, |k, cu, cv, d| {
+            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+            let (lo, hi) = (b.min[k], b.max[k]);
+            let (du, dv) = (cu - centre[u], cv - centre[v]);
+            let r2 = 4.0 - du * du - dv * dv;
+            if r2 <= 0.0 {
+                d.push(crate::Interval {
+                    enter: lo,
+                    exit: hi,
+                });
+                return;
+            }
+            let (a, c) = (centre[k] - r2.sqrt(), centre[k] + r2.sqrt());
+            for (s, e) in [(lo, a.min(hi)), (c.max(lo), hi)] {
+                if e > s {
+                    d.push(crate::Interval { enter: s, exit: e });
+                }
+            }
+        })
+        .unwrap();
+        let nudge = |p: Vec3, n: Vec3| Some(p + n * 1e-3);
+        let options = ContourOptions::default();
+        let (a, sa) = stock.to_mesh_projected(&options, nudge);
+        let (b, sb) = stock.into_mesh_projected(&options, nudge);
+        assert!(a.is_closed() && a.len() > 100);
+        assert_eq!(a.vertices, b.vertices);
+        assert_eq!(a.triangles, b.triangles);
+        assert_eq!(sa, sb);
     }
 }

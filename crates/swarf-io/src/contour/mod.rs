@@ -325,6 +325,40 @@ where
     contour(grid, options, Some(&project))
 }
 
+/// [`dual_contour_projected`] that takes the grid and drops it as soon as its lines are read,
+/// before the extraction (where a large mesh peaks): for a grid that leaves its normals to the
+/// contouring (the default [`HermiteGrid::normal`]: a tri-dexel's), the same mesh without the
+/// grid's memory at the peak.
+pub fn dual_contour_projected_owned<G, P>(
+    grid: G,
+    options: &ContourOptions,
+    project: P,
+) -> (TriMesh, ContourStats)
+where
+    G: HermiteGrid,
+    P: Fn(Vec3, Vec3) -> Option<Vec3> + Sync,
+{
+    let lattice = grid.lattice();
+    if !lattice.is_valid() {
+        return (TriMesh::new(), ContourStats::default());
+    }
+    let store = lines::Store::build(&grid, lattice);
+    drop(grid);
+    finish(store, &LinesRead(lattice), options, Some(&project))
+}
+
+/// What the extraction sees of a grid whose lines are in the store and which has been
+/// dropped: its lattice, and no normals.
+struct LinesRead(Lattice);
+
+impl HermiteGrid for LinesRead {
+    fn lattice(&self) -> Lattice {
+        self.0
+    }
+
+    fn line_spans(&self, _axis: usize, _u: usize, _v: usize, _out: &mut Vec<Span>) {}
+}
+
 type Projection<'a> = &'a (dyn Fn(Vec3, Vec3) -> Option<Vec3> + Sync);
 
 fn contour<G: HermiteGrid + ?Sized>(
@@ -337,6 +371,17 @@ fn contour<G: HermiteGrid + ?Sized>(
         return (TriMesh::new(), ContourStats::default());
     }
     let store = lines::Store::build(grid, lattice);
+    finish(store, grid, options, project)
+}
+
+/// The extraction from the lines in `store` (normals asked of `grid` first), the projection
+/// and the `f32` repair.
+fn finish<G: HermiteGrid + ?Sized>(
+    store: lines::Store,
+    grid: &G,
+    options: &ContourOptions,
+    project: Option<Projection<'_>>,
+) -> (TriMesh, ContourStats) {
     let (mut mesh, mut stats) = extract::extract(&store, grid, options);
     drop(store);
     if let Some(project) = project {
