@@ -79,11 +79,13 @@ fn report() {
         "engage bench: {moves} moves, {engaged} engaged locations, h = 0.1 mm, {} threads",
         rayon_threads()
     );
-    println!(
-        "  simulate   median {sim:.3} s  ({:.1} µs/move, {:.1} s per 50,000)",
-        sim / moves as f64 * 1e6,
-        sim / moves as f64 * 5e4
-    );
+    if reps > 0 {
+        println!(
+            "  simulate   median {sim:.3} s  ({:.1} µs/move, {:.1} s per 50,000)",
+            sim / moves as f64 * 1e6,
+            sim / moves as f64 * 5e4
+        );
+    }
     println!(
         "  engagement median {eng:.3} s  ({:.1} µs/location, {:.1} s per 50,000)",
         eng / moves as f64 * 1e6,
@@ -96,7 +98,9 @@ fn report() {
         (eng - cutting) * 1e9 / probes.max(1) as f64
     );
     println!("  sum of the engaged areas {area:.10} mm² (a check that a change kept the results)");
-    println!("  ratio engagement / simulation: {:.2}", eng / sim);
+    if reps > 0 {
+        println!("  ratio engagement / simulation: {:.2}", eng / sim);
+    }
 }
 
 fn rayon_threads() -> String {

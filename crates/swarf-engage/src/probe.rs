@@ -10,12 +10,15 @@
 //! is `s·(t − e)/√(1 + |∇e|²)` (`s` = +1 when the material lies on the ray's positive side
 //! of the sheet). That is exact for a plane and within `O(h²·κ)` of the truth for a sheet of
 //! curvature `κ`. (The four ends must lie within `2·D₀` of `P`, the precision cap `D₀` below,
-//! and the distance is clamped to `D₀`.) Near a sheet parallel to a family the four rays
-//! straddle it (some inside, some not): that family is not **coherent** there and says nothing; another, transverse to the
-//! sheet, does. Of the coherent families the nearest sheet wins (the distance to a solid's
-//! boundary is the distance to its nearest face). Only near an edge of the stock — within a ray
-//! spacing of two faces at once — may no family be coherent: the rays nearest to `P` then vote
-//! on the side, and the distance is reported as a fraction of the spacing.
+//! the distance is clamped to `D₀`, and the sheet may be at most twice as steep as level
+//! across the family: four ends of one kind on either side of a wall along the rays are a
+//! step, not a sheet.) Near a sheet parallel to a family the four rays straddle it (some
+//! inside, some not) or step across it: that family is not **coherent** there and says
+//! nothing; another, transverse to the sheet, does. Of the coherent families the nearest
+//! sheet wins (the distance to a solid's boundary is the distance to its nearest face). Only
+//! near an edge of the stock — within a ray spacing of two faces at once — may no family be
+//! coherent: the rays nearest to `P` then vote on the side, and the distance is reported as a
+//! fraction of the spacing.
 //!
 //! Far from the boundary no family is coherent either, but then all twelve rays agree on the
 //! side and their nearest ends are all farther than the probe's precision cap `D₀ = 4h`: the
@@ -123,6 +126,13 @@ struct Lattice {
 /// some just beyond — to a vote, which reports them a quarter spacing from the boundary.
 const COHERENT_REACH: f64 = 2.0;
 
+/// The steepest sheet a family measures: its ends may rise at most this much per unit across
+/// the family between neighbouring rays. Every plane is at most `√2` steep to the family most
+/// aligned with its normal (`|n_k| ≥ 1/√3`), so each plane keeps a family that measures it;
+/// a wall along a family's rays (a step between a top and a floor) is left to the families
+/// across it.
+const MAX_SHEET_SLOPE: f64 = 2.0;
+
 /// Rays with at most this many intervals are scanned whole for their nearest end.
 const SHORT_RAY: usize = 4;
 
@@ -155,9 +165,11 @@ impl<'a> MaterialProbe<'a> {
         self.stock
     }
 
-    /// How far (mm) a depth measured near the boundary may be from the true distance, as the
-    /// adaptive sampling assumes: a quarter of a ray spacing, the magnitude a vote reports (a
-    /// coherent sheet errs by `O(h²κ)`, far less).
+    /// The error (mm) the engagement's adaptive sampling allows each probed depth when it
+    /// proves a span free of sign changes: a quarter of a ray spacing, the magnitude a vote
+    /// reports. Not a proven bound (a coherent sheet errs by `O(h²κ)`, a vote by up to a
+    /// spacing near an edge); that the adaptive sampling gives the engagement of probing every
+    /// sample is checked by `tests/adaptive_matches_exhaustive.rs`.
     pub fn error(&self) -> f64 {
         self.cap / 16.0
     }
@@ -266,16 +278,24 @@ impl<'a> MaterialProbe<'a> {
             return FamilyDepth::Deep(s0, far_near, spacing);
         }
         let kind = near[0].2;
+        let ends = [near[0].1, near[1].1, near[2].1, near[3].1];
+        // One sheet: four ends of one kind, near, and no steeper between neighbouring rays
+        // than a sheet this family is fit to measure (ends of one kind on either side of a
+        // wall along the rays — a top and a floor — are a step, not a sheet).
+        let (su, sv) = (
+            (ends[1] - ends[0]).abs().max((ends[3] - ends[2]).abs()) / l.h[0],
+            (ends[2] - ends[0]).abs().max((ends[3] - ends[1]).abs()) / l.h[1],
+        );
         let coherent = kind != 0
             && near
                 .iter()
-                .all(|&(d, _, kd)| kd == kind && d.abs() <= COHERENT_REACH * self.cap);
+                .all(|&(d, _, kd)| kd == kind && d.abs() <= COHERENT_REACH * self.cap)
+            && su * su + sv * sv <= MAX_SHEET_SLOPE * MAX_SHEET_SLOPE;
         if !coherent {
             // The vote of the ray nearest to P across the family (ties to the lower index).
             let r = usize::from(wu > 0.5) + 2 * usize::from(wv > 0.5);
             return FamilyDepth::Vote(side(r), spacing);
         }
-        let ends = [near[0].1, near[1].1, near[2].1, near[3].1];
         // Bilinear height field of the boundary sheet over the cell, and its gradient.
         let e = ends[0] * (1.0 - wu) * (1.0 - wv)
             + ends[1] * wu * (1.0 - wv)
@@ -437,15 +457,76 @@ mod tests {
             let base = base + n * (3.0 - n.dot(base));
             let d = probe.depth(base - n * s);
             assert!(d.distance > 0.0, "{s}: {d:?}");
-            // The truth, clamped to the cap (a deep point is reported at least the cap).
-            let (lo, hi) = (s.min(probe.cap), s.max(probe.cap));
-            assert!(
-                d.distance >= lo - 1e-9 && d.distance <= hi + 1e-9,
-                "{s}: {d:?}"
-            );
+            // Measured on the plane: the truth where it is well inside the cap; about a cap
+            // deep, the cap (clamped, or a deep point's bound raised to it).
+            if s < 0.3 {
+                assert!((d.distance - s).abs() < 1e-9, "{s}: {d:?}");
+            } else {
+                assert!(
+                    d.distance >= s.min(probe.cap) - 1e-9 && d.distance <= s.max(probe.cap),
+                    "{s}: {d:?}"
+                );
+            }
             measured += usize::from(d.measured);
         }
         assert_eq!(measured, 400);
+    }
+
+    #[test]
+    fn a_wall_along_the_rays_is_not_a_sheet() {
+        // A step: material below z = 0 everywhere and up to z = H for x ≤ x_w, the wall
+        // between two Z rays. Points inside the step, 0.04 mm from the wall, are inside and
+        // that near the boundary: the Z rays on either side end at the top and at the floor
+        // (ends of one kind), which is no sheet — the X rays across the wall measure it.
+        let h = 0.1;
+        for height in [0.3, 0.6, 1.0, 1.6] {
+            let b = swarf_geom::Aabb::new(Vec3::splat(-2.0), Vec3::splat(2.0));
+            // Rays at cell centres −1.95, …, 0.05, 0.15: the wall 0.09 past one, the points
+            // halfway between the two.
+            let x_w = 0.14;
+            let stock = TriDexel::from_fn(b, h, |k, cu, cv, d| {
+                let p = |t: f64| {
+                    let mut q = [0.0; 3];
+                    (q[k], q[(k + 1) % 3], q[(k + 2) % 3]) = (t, cu, cv);
+                    q
+                };
+                // Along the ray, the material is where z ≤ 0, or x ≤ x_w and z ≤ H.
+                let inside = |q: [f64; 3]| q[2] <= 0.0 || (q[0] <= x_w && q[2] <= height);
+                match k {
+                    2 => {
+                        let top = if inside(p(height)) { height } else { 0.0 };
+                        d.push(Interval {
+                            enter: -2.0,
+                            exit: top,
+                        });
+                    }
+                    0 if inside(p(-2.0)) => d.push(Interval {
+                        enter: -2.0,
+                        exit: if cv <= 0.0 { 2.0 } else { x_w },
+                    }),
+                    1 if inside(p(0.0)) => d.push(Interval {
+                        enter: -2.0,
+                        exit: 2.0,
+                    }),
+                    _ => {}
+                }
+            })
+            .unwrap();
+            let probe = MaterialProbe::new(&stock);
+            for i in 1..20 {
+                let z = height * i as f64 / 20.0;
+                let (below, above) = (z, height - z);
+                if below.min(above) < 0.06 {
+                    continue;
+                }
+                let p = Vec3::new(x_w - 0.04, 0.013 * i as f64, z);
+                let d = probe.depth(p);
+                assert!(
+                    d.distance > 0.0 && d.distance <= 0.04 + 1e-9,
+                    "H = {height}, z = {z}: {d:?}"
+                );
+            }
+        }
     }
 
     #[test]

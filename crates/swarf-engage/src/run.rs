@@ -697,9 +697,9 @@ fn sample_strip(
     // at most `ρ·dφ` per sample (it is a distance, 1-Lipschitz in space): a span between two
     // probed anchors whose depths have one sign and are far enough from zero holds no sign
     // change of δ, and its depths are interpolated. (A zero at sample q of span [a, b] needs
-    // |δ_a| ≤ (q − a)·ρ·dφ and |δ_b| ≤ (b − q)·ρ·dφ, so |δ_a| + |δ_b| ≤ (b − a)·ρ·dφ; the probe's
-    // own error, `MaterialProbe::error`, is added for each anchor.) So the sign of g is exact at every sample; only
-    // its value is not where δ was interpolated.
+    // |δ_a| ≤ (q − a)·ρ·dφ and |δ_b| ≤ (b − q)·ρ·dφ, so |δ_a| + |δ_b| ≤ (b − a)·ρ·dφ; the
+    // probe's own error, `MaterialProbe::error`, is added for each anchor.) So the sign of g
+    // is exact at every sample; only its value is not where δ was interpolated.
     let mut g = std::mem::take(&mut scratch.g);
     g.clear();
     g.resize(rows * n, 0.0);

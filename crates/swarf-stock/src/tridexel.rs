@@ -799,14 +799,20 @@ impl TriDexel {
             }
             out
         };
-        // Rows are taken by whichever worker is free (a move's rows differ in work); the
-        // figures are summed in row order, so they do not depend on who took what.
+        // Rows are taken by whichever worker is free (a move's rows differ in work); each
+        // starts with fresh scratch (the separating planes kept from ray to ray) and the
+        // figures are summed in row order, so none depends on who took what.
         let per_row: Vec<Vec<(usize, usize, CutStats)>> =
             if tiles < PARALLEL_MIN_TILES || rayon::current_num_threads() == 1 {
-                let mut scratch = Scratch::new();
-                units.into_iter().map(|u| run(&mut scratch, u)).collect()
+                units
+                    .into_iter()
+                    .map(|u| run(&mut Scratch::new(), u))
+                    .collect()
             } else {
-                units.into_par_iter().map_init(Scratch::new, run).collect()
+                units
+                    .into_par_iter()
+                    .map(|u| run(&mut Scratch::new(), u))
+                    .collect()
             };
         let mut total = vec![[CutStats::default(); G]; moves.len()];
         for (m, g, st) in per_row.into_iter().flatten() {

@@ -272,7 +272,8 @@ pub struct DexelRays(RaysKind);
 
 /// Which kernel answers a family's rays.
 #[derive(Clone, Debug)]
-// The closed-form variant is the hot one; it stays inline (a few per move, never stored).
+// The closed-form variant is the hot one; it stays inline (a few per move and family, kept
+// for one batch of moves).
 #[allow(clippy::large_enum_variant)]
 enum RaysKind {
     /// Closed-form kernels.
