@@ -208,7 +208,12 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
     let n = s.n_phi;
     let dphi = dphi_deg.to_radians();
     let last = strip.len() - 1;
-    let engaged = |row: &[f64]| row.iter().any(|&v| v > 0.0);
+    // Whether each row has an engaged sample, once (a row is also its neighbour's next).
+    let engaged: Vec<bool> = (s.rows.0..s.rows.1)
+        .into_par_iter()
+        .map(|k| s.row(k).is_some_and(|row| row.iter().any(|&v| v > 0.0)))
+        .collect();
+    let engaged_at = |k: usize| k < s.rows.1 && engaged[k - s.rows.0];
     // The rows in parallel, summed in order below (the same sum as row after row).
     let rows: Vec<RowResult> = (s.rows.0..s.rows.1)
         .into_par_iter()
@@ -220,7 +225,7 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
             };
             let Some(row) = s.row(k) else { return out };
             let next = s.row(k + 1);
-            if !engaged(row) && !next.is_some_and(engaged) {
+            if !engaged_at(k) && !engaged_at(k + 1) {
                 // Nothing on this circle nor on the band to the next one.
                 return out;
             }
@@ -234,7 +239,7 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
                 }
             }
             if k == last {
-                if row.iter().any(|&v| v > 0.0) {
+                if engaged_at(k) {
                     out.lo = strip.param[k];
                     out.hi = strip.param[k];
                 }

@@ -418,10 +418,12 @@ mod tests {
         assert!(d <= -probe.cap, "{d}");
     }
 
-    /// Material below the oblique plane `n·x = 3` in a 10 mm cube, rays `h` apart.
-    fn below_oblique_plane(n: Vec3, h: f64) -> TriDexel {
+    /// Material below the plane `n·x = 3` in a 10 mm cube, rays `h` apart, with `n` oblique to
+    /// every family; and `n`.
+    fn below_oblique_plane(h: f64) -> (Vec3, TriDexel) {
+        let n = Vec3::new(0.3, -0.4, 0.866).normalize();
         let b = swarf_geom::Aabb::new(Vec3::splat(-5.0), Vec3::splat(5.0));
-        TriDexel::from_fn(b, h, |k, cu, cv, d| {
+        let stock = TriDexel::from_fn(b, h, |k, cu, cv, d| {
             let (u, v) = ((k + 1) % 3, (k + 2) % 3);
             // Along the ray: n_k t + n_u cu + n_v cv <= 3.
             let rest = 3.0 - n[u] * cu - n[v] * cv;
@@ -438,7 +440,8 @@ mod tests {
                 });
             }
         })
-        .unwrap()
+        .unwrap();
+        (n, stock)
     }
 
     #[test]
@@ -446,9 +449,7 @@ mod tests {
         // Where some of a family's four ends fall just inside the cap and some just beyond,
         // the family still measures (clamped to the cap): a vote would report a quarter
         // spacing and make the engagement probe every sample around the point.
-        let n = Vec3::new(0.3, -0.4, 0.866).normalize();
-        let h = 0.1;
-        let stock = below_oblique_plane(n, h);
+        let (n, stock) = below_oblique_plane(0.1);
         let probe = MaterialProbe::new(&stock);
         let mut measured = 0;
         for i in 0..400 {
@@ -531,10 +532,7 @@ mod tests {
 
     #[test]
     fn distance_to_an_oblique_plane_is_exact() {
-        // Material below the plane n·x = 3 with n oblique to every family.
-        let n = Vec3::new(0.3, -0.4, 0.866).normalize();
-        let h = 0.25;
-        let stock = below_oblique_plane(n, h);
+        let (n, stock) = below_oblique_plane(0.25);
         let probe = MaterialProbe::new(&stock);
         for (i, s) in [-0.4, -0.1, -0.01, 0.003, 0.05, 0.3].iter().enumerate() {
             let base = Vec3::new(0.37 * i as f64 - 1.0, 0.11 * i as f64, 0.0);

@@ -338,13 +338,19 @@ where
     G: HermiteGrid,
     P: Fn(Vec3, Vec3) -> Option<Vec3> + Sync,
 {
-    let lattice = grid.lattice();
-    if !lattice.is_valid() {
+    let Some((lattice, store)) = lines_of(&grid) else {
         return (TriMesh::new(), ContourStats::default());
-    }
-    let store = lines::Store::build(&grid, lattice);
+    };
     drop(grid);
     finish(store, &LinesRead(lattice), options, Some(&project))
+}
+
+/// The grid's lattice and its lines read into a store; `None` for a lattice with no mesh.
+fn lines_of<G: HermiteGrid + ?Sized>(grid: &G) -> Option<(Lattice, lines::Store)> {
+    let lattice = grid.lattice();
+    lattice
+        .is_valid()
+        .then(|| (lattice, lines::Store::build(grid, lattice)))
 }
 
 /// What the extraction sees of a grid whose lines are in the store and which has been
@@ -366,11 +372,9 @@ fn contour<G: HermiteGrid + ?Sized>(
     options: &ContourOptions,
     project: Option<Projection<'_>>,
 ) -> (TriMesh, ContourStats) {
-    let lattice = grid.lattice();
-    if !lattice.is_valid() {
+    let Some((_, store)) = lines_of(grid) else {
         return (TriMesh::new(), ContourStats::default());
-    }
-    let store = lines::Store::build(grid, lattice);
+    };
     finish(store, grid, options, project)
 }
 
