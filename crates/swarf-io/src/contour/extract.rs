@@ -415,13 +415,13 @@ fn split_quad(q: [u32; 4], v: &[Vec3], mode: QuadSplit) -> [[u32; 3]; 2] {
 }
 
 pub(crate) fn extract<G: HermiteGrid + ?Sized>(
-    store: &Store,
+    store: Store,
     grid: &G,
     opt: &ContourOptions,
 ) -> (TriMesh, ContourStats) {
     let n = store.lattice.n.map(|x| x as i32);
     let ctx = Ctx {
-        store,
+        store: &store,
         grid,
         opt,
         n,
@@ -430,6 +430,9 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
         .into_par_iter()
         .map_init(Scratch::default, |s, k| ctx.phase1(k, s))
         .collect();
+    // The triangles need only the slabs: the lines go before the mesh's arrays are made.
+    let (lines, spans) = (store.line_count(), store.span_count());
+    drop(store);
     let mut base = Vec::with_capacity(slabs.len() + 1);
     base.push(0u32);
     for s in &slabs {
@@ -498,7 +501,7 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
         .fold(ContourStats::default(), |a, s| a.add(s.stats));
     drop(slabs);
     stats.triangles = triangles.len();
-    stats.lines = store.line_count();
-    stats.spans = store.span_count();
+    stats.lines = lines;
+    stats.spans = spans;
     (TriMesh::from_parts(vertices, triangles), stats)
 }

@@ -386,8 +386,7 @@ fn finish<G: HermiteGrid + ?Sized>(
     options: &ContourOptions,
     project: Option<Projection<'_>>,
 ) -> (TriMesh, ContourStats) {
-    let (mut mesh, mut stats) = extract::extract(&store, grid, options);
-    drop(store);
+    let (mut mesh, mut stats) = extract::extract(store, grid, options);
     if let Some(project) = project {
         let normals = mesh.vertex_normals();
         stats.projected_vertices = mesh
