@@ -75,7 +75,7 @@ pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTa
                     }
                     number = Some((value as u32, column));
                 }
-                'D' => diameter = Some((value * scale, column)),
+                'D' => diameter = Some((value * scale, column, start)),
                 'Z' => z = Some(value * scale),
                 _ => {}
             }
@@ -95,9 +95,10 @@ pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTa
             ));
         }
         let d = match diameter {
-            Some((d, _)) if d > 0.0 => d,
-            Some((_, column)) => {
-                let word = body[column - 1..].split_whitespace().next().unwrap_or("D");
+            Some((d, _, _)) if d > 0.0 => d,
+            Some((_, column, start)) => {
+                // (`start` is the word's byte offset: `column` counts characters.)
+                let word = body[start..].split_whitespace().next().unwrap_or("D");
                 return Err(err(
                     column + 1,
                     format!("T{number} with diameter {word}"),
@@ -182,6 +183,25 @@ mod tests {
             e.to_string().starts_with("t.tbl:2:9") && e.to_string().contains("without a diameter"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn a_bad_diameter_after_wide_spaces_is_reported_not_a_panic() {
+        // Found by the `tbl` fuzz target: the word was cut at its character column as if it
+        // were a byte offset, inside a multi-byte space (U+2000).
+        let text = "T6\u{2000}D0\n";
+        let e = parse_linuxcnc(text, "w.tbl", LengthUnit::Mm).unwrap_err();
+        let TableError::Parse {
+            line,
+            column,
+            ref found,
+            ..
+        } = e
+        else {
+            panic!("{e:?}")
+        };
+        assert_eq!((line, column), (1, 5), "{e}");
+        assert_eq!(found, "T6 with diameter D0");
     }
 
     #[test]
