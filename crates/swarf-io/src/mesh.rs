@@ -394,7 +394,14 @@ impl TriMesh {
                 'search: for dx in -1..=1 {
                     for dy in -1..=1 {
                         for dz in -1..=1 {
-                            if let Some(list) = buckets.get(&[c[0] + dx, c[1] + dy, c[2] + dz]) {
+                            // (Saturating: a coordinate far beyond the tolerance's range
+                            // lands in the last cell, where the distances still decide.)
+                            let near = [
+                                c[0].saturating_add(dx),
+                                c[1].saturating_add(dy),
+                                c[2].saturating_add(dz),
+                            ];
+                            if let Some(list) = buckets.get(&near) {
                                 for &k in list {
                                     if self.vertices[kept[k as usize] as usize].distance(p)
                                         <= tolerance
@@ -841,6 +848,28 @@ mod tests {
         assert!(two.validate().is_ok());
         two.triangles.push([0, 1, 8]);
         assert!(two.validate().is_err());
+    }
+
+    #[test]
+    fn weld_takes_coordinates_beyond_its_cells() {
+        // Found by the `stl` and `ply` fuzz targets: 1e300 / 1e-6 saturates the cell index at
+        // i64::MAX, whose neighbour overflowed (a panic where overflow is checked: debug and
+        // fuzz builds; `cargo test` without `--release` fails here without the fix). Points
+        // there are still welded by distance.
+        let far = 1e300;
+        let mut m = TriMesh::from_parts(
+            vec![
+                Vec3::new(far, 0.0, 0.0),
+                Vec3::new(far, 1.0, 0.0),
+                Vec3::new(far, 0.0, 1.0),
+                Vec3::new(far, 0.0, 1.0),
+                Vec3::new(-far, -far, 0.0),
+            ],
+            vec![[0, 1, 2], [0, 3, 4]],
+        );
+        assert_eq!(m.weld(1e-6), 1);
+        assert_eq!(m.vertices.len(), 4);
+        assert_eq!(m.triangles, vec![[0, 1, 2], [0, 2, 3]]);
     }
 
     /// The edge uses sorted whole, as a plain reference for [`TriMesh::edge_report`].
