@@ -403,6 +403,25 @@ pub fn parse_glb(bytes: &[u8], path: &Path) -> Result<Glb, IoError> {
         path: path.to_path_buf(),
         source: e,
     })?;
+    // gltf-json's validation indexes a primitive's POSITION accessor before checking that it
+    // exists (it panics on an index out of range): checked here first.
+    for (m, mesh) in root.meshes.iter().enumerate() {
+        for (p, prim) in mesh.primitives.iter().enumerate() {
+            let position = json::validation::Checked::Valid(json::mesh::Semantic::Positions);
+            if let Some(a) = prim.attributes.get(&position) {
+                if a.value() >= root.accessors.len() {
+                    return Err(bad(
+                        format!(
+                            "meshes[{m}].primitives[{p}] POSITION accessor {} of {}",
+                            a.value(),
+                            root.accessors.len()
+                        ),
+                        "accessor indices within the document's accessors",
+                    ));
+                }
+            }
+        }
+    }
     let mut errors = Vec::new();
     json::validation::Validate::validate(&root, &root, json::Path::new, &mut |p, e| {
         errors.push(format!("{}: {e}", p()))

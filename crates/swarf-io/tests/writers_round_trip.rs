@@ -131,6 +131,24 @@ fn glb_written_as_it_goes_equals_the_one_in_memory() {
 }
 
 #[test]
+fn a_glb_naming_missing_accessors_is_an_error_not_a_panic() {
+    // Found by the `glb` fuzz target: gltf-json's validation indexed the POSITION accessor
+    // before checking it exists. A document whose `accessors` key is misspelt (same length,
+    // so the chunk stays well-formed) has none.
+    let bytes = glb_bytes(&part(), &GlbOptions::default()).unwrap();
+    let at = bytes
+        .windows(11)
+        .position(|w| w == b"\"accessors\"")
+        .unwrap();
+    let mut bad = bytes.clone();
+    bad[at + 1..at + 10].copy_from_slice(b"aYwessors");
+    let e = parse_glb(&bad, Path::new("bad.glb")).unwrap_err();
+    let s = e.to_string();
+    assert!(s.contains("bad.glb") && s.contains("POSITION accessor 0 of 0"), "{s}");
+    assert!(parse_glb(&bytes, Path::new("good.glb")).is_ok());
+}
+
+#[test]
 fn glb_reparses_with_consistent_accessors() {
     let d = temp_dir("glb");
     let m = part();
