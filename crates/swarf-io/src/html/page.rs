@@ -231,10 +231,20 @@ impl Report {
         files.dedup();
         let sources: Vec<(String, String)> = files
             .into_iter()
+            .filter(|f| is_source_file(Path::new(f)))
             .filter_map(|f| std::fs::read_to_string(&f).ok().map(|t| (f, t)))
             .collect();
         Ok(r.with_sources(&sources))
     }
+}
+
+/// Largest program file a report reads to show the lines its rows name, bytes.
+const MAX_SOURCE_BYTES: u64 = 256 << 20;
+
+/// Whether a report reads `p` to show the program lines its rows name: a regular file of a
+/// program's size. A row may name anything (`/dev/zero` was read until memory ran out).
+fn is_source_file(p: &Path) -> bool {
+    std::fs::metadata(p).is_ok_and(|m| m.is_file() && m.len() <= MAX_SOURCE_BYTES)
 }
 
 fn has_ext(p: &Path, ext: &str) -> bool {
@@ -333,6 +343,36 @@ mod tests {
         );
         let html = super::super::render(&r);
         assert!(html.contains("<td data-key=\"a\">x&lt;y</td>"));
+    }
+
+    #[test]
+    fn rows_naming_devices_or_folders_are_not_read() {
+        // A row's file may be anything: /dev/zero was read until memory ran out.
+        let dir = std::env::temp_dir().join(format!("swarf-report-dev-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let program = dir.join("p.ngc");
+        std::fs::write(&program, "G0 X0\nG1 X1\n").unwrap();
+        std::fs::write(dir.join("summary.json"), "{\"locations\": 1}").unwrap();
+        let csv = format!(
+            "file,line\n/dev/zero,1\n{},2\n{},1\n",
+            program.display(),
+            dir.display()
+        );
+        std::fs::write(dir.join("defects.csv"), csv).unwrap();
+        assert!(is_source_file(&program));
+        for other in [Path::new("/dev/zero"), &dir] {
+            assert!(!is_source_file(other), "{}", other.display());
+        }
+        let r = Report::from_dir(&dir).unwrap();
+        let text: Vec<(&str, &str)> = r
+            .source
+            .iter()
+            .map(|s| (s.file.as_str(), s.text.as_str()))
+            .collect();
+        let p = program.display().to_string();
+        let d = dir.display().to_string();
+        assert_eq!(text, [("/dev/zero", ""), (p.as_str(), "G1 X1"), (d.as_str(), "")]);
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
