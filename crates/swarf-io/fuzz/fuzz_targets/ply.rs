@@ -1,24 +1,13 @@
 //! Fuzz target `ply`: any bytes read as a PLY file give a mesh or an error naming the file —
-//! never a panic or a hang — and a mesh that is read survives the mesh checks. Run with
-//! `cargo +nightly fuzz run ply` from `crates/swarf-io`.
+//! never a panic or a hang — and a mesh that is read survives what the commands do with it
+//! (`swarf_io_fuzz::exercise`). Run with `cargo +nightly fuzz run ply` from `crates/swarf-io`.
 #![no_main]
 
 use libfuzzer_sys::fuzz_target;
 use std::path::Path;
 
-/// What the commands do with a mesh they read: check it, measure it, weld it, and take it as a
-/// design part (accepted or refused with a message). None of it may panic.
-fn exercise(mut mesh: swarf_io::TriMesh) {
-    let _ = mesh.validate();
-    let _ = mesh.edge_report();
-    let _ = (mesh.volume(), mesh.area(), mesh.aabb(), mesh.manifold_defect());
-    let _ = swarf_verify::MeshDesign::new(&mesh);
-    mesh.weld(1e-6);
-    let _ = mesh.vertex_normals();
-}
-
 fuzz_target!(|data: &[u8]| {
     if let Ok(mesh) = swarf_io::ply::parse_ply(data, Path::new("fuzz.ply")) {
-        exercise(mesh);
+        swarf_io_fuzz::exercise(mesh);
     }
 });
