@@ -195,11 +195,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
     set.write_bytes("summary.json", &json)?;
     set.commit()?;
     if let Some(path) = &args.report {
-        let sources: Vec<(String, String)> = program
-            .files
-            .iter()
-            .filter_map(|f| std::fs::read_to_string(f).ok().map(|t| (f.clone(), t)))
-            .collect();
+        let sources = crate::commands::report::sources(program);
         let value = serde_json::to_value(&summary)?;
         let inputs = ReportInputs {
             program,
