@@ -144,7 +144,10 @@ fn a_glb_naming_missing_accessors_is_an_error_not_a_panic() {
     bad[at + 1..at + 10].copy_from_slice(b"aYwessors");
     let e = parse_glb(&bad, Path::new("bad.glb")).unwrap_err();
     let s = e.to_string();
-    assert!(s.contains("bad.glb") && s.contains("POSITION accessor 0 of 0"), "{s}");
+    assert!(
+        s.contains("bad.glb") && s.contains("POSITION accessor 0 of 0"),
+        "{s}"
+    );
     assert!(parse_glb(&bytes, Path::new("good.glb")).is_ok());
 }
 

@@ -371,7 +371,10 @@ mod tests {
             .collect();
         let p = program.display().to_string();
         let d = dir.display().to_string();
-        assert_eq!(text, [("/dev/zero", ""), (p.as_str(), "G1 X1"), (d.as_str(), "")]);
+        assert_eq!(
+            text,
+            [("/dev/zero", ""), (p.as_str(), "G1 X1"), (d.as_str(), "")]
+        );
         std::fs::remove_dir_all(&dir).unwrap();
     }
 

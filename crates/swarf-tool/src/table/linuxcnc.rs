@@ -159,19 +159,9 @@ mod tests {
     fn a_tool_without_a_positive_diameter_is_an_error_at_its_line() {
         // Was skipped with a warning nobody printed: the program then failed on an unknown tool.
         let text = "T1 P1 D0.125\nT2 P2 D0 Z0 ;probe\n";
-        let e = parse_linuxcnc(text, "tool.tbl", LengthUnit::Inch).unwrap_err();
-        let TableError::Parse {
-            line,
-            column,
-            ref found,
-            ..
-        } = e
-        else {
-            panic!("{e:?}")
-        };
-        assert_eq!((line, column), (2, 8), "{e}");
+        let (at, found, s) = parse_error(text, "tool.tbl", LengthUnit::Inch);
+        assert_eq!(at, (2, 8), "{s}");
         assert_eq!(found, "T2 with diameter D0");
-        let s = e.to_string();
         assert!(
             s.starts_with("tool.tbl:2:8") && s.contains("positive diameter"),
             "{s}"
@@ -186,11 +176,18 @@ mod tests {
     }
 
     #[test]
-    fn a_bad_diameter_after_wide_spaces_is_reported_not_a_panic() {
+    fn a_bad_diameter_after_a_wide_space_is_reported_not_a_panic() {
         // Found by the `tbl` fuzz target: the word was cut at its character column as if it
         // were a byte offset, inside a multi-byte space (U+2000).
-        let text = "T6\u{2000}D0\n";
-        let e = parse_linuxcnc(text, "w.tbl", LengthUnit::Mm).unwrap_err();
+        let (at, found, s) = parse_error("T6\u{2000}D0\n", "w.tbl", LengthUnit::Mm);
+        assert_eq!(at, (1, 5), "{s}");
+        assert_eq!(found, "T6 with diameter D0");
+    }
+
+    /// The position `(line, column)`, the `found` text and the message of the parse error
+    /// `text` must give.
+    fn parse_error(text: &str, file: &str, unit: LengthUnit) -> ((usize, usize), String, String) {
+        let e = parse_linuxcnc(text, file, unit).unwrap_err();
         let TableError::Parse {
             line,
             column,
@@ -200,8 +197,7 @@ mod tests {
         else {
             panic!("{e:?}")
         };
-        assert_eq!((line, column), (1, 5), "{e}");
-        assert_eq!(found, "T6 with diameter D0");
+        ((line, column), found.clone(), e.to_string())
     }
 
     #[test]
