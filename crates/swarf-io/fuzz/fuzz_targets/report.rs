@@ -17,6 +17,7 @@ fuzz_target!(|data: &[u8]| {
     std::fs::write(dir.join("summary.json"), summary).expect("temporary folder");
     std::fs::write(dir.join("defects.csv"), csv).expect("temporary folder");
     if let Ok(page) = Report::from_dir(&dir) {
-        page.write(&dir.join("report.html")).expect("the page is written");
+        page.write(&dir.join("report.html"))
+            .expect("the page is written");
     }
 });

@@ -13,7 +13,11 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let text = String::from_utf8_lossy(rest);
-    let format = if head & 1 == 0 { ProgramFormat::Gcode } else { ProgramFormat::Apt };
+    let format = if head & 1 == 0 {
+        ProgramFormat::Gcode
+    } else {
+        ProgramFormat::Apt
+    };
     let lines = text.lines().count() as u32 + 1;
     let every: BTreeMap<u32, f64> = (1..=lines).map(|l| (l, 1.0)).collect();
     if let Ok(r) = rewrite_feeds(&text, "fuzz", format, &every, &BTreeMap::new()) {
@@ -25,7 +29,10 @@ fuzz_target!(|data: &[u8]| {
         .collect();
     let splits: BTreeMap<u32, Vec<SplitPiece>> = [(
         u32::from(head % 8) + 1,
-        vec![SplitPiece { delta: [1.0, -0.0, f64::from(head)], factor: 0.5 }],
+        vec![SplitPiece {
+            delta: [1.0, -0.0, f64::from(head)],
+            factor: 0.5,
+        }],
     )]
     .into_iter()
     .collect();

@@ -8,7 +8,9 @@ use libfuzzer_sys::fuzz_target;
 
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data);
-    if let Ok(table) = swarf_tool::table::parse_linuxcnc(&text, "fuzz.tbl", swarf_tool::LengthUnit::Inch) {
+    if let Ok(table) =
+        swarf_tool::table::parse_linuxcnc(&text, "fuzz.tbl", swarf_tool::LengthUnit::Inch)
+    {
         swarf_tool_fuzz::exercise(&table);
     }
 });
