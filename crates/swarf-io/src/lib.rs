@@ -72,6 +72,6 @@ pub use contour::{
 pub use error::IoError;
 pub use glb::{read_glb, write_glb, GlbOptions, Shading};
 pub use mesh::{BadEdge, DegenerateRepair, EdgeReport, TriMesh};
-pub use output_set::{OutputSet, DEFAULT_MAX_OUTPUT_BYTES};
+pub use output_set::{FileBody, OutputSet, DEFAULT_MAX_OUTPUT_BYTES};
 pub use ply::{read_ply, write_ply};
 pub use stl::{read_stl, write_stl, write_stl_ascii, write_stl_to};

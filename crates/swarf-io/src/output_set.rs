@@ -7,7 +7,8 @@
 //! 1. [`OutputSet::check_sizes`]: the caller states each file's estimated size before writing;
 //!    a total over the limit is refused with [`IoError::TooLarge`], naming every file's size;
 //! 2. [`OutputSet::write`]: each file is written to a temporary beside its target
-//!    (`.<name>.swarf-tmp-…`), flushed and synced;
+//!    (`.<name>.swarf-tmp-…`), flushed and synced ([`OutputSet::write_all`]: several side by
+//!    side, one thread each);
 //! 3. [`OutputSet::commit`]: only once every file was written are they all renamed into place.
 //!    A set dropped before its commit (an error, a panic) removes its temporaries and leaves
 //!    every target as it was.
@@ -105,6 +106,40 @@ impl OutputSet {
     where
         F: FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
     {
+        let (file, target) = self.stage(name)?;
+        fill(file, &target, body)
+    }
+
+    /// Writes the files `files` of the set (name, body) side by side, each on its own thread
+    /// (large meshes are encoded and synced at once), as [`OutputSet::write`] writes one.
+    ///
+    /// # Errors
+    /// As [`OutputSet::write`]: the first file's error in `files` order.
+    pub fn write_all(&mut self, files: Vec<(&str, FileBody<'_>)>) -> Result<(), IoError> {
+        let mut staged = Vec::with_capacity(files.len());
+        for (name, body) in files {
+            let (file, target) = self.stage(name)?;
+            staged.push((file, target, body));
+        }
+        let results: Vec<Result<(), IoError>> = std::thread::scope(|scope| {
+            let running: Vec<_> = staged
+                .into_iter()
+                .map(|(file, target, body)| scope.spawn(move || fill(file, &target, body)))
+                .collect();
+            running
+                .into_iter()
+                .map(|h| match h.join() {
+                    Ok(r) => r,
+                    Err(panic) => std::panic::resume_unwind(panic),
+                })
+                .collect()
+        });
+        results.into_iter().collect()
+    }
+
+    /// Registers the temporary of file `name` (so that a failure from here on removes it) and
+    /// creates it; returns it and the target path.
+    fn stage(&mut self, name: &str) -> Result<(File, PathBuf), IoError> {
         let target = self.dir.join(name);
         if target.is_dir() {
             return Err(IoError::io(
@@ -116,16 +151,9 @@ impl OutputSet {
             std::fs::create_dir_all(parent).map_err(|e| IoError::io(parent, e))?;
         }
         let tmp = temp_path(&target);
-        // Registered first, so that a failure below still removes it.
         self.staged.push((tmp.clone(), target.clone()));
         let file = File::create(&tmp).map_err(|e| IoError::io(&target, e))?;
-        let mut w = BufWriter::new(file);
-        body(&mut w).map_err(|e| IoError::io(&target, e))?;
-        w.flush().map_err(|e| IoError::io(&target, e))?;
-        let file = w
-            .into_inner()
-            .map_err(|e| IoError::io(&target, e.into_error()))?;
-        file.sync_all().map_err(|e| IoError::io(&target, e))
+        Ok((file, target))
     }
 
     /// Writes `bytes` as file `name` of the set (see [`OutputSet::write`]).
@@ -188,6 +216,23 @@ impl OutputSet {
         }
         result
     }
+}
+
+/// What writes one file of a set, for [`OutputSet::write_all`].
+pub type FileBody<'a> = Box<dyn FnOnce(&mut BufWriter<File>) -> std::io::Result<()> + Send + 'a>;
+
+/// Writes `body` into the staged `file` of `target`, flushed and synced.
+fn fill<F>(file: File, target: &Path, body: F) -> Result<(), IoError>
+where
+    F: FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
+{
+    let mut w = BufWriter::new(file);
+    body(&mut w).map_err(|e| IoError::io(target, e))?;
+    w.flush().map_err(|e| IoError::io(target, e))?;
+    let file = w
+        .into_inner()
+        .map_err(|e| IoError::io(target, e.into_error()))?;
+    file.sync_all().map_err(|e| IoError::io(target, e))
 }
 
 impl Drop for OutputSet {

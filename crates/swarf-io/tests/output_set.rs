@@ -104,3 +104,41 @@ fn a_failing_file_leaves_the_previous_set_untouched() {
     );
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+#[test]
+fn files_written_side_by_side_appear_together_or_not_at_all() {
+    let d = temp_dir("side");
+    let mut set = OutputSet::new(&d, u64::MAX).unwrap();
+    let big = vec![7u8; 3 << 20];
+    set.write_all(vec![
+        ("a.bin", Box::new(|w| w.write_all(&big))),
+        ("b.txt", Box::new(|w| w.write_all(b"b"))),
+    ])
+    .unwrap();
+    assert!(
+        !d.join("a.bin").exists() && !d.join("b.txt").exists(),
+        "nothing appears before the commit"
+    );
+    set.commit().unwrap();
+    assert_eq!(names(&d), ["a.bin", "b.txt"]);
+    assert_eq!(std::fs::read(d.join("a.bin")).unwrap(), big);
+    // One of them fails: its error (the first in order), and the old files stay as they were.
+    let mut set = OutputSet::new(&d, u64::MAX).unwrap();
+    let e = set
+        .write_all(vec![
+            ("a.bin", Box::new(|w| w.write_all(b"new a"))),
+            (
+                "b.txt",
+                Box::new(|_| Err(std::io::Error::other("disk on fire"))),
+            ),
+        ])
+        .unwrap_err();
+    assert!(
+        e.to_string().contains("b.txt") && e.to_string().contains("disk on fire"),
+        "{e}"
+    );
+    drop(set);
+    assert_eq!(names(&d), ["a.bin", "b.txt"]);
+    assert_eq!(std::fs::read(d.join("a.bin")).unwrap(), big);
+    std::fs::remove_dir_all(&d).unwrap();
+}

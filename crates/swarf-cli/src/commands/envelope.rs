@@ -120,11 +120,13 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
             ("envelope.glb", glb_size_bound(v, t, false, Shading::Flat)),
         ],
     )?;
-    set.write("envelope.stl", |w| write_stl_to(w, &env.mesh))
-        .context("writing envelope.stl")?;
     let glb_file =
         GlbFile::new(&env.mesh, &GlbOptions::default()).context("encoding envelope.glb")?;
-    set.write("envelope.glb", |w| glb_file.write_to(w))?;
+    set.write_all(vec![
+        ("envelope.stl", Box::new(|w| write_stl_to(w, &env.mesh))),
+        ("envelope.glb", Box::new(|w| glb_file.write_to(w))),
+    ])
+    .context("writing the envelope's meshes")?;
     drop(glb_file);
     let r = env.report;
     let summary = EnvelopeSummary {

@@ -308,10 +308,12 @@ pub(crate) fn write_outputs(
         ],
     )?;
     let (mesh, _) = stock.to_mesh(&ContourOptions::default());
-    set.write("stock.stl", |w| write_stl_to(w, &mesh))
-        .context("writing stock.stl")?;
     let glb = GlbFile::new(&mesh, &GlbOptions::default()).context("encoding stock.glb")?;
-    set.write("stock.glb", |w| glb.write_to(w))?;
+    set.write_all(vec![
+        ("stock.stl", Box::new(|w| write_stl_to(w, &mesh))),
+        ("stock.glb", Box::new(|w| glb.write_to(w))),
+    ])
+    .context("writing the stock's meshes")?;
     drop(glb);
     drop(mesh);
     set.write_bytes("moves.csv", csv.as_bytes())?;
