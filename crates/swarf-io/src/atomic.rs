@@ -38,18 +38,26 @@ where
     let tmp = temp_path(path);
     let result = (|| {
         let file = File::create(&tmp).map_err(|e| IoError::io(&tmp, e))?;
-        let mut w = BufWriter::new(file);
-        body(&mut w).map_err(|e| IoError::io(path, e))?;
-        w.flush().map_err(|e| IoError::io(path, e))?;
-        let file = w
-            .into_inner()
-            .map_err(|e| IoError::io(path, e.into_error()))?;
-        file.sync_all().map_err(|e| IoError::io(path, e))?;
-        drop(file);
+        write_synced(file, path, body)?;
         std::fs::rename(&tmp, path).map_err(|e| IoError::io(path, e))
     })();
     if result.is_err() {
         let _ = std::fs::remove_file(&tmp);
     }
     result
+}
+
+/// Writes `body` into `file` (the temporary of `target`, which errors name) through a buffer,
+/// then flushes and syncs it.
+pub(crate) fn write_synced<F>(file: File, target: &Path, body: F) -> Result<(), IoError>
+where
+    F: FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
+{
+    let mut w = BufWriter::new(file);
+    body(&mut w).map_err(|e| IoError::io(target, e))?;
+    w.flush().map_err(|e| IoError::io(target, e))?;
+    let file = w
+        .into_inner()
+        .map_err(|e| IoError::io(target, e.into_error()))?;
+    file.sync_all().map_err(|e| IoError::io(target, e))
 }

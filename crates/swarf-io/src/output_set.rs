@@ -32,7 +32,7 @@ use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-use crate::atomic::temp_path;
+use crate::atomic::{temp_path, write_synced};
 use crate::error::IoError;
 
 /// Default limit on the bytes one set of outputs may take: 2 GB.
@@ -107,7 +107,7 @@ impl OutputSet {
         F: FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
     {
         let (file, target) = self.stage(name)?;
-        fill(file, &target, body)
+        write_synced(file, &target, body)
     }
 
     /// Writes the files `files` of the set (name, body) side by side, each on its own thread
@@ -124,7 +124,7 @@ impl OutputSet {
         let results: Vec<Result<(), IoError>> = std::thread::scope(|scope| {
             let running: Vec<_> = staged
                 .into_iter()
-                .map(|(file, target, body)| scope.spawn(move || fill(file, &target, body)))
+                .map(|(file, target, body)| scope.spawn(move || write_synced(file, &target, body)))
                 .collect();
             running
                 .into_iter()
@@ -220,20 +220,6 @@ impl OutputSet {
 
 /// What writes one file of a set, for [`OutputSet::write_all`].
 pub type FileBody<'a> = Box<dyn FnOnce(&mut BufWriter<File>) -> std::io::Result<()> + Send + 'a>;
-
-/// Writes `body` into the staged `file` of `target`, flushed and synced.
-fn fill<F>(file: File, target: &Path, body: F) -> Result<(), IoError>
-where
-    F: FnOnce(&mut BufWriter<File>) -> std::io::Result<()>,
-{
-    let mut w = BufWriter::new(file);
-    body(&mut w).map_err(|e| IoError::io(target, e))?;
-    w.flush().map_err(|e| IoError::io(target, e))?;
-    let file = w
-        .into_inner()
-        .map_err(|e| IoError::io(target, e.into_error()))?;
-    file.sync_all().map_err(|e| IoError::io(target, e))
-}
 
 impl Drop for OutputSet {
     fn drop(&mut self) {
