@@ -309,7 +309,6 @@ pub struct Engager<'a> {
 struct Scratch {
     rf: Vec<f64>,
     filled: Vec<bool>,
-    fix: Vec<f64>,
     g: Vec<f64>,
 }
 
@@ -648,8 +647,9 @@ fn sample_strip(
     let depth_at = |k: usize, j: usize| probe.depth(point(k, j).0).distance.clamp(-FAR_MM, FAR_MM);
     // Pass 1 (per circle, before its depths), no stock: `R·f` where the motion pushes into the
     // material (> 0), `R·(f − ε)` (≤ 0) where it does not.
+    // The buffers keep their length from the last location: every value is written below
+    // before it is read, so only growth is initialised.
     let mut rf = std::mem::take(&mut scratch.rf);
-    rf.clear();
     rf.resize(rows * n, 0.0);
     let translating = state.omega == Vec3::ZERO;
     let speed = state.v_tip.length();
@@ -701,11 +701,10 @@ fn sample_strip(
     // probe's own error, `MaterialProbe::error`, is added for each anchor.) So the sign of g
     // is exact at every sample; only its value is not where δ was interpolated.
     let mut g = std::mem::take(&mut scratch.g);
-    g.clear();
     g.resize(rows * n, 0.0);
-    // Per sample: whether g holds an interpolated δ (not a probed one).
+    // Per sample: whether g holds an interpolated δ (not a probed one); each row is cleared
+    // where it is walked.
     let mut filled = std::mem::take(&mut scratch.filled);
-    filled.clear();
     filled.resize(rows * n, false);
     let mut counted: u64 = g
         .par_chunks_mut(n)
@@ -720,6 +719,7 @@ fn sample_strip(
                 probed += 1;
                 depth_at(lo + r, j)
             };
+            filled.fill(false);
             if exhaustive || n % SPAN != 0 {
                 for (j, out) in row.iter_mut().enumerate() {
                     *out = if rfr[j] > 0.0 {
@@ -730,36 +730,44 @@ fn sample_strip(
                 }
                 return probed;
             }
-            // `row` holds δ while the spans are walked: NaN where not known yet.
+            // `row` holds δ while the spans are walked: NaN where not known yet. (Each anchor
+            // is probed once whatever the order, so the spans are walked one by one, each
+            // halved on a stack of its own: at most one pending half per halving.)
             row.fill(f64::NAN);
             let lphi = DEPTH_SLOPE * strip.circles[lo + r].rho * dphi;
             let probe_error = probe.error();
-            let mut stack: Vec<(usize, usize)> =
-                (0..n).step_by(SPAN).map(|a| (a, a + SPAN)).collect();
-            while let Some((a, b)) = stack.pop() {
-                if rfr[a..b].iter().all(|&v| v <= 0.0) && rfr[b % n] <= 0.0 {
-                    continue;
-                }
-                for e in [a, b % n] {
-                    if row[e].is_nan() {
-                        row[e] = depth(e);
+            for start in (0..n).step_by(SPAN) {
+                let mut stack = [(0usize, 0usize); SPAN_STACK];
+                stack[0] = (start, start + SPAN);
+                let mut pending = 1;
+                while pending > 0 {
+                    pending -= 1;
+                    let (a, b) = stack[pending];
+                    if rfr[a..b].iter().all(|&v| v <= 0.0) && rfr[b % n] <= 0.0 {
+                        continue;
                     }
-                }
-                if b - a < 2 {
-                    continue;
-                }
-                let (da, db) = (row[a], row[b % n]);
-                let width = (b - a) as f64;
-                if da * db > 0.0 && da.abs() + db.abs() > lphi * width + 2.0 * probe_error {
-                    for q in a + 1..b {
-                        row[q] = da + (db - da) * (q - a) as f64 / width;
-                        filled[q] = true;
+                    for e in [a, b % n] {
+                        if row[e].is_nan() {
+                            row[e] = depth(e);
+                        }
                     }
-                    continue;
+                    if b - a < 2 {
+                        continue;
+                    }
+                    let (da, db) = (row[a], row[b % n]);
+                    let width = (b - a) as f64;
+                    if da * db > 0.0 && da.abs() + db.abs() > lphi * width + 2.0 * probe_error {
+                        for q in a + 1..b {
+                            row[q] = da + (db - da) * (q - a) as f64 / width;
+                            filled[q] = true;
+                        }
+                        continue;
+                    }
+                    let m = (a + b) / 2;
+                    stack[pending] = (m, b);
+                    stack[pending + 1] = (a, m);
+                    pending += 2;
                 }
-                let m = (a + b) / 2;
-                stack.push((a, m));
-                stack.push((m, b));
             }
             for (j, out) in row.iter_mut().enumerate() {
                 let rfj = rfr[j];
@@ -778,20 +786,17 @@ fn sample_strip(
     // its circle or the neighbouring ones; rows outside the range count as not engaged) is
     // probed. Its sign does not change, so neither does any other sample's need.
     if !exhaustive {
-        let mut fix = std::mem::take(&mut scratch.fix);
-        fix.clear();
-        fix.resize(rows * n, f64::NAN);
         let gs = &g;
-        counted += fix
-            .par_chunks_mut(n)
-            .enumerate()
-            .map(|(r, fix)| {
-                let mut probed = 0u64;
-                for j in 0..n {
-                    if !filled[r * n + j] {
-                        continue;
+        let (filled, rf) = (&filled, &rf);
+        let fixes: Vec<(usize, f64)> = (0..rows)
+            .into_par_iter()
+            .flat_map_iter(|r| {
+                (0..n).filter_map(move |j| {
+                    let i = r * n + j;
+                    if !filled[i] {
+                        return None;
                     }
-                    let positive = gs[r * n + j] > 0.0;
+                    let positive = gs[i] > 0.0;
                     let (jm, jp) = (if j == 0 { n - 1 } else { j - 1 }, (j + 1) % n);
                     let other = [r.wrapping_sub(1), r, r + 1].into_iter().any(|q| {
                         q >= rows && positive
@@ -800,20 +805,14 @@ fn sample_strip(
                                     .into_iter()
                                     .any(|i| (gs[q * n + i] > 0.0) != positive)
                     });
-                    if other {
-                        probed += 1;
-                        fix[j] = depth_at(lo + r, j).min(rf[r * n + j]);
-                    }
-                }
-                probed
+                    other.then(|| (i, depth_at(lo + r, j).min(rf[i])))
+                })
             })
-            .sum::<u64>();
-        for (gv, fv) in g.iter_mut().zip(&fix) {
-            if !fv.is_nan() {
-                *gv = *fv;
-            }
+            .collect();
+        counted += fixes.len() as u64;
+        for (i, v) in fixes {
+            g[i] = v;
         }
-        scratch.fix = fix;
     }
     *probes += counted;
     (scratch.rf, scratch.filled) = (rf, filled);
@@ -833,6 +832,9 @@ const FAR_MM: f64 = 1e6;
 
 /// Samples between the anchors of the adaptive sampling along a circle.
 const SPAN: usize = 8;
+
+/// Room for the halves of one span waiting to be walked: one per halving of `SPAN`, and one.
+const SPAN_STACK: usize = SPAN.ilog2() as usize + 2;
 
 /// Tool-tip path length of `m`, mm (arcs exact; curved 5-axis tips by 64 chords).
 pub fn path_length(program: &Program, m: &Move) -> f64 {
