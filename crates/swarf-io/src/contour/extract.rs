@@ -1,9 +1,11 @@
-//! The extraction proper, slab by slab along Z: phase 1 finds the sign-changing lattice edges
-//! of a slab of cells from the X lines of its two point levels (runs of inside points; edges
-//! along Y and Z where neighbouring runs differ), computes each edge's crossing and normal once,
-//! groups them by cell and places one vertex per cell patch; phase 2 emits one quad per
-//! sign-changing edge, looking up the four vertices around it. Both phases run in parallel over
-//! slabs; scratch buffers are reused per worker, nothing is allocated per cell.
+//! The extraction proper, slab by slab along Z: the sign-changing lattice edges of each point
+//! level along X and Y are found from its X lines (runs of inside points; X edges at the runs'
+//! ends, Y edges where neighbouring lines' runs differ) with their crossings and normals, once
+//! per level — a level is the top of one slab and the bottom of the next; phase 1 adds a slab's
+//! Z edges (where the runs of its two levels differ), groups its edges by cell and places one
+//! vertex per cell patch; phase 2 emits one quad per sign-changing edge, looking up the four
+//! vertices around it. Levels and slabs run in parallel, in batches that bound the edges held
+//! at once; scratch buffers are reused per worker, nothing is allocated per cell.
 
 use super::lines::{boundary_in, in_runs, runs, xor_runs, Run, Store};
 use super::normal::estimate;
@@ -50,6 +52,14 @@ struct SlabOut {
     vertices: Vec<Vec3>,
     /// Edges whose quads this slab emits: Z edges from its low level, X and Y edges on its top level.
     owned: Vec<Edge>,
+    stats: ContourStats,
+}
+
+/// The X and Y edges of one point level with their crossings: the top of one slab and the
+/// bottom of the next, so computed once for both.
+#[derive(Default)]
+struct LevelEdges {
+    edges: Vec<Hermite>,
     stats: ContourStats,
 }
 
@@ -129,7 +139,77 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         Hermite { edge: e, p, n, w }
     }
 
-    fn phase1(&self, k: i32, s: &mut Scratch) -> SlabOut {
+    /// The X and Y edges of point level `lev` with their crossings (none outside the lattice),
+    /// in the order the slabs take them: X edges line by line, then Y edges.
+    fn level_edges(&self, lev: i32, s: &mut Scratch) -> LevelEdges {
+        let [_, n1, n2] = self.n;
+        let mut out = LevelEdges::default();
+        if !(0..n2).contains(&lev) {
+            return out;
+        }
+        let lat = &self.store.lattice;
+        s.runs[0].clear();
+        s.roff[0].clear();
+        s.roff[0].push(0);
+        for j in 0..n1 {
+            runs(
+                self.store.fam[0].get(j as isize, lev as isize),
+                lat,
+                0,
+                &mut s.runs[0],
+            );
+            s.roff[0].push(s.runs[0].len());
+        }
+        let line = |s: &Scratch, j: i32| -> std::ops::Range<usize> {
+            if j < 0 || j >= n1 {
+                0..0
+            } else {
+                s.roff[0][j as usize]..s.roff[0][j as usize + 1]
+            }
+        };
+        // X edges: at both ends of every run.
+        for j in 0..n1 {
+            for ri in line(s, j) {
+                let run = s.runs[0][ri];
+                for (i, inside_low, t) in [(run.lo - 1, false, run.t_lo), (run.hi, true, run.t_hi)]
+                {
+                    let e = Edge {
+                        axis: 0,
+                        inside_low,
+                        i,
+                        j,
+                        k: lev,
+                    };
+                    out.edges.push(self.hermite(e, Some(t), &mut out.stats));
+                }
+            }
+        }
+        // Y edges: where the runs of neighbouring X lines differ.
+        for j in -1..n1 {
+            let (ra, rb) = (line(s, j), line(s, j + 1));
+            let mut found = std::mem::take(&mut s.found);
+            found.clear();
+            xor_runs(&s.runs[0][ra], &s.runs[0][rb], |i, in_a| {
+                found.push((i, in_a))
+            });
+            for &(i, inside_low) in &found {
+                let e = Edge {
+                    axis: 1,
+                    inside_low,
+                    i,
+                    j,
+                    k: lev,
+                };
+                out.edges.push(self.hermite(e, None, &mut out.stats));
+            }
+            s.found = found;
+        }
+        out
+    }
+
+    /// The cells and vertices of slab `k`, between point levels `k` and `k + 1` whose X and Y
+    /// edges are `below` and `above`.
+    fn phase1(&self, k: i32, s: &mut Scratch, below: &LevelEdges, above: &LevelEdges) -> SlabOut {
         let [n0, n1, n2] = self.n;
         let lat = &self.store.lattice;
         let mut stats = ContourStats::default();
@@ -168,57 +248,20 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
                 s.pairs.push((self.key(ci, cj) as u64) << 32 | id);
             }
         };
-        for slot in 0..2 {
-            let lev = k + slot as i32;
-            if !(0..n2).contains(&lev) {
-                continue;
-            }
-            // X edges: at both ends of every run.
-            for j in 0..n1 {
-                let r = line(s, slot, j);
-                for ri in r {
-                    let run = s.runs[slot][ri];
-                    for (i, inside_low, t) in
-                        [(run.lo - 1, false, run.t_lo), (run.hi, true, run.t_hi)]
-                    {
-                        let e = Edge {
-                            axis: 0,
-                            inside_low,
-                            i,
-                            j,
-                            k: lev,
-                        };
-                        let h = self.hermite(e, Some(t), &mut stats);
-                        push(s, h, &[(i, j - 1), (i, j)]);
-                        if slot == 1 {
-                            owned.push(e);
-                        }
-                    }
+        // X and Y edges of both levels, computed once per level; this slab emits the quads of
+        // its top level's.
+        for (slot, level) in [below, above].into_iter().enumerate() {
+            for &h in &level.edges {
+                let e = h.edge;
+                let cells = if e.axis == 0 {
+                    [(e.i, e.j - 1), (e.i, e.j)]
+                } else {
+                    [(e.i - 1, e.j), (e.i, e.j)]
+                };
+                push(s, h, &cells);
+                if slot == 1 {
+                    owned.push(e);
                 }
-            }
-            // Y edges: where the runs of neighbouring X lines differ.
-            for j in -1..n1 {
-                let (ra, rb) = (line(s, slot, j), line(s, slot, j + 1));
-                let mut found = std::mem::take(&mut s.found);
-                found.clear();
-                xor_runs(&s.runs[slot][ra], &s.runs[slot][rb], |i, in_a| {
-                    found.push((i, in_a))
-                });
-                for &(i, inside_low) in &found {
-                    let e = Edge {
-                        axis: 1,
-                        inside_low,
-                        i,
-                        j,
-                        k: lev,
-                    };
-                    let h = self.hermite(e, None, &mut stats);
-                    push(s, h, &[(i - 1, j), (i, j)]);
-                    if slot == 1 {
-                        owned.push(e);
-                    }
-                }
-                s.found = found;
             }
         }
         // Z edges: where the runs of the two levels differ.
@@ -363,6 +406,10 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
     }
 }
 
+/// Point levels computed at once per worker thread (a batch's edges are held until its slabs
+/// are done).
+const LEVELS_PER_THREAD: usize = 16;
+
 /// Level of each run slot relative to the slab's `k`.
 const LEVEL_OFFSET: [i32; 4] = [0, 1, -1, 2];
 
@@ -426,10 +473,31 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
         opt,
         n,
     };
-    let mut slabs: Vec<SlabOut> = (-1..n[2])
-        .into_par_iter()
-        .map_init(Scratch::default, |s, k| ctx.phase1(k, s))
-        .collect();
+    // Slabs in batches: the levels a batch needs first (its bottom level kept from the batch
+    // before), then its slabs, both in parallel; only a batch's levels are held at once.
+    let batch = (LEVELS_PER_THREAD * rayon::current_num_threads()) as i32;
+    let mut slabs: Vec<SlabOut> = Vec::with_capacity(n[2] as usize + 1);
+    let mut level_stats = ContourStats::default();
+    let mut bottom: Option<LevelEdges> = None;
+    let mut k0 = -1;
+    while k0 < n[2] {
+        let k1 = (k0 + batch).min(n[2]);
+        let first = k0 + i32::from(bottom.is_some());
+        let fresh: Vec<LevelEdges> = (first..=k1)
+            .into_par_iter()
+            .map_init(Scratch::default, |s, lev| ctx.level_edges(lev, s))
+            .collect();
+        for l in &fresh {
+            level_stats = level_stats.add(l.stats);
+        }
+        let levels: Vec<LevelEdges> = bottom.take().into_iter().chain(fresh).collect();
+        slabs.par_extend((k0..k1).into_par_iter().map_init(Scratch::default, |s, k| {
+            let at = (k - k0) as usize;
+            ctx.phase1(k, s, &levels[at], &levels[at + 1])
+        }));
+        bottom = levels.into_iter().last();
+        k0 = k1;
+    }
     // The triangles need only the slabs: the lines go before the mesh's arrays are made.
     let (lines, spans) = (store.line_count(), store.span_count());
     drop(store);
@@ -496,9 +564,7 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
             pair.copy_from_slice(&split_quad(q, &vertices, opt.split));
         }
     });
-    let mut stats = slabs
-        .iter()
-        .fold(ContourStats::default(), |a, s| a.add(s.stats));
+    let mut stats = slabs.iter().fold(level_stats, |a, s| a.add(s.stats));
     drop(slabs);
     stats.triangles = triangles.len();
     stats.lines = lines;
