@@ -10,8 +10,8 @@
 //! `SWARF_BENCH_PROVENANCE=1` makes its stock keep the provenance of every interval end;
 //! `SWARF_BENCH_EXHAUSTIVE=1` turns the front test off (`TriDexel::set_exhaustive`);
 //! `SWARF_BENCH_MOVES=N` sets its number of moves (default 3000) and leaves out the
-//! scaling table and the brute-force comparison. `RAYON_NUM_THREADS` sets
-//! the threads.
+//! scaling table and the brute-force comparison; `SWARF_BENCH_H=0.05` sets the report's ray
+//! spacing (default 0.1 mm). `RAYON_NUM_THREADS` sets the threads.
 
 use criterion::{criterion_main, BenchmarkId, Criterion, Throughput};
 use std::time::Instant;
@@ -95,7 +95,11 @@ fn new_stock(h: f64) -> TriDexel {
 }
 
 fn report() {
-    let h = 0.1;
+    let h: f64 = std::env::var("SWARF_BENCH_H")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .filter(|h: &f64| *h >= 0.02 && *h <= 1.0)
+        .unwrap_or(0.1);
     let n: usize = std::env::var("SWARF_BENCH_MOVES")
         .ok()
         .and_then(|s| s.parse().ok())
@@ -177,6 +181,9 @@ fn report() {
 /// A 40 × 40 × 50 mm block for the scaling runs (small enough for h = 0.05 mm).
 const SCALE_SIDE: f64 = 40.0;
 
+/// Runs of each scaling row; the median is printed.
+const SCALING_RUNS: usize = 3;
+
 /// One scaling run: a fresh block at `h`, `n` raster moves; (wall s, CPU s, stats).
 fn scaling_run(h: f64, n: usize) -> (f64, Option<f64>, CutStats) {
     let mut stock =
@@ -194,13 +201,19 @@ fn scaling_run(h: f64, n: usize) -> (f64, Option<f64>, CutStats) {
 
 /// How the time grows when h halves and when the program doubles, against the work touched.
 fn scaling_report() {
-    println!("scaling: {SCALE_SIDE} x {SCALE_SIDE} x 50 mm block, ball d = 10 mm, 0.5 mm moves");
+    println!(
+        "scaling: {SCALE_SIDE} x {SCALE_SIDE} x 50 mm block, ball d = 10 mm, 0.5 mm moves, median of {SCALING_RUNS} runs"
+    );
     println!(
         "  {:>6} {:>6} {:>9} {:>9} {:>12} {:>12} {:>12}",
         "h", "moves", "wall s", "CPU s", "ray visits", "updates", "ns/visit"
     );
     for (h, n) in [(0.2, 400), (0.1, 400), (0.05, 400), (0.1, 800), (0.1, 1600)] {
-        let (wall, cpu, st) = scaling_run(h, n);
+        // The median of three runs (by wall time): single runs of a tenth of a second vary
+        // by tens of per cent on a shared machine.
+        let mut runs: Vec<_> = (0..SCALING_RUNS).map(|_| scaling_run(h, n)).collect();
+        runs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let (wall, cpu, st) = runs.swap_remove(SCALING_RUNS / 2);
         let visits: u64 = st.visited_per_family.iter().sum();
         println!(
             "  {h:>6} {n:>6} {wall:>9.3} {:>9.2} {visits:>12} {:>12} {:>12.1}",
