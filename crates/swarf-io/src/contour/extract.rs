@@ -74,6 +74,24 @@ struct Scratch {
     found: Vec<(i32, bool)>,
 }
 
+impl Scratch {
+    /// Where the runs `a` and `b` (a slot and a range of its runs each) differ: the points
+    /// inside one and not the other, and whether inside `a` (the edges between two lines).
+    /// The list is the scratch's own, taken: hand it back to `found` when done.
+    fn differing(
+        &mut self,
+        (sa, ra): (usize, std::ops::Range<usize>),
+        (sb, rb): (usize, std::ops::Range<usize>),
+    ) -> Vec<(i32, bool)> {
+        let mut found = std::mem::take(&mut self.found);
+        found.clear();
+        xor_runs(&self.runs[sa][ra], &self.runs[sb][rb], |i, in_a| {
+            found.push((i, in_a))
+        });
+        found
+    }
+}
+
 struct Ctx<'a, G: ?Sized> {
     store: &'a Store,
     grid: &'a G,
@@ -187,11 +205,7 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         // Y edges: where the runs of neighbouring X lines differ.
         for j in -1..n1 {
             let (ra, rb) = (line(s, j), line(s, j + 1));
-            let mut found = std::mem::take(&mut s.found);
-            found.clear();
-            xor_runs(&s.runs[0][ra], &s.runs[0][rb], |i, in_a| {
-                found.push((i, in_a))
-            });
+            let found = s.differing((0, ra), (0, rb));
             for &(i, inside_low) in &found {
                 let e = Edge {
                     axis: 1,
@@ -267,11 +281,7 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         // Z edges: where the runs of the two levels differ.
         for j in 0..n1 {
             let (ra, rb) = (line(s, 0, j), line(s, 1, j));
-            let mut found = std::mem::take(&mut s.found);
-            found.clear();
-            xor_runs(&s.runs[0][ra], &s.runs[1][rb], |i, in_a| {
-                found.push((i, in_a))
-            });
+            let found = s.differing((0, ra), (1, rb));
             for &(i, inside_low) in &found {
                 let e = Edge {
                     axis: 2,
