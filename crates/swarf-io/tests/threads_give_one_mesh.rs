@@ -1,0 +1,45 @@
+//! The contouring computes each point level's X and Y edges once and shares them between the
+//! two slabs beside it, level and slab work running in batches whose size follows the number
+//! of worker threads: the mesh and its statistics must not depend on that. A tall solid (many
+//! batches, ending at different levels in each pool) is contoured in pools of 1, 2 and 3
+//! threads; the meshes must be equal to the bit, closed, and on the solid's surface.
+
+mod common;
+use common::*;
+use swarf_geom::math::Vec3;
+use swarf_io::{dual_contour_with_stats, ContourOptions, FnGrid, Lattice};
+
+#[test]
+fn the_mesh_does_not_depend_on_the_threads() {
+    // Five overlapping spheres up a column, over 150 point levels (batches of 16 levels per
+    // thread: 16, 32 and 48 levels).
+    let lattice = Lattice::new(Vec3::new(-2.0, -2.0, -1.0), Vec3::splat(0.1), [41, 41, 150]);
+    let sdf = |p: Vec3| {
+        (0..5)
+            .map(|i| {
+                let c = Vec3::new(0.3 * i as f64 - 0.6, 0.1 * i as f64, 1.0 + 2.6 * i as f64);
+                sphere_sdf(c, 1.4)(p)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let run = |threads: usize| {
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| {
+                dual_contour_with_stats(&FnGrid::new(lattice, sdf), &ContourOptions::default())
+            })
+    };
+    let (one, stats) = run(1);
+    assert_clean(&one, "stacked spheres");
+    // Within half a cell of the spheres (the creases where they meet are the farthest).
+    let off = mesh_to_surface(&one, sdf);
+    assert!(off < 0.05, "{off} mm off the spheres");
+    for threads in [2, 3] {
+        let (m, st) = run(threads);
+        assert_eq!(m.vertices, one.vertices, "{threads} threads");
+        assert_eq!(m.triangles, one.triangles, "{threads} threads");
+        assert_eq!(st, stats, "{threads} threads");
+    }
+}
