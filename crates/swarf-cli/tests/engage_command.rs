@@ -6,8 +6,7 @@ use common::{json, stderr, swarf};
 
 #[test]
 fn full_slot_files_and_figures() {
-    let dir = std::env::temp_dir().join(format!("swarf-engage-cli-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = swarf_testdata::scratch_dir("engage-cli");
     let prog = dir.join("slot.ngc");
     std::fs::write(&prog, "G21 G90\nG0 Z5\nG0 X-10 Y10\nG0 Z-5\nG1 X50 F600\n").unwrap();
     let out = dir.join("out");
@@ -81,8 +80,7 @@ fn full_slot_files_and_figures() {
 
 #[test]
 fn a_ramp_draws_the_bottom_face_map() {
-    let dir = std::env::temp_dir().join(format!("swarf-engage-ramp-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = swarf_testdata::scratch_dir("engage-ramp");
     let prog = dir.join("ramp.ngc");
     std::fs::write(&prog, "G21 G90\nG0 X5 Y10 Z2\nG1 X30 Z-4 F300\n").unwrap();
     let out = dir.join("out");
@@ -110,8 +108,7 @@ fn a_ramp_draws_the_bottom_face_map() {
 #[test]
 fn outputs_are_written_as_a_set_or_not_at_all() {
     // `maps` already exists as a file: the maps cannot be written, so nothing may be.
-    let dir = std::env::temp_dir().join(format!("swarf-engage-set-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = swarf_testdata::scratch_dir("engage-set");
     let prog = dir.join("slot.ngc");
     std::fs::write(&prog, "G21 G90\nG0 X-10 Y10 Z-5\nG1 X50 F600\n").unwrap();
     let out = dir.join("out");

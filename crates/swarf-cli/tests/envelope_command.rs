@@ -4,8 +4,7 @@ use common::*;
 
 #[test]
 fn plunge_sweeps_the_tool_plus_a_cylinder() {
-    let dir = std::env::temp_dir().join(format!("swarf-envelope-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = swarf_testdata::scratch_dir("envelope");
     let prog = dir.join("plunge.ngc");
     std::fs::write(&prog, "G21 G90\nG0 X0 Y0 Z10\nG1 Z0 F300\nM30\n").unwrap();
     let out = dir.join("out");

@@ -11,8 +11,7 @@ use common::{json, stderr, swarf};
 const MATERIAL: &str = "name = \"Al7075-T6 (test)\"\nktc = 796\nkrc = 168.8\nkac = 222\nkte = 27.7\nkre = 30.8\nkae = 1.8\nsource = \"test values\"\n";
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("swarf-forces-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
+    let d = swarf_testdata::scratch_dir(&format!("forces-{name}"));
     d
 }
 

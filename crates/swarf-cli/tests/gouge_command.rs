@@ -18,8 +18,7 @@ const CLAMP: [[f64; 3]; 2] = [[10.0, -5.0, 0.0], [20.0, 5.0, 8.0]];
 const PROGRAM: &str = "G0 X-15 Y0 Z5\nG1 Z0 F300\nG1 X6\nG0 Z5\nG0 X-30 Y-30\nG1 Z-0.5\nG0 Z5\n";
 
 fn scene(tag: &str, drop: usize) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("swarf-gouge-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = swarf_testdata::scratch_dir(&format!("gouge-{tag}"));
     std::fs::write(dir.join("floor.json"), FLOOR).unwrap();
     std::fs::write(dir.join("clamp.stl"), boxes_stl(&[CLAMP], drop)).unwrap();
     std::fs::write(dir.join("job.ngc"), PROGRAM).unwrap();

@@ -132,8 +132,7 @@ fn cutter_compensation_is_rejected_with_its_line() {
 
 #[test]
 fn malformed_program_names_file_line_and_column() {
-    let dir = std::env::temp_dir().join(format!("swarf-cli-test-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = swarf_testdata::scratch_dir("cli-test");
     let p = dir.join("bad.ngc");
     std::fs::write(&p, "G21 G90\nG1 X1.2.3 F100\n").unwrap();
     let o = swarf(&["path", p.to_str().unwrap(), "--json"]);

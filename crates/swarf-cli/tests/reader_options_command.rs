@@ -8,8 +8,7 @@ use std::path::PathBuf;
 use common::{json, stderr, swarf};
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("swarf-readopts-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&d).unwrap();
+    let d = swarf_testdata::scratch_dir(&format!("readopts-{name}"));
     d
 }
 

@@ -28,8 +28,7 @@ const WALLS: [[[f64; 3]; 2]; 4] = [
 
 /// A fresh folder with `floor.json` and `box.stl` (`boxes`, `drop` triangles missing).
 fn scene(tag: &str, boxes: &[[[f64; 3]; 2]], drop: usize) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("swarf-check-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = swarf_testdata::scratch_dir(&format!("check-{tag}"));
     std::fs::write(dir.join("floor.json"), FLOOR).unwrap();
     std::fs::write(dir.join("box.stl"), boxes_stl(boxes, drop)).unwrap();
     dir

@@ -84,8 +84,7 @@ fn inside_of_the_step_sphere_admits_a_ball_of_its_radius() {
 fn a_trimmed_wall_limits_only_where_it_is_left() {
     // A 20 × 20 floor and a 10 mm wall at x = 20 facing it, a slot y ∈ [5, 15] cut out of the
     // wall by its trim (JSON `trim`, wall parameters: u along z, v along y).
-    let dir = std::env::temp_dir().join(format!("swarf-toolsize-trim-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = swarf_testdata::scratch_dir("toolsize-trim");
     let surface = dir.join("slot.json");
     std::fs::write(
         &surface,
@@ -130,8 +129,7 @@ fn a_trimmed_wall_limits_only_where_it_is_left() {
 fn faces_that_share_a_name_keep_their_own_rows_and_maps() {
     // CAD systems name every face after the product ("PartBody"): each face must still get its
     // own patch value in the CSV and its own map.
-    let dir = std::env::temp_dir().join(format!("swarf-toolsize-names-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = swarf_testdata::scratch_dir("toolsize-names");
     let surface = dir.join("same.json");
     std::fs::write(
         &surface,
@@ -180,8 +178,7 @@ fn faces_that_share_a_name_keep_their_own_rows_and_maps() {
 #[test]
 fn outputs_are_written_as_a_set_or_not_at_all() {
     // `part.glb` is in the way as a folder: that file cannot be written, so none may be.
-    let dir = std::env::temp_dir().join(format!("swarf-toolsize-set-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = swarf_testdata::scratch_dir("toolsize-set");
     let surface = dir.join("floor.json");
     std::fs::write(
         &surface,

@@ -14,8 +14,7 @@ const TROUGH: &str = r#"{"units": "mm", "patches": [{"name": "trough", "degree_u
     [[0, -20, 5, 1], [0, 20, 5, 1]]]}]}"#;
 
 fn run(tag: &str, extra: &[&str]) -> (std::process::Output, String) {
-    let dir = std::env::temp_dir().join(format!("swarf-orient-{tag}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = swarf_testdata::scratch_dir(&format!("orient-{tag}"));
     let surface = dir.join("trough.json");
     std::fs::write(&surface, TROUGH).unwrap();
     let mut args = vec![

@@ -124,8 +124,7 @@ fn names_and_files() {
             "{text}"
         );
     }
-    let dir = std::env::temp_dir().join(format!("swarf-kin-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = swarf_testdata::scratch_dir("kin");
     let path = dir.join("mill.toml");
     std::fs::write(
         &path,

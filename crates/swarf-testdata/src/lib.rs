@@ -21,6 +21,9 @@
 //! **Fixtures written by code.** [`fixtures`] holds small inputs the tests need in every
 //! checkout (a STEP sphere), written here rather than copied from third parties.
 //!
+//! **Scratch folders.** [`scratch_dir`] gives a test its own folder under the system's
+//! temporary directory (named by the test's tag and the process id).
+//!
 //! **Property tests.** [`proptest_config`] is proptest's default configuration except that a
 //! failing case is printed (with the line to add to the test's `.proptest-regressions` file)
 //! instead of written into the source tree, so a failing run leaves no untracked file; the
@@ -58,6 +61,18 @@ pub const DEFAULT_DATA: &str = "../shared/data";
 pub fn workspace_root() -> PathBuf {
     let here = Path::new(env!("CARGO_MANIFEST_DIR")).join("../..");
     here.canonicalize().unwrap_or(here)
+}
+
+/// A folder of the system's temporary directory for one test, `swarf-{tag}-{process id}`,
+/// created (with its parents) if it is not there; what it holds is left as it is.
+///
+/// # Panics
+/// When it cannot be created.
+#[must_use]
+pub fn scratch_dir(tag: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("swarf-{tag}-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
 }
 
 /// The configured data folder: `SWARF_TEST_DATA` (relative to the workspace root) or

@@ -348,8 +348,7 @@ mod tests {
     #[test]
     fn rows_naming_devices_or_folders_are_not_read() {
         // A row's file may be anything: /dev/zero was read until memory ran out.
-        let dir = std::env::temp_dir().join(format!("swarf-report-dev-{}", std::process::id()));
-        std::fs::create_dir_all(&dir).unwrap();
+        let dir = swarf_testdata::scratch_dir("report-dev");
         let program = dir.join("p.ngc");
         std::fs::write(&program, "G0 X0\nG1 X1\n").unwrap();
         std::fs::write(dir.join("summary.json"), "{\"locations\": 1}").unwrap();
