@@ -75,13 +75,12 @@ fn report() {
         }
         runs.push(engage_once(&p));
     }
-    let ratio = median(
-        sims.iter()
-            .zip(&runs)
-            .map(|(s, r)| r.0 / s)
-            .collect::<Vec<_>>(),
-    );
-    let sim = if reps == 0 { f64::NAN } else { median(sims) };
+    let (sim, ratio) = if reps == 0 {
+        (f64::NAN, f64::NAN)
+    } else {
+        let ratios = sims.iter().zip(&runs).map(|(s, r)| r.0 / s).collect();
+        (median(sims), median(ratios))
+    };
     let (engaged, probes, area) = (runs[0].1, runs[0].3, runs[0].4);
     let cutting = median(runs.iter().map(|r| r.2).collect());
     let eng = median(runs.into_iter().map(|r| r.0).collect());
