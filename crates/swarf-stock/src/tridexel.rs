@@ -321,13 +321,24 @@ impl DexelFamily {
 }
 
 fn tile_bound(rays: &[Dexel], bins: &Bins) -> TileBound {
-    let mut b = EMPTY_BOUND;
+    // A ray's intervals are sorted and disjoint: its material spans from its first entry to
+    // its last exit, and only the bins need every interval.
+    let (mut lo, mut hi, mut mask) = (f64::INFINITY, f64::NEG_INFINITY, 0u64);
     for d in rays {
-        for iv in d.iter() {
-            b.add(iv.enter, iv.exit, bins);
+        let ivs: &[Interval] = d;
+        if let (Some(first), Some(last)) = (ivs.first(), ivs.last()) {
+            if first.enter < lo {
+                lo = first.enter;
+            }
+            if last.exit > hi {
+                hi = last.exit;
+            }
+            for iv in ivs {
+                mask |= bins.mask(iv.enter, iv.exit);
+            }
         }
     }
-    b
+    TileBound { lo, hi, bins: mask }
 }
 
 /// Counts and lengths from one subtraction.
@@ -765,6 +776,8 @@ impl TriDexel {
         // that reached the row removed from it.
         let run = |scratch: &mut Scratch, (k, tj, row): (usize, usize, Row<'_>)| {
             let mut out: Vec<(usize, usize, CutStats)> = Vec::new();
+            // Per tile of the row, whether a cut changed it since its bound was refreshed.
+            let mut stale = vec![false; row.bounds.len()];
             for (m, ((groups, plans), shared)) in moves.iter().zip(&plans).zip(&shared).enumerate()
             {
                 let tag = base
@@ -788,13 +801,22 @@ impl TriDexel {
                         visitor: visitor.map(|v| (v, m, group)),
                     };
                     let mut st = CutStats::default();
-                    for ti in r.i.0 / TILE..=r.i.1 / TILE {
+                    let tiles = r.i.0 / TILE..=r.i.1 / TILE;
+                    for (ti, stale) in tiles.clone().zip(&mut stale[tiles]) {
                         let span = ti * TILE_RAYS..(ti + 1) * TILE_RAYS;
                         let tile = &mut row.rays[span.clone()];
                         let tags = row.tags.get_mut(span).unwrap_or_default();
-                        cut.run(ti, tj, tile, tags, &mut row.bounds[ti], scratch, &mut st);
+                        let bound = (&mut row.bounds[ti], stale);
+                        cut.run(ti, tj, tile, tags, bound, scratch, &mut st);
                     }
                     out.push((m, group, st));
+                }
+            }
+            // Every bound exact again when the call returns.
+            for (ti, &n) in stale.iter().enumerate() {
+                if n {
+                    let rays = &row.rays[ti * TILE_RAYS..(ti + 1) * TILE_RAYS];
+                    row.bounds[ti] = tile_bound(rays, &bins[k]);
                 }
             }
             out
@@ -1096,7 +1118,7 @@ impl TileCut<'_, '_, '_> {
         tj: usize,
         tile: &mut [Dexel],
         tags: &mut [DexelTags],
-        bound: &mut TileBound,
+        (bound, stale): (&mut TileBound, &mut bool),
         scratch: &mut Scratch,
         st: &mut CutStats,
     ) {
@@ -1210,8 +1232,16 @@ impl TileCut<'_, '_, '_> {
                 }
             }
         }
+        // The bound only ever shrinks, so one left as it was stays true; it may only keep the
+        // tile from being skipped. A refresh reads all the tile's rays, and a finishing pass
+        // changes a tile on each of the dozens of moves that cross it: the bound is refreshed
+        // when a run finds nothing to change in a tile changed since (the stale bound may be
+        // what let the run in), and the call refreshes the others before it returns.
         if changed {
+            *stale = true;
+        } else if *stale {
             *bound = tile_bound(tile, self.bins);
+            *stale = false;
         }
     }
 }
@@ -1244,6 +1274,53 @@ mod tests {
                         fam.ray(i + 1, j + 1),
                     ];
                     assert_eq!(quad, each, "family {k}, cell ({i}, {j})");
+                }
+            }
+        }
+    }
+
+    /// A call leaves every tile's bound exact, though a tile that the call's cuts keep
+    /// changing is refreshed only when a run finds nothing to change in it or at the call's end:
+    /// a raster of short chained moves (each tile changed by many in a row, some emptied), in
+    /// calls of several lengths.
+    #[test]
+    fn tile_bounds_are_exact_after_a_call() {
+        let tool = ToolShape::new(&swarf_tool::Cutter::ball(3.0).unwrap());
+        let mut moves = Vec::new();
+        let mut tip = Vec3::new(-2.0, 1.0, 2.2);
+        for pass in 0..6 {
+            let dir = if pass % 2 == 0 { 0.37 } else { -0.37 };
+            for i in 0..30 {
+                let next = Vec3::new(tip.x + dir, tip.y, 2.2 + 0.4 * (0.3 * i as f64).sin());
+                moves.push(LinearMove {
+                    tip0: tip,
+                    tip1: next,
+                    axis: Vec3::Z,
+                });
+                tip = next;
+            }
+            let next = tip + Vec3::new(0.0, 0.9, 0.0);
+            moves.push(LinearMove {
+                tip0: tip,
+                tip1: next,
+                axis: Vec3::Z,
+            });
+            tip = next;
+        }
+        for chunk in [1, 7, 64, moves.len()] {
+            let b = Aabb::new(Vec3::ZERO, Vec3::new(9.0, 7.0, 4.0));
+            let mut stock = TriDexel::from_box(b.min, b.max, 0.1).unwrap();
+            for part in moves.chunks(chunk) {
+                stock.cut_linear_batch(&tool, part);
+            }
+            for fam in &stock.families {
+                for (t, bound) in fam.bounds.iter().enumerate() {
+                    let rays = &fam.rays[t * TILE_RAYS..(t + 1) * TILE_RAYS];
+                    assert_eq!(
+                        *bound,
+                        tile_bound(rays, &fam.bins),
+                        "chunks of {chunk}, tile {t}"
+                    );
                 }
             }
         }
