@@ -1179,22 +1179,27 @@ impl TileCut<'_, '_, '_> {
             _ => None,
         };
         let mut changed = false;
+        // Cell centres with the axes resolved once per tile (`Grid::center` per ray costs, and
+        // so does an index's conversion to f64): the same values, computed the same way.
+        let cus: [f64; TILE] =
+            std::array::from_fn(|ii| u_min + ((ti * TILE + ii) as f64 + 0.5) * u_h);
+        // Counted here, added to `st` once (the lengths go on as before: their sum's order is
+        // the rays').
+        let (mut visited, mut tested_n, mut updates) = (0u64, 0u64, 0u64);
         for jj in j_lo..=j_hi {
-            // (Cell centres with the axes resolved once: `Grid::center` per ray costs.)
             let cv = v_min + ((tj * TILE + jj) as f64 + 0.5) * v_h;
-            for ii in i_lo..=i_hi {
+            for (ii, &cu) in (i_lo..=i_hi).zip(&cus[i_lo..=i_hi]) {
                 let r = jj * TILE + ii;
                 let d = &mut tile[r];
                 if !overlaps(d, tmin, tmax) {
                     continue;
                 }
-                let cu = u_min + ((ti * TILE + ii) as f64 + 0.5) * u_h;
                 let ray = (ti * TILE + ii, tj * TILE + jj);
                 let (tested, removed) = if let Some((p, rays, gate)) = single {
                     if !gate.open(cu, cv) {
                         continue;
                     }
-                    st.visited_per_family[k] += 1;
+                    visited += 1;
                     let (t, hit) = p.dexel_cut((cu, cv), k, d, rays, scratch);
                     let removed = match hit {
                         Some((lo, hi)) => self.remove(d, tags.get_mut(r), ray, lo, hi),
@@ -1205,7 +1210,7 @@ impl TileCut<'_, '_, '_> {
                     if !gates.iter().any(|g| g.open(cu, cv)) {
                         continue;
                     }
-                    st.visited_per_family[k] += 1;
+                    visited += 1;
                     let mut removed = 0.0;
                     let mut tested = false;
                     for ((p, rays), gate) in self.parts.iter().zip(self.rays).zip(&gates) {
@@ -1220,18 +1225,19 @@ impl TileCut<'_, '_, '_> {
                     }
                     (tested, removed)
                 };
-                if tested {
-                    st.rays_tested += 1;
-                    st.tested_per_family[k] += 1;
-                }
+                tested_n += u64::from(tested);
                 if removed > 0.0 {
-                    st.updates += 1;
-                    st.updates_per_family[k] += 1;
+                    updates += 1;
                     st.removed_length[k] += removed;
                     changed = true;
                 }
             }
         }
+        st.visited_per_family[k] += visited;
+        st.rays_tested += tested_n;
+        st.tested_per_family[k] += tested_n;
+        st.updates += updates;
+        st.updates_per_family[k] += updates;
         // The bound only ever shrinks, so one left as it was stays true; it may only keep the
         // tile from being skipped. A refresh reads all the tile's rays, and a finishing pass
         // changes a tile on each of the dozens of moves that cross it: the bound is refreshed
