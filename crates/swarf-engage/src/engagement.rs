@@ -173,9 +173,12 @@ fn circle_intervals(g: &[f64], dphi_deg: f64) -> Vec<PhiInterval> {
     };
     let mut out = Vec::new();
     let mut start: Option<f64> = None;
+    // Sample `j` and the one before it, walking once round from the first sample out
+    // (without a division per step).
+    let mut j = first_out;
     for step in 1..=n {
-        let j = (first_out + step) % n;
-        let jp = (first_out + step + n - 1) % n;
+        let jp = j;
+        j = if j + 1 == n { 0 } else { j + 1 };
         let (prev, cur) = (g[jp], g[j]);
         let phi_prev = (first_out + step - 1) as f64 * dphi_deg;
         if prev <= 0.0 && cur > 0.0 {
@@ -249,13 +252,27 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
             let (p0, p1) = (strip.param[k], strip.param[k + 1]);
             let (mut lo, mut hi) = (out.lo, out.hi);
             let mut share = 0.0;
+            // Whether some column is engaged on both circles (its extent is the whole band).
+            let mut both = false;
             for j in 0..n {
                 let jn = if j + 1 == n { 0 } else { j + 1 };
                 let (g00, g01) = (row[j], row[jn]);
                 let (g10, g11) = next.map_or((-1.0, -1.0), |r| (r[j], r[jn]));
+                let (p00, p10) = (g00 > 0.0, g10 > 0.0);
+                // The common cells first: all four corners on one side.
+                if p00 && p10 && g01 > 0.0 && g11 > 0.0 {
+                    share += 1.0;
+                    both = true;
+                    continue;
+                }
+                if !p00 && !p10 && g01 <= 0.0 && g11 <= 0.0 {
+                    continue;
+                }
                 share += cell_share(g00, g01, g10, g11);
                 // The engaged extent along the parameter, interpolated on this column.
-                if g00 > 0.0 {
+                if p00 && p10 {
+                    both = true;
+                } else if g00 > 0.0 {
                     let t = if g10 > 0.0 { 1.0 } else { g00 / (g00 - g10) };
                     lo = lo.min(p0);
                     hi = hi.max(p0 + t * (p1 - p0));
@@ -264,6 +281,10 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
                     lo = lo.min(p0 + t * (p1 - p0));
                     hi = hi.max(p1);
                 }
+            }
+            if both {
+                lo = lo.min(p0);
+                hi = hi.max(p0 + (p1 - p0));
             }
             (out.lo, out.hi) = (lo, hi);
             out.area = Some(share * dphi * strip.band_area[k]);

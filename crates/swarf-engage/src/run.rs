@@ -786,27 +786,43 @@ fn sample_strip(
     // its circle or the neighbouring ones; rows outside the range count as not engaged) is
     // probed. Its sign does not change, so neither does any other sample's need.
     if !exhaustive {
-        let gs = &g;
-        let (filled, rf) = (&filled, &rf);
+        // Each sample's side as a byte, so a row's 3 × 3 neighbourhoods are compared a row at
+        // a time: a sample has a neighbour of the other side exactly when the OR and the AND
+        // of its neighbourhood differ (rows outside the range are all "not engaged").
+        let side: Vec<u8> = g.par_iter().map(|&v| u8::from(v > 0.0)).collect();
+        let (filled, rf, side) = (&filled, &rf, &side);
         let fixes: Vec<(usize, f64)> = (0..rows)
             .into_par_iter()
             .flat_map_iter(|r| {
-                (0..n).filter_map(move |j| {
-                    let i = r * n + j;
-                    if !filled[i] {
-                        return None;
+                let row_filled = &filled[r * n..(r + 1) * n];
+                let mut found = Vec::new();
+                if !row_filled.contains(&true) {
+                    return found.into_iter();
+                }
+                let (mut any, mut all) = (vec![0u8; n], vec![1u8; n]);
+                for q in [r.wrapping_sub(1), r, r + 1] {
+                    let Some(s) = side.get(q * n..(q + 1) * n).filter(|_| q < rows) else {
+                        all.fill(0);
+                        continue;
+                    };
+                    // Sample j's neighbours j − 1 and j + 1 round the circle.
+                    let (any_in, all_in) = (&mut any[1..n - 1], &mut all[1..n - 1]);
+                    for ((w, o), a) in s.windows(3).zip(any_in).zip(all_in) {
+                        *o |= w[0] | w[1] | w[2];
+                        *a &= w[0] & w[1] & w[2];
                     }
-                    let positive = gs[i] > 0.0;
-                    let (jm, jp) = (if j == 0 { n - 1 } else { j - 1 }, (j + 1) % n);
-                    let other = [r.wrapping_sub(1), r, r + 1].into_iter().any(|q| {
-                        q >= rows && positive
-                            || q < rows
-                                && [jm, j, jp]
-                                    .into_iter()
-                                    .any(|i| (gs[q * n + i] > 0.0) != positive)
-                    });
-                    other.then(|| (i, depth_at(lo + r, j).min(rf[i])))
-                })
+                    for (j, (p, q)) in [(0, (n - 1, 1)), (n - 1, (n - 2, 0))] {
+                        any[j] |= s[p] | s[j] | s[q];
+                        all[j] &= s[p] & s[j] & s[q];
+                    }
+                }
+                for (j, &f) in row_filled.iter().enumerate() {
+                    if f && any[j] != all[j] {
+                        let i = r * n + j;
+                        found.push((i, depth_at(lo + r, j).min(rf[i])));
+                    }
+                }
+                found.into_iter()
             })
             .collect();
         counted += fixes.len() as u64;
