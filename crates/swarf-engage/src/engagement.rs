@@ -180,10 +180,13 @@ fn circle_intervals(g: &[f64], dphi_deg: f64) -> Vec<PhiInterval> {
         let jp = j;
         j = if j + 1 == n { 0 } else { j + 1 };
         let (prev, cur) = (g[jp], g[j]);
+        if (prev > 0.0) == (cur > 0.0) {
+            continue;
+        }
         let phi_prev = (first_out + step - 1) as f64 * dphi_deg;
-        if prev <= 0.0 && cur > 0.0 {
+        if cur > 0.0 {
             start = Some(phi_prev + dphi_deg * prev / (prev - cur));
-        } else if prev > 0.0 && cur <= 0.0 {
+        } else {
             let end = phi_prev + dphi_deg * prev / (prev - cur);
             if let Some(a) = start.take() {
                 let a0 = a.rem_euclid(360.0);
