@@ -801,7 +801,7 @@ fn sample_strip(
                 }
                 let (mut any, mut all) = (vec![0u8; n], vec![1u8; n]);
                 for q in [r.wrapping_sub(1), r, r + 1] {
-                    let Some(s) = side.get(q * n..(q + 1) * n).filter(|_| q < rows) else {
+                    let Some(s) = (q < rows).then(|| &side[q * n..(q + 1) * n]) else {
                         all.fill(0);
                         continue;
                     };
