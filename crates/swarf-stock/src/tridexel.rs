@@ -117,8 +117,9 @@ pub struct DexelFamily {
     pub(crate) ntu: usize,
     /// Tile-major storage: tile `(ti, tj)` holds rays `(tj·ntu + ti)·TILE² ..`, row-major inside.
     pub(crate) rays: Vec<Dexel>,
-    /// Per tile, where its material lies along the rays (conservative: may claim more than the
-    /// material after cuts until the tile is next visited).
+    /// Per tile, where its material lies along the rays: exact between calls; within a
+    /// subtraction, a tile its cuts changed keeps its older bound (larger, still true) until a
+    /// later run finds nothing to change in it or the call returns.
     pub(crate) bounds: Vec<TileBound>,
     /// The bins of [`TileBound::bins`] along this family's rays.
     pub(crate) bins: Bins,
