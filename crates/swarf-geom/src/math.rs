@@ -24,3 +24,26 @@ pub const ANGLE_EPS: Real = 1e-12;
 /// centres travel a few tens of metres). Readers refuse coordinates beyond it with their
 /// position, so that no later stage meets an infinite or absurd length.
 pub const MACHINE_RANGE_MM: Real = 1e6;
+
+/// The lesser of `a` and `b` in one comparison (`b` when they compare equal, or when either is
+/// NaN). `f64::min` also orders NaN, which costs several instructions a call on the baseline
+/// x86-64 target; the per-ray kernels, whose operands are never NaN, use this.
+#[inline(always)]
+pub fn lesser(a: Real, b: Real) -> Real {
+    if a < b {
+        a
+    } else {
+        b
+    }
+}
+
+/// The greater of `a` and `b` in one comparison (`b` when they compare equal, or when either
+/// is NaN); see [`lesser`].
+#[inline(always)]
+pub fn greater(a: Real, b: Real) -> Real {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}

@@ -32,7 +32,7 @@ use super::convex::ConvexLine;
 use super::fast::FastProfile;
 use super::interval::{overlaps, Interval};
 use super::lozenge::StaticLine;
-use swarf_geom::math::Vec3;
+use swarf_geom::math::{greater, lesser, Vec3};
 use swarf_geom::Frame;
 
 /// Material ending less than this (mm) inside the lozenge is left where it is: no cut is
@@ -150,9 +150,11 @@ impl InstanceRays {
                 return None;
             }
             // Cancellation-free roots q/a and c/q.
-            let q = -(b + b.signum() * h.sqrt());
+            // (`signum`, `min` and `max` order NaN, which no operand here is, at a cost of
+            // several instructions each: plain comparisons.)
+            let q = -(b + if b < 0.0 { -h.sqrt() } else { h.sqrt() });
             let (r1, r2) = (q / self.a, if q != 0.0 { c / q } else { 0.0 });
-            (r1.min(r2), r1.max(r2))
+            (lesser(r1, r2), greater(r1, r2))
         } else if c <= 0.0 {
             (f64::NEG_INFINITY, f64::INFINITY)
         } else {
@@ -160,8 +162,8 @@ impl InstanceRays {
         };
         if d.z != 0.0 {
             let (ta, tb) = ((z_b - o.z) * self.inv_dz, (z1 - o.z) * self.inv_dz);
-            lo = lo.max(ta.min(tb));
-            hi = hi.min(ta.max(tb));
+            lo = greater(lo, lesser(ta, tb));
+            hi = lesser(hi, greater(ta, tb));
         } else if o.z < z_b || o.z > z1 {
             return None;
         }
