@@ -1,6 +1,7 @@
 //! One dexel: the sorted, disjoint solid intervals of material along one ray.
 
 use smallvec::SmallVec;
+use swarf_geom::math::{greater, lesser};
 
 /// Intervals shorter than this (mm) left by a subtraction are dropped (counted as removed).
 pub const MIN_INTERVAL_MM: f64 = 1e-9;
@@ -139,7 +140,7 @@ pub fn subtract(d: &mut Dexel, lo: f64, hi: f64) -> f64 {
         {
             return 0.0;
         }
-        let mut removed = iv.exit.min(hi) - iv.enter.max(lo);
+        let mut removed = lesser(iv.exit, hi) - greater(iv.enter, lo);
         let [(left, l), (right, r)] = sides(iv, iv, lo, hi);
         if l == Side::Drop {
             removed += left.len();
@@ -187,7 +188,7 @@ pub(crate) fn subtract_with<E: EndStore, F: FnMut(Interval)>(
     let mut k = i;
     let mut removed = 0.0;
     while k < n && d[k].enter < hi {
-        let (a, b) = (d[k].enter.max(lo), d[k].exit.min(hi));
+        let (a, b) = (greater(d[k].enter, lo), lesser(d[k].exit, hi));
         removed += b - a;
         removed_piece(Interval { enter: a, exit: b });
         k += 1;

@@ -22,7 +22,7 @@ use super::capsule::line_capsule;
 use super::lozenge;
 use super::slab::{self, AxisMove};
 use super::{ConvexProfile, Element};
-use swarf_geom::math::Vec3;
+use swarf_geom::math::{greater, lesser, Vec3};
 use swarf_geom::Frame;
 
 /// Relative tolerance with which profile parameters are taken as equal when a profile is
@@ -441,7 +441,7 @@ impl LozengeRays {
     /// (the tip's, across the axis): `min I − √(r² − d_P²)`, `d_P = (ρ − e)⁺`.
     #[inline]
     fn lower(&self, rho2: f64) -> Option<f64> {
-        let dp = (rho2.sqrt() - self.e).max(0.0);
+        let dp = greater(rho2.sqrt() - self.e, 0.0);
         let h2 = self.r * self.r - dp * dp;
         (h2 >= 0.0).then(|| self.heights.0 - h2.sqrt())
     }
@@ -450,7 +450,7 @@ impl LozengeRays {
     /// coordinate `q`: the stadium of radius `e + √(r² − d_I²)` about the spine centre's path.
     #[inline]
     fn across(&self, ray: usize, za: f64, q: f64) -> Option<(f64, f64)> {
-        let dz = (self.heights.0 - za).max(za - self.heights.1).max(0.0);
+        let dz = greater(greater(self.heights.0 - za, za - self.heights.1), 0.0);
         let h2 = self.r * self.r - dz * dz;
         if h2 < 0.0 {
             return None;
@@ -538,7 +538,7 @@ impl AlongRays {
         let mut spanned = None;
         let hi = if need_hi {
             let (s0, s1) = *spanned.get_or_insert_with(span);
-            pa + self.z1 + (s0 * ma).max(s1 * ma)
+            pa + self.z1 + greater(s0 * ma, s1 * ma)
         } else {
             self.hi_min
         };
@@ -546,7 +546,7 @@ impl AlongRays {
             Some(l) => l,
             None => {
                 let (s0, s1) = *spanned.get_or_insert_with(span);
-                pa + self.z0 + (s0 * ma).min(s1 * ma)
+                pa + self.z0 + lesser(s0 * ma, s1 * ma)
             }
         };
         Some((lo, hi))
@@ -592,7 +592,7 @@ impl AcrossRays {
             return slab;
         }
         match (slab, c.across((cu, cv), self.ray, za, q)) {
-            (Some(a), Some(b)) => Some((a.0.min(b.0), a.1.max(b.1))),
+            (Some(a), Some(b)) => Some((lesser(a.0, b.0), greater(a.1, b.1))),
             (a, b) => a.or(b),
         }
     }
@@ -644,13 +644,13 @@ impl Stadium {
             // The segment runs along the line (or is a point): both discs have the same chord
             // half-width.
             let (lo, hi) = self.disc(a.0, a.1, q)?;
-            return Some((lo.min(lo + e.0), hi.max(hi + e.0)));
+            return Some((lesser(lo, lo + e.0), greater(hi, hi + e.0)));
         }
         // The strip |(x − a)·ey − (q − a_y)·ex| ≤ r·|e| about the segment's line.
         let dq = q - a.1;
         let x1 = a.0 + (dq * e.0 - self.r_el) * self.inv_ey;
         let x2 = a.0 + (dq * e.0 + self.r_el) * self.inv_ey;
-        let (xl, xh) = (x1.min(x2), x1.max(x2));
+        let (xl, xh) = (lesser(x1, x2), greater(x1, x2));
         // Where each end projects on the segment (0 at a, 1 at b).
         let proj = |x: f64| ((x - a.0) * e.0 + dq * e.1) * self.inv_ee;
         let (yl, yh) = (proj(xl), proj(xh));
@@ -665,7 +665,7 @@ impl Stadium {
         let end_disc = |y: f64| {
             let (ca, cb) = if y < 0.0 { a } else { b };
             let dq = q - cb;
-            (ca, (self.rr - dq * dq).max(0.0).sqrt())
+            (ca, greater(self.rr - dq * dq, 0.0).sqrt())
         };
         let lo = if (0.0..=1.0).contains(&yl) {
             xl
