@@ -29,7 +29,7 @@
 //! the boundary. Beside the grid (where a family has no rays) the material may be as near as the
 //! grid's edge: such rays count as near, never as far.
 
-use swarf_geom::math::Vec3;
+use swarf_geom::math::{greater, lesser, Vec3};
 use swarf_stock::{Interval, TriDexel};
 
 /// What the rays say about a point.
@@ -193,19 +193,19 @@ impl<'a> MaterialProbe<'a> {
                 }
                 FamilyDepth::Vote(inside, spacing) => {
                     votes += if inside { 1 } else { -1 };
-                    vote_scale = vote_scale.max(spacing);
+                    vote_scale = greater(vote_scale, spacing);
                 }
                 FamilyDepth::Deep(inside, near, spacing) => {
                     votes += if inside { 1 } else { -1 };
-                    vote_scale = vote_scale.max(spacing);
+                    vote_scale = greater(vote_scale, spacing);
                     deep += 1;
                     deep_inside += i32::from(inside);
-                    deep_near = deep_near.min(near);
+                    deep_near = lesser(deep_near, near);
                 }
             }
         }
         if deep == 3 && (deep_inside == 0 || deep_inside == 3) {
-            let bound = (deep_near / 3f64.sqrt() - 2.0 * vote_scale).max(self.cap);
+            let bound = greater(deep_near / 3f64.sqrt() - 2.0 * vote_scale, self.cap);
             return Depth {
                 distance: if deep_inside == 3 { bound } else { -bound },
                 measured: true,
@@ -239,7 +239,7 @@ impl<'a> MaterialProbe<'a> {
         let (i0, j0) = (floor(fu), floor(fv));
         let (wu, wv) = (fu - i0, fv - j0);
         let t = pa[k];
-        let spacing = l.h[0].max(l.h[1]);
+        let spacing = greater(l.h[0], l.h[1]);
         // The four rays (i0 + (r & 1), j0 + (r >> 1)): signed distance to the nearest end,
         // the end, its kind (0: no material, or no ray there).
         let mut near = [(0.0, 0.0, 0i8); 4];
@@ -277,7 +277,7 @@ impl<'a> MaterialProbe<'a> {
         let gaps = [gap(0), gap(1), gap(2), gap(3)];
         let s0 = side(0);
         if gaps.iter().all(|&x| x > self.cap) && (1..4).all(|r| side(r) == s0) {
-            let far_near = gaps[0].min(gaps[1]).min(gaps[2]).min(gaps[3]);
+            let far_near = lesser(lesser(gaps[0], gaps[1]), lesser(gaps[2], gaps[3]));
             return FamilyDepth::Deep(s0, far_near, spacing);
         }
         let kind = near[0].2;
@@ -286,8 +286,8 @@ impl<'a> MaterialProbe<'a> {
         // than a sheet this family is fit to measure (ends of one kind on either side of a
         // wall along the rays — a top and a floor — are a step, not a sheet).
         let (su, sv) = (
-            (ends[1] - ends[0]).abs().max((ends[3] - ends[2]).abs()) / l.h[0],
-            (ends[2] - ends[0]).abs().max((ends[3] - ends[1]).abs()) / l.h[1],
+            greater((ends[1] - ends[0]).abs(), (ends[3] - ends[2]).abs()) / l.h[0],
+            greater((ends[2] - ends[0]).abs(), (ends[3] - ends[1]).abs()) / l.h[1],
         );
         let coherent = kind != 0
             && near

@@ -6,7 +6,7 @@ use std::time::Instant;
 
 use rayon::prelude::*;
 
-use swarf_geom::math::Vec3;
+use swarf_geom::math::{lesser, Vec3};
 use swarf_geom::progress::{Observer, Quiet};
 use swarf_geom::Aabb;
 use swarf_path::{FeedMode, Move, MoveKind, Program};
@@ -723,7 +723,7 @@ fn sample_strip(
             if exhaustive || n % SPAN != 0 {
                 for (j, out) in row.iter_mut().enumerate() {
                     *out = if rfr[j] > 0.0 {
-                        depth(j).min(rfr[j])
+                        lesser(depth(j), rfr[j])
                     } else {
                         rfr[j]
                     };
@@ -775,7 +775,7 @@ fn sample_strip(
                     *out = rfj;
                     filled[j] = false;
                 } else {
-                    *out = out.min(rfj);
+                    *out = lesser(*out, rfj);
                 }
             }
             probed
@@ -819,7 +819,7 @@ fn sample_strip(
                 for (j, &f) in row_filled.iter().enumerate() {
                     if f && any[j] != all[j] {
                         let i = r * n + j;
-                        found.push((i, depth_at(lo + r, j).min(rf[i])));
+                        found.push((i, lesser(depth_at(lo + r, j), rf[i])));
                     }
                 }
                 found.into_iter()
