@@ -47,3 +47,39 @@ pub fn greater(a: Real, b: Real) -> Real {
         b
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Away from NaN and from a tie of ±0 (where `f64::min` may return either), `lesser` and
+    /// `greater` are `f64::min` and `f64::max`; with a NaN they return the second operand,
+    /// which is why callers put the value that may be NaN first only where `f64::min` would
+    /// also have dropped it.
+    #[test]
+    fn lesser_and_greater_are_min_and_max_without_nan() {
+        let xs = [
+            f64::NEG_INFINITY,
+            -3.5,
+            -1e-300,
+            -0.0,
+            0.0,
+            1e-300,
+            2.0,
+            f64::INFINITY,
+        ];
+        for a in xs {
+            for b in xs {
+                if a == b {
+                    continue;
+                }
+                assert_eq!(lesser(a, b), a.min(b), "{a} {b}");
+                assert_eq!(greater(a, b), a.max(b), "{a} {b}");
+            }
+        }
+        assert_eq!(lesser(f64::NAN, 1.0), 1.0);
+        assert_eq!(greater(f64::NAN, 1.0), 1.0);
+        assert!(lesser(1.0, f64::NAN).is_nan());
+        assert!(greater(1.0, f64::NAN).is_nan());
+    }
+}
