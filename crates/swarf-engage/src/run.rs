@@ -310,6 +310,8 @@ struct Scratch {
     rf: Vec<f64>,
     filled: Vec<bool>,
     g: Vec<f64>,
+    /// Each sample's side (1: engaged) for pass 3.
+    side: Vec<u8>,
 }
 
 impl<'a> Engager<'a> {
@@ -789,42 +791,39 @@ fn sample_strip(
         // Each sample's side as a byte, so a row's 3 × 3 neighbourhoods are compared a row at
         // a time: a sample has a neighbour of the other side exactly when the OR and the AND
         // of its neighbourhood differ (rows outside the range are all "not engaged").
-        let side: Vec<u8> = g.par_iter().map(|&v| u8::from(v > 0.0)).collect();
-        let (filled, rf, side) = (&filled, &rf, &side);
+        let mut side = std::mem::take(&mut scratch.side);
+        side.resize(rows * n, 0);
+        side.par_iter_mut()
+            .zip(g.par_iter())
+            .for_each(|(s, &v)| *s = u8::from(v > 0.0));
+        let (filled, rf, sides) = (&filled, &rf, &side);
+        // Each worker's OR and AND rows, kept from row to row.
         let fixes: Vec<(usize, f64)> = (0..rows)
             .into_par_iter()
-            .flat_map_iter(|r| {
-                let row_filled = &filled[r * n..(r + 1) * n];
-                let mut found = Vec::new();
-                if !row_filled.contains(&true) {
-                    return found.into_iter();
-                }
-                let (mut any, mut all) = (vec![0u8; n], vec![1u8; n]);
-                for q in [r.wrapping_sub(1), r, r + 1] {
-                    let Some(s) = (q < rows).then(|| &side[q * n..(q + 1) * n]) else {
-                        all.fill(0);
-                        continue;
-                    };
-                    // Sample j's neighbours j − 1 and j + 1 round the circle.
-                    let (any_in, all_in) = (&mut any[1..n - 1], &mut all[1..n - 1]);
-                    for ((w, o), a) in s.windows(3).zip(any_in).zip(all_in) {
-                        *o |= w[0] | w[1] | w[2];
-                        *a &= w[0] & w[1] & w[2];
+            .map_init(
+                || (vec![0u8; n], vec![0u8; n]),
+                |(any, all), r| {
+                    let row_filled = &filled[r * n..(r + 1) * n];
+                    if !row_filled.contains(&true) {
+                        return Vec::new();
                     }
-                    for (j, (p, q)) in [(0, (n - 1, 1)), (n - 1, (n - 2, 0))] {
-                        any[j] |= s[p] | s[j] | s[q];
-                        all[j] &= s[p] & s[j] & s[q];
-                    }
-                }
-                for (j, &f) in row_filled.iter().enumerate() {
-                    if f && any[j] != all[j] {
-                        let i = r * n + j;
-                        found.push((i, lesser(depth_at(lo + r, j), rf[i])));
-                    }
-                }
-                found.into_iter()
-            })
+                    any.fill(0);
+                    all.fill(1);
+                    neighbourhoods(sides, rows, n, r, any, all);
+                    row_filled
+                        .iter()
+                        .enumerate()
+                        .filter(|&(j, &f)| f && any[j] != all[j])
+                        .map(|(j, _)| {
+                            let i = r * n + j;
+                            (i, lesser(depth_at(lo + r, j), rf[i]))
+                        })
+                        .collect()
+                },
+            )
+            .flatten_iter()
             .collect();
+        scratch.side = side;
         counted += fixes.len() as u64;
         for (i, v) in fixes {
             g[i] = v;
@@ -836,6 +835,29 @@ fn sample_strip(
         rows: (lo, hi),
         n_phi: n,
         g,
+    }
+}
+
+/// The OR (`any`) and AND (`all`, which start at 1) of the sides (`sides`: 1 engaged, one row
+/// of `n` per circle, `rows` rows) over each sample's 3 × 3 neighbourhood on row `r`: its
+/// circle and the ones either side, round each circle; rows outside the range count as not
+/// engaged. A sample has a neighbour of the other side exactly when the two differ.
+fn neighbourhoods(sides: &[u8], rows: usize, n: usize, r: usize, any: &mut [u8], all: &mut [u8]) {
+    for q in [r.wrapping_sub(1), r, r + 1] {
+        let Some(s) = (q < rows).then(|| &sides[q * n..(q + 1) * n]) else {
+            all.fill(0);
+            continue;
+        };
+        // Sample j's neighbours j − 1 and j + 1 round the circle.
+        let (any_in, all_in) = (&mut any[1..n - 1], &mut all[1..n - 1]);
+        for ((w, o), a) in s.windows(3).zip(any_in).zip(all_in) {
+            *o |= w[0] | w[1] | w[2];
+            *a &= w[0] & w[1] & w[2];
+        }
+        for (j, (p, q)) in [(0, (n - 1, 1)), (n - 1, (n - 2, 0))] {
+            any[j] |= s[p] | s[j] | s[q];
+            all[j] &= s[p] & s[j] & s[q];
+        }
     }
 }
 

@@ -315,8 +315,8 @@ impl DexelFamily {
     }
 
     fn refresh_bounds(&mut self) {
-        for (t, b) in self.bounds.iter_mut().enumerate() {
-            *b = tile_bound(&self.rays[t * TILE_RAYS..(t + 1) * TILE_RAYS], &self.bins);
+        for (b, rays) in self.bounds.iter_mut().zip(self.rays.chunks(TILE_RAYS)) {
+            *b = tile_bound(rays, &self.bins);
         }
     }
 }
@@ -814,11 +814,9 @@ impl TriDexel {
                 }
             }
             // Every bound exact again when the call returns.
-            for (ti, &n) in stale.iter().enumerate() {
-                if n {
-                    let rays = &row.rays[ti * TILE_RAYS..(ti + 1) * TILE_RAYS];
-                    row.bounds[ti] = tile_bound(rays, &bins[k]);
-                }
+            let tiles = row.bounds.iter_mut().zip(row.rays.chunks(TILE_RAYS));
+            for ((b, rays), _) in tiles.zip(&stale).filter(|(_, &s)| s) {
+                *b = tile_bound(rays, &bins[k]);
             }
             out
         };
