@@ -214,12 +214,18 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
     let n = s.n_phi;
     let dphi = dphi_deg.to_radians();
     let last = strip.len() - 1;
-    // Whether each row has an engaged sample, once (a row is also its neighbour's next).
-    let engaged: Vec<bool> = (s.rows.0..s.rows.1)
+    // Each row's first and last engaged sample, once (a row is also its neighbour's next).
+    let engaged: Vec<Option<(usize, usize)>> = (s.rows.0..s.rows.1)
         .into_par_iter()
-        .map(|k| s.row(k).is_some_and(|row| row.iter().any(|&v| v > 0.0)))
+        .map(|k| {
+            let row = s.row(k)?;
+            let first = row.iter().position(|&v| v > 0.0)?;
+            let last = row.iter().rposition(|&v| v > 0.0).unwrap_or(first);
+            Some((first, last))
+        })
         .collect();
-    let engaged_at = |k: usize| k < s.rows.1 && engaged[k - s.rows.0];
+    let span_at = |k: usize| engaged.get(k.checked_sub(s.rows.0)?).copied().flatten();
+    let engaged_at = |k: usize| span_at(k).is_some();
     // The rows in parallel, summed in order below (the same sum as row after row).
     let rows: Vec<RowResult> = (s.rows.0..s.rows.1)
         .into_par_iter()
@@ -257,7 +263,17 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
             let mut share = 0.0;
             // Whether some column is engaged on both circles (its extent is the whole band).
             let mut both = false;
-            for j in 0..n {
+            // Only cells with an engaged corner add to the share or the extent: those from
+            // the column before the first engaged sample of either circle to the last (all
+            // of them where that range reaches round the circle's seam).
+            let (a, b) = match (span_at(k), span_at(k + 1)) {
+                (Some(x), Some(y)) => (x.0.min(y.0), x.1.max(y.1)),
+                (Some(x), None) | (None, Some(x)) => x,
+                (None, None) => (0, n - 1),
+            };
+            let seam = a == 0 || b + 1 == n;
+            let cells = if seam { 0..n } else { a - 1..b + 1 };
+            for j in cells {
                 let jn = if j + 1 == n { 0 } else { j + 1 };
                 let (g00, g01) = (row[j], row[jn]);
                 let (g10, g11) = next.map_or((-1.0, -1.0), |r| (r[j], r[jn]));
