@@ -162,8 +162,9 @@ fn cell_share(g00: f64, g01: f64, g10: f64, g11: f64) -> f64 {
     s / SUB_ROWS as f64
 }
 
-/// Engaged intervals of one sampled circle (angles `j·dφ`, cyclic).
-fn circle_intervals(g: &[f64], dphi_deg: f64) -> Vec<PhiInterval> {
+/// Engaged intervals of one sampled circle (angles `j·dφ`, cyclic); `span`, when known, the
+/// first and last engaged sample.
+fn circle_intervals(g: &[f64], dphi_deg: f64, span: Option<(usize, usize)>) -> Vec<PhiInterval> {
     let n = g.len();
     let Some(first_out) = g.iter().position(|&v| v <= 0.0) else {
         return vec![PhiInterval {
@@ -174,9 +175,14 @@ fn circle_intervals(g: &[f64], dphi_deg: f64) -> Vec<PhiInterval> {
     let mut out = Vec::new();
     let mut start: Option<f64> = None;
     // Sample `j` and the one before it, walking once round from the first sample out
-    // (without a division per step).
-    let mut j = first_out;
-    for step in 1..=n {
+    // (without a division per step); where the engaged samples lie between the seam's
+    // neighbours, only the steps from the one before the first to the one after the last.
+    let steps = match span {
+        Some((first, last)) if first_out == 0 && first > 0 && last + 1 < n => first..=last + 1,
+        _ => 1..=n,
+    };
+    let mut j = first_out + steps.start() - 1;
+    for step in steps {
         let jp = j;
         j = if j + 1 == n { 0 } else { j + 1 };
         let (prev, cur) = (g[jp], g[j]);
@@ -242,7 +248,7 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
                 return out;
             }
             if strip.is_reported(k) {
-                let intervals = circle_intervals(row, dphi_deg);
+                let intervals = circle_intervals(row, dphi_deg, span_at(k));
                 if !intervals.is_empty() {
                     out.circle = Some(CircleEngagement {
                         at_mm: strip.param[k],
@@ -427,19 +433,46 @@ mod tests {
     use super::*;
 
     #[test]
+    fn a_known_span_gives_the_same_intervals() {
+        // Three engaged stretches inside the circle, one through the seam, one everywhere.
+        let rows: [Vec<f64>; 3] = [
+            (0..360)
+                .map(|j| (j as f64 * 3.0).to_radians().sin() - 0.4)
+                .enumerate()
+                .map(|(j, v)| if (3..=300).contains(&j) { v } else { -1.0 })
+                .collect(),
+            (0..360)
+                .map(|j| (j as f64).to_radians().cos() - 0.2)
+                .collect(),
+            vec![1.0; 360],
+        ];
+        for g in &rows {
+            let span = g.iter().position(|&v| v > 0.0).map(|first| {
+                let last = g.iter().rposition(|&v| v > 0.0).unwrap();
+                (first, last)
+            });
+            assert_eq!(
+                circle_intervals(g, 1.0, span),
+                circle_intervals(g, 1.0, None)
+            );
+        }
+        assert_eq!(circle_intervals(&rows[0], 1.0, None).len(), 3);
+    }
+
+    #[test]
     fn intervals_with_interpolated_ends() {
         // g = sin φ sampled every 10°: engaged (0°, 180°).
         let g: Vec<f64> = (0..36)
             .map(|j| (j as f64 * 10.0).to_radians().sin())
             .collect();
-        let iv = circle_intervals(&g, 10.0);
+        let iv = circle_intervals(&g, 10.0, None);
         assert_eq!(iv.len(), 1);
         assert!(iv[0].start_deg.abs() < 1e-9 && (iv[0].end_deg - 180.0).abs() < 1e-6);
         // Through zero: g = cos φ, engaged (270°, 450°) = (−90°, 90°).
         let g: Vec<f64> = (0..36)
             .map(|j| (j as f64 * 10.0).to_radians().cos())
             .collect();
-        let iv = circle_intervals(&g, 10.0);
+        let iv = circle_intervals(&g, 10.0, None);
         assert_eq!(iv.len(), 1);
         assert!((iv[0].start_deg - 270.0).abs() < 1e-6 && (iv[0].end_deg - 450.0).abs() < 1e-6);
         let parts: Vec<_> = iv[0].split_at_zero().collect();
