@@ -78,8 +78,8 @@ pub(crate) fn across(
 /// the two end discs and the strip between them. `None` when the line misses it.
 ///
 /// Always inlined: called, it returns its pair through memory, and the caller's 16-byte
-/// reload of two 8-byte stores stalls on store forwarding (a tenth of the finishing cut's
-/// time in the chord, by `perf annotate`).
+/// reload of two 8-byte stores stalls on store forwarding (that one instruction held a tenth
+/// of the capsule kernel's samples in `perf annotate` of the finishing bench).
 #[inline(always)]
 pub(crate) fn stadium_chord(c0: (f64, f64), c1: (f64, f64), r: f64, q: f64) -> Option<(f64, f64)> {
     let ((a0, b0), (a1, b1)) = (c0, c1);
