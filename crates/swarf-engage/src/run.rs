@@ -165,18 +165,25 @@ struct Prepared {
     side: Option<Strip>,
     bottom: Option<Strip>,
     radius: f64,
-    /// Height of the cutting part, mm.
+    /// Height above the tip of the highest sampled circle, mm.
     height: f64,
 }
 
 impl Prepared {
     fn new(cutter: &Cutter, opts: &EngageOptions) -> Self {
+        let (side, bottom) = (
+            Strip::side(cutter, opts.dz_mm),
+            Strip::bottom(cutter, opts.dz_mm),
+        );
+        let circles = || side.iter().chain(&bottom).flat_map(|s| &s.circles);
         Self {
             shape: ToolShape::new(cutter),
-            side: Strip::side(cutter, opts.dz_mm),
-            bottom: Strip::bottom(cutter, opts.dz_mm),
-            radius: 0.5 * cutter.max_diameter(),
-            height: cutter.apt_params().h,
+            radius: circles()
+                .map(|c| c.rho)
+                .fold(0.5 * cutter.max_diameter(), f64::max),
+            height: circles().map(|c| c.z).fold(cutter.apt_params().h, f64::max),
+            side,
+            bottom,
         }
     }
 }
@@ -529,8 +536,13 @@ impl<'a> Engager<'a> {
         // The highest material over the cutter's footprint (conservative, from tile bounds):
         // circles above it cannot be engaged.
         let probe = MaterialProbe::new(self.stock);
-        let reach = tool.radius + tool.height;
-        let bbox = Aabb::new(pose.tip - Vec3::splat(reach), pose.tip + Vec3::splat(reach));
+        // The box of the cylinder that holds every sampled circle: the tip's and the top's
+        // points grown by the radius.
+        let top = pose.tip + z * tool.height;
+        let bbox = Aabb::new(
+            pose.tip.min(top) - Vec3::splat(tool.radius),
+            pose.tip.max(top) + Vec3::splat(tool.radius),
+        );
         let Some(material) = self.stock.material_range(2, &bbox) else {
             return Ok(e);
         };
