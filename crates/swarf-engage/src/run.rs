@@ -175,13 +175,16 @@ impl Prepared {
             Strip::side(cutter, opts.dz_mm),
             Strip::bottom(cutter, opts.dz_mm),
         );
-        let circles = || side.iter().chain(&bottom).flat_map(|s| &s.circles);
+        let top = side
+            .iter()
+            .chain(&bottom)
+            .flat_map(|s| &s.circles)
+            .map(|c| c.z)
+            .fold(cutter.apt_params().h, f64::max);
         Self {
             shape: ToolShape::new(cutter),
-            radius: circles()
-                .map(|c| c.rho)
-                .fold(0.5 * cutter.max_diameter(), f64::max),
-            height: circles().map(|c| c.z).fold(cutter.apt_params().h, f64::max),
+            radius: 0.5 * cutter.max_diameter(),
+            height: top,
             side,
             bottom,
         }
