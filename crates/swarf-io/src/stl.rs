@@ -1,5 +1,8 @@
-//! STL, binary and ASCII. Binary is written with `stl_io` (the de-facto standard every viewer
-//! and slicer opens); the reader is swarf's own so that it can tell binary from ASCII robustly
+//! STL, binary and ASCII. The binary writer is swarf's own: a binary STL is an 80-byte header,
+//! a `u32` count and 50 bytes per triangle (normal and corners as little-endian `f32`, a zero
+//! `u16`), which every viewer and slicer opens; swarf encodes it in blocks in parallel (on one
+//! thread a 5-million-triangle envelope's STL took 0.4 s to encode, the larger part of its
+//! output time). The reader is swarf's own too, so that it can tell binary from ASCII robustly
 //! (binary files whose 80-byte header starts with `solid` exist: a file is binary exactly when
 //! its size is `84 + 50 × count` for the count in its header), report what it found where, and
 //! never panic on garbage. Triangles read are welded on identical positions so that
@@ -9,25 +12,41 @@ use crate::atomic::write_atomic;
 use crate::error::IoError;
 use crate::mesh::TriMesh;
 use crate::tolerance::MAX_STL_TRIANGLES;
+use rayon::prelude::*;
 use std::io::Write;
 use std::path::Path;
 use swarf_geom::math::Vec3;
 
-fn stl_triangles(mesh: &TriMesh) -> impl ExactSizeIterator<Item = stl_io::Triangle> + '_ {
-    (0..mesh.triangles.len()).map(move |t| {
-        let [a, b, c] = mesh.corners(t);
-        let n = mesh.triangle_normal(t);
-        let v = |p: Vec3| stl_io::Vertex::new([p.x as f32, p.y as f32, p.z as f32]);
-        stl_io::Triangle {
-            normal: stl_io::Normal::new([n.x as f32, n.y as f32, n.z as f32]),
-            vertices: [v(a), v(b), v(c)],
-        }
-    })
+/// Bytes of one binary STL triangle record.
+const RECORD: usize = 50;
+
+/// Triangles encoded per block of the binary writer (1.6 MB of output): blocks are encoded in
+/// parallel, a few at a time, and written in order.
+const BLOCK: usize = 1 << 15;
+
+/// Triangle `t` as STL stores it: its unit normal and its three corners, in `f32`.
+fn stl_triangle(mesh: &TriMesh, t: usize) -> [[f32; 3]; 4] {
+    let [a, b, c] = mesh.corners(t);
+    // `TriMesh::triangle_normal`, from the corners already read.
+    let n = (b - a).cross(c - a).normalize_or_zero();
+    [n, a, b, c].map(|p: Vec3| [p.x as f32, p.y as f32, p.z as f32])
 }
 
-/// Writes `mesh` as binary STL (single precision, facet normals from the vertex order),
-/// atomically.
-pub fn write_stl(path: &Path, mesh: &TriMesh) -> Result<(), IoError> {
+/// Replaces `out` with the binary records of `triangles`.
+fn encode_binary(mesh: &TriMesh, triangles: std::ops::Range<usize>, out: &mut Vec<u8>) {
+    out.clear();
+    out.reserve(RECORD * triangles.len());
+    for t in triangles {
+        // The record assembled whole, then appended once (the attribute stays zero).
+        let mut record = [0u8; RECORD];
+        for (k, c) in stl_triangle(mesh, t).as_flattened().iter().enumerate() {
+            record[4 * k..4 * k + 4].copy_from_slice(&c.to_le_bytes());
+        }
+        out.extend_from_slice(&record);
+    }
+}
+
+fn check_binary(mesh: &TriMesh) -> Result<(), IoError> {
     mesh.validate()?;
     if mesh.triangles.len() > u32::MAX as usize {
         return Err(IoError::InvalidMesh(format!(
@@ -35,7 +54,14 @@ pub fn write_stl(path: &Path, mesh: &TriMesh) -> Result<(), IoError> {
             mesh.triangles.len()
         )));
     }
-    write_atomic(path, |w| stl_io::write_stl(w, stl_triangles(mesh)))
+    Ok(())
+}
+
+/// Writes `mesh` as binary STL (single precision, facet normals from the vertex order),
+/// atomically.
+pub fn write_stl(path: &Path, mesh: &TriMesh) -> Result<(), IoError> {
+    check_binary(mesh)?;
+    write_atomic(path, |w| encode_stl(w, mesh))
 }
 
 /// Writes `mesh` as binary STL to `w` (what [`write_stl`] puts in its file); for a file of an
@@ -44,15 +70,31 @@ pub fn write_stl(path: &Path, mesh: &TriMesh) -> Result<(), IoError> {
 /// # Errors
 /// An invalid mesh (as [`write_stl`]) as [`std::io::ErrorKind::InvalidData`], or the writer's.
 pub fn write_stl_to<W: std::io::Write>(w: &mut W, mesh: &TriMesh) -> std::io::Result<()> {
-    mesh.validate()
+    check_binary(mesh)
         .map_err(|e| std::io::Error::new(std::io::ErrorKind::InvalidData, e.to_string()))?;
-    if mesh.triangles.len() > u32::MAX as usize {
-        return Err(std::io::Error::new(
-            std::io::ErrorKind::InvalidData,
-            format!("{} triangles do not fit a binary STL", mesh.triangles.len()),
-        ));
+    encode_stl(w, mesh)
+}
+
+/// The binary STL of a checked mesh: a zero header, the count, then the records, encoded
+/// `2 × threads` blocks at a time.
+fn encode_stl<W: std::io::Write>(w: &mut W, mesh: &TriMesh) -> std::io::Result<()> {
+    let count = mesh.triangles.len();
+    w.write_all(&[0u8; 80])?;
+    w.write_all(&(count as u32).to_le_bytes())?;
+    let mut buffers: Vec<Vec<u8>> = vec![Vec::new(); 2 * rayon::current_num_threads()];
+    let mut first = 0;
+    while first < count {
+        let batch = buffers.len() * BLOCK;
+        buffers.par_iter_mut().enumerate().for_each(|(i, buf)| {
+            let start = (first + i * BLOCK).min(count);
+            encode_binary(mesh, start..(start + BLOCK).min(count), buf);
+        });
+        for buf in &buffers {
+            w.write_all(buf)?;
+        }
+        first += batch;
     }
-    stl_io::write_stl(w, stl_triangles(mesh))
+    Ok(())
 }
 
 /// Writes `mesh` as ASCII STL (`solid name` … `endsolid name`), atomically. Coordinates are
@@ -62,11 +104,11 @@ pub fn write_stl_ascii(path: &Path, mesh: &TriMesh, name: &str) -> Result<(), Io
     let name: String = name.chars().filter(|c| !c.is_whitespace()).collect();
     write_atomic(path, |w| {
         writeln!(w, "solid {name}")?;
-        for t in stl_triangles(mesh) {
-            let n = t.normal;
+        for t in 0..mesh.triangles.len() {
+            let [n, corners @ ..] = stl_triangle(mesh, t);
             writeln!(w, "  facet normal {:e} {:e} {:e}", n[0], n[1], n[2])?;
             writeln!(w, "    outer loop")?;
-            for v in &t.vertices {
+            for v in &corners {
                 writeln!(w, "      vertex {:e} {:e} {:e}", v[0], v[1], v[2])?;
             }
             writeln!(w, "    endloop")?;
@@ -276,5 +318,48 @@ mod tests {
         let ok = b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
         let m = parse_stl(ok, p).unwrap();
         assert_eq!((m.vertices.len(), m.triangles.len()), (3, 1));
+    }
+
+    #[test]
+    fn binary_records_over_several_blocks_decode_to_the_mesh() {
+        // More triangles than one batch of blocks holds: every record at its place, decoded
+        // field by field (header, count, normal, corners, attribute), on one thread and three.
+        let n = 5 * BLOCK + 123;
+        let mesh = TriMesh::from_parts(
+            (0..n + 2)
+                .map(|i| Vec3::new(i as f64 * 0.25, (i % 7) as f64, 1.0 / (1.0 + i as f64)))
+                .collect(),
+            (0..n as u32).map(|i| [i, i + 1, i + 2]).collect(),
+        );
+        let encode = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut bytes = Vec::new();
+            pool.install(|| write_stl_to(&mut bytes, &mesh)).unwrap();
+            bytes
+        };
+        let bytes = encode(1);
+        assert_eq!(bytes, encode(3));
+        assert_eq!(bytes.len(), 84 + RECORD * n);
+        assert!(bytes[..80].iter().all(|&b| b == 0));
+        assert_eq!(
+            u32::from_le_bytes(bytes[80..84].try_into().unwrap()),
+            n as u32
+        );
+        let f = |at: usize| f32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
+        for t in [0, 1, BLOCK - 1, BLOCK, 4 * BLOCK + 7, n - 1] {
+            let at = 84 + RECORD * t;
+            let normal = mesh.triangle_normal(t);
+            let corners = mesh.corners(t);
+            for k in 0..3 {
+                assert_eq!(f(at + 4 * k), normal[k] as f32, "triangle {t}");
+                for (c, p) in corners.iter().enumerate() {
+                    assert_eq!(f(at + 12 + 12 * c + 4 * k), p[k] as f32, "triangle {t}");
+                }
+            }
+            assert_eq!(&bytes[at + 48..at + 50], &[0, 0]);
+        }
     }
 }
