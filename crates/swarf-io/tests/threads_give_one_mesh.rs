@@ -43,3 +43,43 @@ fn the_mesh_does_not_depend_on_the_threads() {
         assert_eq!(st, stats, "{threads} threads");
     }
 }
+
+#[test]
+fn vertices_are_projected_with_the_whole_mesh_normals() {
+    // The extraction projects each slab's vertices as soon as the triangles around them are
+    // made, with normals summed over those triangles alone: the same vertices, to the bit, as
+    // projecting the finished mesh with `TriMesh::vertex_normals`, in pools of 1, 2 and 3
+    // threads (batches ending at different slabs). Tall enough for many batches.
+    let lattice = Lattice::new(Vec3::new(-2.0, -2.0, -1.0), Vec3::splat(0.1), [41, 41, 150]);
+    let sdf = |p: Vec3| {
+        (0..5)
+            .map(|i| {
+                let c = Vec3::new(0.3 * i as f64 - 0.6, 0.1 * i as f64, 1.0 + 2.6 * i as f64);
+                sphere_sdf(c, 1.4)(p)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let grid = FnGrid::new(lattice, sdf);
+    let options = ContourOptions::default();
+    // A move along the normal that depends on the position too, so that a normal summed over
+    // other triangles or a vertex moved too early would show.
+    let nudge = |p: Vec3, n: Vec3| Some(p + n * (1e-3 * (1.0 + p.z.sin())));
+    let (plain, _) = dual_contour_with_stats(&grid, &options);
+    let normals = plain.vertex_normals();
+    let expected: Vec<Vec3> = plain
+        .vertices
+        .iter()
+        .zip(&normals)
+        .map(|(&p, &n)| nudge(p, n).unwrap())
+        .collect();
+    for threads in [1, 2, 3] {
+        let (m, stats) = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()
+            .unwrap()
+            .install(|| swarf_io::dual_contour_projected(&grid, &options, nudge));
+        assert_eq!(m.triangles, plain.triangles, "{threads} threads");
+        assert_eq!(m.vertices, expected, "{threads} threads");
+        assert_eq!(stats.projected_vertices, expected.len(), "{threads} threads");
+    }
+}

@@ -6,12 +6,20 @@
 //! vertex per cell patch; phase 2 emits one quad per sign-changing edge, looking up the four
 //! vertices around it. Levels and slabs run in parallel, in batches that bound the edges held
 //! at once; scratch buffers are reused per worker, nothing is allocated per cell.
+//!
+//! The mesh is streamed: each batch's vertices join the mesh's array as its slabs are made,
+//! a slab's triangles are made as soon as the slab above it exists (its quads reach into it)
+//! and the slab is then dropped, and a projection onto an exact surface moves a slab's
+//! vertices once no triangle still to come is split or given normals from their unprojected
+//! positions. So besides the mesh itself only the line store and a batch of slabs are held —
+//! not every slab's cells and edges until the end (for a 5-million-triangle envelope: peak
+//! RSS 320–345 → 259–265 MB).
 
 use super::lines::{boundary_in, in_runs, runs, xor_runs, Run, Store};
 use super::normal::estimate;
 use super::qef::Qef;
 use super::table::{cases, joined_faces, NONE};
-use super::{ContourOptions, ContourStats, HermiteGrid, QuadSplit};
+use super::{ContourOptions, ContourStats, HermiteGrid, Projection, QuadSplit};
 use crate::mesh::TriMesh;
 use rayon::prelude::*;
 use swarf_geom::math::Vec3;
@@ -50,6 +58,8 @@ struct SlabOut {
     /// the end: a vertex is looked up in its row only.
     rows: Vec<u32>,
     vertices: Vec<Vec3>,
+    /// Index in the mesh of the slab's first vertex (set when its vertices join the mesh).
+    base: u32,
     /// Edges whose quads this slab emits: Z edges from its low level, X and Y edges on its top level.
     owned: Vec<Edge>,
     stats: ContourStats,
@@ -410,6 +420,7 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
             cells,
             rows,
             vertices,
+            base: 0,
             owned,
             stats,
         }
@@ -433,14 +444,10 @@ fn slot_of(dk: i32) -> usize {
     }
 }
 
-/// Index of slab `k` (cells with z index `k ∈ −1..n2`) in the slab list.
-fn slab_index(k: i32) -> usize {
-    (k + 1) as usize
-}
-
-fn vertex_of(slabs: &[SlabOut], base: &[u32], stride: u32, k: i32, key: u32, local: usize) -> u32 {
-    let s = slab_index(k);
-    let slab = &slabs[s];
+/// Global index of the vertex of patch `local`'s edge in cell `key` of slab `k`; `window`
+/// holds the slabs from `first_k` on.
+fn vertex_of(window: &[SlabOut], first_k: i32, stride: u32, k: i32, key: u32, local: usize) -> u32 {
+    let slab = &window[(k - first_k) as usize];
     let row = (key / stride) as usize;
     let (a, b) = (slab.rows[row] as usize, slab.rows[row + 1] as usize);
     let c = a + slab.cells[a..b].partition_point(|c| c.key < key);
@@ -448,7 +455,7 @@ fn vertex_of(slabs: &[SlabOut], base: &[u32], stride: u32, k: i32, key: u32, loc
     debug_assert_eq!(rec.key, key);
     let p = cases()[rec.case as usize].patch[local];
     debug_assert!(p != NONE);
-    base[s] + rec.first + p as u32
+    slab.base + rec.first + p as u32
 }
 
 /// The two triangles of quad `q`.
@@ -471,10 +478,18 @@ fn split_quad(q: [u32; 4], v: &[Vec3], mode: QuadSplit) -> [[u32; 3]; 2] {
     }
 }
 
+/// The mesh of the lines in `store`, slab by slab (see the module docs), with every vertex
+/// moved by `project` (given its unit normal, area-weighted over its triangles) when there is
+/// one. The mesh's arrays are filled as the slabs come: a slab's vertices join the mesh as it
+/// is made, its triangles once the slab above it is made (their quads reach into it), and its
+/// vertices are projected once the slab above that has its triangles (the last to use their
+/// unprojected positions); each slab is dropped as soon as its triangles are made, so only a
+/// batch of slabs is held at once, not all of them.
 pub(crate) fn extract<G: HermiteGrid + ?Sized>(
     store: Store,
     grid: &G,
     opt: &ContourOptions,
+    project: Option<Projection<'_>>,
 ) -> (TriMesh, ContourStats) {
     let n = store.lattice.n.map(|x| x as i32);
     let ctx = Ctx {
@@ -483,12 +498,26 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
         opt,
         n,
     };
+    let mut mesh = Stream {
+        vertices: Vec::new(),
+        triangles: Vec::new(),
+        tri_start: Vec::with_capacity(n[2] as usize + 2),
+        vert_start: Vec::with_capacity(n[2] as usize + 2),
+        normals: Vec::new(),
+        with_normals: 0,
+        projected_slabs: 0,
+        projected: 0,
+        stride: (n[0] + 1) as u32,
+        n0: n[0],
+    };
     // Slabs in batches: the levels a batch needs first (its bottom level kept from the batch
     // before), then its slabs, both in parallel; only a batch's levels are held at once.
     let batch = (LEVELS_PER_THREAD * rayon::current_num_threads()) as i32;
-    let mut slabs: Vec<SlabOut> = Vec::with_capacity(n[2] as usize + 1);
-    let mut level_stats = ContourStats::default();
+    let mut stats = ContourStats::default();
     let mut bottom: Option<LevelEdges> = None;
+    // Slabs made whose triangles are not (the last of the batch before), from slab `first_k`.
+    let mut window: Vec<SlabOut> = Vec::new();
+    let mut first_k = -1;
     let mut k0 = -1;
     while k0 < n[2] {
         let k1 = (k0 + batch).min(n[2]);
@@ -498,86 +527,207 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
             .map_init(Scratch::default, |s, lev| ctx.level_edges(lev, s))
             .collect();
         for l in &fresh {
-            level_stats = level_stats.add(l.stats);
+            stats = stats.add(l.stats);
         }
         let levels: Vec<LevelEdges> = bottom.take().into_iter().chain(fresh).collect();
-        slabs.par_extend((k0..k1).into_par_iter().map_init(Scratch::default, |s, k| {
-            let at = (k - k0) as usize;
-            ctx.phase1(k, s, &levels[at], &levels[at + 1])
-        }));
+        let made: Vec<SlabOut> = (k0..k1)
+            .into_par_iter()
+            .map_init(Scratch::default, |s, k| {
+                let at = (k - k0) as usize;
+                ctx.phase1(k, s, &levels[at], &levels[at + 1])
+            })
+            .collect();
         bottom = levels.into_iter().last();
+        for mut slab in made {
+            stats = stats.add(slab.stats);
+            slab.base = mesh.vertices.len() as u32;
+            mesh.vert_start.push(mesh.vertices.len());
+            mesh.vertices.append(&mut slab.vertices);
+            slab.vertices = Vec::new();
+            window.push(slab);
+        }
+        // A slab's quads reach into the slab above it: all but the last slab made have them
+        // now, and the last too once it is the top one.
+        let ready = if k1 == n[2] {
+            window.len()
+        } else {
+            window.len() - 1
+        };
+        mesh.triangles_of(&window[..], first_k, ready, opt.split);
+        if let Some(project) = project {
+            mesh.normals_and_projection(k1 == n[2], project);
+        }
+        window.drain(..ready);
+        first_k += ready as i32;
         k0 = k1;
     }
-    // The triangles need only the slabs: the lines go before the mesh's arrays are made.
-    let (lines, spans) = (store.line_count(), store.span_count());
+    stats.lines = store.line_count();
+    stats.spans = store.span_count();
+    stats.triangles = mesh.triangles.len();
+    stats.projected_vertices = mesh.projected;
     drop(store);
-    let mut base = Vec::with_capacity(slabs.len() + 1);
-    base.push(0u32);
-    for s in &slabs {
-        base.push(base.last().copied().unwrap_or(0) + s.vertices.len() as u32);
-    }
-    // The slabs' vertices moved into one array, each slab's freed as it is copied (the peak
-    // of a large mesh is here).
-    let mut vertices: Vec<Vec3> = Vec::with_capacity(base[slabs.len()] as usize);
-    for s in &mut slabs {
-        vertices.append(&mut s.vertices);
-        s.vertices = Vec::new();
-    }
-    let key = |ci: i32, cj: i32| ((ci + 1) + (n[0] + 1) * (cj + 1)) as u32;
-    let stride = (n[0] + 1) as u32;
-    const AROUND: [(i32, i32); 4] = [(-1, -1), (0, -1), (0, 0), (-1, 0)];
-    // Two triangles per owned edge, written in place: slab by slab into its own stretch of
-    // the one array.
-    let mut triangles: Vec<[u32; 3]> =
-        vec![[0; 3]; 2 * slabs.iter().map(|s| s.owned.len()).sum::<usize>()];
-    let mut stretches: Vec<(i32, &mut [[u32; 3]])> = Vec::with_capacity(slabs.len());
-    let mut rest = &mut triangles[..];
-    for k in -1..n[2] {
-        let (mine, after) = rest.split_at_mut(2 * slabs[slab_index(k)].owned.len());
-        stretches.push((k, mine));
-        rest = after;
-    }
-    stretches.into_par_iter().for_each(|(k, out)| {
-        let owned = &slabs[slab_index(k)].owned;
-        for (&e, pair) in owned.iter().zip(out.chunks_exact_mut(2)) {
-            let q = AROUND.map(|(db, dc)| match e.axis {
-                0 => vertex_of(
-                    &slabs,
-                    &base,
-                    stride,
-                    e.k + dc,
-                    key(e.i, e.j + db),
-                    (-db - 2 * dc) as usize,
-                ),
-                1 => vertex_of(
-                    &slabs,
-                    &base,
-                    stride,
-                    e.k + db,
-                    key(e.i + dc, e.j),
-                    (4 - dc - 2 * db) as usize,
-                ),
-                _ => vertex_of(
-                    &slabs,
-                    &base,
-                    stride,
-                    k,
-                    key(e.i + db, e.j + dc),
-                    (8 - db - 2 * dc) as usize,
-                ),
-            });
-            let q = if e.inside_low {
-                q
-            } else {
-                [q[3], q[2], q[1], q[0]]
-            };
-            pair.copy_from_slice(&split_quad(q, &vertices, opt.split));
-        }
-    });
-    let mut stats = slabs.iter().fold(level_stats, |a, s| a.add(s.stats));
-    drop(slabs);
-    stats.triangles = triangles.len();
-    stats.lines = lines;
-    stats.spans = spans;
+    let Stream {
+        mut vertices,
+        mut triangles,
+        ..
+    } = mesh;
+    vertices.shrink_to_fit();
+    triangles.shrink_to_fit();
     (TriMesh::from_parts(vertices, triangles), stats)
+}
+
+/// The mesh as the slabs fill it.
+struct Stream {
+    vertices: Vec<Vec3>,
+    triangles: Vec<[u32; 3]>,
+    /// Where each slab's triangles start in `triangles` (slab order; one entry per slab whose
+    /// triangles are made).
+    tri_start: Vec<usize>,
+    /// Where each slab's vertices start in `vertices` (one entry per slab made).
+    vert_start: Vec<usize>,
+    /// Unit normals of the vertices of the slabs from `projected_slabs` to `with_normals`.
+    normals: Vec<Vec3>,
+    with_normals: usize,
+    /// Slabs whose vertices are projected, and the vertices moved.
+    projected_slabs: usize,
+    projected: usize,
+    stride: u32,
+    n0: i32,
+}
+
+impl Stream {
+    /// Appends the triangles of the first `ready` slabs of `window` (which starts at slab
+    /// `first_k` and holds the slab above each of them), each slab's in parallel into its own
+    /// stretch.
+    fn triangles_of(&mut self, window: &[SlabOut], first_k: i32, ready: usize, split: QuadSplit) {
+        let (n0, stride) = (self.n0, self.stride);
+        let key = |ci: i32, cj: i32| ((ci + 1) + (n0 + 1) * (cj + 1)) as u32;
+        const AROUND: [(i32, i32); 4] = [(-1, -1), (0, -1), (0, 0), (-1, 0)];
+        let start = self.triangles.len();
+        let added: usize = window[..ready].iter().map(|s| 2 * s.owned.len()).sum();
+        self.triangles.resize(start + added, [0; 3]);
+        let mut stretches: Vec<(i32, &mut [[u32; 3]])> = Vec::with_capacity(ready);
+        let mut rest = &mut self.triangles[start..];
+        for (at, slab) in window[..ready].iter().enumerate() {
+            self.tri_start.push(start + added - rest.len());
+            let (mine, after) = rest.split_at_mut(2 * slab.owned.len());
+            stretches.push((first_k + at as i32, mine));
+            rest = after;
+        }
+        let vertices = &self.vertices;
+        stretches.into_par_iter().for_each(|(k, out)| {
+            let owned = &window[(k - first_k) as usize].owned;
+            for (&e, pair) in owned.iter().zip(out.chunks_exact_mut(2)) {
+                let q = AROUND.map(|(db, dc)| match e.axis {
+                    0 => vertex_of(
+                        window,
+                        first_k,
+                        stride,
+                        e.k + dc,
+                        key(e.i, e.j + db),
+                        (-db - 2 * dc) as usize,
+                    ),
+                    1 => vertex_of(
+                        window,
+                        first_k,
+                        stride,
+                        e.k + db,
+                        key(e.i + dc, e.j),
+                        (4 - dc - 2 * db) as usize,
+                    ),
+                    _ => vertex_of(
+                        window,
+                        first_k,
+                        stride,
+                        k,
+                        key(e.i + db, e.j + dc),
+                        (8 - db - 2 * dc) as usize,
+                    ),
+                });
+                let q = if e.inside_low {
+                    q
+                } else {
+                    [q[3], q[2], q[1], q[0]]
+                };
+                pair.copy_from_slice(&split_quad(q, vertices, split));
+            }
+        });
+    }
+
+    /// Normals of the vertices of the slabs that have their triangles now, then the
+    /// projection of those vertices that no triangle still to come is made from (all of them
+    /// when `all`). A slab's vertices are used by its own triangles and the slab below's:
+    /// their normals sum those triangles' area vectors in mesh order, as
+    /// `TriMesh::vertex_normals` does with every vertex still where the contouring put it —
+    /// so a slab is projected only once the slab above it has its normals (its triangles
+    /// reach into it).
+    fn normals_and_projection(&mut self, all: bool, project: Projection<'_>) {
+        let with_triangles = self.tri_start.len();
+        let slab_vertices = |st: &Stream, s: usize| {
+            st.vert_start[s]
+                ..st.vert_start
+                    .get(s + 1)
+                    .copied()
+                    .unwrap_or(st.vertices.len())
+        };
+        let slab_triangles = |st: &Stream, s: usize| {
+            st.tri_start[s]
+                ..st.tri_start
+                    .get(s + 1)
+                    .copied()
+                    .unwrap_or(st.triangles.len())
+        };
+        let fresh: Vec<Vec<Vec3>> = (self.with_normals..with_triangles)
+            .into_par_iter()
+            .map(|s| {
+                let range = slab_vertices(self, s);
+                let mut sum = vec![Vec3::ZERO; range.len()];
+                let below = if s > 0 {
+                    slab_triangles(self, s - 1).start
+                } else {
+                    0
+                };
+                for t in &self.triangles[below..slab_triangles(self, s).end] {
+                    let [a, b, c] = t.map(|i| self.vertices[i as usize]);
+                    let w = (b - a).cross(c - a);
+                    for &i in t {
+                        if range.contains(&(i as usize)) {
+                            sum[i as usize - range.start] += w;
+                        }
+                    }
+                }
+                for v in &mut sum {
+                    *v = v.normalize_or_zero();
+                }
+                sum
+            })
+            .collect();
+        self.normals.extend(fresh.into_iter().flatten());
+        self.with_normals = with_triangles;
+        // Every slab with normals but the last, whose positions the next slab's normals use.
+        let upto = if all {
+            with_triangles
+        } else {
+            with_triangles.saturating_sub(1)
+        };
+        if upto <= self.projected_slabs {
+            return;
+        }
+        let from = self.vert_start[self.projected_slabs];
+        let to = slab_vertices(self, upto - 1).end;
+        let normals = self.normals.drain(..to - from);
+        self.projected += self.vertices[from..to]
+            .par_iter_mut()
+            .zip(normals.as_slice().par_iter())
+            .map(|(v, &n)| match project(*v, n) {
+                Some(p) if n != Vec3::ZERO => {
+                    *v = p;
+                    1
+                }
+                _ => 0,
+            })
+            .sum::<usize>();
+        drop(normals);
+        self.projected_slabs = upto;
+    }
 }

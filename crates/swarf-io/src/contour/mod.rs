@@ -66,7 +66,6 @@ use crate::mesh::TriMesh;
 use crate::tolerance::{
     DEFAULT_CROSSING_SLACK, DEFAULT_EIGEN_THRESHOLD, DEFAULT_MAX_SLOPE, DEFAULT_WEIGHT_POWER,
 };
-use rayon::prelude::*;
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 
@@ -365,7 +364,7 @@ impl HermiteGrid for LinesRead {
     fn line_spans(&self, _axis: usize, _u: usize, _v: usize, _out: &mut Vec<Span>) {}
 }
 
-type Projection<'a> = &'a (dyn Fn(Vec3, Vec3) -> Option<Vec3> + Sync);
+pub(crate) type Projection<'a> = &'a (dyn Fn(Vec3, Vec3) -> Option<Vec3> + Sync);
 
 fn contour<G: HermiteGrid + ?Sized>(
     grid: &G,
@@ -386,22 +385,7 @@ fn finish<G: HermiteGrid + ?Sized>(
     options: &ContourOptions,
     project: Option<Projection<'_>>,
 ) -> (TriMesh, ContourStats) {
-    let (mut mesh, mut stats) = extract::extract(store, grid, options);
-    if let Some(project) = project {
-        let normals = mesh.vertex_normals();
-        stats.projected_vertices = mesh
-            .vertices
-            .par_iter_mut()
-            .zip(normals.par_iter())
-            .map(|(v, &n)| match project(*v, n) {
-                Some(p) if n != Vec3::ZERO => {
-                    *v = p;
-                    1
-                }
-                _ => 0,
-            })
-            .sum();
-    }
+    let (mut mesh, mut stats) = extract::extract(store, grid, options, project);
     // Cells whose vertices are clamped to a shared corner or edge can place two vertices at one
     // point, or three on a line: what a file stores must stay a 2-manifold without them.
     mesh.repair_degenerate_f32();
