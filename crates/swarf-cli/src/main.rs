@@ -3,6 +3,7 @@
 //! Exit status: 0 on success, 1 on bad input (the message names file, line and column), 2 on a
 //! usage error (clap's own exit code).
 
+mod alloc;
 mod cli;
 mod commands;
 mod output;

@@ -204,6 +204,11 @@ impl TriMesh {
     /// Open, non-manifold and misoriented edges (by vertex index: weld first if the mesh
     /// repeats positions).
     pub fn edge_report(&self) -> EdgeReport {
+        self.edge_report_in_passes(EDGE_USES_PER_PASS)
+    }
+
+    /// [`TriMesh::edge_report`] filing at most `per_pass` edge uses at once.
+    fn edge_report_in_passes(&self, per_pass: usize) -> EdgeReport {
         // Every edge filed under its smaller vertex (compressed rows, two counting passes: no
         // sort of the 3·T edge uses, whose keys took as much memory as the mesh): the larger
         // vertex, and one bit for the direction the triangle runs it in.
@@ -218,31 +223,43 @@ impl TriMesh {
         for i in 0..n {
             start[i + 1] += start[i];
         }
-        let uses = start[n] as usize;
-        let mut fill = start.clone();
-        let mut other = vec![0u32; uses];
-        let mut backward = vec![0u64; uses.div_ceil(64)];
-        for t in &self.triangles {
-            for (a, b) in ends(t) {
-                let slot = &mut fill[a.min(b) as usize];
-                let at = *slot as usize;
-                *slot += 1;
-                other[at] = a.max(b);
-                backward[at / 64] |= u64::from(a > b) << (at % 64);
-            }
-        }
-        drop(fill);
-        // Vertices in chunks, each chunk's edges in (smaller, larger) order: the examples come
-        // in the order of the edges' vertex indices.
+        // The uses are filed in passes over ranges of smaller vertices holding at most
+        // `per_pass` uses each (one pass for most meshes): a 5-million-triangle
+        // mesh's 15.5 M uses held at once were 60 MB on top of the mesh, the peak of a whole
+        // `swarf envelope` run; each further pass reads the triangles once more.
         let chunk = (n / (4 * rayon::current_num_threads()).max(1)).clamp(1024, 1 << 16);
-        let parts: Vec<(EdgeReport, Vec<BadEdge>)> = (0..n.div_ceil(chunk))
-            .into_par_iter()
-            .map(|c| {
+        let mut parts: Vec<(EdgeReport, Vec<BadEdge>)> = Vec::new();
+        let mut v0 = 0;
+        while v0 < n {
+            let limit = start[v0] as usize + per_pass;
+            let v1 = (start.partition_point(|&s| s as usize <= limit) - 1).clamp(v0 + 1, n);
+            let base = start[v0] as usize;
+            let uses = start[v1] as usize - base;
+            let mut fill: Vec<u32> = start[v0..v1].to_vec();
+            let mut other = vec![0u32; uses];
+            let mut backward = vec![0u64; uses.div_ceil(64)];
+            for t in &self.triangles {
+                for (a, b) in ends(t) {
+                    let lo = a.min(b) as usize;
+                    if !(v0..v1).contains(&lo) {
+                        continue;
+                    }
+                    let slot = &mut fill[lo - v0];
+                    let at = *slot as usize - base;
+                    *slot += 1;
+                    other[at] = a.max(b);
+                    backward[at / 64] |= u64::from(a > b) << (at % 64);
+                }
+            }
+            drop(fill);
+            // Vertices in chunks, each chunk's edges in (smaller, larger) order: the examples
+            // come in the order of the edges' vertex indices.
+            parts.par_extend((0..(v1 - v0).div_ceil(chunk)).into_par_iter().map(|c| {
                 let mut rep = EdgeReport::default();
                 let mut misoriented: Vec<BadEdge> = Vec::new();
                 let mut local: Vec<u64> = Vec::new();
-                for lo in c * chunk..((c + 1) * chunk).min(n) {
-                    let (s, e) = (start[lo] as usize, start[lo + 1] as usize);
+                for lo in v0 + c * chunk..(v0 + (c + 1) * chunk).min(v1) {
+                    let (s, e) = (start[lo] as usize - base, start[lo + 1] as usize - base);
                     local.clear();
                     local.extend((s..e).map(|at| {
                         (u64::from(other[at]) << 1) | ((backward[at / 64] >> (at % 64)) & 1)
@@ -278,8 +295,9 @@ impl TriMesh {
                     }
                 }
                 (rep, misoriented)
-            })
-            .collect();
+            }));
+            v0 = v1;
+        }
         let mut rep = EdgeReport::default();
         let mut misoriented: Vec<BadEdge> = Vec::new();
         for (r, m) in parts {
@@ -683,6 +701,9 @@ impl TriMesh {
     }
 }
 
+/// Edge uses filed at once by [`TriMesh::edge_report`] (16 MB of them).
+const EDGE_USES_PER_PASS: usize = 1 << 22;
+
 /// Triangles per chunk of the parallel sums and scans over a mesh's triangles (fixed, so that
 /// a sum is the same on any number of threads).
 const SUM_CHUNK: usize = 1 << 14;
@@ -821,6 +842,46 @@ mod tests {
             let b = three.install(|| (m.vertex_normals(), m.volume()));
             assert_eq!(a.0, b.0);
             assert_eq!(a.1.to_bits(), b.1.to_bits());
+        }
+    }
+
+    #[test]
+    fn edge_reports_in_several_passes_are_the_same() {
+        // A contoured sphere with defects of every kind (a triangle dropped: open edges; one
+        // repeated: non-manifold; some turned: misoriented), filed in one pass and in passes of
+        // a few hundred uses (a vertex with more uses than a pass gets a pass of its own).
+        use crate::contour::{dual_contour, ContourOptions, FnGrid, Lattice};
+        let lattice = Lattice::new(Vec3::splat(-1.2), Vec3::splat(0.1), [25, 25, 25]);
+        let mut m = dual_contour(
+            &FnGrid::new(lattice, |p: Vec3| p.length() - 1.0),
+            &ContourOptions::default(),
+        );
+        let whole = m.edge_report_in_passes(usize::MAX);
+        assert!(whole.is_clean());
+        m.triangles.remove(10);
+        let again = m.triangles[200];
+        m.triangles.push(again);
+        // Misoriented edges all over (every seventh triangle turned), so that every pass has
+        // some to count.
+        for t in m.triangles.iter_mut().step_by(7) {
+            t.swap(1, 2);
+        }
+        let whole = m.edge_report_in_passes(usize::MAX);
+        assert!(whole.open > 0 && whole.non_manifold > 0 && whole.misoriented > 1000);
+        for per_pass in [1, 7, 300, 1000] {
+            let parts = m.edge_report_in_passes(per_pass);
+            assert_eq!(
+                (parts.open, parts.non_manifold, parts.misoriented),
+                (whole.open, whole.non_manifold, whole.misoriented),
+                "{per_pass} uses per pass"
+            );
+            let key = |r: &EdgeReport| {
+                r.examples
+                    .iter()
+                    .map(|e| (e.indices, e.uses))
+                    .collect::<Vec<_>>()
+            };
+            assert_eq!(key(&parts), key(&whole), "{per_pass} uses per pass");
         }
     }
 

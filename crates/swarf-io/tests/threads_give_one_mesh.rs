@@ -80,6 +80,10 @@ fn vertices_are_projected_with_the_whole_mesh_normals() {
             .install(|| swarf_io::dual_contour_projected(&grid, &options, nudge));
         assert_eq!(m.triangles, plain.triangles, "{threads} threads");
         assert_eq!(m.vertices, expected, "{threads} threads");
-        assert_eq!(stats.projected_vertices, expected.len(), "{threads} threads");
+        assert_eq!(
+            stats.projected_vertices,
+            expected.len(),
+            "{threads} threads"
+        );
     }
 }

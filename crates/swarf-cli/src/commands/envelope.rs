@@ -96,6 +96,8 @@ fn parse_moves(text: &str, len: usize) -> Result<Range<usize>> {
 }
 
 pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
+    // A few arrays of tens of MB each (rays, line store, mesh): freed ones go back at once.
+    crate::alloc::return_large_blocks();
     let t0 = Instant::now();
     let job = load_job(&args.setup, &args.program)?;
     let tools = defined_tools(&job)?;
