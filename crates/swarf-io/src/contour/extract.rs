@@ -11,9 +11,8 @@
 //! a slab's triangles are made as soon as the slab above it exists (its quads reach into it)
 //! and the slab is then dropped, and a projection onto an exact surface moves a slab's
 //! vertices once no triangle still to come is split or given normals from their unprojected
-//! positions. So besides the mesh itself only the line store and a batch of slabs are held —
-//! not every slab's cells and edges until the end (for a 5-million-triangle envelope: peak
-//! RSS 320–345 → 259–265 MB).
+//! positions. So besides the mesh itself only the line store and a batch of slabs are held,
+//! not every slab's cells and edges until the end (the peak of a large envelope was there).
 
 use super::lines::{boundary_in, in_runs, runs, xor_runs, Run, Store};
 use super::normal::estimate;
@@ -482,9 +481,9 @@ fn split_quad(q: [u32; 4], v: &[Vec3], mode: QuadSplit) -> [[u32; 3]; 2] {
 /// moved by `project` (given its unit normal, area-weighted over its triangles) when there is
 /// one. The mesh's arrays are filled as the slabs come: a slab's vertices join the mesh as it
 /// is made, its triangles once the slab above it is made (their quads reach into it), and its
-/// vertices are projected once the slab above that has its triangles (the last to use their
-/// unprojected positions); each slab is dropped as soon as its triangles are made, so only a
-/// batch of slabs is held at once, not all of them.
+/// vertices are projected once the slab above it has its triangles (the last whose normals
+/// use their unprojected positions); each slab is dropped as soon as its triangles are made,
+/// so only a batch of slabs is held at once, not all of them.
 pub(crate) fn extract<G: HermiteGrid + ?Sized>(
     store: Store,
     grid: &G,
