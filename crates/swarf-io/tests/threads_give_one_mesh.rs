@@ -9,10 +9,9 @@ use common::*;
 use swarf_geom::math::Vec3;
 use swarf_io::{dual_contour_with_stats, ContourOptions, FnGrid, Lattice};
 
-#[test]
-fn the_mesh_does_not_depend_on_the_threads() {
-    // Five overlapping spheres up a column, over 150 point levels (batches of 16 levels per
-    // thread: 16, 32 and 48 levels).
+/// Five overlapping spheres up a column, over 150 point levels (batches of 16 levels per
+/// thread: 16, 32 and 48 levels): its lattice and signed distance.
+fn stacked_spheres() -> (Lattice, impl Fn(Vec3) -> f64 + Sync + Copy) {
     let lattice = Lattice::new(Vec3::new(-2.0, -2.0, -1.0), Vec3::splat(0.1), [41, 41, 150]);
     let sdf = |p: Vec3| {
         (0..5)
@@ -22,6 +21,12 @@ fn the_mesh_does_not_depend_on_the_threads() {
             })
             .fold(f64::INFINITY, f64::min)
     };
+    (lattice, sdf)
+}
+
+#[test]
+fn the_mesh_does_not_depend_on_the_threads() {
+    let (lattice, sdf) = stacked_spheres();
     let run = |threads: usize| {
         rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
@@ -49,16 +54,8 @@ fn vertices_are_projected_with_the_whole_mesh_normals() {
     // The extraction projects each slab's vertices as soon as the triangles around them are
     // made, with normals summed over those triangles alone: the same vertices, to the bit, as
     // projecting the finished mesh with `TriMesh::vertex_normals`, in pools of 1, 2 and 3
-    // threads (batches ending at different slabs). Tall enough for many batches.
-    let lattice = Lattice::new(Vec3::new(-2.0, -2.0, -1.0), Vec3::splat(0.1), [41, 41, 150]);
-    let sdf = |p: Vec3| {
-        (0..5)
-            .map(|i| {
-                let c = Vec3::new(0.3 * i as f64 - 0.6, 0.1 * i as f64, 1.0 + 2.6 * i as f64);
-                sphere_sdf(c, 1.4)(p)
-            })
-            .fold(f64::INFINITY, f64::min)
-    };
+    // threads (batches ending at different slabs).
+    let (lattice, sdf) = stacked_spheres();
     let grid = FnGrid::new(lattice, sdf);
     let options = ContourOptions::default();
     // A move along the normal that depends on the position too, so that a normal summed over

@@ -662,20 +662,12 @@ impl Stream {
     /// reach into it).
     fn normals_and_projection(&mut self, all: bool, project: Projection<'_>) {
         let with_triangles = self.tri_start.len();
-        let slab_vertices = |st: &Stream, s: usize| {
-            st.vert_start[s]
-                ..st.vert_start
-                    .get(s + 1)
-                    .copied()
-                    .unwrap_or(st.vertices.len())
+        // Slab `s`'s stretch of an array whose slabs start at `starts` and end at `len`.
+        let stretch = |starts: &[usize], len: usize, s: usize| {
+            starts[s]..starts.get(s + 1).copied().unwrap_or(len)
         };
-        let slab_triangles = |st: &Stream, s: usize| {
-            st.tri_start[s]
-                ..st.tri_start
-                    .get(s + 1)
-                    .copied()
-                    .unwrap_or(st.triangles.len())
-        };
+        let slab_vertices = |st: &Stream, s: usize| stretch(&st.vert_start, st.vertices.len(), s);
+        let slab_triangles = |st: &Stream, s: usize| stretch(&st.tri_start, st.triangles.len(), s);
         let fresh: Vec<Vec<Vec3>> = (self.with_normals..with_triangles)
             .into_par_iter()
             .map(|s| {
