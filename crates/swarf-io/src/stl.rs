@@ -324,7 +324,7 @@ mod tests {
     fn binary_records_over_several_blocks_decode_to_the_mesh() {
         // More triangles than one batch of blocks holds: every record at its place, decoded
         // field by field (header, count, normal, corners, attribute), on one thread and three.
-        let n = 5 * BLOCK + 123;
+        let n = 7 * BLOCK + 123;
         let mesh = TriMesh::from_parts(
             (0..n + 2)
                 .map(|i| Vec3::new(i as f64 * 0.25, (i % 7) as f64, 1.0 / (1.0 + i as f64)))
@@ -349,7 +349,7 @@ mod tests {
             n as u32
         );
         let f = |at: usize| f32::from_le_bytes(bytes[at..at + 4].try_into().unwrap());
-        for t in [0, 1, BLOCK - 1, BLOCK, 4 * BLOCK + 7, n - 1] {
+        for t in [0, 1, BLOCK - 1, BLOCK, 4 * BLOCK + 7, 6 * BLOCK + 1, n - 1] {
             let at = 84 + RECORD * t;
             let normal = mesh.triangle_normal(t);
             let corners = mesh.corners(t);

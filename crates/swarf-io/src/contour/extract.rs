@@ -11,8 +11,9 @@
 //! a slab's triangles are made as soon as the slab above it exists (its quads reach into it)
 //! and the slab is then dropped, and a projection onto an exact surface moves a slab's
 //! vertices once no triangle still to come is split or given normals from their unprojected
-//! positions. So besides the mesh itself only the line store and a batch of slabs are held,
-//! not every slab's cells and edges until the end (the peak of a large envelope was there).
+//! positions. So besides the mesh itself only the line store and a batch of slabs (and the one
+//! carried to the next batch) are held, not every slab's cells and edges until the end (the
+//! peak of a large envelope was there).
 
 use super::lines::{boundary_in, in_runs, runs, xor_runs, Run, Store};
 use super::normal::estimate;
