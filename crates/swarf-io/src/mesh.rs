@@ -681,14 +681,7 @@ impl TriMesh {
     pub fn vertex_normals(&self) -> Vec<Vec3> {
         // One pass (a parallel sum over chunks needs a partial array per chunk: measured, as
         // much memory again as the normals for no time gained on a 5-million-triangle mesh).
-        let mut n = vec![Vec3::ZERO; self.vertices.len()];
-        for t in &self.triangles {
-            let [a, b, c] = t.map(|i| self.vertices[i as usize]);
-            let w = (b - a).cross(c - a);
-            for &i in t {
-                n[i as usize] += w;
-            }
-        }
+        let mut n = area_vectors_at(&self.vertices, &self.triangles, 0..self.vertices.len());
         n.par_iter_mut().for_each(|v| *v = v.normalize_or_zero());
         n
     }
@@ -699,6 +692,28 @@ impl TriMesh {
             t.swap(1, 2);
         }
     }
+}
+
+/// The area vectors (twice the area along the normal) of `triangles` summed, in their order,
+/// at each vertex in `range` (entry `i − range.start`): the vertex normals before they are made
+/// unit, for a whole mesh or for the vertices a run of its triangles surrounds (the streamed
+/// contouring's slabs), with the same sums either way.
+pub(crate) fn area_vectors_at(
+    vertices: &[Vec3],
+    triangles: &[[u32; 3]],
+    range: std::ops::Range<usize>,
+) -> Vec<Vec3> {
+    let mut sum = vec![Vec3::ZERO; range.len()];
+    for t in triangles {
+        let [a, b, c] = t.map(|i| vertices[i as usize]);
+        let w = (b - a).cross(c - a);
+        for &i in t {
+            if range.contains(&(i as usize)) {
+                sum[i as usize - range.start] += w;
+            }
+        }
+    }
+    sum
 }
 
 /// Edge uses filed at once by [`TriMesh::edge_report`] (16 MB of them).
@@ -794,8 +809,8 @@ mod tests {
     #[test]
     fn parallel_sums_match_one_pass_over_the_triangles() {
         // A contoured sphere (tens of thousands of triangles: several chunks), in its own
-        // triangle order and shuffled (chunks reaching over all vertices: the one-pass branch),
-        // against one serial pass; and the same bits on one thread and on three.
+        // triangle order and shuffled (every chunk reaching over all vertices), against one
+        // serial pass; and the same bits on one thread and on three.
         use crate::contour::{dual_contour, ContourOptions, FnGrid, Lattice};
         let lattice = Lattice::new(Vec3::splat(-1.2), Vec3::splat(0.02), [121, 121, 121]);
         let sphere = FnGrid::new(lattice, |p: Vec3| p.length() - 1.0);

@@ -20,7 +20,7 @@ use super::normal::estimate;
 use super::qef::Qef;
 use super::table::{cases, joined_faces, NONE};
 use super::{ContourOptions, ContourStats, HermiteGrid, Projection, QuadSplit};
-use crate::mesh::TriMesh;
+use crate::mesh::{area_vectors_at, TriMesh};
 use rayon::prelude::*;
 use swarf_geom::math::Vec3;
 
@@ -672,22 +672,13 @@ impl Stream {
         let fresh: Vec<Vec<Vec3>> = (self.with_normals..with_triangles)
             .into_par_iter()
             .map(|s| {
-                let range = slab_vertices(self, s);
-                let mut sum = vec![Vec3::ZERO; range.len()];
                 let below = if s > 0 {
                     slab_triangles(self, s - 1).start
                 } else {
                     0
                 };
-                for t in &self.triangles[below..slab_triangles(self, s).end] {
-                    let [a, b, c] = t.map(|i| self.vertices[i as usize]);
-                    let w = (b - a).cross(c - a);
-                    for &i in t {
-                        if range.contains(&(i as usize)) {
-                            sum[i as usize - range.start] += w;
-                        }
-                    }
-                }
+                let around = &self.triangles[below..slab_triangles(self, s).end];
+                let mut sum = area_vectors_at(&self.vertices, around, slab_vertices(self, s));
                 for v in &mut sum {
                     *v = v.normalize_or_zero();
                 }
