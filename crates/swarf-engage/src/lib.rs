@@ -19,14 +19,19 @@
 //! placed between samples by interpolation ([`mod@engagement`]), so the error shrinks with the
 //! ray spacing `h`, with `dφ` and with `dz` (README: convergence table).
 //!
-//! Most of the work is probing, so only the samples that matter are probed: the tangency `f`
-//! is computed at every sample (it needs no stock), the depth only where `f > 0`, and there
-//! only at anchors along each circle and between anchors whose depths could hide a sign change
-//! (the depth is a distance: it changes by at most `ρ·dφ` per sample). Elsewhere the depths are
-//! interpolated, so every sample's sign is exact; an interpolated sample next to one of the
-//! other sign is then probed, so every value the interpolation of the boundary uses is exact
-//! too: the result is the one of probing every sample ([`EngageOptions::exhaustive`], tested).
-//!
+//! Most of the work would be probing (twelve rays per sample), so only the samples that matter
+//! are probed: the tangency `f` is computed at every sample (it needs no stock); where `f > 0`
+//! the sample's side is first guessed from the one ray nearest to it in the family most
+//! aligned with the cutter's normal there ([`MaterialProbe::inside_nearest_ray`], right except
+//! within about a ray spacing of the boundary); then every guessed sample next to a sample of
+//! the other side is probed, and again around any whose side the probe flipped, until no
+//! guess borders a side change. So every value the interpolation of the boundary uses is a
+//! probed one, and the boundary is where probing every sample ([`EngageOptions::exhaustive`])
+//! puts it, except around a feature that every nearest ray misses (a sliver of material or air
+//! narrower than the ray spacing): tested equal on eight programs, and on the first 1,000
+//! locations of the finishing benchmark 998 are equal and three differ by 0.02–0.04 % of their
+//! area (a one-degree island at a pass's turn).
+
 //! # Frame and angles
 //! Tool frame at a location: `z_L` the tool axis (tip → spindle); `x_L` the tip's feed
 //! direction projected normal to `z_L` (for a move along the axis: the previous such

@@ -119,6 +119,8 @@ struct Lattice {
     v: usize,
     min: [f64; 2],
     h: [f64; 2],
+    /// `1/h`, for the one-ray guess (whose ray may be either neighbour at a tie).
+    inv_h: [f64; 2],
     n: [f64; 2],
     n_rays: [usize; 2],
 }
@@ -152,6 +154,7 @@ impl<'a> MaterialProbe<'a> {
                 v,
                 min: [g.min[u], g.min[v]],
                 h: [h[u], h[v]],
+                inv_h: [1.0 / h[u], 1.0 / h[v]],
                 n: [nu as f64, nv as f64],
                 n_rays: [nu, nv],
             }
@@ -227,6 +230,30 @@ impl<'a> MaterialProbe<'a> {
     /// True when `p` is inside the material (by [`MaterialProbe::depth`]).
     pub fn inside(&self, p: Vec3) -> bool {
         self.depth(p).distance > 0.0
+    }
+
+    /// A one-ray guess of [`MaterialProbe::inside`]: whether the ray of family `k` nearest to
+    /// `p` holds material at `p`'s coordinate along it (false beside the grid). Exact on the
+    /// ray; off it the boundary may shift by the sheet's slope times the ray's distance (at
+    /// most `h/√2` across the family), so the guess agrees with the probe except within about
+    /// a ray spacing of the boundary — when `k` is the family most aligned with the sheet's
+    /// normal, within `h` of it. A tenth of a probe's cost: one ray, no neighbours.
+    #[inline]
+    pub fn inside_nearest_ray(&self, k: usize, p: Vec3) -> bool {
+        let l = &self.lattice[k];
+        let pa = [p.x, p.y, p.z];
+        // Ray i's centre is at min + (i + ½)·h: the nearest ray is ⌊(x − min)/h⌋.
+        let fu = (pa[l.u] - l.min[0]) * l.inv_h[0];
+        let fv = (pa[l.v] - l.min[1]) * l.inv_h[1];
+        if !(fu >= 0.0 && fv >= 0.0 && fu < l.n[0] && fv < l.n[1]) {
+            return false;
+        }
+        let t = pa[k];
+        self.stock
+            .family(k)
+            .ray(fu as usize, fv as usize)
+            .iter()
+            .any(|iv| iv.enter <= t && t <= iv.exit)
     }
 
     #[inline(always)]
@@ -531,6 +558,40 @@ mod tests {
                 );
             }
         }
+    }
+
+    #[test]
+    fn the_nearest_ray_guess_is_the_probes_side_away_from_the_boundary() {
+        // Below an oblique plane, with the family most aligned with its normal (Z): points
+        // farther than a ray spacing from the plane are guessed on the probe's side; nearer
+        // ones may be guessed either way, but not all of them wrongly.
+        let h = 0.25;
+        let (n, stock) = below_oblique_plane(h);
+        let probe = MaterialProbe::new(&stock);
+        let (mut near, mut near_right) = (0, 0);
+        for i in 0..2000 {
+            let s = -0.6 + 1.2 * ((i * 7919) % 2000) as f64 / 2000.0;
+            let (fx, fy) = (
+                (i * 31 % 1000) as f64 / 1000.0,
+                (i * 17 % 997) as f64 / 997.0,
+            );
+            let base = Vec3::new(6.0 * fx - 3.0, 4.0 * fy - 2.0, 0.0);
+            let base = base + n * (3.0 - n.dot(base));
+            let p = base - n * s;
+            let guess = probe.inside_nearest_ray(2, p);
+            let truth = probe.inside(p);
+            assert_eq!(truth, s > 0.0, "{s}");
+            if s.abs() > h {
+                assert_eq!(guess, truth, "{s}");
+            } else {
+                near += 1;
+                near_right += usize::from(guess == truth);
+            }
+        }
+        assert!(near_right * 10 > near * 9, "{near_right} of {near}");
+        // Beside the grid, nothing.
+        assert!(!probe.inside_nearest_ray(2, Vec3::new(6.0, 0.0, -4.0)));
+        assert!(!probe.inside_nearest_ray(0, Vec3::new(0.0, -5.2, -4.0)));
     }
 
     #[test]

@@ -40,9 +40,9 @@ pub struct EngageOptions {
     pub dphi_deg: f64,
     /// Chordal tolerance of arcs and 5-axis moves when cutting the stock, mm.
     pub chordal_tolerance_mm: f64,
-    /// Probe every sample: no skipping of samples that a Lipschitz bound proves far from the
-    /// boundary (the results are the same; this is the reference the fast path is tested
-    /// against).
+    /// Probe every feasible sample, instead of guessing the side of those away from the
+    /// boundary from their nearest ray (the same results except around features narrower
+    /// than the ray spacing; this is the reference the fast path is tested against).
     pub exhaustive: bool,
 }
 
@@ -318,7 +318,8 @@ pub struct Engager<'a> {
 #[derive(Default)]
 struct Scratch {
     rf: Vec<f64>,
-    filled: Vec<bool>,
+    /// 1 where a feasible sample is not probed yet (its side a guess).
+    open: Vec<u8>,
     g: Vec<f64>,
     /// Each sample's side (1: engaged) for pass 3.
     side: Vec<u8>,
@@ -649,7 +650,6 @@ fn sample_strip(
     let (lo, hi) = (lo.saturating_sub(1), (hi + 2).min(strip.len()));
     let rows = hi - lo;
     let vscale = state.v_tip.length() + state.omega.length() * radius;
-    let dphi = std::f64::consts::TAU / n as f64;
     // The surface point of circle `k` at angle `j`, and its outward normal.
     let point = |k: usize, j: usize| {
         let c = strip.circles[k];
@@ -710,142 +710,138 @@ fn sample_strip(
             *out = feasibility(feas);
         }
     };
-    // Pass 2, the depth δ where f > ε, so g = min(δ, R·f) there. δ changes along a circle by
-    // at most `ρ·dφ` per sample (it is a distance, 1-Lipschitz in space): a span between two
-    // probed anchors whose depths have one sign and are far enough from zero holds no sign
-    // change of δ, and its depths are interpolated. (A zero at sample q of span [a, b] needs
-    // |δ_a| ≤ (q − a)·ρ·dφ and |δ_b| ≤ (b − q)·ρ·dφ, so |δ_a| + |δ_b| ≤ (b − a)·ρ·dφ; the
-    // probe's own error, `MaterialProbe::error`, is added for each anchor.) So the sign of g
-    // is exact at every sample; only its value is not where δ was interpolated.
+    // Pass 2, the side of each feasible sample (f > ε), where g = min(δ, R·f): first guessed
+    // from the one ray nearest to it in the family most aligned with the cutter's normal there
+    // (`MaterialProbe::inside_nearest_ray`), which agrees with the probe except within about a
+    // ray spacing of the boundary; the guess's value is a placeholder of its sign.
     let mut g = std::mem::take(&mut scratch.g);
     g.resize(rows * n, 0.0);
-    // Per sample: whether g holds an interpolated δ (not a probed one); each row is cleared
-    // where it is walked.
-    let mut filled = std::mem::take(&mut scratch.filled);
-    filled.resize(rows * n, false);
+    // Each sample's side as a byte (1: engaged), so that a row's 3 × 3 neighbourhoods are
+    // compared a row at a time, and whether it is open (feasible, its side still a guess).
+    let mut side = std::mem::take(&mut scratch.side);
+    side.resize(rows * n, 0);
+    let mut open = std::mem::take(&mut scratch.open);
+    open.resize(rows * n, 0);
     let mut counted: u64 = g
         .par_chunks_mut(n)
-        .zip(filled.par_chunks_mut(n))
+        .zip(side.par_chunks_mut(n))
+        .zip(open.par_chunks_mut(n))
         .zip(rf.par_chunks_mut(n))
         .enumerate()
-        .map(|(r, ((row, filled), rfr))| {
+        .map(|(r, (((row, side), open), rfr))| {
             tangency(r, rfr);
-            let rfr = &*rfr;
-            let mut probed = 0u64;
-            let mut depth = |j: usize| {
-                probed += 1;
-                depth_at(lo + r, j)
-            };
-            filled.fill(false);
-            if exhaustive || n % SPAN != 0 {
-                for (j, out) in row.iter_mut().enumerate() {
-                    *out = if rfr[j] > 0.0 {
-                        lesser(depth(j), rfr[j])
+            let mut count = 0u64;
+            if exhaustive {
+                for (j, (out, &rfj)) in row.iter_mut().zip(rfr.iter()).enumerate() {
+                    *out = if rfj <= 0.0 {
+                        rfj
                     } else {
-                        rfr[j]
+                        count += 1;
+                        lesser(depth_at(lo + r, j), rfj)
                     };
                 }
-                return probed;
-            }
-            // `row` holds δ while the spans are walked: NaN where not known yet. (Each anchor
-            // is probed once whatever the order, so the spans are walked one by one, each
-            // halved on a stack of its own: at most one pending half per halving.)
-            row.fill(f64::NAN);
-            let lphi = DEPTH_SLOPE * strip.circles[lo + r].rho * dphi;
-            let probe_error = probe.error();
-            for start in (0..n).step_by(SPAN) {
-                let mut stack = [(0usize, 0usize); SPAN_STACK];
-                stack[0] = (start, start + SPAN);
-                let mut pending = 1;
-                while pending > 0 {
-                    pending -= 1;
-                    let (a, b) = stack[pending];
-                    if rfr[a..b].iter().all(|&v| v <= 0.0) && rfr[b % n] <= 0.0 {
-                        continue;
-                    }
-                    for e in [a, b % n] {
-                        if row[e].is_nan() {
-                            row[e] = depth(e);
+            } else {
+                // The circle's point at angle φ is `centre + sin φ·a + cos φ·b`, its normal
+                // `sin φ·na + cos φ·nb + nz` (as `point` computes them).
+                let c = strip.circles[lo + r];
+                let centre = f.tip + f.z * c.z;
+                let (a, b) = (f.x * c.rho, f.y * c.rho);
+                let (na, nb, nz) = (f.x * c.normal.x, f.y * c.normal.x, f.z * c.normal.y);
+                for (((out, &rfj), &sin), &cos) in row
+                    .iter_mut()
+                    .zip(rfr.iter())
+                    .zip(&angles.sin)
+                    .zip(&angles.cos)
+                {
+                    *out = if rfj <= 0.0 {
+                        rfj
+                    } else {
+                        let p = centre + a * sin + b * cos;
+                        let normal = (na * sin + nb * cos + nz).abs();
+                        let k = if normal.x >= normal.y && normal.x >= normal.z {
+                            0
+                        } else if normal.y >= normal.z {
+                            1
+                        } else {
+                            2
+                        };
+                        if probe.inside_nearest_ray(k, p) {
+                            rfj
+                        } else {
+                            -GUESSED_OUTSIDE
                         }
-                    }
-                    if b - a < 2 {
-                        continue;
-                    }
-                    let (da, db) = (row[a], row[b % n]);
-                    let width = (b - a) as f64;
-                    if da * db > 0.0 && da.abs() + db.abs() > lphi * width + 2.0 * probe_error {
-                        for q in a + 1..b {
-                            row[q] = da + (db - da) * (q - a) as f64 / width;
-                            filled[q] = true;
-                        }
-                        continue;
-                    }
-                    let m = (a + b) / 2;
-                    stack[pending] = (m, b);
-                    stack[pending + 1] = (a, m);
-                    pending += 2;
+                    };
                 }
             }
-            for (j, out) in row.iter_mut().enumerate() {
-                let rfj = rfr[j];
-                if rfj <= 0.0 {
-                    *out = rfj;
-                    filled[j] = false;
-                } else {
-                    *out = lesser(*out, rfj);
-                }
+            for (((s, o), &v), &rfj) in side.iter_mut().zip(open.iter_mut()).zip(&*row).zip(&*rfr) {
+                *s = u8::from(v > 0.0);
+                *o = u8::from(rfj > 0.0 && !exhaustive);
             }
-            probed
+            count
         })
         .sum();
     // Pass 3: the value of g matters only where a cell or a circle changes sign (the boundary
-    // is interpolated there); an interpolated sample next to a sample of the other sign (on
-    // its circle or the neighbouring ones; rows outside the range count as not engaged) is
-    // probed. Its sign does not change, so neither does any other sample's need.
+    // is interpolated there), and the guess may be wrong only near the boundary: every open
+    // sample with a neighbour of the other side (on its circle or the neighbouring ones; rows
+    // outside the range count as not engaged) is probed, which may flip its side and so give
+    // its own neighbours a neighbour of the other side: they are probed in turn, until no open
+    // sample borders a side change. The sides next to the boundary are then the probe's, so
+    // the boundary is where probing every sample puts it, wherever the guesses' errors touch
+    // it (a guess wrong on a whole feature — a sliver of material or air that the nearest rays
+    // all miss — goes unseen: it is narrower than the ray spacing).
     if !exhaustive {
-        // Each sample's side as a byte, so a row's 3 × 3 neighbourhoods are compared a row at
-        // a time: a sample has a neighbour of the other side exactly when the OR and the AND
-        // of its neighbourhood differ (rows outside the range are all "not engaged").
-        let mut side = std::mem::take(&mut scratch.side);
-        side.resize(rows * n, 0);
-        side.par_iter_mut()
-            .zip(g.par_iter())
-            .for_each(|(s, &v)| *s = u8::from(v > 0.0));
-        let (filled, rf, sides) = (&filled, &rf, &side);
-        // Each worker's OR and AND rows, kept from row to row.
-        let fixes: Vec<(usize, f64)> = (0..rows)
-            .into_par_iter()
-            .map_init(
-                || (vec![0u8; n], vec![0u8; n]),
-                |(any, all), r| {
-                    let row_filled = &filled[r * n..(r + 1) * n];
-                    if !row_filled.contains(&true) {
-                        return Vec::new();
+        // The rows to look at (all at first; then those around a flipped side), the samples
+        // to probe, and a row's OR and AND of its sides' neighbourhoods.
+        let mut scan = vec![true; rows];
+        let mut todo: Vec<usize> = Vec::new();
+        let (mut any, mut all) = (vec![0u8; n], vec![0u8; n]);
+        loop {
+            todo.clear();
+            for r in (0..rows).filter(|&r| scan[r]) {
+                let open_row = &open[r * n..(r + 1) * n];
+                if !open_row.contains(&1) {
+                    continue;
+                }
+                neighbourhoods(&side, rows, n, r, &mut any, &mut all);
+                for ((a, &l), &o) in any.iter_mut().zip(&all).zip(open_row) {
+                    *a = (*a ^ l) & o;
+                }
+                // Most bytes are 0: eight at a time.
+                for (w, chunk) in any.chunks(8).enumerate() {
+                    if chunk.iter().any(|&b| b != 0) {
+                        for (b, &m) in chunk.iter().enumerate() {
+                            if m != 0 {
+                                todo.push(r * n + w * 8 + b);
+                            }
+                        }
                     }
-                    any.fill(0);
-                    all.fill(1);
-                    neighbourhoods(sides, rows, n, r, any, all);
-                    row_filled
-                        .iter()
-                        .enumerate()
-                        .filter(|&(j, &f)| f && any[j] != all[j])
-                        .map(|(j, _)| {
-                            let i = r * n + j;
-                            (i, lesser(depth_at(lo + r, j), rf[i]))
-                        })
-                        .collect()
-                },
-            )
-            .flatten_iter()
-            .collect();
-        scratch.side = side;
-        counted += fixes.len() as u64;
-        for (i, v) in fixes {
-            g[i] = v;
+                }
+            }
+            if todo.is_empty() {
+                break;
+            }
+            let (rf_now, depth_at) = (&rf, &depth_at);
+            let values: Vec<f64> = todo
+                .par_iter()
+                .map(|&i| lesser(depth_at(lo + i / n, i % n), rf_now[i]))
+                .collect();
+            counted += todo.len() as u64;
+            scan.fill(false);
+            for (&i, &v) in todo.iter().zip(&values) {
+                let now = u8::from(v > 0.0);
+                if now != side[i] {
+                    side[i] = now;
+                    let r = i / n;
+                    scan[r.saturating_sub(1)..(r + 2).min(rows)].fill(true);
+                }
+                g[i] = v;
+                open[i] = 0;
+            }
         }
     }
+    (scratch.side, scratch.open) = (side, open);
     *probes += counted;
-    (scratch.rf, scratch.filled) = (rf, filled);
+    scratch.rf = rf;
     StripSamples {
         rows: (lo, hi),
         n_phi: n,
@@ -853,21 +849,30 @@ fn sample_strip(
     }
 }
 
-/// The OR (`any`) and AND (`all`, which start at 1) of the sides (`sides`: 1 engaged, one row
-/// of `n` per circle, `rows` rows) over each sample's 3 × 3 neighbourhood on row `r`: its
-/// circle and the ones either side, round each circle; rows outside the range count as not
-/// engaged. A sample has a neighbour of the other side exactly when the two differ.
+/// The OR (`any`) and AND (`all`) of the sides (`sides`: 1 engaged, one row of `n` per circle,
+/// `rows` rows) over each sample's 3 × 3 neighbourhood on row `r`: its circle and the ones
+/// either side, round each circle; rows outside the range count as not engaged. A sample has a
+/// neighbour of the other side exactly when the two differ.
 fn neighbourhoods(sides: &[u8], rows: usize, n: usize, r: usize, any: &mut [u8], all: &mut [u8]) {
+    any.fill(0);
+    all.fill(1);
     for q in [r.wrapping_sub(1), r, r + 1] {
         let Some(s) = (q < rows).then(|| &sides[q * n..(q + 1) * n]) else {
             all.fill(0);
             continue;
         };
-        // Sample j's neighbours j − 1 and j + 1 round the circle.
-        let (any_in, all_in) = (&mut any[1..n - 1], &mut all[1..n - 1]);
-        for ((w, o), a) in s.windows(3).zip(any_in).zip(all_in) {
-            *o |= w[0] | w[1] | w[2];
-            *a &= w[0] & w[1] & w[2];
+        // Sample j's neighbours j − 1 and j + 1 round the circle (shifted slices, so that the
+        // loop runs on whole vector registers).
+        let (left, mid, right) = (&s[..n - 2], &s[1..n - 1], &s[2..]);
+        for ((((o, a), &x), &y), &z) in any[1..n - 1]
+            .iter_mut()
+            .zip(&mut all[1..n - 1])
+            .zip(left)
+            .zip(mid)
+            .zip(right)
+        {
+            *o |= x | y | z;
+            *a &= x & y & z;
         }
         for (j, (p, q)) in [(0, (n - 1, 1)), (n - 1, (n - 2, 0))] {
             any[j] |= s[p] | s[j] | s[q];
@@ -876,18 +881,12 @@ fn neighbourhoods(sides: &[u8], rows: usize, n: usize, r: usize, any: &mut [u8],
     }
 }
 
-/// The slope assumed of the probed depth per unit distance along a circle (a true distance
-/// has slope 1).
-const DEPTH_SLOPE: f64 = 1.0;
-
 /// Depths beyond this (mm) are reported as this: far enough from any boundary for any cutter.
 const FAR_MM: f64 = 1e6;
 
-/// Samples between the anchors of the adaptive sampling along a circle.
-const SPAN: usize = 8;
-
-/// Room for the halves of one span waiting to be walked: one per halving of `SPAN`, and one.
-const SPAN_STACK: usize = SPAN.ilog2() as usize + 2;
+/// The placeholder value of g at a feasible sample guessed outside the material (mm): never
+/// interpolated, since every sample next to a side change is probed.
+const GUESSED_OUTSIDE: f64 = 1.0;
 
 /// Tool-tip path length of `m`, mm (arcs exact; curved 5-axis tips by 64 chords).
 pub fn path_length(program: &Program, m: &Move) -> f64 {

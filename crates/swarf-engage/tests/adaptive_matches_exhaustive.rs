@@ -1,7 +1,9 @@
-//! The adaptive sampling (samples that a Lipschitz bound proves far from the boundary are
-//! interpolated, not probed) gives the same engagement as probing every sample, on programs
-//! that exercise every kind of boundary: slots, walls, arcs, a ramp, 3+2, a 5-axis sweep, a
-//! finishing raster over a wavy surface, and 5 cutter shapes.
+//! The adaptive sampling (each sample's side guessed from its nearest ray, the probe only
+//! around the side changes, grown until the guesses no longer touch the boundary) gives the
+//! same engagement as probing every sample, on programs that exercise every kind of boundary:
+//! slots, walls, arcs, a ramp, 3+2, a 5-axis sweep, a finishing raster over a wavy surface,
+//! and 5 cutter shapes. (Probing only the first ring of samples around the guessed boundary,
+//! without the growth, fails it.)
 
 mod common;
 
