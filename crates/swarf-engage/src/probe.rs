@@ -25,9 +25,11 @@
 //! point is **deep**, and `D/√3 − 2h` (`D` the nearest of those ends along its ray) is a lower
 //! bound of its distance to any boundary the rays resolve — a sheet at distance `δ` crosses the
 //! rays of the family most aligned with its normal (within 54.7°) at most `√3·(δ + √2·h)` away —
-//! reported as at least `D₀`. The engagement uses that bound to skip samples that cannot be near
-//! the boundary. Beside the grid (where a family has no rays) the material may be as near as the
-//! grid's edge: such rays count as near, never as far.
+//! reported as at least `D₀`. Beside the grid (where a family has no rays) the material may be
+//! as near as the grid's edge: such rays count as near, never as far.
+//!
+//! A probe reads twelve rays; [`MaterialProbe::inside_nearest_ray`] reads one, and guesses the
+//! side — right away from the boundary, which is where the engagement uses it.
 
 use swarf_geom::math::{greater, lesser, Vec3};
 use swarf_stock::{Interval, TriDexel};
@@ -169,15 +171,6 @@ impl<'a> MaterialProbe<'a> {
     /// The stock probed.
     pub fn stock(&self) -> &'a TriDexel {
         self.stock
-    }
-
-    /// The error (mm) the engagement's adaptive sampling allows each probed depth when it
-    /// proves a span free of sign changes: a quarter of a ray spacing, the magnitude a vote
-    /// reports. Not a proven bound (a coherent sheet errs by `O(h²κ)`, a vote by up to a
-    /// spacing near an edge); that the adaptive sampling gives the engagement of probing every
-    /// sample is checked by `tests/adaptive_matches_exhaustive.rs`.
-    pub fn error(&self) -> f64 {
-        self.cap / 16.0
     }
 
     /// The signed distance of `p` to the boundary of the material (positive inside).

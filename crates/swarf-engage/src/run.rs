@@ -444,8 +444,13 @@ impl<'a> Engager<'a> {
                     let travel = walk.length * (s1 - s0);
                     walk.done += 1;
                     self.current = Some(walk);
-                    let mut e = self.engagement_at(index, s1, walk_length)?;
-                    e.removed_mm3 = self.cut(index, s0, s1)?;
+                    // On one of rayon's workers, so that the location's parallel sections run
+                    // there without each waking the pool from this thread (and waiting).
+                    let mut e = rayon::scope(|_| {
+                        let mut e = self.engagement_at(index, s1, walk_length)?;
+                        e.removed_mm3 = self.cut(index, s0, s1)?;
+                        Ok::<_, EngageError>(e)
+                    })?;
                     e.mrr_mm3_min = mrr(&self.program.moves[index], s1 - s0, travel, e.removed_mm3);
                     self.stats.locations += 1;
                     if e.is_engaged() {
