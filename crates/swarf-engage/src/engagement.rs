@@ -113,12 +113,22 @@ pub(crate) struct StripSamples {
     pub(crate) n_phi: usize,
     /// Row-major, `(rows.1 − rows.0) × n_phi`.
     pub(crate) g: Vec<f64>,
+    /// Each sample's side, laid out as `g`: 1 where `g > 0` (engaged), else 0.
+    pub(crate) side: Vec<u8>,
 }
 
 impl StripSamples {
-    fn row(&self, k: usize) -> Option<&[f64]> {
+    fn range(&self, k: usize) -> Option<std::ops::Range<usize>> {
         (k >= self.rows.0 && k < self.rows.1)
-            .then(|| &self.g[(k - self.rows.0) * self.n_phi..(k - self.rows.0 + 1) * self.n_phi])
+            .then(|| (k - self.rows.0) * self.n_phi..(k - self.rows.0 + 1) * self.n_phi)
+    }
+
+    fn row(&self, k: usize) -> Option<&[f64]> {
+        self.range(k).map(|r| &self.g[r])
+    }
+
+    fn sides(&self, k: usize) -> Option<&[u8]> {
+        self.range(k).map(|r| &self.side[r])
     }
 }
 
@@ -224,9 +234,9 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
     let engaged: Vec<Option<(usize, usize)>> = (s.rows.0..s.rows.1)
         .into_par_iter()
         .map(|k| {
-            let row = s.row(k)?;
-            let first = row.iter().position(|&v| v > 0.0)?;
-            let last = row.iter().rposition(|&v| v > 0.0).unwrap_or(first);
+            let row = s.sides(k)?;
+            let first = row.iter().position(|&v| v != 0)?;
+            let last = row.iter().rposition(|&v| v != 0).unwrap_or(first);
             Some((first, last))
         })
         .collect();
@@ -266,9 +276,40 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
             // The band to the next circle (not sampled: not engaged).
             let (p0, p1) = (strip.param[k], strip.param[k + 1]);
             let (mut lo, mut hi) = (out.lo, out.hi);
-            let mut share = 0.0;
+            // Cell j spans columns j and j + 1 (round the circle) of both circles. Its share
+            // is 1 when its four corners are engaged, 0 when none is: the cells are counted
+            // on the sides' bytes, and only those with corners of both sides (at the
+            // boundary) are integrated on their values.
+            let (s0, s1) = (s.sides(k).unwrap_or(&[]), s.sides(k + 1));
+            let zeros;
+            let s1 = match s1 {
+                Some(x) => x,
+                None => {
+                    zeros = vec![0u8; n];
+                    &zeros
+                }
+            };
+            let full = |j: usize, jn: usize| s0[j] & s0[jn] & s1[j] & s1[jn];
+            let some = |j: usize, jn: usize| s0[j] | s0[jn] | s1[j] | s1[jn];
+            let mut whole = 0u32;
             // Whether some column is engaged on both circles (its extent is the whole band).
             let mut both = false;
+            let mut partial = 0.0;
+            let mut mixed = |j: usize, jn: usize| {
+                let (g00, g01) = (row[j], row[jn]);
+                let (g10, g11) = next.map_or((-1.0, -1.0), |r| (r[j], r[jn]));
+                partial += cell_share(g00, g01, g10, g11);
+                // The engaged extent along the parameter, interpolated on this column.
+                let (p00, p10) = (g00 > 0.0, g10 > 0.0);
+                if p00 && p10 {
+                } else if p00 {
+                    lo = lo.min(p0);
+                    hi = hi.max(p0 + g00 / (g00 - g10) * (p1 - p0));
+                } else if p10 {
+                    lo = lo.min(p0 + g00 / (g00 - g10) * (p1 - p0));
+                    hi = hi.max(p1);
+                }
+            };
             // Only cells with an engaged corner add to the share or the extent: those from
             // the column before the first engaged sample of either circle to the last (all
             // of them where that range reaches round the circle's seam).
@@ -278,35 +319,41 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
                 (None, None) => (0, n - 1),
             };
             let seam = a == 0 || b + 1 == n;
-            let cells = if seam { 0..n } else { a - 1..b + 1 };
-            for j in cells {
-                let jn = if j + 1 == n { 0 } else { j + 1 };
-                let (g00, g01) = (row[j], row[jn]);
-                let (g10, g11) = next.map_or((-1.0, -1.0), |r| (r[j], r[jn]));
-                let (p00, p10) = (g00 > 0.0, g10 > 0.0);
-                // The common cells first: all four corners on one side.
-                if p00 && p10 && g01 > 0.0 && g11 > 0.0 {
-                    share += 1.0;
-                    both = true;
-                    continue;
+            // The cells `c0..c1` whose right column is the next one (not round the seam), in
+            // blocks of sixteen: their whole cells counted, and the block's mixed cells
+            // integrated when it has any.
+            let (c0, c1) = if seam { (0, n - 1) } else { (a - 1, b + 1) };
+            for c in (c0..c1).step_by(16) {
+                let e = (c + 16).min(c1);
+                let (l0, r0, l1, r1) = (&s0[c..e], &s0[c + 1..e + 1], &s1[c..e], &s1[c + 1..e + 1]);
+                let (mut w, mut any_mixed, mut col_both) = (0u8, 0u8, 0u8);
+                for (((&x, &y), &z), &t) in l0.iter().zip(r0).zip(l1).zip(r1) {
+                    let f = x & y & z & t;
+                    w += f;
+                    any_mixed |= (x | y | z | t) & !f;
+                    col_both |= x & z;
                 }
-                if !p00 && !p10 && g01 <= 0.0 && g11 <= 0.0 {
-                    continue;
-                }
-                share += cell_share(g00, g01, g10, g11);
-                // The engaged extent along the parameter, interpolated on this column.
-                if p00 && p10 {
-                    both = true;
-                } else if g00 > 0.0 {
-                    let t = if g10 > 0.0 { 1.0 } else { g00 / (g00 - g10) };
-                    lo = lo.min(p0);
-                    hi = hi.max(p0 + t * (p1 - p0));
-                } else if g10 > 0.0 {
-                    let t = g00 / (g00 - g10);
-                    lo = lo.min(p0 + t * (p1 - p0));
-                    hi = hi.max(p1);
+                whole += u32::from(w);
+                both |= col_both != 0;
+                if any_mixed != 0 {
+                    for j in c..e {
+                        if some(j, j + 1) & !full(j, j + 1) != 0 {
+                            mixed(j, j + 1);
+                        }
+                    }
                 }
             }
+            if seam {
+                // The cell round the seam.
+                let j = n - 1;
+                let (f, m) = (full(j, 0), some(j, 0));
+                whole += u32::from(f);
+                both |= s0[j] & s1[j] != 0;
+                if m & !f != 0 {
+                    mixed(j, 0);
+                }
+            }
+            let share = f64::from(whole) + partial;
             if both {
                 lo = lo.min(p0);
                 hi = hi.max(p0 + (p1 - p0));

@@ -570,7 +570,7 @@ impl<'a> Engager<'a> {
                 scratch,
             );
             let result = integrate(strip, &samples, self.angles.dphi_deg);
-            scratch.g = samples.g;
+            (scratch.g, scratch.side) = (samples.g, samples.side);
             result
         };
         let side = tool.side.as_ref().map(|s| run_strip(s, &mut self.scratch));
@@ -650,6 +650,7 @@ fn sample_strip(
             rows: (0, 0),
             n_phi: n,
             g: std::mem::take(&mut scratch.g),
+            side: std::mem::take(&mut scratch.side),
         };
     };
     let (lo, hi) = (lo.saturating_sub(1), (hi + 2).min(strip.len()));
@@ -698,8 +699,12 @@ fn sample_strip(
                 c.normal.x * f.y.dot(v),
                 c.normal.y * f.z.dot(v),
             );
-            for (j, out) in row.iter_mut().enumerate() {
-                *out = feasibility(a * angles.sin[j] + b * angles.cos[j] + z);
+            // Without a branch per sample, so that the loop runs on vector registers: the
+            // same values as `feasibility`.
+            for ((out, &sin), &cos) in row.iter_mut().zip(&angles.sin).zip(&angles.cos) {
+                let feas = a * sin + b * cos + z;
+                let below = f64::from(u8::from(feas <= FEASIBLE_EPS));
+                *out = radius * (feas - below * FEASIBLE_EPS);
             }
             return;
         }
@@ -844,13 +849,14 @@ fn sample_strip(
             }
         }
     }
-    (scratch.side, scratch.open) = (side, open);
+    scratch.open = open;
     *probes += counted;
     scratch.rf = rf;
     StripSamples {
         rows: (lo, hi),
         n_phi: n,
         g,
+        side,
     }
 }
 
