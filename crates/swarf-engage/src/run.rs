@@ -321,8 +321,13 @@ struct Scratch {
     /// 1 where a feasible sample is not probed yet (its side a guess).
     open: Vec<u8>,
     g: Vec<f64>,
-    /// Each sample's side (1: engaged) for pass 3.
+    /// Each sample's side (1: engaged), for pass 3 and the integration.
     side: Vec<u8>,
+    /// Pass 3's rows to look at, samples to probe, and a row's neighbourhood OR and AND.
+    scan: Vec<bool>,
+    todo: Vec<usize>,
+    any: Vec<u8>,
+    all: Vec<u8>,
 }
 
 impl<'a> Engager<'a> {
@@ -831,9 +836,12 @@ fn sample_strip(
     if !exhaustive {
         // The rows to look at (all at first; then those around a flipped side), the samples
         // to probe, and a row's OR and AND of its sides' neighbourhoods.
-        let mut scan = vec![true; rows];
-        let mut todo: Vec<usize> = Vec::new();
-        let (mut any, mut all) = (vec![0u8; n], vec![0u8; n]);
+        let (scan, todo) = (&mut scratch.scan, &mut scratch.todo);
+        let (any, all) = (&mut scratch.any, &mut scratch.all);
+        scan.clear();
+        scan.resize(rows, true);
+        any.resize(n, 0);
+        all.resize(n, 0);
         loop {
             todo.clear();
             for r in (0..rows).filter(|&r| scan[r]) {
@@ -841,8 +849,8 @@ fn sample_strip(
                 if !open_row.contains(&1) {
                     continue;
                 }
-                neighbourhoods(&side, rows, n, r, &mut any, &mut all);
-                for ((a, &l), &o) in any.iter_mut().zip(&all).zip(open_row) {
+                neighbourhoods(&side, rows, n, r, any, all);
+                for ((a, &l), &o) in any.iter_mut().zip(all.iter()).zip(open_row) {
                     *a = (*a ^ l) & o;
                 }
                 // Most bytes are 0: eight at a time.

@@ -1315,6 +1315,32 @@ mod tests {
         }
     }
 
+    /// A raster of short chained moves over a wavy floor in a 9 × 7 × 4 mm block: `passes`
+    /// passes of `per_pass` moves `step` mm long, alternately along +X and −X, each followed by
+    /// a move `over` mm along +Y.
+    fn wavy_raster(passes: usize, per_pass: usize, step: f64, over: f64) -> Vec<LinearMove> {
+        let mut moves: Vec<LinearMove> = Vec::new();
+        let go = |moves: &mut Vec<LinearMove>, next: Vec3| {
+            let tip0 = moves.last().map_or(Vec3::new(-2.0, 1.0, 2.2), |m| m.tip1);
+            moves.push(LinearMove {
+                tip0,
+                tip1: next,
+                axis: Vec3::Z,
+            });
+            next
+        };
+        let mut tip = Vec3::new(-2.0, 1.0, 2.2);
+        for pass in 0..passes {
+            let dir = if pass % 2 == 0 { step } else { -step };
+            for i in 0..per_pass {
+                let z = 2.2 + 0.4 * (0.3 * i as f64).sin();
+                tip = go(&mut moves, Vec3::new(tip.x + dir, tip.y, z));
+            }
+            tip = go(&mut moves, tip + Vec3::new(0.0, over, 0.0));
+        }
+        moves
+    }
+
     /// A call leaves every tile's bound exact, though a tile that the call's cuts keep
     /// changing is refreshed only when a run finds nothing to change in it or at the call's end:
     /// a raster of short chained moves (each tile changed by many in a row, some emptied), in
@@ -1322,27 +1348,7 @@ mod tests {
     #[test]
     fn tile_bounds_are_exact_after_a_call() {
         let tool = ToolShape::new(&swarf_tool::Cutter::ball(3.0).unwrap());
-        let mut moves = Vec::new();
-        let mut tip = Vec3::new(-2.0, 1.0, 2.2);
-        for pass in 0..6 {
-            let dir = if pass % 2 == 0 { 0.37 } else { -0.37 };
-            for i in 0..30 {
-                let next = Vec3::new(tip.x + dir, tip.y, 2.2 + 0.4 * (0.3 * i as f64).sin());
-                moves.push(LinearMove {
-                    tip0: tip,
-                    tip1: next,
-                    axis: Vec3::Z,
-                });
-                tip = next;
-            }
-            let next = tip + Vec3::new(0.0, 0.9, 0.0);
-            moves.push(LinearMove {
-                tip0: tip,
-                tip1: next,
-                axis: Vec3::Z,
-            });
-            tip = next;
-        }
+        let moves = wavy_raster(6, 30, 0.37, 0.9);
         for chunk in [1, 7, 64, moves.len()] {
             let b = Aabb::new(Vec3::ZERO, Vec3::new(9.0, 7.0, 4.0));
             let mut stock = TriDexel::from_box(b.min, b.max, 0.1).unwrap();
@@ -1371,28 +1377,7 @@ mod tests {
         let tool = ToolShape::new(&swarf_tool::Cutter::ball(3.0).unwrap());
         let b = Aabb::new(Vec3::ZERO, Vec3::new(9.0, 7.0, 4.0));
         let mut stock = TriDexel::from_box(b.min, b.max, 0.1).unwrap();
-        let mut tip = Vec3::new(-2.0, 1.0, 2.2);
-        let mut moves = Vec::new();
-        for pass in 0..5 {
-            let dir = if pass % 2 == 0 { 0.5 } else { -0.5 };
-            for i in 0..26 {
-                let next = Vec3::new(tip.x + dir, tip.y, 2.2 + 0.4 * (0.3 * i as f64).sin());
-                moves.push(LinearMove {
-                    tip0: tip,
-                    tip1: next,
-                    axis: Vec3::Z,
-                });
-                tip = next;
-            }
-            let next = tip + Vec3::new(0.0, 1.1, 0.0);
-            moves.push(LinearMove {
-                tip0: tip,
-                tip1: next,
-                axis: Vec3::Z,
-            });
-            tip = next;
-        }
-        stock.cut_linear_batch(&tool, &moves);
+        stock.cut_linear_batch(&tool, &wavy_raster(5, 26, 0.5, 1.1));
         let (mut said_no, mut boxes) = (0, 0);
         for q in 0..4000 {
             let f = |m: usize, p: usize| ((q * m) % p) as f64 / p as f64;
