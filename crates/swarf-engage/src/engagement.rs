@@ -251,7 +251,9 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
                 hi: f64::NEG_INFINITY,
                 ..Default::default()
             };
-            let Some(row) = s.row(k) else { return out };
+            let (Some(row), Some(s0)) = (s.row(k), s.sides(k)) else {
+                return out;
+            };
             let next = s.row(k + 1);
             if !engaged_at(k) && !engaged_at(k + 1) {
                 // Nothing on this circle nor on the band to the next one.
@@ -280,9 +282,8 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
             // is 1 when its four corners are engaged, 0 when none is: the cells are counted
             // on the sides' bytes, and only those with corners of both sides (at the
             // boundary) are integrated on their values.
-            let (s0, s1) = (s.sides(k).unwrap_or(&[]), s.sides(k + 1));
             let zeros;
-            let s1 = match s1 {
+            let s1 = match s.sides(k + 1) {
                 Some(x) => x,
                 None => {
                     zeros = vec![0u8; n];
@@ -300,14 +301,17 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
                 let (g10, g11) = next.map_or((-1.0, -1.0), |r| (r[j], r[jn]));
                 partial += cell_share(g00, g01, g10, g11);
                 // The engaged extent along the parameter, interpolated on this column.
-                let (p00, p10) = (g00 > 0.0, g10 > 0.0);
-                if p00 && p10 {
-                } else if p00 {
-                    lo = lo.min(p0);
-                    hi = hi.max(p0 + g00 / (g00 - g10) * (p1 - p0));
-                } else if p10 {
-                    lo = lo.min(p0 + g00 / (g00 - g10) * (p1 - p0));
-                    hi = hi.max(p1);
+                // (A column engaged on both circles counts as `both`, below.)
+                match (g00 > 0.0, g10 > 0.0) {
+                    (true, false) => {
+                        lo = lo.min(p0);
+                        hi = hi.max(p0 + g00 / (g00 - g10) * (p1 - p0));
+                    }
+                    (false, true) => {
+                        lo = lo.min(p0 + g00 / (g00 - g10) * (p1 - p0));
+                        hi = hi.max(p1);
+                    }
+                    _ => {}
                 }
             };
             // Only cells with an engaged corner add to the share or the extent: those from

@@ -323,9 +323,11 @@ struct Scratch {
     g: Vec<f64>,
     /// Each sample's side (1: engaged), for pass 3 and the integration.
     side: Vec<u8>,
-    /// Pass 3's rows to look at, samples to probe, and a row's neighbourhood OR and AND.
+    /// Pass 3's rows to look at, samples to probe and their probed values, and a row's
+    /// neighbourhood OR and AND.
     scan: Vec<bool>,
     todo: Vec<usize>,
+    values: Vec<f64>,
     any: Vec<u8>,
     all: Vec<u8>,
 }
@@ -800,14 +802,8 @@ fn sample_strip(
                             rfj
                         } else {
                             let p = centre + a * sin + b * cos;
-                            let normal = (na * sin + nb * cos + nz).abs();
-                            let k = if normal.x >= normal.y && normal.x >= normal.z {
-                                0
-                            } else if normal.y >= normal.z {
-                                1
-                            } else {
-                                2
-                            };
+                            // The family most aligned with the normal (ties to the lower).
+                            let k = (na * sin + nb * cos + nz).abs().max_position();
                             if probe.inside_nearest_ray(k, p) {
                                 rfj
                             } else {
@@ -836,7 +832,7 @@ fn sample_strip(
     if !exhaustive {
         // The rows to look at (all at first; then those around a flipped side), the samples
         // to probe, and a row's OR and AND of its sides' neighbourhoods.
-        let (scan, todo) = (&mut scratch.scan, &mut scratch.todo);
+        let (scan, todo, values) = (&mut scratch.scan, &mut scratch.todo, &mut scratch.values);
         let (any, all) = (&mut scratch.any, &mut scratch.all);
         scan.clear();
         scan.resize(rows, true);
@@ -868,13 +864,14 @@ fn sample_strip(
                 break;
             }
             let (rf_now, depth_at) = (&rf, &depth_at);
-            let values: Vec<f64> = todo
-                .par_iter()
-                .map(|&i| lesser(depth_at(lo + i / n, i % n), rf_now[i]))
-                .collect();
+            values.clear();
+            values.par_extend(
+                todo.par_iter()
+                    .map(|&i| lesser(depth_at(lo + i / n, i % n), rf_now[i])),
+            );
             counted += todo.len() as u64;
             scan.fill(false);
-            for (&i, &v) in todo.iter().zip(&values) {
+            for (&i, &v) in todo.iter().zip(values.iter()) {
                 let now = u8::from(v > 0.0);
                 if now != side[i] {
                     side[i] = now;

@@ -78,6 +78,12 @@ impl EdgeReport {
     }
 }
 
+/// The unit normal of a triangle with corners `[a, b, c]` (right-hand rule; zero when
+/// degenerate).
+pub(crate) fn facet_normal([a, b, c]: [Vec3; 3]) -> Vec3 {
+    (b - a).cross(c - a).normalize_or_zero()
+}
+
 impl TriMesh {
     /// An empty mesh.
     pub fn new() -> Self {
@@ -147,8 +153,7 @@ impl TriMesh {
 
     /// Unit normal of triangle `t` (zero for a degenerate triangle).
     pub fn triangle_normal(&self, t: usize) -> Vec3 {
-        let [a, b, c] = self.corners(t);
-        (b - a).cross(c - a).normalize_or_zero()
+        facet_normal(self.corners(t))
     }
 
     /// Signed volume enclosed (divergence theorem; positive for a closed, outward-oriented

@@ -26,10 +26,10 @@ const BLOCK: usize = 1 << 15;
 
 /// Triangle `t` as STL stores it: its unit normal and its three corners, in `f32`.
 fn stl_triangle(mesh: &TriMesh, t: usize) -> [[f32; 3]; 4] {
-    let [a, b, c] = mesh.corners(t);
-    // `TriMesh::triangle_normal`, from the corners already read.
-    let n = (b - a).cross(c - a).normalize_or_zero();
-    [n, a, b, c].map(|p: Vec3| [p.x as f32, p.y as f32, p.z as f32])
+    let corners = mesh.corners(t);
+    let [a, b, c] = corners;
+    [crate::mesh::facet_normal(corners), a, b, c]
+        .map(|p: Vec3| [p.x as f32, p.y as f32, p.z as f32])
 }
 
 /// Replaces `out` with the binary records of `triangles`.
