@@ -74,12 +74,30 @@ impl PathError {
     }
 }
 
+/// The found text as a terminal shows it: control characters (a NUL in a binary file, an escape
+/// code) written as escapes, so that the message neither loses them nor drives the terminal.
+struct Visible<'a>(&'a str);
+
+impl fmt::Display for Visible<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for c in self.0.chars() {
+            if c.is_control() {
+                write!(f, "{}", c.escape_unicode())?;
+            } else {
+                write!(f, "{c}")?;
+            }
+        }
+        Ok(())
+    }
+}
+
 impl fmt::Display for PathError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         write!(f, "{}: {}", self.pos, self.message)?;
+        let found = Visible(&self.found);
         match (self.found.is_empty(), self.expected.is_empty()) {
-            (false, false) => write!(f, " (found `{}`, expected {})", self.found, self.expected),
-            (false, true) => write!(f, " (found `{}`)", self.found),
+            (false, false) => write!(f, " (found `{found}`, expected {})", self.expected),
+            (false, true) => write!(f, " (found `{found}`)"),
             (true, false) => write!(f, " (found end of line, expected {})", self.expected),
             (true, true) => Ok(()),
         }
@@ -107,5 +125,36 @@ impl fmt::Display for Warning {
             "{}:{}:{}: warning: {}",
             self.file, self.line, self.column, self.message
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn control_characters_found_are_written_as_escapes() {
+        let pos = SourcePos {
+            file: "garbage.ngc".into(),
+            line: 1,
+            column: 1,
+        };
+        let e = PathError::new(
+            pos,
+            PathErrorKind::Syntax,
+            "unexpected character",
+            "\u{0}",
+            "a G-code word",
+        );
+        assert_eq!(
+            e.to_string(),
+            "garbage.ngc:1:1: unexpected character (found `\\u{0}`, expected a G-code word)"
+        );
+        let e = PathError {
+            found: "X°\u{1b}[2J".into(),
+            expected: String::new(),
+            ..e
+        };
+        assert!(e.to_string().ends_with("(found `X°\\u{1b}[2J`)"), "{e}");
     }
 }
