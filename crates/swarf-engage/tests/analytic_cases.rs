@@ -77,6 +77,55 @@ fn full_slot_with_a_flat_end_mill() {
 }
 
 #[test]
+fn a_slot_entering_and_leaving_the_block() {
+    // The slot above, from outside the block to beyond it. With the tip at x = c the front
+    // half-circle (x = c + R·sin φ) lies in the block for R·sin φ ≥ −c when entering, and for
+    // R·sin φ ≤ 40 − c when leaving: φ from asin(−c/R) to 180° − asin(−c/R), or 0° to
+    // asin((40 − c)/R) and its mirror about 90°; each φ engaged over the whole a_p = 5. Near
+    // the block's edges (within a ray spacing of two faces) the rays meet no sheet whole: the
+    // axial depth there is still the top face's.
+    let locs = run_in_block(
+        "G21 G90\nG0 Z10\nG0 X-10 Y10\nG0 Z-5\nG1 X50 F600\n",
+        "through.ngc",
+        [0.0, 0.0, -10.0],
+        [40.0, 20.0, 0.0],
+        Cutter::flat(10.0).unwrap(),
+    );
+    let mut checked = 0;
+    for e in &locs {
+        let c = e.tip.x;
+        let span = if c < R {
+            PI - 2.0 * (-c / R).clamp(0.0, 1.0).asin()
+        } else {
+            2.0 * ((40.0 - c) / R).clamp(0.0, 1.0).asin()
+        };
+        // Not where the cutter only touches the block (a line of contact).
+        if (c + R).abs() < 0.05 || (c - 40.0).abs() < 0.05 || span == 0.0 {
+            continue;
+        }
+        let area = R * span * 5.0;
+        println!(
+            "c {c:.3} area {:.4} exact {area:.4} ap {:.6}",
+            e.area_mm2, e.ap_mm
+        );
+        assert!(
+            rel(e.area_mm2, area) < 0.005,
+            "c = {c}: area {} vs {area}",
+            e.area_mm2
+        );
+        assert!((e.ap_mm - 5.0).abs() < 2e-3, "c = {c}: a_p {}", e.ap_mm);
+        if c < 0.0 {
+            let entry = (-c / R).asin().to_degrees();
+            let (a, b) = (e.phi_entry_deg.unwrap(), e.phi_exit_deg.unwrap());
+            assert!((a - entry).abs() < 0.1, "c = {c}: entry {a} vs {entry}");
+            assert!((b - (180.0 - entry)).abs() < 0.1, "c = {c}: exit {b}");
+        }
+        checked += 1;
+    }
+    assert!(checked >= 12, "{checked} locations checked");
+}
+
+#[test]
 fn ball_end_mill_slot_at_depth_3() {
     // The front half of the spherical zone of height d = 3 under the top: π·R·d.
     let locs = run_in_block(
