@@ -17,13 +17,15 @@
 //! nothing; another, transverse to the sheet, does. Of the coherent families the nearest
 //! sheet wins (the distance to a solid's boundary is the distance to its nearest face). Only
 //! near an edge of the stock — within a ray spacing of two faces at once — may no family be
-//! coherent. Beside an outer edge (where a family's rays that hold material all end near `P`
-//! on one sheet and its other rays hold none, `P` nearest to one of the former) that sheet's
-//! distance along the rays bounds `P`'s distance to the material, and the least such bound
-//! over the families is the distance to the nearer face (exact on the faces of a block, where
-//! the old vote missed the axial depth of a cutter entering it by 0.015 mm). Elsewhere the
-//! rays nearest to `P` vote on the side, and the distance is reported as a fraction of the
-//! spacing.
+//! coherent. Beside an outer edge (where some of a family's rays end near `P` on one sheet
+//! and the others hold no material near `P` — none at all, or only beyond the reach on the
+//! far side of `P`, as over a groove beside its wall's top — with `P` nearest to one of the
+//! former) that sheet's distance from `P` bounds `P`'s distance to the material, and the least
+//! such bound over the families is the distance to the nearer face: exact on a block's faces
+//! and at a slot wall's top, where a vote put the axial depth of a cutter entering the block
+//! or passing beside the slot 0.015 mm too deep. Elsewhere (an inner edge, where the other
+//! rays hold material at `P`) the rays nearest to `P` vote on the side, and the distance is
+//! reported as a fraction of the spacing.
 //!
 //! Far from the boundary no family is coherent either, but then all twelve rays agree on the
 //! side and their nearest ends are all farther than the probe's precision cap `D₀ = 4h`: the
@@ -325,17 +327,22 @@ impl<'a> MaterialProbe<'a> {
         if !coherent {
             // The ray nearest to P across the family (ties to the lower index).
             let r = usize::from(wu > 0.5) + 2 * usize::from(wv > 0.5);
-            // Beside an outer edge of the material: the rays that hold material end near P,
-            // all of one kind, and the others hold none at all (or lie beyond the grid). Under
-            // the sheet those ends span (P nearest to one of them, not beyond the edge) the
-            // material lies on one side of it, so P's distance to it along the ray bounds
-            // P's distance to the material's boundary, and is that where the sheet is the
-            // nearer face.
-            let some = near[r].2;
+            // Beside an outer edge of the material: some rays end near P, all with one kind
+            // of end, and the others hold no material near P (none at all, none beyond the
+            // grid, or only farther than the reach on the other side of P — a groove's floor
+            // under the edge of its wall). Under the sheet those ends span (P nearest to one
+            // of them, not beyond the edge) the material lies on one side of it, so P's
+            // distance to it along the ray bounds P's distance to the material's boundary,
+            // and is that where the sheet is the nearer face. (At an inner edge the other
+            // rays hold material at P: no bound, a vote.)
+            let reach = COHERENT_REACH * self.cap;
+            let (d_r, _, some) = near[r];
+            let on_sheet = |(d, _, kd): (f64, f64, i8)| kd == some && d.abs() <= reach;
             if some != 0
-                && near.iter().all(|&(d, _, kd)| {
-                    kd == 0 || (kd == some && d.abs() <= COHERENT_REACH * self.cap)
-                })
+                && d_r.abs() <= reach
+                && near
+                    .iter()
+                    .all(|&n| n.2 == 0 || n.0 < -reach || on_sheet(n))
             {
                 let w = [
                     (1.0 - wu) * (1.0 - wv),
@@ -344,14 +351,33 @@ impl<'a> MaterialProbe<'a> {
                     wu * wv,
                 ];
                 let (mut sw, mut se) = (0.0, 0.0);
-                for ((&wr, &er), n) in w.iter().zip(&ends).zip(&near) {
-                    if n.2 != 0 {
+                for ((&wr, &er), &n) in w.iter().zip(&ends).zip(&near) {
+                    if on_sheet(n) {
                         sw += wr;
                         se += wr * er;
                     }
                 }
                 if sw > 0.0 {
-                    return FamilyDepth::Edge(f64::from(some) * (t - se / sw));
+                    // The sheet's slope across the family from the pairs of neighbouring
+                    // rays that both end on it (level where no pair does), as for a whole one.
+                    let slope = |pairs: [(usize, usize); 2], h: f64| {
+                        let (mut sum, mut count) = (0.0, 0.0);
+                        for (a, b) in pairs {
+                            if on_sheet(near[a]) && on_sheet(near[b]) {
+                                sum += ends[b] - ends[a];
+                                count += 1.0;
+                            }
+                        }
+                        if count > 0.0 {
+                            sum / (count * h)
+                        } else {
+                            0.0
+                        }
+                    };
+                    let de_du = slope([(0, 1), (2, 3)], l.h[0]);
+                    let de_dv = slope([(0, 2), (1, 3)], l.h[1]);
+                    let tilt = (1.0 + de_du * de_du + de_dv * de_dv).sqrt();
+                    return FamilyDepth::Edge(f64::from(some) * (t - se / sw) / tilt);
                 }
             }
             // The vote of the ray nearest to P.

@@ -126,6 +126,37 @@ fn a_slot_entering_and_leaving_the_block() {
 }
 
 #[test]
+fn a_second_pass_beside_a_slot() {
+    // A slot 5 deep at y = 10, then a pass 3 deep at y = 16: the material the second pass
+    // meets lies beyond the first slot's wall y = 15, from y = 16 + R·cos φ ≥ 15, i.e. φ up
+    // to acos(−1/5) = 101.54°, over a_p = 3 (the corner of its engagement is the edge of
+    // the wall and the top, where the rays over the slot end on its floor, 5 mm down).
+    let locs = run_in_block(
+        "G21 G90\nG0 Z10\nG0 X-10 Y10\nG0 Z-5\nG1 X50 F600\nG0 Z10\nG0 X-10 Y16\nG0 Z-3\nG1 X50\n",
+        "second.ngc",
+        [0.0, 0.0, -10.0],
+        [40.0, 30.0, 0.0],
+        Cutter::flat(10.0).unwrap(),
+    );
+    let exit = (-1.0f64 / R).acos();
+    let mut checked = 0;
+    for e in locs
+        .iter()
+        .filter(|e| e.tip.y > 15.0 && (1.0..=34.0).contains(&e.tip.x))
+    {
+        check(e, R * exit * 3.0, 0.0, exit.to_degrees(), 0.005, 0.1);
+        assert!(
+            (e.ap_mm - 3.0).abs() < 2e-3,
+            "x = {}: a_p {}",
+            e.tip.x,
+            e.ap_mm
+        );
+        checked += 1;
+    }
+    assert!(checked >= 30, "{checked} locations checked");
+}
+
+#[test]
 fn ball_end_mill_slot_at_depth_3() {
     // The front half of the spherical zone of height d = 3 under the top: π·R·d.
     let locs = run_in_block(
