@@ -312,9 +312,9 @@ fn schedule_rewrites_apt_fedrat_records_and_g95_feeds() {
         (
             "job.apt",
             apt,
-            "FEDRAT/ 432.158,MMPM\nGOTO/50,10,-4\nFEDRAT/ 800,MMPM\nGOTO/50,12,-4\n",
+            "FEDRAT/ 434.951,MMPM\nGOTO/50,10,-4\nFEDRAT/ 800,MMPM\nGOTO/50,12,-4\n",
         ),
-        ("rev.ngc", g95, "G1 X50 F0.431694\n"),
+        ("rev.ngc", g95, "G1 X50 F0.434537\n"),
     ] {
         let prog = write(&d, name, text);
         let out = d.join(format!("s-{name}"));
