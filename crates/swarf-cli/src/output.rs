@@ -108,7 +108,7 @@ pub(crate) const DEFAULT_MAX_OUTPUT_MB: u64 = swarf_io::DEFAULT_MAX_OUTPUT_BYTES
 /// The files of one command, written together or not at all, `max_output_mb` MB in all.
 pub(crate) fn output_set(dir: &Path, max_output_mb: u64) -> Result<swarf_io::OutputSet> {
     swarf_io::OutputSet::new(dir, max_output_mb.saturating_mul(1_000_000))
-        .with_context(|| format!("creating {}", dir.display()))
+        .context("the output folder")
 }
 
 /// A hidden folder beside an output folder, for library writers that take paths (maps, meshes):

@@ -6,7 +6,7 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum IoError {
     /// The operating system refused (open, write, rename…).
-    #[error("{path}: {source}")]
+    #[error("{}", .path.display())]
     Io {
         /// The file concerned.
         path: PathBuf,
@@ -41,7 +41,7 @@ pub enum IoError {
         limit: String,
     },
     /// JSON (de)serialisation of a glTF document failed.
-    #[error("{path}: glTF JSON: {source}")]
+    #[error("{}: glTF JSON", .path.display())]
     Json {
         /// The file concerned.
         path: PathBuf,

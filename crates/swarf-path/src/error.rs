@@ -7,7 +7,7 @@ use std::fmt;
 pub struct SourcePos {
     /// File name as the user gave it (or `<input>` for text not read from a file).
     pub file: String,
-    /// 1-based line number.
+    /// 1-based line number (0 when the whole file is meant: it could not be read).
     pub line: u32,
     /// 1-based column number (0 when the whole line is meant).
     pub column: u32,
@@ -15,10 +15,11 @@ pub struct SourcePos {
 
 impl fmt::Display for SourcePos {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        if self.column > 0 {
-            write!(f, "{}:{}:{}", self.file, self.line, self.column)
-        } else {
-            write!(f, "{}:{}", self.file, self.line)
+        // Line 0: the file as a whole (it could not be read).
+        match (self.line, self.column) {
+            (0, _) => write!(f, "{}", self.file),
+            (line, 0) => write!(f, "{}:{line}", self.file),
+            (line, column) => write!(f, "{}:{line}:{column}", self.file),
         }
     }
 }
@@ -156,5 +157,20 @@ mod tests {
             ..e
         };
         assert!(e.to_string().ends_with("(found `X°\\u{1b}[2J`)"), "{e}");
+    }
+
+    #[test]
+    fn a_position_names_what_it_has() {
+        let at = |line, column| {
+            SourcePos {
+                file: "a.ngc".into(),
+                line,
+                column,
+            }
+            .to_string()
+        };
+        assert_eq!(at(0, 0), "a.ngc");
+        assert_eq!(at(3, 0), "a.ngc:3");
+        assert_eq!(at(3, 7), "a.ngc:3:7");
     }
 }

@@ -55,7 +55,7 @@ impl Format {
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
     /// The file could not be read.
-    #[error("{path}: {source}")]
+    #[error("{}", .path.display())]
     Io {
         /// The path.
         path: PathBuf,
