@@ -193,3 +193,43 @@ fn an_open_stock_mesh_that_encloses_nothing_is_an_error() {
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert!(e.contains("encloses no material"), "{e}");
 }
+
+#[test]
+fn a_missing_program_and_an_output_that_is_a_file_are_said_once() {
+    let p = program("outfile", "G21 G90 G0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X5\nM2\n");
+    let missing = std::path::Path::new(&p).with_file_name("missing.ngc");
+    let o = swarf(&[
+        "simulate",
+        "--stock",
+        "box:0,0,-5,10,10,0",
+        "--program",
+        missing.to_str().unwrap(),
+        "--tool",
+        "flat:d=6",
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    // Named as a whole file (no line 0), the reason once.
+    assert!(
+        e.contains(&format!("{}: cannot read the program", missing.display())),
+        "{e}"
+    );
+    assert_eq!(e.matches("No such file").count(), 1, "{e}");
+    // An output folder that is a file.
+    let o = swarf(&[
+        "engage",
+        "--stock",
+        "box:0,0,-5,10,10,0",
+        "--program",
+        &p,
+        "--tool",
+        "flat:d=6",
+        "--out",
+        &p,
+    ]);
+    assert_eq!(o.status.code(), Some(1));
+    let e = stderr(&o);
+    assert_eq!(e.matches("exists and is not a folder").count(), 1, "{e}");
+    assert_eq!(e.matches(p.as_str()).count(), 1, "{e}");
+    no_internals(&e);
+}
