@@ -233,3 +233,70 @@ fn a_missing_program_and_an_output_that_is_a_file_are_said_once() {
     assert_eq!(e.matches(p.as_str()).count(), 1, "{e}");
     no_internals(&e);
 }
+
+#[test]
+fn each_unreadable_input_file_is_named_once() {
+    let p = program("files", "G21 G90 G0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X5\nM2\n");
+    let dir = std::path::Path::new(&p).parent().unwrap().to_path_buf();
+    let file = |name: &str, text: &str| {
+        let f = dir.join(name);
+        std::fs::write(&f, text).unwrap();
+        f.display().to_string()
+    };
+    let machine = file("m.toml", "garbage = [\n");
+    let missing = |name: &str| dir.join(name).display().to_string();
+    let (table, surface) = (missing("t.tbl"), missing("s.json"));
+    let material = file("al.toml", "ktc 12\n");
+    let sim = ["simulate", "--stock", "box:0,0,-5,10,10,0", "--program", &p];
+    let cases: Vec<(Vec<&str>, String, &str)> = vec![
+        (
+            [&sim[..], &["--tool", "flat:d=6", "--machine", &machine]].concat(),
+            machine.clone(),
+            "TOML parse error",
+        ),
+        (
+            [&sim[..], &["--tools", &table]].concat(),
+            table.clone(),
+            "No such file",
+        ),
+        (
+            vec![
+                "toolsize",
+                "--surface",
+                &surface,
+                "--cutter",
+                "ball",
+                "--out",
+                "x",
+            ],
+            surface.clone(),
+            "No such file",
+        ),
+        (
+            vec![
+                "forces",
+                "--stock",
+                "box:0,0,-5,10,10,0",
+                "--program",
+                &p,
+                "--tool",
+                "flat:d=6,flutes=2",
+                "--coefficients",
+                &material,
+                "--out",
+                "x",
+            ],
+            material.clone(),
+            "(a material file is TOML",
+        ),
+    ];
+    for (args, name, why) in cases {
+        let o = swarf(&args);
+        assert_eq!(o.status.code(), Some(1), "{args:?}");
+        let e = stderr(&o);
+        assert_eq!(e.matches(name.as_str()).count(), 1, "{e}");
+        assert_eq!(e.matches(why).count(), 1, "{e}");
+        assert!(!e.contains("found expected") && !e.contains(":0:"), "{e}");
+        no_internals(&e);
+    }
+}

@@ -215,8 +215,9 @@ pub fn parse_material(text: &str, file: &str) -> Result<Material, ForceError> {
             file: file.to_string(),
             line,
             column,
-            found: e.message().trim().to_string(),
-            expected: "name, ktc, krc, kac (N/mm²), kte, kre, kae (N/mm) and an optional source"
+            problem: e.message().trim().to_string(),
+            expected: "a material file is TOML with name, ktc, krc, kac (N/mm²), kte, kre, kae \
+                       (N/mm) and an optional source"
                 .into(),
         }
     })?;
@@ -239,8 +240,8 @@ pub fn parse_material(text: &str, file: &str) -> Result<Material, ForceError> {
                 file: file.to_string(),
                 line,
                 column,
-                found: format!("{key} = {v}"),
-                expected: "a finite number".into(),
+                problem: format!("{key} = {v}"),
+                expected: "the coefficients are finite numbers".into(),
             });
         }
     }

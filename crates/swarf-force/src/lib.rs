@@ -122,7 +122,7 @@ pub enum ForceError {
         known: String,
     },
     /// A bad material file.
-    #[error("{file}:{line}:{column}: found {found}, expected {expected}")]
+    #[error("{file}:{line}:{column}: {problem} ({expected})")]
     MaterialFile {
         /// File.
         file: String,
@@ -130,9 +130,9 @@ pub enum ForceError {
         line: usize,
         /// 1-based column.
         column: usize,
-        /// What was found.
-        found: String,
-        /// What was expected.
+        /// What is wrong there (the TOML reader's words for a syntax or key error).
+        problem: String,
+        /// What the file should hold, in a sentence.
         expected: String,
     },
     /// An option out of range.

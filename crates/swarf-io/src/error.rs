@@ -5,14 +5,14 @@ use std::path::PathBuf;
 /// What went wrong while reading or writing a mesh file.
 #[derive(Debug, thiserror::Error)]
 pub enum IoError {
-    /// The operating system refused (open, write, rename…).
-    #[error("{}", .path.display())]
+    /// The operating system refused (open, write, rename…). The reason is part of the message
+    /// and not a separate source: the CLI prints an error's chain, and would say it twice.
+    #[error("{}: {reason}", .path.display())]
     Io {
         /// The file concerned.
         path: PathBuf,
         /// The underlying error.
-        #[source]
-        source: std::io::Error,
+        reason: std::io::Error,
     },
     /// The file's contents are not what the format requires.
     #[error("{path}: {what} (expected {expected})")]
@@ -41,13 +41,12 @@ pub enum IoError {
         limit: String,
     },
     /// JSON (de)serialisation of a glTF document failed.
-    #[error("{}: glTF JSON", .path.display())]
+    #[error("{}: glTF JSON: {reason}", .path.display())]
     Json {
         /// The file concerned.
         path: PathBuf,
-        /// The underlying error.
-        #[source]
-        source: serde_json::Error,
+        /// The underlying error (in the message, as for [`IoError::Io`]).
+        reason: serde_json::Error,
     },
 }
 
@@ -55,7 +54,7 @@ impl IoError {
     pub(crate) fn io(path: &std::path::Path, source: std::io::Error) -> Self {
         IoError::Io {
             path: path.to_path_buf(),
-            source,
+            reason: source,
         }
     }
 

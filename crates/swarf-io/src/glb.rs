@@ -227,7 +227,7 @@ impl<'m> GlbFile<'m> {
 
         let json_error = |e| IoError::Json {
             path: Default::default(),
-            source: e,
+            reason: e,
         };
         let mut js = root.to_vec().map_err(json_error)?;
         if let Some(extras) = &options.extras {
@@ -401,7 +401,7 @@ pub fn parse_glb(bytes: &[u8], path: &Path) -> Result<Glb, IoError> {
     }
     let root = json::Root::from_slice(js).map_err(|e| IoError::Json {
         path: path.to_path_buf(),
-        source: e,
+        reason: e,
     })?;
     // gltf-json's validation indexes a primitive's POSITION accessor before checking that it
     // exists (it panics on an index out of range): checked here first.

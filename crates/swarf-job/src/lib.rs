@@ -112,7 +112,7 @@ pub enum JobError {
         source: SpecError,
     },
     /// The tool library could not be read.
-    #[error("tool table {}", .path.display())]
+    #[error("tool table")]
     ToolTable {
         /// The library file.
         path: PathBuf,

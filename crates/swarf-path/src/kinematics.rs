@@ -221,10 +221,11 @@ impl Default for Machine {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MachineError {
     /// No built-in machine has that name.
-    #[error("unknown machine `{0}` (built-in machines: {list})", list = BUILTIN_NAMES.join(", "))]
+    #[error("no such file, and no built-in machine of that name (built-in machines: {list})", list = BUILTIN_NAMES.join(", "))]
     UnknownName(String),
-    /// The file could not be read.
-    #[error("{file}: {message}")]
+    /// The file could not be read. (The messages of the file's errors leave the file to the
+    /// caller, which names it once.)
+    #[error("{message}")]
     Io {
         /// File name.
         file: String,
@@ -232,7 +233,7 @@ pub enum MachineError {
         message: String,
     },
     /// The file is not valid TOML or does not match the schema.
-    #[error("{file}: {message}")]
+    #[error("{message}")]
     Parse {
         /// File name.
         file: String,

@@ -474,9 +474,9 @@ fn cells_into(
     dir: &Path,
 ) -> Result<Vec<MapCell>, IoError> {
     let cells = map_cells(surface, map, n).ok_or_else(|| not_grid(dir))?;
-    std::fs::create_dir_all(dir).map_err(|source| IoError::Io {
+    std::fs::create_dir_all(dir).map_err(|reason| IoError::Io {
         path: dir.to_path_buf(),
-        source,
+        reason,
     })?;
     Ok(cells)
 }

@@ -66,8 +66,7 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
     }
     let mut prep = PreparedSurface::new(&surface);
     if let Some(path) = &args.check {
-        let mesh =
-            swarf_io::read_stl(path).with_context(|| format!("reading {}", path.display()))?;
+        let mesh = swarf_io::read_stl(path)?;
         prep = prep.with_check_mesh(&path.display().to_string(), &mesh)?;
     }
     let job = load_job(&args.setup, &args.program)?;

@@ -160,8 +160,7 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
     let ccs = surface.grid(args.grid);
     let mut prep = PreparedSurface::new(&surface);
     if let Some(path) = &args.check {
-        let mesh =
-            swarf_io::read_stl(path).with_context(|| format!("reading {}", path.display()))?;
+        let mesh = swarf_io::read_stl(path)?;
         prep = prep.with_check_mesh(&path.display().to_string(), &mesh)?;
     }
     let map = swarf_plan::size::allowable_map_prepared(&surface, &prep, &family, &ccs, &opts);

@@ -100,9 +100,9 @@ impl RgbImage {
     /// # Errors
     /// When writing fails.
     pub fn write_png(&self, path: &Path) -> Result<(), IoError> {
-        let bytes = self.png_bytes().map_err(|source| IoError::Io {
+        let bytes = self.png_bytes().map_err(|reason| IoError::Io {
             path: path.to_path_buf(),
-            source,
+            reason,
         })?;
         crate::write_atomic(path, |w| std::io::Write::write_all(w, &bytes))
     }

@@ -54,8 +54,9 @@ impl Format {
 /// Why a surface file could not be read.
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
-    /// The file could not be read.
-    #[error("{}", .path.display())]
+    /// The file could not be read. (The errors of a file leave it to the caller to name it,
+    /// once: a parser's do not know it.)
+    #[error("cannot read")]
     Io {
         /// The path.
         path: PathBuf,
@@ -64,9 +65,7 @@ pub enum ReadError {
         source: std::io::Error,
     },
     /// The extension names no supported format.
-    #[error(
-        "{path}: unknown surface file type (expected .json, .step, .stp, .p21, .igs or .iges)"
-    )]
+    #[error("unknown surface file type (expected .json, .step, .stp, .p21, .igs or .iges)")]
     UnknownFormat {
         /// The path.
         path: PathBuf,
