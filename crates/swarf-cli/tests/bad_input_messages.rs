@@ -10,6 +10,19 @@ fn program(name: &str, text: &str) -> String {
     p.display().to_string()
 }
 
+/// `command` on the 10 × 10 × 5 mm block with `program`, then `more`.
+fn on_block<'a>(command: &'a str, program: &'a str, more: &[&'a str]) -> Vec<&'a str> {
+    let mut args = vec![
+        command,
+        "--stock",
+        "box:0,0,-5,10,10,0",
+        "--program",
+        program,
+    ];
+    args.extend_from_slice(more);
+    args
+}
+
 fn no_internals(e: &str) {
     for bad in [
         "Some(",
@@ -198,15 +211,11 @@ fn an_open_stock_mesh_that_encloses_nothing_is_an_error() {
 fn a_missing_program_and_an_output_that_is_a_file_are_said_once() {
     let p = program("outfile", "G21 G90 G0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X5\nM2\n");
     let missing = std::path::Path::new(&p).with_file_name("missing.ngc");
-    let o = swarf(&[
+    let o = swarf(&on_block(
         "simulate",
-        "--stock",
-        "box:0,0,-5,10,10,0",
-        "--program",
         missing.to_str().unwrap(),
-        "--tool",
-        "flat:d=6",
-    ]);
+        &["--tool", "flat:d=6"],
+    ));
     assert_eq!(o.status.code(), Some(1));
     let e = stderr(&o);
     // Named as a whole file (no line 0), the reason once.
@@ -216,17 +225,11 @@ fn a_missing_program_and_an_output_that_is_a_file_are_said_once() {
     );
     assert_eq!(e.matches("No such file").count(), 1, "{e}");
     // An output folder that is a file.
-    let o = swarf(&[
+    let o = swarf(&on_block(
         "engage",
-        "--stock",
-        "box:0,0,-5,10,10,0",
-        "--program",
         &p,
-        "--tool",
-        "flat:d=6",
-        "--out",
-        &p,
-    ]);
+        &["--tool", "flat:d=6", "--out", &p],
+    ));
     assert_eq!(o.status.code(), Some(1));
     let e = stderr(&o);
     assert_eq!(e.matches("exists and is not a folder").count(), 1, "{e}");
@@ -247,15 +250,18 @@ fn each_unreadable_input_file_is_named_once() {
     let missing = |name: &str| dir.join(name).display().to_string();
     let (table, surface) = (missing("t.tbl"), missing("s.json"));
     let material = file("al.toml", "ktc 12\n");
-    let sim = ["simulate", "--stock", "box:0,0,-5,10,10,0", "--program", &p];
     let cases: Vec<(Vec<&str>, String, &str)> = vec![
         (
-            [&sim[..], &["--tool", "flat:d=6", "--machine", &machine]].concat(),
+            on_block(
+                "simulate",
+                &p,
+                &["--tool", "flat:d=6", "--machine", &machine],
+            ),
             machine.clone(),
             "TOML parse error",
         ),
         (
-            [&sim[..], &["--tools", &table]].concat(),
+            on_block("simulate", &p, &["--tools", &table]),
             table.clone(),
             "No such file",
         ),
@@ -273,19 +279,18 @@ fn each_unreadable_input_file_is_named_once() {
             "No such file",
         ),
         (
-            vec![
+            on_block(
                 "forces",
-                "--stock",
-                "box:0,0,-5,10,10,0",
-                "--program",
                 &p,
-                "--tool",
-                "flat:d=6,flutes=2",
-                "--coefficients",
-                &material,
-                "--out",
-                "x",
-            ],
+                &[
+                    "--tool",
+                    "flat:d=6,flutes=2",
+                    "--coefficients",
+                    &material,
+                    "--out",
+                    "x",
+                ],
+            ),
             material.clone(),
             "(a material file is TOML",
         ),
