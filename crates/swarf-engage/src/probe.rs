@@ -327,57 +327,18 @@ impl<'a> MaterialProbe<'a> {
         if !coherent {
             // The ray nearest to P across the family (ties to the lower index).
             let r = usize::from(wu > 0.5) + 2 * usize::from(wv > 0.5);
-            // Beside an outer edge of the material: some rays end near P, all with one kind
-            // of end, and the others hold no material near P (none at all, none beyond the
-            // grid, or only farther than the reach on the other side of P — a groove's floor
-            // under the edge of its wall). Under the sheet those ends span (P nearest to one
-            // of them, not beyond the edge) the material lies on one side of it, so P's
-            // distance to it along the ray bounds P's distance to the material's boundary,
-            // and is that where the sheet is the nearer face. (At an inner edge the other
-            // rays hold material at P: no bound, a vote.)
+            // Beside an outer edge of the material (P under the sheet that the rays holding
+            // material near it end on, the others holding none near it) that sheet's distance
+            // bounds P's distance to the material, and is it where the sheet is the nearer
+            // face. At an inner edge the other rays hold material at P: a vote.
             let reach = COHERENT_REACH * self.cap;
             let (d_r, _, some) = near[r];
-            let on_sheet = |(d, _, kd): (f64, f64, i8)| kd == some && d.abs() <= reach;
             if some != 0
                 && d_r.abs() <= reach
-                && near
-                    .iter()
-                    .all(|&n| n.2 == 0 || n.0 < -reach || on_sheet(n))
+                && near.iter().any(|&(d, _, kd)| kd == 0 || d < -reach)
             {
-                let w = [
-                    (1.0 - wu) * (1.0 - wv),
-                    wu * (1.0 - wv),
-                    (1.0 - wu) * wv,
-                    wu * wv,
-                ];
-                let (mut sw, mut se) = (0.0, 0.0);
-                for ((&wr, &er), &n) in w.iter().zip(&ends).zip(&near) {
-                    if on_sheet(n) {
-                        sw += wr;
-                        se += wr * er;
-                    }
-                }
-                if sw > 0.0 {
-                    // The sheet's slope across the family from the pairs of neighbouring
-                    // rays that both end on it (level where no pair does), as for a whole one.
-                    let slope = |pairs: [(usize, usize); 2], h: f64| {
-                        let (mut sum, mut count) = (0.0, 0.0);
-                        for (a, b) in pairs {
-                            if on_sheet(near[a]) && on_sheet(near[b]) {
-                                sum += ends[b] - ends[a];
-                                count += 1.0;
-                            }
-                        }
-                        if count > 0.0 {
-                            sum / (count * h)
-                        } else {
-                            0.0
-                        }
-                    };
-                    let de_du = slope([(0, 1), (2, 3)], l.h[0]);
-                    let de_dv = slope([(0, 2), (1, 3)], l.h[1]);
-                    let tilt = (1.0 + de_du * de_du + de_dv * de_dv).sqrt();
-                    return FamilyDepth::Edge(f64::from(some) * (t - se / sw) / tilt);
+                if let Some(d) = edge_distance(&near, some, t, (wu, wv), l.h, reach) {
+                    return FamilyDepth::Edge(d);
                 }
             }
             // The vote of the ray nearest to P.
@@ -405,6 +366,68 @@ fn floor(x: f64) -> f64 {
     } else {
         i
     }
+}
+
+/// Beside an outer edge of the material, the signed distance (positive inside) from the point
+/// at `t` along the rays, at fractions `(wu, wv)` of the cell between the four rays `near`
+/// (nearest ends as [`nearest_end`] gives them; the nearest ray's end near, of kind `kind`),
+/// to the sheet that the rays ending near it with that kind span, when every other ray holds
+/// no material near it (none, or only farther than `reach` on its far side) and one at least
+/// is such a ray: else `None`. (Four ends of one kind are a step or a steep sheet, not an edge:
+/// left to the vote, as before.) Out of line: the probe's other paths stay as compact as they
+/// were, and this one runs only where the rays disagree.
+#[cold]
+#[inline(never)]
+fn edge_distance(
+    near: &[(f64, f64, i8); 4],
+    kind: i8,
+    t: f64,
+    (wu, wv): (f64, f64),
+    h: [f64; 2],
+    reach: f64,
+) -> Option<f64> {
+    let on_sheet = |&(d, _, kd): &(f64, f64, i8)| kd == kind && d.abs() <= reach;
+    let empty = |&(d, _, kd): &(f64, f64, i8)| kd == 0 || d < -reach;
+    let sheet = near.iter().filter(|n| on_sheet(n)).count();
+    let without = near.iter().filter(|n| empty(n)).count();
+    if sheet + without != 4 || without == 0 {
+        return None;
+    }
+    let w = [
+        (1.0 - wu) * (1.0 - wv),
+        wu * (1.0 - wv),
+        (1.0 - wu) * wv,
+        wu * wv,
+    ];
+    let (mut sw, mut se) = (0.0, 0.0);
+    for (&wr, n) in w.iter().zip(near) {
+        if on_sheet(n) {
+            sw += wr;
+            se += wr * n.1;
+        }
+    }
+    if sw <= 0.0 {
+        return None;
+    }
+    // The sheet's slope across the family from the pairs of neighbouring rays that both end
+    // on it (level where no pair does), as for a whole one.
+    let slope = |pairs: [(usize, usize); 2], h: f64| {
+        let (mut sum, mut count) = (0.0, 0.0);
+        for (a, b) in pairs {
+            if on_sheet(&near[a]) && on_sheet(&near[b]) {
+                sum += near[b].1 - near[a].1;
+                count += 1.0;
+            }
+        }
+        if count > 0.0 {
+            sum / (count * h)
+        } else {
+            0.0
+        }
+    };
+    let (de_du, de_dv) = (slope([(0, 1), (2, 3)], h[0]), slope([(0, 2), (1, 3)], h[1]));
+    let tilt = (1.0 + de_du * de_du + de_dv * de_dv).sqrt();
+    Some(f64::from(kind) * (t - se / sw) / tilt)
 }
 
 /// How far (mm) a point at fractional ray index `f` lies beyond the outermost of `n` rays
