@@ -21,11 +21,14 @@
 //! and the others hold no material near `P` — none at all, or only beyond the reach on the
 //! far side of `P`, as over a groove beside its wall's top — with `P` nearest to one of the
 //! former) that sheet's distance from `P` bounds `P`'s distance to the material, and the least
-//! such bound over the families is the distance to the nearer face: exact on a block's faces
-//! and at a slot wall's top, where a vote put the axial depth of a cutter entering the block
-//! or passing beside the slot 0.015 mm too deep. Elsewhere (an inner edge, where the other
-//! rays hold material at `P`) the rays nearest to `P` vote on the side, and the distance is
-//! reported as a fraction of the spacing.
+//! such bound over the families is the distance to the nearer face — unless the nearest rays
+//! of the three families vote the other way: the edge's other face is seen only at the ray
+//! spacing by a family standing across it, and within half a spacing of that face the vote
+//! stands. Where the faces lie on the rays' cell boundaries (a block's faces, a slot cut along
+//! them) this is exact, where a vote put the axial depth of a cutter entering a block or
+//! passing beside a slot 0.015 mm too deep. Elsewhere (an inner edge, where the other rays
+//! hold material at `P`; a step) the rays nearest to `P` vote on the side, and the distance
+//! is reported as a fraction of the spacing.
 //!
 //! Far from the boundary no family is coherent either, but then all twelve rays agree on the
 //! side and their nearest ends are all farther than the probe's precision cap `D₀ = 4h`: the
@@ -46,7 +49,8 @@ use swarf_stock::{Interval, TriDexel};
 pub struct Depth {
     /// Signed distance to the stock's boundary, mm: positive inside the material.
     pub distance: f64,
-    /// True when a coherent family measured it; false when the rays only voted on the side.
+    /// True when a family measured it (a coherent one, or beside an outer edge one that agrees
+    /// with the rays' vote); false when the rays only voted on the side.
     pub measured: bool,
 }
 
@@ -196,7 +200,11 @@ impl<'a> MaterialProbe<'a> {
                         best = Some(d);
                     }
                 }
-                FamilyDepth::Edge(d) => edge = Some(edge.map_or(d, |e: f64| lesser(e, d))),
+                FamilyDepth::Edge(d, inside, spacing) => {
+                    edge = Some(edge.map_or(d, |e: f64| lesser(e, d)));
+                    votes += if inside { 1 } else { -1 };
+                    vote_scale = greater(vote_scale, spacing);
+                }
                 FamilyDepth::Vote(inside, spacing) => {
                     votes += if inside { 1 } else { -1 };
                     vote_scale = greater(vote_scale, spacing);
@@ -217,13 +225,17 @@ impl<'a> MaterialProbe<'a> {
                 measured: true,
             };
         }
+        // An edge's sheets bound the distance, but the edge's other face is seen only at the
+        // ray spacing by the families that stand across it: within half a spacing of that
+        // face they may vote against the sheets, and then the vote stands.
+        let edge = edge.filter(|&d| (d > 0.0) == (votes > 0));
         match best.or(edge) {
             Some(d) => Depth {
                 distance: d.clamp(-self.cap, self.cap),
                 measured: true,
             },
             None => Depth {
-                // Three votes: a tie is impossible.
+                // Three votes (every family that is not coherent votes): a tie is impossible.
                 distance: f64::from(votes.signum()) * 0.25 * vote_scale,
                 measured: false,
             },
@@ -338,7 +350,7 @@ impl<'a> MaterialProbe<'a> {
                 && near.iter().any(|&(d, _, kd)| kd == 0 || d < -reach)
             {
                 if let Some(d) = edge_distance(&near, some, t, (wu, wv), l.h, reach) {
-                    return FamilyDepth::Edge(d);
+                    return FamilyDepth::Edge(d, side(r), spacing);
                 }
             }
             // The vote of the ray nearest to P.
@@ -406,7 +418,7 @@ fn edge_distance(
             se += wr * n.1;
         }
     }
-    if sw <= 0.0 {
+    if !(sw > 0.0) {
         return None;
     }
     // The sheet's slope across the family from the pairs of neighbouring rays that both end
@@ -426,7 +438,12 @@ fn edge_distance(
         }
     };
     let (de_du, de_dv) = (slope([(0, 1), (2, 3)], h[0]), slope([(0, 2), (1, 3)], h[1]));
-    let tilt = (1.0 + de_du * de_du + de_dv * de_dv).sqrt();
+    // Ends this far apart between neighbours are a step, not a sheet (as for a whole one).
+    let steep = de_du * de_du + de_dv * de_dv;
+    if !(steep <= MAX_SHEET_SLOPE * MAX_SHEET_SLOPE) {
+        return None;
+    }
+    let tilt = (1.0 + steep).sqrt();
     Some(f64::from(kind) * (t - se / sw) / tilt)
 }
 
@@ -440,8 +457,9 @@ enum FamilyDepth {
     /// The signed distance to the sheet the four rays agree on.
     Coherent(f64),
     /// Beside an outer edge of the material: the signed distance to the sheet that the rays
-    /// holding material agree on, the others holding none.
-    Edge(f64),
+    /// holding material near the point agree on, the others holding none; and, as a vote, the
+    /// nearest ray's side (inside?) and the ray spacing.
+    Edge(f64, bool, f64),
     /// The rays disagree: only the nearest ray's side (inside?) and the ray spacing.
     Vote(bool, f64),
     /// All four rays on one side (inside?), their nearest end farther than the cap: that
@@ -552,6 +570,40 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn beside_an_edge_between_the_rays_a_measure_never_contradicts_the_rays() {
+        // Faces x = 9.97 and z = 10.03, between the ray centres 9.95 and 10.05: a point
+        // beyond the face x = 9.97 (which only the X rays at z = 9.95 see, the nearest ones at
+        // z = 10.05 being empty) but under z = 10.03 is outside, though the Z rays at x = 9.95
+        // measure it 0.02 mm under their sheet.
+        let b = swarf_geom::Aabb::new(Vec3::ZERO, Vec3::splat(10.2));
+        let (x1, z1) = (9.97, 10.03);
+        let stock = TriDexel::from_fn(b, 0.1, |k, cu, cv, d| {
+            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+            let mut q = [0.0; 3];
+            (q[u], q[v]) = (cu, cv);
+            let (hi, inside) = match k {
+                0 => (x1, q[2] <= z1),
+                2 => (z1, q[0] <= x1),
+                _ => (10.2, q[0] <= x1 && q[2] <= z1),
+            };
+            if inside {
+                d.push(Interval {
+                    enter: 0.0,
+                    exit: hi,
+                });
+            }
+        })
+        .unwrap();
+        let probe = MaterialProbe::new(&stock);
+        let d = probe.depth(Vec3::new(9.99, 5.02, 10.01));
+        assert!(d.distance < 0.0, "{d:?}");
+        // Under both faces, by more than half a spacing from the one between the Z rays: the
+        // Z rays' sheet is measured.
+        let d = probe.depth(Vec3::new(9.9, 5.02, 10.01));
+        assert!(d.measured && (d.distance - 0.02).abs() < 1e-12, "{d:?}");
     }
 
     /// Material below the plane `n·x = 3` in a 10 mm cube, rays `h` apart, with `n` oblique to
