@@ -418,7 +418,8 @@ fn edge_distance(
             se += wr * n.1;
         }
     }
-    if !(sw > 0.0) {
+    // (NaN weights, from a NaN point, give no measure.)
+    if sw.is_nan() || sw <= 0.0 {
         return None;
     }
     // The sheet's slope across the family from the pairs of neighbouring rays that both end
@@ -440,7 +441,7 @@ fn edge_distance(
     let (de_du, de_dv) = (slope([(0, 1), (2, 3)], h[0]), slope([(0, 2), (1, 3)], h[1]));
     // Ends this far apart between neighbours are a step, not a sheet (as for a whole one).
     let steep = de_du * de_du + de_dv * de_dv;
-    if !(steep <= MAX_SHEET_SLOPE * MAX_SHEET_SLOPE) {
+    if steep.is_nan() || steep > MAX_SHEET_SLOPE * MAX_SHEET_SLOPE {
         return None;
     }
     let tilt = (1.0 + steep).sqrt();
