@@ -6,7 +6,8 @@ use std::path::PathBuf;
 #[derive(Debug, thiserror::Error)]
 pub enum IoError {
     /// The operating system refused (open, write, rename…). The reason is part of the message
-    /// and not a separate source: the CLI prints an error's chain, and would say it twice.
+    /// and not a separate source (the CLI prints an error's chain, and would say it twice):
+    /// match on `reason` (e.g. its kind) rather than walking `source()`.
     #[error("{}: {reason}", .path.display())]
     Io {
         /// The file concerned.

@@ -79,9 +79,9 @@ impl Default for JobOptions {
     }
 }
 
-/// Why a job could not be set up or read. The messages name what the user gave (`machine
-/// file FILE`, ``tool spec `SPEC` ``, `tool table FILE`), with the cause as the error's
-/// source.
+/// Why a job could not be set up or read. The messages name what the user gave, once
+/// (`machine file FILE`, ``tool spec `SPEC` ``; the tool table's and an unknown machine's
+/// sources name theirs), with the cause as the error's source.
 #[derive(Debug, thiserror::Error)]
 pub enum JobError {
     /// The machine file could not be read.
@@ -93,8 +93,8 @@ pub enum JobError {
         #[source]
         source: MachineError,
     },
-    /// No built-in machine has this name.
-    #[error("machine `{name}`")]
+    /// No file and no built-in machine has this name (the source names it).
+    #[error("no machine file of that name")]
     MachineName {
         /// The name as given.
         name: String,

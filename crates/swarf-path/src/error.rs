@@ -82,7 +82,7 @@ struct Visible<'a>(&'a str);
 impl fmt::Display for Visible<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         for c in self.0.chars() {
-            if c.is_control() {
+            if c.is_control() && c != '\t' {
                 write!(f, "{}", c.escape_unicode())?;
             } else {
                 write!(f, "{c}")?;
@@ -121,11 +121,12 @@ pub struct Warning {
 
 impl fmt::Display for Warning {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "{}:{}:{}: warning: {}",
-            self.file, self.line, self.column, self.message
-        )
+        let at = SourcePos {
+            file: self.file.clone(),
+            line: self.line,
+            column: self.column,
+        };
+        write!(f, "{at}: warning: {}", self.message)
     }
 }
 
@@ -172,5 +173,17 @@ mod tests {
         assert_eq!(at(0, 0), "a.ngc");
         assert_eq!(at(3, 0), "a.ngc:3");
         assert_eq!(at(3, 7), "a.ngc:3:7");
+        let w = |line, column| {
+            Warning {
+                file: "a.ngc".into(),
+                line,
+                column,
+                message: "m".into(),
+            }
+            .to_string()
+        };
+        assert_eq!(w(0, 0), "a.ngc: warning: m");
+        assert_eq!(w(4, 0), "a.ngc:4: warning: m");
+        assert_eq!(w(4, 2), "a.ngc:4:2: warning: m");
     }
 }

@@ -221,7 +221,7 @@ impl Default for Machine {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MachineError {
     /// No built-in machine has that name.
-    #[error("no such file, and no built-in machine of that name (built-in machines: {list})", list = BUILTIN_NAMES.join(", "))]
+    #[error("unknown machine `{0}` (built-in machines: {list})", list = BUILTIN_NAMES.join(", "))]
     UnknownName(String),
     /// The file could not be read. (The messages of the file's errors leave the file to the
     /// caller, which names it once.)
@@ -387,8 +387,9 @@ impl Machine {
         Self::from_toml(&text, &file, &stem)
     }
 
-    /// Reads a machine description from TOML text; `file` names it in errors, `default_name` is
-    /// used when the text has no `name`.
+    /// Reads a machine description from TOML text; `file` is kept in the errors (their `file`
+    /// field: their messages leave naming it to the caller, which names it once),
+    /// `default_name` is used when the text has no `name`.
     ///
     /// # Errors
     /// As [`Machine::from_file`].

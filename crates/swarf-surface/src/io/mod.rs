@@ -118,7 +118,8 @@ pub enum ReadError {
 }
 
 /// Read a compound surface from a file, choosing the reader by extension. Patches record the
-/// path in their [`crate::PatchSource`].
+/// path in their [`crate::PatchSource`]. The errors do not name the file (the parsers' cannot
+/// know it): the caller names it, once.
 pub fn read_file(path: &Path) -> Result<CompoundSurface, ReadError> {
     let format = Format::from_path(path).ok_or_else(|| ReadError::UnknownFormat {
         path: path.to_path_buf(),
