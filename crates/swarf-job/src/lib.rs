@@ -80,8 +80,8 @@ impl Default for JobOptions {
 }
 
 /// Why a job could not be set up or read. The messages name what the user gave, once
-/// (`machine file FILE`, ``tool spec `SPEC` ``; the tool table's and an unknown machine's
-/// sources name theirs), with the cause as the error's source.
+/// (`machine file FILE`, ``machine `NAME` ``, ``tool spec `SPEC` ``; the tool table's source
+/// names its file), with the cause as the error's source.
 #[derive(Debug, thiserror::Error)]
 pub enum JobError {
     /// The machine file could not be read.
@@ -93,8 +93,8 @@ pub enum JobError {
         #[source]
         source: MachineError,
     },
-    /// No file and no built-in machine has this name (the source names it).
-    #[error("no machine file of that name")]
+    /// No file and no built-in machine has this name.
+    #[error("machine `{name}` (no such file)")]
     MachineName {
         /// The name as given.
         name: String,
@@ -372,7 +372,10 @@ mod tests {
             ..JobOptions::default()
         })
         .unwrap_err();
-        assert!(e.to_string() == "machine `no-such-machine`", "{e}");
+        assert!(
+            e.to_string() == "machine `no-such-machine` (no such file)",
+            "{e}"
+        );
         let e = JobSetup::load(&JobOptions {
             tool: Some("bogus:d=1".into()),
             ..JobOptions::default()

@@ -221,7 +221,7 @@ impl Default for Machine {
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum MachineError {
     /// No built-in machine has that name.
-    #[error("unknown machine `{0}` (built-in machines: {list})", list = BUILTIN_NAMES.join(", "))]
+    #[error("not a built-in machine (built-in machines: {list})", list = BUILTIN_NAMES.join(", "))]
     UnknownName(String),
     /// The file could not be read. (The messages of the file's errors leave the file to the
     /// caller, which names it once.)
