@@ -345,10 +345,7 @@ impl<'a> MaterialProbe<'a> {
             // face. At an inner edge the other rays hold material at P: a vote.
             let reach = COHERENT_REACH * self.cap;
             let (d_r, _, some) = near[r];
-            if some != 0
-                && d_r.abs() <= reach
-                && near.iter().any(|&(d, _, kd)| kd == 0 || d < -reach)
-            {
+            if some != 0 && d_r.abs() <= reach && near.iter().any(|n| holds_none_near(n, reach)) {
                 if let Some(d) = edge_distance(&near, some, t, (wu, wv), l.h, reach) {
                     return FamilyDepth::Edge(d, side(r), spacing);
                 }
@@ -380,6 +377,13 @@ fn floor(x: f64) -> f64 {
     }
 }
 
+/// Whether a ray whose nearest end is `n` (as [`nearest_end`] gives it) holds no material
+/// within `reach` of the point: none at all, or only farther than that on its far side.
+#[inline(always)]
+fn holds_none_near(&(d, _, kind): &(f64, f64, i8), reach: f64) -> bool {
+    kind == 0 || d < -reach
+}
+
 /// Beside an outer edge of the material, the signed distance (positive inside) from the point
 /// at `t` along the rays, at fractions `(wu, wv)` of the cell between the four rays `near`
 /// (nearest ends as [`nearest_end`] gives them; the nearest ray's end near, of kind `kind`),
@@ -399,9 +403,8 @@ fn edge_distance(
     reach: f64,
 ) -> Option<f64> {
     let on_sheet = |&(d, _, kd): &(f64, f64, i8)| kd == kind && d.abs() <= reach;
-    let empty = |&(d, _, kd): &(f64, f64, i8)| kd == 0 || d < -reach;
     let sheet = near.iter().filter(|n| on_sheet(n)).count();
-    let without = near.iter().filter(|n| empty(n)).count();
+    let without = near.iter().filter(|n| holds_none_near(n, reach)).count();
     if sheet + without != 4 || without == 0 {
         return None;
     }
