@@ -4,6 +4,10 @@
 //! plunge between passes. Simulated on a 120 × 120 × 50 mm block at h = 0.2 mm with the default
 //! chordal tolerance (0.001 mm), as `swarf simulate` runs it.
 //!
+//! `SWARF_BENCH_TOOL=flat`: the same path with a 10 mm flat end mill touching the surface with
+//! its bottom edge (a flat end mill is cut as fixed-axis pieces whose count is first order in
+//! the tolerance, each answered by the tilted slab's closed form, `swarf-sweep/src/swept/
+//! tilted.rs`; the bull-nose as exact instances).
 //! `SWARF_BENCH_MOVES` (default 20,000) feed moves; `SWARF_BENCH_RUNS` (default 3) runs, median
 //! reported; `SWARF_BENCH_EXHAUSTIVE=1` turns the front test off (`TriDexel::set_exhaustive`:
 //! every ray a cut may reach is queried, for timing the test); the program is also written to `target/five_axis_finish.apt` so the command line
@@ -42,9 +46,9 @@ fn pose(x: f64, y: f64, f: Vec3, d: f64, r: f64, lead: f64) -> (Vec3, Vec3) {
     (spine - w * (0.5 * d - r) - a * r, a)
 }
 
-/// The CL program: `n` feed moves.
-fn program_text(n: usize) -> String {
-    let (d, r, lead) = (10.0, 2.0, 10f64.to_radians());
+/// The CL program: `n` feed moves of a 10 mm cutter with corner radius `r` (0: flat).
+fn program_text(n: usize, r: f64) -> String {
+    let (d, lead) = (10.0, 10f64.to_radians());
     let mut t = format!("PARTNO/FIVE AXIS FINISH\nCUTTER/{d},{r}\nSPINDL/10000\n");
     let goto = |t: &mut String, (p, a): (Vec3, Vec3)| {
         writeln!(
@@ -105,8 +109,14 @@ fn main() {
         .and_then(|s| s.parse().ok())
         .unwrap_or(3);
     let exhaustive = std::env::var_os("SWARF_BENCH_EXHAUSTIVE").is_some();
+    let flat = std::env::var("SWARF_BENCH_TOOL").is_ok_and(|t| t == "flat");
+    let (cutter, name) = if flat {
+        (Cutter::flat(10.0).unwrap(), "flat d = 10")
+    } else {
+        (Cutter::bull(10.0, 2.0).unwrap(), "bull-nose d = 10 r = 2")
+    };
     let h = 0.2;
-    let text = program_text(n);
+    let text = program_text(n, if flat { 0.0 } else { 2.0 });
     let out = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("../../target");
     if std::fs::create_dir_all(&out).is_ok() {
         let _ = std::fs::write(out.join("five_axis_finish.apt"), &text);
@@ -123,7 +133,7 @@ fn main() {
         .iter()
         .filter(|m| !matches!(m.kind, MoveKind::Rapid))
         .count();
-    let tools = ToolSet::single(Cutter::bull(10.0, 2.0).unwrap());
+    let tools = ToolSet::single(cutter);
     let opts = SimOptions::default();
     let mut times = Vec::new();
     let mut last = None;
@@ -138,7 +148,7 @@ fn main() {
     let rep = last.expect("at least one run");
     let med = median(times.clone());
     println!(
-        "5-axis CL finish: {} moves ({feeds} feed), bull-nose d = 10 r = 2, h = {h} mm, \
+        "5-axis CL finish: {} moves ({feeds} feed), {name}, h = {h} mm, \
          tolerance {} mm",
         program.moves.len(),
         rep.chordal_tolerance_mm

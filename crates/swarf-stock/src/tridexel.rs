@@ -1159,18 +1159,23 @@ impl TileCut<'_, '_, '_> {
             return;
         }
         // Material-first at tile level: skip the tile when no part's sweep can reach its
-        // material range.
+        // material range, and look at the rays only where some part can reach them.
         let half = 0.5 * TILE as f64 * grid.h[u].max(grid.h[v]);
         let mut centre = Vec3::ZERO;
         centre[u] = grid.min[u] + (ti * TILE) as f64 * grid.h[u] + 0.5 * TILE as f64 * grid.h[u];
         centre[v] = grid.min[v] + (tj * TILE) as f64 * grid.h[v] + 0.5 * TILE as f64 * grid.h[v];
-        let reach = self.parts.iter().any(|p| {
-            p.block_range(k, centre, half)
-                .is_some_and(|(a, b)| bound.lo < b && bound.hi > a)
-        });
-        if !reach {
+        let (mut reach_lo, mut reach_hi) = (f64::INFINITY, f64::NEG_INFINITY);
+        for p in self.parts {
+            if let Some((a, b)) = p.block_range(k, centre, half) {
+                if bound.lo < b && bound.hi > a {
+                    (reach_lo, reach_hi) = (reach_lo.min(a), reach_hi.max(b));
+                }
+            }
+        }
+        if reach_lo > reach_hi {
             return;
         }
+        let (tmin, tmax) = (tmin.max(reach_lo), tmax.min(reach_hi));
         // Per part, which rays of the tile its move can change.
         let mut gates: SmallVec<[Gate; 2]> = match self.fronts {
             None => self.parts.iter().map(|_| Gate::All).collect(),

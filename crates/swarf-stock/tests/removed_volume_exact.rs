@@ -236,3 +236,79 @@ fn error_shrinks_as_h_halves() {
     assert!(table[3] < 0.5 * table[0], "no convergence: {table:?}");
     assert!(table[2] < 0.001, "{table:?}");
 }
+
+/// Area of the convex polygon `poly` (in the YZ plane, `(y, z)`) below the height `top`
+/// (Sutherland–Hodgman against one line, then the shoelace formula).
+fn area_below(poly: &[(f64, f64)], top: f64) -> f64 {
+    let mut clipped = Vec::new();
+    for (i, &p) in poly.iter().enumerate() {
+        let q = poly[(i + 1) % poly.len()];
+        if p.1 <= top {
+            clipped.push(p);
+        }
+        if (p.1 < top) != (q.1 < top) {
+            let t = (top - p.1) / (q.1 - p.1);
+            clipped.push((p.0 + t * (q.0 - p.0), top));
+        }
+    }
+    let n = clipped.len();
+    0.5 * (0..n)
+        .map(|i| {
+            let (a, b) = (clipped[i], clipped[(i + 1) % n]);
+            a.0 * b.1 - b.0 * a.1
+        })
+        .sum::<f64>()
+        .abs()
+}
+
+#[test]
+fn tilted_axis_slots_3_plus_2() {
+    // A flat and a ball end mill with the axis tilted 25° in the YZ plane, moving along X right
+    // through the block (3+2 machining; the tilted slab's closed form and a ball's capsule).
+    // The move is ⊥ the axis, so the sweep's section across the block is the cutter's shadow
+    // along X: a rectangle 2R wide along the axis for the cylinder, with a disc of radius R
+    // at the ball's centre — the half of it below the cylinder entirely under the top here.
+    // Removed: the block's length times the shadow's area under the top.
+    let (r, theta) = (3.0f64, 25f64.to_radians());
+    let (a, n) = ((theta.sin(), theta.cos()), (theta.cos(), -theta.sin()));
+    let axis = Vec3::new(0.0, a.0, a.1);
+    let at = |c: (f64, f64), s: f64, t: f64| (c.0 + s * a.0 + t * n.0, c.1 + s * a.1 + t * n.1);
+    let rect =
+        |c: (f64, f64), len: f64| [at(c, 0.0, -r), at(c, 0.0, r), at(c, len, r), at(c, len, -r)];
+    let fl = 15.0;
+    let cases = [
+        ("flat d6 tilted 25°", "flat:d=6,flute-length=15", 3.0, 0.0),
+        ("ball d6 tilted 25°", "ball:d=6,flute-length=15", 7.0, r),
+    ];
+    for (name, spec, dp, centre) in cases {
+        let tip = (10.0, TOP - dp);
+        let c = at(tip, centre, 0.0);
+        let shadow = area_below(&rect(c, fl - centre), TOP)
+            + if centre > 0.0 {
+                assert!(c.1 + r < TOP, "the ball's lower half lies under the top");
+                0.5 * PI * r * r
+            } else {
+                0.0
+            };
+        let exact = 40.0 * shadow;
+        let cutter = Cutter::from_spec(spec).unwrap();
+        let tool = ToolShape::new(&cutter);
+        for h in [0.2, 0.1] {
+            let mut s = stock(h);
+            let v0 = s.volume();
+            let from = Vec3::new(-10.0, tip.0, tip.1);
+            let cut = s.cut_linear(&tool, from, from + Vec3::new(60.0, 0.0, 0.0), axis);
+            assert_eq!(
+                cut.non_cutting.removed_length, [0.0; 3],
+                "{name}: shank clear"
+            );
+            let err = rel(v0 - s.volume(), exact);
+            println!(
+                "{name}, h = {h}: removed {:.3} mm3, exact {exact:.3}, error {:.4}%",
+                v0 - s.volume(),
+                100.0 * err
+            );
+            assert!(err < 0.002, "{name}, h = {h}: error {:.4}%", 100.0 * err);
+        }
+    }
+}

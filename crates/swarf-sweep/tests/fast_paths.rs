@@ -131,12 +131,125 @@ fn other_profiles_and_tilted_axes_use_the_general_path() {
     ] {
         assert!(SweptConvex::new(&prof, Vec3::ZERO, Vec3::Z, delta).has_closed_form());
     }
+    // Tilted and moving, a bull-nose's corner takes the general path; a ball end or a slab
+    // the tilted closed form (`tilted_closed_form_matches_general_candidates`).
     let sw = SweptConvex::new(&prof, Vec3::ZERO, Vec3::new(0.0, 0.6, 0.8), Vec3::X);
     assert!(!sw.has_closed_form());
-    let ball = Cutter::ball(10.0).unwrap();
-    let prof = ConvexProfile::from_solid(ball.cutting_solid()).unwrap();
+    for cutter in [Cutter::ball(10.0).unwrap(), Cutter::flat(10.0).unwrap()] {
+        let prof = ConvexProfile::from_solid(cutter.cutting_solid()).unwrap();
+        let sw = SweptConvex::new(&prof, Vec3::ZERO, Vec3::new(0.0, 0.6, 0.8), Vec3::X);
+        assert!(sw.has_closed_form());
+        let sw = SweptConvex::new(&prof, Vec3::ZERO, Vec3::Z, Vec3::X);
+        assert!(sw.has_closed_form());
+    }
+    let taper = Cutter::taper_flat(4.0, 8.0).unwrap();
+    let prof = ConvexProfile::from_solid(taper.cutting_solid()).unwrap();
     let sw = SweptConvex::new(&prof, Vec3::ZERO, Vec3::new(0.0, 0.6, 0.8), Vec3::X);
     assert!(!sw.has_closed_form());
-    let sw = SweptConvex::new(&prof, Vec3::ZERO, Vec3::Z, Vec3::X);
-    assert!(sw.has_closed_form());
+}
+
+/// Flat and ball end mills (cutting parts, shanks, and the bands a 5-axis move cuts them
+/// into) moving with a fixed axis off the world axes: the closed form of `tilted.rs` against
+/// the general candidates, on random axes (some within 10⁻⁶ rad of a world axis or of the
+/// plane of two), random moves and the special ones (along the axis, across it, along each
+/// ray family, in the plane of the axis and a ray family), rays through the sweep's box and
+/// rays grazing its two end instances.
+#[test]
+fn tilted_closed_form_matches_general_candidates() {
+    let mut rng = Rng(0x7117_2026);
+    let (mut worst, mut hits) = (0.0f64, 0);
+    for round in 0..60 {
+        let d = rng.range(1.0, 20.0);
+        let fl = rng.range(1.0, 4.0) * d;
+        for spec in [
+            format!("flat:d={d}"),
+            format!("ball:d={d},flute-length={fl}"),
+        ] {
+            let cutter = Cutter::from_spec(&spec).unwrap();
+            let mut profiles: Vec<ConvexProfile> = SweepShape::from_solid(cutter.cutting_solid())
+                .bands(0.5 * d)
+                .parts()
+                .to_vec();
+            let bands = profiles.len();
+            profiles.push(ConvexProfile::from_solid(cutter.cutting_solid()).unwrap());
+            profiles.extend(
+                SweepShape::from_solid(cutter.shank_solid())
+                    .parts()
+                    .iter()
+                    .cloned(),
+            );
+            let axis = match round % 4 {
+                0 => rng.unit(),
+                // Nearly a world axis, nearly in the plane of two.
+                1 => (Vec3::AXES[rng.pick(3)] + rng.unit() * 1e-6).normalize(),
+                2 => {
+                    let mut a = rng.unit();
+                    a[rng.pick(3)] = 1e-7 * rng.range(-1.0, 1.0);
+                    a.normalize()
+                }
+                _ => {
+                    let mut a = rng.unit();
+                    a[rng.pick(3)] = 0.0;
+                    a.normalize()
+                }
+            };
+            let len = rng.range(0.001, 30.0);
+            let across = axis.any_orthonormal_pair().0;
+            let deltas = [
+                rng.unit() * len,
+                axis * len,
+                axis * -len,
+                across * len,
+                (across + axis * 0.02) * len,
+                Vec3::AXES[rng.pick(3)] * len,
+                (Vec3::AXES[rng.pick(3)] * 0.5 + axis).normalize() * len,
+            ];
+            for delta in deltas {
+                let tip = Vec3::new(
+                    rng.range(-50.0, 50.0),
+                    rng.range(-50.0, 50.0),
+                    rng.range(-50.0, 50.0),
+                );
+                for (i, prof) in profiles.iter().enumerate() {
+                    // A ball's band below its equator is a sphere cap: no closed form (5-axis
+                    // moves cut a ball as instances). Every other part has one.
+                    if !SweptConvex::new(prof, tip, axis, delta).has_closed_form() {
+                        assert!(spec.starts_with("ball") && i < bands, "{spec}: part {i}");
+                        continue;
+                    }
+                    let sw = SweptConvex::new(prof, tip, axis, delta);
+                    let bb = sw.bbox();
+                    // Rays through the sweep's box, and near the end instances' axes, where
+                    // the caps decide.
+                    let ends = [tip, tip + delta];
+                    for i in 0..190 {
+                        let k = rng.pick(3);
+                        let p = if i < 150 {
+                            rng.point_in(&bb, 0.1)
+                        } else {
+                            let z = rng.range(prof.z_min(), prof.z_max());
+                            rng.across(ends[i % 2] + axis * z, k, 1.2 * prof.r_max())
+                        };
+                        let (fast, general, e) = both_answers(&sw, p, k);
+                        // A ray nearly parallel to the caps' planes (`axis[k]` tiny) ends
+                        // where it crosses one, a point that rounding of 10⁻¹³ mm across the
+                        // plane moves by 10⁻¹³ / |axis[k]| along the ray (in both paths).
+                        let tol = 1e-9 + 1e-13 / axis[k].abs();
+                        assert!(
+                            e.is_some_and(|e| e <= tol),
+                            "{spec}: tip {tip} axis {axis} delta {delta}, ray along {k} through {p}: fast {fast:?} vs general {general:?}"
+                        );
+                        if fast.is_some() && general.is_some() {
+                            if axis[k].abs() >= 0.01 {
+                                worst = worst.max(e.unwrap_or(0.0));
+                            }
+                            hits += 1;
+                        }
+                    }
+                }
+            }
+        }
+    }
+    println!("tilted: compared {hits} hits; worst disagreement {worst:.3e} mm (rays at least 0.01 rad off the caps' planes)");
+    assert!(hits > 50_000, "{hits}");
 }

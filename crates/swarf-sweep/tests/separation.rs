@@ -5,7 +5,7 @@
 //! sweep on either side, with one scratch shared by all the rays (and by two sweeps queried in
 //! turn, as the workers of a cut do), so the planes kept from earlier rays are put to the test
 //! too. And the skip must be worth having: most rays whose material stays clear of the sweep
-//! by a tenth of a millimetre are skipped.
+//! by a tenth of a millimetre are skipped (counted on the sweeps that take the general query).
 
 mod common;
 
@@ -115,8 +115,12 @@ fn no_ray_the_sweep_cuts_is_skipped_and_most_clear_ones_are() {
                     let next = SweptConvex::new(p, tip + v, axis, v);
                     for k in 0..3 {
                         let (c, s) = check([&sweep, &next], k, 0.23, &mut scratch);
-                        clear += c;
-                        skipped += s;
+                        // The skip is the general query's: a closed form answers every ray
+                        // (its chord, which the stock update then finds clear of the material).
+                        if !sweep.has_closed_form() {
+                            clear += c;
+                            skipped += s;
+                        }
                     }
                 }
             }

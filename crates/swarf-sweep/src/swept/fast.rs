@@ -170,20 +170,11 @@ impl FastSweep {
     pub(crate) fn rays(&self, k: usize) -> FastRays {
         let (r, z0, z1) = self.shape.slab;
         let (pa, ma) = (self.mv.p[2], self.mv.m[2]);
-        let baba = self.delta.length_squared();
-        let bard = self.delta[k];
-        // The capsule in the family's frame (along the rays, then its two cross axes), where
-        // the rays run along x from x = 0.
-        let (fu, fv) = ((k + 1) % 3, (k + 2) % 3);
-        let perm = |x: Vec3| Vec3::new(x[k], x[fu], x[fv]);
-        let sphere = self.shape.sphere().map(|(_, sr)| CapsuleRays {
-            c0: perm(self.c0),
-            ba: perm(self.delta),
-            baba,
-            bard,
-            a: baba - bard * bard,
-            rr: sr * sr,
-        });
+        let fu = (k + 1) % 3;
+        let sphere = self
+            .shape
+            .sphere()
+            .map(|(_, sr)| CapsuleRays::new(k, self.c0, self.delta, sr));
         let end = match (sphere, self.lozenge, self.ramp) {
             (Some(c), _, _) => Some(RoundEnd::Sphere(c)),
             (None, Some((e, lr, _)), Some((frame, v))) => Some(RoundEnd::Ramp(RampRays {
@@ -301,10 +292,29 @@ pub(crate) struct CapsuleRays {
 }
 
 impl CapsuleRays {
+    /// The capsule of radius `r` about the segment from `c0` by `delta` (world), for the rays
+    /// along world axis `k`.
+    pub(crate) fn new(k: usize, c0: Vec3, delta: Vec3, r: f64) -> Self {
+        // Held in the family's frame (along the rays, then its two cross axes), where the
+        // rays run along x from x = 0.
+        let (fu, fv) = ((k + 1) % 3, (k + 2) % 3);
+        let perm = |x: Vec3| Vec3::new(x[k], x[fu], x[fv]);
+        let baba = delta.length_squared();
+        let bard = delta[k];
+        CapsuleRays {
+            c0: perm(c0),
+            ba: perm(delta),
+            baba,
+            bard,
+            a: baba - bard * bard,
+            rr: r * r,
+        }
+    }
+
     /// The capsule's interval on the line through `o` along `d` (world coordinates along
     /// `d`), computed as [`line_capsule`] does with the direction's constants shared.
     #[inline]
-    fn interval<const LOW_ONLY: bool>(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
+    pub(crate) fn interval<const LOW_ONLY: bool>(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
         if self.a <= 1e-20 * self.baba {
             let o = Vec3::new(0.0, cu, cv);
             return line_capsule::<LOW_ONLY>(o, Vec3::X, self.c0, self.ba, self.rr.sqrt());

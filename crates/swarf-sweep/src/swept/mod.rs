@@ -49,7 +49,10 @@
 //! root) united with a swept slab (`slab.rs`: the positions whose disc holds a ray along the
 //! axis; the stadium cross-section for a ray across it). `fast.rs` classifies the profile once,
 //! the move once, and shares the per-family constants among the rays
-//! ([`SweptConvex::has_closed_form`], [`SweptConvex::axis_ray_interval`]).
+//! ([`SweptConvex::has_closed_form`], [`SweptConvex::axis_ray_interval`]). A slab or ball end
+//! whose fixed axis is no world axis has a closed form too (`tilted.rs`: the line parameter and
+//! the move's, constrained by an ellipse and two strips, reach their extremes at one of fourteen
+//! candidate points), and so does an instance at any axis (`instance.rs`).
 
 pub(crate) mod bound;
 pub(crate) mod capsule;
@@ -66,6 +69,7 @@ pub(crate) mod profile;
 pub(crate) mod separation;
 pub(crate) mod slab;
 pub(crate) mod sphere;
+pub(crate) mod tilted;
 pub(crate) mod torus;
 
 pub use bound::SweepBound;
@@ -180,17 +184,26 @@ pub struct SweptConvex<'a> {
     /// When the tool axis is a world axis `k` (+1 along it): the tip's cross coordinates at the
     /// start and end, and its lowest coordinate along `k` over the move.
     axial: Option<Axial>,
-    /// The closed-form kernels for dexels, when the profile and the move qualify.
-    fast: Option<fast::FastSweep>,
-    /// The closed-form kernels of a tool instance (no motion) at any other axis, when the
-    /// profile qualifies.
-    instance: Option<instance::InstanceShape>,
+    /// The closed-form kernel for dexels, when the profile and the move qualify.
+    closed: Option<ClosedForm>,
     /// Elements (bit `i`: element `i`) whose envelope is left out
     /// ([`SweptConvex::with_envelope_slack`]).
     skip_envelope: u64,
     /// Bull-nose corners (bit `i`: element `i`) swept as a lozenge (`lozenge.rs`) instead of by
     /// their caps and the torus envelope.
     lozenges: u64,
+}
+
+/// Which closed form answers a sweep's dexel queries (chosen once, in [`SweptConvex::new`]).
+#[derive(Clone, Copy, Debug)]
+enum ClosedForm {
+    /// A slab, ball or bull-nose profile on a move whose tool axis is a world axis
+    /// (`fast.rs`).
+    Axial(fast::FastSweep),
+    /// A slab, ball or bull-nose instance (no motion) at any other axis (`instance.rs`).
+    Instance(instance::InstanceShape),
+    /// A slab or ball end moving with its axis fixed off the world axes (`tilted.rs`).
+    Tilted(tilted::TiltedSweep),
 }
 
 /// The move seen along a tool axis that is the world axis `k`.
@@ -280,6 +293,8 @@ enum RaysKind {
     Fast(fast::FastRays),
     /// Closed-form kernels of an instance.
     Instance(instance::InstanceRays),
+    /// The closed form of a slab or ball end at a tilted axis.
+    Tilted(tilted::TiltedRays),
     /// The general candidates, and a number no other `DexelRays` of the process has (the
     /// separating planes found for its rays are kept under it).
     General(Box<DirConsts>, u64),
@@ -362,12 +377,15 @@ impl<'a> SweptConvex<'a> {
                 high: tip[k].max(end[k]),
             }
         });
-        let fast = axial.and_then(|ax| fast::FastSweep::new(prof, ax.k, tip, delta));
-        let instance = match (&fast, prof.fast()) {
-            (None, Some(shape)) if v == Vec3::ZERO => {
-                Some(instance::InstanceShape::new(shape, frame))
+        let closed = match (axial, prof.fast()) {
+            (Some(ax), _) => fast::FastSweep::new(prof, ax.k, tip, delta).map(ClosedForm::Axial),
+            (None, Some(shape)) if v == Vec3::ZERO => Some(ClosedForm::Instance(
+                instance::InstanceShape::new(shape, frame),
+            )),
+            (None, Some(shape)) => {
+                tilted::TiltedSweep::new(shape, frame, v).map(ClosedForm::Tilted)
             }
-            _ => None,
+            (None, None) => None,
         };
         Self {
             prof,
@@ -376,8 +394,7 @@ impl<'a> SweptConvex<'a> {
             bbox,
             units,
             axial,
-            fast,
-            instance,
+            closed,
             skip_envelope: 0,
             lozenges: prof.lozenge_corners(),
         }
@@ -441,10 +458,11 @@ impl<'a> SweptConvex<'a> {
         let mut o = origin;
         o[k] = 0.0;
         let (cu, cv) = (o[(k + 1) % 3], o[(k + 2) % 3]);
-        match (&self.fast, &self.instance) {
-            (Some(f), _) => f.rays(k).interval(cu, cv, None),
-            (None, Some(i)) => i.rays(k).interval(cu, cv),
-            (None, None) => self.ray_interval(o, Vec3::AXES[k]),
+        match &self.closed {
+            Some(ClosedForm::Axial(f)) => f.rays(k).interval(cu, cv, None),
+            Some(ClosedForm::Instance(i)) => i.rays(k).interval(cu, cv),
+            Some(ClosedForm::Tilted(t)) => t.rays(k, 0.0).interval(cu, cv),
+            None => self.ray_interval(o, Vec3::AXES[k]),
         }
     }
 
@@ -452,17 +470,18 @@ impl<'a> SweptConvex<'a> {
     /// profile on a move whose tool axis is a world axis, or a slab, ball-end or bull-nose
     /// instance (no motion) at any axis.
     pub fn has_closed_form(&self) -> bool {
-        self.fast.is_some() || self.instance.is_some()
+        self.closed.is_some()
     }
 
     /// What the dexel queries along world axis `k` share: the closed-form kernels' constants
     /// when available, else the general path's direction constants. (The one place where
     /// the kind of kernel is chosen.)
     pub fn dexel_rays(&self, k: usize) -> DexelRays {
-        DexelRays(match (&self.fast, &self.instance) {
-            (Some(f), _) => RaysKind::Fast(f.rays(k)),
-            (None, Some(i)) => RaysKind::Instance(i.rays(k)),
-            (None, None) => RaysKind::General(
+        DexelRays(match &self.closed {
+            Some(ClosedForm::Axial(f)) => RaysKind::Fast(f.rays(k)),
+            Some(ClosedForm::Instance(i)) => RaysKind::Instance(i.rays(k)),
+            Some(ClosedForm::Tilted(t)) => RaysKind::Tilted(t.rays(k, 0.0)),
+            None => RaysKind::General(
                 Box::new(self.dir_consts(Vec3::AXES[k])),
                 separation::Planes::new_owner(),
             ),
@@ -491,6 +510,7 @@ impl<'a> SweptConvex<'a> {
         let (dc, owner) = match &rays.0 {
             RaysKind::Fast(f) => return (true, f.interval(cu, cv, Some((first, last)))),
             RaysKind::Instance(i) => return i.cut(cu, cv, d),
+            RaysKind::Tilted(t) => return t.cut(cu, cv, (first, last)),
             RaysKind::General(dc, owner) => (dc, *owner),
         };
         let mut origin = Vec3::ZERO;
@@ -532,11 +552,16 @@ impl<'a> SweptConvex<'a> {
         let bb = &self.bbox;
         let full = (bb.min[k], bb.max[k]);
         let Some(ax) = self.axial else {
-            return match &self.instance {
-                Some(i) => i
-                    .rays(k)
-                    .block(origin[(k + 1) % 3], origin[(k + 2) % 3], half),
-                None => Some(full),
+            let (cu, cv) = (origin[(k + 1) % 3], origin[(k + 2) % 3]);
+            return match &self.closed {
+                Some(ClosedForm::Instance(i)) => i.rays(k).block(cu, cv, half),
+                // Every ray of the block is within half·√2 of the centre's: inside the sweep
+                // of the shape grown by that, along the centre's ray.
+                Some(ClosedForm::Tilted(t)) => t
+                    .rays(k, half * std::f64::consts::SQRT_2)
+                    .interval(cu, cv)
+                    .map(|(lo, hi)| (lo.max(full.0), hi.min(full.1))),
+                _ => Some(full),
             };
         };
         let (u, w) = ((ax.k + 1) % 3, (ax.k + 2) % 3);

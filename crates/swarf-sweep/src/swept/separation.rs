@@ -116,7 +116,7 @@ impl SweptConvex<'_> {
     pub fn box_clear(&self, lo: Vec3, hi: Vec3, rays: &DexelRays, scratch: &Scratch) -> bool {
         match &rays.0 {
             RaysKind::General(_, owner) => scratch.planes.separate_box(*owner, lo, hi),
-            RaysKind::Fast(_) | RaysKind::Instance(_) => false,
+            RaysKind::Fast(_) | RaysKind::Instance(_) | RaysKind::Tilted(_) => false,
         }
     }
 
