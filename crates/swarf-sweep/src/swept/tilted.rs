@@ -96,13 +96,7 @@ impl TiltedSweep {
             x: at(f.x),
             y: at(f.y),
             z: at(f.z),
-            g: (f.x[k], f.y[k], f.z[k]),
-            a,
-            b,
-            ext: 2.0 * r + (z1 - z0) + a.abs() + b.abs(),
-            r,
-            z0,
-            z1,
+            slab: SlabRays::new((f.x[k], f.y[k], f.z[k]), (a, b), (r, z0, z1)),
             sphere,
         }
     }
@@ -116,17 +110,8 @@ pub(crate) struct TiltedRays {
     x: (f64, f64, f64),
     y: (f64, f64, f64),
     z: (f64, f64, f64),
-    /// The ray direction in the move frame.
-    g: (f64, f64, f64),
-    /// The move, `(a, 0, b)` in the move frame.
-    a: f64,
-    b: f64,
-    /// A length beyond the sweep's size (its box's diagonal and more).
-    ext: f64,
-    /// The slab: radius and heights.
-    r: f64,
-    z0: f64,
-    z1: f64,
+    /// The swept slab.
+    slab: SlabRays,
     /// A ball end's capsule.
     sphere: Option<CapsuleRays>,
     /// The sweep's box in the move frame, per axis: `(1/g, lo, hi)` (`1/g` infinite for a ray
@@ -201,121 +186,236 @@ impl TiltedRays {
     /// The swept slab's chord (see the module doc for the candidates), the ray's origin at
     /// `(qx, qy, h0)` in the move frame.
     fn slab(&self, (qx, qy, h0): (f64, f64, f64)) -> Option<(f64, f64)> {
-        let (gx, gy, gz) = self.g;
-        let (a, b, r, z0, z1) = (self.a, self.b, self.r, self.z0, self.z1);
-        let rr = (r + BAND_EPS) * (r + BAND_EPS);
+        let c = &self.slab;
+        let (gx, gy, gz, a, b) = (c.gx, c.gy, c.gz, c.a, c.b);
         let in_e = |l: f64, s: f64| {
             let (ux, uy) = (qx + l * gx - s * a, qy + l * gy);
-            ux * ux + uy * uy <= rr
+            ux * ux + uy * uy <= c.re2
         };
         let in_s = |s: f64| (-S_EPS..=1.0 + S_EPS).contains(&s);
-        let in_h = |l: f64, s: f64| {
-            let h = h0 + l * gz - s * b;
-            h >= z0 - BAND_EPS && h <= z1 + BAND_EPS
-        };
+        let in_h = |l: f64, s: f64| (c.z0e..=c.z1e).contains(&(h0 + l * gz - s * b));
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         let mut take = |l: f64| {
             lo = lesser(lo, l);
             hi = greater(hi, l);
         };
-        // Roots of `A·t² + 2·B·t + C = 0`.
-        let roots = |qa: f64, qb: f64, qc: f64| -> Option<(f64, f64)> {
-            if qa <= 0.0 {
-                return None;
-            }
-            let disc = qb * qb - qa * qc;
-            if disc.is_nan() || disc < 0.0 {
-                return None;
-            }
-            let q = -(qb + qb.signum() * disc.sqrt());
-            if q == 0.0 {
-                return Some((0.0, 0.0));
-            }
-            Some((q / qa, qc / q))
-        };
-        let gg = gx * gx + gy * gy;
+        let qyy = qy * qy - c.r2;
         // ∂E on the lines s = 0 and s = 1 (inside H).
-        for s in [0.0, 1.0] {
-            let px = qx - s * a;
-            if let Some((l1, l2)) = roots(gg, gx * px + gy * qy, px * px + qy * qy - r * r) {
-                for l in [l1, l2] {
-                    if in_h(l, s) {
-                        take(l);
-                    }
-                }
-            }
-        }
-        if gz != 0.0 && gz.abs() * self.ext >= b.abs() {
-            // The lines h = z, parametrised by s (λ moves by at most `ext` along them).
-            let mu = b / gz;
-            for z in [z0, z1] {
-                // The line h = z: λ = λz + s·μ.
-                let lz = (z - h0) / gz;
-                // The parallelogram's corners (inside E).
-                for s in [0.0, 1.0] {
-                    let l = lz + s * mu;
-                    if in_e(l, s) {
-                        take(l);
-                    }
-                }
-                // ∂E along it (inside T).
-                let (px, py) = (qx + lz * gx, qy + lz * gy);
-                let (sx, sy) = (mu * gx - a, mu * gy);
-                if let Some((s1, s2)) = roots(
-                    sx * sx + sy * sy,
-                    px * sx + py * sy,
-                    px * px + py * py - r * r,
-                ) {
-                    for s in [s1, s2] {
-                        if in_s(s) {
-                            take(lz + s * mu);
-                        }
-                    }
-                }
-            }
-        } else if b != 0.0 {
-            // The lines h = z, nearly level in (λ, s) (the ray nearly across the axis):
-            // parametrised by λ, s = sz + λ·ν. ∂E along them, inside T; their corners with
-            // T lie where a chord across the caps' planes ends, also ∂E's crossings or
-            // beyond E unless T's lines cross ∂E there too (taken above).
-            let nu = gz / b;
-            for z in [z0, z1] {
-                let sz = (h0 - z) / b;
-                let (px, ex) = (qx - sz * a, gx - nu * a);
-                if let Some((l1, l2)) = roots(
-                    ex * ex + gy * gy,
-                    px * ex + qy * gy,
-                    px * px + qy * qy - r * r,
-                ) {
+        if c.gg > 0.0 {
+            for s in [0.0, 1.0] {
+                let px = qx - s * a;
+                if let Some((l1, l2)) = roots(c.gg, c.inv_gg, gx * px + gy * qy, px * px + qyy) {
                     for l in [l1, l2] {
-                        if in_s(sz + l * nu) {
+                        if in_h(l, s) {
                             take(l);
                         }
                     }
                 }
-                if gz != 0.0 {
+            }
+        }
+        match c.h_lines {
+            HLines::ByS {
+                inv_gz,
+                mu,
+                sx,
+                sy,
+                ss,
+                inv_ss,
+            } => {
+                // The lines h = z, parametrised by s (λ moves by at most `ext` along them):
+                // λ = λz + s·μ.
+                for z in [c.z0, c.z1] {
+                    let lz = (z - h0) * inv_gz;
+                    // The parallelogram's corners (inside E).
                     for s in [0.0, 1.0] {
-                        let l = (s - sz) / nu;
+                        let l = lz + s * mu;
                         if in_e(l, s) {
                             take(l);
                         }
                     }
+                    // ∂E along it (inside T).
+                    if ss > 0.0 {
+                        let (px, py) = (qx + lz * gx, qy + lz * gy);
+                        let qc = px * px + py * py - c.r2;
+                        if let Some((s1, s2)) = roots(ss, inv_ss, px * sx + py * sy, qc) {
+                            for s in [s1, s2] {
+                                if in_s(s) {
+                                    take(lz + s * mu);
+                                }
+                            }
+                        }
+                    }
                 }
             }
-        } else if !(h0 >= z0 - BAND_EPS && h0 <= z1 + BAND_EPS) {
-            // The ray runs across the axis at a height the slab never reaches.
-            return None;
+            HLines::ByLambda {
+                inv_b,
+                nu,
+                inv_nu,
+                ex,
+                ee,
+                inv_ee,
+            } => {
+                // The lines h = z, nearly level in (λ, s) (the ray nearly across the axis):
+                // parametrised by λ, s = sz + λ·ν. ∂E along them, inside T, and their corners
+                // with T (none when the lines are level).
+                for z in [c.z0, c.z1] {
+                    let sz = (h0 - z) * inv_b;
+                    let px = qx - sz * a;
+                    if let Some((l1, l2)) = roots(ee, inv_ee, px * ex + qy * gy, px * px + qyy) {
+                        for l in [l1, l2] {
+                            if in_s(sz + l * nu) {
+                                take(l);
+                            }
+                        }
+                    }
+                    if inv_nu != 0.0 {
+                        for s in [0.0, 1.0] {
+                            let l = (s - sz) * inv_nu;
+                            if in_e(l, s) {
+                                take(l);
+                            }
+                        }
+                    }
+                }
+            }
+            HLines::Level => {
+                if !(c.z0e..=c.z1e).contains(&h0) {
+                    // The ray runs across the axis at a height the slab never reaches.
+                    return None;
+                }
+            }
         }
         // ∂E's extremes in λ: y = ±r, u_x = 0.
-        if gy != 0.0 && a != 0.0 {
-            for y in [-r, r] {
-                let l = (y - qy) / gy;
-                let s = (qx + l * gx) / a;
+        if let Some((inv_gy, inv_a)) = c.extremes {
+            for y in [-c.r, c.r] {
+                let l = (y - qy) * inv_gy;
+                let s = (qx + l * gx) * inv_a;
                 if in_s(s) && in_h(l, s) {
                     take(l);
                 }
             }
         }
         (lo <= hi).then_some((lo, hi))
+    }
+}
+
+/// The roots of `qa·t² + 2·qb·t + qc = 0` (`qa > 0`, `inv_qa = 1/qa`), without cancellation.
+#[inline(always)]
+fn roots(qa: f64, inv_qa: f64, qb: f64, qc: f64) -> Option<(f64, f64)> {
+    let disc = qb * qb - qa * qc;
+    if !(disc >= 0.0) {
+        return None;
+    }
+    let q = -(qb + disc.sqrt().copysign(qb));
+    let t1 = q * inv_qa;
+    Some((t1, if q != 0.0 { qc / q } else { t1 }))
+}
+
+/// The swept slab's constants for one family of rays (see [`TiltedRays::slab`]).
+#[derive(Clone, Copy, Debug)]
+struct SlabRays {
+    /// The ray direction in the move frame.
+    gx: f64,
+    gy: f64,
+    gz: f64,
+    /// The move, `(a, 0, b)` in the move frame.
+    a: f64,
+    b: f64,
+    /// The radius, its square, and the square of the radius grown by `BAND_EPS`.
+    r: f64,
+    r2: f64,
+    re2: f64,
+    /// The heights, and the heights grown by `BAND_EPS`.
+    z0: f64,
+    z1: f64,
+    z0e: f64,
+    z1e: f64,
+    /// `gx² + gy²` (0 for a ray along the axis) and its inverse.
+    gg: f64,
+    inv_gg: f64,
+    h_lines: HLines,
+    /// `(1/gy, 1/a)` when ∂E has extremes in λ (the ellipse is no strip).
+    extremes: Option<(f64, f64)>,
+}
+
+/// How the lines `h = z0`, `h = z1` of the `(λ, s)` plane are followed.
+#[derive(Clone, Copy, Debug)]
+enum HLines {
+    /// By `s`: `λ = (z − h0)/gz + s·μ`, `(sx, sy)` the change of `u` per unit `s`, `ss` its
+    /// square (`inv_ss` its inverse).
+    ByS {
+        inv_gz: f64,
+        mu: f64,
+        sx: f64,
+        sy: f64,
+        ss: f64,
+        inv_ss: f64,
+    },
+    /// By `λ`: `s = (h0 − z)/b + λ·ν`, `(ex, gy)` the change of `u` per unit `λ`, `ee` its
+    /// square; `inv_nu = 1/ν` (0 when the lines are level: `gz = 0`).
+    ByLambda {
+        inv_b: f64,
+        nu: f64,
+        inv_nu: f64,
+        ex: f64,
+        ee: f64,
+        inv_ee: f64,
+    },
+    /// `gz = b = 0`: `h` is the same all over the plane.
+    Level,
+}
+
+impl SlabRays {
+    /// The constants of a slab `(r, z0, z1)` moving by `(a, 0, b)`, for a ray along `g` (move
+    /// frame); `ext` a length beyond the sweep's size.
+    fn new((gx, gy, gz): (f64, f64, f64), (a, b): (f64, f64), (r, z0, z1): (f64, f64, f64)) -> Self {
+        let ext = 2.0 * r + (z1 - z0) + a.abs() + b.abs();
+        let inv = |x: f64| if x != 0.0 { 1.0 / x } else { 0.0 };
+        let gg = gx * gx + gy * gy;
+        let h_lines = if gz != 0.0 && gz.abs() * ext >= b.abs() {
+            let mu = b / gz;
+            let (sx, sy) = (mu * gx - a, mu * gy);
+            let ss = sx * sx + sy * sy;
+            HLines::ByS {
+                inv_gz: 1.0 / gz,
+                mu,
+                sx,
+                sy,
+                ss,
+                inv_ss: inv(ss),
+            }
+        } else if b != 0.0 {
+            let nu = gz / b;
+            let ex = gx - nu * a;
+            let ee = ex * ex + gy * gy;
+            HLines::ByLambda {
+                inv_b: 1.0 / b,
+                nu,
+                inv_nu: inv(nu),
+                ex,
+                ee,
+                inv_ee: inv(ee),
+            }
+        } else {
+            HLines::Level
+        };
+        SlabRays {
+            gx,
+            gy,
+            gz,
+            a,
+            b,
+            r,
+            r2: r * r,
+            re2: (r + BAND_EPS) * (r + BAND_EPS),
+            z0,
+            z1,
+            z0e: z0 - BAND_EPS,
+            z1e: z1 + BAND_EPS,
+            gg,
+            inv_gg: inv(gg),
+            h_lines,
+            extremes: (gy != 0.0 && a != 0.0).then(|| (1.0 / gy, 1.0 / a)),
+        }
     }
 }
