@@ -47,11 +47,12 @@
 //! bull-nose tool *instance* at any axis (the cuts a 5-axis move is made of): its bounding
 //! cylinder's chord (one quadratic) leaves most rays at once, and only a chord end below the
 //! corner's spine inside the material needs the lozenge (`swept/instance.rs`, held to the
-//! general candidates by `tests/instance_paths.rs`); and so does a flat or ball end mill (a band of
-//! one, a shank) moving with its axis fixed off the world axes (3+2 moves, the fixed-axis pieces
-//! of a 5-axis flat end mill): the swept slab's chord from at most fourteen candidate points
-//! in the plane of the line parameter and the move's (`swept/tilted.rs`), the sphere's capsule
-//! for a ball, after the ray's material is checked against the sweep's box in the move frame.
+//! general candidates by `tests/instance_paths.rs`); and so does a flat, ball or bull-nose end mill
+//! (a band of one, a shank) moving with its axis fixed off the world axes (3+2 moves, the
+//! fixed-axis pieces of a 5-axis flat end mill): the swept slab's chord from at most fourteen
+//! candidate points in the plane of the line parameter and the move's (`swept/tilted.rs`), the
+//! sphere's capsule for a ball, the swept lozenge for a bull-nose, after the ray's material is
+//! checked against the sweep's box in the move frame.
 //! The tile's reach found first (the union of the parts' block ranges) is also the range each of
 //! its rays' material must meet to be looked at. Consecutive moves are
 //! cut in batches ([`TriDexel::cut_linear_batch`], used by [`simulate()`]; a 5-axis move's

@@ -276,20 +276,30 @@ fn tilted_axis_slots_3_plus_2() {
     let rect =
         |c: (f64, f64), len: f64| [at(c, 0.0, -r), at(c, 0.0, r), at(c, len, r), at(c, len, -r)];
     let fl = 15.0;
+    // (name, spec, depth, the round end's radius: 0 flat, r ball, 1.5 bull-nose)
     let cases = [
         ("flat d6 tilted 25°", "flat:d=6,flute-length=15", 3.0, 0.0),
         ("ball d6 tilted 25°", "ball:d=6,flute-length=15", 7.0, r),
+        (
+            "bull d6 r1.5 tilted 25°",
+            "bull:d=6,r=1.5,flute-length=15",
+            4.0,
+            1.5,
+        ),
     ];
-    for (name, spec, dp, centre) in cases {
+    for (name, spec, dp, rc) in cases {
         let tip = (10.0, TOP - dp);
-        let c = at(tip, centre, 0.0);
-        let shadow = area_below(&rect(c, fl - centre), TOP)
-            + if centre > 0.0 {
-                assert!(c.1 + r < TOP, "the ball's lower half lies under the top");
-                0.5 * PI * r * r
-            } else {
-                0.0
-            };
+        // The shadow of a solid of revolution across its axis is its meridian section: the
+        // rectangle less the squares' corners outside the corner arcs (a ball's: half a disc).
+        let shadow = if rc == r {
+            let c = at(tip, r, 0.0);
+            assert!(c.1 + r < TOP, "the ball's lower half lies under the top");
+            area_below(&rect(c, fl - r), TOP) + 0.5 * PI * r * r
+        } else {
+            let corners_top = at(tip, rc, r).1.max(at(tip, rc, -r).1);
+            assert!(corners_top < TOP, "the corners lie under the top");
+            area_below(&rect(tip, fl), TOP) - 2.0 * (1.0 - PI / 4.0) * rc * rc
+        };
         let exact = 40.0 * shadow;
         let cutter = Cutter::from_spec(spec).unwrap();
         let tool = ToolShape::new(&cutter);

@@ -21,8 +21,8 @@
 //! grazing-curve extrusions in closed form, the torus by guaranteed root isolation), with
 //! closed-form kernels for the common ball, flat and bull-nose cutters (a bull-nose's ramps
 //! keep one Newton search for the corner), for flat, ball and bull-nose instances at any axis (the 5-axis
-//! cuts), and for flat and ball end mills moving at any fixed axis (3+2 moves, a 5-axis flat end
-//! mill's pieces). A cutter is swept as the union of
+//! cuts), and for flat, ball and bull-nose end mills moving at any fixed axis (3+2 moves, a
+//! 5-axis flat end mill's pieces). A cutter is swept as the union of
 //! its convex parts ([`ToolShape`]: cutting part; shank and holder). Arcs and helices are cut as
 //! chords ([`arc_chords`]), and 5-axis moves as constant-axis sub-moves with a proven Hausdorff
 //! bound ([`five_axis`]), both within a chordal tolerance. Where the envelope of a move folds

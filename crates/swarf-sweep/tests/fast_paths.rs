@@ -131,11 +131,13 @@ fn other_profiles_and_tilted_axes_use_the_general_path() {
     ] {
         assert!(SweptConvex::new(&prof, Vec3::ZERO, Vec3::Z, delta).has_closed_form());
     }
-    // Tilted and moving, a bull-nose's corner takes the general path; a ball end or a slab
-    // the tilted closed form (`tilted_closed_form_matches_general_candidates`).
-    let sw = SweptConvex::new(&prof, Vec3::ZERO, Vec3::new(0.0, 0.6, 0.8), Vec3::X);
-    assert!(!sw.has_closed_form());
-    for cutter in [Cutter::ball(10.0).unwrap(), Cutter::flat(10.0).unwrap()] {
+    // Tilted and moving, a bull-nose, a ball end or a slab takes the tilted closed form
+    // (`tilted_closed_form_matches_general_candidates`); a taper the general path.
+    for cutter in [
+        bull,
+        Cutter::ball(10.0).unwrap(),
+        Cutter::flat(10.0).unwrap(),
+    ] {
         let prof = ConvexProfile::from_solid(cutter.cutting_solid()).unwrap();
         let sw = SweptConvex::new(&prof, Vec3::ZERO, Vec3::new(0.0, 0.6, 0.8), Vec3::X);
         assert!(sw.has_closed_form());
@@ -148,8 +150,8 @@ fn other_profiles_and_tilted_axes_use_the_general_path() {
     assert!(!sw.has_closed_form());
 }
 
-/// Flat and ball end mills (cutting parts, shanks, and the bands a 5-axis move cuts them
-/// into) moving with a fixed axis off the world axes: the closed form of `tilted.rs` against
+/// Flat, ball and bull-nose end mills (cutting parts, shanks, and the bands a 5-axis move cuts
+/// them into) moving with a fixed axis off the world axes: the closed form of `tilted.rs` against
 /// the general candidates, on random axes (some within 10⁻⁶ rad of a world axis or of the
 /// plane of two), random moves and the special ones (along the axis, across it, along each
 /// ray family, in the plane of the axis and a ray family), rays through the sweep's box and
@@ -161,9 +163,11 @@ fn tilted_closed_form_matches_general_candidates() {
     for round in 0..60 {
         let d = rng.range(1.0, 20.0);
         let fl = rng.range(1.0, 4.0) * d;
+        let r = rng.range(0.05, 0.45) * d;
         for spec in [
             format!("flat:d={d}"),
             format!("ball:d={d},flute-length={fl}"),
+            format!("bull:d={d},r={r},flute-length={fl}"),
         ] {
             let cutter = Cutter::from_spec(&spec).unwrap();
             let mut profiles: Vec<ConvexProfile> = SweepShape::from_solid(cutter.cutting_solid())
@@ -211,10 +215,11 @@ fn tilted_closed_form_matches_general_candidates() {
                     rng.range(-50.0, 50.0),
                 );
                 for (i, prof) in profiles.iter().enumerate() {
-                    // A ball's band below its equator is a sphere cap: no closed form (5-axis
-                    // moves cut a ball as instances). Every other part has one.
+                    // A round end's band below its spine is a sphere cap or a torus band: no
+                    // closed form (5-axis moves cut round tools as instances). Every other part
+                    // has one.
                     if !SweptConvex::new(prof, tip, axis, delta).has_closed_form() {
-                        assert!(spec.starts_with("ball") && i < bands, "{spec}: part {i}");
+                        assert!(!spec.starts_with("flat") && i < bands, "{spec}: part {i}");
                         continue;
                     }
                     let sw = SweptConvex::new(prof, tip, axis, delta);

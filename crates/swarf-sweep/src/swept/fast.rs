@@ -177,15 +177,12 @@ impl FastSweep {
             .map(|(_, sr)| CapsuleRays::new(k, self.c0, self.delta, sr));
         let end = match (sphere, self.lozenge, self.ramp) {
             (Some(c), _, _) => Some(RoundEnd::Sphere(c)),
-            (None, Some((e, lr, _)), Some((frame, v))) => Some(RoundEnd::Ramp(RampRays {
-                e,
-                f: self.shape.lozenge.map_or(0.0, |l| l.1),
-                r: lr,
+            (None, Some((e, lr, _)), Some((frame, v))) => Some(RoundEnd::Ramp(RampRays::new(
+                (e, self.shape.lozenge.map_or(0.0, |l| l.1), lr),
                 frame,
                 v,
                 k,
-                d: frame.vector_to_local(Vec3::AXES[k]),
-            })),
+            ))),
             (None, Some((e, lr, heights)), None) => Some(RoundEnd::Lozenge(LozengeRays {
                 e,
                 r: lr,
@@ -490,9 +487,23 @@ pub(crate) struct RampRays {
 }
 
 impl RampRays {
+    /// The lozenge `(e, f, r)` moving by `v` in the move frame `frame` (tip at the origin, the
+    /// tool axis `z`), for the rays along world axis `k`.
+    pub(crate) fn new((e, f, r): (f64, f64, f64), frame: Frame, v: Vec3, k: usize) -> Self {
+        RampRays {
+            e,
+            f,
+            r,
+            frame,
+            v,
+            k,
+            d: frame.vector_to_local(Vec3::AXES[k]),
+        }
+    }
+
     /// The chord of the ray through `(cu, cv)` (world coordinates along it).
     #[inline]
-    fn chord(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
+    pub(crate) fn chord(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
         let mut o = Vec3::ZERO;
         o[(self.k + 1) % 3] = cu;
         o[(self.k + 2) % 3] = cv;

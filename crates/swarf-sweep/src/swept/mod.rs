@@ -49,10 +49,11 @@
 //! root) united with a swept slab (`slab.rs`: the positions whose disc holds a ray along the
 //! axis; the stadium cross-section for a ray across it). `fast.rs` classifies the profile once,
 //! the move once, and shares the per-family constants among the rays
-//! ([`SweptConvex::has_closed_form`], [`SweptConvex::axis_ray_interval`]). A slab or ball end
-//! whose fixed axis is no world axis has a closed form too (`tilted.rs`: the line parameter and
+//! ([`SweptConvex::has_closed_form`], [`SweptConvex::axis_ray_interval`]). A slab, ball or
+//! bull-nose whose fixed axis is no world axis has one too (`tilted.rs`: the line parameter and
 //! the move's, constrained by an ellipse and two strips, reach their extremes at one of fourteen
-//! candidate points), and so does an instance at any axis (`instance.rs`).
+//! candidate points; a bull-nose's corner keeps its lozenge's Newton steps), and so does an
+//! instance at any axis (`instance.rs`).
 
 pub(crate) mod bound;
 pub(crate) mod capsule;
@@ -202,7 +203,7 @@ enum ClosedForm {
     Axial(fast::FastSweep),
     /// A slab, ball or bull-nose instance (no motion) at any other axis (`instance.rs`).
     Instance(instance::InstanceShape),
-    /// A slab or ball end moving with its axis fixed off the world axes (`tilted.rs`).
+    /// A slab, ball or bull-nose moving with its axis fixed off the world axes (`tilted.rs`).
     Tilted(tilted::TiltedSweep),
 }
 
@@ -293,7 +294,7 @@ enum RaysKind {
     Fast(fast::FastRays),
     /// Closed-form kernels of an instance.
     Instance(instance::InstanceRays),
-    /// The closed form of a slab or ball end at a tilted axis.
+    /// The closed form of a slab, ball or bull-nose at a tilted axis.
     Tilted(tilted::TiltedRays),
     /// The general candidates, and a number no other `DexelRays` of the process has (the
     /// separating planes found for its rays are kept under it).
@@ -382,9 +383,9 @@ impl<'a> SweptConvex<'a> {
             (None, Some(shape)) if v == Vec3::ZERO => Some(ClosedForm::Instance(
                 instance::InstanceShape::new(shape, frame),
             )),
-            (None, Some(shape)) => {
-                tilted::TiltedSweep::new(shape, frame, v).map(ClosedForm::Tilted)
-            }
+            (None, Some(shape)) => Some(ClosedForm::Tilted(tilted::TiltedSweep::new(
+                shape, frame, v,
+            ))),
             (None, None) => None,
         };
         Self {
