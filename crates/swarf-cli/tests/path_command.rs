@@ -179,3 +179,22 @@ fn camotics_project_supplies_tools_and_workpiece() {
     );
     assert_eq!(t1["kind"], "ball", "{j}");
 }
+
+#[test]
+fn the_program_may_be_given_as_every_other_command_takes_it() {
+    // `swarf path --program FILE` is `swarf path FILE`; both at once, or neither, is an error.
+    let dir = temp_dir("path_program_option");
+    let file = dir.join("p.ngc");
+    std::fs::write(&file, "G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X10\nM2\n").unwrap();
+    let f = file.to_str().unwrap();
+    let positional = swarf(&["path", f, "--json"]);
+    let option = swarf(&["path", "--program", f, "--json"]);
+    assert!(positional.status.success(), "{}", stderr(&positional));
+    assert!(option.status.success(), "{}", stderr(&option));
+    assert_eq!(json(&positional), json(&option));
+    for args in [vec!["path", f, "--program", f], vec!["path", "--json"]] {
+        let o = swarf(&args);
+        assert!(!o.status.success(), "{args:?} should be refused");
+        assert!(stderr(&o).contains("program"), "{args:?}: {}", stderr(&o));
+    }
+}

@@ -22,7 +22,15 @@ use crate::output::print_json;
 #[derive(Debug, Args)]
 pub(crate) struct PathArgs {
     /// The program: G-code (.ngc .nc .gcode .tap .ptp …) or APT CL (.apt .cls .cl).
-    pub(crate) program: PathBuf,
+    #[arg(
+        value_name = "PROGRAM",
+        required_unless_present = "program_option",
+        conflicts_with = "program_option"
+    )]
+    pub(crate) program: Option<PathBuf>,
+    /// The program, given as every other command takes it (the same as PROGRAM).
+    #[arg(long = "program", value_name = "FILE", id = "program_option")]
+    pub(crate) program_option: Option<PathBuf>,
     /// Cutters, tool library, machine and units.
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
@@ -65,8 +73,13 @@ pub(crate) fn run(args: &PathArgs) -> Result<()> {
     // Both outputs stream: no move is kept, so no move limit is needed unless one is given
     // (the loop limits still end a program that never ends).
     let setup = JobSetup::load(&args.setup.job_options(u64::MAX)).map_err(job_error)?;
-    let text = read_text(&args.program)?;
-    let file = args.program.display().to_string();
+    let program = args
+        .program
+        .as_ref()
+        .or(args.program_option.as_ref())
+        .context("no program given")?;
+    let text = read_text(program)?;
+    let file = program.display().to_string();
 
     if args.canonical {
         let stdout = std::io::stdout().lock();
