@@ -41,9 +41,6 @@ use super::BAND_EPS;
 use swarf_geom::math::{greater, lesser, Vec3};
 use swarf_geom::Frame;
 
-/// Tolerance on the move parameter `s` (dimensionless; `BAND_EPS` over a move of 1 mm).
-const S_EPS: f64 = 1e-12;
-
 /// A slab, ball-end or bull-nose profile moving with its axis fixed off the world axes.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct TiltedSweep {
@@ -217,7 +214,7 @@ impl TiltedRays {
             let (ux, uy) = (qx + l * gx - s * a, qy + l * gy);
             ux * ux + uy * uy <= c.re2
         };
-        let in_s = |s: f64| (-S_EPS..=1.0 + S_EPS).contains(&s);
+        let in_s = |s: f64| (-c.s_eps..=1.0 + c.s_eps).contains(&s);
         let in_h = |l: f64, s: f64| (c.z0e..=c.z1e).contains(&(h0 + l * gz - s * b));
         let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
         let mut take = |l: f64| {
@@ -350,6 +347,8 @@ struct SlabRays {
     r: f64,
     r2: f64,
     re2: f64,
+    /// The tolerance on the move parameter `s`: `BAND_EPS` along the move.
+    s_eps: f64,
     /// The heights, and the heights grown by `BAND_EPS`.
     z0: f64,
     z1: f64,
@@ -437,6 +436,7 @@ impl SlabRays {
             r,
             r2: r * r,
             re2: (r + BAND_EPS) * (r + BAND_EPS),
+            s_eps: BAND_EPS / a.hypot(b),
             z0,
             z1,
             z0e: z0 - BAND_EPS,
