@@ -75,7 +75,7 @@ impl TiltedSweep {
         let spine = z0;
         let (end, below) = match self.shape.lozenge {
             None => (None, 0.0),
-            Some((e, zc, sr)) if e == 0.0 => {
+            Some((0.0, zc, sr)) => {
                 let c0 = f.origin + f.z * zc;
                 let v = f.vector_to_world(self.v);
                 let capsule = CapsuleRays::new(k, c0, v, sr + grow);
