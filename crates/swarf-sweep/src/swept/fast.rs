@@ -310,7 +310,9 @@ impl CapsuleRays {
 
     /// The capsule's interval on the line through `o` along `d` (world coordinates along
     /// `d`), computed as [`line_capsule`] does with the direction's constants shared.
-    #[inline]
+    /// (Inlined: out of line, its pair came back through memory, and it is the hot kernel of
+    /// a ball's 3-axis cut.)
+    #[inline(always)]
     pub(crate) fn interval<const LOW_ONLY: bool>(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
         if self.a <= 1e-20 * self.baba {
             let o = Vec3::new(0.0, cu, cv);
