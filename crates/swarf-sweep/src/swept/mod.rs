@@ -467,9 +467,10 @@ impl<'a> SweptConvex<'a> {
         }
     }
 
-    /// True when rays along world axes are answered in closed form: a slab or ball-end
-    /// profile on a move whose tool axis is a world axis, or a slab, ball-end or bull-nose
-    /// instance (no motion) at any axis.
+    /// True when rays along world axes are answered in closed form: a slab, ball-end or
+    /// bull-nose profile at any axis, moving or not (`fast.rs`, `instance.rs`, `tilted.rs`);
+    /// other profiles (tapers, chamfers, drills, APT's generic cutter) take the general
+    /// candidates.
     pub fn has_closed_form(&self) -> bool {
         self.closed.is_some()
     }
