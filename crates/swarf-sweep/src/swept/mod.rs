@@ -542,7 +542,9 @@ impl<'a> SweptConvex<'a> {
     ///   perpendicular to the axis).
     ///
     /// For a tool instance (no motion) of a flat, ball or bull-nose profile at any other axis:
-    /// the chord of the cylinder holding it (`instance.rs`). Otherwise the sweep's bounding box.
+    /// the chord of the cylinder holding it (`instance.rs`); for such a profile moving at any
+    /// other axis, the exact chord (`tilted.rs`; for a block of rays, the centre ray's chord of
+    /// the shape grown by the block's half-diagonal). Otherwise the sweep's bounding box.
     pub fn dexel_range(&self, origin: Vec3, k: usize) -> Option<(f64, f64)> {
         self.block_range(k, origin, 0.0)
     }
