@@ -503,6 +503,24 @@ impl RampRays {
         }
     }
 
+    /// The lower (`upper = false`) or upper end of [`RampRays::chord`], with one walk.
+    #[inline]
+    pub(crate) fn end(&self, cu: f64, cv: f64, upper: bool) -> Option<f64> {
+        let mut o = Vec3::ZERO;
+        o[(self.k + 1) % 3] = cu;
+        o[(self.k + 2) % 3] = cv;
+        let o = self.frame.to_local(o);
+        let t0 = -o.dot(self.d);
+        let t = lozenge::swept_end(
+            (self.e, self.f, self.r),
+            o + self.d * t0,
+            self.d,
+            self.v,
+            upper,
+        )?;
+        Some(t + t0)
+    }
+
     /// The chord of the ray through `(cu, cv)` (world coordinates along it).
     #[inline]
     pub(crate) fn chord(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {

@@ -301,6 +301,42 @@ pub(crate) fn swept_interval(
     chord_between(&line, lo, hi)
 }
 
+/// One end of [`swept_interval`]'s chord: the lower (`upper = false`) or the upper one, with
+/// one walk instead of two where it settles (the whole chord where it does not); `None` when
+/// the line misses the swept lozenge.
+pub(crate) fn swept_end(
+    (e, f, r): (f64, f64, f64),
+    o: Vec3,
+    d: Vec3,
+    v: Vec3,
+    upper: bool,
+) -> Option<f64> {
+    let c0 = Vec3::new(0.0, 0.0, f);
+    let (mut lo, mut hi) = line_capsule::<false>(o, d, c0, v, e + r)?;
+    if d.z != 0.0 {
+        let (z_lo, z_hi) = (f - r + v.z.min(0.0), f + r + v.z.max(0.0));
+        let (ta, tb) = ((z_lo - o.z) / d.z, (z_hi - o.z) / d.z);
+        lo = lo.max(ta.min(tb));
+        hi = hi.min(ta.max(tb));
+        if lo > hi {
+            return None;
+        }
+    }
+    let corner = Corner { e, f, r, v };
+    let line = CornerLine {
+        corner: &corner,
+        o,
+        d,
+    };
+    let (from, toward) = if upper { (hi, lo) } else { (lo, hi) };
+    let (value, slope) = line.value_slope(from);
+    match walk(&line, from, (value, Some(slope)), toward) {
+        Walk::Zero(t) => Some(t),
+        Walk::NoZero => None,
+        Walk::Stuck => chord_between(&line, lo, hi).map(|(a, b)| if upper { b } else { a }),
+    }
+}
+
 /// The chord `{G ≤ 0}` of a convex `G` within `(lo, hi)`, where `G ≥ 0` at both ends.
 fn chord_between<L: ConvexLine>(line: &L, lo: f64, hi: f64) -> Option<(f64, f64)> {
     let (at_lo, at_hi) = (line.value_slope(lo), line.value_slope(hi));

@@ -168,13 +168,28 @@ impl TiltedRays {
             Some(RoundEnd::Sphere(c)) => c.interval::<false>(cu, cv),
             Some(RoundEnd::Lozenge(l)) => {
                 // The lozenge's Newton walks only where they can matter: where the ray's
-                // material within the lozenge's box reaches beyond the slab's chord.
+                // material within the lozenge's box reaches beyond the slab's chord, and
+                // only towards that side when it is one (beyond the other end there is no
+                // material the lozenge could add).
                 let (m0, m1) = clip(across, q.2, self.end_slab);
-                let covered = slab.is_some_and(|(a, b)| a <= m0 && m1 <= b);
-                if m0 > m1 || covered {
+                if m0 > m1 {
                     return (true, slab);
                 }
-                l.chord(cu, cv)
+                match slab {
+                    Some((a, b)) => match (m0 < a, m1 > b) {
+                        (false, false) => return (true, slab),
+                        (true, false) => {
+                            let lo = l.end(cu, cv, false).map_or(a, |t| lesser(a, t));
+                            return (true, Some((lo, b)));
+                        }
+                        (false, true) => {
+                            let hi = l.end(cu, cv, true).map_or(b, |t| greater(b, t));
+                            return (true, Some((a, hi)));
+                        }
+                        (true, true) => l.chord(cu, cv),
+                    },
+                    None => l.chord(cu, cv),
+                }
             }
         };
         (true, join(slab, end))
