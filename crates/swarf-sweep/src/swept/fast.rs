@@ -506,33 +506,29 @@ impl RampRays {
     /// The lower (`upper = false`) or upper end of [`RampRays::chord`], with one walk.
     #[inline]
     pub(crate) fn end(&self, cu: f64, cv: f64, upper: bool) -> Option<f64> {
-        let mut o = Vec3::ZERO;
-        o[(self.k + 1) % 3] = cu;
-        o[(self.k + 2) % 3] = cv;
-        let o = self.frame.to_local(o);
-        let t0 = -o.dot(self.d);
-        let t = lozenge::swept_end(
-            (self.e, self.f, self.r),
-            o + self.d * t0,
-            self.d,
-            self.v,
-            upper,
-        )?;
+        let (o, t0) = self.line(cu, cv);
+        let t = lozenge::swept_end((self.e, self.f, self.r), o, self.d, self.v, upper)?;
         Some(t + t0)
     }
 
     /// The chord of the ray through `(cu, cv)` (world coordinates along it).
     #[inline]
     pub(crate) fn chord(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
+        let (o, t0) = self.line(cu, cv);
+        let (a, b) = lozenge::swept_interval(self.e, self.f, self.r, o, self.d, self.v)?;
+        Some((a + t0, b + t0))
+    }
+
+    /// The ray through `(cu, cv)` in the move frame, re-based at its point nearest the tip (a
+    /// few mm, not hundreds): that point, and its world coordinate along the ray.
+    #[inline(always)]
+    fn line(&self, cu: f64, cv: f64) -> (Vec3, f64) {
         let mut o = Vec3::ZERO;
         o[(self.k + 1) % 3] = cu;
         o[(self.k + 2) % 3] = cv;
-        // Re-based at the line's point nearest the tip (a few mm, not hundreds).
         let o = self.frame.to_local(o);
         let t0 = -o.dot(self.d);
-        let (a, b) =
-            lozenge::swept_interval(self.e, self.f, self.r, o + self.d * t0, self.d, self.v)?;
-        Some((a + t0, b + t0))
+        (o + self.d * t0, t0)
     }
 }
 

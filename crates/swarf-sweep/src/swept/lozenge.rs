@@ -278,6 +278,19 @@ pub(crate) fn swept_interval(
     d: Vec3,
     v: Vec3,
 ) -> Option<(f64, f64)> {
+    let (lo, hi) = swept_bracket((e, f, r), o, d, v)?;
+    let corner = Corner { e, f, r, v };
+    let line = CornerLine {
+        corner: &corner,
+        o,
+        d,
+    };
+    chord_between(&line, lo, hi)
+}
+
+/// A range of the line `o + t·d` holding its chord through the lozenge `(e, f, r)` swept by
+/// `v`, with `G ≥ 0` at both ends; `None` when the line misses a bound of it.
+fn swept_bracket((e, f, r): (f64, f64, f64), o: Vec3, d: Vec3, v: Vec3) -> Option<(f64, f64)> {
     // Every point of it is within e + r of the disc centre's path …
     let c0 = Vec3::new(0.0, 0.0, f);
     let (mut lo, mut hi) = line_capsule::<false>(o, d, c0, v, e + r)?;
@@ -292,13 +305,7 @@ pub(crate) fn swept_interval(
             return None;
         }
     }
-    let corner = Corner { e, f, r, v };
-    let line = CornerLine {
-        corner: &corner,
-        o,
-        d,
-    };
-    chord_between(&line, lo, hi)
+    Some((lo, hi))
 }
 
 /// One end of [`swept_interval`]'s chord: the lower (`upper = false`) or the upper one, with
@@ -311,17 +318,7 @@ pub(crate) fn swept_end(
     v: Vec3,
     upper: bool,
 ) -> Option<f64> {
-    let c0 = Vec3::new(0.0, 0.0, f);
-    let (mut lo, mut hi) = line_capsule::<false>(o, d, c0, v, e + r)?;
-    if d.z != 0.0 {
-        let (z_lo, z_hi) = (f - r + v.z.min(0.0), f + r + v.z.max(0.0));
-        let (ta, tb) = ((z_lo - o.z) / d.z, (z_hi - o.z) / d.z);
-        lo = lo.max(ta.min(tb));
-        hi = hi.min(ta.max(tb));
-        if lo > hi {
-            return None;
-        }
-    }
+    let (lo, hi) = swept_bracket((e, f, r), o, d, v)?;
     let corner = Corner { e, f, r, v };
     let line = CornerLine {
         corner: &corner,
