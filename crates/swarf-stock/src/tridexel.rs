@@ -11,7 +11,7 @@ use smallvec::SmallVec;
 use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_geom::Aabb;
 use swarf_sweep::swept::{DexelRays, Scratch};
-use swarf_sweep::{Front, FrontBlock, SweepShape, SweptConvex, ToolShape};
+use swarf_sweep::{DexelKernel, Front, FrontBlock, KernelTask, SweepShape, SweptConvex, ToolShape};
 
 /// Side of the square tiles of rays (tiles are stored contiguously and carry a conservative
 /// bound of their material along the ray, so whole tiles are skipped without touching rays).
@@ -1208,11 +1208,6 @@ impl TileCut<'_, '_, '_> {
             self.range.j.1.min(tj * TILE + TILE - 1) - tj * TILE,
         );
         let (u_min, u_h, v_min, v_h) = (grid.min[u], grid.h[u], grid.min[v], grid.h[v]);
-        // One part (the common case) without the per-part bookkeeping.
-        let single = match (self.parts, self.rays, &gates[..]) {
-            ([p], [rays], [g]) => Some((p, rays, g)),
-            _ => None,
-        };
         let mut changed = false;
         // Cell centres with the axes resolved once per tile (`Grid::center` per ray costs, and
         // so does an index's conversion to f64): the same values, computed the same way.
@@ -1220,32 +1215,38 @@ impl TileCut<'_, '_, '_> {
             std::array::from_fn(|ii| u_min + ((ti * TILE + ii) as f64 + 0.5) * u_h);
         // Counted here, added to `st` once (the lengths go on as before: their sum's order is
         // the rays').
-        let (mut visited, mut tested_n, mut updates) = (0u64, 0u64, 0u64);
-        for jj in j_lo..=j_hi {
-            let cv = v_min + ((tj * TILE + jj) as f64 + 0.5) * v_h;
-            for (ii, &cu) in (i_lo..=i_hi).zip(&cus[i_lo..=i_hi]) {
-                let r = jj * TILE + ii;
-                let d = &mut tile[r];
-                if !overlaps(d, tmin, tmax) {
-                    continue;
-                }
-                let ray = (ti * TILE + ii, tj * TILE + jj);
-                let (tested, removed) = if let Some((p, rays, gate)) = single {
-                    if !gate.open(cu, cv) {
+        let (visited, tested_n, updates);
+        if let ([p], [rays], [gate]) = (self.parts, self.rays, &gates[..]) {
+            // One part (the common case): its kernel chosen once for the tile's loop.
+            let rows = TileRows {
+                cut: self,
+                tile,
+                tags,
+                gate,
+                scratch,
+                removed_length: &mut st.removed_length[k],
+                ti,
+                tj,
+                i: (i_lo, i_hi),
+                j: (j_lo, j_hi),
+                cus: &cus,
+                v: (v_min, v_h),
+                t: (tmin, tmax),
+            };
+            let counts = p.with_kernel(k, rays, rows);
+            (visited, tested_n, updates, changed) = counts;
+        } else {
+            let (mut vis, mut tes, mut upd) = (0u64, 0u64, 0u64);
+            for jj in j_lo..=j_hi {
+                let cv = v_min + ((tj * TILE + jj) as f64 + 0.5) * v_h;
+                for (ii, &cu) in (i_lo..=i_hi).zip(&cus[i_lo..=i_hi]) {
+                    let r = jj * TILE + ii;
+                    let d = &mut tile[r];
+                    if !overlaps(d, tmin, tmax) || !gates.iter().any(|g| g.open(cu, cv)) {
                         continue;
                     }
-                    visited += 1;
-                    let (t, hit) = p.dexel_cut((cu, cv), k, d, rays, scratch);
-                    let removed = match hit {
-                        Some((lo, hi)) => self.remove(d, tags.get_mut(r), ray, lo, hi),
-                        None => 0.0,
-                    };
-                    (t, removed)
-                } else {
-                    if !gates.iter().any(|g| g.open(cu, cv)) {
-                        continue;
-                    }
-                    visited += 1;
+                    let ray = (ti * TILE + ii, tj * TILE + jj);
+                    vis += 1;
                     let mut removed = 0.0;
                     let mut tested = false;
                     for ((p, rays), gate) in self.parts.iter().zip(self.rays).zip(&gates) {
@@ -1258,15 +1259,15 @@ impl TileCut<'_, '_, '_> {
                             removed += self.remove(d, tags.get_mut(r), ray, lo, hi);
                         }
                     }
-                    (tested, removed)
-                };
-                tested_n += u64::from(tested);
-                if removed > 0.0 {
-                    updates += 1;
-                    st.removed_length[k] += removed;
-                    changed = true;
+                    tes += u64::from(tested);
+                    if removed > 0.0 {
+                        upd += 1;
+                        st.removed_length[k] += removed;
+                        changed = true;
+                    }
                 }
             }
+            (visited, tested_n, updates) = (vis, tes, upd);
         }
         st.visited_per_family[k] += visited;
         st.rays_tested += tested_n;
@@ -1284,6 +1285,128 @@ impl TileCut<'_, '_, '_> {
             *bound = tile_bound(tile, self.bins);
             *stale = false;
         }
+    }
+}
+
+/// The rays of one tile against one part (the common case), as the work that
+/// [`SweptConvex::with_kernel`] runs with the part's kernel for the family: the loop is
+/// compiled once per kernel, once per kind of gate, and once with and once without the
+/// removal's bookkeeping (provenance, a visitor).
+struct TileRows<'c, 'g, 'p, 'a, 't> {
+    cut: &'c TileCut<'g, 'p, 'a>,
+    tile: &'t mut [Dexel],
+    tags: &'t mut [DexelTags],
+    gate: &'t Gate,
+    scratch: &'t mut Scratch,
+    /// The family's removed length, added to ray by ray in the rays' order.
+    removed_length: &'t mut f64,
+    ti: usize,
+    tj: usize,
+    /// The tile's ray columns and rows that the move's range covers.
+    i: (usize, usize),
+    j: (usize, usize),
+    /// The columns' centres; where the rows' axis starts and their spacing (a row's centre is
+    /// `start + (index + ½)·spacing`).
+    cus: &'t [f64; TILE],
+    v: (f64, f64),
+    /// The range along the rays the sweep can reach.
+    t: (f64, f64),
+}
+
+impl KernelTask for TileRows<'_, '_, '_, '_, '_> {
+    /// Rays visited, exact queries, rays changed, and whether any was.
+    type Output = (u64, u64, u64, bool);
+
+    fn run<K: DexelKernel>(self, kernel: &K) -> Self::Output {
+        let plain = self.tags.is_empty() && self.cut.visitor.is_none();
+        match (self.gate, plain) {
+            (Gate::All, true) => self.rays(
+                kernel,
+                |_, _| true,
+                |_, d, _, _, lo, hi| subtract(d, lo, hi),
+            ),
+            (Gate::Front(b), true) => {
+                let b = *b;
+                self.rays(
+                    kernel,
+                    move |cu, cv| b.reaches(cu, cv),
+                    |_, d, _, _, lo, hi| subtract(d, lo, hi),
+                )
+            }
+            (Gate::All, false) => self.rays(
+                kernel,
+                |_, _| true,
+                |c, d, t, ray, lo, hi| c.remove(d, t, ray, lo, hi),
+            ),
+            (Gate::Front(b), false) => {
+                let b = *b;
+                self.rays(
+                    kernel,
+                    move |cu, cv| b.reaches(cu, cv),
+                    |c, d, t, ray, lo, hi| c.remove(d, t, ray, lo, hi),
+                )
+            }
+            (Gate::Never, _) => (0, 0, 0, false),
+        }
+    }
+}
+
+impl TileRows<'_, '_, '_, '_, '_> {
+    /// The loop over the tile's rays: those holding material within the sweep's reach and
+    /// that the gate lets through get the kernel's query, and `remove` takes its interval.
+    #[inline(always)]
+    fn rays<K, G, R>(self, kernel: &K, open: G, remove: R) -> (u64, u64, u64, bool)
+    where
+        K: DexelKernel,
+        G: Fn(f64, f64) -> bool,
+        R: Fn(
+            &TileCut<'_, '_, '_>,
+            &mut Dexel,
+            Option<&mut DexelTags>,
+            (usize, usize),
+            f64,
+            f64,
+        ) -> f64,
+    {
+        let TileRows {
+            cut,
+            tile,
+            tags,
+            scratch,
+            removed_length,
+            ti,
+            tj,
+            i: (i_lo, i_hi),
+            j: (j_lo, j_hi),
+            cus,
+            v: (v_min, v_h),
+            t: (tmin, tmax),
+            ..
+        } = self;
+        let (mut visited, mut tested, mut updates, mut changed) = (0u64, 0u64, 0u64, false);
+        for jj in j_lo..=j_hi {
+            let cv = v_min + ((tj * TILE + jj) as f64 + 0.5) * v_h;
+            for (ii, &cu) in (i_lo..=i_hi).zip(&cus[i_lo..=i_hi]) {
+                let r = jj * TILE + ii;
+                let d = &mut tile[r];
+                if !overlaps(d, tmin, tmax) || !open(cu, cv) {
+                    continue;
+                }
+                visited += 1;
+                let (t, hit) = kernel.cut(cu, cv, d, scratch);
+                tested += u64::from(t);
+                if let Some((lo, hi)) = hit {
+                    let ray = (ti * TILE + ii, tj * TILE + jj);
+                    let removed = remove(cut, d, tags.get_mut(r), ray, lo, hi);
+                    if removed > 0.0 {
+                        updates += 1;
+                        *removed_length += removed;
+                        changed = true;
+                    }
+                }
+            }
+        }
+        (visited, tested, updates, changed)
     }
 }
 

@@ -551,8 +551,13 @@ pub(crate) struct AlongRays {
 }
 
 impl AlongRays {
-    #[inline]
-    fn interval(&self, qu: f64, qw: f64, material: Option<(f64, f64)>) -> Option<(f64, f64)> {
+    #[inline(always)]
+    pub(crate) fn interval(
+        &self,
+        qu: f64,
+        qw: f64,
+        material: Option<(f64, f64)>,
+    ) -> Option<(f64, f64)> {
         let (du, dw) = (qu - self.mv.p[0], qw - self.mv.p[1]);
         let (mu, mw) = (self.mv.m[0], self.mv.m[1]);
         // The ray meets the sweep iff it is within r of the tip's path (both parts project to
@@ -612,8 +617,8 @@ pub(crate) struct AcrossRays {
 }
 
 impl AcrossRays {
-    #[inline]
-    fn interval(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
+    #[inline(always)]
+    pub(crate) fn interval(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
         let (za, q) = if self.height_is_u { (cu, cv) } else { (cv, cu) };
         let slab = if za >= self.full_band.0 && za <= self.full_band.1 {
             self.full.chord(q)

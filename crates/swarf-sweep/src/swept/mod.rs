@@ -64,6 +64,7 @@ pub(crate) mod fast;
 pub(crate) mod front;
 pub(crate) mod instance;
 pub(crate) mod interval;
+pub(crate) mod kernel;
 pub(crate) mod line;
 pub(crate) mod lozenge;
 pub(crate) mod profile;
@@ -78,6 +79,7 @@ pub use distance::SignedDistance;
 pub use front::{Front, FrontBlock};
 pub use instance::SLIVER_MM;
 pub use interval::{overlaps, Interval};
+pub use kernel::{DexelKernel, KernelTask};
 pub use profile::{ConvexProfile, Element, SweepShape};
 
 use smallvec::SmallVec;
@@ -505,15 +507,45 @@ impl<'a> SweptConvex<'a> {
         rays: &DexelRays,
         scratch: &mut Scratch,
     ) -> (bool, Option<(f64, f64)>) {
+        /// One ray's query.
+        struct One<'d, 's> {
+            at: (f64, f64),
+            d: &'d [Interval],
+            scratch: &'s mut Scratch,
+        }
+        impl KernelTask for One<'_, '_> {
+            type Output = (bool, Option<(f64, f64)>);
+            #[inline(always)]
+            fn run<K: DexelKernel>(self, kernel: &K) -> Self::Output {
+                kernel.cut(self.at.0, self.at.1, self.d, self.scratch)
+            }
+        }
+        self.with_kernel(
+            k,
+            rays,
+            One {
+                at: (cu, cv),
+                d,
+                scratch,
+            },
+        )
+    }
+
+    /// [`SweptConvex::dexel_cut`] by the general candidates (`dc` the direction's constants,
+    /// `owner` the number the separating planes of these rays are kept under).
+    #[allow(clippy::too_many_arguments)]
+    pub(crate) fn general_cut(
+        &self,
+        (cu, cv): (f64, f64),
+        k: usize,
+        d: &[Interval],
+        dc: &DirConsts,
+        owner: u64,
+        scratch: &mut Scratch,
+    ) -> (bool, Option<(f64, f64)>) {
         let (first, last) = match (d.first(), d.last()) {
             (Some(f), Some(l)) => (f.enter, l.exit),
             _ => return (false, None),
-        };
-        let (dc, owner) = match &rays.0 {
-            RaysKind::Fast(f) => return (true, f.interval(cu, cv, Some((first, last)))),
-            RaysKind::Instance(i) => return i.cut(cu, cv, d),
-            RaysKind::Tilted(t) => return t.cut(cu, cv, (first, last)),
-            RaysKind::General(dc, owner) => (dc, *owner),
         };
         let mut origin = Vec3::ZERO;
         origin[(k + 1) % 3] = cu;
@@ -529,6 +561,25 @@ impl<'a> SweptConvex<'a> {
             true,
             self.line_interval(origin, dc, Some((k, m_lo, m_hi)), scratch),
         )
+    }
+
+    /// Runs `task` over the rays along world axis `k` with their kernel (`rays` from
+    /// [`SweptConvex::dexel_rays`] for `k`) chosen once: each of the task's queries answers as
+    /// [`SweptConvex::dexel_cut`] does (`kernel.rs`).
+    #[inline]
+    pub fn with_kernel<T: KernelTask>(&self, k: usize, rays: &DexelRays, task: T) -> T::Output {
+        match &rays.0 {
+            RaysKind::Fast(fast::FastRays::Along(a)) => task.run(a),
+            RaysKind::Fast(fast::FastRays::Across(a)) => task.run(a),
+            RaysKind::Instance(i) => task.run(i),
+            RaysKind::Tilted(t) => task.run(t),
+            RaysKind::General(dc, owner) => task.run(&kernel::General {
+                sweep: self,
+                k,
+                dc,
+                owner: *owner,
+            }),
+        }
     }
 
     /// A range along the ray through `origin` (with `origin[k] = 0`) parallel to world axis
