@@ -414,7 +414,7 @@ pub(crate) enum RoundEnd {
 impl RoundEnd {
     /// Where a ray along the tool axis through `(qu, qw)`, `rho2` squared from the tip's path
     /// across the axis, enters it (world, along the axis).
-    #[inline]
+    #[inline(always)]
     fn lower(&self, qu: f64, qw: f64, rho2: f64) -> Option<f64> {
         match self {
             RoundEnd::Sphere(c) => c.interval::<true>(qu, qw).map(|(l, _)| l),
@@ -425,7 +425,7 @@ impl RoundEnd {
 
     /// The chord of the ray through `(cu, cv)` across the tool axis (along cross axis `ray`,
     /// at height `za`, `q` its other cross coordinate).
-    #[inline]
+    #[inline(always)]
     fn across(&self, (cu, cv): (f64, f64), ray: usize, za: f64, q: f64) -> Option<(f64, f64)> {
         match self {
             RoundEnd::Sphere(c) => c.interval::<false>(cu, cv),
