@@ -678,7 +678,7 @@ impl Stadium {
     }
 
     /// The chord on the line through `(·, q)` along the first coordinate.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn chord(&self, q: f64) -> Option<(f64, f64)> {
         let (a, e) = (self.a, self.e);
         let b = (a.0 + e.0, a.1 + e.1);
