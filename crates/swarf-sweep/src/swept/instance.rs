@@ -99,7 +99,7 @@ impl InstanceRays {
     /// The stock update's query for the dexel `dex` of the ray through `(cu, cv)`: whether an
     /// exact query ran, and the interval to remove (world coordinates along the ray), exact
     /// where it meets the material.
-    #[inline]
+    #[inline(always)]
     pub(crate) fn cut(&self, cu: f64, cv: f64, dex: &[Interval]) -> (bool, Option<(f64, f64)>) {
         let (first, last) = match (dex.first(), dex.last()) {
             (Some(f), Some(l)) => (f.enter, l.exit),
