@@ -1388,8 +1388,9 @@ impl TileRows<'_, '_, '_, '_, '_> {
             let cv = v_min + ((tj * TILE + jj) as f64 + 0.5) * v_h;
             for (ii, &cu) in (i_lo..=i_hi).zip(&cus[i_lo..=i_hi]) {
                 let r = jj * TILE + ii;
+                // The gate first: it reads no memory.
                 let d = &mut tile[r];
-                if !overlaps(d, tmin, tmax) || !open(cu, cv) {
+                if !open(cu, cv) || !overlaps(d, tmin, tmax) {
                     continue;
                 }
                 visited += 1;
