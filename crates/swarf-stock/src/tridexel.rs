@@ -1242,7 +1242,7 @@ impl TileCut<'_, '_, '_> {
                 for (ii, &cu) in (i_lo..=i_hi).zip(&cus[i_lo..=i_hi]) {
                     let r = jj * TILE + ii;
                     let d = &mut tile[r];
-                    if !overlaps(d, tmin, tmax) || !gates.iter().any(|g| g.open(cu, cv)) {
+                    if !gates.iter().any(|g| g.open(cu, cv)) || !overlaps(d, tmin, tmax) {
                         continue;
                     }
                     let ray = (ti * TILE + ii, tj * TILE + jj);
