@@ -833,7 +833,7 @@ impl TriDexel {
                         visitor: visitor.map(|v| (v, m, group)),
                     };
                     let mut st = CutStats::default();
-                    let tiles = r.i.0 / TILE..=r.i.1 / TILE;
+                    let tiles = r.i.0 / TILE..r.i.1 / TILE + 1;
                     for (ti, stale) in tiles.clone().zip(&mut stale[tiles]) {
                         let span = ti * TILE_RAYS..(ti + 1) * TILE_RAYS;
                         let tile = &mut row.rays[span.clone()];
@@ -1237,9 +1237,9 @@ impl TileCut<'_, '_, '_> {
             (visited, tested_n, updates, changed) = counts;
         } else {
             let (mut vis, mut tes, mut upd) = (0u64, 0u64, 0u64);
-            for jj in j_lo..=j_hi {
+            for jj in j_lo..j_hi + 1 {
                 let cv = v_min + ((tj * TILE + jj) as f64 + 0.5) * v_h;
-                for (ii, &cu) in (i_lo..=i_hi).zip(&cus[i_lo..=i_hi]) {
+                for (ii, &cu) in (i_lo..i_hi + 1).zip(&cus[i_lo..i_hi + 1]) {
                     let r = jj * TILE + ii;
                     let d = &mut tile[r];
                     if !gates.iter().any(|g| g.open(cu, cv)) || !overlaps(d, tmin, tmax) {
@@ -1384,9 +1384,10 @@ impl TileRows<'_, '_, '_, '_, '_> {
             ..
         } = self;
         let (mut visited, mut tested, mut updates, mut changed) = (0u64, 0u64, 0u64, false);
-        for jj in j_lo..=j_hi {
+        // Half-open ranges: an inclusive range's bookkeeping costs in a loop this hot.
+        for jj in j_lo..j_hi + 1 {
             let cv = v_min + ((tj * TILE + jj) as f64 + 0.5) * v_h;
-            for (ii, &cu) in (i_lo..=i_hi).zip(&cus[i_lo..=i_hi]) {
+            for (ii, &cu) in (i_lo..i_hi + 1).zip(&cus[i_lo..i_hi + 1]) {
                 let r = jj * TILE + ii;
                 // The gate first: it reads no memory.
                 let d = &mut tile[r];
