@@ -1208,7 +1208,6 @@ impl TileCut<'_, '_, '_> {
             self.range.j.1.min(tj * TILE + TILE - 1) - tj * TILE,
         );
         let (u_min, u_h, v_min, v_h) = (grid.min[u], grid.h[u], grid.min[v], grid.h[v]);
-        let mut changed = false;
         // Cell centres with the axes resolved once per tile (`Grid::center` per ray costs, and
         // so does an index's conversion to f64): the same values, computed the same way.
         let cus: [f64; TILE] =
@@ -1234,7 +1233,7 @@ impl TileCut<'_, '_, '_> {
                 t: (tmin, tmax),
             };
             let counts = p.with_kernel(k, rays, rows);
-            (visited, tested_n, updates, changed) = counts;
+            (visited, tested_n, updates) = counts;
         } else {
             let (mut vis, mut tes, mut upd) = (0u64, 0u64, 0u64);
             for jj in j_lo..j_hi + 1 {
@@ -1263,7 +1262,6 @@ impl TileCut<'_, '_, '_> {
                     if removed > 0.0 {
                         upd += 1;
                         st.removed_length[k] += removed;
-                        changed = true;
                     }
                 }
             }
@@ -1279,7 +1277,7 @@ impl TileCut<'_, '_, '_> {
         // changes a tile on each of the dozens of moves that cross it: the bound is refreshed
         // when a run finds nothing to change in a tile changed since (the stale bound may be
         // what let the run in), and the call refreshes the others before it returns.
-        if changed {
+        if updates > 0 {
             *stale = true;
         } else if *stale {
             *bound = tile_bound(tile, self.bins);
@@ -1302,7 +1300,8 @@ struct TileRows<'c, 'g, 'p, 'a, 't> {
     removed_length: &'t mut f64,
     ti: usize,
     tj: usize,
-    /// The tile's ray columns and rows that the move's range covers.
+    /// The tile's ray columns and rows that the move's range covers (first and last,
+    /// inclusive).
     i: (usize, usize),
     j: (usize, usize),
     /// The columns' centres; where the rows' axis starts and their spacing (a row's centre is
@@ -1314,8 +1313,8 @@ struct TileRows<'c, 'g, 'p, 'a, 't> {
 }
 
 impl KernelTask for TileRows<'_, '_, '_, '_, '_> {
-    /// Rays visited, exact queries, rays changed, and whether any was.
-    type Output = (u64, u64, u64, bool);
+    /// Rays visited, exact queries, rays changed.
+    type Output = (u64, u64, u64);
 
     fn run<K: DexelKernel>(self, kernel: &K) -> Self::Output {
         let plain = self.tags.is_empty() && self.cut.visitor.is_none();
@@ -1346,7 +1345,9 @@ impl KernelTask for TileRows<'_, '_, '_, '_, '_> {
                     |c, d, t, ray, lo, hi| c.remove(d, t, ray, lo, hi),
                 )
             }
-            (Gate::Never, _) => (0, 0, 0, false),
+            // (Not reached: a tile whose only part can change none of its rays is left
+            // before its loop.)
+            (Gate::Never, _) => (0, 0, 0),
         }
     }
 }
@@ -1355,7 +1356,7 @@ impl TileRows<'_, '_, '_, '_, '_> {
     /// The loop over the tile's rays: those holding material within the sweep's reach and
     /// that the gate lets through get the kernel's query, and `remove` takes its interval.
     #[inline(always)]
-    fn rays<K, G, R>(self, kernel: &K, open: G, remove: R) -> (u64, u64, u64, bool)
+    fn rays<K, G, R>(self, kernel: &K, open: G, remove: R) -> (u64, u64, u64)
     where
         K: DexelKernel,
         G: Fn(f64, f64) -> bool,
@@ -1383,13 +1384,14 @@ impl TileRows<'_, '_, '_, '_, '_> {
             t: (tmin, tmax),
             ..
         } = self;
-        let (mut visited, mut tested, mut updates, mut changed) = (0u64, 0u64, 0u64, false);
+        let (mut visited, mut tested, mut updates) = (0u64, 0u64, 0u64);
         // Half-open ranges: an inclusive range's bookkeeping costs in a loop this hot.
         for jj in j_lo..j_hi + 1 {
             let cv = v_min + ((tj * TILE + jj) as f64 + 0.5) * v_h;
             for (ii, &cu) in (i_lo..i_hi + 1).zip(&cus[i_lo..i_hi + 1]) {
                 let r = jj * TILE + ii;
-                // The gate first: it reads no memory.
+                // The gate first: it reads no ray's material (the dexel's header, maybe on the
+                // heap).
                 let d = &mut tile[r];
                 if !open(cu, cv) || !overlaps(d, tmin, tmax) {
                     continue;
@@ -1403,12 +1405,11 @@ impl TileRows<'_, '_, '_, '_, '_> {
                     if removed > 0.0 {
                         updates += 1;
                         *removed_length += removed;
-                        changed = true;
                     }
                 }
             }
         }
-        (visited, tested, updates, changed)
+        (visited, tested, updates)
     }
 }
 

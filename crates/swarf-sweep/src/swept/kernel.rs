@@ -1,11 +1,13 @@
 //! A family's dexel query with its kernel chosen once.
 //!
-//! [`SweptConvex::dexel_cut`] picks the kernel (closed form along or across the tool axis, an
-//! instance, a tilted axis, the general candidates) from the family's [`DexelRays`] at every
-//! ray. A caller that queries many rays of one family — the stock's loop over a tile — hands
-//! the loop to [`SweptConvex::with_kernel`] instead, as a [`KernelTask`]: the choice is made
-//! once, and the loop is compiled once per kernel, with the kernel's query inlined into it.
-//! Every kernel answers exactly as `dexel_cut` does.
+//! The kind of kernel that answers a family's rays (closed form along or across the tool axis,
+//! an instance, a tilted axis, the general candidates) is decided by
+//! [`SweptConvex::dexel_rays`]. A caller that queries many rays of one family — the stock's
+//! loop over a tile — hands its loop to [`SweptConvex::with_kernel`] as a [`KernelTask`]: the
+//! kind is matched once, and the loop is compiled once per kernel, with the kernel's query
+//! inlined into it (matching it at every ray cost about 30 instructions a ray and kept the
+//! query out of line). [`SweptConvex::dexel_cut`], for callers that query one ray, runs the
+//! same kernels through the same dispatch.
 
 use super::fast::{AcrossRays, AlongRays};
 use super::instance::InstanceRays;
@@ -14,8 +16,9 @@ use super::{DirConsts, Interval, Scratch, SweptConvex};
 
 /// The stock update's query for one family's rays, its kernel resolved: for the dexel `d` of
 /// the ray through cross coordinates `(cu, cv)`, whether an exact query ran and the interval
-/// to remove (as [`SweptConvex::dexel_cut`]).
-pub trait DexelKernel {
+/// to remove (as [`SweptConvex::dexel_cut`]). Implemented by this crate's kernels only (it is
+/// sealed): other crates name it to write a [`KernelTask`].
+pub trait DexelKernel: sealed::Sealed {
     /// The query of the ray through `(cu, cv)` whose material is `d`.
     fn cut(
         &self,
@@ -32,6 +35,16 @@ pub trait KernelTask {
     type Output;
     /// Runs the work with `kernel` answering the family's rays.
     fn run<K: DexelKernel>(self, kernel: &K) -> Self::Output;
+}
+
+mod sealed {
+    /// Only this crate's kernels are [`super::DexelKernel`]s.
+    pub trait Sealed {}
+    impl Sealed for super::AlongRays {}
+    impl Sealed for super::AcrossRays {}
+    impl Sealed for super::InstanceRays {}
+    impl Sealed for super::TiltedRays {}
+    impl Sealed for super::General<'_, '_> {}
 }
 
 /// The material's first and last ends, `None` for an empty dexel.

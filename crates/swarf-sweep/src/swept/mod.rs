@@ -479,7 +479,7 @@ impl<'a> SweptConvex<'a> {
 
     /// What the dexel queries along world axis `k` share: the closed-form kernels' constants
     /// when available, else the general path's direction constants. (The one place where
-    /// the kind of kernel is chosen.)
+    /// the kind of kernel is decided; [`SweptConvex::with_kernel`] dispatches on it.)
     pub fn dexel_rays(&self, k: usize) -> DexelRays {
         DexelRays(match &self.closed {
             Some(ClosedForm::Axial(f)) => RaysKind::Fast(f.rays(k)),
