@@ -157,7 +157,14 @@ impl TileBound {
     /// Whether the tile may hold material inside the open range `(lo, hi)`.
     #[inline]
     pub(crate) fn meets(&self, lo: f64, hi: f64, bins: &Bins) -> bool {
-        self.lo < hi && self.hi > lo && self.bins & bins.mask(lo, hi) != 0
+        self.meets_mask(lo, hi, bins.mask(lo, hi))
+    }
+
+    /// [`TileBound::meets`] with the range's bins `mask` (`Bins::mask(lo, hi)`) made once for
+    /// many tiles.
+    #[inline(always)]
+    pub(crate) fn meets_mask(&self, lo: f64, hi: f64, mask: u64) -> bool {
+        self.lo < hi && self.hi > lo && self.bins & mask != 0
     }
 }
 
@@ -834,7 +841,13 @@ impl TriDexel {
                     };
                     let mut st = CutStats::default();
                     let tiles = r.i.0 / TILE..r.i.1 / TILE + 1;
+                    // Tiles without material in the move's range are left here, before the
+                    // call (nearly half the tiles of a finishing move: above the material).
+                    let mask = bins[k].mask(r.t.0, r.t.1);
                     for (ti, stale) in tiles.clone().zip(&mut stale[tiles]) {
+                        if !row.bounds[ti].meets_mask(r.t.0, r.t.1, mask) {
+                            continue;
+                        }
                         let span = ti * TILE_RAYS..(ti + 1) * TILE_RAYS;
                         let tile = &mut row.rays[span.clone()];
                         let tags = row.tags.get_mut(span).unwrap_or_default();
@@ -1154,10 +1167,8 @@ impl TileCut<'_, '_, '_> {
     ) {
         let (grid, k) = (self.grid, self.k);
         let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+        // (The caller has checked that the tile's bound meets the move's range.)
         let (tmin, tmax) = self.range.t;
-        if !bound.meets(tmin, tmax, self.bins) {
-            return;
-        }
         // Material-first at tile level: skip the tile when no part's sweep can reach its
         // material range, and look at the rays only where some part can reach them.
         let half = 0.5 * TILE as f64 * grid.h[u].max(grid.h[v]);
