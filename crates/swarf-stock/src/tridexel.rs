@@ -1225,40 +1225,28 @@ impl TileCut<'_, '_, '_> {
             std::array::from_fn(|ii| u_min + ((ti * TILE + ii) as f64 + 0.5) * u_h);
         // Counted here, added to `st` once (the lengths go on as before: their sum's order is
         // the rays').
-        let (visited, tested_n, updates);
-        if let ([p], [rays], [gate]) = (self.parts, self.rays, &gates[..]) {
-            // One part (the common case): its kernel chosen once for the tile's loop.
-            let rows = TileRows {
-                cut: self,
-                tile,
-                tags,
-                gate,
-                scratch,
-                removed_length: &mut st.removed_length[k],
-                ti,
-                tj,
-                i: (i_lo, i_hi),
-                j: (j_lo, j_hi),
-                cus: &cus,
-                v: (v_min, v_h),
-                t: (tmin, tmax),
-            };
-            let counts = p.with_kernel(k, rays, rows);
-            (visited, tested_n, updates) = counts;
-        } else {
-            let (mut vis, mut tes, mut upd) = (0u64, 0u64, 0u64);
-            for jj in j_lo..j_hi + 1 {
-                let cv = v_min + ((tj * TILE + jj) as f64 + 0.5) * v_h;
-                for (ii, &cu) in (i_lo..i_hi + 1).zip(&cus[i_lo..i_hi + 1]) {
-                    let r = jj * TILE + ii;
-                    let d = &mut tile[r];
-                    if !gates.iter().any(|g| g.open(cu, cv)) || !overlaps(d, tmin, tmax) {
-                        continue;
-                    }
-                    let ray = (ti * TILE + ii, tj * TILE + jj);
-                    vis += 1;
-                    let mut removed = 0.0;
-                    let mut tested = false;
+        let rows = TileRows {
+            cut: self,
+            tile: &mut *tile,
+            tags,
+            scratch,
+            removed_length: &mut st.removed_length[k],
+            ti,
+            tj,
+            i: (i_lo, i_hi),
+            j: (j_lo, j_hi),
+            cus: &cus,
+            v: (v_min, v_h),
+            t: (tmin, tmax),
+        };
+        let (visited, tested_n, updates) =
+            if let ([p], [rays], [gate]) = (self.parts, self.rays, &gates[..]) {
+                // One part (the common case): its kernel chosen once for the tile's loop.
+                p.with_kernel(k, rays, OnePart { rows, gate })
+            } else {
+                let open = |cu, cv| gates.iter().any(|g: &Gate| g.open(cu, cv));
+                rows.each_ray(open, |cut, (cu, cv), ray, d, mut tags, scratch| {
+                    let (mut tested, mut removed) = (false, 0.0);
                     for ((p, rays), gate) in self.parts.iter().zip(self.rays).zip(&gates) {
                         if !gate.open(cu, cv) {
                             continue;
@@ -1266,18 +1254,12 @@ impl TileCut<'_, '_, '_> {
                         let (t, hit) = p.dexel_cut((cu, cv), k, d, rays, scratch);
                         tested |= t;
                         if let Some((lo, hi)) = hit {
-                            removed += self.remove(d, tags.get_mut(r), ray, lo, hi);
+                            removed += cut.remove(d, tags.as_deref_mut(), ray, lo, hi);
                         }
                     }
-                    tes += u64::from(tested);
-                    if removed > 0.0 {
-                        upd += 1;
-                        st.removed_length[k] += removed;
-                    }
-                }
-            }
-            (visited, tested_n, updates) = (vis, tes, upd);
-        }
+                    (tested, removed)
+                })
+            };
         st.visited_per_family[k] += visited;
         st.rays_tested += tested_n;
         st.tested_per_family[k] += tested_n;
@@ -1297,15 +1279,12 @@ impl TileCut<'_, '_, '_> {
     }
 }
 
-/// The rays of one tile against one part (the common case), as the work that
-/// [`SweptConvex::with_kernel`] runs with the part's kernel for the family: the loop is
-/// compiled once per kernel, once per kind of gate, and once with and once without the
-/// removal's bookkeeping (provenance, a visitor).
+/// The rays of one tile that one group of parts' move may change, and what the loop over
+/// them adds to.
 struct TileRows<'c, 'g, 'p, 'a, 't> {
     cut: &'c TileCut<'g, 'p, 'a>,
     tile: &'t mut [Dexel],
     tags: &'t mut [DexelTags],
-    gate: &'t Gate,
     scratch: &'t mut Scratch,
     /// The family's removed length, added to ray by ray in the rays' order.
     removed_length: &'t mut f64,
@@ -1323,62 +1302,23 @@ struct TileRows<'c, 'g, 'p, 'a, 't> {
     t: (f64, f64),
 }
 
-impl KernelTask for TileRows<'_, '_, '_, '_, '_> {
-    /// Rays visited, exact queries, rays changed.
-    type Output = (u64, u64, u64);
-
-    fn run<K: DexelKernel>(self, kernel: &K) -> Self::Output {
-        let plain = self.tags.is_empty() && self.cut.visitor.is_none();
-        match (self.gate, plain) {
-            (Gate::All, true) => self.rays(
-                kernel,
-                |_, _| true,
-                |_, d, _, _, lo, hi| subtract(d, lo, hi),
-            ),
-            (Gate::Front(b), true) => {
-                let b = *b;
-                self.rays(
-                    kernel,
-                    move |cu, cv| b.reaches(cu, cv),
-                    |_, d, _, _, lo, hi| subtract(d, lo, hi),
-                )
-            }
-            (Gate::All, false) => self.rays(
-                kernel,
-                |_, _| true,
-                |c, d, t, ray, lo, hi| c.remove(d, t, ray, lo, hi),
-            ),
-            (Gate::Front(b), false) => {
-                let b = *b;
-                self.rays(
-                    kernel,
-                    move |cu, cv| b.reaches(cu, cv),
-                    |c, d, t, ray, lo, hi| c.remove(d, t, ray, lo, hi),
-                )
-            }
-            // (Not reached: a tile whose only part can change none of its rays is left
-            // before its loop.)
-            (Gate::Never, _) => (0, 0, 0),
-        }
-    }
-}
-
 impl TileRows<'_, '_, '_, '_, '_> {
-    /// The loop over the tile's rays: those holding material within the sweep's reach and
-    /// that the gate lets through get the kernel's query, and `remove` takes its interval.
+    /// The loop over the tile's rays: each that `open` lets through and whose material lies
+    /// within the sweep's reach is handed to `cut_ray` — with its cross coordinates, its
+    /// indices, its dexel and provenance (when tracked) — which says whether an exact query
+    /// ran and what length it removed. Returns the rays visited, queried and changed.
     #[inline(always)]
-    fn rays<K, G, R>(self, kernel: &K, open: G, remove: R) -> (u64, u64, u64)
+    fn each_ray<G, F>(self, open: G, mut cut_ray: F) -> (u64, u64, u64)
     where
-        K: DexelKernel,
         G: Fn(f64, f64) -> bool,
-        R: Fn(
+        F: FnMut(
             &TileCut<'_, '_, '_>,
+            (f64, f64),
+            (usize, usize),
             &mut Dexel,
             Option<&mut DexelTags>,
-            (usize, usize),
-            f64,
-            f64,
-        ) -> f64,
+            &mut Scratch,
+        ) -> (bool, f64),
     {
         let TileRows {
             cut,
@@ -1393,7 +1333,6 @@ impl TileRows<'_, '_, '_, '_, '_> {
             cus,
             v: (v_min, v_h),
             t: (tmin, tmax),
-            ..
         } = self;
         let (mut visited, mut tested, mut updates) = (0u64, 0u64, 0u64);
         // Half-open ranges: an inclusive range's bookkeeping costs in a loop this hot.
@@ -1408,20 +1347,84 @@ impl TileRows<'_, '_, '_, '_, '_> {
                     continue;
                 }
                 visited += 1;
-                let (t, hit) = kernel.cut(cu, cv, d, scratch);
+                let ray = (ti * TILE + ii, tj * TILE + jj);
+                let (t, removed) = cut_ray(cut, (cu, cv), ray, d, tags.get_mut(r), scratch);
                 tested += u64::from(t);
-                if let Some((lo, hi)) = hit {
-                    let ray = (ti * TILE + ii, tj * TILE + jj);
-                    let removed = remove(cut, d, tags.get_mut(r), ray, lo, hi);
-                    if removed > 0.0 {
-                        updates += 1;
-                        *removed_length += removed;
-                    }
+                if removed > 0.0 {
+                    updates += 1;
+                    *removed_length += removed;
                 }
             }
         }
         (visited, tested, updates)
     }
+}
+
+/// A tile's rays against one part (the common case), as the work that
+/// [`SweptConvex::with_kernel`] runs with the part's kernel for the family: the loop is
+/// compiled once per kernel, once per kind of gate, and once with and once without the
+/// removal's bookkeeping (provenance, a visitor).
+struct OnePart<'c, 'g, 'p, 'a, 't> {
+    rows: TileRows<'c, 'g, 'p, 'a, 't>,
+    gate: &'t Gate,
+}
+
+impl KernelTask for OnePart<'_, '_, '_, '_, '_> {
+    /// Rays visited, exact queries, rays changed.
+    type Output = (u64, u64, u64);
+
+    fn run<K: DexelKernel>(self, kernel: &K) -> Self::Output {
+        let OnePart { rows, gate } = self;
+        let plain = rows.tags.is_empty() && rows.cut.visitor.is_none();
+        match (gate, plain) {
+            (Gate::All, true) => rows.each_ray(
+                |_, _| true,
+                |c, at, ray, d, t, s| query::<K, true>(kernel, c, at, ray, d, t, s),
+            ),
+            (Gate::Front(b), true) => {
+                let b = *b;
+                rows.each_ray(
+                    move |cu, cv| b.reaches(cu, cv),
+                    |c, at, ray, d, t, s| query::<K, true>(kernel, c, at, ray, d, t, s),
+                )
+            }
+            (Gate::All, false) => rows.each_ray(
+                |_, _| true,
+                |c, at, ray, d, t, s| query::<K, false>(kernel, c, at, ray, d, t, s),
+            ),
+            (Gate::Front(b), false) => {
+                let b = *b;
+                rows.each_ray(
+                    move |cu, cv| b.reaches(cu, cv),
+                    |c, at, ray, d, t, s| query::<K, false>(kernel, c, at, ray, d, t, s),
+                )
+            }
+            // (Not reached: a tile whose only part can change none of its rays is left
+            // before its loop.)
+            (Gate::Never, _) => (0, 0, 0),
+        }
+    }
+}
+
+/// One ray's kernel query, and its interval taken from the dexel: by a plain subtraction
+/// (`PLAIN`: no provenance, no visitor) or with the cut's bookkeeping.
+#[inline(always)]
+fn query<K: DexelKernel, const PLAIN: bool>(
+    kernel: &K,
+    cut: &TileCut<'_, '_, '_>,
+    (cu, cv): (f64, f64),
+    ray: (usize, usize),
+    d: &mut Dexel,
+    tags: Option<&mut DexelTags>,
+    scratch: &mut Scratch,
+) -> (bool, f64) {
+    let (tested, hit) = kernel.cut(cu, cv, d, scratch);
+    let removed = match hit {
+        Some((lo, hi)) if PLAIN => subtract(d, lo, hi),
+        Some((lo, hi)) => cut.remove(d, tags, ray, lo, hi),
+        None => 0.0,
+    };
+    (tested, removed)
 }
 
 #[cfg(test)]
