@@ -1376,6 +1376,8 @@ impl KernelTask for OnePart<'_, '_, '_, '_, '_> {
     fn run<K: DexelKernel>(self, kernel: &K) -> Self::Output {
         let OnePart { rows, gate } = self;
         let plain = rows.tags.is_empty() && rows.cut.visitor.is_none();
+        // Written out arm by arm: one closure shared by the arms (a generic helper per gate)
+        // compiled the finishing bench's loop 17 % longer (7.41 -> 8.71 G instructions).
         match (gate, plain) {
             (Gate::All, true) => rows.each_ray(
                 |_, _| true,
