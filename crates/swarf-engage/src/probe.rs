@@ -255,18 +255,30 @@ impl<'a> MaterialProbe<'a> {
     /// normal, within `h` of it. A tenth of a probe's cost: one ray, no neighbours.
     #[inline]
     pub fn inside_nearest_ray(&self, k: usize, p: Vec3) -> bool {
-        let l = &self.lattice[k];
+        // The family a constant in each arm: its axes index the point without a table (the
+        // guess runs at every feasible sample of every location).
+        match k {
+            0 => self.inside_nearest_ray_of::<0>(p),
+            1 => self.inside_nearest_ray_of::<1>(p),
+            _ => self.inside_nearest_ray_of::<2>(p),
+        }
+    }
+
+    #[inline(always)]
+    fn inside_nearest_ray_of<const K: usize>(&self, p: Vec3) -> bool {
+        let l = &self.lattice[K];
         let pa = [p.x, p.y, p.z];
         // Ray i's centre is at min + (i + ½)·h: the nearest ray is ⌊(x − min)/h⌋.
-        let fu = (pa[l.u] - l.min[0]) * l.inv_h[0];
-        let fv = (pa[l.v] - l.min[1]) * l.inv_h[1];
+        let fu = (pa[(K + 1) % 3] - l.min[0]) * l.inv_h[0];
+        let fv = (pa[(K + 2) % 3] - l.min[1]) * l.inv_h[1];
         if !(fu >= 0.0 && fv >= 0.0 && fu < l.n[0] && fv < l.n[1]) {
             return false;
         }
-        let t = pa[k];
+        let t = pa[K];
+        // (In range: through `u32`, the cheaper conversion.)
         self.stock
-            .family(k)
-            .ray(fu as usize, fv as usize)
+            .family(K)
+            .ray(fu as u32 as usize, fv as u32 as usize)
             .iter()
             .any(|iv| iv.enter <= t && t <= iv.exit)
     }
@@ -288,7 +300,7 @@ impl<'a> MaterialProbe<'a> {
         let inside = |i: f64, j: f64| i >= 0.0 && j >= 0.0 && i < l.n[0] && j < l.n[1];
         let mut outside = [false; 4];
         if i0 >= 0.0 && j0 >= 0.0 && i0 + 1.0 < l.n[0] && j0 + 1.0 < l.n[1] {
-            let rays = fam.ray_quad(i0 as usize, j0 as usize);
+            let rays = fam.ray_quad(i0 as u32 as usize, j0 as u32 as usize);
             for (n, ray) in near.iter_mut().zip(rays) {
                 *n = nearest_end(ray, t);
             }
@@ -296,7 +308,7 @@ impl<'a> MaterialProbe<'a> {
             for (r, out) in outside.iter_mut().enumerate() {
                 let (i, j) = (i0 + (r & 1) as f64, j0 + (r >> 1) as f64);
                 if inside(i, j) {
-                    near[r] = nearest_end(fam.ray(i as usize, j as usize), t);
+                    near[r] = nearest_end(fam.ray(i as u32 as usize, j as u32 as usize), t);
                 } else {
                     *out = true;
                     near[r] = (0.0, 0.0, 0);
