@@ -735,6 +735,64 @@ mod tests {
     }
 
     #[test]
+    fn the_nearest_ray_guess_reads_the_nearest_ray_of_each_family() {
+        // Each family's guess is the material, at the point's coordinate along the rays, of
+        // the ray whose centre is nearest across the family (found here by search): an
+        // oblique plane, so that every family's rays end at different places. (Seen failing
+        // with the two cross axes swapped in the per-family guess.)
+        let h = 0.25;
+        let (_, stock) = below_oblique_plane(h);
+        let probe = MaterialProbe::new(&stock);
+        let g = stock.grid();
+        let (mut inside, mut total) = (0, 0);
+        for q in 0..3000 {
+            let f = |m: usize, p: usize| ((q * m) % p) as f64 / p as f64;
+            let p = Vec3::new(
+                11.0 * f(37, 1009) - 5.5,
+                11.0 * f(53, 1013) - 5.5,
+                11.0 * f(71, 1019) - 5.5,
+            );
+            for k in 0..3 {
+                let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+                let fam = stock.family(k);
+                let (nu, nv) = fam.dims();
+                let centre = |axis: usize, i: usize| g.min[axis] + (i as f64 + 0.5) * g.h[axis];
+                // Beside the grid (more than half a spacing beyond its outer rays): nothing.
+                let beside = (0..2).any(|w| {
+                    let (axis, n) = if w == 0 { (u, nu) } else { (v, nv) };
+                    p[axis] < g.min[axis] || p[axis] > centre(axis, n - 1) + 0.5 * g.h[axis]
+                });
+                let nearest = |axis: usize, n: usize| {
+                    (0..n)
+                        .min_by(|&a, &b| {
+                            (centre(axis, a) - p[axis])
+                                .abs()
+                                .total_cmp(&(centre(axis, b) - p[axis]).abs())
+                        })
+                        .unwrap()
+                };
+                let expected = !beside
+                    && fam
+                        .ray(nearest(u, nu), nearest(v, nv))
+                        .iter()
+                        .any(|iv| iv.enter <= p[k] && p[k] <= iv.exit);
+                assert_eq!(
+                    probe.inside_nearest_ray(k, p),
+                    expected,
+                    "family {k} at {p}"
+                );
+                inside += usize::from(expected);
+                total += 1;
+            }
+        }
+        // Both sides seen, in every family's share.
+        assert!(
+            inside > total / 5 && inside < total * 4 / 5,
+            "{inside} of {total}"
+        );
+    }
+
+    #[test]
     fn the_nearest_ray_guess_is_the_probes_side_away_from_the_boundary() {
         // Below an oblique plane, with the family most aligned with its normal (Z): points
         // farther than a ray spacing from the plane are guessed on the probe's side; nearer
