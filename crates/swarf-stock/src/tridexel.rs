@@ -11,7 +11,9 @@ use smallvec::SmallVec;
 use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_geom::Aabb;
 use swarf_sweep::swept::{DexelRays, Scratch};
-use swarf_sweep::{DexelKernel, Front, FrontBlock, KernelTask, SweepShape, SweptConvex, ToolShape};
+use swarf_sweep::{
+    DexelKernel, Front, FrontBlock, InstanceSet, KernelTask, SweepShape, SweptConvex, ToolShape,
+};
 
 /// Side of the square tiles of rays (tiles are stored contiguously and carry a conservative
 /// bound of their material along the ray, so whole tiles are skipped without touching rays).
@@ -1243,6 +1245,21 @@ impl TileCut<'_, '_, '_> {
             if let ([p], [rays], [gate]) = (self.parts, self.rays, &gates[..]) {
                 // One part (the common case): its kernel chosen once for the tile's loop.
                 p.with_kernel(k, rays, OnePart { rows, gate })
+            } else if let Some(set) = instance_set(self.rays, &gates) {
+                // Instances of one band (a 5-axis move): each ray's chords joined, the ray
+                // changed once.
+                let mut hits = [(0.0, 0.0); InstanceSet::MAX];
+                rows.each_ray(
+                    |_, _| true,
+                    |cut, (cu, cv), ray, d, mut tags, _| {
+                        let (tested, n) = set.cut(cu, cv, d, &mut hits);
+                        let mut removed = 0.0;
+                        for &(lo, hi) in &hits[..n] {
+                            removed += cut.remove(d, tags.as_deref_mut(), ray, lo, hi);
+                        }
+                        (tested, removed)
+                    },
+                )
             } else {
                 let open = |cu, cv| gates.iter().any(|g: &Gate| g.open(cu, cv));
                 rows.each_ray(open, |cut, (cu, cv), ray, d, mut tags, scratch| {
@@ -1277,6 +1294,20 @@ impl TileCut<'_, '_, '_> {
             *stale = false;
         }
     }
+}
+
+/// The parts' instances as one set, when every part that may change the tile's rays is a
+/// tool instance with nothing to gate its rays (no chained front).
+fn instance_set<'r>(rays: &'r [DexelRays], gates: &[Gate]) -> Option<InstanceSet<'r>> {
+    let mut set = InstanceSet::new();
+    for (r, g) in rays.iter().zip(gates) {
+        match g {
+            Gate::Never => {}
+            Gate::All if set.push(r) => {}
+            _ => return None,
+        }
+    }
+    Some(set)
 }
 
 /// The rays of one tile that one group of parts' move may change, and what the loop over

@@ -103,3 +103,91 @@ fn an_instance_removes_the_tilted_cutters_chord_on_every_ray() {
     }
     assert!(rays > 100_000);
 }
+
+#[test]
+fn instances_cut_together_leave_what_they_leave_cut_one_by_one() {
+    // The instances of a 5-axis move (the tip and axis turning a little from one to the next)
+    // cut as one set (each ray's chords joined, the ray changed once) against the same
+    // instances cut one after the other, on a block whose rays a first cut split: every ray
+    // keeps the same intervals (to rounding; a sliver of a few nm may go either way).
+    let mut rng = Lcg(0x2026_1128_0111);
+    let (lo, hi) = (Vec3::new(-9.0, -9.0, -4.0), Vec3::new(9.0, 9.0, 14.0));
+    let mut compared = 0usize;
+    for _ in 0..2 {
+        for cutter in every_cutter_kind(&mut rng, 4.0, 10.0, general_apt(8.0, 1.5, 14.0)) {
+            let shape = SweepShape::from_solid(cutter.cutting_solid());
+            let (tilt, turn) = (rng.range(0.0, 0.9), rng.range(0.0, std::f64::consts::TAU));
+            let (dt, dn) = (rng.range(0.02, 0.3), rng.range(-0.05, 0.05));
+            let start = Vec3::new(
+                rng.range(-2.0, 0.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-2.0, 0.5),
+            );
+            let instances: Vec<SubMove> = (0..7)
+                .map(|n| {
+                    let a = tilt + dn * n as f64;
+                    let axis = Vec3::new(a.sin() * turn.cos(), a.sin() * turn.sin(), a.cos());
+                    let tip = start + Vec3::new(dt, 0.3 * dt, -0.1 * dt) * n as f64;
+                    SubMove {
+                        s0: 0.0,
+                        s1: 0.0,
+                        tip0: tip,
+                        tip1: tip,
+                        axis,
+                        error_bound: 0.0,
+                    }
+                })
+                .collect();
+            // A slot across the block first, so that rays hold two intervals.
+            let mut first = TriDexel::from_box(lo, hi, 0.29).unwrap();
+            let slot = SubMove {
+                s0: 0.0,
+                s1: 1.0,
+                tip0: Vec3::new(-12.0, 1.5, 3.0),
+                tip1: Vec3::new(12.0, 1.5, 3.0),
+                axis: Vec3::Z,
+                error_bound: 0.0,
+            };
+            first.cut_shape_pieces(&shape, &[slot], 1e-3);
+            let mut together = first.clone();
+            let mut apart = first;
+            together.cut_instance_set(&shape, &instances);
+            for i in &instances {
+                apart.cut_shape_pieces(&shape, std::slice::from_ref(i), 1e-3);
+            }
+            for k in 0..3 {
+                let (a, b) = (together.family(k), apart.family(k));
+                let (nu, nv) = a.dims();
+                for j in 0..nv {
+                    for i in 0..nu {
+                        let (p, q) = (a.ray(i, j), b.ray(i, j));
+                        let long = |r: &[swarf_stock::Interval]| -> Vec<(f64, f64)> {
+                            r.iter()
+                                .filter(|iv| iv.len() > 1e-8)
+                                .map(|iv| (iv.enter, iv.exit))
+                                .collect()
+                        };
+                        let (p, q) = (long(p), long(q));
+                        let same = p.len() == q.len()
+                            && p.iter()
+                                .zip(&q)
+                                .all(|(x, y)| (x.0 - y.0).abs() < 1e-9 && (x.1 - y.1).abs() < 1e-9);
+                        assert!(
+                            same,
+                            "{:?}, family {k} ray ({i}, {j}): together {p:?}, apart {q:?}",
+                            cutter.kind()
+                        );
+                        compared += 1;
+                    }
+                }
+            }
+            let (vt, va) = (together.volume(), apart.volume());
+            assert!(
+                (vt - va).abs() <= 1e-9 * va,
+                "{:?}: {vt} against {va}",
+                cutter.kind()
+            );
+        }
+    }
+    assert!(compared > 100_000);
+}

@@ -20,6 +20,9 @@ pub const SCREEN_TOLERANCE_MM: f64 = 1.0;
 /// Sub-moves prepared and subtracted together (bounds the memory of the prepared sweeps).
 pub const PIECES_PER_BATCH: usize = 256;
 
+/// Most parts of instances cut together as one move (their rays' chords joined per ray).
+const INSTANCE_PARTS: usize = swarf_sweep::InstanceSet::MAX;
+
 /// Box holding the sweep of `shape` along the fixed-axis piece `p`.
 fn piece_box(shape: &SweepShape, p: &SubMove) -> Option<Aabb> {
     shape
@@ -107,6 +110,39 @@ impl TriDexel {
                 })
                 .collect();
             let moves: Vec<[&[SweptConvex<'_>]; 1]> = sweeps.iter().map(|s| [&s[..]]).collect();
+            for [st] in self.subtract_pieces(&moves, None) {
+                total = total.merged(st);
+            }
+        }
+        (total, worst)
+    }
+
+    /// Removes the tool instances `instances` (pieces that do not move) of `shape`, a few at
+    /// a time as the parts of one move, so that each ray they trim is read and changed once
+    /// per group ([`swarf_sweep::InstanceSet`]) rather than once per instance; what remains
+    /// is what cutting them one by one leaves. Returns the removal and the largest bound.
+    pub fn cut_instance_set(
+        &mut self,
+        shape: &SweepShape,
+        instances: &[SubMove],
+    ) -> (CutStats, f64) {
+        let mut total = CutStats::default();
+        let per_group = (INSTANCE_PARTS / shape.parts().len().max(1)).max(1);
+        let worst = instances.iter().fold(0.0f64, |w, p| w.max(p.error_bound));
+        for chunk in instances.chunks(PIECES_PER_BATCH) {
+            let parts: Vec<SweptConvex<'_>> = chunk
+                .iter()
+                .flat_map(|p| {
+                    shape
+                        .parts()
+                        .iter()
+                        .map(move |part| SweptConvex::new(part, p.tip0, p.axis, p.tip1 - p.tip0))
+                })
+                .collect();
+            let moves: Vec<[&[SweptConvex<'_>]; 1]> = parts
+                .chunks(per_group * shape.parts().len().max(1))
+                .map(|g| [g])
+                .collect();
             for [st] in self.subtract_pieces(&moves, None) {
                 total = total.merged(st);
             }
@@ -210,7 +246,7 @@ impl TriDexel {
                 .filter(|c| piece_box(slab, c).is_some_and(|b| material_in(self, &b)))
                 .copied()
                 .collect();
-            let cut = self.cut_shape_pieces(slab, &live, tol);
+            let cut = self.cut_instance_set(slab, &live);
             record(out, w, cut, live.len());
         }
         let last = instances[instances.len() - 1];

@@ -101,10 +101,21 @@ impl InstanceRays {
     /// where it meets the material.
     #[inline(always)]
     pub(crate) fn cut(&self, cu: f64, cv: f64, dex: &[Interval]) -> (bool, Option<(f64, f64)>) {
-        let (first, last) = match (dex.first(), dex.last()) {
-            (Some(f), Some(l)) => (f.enter, l.exit),
-            _ => return (false, None),
-        };
+        match (dex.first(), dex.last()) {
+            (Some(f), Some(l)) => self.cut_within(cu, cv, dex, (f.enter, l.exit)),
+            _ => (false, None),
+        }
+    }
+
+    /// [`InstanceRays::cut`] for a dexel with material, from its first entry to its last exit.
+    #[inline(always)]
+    fn cut_within(
+        &self,
+        cu: f64,
+        cv: f64,
+        dex: &[Interval],
+        (first, last): (f64, f64),
+    ) -> (bool, Option<(f64, f64)>) {
         let (o, t0) = self.line(cu, cv);
         let Some((lo, hi)) = self.cylinder(o) else {
             return (false, None);
@@ -226,6 +237,81 @@ impl InstanceRays {
                 lozenge_end(&line, hi, tf, (material.1, material.0), -1.0)?,
             )),
         }
+    }
+}
+
+/// Several instances of one profile queried together (the exact instances a 5-axis move's
+/// band is cut as): each ray's chords through them, joined, so that a ray the instances trim
+/// one after the other (each a sliver beyond the last) is read and changed once, not once per
+/// instance. The union of the chords is what cutting them one by one removes: each chord is
+/// exact where it meets the ray's material as it was before any of them, which holds the
+/// material left after the earlier ones. At most [`InstanceSet::MAX`] instances.
+#[derive(Clone, Debug, Default)]
+pub struct InstanceSet<'r> {
+    rays: smallvec::SmallVec<[&'r InstanceRays; InstanceSet::MAX]>,
+}
+
+impl<'r> InstanceSet<'r> {
+    /// The most instances in one set.
+    pub const MAX: usize = 8;
+
+    /// An empty set.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Adds the instance whose rays along a family are `rays`; `false` (and nothing added)
+    /// when they are not an instance's closed form or the set is full.
+    pub fn push(&mut self, rays: &'r super::DexelRays) -> bool {
+        match rays.instance() {
+            Some(i) if self.rays.len() < Self::MAX => {
+                self.rays.push(i);
+                true
+            }
+            _ => false,
+        }
+    }
+
+    /// The union of the instances' chords of the ray through `(cu, cv)` whose material is
+    /// `d` (world coordinates along it), each exact where it meets the material: whether an
+    /// exact query ran, and how many disjoint intervals, ascending, begin `out`.
+    #[inline]
+    pub fn cut(
+        &self,
+        cu: f64,
+        cv: f64,
+        d: &[Interval],
+        out: &mut [(f64, f64); InstanceSet::MAX],
+    ) -> (bool, usize) {
+        let (Some(f), Some(l)) = (d.first(), d.last()) else {
+            return (false, 0);
+        };
+        let material = (f.enter, l.exit);
+        let (mut tested, mut n) = (false, 0);
+        for i in &self.rays {
+            let (t, hit) = i.cut_within(cu, cv, d, material);
+            tested |= t;
+            let Some((lo, hi)) = hit else { continue };
+            // Kept sorted by their lower ends (a handful at most).
+            let mut at = n;
+            while at > 0 && out[at - 1].0 > lo {
+                out[at] = out[at - 1];
+                at -= 1;
+            }
+            out[at] = (lo, hi);
+            n += 1;
+        }
+        // Join chords that overlap or touch.
+        let mut w = 0;
+        for r in 0..n {
+            if w > 0 && out[r].0 <= out[w - 1].1 {
+                out[w - 1].1 = greater(out[w - 1].1, out[r].1);
+            } else {
+                out[w] = out[r];
+                w += 1;
+            }
+        }
+        (tested, w)
     }
 }
 

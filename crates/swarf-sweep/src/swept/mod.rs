@@ -77,7 +77,7 @@ pub(crate) mod torus;
 pub use bound::SweepBound;
 pub use distance::SignedDistance;
 pub use front::{Front, FrontBlock};
-pub use instance::SLIVER_MM;
+pub use instance::{InstanceSet, SLIVER_MM};
 pub use interval::{overlaps, Interval};
 pub use kernel::{DexelKernel, KernelTask};
 pub use profile::{ConvexProfile, Element, SweepShape};
@@ -285,6 +285,16 @@ pub(crate) struct DirConsts {
 /// [`SweptConvex::dexel_rays`]); opaque, made once per sweep and ray family.
 #[derive(Clone, Debug)]
 pub struct DexelRays(RaysKind);
+
+impl DexelRays {
+    /// The instance closed form, when these rays have it.
+    pub(crate) fn instance(&self) -> Option<&instance::InstanceRays> {
+        match &self.0 {
+            RaysKind::Instance(i) => Some(i),
+            _ => None,
+        }
+    }
+}
 
 /// Which kernel answers a family's rays.
 #[derive(Clone, Debug)]
