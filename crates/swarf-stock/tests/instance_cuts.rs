@@ -12,6 +12,7 @@ use swarf_geom::{Frame, Ray};
 use swarf_stock::TriDexel;
 use swarf_sweep::five_axis::SubMove;
 use swarf_sweep::SweepShape;
+use swarf_tool::CutterKind;
 
 #[test]
 fn an_instance_removes_the_tilted_cutters_chord_on_every_ray() {
@@ -123,11 +124,16 @@ fn instances_cut_together_leave_what_they_leave_cut_one_by_one() {
                 rng.range(-1.0, 1.0),
                 rng.range(-2.0, 0.5),
             );
-            let instances: Vec<SubMove> = (0..7)
+            // Eleven instances (two groups), the fourth set a diameter and 1 mm aside along X,
+            // so that rays along X meet it and its neighbours in disjoint chords.
+            let aside = Vec3::new(cutter.max_diameter() + 1.0, 0.0, 0.0);
+            let instances: Vec<SubMove> = (0..11)
                 .map(|n| {
                     let a = tilt + dn * n as f64;
                     let axis = Vec3::new(a.sin() * turn.cos(), a.sin() * turn.sin(), a.cos());
-                    let tip = start + Vec3::new(dt, 0.3 * dt, -0.1 * dt) * n as f64;
+                    let tip = start
+                        + Vec3::new(dt, 0.3 * dt, -0.1 * dt) * n as f64
+                        + if n == 3 { aside } else { Vec3::ZERO };
                     SubMove {
                         s0: 0.0,
                         s1: 0.0,
@@ -151,9 +157,27 @@ fn instances_cut_together_leave_what_they_leave_cut_one_by_one() {
             first.cut_shape_pieces(&shape, &[slot], 1e-3);
             let mut together = first.clone();
             let mut apart = first;
-            together.cut_instance_set(&shape, &instances);
+            let (joined, _) = together.cut_instance_set(&shape, &instances);
+            let mut updates = 0;
             for i in &instances {
-                apart.cut_shape_pieces(&shape, std::slice::from_ref(i), 1e-3);
+                updates += apart
+                    .cut_shape_pieces(&shape, std::slice::from_ref(i), 1e-3)
+                    .0
+                    .updates;
+            }
+            // Grouped: each ray changed once a group, far fewer times than one instance after
+            // another. (The round kinds' groups take the joined path, held to each instance's
+            // own query in `swarf-sweep`'s `an_instance_set_joins_its_instances_chords`.)
+            if matches!(
+                cutter.kind(),
+                CutterKind::Flat | CutterKind::Ball | CutterKind::Bull
+            ) {
+                assert!(
+                    joined.updates * 2 < updates,
+                    "{:?}: {} updates together, {updates} apart",
+                    cutter.kind(),
+                    joined.updates
+                );
             }
             for k in 0..3 {
                 let (a, b) = (together.family(k), apart.family(k));

@@ -4,8 +4,8 @@
 //! of the cut that meets the material is the same as the general path's.
 
 use swarf_geom::math::Vec3;
-use swarf_sweep::swept::{Interval, Scratch};
-use swarf_sweep::{ConvexProfile, SweepShape, SweptConvex};
+use swarf_sweep::swept::{DexelRays, Interval, Scratch};
+use swarf_sweep::{ConvexProfile, InstanceSet, SweepShape, SweptConvex};
 use swarf_tool::Cutter;
 
 mod common;
@@ -249,4 +249,82 @@ fn block_range_holds_every_ray_of_the_block() {
         }
     });
     assert!(checked > 5_000, "{checked}");
+}
+
+/// A set of instances (a few poses of one profile, near each other or apart) answers a ray
+/// with the union of what each instance's own query gives it: the chords joined where they
+/// overlap or touch, disjoint and ascending otherwise (the material along the whole ray, so
+/// that every chord is exact).
+#[test]
+fn an_instance_set_joins_its_instances_chords() {
+    let mut rng = Rng(0x2026_1128_1107);
+    let mut scratch = Scratch::new();
+    let (mut joined, mut apart) = (0usize, 0usize);
+    let d = [Interval {
+        enter: -1e4,
+        exit: 1e4,
+    }];
+    for _ in 0..30 {
+        for prof in profiles(&mut rng) {
+            let n = 2 + rng.pick(InstanceSet::MAX - 1);
+            let a = axis(&mut rng);
+            let tip = Vec3::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+            );
+            // Steps from a tenth of a millimetre to beyond the tool's size.
+            let reach = prof.r_max() * rng.range(0.0, 3.0);
+            let step = Vec3::new(
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+                rng.range(-1.0, 1.0),
+            ) * reach
+                / 3f64.sqrt();
+            let sweeps: Vec<SweptConvex<'_>> = (0..n)
+                .map(|i| SweptConvex::new(&prof, tip + step * i as f64, a, Vec3::ZERO))
+                .collect();
+            let bb = sweeps
+                .iter()
+                .map(SweptConvex::bbox)
+                .reduce(|x, y| x.union(&y))
+                .unwrap();
+            for k in 0..3 {
+                let rays: Vec<DexelRays> = sweeps.iter().map(|s| s.dexel_rays(k)).collect();
+                let mut set = InstanceSet::new();
+                for r in &rays {
+                    assert!(set.push(r), "an instance's rays have its closed form");
+                }
+                for _ in 0..100 {
+                    let o = rng.point_in(&bb, 0.1);
+                    let (cu, cv) = (o[(k + 1) % 3], o[(k + 2) % 3]);
+                    let mut out = [(0.0, 0.0); InstanceSet::MAX];
+                    let (_, m) = set.cut(cu, cv, &d, &mut out);
+                    let mut chords: Vec<(f64, f64)> = sweeps
+                        .iter()
+                        .zip(&rays)
+                        .filter_map(|(s, r)| s.dexel_cut((cu, cv), k, &d, r, &mut scratch).1)
+                        .collect();
+                    chords.sort_by(|x, y| x.0.total_cmp(&y.0));
+                    let mut union: Vec<(f64, f64)> = Vec::new();
+                    for c in chords {
+                        match union.last_mut() {
+                            Some(l) if c.0 <= l.1 => l.1 = l.1.max(c.1),
+                            _ => union.push(c),
+                        }
+                    }
+                    assert_eq!(&out[..m], &union[..], "ray along {k} through {o}");
+                    match m {
+                        1 => joined += 1,
+                        2.. => apart += 1,
+                        _ => {}
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        joined > 5_000 && apart > 500,
+        "{joined} joined, {apart} apart"
+    );
 }

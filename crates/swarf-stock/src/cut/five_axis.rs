@@ -120,7 +120,8 @@ impl TriDexel {
     /// Removes the tool instances `instances` (pieces that do not move) of `shape`, a few at
     /// a time as the parts of one move, so that each ray they trim is read and changed once
     /// per group ([`swarf_sweep::InstanceSet`]) rather than once per instance; what remains
-    /// is what cutting them one by one leaves. Returns the removal and the largest bound.
+    /// is what cutting them one by one leaves, up to slivers and the corner's walk tolerance
+    /// (10⁻¹² mm). Returns the removal and the largest bound.
     pub fn cut_instance_set(
         &mut self,
         shape: &SweepShape,

@@ -240,10 +240,11 @@ impl InstanceRays {
     }
 }
 
-/// Several instances of one profile queried together (the exact instances a 5-axis move's
-/// band is cut as): each ray's chords through them, joined, so that a ray the instances trim
+/// Several tool instances queried together (the parts of a tool at the poses a 5-axis move's
+/// band is cut at): each ray's chords through them, joined, so that a ray the instances trim
 /// one after the other (each a sliver beyond the last) is read and changed once, not once per
-/// instance. The union of the chords is what cutting them one by one removes: each chord is
+/// instance. The union of the chords is what cutting them one by one removes, up to slivers
+/// (`SLIVER_MM`, the stock's shortest interval) and the lozenge walk's tolerance: each chord is
 /// exact where it meets the ray's material as it was before any of them, which holds the
 /// material left after the earlier ones. At most [`InstanceSet::MAX`] instances.
 #[derive(Clone, Debug, Default)]
