@@ -86,35 +86,7 @@ impl TriDexel {
         pieces: &[SubMove],
         tol: f64,
     ) -> (CutStats, f64) {
-        let mut total = CutStats::default();
-        let mut worst = 0.0f64;
-        for chunk in pieces.chunks(PIECES_PER_BATCH) {
-            let sweeps: Vec<Vec<SweptConvex<'_>>> = chunk
-                .iter()
-                .map(|p| {
-                    let room = (tol - p.error_bound).max(0.0);
-                    let mut moved = 0.0f64;
-                    let parts = shape
-                        .parts()
-                        .iter()
-                        .map(|part| {
-                            let (sweep, m) =
-                                SweptConvex::new(part, p.tip0, p.axis, p.tip1 - p.tip0)
-                                    .with_envelope_slack(room);
-                            moved = moved.max(m);
-                            sweep
-                        })
-                        .collect();
-                    worst = worst.max(p.error_bound + moved);
-                    parts
-                })
-                .collect();
-            let moves: Vec<[&[SweptConvex<'_>]; 1]> = sweeps.iter().map(|s| [&s[..]]).collect();
-            for [st] in self.subtract_pieces(&moves, None) {
-                total = total.merged(st);
-            }
-        }
-        (total, worst)
+        self.cut_pieces_grouped(shape, pieces, tol, 1)
     }
 
     /// Removes the tool instances `instances` (pieces that do not move) of `shape`, a few at
@@ -127,21 +99,39 @@ impl TriDexel {
         shape: &SweepShape,
         instances: &[SubMove],
     ) -> (CutStats, f64) {
+        // (An instance does not move: no envelope to leave out, whatever the tolerance.)
+        let per_move = (INSTANCE_PARTS / shape.parts().len().max(1)).max(1);
+        self.cut_pieces_grouped(shape, instances, 0.0, per_move)
+    }
+
+    /// [`TriDexel::cut_shape_pieces`] with `per_move` consecutive pieces made the parts of one
+    /// move (1: each piece its own move).
+    fn cut_pieces_grouped(
+        &mut self,
+        shape: &SweepShape,
+        pieces: &[SubMove],
+        tol: f64,
+        per_move: usize,
+    ) -> (CutStats, f64) {
         let mut total = CutStats::default();
-        let per_group = (INSTANCE_PARTS / shape.parts().len().max(1)).max(1);
-        let worst = instances.iter().fold(0.0f64, |w, p| w.max(p.error_bound));
-        for chunk in instances.chunks(PIECES_PER_BATCH) {
-            let parts: Vec<SweptConvex<'_>> = chunk
-                .iter()
-                .flat_map(|p| {
-                    shape
-                        .parts()
-                        .iter()
-                        .map(move |part| SweptConvex::new(part, p.tip0, p.axis, p.tip1 - p.tip0))
-                })
-                .collect();
-            let moves: Vec<[&[SweptConvex<'_>]; 1]> = parts
-                .chunks(per_group * shape.parts().len().max(1))
+        let mut worst = 0.0f64;
+        let parts_per_piece = shape.parts().len().max(1);
+        for chunk in pieces.chunks(PIECES_PER_BATCH) {
+            let mut sweeps: Vec<SweptConvex<'_>> =
+                Vec::with_capacity(chunk.len() * parts_per_piece);
+            for p in chunk {
+                let room = (tol - p.error_bound).max(0.0);
+                let mut moved = 0.0f64;
+                for part in shape.parts() {
+                    let (sweep, m) = SweptConvex::new(part, p.tip0, p.axis, p.tip1 - p.tip0)
+                        .with_envelope_slack(room);
+                    moved = moved.max(m);
+                    sweeps.push(sweep);
+                }
+                worst = worst.max(p.error_bound + moved);
+            }
+            let moves: Vec<[&[SweptConvex<'_>]; 1]> = sweeps
+                .chunks(per_move * parts_per_piece)
                 .map(|g| [g])
                 .collect();
             for [st] in self.subtract_pieces(&moves, None) {
