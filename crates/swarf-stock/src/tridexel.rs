@@ -119,10 +119,14 @@ pub struct DexelFamily {
     pub(crate) ntu: usize,
     /// Tile-major storage: tile `(ti, tj)` holds rays `(tj·ntu + ti)·TILE² ..`, row-major inside.
     pub(crate) rays: Vec<Dexel>,
-    /// Per tile, where its material lies along the rays: exact between calls; within a
-    /// subtraction, a tile its cuts changed keeps its older bound (larger, still true) until a
-    /// later run finds nothing to change in it or the call returns.
+    /// Per tile, where its material lies along the rays: always true, exact unless `stale`.
+    /// A tile a cut changed keeps its older bound (larger, still true) until a later run finds
+    /// nothing to change in it, in this call or a later one ([`TriDexel::refresh_stale_bounds`]
+    /// makes them all exact): a caller that cuts one short move per call (the engagement's
+    /// locations) would otherwise pay for re-reading every tile each move changed, each move.
     pub(crate) bounds: Vec<TileBound>,
+    /// Per tile, whether a cut changed it since its bound was last made exact.
+    pub(crate) stale: Vec<bool>,
     /// The bins of [`TileBound::bins`] along this family's rays.
     pub(crate) bins: Bins,
     /// The provenance of every ray's intervals, indexed like `rays` (empty when the stock
@@ -216,6 +220,7 @@ impl DexelFamily {
             ntu,
             rays: vec![Dexel::new(); ntu * ntv * TILE_RAYS],
             bounds: vec![EMPTY_BOUND; ntu * ntv],
+            stale: vec![false; ntu * ntv],
             bins: Bins::new(grid, axis),
             tags: Vec::new(),
         }
@@ -314,6 +319,7 @@ impl DexelFamily {
                 .map(|d| d.capacity() * std::mem::size_of::<Interval>())
                 .sum::<usize>()
             + self.bounds.capacity() * std::mem::size_of::<TileBound>()
+            + self.stale.capacity()
             + self.tags.capacity() * std::mem::size_of::<DexelTags>()
             + self
                 .tags
@@ -326,6 +332,16 @@ impl DexelFamily {
     fn refresh_bounds(&mut self) {
         for (b, rays) in self.bounds.iter_mut().zip(self.rays.chunks(TILE_RAYS)) {
             *b = tile_bound(rays, &self.bins);
+        }
+        self.stale.fill(false);
+    }
+
+    /// Makes the bounds of the tiles changed since their last refresh exact.
+    fn refresh_stale(&mut self) {
+        let tiles = self.bounds.iter_mut().zip(self.rays.chunks(TILE_RAYS));
+        for ((b, rays), stale) in tiles.zip(&mut self.stale).filter(|(_, s)| **s) {
+            *b = tile_bound(rays, &self.bins);
+            *stale = false;
         }
     }
 }
@@ -647,6 +663,16 @@ impl TriDexel {
         }
     }
 
+    /// Makes every tile's bound exact again. Cuts leave the bounds of the tiles they changed
+    /// as they were (larger than the material, never smaller) until a later cut visits the
+    /// tile and changes nothing in it; the queries below are conservative either way, and
+    /// tighter after this.
+    pub fn refresh_stale_bounds(&mut self) {
+        for fam in &mut self.families {
+            fam.refresh_stale();
+        }
+    }
+
     /// A conservative range `[lowest, highest]` along family `k`'s rays of the material of the
     /// rays that cross `bbox` (from the tiles' bounds: it may be wider than the material, never
     /// narrower); `None` when those rays hold no material. Cost: one look per 8 × 8 tile.
@@ -795,6 +821,7 @@ impl TriDexel {
             };
             let per_row = fam.ntu * TILE_RAYS;
             let mut tag_rows = fam.tags.chunks_mut(per_row);
+            let mut stale_rows = fam.stale.chunks_mut(fam.ntu);
             for (tj, (r, b)) in fam
                 .rays
                 .chunks_mut(per_row)
@@ -802,10 +829,12 @@ impl TriDexel {
                 .enumerate()
             {
                 let tags = tag_rows.next().unwrap_or_default();
+                let stale = stale_rows.next().unwrap_or_default();
                 if (lo..=hi).contains(&tj) {
                     let row = Row {
                         rays: r,
                         bounds: b,
+                        stale,
                         tags,
                     };
                     units.push((k, tj, row));
@@ -817,8 +846,6 @@ impl TriDexel {
         // that reached the row removed from it.
         let run = |scratch: &mut Scratch, (k, tj, row): (usize, usize, Row<'_>)| {
             let mut out: Vec<(usize, usize, CutStats)> = Vec::new();
-            // Per tile of the row, whether a cut changed it since its bound was refreshed.
-            let mut stale = vec![false; row.bounds.len()];
             for (m, ((groups, plans), shared)) in moves.iter().zip(&plans).zip(&shared).enumerate()
             {
                 let tag = base
@@ -846,7 +873,7 @@ impl TriDexel {
                     // Tiles without material in the move's range are left here, before the
                     // call (nearly half the tiles of a finishing move: above the material).
                     let mask = bins[k].mask(r.t.0, r.t.1);
-                    for (ti, stale) in tiles.clone().zip(&mut stale[tiles]) {
+                    for (ti, stale) in tiles.clone().zip(&mut row.stale[tiles]) {
                         if !row.bounds[ti].meets_mask(r.t.0, r.t.1, mask) {
                             continue;
                         }
@@ -858,11 +885,6 @@ impl TriDexel {
                     }
                     out.push((m, group, st));
                 }
-            }
-            // Every bound exact again when the call returns.
-            let tiles = row.bounds.iter_mut().zip(row.rays.chunks(TILE_RAYS));
-            for ((b, rays), _) in tiles.zip(&stale).filter(|(_, &s)| s) {
-                *b = tile_bound(rays, &bins[k]);
             }
             out
         };
@@ -996,6 +1018,8 @@ const PARALLEL_MIN_TILES: usize = 64;
 struct Row<'a> {
     rays: &'a mut [Dexel],
     bounds: &'a mut [TileBound],
+    /// Which of the row's bounds a cut changed since they were last made exact.
+    stale: &'a mut [bool],
     /// The rays' provenance (empty when not tracked).
     tags: &'a mut [DexelTags],
 }
@@ -1286,7 +1310,7 @@ impl TileCut<'_, '_, '_> {
         // tile from being skipped. A refresh reads all the tile's rays, and a finishing pass
         // changes a tile on each of the dozens of moves that cross it: the bound is refreshed
         // when a run finds nothing to change in a tile changed since (the stale bound may be
-        // what let the run in), and the call refreshes the others before it returns.
+        // what let the run in), in this call or a later one.
         if updates > 0 {
             *stale = true;
         } else if *stale {
@@ -1519,21 +1543,44 @@ mod tests {
         moves
     }
 
-    /// A call leaves every tile's bound exact, though a tile that the call's cuts keep
-    /// changing is refreshed only when a run finds nothing to change in it or at the call's end:
-    /// a raster of short chained moves (each tile changed by many in a row, some emptied), in
-    /// calls of several lengths.
+    /// Every tile's bound holds its material between calls, and is exact unless a cut changed
+    /// the tile since it was last made exact (a tile is refreshed when a run finds nothing to
+    /// change in it, in the same call or a later one), and exact everywhere after
+    /// `refresh_stale_bounds`: a raster of short chained moves (each tile changed by many in a
+    /// row, some emptied), in calls of several lengths.
     #[test]
-    fn tile_bounds_are_exact_after_a_call() {
+    fn tile_bounds_hold_their_material_and_are_exact_once_refreshed() {
         let tool = ToolShape::new(&swarf_tool::Cutter::ball(3.0).unwrap());
         let moves = wavy_raster(6, 30, 0.37, 0.9);
         for chunk in [1, 7, 64, moves.len()] {
             let b = Aabb::new(Vec3::ZERO, Vec3::new(9.0, 7.0, 4.0));
             let mut stock = TriDexel::from_box(b.min, b.max, 0.1).unwrap();
+            let mut stale_seen = 0;
             for part in moves.chunks(chunk) {
                 stock.cut_linear_batch(&tool, part);
+                for fam in &stock.families {
+                    for (t, bound) in fam.bounds.iter().enumerate() {
+                        let rays = &fam.rays[t * TILE_RAYS..(t + 1) * TILE_RAYS];
+                        let exact = tile_bound(rays, &fam.bins);
+                        if fam.stale[t] {
+                            stale_seen += 1;
+                            // Larger, never smaller: its span and bins hold the exact ones.
+                            assert!(
+                                exact.lo >= bound.lo
+                                    && exact.hi <= bound.hi
+                                    && exact.bins & !bound.bins == 0,
+                                "chunks of {chunk}, tile {t}: {bound:?} misses {exact:?}"
+                            );
+                        } else {
+                            assert_eq!(*bound, exact, "chunks of {chunk}, tile {t}");
+                        }
+                    }
+                }
             }
+            assert!(stale_seen > 0, "chunks of {chunk}: no tile was left stale");
+            stock.refresh_stale_bounds();
             for fam in &stock.families {
+                assert!(fam.stale.iter().all(|s| !s));
                 for (t, bound) in fam.bounds.iter().enumerate() {
                     let rays = &fam.rays[t * TILE_RAYS..(t + 1) * TILE_RAYS];
                     assert_eq!(
