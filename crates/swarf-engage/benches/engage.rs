@@ -54,6 +54,7 @@ fn engage_once(p: &Program) -> (f64, usize, f64, u64, f64) {
 }
 
 fn report() {
+    println!("{}", swarf_testdata::host::probe());
     let n: usize = std::env::var("SWARF_BENCH_MOVES")
         .ok()
         .and_then(|s| s.parse().ok())

@@ -95,6 +95,7 @@ fn new_stock(h: f64) -> TriDexel {
 }
 
 fn report() {
+    println!("{}", swarf_testdata::host::probe());
     let h: f64 = std::env::var("SWARF_BENCH_H")
         .ok()
         .and_then(|s| s.parse().ok())

@@ -100,6 +100,7 @@ fn median(mut v: Vec<f64>) -> f64 {
 }
 
 fn main() {
+    println!("{}", swarf_testdata::host::probe());
     let n: usize = std::env::var("SWARF_BENCH_MOVES")
         .ok()
         .and_then(|s| s.parse().ok())

@@ -29,6 +29,10 @@
 //! instead of written into the source tree, so a failing run leaves no untracked file; the
 //! committed regression files are still read and their cases run first.
 //!
+//! **The machine's state.** [`host::probe`] measures how long a read from memory and a
+//! dependent multiply-add take right now; the benchmarks print it beside their figures, since
+//! the shared machines they run on change from hour to hour.
+//!
 //! ```no_run
 //! let Some(file) = swarf_testdata::path("gcode/linuxcnc_spiral.ngc") else {
 //!     return; // the skip line is printed
@@ -38,6 +42,7 @@
 //! ```
 
 pub mod fixtures;
+pub mod host;
 
 use std::fmt::Debug;
 use std::io::Write as _;
