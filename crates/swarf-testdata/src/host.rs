@@ -31,6 +31,14 @@ impl std::fmt::Display for HostProbe {
     }
 }
 
+/// [`probe`], unless the environment sets `SWARF_BENCH_NO_PROBE` (to count a benchmark's
+/// instructions under `valgrind`, where the probe would add its own and take minutes).
+pub fn probe_unless_asked_not_to() -> Option<HostProbe> {
+    std::env::var_os("SWARF_BENCH_NO_PROBE")
+        .is_none()
+        .then(probe)
+}
+
 /// Measures the machine now (about half a second, 64 MiB).
 pub fn probe() -> HostProbe {
     const SLOTS: usize = 8 << 20;
