@@ -662,9 +662,6 @@ fn sample_strip(
     };
     let (lo, hi) = (lo.saturating_sub(1), (hi + 2).min(strip.len()));
     let rows = hi - lo;
-    let dphi = std::f64::consts::TAU / n as f64;
-    let stock = probe.stock();
-    let spacing = stock.grid().h.iter().fold(0.0, |m: f64, &x| m.max(x));
     let vscale = state.v_tip.length() + state.omega.length() * radius;
     // The surface point of circle `k` at angle `j`, and its outward normal.
     let point = |k: usize, j: usize| {
@@ -767,50 +764,24 @@ fn sample_strip(
                 let centre = f.tip + f.z * c.z;
                 let (a, b) = (f.x * c.rho, f.y * c.rho);
                 let (na, nb, nz) = (f.x * c.normal.x, f.y * c.normal.x, f.z * c.normal.y);
-                // An arc none of whose samples' rays may hold material where the samples are
-                // is guessed outside without reading a ray (the guess would say so): its
-                // chord's box grown by its sagitta holds it, and grown by a ray spacing the
-                // nearest rays of its samples.
-                let sagitta = c.rho * (1.0 - (0.5 * ARC as f64 * dphi).cos());
-                let grow = Vec3::splat(sagitta + spacing);
-                for (((out, rfr), sin), cos) in row
-                    .chunks_mut(ARC)
-                    .zip(rfr.chunks(ARC))
-                    .zip(angles.sin.chunks(ARC))
-                    .zip(angles.cos.chunks(ARC))
+                for (((out, &rfj), &sin), &cos) in row
+                    .iter_mut()
+                    .zip(rfr.iter())
+                    .zip(&angles.sin)
+                    .zip(&angles.cos)
                 {
-                    if rfr.iter().all(|&v| v <= 0.0) {
-                        out.copy_from_slice(rfr);
-                        continue;
-                    }
-                    let last = rfr.len() - 1;
-                    let (p0, p1) = (
-                        centre + a * sin[0] + b * cos[0],
-                        centre + a * sin[last] + b * cos[last],
-                    );
-                    let arc_box = Aabb::new(p0.min(p1) - grow, p0.max(p1) + grow);
-                    if !(0..3).any(|k| stock.may_hold_material(k, &arc_box)) {
-                        for (out, &rfj) in out.iter_mut().zip(rfr) {
-                            *out = if rfj <= 0.0 { rfj } else { -GUESSED_OUTSIDE };
-                        }
-                        continue;
-                    }
-                    for (((out, &rfj), &sin), &cos) in
-                        out.iter_mut().zip(rfr.iter()).zip(sin).zip(cos)
-                    {
-                        *out = if rfj <= 0.0 {
+                    *out = if rfj <= 0.0 {
+                        rfj
+                    } else {
+                        let p = centre + a * sin + b * cos;
+                        // The family most aligned with the normal (ties to the lower).
+                        let k = (na * sin + nb * cos + nz).abs().max_position();
+                        if probe.inside_nearest_ray(k, p) {
                             rfj
                         } else {
-                            let p = centre + a * sin + b * cos;
-                            // The family most aligned with the normal (ties to the lower).
-                            let k = (na * sin + nb * cos + nz).abs().max_position();
-                            if probe.inside_nearest_ray(k, p) {
-                                rfj
-                            } else {
-                                -GUESSED_OUTSIDE
-                            }
-                        };
-                    }
+                            -GUESSED_OUTSIDE
+                        }
+                    };
                 }
             }
             for (((s, o), &v), &rfj) in side.iter_mut().zip(open.iter_mut()).zip(&*row).zip(&*rfr) {
@@ -932,10 +903,6 @@ const FAR_MM: f64 = 1e6;
 /// The placeholder value of g at a feasible sample guessed outside the material (mm): never
 /// interpolated, since every sample next to a side change is probed.
 const GUESSED_OUTSIDE: f64 = 1.0;
-
-/// Samples per arc of a circle whose box is checked against the stock's tile bounds before
-/// its samples are guessed.
-const ARC: usize = 20;
 
 /// Tool-tip path length of `m`, mm (arcs exact; curved 5-axis tips by 64 chords).
 pub fn path_length(program: &Program, m: &Move) -> f64 {
