@@ -172,11 +172,17 @@ fn cell_share(g00: f64, g01: f64, g10: f64, g11: f64) -> f64 {
     s / SUB_ROWS as f64
 }
 
-/// Engaged intervals of one sampled circle (angles `j·dφ`, cyclic); `span`, when known, the
-/// first and last engaged sample.
-fn circle_intervals(g: &[f64], dphi_deg: f64, span: Option<(usize, usize)>) -> Vec<PhiInterval> {
+/// Engaged intervals of one sampled circle (angles `j·dφ`, cyclic) from its values `g` and
+/// their sides (`side[j]` is 1 exactly where `g[j] > 0`); `span`, when known, the first and
+/// last engaged sample.
+fn circle_intervals(
+    g: &[f64],
+    side: &[u8],
+    dphi_deg: f64,
+    span: Option<(usize, usize)>,
+) -> Vec<PhiInterval> {
     let n = g.len();
-    let Some(first_out) = g.iter().position(|&v| v <= 0.0) else {
+    let Some(first_out) = side.iter().position(|&v| v == 0) else {
         return vec![PhiInterval {
             start_deg: 0.0,
             end_deg: 360.0,
@@ -184,34 +190,39 @@ fn circle_intervals(g: &[f64], dphi_deg: f64, span: Option<(usize, usize)>) -> V
     };
     let mut out = Vec::new();
     let mut start: Option<f64> = None;
-    // Sample `j` and the one before it, walking once round from the first sample out
-    // (without a division per step); where the engaged samples lie between the seam's
-    // neighbours, only the steps from the one before the first to the one after the last.
-    let steps = match span {
-        Some((first, last)) if first_out == 0 && first > 0 && last + 1 < n => first..=last + 1,
-        _ => 1..=n,
+    // Sample `j` and the one before it, walking once round from the first sample out;
+    // where the engaged samples lie between the seam's neighbours, only the steps from the
+    // one before the first to the one after the last.
+    let (mut step, end) = match span {
+        Some((first, last)) if first_out == 0 && first > 0 && last + 1 < n => (first, last + 1),
+        _ => (1, n),
     };
-    let mut j = first_out + steps.start() - 1;
-    for step in steps {
-        let jp = j;
-        j = if j + 1 == n { 0 } else { j + 1 };
-        let (prev, cur) = (g[jp], g[j]);
-        if (prev > 0.0) == (cur > 0.0) {
-            continue;
+    while step <= end {
+        let j = (first_out + step) % n;
+        // Eight steps at once where no side changes among them (most of a circle).
+        if j >= 1 && j + 8 <= n && step + 7 <= end {
+            let word = |a: usize| u64::from_ne_bytes(side[a..a + 8].try_into().unwrap_or([0; 8]));
+            if word(j - 1) == word(j) {
+                step += 8;
+                continue;
+            }
         }
-        let phi_prev = (first_out + step - 1) as f64 * dphi_deg;
-        if cur > 0.0 {
-            start = Some(phi_prev + dphi_deg * prev / (prev - cur));
-        } else {
-            let end = phi_prev + dphi_deg * prev / (prev - cur);
-            if let Some(a) = start.take() {
+        let jp = if j == 0 { n - 1 } else { j - 1 };
+        if side[jp] != side[j] {
+            let (prev, cur) = (g[jp], g[j]);
+            let phi_prev = (first_out + step - 1) as f64 * dphi_deg;
+            let at = phi_prev + dphi_deg * prev / (prev - cur);
+            if cur > 0.0 {
+                start = Some(at);
+            } else if let Some(a) = start.take() {
                 let a0 = a.rem_euclid(360.0);
                 out.push(PhiInterval {
                     start_deg: a0,
-                    end_deg: a0 + (end - a),
+                    end_deg: a0 + (at - a),
                 });
             }
         }
+        step += 1;
     }
     out.sort_by(|a, b| a.start_deg.total_cmp(&b.start_deg));
     out
@@ -260,7 +271,7 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
                 return out;
             }
             if strip.is_reported(k) {
-                let intervals = circle_intervals(row, dphi_deg, span_at(k));
+                let intervals = circle_intervals(row, s0, dphi_deg, span_at(k));
                 if !intervals.is_empty() {
                     out.circle = Some(CircleEngagement {
                         at_mm: strip.param[k],
@@ -483,6 +494,85 @@ pub fn strip_name(kind: StripKind) -> &'static str {
 mod tests {
     use super::*;
 
+    fn sides_of(g: &[f64]) -> Vec<u8> {
+        g.iter().map(|&v| u8::from(v > 0.0)).collect()
+    }
+
+    /// The intervals, one step at a time round the circle from its first sample out (the
+    /// reference the eight-at-once skipping is held to).
+    fn intervals_step_by_step(g: &[f64], dphi_deg: f64) -> Vec<PhiInterval> {
+        let n = g.len();
+        let Some(first_out) = g.iter().position(|&v| v <= 0.0) else {
+            return vec![PhiInterval {
+                start_deg: 0.0,
+                end_deg: 360.0,
+            }];
+        };
+        let (mut out, mut start) = (Vec::new(), None::<f64>);
+        for step in 1..=n {
+            let (jp, j) = ((first_out + step - 1) % n, (first_out + step) % n);
+            let (prev, cur) = (g[jp], g[j]);
+            if (prev > 0.0) == (cur > 0.0) {
+                continue;
+            }
+            let at = (first_out + step - 1) as f64 * dphi_deg + dphi_deg * prev / (prev - cur);
+            if cur > 0.0 {
+                start = Some(at);
+            } else if let Some(a) = start.take() {
+                let a0 = a.rem_euclid(360.0);
+                out.push(PhiInterval {
+                    start_deg: a0,
+                    end_deg: a0 + (at - a),
+                });
+            }
+        }
+        out.sort_by(|a, b| a.start_deg.total_cmp(&b.start_deg));
+        out
+    }
+
+    /// Circles of 7 to 400 samples with runs of every length from 1 sample up (so that side
+    /// changes fall at every place in and across the eight-sample words, and at the seam), with
+    /// and without their span: the same intervals, to the bit, as stepping one sample at a time.
+    #[test]
+    fn skipping_eight_samples_at_once_finds_every_change() {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = || {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            state
+        };
+        for case in 0..3000 {
+            let n = 7 + (next() % 394) as usize;
+            let mut g = Vec::with_capacity(n);
+            let mut inside = next() % 2 == 0;
+            while g.len() < n {
+                let run = 1 + (next() % [3, 9, 40, 400][case % 4]) as usize;
+                for _ in 0..run.min(n - g.len()) {
+                    let v = 0.01 + (next() % 1000) as f64 / 1000.0;
+                    g.push(if inside { v } else { -v });
+                }
+                inside = !inside;
+            }
+            let side = sides_of(&g);
+            let want = intervals_step_by_step(&g, 360.0 / n as f64);
+            let span = g
+                .iter()
+                .position(|&v| v > 0.0)
+                .map(|first| (first, g.iter().rposition(|&v| v > 0.0).unwrap_or(first)));
+            assert_eq!(
+                circle_intervals(&g, &side, 360.0 / n as f64, None),
+                want,
+                "case {case}"
+            );
+            assert_eq!(
+                circle_intervals(&g, &side, 360.0 / n as f64, span),
+                want,
+                "case {case}"
+            );
+        }
+    }
+
     #[test]
     fn a_known_span_gives_the_same_intervals() {
         // Three engaged stretches inside the circle, one through the seam, one everywhere.
@@ -502,12 +592,16 @@ mod tests {
                 let last = g.iter().rposition(|&v| v > 0.0).unwrap();
                 (first, last)
             });
+            let side = sides_of(g);
             assert_eq!(
-                circle_intervals(g, 1.0, span),
-                circle_intervals(g, 1.0, None)
+                circle_intervals(g, &side, 1.0, span),
+                circle_intervals(g, &side, 1.0, None)
             );
         }
-        assert_eq!(circle_intervals(&rows[0], 1.0, None).len(), 3);
+        assert_eq!(
+            circle_intervals(&rows[0], &sides_of(&rows[0]), 1.0, None).len(),
+            3
+        );
     }
 
     #[test]
@@ -516,14 +610,14 @@ mod tests {
         let g: Vec<f64> = (0..36)
             .map(|j| (j as f64 * 10.0).to_radians().sin())
             .collect();
-        let iv = circle_intervals(&g, 10.0, None);
+        let iv = circle_intervals(&g, &sides_of(&g), 10.0, None);
         assert_eq!(iv.len(), 1);
         assert!(iv[0].start_deg.abs() < 1e-9 && (iv[0].end_deg - 180.0).abs() < 1e-6);
         // Through zero: g = cos φ, engaged (270°, 450°) = (−90°, 90°).
         let g: Vec<f64> = (0..36)
             .map(|j| (j as f64 * 10.0).to_radians().cos())
             .collect();
-        let iv = circle_intervals(&g, 10.0, None);
+        let iv = circle_intervals(&g, &sides_of(&g), 10.0, None);
         assert_eq!(iv.len(), 1);
         assert!((iv[0].start_deg - 270.0).abs() < 1e-6 && (iv[0].end_deg - 450.0).abs() < 1e-6);
         let parts: Vec<_> = iv[0].split_at_zero().collect();
