@@ -499,7 +499,8 @@ mod tests {
     }
 
     /// The intervals, one step at a time round the circle from its first sample out (the
-    /// reference the eight-at-once skipping is held to).
+    /// reference the eight-at-once skipping is held to): every crossing of zero, interpolated,
+    /// then paired (from a sample out, crossings alternate in and out).
     fn intervals_step_by_step(g: &[f64], dphi_deg: f64) -> Vec<PhiInterval> {
         let n = g.len();
         let Some(first_out) = g.iter().position(|&v| v <= 0.0) else {
@@ -508,24 +509,25 @@ mod tests {
                 end_deg: 360.0,
             }];
         };
-        let (mut out, mut start) = (Vec::new(), None::<f64>);
-        for step in 1..=n {
-            let (jp, j) = ((first_out + step - 1) % n, (first_out + step) % n);
-            let (prev, cur) = (g[jp], g[j]);
-            if (prev > 0.0) == (cur > 0.0) {
-                continue;
-            }
-            let at = (first_out + step - 1) as f64 * dphi_deg + dphi_deg * prev / (prev - cur);
-            if cur > 0.0 {
-                start = Some(at);
-            } else if let Some(a) = start.take() {
-                let a0 = a.rem_euclid(360.0);
-                out.push(PhiInterval {
+        let crossings: Vec<f64> = (1..=n)
+            .filter_map(|step| {
+                let (jp, j) = ((first_out + step - 1) % n, (first_out + step) % n);
+                let (prev, cur) = (g[jp], g[j]);
+                ((prev > 0.0) != (cur > 0.0)).then(|| {
+                    (first_out + step - 1) as f64 * dphi_deg + dphi_deg * prev / (prev - cur)
+                })
+            })
+            .collect();
+        let mut out: Vec<PhiInterval> = crossings
+            .chunks_exact(2)
+            .map(|c| {
+                let a0 = c[0].rem_euclid(360.0);
+                PhiInterval {
                     start_deg: a0,
-                    end_deg: a0 + (at - a),
-                });
-            }
-        }
+                    end_deg: a0 + (c[1] - c[0]),
+                }
+            })
+            .collect();
         out.sort_by(|a, b| a.start_deg.total_cmp(&b.start_deg));
         out
     }
