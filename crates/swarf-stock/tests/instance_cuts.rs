@@ -14,10 +14,30 @@ use swarf_sweep::five_axis::SubMove;
 use swarf_sweep::SweepShape;
 use swarf_tool::CutterKind;
 
+/// The block both tests cut: 18 × 18 × 18 mm, the tip near its middle.
+const BLOCK: (Vec3, Vec3) = (Vec3::new(-9.0, -9.0, -4.0), Vec3::new(9.0, 9.0, 14.0));
+
+/// The unit axis tilted `tilt` from +Z towards the direction `turn` about it (radians).
+fn axis_at(tilt: f64, turn: f64) -> Vec3 {
+    Vec3::new(tilt.sin() * turn.cos(), tilt.sin() * turn.sin(), tilt.cos())
+}
+
+/// The tool standing at `tip` along `axis`: a zero-length piece.
+fn instance(tip: Vec3, axis: Vec3) -> SubMove {
+    SubMove {
+        s0: 0.0,
+        s1: 0.0,
+        tip0: tip,
+        tip1: tip,
+        axis,
+        error_bound: 0.0,
+    }
+}
+
 #[test]
 fn an_instance_removes_the_tilted_cutters_chord_on_every_ray() {
     let mut rng = Lcg(0x1957_2026_1126);
-    let (lo, hi) = (Vec3::new(-9.0, -9.0, -4.0), Vec3::new(9.0, 9.0, 14.0));
+    let (lo, hi) = BLOCK;
     let mut rays = 0usize;
     for round in 0..3 {
         for cutter in every_cutter_kind(&mut rng, 4.0, 10.0, general_apt(8.0, 1.5, 14.0)) {
@@ -27,7 +47,7 @@ fn an_instance_removes_the_tilted_cutters_chord_on_every_ray() {
             let axis = if round == 0 {
                 Vec3::Z
             } else {
-                Vec3::new(tilt.sin() * turn.cos(), tilt.sin() * turn.sin(), tilt.cos())
+                axis_at(tilt, turn)
             };
             let tip = Vec3::new(
                 rng.range(-1.0, 1.0),
@@ -35,16 +55,8 @@ fn an_instance_removes_the_tilted_cutters_chord_on_every_ray() {
                 rng.range(-2.0, 0.0),
             );
             let shape = SweepShape::from_solid(cutter.cutting_solid());
-            let instance = SubMove {
-                s0: 0.0,
-                s1: 0.0,
-                tip0: tip,
-                tip1: tip,
-                axis,
-                error_bound: 0.0,
-            };
             let mut block = TriDexel::from_box(lo, hi, 0.37).unwrap();
-            block.cut_shape_pieces(&shape, &[instance], 1e-3);
+            block.cut_shape_pieces(&shape, &[instance(tip, axis)], 1e-3);
             let frame = Frame::from_axis(tip, axis);
             let g = *block.grid();
             let mut hits = Vec::new();
@@ -112,7 +124,7 @@ fn instances_cut_together_leave_what_they_leave_cut_one_by_one() {
     // instances cut one after the other, on a block whose rays a first cut split: every ray
     // keeps the same intervals (to rounding; a sliver of a few nm may go either way).
     let mut rng = Lcg(0x2026_1128_0111);
-    let (lo, hi) = (Vec3::new(-9.0, -9.0, -4.0), Vec3::new(9.0, 9.0, 14.0));
+    let (lo, hi) = BLOCK;
     let mut compared = 0usize;
     for _ in 0..2 {
         for cutter in every_cutter_kind(&mut rng, 4.0, 10.0, general_apt(8.0, 1.5, 14.0)) {
@@ -129,19 +141,10 @@ fn instances_cut_together_leave_what_they_leave_cut_one_by_one() {
             let aside = Vec3::new(cutter.max_diameter() + 1.0, 0.0, 0.0);
             let instances: Vec<SubMove> = (0..11)
                 .map(|n| {
-                    let a = tilt + dn * n as f64;
-                    let axis = Vec3::new(a.sin() * turn.cos(), a.sin() * turn.sin(), a.cos());
                     let tip = start
                         + Vec3::new(dt, 0.3 * dt, -0.1 * dt) * n as f64
                         + if n == 3 { aside } else { Vec3::ZERO };
-                    SubMove {
-                        s0: 0.0,
-                        s1: 0.0,
-                        tip0: tip,
-                        tip1: tip,
-                        axis,
-                        error_bound: 0.0,
-                    }
+                    instance(tip, axis_at(tilt + dn * n as f64, turn))
                 })
                 .collect();
             // A slot across the block first, so that rays hold two intervals.
