@@ -493,6 +493,7 @@ pub fn strip_name(kind: StripKind) -> &'static str {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use proptest::prelude::*;
 
     fn sides_of(g: &[f64]) -> Vec<u8> {
         g.iter().map(|&v| u8::from(v > 0.0)).collect()
@@ -532,46 +533,51 @@ mod tests {
         out
     }
 
-    /// Circles of 7 to 400 samples with runs of every length from 1 sample up (so that side
-    /// changes fall at every place in and across the eight-sample words, and at the seam), with
-    /// and without their span: the same intervals, to the bit, as stepping one sample at a time.
-    #[test]
-    fn skipping_eight_samples_at_once_finds_every_change() {
-        let mut state = 0x2545_f491_4f6c_dd1d_u64;
-        let mut next = || {
-            state ^= state << 13;
-            state ^= state >> 7;
-            state ^= state << 17;
-            state
-        };
-        for case in 0..3000 {
-            let n = 7 + (next() % 394) as usize;
-            let mut g = Vec::with_capacity(n);
-            let mut inside = next() % 2 == 0;
-            while g.len() < n {
-                let run = 1 + (next() % [3, 9, 40, 400][case % 4]) as usize;
-                for _ in 0..run.min(n - g.len()) {
-                    let v = 0.01 + (next() % 1000) as f64 / 1000.0;
-                    g.push(if inside { v } else { -v });
+    /// A circle of 7 to 400 samples in runs of one side, of 1 sample up to a cap of 3, 9, 40
+    /// or 400 (so that side changes fall at every place in and across the eight-sample words,
+    /// and at the seam), each value 0.01 to 1.0 away from zero.
+    fn circle_of_runs() -> impl Strategy<Value = Vec<f64>> {
+        let caps = prop_oneof![Just(3usize), Just(9), Just(40), Just(400)];
+        (7usize..=400, any::<bool>(), caps)
+            .prop_flat_map(|(n, inside, cap)| {
+                (
+                    Just(inside),
+                    prop::collection::vec(1..=cap, n),
+                    prop::collection::vec(0u32..1000, n),
+                )
+            })
+            .prop_map(|(mut inside, runs, magnitudes)| {
+                let n = magnitudes.len();
+                let mut g = Vec::with_capacity(n);
+                for run in runs {
+                    if g.len() == n {
+                        break;
+                    }
+                    for _ in 0..run.min(n - g.len()) {
+                        let v = 0.01 + f64::from(magnitudes[g.len()]) / 1000.0;
+                        g.push(if inside { v } else { -v });
+                    }
+                    inside = !inside;
                 }
-                inside = !inside;
-            }
+                g
+            })
+    }
+
+    proptest! {
+        #![proptest_config(swarf_testdata::proptest_config(3000))]
+        /// With and without its span: the same intervals, to the bit, as stepping one sample
+        /// at a time.
+        #[test]
+        fn skipping_eight_samples_at_once_finds_every_change(g in circle_of_runs()) {
+            let n = g.len();
             let side = sides_of(&g);
             let want = intervals_step_by_step(&g, 360.0 / n as f64);
             let span = g
                 .iter()
                 .position(|&v| v > 0.0)
                 .map(|first| (first, g.iter().rposition(|&v| v > 0.0).unwrap_or(first)));
-            assert_eq!(
-                circle_intervals(&g, &side, 360.0 / n as f64, None),
-                want,
-                "case {case}"
-            );
-            assert_eq!(
-                circle_intervals(&g, &side, 360.0 / n as f64, span),
-                want,
-                "case {case}"
-            );
+            prop_assert_eq!(circle_intervals(&g, &side, 360.0 / n as f64, None), want.clone());
+            prop_assert_eq!(circle_intervals(&g, &side, 360.0 / n as f64, span), want);
         }
     }
 
