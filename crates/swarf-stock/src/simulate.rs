@@ -145,6 +145,20 @@ pub fn simulate_observed(
     options: &SimOptions,
     observer: &dyn Observer,
 ) -> Result<SimulationReport, StockError> {
+    // On one of rayon's workers: each move's parallel section then starts on this thread at
+    // once, where a call from outside the pool waits for a worker to wake and take it
+    // (≈ 30 µs a section on the 5-axis bench, whose moves are cut one by one).
+    rayon::scope(|_| simulate_on_worker(program, tools, stock, options, observer))
+}
+
+/// [`simulate_observed`]'s body, run on a worker of rayon's pool.
+fn simulate_on_worker(
+    program: &Program,
+    tools: &ToolSet,
+    stock: &mut TriDexel,
+    options: &SimOptions,
+    observer: &dyn Observer,
+) -> Result<SimulationReport, StockError> {
     let t0 = Instant::now();
     let stock_volume = stock.volume();
     let area_z = stock.ray_area(2);
