@@ -451,9 +451,9 @@ impl<'a> Engager<'a> {
                     let travel = walk.length * (s1 - s0);
                     walk.done += 1;
                     self.current = Some(walk);
-                    // On one of rayon's workers, so that the location's parallel sections run
-                    // there without each waking the pool from this thread (and waiting).
-                    let mut e = rayon::scope(|_| {
+                    // On a pool kept awake, so that each of the location's parallel sections
+                    // starts at once, without waking a worker and waiting for it.
+                    let mut e = swarf_stock::pool::hot(|| {
                         let mut e = self.engagement_at(index, s1, walk_length)?;
                         e.removed_mm3 = self.cut(index, s0, s1)?;
                         Ok::<_, EngageError>(e)

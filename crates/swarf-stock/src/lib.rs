@@ -91,6 +91,7 @@ pub mod cut;
 pub mod dexel;
 pub mod error;
 pub mod mesh;
+pub mod pool;
 pub mod simulate;
 pub mod spec;
 pub mod tridexel;

@@ -145,13 +145,12 @@ pub fn simulate_observed(
     options: &SimOptions,
     observer: &dyn Observer,
 ) -> Result<SimulationReport, StockError> {
-    // On one of rayon's workers: each move's parallel section then starts on this thread at
-    // once, where a call from outside the pool waits for a worker to wake and take it
-    // (≈ 30 µs a section on the 5-axis bench, whose moves are cut one by one).
-    rayon::scope(|_| simulate_on_worker(program, tools, stock, options, observer))
+    // The moves cut one by one (5-axis, arcs) are each a short parallel section: on a pool
+    // kept awake each starts at once (`pool::hot`).
+    crate::pool::hot(|| simulate_on_worker(program, tools, stock, options, observer))
 }
 
-/// [`simulate_observed`]'s body, run on a worker of rayon's pool.
+/// [`simulate_observed`]'s body, run on a worker of rayon's pool kept awake.
 fn simulate_on_worker(
     program: &Program,
     tools: &ToolSet,
