@@ -60,7 +60,9 @@
 //! reaches is one unit of work, taken by whichever thread is free (rayon), that runs the
 //! batch's moves in order over its row — no barrier per move, the row's tiles stay in cache
 //! from one move to the next, and the per-move figures are summed in row order; the per-ray
-//! loop does not allocate.
+//! loop does not allocate. A computation made of many such short sections with serial work
+//! between them (the simulation's moves cut one by one, an engagement's locations) runs under
+//! [`pool::hot`], which keeps the pool's workers awake so that each section starts at once.
 //!
 //! # Accuracy parameters (one place)
 //! [`DEFAULT_CHORDAL_TOLERANCE_MM`] (arcs and 5-axis moves, reported in
