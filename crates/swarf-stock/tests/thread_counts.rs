@@ -11,6 +11,20 @@ use swarf_path::{Machine, Program};
 use swarf_stock::{simulate, SimOptions, SimulationReport, TriDexel};
 use swarf_tool::{Cutter, ToolSet};
 
+/// The `i`-th x of pass `pass` of a zig-zag from x = 2 to 38 mm, 1 mm apart.
+fn zigzag(pass: usize, i: usize) -> f64 {
+    if pass % 2 == 0 {
+        2.0 + i as f64
+    } else {
+        38.0 - i as f64
+    }
+}
+
+/// Reads a program (G-code or APT by `file`'s extension) on a 3-axis machine.
+fn read(text: &str, file: &str) -> Program {
+    read_program_str(text, file, Machine::three_axis(), &ReadOptions::default()).unwrap()
+}
+
 /// A ball's raster of short straight moves (cut in batches), a plunge and a full circle (cut
 /// move by move).
 fn three_axis() -> Program {
@@ -18,23 +32,13 @@ fn three_axis() -> Program {
     for pass in 0..6 {
         let y = 3.0 + 4.0 * pass as f64;
         for i in 0..=36 {
-            let x = if pass % 2 == 0 {
-                2.0 + i as f64
-            } else {
-                38.0 - i as f64
-            };
+            let x = zigzag(pass, i);
             let z = 14.0 + 1.5 * (x / 6.0).sin() * (y / 5.0).cos();
             writeln!(t, "G1 X{x:.3} Y{y:.3} Z{z:.4}").unwrap();
         }
     }
     t += "G0 Z25\nG0 X20 Y15\nG1 Z10\nG1 X28\nG2 X28 Y15 I-8 J0\nG0 Z25\n";
-    read_program_str(
-        &t,
-        "threads.ngc",
-        Machine::three_axis(),
-        &ReadOptions::default(),
-    )
-    .unwrap()
+    read(&t, "threads.ngc")
 }
 
 /// A bull-nose's CL path whose axis leans back and forth along it: every feed move is a
@@ -45,11 +49,7 @@ fn five_axis() -> Program {
     for pass in 0..3 {
         let y = 4.0 + 7.0 * pass as f64;
         for i in 0..=36 {
-            let x = if pass % 2 == 0 {
-                2.0 + i as f64
-            } else {
-                38.0 - i as f64
-            };
+            let x = zigzag(pass, i);
             let lean = 0.25 * (x / 5.0 + pass as f64).sin();
             let a = Vec3::new(lean.sin(), 0.1 * lean.cos(), lean.cos()).normalize();
             let z = 12.0 + (x / 7.0).cos();
@@ -61,17 +61,11 @@ fn five_axis() -> Program {
             .unwrap();
         }
     }
-    read_program_str(
-        &t,
-        "threads.apt",
-        Machine::three_axis(),
-        &ReadOptions::default(),
-    )
-    .unwrap()
+    read(&t, "threads.apt")
 }
 
-/// Simulates `program` on a fresh block in a pool of `threads`; returns the report and every
-/// ray's intervals, family by family.
+/// Simulates `program` on a fresh block in a pool of `threads`; returns the report and, family
+/// by family, every interval as `[ray index, enter, exit]` (the coordinates' bits).
 fn run(
     program: &Program,
     cutter: Cutter,
