@@ -887,7 +887,7 @@ impl TriDexel {
         // Rows are taken by whichever worker is free (a move's rows differ in work), each row
         // a piece of its own: left to itself, rayon runs stretches of neighbouring rows as one
         // piece, and the last stretch kept one thread waiting (the finishing bench's two
-        // threads were 1.71 cores busy, now 1.86). Each row starts with fresh scratch (the
+        // threads were 1.71 cores busy, now 1.95). Each row starts with fresh scratch (the
         // separating planes kept from ray to ray) and the figures are summed in row order, so
         // none depends on who took what.
         let per_row: Vec<Vec<(usize, usize, CutStats)>> =
