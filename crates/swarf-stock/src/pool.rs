@@ -17,7 +17,9 @@ const YIELD_EVERY: u32 = 64;
 
 /// Runs `f` on one of rayon's workers while the pool's other workers stay awake, taking the
 /// parallel work `f` makes (or any other of the pool's) as soon as it is there; returns what
-/// `f` returns. With one thread, simply `f()`.
+/// `f` returns. With one thread, `f` runs on the pool's worker, where its parallel sections
+/// run inline (from another thread each would be handed to the worker and waited for: the
+/// engagement took 1.24–1.31 s instead of 0.97 s at 1,000 locations).
 ///
 /// No deadlock: a worker kept awake only waits for `f` to end, and runs every job it finds
 /// meanwhile; `f` never waits for it. A keeper that the worker running `f` takes for itself
@@ -25,7 +27,7 @@ const YIELD_EVERY: u32 = 64;
 pub fn hot<R: Send>(f: impl FnOnce() -> R + Send) -> R {
     let keepers = rayon::current_num_threads().saturating_sub(1);
     if keepers == 0 {
-        return f();
+        return rayon::scope(|_| f());
     }
     let done = AtomicBool::new(false);
     rayon::scope(|s| {
@@ -81,6 +83,14 @@ mod tests {
             let expect: Vec<u64> = (0..200u64).map(|k| k * 999 * 1000 / 2).collect();
             assert_eq!(sums, expect, "{threads} threads");
         }
+    }
+
+    #[test]
+    fn hot_runs_f_on_a_worker_of_the_pool() {
+        // Called from outside the pool, as the command line calls it (the global pool; the
+        // test `one_thread_pool.rs` does the same with a pool of one thread).
+        let on_worker = std::thread::spawn(|| hot(|| rayon::current_thread_index().is_some()));
+        assert!(on_worker.join().unwrap());
     }
 
     #[test]
