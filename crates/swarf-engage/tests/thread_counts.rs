@@ -16,11 +16,7 @@ fn on_threads(
     max: [f64; 3],
     cutter: &Cutter,
 ) -> Vec<Engagement> {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| {
+    swarf_testdata::on_threads(threads, || {
         let mut stock = block([0.0, 0.0, 0.0], max, 0.1);
         run(
             &program(text, file),

@@ -850,16 +850,8 @@ mod tests {
             assert!((m.volume() - 4.0 / 3.0 * std::f64::consts::PI).abs() < 2e-3);
             let b = m.aabb().unwrap();
             assert_eq!((b.min, b.max), (lo, hi));
-            let one = rayon::ThreadPoolBuilder::new()
-                .num_threads(1)
-                .build()
-                .unwrap();
-            let three = rayon::ThreadPoolBuilder::new()
-                .num_threads(3)
-                .build()
-                .unwrap();
-            let a = one.install(|| (m.vertex_normals(), m.volume()));
-            let b = three.install(|| (m.vertex_normals(), m.volume()));
+            let a = swarf_testdata::on_threads(1, || (m.vertex_normals(), m.volume()));
+            let b = swarf_testdata::on_threads(3, || (m.vertex_normals(), m.volume()));
             assert_eq!(a.0, b.0);
             assert_eq!(a.1.to_bits(), b.1.to_bits());
         }

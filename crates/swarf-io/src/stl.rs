@@ -332,12 +332,8 @@ mod tests {
             (0..n as u32).map(|i| [i, i + 1, i + 2]).collect(),
         );
         let encode = |threads: usize| {
-            let pool = rayon::ThreadPoolBuilder::new()
-                .num_threads(threads)
-                .build()
-                .unwrap();
             let mut bytes = Vec::new();
-            pool.install(|| write_stl_to(&mut bytes, &mesh)).unwrap();
+            swarf_testdata::on_threads(threads, || write_stl_to(&mut bytes, &mesh)).unwrap();
             bytes
         };
         let bytes = encode(1);

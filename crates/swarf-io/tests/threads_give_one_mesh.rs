@@ -28,13 +28,9 @@ fn stacked_spheres() -> (Lattice, impl Fn(Vec3) -> f64 + Sync + Copy) {
 fn the_mesh_does_not_depend_on_the_threads() {
     let (lattice, sdf) = stacked_spheres();
     let run = |threads: usize| {
-        rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| {
-                dual_contour_with_stats(&FnGrid::new(lattice, sdf), &ContourOptions::default())
-            })
+        swarf_testdata::on_threads(threads, || {
+            dual_contour_with_stats(&FnGrid::new(lattice, sdf), &ContourOptions::default())
+        })
     };
     let (one, stats) = run(1);
     assert_clean(&one, "stacked spheres");
@@ -70,11 +66,9 @@ fn vertices_are_projected_with_the_whole_mesh_normals() {
         .map(|(&p, &n)| nudge(p, n).unwrap())
         .collect();
     for threads in [1, 2, 3] {
-        let (m, stats) = rayon::ThreadPoolBuilder::new()
-            .num_threads(threads)
-            .build()
-            .unwrap()
-            .install(|| swarf_io::dual_contour_projected(&grid, &options, nudge));
+        let (m, stats) = swarf_testdata::on_threads(threads, || {
+            swarf_io::dual_contour_projected(&grid, &options, nudge)
+        });
         assert_eq!(m.triangles, plain.triangles, "{threads} threads");
         assert_eq!(m.vertices, expected, "{threads} threads");
         assert_eq!(

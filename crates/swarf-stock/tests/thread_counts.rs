@@ -71,11 +71,7 @@ fn run(
     cutter: Cutter,
     threads: usize,
 ) -> (SimulationReport, Vec<Vec<[u64; 3]>>) {
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(threads)
-        .build()
-        .unwrap();
-    pool.install(|| {
+    swarf_testdata::on_threads(threads, || {
         let mut stock = TriDexel::from_box(Vec3::ZERO, Vec3::new(40.0, 30.0, 20.0), 0.2).unwrap();
         let tools = ToolSet::single(cutter);
         let report = simulate(program, &tools, &mut stock, &SimOptions::default()).unwrap();

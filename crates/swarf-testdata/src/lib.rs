@@ -169,6 +169,16 @@ fn test_name() -> String {
     }
 }
 
+/// Runs `f` in a pool of its own with `threads` threads (for tests that a result does not
+/// depend on how many threads compute it).
+pub fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .expect("a thread pool")
+        .install(f)
+}
+
 /// Proptest's default configuration with `cases` cases, reading the committed regression
 /// files but never writing one: a failing case is printed on stderr with the line that keeps
 /// it (see the crate documentation).
