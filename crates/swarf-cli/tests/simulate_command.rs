@@ -230,3 +230,59 @@ fn ctrl_c_stops_the_run_and_writes_nothing() {
     assert!(stderr(&o).contains("stopped by Ctrl-C"), "{}", stderr(&o));
     assert!(!out.exists(), "nothing may be written after Ctrl-C");
 }
+
+/// `--merge-planar`: the machined part's mesh in a fraction of the triangles, closed, its
+/// volume the summary's final volume as before. A slot through a block: every face a plane.
+#[test]
+fn merged_stock_mesh_is_the_same_part_in_few_triangles() {
+    let dir = temp_dir("merge");
+    let prog = dir.join("slot.ngc");
+    std::fs::write(
+        &prog,
+        "G21 G90\nG0 X-10 Y20 Z5\nG1 Z-4 F300\nG1 X70\nG0 Z5\nM30\n",
+    )
+    .unwrap();
+    let run = |merge: bool| {
+        let out = dir.join(if merge { "merged" } else { "plain" });
+        let mut args = vec![
+            "simulate",
+            "--stock",
+            "box:0,0,-20,60,40,0",
+            "--program",
+            prog.to_str().unwrap(),
+            "--tool",
+            "flat:d=10",
+            "--resolution",
+            "0.25",
+            "--out",
+            out.to_str().unwrap(),
+            "--json",
+        ];
+        if merge {
+            args.push("--merge-planar");
+        }
+        let o = swarf(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let mesh = swarf_io::read_stl(&out.join("stock.stl")).unwrap();
+        assert!(mesh.is_closed());
+        (json(&o), mesh)
+    };
+    let (plain, plain_mesh) = run(false);
+    let (merged, merged_mesh) = run(true);
+    assert_eq!(plain["final_volume_mm3"], merged["final_volume_mm3"]);
+    // A block with a slot through it: 10 faces, each one polygon.
+    assert!(
+        merged_mesh.triangles.len() <= 30,
+        "{} triangles (unmerged {})",
+        merged_mesh.triangles.len(),
+        plain_mesh.triangles.len()
+    );
+    let exact = 60.0 * 40.0 * 20.0 - 60.0 * 10.0 * 4.0;
+    for m in [&plain_mesh, &merged_mesh] {
+        assert!(
+            (m.volume() - exact).abs() < 1e-3,
+            "{} vs {exact}",
+            m.volume()
+        );
+    }
+}

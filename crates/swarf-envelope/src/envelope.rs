@@ -56,6 +56,10 @@ pub struct EnvelopeOptions {
     /// Move every mesh vertex onto the exact envelope (along the world axis nearest to its
     /// normal; `crate::project`). On by default; off leaves the contouring's placement.
     pub exact_vertices: bool,
+    /// Merge the mesh's coplanar triangles (`TriMesh::merge_coplanar`): a wall, a floor or a
+    /// column of cells on a cylinder along a lattice axis becomes a few triangles, the
+    /// vertices stay where they were. Off by default.
+    pub merge_planar: bool,
 }
 
 impl Default for EnvelopeOptions {
@@ -66,6 +70,7 @@ impl Default for EnvelopeOptions {
             check_folds: true,
             contour: ContourOptions::default(),
             exact_vertices: true,
+            merge_planar: false,
         }
     }
 }
@@ -86,6 +91,12 @@ impl EnvelopeOptions {
     /// With or without vertices moved onto the exact envelope.
     pub fn with_exact_vertices(mut self, on: bool) -> Self {
         self.exact_vertices = on;
+        self
+    }
+
+    /// With or without the coplanar triangles merged.
+    pub fn with_merge_planar(mut self, on: bool) -> Self {
+        self.merge_planar = on;
         self
     }
 
@@ -233,6 +244,9 @@ pub struct EnvelopeReport {
     pub lattice: [usize; 3],
     /// Moves whose envelope folds into their own sweep.
     pub self_intersections: Vec<SelfIntersection>,
+    /// With [`EnvelopeOptions::merge_planar`], the triangles before the merge (the same as
+    /// `triangles` where the merge was given up: `TriMesh::merge_coplanar_within`).
+    pub triangles_before_merge: Option<usize>,
 }
 
 /// An envelope mesh and its report.
@@ -351,6 +365,12 @@ pub fn envelope(
     } else {
         rays.to_mesh(&options.contour)
     };
+    let (mesh, merged) = if options.merge_planar {
+        let (merged, stats) = mesh.merge_coplanar();
+        (merged, Some(stats))
+    } else {
+        (mesh, None)
+    };
     let self_intersections = if options.check_folds {
         selected
             .iter()
@@ -373,6 +393,7 @@ pub fn envelope(
         max_piece_error_mm: max_err,
         lattice,
         self_intersections,
+        triangles_before_merge: merged.map(|m| m.triangles_before),
     };
     Ok(Envelope { mesh, report })
 }

@@ -4,7 +4,8 @@
 //! pictures ([`image`]: an RGB raster with a built-in pixel font, written as PNG, so every
 //! crate draws its plots the same way), and **dual contouring** of Hermite data on a regular
 //! lattice ([`dual_contour`]), which turns a tri-dexel stock into the closed mesh of the
-//! machined part.
+//! machined part, and the merge of a closed mesh's coplanar triangles into few
+//! ([`TriMesh::merge_coplanar`], module [`planar`]).
 //!
 //! # Model and conventions
 //! - Positions are `f64` millimetres ([`swarf_geom::math::Vec3`]) in the workpiece frame; the
@@ -59,6 +60,7 @@ pub mod html;
 pub mod image;
 pub mod mesh;
 pub mod output_set;
+pub mod planar;
 pub mod ply;
 pub mod stl;
 pub mod tolerance;
@@ -73,5 +75,6 @@ pub use error::IoError;
 pub use glb::{read_glb, write_glb, GlbOptions, Shading};
 pub use mesh::{BadEdge, DegenerateRepair, EdgeReport, TriMesh};
 pub use output_set::{FileBody, OutputSet, DEFAULT_MAX_OUTPUT_BYTES};
+pub use planar::PlanarMerge;
 pub use ply::{read_ply, write_ply};
 pub use stl::{read_stl, write_stl, write_stl_ascii, write_stl_to};

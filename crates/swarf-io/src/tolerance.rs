@@ -41,3 +41,8 @@ pub const DEFAULT_CROSSING_SLACK: f64 = 1e-6;
 /// the (second-order) central one only where it is clearly smoother: next to a kink, where
 /// the central second difference is O(h) and the one-sided one O(h²) or zero.
 pub const ENO_ONE_SIDED_FACTOR: f64 = 0.25;
+
+/// [`crate::TriMesh::merge_coplanar`]: triangles whose corners lie within this of one plane are
+/// merged, and boundary vertices within this of a straight line between their neighbours are
+/// taken out (mm). The merged surface lies within it of the input's.
+pub const PLANAR_TOLERANCE_MM: f64 = 1e-6;

@@ -112,7 +112,7 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     let dir = &args.out;
     // Every file of the demo is written as one set: all of them, or none.
     let mut set = output_set(dir, args.max_output_mb)?;
-    write_outputs(&mut set, program, &stock, &report, &summary)?;
+    write_outputs(&mut set, program, &stock, &report, &summary, false)?;
     write_sources(&mut set, &job.setup.read)?;
 
     let t0 = std::time::Instant::now();

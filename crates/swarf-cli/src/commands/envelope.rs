@@ -41,6 +41,10 @@ pub(crate) struct EnvelopeArgs {
     /// Largest total size of the files written, MB (checked before anything is written).
     #[arg(long, value_name = "MB", default_value_t = crate::output::DEFAULT_MAX_OUTPUT_MB)]
     pub(crate) max_output_mb: u64,
+    /// Merge coplanar triangles (walls, floors, strips of a cylinder along a lattice axis)
+    /// into few; the vertices stay where they are, the surface within 10⁻⁶ mm of the unmerged.
+    #[arg(long)]
+    pub(crate) merge_planar: bool,
     /// Print the JSON summary (the default output is a short human-readable report).
     #[arg(long)]
     pub(crate) json: bool,
@@ -68,6 +72,9 @@ struct EnvelopeSummary {
     lattice: [usize; 3],
     /// Mesh vertices put on the exact envelope of the fixed-axis pieces.
     exact_vertices: usize,
+    /// With `--merge-planar`: the triangles before the merge.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    triangles_before_merge: Option<usize>,
 }
 
 /// Parses `A..B`, `A..=B`, `A..`, `..B` or `N` into a half-open range.
@@ -108,7 +115,8 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
     };
     let options = EnvelopeOptions::default()
         .with_resolution(args.resolution)
-        .with_tolerance(args.tolerance);
+        .with_tolerance(args.tolerance)
+        .with_merge_planar(args.merge_planar);
     let env = envelope(program, tools, range, &options)
         .with_context(|| format!("sweeping {}", args.program.display()))?;
     let stl = args.out.join("envelope.stl");
@@ -147,6 +155,7 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
         max_piece_error_mm: r.max_piece_error_mm,
         lattice: r.lattice,
         exact_vertices: r.exact_vertices,
+        triangles_before_merge: r.triangles_before_merge,
     };
     let json = serde_json::to_vec_pretty(&summary).context("encoding the summary")?;
     set.write_bytes("summary.json", &json)?;
