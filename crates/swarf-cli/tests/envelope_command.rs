@@ -41,28 +41,19 @@ fn merged_coplanar_triangles_keep_the_solid() {
     let dir = swarf_testdata::scratch_dir("envelope-merge");
     let prog = dir.join("line.ngc");
     std::fs::write(&prog, "G21 G90\nG0 X0 Y0 Z0\nG1 X12 F300\nM30\n").unwrap();
+    let prog = prog.to_str().unwrap();
+    let args = [
+        "envelope",
+        "--program",
+        prog,
+        "--tool",
+        "flat:d=6",
+        "--resolution",
+        "0.2",
+    ];
     let run = |merge: bool| {
         let out = dir.join(if merge { "merged" } else { "plain" });
-        let mut args = vec![
-            "envelope",
-            "--program",
-            prog.to_str().unwrap(),
-            "--tool",
-            "flat:d=6",
-            "--resolution",
-            "0.2",
-            "--out",
-            out.to_str().unwrap(),
-            "--json",
-        ];
-        if merge {
-            args.push("--merge-planar");
-        }
-        let o = swarf(&args);
-        assert!(o.status.success(), "{}", stderr(&o));
-        let mesh = swarf_io::read_stl(&out.join("envelope.stl")).unwrap();
-        assert!(mesh.is_closed());
-        (json(&o), mesh)
+        run_mesh(&args, &out, merge, "envelope.stl")
     };
     let (plain, plain_mesh) = run(false);
     let (merged, merged_mesh) = run(true);

@@ -242,30 +242,21 @@ fn merged_stock_mesh_is_the_same_part_in_few_triangles() {
         "G21 G90\nG0 X-10 Y20 Z5\nG1 Z-4 F300\nG1 X70\nG0 Z5\nM30\n",
     )
     .unwrap();
+    let prog = prog.to_str().unwrap();
+    let args = [
+        "simulate",
+        "--stock",
+        "box:0,0,-20,60,40,0",
+        "--program",
+        prog,
+        "--tool",
+        "flat:d=10",
+        "--resolution",
+        "0.25",
+    ];
     let run = |merge: bool| {
         let out = dir.join(if merge { "merged" } else { "plain" });
-        let mut args = vec![
-            "simulate",
-            "--stock",
-            "box:0,0,-20,60,40,0",
-            "--program",
-            prog.to_str().unwrap(),
-            "--tool",
-            "flat:d=10",
-            "--resolution",
-            "0.25",
-            "--out",
-            out.to_str().unwrap(),
-            "--json",
-        ];
-        if merge {
-            args.push("--merge-planar");
-        }
-        let o = swarf(&args);
-        assert!(o.status.success(), "{}", stderr(&o));
-        let mesh = swarf_io::read_stl(&out.join("stock.stl")).unwrap();
-        assert!(mesh.is_closed());
-        (json(&o), mesh)
+        run_mesh(&args, &out, merge, "stock.stl")
     };
     let (plain, plain_mesh) = run(false);
     let (merged, merged_mesh) = run(true);

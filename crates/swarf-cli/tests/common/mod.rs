@@ -49,6 +49,26 @@ pub(crate) fn json(o: &Output) -> serde_json::Value {
         .unwrap_or_else(|e| panic!("stdout is not JSON ({e}); stderr: {}", stderr(o)))
 }
 
+/// Runs `swarf` with `args` and `--out out --json`, and with `--merge-planar` when `merge`:
+/// its JSON summary and the mesh `out/stl` read back, which must be closed.
+pub(crate) fn run_mesh(
+    args: &[&str],
+    out: &std::path::Path,
+    merge: bool,
+    stl: &str,
+) -> (serde_json::Value, swarf_io::TriMesh) {
+    let mut all = args.to_vec();
+    all.extend(["--out", out.to_str().unwrap(), "--json"]);
+    if merge {
+        all.push("--merge-planar");
+    }
+    let o = swarf(&all);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let mesh = swarf_io::read_stl(&out.join(stl)).unwrap();
+    assert!(mesh.is_closed());
+    (json(&o), mesh)
+}
+
 /// Closed boxes `[lo, hi]` as ASCII STL, counter-clockwise seen from outside; `drop` triangles
 /// left out at the end (an open mesh when > 0).
 pub(crate) fn boxes_stl(boxes: &[[[f64; 3]; 2]], drop: usize) -> String {
