@@ -866,7 +866,7 @@ mod tests {
     }
 
     proptest::proptest! {
-        #![proptest_config(proptest::test_runner::Config::with_cases(24))]
+        #![proptest_config(swarf_testdata::proptest_config(24))]
         /// Unions of up to three boxes, turned as a whole about a random axis (so their faces
         /// lie across the lattice): every merge keeps the solid (`check_merge`), and a union
         /// of boxes, all faces flat, shrinks to a small share of its triangles.
