@@ -64,8 +64,9 @@ pub struct PlanarMerge {
     /// Triangles of the result flat once written (`f32`) that the repair could not take out
     /// (`TriMesh::repair_degenerate_f32`; the contouring leaves such too).
     pub flat_triangles: usize,
-    /// True when the merge was given up (a polygon would not triangulate) and the mesh is the
-    /// input.
+    /// True when the merge was given up and the mesh is the input: not a closed manifold, with
+    /// per-vertex colours, polygons still failing after the last round, or a result that fails
+    /// its closedness or volume check.
     pub given_up: bool,
 }
 
