@@ -733,13 +733,14 @@ const GONE: [u32; 3] = [u32::MAX; 3];
 
 /// The triangles around each vertex, as one array per mesh (compressed rows: counts, then
 /// offsets, then indices), built in two passes without hashing.
-struct VertexTriangles {
+pub(crate) struct VertexTriangles {
     start: Vec<u32>,
     index: Vec<u32>,
 }
 
 impl VertexTriangles {
-    fn new(vertices: usize, tris: &[[u32; 3]]) -> Self {
+    /// Each vertex's triangles (corner indices below `vertices`; `GONE` triangles skipped).
+    pub(crate) fn new(vertices: usize, tris: &[[u32; 3]]) -> Self {
         let mut start = vec![0u32; vertices + 1];
         for t in tris.iter().filter(|&&t| t != GONE) {
             for &v in t {
@@ -761,7 +762,7 @@ impl VertexTriangles {
     }
 
     /// The triangles that had `v` as a corner when this was built.
-    fn of(&self, v: u32) -> &[u32] {
+    pub(crate) fn of(&self, v: u32) -> &[u32] {
         &self.index[self.start[v as usize] as usize..self.start[v as usize + 1] as usize]
     }
 }

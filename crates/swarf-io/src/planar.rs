@@ -32,7 +32,7 @@
 //! segment in both polygons) and encloses the same volume within `tolerance × area`; both are
 //! checked at the end, and a result that fails is not returned.
 
-use crate::mesh::TriMesh;
+use crate::mesh::{TriMesh, VertexTriangles};
 use crate::tolerance::PLANAR_TOLERANCE_MM;
 use rayon::prelude::*;
 use std::collections::HashMap;
@@ -132,9 +132,8 @@ struct Merge<'m> {
     tol: f64,
     /// Per triangle and edge `i` (from corner `i` to `i + 1`), the triangle across it.
     across: Vec<[u32; 3]>,
-    /// Per vertex, its triangles: `fan[fan_at[v]..fan_at[v + 1]]`.
-    fan_at: Vec<u32>,
-    fan: Vec<u32>,
+    /// Per vertex, its triangles.
+    fans: VertexTriangles,
 }
 
 impl<'m> Merge<'m> {
@@ -142,26 +141,10 @@ impl<'m> Merge<'m> {
     /// manifold: nothing is merged).
     fn new(mesh: &'m TriMesh, tol: f64) -> Option<Self> {
         let (nv, tris) = (mesh.vertices.len(), &mesh.triangles);
-        let mut fan_at = vec![0u32; nv + 1];
-        for t in tris {
-            for &v in t {
-                if v as usize >= nv {
-                    return None;
-                }
-                fan_at[v as usize + 1] += 1;
-            }
+        if tris.iter().flatten().any(|&v| v as usize >= nv) {
+            return None;
         }
-        for v in 0..nv {
-            fan_at[v + 1] += fan_at[v];
-        }
-        let mut fill = fan_at.clone();
-        let mut fan = vec![0u32; 3 * tris.len()];
-        for (ti, t) in tris.iter().enumerate() {
-            for &v in t {
-                fan[fill[v as usize] as usize] = ti as u32;
-                fill[v as usize] += 1;
-            }
-        }
+        let fans = VertexTriangles::new(nv, tris);
         // The triangle across each edge a → b: the one of a's fan with the edge b → a.
         let across: Vec<[u32; 3]> = tris
             .par_iter()
@@ -169,8 +152,7 @@ impl<'m> Merge<'m> {
                 let mut out = [NONE; 3];
                 for i in 0..3 {
                     let (a, b) = (t[i], t[(i + 1) % 3]);
-                    let fan_a = &fan[fan_at[a as usize] as usize..fan_at[a as usize + 1] as usize];
-                    let mut twins = fan_a.iter().filter(|&&u| {
+                    let mut twins = fans.of(a).iter().filter(|&&u| {
                         let s = &tris[u as usize];
                         (0..3).any(|j| s[j] == b && s[(j + 1) % 3] == a)
                     });
@@ -186,14 +168,13 @@ impl<'m> Merge<'m> {
             mesh,
             tol,
             across,
-            fan_at,
-            fan,
+            fans,
         })
     }
 
     /// The triangles around vertex `v`.
     fn fan(&self, v: u32) -> &[u32] {
-        &self.fan[self.fan_at[v as usize] as usize..self.fan_at[v as usize + 1] as usize]
+        self.fans.of(v)
     }
 
     /// Triangle `t`'s unit normal (zero for a degenerate one).
@@ -694,6 +675,7 @@ fn distance_to_segment(x: Vec3, p: Vec3, q: Vec3) -> f64 {
 mod tests {
     use super::*;
     use crate::{dual_contour, ContourOptions, FnGrid, Lattice};
+    use parry3d_f64::query::PointQuery;
     use std::collections::HashSet;
     use swarf_geom::Aabb;
 
@@ -720,43 +702,8 @@ mod tests {
         }
     }
 
-    /// Distance from `x` to the triangle `a b c` (closest point by regions, Ericson §5.1.5).
-    fn to_triangle(x: Vec3, [a, b, c]: [Vec3; 3]) -> f64 {
-        let (ab, ac, ap) = (b - a, c - a, x - a);
-        let (d1, d2) = (ab.dot(ap), ac.dot(ap));
-        if d1 <= 0.0 && d2 <= 0.0 {
-            return (x - a).length();
-        }
-        let bp = x - b;
-        let (d3, d4) = (ab.dot(bp), ac.dot(bp));
-        if d3 >= 0.0 && d4 <= d3 {
-            return (x - b).length();
-        }
-        let vc = d1 * d4 - d3 * d2;
-        if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-            return (x - (a + ab * (d1 / (d1 - d3)))).length();
-        }
-        let cp = x - c;
-        let (d5, d6) = (ab.dot(cp), ac.dot(cp));
-        if d6 >= 0.0 && d5 <= d6 {
-            return (x - c).length();
-        }
-        let vb = d5 * d2 - d1 * d6;
-        if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-            return (x - (a + ac * (d2 / (d2 - d6)))).length();
-        }
-        let va = d3 * d6 - d5 * d4;
-        if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
-            let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
-            return (x - (b + (c - b) * w)).length();
-        }
-        let denom = 1.0 / (va + vb + vc);
-        (x - (a + ab * (vb * denom) + ac * (vc * denom))).length()
-    }
-
     /// What every merge must keep: closed, the same volume within `2·tol·area`, vertices a
-    /// subset of the input's, and every input vertex within `tol` of the merged surface
-    /// (brute force).
+    /// subset of the input's, and every input vertex within `tol` of the merged surface.
     fn check_merge(input: &TriMesh, out: &TriMesh, tol: f64) {
         let report = out.edge_report();
         assert!(report.is_clean(), "{report:?}");
@@ -786,14 +733,13 @@ mod tests {
         let key = |p: Vec3| [p.x.to_bits(), p.y.to_bits(), p.z.to_bits()];
         let kept: HashSet<[u64; 3]> = input.vertices.iter().map(|&p| key(p)).collect();
         assert!(out.vertices.iter().all(|&p| kept.contains(&key(p))));
+        // Distances to the merged surface by parry's point–mesh query (an independent code).
+        let merged = parry3d_f64::shape::TriMesh::new(out.vertices.clone(), out.triangles.clone())
+            .expect("a mesh parry takes");
         let worst = input
             .vertices
             .iter()
-            .map(|&p| {
-                (0..out.triangles.len())
-                    .map(|t| to_triangle(p, out.corners(t)))
-                    .fold(f64::INFINITY, f64::min)
-            })
+            .map(|&p| merged.distance_to_local_point(p, true))
             .fold(0.0, f64::max);
         assert!(
             worst <= tol,
