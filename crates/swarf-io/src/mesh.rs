@@ -25,6 +25,75 @@ pub struct DegenerateRepair {
     pub split_caps: usize,
     /// Zero-area triangles left (no neighbour could be split without a non-manifold edge).
     pub remaining_flat: usize,
+    /// Vertices at another's `f32` position moved one `f32` step in X instead of merged (the
+    /// merge would have made an edge of more than two triangles).
+    pub moved_vertices: usize,
+}
+
+/// True when the vertices `members` (all at one `f32` position, merged into the first by
+/// `remap` with every other merge) make one manifold vertex: the far edges of its triangles
+/// (those that do not collapse) chain into one loop — or one path, at a mesh's open border —
+/// so each of its edges is used once each way and its triangles are one fan, not two fans
+/// meeting at a point.
+fn merge_keeps_manifold(
+    tris: &[[u32; 3]],
+    around: &VertexTriangles,
+    remap: &[u32],
+    members: &[u32],
+) -> bool {
+    let first = members[0];
+    let mut seen: Vec<u32> = members
+        .iter()
+        .flat_map(|&m| around.of(m).iter().copied())
+        .collect();
+    seen.sort_unstable();
+    seen.dedup();
+    // The far edge (b, c) of each triangle (first, b, c).
+    let mut link: Vec<(u32, u32)> = Vec::new();
+    for &t in &seen {
+        let t = tris[t as usize].map(|v| remap[v as usize]);
+        if t[0] == t[1] || t[1] == t[2] || t[2] == t[0] {
+            continue;
+        }
+        if let Some(k) = t.iter().position(|&v| v == first) {
+            link.push((t[(k + 1) % 3], t[(k + 2) % 3]));
+        }
+    }
+    if link.is_empty() {
+        return true;
+    }
+    link.sort_unstable();
+    let mut ends: Vec<u32> = link.iter().map(|e| e.1).collect();
+    ends.sort_unstable();
+    if link.windows(2).any(|w| w[0].0 == w[1].0) || ends.windows(2).any(|w| w[0] == w[1]) {
+        return false;
+    }
+    // Start where the path starts (a start that is no edge's end), else anywhere on the loop.
+    let start = link
+        .iter()
+        .map(|e| e.0)
+        .find(|s| ends.binary_search(s).is_err())
+        .unwrap_or(link[0].0);
+    let (mut at, mut steps) = (start, 0);
+    while let Ok(i) = link.binary_search_by_key(&at, |e| e.0) {
+        at = link[i].1;
+        steps += 1;
+        if at == start || steps > link.len() {
+            break;
+        }
+    }
+    steps == link.len()
+}
+
+/// The next `f32` value after `x` (away from zero; from zero, the smallest positive), as `f64`.
+fn f32_step(x: f64) -> f64 {
+    let f = x as f32;
+    let next = if f == 0.0 {
+        f32::from_bits(1)
+    } else {
+        f32::from_bits(f.to_bits() + 1)
+    };
+    next as f64
 }
 
 /// An indexed triangle mesh: positions in mm, triangles counter-clockwise seen from outside,
@@ -526,14 +595,52 @@ impl TriMesh {
             .collect();
         order.par_sort_unstable();
         let mut remap: Vec<u32> = vec![0; self.vertices.len()];
+        let mut runs: Vec<std::ops::Range<usize>> = Vec::new();
         let mut run_first = 0u32;
         for (n, &(k, i)) in order.iter().enumerate() {
             if n == 0 || order[n - 1].0 != k {
                 run_first = i;
+                runs.push(n..n + 1);
+            } else if let Some(r) = runs.last_mut() {
+                r.end = n + 1;
             }
             remap[i as usize] = run_first;
-            rep.merged_vertices += usize::from(run_first != i);
         }
+        runs.retain(|r| r.len() > 1);
+        // Two vertices at one position are one in a file. Merged, an edge from it to a
+        // neighbour of both is used by four triangles where each had its own closed fan (two
+        // cells' vertices clamped to one point): the vertices of such a run are moved one `f32`
+        // step apart instead, so that the file keeps them apart. Judged with every other merge
+        // made (a cluster of merges can close up only together), again after each round of
+        // moves. (Runs are rare: the triangles around each vertex are listed only for them.)
+        if !runs.is_empty() {
+            let around = VertexTriangles::new(self.vertices.len(), &self.triangles);
+            for _round in 0..4 {
+                let mut moved = false;
+                for r in runs.iter_mut().filter(|r| r.start < r.end) {
+                    let members: Vec<u32> = order[r.clone()].iter().map(|&(_, i)| i).collect();
+                    if merge_keeps_manifold(&self.triangles, &around, &remap, &members) {
+                        continue;
+                    }
+                    for &m in &members[1..] {
+                        remap[m as usize] = m;
+                        let p = &mut self.vertices[m as usize];
+                        p.x = f32_step(p.x);
+                        rep.moved_vertices += 1;
+                    }
+                    *r = 0..0;
+                    moved = true;
+                }
+                if !moved {
+                    break;
+                }
+            }
+        }
+        rep.merged_vertices = remap
+            .iter()
+            .enumerate()
+            .filter(|&(i, &r)| r != i as u32)
+            .count();
         drop(order);
         // Remapped in place (a mesh with nothing merged keeps its triangles as they were);
         // collapsed triangles become `GONE` until the end.
@@ -622,7 +729,11 @@ impl TriMesh {
             }
             rep.remaining_flat = tris.iter().filter(|&&t| t != GONE && flat(t)).count();
         }
-        if rep.merged_vertices == 0 && rep.collapsed_triangles == 0 && rep.split_caps == 0 {
+        if rep.merged_vertices == 0
+            && rep.collapsed_triangles == 0
+            && rep.split_caps == 0
+            && rep.moved_vertices == 0
+        {
             self.triangles = tris;
             return rep;
         }
@@ -945,7 +1056,8 @@ mod tests {
                 merged_vertices: 1,
                 collapsed_triangles: 0,
                 split_caps: 1,
-                remaining_flat: 0
+                remaining_flat: 0,
+                moved_vertices: 0,
             }
         );
         assert!(mesh.edge_report().is_clean(), "{:?}", mesh.edge_report());
@@ -959,6 +1071,50 @@ mod tests {
         let before = mesh.clone();
         assert_eq!(mesh.repair_degenerate_f32(), DegenerateRepair::default());
         assert_eq!(mesh, before);
+    }
+
+    #[test]
+    fn coincident_vertices_that_would_pinch_are_moved_apart() {
+        // Two closed tetrahedra about (1, 1, 1), the second mirrored through the plane x = 1
+        // so that it has the first's face 0–2–3 (its vertices 1e-12 mm off: one point each in
+        // f32). Merged, the face's edges would each be used by four triangles: the three
+        // pairs are moved one f32 step apart instead, the two solids kept as they were.
+        let shift = Vec3::splat(1.0);
+        let mut two = tetra();
+        two.vertices.iter_mut().for_each(|p| *p += shift);
+        let mirrored = TriMesh::from_parts(
+            two.vertices
+                .iter()
+                .map(|&p| Vec3::new(2.0 - p.x, p.y, p.z) + Vec3::splat(1e-12))
+                .collect(),
+            two.triangles.iter().map(|t| [t[0], t[2], t[1]]).collect(),
+        );
+        let first = two.clone();
+        two.merge(&mirrored);
+        assert!(two.edge_report().is_clean());
+        let rep = two.repair_degenerate_f32();
+        assert_eq!((rep.merged_vertices, rep.moved_vertices), (0, 3), "{rep:?}");
+        assert!(two.edge_report().is_clean(), "{:?}", two.edge_report());
+        assert_eq!(two.vertices.len(), 8);
+        // What a file stores: eight distinct f32 positions, still two closed solids.
+        let mut keys: Vec<[u32; 3]> = two
+            .vertices
+            .iter()
+            .map(|p| [p.x, p.y, p.z].map(|c| (c as f32).to_bits()))
+            .collect();
+        keys.sort_unstable();
+        keys.dedup();
+        assert_eq!(keys.len(), 8);
+        assert!((two.volume() - 2.0 / 6.0).abs() < 1e-6);
+        // Merging every coincident pair, as before, makes edges of four triangles.
+        let mut pinched = first;
+        pinched.merge(&mirrored);
+        for v in pinched.triangles.iter_mut().flatten() {
+            if [4, 6, 7].contains(v) {
+                *v -= 4;
+            }
+        }
+        assert_eq!(pinched.edge_report().non_manifold, 3);
     }
 
     #[test]

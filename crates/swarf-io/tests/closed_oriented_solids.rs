@@ -218,6 +218,42 @@ fn thin_plate_and_tube() {
     assert_clean(&m, "tube");
 }
 
+#[test]
+fn vertices_two_cells_put_at_one_point_do_not_pinch() {
+    // Cells whose QEFs put their vertices at one point (clamped to a shared lattice point or
+    // edge, or on one corner of the solid) give a file one vertex with two fans; where the fans
+    // share a neighbour, that was an edge of four triangles. Both cases are shrunk failures of
+    // a property test: a sphere under two cells across, and two turned cubes.
+    let h = 0.081002089146271;
+    let lattice = Lattice::covering(Aabb::new(Vec3::splat(-1.5), Vec3::splat(1.5)), h);
+    let sphere = sphere_sdf(
+        Vec3::new(-0.475, 0.0, -0.8337801205214584),
+        0.15057483923774656,
+    );
+    let m = dual_contour(&FnGrid::new(lattice, sphere), &ContourOptions::default());
+    assert_clean(&m, "small sphere");
+    let cubes = [
+        (
+            Vec3::new(0.7979366379346783, -0.17551372899790182, 0.0),
+            0.35198838193916815,
+        ),
+        (
+            Vec3::new(-0.329900952604767, -0.791027548893767, 0.0),
+            0.749853447226729,
+        ),
+    ];
+    let sdf = move |p: Vec3| {
+        cubes
+            .iter()
+            .map(|&(c, r)| box_sdf(c, Vec3::splat(r), r)(p))
+            .fold(f64::INFINITY, f64::min)
+    };
+    let h = 0.10945730074530509;
+    let lattice = Lattice::covering(Aabb::new(Vec3::splat(-1.5), Vec3::splat(1.5)), h);
+    let m = dual_contour(&FnGrid::new(lattice, sdf), &ContourOptions::default());
+    assert_clean(&m, "two cubes");
+}
+
 /// A blob: centre x, y, z, size, and whether it is a (turned) cube rather than a sphere.
 type Blob = (f64, f64, f64, f64, bool);
 
