@@ -53,7 +53,8 @@ fn merged_coplanar_triangles_keep_the_solid() {
     ];
     let run = |merge: bool| {
         let out = dir.join(if merge { "merged" } else { "plain" });
-        run_mesh(&args, &out, merge, "envelope.stl")
+        let flag: &[&str] = if merge { &["--merge-planar"] } else { &[] };
+        run_mesh(&args, &out, flag, "envelope.stl")
     };
     let (plain, plain_mesh) = run(false);
     let (merged, merged_mesh) = run(true);
@@ -71,4 +72,58 @@ fn merged_coplanar_triangles_keep_the_solid() {
     // The same solid: the volumes agree to within 10⁻⁶ mm over the surface (as written, f32).
     let (v0, v1) = (plain_mesh.volume(), merged_mesh.volume());
     assert!((v0 - v1).abs() < 1e-6 * v0, "{v0} vs {v1}");
+}
+
+/// `--simplify MM`: 2 × 2 × 2 blocks of cells merged where the envelope is smooth — a quarter
+/// of the triangles on a ball's line, the vertices still on the exact envelope, the volume within
+/// the chord of a block over the surface; a tolerance that is not a positive number is refused.
+#[test]
+fn merged_blocks_of_cells_keep_the_envelope() {
+    let dir = swarf_testdata::scratch_dir("envelope-simplify");
+    let prog = dir.join("line.ngc");
+    std::fs::write(&prog, "G21 G90\nG0 X0 Y0 Z0\nG1 X12 Y5 F300\nM30\n").unwrap();
+    let prog = prog.to_str().unwrap();
+    let h = 0.2;
+    let hs = h.to_string();
+    let args = [
+        "envelope",
+        "--program",
+        prog,
+        "--tool",
+        "ball:d=10",
+        "--resolution",
+        &hs,
+    ];
+    let (plain, plain_mesh) = run_mesh(&args, &dir.join("plain"), &[], "envelope.stl");
+    let (merged, merged_mesh) = run_mesh(
+        &args,
+        &dir.join("merged"),
+        &["--simplify", "0.01"],
+        "envelope.stl",
+    );
+    assert_eq!(merged["closed"], true, "{merged}");
+    assert!(merged["merged_blocks"].as_u64().unwrap() > 0, "{merged}");
+    assert!(plain.get("merged_blocks").is_none(), "{plain}");
+    let (n0, n1) = (
+        plain["triangles"].as_u64().unwrap(),
+        merged["triangles"].as_u64().unwrap(),
+    );
+    assert!(n1 * 10 < n0 * 4, "{n1} of {n0} triangles");
+    // Every vertex moved onto the envelope (counted before the f32 repair, which may merge one
+    // into another).
+    assert!(merged["exact_vertices"].as_u64().unwrap() >= merged_mesh.vertices.len() as u64);
+    // Inscribed chords of blocks 2h√3 wide on the ball's radius 5.
+    let chord = (2.0 * h * 3f64.sqrt()).powi(2) / 40.0;
+    let (v0, v1) = (plain_mesh.volume(), merged_mesh.volume());
+    assert!((v0 - v1).abs() < chord * plain_mesh.area(), "{v0} vs {v1}");
+    for bad in ["0", "-1", "nan"] {
+        let mut all = args.to_vec();
+        let out = dir.join("bad");
+        let flag = format!("--simplify={bad}");
+        all.extend(["--out", out.to_str().unwrap(), &flag]);
+        let o = swarf(&all);
+        assert!(!o.status.success(), "--simplify {bad}");
+        assert!(stderr(&o).contains("--simplify"), "{}", stderr(&o));
+        assert!(!out.exists(), "nothing written for --simplify {bad}");
+    }
 }

@@ -256,7 +256,8 @@ fn merged_stock_mesh_is_the_same_part_in_few_triangles() {
     ];
     let run = |merge: bool| {
         let out = dir.join(if merge { "merged" } else { "plain" });
-        run_mesh(&args, &out, merge, "stock.stl")
+        let flag: &[&str] = if merge { &["--merge-planar"] } else { &[] };
+        run_mesh(&args, &out, flag, "stock.stl")
     };
     let (plain, plain_mesh) = run(false);
     let (merged, merged_mesh) = run(true);
@@ -269,7 +270,21 @@ fn merged_stock_mesh_is_the_same_part_in_few_triangles() {
         plain_mesh.triangles.len()
     );
     let exact = 60.0 * 40.0 * 20.0 - 60.0 * 10.0 * 4.0;
-    for m in [&plain_mesh, &merged_mesh] {
+    // `--simplify`: blocks of cells merged on the flat faces and along the sharp edges.
+    let (simplified, simplified_mesh) = run_mesh(
+        &args,
+        &dir.join("simplified"),
+        &["--simplify", "0.001"],
+        "stock.stl",
+    );
+    assert_eq!(plain["final_volume_mm3"], simplified["final_volume_mm3"]);
+    assert!(
+        simplified_mesh.triangles.len() * 10 < plain_mesh.triangles.len() * 4,
+        "{} of {} triangles",
+        simplified_mesh.triangles.len(),
+        plain_mesh.triangles.len()
+    );
+    for m in [&plain_mesh, &merged_mesh, &simplified_mesh] {
         assert!(
             (m.volume() - exact).abs() < 1e-3,
             "{} vs {exact}",

@@ -100,6 +100,14 @@ impl EnvelopeOptions {
         self
     }
 
+    /// With the contouring's 2 × 2 × 2 blocks of cells merged where the planes of their
+    /// crossings pass within `tol` mm of one point (`ContourOptions::simplify`; the merged
+    /// vertices are then put on the exact envelope like the others). `None` keeps every cell.
+    pub fn with_simplify(mut self, tol: Option<f64>) -> Self {
+        self.contour.simplify = tol;
+        self
+    }
+
     /// With or without the fold test.
     pub fn with_fold_check(mut self, on: bool) -> Self {
         self.check_folds = on;
@@ -247,6 +255,8 @@ pub struct EnvelopeReport {
     /// With [`EnvelopeOptions::merge_planar`], the triangles before the merge (the same as
     /// `triangles` where the merge was given up: `TriMesh::merge_coplanar_within`).
     pub triangles_before_merge: Option<usize>,
+    /// With `ContourOptions::simplify`, the blocks of cells merged into one vertex.
+    pub merged_blocks: Option<usize>,
 }
 
 /// An envelope mesh and its report.
@@ -276,6 +286,16 @@ pub fn envelope(
         return Err(EnvelopeError::BadParameter {
             name: "tolerance",
             value: tol,
+        });
+    }
+    if let Some(s) = options
+        .contour
+        .simplify
+        .filter(|s| !(*s > 0.0 && s.is_finite()))
+    {
+        return Err(EnvelopeError::BadParameter {
+            name: "simplify",
+            value: s,
         });
     }
     let end = moves.end.min(program.moves.len());
@@ -394,6 +414,7 @@ pub fn envelope(
         lattice,
         self_intersections,
         triangles_before_merge: merged.map(|m| m.triangles_before),
+        merged_blocks: options.contour.simplify.map(|_| stats.merged_blocks),
     };
     Ok(Envelope { mesh, report })
 }

@@ -183,3 +183,70 @@ fn envelope_vertices_lie_on_the_exact_envelope_at_the_default_resolution() {
     // What the contouring alone gives: micrometres off on the curved parts.
     assert!(off > 1e-4, "{off}");
 }
+
+#[test]
+fn merged_blocks_keep_the_vertices_exact_and_the_facets_within_a_chord() {
+    // The 36 mm line of a 10 mm ball at h = 0.1, blocks merged within 1 µm:
+    // a quarter of the triangles, every vertex still on the exact envelope, every facet within
+    // the chord of a merged block's diagonal (2h√3) on the ball's radius of it.
+    let r = 5.0;
+    let ball = Cutter::ball(2.0 * r).unwrap();
+    let top = ball.overall_length();
+    let (a, b) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(36.0, 0.0, 0.0));
+    let program = common::gcode("G21 G90\nG0 X0 Y0 Z0\nG1 X36 F300\n");
+    let signed = |p: Vec3| {
+        let d = seg_dist(Vec3::new(p.x, p.y, 0.0), a, b);
+        let disc = d.hypot(p.z - r) - r;
+        let (qx, qz) = (d - r, (r - p.z).max(p.z - top));
+        let rect = qx.max(0.0).hypot(qz.max(0.0)) + qx.max(qz).min(0.0);
+        disc.min(rect)
+    };
+    let h = 0.1;
+    let run = |simplify| {
+        let opts = EnvelopeOptions::default()
+            .with_resolution(h)
+            .with_simplify(simplify);
+        envelope(&program, &common::tools(&ball), 0..2, &opts).unwrap()
+    };
+    let (plain, merged) = (run(None), run(Some(1e-3)));
+    assert!(merged.report.closed);
+    assert!(merged.report.merged_blocks.unwrap() > 0);
+    assert_eq!(plain.report.merged_blocks, None);
+    let ratio = merged.report.triangles as f64 / plain.report.triangles as f64;
+    assert!(ratio < 0.3, "{ratio}");
+    let vertex_error = merged
+        .mesh
+        .vertices
+        .iter()
+        .map(|&v| signed(v).abs())
+        .fold(0.0, f64::max);
+    assert_eq!(merged.report.exact_vertices, merged.mesh.vertices.len());
+    assert!(vertex_error < 1e-9, "{vertex_error}");
+    // Facets: their centroids and edge midpoints (a chord lies inside a convex surface).
+    let facet_error = |env: &swarf_envelope::Envelope| {
+        (0..env.mesh.len())
+            .flat_map(|t| {
+                let [p, q, s] = env.mesh.corners(t);
+                [
+                    (p + q + s) / 3.0,
+                    0.5 * (p + q),
+                    0.5 * (q + s),
+                    0.5 * (s + p),
+                ]
+            })
+            .map(|x| signed(x).abs())
+            .fold(0.0, f64::max)
+    };
+    let chord = (2.0 * h * 3f64.sqrt()).powi(2) / (8.0 * r);
+    let (fe, pe) = (facet_error(&merged), facet_error(&plain));
+    eprintln!(
+        "ball line, h = {h}: {} → {} triangles with blocks merged; facets within {fe:.1e} mm \
+         ({pe:.1e} unmerged), chord bound {chord:.1e}",
+        plain.report.triangles, merged.report.triangles
+    );
+    assert!(fe <= chord, "{fe} vs {chord}");
+    // Inscribed facets take volume off the convex parts: at most the chord over the area.
+    let area = merged.mesh.area();
+    let dv = (merged.report.volume_mm3 - plain.report.volume_mm3).abs();
+    assert!(dv <= area * chord, "{dv}");
+}

@@ -1,8 +1,9 @@
 //! Every envelope mesh as its files store it (`f32` positions, welded by position when read
 //! back) is a 2-manifold: each edge in exactly two triangles, consistently oriented, no
 //! triangle with two corners at one point or three on a line — on many random programs of
-//! lines, arcs, full circles, helices and plunges, for every cutter type. `closed` in the
-//! report is that of the mesh written.
+//! lines, arcs, full circles, helices and plunges, for every cutter type, with and without
+//! blocks of cells merged (`EnvelopeOptions::with_simplify`). `closed` in the report is that
+//! of the mesh written.
 
 mod common;
 
@@ -25,12 +26,14 @@ fn check(written: &TriMesh, what: &str) {
     }
 }
 
-fn run(text: &str, name: &str, cutter: &swarf_tool::Cutter, h: f64) {
+fn run(text: &str, name: &str, cutter: &swarf_tool::Cutter, h: f64, simplify: Option<f64>) {
     let program = gcode(text);
-    let options = EnvelopeOptions::default().with_resolution(h);
+    let options = EnvelopeOptions::default()
+        .with_resolution(h)
+        .with_simplify(simplify);
     let env = envelope(&program, &tools(cutter), 0..program.moves.len(), &options).unwrap();
     let written = as_written(&env.mesh);
-    let what = format!("{name} at h = {h}:\n{text}");
+    let what = format!("{name} at h = {h}, merging blocks within {simplify:?} mm:\n{text}");
     check(&written, &what);
     assert!(env.report.closed, "{what}");
     assert_eq!(env.report.triangles, written.triangles.len(), "{what}");
@@ -42,7 +45,8 @@ fn a_full_circle_with_a_flat_end_mill_is_a_2_manifold() {
     // Before: 456 collapsed and 4 flat triangles, 221 edges in six triangles, "closed": true.
     let text = "G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG2 X0 Y0 I5 J0\nM30\n";
     for (name, c) in cutters() {
-        run(text, name, &c, 0.25);
+        run(text, name, &c, 0.25, None);
+        run(text, name, &c, 0.25, Some(1e-3));
     }
 }
 
@@ -85,6 +89,8 @@ fn random_programs_give_2_manifolds() {
         text.push_str("M30\n");
         let (name, c) = &all[case % all.len()];
         let h = [0.25, 0.3, 0.2][case % 3];
-        run(&text, name, c, h);
+        // Every other case with 2 × 2 × 2 blocks of cells merged (`--simplify`).
+        let simplify = [None, Some(1e-3)][case % 2];
+        run(&text, name, c, h, simplify);
     }
 }

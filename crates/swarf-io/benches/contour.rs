@@ -142,6 +142,29 @@ fn bench(c: &mut Criterion) {
         });
     }
     group.finish();
+    // The same with 2 × 2 × 2 blocks of cells merged within 1 µm (`ContourOptions::simplify`).
+    let simplify = ContourOptions::default().with_simplify(Some(1e-3));
+    for (name, grid) in [
+        ("dual_contour_sphere_r10_simplified", tabulate(0.1)),
+        (
+            "dual_contour_machined_block_simplified",
+            machined_block(0.1),
+        ),
+    ] {
+        let (plain, merged) = (
+            dual_contour(&grid, &ContourOptions::default()),
+            dual_contour(&grid, &simplify),
+        );
+        eprintln!("{name}: {} → {} triangles", plain.len(), merged.len());
+        let mut group = c.benchmark_group(name);
+        group.sample_size(10);
+        let cells = grid.lattice.cell_count() as u64;
+        group.throughput(Throughput::Elements(cells));
+        group.bench_with_input(BenchmarkId::from_parameter(cells), &grid, |b, g| {
+            b.iter(|| dual_contour(g, &simplify))
+        });
+        group.finish();
+    }
 }
 
 // criterion_group! generates an undocumented public function.

@@ -22,7 +22,7 @@ use swarf_surface::{CompoundSurface, Patch, PreparedSurface, Surface};
 use swarf_tool::table::parse_toml_library;
 
 use crate::commands::path::PathReport;
-use crate::commands::simulate::{write_outputs, SimulateSummary};
+use crate::commands::simulate::{write_outputs, SimulateSummary, StockMeshOut};
 use crate::commands::tools::defined_tools;
 use crate::output::{output_set, print_json};
 
@@ -112,7 +112,14 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     let dir = &args.out;
     // Every file of the demo is written as one set: all of them, or none.
     let mut set = output_set(dir, args.max_output_mb)?;
-    write_outputs(&mut set, program, &stock, &report, &summary, false)?;
+    write_outputs(
+        &mut set,
+        program,
+        &stock,
+        &report,
+        &summary,
+        StockMeshOut::default(),
+    )?;
     write_sources(&mut set, &job.setup.read)?;
 
     let t0 = std::time::Instant::now();

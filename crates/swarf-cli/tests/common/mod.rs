@@ -49,19 +49,17 @@ pub(crate) fn json(o: &Output) -> serde_json::Value {
         .unwrap_or_else(|e| panic!("stdout is not JSON ({e}); stderr: {}", stderr(o)))
 }
 
-/// Runs `swarf` with `args` and `--out out --json`, and with `--merge-planar` when `merge`:
+/// Runs `swarf` with `args`, `--out out --json` and `extra` (`--merge-planar`, `--simplify MM`):
 /// its JSON summary and the mesh `out/stl` read back, which must be closed.
 pub(crate) fn run_mesh(
     args: &[&str],
     out: &std::path::Path,
-    merge: bool,
+    extra: &[&str],
     stl: &str,
 ) -> (serde_json::Value, swarf_io::TriMesh) {
     let mut all = args.to_vec();
     all.extend(["--out", out.to_str().unwrap(), "--json"]);
-    if merge {
-        all.push("--merge-planar");
-    }
+    all.extend_from_slice(extra);
     let o = swarf(&all);
     assert!(o.status.success(), "{}", stderr(&o));
     let mesh = swarf_io::read_stl(&out.join(stl)).unwrap();

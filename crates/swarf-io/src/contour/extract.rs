@@ -18,7 +18,7 @@
 use super::lines::{boundary_in, in_runs, runs, xor_runs, Run, Store};
 use super::normal::estimate;
 use super::qef::Qef;
-use super::table::{cases, joined_faces, NONE};
+use super::table::{cases, has_ambiguous_face, joined_faces, NONE};
 use super::{ContourOptions, ContourStats, HermiteGrid, Projection, QuadSplit};
 use crate::mesh::{area_vectors_at, TriMesh};
 use rayon::prelude::*;
@@ -44,11 +44,13 @@ struct Hermite {
 }
 
 /// A cell with vertices: key `(ci + 1) + (n0 + 1)(cj + 1)`, case (corner mask and face rule
-/// flips, see `table`), first vertex (slab-local).
+/// flips, see `table`), first vertex (slab-local; the mesh's own index when `global`: a cell of
+/// a merged block whose vertex is in the slab below).
 #[derive(Clone, Copy, Debug)]
 struct CellRec {
     key: u32,
     case: u16,
+    global: bool,
     first: u32,
 }
 
@@ -62,6 +64,10 @@ struct SlabOut {
     base: u32,
     /// Edges whose quads this slab emits: Z edges from its low level, X and Y edges on its top level.
     owned: Vec<Edge>,
+    /// With [`ContourOptions::simplify`], until the slab's blocks are merged: per cell, its
+    /// patch's QEF (relative to the cell's low corner) when the cell may join a merged block
+    /// (one patch, no ambiguous face).
+    qefs: Vec<Option<Qef>>,
     stats: ContourStats,
 }
 
@@ -311,6 +317,7 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         let table = cases();
         let mut cells = Vec::new();
         let mut vertices = Vec::new();
+        let mut qef_of_cell = Vec::new();
         let mut g = 0;
         while g < s.pairs.len() {
             let key = (s.pairs[g] >> 32) as u32;
@@ -382,9 +389,14 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
                     qefs[patch as usize].add(h.p - corner, h.n, h.w);
                 }
             }
+            if self.opt.simplify.is_some() {
+                let may_merge = case.count == 1 && flips == 0 && !has_ambiguous_face(mask);
+                qef_of_cell.push(may_merge.then_some(qefs[0]));
+            }
             cells.push(CellRec {
                 key,
                 case: case_index,
+                global: false,
                 first: vertices.len() as u32,
             });
             let size = lat.spacing;
@@ -422,9 +434,194 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
             vertices,
             base: 0,
             owned,
+            qefs: qef_of_cell,
             stats,
         }
     }
+
+    /// Merges the 2 × 2 × 2 blocks of cells of slabs `k` (`lo`) and `k + 1` (`hi`) that pass
+    /// the tests of [`ContourOptions::simplify`] (tolerance `tol`) into one vertex each, kept
+    /// in `lo`'s list; `hi`'s cells of a merged block point to it with the index `lo`'s base
+    /// will add to (`global`, see `extract`). `s` is `phase1(k)`'s scratch: the X lines' runs
+    /// of point levels `k`, `k + 1` and `k + 2` (slots 0, 1, 3). Blocks are aligned on cells
+    /// `2b − 1, 2b` along each axis (`k` is odd).
+    fn merge_pair(&self, k: i32, s: &Scratch, lo: &mut SlabOut, hi: &mut SlabOut, tol: f64) {
+        let [n0, n1, _] = self.n;
+        let lat = &self.store.lattice;
+        let stride = (n0 + 1) as u32;
+        let bstride = (n0 + 3) as u64;
+        // Each cell of the two slabs filed under its block: block key, slab, index.
+        let mut members: Vec<u64> = Vec::with_capacity(lo.cells.len() + hi.cells.len());
+        for (si, slab) in [&*lo, &*hi].into_iter().enumerate() {
+            for (at, c) in slab.cells.iter().enumerate() {
+                let (ip, jp) = ((c.key % stride) as u64, (c.key / stride) as u64);
+                let b = (ip >> 1) + bstride * (jp >> 1);
+                members.push(b << 33 | (si as u64) << 32 | at as u64);
+            }
+        }
+        members.sort_unstable();
+        const SLOT: [usize; 3] = [0, 1, 3];
+        let inside = |i: i32, j: i32, dl: usize| -> bool {
+            if j < 0 || j >= n1 {
+                return false;
+            }
+            let slot = SLOT[dl];
+            let r = s.roff[slot][j as usize]..s.roff[slot][j as usize + 1];
+            in_runs(&s.runs[slot][r], i)
+        };
+        // Per slab and cell: the merged vertex it takes (index in `merged`), if any.
+        let mut redirect = [
+            vec![u32::MAX; lo.cells.len()],
+            vec![u32::MAX; hi.cells.len()],
+        ];
+        let mut merged: Vec<Vec3> = Vec::new();
+        let size = 2.0 * lat.spacing;
+        let mut g = 0;
+        while g < members.len() {
+            let block = members[g] >> 33;
+            let mut end = g + 1;
+            while end < members.len() && members[end] >> 33 == block {
+                end += 1;
+            }
+            let group = &members[g..end];
+            g = end;
+            // One cell alone gains nothing; every cell must have one patch.
+            let cell = |m: u64| ((m >> 32 & 1) as usize, (m & 0xffff_ffff) as usize);
+            let qef_of = |m: u64| {
+                let (si, at) = cell(m);
+                [&*lo, &*hi][si].qefs[at]
+            };
+            if group.len() < 2 || group.iter().any(|&m| qef_of(m).is_none()) {
+                continue;
+            }
+            let (bi, bj) = ((block % bstride) as i32, (block / bstride) as i32);
+            let (i0, j0) = (2 * bi - 1, 2 * bj - 1);
+            // Sides of the block's 27 lattice points, (x, y, z) ∈ {0, 1, 2}³.
+            let side = |x: usize, y: usize, z: usize| inside(i0 + x as i32, j0 + y as i32, z);
+            let mut sides = [[[false; 3]; 3]; 3];
+            for (x, plane) in sides.iter_mut().enumerate() {
+                for (y, line) in plane.iter_mut().enumerate() {
+                    for (z, v) in line.iter_mut().enumerate() {
+                        *v = side(x, y, z);
+                    }
+                }
+            }
+            if !topology_safe(&sides) {
+                continue;
+            }
+            let corner = lat.point(i0 as isize, j0 as isize, k as isize);
+            let mut q = Qef::default();
+            for &m in group {
+                let (si, at) = cell(m);
+                let key = [&*lo, &*hi][si].cells[at].key;
+                let (ci, cj) = ((key % stride) as i32 - 1, (key / stride) as i32 - 1);
+                let own = lat.point(ci as isize, cj as isize, (k + si as i32) as isize);
+                q.merge(&qef_of(m).expect("checked above").shifted(own - corner));
+            }
+            let x = q.solve(self.opt.eigen_threshold);
+            let x = if self.opt.clamp_to_cell {
+                x.clamp(Vec3::ZERO, size)
+            } else {
+                x
+            };
+            if !q.rms_distance(x).is_some_and(|d| d <= tol) {
+                continue;
+            }
+            // Planes that meet in a line or a point far from the cells' own vertices (a
+            // surface sampled by too few crossings for a block: two planes always meet) do not
+            // make a vertex of the surface: it must lie among theirs.
+            let x = corner + x;
+            let (mut lo_v, mut hi_v) = (Vec3::splat(f64::INFINITY), Vec3::splat(f64::NEG_INFINITY));
+            for &m in group {
+                let (si, at) = cell(m);
+                let slab = [&*lo, &*hi][si];
+                let v = slab.vertices[slab.cells[at].first as usize];
+                (lo_v, hi_v) = (lo_v.min(v), hi_v.max(v));
+            }
+            if x.cmplt(lo_v - Vec3::splat(tol)).any() || x.cmpgt(hi_v + Vec3::splat(tol)).any() {
+                continue;
+            }
+            for &m in group {
+                let (si, at) = cell(m);
+                redirect[si][at] = merged.len() as u32;
+            }
+            merged.push(x);
+        }
+        lo.stats.merged_blocks += merged.len();
+        // Each slab's list: the vertices of its cells that were not merged, then (in `lo`)
+        // the merged ones.
+        let table = cases();
+        let [lo_to, hi_to] = redirect;
+        for (slab, to) in [(&mut *lo, &lo_to), (&mut *hi, &hi_to)] {
+            let mut kept = Vec::with_capacity(slab.vertices.len());
+            for (c, &t) in slab.cells.iter_mut().zip(to) {
+                if t == u32::MAX {
+                    let count = table[c.case as usize].count as usize;
+                    let first = c.first as usize;
+                    c.first = kept.len() as u32;
+                    kept.extend_from_slice(&slab.vertices[first..first + count]);
+                }
+            }
+            slab.vertices = kept;
+        }
+        let at = lo.vertices.len() as u32;
+        lo.vertices.extend_from_slice(&merged);
+        lo.vertices.shrink_to_fit();
+        hi.vertices.shrink_to_fit();
+        for (c, &t) in lo.cells.iter_mut().zip(&lo_to) {
+            if t != u32::MAX {
+                c.first = at + t;
+            }
+        }
+        for (c, &t) in hi.cells.iter_mut().zip(&hi_to) {
+            if t != u32::MAX {
+                c.first = at + t;
+                c.global = true;
+            }
+        }
+        lo.qefs = Vec::new();
+        hi.qefs = Vec::new();
+    }
+}
+
+/// Ju et al.'s (2002) test that a 2 × 2 × 2 block's contour may be one vertex: the corners
+/// (`sides[x][y][z]` at even coordinates) make a single patch with no ambiguous face, and every
+/// other lattice point of the block — the middles of its edges and faces, its centre — has the
+/// side of at least one of the corners around it (those with each of its middle coordinates
+/// set to either end). The cells' own test (one patch each) is the caller's.
+fn topology_safe(sides: &[[[bool; 3]; 3]; 3]) -> bool {
+    let at = |p: [usize; 3]| sides[p[0]][p[1]][p[2]];
+    let mask = (0..8usize).fold(0u8, |m, c| {
+        let p = [2 * (c & 1), 2 * ((c >> 1) & 1), 2 * (c >> 2)];
+        m | u8::from(at(p)) << c
+    });
+    if cases()[mask as usize].count != 1 || has_ambiguous_face(mask) {
+        return false;
+    }
+    for index in 0..27usize {
+        let p = [index % 3, (index / 3) % 3, index / 9];
+        let middle: [bool; 3] = p.map(|v| v == 1);
+        if !middle.contains(&true) {
+            continue;
+        }
+        let side = at(p);
+        // The corners around `p`: each middle coordinate at 0 or 2, the others as they are.
+        let agrees = (0..8usize).any(|bits| {
+            let mut q = p;
+            for axis in 0..3 {
+                if middle[axis] {
+                    q[axis] = 2 * (bits >> axis & 1);
+                } else if bits >> axis & 1 == 1 {
+                    return false; // the same corner as with this bit clear
+                }
+            }
+            at(q) == side
+        });
+        if !agrees {
+            return false;
+        }
+    }
+    true
 }
 
 /// Point levels computed at once per worker thread (a batch's edges are held until its slabs
@@ -455,7 +652,38 @@ fn vertex_of(window: &[SlabOut], first_k: i32, stride: u32, k: i32, key: u32, lo
     debug_assert_eq!(rec.key, key);
     let p = cases()[rec.case as usize].patch[local];
     debug_assert!(p != NONE);
+    if rec.global {
+        // A merged block's single vertex (its cells have one patch each: `p` is 0).
+        return rec.first;
+    }
     slab.base + rec.first + p as u32
+}
+
+/// The triangles of the polygon around a sign-changing edge, written to `out`: the quad `q`
+/// of the four cells' vertices as two triangles, or where merged blocks give two cells one
+/// vertex, the triangle of the three distinct ones (none when fewer: the edge lies inside a
+/// merged block or on the face between two). Returns how many.
+fn polygon(q: [u32; 4], v: &[Vec3], mode: QuadSplit, out: &mut [[u32; 3]]) -> usize {
+    if q[0] != q[1] && q[1] != q[2] && q[2] != q[3] && q[3] != q[0] {
+        // Cells diagonal about an edge never share a block without the other two.
+        debug_assert!(q[0] != q[2] && q[1] != q[3], "{q:?}");
+        out[..2].copy_from_slice(&split_quad(q, v, mode));
+        return 2;
+    }
+    let mut t = [0u32; 4];
+    let mut n = 0;
+    for i in 0..4 {
+        if q[i] != q[(i + 3) % 4] {
+            t[n] = q[i];
+            n += 1;
+        }
+    }
+    if n == 3 {
+        out[0] = [t[0], t[1], t[2]];
+        1
+    } else {
+        0
+    }
 }
 
 /// The two triangles of quad `q`.
@@ -530,17 +758,50 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
             stats = stats.add(l.stats);
         }
         let levels: Vec<LevelEdges> = bottom.take().into_iter().chain(fresh).collect();
-        let made: Vec<SlabOut> = (k0..k1)
-            .into_par_iter()
-            .map_init(Scratch::default, |s, k| {
-                let at = (k - k0) as usize;
-                ctx.phase1(k, s, &levels[at], &levels[at + 1])
-            })
-            .collect();
+        let made: Vec<SlabOut> = match opt.simplify {
+            None => (k0..k1)
+                .into_par_iter()
+                .map_init(Scratch::default, |s, k| {
+                    let at = (k - k0) as usize;
+                    ctx.phase1(k, s, &levels[at], &levels[at + 1])
+                })
+                .collect(),
+            // Slabs in pairs (a batch starts at an odd slab and holds an even number but for
+            // the last), each pair's blocks merged as soon as both are made.
+            Some(tol) => {
+                let pairs: Vec<Vec<SlabOut>> = (k0..k1)
+                    .step_by(2)
+                    .collect::<Vec<i32>>()
+                    .into_par_iter()
+                    .map_init(
+                        || (Scratch::default(), Scratch::default()),
+                        |(sa, sb), k| {
+                            let at = (k - k0) as usize;
+                            let mut lo = ctx.phase1(k, sa, &levels[at], &levels[at + 1]);
+                            if k + 1 == k1 {
+                                lo.qefs = Vec::new();
+                                return vec![lo];
+                            }
+                            let mut hi = ctx.phase1(k + 1, sb, &levels[at + 1], &levels[at + 2]);
+                            ctx.merge_pair(k, sa, &mut lo, &mut hi, tol);
+                            vec![lo, hi]
+                        },
+                    )
+                    .collect();
+                pairs.into_iter().flatten().collect()
+            }
+        };
         bottom = levels.into_iter().last();
+        let mut below_base = 0;
         for mut slab in made {
             stats = stats.add(slab.stats);
             slab.base = mesh.vertices.len() as u32;
+            // A merged block's cells in the upper slab of a pair point into the lower slab's
+            // list, the slab just before.
+            for c in slab.cells.iter_mut().filter(|c| c.global) {
+                c.first += below_base;
+            }
+            below_base = slab.base;
             mesh.vert_start.push(mesh.vertices.len());
             mesh.vertices.append(&mut slab.vertices);
             slab.vertices = Vec::new();
@@ -554,12 +815,17 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
             window.len() - 1
         };
         mesh.triangles_of(&window[..], first_k, ready, opt.split);
-        if let Some(project) = project {
+        // Merged blocks put a vertex into triangles of three slabs, not two: their meshes
+        // are projected whole, at the end.
+        if let (Some(project), None) = (project, opt.simplify) {
             mesh.normals_and_projection(k1 == n[2], project);
         }
         window.drain(..ready);
         first_k += ready as i32;
         k0 = k1;
+    }
+    if let (Some(project), Some(_)) = (project, opt.simplify) {
+        mesh.project_all(project);
     }
     stats.lines = store.line_count();
     stats.spans = store.span_count();
@@ -598,7 +864,7 @@ struct Stream {
 impl Stream {
     /// Appends the triangles of the first `ready` slabs of `window` (which starts at slab
     /// `first_k` and holds the slab above each of them), each slab's in parallel into its own
-    /// stretch.
+    /// stretch (two triangles an edge at most: fewer where merged blocks share vertices).
     fn triangles_of(&mut self, window: &[SlabOut], first_k: i32, ready: usize, split: QuadSplit) {
         let (n0, stride) = (self.n0, self.stride);
         let key = |ci: i32, cj: i32| ((ci + 1) + (n0 + 1) * (cj + 1)) as u32;
@@ -609,49 +875,75 @@ impl Stream {
         let mut stretches: Vec<(i32, &mut [[u32; 3]])> = Vec::with_capacity(ready);
         let mut rest = &mut self.triangles[start..];
         for (at, slab) in window[..ready].iter().enumerate() {
-            self.tri_start.push(start + added - rest.len());
             let (mine, after) = rest.split_at_mut(2 * slab.owned.len());
             stretches.push((first_k + at as i32, mine));
             rest = after;
         }
         let vertices = &self.vertices;
-        stretches.into_par_iter().for_each(|(k, out)| {
-            let owned = &window[(k - first_k) as usize].owned;
-            for (&e, pair) in owned.iter().zip(out.chunks_exact_mut(2)) {
-                let q = AROUND.map(|(db, dc)| match e.axis {
-                    0 => vertex_of(
-                        window,
-                        first_k,
-                        stride,
-                        e.k + dc,
-                        key(e.i, e.j + db),
-                        (-db - 2 * dc) as usize,
-                    ),
-                    1 => vertex_of(
-                        window,
-                        first_k,
-                        stride,
-                        e.k + db,
-                        key(e.i + dc, e.j),
-                        (4 - dc - 2 * db) as usize,
-                    ),
-                    _ => vertex_of(
-                        window,
-                        first_k,
-                        stride,
-                        k,
-                        key(e.i + db, e.j + dc),
-                        (8 - db - 2 * dc) as usize,
-                    ),
-                });
-                let q = if e.inside_low {
-                    q
-                } else {
-                    [q[3], q[2], q[1], q[0]]
-                };
-                pair.copy_from_slice(&split_quad(q, vertices, split));
+        let made: Vec<usize> = stretches
+            .into_par_iter()
+            .map(|(k, out)| {
+                let owned = &window[(k - first_k) as usize].owned;
+                let mut made = 0;
+                for &e in owned {
+                    let q = AROUND.map(|(db, dc)| match e.axis {
+                        0 => vertex_of(
+                            window,
+                            first_k,
+                            stride,
+                            e.k + dc,
+                            key(e.i, e.j + db),
+                            (-db - 2 * dc) as usize,
+                        ),
+                        1 => vertex_of(
+                            window,
+                            first_k,
+                            stride,
+                            e.k + db,
+                            key(e.i + dc, e.j),
+                            (4 - dc - 2 * db) as usize,
+                        ),
+                        _ => vertex_of(
+                            window,
+                            first_k,
+                            stride,
+                            k,
+                            key(e.i + db, e.j + dc),
+                            (8 - db - 2 * dc) as usize,
+                        ),
+                    });
+                    let q = if e.inside_low {
+                        q
+                    } else {
+                        [q[3], q[2], q[1], q[0]]
+                    };
+                    made += polygon(q, vertices, split, &mut out[made..]);
+                }
+                made
+            })
+            .collect();
+        // Each slab's triangles moved down over the room its stretch did not use.
+        let mut to = start;
+        let mut from = start;
+        for (slab, n) in window[..ready].iter().zip(made) {
+            self.tri_start.push(to);
+            if from != to {
+                self.triangles.copy_within(from..from + n, to);
             }
-        });
+            to += n;
+            from += 2 * slab.owned.len();
+        }
+        self.triangles.truncate(to);
+    }
+
+    /// Every vertex moved by `project`, given its unit normal (area-weighted over its
+    /// triangles, all where the contouring put them).
+    fn project_all(&mut self, project: Projection<'_>) {
+        let mut normals = area_vectors_at(&self.vertices, &self.triangles, 0..self.vertices.len());
+        for n in &mut normals {
+            *n = n.normalize_or_zero();
+        }
+        self.projected += project_vertices(&mut self.vertices, &normals, project);
     }
 
     /// Normals of the vertices of the slabs that have their triangles now, then the
@@ -699,18 +991,25 @@ impl Stream {
         let from = self.vert_start[self.projected_slabs];
         let to = slab_vertices(self, upto - 1).end;
         let normals = self.normals.drain(..to - from);
-        self.projected += self.vertices[from..to]
-            .par_iter_mut()
-            .zip(normals.as_slice().par_iter())
-            .map(|(v, &n)| match project(*v, n) {
-                Some(p) if n != Vec3::ZERO => {
-                    *v = p;
-                    1
-                }
-                _ => 0,
-            })
-            .sum::<usize>();
+        self.projected +=
+            project_vertices(&mut self.vertices[from..to], normals.as_slice(), project);
         drop(normals);
         self.projected_slabs = upto;
     }
+}
+
+/// Moves each vertex where `project` says, given its unit normal (none moved without one);
+/// returns how many moved.
+fn project_vertices(vertices: &mut [Vec3], normals: &[Vec3], project: Projection<'_>) -> usize {
+    vertices
+        .par_iter_mut()
+        .zip(normals.par_iter())
+        .map(|(v, &n)| match project(*v, n) {
+            Some(p) if n != Vec3::ZERO => {
+                *v = p;
+                1
+            }
+            _ => 0,
+        })
+        .sum()
 }

@@ -43,6 +43,13 @@
 //! oriented so that its normal points from inside to outside, split into two triangles along
 //! the diagonal that keeps them flattest.
 //!
+//! With [`ContourOptions::simplify`], each 2 × 2 × 2 block of cells whose contour is one patch
+//! of the same topology (Ju et al. 2002's test on the block's 27 lattice points) and whose
+//! crossings' planes pass within the tolerance of one point gets that one vertex (the merged
+//! QEF's minimiser, clamped to the block) instead of its cells' own; an edge whose four cells
+//! share a merged vertex gives one triangle (two cells in one block) or none (the edge inside a
+//! block, or on the face between two).
+//!
 //! Every mesh edge is shared by exactly two triangles with opposite directions. The one
 //! configuration that could break this — a lattice face with all four edges crossed whose
 //! crossings one patch joins in *both* cells beside it (a tunnel narrower than a cell through
@@ -219,6 +226,20 @@ pub struct ContourOptions {
     pub clamp_to_cell: bool,
     /// Quad triangulation.
     pub split: QuadSplit,
+    /// Merge each 2 × 2 × 2 block of cells into one vertex where that changes neither the
+    /// surface's topology nor, beyond this distance (mm), its shape: `None` (the default)
+    /// keeps one vertex per cell patch. A block is merged when every cell of it with a
+    /// crossing has a single patch, the block's own corners make a single patch, the lattice
+    /// points at its edges' and faces' middles and at its centre each have the side of one of
+    /// the corners around them (Ju et al. 2002's topology-safety test: the merged contour is
+    /// the fine one's, face by face), and the planes of all its crossings pass within this
+    /// distance of the merged vertex (weighted root mean square, as the QEF weighs them). The
+    /// mesh then has about a quarter of the triangles where the surface is smooth at the
+    /// block's scale; sharp edges keep their place (the QEF finds them), and fine detail keeps
+    /// its cells. A block is also left as it is when its vertex would lie outside the box of
+    /// its cells' own vertices (grown by the tolerance): a surface crossed too sparsely for a
+    /// block, whose planes meet anywhere.
+    pub simplify: Option<f64>,
 }
 
 impl Default for ContourOptions {
@@ -230,6 +251,7 @@ impl Default for ContourOptions {
             crossing_slack: DEFAULT_CROSSING_SLACK,
             clamp_to_cell: true,
             split: QuadSplit::Flattest,
+            simplify: None,
         }
     }
 }
@@ -250,6 +272,13 @@ impl ContourOptions {
     /// With the given quad split.
     pub fn with_split(mut self, s: QuadSplit) -> Self {
         self.split = s;
+        self
+    }
+
+    /// With 2 × 2 × 2 blocks of cells merged where the planes of their crossings pass within
+    /// `tol` mm of one point ([`ContourOptions::simplify`]); `None` keeps every cell.
+    pub fn with_simplify(mut self, tol: Option<f64>) -> Self {
+        self.simplify = tol;
         self
     }
 }
@@ -276,6 +305,8 @@ pub struct ContourStats {
     pub clamped_vertices: usize,
     /// Vertices moved onto the exact surface ([`dual_contour_projected`]).
     pub projected_vertices: usize,
+    /// 2 × 2 × 2 blocks of cells merged into one vertex ([`ContourOptions::simplify`]).
+    pub merged_blocks: usize,
 }
 
 impl ContourStats {
@@ -286,6 +317,7 @@ impl ContourStats {
         self.fallback_crossings += o.fallback_crossings;
         self.unknown_normals += o.unknown_normals;
         self.clamped_vertices += o.clamped_vertices;
+        self.merged_blocks += o.merged_blocks;
         self
     }
 }

@@ -138,6 +138,22 @@ pub(crate) fn joined_faces(mask: u8) -> u8 {
     })[mask as usize]
 }
 
+/// True when some face of the cell of corner mask `mask` has all four edges crossed (two
+/// diagonal inside corners): the faces where the two cells beside it must agree on a pairing.
+pub(crate) fn has_ambiguous_face(mask: u8) -> bool {
+    static TABLE: OnceLock<[bool; 256]> = OnceLock::new();
+    TABLE.get_or_init(|| {
+        std::array::from_fn(|m| {
+            face_edges().iter().any(|edges| {
+                edges.iter().all(|&e| {
+                    let [c0, c1] = edge_corners(e);
+                    (m >> c0 & 1) != (m >> c1 & 1)
+                })
+            })
+        })
+    })[mask as usize]
+}
+
 /// The four edges of each face, face index `2f + s`.
 pub(crate) fn face_edges() -> [[usize; 4]; 6] {
     std::array::from_fn(|face| {
@@ -158,6 +174,34 @@ pub(crate) fn face_edges() -> [[usize; 4]; 6] {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn ambiguous_faces_are_the_diagonal_ones() {
+        // Corners 0 and 3 (x + 2y + 4z) are diagonal on the face z = 0.
+        assert!(has_ambiguous_face(0b0000_1001));
+        // Corners 0 and 5 on the face y = 0, 0 and 6 on x = 0, all but 0 and 3.
+        assert!(has_ambiguous_face(0b0010_0001));
+        assert!(has_ambiguous_face(0b0100_0001));
+        assert!(has_ambiguous_face(!0b0000_1001));
+        // An edge, a face, a body diagonal, nothing, everything: no face with two diagonal
+        // inside corners alone.
+        for m in [0b0000_0011u8, 0b0000_1111, 0b1000_0001, 0, 0xff] {
+            assert!(!has_ambiguous_face(m), "{m:#010b}");
+        }
+        // From the corners instead of the edges: a face is ambiguous when exactly two of its
+        // corners are inside and they differ in both of the face's own coordinates.
+        for m in 0..=255u8 {
+            let by_corners = (0..3).any(|f| {
+                (0..2).any(|s| {
+                    let inside: Vec<usize> = (0..8)
+                        .filter(|&c| c >> f & 1 == s && m >> c & 1 == 1)
+                        .collect();
+                    inside.len() == 2 && (inside[0] ^ inside[1]).count_ones() == 2
+                })
+            });
+            assert_eq!(has_ambiguous_face(m), by_corners, "{m:#010b}");
+        }
+    }
 
     #[test]
     fn single_corner_diagonal_and_counts() {
