@@ -19,6 +19,17 @@ fn seg_dist(p: Vec3, a: Vec3, b: Vec3) -> f64 {
     (p - (a + d * t)).length()
 }
 
+/// Signed distance to the envelope of a ball end mill of radius `r` and overall length `top`
+/// whose tip moves along `a`–`b` in the plane z = 0: the capsule of its ball centres, united
+/// with the slab of its cylinder up to `top`.
+fn ball_line_signed(p: Vec3, r: f64, top: f64, a: Vec3, b: Vec3) -> f64 {
+    let d = seg_dist(Vec3::new(p.x, p.y, 0.0), a, b);
+    let disc = d.hypot(p.z - r) - r;
+    let (qx, qz) = (d - r, (r - p.z).max(p.z - top));
+    let rect = qx.max(0.0).hypot(qz.max(0.0)) + qx.max(qz).min(0.0);
+    disc.min(rect)
+}
+
 #[test]
 fn ball_along_a_line_sweeps_a_capsule() {
     let r = 5.0;
@@ -152,13 +163,7 @@ fn envelope_vertices_lie_on_the_exact_envelope_at_the_default_resolution() {
     assert!((ball.shank_diameter() - 2.0 * r).abs() < 1e-12);
     let (a, b) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(36.0, 0.0, 0.0));
     let program = common::gcode("G21 G90\nG0 X0 Y0 Z0\nG1 X36 F300\n");
-    let distance = |p: Vec3| {
-        let d = seg_dist(Vec3::new(p.x, p.y, 0.0), a, b);
-        let disc = d.hypot(p.z - r) - r;
-        let (qx, qz) = (d - r, (r - p.z).max(p.z - top));
-        let rect = qx.max(0.0).hypot(qz.max(0.0)) + qx.max(qz).min(0.0);
-        disc.min(rect).abs()
-    };
+    let distance = |p: Vec3| ball_line_signed(p, r, top, a, b).abs();
     let worst = |exact: bool| {
         let opts = EnvelopeOptions::default().with_exact_vertices(exact);
         let env = envelope(&program, &common::tools(&ball), 0..2, &opts).unwrap();
@@ -194,13 +199,7 @@ fn merged_blocks_keep_the_vertices_exact_and_the_facets_within_a_chord() {
     let top = ball.overall_length();
     let (a, b) = (Vec3::new(0.0, 0.0, 0.0), Vec3::new(36.0, 0.0, 0.0));
     let program = common::gcode("G21 G90\nG0 X0 Y0 Z0\nG1 X36 F300\n");
-    let signed = |p: Vec3| {
-        let d = seg_dist(Vec3::new(p.x, p.y, 0.0), a, b);
-        let disc = d.hypot(p.z - r) - r;
-        let (qx, qz) = (d - r, (r - p.z).max(p.z - top));
-        let rect = qx.max(0.0).hypot(qz.max(0.0)) + qx.max(qz).min(0.0);
-        disc.min(rect)
-    };
+    let signed = |p: Vec3| ball_line_signed(p, r, top, a, b);
     let h = 0.1;
     let run = |simplify| {
         let opts = EnvelopeOptions::default()

@@ -232,30 +232,27 @@ fn vertices_two_cells_put_at_one_point_do_not_pinch() {
     );
     let m = dual_contour(&FnGrid::new(lattice, sphere), &ContourOptions::default());
     assert_clean(&m, "small sphere");
-    let cubes = [
+    let sdf = blobs_sdf(vec![
         (
-            Vec3::new(0.7979366379346783, -0.17551372899790182, 0.0),
+            0.7979366379346783,
+            -0.17551372899790182,
+            0.0,
             0.35198838193916815,
+            true,
         ),
         (
-            Vec3::new(-0.329900952604767, -0.791027548893767, 0.0),
+            -0.329900952604767,
+            -0.791027548893767,
+            0.0,
             0.749853447226729,
+            true,
         ),
-    ];
-    let sdf = move |p: Vec3| {
-        cubes
-            .iter()
-            .map(|&(c, r)| box_sdf(c, Vec3::splat(r), r)(p))
-            .fold(f64::INFINITY, f64::min)
-    };
+    ]);
     let h = 0.10945730074530509;
     let lattice = Lattice::covering(Aabb::new(Vec3::splat(-1.5), Vec3::splat(1.5)), h);
     let m = dual_contour(&FnGrid::new(lattice, sdf), &ContourOptions::default());
     assert_clean(&m, "two cubes");
 }
-
-/// A blob: centre x, y, z, size, and whether it is a (turned) cube rather than a sphere.
-type Blob = (f64, f64, f64, f64, bool);
 
 fn blob_strategy() -> impl Strategy<Value = (Vec<Blob>, f64)> {
     (
@@ -277,13 +274,7 @@ proptest! {
     #![proptest_config(swarf_testdata::proptest_config(64))]
     #[test]
     fn random_unions_are_closed_and_oriented((blobs, h) in blob_strategy()) {
-        let shapes: Vec<_> = blobs.clone();
-        let sdf = move |p: Vec3| {
-            shapes.iter().map(|&(x, y, z, r, cube)| {
-                let c = Vec3::new(x, y, z);
-                if cube { box_sdf(c, Vec3::splat(r), r)(p) } else { (p - c).length() - r }
-            }).fold(f64::INFINITY, f64::min)
-        };
+        let sdf = blobs_sdf(blobs);
         let lattice = Lattice::covering(Aabb::new(Vec3::splat(-1.5), Vec3::splat(1.5)), h);
         let m = dual_contour(&FnGrid::new(lattice, sdf), &ContourOptions::default());
         let r = m.edge_report();

@@ -69,16 +69,8 @@ fn a_sphere_merges_to_about_a_quarter_within_the_tolerance() {
     assert_eq!(euler_and_components(&merged), (2, 1));
     // Vertices where the QEF puts them: within the tolerance of the sphere (beyond the fine
     // mesh's own error); facets a chord of a block's width (2h√3) inside it at most.
-    let vertex_error = merged
-        .vertices
-        .iter()
-        .map(|&p| sdf(p).abs())
-        .fold(0.0, f64::max);
-    let fine_error = fine
-        .vertices
-        .iter()
-        .map(|&p| sdf(p).abs())
-        .fold(0.0, f64::max);
+    let vertex_error = vertex_to_surface(&merged, sdf);
+    let fine_error = vertex_to_surface(&fine, sdf);
     assert!(
         vertex_error <= fine_error + tol,
         "{vertex_error} vs {fine_error}"
@@ -121,11 +113,7 @@ fn flat_faces_and_sharp_edges_stay_exact() {
     assert_eq!(euler_and_components(&merged), (2, 1));
     // Every vertex on the box (faces, edges, corners: planes that meet in a point). Facets
     // folding across a turned edge cut it by a chord, as the fine mesh's do.
-    let vertex_error = merged
-        .vertices
-        .iter()
-        .map(|&p| sdf(p).abs())
-        .fold(0.0, f64::max);
+    let vertex_error = vertex_to_surface(&merged, sdf);
     assert!(vertex_error < 1e-9, "{vertex_error}");
     let (err, fine_err) = (mesh_to_surface(&merged, sdf), mesh_to_surface(&fine, sdf));
     assert!(err <= fine_err, "{err} vs {fine_err}");
@@ -181,9 +169,6 @@ fn topology_below_a_block_is_kept() {
     assert_eq!(euler_and_components(&merged), euler_and_components(&fine));
 }
 
-/// A blob: centre x, y, z, size, and whether it is a (turned) cube rather than a sphere.
-type Blob = (f64, f64, f64, f64, bool);
-
 fn blob_strategy() -> impl Strategy<Value = (Vec<Blob>, f64, f64)> {
     (
         prop::collection::vec(
@@ -205,13 +190,7 @@ proptest! {
     #![proptest_config(swarf_testdata::proptest_config(256))]
     #[test]
     fn random_unions_keep_their_topology((blobs, h, tol) in blob_strategy()) {
-        let sdf = move |p: Vec3| {
-            blobs.iter().map(|&(x, y, z, r, cube)| {
-                let c = Vec3::new(x, y, z);
-                if cube { box_sdf(c, Vec3::splat(r), r)(p) } else { (p - c).length() - r }
-            }).fold(f64::INFINITY, f64::min)
-        };
-        let sdf = &sdf;
+        let sdf = &blobs_sdf(blobs);
         let lattice = Lattice::covering(Aabb::new(Vec3::splat(-1.5), Vec3::splat(1.5)), h);
         let fine = contour(lattice, sdf, None);
         let merged = contour(lattice, sdf, Some(tol));
@@ -221,8 +200,7 @@ proptest! {
         prop_assert!(merged.len() <= fine.len());
         // Each merged vertex solves its block's QEF: within the tolerance of the planes, so
         // of the surface up to the fine cells' own error and the block's size.
-        let fine_error = fine.vertices.iter().map(|&p| sdf(p).abs()).fold(0.0, f64::max);
-        let err = merged.vertices.iter().map(|&p| sdf(p).abs()).fold(0.0, f64::max);
+        let (fine_error, err) = (vertex_to_surface(&fine, sdf), vertex_to_surface(&merged, sdf));
         prop_assert!(err <= fine_error + tol + 0.5 * h, "{} vs {}", err, fine_error);
         let area = fine.area();
         prop_assert!((merged.volume() - fine.volume()).abs() <= area * (tol + 0.25 * h) + 1e-9,
@@ -235,22 +213,22 @@ fn a_corner_two_cells_put_their_vertices_on_stays_manifold() {
     // Two turned cubes (a shrunk case of the property test below): two cells' QEFs put their
     // vertices on one corner of the second cube, one point in f32. With merged blocks around
     // it, merging the two made an edge of four triangles; the repair now keeps them apart.
-    let blobs = [
+    let sdf = &blobs_sdf(vec![
         (
-            Vec3::new(-0.2732597379481262, -0.9234169497009213, 0.6090404284932487),
+            -0.2732597379481262,
+            -0.9234169497009213,
+            0.6090404284932487,
             0.870869179870048,
+            true,
         ),
         (
-            Vec3::new(0.2283764191468182, -0.9592491214504739, 0.0),
+            0.2283764191468182,
+            -0.9592491214504739,
+            0.0,
             0.5954347790855747,
+            true,
         ),
-    ];
-    let sdf = move |p: Vec3| {
-        blobs
-            .iter()
-            .map(|&(c, r)| box_sdf(c, Vec3::splat(r), r)(p))
-            .fold(f64::INFINITY, f64::min)
-    };
+    ]);
     let h = 0.12775644970312736;
     let lattice = Lattice::covering(Aabb::new(Vec3::splat(-1.5), Vec3::splat(1.5)), h);
     let fine = contour(lattice, sdf, None);

@@ -91,6 +91,32 @@ pub fn distance_to_mesh(m: &TriMesh, p: Vec3) -> f64 {
         .fold(f64::INFINITY, f64::min)
 }
 
+/// Largest |sdf| over the mesh's vertices.
+pub fn vertex_to_surface(m: &TriMesh, sdf: impl Fn(Vec3) -> f64) -> f64 {
+    m.vertices.iter().map(|&p| sdf(p).abs()).fold(0.0, f64::max)
+}
+
+/// A blob of the property tests: centre x, y, z, size, and whether it is a cube (turned about
+/// Z by its size in radians) rather than a sphere.
+pub type Blob = (f64, f64, f64, f64, bool);
+
+/// Signed distance to the union of `blobs`.
+pub fn blobs_sdf(blobs: Vec<Blob>) -> impl Fn(Vec3) -> f64 + Sync + Send {
+    move |p: Vec3| {
+        blobs
+            .iter()
+            .map(|&(x, y, z, r, cube)| {
+                let c = Vec3::new(x, y, z);
+                if cube {
+                    box_sdf(c, Vec3::splat(r), r)(p)
+                } else {
+                    (p - c).length() - r
+                }
+            })
+            .fold(f64::INFINITY, f64::min)
+    }
+}
+
 /// Largest |sdf| over vertices, edge midpoints and centroids: the mesh-to-surface half of the
 /// Hausdorff distance (sampled).
 pub fn mesh_to_surface(m: &TriMesh, sdf: impl Fn(Vec3) -> f64) -> f64 {
