@@ -229,7 +229,8 @@ pub struct ContourOptions {
     /// Merge each 2 × 2 × 2 block of cells into one vertex where that changes neither the
     /// surface's topology nor, beyond this distance (mm), its shape: `None` (the default)
     /// keeps one vertex per cell patch. A block is merged when every cell of it with a
-    /// crossing has a single patch, the block's own corners make a single patch, the lattice
+    /// crossing has a single patch and no ambiguous face (one with two diagonal inside
+    /// corners), the block's own corners make a single patch with no ambiguous face, the lattice
     /// points at its edges' and faces' middles and at its centre each have the side of one of
     /// the corners around them (Ju et al. 2002's topology-safety test: the merged contour is
     /// the fine one's, face by face), and the planes of all its crossings pass within this
