@@ -174,15 +174,9 @@ fn two_solids_closer_than_a_cell() {
     let h = 0.2;
     for gap in [0.3 * h, 0.6 * h, 0.9 * h] {
         // Two spheres and two boxes, gap measured along a diagonal and along X.
-        let r = 1.0;
-        let d = (2.0 * r + gap) / 3f64.sqrt();
-        let a = sphere_sdf(Vec3::ZERO, r);
-        let b = sphere_sdf(Vec3::splat(d), r);
+        let (spheres, d) = two_spheres_sdf(1.0, gap);
         let lattice = Lattice::covering(Aabb::new(Vec3::splat(-1.5), Vec3::splat(d + 1.5)), h);
-        let m = dual_contour(
-            &FnGrid::new(lattice, move |p: Vec3| a(p).min(b(p))),
-            &ContourOptions::default(),
-        );
+        let m = dual_contour(&FnGrid::new(lattice, spheres), &ContourOptions::default());
         assert_clean(&m, &format!("two spheres, gap {gap}"));
         let exact = 2.0 * 4.0 / 3.0 * std::f64::consts::PI;
         assert!(

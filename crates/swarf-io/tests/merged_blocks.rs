@@ -42,6 +42,17 @@ fn euler_and_components(m: &TriMesh) -> (i64, usize) {
     (v - 3 * f / 2 + f, components)
 }
 
+/// Asserts that `merged` is clean (`assert_clean`) and has the Euler characteristic and the
+/// components of `fine`.
+fn assert_same_topology(merged: &TriMesh, fine: &TriMesh, what: &str) {
+    assert_clean(merged, what);
+    assert_eq!(
+        euler_and_components(merged),
+        euler_and_components(fine),
+        "{what}"
+    );
+}
+
 fn contour(lattice: Lattice, sdf: impl Fn(Vec3) -> f64 + Sync, tol: Option<f64>) -> TriMesh {
     let (m, _) = dual_contour_with_stats(
         &FnGrid::new(lattice, sdf),
@@ -132,20 +143,11 @@ fn topology_below_a_block_is_kept() {
     // its two faces).
     let h = 0.05;
     for gap in [1.2 * h, 1.6 * h, 2.5 * h] {
-        let r = 0.6;
-        let d = (2.0 * r + gap) / 3f64.sqrt();
-        let a = sphere_sdf(Vec3::ZERO, r);
-        let b = sphere_sdf(Vec3::splat(d), r);
+        let (spheres, d) = two_spheres_sdf(0.6, gap);
         let lattice = Lattice::covering(Aabb::new(Vec3::splat(-0.8), Vec3::splat(d + 0.8)), h);
-        let spheres = move |p: Vec3| a(p).min(b(p));
         let fine = contour(lattice, spheres, None);
         let merged = contour(lattice, spheres, Some(5e-3));
-        assert_clean(&merged, &format!("spheres, gap {gap}"));
-        assert_eq!(
-            euler_and_components(&merged),
-            euler_and_components(&fine),
-            "spheres, gap {gap}"
-        );
+        assert_same_topology(&merged, &fine, &format!("spheres, gap {gap}"));
         assert!(merged.len() < fine.len() / 2);
         let e = Vec3::new(0.7, 0.8, 0.6);
         let sa = box_sdf(Vec3::new(-0.71 - 0.5 * gap, 0.0, 0.0), e, 0.0);
@@ -154,19 +156,13 @@ fn topology_below_a_block_is_kept() {
         let lattice = Lattice::covering(Aabb::new(Vec3::splat(-1.6), Vec3::splat(1.6)), h);
         let fine = contour(lattice, slabs, None);
         let merged = contour(lattice, slabs, Some(1e-6));
-        assert_clean(&merged, &format!("slabs, gap {gap}"));
-        assert_eq!(
-            euler_and_components(&merged),
-            euler_and_components(&fine),
-            "slabs, gap {gap}"
-        );
+        assert_same_topology(&merged, &fine, &format!("slabs, gap {gap}"));
     }
     let plate = box_sdf(Vec3::ZERO, Vec3::new(1.0, 0.8, 0.04), 0.3);
     let lattice = Lattice::covering(Aabb::new(Vec3::splat(-1.2), Vec3::splat(1.2)), h);
     let fine = contour(lattice, plate, None);
     let merged = contour(lattice, plate, Some(1e-6));
-    assert_clean(&merged, "thin plate");
-    assert_eq!(euler_and_components(&merged), euler_and_components(&fine));
+    assert_same_topology(&merged, &fine, "thin plate");
 }
 
 fn blob_strategy() -> impl Strategy<Value = (Vec<Blob>, f64, f64)> {
@@ -237,6 +233,5 @@ fn a_corner_two_cells_put_their_vertices_on_stays_manifold() {
         &ContourOptions::default().with_simplify(Some(1e-6)),
     );
     assert!(stats.merged_blocks > 0);
-    assert_clean(&merged, "merged");
-    assert_eq!(euler_and_components(&merged), euler_and_components(&fine));
+    assert_same_topology(&merged, &fine, "two turned cubes");
 }

@@ -316,7 +316,8 @@ fn moves_csv(program: &Program, report: &SimulationReport) -> String {
     out
 }
 
-/// The machined part's mesh, its coplanar triangles merged when asked.
+/// The machined part's mesh, with blocks of cells merged (`--simplify`) and coplanar
+/// triangles merged (`--merge-planar`) when asked.
 fn stock_mesh(stock: &TriDexel, options: StockMeshOut) -> swarf_io::TriMesh {
     let (mesh, _) = stock.to_mesh(&ContourOptions::default().with_simplify(options.simplify));
     if options.merge_planar {

@@ -816,16 +816,13 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
         };
         mesh.triangles_of(&window[..], first_k, ready, opt.split);
         // Merged blocks put a vertex into triangles of three slabs, not two: their meshes
-        // are projected whole, at the end.
+        // are projected whole, at the end (with `TriMesh::vertex_normals`).
         if let (Some(project), None) = (project, opt.simplify) {
             mesh.normals_and_projection(k1 == n[2], project);
         }
         window.drain(..ready);
         first_k += ready as i32;
         k0 = k1;
-    }
-    if let (Some(project), Some(_)) = (project, opt.simplify) {
-        mesh.project_all(project);
     }
     stats.lines = store.line_count();
     stats.spans = store.span_count();
@@ -839,7 +836,12 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
     } = mesh;
     vertices.shrink_to_fit();
     triangles.shrink_to_fit();
-    (TriMesh::from_parts(vertices, triangles), stats)
+    let mut mesh = TriMesh::from_parts(vertices, triangles);
+    if let (Some(project), Some(_)) = (project, opt.simplify) {
+        let normals = mesh.vertex_normals();
+        stats.projected_vertices += project_vertices(&mut mesh.vertices, &normals, project);
+    }
+    (mesh, stats)
 }
 
 /// The mesh as the slabs fill it.
@@ -934,16 +936,6 @@ impl Stream {
             from += 2 * slab.owned.len();
         }
         self.triangles.truncate(to);
-    }
-
-    /// Every vertex moved by `project`, given its unit normal (area-weighted over its
-    /// triangles, all where the contouring put them).
-    fn project_all(&mut self, project: Projection<'_>) {
-        let mut normals = area_vectors_at(&self.vertices, &self.triangles, 0..self.vertices.len());
-        for n in &mut normals {
-            *n = n.normalize_or_zero();
-        }
-        self.projected += project_vertices(&mut self.vertices, &normals, project);
     }
 
     /// Normals of the vertices of the slabs that have their triangles now, then the

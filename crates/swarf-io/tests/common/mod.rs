@@ -20,6 +20,14 @@ pub fn sphere_sdf(c: Vec3, r: f64) -> impl Fn(Vec3) -> f64 + Sync + Send + Copy 
     move |p: Vec3| (p - c).length() - r
 }
 
+/// Two spheres of radius `r`, the second's centre on the first's diagonal `(d, d, d)` so that
+/// `gap` separates them; returns the union's distance and `d`.
+pub fn two_spheres_sdf(r: f64, gap: f64) -> (impl Fn(Vec3) -> f64 + Sync + Send + Copy, f64) {
+    let d = (2.0 * r + gap) / 3f64.sqrt();
+    let (a, b) = (sphere_sdf(Vec3::ZERO, r), sphere_sdf(Vec3::splat(d), r));
+    (move |p: Vec3| a(p).min(b(p)), d)
+}
+
 /// Capped cylinder along Z: centre of the base `c`, radius `r`, height `h`.
 pub fn cylinder_sdf(c: Vec3, r: f64, h: f64) -> impl Fn(Vec3) -> f64 + Sync + Send + Copy {
     move |p: Vec3| {
