@@ -595,18 +595,24 @@ impl TriMesh {
             .collect();
         order.par_sort_unstable();
         let mut remap: Vec<u32> = vec![0; self.vertices.len()];
+        // The runs of two vertices or more (rare), as ranges of `members`: listed only they,
+        // and without the sort, which is dropped before the tables below are built.
         let mut runs: Vec<std::ops::Range<usize>> = Vec::new();
-        let mut run_first = 0u32;
+        let mut members: Vec<u32> = Vec::new();
+        let mut start = 0;
         for (n, &(k, i)) in order.iter().enumerate() {
-            if n == 0 || order[n - 1].0 != k {
-                run_first = i;
-                runs.push(n..n + 1);
-            } else if let Some(r) = runs.last_mut() {
-                r.end = n + 1;
+            if n > 0 && order[n - 1].0 != k {
+                start = n;
             }
-            remap[i as usize] = run_first;
+            remap[i as usize] = order[start].1;
+            let ends = order.get(n + 1).map_or(true, |next| next.0 != k);
+            if ends && n > start {
+                let at = members.len();
+                members.extend(order[start..=n].iter().map(|&(_, i)| i));
+                runs.push(at..members.len());
+            }
         }
-        runs.retain(|r| r.len() > 1);
+        drop(order);
         // Two vertices at one position are one in a file. Merged, an edge from it to a
         // neighbour of both is used by four triangles where each had its own closed fan (two
         // cells' vertices clamped to one point): the vertices of such a run are moved one `f32`
@@ -614,15 +620,15 @@ impl TriMesh {
         // made (a cluster of merges can close up only together), again after each round of
         // moves. (Runs are rare: the triangles around each vertex are listed only for them.)
         if !runs.is_empty() {
-            let around = VertexTriangles::new(self.vertices.len(), &self.triangles);
+            let around = VertexTriangles::of_some(self.vertices.len(), &self.triangles, &members);
             for _round in 0..4 {
                 let mut moved = false;
                 for r in runs.iter_mut().filter(|r| r.start < r.end) {
-                    let members: Vec<u32> = order[r.clone()].iter().map(|&(_, i)| i).collect();
-                    if merge_keeps_manifold(&self.triangles, &around, &remap, &members) {
+                    let run = &members[r.clone()];
+                    if merge_keeps_manifold(&self.triangles, &around, &remap, run) {
                         continue;
                     }
-                    for &m in &members[1..] {
+                    for &m in &run[1..] {
                         remap[m as usize] = m;
                         let p = &mut self.vertices[m as usize];
                         p.x = f32_step(p.x);
@@ -641,7 +647,7 @@ impl TriMesh {
             .enumerate()
             .filter(|&(i, &r)| r != i as u32)
             .count();
-        drop(order);
+        drop(members);
         // Remapped in place (a mesh with nothing merged keeps its triangles as they were);
         // collapsed triangles become `GONE` until the end.
         let mut tris = std::mem::take(&mut self.triangles);
@@ -847,34 +853,83 @@ const GONE: [u32; 3] = [u32::MAX; 3];
 pub(crate) struct VertexTriangles {
     start: Vec<u32>,
     index: Vec<u32>,
+    /// The vertices listed, sorted, when only some are (`start` is then per entry of this
+    /// list); `None`: every vertex, `start` per vertex.
+    only: Option<Vec<u32>>,
 }
 
 impl VertexTriangles {
     /// Each vertex's triangles (corner indices below `vertices`; `GONE` triangles skipped).
     pub(crate) fn new(vertices: usize, tris: &[[u32; 3]]) -> Self {
-        let mut start = vec![0u32; vertices + 1];
+        Self::build(vertices, tris, |v| Some(v as usize), None)
+    }
+
+    /// The triangles of the vertices in `wanted` only (any order, repeats allowed): for a few
+    /// vertices of a large mesh, a table the size of their fans rather than of the mesh.
+    pub(crate) fn of_some(vertices: usize, tris: &[[u32; 3]], wanted: &[u32]) -> Self {
+        let mut only = wanted.to_vec();
+        only.sort_unstable();
+        only.dedup();
+        // A bit per vertex rejects the corners of almost every triangle without a search.
+        let mut marked = vec![0u64; vertices.div_ceil(64)];
+        for &v in &only {
+            marked[v as usize / 64] |= 1 << (v % 64);
+        }
+        let slot = |v: u32| {
+            (marked[v as usize / 64] >> (v % 64) & 1 == 1)
+                .then(|| only.binary_search(&v).ok())
+                .flatten()
+        };
+        let n = only.len();
+        let built = Self::build(n, tris, slot, None);
+        Self {
+            only: Some(only),
+            ..built
+        }
+    }
+
+    /// The table of `slots` entries, vertex `v` filed under `slot(v)` (none: not listed).
+    fn build(
+        slots: usize,
+        tris: &[[u32; 3]],
+        slot: impl Fn(u32) -> Option<usize>,
+        only: Option<Vec<u32>>,
+    ) -> Self {
+        let mut start = vec![0u32; slots + 1];
         for t in tris.iter().filter(|&&t| t != GONE) {
             for &v in t {
-                start[v as usize + 1] += 1;
+                if let Some(s) = slot(v) {
+                    start[s + 1] += 1;
+                }
             }
         }
-        for i in 0..vertices {
+        for i in 0..slots {
             start[i + 1] += start[i];
         }
         let mut fill = start.clone();
-        let mut index = vec![0u32; start[vertices] as usize];
+        let mut index = vec![0u32; start[slots] as usize];
         for (i, t) in tris.iter().enumerate().filter(|(_, &t)| t != GONE) {
             for &v in t {
-                index[fill[v as usize] as usize] = i as u32;
-                fill[v as usize] += 1;
+                if let Some(s) = slot(v) {
+                    index[fill[s] as usize] = i as u32;
+                    fill[s] += 1;
+                }
             }
         }
-        Self { start, index }
+        Self { start, index, only }
     }
 
-    /// The triangles that had `v` as a corner when this was built.
+    /// The triangles that had `v` as a corner when this was built (none for a vertex not
+    /// listed by [`VertexTriangles::of_some`]).
     pub(crate) fn of(&self, v: u32) -> &[u32] {
-        &self.index[self.start[v as usize] as usize..self.start[v as usize + 1] as usize]
+        let s = match &self.only {
+            None => v as usize,
+            Some(only) => match only.binary_search(&v) {
+                Ok(s) => s,
+                Err(_) => return &[],
+            },
+        };
+        &self.index[self.start[s] as usize..self.start[s + 1] as usize]
     }
 }
 
@@ -921,6 +976,29 @@ mod tests {
         let w = near.as_written();
         assert_eq!(w.vertices.len(), 4);
         assert_eq!(w.manifold_defect(), None);
+    }
+
+    #[test]
+    fn a_table_of_some_vertices_lists_their_fans_as_the_full_one_does() {
+        // A contoured sphere: the wanted vertices (repeats and an unused index among them)
+        // get exactly the full table's triangles, the others none.
+        use crate::contour::{dual_contour, ContourOptions, FnGrid, Lattice};
+        let lattice = Lattice::new(Vec3::splat(-1.2), Vec3::splat(0.1), [25, 25, 25]);
+        let mesh = dual_contour(
+            &FnGrid::new(lattice, |p: Vec3| p.length() - 1.0),
+            &ContourOptions::default(),
+        );
+        let nv = mesh.vertices.len() as u32;
+        let mut tris = mesh.triangles.clone();
+        tris[5] = GONE;
+        let full = VertexTriangles::new(mesh.vertices.len(), &tris);
+        let wanted = [7, 3, nv - 1, 7, tris[5 + 1][0]];
+        let some = VertexTriangles::of_some(mesh.vertices.len(), &tris, &wanted);
+        for v in 0..nv {
+            let expected = if wanted.contains(&v) { full.of(v) } else { &[] };
+            assert_eq!(some.of(v), expected, "vertex {v}");
+        }
+        assert!(wanted.iter().all(|&v| !full.of(v).is_empty()));
     }
 
     #[test]
