@@ -137,6 +137,47 @@ fn flat_faces_and_sharp_edges_stay_exact() {
 }
 
 #[test]
+fn faces_on_the_domain_boundary_merge_on_every_side() {
+    // A solid filling its lattice (an uncut stock): its faces lie on the domain's boundary.
+    // With an even or odd number of points per axis, each face merges as its opposite does —
+    // the top face too, which lies in a slab left without a partner when the slabs are odd
+    // in number — and the mesh is a quarter of the fine one, but for the blocks at the
+    // faces' rims.
+    for n in [[12, 13, 10], [13, 12, 11]] {
+        let lattice = Lattice::new(Vec3::ZERO, Vec3::splat(0.1), n);
+        let fine = contour(lattice, |_| -1.0, None);
+        let merged = contour(lattice, |_| -1.0, Some(1e-6));
+        assert_same_topology(&merged, &fine, "a filled lattice");
+        let facing = |m: &TriMesh, axis: usize, sign: f64| {
+            m.triangles
+                .iter()
+                .filter(|t| {
+                    let [a, b, c] = t.map(|i| m.vertices[i as usize]);
+                    let normal = (b - a).cross(c - a);
+                    normal[axis] * sign > 0.9 * normal.length()
+                })
+                .count()
+        };
+        for axis in 0..3 {
+            let (up, down) = (facing(&merged, axis, 1.0), facing(&merged, axis, -1.0));
+            let fine_up = facing(&fine, axis, 1.0);
+            assert!(
+                up.abs_diff(down) * 10 <= fine_up && 3 * up <= fine_up,
+                "{n:?}, axis {axis}: {up} and {down} of {fine_up}"
+            );
+        }
+        let ratio = merged.len() as f64 / fine.len() as f64;
+        assert!(ratio < 0.32, "{n:?}: {} of {}", merged.len(), fine.len());
+        let exact = n.iter().map(|&k| 0.1 * k as f64).product::<f64>();
+        assert!(
+            (merged.volume() - exact).abs() < 1e-9,
+            "{}",
+            merged.volume()
+        );
+    }
+}
+
+#[test]
 fn topology_below_a_block_is_kept() {
     // Two spheres and two slabs a little more than a cell apart: resolved by the fine cells,
     // not by a block of two. The merged mesh keeps both components (and a thin plate keeps

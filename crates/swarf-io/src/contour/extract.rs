@@ -779,7 +779,13 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
                             let at = (k - k0) as usize;
                             let mut lo = ctx.phase1(k, sa, &levels[at], &levels[at + 1]);
                             if k + 1 == k1 {
-                                lo.qefs = Vec::new();
+                                // The top slab, alone when the slabs are odd in number: paired
+                                // with the empty one above the lattice, so that its blocks
+                                // merge too (a stock's uncut top face lies in it).
+                                let empty = LevelEdges::default();
+                                let mut above = ctx.phase1(k + 1, sb, &levels[at + 1], &empty);
+                                ctx.merge_pair(k, sa, &mut lo, &mut above, tol);
+                                debug_assert!(above.cells.is_empty());
                                 return vec![lo];
                             }
                             let mut hi = ctx.phase1(k + 1, sb, &levels[at + 1], &levels[at + 2]);
