@@ -128,11 +128,16 @@ fn flat_faces_and_sharp_edges_stay_exact() {
     assert!(vertex_error < 1e-9, "{vertex_error}");
     let (err, fine_err) = (mesh_to_surface(&merged, sdf), mesh_to_surface(&fine, sdf));
     assert!(err <= fine_err, "{err} vs {fine_err}");
+    // The volume no further off than the fine mesh's (whose facets cut the turned edges by
+    // chords: 2.2e-5 of it).
     let exact = 8.0 * 0.9 * 0.7 * 0.55;
+    let (err, fine_err) = (
+        (merged.volume() - exact).abs(),
+        (fine.volume() - exact).abs(),
+    );
     assert!(
-        (merged.volume() - exact).abs() < 1e-5 * exact,
-        "{}",
-        merged.volume()
+        err <= fine_err && fine_err < 3e-5 * exact,
+        "{err} vs {fine_err}"
     );
 }
 

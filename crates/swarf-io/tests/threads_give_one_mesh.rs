@@ -2,7 +2,8 @@
 //! two slabs beside it, level and slab work running in batches whose size follows the number
 //! of worker threads: the mesh and its statistics must not depend on that. A tall solid (many
 //! batches, ending at different levels in each pool) is contoured in pools of 1, 2 and 3
-//! threads; the meshes must be equal to the bit, closed, and on the solid's surface.
+//! threads, with every cell and with blocks of cells merged; the meshes must be equal to the
+//! bit, closed, and on the solid's surface.
 
 mod common;
 use common::*;
@@ -26,22 +27,31 @@ fn stacked_spheres() -> (Lattice, impl Fn(Vec3) -> f64 + Sync + Copy) {
 
 #[test]
 fn the_mesh_does_not_depend_on_the_threads() {
+    // With every cell, and with 2 × 2 × 2 blocks merged (decided a pair of slabs at a time,
+    // the pair above a batch before the batch).
     let (lattice, sdf) = stacked_spheres();
-    let run = |threads: usize| {
-        swarf_testdata::on_threads(threads, || {
-            dual_contour_with_stats(&FnGrid::new(lattice, sdf), &ContourOptions::default())
-        })
-    };
-    let (one, stats) = run(1);
-    assert_clean(&one, "stacked spheres");
-    // Within half a cell of the spheres (the creases where they meet are the farthest).
-    let off = mesh_to_surface(&one, sdf);
-    assert!(off < 0.05, "{off} mm off the spheres");
-    for threads in [2, 3] {
-        let (m, st) = run(threads);
-        assert_eq!(m.vertices, one.vertices, "{threads} threads");
-        assert_eq!(m.triangles, one.triangles, "{threads} threads");
-        assert_eq!(st, stats, "{threads} threads");
+    for simplify in [None, Some(2e-3)] {
+        let options = ContourOptions::default().with_simplify(simplify);
+        let run = |threads: usize| {
+            swarf_testdata::on_threads(threads, || {
+                dual_contour_with_stats(&FnGrid::new(lattice, sdf), &options)
+            })
+        };
+        let (one, stats) = run(1);
+        assert_clean(&one, "stacked spheres");
+        assert_eq!(stats.merged_blocks > 0, simplify.is_some());
+        // Within half a cell of the spheres (the creases where they meet are the farthest).
+        let off = mesh_to_surface(&one, sdf);
+        assert!(off < 0.05, "{off} mm off the spheres");
+        for threads in [2, 3] {
+            let (m, st) = run(threads);
+            assert_eq!(m.vertices, one.vertices, "{threads} threads, {simplify:?}");
+            assert_eq!(
+                m.triangles, one.triangles,
+                "{threads} threads, {simplify:?}"
+            );
+            assert_eq!(st, stats, "{threads} threads, {simplify:?}");
+        }
     }
 }
 

@@ -14,43 +14,50 @@
 //! positions. So besides the mesh itself only the line store and a batch of slabs (and the one
 //! carried to the next batch) are held, not every slab's cells and edges until the end (the
 //! peak of a large envelope was there).
+//!
+//! With merged blocks ([`ContourOptions::simplify`], module `blocks`), each batch first
+//! decides the merged blocks of its pairs of slabs and of the pair above it (whose slab the
+//! batch's top level reaches), then makes levels and slabs as above, skipping the cells of
+//! merged blocks: an edge all of whose cells are merged is dropped, or kept without a crossing
+//! where it gives a quad of four blocks. The slabs are made in pairs; a pair's block vertices
+//! follow its lower slab's own, and a vertex lookup asks the pair's map first.
 
+use super::blocks::{decide, BlockMap, BlockScratch};
 use super::lines::{boundary_in, in_runs, runs, xor_runs, Run, Store};
 use super::normal::estimate;
 use super::qef::Qef;
-use super::table::{cases, has_ambiguous_face, joined_faces, NONE};
+use super::table::{cases, joined_faces, NONE};
 use super::{ContourOptions, ContourStats, HermiteGrid, Projection, QuadSplit};
 use crate::mesh::{area_vectors_at, TriMesh};
 use rayon::prelude::*;
+use std::sync::Arc;
 use swarf_geom::math::Vec3;
 
 /// A sign-changing lattice edge from point `(i, j, k)` along `axis`.
 #[derive(Clone, Copy, Debug)]
-struct Edge {
-    axis: u8,
-    inside_low: bool,
-    i: i32,
-    j: i32,
-    k: i32,
+pub(crate) struct Edge {
+    pub(crate) axis: u8,
+    pub(crate) inside_low: bool,
+    pub(crate) i: i32,
+    pub(crate) j: i32,
+    pub(crate) k: i32,
 }
 
 /// An edge with its crossing.
 #[derive(Clone, Copy, Debug)]
-struct Hermite {
-    edge: Edge,
-    p: Vec3,
-    n: Vec3,
-    w: f64,
+pub(crate) struct Hermite {
+    pub(crate) edge: Edge,
+    pub(crate) p: Vec3,
+    pub(crate) n: Vec3,
+    pub(crate) w: f64,
 }
 
 /// A cell with vertices: key `(ci + 1) + (n0 + 1)(cj + 1)`, case (corner mask and face rule
-/// flips, see `table`), first vertex (slab-local; the mesh's own index when `global`: a cell of
-/// a merged block whose vertex is in the slab below).
+/// flips, see `table`), first vertex (slab-local).
 #[derive(Clone, Copy, Debug)]
 struct CellRec {
     key: u32,
     case: u16,
-    global: bool,
     first: u32,
 }
 
@@ -64,11 +71,33 @@ struct SlabOut {
     base: u32,
     /// Edges whose quads this slab emits: Z edges from its low level, X and Y edges on its top level.
     owned: Vec<Edge>,
-    /// With [`ContourOptions::simplify`], until the slab's blocks are merged: per cell, its
-    /// patch's QEF (relative to the cell's low corner) when the cell may join a merged block
-    /// (one patch, no ambiguous face).
-    qefs: Vec<Option<Qef>>,
+    /// With [`ContourOptions::simplify`]: the merged blocks of the slab's pair (their cells
+    /// have no record in `cells`), and the mesh index of the pair's first block vertex (set
+    /// when the pair's vertices join the mesh; they follow the cells' in the pair's lower
+    /// slab, from `block_offset` in its list).
+    blocks: Option<Arc<BlockMap>>,
+    block_base: u32,
+    block_offset: u32,
     stats: ContourStats,
+}
+
+/// The block maps of consecutive pairs of slabs, the first pair's lower slab `first` (odd).
+struct Pairs {
+    first: i32,
+    maps: Vec<Arc<BlockMap>>,
+}
+
+impl Pairs {
+    /// The map of the pair holding slab `k`.
+    fn of(&self, k: i32) -> &BlockMap {
+        &self.maps[((k - self.first) >> 1) as usize]
+    }
+
+    /// True when every cell of `cells` (of slab `k`) lies in a merged block.
+    fn all_merged(&self, k: i32, cells: &[(i32, i32)]) -> bool {
+        let map = self.of(k);
+        cells.iter().all(|&(ci, cj)| map.merged(ci, cj))
+    }
 }
 
 /// The X and Y edges of one point level with their crossings: the top of one slab and the
@@ -173,9 +202,31 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         Hermite { edge: e, p, n, w }
     }
 
+    /// An X or Y edge of a point level whose cells in each of the slabs below and above it are
+    /// `cells`: with its crossing, or (every cell merged) without one where it gives a quad of
+    /// four blocks, or nothing.
+    fn level_edge(
+        &self,
+        e: Edge,
+        t: Option<f64>,
+        cells: &[(i32, i32); 2],
+        pairs: Option<&Pairs>,
+        stats: &mut ContourStats,
+    ) -> Option<Hermite> {
+        if let Some(pairs) = pairs {
+            if pairs.all_merged(e.k - 1, cells) && pairs.all_merged(e.k, cells) {
+                let across = if e.axis == 0 { e.j } else { e.i };
+                return on_coarse_edge(across, e.k).then(|| no_crossing(e));
+            }
+        }
+        Some(self.hermite(e, t, stats))
+    }
+
     /// The X and Y edges of point level `lev` with their crossings (none outside the lattice),
-    /// in the order the slabs take them: X edges line by line, then Y edges.
-    fn level_edges(&self, lev: i32, s: &mut Scratch) -> LevelEdges {
+    /// in the order the slabs take them: X edges line by line, then Y edges. With merged
+    /// blocks (`pairs`), an edge all of whose cells are merged has no crossing computed and is
+    /// kept only where it gives a quad: on an edge of the coarse lattice of block corners.
+    fn level_edges(&self, lev: i32, s: &mut Scratch, pairs: Option<&Pairs>) -> LevelEdges {
         let [_, n1, n2] = self.n;
         let mut out = LevelEdges::default();
         if !(0..n2).contains(&lev) {
@@ -214,7 +265,10 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
                         j,
                         k: lev,
                     };
-                    out.edges.push(self.hermite(e, Some(t), &mut out.stats));
+                    let cells = [(i, j - 1), (i, j)];
+                    if let Some(h) = self.level_edge(e, Some(t), &cells, pairs, &mut out.stats) {
+                        out.edges.push(h);
+                    }
                 }
             }
         }
@@ -230,7 +284,10 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
                     j,
                     k: lev,
                 };
-                out.edges.push(self.hermite(e, None, &mut out.stats));
+                let cells = [(i - 1, j), (i, j)];
+                if let Some(h) = self.level_edge(e, None, &cells, pairs, &mut out.stats) {
+                    out.edges.push(h);
+                }
             }
             s.found = found;
         }
@@ -239,7 +296,15 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
 
     /// The cells and vertices of slab `k`, between point levels `k` and `k + 1` whose X and Y
     /// edges are `below` and `above`.
-    fn phase1(&self, k: i32, s: &mut Scratch, below: &LevelEdges, above: &LevelEdges) -> SlabOut {
+    fn phase1(
+        &self,
+        k: i32,
+        s: &mut Scratch,
+        below: &LevelEdges,
+        above: &LevelEdges,
+        pairs: Option<&Pairs>,
+    ) -> SlabOut {
+        let map = pairs.map(|p| p.of(k));
         let [n0, n1, n2] = self.n;
         let lat = &self.store.lattice;
         let mut stats = ContourStats::default();
@@ -271,11 +336,14 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         s.edges.clear();
         s.pairs.clear();
         let mut owned = Vec::new();
+        // Cells of merged blocks have no vertex of their own: no record, no QEF.
         let push = |s: &mut Scratch, h: Hermite, cells: &[(i32, i32)]| {
             let id = s.edges.len() as u64;
             s.edges.push(h);
             for &(ci, cj) in cells {
-                s.pairs.push((self.key(ci, cj) as u64) << 32 | id);
+                if !map.is_some_and(|m| m.merged(ci, cj)) {
+                    s.pairs.push((self.key(ci, cj) as u64) << 32 | id);
+                }
             }
         };
         // X and Y edges of both levels, computed once per level; this slab emits the quads of
@@ -306,8 +374,16 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
                     j,
                     k,
                 };
+                let cells = [(i - 1, j - 1), (i, j - 1), (i - 1, j), (i, j)];
+                if pairs.is_some_and(|p| p.all_merged(k, &cells)) {
+                    // A quad of four blocks on a coarse edge, else nothing.
+                    if on_coarse_edge(i, j) {
+                        owned.push(e);
+                    }
+                    continue;
+                }
                 let h = self.hermite(e, None, &mut stats);
-                push(s, h, &[(i - 1, j - 1), (i, j - 1), (i - 1, j), (i, j)]);
+                push(s, h, &cells);
                 owned.push(e);
             }
             s.found = found;
@@ -317,7 +393,6 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         let table = cases();
         let mut cells = Vec::new();
         let mut vertices = Vec::new();
-        let mut qef_of_cell = Vec::new();
         let mut g = 0;
         while g < s.pairs.len() {
             let key = (s.pairs[g] >> 32) as u32;
@@ -389,14 +464,9 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
                     qefs[patch as usize].add(h.p - corner, h.n, h.w);
                 }
             }
-            if self.opt.simplify.is_some() {
-                let may_merge = case.count == 1 && flips == 0 && !has_ambiguous_face(mask);
-                qef_of_cell.push(may_merge.then_some(qefs[0]));
-            }
             cells.push(CellRec {
                 key,
                 case: case_index,
-                global: false,
                 first: vertices.len() as u32,
             });
             let size = lat.spacing;
@@ -434,194 +504,12 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
             vertices,
             base: 0,
             owned,
-            qefs: qef_of_cell,
+            blocks: None,
+            block_base: 0,
+            block_offset: 0,
             stats,
         }
     }
-
-    /// Merges the 2 × 2 × 2 blocks of cells of slabs `k` (`lo`) and `k + 1` (`hi`) that pass
-    /// the tests of [`ContourOptions::simplify`] (tolerance `tol`) into one vertex each, kept
-    /// in `lo`'s list; `hi`'s cells of a merged block point to it with the index `lo`'s base
-    /// will add to (`global`, see `extract`). `s` is `phase1(k)`'s scratch: the X lines' runs
-    /// of point levels `k`, `k + 1` and `k + 2` (slots 0, 1, 3). Blocks are aligned on cells
-    /// `2b − 1, 2b` along each axis (`k` is odd).
-    fn merge_pair(&self, k: i32, s: &Scratch, lo: &mut SlabOut, hi: &mut SlabOut, tol: f64) {
-        let [n0, n1, _] = self.n;
-        let lat = &self.store.lattice;
-        let stride = (n0 + 1) as u32;
-        let bstride = (n0 + 3) as u64;
-        // Each cell of the two slabs filed under its block: block key, slab, index.
-        let mut members: Vec<u64> = Vec::with_capacity(lo.cells.len() + hi.cells.len());
-        for (si, slab) in [&*lo, &*hi].into_iter().enumerate() {
-            for (at, c) in slab.cells.iter().enumerate() {
-                let (ip, jp) = ((c.key % stride) as u64, (c.key / stride) as u64);
-                let b = (ip >> 1) + bstride * (jp >> 1);
-                members.push(b << 33 | (si as u64) << 32 | at as u64);
-            }
-        }
-        members.sort_unstable();
-        const SLOT: [usize; 3] = [0, 1, 3];
-        let inside = |i: i32, j: i32, dl: usize| -> bool {
-            if j < 0 || j >= n1 {
-                return false;
-            }
-            let slot = SLOT[dl];
-            let r = s.roff[slot][j as usize]..s.roff[slot][j as usize + 1];
-            in_runs(&s.runs[slot][r], i)
-        };
-        // Per slab and cell: the merged vertex it takes (index in `merged`), if any.
-        let mut redirect = [
-            vec![u32::MAX; lo.cells.len()],
-            vec![u32::MAX; hi.cells.len()],
-        ];
-        let mut merged: Vec<Vec3> = Vec::new();
-        let size = 2.0 * lat.spacing;
-        let mut g = 0;
-        while g < members.len() {
-            let block = members[g] >> 33;
-            let mut end = g + 1;
-            while end < members.len() && members[end] >> 33 == block {
-                end += 1;
-            }
-            let group = &members[g..end];
-            g = end;
-            // One cell alone gains nothing; every cell must have one patch.
-            let cell = |m: u64| ((m >> 32 & 1) as usize, (m & 0xffff_ffff) as usize);
-            let qef_of = |m: u64| {
-                let (si, at) = cell(m);
-                [&*lo, &*hi][si].qefs[at]
-            };
-            if group.len() < 2 || group.iter().any(|&m| qef_of(m).is_none()) {
-                continue;
-            }
-            let (bi, bj) = ((block % bstride) as i32, (block / bstride) as i32);
-            let (i0, j0) = (2 * bi - 1, 2 * bj - 1);
-            // Sides of the block's 27 lattice points, (x, y, z) ∈ {0, 1, 2}³.
-            let side = |x: usize, y: usize, z: usize| inside(i0 + x as i32, j0 + y as i32, z);
-            let mut sides = [[[false; 3]; 3]; 3];
-            for (x, plane) in sides.iter_mut().enumerate() {
-                for (y, line) in plane.iter_mut().enumerate() {
-                    for (z, v) in line.iter_mut().enumerate() {
-                        *v = side(x, y, z);
-                    }
-                }
-            }
-            if !topology_safe(&sides) {
-                continue;
-            }
-            let corner = lat.point(i0 as isize, j0 as isize, k as isize);
-            let mut q = Qef::default();
-            for &m in group {
-                let (si, at) = cell(m);
-                let key = [&*lo, &*hi][si].cells[at].key;
-                let (ci, cj) = ((key % stride) as i32 - 1, (key / stride) as i32 - 1);
-                let own = lat.point(ci as isize, cj as isize, (k + si as i32) as isize);
-                q.merge(&qef_of(m).expect("checked above").shifted(own - corner));
-            }
-            let x = q.solve(self.opt.eigen_threshold);
-            let x = if self.opt.clamp_to_cell {
-                x.clamp(Vec3::ZERO, size)
-            } else {
-                x
-            };
-            if !q.rms_distance(x).is_some_and(|d| d <= tol) {
-                continue;
-            }
-            // Planes that meet in a line or a point far from the cells' own vertices (a
-            // surface sampled by too few crossings for a block: two planes always meet) do not
-            // make a vertex of the surface: it must lie among theirs.
-            let x = corner + x;
-            let (mut lo_v, mut hi_v) = (Vec3::splat(f64::INFINITY), Vec3::splat(f64::NEG_INFINITY));
-            for &m in group {
-                let (si, at) = cell(m);
-                let slab = [&*lo, &*hi][si];
-                let v = slab.vertices[slab.cells[at].first as usize];
-                (lo_v, hi_v) = (lo_v.min(v), hi_v.max(v));
-            }
-            if x.cmplt(lo_v - Vec3::splat(tol)).any() || x.cmpgt(hi_v + Vec3::splat(tol)).any() {
-                continue;
-            }
-            for &m in group {
-                let (si, at) = cell(m);
-                redirect[si][at] = merged.len() as u32;
-            }
-            merged.push(x);
-        }
-        lo.stats.merged_blocks += merged.len();
-        // Each slab's list: the vertices of its cells that were not merged, then (in `lo`)
-        // the merged ones.
-        let table = cases();
-        let [lo_to, hi_to] = redirect;
-        for (slab, to) in [(&mut *lo, &lo_to), (&mut *hi, &hi_to)] {
-            let mut kept = Vec::with_capacity(slab.vertices.len());
-            for (c, &t) in slab.cells.iter_mut().zip(to) {
-                if t == u32::MAX {
-                    let count = table[c.case as usize].count as usize;
-                    let first = c.first as usize;
-                    c.first = kept.len() as u32;
-                    kept.extend_from_slice(&slab.vertices[first..first + count]);
-                }
-            }
-            slab.vertices = kept;
-        }
-        let at = lo.vertices.len() as u32;
-        lo.vertices.extend_from_slice(&merged);
-        lo.vertices.shrink_to_fit();
-        hi.vertices.shrink_to_fit();
-        for (c, &t) in lo.cells.iter_mut().zip(&lo_to) {
-            if t != u32::MAX {
-                c.first = at + t;
-            }
-        }
-        for (c, &t) in hi.cells.iter_mut().zip(&hi_to) {
-            if t != u32::MAX {
-                c.first = at + t;
-                c.global = true;
-            }
-        }
-        lo.qefs = Vec::new();
-        hi.qefs = Vec::new();
-    }
-}
-
-/// Ju et al.'s (2002) test that a 2 × 2 × 2 block's contour may be one vertex: the corners
-/// (`sides[x][y][z]` at even coordinates) make a single patch with no ambiguous face, and every
-/// other lattice point of the block — the middles of its edges and faces, its centre — has the
-/// side of at least one of the corners around it (those with each of its middle coordinates
-/// set to either end). The cells' own test (one patch each) is the caller's.
-fn topology_safe(sides: &[[[bool; 3]; 3]; 3]) -> bool {
-    let at = |p: [usize; 3]| sides[p[0]][p[1]][p[2]];
-    let mask = (0..8usize).fold(0u8, |m, c| {
-        let p = [2 * (c & 1), 2 * ((c >> 1) & 1), 2 * (c >> 2)];
-        m | u8::from(at(p)) << c
-    });
-    if cases()[mask as usize].count != 1 || has_ambiguous_face(mask) {
-        return false;
-    }
-    for index in 0..27usize {
-        let p = [index % 3, (index / 3) % 3, index / 9];
-        let middle: [bool; 3] = p.map(|v| v == 1);
-        if !middle.contains(&true) {
-            continue;
-        }
-        let side = at(p);
-        // The corners around `p`: each middle coordinate at 0 or 2, the others as they are.
-        let agrees = (0..8usize).any(|bits| {
-            let mut q = p;
-            for axis in 0..3 {
-                if middle[axis] {
-                    q[axis] = 2 * (bits >> axis & 1);
-                } else if bits >> axis & 1 == 1 {
-                    return false; // the same corner as with this bit clear
-                }
-            }
-            at(q) == side
-        });
-        if !agrees {
-            return false;
-        }
-    }
-    true
 }
 
 /// Point levels computed at once per worker thread (a batch's edges are held until its slabs
@@ -641,10 +529,32 @@ fn slot_of(dk: i32) -> usize {
     }
 }
 
+/// True when the lattice line through indices `a` and `b` (across its axis) joins corners of
+/// blocks (odd indices, see `blocks`): its edges halve the coarse lattice's.
+fn on_coarse_edge(a: i32, b: i32) -> bool {
+    a & 1 == 1 && b & 1 == 1
+}
+
+/// An edge kept for its quad of merged blocks only: its crossing is never read.
+fn no_crossing(edge: Edge) -> Hermite {
+    Hermite {
+        edge,
+        p: Vec3::ZERO,
+        n: Vec3::ZERO,
+        w: 0.0,
+    }
+}
+
 /// Global index of the vertex of patch `local`'s edge in cell `key` of slab `k`; `window`
 /// holds the slabs from `first_k` on.
 fn vertex_of(window: &[SlabOut], first_k: i32, stride: u32, k: i32, key: u32, local: usize) -> u32 {
     let slab = &window[(k - first_k) as usize];
+    if let Some(map) = &slab.blocks {
+        let (ci, cj) = ((key % stride) as i32 - 1, (key / stride) as i32 - 1);
+        if let Some(v) = map.vertex(ci, cj) {
+            return slab.block_base + v;
+        }
+    }
     let row = (key / stride) as usize;
     let (a, b) = (slab.rows[row] as usize, slab.rows[row + 1] as usize);
     let c = a + slab.cells[a..b].partition_point(|c| c.key < key);
@@ -652,10 +562,6 @@ fn vertex_of(window: &[SlabOut], first_k: i32, stride: u32, k: i32, key: u32, lo
     debug_assert_eq!(rec.key, key);
     let p = cases()[rec.case as usize].patch[local];
     debug_assert!(p != NONE);
-    if rec.global {
-        // A merged block's single vertex (its cells have one patch each: `p` is 0).
-        return rec.first;
-    }
     slab.base + rec.first + p as u32
 }
 
@@ -743,6 +649,9 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
     let batch = (LEVELS_PER_THREAD * rayon::current_num_threads()) as i32;
     let mut stats = ContourStats::default();
     let mut bottom: Option<LevelEdges> = None;
+    // With merged blocks: the map of the pair above the last batch (its bottom level's edges
+    // were kept or dropped by it), carried to the next.
+    let mut ahead: Option<Arc<BlockMap>> = None;
     // Slabs made whose triangles are not (the last of the batch before), from slab `first_k`.
     let mut window: Vec<SlabOut> = Vec::new();
     let mut first_k = -1;
@@ -750,64 +659,76 @@ pub(crate) fn extract<G: HermiteGrid + ?Sized>(
     while k0 < n[2] {
         let k1 = (k0 + batch).min(n[2]);
         let first = k0 + i32::from(bottom.is_some());
+        // The batch's pairs of slabs (a batch starts at an odd slab and holds an even number
+        // but for the last, whose top slab pairs with the empty one above the lattice) and the
+        // pair above it, whose slab `k1` the top level's edges reach: their merged blocks,
+        // decided before any level or slab is made.
+        let pairs = opt.simplify.map(|tol| {
+            let mut maps: Vec<Arc<BlockMap>> = ahead.take().into_iter().collect();
+            let from = k0 + 2 * maps.len() as i32;
+            let fresh: Vec<Arc<BlockMap>> = (from..=k1.min(n[2] - 1))
+                .step_by(2)
+                .collect::<Vec<i32>>()
+                .into_par_iter()
+                .map_init(BlockScratch::default, |s, k| {
+                    // Crossings counted by the cells that use them: none here.
+                    let mut uncounted = ContourStats::default();
+                    let options = (
+                        tol,
+                        opt.crossing_slack,
+                        opt.eigen_threshold,
+                        opt.clamp_to_cell,
+                    );
+                    Arc::new(decide(&store, k, options, s, |e, t| {
+                        ctx.hermite(e, t, &mut uncounted)
+                    }))
+                })
+                .collect();
+            maps.extend(fresh);
+            Pairs { first: k0, maps }
+        });
         let fresh: Vec<LevelEdges> = (first..=k1)
             .into_par_iter()
-            .map_init(Scratch::default, |s, lev| ctx.level_edges(lev, s))
+            .map_init(Scratch::default, |s, lev| {
+                ctx.level_edges(lev, s, pairs.as_ref())
+            })
             .collect();
         for l in &fresh {
             stats = stats.add(l.stats);
         }
         let levels: Vec<LevelEdges> = bottom.take().into_iter().chain(fresh).collect();
-        let made: Vec<SlabOut> = match opt.simplify {
-            None => (k0..k1)
-                .into_par_iter()
-                .map_init(Scratch::default, |s, k| {
-                    let at = (k - k0) as usize;
-                    ctx.phase1(k, s, &levels[at], &levels[at + 1])
-                })
-                .collect(),
-            // Slabs in pairs (a batch starts at an odd slab and holds an even number but for
-            // the last), each pair's blocks merged as soon as both are made.
-            Some(tol) => {
-                let pairs: Vec<Vec<SlabOut>> = (k0..k1)
-                    .step_by(2)
-                    .collect::<Vec<i32>>()
-                    .into_par_iter()
-                    .map_init(
-                        || (Scratch::default(), Scratch::default()),
-                        |(sa, sb), k| {
-                            let at = (k - k0) as usize;
-                            let mut lo = ctx.phase1(k, sa, &levels[at], &levels[at + 1]);
-                            if k + 1 == k1 {
-                                // The top slab, alone when the slabs are odd in number: paired
-                                // with the empty one above the lattice, so that its blocks
-                                // merge too (a stock's uncut top face lies in it).
-                                let empty = LevelEdges::default();
-                                let mut above = ctx.phase1(k + 1, sb, &levels[at + 1], &empty);
-                                ctx.merge_pair(k, sa, &mut lo, &mut above, tol);
-                                debug_assert!(above.cells.is_empty());
-                                return vec![lo];
-                            }
-                            let mut hi = ctx.phase1(k + 1, sb, &levels[at + 1], &levels[at + 2]);
-                            ctx.merge_pair(k, sa, &mut lo, &mut hi, tol);
-                            vec![lo, hi]
-                        },
-                    )
-                    .collect();
-                pairs.into_iter().flatten().collect()
-            }
-        };
+        let made: Vec<SlabOut> = (k0..k1)
+            .into_par_iter()
+            .map_init(Scratch::default, |s, k| {
+                let at = (k - k0) as usize;
+                let mut slab = ctx.phase1(k, s, &levels[at], &levels[at + 1], pairs.as_ref());
+                if let Some(p) = &pairs {
+                    let map = p.maps[((k - k0) >> 1) as usize].clone();
+                    // The pair's block vertices follow its lower slab's own.
+                    if (k - k0) % 2 == 0 {
+                        slab.block_offset = slab.vertices.len() as u32;
+                        slab.vertices.extend_from_slice(&map.vertices);
+                        slab.stats.merged_blocks += map.vertices.len();
+                        slab.stats.vertices = slab.vertices.len();
+                    }
+                    slab.blocks = Some(map);
+                }
+                slab
+            })
+            .collect();
+        if let Some(p) = pairs.filter(|_| k1 < n[2]) {
+            // The pair above the batch: the next batch's first.
+            ahead = p.maps.into_iter().nth(((k1 - k0) >> 1) as usize);
+        }
         bottom = levels.into_iter().last();
-        let mut below_base = 0;
-        for mut slab in made {
+        let mut pair_block_base = 0;
+        for (at, mut slab) in made.into_iter().enumerate() {
             stats = stats.add(slab.stats);
             slab.base = mesh.vertices.len() as u32;
-            // A merged block's cells in the upper slab of a pair point into the lower slab's
-            // list, the slab just before.
-            for c in slab.cells.iter_mut().filter(|c| c.global) {
-                c.first += below_base;
+            if at % 2 == 0 {
+                pair_block_base = slab.base + slab.block_offset;
             }
-            below_base = slab.base;
+            slab.block_base = pair_block_base;
             mesh.vert_start.push(mesh.vertices.len());
             mesh.vertices.append(&mut slab.vertices);
             slab.vertices = Vec::new();

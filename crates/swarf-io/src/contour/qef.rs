@@ -51,39 +51,6 @@ impl Qef {
         }
     }
 
-    /// The same planes and points with coordinates relative to a corner `delta` lower: each
-    /// `p` becomes `p + delta` (exactly the sums `add` would make of the moved points, but for
-    /// rounding).
-    pub(crate) fn shifted(&self, delta: Vec3) -> Qef {
-        let ad = self.times_ata(delta);
-        Qef {
-            atb: self.atb + ad,
-            btb: self.btb + 2.0 * delta.dot(self.atb) + delta.dot(ad),
-            mass: self.mass + delta * self.points as f64,
-            ..*self
-        }
-    }
-
-    /// Adds the planes and points of `o` (same coordinates).
-    pub(crate) fn merge(&mut self, o: &Qef) {
-        if o.wsum > 0.0 {
-            if self.wsum == 0.0 {
-                self.first = o.first;
-                self.uniform = o.uniform;
-            } else {
-                self.uniform = self.uniform && o.uniform && o.first == self.first;
-            }
-        }
-        for (a, b) in self.ata.iter_mut().zip(o.ata) {
-            *a += b;
-        }
-        self.atb += o.atb;
-        self.btb += o.btb;
-        self.mass += o.mass;
-        self.points += o.points;
-        self.wsum += o.wsum;
-    }
-
     /// Root mean square distance from `x` to the planes, weighted; `None` without planes.
     pub(crate) fn rms_distance(&self, x: Vec3) -> Option<f64> {
         (self.wsum > 0.0).then(|| {
@@ -99,6 +66,11 @@ impl Qef {
             a[1] * x.x + a[3] * x.y + a[4] * x.z,
             a[2] * x.x + a[4] * x.y + a[5] * x.z,
         )
+    }
+
+    /// True when no crossing was added.
+    pub(crate) fn is_empty(&self) -> bool {
+        self.points == 0
     }
 
     /// The mass point (mean of the crossings).
@@ -238,69 +210,41 @@ mod tests {
     }
 
     #[test]
-    fn shifted_and_merged_sums_are_those_of_the_moved_points() {
-        // Planes of a curved patch in two cells one spacing apart, merged in the first cell's
-        // frame, against the same planes added there directly.
-        let planes = |i: usize| {
-            let t = i as f64 * 0.37;
-            let n = Vec3::new(t.cos(), t.sin(), 0.4).normalize();
-            (
-                Vec3::new(0.1 * t.sin(), 0.07 * i as f64, 0.05 + 0.02 * t),
-                n,
-                0.5 + 0.1 * i as f64,
-            )
-        };
-        let delta = Vec3::new(0.1, 0.0, 0.1);
-        let (mut a, mut b, mut direct) = (Qef::default(), Qef::default(), Qef::default());
-        for i in 0..5 {
-            let (p, n, w) = planes(i);
-            a.add(p, n, w);
-            direct.add(p, n, w);
+    fn the_residual_is_the_planes_weighted_rms_distance() {
+        // Planes of a curved patch, against the distances summed plane by plane; planes
+        // through one point have none there; no planes, no residual.
+        let planes: Vec<(Vec3, Vec3, f64)> = (0..9)
+            .map(|i| {
+                let t = i as f64 * 0.37;
+                let n = Vec3::new(t.cos(), t.sin(), 0.4).normalize();
+                (
+                    Vec3::new(0.1 * t.sin(), 0.07 * i as f64, 0.05 + 0.02 * t),
+                    n,
+                    0.5 + 0.1 * i as f64,
+                )
+            })
+            .collect();
+        let mut q = Qef::default();
+        for &(p, n, w) in &planes {
+            q.add(p, n, w);
         }
-        for i in 5..9 {
-            let (p, n, w) = planes(i);
-            b.add(p, n, w);
-            direct.add(p + delta, n, w);
-        }
-        let mut merged = a;
-        merged.merge(&b.shifted(delta));
-        let x = direct.solve(0.02);
-        assert!((merged.solve(0.02) - x).length() < 1e-14);
-        assert!((merged.mass_point() - direct.mass_point()).length() < 1e-15);
-        let (rm, rd) = (
-            merged.rms_distance(x).unwrap(),
-            direct.rms_distance(x).unwrap(),
-        );
-        assert!((rm - rd).abs() < 1e-9, "{rm} vs {rd}");
-        // The residual is the planes' weighted rms distance, computed plane by plane.
-        let (mut e, mut w) = (0.0, 0.0);
-        for i in 0..9 {
-            let (p, n, wi) = planes(i);
-            let p = if i < 5 { p } else { p + delta };
-            e += wi * n.dot(x - p).powi(2);
-            w += wi;
-        }
+        let x = q.solve(0.02);
+        let (e, w) = planes.iter().fold((0.0, 0.0), |(e, w), &(p, n, wi)| {
+            (e + wi * n.dot(x - p).powi(2), w + wi)
+        });
+        let rms = q.rms_distance(x).unwrap();
         assert!(
-            (rd - (e / w).sqrt()).abs() < 1e-9,
-            "{rd} vs {}",
+            (rms - (e / w).sqrt()).abs() < 1e-9,
+            "{rms} vs {}",
             (e / w).sqrt()
         );
-        assert!(rd > 1e-4, "the planes do not meet in a point: {rd}");
-        // Planes through one point: no residual; no planes: none.
+        assert!(rms > 1e-4, "the planes do not meet in a point: {rms}");
         let mut c = Qef::default();
         for n in [Vec3::X, Vec3::Y, Vec3::Z] {
             c.add(Vec3::splat(0.25), n, 1.0);
         }
         assert!(c.rms_distance(Vec3::splat(0.25)).unwrap() < 1e-12);
         assert_eq!(Qef::default().rms_distance(Vec3::ZERO), None);
-        // Uniform stays uniform only for one normal.
-        let (mut u, mut v) = (Qef::default(), Qef::default());
-        u.add(Vec3::ZERO, Vec3::Z, 1.0);
-        v.add(Vec3::X, Vec3::Z, 1.0);
-        u.merge(&v);
-        assert!(u.uniform);
-        v.add(Vec3::Y, Vec3::X, 1.0);
-        u.merge(&v);
-        assert!(!u.uniform);
+        assert!(Qef::default().is_empty() && !c.is_empty());
     }
 }
