@@ -1,4 +1,5 @@
-//! Full-program envelope meshing time (by lattice spacing).
+//! Envelope meshing time: a full program (by lattice spacing), and issue 14's single line at
+//! h = 0.05 with every cell and with blocks of cells merged.
 
 use criterion::{criterion_main, BenchmarkId, Criterion};
 use swarf_envelope::{envelope, EnvelopeOptions};
@@ -45,6 +46,31 @@ fn meshing(c: &mut Criterion) {
         let opts = EnvelopeOptions::default();
         b.iter(|| envelope(&five, &tools, 0..five.moves.len(), &opts).unwrap())
     });
+    g.finish();
+    // Issue 14's case: one 36 mm line of a 10 mm ball at h = 0.05, every cell and with blocks
+    // of cells merged within 1 µm (`--simplify 0.001`); the mesh is made, not written.
+    let mut g = c.benchmark_group("line_envelope");
+    g.sample_size(10);
+    let line = read_program_str(
+        "G21 G90\nG0 X0 Y0 Z0\nG1 X36 F300\n",
+        "line.ngc",
+        Machine::three_axis(),
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    let ball10 = ToolSet::single(Cutter::ball(10.0).unwrap());
+    for (name, simplify) in [("ball10_h0.05", None), ("ball10_h0.05_simplified", Some(1e-3))] {
+        let opts = EnvelopeOptions::default()
+            .with_resolution(0.05)
+            .with_simplify(simplify);
+        let report = envelope(&line, &ball10, 0..line.moves.len(), &opts)
+            .unwrap()
+            .report;
+        println!("{name}: {} triangles", report.triangles);
+        g.bench_function(name, |b| {
+            b.iter(|| envelope(&line, &ball10, 0..line.moves.len(), &opts).unwrap())
+        });
+    }
     g.finish();
 }
 

@@ -100,8 +100,8 @@ impl EnvelopeOptions {
         self
     }
 
-    /// With the contouring's 2 × 2 × 2 blocks of cells merged where the planes of their
-    /// crossings pass within `tol` mm of one point (`ContourOptions::simplify`; the merged
+    /// With the contouring's 2 × 2 × 2 blocks of cells merged where their crossings lie within
+    /// `tol` mm of the planes that meet at one point (`ContourOptions::simplify`; the merged
     /// vertices are then put on the exact envelope like the others). `None` keeps every cell.
     pub fn with_simplify(mut self, tol: Option<f64>) -> Self {
         self.contour.simplify = tol;

@@ -46,8 +46,9 @@ pub(crate) struct EnvelopeArgs {
     #[arg(long)]
     pub(crate) merge_planar: bool,
     /// Merge each 2 × 2 × 2 block of cells into one vertex (on the exact envelope) where the
-    /// topology stays and the planes of the block's crossings pass within MM of it: about a
-    /// quarter of the triangles where the envelope is smooth; sharp edges stay.
+    /// topology stays and the block's crossings lie within MM of the planes that meet at it:
+    /// about a quarter of the triangles where the envelope is smooth, in about half the
+    /// contouring's time; sharp edges stay.
     #[arg(long, value_name = "MM")]
     pub(crate) simplify: Option<f64>,
     /// Print the JSON summary (the default output is a short human-readable report).

@@ -64,8 +64,8 @@ pub(crate) struct SimulateArgs {
     #[arg(long)]
     pub(crate) merge_planar: bool,
     /// Merge each 2 × 2 × 2 block of the stock mesh's cells into one vertex where the
-    /// topology stays and the planes of the block's crossings pass within MM of it (about a
-    /// quarter of the triangles where the surface is smooth; sharp edges stay).
+    /// topology stays and the block's crossings lie within MM of the planes that meet at it
+    /// (about a quarter of the triangles where the surface is smooth; sharp edges stay).
     #[arg(long, value_name = "MM")]
     pub(crate) simplify: Option<f64>,
     /// Print the JSON summary (the default output is a short human-readable report).

@@ -284,8 +284,8 @@ impl ContourOptions {
         self
     }
 
-    /// With 2 × 2 × 2 blocks of cells merged where the planes of their crossings pass within
-    /// `tol` mm of one point ([`ContourOptions::simplify`]); `None` keeps every cell.
+    /// With 2 × 2 × 2 blocks of cells merged where their crossings lie within `tol` mm of the
+    /// planes that meet at one point ([`ContourOptions::simplify`]); `None` keeps every cell.
     pub fn with_simplify(mut self, tol: Option<f64>) -> Self {
         self.simplify = tol;
         self
