@@ -59,7 +59,10 @@ fn meshing(c: &mut Criterion) {
     )
     .unwrap();
     let ball10 = ToolSet::single(Cutter::ball(10.0).unwrap());
-    for (name, simplify) in [("ball10_h0.05", None), ("ball10_h0.05_simplified", Some(1e-3))] {
+    for (name, simplify) in [
+        ("ball10_h0.05", None),
+        ("ball10_h0.05_simplified", Some(1e-3)),
+    ] {
         let opts = EnvelopeOptions::default()
             .with_resolution(0.05)
             .with_simplify(simplify);
