@@ -21,7 +21,7 @@
 //! `k ..= k + 2`, and its corners are the points with odd indices.
 
 use super::extract::{Edge, Hermite};
-use super::lines::{boundary_in, runs, xor_runs, Run, Store};
+use super::lines::{runs, xor_runs, Run, Store};
 use super::qef::Qef;
 use super::table::{cases, has_ambiguous_face};
 use swarf_geom::math::Vec3;
@@ -222,21 +222,12 @@ pub(crate) fn decide(
     s.points.resize(width, Vec::new());
     s.normals.resize(width, Vec::new());
     let size = 2.0 * lat.spacing;
-    // The crossing on the lattice edge from point `idx` along `axis`, as `Ctx::hermite`
-    // finds it.
+    // The crossing of an edge, as `Ctx::hermite` finds it.
     let crossing = |e: Edge| -> Vec3 {
-        let axis = e.axis as usize;
-        let idx = [e.i, e.j, e.k];
-        let (u, v) = (idx[(axis + 1) % 3] as isize, idx[(axis + 2) % 3] as isize);
-        let lo = lat.coord(axis, idx[axis] as isize);
-        let hi = lat.coord(axis, idx[axis] as isize + 1);
-        let spans = store.fam[axis].get(u, v);
-        let slack = slack * lat.spacing[axis];
-        let t = boundary_in(spans, lo - slack, hi + slack, e.inside_low)
-            .map_or(0.5 * (lo + hi), |t| t.clamp(lo, hi));
-        let mut p = lat.point(idx[0] as isize, idx[1] as isize, idx[2] as isize);
-        p[axis] = t;
-        p
+        e.point_at(
+            lat,
+            e.crossing(store, slack).unwrap_or_else(|| e.middle(lat)),
+        )
     };
     s.carry.clear();
     for c in 0..rows as i32 {
@@ -279,7 +270,7 @@ pub(crate) fn decide(
                 (h.p, Some((h.n, h.w)))
             } else {
                 let p = match t {
-                    Some(t) => lat.point(-1, e.j as isize, e.k as isize).with_x(t),
+                    Some(t) => e.point_at(lat, t),
                     None => crossing(e),
                 };
                 (p, None)

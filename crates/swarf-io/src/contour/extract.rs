@@ -27,7 +27,7 @@ use super::lines::{boundary_in, in_runs, runs, xor_runs, Run, Store};
 use super::normal::estimate;
 use super::qef::Qef;
 use super::table::{cases, joined_faces, NONE};
-use super::{ContourOptions, ContourStats, HermiteGrid, Projection, QuadSplit};
+use super::{ContourOptions, ContourStats, HermiteGrid, Lattice, Projection, QuadSplit};
 use crate::mesh::{area_vectors_at, TriMesh};
 use rayon::prelude::*;
 use std::sync::Arc;
@@ -41,6 +41,42 @@ pub(crate) struct Edge {
     pub(crate) i: i32,
     pub(crate) j: i32,
     pub(crate) k: i32,
+}
+
+impl Edge {
+    /// Where the edge's own line crosses the surface: the first interval end of the kind the
+    /// edge needs (an exit when inside at its low end) within `slack` × the spacing of the
+    /// edge, clamped onto it; `None` when the line has none there.
+    pub(crate) fn crossing(&self, store: &Store, slack: f64) -> Option<f64> {
+        let lat = &store.lattice;
+        let a = self.axis as usize;
+        let idx = [self.i, self.j, self.k];
+        let (u, v) = (idx[(a + 1) % 3] as isize, idx[(a + 2) % 3] as isize);
+        let lo = lat.coord(a, idx[a] as isize);
+        let hi = lat.coord(a, idx[a] as isize + 1);
+        let slack = slack * lat.spacing[a];
+        boundary_in(
+            store.fam[a].get(u, v),
+            lo - slack,
+            hi + slack,
+            self.inside_low,
+        )
+        .map(|t| t.clamp(lo, hi))
+    }
+
+    /// The edge's middle, as a coordinate along its axis.
+    pub(crate) fn middle(&self, lat: &Lattice) -> f64 {
+        let a = self.axis as usize;
+        let i = [self.i, self.j, self.k][a] as isize;
+        0.5 * (lat.coord(a, i) + lat.coord(a, i + 1))
+    }
+
+    /// The point at coordinate `t` along the edge's line.
+    pub(crate) fn point_at(&self, lat: &Lattice, t: f64) -> Vec3 {
+        let mut p = lat.point(self.i as isize, self.j as isize, self.k as isize);
+        p[self.axis as usize] = t;
+        p
+    }
 }
 
 /// An edge with its crossing.
@@ -157,24 +193,17 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         let idx = [e.i, e.j, e.k];
         let exit = e.inside_low;
         let (u, v) = (idx[(a + 1) % 3] as isize, idx[(a + 2) % 3] as isize);
-        let lo = lat.coord(a, idx[a] as isize);
-        let hi = lat.coord(a, idx[a] as isize + 1);
-        let spans = self.store.fam[a].get(u, v);
-        let slack = self.opt.crossing_slack * lat.spacing[a];
-        let t = t_known
-            .or_else(|| boundary_in(spans, lo - slack, hi + slack, exit).map(|t| t.clamp(lo, hi)));
-        let mut p = lat.point(e.i as isize, e.j as isize, e.k as isize);
+        let t = t_known.or_else(|| e.crossing(self.store, self.opt.crossing_slack));
         let Some(t) = t else {
             stats.fallback_crossings += 1;
-            p[a] = 0.5 * (lo + hi);
             return Hermite {
                 edge: e,
-                p,
+                p: e.point_at(lat, e.middle(lat)),
                 n: Vec3::ZERO,
                 w: 0.0,
             };
         };
-        p[a] = t;
+        let p = e.point_at(lat, t);
         let mut axis_dir = Vec3::ZERO;
         axis_dir[a] = 1.0;
         let (n, w) = if !exit && t <= self.store.lo[a] {
