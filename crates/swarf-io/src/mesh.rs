@@ -861,7 +861,7 @@ pub(crate) struct VertexTriangles {
 impl VertexTriangles {
     /// Each vertex's triangles (corner indices below `vertices`; `GONE` triangles skipped).
     pub(crate) fn new(vertices: usize, tris: &[[u32; 3]]) -> Self {
-        Self::build(vertices, tris, |v| Some(v as usize), None)
+        Self::build(vertices, tris, |v| Some(v as usize))
     }
 
     /// The triangles of the vertices in `wanted` only (any order, repeats allowed): for a few
@@ -880,8 +880,7 @@ impl VertexTriangles {
                 .then(|| only.binary_search(&v).ok())
                 .flatten()
         };
-        let n = only.len();
-        let built = Self::build(n, tris, slot, None);
+        let built = Self::build(only.len(), tris, slot);
         Self {
             only: Some(only),
             ..built
@@ -889,12 +888,7 @@ impl VertexTriangles {
     }
 
     /// The table of `slots` entries, vertex `v` filed under `slot(v)` (none: not listed).
-    fn build(
-        slots: usize,
-        tris: &[[u32; 3]],
-        slot: impl Fn(u32) -> Option<usize>,
-        only: Option<Vec<u32>>,
-    ) -> Self {
+    fn build(slots: usize, tris: &[[u32; 3]], slot: impl Fn(u32) -> Option<usize>) -> Self {
         let mut start = vec![0u32; slots + 1];
         for t in tris.iter().filter(|&&t| t != GONE) {
             for &v in t {
@@ -916,7 +910,11 @@ impl VertexTriangles {
                 }
             }
         }
-        Self { start, index, only }
+        Self {
+            start,
+            index,
+            only: None,
+        }
     }
 
     /// The triangles that had `v` as a corner when this was built (none for a vertex not

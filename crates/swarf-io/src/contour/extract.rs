@@ -19,8 +19,8 @@
 //! decides the merged blocks of its pairs of slabs and of the pair above it (whose slab the
 //! batch's top level reaches), then makes levels and slabs as above, skipping the cells of
 //! merged blocks: an edge all of whose cells are merged is dropped, or kept without a crossing
-//! where it gives a quad of four blocks. The slabs are made in pairs; a pair's block vertices
-//! follow its lower slab's own, and a vertex lookup asks the pair's map first.
+//! where it gives a quad of four blocks. A pair's block vertices follow its lower slab's own,
+//! and a vertex lookup asks the pair's map first.
 
 use super::blocks::{decide, BlockMap, BlockScratch};
 use super::lines::{boundary_in, in_runs, runs, xor_runs, Run, Store};
