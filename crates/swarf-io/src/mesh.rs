@@ -651,13 +651,17 @@ impl TriMesh {
         // Remapped in place (a mesh with nothing merged keeps its triangles as they were);
         // collapsed triangles become `GONE` until the end.
         let mut tris = std::mem::take(&mut self.triangles);
-        for t in &mut tris {
-            *t = t.map(|i| remap[i as usize]);
-            if t[0] == t[1] || t[1] == t[2] || t[2] == t[0] {
-                rep.collapsed_triangles += 1;
-                *t = GONE;
-            }
-        }
+        rep.collapsed_triangles = tris
+            .par_iter_mut()
+            .map(|t| {
+                *t = t.map(|i| remap[i as usize]);
+                let collapsed = t[0] == t[1] || t[1] == t[2] || t[2] == t[0];
+                if collapsed {
+                    *t = GONE;
+                }
+                usize::from(collapsed)
+            })
+            .sum();
         drop(remap);
         let live = |t: [u32; 3]| (t != GONE).then_some(t);
         let f = |p: Vec3| Vec3::new(p.x as f32 as f64, p.y as f32 as f64, p.z as f32 as f64);
@@ -667,6 +671,7 @@ impl TriMesh {
             (b - a).cross(c - a) == Vec3::ZERO
         };
         let mut work: Vec<usize> = (0..tris.len())
+            .into_par_iter()
             .filter(|&i| live(tris[i]).is_some_and(flat))
             .collect();
         if !work.is_empty() {
