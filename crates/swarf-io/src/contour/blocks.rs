@@ -21,7 +21,7 @@
 //! `k ..= k + 2`, and its corners are the points with odd indices.
 
 use super::extract::{Edge, Hermite};
-use super::lines::{runs, xor_runs, Run, Store};
+use super::lines::{xor_runs, LevelRuns, Store};
 use super::qef::Qef;
 use super::table::{cases, has_ambiguous_face};
 use swarf_geom::math::Vec3;
@@ -78,9 +78,8 @@ impl Default for Gathered {
 /// Buffers reused from pair to pair.
 #[derive(Default)]
 pub(crate) struct BlockScratch {
-    /// Runs of the X lines at levels `k`, `k + 1`, `k + 2`, and their offsets per line.
-    runs: [Vec<Run>; 3],
-    roff: [Vec<usize>; 3],
+    /// Runs of the X lines at levels `k`, `k + 1`, `k + 2`.
+    levels: [LevelRuns; 3],
     /// Per block of the row being read: what its crossings add up to, and their positions
     /// (relative to its low corner) and the unit normals of its coarse ones.
     gathered: Vec<Gathered>,
@@ -175,28 +174,8 @@ pub(crate) fn decide(
     let lat = &store.lattice;
     let n = lat.n.map(|x| x as i32);
     for (slot, lev) in (k..k + 3).enumerate() {
-        s.runs[slot].clear();
-        s.roff[slot].clear();
-        s.roff[slot].push(0);
-        for j in 0..n[1] {
-            if (0..n[2]).contains(&lev) {
-                runs(
-                    store.fam[0].get(j as isize, lev as isize),
-                    lat,
-                    0,
-                    &mut s.runs[slot],
-                );
-            }
-            s.roff[slot].push(s.runs[slot].len());
-        }
+        s.levels[slot].read(store, lev);
     }
-    let line = |s: &BlockScratch, slot: usize, j: i32| -> std::ops::Range<usize> {
-        if j < 0 || j >= n[1] {
-            0..0
-        } else {
-            s.roff[slot][j as usize]..s.roff[slot][j as usize + 1]
-        }
-    };
     let words = (n[0] as usize + 3).div_ceil(64);
     for slot in 0..3 {
         let mut inside = std::mem::take(&mut s.inside[slot]);
@@ -204,7 +183,7 @@ pub(crate) fn decide(
         inside.resize(words * n[1] as usize, 0);
         for j in 0..n[1] {
             let bits = &mut inside[j as usize * words..(j as usize + 1) * words];
-            for r in &s.runs[slot][line(s, slot, j)] {
+            for r in s.levels[slot].line(j) {
                 set_bits(bits, (r.lo + 1) as usize, (r.hi + 2) as usize);
             }
         }
@@ -298,8 +277,8 @@ pub(crate) fn decide(
             for dy in 0..3 {
                 let j = j0 + dy;
                 // X edges: at both ends of every run.
-                for ri in line(s, dz, j) {
-                    let run = s.runs[dz][ri];
+                for ri in 0..s.levels[dz].line(j).len() {
+                    let run = s.levels[dz].line(j)[ri];
                     for (i, inside_low, t) in
                         [(run.lo - 1, false, run.t_lo), (run.hi, true, run.t_hi)]
                     {
@@ -321,11 +300,9 @@ pub(crate) fn decide(
                 ];
                 for (axis, slot, jj) in next.into_iter().flatten() {
                     found.clear();
-                    xor_runs(
-                        &s.runs[dz][line(s, dz, j)],
-                        &s.runs[slot][line(s, slot, jj)],
-                        |i, in_a| found.push((i, in_a)),
-                    );
+                    xor_runs(s.levels[dz].line(j), s.levels[slot].line(jj), |i, in_a| {
+                        found.push((i, in_a))
+                    });
                     for &(i, inside_low) in &found {
                         let e = Edge {
                             axis: axis as u8,

@@ -23,7 +23,7 @@
 //! and a vertex lookup asks the pair's map first.
 
 use super::blocks::{decide, BlockMap, BlockScratch};
-use super::lines::{boundary_in, in_runs, runs, xor_runs, Run, Store};
+use super::lines::{boundary_in, in_runs, xor_runs, LevelRuns, Store};
 use super::normal::estimate;
 use super::qef::Qef;
 use super::table::{cases, joined_faces, NONE};
@@ -147,28 +147,25 @@ struct LevelEdges {
 #[derive(Default)]
 struct Scratch {
     /// Runs of the X lines at levels k, k + 1 (the slab's), k − 1 and k + 2 (for the
-    /// neighbours across ambiguous faces), and their offsets per line.
-    runs: [Vec<Run>; 4],
-    roff: [Vec<usize>; 4],
+    /// neighbours across ambiguous faces).
+    levels: [LevelRuns; 4],
     edges: Vec<Hermite>,
     pairs: Vec<u64>,
     found: Vec<(i32, bool)>,
 }
 
 impl Scratch {
-    /// Where the runs `a` and `b` (a slot and a range of its runs each) differ: the points
-    /// inside one and not the other, and whether inside `a` (the edges between two lines).
-    /// The list is the scratch's own, taken: hand it back to `found` when done.
-    fn differing(
-        &mut self,
-        (sa, ra): (usize, std::ops::Range<usize>),
-        (sb, rb): (usize, std::ops::Range<usize>),
-    ) -> Vec<(i32, bool)> {
+    /// Where line `ja` of level slot `sa` and line `jb` of slot `sb` differ: the points
+    /// inside one and not the other, and whether inside the first (the edges between two
+    /// lines). The list is the scratch's own, taken: hand it back to `found` when done.
+    fn differing(&mut self, (sa, ja): (usize, i32), (sb, jb): (usize, i32)) -> Vec<(i32, bool)> {
         let mut found = std::mem::take(&mut self.found);
         found.clear();
-        xor_runs(&self.runs[sa][ra], &self.runs[sb][rb], |i, in_a| {
-            found.push((i, in_a))
-        });
+        xor_runs(
+            self.levels[sa].line(ja),
+            self.levels[sb].line(jb),
+            |i, in_a| found.push((i, in_a)),
+        );
         found
     }
 }
@@ -261,30 +258,10 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         if !(0..n2).contains(&lev) {
             return out;
         }
-        let lat = &self.store.lattice;
-        s.runs[0].clear();
-        s.roff[0].clear();
-        s.roff[0].push(0);
-        for j in 0..n1 {
-            runs(
-                self.store.fam[0].get(j as isize, lev as isize),
-                lat,
-                0,
-                &mut s.runs[0],
-            );
-            s.roff[0].push(s.runs[0].len());
-        }
-        let line = |s: &Scratch, j: i32| -> std::ops::Range<usize> {
-            if j < 0 || j >= n1 {
-                0..0
-            } else {
-                s.roff[0][j as usize]..s.roff[0][j as usize + 1]
-            }
-        };
+        s.levels[0].read(self.store, lev);
         // X edges: at both ends of every run.
         for j in 0..n1 {
-            for ri in line(s, j) {
-                let run = s.runs[0][ri];
+            for &run in s.levels[0].line(j) {
                 for (i, inside_low, t) in [(run.lo - 1, false, run.t_lo), (run.hi, true, run.t_hi)]
                 {
                     let e = Edge {
@@ -303,8 +280,7 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         }
         // Y edges: where the runs of neighbouring X lines differ.
         for j in -1..n1 {
-            let (ra, rb) = (line(s, j), line(s, j + 1));
-            let found = s.differing((0, ra), (0, rb));
+            let found = s.differing((0, j), (0, j + 1));
             for &(i, inside_low) in &found {
                 let e = Edge {
                     axis: 1,
@@ -334,34 +310,13 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         pairs: Option<&Pairs>,
     ) -> SlabOut {
         let map = pairs.map(|p| p.of(k));
-        let [n0, n1, n2] = self.n;
+        let [n0, n1, _] = self.n;
         let lat = &self.store.lattice;
         let mut stats = ContourStats::default();
         // Runs of the X lines at levels k (slot 0), k + 1 (slot 1), k − 1 (2) and k + 2 (3).
         for (slot, &dk) in LEVEL_OFFSET.iter().enumerate() {
-            let lev = k + dk;
-            s.runs[slot].clear();
-            s.roff[slot].clear();
-            s.roff[slot].push(0);
-            for j in 0..n1 {
-                if (0..n2).contains(&lev) {
-                    runs(
-                        self.store.fam[0].get(j as isize, lev as isize),
-                        lat,
-                        0,
-                        &mut s.runs[slot],
-                    );
-                }
-                s.roff[slot].push(s.runs[slot].len());
-            }
+            s.levels[slot].read(self.store, k + dk);
         }
-        let line = |s: &Scratch, slot: usize, j: i32| -> std::ops::Range<usize> {
-            if j < 0 || j >= n1 {
-                0..0
-            } else {
-                s.roff[slot][j as usize]..s.roff[slot][j as usize + 1]
-            }
-        };
         s.edges.clear();
         s.pairs.clear();
         let mut owned = Vec::new();
@@ -393,8 +348,7 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         }
         // Z edges: where the runs of the two levels differ.
         for j in 0..n1 {
-            let (ra, rb) = (line(s, 0, j), line(s, 1, j));
-            let found = s.differing((0, ra), (1, rb));
+            let found = s.differing((0, j), (1, j));
             for &(i, inside_low) in &found {
                 let e = Edge {
                     axis: 2,
@@ -436,8 +390,7 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
                 for c in 0..8usize {
                     let (dx, dy, dz) = ((c & 1) as i32, ((c >> 1) & 1) as i32, (c >> 2) as i32);
                     let slot = slot_of(dk + dz);
-                    let r = line(s, slot, cj + dy);
-                    if in_runs(&s.runs[slot][r], ci + dx) {
+                    if in_runs(s.levels[slot].line(cj + dy), ci + dx) {
                         mask |= 1 << c;
                     }
                 }

@@ -191,6 +191,47 @@ pub(crate) fn runs(spans: &[Span], lat: &Lattice, a: usize, out: &mut Vec<Run>) 
     }
 }
 
+/// The runs of inside points of every X line of one point level, line by line: what the
+/// extraction and the blocks' decisions read a level's sides and X crossings from.
+#[derive(Default)]
+pub(crate) struct LevelRuns {
+    runs: Vec<Run>,
+    /// Where each line's runs start in `runs`, and the end.
+    offsets: Vec<usize>,
+}
+
+impl LevelRuns {
+    /// Fills in the runs of point level `lev` of `store`'s lattice (none for a level outside
+    /// it).
+    pub(crate) fn read(&mut self, store: &Store, lev: i32) {
+        let lat = &store.lattice;
+        let (n1, n2) = (lat.n[1] as i32, lat.n[2] as i32);
+        self.runs.clear();
+        self.offsets.clear();
+        self.offsets.push(0);
+        for j in 0..n1 {
+            if (0..n2).contains(&lev) {
+                runs(
+                    store.fam[0].get(j as isize, lev as isize),
+                    lat,
+                    0,
+                    &mut self.runs,
+                );
+            }
+            self.offsets.push(self.runs.len());
+        }
+    }
+
+    /// The runs of line `j` (none outside the lattice).
+    #[inline]
+    pub(crate) fn line(&self, j: i32) -> &[Run] {
+        if j < 0 || j as usize + 1 >= self.offsets.len() {
+            return &[];
+        }
+        &self.runs[self.offsets[j as usize]..self.offsets[j as usize + 1]]
+    }
+}
+
 /// True when index `i` is in one of the (sorted) runs.
 #[inline]
 pub(crate) fn in_runs(runs: &[Run], i: i32) -> bool {
