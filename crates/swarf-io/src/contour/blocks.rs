@@ -224,12 +224,7 @@ pub(crate) fn decide(
             } else {
                 (e.i >> 1, (e.i + 1) >> 1)
             };
-            let across = match e.axis {
-                0 => (e.j, e.k),
-                1 => (e.i, e.k),
-                _ => (e.i, e.j),
-            };
-            let (p, plane) = if across.0 & 1 == 1 && across.1 & 1 == 1 {
+            let (p, plane) = if e.halves_coarse_edge() {
                 // X and Z edges of the row's first line were its last in the row before.
                 let shared = e.axis != 1 && c > 0 && e.j == j0;
                 let known = s

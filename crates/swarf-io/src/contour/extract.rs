@@ -71,6 +71,28 @@ impl Edge {
         0.5 * (lat.coord(a, i) + lat.coord(a, i + 1))
     }
 
+    /// The (X, Y) indices of the cells around the edge in a slab it borders, and how many:
+    /// the four of a Z edge's slab, two of an X or Y edge's in each slab beside its level.
+    pub(crate) fn cells(&self) -> ([(i32, i32); 4], usize) {
+        let (i, j) = (self.i, self.j);
+        match self.axis {
+            0 => ([(i, j - 1), (i, j), (i, j), (i, j)], 2),
+            1 => ([(i - 1, j), (i, j), (i, j), (i, j)], 2),
+            _ => ([(i - 1, j - 1), (i, j - 1), (i - 1, j), (i, j)], 4),
+        }
+    }
+
+    /// True when the edge halves an edge of the coarse lattice of block corners (both its
+    /// indices across its axis odd, see `blocks`).
+    pub(crate) fn halves_coarse_edge(&self) -> bool {
+        let (a, b) = match self.axis {
+            0 => (self.j, self.k),
+            1 => (self.i, self.k),
+            _ => (self.i, self.j),
+        };
+        a & 1 == 1 && b & 1 == 1
+    }
+
     /// The point at coordinate `t` along the edge's line.
     pub(crate) fn point_at(&self, lat: &Lattice, t: f64) -> Vec3 {
         let mut p = lat.point(self.i as isize, self.j as isize, self.k as isize);
@@ -129,10 +151,21 @@ impl Pairs {
         &self.maps[((k - self.first) >> 1) as usize]
     }
 
-    /// True when every cell of `cells` (of slab `k`) lies in a merged block.
-    fn all_merged(&self, k: i32, cells: &[(i32, i32)]) -> bool {
-        let map = self.of(k);
-        cells.iter().all(|&(ci, cj)| map.merged(ci, cj))
+    /// What becomes of edge `e`: `None` while a cell around it is not merged (its crossing
+    /// is needed); once all are, `Some(true)` where it halves a coarse edge (kept, without a
+    /// crossing, for its quad of four blocks) and `Some(false)` where it gives nothing.
+    fn merged_edge(&self, e: Edge) -> Option<bool> {
+        let (cells, n) = e.cells();
+        let slabs = if e.axis == 2 {
+            e.k..=e.k
+        } else {
+            e.k - 1..=e.k
+        };
+        let all = slabs.into_iter().all(|k| {
+            let map = self.of(k);
+            cells[..n].iter().all(|&(ci, cj)| map.merged(ci, cj))
+        });
+        all.then(|| e.halves_coarse_edge())
     }
 }
 
@@ -228,24 +261,19 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         Hermite { edge: e, p, n, w }
     }
 
-    /// An X or Y edge of a point level whose cells in each of the slabs below and above it are
-    /// `cells`: with its crossing, or (every cell merged) without one where it gives a quad of
-    /// four blocks, or nothing.
+    /// An X or Y edge of a point level: with its crossing, or (every cell around it merged)
+    /// without one where it gives a quad of four blocks, or nothing.
     fn level_edge(
         &self,
         e: Edge,
         t: Option<f64>,
-        cells: &[(i32, i32); 2],
         pairs: Option<&Pairs>,
         stats: &mut ContourStats,
     ) -> Option<Hermite> {
-        if let Some(pairs) = pairs {
-            if pairs.all_merged(e.k - 1, cells) && pairs.all_merged(e.k, cells) {
-                let across = if e.axis == 0 { e.j } else { e.i };
-                return on_coarse_edge(across, e.k).then(|| no_crossing(e));
-            }
+        match pairs.and_then(|p| p.merged_edge(e)) {
+            Some(keep) => keep.then(|| no_crossing(e)),
+            None => Some(self.hermite(e, t, stats)),
         }
-        Some(self.hermite(e, t, stats))
     }
 
     /// The X and Y edges of point level `lev` with their crossings (none outside the lattice),
@@ -271,8 +299,7 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
                         j,
                         k: lev,
                     };
-                    let cells = [(i, j - 1), (i, j)];
-                    if let Some(h) = self.level_edge(e, Some(t), &cells, pairs, &mut out.stats) {
+                    if let Some(h) = self.level_edge(e, Some(t), pairs, &mut out.stats) {
                         out.edges.push(h);
                     }
                 }
@@ -289,8 +316,7 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
                     j,
                     k: lev,
                 };
-                let cells = [(i - 1, j), (i, j)];
-                if let Some(h) = self.level_edge(e, None, &cells, pairs, &mut out.stats) {
+                if let Some(h) = self.level_edge(e, None, pairs, &mut out.stats) {
                     out.edges.push(h);
                 }
             }
@@ -335,12 +361,8 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
         for (slot, level) in [below, above].into_iter().enumerate() {
             for &h in &level.edges {
                 let e = h.edge;
-                let cells = if e.axis == 0 {
-                    [(e.i, e.j - 1), (e.i, e.j)]
-                } else {
-                    [(e.i - 1, e.j), (e.i, e.j)]
-                };
-                push(s, h, &cells);
+                let (cells, n) = e.cells();
+                push(s, h, &cells[..n]);
                 if slot == 1 {
                     owned.push(e);
                 }
@@ -357,16 +379,15 @@ impl<G: HermiteGrid + ?Sized> Ctx<'_, G> {
                     j,
                     k,
                 };
-                let cells = [(i - 1, j - 1), (i, j - 1), (i - 1, j), (i, j)];
-                if pairs.is_some_and(|p| p.all_merged(k, &cells)) {
+                if let Some(keep) = pairs.and_then(|p| p.merged_edge(e)) {
                     // A quad of four blocks on a coarse edge, else nothing.
-                    if on_coarse_edge(i, j) {
+                    if keep {
                         owned.push(e);
                     }
                     continue;
                 }
                 let h = self.hermite(e, None, &mut stats);
-                push(s, h, &cells);
+                push(s, h, &e.cells().0);
                 owned.push(e);
             }
             s.found = found;
@@ -509,12 +530,6 @@ fn slot_of(dk: i32) -> usize {
         -1 => 2,
         _ => 3,
     }
-}
-
-/// True when the lattice line through indices `a` and `b` (across its axis) joins corners of
-/// blocks (odd indices, see `blocks`): its edges halve the coarse lattice's.
-fn on_coarse_edge(a: i32, b: i32) -> bool {
-    a & 1 == 1 && b & 1 == 1
 }
 
 /// An edge kept for its quad of merged blocks only: its crossing is never read.
