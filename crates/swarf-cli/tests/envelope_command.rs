@@ -116,14 +116,24 @@ fn merged_blocks_of_cells_keep_the_envelope() {
     let chord = (2.0 * h * 3f64.sqrt()).powi(2) / 40.0;
     let (v0, v1) = (plain_mesh.volume(), merged_mesh.volume());
     assert!((v0 - v1).abs() < chord * plain_mesh.area(), "{v0} vs {v1}");
-    for bad in ["0", "-1", "nan"] {
+    // Written as one argument and as two (a negative number is still the flag's value).
+    for (bad, joined) in [("0", true), ("-1", true), ("-1", false), ("nan", true)] {
         let mut all = args.to_vec();
         let out = dir.join("bad");
         let flag = format!("--simplify={bad}");
-        all.extend(["--out", out.to_str().unwrap(), &flag]);
+        all.extend(["--out", out.to_str().unwrap()]);
+        if joined {
+            all.push(&flag);
+        } else {
+            all.extend(["--simplify", bad]);
+        }
         let o = swarf(&all);
         assert!(!o.status.success(), "--simplify {bad}");
-        assert!(stderr(&o).contains("--simplify"), "{}", stderr(&o));
+        assert!(
+            stderr(&o).contains("--simplify must be a positive number of mm"),
+            "{}",
+            stderr(&o)
+        );
         assert!(!out.exists(), "nothing written for --simplify {bad}");
     }
 }

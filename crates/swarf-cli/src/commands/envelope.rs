@@ -49,7 +49,7 @@ pub(crate) struct EnvelopeArgs {
     /// topology stays and the block's crossings lie within MM of the planes that meet at it:
     /// about a quarter of the triangles where the envelope is smooth, in about half the
     /// contouring's time; sharp edges stay.
-    #[arg(long, value_name = "MM")]
+    #[arg(allow_negative_numbers = true, long, value_name = "MM")]
     pub(crate) simplify: Option<f64>,
     /// Print the JSON summary (the default output is a short human-readable report).
     #[arg(long)]

@@ -66,7 +66,7 @@ pub(crate) struct SimulateArgs {
     /// Merge each 2 × 2 × 2 block of the stock mesh's cells into one vertex where the
     /// topology stays and the block's crossings lie within MM of the planes that meet at it
     /// (about a quarter of the triangles where the surface is smooth; sharp edges stay).
-    #[arg(long, value_name = "MM")]
+    #[arg(allow_negative_numbers = true, long, value_name = "MM")]
     pub(crate) simplify: Option<f64>,
     /// Print the JSON summary (the default output is a short human-readable report).
     #[arg(long)]
