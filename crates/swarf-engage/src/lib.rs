@@ -77,6 +77,7 @@ pub mod bench;
 pub mod engagement;
 pub mod probe;
 pub mod run;
+mod sides;
 pub mod strip;
 
 pub use engagement::{CircleEngagement, Engagement, PhiInterval};

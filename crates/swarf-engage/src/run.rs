@@ -17,6 +17,7 @@ use swarf_tool::{Cutter, ToolSet};
 
 use crate::engagement::{integrate, Engagement, StripResult, StripSamples};
 use crate::probe::MaterialProbe;
+use crate::sides;
 use crate::strip::Strip;
 
 /// Default spacing of cutter locations along a move, mm of tool-tip travel.
@@ -318,18 +319,17 @@ pub struct Engager<'a> {
 #[derive(Default)]
 struct Scratch {
     rf: Vec<f64>,
-    /// 1 where a feasible sample is not probed yet (its side a guess).
-    open: Vec<u8>,
     g: Vec<f64>,
-    /// Each sample's side (1: engaged), for pass 3 and the integration.
+    /// Each sample's side (1: engaged), for the integration.
     side: Vec<u8>,
-    /// Pass 3's rows to look at, samples to probe and their probed values, and a row's
-    /// neighbourhood OR and AND.
+    /// The same packed (`sides.rs`), for pass 3; and where a feasible sample is not probed
+    /// yet (its side a guess).
+    side_bits: Vec<u64>,
+    open_bits: Vec<u64>,
+    /// Pass 3's rows to look at, samples to probe and their probed values.
     scan: Vec<bool>,
     todo: Vec<usize>,
     values: Vec<f64>,
-    any: Vec<u8>,
-    all: Vec<u8>,
 }
 
 impl<'a> Engager<'a> {
@@ -733,19 +733,23 @@ fn sample_strip(
     // ray spacing of the boundary; the guess's value is a placeholder of its sign.
     let mut g = std::mem::take(&mut scratch.g);
     g.resize(rows * n, 0.0);
-    // Each sample's side as a byte (1: engaged), so that a row's 3 × 3 neighbourhoods are
-    // compared a row at a time, and whether it is open (feasible, its side still a guess).
+    // Each sample's side as a byte (1: engaged) for the integration, and packed with whether
+    // it is open (feasible, its side still a guess) for pass 3.
     let mut side = std::mem::take(&mut scratch.side);
     side.resize(rows * n, 0);
-    let mut open = std::mem::take(&mut scratch.open);
-    open.resize(rows * n, 0);
+    let nw = sides::words(n);
+    let mut side_bits = std::mem::take(&mut scratch.side_bits);
+    side_bits.resize(rows * nw, 0);
+    let mut open_bits = std::mem::take(&mut scratch.open_bits);
+    open_bits.resize(rows * nw, 0);
     let mut counted: u64 = g
         .par_chunks_mut(n)
         .zip(side.par_chunks_mut(n))
-        .zip(open.par_chunks_mut(n))
+        .zip(side_bits.par_chunks_mut(nw))
+        .zip(open_bits.par_chunks_mut(nw))
         .zip(rf.par_chunks_mut(n))
         .enumerate()
-        .map(|(r, (((row, side), open), rfr))| {
+        .map(|(r, ((((row, side), side_bits), open_bits), rfr))| {
             tangency(r, rfr);
             let mut count = 0u64;
             if exhaustive {
@@ -784,10 +788,11 @@ fn sample_strip(
                     };
                 }
             }
-            for (((s, o), &v), &rfj) in side.iter_mut().zip(open.iter_mut()).zip(&*row).zip(&*rfr) {
+            for (s, &v) in side.iter_mut().zip(&*row) {
                 *s = u8::from(v > 0.0);
-                *o = u8::from(rfj > 0.0 && !exhaustive);
             }
+            sides::pack(side_bits, n, |j| side[j] != 0);
+            sides::pack(open_bits, n, |j| rfr[j] > 0.0 && !exhaustive);
             count
         })
         .sum();
@@ -804,30 +809,17 @@ fn sample_strip(
         // The rows to look at (all at first; then those around a flipped side), the samples
         // to probe, and a row's OR and AND of its sides' neighbourhoods.
         let (scan, todo, values) = (&mut scratch.scan, &mut scratch.todo, &mut scratch.values);
-        let (any, all) = (&mut scratch.any, &mut scratch.all);
         scan.clear();
         scan.resize(rows, true);
-        any.resize(n, 0);
-        all.resize(n, 0);
         loop {
             todo.clear();
             for r in (0..rows).filter(|&r| scan[r]) {
-                let open_row = &open[r * n..(r + 1) * n];
-                if !open_row.contains(&1) {
-                    continue;
-                }
-                neighbourhoods(&side, rows, n, r, any, all);
-                for ((a, &l), &o) in any.iter_mut().zip(all.iter()).zip(open_row) {
-                    *a = (*a ^ l) & o;
-                }
-                // Most bytes are 0: eight at a time.
-                for (w, chunk) in any.chunks(8).enumerate() {
-                    if chunk.iter().any(|&b| b != 0) {
-                        for (b, &m) in chunk.iter().enumerate() {
-                            if m != 0 {
-                                todo.push(r * n + w * 8 + b);
-                            }
-                        }
+                let open_row = &open_bits[r * nw..(r + 1) * nw];
+                for (w, &open) in open_row.iter().enumerate().filter(|(_, &o)| o != 0) {
+                    let mut due = sides::borders(&side_bits, rows, n, r, w) & open;
+                    while due != 0 {
+                        todo.push(r * n + w * 64 + due.trailing_zeros() as usize);
+                        due &= due - 1;
                     }
                 }
             }
@@ -844,17 +836,19 @@ fn sample_strip(
             scan.fill(false);
             for (&i, &v) in todo.iter().zip(values.iter()) {
                 let now = u8::from(v > 0.0);
+                let (r, j) = (i / n, i % n);
+                let (word, bit) = (r * nw + j / 64, 1u64 << (j % 64));
                 if now != side[i] {
                     side[i] = now;
-                    let r = i / n;
+                    side_bits[word] ^= bit;
                     scan[r.saturating_sub(1)..(r + 2).min(rows)].fill(true);
                 }
                 g[i] = v;
-                open[i] = 0;
+                open_bits[word] &= !bit;
             }
         }
     }
-    scratch.open = open;
+    (scratch.side_bits, scratch.open_bits) = (side_bits, open_bits);
     *probes += counted;
     scratch.rf = rf;
     StripSamples {
@@ -862,38 +856,6 @@ fn sample_strip(
         n_phi: n,
         g,
         side,
-    }
-}
-
-/// The OR (`any`) and AND (`all`) of the sides (`sides`: 1 engaged, one row of `n` per circle,
-/// `rows` rows) over each sample's 3 × 3 neighbourhood on row `r`: its circle and the ones
-/// either side, round each circle; rows outside the range count as not engaged. A sample has a
-/// neighbour of the other side exactly when the two differ.
-fn neighbourhoods(sides: &[u8], rows: usize, n: usize, r: usize, any: &mut [u8], all: &mut [u8]) {
-    any.fill(0);
-    all.fill(1);
-    for q in [r.wrapping_sub(1), r, r + 1] {
-        let Some(s) = (q < rows).then(|| &sides[q * n..(q + 1) * n]) else {
-            all.fill(0);
-            continue;
-        };
-        // Sample j's neighbours j − 1 and j + 1 round the circle (shifted slices, so that the
-        // loop runs on whole vector registers).
-        let (left, mid, right) = (&s[..n - 2], &s[1..n - 1], &s[2..]);
-        for ((((o, a), &x), &y), &z) in any[1..n - 1]
-            .iter_mut()
-            .zip(&mut all[1..n - 1])
-            .zip(left)
-            .zip(mid)
-            .zip(right)
-        {
-            *o |= x | y | z;
-            *a &= x & y & z;
-        }
-        for (j, (p, q)) in [(0, (n - 1, 1)), (n - 1, (n - 2, 0))] {
-            any[j] |= s[p] | s[j] | s[q];
-            all[j] &= s[p] & s[j] & s[q];
-        }
     }
 }
 
