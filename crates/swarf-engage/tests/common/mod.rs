@@ -78,3 +78,69 @@ pub(crate) fn check(e: &Engagement, area: f64, entry: f64, exit: f64, rel_tol: f
     assert!(d(a, entry) < deg_tol, "entry {a} vs {entry}");
     assert!(d(b, exit) < deg_tol, "exit {b} vs {exit}");
 }
+
+/// The steady engagement of a flat end mill of radius `r` whose centre runs a CCW helix of
+/// radius `a` about the Z axis into solid stock, `pitch` lower per turn, at a location `drop`
+/// lower than the one before: (area, entry angle on the disc at `z_disc` in degrees, axial
+/// depth).
+///
+/// The centre at angle θ is `a·ĉ(θ)`; the side point at immersion φ is
+/// `q = a·ĉ + r·(sin φ·t̂ − cos φ·ĉ)` (x_L = t̂ the feed, y_L = −ĉ), `|q|² = a² + r² −
+/// 2ar·cos φ` from the axis. On the front half (0 < φ < π, where f ∝ sin φ > 0) q enters the
+/// tool's disc now; the disc holds q while the centre's angle is within α of q's, `cos α =
+/// (|q|² + a² − r²)/(2a|q|) = (a − r cos φ)/|q|`, so q was last inside it a turn ago less 2α,
+/// when the bottom was `pitch·(1 − α/π)` higher — unless the location before held it (near
+/// φ = 0 when a < r, where α → π), whose bottom was `drop` higher. The side is in the
+/// material over the larger of the two; the bottom disc wholly (it was last cut higher up).
+/// The band grows from φ = 0 to φ = π, so a disc is engaged from where the band reaches it.
+pub(crate) fn helical_bore(r: f64, a: f64, pitch: f64, drop: f64, z_disc: f64) -> (f64, f64, f64) {
+    use std::f64::consts::PI;
+    let band = |phi: f64| {
+        let q = (a * a + r * r - 2.0 * a * r * phi.cos()).sqrt();
+        let c = ((a - r * phi.cos()) / q).clamp(-1.0, 1.0);
+        (pitch * (1.0 - c.acos() / PI)).max(drop)
+    };
+    let n = 200_000;
+    let side: f64 = (0..n)
+        .map(|q| r * band((q as f64 + 0.5) / n as f64 * PI) * PI / n as f64)
+        .sum();
+    let (mut lo, mut hi) = (0.0, PI);
+    if band(0.0) >= z_disc {
+        hi = 0.0;
+    } else {
+        for _ in 0..100 {
+            let mid = 0.5 * (lo + hi);
+            if band(mid) < z_disc {
+                lo = mid;
+            } else {
+                hi = mid;
+            }
+        }
+    }
+    (PI * r * r + side, hi.to_degrees(), band(PI))
+}
+
+/// Every location of the fourth of four turns of a 10 mm flat end mill on a CCW helix of
+/// radius `a` about the Z axis, 1 mm per turn, locations every `step` mm, into a block whose
+/// top is at z = 0, rays `h` apart (on the fourth turn the tip is 2.5–3.5 mm deep and the
+/// turn before wholly under the top: the engagement is steady); each with how much lower it
+/// is than the location before.
+pub(crate) fn helix_turn(a: f64, step: f64, h: f64, opts: EngageOptions) -> Vec<(Engagement, f64)> {
+    let mut text = format!("G21 G90\nG0 X{a} Y0 Z0.5\n");
+    for turn in 1..=4 {
+        text += &format!("G3 X{a} Y0 Z{} I{} J0 F600\n", 0.5 - turn as f64, -a);
+    }
+    let p = program(&text, "helix.ngc");
+    let w = a + 7.0;
+    let mut stock = block([-w, -w, -10.0], [w, w, 0.0], h);
+    let locs = run(
+        &p,
+        Cutter::flat(10.0).unwrap(),
+        &mut stock,
+        opts.with_step(step),
+    );
+    locs.windows(2)
+        .filter(|w| w[1].move_index == 4)
+        .map(|w| (w[1].clone(), w[0].tip.z - w[1].tip.z))
+        .collect()
+}
