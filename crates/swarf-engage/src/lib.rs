@@ -17,9 +17,10 @@
 //! distance to the stock's boundary is read from the interval ends of the rays around it
 //! ([`MaterialProbe`]: exact for planar faces, `O(h²κ)` for curved ones) and the boundary is
 //! placed between samples by interpolation ([`mod@engagement`]), so the error shrinks with the
-//! ray spacing `h` and with `dφ` (README: convergence table, from `tests/convergence.rs`). Arcs
-//! are cut as chords up to the chordal tolerance inside them: a wall cut along an arc stands
-//! up to that proud, and a tool coming back along it is engaged in that sliver (README).
+//! ray spacing `h` and with `dφ` (README: convergence table, from `tests/convergence.rs`). A
+//! tool coming back along a concave wall it cut before touches it tangentially, and the
+//! micron or less by which the wall stands proud (chords of arcs) or the rays' sheet runs
+//! inside it is reported as engagement: a rub up the whole wall (README).
 //!
 //! Most of the work would be probing (twelve rays per sample), so only the samples that matter
 //! are probed: the tangency `f` is computed at every sample (it needs no stock); where `f > 0`
