@@ -44,7 +44,7 @@
 //! spindle (M3) this is the angle of the mechanistic force models: a full slot is engaged from 0°
 //! to 180°, up-milling at radial depth `a_e` from 0° to `arccos(1 − a_e/R)`, down-milling from
 //! `180° − arccos(1 − a_e/R)` to 180°. Heights `z` are above the tool tip along `z_L`. Millimetres
-//! and degrees.
+//! and degrees. The repository's `docs/engagement-frame.svg` draws it.
 //!
 //! # Example
 //! A 10 mm flat end mill cuts a full slot 5 mm deep: engaged from 0° to 180° over the 5 mm of
