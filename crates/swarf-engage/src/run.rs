@@ -807,7 +807,8 @@ fn sample_strip(
     // all miss — goes unseen: it is narrower than the ray spacing).
     if !exhaustive {
         // The rows to look at (all at first; then those around a flipped side), the samples
-        // to probe, and a row's OR and AND of its sides' neighbourhoods.
+        // to probe and their probed values; a row's samples that border a change of side
+        // are found 64 at a time (`sides::borders`).
         let (scan, todo, values) = (&mut scratch.scan, &mut scratch.todo, &mut scratch.values);
         scan.clear();
         scan.resize(rows, true);
