@@ -18,9 +18,10 @@
 //! ([`MaterialProbe`]: exact for planar faces, `O(h²κ)` for curved ones) and the boundary is
 //! placed between samples by interpolation ([`mod@engagement`]), so the error shrinks with the
 //! ray spacing `h` and with `dφ` (README: convergence table, from `tests/convergence.rs`). A
-//! tool coming back along a concave wall it cut before touches it tangentially, and the
+//! tool coming back along a concave wall it cut before touches it tangentially, within the
 //! micron or less by which the wall stands proud (chords of arcs) or the rays' sheet runs
-//! inside it is reported as engagement: a rub up the whole wall (README).
+//! inside it: such a **rub** — the cutter grazing the wall from the air side, no deeper than
+//! the stock's own uncertainty — is not engagement (README).
 //!
 //! Most of the work would be probing (twelve rays per sample), so only the samples that matter
 //! are probed: the tangency `f` is computed at every sample (it needs no stock); where `f > 0`

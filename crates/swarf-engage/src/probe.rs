@@ -52,6 +52,9 @@ pub struct Depth {
     /// True when a family measured it (a coherent one, or beside an outer edge one that agrees
     /// with the rays' vote); false when the rays only voted on the side.
     pub measured: bool,
+    /// The outward normal (out of the material) of the boundary sheet the distance was
+    /// measured to, when a coherent family measured it.
+    pub normal: Option<Vec3>,
 }
 
 /// Point queries against a stock. Cheap to make; borrows the stock.
@@ -186,7 +189,7 @@ impl<'a> MaterialProbe<'a> {
 
     /// The signed distance of `p` to the boundary of the material (positive inside).
     pub fn depth(&self, p: Vec3) -> Depth {
-        let mut best: Option<f64> = None;
+        let mut best: Option<(f64, Vec3)> = None;
         let mut votes = 0i32;
         let mut vote_scale = 0.0f64;
         // The nearest material of the families beside an outer edge (each bounds it).
@@ -195,9 +198,9 @@ impl<'a> MaterialProbe<'a> {
         let (mut deep, mut deep_inside, mut deep_near) = (0, 0, f64::INFINITY);
         for k in 0..3 {
             match self.family_depth(k, p) {
-                FamilyDepth::Coherent(d) => {
-                    if best.map_or(true, |b| d.abs() < b.abs()) {
-                        best = Some(d);
+                FamilyDepth::Coherent(d, n) => {
+                    if best.map_or(true, |(b, _)| d.abs() < b.abs()) {
+                        best = Some((d, n));
                     }
                 }
                 FamilyDepth::Edge(d, inside, spacing) => {
@@ -223,21 +226,29 @@ impl<'a> MaterialProbe<'a> {
             return Depth {
                 distance: if deep_inside == 3 { bound } else { -bound },
                 measured: true,
+                normal: None,
             };
         }
         // An edge's sheets bound the distance, but the edge's other face is seen only at the
         // ray spacing by the families that stand across it: within half a spacing of that
         // face they may vote against the sheets, and then the vote stands.
         let edge = edge.filter(|&d| (d > 0.0) == (votes > 0));
-        match best.or(edge) {
-            Some(d) => Depth {
+        match (best, edge) {
+            (Some((d, n)), _) => Depth {
                 distance: d.clamp(-self.cap, self.cap),
                 measured: true,
+                normal: Some(n),
             },
-            None => Depth {
+            (None, Some(d)) => Depth {
+                distance: d.clamp(-self.cap, self.cap),
+                measured: true,
+                normal: None,
+            },
+            (None, None) => Depth {
                 // Three votes (every family that is not coherent votes): a tie is impossible.
                 distance: f64::from(votes.signum()) * 0.25 * vote_scale,
                 measured: false,
+                normal: None,
             },
         }
     }
@@ -373,7 +384,14 @@ impl<'a> MaterialProbe<'a> {
         let de_du = ((ends[1] - ends[0]) * (1.0 - wv) + (ends[3] - ends[2]) * wv) / l.h[0];
         let de_dv = ((ends[2] - ends[0]) * (1.0 - wu) + (ends[3] - ends[1]) * wu) / l.h[1];
         let s = f64::from(kind);
-        FamilyDepth::Coherent(s * (t - e) / (1.0 + de_du * de_du + de_dv * de_dv).sqrt())
+        let tilt = (1.0 + de_du * de_du + de_dv * de_dv).sqrt();
+        // The distance grows into the material along s·(e_k − ∂e/∂u·e_u − ∂e/∂v·e_v)/tilt: the
+        // outward normal is its opposite.
+        let mut normal = Vec3::ZERO;
+        normal[k] = -s / tilt;
+        normal[l.u] = s * de_du / tilt;
+        normal[l.v] = s * de_dv / tilt;
+        FamilyDepth::Coherent(s * (t - e) / tilt, normal)
     }
 }
 
@@ -470,8 +488,8 @@ fn beyond_rays(f: f64, n: usize, h: f64) -> f64 {
 }
 
 enum FamilyDepth {
-    /// The signed distance to the sheet the four rays agree on.
-    Coherent(f64),
+    /// The signed distance to the sheet the four rays agree on, and the sheet's outward normal.
+    Coherent(f64, Vec3),
     /// Beside an outer edge of the material: the signed distance to the sheet that the rays
     /// holding material near the point agree on, the others holding none; and, as a vote, the
     /// nearest ray's side (inside?) and the ray spacing.
@@ -563,6 +581,44 @@ mod tests {
         // Far from the box it is deep, and says so.
         let d = probe.depth(Vec3::new(20.0, 20.0, 5.0)).distance;
         assert!(d <= -probe.cap, "{d}");
+    }
+
+    #[test]
+    fn the_measured_sheet_s_normal_points_out_of_the_material() {
+        // Near each face of a cube, inside and outside, the normal is the face's outward one;
+        // under a plane sloping in x (a block cut by a ramp), the plane's.
+        let b = swarf_geom::Aabb::new(Vec3::ZERO, Vec3::splat(10.0));
+        let stock = TriDexel::from_box(b.min, b.max, 0.1).unwrap();
+        let probe = MaterialProbe::new(&stock);
+        for (p, n) in [
+            (Vec3::new(5.02, 4.97, 9.93), Vec3::Z),
+            (Vec3::new(5.02, 4.97, 10.03), Vec3::Z),
+            (Vec3::new(0.06, 4.97, 5.01), -Vec3::X),
+            (Vec3::new(5.02, 9.96, 5.01), Vec3::Y),
+            (Vec3::new(5.02, 4.97, 0.02), -Vec3::Z),
+        ] {
+            let d = probe.depth(p);
+            assert!((d.normal.unwrap() - n).length() < 1e-12, "{p}: {d:?}");
+        }
+        let slope = 0.2f64;
+        let ramp = TriDexel::from_fn(b, 0.1, |k, cu, cv, d| {
+            // The top at z = 5 + 0.2·x: along z the ray (x, y) = (cu, cv); along x the ray at
+            // (y, z) = (cu, cv) holds x ≥ (z − 5)/0.2; along y the ray at (z, x) = (cu, cv).
+            let (enter, exit) = match k {
+                2 => (0.0, 5.0 + slope * cu),
+                0 => (((cv - 5.0) / slope).max(0.0), 10.0),
+                _ => (0.0, if cu <= 5.0 + slope * cv { 10.0 } else { -1.0 }),
+            };
+            if exit > enter {
+                d.push(Interval { enter, exit });
+            }
+        })
+        .unwrap();
+        let probe = MaterialProbe::new(&ramp);
+        let d = probe.depth(Vec3::new(5.03, 5.02, 5.95));
+        let n = Vec3::new(-slope, 0.0, 1.0).normalize();
+        assert!(d.distance > 0.0, "{d:?}");
+        assert!((d.normal.unwrap() - n).length() < 1e-9, "{d:?} vs {n}");
     }
 
     #[test]

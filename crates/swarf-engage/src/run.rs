@@ -563,6 +563,12 @@ impl<'a> Engager<'a> {
             return Ok(e);
         };
         let mut probes = 0u64;
+        let h = self.stock.grid().h;
+        let rub = Rub::new(
+            self.opts.chordal_tolerance_mm,
+            h[0].max(h[1]).max(h[2]),
+            tool.radius,
+        );
         let mut run_strip = |strip: &Strip, scratch: &mut Scratch| {
             let samples = sample_strip(
                 strip,
@@ -572,6 +578,7 @@ impl<'a> Engager<'a> {
                 &self.angles,
                 tool.radius,
                 material,
+                rub,
                 self.opts.exhaustive,
                 &mut probes,
                 scratch,
@@ -638,6 +645,7 @@ fn sample_strip(
     angles: &Angles,
     radius: f64,
     material: (f64, f64),
+    rub: Rub,
     exhaustive: bool,
     probes: &mut u64,
     scratch: &mut Scratch,
@@ -672,9 +680,12 @@ fn sample_strip(
             radial * c.normal.x + f.z * c.normal.y,
         )
     };
-    // The probed depth at a sample, finite so that depths interpolate (a point far from every
-    // ray is ±∞ deep).
-    let depth_at = |k: usize, j: usize| probe.depth(point(k, j).0).distance.clamp(-FAR_MM, FAR_MM);
+    // g at a probed feasible sample (`rf` its `R·f`): its depth, finite so that depths
+    // interpolate (a point far from every ray is ±∞ deep), capped by `R·f` — unless it rubs.
+    let probed = |k: usize, j: usize, rf: f64| {
+        let (p, normal) = point(k, j);
+        rub.g(probe.depth(p), normal, rf)
+    };
     // Pass 1 (per circle, before its depths), no stock: `R·f` where the motion pushes into the
     // material (> 0), `R·(f − ε)` (≤ 0) where it does not.
     // The buffers keep their length from the last location: every value is written below
@@ -758,7 +769,7 @@ fn sample_strip(
                         rfj
                     } else {
                         count += 1;
-                        lesser(depth_at(lo + r, j), rfj)
+                        probed(lo + r, j, rfj)
                     };
                 }
             } else {
@@ -827,11 +838,11 @@ fn sample_strip(
             if todo.is_empty() {
                 break;
             }
-            let (rf_now, depth_at) = (&rf, &depth_at);
+            let (rf_now, probed) = (&rf, &probed);
             values.clear();
             values.par_extend(
                 todo.par_iter()
-                    .map(|&i| lesser(depth_at(lo + i / n, i % n), rf_now[i])),
+                    .map(|&i| probed(lo + i / n, i % n, rf_now[i])),
             );
             counted += todo.len() as u64;
             scan.fill(false);
@@ -857,6 +868,46 @@ fn sample_strip(
         n_phi: n,
         g,
         side,
+    }
+}
+
+/// Where contact is a **rub**, not engagement: the cutter grazing a wall from the air side —
+/// its outward normal against the wall's — no deeper than the stock's own uncertainty. A tool
+/// that comes back along a concave wall it cut before (each turn of a helix, a second pass round
+/// a pocket) touches it along a line; but arcs and 5-axis moves are cut within the chordal
+/// tolerance, leaving such a wall up to that proud, and between two rays the probe's sheet runs
+/// inside a concave wall by up to `h²/(8ρ)` (`ρ ≥ R` where the tool fits): without this the side
+/// would be found in the material within a degree or two of the contact, all the way up the
+/// wall. Shallowness alone is no sign of a rub — the depth is the distance to the *nearest*
+/// boundary, and a point entering a face across it (the normals square) or about to break
+/// through a face it cuts (the normals alike) is as shallow and engaged.
+#[derive(Clone, Copy, Debug)]
+struct Rub {
+    /// The uncertainty, mm: the chordal tolerance plus the probe's `h²/(8R)`.
+    depth: f64,
+}
+
+/// A rub's normals are within this of opposite: `n_cutter · n_wall < −RUB_COS` (10°).
+const RUB_COS: f64 = 0.984_807_753_012_208;
+
+impl Rub {
+    fn new(chordal_tolerance: f64, h: f64, radius: f64) -> Self {
+        Self {
+            depth: chordal_tolerance + h * h / (8.0 * radius),
+        }
+    }
+
+    /// `g` at a feasible probed sample of cutter normal `normal` and `R·f = rf`: the depth
+    /// capped by `R·f`, or below 0 (by the rub's own depth) for a rub.
+    #[inline]
+    fn g(&self, depth: crate::Depth, normal: Vec3, rf: f64) -> f64 {
+        let d = depth.distance.clamp(-FAR_MM, FAR_MM);
+        let grazing = depth.normal.is_some_and(|n| n.dot(normal) < -RUB_COS);
+        if d > 0.0 && d < self.depth && grazing {
+            d - self.depth
+        } else {
+            lesser(d, rf)
+        }
     }
 }
 

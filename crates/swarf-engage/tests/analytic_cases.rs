@@ -320,11 +320,9 @@ fn helical_groove() {
         check(e, area, entry, 180.0, 0.005, 0.5);
         assert!(!e.bottom.is_empty());
         // The axial depth is the band's, a turn's pitch, or more: the side touches the walls
-        // the turns before cut, at φ = 0° and 180°. Chords of the arcs left the outer one up
-        // to the chordal tolerance proud, and between two rays the probe's sheet runs up to
-        // h²/(8·8 mm) inside that concave wall: the samples of the side within a degree or so
-        // of the contact are found in the material, all the way up the wall — a rub of a
-        // micron or less, reported as engagement (README).
+        // the turns before cut, at φ = 0° and 180° — a rub, not engagement (`run.rs`: `Rub`),
+        // but where the side meets the outer wall's rim the probe, beside a convex edge, finds
+        // a speck in the material at some locations (README).
         assert!(e.ap_mm >= ap - 0.01, "ap {} vs {ap}", e.ap_mm);
     }
 }

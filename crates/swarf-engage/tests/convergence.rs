@@ -87,10 +87,8 @@ fn bore(h: f64, opts: EngageOptions) -> (f64, f64) {
 #[test]
 fn errors_shrink_with_the_ray_spacing_and_the_angular_sampling() {
     let settings = [(0.2, 1.0), (0.1, 1.0), (0.05, 1.0), (0.1, 2.0), (0.1, 0.5)];
-    // Each case, and whether its error must shrink with dφ too: the bore's does not, being
-    // the rays' — the floor the band rises from, and a sliver of the side within 1.4° of where
-    // it touches the bore's wall, which chords of the turns before left up to 1 µm proud
-    // (`analytic_cases.rs`): finer angles find more of that sliver.
+    // Each case, and whether its error must shrink with dφ too: the bore's does not, its entry
+    // angle being the rays' — the floor the band rises from (`analytic_cases.rs`).
     let cases: [(&str, Case, bool); 3] = [
         ("arc around a boss (flat, curved wall)", boss, true),
         ("ball slot, depth 3 (sphere)", ball_slot, true),
