@@ -964,3 +964,42 @@ fn mrr(m: &Move, ds: f64, travel: f64, removed: f64) -> f64 {
         0.0
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::Depth;
+
+    #[test]
+    fn a_rub_is_shallow_and_against_the_wall_and_nothing_else_is() {
+        // The uncertainty at the defaults: 1 µm of chords and 0.25 µm of the probe's sheet.
+        let rub = Rub::new(1e-3, 0.1, 5.0);
+        assert!((rub.depth - 1.25e-3).abs() < 1e-15);
+        let at = |distance: f64, wall: Option<Vec3>| Depth {
+            distance,
+            measured: true,
+            normal: wall,
+        };
+        let cutter = Vec3::X;
+        let (rf, shallow) = (0.2, 0.5e-3);
+        // Against the wall (within 10° of opposite): a rub, below 0.
+        for deg in [0.0f64, 5.0, 9.9] {
+            let wall = Vec3::new(-deg.to_radians().cos(), deg.to_radians().sin(), 0.0);
+            assert!(rub.g(at(shallow, Some(wall)), cutter, rf) < 0.0, "{deg}°");
+        }
+        // Past 10°, across the wall, along it, deeper than the uncertainty, outside, or with no
+        // sheet measured: the depth capped by R·f.
+        let beyond = 10.1f64.to_radians();
+        for (d, wall) in [
+            (shallow, Some(Vec3::new(-beyond.cos(), beyond.sin(), 0.0))),
+            (shallow, Some(Vec3::Z)),
+            (shallow, Some(Vec3::X)),
+            (2e-3, Some(-Vec3::X)),
+            (-shallow, Some(-Vec3::X)),
+            (shallow, None),
+        ] {
+            assert_eq!(rub.g(at(d, wall), cutter, rf), d.min(rf), "{d} {wall:?}");
+        }
+        assert_eq!(rub.g(at(0.3, Some(Vec3::Z)), cutter, rf), rf);
+    }
+}
