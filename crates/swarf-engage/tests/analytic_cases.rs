@@ -308,23 +308,30 @@ fn constant_engagement_is_smooth_along_a_straight_cut() {
     assert!((hi - lo) / mean < 0.005);
 }
 
+/// Every location of a steady turn of the helix of radius `a` (locations every `step` mm, at
+/// least `min_locations` of them) against [`helical_bore`]: the area within 0.5 %, the exit
+/// at 180° within 0.5°, the entry within `entry_deg`, the bottom engaged, and the axial depth
+/// at least the band's — a turn's pitch, or more: the side touches the walls the turns before
+/// cut, at φ = 0° and 180° — a rub, not engagement (`run.rs`: `Rub`), but where the side meets
+/// the outer wall's rim the probe, beside a convex edge, finds a speck in the material at some
+/// locations (README).
+fn check_helix_turn(a: f64, step: f64, min_locations: usize, entry_deg: f64) {
+    let turn = helix_turn(a, step, H, EngageOptions::default());
+    assert!(turn.len() > min_locations, "{} locations", turn.len());
+    for (e, drop) in &turn {
+        let (area, entry, ap) = helical_bore(R, a, 1.0, *drop, 0.05);
+        check(e, area, entry, 180.0, 0.005, entry_deg);
+        assert!(!e.bottom.is_empty());
+        assert!(e.ap_mm >= ap - 0.01, "ap {} vs {ap}", e.ap_mm);
+    }
+}
+
 #[test]
 fn helical_groove() {
     // The helix (radius 7) wider than the tool: a groove between radii 2 and 12. The band is
     // 0.80–1 mm high all over the front half, so every disc under it is engaged from 0° to
     // 180°.
-    let turn = helix_turn(7.0, 1.0, H, EngageOptions::default());
-    assert!(turn.len() > 40, "{} locations", turn.len());
-    for (e, drop) in &turn {
-        let (area, entry, ap) = helical_bore(R, 7.0, 1.0, *drop, 0.05);
-        check(e, area, entry, 180.0, 0.005, 0.5);
-        assert!(!e.bottom.is_empty());
-        // The axial depth is the band's, a turn's pitch, or more: the side touches the walls
-        // the turns before cut, at φ = 0° and 180° — a rub, not engagement (`run.rs`: `Rub`),
-        // but where the side meets the outer wall's rim the probe, beside a convex edge, finds
-        // a speck in the material at some locations (README).
-        assert!(e.ap_mm >= ap - 0.01, "ap {} vs {ap}", e.ap_mm);
-    }
+    check_helix_turn(7.0, 1.0, 40, 0.5);
 }
 
 #[test]
@@ -341,12 +348,5 @@ fn helical_bore_from_solid() {
     // the distance from that circle, which the rays' bilinear sheets follow to a few µm.
     // Measured: the entry within 1.61° at h = 0.1 and 0.63° at h = 0.05 (tests/convergence.rs),
     // the area and the exit within the target.
-    let turn = helix_turn(3.0, 0.5, H, EngageOptions::default());
-    assert!(turn.len() > 30, "{} locations", turn.len());
-    for (e, drop) in &turn {
-        let (area, entry, ap) = helical_bore(R, 3.0, 1.0, *drop, 0.05);
-        check(e, area, entry, 180.0, 0.005, 2.0);
-        assert!(!e.bottom.is_empty());
-        assert!(e.ap_mm >= ap - 0.01, "ap {} vs {ap}", e.ap_mm);
-    }
+    check_helix_turn(3.0, 0.5, 30, 2.0);
 }

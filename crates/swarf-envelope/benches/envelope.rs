@@ -4,7 +4,7 @@
 use criterion::{criterion_main, BenchmarkId, Criterion};
 use swarf_envelope::{envelope, EnvelopeOptions};
 use swarf_path::load::{read_program_str, ReadOptions};
-use swarf_path::Machine;
+use swarf_path::{Machine, Program};
 use swarf_tool::{Cutter, ToolSet};
 
 /// A pocketing program: a spiral of lines and arcs with plunges, 3-axis, then a 5-axis pass.
@@ -18,16 +18,15 @@ fn program_text() -> String {
     t
 }
 
+/// A program read on a 3-axis machine (G-code or APT by the file name).
+fn read(text: &str, file: &str) -> Program {
+    read_program_str(text, file, Machine::three_axis(), &ReadOptions::default()).unwrap()
+}
+
 fn meshing(c: &mut Criterion) {
     let mut g = c.benchmark_group("program_envelope");
     g.sample_size(10);
-    let program = read_program_str(
-        &program_text(),
-        "bench.ngc",
-        Machine::three_axis(),
-        &ReadOptions::default(),
-    )
-    .unwrap();
+    let program = read(&program_text(), "bench.ngc");
     let tools = ToolSet::single(Cutter::ball(6.0).unwrap());
     for h in [0.5, 0.25] {
         g.bench_with_input(BenchmarkId::new("ball6_pocket", h), &h, |b, &h| {
@@ -35,13 +34,10 @@ fn meshing(c: &mut Criterion) {
             b.iter(|| envelope(&program, &tools, 0..program.moves.len(), &opts).unwrap())
         });
     }
-    let five = read_program_str(
+    let five = read(
         "GOTO/0,0,0,0,0,1\nGOTO/20,0,0,0.3420201,0,0.9396926\nGOTO/20,20,0,0,0.3420201,0.9396926\n",
         "bench.apt",
-        Machine::three_axis(),
-        &ReadOptions::default(),
-    )
-    .unwrap();
+    );
     g.bench_function("ball6_5axis_h0.25", |b| {
         let opts = EnvelopeOptions::default();
         b.iter(|| envelope(&five, &tools, 0..five.moves.len(), &opts).unwrap())
@@ -51,13 +47,7 @@ fn meshing(c: &mut Criterion) {
     // of cells merged within 1 µm (`--simplify 0.001`); the mesh is made, not written.
     let mut g = c.benchmark_group("line_envelope");
     g.sample_size(10);
-    let line = read_program_str(
-        "G21 G90\nG0 X0 Y0 Z0\nG1 X36 F300\n",
-        "line.ngc",
-        Machine::three_axis(),
-        &ReadOptions::default(),
-    )
-    .unwrap();
+    let line = read("G21 G90\nG0 X0 Y0 Z0\nG1 X36 F300\n", "line.ngc");
     let ball10 = ToolSet::single(Cutter::ball(10.0).unwrap());
     for (name, simplify) in [
         ("ball10_h0.05", None),
