@@ -21,12 +21,14 @@
 //! and the others hold no material near `P` — none at all, or only beyond the reach on the
 //! far side of `P`, as over a groove beside its wall's top — with `P` nearest to one of the
 //! former) that sheet's distance from `P` bounds `P`'s distance to the material, and the least
-//! such bound over the families is the distance to the nearer face — unless the nearest rays
-//! of the three families vote the other way: the edge's other face is seen only at the ray
-//! spacing by a family standing across it, and within half a spacing of that face the vote
-//! stands. Where the faces lie on the rays' cell boundaries (a block's faces, a slot cut along
-//! them) this is exact, where a vote put the axial depth of a cutter entering a block or
-//! passing beside a slot 0.015 mm too deep. Elsewhere (an inner edge, where the other rays
+//! such bound over the families is the distance to the nearer face — unless it puts `P` inside
+//! and the nearest rays of the three families vote the other way: the edge's other face is
+//! seen only at the ray spacing by a family standing across it, and within half a spacing of
+//! that face the vote stands. (Outside a face's sheet `P` is outside the edge whatever its
+//! other face; there the measure stands against the vote, whose rays, half a spacing off,
+//! see a slanted face displaced.) Where the faces lie on the rays' cell boundaries (a block's
+//! faces, a slot cut along them) this is exact, where a vote put the axial depth of a cutter
+//! entering a block or passing beside a slot 0.015 mm too deep. Elsewhere (an inner edge, where the other rays
 //! hold material at `P`; a step) the rays nearest to `P` vote on the side, and the distance
 //! is reported as a fraction of the spacing.
 //!
@@ -49,11 +51,12 @@ use swarf_stock::{Interval, TriDexel};
 pub struct Depth {
     /// Signed distance to the stock's boundary, mm: positive inside the material.
     pub distance: f64,
-    /// True when a family measured it (a coherent one, or beside an outer edge one that agrees
-    /// with the rays' vote); false when the rays only voted on the side.
+    /// True when a family measured it (a coherent one, or beside an outer edge one whose
+    /// measure stands: outside its sheet, or inside it with the rays' vote); false when the
+    /// rays only voted on the side.
     pub measured: bool,
     /// The outward normal (out of the material) of the boundary sheet the distance was
-    /// measured to, when a coherent family measured it.
+    /// measured to, when a family measured it (coherent, or beside an outer edge).
     pub normal: Option<Vec3>,
 }
 
@@ -192,8 +195,8 @@ impl<'a> MaterialProbe<'a> {
         let mut best: Option<(f64, Vec3)> = None;
         let mut votes = 0i32;
         let mut vote_scale = 0.0f64;
-        // The nearest material of the families beside an outer edge (each bounds it).
-        let mut edge: Option<f64> = None;
+        // The measures of the families beside an outer edge: distance and sheet normal.
+        let (mut edges, mut n_edges) = ([(0.0, Vec3::ZERO); 3], 0);
         // Deep families: how many, and the nearest end among them.
         let (mut deep, mut deep_inside, mut deep_near) = (0, 0, f64::INFINITY);
         for k in 0..3 {
@@ -203,8 +206,9 @@ impl<'a> MaterialProbe<'a> {
                         best = Some((d, n));
                     }
                 }
-                FamilyDepth::Edge(d, inside, spacing) => {
-                    edge = Some(edge.map_or(d, |e: f64| lesser(e, d)));
+                FamilyDepth::Edge(d, n, inside, spacing) => {
+                    edges[n_edges] = (d, n);
+                    n_edges += 1;
                     votes += if inside { 1 } else { -1 };
                     vote_scale = greater(vote_scale, spacing);
                 }
@@ -229,20 +233,17 @@ impl<'a> MaterialProbe<'a> {
                 normal: None,
             };
         }
-        // An edge's sheets bound the distance, but the edge's other face is seen only at the
-        // ray spacing by the families that stand across it: within half a spacing of that
-        // face they may vote against the sheets, and then the vote stands.
-        let edge = edge.filter(|&d| (d > 0.0) == (votes > 0));
+        let edge = edge_verdict(&edges[..n_edges], votes);
         match (best, edge) {
             (Some((d, n)), _) => Depth {
                 distance: d.clamp(-self.cap, self.cap),
                 measured: true,
                 normal: Some(n),
             },
-            (None, Some(d)) => Depth {
+            (None, Some((d, n))) => Depth {
                 distance: d.clamp(-self.cap, self.cap),
                 measured: true,
-                normal: None,
+                normal: Some(n),
             },
             (None, None) => Depth {
                 // Three votes (every family that is not coherent votes): a tie is impossible.
@@ -362,15 +363,15 @@ impl<'a> MaterialProbe<'a> {
         if !coherent {
             // The ray nearest to P across the family (ties to the lower index).
             let r = usize::from(wu > 0.5) + 2 * usize::from(wv > 0.5);
-            // Beside an outer edge of the material (P under the sheet that the rays holding
-            // material near it end on, the others holding none near it) that sheet's distance
-            // bounds P's distance to the material, and is it where the sheet is the nearer
-            // face. At an inner edge the other rays hold material at P: a vote.
+            // Beside an outer edge of the material (P nearest to one of the rays that end near
+            // it on one sheet, the others holding none near it) that sheet is one of the edge's
+            // faces, and P's distance to it is measured (`edge_verdict` says what it tells of
+            // P's side). At an inner edge the other rays hold material at P: a vote.
             let reach = COHERENT_REACH * self.cap;
             let (d_r, _, some) = near[r];
             if some != 0 && d_r.abs() <= reach && near.iter().any(|n| holds_none_near(n, reach)) {
-                if let Some(d) = edge_distance(&near, some, t, (wu, wv), l.h, reach) {
-                    return FamilyDepth::Edge(d, side(r), spacing);
+                if let Some((d, n)) = edge_distance(k, l, &near, some, t, (wu, wv), reach) {
+                    return FamilyDepth::Edge(d, n, side(r), spacing);
                 }
             }
             // The vote of the ray nearest to P.
@@ -385,13 +386,10 @@ impl<'a> MaterialProbe<'a> {
         let de_dv = ((ends[2] - ends[0]) * (1.0 - wu) + (ends[3] - ends[1]) * wu) / l.h[1];
         let s = f64::from(kind);
         let tilt = (1.0 + de_du * de_du + de_dv * de_dv).sqrt();
-        // The distance grows into the material along s·(e_k − ∂e/∂u·e_u − ∂e/∂v·e_v)/tilt: the
-        // outward normal is its opposite.
-        let mut normal = Vec3::ZERO;
-        normal[k] = -s / tilt;
-        normal[l.u] = s * de_du / tilt;
-        normal[l.v] = s * de_dv / tilt;
-        FamilyDepth::Coherent(s * (t - e) / tilt, normal)
+        FamilyDepth::Coherent(
+            s * (t - e) / tilt,
+            sheet_normal(k, l, s, de_du, de_dv, tilt),
+        )
     }
 }
 
@@ -417,21 +415,23 @@ fn holds_none_near(&(d, _, kind): &(f64, f64, i8), reach: f64) -> bool {
 /// Beside an outer edge of the material, the signed distance (positive inside) from the point
 /// at `t` along the rays, at fractions `(wu, wv)` of the cell between the four rays `near`
 /// (nearest ends as [`nearest_end`] gives them; the nearest ray's end near, of kind `kind`),
-/// to the sheet that the rays ending near it with that kind span, when every other ray holds
-/// no material near it (none, or only farther than `reach` on its far side) and one at least
-/// is such a ray: else `None`. (Four ends of one kind are a step or a steep sheet, not an edge:
-/// left to the vote, as before.) Out of line: the probe's other paths stay as compact as they
+/// to the sheet that the rays ending near it with that kind span, and its outward normal, when
+/// every other ray holds no material near it (none, or only farther than `reach` on its far
+/// side) and one at least is such a ray: else `None`. (Four ends of one kind are a step or a
+/// steep sheet, not an edge: left to the vote, as before.) Out of line: the probe's other paths stay as compact as they
 /// were, and this one runs only where the rays disagree.
 #[cold]
 #[inline(never)]
 fn edge_distance(
+    k: usize,
+    l: &Lattice,
     near: &[(f64, f64, i8); 4],
     kind: i8,
     t: f64,
     (wu, wv): (f64, f64),
-    h: [f64; 2],
     reach: f64,
-) -> Option<f64> {
+) -> Option<(f64, Vec3)> {
+    let h = l.h;
     let on_sheet = |&(d, _, kd): &(f64, f64, i8)| kd == kind && d.abs() <= reach;
     let sheet = near.iter().filter(|n| on_sheet(n)).count();
     let without = near.iter().filter(|n| holds_none_near(n, reach)).count();
@@ -478,7 +478,40 @@ fn edge_distance(
         return None;
     }
     let tilt = (1.0 + steep).sqrt();
-    Some(f64::from(kind) * (t - se / sw) / tilt)
+    let s = f64::from(kind);
+    Some((
+        s * (t - se / sw) / tilt,
+        sheet_normal(k, l, s, de_du, de_dv, tilt),
+    ))
+}
+
+/// The outward normal (out of the material) of a sheet `t = e(u, v)` of family `k` with
+/// slopes `∂e/∂u`, `∂e/∂v` across it and `tilt = √(1 + |∇e|²)`, the material on the rays'
+/// side `s` of it: the distance grows into the material along `s·(e_k − ∂e/∂u·e_u −
+/// ∂e/∂v·e_v)/tilt`, and the normal is its opposite.
+#[inline(always)]
+fn sheet_normal(k: usize, l: &Lattice, s: f64, de_du: f64, de_dv: f64, tilt: f64) -> Vec3 {
+    let mut normal = Vec3::ZERO;
+    normal[k] = -s / tilt;
+    normal[l.u] = s * de_du / tilt;
+    normal[l.v] = s * de_dv / tilt;
+    normal
+}
+
+/// What the families' measures beside an outer edge (`(distance, outward normal)` each) say of
+/// the point, given the `votes` of the families' nearest rays: the measure that stands, or
+/// `None` for the vote.
+///
+/// The material is inside both faces of the edge. A point outside a face's sheet is outside,
+/// whatever the other face: the nearest of those measures stands, against the vote, whose
+/// nearest rays — up to half a spacing off — see a sheet slanted across them displaced by its
+/// slope times that offset (a point 5 µm inside a bore's rim was voted 0.025 mm into the
+/// material). A point inside the sheets is inside only if it is inside the other face too,
+/// which a family across that face sees only at the ray spacing: the measure stands where the
+/// votes agree.
+fn edge_verdict(edges: &[(f64, Vec3)], votes: i32) -> Option<(f64, Vec3)> {
+    let &(d, n) = edges.iter().reduce(|a, b| if b.0 < a.0 { b } else { a })?;
+    (d < 0.0 || votes > 0).then_some((d, n))
 }
 
 /// How far (mm) a point at fractional ray index `f` lies beyond the outermost of `n` rays
@@ -491,9 +524,9 @@ enum FamilyDepth {
     /// The signed distance to the sheet the four rays agree on, and the sheet's outward normal.
     Coherent(f64, Vec3),
     /// Beside an outer edge of the material: the signed distance to the sheet that the rays
-    /// holding material near the point agree on, the others holding none; and, as a vote, the
-    /// nearest ray's side (inside?) and the ray spacing.
-    Edge(f64, bool, f64),
+    /// holding material near the point agree on, the others holding none, and its outward
+    /// normal; and, as a vote, the nearest ray's side (inside?) and the ray spacing.
+    Edge(f64, Vec3, bool, f64),
     /// The rays disagree: only the nearest ray's side (inside?) and the ray spacing.
     Vote(bool, f64),
     /// All four rays on one side (inside?), their nearest end farther than the cap: that
@@ -642,6 +675,53 @@ mod tests {
                 }
             }
         }
+    }
+
+    #[test]
+    fn just_inside_a_bore_under_its_rim_a_point_is_measured_outside() {
+        // A bore of radius 8 down to z = -3 in a block whose top z = 0 is the grid's: points
+        // 3 µm under the top and 1-10 µm inside the bore, all round it. The X and Y rays see
+        // the wall, slanted across them; the nearest ones, up to half a spacing off, see it
+        // up to 0.02 mm away, and voted some of these points 0.025 mm into the material.
+        let b = swarf_geom::Aabb::new(Vec3::new(-12.0, -12.0, -5.0), Vec3::new(12.0, 12.0, 0.0));
+        let (rb, floor) = (8.0f64, -3.0);
+        let stock = TriDexel::from_fn(b, 0.1, |k, cu, cv, d| {
+            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+            let mut q = [0.0; 3];
+            (q[u], q[v]) = (cu, cv);
+            let mut push = |enter: f64, exit: f64| d.push(Interval { enter, exit });
+            if k == 2 {
+                push(-5.0, if q[0].hypot(q[1]) < rb { floor } else { 0.0 });
+                return;
+            }
+            let across = q[1 - k];
+            if q[2] > floor && across.abs() < rb {
+                let half = (rb * rb - across * across).sqrt();
+                push(-12.0, -half);
+                push(half, 12.0);
+            } else {
+                push(-12.0, 12.0);
+            }
+        })
+        .unwrap();
+        let probe = MaterialProbe::new(&stock);
+        let mut worst = 0.0f64;
+        for i in 0..360 {
+            let a = (i as f64 + 0.37).to_radians();
+            let radial = Vec3::new(a.cos(), a.sin(), 0.0);
+            for inset in [1e-3, 2e-3, 5e-3, 1e-2] {
+                let p = radial * (rb - inset) - Vec3::Z * 3e-3;
+                let d = probe.depth(p);
+                assert!(d.distance < 0.0, "{i}° {inset}: {d:?}");
+                worst = worst.max((d.distance + inset).abs());
+                // The sheet measured is the wall: its outward normal points into the bore.
+                if let Some(n) = d.normal {
+                    assert!(n.dot(-radial) > 0.99, "{i}° {inset}: {n:?}");
+                }
+            }
+        }
+        // The wall's distance to within its curvature between the rays.
+        assert!(worst < 1e-3, "{worst}");
     }
 
     #[test]

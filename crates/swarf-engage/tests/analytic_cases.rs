@@ -309,20 +309,26 @@ fn constant_engagement_is_smooth_along_a_straight_cut() {
 }
 
 /// Every location of a steady turn of the helix of radius `a` (locations every `step` mm, at
-/// least `min_locations` of them) against [`helical_bore`]: the area within 0.5 %, the exit
-/// at 180° within 0.5°, the entry within `entry_deg`, the bottom engaged, and the axial depth
-/// at least the band's — a turn's pitch, or more: the side touches the walls the turns before
-/// cut, at φ = 0° and 180° — a rub, not engagement (`run.rs`: `Rub`), but where the side meets
-/// the outer wall's rim the probe, beside a convex edge, finds a speck in the material at some
-/// locations (README).
+/// least `min_locations` of them) against [`helical_bore`]: the area within 0.2 % (the target
+/// is 0.5 %; counting the rubs as engagement puts it 0.34–0.40 % high), the exit at 180°
+/// within 0.5°, the entry within `entry_deg`, the bottom engaged, and the axial depth the
+/// band's, a turn's pitch, within 0.2 mm. The side touches the walls the turns before cut, at
+/// φ = 0° and 180°: a rub, not engagement (`run.rs`: `Rub`). Where it meets the floor the turn
+/// before left, in the corner between that floor and the outer wall, the X and Y rays' sheets
+/// smooth the corner over a ray spacing, and the disc above the floor is found engaged over the
+/// last degrees before 180°: the depth reads 1.04–1.15 mm.
 fn check_helix_turn(a: f64, step: f64, min_locations: usize, entry_deg: f64) {
     let turn = helix_turn(a, step, H, EngageOptions::default());
     assert!(turn.len() > min_locations, "{} locations", turn.len());
     for (e, drop) in &turn {
         let (area, entry, ap) = helical_bore(R, a, 1.0, *drop, 0.05);
-        check(e, area, entry, 180.0, 0.005, entry_deg);
+        check(e, area, entry, 180.0, 0.002, entry_deg);
         assert!(!e.bottom.is_empty());
-        assert!(e.ap_mm >= ap - 0.01, "ap {} vs {ap}", e.ap_mm);
+        assert!(
+            e.ap_mm >= ap - 0.01 && e.ap_mm < ap + 0.2,
+            "ap {} vs {ap}",
+            e.ap_mm
+        );
     }
 }
 
