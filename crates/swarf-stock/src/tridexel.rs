@@ -931,7 +931,7 @@ impl TriDexel {
     /// each removed (as [`TriDexel::cut_linear`] would, move by move), with the moves of each
     /// batch cut in parallel over disjoint rays (see [`TriDexel::subtract_moves`]).
     pub fn cut_linear_batch(&mut self, tool: &ToolShape, moves: &[LinearMove]) -> Vec<SegmentCut> {
-        self.cut_linear_batch_with(tool, moves, None)
+        self.cut_linear_batch_with(tool, moves, None, 1)
     }
 
     /// [`TriDexel::cut_linear_batch`], telling `visitor` every piece of material removed
@@ -943,14 +943,27 @@ impl TriDexel {
         moves: &[LinearMove],
         visitor: &dyn RemovalVisitor,
     ) -> Vec<SegmentCut> {
-        self.cut_linear_batch_with(tool, moves, Some(visitor))
+        self.cut_linear_batch_with(tool, moves, Some(visitor), 1)
     }
 
+    /// The chords of one arc or helix, in order, as [`TriDexel::cut_linear_batch`] cuts a run
+    /// of moves — each a move of its own, as chord-by-chord [`TriDexel::cut_linear`] calls
+    /// would cut them — but their interval ends all carrying the tag of the one move they make.
+    pub(crate) fn cut_chords(
+        &mut self,
+        tool: &ToolShape,
+        chords: &[LinearMove],
+    ) -> Vec<SegmentCut> {
+        self.cut_linear_batch_with(tool, chords, None, 0)
+    }
+
+    /// The batch; move `m` of `moves` carries the tag `self.tag + tag_step·m`.
     fn cut_linear_batch_with(
         &mut self,
         tool: &ToolShape,
         moves: &[LinearMove],
         visitor: Option<&dyn RemovalVisitor>,
+        tag_step: MoveTag,
     ) -> Vec<SegmentCut> {
         let tag0 = self.tag;
         let mut out = Vec::with_capacity(moves.len());
@@ -983,7 +996,7 @@ impl TriDexel {
                 prepared.iter().map(|[a, b]| [&a[..], &b[..]]).collect();
             // Moves of later chunks continue the numbering, as one call would give it.
             let first = out.len();
-            self.tag = tag0.saturating_add(first as MoveTag);
+            self.tag = tag0.saturating_add((first as MoveTag).saturating_mul(tag_step));
             let offset = |r: &Removal| Removal {
                 move_index: r.move_index + first,
                 ..*r
@@ -991,7 +1004,7 @@ impl TriDexel {
             let shifted = visitor.map(|v| move |r: &Removal| v.removed(&offset(r)));
             let stats = self.subtract_tagged(
                 &groups,
-                1,
+                tag_step,
                 shifted.as_ref().map(|f| f as &dyn RemovalVisitor),
                 chained,
             );

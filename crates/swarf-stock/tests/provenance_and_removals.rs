@@ -1,6 +1,7 @@
 //! Provenance of interval ends ("which move cut this") and the removal visitor: each end of a
 //! simulated stock names the move that cut it last; tracking changes nothing else; the pieces
-//! the visitor hears of add up to what each move removed.
+//! the visitor hears of add up to what each move removed; an arc's chords, cut as one batch,
+//! leave what they leave cut one by one, their ends all naming the arc's move.
 
 mod common;
 
@@ -163,5 +164,52 @@ fn removals_add_up_to_what_each_move_removed() {
         assert!(ray
             .iter()
             .any(|iv| iv.enter <= r.removed.enter && r.removed.exit <= iv.exit));
+    }
+}
+
+#[test]
+fn an_arcs_chords_cut_together_leave_what_they_leave_cut_one_by_one() {
+    // `cut_move` cuts an arc's chords as one batch; here each chord of the same points is cut
+    // by its own `cut_linear` call. The arc of PROGRAM (move 11) and a helix (one and a half
+    // turns down 2 mm), with a ball end mill whose shank reaches the block.
+    let helix = "G21 G90 G0 X20 Y10 Z5\nG1 Z-1 F100\nG3 X20 Y30 Z-3 I0 J10 P2\nG0 Z5\n";
+    for (text, arc) in [(PROGRAM, 11), (helix, 2)] {
+        let program = common::gcode(text);
+        let swarf_path::MoveKind::Arc(g) = program.moves[arc].kind else {
+            panic!("move {arc} is no arc");
+        };
+        let tool = ToolShape::new(&Cutter::ball(6.0).unwrap());
+        let tol = swarf_stock::DEFAULT_CHORDAL_TOLERANCE_MM;
+        let (mut together, mut apart) = (block(), block());
+        for s in [&mut together, &mut apart] {
+            for i in 0..arc {
+                s.cut_move(&program, i, &tool, tol).unwrap();
+            }
+        }
+        let whole = together.cut_move(&program, arc, &tool, tol).unwrap();
+        let m = &program.moves[arc];
+        let n = swarf_sweep::arc_chords(g.start_radius.max(g.end_radius), g.sweep, tol);
+        assert!(n > 100, "{n} chords");
+        let axis = m.start.axis.normalize();
+        let mut removed = 0.0;
+        for i in 0..n {
+            let tip = |k: usize| program.pose_at(m, k as f64 / n as f64).tip;
+            let (a, b) = (tip(i), if i + 1 == n { m.end.tip } else { tip(i + 1) });
+            let a = if i == 0 { m.start.tip } else { a };
+            removed += apart.cut_linear(&tool, a, b, axis).cutting.removed_length[2];
+        }
+        assert_eq!(whole.cutting.removed_length[2], removed);
+        for k in 0..3 {
+            let (nu, nv) = together.family(k).dims();
+            for j in 0..nv {
+                for i in 0..nu {
+                    assert_eq!(
+                        together.family(k).ray(i, j),
+                        apart.family(k).ray(i, j),
+                        "family {k} ray ({i}, {j})"
+                    );
+                }
+            }
+        }
     }
 }
