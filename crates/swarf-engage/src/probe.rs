@@ -17,20 +17,20 @@
 //! nothing; another, transverse to the sheet, does. Of the coherent families the nearest
 //! sheet wins (the distance to a solid's boundary is the distance to its nearest face). Only
 //! near an edge of the stock — within a ray spacing of two faces at once — may no family be
-//! coherent. Beside an outer edge (where some of a family's rays end near `P` on one sheet
-//! and the others hold no material near `P` — none at all, or only beyond the reach on the
-//! far side of `P`, as over a groove beside its wall's top — with `P` nearest to one of the
-//! former) that sheet's distance from `P` bounds `P`'s distance to the material, and the least
-//! such bound over the families is the distance to the nearer face — unless it puts `P` inside
-//! and the nearest rays of the three families vote the other way: the edge's other face is
-//! seen only at the ray spacing by a family standing across it, and within half a spacing of
-//! that face the vote stands. (Outside a face's sheet `P` is outside the edge whatever its
-//! other face; there the measure stands against the vote, whose rays, half a spacing off,
-//! see a slanted face displaced.) Where the faces lie on the rays' cell boundaries (a block's
-//! faces, a slot cut along them) this is exact, where a vote put the axial depth of a cutter
-//! entering a block or passing beside a slot 0.015 mm too deep. Elsewhere (an inner edge, where the other rays
-//! hold material at `P`; a step) the rays nearest to `P` vote on the side, and the distance
-//! is reported as a fraction of the spacing.
+//! coherent. Beside an edge some of a family's rays end near `P` on one sheet, and the others
+//! are air at `P` (an outer edge: none at all, or material only elsewhere along them, as over
+//! a groove beside its wall's top) or material (an inner edge); that sheet is one of the edge's
+//! faces, and `P`'s distance to it is measured (from one ray, or a pair whose ends give its
+//! slope; ends too far apart for one sheet are a step). At an outer edge the material is inside
+//! both faces: outside a face's sheet `P` is outside, whatever the other face, and the nearest
+//! such face's distance stands; inside the sheets `P` is inside unless a nearest ray of some
+//! family found air where the sheets put material — it saw the edge's other face, which a
+//! family across it sees only at the ray spacing, and the vote decides. At an inner edge the
+//! material is on either face's side: inside a sheet `P` is inside; outside, the vote decides.
+//! Where the faces lie on the rays' cell boundaries (a block's faces, a slot cut along them)
+//! this is exact, where a vote put the axial depth of a cutter entering a block or passing
+//! beside a slot 0.015 mm too deep. Elsewhere (a step, or the rays disagreeing) the rays
+//! nearest to `P` vote on the side, and the distance is reported as a fraction of the spacing.
 //!
 //! Far from the boundary no family is coherent either, but then all twelve rays agree on the
 //! side and their nearest ends are all farther than the probe's precision cap `D₀ = 4h`: the
@@ -51,12 +51,11 @@ use swarf_stock::{Interval, TriDexel};
 pub struct Depth {
     /// Signed distance to the stock's boundary, mm: positive inside the material.
     pub distance: f64,
-    /// True when a family measured it (a coherent one, or beside an outer edge one whose
-    /// measure stands: outside its sheet, or inside it with the rays' vote); false when the
-    /// rays only voted on the side.
+    /// True when a family measured it (a coherent one, or beside an edge one whose measure
+    /// stands); false when the rays only voted on the side.
     pub measured: bool,
     /// The outward normal (out of the material) of the boundary sheet the distance was
-    /// measured to, when a family measured it (coherent, or beside an outer edge).
+    /// measured to, when a family measured it.
     pub normal: Option<Vec3>,
 }
 
@@ -195,8 +194,13 @@ impl<'a> MaterialProbe<'a> {
         let mut best: Option<(f64, Vec3)> = None;
         let mut votes = 0i32;
         let mut vote_scale = 0.0f64;
-        // The measures of the families beside an outer edge: distance and sheet normal.
-        let (mut edges, mut n_edges) = ([(0.0, Vec3::ZERO); 3], 0);
+        // The measures of the families beside an edge: distance, sheet normal, outer edge?
+        let (mut edges, mut n_edges) = ([(0.0, Vec3::ZERO, false); 3], 0);
+        // What the nearest rays of the families that are not coherent found, and where they
+        // passed (offsets from P across their family).
+        let (mut nearest, mut n_nearest) = ([(false, Vec3::ZERO); 3], 0);
+        // Whether a deep family found air.
+        let mut deep_air = false;
         // Deep families: how many, and the nearest end among them.
         let (mut deep, mut deep_inside, mut deep_near) = (0, 0, f64::INFINITY);
         for k in 0..3 {
@@ -206,19 +210,24 @@ impl<'a> MaterialProbe<'a> {
                         best = Some((d, n));
                     }
                 }
-                FamilyDepth::Edge(d, n, inside, spacing) => {
-                    edges[n_edges] = (d, n);
+                FamilyDepth::Edge(d, n, outer, ray, spacing) => {
+                    edges[n_edges] = (d, n, outer);
                     n_edges += 1;
-                    votes += if inside { 1 } else { -1 };
+                    votes += if ray.inside { 1 } else { -1 };
                     vote_scale = greater(vote_scale, spacing);
+                    nearest[n_nearest] = (ray.inside, ray.offset);
+                    n_nearest += 1;
                 }
-                FamilyDepth::Vote(inside, spacing) => {
-                    votes += if inside { 1 } else { -1 };
+                FamilyDepth::Vote(ray, spacing) => {
+                    votes += if ray.inside { 1 } else { -1 };
                     vote_scale = greater(vote_scale, spacing);
+                    nearest[n_nearest] = (ray.inside, ray.offset);
+                    n_nearest += 1;
                 }
                 FamilyDepth::Deep(inside, near, spacing) => {
                     votes += if inside { 1 } else { -1 };
                     vote_scale = greater(vote_scale, spacing);
+                    deep_air |= !inside;
                     deep += 1;
                     deep_inside += i32::from(inside);
                     deep_near = lesser(deep_near, near);
@@ -233,7 +242,7 @@ impl<'a> MaterialProbe<'a> {
                 normal: None,
             };
         }
-        let edge = edge_verdict(&edges[..n_edges], votes);
+        let edge = edge_verdict(&edges[..n_edges], &nearest[..n_nearest], deep_air);
         match (best, edge) {
             (Some((d, n)), _) => Depth {
                 distance: d.clamp(-self.cap, self.cap),
@@ -363,19 +372,52 @@ impl<'a> MaterialProbe<'a> {
         if !coherent {
             // The ray nearest to P across the family (ties to the lower index).
             let r = usize::from(wu > 0.5) + 2 * usize::from(wv > 0.5);
-            // Beside an outer edge of the material (P nearest to one of the rays that end near
-            // it on one sheet, the others holding none near it) that sheet is one of the edge's
-            // faces, and P's distance to it is measured (`edge_verdict` says what it tells of
-            // P's side). At an inner edge the other rays hold material at P: a vote.
+            // Beside an edge of the material — some rays ending near P on one sheet, the others
+            // air at P (an outer edge) or material (an inner one) — that sheet is one of the
+            // edge's faces, and P's distance to it is measured (`edge_verdict` says what it
+            // tells of P's side).
             let reach = COHERENT_REACH * self.cap;
-            let (d_r, _, some) = near[r];
-            if some != 0 && d_r.abs() <= reach && near.iter().any(|n| holds_none_near(n, reach)) {
-                if let Some((d, n)) = edge_distance(k, l, &near, some, t, (wu, wv), reach) {
-                    return FamilyDepth::Edge(d, n, side(r), spacing);
+            // What the nearest ray says, and where it passes: its centre less P's across.
+            let mut offset = Vec3::ZERO;
+            offset[l.u] = ((r & 1) as f64 - wu) * l.h[0];
+            offset[l.v] = ((r >> 1) as f64 - wv) * l.h[1];
+            let nearest = Nearest {
+                inside: side(r),
+                offset,
+            };
+            // The sheet an edge's rays end on: the nearest ray's, or else that of the nearest of
+            // the rays that end near P; its rays are those ending near P with its kind (ends too
+            // far apart for one sheet make it a step: `edge_distance`).
+            let w = [
+                (1.0 - wu) * (1.0 - wv),
+                wu * (1.0 - wv),
+                (1.0 - wu) * wv,
+                wu * wv,
+            ];
+            let ends_near = |q: usize| near[q].2 != 0 && near[q].0.abs() <= reach;
+            let anchor = if ends_near(r) {
+                Some(r)
+            } else {
+                (0..4)
+                    .filter(|&q| ends_near(q))
+                    .reduce(|a, b| if w[b] > w[a] { b } else { a })
+            };
+            if let Some(a) = anchor {
+                let sheet: [bool; 4] =
+                    std::array::from_fn(|q| ends_near(q) && near[q].2 == near[a].2);
+                // Beside an outer edge the other rays are air at P, beside an inner one
+                // material.
+                let others = (0..4).filter(|&q| !sheet[q]);
+                let outer = others.clone().all(|q| !side(q));
+                let inner = others.clone().all(side);
+                if others.count() > 0 && outer != inner {
+                    if let Some((d, n)) = edge_distance(k, l, &near, sheet, w, t) {
+                        return FamilyDepth::Edge(d, n, outer, nearest, spacing);
+                    }
                 }
             }
             // The vote of the ray nearest to P.
-            return FamilyDepth::Vote(side(r), spacing);
+            return FamilyDepth::Vote(nearest, spacing);
         }
         // Bilinear height field of the boundary sheet over the cell, and its gradient.
         let e = ends[0] * (1.0 - wu) * (1.0 - wv)
@@ -405,54 +447,31 @@ fn floor(x: f64) -> f64 {
     }
 }
 
-/// Whether a ray whose nearest end is `n` (as [`nearest_end`] gives it) holds no material
-/// within `reach` of the point: none at all, or only farther than that on its far side.
-#[inline(always)]
-fn holds_none_near(&(d, _, kind): &(f64, f64, i8), reach: f64) -> bool {
-    kind == 0 || d < -reach
-}
-
-/// Beside an outer edge of the material, the signed distance (positive inside) from the point
-/// at `t` along the rays, at fractions `(wu, wv)` of the cell between the four rays `near`
-/// (nearest ends as [`nearest_end`] gives them; the nearest ray's end near, of kind `kind`),
-/// to the sheet that the rays ending near it with that kind span, and its outward normal, when
-/// every other ray holds no material near it (none, or only farther than `reach` on its far
-/// side) and one at least is such a ray: else `None`. (Four ends of one kind are a step or a
-/// steep sheet, not an edge: left to the vote, as before.) Out of line: the probe's other paths stay as compact as they
-/// were, and this one runs only where the rays disagree.
+/// Beside an edge of the material, the signed distance (positive inside) from the point at
+/// `t` along the rays, at weights `w` of the four rays `near` (nearest ends as
+/// [`nearest_end`] gives them), to the sheet that the rays of `sheet` end on, and its outward
+/// normal; `None` where that sheet is steeper than a whole one may be (a step) or the weights
+/// are not numbers. Out of line: the probe's other paths stay as compact as they were, and this
+/// one runs only where the rays disagree.
 #[cold]
 #[inline(never)]
 fn edge_distance(
     k: usize,
     l: &Lattice,
     near: &[(f64, f64, i8); 4],
-    kind: i8,
+    sheet: [bool; 4],
+    w: [f64; 4],
     t: f64,
-    (wu, wv): (f64, f64),
-    reach: f64,
 ) -> Option<(f64, Vec3)> {
     let h = l.h;
-    let on_sheet = |&(d, _, kd): &(f64, f64, i8)| kd == kind && d.abs() <= reach;
-    let sheet = near.iter().filter(|n| on_sheet(n)).count();
-    let without = near.iter().filter(|n| holds_none_near(n, reach)).count();
-    if sheet + without != 4 || without == 0 {
-        return None;
-    }
-    let w = [
-        (1.0 - wu) * (1.0 - wv),
-        wu * (1.0 - wv),
-        (1.0 - wu) * wv,
-        wu * wv,
-    ];
+    let kind = (0..4).find(|&q| sheet[q]).map_or(0, |q| near[q].2);
     let (mut sw, mut se) = (0.0, 0.0);
-    for (&wr, n) in w.iter().zip(near) {
-        if on_sheet(n) {
-            sw += wr;
-            se += wr * n.1;
-        }
+    for q in (0..4).filter(|&q| sheet[q]) {
+        sw += w[q];
+        se += w[q] * near[q].1;
     }
     // (NaN weights, from a NaN point, give no measure.)
-    if sw.is_nan() || sw <= 0.0 {
+    if kind == 0 || sw.is_nan() || sw <= 0.0 {
         return None;
     }
     // The sheet's slope across the family from the pairs of neighbouring rays that both end
@@ -460,7 +479,7 @@ fn edge_distance(
     let slope = |pairs: [(usize, usize); 2], h: f64| {
         let (mut sum, mut count) = (0.0, 0.0);
         for (a, b) in pairs {
-            if on_sheet(&near[a]) && on_sheet(&near[b]) {
+            if sheet[a] && sheet[b] {
                 sum += near[b].1 - near[a].1;
                 count += 1.0;
             }
@@ -472,9 +491,13 @@ fn edge_distance(
         }
     };
     let (de_du, de_dv) = (slope([(0, 1), (2, 3)], h[0]), slope([(0, 2), (1, 3)], h[1]));
-    // Ends this far apart between neighbours are a step, not a sheet (as for a whole one).
+    // Ends this far apart between neighbours are a step, not a sheet (as for a whole one);
+    // so are two diagonal ones with no neighbour between them on the sheet.
     let steep = de_du * de_du + de_dv * de_dv;
-    if steep.is_nan() || steep > MAX_SHEET_SLOPE * MAX_SHEET_SLOPE {
+    let diagonal_step = [(0, 3), (1, 2)].iter().any(|&(a, b)| {
+        sheet[a] && sheet[b] && (near[b].1 - near[a].1).abs() > MAX_SHEET_SLOPE * (h[0] + h[1])
+    });
+    if steep.is_nan() || steep > MAX_SHEET_SLOPE * MAX_SHEET_SLOPE || diagonal_step {
         return None;
     }
     let tilt = (1.0 + steep).sqrt();
@@ -498,20 +521,66 @@ fn sheet_normal(k: usize, l: &Lattice, s: f64, de_du: f64, de_dv: f64, tilt: f64
     normal
 }
 
-/// What the families' measures beside an outer edge (`(distance, outward normal)` each) say of
-/// the point, given the `votes` of the families' nearest rays: the measure that stands, or
-/// `None` for the vote.
+/// What the families' measures beside an edge (`(distance, outward normal, outer?)` each) say of
+/// the point, given what the nearest rays of the families that are not coherent found there
+/// (`(material?, offset from the point across the family)` each) and whether a deep family
+/// found air: the measure that stands, or `None` for the vote.
 ///
-/// The material is inside both faces of the edge. A point outside a face's sheet is outside,
-/// whatever the other face: the nearest of those measures stands, against the vote, whose
-/// nearest rays — up to half a spacing off — see a sheet slanted across them displaced by its
-/// slope times that offset (a point 5 µm inside a bore's rim was voted 0.025 mm into the
+/// At an outer edge the material is inside both faces. A point outside a face's sheet is
+/// outside, whatever the other face: the nearest of those measures stands, against the vote,
+/// whose nearest rays — up to half a spacing off — see a sheet slanted across them displaced by
+/// its slope times that offset (a point 5 µm inside a bore's rim was voted 0.025 mm into the
 /// material). A point inside the sheets is inside only if it is inside the other face too,
-/// which a family across that face sees only at the ray spacing: the measure stands where the
-/// votes agree.
-fn edge_verdict(edges: &[(f64, Vec3)], votes: i32) -> Option<(f64, Vec3)> {
-    let &(d, n) = edges.iter().reduce(|a, b| if b.0 < a.0 { b } else { a })?;
-    (d < 0.0 || votes > 0).then_some((d, n))
+/// which a family across that face may see only at the ray spacing: a nearest ray that found
+/// air where the sheets put material saw that face, and then the vote decides. A ray that
+/// found air outside a sheet saw that sheet's own face and says nothing of the other: a point
+/// 0.026 mm under a floor beside a hole's wall, whose X and Y rays nearest to it ran just above
+/// the floor, was voted out of the material. At an inner edge the material lies on either
+/// face's side: a point inside a sheet is inside (a point under a floor where it meets a wall
+/// was voted out the same way); one outside the sheets may be inside the other face, which
+/// the vote decides (the measure standing there put one-sample holes in a finishing raster's
+/// engagement that the rays do not resolve). Outer and inner measures at one point contradict
+/// each other: the vote. (The inner measures, and the outer ones whose other rays hold
+/// material elsewhere along them, came with the hole's case: `tests/analytic_cases.rs`,
+/// `helical_bore_enlarging_a_hole`.)
+fn edge_verdict(
+    edges: &[(f64, Vec3, bool)],
+    nearest: &[(bool, Vec3)],
+    deep_air: bool,
+) -> Option<(f64, Vec3)> {
+    let outer = edges.first()?.2;
+    if edges.iter().any(|e| e.2 != outer) {
+        return None;
+    }
+    if !outer {
+        // Inside a sheet: the one it is deepest in.
+        let &(d, n, _) = edges.iter().reduce(|a, b| if b.0 > a.0 { b } else { a })?;
+        return (d > 0.0).then_some((d, n));
+    }
+    // Outside some sheet: the nearest of those faces. Inside every sheet: the nearest face.
+    let outside = edges
+        .iter()
+        .filter(|e| e.0 < 0.0)
+        .reduce(|a, b| if b.0 > a.0 { b } else { a });
+    if let Some(&(d, n, _)) = outside {
+        return Some((d, n));
+    }
+    let &(d, n, _) = edges.iter().reduce(|a, b| if b.0 < a.0 { b } else { a })?;
+    // A nearest ray that found air at an offset `o` where every sheet puts material (each
+    // sheet's distance along its normal) saw the other face.
+    let other_face = deep_air
+        || nearest.iter().any(|&(material, o)| {
+            !material && edges.iter().all(|&(de, ne, _)| de - ne.dot(o) > 0.0)
+        });
+    (!other_face).then_some((d, n))
+}
+
+/// What a family's ray nearest to the point says: whether it holds material at the point's
+/// coordinate along it, and where it passes (its centre less the point, across the family).
+#[derive(Clone, Copy, Debug)]
+struct Nearest {
+    inside: bool,
+    offset: Vec3,
 }
 
 /// How far (mm) a point at fractional ray index `f` lies beyond the outermost of `n` rays
@@ -526,9 +595,9 @@ enum FamilyDepth {
     /// Beside an outer edge of the material: the signed distance to the sheet that the rays
     /// holding material near the point agree on, the others holding none, and its outward
     /// normal; and, as a vote, the nearest ray's side (inside?) and the ray spacing.
-    Edge(f64, Vec3, bool, f64),
-    /// The rays disagree: only the nearest ray's side (inside?) and the ray spacing.
-    Vote(bool, f64),
+    Edge(f64, Vec3, bool, Nearest, f64),
+    /// The rays disagree: only the nearest ray's side and the ray spacing.
+    Vote(Nearest, f64),
     /// All four rays on one side (inside?), their nearest end farther than the cap: that
     /// nearest end's distance along its ray, and the ray spacing.
     Deep(bool, f64, f64),
@@ -722,6 +791,55 @@ mod tests {
         }
         // The wall's distance to within its curvature between the rays.
         assert!(worst < 1e-3, "{worst}");
+    }
+
+    #[test]
+    fn under_a_floor_beside_a_hole_the_floor_is_measured_though_the_nearest_rays_run_above_it() {
+        // Material under a floor at z = 0.047, 3 µm under the row of X and Y rays at z = 0.05,
+        // with a hole of radius 2 along Z: points 0.03 mm under the floor and 0.02-0.1 mm
+        // beside the hole. The X and Y rays nearest to them run above the floor, in the air;
+        // the Z rays measure the floor. Before, the vote of the first put such points out of
+        // the material.
+        let b = swarf_geom::Aabb::new(Vec3::new(-5.0, -5.0, -5.0), Vec3::new(5.0, 5.0, 1.0));
+        let (rh, floor) = (2.0f64, 0.047);
+        let stock = TriDexel::from_fn(b, 0.1, |k, cu, cv, d| {
+            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+            let mut q = [0.0; 3];
+            (q[u], q[v]) = (cu, cv);
+            let mut push = |enter: f64, exit: f64| d.push(Interval { enter, exit });
+            if k == 2 {
+                if q[0].hypot(q[1]) >= rh {
+                    push(-5.0, floor);
+                }
+                return;
+            }
+            if q[2] > floor {
+                return;
+            }
+            let across = q[1 - k];
+            if across.abs() < rh {
+                let half = (rh * rh - across * across).sqrt();
+                push(-5.0, -half);
+                push(half, 5.0);
+            } else {
+                push(-5.0, 5.0);
+            }
+        })
+        .unwrap();
+        let probe = MaterialProbe::new(&stock);
+        for i in 0..72 {
+            let a = (i as f64 * 5.0 + 1.3).to_radians();
+            let radial = Vec3::new(a.cos(), a.sin(), 0.0);
+            for beside in [0.02, 0.05, 0.1] {
+                let p = radial * (rh + beside) + Vec3::Z * (floor - 0.03);
+                let d = probe.depth(p);
+                assert!(d.distance > 0.0, "{}° {beside}: {d:?}", i * 5);
+                assert!(d.distance <= 0.03 + 1e-9, "{}° {beside}: {d:?}", i * 5);
+            }
+            // Inside the hole it is air.
+            let p = radial * (rh - 0.05) + Vec3::Z * (floor - 0.03);
+            assert!(probe.depth(p).distance < 0.0, "{}°", i * 5);
+        }
     }
 
     #[test]

@@ -73,11 +73,11 @@ fn ball_slot(h: f64, opts: EngageOptions) -> (f64, f64) {
 /// The helical bore from solid of `analytic_cases.rs` (helix radius 3, 1 mm per turn,
 /// locations every 0.5 mm).
 fn bore(h: f64, opts: EngageOptions) -> (f64, f64) {
-    let turn = helix_turn(3.0, 0.5, h, opts);
+    let turn = helix_turn(3.0, 0.5, 0.0, h, opts);
     let cases: Vec<_> = turn
         .iter()
         .map(|(e, drop)| {
-            let (area, entry, _) = helical_bore(R, 3.0, 1.0, *drop, 0.05);
+            let (area, entry, _) = helical_bore(R, 3.0, 1.0, *drop, 0.05, 0.0);
             (e, (area, entry, 180.0))
         })
         .collect();

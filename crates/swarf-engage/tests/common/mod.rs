@@ -80,9 +80,9 @@ pub(crate) fn check(e: &Engagement, area: f64, entry: f64, exit: f64, rel_tol: f
 }
 
 /// The steady engagement of a flat end mill of radius `r` whose centre runs a CCW helix of
-/// radius `a` about the Z axis into solid stock, `pitch` lower per turn, at a location `drop`
-/// lower than the one before: (area, entry angle on the disc at `z_disc` in degrees, axial
-/// depth).
+/// radius `a` about the Z axis, `pitch` lower per turn, at a location `drop` lower than the one
+/// before, enlarging a hole of radius `hole` drilled along the axis (0: into solid stock):
+/// (area, entry angle on the disc at `z_disc` in degrees, axial depth).
 ///
 /// The centre at angle θ is `a·ĉ(θ)`; the side point at immersion φ is
 /// `q = a·ĉ + r·(sin φ·t̂ − cos φ·ĉ)` (x_L = t̂ the feed, y_L = −ĉ), `|q|² = a² + r² −
@@ -91,12 +91,25 @@ pub(crate) fn check(e: &Engagement, area: f64, entry: f64, exit: f64, rel_tol: f
 /// (|q|² + a² − r²)/(2a|q|) = (a − r cos φ)/|q|`, so q was last inside it a turn ago less 2α,
 /// when the bottom was `pitch·(1 − α/π)` higher — unless the location before held it (near
 /// φ = 0 when a < r, where α → π), whose bottom was `drop` higher. The side is in the
-/// material over the larger of the two; the bottom disc wholly (it was last cut higher up).
-/// The band grows from φ = 0 to φ = π, so a disc is engaged from where the band reaches it.
-pub(crate) fn helical_bore(r: f64, a: f64, pitch: f64, drop: f64, z_disc: f64) -> (f64, f64, f64) {
+/// material over the larger of the two, where `|q|` is outside the hole. The bottom disc is in
+/// the material wherever it is outside the hole (it was last cut higher up): the disc less its
+/// lens with the hole. `|q|` and the band both grow from φ = 0 to φ = π, so a disc is engaged
+/// from where both have reached it.
+pub(crate) fn helical_bore(
+    r: f64,
+    a: f64,
+    pitch: f64,
+    drop: f64,
+    z_disc: f64,
+    hole: f64,
+) -> (f64, f64, f64) {
     use std::f64::consts::PI;
+    let radius = |phi: f64| (a * a + r * r - 2.0 * a * r * phi.cos()).sqrt();
     let band = |phi: f64| {
-        let q = (a * a + r * r - 2.0 * a * r * phi.cos()).sqrt();
+        let q = radius(phi);
+        if q < hole {
+            return 0.0;
+        }
         let c = ((a - r * phi.cos()) / q).clamp(-1.0, 1.0);
         (pitch * (1.0 - c.acos() / PI)).max(drop)
     };
@@ -117,22 +130,68 @@ pub(crate) fn helical_bore(r: f64, a: f64, pitch: f64, drop: f64, z_disc: f64) -
             }
         }
     }
-    (PI * r * r + side, hi.to_degrees(), band(PI))
+    (
+        PI * r * r - lens(r, hole, a) + side,
+        hi.to_degrees(),
+        band(PI),
+    )
+}
+
+/// The area common to two discs of radii `r` and `s` whose centres are `d` apart.
+pub(crate) fn lens(r: f64, s: f64, d: f64) -> f64 {
+    use std::f64::consts::PI;
+    if s <= 0.0 || d >= r + s {
+        return 0.0;
+    }
+    if d <= (r - s).abs() {
+        return PI * r.min(s).powi(2);
+    }
+    let part = |x: f64, y: f64| x * x * ((d * d + x * x - y * y) / (2.0 * d * x)).acos();
+    let kite = 0.5 * ((-d + r + s) * (d + r - s) * (d - r + s) * (d + r + s)).sqrt();
+    part(r, s) + part(s, r) - kite
 }
 
 /// Every location of the fourth of four turns of a 10 mm flat end mill on a CCW helix of
 /// radius `a` about the Z axis, 1 mm per turn, locations every `step` mm, into a block whose
-/// top is at z = 0, rays `h` apart (on the fourth turn the tip is 2.5–3.5 mm deep and the
-/// turn before wholly under the top: the engagement is steady); each with how much lower it
-/// is than the location before.
-pub(crate) fn helix_turn(a: f64, step: f64, h: f64, opts: EngageOptions) -> Vec<(Engagement, f64)> {
+/// top is at z = 0 with a hole of radius `hole` drilled through it along the axis (0: none),
+/// rays `h` apart (on the fourth turn the tip is 2.5–3.5 mm deep and the turn before wholly
+/// under the top: the engagement is steady); each with how much lower it is than the location
+/// before.
+pub(crate) fn helix_turn(
+    a: f64,
+    step: f64,
+    hole: f64,
+    h: f64,
+    opts: EngageOptions,
+) -> Vec<(Engagement, f64)> {
     let mut text = format!("G21 G90\nG0 X{a} Y0 Z0.5\n");
     for turn in 1..=4 {
         text += &format!("G3 X{a} Y0 Z{} I{} J0 F600\n", 0.5 - turn as f64, -a);
     }
     let p = program(&text, "helix.ngc");
     let w = a + 7.0;
-    let mut stock = block([-w, -w, -10.0], [w, w, 0.0], h);
+    let b = swarf_geom::Aabb::new(Vec3::new(-w, -w, -10.0), Vec3::new(w, w, 0.0));
+    // The block's rays, exact: along Z outside the hole, across it beside it.
+    let mut stock = TriDexel::from_fn(b, h, |k, cu, cv, d| {
+        let mut q = [0.0; 3];
+        (q[(k + 1) % 3], q[(k + 2) % 3]) = (cu, cv);
+        let mut push = |enter: f64, exit: f64| d.push(swarf_stock::Interval { enter, exit });
+        if k == 2 {
+            if q[0].hypot(q[1]) >= hole {
+                push(-10.0, 0.0);
+            }
+            return;
+        }
+        let across = q[1 - k];
+        if across.abs() < hole {
+            let half = (hole * hole - across * across).sqrt();
+            push(-w, -half);
+            push(half, w);
+        } else {
+            push(-w, w);
+        }
+    })
+    .unwrap();
     let locs = run(
         &p,
         Cutter::flat(10.0).unwrap(),
