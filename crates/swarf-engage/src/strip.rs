@@ -12,8 +12,11 @@
 //! Bottom rings (a flat bottom of radius `e`, flat and bull-nose cutters) split `[0, e]` into
 //! `n = ⌈e/dz⌉` equal rings, circles at their mid radii. Each strip also has a circle at both
 //! ends of its range (the tip or the bottom's centre, the top of the cutting part, the bottom's
-//! rim): they are sampled for the integration (the area of a half band can be large where the
-//! surface turns flat, as at the bottom of a torus) but are not reported as discs or rings.
+//! rim) and the side one at every joint of its profile (each piece's own where the normal
+//! turns there), with more where the profile runs long between discs: they are sampled for the
+//! integration (the area of a half band can be large where the surface turns flat, as at the
+//! bottom of a torus; the feasibility has a kink or a jump at a joint) but are not reported as
+//! discs or rings.
 
 use swarf_geom::math::Vec2;
 use swarf_tool::{AnyPiece, Cutter, Piece};
@@ -88,29 +91,65 @@ impl Strip {
         }
         // Integration circles between the discs wherever the profile runs longer than `dz`
         // between two of them (a torus or sphere turning flat): every band is then at most
-        // `dz` long on the surface, so its area is sampled as finely as a cylinder's.
+        // `dz` long on the surface, so its area is sampled as finely as a cylinder's. And one
+        // at every joint of two pieces — two, each piece's own, where the normal turns there
+        // (a cone on a cylinder) — so that no band spans a joint: the feasibility `f` has a
+        // kink or a jump at a joint (on a ball plunging along its axis it falls to 0 at the
+        // sphere's equator and stays there on the cylinder), which a band's interpolation
+        // between its circles would smear over the band (the plunge's area came out half a
+        // disc high).
+        let joints: Vec<f64> = pieces
+            .iter()
+            .flat_map(|p| [p.z_range().0, p.z_range().1])
+            .filter(|&z| z > lo && z < hi)
+            .collect();
         let mut reported = vec![false];
-        let mut refined = vec![lo];
+        let mut refined: Vec<(f64, Option<&AnyPiece>)> = vec![(lo, None)];
         for (i, w) in param.windows(2).enumerate() {
-            let len = arc_length(&pieces, w[0], w[1]);
-            let m = (len / (dz * (1.0 + 1e-9))).ceil().max(1.0) as usize;
-            for q in 1..m {
-                refined.push(z_at_arc_length(
-                    &pieces,
-                    w[0],
-                    w[1],
-                    len * q as f64 / m as f64,
-                ));
-                reported.push(false);
+            let mut cuts: Vec<f64> = joints
+                .iter()
+                .copied()
+                .filter(|&z| z > w[0] + 1e-9 && z < w[1] - 1e-9)
+                .collect();
+            cuts.sort_by(f64::total_cmp);
+            cuts.dedup();
+            let mut from = w[0];
+            for to in cuts.iter().copied().chain([w[1]]) {
+                let len = arc_length(&pieces, from, to);
+                let m = (len / (dz * (1.0 + 1e-9))).ceil().max(1.0) as usize;
+                for q in 1..m {
+                    let z = z_at_arc_length(&pieces, from, to, len * q as f64 / m as f64);
+                    refined.push((z, None));
+                    reported.push(false);
+                }
+                if to < w[1] {
+                    // The joint: the piece below's circle, then the piece above's if its
+                    // normal differs.
+                    let below = pieces.iter().copied().find(|p| p.z_range().1 == to);
+                    let above = pieces.iter().copied().find(|p| p.z_range().0 == to);
+                    refined.push((to, below));
+                    reported.push(false);
+                    if let (Some(a), Some(b)) = (below, above) {
+                        let (na, nb) = (a.profile_normal(1.0), b.profile_normal(0.0));
+                        if (na - nb).length() > 1e-9 {
+                            refined.push((to, Some(b)));
+                            reported.push(false);
+                        }
+                    }
+                }
+                from = to;
             }
-            refined.push(w[1]);
+            refined.push((w[1], None));
             reported.push(i + 2 < param.len());
         }
-        let param = refined;
-        let circles = param
+        let circles = refined
             .iter()
-            .map(|&z| side_circle(&pieces, z))
+            .map(|&(z, piece)| match piece {
+                Some(p) => Some(circle_on(p, z)),
+                None => side_circle(&pieces, z),
+            })
             .collect::<Option<Vec<_>>>()?;
+        let param: Vec<f64> = refined.iter().map(|r| r.0).collect();
         let band_area = param
             .windows(2)
             .map(|w| side_area(&pieces, w[0], w[1]))
@@ -258,13 +297,18 @@ fn side_circle(pieces: &[&AnyPiece], z: f64) -> Option<Circle> {
         let (a, b) = p.z_range();
         z >= a && z <= b
     })?;
-    let s = s_at(p, z);
-    let q = p.profile_point(s);
-    Some(Circle {
+    Some(circle_on(p, z))
+}
+
+/// The circle of `piece` at height `z` (within its range).
+fn circle_on(piece: &AnyPiece, z: f64) -> Circle {
+    let s = s_at(piece, z);
+    let q = piece.profile_point(s);
+    Circle {
         z,
         rho: q.x,
-        normal: p.profile_normal(s),
-    })
+        normal: piece.profile_normal(s),
+    }
 }
 
 /// Profile speed `|dP/ds|` of a piece (constant: lines and arcs are parameterised uniformly).
@@ -454,6 +498,45 @@ mod tests {
         let bottom = Strip::bottom(&c, 0.1).unwrap();
         let w: f64 = bottom.slab_width.iter().sum();
         assert!((w - 3.0).abs() < 1e-12);
+    }
+
+    #[test]
+    fn every_joint_of_the_profile_has_a_circle_of_each_piece() {
+        // The ball's sphere meets its cylinder at z = R with one normal: one circle there,
+        // the normal (1, 0). A 118° drill's cone meets its cylinder at R/tan 59° with two:
+        // two circles there, a band of no area between them, the cone's normal then the
+        // cylinder's. No band spans a joint, and the circles still tile the areas.
+        let side = Strip::side(&Cutter::ball(10.0).unwrap(), 0.1).unwrap();
+        let at: Vec<usize> = (0..side.len())
+            .filter(|&k| (side.param[k] - 5.0).abs() < 1e-12)
+            .collect();
+        assert_eq!(at.len(), 1);
+        assert!((side.circles[at[0]].normal - Vec2::new(1.0, 0.0)).length() < 1e-9);
+        assert!(!side.is_reported(at[0]));
+        let c = Cutter::drill(10.0, 118.0).unwrap();
+        let side = Strip::side(&c, 0.1).unwrap();
+        let joint = 5.0 / 59f64.to_radians().tan();
+        let at: Vec<usize> = (0..side.len())
+            .filter(|&k| (side.param[k] - joint).abs() < 1e-12)
+            .collect();
+        assert_eq!(at.len(), 2, "{:?}", &side.param[..40]);
+        let (cone, cyl) = (side.circles[at[0]], side.circles[at[1]]);
+        let t = 59f64.to_radians();
+        assert!(
+            (cone.normal - Vec2::new(t.cos(), -t.sin())).length() < 1e-9,
+            "{cone:?}"
+        );
+        assert!(
+            (cyl.normal - Vec2::new(1.0, 0.0)).length() < 1e-9,
+            "{cyl:?}"
+        );
+        assert_eq!(side.band_area[at[0]], 0.0);
+        let h = c.apt_params().h;
+        let want = 0.5 * 5.0 * 5.0 / t.sin() + 5.0 * (h - joint);
+        assert!((side.total_area() / TAU - want).abs() < 1e-9);
+        // The reported discs are the same as without the joints: one every dz.
+        let reported = (0..side.len()).filter(|&k| side.is_reported(k)).count();
+        assert_eq!(reported, (h / 0.1).ceil() as usize);
     }
 
     #[test]

@@ -196,6 +196,41 @@ fn flat_end_mill_plunging() {
 }
 
 #[test]
+fn ball_and_drill_plunging_along_their_axis() {
+    // A feasible set that ends at a joint of the profile: plunging along its axis, a ball end
+    // mill is engaged on its whole lower hemisphere, 2πR², up to its equator (a_p = R) — the
+    // cylinder above slides along its own wall (f = 0) — and a 118° drill on its whole point
+    // cone, π·R·R/sin 59°, up to the cone's top (a_p = R/tan 59°). The locations a millimetre
+    // apart: the material at each lies below the cutter's position a millimetre up, which
+    // holds none of those surfaces.
+    let half = 59f64.to_radians();
+    for (cutter, area, ap) in [
+        (Cutter::ball(10.0).unwrap(), 2.0 * PI * R * R, R),
+        (
+            Cutter::drill(10.0, 118.0).unwrap(),
+            PI * R * R / half.sin(),
+            R / half.tan(),
+        ),
+    ] {
+        let locs = run_in_block(
+            "G21 G90\nG0 X20 Y10 Z2\nG1 Z-9 F100\n",
+            "plunge.ngc",
+            [0.0, 0.0, -20.0],
+            [40.0, 20.0, 0.0],
+            cutter,
+        );
+        for e in locs.iter().filter(|e| e.tip.z <= -6.0) {
+            println!(
+                "z {} area {} (exact {area}) ap {} (exact {ap})",
+                e.tip.z, e.area_mm2, e.ap_mm
+            );
+            assert!(rel(e.area_mm2, area) < 1e-3, "{} vs {area}", e.area_mm2);
+            assert!((e.ap_mm - ap).abs() < 1e-6, "{} vs {ap}", e.ap_mm);
+        }
+    }
+}
+
+#[test]
 fn circular_arc_around_a_boss() {
     // A boss of radius 22 finished to 20 by a 10 mm flat end mill whose centre runs CCW on a
     // circle of radius 25 (Aras fig. 6.42): the boss centre is on +y_L at distance 25, so the
