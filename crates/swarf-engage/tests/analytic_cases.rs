@@ -199,13 +199,22 @@ fn flat_end_mill_plunging() {
 fn ball_and_drill_plunging_along_their_axis() {
     // A feasible set that ends at a joint of the profile: plunging along its axis, a ball end
     // mill is engaged on its whole lower hemisphere, 2πR², up to its equator (a_p = R) — the
-    // cylinder above slides along its own wall (f = 0) — and a 118° drill on its whole point
-    // cone, π·R·R/sin 59°, up to the cone's top (a_p = R/tan 59°). The locations a millimetre
+    // cylinder above slides along its own wall (f = 0) — a bull-nose on its bottom and its
+    // torus, and a 118° drill on its whole point cone, π·R·R/sin 59°, up to the cone's top
+    // (a_p = R/tan 59°). The locations a millimetre
     // apart: the material at each lies below the cutter's position a millimetre up, which
     // holds none of those surfaces.
     let half = 59f64.to_radians();
+    // A bull-nose (corner radius 2): its flat bottom π·e² (e = 3) and its quarter torus
+    // 2π·r·(e·π/2 + r), up to the torus's top (a_p = r).
+    let (e, r) = (3.0, 2.0);
     for (cutter, area, ap) in [
         (Cutter::ball(10.0).unwrap(), 2.0 * PI * R * R, R),
+        (
+            Cutter::bull(10.0, r).unwrap(),
+            PI * e * e + 2.0 * PI * r * (e * PI / 2.0 + r),
+            r,
+        ),
         (
             Cutter::drill(10.0, 118.0).unwrap(),
             PI * R * R / half.sin(),

@@ -146,11 +146,16 @@ fn random_programs_match_the_brute_force_reference() {
     let mut rng = Lcg(20_261_125);
     let mut worst = 0.0f64;
     let mut checked = 0;
-    for case in 0..6 {
-        let cutter = match case % 3 {
-            0 => Cutter::flat(8.0).unwrap(),
-            1 => Cutter::ball(8.0).unwrap(),
-            _ => Cutter::bull(8.0, 1.5).unwrap(),
+    for case in 0..10 {
+        // Every convex cutter shape: the profile's joints, cones and points included.
+        let cutter = match case {
+            0 | 3 => Cutter::flat(8.0).unwrap(),
+            1 | 4 => Cutter::ball(8.0).unwrap(),
+            2 | 5 => Cutter::bull(8.0, 1.5).unwrap(),
+            6 => Cutter::taper_flat(8.0, 10.0).unwrap(),
+            7 => Cutter::taper_ball(8.0, 10.0).unwrap(),
+            8 => Cutter::chamfer(8.0, 90.0).unwrap(),
+            _ => Cutter::drill(8.0, 118.0).unwrap(),
         };
         // Three straight moves through the block at random depths, one of them ramping.
         let mut text = String::from("G21 G90\n");
