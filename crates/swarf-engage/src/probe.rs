@@ -746,33 +746,57 @@ mod tests {
         }
     }
 
+    /// The block from `lo` to `hi` on a grid of rays 0.1 apart reaching 1 mm above it, less a
+    /// hole of radius `hole` about the Z axis down to `bottom`.
+    fn holed_block(lo: Vec3, hi: Vec3, hole: f64, bottom: f64) -> TriDexel {
+        let b = swarf_geom::Aabb::new(lo, Vec3::new(hi.x, hi.y, hi.z.floor() + 1.0));
+        TriDexel::from_fn(b, 0.1, |k, cu, cv, d| {
+            let mut q = [0.0; 3];
+            (q[(k + 1) % 3], q[(k + 2) % 3]) = (cu, cv);
+            let mut push = |enter: f64, exit: f64| {
+                if exit > enter {
+                    d.push(Interval { enter, exit });
+                }
+            };
+            if k == 2 {
+                push(
+                    lo.z,
+                    if q[0].hypot(q[1]) < hole {
+                        bottom
+                    } else {
+                        hi.z
+                    },
+                );
+                return;
+            }
+            if q[2] > hi.z {
+                return;
+            }
+            let across = q[1 - k];
+            if q[2] > bottom && across.abs() < hole {
+                let half = (hole * hole - across * across).sqrt();
+                push(lo[k], -half);
+                push(half, hi[k]);
+            } else {
+                push(lo[k], hi[k]);
+            }
+        })
+        .unwrap()
+    }
+
     #[test]
     fn just_inside_a_bore_under_its_rim_a_point_is_measured_outside() {
         // A bore of radius 8 down to z = -3 in a block whose top z = 0 is the grid's: points
         // 3 µm under the top and 1-10 µm inside the bore, all round it. The X and Y rays see
         // the wall, slanted across them; the nearest ones, up to half a spacing off, see it
         // up to 0.02 mm away, and voted some of these points 0.025 mm into the material.
-        let b = swarf_geom::Aabb::new(Vec3::new(-12.0, -12.0, -5.0), Vec3::new(12.0, 12.0, 0.0));
         let (rb, floor) = (8.0f64, -3.0);
-        let stock = TriDexel::from_fn(b, 0.1, |k, cu, cv, d| {
-            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
-            let mut q = [0.0; 3];
-            (q[u], q[v]) = (cu, cv);
-            let mut push = |enter: f64, exit: f64| d.push(Interval { enter, exit });
-            if k == 2 {
-                push(-5.0, if q[0].hypot(q[1]) < rb { floor } else { 0.0 });
-                return;
-            }
-            let across = q[1 - k];
-            if q[2] > floor && across.abs() < rb {
-                let half = (rb * rb - across * across).sqrt();
-                push(-12.0, -half);
-                push(half, 12.0);
-            } else {
-                push(-12.0, 12.0);
-            }
-        })
-        .unwrap();
+        let stock = holed_block(
+            Vec3::new(-12.0, -12.0, -5.0),
+            Vec3::new(12.0, 12.0, 0.0),
+            rb,
+            floor,
+        );
         let probe = MaterialProbe::new(&stock);
         let mut worst = 0.0f64;
         for i in 0..360 {
@@ -800,32 +824,8 @@ mod tests {
         // beside the hole. The X and Y rays nearest to them run above the floor, in the air;
         // the Z rays measure the floor. Before, the vote of the first put such points out of
         // the material.
-        let b = swarf_geom::Aabb::new(Vec3::new(-5.0, -5.0, -5.0), Vec3::new(5.0, 5.0, 1.0));
         let (rh, floor) = (2.0f64, 0.047);
-        let stock = TriDexel::from_fn(b, 0.1, |k, cu, cv, d| {
-            let (u, v) = ((k + 1) % 3, (k + 2) % 3);
-            let mut q = [0.0; 3];
-            (q[u], q[v]) = (cu, cv);
-            let mut push = |enter: f64, exit: f64| d.push(Interval { enter, exit });
-            if k == 2 {
-                if q[0].hypot(q[1]) >= rh {
-                    push(-5.0, floor);
-                }
-                return;
-            }
-            if q[2] > floor {
-                return;
-            }
-            let across = q[1 - k];
-            if across.abs() < rh {
-                let half = (rh * rh - across * across).sqrt();
-                push(-5.0, -half);
-                push(half, 5.0);
-            } else {
-                push(-5.0, 5.0);
-            }
-        })
-        .unwrap();
+        let stock = holed_block(Vec3::splat(-5.0), Vec3::new(5.0, 5.0, floor), rh, -5.0);
         let probe = MaterialProbe::new(&stock);
         for i in 0..72 {
             let a = (i as f64 * 5.0 + 1.3).to_radians();
