@@ -97,7 +97,8 @@ impl Strip {
         // kink or a jump at a joint (on a ball plunging along its axis it falls to 0 at the
         // sphere's equator and stays there on the cylinder), which a band's interpolation
         // between its circles would smear over the band (the plunge's area came out half a
-        // disc high).
+        // disc high). (A joint within 10⁻⁹ mm of a disc's circle is that circle, the lower
+        // piece's.)
         let joints: Vec<f64> = pieces
             .iter()
             .flat_map(|p| [p.z_range().0, p.z_range().1])
