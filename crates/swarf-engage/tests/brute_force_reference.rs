@@ -1,4 +1,5 @@
-//! Engagement against an independent brute-force reference on random programs.
+//! Engagement against an independent brute-force reference on random programs, and on a 5-axis
+//! sweep against the cutter at dense poses of the move.
 //!
 //! The reference knows nothing of tri-dexels, strips or probes: it covers the cutter's surface
 //! with a fine (φ, z) grid (and its flat bottom with a fine (φ, r) grid), and counts a grid
@@ -15,7 +16,7 @@ mod common;
 use common::*;
 use swarf_engage::{EngageOptions, Engagement};
 use swarf_geom::math::Vec3;
-use swarf_path::{MoveKind, Program};
+use swarf_path::{Move, MoveKind, Program};
 use swarf_tool::Cutter;
 
 /// A small deterministic generator (the test must not depend on a crate's stream).
@@ -79,17 +80,34 @@ fn reference_area(
     cut: &[(Vec3, Vec3)],
     block: ([f64; 3], [f64; 3]),
 ) -> f64 {
+    let in_stock =
+        |p: Vec3| in_block(block, p) && !cut.iter().any(|&(a, b)| covered(cutter, a, b, p));
+    reference_area_of(cutter, e, block.1[2], &|_| e.tip_direction, &in_stock)
+}
+
+/// Whether `p` is inside the block `(lo, hi)`.
+fn in_block((lo, hi): ([f64; 3], [f64; 3]), p: Vec3) -> bool {
+    (0..3).all(|k| p[k] > lo[k] && p[k] < hi[k])
+}
+
+/// The reference engaged area at location `e`: the cutter's surface (below the material's top
+/// `top`) where a point's velocity `velocity(p)` has a positive component along its normal and
+/// `in_stock(p)`.
+fn reference_area_of(
+    cutter: &Cutter,
+    e: &Engagement,
+    top: f64,
+    velocity: &dyn Fn(Vec3) -> Vec3,
+    in_stock: &dyn Fn(Vec3) -> bool,
+) -> f64 {
     let h = cutter.apt_params().h;
-    let v = e.tip_direction;
-    let in_stock = |p: Vec3| {
-        let (lo, hi) = block;
-        (0..3).all(|k| p[k] > lo[k] && p[k] < hi[k])
-            && !cut.iter().any(|&(a, b)| covered(cutter, a, b, p))
-    };
     let (nphi, dz) = (720usize, 0.03f64);
     let dphi = std::f64::consts::TAU / nphi as f64;
     let mut area = 0.0;
-    let top = (block.1[2] - e.tip.z).min(h);
+    // (The highest height above the tip the material can reach along a tilted axis: its top
+    // less the lowest the widest circle can dip, over the axis's rise per unit height.)
+    let dip = 0.5 * cutter.max_diameter() * (1.0 - e.axis.z * e.axis.z).max(0.0).sqrt();
+    let top = ((top - e.tip.z + dip) / e.axis.z.max(1e-3)).min(h);
     // Side: every height with a positive radius, in u = √z so that the surface element stays
     // bounded where the profile turns flat at the tip (a torus's or a sphere's bottom, where
     // dA/dz grows like 1/√z).
@@ -112,10 +130,10 @@ fn reference_area(
             let phi = (j as f64 + 0.5) * dphi;
             let radial = e.x_l * phi.sin() + e.y_l * phi.cos();
             let n = (radial - e.axis * d_rho) / stretch;
-            if n.dot(v) <= 0.0 {
+            let p = e.tip + radial * rho + e.axis * z;
+            if n.dot(velocity(p)) <= 0.0 {
                 continue;
             }
-            let p = e.tip + radial * rho + e.axis * z;
             if in_stock(p) {
                 area += rho * dphi * dz * stretch;
             }
@@ -123,7 +141,7 @@ fn reference_area(
     }
     // Flat bottom (normal −z).
     let e_bottom = cutter.profile_radius(0.0).unwrap_or(0.0);
-    if e_bottom > 0.0 && -v.z > 0.0 {
+    if e_bottom > 0.0 {
         let dr = 0.02;
         let nr = (e_bottom / dr).ceil() as usize;
         for ir in 0..nr {
@@ -131,7 +149,7 @@ fn reference_area(
             for j in 0..nphi / 4 {
                 let phi = (j as f64 + 0.5) * dphi * 4.0;
                 let p = e.tip + (e.x_l * phi.sin() + e.y_l * phi.cos()) * r + e.axis * 1e-9;
-                if in_stock(p) {
+                if -e.axis.dot(velocity(p)) > 0.0 && in_stock(p) {
                     area += r * dphi * 4.0 * dr;
                 }
             }
@@ -231,4 +249,73 @@ fn random_programs_match_the_brute_force_reference() {
 
 fn block_stock(b: ([f64; 3], [f64; 3])) -> swarf_stock::TriDexel {
     common::block(b.0, b.1, 0.1)
+}
+
+#[test]
+fn a_five_axis_sweep_matches_the_reference_of_dense_poses() {
+    // A 10 mm ball whose tip runs 14 mm straight while its axis turns 5.7° (the sweep of the
+    // adaptive test), a location every 1.3 mm. The reference takes the stock as the block
+    // less the cutter at 500 poses of the move up to the previous location (at most 28 µm
+    // apart on the tip: the ball's sweep between two is missed by (14 µm)²/(2R) = 2·10⁻⁵ mm),
+    // and each point's velocity from the
+    // difference of the poses either side of the location (tip velocity plus the axis's turn
+    // about the tip): nothing of the engagement's instances, chords or motion state.
+    let block = ([0.0, 0.0, -10.0], [20.0, 40.0, 0.0]);
+    let text = "UNITS/MM\nRAPID\nGOTO/-6,20,20,0,0,1\nGOTO/-6,20,-2,0,0,1\nFEDRAT/600\nGOTO/8,20,-2,0.1,0,0.9949874\n";
+    let program = common::program(text, "sweep.apt");
+    let cutter = Cutter::ball(10.0).unwrap();
+    let h = cutter.apt_params().h;
+    let mut stock = block_stock(block);
+    let locs = run(
+        &program,
+        cutter.clone(),
+        &mut stock,
+        EngageOptions::default().with_step(1.3),
+    );
+    let last = program.moves.len() - 1;
+    let m: &Move = &program.moves[last];
+    let inside = |(tip, a): (Vec3, Vec3), p: Vec3| {
+        let q = p - tip;
+        let z = q.dot(a);
+        (0.0..=h).contains(&z)
+            && cutter
+                .profile_radius(z)
+                .is_some_and(|rho| (q - a * z).length() <= rho)
+    };
+    let mut checked = 0;
+    let mut prev_s = 0.0;
+    for e in locs.iter().filter(|e| e.move_index == last) {
+        let s_prev = prev_s;
+        prev_s = e.s;
+        if e.area_mm2 < 5.0 || checked >= 3 || (e.s * 10.0).round() as i64 % 3 != 0 {
+            continue;
+        }
+        let poses: Vec<(Vec3, Vec3)> = (0..=500)
+            .map(|j| {
+                let pose = program.pose_at(m, s_prev * j as f64 / 500.0);
+                (pose.tip, pose.axis.normalize())
+            })
+            .collect();
+        let in_stock = |p: Vec3| in_block(block, p) && !poses.iter().any(|&q| inside(q, p));
+        let d = 1e-6;
+        let (a, b) = (program.pose_at(m, e.s - d), program.pose_at(m, e.s + d));
+        let v_tip = (b.tip - a.tip) / (2.0 * d);
+        let turn = a.axis.normalize().cross(b.axis.normalize()) / (2.0 * d);
+        let velocity = |p: Vec3| v_tip + turn.cross(p - e.tip);
+        let want = reference_area_of(&cutter, e, block.1[2], &velocity, &in_stock);
+        println!(
+            "5-axis location {} (s = {:.3}): area {:.4} reference {want:.4} ({:.3} %)",
+            e.location,
+            e.s,
+            e.area_mm2,
+            100.0 * (e.area_mm2 - want) / want
+        );
+        assert!(
+            (e.area_mm2 - want).abs() < 0.01 * want,
+            "{} vs {want}",
+            e.area_mm2
+        );
+        checked += 1;
+    }
+    assert!(checked >= 2, "{checked} locations checked");
 }
