@@ -1,5 +1,5 @@
 //! Engagement against an independent brute-force reference on random programs, and on a 5-axis
-//! sweep against the cutter at dense poses of the move.
+//! sweep and a pivot about the tip against the cutter at dense poses of the move.
 //!
 //! The reference knows nothing of tri-dexels, strips or probes: it covers the cutter's surface
 //! with a fine (φ, z) grid (and its flat bottom with a fine (φ, r) grid), and counts a grid
@@ -318,4 +318,51 @@ fn a_five_axis_sweep_matches_the_reference_of_dense_poses() {
         checked += 1;
     }
     assert!(checked >= 2, "{checked} locations checked");
+}
+
+#[test]
+fn a_flat_end_mill_pivoting_about_its_tip_matches_the_reference() {
+    // The tip still, the axis turning 10° about +Y: every point moves by the turn alone, the
+    // side's +X half outwards and the bottom's +X half downwards (the feasible set comes from
+    // the rotation only). The cutter first plunged 3 mm into the block; the location is the
+    // pivot's end, the stock as the plunge left it.
+    let block = ([0.0, 0.0, -10.0], [40.0, 40.0, 0.0]);
+    let t = 10f64.to_radians();
+    let text = format!(
+        "UNITS/MM\nRAPID\nGOTO/20,20,20,0,0,1\nGOTO/20,20,-3,0,0,1\nFEDRAT/600\nGOTO/20,20,-3,{},0,{}\n",
+        t.sin(),
+        t.cos()
+    );
+    let program = common::program(&text, "pivot.apt");
+    let cutter = Cutter::flat(10.0).unwrap();
+    let mut stock = block_stock(block);
+    let locs = run(
+        &program,
+        cutter.clone(),
+        &mut stock,
+        EngageOptions::default().with_step(1.0),
+    );
+    let last = program.moves.len() - 1;
+    let (m, plunge) = (&program.moves[last], &program.moves[last - 1]);
+    let e = locs.iter().rfind(|e| e.move_index == last).unwrap();
+    let in_stock =
+        |p: Vec3| in_block(block, p) && !covered(&cutter, plunge.start.tip, plunge.end.tip, p);
+    let d = 1e-6;
+    let (a, b) = (program.pose_at(m, 1.0 - 2.0 * d), program.pose_at(m, 1.0));
+    let v_tip = (b.tip - a.tip) / (2.0 * d);
+    let turn = a.axis.normalize().cross(b.axis.normalize()) / (2.0 * d);
+    assert!(v_tip.length() < 1e-6 * turn.length(), "{v_tip} {turn}");
+    let velocity = |p: Vec3| v_tip + turn.cross(p - e.tip);
+    let want = reference_area_of(&cutter, e, block.1[2], &velocity, &in_stock);
+    println!(
+        "pivot: area {:.4} reference {want:.4} ({:.3} %)",
+        e.area_mm2,
+        100.0 * (e.area_mm2 - want) / want
+    );
+    assert!(want > 20.0, "{want}");
+    assert!(
+        (e.area_mm2 - want).abs() < 0.01 * want,
+        "{} vs {want}",
+        e.area_mm2
+    );
 }
