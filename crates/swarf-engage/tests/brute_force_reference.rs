@@ -251,6 +251,39 @@ fn block_stock(b: ([f64; 3], [f64; 3])) -> swarf_stock::TriDexel {
     common::block(b.0, b.1, 0.1)
 }
 
+/// The program `text` (APT) run on `block` with `cutter`, a location every `step` mm.
+fn run_apt(
+    text: &str,
+    cutter: &Cutter,
+    block: ([f64; 3], [f64; 3]),
+    step: f64,
+) -> (Program, Vec<Engagement>) {
+    let program = common::program(text, "five.apt");
+    let mut stock = block_stock(block);
+    let locs = run(
+        &program,
+        cutter.clone(),
+        &mut stock,
+        EngageOptions::default().with_step(step),
+    );
+    (program, locs)
+}
+
+/// The velocity of a point `p` of the tool at a pose between `pose_at(m, s0)` and
+/// `pose_at(m, s1)`, from their difference: the tip's velocity plus the axis's turn about the
+/// tip at `tip`, per unit of the move parameter.
+fn pose_velocity(
+    program: &Program,
+    m: &Move,
+    (s0, s1): (f64, f64),
+    tip: Vec3,
+) -> impl Fn(Vec3) -> Vec3 {
+    let (a, b) = (program.pose_at(m, s0), program.pose_at(m, s1));
+    let v_tip = (b.tip - a.tip) / (s1 - s0);
+    let turn = a.axis.normalize().cross(b.axis.normalize()) / (s1 - s0);
+    move |p: Vec3| v_tip + turn.cross(p - tip)
+}
+
 #[test]
 fn a_five_axis_sweep_matches_the_reference_of_dense_poses() {
     // A 10 mm ball whose tip runs 14 mm straight while its axis turns 5.7° (the sweep of the
@@ -262,16 +295,9 @@ fn a_five_axis_sweep_matches_the_reference_of_dense_poses() {
     // about the tip): nothing of the engagement's instances, chords or motion state.
     let block = ([0.0, 0.0, -10.0], [20.0, 40.0, 0.0]);
     let text = "UNITS/MM\nRAPID\nGOTO/-6,20,20,0,0,1\nGOTO/-6,20,-2,0,0,1\nFEDRAT/600\nGOTO/8,20,-2,0.1,0,0.9949874\n";
-    let program = common::program(text, "sweep.apt");
     let cutter = Cutter::ball(10.0).unwrap();
     let h = cutter.apt_params().h;
-    let mut stock = block_stock(block);
-    let locs = run(
-        &program,
-        cutter.clone(),
-        &mut stock,
-        EngageOptions::default().with_step(1.3),
-    );
+    let (program, locs) = run_apt(text, &cutter, block, 1.3);
     let last = program.moves.len() - 1;
     let m: &Move = &program.moves[last];
     let inside = |(tip, a): (Vec3, Vec3), p: Vec3| {
@@ -297,11 +323,7 @@ fn a_five_axis_sweep_matches_the_reference_of_dense_poses() {
             })
             .collect();
         let in_stock = |p: Vec3| in_block(block, p) && !poses.iter().any(|&q| inside(q, p));
-        let d = 1e-6;
-        let (a, b) = (program.pose_at(m, e.s - d), program.pose_at(m, e.s + d));
-        let v_tip = (b.tip - a.tip) / (2.0 * d);
-        let turn = a.axis.normalize().cross(b.axis.normalize()) / (2.0 * d);
-        let velocity = |p: Vec3| v_tip + turn.cross(p - e.tip);
+        let velocity = pose_velocity(&program, m, (e.s - 1e-6, e.s + 1e-6), e.tip);
         let want = reference_area_of(&cutter, e, block.1[2], &velocity, &in_stock);
         println!(
             "5-axis location {} (s = {:.3}): area {:.4} reference {want:.4} ({:.3} %)",
@@ -333,26 +355,16 @@ fn a_flat_end_mill_pivoting_about_its_tip_matches_the_reference() {
         t.sin(),
         t.cos()
     );
-    let program = common::program(&text, "pivot.apt");
     let cutter = Cutter::flat(10.0).unwrap();
-    let mut stock = block_stock(block);
-    let locs = run(
-        &program,
-        cutter.clone(),
-        &mut stock,
-        EngageOptions::default().with_step(1.0),
-    );
+    let (program, locs) = run_apt(&text, &cutter, block, 1.0);
     let last = program.moves.len() - 1;
     let (m, plunge) = (&program.moves[last], &program.moves[last - 1]);
     let e = locs.iter().rfind(|e| e.move_index == last).unwrap();
     let in_stock =
         |p: Vec3| in_block(block, p) && !covered(&cutter, plunge.start.tip, plunge.end.tip, p);
-    let d = 1e-6;
-    let (a, b) = (program.pose_at(m, 1.0 - 2.0 * d), program.pose_at(m, 1.0));
-    let v_tip = (b.tip - a.tip) / (2.0 * d);
-    let turn = a.axis.normalize().cross(b.axis.normalize()) / (2.0 * d);
-    assert!(v_tip.length() < 1e-6 * turn.length(), "{v_tip} {turn}");
-    let velocity = |p: Vec3| v_tip + turn.cross(p - e.tip);
+    let velocity = pose_velocity(&program, m, (1.0 - 2e-6, 1.0), e.tip);
+    // The tip is still: the velocity is the turn's alone, nothing at the tip.
+    assert!(velocity(e.tip).length() < 1e-6, "{}", velocity(e.tip));
     let want = reference_area_of(&cutter, e, block.1[2], &velocity, &in_stock);
     println!(
         "pivot: area {:.4} reference {want:.4} ({:.3} %)",
