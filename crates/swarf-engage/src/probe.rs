@@ -388,6 +388,8 @@ impl<'a> MaterialProbe<'a> {
             // The sheet an edge's rays end on: the nearest ray's, or else that of the nearest of
             // the rays that end near P; its rays are those ending near P with its kind (ends too
             // far apart for one sheet make it a step: `edge_distance`).
+            // (The heaviest such ray, ties to the lower index: the nearest ray `r` when it ends
+            // near P.)
             let w = [
                 (1.0 - wu) * (1.0 - wv),
                 wu * (1.0 - wv),
@@ -395,22 +397,17 @@ impl<'a> MaterialProbe<'a> {
                 wu * wv,
             ];
             let ends_near = |q: usize| near[q].2 != 0 && near[q].0.abs() <= reach;
-            let anchor = if ends_near(r) {
-                Some(r)
-            } else {
-                (0..4)
-                    .filter(|&q| ends_near(q))
-                    .reduce(|a, b| if w[b] > w[a] { b } else { a })
-            };
+            let anchor = (0..4)
+                .filter(|&q| ends_near(q))
+                .reduce(|a, b| if w[b] > w[a] { b } else { a });
             if let Some(a) = anchor {
                 let sheet: [bool; 4] =
                     std::array::from_fn(|q| ends_near(q) && near[q].2 == near[a].2);
                 // Beside an outer edge the other rays are air at P, beside an inner one
-                // material.
-                let others = (0..4).filter(|&q| !sheet[q]);
+                // material (with no other ray, both hold: no edge).
+                let mut others = (0..4).filter(|&q| !sheet[q]);
                 let outer = others.clone().all(|q| !side(q));
-                let inner = others.clone().all(side);
-                if others.count() > 0 && outer != inner {
+                if outer != others.all(side) {
                     if let Some((d, n)) = edge_distance(k, l, &near, sheet, w, t) {
                         return FamilyDepth::Edge(d, n, outer, nearest, spacing);
                     }

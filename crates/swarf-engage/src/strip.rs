@@ -99,23 +99,22 @@ impl Strip {
         // between its circles would smear over the band (the plunge's area came out half a
         // disc high). (A joint within 10⁻⁹ mm of a disc's circle is that circle, the lower
         // piece's.)
-        let joints: Vec<f64> = pieces
+        let mut joints: Vec<f64> = pieces
             .iter()
             .flat_map(|p| [p.z_range().0, p.z_range().1])
             .filter(|&z| z > lo && z < hi)
             .collect();
+        joints.sort_by(f64::total_cmp);
+        joints.dedup();
         let mut reported = vec![false];
         let mut refined: Vec<(f64, Option<&AnyPiece>)> = vec![(lo, None)];
         for (i, w) in param.windows(2).enumerate() {
-            let mut cuts: Vec<f64> = joints
+            let cuts = joints
                 .iter()
                 .copied()
-                .filter(|&z| z > w[0] + 1e-9 && z < w[1] - 1e-9)
-                .collect();
-            cuts.sort_by(f64::total_cmp);
-            cuts.dedup();
+                .filter(|&z| z > w[0] + 1e-9 && z < w[1] - 1e-9);
             let mut from = w[0];
-            for to in cuts.iter().copied().chain([w[1]]) {
+            for to in cuts.chain([w[1]]) {
                 let len = arc_length(&pieces, from, to);
                 let m = (len / (dz * (1.0 + 1e-9))).ceil().max(1.0) as usize;
                 for q in 1..m {

@@ -159,31 +159,30 @@ impl TriDexel {
                     g.sweep * (s1 - s0),
                     chordal_tol,
                 );
-                // The chords cut in batches, as `simulate` cuts a run of straight moves: the
+                // The chords cut as one batch, as `simulate` cuts a run of straight moves: the
                 // same stock and figures as chord by chord, without a parallel section (and its
                 // barrier) per chord — an arc at the default 1 µm has one chord per ≈ 0.09 mm
                 // of a 10 mm radius.
-                let mut chords = Vec::with_capacity(n.min(crate::simulate::BATCH_MOVES));
                 let mut prev = pose(s0);
-                for i in 1..=n {
-                    let s = if i == n {
-                        s1
-                    } else {
-                        s0 + (s1 - s0) * (i as f64 / n as f64)
-                    };
-                    let p = pose(s);
-                    chords.push(crate::tridexel::LinearMove {
-                        tip0: prev,
-                        tip1: p,
-                        axis,
-                    });
-                    prev = p;
-                    if chords.len() == crate::simulate::BATCH_MOVES || i == n {
-                        for cut in self.cut_chords(tool, &chords) {
-                            total.add(cut);
-                        }
-                        chords.clear();
-                    }
+                let chords: Vec<crate::tridexel::LinearMove> = (1..=n)
+                    .map(|i| {
+                        let s = if i == n {
+                            s1
+                        } else {
+                            s0 + (s1 - s0) * (i as f64 / n as f64)
+                        };
+                        let p = pose(s);
+                        let chord = crate::tridexel::LinearMove {
+                            tip0: prev,
+                            tip1: p,
+                            axis,
+                        };
+                        prev = p;
+                        chord
+                    })
+                    .collect();
+                for cut in self.cut_chords(tool, &chords) {
+                    total.add(cut);
                 }
             }
         }
