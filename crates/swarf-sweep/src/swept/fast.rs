@@ -274,6 +274,9 @@ impl FastRays {
     }
 }
 
+/// A chord that misses, where chords are plain pairs.
+const MISS: (f64, f64) = (f64::NAN, f64::NAN);
+
 /// A capsule (swept sphere) against the lines along x through `(0, y, z)`, in a rays' family
 /// frame.
 #[derive(Clone, Copy, Debug)]
@@ -314,9 +317,26 @@ impl CapsuleRays {
     /// a ball's 3-axis cut.)
     #[inline(always)]
     pub(crate) fn interval<const LOW_ONLY: bool>(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
+        let (lo, hi) = self.ends::<LOW_ONLY>(cu, cv);
+        (!lo.is_nan()).then_some((lo, hi))
+    }
+
+    /// The line along the segment (no side to cross): [`line_capsule`], a miss as NaNs.
+    #[cold]
+    #[inline(never)]
+    fn along<const LOW_ONLY: bool>(&self, cu: f64, cv: f64) -> (f64, f64) {
+        let o = Vec3::new(0.0, cu, cv);
+        line_capsule::<LOW_ONLY>(o, Vec3::X, self.c0, self.ba, self.rr.sqrt())
+            .unwrap_or((f64::NAN, f64::NAN))
+    }
+
+    /// [`CapsuleRays::interval`] as a plain pair, a miss as NaNs. (Plain values, not
+    /// `Option`s: the pieces' options were assembled in memory and read back as one 16-byte
+    /// load, which stalled on its two 8-byte stores — 11 % of the finishing kernel's samples.)
+    #[inline(always)]
+    fn ends<const LOW_ONLY: bool>(&self, cu: f64, cv: f64) -> (f64, f64) {
         if self.a <= 1e-20 * self.baba {
-            let o = Vec3::new(0.0, cu, cv);
-            return line_capsule::<LOW_ONLY>(o, Vec3::X, self.c0, self.ba, self.rr.sqrt());
+            return self.along::<LOW_ONLY>(cu, cv);
         }
         // Re-based at the point of the line level with c0: oa = (0, oy, oz) ⊥ the line
         // (components written out: IEEE products by the zeros of a unit vector do not fold).
@@ -329,7 +349,7 @@ impl CapsuleRays {
         let c = baba * oaoa - baoa * baoa - rr * baba;
         let h = b * b - a * c;
         if h < 0.0 {
-            return None;
+            return MISS;
         }
         // Which piece holds each end, decided before any square root: the side's crossing
         // t = (−b ∓ √h)/a projects on the segment at y = baoa + t·bard, i.e.
@@ -358,12 +378,14 @@ impl CapsuleRays {
             }
         };
         // The chord of the sphere centred at (−x, −y, −z) from the line's base point.
-        let chord = |x: f64, y: f64, z: f64| -> Option<(f64, f64)> {
+        let chord = |x: f64, y: f64, z: f64| -> (f64, f64) {
             let h = rr - (y * y + z * z);
-            (h >= 0.0).then(|| {
+            if h >= 0.0 {
                 let s = h.sqrt();
                 (-x - s, -x + s)
-            })
+            } else {
+                MISS
+            }
         };
         let side = || -> (f64, f64) {
             // Cancellation-free roots q/a and c/q, (near, far).
@@ -376,27 +398,31 @@ impl CapsuleRays {
                 (other, q / a)
             }
         };
-        let at = |p: u8| -> Option<(f64, f64)> {
+        let at = |p: u8| -> (f64, f64) {
             match p {
                 0 => chord(0.0, oy, oz),
                 1 => chord(-ba.x, oy - ba.y, oz - ba.z),
-                _ => Some(side()),
+                _ => side(),
             }
         };
         let pn = piece(-1.0);
         let (lo, hi) = if LOW_ONLY {
-            let lo = at(pn)?.0;
+            let lo = at(pn).0;
             (lo, lo)
         } else {
             let pf = piece(1.0);
             if pn == pf {
                 // Both ends on one piece: one square root.
-                at(pn)?
+                at(pn)
             } else {
-                (at(pn)?.0, at(pf)?.1)
+                let ((lo, _), (_, hi)) = (at(pn), at(pf));
+                if hi.is_nan() {
+                    return MISS;
+                }
+                (lo, hi)
             }
         };
-        Some((lo + t0, hi + t0))
+        (lo + t0, hi + t0)
     }
 }
 
@@ -424,13 +450,13 @@ impl RoundEnd {
     }
 
     /// The chord of the ray through `(cu, cv)` across the tool axis (along cross axis `ray`,
-    /// at height `za`, `q` its other cross coordinate).
+    /// at height `za`, `q` its other cross coordinate), a miss as NaNs.
     #[inline(always)]
-    fn across(&self, (cu, cv): (f64, f64), ray: usize, za: f64, q: f64) -> Option<(f64, f64)> {
+    fn across(&self, (cu, cv): (f64, f64), ray: usize, za: f64, q: f64) -> (f64, f64) {
         match self {
-            RoundEnd::Sphere(c) => c.interval::<false>(cu, cv),
-            RoundEnd::Lozenge(l) => l.across(ray, za, q),
-            RoundEnd::Ramp(l) => l.chord(cu, cv),
+            RoundEnd::Sphere(c) => c.ends::<false>(cu, cv),
+            RoundEnd::Lozenge(l) => l.across(ray, za, q).unwrap_or(MISS),
+            RoundEnd::Ramp(l) => l.chord(cu, cv).unwrap_or(MISS),
         }
     }
 }
@@ -620,23 +646,31 @@ impl AcrossRays {
     #[inline(always)]
     pub(crate) fn interval(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
         let (za, q) = if self.height_is_u { (cu, cv) } else { (cv, cu) };
-        let slab = if za >= self.full_band.0 && za <= self.full_band.1 {
+        // The chords are plain pairs, a miss as NaNs, up to the result: as options they were
+        // assembled in memory and read back as one 16-byte load, which stalled on its two
+        // 8-byte stores (12 % of the finishing kernel's samples, at whichever option came
+        // through memory).
+        let a = if za >= self.full_band.0 && za <= self.full_band.1 {
             self.full.chord(q)
         } else if za >= self.band.0 && za <= self.band.1 {
-            slab::across(&self.mv, self.r, self.z0, self.z1, self.ray, q, za)
+            slab::across(&self.mv, self.r, self.z0, self.z1, self.ray, q, za).unwrap_or(MISS)
         } else {
-            None
+            MISS
         };
-        let Some(c) = &self.end else {
-            return slab;
+        let (lo, hi) = match &self.end {
+            Some(c) if za >= self.end_band.0 && za <= self.end_band.1 => {
+                let b = c.across((cu, cv), self.ray, za, q);
+                if a.0.is_nan() {
+                    b
+                } else if b.0.is_nan() {
+                    a
+                } else {
+                    (lesser(a.0, b.0), greater(a.1, b.1))
+                }
+            }
+            _ => a,
         };
-        if za < self.end_band.0 || za > self.end_band.1 {
-            return slab;
-        }
-        match (slab, c.across((cu, cv), self.ray, za, q)) {
-            (Some(a), Some(b)) => Some((lesser(a.0, b.0), greater(a.1, b.1))),
-            (a, b) => a.or(b),
-        }
+        (!lo.is_nan()).then_some((lo, hi))
     }
 }
 
@@ -666,27 +700,33 @@ impl Stadium {
         }
     }
 
-    /// The chord of the end disc centred at `(ca, cb)` on the line at `q`.
+    /// The chord of the end disc centred at `(ca, cb)` on the line at `q`, a miss as NaNs.
     #[inline(always)]
-    fn disc(&self, ca: f64, cb: f64, q: f64) -> Option<(f64, f64)> {
+    fn disc(&self, ca: f64, cb: f64, q: f64) -> (f64, f64) {
         let dq = q - cb;
         let h2 = self.rr - dq * dq;
-        (h2 >= 0.0).then(|| {
+        if h2 >= 0.0 {
             let h = h2.sqrt();
             (ca - h, ca + h)
-        })
+        } else {
+            MISS
+        }
     }
 
-    /// The chord on the line through `(·, q)` along the first coordinate.
+    /// The chord on the line through `(·, q)` along the first coordinate, a miss as NaNs (a
+    /// plain pair: see [`AcrossRays::interval`]).
     #[inline(always)]
-    pub(crate) fn chord(&self, q: f64) -> Option<(f64, f64)> {
+    pub(crate) fn chord(&self, q: f64) -> (f64, f64) {
         let (a, e) = (self.a, self.e);
         let b = (a.0 + e.0, a.1 + e.1);
         if self.e.1 == 0.0 {
             // The segment runs along the line (or is a point): both discs have the same chord
             // half-width.
-            let (lo, hi) = self.disc(a.0, a.1, q)?;
-            return Some((lesser(lo, lo + e.0), greater(hi, hi + e.0)));
+            let (lo, hi) = self.disc(a.0, a.1, q);
+            if lo.is_nan() {
+                return MISS;
+            }
+            return (lesser(lo, lo + e.0), greater(hi, hi + e.0));
         }
         // The strip |(x − a)·ey − (q − a_y)·ex| ≤ r·|e| about the segment's line.
         let dq = q - a.1;
@@ -721,7 +761,7 @@ impl Stadium {
             let (c, h) = end_disc(yh);
             c + h
         };
-        Some((lo, hi))
+        (lo, hi)
     }
 }
 
