@@ -274,7 +274,11 @@ impl FastRays {
     }
 }
 
-/// A chord that misses, where chords are plain pairs.
+/// A chord that misses, where the kernels' chords are plain pairs: an `Option<(f64, f64)>`
+/// that the optimiser cannot keep in registers is assembled in memory with 8-byte stores and
+/// read back as one 16-byte load, which stalls on store forwarding (11–12 % of the finishing
+/// kernel's samples, at whichever option came through memory). A miss is tested on the lower
+/// end (`lo.is_nan()`); options are made only for the result.
 const MISS: (f64, f64) = (f64::NAN, f64::NAN);
 
 /// A capsule (swept sphere) against the lines along x through `(0, y, z)`, in a rays' family
@@ -321,18 +325,15 @@ impl CapsuleRays {
         (!lo.is_nan()).then_some((lo, hi))
     }
 
-    /// The line along the segment (no side to cross): [`line_capsule`], a miss as NaNs.
+    /// The line along the segment (no side to cross): [`line_capsule`], a miss as [`MISS`].
     #[cold]
     #[inline(never)]
     fn along<const LOW_ONLY: bool>(&self, cu: f64, cv: f64) -> (f64, f64) {
         let o = Vec3::new(0.0, cu, cv);
-        line_capsule::<LOW_ONLY>(o, Vec3::X, self.c0, self.ba, self.rr.sqrt())
-            .unwrap_or((f64::NAN, f64::NAN))
+        line_capsule::<LOW_ONLY>(o, Vec3::X, self.c0, self.ba, self.rr.sqrt()).unwrap_or(MISS)
     }
 
-    /// [`CapsuleRays::interval`] as a plain pair, a miss as NaNs. (Plain values, not
-    /// `Option`s: the pieces' options were assembled in memory and read back as one 16-byte
-    /// load, which stalled on its two 8-byte stores — 11 % of the finishing kernel's samples.)
+    /// [`CapsuleRays::interval`] as a plain pair, a miss as [`MISS`].
     #[inline(always)]
     fn ends<const LOW_ONLY: bool>(&self, cu: f64, cv: f64) -> (f64, f64) {
         if self.a <= 1e-20 * self.baba {
@@ -416,7 +417,7 @@ impl CapsuleRays {
                 at(pn)
             } else {
                 let ((lo, _), (_, hi)) = (at(pn), at(pf));
-                if hi.is_nan() {
+                if lo.is_nan() || hi.is_nan() {
                     return MISS;
                 }
                 (lo, hi)
@@ -450,7 +451,7 @@ impl RoundEnd {
     }
 
     /// The chord of the ray through `(cu, cv)` across the tool axis (along cross axis `ray`,
-    /// at height `za`, `q` its other cross coordinate), a miss as NaNs.
+    /// at height `za`, `q` its other cross coordinate), a miss as [`MISS`].
     #[inline(always)]
     fn across(&self, (cu, cv): (f64, f64), ray: usize, za: f64, q: f64) -> (f64, f64) {
         match self {
@@ -646,10 +647,7 @@ impl AcrossRays {
     #[inline(always)]
     pub(crate) fn interval(&self, cu: f64, cv: f64) -> Option<(f64, f64)> {
         let (za, q) = if self.height_is_u { (cu, cv) } else { (cv, cu) };
-        // The chords are plain pairs, a miss as NaNs, up to the result: as options they were
-        // assembled in memory and read back as one 16-byte load, which stalled on its two
-        // 8-byte stores (12 % of the finishing kernel's samples, at whichever option came
-        // through memory).
+        // The chords as plain pairs up to the result (see `MISS`).
         let a = if za >= self.full_band.0 && za <= self.full_band.1 {
             self.full.chord(q)
         } else if za >= self.band.0 && za <= self.band.1 {
@@ -700,7 +698,7 @@ impl Stadium {
         }
     }
 
-    /// The chord of the end disc centred at `(ca, cb)` on the line at `q`, a miss as NaNs.
+    /// The chord of the end disc centred at `(ca, cb)` on the line at `q`, a miss as [`MISS`].
     #[inline(always)]
     fn disc(&self, ca: f64, cb: f64, q: f64) -> (f64, f64) {
         let dq = q - cb;
@@ -713,8 +711,7 @@ impl Stadium {
         }
     }
 
-    /// The chord on the line through `(·, q)` along the first coordinate, a miss as NaNs (a
-    /// plain pair: see [`AcrossRays::interval`]).
+    /// The chord on the line through `(·, q)` along the first coordinate, a miss as [`MISS`].
     #[inline(always)]
     pub(crate) fn chord(&self, q: f64) -> (f64, f64) {
         let (a, e) = (self.a, self.e);
