@@ -6,7 +6,7 @@ pub(crate) mod five_axis;
 pub use five_axis::{PIECES_PER_BATCH, SCREEN_TOLERANCE_MM};
 
 use crate::error::StockError;
-use crate::tridexel::{CutStats, SegmentCut, TriDexel};
+use crate::tridexel::{CutStats, LinearMove, SegmentCut, TriDexel};
 use swarf_geom::math::Vec3;
 use swarf_path::{Move, MoveKind, Pose, Program};
 use swarf_sweep::{arc_chords, SweepShape, SweptConvex, ToolShape};
@@ -96,7 +96,7 @@ impl TriDexel {
         tip1: Vec3,
         axis: Vec3,
     ) -> SegmentCut {
-        let m = crate::tridexel::LinearMove { tip0, tip1, axis };
+        let m = LinearMove { tip0, tip1, axis };
         self.cut_linear_batch(tool, &[m])[0]
     }
 
@@ -163,22 +163,19 @@ impl TriDexel {
                 // same stock and figures as chord by chord, without a parallel section (and its
                 // barrier) per chord — an arc at the default 1 µm has one chord per ≈ 0.09 mm
                 // of a 10 mm radius.
-                let mut prev = pose(s0);
-                let chords: Vec<crate::tridexel::LinearMove> = (1..=n)
-                    .map(|i| {
-                        let s = if i == n {
-                            s1
-                        } else {
-                            s0 + (s1 - s0) * (i as f64 / n as f64)
-                        };
-                        let p = pose(s);
-                        let chord = crate::tridexel::LinearMove {
-                            tip0: prev,
-                            tip1: p,
-                            axis,
-                        };
-                        prev = p;
-                        chord
+                let tips: Vec<Vec3> = (0..=n)
+                    .map(|i| match i {
+                        0 => pose(s0),
+                        i if i == n => pose(s1),
+                        i => pose(s0 + (s1 - s0) * (i as f64 / n as f64)),
+                    })
+                    .collect();
+                let chords: Vec<LinearMove> = tips
+                    .windows(2)
+                    .map(|w| LinearMove {
+                        tip0: w[0],
+                        tip1: w[1],
+                        axis,
                     })
                     .collect();
                 for cut in self.cut_chords(tool, &chords) {
