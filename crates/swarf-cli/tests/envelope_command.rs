@@ -74,9 +74,10 @@ fn merged_coplanar_triangles_keep_the_solid() {
     assert!((v0 - v1).abs() < 1e-6 * v0, "{v0} vs {v1}");
 }
 
-/// `--simplify MM`: 2 × 2 × 2 blocks of cells merged where the envelope is smooth — a quarter
-/// of the triangles on a ball's line, the vertices still on the exact envelope, the volume within
-/// the chord of a block over the surface; a tolerance that is not a positive number is refused.
+/// `--simplify MM` (0.001 by default): 2 × 2 × 2 blocks of cells merged where the envelope is
+/// smooth — a quarter of the triangles on a ball's line, the vertices still on the exact
+/// envelope, the volume within the chord of a block over the surface; `--simplify 0` keeps every
+/// cell; a tolerance that is neither 0 nor a positive number is refused.
 #[test]
 fn merged_blocks_of_cells_keep_the_envelope() {
     let dir = swarf_testdata::scratch_dir("envelope-simplify");
@@ -94,12 +95,24 @@ fn merged_blocks_of_cells_keep_the_envelope() {
         "--resolution",
         &hs,
     ];
-    let (plain, plain_mesh) = run_mesh(&args, &dir.join("plain"), &[], "envelope.stl");
+    let (plain, plain_mesh) = run_mesh(
+        &args,
+        &dir.join("plain"),
+        &["--simplify", "0"],
+        "envelope.stl",
+    );
     let (merged, merged_mesh) = run_mesh(
         &args,
         &dir.join("merged"),
         &["--simplify", "0.01"],
         "envelope.stl",
+    );
+    // The default merges too, within 0.001 mm: fewer blocks than within 0.01.
+    let (default, _) = run_mesh(&args, &dir.join("default"), &[], "envelope.stl");
+    let blocks = |j: &serde_json::Value| j["merged_blocks"].as_u64().unwrap();
+    assert!(
+        blocks(&default) > 0 && blocks(&default) < blocks(&merged),
+        "{default}"
     );
     assert_eq!(merged["closed"], true, "{merged}");
     assert!(merged["merged_blocks"].as_u64().unwrap() > 0, "{merged}");
@@ -117,7 +130,7 @@ fn merged_blocks_of_cells_keep_the_envelope() {
     let (v0, v1) = (plain_mesh.volume(), merged_mesh.volume());
     assert!((v0 - v1).abs() < chord * plain_mesh.area(), "{v0} vs {v1}");
     // Written as one argument and as two (a negative number is still the flag's value).
-    for (bad, joined) in [("0", true), ("-1", true), ("-1", false), ("nan", true)] {
+    for (bad, joined) in [("-0.1", true), ("-1", true), ("-1", false), ("nan", true)] {
         let mut all = args.to_vec();
         let out = dir.join("bad");
         let flag = format!("--simplify={bad}");
@@ -130,7 +143,7 @@ fn merged_blocks_of_cells_keep_the_envelope() {
         let o = swarf(&all);
         assert!(!o.status.success(), "--simplify {bad}");
         assert!(
-            stderr(&o).contains("--simplify must be a positive number of mm"),
+            stderr(&o).contains("--simplify must be 0 (every cell) or a positive number of mm"),
             "{}",
             stderr(&o)
         );

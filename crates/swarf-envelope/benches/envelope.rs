@@ -43,15 +43,16 @@ fn meshing(c: &mut Criterion) {
         b.iter(|| envelope(&five, &tools, 0..five.moves.len(), &opts).unwrap())
     });
     g.finish();
-    // Issue 14's case: one 36 mm line of a 10 mm ball at h = 0.05, every cell and with blocks
-    // of cells merged within 1 µm (`--simplify 0.001`); the mesh is made, not written.
+    // Issue 14's case: one 36 mm line of a 10 mm ball at h = 0.05, with the default blocks of
+    // cells merged within 1 µm and with every cell (`--simplify 0`); the mesh is made, not
+    // written.
     let mut g = c.benchmark_group("line_envelope");
     g.sample_size(10);
     let line = read("G21 G90\nG0 X0 Y0 Z0\nG1 X36 F300\n", "line.ngc");
     let ball10 = ToolSet::single(Cutter::ball(10.0).unwrap());
     for (name, simplify) in [
-        ("ball10_h0.05", None),
-        ("ball10_h0.05_simplified", Some(1e-3)),
+        ("ball10_h0.05", Some(swarf_envelope::DEFAULT_SIMPLIFY_MM)),
+        ("ball10_h0.05_every_cell", None),
     ] {
         let opts = EnvelopeOptions::default()
             .with_resolution(0.05)

@@ -40,7 +40,9 @@ use swarf_tool::{Cutter, ToolSet};
 
 use crate::error::EnvelopeError;
 use crate::project::{onto_envelope, SweepIndex};
-use crate::tolerance::{DEFAULT_CHORDAL_TOLERANCE_MM, DEFAULT_RESOLUTION_MM, MAX_LATTICE_POINTS};
+use crate::tolerance::{
+    DEFAULT_CHORDAL_TOLERANCE_MM, DEFAULT_RESOLUTION_MM, DEFAULT_SIMPLIFY_MM, MAX_LATTICE_POINTS,
+};
 
 /// Parameters of [`envelope`]; defaults from [`crate::tolerance`].
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -51,7 +53,7 @@ pub struct EnvelopeOptions {
     pub tolerance: f64,
     /// Run the fold test on arcs and moves whose axis turns (`swarf_sweep::fold`).
     pub check_folds: bool,
-    /// Contouring parameters.
+    /// Contouring parameters; blocks of cells merged within [`DEFAULT_SIMPLIFY_MM`] by default.
     pub contour: ContourOptions,
     /// Move every mesh vertex onto the exact envelope (along the world axis nearest to its
     /// normal; `crate::project`). On by default; off leaves the contouring's placement.
@@ -68,7 +70,7 @@ impl Default for EnvelopeOptions {
             resolution: DEFAULT_RESOLUTION_MM,
             tolerance: DEFAULT_CHORDAL_TOLERANCE_MM,
             check_folds: true,
-            contour: ContourOptions::default(),
+            contour: ContourOptions::default().with_simplify(Some(DEFAULT_SIMPLIFY_MM)),
             exact_vertices: true,
             merge_planar: false,
         }
@@ -102,7 +104,8 @@ impl EnvelopeOptions {
 
     /// With the contouring's 2 × 2 × 2 blocks of cells merged where their crossings lie within
     /// `tol` mm of the planes that meet at one point (`ContourOptions::simplify`; the merged
-    /// vertices are then put on the exact envelope like the others). `None` keeps every cell.
+    /// vertices are then put on the exact envelope like the others). `None` keeps every cell;
+    /// the default is [`DEFAULT_SIMPLIFY_MM`].
     pub fn with_simplify(mut self, tol: Option<f64>) -> Self {
         self.contour.simplify = tol;
         self

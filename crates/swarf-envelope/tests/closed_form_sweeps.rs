@@ -35,8 +35,11 @@ fn ball_along_a_line_sweeps_a_capsule() {
     let r = 5.0;
     let ball = Cutter::ball(2.0 * r).unwrap();
     let (len, height) = (ball.overall_length(), ball.overall_length() - r);
-    // Diagonal in XY so no wall is aligned with the lattice.
-    let (a, b) = (Vec3::new(1.0, 2.0, 0.0), Vec3::new(21.0, 13.0, 0.0));
+    // Diagonal in XY so no wall is aligned with the lattice, and the start off the lattice's
+    // grid: from (1, 2), the Z lines at Pythagorean offsets ((3, 4), (1.4, 4.8), …) were
+    // tangent to the shank's cylinder, each a 25 mm segment of measure zero that rounding
+    // either counted in the rays' volume or not (1 mm³ each at h = 0.2).
+    let (a, b) = (Vec3::new(1.013, 2.029, 0.0), Vec3::new(21.0, 13.0, 0.0));
     let program = common::gcode(&format!(
         "G21 G90\nG0 X{} Y{} Z0\nG1 X{} Y{} F500\n",
         a.x, a.y, b.x, b.y
@@ -75,7 +78,8 @@ fn ball_along_a_line_sweeps_a_capsule() {
         errors[2].0 < errors[0].0,
         "mesh volume converges: {errors:?}"
     );
-    assert!(errors[2].0 < 5e-4 && errors[2].1 < 1e-3, "{errors:?}");
+    // The rays' volume is a midpoint sum whose boundary is jagged at h: 1.5·10⁻³ at h = 0.2.
+    assert!(errors[2].0 < 5e-4 && errors[2].1 < 2e-3, "{errors:?}");
 }
 
 #[test]

@@ -7,6 +7,7 @@
 use rayon::prelude::*;
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
+use swarf_sweep::swept::Scratch;
 use swarf_sweep::{SweepBound, SweptConvex};
 
 use crate::dexel::{Dexel, Interval};
@@ -38,7 +39,7 @@ impl TriDexel {
                 .par_chunks_mut(TILE_RAYS)
                 .zip(fam.bounds.par_iter_mut())
                 .enumerate()
-                .for_each(|(t, (tile, tile_bound))| {
+                .for_each_init(Scratch::new, |scratch, (t, (tile, tile_bound))| {
                     let (i0, j0) = ((t % ntu) * TILE, (t / ntu) * TILE);
                     let (i1, j1) = ((i0 + TILE).min(nu) - 1, (j0 + TILE).min(nv) - 1);
                     for ((sw, b), bound) in sweeps.iter().zip(&boxes).zip(bounds) {
@@ -52,7 +53,7 @@ impl TriDexel {
                         if a0 > a1 || c0 > c1 {
                             continue;
                         }
-                        let mut batch = None;
+                        let mut rays = None;
                         for j in c0..=c1 {
                             for i in a0..=a1 {
                                 let d = &mut tile[(j - j0) * TILE + (i - i0)];
@@ -66,8 +67,10 @@ impl TriDexel {
                                         Some(_) => {}
                                     }
                                 }
-                                let batch = batch.get_or_insert_with(|| sw.lines(Vec3::AXES[k]));
-                                if let Some((lo, hi)) = batch.interval(o) {
+                                // The closed forms of the stock's cut where the sweep has them.
+                                let rays = rays.get_or_insert_with(|| sw.dexel_rays(k));
+                                let at = (o[ua], o[va]);
+                                if let Some((lo, hi)) = sw.dexel_interval(at, k, rays, scratch) {
                                     unite(d, lo, hi);
                                     tile_bound.add(lo, hi, &bins);
                                 }

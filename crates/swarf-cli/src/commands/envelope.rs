@@ -48,9 +48,9 @@ pub(crate) struct EnvelopeArgs {
     /// Merge each 2 × 2 × 2 block of cells into one vertex (on the exact envelope) where the
     /// topology stays and the block's crossings lie within MM of the planes that meet at it:
     /// about a quarter of the triangles where the envelope is smooth, in about half the
-    /// contouring's time; sharp edges stay.
-    #[arg(allow_negative_numbers = true, long, value_name = "MM")]
-    pub(crate) simplify: Option<f64>,
+    /// contouring's time; sharp edges stay. 0 keeps every cell.
+    #[arg(allow_negative_numbers = true, long, value_name = "MM", default_value_t = swarf_envelope::DEFAULT_SIMPLIFY_MM)]
+    pub(crate) simplify: f64,
     /// Print the JSON summary (the default output is a short human-readable report).
     #[arg(long)]
     pub(crate) json: bool,
@@ -81,7 +81,7 @@ struct EnvelopeSummary {
     /// With `--merge-planar`: the triangles before the merge.
     #[serde(skip_serializing_if = "Option::is_none")]
     triangles_before_merge: Option<usize>,
-    /// With `--simplify`: the 2 × 2 × 2 blocks of cells merged into one vertex.
+    /// The 2 × 2 × 2 blocks of cells merged into one vertex (absent with `--simplify 0`).
     #[serde(skip_serializing_if = "Option::is_none")]
     merged_blocks: Option<usize>,
 }
@@ -122,14 +122,12 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
         Some(m) => parse_moves(m, program.moves.len())?,
         None => 0..program.moves.len(),
     };
-    if let Some(tol) = args.simplify {
-        crate::commands::simulate::positive_mm("simplify", tol)?;
-    }
+    let simplify = crate::commands::simulate::simplify_mm(args.simplify)?;
     let options = EnvelopeOptions::default()
         .with_resolution(args.resolution)
         .with_tolerance(args.tolerance)
         .with_merge_planar(args.merge_planar)
-        .with_simplify(args.simplify);
+        .with_simplify(simplify);
     let env = envelope(program, tools, range, &options)
         .with_context(|| format!("sweeping {}", args.program.display()))?;
     let stl = args.out.join("envelope.stl");

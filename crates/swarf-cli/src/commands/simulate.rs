@@ -65,7 +65,8 @@ pub(crate) struct SimulateArgs {
     pub(crate) merge_planar: bool,
     /// Merge each 2 × 2 × 2 block of the stock mesh's cells into one vertex where the
     /// topology stays and the block's crossings lie within MM of the planes that meet at it
-    /// (about a quarter of the triangles where the surface is smooth; sharp edges stay).
+    /// (about a quarter of the triangles where the surface is smooth; sharp edges stay). 0,
+    /// the default, keeps every cell.
     #[arg(allow_negative_numbers = true, long, value_name = "MM")]
     pub(crate) simplify: Option<f64>,
     /// Print the JSON summary (the default output is a short human-readable report).
@@ -81,11 +82,12 @@ pub(crate) struct StockMeshOut {
 }
 
 impl StockMeshOut {
-    fn of(args: &SimulateArgs) -> Self {
-        Self {
+    /// The flags' values, checked.
+    fn of(args: &SimulateArgs) -> Result<Self> {
+        Ok(Self {
             merge_planar: args.merge_planar,
-            simplify: args.simplify,
-        }
+            simplify: args.simplify.map(simplify_mm).transpose()?.flatten(),
+        })
     }
 }
 
@@ -187,9 +189,7 @@ impl SimulateSummary {
 pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
     positive_mm("resolution", args.resolution)?;
     positive_mm("tolerance", args.tolerance)?;
-    if let Some(tol) = args.simplify {
-        positive_mm("simplify", tol)?;
-    }
+    let mesh_out = StockMeshOut::of(args)?;
     let job = load_job(&args.setup, &args.program)?;
     let tools = defined_tools(&job)?;
     let program = &job.program;
@@ -205,14 +205,7 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
     let summary = SimulateSummary::new(&report);
     if let Some(dir) = &args.out {
         let mut set = output_set(dir, args.max_output_mb)?;
-        write_outputs(
-            &mut set,
-            program,
-            &stock,
-            &report,
-            &summary,
-            StockMeshOut::of(args),
-        )?;
+        write_outputs(&mut set, program, &stock, &report, &summary, mesh_out)?;
         set.commit()?;
     }
     if let Some(path) = &args.report {
@@ -254,6 +247,17 @@ pub(crate) fn positive_mm(name: &str, value: f64) -> Result<()> {
         Ok(())
     } else {
         bail!("--{name} must be a positive number of mm, got {value}")
+    }
+}
+
+/// `--simplify MM`: the contouring's merge tolerance, `None` for 0 (every cell kept).
+pub(crate) fn simplify_mm(value: f64) -> Result<Option<f64>> {
+    if value == 0.0 {
+        Ok(None)
+    } else if value > 0.0 && value.is_finite() {
+        Ok(Some(value))
+    } else {
+        bail!("--simplify must be 0 (every cell) or a positive number of mm, got {value}")
     }
 }
 
@@ -394,7 +398,7 @@ fn write_report(
 ) -> Result<()> {
     use crate::commands::report;
     let tools = report::resolved_tools(resolved);
-    let mesh = stock_mesh(stock, StockMeshOut::of(args));
+    let mesh = stock_mesh(stock, StockMeshOut::of(args)?);
     let rows = summary.collisions.iter().map(|c| {
         let cl = &c.collision;
         let at = program.moves.get(cl.move_index).map(|m| m.end.tip);

@@ -468,14 +468,38 @@ impl<'a> SweptConvex<'a> {
     /// inside the swept volume, in world coordinates along `k`: by the closed-form kernels
     /// when [`SweptConvex::has_closed_form`], else as [`SweptConvex::ray_interval`].
     pub fn axis_ray_interval(&self, origin: Vec3, k: usize) -> Option<(f64, f64)> {
-        let mut o = origin;
-        o[k] = 0.0;
-        let (cu, cv) = (o[(k + 1) % 3], o[(k + 2) % 3]);
-        match &self.closed {
-            Some(ClosedForm::Axial(f)) => f.rays(k).interval(cu, cv, None),
-            Some(ClosedForm::Instance(i)) => i.rays(k).interval(cu, cv),
-            Some(ClosedForm::Tilted(t)) => t.rays(k, 0.0).interval(cu, cv),
-            None => self.ray_interval(o, Vec3::AXES[k]),
+        let (cu, cv) = (origin[(k + 1) % 3], origin[(k + 2) % 3]);
+        if self.closed.is_none() {
+            let mut o = origin;
+            o[k] = 0.0;
+            return self.ray_interval(o, Vec3::AXES[k]);
+        }
+        // (The closed forms use no scratch; an empty one allocates nothing.)
+        self.dexel_interval((cu, cv), k, &self.dexel_rays(k), &mut Scratch::default())
+    }
+
+    /// The whole interval of the ray along world axis `k` through `(cu, cv)` on the cross axes
+    /// `(k+1) % 3`, `(k+2) % 3` inside the swept volume, world coordinates along `k` (`rays`
+    /// from [`SweptConvex::dexel_rays`] for `k`): [`SweptConvex::axis_ray_interval`] with the
+    /// family's constants made once, for many rays — the closed forms where the stock's cut
+    /// has them, else the general candidates.
+    pub fn dexel_interval(
+        &self,
+        (cu, cv): (f64, f64),
+        k: usize,
+        rays: &DexelRays,
+        scratch: &mut Scratch,
+    ) -> Option<(f64, f64)> {
+        match &rays.0 {
+            RaysKind::Fast(f) => f.interval(cu, cv, None),
+            RaysKind::Instance(i) => i.interval(cu, cv),
+            RaysKind::Tilted(t) => t.interval(cu, cv),
+            RaysKind::General(dc, _) => {
+                let mut origin = Vec3::ZERO;
+                origin[(k + 1) % 3] = cu;
+                origin[(k + 2) % 3] = cv;
+                self.line_interval(origin, dc, None, scratch)
+            }
         }
     }
 
