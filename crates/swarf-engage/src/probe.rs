@@ -21,7 +21,9 @@
 //! are air at `P` (an outer edge: none at all, or material only elsewhere along them, as over
 //! a groove beside its wall's top) or material (an inner edge); that sheet is one of the edge's
 //! faces, and `P`'s distance to it is measured (from one ray, or a pair whose ends give its
-//! slope; ends too far apart for one sheet are a step). At an outer edge the material is inside
+//! slope; ends too far apart for one sheet are a step — then the nearest ray and its neighbour
+//! along a side of the cell that end on the face, whose word is taken only that `P` lies
+//! outside an outer edge's face). At an outer edge the material is inside
 //! both faces: outside a face's sheet `P` is outside, whatever the other face, and the nearest
 //! such face's distance stands; inside the sheets `P` is inside unless a nearest ray of some
 //! family found air where the sheets put material — it saw the edge's other face, which a
@@ -401,15 +403,32 @@ impl<'a> MaterialProbe<'a> {
                 .filter(|&q| ends_near(q))
                 .reduce(|a, b| if w[b] > w[a] { b } else { a });
             if let Some(a) = anchor {
-                let sheet: [bool; 4] =
+                let whole: [bool; 4] =
                     std::array::from_fn(|q| ends_near(q) && near[q].2 == near[a].2);
-                // Beside an outer edge the other rays are air at P, beside an inner one
-                // material (with no other ray, both hold: no edge).
-                let mut others = (0..4).filter(|&q| !sheet[q]);
-                let outer = others.clone().all(|q| !side(q));
-                if outer != others.all(side) {
-                    if let Some((d, n)) = edge_distance(k, l, &near, sheet, w, t) {
-                        return FamilyDepth::Edge(d, n, outer, nearest, spacing);
+                // The anchor's sheet: its rays ending near P with its kind. Where those make a
+                // step — a wall's ends beside a floor's, as under a floor running just below a
+                // row of rays beside a hole's wall, the rays above ending on the floor further
+                // on — the anchor and its neighbour along either side of the cell, when that
+                // one ends on the sheet too. A pair takes the sheet as level along the other
+                // side, so only its word that P lies outside a face of an outer edge is taken
+                // (the edge's verdict then stands against the vote); otherwise the vote.
+                let pairs = [1, 2]
+                    .map(|along| pair(whole, a, along))
+                    .into_iter()
+                    .filter(|p| p.iter().filter(|&&b| b).count() == 2 && *p != whole);
+                for sheet in std::iter::once(whole).chain(pairs) {
+                    // Beside an outer edge the other rays are air at P, beside an inner one
+                    // material (with no other ray, both hold: no edge).
+                    let mut others = (0..4).filter(|&q| !sheet[q]);
+                    let outer = others.clone().all(|q| !side(q));
+                    if outer == others.all(side) {
+                        continue;
+                    }
+                    match edge_distance(k, l, &near, sheet, w, t) {
+                        Some((d, n)) if sheet == whole || (outer && d < 0.0) => {
+                            return FamilyDepth::Edge(d, n, outer, nearest, spacing);
+                        }
+                        _ => {}
                     }
                 }
             }
@@ -430,6 +449,14 @@ impl<'a> MaterialProbe<'a> {
             sheet_normal(k, l, s, de_du, de_dv, tilt),
         )
     }
+}
+
+/// Of the rays on `sheet`, the anchor `a` and its neighbour along a side of the cell (`along`
+/// 1: the other ray of its row, 2: of its column), when that one is on the sheet too; else
+/// none.
+fn pair(sheet: [bool; 4], a: usize, along: usize) -> [bool; 4] {
+    let b = a ^ along;
+    std::array::from_fn(|q| (q == a || q == b) && sheet[b])
 }
 
 /// `x.floor()` for the finite `x` of ray indices, inline (the library call is a tenth of a
@@ -926,6 +953,53 @@ mod tests {
             measured += usize::from(d.measured);
         }
         assert_eq!(measured, 400);
+    }
+
+    #[test]
+    fn beside_a_wall_whose_rays_above_end_on_a_floor_further_on_the_wall_is_measured() {
+        // Material where x ≥ x_w and z ≤ z_f + s·(x − x_w): a wall, and a floor rising gently
+        // away from it (as a helix's floor beside the hole it enlarges). The X rays of the row
+        // under the floor end on the wall; those of the row 12 µm above it end on the floor
+        // 0.3 mm further on, with the same kind of end: the four together are a step. A point
+        // 7 µm off the wall on the air side, 50 µm under the floor's level, is outside — though
+        // the nearest Y and Z rays, half a spacing into the material, put it inside, and the
+        // Z rays measure it under the floor (Aras fig. 6.13's hole: the entry read 0.63° early).
+        let (h, x_w, z_f, s) = (0.1, 0.14, 0.138, 0.04);
+        let b = swarf_geom::Aabb::new(Vec3::splat(-2.0), Vec3::splat(2.0));
+        let floor = |x: f64| z_f + s * (x - x_w);
+        let stock = TriDexel::from_fn(b, h, |k, cu, cv, d| match k {
+            // (y, z): from the wall, or from where the floor rises above the ray.
+            0 => {
+                let from = x_w + ((cv - z_f) / s).max(0.0);
+                if from < 2.0 {
+                    d.push(Interval {
+                        enter: from,
+                        exit: 2.0,
+                    });
+                }
+            }
+            // (z, x): all along, or nothing.
+            1 if cv >= x_w && cu <= floor(cv) => d.push(Interval {
+                enter: -2.0,
+                exit: 2.0,
+            }),
+            // (x, y): up to the floor.
+            2 if cu >= x_w => d.push(Interval {
+                enter: -2.0,
+                exit: floor(cu),
+            }),
+            _ => {}
+        })
+        .unwrap();
+        let probe = MaterialProbe::new(&stock);
+        for y in [0.013, 0.031, 0.047, 0.069] {
+            let p = Vec3::new(x_w - 0.007, y, z_f - 0.05);
+            let d = probe.depth(p);
+            assert!(d.measured, "{d:?}");
+            assert!((d.distance + 0.007).abs() < 1e-9, "{d:?}");
+            let n = d.normal.unwrap();
+            assert!((n - Vec3::new(-1.0, 0.0, 0.0)).length() < 1e-9, "{d:?}");
+        }
     }
 
     #[test]
