@@ -405,11 +405,11 @@ impl<'a> MaterialProbe<'a> {
             if let Some(a) = anchor {
                 let whole: [bool; 4] =
                     std::array::from_fn(|q| ends_near(q) && near[q].2 == near[a].2);
-                // The anchor's sheet: its rays ending near P with its kind. Where those make a
-                // step — a wall's ends beside a floor's, as under a floor running just below a
-                // row of rays beside a hole's wall, the rays above ending on the floor further
-                // on — the anchor and its neighbour along either side of the cell, when that
-                // one ends on the sheet too. A pair takes the sheet as level along the other
+                // The anchor's sheet: its rays ending near P with its kind. Where those give no
+                // measure — a step, as a wall's ends beside a floor's under a floor running just
+                // below a row of rays beside a hole's wall, the rays above ending on the floor
+                // further on — the anchor and its neighbour along either side of the cell, when
+                // that one ends on the sheet too. A pair takes the sheet as level along the other
                 // side, so only its word that P lies outside a face of an outer edge is taken
                 // (the edge's verdict then stands against the vote); otherwise the vote.
                 let pairs = [1, 2]

@@ -209,7 +209,15 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
         set.commit()?;
     }
     if let Some(path) = &args.report {
-        write_report(path, args, program, tools.resolved(), &stock, &summary)?;
+        write_report(
+            path,
+            args,
+            mesh_out,
+            program,
+            tools.resolved(),
+            &stock,
+            &summary,
+        )?;
     }
     if args.json {
         print_json(&summary)
@@ -391,6 +399,7 @@ const SUMMARY_KEYS: &[&str] = &[
 fn write_report(
     path: &Path,
     args: &SimulateArgs,
+    mesh_out: StockMeshOut,
     program: &Program,
     resolved: &std::collections::BTreeMap<u32, swarf_tool::ResolvedTool>,
     stock: &TriDexel,
@@ -398,7 +407,7 @@ fn write_report(
 ) -> Result<()> {
     use crate::commands::report;
     let tools = report::resolved_tools(resolved);
-    let mesh = stock_mesh(stock, StockMeshOut::of(args)?);
+    let mesh = stock_mesh(stock, mesh_out);
     let rows = summary.collisions.iter().map(|c| {
         let cl = &c.collision;
         let at = program.moves.get(cl.move_index).map(|m| m.end.tip);
