@@ -13,6 +13,15 @@ pub(crate) trait ConvexLine {
     /// `(F(t), F′(t))`; `F′` may be `±∞` where `F` has a vertical tangent.
     fn value_slope(&self, t: f64) -> (f64, f64);
 
+    /// `(F(t), F′(t), −F(t)/F′(t))`: the Newton step too, for a line that can have it
+    /// without waiting for `F′` (the division by `F′` then leaves the walk's chain of
+    /// dependent operations).
+    #[inline]
+    fn value_slope_step(&self, t: f64) -> (f64, f64, f64) {
+        let (f, g) = self.value_slope(t);
+        (f, g, -f / g)
+    }
+
     /// `F(t)` (when cheaper alone).
     fn value(&self, t: f64) -> f64 {
         self.value_slope(t).0
@@ -64,8 +73,9 @@ pub(crate) fn walk<F: ConvexLine + ?Sized>(
     toward: f64,
 ) -> Walk {
     let dir = if toward > t { 1.0 } else { -1.0 };
-    // The slope at `t` (known with the value after the first step).
+    // The slope at `t` (known with the value after the first step), and the step.
     let mut slope = g;
+    let mut known_step = None;
     for _ in 0..WALK_STEPS {
         if f <= 0.0 {
             return Walk::Zero(t);
@@ -78,7 +88,7 @@ pub(crate) fn walk<F: ConvexLine + ?Sized>(
             // Rising the way it walks while above zero: no zero that way.
             return Walk::NoZero;
         }
-        let step = -f / g;
+        let step = known_step.take().unwrap_or(-f / g);
         let next = t + step;
         if (next - toward) * dir > 0.0 {
             return Walk::NoZero;
@@ -97,8 +107,8 @@ pub(crate) fn walk<F: ConvexLine + ?Sized>(
             }
         }
         t = next;
-        let (fv, gv) = line.value_slope(t);
-        (f, slope) = (fv, Some(gv));
+        let (fv, gv, sv) = line.value_slope_step(t);
+        (f, slope, known_step) = (fv, Some(gv), Some(sv));
     }
     Walk::Stuck
 }
