@@ -39,40 +39,38 @@ struct Corner {
 }
 
 impl Corner {
-    /// `(min_s φ, ∂φ/∂p at the minimising s)` for the point `p`.
-    fn nearest(&self, p: Vec3) -> (f64, Vec3) {
+    /// `min_s φ` for the point `p`, with what its gradient in `p` is made of: `(φ, h, out, ρ,
+    /// u_x, u_y)` at the minimising `s`, the gradient being `2h·ẑ + 2·out·(u_x, u_y, 0)/ρ`
+    /// (`out = 0`, `ρ = 1` over the disc).
+    fn nearest(&self, p: Vec3) -> [f64; 6] {
         let (a, b) = (self.v.x, self.v.z);
-        let phi = |s: f64| -> (f64, Vec3) {
+        // (Over the disc, `ρ ≤ e`, the distance is the height alone: no square root. The
+        // walks wait on these chains of square roots and divisions.)
+        let phi = |s: f64| -> [f64; 6] {
             let (ux, uy) = (p.x - s * a, p.y);
             let h = p.z - s * b - self.f;
-            let rho = (ux * ux + uy * uy).sqrt();
-            let out = (rho - self.e).max(0.0);
-            // Gradient in p: 2h·ẑ + 2·out·(radial unit).
-            let radial = if rho > 0.0 {
-                Vec3::new(ux / rho, uy / rho, 0.0)
-            } else {
-                Vec3::ZERO
-            };
-            (h * h + out * out, 2.0 * h * Vec3::Z + 2.0 * out * radial)
+            let rho2 = ux * ux + uy * uy;
+            if rho2 <= self.e * self.e {
+                return [h * h, h, 0.0, 1.0, ux, uy];
+            }
+            let rho = rho2.sqrt();
+            let out = rho - self.e;
+            [h * h + out * out, h, out, rho, ux, uy]
         };
         // φ′(s) = −∂φ/∂p · v.
         let slope = |s: f64| -> (f64, f64) {
             let (ux, uy) = (p.x - s * a, p.y);
             let h = p.z - s * b - self.f;
             let rho2 = ux * ux + uy * uy;
+            if rho2 <= self.e * self.e {
+                return (-2.0 * b * h, 2.0 * b * b);
+            }
+            // φ′ and φ″ times ρ³ (> 0): the Newton step and the signs are the same, with no
+            // division but the step's.
             let rho = rho2.sqrt();
-            let out = (rho - self.e).max(0.0);
-            let g = if rho > 0.0 {
-                -2.0 * b * h - 2.0 * a * out * ux / rho
-            } else {
-                -2.0 * b * h
-            };
-            let curv = 2.0 * b * b
-                + if out > 0.0 && rho > 0.0 {
-                    2.0 * a * a * (ux * ux / rho2 + out * uy * uy / (rho2 * rho))
-                } else {
-                    0.0
-                };
+            let out = rho - self.e;
+            let g = -2.0 * rho2 * (b * h * rho + a * out * ux);
+            let curv = 2.0 * (b * b * rho2 * rho + a * a * (ux * ux * rho + out * uy * uy));
             (g, curv)
         };
         if a == 0.0 && b == 0.0 {
@@ -126,16 +124,13 @@ impl Corner {
         phi(s)
     }
 
-    /// `(G(t), G′(t))` along the line `o + t·d`.
-    fn g(&self, o: Vec3, d: Vec3, t: f64) -> (f64, f64) {
-        let (q, grad) = self.nearest(o + d * t);
-        let dist = q.sqrt();
-        let slope = if dist > 0.0 {
-            grad.dot(d) / (2.0 * dist)
-        } else {
-            0.0
-        };
-        (dist - self.r, slope)
+    /// `(F(t), F′(t), −F/F′)` along the line `o + t·d`, `F = dist² − r²` (the step with one
+    /// division, the slope's division by ρ off its chain).
+    fn g(&self, o: Vec3, d: Vec3, t: f64) -> (f64, f64, f64) {
+        let [q, h, out, rho, ux, uy] = self.nearest(o + d * t);
+        let f = q - self.r * self.r;
+        let slope_rho = 2.0 * (h * d.z * rho + out * (ux * d.x + uy * d.y));
+        (f, slope_rho / rho, -f * rho / slope_rho)
     }
 }
 
@@ -148,7 +143,16 @@ struct CornerLine<'c> {
 
 impl ConvexLine for CornerLine<'_> {
     fn value_slope(&self, t: f64) -> (f64, f64) {
+        let (f, g, _) = self.corner.g(self.o, self.d, t);
+        (f, g)
+    }
+
+    fn value_slope_step(&self, t: f64) -> (f64, f64, f64) {
         self.corner.g(self.o, self.d, t)
+    }
+
+    fn curvature_bound(&self) -> Option<f64> {
+        Some(2.0)
     }
 }
 
