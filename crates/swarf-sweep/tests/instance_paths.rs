@@ -329,10 +329,11 @@ fn an_instance_set_joins_its_instances_chords() {
     );
 }
 
-/// Rays grazing the side of a tool whose axis is within 10⁻⁷–10⁻³ rad of theirs (closer, the
-/// axis is taken as theirs) cross the side far from where their quadratic's other root lies
-/// (up to 10⁸ mm away); the nearer root must keep its precision (the division-free roots are
-/// taken only up to `DIRECT_ROOTS_MM`).
+/// Rays grazing the side of a tool whose axis is within 10⁻⁷–5·10⁻² rad of theirs (closer, the
+/// axis is taken as theirs): the nearly parallel ones cross the side far from where their
+/// quadratic's other root lies (up to 10⁸ mm away), and the nearer root must keep its
+/// precision — the division-free roots are taken only up to `DIRECT_ROOTS_MM`, which the
+/// steeper ones (tilts of 10⁻² and more) are within.
 #[test]
 fn rays_nearly_along_the_axis_cross_the_side_where_the_general_path_does() {
     let mut rng = Rng(0x9a2e_2026);
@@ -340,16 +341,16 @@ fn rays_nearly_along_the_axis_cross_the_side_where_the_general_path_does() {
     for spec in ["flat:d=10,flute-length=30", "bull:d=10,r=2,flute-length=30"] {
         let c = Cutter::from_spec(spec).unwrap();
         let prof = ConvexProfile::from_solid(c.cutting_solid()).unwrap();
-        for tilt in [1e-7, 1e-6, 1e-5, 1e-4, 1e-3] {
+        for tilt in [1e-7, 1e-6, 1e-5, 1e-4, 1e-3, 1e-2, 5e-2] {
             let axis = Vec3::new(tilt, 0.0, 1.0).normalize();
             let sw = SweptConvex::new(&prof, Vec3::ZERO, axis, Vec3::ZERO);
             for _ in 0..400 {
-                // At a height z up the side, the side is at x = 5 + tilt·z (φ = 0).
+                // At a height z up the side, the side is at x ≈ 5 + tilt·z (φ = 0).
                 let z = rng.range(1.0, 29.0);
                 let p = Vec3::new(5.0 + tilt * z + rng.range(-1e-3, 1e-3) * tilt, 0.0, 0.0);
                 let (fast, general, e) = both_answers(&sw, p, 2);
                 assert!(
-                    e.is_some_and(|e| e <= 1e-9),
+                    e.is_some_and(|e| e <= 1e-11),
                     "{spec} tilted {tilt}: ray through {p}: instance {fast:?} vs general {general:?}"
                 );
                 if let (Some(f), Some(_)) = (fast, general) {
@@ -359,6 +360,6 @@ fn rays_nearly_along_the_axis_cross_the_side_where_the_general_path_does() {
             }
         }
     }
-    println!("{side} chords ending on the side; worst {worst:.3e} mm");
-    assert!(side > 1_000, "{side}");
+    println!("{side} chords entering through the side; worst {worst:.3e} mm");
+    assert!(side > 4_000, "{side}");
 }

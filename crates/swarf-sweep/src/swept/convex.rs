@@ -88,7 +88,7 @@ pub(crate) fn walk<F: ConvexLine + ?Sized>(
             // Rising the way it walks while above zero: no zero that way.
             return Walk::NoZero;
         }
-        let step = known_step.take().unwrap_or(-f / g);
+        let step = known_step.take().unwrap_or_else(|| -f / g);
         let next = t + step;
         if (next - toward) * dir > 0.0 {
             return Walk::NoZero;

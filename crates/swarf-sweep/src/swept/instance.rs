@@ -17,7 +17,8 @@
 //! * above `f` the chord is `C`'s: only the end on the side where the line goes below `f`
 //!   (`t_f`, where it crosses `z = f`, inside `C`) can differ. There the lower half of `L` is the
 //!   boundary: for a ball the sphere's chord, for a bull-nose the first zero of the convex
-//!   `G(t) = dist(p(t), D) − r` (`lozenge.rs`) walked from `C`'s end, where `G ≥ 0` (every
+//!   `G(t) = dist(p(t), D) − r` (`lozenge.rs`; walked on `dist² − r²`, which has its zeros
+//!   and sign) from `C`'s end, where `G ≥ 0` (every
 //!   point of `C`'s boundary within `r` of the height `f` is at least `r` from `D`), towards
 //!   `t_f`, where `G ≤ 0` (the disc of radius `R` at height `f` lies in `L`);
 //! * that end is only computed when it can matter: when `C`'s end there lies beyond the ray's

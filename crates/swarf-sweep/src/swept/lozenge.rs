@@ -17,9 +17,11 @@
 //! is. And `dist(p, K)² = min_{s ∈ [0, 1]} φ(s)`, `φ(s) = h(s)² + max(ρ(s) − e, 0)²` with
 //! `h = p_z − s·v_z − f` and `ρ` the distance of `p − s·v` from the axis: a convex function of
 //! `s` (sums of squares of convex non-negative functions), minimised by bracketed Newton steps.
-//! The derivative of `G` is that of `φ` in `t` at the minimising `s` (envelope theorem). Newton
-//! steps on the convex `G` from the ends of the bounding capsule (where `G ≥ 0`) close in on
-//! its zeros from outside, as for the torus caps (`convex.rs`).
+//! The derivative of `G` is that of `φ` in `t` at the minimising `s` (envelope theorem). The
+//! walks run on `F = dist² − r² = min φ − r²`, which has `G`'s zeros and sign and is convex too
+//! (its `F″ ≤ 2`: the squared distance to a convex set has a 2-Lipschitz gradient), with no
+//! square root of its own: Newton steps on it from the ends of the bounding capsule (where
+//! `F ≥ 0`) close in on its zeros from outside, as for the torus caps (`convex.rs`).
 
 use super::capsule::line_capsule;
 use super::convex::{min_between, walk, zero_between, ConvexLine, Walk};
@@ -134,7 +136,7 @@ impl Corner {
     }
 }
 
-/// `G` along one line.
+/// `F` along one line.
 struct CornerLine<'c> {
     corner: &'c Corner,
     o: Vec3,
@@ -211,12 +213,6 @@ impl ConvexLine for StaticLine {
             0.0
         };
         (dist - self.r, slope)
-    }
-
-    /// `G` is a distance less `r`: its second derivative along a unit line is at most the
-    /// distance's Hessian norm, `1/dist ≤ 1/r` outside the lozenge.
-    fn curvature_bound(&self) -> Option<f64> {
-        Some(1.0 / self.r)
     }
 
     #[inline]
@@ -482,7 +478,23 @@ mod tests {
                 if fs != 0.0 {
                     assert!((step + f / fs).abs() <= 1e-12 * (1.0 + step.abs()));
                 }
+                // The walk's early stop rests on F″ ≤ 2.
+                let w2 = 1e-4;
+                let second = (sq.value(t + w2) - 2.0 * sq.value(t) + sq.value(t - w2)) / (w2 * w2);
+                assert!(second <= 2.0 + 1e-5, "F″ ≈ {second} at {t}");
                 n += 1;
+            }
+            // `entry` from a given (G, G′) converts it: the same zero as from nothing.
+            let start = 0.0;
+            if line.value(start) > 0.0 {
+                if let Some(tin) = (0..120)
+                    .map(|j| j as f64 * 0.1)
+                    .find(|&t| line.value(t) < -1e-3)
+                {
+                    let given = line.entry(start, Some(line.value_slope(start)), tin);
+                    let fresh = line.entry(start, None, tin);
+                    assert!((given - fresh).abs() <= 1e-12, "{given} vs {fresh}");
+                }
             }
             // Where the line enters the lozenge, the walk on F finds G's zero.
             let inside = (0..120)
@@ -495,5 +507,61 @@ mod tests {
             }
         }
         assert!(n == 24_000 && zeros > 100, "{n} {zeros}");
+    }
+
+    /// The swept corner's `F = dist² − r²` against the distance to the swept disc found by
+    /// dense sampling of the move, its slope against a central difference, its step against
+    /// `−F/F′`, and `F″ ≤ 2`.
+    #[test]
+    fn the_swept_corner_is_the_squared_distance_to_the_swept_disc() {
+        let corner = Corner {
+            e: 3.0,
+            f: 2.0,
+            r: 2.0,
+            v: Vec3::new(0.5, 0.0, 0.12),
+        };
+        // Distance² from p to the disc (radius e, height f) moved by s·v, s ∈ [0, 1] sampled.
+        let sampled = |p: Vec3| -> f64 {
+            (0..=20_000)
+                .map(|i| {
+                    let s = i as f64 / 20_000.0;
+                    let (ux, uy) = (p.x - s * corner.v.x, p.y);
+                    let h = p.z - s * corner.v.z - corner.f;
+                    let out = ((ux * ux + uy * uy).sqrt() - corner.e).max(0.0);
+                    h * h + out * out
+                })
+                .fold(f64::INFINITY, f64::min)
+        };
+        let mut checked = 0;
+        for i in 0..60 {
+            let a = i as f64 * 0.61;
+            let d = Vec3::new(a.cos(), a.sin(), 0.4 * (a * 1.3).sin()).normalize();
+            let o = Vec3::new(0.3 * a.sin(), 0.2 * a.cos(), 1.0 + 0.4 * (a * 0.7).cos()) - d * 7.0;
+            for j in 0..28 {
+                let t = j as f64 * 0.5;
+                let (f, fs, step) = corner.g(o, d, t);
+                let want = sampled(o + d * t) - corner.r * corner.r;
+                // Sampling the move every 1/20,000 leaves ≈ (|v|/20,000)² / 4 above the minimum.
+                assert!(
+                    (f - want).abs() <= 1e-9 * (1.0 + want.abs()),
+                    "{f} vs {want}"
+                );
+                let w = 1e-6;
+                let diff = (corner.g(o, d, t + w).0 - corner.g(o, d, t - w).0) / (2.0 * w);
+                assert!(
+                    (diff - fs).abs() <= 1e-5 * (1.0 + fs.abs()),
+                    "{diff} vs {fs}"
+                );
+                if fs != 0.0 {
+                    assert!((step + f / fs).abs() <= 1e-12 * (1.0 + step.abs()));
+                }
+                let w2 = 1e-4;
+                let second =
+                    (corner.g(o, d, t + w2).0 - 2.0 * f + corner.g(o, d, t - w2).0) / (w2 * w2);
+                assert!(second <= 2.0 + 1e-4, "F″ ≈ {second}");
+                checked += 1;
+            }
+        }
+        assert_eq!(checked, 1_680);
     }
 }

@@ -125,7 +125,7 @@ impl Acc {
 /// (closer ones may be one crossing found on two elements meeting there).
 const INSTANCE_CROSSINGS_APART: f64 = 1e-6;
 
-/// Roots of a line's quadratic (a cylinder's, a capsule's side) up to this far from the line's
+/// Roots of a line's quadratic (a tool instance's bounding cylinder) up to this far from the line's
 /// base point (mm) are taken as `(−b ∓ √h)/a`: their absolute error is then a few ulps of this
 /// (≈ 10⁻¹³ mm), and they wait on no division after the square root, which the chords' latency
 /// does (the 5-axis bench's instance chords ≈ 8 % faster). Beyond it — a line nearly along
