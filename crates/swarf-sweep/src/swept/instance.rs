@@ -357,17 +357,17 @@ fn lozenge_end(
         if at.0 <= 0.0 {
             return Some(c);
         }
-        // Outside, and before the chord (G ≤ 0 at tf further on): a nearer start.
+        // Outside, and before the chord (F ≤ 0 at tf further on): a nearer start.
         from = (near, Some(at));
     }
     if !before(far, tf, dir) {
         return Some(line.entry(from.0, from.1, tf));
     }
     // The material ends before tf: outside the lozenge (or within a sliver inside) it ends
-    // before the chord starts (G is convex, ≤ 0 at tf); inside, the end lies between, and
+    // before the chord starts (F is convex, ≤ 0 at tf); inside, the end lies between, and
     // the tangent there gives a nearer start.
     let at = line.value_slope(far);
-    if at.0 > -SLIVER_MM {
+    if at.0 > line.f_at(-SLIVER_MM) {
         return None;
     }
     Some(line.entry_near(from, (far, at), dir))
@@ -395,7 +395,7 @@ fn lozenge_chord(
             continue;
         }
         let (g, slope) = line.value_slope(m);
-        if g <= -SLIVER_MM {
+        if g <= line.f_at(-SLIVER_MM) {
             inside[end] = Some((m, (g, slope)));
             continue;
         }

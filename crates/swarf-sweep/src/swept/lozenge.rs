@@ -182,8 +182,11 @@ pub(crate) fn instance_crossings(e: f64, f: f64, r: f64, o: Vec3, d: Vec3, acc: 
     }
 }
 
-/// `G` of a static lozenge along one line `o + t·d` (unit `d`, tool frame): the distance to
-/// the disc of radius `e` at height `f`, less `r` — the tool instance's kernels (`instance.rs`).
+/// A static lozenge along one line `o + t·d` (unit `d`, tool frame) — the tool instance's
+/// kernels (`instance.rs`) — as `F = dist² − r²`, `dist` the distance to the disc of radius `e`
+/// at height `f`. `F` has the zeros and sign of `G = dist − r` and is convex too (the square
+/// of a convex non-negative function), with `F″ ≤ 2`; it takes one square root and one division
+/// a Newton step where `G` takes two and three, and the walks wait on that chain.
 pub(crate) struct StaticLine {
     pub(crate) e: f64,
     pub(crate) f: f64,
@@ -195,52 +198,6 @@ pub(crate) struct StaticLine {
 impl ConvexLine for StaticLine {
     #[inline]
     fn value_slope(&self, t: f64) -> (f64, f64) {
-        let (o, d) = (self.o, self.d);
-        let p = o + d * t;
-        let rho = (p.x * p.x + p.y * p.y).sqrt();
-        let out = (rho - self.e).max(0.0);
-        let h = p.z - self.f;
-        let dist = (h * h + out * out).sqrt();
-        // d/dt of the distance: its gradient (h·ẑ + out·radial)/dist along d.
-        let radial = if out > 0.0 {
-            out * (p.x * d.x + p.y * d.y) / rho
-        } else {
-            0.0
-        };
-        let slope = if dist > 0.0 {
-            (h * d.z + radial) / dist
-        } else {
-            0.0
-        };
-        (dist - self.r, slope)
-    }
-
-    #[inline]
-    fn value(&self, t: f64) -> f64 {
-        let p = self.o + self.d * t;
-        let out = ((p.x * p.x + p.y * p.y).sqrt() - self.e).max(0.0);
-        let h = p.z - self.f;
-        (h * h + out * out).sqrt() - self.r
-    }
-}
-
-/// The squared form of a [`StaticLine`]'s `G`: `F = dist² − r²`, which has the same zeros and
-/// sign and is convex too (the square of a convex non-negative function), with one square root
-/// and one division where `G` takes two and three — the Newton walks' latency.
-struct Squared<'l>(&'l StaticLine);
-
-impl Squared<'_> {
-    /// `(F, F′)` from `G`'s `(G, G′)` at the same point.
-    #[inline]
-    fn of_g(&self, (g, slope): (f64, f64)) -> (f64, f64) {
-        let r = self.0.r;
-        (g * (g + 2.0 * r), 2.0 * (g + r) * slope)
-    }
-}
-
-impl ConvexLine for Squared<'_> {
-    #[inline]
-    fn value_slope(&self, t: f64) -> (f64, f64) {
         let (f, g, _) = self.value_slope_step(t);
         (f, g)
     }
@@ -249,19 +206,18 @@ impl ConvexLine for Squared<'_> {
     /// where `F′` needs a division by `ρ` first.
     #[inline]
     fn value_slope_step(&self, t: f64) -> (f64, f64, f64) {
-        let l = self.0;
-        let (o, d) = (l.o, l.d);
+        let (o, d) = (self.o, self.d);
         let p = o + d * t;
         let rho2 = p.x * p.x + p.y * p.y;
-        let h = p.z - l.f;
-        if rho2 <= l.e * l.e {
+        let h = p.z - self.f;
+        if rho2 <= self.e * self.e {
             // Over the disc: the distance is the height.
-            let (f, g) = (h * h - l.r * l.r, 2.0 * h * d.z);
+            let (f, g) = (h * h - self.r * self.r, 2.0 * h * d.z);
             return (f, g, -f / g);
         }
         let rho = rho2.sqrt();
-        let out = rho - l.e;
-        let f = h * h + out * out - l.r * l.r;
+        let out = rho - self.e;
+        let f = h * h + out * out - self.r * self.r;
         let half = h * d.z * rho + out * (p.x * d.x + p.y * d.y);
         (f, 2.0 * half / rho, -f * rho / (2.0 * half))
     }
@@ -273,27 +229,28 @@ impl ConvexLine for Squared<'_> {
 
     #[inline]
     fn value(&self, t: f64) -> f64 {
-        let l = self.0;
-        let p = l.o + l.d * t;
-        let out = ((p.x * p.x + p.y * p.y).sqrt() - l.e).max(0.0);
-        let h = p.z - l.f;
-        h * h + out * out - l.r * l.r
+        let p = self.o + self.d * t;
+        let out = ((p.x * p.x + p.y * p.y).sqrt() - self.e).max(0.0);
+        let h = p.z - self.f;
+        h * h + out * out - self.r * self.r
     }
 }
 
 impl StaticLine {
-    /// The first zero of `G` from `from` (where `G ≥ 0`; its value and slope when known)
-    /// towards `toward` (where `G ≤ 0`).
+    /// `F` where `G = dist − r` is `g`: a depth `g` in mm as a threshold on `F`.
+    #[inline]
+    pub(crate) fn f_at(&self, g: f64) -> f64 {
+        g * (g + 2.0 * self.r)
+    }
+
+    /// The first zero of `F` from `from` (where `F ≥ 0`; its value and slope when known)
+    /// towards `toward` (where `F ≤ 0`).
     pub(crate) fn entry(&self, from: f64, at: Option<(f64, f64)>, toward: f64) -> f64 {
-        let sq = Squared(self);
-        let at = match at {
-            Some(at) => sq.of_g(at),
-            None => sq.value_slope(from),
-        };
-        match walk(&sq, from, (at.0, Some(at.1)), toward) {
+        let at = at.unwrap_or_else(|| self.value_slope(from));
+        match walk(self, from, (at.0, Some(at.1)), toward) {
             Walk::Zero(t) => t,
             // Rounding at `toward`, or a slope the steps cannot follow: the one change of
-            // sign between the two (G is convex, ≥ 0 at `from` and ≤ 0 at `toward`).
+            // sign between the two (F is convex, ≥ 0 at `from` and ≤ 0 at `toward`).
             Walk::NoZero | Walk::Stuck => {
                 let (a, b) = (from.min(toward), from.max(toward));
                 zero_between(self, a, b, self.value(a))
@@ -301,11 +258,11 @@ impl StaticLine {
         }
     }
 
-    /// The zero of `G` between `from` (outside, `G ≥ 0`; its value and slope when known) and
-    /// `inner` (inside, `G(inner) < 0` with its slope), walking along `dir` (±1) from `from`.
+    /// The zero of `F` between `from` (outside, `F ≥ 0`; its value and slope when known) and
+    /// `inner` (inside, `F(inner) < 0` with its slope), walking along `dir` (±1) from `from`.
     ///
-    /// Where `G` still falls along `dir` at `inner`, the zero of its tangent there is a nearer
-    /// start: `G` is convex, so it lies above the tangent and is `≥ 0` at that zero, which lies
+    /// Where `F` still falls along `dir` at `inner`, the zero of its tangent there is a nearer
+    /// start: `F` is convex, so it lies above the tangent and is `≥ 0` at that zero, which lies
     /// between `from` and the zero sought — a Newton step or two from it instead of five or
     /// six from `from`.
     pub(crate) fn entry_near(
@@ -323,9 +280,9 @@ impl StaticLine {
         }
     }
 
-    /// The chord within `(lo, hi)`, where `G ≥ 0` at both ends.
+    /// The chord within `(lo, hi)`, where `F ≥ 0` at both ends.
     pub(crate) fn chord_in(&self, lo: f64, hi: f64) -> Option<(f64, f64)> {
-        chord_between(&Squared(self), lo, hi)
+        chord_between(self, lo, hi)
     }
 }
 
@@ -433,10 +390,11 @@ fn chord_between<L: ConvexLine>(line: &L, lo: f64, hi: f64) -> Option<(f64, f64)
 mod tests {
     use super::*;
 
-    /// The squared form agrees with `G` (same sign, `F = G·(G + 2r)`), its slope with a
-    /// central difference, its step with `−F/F′`, and a walk on it lands on `G`'s zero.
+    /// A static lozenge's `F` agrees with `G` written out (`F = G·(G + 2r)`), its slope with a
+    /// central difference, its step with `−F/F′`, `F″ ≤ 2`, and a walk on it lands on `G`'s
+    /// zero.
     #[test]
-    fn the_squared_form_is_g_squared_with_its_slope_and_step() {
+    fn a_static_lozenge_is_g_squared_with_its_slope_and_step() {
         let (mut zeros, mut n) = (0, 0);
         for i in 0..400 {
             let a = i as f64 * 0.37;
@@ -458,19 +416,26 @@ mod tests {
                 o,
                 d,
             };
-            let sq = Squared(&line);
+            // G = dist − r written out, as the reference.
+            let g_of = |t: f64| -> f64 {
+                let p = o + d * t;
+                let out = ((p.x * p.x + p.y * p.y).sqrt() - line.e).max(0.0);
+                let h = p.z - line.f;
+                (h * h + out * out).sqrt() - line.r
+            };
             for j in 0..60 {
                 let t = j as f64 * 0.2;
-                let (g, gs) = line.value_slope(t);
-                let (f, fs, step) = sq.value_slope_step(t);
+                let g = g_of(t);
+                let (f, fs, step) = line.value_slope_step(t);
                 let want = g * (g + 2.0 * line.r);
                 assert!(
                     (f - want).abs() <= 1e-12 * (1.0 + want.abs()),
                     "{f} vs {want}"
                 );
-                assert!((fs - 2.0 * (g + line.r) * gs).abs() <= 1e-9 * (1.0 + fs.abs()));
+                assert_eq!(line.value(t), f);
+                assert!((line.f_at(g) - want).abs() <= 1e-12 * (1.0 + want.abs()));
                 let w = 1e-6;
-                let diff = (sq.value(t + w) - sq.value(t - w)) / (2.0 * w);
+                let diff = (line.value(t + w) - line.value(t - w)) / (2.0 * w);
                 assert!(
                     (diff - fs).abs() <= 1e-5 * (1.0 + fs.abs()),
                     "{diff} vs {fs}"
@@ -480,29 +445,21 @@ mod tests {
                 }
                 // The walk's early stop rests on F″ ≤ 2.
                 let w2 = 1e-4;
-                let second = (sq.value(t + w2) - 2.0 * sq.value(t) + sq.value(t - w2)) / (w2 * w2);
+                let second =
+                    (line.value(t + w2) - 2.0 * line.value(t) + line.value(t - w2)) / (w2 * w2);
                 assert!(second <= 2.0 + 1e-5, "F″ ≈ {second} at {t}");
                 n += 1;
             }
-            // `entry` from a given (G, G′) converts it: the same zero as from nothing.
-            let start = 0.0;
-            if line.value(start) > 0.0 {
-                if let Some(tin) = (0..120)
-                    .map(|j| j as f64 * 0.1)
-                    .find(|&t| line.value(t) < -1e-3)
-                {
-                    let given = line.entry(start, Some(line.value_slope(start)), tin);
-                    let fresh = line.entry(start, None, tin);
-                    assert!((given - fresh).abs() <= 1e-12, "{given} vs {fresh}");
-                }
-            }
-            // Where the line enters the lozenge, the walk on F finds G's zero.
+            // Where the line enters the lozenge, the walk on F finds G's zero, from its start's
+            // (F, F′) given or not.
             let inside = (0..120)
                 .map(|j| j as f64 * 0.1)
                 .find(|&t| line.value(t) < -1e-3);
-            if let Some(tin) = inside {
+            if let (Some(tin), true) = (inside, line.value(0.0) > 0.0) {
                 let t = line.entry(0.0, None, tin);
-                assert!(line.value(t).abs() <= 1e-9, "G({t}) = {}", line.value(t));
+                assert!(g_of(t).abs() <= 1e-9, "G({t}) = {}", g_of(t));
+                let given = line.entry(0.0, Some(line.value_slope(0.0)), tin);
+                assert_eq!(given, t);
                 zeros += 1;
             }
         }
