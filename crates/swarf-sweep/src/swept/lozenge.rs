@@ -390,6 +390,24 @@ fn chord_between<L: ConvexLine>(line: &L, lo: f64, hi: f64) -> Option<(f64, f64)
 mod tests {
     use super::*;
 
+    /// What the walks rely on, at `t` of a line whose `(F, F′, step)` there is given: the slope
+    /// against a central difference of `value`, the step against `−F/F′`, and `F″ ≤ 2` (the
+    /// walk's early stop) by a second difference.
+    fn check_line_at(value: impl Fn(f64) -> f64, t: f64, (f, fs, step): (f64, f64, f64)) {
+        let w = 1e-6;
+        let diff = (value(t + w) - value(t - w)) / (2.0 * w);
+        assert!(
+            (diff - fs).abs() <= 1e-5 * (1.0 + fs.abs()),
+            "{diff} vs {fs} at {t}"
+        );
+        if fs != 0.0 {
+            assert!((step + f / fs).abs() <= 1e-12 * (1.0 + step.abs()));
+        }
+        let w2 = 1e-4;
+        let second = (value(t + w2) - 2.0 * f + value(t - w2)) / (w2 * w2);
+        assert!(second <= 2.0 + 1e-4, "F″ ≈ {second} at {t}");
+    }
+
     /// A static lozenge's `F` agrees with `G` written out (`F = G·(G + 2r)`), its slope with a
     /// central difference, its step with `−F/F′`, `F″ ≤ 2`, and a walk on it lands on `G`'s
     /// zero.
@@ -434,20 +452,7 @@ mod tests {
                 );
                 assert_eq!(line.value(t), f);
                 assert!((line.f_at(g) - want).abs() <= 1e-12 * (1.0 + want.abs()));
-                let w = 1e-6;
-                let diff = (line.value(t + w) - line.value(t - w)) / (2.0 * w);
-                assert!(
-                    (diff - fs).abs() <= 1e-5 * (1.0 + fs.abs()),
-                    "{diff} vs {fs}"
-                );
-                if fs != 0.0 {
-                    assert!((step + f / fs).abs() <= 1e-12 * (1.0 + step.abs()));
-                }
-                // The walk's early stop rests on F″ ≤ 2.
-                let w2 = 1e-4;
-                let second =
-                    (line.value(t + w2) - 2.0 * line.value(t) + line.value(t - w2)) / (w2 * w2);
-                assert!(second <= 2.0 + 1e-5, "F″ ≈ {second} at {t}");
+                check_line_at(|t| line.value(t), t, (f, fs, step));
                 n += 1;
             }
             // Where the line enters the lozenge, the walk on F finds G's zero, from its start's
@@ -503,19 +508,7 @@ mod tests {
                     (f - want).abs() <= 1e-9 * (1.0 + want.abs()),
                     "{f} vs {want}"
                 );
-                let w = 1e-6;
-                let diff = (corner.g(o, d, t + w).0 - corner.g(o, d, t - w).0) / (2.0 * w);
-                assert!(
-                    (diff - fs).abs() <= 1e-5 * (1.0 + fs.abs()),
-                    "{diff} vs {fs}"
-                );
-                if fs != 0.0 {
-                    assert!((step + f / fs).abs() <= 1e-12 * (1.0 + step.abs()));
-                }
-                let w2 = 1e-4;
-                let second =
-                    (corner.g(o, d, t + w2).0 - 2.0 * f + corner.g(o, d, t - w2).0) / (w2 * w2);
-                assert!(second <= 2.0 + 1e-4, "F″ ≈ {second}");
+                check_line_at(|t| corner.g(o, d, t).0, t, (f, fs, step));
                 checked += 1;
             }
         }
