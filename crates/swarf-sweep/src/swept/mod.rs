@@ -125,14 +125,6 @@ impl Acc {
 /// (closer ones may be one crossing found on two elements meeting there).
 const INSTANCE_CROSSINGS_APART: f64 = 1e-6;
 
-/// Roots of a line's quadratic (a tool instance's bounding cylinder) up to this far from the line's
-/// base point (mm) are taken as `(−b ∓ √h)/a`: their absolute error is then a few ulps of this
-/// (≈ 10⁻¹³ mm), and they wait on no division after the square root, which the chords' latency
-/// does (the 5-axis bench's instance chords ≈ 8 % faster). Beyond it — a line nearly along
-/// the axis, whose other root lies far off — the cancellation-free form (`q/a`, `c/q`) keeps
-/// the nearer root's precision.
-pub(crate) const DIRECT_ROOTS_MM: f64 = 1e3;
-
 /// Real roots of `a·t² + b·t + c` (cancellation-free; linear when `a = 0`), inlined here for
 /// the per-ray loop (same convention as `swarf_geom::poly::quadratic_roots`).
 #[inline(always)]
