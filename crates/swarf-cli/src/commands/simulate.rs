@@ -67,8 +67,13 @@ pub(crate) struct SimulateArgs {
     /// topology stays and the block's crossings lie within MM of the planes that meet at it
     /// (about a quarter of the triangles where the surface is smooth; sharp edges stay). 0,
     /// the default, keeps every cell.
-    #[arg(allow_negative_numbers = true, long, value_name = "MM")]
-    pub(crate) simplify: Option<f64>,
+    #[arg(
+        allow_negative_numbers = true,
+        long,
+        value_name = "MM",
+        default_value_t = 0.0
+    )]
+    pub(crate) simplify: f64,
     /// Print the JSON summary (the default output is a short human-readable report).
     #[arg(long)]
     pub(crate) json: bool,
@@ -86,7 +91,7 @@ impl StockMeshOut {
     fn of(args: &SimulateArgs) -> Result<Self> {
         Ok(Self {
             merge_planar: args.merge_planar,
-            simplify: args.simplify.map(simplify_mm).transpose()?.flatten(),
+            simplify: simplify_mm(args.simplify)?,
         })
     }
 }

@@ -72,13 +72,14 @@ impl InstanceShape {
         let d = fr.vector_to_local(Vec3::AXES[k]);
         let (r, z_s, z1) = self.shape.slab;
         let z_b = self.shape.lozenge.map_or(z_s, |(_, f, lr)| f - lr);
+        let a = d.x * d.x + d.y * d.y;
         InstanceRays {
             eu: fr.vector_to_local(Vec3::AXES[u]),
             ev: fr.vector_to_local(Vec3::AXES[v]),
             d,
             tip: (fr.origin[u], fr.origin[v], fr.origin[k]),
-            a: d.x * d.x + d.y * d.y,
-            inv_a: 1.0 / (d.x * d.x + d.y * d.y),
+            a,
+            inv_a: 1.0 / a,
             rr: r * r,
             heights: (z_b, z1),
             inv_dz: if d.z != 0.0 { 1.0 / d.z } else { 0.0 },

@@ -469,12 +469,7 @@ impl<'a> SweptConvex<'a> {
     /// when [`SweptConvex::has_closed_form`], else as [`SweptConvex::ray_interval`].
     pub fn axis_ray_interval(&self, origin: Vec3, k: usize) -> Option<(f64, f64)> {
         let (cu, cv) = (origin[(k + 1) % 3], origin[(k + 2) % 3]);
-        if self.closed.is_none() {
-            let mut o = origin;
-            o[k] = 0.0;
-            return self.ray_interval(o, Vec3::AXES[k]);
-        }
-        // (The closed forms use no scratch; an empty one allocates nothing.)
+        // (Only the general candidates use the scratch; an empty one allocates nothing.)
         self.dexel_interval((cu, cv), k, &self.dexel_rays(k), &mut Scratch::default())
     }
 
