@@ -163,6 +163,27 @@ impl MoveBuilder {
         r.add(self.g5x)
     }
 
+    /// The program position of joint values `j`: [`MoveBuilder::joints`] inverted.
+    fn program_of(&self, j: &Axes) -> Axes {
+        let q = j.sub(self.g5x);
+        let (c, s) = self.xy_rotation;
+        let r = Axes {
+            x: c * q.x + s * q.y,
+            y: -s * q.x + c * q.y,
+            ..q
+        };
+        r.sub(self.g92)
+    }
+
+    /// Changes the program frame (offsets, rotation) with the tool where it is: the current
+    /// position is re-expressed in the new frame, as LinuxCNC's interpreter does, so the next
+    /// move starts where the last one ended on the machine.
+    fn change_frame(&mut self, change: impl FnOnce(&mut Self)) {
+        let at = self.joints(&self.pos);
+        change(self);
+        self.pos = self.program_of(&at);
+    }
+
     fn pose(&self, joints: &Axes, axis: Vec3) -> Pose {
         match self.axis_source {
             AxisSource::Machine => self.machine.pose(joints),
@@ -302,12 +323,12 @@ impl CanonSink for MoveBuilder {
             }
             Canon::XyRotation(deg) => {
                 let a = deg.to_radians();
-                self.xy_rotation = (a.cos(), a.sin());
+                self.change_frame(|b| b.xy_rotation = (a.cos(), a.sin()));
             }
-            Canon::Offsets { g5x, g92, .. } => {
-                self.g5x = *g5x;
-                self.g92 = *g92;
-            }
+            Canon::Offsets { g5x, g92, .. } => self.change_frame(|b| {
+                b.g5x = *g5x;
+                b.g92 = *g92;
+            }),
             Canon::FeedRate(f) => self.feed = *f,
             Canon::FeedMode(m) => self.feed_mode = *m,
             Canon::Spindle { rpm, dir } => {

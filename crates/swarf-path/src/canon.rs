@@ -44,12 +44,18 @@ impl Axes {
         }
     }
     /// Component-wise sum.
-    // A named method rather than `ops::Add`: joint vectors are added in one place (offsets),
-    // and an operator would suggest an algebra the type does not have.
+    // A named method rather than `ops::Add`: joint vectors are added and taken apart in one
+    // place (offsets), and an operator would suggest an algebra the type does not have.
     #[allow(clippy::should_implement_trait)]
     pub fn add(self, o: Self) -> Self {
         let (a, b) = (self.to_array(), o.to_array());
         Self::from_array(std::array::from_fn(|i| a[i] + b[i]))
+    }
+    /// Component-wise difference (see [`Axes::add`]).
+    #[allow(clippy::should_implement_trait)]
+    pub fn sub(self, o: Self) -> Self {
+        let (a, b) = (self.to_array(), o.to_array());
+        Self::from_array(std::array::from_fn(|i| a[i] - b[i]))
     }
     /// True when any rotary value differs from `o`.
     pub fn rotary_differs(&self, o: &Self) -> bool {

@@ -320,8 +320,10 @@ fn offsets_feeds_tools_and_time() {
         vec![(4, [6.0, 0.0, 0.0, 0.0, 0.0, 0.0, 30.0])]
     );
     let s = summarize(&p);
-    // Two zero-length moves: the rapid to the program origin (where the tool already is — the
-    // offsets apply to both ends) and the repeated feed.
+    // The rapid starts where the tool stands on the machine (its origin: the offsets came
+    // after the tool was there) and ends at the offset program origin; one zero-length move,
+    // the repeated feed.
+    assert_vec(p.moves[0].start.tip, Vec3::ZERO, 0.0, "start stays put");
     assert_eq!(
         (
             s.moves,
@@ -330,7 +332,7 @@ fn offsets_feeds_tools_and_time() {
             s.arc_moves,
             s.zero_length_moves
         ),
-        (6, 1, 5, 0, 2)
+        (6, 1, 5, 0, 1)
     );
     assert!(
         (s.machining_time_s - 75.0).abs() < 1e-12,

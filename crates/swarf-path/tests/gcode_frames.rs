@@ -91,3 +91,55 @@ fn g53_and_g28_go_to_machine_positions_under_rotation() {
     assert!(close(p.moves[1].end.tip, [0.0, 0.0, 0.0]));
     assert!(close(p.moves.last().unwrap().end.tip, [1.0, 1.0, 0.0]));
 }
+
+/// Every move starts where the one before ended on the machine, whatever frame change came
+/// between (G55, G92, G52, G10 L2/L20, rotation): the tool does not jump when the program's
+/// coordinates are redefined.
+#[test]
+fn a_frame_change_leaves_the_tool_where_it_is() {
+    let cases: [(&str, [f64; 3], f64); 6] = [
+        // (program, where the last move ends on the machine, its length)
+        (
+            "G10 L2 P2 X100\nG54 G0 X10 Y10\nG55\nG1 X5 F100\n",
+            [105.0, 10.0, 0.0],
+            95.0,
+        ),
+        (
+            "G0 X10 Y10\nG92 X0 Y0\nG1 X5 F100\n",
+            [15.0, 10.0, 0.0],
+            5.0,
+        ),
+        ("G0 X10 Y10\nG52 X4\nG1 X5 F100\n", [9.0, 10.0, 0.0], 1.0),
+        (
+            "G0 X10 Y10\nG10 L20 P1 X0\nG1 X5 F100\n",
+            [15.0, 10.0, 0.0],
+            5.0,
+        ),
+        // Turned 90° about the origin: program (10, 0) is machine (0, 10).
+        (
+            "G0 X10 Y0\nG10 L2 P1 R90\nG1 X10 Y0 F100\n",
+            [0.0, 10.0, 0.0],
+            200f64.sqrt(),
+        ),
+        (
+            "G0 X10 Y0 Z5\nG10 L2 P1 Z-5\nG1 Z0 F100\n",
+            [10.0, 0.0, -5.0],
+            10.0,
+        ),
+    ];
+    for (body, end, length) in cases {
+        let p = read(&format!("G21 G90\n{body}M2\n"));
+        for w in p.moves.windows(2) {
+            assert!(
+                (w[0].end.tip - w[1].start.tip).length() < 1e-12,
+                "{body}: {:?} then {:?}",
+                w[0].end.tip,
+                w[1].start.tip
+            );
+        }
+        let last = p.moves.last().unwrap();
+        assert!(close(last.end.tip, end), "{body}: {:?}", last.end.tip);
+        let len = (last.end.tip - last.start.tip).length();
+        assert!((len - length).abs() < 1e-9, "{body}: {len}");
+    }
+}
