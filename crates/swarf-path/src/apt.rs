@@ -23,10 +23,12 @@
 //! | `SPINDL/rpm[,RPM][,CLW│CCW]`, `SPINDL/OFF│ON` | spindle |
 //! | `UNITS/MM│INCHES`, `UNIT/…` | units (inch data is converted to mm) |
 //! | `CSYS/` 3×4 matrix | applied to the following points (see below) |
-//! | `PARTNO`, `PPRINT`, `TOOL PATH`, `INSERT` | comments (`INSERT` also warns) |
+//! | `PARTNO`, `PPRINT`, `REMARK`, `TPRINT`, `TOOL PATH`, `INSERT` | comments (`INSERT` also warns); all but `TOOL PATH` may hold any text, with or without the slash (`PPRINT OPERATION : Sweep.1`) |
+//! | `TLAXIS/i,j,k` | the tool axis of the following `GOTO`s that give none |
 //! | `FINI` | end of program |
 //!
-//! `PAINT`, `COOLNT`, `MULTAX`, `SELCTL`, `END-OF-PATH`, `CUTCOM/OFF`, `STOP`, `OPSTOP` are
+//! `PAINT`, `COOLNT`, `MULTAX`, `SELCTL`, `END-OF-PATH`, `CUTCOM/OFF`, `STOP`, `OPSTOP`, `INDIRV`,
+//! `TOOLNO`, `END` are
 //! accepted silently (they do not change the tool's path). `CUTCOM/LEFT│RIGHT` warns: CL points
 //! are normally the compensated cutter path already, and swarf simulates the points as written,
 //! not what a controller doing radius compensation would add. `MSYS/` (where the MCS sits in
@@ -462,9 +464,12 @@ impl Reader<'_, '_> {
     fn record(&mut self, rec: &Record<'_>) -> Result<Flow, PathError> {
         let text = rec.text.as_str();
         let lead = text.len() - text.trim_start().len();
-        let (major_raw, minor, minor_off) = match text.find('/') {
-            Some(k) => (&text[..k], Some(&text[k + 1..]), k + 1),
-            None => (text, None, text.len()),
+        let (major_raw, minor, minor_off) = match (text_record(text), text.find('/')) {
+            // Free text (`PPRINT OPERATION NAME : Sweep.1`, as CATIA writes it): the first
+            // word is the record, whatever the text holds.
+            (Some(k), _) => (&text[..k], Some(&text[k..]), k),
+            (None, Some(k)) => (&text[..k], Some(&text[k + 1..]), k + 1),
+            (None, None) => (text, None, text.len()),
         };
         let major_raw = major_raw.trim();
         if major_raw.is_empty()
@@ -506,6 +511,10 @@ impl Reader<'_, '_> {
             }
         };
         let minor_text = minor.unwrap_or("").trim();
+        let minor_text = match text_record(text) {
+            Some(_) => minor_text.strip_prefix('/').unwrap_or(minor_text).trim(),
+            None => minor_text,
+        };
         let word = |i: usize| fields.get(i).map(|f| f.text.to_ascii_uppercase());
         match major.as_str() {
             "GOTO" | "FROM" => self.goto(rec, &fields, major == "FROM")?,
@@ -615,7 +624,30 @@ impl Reader<'_, '_> {
                 self.sink.emit(line, &Canon::CutterDefinition(c));
             }
             "TLDATA" => self.tldata(rec, &fields, line, column)?,
-            "MULTAX" | "PAINT" | "COOLNT" | "SELCTL" | "END-OF-PATH" | "STOP" | "OPSTOP" => {}
+            "MULTAX" | "PAINT" | "COOLNT" | "SELCTL" | "END-OF-PATH" | "STOP" | "OPSTOP"
+            | "INDIRV" | "TOOLNO" | "END" => {}
+            "TLAXIS" => match self.numbers(rec, &fields, "TLAXIS/") {
+                Ok(v) if v.len() == 3 => {
+                    let Some(a) = self.vector(Vec3::new(v[0], v[1], v[2])).try_normalize() else {
+                        return Err(self.error(
+                            rec,
+                            minor_off,
+                            PathErrorKind::Semantic,
+                            "zero tool axis",
+                            minor_text,
+                            "a non-zero tool axis i,j,k",
+                        ));
+                    };
+                    // The axis of the GOTOs that give none, from the next one on.
+                    self.state_axis(line, Some(a));
+                }
+                // `TLAXIS/NORMAL,…` and other part-program forms: no axis to take.
+                _ => self.warn(
+                    line,
+                    column,
+                    format!("TLAXIS/{minor_text} ignored: only TLAXIS/i,j,k states an axis"),
+                ),
+            },
             "UNITS" | "UNIT" => {
                 let u = match word(0).as_deref() {
                     Some("MM" | "MILLIMETERS" | "MILLIMETRES") => Units::Mm,
@@ -659,7 +691,7 @@ impl Reader<'_, '_> {
                 self.sink.emit(line, &Canon::ToolChange { tool });
             }
             "SPINDL" => self.spindl(rec, &fields, line, column)?,
-            "PARTNO" | "PPRINT" | "TOOL PATH" => {
+            "PARTNO" | "PPRINT" | "REMARK" | "TPRINT" | "TOOL PATH" => {
                 self.sink
                     .emit(line, &Canon::Comment(Cow::Borrowed(minor_text)));
             }
@@ -1141,4 +1173,20 @@ impl Reader<'_, '_> {
         }
         Ok(())
     }
+}
+
+/// Where the text of a free-text record (`PARTNO`, `PPRINT`, `INSERT`, `REMARK`, `TPRINT`) starts — just
+/// after its first word, written with or without a slash —, `None` for other records. Their
+/// text is anything (`PPRINT TOOL DIA : 10.0`, `INSERT G0 X0.`), so it must not be read as
+/// minor words.
+fn text_record(text: &str) -> Option<usize> {
+    let lead = text.len() - text.trim_start().len();
+    let rest = &text[lead..];
+    let end = rest
+        .find(|c: char| c.is_whitespace() || c == '/')
+        .unwrap_or(rest.len());
+    ["PARTNO", "PPRINT", "INSERT", "REMARK", "TPRINT"]
+        .iter()
+        .any(|w| rest[..end].eq_ignore_ascii_case(w))
+        .then_some(lead + end)
 }

@@ -361,3 +361,48 @@ fn motion_swarf_cannot_generate_is_an_error_not_a_warning() {
     // CYCLE/OFF alone changes nothing.
     assert!(events("GOTO/0,0,5\nCYCLE/OFF\nGOTO/1,0,5\n").len() > 2);
 }
+
+/// CATIA writes free text after `PPRINT` and `PARTNO` without a slash, with any characters in
+/// it; `TLAXIS/i,j,k` gives the axis of the `GOTO`s that follow without one.
+#[test]
+fn free_text_records_and_tlaxis() {
+    let e = events(
+        "PARTNO PART TO BE MACHINED\nPPRINT OPERATION NAME : Multi-Axis Sweeping.1\n\
+         PPRINT/TOOL DIA = 10.0, (BALL)\nINSERT G0 X0. Y0.\nREMARK a, b: c\n\
+         TPRINT/T1 Ball Mill D 10,Default Tool Assembly\nFROM/0,0,10\n\
+         TLAXIS/ 0.6, 0.0, 0.8\nGOTO/1,0,10\nGOTO/2,0,10,0,0,1\n",
+    );
+    let comments: Vec<&str> = e
+        .iter()
+        .filter_map(|c| match c {
+            Canon::Comment(t) => Some(t.as_ref()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        comments,
+        [
+            "PART TO BE MACHINED",
+            "OPERATION NAME : Multi-Axis Sweeping.1",
+            "TOOL DIA = 10.0, (BALL)",
+            "G0 X0. Y0.",
+            "a, b: c",
+            "T1 Ball Mill D 10,Default Tool Assembly",
+        ]
+    );
+    let mut rec = Recorder::default();
+    let text = "FROM/0,0,10\nTLAXIS/ 0.6, 0.0, 0.8\nGOTO/1,0,10\nGOTO/2,0,10,0,0,1\n";
+    read_apt(text, "t.apt", &AptOptions::default(), &mut rec).unwrap();
+    let mut b = MoveBuilder::new(Machine::three_axis(), "t.apt");
+    for (line, ev) in &rec.events {
+        swarf_path::canon::CanonSink::emit(&mut b, *line, ev);
+    }
+    let p = b.finish();
+    let axis = |v: swarf_geom::math::Vec3| [v.x, v.y, v.z];
+    assert_eq!(axis(p.moves[0].end.axis), [0.6, 0.0, 0.8]);
+    assert_eq!(axis(p.moves[1].end.axis), [0.0, 0.0, 1.0]);
+    assert_eq!(
+        err("TLAXIS/0,0,0\n").to_string().split(": ").nth(1),
+        Some("zero tool axis (found `0,0,0`, expected a non-zero tool axis i,j,k)")
+    );
+}

@@ -674,3 +674,14 @@ fn words_without_meaning_in_their_block_are_warned_not_dropped() {
     assert_eq!((ignored[1].0, ignored[1].1), (3, 7));
     assert!(ignored[1].2.starts_with("I3"));
 }
+
+/// A UTF-8 byte order mark (Windows editors, some posts) is not a word of the first line.
+#[test]
+fn a_byte_order_mark_is_skipped() {
+    let with = "\u{feff}G21 G90\nG0 X1 Y2 Z5\nM30\n";
+    let mut a = swarf_path::canon::Recorder::default();
+    let mut b = swarf_path::canon::Recorder::default();
+    swarf_path::gcode::read_gcode(with, "bom.ngc", &Default::default(), &mut a).unwrap();
+    swarf_path::gcode::read_gcode(&with[3..], "bom.ngc", &Default::default(), &mut b).unwrap();
+    assert_eq!(a.events, b.events);
+}

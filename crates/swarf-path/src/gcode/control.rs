@@ -371,7 +371,8 @@ impl Interp<'_, '_> {
                 return Some(i as u32);
             }
             if let Ok(bytes) = std::fs::read(&path) {
-                let text: Rc<str> = Rc::from(String::from_utf8_lossy(&bytes).as_ref());
+                let text: Rc<str> =
+                    Rc::from(super::without_bom(String::from_utf8_lossy(&bytes).as_ref()));
                 self.files.push((shown, text));
                 return Some(self.files.len() as u32 - 1);
             }

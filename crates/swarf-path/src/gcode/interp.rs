@@ -173,6 +173,7 @@ impl<'t, 's> Interp<'t, 's> {
         opts: &'t GcodeOptions,
         sink: &'s mut dyn CanonSink,
     ) -> Self {
+        let text = super::without_bom(text);
         let fanuc =
             opts.dialect.unwrap_or_else(|| GcodeDialect::detect(text)) == GcodeDialect::Fanuc;
         let (text, file): (Rc<str>, Rc<str>) = (Rc::from(text), Rc::from(file));

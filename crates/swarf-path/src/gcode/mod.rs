@@ -354,6 +354,12 @@ pub fn read_gcode(
     interp::Interp::new(text, file_name, options, sink).run()
 }
 
+/// `text` without the UTF-8 byte order mark some Windows editors and posts put first (an
+/// invisible character that would otherwise be the first line's first word).
+pub(crate) fn without_bom(text: &str) -> &str {
+    text.strip_prefix('\u{feff}').unwrap_or(text)
+}
+
 /// Reads the G-code file at `path` (see [`read_gcode`]). Bytes that are not UTF-8 (Latin-1
 /// comments from old post-processors) are replaced, not rejected.
 ///
