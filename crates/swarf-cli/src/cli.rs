@@ -42,6 +42,15 @@ pub(crate) struct SetupArgs {
     /// Read G-code as this control does (default: decided from the program).
     #[arg(long, value_enum)]
     pub(crate) dialect: Option<Dialect>,
+    /// Read G-code lines starting with `/` (block delete off); by default they are skipped,
+    /// as with the block-delete switch on, and a warning says so.
+    #[arg(long)]
+    pub(crate) no_block_delete: bool,
+    /// The machine's home, mm in machine coordinates (the work frame with no offsets): where a
+    /// G-code program starts and where G28/G30 return to. Default 0,0,0 (LinuxCNC's); a
+    /// Fanuc/Haas program's `G28 G91 Z0.` means "retract", so give its home above the part.
+    #[arg(long, value_name = "X,Y,Z", value_parser = parse_home, allow_hyphen_values = true)]
+    pub(crate) home: Option<[f64; 3]>,
     /// Most moves a program may make: reading stops with an error at the first move over it,
     /// which bounds the memory the moves take (about 300 bytes each). Default 4000000;
     /// `swarf path` keeps no moves and has no limit unless this is given.
@@ -67,8 +76,30 @@ impl SetupArgs {
                 Dialect::Linuxcnc => swarf_path::gcode::GcodeDialect::LinuxCnc,
                 Dialect::Fanuc => swarf_path::gcode::GcodeDialect::Fanuc,
             }),
+            block_delete: !self.no_block_delete,
+            home: self.home,
             max_moves: self.max_moves.unwrap_or(max_moves),
         }
+    }
+}
+
+/// `X,Y,Z` in mm, finite and within the machine range.
+fn parse_home(s: &str) -> Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|t| t.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("expected X,Y,Z in mm, found `{s}`"))?;
+    match v[..] {
+        [x, y, z]
+            if v.iter()
+                .all(|c| c.is_finite() && c.abs() <= swarf_geom::math::MACHINE_RANGE_MM) =>
+        {
+            Ok([x, y, z])
+        }
+        _ => Err(format!(
+            "expected three finite numbers X,Y,Z within ±1e6 mm, found `{s}`"
+        )),
     }
 }
 

@@ -59,6 +59,12 @@ pub struct JobOptions {
     pub subroutine_dirs: Vec<PathBuf>,
     /// Read G-code as this control does (default: decided from the program).
     pub dialect: Option<GcodeDialect>,
+    /// Skip G-code lines starting with `/` (the block-delete switch on, LinuxCNC's default).
+    /// Default true.
+    pub block_delete: bool,
+    /// The machine's home (where G-code programs start, and G28/G30 return to), mm, machine
+    /// coordinates; `None`: the origin (LinuxCNC's default).
+    pub home: Option<[f64; 3]>,
     /// Most moves a program may make: reading stops with [`JobError::MoveLimit`] at the first
     /// move over it. Default [`DEFAULT_MAX_MOVES`].
     pub max_moves: u64,
@@ -74,6 +80,8 @@ impl Default for JobOptions {
             initial_units: Units::Mm,
             subroutine_dirs: Vec::new(),
             dialect: None,
+            block_delete: true,
+            home: None,
             max_moves: DEFAULT_MAX_MOVES,
         }
     }
@@ -312,7 +320,12 @@ fn read_options(
     single: Option<&Cutter>,
     table: Option<&ToolTable>,
 ) -> ReadOptions {
-    let mut gcode = GcodeOptions::default().with_initial_units(options.initial_units);
+    let mut gcode = GcodeOptions::default()
+        .with_initial_units(options.initial_units)
+        .with_block_delete(options.block_delete);
+    if let Some(h) = options.home {
+        gcode = gcode.with_home(h);
+    }
     for dir in &options.subroutine_dirs {
         gcode = gcode.with_subroutine_dir(dir.clone());
     }

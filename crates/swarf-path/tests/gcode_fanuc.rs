@@ -176,3 +176,193 @@ fn g70_and_g71_are_rejected_by_name() {
     let e = moves("G70\n", &fanuc()).unwrap_err();
     assert!(e.message.contains("use G20 (inch) or G21 (mm)"), "{e}");
 }
+
+/// The warnings of a Fanuc program, as (line, message).
+fn warnings(src: &str) -> Vec<(u32, String)> {
+    let p = read_program_str(
+        src,
+        "fanuc.nc",
+        Machine::three_axis(),
+        &ReadOptions {
+            gcode: fanuc(),
+            ..ReadOptions::default()
+        },
+    )
+    .unwrap();
+    p.warnings
+        .into_iter()
+        .map(|w| (w.line, w.message))
+        .collect()
+}
+
+#[test]
+fn controller_modes_are_reported_and_left_out() {
+    // Look-ahead and smoothing modes (G05.1 Q1, G05 P10000, G08 P1, Haas G187 and G103) and
+    // the additional work offsets (G54.1 P, G154 P) change no programmed point: the moves are
+    // those of the program without them, each code reported once with its line, and its P, Q
+    // and E words are not reported as unused.
+    let body = "G0 X1 Y2 Z5\nG1 X4 F100\n";
+    let plain = moves(&format!("O1\nG21 G90\n{body}M30\n"), &fanuc()).unwrap();
+    let src = format!(
+        "O1\nG21 G90\nG05.1 Q1.\nG05 P10000\nG08 P1\nG187 P1 E0.01\nG103 P4\nG54.1 P2\nG154 P1\n{body}G05.1 Q0\nM30\n"
+    );
+    assert_eq!(moves(&src, &fanuc()).unwrap(), plain);
+    let w = warnings(&src);
+    let lines: Vec<u32> = w.iter().map(|(l, _)| *l).collect();
+    assert_eq!(lines, [3, 4, 5, 6, 7, 8, 9, 12], "{w:?}");
+    assert!(
+        w[0].1.starts_with("G5.1 (AI contour control) ignored"),
+        "{w:?}"
+    );
+    assert!(w[5].1.contains("current work offset stays"), "{w:?}");
+    // In LinuxCNC, G5.1 is a quadratic spline and needs its end point.
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let e = moves(&src, &linuxcnc).unwrap_err();
+    assert!(e.message.contains("spline"), "{e}");
+    // A tilted working plane would move every point: refused by name.
+    let e = moves("O1\nG68.2 X0 Y0 Z0 I0 J45 K0\nM30\n", &fanuc()).unwrap_err();
+    assert!(e.message.contains("tilted working planes"), "{e}");
+}
+
+#[test]
+fn tool_centre_point_and_fine_boring() {
+    // G43.4 H1: a tool length offset with TCP, read as G43 (the tool table is empty: 0).
+    let m = moves("O1\nG21 G90\nG43.4 H1 Z50.\nG1 X5 F100\nM30\n", &fanuc()).unwrap();
+    assert_eq!(m, [('R', 0.0, 0.0, 50.0), ('L', 5.0, 0.0, 50.0)]);
+    // G76 (fine boring) follows G86's path: down at feed, up at rapid.
+    let src = "O1\nG21 G90\nG0 X0 Y0 Z10\nG98 G76 X5. Y5. Z-5. R1. Q0.2 P500 F50\nG80\nM30\n";
+    let m = moves(src, &fanuc()).unwrap();
+    assert_eq!(
+        m,
+        [
+            ('R', 0.0, 0.0, 10.0),
+            ('R', 5.0, 5.0, 10.0),
+            ('R', 5.0, 5.0, 1.0),
+            ('L', 5.0, 5.0, -5.0),
+            ('R', 5.0, 5.0, 10.0),
+        ]
+    );
+    let w = warnings(src);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].1.starts_with("G76 (fine boring) read as G86"), "{w:?}");
+}
+
+#[test]
+fn arcs_as_fanuc_reads_them() {
+    // A centre and no end point: a full circle (helical with Z); the out-of-plane K and the
+    // centre words beside R are dropped with a warning, R wins.
+    let src = "O1\nG21 G90 G17\nG0 X10 Y0 Z0\nG2 I-10. F200\nG2 X-10 Y0 I-10 J0 K0\nG2 X10 Y0 I-10. J0 R10.\nG3 J5. Z-8\nM30\n";
+    let m = moves(src, &fanuc()).unwrap();
+    assert_eq!(
+        m,
+        [
+            ('R', 10.0, 0.0, 0.0),
+            ('A', 10.0, 0.0, 0.0),
+            ('A', -10.0, 0.0, 0.0),
+            ('A', 10.0, 0.0, 0.0),
+            ('A', 10.0, 0.0, -8.0),
+        ]
+    );
+    let w = warnings(src);
+    let w: Vec<(u32, &str)> = w.iter().map(|(l, m)| (*l, &m[..2])).collect();
+    assert_eq!(w, [(5, "K0"), (6, "I-"), (6, "J0")]);
+    // LinuxCNC refuses each of the three.
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    for bad in [
+        "G2 I-10. F200",
+        "G2 X-10 Y0 I-10 J0 K0 F200",
+        "G2 X-10 Y0 I-10 R10 F200",
+    ] {
+        let src = format!("G21 G90 G17\nG0 X10 Y0 Z0\n{bad}\nM2\n");
+        assert!(moves(&src, &linuxcnc).is_err(), "{bad}");
+    }
+}
+
+#[test]
+fn canned_cycle_repeats_with_k_and_k0_stores_the_cycle() {
+    // G91 G81 … K2: two holes 5 mm apart; K0 drills nothing where the tool is, the next
+    // position drills with the stored data.
+    let src = "O1\nG21 G90\nG0 X0 Y0 Z10\nG91 G98 G81 X5. Y0 Z-8. R-8. F100 K2\nG80 G90\nM30\n";
+    let holes = |m: &[(char, f64, f64, f64)]| -> Vec<(f64, f64)> {
+        m.iter()
+            .filter(|s| s.0 == 'L')
+            .map(|s| (s.1, s.3))
+            .collect()
+    };
+    assert_eq!(
+        holes(&moves(src, &fanuc()).unwrap()),
+        [(5.0, -6.0), (10.0, -6.0)]
+    );
+    assert!(warnings(src).is_empty());
+    let src = "O1\nG21 G90\nG0 X0 Y0 Z10\nG98 G81 X5. Y5. Z-5. R1. F100 K0\nX10. Y10.\nG80\nM30\n";
+    assert_eq!(holes(&moves(src, &fanuc()).unwrap()), [(10.0, -5.0)]);
+    let src = "O1\nG21 G90\nG0 X0 Y0 Z10\nG98 G81 X5. Y5. Z-5. R1. F100 L0\nX10. Y10.\nG80\nM30\n";
+    assert_eq!(holes(&moves(src, &fanuc()).unwrap()), [(10.0, -5.0)]);
+}
+
+#[test]
+fn a_short_compensation_entry_is_taken_with_a_warning() {
+    // Fanuc starts compensation on an entry move shorter than the radius (LinuxCNC refuses
+    // it): the tool ends the radius to the left of the entry's end, normal to it.
+    let src = "O1\nG21 G90\nG0 X3.6 Y2.6 Z0\nG1 G41 X3.5 D1 F100\nY5\nG40 X3.5 Y10\nM30\n";
+    let opts = fanuc().with_tool_diameter(1, 2.0);
+    let m = moves(src, &opts).unwrap();
+    assert_eq!(m[1], ('L', 3.5, 1.6, 0.0), "{m:?}");
+    let p = read_program_str(
+        src,
+        "fanuc.nc",
+        Machine::three_axis(),
+        &ReadOptions {
+            gcode: opts,
+            ..ReadOptions::default()
+        },
+    )
+    .unwrap();
+    assert!(
+        p.warnings[0].message.contains("entry move"),
+        "{:?}",
+        p.warnings
+    );
+    let linuxcnc = GcodeOptions::default()
+        .with_dialect(GcodeDialect::LinuxCnc)
+        .with_tool_diameter(1, 2.0);
+    let e = moves(&src.replace("O1\n", ""), &linuxcnc).unwrap_err();
+    assert!(e.message.contains("entry move"), "{e}");
+}
+
+#[test]
+fn the_home_is_where_the_program_starts_and_g28_returns() {
+    // A Haas-style program: the first rapid is at the home's height, `G28 G91 Z0.` retracts to
+    // it; without a home given, the reference return goes to the work's Z0 and says so.
+    let src = "%\nO1\nG21 G90\nG54 G0 X10. Y10.\nG43 Z40. H1\nG1 Z-1. F300.\nG0 Z25.\nG28 G91 Z0.\nG90\nM30\n%\n";
+    let homed = fanuc().with_home([0.0, 0.0, 300.0]);
+    let m = moves(src, &homed).unwrap();
+    assert_eq!(m[0], ('R', 10.0, 10.0, 300.0));
+    assert_eq!(*m.last().unwrap(), ('R', 10.0, 10.0, 300.0));
+    let p = read_program_str(
+        src,
+        "fanuc.nc",
+        Machine::three_axis(),
+        &ReadOptions {
+            gcode: homed,
+            ..ReadOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(
+        p.moves[0].start.tip.z, 300.0,
+        "the program starts at the home"
+    );
+    assert!(p
+        .warnings
+        .iter()
+        .all(|w| !w.message.contains("reference return")));
+    let m = moves(src, &fanuc()).unwrap();
+    assert_eq!(m[0], ('R', 10.0, 10.0, 0.0));
+    assert_eq!(*m.last().unwrap(), ('R', 10.0, 10.0, 0.0));
+    let w = warnings(src);
+    assert!(
+        w.iter().any(|(l, m)| *l == 8 && m.contains("--home")),
+        "{w:?}"
+    );
+}

@@ -685,3 +685,27 @@ fn a_byte_order_mark_is_skipped() {
     swarf_path::gcode::read_gcode(&with[3..], "bom.ngc", &Default::default(), &mut b).unwrap();
     assert_eq!(a.events, b.events);
 }
+
+/// Lines starting with `/` are skipped (the block-delete switch on, LinuxCNC's default) and
+/// the first one is reported, so a program does not silently lose moves; with the switch off
+/// they are read.
+#[test]
+fn block_deleted_lines_are_reported_once() {
+    use swarf_path::load::{read_program_str, ReadOptions};
+    let src = "G21 G90\nG0 X0 Y0 Z5\n/G1 X5 F100\n/G1 X6\nG1 Y5 F100\nM2\n";
+    let read = |on: bool| {
+        let options = ReadOptions {
+            gcode: swarf_path::gcode::GcodeOptions::default().with_block_delete(on),
+            ..ReadOptions::default()
+        };
+        read_program_str(src, "bd.ngc", swarf_path::Machine::three_axis(), &options).unwrap()
+    };
+    let on = read(true);
+    assert_eq!(on.moves.len(), 2);
+    assert_eq!(on.warnings.len(), 1, "{:?}", on.warnings);
+    assert_eq!(on.warnings[0].line, 3);
+    assert!(on.warnings[0].message.contains("block delete"));
+    let off = read(false);
+    assert_eq!(off.moves.len(), 4);
+    assert!(off.warnings.is_empty(), "{:?}", off.warnings);
+}

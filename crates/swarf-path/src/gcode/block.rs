@@ -83,6 +83,11 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
         150 | 160 => unsupported("Fanuc polar coordinate mode (G15/G16) is not supported; use `@` and `^`"),
         171 | 181 | 191 => unsupported("UVW planes (G17.1, G18.1, G19.1) are not supported"),
         432 | 433 => unsupported("G43.2 additional tool length offsets are not supported"),
+        434 | 435 => Ok(TOOL_LENGTH),
+        682 | 531 | 691 => unsupported(
+            "tilted working planes (G68.2, G53.1, G69.1) are not supported: post the program for \
+             a machine with --machine kinematics (A/B/C words) or as APT CL data",
+        ),
         500 | 510 => Ok(SCALING),
         511 => unsupported("mirroring (G51.1) is not supported"),
         680 | 690 => Ok(ROTATION),
@@ -121,6 +126,13 @@ pub(crate) struct Block {
     pub(crate) n_other: usize,
     /// Fanuc: G80 shared the block with another motion code (the cycle is cancelled first).
     pub(crate) g80_too: bool,
+    /// Fanuc: controller-mode G codes read and left out (see [`fanuc_mode`]), with their code
+    /// index: reported as warnings.
+    pub(crate) modes: [(u16, u32); 4],
+    /// How many of `modes` are in use.
+    pub(crate) n_modes: usize,
+    /// Fanuc: the block's G76 (fine boring) is read as G86.
+    pub(crate) fine_boring: bool,
     /// Parameter assignments, applied after the line is read.
     pub(crate) assigns: [(Target, f64); MAX_ASSIGNS],
     /// How many of `assigns` are in use.
@@ -144,6 +156,9 @@ impl Default for Block {
             m_other: [(0, 0); 8],
             n_other: 0,
             g80_too: false,
+            modes: [(0, 0); 4],
+            n_modes: 0,
+            fine_boring: false,
             assigns: [(Target::Num(0), 0.0); MAX_ASSIGNS],
             n_assigns: 0,
         }
@@ -162,6 +177,8 @@ impl Block {
         self.n_other = 0;
         self.n_assigns = 0;
         self.g80_too = false;
+        self.n_modes = 0;
+        self.fine_boring = false;
     }
     /// Whether letter `c` is present.
     #[inline]
@@ -229,7 +246,23 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                         "a G code",
                     ));
                 }
-                let code = code10 as u16;
+                let mut code = code10 as u16;
+                if fanuc && fanuc_mode(code).is_some() {
+                    if b.n_modes == b.modes.len() {
+                        return Err(Fault::semantic(span, "too many controller-mode G codes"));
+                    }
+                    b.modes[b.n_modes] = (code, at as u32);
+                    b.n_modes += 1;
+                    first = false;
+                    continue;
+                }
+                if fanuc && code == 760 {
+                    // Fanuc milling's G76 is fine boring (not LinuxCNC's threading): read as
+                    // G86, whose path it follows but for the shift away from the wall (Q)
+                    // before the retract.
+                    code = 860;
+                    b.fine_boring = true;
+                }
                 let grp = g_group(code).map_err(|(kind, m)| {
                     let name = g_name(code);
                     Fault::new(kind, span, format!("{name}: {m}"), "")
@@ -367,6 +400,27 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
 }
 
 /// `G59.1` from 591.
+/// What a Fanuc/Haas controller-mode G code does, for the codes that change how the control
+/// follows the programmed path (look-ahead, smoothing, high-speed modes) or select a work
+/// offset whose values no program states, not the path itself: read in the Fanuc dialect,
+/// reported and left out, with their P, Q and E words. (In LinuxCNC, G5 and G5.1 are
+/// splines.)
+pub(crate) fn fanuc_mode(code: u16) -> Option<(&'static str, &'static str)> {
+    const FOLLOWS: &str = "it changes how the control follows the path, not the path";
+    Some(match code {
+        50 => ("high-precision contour control", FOLLOWS),
+        51 => ("AI contour control", FOLLOWS),
+        80 => ("AI look-ahead control", FOLLOWS),
+        1030 => ("block look-ahead limit", FOLLOWS),
+        1870 => ("smoothness and corner tolerance", FOLLOWS),
+        541 | 1540 => (
+            "additional work offset",
+            "its values are not in the program, so the current work offset stays",
+        ),
+        _ => return None,
+    })
+}
+
 pub(crate) fn g_name(code: u16) -> String {
     if code % 10 == 0 {
         format!("G{}", code / 10)

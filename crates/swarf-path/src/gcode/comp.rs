@@ -340,7 +340,20 @@ impl Interp<'_, '_> {
                 ));
             };
             let from = self.comp.tool;
-            if dist(from, mv.end) <= r {
+            let length = dist(from, mv.end);
+            if self.fanuc && length > 0.0 && length <= r {
+                // Fanuc starts up on any entry move (the offset vector normal to it at its
+                // end); LinuxCNC refuses one no longer than the radius.
+                if let Span::Code(at, _) = span {
+                    self.later.push((
+                        at,
+                        format!(
+                            "cutter compensation entry move ({length:.4} mm) not longer than the \
+                             tool radius ({r:.4} mm): the tool may cut back into the part"
+                        ),
+                    ));
+                }
+            } else if length <= r {
                 return Err(Fault::semantic(
                     span,
                     "length of cutter compensation entry move is not greater than the tool radius",

@@ -149,22 +149,34 @@ impl Interp<'_, '_> {
                 ))
             }
         };
-        let repeats = match b.get(b'l') {
+        // Fanuc counts repeats with K (L on older controls), and K0 / L0 stores the cycle's
+        // data without drilling where the tool is.
+        let (rw, least) = match self.fanuc {
+            true if b.has(b'k') && motion != 870 => (b'k', 0.0),
+            true => (b'l', 0.0),
+            false => (b'l', 1.0),
+        };
+        let repeats = match b.get(rw) {
             None => 1,
-            Some(l) if l.fract() != 0.0 || l < 1.0 => {
+            Some(l) if l.fract() != 0.0 || l < least => {
                 return Err(Fault::new(
                     PathErrorKind::Semantic,
-                    b.span(b'l'),
+                    b.span(rw),
                     "bad number of canned cycle repeats",
-                    "L, a positive integer",
+                    if least == 0.0 {
+                        "K or L, a non-negative integer"
+                    } else {
+                        "L, a positive integer"
+                    },
                 ))
             }
             Some(l) if l > self.opts.max_repeat as f64 => {
                 return Err(Fault::new(
                     PathErrorKind::Limit,
-                    b.span(b'l'),
+                    b.span(rw),
                     format!(
-                        "L{l} asks for more than {} repeats (the reader's limit on repeats)",
+                        "{}{l} asks for more than {} repeats (the reader's limit on repeats)",
+                        char::from(rw.to_ascii_uppercase()),
                         self.opts.max_repeat
                     ),
                     "",

@@ -149,6 +149,13 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) skip_buf: LineBuf,
     /// Read by Fanuc's rules (see [`GcodeDialect`]).
     pub(crate) fanuc: bool,
+    /// Warnings raised where the line's text is not at hand, with the code index they point
+    /// at: reported once the block has run.
+    pub(crate) later: Vec<(usize, String)>,
+    /// A line skipped by block delete has been reported.
+    deleted_warned: bool,
+    /// A Fanuc reference return to the default home has been reported.
+    home_warned: bool,
     /// Fanuc: the group 01 motion (G0–G3 × 10) that resumes after G80.
     pub(crate) group1: u16,
     /// Fanuc G68: the centre (X, Y, mm) and angle (degrees) of the coordinate rotation.
@@ -179,6 +186,9 @@ impl<'t, 's> Interp<'t, 's> {
         let (text, file): (Rc<str>, Rc<str>) = (Rc::from(text), Rc::from(file));
         Self {
             fanuc,
+            later: Vec::new(),
+            deleted_warned: false,
+            home_warned: false,
             group1: 0,
             g68: None,
             g51: None,
@@ -253,6 +263,14 @@ impl<'t, 's> Interp<'t, 's> {
                 raw.trim(),
                 "RS274/NGC G-code",
             ));
+        }
+        if let Some(home) = self.opts.home {
+            for h in &mut self.homes {
+                h[..3].copy_from_slice(&home);
+            }
+            self.p[..3].copy_from_slice(&home);
+            // (Every offset is zero at start: program and machine positions agree.)
+            self.emit(Canon::SetPosition(Axes::from_array(self.p)));
         }
         for &(n, v) in &self.opts.parameters {
             if (1..=super::expr::MAX_PARAM).contains(&n) {
@@ -463,6 +481,14 @@ impl<'t, 's> Interp<'t, 's> {
     fn exec_line(&mut self, raw: &str, lb: &mut LineBuf, blk: &mut Block) -> Res<()> {
         normalize(raw, lb)?;
         if lb.deleted && self.opts.block_delete {
+            if !std::mem::replace(&mut self.deleted_warned, true) {
+                self.warn_at(
+                    1,
+                    "line skipped: block delete (`/`) is on, as LinuxCNC's switch is by \
+                     default (first such line; --no-block-delete reads them)"
+                        .into(),
+                );
+            }
             return Ok(());
         }
         if lb.code.first() == Some(&b'%') {
@@ -497,7 +523,11 @@ impl<'t, 's> Interp<'t, 's> {
             return self.exec_oword(lb, o_at);
         }
         block::parse(lb, blk, &*self, self.fanuc)?;
-        self.execute(blk, lb)
+        self.execute(blk, lb)?;
+        for (at, message) in std::mem::take(&mut self.later) {
+            self.warn_code(lb, at, message);
+        }
+        Ok(())
     }
 
     /// Program units → mm for axis `i` (rotary axes stay in degrees).
@@ -730,6 +760,23 @@ impl<'t, 's> Interp<'t, 's> {
                 format!("{what} ignored: it does not move the tool"),
             );
         }
+        for &(g, at) in &b.modes[..b.n_modes] {
+            let (what, why) = block::fanuc_mode(g).unwrap_or_default();
+            self.warn_code(
+                lb,
+                at as usize,
+                format!("{} ({what}) ignored: {why}", block::g_name(g)),
+            );
+        }
+        if b.fine_boring {
+            self.warn_code(
+                lb,
+                b.g_at[group::MOTION] as usize,
+                "G76 (fine boring) read as G86: the shift away from the wall (Q) before the \
+                 retract is not simulated"
+                    .into(),
+            );
+        }
         let nonmodal = b.g(group::NON_MODAL);
         if nonmodal == Some(40) {
             let p = b.get(b'p').ok_or_else(|| {
@@ -783,7 +830,18 @@ impl<'t, 's> Interp<'t, 's> {
             axes_used_by_nonmotion |= g == 680;
         }
         match b.g(group::TOOL_LENGTH) {
-            Some(430) => {
+            Some(g @ (430 | 434 | 435)) => {
+                if g != 430 {
+                    self.warn_code(
+                        lb,
+                        b.g_at[group::TOOL_LENGTH] as usize,
+                        format!(
+                            "{} (tool centre point control) read as G43: X Y Z (and A B C) are \
+                             tool-tip positions, as a `-tcp` machine (--machine) reads them",
+                            block::g_name(g)
+                        ),
+                    );
+                }
                 let tool = match b.get(b'h') {
                     Some(h) if h >= 0.0 && h.fract() == 0.0 && h <= f64::from(u32::MAX) => h as u32,
                     _ => self.tool,
@@ -956,8 +1014,17 @@ impl<'t, 's> Interp<'t, 's> {
                 continue;
             }
             let used = match c {
+                // The words of a controller-mode code left out (G05.1 Q1, G187 P1 E0.01).
+                b'p' | b'q' | b'e' if b.n_modes > 0 => true,
+                b'q' if b.fine_boring => true,
                 b'i' | b'j' | b'k' => {
-                    arc || matches!(mode, Some(50 | 51 | 870)) || b.g(group::SCALING) == Some(510)
+                    // Fanuc reads an arc's centre words in its plane only, and none beside R.
+                    let normal = b"ijk"[self.plane.axes().2];
+                    let dropped = self.fanuc && (c == normal || b.has(b'r'));
+                    (arc && !dropped)
+                        || (self.fanuc && cycle && c == b'k')
+                        || matches!(mode, Some(50 | 51 | 870))
+                        || b.g(group::SCALING) == Some(510)
                 }
                 b'r' => arc || cycle || g10 || b.g(group::ROTATION) == Some(680),
                 b'q' => matches!(mode, Some(50 | 730 | 830)),
@@ -971,7 +1038,7 @@ impl<'t, 's> Interp<'t, 's> {
                         || b.g(group::PATH) == Some(640)
                 }
                 b'l' => cycle || g10 || b.m98 || mode == Some(52),
-                b'h' => b.g(group::TOOL_LENGTH) == Some(430),
+                b'h' => matches!(b.g(group::TOOL_LENGTH), Some(430 | 434 | 435)),
                 b'd' => comp_d,
                 _ => false,
             };
@@ -1214,7 +1281,9 @@ impl<'t, 's> Interp<'t, 's> {
             .g(group::MOTION)
             .map_or(Span::Line, |_| b.g_span(group::MOTION));
         let polar = b.has(b'@') || b.has(b'^');
-        if !(b.has(AXIS_LETTERS[fi]) || b.has(AXIS_LETTERS[si]) || polar) {
+        // Fanuc: an arc with its centre and no end point in the plane is a full circle.
+        let full_circle = self.fanuc && !b.has(b'r') && (b.has(offs[fi]) || b.has(offs[si]));
+        if !(b.has(AXIS_LETTERS[fi]) || b.has(AXIS_LETTERS[si]) || polar || full_circle) {
             return Err(Fault::new(
                 PathErrorKind::Semantic,
                 gspan,
@@ -1243,7 +1312,8 @@ impl<'t, 's> Interp<'t, 's> {
         let end2 = [end[fi], end[si]];
         let k = self.arc_scale(gspan)?;
         let center = if let Some(r) = b.get(b'r') {
-            if let Some(&c) = offs.iter().find(|&&c| b.has(c)) {
+            // (Fanuc: R wins, the centre words are reported unused.)
+            if let Some(&c) = offs.iter().find(|&&c| b.has(c) && !self.fanuc) {
                 return Err(Fault::semantic(
                     b.span(c),
                     "an arc cannot have both R and I/J/K words",
@@ -1258,7 +1328,7 @@ impl<'t, 's> Interp<'t, 's> {
             )
             .map_err(|m| Fault::semantic(b.span(b'r'), m))?
         } else {
-            if b.has(offs[ni]) {
+            if b.has(offs[ni]) && !self.fanuc {
                 return Err(Fault::semantic(
                     b.span(offs[ni]),
                     format!(
@@ -1453,6 +1523,17 @@ impl<'t, 's> Interp<'t, 's> {
     /// G28/G30: traverse through the given intermediate point, then to the stored position
     /// for the given axes (all axes when none is given).
     fn home(&mut self, b: &Block, k: usize) -> Res<()> {
+        if self.fanuc && self.opts.home.is_none() && !self.home_warned {
+            // A Fanuc/Haas reference return means "up, out of the way"; machine zero here is
+            // the work origin, so it would cut or collide there.
+            self.home_warned = true;
+            self.later.push((
+                b.g_at[group::NON_MODAL] as usize,
+                "reference return to machine zero, which is the work origin here (swarf knows no \
+                 work offsets): give the machine's home with --home X,Y,Z (mm, e.g. above the part)"
+                    .into(),
+            ));
+        }
         let home = self.program_of(&self.homes[k], &self.off, &self.g92, self.rot);
         if b.mask & axis_mask() == 0 {
             // LinuxCNC moves through the current point (a move of length zero), then home.

@@ -162,6 +162,12 @@ pub struct GcodeOptions {
     /// Read the program as LinuxCNC or as a Fanuc control does; `None`: decided from the
     /// program ([`GcodeDialect::detect`]).
     pub dialect: Option<GcodeDialect>,
+    /// The machine's home, mm, in machine coordinates (the work frame with every offset zero):
+    /// where the tool stands when the program starts and where G28 and G30 return to (their
+    /// stored positions, #5161–#5163 and #5181–#5183, unless the parameters set them). `None`:
+    /// the origin, as LinuxCNC starts with zero parameters — which puts a Fanuc/Haas
+    /// program's reference return (`G28 G91 Z0.`) on the work's Z0.
+    pub home: Option<[f64; 3]>,
 }
 
 /// The controller whose rules a G-code program is read by, where LinuxCNC and Fanuc differ.
@@ -258,6 +264,7 @@ impl Default for GcodeOptions {
             default_tool_diameter: None,
             subroutine_path: Vec::new(),
             parameter_units: None,
+            home: None,
             parameters: Vec::new(),
             dialect: None,
         }
@@ -293,6 +300,11 @@ impl GcodeOptions {
     /// Sets [`Self::arc_radius_tolerance`].
     pub fn with_arc_radius_tolerance(mut self, tol: ArcTolerance) -> Self {
         self.arc_radius_tolerance = tol;
+        self
+    }
+    /// Sets [`Self::home`].
+    pub fn with_home(mut self, home: [f64; 3]) -> Self {
+        self.home = Some(home);
         self
     }
     /// Sets [`Self::block_delete`].
