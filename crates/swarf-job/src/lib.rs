@@ -137,6 +137,20 @@ pub enum JobError {
     /// A `CUTTER/` record of the program is not a valid cutter.
     #[error(transparent)]
     Resolve(#[from] ResolveError),
+    /// A cutter definition of the program (`CUTTER/`, `TLDATA/`) is not a valid cutter, at
+    /// the record that made it.
+    #[error("{file}:{line}: the cutter definition of {what}")]
+    Definition {
+        /// The program file.
+        file: String,
+        /// 1-based line of the record.
+        line: u32,
+        /// Which tool, in words ("tool 3", or the tool in use before any tool change).
+        what: String,
+        /// What is wrong with it.
+        #[source]
+        source: swarf_tool::ToolError,
+    },
 }
 
 /// A job's options loaded: the machine, the cutter sources and the reader options.
@@ -253,12 +267,35 @@ impl JobSetup {
         program: &Program,
         tool_zero_moved: bool,
     ) -> Result<(ToolSet, Vec<u32>), JobError> {
-        Ok(resolve_tools(
+        resolve_tools(
             program,
             tool_zero_moved,
             self.single.as_ref(),
             self.table.as_ref(),
-        )?)
+        )
+        .map_err(|e| {
+            let at = program
+                .cutter_definitions
+                .iter()
+                .position(|(t, _)| *t == e.tool)
+                .and_then(|i| program.cutter_definition_lines.get(i));
+            match at {
+                Some(at) => JobError::Definition {
+                    file: program
+                        .files
+                        .get(usize::from(at.file))
+                        .cloned()
+                        .unwrap_or_default(),
+                    line: at.line,
+                    what: match e.tool {
+                        0 => "the tool in use (no tool change before it)".into(),
+                        n => format!("tool {n}"),
+                    },
+                    source: e.source,
+                },
+                None => JobError::Resolve(e),
+            }
+        })
     }
 
     fn reader_error(&self, e: PathError) -> JobError {
@@ -405,5 +442,24 @@ mod tests {
             .read_str("G0 X1\nG0 X2\nG0 X3\nG0 X4\n", "t.ngc")
             .unwrap_err();
         assert!(matches!(e, JobError::MoveLimit(_)), "{e:?}");
+    }
+
+    #[test]
+    fn a_bad_cutter_definition_names_its_record() {
+        let read = |text: &str| {
+            let setup = JobSetup::load(&JobOptions::default()).unwrap();
+            setup.read_str(text, "t.apt").unwrap_err().to_string()
+        };
+        let e = read("UNITS/MM\nLOADTL/3\nTLDATA/MILL,10,6,50,0,0\nFROM/0,0,10\nGOTO/5,0,10\n");
+        assert!(
+            e.starts_with("t.apt:3: the cutter definition of tool 3"),
+            "{e}"
+        );
+        // Defined twice: the record in force is named; no tool change: said in words.
+        let e = read("CUTTER/10,0\nCUTTER/10,6\nFROM/0,0,10\nGOTO/5,0,10\n");
+        assert!(
+            e.starts_with("t.apt:2: the cutter definition of the tool in use"),
+            "{e}"
+        );
     }
 }

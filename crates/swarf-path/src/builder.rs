@@ -31,7 +31,7 @@ use swarf_geom::math::Vec3;
 
 use crate::canon::{Axes, Canon, CanonSink, FeedMode, SpindleDir};
 use crate::kinematics::{Machine, RotaryWord};
-use crate::moves::{ArcGeom, AxisSource, Move, MoveKind, Pose, Program};
+use crate::moves::{ArcGeom, AxisSource, Move, MoveKind, Pose, Program, SourceLine};
 use crate::Warning;
 
 /// Builds a [`Program`] from canonical events. See the [module documentation](self).
@@ -60,7 +60,7 @@ pub struct MoveBuilder {
     axis_source: AxisSource,
     /// A `CUTTER/` definition not yet bound to a tool: it belongs to the tool loaded next, or to
     /// the current one if motion comes first (CAM systems write it on either side of `LOADTL/`).
-    pending_cutter: Option<[f64; 7]>,
+    pending_cutter: Option<([f64; 7], u32)>,
     moves: Vec<Move>,
     /// Moves built, those taken by [`MoveBuilder::take_moves`] included.
     built: u64,
@@ -68,6 +68,7 @@ pub struct MoveBuilder {
     tool_zero_moved: bool,
     tools: Vec<u32>,
     cutter_definitions: Vec<(u32, [f64; 7])>,
+    cutter_definition_lines: Vec<SourceLine>,
     warnings: Vec<Warning>,
     /// Rotary words (A, B, C) already reported as not modelled by the machine.
     unmodelled_warned: [bool; 3],
@@ -99,6 +100,7 @@ impl MoveBuilder {
             tool_zero_moved: false,
             tools: Vec::new(),
             cutter_definitions: Vec::new(),
+            cutter_definition_lines: Vec::new(),
             warnings: Vec::new(),
             unmodelled_warned: [false; 3],
         }
@@ -140,6 +142,7 @@ impl MoveBuilder {
             self.bind_cutter(self.tool, def);
         }
         Program {
+            cutter_definition_lines: self.cutter_definition_lines,
             moves: self.moves,
             files: self.files,
             tools: self.tools,
@@ -194,10 +197,20 @@ impl MoveBuilder {
         }
     }
 
-    fn bind_cutter(&mut self, tool: u32, def: [f64; 7]) {
-        match self.cutter_definitions.iter_mut().find(|(t, _)| *t == tool) {
-            Some(entry) => entry.1 = def,
-            None => self.cutter_definitions.push((tool, def)),
+    fn bind_cutter(&mut self, tool: u32, (def, line): ([f64; 7], u32)) {
+        let at = SourceLine {
+            file: self.file,
+            line,
+        };
+        match self.cutter_definitions.iter().position(|(t, _)| *t == tool) {
+            Some(i) => {
+                self.cutter_definitions[i].1 = def;
+                self.cutter_definition_lines[i] = at;
+            }
+            None => {
+                self.cutter_definitions.push((tool, def));
+                self.cutter_definition_lines.push(at);
+            }
         }
     }
 
@@ -348,7 +361,7 @@ impl CanonSink for MoveBuilder {
                 }
             }
             Canon::CutterDefinition(def) => {
-                if let Some(prev) = self.pending_cutter.replace(*def) {
+                if let Some(prev) = self.pending_cutter.replace((*def, line)) {
                     self.bind_cutter(self.tool, prev);
                 }
             }

@@ -16,6 +16,10 @@
 //! Splines print as LinuxCNC's canon calls for them: `SPLINE_FEED(x1, y1, x2, y2[, x3, y3])`
 //! with the control points of a quadratic or cubic, `NURBS_FEED(order, x, y, w, …)` with the
 //! control points after the start.
+//! An arc about an axis that is none of X, Y, Z (an APT `CIRCLE/` in a tilted plane), which
+//! LinuxCNC cannot make, prints as swarf's own
+//! `ARC_FEED_AXIS(x, y, z, centre x, y, z, normal i, j, k, turns)` (counter-clockwise about the
+//! normal), so no motion is left out of the print.
 //! The motion calls and the operator messages (`MESSAGE("…")` for `(MSG,…)` and `(DEBUG,…)`)
 //! are printed; the other canonical calls (units, offsets, feeds, comments) differ in detail
 //! between LinuxCNC versions and are not needed to compare paths.
@@ -113,6 +117,27 @@ impl<W: Write> CanonicalPrinter<W> {
                     end.c
                 )?;
             }
+            Canon::ArcAxis {
+                end,
+                center,
+                normal,
+                turns,
+            } => {
+                writeln!(
+                    self.out,
+                    " N..... ARC_FEED_AXIS({:.4}, {:.4}, {:.4}, {:.4}, {:.4}, {:.4}, {:.6}, {:.6}, \
+                     {:.6}, {turns})",
+                    self.u(end.x),
+                    self.u(end.y),
+                    self.u(end.z),
+                    self.u(center[0]),
+                    self.u(center[1]),
+                    self.u(center[2]),
+                    normal[0],
+                    normal[1],
+                    normal[2],
+                )?;
+            }
             Canon::Spline { kind, controls, .. } => {
                 let xy: Vec<String> = controls
                     .iter()
@@ -163,6 +188,29 @@ impl<W: Write> CanonSink for CanonicalPrinter<W> {
 mod tests {
     use super::*;
     use crate::{Axes, Plane};
+
+    #[test]
+    fn an_arc_about_a_tilted_axis_is_printed_too() {
+        let mut p = CanonicalPrinter::new(Vec::new());
+        p.emit(
+            1,
+            &Canon::ArcAxis {
+                end: Axes {
+                    y: 20.0,
+                    ..Axes::default()
+                },
+                center: [0.0, 15.0, 0.0],
+                normal: [0.6, 0.0, 0.8],
+                turns: 1,
+            },
+        );
+        let out = String::from_utf8(p.finish().unwrap()).unwrap();
+        assert_eq!(
+            out,
+            " N..... ARC_FEED_AXIS(0.0000, 20.0000, 0.0000, 0.0000, 15.0000, 0.0000, 0.600000, \
+             0.000000, 0.800000, 1)\n"
+        );
+    }
 
     #[test]
     fn prints_linuxcnc_form() {

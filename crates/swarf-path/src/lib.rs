@@ -37,5 +37,5 @@ pub use builder::MoveBuilder;
 pub use canon::{Axes, Canon, CanonSink, FeedMode, MessageKind, Plane, SpindleDir, Units};
 pub use error::{PathError, PathErrorKind, SourcePos, Warning};
 pub use kinematics::Machine;
-pub use moves::{ArcGeom, AxisSource, Move, MoveKind, Pose, Program};
+pub use moves::{ArcGeom, AxisSource, Move, MoveKind, Pose, Program, SourceLine};
 pub use summary::{summarize, ProgramSummary};

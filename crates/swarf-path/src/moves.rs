@@ -102,6 +102,15 @@ pub struct Move {
     pub line: u32,
 }
 
+/// A line of a program's source: its file (an index into [`Program::files`]) and line.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
+pub struct SourceLine {
+    /// Index into [`Program::files`].
+    pub file: u16,
+    /// 1-based source line.
+    pub line: u32,
+}
+
 /// A program read into moves.
 #[derive(Clone, Debug, Default, Serialize)]
 pub struct Program {
@@ -114,6 +123,9 @@ pub struct Program {
     /// Cutter geometry the program itself defines (APT `CUTTER/`), per tool number: the seven APT
     /// numbers d, r, e, f, α, β, h.
     pub cutter_definitions: Vec<(u32, [f64; 7])>,
+    /// Where each of [`Program::cutter_definitions`] was written (the last record that defined
+    /// that tool), in the same order.
+    pub cutter_definition_lines: Vec<SourceLine>,
     /// Harmless things the reader did not act on.
     pub warnings: Vec<Warning>,
     /// The machine whose kinematics turned joints into poses (and interpolates between them).

@@ -366,3 +366,22 @@ fn the_home_is_where_the_program_starts_and_g28_returns() {
         "{w:?}"
     );
 }
+
+#[test]
+fn haas_m97_calls_a_local_subprogram_by_line_number() {
+    // M97 P100 L2 runs from the line N100 to its M99 twice, then returns after the call.
+    let src =
+        "O1\nG21 G90\nG0 X0 Y0 Z5.\nM97 P100 L2\nG0 Z10.\nM30\nN100 G91 G1 X1. F100.\nG90\nM99\n";
+    let m = moves(src, &fanuc()).unwrap();
+    assert_eq!(
+        m,
+        [
+            ('R', 0.0, 0.0, 5.0),
+            ('L', 1.0, 0.0, 5.0),
+            ('L', 2.0, 0.0, 5.0),
+            ('R', 2.0, 0.0, 10.0),
+        ]
+    );
+    let e = moves("O1\nM97 P7\nM30\n", &fanuc()).unwrap_err();
+    assert!(e.message.contains("no line numbered N7"), "{e}");
+}

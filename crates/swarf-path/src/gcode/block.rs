@@ -118,6 +118,8 @@ pub(crate) struct Block {
     pub(crate) m6: bool,
     /// M98 (Fanuc subprogram call).
     pub(crate) m98: bool,
+    /// M97 (Haas local subprogram call, Fanuc dialect).
+    pub(crate) m97: bool,
     /// M99 (Fanuc subprogram return).
     pub(crate) m99: bool,
     /// Other M codes and their code index: reported as warnings.
@@ -152,6 +154,7 @@ impl Default for Block {
             m_spindle: None,
             m6: false,
             m98: false,
+            m97: false,
             m99: false,
             m_other: [(0, 0); 8],
             n_other: 0,
@@ -173,6 +176,7 @@ impl Block {
         self.m_spindle = None;
         self.m6 = false;
         self.m98 = false;
+        self.m97 = false;
         self.m99 = false;
         self.n_other = 0;
         self.n_assigns = 0;
@@ -321,6 +325,7 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                     }
                     6 => b.m6 = true,
                     98 => b.m98 = true,
+                    97 if fanuc => b.m97 = true,
                     99 => b.m99 = true,
                     _ => {
                         if b.n_other == b.m_other.len() {

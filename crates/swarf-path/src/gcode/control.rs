@@ -569,14 +569,20 @@ impl Interp<'_, '_> {
         Ok(())
     }
 
-    /// `M98 P<n> L<count>`: calls the subprogram labelled `O<n>`.
+    /// `M98 P<n> L<count>`: calls the subprogram labelled `O<n>`; Haas `M97 P<n> L<count>`
+    /// (`b.m97`) the local subprogram starting at the line numbered `N<n>`. Both end with M99.
     pub(crate) fn m98(&mut self, b: &Block) -> Res<()> {
+        let m = if b.m97 { "M97" } else { "M98" };
         let p = b.get(b'p').ok_or_else(|| {
             Fault::new(
                 PathErrorKind::Semantic,
                 Span::Line,
-                "M98 needs a P word",
-                "P<program number>",
+                format!("{m} needs a P word"),
+                if b.m97 {
+                    "P<line number>"
+                } else {
+                    "P<program number>"
+                },
             )
         })?;
         if p < 0.0 || p.fract() != 0.0 || p > 1e15 {
@@ -587,7 +593,7 @@ impl Interp<'_, '_> {
                 "a non-negative integer",
             ));
         }
-        let (p, packed) = if self.fanuc && !b.has(b'l') && p >= 10_000.0 {
+        let (p, packed) = if self.fanuc && !b.m97 && !b.has(b'l') && p >= 10_000.0 {
             // Fanuc `M98 Pxxxxyyyy`: xxxx repeats of program yyyy.
             ((p % 10_000.0).round(), Some((p / 10_000.0).floor() as u64))
         } else {
@@ -604,7 +610,7 @@ impl Interp<'_, '_> {
                         PathErrorKind::Semantic
                     },
                     b.span(b'l'),
-                    format!("bad M98 repeat count L{l}"),
+                    format!("bad {m} repeat count L{l}"),
                     format!("an integer from 0 to {}", self.opts.max_repeat),
                 ))
             }
@@ -612,17 +618,26 @@ impl Interp<'_, '_> {
         if count == 0 {
             return Ok(());
         }
-        let labels = match self.labels.take() {
-            Some(l) => l,
-            None => self.index_labels(),
-        };
-        let start = labels.get(&(p as u64)).copied();
-        self.labels = Some(labels);
-        let Some(start) = start else {
-            return Err(Fault::semantic(
-                b.span(b'p'),
-                format!("subprogram O{p} is not in this file"),
-            ));
+        let start = if b.m97 {
+            let numbers = match self.line_numbers.take() {
+                Some(n) => n,
+                None => self.index_line_numbers(),
+            };
+            let start = numbers.get(&(p as u64)).copied();
+            self.line_numbers = Some(numbers);
+            start.ok_or_else(|| {
+                Fault::semantic(b.span(b'p'), format!("no line numbered N{p} in this file"))
+            })?
+        } else {
+            let labels = match self.labels.take() {
+                Some(l) => l,
+                None => self.index_labels(),
+            };
+            let start = labels.get(&(p as u64)).copied();
+            self.labels = Some(labels);
+            start.ok_or_else(|| {
+                Fault::semantic(b.span(b'p'), format!("subprogram O{p} is not in this file"))
+            })?
         };
         self.enter_call(b.span(b'p'))?;
         self.frames.push(Frame {
@@ -667,6 +682,34 @@ impl Interp<'_, '_> {
     }
 
     /// Every bare `O<n>` line of the file and the cursor after it.
+    /// Where the first line numbered `N<n>` of the current file starts, for each `n` (an
+    /// `N` with a fraction or none is no target).
+    fn index_line_numbers(&mut self) -> HashMap<u64, Cursor> {
+        let mut map = HashMap::new();
+        let mut buf = std::mem::take(&mut self.skip_buf);
+        let mut at = self.file_start(self.cur_file);
+        let text = self.text.clone();
+        while at.pos < text.len() {
+            let (raw, next) = split_line(&text, at.pos);
+            if normalize(raw, &mut buf).is_ok() && buf.code.first() == Some(&b'n') {
+                let end = skip_line_number(&buf.code);
+                if let Ok(n) = std::str::from_utf8(&buf.code[1..end])
+                    .unwrap_or("")
+                    .parse::<u64>()
+                {
+                    map.entry(n).or_insert(at);
+                }
+            }
+            at = Cursor {
+                pos: next,
+                line: at.line + 1,
+                file: self.cur_file,
+            };
+        }
+        self.skip_buf = buf;
+        map
+    }
+
     fn index_labels(&mut self) -> HashMap<u64, Cursor> {
         let mut map = HashMap::new();
         let mut buf = std::mem::take(&mut self.skip_buf);

@@ -138,6 +138,8 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) frames: Vec<Frame>,
     pub(crate) subs: HashMap<Vec<u8>, Cursor>,
     pub(crate) labels: Option<HashMap<u64, Cursor>>,
+    /// Where each `N` number's line starts (Haas `M97 P<n>`), made at the first call.
+    pub(crate) line_numbers: Option<HashMap<u64, Cursor>>,
     /// Results of forward scans for O-words, by start position and keyword set.
     pub(crate) scan_cache: HashMap<(u32, usize, u32), ScanHit>,
     pub(crate) iterations: u64,
@@ -240,6 +242,7 @@ impl<'t, 's> Interp<'t, 's> {
             frames: Vec::new(),
             subs: HashMap::new(),
             labels: None,
+            line_numbers: None,
             scan_cache: HashMap::new(),
             iterations: 0,
             ended: false,
@@ -989,7 +992,7 @@ impl<'t, 's> Interp<'t, 's> {
             }
             None => {}
         }
-        if b.m98 {
+        if b.m98 || b.m97 {
             self.m98(b)?;
         } else if b.m99 {
             self.m99()?;
@@ -1035,9 +1038,10 @@ impl<'t, 's> Interp<'t, 's> {
                         || g10
                         || nonmodal == Some(40)
                         || b.m98
+                        || b.m97
                         || b.g(group::PATH) == Some(640)
                 }
-                b'l' => cycle || g10 || b.m98 || mode == Some(52),
+                b'l' => cycle || g10 || b.m98 || b.m97 || mode == Some(52),
                 b'h' => matches!(b.g(group::TOOL_LENGTH), Some(430 | 434 | 435)),
                 b'd' => comp_d,
                 _ => false,
