@@ -385,3 +385,17 @@ fn haas_m97_calls_a_local_subprogram_by_line_number() {
     let e = moves("O1\nM97 P7\nM30\n", &fanuc()).unwrap_err();
     assert!(e.message.contains("no line numbered N7"), "{e}");
 }
+
+#[test]
+fn macro_b_control_flow_is_refused_by_name() {
+    for line in [
+        "WHILE [#1 LT 3] DO1",
+        "N20 IF [#1 EQ 3] GOTO 100",
+        "GOTO 5",
+        "END1",
+    ] {
+        let e = moves(&format!("O1\nG21\n#1=0\n{line}\nM30\n"), &fanuc()).unwrap_err();
+        assert!(e.message.contains("Macro B"), "{line}: {e}");
+        assert_eq!(e.pos.line, 4, "{line}");
+    }
+}

@@ -525,6 +525,15 @@ impl<'t, 's> Interp<'t, 's> {
         if lb.code.get(o_at) == Some(&b'o') {
             return self.exec_oword(lb, o_at);
         }
+        if self.fanuc && is_macro_b(&lb.code[o_at..]) {
+            return Err(Fault::new(
+                PathErrorKind::Unsupported,
+                Span::Code(o_at, lb.code.len()),
+                "Fanuc Macro B control flow (WHILE/DO/END, IF/GOTO, GOTO) is not read; \
+                 LinuxCNC's O-word `while`/`if` are",
+                "",
+            ));
+        }
         block::parse(lb, blk, &*self, self.fanuc)?;
         self.execute(blk, lb)?;
         for (at, message) in std::mem::take(&mut self.later) {
@@ -1672,4 +1681,17 @@ impl Interp<'_, '_> {
         out.push_str(rest);
         out
     }
+}
+
+/// Whether normalised code (spaces out, lower case) starts with a Fanuc Macro B control word:
+/// `WHILE[`, `IF[`, `GOTO<n>`, `END<n>` (a G-code word never starts so).
+fn is_macro_b(code: &[u8]) -> bool {
+    let digit_after = |w: &[u8]| {
+        code.strip_prefix(w)
+            .is_some_and(|r| r.first().is_some_and(u8::is_ascii_digit))
+    };
+    code.starts_with(b"while[")
+        || code.starts_with(b"if[")
+        || digit_after(b"goto")
+        || digit_after(b"end")
 }
