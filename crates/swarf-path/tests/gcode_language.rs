@@ -709,3 +709,44 @@ fn block_deleted_lines_are_reported_once() {
     assert_eq!(off.moves.len(), 4);
     assert!(off.warnings.is_empty(), "{:?}", off.warnings);
 }
+
+/// I/O M codes are named for what they do and their words are theirs (not reported as
+/// unused); a pause points at its M word.
+#[test]
+fn io_and_pause_m_codes_are_reported_at_their_words() {
+    use swarf_path::load::{read_program_str, ReadOptions};
+    let src = "G21 G90\nM66 P0 L3 Q5\nM62 P1\nM67 E0 Q2.5\nG0 X1 M1\nM2\n";
+    let p = read_program_str(
+        src,
+        "io.ngc",
+        swarf_path::Machine::three_axis(),
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    let w: Vec<(u32, u32, &str)> = p
+        .warnings
+        .iter()
+        .map(|w| (w.line, w.column, w.message.as_str()))
+        .collect();
+    assert_eq!(
+        w,
+        [
+            (
+                2,
+                1,
+                "M66 (wait on input) ignored: it does not move the tool"
+            ),
+            (
+                3,
+                1,
+                "M62 (digital output) ignored: it does not move the tool"
+            ),
+            (
+                4,
+                1,
+                "M67 (analog output) ignored: it does not move the tool"
+            ),
+            (5, 7, "M1 (program pause) ignored: the simulation runs on"),
+        ]
+    );
+}

@@ -112,6 +112,8 @@ pub(crate) struct Block {
     pub(crate) g_mask: u32,
     /// M0 M1 M2 M30 M60.
     pub(crate) m_stop: Option<u16>,
+    /// Code index of the stop M code.
+    pub(crate) m_stop_at: u32,
     /// M3 M4 M5.
     pub(crate) m_spindle: Option<u16>,
     /// M6.
@@ -151,6 +153,7 @@ impl Default for Block {
             g_at: [0; group::N],
             g_mask: 0,
             m_stop: None,
+            m_stop_at: 0,
             m_spindle: None,
             m6: false,
             m98: false,
@@ -317,6 +320,7 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                         if b.m_stop.replace(m).is_some() {
                             return Err(dup("program stop"));
                         }
+                        b.m_stop_at = at as u32;
                     }
                     3..=5 => {
                         if b.m_spindle.replace(m).is_some() {

@@ -761,7 +761,9 @@ impl<'t, 's> Interp<'t, 's> {
                 19 => "M19 (spindle orientation)".to_string(),
                 48..=53 => format!("M{m} (override control)"),
                 61 => "M61 (set current tool)".to_string(),
-                62..=68 => format!("M{m} (digital/analog output)"),
+                62..=65 => format!("M{m} (digital output)"),
+                66 => "M66 (wait on input)".to_string(),
+                67 | 68 => format!("M{m} (analog output)"),
                 70..=73 => format!("M{m} (modal state save/restore)"),
                 100..=199 => format!("M{m} (user-defined M code)"),
                 _ => format!("M{m} (unknown M code)"),
@@ -988,8 +990,9 @@ impl<'t, 's> Interp<'t, 's> {
         match b.m_stop {
             Some(0 | 1 | 60) => {
                 let m = b.m_stop.unwrap_or(0);
-                self.warn_at(
-                    0,
+                self.warn_code(
+                    lb,
+                    b.m_stop_at as usize,
                     format!("M{m} (program pause) ignored: the simulation runs on"),
                 );
             }
@@ -1026,8 +1029,16 @@ impl<'t, 's> Interp<'t, 's> {
                 continue;
             }
             let used = match c {
-                // The words of a controller-mode code left out (G05.1 Q1, G187 P1 E0.01).
+                // The words of a controller-mode code left out (G05.1 Q1, G187 P1 E0.01), and
+                // of the I/O M codes (M62 P0, M66 P0 L3 Q5, M67 E0 Q2.5).
                 b'p' | b'q' | b'e' if b.n_modes > 0 => true,
+                b'p' | b'q' | b'e' | b'l'
+                    if b.m_other[..b.n_other]
+                        .iter()
+                        .any(|&(m, _)| (62..=68).contains(&m)) =>
+                {
+                    true
+                }
                 b'q' if b.fine_boring => true,
                 b'i' | b'j' | b'k' => {
                     // Fanuc reads an arc's centre words in its plane only, and none beside R.
@@ -1102,7 +1113,9 @@ impl<'t, 's> Interp<'t, 's> {
                     return Err(Fault::new(
                         PathErrorKind::Semantic,
                         b.span(c),
-                        "axis words without a motion G code to use them (G80 is in effect)",
+                        "axis words without a motion G code to use them (G80 is in effect; a \
+                         Fanuc control would move with the last G0–G3: --dialect fanuc reads the \
+                         program so)",
                         "G0, G1, G2, G3 or a canned cycle",
                     ));
                 }
