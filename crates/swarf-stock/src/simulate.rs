@@ -2,7 +2,7 @@
 
 use crate::cut::{COLLISION_EPS_MM, DEFAULT_CHORDAL_TOLERANCE_MM};
 use crate::error::StockError;
-use crate::tridexel::{LinearMove, TriDexel};
+use crate::tridexel::{CutStats, LinearMove, TriDexel};
 use std::collections::BTreeMap;
 use std::time::Instant;
 use swarf_geom::progress::{Observer, Quiet};
@@ -217,7 +217,7 @@ fn simulate_on_worker(
             per_move.push(removed);
             tested += cut.cutting.rays_tested + cut.non_cutting.rays_tested;
             updates += cut.cutting.updates + cut.non_cutting.updates;
-            if matches!(m.kind, MoveKind::Rapid) && cut.cutting.removed_any(COLLISION_EPS_MM) {
+            if matches!(m.kind, MoveKind::Rapid) && collides(&cut.cutting, five_err) {
                 rapid_collisions.push(Collision {
                     move_index: i,
                     file: file_of(m.file),
@@ -225,7 +225,7 @@ fn simulate_on_worker(
                     volume_mm3: cut.cutting.removed_length[2] * area_z,
                 });
             }
-            if cut.non_cutting.removed_any(COLLISION_EPS_MM) {
+            if collides(&cut.non_cutting, five_err) {
                 holder_collisions.push(Collision {
                     move_index: i,
                     file: file_of(m.file),
@@ -258,6 +258,20 @@ fn simulate_on_worker(
         five_axis_error_bound_mm: five_err,
         resolution_mm: stock.grid().h,
     })
+}
+
+/// Whether what a rapid or a holder removed is a collision, after multi-axis moves cut within
+/// `error_bound` mm of their sweeps. Those cuts may leave slivers up to `error_bound` thick
+/// along their surfaces, which the next move — often a rapid retract — takes away: that is the
+/// approximation's, not the program's. A sliver `ε` thick is crossed by a ray of the family
+/// closest to its normal (at most 54.7° off it) over at most `√3·ε`, so a removal with some
+/// family's longest piece within that is such a sliver; a collision must be deeper in every
+/// family. Without multi-axis moves (`error_bound` 0) any removal over [`COLLISION_EPS_MM`]
+/// counts.
+fn collides(st: &CutStats, error_bound: f64) -> bool {
+    let sliver = 3f64.sqrt() * error_bound;
+    st.removed_any(COLLISION_EPS_MM)
+        && (error_bound == 0.0 || st.longest_removal.iter().all(|&l| l > sliver))
 }
 
 #[cfg(test)]

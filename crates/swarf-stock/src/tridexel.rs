@@ -376,6 +376,8 @@ fn tile_bound(rays: &[Dexel], bins: &Bins) -> TileBound {
 pub struct CutStats {
     /// Material length removed per family (X, Y, Z rays), mm.
     pub removed_length: [f64; 3],
+    /// The most material removed from one ray, per family, mm.
+    pub longest_removal: [f64; 3],
     /// Rays whose exact interval was computed (after the material-first rejection).
     pub rays_tested: u64,
     /// Rays whose intervals changed.
@@ -394,6 +396,7 @@ impl CutStats {
     pub fn merged(mut self, o: CutStats) -> CutStats {
         for k in 0..3 {
             self.removed_length[k] += o.removed_length[k];
+            self.longest_removal[k] = self.longest_removal[k].max(o.longest_removal[k]);
         }
         self.rays_tested += o.rays_tested;
         self.updates += o.updates;
@@ -1288,6 +1291,7 @@ impl TileCut<'_, '_, '_> {
             tags,
             scratch,
             removed_length: &mut st.removed_length[k],
+            longest_removal: &mut st.longest_removal[k],
             ti,
             tj,
             i: (i_lo, i_hi),
@@ -1374,6 +1378,8 @@ struct TileRows<'c, 'g, 'p, 'a, 't> {
     scratch: &'t mut Scratch,
     /// The family's removed length, added to ray by ray in the rays' order.
     removed_length: &'t mut f64,
+    /// The family's longest removal from one ray.
+    longest_removal: &'t mut f64,
     ti: usize,
     tj: usize,
     /// The tile's ray columns and rows that the move's range covers (first and last,
@@ -1412,6 +1418,7 @@ impl TileRows<'_, '_, '_, '_, '_> {
             tags,
             scratch,
             removed_length,
+            longest_removal,
             ti,
             tj,
             i: (i_lo, i_hi),
@@ -1439,6 +1446,7 @@ impl TileRows<'_, '_, '_, '_, '_> {
                 if removed > 0.0 {
                     updates += 1;
                     *removed_length += removed;
+                    *longest_removal = longest_removal.max(removed);
                 }
             }
         }

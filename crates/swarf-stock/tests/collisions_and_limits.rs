@@ -194,3 +194,49 @@ fn cylinder_and_mesh_stocks() {
     let st = s.stats();
     assert!(st.bytes_per_interval > 0.0 && st.intervals > 0 && st.rays == 3 * 100 * 100);
 }
+
+/// A rotary cut is cut within its error bound ε of the true sweep, and the retract after it
+/// takes the slivers (≤ ε thick) it left: no collision. A rapid into the part after it still
+/// is one.
+#[test]
+fn slivers_a_rotary_cut_leaves_are_no_collision() {
+    let program = |tail: &str| {
+        swarf_path::load::read_program_str(
+            &format!(
+                "G21 G90 G94\nG0 X-10 Y0 Z30 A0\nG0 X0 Z12\nG1 Z9 F200\nG1 X20 A360 F500\n\
+                 G93 G1 X40 A720 F1\nG94 G0 Z30\n{tail}M30\n"
+            ),
+            "rot4.ngc",
+            swarf_path::Machine::from_name("4axis-a").unwrap(),
+            &swarf_path::load::ReadOptions {
+                // Start clear of the block.
+                gcode: swarf_path::gcode::GcodeOptions::default().with_home([-10.0, 0.0, 30.0]),
+                ..Default::default()
+            },
+        )
+        .unwrap()
+    };
+    let tools = ToolSet::single(Cutter::flat(6.0).unwrap());
+    let block = || {
+        TriDexel::from_box(
+            Vec3::new(0.0, -10.0, -10.0),
+            Vec3::new(60.0, 10.0, 10.0),
+            0.5,
+        )
+        .unwrap()
+    };
+    let r = simulate(&program(""), &tools, &mut block(), &SimOptions::default()).unwrap();
+    assert!(r.five_axis_error_bound_mm > 0.0);
+    assert!(r.rapid_collisions.is_empty(), "{:?}", r.rapid_collisions);
+    assert!(r.holder_collisions.is_empty(), "{:?}", r.holder_collisions);
+    // The same retract, then a rapid plunge 5 mm into the block beside the turned part.
+    let r = simulate(
+        &program("G0 X50 Y5\nG0 Z5\n"),
+        &tools,
+        &mut block(),
+        &SimOptions::default(),
+    )
+    .unwrap();
+    let lines: Vec<u32> = r.rapid_collisions.iter().map(|c| c.line).collect();
+    assert_eq!(lines, [9], "{:?}", r.rapid_collisions);
+}
