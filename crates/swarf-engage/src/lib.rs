@@ -88,6 +88,6 @@ pub use engagement::{CircleEngagement, Engagement, PhiInterval};
 pub use probe::{Depth, MaterialProbe};
 pub use run::{
     feed_rate, path_length, EngageError, EngageOptions, EngageStats, Engager, DEFAULT_DPHI_DEG,
-    DEFAULT_DZ_MM, DEFAULT_STEP_MM, MAX_LOCATIONS_PER_MOVE,
+    DEFAULT_DZ_MM, DEFAULT_STEP_MM, MAX_LOCATIONS_PER_MOVE, MAX_SAMPLES_PER_LOCATION,
 };
 pub use strip::{Circle, Strip, StripKind};

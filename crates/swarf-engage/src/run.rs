@@ -154,6 +154,20 @@ pub enum EngageError {
         /// The step asked for, mm.
         step: f64,
     },
+    /// The discs and angles would sample a cutter more finely than [`MAX_SAMPLES_PER_LOCATION`].
+    #[error("--dz {dz} mm and --dphi {dphi}° sample {what} at {circles} circles × {angles} angles, more than {max} samples a location; give a larger --dz or --dphi", max = MAX_SAMPLES_PER_LOCATION)]
+    TooManySamples {
+        /// Which cutter, in words.
+        what: String,
+        /// Circles of its strips.
+        circles: usize,
+        /// Angles per circle.
+        angles: usize,
+        /// The options asked for.
+        dz: f64,
+        /// The options asked for.
+        dphi: f64,
+    },
     /// Cutting the stock failed (non-finite pose, a 5-axis move beyond the sub-move limit).
     #[error(transparent)]
     Stock(#[from] StockError),
@@ -240,6 +254,11 @@ impl Walk {
 /// Most cutter locations one move may have (a `step` far below the move's length would
 /// otherwise run for days).
 pub const MAX_LOCATIONS_PER_MOVE: usize = 1_000_000;
+
+/// Most samples (circles × angles) one cutter location may take: each keeps a few words of
+/// working memory, so this bounds it at a few hundred MB (the defaults take ≈ 10⁵ for a 10 mm
+/// cutter).
+pub const MAX_SAMPLES_PER_LOCATION: usize = 10_000_000;
 
 /// The source file name of `m`.
 fn file_of(program: &Program, m: &Move) -> String {
@@ -358,12 +377,29 @@ impl<'a> Engager<'a> {
             by_number,
             fallback: tools.fallback().map(|c| Prepared::new(c, &opts)),
         };
+        let angles = Angles::new(opts.dphi_deg);
+        let named = tools
+            .by_number
+            .iter()
+            .map(|(n, p)| (format!("tool {n}"), p));
+        for (what, p) in named.chain(tools.fallback.iter().map(|p| ("the cutter".into(), p))) {
+            let circles: usize = p.side.iter().chain(&p.bottom).map(Strip::len).sum();
+            if circles.saturating_mul(angles.sin.len()) > MAX_SAMPLES_PER_LOCATION {
+                return Err(EngageError::TooManySamples {
+                    what,
+                    circles,
+                    angles: angles.sin.len(),
+                    dz: opts.dz_mm,
+                    dphi: opts.dphi_deg,
+                });
+            }
+        }
         Ok(Self {
             program,
             stock,
             opts,
             tools,
-            angles: Angles::new(opts.dphi_deg),
+            angles,
             next_move: 0,
             current: None,
             last_x: None,

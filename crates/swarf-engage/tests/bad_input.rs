@@ -63,3 +63,22 @@ fn options_out_of_range_are_refused() {
         ));
     }
 }
+
+#[test]
+fn discs_and_angles_finer_than_memory_allows_are_refused_before_sampling() {
+    // Each option alone is in range; together they would ask ≈ 10¹⁰ samples a location.
+    let e = engage(
+        "G21\nG0 X0 Y10 Z-1\nG1 X10 F100\n",
+        EngageOptions::default().with_dz(0.0002).with_dphi(0.01),
+    )
+    .unwrap_err();
+    let msg = e.to_string();
+    assert!(matches!(e, EngageError::TooManySamples { .. }), "{msg}");
+    assert!(msg.contains("larger --dz or --dphi"), "{msg}");
+    // Fine but affordable: accepted.
+    assert!(engage(
+        "G21\nG0 X0 Y10 Z-1\nG1 X1 F100\n",
+        EngageOptions::default().with_dz(0.01).with_dphi(0.1),
+    )
+    .is_ok());
+}

@@ -84,7 +84,9 @@ pub use coefficients::{
     OrthogonalDatabase,
 };
 pub use edges::{CutterEdges, Slab};
-pub use location::{Evaluated, ForceModel, Limit, LocationForces, DEFAULT_SAMPLES_PER_REV};
+pub use location::{
+    Evaluated, ForceModel, Limit, LocationForces, DEFAULT_SAMPLES_PER_REV, MAX_SAMPLES_PER_REV,
+};
 pub use model::{unit_forces, ForceCurves, UnitForces};
 pub use schedule::{
     schedule_feeds, LocationCap, MoveCaps, MoveFeed, ScheduleOptions, ScheduleResult,

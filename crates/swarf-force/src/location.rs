@@ -15,6 +15,10 @@ use crate::ForceError;
 /// Default samples per spindle revolution.
 pub const DEFAULT_SAMPLES_PER_REV: usize = 360;
 
+/// Most spindle-angle samples per revolution: a hundredth of a degree, far finer than any
+/// tooth-passing curve needs; more would only exhaust memory (each location keeps its curves).
+pub const MAX_SAMPLES_PER_REV: usize = 36_000;
+
 /// The force summary of one cutter location. Forces on the tool, N; `fx fy fz` in the tool frame
 /// (`x_L` feed, `y_L`, `z_L` axis), `wx wy wz` in the workpiece frame; peaks are the largest
 /// |component| over a revolution.
@@ -113,11 +117,11 @@ impl ForceModel {
         opts: &EngageOptions,
         samples_per_rev: usize,
     ) -> Result<Self, ForceError> {
-        if samples_per_rev == 0 {
+        if !(1..=MAX_SAMPLES_PER_REV).contains(&samples_per_rev) {
             return Err(ForceError::BadOption {
                 name: "samples-per-rev",
-                value: 0.0,
-                want: "a whole number of at least 1",
+                value: samples_per_rev as f64,
+                want: "a whole number from 1 to 36000",
             });
         }
         let mut edges = BTreeMap::new();

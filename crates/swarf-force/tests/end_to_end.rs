@@ -186,3 +186,16 @@ fn air_cuts_and_a_stopped_spindle_give_no_force() {
     assert_eq!(f.peak_resultant_n, 0.0);
     assert_eq!(f.power_peak_w, 0.0);
 }
+
+#[test]
+fn samples_per_revolution_out_of_range_are_refused() {
+    let tools = ToolSet::single(Cutter::from_spec("flat:d=10,flutes=4").unwrap());
+    let opts = EngageOptions::default();
+    for n in [0, swarf_force::MAX_SAMPLES_PER_REV + 1, usize::MAX] {
+        let Err(e) = ForceModel::new(material(), &tools, &[0], &opts, n) else {
+            panic!("{n} accepted");
+        };
+        assert!(e.to_string().contains("--samples-per-rev"), "{e}");
+    }
+    assert!(ForceModel::new(material(), &tools, &[0], &opts, 36_000).is_ok());
+}
