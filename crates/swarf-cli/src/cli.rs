@@ -20,7 +20,7 @@ pub(crate) enum TableUnits {
 #[derive(Debug, Args)]
 pub(crate) struct SetupArgs {
     /// One cutter for every tool the program uses.
-    #[arg(long, value_name = "SPEC")]
+    #[arg(long, value_name = "SPEC", conflicts_with = "tools")]
     pub(crate) tool: Option<String>,
     /// Tool library: swarf TOML, LinuxCNC .tbl or CAMotics .camotics.
     #[arg(long, value_name = "FILE")]
@@ -111,3 +111,16 @@ pub(crate) enum Dialect {
     /// Fanuc 0i/30i-M style.
     Fanuc,
 }
+
+/// An error in how the command was called (a required choice not made), which exits with
+/// status 2 like clap's own usage errors, not 1 as bad input does.
+#[derive(Debug)]
+pub(crate) struct UsageError(pub(crate) String);
+
+impl std::fmt::Display for UsageError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+impl std::error::Error for UsageError {}

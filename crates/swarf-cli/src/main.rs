@@ -101,6 +101,7 @@ fn main() {
         }
         // `{:#}` prints the whole context chain on one line: "reading X: X:3:7: message".
         eprintln!("swarf: error: {e:#}");
-        std::process::exit(1);
+        let usage = e.chain().any(|c| c.is::<cli::UsageError>());
+        std::process::exit(if usage { 2 } else { 1 });
     }
 }

@@ -37,7 +37,8 @@ where
 {
     let tmp = temp_path(path);
     let result = (|| {
-        let file = File::create(&tmp).map_err(|e| IoError::io(&tmp, e))?;
+        // (Named by the file asked for: the temporary's name means nothing to the user.)
+        let file = File::create(&tmp).map_err(|e| IoError::io(path, e))?;
         write_synced(file, path, body)?;
         std::fs::rename(&tmp, path).map_err(|e| IoError::io(path, e))
     })();

@@ -203,6 +203,7 @@ struct EngageSummary {
 }
 
 pub(crate) fn run(args: &EngageArgs) -> Result<()> {
+    crate::commands::report::prepare(args.report.as_deref())?;
     let t0 = Instant::now();
     let mut run = args.run.prepare()?;
     let opts = run.opts;

@@ -143,6 +143,7 @@ struct Row {
 }
 
 pub(crate) fn run(args: &ForcesArgs) -> Result<()> {
+    crate::commands::report::prepare(args.report.as_deref())?;
     if args.list_materials {
         return list_materials(args.json);
     }

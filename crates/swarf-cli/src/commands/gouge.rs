@@ -55,6 +55,7 @@ pub(crate) struct GougeArgs {
 }
 
 pub(crate) fn run(args: &GougeArgs) -> Result<()> {
+    crate::commands::report::prepare(args.report.as_deref())?;
     let t0 = Instant::now();
     let surface = swarf_surface::io::read_file(&args.surface)
         .with_context(|| format!("reading {}", args.surface.display()))?;

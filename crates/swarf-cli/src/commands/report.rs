@@ -85,6 +85,19 @@ pub(crate) fn sources(program: &Program) -> Vec<(String, String)> {
         .collect()
 }
 
+/// Makes `--report`'s folder, as `--out` makes its own, before any work: a report that could
+/// not be written must stop the run before the output set is written, not after.
+pub(crate) fn prepare(path: Option<&Path>) -> Result<()> {
+    let Some(dir) = path
+        .and_then(Path::parent)
+        .filter(|d| !d.as_os_str().is_empty())
+    else {
+        return Ok(());
+    };
+    std::fs::create_dir_all(dir)
+        .with_context(|| format!("making the report's folder {}", dir.display()))
+}
+
 /// Writes the page.
 pub(crate) fn write(report: &Report, path: &Path) -> Result<()> {
     report

@@ -26,22 +26,27 @@ pub(crate) struct ScheduleArgs {
     #[command(flatten)]
     material: MaterialArgs,
     /// Largest peak resultant force on the tool, N.
-    #[arg(long, value_name = "N")]
+    #[arg(long, value_name = "N", allow_negative_numbers = true)]
     limit_force: Option<f64>,
     /// Largest peak spindle torque, N·m.
-    #[arg(long, value_name = "NM")]
+    #[arg(long, value_name = "NM", allow_negative_numbers = true)]
     limit_torque: Option<f64>,
     /// Largest peak spindle power, W.
-    #[arg(long, value_name = "W")]
+    #[arg(long, value_name = "W", allow_negative_numbers = true)]
     limit_power: Option<f64>,
     /// Slowest feed, mm/min.
-    #[arg(long, value_name = "MM_MIN", default_value_t = 1.0)]
+    #[arg(
+        long,
+        value_name = "MM_MIN",
+        default_value_t = 1.0,
+        allow_negative_numbers = true
+    )]
     min_feed: f64,
     /// Fastest feed, mm/min (default: never faster than programmed).
-    #[arg(long, value_name = "MM_MIN")]
+    #[arg(long, value_name = "MM_MIN", allow_negative_numbers = true)]
     max_feed: Option<f64>,
     /// Largest change of feed between consecutive feed moves, percent.
-    #[arg(long, value_name = "P")]
+    #[arg(long, value_name = "P", allow_negative_numbers = true)]
     max_step_percent: Option<f64>,
     /// Split a straight G-code feed move whose engagement varies into pieces with their own
     /// feeds (at the cutter locations, every --step mm; pieces whose caps are within 10 % of

@@ -192,6 +192,7 @@ impl SimulateSummary {
 }
 
 pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
+    crate::commands::report::prepare(args.report.as_deref())?;
     positive_mm("resolution", args.resolution)?;
     positive_mm("tolerance", args.tolerance)?;
     let mesh_out = StockMeshOut::of(args)?;
@@ -298,9 +299,11 @@ fn stock_spec(arg: Option<&str>, table: Option<&ToolTable>) -> Result<StockSpec>
             min: b.min,
             max: b.max,
         }),
-        (None, None) => {
-            bail!("give the stock with --stock box:X0,Y0,Z0,X1,Y1,Z1, cyl:CX,CY,Z0,R,H or FILE.stl")
-        }
+        (None, None) => Err(crate::cli::UsageError(
+            "give the stock with --stock box:X0,Y0,Z0,X1,Y1,Z1, cyl:CX,CY,Z0,R,H or FILE.stl"
+                .into(),
+        )
+        .into()),
     }
 }
 

@@ -44,20 +44,25 @@ pub(crate) struct VerifyArgs {
     #[arg(long)]
     pub(crate) flip: bool,
     /// Ray spacing of the tri-dexel stock, mm.
-    #[arg(long, value_name = "H", default_value_t = 0.25)]
+    #[arg(
+        long,
+        value_name = "H",
+        default_value_t = 0.25,
+        allow_negative_numbers = true
+    )]
     pub(crate) resolution: f64,
     /// Gouge tolerance: material removed deeper than this inside the part is a gouge, mm.
-    #[arg(long, value_name = "T", default_value_t = swarf_verify::DEFAULT_GOUGE_TOLERANCE_MM)]
+    #[arg(long, value_name = "T", default_value_t = swarf_verify::DEFAULT_GOUGE_TOLERANCE_MM, allow_negative_numbers = true)]
     pub(crate) tolerance: f64,
     /// Excess tolerance: material left thicker than this outside the part is excess, mm.
-    #[arg(long, value_name = "T2", default_value_t = swarf_verify::DEFAULT_EXCESS_TOLERANCE_MM)]
+    #[arg(long, value_name = "T2", default_value_t = swarf_verify::DEFAULT_EXCESS_TOLERANCE_MM, allow_negative_numbers = true)]
     pub(crate) excess_tolerance: f64,
     /// Largest distance between an arc or a 5-axis motion and what is cut for it, mm.
-    #[arg(long, value_name = "T", default_value_t = swarf_stock::DEFAULT_CHORDAL_TOLERANCE_MM)]
+    #[arg(long, value_name = "T", default_value_t = swarf_stock::DEFAULT_CHORDAL_TOLERANCE_MM, allow_negative_numbers = true)]
     pub(crate) chordal_tolerance: f64,
     /// Deviation at the ends of deviation.glb's colour scale, mm (default: the larger of the
     /// deepest gouge and the thickest excess, at least twice the tolerance).
-    #[arg(long, value_name = "MM")]
+    #[arg(long, value_name = "MM", allow_negative_numbers = true)]
     pub(crate) color_range: Option<f64>,
     /// Build the stock from an STL mesh even if it is not closed.
     #[arg(long)]
@@ -107,6 +112,7 @@ struct VerifySummary<'a> {
 }
 
 pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
+    crate::commands::report::prepare(args.report.as_deref())?;
     let t0 = Instant::now();
     positive_mm("resolution", args.resolution)?;
     positive_mm("chordal-tolerance", args.chordal_tolerance)?;
