@@ -35,13 +35,22 @@
 //! untrimmed). [`IgesDocument::trims`] still lists every 144 as found.
 //!
 //! The fixed-column format: 80-column records, section letter in column 73 (S, G, D, P, T),
-//! sequence number in 74–80. The G section gives the parameter and record delimiters (defaults
-//! `,` and `;`), the units flag and unit name (field 14/15: inch, mm, foot, mile, metre, km,
-//! mil, micron, cm, microinch), converted to mm. The model-space scale (field 13) is not
-//! applied. Directory entries are two records of 8-column fields; parameter data lives in
-//! columns 1–64 of the P records. Transformation matrices (entity 124) referenced by a 128 or a
-//! curve are applied. Hollerith strings (`5HHello`) and `D` exponents are understood.
+//! sequence number in 74–80. Columns are bytes: text that is not ASCII (accents in the Start
+//! section and in strings of European files) is read one byte a column (Latin-1), or one UTF-8
+//! character a column when the record was padded to 80 characters (the layout that puts the
+//! section letter in column 73 wins); such columns read as `?` in strings, so they never
+//! refuse a file. [`parse_bytes`] reads a file's bytes; [`parse`] takes text.
+//!
+//! The G section gives the parameter and record delimiters (defaults `,` and `;`), the units
+//! flag and unit name (field 14/15: inch, mm, foot, mile, metre, km, mil, micron, cm,
+//! microinch), converted to mm; its later fields are not used, and a string among them that
+//! does not parse (a Hollerith count that overruns) is no error. The model-space scale
+//! (field 13) is not applied. Directory entries are two records of 8-column fields; parameter
+//! data lives in columns 1–64 of the P records. Transformation matrices (entity 124) referenced
+//! by a 128 or a curve are applied. Hollerith strings (`5HHello`) and `D` exponents are
+//! understood.
 
+use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
@@ -112,12 +121,23 @@ pub struct IgesDocument {
 
 /// Parse IGES text to its patches.
 pub fn parse(text: &str) -> Result<CompoundSurface, ReadError> {
-    parse_document(text).map(|d| d.surface)
+    parse_bytes(text.as_bytes())
+}
+
+/// Parse the bytes of an IGES file to its patches (text that is not ASCII, as in Start
+/// sections and strings of European files, is read one byte per column).
+pub fn parse_bytes(bytes: &[u8]) -> Result<CompoundSurface, ReadError> {
+    parse_document_bytes(bytes).map(|d| d.surface)
 }
 
 /// Parse IGES text to patches, curves and trims.
 pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
-    let mut file = Sections::split(text)?;
+    parse_document_bytes(text.as_bytes())
+}
+
+/// Parse the bytes of an IGES file to patches, curves and trims.
+pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
+    let mut file = Sections::split(bytes)?;
     let global = file.global()?;
     let entries = file.directory()?;
     let mut doc = IgesDocument::default();
@@ -858,10 +878,36 @@ impl Sampler<'_, '_> {
     }
 }
 
-/// One physical record: its 1-based line number, section letter, columns 1–72.
+/// One physical record: its 1-based line number and columns 1–72, one byte per column (a
+/// column that is not ASCII is `?` here; `text` keeps it).
 struct Record<'a> {
     line: usize,
-    data: &'a str,
+    data: Cow<'a, str>,
+    /// The columns as characters, for a record that is not all ASCII (labels keep their
+    /// accents).
+    text: Option<Vec<char>>,
+}
+
+/// A record's columns, or `None` when it has no section letter in column 73. An ASCII record
+/// is its bytes. Any other is read by bytes (Latin-1: each byte one column, as the fixed
+/// 80-column format counts them) when that puts a section letter in column 73 and digits or
+/// spaces after it, else by UTF-8 characters when that does (files written by character count).
+fn columns(raw: &[u8]) -> Option<Vec<char>> {
+    let good = |c: &[char]| {
+        c.len() >= 73
+            && c[72].is_ascii_uppercase()
+            && c[73..c.len().min(80)]
+                .iter()
+                .all(|x| x.is_ascii_digit() || *x == ' ')
+    };
+    let bytes: Vec<char> = raw.iter().map(|&b| char::from(b)).collect();
+    if good(&bytes) {
+        return Some(bytes);
+    }
+    std::str::from_utf8(raw)
+        .ok()
+        .map(|t| t.chars().collect::<Vec<char>>())
+        .filter(|c| good(c))
 }
 
 struct Sections<'a> {
@@ -897,7 +943,7 @@ struct Entry {
 }
 
 impl<'a> Sections<'a> {
-    fn split(text: &'a str) -> Result<Self, ReadError> {
+    fn split(text: &'a [u8]) -> Result<Self, ReadError> {
         let mut s = Sections {
             g: Vec::new(),
             d: Vec::new(),
@@ -906,29 +952,48 @@ impl<'a> Sections<'a> {
             rdelim: b';',
         };
         let mut seen_any = false;
-        for (i, raw) in text.lines().enumerate() {
+        for (i, raw) in text.split(|&b| b == b'\n').enumerate() {
             let line = i + 1;
-            let raw = raw.trim_end_matches('\r');
-            if raw.trim().is_empty() {
+            let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
+            if raw.iter().all(u8::is_ascii_whitespace) {
                 continue;
             }
-            if !raw.is_ascii() || raw.len() < 73 {
-                return Err(syntax(
+            let (rec, letter) = if raw.is_ascii() && raw.len() >= 73 {
+                // ASCII (and so UTF-8) throughout.
+                let data = std::str::from_utf8(&raw[..72]).unwrap_or_default();
+                let rec = Record {
                     line,
-                    raw.len().min(72) + 1,
-                    format!(
-                        "found a {}-character{} record, expected 80 ASCII columns with the section letter in column 73",
-                        raw.chars().count(),
-                        if raw.is_ascii() { "" } else { " non-ASCII" }
-                    ),
-                ));
-            }
-            seen_any = true;
-            let rec = Record {
-                line,
-                data: &raw[..72],
+                    data: Cow::Borrowed(data),
+                    text: None,
+                };
+                (rec, raw[72])
+            } else {
+                // Text in the Start section or in strings need not be ASCII (accents in
+                // European files): such columns are read as one column each.
+                let Some(cols) = columns(raw).filter(|_| !raw.is_ascii()) else {
+                    return Err(syntax(
+                        line,
+                        raw.len().min(72) + 1,
+                        format!(
+                            "found a {}-column record, expected 80 columns with the section letter in column 73",
+                            raw.len()
+                        ),
+                    ));
+                };
+                let data = cols[..72]
+                    .iter()
+                    .map(|&c| if c.is_ascii() { c } else { '?' })
+                    .collect();
+                let letter = cols[72] as u8;
+                let rec = Record {
+                    line,
+                    data: Cow::Owned(data),
+                    text: Some(cols),
+                };
+                (rec, letter)
             };
-            match raw.as_bytes()[72] {
+            seen_any = true;
+            match letter {
                 b'S' | b'T' => {}
                 b'G' => s.g.push(rec),
                 b'D' => s.d.push(rec),
@@ -963,7 +1028,7 @@ impl<'a> Sections<'a> {
     }
 
     fn global(&mut self) -> Result<Global, ReadError> {
-        let text: String = self.g.iter().map(|r| r.data).collect();
+        let text: String = self.g.iter().map(|r| &*r.data).collect();
         let b = text.as_bytes();
         let line = self.g[0].line;
         let mut pos = 0;
@@ -996,11 +1061,19 @@ impl<'a> Sections<'a> {
         self.pdelim = pd;
         self.rdelim = rd;
         let rest = &text[pos..];
-        // Fields 3 onwards, after the delimiter that ends field 2.
+        // Fields 3 onwards, after the delimiter that ends field 2. Only fields 14 and 15 are
+        // used: a string after them that does not parse (a Hollerith count that overruns, as
+        // when a file's accents were counted in another encoding) is no error.
         let fields = match rest.as_bytes().first() {
-            Some(&c) if c == pd => {
-                tokenize(&rest[1..], pd, rd).map_err(|(at, m)| syntax(line, pos + 2 + at, m))?
-            }
+            Some(&c) if c == pd => match tokenize_prefix(&rest[1..], pd, rd) {
+                (fields, Some((at, m))) if fields.len() < 13 => {
+                    // The record and column of the offset in the G section's data.
+                    let o = pos + 1 + at;
+                    let r = self.g.get(o / 72).map_or(line, |r| r.line);
+                    return Err(syntax(r, o % 72 + 1, m));
+                }
+                (fields, _) => fields,
+            },
             _ => Vec::new(),
         };
         // Fields 3.. are at index 0..; units flag is field 14 → index 11, name field 15 → 12.
@@ -1092,7 +1165,11 @@ impl<'a> Sections<'a> {
                     "the two directory records of an entry disagree on the entity type",
                 ));
             }
-            let label = field(b, 7);
+            let label = match &b.text {
+                // A label with accents keeps them.
+                Some(cols) => cols[56..64].iter().collect::<String>().trim().to_string(),
+                None => field(b, 7).to_string(),
+            };
             out.push(Entry {
                 de: 2 * k + 1,
                 line: a.line,
@@ -1100,7 +1177,7 @@ impl<'a> Sections<'a> {
                 pointer: int(a, 1, "parameter data pointer")?,
                 lines: int(b, 3, "parameter line count")?,
                 transform: int(a, 6, "transformation matrix pointer")?,
-                label: (!label.is_empty()).then(|| label.to_string()),
+                label: (!label.is_empty()).then_some(label),
             });
         }
         Ok(out)
@@ -1334,7 +1411,7 @@ impl<'a> Sections<'a> {
     }
 }
 
-fn field<'a>(r: &Record<'a>, i: usize) -> &'a str {
+fn field<'r>(r: &'r Record<'_>, i: usize) -> &'r str {
     r.data[8 * i..8 * i + 8].trim()
 }
 
@@ -1374,6 +1451,14 @@ fn locate(starts: &[(usize, usize)], at: usize) -> (usize, usize) {
 /// Split parameter text into fields up to the record delimiter, keeping Hollerith strings
 /// whole. Errors carry the byte offset.
 fn tokenize(text: &str, pd: u8, rd: u8) -> Result<Vec<&str>, (usize, String)> {
+    match tokenize_prefix(text, pd, rd) {
+        (fields, None) => Ok(fields),
+        (_, Some(e)) => Err(e),
+    }
+}
+
+/// [`tokenize`], and the fields read before an error with the error.
+fn tokenize_prefix(text: &str, pd: u8, rd: u8) -> (Vec<&str>, Option<(usize, String)>) {
     let b = text.as_bytes();
     let mut out = Vec::new();
     let mut start = 0;
@@ -1383,7 +1468,7 @@ fn tokenize(text: &str, pd: u8, rd: u8) -> Result<Vec<&str>, (usize, String)> {
         if c == pd || c == rd {
             out.push(&text[start..i]);
             if c == rd {
-                return Ok(out);
+                return (out, None);
             }
             i += 1;
             start = i;
@@ -1396,15 +1481,20 @@ fn tokenize(text: &str, pd: u8, rd: u8) -> Result<Vec<&str>, (usize, String)> {
                 j += 1;
             }
             if j < b.len() && b[j] == b'H' {
-                let n: usize = text[i..j]
-                    .parse()
-                    .map_err(|_| (i, "Hollerith length too large".to_string()))?;
+                let Ok(n) = text[i..j].parse::<usize>() else {
+                    return (out, Some((i, "Hollerith length too large".to_string())));
+                };
                 let end = j + 1 + n;
                 if end > b.len() {
-                    return Err((
-                        i,
-                        format!("Hollerith string of {n} characters runs past the end of the data"),
-                    ));
+                    return (
+                        out,
+                        Some((
+                            i,
+                            format!(
+                                "Hollerith string of {n} characters runs past the end of the data"
+                            ),
+                        )),
+                    );
                 }
                 i = end;
                 continue;
@@ -1414,13 +1504,11 @@ fn tokenize(text: &str, pd: u8, rd: u8) -> Result<Vec<&str>, (usize, String)> {
         }
         i += 1;
     }
-    Err((
-        b.len(),
-        format!(
-            "found the end of the data, expected the record delimiter `{}`",
-            rd as char
-        ),
-    ))
+    let e = format!(
+        "found the end of the data, expected the record delimiter `{}`",
+        rd as char
+    );
+    (out, Some((b.len(), e)))
 }
 
 /// The text of a Hollerith field (`3HABC` → `ABC`), or the field itself.

@@ -128,8 +128,12 @@ pub fn read_file(path: &Path) -> Result<CompoundSurface, ReadError> {
         path: path.to_path_buf(),
         source,
     })?;
-    let text = String::from_utf8_lossy(&bytes);
-    let mut s = parse(format, &text)?;
+    // IGES columns are bytes: decoded as UTF-8 first, an accent in a Latin-1 Start section
+    // would no longer be one column.
+    let mut s = match format {
+        Format::Iges => iges::parse_bytes(&bytes)?,
+        _ => parse(format, &String::from_utf8_lossy(&bytes))?,
+    };
     let name = path.display().to_string();
     for p in &mut s.patches {
         p.source.file = Some(name.clone());
