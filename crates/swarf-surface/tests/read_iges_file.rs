@@ -335,3 +335,68 @@ fn a_broken_global_string_after_the_units_is_no_error() {
         e => panic!("{e}"),
     }
 }
+
+#[test]
+fn a_128_is_restricted_to_its_parameter_range() {
+    // x = 20u, y = 20v − 10, z a parabola in v (5, −5, 5 control heights) over the knots'
+    // [0, 1]²; U0, U1, V0, V1 = `range` keeps a part of it.
+    let patch = |range: &str| {
+        let mut pts = Vec::new();
+        for j in 0..3 {
+            for i in 0..2 {
+                let z = if j == 1 { -5.0 } else { 5.0 };
+                pts.push(format!("{}.,{}.,{z}", 20 * i, 10 * j - 10));
+            }
+        }
+        let mut f = Iges::default();
+        f.add(
+            128,
+            &format!(
+                "1,2,1,2,0,0,1,0,0,0.,0.,1.,1.,0.,0.,0.,1.,1.,1.,1.,1.,1.,1.,1.,1.,{},{range}",
+                pts.join(",")
+            ),
+        );
+        iges::parse(&f.text("2,2HMM"))
+    };
+    let whole = patch("0.,1.,0.,1.").unwrap();
+    let part = patch("0.25,0.75,0.25,0.75").unwrap();
+    let (s, p) = (&whole.patches[0].surface, &part.patches[0].surface);
+    assert_eq!((s.domain().u, s.domain().v), ([0.0, 1.0], [0.0, 1.0]));
+    assert_eq!((p.domain().u, p.domain().v), ([0.25, 0.75], [0.25, 0.75]));
+    // The corners of the part, and its extent x 5…15, y −5…5.
+    let z = |v: f64| 5.0 * (1.0 - v).powi(2) - 10.0 * v * (1.0 - v) + 5.0 * v * v;
+    for (u, v) in [
+        (0.25, 0.25),
+        (0.75, 0.25),
+        (0.25, 0.75),
+        (0.75, 0.75),
+        (0.5, 0.4),
+    ] {
+        let want = swarf_geom::math::Vec3::new(20.0 * u, 20.0 * v - 10.0, z(v));
+        assert!(
+            (p.point(u, v) - want).length() < 1e-12,
+            "({u}, {v}): {}",
+            p.point(u, v)
+        );
+        assert!((s.point(u, v) - want).length() < 1e-12);
+    }
+    let bb = p.bounding_box();
+    assert!((bb.min.x - 5.0).abs() < 1e-12 && (bb.max.x - 15.0).abs() < 1e-12);
+    assert!((bb.min.y + 5.0).abs() < 1e-12 && (bb.max.y - 5.0).abs() < 1e-12);
+    // The grid of CC points covers the part only.
+    let grid = part.grid(5);
+    let xs: Vec<f64> = grid.iter().map(|cc| p.point(cc.u, cc.v).x).collect();
+    assert!(
+        xs.iter().all(|x| (5.0 - 1e-9..=15.0 + 1e-9).contains(x)),
+        "{xs:?}"
+    );
+    // A range wider than the knots keeps the knots' domain; one that leaves nothing is an error
+    // at its parameter.
+    let wide = patch("-1.,2.,0.,1.").unwrap();
+    assert_eq!(wide.patches[0].surface.domain().u, [0.0, 1.0]);
+    let e = patch("2.,3.,0.,1.").unwrap_err().to_string();
+    assert!(
+        e.contains("U0, U1 = [2, 3] leaves nothing of the knots' [0, 1]"),
+        "{e}"
+    );
+}

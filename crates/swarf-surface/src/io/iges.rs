@@ -1,4 +1,6 @@
-//! IGES 5.3 surfaces: entity 128 (rational B-spline surface) as patches, trimmed by 144
+//! IGES 5.3 surfaces: entity 128 (rational B-spline surface) as patches (restricted to its
+//! parameter range U0–U1 × V0–V1 within the knots' domain, exactly, by knot insertion —
+//! [`NurbsSurface::restricted`]; a range that leaves nothing is an error), trimmed by 144
 //! (trimmed parametric surface) and 142 (curve on a parametric surface); entity 126 (rational
 //! B-spline curve) parsed into [`IgesDocument::curves`].
 //!
@@ -1346,14 +1348,47 @@ impl<'a> Sections<'a> {
         let weights: Vec<Vec<f64>> = (0..nu)
             .map(|iu| (0..nv).map(|jv| w[jv * nu + iu]).collect())
             .collect();
-        NurbsSurface::new(m1, m2, ku, kv, &points, Some(&weights)).map_err(|source| {
-            ReadError::Surface {
-                format: Format::Iges,
-                line: e.line,
-                entity: format!("entity 128 at D{}", e.de),
-                source,
+        let surface_error = |source| ReadError::Surface {
+            format: Format::Iges,
+            line: e.line,
+            entity: format!("entity 128 at D{}", e.de),
+            source,
+        };
+        let s =
+            NurbsSurface::new(m1, m2, ku, kv, &points, Some(&weights)).map_err(surface_error)?;
+        // The parameter range U0, U1, V0, V1 (the last four values) bounds the surface within
+        // its knots, as a 126's V0, V1 bound its curve: the surface is what both allow. Bounds
+        // within 1e-9 of the domain's span of its ends are the ends (rounding, not a cut).
+        let at = 10 + a + b + 4 * nu * nv;
+        let range = [
+            take(2, "parameter range U0, U1")?,
+            take(2, "parameter range V0, V1")?,
+        ];
+        let d = s.domain();
+        let cut = |r: &[f64], dd: [f64; 2]| {
+            let eps = 1e-9 * (dd[1] - dd[0]);
+            [
+                if r[0] <= dd[0] + eps { dd[0] } else { r[0] },
+                if r[1] >= dd[1] - eps { dd[1] } else { r[1] },
+            ]
+        };
+        let (u, v) = (cut(&range[0], d.u), cut(&range[1], d.v));
+        if (u, v) == (d.u, d.v) {
+            return Ok(s);
+        }
+        for (k, r, dd, dir) in [(at, &range[0], d.u, "U"), (at + 2, &range[1], d.v, "V")] {
+            let c = cut(r, dd);
+            if c[0] >= c[1] {
+                return Err(p.error(
+                    k,
+                    format!(
+                        "entity 128 at D{}: its parameter range {dir}0, {dir}1 = [{}, {}] leaves nothing of the knots' [{}, {}]",
+                        e.de, r[0], r[1], dd[0], dd[1]
+                    ),
+                ));
             }
-        })
+        }
+        s.restricted(u, v).map_err(surface_error)
     }
 
     fn curve126(&self, e: &Entry, entries: &[Entry], factor: f64) -> Result<IgesCurve, ReadError> {
