@@ -363,6 +363,44 @@ fn broken_trim_references_are_errors_at_the_pointer() {
         e.starts_with(&format!("IGES line {line}, column {column}: ")),
         "{e}"
     );
+    // The 144's surface names no entry (was: the trim dropped and the surface read whole),
+    // or an entry that is no surface.
+    for (pts, want) in [
+        (
+            "99",
+            "surface PTS points at D99, which is not a directory entry",
+        ),
+        (
+            "0",
+            "surface PTS points at D0, which is not a directory entry",
+        ),
+        (
+            "3",
+            "surface PTS points at D3, an entity 110; expected a surface (128)",
+        ),
+    ] {
+        let mut f = Iges::default();
+        f.add(128, PLATE);
+        f.add(110, "0.2,0.2,0.,0.4,0.4,0."); // D3
+        let hole = polygon(&mut f, &[[0.2, 0.2], [0.8, 0.2], [0.5, 0.8]]);
+        let c = f.add(142, &format!("0,1,{hole},0,1"));
+        let t = f.add(144, &format!("{pts},0,1,0,{c}"));
+        let text = f.text("2,2HMM");
+        let (l, column, message) = syntax_error(&text);
+        assert_eq!((l, message.as_str()), (p_line(&text, t), want));
+        assert!(column > 1, "{column}");
+    }
+    // A 144 on a surface kind not read is skipped with it, not an error.
+    let mut f = Iges::default();
+    f.add(128, PLATE);
+    let sphere = f.add(196, "0,5.,0");
+    f.add(144, &format!("{sphere},0,0,0"));
+    let s = iges::parse(&f.text("2,2HMM")).unwrap();
+    assert_eq!(s.patches.len(), 1);
+    assert!(s
+        .notes
+        .iter()
+        .any(|n| matches!(n, ReadNote::UnsupportedSurface { kind, .. } if kind == "IGES 196")));
     // The 144's boundary is not a 142.
     let mut f = Iges::default();
     let plate = f.add(128, PLATE);

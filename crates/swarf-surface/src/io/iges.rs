@@ -34,7 +34,9 @@
 //! [`ReadNote::TrimNotHonoured`] saying why. A second 144 on the same 128 gets its own copy of
 //! the patch (at the end of the list). A boundary pointer that names no entry, or an entry of
 //! the wrong type, is an error at that parameter (in a model-space curve: a note, the patch
-//! untrimmed). [`IgesDocument::trims`] still lists every 144 as found.
+//! untrimmed); so is a 144's surface pointer (PTS) that names no entry or an entry that is not a
+//! surface (one on a surface kind not read is skipped with that surface). [`IgesDocument::trims`]
+//! still lists every 144 as found.
 //!
 //! The fixed-column format: 80-column records, section letter in column 73 (S, G, D, P, T),
 //! sequence number in 74–80. Columns are bytes: text that is not ASCII (accents in the Start
@@ -165,12 +167,10 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
                 });
             }
             126 => doc.curves.push(file.curve126(e, &entries, global.factor)?),
-            114 | 118 | 120 | 122 | 140 | 190 | 192 | 194 | 196 | 198 => {
-                skipped.push(ReadNote::UnsupportedSurface {
-                    entity: format!("D{}", e.de),
-                    kind: format!("IGES {}", e.kind),
-                })
-            }
+            k if SKIPPED_SURFACES.contains(&k) => skipped.push(ReadNote::UnsupportedSurface {
+                entity: format!("D{}", e.de),
+                kind: format!("IGES {}", e.kind),
+            }),
             _ => {}
         }
     }
@@ -202,6 +202,26 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
         let inner = (0..n2 as usize)
             .map(|k| p.int(5 + k, "PTI").map(|v| v as usize))
             .collect::<Result<Vec<_>, _>>()?;
+        // The surface: a 128 read above, or a surface of a kind not read (skipped with its
+        // note); anything else is a broken pointer, as a boundary's would be.
+        match entry_at(&entries, pts) {
+            None => {
+                return Err(p.error(
+                    1,
+                    format!("surface PTS points at D{pts}, which is not a directory entry"),
+                ))
+            }
+            Some(s) if s.kind != 128 && !SKIPPED_SURFACES.contains(&s.kind) => {
+                return Err(p.error(
+                    1,
+                    format!(
+                        "surface PTS points at D{pts}, an entity {}; expected a surface (128)",
+                        s.kind
+                    ),
+                ))
+            }
+            Some(_) => {}
+        }
         let mut patch = usize::try_from(pts)
             .ok()
             .and_then(|d| patch_of_de.get(&d).copied());
@@ -318,6 +338,10 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
     doc.surface.notes.extend(skipped);
     Ok(doc)
 }
+
+/// Surface entities that are not read: a patch on one is skipped with a
+/// [`ReadNote::UnsupportedSurface`].
+const SKIPPED_SURFACES: [u32; 10] = [114, 118, 120, 122, 140, 190, 192, 194, 196, 198];
 
 /// Most points of all the trims of a file (a guard against files that repeat a costly trim).
 const MAX_FILE_TRIM_POINTS: usize = 4_000_000;
