@@ -447,3 +447,31 @@ fn broken_trim_references_are_errors_at_the_pointer() {
         "entity 142 at D5 (a boundary of the 144 at D7): trim loop 0 has 2 point(s); a loop needs at least 3"
     );
 }
+
+#[test]
+fn directory_entries_out_of_order_are_read_by_their_sequence_numbers() {
+    // The same trimmed plate with its D section's entries (pairs of records) listed last
+    // first: pointers name entries by sequence number, so the 144 still trims the 128 (it
+    // was read as pointing at itself, and once PTS was checked, as an error).
+    let text = plate_with(|f, plate| {
+        let hole = polygon(f, &[[0.2, 0.2], [0.8, 0.2], [0.5, 0.8]]);
+        f.add(142, &format!("0,{plate},{hole},0,1"))
+    });
+    let lines: Vec<&str> = text.lines().collect();
+    let d: Vec<usize> = (0..lines.len())
+        .filter(|&i| &lines[i][72..73] == "D")
+        .collect();
+    let pairs: Vec<[&str; 2]> = d.chunks(2).map(|c| [lines[c[0]], lines[c[1]]]).collect();
+    let mut reversed: Vec<&str> = lines[..d[0]].to_vec();
+    reversed.extend(pairs.iter().rev().flatten());
+    reversed.extend(&lines[d[d.len() - 1] + 1..]);
+    let reversed = reversed.join("\n") + "\n";
+    assert_ne!(reversed, text);
+    let (a, b) = (iges::parse(&text).unwrap(), iges::parse(&reversed).unwrap());
+    assert_eq!(a.patches, b.patches);
+    assert!(b.patches[0].trim.is_some());
+    assert!(b
+        .notes
+        .iter()
+        .any(|n| matches!(n, ReadNote::Trimmed { patch: 0, .. })));
+}

@@ -39,7 +39,8 @@
 //! still lists every 144 as found.
 //!
 //! The fixed-column format: 80-column records, section letter in column 73 (S, G, D, P, T),
-//! sequence number in 74–80. Columns are bytes: text that is not ASCII (accents in the Start
+//! sequence number in 74–80 (directory entries listed out of order are put in the order of
+//! their sequence numbers, which pointers name). Columns are bytes: text that is not ASCII (accents in the Start
 //! section and in strings of European files) is read one byte a column (Latin-1), or one UTF-8
 //! character a column when the record was padded to 80 characters (the layout that puts the
 //! section letter in column 73 wins); such columns read as `?` in strings, so they never
@@ -908,10 +909,17 @@ impl Sampler<'_, '_> {
 /// column that is not ASCII is `?` here; `text` keeps it).
 struct Record<'a> {
     line: usize,
+    /// The sequence number (columns 74–80), if it is one.
+    seq: Option<usize>,
     data: Cow<'a, str>,
     /// The columns as characters, for a record that is not all ASCII (labels keep their
     /// accents).
     text: Option<Vec<char>>,
+}
+
+/// The sequence number in columns 74–80, if they hold one.
+fn sequence(cols: &[u8]) -> Option<usize> {
+    std::str::from_utf8(cols).ok()?.trim().parse().ok()
 }
 
 /// A record's columns, or `None` when it has no section letter in column 73. An ASCII record
@@ -989,6 +997,7 @@ impl<'a> Sections<'a> {
                 let data = std::str::from_utf8(&raw[..72]).unwrap_or_default();
                 let rec = Record {
                     line,
+                    seq: sequence(&raw[73..raw.len().min(80)]),
                     data: Cow::Borrowed(data),
                     text: None,
                 };
@@ -1011,8 +1020,10 @@ impl<'a> Sections<'a> {
                     .map(|&c| if c.is_ascii() { c } else { '?' })
                     .collect();
                 let letter = cols[72] as u8;
+                let seq: String = cols[73..cols.len().min(80)].iter().collect();
                 let rec = Record {
                     line,
+                    seq: sequence(seq.as_bytes()),
                     data: Cow::Owned(data),
                     text: Some(cols),
                 };
@@ -1205,6 +1216,29 @@ impl<'a> Sections<'a> {
                 transform: int(a, 6, "transformation matrix pointer")?,
                 label: (!label.is_empty()).then_some(label),
             });
+        }
+        // Pointers name entries by sequence number. Entries out of order whose sequence
+        // numbers are those of the positions (1, 3, 5…, each pair n, n + 1) are put in order;
+        // otherwise the positions count.
+        let seqs: Option<Vec<usize>> = self
+            .d
+            .chunks(2)
+            .map(|pair| match (pair[0].seq, pair[1].seq) {
+                (Some(a), Some(b)) if b == a + 1 => Some(a),
+                _ => None,
+            })
+            .collect();
+        if let Some(seqs) = seqs {
+            let mut sorted = seqs.clone();
+            sorted.sort_unstable();
+            if sorted.iter().enumerate().all(|(k, &s)| s == 2 * k + 1) && sorted != seqs {
+                let mut order: Vec<(usize, Entry)> = seqs.into_iter().zip(out).collect();
+                order.sort_unstable_by_key(|(s, _)| *s);
+                out = order
+                    .into_iter()
+                    .map(|(s, e)| Entry { de: s, ..e })
+                    .collect();
+            }
         }
         Ok(out)
     }
