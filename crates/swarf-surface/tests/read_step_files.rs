@@ -251,8 +251,19 @@ fn malformed_step_files_give_positions_and_reasons() {
         ),
         e => panic!("{e}"),
     }
-    // Decreasing knots are caught by the NURBS validation, with the entity.
+    // Decreasing knots are caught by the NURBS validation, with the entity, said once along
+    // the error's chain (the CLI prints the chain; the reason was also the source and came
+    // twice: "#2: knots in v: knot 3 … : knots in v: knot 3 …").
     let t = t.replace("(2,1),(0.,1.),(0.,1.)", "(2,2),(0.,1.),(1.,0.)");
+    let e = err(&t);
+    let mut chain = vec![e.to_string()];
+    let mut at: &dyn std::error::Error = &e;
+    while let Some(s) = at.source() {
+        chain.push(s.to_string());
+        at = s;
+    }
+    let chain = chain.join(": ");
+    assert_eq!(chain.matches("is smaller than knot").count(), 1, "{chain}");
     match err(&t) {
         ReadError::Surface {
             line: 4, entity, ..

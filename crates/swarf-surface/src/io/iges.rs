@@ -677,7 +677,7 @@ impl Sampler<'_, '_> {
             }),
             Err(err) => Err(TrimFailure::ModelUnreadable {
                 de: e.de,
-                source: Box::new(err),
+                reason: Box::new(err),
             }),
         };
         Ok(match (mapped, failed) {
@@ -740,7 +740,7 @@ impl Sampler<'_, '_> {
                 }
                 let spline = match c.spline() {
                     Ok(spline) => spline,
-                    Err(source) => return Ok(Err(TrimFailure::Curve126 { de: e.de, source })),
+                    Err(reason) => return Ok(Err(TrimFailure::Curve126 { de: e.de, reason })),
                 };
                 let mut out = Vec::new();
                 for s in m..n {
@@ -1406,11 +1406,11 @@ impl<'a> Sections<'a> {
         let weights: Vec<Vec<f64>> = (0..nu)
             .map(|iu| (0..nv).map(|jv| w[jv * nu + iu]).collect())
             .collect();
-        let surface_error = |source| ReadError::Surface {
+        let surface_error = |reason| ReadError::Surface {
             format: Format::Iges,
             line: e.line,
             entity: format!("entity 128 at D{}", e.de),
-            source,
+            reason,
         };
         let s =
             NurbsSurface::new(m1, m2, ku, kv, &points, Some(&weights)).map_err(surface_error)?;

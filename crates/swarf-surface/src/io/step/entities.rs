@@ -574,11 +574,11 @@ impl Model<'_> {
             None => None,
         };
         let s = NurbsSurface::new(du, dv, knots_u, knots_v, &points, weights.as_deref()).map_err(
-            |source| ReadError::Surface {
+            |reason| ReadError::Surface {
                 format: Format::Step,
                 line: self.line(id),
                 entity: format!("#{id}"),
-                source,
+                reason,
             },
         )?;
         Ok((Surface::Nurbs(s), name))
