@@ -78,6 +78,8 @@ fn clamp_interference_and_floor_gouge_are_found_located_and_measured() {
         "max_interference_mm",
         "certified",
         "unresolved_searches",
+        "skipped_faces",
+        "skipped_face_notes",
         "nodes",
         "tolerance_mm",
         "accuracy_mm",
@@ -89,6 +91,10 @@ fn clamp_interference_and_floor_gouge_are_found_located_and_measured() {
     assert_eq!(s["moves"], 7);
     assert_eq!(s["points"], 8);
     assert_eq!(s["certified"], true);
+    assert_eq!(
+        (&s["skipped_faces"], &s["skipped_face_notes"]),
+        (&0.into(), &serde_json::json!([]))
+    );
     // The plunge: 0.5 mm into the floor; the clamp: 1 mm deep at the end of line 3 (each to
     // the certificate gap, 1e-4 mm or 0.1 % of the depth).
     assert!(
@@ -151,6 +157,84 @@ fn without_the_clamp_the_pass_is_clear() {
     assert_eq!(s["interfering_moves"], 1, "{s}");
     let v = rows(&dir.join("out/violations.csv"));
     assert!(v.iter().all(|r| r["line"] != "3"), "{v:?}");
+}
+
+#[test]
+fn a_surface_with_skipped_faces_is_not_certified() {
+    // A STEP part of two faces: a floor plane at z = 0 and a wall on a surface kind the
+    // reader does not evaluate (skipped with a note on stderr). The summary said "certified":
+    // true although the wall was never checked; it now lists the skipped face and withdraws
+    // the certificate, in summary.json as in the printed JSON.
+    let dir = swarf_testdata::scratch_dir("gouge-skipped");
+    let step = "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n\
+        #1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));\n\
+        #4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=PLANE('',#4);\n\
+        #6=CARTESIAN_POINT('',(-40.,-40.,0.));#7=VERTEX_POINT('',#6);\n\
+        #8=CARTESIAN_POINT('',(40.,40.,0.));#9=VERTEX_POINT('',#8);\n\
+        #10=VERTEX_LOOP('',#7);#11=FACE_BOUND('',#10,.T.);#12=VERTEX_LOOP('',#9);#13=FACE_BOUND('',#12,.T.);\n\
+        #14=ADVANCED_FACE('floor',(#11,#13),#5,.T.);\n\
+        #20=CARTESIAN_POINT('',(30.,0.,0.));#21=DIRECTION('',(0.,1.,0.));#22=VECTOR('',#21,1.);\n\
+        #23=LINE('',#20,#22);#24=VECTOR('',#2,10.);#25=SURFACE_OF_LINEAR_EXTRUSION('',#23,#24);\n\
+        #26=ADVANCED_FACE('wall',(),#25,.T.);\n\
+        ENDSEC;\nEND-ISO-10303-21;\n";
+    std::fs::write(dir.join("part.step"), step).unwrap();
+    std::fs::write(
+        dir.join("job.ngc"),
+        "G0 X-20 Y0 Z5\nG1 Z0.5 F300\nG1 X20\nG0 Z5\n",
+    )
+    .unwrap();
+    let p = |f: &str| dir.join(f).to_str().unwrap().to_string();
+    let (surface, program, out) = (p("part.step"), p("job.ngc"), p("out"));
+    let o = swarf(&[
+        "gouge",
+        "--surface",
+        &surface,
+        "--program",
+        &program,
+        "--tool",
+        "flat:d=10",
+        "--out",
+        &out,
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("SURFACE_OF_LINEAR_EXTRUSION is not supported; skipped"));
+    let printed = json(&o);
+    let file: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/summary.json")).unwrap())
+            .unwrap();
+    for s in [&printed, &file] {
+        assert_eq!(s["skipped_faces"], 1, "{s}");
+        assert_eq!(s["certified"], false, "{s}");
+        assert_eq!(s["unresolved_searches"], 0, "{s}");
+        assert_eq!(s["violations"], 0, "{s}");
+        let notes = s["skipped_face_notes"].as_array().unwrap();
+        assert_eq!(notes.len(), 1);
+        assert!(
+            notes[0]
+                .as_str()
+                .unwrap()
+                .contains("#25 (face #26): surface type SURFACE_OF_LINEAR_EXTRUSION"),
+            "{s}"
+        );
+    }
+    // The printed report says why it is not certified.
+    let o = swarf(&[
+        "gouge",
+        "--surface",
+        &surface,
+        "--program",
+        &program,
+        "--tool",
+        "flat:d=10",
+        "--out",
+        &out,
+    ]);
+    assert!(
+        stdout(&o).contains("not certified: 1 face(s) of the surface were not read"),
+        "{}",
+        stdout(&o)
+    );
 }
 
 #[test]

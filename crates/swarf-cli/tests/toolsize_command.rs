@@ -211,3 +211,48 @@ fn outputs_are_written_as_a_set_or_not_at_all() {
     assert!(left.is_empty(), "{left:?}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn the_text_summary_prints_numbers_not_debug_options() {
+    // Without --json the radii were printed as Rust's `Some(5.0)` / `None`.
+    let dir = temp_dir("toolsize-text");
+    let sphere = sphere_step(&dir, 5.0);
+    // A plane facing up: nothing limits a ball on it.
+    let plane = dir.join("plane.step");
+    std::fs::write(
+        &plane,
+        "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n#1=CARTESIAN_POINT('',(0.,0.,0.));\n\
+         #2=DIRECTION('',(0.,0.,1.));\n#3=DIRECTION('',(1.,0.,0.));\n\
+         #4=AXIS2_PLACEMENT_3D('',#1,#2,#3);\n#5=PLANE('floor',#4);\nENDSEC;\nEND-ISO-10303-21;\n",
+    )
+    .unwrap();
+    let run = |surface: &str, flip: bool| {
+        let out = dir.join(if flip { "flipped" } else { "as-is" });
+        let mut args = vec![
+            "toolsize",
+            "--surface",
+            surface,
+            "--cutter",
+            "ball",
+            "--grid",
+            "5",
+        ];
+        if flip {
+            args.push("--flip");
+        }
+        args.extend(["--out", out.to_str().unwrap()]);
+        let o = swarf(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+        stdout(&o)
+    };
+    // Inside the sphere: bounded points, the largest ball the sphere's radius.
+    let text = run(&sphere, true);
+    assert!(!text.contains("Some(") && !text.contains("None"), "{text}");
+    assert!(text.contains("max 5.000 mm"), "{text}");
+    // On the plane: no bounded point, no radius to give.
+    let text = run(plane.to_str().unwrap(), false);
+    assert!(
+        text.contains("0 bounded, radius min none median none max none mm"),
+        "{text}"
+    );
+}

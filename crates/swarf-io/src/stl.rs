@@ -2,11 +2,29 @@
 //! a `u32` count and 50 bytes per triangle (normal and corners as little-endian `f32`, a zero
 //! `u16`), which every viewer and slicer opens; swarf encodes it in blocks in parallel (on one
 //! thread a 5-million-triangle envelope's STL took 0.4 s to encode, the larger part of its
-//! output time). The reader is swarf's own too, so that it can tell binary from ASCII robustly
-//! (binary files whose 80-byte header starts with `solid` exist: a file is binary exactly when
-//! its size is `84 + 50 × count` for the count in its header), report what it found where, and
-//! never panic on garbage. Triangles read are welded on identical positions so that
-//! closedness can be checked by index.
+//! output time). The reader is swarf's own too, so that it can tell binary from ASCII robustly,
+//! report what it found where, and never panic on garbage. Triangles read are welded on
+//! identical positions so that closedness can be checked by index.
+//!
+//! # What the reader accepts
+//! Files from real exporters, as common viewers open them:
+//! - **Binary or ASCII.** A file is binary when its size is `84 + 50 × count` for the count in
+//!   its header, or when it is not text (a byte below 0x20 other than tab, line feed, carriage
+//!   return, vertical tab and form feed, before the trailing junk below): binary files whose
+//!   80-byte header starts with `solid` exist. A text file starting with `solid` (in any case,
+//!   after a UTF-8 byte-order mark and white space) is ASCII.
+//! - **Binary counts that disagree with the size**, read without a note (the reader has no
+//!   channel for notes): a header count of 0 in a file of exactly `84 + 50 × n` bytes (streaming
+//!   exporters fill the count in last, or never) reads the `n` triangles; bytes after the
+//!   stated count's records (padding) are ignored. A count larger than the data is an error
+//!   giving the count, the size it needs and the file's size.
+//! - **ASCII leniency.** Keywords in any case (`SOLID`, `Facet`, `OUTER LOOP`, `ENDSOLID`…);
+//!   bytes that are not UTF-8 (Latin-1 names and comments) decoded leniently — only the
+//!   keywords and numbers matter; anything after the last `endsolid` made only of white space,
+//!   NUL and Ctrl-Z (0x1A) bytes ignored; the facet normal's three tokens not read (normals are
+//!   recomputed from the corners, so `nan`, `-1.#IND00` or `inf` there is no error). Vertex
+//!   coordinates must be finite numbers. Control characters in error messages are escaped
+//!   (`\u{1a}`).
 
 use crate::atomic::write_atomic;
 use crate::error::IoError;
@@ -126,38 +144,83 @@ pub fn read_stl(path: &Path) -> Result<TriMesh, IoError> {
 
 /// Parses STL bytes; `path` only names the source in errors.
 pub fn parse_stl(bytes: &[u8], path: &Path) -> Result<TriMesh, IoError> {
-    let binary_size = (bytes.len() >= 84).then(|| {
-        let count = u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as u64;
-        (count, 84 + 50 * count)
-    });
-    if let Some((count, size)) = binary_size {
-        if size == bytes.len() as u64 {
+    let header_count = (bytes.len() >= 84)
+        .then(|| u32::from_le_bytes([bytes[80], bytes[81], bytes[82], bytes[83]]) as u64);
+    if let Some(count) = header_count {
+        if 84 + 50 * count == bytes.len() as u64 {
             return parse_binary(bytes, count, path);
         }
     }
-    let start = bytes
+    // Trailing junk (Ctrl-Z, NUL padding, white space) is no evidence of binary data.
+    let end = bytes.len()
+        - bytes
+            .iter()
+            .rev()
+            .take_while(|&&b| b == 0 || b == 0x1a || b.is_ascii_whitespace())
+            .count();
+    let body = &bytes[..end];
+    let text = body.strip_prefix(b"\xef\xbb\xbf").unwrap_or(body);
+    let lead = text.iter().take_while(|b| b.is_ascii_whitespace()).count();
+    let solid = text.len() >= lead + 5 && text[lead..lead + 5].eq_ignore_ascii_case(b"solid");
+    let control = body
         .iter()
-        .position(|b| !b.is_ascii_whitespace())
-        .unwrap_or(bytes.len());
-    if bytes[start..].starts_with(b"solid") {
-        return parse_ascii(bytes, path);
+        .position(|&b| b < 0x20 && !matches!(b, b'\t' | b'\n' | b'\r' | 0x0b | 0x0c));
+    if solid && control.is_none() {
+        return parse_ascii(text, path);
     }
-    let what = match binary_size {
-        Some((count, size)) => format!(
-            "{} bytes, not starting with `solid`; as binary its header claims {count} triangles, \
-             which needs {size} bytes",
-            bytes.len()
+    let not_text = match control.filter(|_| solid) {
+        Some(at) => format!(
+            "starts with `solid` but is not text (byte {at} is {}); ",
+            shown(&char::from(bytes[at]).to_string())
         ),
-        None => format!(
-            "{} bytes, too short for a binary STL and not starting with `solid`",
-            bytes.len()
-        ),
+        None => "not starting with `solid`; ".into(),
     };
+    let expected =
+        "a binary STL (84 + 50 × triangle count bytes) or an ASCII STL starting with `solid`";
+    let Some(count) = header_count else {
+        return Err(IoError::malformed(
+            path,
+            format!(
+                "{} bytes, too short for a binary STL and {not_text}",
+                bytes.len()
+            )
+            .trim_end_matches("; ")
+            .to_string(),
+            expected,
+        ));
+    };
+    let records = (bytes.len() as u64 - 84) / RECORD as u64;
+    if count == 0 && (bytes.len() as u64 - 84) % RECORD as u64 == 0 {
+        // A streaming exporter that never filled in the count: the size tells it.
+        return parse_binary(bytes, records, path);
+    }
+    if count <= records {
+        // Padding after the stated records.
+        return parse_binary(bytes, count, path);
+    }
     Err(IoError::malformed(
         path,
-        what,
-        "a binary STL (84 + 50 × triangle count bytes) or an ASCII STL starting with `solid`",
+        format!(
+            "{} bytes, {not_text}as binary its header claims {count} triangles, which needs {} \
+             bytes",
+            bytes.len(),
+            84 + 50 * count
+        ),
+        expected,
     ))
+}
+
+/// `w` with its control characters escaped (`\u{1a}`), for error messages.
+fn shown(w: &str) -> String {
+    w.chars()
+        .map(|c| {
+            if c.is_control() {
+                c.escape_unicode().to_string()
+            } else {
+                c.to_string()
+            }
+        })
+        .collect()
 }
 
 fn parse_binary(bytes: &[u8], count: u64, path: &Path) -> Result<TriMesh, IoError> {
@@ -191,31 +254,20 @@ fn parse_binary(bytes: &[u8], count: u64, path: &Path) -> Result<TriMesh, IoErro
     Ok(weld_soup(&soup))
 }
 
+/// Reads ASCII STL from `bytes` (the byte-order mark and trailing junk already cut off), keywords in any case, text that is not UTF-8 decoded leniently.
 fn parse_ascii(bytes: &[u8], path: &Path) -> Result<TriMesh, IoError> {
-    let text = std::str::from_utf8(bytes).map_err(|e| {
-        IoError::malformed(
-            path,
-            format!(
-                "invalid UTF-8 at byte {} in a file starting with `solid`",
-                e.valid_up_to()
-            ),
-            "ASCII text (or a binary STL whose size matches its triangle count)",
-        )
-    })?;
+    let text = String::from_utf8_lossy(bytes);
     let mut tokens = text
         .lines()
         .enumerate()
         .flat_map(|(l, line)| line.split_whitespace().map(move |w| (l + 1, w)));
     let mut soup: Vec<[Vec3; 3]> = Vec::new();
     let eof = |expected: &str| IoError::malformed(path, "end of file", format!("`{expected}`"));
+    let found = |l: usize, w: &str| format!("line {l}: `{}`", shown(w));
     let expect = |tok: Option<(usize, &str)>, want: &str| -> Result<(), IoError> {
         match tok {
-            Some((_, w)) if w == want => Ok(()),
-            Some((l, w)) => Err(IoError::malformed(
-                path,
-                format!("line {l}: `{w}`"),
-                format!("`{want}`"),
-            )),
+            Some((_, w)) if w.eq_ignore_ascii_case(want) => Ok(()),
+            Some((l, w)) => Err(IoError::malformed(path, found(l, w), format!("`{want}`"))),
             None => Err(eof(want)),
         }
     };
@@ -223,59 +275,48 @@ fn parse_ascii(bytes: &[u8], path: &Path) -> Result<TriMesh, IoError> {
         match tok {
             Some((l, w)) => match w.parse::<f64>() {
                 Ok(x) if x.is_finite() => Ok(x),
-                _ => Err(IoError::malformed(
-                    path,
-                    format!("line {l}: `{w}`"),
-                    "a finite number",
-                )),
+                _ => Err(IoError::malformed(path, found(l, w), "a finite number")),
             },
             None => Err(eof("a number")),
         }
     };
     let mut in_solid = false;
     while let Some((l, w)) = tokens.next() {
-        match w {
-            "solid" if !in_solid => {
-                in_solid = true;
-                // The name runs to the end of the line.
-                while tokens.clone().next().is_some_and(|(l2, _)| l2 == l) {
-                    tokens.next();
-                }
+        let is = |kw: &str| w.eq_ignore_ascii_case(kw);
+        if (is("solid") && !in_solid) || (is("endsolid") && in_solid) {
+            in_solid = !in_solid;
+            // The name runs to the end of the line.
+            while tokens.clone().next().is_some_and(|(l2, _)| l2 == l) {
+                tokens.next();
             }
-            "endsolid" if in_solid => {
-                in_solid = false;
-                while tokens.clone().next().is_some_and(|(l2, _)| l2 == l) {
-                    tokens.next();
-                }
+        } else if is("facet") && in_solid {
+            expect(tokens.next(), "normal")?;
+            // The normal is recomputed from the corners: exporters write `nan`, `-1.#IND00`…
+            // for degenerate facets, and any token is taken.
+            for _ in 0..3 {
+                tokens.next().ok_or_else(|| eof("a normal component"))?;
             }
-            "facet" if in_solid => {
-                expect(tokens.next(), "normal")?;
-                for _ in 0..3 {
-                    number(tokens.next())?;
-                }
-                expect(tokens.next(), "outer")?;
-                expect(tokens.next(), "loop")?;
-                let mut tri = [Vec3::ZERO; 3];
-                for p in &mut tri {
-                    expect(tokens.next(), "vertex")?;
-                    *p = Vec3::new(
-                        number(tokens.next())?,
-                        number(tokens.next())?,
-                        number(tokens.next())?,
-                    );
-                }
-                expect(tokens.next(), "endloop")?;
-                expect(tokens.next(), "endfacet")?;
-                soup.push(tri);
+            expect(tokens.next(), "outer")?;
+            expect(tokens.next(), "loop")?;
+            let mut tri = [Vec3::ZERO; 3];
+            for p in &mut tri {
+                expect(tokens.next(), "vertex")?;
+                *p = Vec3::new(
+                    number(tokens.next())?,
+                    number(tokens.next())?,
+                    number(tokens.next())?,
+                );
             }
-            _ => {
-                let want = if in_solid {
-                    "`facet` or `endsolid`"
-                } else {
-                    "`solid`"
-                };
-                return Err(IoError::malformed(path, format!("line {l}: `{w}`"), want));
-            }
+            expect(tokens.next(), "endloop")?;
+            expect(tokens.next(), "endfacet")?;
+            soup.push(tri);
+        } else {
+            let want = if in_solid {
+                "`facet` or `endsolid`"
+            } else {
+                "`solid`"
+            };
+            return Err(IoError::malformed(path, found(l, w), want));
         }
     }
     if in_solid {
@@ -318,6 +359,195 @@ mod tests {
         let ok = b"solid t\nfacet normal 0 0 1\nouter loop\nvertex 0 0 0\nvertex 1 0 0\nvertex 0 1 0\nendloop\nendfacet\nendsolid t\n";
         let m = parse_stl(ok, p).unwrap();
         assert_eq!((m.vertices.len(), m.triangles.len()), (3, 1));
+    }
+
+    /// A closed tetrahedron as binary STL (`count` written in the header, `extra` bytes after
+    /// the records) and the ASCII facets of the same triangles, keywords as `kw` spells them.
+    fn tetrahedron() -> TriMesh {
+        TriMesh::from_parts(
+            vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z],
+            vec![[0, 2, 1], [0, 1, 3], [0, 3, 2], [1, 2, 3]],
+        )
+    }
+
+    fn binary(header: &[u8], count: u32, extra: &[u8]) -> Vec<u8> {
+        let mut bytes = Vec::new();
+        write_stl_to(&mut bytes, &tetrahedron()).unwrap();
+        bytes[..header.len()].copy_from_slice(header);
+        bytes[80..84].copy_from_slice(&count.to_le_bytes());
+        bytes.extend_from_slice(extra);
+        bytes
+    }
+
+    fn ascii(kw: [&str; 7], normal: &str) -> String {
+        let [solid, facet, outer, vertex, endloop, endfacet, endsolid] = kw;
+        let m = tetrahedron();
+        let mut s = format!("{solid} part\n");
+        for t in 0..m.triangles.len() {
+            s += &format!("  {facet} {normal}\n    {outer}\n");
+            for p in m.corners(t) {
+                s += &format!("      {vertex} {} {} {}\n", p.x, p.y, p.z);
+            }
+            s += &format!("    {endloop}\n  {endfacet}\n");
+        }
+        s + &format!("{endsolid} part\n")
+    }
+
+    const LOWER: [&str; 7] = [
+        "solid",
+        "facet",
+        "outer loop",
+        "vertex",
+        "endloop",
+        "endfacet",
+        "endsolid",
+    ];
+
+    fn closed_tetrahedron(m: &TriMesh) -> bool {
+        m.triangles.len() == 4
+            && m.edge_report().is_clean()
+            && (m.volume() - 1.0 / 6.0).abs() < 1e-12
+    }
+
+    #[test]
+    fn ascii_keywords_are_read_in_any_case() {
+        let p = Path::new("x.stl");
+        for kw in [
+            [
+                "SOLID",
+                "FACET",
+                "OUTER LOOP",
+                "VERTEX",
+                "ENDLOOP",
+                "ENDFACET",
+                "ENDSOLID",
+            ],
+            [
+                "Solid",
+                "Facet",
+                "Outer Loop",
+                "Vertex",
+                "EndLoop",
+                "EndFacet",
+                "EndSolid",
+            ],
+        ] {
+            let text = ascii(kw, "NORMAL 0 0 1");
+            let m = parse_stl(text.as_bytes(), p).unwrap_or_else(|e| panic!("{kw:?}: {e}"));
+            assert!(closed_tetrahedron(&m), "{kw:?}");
+        }
+        // Misspelt keywords are still refused, whatever their case.
+        let bad = ascii(LOWER, "normal 0 0 1").replacen("outer loop", "OUTER LOOPS", 1);
+        let e = parse_stl(bad.as_bytes(), p).unwrap_err().to_string();
+        assert!(e.contains("line 3") && e.contains("`LOOPS`"), "{e}");
+    }
+
+    #[test]
+    fn ascii_with_bom_latin1_names_and_trailing_junk_is_read() {
+        let p = Path::new("x.stl");
+        let text = ascii(LOWER, "normal 0 0 1");
+        let mut bom = b"\xef\xbb\xbf".to_vec();
+        bom.extend_from_slice(text.as_bytes());
+        // "Pièce" in Latin-1: not UTF-8.
+        let latin1 = [
+            b"solid Pi\xe8ce usin\xe9e\n".as_slice(),
+            &text.as_bytes()[11..],
+        ]
+        .concat();
+        assert!(std::str::from_utf8(&latin1).is_err());
+        for (what, bytes) in [
+            ("BOM", bom),
+            ("Latin-1 name", latin1),
+            ("Ctrl-Z", [text.as_bytes(), b"\x1a"].concat()),
+            (
+                "NUL padding",
+                [text.as_bytes(), &[0u8; 37], b"\n \x1a"].concat(),
+            ),
+        ] {
+            let m = parse_stl(&bytes, p).unwrap_or_else(|e| panic!("{what}: {e}"));
+            assert!(closed_tetrahedron(&m), "{what}");
+        }
+        // Junk that is not trailing makes the file no text: an error naming the byte, the
+        // control character escaped.
+        let mid = [text.as_bytes(), b"\x1ajunk\n"].concat();
+        let e = parse_stl(&mid, p).unwrap_err().to_string();
+        let at = text.len();
+        assert!(
+            e.contains(&format!(r"not text (byte {at} is \u{{1a}})")) && !e.contains('\x1a'),
+            "{e}"
+        );
+        // Text after the last `endsolid`: an ASCII error, escaped too.
+        let after = [text.as_bytes(), b"endsolid\x7f\n"].concat();
+        let e = parse_stl(&after, p).unwrap_err().to_string();
+        assert!(
+            e.contains(r"`endsolid\u{7f}`") && e.contains("expected `solid`"),
+            "{e}"
+        );
+    }
+
+    #[test]
+    fn non_finite_ascii_normals_are_not_read_but_vertices_must_be_finite() {
+        let p = Path::new("x.stl");
+        for normal in [
+            "nan nan nan",
+            "-nan 0 1",
+            "1.#QNAN0 -1.#IND00 inf",
+            "-1.#IND00 x 0",
+        ] {
+            let text = ascii(LOWER, &format!("normal {normal}"));
+            let m = parse_stl(text.as_bytes(), p).unwrap_or_else(|e| panic!("{normal}: {e}"));
+            assert!(closed_tetrahedron(&m), "{normal}");
+        }
+        let text = ascii(LOWER, "normal 0 0 1").replacen("vertex 0 0 0", "vertex nan 0 0", 1);
+        let e = parse_stl(text.as_bytes(), p).unwrap_err().to_string();
+        assert!(e.contains("`nan`") && e.contains("finite number"), "{e}");
+    }
+
+    #[test]
+    fn binary_and_ascii_are_told_apart_by_content_not_by_the_word_solid() {
+        let p = Path::new("x.stl");
+        // Binary, header starting with "solid" (and with white space before it).
+        for header in [b"solid part".as_slice(), b"  SOLID x"] {
+            let m = parse_stl(&binary(header, 4, b""), p).unwrap();
+            assert!(closed_tetrahedron(&m), "{header:?}");
+        }
+        // ASCII starting with "SOLID".
+        let text = ascii(LOWER, "normal 0 0 1").replacen("solid", "SOLID", 1);
+        assert!(closed_tetrahedron(&parse_stl(text.as_bytes(), p).unwrap()));
+    }
+
+    #[test]
+    fn binary_counts_that_disagree_with_the_size() {
+        let p = Path::new("x.stl");
+        // Count 0 in a file of exactly four records: a streaming exporter's.
+        assert!(closed_tetrahedron(
+            &parse_stl(&binary(b"", 0, b""), p).unwrap()
+        ));
+        // Padding after the stated records, with or without "solid" in the header.
+        for header in [b"".as_slice(), b"solid part"] {
+            for extra in [&[0u8; 2][..], &[0u8; 50], &[0x1a]] {
+                let m = parse_stl(&binary(header, 4, extra), p).unwrap();
+                assert!(closed_tetrahedron(&m), "{header:?} + {} bytes", extra.len());
+            }
+        }
+        // A count larger than the data: an error with the count and the sizes, also when the
+        // header starts with "solid" (no word about UTF-8).
+        for header in [b"".as_slice(), b"solid part"] {
+            let e = parse_stl(&binary(header, 5, b""), p)
+                .unwrap_err()
+                .to_string();
+            assert!(
+                e.contains("284 bytes")
+                    && e.contains("claims 5 triangles")
+                    && e.contains("334 bytes")
+                    && !e.contains("UTF-8"),
+                "{e}"
+            );
+        }
+        let e = parse_stl(&binary(b"solid part", 5, b""), p)
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains(r"is not text (byte 10 is \u{0})"), "{e}");
     }
 
     #[test]

@@ -227,4 +227,12 @@ fn an_open_mesh_is_refused_with_its_open_edges() {
         msg.contains("fixture.stl") && msg.contains("3 open edge"),
         "{msg}"
     );
+    // No triangles at all: said so, not "not closed: 0 open edge(s), 0 non-manifold edge(s)".
+    let err = PreparedSurface::new(&floor(&id))
+        .with_check_mesh("empty.stl", &TriMesh::new())
+        .unwrap_err();
+    assert_eq!(
+        err.to_string(),
+        "check mesh empty.stl is empty: it has no triangles"
+    );
 }

@@ -22,7 +22,7 @@ pub enum StockError {
         /// What would have been accepted.
         expected: String,
     },
-    /// A stock file that cannot be read.
+    /// A stock file that cannot be read, or whose mesh makes no stock (the message says why).
     #[error("{file}: {message}")]
     Io {
         /// File name.

@@ -32,10 +32,17 @@ pub struct MeshOptions {
 
 impl TriDexel {
     /// A stock from the bytes of an STL file (binary or ASCII, read by `swarf-io`),
-    /// resolution `h`.
+    /// resolution `h`. The errors do not name a file (the bytes have none): the caller that
+    /// read them names it, once ([`StockSpec::build`](crate::StockSpec::build) does).
     pub fn from_stl_bytes(bytes: &[u8], h: f64, opts: MeshOptions) -> Result<Self, StockError> {
-        let mesh = swarf_io::stl::parse_stl(bytes, std::path::Path::new("<stl>"))
-            .map_err(|e| StockError::BadMesh(e.to_string()))?;
+        let mesh = swarf_io::stl::parse_stl(bytes, std::path::Path::new("")).map_err(|e| {
+            StockError::BadMesh(match e {
+                swarf_io::IoError::Malformed { what, expected, .. } => {
+                    format!("{what} (expected {expected})")
+                }
+                other => other.to_string(),
+            })
+        })?;
         Self::from_mesh(&mesh, h, opts)
     }
 

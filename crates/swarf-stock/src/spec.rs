@@ -148,12 +148,11 @@ impl StockSpec {
                     file: path.display().to_string(),
                     message: e.to_string(),
                 })?;
-                TriDexel::from_stl_bytes(&bytes, h, mesh).map_err(|e| match e {
-                    StockError::OpenMesh { .. } | StockError::BadMesh(_) => StockError::Io {
-                        file: path.display().to_string(),
-                        message: e.to_string(),
-                    },
-                    other => other,
+                // Every error of the mesh's stock is about the file (its syntax, closedness,
+                // extent beyond the machine range, size for the resolution): it names it.
+                TriDexel::from_stl_bytes(&bytes, h, mesh).map_err(|e| StockError::Io {
+                    file: path.display().to_string(),
+                    message: e.to_string(),
                 })
             }
         }
@@ -211,6 +210,75 @@ mod tests {
             StockSpec::parse("box:0,0,0,1,1,nan"),
             Err(StockError::Spec { .. })
         ));
+    }
+
+    #[test]
+    fn mesh_errors_name_the_file_once() {
+        let dir = std::env::temp_dir().join(format!("swarf-stock-spec-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        // A box from (0, 0, 0) to (x1, 20, 10) as binary STL.
+        let stl = |x1: f32| {
+            let c = |i: usize| {
+                [
+                    if i & 1 == 0 { 0.0 } else { x1 },
+                    if i & 2 == 0 { 0.0 } else { 20.0 },
+                    if i & 4 == 0 { 0.0 } else { 10.0 },
+                ]
+            };
+            let faces = [
+                [0, 2, 3, 1],
+                [4, 5, 7, 6],
+                [0, 1, 5, 4],
+                [2, 6, 7, 3],
+                [0, 4, 6, 2],
+                [1, 3, 7, 5],
+            ];
+            let mut b = vec![0u8; 80];
+            b.extend_from_slice(&12u32.to_le_bytes());
+            for [p, q, r, s] in faces {
+                for t in [[p, q, r], [p, r, s]] {
+                    b.extend_from_slice(&[0u8; 12]);
+                    for i in t {
+                        for x in c(i) {
+                            b.extend_from_slice(&x.to_le_bytes());
+                        }
+                    }
+                    b.extend_from_slice(&[0, 0]);
+                }
+            }
+            b
+        };
+        let build = |name: &str, bytes: &[u8]| {
+            let path = dir.join(name);
+            std::fs::write(&path, bytes).unwrap();
+            let spec = StockSpec::parse(path.to_str().unwrap()).unwrap();
+            (
+                path.display().to_string(),
+                spec.build(1.0, MeshOptions::default()),
+            )
+        };
+        let (_, ok) = build("box.stl", &stl(20.0));
+        assert!((ok.unwrap().volume() - 4000.0).abs() < 1e-6);
+        // One triangle left out.
+        let mut open = stl(20.0)[..84 + 50 * 11].to_vec();
+        open[80..84].copy_from_slice(&11u32.to_le_bytes());
+        let cases = [
+            (
+                "syntax.stl",
+                b"solid a\nfacet normal 0 0 1\nouter loop\nvertex 0 0 zz\n".to_vec(),
+                "`zz`",
+            ),
+            ("huge.stl", stl(2e6), "machine range"),
+            ("open.stl", open, "not closed"),
+        ];
+        for (name, bytes, what) in cases {
+            let (file, e) = build(name, &bytes);
+            let e = e.unwrap_err().to_string();
+            assert!(e.starts_with(&format!("{file}: ")), "{e}");
+            assert!(e.contains(what) && e.matches(name).count() == 1, "{e}");
+            assert!(!e.contains("<stl>"), "{e}");
+        }
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]

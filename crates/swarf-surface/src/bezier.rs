@@ -199,10 +199,16 @@ impl PreparedSurface {
     ///
     /// # Errors
     /// [`CheckMeshError::Open`] when the mesh has open or non-manifold edges: a mesh that is
-    /// not closed does not bound a solid, so it is refused rather than half-checked.
+    /// not closed does not bound a solid, so it is refused rather than half-checked;
+    /// [`CheckMeshError::Empty`] when it has no triangles.
     pub fn with_check_mesh(mut self, name: &str, mesh: &TriMesh) -> Result<Self, CheckMeshError> {
+        if mesh.is_empty() {
+            return Err(CheckMeshError::Empty {
+                name: name.to_string(),
+            });
+        }
         let report = mesh.edge_report();
-        if report.boundary_count() > 0 || mesh.is_empty() {
+        if report.boundary_count() > 0 {
             return Err(CheckMeshError::Open {
                 name: name.to_string(),
                 open: report.open,
@@ -261,7 +267,13 @@ impl PreparedSurface {
 /// Why check geometry is refused.
 #[derive(Clone, Debug, PartialEq, Eq, thiserror::Error)]
 pub enum CheckMeshError {
-    /// The mesh is not a closed 2-manifold (or has no triangles).
+    /// The mesh has no triangles (an empty `solid`, a binary file with a count of 0).
+    #[error("check mesh {name} is empty: it has no triangles")]
+    Empty {
+        /// The mesh's name (its file).
+        name: String,
+    },
+    /// The mesh is not a closed 2-manifold.
     #[error(
         "check mesh {name} is not closed: {open} open edge(s), {non_manifold} non-manifold edge(s)"
     )]

@@ -194,6 +194,27 @@ pub enum ReadNote {
         /// Millimetres per file unit.
         factor: f64,
     },
+    /// Representations of the file declare different length units; each face (surface) is
+    /// read in its own representation's, scaled to millimetres.
+    UnitsMixed {
+        /// The length units, smallest first.
+        units: Vec<String>,
+        /// The unit of the first context, used for what no single representation holds.
+        first: String,
+        /// Faces (surfaces) in no representation, or in several of different units, read in
+        /// `first`.
+        defaulted: usize,
+    },
+    /// The file places parts by assembly instances (`MAPPED_ITEM`,
+    /// `NEXT_ASSEMBLY_USAGE_OCCURRENCE` with `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION` /
+    /// `ITEM_DEFINED_TRANSFORMATION`); they are not applied: each part's geometry is read once,
+    /// in its own frame.
+    PlacementsNotApplied {
+        /// Assembly instances (mapped items and assembly usage occurrences).
+        instances: usize,
+        /// The first few, as `MAPPED_ITEM #24`.
+        examples: Vec<String>,
+    },
     /// An analytic patch's parameter box came from a default instead of the face bounds.
     DefaultParameterBox {
         /// Index of the patch.
@@ -282,6 +303,35 @@ impl fmt::Display for ReadNote {
             ReadNote::UnitsConverted { unit, factor } => {
                 write!(f, "lengths in {unit}, scaled by {factor} to millimetres")
             }
+            ReadNote::UnitsMixed {
+                units,
+                first,
+                defaulted,
+            } => {
+                write!(
+                    f,
+                    "representations declare different length units ({}); each face is scaled \
+                     to millimetres by its own",
+                    units.join(", ")
+                )?;
+                if *defaulted > 0 {
+                    write!(
+                        f,
+                        "; {defaulted} face(s) in no single representation read in {first}"
+                    )?;
+                }
+                Ok(())
+            }
+            ReadNote::PlacementsNotApplied {
+                instances,
+                examples,
+            } => write!(
+                f,
+                "the file places parts by {instances} assembly instance(s) ({}{}); placements \
+                 are not applied: each part's geometry is read once, in its own frame",
+                examples.join(", "),
+                if *instances > examples.len() { ", …" } else { "" }
+            ),
             ReadNote::DefaultParameterBox { patch, what } => {
                 write!(f, "patch {patch}: default parameter range for {what}")
             }

@@ -363,6 +363,44 @@ fn broken_trim_references_are_errors_at_the_pointer() {
         e.starts_with(&format!("IGES line {line}, column {column}: ")),
         "{e}"
     );
+    // The 144's surface names no entry (was: the trim dropped and the surface read whole),
+    // or an entry that is no surface.
+    for (pts, want) in [
+        (
+            "99",
+            "surface PTS points at D99, which is not a directory entry",
+        ),
+        (
+            "0",
+            "surface PTS points at D0, which is not a directory entry",
+        ),
+        (
+            "3",
+            "surface PTS points at D3, an entity 110; expected a surface (128)",
+        ),
+    ] {
+        let mut f = Iges::default();
+        f.add(128, PLATE);
+        f.add(110, "0.2,0.2,0.,0.4,0.4,0."); // D3
+        let hole = polygon(&mut f, &[[0.2, 0.2], [0.8, 0.2], [0.5, 0.8]]);
+        let c = f.add(142, &format!("0,1,{hole},0,1"));
+        let t = f.add(144, &format!("{pts},0,1,0,{c}"));
+        let text = f.text("2,2HMM");
+        let (l, column, message) = syntax_error(&text);
+        assert_eq!((l, message.as_str()), (p_line(&text, t), want));
+        assert!(column > 1, "{column}");
+    }
+    // A 144 on a surface kind not read is skipped with it, not an error.
+    let mut f = Iges::default();
+    f.add(128, PLATE);
+    let sphere = f.add(196, "0,5.,0");
+    f.add(144, &format!("{sphere},0,0,0"));
+    let s = iges::parse(&f.text("2,2HMM")).unwrap();
+    assert_eq!(s.patches.len(), 1);
+    assert!(s
+        .notes
+        .iter()
+        .any(|n| matches!(n, ReadNote::UnsupportedSurface { kind, .. } if kind == "IGES 196")));
     // The 144's boundary is not a 142.
     let mut f = Iges::default();
     let plate = f.add(128, PLATE);
@@ -408,4 +446,32 @@ fn broken_trim_references_are_errors_at_the_pointer() {
         message,
         "entity 142 at D5 (a boundary of the 144 at D7): trim loop 0 has 2 point(s); a loop needs at least 3"
     );
+}
+
+#[test]
+fn directory_entries_out_of_order_are_read_by_their_sequence_numbers() {
+    // The same trimmed plate with its D section's entries (pairs of records) listed last
+    // first: pointers name entries by sequence number, so the 144 still trims the 128 (it
+    // was read as pointing at itself, and once PTS was checked, as an error).
+    let text = plate_with(|f, plate| {
+        let hole = polygon(f, &[[0.2, 0.2], [0.8, 0.2], [0.5, 0.8]]);
+        f.add(142, &format!("0,{plate},{hole},0,1"))
+    });
+    let lines: Vec<&str> = text.lines().collect();
+    let d: Vec<usize> = (0..lines.len())
+        .filter(|&i| &lines[i][72..73] == "D")
+        .collect();
+    let pairs: Vec<[&str; 2]> = d.chunks(2).map(|c| [lines[c[0]], lines[c[1]]]).collect();
+    let mut reversed: Vec<&str> = lines[..d[0]].to_vec();
+    reversed.extend(pairs.iter().rev().flatten());
+    reversed.extend(&lines[d[d.len() - 1] + 1..]);
+    let reversed = reversed.join("\n") + "\n";
+    assert_ne!(reversed, text);
+    let (a, b) = (iges::parse(&text).unwrap(), iges::parse(&reversed).unwrap());
+    assert_eq!(a.patches, b.patches);
+    assert!(b.patches[0].trim.is_some());
+    assert!(b
+        .notes
+        .iter()
+        .any(|n| matches!(n, ReadNote::Trimmed { patch: 0, .. })));
 }

@@ -2,6 +2,7 @@
 
 mod common;
 use common::data;
+use common::iges::{Iges, PLATE};
 
 use swarf_surface::io::{iges, Format, ReadError};
 use swarf_surface::{EntityRef, ParametricSurface, ReadNote, Surface, Tolerances};
@@ -223,11 +224,179 @@ fn malformed_iges_gives_record_positions() {
     );
     // A short record.
     let e = iges::parse("hello\n").unwrap_err().to_string();
-    assert!(e.contains("expected 80 ASCII columns"), "{e}");
+    assert!(e.contains("expected 80 columns"), "{e}");
     // Knots that decrease: the NURBS validation names the entity.
     let bad = patch_record(&t, 'P', 6, "0.E+000,9.0,0.E+000,0.E+000,0.E+000,0.E+000,");
     match iges::parse(&bad).unwrap_err() {
         ReadError::Surface { entity, .. } => assert_eq!(entity, "entity 128 at D3"),
         e => panic!("{e}"),
     }
+}
+
+#[test]
+fn accents_in_the_start_section_and_global_strings_are_read_by_the_column() {
+    // European files carry accents in the Start section and in G-section strings, in
+    // Latin-1 (one byte a column) or UTF-8 (records padded to 80 characters, or to 80 bytes).
+    // Neither may cost the file; the surface is the one of the ASCII file.
+    let mut f = Iges::default();
+    f.add(128, PLATE);
+    let ascii = f.text("2,2HMM");
+    let plain = iges::parse(&ascii).unwrap();
+    let start = |name: &[u8], pad: usize| {
+        let mut r = name.to_vec();
+        r.resize(r.len() + pad, b' ');
+        r.extend_from_slice(b"S0000001");
+        r
+    };
+    let latin1 = b"Pi\xe8ce usin\xe9e - soci\xe9t\xe9 Fran\xe7aise";
+    let utf8 = "Pièce usinée - société Française".as_bytes();
+    let chars = "Pièce usinée - société Française".chars().count();
+    for (what, s_record, product) in [
+        (
+            "Latin-1",
+            start(latin1, 72 - latin1.len()),
+            b"4Hsw\xe9f".to_vec(),
+        ),
+        (
+            "UTF-8 by characters",
+            start(utf8, 72 - chars),
+            "4Hswéf".as_bytes().to_vec(),
+        ),
+        (
+            "UTF-8 by bytes",
+            start(utf8, 72 - utf8.len()),
+            b"4Hsw\xc3\xa9".to_vec(),
+        ),
+    ] {
+        let mut bytes = Vec::new();
+        for (k, line) in ascii.lines().enumerate() {
+            let line = line.as_bytes();
+            if k == 0 {
+                bytes.extend_from_slice(&s_record);
+            } else if line[72] == b'G' && k == 1 {
+                // The product name (field 3), `4Hswrf`, with an accent.
+                let at = line.windows(6).position(|w| w == b"4Hswrf").unwrap();
+                bytes.extend_from_slice(&line[..at]);
+                bytes.extend_from_slice(&product);
+                bytes.extend_from_slice(&line[at + 6..]);
+            } else {
+                bytes.extend_from_slice(line);
+            }
+            bytes.extend_from_slice(b"\r\n");
+        }
+        let s = iges::parse_bytes(&bytes).unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert_eq!(s.patches.len(), 1, "{what}");
+        assert_eq!(s.patches[0].surface, plain.patches[0].surface, "{what}");
+        // Through the file reader too (which once decoded the bytes as UTF-8 first).
+        let dir = std::env::temp_dir().join(format!("swarf-iges-accents-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("piece.igs");
+        std::fs::write(&path, &bytes).unwrap();
+        let s = swarf_surface::io::read_file(&path).unwrap_or_else(|e| panic!("{what}: {e}"));
+        assert_eq!(s.patches[0].surface, plain.patches[0].surface, "{what}");
+        std::fs::remove_dir_all(&dir).unwrap();
+    }
+}
+
+#[test]
+fn a_broken_global_string_after_the_units_is_no_error() {
+    // The last G field's Hollerith count overruns the record delimiter (a count made for
+    // another encoding of its text): fields after 15 (the unit name) are not used, so the file
+    // is read; a break before them is still an error at its record and column.
+    let mut f = Iges::default();
+    f.add(128, PLATE);
+    let ascii = f.text("1,2HIN");
+    let plain = iges::parse(&ascii).unwrap();
+    let at = ascii.rfind("15H20240101.000000;").unwrap();
+    let broken = format!("{}16H{}", &ascii[..at], &ascii[at + 3..]);
+    let s = iges::parse(&broken).unwrap();
+    assert_eq!(s.patches[0].surface, plain.patches[0].surface);
+    assert!(matches!(&s.notes[0], ReadNote::UnitsConverted { factor, .. } if *factor == 25.4));
+    // The unit name's own count overruns: an error at the record and column of the count.
+    let broken = f.text("1,999HIN");
+    let lines: Vec<&str> = broken.lines().collect();
+    let first_g = lines.iter().position(|l| &l[72..73] == "G").unwrap();
+    let data: String = lines[first_g..]
+        .iter()
+        .take_while(|l| &l[72..73] == "G")
+        .map(|l| &l[..72])
+        .collect();
+    let o = data.find("999H").unwrap();
+    match iges::parse(&broken).unwrap_err() {
+        ReadError::Syntax {
+            line,
+            column,
+            message,
+            ..
+        } => assert!(
+            (line, column) == (first_g + 1 + o / 72, o % 72 + 1) && message.contains("Hollerith"),
+            "{line}:{column} {message}"
+        ),
+        e => panic!("{e}"),
+    }
+}
+
+#[test]
+fn a_128_is_restricted_to_its_parameter_range() {
+    // x = 20u, y = 20v − 10, z a parabola in v (5, −5, 5 control heights) over the knots'
+    // [0, 1]²; U0, U1, V0, V1 = `range` keeps a part of it.
+    let patch = |range: &str| {
+        let mut pts = Vec::new();
+        for j in 0..3 {
+            for i in 0..2 {
+                let z = if j == 1 { -5.0 } else { 5.0 };
+                pts.push(format!("{}.,{}.,{z}", 20 * i, 10 * j - 10));
+            }
+        }
+        let mut f = Iges::default();
+        f.add(
+            128,
+            &format!(
+                "1,2,1,2,0,0,1,0,0,0.,0.,1.,1.,0.,0.,0.,1.,1.,1.,1.,1.,1.,1.,1.,1.,{},{range}",
+                pts.join(",")
+            ),
+        );
+        iges::parse(&f.text("2,2HMM"))
+    };
+    let whole = patch("0.,1.,0.,1.").unwrap();
+    let part = patch("0.25,0.75,0.25,0.75").unwrap();
+    let (s, p) = (&whole.patches[0].surface, &part.patches[0].surface);
+    assert_eq!((s.domain().u, s.domain().v), ([0.0, 1.0], [0.0, 1.0]));
+    assert_eq!((p.domain().u, p.domain().v), ([0.25, 0.75], [0.25, 0.75]));
+    // The corners of the part, and its extent x 5…15, y −5…5.
+    let z = |v: f64| 5.0 * (1.0 - v).powi(2) - 10.0 * v * (1.0 - v) + 5.0 * v * v;
+    for (u, v) in [
+        (0.25, 0.25),
+        (0.75, 0.25),
+        (0.25, 0.75),
+        (0.75, 0.75),
+        (0.5, 0.4),
+    ] {
+        let want = swarf_geom::math::Vec3::new(20.0 * u, 20.0 * v - 10.0, z(v));
+        assert!(
+            (p.point(u, v) - want).length() < 1e-12,
+            "({u}, {v}): {}",
+            p.point(u, v)
+        );
+        assert!((s.point(u, v) - want).length() < 1e-12);
+    }
+    let bb = p.bounding_box();
+    assert!((bb.min.x - 5.0).abs() < 1e-12 && (bb.max.x - 15.0).abs() < 1e-12);
+    assert!((bb.min.y + 5.0).abs() < 1e-12 && (bb.max.y - 5.0).abs() < 1e-12);
+    // The grid of CC points covers the part only.
+    let grid = part.grid(5);
+    let xs: Vec<f64> = grid.iter().map(|cc| p.point(cc.u, cc.v).x).collect();
+    assert!(
+        xs.iter().all(|x| (5.0 - 1e-9..=15.0 + 1e-9).contains(x)),
+        "{xs:?}"
+    );
+    // A range wider than the knots keeps the knots' domain; one that leaves nothing is an error
+    // at its parameter.
+    let wide = patch("-1.,2.,0.,1.").unwrap();
+    assert_eq!(wide.patches[0].surface.domain().u, [0.0, 1.0]);
+    let e = patch("2.,3.,0.,1.").unwrap_err().to_string();
+    assert!(
+        e.contains("U0, U1 = [2, 3] leaves nothing of the knots' [0, 1]"),
+        "{e}"
+    );
 }

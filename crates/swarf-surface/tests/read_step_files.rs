@@ -251,8 +251,19 @@ fn malformed_step_files_give_positions_and_reasons() {
         ),
         e => panic!("{e}"),
     }
-    // Decreasing knots are caught by the NURBS validation, with the entity.
+    // Decreasing knots are caught by the NURBS validation, with the entity, said once along
+    // the error's chain (the CLI prints the chain; the reason was also the source and came
+    // twice: "#2: knots in v: knot 3 … : knots in v: knot 3 …").
     let t = t.replace("(2,1),(0.,1.),(0.,1.)", "(2,2),(0.,1.),(1.,0.)");
+    let e = err(&t);
+    let mut chain = vec![e.to_string()];
+    let mut at: &dyn std::error::Error = &e;
+    while let Some(s) = at.source() {
+        chain.push(s.to_string());
+        at = s;
+    }
+    let chain = chain.join(": ");
+    assert_eq!(chain.matches("is smaller than knot").count(), 1, "{chain}");
     match err(&t) {
         ReadError::Surface {
             line: 4, entity, ..
@@ -272,4 +283,143 @@ fn malformed_step_files_give_positions_and_reasons() {
         msg.starts_with("STEP line 3, column 6: unterminated string"),
         "{msg}"
     );
+}
+
+/// Sphere faces A (radius 0.25 in at the origin, in the inch context #95), B (radius 5 mm at
+/// x = 20, in a mm context #`mm + 1`) and C (radius 1 at z = 50, in no representation).
+fn two_contexts(mm: u64) -> String {
+    format!(
+        "{HEAD}{}#{mm}=(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.));\n\
+         #{}=(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#{mm})) REPRESENTATION_CONTEXT('',''));\n\
+         #1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));\n\
+         #4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=SPHERICAL_SURFACE('',#4,0.25);#6=FACE_SURFACE('A',(),#5,.T.);\n\
+         #7=OPEN_SHELL('',(#6));#8=SHELL_BASED_SURFACE_MODEL('',(#7));\n\
+         #9=MANIFOLD_SURFACE_SHAPE_REPRESENTATION('A',(#4,#8),#95);\n\
+         #11=CARTESIAN_POINT('',(20.,0.,0.));#14=AXIS2_PLACEMENT_3D('',#11,#2,#3);\n\
+         #15=SPHERICAL_SURFACE('',#14,5.);#16=FACE_SURFACE('B',(),#15,.T.);\n\
+         #17=OPEN_SHELL('',(#16));#18=SHELL_BASED_SURFACE_MODEL('',(#17));\n\
+         #19=MANIFOLD_SURFACE_SHAPE_REPRESENTATION('B',(#18),#{});\n\
+         #21=CARTESIAN_POINT('',(0.,0.,50.));#24=AXIS2_PLACEMENT_3D('',#21,#2,#3);\n\
+         #25=SPHERICAL_SURFACE('',#24,1.);#26=FACE_SURFACE('C',(),#25,.T.);\n\
+         ENDSEC;\nEND-ISO-10303-21;\n",
+        inch_context(),
+        mm + 1,
+        mm + 1
+    )
+}
+
+#[test]
+fn each_representation_is_read_in_its_own_context_units() {
+    // Two unit contexts: each face is scaled by its representation's (all were read in the
+    // first context's unit: B came out 25.4 times too large, or A 25.4 times too small); a face
+    // in no representation takes the first context's, and the note says so.
+    for (mm, first, c_radius) in [(100, "INCH", 25.4), (80, "MILLI METRE", 1.0)] {
+        let s = step::parse(&two_contexts(mm)).unwrap();
+        let radius = |name: &str, centre: Vec3| {
+            let p = s
+                .patches
+                .iter()
+                .find(|p| p.name.as_deref() == Some(name))
+                .unwrap();
+            let d = p.surface.domain();
+            let r = (p.surface.point(0.3 * d.u[1], 0.2) - centre).length();
+            assert!(((p.surface.point(d.u[0], 0.7) - centre).length() - r).abs() < 1e-9);
+            r
+        };
+        assert!(
+            (radius("A", Vec3::ZERO) - 6.35).abs() < 1e-12,
+            "{first} first"
+        );
+        assert!(
+            (radius("B", Vec3::new(20.0, 0.0, 0.0)) - 5.0).abs() < 1e-12,
+            "{first} first"
+        );
+        let c = radius("C", Vec3::new(0.0, 0.0, 50.0 * c_radius));
+        assert!((c - c_radius).abs() < 1e-12, "{first} first: {c}");
+        let note = s
+            .notes
+            .iter()
+            .find(|n| matches!(n, ReadNote::UnitsMixed { .. }))
+            .unwrap();
+        assert_eq!(
+            note,
+            &ReadNote::UnitsMixed {
+                units: vec!["MILLI METRE".into(), "INCH".into()],
+                first: first.into(),
+                defaulted: 1
+            }
+        );
+        assert!(note
+            .to_string()
+            .contains("1 face(s) in no single representation read in"));
+        assert!(!s
+            .notes
+            .iter()
+            .any(|n| matches!(n, ReadNote::UnitsConverted { .. })));
+    }
+}
+
+#[test]
+fn assembly_placements_are_reported_as_not_applied() {
+    // A part placed by a MAPPED_ITEM, and a part used twice by assembly occurrences with
+    // their transformations: the placements are not applied (each part is read once, in its
+    // own frame) and a note says so; a file without instances has no such note.
+    let part = "#1=(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.));\n\
+        #2=(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#1)) REPRESENTATION_CONTEXT('',''));\n\
+        #3=CARTESIAN_POINT('',(0.,0.,0.));#4=DIRECTION('',(0.,0.,1.));#5=DIRECTION('',(1.,0.,0.));\n\
+        #6=AXIS2_PLACEMENT_3D('',#3,#4,#5);#7=SPHERICAL_SURFACE('',#6,5.);#8=FACE_SURFACE('ball',(),#7,.T.);\n\
+        #9=OPEN_SHELL('',(#8));#10=SHELL_BASED_SURFACE_MODEL('',(#9));\n\
+        #11=MANIFOLD_SURFACE_SHAPE_REPRESENTATION('Ball',(#6,#10),#2);\n\
+        #20=CARTESIAN_POINT('',(100.,0.,0.));#21=AXIS2_PLACEMENT_3D('',#20,#4,#5);\n\
+        #22=CARTESIAN_POINT('',(-100.,0.,0.));#23=AXIS2_PLACEMENT_3D('',#22,#4,#5);\n";
+    let mapped = "#30=REPRESENTATION_MAP(#6,#11);#31=MAPPED_ITEM('',#30,#21);\n\
+        #32=SHAPE_REPRESENTATION('Assy',(#31),#2);\n";
+    let occurrences = "#40=PRODUCT_DEFINITION('design','',$,$);#41=PRODUCT_DEFINITION('design','',$,$);\n\
+        #42=SHAPE_REPRESENTATION('Assy',(#6,#21,#23),#2);\n\
+        #43=NEXT_ASSEMBLY_USAGE_OCCURRENCE('1','inst1','',#41,#40,$);#44=PRODUCT_DEFINITION_SHAPE('','',#43);\n\
+        #45=ITEM_DEFINED_TRANSFORMATION('','',#6,#21);\n\
+        #46=( REPRESENTATION_RELATIONSHIP('','',#11,#42) REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#45) SHAPE_REPRESENTATION_RELATIONSHIP() );\n\
+        #47=CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#46,#44);\n\
+        #53=NEXT_ASSEMBLY_USAGE_OCCURRENCE('2','inst2','',#41,#40,$);#54=PRODUCT_DEFINITION_SHAPE('','',#53);\n\
+        #55=ITEM_DEFINED_TRANSFORMATION('','',#6,#23);\n\
+        #56=( REPRESENTATION_RELATIONSHIP('','',#11,#42) REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#55) SHAPE_REPRESENTATION_RELATIONSHIP() );\n\
+        #57=CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#56,#54);\n";
+    let file = |extra: &str| format!("{HEAD}{part}{extra}ENDSEC;\nEND-ISO-10303-21;\n");
+    for (extra, instances, examples) in [
+        (mapped, 1, vec!["MAPPED_ITEM #31"]),
+        (
+            occurrences,
+            2,
+            vec![
+                "NEXT_ASSEMBLY_USAGE_OCCURRENCE #43",
+                "NEXT_ASSEMBLY_USAGE_OCCURRENCE #53",
+            ],
+        ),
+    ] {
+        let s = step::parse(&file(extra)).unwrap();
+        assert_eq!(s.patches.len(), 1);
+        // In the part's own frame.
+        assert!((s.patches[0].surface.point(0.0, 0.0).length() - 5.0).abs() < 1e-12);
+        let note = s
+            .notes
+            .iter()
+            .find(|n| matches!(n, ReadNote::PlacementsNotApplied { .. }))
+            .unwrap();
+        assert_eq!(
+            note,
+            &ReadNote::PlacementsNotApplied {
+                instances,
+                examples: examples.into_iter().map(String::from).collect()
+            }
+        );
+        assert!(
+            note.to_string().contains("placements are not applied"),
+            "{note}"
+        );
+    }
+    let s = step::parse(&file("")).unwrap();
+    assert!(!s
+        .notes
+        .iter()
+        .any(|n| matches!(n, ReadNote::PlacementsNotApplied { .. })));
 }

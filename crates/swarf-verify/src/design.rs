@@ -12,7 +12,7 @@ use std::path::Path;
 
 use parry3d_f64::query::PointQueryWithLocation;
 use parry3d_f64::shape::{TriMesh, TriMeshFlags};
-use swarf_geom::math::Vec3;
+use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_geom::Aabb;
 use swarf_stock::Dexel;
 
@@ -123,6 +123,18 @@ impl MeshDesign {
             return Err(bad(format!("encloses no volume ({volume} mm³)")));
         }
         let bbox = m.aabb().ok_or_else(|| bad("no vertices".into()))?;
+        // The stock is held to the machine range; a design beyond it could be compared with
+        // no stock (and its distances lose their digits).
+        let reach = bbox.min.abs().max(bbox.max.abs()).max_element();
+        if reach > MACHINE_RANGE_MM {
+            return Err(VerifyError::OutOfRange {
+                path: path.to_path_buf(),
+                min: bbox.min.to_array(),
+                max: bbox.max.to_array(),
+                reach,
+                range: MACHINE_RANGE_MM,
+            });
+        }
         let mesh = TriMesh::with_flags(m.vertices, m.triangles, TriMeshFlags::ORIENTED)
             .map_err(|e| bad(format!("{e:?}")))?;
         Ok(Self { mesh, bbox, volume })

@@ -39,6 +39,24 @@ pub enum VerifyError {
         /// What is wrong.
         what: String,
     },
+    /// The design mesh reaches beyond the machine range
+    /// ([`swarf_geom::math::MACHINE_RANGE_MM`] from the origin), as stock meshes may not.
+    #[error(
+        "design {path}: the mesh's box from {min:?} to {max:?} mm reaches {reach:e} mm from the \
+         origin, beyond the machine range of {range:e} mm"
+    )]
+    OutOfRange {
+        /// The design file (or `<mesh>`).
+        path: PathBuf,
+        /// The bounding box's corners, mm.
+        min: [f64; 3],
+        /// Upper corner, mm.
+        max: [f64; 3],
+        /// The largest coordinate's magnitude, mm.
+        reach: f64,
+        /// The machine range, mm.
+        range: f64,
+    },
     /// A tolerance is negative or not finite.
     #[error("{name} must be a finite number of mm ≥ 0, got {value}")]
     BadTolerance {

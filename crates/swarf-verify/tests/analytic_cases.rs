@@ -171,6 +171,26 @@ fn a_design_with_a_hole_in_its_mesh_is_refused() {
     );
 }
 
+#[test]
+fn a_design_beyond_the_machine_range_is_refused_naming_the_file() {
+    // The range stock meshes are held to: a 2 km long design STL is an error naming it.
+    let dir = std::env::temp_dir().join(format!("swarf-verify-range-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let far = dir.join("far.stl");
+    let near = dir.join("near.stl");
+    swarf_io::write_stl(&far, &box_mesh(Vec3::ZERO, Vec3::new(2e6, 20.0, 10.0))).unwrap();
+    swarf_io::write_stl(&near, &box_mesh(Vec3::ZERO, Vec3::new(9e5, 20.0, 10.0))).unwrap();
+    let e = MeshDesign::read_stl(&far).unwrap_err().to_string();
+    assert!(
+        e.contains(&far.display().to_string())
+            && e.contains("reaches 2e6 mm")
+            && e.contains("machine range of 1e6 mm"),
+        "{e}"
+    );
+    assert!(MeshDesign::read_stl(&near).is_ok());
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
 proptest! {
     #![proptest_config(ProptestConfig { cases: 8, .. ProptestConfig::default() })]
 

@@ -129,7 +129,12 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     let surface = GougeSurface::new(&PreparedSurface::new(&floor));
     let opts = GougeOptions::DEFAULT;
     let gouge = check_program(&surface, program, tools, &opts)?;
-    let gouge_summary = gouge.summary(&opts, program.moves.len(), t0.elapsed().as_secs_f64());
+    let gouge_summary = gouge.summary(
+        &floor,
+        &opts,
+        program.moves.len(),
+        t0.elapsed().as_secs_f64(),
+    );
     crate::commands::gouge::write_outputs(
         &mut set,
         "gouge/",

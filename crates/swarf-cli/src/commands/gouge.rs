@@ -85,7 +85,12 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         .with_context(|| format!("checking {}", args.program.display()));
     progress.finish();
     let report = report?;
-    let summary = report.summary(&opts, program.moves.len(), t0.elapsed().as_secs_f64());
+    let summary = report.summary(
+        &surface,
+        &opts,
+        program.moves.len(),
+        t0.elapsed().as_secs_f64(),
+    );
     let mut set = output_set(&args.out, DEFAULT_MAX_OUTPUT_MB)?;
     write_outputs(&mut set, "", &surface, program, &report, &summary)?;
     set.commit()?;
@@ -108,10 +113,12 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         summary.max_interference_mm,
         summary.tolerance_mm,
         summary.elapsed_s,
-        if summary.certified {
-            ""
-        } else {
-            " (some searches ran out of budget: see unresolved_searches)"
+        match (summary.skipped_faces, summary.unresolved_searches) {
+            (0, 0) => String::new(),
+            (0, _) => " (some searches ran out of budget: see unresolved_searches)".into(),
+            (n, _) => format!(
+                " (not certified: {n} face(s) of the surface were not read, see skipped_faces)"
+            ),
         }
     );
     for v in report.violations.iter().take(20) {
@@ -231,6 +238,7 @@ fn write_report(
                 "points",
                 "moves",
                 "certified",
+                "skipped_faces",
             ],
         );
     if let Some(check) = &args.check {

@@ -185,13 +185,15 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
     if args.json {
         print_json(&with_standard(&summary, standard_report.as_ref())?)?;
     } else {
+        // No bounded point: no radius to give (the JSON's null).
+        let mm = |r: Option<f64>| r.map_or_else(|| "none".to_string(), |x| format!("{x:.3}"));
         println!(
-            "{} points, {} bounded, radius min {:?} median {:?} max {:?} mm, {:.0} evaluations/point, {:.2} s",
+            "{} points, {} bounded, radius min {} median {} max {} mm, {:.0} evaluations/point, {:.2} s",
             summary.points,
             summary.bounded_points,
-            summary.min_radius_mm,
-            summary.median_radius_mm,
-            summary.max_radius_mm,
+            mm(summary.min_radius_mm),
+            mm(summary.median_radius_mm),
+            mm(summary.max_radius_mm),
             summary.evaluations_per_point,
             summary.elapsed_s
         );

@@ -6,7 +6,7 @@ use std::io::{self, Write};
 use serde::Serialize;
 
 use super::{GougeOptions, GougeReport, SurfaceRef, ViolationKind};
-use swarf_surface::CompoundSurface;
+use swarf_surface::{CompoundSurface, ReadNote};
 
 /// The JSON summary (field names are a contract).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -31,10 +31,17 @@ pub struct GougeSummary {
     pub max_gouge_mm: f64,
     /// Deepest interference, mm (0 when none).
     pub max_interference_mm: f64,
-    /// Every search finished within its budget: the clear stretches are proven clear.
+    /// Every search finished within its budget and every face of the surface file was read
+    /// (`skipped_faces` is 0): the clear stretches are proven clear.
     pub certified: bool,
     /// Searches whose budget ran out.
     pub unresolved_searches: usize,
+    /// Faces (or surfaces) of the surface file its reader skipped (surface kinds it does not
+    /// evaluate): nothing is said about them, so `certified` is false when any was skipped.
+    pub skipped_faces: usize,
+    /// The reader's note on each skipped face (`#12 (face #40): surface type
+    /// SURFACE_OF_REVOLUTION is not supported; skipped`).
+    pub skipped_face_notes: Vec<String>,
     /// Search nodes expanded in all.
     pub nodes: u64,
     /// The reporting tolerance, mm.
@@ -48,8 +55,21 @@ pub struct GougeSummary {
 }
 
 impl GougeReport {
-    /// The summary of this report (`elapsed_s` as given).
-    pub fn summary(&self, opts: &GougeOptions, moves: usize, elapsed_s: f64) -> GougeSummary {
+    /// The summary of this report on `surface` (whose reader's notes list the faces it
+    /// skipped; `elapsed_s` as given).
+    pub fn summary(
+        &self,
+        surface: &CompoundSurface,
+        opts: &GougeOptions,
+        moves: usize,
+        elapsed_s: f64,
+    ) -> GougeSummary {
+        let skipped: Vec<String> = surface
+            .notes
+            .iter()
+            .filter(|n| matches!(n, ReadNote::UnsupportedSurface { .. }))
+            .map(ToString::to_string)
+            .collect();
         GougeSummary {
             points: self.points.len(),
             moves,
@@ -61,8 +81,10 @@ impl GougeReport {
             interfering_points: self.points_with(ViolationKind::Interference),
             max_gouge_mm: self.max_depth(ViolationKind::Gouge),
             max_interference_mm: self.max_depth(ViolationKind::Interference),
-            certified: self.unresolved == 0,
+            certified: self.unresolved == 0 && skipped.is_empty(),
             unresolved_searches: self.unresolved,
+            skipped_faces: skipped.len(),
+            skipped_face_notes: skipped,
             nodes: self.nodes,
             tolerance_mm: opts.tolerance,
             accuracy_mm: opts.accuracy,

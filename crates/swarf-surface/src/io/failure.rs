@@ -133,12 +133,12 @@ pub enum TrimFailure {
         curve: u64,
     },
     /// A STEP B-spline curve the evaluator refuses.
-    #[error("#{curve}: {source}")]
+    #[error("#{curve}: {reason}")]
     SplineCurve {
         /// The curve.
         curve: u64,
-        /// Why.
-        source: CurveError,
+        /// Why (in the message, not a separate source).
+        reason: CurveError,
     },
     /// An edge curve of a kind that is not evaluated.
     #[error("edge curve #{curve} is a {kind}, which is not evaluated")]
@@ -330,12 +330,12 @@ pub enum TrimFailure {
         de: usize,
     },
     /// A 142's model-space curve that is malformed.
-    #[error("142 at D{de}: its model-space curve cannot be read ({source})")]
+    #[error("142 at D{de}: its model-space curve cannot be read ({reason})")]
     ModelUnreadable {
         /// The 142.
         de: usize,
-        /// Why.
-        source: Box<ReadError>,
+        /// Why (in the message, not a separate source).
+        reason: Box<ReadError>,
     },
     /// A 142 whose parameter-space curve is of a kind not read and whose model-space curve
     /// fails too.
@@ -363,12 +363,12 @@ pub enum TrimFailure {
         file: usize,
     },
     /// A 126 the evaluator refuses.
-    #[error("entity 126 at D{de}: {source}")]
+    #[error("entity 126 at D{de}: {reason}")]
     Curve126 {
         /// The 126.
         de: usize,
-        /// Why.
-        source: CurveError,
+        /// Why (in the message, not a separate source).
+        reason: CurveError,
     },
     /// A curve entity of a kind not read.
     #[error("its {space} curve D{de} is an entity {kind}, which is not supported")]

@@ -1,4 +1,6 @@
-//! IGES 5.3 surfaces: entity 128 (rational B-spline surface) as patches, trimmed by 144
+//! IGES 5.3 surfaces: entity 128 (rational B-spline surface) as patches (restricted to its
+//! parameter range U0–U1 × V0–V1 within the knots' domain, exactly, by knot insertion —
+//! [`NurbsSurface::restricted`]; a range that leaves nothing is an error), trimmed by 144
 //! (trimmed parametric surface) and 142 (curve on a parametric surface); entity 126 (rational
 //! B-spline curve) parsed into [`IgesDocument::curves`].
 //!
@@ -32,16 +34,28 @@
 //! [`ReadNote::TrimNotHonoured`] saying why. A second 144 on the same 128 gets its own copy of
 //! the patch (at the end of the list). A boundary pointer that names no entry, or an entry of
 //! the wrong type, is an error at that parameter (in a model-space curve: a note, the patch
-//! untrimmed). [`IgesDocument::trims`] still lists every 144 as found.
+//! untrimmed); so is a 144's surface pointer (PTS) that names no entry or an entry that is not a
+//! surface (one on a surface kind not read is skipped with that surface). [`IgesDocument::trims`]
+//! still lists every 144 as found.
 //!
 //! The fixed-column format: 80-column records, section letter in column 73 (S, G, D, P, T),
-//! sequence number in 74–80. The G section gives the parameter and record delimiters (defaults
-//! `,` and `;`), the units flag and unit name (field 14/15: inch, mm, foot, mile, metre, km,
-//! mil, micron, cm, microinch), converted to mm. The model-space scale (field 13) is not
-//! applied. Directory entries are two records of 8-column fields; parameter data lives in
-//! columns 1–64 of the P records. Transformation matrices (entity 124) referenced by a 128 or a
-//! curve are applied. Hollerith strings (`5HHello`) and `D` exponents are understood.
+//! sequence number in 74–80 (directory entries listed out of order are put in the order of
+//! their sequence numbers, which pointers name). Columns are bytes: text that is not ASCII (accents in the Start
+//! section and in strings of European files) is read one byte a column (Latin-1), or one UTF-8
+//! character a column when the record was padded to 80 characters (the layout that puts the
+//! section letter in column 73 wins); such columns read as `?` in strings, so they never
+//! refuse a file. [`parse_bytes`] reads a file's bytes; [`parse`] takes text.
+//!
+//! The G section gives the parameter and record delimiters (defaults `,` and `;`), the units
+//! flag and unit name (field 14/15: inch, mm, foot, mile, metre, km, mil, micron, cm,
+//! microinch), converted to mm; its later fields are not used, and a string among them that
+//! does not parse (a Hollerith count that overruns) is no error. The model-space scale
+//! (field 13) is not applied. Directory entries are two records of 8-column fields; parameter
+//! data lives in columns 1–64 of the P records. Transformation matrices (entity 124) referenced
+//! by a 128 or a curve are applied. Hollerith strings (`5HHello`) and `D` exponents are
+//! understood.
 
+use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
 
@@ -112,12 +126,23 @@ pub struct IgesDocument {
 
 /// Parse IGES text to its patches.
 pub fn parse(text: &str) -> Result<CompoundSurface, ReadError> {
-    parse_document(text).map(|d| d.surface)
+    parse_bytes(text.as_bytes())
+}
+
+/// Parse the bytes of an IGES file to its patches (text that is not ASCII, as in Start
+/// sections and strings of European files, is read one byte per column).
+pub fn parse_bytes(bytes: &[u8]) -> Result<CompoundSurface, ReadError> {
+    parse_document_bytes(bytes).map(|d| d.surface)
 }
 
 /// Parse IGES text to patches, curves and trims.
 pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
-    let mut file = Sections::split(text)?;
+    parse_document_bytes(text.as_bytes())
+}
+
+/// Parse the bytes of an IGES file to patches, curves and trims.
+pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
+    let mut file = Sections::split(bytes)?;
     let global = file.global()?;
     let entries = file.directory()?;
     let mut doc = IgesDocument::default();
@@ -143,12 +168,10 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
                 });
             }
             126 => doc.curves.push(file.curve126(e, &entries, global.factor)?),
-            114 | 118 | 120 | 122 | 140 | 190 | 192 | 194 | 196 | 198 => {
-                skipped.push(ReadNote::UnsupportedSurface {
-                    entity: format!("D{}", e.de),
-                    kind: format!("IGES {}", e.kind),
-                })
-            }
+            k if SKIPPED_SURFACES.contains(&k) => skipped.push(ReadNote::UnsupportedSurface {
+                entity: format!("D{}", e.de),
+                kind: format!("IGES {}", e.kind),
+            }),
             _ => {}
         }
     }
@@ -180,6 +203,26 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
         let inner = (0..n2 as usize)
             .map(|k| p.int(5 + k, "PTI").map(|v| v as usize))
             .collect::<Result<Vec<_>, _>>()?;
+        // The surface: a 128 read above, or a surface of a kind not read (skipped with its
+        // note); anything else is a broken pointer, as a boundary's would be.
+        match entry_at(&entries, pts) {
+            None => {
+                return Err(p.error(
+                    1,
+                    format!("surface PTS points at D{pts}, which is not a directory entry"),
+                ))
+            }
+            Some(s) if s.kind != 128 && !SKIPPED_SURFACES.contains(&s.kind) => {
+                return Err(p.error(
+                    1,
+                    format!(
+                        "surface PTS points at D{pts}, an entity {}; expected a surface (128)",
+                        s.kind
+                    ),
+                ))
+            }
+            Some(_) => {}
+        }
         let mut patch = usize::try_from(pts)
             .ok()
             .and_then(|d| patch_of_de.get(&d).copied());
@@ -296,6 +339,10 @@ pub fn parse_document(text: &str) -> Result<IgesDocument, ReadError> {
     doc.surface.notes.extend(skipped);
     Ok(doc)
 }
+
+/// Surface entities that are not read: a patch on one is skipped with a
+/// [`ReadNote::UnsupportedSurface`].
+const SKIPPED_SURFACES: [u32; 10] = [114, 118, 120, 122, 140, 190, 192, 194, 196, 198];
 
 /// Most points of all the trims of a file (a guard against files that repeat a costly trim).
 const MAX_FILE_TRIM_POINTS: usize = 4_000_000;
@@ -630,7 +677,7 @@ impl Sampler<'_, '_> {
             }),
             Err(err) => Err(TrimFailure::ModelUnreadable {
                 de: e.de,
-                source: Box::new(err),
+                reason: Box::new(err),
             }),
         };
         Ok(match (mapped, failed) {
@@ -693,7 +740,7 @@ impl Sampler<'_, '_> {
                 }
                 let spline = match c.spline() {
                     Ok(spline) => spline,
-                    Err(source) => return Ok(Err(TrimFailure::Curve126 { de: e.de, source })),
+                    Err(reason) => return Ok(Err(TrimFailure::Curve126 { de: e.de, reason })),
                 };
                 let mut out = Vec::new();
                 for s in m..n {
@@ -858,10 +905,43 @@ impl Sampler<'_, '_> {
     }
 }
 
-/// One physical record: its 1-based line number, section letter, columns 1–72.
+/// One physical record: its 1-based line number and columns 1–72, one byte per column (a
+/// column that is not ASCII is `?` here; `text` keeps it).
 struct Record<'a> {
     line: usize,
-    data: &'a str,
+    /// The sequence number (columns 74–80), if it is one.
+    seq: Option<usize>,
+    data: Cow<'a, str>,
+    /// The columns as characters, for a record that is not all ASCII (labels keep their
+    /// accents).
+    text: Option<Vec<char>>,
+}
+
+/// The sequence number in columns 74–80, if they hold one.
+fn sequence(cols: &[u8]) -> Option<usize> {
+    std::str::from_utf8(cols).ok()?.trim().parse().ok()
+}
+
+/// A record's columns, or `None` when it has no section letter in column 73. An ASCII record
+/// is its bytes. Any other is read by bytes (Latin-1: each byte one column, as the fixed
+/// 80-column format counts them) when that puts a section letter in column 73 and digits or
+/// spaces after it, else by UTF-8 characters when that does (files written by character count).
+fn columns(raw: &[u8]) -> Option<Vec<char>> {
+    let good = |c: &[char]| {
+        c.len() >= 73
+            && c[72].is_ascii_uppercase()
+            && c[73..c.len().min(80)]
+                .iter()
+                .all(|x| x.is_ascii_digit() || *x == ' ')
+    };
+    let bytes: Vec<char> = raw.iter().map(|&b| char::from(b)).collect();
+    if good(&bytes) {
+        return Some(bytes);
+    }
+    std::str::from_utf8(raw)
+        .ok()
+        .map(|t| t.chars().collect::<Vec<char>>())
+        .filter(|c| good(c))
 }
 
 struct Sections<'a> {
@@ -897,7 +977,7 @@ struct Entry {
 }
 
 impl<'a> Sections<'a> {
-    fn split(text: &'a str) -> Result<Self, ReadError> {
+    fn split(text: &'a [u8]) -> Result<Self, ReadError> {
         let mut s = Sections {
             g: Vec::new(),
             d: Vec::new(),
@@ -906,29 +986,51 @@ impl<'a> Sections<'a> {
             rdelim: b';',
         };
         let mut seen_any = false;
-        for (i, raw) in text.lines().enumerate() {
+        for (i, raw) in text.split(|&b| b == b'\n').enumerate() {
             let line = i + 1;
-            let raw = raw.trim_end_matches('\r');
-            if raw.trim().is_empty() {
+            let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
+            if raw.iter().all(u8::is_ascii_whitespace) {
                 continue;
             }
-            if !raw.is_ascii() || raw.len() < 73 {
-                return Err(syntax(
+            let (rec, letter) = if raw.is_ascii() && raw.len() >= 73 {
+                // ASCII (and so UTF-8) throughout.
+                let data = std::str::from_utf8(&raw[..72]).unwrap_or_default();
+                let rec = Record {
                     line,
-                    raw.len().min(72) + 1,
-                    format!(
-                        "found a {}-character{} record, expected 80 ASCII columns with the section letter in column 73",
-                        raw.chars().count(),
-                        if raw.is_ascii() { "" } else { " non-ASCII" }
-                    ),
-                ));
-            }
-            seen_any = true;
-            let rec = Record {
-                line,
-                data: &raw[..72],
+                    seq: sequence(&raw[73..raw.len().min(80)]),
+                    data: Cow::Borrowed(data),
+                    text: None,
+                };
+                (rec, raw[72])
+            } else {
+                // Text in the Start section or in strings need not be ASCII (accents in
+                // European files): such columns are read as one column each.
+                let Some(cols) = columns(raw).filter(|_| !raw.is_ascii()) else {
+                    return Err(syntax(
+                        line,
+                        raw.len().min(72) + 1,
+                        format!(
+                            "found a {}-column record, expected 80 columns with the section letter in column 73",
+                            raw.len()
+                        ),
+                    ));
+                };
+                let data = cols[..72]
+                    .iter()
+                    .map(|&c| if c.is_ascii() { c } else { '?' })
+                    .collect();
+                let letter = cols[72] as u8;
+                let seq: String = cols[73..cols.len().min(80)].iter().collect();
+                let rec = Record {
+                    line,
+                    seq: sequence(seq.as_bytes()),
+                    data: Cow::Owned(data),
+                    text: Some(cols),
+                };
+                (rec, letter)
             };
-            match raw.as_bytes()[72] {
+            seen_any = true;
+            match letter {
                 b'S' | b'T' => {}
                 b'G' => s.g.push(rec),
                 b'D' => s.d.push(rec),
@@ -963,7 +1065,7 @@ impl<'a> Sections<'a> {
     }
 
     fn global(&mut self) -> Result<Global, ReadError> {
-        let text: String = self.g.iter().map(|r| r.data).collect();
+        let text: String = self.g.iter().map(|r| &*r.data).collect();
         let b = text.as_bytes();
         let line = self.g[0].line;
         let mut pos = 0;
@@ -996,11 +1098,19 @@ impl<'a> Sections<'a> {
         self.pdelim = pd;
         self.rdelim = rd;
         let rest = &text[pos..];
-        // Fields 3 onwards, after the delimiter that ends field 2.
+        // Fields 3 onwards, after the delimiter that ends field 2. Only fields 14 and 15 are
+        // used: a string after them that does not parse (a Hollerith count that overruns, as
+        // when a file's accents were counted in another encoding) is no error.
         let fields = match rest.as_bytes().first() {
-            Some(&c) if c == pd => {
-                tokenize(&rest[1..], pd, rd).map_err(|(at, m)| syntax(line, pos + 2 + at, m))?
-            }
+            Some(&c) if c == pd => match tokenize_prefix(&rest[1..], pd, rd) {
+                (fields, Some((at, m))) if fields.len() < 13 => {
+                    // The record and column of the offset in the G section's data.
+                    let o = pos + 1 + at;
+                    let r = self.g.get(o / 72).map_or(line, |r| r.line);
+                    return Err(syntax(r, o % 72 + 1, m));
+                }
+                (fields, _) => fields,
+            },
             _ => Vec::new(),
         };
         // Fields 3.. are at index 0..; units flag is field 14 → index 11, name field 15 → 12.
@@ -1092,7 +1202,11 @@ impl<'a> Sections<'a> {
                     "the two directory records of an entry disagree on the entity type",
                 ));
             }
-            let label = field(b, 7);
+            let label = match &b.text {
+                // A label with accents keeps them.
+                Some(cols) => cols[56..64].iter().collect::<String>().trim().to_string(),
+                None => field(b, 7).to_string(),
+            };
             out.push(Entry {
                 de: 2 * k + 1,
                 line: a.line,
@@ -1100,8 +1214,31 @@ impl<'a> Sections<'a> {
                 pointer: int(a, 1, "parameter data pointer")?,
                 lines: int(b, 3, "parameter line count")?,
                 transform: int(a, 6, "transformation matrix pointer")?,
-                label: (!label.is_empty()).then(|| label.to_string()),
+                label: (!label.is_empty()).then_some(label),
             });
+        }
+        // Pointers name entries by sequence number. Entries out of order whose sequence
+        // numbers are those of the positions (1, 3, 5…, each pair n, n + 1) are put in order;
+        // otherwise the positions count.
+        let seqs: Option<Vec<usize>> = self
+            .d
+            .chunks(2)
+            .map(|pair| match (pair[0].seq, pair[1].seq) {
+                (Some(a), Some(b)) if b == a + 1 => Some(a),
+                _ => None,
+            })
+            .collect();
+        if let Some(seqs) = seqs {
+            let mut sorted = seqs.clone();
+            sorted.sort_unstable();
+            if sorted.iter().enumerate().all(|(k, &s)| s == 2 * k + 1) && sorted != seqs {
+                let mut order: Vec<(usize, Entry)> = seqs.into_iter().zip(out).collect();
+                order.sort_unstable_by_key(|(s, _)| *s);
+                out = order
+                    .into_iter()
+                    .map(|(s, e)| Entry { de: s, ..e })
+                    .collect();
+            }
         }
         Ok(out)
     }
@@ -1269,14 +1406,47 @@ impl<'a> Sections<'a> {
         let weights: Vec<Vec<f64>> = (0..nu)
             .map(|iu| (0..nv).map(|jv| w[jv * nu + iu]).collect())
             .collect();
-        NurbsSurface::new(m1, m2, ku, kv, &points, Some(&weights)).map_err(|source| {
-            ReadError::Surface {
-                format: Format::Iges,
-                line: e.line,
-                entity: format!("entity 128 at D{}", e.de),
-                source,
+        let surface_error = |reason| ReadError::Surface {
+            format: Format::Iges,
+            line: e.line,
+            entity: format!("entity 128 at D{}", e.de),
+            reason,
+        };
+        let s =
+            NurbsSurface::new(m1, m2, ku, kv, &points, Some(&weights)).map_err(surface_error)?;
+        // The parameter range U0, U1, V0, V1 (the last four values) bounds the surface within
+        // its knots, as a 126's V0, V1 bound its curve: the surface is what both allow. Bounds
+        // within 1e-9 of the domain's span of its ends are the ends (rounding, not a cut).
+        let at = 10 + a + b + 4 * nu * nv;
+        let range = [
+            take(2, "parameter range U0, U1")?,
+            take(2, "parameter range V0, V1")?,
+        ];
+        let d = s.domain();
+        let cut = |r: &[f64], dd: [f64; 2]| {
+            let eps = 1e-9 * (dd[1] - dd[0]);
+            [
+                if r[0] <= dd[0] + eps { dd[0] } else { r[0] },
+                if r[1] >= dd[1] - eps { dd[1] } else { r[1] },
+            ]
+        };
+        let (u, v) = (cut(&range[0], d.u), cut(&range[1], d.v));
+        if (u, v) == (d.u, d.v) {
+            return Ok(s);
+        }
+        for (k, r, dd, dir) in [(at, &range[0], d.u, "U"), (at + 2, &range[1], d.v, "V")] {
+            let c = cut(r, dd);
+            if c[0] >= c[1] {
+                return Err(p.error(
+                    k,
+                    format!(
+                        "entity 128 at D{}: its parameter range {dir}0, {dir}1 = [{}, {}] leaves nothing of the knots' [{}, {}]",
+                        e.de, r[0], r[1], dd[0], dd[1]
+                    ),
+                ));
             }
-        })
+        }
+        s.restricted(u, v).map_err(surface_error)
     }
 
     fn curve126(&self, e: &Entry, entries: &[Entry], factor: f64) -> Result<IgesCurve, ReadError> {
@@ -1334,7 +1504,7 @@ impl<'a> Sections<'a> {
     }
 }
 
-fn field<'a>(r: &Record<'a>, i: usize) -> &'a str {
+fn field<'r>(r: &'r Record<'_>, i: usize) -> &'r str {
     r.data[8 * i..8 * i + 8].trim()
 }
 
@@ -1374,6 +1544,14 @@ fn locate(starts: &[(usize, usize)], at: usize) -> (usize, usize) {
 /// Split parameter text into fields up to the record delimiter, keeping Hollerith strings
 /// whole. Errors carry the byte offset.
 fn tokenize(text: &str, pd: u8, rd: u8) -> Result<Vec<&str>, (usize, String)> {
+    match tokenize_prefix(text, pd, rd) {
+        (fields, None) => Ok(fields),
+        (_, Some(e)) => Err(e),
+    }
+}
+
+/// [`tokenize`], and the fields read before an error with the error.
+fn tokenize_prefix(text: &str, pd: u8, rd: u8) -> (Vec<&str>, Option<(usize, String)>) {
     let b = text.as_bytes();
     let mut out = Vec::new();
     let mut start = 0;
@@ -1383,7 +1561,7 @@ fn tokenize(text: &str, pd: u8, rd: u8) -> Result<Vec<&str>, (usize, String)> {
         if c == pd || c == rd {
             out.push(&text[start..i]);
             if c == rd {
-                return Ok(out);
+                return (out, None);
             }
             i += 1;
             start = i;
@@ -1396,15 +1574,20 @@ fn tokenize(text: &str, pd: u8, rd: u8) -> Result<Vec<&str>, (usize, String)> {
                 j += 1;
             }
             if j < b.len() && b[j] == b'H' {
-                let n: usize = text[i..j]
-                    .parse()
-                    .map_err(|_| (i, "Hollerith length too large".to_string()))?;
+                let Ok(n) = text[i..j].parse::<usize>() else {
+                    return (out, Some((i, "Hollerith length too large".to_string())));
+                };
                 let end = j + 1 + n;
                 if end > b.len() {
-                    return Err((
-                        i,
-                        format!("Hollerith string of {n} characters runs past the end of the data"),
-                    ));
+                    return (
+                        out,
+                        Some((
+                            i,
+                            format!(
+                                "Hollerith string of {n} characters runs past the end of the data"
+                            ),
+                        )),
+                    );
                 }
                 i = end;
                 continue;
@@ -1414,13 +1597,11 @@ fn tokenize(text: &str, pd: u8, rd: u8) -> Result<Vec<&str>, (usize, String)> {
         }
         i += 1;
     }
-    Err((
-        b.len(),
-        format!(
-            "found the end of the data, expected the record delimiter `{}`",
-            rd as char
-        ),
-    ))
+    let e = format!(
+        "found the end of the data, expected the record delimiter `{}`",
+        rd as char
+    );
+    (out, Some((b.len(), e)))
 }
 
 /// The text of a Hollerith field (`3HABC` → `ABC`), or the field itself.

@@ -130,9 +130,9 @@ impl Checked {
             &points,
             Some(&weights),
         )
-        .map_err(|source| PatchError::Surface {
+        .map_err(|reason| PatchError::Surface {
             who: who.clone(),
-            source,
+            reason,
         })?;
         let trim = match p.trim {
             None => None,
@@ -151,7 +151,7 @@ impl Checked {
                     PatchError::Trim {
                         who,
                         what: loop_name(index),
-                        source: e,
+                        reason: e,
                     }
                 })?;
                 Some(trim)
@@ -169,22 +169,22 @@ impl Checked {
 #[derive(Debug, thiserror::Error)]
 enum PatchError {
     /// Its numbers do not make a NURBS.
-    #[error("{who}: {source}")]
+    #[error("{who}: {reason}")]
     Surface {
         /// `patch 3 "floor"`.
         who: String,
-        /// Why.
-        source: NurbsError,
+        /// Why (in the message, not a separate source).
+        reason: NurbsError,
     },
     /// Its trim is refused.
-    #[error("{who}: {what} {}", trim_problem(.source))]
+    #[error("{who}: {what} {}", trim_problem(.reason))]
     Trim {
         /// `patch 3 "floor"`.
         who: String,
         /// `trim.outer`, `trim.holes[2]`.
         what: String,
-        /// Why.
-        source: TrimError,
+        /// Why (in the message, not a separate source).
+        reason: TrimError,
     },
 }
 

@@ -52,6 +52,9 @@ impl Format {
 }
 
 /// Why a surface file could not be read.
+///
+/// A cause that is part of a message is not also its [`std::error::Error::source`] (fields
+/// named `reason`, not `source`): the CLI prints an error's whole chain, and would say it twice.
 #[derive(Debug, thiserror::Error)]
 pub enum ReadError {
     /// The file could not be read. (The errors of a file leave it to the caller to name it,
@@ -83,7 +86,7 @@ pub enum ReadError {
         message: String,
     },
     /// Well-formed text that does not make a valid surface.
-    #[error("{format} line {line}: {entity}: {source}")]
+    #[error("{format} line {line}: {entity}: {reason}")]
     Surface {
         /// The format.
         format: Format,
@@ -91,9 +94,9 @@ pub enum ReadError {
         line: usize,
         /// The entity (`#55`, `D3`, `patch "floor"`).
         entity: String,
-        /// What is wrong with it.
-        #[source]
-        source: NurbsError,
+        /// What is wrong with it. Part of the message and not a separate source: the CLI
+        /// prints an error's chain and would say it twice.
+        reason: NurbsError,
     },
     /// Well-formed text with an inconsistent or missing entity.
     #[error("{format} line {line}: {entity}: {message}")]
@@ -128,8 +131,12 @@ pub fn read_file(path: &Path) -> Result<CompoundSurface, ReadError> {
         path: path.to_path_buf(),
         source,
     })?;
-    let text = String::from_utf8_lossy(&bytes);
-    let mut s = parse(format, &text)?;
+    // IGES columns are bytes: decoded as UTF-8 first, an accent in a Latin-1 Start section
+    // would no longer be one column.
+    let mut s = match format {
+        Format::Iges => iges::parse_bytes(&bytes)?,
+        _ => parse(format, &String::from_utf8_lossy(&bytes))?,
+    };
     let name = path.display().to_string();
     for p in &mut s.patches {
         p.source.file = Some(name.clone());

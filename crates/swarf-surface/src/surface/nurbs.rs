@@ -59,6 +59,16 @@ pub enum NurbsError {
         /// What is wrong.
         reason: String,
     },
+    /// A parameter range that is empty, not finite or not within the domain.
+    #[error("parameter range [{}, {}] in {dir} is not a part of the domain [{}, {}]", range[0], range[1], domain[0], domain[1])]
+    Range {
+        /// `"u"` or `"v"`.
+        dir: &'static str,
+        /// The range asked for.
+        range: [f64; 2],
+        /// The surface's domain in that direction.
+        domain: [f64; 2],
+    },
     /// The control net is not rectangular.
     #[error("control net row {row} has {found} points; expected {expected}")]
     Ragged {
@@ -259,6 +269,60 @@ impl NurbsSurface {
         }
     }
 
+    /// The part of the surface over `[u0, u1] × [v0, v1]` (within its domain), with the same
+    /// parameters: its point at `(u, v)` is this surface's. Each bound is inserted as a knot
+    /// until it is full (degree + 1 copies; Boehm's insertion, Piegl & Tiller A5.1) and the
+    /// knots and control points outside are dropped, so the result is exact.
+    ///
+    /// ```
+    /// use swarf_geom::math::Vec3;
+    /// use swarf_surface::{NurbsSurface, ParametricSurface};
+    /// // A quadratic in v over [0, 1]²; its middle half in u and v.
+    /// let pts: Vec<Vec<Vec3>> = (0..2)
+    ///     .map(|i| (0..3).map(|j| Vec3::new(20.0 * i as f64, 10.0 * j as f64 - 10.0, (j % 2) as f64)).collect())
+    ///     .collect();
+    /// let s = NurbsSurface::new(1, 2, vec![0., 0., 1., 1.], vec![0., 0., 0., 1., 1., 1.], &pts, None)?;
+    /// let r = s.restricted([0.25, 0.75], [0.25, 0.75])?;
+    /// assert_eq!(r.domain().u, [0.25, 0.75]);
+    /// assert!((r.point(0.3, 0.6) - s.point(0.3, 0.6)).length() < 1e-12);
+    /// # Ok::<(), swarf_surface::NurbsError>(())
+    /// ```
+    ///
+    /// # Errors
+    /// [`NurbsError::Range`] when a range is empty, not finite or not within the domain.
+    pub fn restricted(&self, u: [f64; 2], v: [f64; 2]) -> Result<Self, NurbsError> {
+        let d = self.domain();
+        for (dir, r, dd) in [("u", u, d.u), ("v", v, d.v)] {
+            if !(r[0] < r[1] && r[0] >= dd[0] && r[1] <= dd[1]) {
+                return Err(NurbsError::Range {
+                    dir,
+                    range: r,
+                    domain: dd,
+                });
+            }
+        }
+        // Columns (fixed j, along u) cut in u, then rows (fixed i, along v) cut in v.
+        let (p, q) = (self.degree_u, self.degree_v);
+        let mut cols: Vec<Vec<DVec4>> = (0..self.nv)
+            .map(|j| (0..self.nu).map(|i| self.pw[i * self.nv + j]).collect())
+            .collect();
+        let knots_u = restrict_curves(p, &self.knots_u, &mut cols, u);
+        let nu = cols[0].len();
+        let mut rows: Vec<Vec<DVec4>> = (0..nu)
+            .map(|i| cols.iter().map(|c| c[i]).collect())
+            .collect();
+        let knots_v = restrict_curves(q, &self.knots_v, &mut rows, v);
+        let points: Vec<Vec<Vec3>> = rows
+            .iter()
+            .map(|r| r.iter().map(|h| h.truncate() / h.w).collect())
+            .collect();
+        let weights: Vec<Vec<f64>> = rows
+            .iter()
+            .map(|r| r.iter().map(|h| h.w).collect())
+            .collect();
+        Self::new(p, q, knots_u, knots_v, &points, Some(&weights))
+    }
+
     /// Homogeneous derivatives `A_kl` (k + l ≤ 2) at `(u, v)`, in the order
     /// 00, 10, 01, 20, 11, 02.
     fn homogeneous(&self, u: f64, v: f64, order: usize) -> [DVec4; 6] {
@@ -391,6 +455,59 @@ fn check_dir(dir: &'static str, degree: usize, n: usize, knots: &[f64]) -> Resul
         }
     }
     Ok(())
+}
+
+/// Cuts the B-spline curves sharing degree `p` and `knots` (each a control polygon in
+/// `curves`) to `[a, b]` within their domain: each bound is inserted until it has `p + 1`
+/// copies, then the knots and control points outside are dropped. Returns the new knots.
+fn restrict_curves(
+    p: usize,
+    knots: &[f64],
+    curves: &mut [Vec<DVec4>],
+    [a, b]: [f64; 2],
+) -> Vec<f64> {
+    let mut u = knots.to_vec();
+    for t in [a, b] {
+        while u.iter().filter(|&&k| k == t).count() < p + 1 {
+            // Boehm: Q_i = α_i P_i + (1 − α_i) P_{i−1}, α_i = (t − U_i)/(U_{i+p} − U_i) clamped
+            // to [0, 1] (1 left of the span holding t, 0 right of it), for i = 0..=n.
+            let n = curves[0].len();
+            let alpha: Vec<f64> = (0..=n)
+                .map(|i| {
+                    let den = u[i + p] - u[i];
+                    if den > 0.0 {
+                        ((t - u[i]) / den).clamp(0.0, 1.0)
+                    } else {
+                        f64::from(u8::from(u[i] <= t))
+                    }
+                })
+                .collect();
+            for c in curves.iter_mut() {
+                let q: Vec<DVec4> = alpha
+                    .iter()
+                    .enumerate()
+                    .map(|(i, &al)| match (i.checked_sub(1), i < n) {
+                        (_, true) if al == 1.0 => c[i],
+                        (Some(h), _) if al == 0.0 => c[h],
+                        (Some(h), true) => al * c[i] + (1.0 - al) * c[h],
+                        // t lies in the domain: the ends keep their points.
+                        (None, _) => c[0],
+                        (Some(h), false) => c[h],
+                    })
+                    .collect();
+                *c = q;
+            }
+            let at = u.partition_point(|&k| k <= t);
+            u.insert(at, t);
+        }
+    }
+    // First of the last p + 1 copies of a; first copy of b.
+    let lo = u.partition_point(|&k| k <= a) - (p + 1);
+    let hi = u.partition_point(|&k| k < b);
+    for c in curves.iter_mut() {
+        *c = c[lo..hi].to_vec();
+    }
+    u[lo..=hi + p].to_vec()
 }
 
 /// The knot span index `i` with `U_i ≤ u < U_{i+1}` (the last non-empty span at the domain end).
@@ -555,5 +672,68 @@ mod tests {
         ));
         let flat = vec![0.0, 0.0, 0.0, 0.0];
         assert!(NurbsSurface::new(1, 1, flat, k, &pts, None).is_err());
+    }
+
+    #[test]
+    fn a_restricted_surface_is_the_same_surface_over_the_part() {
+        // Degree 2 × 3, rational, an interior knot of multiplicity 2 in u, and an unclamped
+        // knot vector in v: the part crosses interior knots and ends inside spans.
+        let (nu, nv) = (6, 5);
+        let pts: Vec<Vec<Vec3>> = (0..nu)
+            .map(|i| {
+                (0..nv)
+                    .map(|j| {
+                        let (x, y) = (i as f64, j as f64);
+                        Vec3::new(3.0 * x + 0.2 * y, 2.0 * y - 0.1 * x * y, (x * y).sin())
+                    })
+                    .collect()
+            })
+            .collect();
+        let w: Vec<Vec<f64>> = (0..nu)
+            .map(|i| {
+                (0..nv)
+                    .map(|j| 1.0 + 0.3 * ((i + 2 * j) % 3) as f64)
+                    .collect()
+            })
+            .collect();
+        let ku = vec![0.0, 0.0, 0.0, 0.4, 0.4, 0.7, 1.0, 1.0, 1.0];
+        let kv = vec![-3.0, -2.0, -1.0, 0.0, 1.0, 2.0, 3.0, 4.0, 5.0];
+        let s = NurbsSurface::new(2, 3, ku, kv, &pts, Some(&w)).unwrap();
+        let d = s.domain();
+        assert_eq!((d.u, d.v), ([0.0, 1.0], [0.0, 2.0]));
+        for (u, v) in [
+            ([0.25, 0.85], [0.3, 1.6]),
+            ([0.4, 0.7], [0.0, 2.0]),
+            ([0.0, 1.0], [1.0, 1.5]),
+            ([0.0, 0.1], [1.9, 2.0]),
+        ] {
+            let r = s.restricted(u, v).unwrap();
+            assert_eq!((r.domain().u, r.domain().v), (u, v));
+            for a in 0..=8 {
+                for b in 0..=8 {
+                    let x = u[0] + (u[1] - u[0]) * a as f64 / 8.0;
+                    let y = v[0] + (v[1] - v[0]) * b as f64 / 8.0;
+                    let (p, q) = (s.derivs(x, y), r.derivs(x, y));
+                    assert!(
+                        (p.point - q.point).length() < 1e-12,
+                        "{u:?} {v:?} at ({x}, {y})"
+                    );
+                    assert!((p.su - q.su).length() < 1e-9 && (p.sv - q.sv).length() < 1e-9);
+                }
+            }
+            // Its hull (control points) lies within the original's.
+            let (bb, rb) = (s.bounding_box(), r.bounding_box());
+            assert!(bb.inflated(1e-12).contains(rb.min) && bb.inflated(1e-12).contains(rb.max));
+        }
+        for (u, v) in [
+            ([0.5, 0.5], [0.0, 2.0]),
+            ([-0.1, 0.5], [0.0, 2.0]),
+            ([0.0, 1.0], [1.0, 2.5]),
+        ] {
+            assert!(
+                matches!(s.restricted(u, v), Err(NurbsError::Range { .. })),
+                "{u:?} {v:?}"
+            );
+        }
     }
 }

@@ -333,7 +333,7 @@ impl Model<'_> {
             // Checked above with the reader's own messages; the curve checks the same.
             return BSplineCurve::new(degree, kv, &pts, &weights)
                 .map(Curve::Spline)
-                .map_err(|source| TrimFailure::SplineCurve { curve: id, source });
+                .map_err(|reason| TrimFailure::SplineCurve { curve: id, reason });
         }
         Err(TrimFailure::CurveKind {
             curve: id,

@@ -258,30 +258,61 @@ impl Model<'_> {
         ))
     }
 
-    pub(super) fn units(&mut self, notes: &mut Vec<ReadNote>) -> R<()> {
+    /// Reads the units of every unit context, sets the file's (the first length and the first
+    /// plane-angle unit, by instance number) and returns each context's, by the context's
+    /// instance number: `(mm per length unit, its name, radians per angle unit)`, the file's
+    /// where a context declares none.
+    pub(super) fn units(&mut self, notes: &mut Vec<ReadNote>) -> R<Contexts> {
         let mut ids: Vec<u64> = self.map.keys().copied().collect();
         ids.sort_unstable();
         let mut length = None;
         let mut angle = None;
+        let mut contexts = Vec::new();
         for id in ids {
             let Some(g) = self.map[&id].part("GLOBAL_UNIT_ASSIGNED_CONTEXT") else {
                 continue;
             };
             let units = self.list(id, g.first(), "units")?.to_vec();
+            let (mut own_length, mut own_angle) = (None, None);
             for u in &units {
                 let uid = self.reference(id, Some(u), "unit")?;
                 let ui = self.get(id, uid)?;
-                if length.is_none() && ui.part("LENGTH_UNIT").is_some() {
-                    length = Some(self.unit_factor(id, uid, 0)?);
-                } else if angle.is_none() && ui.part("PLANE_ANGLE_UNIT").is_some() {
-                    angle = Some(self.unit_factor(id, uid, 0)?.0);
+                if own_length.is_none() && ui.part("LENGTH_UNIT").is_some() {
+                    own_length = Some(self.unit_factor(id, uid, 0)?);
+                } else if own_angle.is_none() && ui.part("PLANE_ANGLE_UNIT").is_some() {
+                    own_angle = Some(self.unit_factor(id, uid, 0)?.0);
                 }
+            }
+            length = length.or_else(|| own_length.clone());
+            angle = angle.or(own_angle);
+            contexts.push((id, own_length, own_angle));
+        }
+        let (first, label) = length.clone().unwrap_or((1.0, "mm".into()));
+        self.angle = angle.unwrap_or(1.0);
+        let contexts: Contexts = contexts
+            .into_iter()
+            .map(|(id, l, a)| {
+                let (f, name) = l.unwrap_or_else(|| (first, label.clone()));
+                (id, (f, name, a.unwrap_or(self.angle)))
+            })
+            .collect();
+        let mut distinct: Vec<(f64, String)> = Vec::new();
+        for (f, name, _) in contexts.values() {
+            if !distinct.iter().any(|(g, _)| g == f) {
+                distinct.push((*f, name.clone()));
             }
         }
         match length {
             None => notes.push(ReadNote::UnitsAssumed),
             Some((f, label)) => {
-                if f != 1.0 {
+                if distinct.len() > 1 {
+                    distinct.sort_by(|a, b| a.0.total_cmp(&b.0));
+                    notes.push(ReadNote::UnitsMixed {
+                        units: distinct.into_iter().map(|(_, n)| n).collect(),
+                        first: label,
+                        defaulted: 0,
+                    });
+                } else if f != 1.0 {
                     notes.push(ReadNote::UnitsConverted {
                         unit: label,
                         factor: f,
@@ -290,13 +321,87 @@ impl Model<'_> {
                 self.length = f;
             }
         }
-        self.angle = angle.unwrap_or(1.0);
-        Ok(())
+        Ok(contexts)
+    }
+
+    /// The unit context of each face (or, in a file without faces, each surface) that one
+    /// representation holds: its items are followed through shells and models to the faces,
+    /// not into other representations (a `MAPPED_ITEM`'s representation holds its own). A face
+    /// held by representations of different length units maps to `None`.
+    pub(super) fn face_contexts(&self, contexts: &Contexts) -> HashMap<u64, Option<u64>> {
+        let mut ids: Vec<u64> = self.map.keys().copied().collect();
+        ids.sort_unstable();
+        let mut out: HashMap<u64, Option<u64>> = HashMap::new();
+        for id in ids {
+            // A representation: (name, items, context), its context one of the unit contexts.
+            let Some((items, ctx)) =
+                self.map[&id]
+                    .parts
+                    .iter()
+                    .find_map(|(_, p)| match p.as_slice() {
+                        [_, Param::List(items), Param::Ref(c)] if contexts.contains_key(c) => {
+                            Some((items, *c))
+                        }
+                        _ => None,
+                    })
+            else {
+                continue;
+            };
+            let mut stack = Vec::new();
+            for item in items {
+                refs(item, &mut stack);
+            }
+            let mut seen = HashSet::new();
+            while let Some(i) = stack.pop() {
+                let Some(inst) = self.map.get(&i) else {
+                    continue;
+                };
+                if !seen.insert(i) || is_representation(inst, contexts) {
+                    continue;
+                }
+                let face =
+                    inst.part("ADVANCED_FACE").is_some() || inst.part("FACE_SURFACE").is_some();
+                if face || is_surface(inst) {
+                    let unit = |c: Option<u64>| c.and_then(|c| contexts.get(&c)).map(|u| u.0);
+                    out.entry(i)
+                        .and_modify(|c| {
+                            if unit(*c) != unit(Some(ctx)) {
+                                *c = None;
+                            }
+                        })
+                        .or_insert(Some(ctx));
+                    continue;
+                }
+                if matches!(
+                    inst.first_name(),
+                    "MAPPED_ITEM"
+                        | "REPRESENTATION_MAP"
+                        | "CARTESIAN_POINT"
+                        | "DIRECTION"
+                        | "AXIS2_PLACEMENT_3D"
+                ) {
+                    continue;
+                }
+                for (_, ps) in &inst.parts {
+                    for p in ps {
+                        refs(p, &mut stack);
+                    }
+                }
+            }
+        }
+        out
     }
 
     pub(super) fn read(mut self) -> R<CompoundSurface> {
         let mut out = CompoundSurface::default();
-        self.units(&mut out.notes)?;
+        let contexts = self.units(&mut out.notes)?;
+        // Representations in different length units: each face is read in its own's.
+        let units = matches!(out.notes.last(), Some(ReadNote::UnitsMixed { .. })).then(|| {
+            let by_face = self.face_contexts(&contexts);
+            (contexts, by_face)
+        });
+        let file_units = (self.length, self.angle);
+        let mut defaulted = 0;
         let mut ids: Vec<u64> = self.map.keys().copied().collect();
         ids.sort_unstable();
         let faces: Vec<u64> = ids
@@ -323,6 +428,7 @@ impl Model<'_> {
                     continue;
                 }
                 let index = out.patches.len();
+                (self.length, self.angle) = units_of(id, &units, &mut defaulted, file_units);
                 let (surface, name) = self.surface(id, None, index, &mut out.notes)?;
                 out.patches.push(Patch {
                     name,
@@ -357,6 +463,7 @@ impl Model<'_> {
                 }
                 let index = out.patches.len();
                 let bounds = p.get(1).cloned();
+                (self.length, self.angle) = units_of(fid, &units, &mut defaulted, file_units);
                 let (mut surface, sname) = self.surface(
                     sid,
                     bounds.as_ref().map(|b| (fid, b)),
@@ -414,8 +521,44 @@ impl Model<'_> {
                 detail,
             });
         }
+        if let Some(ReadNote::UnitsMixed { defaulted: d, .. }) = out
+            .notes
+            .iter_mut()
+            .find(|n| matches!(n, ReadNote::UnitsMixed { .. }))
+        {
+            *d = defaulted;
+        }
+        if let Some(note) = self.placements() {
+            out.notes.push(note);
+        }
         out.notes.extend(skipped);
         Ok(out)
+    }
+
+    /// A note when the file places parts by assembly instances (`MAPPED_ITEM`s,
+    /// `NEXT_ASSEMBLY_USAGE_OCCURRENCE`s with their transformations), which are not applied.
+    fn placements(&self) -> Option<ReadNote> {
+        let mut found: Vec<u64> = self
+            .map
+            .iter()
+            .filter(|(_, i)| {
+                i.part("MAPPED_ITEM").is_some()
+                    || i.part("NEXT_ASSEMBLY_USAGE_OCCURRENCE").is_some()
+            })
+            .map(|(&id, _)| id)
+            .collect();
+        if found.is_empty() {
+            return None;
+        }
+        found.sort_unstable();
+        Some(ReadNote::PlacementsNotApplied {
+            instances: found.len(),
+            examples: found
+                .iter()
+                .take(3)
+                .map(|id| format!("{} #{id}", self.map[id].first_name()))
+                .collect(),
+        })
     }
 
     /// The surface `id`, bounded (for elementary kinds) by the face bounds when given.
@@ -574,11 +717,11 @@ impl Model<'_> {
             None => None,
         };
         let s = NurbsSurface::new(du, dv, knots_u, knots_v, &points, weights.as_deref()).map_err(
-            |source| ReadError::Surface {
+            |reason| ReadError::Surface {
                 format: Format::Step,
                 line: self.line(id),
                 entity: format!("#{id}"),
-                source,
+                reason,
             },
         )?;
         Ok((Surface::Nurbs(s), name))
@@ -694,6 +837,44 @@ impl Model<'_> {
         }
         Ok(out)
     }
+}
+
+/// The units (mm per length unit, radians per angle unit) to read face or surface `id` in:
+/// its representation's context's, or the file's (`file`) where it has none or is ambiguous
+/// (counted in `defaulted`).
+fn units_of(
+    id: u64,
+    units: &Option<(Contexts, HashMap<u64, Option<u64>>)>,
+    defaulted: &mut usize,
+    file: (f64, f64),
+) -> (f64, f64) {
+    let Some((contexts, by_face)) = units else {
+        return file;
+    };
+    match by_face
+        .get(&id)
+        .copied()
+        .flatten()
+        .and_then(|c| contexts.get(&c))
+    {
+        Some(&(length, _, angle)) => (length, angle),
+        None => {
+            *defaulted += 1;
+            file
+        }
+    }
+}
+
+/// The unit contexts of a file by instance number: mm per length unit, the unit's name,
+/// radians per plane-angle unit.
+pub(super) type Contexts = HashMap<u64, (f64, String, f64)>;
+
+/// True for a representation (name, items, one of the unit contexts), whose items belong to
+/// its own context.
+fn is_representation(inst: &Instance, contexts: &Contexts) -> bool {
+    inst.parts.iter().any(|(_, p)| {
+        matches!(p.as_slice(), [_, Param::List(_), Param::Ref(c)] if contexts.contains_key(c))
+    })
 }
 
 pub(super) fn si_prefix(p: &str) -> Option<f64> {

@@ -44,7 +44,16 @@
 //! * **Units**: the length unit of the `GLOBAL_UNIT_ASSIGNED_CONTEXT` (`SI_UNIT` with any prefix,
 //!   or a `CONVERSION_BASED_UNIT` such as INCH or FOOT, resolved through its
 //!   `LENGTH_MEASURE_WITH_UNIT`) scales lengths to mm; the plane-angle unit scales cone angles.
-//!   No unit: mm, with a [`ReadNote::UnitsAssumed`](crate::ReadNote::UnitsAssumed).
+//!   No unit: mm, with a [`ReadNote::UnitsAssumed`](crate::ReadNote::UnitsAssumed). When unit
+//!   contexts declare different length units, each face (each surface, in a file without
+//!   faces) is read in the units of the representation that holds it (`(name, items,
+//!   context)`, its items followed through shells and models to the faces, not into other
+//!   representations), with a [`ReadNote::UnitsMixed`](crate::ReadNote::UnitsMixed); a face in
+//!   no representation, or in several of different units, takes the first context's.
+//! * **Assemblies**: placements of parts (`MAPPED_ITEM`, `NEXT_ASSEMBLY_USAGE_OCCURRENCE` with
+//!   `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION` / `ITEM_DEFINED_TRANSFORMATION`) are not applied:
+//!   each part's faces are read once, in the part's own frame, and a
+//!   [`ReadNote::PlacementsNotApplied`](crate::ReadNote::PlacementsNotApplied) says so.
 //! * **Parameter boxes of elementary surfaces**: angles take their full range (u ∈ [0, 2π];
 //!   sphere v ∈ [−π/2, π/2]; torus v ∈ [0, 2π]); linear parameters (plane u, v; cylinder and
 //!   cone v) span the face's boundary: its vertices, the control points of its B-spline edges
