@@ -162,8 +162,9 @@ fn bad_input_is_exit_1_with_a_clear_message() {
     ]);
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("column"), "{}", stderr(&o));
+    // No stock at all: a usage error, exit 2 like clap's own.
     let o = swarf(&["simulate", "--program", p, "--tool", "flat:d=3"]);
-    assert_eq!(o.status.code(), Some(1));
+    assert_eq!(o.status.code(), Some(2));
     assert!(stderr(&o).contains("--stock"), "{}", stderr(&o));
     let o = swarf(&["simulate", "--stock", "box:0,0,0,5,5,5", "--program", p]);
     assert_eq!(o.status.code(), Some(1));

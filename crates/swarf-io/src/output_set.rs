@@ -50,6 +50,8 @@ pub struct OutputSet {
     max_bytes: u64,
     /// (temporary, target) of the files written so far.
     staged: Vec<(PathBuf, PathBuf)>,
+    /// Subfolders whose files are all this set's (see [`OutputSet::owns_folder`]).
+    owned: Vec<PathBuf>,
 }
 
 impl OutputSet {
@@ -68,7 +70,17 @@ impl OutputSet {
             dir: dir.to_path_buf(),
             max_bytes,
             staged: Vec::new(),
+            owned: Vec::new(),
         })
+    }
+
+    /// Declares the subfolder `rel` (of the set's folder) the set's own: at the commit, the
+    /// files in it that the set did not write are removed, so that a folder of plots reused
+    /// from an earlier run holds this run's plots only (a map of a location this run did not
+    /// draw would otherwise sit beside them and end up in reports). Hidden files (names
+    /// starting with `.`, such as another run's temporaries) and folders are left.
+    pub fn owns_folder(&mut self, rel: &str) {
+        self.owned.push(self.dir.join(rel));
     }
 
     /// The folder the files go to.
@@ -212,6 +224,19 @@ impl OutputSet {
         } else {
             for (backup, _) in &aside {
                 let _ = std::fs::remove_file(backup);
+            }
+            for folder in &self.owned {
+                let Ok(entries) = std::fs::read_dir(folder) else {
+                    continue;
+                };
+                for path in entries.flatten().map(|e| e.path()) {
+                    let hidden = path
+                        .file_name()
+                        .is_some_and(|n| n.to_string_lossy().starts_with('.'));
+                    if path.is_file() && !hidden && !placed.contains(&path) {
+                        let _ = std::fs::remove_file(&path);
+                    }
+                }
             }
         }
         result

@@ -142,3 +142,24 @@ fn files_written_side_by_side_appear_together_or_not_at_all() {
     assert_eq!(std::fs::read(d.join("a.bin")).unwrap(), big);
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+#[test]
+fn an_owned_folder_keeps_this_runs_files_only() {
+    let d = temp_dir("owned");
+    let write = |files: &[&str]| {
+        let mut set = OutputSet::new(&d, 1 << 20).unwrap();
+        set.owns_folder("maps");
+        for f in files {
+            set.write(f, |w| w.write_all(b"x")).unwrap();
+        }
+        set.commit().unwrap();
+    };
+    write(&["summary.json", "maps/a.png", "maps/b.png"]);
+    std::fs::write(d.join("notes.txt"), "mine").unwrap();
+    std::fs::write(d.join("maps/.hidden"), "kept").unwrap();
+    write(&["summary.json", "maps/b.png"]);
+    assert_eq!(names(&d.join("maps")), [".hidden", "b.png"]);
+    // Outside the owned folder nothing is removed.
+    assert_eq!(names(&d), ["maps", "notes.txt", "summary.json"]);
+    std::fs::remove_dir_all(&d).unwrap();
+}

@@ -67,6 +67,9 @@ pub struct CutterDescription {
     pub apt: AptDescription,
     /// Number of flutes.
     pub flutes: u32,
+    /// Whether the flute count was given (false: [`crate::cutter::DEFAULT_FLUTES`], which the
+    /// force model does not take as a fact).
+    pub flutes_given: bool,
     /// Helix angle.
     pub helix_deg: f64,
     /// Cutting length.
@@ -105,6 +108,7 @@ impl CutterDescription {
                 height_mm: a.h,
             },
             flutes: c.flutes(),
+            flutes_given: c.flutes_given().is_some(),
             helix_deg: c.helix_deg(),
             flute_length_mm: c.flute_length(),
             shank_diameter_mm: c.shank_diameter(),

@@ -35,8 +35,13 @@ pub(crate) fn run(args: &ToolArgs) -> Result<()> {
         a.side_angle_deg,
         a.height_mm
     );
+    let default = if d.flutes_given {
+        ""
+    } else {
+        " (default; swarf forces needs flutes=N)"
+    };
     println!(
-        "  {} flutes, helix {}°, flute length {} mm, shank Ø{} mm, overall length {} mm",
+        "  {} flutes{default}, helix {}°, flute length {} mm, shank Ø{} mm, overall length {} mm",
         d.flutes, d.helix_deg, d.flute_length_mm, d.shank_diameter_mm, d.overall_length_mm
     );
     for p in &d.pieces {
