@@ -293,3 +293,39 @@ fn merged_stock_mesh_is_the_same_part_in_few_triangles() {
         );
     }
 }
+
+#[test]
+fn a_ray_spacing_coarser_than_the_cutter_is_refused() {
+    // A 10 mm slot at 30 mm spacing removed nothing (and at 1000 mm a quarter of the block):
+    // refused before anything is built; a merely coarse spacing runs with a note.
+    let dir = temp_dir("coarse");
+    let prog = dir.join("slot.ngc");
+    std::fs::write(
+        &prog,
+        "G21 G90\nG0 X0 Y10 Z5\nG1 Z-5 F100\nG1 X40 F300\nM30\n",
+    )
+    .unwrap();
+    let run = |h: &str| {
+        swarf(&[
+            "simulate",
+            "--stock",
+            "box:-20,-10,-20,60,30,0",
+            "--program",
+            prog.to_str().unwrap(),
+            "--tool",
+            "flat:d=10",
+            "--resolution",
+            h,
+        ])
+    };
+    let o = run("30");
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("coarser than half"), "{}", stderr(&o));
+    let o = run("2");
+    assert_eq!(o.status.code(), Some(0), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("note: --resolution 2 mm is coarse"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -123,6 +123,7 @@ impl RunArgs {
             setup,
             ..
         } = job;
+        crate::commands::tools::check_resolution(&tools, self.resolution)?;
         let stock = build_stock(
             self.stock.as_deref(),
             setup.table.as_ref(),

@@ -199,6 +199,7 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
     let job = load_job(&args.setup, &args.program)?;
     let tools = defined_tools(&job)?;
     let program = &job.program;
+    crate::commands::tools::check_resolution(tools, args.resolution)?;
     let mut stock = build_stock(
         args.stock.as_deref(),
         job.setup.table.as_ref(),

@@ -36,6 +36,38 @@ pub(crate) fn defined_tools(job: &Job) -> Result<&ToolSet> {
     Ok(&job.tools)
 }
 
+/// Refuses a ray spacing `h` (mm) coarser than half the smallest cutter's diameter: cuts of that
+/// cutter would fall between the rays (a 10 mm slot at `--resolution 30` removed nothing, at
+/// 1000 a quarter of the stock), and the result would be noise, not a simulation. A spacing
+/// over a tenth of the diameter only gets a note.
+pub(crate) fn check_resolution(tools: &ToolSet, h: f64) -> Result<()> {
+    let Some(d) = tools
+        .resolved()
+        .values()
+        .map(|t| &t.cutter)
+        .chain(tools.fallback())
+        .map(swarf_tool::Cutter::max_diameter)
+        .reduce(f64::min)
+    else {
+        return Ok(());
+    };
+    if h > 0.5 * d {
+        anyhow::bail!(
+            "--resolution {h} mm is coarser than half the smallest cutter's diameter ({d} mm): \
+             its cuts would fall between the rays; give at most {:.3} mm (a tenth of it for \
+             volumes within a few per cent)",
+            0.5 * d
+        );
+    }
+    if h > 0.1 * d {
+        eprintln!(
+            "note: --resolution {h} mm is coarse for the smallest cutter (Ø{d} mm): volumes and \
+             walls are resolved to about a ray spacing"
+        );
+    }
+    Ok(())
+}
+
 fn require_defined(undefined: &[u32]) -> Result<()> {
     if let Some(n) = undefined.first() {
         anyhow::bail!(

@@ -133,6 +133,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
     let tools = defined_tools(&job)?;
     let resolved = tools.resolved();
     let program = &job.program;
+    crate::commands::tools::check_resolution(tools, args.resolution)?;
     let mut stock = build_stock(
         args.stock.as_deref(),
         job.setup.table.as_ref(),
