@@ -36,6 +36,31 @@ fn inside_of_the_step_sphere_admits_a_ball_of_its_radius() {
         (j["max_radius_mm"].as_f64().unwrap() - 5.0).abs() < 1e-6,
         "{j}"
     );
+    // The summary is in --out too (what `swarf report --from` reads), the printed one's twin.
+    let written: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(written["points"], j["points"]);
+    assert_eq!(written["max_radius_mm"], j["max_radius_mm"]);
+    // Options that mean nothing are refused.
+    for (opt, value) in [
+        ("--grid", "1"),
+        ("--flute-length", "-3"),
+        ("--flute-length", "0"),
+    ] {
+        let o = swarf(&[
+            "toolsize",
+            "--surface",
+            &sphere,
+            "--cutter",
+            "ball",
+            opt,
+            value,
+            "--out",
+            dir.to_str().unwrap(),
+        ]);
+        assert_eq!(o.status.code(), Some(1), "{opt} {value}");
+        assert!(stderr(&o).contains(opt), "{}", stderr(&o));
+    }
     let csv = std::fs::read_to_string(dir.join("toolsize.csv")).unwrap();
     let mut rows = csv.lines();
     assert_eq!(

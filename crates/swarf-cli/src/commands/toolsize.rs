@@ -117,6 +117,7 @@ fn parse_axes(args: &ToolsizeArgs) -> Result<Axes> {
 }
 
 pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
+    crate::commands::report::prepare(args.report.as_deref())?;
     if args.check.is_some() && matches!(args.solver, SolverArg::Pso) {
         bail!("--check needs --solver certified (the PSO solver samples the surface only)");
     }
@@ -148,6 +149,15 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
         shank: args.flute_length.map(ShankCheck::new),
         ..MapOptions::default()
     };
+    if args.grid < 2 {
+        bail!(
+            "--grid must be at least 2 (the patch's corners), got {}",
+            args.grid
+        );
+    }
+    if let Some(l) = args.flute_length.filter(|l| !(l.is_finite() && *l > 0.0)) {
+        bail!("--flute-length must be a positive number of mm, got {l}");
+    }
     let points = surface.lattice_len(args.grid);
     if points > swarf_surface::compound::MAX_GRID_POINTS {
         bail!(
@@ -176,8 +186,12 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
     write_atomic(&stage.path().join("toolsize.csv"), &csv)?;
     let standard_report =
         write_standard_and_maps(args, stage.path(), &surface, &map, standard.as_ref())?;
-    stage.commit(&args.out, crate::output::DEFAULT_MAX_OUTPUT_MB)?;
     let summary = map.summary();
+    // The summary too, as every command's --out holds one (`swarf report --from` reads it).
+    let json = serde_json::to_vec_pretty(&with_standard(&summary, standard_report.as_ref())?)
+        .context("formatting summary.json")?;
+    write_atomic(&stage.path().join("summary.json"), &json)?;
+    stage.commit(&args.out, crate::output::DEFAULT_MAX_OUTPUT_MB)?;
     if let Some(path) = &args.report {
         let value = with_standard(&summary, standard_report.as_ref())?;
         write_report(path, args, &surface, &map, value)?;
