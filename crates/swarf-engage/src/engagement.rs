@@ -152,10 +152,40 @@ fn positive_share(a: f64, b: f64) -> f64 {
     }
 }
 
-/// Sub-rows (in height) of the cell integration.
-const SUB_ROWS: usize = 8;
+/// Gauss–Legendre nodes and weights on `[0, 1]` (8 points: exact for polynomials of degree 15).
+const GAUSS_8: [(f64, f64); 8] = {
+    const X: [f64; 4] = [
+        0.183_434_642_495_649_8,
+        0.525_532_409_916_329,
+        0.796_666_477_413_626_7,
+        0.960_289_856_497_536_3,
+    ];
+    const W: [f64; 4] = [
+        0.362_683_783_378_362,
+        0.313_706_645_877_887_3,
+        0.222_381_034_453_374_5,
+        0.101_228_536_290_376_3,
+    ];
+    let mut out = [(0.0, 0.0); 8];
+    let mut i = 0;
+    while i < 4 {
+        out[2 * i] = (0.5 - 0.5 * X[i], 0.5 * W[i]);
+        out[2 * i + 1] = (0.5 + 0.5 * X[i], 0.5 * W[i]);
+        i += 1;
+    }
+    out
+};
 
-/// Share of the cell where the bilinear interpolant of its corners is positive.
+/// Share of the cell where the bilinear interpolant of its corners is positive (`g0j` on the
+/// lower circle, `g1j` on the upper one, `j` the two columns).
+///
+/// Across the cell (`s`, along the circle) the interpolant is linear in height between
+/// `A(s) = lerp(g00, g01, s)` below and `B(s) = lerp(g10, g11, s)` above, so at `s` it is
+/// positive on `positive_share(A, B)` of the height — exactly. That is integrated over `s` on
+/// the pieces where neither `A` nor `B` changes sign: on each it is 0, 1 or a smooth rational
+/// function bounded by 0 and 1 (`A/(A − B)` with `A − B` away from 0), which Gauss–Legendre
+/// integrates to ~10⁻⁹ of the cell. (Midpoint sub-rows in height quantised a level boundary
+/// to eighths of the band: a 0.33 mm slot engaged as 0.325 mm, 1.5 % of its area.)
 fn cell_share(g00: f64, g01: f64, g10: f64, g11: f64) -> f64 {
     let all_pos = g00 > 0.0 && g01 > 0.0 && g10 > 0.0 && g11 > 0.0;
     if all_pos {
@@ -164,12 +194,41 @@ fn cell_share(g00: f64, g01: f64, g10: f64, g11: f64) -> f64 {
     if g00 <= 0.0 && g01 <= 0.0 && g10 <= 0.0 && g11 <= 0.0 {
         return 0.0;
     }
-    let mut s = 0.0;
-    for m in 0..SUB_ROWS {
-        let t = (m as f64 + 0.5) / SUB_ROWS as f64;
-        s += positive_share(g00 + (g10 - g00) * t, g01 + (g11 - g01) * t);
+    // Where the lower and upper edges change sign: the pieces' ends.
+    let root = |a: f64, b: f64| ((a > 0.0) != (b > 0.0)).then(|| (a / (a - b)).clamp(0.0, 1.0));
+    let mut ends = [0.0, 1.0, 1.0, 1.0];
+    let mut n = 1;
+    for r in [root(g00, g01), root(g10, g11)].into_iter().flatten() {
+        ends[n] = r;
+        n += 1;
     }
-    s / SUB_ROWS as f64
+    ends[n] = 1.0;
+    ends[..=n].sort_by(f64::total_cmp);
+    let mut share = 0.0;
+    for w in ends[..=n].windows(2) {
+        let (s0, len) = (w[0], w[1] - w[0]);
+        if len <= 0.0 {
+            continue;
+        }
+        let ab = |s: f64| (g00 + (g01 - g00) * s, g10 + (g11 - g10) * s);
+        // Neither edge changes sign inside the piece: where both agree (a boundary across
+        // the circle, at an entry or exit angle) the share is 0 or 1 throughout.
+        let (a, b) = ab(s0 + 0.5 * len);
+        if (a > 0.0) == (b > 0.0) {
+            share += if a > 0.0 { len } else { 0.0 };
+            continue;
+        }
+        let at = |s: f64| {
+            let (a, b) = ab(s);
+            positive_share(a, b)
+        };
+        share += len
+            * GAUSS_8
+                .iter()
+                .map(|&(x, wt)| wt * at(s0 + x * len))
+                .sum::<f64>();
+    }
+    share.clamp(0.0, 1.0)
 }
 
 /// Engaged intervals of one sampled circle (angles `j·dφ`, cyclic) from its values `g` and
@@ -643,5 +702,40 @@ mod tests {
         assert!((cell_share(1.0, 0.0, 0.0, -1.0) - 0.5).abs() < 1e-12);
         assert!((cell_share(1.0, -1.0, 1.0, -1.0) - 0.5).abs() < 1e-12);
         assert_eq!(cell_share(1.0, 1.0, 1.0, 1.0), 1.0);
+    }
+
+    #[test]
+    fn cell_share_is_the_bilinear_interpolants_positive_area() {
+        // A level boundary (the top of a slot between two circles) is where it crosses,
+        // not rounded to sub-rows: 0.08 mm in, 0.02 mm out is 80 % of the band.
+        assert!((cell_share(0.08, 0.08, -0.02, -0.02) - 0.8).abs() < 1e-12);
+        assert!((cell_share(0.02, 0.02, -0.08, -0.08) - 0.2).abs() < 1e-12);
+        // Random corners against a dense midpoint sampling of the interpolant (its own error
+        // ≈ 1/m of the boundary's length in cells).
+        let mut seed = 0x2545_f491_4f6c_dd1du64;
+        let mut next = || {
+            seed ^= seed << 13;
+            seed ^= seed >> 7;
+            seed ^= seed << 17;
+            (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+        };
+        let m = 1500;
+        let mut worst = 0.0f64;
+        for _ in 0..40 {
+            let g = [next(), next(), next(), next()];
+            let mut inside = 0usize;
+            for i in 0..m {
+                let t = (i as f64 + 0.5) / m as f64;
+                for j in 0..m {
+                    let s = (j as f64 + 0.5) / m as f64;
+                    let v = (1.0 - t) * ((1.0 - s) * g[0] + s * g[1])
+                        + t * ((1.0 - s) * g[2] + s * g[3]);
+                    inside += usize::from(v > 0.0);
+                }
+            }
+            let dense = inside as f64 / (m * m) as f64;
+            worst = worst.max((cell_share(g[0], g[1], g[2], g[3]) - dense).abs());
+        }
+        assert!(worst < 2e-3, "{worst}");
     }
 }
