@@ -123,15 +123,28 @@ fn scan_apt(line: &str) -> Option<Result<FeedWord, usize>> {
 
 /// A feed word's number with about six significant digits, no trailing zeros.
 pub fn format_feed(v: f64) -> String {
+    let s = format!("{v:.*}", feed_decimals(v));
+    let s = s.trim_end_matches('0');
+    s.strip_suffix('.').unwrap_or(s).to_string()
+}
+
+/// Decimals of [`format_feed`]'s number: about six significant digits.
+fn feed_decimals(v: f64) -> usize {
     let digits = if v.abs() >= 1.0 {
         v.abs().log10().floor() as i32 + 1
     } else {
         0
     };
-    let decimals = (6 - digits).clamp(1, 9) as usize;
-    let s = format!("{v:.decimals$}");
-    let s = s.trim_end_matches('0');
-    s.strip_suffix('.').unwrap_or(s).to_string()
+    (6 - digits).clamp(1, 9) as usize
+}
+
+/// [`format_feed`] of a positive feed, rounded down at its last digit: a feed scheduled to a
+/// limit must not be written a hair above it (rounded to nearest, a feed capped for 300 N
+/// gave 300.0003 N).
+pub fn format_feed_down(v: f64) -> String {
+    let scale = 10f64.powi(feed_decimals(v) as i32);
+    // (The nudge keeps a value already on a digit, 600 → 600, from dropping one.)
+    format_feed((v * scale * (1.0 + 1e-12)).floor() / scale)
 }
 
 /// A piece of a G-code feed line moved out in front of it by a split: the displacement of the
@@ -316,7 +329,7 @@ pub fn rewrite_feeds(
         if let (Some(pieces), ProgramFormat::Gcode) = (splits.get(&n), format) {
             let nl = if eol.is_empty() { "\n" } else { eol };
             for (k, p) in pieces.iter().enumerate() {
-                let f = format_feed(base * p.factor);
+                let f = format_feed_down(base * p.factor);
                 out.push_str(if k == 0 { "G91 G1" } else { "G1" });
                 for (axis, d) in ["X", "Y", "Z"].iter().zip(p.delta) {
                     out.push(' ');
@@ -341,7 +354,7 @@ pub fn rewrite_feeds(
             Some(w) if unchanged(w.value) => (body[w.start..w.end].to_string(), w.value),
             _ if unchanged(base) && current == Some(base) => (format_feed(base), base),
             _ => {
-                let t = format_feed(target);
+                let t = format_feed_down(target);
                 let v = t.parse::<f64>().unwrap_or(target);
                 (t, v)
             }
@@ -531,5 +544,12 @@ mod tests {
         assert_eq!(format_feed(600.0), "600");
         assert_eq!(format_feed(0.0123456), "0.012346");
         assert_eq!(format_feed(25.0), "25");
+        // Down at the last digit, never over the value asked for.
+        assert_eq!(format_feed_down(1234.5678), "1234.56");
+        assert_eq!(format_feed_down(600.0), "600");
+        assert_eq!(format_feed_down(0.0123456), "0.012345");
+        for v in [299.99999, 123.456789, 1e-3 / 3.0, 5e4 / 7.0] {
+            assert!(format_feed_down(v).parse::<f64>().unwrap() <= v, "{v}");
+        }
     }
 }
