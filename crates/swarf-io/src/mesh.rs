@@ -168,6 +168,32 @@ impl TriMesh {
         }
     }
 
+    /// The closed, outward-oriented 12-triangle mesh of the box `min`–`max` (tests, examples,
+    /// simple designs and stocks).
+    pub fn cuboid(min: Vec3, max: Vec3) -> Self {
+        let c = |i: usize| {
+            Vec3::new(
+                if i & 1 == 0 { min.x } else { max.x },
+                if i & 2 == 0 { min.y } else { max.y },
+                if i & 4 == 0 { min.z } else { max.z },
+            )
+        };
+        // Each face counter-clockwise seen from outside.
+        let quads: [[u32; 4]; 6] = [
+            [0, 2, 3, 1],
+            [4, 5, 7, 6],
+            [0, 1, 5, 4],
+            [2, 6, 7, 3],
+            [0, 4, 6, 2],
+            [1, 3, 7, 5],
+        ];
+        let triangles = quads
+            .iter()
+            .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
+            .collect();
+        Self::from_parts((0..8).map(c).collect(), triangles)
+    }
+
     /// Checks that every index is in range, every coordinate finite, and that the colour count
     /// matches the vertex count.
     pub fn validate(&self) -> Result<(), IoError> {

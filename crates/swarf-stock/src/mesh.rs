@@ -190,24 +190,10 @@ mod tests {
 
     /// The 12 triangles of a box.
     fn box_tris(min: Vec3, max: Vec3) -> Vec<[Vec3; 3]> {
-        let c = |i: usize| {
-            Vec3::new(
-                if i & 1 == 0 { min.x } else { max.x },
-                if i & 2 == 0 { min.y } else { max.y },
-                if i & 4 == 0 { min.z } else { max.z },
-            )
-        };
-        let quads = [
-            [0, 2, 3, 1],
-            [4, 5, 7, 6],
-            [0, 1, 5, 4],
-            [2, 6, 7, 3],
-            [0, 4, 6, 2],
-            [1, 3, 7, 5],
-        ];
-        quads
+        let m = swarf_io::TriMesh::cuboid(min, max);
+        m.triangles
             .iter()
-            .flat_map(|q| [[c(q[0]), c(q[1]), c(q[2])], [c(q[0]), c(q[2]), c(q[3])]])
+            .map(|t| t.map(|i| m.vertices[i as usize]))
             .collect()
     }
 

@@ -217,35 +217,10 @@ mod tests {
         let dir = std::env::temp_dir().join(format!("swarf-stock-spec-{}", std::process::id()));
         std::fs::create_dir_all(&dir).unwrap();
         // A box from (0, 0, 0) to (x1, 20, 10) as binary STL.
-        let stl = |x1: f32| {
-            let c = |i: usize| {
-                [
-                    if i & 1 == 0 { 0.0 } else { x1 },
-                    if i & 2 == 0 { 0.0 } else { 20.0 },
-                    if i & 4 == 0 { 0.0 } else { 10.0 },
-                ]
-            };
-            let faces = [
-                [0, 2, 3, 1],
-                [4, 5, 7, 6],
-                [0, 1, 5, 4],
-                [2, 6, 7, 3],
-                [0, 4, 6, 2],
-                [1, 3, 7, 5],
-            ];
-            let mut b = vec![0u8; 80];
-            b.extend_from_slice(&12u32.to_le_bytes());
-            for [p, q, r, s] in faces {
-                for t in [[p, q, r], [p, r, s]] {
-                    b.extend_from_slice(&[0u8; 12]);
-                    for i in t {
-                        for x in c(i) {
-                            b.extend_from_slice(&x.to_le_bytes());
-                        }
-                    }
-                    b.extend_from_slice(&[0, 0]);
-                }
-            }
+        let stl = |x1: f64| {
+            let mut b = Vec::new();
+            let m = swarf_io::TriMesh::cuboid(Vec3::ZERO, Vec3::new(x1, 20.0, 10.0));
+            swarf_io::write_stl_to(&mut b, &m).unwrap();
             b
         };
         let build = |name: &str, bytes: &[u8]| {

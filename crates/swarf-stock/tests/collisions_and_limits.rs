@@ -130,24 +130,11 @@ fn three_plus_two_equals_rotated_three_axis() {
     let rot =
         Quat::from_rotation_x(30f64.to_radians()) * Quat::from_rotation_y(-20f64.to_radians());
     let (lo, hi) = (Vec3::ZERO, Vec3::new(40.0, 20.0, 10.0));
-    let c = |i: usize| {
-        rot * Vec3::new(
-            if i & 1 == 0 { lo.x } else { hi.x },
-            if i & 2 == 0 { lo.y } else { hi.y },
-            if i & 4 == 0 { lo.z } else { hi.z },
-        )
-    };
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    let tris: Vec<[Vec3; 3]> = quads
+    let m = swarf_io::TriMesh::cuboid(lo, hi);
+    let tris: Vec<[Vec3; 3]> = m
+        .triangles
         .iter()
-        .flat_map(|q| [[c(q[0]), c(q[1]), c(q[2])], [c(q[0]), c(q[2]), c(q[3])]])
+        .map(|t| t.map(|i| rot * m.vertices[i as usize]))
         .collect();
     let mut s = TriDexel::from_triangles(&tris, 0.1, MeshOptions::default()).unwrap();
     let v0 = s.volume();

@@ -62,25 +62,5 @@ use swarf_geom::math::Vec3;
 /// The closed, outward-oriented 12-triangle mesh of the box `min`–`max` (for tests, examples
 /// and simple designs).
 pub fn box_mesh(min: Vec3, max: Vec3) -> swarf_io::TriMesh {
-    let c = |i: usize| {
-        Vec3::new(
-            if i & 1 == 0 { min.x } else { max.x },
-            if i & 2 == 0 { min.y } else { max.y },
-            if i & 4 == 0 { min.z } else { max.z },
-        )
-    };
-    let vertices = (0..8).map(c).collect();
-    let quads: [[u32; 4]; 6] = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
-    let triangles = quads
-        .iter()
-        .flat_map(|q| [[q[0], q[1], q[2]], [q[0], q[2], q[3]]])
-        .collect();
-    swarf_io::TriMesh::from_parts(vertices, triangles)
+    swarf_io::TriMesh::cuboid(min, max)
 }

@@ -70,27 +70,14 @@ pub(crate) fn run_mesh(
 /// Closed boxes `[lo, hi]` as ASCII STL, counter-clockwise seen from outside; `drop` triangles
 /// left out at the end (an open mesh when > 0).
 pub(crate) fn boxes_stl(boxes: &[[[f64; 3]; 2]], drop: usize) -> String {
-    let quads = [
-        [0, 2, 3, 1],
-        [4, 5, 7, 6],
-        [0, 1, 5, 4],
-        [2, 6, 7, 3],
-        [0, 4, 6, 2],
-        [1, 3, 7, 5],
-    ];
     let mut tris: Vec<[[f64; 3]; 3]> = Vec::new();
     for [lo, hi] in boxes {
-        let v = |k: usize| {
-            [
-                if k & 1 == 0 { lo[0] } else { hi[0] },
-                if k & 2 == 0 { lo[1] } else { hi[1] },
-                if k & 4 == 0 { lo[2] } else { hi[2] },
-            ]
-        };
-        for q in &quads {
-            tris.push([v(q[0]), v(q[1]), v(q[2])]);
-            tris.push([v(q[0]), v(q[2]), v(q[3])]);
-        }
+        let m = swarf_io::TriMesh::cuboid((*lo).into(), (*hi).into());
+        tris.extend(
+            m.triangles
+                .iter()
+                .map(|t| t.map(|i| m.vertices[i as usize].to_array())),
+        );
     }
     let mut s = String::from("solid boxes\n");
     for t in &tris[..tris.len() - drop] {

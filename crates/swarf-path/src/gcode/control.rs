@@ -618,27 +618,27 @@ impl Interp<'_, '_> {
         if count == 0 {
             return Ok(());
         }
-        let start = if b.m97 {
-            let numbers = match self.line_numbers.take() {
-                Some(n) => n,
-                None => self.index_line_numbers(),
-            };
-            let start = numbers.get(&(p as u64)).copied();
-            self.line_numbers = Some(numbers);
-            start.ok_or_else(|| {
-                Fault::semantic(b.span(b'p'), format!("no line numbered N{p} in this file"))
-            })?
+        // Where the call goes: the line numbered N<p> (M97), or the one after O<p> (M98).
+        let kept = if b.m97 {
+            self.line_numbers.take()
         } else {
-            let labels = match self.labels.take() {
-                Some(l) => l,
-                None => self.index_labels(),
-            };
-            let start = labels.get(&(p as u64)).copied();
-            self.labels = Some(labels);
-            start.ok_or_else(|| {
-                Fault::semantic(b.span(b'p'), format!("subprogram O{p} is not in this file"))
-            })?
+            self.labels.take()
         };
+        let map = kept.unwrap_or_else(|| self.index_targets(b.m97));
+        let start = map.get(&(p as u64)).copied();
+        *(if b.m97 {
+            &mut self.line_numbers
+        } else {
+            &mut self.labels
+        }) = Some(map);
+        let start = start.ok_or_else(|| {
+            let what = if b.m97 {
+                format!("no line numbered N{p} in this file")
+            } else {
+                format!("subprogram O{p} is not in this file")
+            };
+            Fault::semantic(b.span(b'p'), what)
+        })?;
         self.enter_call(b.span(b'p'))?;
         self.frames.push(Frame {
             ret: self.at,
@@ -682,58 +682,39 @@ impl Interp<'_, '_> {
     }
 
     /// Every bare `O<n>` line of the file and the cursor after it.
-    /// Where the first line numbered `N<n>` of the current file starts, for each `n` (an
-    /// `N` with a fraction or none is no target).
-    fn index_line_numbers(&mut self) -> HashMap<u64, Cursor> {
+    /// The call targets of the current file: with `numbers`, where the first line numbered
+    /// `N<n>` starts (an `N` with a fraction or none is no target), for Haas `M97`; else where
+    /// the line after the first `O<n>` label starts, for `M98`.
+    fn index_targets(&mut self, numbers: bool) -> HashMap<u64, Cursor> {
         let mut map = HashMap::new();
         let mut buf = std::mem::take(&mut self.skip_buf);
         let mut at = self.file_start(self.cur_file);
         let text = self.text.clone();
+        let number = |digits: &[u8]| std::str::from_utf8(digits).ok()?.parse::<u64>().ok();
         while at.pos < text.len() {
             let (raw, next) = split_line(&text, at.pos);
-            if normalize(raw, &mut buf).is_ok() && buf.code.first() == Some(&b'n') {
-                let end = skip_line_number(&buf.code);
-                if let Ok(n) = std::str::from_utf8(&buf.code[1..end])
-                    .unwrap_or("")
-                    .parse::<u64>()
-                {
-                    map.entry(n).or_insert(at);
-                }
-            }
+            let line = at;
             at = Cursor {
                 pos: next,
                 line: at.line + 1,
                 file: self.cur_file,
             };
-        }
-        self.skip_buf = buf;
-        map
-    }
-
-    fn index_labels(&mut self) -> HashMap<u64, Cursor> {
-        let mut map = HashMap::new();
-        let mut buf = std::mem::take(&mut self.skip_buf);
-        let mut at = self.file_start(self.cur_file);
-        let text = self.text.clone();
-        while at.pos < text.len() {
-            let (raw, next) = split_line(&text, at.pos);
-            at = Cursor {
-                pos: next,
-                line: at.line + 1,
-                file: self.cur_file,
-            };
-            if raw.bytes().any(|c| c | 0x20 == b'o') && normalize(raw, &mut buf).is_ok() {
+            let found = if numbers {
+                (normalize(raw, &mut buf).is_ok() && buf.code.first() == Some(&b'n'))
+                    .then(|| number(&buf.code[1..skip_line_number(&buf.code)]))
+                    .flatten()
+                    .map(|n| (n, line))
+            } else if raw.bytes().any(|c| c | 0x20 == b'o') && normalize(raw, &mut buf).is_ok() {
                 let o = skip_line_number(&buf.code);
-                if buf.code.get(o) == Some(&b'o') {
-                    if let Ok((a, b, Kw::Label, _)) = parse_oword(&buf.code, o) {
-                        if let Ok(n) = std::str::from_utf8(&buf.code[a..b])
-                            .unwrap_or("")
-                            .parse::<u64>()
-                        {
-                            map.entry(n).or_insert(at);
-                        }
-                    }
+                match (buf.code.get(o) == Some(&b'o')).then(|| parse_oword(&buf.code, o)) {
+                    Some(Ok((a, b, Kw::Label, _))) => number(&buf.code[a..b]).map(|n| (n, at)),
+                    _ => None,
                 }
+            } else {
+                None
+            };
+            if let Some((n, c)) = found {
+                map.entry(n).or_insert(c);
             }
         }
         self.skip_buf = buf;
