@@ -50,8 +50,9 @@ pub struct OutputSet {
     max_bytes: u64,
     /// (temporary, target) of the files written so far.
     staged: Vec<(PathBuf, PathBuf)>,
-    /// Subfolders whose files are all this set's (see [`OutputSet::owns_folder`]).
-    owned: Vec<PathBuf>,
+    /// Subfolders and the name prefixes of the files in them that are this command's (see
+    /// [`OutputSet::owns_files`]).
+    owned: Vec<(PathBuf, &'static [&'static str])>,
 }
 
 impl OutputSet {
@@ -74,13 +75,14 @@ impl OutputSet {
         })
     }
 
-    /// Declares the subfolder `rel` (of the set's folder) the set's own: at the commit, the
-    /// files in it that the set did not write are removed, so that a folder of plots reused
-    /// from an earlier run holds this run's plots only (a map of a location this run did not
-    /// draw would otherwise sit beside them and end up in reports). Hidden files (names
-    /// starting with `.`, such as another run's temporaries) and folders are left.
-    pub fn owns_folder(&mut self, rel: &str) {
-        self.owned.push(self.dir.join(rel));
+    /// Declares the PNG files of subfolder `rel` (of the set's folder) whose names start with
+    /// one of `prefixes` the command's own: at the commit, those the set did not write are
+    /// removed, so that a folder of plots reused from an earlier run holds this run's plots
+    /// only (a map of a location this run did not draw would otherwise sit beside them and
+    /// end up in reports). Every other file — the user's own, another run's temporaries — is
+    /// left.
+    pub fn owns_files(&mut self, rel: &str, prefixes: &'static [&'static str]) {
+        self.owned.push((self.dir.join(rel), prefixes));
     }
 
     /// The folder the files go to.
@@ -225,15 +227,18 @@ impl OutputSet {
             for (backup, _) in &aside {
                 let _ = std::fs::remove_file(backup);
             }
-            for folder in &self.owned {
+            for (folder, prefixes) in &self.owned {
                 let Ok(entries) = std::fs::read_dir(folder) else {
                     continue;
                 };
                 for path in entries.flatten().map(|e| e.path()) {
-                    let hidden = path
+                    let name = path
                         .file_name()
-                        .is_some_and(|n| n.to_string_lossy().starts_with('.'));
-                    if path.is_file() && !hidden && !placed.contains(&path) {
+                        .map(|n| n.to_string_lossy().into_owned())
+                        .unwrap_or_default();
+                    let ours =
+                        name.ends_with(".png") && prefixes.iter().any(|p| name.starts_with(p));
+                    if ours && path.is_file() && !placed.contains(&path) {
                         let _ = std::fs::remove_file(&path);
                     }
                 }

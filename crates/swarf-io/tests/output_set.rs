@@ -144,22 +144,32 @@ fn files_written_side_by_side_appear_together_or_not_at_all() {
 }
 
 #[test]
-fn an_owned_folder_keeps_this_runs_files_only() {
+fn owned_files_are_this_runs_only() {
     let d = temp_dir("owned");
     let write = |files: &[&str]| {
         let mut set = OutputSet::new(&d, 1 << 20).unwrap();
-        set.owns_folder("maps");
+        set.owns_files("maps", &["location_", "largest"]);
         for f in files {
             set.write(f, |w| w.write_all(b"x")).unwrap();
         }
         set.commit().unwrap();
     };
-    write(&["summary.json", "maps/a.png", "maps/b.png"]);
+    write(&["summary.json", "maps/location_5.png", "maps/location_9.png"]);
+    // The user's own files beside them, and a hidden one.
     std::fs::write(d.join("notes.txt"), "mine").unwrap();
+    std::fs::write(d.join("maps/mine.png"), "mine").unwrap();
+    std::fs::write(d.join("maps/location_notes.txt"), "mine").unwrap();
     std::fs::write(d.join("maps/.hidden"), "kept").unwrap();
-    write(&["summary.json", "maps/b.png"]);
-    assert_eq!(names(&d.join("maps")), [".hidden", "b.png"]);
-    // Outside the owned folder nothing is removed.
+    write(&["summary.json", "maps/location_9.png"]);
+    assert_eq!(
+        names(&d.join("maps")),
+        [
+            ".hidden",
+            "location_9.png",
+            "location_notes.txt",
+            "mine.png"
+        ]
+    );
     assert_eq!(names(&d), ["maps", "notes.txt", "summary.json"]);
     std::fs::remove_dir_all(&d).unwrap();
 }

@@ -143,8 +143,14 @@ fn feed_decimals(v: f64) -> usize {
 /// gave 300.0003 N).
 pub fn format_feed_down(v: f64) -> String {
     let scale = 10f64.powi(feed_decimals(v) as i32);
-    // (The nudge keeps a value already on a digit, 600 → 600, from dropping one.)
-    format_feed((v * scale * (1.0 + 1e-12)).floor() / scale)
+    // A value already on a digit (600, 599.9999999999 from a product) keeps it when that is
+    // not above it; otherwise the digit below.
+    let nearest = (v * scale).round() / scale;
+    format_feed(if nearest <= v {
+        nearest
+    } else {
+        (v * scale).floor() / scale
+    })
 }
 
 /// A piece of a G-code feed line moved out in front of it by a split: the displacement of the
@@ -548,7 +554,14 @@ mod tests {
         assert_eq!(format_feed_down(1234.5678), "1234.56");
         assert_eq!(format_feed_down(600.0), "600");
         assert_eq!(format_feed_down(0.0123456), "0.012345");
-        for v in [299.99999, 123.456789, 1e-3 / 3.0, 5e4 / 7.0] {
+        for v in [
+            299.99999,
+            299.9999999999,
+            999.9999999999,
+            123.456789,
+            1e-3 / 3.0,
+            5e4 / 7.0,
+        ] {
             assert!(format_feed_down(v).parse::<f64>().unwrap() <= v, "{v}");
         }
     }

@@ -245,6 +245,10 @@ fn tool_centre_point_and_fine_boring() {
     let w = warnings(src);
     assert_eq!(w.len(), 1, "{w:?}");
     assert!(w[0].1.starts_with("G76 (fine boring) read as G86"), "{w:?}");
+    // LinuxCNC has no G43.4.
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let e = moves("G21 G90\nG43.4 H1 Z50.\nM2\n", &linuxcnc).unwrap_err();
+    assert!(e.message.contains("unknown G code G43.4"), "{e}");
 }
 
 #[test]
@@ -298,6 +302,9 @@ fn canned_cycle_repeats_with_k_and_k0_stores_the_cycle() {
     assert_eq!(holes(&moves(src, &fanuc()).unwrap()), [(10.0, -5.0)]);
     let src = "O1\nG21 G90\nG0 X0 Y0 Z10\nG98 G81 X5. Y5. Z-5. R1. F100 L0\nX10. Y10.\nG80\nM30\n";
     assert_eq!(holes(&moves(src, &fanuc()).unwrap()), [(10.0, -5.0)]);
+    // K0 moves nothing, not even up to R from below it.
+    let src = "O1\nG21 G90\nG0 X0 Y0 Z0\nG98 G81 X5. Y5. Z-5. R1. F100 K0\nM30\n";
+    assert_eq!(moves(src, &fanuc()).unwrap(), [('R', 0.0, 0.0, 0.0)]);
 }
 
 #[test]

@@ -143,3 +143,43 @@ fn a_frame_change_leaves_the_tool_where_it_is() {
         assert!((len - length).abs() < 1e-9, "{body}: {len}");
     }
 }
+
+/// Offsets the parameters set before the program starts (a LinuxCNC `.var` file) leave the
+/// tool at the machine's origin: the interpreter and the move builder agree on where it is,
+/// so a first move that omits an axis keeps the machine position of that axis.
+#[test]
+fn parameter_offsets_at_start_leave_the_tool_at_the_machine_origin() {
+    use swarf_path::gcode::GcodeOptions;
+    // G54 at X10 (#5221) and a stored, active G92 of Y5 (#5210, #5212).
+    let options = ReadOptions {
+        gcode: GcodeOptions {
+            parameters: vec![(5221, 10.0), (5210, 1.0), (5212, 5.0)],
+            ..GcodeOptions::default()
+        },
+        ..ReadOptions::default()
+    };
+    let p = read_program_str(
+        "G21 G90\nG1 Z-1 F100\nG1 X0\nM2\n",
+        "frames.ngc",
+        Machine::three_axis(),
+        &options,
+    )
+    .unwrap();
+    // The first move goes down from the machine origin; then X0 is machine X10 (the G54
+    // offset), Y staying at the machine's 0 (program −5).
+    assert!(
+        close(p.moves[0].start.tip, [0.0, 0.0, 0.0]),
+        "{:?}",
+        p.moves[0].start.tip
+    );
+    assert!(
+        close(p.moves[0].end.tip, [0.0, 0.0, -1.0]),
+        "{:?}",
+        p.moves[0].end.tip
+    );
+    assert!(
+        close(p.moves[1].end.tip, [10.0, 0.0, -1.0]),
+        "{:?}",
+        p.moves[1].end.tip
+    );
+}

@@ -263,15 +263,22 @@ fn simulate_on_worker(
 /// Whether what a rapid or a holder removed is a collision, after multi-axis moves cut within
 /// `error_bound` mm of their sweeps. Those cuts may leave slivers up to `error_bound` thick
 /// along their surfaces, which the next move — often a rapid retract — takes away: that is the
-/// approximation's, not the program's. A sliver `ε` thick is crossed by a ray of the family
-/// closest to its normal (at most 54.7° off it) over at most `√3·ε`, so a removal with some
-/// family's longest piece within that is such a sliver; a collision must be deeper in every
-/// family. Without multi-axis moves (`error_bound` 0) any removal over [`COLLISION_EPS_MM`]
-/// counts.
+/// approximation's, not the program's. A flat sliver `ε` thick is crossed by a ray of the
+/// family closest to its normal (at most 54.7° off it) over at most `√3·ε`, so a removal with
+/// some family's longest piece within that is such a sliver; a collision must be deeper in
+/// every family that removed anything (a family whose rays miss a shallow cut — X and Y rays
+/// above a 0.2 mm skim at h = 0.5 — says nothing of its depth). Without multi-axis moves
+/// (`error_bound` 0) any removal over [`COLLISION_EPS_MM`] counts. (A sliver on a small
+/// convex radius is crossed longer by every family and may still be reported.)
 fn collides(st: &CutStats, error_bound: f64) -> bool {
     let sliver = 3f64.sqrt() * error_bound;
     st.removed_any(COLLISION_EPS_MM)
-        && (error_bound == 0.0 || st.longest_removal.iter().all(|&l| l > sliver))
+        && (error_bound == 0.0
+            || st
+                .longest_removal
+                .iter()
+                .filter(|&&l| l > 0.0)
+                .all(|&l| l > sliver))
 }
 
 #[cfg(test)]

@@ -226,4 +226,15 @@ fn slivers_a_rotary_cut_leaves_are_no_collision() {
     .unwrap();
     let lines: Vec<u32> = r.rapid_collisions.iter().map(|c| c.line).collect();
     assert_eq!(lines, [9], "{:?}", r.rapid_collisions);
+    // A rapid skimming 0.2 mm off the block's end (no X or Y ray in that depth at h = 0.5:
+    // only the Z rays see it) is still a collision.
+    let r = simulate(
+        &program("G0 X55 Y0\nG0 Z9.8\nG0 X58\nG0 Z30\n"),
+        &tools,
+        &mut block(),
+        &SimOptions::default(),
+    )
+    .unwrap();
+    let lines: Vec<u32> = r.rapid_collisions.iter().map(|c| c.line).collect();
+    assert_eq!(lines, [9, 10], "{:?}", r.rapid_collisions);
 }

@@ -328,7 +328,7 @@ fn write_outputs(
         }
     }
     let mut set = output_set(dir, DEFAULT_MAX_OUTPUT_MB)?;
-    set.owns_folder("maps");
+    set.owns_files("maps", &["location_", "largest"]);
     let [main, discs, bottom] = tables(locations);
     set.write_bytes("engagement.csv", main.as_bytes())?;
     set.write_bytes("discs.csv", discs.as_bytes())?;

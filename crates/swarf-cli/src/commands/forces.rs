@@ -324,7 +324,7 @@ fn write_outputs(
 ) -> Result<()> {
     // Every output as one set: all of the files, or none.
     let mut set = output_set(dir, DEFAULT_MAX_OUTPUT_MB)?;
-    set.owns_folder("plots");
+    set.owns_files("plots", &["curves_location_"]);
     set.write_bytes("forces.csv", forces_csv(rows).as_bytes())?;
     let mut csv = String::from("location,angle_deg,fx_n,fy_n,fz_n,torque_nm\n");
     for (loc, c) in curves {

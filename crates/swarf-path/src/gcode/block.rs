@@ -263,6 +263,14 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                     first = false;
                     continue;
                 }
+                if !fanuc && matches!(code, 434 | 435) {
+                    // (Tool centre point control is Fanuc's; LinuxCNC has no G43.4.)
+                    return Err(Fault::syntax(
+                        span,
+                        format!("unknown G code {}", g_name(code)),
+                        "a G code",
+                    ));
+                }
                 if fanuc && code == 760 {
                     // Fanuc milling's G76 is fine boring (not LinuxCNC's threading): read as
                     // G86, whose path it follows but for the shift away from the wall (Q)

@@ -305,8 +305,9 @@ impl Interp<'_, '_> {
                 format!("R less than {nname} in canned cycle"),
             ));
         }
-        // Below the R level: rise to it first, where the tool is.
-        if old_cc < r {
+        // Below the R level: rise to it first, where the tool is (Fanuc's K0 stores the
+        // cycle and moves nothing).
+        if old_cc < r && repeats > 0 {
             let p = self.cycle_point(self.p[fi], self.p[si], r);
             self.emit(Canon::Traverse {
                 end: Axes::from_array(p),

@@ -267,13 +267,13 @@ impl<'t, 's> Interp<'t, 's> {
                 "RS274/NGC G-code",
             ));
         }
+        // The tool starts at the machine's home (its origin unless given).
+        let mut start = [0.0; 6];
         if let Some(home) = self.opts.home {
             for h in &mut self.homes {
                 h[..3].copy_from_slice(&home);
             }
-            self.p[..3].copy_from_slice(&home);
-            // (Every offset is zero at start: program and machine positions agree.)
-            self.emit(Canon::SetPosition(Axes::from_array(self.p)));
+            start[..3].copy_from_slice(&home);
         }
         for &(n, v) in &self.opts.parameters {
             if (1..=super::expr::MAX_PARAM).contains(&n) {
@@ -284,8 +284,17 @@ impl<'t, 's> Interp<'t, 's> {
             // LinuxCNC applies a G92 offset stored in the parameters at start-up.
             self.g92 = self.g92_saved;
         }
+        // And the active system's (G54's) offsets and rotation from them.
+        self.off = self.g5x_table[self.coord - 1];
+        self.rot = self.rot_table[self.coord - 1];
+        // Where that is in the frame the parameters set, as LinuxCNC reads its position back
+        // after setting the offsets (the move builder re-expresses it alike).
+        self.p = self.program_of(&start, &self.off, &self.g92, self.rot);
         self.emit(Canon::Units(self.units));
         self.emit_offsets();
+        if start != [0.0; 6] {
+            self.emit(Canon::SetPosition(Axes::from_array(self.p)));
+        }
         self.emit(Canon::Plane(Plane::XY));
         let mut lb = LineBuf::default();
         let mut blk = Block::default();

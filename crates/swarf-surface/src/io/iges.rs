@@ -1577,7 +1577,8 @@ fn tokenize_prefix(text: &str, pd: u8, rd: u8) -> (Vec<&str>, Option<(usize, Str
                 let Ok(n) = text[i..j].parse::<usize>() else {
                     return (out, Some((i, "Hollerith length too large".to_string())));
                 };
-                let end = j + 1 + n;
+                // (Checked: a count near usize::MAX must not wrap past the test below.)
+                let end = (j + 1).saturating_add(n);
                 if end > b.len() {
                     return (
                         out,
