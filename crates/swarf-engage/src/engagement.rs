@@ -141,8 +141,9 @@ pub(crate) struct StripResult {
     pub(crate) extent: Option<(f64, f64)>,
 }
 
-/// Share of `[0, 1]` where the linear function from `a` (at 0) to `b` (at 1) is positive.
-#[inline]
+/// Share of `[0, 1]` where the linear function from `a` (at 0) to `b` (at 1) is positive (the
+/// tests' reference for [`cell_share`], which integrates it in closed form).
+#[cfg(test)]
 fn positive_share(a: f64, b: f64) -> f64 {
     match (a > 0.0, b > 0.0) {
         (true, true) => 1.0,
