@@ -43,6 +43,26 @@ fn gouge(dir: &Path, extra: &[&str]) -> std::process::Output {
     swarf(&args)
 }
 
+/// `swarf gouge` of `dir`'s `surface` and `job.ngc` with a 10 mm flat end mill, no check mesh,
+/// into `dir/out`, then `extra`.
+fn gouge_flat(dir: &Path, surface: &str, extra: &[&str]) -> std::process::Output {
+    let p = |f: &str| dir.join(f).to_str().unwrap().to_string();
+    let (surface, program, out) = (p(surface), p("job.ngc"), p("out"));
+    let mut args = vec![
+        "gouge",
+        "--surface",
+        &surface,
+        "--program",
+        &program,
+        "--tool",
+        "flat:d=10",
+        "--out",
+        &out,
+    ];
+    args.extend_from_slice(extra);
+    swarf(&args)
+}
+
 /// The rows of a CSV as maps from header to field.
 fn rows(path: &Path) -> Vec<std::collections::HashMap<String, String>> {
     let text = std::fs::read_to_string(path).unwrap();
@@ -137,20 +157,7 @@ fn clamp_interference_and_floor_gouge_are_found_located_and_measured() {
 #[test]
 fn without_the_clamp_the_pass_is_clear() {
     let dir = scene("noclamp", 0);
-    let p = |f: &str| dir.join(f).to_str().unwrap().to_string();
-    let (surface, program, out) = (p("floor.json"), p("job.ngc"), p("out"));
-    let o = swarf(&[
-        "gouge",
-        "--surface",
-        &surface,
-        "--program",
-        &program,
-        "--tool",
-        "flat:d=10",
-        "--out",
-        &out,
-        "--json",
-    ]);
+    let o = gouge_flat(&dir, "floor.json", &["--json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let s = json(&o);
     // Only the retract from the plunge interferes (a rapid leaving the floor).
@@ -183,20 +190,7 @@ fn a_surface_with_skipped_faces_is_not_certified() {
         "G0 X-20 Y0 Z5\nG1 Z0.5 F300\nG1 X20\nG0 Z5\n",
     )
     .unwrap();
-    let p = |f: &str| dir.join(f).to_str().unwrap().to_string();
-    let (surface, program, out) = (p("part.step"), p("job.ngc"), p("out"));
-    let o = swarf(&[
-        "gouge",
-        "--surface",
-        &surface,
-        "--program",
-        &program,
-        "--tool",
-        "flat:d=10",
-        "--out",
-        &out,
-        "--json",
-    ]);
+    let o = gouge_flat(&dir, "part.step", &["--json"]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(stderr(&o).contains("SURFACE_OF_LINEAR_EXTRUSION is not supported; skipped"));
     let printed = json(&o);
@@ -219,17 +213,7 @@ fn a_surface_with_skipped_faces_is_not_certified() {
         );
     }
     // The printed report says why it is not certified.
-    let o = swarf(&[
-        "gouge",
-        "--surface",
-        &surface,
-        "--program",
-        &program,
-        "--tool",
-        "flat:d=10",
-        "--out",
-        &out,
-    ]);
+    let o = gouge_flat(&dir, "part.step", &[]);
     assert!(
         stdout(&o).contains("not certified: 1 face(s) of the surface were not read"),
         "{}",
