@@ -45,6 +45,13 @@ pub trait Design: Sync {
     /// says which side is outside near it.
     fn bounds_solid(&self) -> bool;
 
+    /// False when the design is one smooth face, so that the nearest point of a point behind
+    /// it lies on the face a line through the point meets (a line meets no other): the
+    /// weighting of [`DefectEnd::area`](crate::DefectEnd::area) then asks no more of it.
+    fn has_edges(&self) -> bool {
+        true
+    }
+
     /// The design's bounding box.
     fn bounding_box(&self) -> Aabb;
 

@@ -377,6 +377,12 @@ impl Design for SurfaceDesign {
         false
     }
 
+    fn has_edges(&self) -> bool {
+        // One patch is taken as smooth (a crease inside a patch is weighted as elsewhere: by
+        // the nearest point's normal).
+        self.patches > 1
+    }
+
     fn bounding_box(&self) -> Aabb {
         self.bbox
     }

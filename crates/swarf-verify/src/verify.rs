@@ -110,10 +110,20 @@ pub struct DefectEnd {
     /// The move that cut this end last ([`UNCUT`]: the stock as built, or no provenance).
     pub tag: MoveTag,
     /// The area of the design's surface this end stands for, mm²: the family's cell area times
-    /// the design normal's component along the ray (over the three families a surface element
-    /// counts once: Σₖ nₖ² = 1). A region's area is thus its footprint on the design: the walls
-    /// of a too-deep slot in a face project onto the face's edge and add nothing.
+    /// the component along the ray of the design's normal where the ray meets the design (over
+    /// the three families a surface element counts once: Σₖ nₖ² = 1). A region's area is thus
+    /// its footprint on the design: the walls of a too-deep slot in a face project onto the
+    /// face's edge and add nothing. That normal is the nearest point's when the ray crosses
+    /// its face within 60° of the normal; otherwise the ray is followed from the end towards
+    /// the design by the distance to it at each step (sphere tracing), at most the region's
+    /// depth and a cell, and where it is not met that near (a slot's wall, whose ray runs along
+    /// the face above it) the nearest point's normal stands. So the floor of a gouge reaching a
+    /// convex edge of the design counts up to the edge, although its nearest point there lies
+    /// on the side face.
     pub area: f64,
+    /// Which way along the ray the stock's material ends here: +1 where the ray leaves the
+    /// material (an interval's exit), −1 where it enters it.
+    pub outside: i8,
 }
 
 impl DefectEnd {
@@ -314,9 +324,9 @@ pub fn verify_observed(
                         p[v] = grid.center(v, j);
                         for (n, iv) in ray.iter().enumerate() {
                             let ends = tags.map(|t| t[n]);
-                            for (t, tag) in [
-                                (iv.enter, ends.map_or(UNCUT, |e| e.enter)),
-                                (iv.exit, ends.map_or(UNCUT, |e| e.exit)),
+                            for (t, tag, outside) in [
+                                (iv.enter, ends.map_or(UNCUT, |e| e.enter), -1),
+                                (iv.exit, ends.map_or(UNCUT, |e| e.exit), 1),
                             ] {
                                 p[k] = t;
                                 let Some(pr) = design.project(p) else {
@@ -340,6 +350,7 @@ pub fn verify_observed(
                                         family: k as u8,
                                         tag,
                                         area: area * pr.normal[k].abs(),
+                                        outside,
                                     });
                                 }
                             }
@@ -361,8 +372,9 @@ pub fn verify_observed(
         });
     }
     let link = options.link_cells * grid.h.iter().copied().fold(0.0, f64::max);
-    let defects = all.defects;
+    let mut defects = all.defects;
     let (labels, count) = connect(&defects, link);
+    weigh_by_crossings(&mut defects, &labels, count, design, stock);
     let mut regions = summarise(&defects, &labels, count, program);
     let volumes = measure_volumes(stock, design, &defects, &labels, &regions, link);
     if let Some((per_region, _, _)) = &volumes {
@@ -545,6 +557,87 @@ fn summarise(
         r.moves = list;
     }
     regions
+}
+
+/// Sets each defect end's [`DefectEnd::area`] from the design's normal where its ray meets the
+/// design (see there): stepping from the end along the ray, away from the stock's material at
+/// a gouge (the missing part lies there) and into it at an excess, each step the distance to
+/// the design, until the design is met or the steps have gone further than the region's depth
+/// and a cell.
+fn weigh_by_crossings(
+    defects: &mut [DefectEnd],
+    labels: &[usize],
+    count: usize,
+    design: &dyn Design,
+    stock: &TriDexel,
+) {
+    if !design.has_edges() {
+        return;
+    }
+    let h = stock.grid().h;
+    let mut depth = vec![0.0f64; count];
+    for (d, &l) in defects.iter().zip(labels) {
+        depth[l] = depth[l].max(d.deviation.abs());
+    }
+    let areas = [0, 1, 2].map(|k| stock.ray_area(k));
+    defects
+        .par_iter_mut()
+        .zip(labels.par_iter())
+        .for_each(|(d, &l)| {
+            let k = usize::from(d.family);
+            if d.normal[k].abs() >= ALONG_THE_RAY {
+                return;
+            }
+            let towards = if d.deviation < 0.0 {
+                f64::from(d.outside)
+            } else {
+                -f64::from(d.outside)
+            };
+            let (p, step) = (d.point, d.deviation.abs());
+            if let Some(n) = crossing_normal(design, p, step, k, towards, depth[l] + h[k]) {
+                d.area = areas[k] * n[k].abs();
+            }
+        });
+}
+
+/// A nearest point whose normal has at least this component along the ray lies on the face
+/// the ray meets (the ray crosses it within 60° of its normal): its normal stands, and the
+/// design is not asked again. Below it the nearest point may lie on another face than the one
+/// ahead along the ray — beside a convex edge, where the component is 0 — and the ray is
+/// followed.
+const ALONG_THE_RAY: f64 = 0.5;
+
+/// Steps taken towards the design before the nearest point's normal stands.
+const CROSSING_STEPS: usize = 64;
+
+/// The design's outward normal where the line through `p` along axis `k`, followed in the
+/// direction `towards` (±1), first meets the design within `reach` mm (sphere tracing: each
+/// step the distance to the design, which cannot pass through it; `distance` is p's), or
+/// `None` when it is not met within the reach or the steps.
+fn crossing_normal(
+    design: &dyn Design,
+    p: Vec3,
+    distance: f64,
+    k: usize,
+    towards: f64,
+    reach: f64,
+) -> Option<Vec3> {
+    // Met: closer than this to the design (a thousandth of the reach, at least 1 nm).
+    let eps = (reach * 1e-3).max(1e-6);
+    let (mut q, mut step, mut gone) = (p, distance, 0.0);
+    for _ in 0..CROSSING_STEPS {
+        gone += step;
+        if gone > reach {
+            return None;
+        }
+        q[k] += towards * step;
+        let pr = design.project(q)?;
+        step = pr.distance.abs();
+        if step <= eps {
+            return Some(pr.normal);
+        }
+    }
+    None
 }
 
 /// Exact volumes from the Z rays when the design bounds a solid: per ray, the pieces of

@@ -122,6 +122,30 @@ fn a_known_gouge_is_found_with_its_depth_place_and_line() {
 }
 
 #[test]
+fn a_gouge_reaching_the_design_edge_counts_up_to_it() {
+    // Facing at the top, then a slot 0.5 mm too deep right across the part, y = 15..25 from
+    // its corner: its footprint is 40 × 10 mm², although within 0.5 mm of the two end faces
+    // the floor's nearest point of the design is on them (390 mm² when that decided); the
+    // walls, under the top face, add nothing.
+    let text = facing(10.0)
+        + &format!(
+            "G0 X{} Y{}\nG1 Z9.5 F200\nG1 X{}\nG0 Z20\n",
+            O - 10.0,
+            O + 20.0,
+            O + 50.0
+        );
+    let program = gcode(&text);
+    let stock = machined(&program);
+    let v = verify(&stock, &design(), Some(&program), &VerifyOptions::default()).unwrap();
+    let gouges: Vec<_> = v.gouges().collect();
+    assert_eq!(gouges.len(), 1, "{:#?}", v.regions);
+    let g = gouges[0];
+    assert!((g.depth_mm - 0.5).abs() < 1e-6, "{}", g.depth_mm);
+    assert!((g.area_mm2 - 400.0).abs() < 1e-6, "{}", g.area_mm2);
+    assert!((g.volume_mm3 - 200.0).abs() < 1e-6, "{}", g.volume_mm3);
+}
+
+#[test]
 fn a_program_that_follows_the_design_reports_nothing() {
     let program = gcode(&facing(10.0));
     let stock = machined(&program);
@@ -213,6 +237,9 @@ proptest! {
             prop_assert!((r.depth_mm - depth.abs()).abs() < 1e-6, "{} vs {}", r.depth_mm, depth);
             let exact = depth.abs() * 1600.0;
             prop_assert!((r.volume_mm3 - exact).abs() < 1e-6 * 1600.0, "{} vs {exact}", r.volume_mm3);
+            // The whole top face, up to its edges (a gouge's floor beside an edge is nearer
+            // the side face than the top; its rays still meet the top).
+            prop_assert!((r.area_mm2 - 1600.0).abs() < 1e-6, "{}", r.area_mm2);
             if kind == DefectKind::Gouge {
                 prop_assert!(r.deepest_move.is_some());
             }
