@@ -12,14 +12,15 @@ static LISTENING: AtomicBool = AtomicBool::new(false);
 
 /// Installs the one Ctrl-C handler of the process (first thing in `main`, before any input is
 /// read). While a long run listens ([`listen_for_stop`]), Ctrl-C only asks it to stop
-/// ([`stop_requested`]) and it ends with an error before writing anything; otherwise Ctrl-C
-/// ends the process at once, as it would without a handler (exit 130).
+/// ([`stop_requested`]): the computation ends with an error, and so does the writing of the
+/// outputs, before the next file (every output set stops then, [`output_set`]); nothing is
+/// written either way. A second Ctrl-C, or one while not listening, ends the process at once,
+/// as it would without a handler (exit 130; an output set caught writing may then leave its
+/// hidden temporaries, never a half-written output).
 pub(crate) fn install_stop_handler() {
     // If it cannot be installed, Ctrl-C keeps its default meaning.
     let _ = ctrlc::set_handler(|| {
-        if LISTENING.load(Ordering::SeqCst) {
-            STOP.store(true, Ordering::SeqCst);
-        } else {
+        if !LISTENING.load(Ordering::SeqCst) || STOP.swap(true, Ordering::SeqCst) {
             std::process::exit(130);
         }
     });
@@ -107,8 +108,10 @@ pub(crate) const DEFAULT_MAX_OUTPUT_MB: u64 = swarf_io::DEFAULT_MAX_OUTPUT_BYTES
 
 /// The files of one command, written together or not at all, `max_output_mb` MB in all.
 pub(crate) fn output_set(dir: &Path, max_output_mb: u64) -> Result<swarf_io::OutputSet> {
-    swarf_io::OutputSet::new(dir, max_output_mb.saturating_mul(1_000_000))
-        .context("the output folder")
+    let mut set = swarf_io::OutputSet::new(dir, max_output_mb.saturating_mul(1_000_000))
+        .context("the output folder")?;
+    set.stop_when(&STOP);
+    Ok(set)
 }
 
 /// A hidden folder beside an output folder, for library writers that take paths (maps, meshes):

@@ -41,6 +41,12 @@ pub enum IoError {
         /// The limit.
         limit: String,
     },
+    /// The set was asked to stop (Ctrl-C) before its files were in place (nothing was written).
+    #[error("{}: stopped before the outputs were in place; nothing was written", .dir.display())]
+    Stopped {
+        /// The folder of the outputs.
+        dir: PathBuf,
+    },
     /// JSON (de)serialisation of a glTF document failed.
     #[error("{}: glTF JSON: {reason}", .path.display())]
     Json {

@@ -31,6 +31,7 @@
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use crate::atomic::{temp_path, write_synced};
 use crate::error::IoError;
@@ -53,6 +54,8 @@ pub struct OutputSet {
     /// Subfolders and the name prefixes of the files in them that are this command's (see
     /// [`OutputSet::owns_files`]).
     owned: Vec<(PathBuf, &'static [&'static str])>,
+    /// Set when the set is to stop (see [`OutputSet::stop_when`]).
+    stop: Option<&'static AtomicBool>,
 }
 
 impl OutputSet {
@@ -72,7 +75,24 @@ impl OutputSet {
             max_bytes,
             staged: Vec::new(),
             owned: Vec::new(),
+            stop: None,
         })
+    }
+
+    /// From now on, once `flag` is set (by a Ctrl-C handler), the next file the set starts, or
+    /// its commit, fails with [`IoError::Stopped`] and the set leaves nothing behind: a long
+    /// write of several meshes stops between files rather than running to its end.
+    pub fn stop_when(&mut self, flag: &'static AtomicBool) {
+        self.stop = Some(flag);
+    }
+
+    fn check_stop(&self) -> Result<(), IoError> {
+        match self.stop {
+            Some(f) if f.load(Ordering::SeqCst) => Err(IoError::Stopped {
+                dir: self.dir.clone(),
+            }),
+            _ => Ok(()),
+        }
     }
 
     /// Declares the PNG files of subfolder `rel` (of the set's folder) whose names start with
@@ -154,6 +174,7 @@ impl OutputSet {
     /// Registers the temporary of file `name` (so that a failure from here on removes it) and
     /// creates it; returns it and the target path.
     fn stage(&mut self, name: &str) -> Result<(File, PathBuf), IoError> {
+        self.check_stop()?;
         let target = self.dir.join(name);
         if target.is_dir() {
             return Err(IoError::io(
@@ -182,8 +203,10 @@ impl OutputSet {
     /// and put back if a rename fails, so that either every target is new or none is.
     ///
     /// # Errors
-    /// [`IoError::Io`] for the first rename that fails.
+    /// [`IoError::Io`] for the first rename that fails; [`IoError::Stopped`] when asked to
+    /// stop (nothing renamed).
     pub fn commit(mut self) -> Result<(), IoError> {
+        self.check_stop()?;
         let staged = std::mem::take(&mut self.staged);
         // Old files moved aside: (backup, target).
         let mut aside: Vec<(PathBuf, PathBuf)> = Vec::new();

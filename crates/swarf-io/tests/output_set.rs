@@ -173,3 +173,30 @@ fn owned_files_are_this_runs_only() {
     assert_eq!(names(&d), ["maps", "notes.txt", "summary.json"]);
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+#[test]
+fn a_set_asked_to_stop_starts_no_file_and_leaves_nothing() {
+    static STOP: std::sync::atomic::AtomicBool = std::sync::atomic::AtomicBool::new(false);
+    let d = temp_dir("stop");
+    std::fs::create_dir_all(&d).unwrap();
+    std::fs::write(d.join("a.txt"), "old\n").unwrap();
+    let mut set = OutputSet::new(&d, 1 << 20).unwrap();
+    set.stop_when(&STOP);
+    set.write("a.txt", |w| w.write_all(b"new\n")).unwrap();
+    // Ctrl-C between two files: the next one is not started, the set's temporary goes, the
+    // earlier output stays as it was.
+    STOP.store(true, std::sync::atomic::Ordering::SeqCst);
+    let e = set.write("b.txt", |w| w.write_all(b"b\n")).unwrap_err();
+    assert!(matches!(e, IoError::Stopped { .. }), "{e}");
+    assert!(e.to_string().contains("nothing was written"), "{e}");
+    drop(set);
+    assert_eq!(names(&d), ["a.txt"]);
+    assert_eq!(std::fs::read_to_string(d.join("a.txt")).unwrap(), "old\n");
+    // Asked to stop after its files were written: the commit renames none of them.
+    let mut set = OutputSet::new(&d, 1 << 20).unwrap();
+    set.write("c.txt", |w| w.write_all(b"c\n")).unwrap();
+    set.stop_when(&STOP);
+    assert!(matches!(set.commit(), Err(IoError::Stopped { .. })));
+    assert_eq!(names(&d), ["a.txt"]);
+    std::fs::remove_dir_all(&d).unwrap();
+}
