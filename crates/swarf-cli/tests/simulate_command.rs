@@ -61,6 +61,56 @@ fn flat_slot_removes_its_exact_volume_and_writes_outputs() {
 }
 
 #[test]
+fn the_mesh_measures_a_slot_the_z_rays_cannot() {
+    // A 6.35 mm slot 2 mm deep right across a 40 x 40 x 10 block, its walls at y = 16.855 and
+    // 23.205, between the Z rays (h = 0.1): the Z family counts 63 rays across it (6.3 mm,
+    // −0.8 %), the mesh, whose wall vertices come from the Y rays' exact ends, 6.35 mm.
+    let dir = temp_dir("meshvol");
+    let prog = dir.join("slot.ngc");
+    std::fs::write(
+        &prog,
+        "G21 G90\nG0 X-10 Y20.03 Z5\nG1 Z-2 F300\nG1 X50\nG0 Z5\nM2\n",
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let args = |out: Option<&std::path::Path>| {
+        let mut a = vec![
+            "simulate".to_string(),
+            "--stock".into(),
+            "box:0,0,-10,40,40,0".into(),
+            "--program".into(),
+            prog.to_str().unwrap().into(),
+            "--tool".into(),
+            "flat:d=6.35".into(),
+            "--resolution".into(),
+            "0.1".into(),
+            "--json".into(),
+        ];
+        if let Some(o) = out {
+            a.extend(["--out".into(), o.to_str().unwrap().into()]);
+        }
+        a
+    };
+    let run = |a: Vec<String>| {
+        let a: Vec<&str> = a.iter().map(String::as_str).collect();
+        let o = swarf(&a);
+        assert!(o.status.success(), "{}", stderr(&o));
+        json(&o)
+    };
+    let j = run(args(Some(&out)));
+    let exact = 40.0 * 40.0 * 10.0 - 40.0 * 6.35 * 2.0;
+    let z = j["final_volume_mm3"].as_f64().unwrap();
+    let mesh = j["final_mesh_volume_mm3"].as_f64().unwrap();
+    assert!((z - exact).abs() > 3.0, "{z} vs {exact}");
+    assert!((mesh - exact).abs() < 1e-6, "{mesh} vs {exact}");
+    let written: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(written["final_mesh_volume_mm3"].as_f64(), Some(mesh));
+    // Without a mesh there is no mesh volume.
+    assert!(run(args(None)).get("final_mesh_volume_mm3").is_none());
+}
+
+#[test]
 fn outputs_are_written_as_a_set_or_not_at_all() {
     let dir = temp_dir("set");
     let prog = dir.join("slot.ngc");

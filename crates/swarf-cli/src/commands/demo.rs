@@ -107,7 +107,7 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     let program = &job.program;
     let mut stock = StockSpec::parse(STOCK)?.build(args.resolution, MeshOptions::default())?;
     let report = simulate(program, tools, &mut stock, &SimOptions::default())?;
-    let summary = SimulateSummary::new(&report);
+    let mut summary = SimulateSummary::new(&report);
 
     let dir = &args.out;
     // Every file of the demo is written as one set: all of them, or none.
@@ -117,7 +117,7 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
         program,
         &stock,
         &report,
-        &summary,
+        &mut summary,
         StockMeshOut::default(),
     )?;
     write_sources(&mut set, &job.setup.read)?;

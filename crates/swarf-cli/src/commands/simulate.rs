@@ -125,6 +125,12 @@ pub(crate) struct SimulateSummary {
     five_axis_sub_moves: u64,
     /// Largest proven distance between a 5-axis move's true sweep and what was cut, mm.
     five_axis_error_bound_mm: f64,
+    /// With `--out`: the volume of the machined part's closed mesh (`stock.stl`, unmerged
+    /// or merged alike), whose vertices lie on exact ray ends of all three families — within
+    /// the contouring's error where the Z family's `final_volume_mm3` places a wall parallel to
+    /// its rays on the nearest ray.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    final_mesh_volume_mm3: Option<f64>,
 }
 
 #[derive(Serialize)]
@@ -167,6 +173,7 @@ impl SimulateSummary {
             five_axis_moves: r.five_axis_moves,
             five_axis_sub_moves: r.five_axis_sub_moves,
             five_axis_error_bound_mm: r.five_axis_error_bound_mm,
+            final_mesh_volume_mm3: None,
         }
     }
 
@@ -209,10 +216,10 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
     let options = SimOptions::default().with_chordal_tolerance(args.tolerance);
     let report = simulate_with_progress(program, tools, &mut stock, &options)
         .with_context(|| format!("simulating {}", args.program.display()))?;
-    let summary = SimulateSummary::new(&report);
+    let mut summary = SimulateSummary::new(&report);
     if let Some(dir) = &args.out {
         let mut set = output_set(dir, args.max_output_mb)?;
-        write_outputs(&mut set, program, &stock, &report, &summary, mesh_out)?;
+        write_outputs(&mut set, program, &stock, &report, &mut summary, mesh_out)?;
         set.commit()?;
     }
     if let Some(path) = &args.report {
@@ -356,13 +363,13 @@ pub(crate) fn write_outputs(
     program: &Program,
     stock: &TriDexel,
     report: &SimulationReport,
-    summary: &SimulateSummary,
+    summary: &mut SimulateSummary,
     mesh: StockMeshOut,
 ) -> Result<()> {
     let (v, t) = stock.mesh_size_estimate();
     let csv = moves_csv(program, report);
-    let mut json = serde_json::to_vec_pretty(summary)?;
-    json.push(b'\n');
+    // The summary is written once the mesh gives its volume; sized before with room for it.
+    let json_estimate = serde_json::to_vec_pretty(summary)?.len() as u64 + 64;
     let (v, t) = (
         usize::try_from(v).unwrap_or(usize::MAX),
         usize::try_from(t).unwrap_or(usize::MAX),
@@ -373,10 +380,13 @@ pub(crate) fn write_outputs(
             ("stock.stl", stl_size(t as u64)),
             ("stock.glb", glb_size_bound(v, t, false, Shading::Flat)),
             ("moves.csv", csv.len() as u64),
-            ("summary.json", json.len() as u64),
+            ("summary.json", json_estimate),
         ],
     )?;
     let mesh = stock_mesh(stock, mesh);
+    summary.final_mesh_volume_mm3 = Some(mesh.volume());
+    let mut json = serde_json::to_vec_pretty(summary)?;
+    json.push(b'\n');
     let glb = GlbFile::new(&mesh, &GlbOptions::default()).context("encoding stock.glb")?;
     set.write_all(vec![
         ("stock.stl", Box::new(|w| write_stl_to(w, &mesh))),
