@@ -285,8 +285,21 @@ fn parse_ascii(bytes: &[u8], path: &Path) -> Result<TriMesh, IoError> {
         let is = |kw: &str| w.eq_ignore_ascii_case(kw);
         if (is("solid") && !in_solid) || (is("endsolid") && in_solid) {
             in_solid = !in_solid;
-            // The name runs to the end of the line.
-            while tokens.clone().next().is_some_and(|(l2, _)| l2 == l) {
+            // The name runs to the end of the line — or, in a file written on one line, to the
+            // first facet (`facet normal`), the `endsolid` after a name, or the next `solid`.
+            loop {
+                let mut ahead = tokens.clone();
+                let Some((_, w2)) = ahead.next().filter(|&(l2, _)| l2 == l) else {
+                    break;
+                };
+                let starts = |kw: &str| w2.eq_ignore_ascii_case(kw);
+                let facet = starts("facet")
+                    && ahead
+                        .next()
+                        .is_some_and(|(_, n)| n.eq_ignore_ascii_case("normal"));
+                if (in_solid && (facet || starts("endsolid"))) || (!in_solid && starts("solid")) {
+                    break;
+                }
                 tokens.next();
             }
         } else if is("facet") && in_solid {
@@ -483,6 +496,22 @@ mod tests {
             e.contains(r"`endsolid\u{7f}`") && e.contains("expected `solid`"),
             "{e}"
         );
+    }
+
+    #[test]
+    fn ascii_on_one_line_is_read() {
+        // Every keyword on one line, a name of two words, two solids: a name stops at the first
+        // facet, an `endsolid`'s at the next `solid`.
+        let one = ascii(LOWER, "normal 0 0 1").replace('\n', " ");
+        let text = format!("{} {one}", one.replacen("solid part", "solid a name", 1));
+        assert_eq!(text.lines().count(), 1);
+        let m = parse_stl(text.as_bytes(), Path::new("one.stl")).unwrap();
+        assert_eq!((m.triangles.len(), m.vertices.len()), (8, 4));
+        let first = parse_stl(one.as_bytes(), Path::new("one.stl")).unwrap();
+        assert!(closed_tetrahedron(&first));
+        // An empty solid on one line.
+        let m = parse_stl(b"solid x endsolid x", Path::new("e.stl")).unwrap();
+        assert!(m.triangles.is_empty());
     }
 
     #[test]
