@@ -100,6 +100,8 @@ fn clamp_interference_and_floor_gouge_are_found_located_and_measured() {
         "unresolved_searches",
         "skipped_faces",
         "skipped_face_notes",
+        "unapplied_placements",
+        "unapplied_placement_notes",
         "nodes",
         "tolerance_mm",
         "accuracy_mm",
@@ -113,6 +115,10 @@ fn clamp_interference_and_floor_gouge_are_found_located_and_measured() {
     assert_eq!(s["certified"], true);
     assert_eq!(
         (&s["skipped_faces"], &s["skipped_face_notes"]),
+        (&0.into(), &serde_json::json!([]))
+    );
+    assert_eq!(
+        (&s["unapplied_placements"], &s["unapplied_placement_notes"]),
         (&0.into(), &serde_json::json!([]))
     );
     // The plunge: 0.5 mm into the floor; the clamp: 1 mm deep at the end of line 3 (each to
@@ -216,6 +222,80 @@ fn a_surface_with_skipped_faces_is_not_certified() {
     let o = gouge_flat(&dir, "part.step", &[]);
     assert!(
         stdout(&o).contains("not certified: 1 face(s) of the surface were not read"),
+        "{}",
+        stdout(&o)
+    );
+}
+
+#[test]
+fn step_assembly_placements_are_applied_and_one_that_is_not_withdraws_the_certificate() {
+    // A floor plane at z = 0 in its part, placed in an assembly by a MAPPED_ITEM 1 mm up; the
+    // pass at z = 0.5 gouges the placed floor by 0.5 mm (it would clear the unplaced one) and
+    // the check is certified. The same part placed by a mirroring operator: the reader cannot
+    // apply it, reads the floor unplaced and says so; the pass is clear but not certified.
+    let dir = swarf_testdata::scratch_dir("gouge-assembly");
+    let part = "#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));\n\
+        #4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=PLANE('',#4);\n\
+        #6=CARTESIAN_POINT('',(-40.,-40.,0.));#7=VERTEX_POINT('',#6);\n\
+        #8=CARTESIAN_POINT('',(40.,40.,0.));#9=VERTEX_POINT('',#8);\n\
+        #10=VERTEX_LOOP('',#7);#11=FACE_BOUND('',#10,.T.);#12=VERTEX_LOOP('',#9);#13=FACE_BOUND('',#12,.T.);\n\
+        #14=ADVANCED_FACE('floor',(#11,#13),#5,.T.);#15=OPEN_SHELL('',(#14));\n\
+        #16=SHELL_BASED_SURFACE_MODEL('',(#15));\n\
+        #17=(GEOMETRIC_REPRESENTATION_CONTEXT(3) REPRESENTATION_CONTEXT('',''));\n\
+        #18=MANIFOLD_SURFACE_SHAPE_REPRESENTATION('part',(#4,#16),#17);\n\
+        #19=REPRESENTATION_MAP(#4,#18);#20=MAPPED_ITEM('',#19,#30);\n\
+        #21=SHAPE_REPRESENTATION('assembly',(#20),#17);\n";
+    let up = "#30=AXIS2_PLACEMENT_3D('',#31,#2,#3);#31=CARTESIAN_POINT('',(0.,0.,1.));\n";
+    let mirror = "#30=CARTESIAN_TRANSFORMATION_OPERATOR_3D('',#3,#32,#1,1.,#2);\n\
+        #32=DIRECTION('',(0.,-1.,0.));\n";
+    let file = |target: &str| {
+        format!(
+            "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n{part}{target}ENDSEC;\nEND-ISO-10303-21;\n"
+        )
+    };
+    std::fs::write(dir.join("up.step"), file(up)).unwrap();
+    std::fs::write(dir.join("mirrored.step"), file(mirror)).unwrap();
+    std::fs::write(
+        dir.join("job.ngc"),
+        "G0 X-20 Y0 Z5\nG1 Z0.5 F300\nG1 X20\nG0 Z5\n",
+    )
+    .unwrap();
+    let o = gouge_flat(&dir, "up.step", &["--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("assembly placements applied: 1 placed instance(s) of 1 part(s)"),
+        "{}",
+        stderr(&o)
+    );
+    let s = json(&o);
+    assert_eq!(s["certified"], true, "{s}");
+    assert_eq!(s["unapplied_placements"], 0, "{s}");
+    assert!(
+        (s["max_gouge_mm"].as_f64().unwrap() - 0.5).abs() <= 5e-4,
+        "{s}"
+    );
+
+    let o = gouge_flat(&dir, "mirrored.step", &["--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("MAPPED_ITEM #20: placement not applied: it mirrors"),
+        "{}",
+        stderr(&o)
+    );
+    let s = json(&o);
+    assert_eq!(s["certified"], false, "{s}");
+    assert_eq!(s["unapplied_placements"], 1, "{s}");
+    assert_eq!(s["skipped_faces"], 0, "{s}");
+    assert_eq!(s["max_gouge_mm"], 0.0, "{s}");
+    let notes = s["unapplied_placement_notes"].as_array().unwrap();
+    assert!(
+        notes[0].as_str().unwrap().contains("MAPPED_ITEM #20"),
+        "{s}"
+    );
+    let o = gouge_flat(&dir, "mirrored.step", &[]);
+    assert!(
+        stdout(&o)
+            .contains("not certified: 1 assembly placement(s) of the surface were not applied"),
         "{}",
         stdout(&o)
     );

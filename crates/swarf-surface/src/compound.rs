@@ -205,15 +205,29 @@ pub enum ReadNote {
         /// `first`.
         defaulted: usize,
     },
-    /// The file places parts by assembly instances (`MAPPED_ITEM`,
-    /// `NEXT_ASSEMBLY_USAGE_OCCURRENCE` with `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION` /
-    /// `ITEM_DEFINED_TRANSFORMATION`); they are not applied: each part's geometry is read once,
-    /// in its own frame.
-    PlacementsNotApplied {
-        /// Assembly instances (mapped items and assembly usage occurrences).
+    /// The file places parts by assembly instances (`MAPPED_ITEM`s, representation
+    /// relationships with a transformation: `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION`s of
+    /// `NEXT_ASSEMBLY_USAGE_OCCURRENCE`s) and the placements were applied: the faces of a part
+    /// are read once per placed instance of it, moved into the frame of the assembly's root
+    /// (through nested sub-assemblies). Any placement that could not be applied has its own
+    /// [`ReadNote::PlacementNotApplied`].
+    PlacementsApplied {
+        /// Placed instances of representations that hold faces (a part used twice counts
+        /// twice, a part in a sub-assembly used twice also twice).
         instances: usize,
-        /// The first few, as `MAPPED_ITEM #24`.
-        examples: Vec<String>,
+        /// The distinct representations (parts) so placed.
+        parts: usize,
+    },
+    /// An assembly placement that could not be applied: an unsupported transformation (a
+    /// mirror, a scale out of range, an entity of another kind), a chain that cannot be
+    /// resolved (a missing representation, a cycle), an assembly occurrence that nothing
+    /// places. Its component is read without it (unmoved by it, as a CAD kernel does), so its
+    /// geometry may be misplaced.
+    PlacementNotApplied {
+        /// The placing entity (`MAPPED_ITEM #31`, `NEXT_ASSEMBLY_USAGE_OCCURRENCE #43`, …).
+        entity: String,
+        /// Why, and what was read instead.
+        why: String,
     },
     /// An analytic patch's parameter box came from a default instead of the face bounds.
     DefaultParameterBox {
@@ -222,6 +236,20 @@ pub enum ReadNote {
         /// Which parameter(s).
         what: String,
     },
+}
+
+impl ReadNote {
+    /// This note about a patch, told of patch `index` instead (a note about no patch is
+    /// returned as it is).
+    pub fn for_patch(mut self, index: usize) -> ReadNote {
+        if let ReadNote::TrimNotHonoured { patch, .. }
+        | ReadNote::Trimmed { patch, .. }
+        | ReadNote::DefaultParameterBox { patch, .. } = &mut self
+        {
+            *patch = index;
+        }
+        self
+    }
 }
 
 /// A trim in a file that a reader does not honour, and why: the entity that trims the patch
@@ -322,16 +350,14 @@ impl fmt::Display for ReadNote {
                 }
                 Ok(())
             }
-            ReadNote::PlacementsNotApplied {
-                instances,
-                examples,
-            } => write!(
+            ReadNote::PlacementsApplied { instances, parts } => write!(
                 f,
-                "the file places parts by {instances} assembly instance(s) ({}{}); placements \
-                 are not applied: each part's geometry is read once, in its own frame",
-                examples.join(", "),
-                if *instances > examples.len() { ", …" } else { "" }
+                "assembly placements applied: {instances} placed instance(s) of {parts} \
+                 part(s), each part's faces read once per instance"
             ),
+            ReadNote::PlacementNotApplied { entity, why } => {
+                write!(f, "{entity}: placement not applied: {why}")
+            }
             ReadNote::DefaultParameterBox { patch, what } => {
                 write!(f, "patch {patch}: default parameter range for {what}")
             }

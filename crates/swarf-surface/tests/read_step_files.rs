@@ -360,10 +360,10 @@ fn each_representation_is_read_in_its_own_context_units() {
 }
 
 #[test]
-fn assembly_placements_are_reported_as_not_applied() {
-    // A part placed by a MAPPED_ITEM, and a part used twice by assembly occurrences with
-    // their transformations: the placements are not applied (each part is read once, in its
-    // own frame) and a note says so; a file without instances has no such note.
+fn assembly_placements_are_applied() {
+    // A part placed by a MAPPED_ITEM at (100, 0, 0), and a part used twice by assembly
+    // occurrences with their transformations, at (±100, 0, 0): each instance is read where it
+    // is placed, with a note saying how many; a file without instances has no such note.
     let part = "#1=(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.));\n\
         #2=(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#1)) REPRESENTATION_CONTEXT('',''));\n\
         #3=CARTESIAN_POINT('',(0.,0.,0.));#4=DIRECTION('',(0.,0.,1.));#5=DIRECTION('',(1.,0.,0.));\n\
@@ -385,41 +385,47 @@ fn assembly_placements_are_reported_as_not_applied() {
         #56=( REPRESENTATION_RELATIONSHIP('','',#11,#42) REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(#55) SHAPE_REPRESENTATION_RELATIONSHIP() );\n\
         #57=CONTEXT_DEPENDENT_SHAPE_REPRESENTATION(#56,#54);\n";
     let file = |extra: &str| format!("{HEAD}{part}{extra}ENDSEC;\nEND-ISO-10303-21;\n");
-    for (extra, instances, examples) in [
-        (mapped, 1, vec!["MAPPED_ITEM #31"]),
+    for (extra, centres, names) in [
+        (mapped, vec![100.0], vec!["ball"]),
         (
             occurrences,
-            2,
-            vec![
-                "NEXT_ASSEMBLY_USAGE_OCCURRENCE #43",
-                "NEXT_ASSEMBLY_USAGE_OCCURRENCE #53",
-            ],
+            vec![100.0, -100.0],
+            vec!["ball@#43", "ball@#53"],
         ),
     ] {
         let s = step::parse(&file(extra)).unwrap();
-        assert_eq!(s.patches.len(), 1);
-        // In the part's own frame.
-        assert!((s.patches[0].surface.point(0.0, 0.0).length() - 5.0).abs() < 1e-12);
+        assert_eq!(s.patches.len(), centres.len());
+        for ((p, x), name) in s.patches.iter().zip(&centres).zip(names) {
+            assert_eq!(p.name.as_deref(), Some(name));
+            // A sphere of radius 5 about (x, 0, 0).
+            let c = Vec3::new(*x, 0.0, 0.0);
+            for (u, v) in [(0.0, 0.0), (1.0, 0.5), (4.0, -1.0)] {
+                assert!((((p.surface.point(u, v) - c).length()) - 5.0).abs() < 1e-12);
+            }
+        }
         let note = s
             .notes
             .iter()
-            .find(|n| matches!(n, ReadNote::PlacementsNotApplied { .. }))
+            .find(|n| matches!(n, ReadNote::PlacementsApplied { .. }))
             .unwrap();
         assert_eq!(
             note,
-            &ReadNote::PlacementsNotApplied {
-                instances,
-                examples: examples.into_iter().map(String::from).collect()
+            &ReadNote::PlacementsApplied {
+                instances: centres.len(),
+                parts: 1
             }
         );
         assert!(
-            note.to_string().contains("placements are not applied"),
-            "{note}"
+            !s.notes
+                .iter()
+                .any(|n| matches!(n, ReadNote::PlacementNotApplied { .. })),
+            "{:?}",
+            s.notes
         );
     }
     let s = step::parse(&file("")).unwrap();
-    assert!(!s
-        .notes
-        .iter()
-        .any(|n| matches!(n, ReadNote::PlacementsNotApplied { .. })));
+    assert!(!s.notes.iter().any(|n| matches!(
+        n,
+        ReadNote::PlacementsApplied { .. } | ReadNote::PlacementNotApplied { .. }
+    )));
 }

@@ -113,10 +113,18 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         summary.max_interference_mm,
         summary.tolerance_mm,
         summary.elapsed_s,
-        match (summary.skipped_faces, summary.unresolved_searches) {
-            (0, 0) => String::new(),
-            (0, _) => " (some searches ran out of budget: see unresolved_searches)".into(),
-            (n, _) => format!(
+        match (
+            summary.skipped_faces,
+            summary.unapplied_placements,
+            summary.unresolved_searches,
+        ) {
+            (0, 0, 0) => String::new(),
+            (0, 0, _) => " (some searches ran out of budget: see unresolved_searches)".into(),
+            (0, n, _) => format!(
+                " (not certified: {n} assembly placement(s) of the surface were not applied, \
+                 see unapplied_placements)"
+            ),
+            (n, _, _) => format!(
                 " (not certified: {n} face(s) of the surface were not read, see skipped_faces)"
             ),
         }
@@ -239,6 +247,7 @@ fn write_report(
                 "moves",
                 "certified",
                 "skipped_faces",
+                "unapplied_placements",
             ],
         );
     if let Some(check) = &args.check {

@@ -31,8 +31,9 @@ pub struct GougeSummary {
     pub max_gouge_mm: f64,
     /// Deepest interference, mm (0 when none).
     pub max_interference_mm: f64,
-    /// Every search finished within its budget and every face of the surface file was read
-    /// (`skipped_faces` is 0): the clear stretches are proven clear.
+    /// Every search finished within its budget, every face of the surface file was read
+    /// (`skipped_faces` is 0) and every assembly placement in it applied
+    /// (`unapplied_placements` is 0): the clear stretches are proven clear.
     pub certified: bool,
     /// Searches whose budget ran out.
     pub unresolved_searches: usize,
@@ -42,6 +43,12 @@ pub struct GougeSummary {
     /// The reader's note on each skipped face (`#12 (face #40): surface type
     /// SURFACE_OF_REVOLUTION is not supported; skipped`).
     pub skipped_face_notes: Vec<String>,
+    /// STEP assembly placements its reader could not apply (an unsupported transformation, a
+    /// chain it could not resolve): the parts they place may be misplaced, so `certified` is
+    /// false when there is any.
+    pub unapplied_placements: usize,
+    /// The reader's note on each (`MAPPED_ITEM #31: placement not applied: …`).
+    pub unapplied_placement_notes: Vec<String>,
     /// Search nodes expanded in all.
     pub nodes: u64,
     /// The reporting tolerance, mm.
@@ -56,7 +63,7 @@ pub struct GougeSummary {
 
 impl GougeReport {
     /// The summary of this report on `surface` (whose reader's notes list the faces it
-    /// skipped; `elapsed_s` as given).
+    /// skipped and the placements it could not apply; `elapsed_s` as given).
     pub fn summary(
         &self,
         surface: &CompoundSurface,
@@ -70,6 +77,12 @@ impl GougeReport {
             .filter(|n| matches!(n, ReadNote::UnsupportedSurface { .. }))
             .map(ToString::to_string)
             .collect();
+        let unplaced: Vec<String> = surface
+            .notes
+            .iter()
+            .filter(|n| matches!(n, ReadNote::PlacementNotApplied { .. }))
+            .map(ToString::to_string)
+            .collect();
         GougeSummary {
             points: self.points.len(),
             moves,
@@ -81,10 +94,12 @@ impl GougeReport {
             interfering_points: self.points_with(ViolationKind::Interference),
             max_gouge_mm: self.max_depth(ViolationKind::Gouge),
             max_interference_mm: self.max_depth(ViolationKind::Interference),
-            certified: self.unresolved == 0 && skipped.is_empty(),
+            certified: self.unresolved == 0 && skipped.is_empty() && unplaced.is_empty(),
             unresolved_searches: self.unresolved,
             skipped_faces: skipped.len(),
             skipped_face_notes: skipped,
+            unapplied_placements: unplaced.len(),
+            unapplied_placement_notes: unplaced,
             nodes: self.nodes,
             tolerance_mm: opts.tolerance,
             accuracy_mm: opts.accuracy,

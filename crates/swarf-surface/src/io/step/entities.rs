@@ -7,6 +7,7 @@ use std::sync::Arc;
 use swarf_geom::math::Vec3;
 use swarf_geom::Frame;
 
+use super::assembly::{place, Assembly};
 use super::lex::{refs, show, Instance, Param};
 use super::trims::{set_domain, MAX_FILE_TRIM_POINTS};
 use super::DEFAULT_LINEAR_RANGE;
@@ -192,18 +193,7 @@ impl Model<'_> {
 
     pub(super) fn placement(&self, from: u64, p: Option<&Param>) -> R<Frame> {
         let id = self.reference(from, p, "position")?;
-        let inst = self.get(from, id)?;
-        let a = inst.part("AXIS2_PLACEMENT_3D").ok_or_else(|| {
-            self.bad(
-                id,
-                format!("found {}, expected AXIS2_PLACEMENT_3D", inst.first_name()),
-            )
-        })?;
-        let loc = self.reference(id, a.get(1), "location")?;
-        let origin = self.point(id, loc)?;
-        let z = self.direction(id, a.get(2), Vec3::Z)?;
-        let x = self.direction(id, a.get(3), Vec3::X)?;
-        Ok(Frame::from_axis_and_x(origin, z, x))
+        self.axis_in(from, id, self.length)
     }
 
     /// Conversion factor of a unit: mm per length unit, or radians per angle unit.
@@ -395,13 +385,6 @@ impl Model<'_> {
     pub(super) fn read(mut self) -> R<CompoundSurface> {
         let mut out = CompoundSurface::default();
         let contexts = self.units(&mut out.notes)?;
-        // Representations in different length units: each face is read in its own's.
-        let units = matches!(out.notes.last(), Some(ReadNote::UnitsMixed { .. })).then(|| {
-            let by_face = self.face_contexts(&contexts);
-            (contexts, by_face)
-        });
-        let file_units = (self.length, self.angle);
-        let mut defaulted = 0;
         let mut ids: Vec<u64> = self.map.keys().copied().collect();
         ids.sort_unstable();
         let faces: Vec<u64> = ids
@@ -412,6 +395,23 @@ impl Model<'_> {
                 i.part("ADVANCED_FACE").is_some() || i.part("FACE_SURFACE").is_some()
             })
             .collect();
+        // Assembly placements, in the file's units (each representation's, when they differ).
+        let items: Vec<u64> = if faces.is_empty() {
+            ids.iter()
+                .copied()
+                .filter(|id| supported(&self.map[id]))
+                .collect()
+        } else {
+            faces.clone()
+        };
+        let assembly = self.assembly(&contexts, &items)?;
+        // Representations in different length units: each face is read in its own's.
+        let units = matches!(out.notes.last(), Some(ReadNote::UnitsMixed { .. })).then(|| {
+            let by_face = self.face_contexts(&contexts);
+            (contexts, by_face)
+        });
+        let file_units = (self.length, self.angle);
+        let mut defaulted = 0;
         let mut skipped = Vec::new();
         let mut budget = MAX_FILE_TRIM_POINTS;
         if faces.is_empty() {
@@ -429,8 +429,9 @@ impl Model<'_> {
                 }
                 let index = out.patches.len();
                 (self.length, self.angle) = units_of(id, &units, &mut defaulted, file_units);
-                let (surface, name) = self.surface(id, None, index, &mut out.notes)?;
-                out.patches.push(Patch {
+                let mut notes = Vec::new();
+                let (surface, name) = self.surface(id, None, index, &mut notes)?;
+                let patch = Patch {
                     name,
                     surface,
                     flipped: false,
@@ -442,7 +443,8 @@ impl Model<'_> {
                         },
                     },
                     trim: None,
-                });
+                };
+                self.push_placed(&mut out, patch, notes, &assembly, id)?;
             }
         } else {
             for &fid in &faces {
@@ -464,17 +466,14 @@ impl Model<'_> {
                 let index = out.patches.len();
                 let bounds = p.get(1).cloned();
                 (self.length, self.angle) = units_of(fid, &units, &mut defaulted, file_units);
-                let (mut surface, sname) = self.surface(
-                    sid,
-                    bounds.as_ref().map(|b| (fid, b)),
-                    index,
-                    &mut out.notes,
-                )?;
+                let mut notes = Vec::new();
+                let (mut surface, sname) =
+                    self.surface(sid, bounds.as_ref().map(|b| (fid, b)), index, &mut notes)?;
                 let by = format!("STEP face #{fid}");
                 let trim =
                     match self.face_trim(fid, bounds.as_ref(), same_sense, &surface, &mut budget) {
                         Ok(Some(t)) => {
-                            out.notes.push(ReadNote::Trimmed {
+                            notes.push(ReadNote::Trimmed {
                                 patch: index,
                                 by,
                                 loops: t.trim.loops().len(),
@@ -485,7 +484,7 @@ impl Model<'_> {
                         }
                         Ok(None) => None,
                         Err(why) => {
-                            out.notes.push(ReadNote::TrimNotHonoured {
+                            notes.push(ReadNote::TrimNotHonoured {
                                 patch: index,
                                 by: UnhonouredTrim::StepFace {
                                     face: fid,
@@ -495,7 +494,7 @@ impl Model<'_> {
                             None
                         }
                     };
-                out.patches.push(Patch {
+                let patch = Patch {
                     name: Self::name(p.first()).or(sname),
                     surface,
                     flipped: !same_sense,
@@ -507,7 +506,8 @@ impl Model<'_> {
                         },
                     },
                     trim,
-                });
+                };
+                self.push_placed(&mut out, patch, notes, &assembly, fid)?;
             }
         }
         if out.patches.is_empty() {
@@ -528,37 +528,51 @@ impl Model<'_> {
         {
             *d = defaulted;
         }
-        if let Some(note) = self.placements() {
-            out.notes.push(note);
-        }
+        out.notes.extend(assembly.notes);
         out.notes.extend(skipped);
         Ok(out)
     }
 
-    /// A note when the file places parts by assembly instances (`MAPPED_ITEM`s,
-    /// `NEXT_ASSEMBLY_USAGE_OCCURRENCE`s with their transformations), which are not applied.
-    fn placements(&self) -> Option<ReadNote> {
-        let mut found: Vec<u64> = self
-            .map
-            .iter()
-            .filter(|(_, i)| {
-                i.part("MAPPED_ITEM").is_some()
-                    || i.part("NEXT_ASSEMBLY_USAGE_OCCURRENCE").is_some()
-            })
-            .map(|(&id, _)| id)
-            .collect();
-        if found.is_empty() {
-            return None;
+    /// Adds the patch of face (or surface) `id`, read in its own frame with its `notes`, once
+    /// per placed instance of it (moved by the instance's placement, named with the instance's
+    /// path when there are several, each note repeated for each patch), or once as it is when
+    /// no placement reaches it.
+    fn push_placed(
+        &self,
+        out: &mut CompoundSurface,
+        patch: Patch,
+        notes: Vec<ReadNote>,
+        assembly: &Assembly,
+        id: u64,
+    ) -> R<()> {
+        let Some(instances) = assembly.by_item.get(&id) else {
+            out.patches.push(patch);
+            out.notes.extend(notes);
+            return Ok(());
+        };
+        for (placement, path) in instances {
+            let index = out.patches.len();
+            let (surface, trim) =
+                place(&patch.surface, patch.trim.as_ref(), placement).map_err(|why| {
+                    self.bad(
+                        id,
+                        format!("placed by {path} (the assembly placement): {why}"),
+                    )
+                })?;
+            let name = match &patch.name {
+                Some(n) if instances.len() > 1 && !path.is_empty() => Some(format!("{n}@{path}")),
+                other => other.clone(),
+            };
+            out.patches.push(Patch {
+                name,
+                surface,
+                trim,
+                ..patch.clone()
+            });
+            out.notes
+                .extend(notes.iter().map(|n| n.clone().for_patch(index)));
         }
-        found.sort_unstable();
-        Some(ReadNote::PlacementsNotApplied {
-            instances: found.len(),
-            examples: found
-                .iter()
-                .take(3)
-                .map(|id| format!("{} #{id}", self.map[id].first_name()))
-                .collect(),
-        })
+        Ok(())
     }
 
     /// The surface `id`, bounded (for elementary kinds) by the face bounds when given.

@@ -50,10 +50,65 @@
 //!   context)`, its items followed through shells and models to the faces, not into other
 //!   representations), with a [`ReadNote::UnitsMixed`](crate::ReadNote::UnitsMixed); a face in
 //!   no representation, or in several of different units, takes the first context's.
-//! * **Assemblies**: placements of parts (`MAPPED_ITEM`, `NEXT_ASSEMBLY_USAGE_OCCURRENCE` with
-//!   `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION` / `ITEM_DEFINED_TRANSFORMATION`) are not applied:
-//!   each part's faces are read once, in the part's own frame, and a
-//!   [`ReadNote::PlacementsNotApplied`](crate::ReadNote::PlacementsNotApplied) says so.
+//! * **Assemblies**: placements of parts are applied, as a CAD kernel's reader (OCCT's
+//!   `STEPControl_Reader`) applies them. The nodes are the shape representations
+//!   (`…SHAPE_REPRESENTATION(name, items, context)`, simple or complex); those related by a
+//!   `SHAPE_REPRESENTATION_RELATIONSHIP` without a transformation (a product's
+//!   `SHAPE_REPRESENTATION` and the `ADVANCED_BREP_SHAPE_REPRESENTATION` /
+//!   `MANIFOLD_SURFACE_SHAPE_REPRESENTATION` of its geometry) share one frame. Two things place
+//!   one in another:
+//!   - a `MAPPED_ITEM('', REPRESENTATION_MAP(origin, rep), target)` among a representation's
+//!     items places `rep` in it by the motion taking `origin` (an `AXIS2_PLACEMENT_3D`) onto
+//!     `target` (an `AXIS2_PLACEMENT_3D`, or a `CARTESIAN_TRANSFORMATION_OPERATOR_3D`: then the
+//!     operator after the inverse of `origin`);
+//!   - a representation relationship with a transformation, `(REPRESENTATION_RELATIONSHIP('',
+//!     '', rep_1, rep_2) REPRESENTATION_RELATIONSHIP_WITH_TRANSFORMATION(t)
+//!     SHAPE_REPRESENTATION_RELATIONSHIP())` (the `representation_relation` of an assembly
+//!     occurrence's `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION`), places `rep_1` (the component)
+//!     in `rep_2` (the assembly): with `t = ITEM_DEFINED_TRANSFORMATION('', '', item_1,
+//!     item_2)` (two `AXIS2_PLACEMENT_3D`s, item 1 in `rep_1`'s context, item 2 in `rep_2`'s)
+//!     by the motion `item_2 ∘ item_1⁻¹` taking frame item 1 onto frame item 2 — the
+//!     component's points, given in item 1's frame, land at the same coordinates in item 2's;
+//!     with a `CARTESIAN_TRANSFORMATION_OPERATOR_3D` by the operator. Rep 1 the child and rep 2
+//!     the parent is OCCT's convention and what CAD systems write, with item 1 the component's
+//!     origin (the world frame) and item 2 its placement in the assembly, so that the
+//!     component lands on item 2. (OCCT computes `item_1⁻¹ ∘ item_2`,
+//!     `gp_Trsf::SetTransformation(item_2, item_1)`: the same motion when either item is the
+//!     world frame, as item 1 is in CAD exports, or both are translations; otherwise
+//!     `item_2 ∘ item_1⁻¹` is the one that takes item 1 onto item 2, as ISO 10303-43 says.
+//!     The same holds for a mapped item's origin and target.) When the
+//!     `NEXT_ASSEMBLY_USAGE_OCCURRENCE` of the `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION` says the
+//!     other way round (through the `SHAPE_DEFINITION_REPRESENTATION`s of its relating and
+//!     related product definitions, `rep_1` is the assembly's and `rep_2` the component's), the
+//!     component `rep_2` is placed in `rep_1` by the inverse motion. A relationship the
+//!     occurrence names without a transformation places at the identity.
+//!
+//!   The tree is walked from its roots (representations no placement places) down, the
+//!   placements composed through nested sub-assemblies; each face (each surface, in a file
+//!   without faces) a placed representation holds (its items followed through shells, solids
+//!   and models, not into other representations, mapped items or styled items) gives one
+//!   patch per placed instance, moved by the instance's motion, and named, when there are
+//!   several, with the instance's path of placing entities (`skin@#43/#57`: the assembly
+//!   occurrence, or the mapped item, at each level). Motions are rigid, or similarities with
+//!   a uniform positive scale (the operator's): NURBS control points move (weights and knots
+//!   unchanged), elementary surfaces' frames move and their radii scale; the trims stay in the
+//!   surface's parameters, scaled along the linear parameters (plane u and v, cylinder and
+//!   cone v) under a scale. Placement lengths are in the units of the representation whose
+//!   context holds them. A [`ReadNote::PlacementsApplied`](crate::ReadNote::PlacementsApplied)
+//!   counts the placed instances and parts (when a placement reaches any face). A placement
+//!   that cannot be applied gets a
+//!   [`ReadNote::PlacementNotApplied`](crate::ReadNote::PlacementNotApplied) naming it and
+//!   saying why: a transformation of another kind, whose items are not axis placements, that
+//!   mirrors, that scales outside [1e-6, 1e6] or moves beyond 1e9 mm (its component is placed
+//!   without it, as OCCT does); composed with the placements above it, out of that range (that
+//!   instance left out); a mapped item or relationship whose representations cannot be
+//!   resolved; a placement in a cycle (not followed); a mapped item of a shape representation
+//!   that no shape representation holds; an assembly occurrence with neither a
+//!   `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION` nor a mapped item placing its component;
+//!   nesting deeper than 64 levels; a placement of a representation that holds no faces while
+//!   some faces are read unplaced. More than 100 000 placed instances, or placed faces making
+//!   more than 500 000 patches, refuse the file. A face no placement reaches (every face of a
+//!   single-part file) is read once, in its own frame, as it is written.
 //! * **Parameter boxes of elementary surfaces**: angles take their full range (u ∈ [0, 2π];
 //!   sphere v ∈ [−π/2, π/2]; torus v ∈ [0, 2π]); linear parameters (plane u, v; cylinder and
 //!   cone v) span the face's boundary: its vertices, the control points of its B-spline edges
@@ -61,6 +116,7 @@
 //!   Without a face, or with a boundary of zero extent, they take [`DEFAULT_LINEAR_RANGE`] and
 //!   a [`ReadNote::DefaultParameterBox`](crate::ReadNote::DefaultParameterBox) says so.
 
+mod assembly;
 mod curves;
 mod entities;
 mod lex;
