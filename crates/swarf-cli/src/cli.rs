@@ -103,6 +103,45 @@ fn parse_home(s: &str) -> Result<[f64; 3], String> {
     }
 }
 
+/// Where a part file lies in the program's frame (`--part-at`): `X,Y,Z` (a translation, mm),
+/// `X,Y,Z,RZ` or `X,Y,Z,RX,RY,RZ` (turns in degrees about the fixed X, Y and Z axes through
+/// the file's origin, in that order, before the translation).
+pub(crate) fn parse_part_at(s: &str) -> Result<swarf_geom::RigidMotion, String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|t| t.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|_| format!("expected X,Y,Z[,RZ] or X,Y,Z,RX,RY,RZ (mm, degrees), found `{s}`"))?;
+    let finite = v.iter().all(|c| c.is_finite());
+    let within = v[..3.min(v.len())]
+        .iter()
+        .all(|c| c.abs() <= swarf_geom::math::MACHINE_RANGE_MM);
+    let [rx, ry, rz] = match v[..] {
+        [_, _, _] => [0.0; 3],
+        [_, _, _, rz] => [0.0, 0.0, rz],
+        [_, _, _, rx, ry, rz] => [rx, ry, rz],
+        _ => {
+            return Err(format!(
+                "expected 3, 4 or 6 numbers (X,Y,Z[,RZ] or X,Y,Z,RX,RY,RZ), found {} in `{s}`",
+                v.len()
+            ))
+        }
+    };
+    if !finite || !within {
+        return Err(format!(
+            "expected finite numbers, X, Y and Z within ±1e6 mm, found `{s}`"
+        ));
+    }
+    use swarf_geom::math::{Quat, Vec3};
+    let turn = Quat::from_rotation_z(rz.to_radians())
+        * Quat::from_rotation_y(ry.to_radians())
+        * Quat::from_rotation_x(rx.to_radians());
+    Ok(swarf_geom::RigidMotion::new(
+        turn,
+        Vec3::new(v[0], v[1], v[2]),
+    ))
+}
+
 /// The G-code dialects.
 #[derive(Clone, Copy, Debug, ValueEnum)]
 pub(crate) enum Dialect {

@@ -161,6 +161,35 @@ fn clamp_interference_and_floor_gouge_are_found_located_and_measured() {
 }
 
 #[test]
+fn part_at_places_the_surface_and_the_check_mesh_together() {
+    let dir = scene("part-at", 0);
+    let figures = |at: &str| {
+        let o = gouge(&dir, &["--tool", "flat:d=10", "--part-at", at, "--json"]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let s = json(&o);
+        assert_eq!(s["certified"], true, "{s}");
+        (
+            s["max_gouge_mm"].as_f64().unwrap(),
+            s["max_interference_mm"].as_f64().unwrap(),
+        )
+    };
+    // Placed 1 mm up: the plunge to z = −0.5 gouges 1.5 mm, and the rapid back up out of it
+    // runs through 1.5 mm of the part (more than the clamp's 1 mm).
+    let (g, i) = figures("0,0,1");
+    assert!(
+        (g - 1.5).abs() <= 2e-3 && (i - 1.5).abs() <= 2e-3,
+        "{g} {i}"
+    );
+    // Placed 5 mm along X: the clamp moves with the floor to x = 15..25, out of the tool's
+    // reach (x ≤ 11); left is the plunge's 0.5 mm, gouge and rapid alike.
+    let (g, i) = figures("5,0,0");
+    assert!(
+        (g - 0.5).abs() <= 5e-4 && (i - 0.5).abs() <= 5e-4,
+        "{g} {i}"
+    );
+}
+
+#[test]
 fn without_the_clamp_the_pass_is_clear() {
     let dir = scene("noclamp", 0);
     let o = gouge_flat(&dir, "floor.json", &["--json"]);

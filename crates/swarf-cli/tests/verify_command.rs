@@ -236,3 +236,38 @@ fn demo_overcut_agrees_with_the_program_check() {
         }
     }
 }
+
+#[test]
+fn a_design_exported_in_another_frame_is_placed_with_part_at() {
+    // The same part as `design`, as CAD might export it: turned −90° about Z and moved, so
+    // that `--part-at 20,20,10,90` (turn 90° about Z, then move) puts it back on the stock.
+    let dir = temp_dir("part-at");
+    let (prog, _) = gouging_program(&dir);
+    let cad = dir.join("cad.stl");
+    std::fs::write(
+        &cad,
+        boxes_stl(&[[[0.0, -40.0, -10.0], [40.0, 0.0, 0.0]]], 0),
+    )
+    .unwrap();
+    let o = run(&dir, &prog, &cad, &["--part-at", "20,20,10,90", "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    assert!(
+        (j["max_gouge_mm"].as_f64().unwrap() - 0.3).abs() < 1e-6,
+        "{j}"
+    );
+    assert_eq!(
+        (&j["gouge_regions"], &j["excess_regions"]),
+        (&1.into(), &0.into())
+    );
+    // Unplaced, the part is nowhere near what was cut.
+    let o = run(&dir, &prog, &cad, &["--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_ne!(json(&o)["excess_regions"], 0);
+    // Bad placements are usage errors naming the form.
+    for bad in ["1,2", "1,2,3,4,5", "1,2,x", "1,2,3,inf", "2e6,0,0"] {
+        let o = run(&dir, &prog, &cad, &["--part-at", bad]);
+        assert_eq!(o.status.code(), Some(2), "{bad}: {}", stderr(&o));
+        assert!(stderr(&o).contains("X,Y,Z"), "{bad}: {}", stderr(&o));
+    }
+}

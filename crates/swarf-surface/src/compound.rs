@@ -447,6 +447,35 @@ pub fn file_safe(label: &str) -> String {
 }
 
 impl CompoundSurface {
+    /// The surface moved by the rigid motion `m` (a part placed in the program's frame): every
+    /// patch's geometry moved, its parameters — and so its trim, name, orientation and source —
+    /// as they are, the notes kept.
+    ///
+    /// # Errors
+    /// A patch that cannot be rebuilt moved (a non-finite motion), naming it.
+    pub fn moved(&self, m: &swarf_geom::RigidMotion) -> Result<CompoundSurface, String> {
+        let p = crate::placement::Placement::rigid(m);
+        let patches = self
+            .patches
+            .iter()
+            .enumerate()
+            .map(|(n, patch)| {
+                let (surface, trim) =
+                    crate::placement::place(&patch.surface, patch.trim.as_ref(), &p)
+                        .map_err(|why| format!("patch {n}: {why}"))?;
+                Ok(Patch {
+                    surface,
+                    trim,
+                    ..patch.clone()
+                })
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        Ok(CompoundSurface {
+            patches,
+            notes: self.notes.clone(),
+        })
+    }
+
     /// One label per patch, unique even in file-name form: the patch's name, or its index when
     /// it has none; a name several patches share (CAD systems give every face the product's
     /// name) gets the index appended, `PartBody#3`.

@@ -62,6 +62,7 @@ pub mod compound;
 pub mod curve;
 pub mod io;
 pub mod mesh;
+mod placement;
 pub mod surface;
 pub mod trim;
 

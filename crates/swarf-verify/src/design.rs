@@ -13,7 +13,7 @@ use std::path::Path;
 use parry3d_f64::query::PointQueryWithLocation;
 use parry3d_f64::shape::{TriMesh, TriMeshFlags};
 use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
-use swarf_geom::Aabb;
+use swarf_geom::{Aabb, RigidMotion};
 use swarf_stock::Dexel;
 
 use crate::error::VerifyError;
@@ -76,7 +76,18 @@ impl std::fmt::Debug for MeshDesign {
 impl MeshDesign {
     /// Reads a closed STL part (binary or ASCII). Errors name the file.
     pub fn read_stl(path: &Path) -> Result<Self, VerifyError> {
-        let mesh = swarf_io::read_stl(path)?;
+        Self::read_stl_at(path, None)
+    }
+
+    /// [`MeshDesign::read_stl`], the mesh moved by `at` first (a part exported in another
+    /// frame than the program's).
+    pub fn read_stl_at(path: &Path, at: Option<&RigidMotion>) -> Result<Self, VerifyError> {
+        let mut mesh = swarf_io::read_stl(path)?;
+        if let Some(m) = at {
+            for v in &mut mesh.vertices {
+                *v = m.apply_point(*v);
+            }
+        }
         Self::named(&mesh, path)
     }
 

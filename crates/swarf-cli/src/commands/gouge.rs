@@ -32,6 +32,12 @@ pub(crate) struct GougeArgs {
     /// the tool reaching into it is interference.
     #[arg(long)]
     pub(crate) check: Option<PathBuf>,
+    /// Where the part file (and the --check mesh, exported with it) lies in the program's
+    /// frame, when CAD exported it elsewhere: `X,Y,Z` moves it by that much (mm); `X,Y,Z,RZ`
+    /// or `X,Y,Z,RX,RY,RZ` first turns it by those degrees about the X, Y and Z axes through
+    /// its origin, in that order.
+    #[arg(long, value_name = "X,Y,Z[,RZ]", value_parser = crate::cli::parse_part_at, allow_hyphen_values = true)]
+    pub(crate) part_at: Option<swarf_geom::RigidMotion>,
     /// Cutters, tool library, machine and units.
     #[command(flatten)]
     pub(crate) setup: SetupArgs,
@@ -57,8 +63,13 @@ pub(crate) struct GougeArgs {
 pub(crate) fn run(args: &GougeArgs) -> Result<()> {
     crate::commands::report::prepare(args.report.as_deref())?;
     let t0 = Instant::now();
-    let surface = swarf_surface::io::read_file(&args.surface)
+    let mut surface = swarf_surface::io::read_file(&args.surface)
         .with_context(|| format!("reading {}", args.surface.display()))?;
+    if let Some(m) = &args.part_at {
+        surface = surface
+            .moved(m)
+            .map_err(|why| anyhow::anyhow!("{}: placing it: {why}", args.surface.display()))?;
+    }
     if surface.patches.is_empty() {
         bail!("{}: no surface patches", args.surface.display());
     }
@@ -67,7 +78,12 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
     }
     let mut prep = PreparedSurface::new(&surface);
     if let Some(path) = &args.check {
-        let mesh = swarf_io::read_stl(path)?;
+        let mut mesh = swarf_io::read_stl(path)?;
+        if let Some(m) = &args.part_at {
+            for v in &mut mesh.vertices {
+                *v = m.apply_point(*v);
+            }
+        }
         prep = prep.with_check_mesh(&path.display().to_string(), &mesh)?;
     }
     let job = load_job(&args.setup, &args.program)?;

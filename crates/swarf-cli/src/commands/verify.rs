@@ -43,6 +43,11 @@ pub(crate) struct VerifyArgs {
     /// Reverse the orientation of every surface of a JSON/STEP/IGES design.
     #[arg(long)]
     pub(crate) flip: bool,
+    /// Where the design file lies in the program's frame, when CAD exported it elsewhere:
+    /// `X,Y,Z` moves it by that much (mm); `X,Y,Z,RZ` or `X,Y,Z,RX,RY,RZ` first turns it by
+    /// those degrees about the X, Y and Z axes through its origin, in that order.
+    #[arg(long, value_name = "X,Y,Z[,RZ]", value_parser = crate::cli::parse_part_at, allow_hyphen_values = true)]
+    pub(crate) part_at: Option<swarf_geom::RigidMotion>,
     /// Ray spacing of the tri-dexel stock, mm.
     #[arg(
         long,
@@ -128,7 +133,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
         positive_mm("color-range", r)?;
     }
     // The design first: a bad design file fails before any simulation.
-    let design = load_design(&args.design, args.flip)?;
+    let design = load_design(&args.design, args.flip, args.part_at.as_ref())?;
     let job = load_job(&args.setup, &args.program)?;
     let tools = defined_tools(&job)?;
     let resolved = tools.resolved();
@@ -246,7 +251,11 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
 }
 
 /// The design a file holds: a closed STL mesh, or JSON/STEP/IGES surfaces.
-fn load_design(path: &Path, flip: bool) -> Result<Box<dyn Design>> {
+fn load_design(
+    path: &Path,
+    flip: bool,
+    at: Option<&swarf_geom::RigidMotion>,
+) -> Result<Box<dyn Design>> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -256,7 +265,7 @@ fn load_design(path: &Path, flip: bool) -> Result<Box<dyn Design>> {
         if flip {
             bail!("--flip applies to surface designs (JSON, STEP, IGES), not to an STL solid");
         }
-        return Ok(Box::new(MeshDesign::read_stl(path)?));
+        return Ok(Box::new(MeshDesign::read_stl_at(path, at)?));
     }
     if swarf_surface::io::Format::from_path(path).is_none() {
         bail!(
@@ -272,6 +281,11 @@ fn load_design(path: &Path, flip: bool) -> Result<Box<dyn Design>> {
     }
     if flip {
         surface.flip_all();
+    }
+    if let Some(m) = at {
+        surface = surface
+            .moved(m)
+            .map_err(|why| anyhow::anyhow!("design {}: placing it: {why}", path.display()))?;
     }
     match SurfaceDesign::new(&surface, 0.0) {
         Some(d) => Ok(Box::new(d)),
