@@ -8,7 +8,8 @@
 //!
 //! # Records
 //! A record is `MAJOR/minor,minor,…` or a bare `MAJOR`. `$$` starts a comment; a line ending in
-//! a single `$` continues on the next one. Words are case-insensitive.
+//! a single `$` continues on the next one (a whole-line comment so ended, as Creo writes its
+//! `$$-> CSYS / …, $`, on the lines of numbers after it). Words are case-insensitive.
 //!
 //! | record | effect |
 //! |---|---|
@@ -25,10 +26,11 @@
 //! | `CSYS/` 3×4 matrix | applied to the following points (see below) |
 //! | `PARTNO`, `PPRINT`, `REMARK`, `TPRINT`, `TOOL PATH`, `INSERT` | comments (`INSERT` also warns); all but `TOOL PATH` may hold any text, with or without the slash (`PPRINT OPERATION : Sweep.1`) |
 //! | `TLAXIS/i,j,k` | the tool axis of the following `GOTO`s that give none |
+//! | `INDIRV/i,j,k` + `TLON,GOFWD/ (CIRCLE/ xc,yc,zc[,i,j,k],r), ON, (LINE/ …)` | CATIA's arc: from where the tool stands, in the `INDIRV` direction, about the circle's axis (the tool axis when it gives none), to the line (CATIA writes it from the centre to the end) |
 //! | `FINI` | end of program |
 //!
-//! `PAINT`, `COOLNT`, `MULTAX`, `SELCTL`, `END-OF-PATH`, `CUTCOM/OFF`, `STOP`, `OPSTOP`, `INDIRV`,
-//! `TOOLNO`, `END` are
+//! `PAINT`, `COOLNT`, `MULTAX`, `SELCTL`, `END-OF-PATH`, `CUTCOM/OFF`, `STOP`, `OPSTOP`,
+//! `TOOLNO`, `END`, `REWIND` (CATIA's last record), `MACHIN` (Creo's post-processor name) are
 //! accepted silently (they do not change the tool's path). `CUTCOM/LEFT│RIGHT` warns: CL points
 //! are normally the compensated cutter path already, and swarf simulates the points as written,
 //! not what a controller doing radius compensation would add. `MSYS/` (where the MCS sits in
@@ -196,11 +198,26 @@ pub fn read_apt(
         spindle_rpm: 0.0,
         spindle_dir: SpindleDir::Clockwise,
         extra_goto_warned: false,
+        indirv: None,
     };
     let mut record = Record::default();
+    // A whole-line comment ending in `$` (Creo: `$$-> CSYS / 1.0, 0.0, …, $`) goes on over the
+    // lines of numbers that follow it.
+    let mut comment_goes_on = false;
     for (i, raw) in text.split('\n').enumerate() {
         let line_no = u32::try_from(i + 1).unwrap_or(u32::MAX);
         let raw = raw.strip_suffix('\r').unwrap_or(raw);
+        let trimmed = raw.trim();
+        if std::mem::take(&mut comment_goes_on)
+            && trimmed.starts_with(|c: char| c.is_ascii_digit() || "+-.".contains(c))
+        {
+            comment_goes_on = trimmed.ends_with('$');
+            continue;
+        }
+        if record.text.is_empty() && trimmed.starts_with("$$") {
+            comment_goes_on = trimmed.len() > 2 && trimmed.ends_with('$');
+            continue;
+        }
         let content = match raw.find("$$") {
             Some(k) => &raw[..k],
             None => raw,
@@ -322,6 +339,8 @@ struct Reader<'o, 's> {
     spindle_rpm: f64,
     spindle_dir: SpindleDir,
     extra_goto_warned: bool,
+    /// The direction `INDIRV/` states for the next `TLON,GOFWD/` circle.
+    indirv: Option<Vec3>,
 }
 
 /// A point as joint values (X Y Z; rotary words are not used by CL data).
@@ -464,6 +483,16 @@ impl Reader<'_, '_> {
     fn record(&mut self, rec: &Record<'_>) -> Result<Flow, PathError> {
         let text = rec.text.as_str();
         let lead = text.len() - text.trim_start().len();
+        if let Some(k) = text.find('/') {
+            let head: String = text[..k]
+                .chars()
+                .filter(|c| !c.is_whitespace())
+                .collect::<String>()
+                .to_ascii_uppercase();
+            if head == "TLON,GOFWD" {
+                return self.gofwd(rec, k + 1).map(|()| Flow::Go);
+            }
+        }
         let (major_raw, minor, minor_off) = match (text_record(text), text.find('/')) {
             // Free text (`PPRINT OPERATION NAME : Sweep.1`, as CATIA writes it): the first
             // word is the record, whatever the text holds.
@@ -625,7 +654,14 @@ impl Reader<'_, '_> {
             }
             "TLDATA" => self.tldata(rec, &fields, line, column)?,
             "MULTAX" | "PAINT" | "COOLNT" | "SELCTL" | "END-OF-PATH" | "STOP" | "OPSTOP"
-            | "INDIRV" | "TOOLNO" | "END" => {}
+            | "TOOLNO" | "END" | "REWIND" | "MACHIN" => {}
+            "INDIRV" => {
+                let v = self.numbers(rec, &fields, "INDIRV/")?;
+                if v.len() != 3 {
+                    return Err(self.count_error(rec, &fields, minor_off, "INDIRV/", "i,j,k"));
+                }
+                self.indirv = Some(self.vector(Vec3::new(v[0], v[1], v[2])));
+            }
             "TLAXIS" => match self.numbers(rec, &fields, "TLAXIS/") {
                 Ok(v) if v.len() == 3 => {
                     let Some(a) = self.vector(Vec3::new(v[0], v[1], v[2])).try_normalize() else {
@@ -781,6 +817,173 @@ impl Reader<'_, '_> {
             ),
         }
         Ok(Flow::Go)
+    }
+
+    /// CATIA's circular motion, `TLON,GOFWD/ (CIRCLE/ xc,yc,zc[,i,j,k],r), ON, (LINE/ x1,y1,z1,
+    /// x2,y2,z2)` after `INDIRV/ i,j,k`: the tool goes forward from where it stands, in the
+    /// direction `INDIRV/` gives, along the circle (about the tool axis when the circle gives
+    /// none) until it is on the line. CATIA writes the line from the centre to the arc's end,
+    /// and a line from the centre is read so (the end is on its ray); another line ends the arc
+    /// where the tool first meets it.
+    fn gofwd(&mut self, rec: &Record<'_>, minor_off: usize) -> Result<(), PathError> {
+        let text = rec.text.as_str();
+        let (line, column) = rec.locate(text.len() - text.trim_start().len());
+        let upper = text.to_ascii_uppercase();
+        // The numbers of `(NAME/ …)` from `from` on, with the offset of the `(`.
+        let group = |name: &str, from: usize| -> Option<(usize, Vec<Field<'_>>, usize)> {
+            let open = from + upper[from..].find('(')?;
+            let head = upper[open + 1..].trim_start();
+            if !head.starts_with(name) {
+                return None;
+            }
+            let slash = open + 1 + upper[open + 1..].find('/')?;
+            let close = slash + upper[slash..].find(')')?;
+            let mut fields = Vec::new();
+            let mut off = slash + 1;
+            for piece in text[slash + 1..close].split(',') {
+                let pad = piece.len() - piece.trim_start().len();
+                fields.push(Field {
+                    text: piece.trim(),
+                    off: off + pad,
+                });
+                off += piece.len() + 1;
+            }
+            Some((open, fields, close + 1))
+        };
+        let form = "(CIRCLE/ xc,yc,zc[,i,j,k],r), ON, (LINE/ x1,y1,z1,x2,y2,z2)";
+        let bad = |me: &Self, off: usize, what: &str| {
+            me.error(
+                rec,
+                off,
+                PathErrorKind::Syntax,
+                format!("TLON,GOFWD/: {what}"),
+                text[minor_off.min(text.len())..].trim(),
+                form,
+            )
+        };
+        let Some((_, cf, after_circle)) = group("CIRCLE", minor_off) else {
+            return Err(bad(self, minor_off, "no (CIRCLE/ …) after the slash"));
+        };
+        let c = self.numbers(rec, &cf, "CIRCLE/")?;
+        if c.len() != 4 && c.len() != 7 {
+            return Err(bad(self, cf[0].off, "CIRCLE/ needs 4 or 7 numbers"));
+        }
+        let Some(k) = upper[after_circle..].find('(') else {
+            return Err(bad(self, after_circle, "no (LINE/ …) after the circle"));
+        };
+        let modifier: String = upper[after_circle..after_circle + k]
+            .chars()
+            .filter(|c| c.is_ascii_alphabetic())
+            .collect();
+        if modifier != "ON" {
+            return Err(self.error(
+                rec,
+                after_circle,
+                PathErrorKind::Unsupported,
+                format!(
+                    "TLON,GOFWD/ ending {} the check line is not read; CATIA's circles end ON it",
+                    if modifier.is_empty() {
+                        "without a modifier"
+                    } else {
+                        &modifier
+                    }
+                ),
+                text[after_circle..].trim(),
+                "ON",
+            ));
+        }
+        let Some((_, lf, _)) = group("LINE", after_circle) else {
+            return Err(bad(self, after_circle, "no (LINE/ …) after ON"));
+        };
+        let l = self.numbers(rec, &lf, "LINE/")?;
+        if l.len() != 6 {
+            return Err(bad(self, lf[0].off, "LINE/ needs 6 numbers"));
+        }
+        let Some(start) = self.pos else {
+            return Err(self.error(
+                rec,
+                minor_off,
+                PathErrorKind::Semantic,
+                "TLON,GOFWD/ before any position is known",
+                text.trim(),
+                "a GOTO/ or FROM/ first",
+            ));
+        };
+        let Some(dir) = self.indirv.take() else {
+            return Err(self.error(
+                rec,
+                minor_off,
+                PathErrorKind::Semantic,
+                "TLON,GOFWD/ without an INDIRV/ before it: the direction along the circle is \
+                 unknown",
+                text.trim(),
+                "INDIRV/i,j,k before the circle",
+            ));
+        };
+        let center = self.point(Vec3::new(c[0], c[1], c[2]));
+        self.check_range(rec, &cf, &c[..3], center, "CIRCLE/")?;
+        let axis = if c.len() == 7 {
+            self.vector(Vec3::new(c[3], c[4], c[5]))
+        } else {
+            self.axis
+        };
+        let Some(axis) = axis.try_normalize() else {
+            return Err(bad(self, cf[3].off, "the circle's axis is zero"));
+        };
+        let radius = c[c.len() - 1] * self.scale;
+        let p1 = self.point(Vec3::new(l[0], l[1], l[2]));
+        let p2 = self.point(Vec3::new(l[3], l[4], l[5]));
+        self.check_range(rec, &lf, &l[..3], p1, "LINE/")?;
+        self.check_range(rec, &lf[3..], &l[3..], p2, "LINE/")?;
+        let flat = |v: Vec3| v - axis * axis.dot(v);
+        let s = flat(start - center);
+        let ccw = axis.cross(s).dot(dir) >= 0.0;
+        let n = if ccw { axis } else { -axis };
+        let tol = self.options.arc_tolerance_mm.max(1e-9 * radius);
+        let (d1, d2) = (flat(p1 - center), flat(p2 - center));
+        let end = if d1.length() <= tol && d2.length() > tol {
+            // A line from the centre: the end is on its ray, at the height of its far point.
+            center + d2.normalize() * radius + axis * axis.dot(p2 - center)
+        } else {
+            // Where the circle meets the line (in the plane), first reached going forward.
+            let u = d2 - d1;
+            let (a, b, cc) = (u.dot(u), 2.0 * d1.dot(u), d1.dot(d1) - radius * radius);
+            let disc = b * b - 4.0 * a * cc;
+            if a <= tol * tol || disc < 0.0 {
+                return Err(self.error(
+                    rec,
+                    lf[0].off,
+                    PathErrorKind::Semantic,
+                    "TLON,GOFWD/: the circle never meets the line",
+                    text[minor_off..].trim(),
+                    "a LINE/ that crosses the CIRCLE/",
+                ));
+            }
+            let sweep = |q: Vec3| {
+                let x = s.normalize_or_zero();
+                let y = n.cross(x);
+                let t = q.dot(y).atan2(q.dot(x));
+                if t <= 1e-9 {
+                    t + std::f64::consts::TAU
+                } else {
+                    t
+                }
+            };
+            let hit = [-1.0, 1.0]
+                .map(|sg| d1 + u * ((-b + sg * disc.sqrt()) / (2.0 * a)))
+                .into_iter()
+                .min_by(|p, q| sweep(*p).total_cmp(&sweep(*q)))
+                .unwrap_or(d2);
+            center + hit
+        };
+        self.circle = Some(PendingCircle {
+            center,
+            normal: n,
+            radius: Some(radius),
+            line,
+            column,
+        });
+        self.motion(rec, line, column, end, None)
     }
 
     fn count_error(

@@ -76,11 +76,22 @@ impl PathError {
 }
 
 /// The found text as a terminal shows it: control characters (a NUL in a binary file, an escape
-/// code) written as escapes, so that the message neither loses them nor drives the terminal.
+/// code) written as escapes, so that the message neither loses them nor drives the terminal;
+/// beyond [`FOUND_SHOWN`] characters (a word of 5000 digits, a line of a binary file) the rest
+/// is counted, not shown.
 struct Visible<'a>(&'a str);
+
+/// Most characters of the found text a message shows.
+const FOUND_SHOWN: usize = 120;
 
 impl fmt::Display for Visible<'_> {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let total = self.0.chars().count();
+        if total > FOUND_SHOWN {
+            let head: String = self.0.chars().take(FOUND_SHOWN).collect();
+            Visible(&head).fmt(f)?;
+            return write!(f, "… ({} more characters)", total - FOUND_SHOWN);
+        }
         for c in self.0.chars() {
             if c.is_control() && c != '\t' {
                 write!(f, "{}", c.escape_unicode())?;

@@ -75,6 +75,11 @@ impl<'s> MoveLimit<'s> {
     pub(crate) fn max(&self) -> u64 {
         self.max
     }
+
+    /// The motion events passed on so far.
+    pub(crate) fn moves(&self) -> u64 {
+        self.moves
+    }
 }
 
 impl CanonSink for MoveLimit<'_> {

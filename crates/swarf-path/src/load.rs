@@ -26,7 +26,8 @@ impl ProgramFormat {
             .unwrap_or("")
             .to_ascii_lowercase();
         match ext.as_str() {
-            "apt" | "cls" | "cl" | "cldata" | "aptsource" => return ProgramFormat::Apt,
+            // (`.ncl`: Creo's CL files.)
+            "apt" | "cls" | "cl" | "cldata" | "aptsource" | "ncl" => return ProgramFormat::Apt,
             "ngc" | "nc" | "gcode" | "g" | "gc" | "tap" | "cnc" | "ptp" | "mpf" | "h" | "eia" => {
                 return ProgramFormat::Gcode
             }
@@ -50,7 +51,12 @@ impl ProgramFormat {
             .filter(|l| !l.is_empty() && !l.starts_with("$$"))
             .take(20);
         for line in first {
-            let upper = line.to_ascii_uppercase();
+            // Creo and CATIA space the slash: `GOTO / 1, 2, 3`, `UNITS / MM`.
+            let upper = match line.split_once('/') {
+                Some((head, tail)) => format!("{}/{tail}", head.trim_end()),
+                None => line.to_string(),
+            }
+            .to_ascii_uppercase();
             if APT_WORDS.iter().any(|w| upper.starts_with(w)) {
                 return ProgramFormat::Apt;
             }

@@ -52,3 +52,34 @@ fn unknown_records_are_warnings_with_their_line() {
         .expect("a warning for FLOOB");
     assert_eq!(w.line, 3);
 }
+
+#[test]
+fn creo_comments_continued_over_lines_and_spaced_slashes() {
+    // Creo writes its CSYS as a comment continued with `$` over lines of numbers, and spaces
+    // the slashes; its files (`.ncl`) are recognised as APT by extension and by content.
+    let creo = "$$* Pro/CLfile  Version Wildfire 5.0 - M060\n$$-> MFGNO / TEST\nPARTNO / TEST\n\
+                MACHIN / UNCX01, 1\nUNITS / MM\nLOADTL / 1\n$$-> CUTTER / 6.000000\n\
+                $$-> CSYS / 1.0000000000, 0.0000000000, 0.0000000000, 0.0000000000, $\n\
+                \x20           0.0000000000, 1.0000000000, 0.0000000000, 0.0000000000, $\n\
+                \x20           0.0000000000, 0.0000000000, 1.0000000000, 0.0000000000\n\
+                SPINDL / RPM, 1000.000000, CLW\nRAPID\nGOTO / 10.0, 10.0, 50.0\nRAPID\n\
+                GOTO / 10.0, 10.0, 5.0\nFEDRAT / 300.000000, MMPM\nGOTO / 10.0, 10.0, -1.0\n\
+                SPINDL / OFF\nFINI\n";
+    let rec = read(creo);
+    assert_eq!(ends(&rec), vec![[10.0, 10.0, 5.0], [10.0, 10.0, -1.0]]);
+    assert!(rec.warnings.is_empty(), "{:?}", rec.warnings);
+    use std::path::Path;
+    use swarf_path::load::ProgramFormat;
+    assert_eq!(
+        ProgramFormat::detect(Path::new("part.ncl"), creo),
+        ProgramFormat::Apt
+    );
+    let spaced = "$$ header\nMACHIN / UNCX01, 1\nGOTO / 1, 2, 3\n";
+    assert_eq!(
+        ProgramFormat::detect(Path::new("part.txt"), spaced),
+        ProgramFormat::Apt
+    );
+    // A whole-line comment ending in `$` does not swallow a record after it.
+    let rec = read("$$ a comment $\nGOTO/0,0,0\nGOTO/1,0,0\n");
+    assert_eq!(ends(&rec), vec![[1.0, 0.0, 0.0]]);
+}

@@ -292,6 +292,70 @@ fn unknown_records_warn_with_their_position() {
     assert_eq!((w.file.as_str(), w.line, w.column), ("x.cls", 2, 3));
 }
 
+/// The arcs of a file as (end, centre in the arc's plane, rotation ±1).
+fn arcs(e: &[Canon<'static>]) -> Vec<(Axes, [f64; 2], i32)> {
+    e.iter()
+        .filter_map(|x| match x {
+            Canon::Arc {
+                end,
+                center,
+                rotation,
+                plane: Plane::XY,
+            } => Some((*end, *center, *rotation)),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn catia_circles_go_forward_in_the_indirv_direction_to_the_line() {
+    // CATIA's circular output: from (50, 10, -1) about (50, 20, -1), radius 10, first along +X
+    // (counter-clockwise about the tool axis +Z) to the line from the centre through (60, 20).
+    let head = "MULTAX\nGOTO  /   50.00000,  10.00000, -1.00000,  0.000000,  0.000000,  1.000000\n";
+    let catia = format!(
+        "{head}INDIRV/   1.000000,  0.000000,  0.000000\nTLON,GOFWD/ (CIRCLE/  50.00000,  20.00000, \
+         -1.00000,  10.00000),$\n ON,(LINE/  50.00000,  20.00000, -1.00000,  60.00000,  20.00000, \
+         -1.00000)\nGOTO  /   60.00000,  40.00000, -1.00000,  0.000000,  0.000000,  1.000000\n"
+    );
+    let e = events(&catia);
+    assert_eq!(arcs(&e), [(at(60.0, 20.0, -1.0), [50.0, 20.0], 1)]);
+    assert_eq!(
+        e.last(),
+        Some(&Canon::Feed {
+            end: at(60.0, 40.0, -1.0)
+        })
+    );
+    // Started along -X it goes the long way round, clockwise, to the same end.
+    let cw = catia.replace("INDIRV/   1.0", "INDIRV/   -1.0");
+    assert_eq!(
+        arcs(&events(&cw)),
+        [(at(60.0, 20.0, -1.0), [50.0, 20.0], -1)]
+    );
+    // The circle's own axis (7 numbers), and a line not through the centre: the end is where
+    // the tool first meets it (x = 55 going counter-clockwise from the bottom).
+    let own = format!(
+        "{head}INDIRV/1,0,0\nTLON,GOFWD/(CIRCLE/50,20,-1,0,0,1,10),ON,(LINE/55,0,-1,55,40,-1)\n"
+    );
+    let a = arcs(&events(&own));
+    assert_eq!(a.len(), 1);
+    let (end, _, rot) = a[0];
+    assert_eq!(rot, 1);
+    assert!((end.x - 55.0).abs() < 1e-12 && (end.y - (20.0 - 75f64.sqrt())).abs() < 1e-12);
+    // No INDIRV, another modifier, no position yet: errors that say so.
+    let e = err(&format!(
+        "{head}TLON,GOFWD/(CIRCLE/50,20,-1,10),ON,(LINE/50,20,-1,60,20,-1)\n"
+    ));
+    assert_eq!((e.kind, e.pos.line), (PathErrorKind::Semantic, 3));
+    assert!(e.message.contains("INDIRV"), "{e}");
+    let e = err(&format!(
+        "{head}INDIRV/1,0,0\nTLON,GOFWD/(CIRCLE/50,20,-1,10),PAST,(LINE/50,20,-1,60,20,-1)\n"
+    ));
+    assert_eq!(e.kind, PathErrorKind::Unsupported);
+    assert!(e.message.contains("PAST"), "{e}");
+    let e = err("INDIRV/1,0,0\nTLON,GOFWD/(CIRCLE/50,20,-1,10),ON,(LINE/50,20,-1,60,20,-1)\n");
+    assert!(e.message.contains("before any position"), "{e}");
+}
+
 proptest! {
     #![proptest_config(swarf_testdata::proptest_config(512))]
     /// Any text: an error or events, never a panic.

@@ -172,9 +172,33 @@ fn g51_scales_about_its_centre_and_g50_ends_it() {
 }
 
 #[test]
-fn g70_and_g71_are_rejected_by_name() {
-    let e = moves("G70\n", &fanuc()).unwrap_err();
-    assert!(e.message.contains("use G20 (inch) or G21 (mm)"), "{e}");
+fn g70_and_g71_alone_are_units_and_with_words_lathe_cycles() {
+    // Vectric's Mach3 posts write `N110G70G91.1` (inch) and `N110G71G91.1` (mm), as Mach3 and
+    // Fanuc lathes in G-code system B read them; with words they are lathe cycles, refused.
+    for options in [fanuc(), GcodeOptions::default()] {
+        let m = moves("N100G00G17G90\nN110G70G91.1\nN120X1.Y2.\nM30\n", &options).unwrap();
+        assert_eq!(m, [('R', 25.4, 50.8, 0.0)]);
+        let m = moves("G20\nG71\nG0 X1. Y2.\nM30\n", &options).unwrap();
+        assert_eq!(m, [('R', 1.0, 2.0, 0.0)]);
+        let e = moves("G71 U2. R1.\n", &options).unwrap_err();
+        assert_eq!(e.kind, swarf_path::PathErrorKind::Unsupported);
+        assert!(e.message.starts_with("G71: G70/G71 with words"), "{e}");
+        assert_eq!((e.pos.line, e.pos.column), (1, 1));
+        let e = moves("G21 G71\n", &options).unwrap_err();
+        assert!(e.message.contains("G21 and G71"), "{e}");
+    }
+    // Said where it changes the units.
+    let w = warnings("O1\nG21\nG70\nG0 X1.\nG71\nM30\n");
+    assert!(
+        w.iter()
+            .any(|(l, m)| *l == 3 && m.starts_with("G70 read as G20")),
+        "{w:?}"
+    );
+    assert!(
+        w.iter()
+            .any(|(l, m)| *l == 5 && m.starts_with("G71 read as G21")),
+        "{w:?}"
+    );
 }
 
 /// The warnings of a Fanuc program, as (line, message).
@@ -405,4 +429,122 @@ fn macro_b_control_flow_is_refused_by_name() {
         assert!(e.message.contains("Macro B"), "{line}: {e}");
         assert_eq!(e.pos.line, 4, "{line}");
     }
+}
+
+/// The dwells as the reader hands them on, seconds.
+fn dwells(src: &str, options: &GcodeOptions) -> Vec<f64> {
+    let mut rec = Recorder::default();
+    read_gcode(src, "fanuc.nc", options, &mut rec).unwrap_or_else(|e| panic!("{e}"));
+    rec.events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Dwell(s) => Some(*s),
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn g04_x_is_a_dwell_and_p_without_a_point_counts_milliseconds() {
+    // Fanuc: `G04 X1.5` dwells 1.5 s (X is the time, not an axis: nothing moves); `G04 P500`
+    // dwells 500 ms (P takes no decimal point); Haas reads `G04 P0.5` as seconds.
+    let src = "O1\nG21 G90 G0 X10. Y10. Z5.\nG04 X1.5\nG04 P500\nG4 P0.5\nG1 X20. F100.\nM30\n";
+    let m = moves(src, &fanuc()).unwrap();
+    assert_eq!(m, [('R', 10.0, 10.0, 5.0), ('L', 20.0, 10.0, 5.0)]);
+    assert_eq!(dwells(src, &fanuc()), [1.5, 0.5, 0.5]);
+    // LinuxCNC: P in seconds, whatever its form.
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    assert_eq!(dwells("G4 P2\nG4 P0.5\nM2\n", &linuxcnc), [2.0, 0.5]);
+}
+
+#[test]
+fn g00_beside_g28_is_modal_and_g28_takes_the_axes() {
+    // `G00 G91 G28 Z0.`: the reference return moves; G00 is the motion of the next blocks.
+    let src = "O1\nG21 G90 G1 X10. Y10. Z5. F100.\nG00 G91 G28 Z0.\nG90 X20.\nM30\n";
+    let m = moves(src, &fanuc().with_home([0.0, 0.0, 300.0])).unwrap();
+    assert_eq!(
+        m,
+        [
+            ('L', 10.0, 10.0, 5.0),
+            ('R', 10.0, 10.0, 5.0),
+            ('R', 10.0, 10.0, 300.0),
+            ('R', 20.0, 10.0, 300.0),
+        ]
+    );
+    // LinuxCNC refuses it: G0 and G28 both want the axis words.
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let e = moves(&src.replace("O1\n", ""), &linuxcnc).unwrap_err();
+    assert!(e.message.contains("both want the axis words"), "{e}");
+}
+
+#[test]
+fn g53_positions_are_measured_from_the_home() {
+    // Fusion's Haas NGC post retracts with `G53 G0 Z0.` (machine zero: the home); without a
+    // home given it goes to the work's Z0 and says so, once.
+    let src = "%\nO1\nG21 G90 G0 X10. Y10.\nG1 Z-1. F100.\nG53 G0 Z0.\nG0 X20.\nG53 Z-5.\nM30\n%\n";
+    let m = moves(src, &fanuc().with_home([0.0, 0.0, 300.0])).unwrap();
+    assert_eq!(m[2], ('R', 10.0, 10.0, 300.0));
+    assert_eq!(m[3], ('R', 20.0, 10.0, 300.0));
+    assert_eq!(m[4], ('R', 20.0, 10.0, 295.0));
+    let m = moves(src, &fanuc()).unwrap();
+    assert_eq!(m[2], ('R', 10.0, 10.0, 0.0));
+    // A program that sets its work offset states the machine frame itself: G53 Z0. is 100 mm
+    // above a work origin at machine Z-100, home given or not.
+    let own = "O1\nG21 G90\nG10 L2 P1 Z-100.\nG54 G0 X0 Y0\nG53 G0 Z0.\nM30\n";
+    let m = moves(own, &fanuc().with_home([0.0, 0.0, 300.0])).unwrap();
+    assert_eq!(m.last(), Some(&('R', 0.0, 0.0, 100.0)));
+    let w = warnings(src);
+    let g53: Vec<_> = w.iter().filter(|(_, m)| m.contains("G53")).collect();
+    assert_eq!(g53.len(), 1, "{w:?}");
+    assert_eq!(g53[0].0, 5);
+    assert!(g53[0].1.contains("--home"), "{w:?}");
+}
+
+#[test]
+fn haas_tcpc_and_dynamic_work_offset_are_read() {
+    // G234 is Haas's tool centre point control (read as G43.4); G254/G255 switch the dynamic
+    // work offset (left out, with a warning saying how X Y Z are read).
+    let src = "O1\nG21 G90 G0 A30. X0 Y0 Z50.\nG254\nG234 H1 Z20.\nG1 X10. F100.\nG49\nG255\nM30\n";
+    let m = moves(src, &fanuc()).unwrap();
+    assert_eq!(m.last(), Some(&('L', 10.0, 0.0, 20.0)));
+    let w = warnings(src);
+    assert!(
+        w.iter().any(|(l, m)| *l == 4 && m.starts_with("G234")),
+        "{w:?}"
+    );
+    assert!(
+        w.iter().any(|(l, m)| *l == 3 && m.contains("G254")),
+        "{w:?}"
+    );
+    assert!(
+        w.iter().any(|(l, m)| *l == 7 && m.contains("G255")),
+        "{w:?}"
+    );
+    // Fusion's Haas 4-axis posts unclamp and clamp the rotary around its moves.
+    let w = warnings("O1\nG21 G90\nM11\nG0 X1.\nM10\nM29 S500\nM30\n");
+    let named: Vec<_> = w
+        .iter()
+        .map(|(l, m)| (*l, m.split(" ignored").next().unwrap_or("")))
+        .collect();
+    assert_eq!(
+        named,
+        [
+            (3, "M11 (rotary axis brake unclamp)"),
+            (5, "M10 (rotary axis brake clamp)"),
+            (6, "M29 (rigid tapping mode)")
+        ]
+    );
+    // Not in LinuxCNC.
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let e = moves("G234 H1 Z20.\n", &linuxcnc).unwrap_err();
+    assert!(e.message.contains("unknown G code G234"), "{e}");
+}
+
+#[test]
+fn macro_calls_are_refused_by_name() {
+    // A Renishaw probing cycle: its moves are in the macro, which is not in the program.
+    let e = moves("O1\nG21\nG65 P9810 X10. Y10. F1000.\nM30\n", &fanuc()).unwrap_err();
+    assert_eq!(e.kind, swarf_path::PathErrorKind::Unsupported);
+    assert!(e.message.starts_with("G65: custom macro"), "{e}");
+    assert_eq!((e.pos.line, e.pos.column), (3, 1));
 }

@@ -750,3 +750,112 @@ fn io_and_pause_m_codes_are_reported_at_their_words() {
         ]
     );
 }
+
+/// GRBL's own lines (`$H` homing, `$X` unlock, `$$`, settings) are skipped with a warning
+/// naming them where skipping cannot change the motion; a jog, and a homing cycle after the
+/// program has moved, are refused.
+#[test]
+fn grbl_system_commands_are_skipped_or_refused() {
+    let rec = run("$H\n$X\nG21 G90\nG0 X10 Y10\n$$\n$1=25\nG1 Z-1 F100\nM30\n");
+    assert_xyz(last_pos(&rec), 10.0, 10.0, -1.0);
+    let w: Vec<(u32, u32, &str)> = rec
+        .warnings
+        .iter()
+        .map(|w| (w.line, w.column, w.message.as_str()))
+        .collect();
+    assert_eq!(w.len(), 4, "{w:?}");
+    assert_eq!((w[0].0, w[0].1), (1, 1));
+    assert!(w[0].2.starts_with("`$H` skipped"), "{w:?}");
+    assert!(w[3].2.starts_with("`$1=25` skipped"), "{w:?}");
+    let e = err("G21\nG0 X1\n$H\nM30\n");
+    assert_eq!(e.kind, PathErrorKind::Unsupported);
+    assert_eq!((e.pos.line, e.pos.column), (3, 1));
+    assert!(e.message.contains("homing"), "{e}");
+    let e = err("$J=G91 X10 F100\n");
+    assert_eq!(e.kind, PathErrorKind::Unsupported);
+    assert_eq!(e.found, "$J=G91 X10 F100");
+}
+
+/// Real posts' spelling: no spaces (Vectric), leading zeros, `5.` `.5` `-0.` `+1.`, spaces
+/// inside words (dxf2gcode's `X  10.000`), a comment stuck to a word (Inkscape's
+/// `F100.0(Penetrate)`), tabs, `\r\n`, and a last line without its newline.
+#[test]
+fn post_processor_spellings_read_as_written() {
+    let src =
+        "G00G21G17G90G40G49G80\r\nG0X10.000Y10.000Z5.000\r\n\tG01 Z-1.000000 F100.0(Penetrate)\r\n\
+               G1 X  -10.000 Y  .5\t\r\ng01 x+20. y-0.\r\nG1 X 1 0 Y 5.\r\nN0010.5 G1 X-.5\r\nM30";
+    let rec = run(src);
+    let ends: Vec<[f64; 3]> = motion(&rec)
+        .iter()
+        .map(|e| {
+            let a = end_of(e);
+            [a.x, a.y, a.z]
+        })
+        .collect();
+    assert_eq!(
+        ends,
+        [
+            [10.0, 10.0, 5.0],
+            [10.0, 10.0, -1.0],
+            [-10.0, 0.5, -1.0],
+            [20.0, 0.0, -1.0],
+            [10.0, 5.0, -1.0],
+            [-0.5, 5.0, -1.0],
+        ]
+    );
+    assert!(rec.warnings.is_empty(), "{:?}", rec.warnings);
+}
+
+/// The noise of every CAM program is said once: a reference return with no home given, in any
+/// dialect (Fusion's LinuxCNC and Mach3 posts write `G28 G91 Z0` too), and G43 H with no
+/// tool table entry (the tip goes where X Y Z say all the same). LinuxCNC's G64 Q (naive CAM
+/// tolerance) is a word of G64.
+#[test]
+fn cam_program_noise_is_reported_once() {
+    let src = "G21 G90\nG28 G91 Z0\nG90\nT1 M6\nG0 G43 H1 Z15\nG64 P0.01 Q0.01\nG0 X1\nT2 M6\nG43 H2 Z15\nG28 G91 Z0\nG90\nM30\n";
+    let rec = run(src);
+    let w: Vec<(u32, &str)> = rec
+        .warnings
+        .iter()
+        .map(|w| (w.line, w.message.as_str()))
+        .collect();
+    assert_eq!(w.len(), 2, "{w:?}");
+    assert_eq!(w[0].0, 2);
+    assert!(w[0].1.contains("--home"), "{w:?}");
+    assert_eq!(w[1].0, 5);
+    assert!(w[1].1.starts_with("G43 H1"), "{w:?}");
+    // With a home, or a stored G28 position, the reference return says nothing.
+    let homed = run_with(src, &GcodeOptions::default().with_home([0.0, 0.0, 100.0])).unwrap();
+    assert_eq!(homed.warnings.len(), 1, "{:?}", homed.warnings);
+    let stored = run("G21 G90\nG0 Z50\nG28.1\nG0 Z5\nG28 G91 Z0\nG90\nM30\n");
+    assert!(stored.warnings.is_empty(), "{:?}", stored.warnings);
+}
+
+/// Old Mac editors end lines with a lone `\r`; DOS tools and DNC senders end a file with Ctrl-Z.
+#[test]
+fn lone_carriage_returns_end_lines_and_ctrl_z_is_blank() {
+    let rec = run("G21 G90\rG0 X1\rG1 X2 F100\rM2\r");
+    assert_eq!(motion(&rec).len(), 2);
+    assert_xyz(last_pos(&rec), 2.0, 0.0, 0.0);
+    let e = err("G21 G90\rG0 X1\rG1 X2 X3\r");
+    assert_eq!(e.pos.line, 3);
+    let rec = run("G21 G90\r\nG0 X1\r\n\u{1a}");
+    assert_xyz(last_pos(&rec), 1.0, 0.0, 0.0);
+    // The dialect is told from such lines too.
+    use swarf_path::gcode::GcodeDialect;
+    assert_eq!(
+        GcodeDialect::detect("%\rO1234\rG0 X0\rM98 P10\rM30\r"),
+        GcodeDialect::Fanuc
+    );
+}
+
+/// A huge word is quoted in part: the message stays readable (the error keeps all of it).
+#[test]
+fn long_found_text_is_shortened_in_the_message() {
+    let word = format!("Y{}", "1".repeat(5000));
+    let e = err(&format!("G21 G90\nG0 X1\nG1 {word} F100\nM2\n"));
+    assert_eq!(e.found, word);
+    let shown = e.to_string();
+    assert!(shown.len() < 400, "{shown}");
+    assert!(shown.contains("… (4881 more characters)"), "{shown}");
+}

@@ -66,7 +66,7 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
         930 | 940 | 950 => Ok(FEED_MODE),
         200 | 210 => Ok(UNITS),
         400 | 410 | 420 | 411 | 421 => Ok(CUTTER_COMP),
-        430 | 431 | 490 => Ok(TOOL_LENGTH),
+        430 | 431 | 490 | 2340 => Ok(TOOL_LENGTH),
         980 | 990 => Ok(RETRACT),
         540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => Ok(COORD),
         610 | 611 | 640 => Ok(PATH),
@@ -77,8 +77,13 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
         382..=385 => unsupported("probing is not simulated"),
         70 | 80 => unsupported("lathe diameter/radius modes (G7/G8) are not supported"),
         700 | 710 => unsupported(
-            "G70/G71 (inch/mm on MillPlus and old controls, finishing and roughing cycles on Fanuc \
-             lathes) are not read: use G20 (inch) or G21 (mm)",
+            "G70/G71 with words are finishing and roughing cycles (Fanuc lathes, LinuxCNC 2.9), \
+             which are not read; alone in a block (with other G codes), as Mach3 and Vectric's \
+             posts write them, they are read as G20 (inch) and G21 (mm)",
+        ),
+        650 | 660 | 670 => unsupported(
+            "custom macro calls (G65/G66/G67, such as a probing cycle G65 P9810) are not read, so \
+             the motion of the macro would be missing",
         ),
         150 | 160 => unsupported("Fanuc polar coordinate mode (G15/G16) is not supported; use `@` and `^`"),
         171 | 181 | 191 => unsupported("UVW planes (G17.1, G18.1, G19.1) are not supported"),
@@ -137,6 +142,8 @@ pub(crate) struct Block {
     pub(crate) n_modes: usize,
     /// Fanuc: the block's G76 (fine boring) is read as G86.
     pub(crate) fine_boring: bool,
+    /// G70/G71 read as G20/G21 (Mach3's and old controls' inch/mm codes), with its code index.
+    pub(crate) units_synonym: Option<(u16, u32, u32)>,
     /// Parameter assignments, applied after the line is read.
     pub(crate) assigns: [(Target, f64); MAX_ASSIGNS],
     /// How many of `assigns` are in use.
@@ -165,6 +172,7 @@ impl Default for Block {
             modes: [(0, 0); 4],
             n_modes: 0,
             fine_boring: false,
+            units_synonym: None,
             assigns: [(Target::Num(0), 0.0); MAX_ASSIGNS],
             n_assigns: 0,
         }
@@ -186,6 +194,7 @@ impl Block {
         self.g80_too = false;
         self.n_modes = 0;
         self.fine_boring = false;
+        self.units_synonym = None;
     }
     /// Whether letter `c` is present.
     #[inline]
@@ -222,6 +231,7 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
     b.clear();
     let mut c = Cur::new(&lb.code);
     let mut first = true;
+    let mut units_clash = None;
     while let Some(ch) = c.peek() {
         let at = c.i;
         c.word_start = at;
@@ -263,8 +273,9 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                     first = false;
                     continue;
                 }
-                if !fanuc && matches!(code, 434 | 435) {
-                    // (Tool centre point control is Fanuc's; LinuxCNC has no G43.4.)
+                if !fanuc && matches!(code, 434 | 435 | 2340) {
+                    // (Tool centre point control is Fanuc's (G43.4, G43.5) and Haas's (G234);
+                    // LinuxCNC has none.)
                     return Err(Fault::syntax(
                         span,
                         format!("unknown G code {}", g_name(code)),
@@ -277,6 +288,12 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                     // before the retract.
                     code = 860;
                     b.fine_boring = true;
+                }
+                if matches!(code, 700 | 710) && b.units_synonym.is_none() {
+                    // Mach3 (and Fanuc lathes in G-code system B/C) read G70/G71 as inch/mm;
+                    // a block with other words is a lathe cycle (checked once the block is read).
+                    b.units_synonym = Some((code, at as u32, c.i as u32));
+                    code -= 500;
                 }
                 let grp = g_group(code).map_err(|(kind, m)| {
                     let name = g_name(code);
@@ -296,14 +313,23 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                         continue;
                     }
                 } else if b.g_mask & (1 << grp) != 0 {
-                    return Err(Fault::semantic(
+                    // (G70/G71 by their own names: `G21 G71 U1.` is a lathe cycle, said below.)
+                    let name = |code: u16, at: usize| match b.units_synonym {
+                        Some((g, a, _)) if grp == group::UNITS && a as usize == at => g_name(g),
+                        _ => g_name(code),
+                    };
+                    let clash = Fault::semantic(
                         span,
                         format!(
                             "{} and {} are in the same modal group",
-                            g_name(b.g[grp]),
-                            g_name(code)
+                            name(b.g[grp], b.g_at[grp] as usize),
+                            name(code, at)
                         ),
-                    ));
+                    );
+                    if grp != group::UNITS || b.units_synonym.is_none() {
+                        return Err(clash);
+                    }
+                    units_clash.get_or_insert(clash);
                 }
                 b.g[grp] = code;
                 b.g_at[grp] = at as u32;
@@ -413,7 +439,20 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
         }
         first = false;
     }
-    Ok(())
+    if let Some((code, at, end)) = b.units_synonym {
+        if b.mask != 0 {
+            let (kind, m) = g_group(code)
+                .err()
+                .unwrap_or((PathErrorKind::Unsupported, ""));
+            return Err(Fault::new(
+                kind,
+                Span::Code(at as usize, end as usize),
+                format!("{}: {m}", g_name(code)),
+                "",
+            ));
+        }
+    }
+    units_clash.map_or(Ok(()), Err)
 }
 
 /// `G59.1` from 591.
@@ -430,6 +469,15 @@ pub(crate) fn fanuc_mode(code: u16) -> Option<(&'static str, &'static str)> {
         80 => ("AI look-ahead control", FOLLOWS),
         1030 => ("block look-ahead limit", FOLLOWS),
         1870 => ("smoothness and corner tolerance", FOLLOWS),
+        2540 => (
+            "Haas dynamic work offset",
+            "X Y Z are taken as tool-tip positions in the part frame, as a `-tcp` machine \
+             (--machine) reads them",
+        ),
+        2550 => (
+            "Haas dynamic work offset cancel",
+            "X Y Z are read as the machine (--machine) reads them throughout",
+        ),
         541 | 1540 => (
             "additional work offset",
             "its values are not in the program, so the current work offset stays",

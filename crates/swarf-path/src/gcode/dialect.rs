@@ -106,7 +106,7 @@ impl Dialect {
 
     /// The first dialect found in the first `lines` lines of `text`, with its 1-based line.
     pub fn detect(text: &str, lines: usize) -> Option<(Dialect, u32)> {
-        text.lines()
+        super::lexer::lines(text)
             .take(lines)
             .enumerate()
             .find_map(|(i, l)| Self::of_line(l).map(|d| (d, i as u32 + 1)))

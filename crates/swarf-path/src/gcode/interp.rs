@@ -158,6 +158,10 @@ pub(crate) struct Interp<'t, 's> {
     deleted_warned: bool,
     /// A Fanuc reference return to the default home has been reported.
     home_warned: bool,
+    /// A G43 H with no tool table entry has been reported.
+    tlo_warned: bool,
+    /// A G53 move with no work offset in effect has been reported.
+    g53_warned: bool,
     /// Fanuc: the group 01 motion (G0–G3 × 10) that resumes after G80.
     pub(crate) group1: u16,
     /// Fanuc G68: the centre (X, Y, mm) and angle (degrees) of the coordinate rotation.
@@ -191,6 +195,8 @@ impl<'t, 's> Interp<'t, 's> {
             later: Vec::new(),
             deleted_warned: false,
             home_warned: false,
+            tlo_warned: false,
+            g53_warned: false,
             group1: 0,
             g68: None,
             g51: None,
@@ -258,7 +264,9 @@ impl<'t, 's> Interp<'t, 's> {
     /// Reads the whole program.
     pub(crate) fn run(mut self) -> Result<(), PathError> {
         if let Some((d, line)) = Dialect::detect(&self.text, 200) {
-            let raw = self.text.lines().nth(line as usize - 1).unwrap_or("");
+            let raw = super::lexer::lines(&self.text)
+                .nth(line as usize - 1)
+                .unwrap_or("");
             return Err(PathError::new(
                 SourcePos { file: self.file.to_string(), line, column: 1 },
                 PathErrorKind::Unsupported,
@@ -503,6 +511,9 @@ impl<'t, 's> Interp<'t, 's> {
             }
             return Ok(());
         }
+        if lb.code.first() == Some(&b'$') {
+            return self.grbl_command(lb);
+        }
         if lb.code.first() == Some(&b'%') {
             // Tape markers: the first opens the program, the next one ends it.
             if self.tape || self.seen_code {
@@ -548,6 +559,41 @@ impl<'t, 's> Interp<'t, 's> {
         for (at, message) in std::mem::take(&mut self.later) {
             self.warn_code(lb, at, message);
         }
+        Ok(())
+    }
+
+    /// A GRBL system command (`$H`, `$X`, `$$`, `$1=25`, `$J=…`): a line for GRBL itself, not
+    /// G-code. Those that do not move the tool are skipped with a warning; a jog, and a homing
+    /// cycle once the program has moved (it ends wherever the machine's switches are), are
+    /// refused, since skipping them would change the motion.
+    fn grbl_command(&mut self, lb: &LineBuf) -> Res<()> {
+        let code = &lb.code[..];
+        let span = Span::Code(0, code.len());
+        if code.starts_with(b"$j=") {
+            return Err(Fault::new(
+                PathErrorKind::Unsupported,
+                span,
+                "a GRBL jog command ($J=…) moves the machine: it is not read",
+                "G0/G1 moves",
+            ));
+        }
+        let homing = code.starts_with(b"$h") && code[2..].iter().all(|c| b"xyzabc".contains(c));
+        if homing && (self.sink.moves() > 0 || !self.comp.queue.is_empty()) {
+            return Err(Fault::new(
+                PathErrorKind::Unsupported,
+                span,
+                "a GRBL homing cycle ($H) after the program has moved: where it leaves the tool \
+                 depends on the machine's switches",
+                "`$H` before the first move (where it is skipped), or G28/G53 moves",
+            ));
+        }
+        let shown = String::from_utf8_lossy(&code[..code.len().min(24)]).to_ascii_uppercase();
+        let why = if homing {
+            "the program starts at the machine's home (--home) anyway"
+        } else {
+            "a GRBL system command does not move the tool"
+        };
+        self.warn_code(lb, 0, format!("`{shown}` skipped: {why}"));
         Ok(())
     }
 
@@ -768,6 +814,9 @@ impl<'t, 's> Interp<'t, 's> {
                 8 => "M8 (flood coolant on)".to_string(),
                 9 => "M9 (coolant off)".to_string(),
                 19 => "M19 (spindle orientation)".to_string(),
+                10 | 12 if self.fanuc => format!("M{m} (rotary axis brake clamp)"),
+                11 | 13 if self.fanuc => format!("M{m} (rotary axis brake unclamp)"),
+                29 if self.fanuc => "M29 (rigid tapping mode)".to_string(),
                 48..=53 => format!("M{m} (override control)"),
                 61 => "M61 (set current tool)".to_string(),
                 62..=65 => format!("M{m} (digital output)"),
@@ -801,19 +850,30 @@ impl<'t, 's> Interp<'t, 's> {
             );
         }
         let nonmodal = b.g(group::NON_MODAL);
+        // Fanuc: `G04 X1.5` dwells (X is the time, not an axis).
+        let dwell_x = self.fanuc && nonmodal == Some(40) && !b.has(b'p') && b.has(b'x');
         if nonmodal == Some(40) {
-            let p = b.get(b'p').ok_or_else(|| {
+            let c = if dwell_x { b'x' } else { b'p' };
+            let p = b.get(c).ok_or_else(|| {
                 Fault::new(
                     PathErrorKind::Semantic,
                     b.g_span(group::NON_MODAL),
                     "G4 needs a P word",
-                    "P<seconds>",
+                    if self.fanuc {
+                        "P<milliseconds> or X<seconds>"
+                    } else {
+                        "P<seconds>"
+                    },
                 )
             })?;
             if p < 0.0 {
-                return Err(Fault::semantic(b.span(b'p'), "negative dwell time"));
+                return Err(Fault::semantic(b.span(c), "negative dwell time"));
             }
-            self.emit(Canon::Dwell(p));
+            // Fanuc: a number without a decimal point counts milliseconds (`G04 P500`, and Haas
+            // reads `G04 P0.5` as seconds); LinuxCNC: seconds.
+            let ms =
+                self.fanuc && literal_has_point(lb, b.at[block::slot(c)] as usize) == Some(false);
+            self.emit(Canon::Dwell(if ms { p / 1000.0 } else { p }));
         }
         if let Some(g) = b.g(group::PLANE) {
             if self.comp.on() {
@@ -829,7 +889,7 @@ impl<'t, 's> Interp<'t, 's> {
             };
             self.emit(Canon::Plane(self.plane));
         }
-        let mut axes_used_by_nonmotion = false;
+        let mut axes_used_by_nonmotion = dwell_x;
         if let Some(g) = b.g(group::UNITS) {
             if self.comp.on() {
                 return Err(Fault::semantic(
@@ -837,7 +897,22 @@ impl<'t, 's> Interp<'t, 's> {
                     "cannot change units with cutter radius compensation on",
                 ));
             }
-            self.units = if g == 200 { Units::Inch } else { Units::Mm };
+            let units = if g == 200 { Units::Inch } else { Units::Mm };
+            if let Some((code, at, _)) = b.units_synonym {
+                if units != self.units {
+                    self.warn_code(
+                        lb,
+                        at as usize,
+                        format!(
+                            "{} read as {} ({}), as Mach3 and older controls read it",
+                            block::g_name(code),
+                            block::g_name(g),
+                            if g == 200 { "inch" } else { "millimetres" }
+                        ),
+                    );
+                }
+            }
+            self.units = units;
             self.scale = self.units.mm_per_unit();
             self.emit(Canon::Units(self.units));
         }
@@ -853,7 +928,7 @@ impl<'t, 's> Interp<'t, 's> {
             axes_used_by_nonmotion |= g == 680;
         }
         match b.g(group::TOOL_LENGTH) {
-            Some(g @ (430 | 434 | 435)) => {
+            Some(g @ (430 | 434 | 435 | 2340)) => {
                 if g != 430 {
                     self.warn_code(
                         lb,
@@ -870,11 +945,18 @@ impl<'t, 's> Interp<'t, 's> {
                     _ => self.tool,
                 };
                 let entry = self.tool_table.get(&tool).copied();
-                if entry.is_none() && b.get(b'h').is_some() {
+                if entry.is_none() && b.get(b'h').is_some() && !self.tlo_warned {
+                    // Once: X Y Z are tool-tip positions whatever the length, so the offset
+                    // only shows in the position parameters and the next incremental move.
+                    self.tlo_warned = true;
                     self.warn_code(
                         lb,
                         b.at[block::slot(b'h')] as usize,
-                        format!("G43 H{tool}: the tool table gives no offset for tool {tool}, so the tool length offset is taken as 0"),
+                        format!(
+                            "G43 H{tool}: the tool table gives no offset for tool {tool}, so the \
+                             tool length offset is taken as 0 (the tool tip goes where X Y Z say \
+                             all the same; the first such G43, others are not reported)"
+                        ),
                     );
                 }
                 let t = entry.unwrap_or([0.0; 6]);
@@ -1040,7 +1122,7 @@ impl<'t, 's> Interp<'t, 's> {
             let used = match c {
                 // The words of a controller-mode code left out (G05.1 Q1, G187 P1 E0.01), and
                 // of the I/O M codes (M62 P0, M66 P0 L3 Q5, M67 E0 Q2.5).
-                b'p' | b'q' | b'e' if b.n_modes > 0 => true,
+                b'p' | b'q' | b'e' | b'r' if b.n_modes > 0 => true,
                 b'p' | b'q' | b'e' | b'l'
                     if b.m_other[..b.n_other]
                         .iter()
@@ -1059,7 +1141,8 @@ impl<'t, 's> Interp<'t, 's> {
                         || b.g(group::SCALING) == Some(510)
                 }
                 b'r' => arc || cycle || g10 || b.g(group::ROTATION) == Some(680),
-                b'q' => matches!(mode, Some(50 | 730 | 830)),
+                // (G64 P Q: LinuxCNC's blending and naive CAM tolerances.)
+                b'q' => matches!(mode, Some(50 | 730 | 830)) || b.g(group::PATH) == Some(640),
                 b'p' => {
                     arc || cycle
                         || matches!(mode, Some(50 | 52))
@@ -1071,7 +1154,7 @@ impl<'t, 's> Interp<'t, 's> {
                         || b.g(group::PATH) == Some(640)
                 }
                 b'l' => cycle || g10 || b.m98 || b.m97 || mode == Some(52),
-                b'h' => matches!(b.g(group::TOOL_LENGTH), Some(430 | 434 | 435)),
+                b'h' => matches!(b.g(group::TOOL_LENGTH), Some(430 | 434 | 435 | 2340)),
                 b'd' => comp_d,
                 _ => false,
             };
@@ -1102,6 +1185,12 @@ impl<'t, 's> Interp<'t, 's> {
         }
         if let Some(m @ (0 | 10 | 20 | 30)) = explicit {
             self.group1 = m;
+        }
+        if self.fanuc && axes_taken && matches!(explicit, Some(0 | 10)) {
+            // Fanuc: the group 00 code (`G00 G91 G28 Z0.`) takes the axis words; the group 01
+            // code only becomes the modal motion.
+            self.motion = explicit;
+            return Ok(());
         }
         if axes_taken && has_axes && explicit.is_some_and(|m| m != 800) {
             return Err(Fault::semantic(
@@ -1168,6 +1257,24 @@ impl<'t, 's> Interp<'t, 's> {
             Some(0 | 10) => {
                 if has_axes {
                     let end = self.find_ends(b, g53)?;
+                    if g53
+                        && !self.g53_warned
+                        && self.opts.home.is_none()
+                        && self.off == [0.0; 6]
+                        && self.g92 == [0.0; 6]
+                    {
+                        // Programs move to machine positions (`G53 G0 Z0.`, Carbide Create's
+                        // `G53G0Z-5.`) meaning "up, out of the way" on their machine.
+                        self.g53_warned = true;
+                        self.later.push((
+                            b.g_at[group::NON_MODAL] as usize,
+                            "G53 moves in machine coordinates, whose origin is the machine's \
+                             home; without --home X,Y,Z (mm, e.g. above the part) that is the \
+                             work origin, so X Y Z go to the work's coordinates (the first such \
+                             G53 move; others are not reported)"
+                                .into(),
+                        ));
+                    }
                     if self.comp.on() {
                         if g53 {
                             return Err(Fault::semantic(
@@ -1228,12 +1335,23 @@ impl<'t, 's> Interp<'t, 's> {
     /// words `@` (radius) and `^` (angle, degrees) in the XY plane.
     pub(crate) fn find_ends(&self, b: &Block, g53: bool) -> Res<[f64; 6]> {
         let mut e = self.p;
+        // Where G53's zero is in swarf's machine frame (the work frame with no offsets): the
+        // home, when the program sets no work offset — machine zero is the home on Fanuc, Haas,
+        // GRBL and Mach3 controls (and LinuxCNC's usual HOME = 0), and the home's place in the
+        // work frame is all that is known of the machine then; with offsets the program set,
+        // that frame is the machine's own (its origin).
+        let mut g53_origin = [0.0; 6];
+        if let Some(h) = self.opts.home {
+            if self.off == [0.0; 6] && self.g92 == [0.0; 6] {
+                g53_origin[..3].copy_from_slice(&h);
+            }
+        }
         for (i, &c) in AXIS_LETTERS.iter().enumerate() {
             if let Some(v) = b.get(c) {
                 let v = self.mm_from_units(i, v);
                 e[i] = if g53 {
                     // Machine coordinates: converted below, with the rotation.
-                    v
+                    v + g53_origin[i]
                 } else if self.absolute {
                     self.scaled_position(i, v)
                 } else {
@@ -1558,9 +1676,10 @@ impl<'t, 's> Interp<'t, 's> {
     /// G28/G30: traverse through the given intermediate point, then to the stored position
     /// for the given axes (all axes when none is given).
     fn home(&mut self, b: &Block, k: usize) -> Res<()> {
-        if self.fanuc && self.opts.home.is_none() && !self.home_warned {
-            // A Fanuc/Haas reference return means "up, out of the way"; machine zero here is
-            // the work origin, so it would cut or collide there.
+        if self.opts.home.is_none() && self.homes[k] == [0.0; 6] && !self.home_warned {
+            // A reference return means "up, out of the way" (Fanuc/Haas `G28 G91 Z0.`, and
+            // the Fusion, Mach3 and LinuxCNC posts' alike); machine zero here is the work origin,
+            // so it would cut or collide there.
             self.home_warned = true;
             self.later.push((
                 b.g_at[group::NON_MODAL] as usize,
@@ -1703,6 +1822,21 @@ impl Interp<'_, '_> {
         out.push_str(rest);
         out
     }
+}
+
+/// Whether the value of the word whose letter stands at code index `at` is a literal number
+/// written with a decimal point; `None` when it is not a literal (a parameter, an expression).
+fn literal_has_point(lb: &LineBuf, at: usize) -> Option<bool> {
+    let rest = lb.code.get(at + 1..)?;
+    let rest = rest
+        .strip_prefix(b"-")
+        .or(rest.strip_prefix(b"+"))
+        .unwrap_or(rest);
+    let n = rest
+        .iter()
+        .take_while(|c| c.is_ascii_digit() || **c == b'.')
+        .count();
+    (n > 0).then(|| rest[..n].contains(&b'.'))
 }
 
 /// Whether normalised code (spaces out, lower case) starts with a Fanuc Macro B control word:

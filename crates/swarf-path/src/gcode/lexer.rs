@@ -43,8 +43,8 @@ impl LineBuf {
     }
 }
 
-/// Splits `text` at `pos` into the line there (without its `\n` or `\r\n`) and the position of
-/// the next line.
+/// Splits `text` at `pos` into the line there (without its `\n`, `\r\n` or lone `\r`, the line
+/// end of old Mac editors) and the position of the next line.
 pub(crate) fn split_line(text: &str, pos: usize) -> (&str, usize) {
     let rest = &text.as_bytes()[pos..];
     let (len, next) = match memchr_nl(rest) {
@@ -58,8 +58,22 @@ pub(crate) fn split_line(text: &str, pos: usize) -> (&str, usize) {
     (line, next)
 }
 
+/// The lines of `text` as [`split_line`] splits them.
+pub(crate) fn lines(text: &str) -> impl Iterator<Item = &str> {
+    let mut pos = 0;
+    std::iter::from_fn(move || {
+        (pos < text.len()).then(|| {
+            let (line, next) = split_line(text, pos);
+            pos = next;
+            line
+        })
+    })
+}
+
 fn memchr_nl(b: &[u8]) -> Option<usize> {
-    b.iter().position(|&c| c == b'\n')
+    b.iter()
+        .enumerate()
+        .position(|(i, &c)| c == b'\n' || (c == b'\r' && b.get(i + 1) != Some(&b'\n')))
 }
 
 /// Normalises `raw` into `lb`.
@@ -129,7 +143,8 @@ pub(crate) fn normalize(raw: &str, lb: &mut LineBuf) -> Res<()> {
                 i = j + 1;
             }
             b';' => break,
-            b' ' | b'\t' | b'\r' => i += 1,
+            // (0x1a: the Ctrl-Z DOS tools and DNC senders put at the end of a file.)
+            b' ' | b'\t' | b'\r' | 0x1a => i += 1,
             0x21..=0x7e => {
                 lb.code.push(c.to_ascii_lowercase());
                 lb.offs.push(i as u32);
@@ -207,5 +222,10 @@ mod tests {
         assert_eq!(split_line(t, 0), ("a", 3));
         assert_eq!(split_line(t, 3), ("b", 5));
         assert_eq!(split_line(t, 5), ("c", 6));
+        let t = "a\rb\r\r\nc";
+        assert_eq!(split_line(t, 0), ("a", 2));
+        assert_eq!(split_line(t, 2), ("b", 4));
+        assert_eq!(split_line(t, 4), ("", 6));
+        assert_eq!(split_line(t, 6), ("c", 7));
     }
 }

@@ -37,7 +37,7 @@
 //!   `repeat`, `if`/`elseif`/`else`/`endif`, `break`, `continue`; Fanuc `M98 P L`/`M99`.
 //! * Comments in parentheses become [`Canon::Comment`], `(MSG,…)`/`(DEBUG,…)`/`(PRINT,…)`
 //!   [`Canon::Message`]; `;` comments, `N` numbers, `/` block delete and `%` tape markers are
-//!   understood.
+//!   understood; GRBL's `$` lines are skipped (or refused where they move the machine).
 //! * Dialect: LinuxCNC or Fanuc rules where they differ ([`GcodeDialect`]).
 //!
 //! What is deliberately not simulated (spindle-synchronised motion, probing, U V W axes, Siemens
@@ -166,7 +166,9 @@ pub struct GcodeOptions {
     /// where the tool stands when the program starts and where G28 and G30 return to (their
     /// stored positions, #5161–#5163 and #5181–#5183, unless the parameters set them). `None`:
     /// the origin, as LinuxCNC starts with zero parameters — which puts a Fanuc/Haas
-    /// program's reference return (`G28 G91 Z0.`) on the work's Z0.
+    /// program's reference return (`G28 G91 Z0.`) on the work's Z0. Given, it is also the origin
+    /// of the positions G53 moves to while no work offset is set (machine zero is the home on
+    /// Fanuc, Haas, GRBL and Mach3 controls): `G53 G0 Z0.` goes to the home's Z.
     pub home: Option<[f64; 3]>,
 }
 
@@ -189,7 +191,7 @@ impl GcodeDialect {
     /// LinuxCNC reads (`o<name>`, O-word keywords, `#<name>`); LinuxCNC otherwise.
     pub fn detect(text: &str) -> Self {
         let (mut fanuc, mut linuxcnc) = (false, false);
-        for line in text.lines().take(2000) {
+        for line in lexer::lines(text).take(2000) {
             let code: String = line
                 .split(';')
                 .next()
