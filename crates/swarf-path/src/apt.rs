@@ -162,7 +162,7 @@ pub fn read_apt_file(
             "",
         )
     })?;
-    read_apt(&String::from_utf8_lossy(&bytes), &name, options, sink)
+    read_apt(&crate::load::decode_text(bytes), &name, options, sink)
 }
 
 /// Reads CLDATA text, handing events to `sink`. See the [module documentation](self).

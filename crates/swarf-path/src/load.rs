@@ -95,10 +95,33 @@ pub fn read_text(path: &Path) -> Result<String, PathError> {
             "",
         )
     })?;
-    Ok(match String::from_utf8(bytes) {
-        Ok(s) => s,
-        Err(e) => String::from_utf8_lossy(e.as_bytes()).into_owned(),
-    })
+    Ok(decode_text(bytes))
+}
+
+/// A program file's bytes as text: UTF-16 with its byte-order mark (as Windows editors save
+/// "Unicode" text) decoded, anything else read as UTF-8, with bytes that are not UTF-8 (Latin-1
+/// comments from old post-processors) replaced rather than rejected. A UTF-8 byte-order mark
+/// is left for the readers, which skip it.
+pub fn decode_text(bytes: Vec<u8>) -> String {
+    let utf16 = |be: bool| {
+        let units = bytes[2..].chunks(2).map(|c| match c {
+            [a, b] if be => u16::from_be_bytes([*a, *b]),
+            [a, b] => u16::from_le_bytes([*a, *b]),
+            // An odd last byte: not a whole unit.
+            _ => 0xFFFD,
+        });
+        char::decode_utf16(units)
+            .map(|c| c.unwrap_or(char::REPLACEMENT_CHARACTER))
+            .collect::<String>()
+    };
+    match bytes.get(..2) {
+        Some([0xFF, 0xFE]) => utf16(false),
+        Some([0xFE, 0xFF]) => utf16(true),
+        _ => match String::from_utf8(bytes) {
+            Ok(s) => s,
+            Err(e) => String::from_utf8_lossy(e.as_bytes()).into_owned(),
+        },
+    }
 }
 
 /// Streams the program `text` (named `file` in messages) into `sink`.

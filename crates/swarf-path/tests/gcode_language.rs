@@ -859,3 +859,46 @@ fn long_found_text_is_shortened_in_the_message() {
     assert!(shown.len() < 400, "{shown}");
     assert!(shown.contains("… (4881 more characters)"), "{shown}");
 }
+
+#[test]
+fn utf16_files_with_a_byte_order_mark_read_as_their_utf8_text() {
+    // Windows editors save "Unicode" text as UTF-16 with a byte-order mark: the same program
+    // as UTF-8 (a comment with an accent, CR LF ends), little- and big-endian, G-code and APT.
+    use swarf_path::load::{read_program, ReadOptions};
+    use swarf_path::Machine;
+    let dir = swarf_testdata::scratch_dir("utf16");
+    let cases = [
+        ("p.ngc", "G21 G90 (pièce)\r\nG0 X0 Y0 Z5\r\nG1 Z-1 F100\r\nG2 X10 Y0 I5 J0\r\nM2\r\n"),
+        (
+            "p.apt",
+            "PARTNO/PIÈCE\r\nUNITS/MM\r\nCUTTER/6\r\nGOTO/0,0,5\r\nFEDRAT/100\r\nGOTO/10,0,-1\r\nFINI\r\n",
+        ),
+    ];
+    for (name, text) in cases {
+        let utf8 = dir.join(name);
+        std::fs::write(&utf8, text).unwrap();
+        let want = read_program(&utf8, Machine::three_axis(), &ReadOptions::default()).unwrap();
+        assert!(!want.moves.is_empty());
+        for be in [false, true] {
+            let mut bytes = if be {
+                vec![0xFE, 0xFF]
+            } else {
+                vec![0xFF, 0xFE]
+            };
+            for u in text.encode_utf16() {
+                bytes.extend(if be { u.to_be_bytes() } else { u.to_le_bytes() });
+            }
+            let p = dir.join(format!("{}{name}", if be { "be-" } else { "le-" }));
+            std::fs::write(&p, bytes).unwrap();
+            let got = read_program(&p, Machine::three_axis(), &ReadOptions::default())
+                .unwrap_or_else(|e| panic!("{name} be={be}: {e}"));
+            assert_eq!(got.moves.len(), want.moves.len(), "{name} be={be}");
+            for (a, b) in got.moves.iter().zip(&want.moves) {
+                assert_eq!(
+                    (a.start.tip, a.end.tip, a.line),
+                    (b.start.tip, b.end.tip, b.line)
+                );
+            }
+        }
+    }
+}

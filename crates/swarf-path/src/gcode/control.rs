@@ -371,8 +371,7 @@ impl Interp<'_, '_> {
                 return Some(i as u32);
             }
             if let Ok(bytes) = std::fs::read(&path) {
-                let text: Rc<str> =
-                    Rc::from(super::without_bom(String::from_utf8_lossy(&bytes).as_ref()));
+                let text: Rc<str> = Rc::from(super::without_bom(&crate::load::decode_text(bytes)));
                 self.files.push((shown, text));
                 return Some(self.files.len() as u32 - 1);
             }

@@ -374,8 +374,9 @@ pub(crate) fn without_bom(text: &str) -> &str {
     text.strip_prefix('\u{feff}').unwrap_or(text)
 }
 
-/// Reads the G-code file at `path` (see [`read_gcode`]). Bytes that are not UTF-8 (Latin-1
-/// comments from old post-processors) are replaced, not rejected.
+/// Reads the G-code file at `path` (see [`read_gcode`]), decoded by
+/// [`decode_text`](crate::load::decode_text): UTF-16 with a byte-order mark, else UTF-8 with
+/// bytes that are not UTF-8 (Latin-1 comments from old post-processors) replaced.
 ///
 /// # Errors
 /// [`PathErrorKind::Io`] when the file cannot be read; otherwise as [`read_gcode`].
@@ -399,7 +400,7 @@ pub fn read_gcode_file(
             "",
         )
     })?;
-    let text = String::from_utf8_lossy(&bytes);
+    let text = crate::load::decode_text(bytes);
     read_gcode(&text, &name, options, sink)
 }
 
