@@ -10,7 +10,7 @@
 
 use std::path::Path;
 
-use parry3d_f64::query::PointQueryWithLocation;
+use parry3d_f64::query::{PointQueryWithLocation, Ray, RayCast};
 use parry3d_f64::shape::{TriMesh, TriMeshFlags};
 use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_geom::{Aabb, RigidMotion};
@@ -45,11 +45,40 @@ pub trait Design: Sync {
     /// says which side is outside near it.
     fn bounds_solid(&self) -> bool;
 
-    /// False when the design is one smooth face, so that the nearest point of a point behind
-    /// it lies on the face a line through the point meets (a line meets no other): the
-    /// weighting of [`DefectEnd::area`](crate::DefectEnd::area) then asks no more of it.
-    fn has_edges(&self) -> bool {
-        true
+    /// Where the line through `p` along axis `k` (0 = X, 1 = Y, 2 = Z), followed in the
+    /// direction `towards` (±1), first meets the design within `reach` mm: the design's
+    /// outward normal there (up to sign), or `None` when it does not meet it that near.
+    ///
+    /// The default steps along the line by the distance to the design each time (sphere
+    /// tracing: a step cannot pass through it), up to [`MEET_STEPS`] steps, and takes the
+    /// nearest point's normal once closer than a thousandth of the reach.
+    fn meet_along(&self, p: Vec3, k: usize, towards: f64, reach: f64) -> Option<Vec3> {
+        let eps = (reach * 1e-3).max(1e-6);
+        let (mut q, mut gone) = (p, 0.0);
+        for _ in 0..MEET_STEPS {
+            let pr = self.project(q)?;
+            let step = pr.distance.abs();
+            if step <= eps {
+                return Some(pr.normal);
+            }
+            gone += step;
+            if gone > reach {
+                return None;
+            }
+            q[k] += towards * step;
+        }
+        None
+    }
+
+    /// A defect end's area weight ([`DefectEnd::area`](crate::DefectEnd::area)) is the
+    /// normal's component along its ray where the ray meets the design; the nearest point's
+    /// normal stands for it when its component is at least this (default ½: a ray crossing the
+    /// nearest point's face within 60° of its normal meets that face, but beside an edge the
+    /// nearest point may lie on another face — a convex edge's side face, component 0 — and
+    /// the ray is followed with [`Design::meet_along`]). A design whose rays are cheap and
+    /// exact follows every one (above 1); one smooth face never needs to (0).
+    fn follow_rays_below(&self) -> f64 {
+        0.5
     }
 
     /// The design's bounding box.
@@ -58,6 +87,9 @@ pub trait Design: Sync {
     /// A short description for reports ("closed mesh, 12 triangles, 1000 mm³").
     fn describe(&self) -> String;
 }
+
+/// Steps [`Design::meet_along`]'s default takes before it gives up.
+pub const MEET_STEPS: usize = 64;
 
 /// A closed, outward-oriented triangle mesh as the design.
 #[derive(Clone)]
@@ -188,6 +220,21 @@ impl Design for MeshDesign {
     fn solid_intervals(&self, k: usize, u: f64, v: f64, cell: (f64, f64), out: &mut Dexel) -> bool {
         swarf_stock::axis_line_intervals(&self.mesh, k, u, v, cell, &mut Vec::new(), out);
         true
+    }
+
+    fn meet_along(&self, p: Vec3, k: usize, towards: f64, reach: f64) -> Option<Vec3> {
+        // Exact, through the BVH: the first triangle the ray crosses.
+        let mut dir = Vec3::ZERO;
+        dir[k] = towards;
+        let hit = self
+            .mesh
+            .cast_local_ray_and_get_normal(&Ray::new(p, dir), reach, false)?;
+        Some(hit.normal)
+    }
+
+    fn follow_rays_below(&self) -> f64 {
+        // Every ray: a cast costs about a projection.
+        f64::INFINITY
     }
 
     fn bounds_solid(&self) -> bool {

@@ -377,10 +377,15 @@ impl Design for SurfaceDesign {
         false
     }
 
-    fn has_edges(&self) -> bool {
-        // One patch is taken as smooth (a crease inside a patch is weighted as elsewhere: by
-        // the nearest point's normal).
-        self.patches > 1
+    fn follow_rays_below(&self) -> f64 {
+        // One patch is taken as smooth: a ray behind it meets it where its nearest point's
+        // normal is the one to weigh by, to first order in the depth (a crease inside a patch is
+        // weighed by the nearest point's normal too). Several may meet at edges.
+        if self.patches > 1 {
+            0.5
+        } else {
+            0.0
+        }
     }
 
     fn bounding_box(&self) -> Aabb {

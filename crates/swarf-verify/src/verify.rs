@@ -113,17 +113,26 @@ pub struct DefectEnd {
     /// the component along the ray of the design's normal where the ray meets the design (over
     /// the three families a surface element counts once: Σₖ nₖ² = 1). A region's area is thus
     /// its footprint on the design: the walls of a too-deep slot in a face project onto the
-    /// face's edge and add nothing. That normal is the nearest point's when the ray crosses
-    /// its face within 60° of the normal; otherwise the ray is followed from the end towards
-    /// the design by the distance to it at each step (sphere tracing), at most the region's
-    /// depth and a cell, and where it is not met that near (a slot's wall, whose ray runs along
-    /// the face above it) the nearest point's normal stands. So the floor of a gouge reaching a
-    /// convex edge of the design counts up to the edge, although its nearest point there lies
-    /// on the side face.
+    /// face's edge and add nothing. The ray is followed from the end towards the design
+    /// ([`Design::meet_along`]: exactly for a mesh; by sphere tracing for surfaces, and there
+    /// only where the nearest point's normal is more than 60° off the ray, see
+    /// [`Design::follow_rays_below`]) no further than the region's depth and a cell and than
+    /// the end's own stretch of air (a gouge) or material (an excess); where it does not meet
+    /// the design that near, the end lies on a wall of the region (a slot's wall, whose ray
+    /// runs along the face above it, then across the slot into the material beyond) and
+    /// stands for no area. So the floor of a gouge reaching a convex edge of the design counts
+    /// up to the edge, although its nearest point there lies on the side face, and a wall
+    /// near another face of the design does not count as that face.
     pub area: f64,
     /// Which way along the ray the stock's material ends here: +1 where the ray leaves the
     /// material (an interval's exit), −1 where it enters it.
     pub outside: i8,
+    /// How far along the ray, towards the design, the end's own stretch reaches (mm): for a
+    /// gouge the air beyond the end up to the ray's next material, for an excess the end's
+    /// interval of material. The ray is followed no further to find the design (beyond, it
+    /// would meet another region's face).
+    #[serde(skip)]
+    pub(crate) room: f64,
 }
 
 impl DefectEnd {
@@ -324,9 +333,15 @@ pub fn verify_observed(
                         p[v] = grid.center(v, j);
                         for (n, iv) in ray.iter().enumerate() {
                             let ends = tags.map(|t| t[n]);
-                            for (t, tag, outside) in [
-                                (iv.enter, ends.map_or(UNCUT, |e| e.enter), -1),
-                                (iv.exit, ends.map_or(UNCUT, |e| e.exit), 1),
+                            // The air on either side: up to the neighbouring intervals.
+                            let before = n
+                                .checked_sub(1)
+                                .map_or(f64::INFINITY, |m| iv.enter - ray[m].exit);
+                            let after = ray.get(n + 1).map_or(f64::INFINITY, |b| b.enter - iv.exit);
+                            let inside = iv.exit - iv.enter;
+                            for (t, tag, outside, air) in [
+                                (iv.enter, ends.map_or(UNCUT, |e| e.enter), -1, before),
+                                (iv.exit, ends.map_or(UNCUT, |e| e.exit), 1, after),
                             ] {
                                 p[k] = t;
                                 let Some(pr) = design.project(p) else {
@@ -351,6 +366,7 @@ pub fn verify_observed(
                                         tag,
                                         area: area * pr.normal[k].abs(),
                                         outside,
+                                        room: if d < 0.0 { air } else { inside },
                                     });
                                 }
                             }
@@ -560,10 +576,10 @@ fn summarise(
 }
 
 /// Sets each defect end's [`DefectEnd::area`] from the design's normal where its ray meets the
-/// design (see there): stepping from the end along the ray, away from the stock's material at
-/// a gouge (the missing part lies there) and into it at an excess, each step the distance to
-/// the design, until the design is met or the steps have gone further than the region's depth
-/// and a cell.
+/// design (see there): followed from the end ([`Design::meet_along`]), away from the stock's
+/// material at a gouge (the missing part lies there) and into it at an excess, no further than
+/// the region's depth and a cell, nor beyond the end's own stretch of air or material
+/// ([`DefectEnd::room`]).
 fn weigh_by_crossings(
     defects: &mut [DefectEnd],
     labels: &[usize],
@@ -571,7 +587,8 @@ fn weigh_by_crossings(
     design: &dyn Design,
     stock: &TriDexel,
 ) {
-    if !design.has_edges() {
+    let below = design.follow_rays_below();
+    if below <= 0.0 {
         return;
     }
     let h = stock.grid().h;
@@ -585,7 +602,7 @@ fn weigh_by_crossings(
         .zip(labels.par_iter())
         .for_each(|(d, &l)| {
             let k = usize::from(d.family);
-            if d.normal[k].abs() >= ALONG_THE_RAY {
+            if d.normal[k].abs() >= below {
                 return;
             }
             let towards = if d.deviation < 0.0 {
@@ -593,51 +610,12 @@ fn weigh_by_crossings(
             } else {
                 -f64::from(d.outside)
             };
-            let (p, step) = (d.point, d.deviation.abs());
-            if let Some(n) = crossing_normal(design, p, step, k, towards, depth[l] + h[k]) {
-                d.area = areas[k] * n[k].abs();
-            }
+            let reach = (depth[l] + h[k]).min(d.room);
+            // Not met that near: the ray runs along the region's wall, not across its face.
+            d.area = design
+                .meet_along(d.point, k, towards, reach)
+                .map_or(0.0, |n| areas[k] * n[k].abs());
         });
-}
-
-/// A nearest point whose normal has at least this component along the ray lies on the face
-/// the ray meets (the ray crosses it within 60° of its normal): its normal stands, and the
-/// design is not asked again. Below it the nearest point may lie on another face than the one
-/// ahead along the ray — beside a convex edge, where the component is 0 — and the ray is
-/// followed.
-const ALONG_THE_RAY: f64 = 0.5;
-
-/// Steps taken towards the design before the nearest point's normal stands.
-const CROSSING_STEPS: usize = 64;
-
-/// The design's outward normal where the line through `p` along axis `k`, followed in the
-/// direction `towards` (±1), first meets the design within `reach` mm (sphere tracing: each
-/// step the distance to the design, which cannot pass through it; `distance` is p's), or
-/// `None` when it is not met within the reach or the steps.
-fn crossing_normal(
-    design: &dyn Design,
-    p: Vec3,
-    distance: f64,
-    k: usize,
-    towards: f64,
-    reach: f64,
-) -> Option<Vec3> {
-    // Met: closer than this to the design (a thousandth of the reach, at least 1 nm).
-    let eps = (reach * 1e-3).max(1e-6);
-    let (mut q, mut step, mut gone) = (p, distance, 0.0);
-    for _ in 0..CROSSING_STEPS {
-        gone += step;
-        if gone > reach {
-            return None;
-        }
-        q[k] += towards * step;
-        let pr = design.project(q)?;
-        step = pr.distance.abs();
-        if step <= eps {
-            return Some(pr.normal);
-        }
-    }
-    None
 }
 
 /// Exact volumes from the Z rays when the design bounds a solid: per ray, the pieces of

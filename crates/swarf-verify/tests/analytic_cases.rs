@@ -146,6 +146,39 @@ fn a_gouge_reaching_the_design_edge_counts_up_to_it() {
 }
 
 #[test]
+fn a_narrow_gouge_beside_the_edge_counts_its_floor_not_its_walls() {
+    // A 1 mm slot 2 mm too deep right across the part at y = 38..39, a millimetre from its
+    // side face: the footprint is the slot's floor, 1 × 40 mm². A wall's ray, followed across
+    // the slot's air and on through the millimetre of material beyond, would meet the side
+    // face within the depth and count the wall (120 mm² in all) — the ray stops at the
+    // slot's far wall.
+    let text = format!(
+        "G21 G90\nG0 Z20\nG0 X{} Y{}\nG1 Z8 F200\nG1 X{}\nG0 Z20\n",
+        O - 10.0,
+        O + 38.5,
+        O + 50.0
+    );
+    let program = gcode(&text);
+    let mut stock = TriDexel::from_box(
+        Vec3::new(O, O, 0.0),
+        Vec3::new(O + 40.0, O + 40.0, 10.0),
+        0.25,
+    )
+    .unwrap();
+    stock.track_provenance();
+    let tools = ToolSet::single(Cutter::flat(1.0).unwrap());
+    simulate(&program, &tools, &mut stock, &SimOptions::default()).unwrap();
+    let v = verify(&stock, &design(), Some(&program), &VerifyOptions::default()).unwrap();
+    let gouges: Vec<_> = v.gouges().collect();
+    assert_eq!(gouges.len(), 1, "{:#?}", v.regions);
+    let g = gouges[0];
+    // The depth is the distance to the design: from the floor's ray at y = 38.125 the side
+    // face is nearer (1.875 mm) than the top (2 mm).
+    assert!((g.depth_mm - 1.875).abs() < 1e-6, "{}", g.depth_mm);
+    assert!((g.area_mm2 - 40.0).abs() < 1e-6, "{}", g.area_mm2);
+}
+
+#[test]
 fn a_program_that_follows_the_design_reports_nothing() {
     let program = gcode(&facing(10.0));
     let stock = machined(&program);
@@ -245,4 +278,52 @@ proptest! {
             }
         }
     }
+}
+
+#[test]
+fn surface_patches_meeting_at_an_edge_count_a_gouge_up_to_it() {
+    // The design as two planar surface patches, the top z = 0 over [0, 40]² and the side
+    // x = 0 (facing −X) below it; facing 0.5 mm too deep: the floor's ends within 0.5 mm of
+    // the side have their nearest point on it, and their rays, followed up (sphere tracing),
+    // meet the top: 40 × 40 mm² (1,580 when the nearest point decided).
+    use swarf_geom::Frame;
+    use swarf_surface::compound::{CompoundSurface, Patch};
+    use swarf_surface::surface::{ParamBox, PlaneSurface, Surface};
+    use swarf_verify::surface::SurfaceDesign;
+    let top = PlaneSurface::new(Frame::at(Vec3::ZERO), ParamBox::new(0.0, 40.0, 0.0, 40.0));
+    let side = PlaneSurface::new(
+        Frame::from_axis_and_x(Vec3::ZERO, -Vec3::X, Vec3::Y),
+        ParamBox::new(0.0, 40.0, 0.0, 20.0),
+    );
+    let surface = CompoundSurface {
+        patches: vec![
+            Patch::new(Surface::Plane(top)),
+            Patch::new(Surface::Plane(side)),
+        ],
+        notes: Vec::new(),
+    };
+    let design = SurfaceDesign::new(&surface, 0.0).unwrap();
+    let mut text = String::from("G21 G90\nG0 Z20\nG0 X-10 Y-3\nG1 Z-0.5 F500\n");
+    let mut y = -3.0;
+    let mut left = true;
+    while y <= 45.0 {
+        text += &format!("G1 X{} Y{y}\n", if left { 50 } else { -10 });
+        y += 8.0;
+        if y <= 45.0 {
+            text += &format!("G1 Y{y}\n");
+        }
+        left = !left;
+    }
+    let program = gcode(&(text + "G0 Z20\n"));
+    let mut stock =
+        TriDexel::from_box(Vec3::new(0.0, 0.0, -20.0), Vec3::new(40.0, 40.0, 0.0), 0.25).unwrap();
+    stock.track_provenance();
+    let tools = ToolSet::single(Cutter::flat(10.0).unwrap());
+    simulate(&program, &tools, &mut stock, &SimOptions::default()).unwrap();
+    let v = verify(&stock, &design, Some(&program), &VerifyOptions::default()).unwrap();
+    let gouges: Vec<_> = v.gouges().collect();
+    assert_eq!(gouges.len(), 1, "{:#?}", v.regions);
+    let g = gouges[0];
+    assert!((g.depth_mm - 0.5).abs() < 2e-4, "{}", g.depth_mm);
+    assert!((g.area_mm2 - 1600.0).abs() < 1e-6, "{}", g.area_mm2);
 }
