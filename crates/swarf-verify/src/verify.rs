@@ -116,8 +116,10 @@ pub struct DefectEnd {
     /// face's edge and add nothing. The ray is followed from the end towards the design
     /// ([`Design::meet_along`]: exactly for a mesh; by sphere tracing for surfaces, and there
     /// only where the nearest point's normal is more than 60° off the ray, see
-    /// [`Design::follow_rays_below`]) no further than the region's depth and a cell and than
-    /// the end's own stretch of air (a gouge) or material (an excess); where it does not meet
+    /// [`Design::follow_rays_below`]) no further than twice the region's depth and a cell
+    /// over the nearest normal's component along the ray (at least ½: the nearest face's own
+    /// crossing is |deviation| over that component away), nor than the end's own stretch of
+    /// air (a gouge) or material (an excess); where it does not meet
     /// the design that near, the end lies on a wall of the region (a slot's wall, whose ray
     /// runs along the face above it, then across the slot into the material beyond) and
     /// stands for no area. So the floor of a gouge reaching a convex edge of the design counts
@@ -578,8 +580,8 @@ fn summarise(
 /// Sets each defect end's [`DefectEnd::area`] from the design's normal where its ray meets the
 /// design (see there): followed from the end ([`Design::meet_along`]), away from the stock's
 /// material at a gouge (the missing part lies there) and into it at an excess, no further than
-/// the region's depth and a cell, nor beyond the end's own stretch of air or material
-/// ([`DefectEnd::room`]).
+/// twice the region's depth and a cell over the nearest point's normal component along the ray
+/// (at least ½), nor beyond the end's own stretch of air or material ([`DefectEnd::room`]).
 fn weigh_by_crossings(
     defects: &mut [DefectEnd],
     labels: &[usize],
@@ -610,7 +612,10 @@ fn weigh_by_crossings(
             } else {
                 -f64::from(d.outside)
             };
-            let reach = (depth[l] + h[k]).min(d.room);
+            // Where the ray meets the nearest point's own face: |deviation| / |n_k| away, at
+            // most twice the region's depth (and a cell) on faces up to 60° off the ray; past
+            // that, the rest of the end's own stretch of air or material.
+            let reach = (2.0 * (depth[l] + h[k]) / d.normal[k].abs().max(0.5)).min(d.room);
             // Not met that near: the ray runs along the region's wall, not across its face.
             d.area = design
                 .meet_along(d.point, k, towards, reach)
