@@ -285,21 +285,27 @@ fn parse_ascii(bytes: &[u8], path: &Path) -> Result<TriMesh, IoError> {
         let is = |kw: &str| w.eq_ignore_ascii_case(kw);
         if (is("solid") && !in_solid) || (is("endsolid") && in_solid) {
             in_solid = !in_solid;
-            // The name runs to the end of the line — or, in a file written on one line, to the
-            // first facet (`facet normal`), the `endsolid` after a name, or the next `solid`.
-            loop {
+            // The name runs to the end of the line — or, in a file written on one line, up to
+            // what follows it there: after `solid`, its first facet (`facet normal`) or its
+            // `endsolid`; after `endsolid`, the next solid's `solid` (the last `solid` before
+            // that solid's first facet or `endsolid`: a name may hold the word).
+            let rest: Vec<(usize, &str)> = {
                 let mut ahead = tokens.clone();
-                let Some((_, w2)) = ahead.next().filter(|&(l2, _)| l2 == l) else {
-                    break;
-                };
-                let starts = |kw: &str| w2.eq_ignore_ascii_case(kw);
-                let facet = starts("facet")
-                    && ahead
-                        .next()
-                        .is_some_and(|(_, n)| n.eq_ignore_ascii_case("normal"));
-                if (in_solid && (facet || starts("endsolid"))) || (!in_solid && starts("solid")) {
-                    break;
-                }
+                std::iter::from_fn(|| ahead.next().filter(|&(l2, _)| l2 == l)).collect()
+            };
+            let is_at =
+                |n: usize, kw: &str| rest.get(n).is_some_and(|(_, w)| w.eq_ignore_ascii_case(kw));
+            let body = (0..rest.len())
+                .find(|&n| (is_at(n, "facet") && is_at(n + 1, "normal")) || is_at(n, "endsolid"));
+            let name_len = match (in_solid, body) {
+                (_, None) => rest.len(),
+                (true, Some(n)) => n,
+                (false, Some(n)) => (0..n)
+                    .rev()
+                    .find(|&m| is_at(m, "solid"))
+                    .unwrap_or(rest.len()),
+            };
+            for _ in 0..name_len {
                 tokens.next();
             }
         } else if is("facet") && in_solid {
@@ -511,6 +517,20 @@ mod tests {
         assert!(closed_tetrahedron(&first));
         // An empty solid on one line.
         let m = parse_stl(b"solid x endsolid x", Path::new("e.stl")).unwrap();
+        assert!(m.triangles.is_empty());
+        // Names holding the words `solid` and `facet`, on lines of their own and on one line.
+        let named = ascii(LOWER, "normal 0 0 1").replace(" part\n", " my solid facet part\n");
+        assert!(named.starts_with("solid my solid facet part\n"), "{named}");
+        let m = parse_stl(named.as_bytes(), Path::new("n.stl")).unwrap();
+        assert!(closed_tetrahedron(&m));
+        let line = named.replace('\n', " ");
+        let m = parse_stl(format!("{line} {line}").as_bytes(), Path::new("n.stl")).unwrap();
+        assert_eq!(m.triangles.len(), 8);
+        let m = parse_stl(
+            b"solid a solid endsolid a solid solid b endsolid b solid",
+            Path::new("e.stl"),
+        )
+        .unwrap();
         assert!(m.triangles.is_empty());
     }
 
