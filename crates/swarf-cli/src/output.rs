@@ -13,17 +13,27 @@ static LISTENING: AtomicBool = AtomicBool::new(false);
 /// Installs the one Ctrl-C handler of the process (first thing in `main`, before any input is
 /// read). While a long run listens ([`listen_for_stop`]), Ctrl-C only asks it to stop
 /// ([`stop_requested`]): the computation ends with an error, and so does the writing of the
-/// outputs, before the next file (every output set stops then, [`output_set`]); nothing is
-/// written either way. A second Ctrl-C, or one while not listening, ends the process at once,
-/// as it would without a handler (exit 130; an output set caught writing may then leave its
-/// hidden temporaries, never a half-written output).
+/// outputs, before the next file (every output set stops then, [`output_set`]), and an HTML
+/// report is not begun; a set cut short leaves nothing. A second Ctrl-C, or one while not
+/// listening, ends the process at once, as it would without a handler (exit 130) — except
+/// while an output set renames its files into place ([`swarf_io::output_set::committing`]),
+/// which would leave old and new files mixed: that one is taken as a request to stop.
 pub(crate) fn install_stop_handler() {
     // If it cannot be installed, Ctrl-C keeps its default meaning.
     let _ = ctrlc::set_handler(|| {
-        if !LISTENING.load(Ordering::SeqCst) || STOP.swap(true, Ordering::SeqCst) {
+        let again = STOP.swap(true, Ordering::SeqCst);
+        if (again || !LISTENING.load(Ordering::SeqCst)) && !swarf_io::output_set::committing() {
             std::process::exit(130);
         }
     });
+}
+
+/// An error naming `what` was not written once Ctrl-C asked the run to stop.
+pub(crate) fn bail_if_stopped(what: &str) -> Result<()> {
+    if stop_requested() {
+        anyhow::bail!("stopped by Ctrl-C before {what} was written");
+    }
+    Ok(())
 }
 
 /// From now on Ctrl-C asks this run to stop instead of ending the process (called before any

@@ -31,7 +31,33 @@
 use std::fs::File;
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
-use std::sync::atomic::{AtomicBool, Ordering};
+use std::sync::atomic::{AtomicBool, AtomicUsize, Ordering};
+
+/// Output sets renaming their files into place right now, in this process.
+static COMMITTING: AtomicUsize = AtomicUsize::new(0);
+
+/// True while some output set of this process renames its files into place: a process that
+/// ended then (a Ctrl-C handler's exit) could leave old and new files mixed, or old ones moved
+/// aside, so a handler waits for the commit instead.
+pub fn committing() -> bool {
+    COMMITTING.load(Ordering::SeqCst) > 0
+}
+
+/// Counts a commit in progress for its lifetime.
+struct Committing;
+
+impl Committing {
+    fn begin() -> Self {
+        COMMITTING.fetch_add(1, Ordering::SeqCst);
+        Committing
+    }
+}
+
+impl Drop for Committing {
+    fn drop(&mut self) {
+        COMMITTING.fetch_sub(1, Ordering::SeqCst);
+    }
+}
 
 use crate::atomic::{temp_path, write_synced};
 use crate::error::IoError;
@@ -206,6 +232,7 @@ impl OutputSet {
     /// [`IoError::Io`] for the first rename that fails; [`IoError::Stopped`] when asked to
     /// stop (nothing renamed).
     pub fn commit(mut self) -> Result<(), IoError> {
+        let _committing = Committing::begin();
         self.check_stop()?;
         let staged = std::mem::take(&mut self.staged);
         // Old files moved aside: (backup, target).

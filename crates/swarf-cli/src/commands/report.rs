@@ -98,8 +98,10 @@ pub(crate) fn prepare(path: Option<&Path>) -> Result<()> {
         .with_context(|| format!("making the report's folder {}", dir.display()))
 }
 
-/// Writes the page.
+/// Writes the page (not once Ctrl-C asked the run to stop: the outputs written before it
+/// stand, the page is left out).
 pub(crate) fn write(report: &Report, path: &Path) -> Result<()> {
+    crate::output::bail_if_stopped("the report")?;
     report
         .write(path)
         .with_context(|| format!("writing the report {}", path.display()))

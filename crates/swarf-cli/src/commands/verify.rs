@@ -241,6 +241,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
             summary: &value,
             part: (&mesh, &legend),
         };
+        crate::output::bail_if_stopped("the report")?;
         write_atomic(path, html_report(&v, &inputs).as_bytes())?;
     }
     if args.json {
