@@ -9,7 +9,7 @@ use std::collections::{HashMap, HashSet};
 use swarf_geom::math::{Mat3, Vec3};
 use swarf_geom::Frame;
 
-use super::entities::{is_surface, Contexts, Model, R};
+use super::entities::{is_surface, not_entered, Contexts, Model, R};
 use super::lex::{refs, show, Instance, Param};
 use crate::compound::ReadNote;
 pub(super) use crate::placement::{place, Placement};
@@ -323,16 +323,7 @@ impl Model<'_> {
                 out.push(i);
                 continue;
             }
-            if name.contains("STYLED_ITEM")
-                || matches!(
-                    name,
-                    "MAPPED_ITEM"
-                        | "REPRESENTATION_MAP"
-                        | "CARTESIAN_POINT"
-                        | "DIRECTION"
-                        | "AXIS2_PLACEMENT_3D"
-                )
-            {
+            if name.contains("STYLED_ITEM") || not_entered(name) {
                 continue;
             }
             for (_, ps) in &inst.parts {

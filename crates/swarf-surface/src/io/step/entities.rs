@@ -362,14 +362,7 @@ impl Model<'_> {
                         .or_insert(Some(ctx));
                     continue;
                 }
-                if matches!(
-                    inst.first_name(),
-                    "MAPPED_ITEM"
-                        | "REPRESENTATION_MAP"
-                        | "CARTESIAN_POINT"
-                        | "DIRECTION"
-                        | "AXIS2_PLACEMENT_3D"
-                ) {
+                if not_entered(inst.first_name()) {
                     continue;
                 }
                 for (_, ps) in &inst.parts {
@@ -911,4 +904,18 @@ pub(super) fn si_prefix(p: &str) -> Option<f64> {
         "ATTO" => 1e-18,
         _ => return None,
     })
+}
+
+/// Entities a walk from a representation's items down to its faces does not enter: mapped
+/// items (their faces belong to the representation they place) and the points, directions and
+/// axes of placements.
+pub(super) fn not_entered(name: &str) -> bool {
+    matches!(
+        name,
+        "MAPPED_ITEM"
+            | "REPRESENTATION_MAP"
+            | "CARTESIAN_POINT"
+            | "DIRECTION"
+            | "AXIS2_PLACEMENT_3D"
+    )
 }
