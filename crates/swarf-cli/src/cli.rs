@@ -165,3 +165,26 @@ impl std::fmt::Display for UsageError {
 }
 
 impl std::error::Error for UsageError {}
+
+#[cfg(test)]
+mod tests {
+    use super::parse_part_at;
+    use swarf_geom::math::Vec3;
+
+    #[test]
+    fn part_at_turns_about_x_then_y_then_z_then_moves() {
+        // X+90 takes +Y to +Z; Y+90 takes +Z to +X; Z+90 takes +X to +Y: +Y ends on +Y, then
+        // moved by (1, 2, 3). And +X: X+90 keeps it, Y+90 takes it to −Z, Z+90 keeps −Z.
+        let m = parse_part_at("1,2,3,90,90,90").unwrap();
+        let close = |a: Vec3, b: Vec3| (a - b).length() < 1e-12;
+        assert!(close(m.apply_point(Vec3::Y), Vec3::new(1.0, 3.0, 3.0)));
+        assert!(close(m.apply_point(Vec3::X), Vec3::new(1.0, 2.0, 2.0)));
+        // Four numbers: a turn about Z alone.
+        let m = parse_part_at("0,0,0,90").unwrap();
+        assert!(close(m.apply_point(Vec3::X), Vec3::Y));
+        assert!(close(
+            parse_part_at("5,-6,7").unwrap().apply_point(Vec3::ZERO),
+            Vec3::new(5.0, -6.0, 7.0)
+        ));
+    }
+}
