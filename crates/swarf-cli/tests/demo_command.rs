@@ -4,7 +4,7 @@ use common::*;
 
 #[test]
 fn demo_simulates_and_writes_a_closed_mesh_of_the_final_stock() {
-    let dir = std::env::temp_dir().join(format!("swarf-demo-test-{}", std::process::id()));
+    let dir = swarf_testdata::scratch_dir("demo-test");
     let _ = std::fs::remove_dir_all(&dir);
     let o = swarf(&["demo", "--out", dir.to_str().unwrap()]);
     assert!(o.status.success(), "{}", stderr(&o));

@@ -60,7 +60,7 @@ struct Golden {
 
 impl Golden {
     fn new(group: &str, data: Option<PathBuf>) -> Self {
-        let out = std::env::temp_dir().join(format!("swarf-golden-{group}-{}", std::process::id()));
+        let out = swarf_testdata::scratch_dir(&format!("golden-{group}"));
         let _ = std::fs::remove_dir_all(&out);
         std::fs::create_dir_all(&out).unwrap();
         let out = out.canonicalize().unwrap();

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::process::Command;
 
 fn report_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("swarf-report-{name}-{}", std::process::id()));
+    let d = swarf_testdata::scratch_dir(&format!("report-{name}"));
     let _ = std::fs::remove_dir_all(&d);
     std::fs::create_dir_all(&d).unwrap();
     d

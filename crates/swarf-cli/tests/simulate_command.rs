@@ -3,10 +3,7 @@ mod common;
 use common::*;
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("swarf-sim-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    swarf_testdata::fresh_scratch_dir(&format!("sim-{name}"))
 }
 
 #[test]

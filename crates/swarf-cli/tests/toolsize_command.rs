@@ -5,7 +5,7 @@ use common::*;
 #[test]
 fn inside_of_the_step_sphere_admits_a_ball_of_its_radius() {
     let sphere = sphere_step(&temp_dir("toolsize-sphere"), 5.0);
-    let dir = std::env::temp_dir().join(format!("swarf-toolsize-{}", std::process::id()));
+    let dir = swarf_testdata::scratch_dir("toolsize");
     let o = swarf(&[
         "toolsize",
         "--surface",

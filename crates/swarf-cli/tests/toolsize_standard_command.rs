@@ -6,7 +6,7 @@ use common::*;
 #[test]
 fn standard_cutters_inside_the_step_sphere() {
     let sphere = sphere_step(&temp_dir("toolsize-std-sphere"), 5.0);
-    let dir = std::env::temp_dir().join(format!("swarf-toolsize-std-{}", std::process::id()));
+    let dir = swarf_testdata::scratch_dir("toolsize-std");
     let _ = std::fs::remove_dir_all(&dir);
     let o = swarf(&[
         "toolsize",

@@ -6,10 +6,7 @@ use common::*;
 use std::path::{Path, PathBuf};
 
 fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("swarf-verify-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    swarf_testdata::fresh_scratch_dir(&format!("verify-{name}"))
 }
 
 /// Faces a 40 × 40 × 12 block at (20..60)² down to the design's top (z = 10) with a 10 mm

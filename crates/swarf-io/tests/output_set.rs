@@ -5,7 +5,8 @@ use std::io::Write;
 use swarf_io::{IoError, OutputSet};
 
 fn temp_dir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("swarf-io-set-{name}-{}", std::process::id()));
+    // Fresh and absent: the tests make it as a set's first write does.
+    let d = swarf_testdata::fresh_scratch_dir(&format!("io-set-{name}"));
     let _ = std::fs::remove_dir_all(&d);
     d
 }

@@ -17,10 +17,7 @@ use swarf_io::{
 };
 
 fn temp_dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("swarf-io-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    swarf_testdata::fresh_scratch_dir(&format!("io-{name}"))
 }
 
 fn files_in(d: &Path) -> Vec<String> {

@@ -12,7 +12,7 @@ use swarf_path::{Canon, Machine};
 
 /// A fresh folder with `lib/square.ngc`.
 fn folder(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("swarf-subfiles-{tag}-{}", std::process::id()));
+    let dir = swarf_testdata::scratch_dir(&format!("subfiles-{tag}"));
     std::fs::create_dir_all(dir.join("lib")).unwrap();
     std::fs::write(
         dir.join("lib/square.ngc"),

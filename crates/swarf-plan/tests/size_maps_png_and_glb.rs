@@ -82,7 +82,7 @@ fn decode(path: &Path) -> (usize, usize, Vec<u8>) {
 }
 
 fn out_dir(name: &str) -> std::path::PathBuf {
-    let d = std::env::temp_dir().join(format!("swarf-maps-{name}-{}", std::process::id()));
+    let d = swarf_testdata::scratch_dir(&format!("maps-{name}"));
     let _ = std::fs::remove_dir_all(&d);
     d
 }

@@ -136,7 +136,7 @@ fn grid_mesh_areas_and_maps_leave_the_slot_out() {
         &MapOptions::default(),
     );
     assert_eq!(map.points.len(), grid.len());
-    let dir = std::env::temp_dir().join(format!("swarf-trim-maps-{}", std::process::id()));
+    let dir = swarf_testdata::scratch_dir("trim-maps");
     let paths = write_patch_maps(&slotted, &map, n, &dir, &PlotOptions::default()).unwrap();
     let decoder = png::Decoder::new(std::io::BufReader::new(
         std::fs::File::open(&paths[1]).unwrap(),

@@ -214,7 +214,7 @@ mod tests {
 
     #[test]
     fn mesh_errors_name_the_file_once() {
-        let dir = std::env::temp_dir().join(format!("swarf-stock-spec-{}", std::process::id()));
+        let dir = swarf_testdata::scratch_dir("stock-spec");
         std::fs::create_dir_all(&dir).unwrap();
         // A box from (0, 0, 0) to (x1, 20, 10) as binary STL.
         let stl = |x1: f64| {

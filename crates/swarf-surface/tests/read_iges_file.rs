@@ -288,7 +288,7 @@ fn accents_in_the_start_section_and_global_strings_are_read_by_the_column() {
         assert_eq!(s.patches.len(), 1, "{what}");
         assert_eq!(s.patches[0].surface, plain.patches[0].surface, "{what}");
         // Through the file reader too (which once decoded the bytes as UTF-8 first).
-        let dir = std::env::temp_dir().join(format!("swarf-iges-accents-{}", std::process::id()));
+        let dir = swarf_testdata::scratch_dir("iges-accents");
         std::fs::create_dir_all(&dir).unwrap();
         let path = dir.join("piece.igs");
         std::fs::write(&path, &bytes).unwrap();

@@ -69,15 +69,58 @@ pub fn workspace_root() -> PathBuf {
 }
 
 /// A folder of the system's temporary directory for one test, `swarf-{tag}-{process id}`,
-/// created (with its parents) if it is not there; what it holds is left as it is.
+/// created (with its parents) if it is not there; what it holds is left as it is. The folders
+/// of the same tag that earlier test processes left (their process no longer runs) are removed
+/// first, so repeated runs keep at most one run's scratch (some tests write meshes of a
+/// hundred megabytes; a day of runs filled a disk).
 ///
 /// # Panics
 /// When it cannot be created.
 #[must_use]
 pub fn scratch_dir(tag: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("swarf-{tag}-{}", std::process::id()));
+    let tmp = std::env::temp_dir();
+    remove_stale(&tmp, &format!("swarf-{tag}-"));
+    let dir = tmp.join(format!("swarf-{tag}-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     dir
+}
+
+/// [`scratch_dir`], emptied first.
+///
+/// # Panics
+/// When it cannot be created.
+#[must_use]
+pub fn fresh_scratch_dir(tag: &str) -> PathBuf {
+    let dir = scratch_dir(tag);
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}
+
+/// Removes the folders `{prefix}{pid}` of `tmp` whose process is gone (on Linux, where
+/// `/proc` tells; elsewhere none).
+fn remove_stale(tmp: &Path, prefix: &str) {
+    let proc = Path::new("/proc/self");
+    if !proc.exists() {
+        return;
+    }
+    let Ok(entries) = std::fs::read_dir(tmp) else {
+        return;
+    };
+    let me = std::process::id();
+    for e in entries.flatten() {
+        let name = e.file_name();
+        let Some(pid) = name
+            .to_str()
+            .and_then(|n| n.strip_prefix(prefix))
+            .and_then(|p| p.parse::<u32>().ok())
+        else {
+            continue;
+        };
+        if pid != me && !Path::new(&format!("/proc/{pid}")).exists() {
+            let _ = std::fs::remove_dir_all(e.path());
+        }
+    }
 }
 
 /// The configured data folder: `SWARF_TEST_DATA` (relative to the workspace root) or
@@ -279,7 +322,7 @@ mod tests {
 
     #[test]
     fn failures_are_printed_not_written() {
-        let dir = std::env::temp_dir().join(format!("swarf-testdata-{}", std::process::id()));
+        let dir = crate::scratch_dir("testdata");
         std::fs::create_dir_all(dir.join("src")).unwrap();
         std::fs::write(dir.join("src/lib.rs"), "").unwrap();
         let source: &'static str =

@@ -231,7 +231,7 @@ fn a_design_with_a_hole_in_its_mesh_is_refused() {
 #[test]
 fn a_design_beyond_the_machine_range_is_refused_naming_the_file() {
     // The range stock meshes are held to: a 2 km long design STL is an error naming it.
-    let dir = std::env::temp_dir().join(format!("swarf-verify-range-{}", std::process::id()));
+    let dir = swarf_testdata::scratch_dir("verify-range");
     std::fs::create_dir_all(&dir).unwrap();
     let far = dir.join("far.stl");
     let near = dir.join("near.stl");

@@ -19,10 +19,7 @@ pub(crate) fn shared(rel: &str) -> Option<String> {
 
 /// A folder of its own for the calling test under the system's temporary folder, empty.
 pub(crate) fn temp_dir(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("swarf-cli-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
-    dir
+    swarf_testdata::fresh_scratch_dir(&format!("cli-{name}"))
 }
 
 /// Writes `dir/sphere.step`, [`swarf_testdata::fixtures::sphere_step`] of radius `r` mm;
