@@ -631,7 +631,10 @@ impl<'t, 's> Interp<'t, 's> {
             5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20],
             5420..=5425 => self.to_units(n - 5420, self.p[n - 5420]),
             // The machine position (G53 coordinates).
-            5021..=5026 => self.to_units(n - 5021, self.machine()[n - 5021]),
+            5021..=5026 => self.to_units(
+                n - 5021,
+                self.machine()[n - 5021] - self.g53_origin()[n - 5021],
+            ),
             5400 => f64::from(self.tool),
             5401..=5406 => {
                 let e = self.tool_table.get(&self.tool).copied().unwrap_or([0.0; 6]);
@@ -703,6 +706,18 @@ impl<'t, 's> Interp<'t, 's> {
 
     pub(crate) fn machine(&self) -> [f64; 6] {
         self.machine_of(&self.p)
+    }
+
+    /// Where G53's zero is in swarf's machine frame (the work frame with no offsets): the home
+    /// when one is given, for the whole program — machine zero is the home (reference point)
+    /// on Fanuc, Haas, GRBL and Mach3 controls, and G92, G10 and G54–G59 move the work's zero,
+    /// not the machine's; else the origin, as LinuxCNC's usual `HOME = 0`.
+    pub(crate) fn g53_origin(&self) -> [f64; 6] {
+        let mut o = [0.0; 6];
+        if let Some(h) = self.opts.home {
+            o[..3].copy_from_slice(&h);
+        }
+        o
     }
 
     /// Changes the offsets in effect keeping the machine position, and says so.
@@ -1335,17 +1350,7 @@ impl<'t, 's> Interp<'t, 's> {
     /// words `@` (radius) and `^` (angle, degrees) in the XY plane.
     pub(crate) fn find_ends(&self, b: &Block, g53: bool) -> Res<[f64; 6]> {
         let mut e = self.p;
-        // Where G53's zero is in swarf's machine frame (the work frame with no offsets): the
-        // home, when the program sets no work offset — machine zero is the home on Fanuc, Haas,
-        // GRBL and Mach3 controls (and LinuxCNC's usual HOME = 0), and the home's place in the
-        // work frame is all that is known of the machine then; with offsets the program set,
-        // that frame is the machine's own (its origin).
-        let mut g53_origin = [0.0; 6];
-        if let Some(h) = self.opts.home {
-            if self.off == [0.0; 6] && self.g92 == [0.0; 6] {
-                g53_origin[..3].copy_from_slice(&h);
-            }
-        }
+        let g53_origin = self.g53_origin();
         for (i, &c) in AXIS_LETTERS.iter().enumerate() {
             if let Some(v) = b.get(c) {
                 let v = self.mm_from_units(i, v);
