@@ -511,7 +511,7 @@ impl<'t, 's> Interp<'t, 's> {
             }
             return Ok(());
         }
-        if lb.code.first() == Some(&b'$') {
+        if is_grbl_command(&lb.code) {
             return self.grbl_command(lb);
         }
         if lb.code.first() == Some(&b'%') {
@@ -562,7 +562,7 @@ impl<'t, 's> Interp<'t, 's> {
         Ok(())
     }
 
-    /// A GRBL system command (`$H`, `$X`, `$$`, `$1=25`, `$J=…`): a line for GRBL itself, not
+    /// A GRBL system command ([`is_grbl_command`]): a line for GRBL itself, not
     /// G-code. Those that do not move the tool are skipped with a warning; a jog, and a homing
     /// cycle once the program has moved (it ends wherever the machine's switches are), are
     /// refused, since skipping them would change the motion.
@@ -1855,4 +1855,36 @@ fn is_macro_b(code: &[u8]) -> bool {
         || code.starts_with(b"if[")
         || digit_after(b"goto")
         || digit_after(b"end")
+}
+
+/// Whether a normalised line (lower case, no spaces) is one of GRBL's own commands: `$$`, `$#`,
+/// `$G`, `$I`, `$N`, `$C`, `$X`, `$H` (optionally with axis letters), `$SLP`, `$RST=…`,
+/// `$N<digit>=…`, `$<digits>=<number>` or a jog `$J=…`. Other lines starting with `$` are
+/// G-code (LinuxCNC 2.8+'s spindle-select word, in any order: `$1 M3 S1000`) and are read as
+/// such.
+fn is_grbl_command(code: &[u8]) -> bool {
+    let Some(rest) = code.strip_prefix(b"$") else {
+        return false;
+    };
+    let number = |t: &[u8]| {
+        let t = t
+            .strip_prefix(b"-")
+            .or_else(|| t.strip_prefix(b"+"))
+            .unwrap_or(t);
+        let digits = t.iter().filter(|c| c.is_ascii_digit()).count();
+        let points = t.iter().filter(|&&c| c == b'.').count();
+        digits > 0 && points <= 1 && digits + points == t.len()
+    };
+    match rest {
+        b"$" | b"#" | b"g" | b"i" | b"n" | b"c" | b"x" | b"slp" => true,
+        [b'h', axes @ ..] => axes.iter().all(|c| b"xyzabc".contains(c)),
+        _ if rest.starts_with(b"rst=") || rest.starts_with(b"j=") => true,
+        [b'n', d, b'=', ..] if d.is_ascii_digit() => true,
+        _ => match rest.iter().position(|&c| c == b'=') {
+            Some(eq) => {
+                eq > 0 && rest[..eq].iter().all(u8::is_ascii_digit) && number(&rest[eq + 1..])
+            }
+            None => false,
+        },
+    }
 }
