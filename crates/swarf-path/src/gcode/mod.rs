@@ -63,7 +63,7 @@ mod dialect;
 mod expr;
 mod frames;
 mod interp;
-mod lexer;
+pub(crate) mod lexer;
 mod params;
 mod splines;
 mod stack;
