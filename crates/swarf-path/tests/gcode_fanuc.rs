@@ -458,6 +458,18 @@ fn g04_x_is_a_dwell_and_p_without_a_point_counts_milliseconds() {
 }
 
 #[test]
+fn canned_cycle_dwell_p_without_a_point_counts_milliseconds() {
+    // Fanuc: `G82 … P500` dwells 500 ms at the bottom, as `G04 P500` does (it dwelt 500 s);
+    // the P stays for the next holes; `P0.5` is seconds (Haas).
+    let src = "O1\nG21 G90 G0 X0 Y0 Z10.\nG82 X5. Y5. Z-2. R2. P500 F100.\nX10.\nG80\nG89 X15. Z-2. R2. P0.5\nG80\nM30\n";
+    assert_eq!(dwells(src, &fanuc()), [0.5, 0.5, 0.5]);
+    // LinuxCNC: P in seconds.
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let src = "G21 G90 G0 X0 Y0 Z10\nG82 X5 Y5 Z-2 R2 P2 F100\nG80\n";
+    assert_eq!(dwells(src, &linuxcnc), [2.0]);
+}
+
+#[test]
 fn g00_beside_g28_is_modal_and_g28_takes_the_axes() {
     // `G00 G91 G28 Z0.`: the reference return moves; G00 is the motion of the next blocks.
     let src = "O1\nG21 G90 G1 X10. Y10. Z5. F100.\nG00 G91 G28 Z0.\nG90 X20.\nM30\n";

@@ -597,6 +597,17 @@ impl<'t, 's> Interp<'t, 's> {
         Ok(())
     }
 
+    /// A dwell time `v` given by word `c` (G4's P or X, a canned cycle's P), in seconds. Fanuc:
+    /// a number without a decimal point counts milliseconds (`G04 P500`, `G82 … P500`; Haas
+    /// reads `P0.5` as seconds); LinuxCNC: seconds.
+    pub(crate) fn dwell_seconds(&self, b: &Block, c: u8, v: f64) -> f64 {
+        if self.fanuc && b.without_point(c) {
+            v / 1000.0
+        } else {
+            v
+        }
+    }
+
     /// Program units → mm for axis `i` (rotary axes stay in degrees).
     #[inline]
     pub(crate) fn mm_from_units(&self, i: usize, v: f64) -> f64 {
@@ -884,11 +895,7 @@ impl<'t, 's> Interp<'t, 's> {
             if p < 0.0 {
                 return Err(Fault::semantic(b.span(c), "negative dwell time"));
             }
-            // Fanuc: a number without a decimal point counts milliseconds (`G04 P500`, and Haas
-            // reads `G04 P0.5` as seconds); LinuxCNC: seconds.
-            let ms =
-                self.fanuc && literal_has_point(lb, b.at[block::slot(c)] as usize) == Some(false);
-            self.emit(Canon::Dwell(if ms { p / 1000.0 } else { p }));
+            self.emit(Canon::Dwell(self.dwell_seconds(b, c, p)));
         }
         if let Some(g) = b.g(group::PLANE) {
             if self.comp.on() {
@@ -1827,21 +1834,6 @@ impl Interp<'_, '_> {
         out.push_str(rest);
         out
     }
-}
-
-/// Whether the value of the word whose letter stands at code index `at` is a literal number
-/// written with a decimal point; `None` when it is not a literal (a parameter, an expression).
-fn literal_has_point(lb: &LineBuf, at: usize) -> Option<bool> {
-    let rest = lb.code.get(at + 1..)?;
-    let rest = rest
-        .strip_prefix(b"-")
-        .or(rest.strip_prefix(b"+"))
-        .unwrap_or(rest);
-    let n = rest
-        .iter()
-        .take_while(|c| c.is_ascii_digit() || **c == b'.')
-        .count();
-    (n > 0).then(|| rest[..n].contains(&b'.'))
 }
 
 /// Whether normalised code (spaces out, lower case) starts with a Fanuc Macro B control word:
