@@ -47,8 +47,9 @@ pub(crate) struct SetupArgs {
     #[arg(long)]
     pub(crate) no_block_delete: bool,
     /// The machine's home, mm in the work frame with no offsets: where a G-code program starts,
-    /// where G28/G30 return to, and (while the program sets no work offset) the origin of G53's
-    /// machine coordinates (machine zero is the home on Fanuc, Haas, GRBL, Mach3). Default
+    /// where G28/G30 return to, and the origin of G53's machine coordinates for the whole
+    /// program, whatever work offsets or G92 it sets (machine zero is the home on Fanuc, Haas,
+    /// GRBL, Mach3). Default
     /// 0,0,0 (LinuxCNC's); a program's `G28 G91 Z0.` or `G53 G0 Z0.` means "retract", so give
     /// its home above the part.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_home, allow_hyphen_values = true)]

@@ -417,3 +417,42 @@ fn split_moves_get_their_own_feeds_and_stay_under_the_limit() {
         "{s} vs {t_whole}"
     );
 }
+
+/// A program whose lines end in a lone `\r` (old Mac editors) is scheduled line for line as the
+/// reader numbers it, each line and inserted piece ending in `\r`: the same program as with
+/// `\n` ends. Before, the rewrite saw one line and the schedule ended with an internal error
+/// ("reads back at").
+#[test]
+fn schedule_keeps_lone_carriage_return_line_ends() {
+    let d = dir("lone-cr");
+    let mat = write(&d, "al.toml", MATERIAL);
+    let text = "G21 G90 G94\nS1000 M3\nG0 X-10 Y10 Z-4\nG1 X12 F800\nG1 Y14\nG0 Z10\nG0 X-10 Y2\nG1 Z-4\nG1 X50\nG0 Z10\nM30\n";
+    let run = |name: &str, text: &str| -> String {
+        let prog = write(&d, name, text);
+        let out = d.join(format!("s-{name}"));
+        let o = swarf(&[
+            "schedule",
+            "--stock",
+            "box:0,0,-10,40,20,0",
+            "--program",
+            &prog,
+            "--tool",
+            "flat:d=10,flutes=4,helix=30",
+            "--coefficients",
+            &mat,
+            "--limit-force",
+            "500",
+            "--max-feed",
+            "1500",
+            "--split",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        std::fs::read_to_string(&out).unwrap()
+    };
+    let lf = run("lf.ngc", text);
+    assert!(lf.contains("G91 G1 X"), "{lf}");
+    let cr = run("cr.ngc", &text.replace('\n', "\r"));
+    assert_eq!(cr, lf.replace('\n', "\r"));
+}

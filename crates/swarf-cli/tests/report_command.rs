@@ -483,6 +483,72 @@ fn gouge_report_links_violations_to_lines() {
     assert_eq!(from.matches("<script").count(), 3);
 }
 
+/// The page shows the program lines its rows name as the reader numbers and decodes them: a
+/// program with lone `\r` line ends (old Mac editors), and one saved as UTF-16 with a
+/// byte-order mark (Windows "Unicode" text). Before, the first was one line on the page and
+/// the second was not read, so the plunge's line 6 showed empty.
+#[test]
+fn report_lines_of_lone_cr_and_utf16_programs() {
+    let dir = temp_dir("report-line-ends");
+    let floor = dir.join("floor.json");
+    std::fs::write(
+        &floor,
+        r#"{"units": "mm", "patches": [{"name": "floor", "degree_u": 1,
+  "degree_v": 1, "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+  "control_points": [[[-40, -40, 0, 1], [-40, 40, 0, 1]], [[40, -40, 0, 1], [40, 40, 0, 1]]]}]}"#,
+    )
+    .unwrap();
+    let text =
+        "G0 X-15 Y0 Z5\nG1 Z0 F300\nG1 X6\nG0 Z5\nG0 X-30 Y-30\nG1 Z-0.5 (the plunge)\nG0 Z5\n";
+    let utf16: Vec<u8> = [0xFF, 0xFE]
+        .into_iter()
+        .chain(
+            text.replace('\n', "\r\n")
+                .encode_utf16()
+                .flat_map(u16::to_le_bytes),
+        )
+        .collect();
+    for (name, bytes) in [
+        ("cr.ngc", text.replace('\n', "\r").into_bytes()),
+        ("utf16.ngc", utf16),
+    ] {
+        let prog = dir.join(name);
+        std::fs::write(&prog, bytes).unwrap();
+        let out = dir.join(format!("out-{name}"));
+        let (html, _) = page(
+            &dir,
+            name,
+            &[
+                "gouge",
+                "--surface",
+                floor.to_str().unwrap(),
+                "--program",
+                prog.to_str().unwrap(),
+                "--tool",
+                "flat:d=10",
+                "--out",
+                out.to_str().unwrap(),
+            ],
+        );
+        let shown = format!("{}:6: G1 Z-0.5 (the plunge)</span>", prog.display());
+        assert!(html.contains(&shown), "{name}: line 6 not shown");
+        let from = dir.join(format!("from-{name}.html"));
+        let o = swarf(&[
+            "report",
+            "--from",
+            out.to_str().unwrap(),
+            "--out",
+            from.to_str().unwrap(),
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let from = std::fs::read_to_string(&from).unwrap();
+        assert!(
+            from.contains(&shown),
+            "{name}: line 6 not shown by report --from"
+        );
+    }
+}
+
 #[test]
 fn toolsize_report_shows_the_part_and_its_maps() {
     let dir = temp_dir("toolsize");

@@ -26,7 +26,7 @@
 //! | `CSYS/` 3×4 matrix | applied to the following points (see below) |
 //! | `PARTNO`, `PPRINT`, `REMARK`, `TPRINT`, `TOOL PATH`, `INSERT` | comments (`INSERT` also warns); all but `TOOL PATH` may hold any text, with or without the slash (`PPRINT OPERATION : Sweep.1`) |
 //! | `TLAXIS/i,j,k` | the tool axis of the following `GOTO`s that give none |
-//! | `INDIRV/i,j,k` + `TLON,GOFWD/ (CIRCLE/ xc,yc,zc[,i,j,k],r), ON, (LINE/ …)` | CATIA's arc: from where the tool stands, in the `INDIRV` direction, about the circle's axis (the tool axis when it gives none), to the line (CATIA writes it from the centre to the end) |
+//! | `INDIRV/i,j,k` + `TLON,GOFWD/ (CIRCLE/ xc,yc,zc[,i,j,k],r), ON, (LINE/ …)` | CATIA's arc: from where the tool stands, in the `INDIRV` direction, about the circle's axis (the tool axis when it gives none), to the line (CATIA writes it from the centre to the end; a line through the centre gives the ray towards its far point), at the start's height along the axis |
 //! | `FINI` | end of program |
 //!
 //! `PAINT`, `COOLNT`, `MULTAX`, `SELCTL`, `END-OF-PATH`, `CUTCOM/OFF`, `STOP`, `OPSTOP`,
@@ -823,8 +823,9 @@ impl Reader<'_, '_> {
     /// x2,y2,z2)` after `INDIRV/ i,j,k`: the tool goes forward from where it stands, in the
     /// direction `INDIRV/` gives, along the circle (about the tool axis when the circle gives
     /// none) until it is on the line. CATIA writes the line from the centre to the arc's end,
-    /// and a line from the centre is read so (the end is on its ray); another line ends the arc
-    /// where the tool first meets it.
+    /// and a line through the centre, written either way round, is read so (the end is on the
+    /// ray from the centre towards its far point); another line ends the arc where the tool
+    /// first meets it. The arc is planar: the end is at the start's height along the axis.
     fn gofwd(&mut self, rec: &Record<'_>, minor_off: usize) -> Result<(), PathError> {
         let text = rec.text.as_str();
         let (line, column) = rec.locate(text.len() - text.trim_start().len());
@@ -941,9 +942,18 @@ impl Reader<'_, '_> {
         let n = if ccw { axis } else { -axis };
         let tol = self.options.arc_tolerance_mm.max(1e-9 * radius);
         let (d1, d2) = (flat(p1 - center), flat(p2 - center));
-        let end = if d1.length() <= tol && d2.length() > tol {
-            // A line from the centre: the end is on its ray, at the height of its far point.
-            center + d2.normalize() * radius + axis * axis.dot(p2 - center)
+        // The arc is planar: its end is at the start's height along the circle's axis, whatever
+        // the heights of the centre and the line.
+        let height = axis * axis.dot(start - center);
+        let ray = match (d1.length() <= tol, d2.length() <= tol) {
+            // A line from the centre (written centre → end or end → centre): the end is on the
+            // ray from the centre towards its far point.
+            (true, false) => Some(d2),
+            (false, true) => Some(d1),
+            _ => None,
+        };
+        let end = if let Some(far) = ray {
+            center + far.normalize() * radius + height
         } else {
             // Where the circle meets the line (in the plane), first reached going forward.
             let u = d2 - d1;
@@ -974,7 +984,7 @@ impl Reader<'_, '_> {
                 .into_iter()
                 .min_by(|p, q| sweep(*p).total_cmp(&sweep(*q)))
                 .unwrap_or(d2);
-            center + hit
+            center + hit + height
         };
         self.circle = Some(PendingCircle {
             center,

@@ -65,6 +65,36 @@ impl ProgramFormat {
     }
 }
 
+/// The lines of a program's text as its reader numbers them (line 1 first), each with its own
+/// line end: G-code lines end at `\n`, `\r\n` or a lone `\r` (old Mac editors' line end), as
+/// the G-code reader splits them; APT lines at `\n`. The last line may have none. Tools that
+/// point at or rewrite lines by the readers' numbers (`swarf schedule`, the report pages) use
+/// this, so that their line N is the reader's.
+pub fn program_lines_with_ends(text: &str, format: ProgramFormat) -> impl Iterator<Item = &str> {
+    let mut pos = 0;
+    std::iter::from_fn(move || {
+        (pos < text.len()).then(|| {
+            let rest = &text.as_bytes()[pos..];
+            let end = match format {
+                ProgramFormat::Gcode => crate::gcode::lexer::memchr_nl(rest),
+                ProgramFormat::Apt => rest.iter().position(|&c| c == b'\n'),
+            };
+            let next = end.map_or(text.len(), |i| pos + i + 1);
+            let line = &text[pos..next];
+            pos = next;
+            line
+        })
+    })
+}
+
+/// The lines of [`program_lines_with_ends`] without their line ends (`\n`, `\r\n`, `\r`).
+pub fn program_lines(text: &str, format: ProgramFormat) -> impl Iterator<Item = &str> {
+    program_lines_with_ends(text, format).map(|l| {
+        let l = l.strip_suffix('\n').unwrap_or(l);
+        l.strip_suffix('\r').unwrap_or(l)
+    })
+}
+
 /// Options for reading a program of either language.
 #[derive(Clone, Debug, Default)]
 pub struct ReadOptions {

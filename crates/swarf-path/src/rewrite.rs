@@ -221,7 +221,7 @@ pub fn gcode_line_modes(text: &str, initial_inch: bool) -> Vec<LineModes> {
         inch: initial_inch,
         transformed: false,
     };
-    text.split('\n')
+    crate::load::program_lines(text, ProgramFormat::Gcode)
         .map(|line| {
             let w = words(line);
             let g = |x: f64| w.iter().any(|&(c, v)| c == 'G' && (v - x).abs() < 1e-9);
@@ -289,7 +289,7 @@ pub fn rewrite_feeds(
             "a plain number, which swarf schedule can rescale",
         )
     };
-    for (k, raw) in text.split_inclusive('\n').enumerate() {
+    for (k, raw) in crate::load::program_lines_with_ends(text, format).enumerate() {
         let n = k as u32 + 1;
         let body_len = raw.trim_end_matches(['\n', '\r']).len();
         let (body, eol) = raw.split_at(body_len);

@@ -356,6 +356,49 @@ fn catia_circles_go_forward_in_the_indirv_direction_to_the_line() {
     assert!(e.message.contains("before any position"), "{e}");
 }
 
+/// A CATIA arc is planar, at the start's height along the circle's axis, whatever the heights
+/// of the CIRCLE's centre and the LINE's points; a LINE through the centre gives the ray from
+/// the centre towards its far point, written either way round. Before, the end took the line's
+/// far point's height (a centre at z = 0 turned a start at z = -1 into a 1 mm helix), or the
+/// centre's, and a line written end → centre was cut where the tool first met it.
+#[test]
+fn catia_arcs_stay_at_the_start_height_and_lines_from_the_centre_read_both_ways() {
+    let head = "MULTAX\nGOTO/50,10,-1,0,0,1\nINDIRV/1,0,0\n";
+    let end = |tail: &str| {
+        let e = events(&format!("{head}{tail}\n"));
+        let a = arcs(&e);
+        assert_eq!(a.len(), 1, "{tail}");
+        (a[0].0, a[0].2)
+    };
+    let close = |p: Axes, q: Axes| {
+        (p.x - q.x).abs() < 1e-12 && (p.y - q.y).abs() < 1e-12 && (p.z - q.z).abs() < 1e-12
+    };
+    for tail in [
+        // The centre and line at z = 0, and a far point above it.
+        "TLON,GOFWD/(CIRCLE/50,20,0,10),ON,(LINE/50,20,0,60,20,0)",
+        "TLON,GOFWD/(CIRCLE/50,20,0,10),ON,(LINE/50,20,-1,60,20,5)",
+        // Written end → centre.
+        "TLON,GOFWD/(CIRCLE/50,20,0,10),ON,(LINE/60,20,0,50,20,0)",
+        "TLON,GOFWD/(CIRCLE/50,20,-1,10),ON,(LINE/70,20,-1,50,20,-1)",
+    ] {
+        let (p, rot) = end(tail);
+        assert!(close(p, at(60.0, 20.0, -1.0)), "{tail}: {p:?}");
+        assert_eq!(rot, 1, "{tail}");
+    }
+    // Clockwise (the long way round) to a line written end → centre: still its ray, not the
+    // first crossing at (40, 20).
+    let cw = events(
+        "MULTAX\nGOTO/50,10,-1,0,0,1\nINDIRV/-1,0,0\nTLON,GOFWD/(CIRCLE/50,20,-1,10),ON,(LINE/60,20,-1,50,20,-1)\n",
+    );
+    let a = arcs(&cw);
+    assert_eq!(a.len(), 1);
+    assert!(close(a[0].0, at(60.0, 20.0, -1.0)), "{:?}", a[0].0);
+    assert_eq!(a[0].2, -1);
+    // A line not through the centre, the circle at z = 0: the crossing at the start's height.
+    let (p, _) = end("TLON,GOFWD/(CIRCLE/50,20,0,0,0,1,10),ON,(LINE/55,0,3,55,40,3)");
+    assert!(close(p, at(55.0, 20.0 - 75f64.sqrt(), -1.0)), "{p:?}");
+}
+
 proptest! {
     #![proptest_config(swarf_testdata::proptest_config(512))]
     /// Any text: an error or events, never a panic.

@@ -458,6 +458,18 @@ fn g04_x_is_a_dwell_and_p_without_a_point_counts_milliseconds() {
 }
 
 #[test]
+fn canned_cycle_dwell_p_without_a_point_counts_milliseconds() {
+    // Fanuc: `G82 … P500` dwells 500 ms at the bottom, as `G04 P500` does (it dwelt 500 s);
+    // the P stays for the next holes; `P0.5` is seconds (Haas).
+    let src = "O1\nG21 G90 G0 X0 Y0 Z10.\nG82 X5. Y5. Z-2. R2. P500 F100.\nX10.\nG80\nG89 X15. Z-2. R2. P0.5\nG80\nM30\n";
+    assert_eq!(dwells(src, &fanuc()), [0.5, 0.5, 0.5]);
+    // LinuxCNC: P in seconds.
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let src = "G21 G90 G0 X0 Y0 Z10\nG82 X5 Y5 Z-2 R2 P2 F100\nG80\n";
+    assert_eq!(dwells(src, &linuxcnc), [2.0]);
+}
+
+#[test]
 fn g00_beside_g28_is_modal_and_g28_takes_the_axes() {
     // `G00 G91 G28 Z0.`: the reference return moves; G00 is the motion of the next blocks.
     let src = "O1\nG21 G90 G1 X10. Y10. Z5. F100.\nG00 G91 G28 Z0.\nG90 X20.\nM30\n";
@@ -488,16 +500,41 @@ fn g53_positions_are_measured_from_the_home() {
     assert_eq!(m[4], ('R', 20.0, 10.0, 295.0));
     let m = moves(src, &fanuc()).unwrap();
     assert_eq!(m[2], ('R', 10.0, 10.0, 0.0));
-    // A program that sets its work offset states the machine frame itself: G53 Z0. is 100 mm
-    // above a work origin at machine Z-100, home given or not.
+    // The home is G53's zero for the whole run, whatever offsets the program sets: with a work
+    // origin at Z-100 in the frame the home is given in, G53 Z0. is the home, 400 mm above the
+    // work; with no home given, the frame's origin, 100 mm above.
     let own = "O1\nG21 G90\nG10 L2 P1 Z-100.\nG54 G0 X0 Y0\nG53 G0 Z0.\nM30\n";
     let m = moves(own, &fanuc().with_home([0.0, 0.0, 300.0])).unwrap();
+    assert_eq!(m.last(), Some(&('R', 0.0, 0.0, 400.0)));
+    let m = moves(own, &fanuc()).unwrap();
     assert_eq!(m.last(), Some(&('R', 0.0, 0.0, 100.0)));
     let w = warnings(src);
     let g53: Vec<_> = w.iter().filter(|(_, m)| m.contains("G53")).collect();
     assert_eq!(g53.len(), 1, "{w:?}");
     assert_eq!(g53[0].0, 5);
     assert!(g53[0].1.contains("--home"), "{w:?}");
+}
+
+#[test]
+fn g53_keeps_the_home_as_its_zero_after_g92_and_work_offsets() {
+    // G92 moves the work's zero, not the machine's: the second `G53 G0 Z0.` goes back to the
+    // home where the first went, which G92 Z0 has just called Z0 (it went 300 mm below, to
+    // program Z-300, when the home counted only while no offset was set).
+    let home = fanuc().with_home([0.0, 0.0, 300.0]);
+    let src = "O1\nG21 G90\nG53 G0 Z0.\nG92 Z0\nG53 G0 Z0.\nM30\n";
+    let m = moves(src, &home).unwrap();
+    assert_eq!(m, [('R', 0.0, 0.0, 300.0), ('R', 0.0, 0.0, 0.0)]);
+    // A work offset chosen after a G53 move: G53 Z-5. is 5 mm below the home either way (the
+    // work's Z0 at Z-50 of the home's frame puts it at program Z345).
+    let src = "O1\nG21 G90\nG53 G0 Z-5.\nG10 L2 P2 Z-50.\nG55\nG53 G0 Z-5.\nM30\n";
+    let m = moves(src, &home).unwrap();
+    assert_eq!(m, [('R', 0.0, 0.0, 295.0), ('R', 0.0, 0.0, 345.0)]);
+    // The machine position (#5023) reads in the same G53 coordinates.
+    let linuxcnc = GcodeOptions::default()
+        .with_dialect(GcodeDialect::LinuxCnc)
+        .with_home([0.0, 0.0, 300.0]);
+    let m = moves("G21 G90\nG53 G0 Z-5.\nG0 Z[#5023]\n", &linuxcnc).unwrap();
+    assert_eq!(m.last(), Some(&('R', 0.0, 0.0, -5.0)));
 }
 
 #[test]

@@ -774,6 +774,36 @@ fn grbl_system_commands_are_skipped_or_refused() {
     let e = err("$J=G91 X10 F100\n");
     assert_eq!(e.kind, PathErrorKind::Unsupported);
     assert_eq!(e.found, "$J=G91 X10 F100");
+    // The rest of GRBL's grammar.
+    let rec = run("$G\n$I\n$N\n$C\n$#\n$SLP\n$RST=$\n$N0=G20 G54\n$110=500.000\n$HZ\nG0 X1\n");
+    assert_xyz(last_pos(&rec), 1.0, 0.0, 0.0);
+    let skipped: Vec<u32> = rec
+        .warnings
+        .iter()
+        .filter(|w| w.message.contains("skipped"))
+        .map(|w| w.line)
+        .collect();
+    assert_eq!(skipped, (1..=10).collect::<Vec<_>>(), "{:?}", rec.warnings);
+}
+
+/// A line that starts with `$` but is not GRBL's (LinuxCNC 2.8+'s spindle select `$1`, word
+/// order free) goes to the G-code reader, which does not read `$` (an error at the line, as
+/// before GRBL's lines were skipped), instead of being skipped with its spindle start.
+#[test]
+fn dollar_lines_outside_grbl_grammar_are_g_code() {
+    for src in [
+        "$1 M3 S1000\nG0 X1\n",
+        "$0M5\n",
+        "$12=\n",
+        "$1=2=3\n",
+        "$HQ\n",
+        "$SLPX\n",
+    ] {
+        let e = err(src);
+        assert_eq!(e.kind, PathErrorKind::Syntax, "{src:?}: {e}");
+        assert_eq!((e.pos.line, e.pos.column), (1, 1), "{src:?}: {e}");
+        assert!(e.message.contains("unexpected text"), "{src:?}: {e}");
+    }
 }
 
 /// Real posts' spelling: no spaces (Vectric), leading zeros, `5.` `.5` `-0.` `+1.`, spaces

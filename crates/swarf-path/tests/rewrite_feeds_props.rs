@@ -69,3 +69,46 @@ proptest! {
         }
     }
 }
+
+/// Lines end where the G-code reader ends them: at `\n`, `\r\n` or a lone `\r` (old Mac
+/// editors), so line N of the rewrite is the reader's line N, and each keeps its own line end.
+/// Before, a file with lone `\r` ends was one line to the rewrite.
+#[test]
+fn lone_carriage_returns_end_lines_and_each_keeps_its_end() {
+    use swarf_path::load::{program_lines, program_lines_with_ends};
+    use swarf_path::rewrite::{gcode_line_modes, SplitPiece};
+    let text = "G21 G90\rG1 X10 F100\rG1 X20\r\nG1 X30\n";
+    assert_eq!(
+        program_lines_with_ends(text, ProgramFormat::Gcode).collect::<Vec<_>>(),
+        ["G21 G90\r", "G1 X10 F100\r", "G1 X20\r\n", "G1 X30\n"]
+    );
+    assert_eq!(
+        program_lines(text, ProgramFormat::Gcode).collect::<Vec<_>>(),
+        ["G21 G90", "G1 X10 F100", "G1 X20", "G1 X30"]
+    );
+    // APT is read by lines ending at `\n`, and counted so.
+    assert_eq!(program_lines("A\rB\r\nC", ProgramFormat::Apt).count(), 2);
+    let factors: BTreeMap<u32, f64> = [(2, 0.5), (3, 1.0), (4, 1.0)].into();
+    let r = rewrite_feeds(text, "p", ProgramFormat::Gcode, &factors, &BTreeMap::new()).unwrap();
+    assert_eq!(r.text, "G21 G90\rG1 X10 F50\rG1 X20 F100\r\nG1 X30\n");
+    // A split line's pieces end as the line does.
+    let splits: BTreeMap<u32, Vec<SplitPiece>> = [(
+        3,
+        vec![SplitPiece {
+            delta: [5.0, 0.0, 0.0],
+            factor: 0.5,
+        }],
+    )]
+    .into();
+    let text = "G21 G90\rG1 X10 F100\rG1 X20\r";
+    let factors: BTreeMap<u32, f64> = [(2, 1.0), (3, 1.0)].into();
+    let r = rewrite_feeds(text, "p", ProgramFormat::Gcode, &factors, &splits).unwrap();
+    assert_eq!(
+        r.text,
+        "G21 G90\rG1 X10 F100\rG91 G1 X5 Y0 Z0 F50\rG90\rG1 X20 F100\r"
+    );
+    // The modes are per line too: G91 on line 2 is not in effect on line 1.
+    let modes = gcode_line_modes("G90\rG91 G1 X1\rG20\r", false);
+    assert_eq!(modes.len(), 3);
+    assert!(modes[0].absolute && !modes[1].absolute && modes[2].inch && !modes[1].inch);
+}

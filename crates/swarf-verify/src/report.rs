@@ -189,13 +189,7 @@ pub fn html_report(v: &Verification, inputs: &ReportInputs<'_>) -> String {
         .map(|(file, line)| SourceLine {
             file: file.clone(),
             line: *line,
-            text: inputs
-                .sources
-                .iter()
-                .find(|(f, _)| f == file)
-                .and_then(|(_, t)| t.lines().nth((*line as usize).checked_sub(1)?))
-                .unwrap_or("")
-                .to_string(),
+            text: swarf_io::html::source_line(inputs.sources, file, *line).to_string(),
         })
         .collect();
     let (part, legend) = inputs.part;

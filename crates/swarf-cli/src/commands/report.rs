@@ -75,13 +75,18 @@ pub(crate) fn resolved_tools(
         .collect()
 }
 
-/// The text of the program's files (for the lines a page links to); unreadable ones are left
+/// The text of the program's files (for the lines a page links to), decoded as the readers
+/// decode them (UTF-16, Latin-1: [`swarf_path::load::read_text`]); unreadable ones are left
 /// out.
 pub(crate) fn sources(program: &Program) -> Vec<(String, String)> {
     program
         .files
         .iter()
-        .filter_map(|f| std::fs::read_to_string(f).ok().map(|t| (f.clone(), t)))
+        .filter_map(|f| {
+            swarf_path::load::read_text(Path::new(f))
+                .ok()
+                .map(|t| (f.clone(), t))
+        })
         .collect()
 }
 

@@ -21,7 +21,7 @@ use swarf_geom::math::Vec3;
 use crate::mesh::TriMesh;
 
 mod page;
-pub use page::{figure_text, MAX_IMAGES, MAX_ROWS};
+pub use page::{figure_text, source_line, MAX_IMAGES, MAX_ROWS};
 
 /// The viewer's script, embedded in every report.
 pub const VIEWER_JS: &str = include_str!("viewer.js");

@@ -10,6 +10,7 @@ use super::{DefectRow, Marker, Plot, Report, SourceLine};
 use crate::error::IoError;
 use crate::TriMesh;
 use swarf_geom::math::Vec3;
+use swarf_path::load::{decode_text, program_lines, ProgramFormat};
 
 /// Most rows (and markers) a page lists from a CSV table.
 pub const MAX_ROWS: usize = 2000;
@@ -148,6 +149,7 @@ impl Report {
 
     /// Fills the program lines the rows name from the files' text `sources` (file name, text),
     /// in order of first mention, at most [`MAX_ROWS`]; a file not given shows empty lines.
+    /// Lines are counted as the program readers count them ([`source_line`]).
     pub fn with_sources(mut self, sources: &[(String, String)]) -> Self {
         let mut wanted: Vec<(String, u32)> = Vec::new();
         for (f, l) in self.defects.iter().filter_map(|d| d.line.as_ref()) {
@@ -158,12 +160,7 @@ impl Report {
         self.source = wanted
             .into_iter()
             .map(|(file, line)| {
-                let text = sources
-                    .iter()
-                    .find(|(f, _)| *f == file)
-                    .and_then(|(_, t)| t.lines().nth((line as usize).checked_sub(1)?))
-                    .unwrap_or("")
-                    .to_string();
+                let text = source_line(sources, &file, line).to_string();
                 SourceLine { file, line, text }
             })
             .collect();
@@ -181,7 +178,8 @@ impl Report {
     /// `swarf simulate --out`), and the rows of `defects.csv` (`swarf verify`) or
     /// `violations.csv` (`swarf gouge`), linked to their `file` and `line` columns and marked at
     /// their `x,y,z` columns when it has them. The program lines' text is read from the files
-    /// the rows name when they can be read.
+    /// the rows name when they can be read, decoded as the program readers decode them
+    /// ([`source_text`]).
     pub fn from_dir(dir: &Path) -> Result<Self, IoError> {
         let summary_path = dir.join("summary.json");
         let text =
@@ -232,10 +230,31 @@ impl Report {
         let sources: Vec<(String, String)> = files
             .into_iter()
             .filter(|f| is_source_file(Path::new(f)))
-            .filter_map(|f| std::fs::read_to_string(&f).ok().map(|t| (f, t)))
+            .filter_map(|f| source_text(Path::new(&f)).map(|t| (f, t)))
             .collect();
         Ok(r.with_sources(&sources))
     }
+}
+
+/// Line `line` (1-based) of `file`'s text in `sources` (file name, text), counted as the
+/// program readers count lines ([`program_lines`]: a G-code line also ends at a lone `\r`, the
+/// line end of old Mac editors); empty when the file is not given or has no such line.
+pub fn source_line<'a>(sources: &'a [(String, String)], file: &str, line: u32) -> &'a str {
+    sources
+        .iter()
+        .find(|(f, _)| f == file)
+        .and_then(|(f, t)| {
+            let format = ProgramFormat::detect(Path::new(f), t);
+            program_lines(t, format).nth((line as usize).checked_sub(1)?)
+        })
+        .unwrap_or("")
+}
+
+/// A program file's text as the program readers decode it
+/// ([`decode_text`](swarf_path::load::decode_text): UTF-16 with a byte-order mark, else UTF-8
+/// with other bytes replaced), for [`Report::with_sources`]; `None` when it cannot be read.
+fn source_text(path: &Path) -> Option<String> {
+    std::fs::read(path).ok().map(decode_text)
 }
 
 /// Largest program file a report reads to show the lines its rows name, bytes.

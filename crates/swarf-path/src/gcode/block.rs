@@ -109,6 +109,9 @@ pub(crate) struct Block {
     pub(crate) at: [u32; 28],
     /// Which letter words are present.
     pub(crate) mask: u32,
+    /// Which letter words are literal numbers written without a decimal point (`P500`, not
+    /// `P0.5`, `P#1` or `P[500]`): Fanuc reads such a dwell time in milliseconds.
+    pub(crate) no_point: u32,
     /// G code (× 10) of each modal group.
     pub(crate) g: [u16; group::N],
     /// Code index of each G word.
@@ -159,6 +162,7 @@ impl Default for Block {
             g: [0; group::N],
             g_at: [0; group::N],
             g_mask: 0,
+            no_point: 0,
             m_stop: None,
             m_stop_at: 0,
             m_spindle: None,
@@ -182,6 +186,7 @@ impl Default for Block {
 impl Block {
     fn clear(&mut self) {
         self.mask = 0;
+        self.no_point = 0;
         self.g_mask = 0;
         self.m_stop = None;
         self.m_spindle = None;
@@ -200,6 +205,11 @@ impl Block {
     #[inline]
     pub(crate) fn has(&self, c: u8) -> bool {
         self.mask & (1 << slot(c)) != 0
+    }
+    /// Whether letter `c` is present as a literal number without a decimal point.
+    #[inline]
+    pub(crate) fn without_point(&self, c: u8) -> bool {
+        self.no_point & (1 << slot(c)) != 0
     }
     /// The value of letter `c`, if present.
     #[inline]
@@ -422,6 +432,9 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                 b.val[s] = v;
                 b.at[s] = at as u32;
                 b.mask |= 1 << s;
+                if literal_has_point(&lb.code, at) == Some(false) {
+                    b.no_point |= 1 << s;
+                }
             }
             _ => {
                 let end = c.token_end(at);
@@ -492,6 +505,21 @@ pub(crate) fn g_name(code: u16) -> String {
     } else {
         format!("G{}.{}", code / 10, code % 10)
     }
+}
+
+/// Whether the value of the word whose letter stands at code index `at` is a literal number
+/// written with a decimal point; `None` when it is not a literal (a parameter, an expression).
+fn literal_has_point(code: &[u8], at: usize) -> Option<bool> {
+    let rest = code.get(at + 1..)?;
+    let rest = rest
+        .strip_prefix(b"-")
+        .or(rest.strip_prefix(b"+"))
+        .unwrap_or(rest);
+    let n = rest
+        .iter()
+        .take_while(|c| c.is_ascii_digit() || **c == b'.')
+        .count();
+    (n > 0).then(|| rest[..n].contains(&b'.'))
 }
 
 #[cfg(test)]

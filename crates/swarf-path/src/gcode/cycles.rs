@@ -194,14 +194,14 @@ impl Interp<'_, '_> {
         }
         let dwell = if matches!(motion, 740 | 840 | 860 | 880) {
             match b.get(b'p') {
-                Some(p) if p >= 0.0 => p,
+                Some(p) if p >= 0.0 => self.dwell_seconds(b, b'p', p),
                 Some(_) => return Err(Fault::semantic(b.span(b'p'), "negative dwell time")),
                 None if same => self.cycle.p,
                 None => 0.0,
             }
         } else if matches!(motion, 820 | 890) {
             match b.get(b'p') {
-                Some(p) if p >= 0.0 => p,
+                Some(p) if p >= 0.0 => self.dwell_seconds(b, b'p', p),
                 Some(_) => return Err(Fault::semantic(b.span(b'p'), "negative dwell time")),
                 None if same => self.cycle.p,
                 None => {
@@ -209,7 +209,11 @@ impl Interp<'_, '_> {
                         PathErrorKind::Semantic,
                         gspan,
                         "dwell time P missing in canned cycle",
-                        "P<seconds>",
+                        if self.fanuc {
+                            "P<milliseconds>"
+                        } else {
+                            "P<seconds>"
+                        },
                     ))
                 }
             }

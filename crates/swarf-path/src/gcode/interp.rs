@@ -511,7 +511,7 @@ impl<'t, 's> Interp<'t, 's> {
             }
             return Ok(());
         }
-        if lb.code.first() == Some(&b'$') {
+        if is_grbl_command(&lb.code) {
             return self.grbl_command(lb);
         }
         if lb.code.first() == Some(&b'%') {
@@ -562,7 +562,7 @@ impl<'t, 's> Interp<'t, 's> {
         Ok(())
     }
 
-    /// A GRBL system command (`$H`, `$X`, `$$`, `$1=25`, `$J=…`): a line for GRBL itself, not
+    /// A GRBL system command ([`is_grbl_command`]): a line for GRBL itself, not
     /// G-code. Those that do not move the tool are skipped with a warning; a jog, and a homing
     /// cycle once the program has moved (it ends wherever the machine's switches are), are
     /// refused, since skipping them would change the motion.
@@ -595,6 +595,17 @@ impl<'t, 's> Interp<'t, 's> {
         };
         self.warn_code(lb, 0, format!("`{shown}` skipped: {why}"));
         Ok(())
+    }
+
+    /// A dwell time `v` given by word `c` (G4's P or X, a canned cycle's P), in seconds. Fanuc:
+    /// a number without a decimal point counts milliseconds (`G04 P500`, `G82 … P500`; Haas
+    /// reads `P0.5` as seconds); LinuxCNC: seconds.
+    pub(crate) fn dwell_seconds(&self, b: &Block, c: u8, v: f64) -> f64 {
+        if self.fanuc && b.without_point(c) {
+            v / 1000.0
+        } else {
+            v
+        }
     }
 
     /// Program units → mm for axis `i` (rotary axes stay in degrees).
@@ -631,7 +642,10 @@ impl<'t, 's> Interp<'t, 's> {
             5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20],
             5420..=5425 => self.to_units(n - 5420, self.p[n - 5420]),
             // The machine position (G53 coordinates).
-            5021..=5026 => self.to_units(n - 5021, self.machine()[n - 5021]),
+            5021..=5026 => self.to_units(
+                n - 5021,
+                self.machine()[n - 5021] - self.g53_origin()[n - 5021],
+            ),
             5400 => f64::from(self.tool),
             5401..=5406 => {
                 let e = self.tool_table.get(&self.tool).copied().unwrap_or([0.0; 6]);
@@ -703,6 +717,18 @@ impl<'t, 's> Interp<'t, 's> {
 
     pub(crate) fn machine(&self) -> [f64; 6] {
         self.machine_of(&self.p)
+    }
+
+    /// Where G53's zero is in swarf's machine frame (the work frame with no offsets): the home
+    /// when one is given, for the whole program — machine zero is the home (reference point)
+    /// on Fanuc, Haas, GRBL and Mach3 controls, and G92, G10 and G54–G59 move the work's zero,
+    /// not the machine's; else the origin, as LinuxCNC's usual `HOME = 0`.
+    pub(crate) fn g53_origin(&self) -> [f64; 6] {
+        let mut o = [0.0; 6];
+        if let Some(h) = self.opts.home {
+            o[..3].copy_from_slice(&h);
+        }
+        o
     }
 
     /// Changes the offsets in effect keeping the machine position, and says so.
@@ -869,11 +895,7 @@ impl<'t, 's> Interp<'t, 's> {
             if p < 0.0 {
                 return Err(Fault::semantic(b.span(c), "negative dwell time"));
             }
-            // Fanuc: a number without a decimal point counts milliseconds (`G04 P500`, and Haas
-            // reads `G04 P0.5` as seconds); LinuxCNC: seconds.
-            let ms =
-                self.fanuc && literal_has_point(lb, b.at[block::slot(c)] as usize) == Some(false);
-            self.emit(Canon::Dwell(if ms { p / 1000.0 } else { p }));
+            self.emit(Canon::Dwell(self.dwell_seconds(b, c, p)));
         }
         if let Some(g) = b.g(group::PLANE) {
             if self.comp.on() {
@@ -1335,17 +1357,7 @@ impl<'t, 's> Interp<'t, 's> {
     /// words `@` (radius) and `^` (angle, degrees) in the XY plane.
     pub(crate) fn find_ends(&self, b: &Block, g53: bool) -> Res<[f64; 6]> {
         let mut e = self.p;
-        // Where G53's zero is in swarf's machine frame (the work frame with no offsets): the
-        // home, when the program sets no work offset — machine zero is the home on Fanuc, Haas,
-        // GRBL and Mach3 controls (and LinuxCNC's usual HOME = 0), and the home's place in the
-        // work frame is all that is known of the machine then; with offsets the program set,
-        // that frame is the machine's own (its origin).
-        let mut g53_origin = [0.0; 6];
-        if let Some(h) = self.opts.home {
-            if self.off == [0.0; 6] && self.g92 == [0.0; 6] {
-                g53_origin[..3].copy_from_slice(&h);
-            }
-        }
+        let g53_origin = self.g53_origin();
         for (i, &c) in AXIS_LETTERS.iter().enumerate() {
             if let Some(v) = b.get(c) {
                 let v = self.mm_from_units(i, v);
@@ -1824,21 +1836,6 @@ impl Interp<'_, '_> {
     }
 }
 
-/// Whether the value of the word whose letter stands at code index `at` is a literal number
-/// written with a decimal point; `None` when it is not a literal (a parameter, an expression).
-fn literal_has_point(lb: &LineBuf, at: usize) -> Option<bool> {
-    let rest = lb.code.get(at + 1..)?;
-    let rest = rest
-        .strip_prefix(b"-")
-        .or(rest.strip_prefix(b"+"))
-        .unwrap_or(rest);
-    let n = rest
-        .iter()
-        .take_while(|c| c.is_ascii_digit() || **c == b'.')
-        .count();
-    (n > 0).then(|| rest[..n].contains(&b'.'))
-}
-
 /// Whether normalised code (spaces out, lower case) starts with a Fanuc Macro B control word:
 /// `WHILE[`, `IF[`, `GOTO<n>`, `END<n>` (a G-code word never starts so).
 fn is_macro_b(code: &[u8]) -> bool {
@@ -1850,4 +1847,36 @@ fn is_macro_b(code: &[u8]) -> bool {
         || code.starts_with(b"if[")
         || digit_after(b"goto")
         || digit_after(b"end")
+}
+
+/// Whether a normalised line (lower case, no spaces) is one of GRBL's own commands: `$$`, `$#`,
+/// `$G`, `$I`, `$N`, `$C`, `$X`, `$H` (optionally with axis letters), `$SLP`, `$RST=…`,
+/// `$N<digit>=…`, `$<digits>=<number>` or a jog `$J=…`. Other lines starting with `$` are
+/// G-code (LinuxCNC 2.8+'s spindle-select word, in any order: `$1 M3 S1000`) and are read as
+/// such.
+fn is_grbl_command(code: &[u8]) -> bool {
+    let Some(rest) = code.strip_prefix(b"$") else {
+        return false;
+    };
+    let number = |t: &[u8]| {
+        let t = t
+            .strip_prefix(b"-")
+            .or_else(|| t.strip_prefix(b"+"))
+            .unwrap_or(t);
+        let digits = t.iter().filter(|c| c.is_ascii_digit()).count();
+        let points = t.iter().filter(|&&c| c == b'.').count();
+        digits > 0 && points <= 1 && digits + points == t.len()
+    };
+    match rest {
+        b"$" | b"#" | b"g" | b"i" | b"n" | b"c" | b"x" | b"slp" => true,
+        [b'h', axes @ ..] => axes.iter().all(|c| b"xyzabc".contains(c)),
+        _ if rest.starts_with(b"rst=") || rest.starts_with(b"j=") => true,
+        [b'n', d, b'=', ..] if d.is_ascii_digit() => true,
+        _ => match rest.iter().position(|&c| c == b'=') {
+            Some(eq) => {
+                eq > 0 && rest[..eq].iter().all(u8::is_ascii_digit) && number(&rest[eq + 1..])
+            }
+            None => false,
+        },
+    }
 }

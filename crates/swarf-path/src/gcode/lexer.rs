@@ -70,7 +70,9 @@ pub(crate) fn lines(text: &str) -> impl Iterator<Item = &str> {
     })
 }
 
-fn memchr_nl(b: &[u8]) -> Option<usize> {
+/// Where the first line of `b` ends: its `\n` (the `\n` of a `\r\n`), or a `\r` not followed
+/// by `\n`.
+pub(crate) fn memchr_nl(b: &[u8]) -> Option<usize> {
     b.iter()
         .enumerate()
         .position(|(i, &c)| c == b'\n' || (c == b'\r' && b.get(i + 1) != Some(&b'\n')))

@@ -63,7 +63,7 @@ mod dialect;
 mod expr;
 mod frames;
 mod interp;
-mod lexer;
+pub(crate) mod lexer;
 mod params;
 mod splines;
 mod stack;
@@ -167,8 +167,9 @@ pub struct GcodeOptions {
     /// stored positions, #5161–#5163 and #5181–#5183, unless the parameters set them). `None`:
     /// the origin, as LinuxCNC starts with zero parameters — which puts a Fanuc/Haas
     /// program's reference return (`G28 G91 Z0.`) on the work's Z0. Given, it is also the origin
-    /// of the positions G53 moves to while no work offset is set (machine zero is the home on
-    /// Fanuc, Haas, GRBL and Mach3 controls): `G53 G0 Z0.` goes to the home's Z.
+    /// of the positions G53 moves to (and of #5021–#5026) for the whole program, whatever work
+    /// offsets and G92 it sets (machine zero is the home on Fanuc, Haas, GRBL and Mach3
+    /// controls): `G53 G0 Z0.` goes to the home's Z.
     pub home: Option<[f64; 3]>,
 }
 
