@@ -131,11 +131,12 @@ pub fn format_feed(v: f64) -> String {
 /// Decimals of [`format_feed`]'s number: about six significant digits.
 fn feed_decimals(v: f64) -> usize {
     let digits = if v.abs() >= 1.0 {
-        v.abs().log10().floor() as i32 + 1
+        // (Saturating: an infinite or huge value is refused before it is written.)
+        (v.abs().log10().floor() as i32).saturating_add(1)
     } else {
         0
     };
-    (6 - digits).clamp(1, 9) as usize
+    6i32.saturating_sub(digits).clamp(1, 9) as usize
 }
 
 /// [`format_feed`] of a positive feed, rounded down at its last digit: a feed scheduled to a
@@ -317,6 +318,14 @@ pub fn rewrite_feeds(
             None => None,
         };
         if let Some(w) = word {
+            if !w.value.is_finite() {
+                return Err(err(
+                    n,
+                    w.start + 1,
+                    "the feed is not a finite number",
+                    body.get(w.start..w.end).unwrap_or("").trim(),
+                ));
+            }
             original = Some(w.value);
             if format == ProgramFormat::Apt {
                 template = Some((body.to_string(), w));
@@ -542,6 +551,25 @@ mod tests {
             rewrite_feeds(text, "t.ngc", ProgramFormat::Gcode, &ones, &BTreeMap::new()).unwrap();
         assert_eq!(r.text, text);
         assert!(r.lines_changed.is_empty());
+    }
+
+    #[test]
+    fn an_infinite_feed_is_refused_not_written() {
+        // Found by the fuzzer: FEDRAT/ 3.3E3333333 overflowed the digit count (a panic in a
+        // debug build; "inf" written in a release one).
+        let huge = format!("G1 X1 F{}\nG1 X2\n", "9".repeat(400));
+        for (text, format) in [
+            ("FEDRAT/ 3.3E3333333\nGOTO/1,2,3\n", ProgramFormat::Apt),
+            (huge.as_str(), ProgramFormat::Gcode),
+        ] {
+            let f = factors(&[(1, 0.5), (2, 0.5)]);
+            let e = rewrite_feeds(text, "t", format, &f, &BTreeMap::new()).unwrap_err();
+            // (G-code's number reader refuses the 400 digits itself: not a plain number.)
+            assert!(e.to_string().contains("not a"), "{e}");
+        }
+        // Out of range, the digit count saturates instead of overflowing.
+        assert_eq!(feed_decimals(f64::INFINITY), 1);
+        assert_eq!(feed_decimals(f64::MAX), 1);
     }
 
     #[test]
