@@ -98,7 +98,9 @@ pub fn fresh_scratch_dir(tag: &str) -> PathBuf {
 }
 
 /// Removes the folders `{prefix}{pid}` of `tmp` whose process is gone (on Linux, where
-/// `/proc` tells; elsewhere none).
+/// `/proc` tells; elsewhere none) and that nothing has touched for an hour: a run in another
+/// PID namespace sharing `/tmp` (a container) has processes this one cannot see, and its
+/// folders are being written.
 fn remove_stale(tmp: &Path, prefix: &str) {
     let proc = Path::new("/proc/self");
     if !proc.exists() {
@@ -117,7 +119,11 @@ fn remove_stale(tmp: &Path, prefix: &str) {
         else {
             continue;
         };
-        if pid != me && !Path::new(&format!("/proc/{pid}")).exists() {
+        let idle = e
+            .metadata()
+            .and_then(|m| m.modified())
+            .is_ok_and(|t| t.elapsed().is_ok_and(|d| d.as_secs() > 3600));
+        if pid != me && idle && !Path::new(&format!("/proc/{pid}")).exists() {
             let _ = std::fs::remove_dir_all(e.path());
         }
     }
