@@ -47,14 +47,20 @@ fn facing(z: f64) -> String {
 
 /// A 40 × 40 × 12 stock cut by `program` (h = 0.25) with tracked provenance.
 fn machined(program: &Program) -> TriDexel {
+    machined_with(program, 12.0, 10.0)
+}
+
+/// A 40 × 40 stock `top` mm high cut by `program` with a flat end mill of diameter `d` (h =
+/// 0.25), provenance tracked.
+fn machined_with(program: &Program, top: f64, d: f64) -> TriDexel {
     let mut stock = TriDexel::from_box(
         Vec3::new(O, O, 0.0),
-        Vec3::new(O + 40.0, O + 40.0, 12.0),
+        Vec3::new(O + 40.0, O + 40.0, top),
         0.25,
     )
     .unwrap();
     stock.track_provenance();
-    let tools = ToolSet::single(Cutter::flat(10.0).unwrap());
+    let tools = ToolSet::single(Cutter::flat(d).unwrap());
     simulate(program, &tools, &mut stock, &SimOptions::default()).unwrap();
     stock
 }
@@ -159,15 +165,7 @@ fn a_narrow_gouge_beside_the_edge_counts_its_floor_not_its_walls() {
         O + 50.0
     );
     let program = gcode(&text);
-    let mut stock = TriDexel::from_box(
-        Vec3::new(O, O, 0.0),
-        Vec3::new(O + 40.0, O + 40.0, 10.0),
-        0.25,
-    )
-    .unwrap();
-    stock.track_provenance();
-    let tools = ToolSet::single(Cutter::flat(1.0).unwrap());
-    simulate(&program, &tools, &mut stock, &SimOptions::default()).unwrap();
+    let stock = machined_with(&program, 10.0, 1.0);
     let v = verify(&stock, &design(), Some(&program), &VerifyOptions::default()).unwrap();
     let gouges: Vec<_> = v.gouges().collect();
     assert_eq!(gouges.len(), 1, "{:#?}", v.regions);
