@@ -376,3 +376,36 @@ fn a_ray_spacing_coarser_than_the_cutter_is_refused() {
         stderr(&o)
     );
 }
+
+/// An APT drilling cycle is drilled: two 10 mm holes 5 mm deep (a flat end mill, so each a
+/// cylinder of π·5²·5 mm³), one `GOTO/` each, and nothing else removed.
+#[test]
+fn apt_drilling_cycle_removes_its_holes() {
+    let dir = temp_dir("apt-cycle");
+    let prog = dir.join("holes.cls");
+    std::fs::write(
+        &prog,
+        "UNITS/MM\nFEDRAT/MMPM,400\nGOTO/0,0,30\n\
+         CYCLE/DRILL,FEDTO,-5,RAPTO,2,RTRCTO,AUTO,MMPM,100\n\
+         GOTO/15,20,0,0,0,1\nGOTO/45,20,0\nCYCLE/OFF\nGOTO/0,0,30\nFINI\n",
+    )
+    .unwrap();
+    let o = swarf(&[
+        "simulate",
+        "--stock",
+        "box:0,0,-20,60,40,0",
+        "--program",
+        prog.to_str().unwrap(),
+        "--tool",
+        "flat:d=10",
+        "--resolution",
+        "0.1",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    let exact = 2.0 * std::f64::consts::PI * 25.0 * 5.0;
+    let got = j["removed_volume_mm3"].as_f64().unwrap();
+    assert!((got - exact).abs() / exact < 0.005, "{got} vs {exact}");
+    assert_eq!(j["rapid_collisions"], 0);
+}

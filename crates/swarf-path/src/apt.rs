@@ -27,6 +27,7 @@
 //! | `PARTNO`, `PPRINT`, `REMARK`, `TPRINT`, `TOOL PATH`, `INSERT` | comments (`INSERT` also warns); all but `TOOL PATH` may hold any text, with or without the slash (`PPRINT OPERATION : Sweep.1`) |
 //! | `TLAXIS/i,j,k` | the tool axis of the following `GOTO`s that give none |
 //! | `INDIRV/i,j,k` + `TLON,GOFWD/ (CIRCLE/ xc,yc,zc[,i,j,k],r), ON, (LINE/ …)` | CATIA's arc: from where the tool stands, in the `INDIRV` direction, about the circle's axis (the tool axis when it gives none), to the line (CATIA writes it from the centre to the end; a line through the centre gives the ray towards its far point), at the start's height along the axis |
+//! | `CYCLE/DRILL│DEEP│BRKCHP│CSINK│FACE│TAP│BORE│REAM,…`, `CYCLE/OFF`, `CYCLE/ON` | each `GOTO/` until `CYCLE/OFF` drills a hole along the tool axis (see [`cycle`]) |
 //! | `FINI` | end of program |
 //!
 //! `PAINT`, `COOLNT`, `MULTAX`, `SELCTL`, `END-OF-PATH`, `CUTCOM/OFF`, `STOP`, `OPSTOP`,
@@ -35,9 +36,9 @@
 //! are normally the compensated cutter path already, and swarf simulates the points as written,
 //! not what a controller doing radius compensation would add. `MSYS/` (where the MCS sits in
 //! absolute coordinates) warns when it is not the identity: points stay in the MCS, which is
-//! swarf's workpiece frame. `CYCLE/` (other than `CYCLE/OFF`) and `NURBS/`, `KNOT/`, `CNTRL/` are
-//! errors: they make motion swarf does not generate, which a warning would silently drop. Other
-//! records are warnings; malformed records are [`PathError`]s.
+//! swarf's workpiece frame. `NURBS/`, `KNOT/`, `CNTRL/` and cycles other than the drilling
+//! family are errors: they make motion swarf does not generate, which a warning would silently
+//! drop. Other records are warnings; malformed records are [`PathError`]s.
 //!
 //! # Decisions
 //! * **The first point.** CL data has no home position: the first `GOTO` (or `FROM`) only places
@@ -72,6 +73,8 @@ use crate::canon::{Axes, Canon, CanonSink, FeedMode, Plane, SpindleDir, Units};
 use crate::error::{PathError, PathErrorKind, SourcePos};
 use crate::limit::{move_limit_error, MoveLimit};
 use crate::Warning;
+
+pub mod cycle;
 
 /// Default tolerance on arc radii (start, end and the `CIRCLE/` radius must agree), mm.
 pub const DEFAULT_ARC_TOLERANCE_MM: f64 = 0.01;
@@ -199,6 +202,9 @@ pub fn read_apt(
         spindle_dir: SpindleDir::Clockwise,
         extra_goto_warned: false,
         indirv: None,
+        program_feed: None,
+        cycle: None,
+        last_cycle: None,
     };
     let mut record = Record::default();
     // A whole-line comment ending in `$` (Creo: `$$-> CSYS / 1.0, 0.0, …, $`) goes on over the
@@ -341,6 +347,12 @@ struct Reader<'o, 's> {
     extra_goto_warned: bool,
     /// The direction `INDIRV/` states for the next `TLON,GOFWD/` circle.
     indirv: Option<Vec3>,
+    /// The feed `FEDRAT/` set (mm/min or mm/rev), restored after a cycle's own feed.
+    program_feed: Option<f64>,
+    /// The canned cycle each `GOTO/` drills a hole of, until `CYCLE/OFF`.
+    cycle: Option<cycle::Cycle>,
+    /// The last cycle defined, which `CYCLE/ON` restarts.
+    last_cycle: Option<cycle::Cycle>,
 }
 
 /// A point as joint values (X Y Z; rotary words are not used by CL data).
@@ -786,19 +798,7 @@ impl Reader<'_, '_> {
                 self.sink
                     .emit(line, &Canon::Dwell(v.first().copied().unwrap_or(0.0)));
             }
-            // Motion swarf does not generate: going on would leave it out of the simulation.
-            "CYCLE" if word(0).as_deref() != Some("OFF") => {
-                return Err(self.error(
-                    rec,
-                    lead,
-                    PathErrorKind::Unsupported,
-                    "CYCLE/ (a canned drilling cycle) is not expanded, so the holes it drills \
-                     would be missing from the simulation",
-                    text.trim(),
-                    "the cycle posted as GOTO/ points (or G-code with G81–G89)",
-                ));
-            }
-            "CYCLE" => {}
+            "CYCLE" => self.cycle_record(rec, &fields, minor_off)?,
             "NURBS" | "KNOT" | "CNTRL" => {
                 return Err(self.error(
                     rec,
@@ -1072,6 +1072,10 @@ impl Reader<'_, '_> {
         } else {
             None
         };
+        if let (false, Some(c)) = (from, self.cycle) {
+            self.drill(line, c, p, axis);
+            return Ok(());
+        }
         if from || self.pos.is_none() {
             if let Some(c) = self.circle.take() {
                 self.warn(
@@ -1223,6 +1227,7 @@ impl Reader<'_, '_> {
             self.sink.emit(line, &Canon::FeedMode(mode));
         }
         self.sink.emit(line, &Canon::FeedRate(v * scale));
+        self.program_feed = Some(v * scale);
         Ok(())
     }
 

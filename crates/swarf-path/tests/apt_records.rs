@@ -458,9 +458,9 @@ fn circle_direction_words_override_the_convention() {
 
 #[test]
 fn motion_swarf_cannot_generate_is_an_error_not_a_warning() {
-    let e = err("FEDRAT/100\nGOTO/0,0,5\nCYCLE/DRILL,5,MMPM,100,2\nGOTO/10,10,0\nCYCLE/OFF\n");
+    let e = err("FEDRAT/100\nGOTO/0,0,5\nCYCLE/MILL,5,MMPM,100,2\nGOTO/10,10,0\nCYCLE/OFF\n");
     assert_eq!(e.kind, PathErrorKind::Unsupported);
-    assert_eq!((e.pos.line, e.pos.column), (3, 1));
+    assert_eq!((e.pos.line, e.pos.column), (3, 7));
     assert!(e.message.contains("CYCLE/"), "{}", e.message);
     let e = err("FEDRAT/100\nGOTO/0,0,5\nNURBS/\nKNOT/0,0,0,0,1,1,1,1\nCNTRL/0,0,0\n");
     assert_eq!(e.pos.line, 3);
