@@ -288,3 +288,21 @@ proptest::proptest! {
         proptest::prop_assert!(end.is_some_and(|e| (h(e) - c).abs() < 1e-9));
     }
 }
+
+/// Hostile numbers: a peck step that would make 10³⁰⁰ pecks, and distances beyond the machine's
+/// range, are errors at their fields, not endless loops or moves off the map.
+#[test]
+fn hostile_steps_and_distances_are_refused() {
+    let e = err("GOTO/0,0,10\nCYCLE/DEEP,FEDTO,10,RAPTO,2,STEP,1e-300\nGOTO/0,0,0\n");
+    assert_eq!((e.pos.line, e.pos.column), (2, 34));
+    assert!(e.message.contains("pecks"), "{}", e.message);
+    let e = err("GOTO/0,0,10\nCYCLE/DRILL,FEDTO,1e300\nGOTO/0,0,0\n");
+    assert_eq!((e.pos.line, e.pos.column), (2, 19));
+    assert!(e.message.contains("machine range"), "{}", e.message);
+    let e = err("GOTO/0,0,10\nCYCLE/DRILL,5,-2e6\n");
+    assert_eq!((e.pos.line, e.pos.column), (2, 15));
+    // 100,000 pecks are allowed (12 mm in 0.12 µm steps is not a real program, but not hostile).
+    assert!(
+        motion("GOTO/0,0,10\nCYCLE/DEEP,FEDTO,10,RAPTO,2,STEP,0.001\nGOTO/0,0,0\n").len() > 30_000
+    );
+}

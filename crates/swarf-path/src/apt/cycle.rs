@@ -31,11 +31,14 @@
 use super::{axes, Field, Reader, Record};
 use crate::canon::{Canon, CanonSink, FeedMode};
 use crate::error::{PathError, PathErrorKind};
-use swarf_geom::math::Vec3;
+use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 
 /// How far a peck's rapid stops short of the depth already drilled, mm (LinuxCNC's G73/G83
 /// `0.010` inch).
 const PECK_CLEARANCE_MM: f64 = 0.254;
+
+/// Most pecks one hole may make: bounds the moves a hostile step can ask for.
+const MAX_PECKS: f64 = 100_000.0;
 
 /// The types a `CYCLE/` may name, for the error that names the others.
 const TYPES: &str = "DRILL, DEEP, BRKCHP, CSINK, FACE, TAP, BORE, REAM, ON or OFF";
@@ -146,38 +149,45 @@ impl Reader<'_, '_> {
         let mut rest = fields[1..].iter().peekable();
         while let Some(f) = rest.next() {
             let w = word(f);
-            // The number a keyword takes, at the field after it.
+            // The number a keyword takes, at the field after it, in mm when it is a length
+            // (and then within the machine's range).
             let value = |rest: &mut std::iter::Peekable<std::slice::Iter<'_, Field<'_>>>,
-                         what: &str|
+                         what: &str,
+                         length: bool|
              -> Result<f64, PathError> {
-                match rest.next() {
-                    Some(n) => self.number(rec, *n, what),
-                    None => Err(self.error(
+                let Some(n) = rest.next() else {
+                    return Err(self.error(
                         rec,
                         f.off,
                         PathErrorKind::Syntax,
                         format!("CYCLE/: {w} without its value"),
                         f.text,
                         "a number after it",
-                    )),
+                    ));
+                };
+                let v = self.number(rec, *n, what)?;
+                if length {
+                    self.cycle_length(rec, *n, v)
+                } else {
+                    Ok(v)
                 }
             };
             match w.as_str() {
                 "DEEP" => kind = Kind::Deep,
                 "BRKCHP" => kind = Kind::ChipBreak,
-                "FEDTO" => depth = Some(value(&mut rest, "CYCLE/ FEDTO")?.abs() * self.scale),
-                "RAPTO" => clearance = Some(value(&mut rest, "CYCLE/ RAPTO")? * self.scale),
+                "FEDTO" => depth = Some(value(&mut rest, "CYCLE/ FEDTO", true)?.abs()),
+                "RAPTO" => clearance = Some(value(&mut rest, "CYCLE/ RAPTO", true)?),
                 "RTRCTO" => {
                     retract = if rest.peek().is_some_and(|n| word(n) == "AUTO") {
                         rest.next();
                         Retract::Initial
                     } else {
-                        Retract::At(value(&mut rest, "CYCLE/ RTRCTO")? * self.scale)
+                        Retract::At(value(&mut rest, "CYCLE/ RTRCTO", true)?)
                     }
                 }
                 "AUTO" => retract = Retract::Initial,
                 "MMPM" | "IPM" | "MMPR" | "IPR" => {
-                    let v = value(&mut rest, "CYCLE/ feed")?;
+                    let v = value(&mut rest, "CYCLE/ feed", false)?;
                     let inch = if w.starts_with('I') { 25.4 } else { 1.0 };
                     let mode = if w.ends_with("PM") {
                         FeedMode::PerMinute
@@ -190,21 +200,22 @@ impl Reader<'_, '_> {
                     if rest.peek().is_some_and(|n| word(n) == "SEC") {
                         rest.next();
                     }
-                    dwell_s = value(&mut rest, "CYCLE/ DWELL")?.abs();
+                    dwell_s = value(&mut rest, "CYCLE/ DWELL", false)?.abs();
                 }
                 "STEP" | "INCR" | "PECK" => {
-                    let s = value(&mut rest, "CYCLE/ peck depth")?.abs() * self.scale;
+                    let at = rest.peek().map_or(*f, |n| **n);
+                    let s = value(&mut rest, "CYCLE/ peck depth", true)?.abs();
                     if s <= 0.0 {
                         return Err(self.error(
                             rec,
-                            f.off,
+                            at.off,
                             PathErrorKind::Semantic,
                             "CYCLE/: a peck depth of zero",
-                            f.text,
+                            at.text,
                             "a peck depth greater than zero",
                         ));
                     }
-                    peck = Some(s);
+                    peck = Some((s, at));
                     // NX writes a second step for the later pecks; the first is kept.
                     while rest
                         .peek()
@@ -224,11 +235,12 @@ impl Reader<'_, '_> {
                             "FEDTO, RAPTO, RTRCTO, MMPM, IPM, MMPR, IPR, DWELL, STEP or a number",
                         ));
                     };
+                    let v = self.cycle_length(rec, *f, v)?;
                     // APT's positional form: depth, then clearance.
                     if depth.is_none() {
-                        depth = Some(v.abs() * self.scale);
+                        depth = Some(v.abs());
                     } else if clearance.is_none() {
-                        clearance = Some(v * self.scale);
+                        clearance = Some(v);
                     } else {
                         return Err(self.error(
                             rec,
@@ -256,18 +268,54 @@ impl Reader<'_, '_> {
             // A peck cycle without its step drills in one go.
             kind = Kind::Drill;
         }
+        let clearance = clearance.unwrap_or(0.0);
+        if let Some((s, f)) = peck {
+            if (clearance + depth) / s > MAX_PECKS {
+                return Err(self.error(
+                    rec,
+                    f.off,
+                    PathErrorKind::Semantic,
+                    format!(
+                        "CYCLE/: a peck of {s} mm makes more than {MAX_PECKS} pecks in a hole \
+                         {} mm deep from the clearance",
+                        clearance + depth
+                    ),
+                    f.text,
+                    "a peck depth of at least 1/100000 of the hole",
+                ));
+            }
+        }
         let c = Cycle {
             kind,
             depth,
-            clearance: clearance.unwrap_or(0.0),
+            clearance,
             retract,
             feed,
             dwell_s,
-            peck,
+            peck: peck.map(|p| p.0),
         };
         self.cycle = Some(c);
         self.last_cycle = Some(c);
         Ok(())
+    }
+
+    /// A cycle's length `v` (program units, as written in `f`) in mm, within the machine's
+    /// range.
+    fn cycle_length(&self, rec: &Record<'_>, f: Field<'_>, v: f64) -> Result<f64, PathError> {
+        let mm = v * self.scale;
+        if mm.abs() <= MACHINE_RANGE_MM {
+            return Ok(mm);
+        }
+        Err(self.error(
+            rec,
+            f.off,
+            PathErrorKind::Semantic,
+            format!(
+                "CYCLE/ distance {mm:e} mm is beyond the machine range of ±{MACHINE_RANGE_MM:e} mm"
+            ),
+            f.text,
+            "a distance within ±1e6 mm",
+        ))
     }
 
     /// One hole of the active cycle at `top` (workpiece frame, mm), along `axis` or the current
