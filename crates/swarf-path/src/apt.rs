@@ -17,6 +17,7 @@
 //! | `FROM/x,y,z[,i,j,k]` | start position, no move ([`Canon::SetPosition`]) |
 //! | `GODLTA/dx,dy,dz` | move by a delta |
 //! | `RAPID` | the next motion only is a rapid |
+//! | `GOHOME` | back to the `FROM/` point (a warning when there is none) |
 //! | `FEDRAT/f[,MMPM│IPM│MMPR│IPR]` (either order) | feed rate and mode |
 //! | `CIRCLE/xc,yc,zc,i,j,k[,r,…][,CLW│CCLW]` | the next `GOTO` is an arc about that centre and axis (a direction word states its sense) |
 //! | `CUTTER/d[,r,e,f,α,β,h]`, `TLDATA/MILL,d,r,h[,0,0]` | [`Canon::CutterDefinition`] |
@@ -205,6 +206,7 @@ pub fn read_apt(
         program_feed: None,
         cycle: None,
         last_cycle: None,
+        from: None,
     };
     let mut record = Record::default();
     // A whole-line comment ending in `$` (Creo: `$$-> CSYS / 1.0, 0.0, …, $`) goes on over the
@@ -353,6 +355,8 @@ struct Reader<'o, 's> {
     cycle: Option<cycle::Cycle>,
     /// The last cycle defined, which `CYCLE/ON` restarts.
     last_cycle: Option<cycle::Cycle>,
+    /// The `FROM/` point, where `GOHOME` returns.
+    from: Option<Vec3>,
 }
 
 /// A point as joint values (X Y Z; rotary words are not used by CL data).
@@ -579,6 +583,14 @@ impl Reader<'_, '_> {
                 self.motion(rec, line, column, p + d, None)?;
             }
             "RAPID" => self.rapid_next = true,
+            "GOHOME" => match self.from {
+                Some(home) => self.motion(rec, line, column, home, None)?,
+                None => self.warn(
+                    line,
+                    column,
+                    "GOHOME without a FROM/ before it ignored: the home is unknown".into(),
+                ),
+            },
             "FEDRAT" => self.fedrat(rec, &fields, minor_off, line)?,
             "CIRCLE" => {
                 // A trailing direction word (SolidWorks CAM: `…,COUNTERCLOCKWISE`) states the
@@ -1075,6 +1087,9 @@ impl Reader<'_, '_> {
         if let (false, Some(c)) = (from, self.cycle) {
             self.drill(line, c, p, axis);
             return Ok(());
+        }
+        if from {
+            self.from = Some(p);
         }
         if from || self.pos.is_none() {
             if let Some(c) = self.circle.take() {

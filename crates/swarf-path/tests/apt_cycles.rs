@@ -241,6 +241,15 @@ fn cycles_that_cannot_be_expanded_are_errors_at_their_field() {
     assert_eq!((e.pos.line, e.pos.column), (2, 21));
     let e = err("GOTO/0,0,5\nCYCLE/DRILL,5,2,1\n");
     assert_eq!((e.pos.line, e.pos.column), (2, 17));
+    // A peck cycle's third bare number is its step: the same motion as STEP,4.
+    assert_eq!(
+        motion("GOTO/0,0,10\nCYCLE/DEEP,10,2,4,MMPM,100\nGOTO/0,0,0\n"),
+        motion("GOTO/0,0,10\nCYCLE/DEEP,FEDTO,10,RAPTO,2,STEP,4,MMPM,100\nGOTO/0,0,0\n")
+    );
+    let e = err("GOTO/0,0,5\nCYCLE/DEEP,5,2,0\n");
+    assert!(e.message.contains("peck"), "{}", e.message);
+    let e = err("GOTO/0,0,5\nCYCLE/DEEP,5,2,1,1\n");
+    assert_eq!((e.pos.line, e.pos.column), (2, 18));
     let e = err("GOTO/0,0,5\nCYCLE/ON\n");
     assert!(e.message.contains("CYCLE/ON"), "{}", e.message);
     let e = err("GOTO/0,0,5\nCYCLE/DEEP,FEDTO,5,STEP,0\n");

@@ -513,3 +513,38 @@ fn free_text_records_and_tlaxis() {
         Some("zero tool axis (found `0,0,0`, expected a non-zero tool axis i,j,k)")
     );
 }
+
+/// `GOHOME` returns to the `FROM/` point (a rapid after `RAPID`); without one it is a warning,
+/// not a move to a guessed place.
+#[test]
+fn gohome_returns_to_the_from_point() {
+    let e = events("FROM/0,0,100\nGOTO/10,0,5\nRAPID\nGOHOME\n");
+    assert_eq!(
+        e.last(),
+        Some(&Canon::Traverse {
+            end: at(0.0, 0.0, 100.0)
+        })
+    );
+    assert_eq!(
+        events("FROM/0,0,100\nGOTO/10,0,5\nGOHOME\n").last(),
+        Some(&Canon::Feed {
+            end: at(0.0, 0.0, 100.0)
+        })
+    );
+    let mut rec = Recorder::default();
+    read_apt(
+        "GOTO/10,0,5\nGOHOME\n",
+        "t.apt",
+        &AptOptions::default(),
+        &mut rec,
+    )
+    .unwrap();
+    assert!(rec
+        .warnings
+        .iter()
+        .any(|w| w.message.contains("GOHOME") && w.line == 2));
+    assert!(!rec
+        .events
+        .iter()
+        .any(|(_, e)| matches!(e, Canon::Feed { .. } | Canon::Traverse { .. })));
+}

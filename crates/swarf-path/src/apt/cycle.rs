@@ -6,8 +6,8 @@
 //! `CYCLE/type[,modifier…][,FEDTO,d][,RAPTO,c][,RTRCTO,r│AUTO][,MMPM│IPM│MMPR│IPR,f]
 //! [,DWELL,t][,STEP│INCR│PECK,s]`, the keywords in any order (NX, Vericut and most posts), or
 //! APT's positional form `CYCLE/DRILL,d,IPM,f,c` (depth, feed, clearance): a bare number is the
-//! depth, a second one the clearance. All distances are along the tool axis from the `GOTO/`
-//! point, the top of the hole:
+//! depth, a second one the clearance, a third one a peck cycle's step. All distances are along
+//! the tool axis from the `GOTO/` point, the top of the hole:
 //! * the hole's bottom is `|d|` below it — posts write the depth either as a positive depth or
 //!   as a signed offset along the axis (`FEDTO,-12`), which is the same bottom;
 //! * the tool rapids to the clearance `c` above it (signed along the axis; 0 when not given);
@@ -241,6 +241,20 @@ impl Reader<'_, '_> {
                         depth = Some(v.abs());
                     } else if clearance.is_none() {
                         clearance = Some(v);
+                    } else if matches!(kind, Kind::Deep | Kind::ChipBreak) && peck.is_none() {
+                        // A peck cycle's third number is its step (which changes the cycle's
+                        // time, not what it removes).
+                        if v == 0.0 {
+                            return Err(self.error(
+                                rec,
+                                f.off,
+                                PathErrorKind::Semantic,
+                                "CYCLE/: a peck depth of zero",
+                                f.text,
+                                "a peck depth greater than zero",
+                            ));
+                        }
+                        peck = Some((v.abs(), *f));
                     } else {
                         return Err(self.error(
                             rec,
