@@ -5,7 +5,9 @@
 //! (`F` in G-code, the first number of `FEDRAT/` in APT) and in the rewritten program: a line
 //! with moves gets the original value times `r` — in its own F word, replaced in place, or in
 //! one added at the end of its code (before any comment) when the value in effect differs; an
-//! APT move gets a `FEDRAT/` record inserted before it, in the form of the last one. Because the
+//! APT move gets a `FEDRAT/` record inserted before it, in the form of the last one (a hole of
+//! an APT drilling cycle with a feed of its own gets the `CYCLE/` record restated before it
+//! with the new feed instead, as the cycle's feed is what its holes are fed at). Because the
 //! F word is scaled, units (G20/G21, `IPM`/`MMPM`) and feed modes (G93 inverse time, G95 per
 //! revolution) need no special case: each is proportional to the feed rate.
 //!
@@ -119,6 +121,50 @@ fn scan_apt(line: &str) -> Option<Result<FeedWord, usize>> {
         pos += field.len() + 1;
     }
     Some(Err(lead + slash + 2))
+}
+
+/// What a `CYCLE/` record does to the feed of the holes after it.
+enum CycleLine {
+    Off,
+    On,
+    /// A new cycle, with its own feed number (after `MMPM`, `IPM`, `MMPR` or `IPR`) or none
+    /// (its holes are fed at the `FEDRAT/` in effect).
+    Define(Option<FeedWord>),
+}
+
+/// An APT `CYCLE/` record.
+fn scan_apt_cycle(line: &str) -> Option<CycleLine> {
+    let t = line.trim_start();
+    let upper = t.to_ascii_uppercase();
+    let rest = upper
+        .strip_prefix("CYCLE")?
+        .trim_start()
+        .strip_prefix('/')?;
+    let first = rest.split(',').next().unwrap_or("").trim();
+    match first {
+        "OFF" => return Some(CycleLine::Off),
+        "ON" => return Some(CycleLine::On),
+        _ => {}
+    }
+    let mut pos = line.len() - rest.len();
+    let mut after_unit = false;
+    for field in line[pos..].split(',') {
+        let trimmed = field.trim();
+        if after_unit {
+            let start = pos + field.find(trimmed).unwrap_or(0);
+            return Some(CycleLine::Define(trimmed.parse::<f64>().ok().map(
+                |value| FeedWord {
+                    start,
+                    end: start + trimmed.len(),
+                    value,
+                },
+            )));
+        }
+        after_unit =
+            ["MMPM", "IPM", "MMPR", "IPR"].contains(&trimmed.to_ascii_uppercase().as_str());
+        pos += field.len() + 1;
+    }
+    Some(CycleLine::Define(None))
 }
 
 /// A feed word's number with about six significant digits, no trailing zeros.
@@ -277,6 +323,12 @@ pub fn rewrite_feeds(
     let (mut original, mut current): (Option<f64>, Option<f64>) = (None, None);
     // The last FEDRAT record, as a template for inserted ones.
     let mut template: Option<(String, FeedWord)> = None;
+    // APT drilling cycles with a feed of their own: the record and its feed number as first
+    // written (the template for copies with new feeds inserted before holes), whether a cycle
+    // is on, and the cycle feed in effect in the rewritten program.
+    let mut cycle: Option<(String, FeedWord)> = None;
+    let mut cycle_on = false;
+    let mut cycle_current: Option<f64> = None;
     let err = |line: u32, column: usize, message: &str, found: &str| {
         PathError::new(
             SourcePos {
@@ -294,6 +346,21 @@ pub fn rewrite_feeds(
         let n = k as u32 + 1;
         let body_len = raw.trim_end_matches(['\n', '\r']).len();
         let (body, eol) = raw.split_at(body_len);
+        if format == ProgramFormat::Apt {
+            if let Some(c) = scan_apt_cycle(body) {
+                match c {
+                    CycleLine::Off => cycle_on = false,
+                    CycleLine::On => cycle_on = true,
+                    CycleLine::Define(w) => {
+                        cycle_on = true;
+                        cycle = w.map(|w| (body.to_string(), w));
+                        cycle_current = w.map(|w| w.value);
+                    }
+                }
+                out.push_str(raw);
+                continue;
+            }
+        }
         let (word, code_end) = match format {
             ProgramFormat::Gcode => scan_gcode(body),
             ProgramFormat::Apt => (scan_apt(body), body.len()),
@@ -338,6 +405,31 @@ pub fn rewrite_feeds(
             out.push_str(raw);
             continue;
         };
+        if let (true, Some((t, w))) = (cycle_on && format == ProgramFormat::Apt, &cycle) {
+            // A hole of a cycle with its own feed: the cycle is restated before it with the
+            // new feed (the holes' feeds are the cycle's, not FEDRAT's).
+            let target = w.value * factor;
+            let value = if (target - w.value).abs() <= 1e-9 * w.value.abs() {
+                w.value
+            } else {
+                format_feed_down(target).parse().unwrap_or(target)
+            };
+            if cycle_current != Some(value) {
+                changed.push(n);
+                let text = if value == w.value {
+                    t[w.start..w.end].to_string()
+                } else {
+                    format_feed_down(target)
+                };
+                out.push_str(&t[..w.start]);
+                out.push_str(&text);
+                out.push_str(&t[w.end..]);
+                out.push_str(if eol.is_empty() { "\n" } else { eol });
+                cycle_current = Some(value);
+            }
+            out.push_str(raw);
+            continue;
+        }
         let Some(base) = original else {
             return Err(err(n, 1, "feed moves before any feed word", body.trim()));
         };
@@ -456,6 +548,57 @@ mod tests {
         .unwrap();
         assert_eq!(same.text, text);
         assert!(same.lines_changed.is_empty());
+    }
+
+    /// The holes of an APT drilling cycle with its own feed are fed at the cycle's feed, not
+    /// FEDRAT's: the cycle is restated before a hole with a new feed, and read back each hole
+    /// is fed at its scheduled feed while the program's feed is untouched.
+    #[test]
+    fn apt_cycle_feeds_are_restated_before_their_holes() {
+        let text = "FEDRAT/MMPM,500\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,-12,RAPTO,3,MMPM,100\n\
+                    GOTO/10,20,0\nGOTO/30,20,0\nGOTO/40,20,0\nCYCLE/OFF\nGOTO/0,0,50\n";
+        let r = rewrite_feeds(
+            text,
+            "t.apt",
+            ProgramFormat::Apt,
+            &factors(&[(4, 0.5), (5, 0.5), (6, 1.0), (8, 1.0)]),
+            &BTreeMap::new(),
+        )
+        .unwrap();
+        assert_eq!(
+            r.text,
+            "FEDRAT/MMPM,500\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,-12,RAPTO,3,MMPM,100\n\
+             CYCLE/DRILL,FEDTO,-12,RAPTO,3,MMPM,50\nGOTO/10,20,0\nGOTO/30,20,0\n\
+             CYCLE/DRILL,FEDTO,-12,RAPTO,3,MMPM,100\nGOTO/40,20,0\nCYCLE/OFF\nGOTO/0,0,50\n"
+        );
+        assert_eq!(r.lines_changed, [4, 6]);
+        // Read back: the feed in effect at each feed move.
+        let mut rec = crate::canon::Recorder::default();
+        crate::apt::read_apt(&r.text, "t.apt", &Default::default(), &mut rec).unwrap();
+        let mut feed = 0.0;
+        let mut fed = Vec::new();
+        for (_, e) in &rec.events {
+            match e {
+                crate::Canon::FeedRate(f) => feed = *f,
+                crate::Canon::Feed { .. } => fed.push(feed),
+                _ => {}
+            }
+        }
+        assert_eq!(fed, [50.0, 50.0, 100.0, 500.0]);
+        // A cycle without a feed of its own is fed at FEDRAT, which is rescaled as usual.
+        let text = "FEDRAT/MMPM,500\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,-12\nGOTO/10,20,0\n";
+        let r = rewrite_feeds(
+            text,
+            "t.apt",
+            ProgramFormat::Apt,
+            &factors(&[(4, 0.5)]),
+            &BTreeMap::new(),
+        )
+        .unwrap();
+        assert_eq!(
+            r.text,
+            "FEDRAT/MMPM,500\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,-12\nFEDRAT/MMPM,250\nGOTO/10,20,0\n"
+        );
     }
 
     #[test]
