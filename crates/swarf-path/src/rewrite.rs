@@ -351,6 +351,14 @@ pub fn rewrite_feeds(
                 match c {
                     CycleLine::Off => cycle_on = false,
                     CycleLine::On => cycle_on = true,
+                    CycleLine::Define(Some(w)) if !w.value.is_finite() => {
+                        return Err(err(
+                            n,
+                            w.start + 1,
+                            "the cycle's feed is not a finite number",
+                            body.get(w.start..w.end).unwrap_or("").trim(),
+                        ));
+                    }
                     CycleLine::Define(w) => {
                         cycle_on = true;
                         cycle = w.map(|w| (body.to_string(), w));
@@ -585,6 +593,16 @@ mod tests {
             }
         }
         assert_eq!(fed, [50.0, 50.0, 100.0, 500.0]);
+        let bad = "CYCLE/DRILL,FEDTO,-12,MMPM,inf\nGOTO/1,2,3\n";
+        let e = rewrite_feeds(
+            bad,
+            "t.apt",
+            ProgramFormat::Apt,
+            &factors(&[(2, 1.0)]),
+            &BTreeMap::new(),
+        )
+        .unwrap_err();
+        assert_eq!((e.pos.line, e.pos.column), (1, 28));
         // A cycle without a feed of its own is fed at FEDRAT, which is rescaled as usual.
         let text = "FEDRAT/MMPM,500\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,-12\nGOTO/10,20,0\n";
         let r = rewrite_feeds(
