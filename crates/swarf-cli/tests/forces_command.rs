@@ -456,3 +456,47 @@ fn schedule_keeps_lone_carriage_return_line_ends() {
     let cr = run("cr.ngc", &text.replace('\n', "\r"));
     assert_eq!(cr, lf.replace('\n', "\r"));
 }
+
+/// An APT program drilling with a cycle of its own feed: the holes are engaged (a plunge) and
+/// scheduled, the cycle restated before them with the new feed; the read-back check passes.
+#[test]
+fn schedule_restates_an_apt_drilling_cycle() {
+    let d = dir("apt-cycle");
+    let prog = write(
+        &d,
+        "holes.cls",
+        "UNITS/MM\nSPINDL/3000,RPM,CLW\nFEDRAT/MMPM,400\nGOTO/0,0,30\n\
+         CYCLE/DRILL,FEDTO,-8,RAPTO,2,RTRCTO,AUTO,MMPM,600\nGOTO/10,10,0\nGOTO/30,10,0\n\
+         CYCLE/OFF\nFINI\n",
+    );
+    let mat = write(&d, "al.toml", MATERIAL);
+    let out = d.join("holes-s.cls");
+    let o = swarf(&[
+        "schedule",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        &prog,
+        "--tool",
+        "flat:d=10,flutes=2",
+        "--coefficients",
+        &mat,
+        "--limit-force",
+        "1500",
+        "--max-feed",
+        "2000",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = json(&o);
+    assert_eq!(s["still_over_limit"].as_array().unwrap().len(), 0);
+    let new = std::fs::read_to_string(&out).unwrap();
+    assert!(
+        new.contains(
+            "MMPM,600\nCYCLE/DRILL,FEDTO,-8,RAPTO,2,RTRCTO,AUTO,MMPM,2000\nGOTO/10,10,0\n"
+        ),
+        "{new}"
+    );
+}
