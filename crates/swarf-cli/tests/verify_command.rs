@@ -268,3 +268,48 @@ fn a_design_exported_in_another_frame_is_placed_with_part_at() {
         assert!(stderr(&o).contains("X,Y,Z"), "{bad}: {}", stderr(&o));
     }
 }
+
+/// The shared SolidWorks CAM sample: its STL is the whole set-up (part, table, blocks, clamps)
+/// in the program's frame. The fixture is never stock: no gouge volume comes of it, its volume
+/// under the stock is reported apart, and a warning names both boxes.
+#[test]
+fn a_design_exported_with_its_fixture_is_compared_where_the_stock_is() {
+    let Some([apt, stl]) = swarf_testdata::paths([
+        "apt/swcam_Paralelipipedo.apt",
+        "stl/swcam_Paralelipipedo.stl",
+    ]) else {
+        return;
+    };
+    let dir = temp_dir("fixture");
+    let out = dir.join("out");
+    let o = swarf(&[
+        "verify",
+        "--stock",
+        "box:0,-4,-30,176.5,35,0",
+        "--program",
+        apt.to_str().unwrap(),
+        "--tool",
+        "flat:d=8",
+        "--design",
+        stl.to_str().unwrap(),
+        "--resolution",
+        "0.5",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    assert_eq!(j["gouge_regions"], 0, "{j}");
+    assert!(j["gouge_volume_mm3"].as_f64().unwrap() < 1e-6, "{j}");
+    assert_eq!(j["design_beyond_stock_box"], true);
+    assert!(
+        j["design_outside_stock_mm3"].as_f64().unwrap() > 600_000.0,
+        "{j}"
+    );
+    assert!(
+        stderr(&o).contains("reaches beyond the stock's box"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -226,8 +226,15 @@ pub struct Verification {
     /// Volume of material left outside the part (stock ∖ part, Z rays), mm³; `None` when the
     /// design bounds no solid.
     pub excess_volume_mm3: Option<f64>,
-    /// Volume of the part missing from the stock (part ∖ stock, Z rays), mm³.
+    /// Volume of the part missing from the stock (part ∖ stock, Z rays), mm³, within the
+    /// stock's box: design material the stock never reached is not a gouge of the program.
     pub gouge_volume_mm3: Option<f64>,
+    /// Volume of the design above or below the stock's box over its footprint (Z rays), mm³:
+    /// a design in another frame, or fixtures exported with the part; it is not compared.
+    pub design_outside_stock_mm3: Option<f64>,
+    /// True when the design's bounding box reaches beyond the stock's box by more than a ray
+    /// spacing (then part of it may lie outside the footprint too, unseen by any ray).
+    pub design_beyond_stock_box: bool,
     /// Histogram of the signed deviation (symmetric range of the largest deviation).
     pub histogram: Histogram,
     /// The options used.
@@ -395,7 +402,7 @@ pub fn verify_observed(
     weigh_by_crossings(&mut defects, &labels, count, design, stock);
     let mut regions = summarise(&defects, &labels, count, program);
     let volumes = measure_volumes(stock, design, &defects, &labels, &regions, link);
-    if let Some((per_region, _, _)) = &volumes {
+    if let Some((per_region, ..)) = &volumes {
         for (r, v) in regions.iter_mut().zip(per_region) {
             r.volume_mm3 = *v;
         }
@@ -423,6 +430,8 @@ pub fn verify_observed(
         excess_ends: defects.len() as u64 - gouge_ends,
         excess_volume_mm3: volumes.as_ref().map(|v| v.1),
         gouge_volume_mm3: volumes.as_ref().map(|v| v.2),
+        design_outside_stock_mm3: volumes.as_ref().map(|v| v.3),
+        design_beyond_stock_box: beyond_box(&grid, &design.bounding_box()),
         histogram: histogram(&all.deviations),
         regions,
         options: *options,
@@ -623,10 +632,19 @@ fn weigh_by_crossings(
         });
 }
 
+/// True when `b` reaches beyond the grid's box by more than a cell along some axis.
+fn beyond_box(grid: &swarf_stock::Grid, b: &swarf_geom::Aabb) -> bool {
+    (0..3).any(|k| {
+        let (lo, hi) = (grid.min[k], grid.max[k]);
+        b.min[k] < lo - grid.h[k] || b.max[k] > hi + grid.h[k]
+    })
+}
+
 /// Exact volumes from the Z rays when the design bounds a solid: per ray, the pieces of
-/// stock ∖ part (excess) and part ∖ stock (gouge); each piece goes to the region of the
-/// defect end that bounds it (or the nearest one of its kind within `2·link`). Returns the
-/// per-region volumes and the totals, or `None` for a design without a solid.
+/// stock ∖ part (excess) and part ∖ stock (gouge) within the stock's box; each piece goes to
+/// the region of the defect end that bounds it (or the nearest one of its kind within
+/// `2·link`). Returns the per-region volumes, the totals and the design's volume above or
+/// below the box, or `None` for a design without a solid.
 fn measure_volumes(
     stock: &TriDexel,
     design: &dyn Design,
@@ -634,7 +652,7 @@ fn measure_volumes(
     labels: &[usize],
     regions: &[Region],
     link: f64,
-) -> Option<(Vec<f64>, f64, f64)> {
+) -> Option<(Vec<f64>, f64, f64, f64)> {
     let grid = *stock.grid();
     let fam = stock.family(2);
     let (nu, nv) = fam.dims();
@@ -680,17 +698,25 @@ fn measure_volumes(
         }
         best.map(|(_, r)| r)
     };
-    let (per_region, excess, gouge) = (0..nv)
+    // The stock's box along Z: design material beyond it was never stock.
+    let (z0, z1) = (grid.min[2], grid.max[2]);
+    let (per_region, excess, gouge, outside) = (0..nv)
         .into_par_iter()
         .fold(
-            || (vec![0.0; regions.len()], 0.0, 0.0),
-            |(mut per, mut ex, mut go), j| {
+            || (vec![0.0; regions.len()], 0.0, 0.0, 0.0),
+            |(mut per, mut ex, mut go, mut out), j| {
                 let mut part = Dexel::new();
                 let y = grid.center(1, j);
                 for i in 0..nu {
                     let x = grid.center(0, i);
                     part.clear();
                     design.solid_intervals(2, x, y, cell, &mut part);
+                    part.retain(|iv| {
+                        let (a, b) = (iv.enter.max(z0), iv.exit.min(z1));
+                        out += iv.len() - (b - a).max(0.0);
+                        (iv.enter, iv.exit) = (a, b);
+                        b > a
+                    });
                     let ray = fam.ray(i, j);
                     for (kind, a, b) in [
                         (DefectKind::Excess, ray, &part[..]),
@@ -717,22 +743,23 @@ fn measure_volumes(
                         }
                     }
                 }
-                (per, ex, go)
+                (per, ex, go, out)
             },
         )
         .reduce(
-            || (vec![0.0; regions.len()], 0.0, 0.0),
-            |(mut a, ea, ga), (b, eb, gb)| {
+            || (vec![0.0; regions.len()], 0.0, 0.0, 0.0),
+            |(mut a, ea, ga, oa), (b, eb, gb, ob)| {
                 for (x, y) in a.iter_mut().zip(b) {
                     *x += y;
                 }
-                (a, ea + eb, ga + gb)
+                (a, ea + eb, ga + gb, oa + ob)
             },
         );
     Some((
         per_region.into_iter().map(|l| l * area).collect(),
         excess * area,
         gouge * area,
+        outside * area,
     ))
 }
 

@@ -187,6 +187,38 @@ fn a_program_that_follows_the_design_reports_nothing() {
     assert!(v.ends_checked > 50_000);
 }
 
+/// A design exported with its fixture (a plate under the part, wider than the stock): the
+/// plate is never stock, so a program that follows the part reports nothing — no gouge volume
+/// either (it counted the plate's 48,000 mm³ under the stock's footprint) — and the plate's
+/// volume there is reported apart, with the design's box flagged as reaching beyond the stock.
+#[test]
+fn a_fixture_exported_with_the_design_is_not_a_gouge() {
+    let program = gcode(&facing(10.0));
+    let stock = machined(&program);
+    let mut mesh = box_mesh(Vec3::new(O, O, 0.0), Vec3::new(O + 40.0, O + 40.0, 10.0));
+    mesh.merge(&box_mesh(
+        Vec3::new(O - 20.0, O - 20.0, -30.0),
+        Vec3::new(O + 60.0, O + 60.0, -0.5),
+    ));
+    let with_plate = MeshDesign::new(&mesh).unwrap();
+    let v = verify(
+        &stock,
+        &with_plate,
+        Some(&program),
+        &VerifyOptions::default(),
+    )
+    .unwrap();
+    assert!(v.regions.is_empty(), "{:#?}", v.regions);
+    assert!(v.gouge_volume_mm3.unwrap() < 1e-6, "{v:?}");
+    assert!(v.excess_volume_mm3.unwrap() < 1e-6, "{v:?}");
+    let outside = v.design_outside_stock_mm3.unwrap();
+    assert!((outside - 40.0 * 40.0 * 29.5).abs() < 1e-6, "{outside}");
+    assert!(v.design_beyond_stock_box);
+    // The part alone lies within the stock's box.
+    let v = verify(&stock, &design(), Some(&program), &VerifyOptions::default()).unwrap();
+    assert!(!v.design_beyond_stock_box && v.design_outside_stock_mm3.unwrap() < 1e-9);
+}
+
 #[test]
 fn an_untouched_stock_is_all_excess_stock_minus_part() {
     // The design sits inset 5 mm on four sides and 5 mm below the top of the stock.

@@ -103,6 +103,11 @@ struct VerifySummary<'a> {
     /// `z-rays` (exact pieces of stock ∖ part along the Z rays: a solid design) or
     /// `surface-integral` (∫ |deviation| dA over the regions: a surface design).
     volume_method: &'static str,
+    /// Design material above or below the stock's box over its footprint, mm³ (Z rays; null
+    /// for a surface design): not compared, as the stock never held it.
+    design_outside_stock_mm3: Option<f64>,
+    /// The design's box reaches beyond the stock's (another frame, or fixtures in the file).
+    design_beyond_stock_box: bool,
     ends_checked: u64,
     ends_unmatched: u64,
     gouge_ends: u64,
@@ -155,6 +160,31 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
         .with_excess_tolerance(args.excess_tolerance);
     let v = verify(&stock, design.as_ref(), Some(program), &vopts)
         .with_context(|| format!("verifying against {}", args.design.display()))?;
+    if v.design_beyond_stock_box {
+        let b = design.bounding_box();
+        let g = stock.grid();
+        let outside = v.design_outside_stock_mm3.map_or(String::new(), |o| {
+            format!("; {o:.1} mm³ of it lies above or below the stock")
+        });
+        eprintln!(
+            "warning: the design reaches beyond the stock's box (design {:.3}…{:.3}, {:.3}…{:.3}, \
+             {:.3}…{:.3}; stock {:.3}…{:.3}, {:.3}…{:.3}, {:.3}…{:.3}){outside}: what lies \
+             outside is not compared. A design in another frame: place it with --part-at; \
+             fixtures or a machine exported with the part: leave them out",
+            b.min.x,
+            b.max.x,
+            b.min.y,
+            b.max.y,
+            b.min.z,
+            b.max.z,
+            g.min.x,
+            g.max.x,
+            g.min.y,
+            g.max.y,
+            g.min.z,
+            g.max.z,
+        );
+    }
     let range = args.color_range.unwrap_or_else(|| {
         v.max_gouge_mm
             .max(v.max_excess_mm)
@@ -190,6 +220,8 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
         excess_tolerance_mm: args.excess_tolerance,
         gouge_volume_mm3: gouge_volume,
         volume_method: method,
+        design_outside_stock_mm3: v.design_outside_stock_mm3,
+        design_beyond_stock_box: v.design_beyond_stock_box,
         ends_checked: v.ends_checked,
         ends_unmatched: v.ends_unmatched,
         gouge_ends: v.gouge_ends,
