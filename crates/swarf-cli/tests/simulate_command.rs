@@ -409,3 +409,37 @@ fn apt_drilling_cycle_removes_its_holes() {
     assert!((got - exact).abs() / exact < 0.005, "{got} vs {exact}");
     assert_eq!(j["rapid_collisions"], 0);
 }
+
+/// A hole drilled on a tilted working plane (G68.2 … J30, G53.1): a 6 mm flat end mill 10 mm
+/// deep along the plane's Z from the block's top at (30, 30, 0). Along the tool's axis the
+/// top plane is at t = −tan 30°·v across the cutter's disc (v the feature's Y), so the hole's
+/// volume is ∫(10 − tan 30°·v) dA = 10·π·3² (the v term cancels over the disc).
+#[test]
+fn a_hole_on_a_tilted_working_plane_removes_its_exact_volume() {
+    let dir = temp_dir("g68-2");
+    let prog = dir.join("tilted.nc");
+    std::fs::write(
+        &prog,
+        "G21 G90 G17\nG0 X30 Y30 Z50\nG68.2 X30 Y30 Z0 I0 J30 K0\nG53.1\nG0 X0 Y0 Z5\n\
+         G1 Z-10 F100\nG0 Z20\nG69\nG0 Z80\nM30\n",
+    )
+    .unwrap();
+    let o = swarf(&[
+        "simulate",
+        "--stock",
+        "box:0,0,-30,60,60,0",
+        "--program",
+        prog.to_str().unwrap(),
+        "--tool",
+        "flat:d=6",
+        "--resolution",
+        "0.1",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    let exact = 10.0 * std::f64::consts::PI * 9.0;
+    let got = j["removed_volume_mm3"].as_f64().unwrap();
+    assert!((got - exact).abs() / exact < 0.005, "{got} vs {exact}");
+    assert_eq!(j["rapid_collisions"], 0);
+}

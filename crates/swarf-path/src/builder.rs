@@ -27,7 +27,7 @@
 
 use std::f64::consts::TAU;
 
-use swarf_geom::math::Vec3;
+use swarf_geom::math::{Mat3, Vec3};
 
 use crate::canon::{Axes, Canon, CanonSink, FeedMode, SpindleDir};
 use crate::kinematics::{Machine, RotaryWord};
@@ -47,6 +47,10 @@ pub struct MoveBuilder {
     g92: Axes,
     /// Rotation of the XY plane about the G5x origin (G10 L2 R), as cosine and sine.
     xy_rotation: (f64, f64),
+    /// A tilted working plane (G68.2): its axes and origin in the untilted program frame.
+    tilt: Option<(Mat3, Vec3)>,
+    /// The tool axis comes from the tilted plane (G53.1), not from the machine, until G69.
+    tilt_axis: bool,
     /// Chordal tolerance splines are flattened within, mm.
     spline_tolerance: f64,
     feed: f64,
@@ -86,6 +90,8 @@ impl MoveBuilder {
             g5x: Axes::default(),
             g92: Axes::default(),
             xy_rotation: (1.0, 0.0),
+            tilt: None,
+            tilt_axis: false,
             spline_tolerance: crate::spline::DEFAULT_TOLERANCE_MM,
             feed: 0.0,
             feed_mode: FeedMode::PerMinute,
@@ -156,7 +162,7 @@ impl MoveBuilder {
     /// Joint values of a program position: the G92 offset, then the XY rotation, then the G5x
     /// offset (LinuxCNC's canon layer).
     fn joints(&self, p: &Axes) -> Axes {
-        let q = p.add(self.g92);
+        let q = self.untilted(p).add(self.g92);
         let (c, s) = self.xy_rotation;
         let r = Axes {
             x: c * q.x - s * q.y,
@@ -175,7 +181,48 @@ impl MoveBuilder {
             y: -s * q.x + c * q.y,
             ..q
         };
-        r.sub(self.g92)
+        self.tilted(&r.sub(self.g92))
+    }
+
+    /// Program position `p` in the untilted program frame (the tilted plane's origin plus its
+    /// axes times `p`).
+    fn untilted(&self, p: &Axes) -> Axes {
+        match self.tilt {
+            None => *p,
+            Some((r, o)) => {
+                let q = o + r * Vec3::new(p.x, p.y, p.z);
+                Axes {
+                    x: q.x,
+                    y: q.y,
+                    z: q.z,
+                    ..*p
+                }
+            }
+        }
+    }
+
+    /// [`MoveBuilder::untilted`] inverted.
+    fn tilted(&self, q: &Axes) -> Axes {
+        match self.tilt {
+            None => *q,
+            Some((r, o)) => {
+                let p = r.transpose() * (Vec3::new(q.x, q.y, q.z) - o);
+                Axes {
+                    x: p.x,
+                    y: p.y,
+                    z: p.z,
+                    ..*q
+                }
+            }
+        }
+    }
+
+    /// A direction of the program frame in joint space: the tilted plane's rotation, then the
+    /// XY rotation.
+    fn direction(&self, v: Vec3) -> Vec3 {
+        let v = self.tilt.map_or(v, |(r, _)| r * v);
+        let (cos, sin) = self.xy_rotation;
+        Vec3::new(cos * v.x - sin * v.y, sin * v.x + cos * v.y, v.z)
     }
 
     /// Changes the program frame (offsets, rotation) with the tool where it is: the current
@@ -409,12 +456,7 @@ impl CanonSink for MoveBuilder {
                     let c = b.joints(&Axes::from_array(c));
                     let mut normal = Vec3::ZERO;
                     normal[n] = if rotation > 0 { 1.0 } else { -1.0 };
-                    let (cos, sin) = b.xy_rotation;
-                    let normal = Vec3::new(
-                        cos * normal.x - sin * normal.y,
-                        sin * normal.x + cos * normal.y,
-                        normal.z,
-                    );
+                    let normal = b.direction(normal);
                     b.arc_geom(
                         s,
                         e,
@@ -465,6 +507,33 @@ impl CanonSink for MoveBuilder {
                     self.axis_source = AxisSource::Program;
                 }
                 self.target_axis = a;
+            }
+            Canon::WorkPlane(w) => {
+                self.change_frame(|b| {
+                    b.tilt = w.map(|w| (w.matrix(), Vec3::from_array(w.origin)));
+                });
+                let axis = w.filter(|w| w.tool_axis).map(|_| self.direction(Vec3::Z));
+                match (axis, self.tilt_axis) {
+                    // G53.1: the feature's Z, from the tool's next move on (the rotary axes
+                    // turn the tool there before it moves).
+                    (Some(a), _) => {
+                        if self.axis_source == AxisSource::Machine {
+                            self.axis = a;
+                        }
+                        self.axis_source = AxisSource::Program;
+                        self.tilt_axis = true;
+                        self.target_axis = a;
+                        self.axis = a;
+                    }
+                    // G69 after G53.1: back to the machine's rotary joints.
+                    (None, true) => {
+                        self.tilt_axis = false;
+                        self.axis_source = AxisSource::Machine;
+                        let a = self.machine.pose(&self.joints(&self.pos)).axis;
+                        (self.axis, self.target_axis) = (a, a);
+                    }
+                    (None, false) => {}
+                }
             }
             Canon::SetPosition(p) => {
                 self.pos = *p;

@@ -139,6 +139,31 @@ pub enum MessageKind {
     Print,
 }
 
+/// A tilted working plane (Fanuc and Haas `G68.2`): the feature coordinate system program
+/// positions are given in while it is on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorkPlane {
+    /// The feature frame's origin in the untilted program frame, mm.
+    pub origin: [f64; 3],
+    /// The feature frame's axes in the untilted program frame: its columns are the feature's
+    /// X, Y and Z (row-major: `rotation[row][column]`).
+    pub rotation: [[f64; 3]; 3],
+    /// `G53.1` was given: the tool axis is the feature's Z.
+    pub tool_axis: bool,
+}
+
+impl WorkPlane {
+    /// The rotation as a matrix.
+    pub fn matrix(&self) -> swarf_geom::math::Mat3 {
+        let r = self.rotation;
+        swarf_geom::math::Mat3::from_cols_array_2d(&[
+            [r[0][0], r[1][0], r[2][0]],
+            [r[0][1], r[1][1], r[2][1]],
+            [r[0][2], r[1][2], r[2][2]],
+        ])
+    }
+}
+
 /// One canonical machining event. Borrowed text (comments) avoids allocation per event.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Canon<'a> {
@@ -160,6 +185,13 @@ pub enum Canon<'a> {
     /// coordinate system (G10 L2 R), stated after every [`Canon::Offsets`] (LinuxCNC's
     /// `SET_XY_ROTATION`). Machine position = rotate(program position + g92) + g5x.
     XyRotation(f64),
+    /// A tilted working plane (G68.2; `None`: G69): the position in the untilted program
+    /// frame is `origin + rotation · p` for program position `p` (X Y Z; rotary words as
+    /// they are), then the G92 offset, XY rotation and G5x offset apply as for
+    /// [`Canon::Offsets`]. With [`WorkPlane::tool_axis`] (G53.1) the tool axis is the feature's
+    /// Z, taken from the program — as [`Canon::ToolAxis`] — rather than from the machine's
+    /// rotary joints, until the plane is cancelled. The tool stays where it is.
+    WorkPlane(Option<WorkPlane>),
     /// The arc plane changed.
     Plane(Plane),
     /// Feed rate: mm/min, 1/min (inverse time) or mm/rev as the feed mode says.
@@ -296,6 +328,7 @@ impl Canon<'_> {
                 g92: *g92,
             },
             Canon::Plane(p) => Canon::Plane(*p),
+            Canon::WorkPlane(w) => Canon::WorkPlane(*w),
             Canon::XyRotation(r) => Canon::XyRotation(*r),
             Canon::FeedRate(f) => Canon::FeedRate(*f),
             Canon::FeedMode(m) => Canon::FeedMode(*m),

@@ -34,7 +34,9 @@ pub mod spline;
 pub mod summary;
 
 pub use builder::MoveBuilder;
-pub use canon::{Axes, Canon, CanonSink, FeedMode, MessageKind, Plane, SpindleDir, Units};
+pub use canon::{
+    Axes, Canon, CanonSink, FeedMode, MessageKind, Plane, SpindleDir, Units, WorkPlane,
+};
 pub use error::{PathError, PathErrorKind, SourcePos, Warning};
 pub use kinematics::Machine;
 pub use moves::{ArcGeom, AxisSource, Move, MoveKind, Pose, Program, SourceLine};

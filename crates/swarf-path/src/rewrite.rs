@@ -217,8 +217,8 @@ pub struct LineModes {
     pub absolute: bool,
     /// Inch units (G20) after the line's own words.
     pub inch: bool,
-    /// A rotation or scaling of the program frame (G68, G51, G10 L2/L20 with R) was seen on
-    /// this line or before it.
+    /// A rotation or scaling of the program frame (G68, G68.2, G51, G10 L2/L20 with R) was
+    /// seen on this line or before it.
     pub transformed: bool,
 }
 
@@ -280,6 +280,7 @@ pub fn gcode_line_modes(text: &str, initial_inch: bool) -> Vec<LineModes> {
             m.inch = if g(20.0) { true } else { m.inch && !g(21.0) };
             let l = |x: f64| w.iter().any(|&(c, v)| c == 'L' && (v - x).abs() < 1e-9);
             m.transformed |= g(68.0)
+                || g(68.2)
                 || g(51.0)
                 || (g(10.0) && (l(2.0) || l(20.0)) && w.iter().any(|&(c, _)| c == 'R'));
             m

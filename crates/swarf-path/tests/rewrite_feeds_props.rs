@@ -111,4 +111,14 @@ fn lone_carriage_returns_end_lines_and_each_keeps_its_end() {
     let modes = gcode_line_modes("G90\rG91 G1 X1\rG20\r", false);
     assert_eq!(modes.len(), 3);
     assert!(modes[0].absolute && !modes[1].absolute && modes[2].inch && !modes[1].inch);
+    // A tilted working plane transforms the frame: its moves' pieces would be written in the
+    // wrong coordinates.
+    let modes = gcode_line_modes(
+        "G1 X1
+G68.2 X0 Y0 Z0 I0 J30 K0
+G1 X2
+",
+        false,
+    );
+    assert!(!modes[0].transformed && modes[1].transformed && modes[2].transformed);
 }

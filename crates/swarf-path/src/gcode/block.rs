@@ -89,13 +89,14 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
         171 | 181 | 191 => unsupported("UVW planes (G17.1, G18.1, G19.1) are not supported"),
         432 | 433 => unsupported("G43.2 additional tool length offsets are not supported"),
         434 | 435 => Ok(TOOL_LENGTH),
-        682 | 531 | 691 => unsupported(
-            "tilted working planes (G68.2, G53.1, G69.1) are not supported: post the program for \
-             a machine with --machine kinematics (A/B/C words) or as APT CL data",
+        531 => Ok(NON_MODAL),
+        683 | 684 | 691 => unsupported(
+            "G68.3/G68.4 (a working plane from the tool axis, incremental) and G69.1 are not \
+             read; G68.2 (Euler angles) with G53.1 is",
         ),
         500 | 510 => Ok(SCALING),
         511 => unsupported("mirroring (G51.1) is not supported"),
-        680 | 690 => Ok(ROTATION),
+        680 | 682 | 690 => Ok(ROTATION),
         _ => Err((PathErrorKind::Syntax, "unknown G code")),
     }
 }

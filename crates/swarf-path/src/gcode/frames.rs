@@ -14,11 +14,18 @@
 //!   itself (`P1.5`); a control set to integer thousandths (`P1500`) needs the decimal form.
 //!   Arcs need equal factors in their plane (otherwise they are ellipses); canned cycles are
 //!   not read under scaling. G50 alone is accepted anywhere.
+//! * `G68.2 X Y Z I J K` (Fanuc 30i-M "tilted working plane indexing", Haas the same): program
+//!   positions are coordinates of a feature frame with origin (X, Y, Z) and axes turned by the
+//!   Euler angles I, J, K — position in the untilted frame = origin + Rz(I)·Rx(J)·Rz(K)·p —
+//!   until G69; `G53.1` turns the tool to the feature's Z. Stated with
+//!   [`Canon::WorkPlane`](crate::Canon) and applied by the move builder (positions, arc
+//!   planes, the tool axis); the interpreter keeps the same frame for G53, G28 and frame
+//!   changes. Not combined with G68.
 
 use super::block::{group, Block};
 use super::interp::{rotate_xy, Interp};
 use super::{Fault, Res};
-use crate::{PathErrorKind, Plane};
+use crate::{Canon, PathErrorKind, Plane, WorkPlane};
 
 impl Interp<'_, '_> {
     /// The G92 offset and XY rotation the canonical events state: the G92 offset and the
@@ -39,12 +46,26 @@ impl Interp<'_, '_> {
         }
     }
 
-    /// G68/G69.
+    /// G68/G68.2/G69.
     pub(crate) fn rotation(&mut self, b: &Block, g: u16) -> Res<()> {
         let span = b.g_span(group::ROTATION);
         let m = self.machine();
+        if g == 682 {
+            return self.g68_2(b, m);
+        }
+        if g == 680 && self.tilt.is_some() {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                span,
+                "G68 while a tilted working plane (G68.2) is on",
+                "G69 first",
+            ));
+        }
         if g == 690 {
             self.g68 = None;
+            if self.tilt.take().is_some() {
+                self.emit(Canon::WorkPlane(None));
+            }
         } else {
             if self.plane != Plane::XY {
                 return Err(Fault::new(
@@ -71,6 +92,64 @@ impl Interp<'_, '_> {
         // The tool stays where it is; its program coordinates are now the rotated frame's.
         self.p = self.program_of(&m, &self.off, &self.g92, self.rot);
         self.emit_offsets();
+        Ok(())
+    }
+
+    /// `G68.2 [P0] X Y Z I J K`: a tilted working plane (feature coordinate system) whose origin
+    /// is (X, Y, Z) in the current program frame (absolute, in program units; 0 when left out)
+    /// and whose axes are the frame's turned by the Euler angles I, J, K (degrees): about Z,
+    /// then about the new X, then about the new Z. Program positions are the feature's
+    /// coordinates from here on; the tool stays where it is. A new G68.2 replaces the plane.
+    fn g68_2(&mut self, b: &Block, m: [f64; 6]) -> Res<()> {
+        let span = b.g_span(group::ROTATION);
+        if self.g68.is_some() {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                span,
+                "G68.2 while a G68 rotation is on",
+                "G69 first",
+            ));
+        }
+        if let Some(p) = b.get(b'p').filter(|p| *p != 0.0) {
+            return Err(Fault::new(
+                PathErrorKind::Unsupported,
+                b.span(b'p'),
+                format!(
+                    "G68.2 P{p} (roll-pitch-yaw, three points, two vectors or projection \
+                     angles) is not read; G68.2 with Euler angles (P0, the default) is"
+                ),
+                "G68.2 X Y Z I J K",
+            ));
+        }
+        // The origin is given in the untilted frame, whatever plane was on.
+        self.tilt = None;
+        let origin = [b'x', b'y', b'z'].map(|c| b.get(c).unwrap_or(0.0) * self.scale);
+        let [i, j, k] = [b'i', b'j', b'k'].map(|c| b.get(c).unwrap_or(0.0).to_radians());
+        use swarf_geom::math::Mat3;
+        let r = Mat3::from_rotation_z(i) * Mat3::from_rotation_x(j) * Mat3::from_rotation_z(k);
+        self.tilt = Some(WorkPlane {
+            origin,
+            rotation: std::array::from_fn(|row| std::array::from_fn(|col| r.col(col)[row])),
+            tool_axis: false,
+        });
+        self.p = self.program_of(&m, &self.off, &self.g92, self.rot);
+        self.emit(Canon::WorkPlane(self.tilt));
+        Ok(())
+    }
+
+    /// `G53.1`: the tool is turned to the tilted plane's Z (the control's rotary axes do it).
+    pub(crate) fn g53_1(&mut self, b: &Block) -> Res<()> {
+        let Some(w) = &mut self.tilt else {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                b.g_span(group::NON_MODAL),
+                "G53.1 without a tilted working plane",
+                "G68.2 before it",
+            ));
+        };
+        w.tool_axis = true;
+        let w = *w;
+        self.emit(Canon::WorkPlane(Some(w)));
         Ok(())
     }
 

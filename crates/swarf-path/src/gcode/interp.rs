@@ -10,7 +10,7 @@ use std::borrow::Cow;
 use std::collections::HashMap;
 use std::rc::Rc;
 
-use swarf_geom::math::MACHINE_RANGE_MM;
+use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 
 use super::arcs::{center_r, check_ijk, r_tolerance_mm};
 use super::block::{self, group, Block};
@@ -24,7 +24,7 @@ use super::{Fault, GcodeDialect, GcodeOptions, Res, Span};
 use crate::limit::{move_limit_message, MoveLimit};
 use crate::{
     Axes, Canon, CanonSink, FeedMode, MessageKind, PathError, PathErrorKind, Plane, SourcePos,
-    SpindleDir, Units, Warning,
+    SpindleDir, Units, Warning, WorkPlane,
 };
 
 /// Letters of the six axes, in X Y Z A B C order.
@@ -166,6 +166,8 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) group1: u16,
     /// Fanuc G68: the centre (X, Y, mm) and angle (degrees) of the coordinate rotation.
     pub(crate) g68: Option<([f64; 2], f64)>,
+    /// G68.2: the tilted working plane program positions are given in.
+    pub(crate) tilt: Option<WorkPlane>,
     /// Fanuc G51: the centre (mm) and factor of each axis of the scaling.
     pub(crate) g51: Option<([f64; 3], [f64; 3])>,
     /// The last G5's second control point (a G5 without I J mirrors it).
@@ -199,6 +201,7 @@ impl<'t, 's> Interp<'t, 's> {
             g53_warned: false,
             group1: 0,
             g68: None,
+            tilt: None,
             g51: None,
             g5_last: None,
             nurbs: None,
@@ -695,9 +698,25 @@ impl<'t, 's> Interp<'t, 's> {
     /// G5x offset (LinuxCNC's canon layer).
     pub(crate) fn machine_of(&self, p: &[f64; 6]) -> [f64; 6] {
         let (g92, rot) = self.effective_frame(&self.g92, self.rot);
+        let p = self.untilted(p);
         let q: [f64; 6] = std::array::from_fn(|i| p[i] + g92[i]);
         let q = rotate_xy(q, rot);
         std::array::from_fn(|i| q[i] + self.off[i])
+    }
+
+    /// Program position `p` in the untilted program frame (G68.2's origin plus its axes
+    /// times `p`; rotary words as they are).
+    pub(crate) fn untilted(&self, p: &[f64; 6]) -> [f64; 6] {
+        let Some(w) = &self.tilt else { return *p };
+        let q = Vec3::from_array(w.origin) + w.matrix() * Vec3::new(p[0], p[1], p[2]);
+        [q.x, q.y, q.z, p[3], p[4], p[5]]
+    }
+
+    /// [`Self::untilted`] inverted.
+    fn tilted(&self, q: &[f64; 6]) -> [f64; 6] {
+        let Some(w) = &self.tilt else { return *q };
+        let p = w.matrix().transpose() * (Vec3::new(q[0], q[1], q[2]) - Vec3::from_array(w.origin));
+        [p.x, p.y, p.z, q[3], q[4], q[5]]
     }
 
     /// The program position of machine position `m` under offsets `off`, `g92` and rotation
@@ -712,7 +731,7 @@ impl<'t, 's> Interp<'t, 's> {
         let (g92, rot) = self.effective_frame(g92, rot);
         let q: [f64; 6] = std::array::from_fn(|i| m[i] - off[i]);
         let q = rotate_xy(q, -rot);
-        std::array::from_fn(|i| q[i] - g92[i])
+        self.tilted(&std::array::from_fn(|i| q[i] - g92[i]))
     }
 
     pub(crate) fn machine(&self) -> [f64; 6] {
@@ -947,7 +966,7 @@ impl<'t, 's> Interp<'t, 's> {
         }
         if let Some(g) = b.g(group::ROTATION) {
             self.rotation(b, g)?;
-            axes_used_by_nonmotion |= g == 680;
+            axes_used_by_nonmotion |= g == 680 || g == 682;
         }
         match b.g(group::TOOL_LENGTH) {
             Some(g @ (430 | 434 | 435 | 2340)) => {
@@ -1052,6 +1071,7 @@ impl<'t, 's> Interp<'t, 's> {
                 self.g10(b)?;
                 axes_used_by_nonmotion = true;
             }
+            Some(531) => self.g53_1(b)?,
             Some(280 | 300) => {
                 if self.comp.on() {
                     return Err(Fault::semantic(
@@ -1158,6 +1178,7 @@ impl<'t, 's> Interp<'t, 's> {
                     let normal = b"ijk"[self.plane.axes().2];
                     let dropped = self.fanuc && (c == normal || b.has(b'r'));
                     (arc && !dropped)
+                        || b.g(group::ROTATION) == Some(682)
                         || (self.fanuc && cycle && c == b'k')
                         || matches!(mode, Some(50 | 51 | 870))
                         || b.g(group::SCALING) == Some(510)
@@ -1167,6 +1188,7 @@ impl<'t, 's> Interp<'t, 's> {
                 b'q' => matches!(mode, Some(50 | 730 | 830)) || b.g(group::PATH) == Some(640),
                 b'p' => {
                     arc || cycle
+                        || b.g(group::ROTATION) == Some(682)
                         || matches!(mode, Some(50 | 52))
                         || b.g(group::SCALING) == Some(510)
                         || g10

@@ -26,7 +26,8 @@
 //! * State: G17–G19, G20/G21, G90/G91, G90.1/G91.1, G93/G94/G95, G54–G59.3, G10 L2/L20 with R
 //!   ([`Canon::XyRotation`]), G52, G92/G92.1/G92.2/G92.3, G43/G43.1/G49 (reported, positions not
 //!   shifted: tool-tip programs), G61/G61.1/G64, G96/G97, G4, F S T M3 M4 M5 M6 M2 M30 (M0 M1
-//!   M60 M7 M8 M9 and every other M code: warnings); Fanuc G68/G69 and G51/G50 (`frames`).
+//!   M60 M7 M8 M9 and every other M code: warnings); Fanuc G68/G69 and G51/G50, and the
+//!   tilted working plane G68.2/G53.1 ([`Canon::WorkPlane`]) (`frames`).
 //! * Parameters `#1`–`#5601` (5161–5386 are views onto the G28/G30 positions and offsets, in
 //!   [`GcodeOptions::parameter_units`]; 5021–5026 the machine position and 5420–5425 the
 //!   position, in program units), `#<local>`, `#<_global>`, `#<_x>`, `#<_abs_x>` … and
