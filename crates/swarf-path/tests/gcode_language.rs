@@ -932,3 +932,71 @@ fn utf16_files_with_a_byte_order_mark_read_as_their_utf8_text() {
         }
     }
 }
+
+/// LinuxCNC's M70 (save), M72 (restore), M71 (forget) and M73 (save, restored when the
+/// subroutine returns): units, distance mode, feed and coordinate system come back; the state
+/// is per call level.
+#[test]
+fn modal_state_save_and_restore_m70_to_m73() {
+    // Saved in mm and G90 at F100; inch and G91 in between; restored before the second move.
+    let rec = run("G21 G90 F100\nM70\nG20 G91 F10\nG0 X1\nM72\nG0 X1\nM2\n");
+    let m = motion(&rec);
+    assert_xyz(end_of(&m[0]), 25.4, 0.0, 0.0);
+    assert_xyz(end_of(&m[1]), 1.0, 0.0, 0.0);
+    let feeds: Vec<f64> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::FeedRate(f) => Some(*f),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(feeds.last(), Some(&100.0), "{feeds:?}");
+    // M73 in a subroutine: restored at its endsub; in an M98 subprogram at its M99.
+    for src in [
+        "G21 G90\no100 sub\nM73\nG20 G91\nG0 X1\no100 endsub\no100 call\nG0 X1\nM2\n",
+        "G21 G90\nM98 P100\nG0 X1\nM2\nO100\nM73\nG20 G91\nG0 X1\nM99\n",
+    ] {
+        let m = motion(&run(src));
+        assert_xyz(end_of(&m[0]), 25.4, 0.0, 0.0);
+        assert_xyz(end_of(&m[1]), 1.0, 0.0, 0.0);
+    }
+    // M70 in a subroutine is not restored by its return: G20 stays.
+    let m = motion(&run(
+        "G21 G90\no100 sub\nM70\nG20\no100 endsub\no100 call\nG0 X1\nM2\n",
+    ));
+    assert_xyz(end_of(&m[0]), 25.4, 0.0, 0.0);
+    // The coordinate system comes back.
+    let rec = run("G21 G90\nG10 L2 P2 X10\nG54\nM70\nG55\nG0 X0\nM72\nG0 X0\nM2\n");
+    let index: Vec<u8> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Offsets { index, .. } => Some(*index),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(index.last(), Some(&1), "{index:?}");
+    // M71 forgets; M72 with nothing saved at this level is an error at its line; a state
+    // saved in the main program is not the subroutine's.
+    assert_eq!(err("G21\nM70\nM71\nM72\n").pos.line, 4);
+    assert_eq!(err("G21\nM72\n").pos.line, 2);
+    let e = err("G21\nM70\no1 sub\nM72\no1 endsub\no1 call\nM2\n");
+    assert_eq!(e.pos.line, 4);
+}
+
+/// M61 Q sets the tool in the spindle without a change: the moves after it use that tool.
+#[test]
+fn m61_sets_the_current_tool() {
+    let rec = run("G21\nT1 M6\nM61 Q3\nG0 X1\nM2\n");
+    let tools: Vec<u32> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::ToolChange { tool } => Some(*tool),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(tools, [1, 3]);
+    assert_eq!(err("G21\nM61\n").pos.line, 2);
+}

@@ -544,6 +544,9 @@ impl Interp<'_, '_> {
     }
 
     fn sub_return(&mut self, value: Option<f64>, span: Span) -> Res<()> {
+        if self.frames.last().is_some_and(|f| f.fanuc.is_none()) {
+            self.modal_on_return(span)?;
+        }
         let Some(f) = self.frames.pop() else {
             return Err(Fault::semantic(
                 span,
@@ -662,6 +665,7 @@ impl Interp<'_, '_> {
                     self.count_iteration(Span::Line)?;
                     self.at = s;
                 } else {
+                    self.modal_on_return(Span::Line)?;
                     let f = self.frames.pop().expect("just matched");
                     self.ctl.truncate(f.ctl_len);
                     self.at = f.ret;

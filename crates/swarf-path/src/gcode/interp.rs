@@ -168,6 +168,8 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) g68: Option<([f64; 2], f64)>,
     /// G68.2: the tilted working plane program positions are given in.
     pub(crate) tilt: Option<WorkPlane>,
+    /// The modal state M70/M73 saved, per call level (`modal`).
+    pub(crate) saved_modal: Vec<super::modal::Saved>,
     /// Fanuc G51: the centre (mm) and factor of each axis of the scaling.
     pub(crate) g51: Option<([f64; 3], [f64; 3])>,
     /// The last G5's second control point (a G5 without I J mirrors it).
@@ -202,6 +204,7 @@ impl<'t, 's> Interp<'t, 's> {
             group1: 0,
             g68: None,
             tilt: None,
+            saved_modal: Vec::new(),
             g51: None,
             g5_last: None,
             nurbs: None,
@@ -756,7 +759,7 @@ impl<'t, 's> Interp<'t, 's> {
     }
 
     /// Changes the offsets and the XY rotation in effect keeping the machine position.
-    fn set_frame(&mut self, off: [f64; 6], g92: [f64; 6], rot: f64) {
+    pub(crate) fn set_frame(&mut self, off: [f64; 6], g92: [f64; 6], rot: f64) {
         let m = self.machine();
         self.off = off;
         self.g92 = g92;
@@ -767,7 +770,7 @@ impl<'t, 's> Interp<'t, 's> {
 
     /// Puts tool length offset `t` in effect: the controlled point stays where it is, so the
     /// program position reads the offset's change less.
-    fn set_tlo(&mut self, t: [f64; 6]) {
+    pub(crate) fn set_tlo(&mut self, t: [f64; 6]) {
         let m = self.machine();
         let moved: [f64; 6] = std::array::from_fn(|i| m[i] - (t[i] - self.tlo[i]));
         self.tlo = t;
@@ -854,6 +857,30 @@ impl<'t, 's> Interp<'t, 's> {
             });
         }
         for &(m, at) in &b.m_other[..b.n_other] {
+            // (A Fanuc control's M61 without Q is the machine builder's own code.)
+            if m == 61 && (!self.fanuc || b.has(b'q')) {
+                // M61 Q<n>: the tool in the spindle is now tool n, without a change.
+                let q = b
+                    .get(b'q')
+                    .filter(|q| *q >= 0.0 && q.fract() == 0.0 && *q <= f64::from(u32::MAX));
+                let Some(q) = q else {
+                    return Err(Fault::new(
+                        PathErrorKind::Semantic,
+                        Span::Code(at as usize, at as usize + 3),
+                        "M61 needs a tool number Q",
+                        "Q<tool number>",
+                    ));
+                };
+                self.tool = q as u32;
+                self.tool_loaded = true;
+                self.emit(Canon::ToolChange { tool: self.tool });
+                continue;
+            }
+            // (Also under Fanuc rules: LinuxCNC programs with M98 subprograms read by them.)
+            if (70..=73).contains(&m) {
+                self.modal_save_restore(m, Span::Code(at as usize, at as usize + 3))?;
+                continue;
+            }
             let what = match m {
                 7 => "M7 (mist coolant on)".to_string(),
                 8 => "M8 (flood coolant on)".to_string(),
@@ -863,11 +890,10 @@ impl<'t, 's> Interp<'t, 's> {
                 11 | 13 if self.fanuc => format!("M{m} (rotary axis brake unclamp)"),
                 29 if self.fanuc => "M29 (rigid tapping mode)".to_string(),
                 48..=53 => format!("M{m} (override control)"),
-                61 => "M61 (set current tool)".to_string(),
+                61 => "M61 without Q".to_string(),
                 62..=65 => format!("M{m} (digital output)"),
                 66 => "M66 (wait on input)".to_string(),
                 67 | 68 => format!("M{m} (analog output)"),
-                70..=73 => format!("M{m} (modal state save/restore)"),
                 100..=199 => format!("M{m} (user-defined M code)"),
                 _ => format!("M{m} (unknown M code)"),
             };
@@ -1173,6 +1199,7 @@ impl<'t, 's> Interp<'t, 's> {
                     true
                 }
                 b'q' if b.fine_boring => true,
+                b'q' if b.m_other[..b.n_other].iter().any(|&(m, _)| m == 61) => true,
                 b'i' | b'j' | b'k' => {
                     // Fanuc reads an arc's centre words in its plane only, and none beside R.
                     let normal = b"ijk"[self.plane.axes().2];

@@ -65,6 +65,7 @@ mod expr;
 mod frames;
 mod interp;
 pub(crate) mod lexer;
+mod modal;
 mod params;
 mod splines;
 mod stack;
