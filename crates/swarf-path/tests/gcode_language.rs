@@ -1000,3 +1000,44 @@ fn m61_sets_the_current_tool() {
     assert_eq!(tools, [1, 3]);
     assert_eq!(err("G21\nM61\n").pos.line, 2);
 }
+
+/// LinuxCNC's `(ABORT,…)` stops the program with its text (parameters replaced) as the error,
+/// at its line, after the moves before it.
+#[test]
+fn abort_comment_ends_the_program_with_its_message() {
+    let mut rec = Recorder::default();
+    let e = read_gcode(
+        "G21\nG0 X1\n(abort,stopped at #<_x>)\nG0 X2\nM2\n",
+        "t.ngc",
+        &GcodeOptions::default(),
+        &mut rec,
+    )
+    .unwrap_err();
+    assert_eq!(e.pos.line, 3);
+    assert!(e.message.contains("stopped at 1.000000"), "{}", e.message);
+    assert_eq!(motion(&rec).len(), 1);
+    // In a branch not taken it does nothing.
+    run("G21\no1 if [0]\n(ABORT,never)\no1 endif\nG0 X1\nM2\n");
+}
+
+/// G43.2 adds to the tool length offset in effect: tool H's, or the axis words'. The offset
+/// shows in the position the program reads (#5422: Z) as G43's does.
+#[test]
+fn g43_2_adds_a_tool_length_offset() {
+    let msgs = |src: &str| -> Vec<String> {
+        run(src)
+            .events
+            .iter()
+            .filter_map(|(_, e)| match e {
+                Canon::Message { text, .. } => Some(text.to_string()),
+                _ => None,
+            })
+            .collect()
+    };
+    // At Z0 with offsets 5 then 5 + 2: the program reads Z −5, then −7.
+    let got = msgs(
+        "G21\nG10 L1 P1 Z5\nG10 L1 P2 Z2\nG43 H1\n(debug,#5422)\nG43.2 H2\n(debug,#5422)\n\
+         G43.2 Z0.5\n(debug,#5422)\nG49\n(debug,#5422)\nM2\n",
+    );
+    assert_eq!(got, ["-5.000000", "-7.000000", "-7.500000", "0.000000"]);
+}

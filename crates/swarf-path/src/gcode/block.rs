@@ -87,8 +87,8 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
         ),
         150 | 160 => unsupported("Fanuc polar coordinate mode (G15/G16) is not supported; use `@` and `^`"),
         171 | 181 | 191 => unsupported("UVW planes (G17.1, G18.1, G19.1) are not supported"),
-        432 | 433 => unsupported("G43.2 additional tool length offsets are not supported"),
-        434 | 435 => Ok(TOOL_LENGTH),
+        433 => unsupported("G43.3 is not a tool length offset swarf reads (G43, G43.1, G43.2)"),
+        432 | 434 | 435 => Ok(TOOL_LENGTH),
         531 => Ok(NON_MODAL),
         683 | 684 | 691 => unsupported(
             "G68.3/G68.4 (a working plane from the tool axis, incremental) and G69.1 are not \

@@ -530,6 +530,17 @@ impl<'t, 's> Interp<'t, 's> {
         }
         for &(a, b) in &lb.comments {
             let text = &raw[a as usize..b as usize];
+            // LinuxCNC's `(ABORT,…)`: the program stops here with the message as its error.
+            if let Some((head, body)) = text.split_once(',') {
+                if head.trim().eq_ignore_ascii_case("abort") {
+                    return Err(Fault::new(
+                        PathErrorKind::Semantic,
+                        Span::Raw(a as usize, b as usize),
+                        format!("the program aborts: {}", self.substitute_parameters(body)),
+                        "",
+                    ));
+                }
+            }
             let event = match active_comment(text) {
                 Some((kind, body)) => Canon::Message {
                     kind,
@@ -1046,6 +1057,34 @@ impl<'t, 's> Interp<'t, 's> {
                 self.set_tlo(t);
                 self.emit(Canon::ToolLengthOffset(t[2]));
             }
+            Some(432) => {
+                // G43.2: an offset added to the one in effect — tool H's, or the axis words'.
+                let add = match b.get(b'h') {
+                    Some(h) if h >= 0.0 && h.fract() == 0.0 && h <= f64::from(u32::MAX) => self
+                        .tool_table
+                        .get(&(h as u32))
+                        .copied()
+                        .unwrap_or([0.0; 6]),
+                    Some(_) => {
+                        return Err(Fault::new(
+                            PathErrorKind::Semantic,
+                            b.span(b'h'),
+                            "bad tool number in G43.2 H",
+                            "a non-negative integer",
+                        ))
+                    }
+                    None => {
+                        axes_used_by_nonmotion = true;
+                        std::array::from_fn(|i| {
+                            b.get(AXIS_LETTERS[i])
+                                .map_or(0.0, |v| self.mm_from_units(i, v))
+                        })
+                    }
+                };
+                let t: [f64; 6] = std::array::from_fn(|i| self.tlo[i] + add[i]);
+                self.set_tlo(t);
+                self.emit(Canon::ToolLengthOffset(t[2]));
+            }
             Some(_) => {
                 self.set_tlo([0.0; 6]);
                 self.emit(Canon::ToolLengthOffset(0.0));
@@ -1225,7 +1264,7 @@ impl<'t, 's> Interp<'t, 's> {
                         || b.g(group::PATH) == Some(640)
                 }
                 b'l' => cycle || g10 || b.m98 || b.m97 || mode == Some(52),
-                b'h' => matches!(b.g(group::TOOL_LENGTH), Some(430 | 434 | 435 | 2340)),
+                b'h' => matches!(b.g(group::TOOL_LENGTH), Some(430 | 432 | 434 | 435 | 2340)),
                 b'd' => comp_d,
                 _ => false,
             };
