@@ -1041,3 +1041,66 @@ fn g43_2_adds_a_tool_length_offset() {
     );
     assert_eq!(got, ["-5.000000", "-7.000000", "-7.500000", "0.000000"]);
 }
+
+/// LinuxCNC's predefined named parameters for the modes (G-code manual, "Predefined Named
+/// Parameters"): codes × 10 for motion, plane, compensation and coordinate system, 1/0 flags
+/// for the rest; the tool in the spindle changes at M6, the selected one at T.
+#[test]
+fn predefined_named_parameters_read_the_modes() {
+    let names = [
+        "_motion_mode",
+        "_plane",
+        "_ccomp",
+        "_coord_system",
+        "_inverse_time",
+        "_units_per_minute",
+        "_tool_offset",
+        "_retract_r_plane",
+        "_retract_old_z",
+        "_spindle_on",
+        "_spindle_cw",
+        "_spindle_css_mode",
+        "_mist",
+        "_flood",
+        "_feed_override",
+        "_adaptive_feed",
+        "_current_tool",
+        "_selected_tool",
+        "_call_level",
+        "_ijk_absolute_mode",
+    ];
+    let probe: String = names.iter().map(|n| format!("#<{n}> ")).collect();
+    let text = |src: &str| -> String {
+        run(src)
+            .events
+            .iter()
+            .filter_map(|(_, e)| match e {
+                Canon::Message { text, .. } => Some(text.to_string()),
+                _ => None,
+            })
+            .collect::<Vec<_>>()
+            .join("|")
+    };
+    let start = text(&format!("G21\n(debug,{probe})\nM2\n"));
+    assert_eq!(
+        start,
+        "800.000000 170.000000 400.000000 540.000000 0.000000 1.000000 0.000000 \
+         0.000000 1.000000 0.000000 0.000000 0.000000 0.000000 0.000000 1.000000 0.000000 \
+         0.000000 -1.000000 0.000000 0.000000 "
+    );
+    let later = text(&format!(
+        "G21\nT2 M6\nT5\nG18 G55 G93 G43 G99 G90.1 G96 S100 M3 M7 M8 M50 P0\nM52\n\
+         G41.1 D4\nG1 X10 F2\nG40\nG1 X20 F2\no1 sub\n(debug,{probe})\no1 endsub\no1 call\nM2\n"
+    ));
+    assert_eq!(
+        later,
+        "10.000000 180.000000 400.000000 550.000000 1.000000 0.000000 1.000000 \
+         1.000000 0.000000 1.000000 1.000000 1.000000 1.000000 1.000000 0.000000 1.000000 \
+         2.000000 5.000000 1.000000 1.000000 "
+    );
+    let comp = text(
+        "G21\nG41.1 D4\n(debug,#<_ccomp>)\nG1 X10 F100\nG40\nG1 X20\n(debug,#<_ccomp>)\n\
+         G42.1 D4\n(debug,#<_ccomp>)\nM2\n",
+    );
+    assert_eq!(comp, "411.000000|400.000000|421.000000");
+}

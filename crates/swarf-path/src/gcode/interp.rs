@@ -71,6 +71,39 @@ pub(crate) struct CycleMemory {
     pub(crate) q: f64,
 }
 
+/// Modes that change no motion, kept for LinuxCNC's predefined named parameters.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct ReadOnlyState {
+    /// The cutter compensation code × 10 (400, 410, 411, 420, 421).
+    ccomp: u16,
+    /// The tool in the spindle (M6, M61), and the tool the last T word selected.
+    loaded_tool: u32,
+    selected_tool: Option<u32>,
+    mist: bool,
+    flood: bool,
+    /// Feed override, speed override, adaptive feed, feed hold (M48–M53).
+    overrides: [bool; 4],
+    /// G96 constant surface speed.
+    css: bool,
+    /// A tool length offset is on (G43, G43.1, G43.2; off after G49).
+    tlo_on: bool,
+}
+
+impl Default for ReadOnlyState {
+    fn default() -> Self {
+        Self {
+            ccomp: 400,
+            loaded_tool: 0,
+            selected_tool: None,
+            mist: false,
+            flood: false,
+            overrides: [true, true, false, false],
+            css: false,
+            tlo_on: false,
+        }
+    }
+}
+
 /// The interpreter state for one program run.
 pub(crate) struct Interp<'t, 's> {
     /// The text and name of the file being executed.
@@ -170,6 +203,8 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) tilt: Option<WorkPlane>,
     /// The modal state M70/M73 saved, per call level (`modal`).
     pub(crate) saved_modal: Vec<super::modal::Saved>,
+    /// State only LinuxCNC's predefined named parameters read (`#<_ccomp>`, `#<_mist>`, …).
+    pub(crate) read_only: ReadOnlyState,
     /// Fanuc G51: the centre (mm) and factor of each axis of the scaling.
     pub(crate) g51: Option<([f64; 3], [f64; 3])>,
     /// The last G5's second control point (a G5 without I J mirrors it).
@@ -205,6 +240,7 @@ impl<'t, 's> Interp<'t, 's> {
             g68: None,
             tilt: None,
             saved_modal: Vec::new(),
+            read_only: ReadOnlyState::default(),
             g51: None,
             g5_last: None,
             nurbs: None,
@@ -845,6 +881,7 @@ impl<'t, 's> Interp<'t, 's> {
                 ));
             }
             self.tool = t as u32;
+            self.read_only.selected_tool = Some(self.tool);
         }
         if b.m6 {
             if self.comp.on() {
@@ -854,6 +891,7 @@ impl<'t, 's> Interp<'t, 's> {
                 ));
             }
             self.tool_loaded = true;
+            self.read_only.loaded_tool = self.tool;
             self.emit(Canon::ToolChange { tool: self.tool });
         }
         if let Some(m) = b.m_spindle {
@@ -884,10 +922,21 @@ impl<'t, 's> Interp<'t, 's> {
                 };
                 self.tool = q as u32;
                 self.tool_loaded = true;
+                self.read_only.loaded_tool = self.tool;
                 self.emit(Canon::ToolChange { tool: self.tool });
                 continue;
             }
             // (Also under Fanuc rules: LinuxCNC programs with M98 subprograms read by them.)
+            let ro = &mut self.read_only;
+            let p_on = b.get(b'p').is_none_or(|p| p != 0.0);
+            match m {
+                7 => ro.mist = true,
+                8 => ro.flood = true,
+                9 => (ro.mist, ro.flood) = (false, false),
+                48 | 49 => (ro.overrides[0], ro.overrides[1]) = (m == 48, m == 48),
+                50..=53 => ro.overrides[usize::from(m - 50)] = p_on,
+                _ => {}
+            }
             if (70..=73).contains(&m) {
                 self.modal_save_restore(m, Span::Code(at as usize, at as usize + 3))?;
                 continue;
@@ -996,6 +1045,7 @@ impl<'t, 's> Interp<'t, 's> {
         }
         if let Some(g) = b.g(group::CUTTER_COMP) {
             self.comp_mode(b, g)?;
+            self.read_only.ccomp = g;
         }
         if let Some(g) = b.g(group::SCALING) {
             self.scaling(b, g)?;
@@ -1038,6 +1088,7 @@ impl<'t, 's> Interp<'t, 's> {
                     );
                 }
                 let t = entry.unwrap_or([0.0; 6]);
+                self.read_only.tlo_on = true;
                 self.set_tlo(t);
                 self.emit(Canon::ToolLengthOffset(t[2]));
             }
@@ -1054,6 +1105,7 @@ impl<'t, 's> Interp<'t, 's> {
                 axes_used_by_nonmotion = true;
                 let mut t = [0.0; 6];
                 t[2] = z * self.scale;
+                self.read_only.tlo_on = true;
                 self.set_tlo(t);
                 self.emit(Canon::ToolLengthOffset(t[2]));
             }
@@ -1082,10 +1134,12 @@ impl<'t, 's> Interp<'t, 's> {
                     }
                 };
                 let t: [f64; 6] = std::array::from_fn(|i| self.tlo[i] + add[i]);
+                self.read_only.tlo_on = true;
                 self.set_tlo(t);
                 self.emit(Canon::ToolLengthOffset(t[2]));
             }
             Some(_) => {
+                self.read_only.tlo_on = false;
                 self.set_tlo([0.0; 6]);
                 self.emit(Canon::ToolLengthOffset(0.0));
             }
@@ -1101,6 +1155,9 @@ impl<'t, 's> Interp<'t, 's> {
             self.coord = idx;
             let off = self.g5x_table[idx - 1];
             self.set_frame(off, self.g92, self.rot_table[idx - 1]);
+        }
+        if let Some(g) = b.g(group::SPINDLE_MODE) {
+            self.read_only.css = g == 960;
         }
         if b.g(group::SPINDLE_MODE) == Some(960) {
             self.warn_code(
@@ -1824,6 +1881,7 @@ impl ParamRead for Interp<'_, '_> {
     }
     fn named(&self, name: &str) -> Option<f64> {
         let flag = |b: bool| Some(f64::from(u8::from(b)));
+        let ro = &self.read_only;
         match name {
             "_x" => Some(self.to_units(0, self.p[0])),
             "_y" => Some(self.to_units(1, self.p[1])),
@@ -1848,8 +1906,43 @@ impl ParamRead for Interp<'_, '_> {
                 self.feed / self.scale
             }),
             "_rpm" => Some(self.rpm),
-            "_current_tool" => Some(f64::from(self.tool)),
+            "_current_tool" => Some(f64::from(ro.loaded_tool)),
+            "_selected_tool" => Some(ro.selected_tool.map_or(-1.0, f64::from)),
             "_line" => Some(f64::from(self.cur_line)),
+            "_u" | "_v" | "_w" | "_abs_u" | "_abs_v" | "_abs_w" => Some(0.0),
+            "_motion_mode" => Some(f64::from(self.motion.unwrap_or(800))),
+            "_plane" => Some(match self.plane {
+                Plane::XY => 170.0,
+                Plane::XZ => 180.0,
+                Plane::YZ => 190.0,
+            }),
+            "_ccomp" => Some(f64::from(ro.ccomp)),
+            "_inverse_time" => flag(self.feed_mode == FeedMode::InverseTime),
+            "_units_per_minute" => flag(self.feed_mode == FeedMode::PerMinute),
+            "_units_per_rev" => flag(self.feed_mode == FeedMode::PerRevolution),
+            "_coord_system" => Some(match self.coord {
+                c @ 1..=6 => 530.0 + 10.0 * c as f64,
+                c => 584.0 + c as f64,
+            }),
+            "_tool_offset" => flag(ro.tlo_on),
+            // G99 retracts to the R plane, G98 to the level before the cycle.
+            "_retract_r_plane" => flag(self.retract_r),
+            "_retract_old_z" => flag(!self.retract_r),
+            "_spindle_rpm_mode" => flag(!ro.css),
+            "_spindle_css_mode" => flag(ro.css),
+            "_ijk_absolute_mode" => flag(self.arc_absolute),
+            "_lathe_diameter_mode" => flag(false),
+            "_lathe_radius_mode" => flag(true),
+            "_spindle_on" => flag(self.dir != SpindleDir::Stopped),
+            "_spindle_cw" => flag(self.dir == SpindleDir::Clockwise),
+            "_mist" => flag(ro.mist),
+            "_flood" => flag(ro.flood),
+            "_feed_override" => flag(ro.overrides[0]),
+            "_speed_override" => flag(ro.overrides[1]),
+            "_adaptive_feed" => flag(ro.overrides[2]),
+            "_feed_hold" => flag(ro.overrides[3]),
+            "_call_level" => Some(self.frames.len() as f64),
+            "_remap_level" | "_task" => Some(0.0),
             // LinuxCNC starts with no value returned.
             "_value" | "_value_returned" => Some(self.params.get_named(name).unwrap_or(0.0)),
             _ => self.params.get_named(name),
