@@ -928,7 +928,7 @@ impl<'t, 's> Interp<'t, 's> {
             }
             // (Also under Fanuc rules: LinuxCNC programs with M98 subprograms read by them.)
             let ro = &mut self.read_only;
-            let p_on = b.get(b'p').is_none_or(|p| p != 0.0);
+            let p_on = b.get(b'p') != Some(0.0);
             match m {
                 7 => ro.mist = true,
                 8 => ro.flood = true,
