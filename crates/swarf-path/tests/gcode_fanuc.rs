@@ -419,18 +419,54 @@ fn haas_m97_calls_a_local_subprogram_by_line_number() {
     assert!(e.message.contains("no line numbered N7"), "{e}");
 }
 
+/// Fanuc Custom Macro B: unbracketed assignments, WHILE … DO m / END m, IF … GOTO, IF …
+/// THEN and GOTO, the moves worked out by running the program by hand.
 #[test]
-fn macro_b_control_flow_is_refused_by_name() {
-    for line in [
-        "WHILE [#1 LT 3] DO1",
-        "N20 IF [#1 EQ 3] GOTO 100",
-        "GOTO 5",
-        "END1",
+fn macro_b_control_flow() {
+    // A counted loop: X 0, 2, 4 at Y = #1's square; an IF … THEN; a GOTO over a block.
+    let src = "O1\nG21 G90\n#1=0\nWHILE [#1 LT 3] DO1\nG1 X[#1*2] Y[#1*#1] F100\n#1=#1+1\nEND1\n\
+               IF [#1 EQ 3] THEN #2=7\nG0 Z#2\nGOTO 30\nG0 Z99\nN30 G0 X-1\nM30\n";
+    let got = moves(src, &fanuc()).unwrap();
+    assert_eq!(
+        got,
+        [
+            ('L', 0.0, 0.0, 0.0),
+            ('L', 2.0, 1.0, 0.0),
+            ('L', 4.0, 4.0, 0.0),
+            ('R', 4.0, 4.0, 7.0),
+            ('R', -1.0, 4.0, 7.0),
+        ]
+    );
+    // Nested loops, an IF … GOTO leaving the inner one, a false WHILE skipped past its END.
+    let src = "O1\nG21\n#1=0\nWHILE [#1 LT 2] DO1\n#2=0\nWHILE [#2 LT 5] DO2\n\
+               IF [#2 EQ 2] GOTO 10\nG0 X#1 Y#2\n#2=#2+1\nEND2\nN10 #1=#1+1\nEND1\n\
+               WHILE [0] DO3\nG0 Z50\nEND3\nG0 Z1\nM30\n";
+    let got = moves(src, &fanuc()).unwrap();
+    assert_eq!(
+        got,
+        [
+            ('R', 0.0, 0.0, 0.0),
+            ('R', 0.0, 1.0, 0.0),
+            ('R', 1.0, 0.0, 0.0),
+            ('R', 1.0, 1.0, 0.0),
+            ('R', 1.0, 1.0, 1.0),
+        ]
+    );
+    // Errors at their lines; an endless GOTO loop ends at the reader's iteration limit.
+    for (src, line) in [
+        ("O1\nG21\nGOTO 5\nM30\n", 3),
+        ("O1\nG21\nEND1\nM30\n", 3),
+        ("O1\nG21\nWHILE [0] DO1\nM30\n", 3),
+        ("O1\nG21\nIF [1] G0 X1\nM30\n", 3),
     ] {
-        let e = moves(&format!("O1\nG21\n#1=0\n{line}\nM30\n"), &fanuc()).unwrap_err();
-        assert!(e.message.contains("Macro B"), "{line}: {e}");
-        assert_eq!(e.pos.line, 4, "{line}");
+        let e = moves(src, &fanuc()).unwrap_err();
+        assert_eq!(e.pos.line, line, "{src}: {e}");
     }
+    let e = moves("O1\nN1 #1=1\nGOTO 1\n", &fanuc()).unwrap_err();
+    assert!(e.message.contains("iterations"), "{e}");
+    // Under LinuxCNC's rules an unbracketed expression is still an error.
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    assert!(moves("G21\n#1=#1+1\n", &linuxcnc).is_err());
 }
 
 /// The dwells as the reader hands them on, seconds.

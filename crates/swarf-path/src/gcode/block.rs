@@ -1,7 +1,7 @@
 //! One block (line) of G-code as words in fixed slots: letters with their values, the G codes of
 //! each modal group, the M codes, and the parameter assignments — no allocation per line.
 
-use super::expr::{param_index, read_name, read_real, Cur, ParamRead};
+use super::expr::{param_index, read_infix, read_name, read_real, Cur, ParamRead};
 use super::lexer::LineBuf;
 use super::params::{Target, MAX_ASSIGNS};
 use super::{Fault, Res, Span};
@@ -399,7 +399,12 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                 }
                 c.i += 1;
                 c.word_start = c.i;
-                let v = read_real(&mut c, params)?;
+                // Fanuc Macro B writes the value without brackets: `#500=#500+1`.
+                let v = if fanuc {
+                    read_infix(&mut c, params)?
+                } else {
+                    read_real(&mut c, params)?
+                };
                 if b.n_assigns == MAX_ASSIGNS {
                     return Err(Fault::new(
                         PathErrorKind::Limit,

@@ -688,7 +688,7 @@ impl Interp<'_, '_> {
     /// The call targets of the current file: with `numbers`, where the first line numbered
     /// `N<n>` starts (an `N` with a fraction or none is no target), for Haas `M97`; else where
     /// the line after the first `O<n>` label starts, for `M98`.
-    fn index_targets(&mut self, numbers: bool) -> HashMap<u64, Cursor> {
+    pub(crate) fn index_targets(&mut self, numbers: bool) -> HashMap<u64, Cursor> {
         let mut map = HashMap::new();
         let mut buf = std::mem::take(&mut self.skip_buf);
         let mut at = self.file_start(self.cur_file);

@@ -88,6 +88,12 @@ pub(crate) fn read_real(c: &mut Cur<'_>, p: &dyn ParamRead) -> Res<f64> {
     real(c, p, 0)
 }
 
+/// Reads an infix expression without enclosing brackets, as a Fanuc control reads the value
+/// of an assignment (`#500=#500+1`): values and operators for as long as an operator follows.
+pub(crate) fn read_infix(c: &mut Cur<'_>, p: &dyn ParamRead) -> Res<f64> {
+    binary(c, p, 1, 1)
+}
+
 fn real(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
     if depth > MAX_DEPTH {
         return Err(Fault::new(

@@ -203,6 +203,8 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) tilt: Option<WorkPlane>,
     /// The modal state M70/M73 saved, per call level (`modal`).
     pub(crate) saved_modal: Vec<super::modal::Saved>,
+    /// Fanuc Macro B loops open (`macro_b`).
+    pub(crate) macro_loops: Vec<super::macro_b::MacroLoop>,
     /// State only LinuxCNC's predefined named parameters read (`#<_ccomp>`, `#<_mist>`, …).
     pub(crate) read_only: ReadOnlyState,
     /// Fanuc G51: the centre (mm) and factor of each axis of the scaling.
@@ -241,6 +243,7 @@ impl<'t, 's> Interp<'t, 's> {
             tilt: None,
             saved_modal: Vec::new(),
             read_only: ReadOnlyState::default(),
+            macro_loops: Vec::new(),
             g51: None,
             g5_last: None,
             nurbs: None,
@@ -599,13 +602,7 @@ impl<'t, 's> Interp<'t, 's> {
             return self.exec_oword(lb, o_at);
         }
         if self.fanuc && is_macro_b(&lb.code[o_at..]) {
-            return Err(Fault::new(
-                PathErrorKind::Unsupported,
-                Span::Code(o_at, lb.code.len()),
-                "Fanuc Macro B control flow (WHILE/DO/END, IF/GOTO, GOTO) is not read; \
-                 LinuxCNC's O-word `while`/`if` are",
-                "",
-            ));
+            return self.exec_macro_b(lb, o_at);
         }
         block::parse(lb, blk, &*self, self.fanuc)?;
         self.execute(blk, lb)?;
@@ -2027,6 +2024,8 @@ fn is_macro_b(code: &[u8]) -> bool {
     code.starts_with(b"while[")
         || code.starts_with(b"if[")
         || digit_after(b"goto")
+        || code.starts_with(b"goto#")
+        || code.starts_with(b"goto[")
         || digit_after(b"end")
 }
 

@@ -35,7 +35,8 @@
 //!   precedence and functions.
 //! * O-words: `sub`/`endsub`/`call`/`return` (arguments `#1`–`#30`, return values), `o[expr]
 //!   call`, subroutine files on [`GcodeOptions::subroutine_path`], `while`, `do`/`while`,
-//!   `repeat`, `if`/`elseif`/`else`/`endif`, `break`, `continue`; Fanuc `M98 P L`/`M99`.
+//!   `repeat`, `if`/`elseif`/`else`/`endif`, `break`, `continue`; Fanuc `M98 P L`/`M99` and
+//!   Custom Macro B (`WHILE`/`DO`/`END`, `IF … GOTO`, `IF … THEN`, `GOTO`: `macro_b`).
 //! * Comments in parentheses become [`Canon::Comment`], `(MSG,…)`/`(DEBUG,…)`/`(PRINT,…)`
 //!   [`Canon::Message`]; `;` comments, `N` numbers, `/` block delete and `%` tape markers are
 //!   understood; GRBL's `$` lines are skipped (or refused where they move the machine).
@@ -65,6 +66,7 @@ mod expr;
 mod frames;
 mod interp;
 pub(crate) mod lexer;
+mod macro_b;
 mod modal;
 mod params;
 mod splines;

@@ -1,0 +1,181 @@
+//! Fanuc Custom Macro B control flow (Fanuc dialect only): `GOTO n`, `IF [cond] GOTO n`,
+//! `IF [cond] THEN #i = expr`, `WHILE [cond] DO m` … `END m`; assignments without brackets
+//! (`#500 = #500 + 1`) are read by `block`.
+//!
+//! As a Fanuc control runs them: a `GOTO` goes to the first block numbered `N n` in the file
+//! (its number an expression); a `WHILE` whose condition is false goes on after its `END m`; an
+//! `END m` goes back to its `WHILE`, which tests the condition again; a `GOTO` may leave a loop.
+//! Each loop pass and each `GOTO` counts against the reader's loop limit, so a program that
+//! never ends stops with an error instead of hanging.
+
+use super::expr::{param_index, read_infix, read_real, Cur};
+use super::interp::Interp;
+use super::lexer::{normalize, skip_line_number, split_line, LineBuf};
+use super::stack::Cursor;
+use super::{Fault, Res, Span};
+
+/// An open `WHILE … DO m` loop: its number and where its line starts.
+pub(crate) type MacroLoop = (u64, Cursor);
+
+impl Interp<'_, '_> {
+    /// Executes a Macro B line; `at` is where its code starts (after any `N` number).
+    pub(crate) fn exec_macro_b(&mut self, lb: &LineBuf, at: usize) -> Res<()> {
+        let code = &lb.code[..];
+        let here = Cursor {
+            pos: self.cur_start,
+            line: self.cur_line - 1,
+            file: self.cur_file,
+        };
+        let span = Span::Code(at, code.len());
+        let mut c = Cur::new(code);
+        let rest = &code[at..];
+        if rest.starts_with(b"goto") {
+            c.i = at + 4;
+            let n = read_real(&mut c, self)?;
+            end_of_line(&c)?;
+            return self.macro_goto(n, span);
+        }
+        if rest.starts_with(b"if") {
+            c.i = at + 2;
+            let cond = read_real(&mut c, self)?;
+            let then = &code[c.i..];
+            if then.starts_with(b"goto") {
+                c.i += 4;
+                let n = read_real(&mut c, self)?;
+                end_of_line(&c)?;
+                return if cond != 0.0 {
+                    self.macro_goto(n, span)
+                } else {
+                    Ok(())
+                };
+            }
+            if then.starts_with(b"then#") {
+                c.i += 5;
+                let n = read_real(&mut c, self)?;
+                let target = param_index(n, Span::Code(c.i, c.i))?;
+                if c.peek() != Some(b'=') {
+                    return Err(c.unexpected("`=` in the assignment after THEN"));
+                }
+                c.i += 1;
+                let v = read_infix(&mut c, self)?;
+                end_of_line(&c)?;
+                if cond != 0.0 {
+                    self.set_numbered(target, v);
+                }
+                return Ok(());
+            }
+            return Err(c.unexpected("GOTO n or THEN #i = value after the condition"));
+        }
+        if rest.starts_with(b"while") {
+            c.i = at + 5;
+            let cond = read_real(&mut c, self)?;
+            if !code[c.i..].starts_with(b"do") {
+                return Err(c.unexpected("DO m after the condition"));
+            }
+            c.i += 2;
+            let m = loop_number(&mut c)?;
+            end_of_line(&c)?;
+            let open = self.macro_loops.iter().position(|&l| l == (m, here));
+            if cond != 0.0 {
+                match open {
+                    // Back from its END: the next pass.
+                    Some(k) => {
+                        self.macro_loops.truncate(k + 1);
+                        self.count_iteration(span)?;
+                    }
+                    None => self.macro_loops.push((m, here)),
+                }
+                return Ok(());
+            }
+            if let Some(k) = open {
+                self.macro_loops.truncate(k);
+            }
+            return self.skip_to_end(m, span);
+        }
+        if rest.starts_with(b"end") {
+            c.i = at + 3;
+            let m = loop_number(&mut c)?;
+            end_of_line(&c)?;
+            let Some(&(_, head)) = self.macro_loops.iter().rev().find(|l| l.0 == m) else {
+                return Err(Fault::semantic(
+                    span,
+                    format!("END{m} without a WHILE … DO{m} open before it"),
+                ));
+            };
+            self.at = head;
+            return Ok(());
+        }
+        Err(c.unexpected("GOTO, IF, WHILE or END"))
+    }
+
+    /// `GOTO n`: on from the first block numbered `N n` of the file.
+    fn macro_goto(&mut self, n: f64, span: Span) -> Res<()> {
+        self.count_iteration(span)?;
+        let map = self
+            .line_numbers
+            .take()
+            .unwrap_or_else(|| self.index_targets(true));
+        let target = (n >= 0.0 && n.fract() == 0.0)
+            .then(|| map.get(&(n as u64)).copied())
+            .flatten();
+        self.line_numbers = Some(map);
+        let Some(target) = target else {
+            return Err(Fault::semantic(
+                span,
+                format!("GOTO {n}: no block numbered N{n} in this file"),
+            ));
+        };
+        self.at = target;
+        Ok(())
+    }
+
+    /// On after the `END m` that closes the loop whose `WHILE` is false.
+    fn skip_to_end(&mut self, m: u64, span: Span) -> Res<()> {
+        let text = self.text.clone();
+        let mut buf = LineBuf::default();
+        let mut at = self.at;
+        while at.pos < text.len() {
+            let (raw, next) = split_line(&text, at.pos);
+            at = Cursor {
+                pos: next,
+                line: at.line + 1,
+                file: at.file,
+            };
+            if !raw.bytes().any(|b| b | 0x20 == b'e') || normalize(raw, &mut buf).is_err() {
+                continue;
+            }
+            let code = &buf.code[skip_line_number(&buf.code)..];
+            if let Some(digits) = code.strip_prefix(b"end") {
+                let mut c = Cur::new(digits);
+                if loop_number(&mut c).ok() == Some(m) && c.at_end() {
+                    self.at = at;
+                    return Ok(());
+                }
+            }
+        }
+        Err(Fault::semantic(
+            span,
+            format!("WHILE … DO{m} without its END{m} in this file"),
+        ))
+    }
+}
+
+/// A loop number `m` of `DO m` / `END m`: digits.
+fn loop_number(c: &mut Cur<'_>) -> Res<u64> {
+    let start = c.i;
+    while matches!(c.peek(), Some(b'0'..=b'9')) {
+        c.i += 1;
+    }
+    std::str::from_utf8(&c.code[start..c.i])
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .ok_or_else(|| c.unexpected("a loop number (DO1, END1)"))
+}
+
+fn end_of_line(c: &Cur<'_>) -> Res<()> {
+    if c.at_end() {
+        Ok(())
+    } else {
+        Err(c.unexpected("the end of the line"))
+    }
+}
