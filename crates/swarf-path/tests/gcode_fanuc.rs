@@ -464,6 +464,11 @@ fn macro_b_control_flow() {
     }
     let e = moves("O1\nN1 #1=1\nGOTO 1\n", &fanuc()).unwrap_err();
     assert!(e.message.contains("iterations"), "{e}");
+    // A program that says nothing else is read by Fanuc's rules when it has Macro B flow.
+    assert_eq!(
+        GcodeDialect::detect("G21\n#1=0\nWHILE [#1 LT 3] DO1\n#1=#1+1\nEND1\n"),
+        GcodeDialect::Fanuc
+    );
     // Under LinuxCNC's rules an unbracketed expression is still an error.
     let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
     assert!(moves("G21\n#1=#1+1\n", &linuxcnc).is_err());

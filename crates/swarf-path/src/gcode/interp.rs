@@ -2016,7 +2016,7 @@ impl Interp<'_, '_> {
 
 /// Whether normalised code (spaces out, lower case) starts with a Fanuc Macro B control word:
 /// `WHILE[`, `IF[`, `GOTO<n>`, `END<n>` (a G-code word never starts so).
-fn is_macro_b(code: &[u8]) -> bool {
+pub(crate) fn is_macro_b(code: &[u8]) -> bool {
     let digit_after = |w: &[u8]| {
         code.strip_prefix(w)
             .is_some_and(|r| r.first().is_some_and(u8::is_ascii_digit))

@@ -192,7 +192,8 @@ pub enum GcodeDialect {
 
 impl GcodeDialect {
     /// The dialect of a program: Fanuc when its first lines show Fanuc habits (a bare `O1234`
-    /// program number, `M98`/`M99`, `G80` sharing a block with `G0`/`G1`) and nothing only
+    /// program number, `M98`/`M99`, `G80` sharing a block with `G0`/`G1`, a Macro B `WHILE`,
+    /// `IF`, `GOTO` or `END`) and nothing only
     /// LinuxCNC reads (`o<name>`, O-word keywords, `#<name>`); LinuxCNC otherwise.
     pub fn detect(text: &str) -> Self {
         let (mut fanuc, mut linuxcnc) = (false, false);
@@ -227,7 +228,7 @@ impl GcodeDialect {
                     }
                 }
             }
-            if body.contains("m98") || body.contains("m99") {
+            if body.contains("m98") || body.contains("m99") || interp::is_macro_b(body.as_bytes()) {
                 fanuc = true;
             }
             // The G numbers of the block.
