@@ -51,6 +51,9 @@ pub struct MoveBuilder {
     tilt: Option<(Mat3, Vec3)>,
     /// The tool axis comes from the tilted plane (G53.1), not from the machine, until G69.
     tilt_axis: bool,
+    /// After G69: the tool keeps the plane's axis until [`Canon::MachineAxis`] (the program
+    /// turns a rotary axis) hands it back to the machine.
+    held_axis: bool,
     /// Chordal tolerance splines are flattened within, mm.
     spline_tolerance: f64,
     feed: f64,
@@ -92,6 +95,7 @@ impl MoveBuilder {
             xy_rotation: (1.0, 0.0),
             tilt: None,
             tilt_axis: false,
+            held_axis: false,
             spline_tolerance: crate::spline::DEFAULT_TOLERANCE_MM,
             feed: 0.0,
             feed_mode: FeedMode::PerMinute,
@@ -323,6 +327,7 @@ impl MoveBuilder {
             tool: self.tool,
             file: self.file,
             line,
+            axis_source: self.axis_source,
         };
         self.tool_zero_moved |= m.tool == 0;
         self.moves.push(m);
@@ -512,27 +517,37 @@ impl CanonSink for MoveBuilder {
                 self.change_frame(|b| {
                     b.tilt = w.map(|w| (w.matrix(), Vec3::from_array(w.origin)));
                 });
-                let axis = w.filter(|w| w.tool_axis).map(|_| self.direction(Vec3::Z));
-                match (axis, self.tilt_axis) {
-                    // G53.1: the feature's Z, from the tool's next move on (the rotary axes
-                    // turn the tool there before it moves).
-                    (Some(a), _) => {
+                match w {
+                    // G53.1: the tool turns to the plane's Z where it stands (its tip where the
+                    // machine put it), and the axis comes from the program from here on.
+                    Some(w) if w.tool_axis => {
                         if self.axis_source == AxisSource::Machine {
-                            self.axis = a;
+                            let tip = self.machine.pose(&self.joints(&self.pos)).tip;
+                            let mut j = self.joints(&self.pos);
+                            (j.x, j.y, j.z) = (tip.x, tip.y, tip.z);
+                            self.axis_source = AxisSource::Program;
+                            self.pos = self.program_of(&j);
                         }
-                        self.axis_source = AxisSource::Program;
-                        self.tilt_axis = true;
-                        self.target_axis = a;
-                        self.axis = a;
-                    }
-                    // G69 after G53.1: back to the machine's rotary joints.
-                    (None, true) => {
-                        self.tilt_axis = false;
-                        self.axis_source = AxisSource::Machine;
-                        let a = self.machine.pose(&self.joints(&self.pos)).axis;
+                        let a = self.direction(Vec3::Z);
                         (self.axis, self.target_axis) = (a, a);
+                        (self.tilt_axis, self.held_axis) = (true, false);
                     }
-                    (None, false) => {}
+                    // A plane without G53.1 leaves the tool as it is.
+                    Some(_) => {}
+                    // G69 cancels the plane, not the rotary axes' position: the tool keeps its
+                    // axis until the program turns a rotary axis.
+                    None => {
+                        if std::mem::take(&mut self.tilt_axis) {
+                            self.held_axis = true;
+                        }
+                    }
+                }
+            }
+            Canon::MachineAxis => {
+                if std::mem::take(&mut self.held_axis) {
+                    self.axis_source = AxisSource::Machine;
+                    let a = self.machine.pose(&self.joints(&self.pos)).axis;
+                    (self.axis, self.target_axis) = (a, a);
                 }
             }
             Canon::SetPosition(p) => {

@@ -192,6 +192,10 @@ pub enum Canon<'a> {
     /// Z, taken from the program — as [`Canon::ToolAxis`] — rather than from the machine's
     /// rotary joints, until the plane is cancelled. The tool stays where it is.
     WorkPlane(Option<WorkPlane>),
+    /// After a tilted working plane turned the tool (G53.1) and G69 cancelled the plane, the
+    /// tool keeps its axis until the program turns a rotary axis: this event, before that
+    /// block's motion, hands the axis back to the machine's rotary joints.
+    MachineAxis,
     /// The arc plane changed.
     Plane(Plane),
     /// Feed rate: mm/min, 1/min (inverse time) or mm/rev as the feed mode says.
@@ -329,6 +333,7 @@ impl Canon<'_> {
             },
             Canon::Plane(p) => Canon::Plane(*p),
             Canon::WorkPlane(w) => Canon::WorkPlane(*w),
+            Canon::MachineAxis => Canon::MachineAxis,
             Canon::XyRotation(r) => Canon::XyRotation(*r),
             Canon::FeedRate(f) => Canon::FeedRate(*f),
             Canon::FeedMode(m) => Canon::FeedMode(*m),

@@ -100,6 +100,10 @@ pub struct Move {
     pub file: u16,
     /// 1-based source line.
     pub line: u32,
+    /// Where this move's tool axis comes from, which decides how it is interpolated: a
+    /// G-code program changes it with a tilted working plane (G53.1 … G69) and CL data
+    /// states its axes throughout.
+    pub axis_source: AxisSource,
 }
 
 /// A line of a program's source: its file (an index into [`Program::files`]) and line.
@@ -130,7 +134,8 @@ pub struct Program {
     pub warnings: Vec<Warning>,
     /// The machine whose kinematics turned joints into poses (and interpolates between them).
     pub machine: Machine,
-    /// Where the tool axis of the moves comes from.
+    /// Where the tool axis comes from at the program's end (each move says where its own
+    /// comes from: [`Move::axis_source`]).
     pub axis_source: AxisSource,
 }
 
@@ -184,7 +189,7 @@ impl Program {
     /// [`Program::machine`] at joints interpolated linearly; CL moves by a linear tip and a
     /// slerped axis.
     pub fn pose_at(&self, m: &Move, s: f64) -> Pose {
-        let cl = self.axis_source == AxisSource::Program;
+        let cl = m.axis_source == AxisSource::Program;
         let rotary = !cl && m.start_joints.rotary_differs(&m.end_joints);
         let lerp_joints = |tip_joint: Option<Vec3>| {
             let (a, b) = (m.start_joints.to_array(), m.end_joints.to_array());
@@ -237,7 +242,7 @@ impl Program {
     /// [`AXIS_ANGLE_EPS`]); machine moves that turn a rotary joint (the axis can come back to
     /// where it started, or the tip follow a curve with an unchanged axis).
     pub fn is_five_axis(&self, m: &Move) -> bool {
-        match self.axis_source {
+        match m.axis_source {
             AxisSource::Program => {
                 let (a, b) = (m.start.axis.normalize(), m.end.axis.normalize());
                 a.cross(b).length().atan2(a.dot(b)) > AXIS_ANGLE_EPS
@@ -251,7 +256,7 @@ impl Program {
     /// True when the tip of `m` may leave the straight line or arc between its end points (a
     /// linear or arc move with rotary motion interpolated through the machine).
     pub fn tip_path_is_curved(&self, m: &Move) -> bool {
-        self.axis_source == AxisSource::Machine
+        m.axis_source == AxisSource::Machine
             && m.start_joints.rotary_differs(&m.end_joints)
             && !self.machine.tcp
     }

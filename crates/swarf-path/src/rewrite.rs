@@ -349,6 +349,21 @@ pub fn rewrite_feeds(
         let (body, eol) = raw.split_at(body_len);
         if format == ProgramFormat::Apt {
             if let Some(c) = scan_apt_cycle(body) {
+                // A record continued over lines would need its copies to keep the continuation.
+                if body
+                    .split("$$")
+                    .next()
+                    .unwrap_or("")
+                    .trim_end()
+                    .ends_with('$')
+                {
+                    return Err(err(
+                        n,
+                        1,
+                        "a CYCLE/ record continued over lines ($) is not rewritten",
+                        body.trim(),
+                    ));
+                }
                 match c {
                     CycleLine::Off => cycle_on = false,
                     CycleLine::On => cycle_on = true,
@@ -414,7 +429,10 @@ pub fn rewrite_feeds(
             out.push_str(raw);
             continue;
         };
-        if let (true, Some((t, w))) = (cycle_on && format == ProgramFormat::Apt, &cycle) {
+        let hole = format == ProgramFormat::Apt
+            && cycle_on
+            && body.trim_start().to_ascii_uppercase().starts_with("GOTO");
+        if let (true, Some((t, w))) = (hole, &cycle) {
             // A hole of a cycle with its own feed: the cycle is restated before it with the
             // new feed (the holes' feeds are the cycle's, not FEDRAT's).
             let target = w.value * factor;
@@ -594,6 +612,31 @@ mod tests {
             }
         }
         assert_eq!(fed, [50.0, 50.0, 100.0, 500.0]);
+        // GODLTA inside a cycle is a move fed at FEDRAT; a continued CYCLE record is refused.
+        let text = "FEDRAT/MMPM,500\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,-12,MMPM,100\nGODLTA/1,0,0\n";
+        let r = rewrite_feeds(
+            text,
+            "t.apt",
+            ProgramFormat::Apt,
+            &factors(&[(4, 0.5)]),
+            &BTreeMap::new(),
+        )
+        .unwrap();
+        assert!(
+            r.text.contains("FEDRAT/MMPM,250\nGODLTA/1,0,0\n"),
+            "{}",
+            r.text
+        );
+        let text = "FEDRAT/MMPM,500\nCYCLE/DRILL,FEDTO,-12, $\nMMPM,100\nGOTO/1,2,3\n";
+        let e = rewrite_feeds(
+            text,
+            "t.apt",
+            ProgramFormat::Apt,
+            &factors(&[(4, 0.5)]),
+            &BTreeMap::new(),
+        )
+        .unwrap_err();
+        assert_eq!(e.pos.line, 2);
         let bad = "CYCLE/DRILL,FEDTO,-12,MMPM,inf\nGOTO/1,2,3\n";
         let e = rewrite_feeds(
             bad,

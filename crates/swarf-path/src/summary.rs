@@ -215,7 +215,7 @@ impl SummaryAccumulator {
                 self.feed.add(bb.min);
                 self.feed.add(bb.max);
                 if !zero {
-                    match feed_minutes(program, m, length) {
+                    match feed_minutes(m, length) {
                         Some(t) => self.minutes += t,
                         None => self.no_feed += 1,
                     }
@@ -534,11 +534,11 @@ impl Sampler<'_> {
 }
 
 /// Minutes the feed move `m` (tip path length `length`) takes, or `None` without a usable feed.
-fn feed_minutes(program: &Program, m: &Move, length: f64) -> Option<f64> {
+fn feed_minutes(m: &Move, length: f64) -> Option<f64> {
     let (a, b) = (m.start_joints, m.end_joints);
     // The length the controller applies the feed to: programmed X Y Z in joint space (the arc
     // length for arcs, which the workpiece-frame arc keeps), else the rotary angle.
-    let programmed = if program.axis_source == AxisSource::Program {
+    let programmed = if m.axis_source == AxisSource::Program {
         length
     } else {
         let xyz = match m.kind {

@@ -104,6 +104,8 @@ fn positional_form_in_inches() {
             Rate(101.6),
             F(25.4, 25.4, -12.7),
             R(25.4, 25.4, 2.54),
+            // No FEDRAT/ before the cycle: no feed in force after the hole.
+            Rate(0.0),
         ],
     );
 }
@@ -210,6 +212,9 @@ fn cycle_on_and_feed_modes() {
             R(5.0, 0.0, 1.0),
         ],
     );
+    // Without a FEDRAT/ before it, the cycle's feed does not stay in force after the hole.
+    let got = motion("GOTO/0,0,10\nCYCLE/DRILL,FEDTO,-1,MMPM,50\nGOTO/0,0,0\n");
+    assert_eq!(got.last(), Some(&M::Rate(0.0)), "{got:?}");
     let e = events("FEDRAT/MMPM,300\nGOTO/0,0,10\nCYCLE/DRILL,FEDTO,-1,MMPR,0.1\nGOTO/0,0,0\n");
     let modes: Vec<_> = e
         .iter()
@@ -254,6 +259,18 @@ fn cycles_that_cannot_be_expanded_are_errors_at_their_field() {
     assert!(e.message.contains("CYCLE/ON"), "{}", e.message);
     let e = err("GOTO/0,0,5\nCYCLE/DEEP,FEDTO,5,STEP,0\n");
     assert!(e.message.contains("peck"), "{}", e.message);
+    // A clearance or a retract height below the hole's bottom, at its field.
+    let e = err("GOTO/0,0,5\nCYCLE/DRILL,FEDTO,5,RAPTO,-8\n");
+    assert_eq!((e.pos.line, e.pos.column), (2, 27));
+    let e = err("GOTO/0,0,5\nCYCLE/DRILL,5,-6\n");
+    assert_eq!((e.pos.line, e.pos.column), (2, 15));
+    let e = err("GOTO/0,0,5\nCYCLE/DRILL,FEDTO,5,RTRCTO,-5.5\n");
+    assert_eq!((e.pos.line, e.pos.column), (2, 28));
+    assert!(
+        e.message.contains("below the hole's bottom"),
+        "{}",
+        e.message
+    );
     // CYCLE/OFF alone changes nothing.
     assert_eq!(
         motion("GOTO/0,0,5\nCYCLE/OFF\nGOTO/1,0,5\n"),
@@ -269,7 +286,7 @@ proptest::proptest! {
     fn every_hole_reaches_its_bottom_and_no_deeper(
         (x, y, z) in (-50.0..50.0f64, -50.0..50.0f64, -10.0..10.0f64),
         (i, j) in (-0.7..0.7f64, -0.7..0.7f64),
-        (d, c, s, start) in (0.1..30.0f64, -2.0..10.0f64, 0.5..8.0f64, -20.0..60.0f64),
+        (d, c, s, start) in (0.1..30.0f64, 0.0..10.0f64, 0.5..8.0f64, -20.0..60.0f64),
         kind in 0usize..4,
     ) {
         let k = (1.0 - i * i - j * j).sqrt();

@@ -983,6 +983,11 @@ fn modal_state_save_and_restore_m70_to_m73() {
     assert_eq!(err("G21\nM72\n").pos.line, 2);
     let e = err("G21\nM70\no1 sub\nM72\no1 endsub\no1 call\nM2\n");
     assert_eq!(e.pos.line, 4);
+    // M70 after M73 in a subroutine keeps the restore on return (with M70's state).
+    let m = motion(&run(
+        "G21 G90\no100 sub\nM73\nG20\nM70\nG91\no100 endsub\no100 call\nG0 X1\nM2\n",
+    ));
+    assert_xyz(end_of(&m[0]), 25.4, 0.0, 0.0);
 }
 
 /// M61 Q sets the tool in the spindle without a change: the moves after it use that tool.
@@ -999,6 +1004,23 @@ fn m61_sets_the_current_tool() {
         .collect();
     assert_eq!(tools, [1, 3]);
     assert_eq!(err("G21\nM61\n").pos.line, 2);
+    // M61 leaves the selected tool: a later M6 loads T5, not tool 3; #5400 is the loaded tool.
+    let rec =
+        run("G21\nT5\nM61 Q3\n(debug,#5400 #<_current_tool> #<_selected_tool>)\nM6\nG0 X1\nM2\n");
+    let last = rec.events.iter().rev().find_map(|(_, e)| match e {
+        Canon::ToolChange { tool } => Some(*tool),
+        _ => None,
+    });
+    assert_eq!(last, Some(5));
+    let msg = rec
+        .events
+        .iter()
+        .find_map(|(_, e)| match e {
+            Canon::Message { text, .. } => Some(text.to_string()),
+            _ => None,
+        })
+        .unwrap();
+    assert_eq!(msg, "3.000000 3.000000 5.000000");
 }
 
 /// LinuxCNC's `(ABORT,…)` stops the program with its text (parameters replaced) as the error,
@@ -1040,6 +1062,8 @@ fn g43_2_adds_a_tool_length_offset() {
          G43.2 Z0.5\n(debug,#5422)\nG49\n(debug,#5422)\nM2\n",
     );
     assert_eq!(got, ["-5.000000", "-7.000000", "-7.500000", "0.000000"]);
+    // H and axis words together are refused.
+    assert_eq!(err("G21\nG43.2 H1 Z1\n").pos.line, 2);
 }
 
 /// LinuxCNC's predefined named parameters for the modes (G-code manual, "Predefined Named

@@ -36,7 +36,7 @@ fn close(a: swarf_geom::math::Vec3, b: [f64; 3]) -> bool {
 fn feature_coordinates_and_the_tool_axis() {
     let p = read(
         "G21 G90\nG0 X10 Y20 Z50\nG68.2 X10 Y0 Z0 I0 J-90 K0\nG53.1\nG1 X1 Y2 Z3 F100\n\
-         G91 G1 Z1\nG90\nG69\nG0 Z60\nM30\n",
+         G91 G1 Z1\nG90\nG69\nG0 Z60\nG0 B0 C0\nG0 X0\nM30\n",
     );
     // The tool stays where it was when the plane is set and when it turns: the first feed
     // starts at (10, 20, 50), tilted.
@@ -51,15 +51,20 @@ fn feature_coordinates_and_the_tool_axis() {
         "{:?}",
         p.moves[2].end.tip
     );
-    // G69: back to work coordinates and the machine's axis.
+    // G69: back to work coordinates; the rotary axes stay where G53.1 turned them, so the
+    // tool keeps its axis (a Fanuc control cancels the plane, not the rotation) until the
+    // program turns a rotary axis, from when the machine gives it again.
+    let m = &p.moves[3];
+    assert!(close(m.start.tip, [11.0, 4.0, -2.0]), "{:?}", m.start.tip);
+    assert!(close(m.end.tip, [11.0, 4.0, 60.0]), "{:?}", m.end.tip);
+    assert!(close(m.end.axis, [0.0, 1.0, 0.0]));
+    assert_eq!(m.axis_source, swarf_path::AxisSource::Program);
     let last = p.moves.last().unwrap();
-    assert!(
-        close(last.start.tip, [11.0, 4.0, -2.0]),
-        "{:?}",
-        last.start.tip
-    );
-    assert!(close(last.end.tip, [11.0, 4.0, 60.0]), "{:?}", last.end.tip);
+    assert!(close(last.end.tip, [0.0, 4.0, 60.0]), "{:?}", last.end.tip);
     assert!(close(last.end.axis, [0.0, 0.0, 1.0]));
+    assert_eq!(last.axis_source, swarf_path::AxisSource::Machine);
+    // The moves before G53.1 keep the machine's interpolation (each move says which).
+    assert_eq!(p.moves[0].axis_source, swarf_path::AxisSource::Machine);
 }
 
 /// Euler angles compose about Z, then the new X, then the new Z: I90 J45 K90 gives the
@@ -137,4 +142,20 @@ fn what_is_not_read_is_an_error_at_its_word() {
     assert_eq!(e.pos.line, 3);
     let e = err("G21\nG68.3 X0 Y0 Z0 R30\n");
     assert_eq!(e.kind, PathErrorKind::Unsupported);
+    // Position-setting codes would mix the plane's and the work's coordinates: refused in it.
+    for code in ["G91 G28 Z0", "G30", "G92 X0", "G52 X1", "G10 L20 P1 X0"] {
+        let e = err(&format!("G21\nG68.2 X0 Y0 Z0 I0 J30 K0\n{code}\n"));
+        assert_eq!(
+            (e.pos.line, e.kind),
+            (3, PathErrorKind::Unsupported),
+            "{code}"
+        );
+    }
+    assert!(read_program_str(
+        "G21\nG68.2 X0 Y0 Z0 I0 J30 K0\nG69\nG91 G28 Z0\nM30\n",
+        "tilt.ngc",
+        Machine::three_axis(),
+        &ReadOptions::default()
+    )
+    .is_ok());
 }

@@ -52,6 +52,7 @@ fn one_move(
             tool: 1,
             file: 0,
             line: 7,
+            axis_source: source,
         }],
         files: vec!["exact".into()],
         machine,

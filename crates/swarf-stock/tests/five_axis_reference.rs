@@ -246,7 +246,10 @@ fn cutters(rng: &mut Lcg) -> Vec<Cutter> {
 
 fn program(machine: Machine, source: AxisSource, mv: Move) -> Program {
     Program {
-        moves: vec![mv],
+        moves: vec![Move {
+            axis_source: source,
+            ..mv
+        }],
         files: vec!["test".into()],
         machine,
         axis_source: source,
@@ -267,6 +270,7 @@ fn blank_move(kind: MoveKind, start: Pose, end: Pose, j0: Axes, j1: Axes) -> Mov
         tool: 1,
         file: 0,
         line: 1,
+        axis_source: AxisSource::Machine,
     }
 }
 

@@ -269,7 +269,7 @@ pub struct MotionBound {
 impl MotionBound {
     /// The bound for move `m` of `program`.
     pub fn new(program: &Program, m: &Move) -> Self {
-        let cl = program.axis_source == AxisSource::Program;
+        let cl = m.axis_source == AxisSource::Program;
         let tip_path = |m: &Move| match m.kind {
             MoveKind::Arc(g) => Path::arc(&g),
             _ => Path::line(m.start.tip, m.end.tip),
@@ -633,6 +633,7 @@ mod tests {
             tool: 1,
             file: 0,
             line: 1,
+            axis_source: AxisSource::Machine,
         };
         Program {
             moves: vec![mv],

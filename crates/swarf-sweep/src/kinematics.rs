@@ -54,7 +54,7 @@ impl MotionState {
     /// The state of move `m` of `program` at parameter `s ∈ [0, 1]`.
     pub fn of_move(program: &Program, m: &Move, s: f64) -> Self {
         let pose = program.pose_at(m, s);
-        let cl = program.axis_source == AxisSource::Program;
+        let cl = m.axis_source == AxisSource::Program;
         let rotary = !cl && m.start_joints.rotary_differs(&m.end_joints);
         if rotary {
             // Joints interpolated through the kinematic chain: central differences, one-sided

@@ -143,6 +143,8 @@ impl Reader<'_, '_> {
         let mut depth = None;
         let mut clearance = None;
         let mut retract = Retract::Clearance;
+        // Where the clearance and the retract height were written, for their errors.
+        let (mut clearance_at, mut retract_at) = (*first, *first);
         let mut feed = None;
         let mut dwell_s = 0.0;
         let mut peck = None;
@@ -176,12 +178,17 @@ impl Reader<'_, '_> {
                 "DEEP" => kind = Kind::Deep,
                 "BRKCHP" => kind = Kind::ChipBreak,
                 "FEDTO" => depth = Some(value(&mut rest, "CYCLE/ FEDTO", true)?.abs()),
-                "RAPTO" => clearance = Some(value(&mut rest, "CYCLE/ RAPTO", true)?),
+                "RAPTO" => {
+                    let at = rest.peek().map_or(*f, |n| **n);
+                    clearance = Some(value(&mut rest, "CYCLE/ RAPTO", true)?);
+                    clearance_at = at;
+                }
                 "RTRCTO" => {
                     retract = if rest.peek().is_some_and(|n| word(n) == "AUTO") {
                         rest.next();
                         Retract::Initial
                     } else {
+                        retract_at = rest.peek().map_or(*f, |n| **n);
                         Retract::At(value(&mut rest, "CYCLE/ RTRCTO", true)?)
                     }
                 }
@@ -241,6 +248,7 @@ impl Reader<'_, '_> {
                         depth = Some(v.abs());
                     } else if clearance.is_none() {
                         clearance = Some(v);
+                        clearance_at = *f;
                     } else if matches!(kind, Kind::Deep | Kind::ChipBreak) && peck.is_none() {
                         // A peck cycle's third number is its step (which changes the cycle's
                         // time, not what it removes).
@@ -283,6 +291,33 @@ impl Reader<'_, '_> {
             kind = Kind::Drill;
         }
         let clearance = clearance.unwrap_or(0.0);
+        // A level below the hole's bottom would rapid into the material or feed upwards to the
+        // bottom (LinuxCNC refuses an R plane below the hole's Z too).
+        for (level, at, what) in [
+            (Some(clearance), clearance_at, "clearance (RAPTO)"),
+            (
+                match retract {
+                    Retract::At(r) => Some(r),
+                    _ => None,
+                },
+                retract_at,
+                "retract height (RTRCTO)",
+            ),
+        ] {
+            if let Some(level) = level.filter(|l| *l < -depth) {
+                return Err(self.error(
+                    rec,
+                    at.off,
+                    PathErrorKind::Semantic,
+                    format!(
+                        "CYCLE/: the {what} {level} mm lies below the hole's bottom ({} mm)",
+                        -depth
+                    ),
+                    at.text,
+                    "a level at or above the bottom",
+                ));
+            }
+        }
         if let Some((s, f)) = peck {
             if (clearance + depth) / s > MAX_PECKS {
                 return Err(self.error(
@@ -397,9 +432,9 @@ impl Reader<'_, '_> {
             if mode != self.feed_mode {
                 self.sink.emit(line, &Canon::FeedMode(self.feed_mode));
             }
-            if let Some(f) = self.program_feed {
-                self.sink.emit(line, &Canon::FeedRate(f));
-            }
+            // Without a FEDRAT/ before the cycle, no feed was in effect: none is again.
+            self.sink
+                .emit(line, &Canon::FeedRate(self.program_feed.unwrap_or(0.0)));
         }
     }
 

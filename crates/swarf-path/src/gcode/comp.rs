@@ -231,7 +231,7 @@ impl Interp<'_, '_> {
                     ))
                 }
                 Some(d) => d as u32,
-                None => self.tool,
+                None => self.read_only.loaded_tool,
             };
             if tool == 0 {
                 0.0

@@ -63,7 +63,8 @@ impl Interp<'_, '_> {
         }
         if g == 690 {
             self.g68 = None;
-            if self.tilt.take().is_some() {
+            if let Some(w) = self.tilt.take() {
+                self.held_axis |= w.tool_axis;
                 self.emit(Canon::WorkPlane(None));
             }
         } else {
@@ -149,6 +150,7 @@ impl Interp<'_, '_> {
         };
         w.tool_axis = true;
         let w = *w;
+        self.held_axis = false;
         self.emit(Canon::WorkPlane(Some(w)));
         Ok(())
     }

@@ -72,21 +72,21 @@ pub(crate) struct CycleMemory {
 }
 
 /// Modes that change no motion, kept for LinuxCNC's predefined named parameters.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct ReadOnlyState {
     /// The cutter compensation code × 10 (400, 410, 411, 420, 421).
-    ccomp: u16,
+    pub(crate) ccomp: u16,
     /// The tool in the spindle (M6, M61), and the tool the last T word selected.
-    loaded_tool: u32,
-    selected_tool: Option<u32>,
-    mist: bool,
-    flood: bool,
+    pub(crate) loaded_tool: u32,
+    pub(crate) selected_tool: Option<u32>,
+    pub(crate) mist: bool,
+    pub(crate) flood: bool,
     /// Feed override, speed override, adaptive feed, feed hold (M48–M53).
-    overrides: [bool; 4],
+    pub(crate) overrides: [bool; 4],
     /// G96 constant surface speed.
-    css: bool,
+    pub(crate) css: bool,
     /// A tool length offset is on (G43, G43.1, G43.2; off after G49).
-    tlo_on: bool,
+    pub(crate) tlo_on: bool,
 }
 
 impl Default for ReadOnlyState {
@@ -203,6 +203,9 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) tilt: Option<WorkPlane>,
     /// The modal state M70/M73 saved, per call level (`modal`).
     pub(crate) saved_modal: Vec<super::modal::Saved>,
+    /// G69 cancelled a plane G53.1 had turned the tool to: the next block with rotary words
+    /// hands the tool axis back to the machine ([`Canon::MachineAxis`]).
+    pub(crate) held_axis: bool,
     /// Fanuc Macro B loops open (`macro_b`).
     pub(crate) macro_loops: Vec<super::macro_b::MacroLoop>,
     /// State only LinuxCNC's predefined named parameters read (`#<_ccomp>`, `#<_mist>`, …).
@@ -244,6 +247,7 @@ impl<'t, 's> Interp<'t, 's> {
             saved_modal: Vec::new(),
             read_only: ReadOnlyState::default(),
             macro_loops: Vec::new(),
+            held_axis: false,
             g51: None,
             g5_last: None,
             nurbs: None,
@@ -468,6 +472,7 @@ impl<'t, 's> Interp<'t, 's> {
     fn assume_prepared_tool_loaded(&mut self) {
         self.tool_loaded = true;
         let tool = self.tool;
+        self.read_only.loaded_tool = tool;
         self.sink.emit(self.cur_line, &Canon::ToolChange { tool });
         self.warn_at(
             0,
@@ -696,9 +701,13 @@ impl<'t, 's> Interp<'t, 's> {
                 n - 5021,
                 self.machine()[n - 5021] - self.g53_origin()[n - 5021],
             ),
-            5400 => f64::from(self.tool),
+            5400 => f64::from(self.read_only.loaded_tool),
             5401..=5406 => {
-                let e = self.tool_table.get(&self.tool).copied().unwrap_or([0.0; 6]);
+                let e = self
+                    .tool_table
+                    .get(&self.read_only.loaded_tool)
+                    .copied()
+                    .unwrap_or([0.0; 6]);
                 self.to_units(n - 5401, e[n - 5401])
             }
             5407..=5409 => 0.0,
@@ -917,10 +926,10 @@ impl<'t, 's> Interp<'t, 's> {
                         "Q<tool number>",
                     ));
                 };
-                self.tool = q as u32;
+                // The selected tool (a later bare M6 loads it) stays as it is.
                 self.tool_loaded = true;
-                self.read_only.loaded_tool = self.tool;
-                self.emit(Canon::ToolChange { tool: self.tool });
+                self.read_only.loaded_tool = q as u32;
+                self.emit(Canon::ToolChange { tool: q as u32 });
                 continue;
             }
             // (Also under Fanuc rules: LinuxCNC programs with M98 subprograms read by them.)
@@ -1067,7 +1076,7 @@ impl<'t, 's> Interp<'t, 's> {
                 }
                 let tool = match b.get(b'h') {
                     Some(h) if h >= 0.0 && h.fract() == 0.0 && h <= f64::from(u32::MAX) => h as u32,
-                    _ => self.tool,
+                    _ => self.read_only.loaded_tool,
                 };
                 let entry = self.tool_table.get(&tool).copied();
                 if entry.is_none() && b.get(b'h').is_some() && !self.tlo_warned {
@@ -1108,6 +1117,14 @@ impl<'t, 's> Interp<'t, 's> {
             }
             Some(432) => {
                 // G43.2: an offset added to the one in effect — tool H's, or the axis words'.
+                if b.has(b'h') && AXIS_LETTERS.iter().any(|&c| b.has(c)) {
+                    return Err(Fault::new(
+                        PathErrorKind::Semantic,
+                        b.g_span(group::TOOL_LENGTH),
+                        "G43.2 with both H and axis words",
+                        "G43.2 H<tool> or G43.2 with axis words",
+                    ));
+                }
                 let add = match b.get(b'h') {
                     Some(h) if h >= 0.0 && h.fract() == 0.0 && h <= f64::from(u32::MAX) => self
                         .tool_table
@@ -1185,6 +1202,16 @@ impl<'t, 's> Interp<'t, 's> {
                 "X Y Z A B C axis words",
             ));
         }
+        let position_setting = matches!(nonmodal, Some(280 | 300 | 520 | 920))
+            || (nonmodal == Some(100) && b.get(b'l') == Some(20.0));
+        if self.tilt.is_some() && position_setting {
+            return Err(Fault::new(
+                PathErrorKind::Unsupported,
+                b.g_span(group::NON_MODAL),
+                "G28, G30, G52, G92 and G10 L20 are not read in a tilted working plane (G68.2)",
+                "G69 first",
+            ));
+        }
         match nonmodal {
             Some(100) => {
                 self.g10(b)?;
@@ -1238,6 +1265,10 @@ impl<'t, 's> Interp<'t, 's> {
             _ => {}
         }
         self.warn_unused_words(b, lb, nonmodal);
+        if self.held_axis && (b.has(b'a') || b.has(b'b') || b.has(b'c')) {
+            self.held_axis = false;
+            self.emit(Canon::MachineAxis);
+        }
         self.motion_step(b, nonmodal == Some(530), axes_used_by_nonmotion)?;
         match b.m_stop {
             Some(0 | 1 | 60) => {

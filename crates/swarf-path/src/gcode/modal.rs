@@ -3,11 +3,12 @@
 //! subroutine returns (`endsub`, `return`, or `M99` of an `M98` subprogram). What is saved is
 //! LinuxCNC's list as far as the reader models it: units, plane, distance and arc distance
 //! modes, feed mode and feed, spindle speed and direction, the coordinate system, the retract
-//! mode, the tool length offset and whether cutter radius compensation is on (restoring a
-//! different compensation state is refused: the compensated path would need its entry move).
-//! Coolant, path control and overrides change no motion and are not kept.
+//! mode, the tool length offset, the cutter radius compensation (restoring a different one is
+//! refused: the compensated path would need its entry move), coolant, overrides and the
+//! spindle's speed mode (which only the predefined named parameters read). Path control changes
+//! no motion and is not kept.
 
-use super::interp::Interp;
+use super::interp::{Interp, ReadOnlyState};
 use super::{Fault, Res, Span};
 use crate::{Canon, FeedMode, PathErrorKind, Plane, SpindleDir, Units};
 
@@ -25,7 +26,9 @@ pub(crate) struct ModalState {
     coord: usize,
     retract_r: bool,
     tlo: [f64; 6],
-    comp_on: bool,
+    /// Compensation code, coolant, overrides, spindle mode, offset flag (the tools in it are
+    /// not restored).
+    read_only: ReadOnlyState,
 }
 
 /// A saved state and whether it is restored automatically on return (`M73`).
@@ -45,7 +48,7 @@ impl Interp<'_, '_> {
             coord: self.coord,
             retract_r: self.retract_r,
             tlo: self.tlo,
-            comp_on: self.comp.on(),
+            read_only: self.read_only,
         }
     }
 
@@ -61,7 +64,14 @@ impl Interp<'_, '_> {
     /// `M70`–`M73` (`m`), at code span `span`.
     pub(crate) fn modal_save_restore(&mut self, m: u16, span: Span) -> Res<()> {
         match m {
-            70 | 73 => *self.saved_slot() = Some((self.modal_state(), m == 73)),
+            // M70 keeps a restore on return an M73 at this level asked for (LinuxCNC sets the
+            // context valid without clearing that flag).
+            70 | 73 => {
+                let state = self.modal_state();
+                let slot = self.saved_slot();
+                let auto = m == 73 || slot.is_some_and(|s| s.1);
+                *slot = Some((state, auto));
+            }
             71 => *self.saved_slot() = None,
             _ => {
                 let Some((s, _)) = *self.saved_slot() else {
@@ -89,7 +99,7 @@ impl Interp<'_, '_> {
     }
 
     fn restore_modal(&mut self, s: ModalState, span: Span) -> Res<()> {
-        if s.comp_on != self.comp.on() {
+        if s.read_only.ccomp != self.read_only.ccomp {
             return Err(Fault::new(
                 PathErrorKind::Unsupported,
                 span,
@@ -129,6 +139,11 @@ impl Interp<'_, '_> {
             self.set_tlo(s.tlo);
             self.emit(Canon::ToolLengthOffset(s.tlo[2]));
         }
+        self.read_only = ReadOnlyState {
+            loaded_tool: self.read_only.loaded_tool,
+            selected_tool: self.read_only.selected_tool,
+            ..s.read_only
+        };
         if s.coord != self.coord {
             self.coord = s.coord;
             let off = self.g5x_table[s.coord - 1];

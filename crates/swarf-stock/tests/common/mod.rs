@@ -42,6 +42,7 @@ pub fn moves(tips: &[Vec3], axis: Vec3, rapid: bool) -> Program {
             tool: 1,
             file: 0,
             line: i as u32 + 1,
+            axis_source: Default::default(),
         });
     }
     p
