@@ -548,6 +548,17 @@ mod tests {
         v.iter().copied().collect()
     }
 
+    /// An APT text rewritten with these line factors and no splits.
+    fn apt(text: &str, f: &[(u32, f64)]) -> Result<Rewritten, PathError> {
+        rewrite_feeds(
+            text,
+            "t.apt",
+            ProgramFormat::Apt,
+            &factors(f),
+            &BTreeMap::new(),
+        )
+    }
+
     #[test]
     fn gcode_feeds_replaced_added_and_restored() {
         let text = "G21 G90\r\nG1 X10 F600 (first)\r\nG1 X20\r\nG1 X30 ; last\r\nG0 Z5\r\n";
@@ -584,14 +595,7 @@ mod tests {
     fn apt_cycle_feeds_are_restated_before_their_holes() {
         let text = "FEDRAT/MMPM,500\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,-12,RAPTO,3,MMPM,100\n\
                     GOTO/10,20,0\nGOTO/30,20,0\nGOTO/40,20,0\nCYCLE/OFF\nGOTO/0,0,50\n";
-        let r = rewrite_feeds(
-            text,
-            "t.apt",
-            ProgramFormat::Apt,
-            &factors(&[(4, 0.5), (5, 0.5), (6, 1.0), (8, 1.0)]),
-            &BTreeMap::new(),
-        )
-        .unwrap();
+        let r = apt(text, &[(4, 0.5), (5, 0.5), (6, 1.0), (8, 1.0)]).unwrap();
         assert_eq!(
             r.text,
             "FEDRAT/MMPM,500\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,-12,RAPTO,3,MMPM,100\n\
@@ -614,49 +618,21 @@ mod tests {
         assert_eq!(fed, [50.0, 50.0, 100.0, 500.0]);
         // GODLTA inside a cycle is a move fed at FEDRAT; a continued CYCLE record is refused.
         let text = "FEDRAT/MMPM,500\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,-12,MMPM,100\nGODLTA/1,0,0\n";
-        let r = rewrite_feeds(
-            text,
-            "t.apt",
-            ProgramFormat::Apt,
-            &factors(&[(4, 0.5)]),
-            &BTreeMap::new(),
-        )
-        .unwrap();
+        let r = apt(text, &[(4, 0.5)]).unwrap();
         assert!(
             r.text.contains("FEDRAT/MMPM,250\nGODLTA/1,0,0\n"),
             "{}",
             r.text
         );
         let text = "FEDRAT/MMPM,500\nCYCLE/DRILL,FEDTO,-12, $\nMMPM,100\nGOTO/1,2,3\n";
-        let e = rewrite_feeds(
-            text,
-            "t.apt",
-            ProgramFormat::Apt,
-            &factors(&[(4, 0.5)]),
-            &BTreeMap::new(),
-        )
-        .unwrap_err();
+        let e = apt(text, &[(4, 0.5)]).unwrap_err();
         assert_eq!(e.pos.line, 2);
         let bad = "CYCLE/DRILL,FEDTO,-12,MMPM,inf\nGOTO/1,2,3\n";
-        let e = rewrite_feeds(
-            bad,
-            "t.apt",
-            ProgramFormat::Apt,
-            &factors(&[(2, 1.0)]),
-            &BTreeMap::new(),
-        )
-        .unwrap_err();
+        let e = apt(bad, &[(2, 1.0)]).unwrap_err();
         assert_eq!((e.pos.line, e.pos.column), (1, 28));
         // A cycle without a feed of its own is fed at FEDRAT, which is rescaled as usual.
         let text = "FEDRAT/MMPM,500\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,-12\nGOTO/10,20,0\n";
-        let r = rewrite_feeds(
-            text,
-            "t.apt",
-            ProgramFormat::Apt,
-            &factors(&[(4, 0.5)]),
-            &BTreeMap::new(),
-        )
-        .unwrap();
+        let r = apt(text, &[(4, 0.5)]).unwrap();
         assert_eq!(
             r.text,
             "FEDRAT/MMPM,500\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,-12\nFEDRAT/MMPM,250\nGOTO/10,20,0\n"

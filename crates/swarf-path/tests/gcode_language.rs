@@ -36,6 +36,17 @@ fn motion(rec: &Recorder) -> Vec<OwnedCanon> {
         .collect()
 }
 
+/// The operator messages' texts.
+fn messages(rec: &Recorder) -> Vec<String> {
+    rec.events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Message { text, .. } => Some(text.to_string()),
+            _ => None,
+        })
+        .collect()
+}
+
 fn end_of(e: &OwnedCanon) -> Axes {
     match e {
         Canon::Traverse { end } | Canon::Feed { end } | Canon::Arc { end, .. } => *end,
@@ -1012,15 +1023,7 @@ fn m61_sets_the_current_tool() {
         _ => None,
     });
     assert_eq!(last, Some(5));
-    let msg = rec
-        .events
-        .iter()
-        .find_map(|(_, e)| match e {
-            Canon::Message { text, .. } => Some(text.to_string()),
-            _ => None,
-        })
-        .unwrap();
-    assert_eq!(msg, "3.000000 3.000000 5.000000");
+    assert_eq!(messages(&rec), ["3.000000 3.000000 5.000000"]);
 }
 
 /// LinuxCNC's `(ABORT,…)` stops the program with its text (parameters replaced) as the error,
@@ -1046,16 +1049,7 @@ fn abort_comment_ends_the_program_with_its_message() {
 /// shows in the position the program reads (#5422: Z) as G43's does.
 #[test]
 fn g43_2_adds_a_tool_length_offset() {
-    let msgs = |src: &str| -> Vec<String> {
-        run(src)
-            .events
-            .iter()
-            .filter_map(|(_, e)| match e {
-                Canon::Message { text, .. } => Some(text.to_string()),
-                _ => None,
-            })
-            .collect()
-    };
+    let msgs = |src: &str| messages(&run(src));
     // At Z0 with offsets 5 then 5 + 2: the program reads Z −5, then −7.
     let got = msgs(
         "G21\nG10 L1 P1 Z5\nG10 L1 P2 Z2\nG43 H1\n(debug,#5422)\nG43.2 H2\n(debug,#5422)\n\
@@ -1094,17 +1088,7 @@ fn predefined_named_parameters_read_the_modes() {
         "_ijk_absolute_mode",
     ];
     let probe: String = names.iter().map(|n| format!("#<{n}> ")).collect();
-    let text = |src: &str| -> String {
-        run(src)
-            .events
-            .iter()
-            .filter_map(|(_, e)| match e {
-                Canon::Message { text, .. } => Some(text.to_string()),
-                _ => None,
-            })
-            .collect::<Vec<_>>()
-            .join("|")
-    };
+    let text = |src: &str| messages(&run(src)).join("|");
     let start = text(&format!("G21\n(debug,{probe})\nM2\n"));
     assert_eq!(
         start,

@@ -96,6 +96,7 @@ fn five_axis_move_is_cut_and_reported() {
         false,
     );
     p.axis_source = swarf_path::AxisSource::Program;
+    p.moves[0].axis_source = swarf_path::AxisSource::Program;
     p.moves[0].end.axis = Vec3::new(0.1, 0.0, 1.0).normalize();
     let tools = ToolSet::single(Cutter::ball(6.0).unwrap());
     let mut s = TriDexel::from_box(Vec3::ZERO, Vec3::new(10.0, 10.0, 10.0), 0.5).unwrap();
