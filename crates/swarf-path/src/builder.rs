@@ -52,8 +52,9 @@ pub struct MoveBuilder {
     /// The tool axis comes from the tilted plane (G53.1), not from the machine, until G69.
     tilt_axis: bool,
     /// After G69: the tool keeps the plane's axis until [`Canon::MachineAxis`] (the program
-    /// turns a rotary axis) hands it back to the machine.
+    /// turns a rotary axis) hands it back to the machine, at the next move (`release_axis`).
     held_axis: bool,
+    release_axis: bool,
     /// Chordal tolerance splines are flattened within, mm.
     spline_tolerance: f64,
     feed: f64,
@@ -96,6 +97,7 @@ impl MoveBuilder {
             tilt: None,
             tilt_axis: false,
             held_axis: false,
+            release_axis: false,
             spline_tolerance: crate::spline::DEFAULT_TOLERANCE_MM,
             feed: 0.0,
             feed_mode: FeedMode::PerMinute,
@@ -315,10 +317,21 @@ impl MoveBuilder {
         let end_joints = self.joints(end);
         self.check_rotary_modelled(line, &end_joints);
         let kind = kind(self, &start_joints, &end_joints);
+        let start_pose = self.pose(&start_joints, self.axis);
+        // The move that hands the axis back to the machine turns the tool from the held axis
+        // to the machine's, as a CL move does (tip straight, axis turning evenly).
+        let axis_source = self.axis_source;
+        if std::mem::take(&mut self.release_axis) {
+            self.axis_source = AxisSource::Machine;
+        }
+        let end_pose = self.pose(&end_joints, self.target_axis);
+        if self.axis_source == AxisSource::Machine {
+            self.target_axis = end_pose.axis;
+        }
         let m = Move {
             kind,
-            start: self.pose(&start_joints, self.axis),
-            end: self.pose(&end_joints, self.target_axis),
+            start: start_pose,
+            end: end_pose,
             start_joints,
             end_joints,
             feed: self.feed,
@@ -327,7 +340,7 @@ impl MoveBuilder {
             tool: self.tool,
             file: self.file,
             line,
-            axis_source: self.axis_source,
+            axis_source,
         };
         self.tool_zero_moved |= m.tool == 0;
         self.moves.push(m);
@@ -544,11 +557,7 @@ impl CanonSink for MoveBuilder {
                 }
             }
             Canon::MachineAxis => {
-                if std::mem::take(&mut self.held_axis) {
-                    self.axis_source = AxisSource::Machine;
-                    let a = self.machine.pose(&self.joints(&self.pos)).axis;
-                    (self.axis, self.target_axis) = (a, a);
-                }
+                self.release_axis |= std::mem::take(&mut self.held_axis);
             }
             Canon::SetPosition(p) => {
                 self.pos = *p;

@@ -108,7 +108,8 @@ pub struct ProgramSummary {
     pub path_tolerance_mm: f64,
     /// The machine whose kinematics produced the poses.
     pub machine: String,
-    /// Where the tool axis came from: `machine` (G-code) or `program` (CL data).
+    /// Where the tool axis comes from at the program's end: `machine` (G-code) or `program`
+    /// (CL data, or G-code after a tilted plane's G53.1 not yet handed back).
     pub axis_source: AxisSource,
 }
 
@@ -280,9 +281,8 @@ impl SummaryAccumulator {
 /// with the program's length (only with its warnings), so a reader feeding it needs no move
 /// limit ([`crate::limit`]).
 ///
-/// Its summary equals [`summarize_with`]'s of the program read whole, except for a program that
-/// states its tool axis after moving (warned): the moves before are summed with the machine's
-/// axis, as they were made, where the whole program's summary takes the program's.
+/// Its summary equals [`summarize_with`]'s of the program read whole: each move carries where
+/// its tool axis comes from ([`Move::axis_source`](crate::Move)).
 #[derive(Debug)]
 pub struct SummarySink {
     builder: MoveBuilder,

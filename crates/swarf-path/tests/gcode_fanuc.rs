@@ -464,6 +464,26 @@ fn macro_b_control_flow() {
     }
     let e = moves("O1\nN1 #1=1\nGOTO 1\n", &fanuc()).unwrap_err();
     assert!(e.message.contains("iterations"), "{e}");
+    // Loops are per program: a subprogram's loop left by a GOTO and M99 is not the caller's,
+    // and a GOTO goes to the N number of the program it is in (subprograms reuse them).
+    let src = "O1\nG21\n#1=0\nWHILE [#1 LT 2] DO1\nM98 P100\n#1=#1+1\nEND1\nN10 G0 X99\nM30\n\
+               O100\n#2=0\nWHILE [#2 LT 5] DO1\n#2=#2+1\nIF [#2 EQ 2] GOTO 10\nEND1\nN10 G0 Z#2\nM99\n";
+    let got = moves(src, &fanuc()).unwrap();
+    assert_eq!(
+        got,
+        [
+            ('R', 0.0, 0.0, 2.0),
+            ('R', 0.0, 0.0, 2.0),
+            ('R', 99.0, 0.0, 2.0)
+        ]
+    );
+    // FIX truncates towards zero and FUP away from it, as a Fanuc control does.
+    let got = moves(
+        "O1\nG21\nG0 X[FIX[-1.5]] Y[FUP[-1.2]] Z[FUP[1.2]]\nM30\n",
+        &fanuc(),
+    )
+    .unwrap();
+    assert_eq!(got, [('R', -1.0, -2.0, 2.0)]);
     // A program that says nothing else is read by Fanuc's rules when it has Macro B flow.
     assert_eq!(
         GcodeDialect::detect("G21\n#1=0\nWHILE [#1 LT 3] DO1\n#1=#1+1\nEND1\n"),

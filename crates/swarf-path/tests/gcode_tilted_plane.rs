@@ -59,12 +59,30 @@ fn feature_coordinates_and_the_tool_axis() {
     assert!(close(m.end.tip, [11.0, 4.0, 60.0]), "{:?}", m.end.tip);
     assert!(close(m.end.axis, [0.0, 1.0, 0.0]));
     assert_eq!(m.axis_source, swarf_path::AxisSource::Program);
+    // The block that turns the rotary axes is the move that turns the tool back, tip
+    // straight and axis turning evenly (a CL move).
+    let m = &p.moves[4];
+    assert!(close(m.start.axis, [0.0, 1.0, 0.0]) && close(m.end.axis, [0.0, 0.0, 1.0]));
+    assert_eq!(m.axis_source, swarf_path::AxisSource::Program);
     let last = p.moves.last().unwrap();
     assert!(close(last.end.tip, [0.0, 4.0, 60.0]), "{:?}", last.end.tip);
     assert!(close(last.end.axis, [0.0, 0.0, 1.0]));
     assert_eq!(last.axis_source, swarf_path::AxisSource::Machine);
     // The moves before G53.1 keep the machine's interpolation (each move says which).
     assert_eq!(p.moves[0].axis_source, swarf_path::AxisSource::Machine);
+    // The usual unwind, `G91 G28 B0 C0`, is such a block too.
+    let p = read(
+        "G21 G90\nG68.2 X0 Y0 Z0 I0 J-90 K0\nG53.1\nG0 Z5\nG69\nG91 G28 B0 C0\nG90\nG0 X1\nM30\n",
+    );
+    let unwind = &p.moves[1];
+    assert!(
+        close(unwind.start.axis, [0.0, 1.0, 0.0]),
+        "{:?}",
+        unwind.start.axis
+    );
+    let last = p.moves.last().unwrap();
+    assert!(close(last.end.axis, [0.0, 0.0, 1.0]));
+    assert_eq!(last.axis_source, swarf_path::AxisSource::Machine);
 }
 
 /// Euler angles compose about Z, then the new X, then the new Z: I90 J45 K90 gives the

@@ -553,6 +553,9 @@ impl Interp<'_, '_> {
                 "endsub or return outside a subroutine call",
             ));
         };
+        // Macro B loops the subroutine left open end with it.
+        let level = self.frames.len();
+        self.macro_loops.retain(|l| l.2 <= level);
         if f.fanuc.is_some() {
             self.frames.push(f);
             return Err(Fault::semantic(
@@ -667,6 +670,8 @@ impl Interp<'_, '_> {
                 } else {
                     self.modal_on_return(Span::Line)?;
                     let f = self.frames.pop().expect("just matched");
+                    let level = self.frames.len();
+                    self.macro_loops.retain(|l| l.2 <= level);
                     self.ctl.truncate(f.ctl_len);
                     self.at = f.ret;
                 }

@@ -22,6 +22,11 @@ pub(crate) trait ParamRead {
     fn numbered(&self, n: usize) -> f64;
     /// The value of a named parameter (name in lower case, without `#<` `>`), if it exists.
     fn named(&self, name: &str) -> Option<f64>;
+    /// Read by Fanuc's rules: `FIX` truncates towards zero and `FUP` away from it (LinuxCNC
+    /// floors and ceils).
+    fn fanuc(&self) -> bool {
+        false
+    }
 }
 
 /// The highest parameter number (LinuxCNC's `RS274NGC_MAX_PARAMETERS` − 1).
@@ -456,6 +461,8 @@ fn function(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
         b"abs" => arg.abs(),
         b"cos" => arg.to_radians().cos(),
         b"exp" => arg.exp(),
+        b"fix" if p.fanuc() => arg.trunc(),
+        b"fup" if p.fanuc() => arg.signum() * arg.abs().ceil(),
         b"fix" => arg.floor(),
         b"fup" => arg.ceil(),
         b"ln" => {

@@ -173,6 +173,9 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) labels: Option<HashMap<u64, Cursor>>,
     /// Where each `N` number's line starts (Haas `M97 P<n>`), made at the first call.
     pub(crate) line_numbers: Option<HashMap<u64, Cursor>>,
+    /// Fanuc Macro B's GOTO targets, per program (its file and where it starts): every line
+    /// numbered `N n`, in order.
+    pub(crate) goto_index: HashMap<(u32, usize), HashMap<u64, Vec<Cursor>>>,
     /// Results of forward scans for O-words, by start position and keyword set.
     pub(crate) scan_cache: HashMap<(u32, usize, u32), ScanHit>,
     pub(crate) iterations: u64,
@@ -298,6 +301,7 @@ impl<'t, 's> Interp<'t, 's> {
             subs: HashMap::new(),
             labels: None,
             line_numbers: None,
+            goto_index: HashMap::new(),
             scan_cache: HashMap::new(),
             iterations: 0,
             ended: false,
@@ -1202,6 +1206,12 @@ impl<'t, 's> Interp<'t, 's> {
                 "X Y Z A B C axis words",
             ));
         }
+        // A block turning a rotary axis after G69 (a G28 B0 C0 unwind included) hands the tool
+        // axis back to the machine.
+        if self.held_axis && (b.has(b'a') || b.has(b'b') || b.has(b'c')) {
+            self.held_axis = false;
+            self.emit(Canon::MachineAxis);
+        }
         let position_setting = matches!(nonmodal, Some(280 | 300 | 520 | 920))
             || (nonmodal == Some(100) && b.get(b'l') == Some(20.0));
         if self.tilt.is_some() && position_setting {
@@ -1265,10 +1275,6 @@ impl<'t, 's> Interp<'t, 's> {
             _ => {}
         }
         self.warn_unused_words(b, lb, nonmodal);
-        if self.held_axis && (b.has(b'a') || b.has(b'b') || b.has(b'c')) {
-            self.held_axis = false;
-            self.emit(Canon::MachineAxis);
-        }
         self.motion_step(b, nonmodal == Some(530), axes_used_by_nonmotion)?;
         match b.m_stop {
             Some(0 | 1 | 60) => {
@@ -1904,6 +1910,10 @@ impl<'t, 's> Interp<'t, 's> {
 }
 
 impl ParamRead for Interp<'_, '_> {
+    fn fanuc(&self) -> bool {
+        self.fanuc
+    }
+
     fn numbered(&self, n: usize) -> f64 {
         self.get_numbered(n)
     }

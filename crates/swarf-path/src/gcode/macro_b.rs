@@ -11,11 +11,13 @@
 use super::expr::{param_index, read_infix, read_real, Cur};
 use super::interp::Interp;
 use super::lexer::{normalize, skip_line_number, split_line, LineBuf};
-use super::stack::Cursor;
+use super::stack::{Cursor, Frame};
 use super::{Fault, Res, Span};
+use std::collections::HashMap;
 
-/// An open `WHILE … DO m` loop: its number and where its line starts.
-pub(crate) type MacroLoop = (u64, Cursor);
+/// An open `WHILE … DO m` loop: its number, where its line starts, and the call level (M98
+/// subprograms) it is open at.
+pub(crate) type MacroLoop = (u64, Cursor, usize);
 
 impl Interp<'_, '_> {
     /// Executes a Macro B line; `at` is where its code starts (after any `N` number).
@@ -75,7 +77,8 @@ impl Interp<'_, '_> {
             c.i += 2;
             let m = loop_number(&mut c)?;
             end_of_line(&c)?;
-            let open = self.macro_loops.iter().position(|&l| l == (m, here));
+            let level = self.frames.len();
+            let open = self.macro_loops.iter().position(|&l| l == (m, here, level));
             if cond != 0.0 {
                 match open {
                     // Back from its END: the next pass.
@@ -83,7 +86,7 @@ impl Interp<'_, '_> {
                         self.macro_loops.truncate(k + 1);
                         self.count_iteration(span)?;
                     }
-                    None => self.macro_loops.push((m, here)),
+                    None => self.macro_loops.push((m, here, level)),
                 }
                 return Ok(());
             }
@@ -96,7 +99,9 @@ impl Interp<'_, '_> {
             c.i = at + 3;
             let m = loop_number(&mut c)?;
             end_of_line(&c)?;
-            let Some(&(_, head)) = self.macro_loops.iter().rev().find(|l| l.0 == m) else {
+            let level = self.frames.len();
+            let open = self.macro_loops.iter().rev();
+            let Some(&(_, head, _)) = open.filter(|l| l.2 == level).find(|l| l.0 == m) else {
                 return Err(Fault::semantic(
                     span,
                     format!("END{m} without a WHILE … DO{m} open before it"),
@@ -108,25 +113,79 @@ impl Interp<'_, '_> {
         Err(c.unexpected("GOTO, IF, WHILE or END"))
     }
 
-    /// `GOTO n`: on from the first block numbered `N n` of the file.
+    /// `GOTO n`: on from the block numbered `N n` of the current program (the main program or
+    /// the M98 subprogram running): the first after the current block, else the first from
+    /// the program's start, as a Fanuc control searches.
     fn macro_goto(&mut self, n: f64, span: Span) -> Res<()> {
         self.count_iteration(span)?;
-        let map = self
-            .line_numbers
-            .take()
-            .unwrap_or_else(|| self.index_targets(true));
+        let start = match self.frames.last() {
+            Some(Frame {
+                fanuc: Some((start, _)),
+                ..
+            }) => *start,
+            _ => self.file_start(self.cur_file),
+        };
+        let key = (start.file, start.pos);
+        if !self.goto_index.contains_key(&key) {
+            let index = self.index_program(start);
+            self.goto_index.insert(key, index);
+        }
+        let here = self.cur_start;
         let target = (n >= 0.0 && n.fract() == 0.0)
-            .then(|| map.get(&(n as u64)).copied())
-            .flatten();
-        self.line_numbers = Some(map);
+            .then(|| self.goto_index[&key].get(&(n as u64)))
+            .flatten()
+            .and_then(|at| at.iter().find(|c| c.pos > here).or(at.first()).copied());
         let Some(target) = target else {
             return Err(Fault::semantic(
                 span,
-                format!("GOTO {n}: no block numbered N{n} in this file"),
+                format!("GOTO {n}: no block numbered N{n} in this program"),
             ));
         };
         self.at = target;
         Ok(())
+    }
+
+    /// Where each `N n` of the program starting at `start` is (in order): from there to the
+    /// next `O` label or `%` (leading ones skipped), as a Fanuc program ends.
+    fn index_program(&mut self, start: Cursor) -> HashMap<u64, Vec<Cursor>> {
+        let text = self.text.clone();
+        let mut buf = LineBuf::default();
+        let mut map: HashMap<u64, Vec<Cursor>> = HashMap::new();
+        let (mut at, mut body) = (start, false);
+        while at.pos < text.len() {
+            let (raw, next) = split_line(&text, at.pos);
+            let line = at;
+            at = Cursor {
+                pos: next,
+                line: at.line + 1,
+                file: at.file,
+            };
+            if normalize(raw, &mut buf).is_err() || buf.code.is_empty() {
+                continue;
+            }
+            let o = skip_line_number(&buf.code);
+            let label = buf.code.first() == Some(&b'%')
+                || (buf.code.get(o) == Some(&b'o')
+                    && buf.code.len() > o + 1
+                    && buf.code[o + 1..].iter().all(u8::is_ascii_digit));
+            if label {
+                if body {
+                    break;
+                }
+                continue;
+            }
+            body = true;
+            if buf.code.first() == Some(&b'n') {
+                let digits = &buf.code[1..o];
+                if let Some(n) = std::str::from_utf8(digits)
+                    .ok()
+                    .and_then(|d| d.parse().ok())
+                {
+                    map.entry(n).or_default().push(line);
+                }
+            }
+        }
+        map
     }
 
     /// On after the `END m` that closes the loop whose `WHILE` is false.
