@@ -14,7 +14,7 @@ use std::rc::Rc;
 use super::block::Block;
 use super::expr::{read_real, Cur};
 use super::interp::Interp;
-use super::lexer::{normalize, skip_line_number, split_line, LineBuf};
+use super::lexer::{normalize, skip_line_number, LineBuf};
 use super::params::N_ARGS;
 use super::stack::{Ctl, Cursor, Frame, Kw, LoopKind};
 use super::{Fault, Res, Span};
@@ -458,16 +458,9 @@ impl Interp<'_, '_> {
         kws: &[Kw],
     ) -> Option<(Kw, Cursor, Cursor)> {
         let mut buf = std::mem::take(&mut self.skip_buf);
-        let mut at = from;
         let mut found = None;
         let text = self.files[from.file as usize].1.clone();
-        while at.pos < text.len() {
-            let (raw, next) = split_line(&text, at.pos);
-            let after = Cursor {
-                pos: next,
-                line: at.line + 1,
-                file: from.file,
-            };
+        for (raw, at, after) in from.lines(&text) {
             if raw.bytes().any(|c| c | 0x20 == b'o')
                 && normalize(raw, &mut buf).is_ok()
                 && !(buf.deleted && self.opts.block_delete)
@@ -482,7 +475,6 @@ impl Interp<'_, '_> {
                     }
                 }
             }
-            at = after;
         }
         self.skip_buf = buf;
         found
@@ -696,17 +688,9 @@ impl Interp<'_, '_> {
     pub(crate) fn index_targets(&mut self, numbers: bool) -> HashMap<u64, Cursor> {
         let mut map = HashMap::new();
         let mut buf = std::mem::take(&mut self.skip_buf);
-        let mut at = self.file_start(self.cur_file);
         let text = self.text.clone();
         let number = |digits: &[u8]| std::str::from_utf8(digits).ok()?.parse::<u64>().ok();
-        while at.pos < text.len() {
-            let (raw, next) = split_line(&text, at.pos);
-            let line = at;
-            at = Cursor {
-                pos: next,
-                line: at.line + 1,
-                file: self.cur_file,
-            };
+        for (raw, line, at) in self.file_start(self.cur_file).lines(&text) {
             let found = if numbers {
                 (normalize(raw, &mut buf).is_ok() && buf.code.first() == Some(&b'n'))
                     .then(|| number(&buf.code[1..skip_line_number(&buf.code)]))

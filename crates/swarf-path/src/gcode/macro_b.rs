@@ -10,7 +10,7 @@
 
 use super::expr::{param_index, read_infix, read_real, Cur};
 use super::interp::Interp;
-use super::lexer::{normalize, skip_line_number, split_line, LineBuf};
+use super::lexer::{normalize, skip_line_number, LineBuf};
 use super::stack::{Cursor, Frame};
 use super::{Fault, Res, Span};
 use std::collections::HashMap;
@@ -151,15 +151,8 @@ impl Interp<'_, '_> {
         let text = self.text.clone();
         let mut buf = LineBuf::default();
         let mut map: HashMap<u64, Vec<Cursor>> = HashMap::new();
-        let (mut at, mut body) = (start, false);
-        while at.pos < text.len() {
-            let (raw, next) = split_line(&text, at.pos);
-            let line = at;
-            at = Cursor {
-                pos: next,
-                line: at.line + 1,
-                file: at.file,
-            };
+        let mut body = false;
+        for (raw, line, _) in start.lines(&text) {
             if normalize(raw, &mut buf).is_err() || buf.code.is_empty() {
                 continue;
             }
@@ -192,14 +185,7 @@ impl Interp<'_, '_> {
     fn skip_to_end(&mut self, m: u64, span: Span) -> Res<()> {
         let text = self.text.clone();
         let mut buf = LineBuf::default();
-        let mut at = self.at;
-        while at.pos < text.len() {
-            let (raw, next) = split_line(&text, at.pos);
-            at = Cursor {
-                pos: next,
-                line: at.line + 1,
-                file: at.file,
-            };
+        for (raw, _, at) in self.at.lines(&text) {
             if !raw.bytes().any(|b| b | 0x20 == b'e') || normalize(raw, &mut buf).is_err() {
                 continue;
             }

@@ -14,6 +14,28 @@ pub(crate) struct Cursor {
     pub(crate) file: u32,
 }
 
+impl Cursor {
+    /// The lines of `text` (the cursor's file) from here on: each line's text with the cursor
+    /// before it and the one after it (the forward scans of O-words, line numbers and Macro B
+    /// share this walk).
+    pub(crate) fn lines(self, text: &str) -> impl Iterator<Item = (&str, Cursor, Cursor)> {
+        let mut at = self;
+        std::iter::from_fn(move || {
+            if at.pos >= text.len() {
+                return None;
+            }
+            let (raw, next) = super::lexer::split_line(text, at.pos);
+            let before = at;
+            at = Cursor {
+                pos: next,
+                line: at.line + 1,
+                file: at.file,
+            };
+            Some((raw, before, at))
+        })
+    }
+}
+
 /// A remembered forward scan: the O name looked for and what was found.
 pub(crate) type ScanHit = (Vec<u8>, Option<(Kw, Cursor, Cursor)>);
 
