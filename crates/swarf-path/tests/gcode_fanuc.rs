@@ -648,3 +648,54 @@ fn macro_calls_are_refused_by_name() {
     assert!(e.message.starts_with("G65: custom macro"), "{e}");
     assert_eq!((e.pos.line, e.pos.column), (3, 1));
 }
+
+/// M99 in the main program runs it again from the top (FANUC 0i-MF "Subprogram call": "when
+/// M99 is executed in a main program, control returns to the start of the main program";
+/// LinuxCNC likewise), with the parameters kept — so a counter can end it with M30.
+#[test]
+fn m99_in_the_main_program_runs_it_again_until_m30() {
+    let src =
+        "%\nO1\n#100=#100+1\nIF [#100 GT 3] GOTO 9\nG0 X#100 Y0 Z1\nG1 Z0 F100\nM99\nN9 M30\n%\n";
+    let m = moves(src, &fanuc()).unwrap();
+    let want: Vec<(char, f64, f64, f64)> = (1..=3)
+        .flat_map(|i| [('R', i as f64, 0.0, 1.0), ('L', i as f64, 0.0, 0.0)])
+        .collect();
+    assert_eq!(m, want);
+    let w = warnings(src);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(w[0].1.contains("run again from the top"), "{w:?}");
+    // The same with LinuxCNC's O-words.
+    let src = "o1 if [#1 GE 2]\nM2\no1 endif\n#1 = [#1 + 1]\nG0 X#1\nM99\n";
+    let lcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    assert_eq!(
+        moves(src, &lcnc).unwrap(),
+        [('R', 1.0, 0.0, 0.0), ('R', 2.0, 0.0, 0.0)]
+    );
+}
+
+/// A main program that cannot end (no M2/M30 in the file: a bar feeder's loop), or whose
+/// pass changed no parameter, would repeat for ever: one pass is read and a warning says why.
+#[test]
+fn an_endless_main_program_loop_is_read_once() {
+    for (src, why) in [
+        ("G0 X1 Y0 Z1\nG1 Z0 F100\nM99\n", "no M2/M30"),
+        ("#1=#1+1\nG0 X#1\nM99\n", "no M2/M30"),
+        (
+            "IF [#1 GT 5] GOTO 9\nG0 X1\nM99\nN9 M30\n",
+            "no parameter changed",
+        ),
+    ] {
+        let m = moves(src, &fanuc()).unwrap();
+        assert_eq!(
+            m.len(),
+            src.matches("G0").count() + src.matches("G1").count(),
+            "{src}"
+        );
+        let w = warnings(src);
+        assert!(
+            w.iter()
+                .any(|(_, t)| t.contains(why) && t.contains("one pass is simulated")),
+            "{src}: {w:?}"
+        );
+    }
+}

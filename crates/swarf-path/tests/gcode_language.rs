@@ -1112,3 +1112,65 @@ fn predefined_named_parameters_read_the_modes() {
     );
     assert_eq!(comp, "411.000000|400.000000|421.000000");
 }
+
+/// G33 moves K per spindle revolution and G33.1 taps down and back along the same line
+/// (LinuxCNC: "after the rigid tap cycle we'll be in the same spot"), the retract at I times
+/// the spindle speed; the feed mode and rate are the program's again afterwards. Times worked
+/// out by hand: F200 over 4 mm = 1.2 s; down 11 mm at 1.25 × 500 = 625 mm/min = 1.056 s; up at
+/// 1.25 × 1000 = 1250 mm/min = 0.528 s; G33 from Z1 to Z-10 at 1.5 × 500 = 750 mm/min = 0.88 s;
+/// F200 over
+/// 10 mm = 3 s.
+#[test]
+fn g33_and_rigid_tapping_follow_the_spindle() {
+    use swarf_path::load::{read_program_str, ReadOptions};
+    use swarf_path::summary::summarize;
+    let src = "G21 G90 G17\nG0 X0 Y0 Z5\nM3 S500\nG1 F200 Z1\nG33.1 Z-10 K1.25 I2\nG0 X20\n\
+               G33 Z-10 K1.5\nG0 Z5\nG1 X30\nM2\n";
+    let m = motion(&run(src));
+    let feeds: Vec<[f64; 3]> = m
+        .iter()
+        .filter_map(|e| match e {
+            Canon::Feed { end } => Some([end.x, end.y, end.z]),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        feeds,
+        [
+            [0.0, 0.0, 1.0],
+            [0.0, 0.0, -10.0],
+            [0.0, 0.0, 1.0],
+            [20.0, 0.0, -10.0],
+            [30.0, 0.0, 5.0]
+        ]
+    );
+    let opts = ReadOptions::default();
+    let p = read_program_str(src, "t.ngc", swarf_path::Machine::three_axis(), &opts).unwrap();
+    // (Machining time counts feed moves only.)
+    let t = summarize(&p).machining_time_s;
+    assert!((t - (1.2 + 1.056 + 0.528 + 0.88 + 3.0)).abs() < 1e-9, "{t}");
+    // In inches K is in inches; a stopped spindle, a missing or negative K, and compensation
+    // are refused where they are.
+    let inch = motion(&run("G20 G90\nM3 S100\nG33 Z-1 K0.1\nM2\n"));
+    assert!(inch
+        .iter()
+        .any(|e| matches!(e, Canon::Feed { end } if (end.z + 25.4).abs() < 1e-12)));
+    for (src, col, what) in [
+        ("G21\nG33 Z-1 K1\nM2\n", 1, "spindle stopped"),
+        ("G21\nM3 S100\nG33 Z-1\nM2\n", 1, "without K"),
+        ("G21\nM3 S100\nG33 Z-1 K-1\nM2\n", 9, "K-1"),
+        ("G21\nM3 S100\nG33.1 Z-1 K1 I0\nM2\n", 14, "I0"),
+    ] {
+        let e = err(src);
+        assert!(e.message.contains(what), "{src}: {e}");
+        assert_eq!(
+            (e.pos.line, e.pos.column),
+            (
+                src.lines().position(|l| l.contains("G33")).unwrap() as u32 + 1,
+                col
+            ),
+            "{src}: {e}"
+        );
+    }
+    assert!(err("G21 G76 P1 Z-1\n").message.contains("lathe"));
+}

@@ -178,13 +178,13 @@ fn print_human(s: &ProgramSummary, tools: &BTreeMap<u32, ToolReport>, undefined:
             lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]
         );
     }
-    let t = s.machining_time_s;
+    // Whole seconds, rounded once, so that both forms agree.
+    let t = s.machining_time_s.round() as u64;
     println!(
-        "machining time {:.0} s ({}:{:02}:{:02})",
-        t,
-        (t / 3600.0) as u64,
-        (t / 60.0) as u64 % 60,
-        t as u64 % 60
+        "machining time {t} s ({}:{:02}:{:02})",
+        t / 3600,
+        t / 60 % 60,
+        t % 60
     );
     for (n, r) in tools {
         println!("T{n}: {} ({:?})", r.cutter.spec, r.source);

@@ -71,8 +71,10 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
         540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => Ok(COORD),
         610 | 611 | 640 => Ok(PATH),
         960 | 970 => Ok(SPINDLE_MODE),
-        330 | 331 | 760 => unsupported(
-            "spindle-synchronised motion (G33, G33.1 rigid tapping, G76 threading) is not simulated",
+        330 | 331 => Ok(MOTION),
+        760 => unsupported(
+            "G76 (LinuxCNC's lathe threading cycle) is not read: swarf simulates milling (a Fanuc \
+             program's G76 fine boring is read with --dialect fanuc)",
         ),
         382..=385 => unsupported("probing is not simulated"),
         70 | 80 => unsupported("lathe diameter/radius modes (G7/G8) are not supported"),
@@ -85,7 +87,9 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
             "custom macro calls (G65/G66/G67, such as a probing cycle G65 P9810) are not read, so \
              the motion of the macro would be missing",
         ),
-        150 | 160 => unsupported("Fanuc polar coordinate mode (G15/G16) is not supported; use `@` and `^`"),
+        150 | 160 => {
+            unsupported("Fanuc polar coordinate mode (G15/G16) is not supported; use `@` and `^`")
+        }
         171 | 181 | 191 => unsupported("UVW planes (G17.1, G18.1, G19.1) are not supported"),
         433 => unsupported("G43.3 is not a tool length offset swarf reads (G43, G43.1, G43.2)"),
         432 | 434 | 435 => Ok(TOOL_LENGTH),

@@ -15,7 +15,7 @@ use super::block::Block;
 use super::expr::{read_real, Cur};
 use super::interp::Interp;
 use super::lexer::{normalize, skip_line_number, LineBuf};
-use super::params::N_ARGS;
+use super::params::{PassState, N_ARGS, USER_PARAMS};
 use super::stack::{Ctl, Cursor, Frame, Kw, LoopKind};
 use super::{Fault, Res, Span};
 use crate::PathErrorKind;
@@ -673,12 +673,91 @@ impl Interp<'_, '_> {
                 Span::Line,
                 "M99 inside an O-word subroutine (end it with endsub)",
             )),
-            None => {
-                self.warn_at(0, "M99 in the main program (endless restart on a Fanuc control) ends the simulation".into());
-                self.ended = true;
-                Ok(())
-            }
+            None => self.restart_main(),
         }
+    }
+
+    /// `M99` in the main program: LinuxCNC and Fanuc controls run the program again from its
+    /// top, parameters and modes kept, until an M2/M30 ends it. A pass that changed no
+    /// parameter, or a file with no M2/M30 at all, would repeat for ever: one pass is
+    /// simulated and a warning says so.
+    fn restart_main(&mut self) -> Res<()> {
+        let state = self.pass_state();
+        let endless = if !self.file_has_program_end(self.cur_file) {
+            Some("this file has no M2/M30 to end it")
+        } else if self.pass_start.as_ref() == Some(&state) {
+            Some("no parameter changed in this pass")
+        } else {
+            None
+        };
+        if let Some(why) = endless {
+            self.warn_at(
+                0,
+                format!(
+                    "M99 in the main program restarts it (LinuxCNC, Fanuc), but {why}, so it \
+                     would repeat without end: one pass is simulated"
+                ),
+            );
+            self.ended = true;
+            return Ok(());
+        }
+        self.count_iteration(Span::Line)?;
+        self.main_passes += 1;
+        if self.main_passes == 1 {
+            self.warn_at(
+                0,
+                "M99 in the main program: run again from the top, as LinuxCNC and Fanuc controls \
+                 do (parameters and modes kept; later restarts are not reported)"
+                    .into(),
+            );
+        }
+        self.pass_start = Some(state);
+        self.ctl.clear();
+        self.macro_loops.clear();
+        self.tape = false;
+        self.seen_code = false;
+        self.at = self.file_start(self.cur_file);
+        Ok(())
+    }
+
+    /// What a pass of the main program can test: the numbered parameters below the
+    /// control's own (#1–#4999: LinuxCNC's user parameters, Fanuc's locals and commons) and
+    /// the named ones, as bits.
+    pub(crate) fn pass_state(&self) -> PassState {
+        let named = |m: &HashMap<String, f64>| {
+            let mut v: Vec<(String, u64)> =
+                m.iter().map(|(k, x)| (k.clone(), x.to_bits())).collect();
+            v.sort_unstable();
+            v
+        };
+        PassState {
+            num: self.params.num[1..USER_PARAMS]
+                .iter()
+                .map(|x| x.to_bits())
+                .collect(),
+            globals: named(&self.params.globals),
+            locals: self.params.locals.first().map(named).unwrap_or_default(),
+        }
+    }
+
+    /// Whether the file has an M2 or M30 word anywhere (comments aside).
+    fn file_has_program_end(&mut self, file: u32) -> bool {
+        let mut buf = std::mem::take(&mut self.skip_buf);
+        let text = self.text.clone();
+        let found = self.file_start(file).lines(&text).any(|(raw, _, _)| {
+            (raw.bytes().any(|c| c | 0x20 == b'm') && normalize(raw, &mut buf).is_ok())
+                && buf.code.iter().enumerate().any(|(i, &c)| {
+                    let rest = &buf.code[i + 1..];
+                    let digits = rest.iter().take_while(|d| d.is_ascii_digit()).count();
+                    c == b'm'
+                        && std::str::from_utf8(&rest[..digits])
+                            .ok()
+                            .and_then(|d| d.parse::<u32>().ok())
+                            .is_some_and(|n| n == 2 || n == 30)
+                })
+        });
+        self.skip_buf = buf;
+        found
     }
 
     /// Every bare `O<n>` line of the file and the cursor after it.

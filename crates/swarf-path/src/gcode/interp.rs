@@ -179,6 +179,10 @@ pub(crate) struct Interp<'t, 's> {
     /// Results of forward scans for O-words, by start position and keyword set.
     pub(crate) scan_cache: HashMap<(u32, usize, u32), ScanHit>,
     pub(crate) iterations: u64,
+    /// The parameters as the current pass of the main program found them (M99 restarts it).
+    pub(crate) pass_start: Option<super::params::PassState>,
+    /// How many times M99 restarted the main program.
+    pub(crate) main_passes: u64,
     pub(crate) ended: bool,
     pub(crate) tape: bool,
     pub(crate) seen_code: bool,
@@ -304,6 +308,8 @@ impl<'t, 's> Interp<'t, 's> {
             goto_index: HashMap::new(),
             scan_cache: HashMap::new(),
             iterations: 0,
+            pass_start: None,
+            main_passes: 0,
             ended: false,
             tape: false,
             seen_code: false,
@@ -357,6 +363,7 @@ impl<'t, 's> Interp<'t, 's> {
             self.emit(Canon::SetPosition(Axes::from_array(self.p)));
         }
         self.emit(Canon::Plane(Plane::XY));
+        self.pass_start = Some(self.pass_state());
         let mut lb = LineBuf::default();
         let mut blk = Block::default();
         loop {
@@ -1338,6 +1345,8 @@ impl<'t, 's> Interp<'t, 's> {
                         || b.g(group::ROTATION) == Some(682)
                         || (self.fanuc && cycle && c == b'k')
                         || matches!(mode, Some(50 | 51 | 870))
+                        || (c == b'k' && matches!(mode, Some(330 | 331)))
+                        || (c == b'i' && mode == Some(331))
                         || b.g(group::SCALING) == Some(510)
                 }
                 b'r' => arc || cycle || g10 || b.g(group::ROTATION) == Some(680),
@@ -1499,6 +1508,11 @@ impl<'t, 's> Interp<'t, 's> {
                 }
             }
             Some(m @ (20 | 30)) => self.arc(b, m == 20)?,
+            Some(m @ (330 | 331)) => {
+                if has_axes {
+                    self.spindle_synchronised(b, m == 331)?;
+                }
+            }
             Some(m @ (50..=53)) => {
                 if m == 52 && explicit == Some(52) {
                     self.nurbs_start = [self.p[0], self.p[1]];
@@ -1507,6 +1521,85 @@ impl<'t, 's> Interp<'t, 's> {
             }
             Some(m) => self.cycle(b, m, old_motion)?,
         }
+        Ok(())
+    }
+
+    /// `G33` (motion K per spindle revolution: threading, tapping with a floating holder) and
+    /// `G33.1` (rigid tapping: down at K per revolution, the spindle reversed, back out along
+    /// the same line to where it started, at `I` times the speed if given), as LinuxCNC moves
+    /// them. The feed is K × S: the moves are made in feed per revolution, then the program's
+    /// feed mode and rate are restored.
+    fn spindle_synchronised(&mut self, b: &Block, rigid: bool) -> Res<()> {
+        let g = if rigid { "G33.1" } else { "G33" };
+        let gspan = b
+            .g(group::MOTION)
+            .map_or(Span::Line, |_| b.g_span(group::MOTION));
+        let k = b.get(b'k').ok_or_else(|| {
+            Fault::new(
+                PathErrorKind::Semantic,
+                gspan,
+                format!("{g} without K, the distance travelled per spindle revolution"),
+                "K > 0",
+            )
+        })?;
+        if k <= 0.0 || !k.is_finite() {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                b.span(b'k'),
+                format!("{g} with K{k}"),
+                "K > 0 (distance per spindle revolution)",
+            ));
+        }
+        if self.dir == SpindleDir::Stopped || self.rpm <= 0.0 {
+            return Err(Fault::semantic(
+                gspan,
+                format!("{g} with the spindle stopped: its motion follows the spindle (M3/M4 and S first)"),
+            ));
+        }
+        if self.comp.on() {
+            return Err(Fault::semantic(
+                gspan,
+                format!("cannot use {g} with cutter radius compensation on"),
+            ));
+        }
+        let speed_up = match b.get(b'i') {
+            Some(i) if rigid && (i <= 0.0 || !i.is_finite()) => {
+                return Err(Fault::new(
+                    PathErrorKind::Semantic,
+                    b.span(b'i'),
+                    format!("G33.1 with I{i}"),
+                    "I > 0 (the retract's spindle speed multiplier)",
+                ))
+            }
+            Some(i) if rigid => i,
+            _ => 1.0,
+        };
+        let end = self.find_ends(b, false)?;
+        let start = self.p;
+        self.emit(Canon::FeedMode(FeedMode::PerRevolution));
+        self.emit(Canon::FeedRate(self.mm_from_units(2, k)));
+        self.emit(Canon::Feed {
+            end: Axes::from_array(end),
+        });
+        if rigid {
+            let (rpm, dir) = (self.rpm, self.dir);
+            let back = match dir {
+                SpindleDir::Clockwise => SpindleDir::CounterClockwise,
+                _ => SpindleDir::Clockwise,
+            };
+            self.emit(Canon::Spindle {
+                rpm: rpm * speed_up,
+                dir: back,
+            });
+            self.emit(Canon::Feed {
+                end: Axes::from_array(start),
+            });
+            self.emit(Canon::Spindle { rpm, dir });
+        } else {
+            self.p = end;
+        }
+        self.emit(Canon::FeedMode(self.feed_mode));
+        self.emit(Canon::FeedRate(self.feed));
         Ok(())
     }
 

@@ -42,8 +42,8 @@
 //!   understood; GRBL's `$` lines are skipped (or refused where they move the machine).
 //! * Dialect: LinuxCNC or Fanuc rules where they differ ([`GcodeDialect`]).
 //!
-//! What is deliberately not simulated (spindle-synchronised motion, probing, U V W axes, Siemens
-//! and Heidenhain programs) is rejected with [`PathErrorKind::Unsupported`];
+//! What is deliberately not simulated (lathe threading G76, probing, U V W axes, Siemens and
+//! Heidenhain programs) is rejected with [`PathErrorKind::Unsupported`];
 //! harmless codes swarf does not act on (coolant, overrides, user M codes) become warnings.
 //!
 //! ```

@@ -10,6 +10,19 @@ use super::expr::MAX_PARAM;
 /// Numbered parameters that are arguments of an O-word subroutine call and local to it.
 pub(crate) const N_ARGS: usize = 30;
 
+/// Numbered parameters below this are the program's own (LinuxCNC's #1–#4999 user parameters,
+/// Fanuc's locals and common variables); from #5000 on, the control's state.
+pub(crate) const USER_PARAMS: usize = 5000;
+
+/// The parameters a pass of the main program leaves, as bits (see `Interp::restart_main`):
+/// two passes that start from equal states run alike.
+#[derive(Debug, PartialEq, Eq)]
+pub(crate) struct PassState {
+    pub(crate) num: Vec<u64>,
+    pub(crate) globals: Vec<(String, u64)>,
+    pub(crate) locals: Vec<(String, u64)>,
+}
+
 /// At most this many assignments on one line (LinuxCNC's `MAX_NAMED_PARAMETERS` per line is 50).
 pub(crate) const MAX_ASSIGNS: usize = 50;
 
