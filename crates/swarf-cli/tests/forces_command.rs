@@ -229,6 +229,47 @@ fn schedule_reports_what_even_the_minimum_feed_cannot_fix() {
         .contains("G1 X50 F200\n"));
 }
 
+/// A G33.1 tap's speed is its lead times the spindle speed: the schedule keeps it, reports it
+/// over the limit with what would slow it, and still slows the G1 slot beside it.
+#[test]
+fn schedule_keeps_spindle_synchronised_moves_and_says_so() {
+    let d = dir("g33");
+    let src =
+        "G21 G90 G94\nS1000 M3\nG0 X-10 Y10 Z-4\nG1 X20 F400\nG33.1 Z-8 K1\nG1 X50\nG0 Z10\nM2\n";
+    let prog = write(&d, "tap.ngc", src);
+    let mat = write(&d, "al.toml", MATERIAL);
+    let out = d.join("tap-slow.ngc");
+    let o = swarf(&[
+        "schedule",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        &prog,
+        "--tool",
+        "flat:d=10,flutes=4,helix=30",
+        "--coefficients",
+        &mat,
+        "--limit-force",
+        "300",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("tap.ngc:5: over the limit at 1000.0 mm/min")
+            && stderr(&o).contains("lower S"),
+        "{}",
+        stderr(&o)
+    );
+    let text = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[4], "G33.1 Z-8 K1", "{text}");
+    assert!(
+        lines[3].starts_with("G1 X20 F") && lines[3] != "G1 X20 F400",
+        "{text}"
+    );
+}
+
 #[test]
 fn errors_name_what_is_missing() {
     let d = dir("errors");

@@ -179,11 +179,14 @@ fn pieces_of(locations: &[(f64, LocationCap)]) -> Vec<(f64, Option<f64>, bool)> 
 
 /// The feeds of `program`'s feed moves from the caps its locations gave; with
 /// [`ScheduleOptions::split`], moves for which `can_split` says yes may be split into pieces.
+/// Moves for which `fixed` says yes keep their feed (spindle-synchronised motion, whose speed
+/// is the thread's lead times the spindle speed) and are marked over the limit where it is.
 pub fn schedule_feeds(
     program: &Program,
     caps: &MoveCaps,
     opts: &ScheduleOptions,
     can_split: &dyn Fn(usize) -> bool,
+    fixed: &dyn Fn(usize) -> bool,
 ) -> ScheduleResult {
     let mut out = ScheduleResult::default();
     let step = opts.max_step_percent.map(|p| 1.0 + p / 100.0);
@@ -222,6 +225,26 @@ pub fn schedule_feeds(
             continue;
         }
         let old = swarf_engage::feed_rate(m, swarf_engage::path_length(program, m));
+        if fixed(i) {
+            // Its own run: a feed that cannot change bounds no neighbour's step.
+            flush(&mut run, &mut out);
+            let cap = caps.caps[i];
+            let over = caps.infeasible[i] || cap.is_some_and(|c| old > c * (1.0 + 1e-9));
+            out.moves.push(MoveFeed {
+                move_index: i,
+                old_feed_mm_min: old,
+                new_feed_mm_min: old,
+                cap_mm_min: cap,
+                over_limit: over,
+                pieces: vec![FeedPiece {
+                    s_end: 1.0,
+                    feed_mm_min: old,
+                    cap_mm_min: cap,
+                    over_limit: over,
+                }],
+            });
+            continue;
+        }
         let ceiling = opts
             .max_feed_mm_min
             .unwrap_or(old)

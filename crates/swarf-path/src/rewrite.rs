@@ -220,6 +220,9 @@ pub struct LineModes {
     /// A rotation or scaling of the program frame (G68, G68.2, G51, G10 L2/L20 with R) was
     /// seen on this line or before it.
     pub transformed: bool,
+    /// The motion in effect after the line is spindle-synchronised (G33, G33.1): its speed
+    /// follows the spindle, not a feed word.
+    pub synchronised: bool,
 }
 
 /// The letter–number words of a G-code line's code (comments and bracketed expressions
@@ -267,6 +270,7 @@ pub fn gcode_line_modes(text: &str, initial_inch: bool) -> Vec<LineModes> {
         absolute: true,
         inch: initial_inch,
         transformed: false,
+        synchronised: false,
     };
     crate::load::program_lines(text, ProgramFormat::Gcode)
         .map(|line| {
@@ -283,6 +287,16 @@ pub fn gcode_line_modes(text: &str, initial_inch: bool) -> Vec<LineModes> {
                 || g(68.2)
                 || g(51.0)
                 || (g(10.0) && (l(2.0) || l(20.0)) && w.iter().any(|&(c, _)| c == 'R'));
+            // Group 1: G33/G33.1 start it; another motion code (G0–G3, G5.x, G38.x, G73–G89)
+            // ends it.
+            let other_motion = w.iter().any(|&(c, v)| {
+                c == 'G'
+                    && (v < 4.0
+                        || (5.0..6.0).contains(&v)
+                        || (38.0..39.0).contains(&v)
+                        || (73.0..90.0).contains(&v))
+            });
+            m.synchronised = g(33.0) || g(33.1) || (m.synchronised && !other_motion);
             m
         })
         .collect()

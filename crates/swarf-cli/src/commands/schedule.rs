@@ -209,13 +209,21 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
             && per_line.get(&m.line) == Some(&1)
             && mode.is_some_and(|md| md.absolute && !md.transformed)
     };
-    let schedule = schedule_feeds(program, &caps, &opts, &can_split);
+    // A G33/G33.1 move's speed is its lead times the spindle speed: no feed word changes it.
+    let fixed = |i: usize| {
+        format == ProgramFormat::Gcode
+            && modes
+                .get(program.moves[i].line as usize - 1)
+                .is_some_and(|md| md.synchronised)
+    };
+    let schedule = schedule_feeds(program, &caps, &opts, &can_split, &fixed);
     // One factor per line: moves sharing a line share its feed word, so the slowest wins; a
     // split move's line gets its last piece's factor and its other pieces go in front of it.
     let mut factors: BTreeMap<u32, f64> = BTreeMap::new();
     let mut splits: BTreeMap<u32, Vec<SplitPiece>> = BTreeMap::new();
     for m in &schedule.moves {
-        if m.old_feed_mm_min <= 0.0 {
+        // (A synchronised line keeps its text: no feed word carried over matters to it.)
+        if m.old_feed_mm_min <= 0.0 || fixed(m.move_index) {
             continue;
         }
         let mv = &program.moves[m.move_index];
@@ -354,8 +362,16 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
     );
     for o in summary.still_over_limit.iter().take(10) {
         eprintln!(
-            "swarf: warning: {}:{}: over the limit at {:.1} mm/min (the limit allows {:.1})",
-            o.file, o.line, o.feed_mm_min, o.cap_mm_min
+            "swarf: warning: {}:{}: over the limit at {:.1} mm/min (the limit allows {:.1}){}",
+            o.file,
+            o.line,
+            o.feed_mm_min,
+            o.cap_mm_min,
+            if fixed(o.move_index) {
+                "; G33/G33.1 follow the spindle, so no feed word slows them: lower S"
+            } else {
+                ""
+            }
         );
     }
     Ok(())
