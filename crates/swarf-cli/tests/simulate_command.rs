@@ -443,3 +443,55 @@ fn a_hole_on_a_tilted_working_plane_removes_its_exact_volume() {
     assert!((got - exact).abs() / exact < 0.005, "{got} vs {exact}");
     assert_eq!(j["rapid_collisions"], 0);
 }
+
+/// A CAMotics project whose workpiece is automatic: the stock is made from the program as
+/// CAMotics makes it (the cutting moves' tool box, top at Z0, grown by the margin), named in a
+/// note. With no margin it is the slot's own box, so the whole of it is removed: a 10 × 6
+/// stadium plus two half discs of radius 3, 4 mm deep.
+#[test]
+fn a_camotics_automatic_workpiece_is_made_from_the_program() {
+    let dir = temp_dir("camotics-auto");
+    let prog = dir.join("slot.ngc");
+    std::fs::write(
+        &prog,
+        "G21 G90\nT1 M6\nM3 S1000\nG0 X0 Y0 Z5\nG1 Z-4 F100\nG1 X10\nG0 Z5\nM2\n",
+    )
+    .unwrap();
+    let project = dir.join("p.camotics");
+    let write_project = |margin: f64| {
+        std::fs::write(
+            &project,
+            format!(
+                r#"{{"units":"metric","tools":{{"1":{{"units":"metric","shape":"cylindrical","length":20,"diameter":6}}}},"workpiece":{{"automatic":true,"margin":{margin}}}}}"#
+            ),
+        )
+        .unwrap();
+    };
+    let run = || {
+        swarf(&[
+            "simulate",
+            "--program",
+            prog.to_str().unwrap(),
+            "--tools",
+            project.to_str().unwrap(),
+            "--resolution",
+            "0.1",
+            "--json",
+        ])
+    };
+    write_project(0.0);
+    let o = run();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("stock box:-3,-3,-4,13,3,0"), "{}", stderr(&o));
+    let j = json(&o);
+    let exact = 4.0 * (10.0 * 6.0 + std::f64::consts::PI * 9.0);
+    let removed = j["removed_volume_mm3"].as_f64().unwrap();
+    assert!((removed - exact).abs() < 0.005 * exact, "{removed} vs {exact}");
+    let stock = j["stock_volume_mm3"].as_f64().unwrap();
+    assert!((stock - 16.0 * 6.0 * 4.0).abs() < 1e-6, "{stock}");
+    // 50 %: 8, 3 and 2 mm more on each side, none on top.
+    write_project(50.0);
+    let o = run();
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(stderr(&o).contains("stock box:-11,-6,-6,21,6,0"), "{}", stderr(&o));
+}

@@ -32,6 +32,9 @@
 
 use std::path::{Path, PathBuf};
 
+mod workpiece;
+pub use workpiece::automatic_workpiece;
+
 use swarf_path::apt::AptOptions;
 use swarf_path::gcode::{GcodeDialect, GcodeOptions};
 use swarf_path::kinematics::MachineError;

@@ -366,6 +366,15 @@ struct Curved {
 }
 
 /// Tip path length of `m`, growing `bb` by the tip's path.
+/// The box of the tool tip's path over move `m` (arcs by their extreme points, curved
+/// multi-axis paths sampled within the default tolerance), as (min, max).
+pub fn move_tip_bounds(program: &Program, m: &Move) -> (Vec3, Vec3) {
+    let mut bb = Bbox::empty();
+    let mut curved = Curved::default();
+    move_extent(program, m, DEFAULT_PATH_TOLERANCE_MM, &mut bb, &mut curved);
+    (bb.min, bb.max)
+}
+
 fn move_extent(program: &Program, m: &Move, tol: f64, bb: &mut Bbox, curved: &mut Curved) -> f64 {
     bb.add(m.start.tip);
     bb.add(m.end.tip);

@@ -127,6 +127,7 @@ impl RunArgs {
         let stock = build_stock(
             self.stock.as_deref(),
             setup.table.as_ref(),
+            (&program, &tools),
             self.resolution,
             self.allow_open_mesh,
         )?;

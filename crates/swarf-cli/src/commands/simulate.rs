@@ -210,6 +210,7 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
     let mut stock = build_stock(
         args.stock.as_deref(),
         job.setup.table.as_ref(),
+        (program, tools),
         args.resolution,
         args.allow_open_mesh,
     )?;
@@ -283,14 +284,16 @@ pub(crate) fn simplify_mm(value: f64) -> Result<Option<f64>> {
     }
 }
 
-/// The stock `--stock` gives (or the CAMotics project's workpiece) at ray spacing `resolution`.
+/// The stock `--stock` gives (or the CAMotics project's workpiece: its bounds, or the
+/// automatic one made from `program`'s cutting moves with `tools`) at ray spacing `resolution`.
 pub(crate) fn build_stock(
     arg: Option<&str>,
     table: Option<&ToolTable>,
+    (program, tools): (&Program, &ToolSet),
     resolution: f64,
     allow_open_mesh: bool,
 ) -> Result<TriDexel> {
-    stock_spec(arg, table)?
+    stock_spec(arg, table, program, tools)?
         .build(
             resolution,
             MeshOptions {
@@ -300,19 +303,44 @@ pub(crate) fn build_stock(
         .context("building the stock")
 }
 
-fn stock_spec(arg: Option<&str>, table: Option<&ToolTable>) -> Result<StockSpec> {
-    match (arg, table.and_then(|t| t.workpiece)) {
-        (Some(s), _) => StockSpec::parse(s).with_context(|| format!("stock `{s}`")),
-        (None, Some(b)) => Ok(StockSpec::Box {
+fn stock_spec(
+    arg: Option<&str>,
+    table: Option<&ToolTable>,
+    program: &Program,
+    tools: &ToolSet,
+) -> Result<StockSpec> {
+    if let Some(s) = arg {
+        return StockSpec::parse(s).with_context(|| format!("stock `{s}`"));
+    }
+    if let Some(b) = table.and_then(|t| t.workpiece) {
+        return Ok(StockSpec::Box {
             min: b.min,
             max: b.max,
-        }),
-        (None, None) => Err(crate::cli::UsageError(
-            "give the stock with --stock box:X0,Y0,Z0,X1,Y1,Z1, cyl:CX,CY,Z0,R,H or FILE.stl"
-                .into(),
-        )
-        .into()),
+        });
     }
+    if let Some(margin) = table.and_then(|t| t.automatic_workpiece) {
+        let Some(b) = swarf_job::automatic_workpiece(program, tools, margin) else {
+            return Err(crate::cli::UsageError(
+                "the CAMotics project's workpiece is automatic, but no feed move with a defined \
+                 tool reaches below Z0 to make it from: give the stock with --stock"
+                    .into(),
+            )
+            .into());
+        };
+        eprintln!(
+            "swarf: note: stock box:{},{},{},{},{},{} (the CAMotics project's automatic \
+             workpiece: the cutting moves' tool box, top at Z0, grown by {margin} %)",
+            b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z
+        );
+        return Ok(StockSpec::Box {
+            min: b.min,
+            max: b.max,
+        });
+    }
+    Err(crate::cli::UsageError(
+        "give the stock with --stock box:X0,Y0,Z0,X1,Y1,Z1, cyl:CX,CY,Z0,R,H or FILE.stl".into(),
+    )
+    .into())
 }
 
 /// `moves.csv`: one row per move. The first three columns are a contract.

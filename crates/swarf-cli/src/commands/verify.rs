@@ -147,6 +147,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
     let mut stock = build_stock(
         args.stock.as_deref(),
         job.setup.table.as_ref(),
+        (program, tools),
         args.resolution,
         args.allow_open_mesh,
     )?;

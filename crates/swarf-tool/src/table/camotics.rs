@@ -11,7 +11,9 @@
 //!   2·atan(diameter / (2·length))).
 //!
 //! The workpiece `bounds` (project `units`) become [`ToolTable::workpiece`] unless
-//! `"automatic": true`, which means CAMotics computes them from the tool path: no bounds.
+//! `"automatic": true`, which means CAMotics computes them from the tool path: its `margin`
+//! (per cent, default 5) becomes [`ToolTable::automatic_workpiece`], and the job makes the box
+//! as CAMotics does (`swarf_job::automatic_workpiece`).
 
 use super::{line_col, ToolEntry, ToolTable};
 use crate::cutter::{Cutter, CutterKind, CutterOptions};
@@ -19,6 +21,9 @@ use crate::error::TableError;
 use std::collections::BTreeMap;
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
+
+/// CAMotics' workpiece margin when a project states none, per cent.
+const DEFAULT_MARGIN_PERCENT: f64 = 5.0;
 
 #[derive(serde::Deserialize)]
 struct Project {
@@ -72,6 +77,8 @@ struct Tool {
 struct Workpiece {
     #[serde(default)]
     automatic: bool,
+    #[serde(default)]
+    margin: Option<f64>,
     #[serde(default)]
     bounds: Option<Bounds>,
 }
@@ -149,7 +156,22 @@ pub fn parse_camotics(text: &str, file: &str) -> Result<ToolTable, TableError> {
         );
     }
     if let Some(w) = &project.workpiece {
-        if !w.automatic {
+        if w.automatic {
+            let margin = w.margin.unwrap_or(DEFAULT_MARGIN_PERCENT);
+            if !(margin.is_finite() && margin >= 0.0) {
+                let (line, column) = text
+                    .find("\"margin\"")
+                    .map_or((0, 0), |i| line_col(text, i));
+                return Err(TableError::Parse {
+                    file: file.to_string(),
+                    line,
+                    column,
+                    found: format!("margin {margin}"),
+                    expected: "a workpiece margin ≥ 0 (per cent of its size)".into(),
+                });
+            }
+            table.automatic_workpiece = Some(margin);
+        } else {
             match &w.bounds {
                 Some(b) => {
                     let u = project_unit.to_mm();
@@ -196,6 +218,16 @@ mod tests {
         // Cone reaching Ø25.4 at 12.7 mm: a 90° V.
         assert!((v.profile_radius(6.35).unwrap() - 6.35).abs() < 1e-9);
         assert!(t.workpiece.is_none());
+        // Automatic: CAMotics' default margin, or the project's; a negative one refused.
+        assert_eq!(t.automatic_workpiece, Some(5.0));
+        let with = |w: &str| parse_camotics(&format!("{{\"workpiece\":{w}}}"), "p.camotics");
+        let t = with(r#"{"automatic":true,"margin":12.5}"#).unwrap();
+        assert_eq!(t.automatic_workpiece, Some(12.5));
+        let t =
+            with(r#"{"automatic":false,"margin":12.5,"bounds":{"min":[0,0,-1],"max":[1,1,0]}}"#)
+                .unwrap();
+        assert_eq!((t.automatic_workpiece, t.workpiece.is_some()), (None, true));
+        assert!(with(r#"{"automatic":true,"margin":-1}"#).is_err());
     }
 
     #[test]

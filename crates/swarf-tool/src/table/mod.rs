@@ -56,6 +56,10 @@ pub struct ToolTable {
     pub tools: BTreeMap<u32, ToolEntry>,
     /// Workpiece bounds in mm (CAMotics projects with `"automatic": false`).
     pub workpiece: Option<Aabb>,
+    /// A CAMotics project with `"automatic": true`: the workpiece is made from the program's
+    /// cutting moves (`swarf_job::automatic_workpiece`), grown by this margin, per cent of its
+    /// size.
+    pub automatic_workpiece: Option<f64>,
     /// Assumptions made while reading, one sentence each.
     pub warnings: Vec<String>,
 }
