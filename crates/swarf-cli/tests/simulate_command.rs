@@ -482,16 +482,27 @@ fn a_camotics_automatic_workpiece_is_made_from_the_program() {
     write_project(0.0);
     let o = run();
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).contains("stock box:-3,-3,-4,13,3,0"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("stock box:-3,-3,-4,13,3,0"),
+        "{}",
+        stderr(&o)
+    );
     let j = json(&o);
     let exact = 4.0 * (10.0 * 6.0 + std::f64::consts::PI * 9.0);
     let removed = j["removed_volume_mm3"].as_f64().unwrap();
-    assert!((removed - exact).abs() < 0.005 * exact, "{removed} vs {exact}");
+    assert!(
+        (removed - exact).abs() < 0.005 * exact,
+        "{removed} vs {exact}"
+    );
     let stock = j["stock_volume_mm3"].as_f64().unwrap();
     assert!((stock - 16.0 * 6.0 * 4.0).abs() < 1e-6, "{stock}");
     // 50 %: 8, 3 and 2 mm more on each side, none on top.
     write_project(50.0);
     let o = run();
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).contains("stock box:-11,-6,-6,21,6,0"), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("stock box:-11,-6,-6,21,6,0"),
+        "{}",
+        stderr(&o)
+    );
 }

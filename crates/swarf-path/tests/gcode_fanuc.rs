@@ -674,7 +674,7 @@ fn m99_in_the_main_program_runs_it_again_until_m30() {
 }
 
 /// A main program that cannot end (no M2/M30 in the file: a bar feeder's loop), or whose
-/// pass changed no parameter, would repeat for ever: one pass is read and a warning says why.
+/// pass changed no parameter, would repeat for ever: reading ends at its M99 with a warning.
 #[test]
 fn an_endless_main_program_loop_is_read_once() {
     for (src, why) in [
@@ -694,8 +694,35 @@ fn an_endless_main_program_loop_is_read_once() {
         let w = warnings(src);
         assert!(
             w.iter()
-                .any(|(_, t)| t.contains(why) && t.contains("one pass is simulated")),
+                .any(|(_, t)| t.contains(why) && t.contains("reading ends here")),
             "{src}: {w:?}"
         );
     }
+}
+
+/// A pass that wrote a parameter it then found unchanged counts as no change: `#1=5` runs
+/// twice (0 → 5, then 5 → 5), `#2=#2+0` changes nothing.
+#[test]
+fn a_pass_that_rewrites_a_parameter_to_its_value_ends_the_loop() {
+    let src = "#1=5\nG0 X#1 Y#2\n#2=#2+0\nM99\nM30\n";
+    assert_eq!(
+        moves(src, &fanuc()).unwrap(),
+        [('R', 5.0, 0.0, 0.0), ('R', 5.0, 0.0, 0.0)]
+    );
+    let w = warnings(src);
+    assert!(
+        w.iter()
+            .any(|(l, t)| *l == 4 && t.contains("no parameter changed")),
+        "{w:?}"
+    );
+}
+
+/// A counter that never reaches its M30 restarts until the reader's iteration limit ends it
+/// with an error at the M99 (each restart counts as an iteration).
+#[test]
+fn a_main_program_loop_that_never_ends_meets_the_iteration_limit() {
+    let opts = fanuc().with_max_loop_iterations(1000);
+    let e = moves("#1=#1+1\nIF [#1 LT 0] GOTO 9\nM99\nN9 M30\n", &opts).unwrap_err();
+    assert_eq!(e.pos.line, 3, "{e}");
+    assert!(e.message.contains("more than 1000"), "{e}");
 }

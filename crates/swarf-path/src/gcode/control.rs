@@ -15,7 +15,7 @@ use super::block::Block;
 use super::expr::{read_real, Cur};
 use super::interp::Interp;
 use super::lexer::{normalize, skip_line_number, LineBuf};
-use super::params::{PassState, N_ARGS, USER_PARAMS};
+use super::params::N_ARGS;
 use super::stack::{Ctl, Cursor, Frame, Kw, LoopKind};
 use super::{Fault, Res, Span};
 use crate::PathErrorKind;
@@ -682,10 +682,17 @@ impl Interp<'_, '_> {
     /// parameter, or a file with no M2/M30 at all, would repeat for ever: one pass is
     /// simulated and a warning says so.
     fn restart_main(&mut self) -> Res<()> {
-        let state = self.pass_state();
-        let endless = if !self.file_has_program_end(self.cur_file) {
+        let has_end = match self.main_has_end {
+            Some(e) => e,
+            None => {
+                let e = self.file_has_program_end(self.cur_file);
+                self.main_has_end = Some(e);
+                e
+            }
+        };
+        let endless = if !has_end {
             Some("this file has no M2/M30 to end it")
-        } else if self.pass_start.as_ref() == Some(&state) {
+        } else if !self.params.pass.changed(&self.params) {
             Some("no parameter changed in this pass")
         } else {
             None
@@ -695,7 +702,7 @@ impl Interp<'_, '_> {
                 0,
                 format!(
                     "M99 in the main program restarts it (LinuxCNC, Fanuc), but {why}, so it \
-                     would repeat without end: one pass is simulated"
+                     would repeat without end: reading ends here"
                 ),
             );
             self.ended = true;
@@ -711,33 +718,13 @@ impl Interp<'_, '_> {
                     .into(),
             );
         }
-        self.pass_start = Some(state);
+        self.params.pass.clear();
         self.ctl.clear();
         self.macro_loops.clear();
         self.tape = false;
         self.seen_code = false;
         self.at = self.file_start(self.cur_file);
         Ok(())
-    }
-
-    /// What a pass of the main program can test: the numbered parameters below the
-    /// control's own (#1–#4999: LinuxCNC's user parameters, Fanuc's locals and commons) and
-    /// the named ones, as bits.
-    pub(crate) fn pass_state(&self) -> PassState {
-        let named = |m: &HashMap<String, f64>| {
-            let mut v: Vec<(String, u64)> =
-                m.iter().map(|(k, x)| (k.clone(), x.to_bits())).collect();
-            v.sort_unstable();
-            v
-        };
-        PassState {
-            num: self.params.num[1..USER_PARAMS]
-                .iter()
-                .map(|x| x.to_bits())
-                .collect(),
-            globals: named(&self.params.globals),
-            locals: self.params.locals.first().map(named).unwrap_or_default(),
-        }
     }
 
     /// Whether the file has an M2 or M30 word anywhere (comments aside).

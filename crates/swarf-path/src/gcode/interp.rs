@@ -179,10 +179,10 @@ pub(crate) struct Interp<'t, 's> {
     /// Results of forward scans for O-words, by start position and keyword set.
     pub(crate) scan_cache: HashMap<(u32, usize, u32), ScanHit>,
     pub(crate) iterations: u64,
-    /// The parameters as the current pass of the main program found them (M99 restarts it).
-    pub(crate) pass_start: Option<super::params::PassState>,
     /// How many times M99 restarted the main program.
     pub(crate) main_passes: u64,
+    /// Whether the main program's file has an M2/M30 (found at its first M99).
+    pub(crate) main_has_end: Option<bool>,
     pub(crate) ended: bool,
     pub(crate) tape: bool,
     pub(crate) seen_code: bool,
@@ -308,8 +308,8 @@ impl<'t, 's> Interp<'t, 's> {
             goto_index: HashMap::new(),
             scan_cache: HashMap::new(),
             iterations: 0,
-            pass_start: None,
             main_passes: 0,
+            main_has_end: None,
             ended: false,
             tape: false,
             seen_code: false,
@@ -363,7 +363,6 @@ impl<'t, 's> Interp<'t, 's> {
             self.emit(Canon::SetPosition(Axes::from_array(self.p)));
         }
         self.emit(Canon::Plane(Plane::XY));
-        self.pass_start = Some(self.pass_state());
         let mut lb = LineBuf::default();
         let mut blk = Block::default();
         loop {
@@ -739,7 +738,7 @@ impl<'t, 's> Interp<'t, 's> {
             5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20] = v,
             // Read-only views: the machine position, the active system, the tool, the position.
             5021..=5026 | 5220 | 5400..=5409 | 5420..=5425 => {}
-            _ => self.params.num[n] = v,
+            _ => self.params.set_num(n, v),
         }
     }
 

@@ -14,13 +14,44 @@ pub(crate) const N_ARGS: usize = 30;
 /// Fanuc's locals and common variables); from #5000 on, the control's state.
 pub(crate) const USER_PARAMS: usize = 5000;
 
-/// The parameters a pass of the main program leaves, as bits (see `Interp::restart_main`):
-/// two passes that start from equal states run alike.
-#[derive(Debug, PartialEq, Eq)]
-pub(crate) struct PassState {
-    pub(crate) num: Vec<u64>,
-    pub(crate) globals: Vec<(String, u64)>,
-    pub(crate) locals: Vec<(String, u64)>,
+/// What a pass of the main program changed (see `Interp::restart_main`): every numbered
+/// parameter below [`USER_PARAMS`] (the control's own above are left out) and every global or
+/// main-level named parameter it wrote, with the value it had when the pass began. Two passes
+/// that begin with equal parameters run alike; the log costs a little per distinct parameter
+/// written, not per parameter.
+#[derive(Debug, Default)]
+pub(crate) struct PassLog {
+    written: Vec<(Written, Option<u64>)>,
+    /// Which numbered parameters are in `written`, a bit each.
+    seen: Vec<u64>,
+}
+
+#[derive(Debug, PartialEq)]
+enum Written {
+    Num(usize),
+    Named(String),
+}
+
+impl PassLog {
+    /// Whether any parameter written since the log was cleared now differs from its value then.
+    pub(crate) fn changed(&self, p: &Params) -> bool {
+        self.written.iter().any(|(w, old)| {
+            let now = match w {
+                Written::Num(n) => Some(p.num[*n].to_bits()),
+                Written::Named(k) => p.named_at_main(k).map(f64::to_bits),
+            };
+            now != *old
+        })
+    }
+
+    /// Starts a new pass.
+    pub(crate) fn clear(&mut self) {
+        for (w, _) in self.written.drain(..) {
+            if let Written::Num(n) = w {
+                self.seen[n / 64] &= !(1 << (n % 64));
+            }
+        }
+    }
 }
 
 /// At most this many assignments on one line (LinuxCNC's `MAX_NAMED_PARAMETERS` per line is 50).
@@ -44,6 +75,8 @@ pub(crate) struct Params {
     pub(crate) globals: HashMap<String, f64>,
     /// Local named parameters, one table per call level (index 0: the main program).
     pub(crate) locals: Vec<HashMap<String, f64>>,
+    /// What the current pass of the main program wrote.
+    pub(crate) pass: PassLog,
 }
 
 impl Default for Params {
@@ -52,6 +85,10 @@ impl Default for Params {
             num: vec![0.0; MAX_PARAM + 1],
             globals: HashMap::new(),
             locals: vec![HashMap::new()],
+            pass: PassLog {
+                written: Vec::new(),
+                seen: vec![0; USER_PARAMS.div_ceil(64)],
+            },
         }
     }
 }
@@ -66,8 +103,39 @@ impl Params {
         }
     }
 
+    /// A global, or a named parameter of the main program's level.
+    fn named_at_main(&self, name: &str) -> Option<f64> {
+        if name.starts_with('_') {
+            self.globals.get(name).copied()
+        } else {
+            self.locals.first().and_then(|m| m.get(name).copied())
+        }
+    }
+
+    /// Sets numbered parameter `n` (a plain store: the control's own are the caller's).
+    pub(crate) fn set_num(&mut self, n: usize, v: f64) {
+        if n < USER_PARAMS && self.pass.seen[n / 64] & (1 << (n % 64)) == 0 {
+            self.pass.seen[n / 64] |= 1 << (n % 64);
+            let old = self.num[n].to_bits();
+            self.pass.written.push((Written::Num(n), Some(old)));
+        }
+        self.num[n] = v;
+    }
+
     /// Sets a named parameter; allocates only the first time a name is assigned at a level.
     pub(crate) fn set_named(&mut self, name: &str, v: f64) {
+        if (name.starts_with('_') || self.locals.len() == 1)
+            && !self
+                .pass
+                .written
+                .iter()
+                .any(|(w, _)| matches!(w, Written::Named(k) if k == name))
+        {
+            let old = self.named_at_main(name).map(f64::to_bits);
+            self.pass
+                .written
+                .push((Written::Named(name.to_string()), old));
+        }
         let map = if name.starts_with('_') {
             &mut self.globals
         } else {
