@@ -282,6 +282,29 @@ fn cutter_compensation_needs_the_tool_radius() {
     );
     assert!(e.message.contains("diameter of tool 1"), "{e}");
     run("G40 G64 G94 G97 G17 G80\n");
+    // G10 L1 P1 R2 gives it (LinuxCNC's tool table radius), in program units, and #5410 reads
+    // the loaded tool's diameter: the straight cut along X runs 2 mm to its left (+Y); the
+    // inch program's R0.1 is 2.54 mm, read back as 0.2 in.
+    let rec = run("G21 G10 L1 P1 R2\nT1 M6\n(debug,#5410)\nG0 X0 Y0\nG1 F10 G41 X10\nG1 X20\nG40 G1 X30\nM2\n");
+    let ends: Vec<[f64; 6]> = motion(&rec).iter().map(|e| end_of(e).to_array()).collect();
+    assert!(
+        ends.iter()
+            .any(|e| (e[0] - 20.0).abs() < 1e-9 && (e[1] - 2.0).abs() < 1e-9),
+        "{ends:?}"
+    );
+    assert!(
+        messages(&rec).iter().any(|m| m == "4.000000"),
+        "{:?}",
+        messages(&rec)
+    );
+    let rec = run("G20 G10 L1 P1 R0.1\nT1 M6\n(debug,#5410)\nM2\n");
+    assert!(
+        messages(&rec).iter().any(|m| m == "0.200000"),
+        "{:?}",
+        messages(&rec)
+    );
+    let e = err("G21 G10 L1 P1 R-1\n");
+    assert_eq!((e.pos.line, e.pos.column), (1, 15), "{e}");
 }
 
 #[test]

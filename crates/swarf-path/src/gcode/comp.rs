@@ -208,56 +208,50 @@ impl Interp<'_, '_> {
                 "cutter radius compensation works in the XY (G17) and XZ (G18) planes only",
             ));
         }
-        let radius = if g == 411 || g == 421 {
-            // G41.1/G42.1: D is the diameter.
-            b.get(b'd').ok_or_else(|| {
-                Fault::new(
-                    PathErrorKind::Semantic,
-                    span,
-                    "G41.1/G42.1 need a D word (the tool diameter)",
-                    "D<diameter>",
-                )
-            })? * self.scale
-                / 2.0
-        } else {
-            // G41/G42: D names a tool of the table (default: the tool in the spindle).
-            let tool = match b.get(b'd') {
-                Some(d) if d < 0.0 || d.fract() != 0.0 || d > f64::from(u32::MAX) => {
-                    return Err(Fault::new(
+        let radius =
+            if g == 411 || g == 421 {
+                // G41.1/G42.1: D is the diameter.
+                b.get(b'd').ok_or_else(|| {
+                    Fault::new(
                         PathErrorKind::Semantic,
-                        b.span(b'd'),
-                        "bad tool number in D",
-                        "D<tool number>",
-                    ))
-                }
-                Some(d) => d as u32,
-                None => self.read_only.loaded_tool,
-            };
-            if tool == 0 {
-                0.0
+                        span,
+                        "G41.1/G42.1 need a D word (the tool diameter)",
+                        "D<diameter>",
+                    )
+                })? * self.scale
+                    / 2.0
             } else {
-                match self
-                    .opts
-                    .tool_diameters
-                    .get(&tool)
-                    .copied()
-                    .or(self.opts.default_tool_diameter)
-                {
-                    Some(d) => d / 2.0,
-                    None => {
+                // G41/G42: D names a tool of the table (default: the tool in the spindle).
+                let tool = match b.get(b'd') {
+                    Some(d) if d < 0.0 || d.fract() != 0.0 || d > f64::from(u32::MAX) => {
                         return Err(Fault::new(
+                            PathErrorKind::Semantic,
+                            b.span(b'd'),
+                            "bad tool number in D",
+                            "D<tool number>",
+                        ))
+                    }
+                    Some(d) => d as u32,
+                    None => self.read_only.loaded_tool,
+                };
+                if tool == 0 {
+                    0.0
+                } else {
+                    match self.tool_diameter(tool) {
+                        Some(d) => d / 2.0,
+                        None => return Err(Fault::new(
                             PathErrorKind::Semantic,
                             if b.has(b'd') { b.span(b'd') } else { span },
                             format!(
                                 "cutter radius compensation needs the diameter of tool {tool}, \
                                  which the tool table does not give"
                             ),
-                            "a tool table with the tool (--tools), or G41.1/G42.1 D<diameter>",
-                        ))
+                            "a tool table with the tool (--tools), G10 L1 P<tool> R<radius>, or \
+                             G41.1/G42.1 D<diameter>",
+                        )),
                     }
                 }
-            }
-        };
+            };
         if radius == 0.0 {
             // A zero radius leaves the path as programmed.
             return Ok(());

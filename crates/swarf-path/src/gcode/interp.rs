@@ -162,6 +162,9 @@ pub(crate) struct Interp<'t, 's> {
     /// Tool offsets by tool number (G10 L1/L10, parameters 5401–5406 of the loaded tool),
     /// machine frame, mm / degrees; a tool not listed has none.
     pub(crate) tool_table: std::collections::BTreeMap<u32, [f64; 6]>,
+    /// Tool radii set by the program (G10 L1/L10/L11 R), mm: they win over the tool table's
+    /// diameters for cutter compensation and parameter 5410.
+    pub(crate) tool_radii: std::collections::BTreeMap<u32, f64>,
     /// The tool length offset in effect (G43, G43.1; G49 clears it), machine frame. swarf's
     /// programs are tool-tip programs, so it moves no tip; it shifts the position the program
     /// reads (parameters 5420–5425, incremental words) as LinuxCNC's does.
@@ -298,6 +301,7 @@ impl<'t, 's> Interp<'t, 's> {
             g92_flag: 0.0,
             homes: [[0.0; 6]; 2],
             tool_table: std::collections::BTreeMap::new(),
+            tool_radii: std::collections::BTreeMap::new(),
             tlo: [0.0; 6],
             params: Params::default(),
             ctl: Vec::new(),
@@ -720,7 +724,12 @@ impl<'t, 's> Interp<'t, 's> {
                     .unwrap_or([0.0; 6]);
                 self.to_units(n - 5401, e[n - 5401])
             }
-            5407..=5409 => 0.0,
+            5407..=5409 | 5411..=5413 => 0.0,
+            5410 => self.to_units(
+                0,
+                self.tool_diameter(self.read_only.loaded_tool)
+                    .unwrap_or(0.0),
+            ),
             _ => self.params.num[n],
         }
     }
@@ -1841,9 +1850,10 @@ impl<'t, 's> Interp<'t, 's> {
             return self.g10_tool(b, l == 10.0);
         }
         if l == 11.0 {
+            self.g10_tool_radius(b)?;
             self.warn_at(
                 0,
-                "G10 L11 (tool offsets relative to the fixture) ignored".to_string(),
+                "G10 L11 (tool offsets relative to the fixture) ignored but for its R".to_string(),
             );
             return Ok(());
         }
@@ -1932,7 +1942,35 @@ impl<'t, 's> Interp<'t, 's> {
         }
         let e = if relative { rotate_xy(e, self.rot) } else { e };
         self.tool_table.insert(tool, e);
+        self.g10_tool_radius(b)
+    }
+
+    /// The `R` of G10 L1/L10/L11: tool P's radius, which cutter compensation then uses.
+    fn g10_tool_radius(&mut self, b: &Block) -> Res<()> {
+        let (Some(r), Some(p)) = (b.get(b'r'), b.get(b'p')) else {
+            return Ok(());
+        };
+        let good_p = p >= 1.0 && p.fract() == 0.0 && p <= f64::from(u32::MAX);
+        if !(r.is_finite() && r >= 0.0 && good_p) {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                b.span(b'r'),
+                format!("G10 tool radius R{r} for P{p}"),
+                "R ≥ 0 and P a tool number ≥ 1",
+            ));
+        }
+        self.tool_radii.insert(p as u32, self.mm_from_units(0, r));
         Ok(())
+    }
+
+    /// Tool `tool`'s diameter, mm: set by G10 R, else the tool table's, else the one cutter
+    /// given for every tool.
+    pub(crate) fn tool_diameter(&self, tool: u32) -> Option<f64> {
+        self.tool_radii
+            .get(&tool)
+            .map(|r| 2.0 * r)
+            .or_else(|| self.opts.tool_diameters.get(&tool).copied())
+            .or(self.opts.default_tool_diameter)
     }
 
     fn g92(&mut self, b: &Block) -> Res<()> {
