@@ -977,7 +977,7 @@ pub fn feed_rate(m: &Move, length: f64) -> f64 {
     let f = match m.feed_mode {
         FeedMode::PerMinute => m.feed,
         FeedMode::InverseTime => m.feed * length,
-        FeedMode::PerRevolution => m.feed * m.spindle_rpm,
+        FeedMode::PerRevolution | FeedMode::SpindleSynchronised => m.feed * m.spindle_rpm,
     };
     if f.is_finite() && f > 0.0 {
         f
@@ -992,7 +992,9 @@ fn mrr(m: &Move, ds: f64, travel: f64, removed: f64) -> f64 {
     let minutes = match m.feed_mode {
         FeedMode::PerMinute => travel / m.feed,
         FeedMode::InverseTime => ds / m.feed,
-        FeedMode::PerRevolution => travel / (m.feed * m.spindle_rpm),
+        FeedMode::PerRevolution | FeedMode::SpindleSynchronised => {
+            travel / (m.feed * m.spindle_rpm)
+        }
     };
     if minutes.is_finite() && minutes > 0.0 {
         removed / minutes

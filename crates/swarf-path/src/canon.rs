@@ -114,6 +114,9 @@ pub enum FeedMode {
     InverseTime,
     /// G95: mm per spindle revolution.
     PerRevolution,
+    /// G33/G33.1: the lead, mm per spindle revolution, as in [`FeedMode::PerRevolution`],
+    /// but the motion follows the spindle: no feed word changes its speed.
+    SpindleSynchronised,
 }
 
 /// Spindle direction.

@@ -73,6 +73,14 @@ fn scan_gcode(line: &str) -> (Option<Result<FeedWord, usize>>, usize) {
                     i += 1;
                 }
             }
+            // Letters of a keyword (`o1 if`, `endif`, Macro B's `IF`, `FIX[…]`) are no F word.
+            b'f' | b'F'
+                if depth == 0
+                    && (i > 0 && b[i - 1].is_ascii_alphabetic()
+                        || b.get(i + 1).is_some_and(u8::is_ascii_alphabetic)) =>
+            {
+                i += 1;
+            }
             b'f' | b'F' if depth == 0 => {
                 let mut j = i + 1;
                 while j < b.len() && b[j] == b' ' {
@@ -220,9 +228,6 @@ pub struct LineModes {
     /// A rotation or scaling of the program frame (G68, G68.2, G51, G10 L2/L20 with R) was
     /// seen on this line or before it.
     pub transformed: bool,
-    /// The motion in effect after the line is spindle-synchronised (G33, G33.1): its speed
-    /// follows the spindle, not a feed word.
-    pub synchronised: bool,
 }
 
 /// The letter–number words of a G-code line's code (comments and bracketed expressions
@@ -270,7 +275,6 @@ pub fn gcode_line_modes(text: &str, initial_inch: bool) -> Vec<LineModes> {
         absolute: true,
         inch: initial_inch,
         transformed: false,
-        synchronised: false,
     };
     crate::load::program_lines(text, ProgramFormat::Gcode)
         .map(|line| {
@@ -287,16 +291,6 @@ pub fn gcode_line_modes(text: &str, initial_inch: bool) -> Vec<LineModes> {
                 || g(68.2)
                 || g(51.0)
                 || (g(10.0) && (l(2.0) || l(20.0)) && w.iter().any(|&(c, _)| c == 'R'));
-            // Group 1: G33/G33.1 start it; another motion code (G0–G3, G5.x, G38.x, G73–G89)
-            // ends it.
-            let other_motion = w.iter().any(|&(c, v)| {
-                c == 'G'
-                    && (v < 4.0
-                        || (5.0..6.0).contains(&v)
-                        || (38.0..39.0).contains(&v)
-                        || (73.0..90.0).contains(&v))
-            });
-            m.synchronised = g(33.0) || g(33.1) || (m.synchronised && !other_motion);
             m
         })
         .collect()
@@ -600,6 +594,30 @@ mod tests {
         .unwrap();
         assert_eq!(same.text, text);
         assert!(same.lines_changed.is_empty());
+    }
+
+    /// The letters of keywords are no F words: LinuxCNC's `o1 if`/`endif`/`elseif`, Fanuc's
+    /// `IF`, `FIX[…]`, `FUP[…]` (each used to read as an expression F, after which the feed
+    /// was unknown and the next feed move refused).
+    #[test]
+    fn keywords_hold_no_feed_word() {
+        for line in [
+            "o1 if [#1 GT 0]",
+            "O100 ENDIF",
+            "o2 elseif [#2 EQ 1]",
+            "IF [#1 GT 3] GOTO 10",
+            "#1=FIX[#2]+FUP[#3]",
+        ] {
+            assert!(scan_gcode(line).0.is_none(), "{line}");
+        }
+        for (line, v) in [
+            ("G1X10F100", 100.0),
+            ("g1 x1 f 25.5", 25.5),
+            ("F2.(x)", 2.0),
+        ] {
+            assert_eq!(scan_gcode(line).0.unwrap().unwrap().value, v, "{line}");
+        }
+        assert!(scan_gcode("G1 X1 F#1").0.unwrap().is_err());
     }
 
     /// The holes of an APT drilling cycle with its own feed are fed at the cycle's feed, not

@@ -365,7 +365,6 @@ struct Curved {
     unconverged: usize,
 }
 
-/// Tip path length of `m`, growing `bb` by the tip's path.
 /// The box of the tool tip's path over move `m` (arcs by their extreme points, curved
 /// multi-axis paths sampled within the default tolerance), as (min, max).
 pub fn move_tip_bounds(program: &Program, m: &Move) -> (Vec3, Vec3) {
@@ -375,6 +374,7 @@ pub fn move_tip_bounds(program: &Program, m: &Move) -> (Vec3, Vec3) {
     (bb.min, bb.max)
 }
 
+/// Tip path length of `m`, growing `bb` by the tip's path.
 fn move_extent(program: &Program, m: &Move, tol: f64, bb: &mut Bbox, curved: &mut Curved) -> f64 {
     bb.add(m.start.tip);
     bb.add(m.end.tip);
@@ -563,7 +563,9 @@ fn feed_minutes(m: &Move, length: f64) -> Option<f64> {
     let t = match m.feed_mode {
         FeedMode::PerMinute => programmed / m.feed,
         FeedMode::InverseTime => 1.0 / m.feed,
-        FeedMode::PerRevolution => programmed / (m.feed * m.spindle_rpm),
+        FeedMode::PerRevolution | FeedMode::SpindleSynchronised => {
+            programmed / (m.feed * m.spindle_rpm)
+        }
     };
     (m.feed > 0.0 && t.is_finite() && t >= 0.0).then_some(t)
 }

@@ -673,24 +673,31 @@ fn m99_in_the_main_program_runs_it_again_until_m30() {
     );
 }
 
-/// A main program that cannot end (no M2/M30 in the file: a bar feeder's loop), or whose
-/// pass changed no parameter, would repeat for ever: reading ends at its M99 with a warning.
+/// A main program that cannot end (no M2/M30 in any file it reads: a bar feeder's loop), or
+/// whose pass changed no parameter, position or offset (so that the next pass starts as it
+/// did), would repeat for ever: reading ends at its M99 with a warning. The first pass of the
+/// third starts at the home and ends at X1, so a second runs before the loop is seen.
 #[test]
 fn an_endless_main_program_loop_is_read_once() {
-    for (src, why) in [
-        ("G0 X1 Y0 Z1\nG1 Z0 F100\nM99\n", "no M2/M30"),
-        ("#1=#1+1\nG0 X#1\nM99\n", "no M2/M30"),
+    for (src, moves_read, why) in [
+        (
+            "G0 X1 Y0 Z1\nG1 Z0 F100\nM99\n",
+            2,
+            "no file it reads has an M2/M30",
+        ),
+        (
+            "#1=#1+1\nG0 X#1\nM99\n",
+            1,
+            "no file it reads has an M2/M30",
+        ),
         (
             "IF [#1 GT 5] GOTO 9\nG0 X1\nM99\nN9 M30\n",
-            "no parameter changed",
+            2,
+            "changed no parameter, position or offset",
         ),
     ] {
         let m = moves(src, &fanuc()).unwrap();
-        assert_eq!(
-            m.len(),
-            src.matches("G0").count() + src.matches("G1").count(),
-            "{src}"
-        );
+        assert_eq!(m.len(), moves_read, "{src}");
         let w = warnings(src);
         assert!(
             w.iter()
@@ -698,10 +705,22 @@ fn an_endless_main_program_loop_is_read_once() {
             "{src}: {w:?}"
         );
     }
+    // Incremental moves change the position every pass: a test of #5420 ends the loop, as
+    // a control runs it (X10, X20, X30, X40, then M30).
+    let src = "G91\nG1 X10 F100\nIF [#5420 GT 35] GOTO 9\nM99\nN9 M30\n";
+    assert_eq!(moves(src, &fanuc()).unwrap().len(), 4);
+    // An offset moved each pass likewise (G10 L2 P1: #5221), and M99 P10 goes back to N10.
+    let src = "#100=0\nN10 #100=#100+1\nG10 L2 P1 X[#5221+20]\nG0 X0\n\
+               IF [#5221 GT 50] GOTO 99\nM99 P10\nN99 M30\n";
+    assert_eq!(moves(src, &fanuc()).unwrap().len(), 3);
+    // M99 P in a subprogram (back to the caller's N<P>) is refused at its P, not ignored.
+    let e = moves("M98 P100\nM30\nO100\nG0 X1\nM99 P5\n", &fanuc()).unwrap_err();
+    assert_eq!((e.pos.line, e.pos.column), (5, 5), "{e}");
 }
 
 /// A pass that wrote a parameter it then found unchanged counts as no change: `#1=5` runs
-/// twice (0 → 5, then 5 → 5), `#2=#2+0` changes nothing.
+/// twice (0 → 5, then 5 → 5; the position, at X5 after the first, stays), `#2=#2+0` changes
+/// nothing. An O-word call's arguments (#1–#30, put back on return) are not the pass's.
 #[test]
 fn a_pass_that_rewrites_a_parameter_to_its_value_ends_the_loop() {
     let src = "#1=5\nG0 X#1 Y#2\n#2=#2+0\nM99\nM30\n";
@@ -712,9 +731,13 @@ fn a_pass_that_rewrites_a_parameter_to_its_value_ends_the_loop() {
     let w = warnings(src);
     assert!(
         w.iter()
-            .any(|(l, t)| *l == 4 && t.contains("no parameter changed")),
+            .any(|(l, t)| *l == 4 && t.contains("changed no parameter")),
         "{w:?}"
     );
+    let lcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let src = "o100 sub\n#1 = [#1 + 1]\no100 endsub\nG0 X1\no100 call [5]\n\
+               o1 if [#2 GT 0]\nM30\no1 endif\nM99\n";
+    assert_eq!(moves(src, &lcnc).unwrap().len(), 2);
 }
 
 /// A counter that never reaches its M30 restarts until the reader's iteration limit ends it
@@ -725,4 +748,26 @@ fn a_main_program_loop_that_never_ends_meets_the_iteration_limit() {
     let e = moves("#1=#1+1\nIF [#1 LT 0] GOTO 9\nM99\nN9 M30\n", &opts).unwrap_err();
     assert_eq!(e.pos.line, 3, "{e}");
     assert!(e.message.contains("more than 1000"), "{e}");
+}
+
+/// Fanuc writes a thread's lead as F (`G33 Z-10. F1.5`: 1.5 mm a revolution at S500, 15 mm in
+/// 0.02 min).
+#[test]
+fn fanuc_g33_takes_its_lead_from_f() {
+    use swarf_path::load::read_program_str;
+    use swarf_path::summary::summarize;
+    let src = "G21 G90\nS500 M3\nG0 X0 Y0 Z5\nG33 Z-10. F1.5\nM30\n";
+    let p = read_program_str(
+        src,
+        "t.nc",
+        Machine::three_axis(),
+        &ReadOptions {
+            gcode: fanuc(),
+            ..ReadOptions::default()
+        },
+    )
+    .unwrap();
+    assert_eq!(p.moves.len(), 2);
+    let t = summarize(&p).machining_time_s;
+    assert!((t - 1.2).abs() < 1e-9, "{t}");
 }

@@ -210,12 +210,7 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
             && mode.is_some_and(|md| md.absolute && !md.transformed)
     };
     // A G33/G33.1 move's speed is its lead times the spindle speed: no feed word changes it.
-    let fixed = |i: usize| {
-        format == ProgramFormat::Gcode
-            && modes
-                .get(program.moves[i].line as usize - 1)
-                .is_some_and(|md| md.synchronised)
-    };
+    let fixed = |i: usize| program.moves[i].feed_mode == swarf_path::FeedMode::SpindleSynchronised;
     let schedule = schedule_feeds(program, &caps, &opts, &can_split, &fixed);
     // One factor per line: moves sharing a line share its feed word, so the slowest wins; a
     // split move's line gets its last piece's factor and its other pieces go in front of it.
@@ -352,7 +347,7 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
         return print_json(&summary);
     }
     println!(
-        "{} of {} feed moves changed on {} lines; machining time {:.1} s -> {:.1} s; {} moves still over the limit at the minimum feed",
+        "{} of {} feed moves changed on {} lines; machining time {:.1} s -> {:.1} s; {} moves still over the limit (at the minimum feed, or following the spindle)",
         summary.moves_changed,
         schedule.moves.len(),
         summary.lines_changed,

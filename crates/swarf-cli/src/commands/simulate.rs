@@ -321,16 +321,32 @@ fn stock_spec(
     if let Some(margin) = table.and_then(|t| t.automatic_workpiece) {
         let Some(b) = swarf_job::automatic_workpiece(program, tools, margin) else {
             return Err(crate::cli::UsageError(
-                "the CAMotics project's workpiece is automatic, but no feed move with a defined \
-                 tool reaches below Z0 to make it from: give the stock with --stock"
+                "the CAMotics project's workpiece is automatic, but no feed move of a defined \
+                 tool comes within 2 mm of Z0 or below it to make it from: give the stock with \
+                 --stock"
                     .into(),
             )
             .into());
         };
+        // Four decimals, as a user would type the box back.
+        let mm = |v: f64| {
+            let s = format!("{v:.4}");
+            let s = s.trim_end_matches('0').trim_end_matches('.');
+            if s == "-0" {
+                "0".to_string()
+            } else {
+                s.to_string()
+            }
+        };
         eprintln!(
             "swarf: note: stock box:{},{},{},{},{},{} (the CAMotics project's automatic \
              workpiece: the cutting moves' tool box, top at Z0, grown by {margin} %)",
-            b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z
+            mm(b.min.x),
+            mm(b.min.y),
+            mm(b.min.z),
+            mm(b.max.x),
+            mm(b.max.y),
+            mm(b.max.z)
         );
         return Ok(StockSpec::Box {
             min: b.min,

@@ -354,9 +354,16 @@ impl Interp<'_, '_> {
             return None;
         }
         let program = std::path::Path::new(&*self.files[0].0);
+        // A program named without a folder (`swarf path prog.ngc`) is in the current one.
         let dirs = program
             .parent()
-            .filter(|d| !d.as_os_str().is_empty())
+            .map(|d| {
+                if d.as_os_str().is_empty() {
+                    std::path::Path::new(".")
+                } else {
+                    d
+                }
+            })
             .into_iter()
             .chain(
                 self.opts
@@ -647,8 +654,17 @@ impl Interp<'_, '_> {
         Ok(())
     }
 
-    /// `M99`: the end of an `M98` subprogram (repeat it or return).
-    pub(crate) fn m99(&mut self) -> Res<()> {
+    /// `M99`: the end of an `M98` subprogram (repeat it or return), or in the main program a
+    /// restart.
+    pub(crate) fn m99(&mut self, b: &Block) -> Res<()> {
+        if b.has(b'p') && !self.frames.is_empty() {
+            return Err(Fault::new(
+                PathErrorKind::Unsupported,
+                b.span(b'p'),
+                "M99 P in a subprogram (a return to the caller's block N<P>) is not read",
+                "M99 without P",
+            ));
+        }
         match self.frames.last_mut() {
             Some(Frame {
                 fanuc: Some((start, left)),
@@ -673,27 +689,53 @@ impl Interp<'_, '_> {
                 Span::Line,
                 "M99 inside an O-word subroutine (end it with endsub)",
             )),
-            None => self.restart_main(),
+            None => self.restart_main(b),
         }
     }
 
     /// `M99` in the main program: LinuxCNC and Fanuc controls run the program again from its
-    /// top, parameters and modes kept, until an M2/M30 ends it. A pass that changed no
-    /// parameter, or a file with no M2/M30 at all, would repeat for ever: one pass is
-    /// simulated and a warning says so.
-    fn restart_main(&mut self) -> Res<()> {
-        let has_end = match self.main_has_end {
-            Some(e) => e,
-            None => {
-                let e = self.file_has_program_end(self.cur_file);
-                self.main_has_end = Some(e);
+    /// top (Fanuc's `M99 P<n>`: from the block numbered N<n>), parameters and modes kept,
+    /// until an M2/M30 ends it. A pass that changed neither a parameter nor the position or
+    /// an offset starts the next in the state it started from, and no file read has an M2/M30
+    /// at all in a bar feeder's loop: either would repeat for ever, so reading ends here with
+    /// a warning.
+    fn restart_main(&mut self, b: &Block) -> Res<()> {
+        let target = match b.get(b'p') {
+            None => None,
+            Some(p) if p >= 0.0 && p.fract() == 0.0 && p <= u64::MAX as f64 => {
+                let map = match self.main_line_numbers.take() {
+                    Some(m) => m,
+                    None => self.index_targets(true),
+                };
+                let at = map.get(&(p as u64)).copied();
+                self.main_line_numbers = Some(map);
+                Some(at.ok_or_else(|| {
+                    Fault::semantic(b.span(b'p'), format!("no line numbered N{p} in this file"))
+                })?)
+            }
+            Some(p) => {
+                return Err(Fault::new(
+                    PathErrorKind::Semantic,
+                    b.span(b'p'),
+                    format!("M99 P{p}"),
+                    "P<a line number>",
+                ))
+            }
+        };
+        let files = self.files.len();
+        let has_end = match self.files_have_end {
+            Some((n, e)) if n == files => e,
+            _ => {
+                let e = (0..files as u32).any(|f| self.file_has_program_end(f));
+                self.files_have_end = Some((files, e));
                 e
             }
         };
+        let control = PassControl::of(self);
         let endless = if !has_end {
-            Some("this file has no M2/M30 to end it")
-        } else if !self.params.pass.changed(&self.params) {
-            Some("no parameter changed in this pass")
+            Some("no file it reads has an M2/M30 to end it")
+        } else if !self.params.pass.changed(&self.params) && self.pass_control == Some(control) {
+            Some("this pass changed no parameter, position or offset")
         } else {
             None
         };
@@ -711,26 +753,37 @@ impl Interp<'_, '_> {
         self.count_iteration(Span::Line)?;
         self.main_passes += 1;
         if self.main_passes == 1 {
+            let from = match b.get(b'p') {
+                Some(p) => format!("from N{p}"),
+                None => "from the top".into(),
+            };
             self.warn_at(
                 0,
-                "M99 in the main program: run again from the top, as LinuxCNC and Fanuc controls \
-                 do (parameters and modes kept; later restarts are not reported)"
-                    .into(),
+                format!(
+                    "M99 in the main program: run again {from}, as LinuxCNC and Fanuc controls do \
+                     (parameters and modes kept; later restarts are not reported)"
+                ),
             );
         }
         self.params.pass.clear();
+        self.pass_control = Some(control);
         self.ctl.clear();
         self.macro_loops.clear();
-        self.tape = false;
-        self.seen_code = false;
-        self.at = self.file_start(self.cur_file);
+        match target {
+            Some(at) => self.at = at,
+            None => {
+                self.tape = false;
+                self.seen_code = false;
+                self.at = self.file_start(self.cur_file);
+            }
+        }
         Ok(())
     }
 
-    /// Whether the file has an M2 or M30 word anywhere (comments aside).
+    /// Whether file `file` of those read has an M2 or M30 word anywhere (comments aside).
     fn file_has_program_end(&mut self, file: u32) -> bool {
         let mut buf = std::mem::take(&mut self.skip_buf);
-        let text = self.text.clone();
+        let text = self.files[file as usize].1.clone();
         let found = self.file_start(file).lines(&text).any(|(raw, _, _)| {
             (raw.bytes().any(|c| c | 0x20 == b'm') && normalize(raw, &mut buf).is_ok())
                 && buf.code.iter().enumerate().any(|(i, &c)| {
@@ -777,6 +830,34 @@ impl Interp<'_, '_> {
         }
         self.skip_buf = buf;
         map
+    }
+}
+
+/// What besides parameters a pass of the main program may change that the next pass can
+/// test (#5420–#5425, #5221…, #5211…, #5401…): the position, the offsets and the tool length
+/// offset in effect.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct PassControl {
+    p: [f64; 6],
+    coord: usize,
+    g5x: [[f64; 6]; 9],
+    rot: [f64; 9],
+    g92: [f64; 6],
+    g92_saved: [f64; 6],
+    tlo: [f64; 6],
+}
+
+impl PassControl {
+    pub(crate) fn of(i: &Interp<'_, '_>) -> Self {
+        PassControl {
+            p: i.p,
+            coord: i.coord,
+            g5x: i.g5x_table,
+            rot: i.rot_table,
+            g92: i.g92,
+            g92_saved: i.g92_saved,
+            tlo: i.tlo,
+        }
     }
 }
 

@@ -184,8 +184,12 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) iterations: u64,
     /// How many times M99 restarted the main program.
     pub(crate) main_passes: u64,
-    /// Whether the main program's file has an M2/M30 (found at its first M99).
-    pub(crate) main_has_end: Option<bool>,
+    /// Whether any file read has an M2/M30, and how many files had been read then.
+    pub(crate) files_have_end: Option<(usize, bool)>,
+    /// The position and offsets when the current pass of the main program began.
+    pub(crate) pass_control: Option<super::control::PassControl>,
+    /// Where each `N` number's line of the main program starts (Fanuc's `M99 P<n>`).
+    pub(crate) main_line_numbers: Option<HashMap<u64, Cursor>>,
     pub(crate) ended: bool,
     pub(crate) tape: bool,
     pub(crate) seen_code: bool,
@@ -313,7 +317,9 @@ impl<'t, 's> Interp<'t, 's> {
             scan_cache: HashMap::new(),
             iterations: 0,
             main_passes: 0,
-            main_has_end: None,
+            files_have_end: None,
+            pass_control: None,
+            main_line_numbers: None,
             ended: false,
             tape: false,
             seen_code: false,
@@ -367,6 +373,7 @@ impl<'t, 's> Interp<'t, 's> {
             self.emit(Canon::SetPosition(Axes::from_array(self.p)));
         }
         self.emit(Canon::Plane(Plane::XY));
+        self.pass_control = Some(super::control::PassControl::of(&self));
         let mut lb = LineBuf::default();
         let mut blk = Block::default();
         loop {
@@ -747,6 +754,10 @@ impl<'t, 's> Interp<'t, 's> {
             5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20] = v,
             // Read-only views: the machine position, the active system, the tool, the position.
             5021..=5026 | 5220 | 5400..=5409 | 5420..=5425 => {}
+            // An O-word call's arguments are its own, put back when it returns.
+            1..=super::params::N_ARGS if self.frames.iter().any(|f| f.fanuc.is_none()) => {
+                self.params.num[n] = v
+            }
             _ => self.params.set_num(n, v),
         }
     }
@@ -1311,7 +1322,7 @@ impl<'t, 's> Interp<'t, 's> {
         if b.m98 || b.m97 {
             self.m98(b)?;
         } else if b.m99 {
-            self.m99()?;
+            self.m99(b)?;
         }
         Ok(())
     }
@@ -1369,6 +1380,7 @@ impl<'t, 's> Interp<'t, 's> {
                         || nonmodal == Some(40)
                         || b.m98
                         || b.m97
+                        || b.m99
                         || b.g(group::PATH) == Some(640)
                 }
                 b'l' => cycle || g10 || b.m98 || b.m97 || mode == Some(52),
@@ -1535,25 +1547,34 @@ impl<'t, 's> Interp<'t, 's> {
     /// `G33` (motion K per spindle revolution: threading, tapping with a floating holder) and
     /// `G33.1` (rigid tapping: down at K per revolution, the spindle reversed, back out along
     /// the same line to where it started, at `I` times the speed if given), as LinuxCNC moves
-    /// them. The feed is K × S: the moves are made in feed per revolution, then the program's
-    /// feed mode and rate are restored.
+    /// them. The feed is K × S: the moves are made in [`FeedMode::SpindleSynchronised`], then
+    /// the program's feed mode and rate are restored.
     fn spindle_synchronised(&mut self, b: &Block, rigid: bool) -> Res<()> {
         let g = if rigid { "G33.1" } else { "G33" };
         let gspan = b
             .g(group::MOTION)
             .map_or(Span::Line, |_| b.g_span(group::MOTION));
-        let k = b.get(b'k').ok_or_else(|| {
+        // Fanuc writes the lead as F (`G33 Z-10. F1.5`), LinuxCNC as K.
+        let word = if !b.has(b'k') && self.fanuc && b.has(b'f') {
+            b'f'
+        } else {
+            b'k'
+        };
+        let k = b.get(word).ok_or_else(|| {
             Fault::new(
                 PathErrorKind::Semantic,
                 gspan,
-                format!("{g} without K, the distance travelled per spindle revolution"),
+                format!(
+                    "{g} without K (F under Fanuc rules), the distance travelled per spindle \
+                     revolution"
+                ),
                 "K > 0",
             )
         })?;
         if k <= 0.0 || !k.is_finite() {
             return Err(Fault::new(
                 PathErrorKind::Semantic,
-                b.span(b'k'),
+                b.span(word),
                 format!("{g} with K{k}"),
                 "K > 0 (distance per spindle revolution)",
             ));
@@ -1584,7 +1605,7 @@ impl<'t, 's> Interp<'t, 's> {
         };
         let end = self.find_ends(b, false)?;
         let start = self.p;
-        self.emit(Canon::FeedMode(FeedMode::PerRevolution));
+        self.emit(Canon::FeedMode(FeedMode::SpindleSynchronised));
         self.emit(Canon::FeedRate(self.mm_from_units(2, k)));
         self.emit(Canon::Feed {
             end: Axes::from_array(end),

@@ -24,6 +24,8 @@ pub(crate) struct PassLog {
     written: Vec<(Written, Option<u64>)>,
     /// Which numbered parameters are in `written`, a bit each.
     seen: Vec<u64>,
+    /// Which named ones are.
+    names: std::collections::HashSet<String>,
 }
 
 #[derive(Debug, PartialEq)]
@@ -46,6 +48,7 @@ impl PassLog {
 
     /// Starts a new pass.
     pub(crate) fn clear(&mut self) {
+        self.names.clear();
         for (w, _) in self.written.drain(..) {
             if let Written::Num(n) = w {
                 self.seen[n / 64] &= !(1 << (n % 64));
@@ -88,6 +91,7 @@ impl Default for Params {
             pass: PassLog {
                 written: Vec::new(),
                 seen: vec![0; USER_PARAMS.div_ceil(64)],
+                names: std::collections::HashSet::new(),
             },
         }
     }
@@ -124,14 +128,9 @@ impl Params {
 
     /// Sets a named parameter; allocates only the first time a name is assigned at a level.
     pub(crate) fn set_named(&mut self, name: &str, v: f64) {
-        if (name.starts_with('_') || self.locals.len() == 1)
-            && !self
-                .pass
-                .written
-                .iter()
-                .any(|(w, _)| matches!(w, Written::Named(k) if k == name))
-        {
+        if (name.starts_with('_') || self.locals.len() == 1) && !self.pass.names.contains(name) {
             let old = self.named_at_main(name).map(f64::to_bits);
+            self.pass.names.insert(name.to_string());
             self.pass
                 .written
                 .push((Written::Named(name.to_string()), old));
