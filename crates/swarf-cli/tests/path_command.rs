@@ -199,3 +199,29 @@ fn the_program_may_be_given_as_every_other_command_takes_it() {
         assert!(err.contains("program"), "{args:?}: {err}");
     }
 }
+
+/// A program named without a folder (`swarf path prog.ngc`, run where it is) finds its
+/// subroutine files beside it, as one named with its folder does.
+#[test]
+fn a_program_named_without_its_folder_finds_its_subroutine_files() {
+    let dir = temp_dir("path_bare_name");
+    std::fs::write(
+        dir.join("main.ngc"),
+        "G21 G90\nG0 X0 Y0 Z5\no<side> call [7]\nM2\n",
+    )
+    .unwrap();
+    std::fs::write(
+        dir.join("side.ngc"),
+        "o<side> sub\nG1 X#1 F100\no<side> endsub\n",
+    )
+    .unwrap();
+    for name in ["main.ngc", dir.join("main.ngc").to_str().unwrap()] {
+        let o = std::process::Command::new(env!("CARGO_BIN_EXE_swarf"))
+            .args(["path", name, "--json"])
+            .current_dir(&dir)
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        assert_eq!(json(&o)["feed_length_mm"], 7.0, "{name}");
+    }
+}

@@ -214,9 +214,22 @@ impl JobSetup {
     /// # Errors
     /// The reader's error ([`JobError::Read`], [`JobError::MoveLimit`]) or a program `CUTTER/`
     /// that is not a cutter.
-    pub fn read(self, path: &Path) -> Result<Job, JobError> {
+    pub fn read(mut self, path: &Path) -> Result<Job, JobError> {
         let text = read_text(path).map_err(JobError::Read)?;
+        self.search_program_folder(path);
         self.read_str(&text, &path.display().to_string())
+    }
+
+    /// Makes subroutine files be looked for beside the program file `path` when it is named
+    /// without a folder (`prog.ngc`: the current one), as they are beside one named with it.
+    /// (Program text read from memory has no folder and searches none.)
+    pub fn search_program_folder(&mut self, path: &Path) {
+        if path.parent().is_some_and(|d| d.as_os_str().is_empty()) {
+            self.read
+                .gcode
+                .subroutine_path
+                .insert(0, PathBuf::from("."));
+        }
     }
 
     /// [`JobSetup::read`] of program text named `file` in messages.

@@ -72,12 +72,13 @@ struct ToolReport {
 pub(crate) fn run(args: &PathArgs) -> Result<()> {
     // Both outputs stream: no move is kept, so no move limit is needed unless one is given
     // (the loop limits still end a program that never ends).
-    let setup = JobSetup::load(&args.setup.job_options(u64::MAX)).map_err(job_error)?;
+    let mut setup = JobSetup::load(&args.setup.job_options(u64::MAX)).map_err(job_error)?;
     let program = args
         .program
         .as_ref()
         .or(args.program_option.as_ref())
         .context("no program given")?;
+    setup.search_program_folder(program);
     let text = read_text(program)?;
     let file = program.display().to_string();
 

@@ -354,16 +354,9 @@ impl Interp<'_, '_> {
             return None;
         }
         let program = std::path::Path::new(&*self.files[0].0);
-        // A program named without a folder (`swarf path prog.ngc`) is in the current one.
         let dirs = program
             .parent()
-            .map(|d| {
-                if d.as_os_str().is_empty() {
-                    std::path::Path::new(".")
-                } else {
-                    d
-                }
-            })
+            .filter(|d| !d.as_os_str().is_empty())
             .into_iter()
             .chain(
                 self.opts
