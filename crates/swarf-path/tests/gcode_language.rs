@@ -1196,4 +1196,25 @@ fn g33_and_rigid_tapping_follow_the_spindle() {
         );
     }
     assert!(err("G21 G76 P1 Z-1\n").message.contains("lathe"));
+    // G33.1 with X/Y goes over the hole at its Z first, taps straight down and comes back up.
+    let m = motion(&run(
+        "G21 G90\nM3 S100\nG0 X0 Y0 Z2\nG33.1 X5 Y6 Z-4 K1\nG0 Z10\nM2\n",
+    ));
+    let ends: Vec<[f64; 3]> = m
+        .iter()
+        .map(|e| {
+            let a = end_of(e);
+            [a.x, a.y, a.z]
+        })
+        .collect();
+    assert_eq!(
+        ends,
+        [
+            [0.0, 0.0, 2.0],
+            [5.0, 6.0, 2.0],
+            [5.0, 6.0, -4.0],
+            [5.0, 6.0, 2.0],
+            [5.0, 6.0, 10.0]
+        ]
+    );
 }

@@ -1545,9 +1545,9 @@ impl<'t, 's> Interp<'t, 's> {
     }
 
     /// `G33` (motion K per spindle revolution: threading, tapping with a floating holder) and
-    /// `G33.1` (rigid tapping: down at K per revolution, the spindle reversed, back out along
-    /// the same line to where it started, at `I` times the speed if given), as LinuxCNC moves
-    /// them. The feed is K × S: the moves are made in [`FeedMode::SpindleSynchronised`], then
+    /// `G33.1` (rigid tapping: over the hole at the current Z if X/Y move it, down at K per
+    /// revolution, the spindle reversed, back out to where the tap started, at `I` times the
+    /// speed if given), as LinuxCNC moves them. The feed is K × S: the moves are made in [`FeedMode::SpindleSynchronised`], then
     /// the program's feed mode and rate are restored.
     fn spindle_synchronised(&mut self, b: &Block, rigid: bool) -> Res<()> {
         let g = if rigid { "G33.1" } else { "G33" };
@@ -1604,6 +1604,16 @@ impl<'t, 's> Interp<'t, 's> {
             _ => 1.0,
         };
         let end = self.find_ends(b, false)?;
+        if rigid && (end[0] != self.p[0] || end[1] != self.p[1]) {
+            // LinuxCNC goes over the hole first (a traverse at the current Z) and taps along Z.
+            let mut over = self.p;
+            over[0] = end[0];
+            over[1] = end[1];
+            self.emit(Canon::Traverse {
+                end: Axes::from_array(over),
+            });
+            self.p = over;
+        }
         let start = self.p;
         self.emit(Canon::FeedMode(FeedMode::SpindleSynchronised));
         self.emit(Canon::FeedRate(self.mm_from_units(2, k)));
