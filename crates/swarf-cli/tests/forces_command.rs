@@ -23,6 +23,26 @@ fn write(d: &Path, name: &str, text: &str) -> String {
 
 const SLOT: &str = "G21 G90 G94\nS1000 M3\nG0 X-10 Y10 Z-4\nG1 X50 F400\nG0 Z10\n";
 
+/// `swarf schedule` of `prog` on the 40 × 20 × 10 block with `tool`, the material `mat`, the
+/// output `out` and the other arguments `extra` (the limit, feeds, `--json`).
+fn schedule(prog: &str, tool: &str, mat: &str, out: &str, extra: &[&str]) -> std::process::Output {
+    let mut args = vec![
+        "schedule",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        prog,
+        "--tool",
+        tool,
+        "--coefficients",
+        mat,
+        "--out",
+        out,
+    ];
+    args.extend_from_slice(extra);
+    swarf(&args)
+}
+
 #[test]
 fn slot_forces_files_and_figures() {
     let d = dir("slot");
@@ -200,24 +220,13 @@ fn schedule_reports_what_even_the_minimum_feed_cannot_fix() {
     let prog = write(&d, "slot.ngc", SLOT);
     let mat = write(&d, "al.toml", MATERIAL);
     let out = d.join("slow.ngc");
-    let o = swarf(&[
-        "schedule",
-        "--stock",
-        "box:0,0,-10,40,20,0",
-        "--program",
+    let o = schedule(
         &prog,
-        "--tool",
         "flat:d=10,flutes=4,helix=30",
-        "--coefficients",
         &mat,
-        "--limit-force",
-        "300",
-        "--min-feed",
-        "200",
-        "--out",
         out.to_str().unwrap(),
-        "--json",
-    ]);
+        &["--limit-force", "300", "--min-feed", "200", "--json"],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let s = json(&o);
     let over = s["still_over_limit"].as_array().unwrap();
@@ -239,21 +248,13 @@ fn schedule_keeps_spindle_synchronised_moves_and_says_so() {
     let prog = write(&d, "tap.ngc", src);
     let mat = write(&d, "al.toml", MATERIAL);
     let out = d.join("tap-slow.ngc");
-    let o = swarf(&[
-        "schedule",
-        "--stock",
-        "box:0,0,-10,40,20,0",
-        "--program",
+    let o = schedule(
         &prog,
-        "--tool",
         "flat:d=10,flutes=4,helix=30",
-        "--coefficients",
         &mat,
-        "--limit-force",
-        "300",
-        "--out",
         out.to_str().unwrap(),
-    ]);
+        &["--limit-force", "300"],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(
         stderr(&o).contains("tap.ngc:5: over the limit at 1000.0 mm/min")
@@ -323,21 +324,13 @@ fn errors_name_what_is_missing() {
         "G21 G90\nS1000 M3\nG0 X-10 Y10 Z-4\n#1 = 0\no100 while [#1 LT 2]\nG1 X50 F400\nG1 X-10\n#1 = [#1 + 1]\no100 endwhile\nM30\n",
     );
     let mat = write(&d, "al.toml", MATERIAL);
-    let o = swarf(&[
-        "schedule",
-        "--stock",
-        "box:0,0,-10,40,20,0",
-        "--program",
+    let o = schedule(
         &looped,
-        "--tool",
         "flat:d=10,flutes=4",
-        "--coefficients",
         &mat,
-        "--limit-power",
-        "100",
-        "--out",
         d.join("x.ngc").to_str().unwrap(),
-    ]);
+        &["--limit-power", "100"],
+    );
     assert_eq!(o.status.code(), Some(1));
     assert!(stderr(&o).contains("loop.ngc:6:"), "{}", stderr(&o));
     assert!(!d.join("x.ngc").exists());
@@ -359,21 +352,13 @@ fn schedule_rewrites_apt_fedrat_records_and_g95_feeds() {
     ] {
         let prog = write(&d, name, text);
         let out = d.join(format!("s-{name}"));
-        let o = swarf(&[
-            "schedule",
-            "--stock",
-            "box:0,0,-10,40,20,0",
-            "--program",
+        let o = schedule(
             &prog,
-            "--tool",
             "flat:d=10,flutes=4,helix=30",
-            "--coefficients",
             &mat,
-            "--limit-force",
-            "600",
-            "--out",
             out.to_str().unwrap(),
-        ]);
+            &["--limit-force", "600"],
+        );
         assert!(o.status.success(), "{name}: {}", stderr(&o));
         let new = std::fs::read_to_string(&out).unwrap();
         assert!(new.contains(want), "{name}:\n{new}");
@@ -471,24 +456,13 @@ fn schedule_keeps_lone_carriage_return_line_ends() {
     let run = |name: &str, text: &str| -> String {
         let prog = write(&d, name, text);
         let out = d.join(format!("s-{name}"));
-        let o = swarf(&[
-            "schedule",
-            "--stock",
-            "box:0,0,-10,40,20,0",
-            "--program",
+        let o = schedule(
             &prog,
-            "--tool",
             "flat:d=10,flutes=4,helix=30",
-            "--coefficients",
             &mat,
-            "--limit-force",
-            "500",
-            "--max-feed",
-            "1500",
-            "--split",
-            "--out",
             out.to_str().unwrap(),
-        ]);
+            &["--limit-force", "500", "--max-feed", "1500", "--split"],
+        );
         assert!(o.status.success(), "{name}: {}", stderr(&o));
         std::fs::read_to_string(&out).unwrap()
     };
@@ -512,24 +486,13 @@ fn schedule_restates_an_apt_drilling_cycle() {
     );
     let mat = write(&d, "al.toml", MATERIAL);
     let out = d.join("holes-s.cls");
-    let o = swarf(&[
-        "schedule",
-        "--stock",
-        "box:0,0,-10,40,20,0",
-        "--program",
+    let o = schedule(
         &prog,
-        "--tool",
         "flat:d=10,flutes=2",
-        "--coefficients",
         &mat,
-        "--limit-force",
-        "1500",
-        "--max-feed",
-        "2000",
-        "--out",
         out.to_str().unwrap(),
-        "--json",
-    ]);
+        &["--limit-force", "1500", "--max-feed", "2000", "--json"],
+    );
     assert!(o.status.success(), "{}", stderr(&o));
     let s = json(&o);
     assert_eq!(s["still_over_limit"].as_array().unwrap().len(), 0);

@@ -54,6 +54,17 @@ fn end_of(e: &OwnedCanon) -> Axes {
     }
 }
 
+/// Where each move ends, X Y Z.
+fn tip_ends(rec: &Recorder) -> Vec<[f64; 3]> {
+    motion(rec)
+        .iter()
+        .map(|e| {
+            let a = end_of(e);
+            [a.x, a.y, a.z]
+        })
+        .collect()
+}
+
 fn last_pos(rec: &Recorder) -> Axes {
     end_of(motion(rec).last().expect("a move"))
 }
@@ -849,13 +860,7 @@ fn post_processor_spellings_read_as_written() {
         "G00G21G17G90G40G49G80\r\nG0X10.000Y10.000Z5.000\r\n\tG01 Z-1.000000 F100.0(Penetrate)\r\n\
                G1 X  -10.000 Y  .5\t\r\ng01 x+20. y-0.\r\nG1 X 1 0 Y 5.\r\nN0010.5 G1 X-.5\r\nM30";
     let rec = run(src);
-    let ends: Vec<[f64; 3]> = motion(&rec)
-        .iter()
-        .map(|e| {
-            let a = end_of(e);
-            [a.x, a.y, a.z]
-        })
-        .collect();
+    let ends = tip_ends(&rec);
     assert_eq!(
         ends,
         [
@@ -1197,16 +1202,9 @@ fn g33_and_rigid_tapping_follow_the_spindle() {
     }
     assert!(err("G21 G76 P1 Z-1\n").message.contains("lathe"));
     // G33.1 with X/Y goes over the hole at its Z first, taps straight down and comes back up.
-    let m = motion(&run(
+    let ends = tip_ends(&run(
         "G21 G90\nM3 S100\nG0 X0 Y0 Z2\nG33.1 X5 Y6 Z-4 K1\nG0 Z10\nM2\n",
     ));
-    let ends: Vec<[f64; 3]> = m
-        .iter()
-        .map(|e| {
-            let a = end_of(e);
-            [a.x, a.y, a.z]
-        })
-        .collect();
     assert_eq!(
         ends,
         [

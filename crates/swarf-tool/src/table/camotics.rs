@@ -155,20 +155,28 @@ pub fn parse_camotics(text: &str, file: &str) -> Result<ToolTable, TableError> {
             },
         );
     }
+    // An error at the first `"key"` of the file.
+    let at_key = |key: &str, found: String, expected: &str| {
+        let (line, column) = text
+            .find(&format!("\"{key}\""))
+            .map_or((0, 0), |i| line_col(text, i));
+        TableError::Parse {
+            file: file.to_string(),
+            line,
+            column,
+            found,
+            expected: expected.into(),
+        }
+    };
     if let Some(w) = &project.workpiece {
         if w.automatic {
             let margin = w.margin.unwrap_or(DEFAULT_MARGIN_PERCENT);
             if !(margin.is_finite() && margin >= 0.0) {
-                let (line, column) = text
-                    .find("\"margin\"")
-                    .map_or((0, 0), |i| line_col(text, i));
-                return Err(TableError::Parse {
-                    file: file.to_string(),
-                    line,
-                    column,
-                    found: format!("margin {margin}"),
-                    expected: "a workpiece margin ≥ 0 (per cent of its size)".into(),
-                });
+                return Err(at_key(
+                    "margin",
+                    format!("margin {margin}"),
+                    "a workpiece margin ≥ 0 (per cent of its size)",
+                ));
             }
             table.automatic_workpiece = Some(margin);
         } else {
@@ -178,16 +186,11 @@ pub fn parse_camotics(text: &str, file: &str) -> Result<ToolTable, TableError> {
                     let min = Vec3::from_array(b.min) * u;
                     let max = Vec3::from_array(b.max) * u;
                     if !(min.is_finite() && max.is_finite() && min.cmple(max).all()) {
-                        let (line, column) = text
-                            .find("\"bounds\"")
-                            .map_or((0, 0), |i| line_col(text, i));
-                        return Err(TableError::Parse {
-                            file: file.to_string(),
-                            line,
-                            column,
-                            found: format!("bounds min {min} max {max}"),
-                            expected: "finite workpiece bounds with min ≤ max".into(),
-                        });
+                        return Err(at_key(
+                            "bounds",
+                            format!("bounds min {min} max {max}"),
+                            "finite workpiece bounds with min ≤ max",
+                        ));
                     }
                     table.workpiece = Some(Aabb { min, max });
                 }
