@@ -225,3 +225,34 @@ fn a_program_named_without_its_folder_finds_its_subroutine_files() {
         assert_eq!(json(&o)["feed_length_mm"], 7.0, "{name}");
     }
 }
+
+/// A CAMotics project with an automatic workpiece: `swarf path --json` states the box made from
+/// the program (here with no margin: the slot's own box), as `swarf simulate` takes it.
+#[test]
+fn a_camotics_automatic_workpiece_is_stated() {
+    let dir = temp_dir("path_camotics_auto");
+    let prog = dir.join("slot.ngc");
+    std::fs::write(
+        &prog,
+        "G21 G90\nT1 M6\nM3 S1000\nG0 X0 Y0 Z5\nG1 Z-4 F100\nG1 X10\nG0 Z5\nM2\n",
+    )
+    .unwrap();
+    let project = dir.join("p.camotics");
+    std::fs::write(
+        &project,
+        r#"{"units":"metric","tools":{"1":{"units":"metric","shape":"cylindrical","length":20,"diameter":6}},"workpiece":{"automatic":true,"margin":0}}"#,
+    )
+    .unwrap();
+    let o = swarf(&[
+        "path",
+        prog.to_str().unwrap(),
+        "--tools",
+        project.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let w = &json(&o)["workpiece"];
+    assert_eq!(w["min"], serde_json::json!([-3.0, -3.0, -4.0]), "{w}");
+    assert_eq!(w["max"], serde_json::json!([13.0, 3.0, 0.0]), "{w}");
+    assert_eq!(w["automatic"], true, "{w}");
+}

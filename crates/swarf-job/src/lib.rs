@@ -33,7 +33,7 @@
 use std::path::{Path, PathBuf};
 
 mod workpiece;
-pub use workpiece::automatic_workpiece;
+pub use workpiece::{automatic_workpiece, automatic_workpiece_of};
 
 use swarf_path::apt::AptOptions;
 use swarf_path::gcode::{GcodeDialect, GcodeOptions};

@@ -4,6 +4,8 @@
 //! Z = 0, 2 mm deeper than its lowest cut where it is less than 2 mm thick, then grown by the margin (per cent of its size) on every
 //! side but the top.
 
+use std::collections::BTreeMap;
+
 use swarf_geom::math::Vec3;
 use swarf_geom::Aabb;
 use swarf_path::summary::move_tip_bounds;
@@ -21,15 +23,31 @@ pub fn automatic_workpiece(
     tools: &ToolSet,
     margin_percent: f64,
 ) -> Option<Aabb> {
-    let (mut min, mut max) = (Vec3::splat(f64::INFINITY), Vec3::splat(f64::NEG_INFINITY));
+    let mut by_tool: BTreeMap<u32, (Vec3, Vec3)> = BTreeMap::new();
     for m in &program.moves {
         if matches!(m.kind, MoveKind::Rapid) {
             continue;
         }
-        let Some(cutter) = tools.get(m.tool) else {
+        let (lo, hi) = move_tip_bounds(program, m);
+        let b = by_tool.entry(m.tool).or_insert((lo, hi));
+        *b = (b.0.min(lo), b.1.max(hi));
+    }
+    automatic_workpiece_of(&by_tool, tools, margin_percent)
+}
+
+/// [`automatic_workpiece`] from the box of the tool tip's path over each tool's feed moves,
+/// (min, max) by tool number (what `swarf_path::summary::SummarySink` gathers as a program
+/// streams by).
+pub fn automatic_workpiece_of(
+    tip_bounds_by_tool: &BTreeMap<u32, (Vec3, Vec3)>,
+    tools: &ToolSet,
+    margin_percent: f64,
+) -> Option<Aabb> {
+    let (mut min, mut max) = (Vec3::splat(f64::INFINITY), Vec3::splat(f64::NEG_INFINITY));
+    for (&tool, &(lo, hi)) in tip_bounds_by_tool {
+        let Some(cutter) = tools.get(tool) else {
             continue;
         };
-        let (lo, hi) = move_tip_bounds(program, m);
         let r = 0.5 * cutter.max_diameter();
         min = min.min(lo - Vec3::new(r, r, 0.0));
         max = max.max(hi + Vec3::new(r, r, cutter.flute_length()));

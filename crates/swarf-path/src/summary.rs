@@ -195,8 +195,8 @@ impl SummaryAccumulator {
     }
 
     /// Adds move `m`; `program` gives the machine and the axis source it is interpolated by
-    /// (its moves are not read).
-    pub fn add(&mut self, program: &Program, m: &Move) {
+    /// (its moves are not read). Returns the box of the tip's path over it, (min, max).
+    pub fn add(&mut self, program: &Program, m: &Move) -> (Vec3, Vec3) {
         let mut bb = Bbox::empty();
         let length = move_extent(program, m, self.tol, &mut bb, &mut self.curved);
         self.moves += 1;
@@ -223,6 +223,7 @@ impl SummaryAccumulator {
                 }
             }
         }
+        (bb.min, bb.max)
     }
 
     /// The summary of the moves added; tools, warnings, machine and axis source from `program`
@@ -288,6 +289,7 @@ pub struct SummarySink {
     builder: MoveBuilder,
     context: Program,
     acc: SummaryAccumulator,
+    by_tool: std::collections::BTreeMap<u32, Bbox>,
 }
 
 /// What [`SummarySink::finish`] returns.
@@ -299,6 +301,8 @@ pub struct StreamedSummary {
     pub program: Program,
     /// A move was made with no tool loaded (tool 0).
     pub tool_zero_moved: bool,
+    /// The box of the tool tip's path over each tool's feed moves, (min, max), by tool number.
+    pub feed_tip_bounds_by_tool: std::collections::BTreeMap<u32, (Vec3, Vec3)>,
 }
 
 impl SummarySink {
@@ -311,6 +315,7 @@ impl SummarySink {
             },
             builder: MoveBuilder::new(machine, file_name),
             acc: SummaryAccumulator::new(options),
+            by_tool: std::collections::BTreeMap::new(),
         }
     }
 
@@ -323,13 +328,23 @@ impl SummarySink {
             summary: self.acc.finish(&program),
             program,
             tool_zero_moved,
+            feed_tip_bounds_by_tool: self
+                .by_tool
+                .into_iter()
+                .map(|(t, b)| (t, (b.min, b.max)))
+                .collect(),
         }
     }
 
     fn drain(&mut self) {
         self.context.axis_source = self.builder.context().1;
         for m in self.builder.take_moves() {
-            self.acc.add(&self.context, &m);
+            let (lo, hi) = self.acc.add(&self.context, &m);
+            if !matches!(m.kind, MoveKind::Rapid) {
+                let b = self.by_tool.entry(m.tool).or_insert_with(Bbox::empty);
+                b.add(lo);
+                b.add(hi);
+            }
         }
     }
 }

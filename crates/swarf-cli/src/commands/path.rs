@@ -60,6 +60,9 @@ pub(crate) struct PathReport {
 struct Workpiece {
     min: [f64; 3],
     max: [f64; 3],
+    /// Made from the program, as CAMotics makes an automatic workpiece (only written when so).
+    #[serde(skip_serializing_if = "std::ops::Not::not")]
+    automatic: bool,
 }
 
 #[derive(Serialize)]
@@ -99,7 +102,10 @@ pub(crate) fn run(args: &PathArgs) -> Result<()> {
     let (tools, undefined) = setup
         .resolve(&streamed.program, streamed.tool_zero_moved)
         .map_err(job_error)?;
-    let report = PathReport::from_parts(streamed.summary, &tools, undefined, &setup);
+    let automatic = automatic_margin(&setup).and_then(|margin| {
+        swarf_job::automatic_workpiece_of(&streamed.feed_tip_bounds_by_tool, &tools, margin)
+    });
+    let report = PathReport::from_parts(streamed.summary, &tools, undefined, &setup, automatic);
     // What the summary leaves out or approximates (feed moves at F0 left out of the time…)
     // is said on stderr too, not only inside the JSON.
     for note in &report.summary.notes {
@@ -116,11 +122,14 @@ impl PathReport {
     /// The summary of `job`'s program with the cutters its tools resolve to (`--tool` for
     /// all, else the library, else the program's own `CUTTER/`).
     pub(crate) fn new(job: &Job) -> Self {
+        let automatic = automatic_margin(&job.setup)
+            .and_then(|margin| swarf_job::automatic_workpiece(&job.program, &job.tools, margin));
         Self::from_parts(
             summarize(&job.program),
             &job.tools,
             job.undefined_tools.clone(),
             &job.setup,
+            automatic,
         )
     }
 
@@ -132,6 +141,7 @@ impl PathReport {
         tools: &ToolSet,
         undefined_tools: Vec<u32>,
         setup: &JobSetup,
+        automatic: Option<swarf_geom::Aabb>,
     ) -> Self {
         let tool_definitions = tools
             .resolved()
@@ -145,13 +155,14 @@ impl PathReport {
                 (*n, report)
             })
             .collect();
-        let workpiece = setup
-            .table
-            .as_ref()
-            .and_then(|t| t.workpiece)
-            .map(|b| Workpiece {
+        let stated = setup.table.as_ref().and_then(|t| t.workpiece);
+        let workpiece = stated
+            .map(|b| (b, false))
+            .or(automatic.map(|b| (b, true)))
+            .map(|(b, automatic)| Workpiece {
                 min: b.min.to_array(),
                 max: b.max.to_array(),
+                automatic,
             });
         Self {
             summary,
@@ -196,4 +207,9 @@ fn print_human(s: &ProgramSummary, tools: &BTreeMap<u32, ToolReport>, undefined:
     for w in &s.warnings {
         println!("{w}");
     }
+}
+
+/// The margin of a CAMotics project's automatic workpiece, when the tool library is one.
+fn automatic_margin(setup: &JobSetup) -> Option<f64> {
+    setup.table.as_ref().and_then(|t| t.automatic_workpiece)
 }
