@@ -271,6 +271,36 @@ fn schedule_keeps_spindle_synchronised_moves_and_says_so() {
     );
 }
 
+/// A program that calls a subroutine file (with no moves of its own) is scheduled and read back
+/// with the file found beside the program, wherever the output goes.
+#[test]
+fn schedule_reads_back_a_program_calling_a_subroutine_file() {
+    let d = dir("subfile");
+    std::fs::create_dir_all(d.join("prog")).unwrap();
+    std::fs::create_dir_all(d.join("out")).unwrap();
+    let prog = write(
+        &d.join("prog"),
+        "main.ngc",
+        "G21 G90 G94\nS1000 M3\no<setz> call\nG0 X-10 Y10 Z#<_depth>\nG1 X50 F400\nG0 Z10\nM30\n",
+    );
+    write(
+        &d.join("prog"),
+        "setz.ngc",
+        "o<setz> sub\n#<_depth> = -4\no<setz> endsub\n",
+    );
+    let mat = write(&d, "al.toml", MATERIAL);
+    let out = d.join("out").join("main-s.ngc");
+    let o = schedule(
+        &prog,
+        "flat:d=10,flutes=4,helix=30",
+        &mat,
+        out.to_str().unwrap(),
+        &["--limit-force", "300"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(std::fs::read_to_string(&out).unwrap().contains("G1 X50 F"));
+}
+
 #[test]
 fn errors_name_what_is_missing() {
     let d = dir("errors");

@@ -220,16 +220,16 @@ impl JobSetup {
         self.read_str(&text, &path.display().to_string())
     }
 
-    /// Makes subroutine files be looked for beside the program file `path` when it is named
-    /// without a folder (`prog.ngc`: the current one), as they are beside one named with it.
-    /// (Program text read from memory has no folder and searches none.)
+    /// Makes subroutine files be looked for beside the program file `path` first (the current
+    /// folder for `prog.ngc`), whatever name the text is then read under: program text read
+    /// from memory has no folder of its own and searches none, and `swarf schedule` reads its
+    /// output back under the output's name.
     pub fn search_program_folder(&mut self, path: &Path) {
-        if path.parent().is_some_and(|d| d.as_os_str().is_empty()) {
-            self.read
-                .gcode
-                .subroutine_path
-                .insert(0, PathBuf::from("."));
-        }
+        let dir = path
+            .parent()
+            .filter(|d| !d.as_os_str().is_empty())
+            .unwrap_or(Path::new("."));
+        self.read.gcode.subroutine_path.insert(0, dir.to_path_buf());
     }
 
     /// [`JobSetup::read`] of program text named `file` in messages.

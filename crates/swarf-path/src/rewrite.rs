@@ -65,13 +65,9 @@ fn scan_gcode(line: &str) -> (Option<Result<FeedWord, usize>>, usize) {
                 depth = depth.saturating_sub(1);
                 i += 1;
             }
-            b'#' => {
-                // A parameter: skip a named one `#<…>`.
-                if b.get(i + 1) == Some(&b'<') {
-                    i += line[i..].find('>').map_or(b.len() - i, |k| k + 1);
-                } else {
-                    i += 1;
-                }
+            // A named parameter `#<…>` or subroutine `o<…>`: its name holds no word.
+            b'#' | b'o' | b'O' if b.get(i + 1) == Some(&b'<') => {
+                i += line[i..].find('>').map_or(b.len() - i, |k| k + 1);
             }
             // Letters of a keyword (`o1 if`, `endif`, Macro B's `IF`, `FIX[…]`) are no F word.
             b'f' | b'F'
@@ -607,6 +603,9 @@ mod tests {
             "o2 elseif [#2 EQ 1]",
             "IF [#1 GT 3] GOTO 10",
             "#1=FIX[#2]+FUP[#3]",
+            "o<f1> call",
+            "O<cut_f> sub",
+            "#<feed>=3",
         ] {
             assert!(scan_gcode(line).0.is_none(), "{line}");
         }

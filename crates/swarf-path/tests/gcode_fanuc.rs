@@ -693,7 +693,7 @@ fn an_endless_main_program_loop_is_read_once() {
         (
             "IF [#1 GT 5] GOTO 9\nG0 X1\nM99\nN9 M30\n",
             2,
-            "changed no parameter, position or offset",
+            "changed no parameter, position, offset, tool or mode",
         ),
     ] {
         let m = moves(src, &fanuc()).unwrap();
@@ -770,4 +770,35 @@ fn fanuc_g33_takes_its_lead_from_f() {
     assert_eq!(p.moves.len(), 2);
     let t = summarize(&p).machining_time_s;
     assert!((t - 1.2).abs() < 1e-9, "{t}");
+}
+
+/// A pass may change only what the control keeps, and the next pass read it: the tool loaded
+/// (#5400), a stored parameter from #5000 on (#5500), the feed (#<_feed>). Each runs until its
+/// M30 (three passes), not one pass more or less. A name holding "m2" is no M2, so a counter
+/// `#<_sum2>` with no M2/M30 anywhere ends at its M99 with the warning.
+#[test]
+fn a_pass_that_changes_only_control_state_runs_again() {
+    let lcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    for src in [
+        "o1 if [#5400 EQ 3]\nM30\no1 endif\nT[#5400+1] M6\nG0 X1\nM99\n",
+        "#5500=[#5500+1]\no1 if [#5500 GT 3]\nM30\no1 endif\nG0 X1\nM99\n",
+        "o1 if [#<_feed> GT 250]\nM30\no1 endif\nF[#<_feed>+100]\nG1 X1\nM99\n",
+    ] {
+        // Three passes: the first moves from the home to X1, the next two stay there.
+        assert_eq!(moves(src, &lcnc).unwrap().len(), 3, "{src}");
+    }
+    let src =
+        "o2 if [EXISTS[#<_sum2>] EQ 0]\n#<_sum2>=0\no2 endif\n#<_sum2>=[#<_sum2>+1]\nG0 X1\nM99\n";
+    assert_eq!(moves(src, &lcnc).unwrap().len(), 1);
+    // Fanuc's M99 P looks for N<P> in the main program only, not in a subprogram after it.
+    let e = moves(
+        "O1000\nN1 G0 X1\nM98 P2000\nM99 P5\nM30\nO2000\nN5 G0 Y1\nM99\n",
+        &fanuc(),
+    )
+    .unwrap_err();
+    assert!(
+        e.message
+            .contains("no line numbered N5 in the main program"),
+        "{e}"
+    );
 }

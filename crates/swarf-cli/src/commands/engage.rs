@@ -80,11 +80,12 @@ impl RunArgs {
         matches!(self.setup.initial_units, crate::cli::TableUnits::Inch)
     }
 
-    /// Reads program text (`name` in messages) with this run's machine and units.
+    /// Reads program text (`name` in messages) with this run's machine and units, its
+    /// subroutine files looked for beside the program first.
     pub(crate) fn read_program_str(&self, text: &str, name: &str) -> Result<Program> {
-        load_job_setup(&self.setup)?
-            .read_program_str(text, name)
-            .map_err(job_error)
+        let mut setup = load_job_setup(&self.setup)?;
+        setup.search_program_folder(self.program()?);
+        setup.read_program_str(text, name).map_err(job_error)
     }
 
     /// The stock as given.

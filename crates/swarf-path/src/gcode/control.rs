@@ -698,12 +698,15 @@ impl Interp<'_, '_> {
             Some(p) if p >= 0.0 && p.fract() == 0.0 && p <= u64::MAX as f64 => {
                 let map = match self.main_line_numbers.take() {
                     Some(m) => m,
-                    None => self.index_targets(true),
+                    None => self.main_program_line_numbers(),
                 };
                 let at = map.get(&(p as u64)).copied();
                 self.main_line_numbers = Some(map);
                 Some(at.ok_or_else(|| {
-                    Fault::semantic(b.span(b'p'), format!("no line numbered N{p} in this file"))
+                    Fault::semantic(
+                        b.span(b'p'),
+                        format!("no line numbered N{p} in the main program"),
+                    )
                 })?)
             }
             Some(p) => {
@@ -725,10 +728,11 @@ impl Interp<'_, '_> {
             }
         };
         let control = PassControl::of(self);
+        let unchanged = self.pass_control.as_ref() == Some(&control);
         let endless = if !has_end {
             Some("no file it reads has an M2/M30 to end it")
-        } else if !self.params.pass.changed(&self.params) && self.pass_control == Some(control) {
-            Some("this pass changed no parameter, position or offset")
+        } else if !self.params.pass.changed(&self.params) && unchanged {
+            Some("this pass changed no parameter, position, offset, tool or mode")
         } else {
             None
         };
@@ -778,19 +782,45 @@ impl Interp<'_, '_> {
         let mut buf = std::mem::take(&mut self.skip_buf);
         let text = self.files[file as usize].1.clone();
         let found = self.file_start(file).lines(&text).any(|(raw, _, _)| {
-            (raw.bytes().any(|c| c | 0x20 == b'm') && normalize(raw, &mut buf).is_ok())
-                && buf.code.iter().enumerate().any(|(i, &c)| {
-                    let rest = &buf.code[i + 1..];
-                    let digits = rest.iter().take_while(|d| d.is_ascii_digit()).count();
-                    c == b'm'
-                        && std::str::from_utf8(&rest[..digits])
-                            .ok()
-                            .and_then(|d| d.parse::<u32>().ok())
-                            .is_some_and(|n| n == 2 || n == 30)
-                })
+            raw.bytes().any(|c| c | 0x20 == b'm')
+                && normalize(raw, &mut buf).is_ok()
+                && has_program_end_word(&buf.code)
         });
         self.skip_buf = buf;
         found
+    }
+
+    /// Where each line numbered `N<n>` of the main program starts: the current file up to the
+    /// first subprogram (an `O<n>` label after the program's first block; the main program's
+    /// own number may head it). Fanuc's `M99 P<n>` looks only there.
+    fn main_program_line_numbers(&mut self) -> HashMap<u64, Cursor> {
+        let mut map = HashMap::new();
+        let mut buf = std::mem::take(&mut self.skip_buf);
+        let text = self.text.clone();
+        let mut code_seen = false;
+        for (raw, line, _) in self.file_start(self.cur_file).lines(&text) {
+            if normalize(raw, &mut buf).is_err() || buf.code.is_empty() || buf.code[0] == b'%' {
+                continue;
+            }
+            let o = skip_line_number(&buf.code);
+            let label = buf.code.get(o) == Some(&b'o')
+                && matches!(parse_oword(&buf.code, o), Ok((_, _, Kw::Label, _)));
+            if label && code_seen {
+                break;
+            }
+            code_seen |= !label;
+            if buf.code[0] == b'n' {
+                let digits = &buf.code[1..skip_line_number(&buf.code)];
+                if let Some(n) = std::str::from_utf8(digits)
+                    .ok()
+                    .and_then(|d| d.parse().ok())
+                {
+                    map.entry(n).or_insert(line);
+                }
+            }
+        }
+        self.skip_buf = buf;
+        map
     }
 
     /// Every bare `O<n>` line of the file and the cursor after it.
@@ -826,30 +856,74 @@ impl Interp<'_, '_> {
     }
 }
 
-/// What besides parameters a pass of the main program may change that the next pass can
-/// test (#5420–#5425, #5221…, #5211…, #5401…): the position, the offsets and the tool length
-/// offset in effect.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Whether normalised code holds an `M2` or `M30` word: an `m` that starts a word (not inside
+/// a `#<name>`, an `o<name>` or a bracketed expression, nor after another letter).
+fn has_program_end_word(code: &[u8]) -> bool {
+    let (mut i, mut depth) = (0, 0usize);
+    while i < code.len() {
+        match code[i] {
+            b'<' => {
+                i += code[i..]
+                    .iter()
+                    .position(|&c| c == b'>')
+                    .unwrap_or(code.len() - i)
+            }
+            b'[' => depth += 1,
+            b']' => depth = depth.saturating_sub(1),
+            b'm' if depth == 0 && (i == 0 || !code[i - 1].is_ascii_alphabetic()) => {
+                let rest = &code[i + 1..];
+                let digits = rest.iter().take_while(|d| d.is_ascii_digit()).count();
+                let n = std::str::from_utf8(&rest[..digits])
+                    .ok()
+                    .and_then(|d| d.parse::<u32>().ok());
+                if matches!(n, Some(2 | 30)) {
+                    return true;
+                }
+            }
+            _ => {}
+        }
+        i += 1;
+    }
+    false
+}
+
+/// What besides the parameters it wrote a pass of the main program may change that the next
+/// pass can read (#5000 on, the predefined named parameters): the position, the offsets and
+/// their tables, the G28/G30 homes, the tools (loaded, selected, their offsets and radii) and
+/// the modal state (units, plane, distance modes, feed mode and feed, spindle, coordinate
+/// system, retract mode, tool length offset, compensation, coolant, overrides: what M70
+/// keeps), and the motion mode.
+#[derive(Clone, Debug, PartialEq)]
 pub(crate) struct PassControl {
     p: [f64; 6],
-    coord: usize,
     g5x: [[f64; 6]; 9],
     rot: [f64; 9],
     g92: [f64; 6],
     g92_saved: [f64; 6],
-    tlo: [f64; 6],
+    g92_flag: f64,
+    homes: [[f64; 6]; 2],
+    tool: u32,
+    tool_table: std::collections::BTreeMap<u32, [f64; 6]>,
+    tool_radii: std::collections::BTreeMap<u32, f64>,
+    modal: super::modal::ModalState,
+    motion: Option<u16>,
 }
 
 impl PassControl {
     pub(crate) fn of(i: &Interp<'_, '_>) -> Self {
         PassControl {
             p: i.p,
-            coord: i.coord,
             g5x: i.g5x_table,
             rot: i.rot_table,
             g92: i.g92,
             g92_saved: i.g92_saved,
-            tlo: i.tlo,
+            g92_flag: i.g92_flag,
+            homes: i.homes,
+            tool: i.tool,
+            tool_table: i.tool_table.clone(),
+            tool_radii: i.tool_radii.clone(),
+            modal: i.modal_state(),
+            motion: i.motion,
         }
     }
 }

@@ -35,7 +35,7 @@ pub(crate) struct ModalState {
 pub(crate) type Saved = Option<(ModalState, bool)>;
 
 impl Interp<'_, '_> {
-    fn modal_state(&self) -> ModalState {
+    pub(crate) fn modal_state(&self) -> ModalState {
         ModalState {
             units: self.units,
             plane: self.plane,

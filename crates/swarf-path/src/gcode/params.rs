@@ -10,15 +10,11 @@ use super::expr::MAX_PARAM;
 /// Numbered parameters that are arguments of an O-word subroutine call and local to it.
 pub(crate) const N_ARGS: usize = 30;
 
-/// Numbered parameters below this are the program's own (LinuxCNC's #1–#4999 user parameters,
-/// Fanuc's locals and common variables); from #5000 on, the control's state.
-pub(crate) const USER_PARAMS: usize = 5000;
-
 /// What a pass of the main program changed (see `Interp::restart_main`): every numbered
-/// parameter below [`USER_PARAMS`] (the control's own above are left out) and every global or
-/// main-level named parameter it wrote, with the value it had when the pass began. Two passes
-/// that begin with equal parameters run alike; the log costs a little per distinct parameter
-/// written, not per parameter.
+/// parameter it stored (those that are views of the control's state, such as offsets, are
+/// compared through `PassControl` instead) and every global or main-level named parameter it
+/// wrote, with the value it had when the pass began. The log costs a little per distinct
+/// parameter written, not per parameter.
 #[derive(Debug, Default)]
 pub(crate) struct PassLog {
     written: Vec<(Written, Option<u64>)>,
@@ -90,7 +86,7 @@ impl Default for Params {
             locals: vec![HashMap::new()],
             pass: PassLog {
                 written: Vec::new(),
-                seen: vec![0; USER_PARAMS.div_ceil(64)],
+                seen: vec![0; (MAX_PARAM + 1).div_ceil(64)],
                 names: std::collections::HashSet::new(),
             },
         }
@@ -118,7 +114,7 @@ impl Params {
 
     /// Sets numbered parameter `n` (a plain store: the control's own are the caller's).
     pub(crate) fn set_num(&mut self, n: usize, v: f64) {
-        if n < USER_PARAMS && self.pass.seen[n / 64] & (1 << (n % 64)) == 0 {
+        if self.pass.seen[n / 64] & (1 << (n % 64)) == 0 {
             self.pass.seen[n / 64] |= 1 << (n % 64);
             let old = self.num[n].to_bits();
             self.pass.written.push((Written::Num(n), Some(old)));
