@@ -318,6 +318,19 @@ pub struct Recorder {
 /// An owned copy of a [`Canon`] event.
 pub type OwnedCanon = Canon<'static>;
 
+impl Recorder {
+    /// The texts of the operator messages (`(MSG,…)`, `(DEBUG,…)`, `(PRINT,…)`), in order.
+    pub fn messages(&self) -> Vec<String> {
+        self.events
+            .iter()
+            .filter_map(|(_, e)| match e {
+                Canon::Message { text, .. } => Some(text.to_string()),
+                _ => None,
+            })
+            .collect()
+    }
+}
+
 impl Canon<'_> {
     /// An owned copy of the event (borrowed comment text is copied).
     pub fn to_owned_event(&self) -> OwnedCanon {

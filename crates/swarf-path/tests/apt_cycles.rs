@@ -2,20 +2,10 @@
 //! expected move below is worked out by hand from the cycle's definition (module docs of
 //! `swarf_path::apt::cycle`), not recorded from the reader.
 
-use swarf_path::apt::{read_apt, AptOptions};
-use swarf_path::canon::Recorder;
 use swarf_path::{Canon, FeedMode, PathErrorKind};
 
-fn events(text: &str) -> Vec<Canon<'static>> {
-    let mut rec = Recorder::default();
-    read_apt(text, "t.apt", &AptOptions::default(), &mut rec).unwrap();
-    rec.events.into_iter().map(|(_, e)| e).collect()
-}
-
-fn err(text: &str) -> swarf_path::PathError {
-    let mut rec = Recorder::default();
-    read_apt(text, "t.apt", &AptOptions::default(), &mut rec).unwrap_err()
-}
+mod common;
+use common::{apt_err as err, apt_events as events};
 
 /// The motion only: `R` for a rapid, `F` for a feed, `D` for a dwell, `f` for a feed rate.
 #[derive(Debug, PartialEq)]

@@ -8,16 +8,8 @@ use swarf_path::kinematics::Machine;
 use swarf_path::summary::summarize;
 use swarf_path::{Axes, Canon, FeedMode, MoveKind, PathErrorKind, Plane, SpindleDir, Units};
 
-fn events(text: &str) -> Vec<Canon<'static>> {
-    let mut rec = Recorder::default();
-    read_apt(text, "t.apt", &AptOptions::default(), &mut rec).unwrap();
-    rec.events.into_iter().map(|(_, e)| e).collect()
-}
-
-fn err(text: &str) -> swarf_path::PathError {
-    let mut rec = Recorder::default();
-    read_apt(text, "t.apt", &AptOptions::default(), &mut rec).unwrap_err()
-}
+mod common;
+use common::{apt_err as err, apt_events as events};
 
 fn at(x: f64, y: f64, z: f64) -> Axes {
     Axes {

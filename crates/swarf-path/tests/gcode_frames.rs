@@ -71,15 +71,7 @@ fn g52_is_a_local_origin_in_the_g92_offset() {
     assert!(close(p.moves[1].end.tip, [1.0, 1.0, 0.0]));
     let mut rec = swarf_path::canon::Recorder::default();
     swarf_path::gcode::read_gcode(src, "f.ngc", &Default::default(), &mut rec).unwrap();
-    let msg = rec
-        .events
-        .iter()
-        .find_map(|(_, e)| match e {
-            swarf_path::Canon::Message { text, .. } => Some(text.to_string()),
-            _ => None,
-        })
-        .unwrap();
-    assert_eq!(msg, "1.000000 5.000000 -2.000000");
+    assert_eq!(rec.messages()[0], "1.000000 5.000000 -2.000000");
 }
 
 #[test]

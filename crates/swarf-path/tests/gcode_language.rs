@@ -36,17 +36,6 @@ fn motion(rec: &Recorder) -> Vec<OwnedCanon> {
         .collect()
 }
 
-/// The operator messages' texts.
-fn messages(rec: &Recorder) -> Vec<String> {
-    rec.events
-        .iter()
-        .filter_map(|(_, e)| match e {
-            Canon::Message { text, .. } => Some(text.to_string()),
-            _ => None,
-        })
-        .collect()
-}
-
 fn end_of(e: &OwnedCanon) -> Axes {
     match e {
         Canon::Traverse { end } | Canon::Feed { end } | Canon::Arc { end, .. } => *end,
@@ -304,15 +293,15 @@ fn cutter_compensation_needs_the_tool_radius() {
         "{ends:?}"
     );
     assert!(
-        messages(&rec).iter().any(|m| m == "4.000000"),
+        rec.messages().iter().any(|m| m == "4.000000"),
         "{:?}",
-        messages(&rec)
+        rec.messages()
     );
     let rec = run("G20 G10 L1 P1 R0.1\nT1 M6\n(debug,#5410)\nM2\n");
     assert!(
-        messages(&rec).iter().any(|m| m == "0.200000"),
+        rec.messages().iter().any(|m| m == "0.200000"),
         "{:?}",
-        messages(&rec)
+        rec.messages()
     );
     let e = err("G21 G10 L1 P1 R-1\n");
     assert_eq!((e.pos.line, e.pos.column), (1, 15), "{e}");
@@ -1051,7 +1040,7 @@ fn m61_sets_the_current_tool() {
         _ => None,
     });
     assert_eq!(last, Some(5));
-    assert_eq!(messages(&rec), ["3.000000 3.000000 5.000000"]);
+    assert_eq!(rec.messages(), ["3.000000 3.000000 5.000000"]);
 }
 
 /// LinuxCNC's `(ABORT,…)` stops the program with its text (parameters replaced) as the error,
@@ -1077,7 +1066,7 @@ fn abort_comment_ends_the_program_with_its_message() {
 /// shows in the position the program reads (#5422: Z) as G43's does.
 #[test]
 fn g43_2_adds_a_tool_length_offset() {
-    let msgs = |src: &str| messages(&run(src));
+    let msgs = |src: &str| run(src).messages();
     // At Z0 with offsets 5 then 5 + 2: the program reads Z −5, then −7.
     let got = msgs(
         "G21\nG10 L1 P1 Z5\nG10 L1 P2 Z2\nG43 H1\n(debug,#5422)\nG43.2 H2\n(debug,#5422)\n\
@@ -1116,7 +1105,7 @@ fn predefined_named_parameters_read_the_modes() {
         "_ijk_absolute_mode",
     ];
     let probe: String = names.iter().map(|n| format!("#<{n}> ")).collect();
-    let text = |src: &str| messages(&run(src)).join("|");
+    let text = |src: &str| run(src).messages().join("|");
     let start = text(&format!("G21\n(debug,{probe})\nM2\n"));
     assert_eq!(
         start,

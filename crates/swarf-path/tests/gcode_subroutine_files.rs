@@ -8,7 +8,7 @@ use std::path::PathBuf;
 use swarf_path::canon::Recorder;
 use swarf_path::gcode::{read_gcode, GcodeOptions};
 use swarf_path::load::{read_program_str, ReadOptions};
-use swarf_path::{Canon, Machine};
+use swarf_path::Machine;
 
 /// A fresh folder with `lib/square.ngc`.
 fn folder(tag: &str) -> PathBuf {
@@ -22,16 +22,6 @@ fn folder(tag: &str) -> PathBuf {
     dir
 }
 
-fn messages(rec: &Recorder) -> Vec<String> {
-    rec.events
-        .iter()
-        .filter_map(|(_, e)| match e {
-            Canon::Message { text, .. } => Some(text.to_string()),
-            _ => None,
-        })
-        .collect()
-}
-
 #[test]
 fn a_call_reads_the_subroutine_file_from_the_path() {
     let dir = folder("path");
@@ -42,7 +32,7 @@ fn a_call_reads_the_subroutine_file_from_the_path() {
     read_gcode(src, &main, &options, &mut rec).unwrap();
     // `_line` counts lines of the subroutine's own file.
     assert_eq!(
-        messages(&rec),
+        rec.messages(),
         vec!["line 3.000000 side 5.000000", "got 10.000000 1.000000"]
     );
     // The moves name the file and line they come from.
@@ -90,5 +80,5 @@ fn computed_calls_and_m98_expressions() {
     let src = "#2 = 10\no[#2 * 10] call [7]\nM98 P[5 * 20 + 100]\nM2\no100 sub\n(print,sub #1)\no100 endsub\nO200\n(print,fanuc)\nM99\n";
     let mut rec = Recorder::default();
     read_gcode(src, "c.ngc", &GcodeOptions::default(), &mut rec).unwrap();
-    assert_eq!(messages(&rec), vec!["sub 7.000000", "fanuc"]);
+    assert_eq!(rec.messages(), vec!["sub 7.000000", "fanuc"]);
 }

@@ -621,7 +621,7 @@ impl Interp<'_, '_> {
         } else {
             self.labels.take()
         };
-        let map = kept.unwrap_or_else(|| self.index_targets(b.m97));
+        let map = kept.unwrap_or_else(|| self.index_targets(b.m97, false));
         let start = map.get(&(p as u64)).copied();
         *(if b.m97 {
             &mut self.line_numbers
@@ -698,7 +698,7 @@ impl Interp<'_, '_> {
             Some(p) if p >= 0.0 && p.fract() == 0.0 && p <= u64::MAX as f64 => {
                 let map = match self.main_line_numbers.take() {
                     Some(m) => m,
-                    None => self.main_program_line_numbers(),
+                    None => self.index_targets(true, true),
                 };
                 let at = map.get(&(p as u64)).copied();
                 self.main_line_numbers = Some(map);
@@ -790,51 +790,36 @@ impl Interp<'_, '_> {
         found
     }
 
-    /// Where each line numbered `N<n>` of the main program starts: the current file up to the
-    /// first subprogram (an `O<n>` label after the program's first block; the main program's
-    /// own number may head it). Fanuc's `M99 P<n>` looks only there.
-    fn main_program_line_numbers(&mut self) -> HashMap<u64, Cursor> {
-        let mut map = HashMap::new();
-        let mut buf = std::mem::take(&mut self.skip_buf);
-        let text = self.text.clone();
-        let mut code_seen = false;
-        for (raw, line, _) in self.file_start(self.cur_file).lines(&text) {
-            if normalize(raw, &mut buf).is_err() || buf.code.is_empty() || buf.code[0] == b'%' {
-                continue;
-            }
-            let o = skip_line_number(&buf.code);
-            let label = buf.code.get(o) == Some(&b'o')
-                && matches!(parse_oword(&buf.code, o), Ok((_, _, Kw::Label, _)));
-            if label && code_seen {
-                break;
-            }
-            code_seen |= !label;
-            if buf.code[0] == b'n' {
-                let digits = &buf.code[1..skip_line_number(&buf.code)];
-                if let Some(n) = std::str::from_utf8(digits)
-                    .ok()
-                    .and_then(|d| d.parse().ok())
-                {
-                    map.entry(n).or_insert(line);
-                }
-            }
-        }
-        self.skip_buf = buf;
-        map
-    }
-
-    /// Every bare `O<n>` line of the file and the cursor after it.
     /// The call targets of the current file: with `numbers`, where the first line numbered
-    /// `N<n>` starts (an `N` with a fraction or none is no target), for Haas `M97`; else where
-    /// the line after the first `O<n>` label starts, for `M98`.
-    pub(crate) fn index_targets(&mut self, numbers: bool) -> HashMap<u64, Cursor> {
+    /// `N<n>` starts (an `N` with a fraction or none is no target), for Haas `M97` — with
+    /// `main_only`, in the main program only, up to the first subprogram (an `O<n>` label after
+    /// the program's first block; the main program's own number may head it), for Fanuc's
+    /// `M99 P<n>`; else where the line after the first `O<n>` label starts, for `M98`.
+    pub(crate) fn index_targets(&mut self, numbers: bool, main_only: bool) -> HashMap<u64, Cursor> {
         let mut map = HashMap::new();
         let mut buf = std::mem::take(&mut self.skip_buf);
         let text = self.text.clone();
         let number = |digits: &[u8]| std::str::from_utf8(digits).ok()?.parse::<u64>().ok();
+        let is_label = |code: &[u8]| {
+            let o = skip_line_number(code);
+            code.get(o) == Some(&b'o') && matches!(parse_oword(code, o), Ok((_, _, Kw::Label, _)))
+        };
+        let mut code_seen = false;
         for (raw, line, at) in self.file_start(self.cur_file).lines(&text) {
             let found = if numbers {
-                (normalize(raw, &mut buf).is_ok() && buf.code.first() == Some(&b'n'))
+                if normalize(raw, &mut buf).is_err()
+                    || matches!(buf.code.first(), None | Some(b'%'))
+                {
+                    continue;
+                }
+                if main_only {
+                    let label = is_label(&buf.code);
+                    if label && code_seen {
+                        break;
+                    }
+                    code_seen |= !label;
+                }
+                (buf.code[0] == b'n')
                     .then(|| number(&buf.code[1..skip_line_number(&buf.code)]))
                     .flatten()
                     .map(|n| (n, line))

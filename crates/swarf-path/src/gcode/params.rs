@@ -17,38 +17,37 @@ pub(crate) const N_ARGS: usize = 30;
 /// parameter written, not per parameter.
 #[derive(Debug, Default)]
 pub(crate) struct PassLog {
-    written: Vec<(Written, Option<u64>)>,
-    /// Which numbered parameters are in `written`, a bit each.
+    /// Numbered parameters written, with their bits when the pass began.
+    nums: Vec<(usize, u64)>,
+    /// Which numbered parameters are in `nums`, a bit each.
     seen: Vec<u64>,
-    /// Which named ones are.
-    names: std::collections::HashSet<String>,
-}
-
-#[derive(Debug, PartialEq)]
-enum Written {
-    Num(usize),
-    Named(String),
+    /// Named parameters written, with their bits when the pass began (`None`: unset then).
+    names: HashMap<String, Option<u64>>,
 }
 
 impl PassLog {
+    fn new() -> Self {
+        PassLog {
+            nums: Vec::new(),
+            seen: vec![0; (MAX_PARAM + 1).div_ceil(64)],
+            names: HashMap::new(),
+        }
+    }
+
     /// Whether any parameter written since the log was cleared now differs from its value then.
     pub(crate) fn changed(&self, p: &Params) -> bool {
-        self.written.iter().any(|(w, old)| {
-            let now = match w {
-                Written::Num(n) => Some(p.num[*n].to_bits()),
-                Written::Named(k) => p.named_at_main(k).map(f64::to_bits),
-            };
-            now != *old
-        })
+        self.nums.iter().any(|&(n, old)| p.num[n].to_bits() != old)
+            || self
+                .names
+                .iter()
+                .any(|(k, old)| p.named_at_main(k).map(f64::to_bits) != *old)
     }
 
     /// Starts a new pass.
     pub(crate) fn clear(&mut self) {
         self.names.clear();
-        for (w, _) in self.written.drain(..) {
-            if let Written::Num(n) = w {
-                self.seen[n / 64] &= !(1 << (n % 64));
-            }
+        for (n, _) in self.nums.drain(..) {
+            self.seen[n / 64] &= !(1 << (n % 64));
         }
     }
 }
@@ -84,11 +83,7 @@ impl Default for Params {
             num: vec![0.0; MAX_PARAM + 1],
             globals: HashMap::new(),
             locals: vec![HashMap::new()],
-            pass: PassLog {
-                written: Vec::new(),
-                seen: vec![0; (MAX_PARAM + 1).div_ceil(64)],
-                names: std::collections::HashSet::new(),
-            },
+            pass: PassLog::new(),
         }
     }
 }
@@ -116,20 +111,17 @@ impl Params {
     pub(crate) fn set_num(&mut self, n: usize, v: f64) {
         if self.pass.seen[n / 64] & (1 << (n % 64)) == 0 {
             self.pass.seen[n / 64] |= 1 << (n % 64);
-            let old = self.num[n].to_bits();
-            self.pass.written.push((Written::Num(n), Some(old)));
+            self.pass.nums.push((n, self.num[n].to_bits()));
         }
         self.num[n] = v;
     }
 
     /// Sets a named parameter; allocates only the first time a name is assigned at a level.
     pub(crate) fn set_named(&mut self, name: &str, v: f64) {
-        if (name.starts_with('_') || self.locals.len() == 1) && !self.pass.names.contains(name) {
+        if (name.starts_with('_') || self.locals.len() == 1) && !self.pass.names.contains_key(name)
+        {
             let old = self.named_at_main(name).map(f64::to_bits);
-            self.pass.names.insert(name.to_string());
-            self.pass
-                .written
-                .push((Written::Named(name.to_string()), old));
+            self.pass.names.insert(name.to_string(), old);
         }
         let map = if name.starts_with('_') {
             &mut self.globals
