@@ -24,6 +24,9 @@ use swarf_geom::Aabb;
 
 /// CAMotics' workpiece margin when a project states none, per cent.
 const DEFAULT_MARGIN_PERCENT: f64 = 5.0;
+/// The largest margin read: ten times the tool path's size on each side is already far more
+/// stock than any set-up holds (a margin of 1e308 % made a box beyond the machine's range).
+const MAX_MARGIN_PERCENT: f64 = 1000.0;
 
 #[derive(serde::Deserialize)]
 struct Project {
@@ -171,11 +174,11 @@ pub fn parse_camotics(text: &str, file: &str) -> Result<ToolTable, TableError> {
     if let Some(w) = &project.workpiece {
         if w.automatic {
             let margin = w.margin.unwrap_or(DEFAULT_MARGIN_PERCENT);
-            if !(margin.is_finite() && margin >= 0.0) {
+            if !(0.0..=MAX_MARGIN_PERCENT).contains(&margin) {
                 return Err(at_key(
                     "margin",
                     format!("margin {margin}"),
-                    "a workpiece margin ≥ 0 (per cent of its size)",
+                    "a workpiece margin from 0 to 1000 (per cent of its size)",
                 ));
             }
             table.automatic_workpiece = Some(margin);
@@ -231,6 +234,7 @@ mod tests {
                 .unwrap();
         assert_eq!((t.automatic_workpiece, t.workpiece.is_some()), (None, true));
         assert!(with(r#"{"automatic":true,"margin":-1}"#).is_err());
+        assert!(with(r#"{"automatic":true,"margin":1e308}"#).is_err());
     }
 
     #[test]
