@@ -77,6 +77,7 @@ pub struct MoveBuilder {
     tools: Vec<u32>,
     cutter_definitions: Vec<(u32, [f64; 7])>,
     cutter_definition_lines: Vec<SourceLine>,
+    blank: Option<[[f64; 3]; 2]>,
     warnings: Vec<Warning>,
     /// Rotary words (A, B, C) already reported as not modelled by the machine.
     unmodelled_warned: [bool; 3],
@@ -113,6 +114,7 @@ impl MoveBuilder {
             tools: Vec::new(),
             cutter_definitions: Vec::new(),
             cutter_definition_lines: Vec::new(),
+            blank: None,
             warnings: Vec::new(),
             unmodelled_warned: [false; 3],
         }
@@ -162,6 +164,7 @@ impl MoveBuilder {
             warnings: self.warnings,
             machine: self.machine,
             axis_source: self.axis_source,
+            blank: self.blank,
         }
     }
 
@@ -562,6 +565,27 @@ impl CanonSink for MoveBuilder {
             Canon::SetPosition(p) => {
                 self.pos = *p;
                 self.axis = self.target_axis;
+            }
+            Canon::Blank { min, max } => {
+                // The box of its corners in the workpiece frame (the rotary axes at zero).
+                let corner = |i: usize| {
+                    let p = |k: usize| if i >> k & 1 == 0 { min[k] } else { max[k] };
+                    let j = self.joints(&Axes {
+                        x: p(0),
+                        y: p(1),
+                        z: p(2),
+                        ..Axes::default()
+                    });
+                    [j.x, j.y, j.z]
+                };
+                let mut b = [[f64::INFINITY; 3], [f64::NEG_INFINITY; 3]];
+                for c in (0..8).map(corner) {
+                    for k in 0..3 {
+                        b[0][k] = b[0][k].min(c[k]);
+                        b[1][k] = b[1][k].max(c[k]);
+                    }
+                }
+                self.blank = Some(b);
             }
             Canon::Units(_)
             | Canon::Plane(_)

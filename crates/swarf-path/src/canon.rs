@@ -268,6 +268,14 @@ pub enum Canon<'a> {
     /// A definition of the active tool's geometry from the program (APT `CUTTER/`): the seven
     /// APT numbers d, r, e, f, α, β, h (mm, degrees); h = 0 means the program did not give it.
     CutterDefinition([f64; 7]),
+    /// The workpiece blank the program declares (Heidenhain `BLK FORM`): a box, corners in the
+    /// program's coordinates (mm) where it is declared.
+    Blank {
+        /// The least corner.
+        min: [f64; 3],
+        /// The greatest corner.
+        max: [f64; 3],
+    },
     /// M2/M30/`FINI`: the end of the program.
     ProgramEnd,
     /// The events that follow come from this file (a subroutine file of a G-code program, or
@@ -384,6 +392,10 @@ impl Canon<'_> {
             },
             Canon::CutterDefinition(p) => Canon::CutterDefinition(*p),
             Canon::ProgramEnd => Canon::ProgramEnd,
+            Canon::Blank { min, max } => Canon::Blank {
+                min: *min,
+                max: *max,
+            },
             Canon::SourceFile(f) => Canon::SourceFile(Cow::Owned(f.to_string())),
             Canon::ToolAxis(a) => Canon::ToolAxis(*a),
             Canon::SetPosition(p) => Canon::SetPosition(*p),

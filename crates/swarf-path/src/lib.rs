@@ -1,10 +1,10 @@
-//! Toolpath input for swarf: G-code and APT CL interpreters, machine kinematics and the move
+//! Toolpath input for swarf: G-code, APT CL and Heidenhain interpreters, machine kinematics and the move
 //! stream that every later stage reads.
 //!
 //! # Model
 //! Reading a program happens in two steps, as in LinuxCNC:
 //!
-//! 1. An interpreter ([`gcode`] or [`apt`]) turns text into [`Canon`] events — the canonical
+//! 1. An interpreter ([`gcode`], [`apt`] or [`heidenhain`]) turns text into [`Canon`] events — the canonical
 //!    machining calls: straight traverse, straight feed, arc feed, units, offsets, tool change —
 //!    in **joint space** (X Y Z A B C as the program commands them), lengths in millimetres,
 //!    angles in degrees, positions in the program's current coordinate system. It never
@@ -25,6 +25,7 @@ pub mod canon;
 pub mod canonical;
 pub mod error;
 pub mod gcode;
+pub mod heidenhain;
 pub mod kinematics;
 pub mod limit;
 pub mod load;

@@ -14,12 +14,19 @@ pub enum ProgramFormat {
     Gcode,
     /// APT CL data (CLDATA text).
     Apt,
+    /// Heidenhain conversational (Klartext) programs (`BEGIN PGM …`, `.h`).
+    Heidenhain,
 }
 
 impl ProgramFormat {
     /// Decides the language from the file extension, and for unknown extensions from the text:
     /// a file whose first statements are APT records (`GOTO/`, `PARTNO`, `CUTTER/`, …) is APT.
+    /// A file whose first statement is `BEGIN PGM` is Heidenhain whatever its extension (CAM
+    /// systems write them as `.h`, `.ptp`, `.nc`).
     pub fn detect(path: &Path, text: &str) -> Self {
+        if crate::heidenhain::is_heidenhain(text) {
+            return ProgramFormat::Heidenhain;
+        }
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -76,7 +83,9 @@ pub fn program_lines_with_ends(text: &str, format: ProgramFormat) -> impl Iterat
         (pos < text.len()).then(|| {
             let rest = &text.as_bytes()[pos..];
             let end = match format {
-                ProgramFormat::Gcode => crate::gcode::lexer::memchr_nl(rest),
+                ProgramFormat::Gcode | ProgramFormat::Heidenhain => {
+                    crate::gcode::lexer::memchr_nl(rest)
+                }
                 ProgramFormat::Apt => rest.iter().position(|&c| c == b'\n'),
             };
             let next = end.map_or(text.len(), |i| pos + i + 1);
@@ -170,6 +179,9 @@ pub fn stream_program(
     match format {
         ProgramFormat::Gcode => read_gcode(text, file, &options.gcode, sink)?,
         ProgramFormat::Apt => read_apt(text, file, &options.apt, sink)?,
+        ProgramFormat::Heidenhain => {
+            crate::heidenhain::read_heidenhain(text, file, &options.gcode, sink)?
+        }
     }
     Ok(format)
 }

@@ -137,6 +137,9 @@ pub struct Program {
     /// Where the tool axis comes from at the program's end (each move says where its own
     /// comes from: [`Move::axis_source`]).
     pub axis_source: AxisSource,
+    /// The workpiece blank the program declares (Heidenhain `BLK FORM`), least and greatest
+    /// corner in the workpiece frame, mm: the stock when none is given.
+    pub blank: Option<[[f64; 3]; 2]>,
 }
 
 /// Where a program's tool axis comes from, which decides how a move is interpolated.

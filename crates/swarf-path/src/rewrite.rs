@@ -127,6 +127,48 @@ fn scan_apt(line: &str) -> Option<Result<FeedWord, usize>> {
     Some(Err(lead + slash + 2))
 }
 
+/// What a Heidenhain line holds: its feed word (`F1000`, `FU0.2`; `Err` with a column for a
+/// parameter or `FAUTO`; `FMAX` is no feed) and where its code ends (before the `;` comment).
+/// A cycle definition's `F` (old cycles) is the cycle's, not the program's feed.
+fn scan_heidenhain(line: &str) -> (Option<Result<FeedWord, usize>>, usize) {
+    let code = line.split(';').next().unwrap_or("");
+    let code_end = code.trim_end().len();
+    let upper = code.to_ascii_uppercase();
+    let body = upper.trim_start_matches(|c: char| c.is_ascii_digit() || c.is_whitespace());
+    if body.starts_with("CYCL") || body.starts_with('*') {
+        return (None, code_end);
+    }
+    let mut found = None;
+    let mut pos = 0;
+    for tok in upper.split(|c: char| c.is_ascii_whitespace()) {
+        let start = pos;
+        pos += tok.len() + 1;
+        let Some(rest) = tok.strip_prefix('F') else {
+            continue;
+        };
+        let rest = rest.strip_prefix('U').unwrap_or(rest);
+        let skip = tok.len() - rest.len();
+        if rest.is_empty() || rest == "MAX" || rest.starts_with("N") {
+            continue;
+        }
+        found = Some(match rest.parse::<f64>() {
+            Ok(v)
+                if rest
+                    .bytes()
+                    .all(|c| c.is_ascii_digit() || b"+-.".contains(&c)) =>
+            {
+                Ok(FeedWord {
+                    start: start + skip,
+                    end: start + tok.len(),
+                    value: v,
+                })
+            }
+            _ => Err(start + 1),
+        });
+    }
+    (found, code_end)
+}
+
 /// What a `CYCLE/` record does to the feed of the holes after it.
 enum CycleLine {
     Off,
@@ -392,7 +434,19 @@ pub fn rewrite_feeds(
         let (word, code_end) = match format {
             ProgramFormat::Gcode => scan_gcode(body),
             ProgramFormat::Apt => (scan_apt(body), body.len()),
+            ProgramFormat::Heidenhain => scan_heidenhain(body),
         };
+        if format == ProgramFormat::Heidenhain && factors.get(&n).is_some_and(|f| *f != 1.0) {
+            let upper = body.split(';').next().unwrap_or("").to_ascii_uppercase();
+            if upper.contains("M99") || upper.contains("CYCL CALL") || upper.contains("M89") {
+                return Err(err(
+                    n,
+                    1,
+                    "a cycle's feed is its Q206 (or its own F), which swarf schedule does not                      rewrite",
+                    body.trim(),
+                ));
+            }
+        }
         let word = match word {
             Some(Ok(w)) => Some(w),
             Some(Err(col)) if factors.contains_key(&n) || format == ProgramFormat::Apt => {
@@ -511,7 +565,7 @@ pub fn rewrite_feeds(
                 out.push_str(&body[w.end..]);
                 out.push_str(eol);
             }
-            (None, ProgramFormat::Gcode) => {
+            (None, ProgramFormat::Gcode | ProgramFormat::Heidenhain) => {
                 if current != Some(value) {
                     changed.push(n);
                     out.push_str(&body[..code_end]);

@@ -27,7 +27,7 @@ pub(crate) struct RunArgs {
     /// Default: the workpiece a CAMotics project (--tools FILE.camotics) states.
     #[arg(long, value_name = "SPEC|FILE.stl")]
     stock: Option<String>,
-    /// The program: G-code or APT CL (required).
+    /// The program: G-code, APT CL or Heidenhain conversational (required).
     #[arg(long, value_name = "FILE")]
     program: Option<PathBuf>,
     /// Cutters, tool library, machine and units.
@@ -71,7 +71,9 @@ impl RunArgs {
     pub(crate) fn program(&self) -> Result<&Path> {
         match &self.program {
             Some(p) => Ok(p),
-            None => bail!("--program FILE is required (the G-code or APT CL program to run)"),
+            None => bail!(
+                "--program FILE is required (the G-code, APT CL or Heidenhain program to run)"
+            ),
         }
     }
 

@@ -27,7 +27,7 @@ pub(crate) struct SimulateArgs {
     /// Default: the workpiece a CAMotics project (--tools FILE.camotics) states.
     #[arg(long, value_name = "SPEC|FILE.stl")]
     pub(crate) stock: Option<String>,
-    /// The program: G-code or APT CL.
+    /// The program: G-code, APT CL or Heidenhain conversational.
     #[arg(long, value_name = "FILE")]
     pub(crate) program: PathBuf,
     /// Cutters, tool library, machine and units.
@@ -284,6 +284,17 @@ pub(crate) fn simplify_mm(value: f64) -> Result<Option<f64>> {
     }
 }
 
+/// A length with four decimals and no trailing zeros, as a user would type it back.
+fn mm4(v: f64) -> String {
+    let s = format!("{v:.4}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".to_string()
+    } else {
+        s.to_string()
+    }
+}
+
 /// The stock `--stock` gives (or the CAMotics project's workpiece: its bounds, or the
 /// automatic one made from `program`'s cutting moves with `tools`) at ray spacing `resolution`.
 pub(crate) fn build_stock(
@@ -318,6 +329,20 @@ fn stock_spec(
             max: b.max,
         });
     }
+    if let Some([min, max]) = program.blank {
+        eprintln!(
+            "swarf: note: stock box:{} (the program's BLK FORM)",
+            min.iter()
+                .chain(&max)
+                .map(|v| mm4(*v))
+                .collect::<Vec<_>>()
+                .join(",")
+        );
+        return Ok(StockSpec::Box {
+            min: swarf_geom::math::Vec3::from_array(min),
+            max: swarf_geom::math::Vec3::from_array(max),
+        });
+    }
     if let Some(margin) = table.and_then(|t| t.automatic_workpiece) {
         let Some(b) = swarf_job::automatic_workpiece(program, tools, margin) else {
             return Err(crate::cli::UsageError(
@@ -328,16 +353,7 @@ fn stock_spec(
             )
             .into());
         };
-        // Four decimals, as a user would type the box back.
-        let mm = |v: f64| {
-            let s = format!("{v:.4}");
-            let s = s.trim_end_matches('0').trim_end_matches('.');
-            if s == "-0" {
-                "0".to_string()
-            } else {
-                s.to_string()
-            }
-        };
+        let mm = mm4;
         eprintln!(
             "swarf: note: stock box:{},{},{},{},{},{} (the CAMotics project's automatic \
              workpiece: the cutting moves' tool box, top at Z0, grown by {margin} %)",

@@ -337,9 +337,22 @@ impl<'t, 's> Interp<'t, 's> {
                 .nth(line as usize - 1)
                 .unwrap_or("");
             return Err(PathError::new(
-                SourcePos { file: self.file.to_string(), line, column: 1 },
+                SourcePos {
+                    file: self.file.to_string(),
+                    line,
+                    column: 1,
+                },
                 PathErrorKind::Unsupported,
-                format!("this is a {d} program; swarf reads RS274/NGC (LinuxCNC) and Fanuc-style G-code"),
+                match d {
+                    Dialect::Heidenhain => format!(
+                        "this is a {d} program, read here as G-code (swarf reads Heidenhain \
+                         programs through its own reader, which format detection chooses)"
+                    ),
+                    _ => format!(
+                        "this is a {d} program; swarf reads RS274/NGC (LinuxCNC), Fanuc-style \
+                         G-code and Heidenhain conversational programs"
+                    ),
+                },
                 raw.trim(),
                 "RS274/NGC G-code",
             ));

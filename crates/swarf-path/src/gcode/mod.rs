@@ -42,8 +42,9 @@
 //!   understood; GRBL's `$` lines are skipped (or refused where they move the machine).
 //! * Dialect: LinuxCNC or Fanuc rules where they differ ([`GcodeDialect`]).
 //!
-//! What is deliberately not simulated (lathe threading G76, probing, U V W axes, Siemens and
-//! Heidenhain programs) is rejected with [`PathErrorKind::Unsupported`];
+//! What is deliberately not simulated (lathe threading G76, probing, U V W axes, Siemens
+//! programs) is rejected with [`PathErrorKind::Unsupported`] (Heidenhain programs have their
+//! own reader, [`crate::heidenhain`], which [`crate::load`] chooses);
 //! harmless codes swarf does not act on (coolant, overrides, user M codes) become warnings.
 //!
 //! ```
@@ -61,7 +62,7 @@ mod block;
 mod comp;
 mod control;
 mod cycles;
-mod dialect;
+pub(crate) mod dialect;
 mod expr;
 mod frames;
 mod interp;

@@ -1,0 +1,711 @@
+//! Cycles and tilted planes: coordinate transformations (`CYCL DEF 7`, `10`, `19`), dwell,
+//! the drilling and tapping cycles run at a cycle call, and the `PLANE` functions.
+//!
+//! A drilling cycle's parameters are Q parameters (`Q200` set-up clearance, `Q201` depth —
+//! negative, below the surface —, `Q206` plunging feed, `Q202` plunging depth, `Q203` surface
+//! coordinate, `Q204` second set-up clearance, `Q210`/`Q211` dwells, `Q208` retraction feed,
+//! `Q212` decrement, `Q205` least plunging depth, `Q239` thread pitch), read when the cycle is
+//! called: the TNC 640's `~` definition sets them in its own block, a TNC 530's in the blocks
+//! that follow it. Along the tool axis, from the call position: rapid to the set-up clearance
+//! above the surface, plunge at the feed (pecks: back to the set-up clearance at rapid after
+//! each, then down again to the set-up clearance above the depth reached), dwell, back to the
+//! set-up clearance (at rapid, or at the retraction feed for reaming, boring and tapping), then
+//! to the second set-up clearance when it is higher.
+
+use super::lexer::{self, Block, Tok};
+use super::{Fault, Reader, Res};
+use crate::{Canon, FeedMode, PathErrorKind, WorkPlane};
+
+/// Most pecks one drilling cycle call may make (a tiny plunging depth would otherwise make
+/// millions of moves).
+const MAX_PECKS: f64 = 10_000.0;
+
+/// Where a drilling cycle runs and how, in mm along the tool axis.
+struct Drill {
+    surface: f64,
+    clearance: f64,
+    /// Above the surface.
+    clearance2: f64,
+    /// Below the surface (positive).
+    depth: f64,
+    feed: f64,
+    mode: FeedMode,
+    /// Plunging depth (0: all at once), its decrement and least value.
+    peck: f64,
+    decrement: f64,
+    least: f64,
+    dwell_top: f64,
+    dwell_depth: f64,
+    /// Retraction feed (`None`: rapid).
+    retract: Option<f64>,
+}
+
+fn rx(a: f64) -> [[f64; 3]; 3] {
+    let (s, c) = a.to_radians().sin_cos();
+    [[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]]
+}
+
+fn ry(a: f64) -> [[f64; 3]; 3] {
+    let (s, c) = a.to_radians().sin_cos();
+    [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]
+}
+
+fn rz(a: f64) -> [[f64; 3]; 3] {
+    let (s, c) = a.to_radians().sin_cos();
+    [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]
+}
+
+fn mat(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
+}
+
+fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
+    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    (l > 1e-12 && l.is_finite()).then(|| v.map(|c| c / l))
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+/// The rotation whose columns are `x` and `z` (made orthogonal to `z`) and `z × x`.
+fn frame(x: [f64; 3], z: [f64; 3]) -> Option<[[f64; 3]; 3]> {
+    let z = unit(z)?;
+    let d = x[0] * z[0] + x[1] * z[1] + x[2] * z[2];
+    let x = unit([x[0] - d * z[0], x[1] - d * z[1], x[2] - d * z[2]])?;
+    let y = cross(z, x);
+    Some(std::array::from_fn(|i| [x[i], y[i], z[i]]))
+}
+
+/// Rotation by spatial angles: about the machine's X by `a`, then Y by `b`, then Z by `c`.
+pub(super) fn spatial(a: f64, b: f64, c: f64) -> [[f64; 3]; 3] {
+    mat(&rz(c), &mat(&ry(b), &rx(a)))
+}
+
+/// Splits a `PLANE` word (`SPA+30`, `P1X-5`, `TURN`) into its name and value.
+fn plane_word(t: &Tok) -> (&str, Option<f64>) {
+    let s = t.text.as_str();
+    match s.find(['+', '-']) {
+        Some(i) => (&s[..i], lexer::number(&s[i..])),
+        None => {
+            let n = s.bytes().take_while(u8::is_ascii_alphabetic).count();
+            (&s[..n], lexer::number(&s[n..]))
+        }
+    }
+}
+
+impl Reader<'_> {
+    fn qd(&self, n: u32) -> f64 {
+        self.q.get(&(b'Q', n)).copied().unwrap_or(0.0)
+    }
+
+    /// `CYCL DEF n …` (and `n.m` sub-blocks).
+    pub(super) fn cycle_def(&mut self, b: &Block) -> Res<()> {
+        let Some(nt) = b.toks.get(2) else {
+            return Err(Fault::at(
+                &b.toks[0],
+                PathErrorKind::Syntax,
+                "CYCL DEF without a cycle number",
+                "CYCL DEF <number>",
+            ));
+        };
+        let (major, minor) = match nt.text.split_once('.') {
+            Some((a, m)) => (a.parse::<u32>().ok(), m.parse::<u32>().ok()),
+            None => (nt.text.parse::<u32>().ok(), Some(0)),
+        };
+        let (Some(major), Some(minor)) = (major, minor) else {
+            return Err(Fault::at(
+                nt,
+                PathErrorKind::Syntax,
+                "bad cycle number",
+                "a cycle number such as 200 or 7.1",
+            ));
+        };
+        // The `~` form's parameters: `Q200=+2` words.
+        for t in &b.toks[3..] {
+            if t.text.starts_with('Q') && t.text.contains('=') {
+                self.assign(&t.text, t.line, t.col)?;
+            }
+        }
+        let rest = &b.toks[3..];
+        match (major, minor) {
+            (_, 0) => {
+                match major {
+                    7 | 8 | 9 | 10 | 11 | 19 | 26 => {}
+                    32 => self.warn_once(
+                        "cycle32",
+                        b.line,
+                        nt.col,
+                        "cycle 32 (tolerance) is not read: swarf follows the programmed path \
+                         exactly"
+                            .into(),
+                    ),
+                    247 => self.warn(
+                        b.line,
+                        nt.col,
+                        "cycle 247 (datum setting from the preset table) is not read: the \
+                         table is not known, positions stay in the current datum"
+                            .into(),
+                    ),
+                    _ => {
+                        self.cycle = Some(major);
+                        self.old_cycle.clear();
+                        self.modal_call = false;
+                    }
+                }
+                Ok(())
+            }
+            (7, _) => {
+                if rest.iter().any(|t| t.text.starts_with('#')) {
+                    return Err(Fault::at(
+                        nt,
+                        PathErrorKind::Unsupported,
+                        "a datum shift from the datum table is not read (the table is not known)",
+                        "CYCL DEF 7.1 X…",
+                    ));
+                }
+                let w = self.words(rest, b.line)?;
+                let mut shift = self.shift;
+                for (k, a) in w.axes.iter().take(3).enumerate() {
+                    if let Some((v, inc)) = *a {
+                        shift[k] = if inc { shift[k] + v } else { v };
+                    }
+                }
+                self.change_frame(b.line, true, |s| s.shift = shift);
+                Ok(())
+            }
+            (10, _) => {
+                let mut rot = self.rot;
+                for t in rest {
+                    let (name, val) = lexer::word(t)?;
+                    match name {
+                        "ROT" => rot = self.value(val, t)?,
+                        "IROT" => rot += self.value(val, t)?,
+                        _ => {}
+                    }
+                }
+                self.change_frame(b.line, true, |s| s.rot = rot);
+                Ok(())
+            }
+            (9, _) => {
+                let secs = rest
+                    .iter()
+                    .rev()
+                    .find_map(|t| {
+                        let n = t
+                            .text
+                            .trim_start_matches(|c: char| c.is_ascii_alphabetic() || c == '.');
+                        lexer::number(n)
+                    })
+                    .unwrap_or(0.0);
+                if secs > 0.0 {
+                    self.emit(b.line, Canon::Dwell(secs));
+                }
+                Ok(())
+            }
+            (11, _) | (26, _) => {
+                let scale = rest.iter().find_map(|t| {
+                    let n = t.text.trim_start_matches(|c: char| c.is_ascii_alphabetic());
+                    lexer::number(n).filter(|v| *v != 1.0)
+                });
+                match scale {
+                    None => Ok(()),
+                    Some(_) => Err(Fault::at(
+                        nt,
+                        PathErrorKind::Unsupported,
+                        "scaling (cycles 11 and 26) is not read",
+                        "a scale factor of 1",
+                    )),
+                }
+            }
+            (8, _) => match rest.is_empty() {
+                true => Ok(()),
+                false => Err(Fault::at(
+                    nt,
+                    PathErrorKind::Unsupported,
+                    "mirror images (cycle 8) are not read",
+                    "no mirrored axis",
+                )),
+            },
+            (19, _) => {
+                let (mut a, mut bb, mut c) = (0.0, 0.0, 0.0);
+                for t in rest {
+                    let (name, val) = lexer::word(t)?;
+                    match name {
+                        "A" => a = self.value(val, t)?,
+                        "B" => bb = self.value(val, t)?,
+                        "C" => c = self.value(val, t)?,
+                        _ => {}
+                    }
+                }
+                self.warn_once(
+                    "cycle19",
+                    b.line,
+                    nt.col,
+                    "cycle 19's angles are read as spatial angles (about X, then Y, then Z), \
+                     the tool turned normal to the plane; Q120–Q122 read them"
+                        .into(),
+                );
+                for (n, v) in [(120, a), (121, bb), (122, c)] {
+                    self.q.insert((b'Q', n), v);
+                }
+                let tilt = (a != 0.0 || bb != 0.0 || c != 0.0).then(|| spatial(a, bb, c));
+                self.set_tilt(b.line, tilt);
+                Ok(())
+            }
+            (1 | 2 | 17, m) => {
+                let v = rest
+                    .iter()
+                    .rev()
+                    .find_map(|t| {
+                        let n = t
+                            .text
+                            .trim_start_matches(|c: char| c.is_ascii_alphabetic() || c == '.');
+                        lexer::number(n).or_else(|| lexer::qref(n).map(|q| self.qv(q)))
+                    })
+                    .ok_or_else(|| {
+                        Fault::at(
+                            nt,
+                            PathErrorKind::Syntax,
+                            "a cycle value is missing",
+                            "a number",
+                        )
+                    })?;
+                self.old_cycle.insert(m, v);
+                Ok(())
+            }
+            _ => Ok(()),
+        }
+    }
+
+    /// Tilts the working plane (or untilts it), the tool turned to its Z.
+    pub(super) fn set_tilt(&mut self, line: u32, tilt: Option<[[f64; 3]; 3]>) {
+        self.emit(
+            line,
+            Canon::WorkPlane(tilt.map(|r| WorkPlane {
+                origin: [0.0; 3],
+                rotation: r,
+                tool_axis: true,
+            })),
+        );
+        self.change_frame(line, false, |s| s.tilt = tilt);
+    }
+
+    /// `CYCL CALL`, `CYCL CALL POS X… Y… Z…`.
+    pub(super) fn cycle_call_block(&mut self, b: &Block) -> Res<()> {
+        let head = &b.toks[0];
+        let pos = b.toks.get(2).is_some_and(|t| t.text == "POS");
+        if b.toks.get(2).is_some_and(|t| t.text == "PAT") {
+            return Err(Fault::at(
+                &b.toks[2],
+                PathErrorKind::Unsupported,
+                "point patterns (CYCL CALL PAT) are not read",
+                "CYCL CALL or CYCL CALL POS",
+            ));
+        }
+        let rest = &b.toks[if pos { 3 } else { 2 }..];
+        let w = self.words(rest, b.line)?;
+        self.m_before(&w, rest, b.line);
+        let mut surface = None;
+        if pos {
+            let (i1, i2, n) = self.plane.axes();
+            let target = self.target(&w);
+            surface = w.axes[n].map(|_| target[n]);
+            // Up to the second set-up clearance first if below it, then over the hole.
+            let safe = surface.unwrap_or(self.qd(203) * self.scale)
+                + (self.qd(204) * self.scale).max(self.qd(200) * self.scale);
+            if self.pos[n] < safe {
+                let mut up = self.pos;
+                up[n] = safe;
+                self.line_to(b.line, up, true);
+            }
+            let mut over = self.pos;
+            (over[i1], over[i2]) = (target[i1], target[i2]);
+            let rapid = !matches!(w.feed, Some(super::Feed::Value(_) | super::Feed::PerRev(_)));
+            if !rapid {
+                self.feed_for(&w, head)?;
+            }
+            self.line_to(b.line, over, rapid);
+        }
+        self.cycle_call(head, surface)?;
+        self.m_after(&w, rest, b.line)?;
+        Ok(())
+    }
+
+    /// Runs the defined cycle where the tool stands (`surface`: the `CYCL CALL POS`
+    /// surface, instead of Q203).
+    pub(super) fn cycle_call(&mut self, at: &Tok, surface: Option<f64>) -> Res<()> {
+        let Some(num) = self.cycle else {
+            return Err(Fault::at(
+                at,
+                PathErrorKind::Semantic,
+                "a cycle call without a cycle defined",
+                "CYCL DEF before the call",
+            ));
+        };
+        let s = self.scale;
+        let fs = self.feed_scale;
+        let q = |n| self.qd(n);
+        let (_, _, axis) = self.plane.axes();
+        let here = self.pos[axis];
+        let drill = |surface_q: f64, retract: Option<f64>| Drill {
+            surface: surface.unwrap_or(surface_q * s),
+            clearance: q(200) * s,
+            clearance2: q(204) * s,
+            depth: -q(201) * s,
+            feed: q(206) * fs,
+            mode: FeedMode::PerMinute,
+            peck: 0.0,
+            decrement: 0.0,
+            least: 0.0,
+            dwell_top: 0.0,
+            dwell_depth: q(211),
+            retract,
+        };
+        let mut d = match num {
+            200 => Drill {
+                peck: q(202) * s,
+                dwell_top: q(210),
+                ..drill(q(203), None)
+            },
+            201 | 202 => {
+                let r = if q(208) > 0.0 {
+                    q(208) * fs
+                } else {
+                    q(206) * fs
+                };
+                let r = if num == 202 && q(208) <= 0.0 {
+                    None
+                } else {
+                    Some(r)
+                };
+                drill(q(203), r)
+            }
+            203 | 205 => Drill {
+                peck: q(202) * s,
+                decrement: q(212) * s,
+                least: q(205) * s,
+                dwell_top: if num == 203 { q(210) } else { 0.0 },
+                ..drill(q(203), (num == 203 && q(208) > 0.0).then(|| q(208) * fs))
+            },
+            206 => {
+                let f = q(206) * fs;
+                drill(q(203), Some(f))
+            }
+            207 | 209 => {
+                let lead = q(239).abs() * s;
+                Drill {
+                    feed: lead,
+                    mode: FeedMode::SpindleSynchronised,
+                    ..drill(q(203), Some(lead))
+                }
+            }
+            240 => {
+                let mut d = drill(q(203), None);
+                if q(343) == 1.0 {
+                    d.depth = q(344).abs() * s / 2.0;
+                }
+                d
+            }
+            1 | 2 | 17 => {
+                let v = |m| self.old_cycle.get(&m).copied().unwrap_or(0.0);
+                let clearance = v(1).abs() * s;
+                let (peck, dwell, feed) = match num {
+                    1 => (v(3).abs() * s, v(4), v(5) * fs),
+                    2 => (0.0, v(3), v(4) * fs),
+                    _ => (0.0, 0.0, v(3).abs() * s),
+                };
+                let mode = if num == 17 {
+                    FeedMode::SpindleSynchronised
+                } else {
+                    FeedMode::PerMinute
+                };
+                Drill {
+                    surface: here - clearance,
+                    clearance,
+                    clearance2: 0.0,
+                    depth: -v(2) * s,
+                    feed,
+                    mode,
+                    peck,
+                    decrement: 0.0,
+                    least: 0.0,
+                    dwell_top: 0.0,
+                    dwell_depth: dwell,
+                    retract: (num != 1).then_some(feed),
+                }
+            }
+            _ => {
+                return Err(Fault::at(
+                    at,
+                    PathErrorKind::Unsupported,
+                    format!(
+                        "cycle {num} is not read: swarf runs the drilling and tapping cycles \
+                         (200–203, 205–207, 209, 240, 1, 2, 17); a pocket, contour or \
+                         thread-milling cycle's path is the control's"
+                    ),
+                    "a drilling cycle",
+                ))
+            }
+        };
+        if num == 240 && self.qd(343) == 1.0 {
+            self.warn_once(
+                "cycle240",
+                at.line,
+                at.col,
+                "cycle 240 by diameter: the depth is taken for a 90° point (half the diameter)"
+                    .into(),
+            );
+        }
+        if d.depth == 0.0 {
+            return Ok(());
+        }
+        if d.depth < 0.0 {
+            return Err(Fault::at(
+                at,
+                PathErrorKind::Semantic,
+                "the cycle's depth is positive: it would drill upwards",
+                "a negative depth (Q201)",
+            ));
+        }
+        if d.feed <= 0.0 {
+            return Err(Fault::at(
+                at,
+                PathErrorKind::Semantic,
+                "the cycle's feed (or thread pitch) is zero",
+                "a positive feed",
+            ));
+        }
+        if d.peck > 0.0 && d.least <= 0.0 && d.depth / d.peck > MAX_PECKS
+            || d.least > 0.0 && d.depth / d.least > MAX_PECKS
+        {
+            return Err(Fault::at(
+                at,
+                PathErrorKind::Limit,
+                "the plunging depth makes more than 10,000 pecks",
+                "a larger plunging depth",
+            ));
+        }
+        if d.peck >= d.depth {
+            d.peck = 0.0;
+        }
+        self.drill(at.line, &d);
+        Ok(())
+    }
+
+    fn axis_to(&mut self, line: u32, to: f64, feed: Option<(FeedMode, f64)>) {
+        let (_, _, n) = self.plane.axes();
+        let mut end = self.pos;
+        end[n] = to;
+        if let Some((mode, f)) = feed {
+            if self.told_feed != Some((mode, f)) {
+                if self.told_feed.map(|t| t.0) != Some(mode) {
+                    self.emit(line, Canon::FeedMode(mode));
+                }
+                self.emit(line, Canon::FeedRate(f));
+                self.told_feed = Some((mode, f));
+            }
+        }
+        self.line_to(line, end, feed.is_none());
+    }
+
+    fn drill(&mut self, line: u32, d: &Drill) {
+        let top = d.surface + d.clearance;
+        let dwell = |r: &mut Self, t: f64| {
+            if t > 0.0 {
+                r.emit(line, Canon::Dwell(t));
+            }
+        };
+        self.axis_to(line, top, None);
+        let feed = Some((d.mode, d.feed));
+        let mut reached = 0.0;
+        let mut peck = d.peck;
+        let mut first = true;
+        loop {
+            let next = if peck > 0.0 {
+                (reached + peck).min(d.depth)
+            } else {
+                d.depth
+            };
+            if !first {
+                // Back down at rapid to the set-up clearance above the depth reached.
+                self.axis_to(line, (d.surface - reached + d.clearance).min(top), None);
+            }
+            first = false;
+            self.axis_to(line, d.surface - next, feed);
+            reached = next;
+            if reached >= d.depth {
+                break;
+            }
+            self.axis_to(line, top, None);
+            dwell(self, d.dwell_top);
+            if d.decrement > 0.0 {
+                peck = (peck - d.decrement).max(d.least.max(1e-3));
+            }
+        }
+        dwell(self, d.dwell_depth);
+        self.axis_to(line, top, d.retract.map(|f| (d.mode, f)));
+        if d.clearance2 > d.clearance {
+            self.axis_to(line, d.surface + d.clearance2, None);
+        }
+    }
+
+    /// `PLANE SPATIAL | EULER | VECTOR | POINTS | RELATIV | RESET …`.
+    pub(super) fn plane_function(&mut self, b: &Block) -> Res<()> {
+        let Some(kind) = b.toks.get(1) else {
+            return Err(Fault::at(
+                &b.toks[0],
+                PathErrorKind::Syntax,
+                "PLANE without a function",
+                "PLANE SPATIAL, EULER, VECTOR, POINTS, RELATIV or RESET",
+            ));
+        };
+        let mut vals: Vec<(&str, f64)> = Vec::new();
+        let mut mb = None;
+        let mut mb_max = false;
+        let mut stay = false;
+        let toks = &b.toks[2..];
+        let mut i = 0;
+        while i < toks.len() {
+            let t = &toks[i];
+            let (name, v) = plane_word(t);
+            match (name, v) {
+                ("MB", None) if toks.get(i + 1).is_some_and(|n| n.text == "MAX") => {
+                    mb_max = true;
+                    i += 1;
+                }
+                ("MB", None) => {
+                    mb = toks.get(i + 1).and_then(|n| lexer::number(&n.text));
+                    i += 1;
+                }
+                ("MB", Some(v)) => mb = Some(v * self.scale),
+                ("STAY", _) => stay = true,
+                (n, Some(v)) => vals.push((n, v)),
+                (n, None) if n.starts_with('Q') || t.text.contains("Q") => {
+                    // `SPB+Q5`: a parameter as the value.
+                    let at = t.text.find(['+', '-']).unwrap_or(0);
+                    let Some(q) = lexer::qref(&t.text[at..]) else {
+                        return Err(Fault::at(t, PathErrorKind::Syntax, "bad value", "a number"));
+                    };
+                    vals.push((&t.text[..at], self.qv(q)));
+                }
+                _ => {}
+            }
+            i += 1;
+        }
+        let get = |n: &str| vals.iter().rev().find(|(k, _)| *k == n).map(|(_, v)| *v);
+        let g0 = |n: &str| get(n).unwrap_or(0.0);
+        let bad = |what: &str| {
+            Fault::at(
+                kind,
+                PathErrorKind::Semantic,
+                what.to_string(),
+                "a valid plane",
+            )
+        };
+        let tilt = match kind.text.as_str() {
+            "RESET" => None,
+            "SPATIAL" => Some(spatial(g0("SPA"), g0("SPB"), g0("SPC"))),
+            "EULER" => Some(mat(
+                &rz(g0("EULPR")),
+                &mat(&rx(g0("EULNU")), &rz(g0("EULROT"))),
+            )),
+            "VECTOR" => Some(
+                frame(
+                    [g0("BX"), g0("BY"), g0("BZ")],
+                    [g0("NX"), g0("NY"), g0("NZ")],
+                )
+                .ok_or_else(|| bad("the base and normal vectors are zero or parallel"))?,
+            ),
+            "POINTS" => {
+                let p = |k: &str| {
+                    [
+                        g0(&format!("{k}X")),
+                        g0(&format!("{k}Y")),
+                        g0(&format!("{k}Z")),
+                    ]
+                };
+                let (p1, p2, p3) = (p("P1"), p("P2"), p("P3"));
+                let x = [p2[0] - p1[0], p2[1] - p1[1], p2[2] - p1[2]];
+                let v = [p3[0] - p1[0], p3[1] - p1[1], p3[2] - p1[2]];
+                Some(frame(x, cross(x, v)).ok_or_else(|| bad("the three points lie on a line"))?)
+            }
+            "RELATIV" => {
+                let r = match (get("SPA"), get("SPB"), get("SPC")) {
+                    (Some(a), _, _) => rx(a),
+                    (None, Some(b), _) => ry(b),
+                    (None, None, Some(c)) => rz(c),
+                    _ => return Err(bad("PLANE RELATIV without an angle")),
+                };
+                Some(match self.tilt {
+                    Some(t) => mat(&t, &r),
+                    None => r,
+                })
+            }
+            "AXIAL" | "PROJECTED" => {
+                return Err(Fault::at(
+                    kind,
+                    PathErrorKind::Unsupported,
+                    format!(
+                        "PLANE {} is not read (the plane it gives depends on the machine's \
+                         axes)",
+                        kind.text
+                    ),
+                    "PLANE SPATIAL, EULER, VECTOR, POINTS, RELATIV or RESET",
+                ))
+            }
+            _ => {
+                return Err(Fault::at(
+                    kind,
+                    PathErrorKind::Syntax,
+                    "unknown PLANE function",
+                    "PLANE SPATIAL, EULER, VECTOR, POINTS, RELATIV or RESET",
+                ))
+            }
+        };
+        if stay && tilt.is_some() {
+            self.warn_once(
+                "stay",
+                b.line,
+                kind.col,
+                "PLANE … STAY is read as TURN: the tool is turned normal to the plane".into(),
+            );
+        }
+        // The retract before the axes turn.
+        let w = super::Words {
+            named: mb.map(|d| vec![("MB", d)]).unwrap_or_default(),
+            mb_max,
+            ..super::Words::default()
+        };
+        self.retract(&w, b)?;
+        self.set_tilt(b.line, tilt);
+        if tilt.is_none() && !stay {
+            // RESET TURN (or MOVE) turns the rotary axes back: the machine gives the axis.
+            self.emit(b.line, Canon::MachineAxis);
+        }
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn spatial_angles_turn_about_fixed_axes_in_order() {
+        // B+90 alone: the plane's Z is the machine's +X... turned about Y: Z → +X.
+        let r = spatial(0.0, 90.0, 0.0);
+        assert!((r[0][2] - 1.0).abs() < 1e-12 && r[2][2].abs() < 1e-12);
+        // A+90 then C+90: Z → −Y (about X), then about Z: −Y → +X.
+        let r = spatial(90.0, 0.0, 90.0);
+        let z = [r[0][2], r[1][2], r[2][2]];
+        assert!((z[0] - 1.0).abs() < 1e-12 && z[1].abs() < 1e-12 && z[2].abs() < 1e-12);
+        let f = frame([1.0, 0.0, 1.0], [0.0, 0.0, 2.0]).unwrap();
+        assert_eq!(f, [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
+        assert!(frame([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]).is_none());
+    }
+}

@@ -1,0 +1,285 @@
+//! Q-parameter arithmetic: the formulas of `Q1 = …` blocks and the operands of `FN` functions,
+//! evaluated as they are read (angles in degrees, as the control takes them).
+//!
+//! Grammar: `sum := product (('+' | '-') product)*`, `product := power (('*' | '/' | DIV |
+//! LEN | ANG) power)*`, `power := unary ('^' unary)?`, `unary := ('+' | '-')* primary`,
+//! `primary := number | Q-parameter | PI | '(' sum ')' | function primary`. `LEN` (FN 8) is
+//! `√(a² + b²)`, `ANG` (FN 13) the angle of `(a, b)` in degrees; a function's argument may be
+//! written without parentheses, as `FN 5: Q1 = SQRT +Q2` writes it.
+
+use super::lexer::{qref, QRef};
+
+/// Evaluation failure: the byte offset in the text and what is wrong.
+#[derive(Debug, PartialEq)]
+pub(crate) struct ExprError {
+    pub(crate) at: usize,
+    pub(crate) message: String,
+    pub(crate) expected: &'static str,
+}
+
+type R = Result<f64, ExprError>;
+
+/// Deepest nesting of parentheses and unary signs (bounds the recursion on hostile input).
+const MAX_DEPTH: usize = 200;
+
+struct Parser<'a, 'q> {
+    s: &'a [u8],
+    pos: usize,
+    depth: usize,
+    q: &'q dyn Fn(QRef) -> f64,
+}
+
+/// Evaluates the whole of `text` (upper case) with parameters read through `q`.
+pub(crate) fn eval(text: &str, q: &dyn Fn(QRef) -> f64) -> R {
+    let mut p = Parser {
+        s: text.as_bytes(),
+        pos: 0,
+        depth: 0,
+        q,
+    };
+    let v = p.sum()?;
+    p.skip_ws();
+    if p.pos < p.s.len() {
+        return Err(p.err(
+            "unexpected text after the formula",
+            "an operator or the end",
+        ));
+    }
+    finite(v, 0)
+}
+
+fn finite(v: f64, at: usize) -> R {
+    if v.is_finite() {
+        Ok(v)
+    } else {
+        Err(ExprError {
+            at,
+            message: "the formula's value is not a finite number".into(),
+            expected: "a finite value",
+        })
+    }
+}
+
+impl Parser<'_, '_> {
+    fn err(&self, message: &str, expected: &'static str) -> ExprError {
+        ExprError {
+            at: self.pos,
+            message: message.into(),
+            expected,
+        }
+    }
+
+    fn skip_ws(&mut self) {
+        while self.s.get(self.pos).is_some_and(u8::is_ascii_whitespace) {
+            self.pos += 1;
+        }
+    }
+
+    /// Consumes `kw` (a keyword or an operator) when it comes next.
+    fn eat(&mut self, kw: &str) -> bool {
+        self.skip_ws();
+        let k = kw.as_bytes();
+        if self.s[self.pos..].starts_with(k) {
+            // A keyword must not run into a longer name (`SIN` in `SINX`).
+            let after = self.s.get(self.pos + k.len());
+            if k[0].is_ascii_alphabetic() && after.is_some_and(u8::is_ascii_alphabetic) {
+                return false;
+            }
+            self.pos += k.len();
+            true
+        } else {
+            false
+        }
+    }
+
+    fn enter(&mut self) -> Result<(), ExprError> {
+        self.depth += 1;
+        if self.depth > MAX_DEPTH {
+            return Err(self.err("the formula nests too deeply", "a simpler formula"));
+        }
+        Ok(())
+    }
+
+    fn sum(&mut self) -> R {
+        let mut v = self.product()?;
+        loop {
+            if self.eat("+") {
+                v += self.product()?;
+            } else if self.eat("-") {
+                v -= self.product()?;
+            } else {
+                return Ok(v);
+            }
+        }
+    }
+
+    fn product(&mut self) -> R {
+        let mut v = self.power()?;
+        loop {
+            self.skip_ws();
+            let at = self.pos;
+            if self.eat("*") {
+                v *= self.power()?;
+            } else if self.eat("/") || self.eat("DIV") {
+                let d = self.power()?;
+                if d == 0.0 {
+                    return Err(ExprError {
+                        at,
+                        message: "division by zero".into(),
+                        expected: "a non-zero divisor",
+                    });
+                }
+                v /= d;
+            } else if self.eat("LEN") {
+                v = v.hypot(self.power()?);
+            } else if self.eat("ANG") {
+                v = self.power()?.atan2(v).to_degrees();
+            } else {
+                return Ok(v);
+            }
+        }
+    }
+
+    fn power(&mut self) -> R {
+        let b = self.unary()?;
+        if self.eat("^") {
+            let e = self.unary()?;
+            return finite(b.powf(e), self.pos);
+        }
+        Ok(b)
+    }
+
+    fn unary(&mut self) -> R {
+        self.enter()?;
+        let v = if self.eat("-") {
+            -self.unary()?
+        } else if self.eat("+") {
+            self.unary()?
+        } else {
+            self.primary()?
+        };
+        self.depth -= 1;
+        Ok(v)
+    }
+
+    fn primary(&mut self) -> R {
+        self.skip_ws();
+        let start = self.pos;
+        if self.eat("(") {
+            self.enter()?;
+            let v = self.sum()?;
+            self.depth -= 1;
+            if !self.eat(")") {
+                return Err(self.err("missing closing parenthesis", "')'"));
+            }
+            return Ok(v);
+        }
+        if self.eat("PI") {
+            return Ok(std::f64::consts::PI);
+        }
+        type F = fn(f64) -> Option<f64>;
+        const FUNCTIONS: [(&str, F); 15] = [
+            ("SQRT", |x| (x >= 0.0).then(|| x.sqrt())),
+            ("SQ", |x| Some(x * x)),
+            ("SIN", |x| Some(x.to_radians().sin())),
+            ("COS", |x| Some(x.to_radians().cos())),
+            ("TAN", |x| Some(x.to_radians().tan())),
+            ("ASIN", |x| {
+                (-1.0..=1.0).contains(&x).then(|| x.asin().to_degrees())
+            }),
+            ("ACOS", |x| {
+                (-1.0..=1.0).contains(&x).then(|| x.acos().to_degrees())
+            }),
+            ("ATAN", |x| Some(x.atan().to_degrees())),
+            ("LN", |x| (x > 0.0).then(|| x.ln())),
+            ("LOG", |x| (x > 0.0).then(|| x.log10())),
+            ("EXP", |x| Some(x.exp())),
+            ("ABS", |x| Some(x.abs())),
+            ("INT", |x| Some(x.trunc())),
+            ("FRAC", |x| Some(x.fract())),
+            ("SGN", |x| {
+                Some(if x > 0.0 {
+                    1.0
+                } else if x < 0.0 {
+                    -1.0
+                } else {
+                    0.0
+                })
+            }),
+        ];
+        for (name, f) in FUNCTIONS {
+            if self.eat(name) {
+                let arg = self.unary()?;
+                return match f(arg) {
+                    Some(v) => finite(v, start),
+                    None => Err(ExprError {
+                        at: start,
+                        message: format!("{name} of {arg} is not defined"),
+                        expected: "an argument in the function's domain",
+                    }),
+                };
+            }
+        }
+        if self.eat("NEG") {
+            return Ok(-self.unary()?);
+        }
+        // A number or a parameter.
+        let len = self.s[start..]
+            .iter()
+            .take_while(|c| c.is_ascii_alphanumeric() || **c == b'.')
+            .count();
+        let tok = std::str::from_utf8(&self.s[start..start + len]).unwrap_or("");
+        if let Some(q) = qref(tok) {
+            self.pos += len;
+            return Ok((self.q)(q));
+        }
+        if let Some(v) = super::lexer::number(tok) {
+            self.pos += len;
+            return Ok(v);
+        }
+        Err(self.err(
+            "expected a number, a Q parameter, a function or '('",
+            "a value",
+        ))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ev(s: &str) -> R {
+        eval(s, &|q: QRef| {
+            f64::from(q.index) * if q.negate { -1.0 } else { 1.0 }
+        })
+    }
+
+    #[test]
+    fn formulas_follow_precedence_and_degrees() {
+        assert_eq!(ev("1 + 2 * 3").unwrap(), 7.0);
+        assert_eq!(ev("(1 + 2) * 3").unwrap(), 9.0);
+        assert_eq!(ev("+Q2 + +Q3").unwrap(), 5.0);
+        assert_eq!(ev("-Q2 - -3").unwrap(), 1.0);
+        assert_eq!(ev("Q8 DIV Q2").unwrap(), 4.0);
+        assert_eq!(ev("2 ^ 3").unwrap(), 8.0);
+        assert!((ev("SIN 30").unwrap() - 0.5).abs() < 1e-15);
+        assert!((ev("COS(60) * 2").unwrap() - 1.0).abs() < 1e-15);
+        assert_eq!(ev("SQRT +Q16").unwrap(), 4.0);
+        assert_eq!(ev("Q3 LEN Q4").unwrap(), 5.0);
+        assert!((ev("+1 ANG +1").unwrap() - 45.0).abs() < 1e-12);
+        assert_eq!(ev("ABS -2.5").unwrap(), 2.5);
+        assert!((ev("PI").unwrap() - std::f64::consts::PI).abs() < 1e-15);
+    }
+
+    #[test]
+    fn bad_formulas_are_errors_with_a_place() {
+        assert_eq!(ev("1 / 0").unwrap_err().message, "division by zero");
+        assert!(ev("SQRT -1").is_err());
+        assert!(ev("(1 + 2").is_err());
+        assert_eq!(ev("1 + ").unwrap_err().at, 4);
+        assert!(ev("1 2").is_err());
+        assert!(ev("10 ^ 400").is_err());
+        assert!(ev(&"(".repeat(10_000)).is_err());
+        assert!(ev(&"-".repeat(10_000)).is_err());
+    }
+}

@@ -1,0 +1,486 @@
+//! Heidenhain conversational programs: each figure below is worked out by hand from the
+//! TNC's rules (contour elements, polar coordinates, cycles, coordinate transformations,
+//! Q-parameter programming) and compared with the moves swarf reads.
+
+use std::f64::consts::PI;
+
+use swarf_geom::math::Vec3;
+use swarf_path::canon::Recorder;
+use swarf_path::gcode::GcodeOptions;
+use swarf_path::heidenhain::read_heidenhain;
+use swarf_path::load::{read_program_str, ProgramFormat, ReadOptions};
+use swarf_path::rewrite::rewrite_feeds;
+use swarf_path::{Canon, FeedMode, Machine, MoveKind, PathError, PathErrorKind, Program};
+
+fn read_with(src: &str, machine: Machine, opts: GcodeOptions) -> Result<Program, PathError> {
+    let o = ReadOptions {
+        gcode: opts,
+        ..ReadOptions::default()
+    };
+    read_program_str(src, "t.h", machine, &o)
+}
+
+fn read(src: &str) -> Program {
+    read_with(src, Machine::three_axis(), GcodeOptions::default()).unwrap()
+}
+
+fn err(src: &str) -> PathError {
+    read_with(src, Machine::three_axis(), GcodeOptions::default()).unwrap_err()
+}
+
+fn close(a: Vec3, b: [f64; 3], tol: f64) -> bool {
+    (a.x - b[0]).abs() < tol && (a.y - b[1]).abs() < tol && (a.z - b[2]).abs() < tol
+}
+
+fn tips(p: &Program) -> Vec<[f64; 3]> {
+    p.moves
+        .iter()
+        .map(|m| [m.end.tip.x, m.end.tip.y, m.end.tip.z])
+        .collect()
+}
+
+/// The program's blocks numbered from 0 between `BEGIN PGM` and `END PGM`, as a TNC writes
+/// them.
+fn pgm(body: &str) -> String {
+    let mut out = String::from("0 BEGIN PGM T MM\n");
+    let mut n = 1;
+    for l in body.lines() {
+        if l.starts_with(' ') {
+            out.push_str(l);
+        } else {
+            out.push_str(&format!("{n} {l}"));
+            n += 1;
+        }
+        out.push('\n');
+    }
+    out.push_str(&format!("{n} END PGM T MM\n"));
+    out
+}
+
+#[test]
+fn contour_elements_end_where_the_rules_put_them() {
+    let p = read(&pgm("TOOL CALL 1 Z S6000 F800\n\
+         L X+60 Y+40 Z-1 R0 F300 M3\n\
+         CC X+60 Y+0\n\
+         C X+60 Y-40 DR-\n\
+         CR X+20 Y-20 R+25 DR+\n\
+         CT X+0 Y+0\n\
+         LP PR+10 PA+45\n\
+         CC X+0 Y+0\n\
+         CP IPA+720 IZ-2 DR+"));
+    let m = &p.moves;
+    assert_eq!(m.len(), 6);
+    // C: the clockwise half circle about (60, 0) through (100, 0).
+    let MoveKind::Arc(a) = m[1].kind else {
+        panic!("{:?}", m[1].kind)
+    };
+    assert!(close(a.center, [60.0, 0.0, -1.0], 1e-12) && a.normal.z < 0.0);
+    assert!((a.sweep - PI).abs() < 1e-12);
+    // CR: radius 25, counter-clockwise the short way: centre (35, −40), 126.87°.
+    let MoveKind::Arc(a) = m[2].kind else {
+        panic!()
+    };
+    assert!(close(a.center, [35.0, -40.0, -1.0], 1e-12) && a.normal.z > 0.0);
+    assert!((a.sweep - (20.0f64).atan2(-15.0)).abs() < 1e-12);
+    // CT: tangent to the CR at (20, −20), whose direction there is (−0.8, −0.6): the centre
+    // lies on the normal (0.6, −0.8) at −800/56 mm, the arc clockwise.
+    let MoveKind::Arc(a) = m[3].kind else {
+        panic!()
+    };
+    let rho = -800.0 / 56.0;
+    assert!(close(
+        a.center,
+        [20.0 + 0.6 * rho, -20.0 - 0.8 * rho, -1.0],
+        1e-9
+    ));
+    assert!(a.normal.z < 0.0);
+    // LP about the last pole (60, 0): radius 10 at 45°.
+    let s = 10.0 / 2f64.sqrt();
+    assert!(close(m[4].end.tip, [60.0 + s, s, -1.0], 1e-12));
+    // CP: two turns about the new pole down 2 mm, ending where it started.
+    let MoveKind::Arc(a) = m[5].kind else {
+        panic!()
+    };
+    assert!((a.sweep - 4.0 * PI).abs() < 1e-9, "{}", a.sweep);
+    assert!((a.helix + 2.0).abs() < 1e-12);
+    assert!(close(m[5].end.tip, [60.0 + s, s, -3.0], 1e-9));
+    assert!(m[1..].iter().all(|m| m.feed == 300.0));
+}
+
+#[test]
+fn fmax_holds_for_its_block_and_fauto_takes_the_tool_feed() {
+    let p = read(&pgm("TOOL CALL 1 Z S1000 F250\n\
+         L X+10 FMAX\n\
+         L X+20\n\
+         L X+30 F100\n\
+         L X+40 FMAX\n\
+         L X+50\n\
+         L X+60 FAUTO\n\
+         L X+70 FU0.1"));
+    let kinds: Vec<bool> = p.moves.iter().map(|m| m.kind == MoveKind::Rapid).collect();
+    assert_eq!(kinds, [true, false, false, true, false, false, false]);
+    let feeds: Vec<f64> = p.moves.iter().map(|m| m.feed).collect();
+    assert_eq!(&feeds[1..], [250.0, 100.0, 100.0, 100.0, 250.0, 0.1]);
+    assert_eq!(p.moves[6].feed_mode, FeedMode::PerRevolution);
+}
+
+#[test]
+fn inch_programs_are_converted_and_feeds_are_tenths_of_an_inch() {
+    let text = "0 BEGIN PGM I INCH\n1 TOOL CALL 1 Z S1000\n2 L X+1 Y+0.5 Z-0.1 F100\n\
+                3 END PGM I INCH\n";
+    let p = read(text);
+    assert!(close(p.moves[0].end.tip, [25.4, 12.7, -2.54], 1e-12));
+    // F100 in an inch program is 10 inch/min.
+    assert!((p.moves[0].feed - 254.0).abs() < 1e-9);
+}
+
+/// The tool-axis heights of a drilling cycle's moves at X20 Y20, and whether each is rapid.
+fn drill_moves(p: &Program) -> Vec<(f64, bool)> {
+    p.moves
+        .iter()
+        .filter(|m| close(m.end.tip, [20.0, 20.0, m.end.tip.z], 1e-12))
+        .map(|m| (m.end.tip.z, m.kind == MoveKind::Rapid))
+        .collect()
+}
+
+#[test]
+fn cycle_200_pecks_and_retracts_to_the_second_clearance() {
+    let tnc640 = pgm("TOOL CALL 1 Z S3000\n\
+         L Z+50 R0 FMAX M3\n\
+         CYCL DEF 200 DRILLING ~\n\
+         \x20 Q200=+2 ;SET-UP CLEARANCE ~\n\
+         \x20 Q201=-12 ;DEPTH ~\n\
+         \x20 Q206=+150 ;FEED RATE FOR PLNGNG ~\n\
+         \x20 Q202=+5 ;PLUNGING DEPTH ~\n\
+         \x20 Q210=+0 ;DWELL TIME AT TOP ~\n\
+         \x20 Q203=+0 ;SURFACE COORDINATE ~\n\
+         \x20 Q204=+30 ;2ND SET-UP CLEARANCE ~\n\
+         \x20 Q211=+0.5 ;DWELL TIME AT DEPTH\n\
+         L X+20 Y+20 R0 FMAX M99");
+    let p = read(&tnc640);
+    let expected = [
+        (50.0, true),
+        (2.0, true),
+        (-5.0, false),
+        (2.0, true),
+        (-3.0, true),
+        (-10.0, false),
+        (2.0, true),
+        (-8.0, true),
+        (-12.0, false),
+        (2.0, true),
+        (30.0, true),
+    ];
+    assert_eq!(drill_moves(&p), expected);
+    assert!(p
+        .moves
+        .iter()
+        .filter(|m| m.kind == MoveKind::Linear)
+        .all(|m| m.feed == 150.0));
+    // The TNC 530 writes the parameters as blocks of their own after the definition.
+    let tnc530 = pgm("TOOL CALL 1 Z S3000\n\
+         L Z+50 R0 FMAX M3\n\
+         CYCL DEF 200 DRILLING\n\
+         \x20 Q200=2 ;SET-UP CLEARANCE\n\
+         \x20 Q201=-12 ;DEPTH\n\
+         \x20 Q206=150 ;FEED RATE FOR PLNGNG\n\
+         \x20 Q202=5 ;PLUNGING DEPTH\n\
+         \x20 Q210=0 ;DWELL TIME AT TOP\n\
+         \x20 Q203=+0 ;SURFACE COORDINATE\n\
+         \x20 Q204=30 ;2ND SET-UP CLEARANCE\n\
+         \x20 Q211=0.5 ;DWELL TIME AT DEPTH\n\
+         L X+20 Y+20 R0 FMAX M99");
+    assert_eq!(drill_moves(&read(&tnc530)), expected);
+    // The dwell at depth, once, after the last plunge.
+    let mut rec = Recorder::default();
+    read_heidenhain(&tnc640, "t.h", &GcodeOptions::default(), &mut rec).unwrap();
+    let dwells: Vec<usize> = rec
+        .events
+        .iter()
+        .enumerate()
+        .filter(|(_, (_, e))| matches!(e, Canon::Dwell(d) if *d == 0.5))
+        .map(|(i, _)| i)
+        .collect();
+    assert_eq!(dwells.len(), 1);
+    let Canon::Feed { end } = &rec.events[dwells[0] - 1].1 else {
+        panic!("{:?}", rec.events[dwells[0] - 1])
+    };
+    assert_eq!(end.z, -12.0);
+}
+
+#[test]
+fn cycle_call_pos_takes_its_surface_and_m89_calls_at_every_position() {
+    let p = read(&pgm("TOOL CALL 1 Z S3000\n\
+         L Z+10 R0 FMAX M3\n\
+         CYCL DEF 200 DRILLING ~\n\
+         \x20 Q200=+1 ~\n\
+         \x20 Q201=-3 ~\n\
+         \x20 Q206=+100 ~\n\
+         \x20 Q202=+0 ~\n\
+         \x20 Q203=-5 ~\n\
+         \x20 Q204=+20\n\
+         CYCL CALL POS X+20 Y+20 Z+5 FMAX\n\
+         L X+40 Y+0 FMAX M89\n\
+         L X+60 FMAX\n\
+         L Z+30 FMAX"));
+    let t = tips(&p);
+    // POS: below the second clearance above its surface (5 + 20), up first, then over the
+    // hole, then 6 → 2 (feed) → 6 → 25.
+    assert_eq!(
+        &t[1..6],
+        [
+            [0.0, 0.0, 25.0],
+            [20.0, 20.0, 25.0],
+            [20.0, 20.0, 6.0],
+            [20.0, 20.0, 2.0],
+            [20.0, 20.0, 6.0]
+        ]
+    );
+    assert_eq!(t[6], [20.0, 20.0, 25.0]);
+    // M89: the surface is Q203 = −5: the holes go to −8 at X40 and X60.
+    let bottoms: Vec<[f64; 3]> = t.iter().copied().filter(|p| p[2] == -8.0).collect();
+    assert_eq!(bottoms, [[40.0, 0.0, -8.0], [60.0, 0.0, -8.0]]);
+    // A move along the tool axis alone calls nothing: the last move is Z30's.
+    assert_eq!(*t.last().unwrap(), [60.0, 0.0, 30.0]);
+}
+
+#[test]
+fn datum_shift_and_rotation_move_the_part_frame() {
+    let p = read(&pgm("TOOL CALL 1 Z S3000 F100\n\
+         CYCL DEF 7.0 DATUM SHIFT\n\
+         CYCL DEF 7.1 X+100\n\
+         CYCL DEF 7.2 Y+50\n\
+         CYCL DEF 10.0 ROTATION\n\
+         CYCL DEF 10.1 ROT+90\n\
+         L X+10 Y+0 Z+0 R0 F100\n\
+         CYCL DEF 7.0 DATUM SHIFT\n\
+         CYCL DEF 7.1 IX+5\n\
+         L X+10 Y+0\n\
+         CYCL DEF 10.0 ROTATION\n\
+         CYCL DEF 10.1 ROT+0\n\
+         CYCL DEF 7.0 DATUM SHIFT\n\
+         CYCL DEF 7.1 X+0\n\
+         CYCL DEF 7.2 Y+0\n\
+         L X+10 Y+0"));
+    let t = tips(&p);
+    assert!(
+        close(p.moves[0].end.tip, [100.0, 60.0, 0.0], 1e-12),
+        "{t:?}"
+    );
+    assert!(
+        close(p.moves[1].end.tip, [105.0, 60.0, 0.0], 1e-12),
+        "{t:?}"
+    );
+    assert!(close(p.moves[2].end.tip, [10.0, 0.0, 0.0], 1e-12), "{t:?}");
+}
+
+#[test]
+fn plane_spatial_turns_the_tool_and_reset_turns_it_back() {
+    let p = read(&pgm("TOOL CALL 1 Z S3000 F100\n\
+         L X+0 Y+0 Z+50 R0 FMAX\n\
+         PLANE SPATIAL SPA+0 SPB+45 SPC+0 TURN MB 10 FMAX\n\
+         L X+0 Y+0 Z+10 FMAX\n\
+         L Z-2 F500\n\
+         PLANE RESET TURN FMAX\n\
+         L Z+50 FMAX"));
+    let m = &p.moves;
+    // MB 10: 10 mm up along the (vertical) tool axis before the axes turn.
+    assert!(close(m[1].end.tip, [0.0, 0.0, 60.0], 1e-12));
+    let s = 0.5f64.sqrt();
+    // In the plane turned 45° about Y, its Z is (s, 0, s).
+    assert!(close(m[2].end.tip, [10.0 * s, 0.0, 10.0 * s], 1e-12));
+    assert!(close(m[2].end.axis, [s, 0.0, s], 1e-12));
+    assert!(close(m[3].end.tip, [-2.0 * s, 0.0, -2.0 * s], 1e-12));
+    assert!(close(m[4].end.tip, [-2.0 * s, 0.0, 50.0], 1e-12));
+    // RESET TURN turns the rotary axes back.
+    assert!(close(m[4].end.axis, [0.0, 0.0, 1.0], 1e-12));
+}
+
+#[test]
+fn a_program_that_never_ends_meets_the_loop_limit() {
+    let opts = GcodeOptions {
+        max_loop_iterations: 1000,
+        ..GcodeOptions::default()
+    };
+    let e = read_with(
+        &pgm("LBL 1\nCALL LBL 1 REP 2\nFN 9: IF +0 EQU +0 GOTO LBL 1"),
+        Machine::three_axis(),
+        opts,
+    )
+    .unwrap_err();
+    assert_eq!(e.kind, PathErrorKind::Limit, "{e}");
+    // Three jumps a round: the 1001st is the second repeat of a round.
+    assert_eq!((e.pos.line, e.pos.column), (3, 3), "{e}");
+}
+
+#[test]
+fn ln_blocks_state_the_tool_axis() {
+    let p = read(&pgm("TOOL CALL 1 Z S3000 F100\n\
+         M128\n\
+         LN X+10 Y+0 Z+5 NX+0 NY+0 NZ+1 TX+0 TY+0 TZ+1 F1000\n\
+         LN X+12 Y+0 Z+5 NX+0 NY+0 NZ+1 TX+0.6 TY+0 TZ+0.8"));
+    assert!(close(p.moves[0].end.axis, [0.0, 0.0, 1.0], 1e-12));
+    assert!(close(p.moves[1].end.axis, [0.6, 0.0, 0.8], 1e-12));
+    assert!(close(p.moves[1].end.tip, [12.0, 0.0, 5.0], 1e-12));
+}
+
+#[test]
+fn q_parameters_labels_and_repeats_run_as_the_control_runs_them() {
+    let p = read(&pgm("TOOL CALL 1 Z S3000 F100\n\
+         FN 0: Q1 = +0\n\
+         Q2 = 2 * SIN(30) + SQRT(9)\n\
+         LBL 1\n\
+         FN 1: Q1 = +Q1 + +1\n\
+         L X+Q1 Y+Q2 F100\n\
+         FN 12: IF +Q1 LT +3 GOTO LBL 1\n\
+         LBL \"SECTION\"\n\
+         L IZ-1\n\
+         CALL LBL \"SECTION\" REP 2\n\
+         CALL LBL 5\n\
+         CALL LBL 5\n\
+         M30\n\
+         LBL 5\n\
+         L IY+10\n\
+         LBL 0"));
+    let t = tips(&p);
+    assert_eq!(
+        t,
+        [
+            [1.0, 4.0, 0.0],
+            [2.0, 4.0, 0.0],
+            [3.0, 4.0, 0.0],
+            [3.0, 4.0, -1.0],
+            [3.0, 4.0, -2.0],
+            [3.0, 4.0, -3.0],
+            [3.0, 14.0, -3.0],
+            [3.0, 24.0, -3.0]
+        ]
+    );
+}
+
+#[test]
+fn other_programs_are_called_from_beside_the_program() {
+    let dir = std::env::temp_dir().join(format!("swarf-heid-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("HOLE.h"),
+        "0 BEGIN PGM HOLE MM\n1 L IZ-5 F100\n2 L IZ+5 FMAX\n3 END PGM HOLE MM\n",
+    )
+    .unwrap();
+    let main = dir.join("MAIN.h");
+    let text = pgm("TOOL CALL 1 Z S3000 F100\nL X+10 Z+2 FMAX\nCALL PGM TNC:\\PARTS\\HOLE.H\nL X+20 FMAX\nCALL PGM HOLE");
+    let mut rec = Recorder::default();
+    read_heidenhain(
+        &text,
+        &main.display().to_string(),
+        &GcodeOptions::default(),
+        &mut rec,
+    )
+    .unwrap();
+    let z: Vec<f64> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Feed { end } | Canon::Traverse { end } => Some(end.z),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(z, [2.0, -3.0, 2.0, 2.0, -3.0, 2.0]);
+    assert!(rec
+        .events
+        .iter()
+        .any(|(_, e)| matches!(e, Canon::SourceFile(f) if f.ends_with("HOLE.h"))));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn refused_and_wrong_blocks_are_errors_at_their_place() {
+    let cases: [(&str, PathErrorKind, u32, u32, &str); 8] = [
+        ("L X+10 RL F100", PathErrorKind::Unsupported, 1, 10, "RL"),
+        ("RND R2", PathErrorKind::Unsupported, 1, 3, "RND"),
+        (
+            "L X+10 Y+0 F100\nCC X+0 Y+0\nC X+0 Y+12 DR+",
+            PathErrorKind::Semantic,
+            3,
+            3,
+            "C",
+        ),
+        (
+            "L X+0 Y+0 F100\nCR X+30 Y+0 R+10 DR+",
+            PathErrorKind::Semantic,
+            2,
+            3,
+            "CR",
+        ),
+        (
+            "Q1 = 10 / (2 - 2)",
+            PathErrorKind::Semantic,
+            1,
+            11,
+            "10 / (2 - 2)",
+        ),
+        ("L X+10", PathErrorKind::Semantic, 1, 3, "L"),
+        ("FOO BAR", PathErrorKind::Syntax, 1, 3, "FOO"),
+        ("L X+1.2.3 F100", PathErrorKind::Syntax, 1, 6, "+1.2.3"),
+    ];
+    for (body, kind, line, col, found) in cases {
+        let e = err(&pgm(body));
+        assert_eq!(e.kind, kind, "{body}: {e}");
+        assert_eq!((e.pos.line, e.pos.column), (line + 1, col), "{body}: {e}");
+        assert_eq!(e.found, found, "{body}: {e}");
+        assert_eq!(e.pos.file, "t.h");
+    }
+}
+
+#[test]
+fn heidenhain_text_is_recognised_whatever_the_extension() {
+    let text = pgm("L X+1 F100");
+    for name in ["a.h", "a.H", "a.ptp", "a.nc", "a"] {
+        assert_eq!(
+            ProgramFormat::detect(std::path::Path::new(name), &text),
+            ProgramFormat::Heidenhain,
+            "{name}"
+        );
+    }
+    assert_eq!(
+        ProgramFormat::detect(std::path::Path::new("a.ptp"), "G0 X1\nM30\n"),
+        ProgramFormat::Gcode
+    );
+}
+
+#[test]
+fn schedule_rewrites_heidenhain_feed_words() {
+    let text = "0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000 F200\n2 L X+10 F100 ; cut\n\
+                3 L X+20 ; more\n4 L X+30 FMAX\n5 END PGM T MM\n";
+    // (Keys are file lines: BEGIN PGM is line 1.)
+    let factors = [(3, 1.5), (4, 0.5)].into_iter().collect();
+    let r = rewrite_feeds(
+        text,
+        "t.h",
+        ProgramFormat::Heidenhain,
+        &factors,
+        &Default::default(),
+    )
+    .unwrap();
+    assert_eq!(
+        r.text,
+        "0 BEGIN PGM T MM\n1 TOOL CALL 1 Z S1000 F200\n2 L X+10 F150 ; cut\n\
+         3 L X+20 F50 ; more\n4 L X+30 FMAX\n5 END PGM T MM\n"
+    );
+    // The rewritten program reads with the new feeds.
+    let p = read(&r.text);
+    let feeds: Vec<f64> = p.moves.iter().map(|m| m.feed).collect();
+    assert_eq!(&feeds[..2], [150.0, 50.0]);
+    // A cycle call's feed is its Q206: not rewritten.
+    let cyc = "0 BEGIN PGM T MM\n1 L X+10 F100 M99\n2 END PGM T MM\n";
+    let factors = [(2, 1.5)].into_iter().collect();
+    let e = rewrite_feeds(
+        cyc,
+        "t.h",
+        ProgramFormat::Heidenhain,
+        &factors,
+        &Default::default(),
+    )
+    .unwrap_err();
+    assert_eq!(e.pos.line, 2, "{e}");
+}
