@@ -534,3 +534,62 @@ fn schedule_restates_an_apt_drilling_cycle() {
         "{new}"
     );
 }
+
+#[test]
+fn schedule_rewrites_a_heidenhain_program() {
+    let d = dir("schedule-heidenhain");
+    let text = "0 BEGIN PGM JOB MM\n1 TOOL CALL 1 Z S1000 F800\n2 L X-10 Y+10 Z-4 R0 FMAX M3\n\
+                3 L X+50 ; slot\n4 L Z+10 FMAX\n5 END PGM JOB MM\n";
+    let prog = write(&d, "JOB.H", text);
+    let mat = write(&d, "al.toml", MATERIAL);
+    let out = d.join("JOB-scheduled.H");
+    let o = schedule(
+        &prog,
+        "flat:d=10,flutes=4,helix=30",
+        &mat,
+        out.to_str().unwrap(),
+        &["--limit-force", "600", "--json"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let new = std::fs::read_to_string(&out).unwrap();
+    // The slot's block gets a slower F before its comment; nothing else changes.
+    let line3 = new.lines().nth(3).unwrap();
+    let f: f64 = line3
+        .strip_prefix("3 L X+50 F")
+        .and_then(|r| r.strip_suffix(" ; slot"))
+        .unwrap_or_else(|| panic!("{new}"))
+        .parse()
+        .unwrap();
+    assert!(f < 800.0, "{new}");
+    let others: Vec<&str> = new
+        .lines()
+        .enumerate()
+        .filter(|(i, _)| *i != 3)
+        .map(|(_, l)| l)
+        .collect();
+    let before: Vec<&str> = text
+        .lines()
+        .enumerate()
+        .filter(|(i, _)| *i != 3)
+        .map(|(_, l)| l)
+        .collect();
+    assert_eq!(others, before);
+    // The scheduled program stays under the limit.
+    let fo = d.join("forces");
+    let o = swarf(&[
+        "forces",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        out.to_str().unwrap(),
+        "--tool",
+        "flat:d=10,flutes=4,helix=30",
+        "--coefficients",
+        &mat,
+        "--out",
+        fo.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(json(&o)["max_force_n"].as_f64().unwrap() <= 606.0);
+}

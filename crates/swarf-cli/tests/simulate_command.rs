@@ -500,3 +500,43 @@ fn a_camotics_automatic_workpiece_is_made_from_the_program() {
         stderr(&o)
     );
 }
+
+#[test]
+fn a_heidenhain_program_is_simulated_in_its_blank() {
+    let dir = temp_dir("heidenhain");
+    let prog = dir.join("SLOT.H");
+    // A 6 mm slot 4 mm deep, 10 mm long, in a 40 × 20 × 10 mm blank given as its least corner
+    // and the incremental size.
+    std::fs::write(
+        &prog,
+        "0 BEGIN PGM SLOT MM\n1 BLK FORM 0.1 Z X-20 Y-10 Z-10\n2 BLK FORM 0.2 IX+40 IY+20 IZ+10\n\
+         3 TOOL CALL 1 Z S1000 F100\n4 L X+0 Y+0 Z+5 R0 FMAX M3\n5 L Z-4\n6 L X+10\n\
+         7 L Z+5 FMAX\n8 END PGM SLOT MM\n",
+    )
+    .unwrap();
+    let o = swarf(&[
+        "simulate",
+        "--program",
+        prog.to_str().unwrap(),
+        "--tool",
+        "flat:d=6",
+        "--resolution",
+        "0.1",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("stock box:-20,-10,-10,20,10,0 (the program's BLK FORM)"),
+        "{}",
+        stderr(&o)
+    );
+    let j = json(&o);
+    let stock = j["stock_volume_mm3"].as_f64().unwrap();
+    assert!((stock - 8000.0).abs() < 1e-6, "{stock}");
+    let exact = 4.0 * (10.0 * 6.0 + PI * 9.0);
+    let removed = j["removed_volume_mm3"].as_f64().unwrap();
+    assert!(
+        (removed - exact).abs() < 0.005 * exact,
+        "{removed} vs {exact}"
+    );
+}

@@ -13,10 +13,10 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let text = String::from_utf8_lossy(rest);
-    let format = if head & 1 == 0 {
-        ProgramFormat::Gcode
-    } else {
-        ProgramFormat::Apt
+    let format = match head % 3 {
+        0 => ProgramFormat::Gcode,
+        1 => ProgramFormat::Apt,
+        _ => ProgramFormat::Heidenhain,
     };
     let lines = text.lines().count() as u32 + 1;
     let every: BTreeMap<u32, f64> = (1..=lines).map(|l| (l, 1.0)).collect();
