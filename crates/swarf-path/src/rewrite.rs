@@ -128,11 +128,13 @@ fn scan_apt(line: &str) -> Option<Result<FeedWord, usize>> {
 }
 
 /// What a Heidenhain line holds: its feed word (`F1000`, `FU0.2`; `Err` with a column for a
-/// parameter or `FAUTO`; `FMAX` is no feed) and where its code ends (before the `;` comment).
-/// A cycle definition's `F` (old cycles) is the cycle's, not the program's feed.
+/// parameter or `FAUTO`; `FMAX` is no feed) and where a feed word goes in it (before its M
+/// functions and its `;` comment: a TNC block runs coordinates, R, F, then M). A cycle
+/// definition's `F` (old cycles) is the cycle's, and the `F` after `M128` that of M128's
+/// compensating moves: neither is the program's feed.
 fn scan_heidenhain(line: &str) -> (Option<Result<FeedWord, usize>>, usize) {
     let code = line.split(';').next().unwrap_or("");
-    let code_end = code.trim_end().len();
+    let mut code_end = code.trim_end().len();
     let upper = code.to_ascii_uppercase();
     let body = upper.trim_start_matches(|c: char| c.is_ascii_digit() || c.is_whitespace());
     if body.starts_with("CYCL") || body.starts_with('*') {
@@ -140,12 +142,22 @@ fn scan_heidenhain(line: &str) -> (Option<Result<FeedWord, usize>>, usize) {
     }
     let mut found = None;
     let mut pos = 0;
+    let mut prev = "";
     for tok in upper.split(|c: char| c.is_ascii_whitespace()) {
         let start = pos;
         pos += tok.len() + 1;
+        let after_m128 = std::mem::replace(&mut prev, tok) == "M128";
+        let is_m =
+            tok.len() > 1 && tok.starts_with('M') && tok[1..].bytes().all(|c| c.is_ascii_digit());
+        if is_m && code_end > start {
+            code_end = upper[..start].trim_end().len();
+        }
         let Some(rest) = tok.strip_prefix('F') else {
             continue;
         };
+        if after_m128 {
+            continue;
+        }
         let rest = rest.strip_prefix('U').unwrap_or(rest);
         let skip = tok.len() - rest.len();
         if rest.is_empty() || rest == "MAX" || rest.starts_with("N") {
@@ -244,6 +256,21 @@ pub fn format_feed_down(v: f64) -> String {
     } else {
         (v * scale).floor() / scale
     })
+}
+
+/// A positive feed rounded down to at most `places` decimals (a Heidenhain control takes
+/// three), as [`format_feed_down`] rounds.
+fn format_feed_down_places(v: f64, places: i32) -> String {
+    let scale = 10f64.powi(places);
+    let nearest = (v * scale).round() / scale;
+    let x = if nearest <= v {
+        nearest
+    } else {
+        (v * scale).floor() / scale
+    };
+    let s = format!("{x:.*}", places as usize);
+    let s = s.trim_end_matches('0');
+    s.strip_suffix('.').unwrap_or(s).to_string()
 }
 
 /// A piece of a G-code feed line moved out in front of it by a split: the displacement of the
@@ -546,7 +573,11 @@ pub fn rewrite_feeds(
             Some(w) if unchanged(w.value) => (body[w.start..w.end].to_string(), w.value),
             _ if unchanged(base) && current == Some(base) => (format_feed(base), base),
             _ => {
-                let t = format_feed_down(target);
+                let t = if format == ProgramFormat::Heidenhain {
+                    format_feed_down_places(target, 3)
+                } else {
+                    format_feed_down(target)
+                };
                 let v = t.parse::<f64>().unwrap_or(target);
                 (t, v)
             }

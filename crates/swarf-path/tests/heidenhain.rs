@@ -484,3 +484,148 @@ fn schedule_rewrites_heidenhain_feed_words() {
     .unwrap_err();
     assert_eq!(e.pos.line, 2, "{e}");
 }
+
+#[test]
+fn review_cases_read_as_the_control_reads_them() {
+    // SEQ− and TABLE ROT in a PLANE block say how the axes move, not where the plane is.
+    let p = read(&pgm("TOOL CALL 1 Z S3000 F100\n\
+         PLANE SPATIAL SPA+0 SPB+90 SPC+0 TURN FMAX SEQ- TABLE ROT\n\
+         L X+0 Y+0 Z+10 FMAX"));
+    assert!(close(p.moves[0].end.tip, [10.0, 0.0, 0.0], 1e-12));
+    // A datum shift and a rotation programmed in the tilted plane act along its axes: its X is
+    // the machine's −Z, its Y the machine's Y.
+    let p = read(&pgm("TOOL CALL 1 Z S3000 F100\n\
+         PLANE SPATIAL SPA+0 SPB+90 SPC+0 TURN FMAX\n\
+         CYCL DEF 7.0 DATUM SHIFT\n\
+         CYCL DEF 7.1 X+10\n\
+         L X+0 Y+0 Z+0 FMAX\n\
+         CYCL DEF 10.0 ROTATION\n\
+         CYCL DEF 10.1 ROT+90\n\
+         L X+10 Y+0 Z+0 FMAX"));
+    assert!(
+        close(p.moves[0].end.tip, [0.0, 0.0, -10.0], 1e-12),
+        "{:?}",
+        tips(&p)
+    );
+    assert!(
+        close(p.moves[1].end.tip, [0.0, 10.0, -10.0], 1e-12),
+        "{:?}",
+        tips(&p)
+    );
+    // Tool axis Y: M140 retracts along Y.
+    let p = read(&pgm("TOOL CALL 1 Y S3000 F100\n\
+         L X+0 Y+10 Z+0 R0 FMAX\n\
+         M140 MB+20"));
+    assert!(close(p.moves[1].end.tip, [0.0, 30.0, 0.0], 1e-12));
+    let e = err(&pgm(
+        "TOOL CALL 1 Y S3000 F100\nCYCL DEF 10.0 ROTATION\nCYCL DEF 10.1 ROT+90",
+    ));
+    assert_eq!(e.kind, PathErrorKind::Unsupported);
+    // The F after M128 is M128's; `L M3` is no move.
+    let p = read(&pgm("TOOL CALL 1 Z S3000 F100\n\
+         L M3\n\
+         L X+0 Y+0 Z+50 R0 FMAX M128 F1000\n\
+         L X+10 R0 F125 M128 F2000"));
+    assert_eq!(p.moves.len(), 2);
+    assert_eq!(p.moves[0].kind, MoveKind::Rapid);
+    assert_eq!(p.moves[1].feed, 125.0);
+    // M126: the shortest way round.
+    let p = read(&pgm("TOOL CALL 1 Z S3000 F100\n\
+         L C+350 R0 FMAX M126\n\
+         L C+10 FMAX\n\
+         M127\n\
+         L C+350 FMAX"));
+    let c: Vec<f64> = p.moves.iter().map(|m| m.end_joints.c).collect();
+    // (From C0 the shortest way to 350 is −10°, then +20° to 10; M127: +340° to 350.)
+    assert_eq!(c, [-10.0, 10.0, 350.0]);
+    // A CR whose chord is a rounding longer than its diameter is the half circle.
+    let p = read(&pgm(
+        "TOOL CALL 1 Z S3000 F100\nL X+0 Y+0 Z+0 F100\nCR X+10.0004 Y+0 R+5 DR+",
+    ));
+    let MoveKind::Arc(a) = p.moves[1].kind else {
+        panic!()
+    };
+    assert!((a.sweep - PI).abs() < 1e-9, "{}", a.sweep);
+    // REP written without its space; anything else after the label is an error at its word.
+    let p = read(&pgm(
+        "TOOL CALL 1 Z S3000 F100\nLBL 1\nL IX+1\nCALL LBL 1 REP2",
+    ));
+    assert_eq!(p.moves.len(), 3);
+    let e = err(&pgm("LBL 1\nCALL LBL 1 FOO"));
+    assert_eq!(
+        (e.pos.line, e.pos.column, e.found.as_str()),
+        (3, 14, "FOO"),
+        "{e}"
+    );
+    let e = err(&pgm("FN 9: IF +0 EQU +0 GOTO LBL 7"));
+    assert_eq!((e.pos.column, e.found.as_str()), (31, "7"), "{e}");
+    // An inch program's PLANE MB with a space: inches.
+    let text = "0 BEGIN PGM I INCH\n1 TOOL CALL 1 Z S1000 F100\n2 L X+0 Y+0 Z+1 FMAX\n\
+                3 PLANE SPATIAL SPA+0 SPB+0 SPC+0 TURN MB 2 FMAX\n4 END PGM I INCH\n";
+    let p = read(text);
+    assert!(close(p.moves[1].end.tip, [0.0, 0.0, 3.0 * 25.4], 1e-9));
+}
+
+#[test]
+fn cycle_203_breaks_chips_and_retracts_at_its_feed() {
+    let p = read(&pgm("TOOL CALL 1 Z S3000\n\
+         L X+20 Y+20 Z+10 R0 FMAX M3\n\
+         CYCL DEF 203 UNIVERSAL DRILLING ~\n\
+         \x20 Q200=+2 ~\n\
+         \x20 Q201=-9 ~\n\
+         \x20 Q206=+100 ~\n\
+         \x20 Q202=+4 ~\n\
+         \x20 Q210=+0 ~\n\
+         \x20 Q203=+0 ~\n\
+         \x20 Q204=+10 ~\n\
+         \x20 Q212=+1 ~\n\
+         \x20 Q213=+1 ~\n\
+         \x20 Q205=+2 ~\n\
+         \x20 Q211=+0 ~\n\
+         \x20 Q208=+0 ~\n\
+         \x20 Q256=+0.5\n\
+         CYCL CALL"));
+    // Pecks of 4, 3 (4 − 1), then 2 to the depth of 9; after the first a chip break (0.5 mm
+    // back), after the second a full retract at the plunging feed (Q208 = 0), down again at
+    // rapid to 2 above the depth reached; out at the plunging feed, then to Q204.
+    let expected = [
+        (10.0, true),
+        (2.0, true),
+        (-4.0, false),
+        (-3.5, true),
+        (-7.0, false),
+        (2.0, false),
+        (-5.0, true),
+        (-9.0, false),
+        (2.0, false),
+        (10.0, true),
+    ];
+    assert_eq!(drill_moves(&p), expected);
+}
+
+#[test]
+fn schedule_puts_a_new_heidenhain_feed_before_the_m_functions() {
+    let text = "0 BEGIN PGM T MM\n1 L X+10 F100\n2 L X+30 M8 ; on\n3 END PGM T MM\n";
+    let factors = [(3, 0.628733)].into_iter().collect();
+    let r = rewrite_feeds(
+        text,
+        "t.h",
+        ProgramFormat::Heidenhain,
+        &factors,
+        &Default::default(),
+    )
+    .unwrap();
+    assert_eq!(r.text.lines().nth(2), Some("2 L X+30 F62.873 M8 ; on"));
+    // The F after M128 is not the program's feed.
+    let text = "0 BEGIN PGM T MM\n1 L X+10 F2000 M128 F500\n2 END PGM T MM\n";
+    let factors = [(2, 0.5)].into_iter().collect();
+    let r = rewrite_feeds(
+        text,
+        "t.h",
+        ProgramFormat::Heidenhain,
+        &factors,
+        &Default::default(),
+    )
+    .unwrap();
+    assert_eq!(r.text.lines().nth(1), Some("1 L X+10 F1000 M128 F500"));
+}

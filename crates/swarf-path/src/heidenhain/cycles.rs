@@ -14,7 +14,7 @@
 
 use super::lexer::{self, Block, Tok};
 use super::{Fault, Reader, Res};
-use crate::{Canon, FeedMode, PathErrorKind, WorkPlane};
+use crate::{Canon, FeedMode, PathErrorKind};
 
 /// Most pecks one drilling cycle call may make (a tiny plunging depth would otherwise make
 /// millions of moves).
@@ -36,8 +36,13 @@ struct Drill {
     least: f64,
     dwell_top: f64,
     dwell_depth: f64,
-    /// Retraction feed (`None`: rapid).
+    /// Retraction feed (`None`: rapid), at the end and between pecks.
     retract: Option<f64>,
+    peck_retract: Option<f64>,
+    /// Chip breaking (cycle 203): this many short retracts of `break_retract` between full
+    /// ones.
+    breaks: u32,
+    break_retract: f64,
 }
 
 fn rx(a: f64) -> [[f64; 3]; 3] {
@@ -50,12 +55,12 @@ fn ry(a: f64) -> [[f64; 3]; 3] {
     [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]
 }
 
-fn rz(a: f64) -> [[f64; 3]; 3] {
+pub(super) fn rz(a: f64) -> [[f64; 3]; 3] {
     let (s, c) = a.to_radians().sin_cos();
     [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]
 }
 
-fn mat(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
+pub(super) fn mat(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
     std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
 }
 
@@ -169,12 +174,24 @@ impl Reader<'_> {
                     ));
                 }
                 let w = self.words(rest, b.line)?;
-                let mut shift = self.shift;
+                // Under a tilted plane the values are along its axes.
+                let mut v = match self.tilt {
+                    Some(_) => self.tilted_shift,
+                    None => self.shift,
+                };
                 for (k, a) in w.axes.iter().take(3).enumerate() {
-                    if let Some((v, inc)) = *a {
-                        shift[k] = if inc { shift[k] + v } else { v };
+                    if let Some((x, inc)) = *a {
+                        v[k] = if inc { v[k] + x } else { x };
                     }
                 }
+                let shift = match self.tilt {
+                    Some(t) => {
+                        self.tilted_shift = v;
+                        let d = super::mul(&t, v);
+                        std::array::from_fn(|k| self.shift_at_tilt[k] + d[k])
+                    }
+                    None => v,
+                };
                 self.change_frame(b.line, true, |s| s.shift = shift);
                 Ok(())
             }
@@ -187,6 +204,14 @@ impl Reader<'_> {
                         "IROT" => rot += self.value(val, t)?,
                         _ => {}
                     }
+                }
+                if rot != self.rot && self.plane != crate::Plane::XY {
+                    return Err(Fault::at(
+                        nt,
+                        PathErrorKind::Unsupported,
+                        "a rotation (cycle 10) with tool axis X or Y is not read",
+                        "tool axis Z",
+                    ));
                 }
                 self.change_frame(b.line, true, |s| s.rot = rot);
                 Ok(())
@@ -284,15 +309,15 @@ impl Reader<'_> {
 
     /// Tilts the working plane (or untilts it), the tool turned to its Z.
     pub(super) fn set_tilt(&mut self, line: u32, tilt: Option<[[f64; 3]; 3]>) {
-        self.emit(
-            line,
-            Canon::WorkPlane(tilt.map(|r| WorkPlane {
-                origin: [0.0; 3],
-                rotation: r,
-                tool_axis: true,
-            })),
-        );
-        self.change_frame(line, false, |s| s.tilt = tilt);
+        if tilt.is_none() {
+            self.emit(line, Canon::WorkPlane(None));
+        }
+        // (The tilted plane, turned by any rotation, is stated with the offsets.)
+        self.change_frame(line, true, |s| {
+            s.tilt = tilt;
+            s.shift_at_tilt = s.shift;
+            s.tilted_shift = [0.0; 3];
+        });
     }
 
     /// `CYCL CALL`, `CYCL CALL POS X… Y… Z…`.
@@ -365,6 +390,15 @@ impl Reader<'_> {
             dwell_top: 0.0,
             dwell_depth: q(211),
             retract,
+            peck_retract: None,
+            breaks: 0,
+            break_retract: 0.0,
+        };
+        // Q208 = 0: out at the plunging feed.
+        let q208 = if q(208) > 0.0 {
+            q(208) * fs
+        } else {
+            q(206) * fs
         };
         let mut d = match num {
             200 => Drill {
@@ -372,25 +406,20 @@ impl Reader<'_> {
                 dwell_top: q(210),
                 ..drill(q(203), None)
             },
-            201 | 202 => {
-                let r = if q(208) > 0.0 {
-                    q(208) * fs
-                } else {
-                    q(206) * fs
-                };
-                let r = if num == 202 && q(208) <= 0.0 {
-                    None
-                } else {
-                    Some(r)
-                };
-                drill(q(203), r)
-            }
+            201 | 202 => drill(q(203), Some(q208)),
             203 | 205 => Drill {
                 peck: q(202) * s,
                 decrement: q(212) * s,
                 least: q(205) * s,
                 dwell_top: if num == 203 { q(210) } else { 0.0 },
-                ..drill(q(203), (num == 203 && q(208) > 0.0).then(|| q(208) * fs))
+                peck_retract: (num == 203).then_some(q208),
+                breaks: if num == 203 {
+                    q(213).clamp(0.0, 1e4) as u32
+                } else {
+                    0
+                },
+                break_retract: if q(256) > 0.0 { q(256) * s } else { 0.2 * s },
+                ..drill(q(203), Some(q208))
             },
             206 => {
                 let f = q(206) * fs;
@@ -437,6 +466,9 @@ impl Reader<'_> {
                     dwell_top: 0.0,
                     dwell_depth: dwell,
                     retract: (num != 1).then_some(feed),
+                    peck_retract: None,
+                    breaks: 0,
+                    break_retract: 0.0,
                 }
             }
             _ => {
@@ -480,9 +512,13 @@ impl Reader<'_> {
                 "a positive feed",
             ));
         }
-        if d.peck > 0.0 && d.least <= 0.0 && d.depth / d.peck > MAX_PECKS
-            || d.least > 0.0 && d.depth / d.least > MAX_PECKS
-        {
+        // The least plunging depth a decrement leaves (1 µm at the least).
+        let least = if d.decrement > 0.0 {
+            d.least.max(1e-3).min(d.peck)
+        } else {
+            d.peck
+        };
+        if d.peck > 0.0 && d.depth / least > MAX_PECKS {
             return Err(Fault::at(
                 at,
                 PathErrorKind::Limit,
@@ -524,25 +560,33 @@ impl Reader<'_> {
         let feed = Some((d.mode, d.feed));
         let mut reached = 0.0;
         let mut peck = d.peck;
-        let mut first = true;
+        let mut out = true;
+        let mut broken = 0;
         loop {
             let next = if peck > 0.0 {
                 (reached + peck).min(d.depth)
             } else {
                 d.depth
             };
-            if !first {
+            if out && reached > 0.0 {
                 // Back down at rapid to the set-up clearance above the depth reached.
                 self.axis_to(line, (d.surface - reached + d.clearance).min(top), None);
             }
-            first = false;
             self.axis_to(line, d.surface - next, feed);
             reached = next;
             if reached >= d.depth {
                 break;
             }
-            self.axis_to(line, top, None);
-            dwell(self, d.dwell_top);
+            out = broken >= d.breaks;
+            if out {
+                broken = 0;
+                self.axis_to(line, top, d.peck_retract.map(|f| (d.mode, f)));
+                dwell(self, d.dwell_top);
+            } else {
+                // Chip breaking: back a little, and on.
+                broken += 1;
+                self.axis_to(line, d.surface - reached + d.break_retract, None);
+            }
             if d.decrement > 0.0 {
                 peck = (peck - d.decrement).max(d.least.max(1e-3));
             }
@@ -579,21 +623,23 @@ impl Reader<'_> {
                     i += 1;
                 }
                 ("MB", None) => {
-                    mb = toks.get(i + 1).and_then(|n| lexer::number(&n.text));
+                    mb = toks
+                        .get(i + 1)
+                        .and_then(|n| lexer::number(&n.text))
+                        .map(|v| v * self.scale);
                     i += 1;
                 }
                 ("MB", Some(v)) => mb = Some(v * self.scale),
                 ("STAY", _) => stay = true,
                 (n, Some(v)) => vals.push((n, v)),
-                (n, None) if n.starts_with('Q') || t.text.contains("Q") => {
-                    // `SPB+Q5`: a parameter as the value.
-                    let at = t.text.find(['+', '-']).unwrap_or(0);
-                    let Some(q) = lexer::qref(&t.text[at..]) else {
-                        return Err(Fault::at(t, PathErrorKind::Syntax, "bad value", "a number"));
-                    };
-                    vals.push((&t.text[..at], self.qv(q)));
+                // `SPB+Q5`: a parameter as the value; other words (`SEQ-`, `TABLE ROT`,
+                // `COORD ROT`, `FMAX`, `F…`) say how the axes move, not where the plane is.
+                (n, None) => {
+                    let at = t.text.find(['+', '-']).unwrap_or(t.text.len());
+                    if let Some(q) = lexer::qref(&t.text[at..]) {
+                        vals.push((n, self.qv(q)));
+                    }
                 }
-                _ => {}
             }
             i += 1;
         }

@@ -226,6 +226,10 @@ struct Reader<'a> {
     pos: [f64; 6],
     /// Datum shift (mm), rotation (degrees) and tilted plane (columns: the plane's axes).
     shift: [f64; 3],
+    /// Under a tilted plane: the shift when it was tilted, and the shift programmed since,
+    /// along the tilted axes (a datum shift in a tilted plane moves along its axes).
+    shift_at_tilt: [f64; 3],
+    tilted_shift: [f64; 3],
     rot: f64,
     tilt: Option<[[f64; 3]; 3]>,
     plane: Plane,
@@ -246,6 +250,8 @@ struct Reader<'a> {
     old_cycle: HashMap<u32, f64>,
     modal_call: bool,
     m136: bool,
+    /// M126: rotary axes take the shortest way to an absolute position.
+    shortest: bool,
     /// The blank's least corner (`BLK FORM 0.1`).
     blank_min: Option<[f64; 3]>,
     tool_names: HashMap<String, u32>,
@@ -282,6 +288,8 @@ impl<'a> Reader<'a> {
             feed_scale: 1.0,
             pos,
             shift: [0.0; 3],
+            shift_at_tilt: [0.0; 3],
+            tilted_shift: [0.0; 3],
             rot: 0.0,
             tilt: None,
             plane: Plane::XY,
@@ -298,6 +306,7 @@ impl<'a> Reader<'a> {
             old_cycle: HashMap::new(),
             modal_call: false,
             m136: false,
+            shortest: false,
             blank_min: None,
             tool_names: HashMap::new(),
             warned: Vec::new(),
@@ -789,6 +798,8 @@ impl<'a> Reader<'a> {
                 128 => self.tcpm(line, toks[ti].col),
                 136 => self.m136 = true,
                 137 => self.m136 = false,
+                126 => self.shortest = true,
+                127 => self.shortest = false,
                 89 => self.modal_call = true,
                 _ => continue,
             }
@@ -893,6 +904,8 @@ impl<'a> Reader<'a> {
                         "R0",
                     ))
                 }
+                // The F after M128 is the feed of its compensating moves, not the path's.
+                "F" if i > 0 && toks[i - 1].text == "M128" => {}
                 "F" | "FU" | "FZ" | "FMAX" | "FAUTO" => {
                     let next = toks.get(i + 1).map(|t| t.text.as_str());
                     w.feed = Some(match (name, val) {
@@ -988,27 +1001,23 @@ impl<'a> Reader<'a> {
 
     // ---- frames ----
 
+    /// The turn of the program frame: the tilted plane, and within it cycle 10's rotation
+    /// about its Z (a rotation programmed in a tilted plane turns in that plane).
+    fn turn(&self) -> [[f64; 3]; 3] {
+        let r = cycles::rz(self.rot);
+        self.tilt.map_or(r, |t| cycles::mat(&t, &r))
+    }
+
     /// Machine position (swarf's machine frame, offsets and turns applied) of program
-    /// position `p`'s X Y Z.
+    /// position `p`'s X Y Z: `turn · p + shift`.
     fn machine_of(&self, p: [f64; 3]) -> [f64; 3] {
-        let t = self.tilt.map_or(p, |m| mul(&m, p));
-        let (s, c) = self.rot.to_radians().sin_cos();
-        [
-            c * t[0] - s * t[1] + self.shift[0],
-            s * t[0] + c * t[1] + self.shift[1],
-            t[2] + self.shift[2],
-        ]
+        let t = mul(&self.turn(), p);
+        std::array::from_fn(|k| t[k] + self.shift[k])
     }
 
     fn program_of(&self, m: [f64; 3]) -> [f64; 3] {
-        let d = [
-            m[0] - self.shift[0],
-            m[1] - self.shift[1],
-            m[2] - self.shift[2],
-        ];
-        let (s, c) = self.rot.to_radians().sin_cos();
-        let t = [c * d[0] + s * d[1], -s * d[0] + c * d[1], d[2]];
-        self.tilt.map_or(t, |m| mul(&transpose(&m), t))
+        let d = std::array::from_fn(|k| m[k] - self.shift[k]);
+        mul(&transpose(&self.turn()), d)
     }
 
     /// Changes the frame with `f`, keeping the machine position (and the pole's place on
@@ -1049,7 +1058,19 @@ impl<'a> Reader<'a> {
                 g92: Axes::default(),
             },
         );
-        self.emit(line, Canon::XyRotation(self.rot));
+        // Under a tilted plane the rotation is part of the plane's turn.
+        let rot = if self.tilt.is_some() { 0.0 } else { self.rot };
+        self.emit(line, Canon::XyRotation(rot));
+        if let Some(t) = self.tilt {
+            self.emit(
+                line,
+                Canon::WorkPlane(Some(crate::WorkPlane {
+                    origin: [0.0; 3],
+                    rotation: cycles::mat(&t, &cycles::rz(self.rot)),
+                    tool_axis: true,
+                })),
+            );
+        }
     }
 
     // ---- motion ----
@@ -1087,7 +1108,14 @@ impl<'a> Reader<'a> {
         let mut t = self.pos;
         for (k, a) in w.axes.iter().enumerate() {
             if let Some((v, inc)) = *a {
-                t[k] = if inc { self.pos[k] + v } else { v };
+                t[k] = if inc {
+                    self.pos[k] + v
+                } else if k >= 3 && self.shortest {
+                    // Under M126 a rotary axis turns at most half a turn, either way.
+                    self.pos[k] + (v - self.pos[k] + 180.0).rem_euclid(360.0) - 180.0
+                } else {
+                    v
+                };
             }
         }
         t
@@ -1095,6 +1123,15 @@ impl<'a> Reader<'a> {
 
     /// Says the feed to the sink before a feed move; errors when there is none.
     fn feed_for(&mut self, w: &Words, head: &Tok) -> Res<bool> {
+        if self.take_feed(w, head)? {
+            return Ok(true);
+        }
+        self.tell_feed(head)?;
+        Ok(false)
+    }
+
+    /// Takes the block's feed word as the modal feed; true for `FMAX`.
+    fn take_feed(&mut self, w: &Words, head: &Tok) -> Res<bool> {
         match w.feed {
             Some(Feed::Rapid) => return Ok(true),
             // Under M136, F is in µm per revolution.
@@ -1126,6 +1163,11 @@ impl<'a> Reader<'a> {
             },
             None => {}
         }
+        Ok(false)
+    }
+
+    /// Tells the sink the feed a feed move runs at; an error when there is none yet.
+    fn tell_feed(&mut self, head: &Tok) -> Res<()> {
         let Some(f) = self.feed else {
             return Err(Fault::at(
                 head,
@@ -1142,7 +1184,7 @@ impl<'a> Reader<'a> {
             self.emit(head.line, Canon::FeedRate(f));
             self.told_feed = Some(told);
         }
-        Ok(false)
+        Ok(())
     }
 
     fn motion(&mut self, b: &Block) -> Res<Flow> {
@@ -1151,6 +1193,11 @@ impl<'a> Reader<'a> {
         let toks = &b.toks[1..];
         self.m_before(&w, toks, b.line);
         self.retract(&w, b)?;
+        if matches!(head.text.as_str(), "L" | "LN") && w.axes.iter().all(Option::is_none) {
+            // A block of M functions (and maybe a feed) written as a line: no motion.
+            self.take_feed(&w, head)?;
+            return self.after_motion(&w, b);
+        }
         let rapid = self.feed_for(&w, head)?;
         let (i1, i2, n) = self.plane.axes();
         let start = self.pos;
@@ -1215,7 +1262,8 @@ impl<'a> Reader<'a> {
                             ));
                         };
                         let ccw = self.direction(dr, head)?;
-                        let c = cr_centre([start[i1], start[i2]], [end[i1], end[i2]], r, ccw)
+                        let tol = self.arc_tolerance(r.abs());
+                        let c = cr_centre([start[i1], start[i2]], [end[i1], end[i2]], r, ccw, tol)
                             .ok_or_else(|| {
                                 Fault::at(
                                     head,
@@ -1346,14 +1394,19 @@ impl<'a> Reader<'a> {
         }
     }
 
-    fn check_radius(&self, r0: f64, r1: f64, head: &Tok) -> Res<()> {
+    /// How far an arc's end may be off its circle (radius `r`): the G-code reader's tolerance.
+    fn arc_tolerance(&self, r: f64) -> f64 {
         let tol = self.opts.arc_radius_tolerance;
         let abs = if self.scale == 1.0 {
             tol.abs_mm
         } else {
             tol.abs_inch * 25.4
         };
-        if (r0 - r1).abs() > abs && (r0 - r1).abs() > tol.relative * r0.max(r1) {
+        abs.max(tol.relative * r)
+    }
+
+    fn check_radius(&self, r0: f64, r1: f64, head: &Tok) -> Res<()> {
+        if (r0 - r1).abs() > self.arc_tolerance(r0.max(r1)) {
             return Err(Fault::at(
                 head,
                 PathErrorKind::Semantic,
@@ -1440,10 +1493,7 @@ impl<'a> Reader<'a> {
         if t.iter().all(Option::is_none) {
             return Ok(());
         }
-        let t = t.map(|v| v.unwrap_or(0.0));
-        let t = self.tilt.map_or(t, |m| mul(&m, t));
-        let (s, c) = self.rot.to_radians().sin_cos();
-        let t = [c * t[0] - s * t[1], s * t[0] + c * t[1], t[2]];
+        let t = self.machine_direction(t.map(|v| v.unwrap_or(0.0)));
         self.emit(line, Canon::ToolAxis(t));
         Ok(())
     }
@@ -1453,12 +1503,16 @@ impl<'a> Reader<'a> {
         if !(w.has_m(140) || b.toks[0].text == "PLANE") {
             return Ok(());
         }
+        // Along the tool axis: the working plane's normal, turned as the program frame is.
+        let (_, _, n) = self.plane.axes();
         let dist = if w.mb_max {
-            let dir = self.machine_direction([0.0, 0.0, 1.0]);
+            let mut axis = [0.0; 3];
+            axis[n] = 1.0;
+            let dir = self.machine_direction(axis);
             match self.opts.home {
-                Some(h) if dir[2] > 0.05 => {
+                Some(h) if dir[n] > 0.05 => {
                     let m = self.machine_of([self.pos[0], self.pos[1], self.pos[2]]);
-                    ((h[2] - m[2]) / dir[2]).max(0.0)
+                    ((h[n] - m[n]) / dir[n]).max(0.0)
                 }
                 _ => {
                     self.warn_once(
@@ -1480,17 +1534,14 @@ impl<'a> Reader<'a> {
         };
         if dist != 0.0 {
             let mut end = self.pos;
-            // The tool axis is the program frame's Z under a tilted plane, as without one.
-            end[2] += dist;
+            end[n] += dist;
             self.line_to(b.line, end, true);
         }
         Ok(())
     }
 
     fn machine_direction(&self, d: [f64; 3]) -> [f64; 3] {
-        let t = self.tilt.map_or(d, |m| mul(&m, d));
-        let (s, c) = self.rot.to_radians().sin_cos();
-        [c * t[0] - s * t[1], s * t[0] + c * t[1], t[2]]
+        mul(&self.turn(), d)
     }
 
     // ---- parameters, labels, calls ----
@@ -1632,10 +1683,13 @@ impl<'a> Reader<'a> {
         }
         let key = label_key(target);
         let Some(&to) = self.sources[self.cur].labels.get(&key) else {
-            return Err(Fault {
-                message: format!("label {target} is not defined"),
-                ..bad("")
-            });
+            let at = b.toks.last().unwrap_or(&b.toks[0]);
+            return Err(Fault::at(
+                at,
+                PathErrorKind::Semantic,
+                format!("label {target} is not defined"),
+                "a label defined with LBL",
+            ));
         };
         self.jump(&b.toks[0])?;
         Ok(Flow::Jump(self.cur, to + 1))
@@ -1662,18 +1716,36 @@ impl<'a> Reader<'a> {
                         "a label defined with LBL",
                     ));
                 };
-                let rep = match b.toks.get(3).map(|t| t.text.as_str()) {
-                    Some("REP") => {
+                // `REP 2`, `REP2`, or `REP 2/2` as the control shows it while running.
+                let (rt, count, next) = match b.toks.get(3) {
+                    Some(t) if t.text == "REP" => {
                         let rt = b.toks.get(4).ok_or_else(|| {
-                            Fault::at(
-                                head,
-                                PathErrorKind::Syntax,
-                                "REP without a count",
-                                "REP <n>",
-                            )
+                            Fault::at(t, PathErrorKind::Syntax, "REP without a count", "REP <n>")
                         })?;
-                        // (`REP 2/2` as the control shows it while running: the first number.)
-                        let n = rt.text.split('/').next().unwrap_or("");
+                        (Some(rt), rt.text.as_str(), 5)
+                    }
+                    Some(t) if t.text.starts_with("REP") => (Some(t), &t.text[3..], 4),
+                    Some(t) => {
+                        return Err(Fault::at(
+                            t,
+                            PathErrorKind::Syntax,
+                            "unexpected word after CALL LBL",
+                            "REP <n> or the end of the block",
+                        ))
+                    }
+                    None => (None, "", 3),
+                };
+                if let Some(t) = b.toks.get(next) {
+                    return Err(Fault::at(
+                        t,
+                        PathErrorKind::Syntax,
+                        "unexpected word after the repeat count",
+                        "the end of the block",
+                    ));
+                }
+                let rep = match rt {
+                    Some(rt) => {
+                        let n = count.split('/').next().unwrap_or("");
                         let n = lexer::number(n)
                             .or_else(|| lexer::qref(n).map(|q| self.qv(q)))
                             .filter(|n| *n >= 0.0 && n.fract() == 0.0)
@@ -1695,7 +1767,7 @@ impl<'a> Reader<'a> {
                         }
                         Some(n as u64)
                     }
-                    _ => None,
+                    None => None,
                 };
                 if to < index {
                     // A program section repeat: back to the label `rep` times.
@@ -1873,7 +1945,9 @@ fn polar(pole: [f64; 2], p: [f64; 2]) -> (f64, f64) {
 
 /// The centre of the arc of radius `|r|` from `a` to `b` (`r > 0`: at most a half circle,
 /// `r < 0`: more), counter-clockwise when `ccw`.
-fn cr_centre(a: [f64; 2], b: [f64; 2], r: f64, ccw: bool) -> Option<[f64; 2]> {
+/// A chord longer than the diameter by at most `tol` (posted coordinates' rounding) gives the
+/// half circle.
+fn cr_centre(a: [f64; 2], b: [f64; 2], r: f64, ccw: bool, tol: f64) -> Option<[f64; 2]> {
     let d = [b[0] - a[0], b[1] - a[1]];
     let l = d[0].hypot(d[1]);
     if l == 0.0 || r == 0.0 {
@@ -1881,7 +1955,7 @@ fn cr_centre(a: [f64; 2], b: [f64; 2], r: f64, ccw: bool) -> Option<[f64; 2]> {
     }
     let half = l / 2.0;
     let ra = r.abs();
-    if half > ra * (1.0 + 1e-9) + 1e-9 {
+    if half > ra + tol {
         return None;
     }
     let h = (ra * ra - half * half).max(0.0).sqrt();
@@ -1899,15 +1973,18 @@ mod tests {
     #[test]
     fn cr_centres_follow_the_sign_rules() {
         // A quarter circle of radius 10 about the origin from (10, 0) to (0, 10).
-        let c = cr_centre([10.0, 0.0], [0.0, 10.0], 10.0, true).unwrap();
+        let c = cr_centre([10.0, 0.0], [0.0, 10.0], 10.0, true, 0.0).unwrap();
         assert!(c[0].abs() < 1e-12 && c[1].abs() < 1e-12);
         // The same ends clockwise the short way: centre at (10, 10).
-        let c = cr_centre([10.0, 0.0], [0.0, 10.0], 10.0, false).unwrap();
+        let c = cr_centre([10.0, 0.0], [0.0, 10.0], 10.0, false, 0.0).unwrap();
         assert!((c[0] - 10.0).abs() < 1e-12 && (c[1] - 10.0).abs() < 1e-12);
         // Counter-clockwise the long way: (10, 10).
-        let c = cr_centre([10.0, 0.0], [0.0, 10.0], -10.0, true).unwrap();
+        let c = cr_centre([10.0, 0.0], [0.0, 10.0], -10.0, true, 0.0).unwrap();
         assert!((c[0] - 10.0).abs() < 1e-12 && (c[1] - 10.0).abs() < 1e-12);
-        assert!(cr_centre([0.0, 0.0], [30.0, 0.0], 10.0, true).is_none());
+        assert!(cr_centre([0.0, 0.0], [30.0, 0.0], 10.0, true, 0.01).is_none());
+        // Within the tolerance: the half circle.
+        let c = cr_centre([0.0, 0.0], [10.0004, 0.0], 5.0, true, 0.01).unwrap();
+        assert!((c[0] - 5.0002).abs() < 1e-12 && c[1] == 0.0);
     }
 
     #[test]
