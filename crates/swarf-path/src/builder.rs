@@ -78,6 +78,7 @@ pub struct MoveBuilder {
     cutter_definitions: Vec<(u32, [f64; 7])>,
     cutter_definition_lines: Vec<SourceLine>,
     blank: Option<[[f64; 3]; 2]>,
+    dwell_s: f64,
     warnings: Vec<Warning>,
     /// Rotary words (A, B, C) already reported as not modelled by the machine.
     unmodelled_warned: [bool; 3],
@@ -115,6 +116,7 @@ impl MoveBuilder {
             cutter_definitions: Vec::new(),
             cutter_definition_lines: Vec::new(),
             blank: None,
+            dwell_s: 0.0,
             warnings: Vec::new(),
             unmodelled_warned: [false; 3],
         }
@@ -165,6 +167,7 @@ impl MoveBuilder {
             machine: self.machine,
             axis_source: self.axis_source,
             blank: self.blank,
+            dwell_s: self.dwell_s,
         }
     }
 
@@ -587,6 +590,8 @@ impl CanonSink for MoveBuilder {
                 }
                 self.blank = Some(b);
             }
+            // (A negative or non-finite dwell is no wait.)
+            Canon::Dwell(s) if s.is_finite() && *s > 0.0 => self.dwell_s += s,
             Canon::Units(_)
             | Canon::Plane(_)
             | Canon::ToolLengthOffset(_)

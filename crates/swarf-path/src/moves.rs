@@ -140,6 +140,8 @@ pub struct Program {
     /// The workpiece blank the program declares (Heidenhain `BLK FORM`), least and greatest
     /// corner in the workpiece frame, mm: the stock when none is given.
     pub blank: Option<[[f64; 3]; 2]>,
+    /// The dwells' total, seconds.
+    pub dwell_s: f64,
 }
 
 /// Where a program's tool axis comes from, which decides how a move is interpolated.

@@ -18,7 +18,8 @@
 //! LinuxCNC plans them: with G94 the feed applies to the joint-space X Y Z length, or to the
 //! rotary angle in degrees for a purely rotary move; with G93 a move takes 1/F minutes; with G95
 //! the feed per revolution times the spindle speed gives the rate. Moves with no usable feed
-//! (F0, or G95 with the spindle stopped) are left out and counted in a note.
+//! (F0, or G95 with the spindle stopped) are left out and counted in a note. Dwells are summed
+//! apart (`dwell_time_s`).
 
 use std::f64::consts::TAU;
 
@@ -102,6 +103,9 @@ pub struct ProgramSummary {
     pub warnings: Vec<Warning>,
     /// Time spent in feed moves, seconds (rapids excluded; see the module documentation).
     pub machining_time_s: f64,
+    /// Time spent in dwells (G4, the dwells of canned cycles, APT `DELAY/`, Heidenhain cycle
+    /// dwells), seconds: the spindle turns, the tool stands. Not in `machining_time_s`.
+    pub dwell_time_s: f64,
     /// Remarks on how the numbers were obtained (moves left out of the time, sampled paths).
     pub notes: Vec<String>,
     /// Chordal tolerance used for curved tip paths, mm.
@@ -269,6 +273,7 @@ impl SummaryAccumulator {
             tools: program.tools.clone(),
             warnings: program.warnings.clone(),
             machining_time_s: self.minutes * 60.0,
+            dwell_time_s: program.dwell_s,
             notes,
             path_tolerance_mm: tol,
             machine: program.machine.name.clone(),

@@ -3,6 +3,7 @@
 
 use swarf_path::builder::MoveBuilder;
 use swarf_path::kinematics::Machine;
+use swarf_path::load::{read_program_str, ReadOptions};
 use swarf_path::summary::{summarize, summarize_with, SummaryOptions, DEFAULT_PATH_TOLERANCE_MM};
 use swarf_path::{Axes, Canon, CanonSink, FeedMode, Program, Warning};
 
@@ -45,6 +46,7 @@ fn keys_are_the_contract() {
             "axis_source",
             "bbox_max",
             "bbox_min",
+            "dwell_time_s",
             "feed_bbox_max",
             "feed_bbox_min",
             "feed_length_mm",
@@ -147,4 +149,24 @@ fn curved_moves_honour_the_tolerance() {
     );
     let (lo, hi) = (fine.bbox_min.unwrap(), fine.bbox_max.unwrap());
     assert!((lo[0] + 100.0).abs() < 1e-9 && hi[0].abs() < 1e-9 && (hi[2] - 100.0).abs() < 1e-9);
+}
+
+#[test]
+fn dwells_are_summed_apart_from_the_feed_time() {
+    // G4 P2.5, and a G82 hole with P0.5 twice (L2): 3.5 s of dwells; the feed time is the
+    // 10 mm line at 100 mm/min and the two 6 mm plunges at 60.
+    let p = read_program_str(
+        "G21 G90 G94\nG0 X0 Y0 Z5\nG1 X10 F100\nG4 P2.5\nG91 G82 X5 Y0 Z-6 R-3 P0.5 F60 L2\nG80 G90\nM2\n",
+        "t.ngc",
+        Machine::three_axis(),
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    let s = summarize(&p);
+    assert!((s.dwell_time_s - 3.5).abs() < 1e-12, "{}", s.dwell_time_s);
+    assert!(
+        (s.machining_time_s - (6.0 + 2.0 * 6.0)).abs() < 1e-9,
+        "{}",
+        s.machining_time_s
+    );
 }

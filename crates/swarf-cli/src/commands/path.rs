@@ -199,6 +199,9 @@ fn print_human(s: &ProgramSummary, tools: &BTreeMap<u32, ToolReport>, undefined:
         t / 60 % 60,
         t % 60
     );
+    if s.dwell_time_s > 0.0 {
+        println!("dwells {:.1} s", s.dwell_time_s);
+    }
     for (n, r) in tools {
         println!("T{n}: {} ({:?})", r.cutter.spec, r.source);
     }
