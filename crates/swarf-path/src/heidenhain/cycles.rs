@@ -13,6 +13,7 @@
 //! to the second set-up clearance when it is higher.
 
 use super::lexer::{self, Block, Tok};
+use crate::part_frame::{cross, frame_of as frame, mat, rx, ry, rz, spatial};
 use super::{Fault, Reader, Res};
 use crate::{Canon, FeedMode, PathErrorKind};
 
@@ -43,52 +44,6 @@ struct Drill {
     /// ones.
     breaks: u32,
     break_retract: f64,
-}
-
-fn rx(a: f64) -> [[f64; 3]; 3] {
-    let (s, c) = a.to_radians().sin_cos();
-    [[1.0, 0.0, 0.0], [0.0, c, -s], [0.0, s, c]]
-}
-
-fn ry(a: f64) -> [[f64; 3]; 3] {
-    let (s, c) = a.to_radians().sin_cos();
-    [[c, 0.0, s], [0.0, 1.0, 0.0], [-s, 0.0, c]]
-}
-
-pub(super) fn rz(a: f64) -> [[f64; 3]; 3] {
-    let (s, c) = a.to_radians().sin_cos();
-    [[c, -s, 0.0], [s, c, 0.0], [0.0, 0.0, 1.0]]
-}
-
-pub(super) fn mat(a: &[[f64; 3]; 3], b: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
-}
-
-fn unit(v: [f64; 3]) -> Option<[f64; 3]> {
-    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-    (l > 1e-12 && l.is_finite()).then(|| v.map(|c| c / l))
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [
-        a[1] * b[2] - a[2] * b[1],
-        a[2] * b[0] - a[0] * b[2],
-        a[0] * b[1] - a[1] * b[0],
-    ]
-}
-
-/// The rotation whose columns are `x` and `z` (made orthogonal to `z`) and `z × x`.
-fn frame(x: [f64; 3], z: [f64; 3]) -> Option<[[f64; 3]; 3]> {
-    let z = unit(z)?;
-    let d = x[0] * z[0] + x[1] * z[1] + x[2] * z[2];
-    let x = unit([x[0] - d * z[0], x[1] - d * z[1], x[2] - d * z[2]])?;
-    let y = cross(z, x);
-    Some(std::array::from_fn(|i| [x[i], y[i], z[i]]))
-}
-
-/// Rotation by spatial angles: about the machine's X by `a`, then Y by `b`, then Z by `c`.
-pub(super) fn spatial(a: f64, b: f64, c: f64) -> [[f64; 3]; 3] {
-    mat(&rz(c), &mat(&ry(b), &rx(a)))
 }
 
 /// Splits a `PLANE` word (`SPA+30`, `P1X-5`, `TURN`) into its name and value.
@@ -175,28 +130,17 @@ impl Reader<'_> {
                 }
                 let w = self.words(rest, b.line)?;
                 // Under a tilted plane the values are along its axes.
-                let mut v = match self.tilt {
-                    Some(_) => self.tilted_shift,
-                    None => self.shift,
-                };
+                let mut v = self.frame.programmed_shift();
                 for (k, a) in w.axes.iter().take(3).enumerate() {
                     if let Some((x, inc)) = *a {
                         v[k] = if inc { v[k] + x } else { x };
                     }
                 }
-                let shift = match self.tilt {
-                    Some(t) => {
-                        self.tilted_shift = v;
-                        let d = super::mul(&t, v);
-                        std::array::from_fn(|k| self.shift_at_tilt[k] + d[k])
-                    }
-                    None => v,
-                };
-                self.change_frame(b.line, true, |s| s.shift = shift);
+                self.change_frame(b.line, true, |s| s.frame.set_programmed_shift(v));
                 Ok(())
             }
             (10, _) => {
-                let mut rot = self.rot;
+                let mut rot = self.frame.rot;
                 for t in rest {
                     let (name, val) = lexer::word(t)?;
                     match name {
@@ -205,7 +149,7 @@ impl Reader<'_> {
                         _ => {}
                     }
                 }
-                if rot != self.rot && self.plane != crate::Plane::XY {
+                if rot != self.frame.rot && self.plane != crate::Plane::XY {
                     return Err(Fault::at(
                         nt,
                         PathErrorKind::Unsupported,
@@ -213,7 +157,7 @@ impl Reader<'_> {
                         "tool axis Z",
                     ));
                 }
-                self.change_frame(b.line, true, |s| s.rot = rot);
+                self.change_frame(b.line, true, |s| s.frame.rot = rot);
                 Ok(())
             }
             (9, _) => {
@@ -313,11 +257,7 @@ impl Reader<'_> {
             self.emit(line, Canon::WorkPlane(None));
         }
         // (The tilted plane, turned by any rotation, is stated with the offsets.)
-        self.change_frame(line, true, |s| {
-            s.tilt = tilt;
-            s.shift_at_tilt = s.shift;
-            s.tilted_shift = [0.0; 3];
-        });
+        self.change_frame(line, true, |s| s.frame.set_tilt(tilt));
     }
 
     /// `CYCL CALL`, `CYCL CALL POS X… Y… Z…`.
@@ -687,7 +627,7 @@ impl Reader<'_> {
                     (None, None, Some(c)) => rz(c),
                     _ => return Err(bad("PLANE RELATIV without an angle")),
                 };
-                Some(match self.tilt {
+                Some(match self.frame.tilt {
                     Some(t) => mat(&t, &r),
                     None => r,
                 })
@@ -734,24 +674,5 @@ impl Reader<'_> {
             self.emit(b.line, Canon::MachineAxis);
         }
         Ok(())
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn spatial_angles_turn_about_fixed_axes_in_order() {
-        // B+90 alone: the plane's Z is the machine's +X... turned about Y: Z → +X.
-        let r = spatial(0.0, 90.0, 0.0);
-        assert!((r[0][2] - 1.0).abs() < 1e-12 && r[2][2].abs() < 1e-12);
-        // A+90 then C+90: Z → −Y (about X), then about Z: −Y → +X.
-        let r = spatial(90.0, 0.0, 90.0);
-        let z = [r[0][2], r[1][2], r[2][2]];
-        assert!((z[0] - 1.0).abs() < 1e-12 && z[1].abs() < 1e-12 && z[2].abs() < 1e-12);
-        let f = frame([1.0, 0.0, 1.0], [0.0, 0.0, 2.0]).unwrap();
-        assert_eq!(f, [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]]);
-        assert!(frame([0.0, 0.0, 1.0], [0.0, 0.0, 1.0]).is_none());
     }
 }

@@ -34,7 +34,7 @@
 //! images and scaling, patterns. Errors name the file, line and column.
 
 mod cycles;
-mod expr;
+
 pub(crate) mod lexer;
 
 use std::collections::HashMap;
@@ -47,6 +47,7 @@ use crate::{
     Axes, Canon, CanonSink, FeedMode, PathError, PathErrorKind, Plane, SourcePos, SpindleDir,
     Units, Warning,
 };
+use crate::part_frame::PartFrame;
 use lexer::{Block, Tok, Val};
 
 /// A reader error before it is given its file.
@@ -224,14 +225,8 @@ struct Reader<'a> {
     feed_scale: f64,
     /// Position in the program frame: X Y Z mm, A B C degrees.
     pos: [f64; 6],
-    /// Datum shift (mm), rotation (degrees) and tilted plane (columns: the plane's axes).
-    shift: [f64; 3],
-    /// Under a tilted plane: the shift when it was tilted, and the shift programmed since,
-    /// along the tilted axes (a datum shift in a tilted plane moves along its axes).
-    shift_at_tilt: [f64; 3],
-    tilted_shift: [f64; 3],
-    rot: f64,
-    tilt: Option<[[f64; 3]; 3]>,
+    /// Datum shift, rotation and tilted plane.
+    frame: PartFrame,
     plane: Plane,
     pole: Option<[f64; 2]>,
     /// The direction the contour ends in (plane axes), for `CT`.
@@ -259,15 +254,6 @@ struct Reader<'a> {
     ended: bool,
 }
 
-/// Rows of `m` times `v`.
-fn mul(m: &[[f64; 3]; 3], v: [f64; 3]) -> [f64; 3] {
-    std::array::from_fn(|i| m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2])
-}
-
-fn transpose(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    std::array::from_fn(|i| std::array::from_fn(|j| m[j][i]))
-}
-
 impl<'a> Reader<'a> {
     fn new(file: &'a str, opts: &'a GcodeOptions, sink: &'a mut dyn CanonSink) -> Self {
         let mut pos = [0.0; 6];
@@ -287,11 +273,7 @@ impl<'a> Reader<'a> {
             scale: 1.0,
             feed_scale: 1.0,
             pos,
-            shift: [0.0; 3],
-            shift_at_tilt: [0.0; 3],
-            tilted_shift: [0.0; 3],
-            rot: 0.0,
-            tilt: None,
+            frame: PartFrame::default(),
             plane: Plane::XY,
             pole: None,
             tangent: None,
@@ -1001,23 +983,12 @@ impl<'a> Reader<'a> {
 
     // ---- frames ----
 
-    /// The turn of the program frame: the tilted plane, and within it cycle 10's rotation
-    /// about its Z (a rotation programmed in a tilted plane turns in that plane).
-    fn turn(&self) -> [[f64; 3]; 3] {
-        let r = cycles::rz(self.rot);
-        self.tilt.map_or(r, |t| cycles::mat(&t, &r))
-    }
-
-    /// Machine position (swarf's machine frame, offsets and turns applied) of program
-    /// position `p`'s X Y Z: `turn · p + shift`.
     fn machine_of(&self, p: [f64; 3]) -> [f64; 3] {
-        let t = mul(&self.turn(), p);
-        std::array::from_fn(|k| t[k] + self.shift[k])
+        self.frame.machine_of(p)
     }
 
     fn program_of(&self, m: [f64; 3]) -> [f64; 3] {
-        let d = std::array::from_fn(|k| m[k] - self.shift[k]);
-        mul(&transpose(&self.turn()), d)
+        self.frame.program_of(m)
     }
 
     /// Changes the frame with `f`, keeping the machine position (and the pole's place on
@@ -1044,32 +1015,8 @@ impl<'a> Reader<'a> {
     }
 
     fn emit_frame(&mut self, line: u32) {
-        let g5x = Axes {
-            x: self.shift[0],
-            y: self.shift[1],
-            z: self.shift[2],
-            ..Axes::default()
-        };
-        self.emit(
-            line,
-            Canon::Offsets {
-                index: 1,
-                g5x,
-                g92: Axes::default(),
-            },
-        );
-        // Under a tilted plane the rotation is part of the plane's turn.
-        let rot = if self.tilt.is_some() { 0.0 } else { self.rot };
-        self.emit(line, Canon::XyRotation(rot));
-        if let Some(t) = self.tilt {
-            self.emit(
-                line,
-                Canon::WorkPlane(Some(crate::WorkPlane {
-                    origin: [0.0; 3],
-                    rotation: cycles::mat(&t, &cycles::rz(self.rot)),
-                    tool_axis: true,
-                })),
-            );
+        for e in self.frame.events() {
+            self.emit(line, e);
         }
     }
 
@@ -1541,7 +1488,7 @@ impl<'a> Reader<'a> {
     }
 
     fn machine_direction(&self, d: [f64; 3]) -> [f64; 3] {
-        mul(&self.turn(), d)
+        self.frame.direction(d)
     }
 
     // ---- parameters, labels, calls ----
@@ -1570,7 +1517,7 @@ impl<'a> Reader<'a> {
             });
         };
         let rhs = &code[eq + 1..];
-        let v = expr::eval(rhs, &|r| self.qv(r)).map_err(|e| Fault {
+        let v = crate::formula::eval(rhs, &|r| self.qv(r)).map_err(|e| Fault {
             line,
             col: col + (eq + 1 + e.at) as u32,
             kind: if e.message.starts_with("unexpected") || e.message.starts_with("expected") {
@@ -1670,7 +1617,7 @@ impl<'a> Reader<'a> {
         let at = cond
             .find(op)
             .ok_or_else(|| bad("the comparison does not match the FN"))?;
-        let q = |s: &str| expr::eval(s, &|r| self.qv(r)).map_err(|_| bad("bad operand"));
+        let q = |s: &str| crate::formula::eval(s, &|r| self.qv(r)).map_err(|_| bad("bad operand"));
         let (a, c) = (q(&cond[..at])?, q(&cond[at + op.len()..])?);
         let yes = match num {
             9 => a == c,

@@ -1,5 +1,6 @@
-//! Q-parameter arithmetic: the formulas of `Q1 = …` blocks and the operands of `FN` functions,
-//! evaluated as they are read (angles in degrees, as the control takes them).
+//! Parameter arithmetic: the formulas of Heidenhain `Q1 = …` blocks and the operands of `FN`
+//! functions, and the expressions of Sinumerik programs (`R1=R2*SIN(30)`, `IF R1>=5 …`),
+//! evaluated as they are read (angles in degrees, as the controls take them).
 //!
 //! Grammar: `sum := product (('+' | '-') product)*`, `product := power (('*' | '/' | DIV |
 //! LEN | ANG) power)*`, `power := unary ('^' unary)?`, `unary := ('+' | '-')* primary`,
@@ -7,7 +8,7 @@
 //! `√(a² + b²)`, `ANG` (FN 13) the angle of `(a, b)` in degrees; a function's argument may be
 //! written without parentheses, as `FN 5: Q1 = SQRT +Q2` writes it.
 
-use super::lexer::{qref, QRef};
+use crate::heidenhain::lexer::{qref, QRef};
 
 /// Evaluation failure: the byte offset in the text and what is wrong.
 #[derive(Debug, PartialEq)]
@@ -26,18 +27,32 @@ struct Parser<'a, 'q> {
     s: &'a [u8],
     pos: usize,
     depth: usize,
-    q: &'q dyn Fn(QRef) -> f64,
+    /// The value of a name (a parameter or variable), `None` for an unknown one.
+    var: &'q dyn Fn(&str) -> Option<f64>,
+    /// Sinumerik rules: comparisons and `AND OR XOR NOT` (true is 1), `DIV` and `MOD` of
+    /// integers, `MIN MAX ATAN2 POT TRUNC ROUND`, names with `_` and `$`.
+    siemens: bool,
 }
 
-/// Evaluates the whole of `text` (upper case) with parameters read through `q`.
+/// Evaluates the whole of `text` (upper case, Heidenhain) with parameters read through `q`.
 pub(crate) fn eval(text: &str, q: &dyn Fn(QRef) -> f64) -> R {
+    eval_with(text, &|name| qref(name).map(q), false)
+}
+
+/// Evaluates the whole of a Sinumerik expression (upper case) with names read through `var`.
+pub(crate) fn eval_siemens(text: &str, var: &dyn Fn(&str) -> Option<f64>) -> R {
+    eval_with(text, var, true)
+}
+
+fn eval_with(text: &str, var: &dyn Fn(&str) -> Option<f64>, siemens: bool) -> R {
     let mut p = Parser {
         s: text.as_bytes(),
         pos: 0,
         depth: 0,
-        q,
+        var,
+        siemens,
     };
-    let v = p.sum()?;
+    let v = if siemens { p.logic()? } else { p.sum()? };
     p.skip_ws();
     if p.pos < p.s.len() {
         return Err(p.err(
@@ -100,6 +115,59 @@ impl Parser<'_, '_> {
         Ok(())
     }
 
+    /// `OR`, `XOR`, `AND`, `NOT` over comparisons (Sinumerik).
+    fn logic(&mut self) -> R {
+        let mut v = self.conjunction()?;
+        loop {
+            if self.eat("OR") {
+                let b = self.conjunction()?;
+                v = f64::from(v != 0.0 || b != 0.0);
+            } else if self.eat("XOR") {
+                let b = self.conjunction()?;
+                v = f64::from((v != 0.0) != (b != 0.0));
+            } else {
+                return Ok(v);
+            }
+        }
+    }
+
+    fn conjunction(&mut self) -> R {
+        let mut v = self.negation()?;
+        while self.eat("AND") {
+            let b = self.negation()?;
+            v = f64::from(v != 0.0 && b != 0.0);
+        }
+        Ok(v)
+    }
+
+    fn negation(&mut self) -> R {
+        if self.eat("NOT") {
+            self.enter()?;
+            let v = self.negation()?;
+            self.depth -= 1;
+            return Ok(f64::from(v == 0.0));
+        }
+        self.comparison()
+    }
+
+    fn comparison(&mut self) -> R {
+        let a = self.sum()?;
+        for (op, f) in [
+            ("==", (|a, b| a == b) as fn(f64, f64) -> bool),
+            ("<>", |a, b| a != b),
+            ("<=", |a, b| a <= b),
+            (">=", |a, b| a >= b),
+            ("<", |a, b| a < b),
+            (">", |a, b| a > b),
+        ] {
+            if self.eat(op) {
+                let b = self.sum()?;
+                return Ok(f64::from(f(a, b)));
+            }
+        }
+        Ok(a)
+    }
+
     fn sum(&mut self) -> R {
         let mut v = self.product()?;
         loop {
@@ -120,7 +188,8 @@ impl Parser<'_, '_> {
             let at = self.pos;
             if self.eat("*") {
                 v *= self.power()?;
-            } else if self.eat("/") || self.eat("DIV") {
+            } else if self.eat("/") || self.eat("DIV") || (self.siemens && self.eat("MOD")) {
+                let op = self.s[at];
                 let d = self.power()?;
                 if d == 0.0 {
                     return Err(ExprError {
@@ -129,7 +198,11 @@ impl Parser<'_, '_> {
                         expected: "a non-zero divisor",
                     });
                 }
-                v /= d;
+                v = match op {
+                    b'D' if self.siemens => (v / d).trunc(),
+                    b'M' => v % d,
+                    _ => v / d,
+                };
             } else if self.eat("LEN") {
                 v = v.hypot(self.power()?);
             } else if self.eat("ANG") {
@@ -223,17 +296,57 @@ impl Parser<'_, '_> {
         if self.eat("NEG") {
             return Ok(-self.unary()?);
         }
+        if self.siemens {
+            type F2 = fn(f64, f64) -> f64;
+            const TWO: [(&str, F2); 3] = [
+                ("ATAN2", |y, x| y.atan2(x).to_degrees()),
+                ("MIN", f64::min),
+                ("MAX", f64::max),
+            ];
+            for (name, f) in TWO {
+                if self.eat(name) {
+                    if !self.eat("(") {
+                        return Err(self.err("expected '(' after the function", "'('"));
+                    }
+                    self.enter()?;
+                    let a = self.logic()?;
+                    if !self.eat(",") {
+                        return Err(self.err("expected ',' between the arguments", "','"));
+                    }
+                    let b = self.logic()?;
+                    self.depth -= 1;
+                    if !self.eat(")") {
+                        return Err(self.err("missing closing parenthesis", "')'"));
+                    }
+                    return finite(f(a, b), start);
+                }
+            }
+            type F1 = fn(f64) -> f64;
+            const ONE: [(&str, F1); 3] = [
+                ("POT", |x| x * x),
+                ("TRUNC", f64::trunc),
+                ("ROUND", f64::round),
+            ];
+            for (name, f) in ONE {
+                if self.eat(name) {
+                    let arg = self.unary()?;
+                    return finite(f(arg), start);
+                }
+            }
+        }
         // A number or a parameter.
         let len = self.s[start..]
             .iter()
-            .take_while(|c| c.is_ascii_alphanumeric() || **c == b'.')
+            .take_while(|c| {
+                c.is_ascii_alphanumeric() || **c == b'.' || (self.siemens && b"_$".contains(c))
+            })
             .count();
         let tok = std::str::from_utf8(&self.s[start..start + len]).unwrap_or("");
-        if let Some(q) = qref(tok) {
+        if let Some(v) = (self.var)(tok) {
             self.pos += len;
-            return Ok((self.q)(q));
+            return Ok(v);
         }
-        if let Some(v) = super::lexer::number(tok) {
+        if let Some(v) = crate::heidenhain::lexer::number(tok) {
             self.pos += len;
             return Ok(v);
         }
