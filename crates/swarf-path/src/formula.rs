@@ -351,7 +351,7 @@ impl Parser<'_, '_> {
             return Ok(v);
         }
         Err(self.err(
-            "expected a number, a Q parameter, a function or '('",
+            "expected a number, a parameter, a function or '('",
             "a value",
         ))
     }

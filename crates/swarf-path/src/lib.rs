@@ -33,6 +33,7 @@ pub mod load;
 pub mod moves;
 pub(crate) mod part_frame;
 pub mod rewrite;
+pub mod sinumerik;
 pub mod spline;
 pub mod summary;
 

@@ -16,6 +16,8 @@ pub enum ProgramFormat {
     Apt,
     /// Heidenhain conversational (Klartext) programs (`BEGIN PGM …`, `.h`).
     Heidenhain,
+    /// Siemens Sinumerik 840D programs (`CR=`, `TRAORI`, `CYCLE800(…)`, `.mpf`, `.spf`).
+    Sinumerik,
 }
 
 impl ProgramFormat {
@@ -26,6 +28,9 @@ impl ProgramFormat {
     pub fn detect(path: &Path, text: &str) -> Self {
         if crate::heidenhain::is_heidenhain(text) {
             return ProgramFormat::Heidenhain;
+        }
+        if crate::sinumerik::is_sinumerik(text) {
+            return ProgramFormat::Sinumerik;
         }
         let ext = path
             .extension()
@@ -83,7 +88,7 @@ pub fn program_lines_with_ends(text: &str, format: ProgramFormat) -> impl Iterat
         (pos < text.len()).then(|| {
             let rest = &text.as_bytes()[pos..];
             let end = match format {
-                ProgramFormat::Gcode | ProgramFormat::Heidenhain => {
+                ProgramFormat::Gcode | ProgramFormat::Heidenhain | ProgramFormat::Sinumerik => {
                     crate::gcode::lexer::memchr_nl(rest)
                 }
                 ProgramFormat::Apt => rest.iter().position(|&c| c == b'\n'),
@@ -181,6 +186,9 @@ pub fn stream_program(
         ProgramFormat::Apt => read_apt(text, file, &options.apt, sink)?,
         ProgramFormat::Heidenhain => {
             crate::heidenhain::read_heidenhain(text, file, &options.gcode, sink)?
+        }
+        ProgramFormat::Sinumerik => {
+            crate::sinumerik::read_sinumerik(text, file, &options.gcode, sink)?
         }
     }
     Ok(format)

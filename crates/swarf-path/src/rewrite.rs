@@ -459,7 +459,8 @@ pub fn rewrite_feeds(
             }
         }
         let (word, code_end) = match format {
-            ProgramFormat::Gcode => scan_gcode(body),
+            // (A Sinumerik `F=…` is an expression, refused on a line to rescale.)
+            ProgramFormat::Gcode | ProgramFormat::Sinumerik => scan_gcode(body),
             ProgramFormat::Apt => (scan_apt(body), body.len()),
             ProgramFormat::Heidenhain => scan_heidenhain(body),
         };
@@ -596,7 +597,7 @@ pub fn rewrite_feeds(
                 out.push_str(&body[w.end..]);
                 out.push_str(eol);
             }
-            (None, ProgramFormat::Gcode | ProgramFormat::Heidenhain) => {
+            (None, ProgramFormat::Gcode | ProgramFormat::Heidenhain | ProgramFormat::Sinumerik) => {
                 if current != Some(value) {
                     changed.push(n);
                     out.push_str(&body[..code_end]);

@@ -1894,7 +1894,7 @@ fn polar(pole: [f64; 2], p: [f64; 2]) -> (f64, f64) {
 /// `r < 0`: more), counter-clockwise when `ccw`.
 /// A chord longer than the diameter by at most `tol` (posted coordinates' rounding) gives the
 /// half circle.
-fn cr_centre(a: [f64; 2], b: [f64; 2], r: f64, ccw: bool, tol: f64) -> Option<[f64; 2]> {
+pub(crate) fn cr_centre(a: [f64; 2], b: [f64; 2], r: f64, ccw: bool, tol: f64) -> Option<[f64; 2]> {
     let d = [b[0] - a[0], b[1] - a[1]];
     let l = d[0].hypot(d[1]);
     if l == 0.0 || r == 0.0 {
