@@ -47,11 +47,11 @@ pub(crate) struct SetupArgs {
     #[arg(long)]
     pub(crate) no_block_delete: bool,
     /// The machine's home, mm in the work frame with no offsets: where a G-code program starts,
-    /// where G28/G30 return to, and the origin of G53's machine coordinates for the whole
-    /// program, whatever work offsets or G92 it sets (machine zero is the home on Fanuc, Haas,
-    /// GRBL, Mach3). Default
-    /// 0,0,0 (LinuxCNC's); a program's `G28 G91 Z0.` or `G53 G0 Z0.` means "retract", so give
-    /// its home above the part.
+    /// where G28/G30 return to, and the origin of G53's machine coordinates (Heidenhain's
+    /// M91/M92, Sinumerik's SUPA/G153) for the whole program, whatever work offsets or G92 it
+    /// sets (machine zero is the home on Fanuc, Haas, GRBL, Mach3). Default 0,0,0 (LinuxCNC's);
+    /// a program's `G28 G91 Z0.`, `G53 G0 Z0.`, `L Z+0 R0 FMAX M91` or `G0 SUPA Z0` means
+    /// "retract", so give its home above the part.
     #[arg(long, value_name = "X,Y,Z", value_parser = parse_home, allow_hyphen_values = true)]
     pub(crate) home: Option<[f64; 3]>,
     /// Most moves a program may make: reading stops with an error at the first move over it,

@@ -26,7 +26,7 @@ enum Command {
     /// taper-ball:d=6,taper=3, taper-flat:d=10,taper=5, chamfer:d=10,angle=90,
     /// drill:d=8,angle=118, apt:D,R,E,F,ALPHA,BETA,H).
     Tool(commands::tool::ToolArgs),
-    /// Read a G-code, APT CL or Heidenhain program and summarise its motion.
+    /// Read a G-code, APT CL, Heidenhain or Sinumerik program and summarise its motion.
     Path(commands::path::PathArgs),
     /// Simulate a program on a tri-dexel stock: removed volume, collisions, the machined part.
     Simulate(commands::simulate::SimulateArgs),

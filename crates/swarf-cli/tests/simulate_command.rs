@@ -540,3 +540,39 @@ fn a_heidenhain_program_is_simulated_in_its_blank() {
         "{removed} vs {exact}"
     );
 }
+
+#[test]
+fn a_sinumerik_program_is_simulated() {
+    let dir = temp_dir("sinumerik");
+    let prog = dir.join("SLOT.MPF");
+    // The same 6 mm slot, 4 mm deep and 10 mm long, as a Siemens post writes it: the depth
+    // through R parameters, the move with an incremental coordinate.
+    std::fs::write(
+        &prog,
+        "; slot\nN10 G40 G17 G710 G94 G90\nN20 T=\"FLAT_6\"\nN30 M6\nN40 G0 G54 X0 Y0 Z5 S1000 M3\n\
+         N50 R1=-4\nN60 G1 Z=R1 F100\nN70 X=IC(10)\nN80 G0 SUPA Z5 D0\nN90 M30\n",
+    )
+    .unwrap();
+    let o = swarf(&[
+        "simulate",
+        "--program",
+        prog.to_str().unwrap(),
+        "--stock",
+        "box:-20,-10,-10,20,10,0",
+        "--tool",
+        "flat:d=6",
+        "--resolution",
+        "0.1",
+        "--home",
+        "0,0,0",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    let exact = 4.0 * (10.0 * 6.0 + PI * 9.0);
+    let removed = j["removed_volume_mm3"].as_f64().unwrap();
+    assert!(
+        (removed - exact).abs() < 0.005 * exact,
+        "{removed} vs {exact}"
+    );
+}

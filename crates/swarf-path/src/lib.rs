@@ -1,11 +1,12 @@
-//! Toolpath input for swarf: G-code, APT CL and Heidenhain interpreters, machine kinematics and the move
-//! stream that every later stage reads.
+//! Toolpath input for swarf: G-code, APT CL, Heidenhain and Sinumerik interpreters, machine
+//! kinematics and the move stream that every later stage reads.
 //!
 //! # Model
 //! Reading a program happens in two steps, as in LinuxCNC:
 //!
-//! 1. An interpreter ([`gcode`], [`apt`] or [`heidenhain`]) turns text into [`Canon`] events — the canonical
-//!    machining calls: straight traverse, straight feed, arc feed, units, offsets, tool change —
+//! 1. An interpreter ([`gcode`], [`apt`], [`heidenhain`] or [`sinumerik`]) turns text into
+//!    [`Canon`] events — the canonical machining calls: straight traverse, straight feed, arc
+//!    feed, units, offsets, tool change —
 //!    in **joint space** (X Y Z A B C as the program commands them), lengths in millimetres,
 //!    angles in degrees, positions in the program's current coordinate system. It never
 //!    allocates per event and never keeps the program's motion: it hands each event to a

@@ -27,7 +27,7 @@ pub(crate) struct RunArgs {
     /// Default: the workpiece a CAMotics project (--tools FILE.camotics) states.
     #[arg(long, value_name = "SPEC|FILE.stl")]
     stock: Option<String>,
-    /// The program: G-code, APT CL or Heidenhain conversational (required).
+    /// The program: G-code, APT CL, Heidenhain conversational or Sinumerik (required).
     #[arg(long, value_name = "FILE")]
     program: Option<PathBuf>,
     /// Cutters, tool library, machine and units.
@@ -72,7 +72,7 @@ impl RunArgs {
         match &self.program {
             Some(p) => Ok(p),
             None => bail!(
-                "--program FILE is required (the G-code, APT CL or Heidenhain program to run)"
+                "--program FILE is required (the G-code, APT CL, Heidenhain or Sinumerik program to run)"
             ),
         }
     }

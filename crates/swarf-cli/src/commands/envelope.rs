@@ -19,7 +19,7 @@ use crate::output::{check_sizes, output_set, print_json};
 
 #[derive(Debug, Args)]
 pub(crate) struct EnvelopeArgs {
-    /// The program: G-code, APT CL or Heidenhain conversational.
+    /// The program: G-code, APT CL, Heidenhain conversational or Sinumerik.
     #[arg(long, value_name = "FILE")]
     pub(crate) program: PathBuf,
     /// Cutters, tool library, machine and units.

@@ -25,7 +25,7 @@ pub(crate) struct GougeArgs {
     /// surface point inside the tool is a violation).
     #[arg(long)]
     pub(crate) surface: PathBuf,
-    /// The program: G-code, APT CL or Heidenhain conversational.
+    /// The program: G-code, APT CL, Heidenhain conversational or Sinumerik.
     #[arg(long, value_name = "FILE")]
     pub(crate) program: PathBuf,
     /// Check geometry (fixtures, clamps, neighbouring parts) as a closed STL mesh: any part of

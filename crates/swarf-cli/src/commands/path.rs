@@ -21,8 +21,8 @@ use crate::output::print_json;
 /// `swarf path`.
 #[derive(Debug, Args)]
 pub(crate) struct PathArgs {
-    /// The program: G-code (.ngc .nc .gcode .tap .ptp …), APT CL (.apt .cls .cl) or Heidenhain
-    /// conversational (.h, any file starting with BEGIN PGM).
+    /// The program: G-code (.ngc .nc .gcode .tap .ptp …), APT CL (.apt .cls .cl), Heidenhain
+    /// conversational (.h, any file starting with BEGIN PGM) or Sinumerik (.mpf .spf).
     #[arg(
         value_name = "PROGRAM",
         required_unless_present = "program_option",

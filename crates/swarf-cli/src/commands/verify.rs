@@ -30,7 +30,7 @@ pub(crate) struct VerifyArgs {
     /// Default: the workpiece a CAMotics project (--tools FILE.camotics) states.
     #[arg(long, value_name = "SPEC|FILE.stl")]
     pub(crate) stock: Option<String>,
-    /// The program: G-code, APT CL or Heidenhain conversational.
+    /// The program: G-code, APT CL, Heidenhain conversational or Sinumerik.
     #[arg(long, value_name = "FILE")]
     pub(crate) program: PathBuf,
     /// Cutters, tool library, machine and units.

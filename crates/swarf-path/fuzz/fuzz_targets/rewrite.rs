@@ -13,8 +13,9 @@ fuzz_target!(|data: &[u8]| {
         return;
     };
     let text = String::from_utf8_lossy(rest);
-    let format = match head % 3 {
+    let format = match head % 4 {
         0 => ProgramFormat::Gcode,
+        3 => ProgramFormat::Sinumerik,
         1 => ProgramFormat::Apt,
         _ => ProgramFormat::Heidenhain,
     };

@@ -13,8 +13,8 @@
 //! to the second set-up clearance when it is higher.
 
 use super::lexer::{self, Block, Tok};
-use crate::part_frame::{cross, frame_of as frame, mat, rx, ry, rz, spatial};
 use super::{Fault, Reader, Res};
+use crate::part_frame::{cross, frame_of as frame, mat, rx, ry, rz, spatial};
 use crate::{Canon, FeedMode, PathErrorKind};
 
 /// Most pecks one drilling cycle call may make (a tiny plunging depth would otherwise make

@@ -43,11 +43,11 @@ use std::rc::Rc;
 
 use crate::gcode::GcodeOptions;
 use crate::limit::MoveLimit;
+use crate::part_frame::PartFrame;
 use crate::{
     Axes, Canon, CanonSink, FeedMode, PathError, PathErrorKind, Plane, SourcePos, SpindleDir,
     Units, Warning,
 };
-use crate::part_frame::PartFrame;
 use lexer::{Block, Tok, Val};
 
 /// A reader error before it is given its file.

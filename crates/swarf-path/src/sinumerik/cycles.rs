@@ -87,7 +87,13 @@ impl Reader<'_> {
     fn cycle800(&mut self, b: &Block, at: usize, v: &[Option<f64>]) -> Res<()> {
         let g = |i: usize| v.get(i).copied().flatten().unwrap_or(0.0);
         let refuse = |m: &str| {
-            Reader::fault(b, at, PathErrorKind::Unsupported, m, "CYCLE800 by axis-by-axis angles")
+            Reader::fault(
+                b,
+                at,
+                PathErrorKind::Unsupported,
+                m,
+                "CYCLE800 by axis-by-axis angles",
+            )
         };
         let mode = g(3) as i64;
         let (a, bb, c) = (g(7), g(8), g(9));
@@ -143,7 +149,13 @@ impl Reader<'_> {
         Ok(())
     }
 
-    fn drill(&mut self, b: &Block, at: usize, name: &str, get: &dyn Fn(usize) -> Option<f64>) -> Res<()> {
+    fn drill(
+        &mut self,
+        b: &Block,
+        at: usize,
+        name: &str,
+        get: &dyn Fn(usize) -> Option<f64>,
+    ) -> Res<()> {
         let s = self.scale;
         let (rtp, rfp, sdis) = (
             get(0).unwrap_or(self.pos[self.plane.axes().2] / s) * s,
@@ -173,14 +185,31 @@ impl Reader<'_> {
             ));
         }
         let f = self.feed.ok_or_else(|| {
-            Reader::fault(b, at, PathErrorKind::Semantic, "a drilling cycle before any feed rate", "F<feed>")
+            Reader::fault(
+                b,
+                at,
+                PathErrorKind::Semantic,
+                "a drilling cycle before any feed rate",
+                "F<feed>",
+            )
         });
         let per_min = FeedMode::PerMinute;
-        let fs = if self.feed_mode == FeedMode::InverseTime { 1.0 } else { s };
+        let fs = if self.feed_mode == FeedMode::InverseTime {
+            1.0
+        } else {
+            s
+        };
         // (feed, mode), retract (None: rapid), dwell at depth, first peck, degression, break.
         let (feed, retract, dwell, first, dam, chip_break) = match name {
             "CYCLE81" => ((f?, self.feed_mode), None, 0.0, 0.0, 0.0, false),
-            "CYCLE82" => ((f?, self.feed_mode), None, get(5).unwrap_or(0.0), 0.0, 0.0, false),
+            "CYCLE82" => (
+                (f?, self.feed_mode),
+                None,
+                get(5).unwrap_or(0.0),
+                0.0,
+                0.0,
+                false,
+            ),
             "CYCLE83" => {
                 let first = match (get(5), get(6)) {
                     (Some(d), _) => rfp - d * s,
@@ -189,7 +218,14 @@ impl Reader<'_> {
                 };
                 let vari = get(11).unwrap_or(0.0);
                 let f = f?;
-                ((f, self.feed_mode), None, get(8).unwrap_or(0.0), first, get(7).unwrap_or(0.0).abs() * s, vari == 0.0)
+                (
+                    (f, self.feed_mode),
+                    None,
+                    get(8).unwrap_or(0.0),
+                    first,
+                    get(7).unwrap_or(0.0).abs() * s,
+                    vari == 0.0,
+                )
             }
             "CYCLE84" => {
                 let pit = get(8).unwrap_or(0.0).abs() * s;
@@ -212,7 +248,14 @@ impl Reader<'_> {
                         })?
                 };
                 let sync = FeedMode::SpindleSynchronised;
-                ((pitch, sync), Some((pitch, sync)), get(5).unwrap_or(0.0), 0.0, 0.0, false)
+                (
+                    (pitch, sync),
+                    Some((pitch, sync)),
+                    get(5).unwrap_or(0.0),
+                    0.0,
+                    0.0,
+                    false,
+                )
             }
             "CYCLE85" => {
                 let ffr = get(6).map(|x| x * fs);
@@ -222,29 +265,64 @@ impl Reader<'_> {
                     _ => f?,
                 };
                 let r = rff.filter(|x| *x > 0.0).unwrap_or(f);
-                ((f, per_min), Some((r, per_min)), get(5).unwrap_or(0.0), 0.0, 0.0, false)
+                (
+                    (f, per_min),
+                    Some((r, per_min)),
+                    get(5).unwrap_or(0.0),
+                    0.0,
+                    0.0,
+                    false,
+                )
             }
-            "CYCLE86" => ((f?, self.feed_mode), None, get(5).unwrap_or(0.0), 0.0, 0.0, false),
+            "CYCLE86" => (
+                (f?, self.feed_mode),
+                None,
+                get(5).unwrap_or(0.0),
+                0.0,
+                0.0,
+                false,
+            ),
             "CYCLE89" => {
                 let f = f?;
-                ((f, self.feed_mode), Some((f, self.feed_mode)), get(5).unwrap_or(0.0), 0.0, 0.0, false)
+                (
+                    (f, self.feed_mode),
+                    Some((f, self.feed_mode)),
+                    get(5).unwrap_or(0.0),
+                    0.0,
+                    0.0,
+                    false,
+                )
             }
             _ => {
                 return Err(Reader::fault(
                     b,
                     at,
                     PathErrorKind::Unsupported,
-                    format!("{name} is not read (swarf runs CYCLE81–CYCLE86, CYCLE89 and CYCLE800)"),
+                    format!(
+                        "{name} is not read (swarf runs CYCLE81–CYCLE86, CYCLE89 and CYCLE800)"
+                    ),
                     "a drilling cycle",
                 ))
             }
         };
         if feed.0 <= 0.0 {
-            return Err(Reader::fault(b, at, PathErrorKind::Semantic, "the cycle's feed is zero", "a positive feed"));
+            return Err(Reader::fault(
+                b,
+                at,
+                PathErrorKind::Semantic,
+                "the cycle's feed is zero",
+                "a positive feed",
+            ));
         }
         let total = rfp - depth;
         if first > 0.0 && total / first.min(if dam > 0.0 { dam } else { first }) > MAX_PECKS {
-            return Err(Reader::fault(b, at, PathErrorKind::Limit, "the cycle makes more than 10,000 pecks", "a larger first depth or degression"));
+            return Err(Reader::fault(
+                b,
+                at,
+                PathErrorKind::Limit,
+                "the cycle makes more than 10,000 pecks",
+                "a larger first depth or degression",
+            ));
         }
         let line = b.line;
         let top = rfp + sdis;
@@ -252,7 +330,11 @@ impl Reader<'_> {
         let mut reached = 0.0;
         let mut peck = first;
         loop {
-            let next = if peck > 0.0 { (reached + peck).min(total) } else { total };
+            let next = if peck > 0.0 {
+                (reached + peck).min(total)
+            } else {
+                total
+            };
             self.axis_to(line, rfp - next, Some(feed));
             reached = next;
             if reached >= total {

@@ -332,7 +332,13 @@ impl<'a> Reader<'a> {
         }
     }
 
-    fn fault(b: &Block, at: usize, kind: PathErrorKind, message: impl Into<String>, expected: &str) -> Fault {
+    fn fault(
+        b: &Block,
+        at: usize,
+        kind: PathErrorKind,
+        message: impl Into<String>,
+        expected: &str,
+    ) -> Fault {
         let found: String = b.code[at.min(b.code.len())..]
             .split_whitespace()
             .next()
@@ -516,7 +522,13 @@ impl<'a> Reader<'a> {
     fn var(&self, name: &str) -> Option<f64> {
         if let Some(n) = name.strip_prefix('R') {
             if !n.is_empty() && n.bytes().all(|c| c.is_ascii_digit()) {
-                return Some(n.parse().ok().and_then(|n| self.r.get(&n)).copied().unwrap_or(0.0));
+                return Some(
+                    n.parse()
+                        .ok()
+                        .and_then(|n| self.r.get(&n))
+                        .copied()
+                        .unwrap_or(0.0),
+                );
             }
         }
         if let Some(v) = self.locals.get(name) {
@@ -575,7 +587,9 @@ impl<'a> Reader<'a> {
 
     /// Changes the frame with `f`, keeping the machine position.
     fn change_frame(&mut self, line: u32, f: impl FnOnce(&mut Self)) {
-        let m = self.frame.machine_of([self.pos[0], self.pos[1], self.pos[2]]);
+        let m = self
+            .frame
+            .machine_of([self.pos[0], self.pos[1], self.pos[2]]);
         let untilting = self.frame.tilt.is_some();
         f(self);
         if untilting && self.frame.tilt.is_none() {
@@ -686,7 +700,13 @@ impl<'a> Reader<'a> {
 
     fn words_at(&self, b: &Block, at: usize) -> Res<Vec<Word>> {
         let mut ws = words::words(&b.code[at..]).map_err(|e| {
-            Self::fault(b, at + e.at, PathErrorKind::Syntax, e.message, "a Sinumerik word")
+            Self::fault(
+                b,
+                at + e.at,
+                PathErrorKind::Syntax,
+                e.message,
+                "a Sinumerik word",
+            )
         })?;
         for w in &mut ws {
             w.at += at;
@@ -695,14 +715,24 @@ impl<'a> Reader<'a> {
     }
 
     fn pair(&self, index: usize) -> usize {
-        self.sources[self.cur].pair.get(&index).copied().unwrap_or(index)
+        self.sources[self.cur]
+            .pair
+            .get(&index)
+            .copied()
+            .unwrap_or(index)
     }
 
     /// `DEF REAL A, B=5` (the type is not checked).
     fn define(&mut self, b: &Block) -> Res<()> {
         let rest = b.code[3..].trim_start();
         let Some(sp) = rest.find(char::is_whitespace) else {
-            return Err(Self::fault(b, 0, PathErrorKind::Syntax, "DEF without a name", "DEF REAL <name>"));
+            return Err(Self::fault(
+                b,
+                0,
+                PathErrorKind::Syntax,
+                "DEF without a name",
+                "DEF REAL <name>",
+            ));
         };
         let names = &rest[sp..];
         let base = b.code.len() - names.len();
@@ -793,7 +823,15 @@ impl<'a> Reader<'a> {
 
     /// `FOR R1 = 1 TO 10` (or a `DEF` variable).
     fn for_block(&mut self, b: &Block, index: usize, rest: &str, rest_at: usize) -> Res<Flow> {
-        let bad = || Self::fault(b, rest_at, PathErrorKind::Syntax, "bad FOR", "FOR <variable> = <start> TO <end>");
+        let bad = || {
+            Self::fault(
+                b,
+                rest_at,
+                PathErrorKind::Syntax,
+                "bad FOR",
+                "FOR <variable> = <start> TO <end>",
+            )
+        };
         let (var, range) = rest.split_once('=').ok_or_else(bad)?;
         let to = range.find("TO").ok_or_else(bad)?;
         let var = var.trim().to_string();
@@ -817,7 +855,11 @@ impl<'a> Reader<'a> {
             .unwrap_or("")
             .trim()
             .to_string();
-        let end = self.locals.get(&format!("\u{0}FOR{open}")).copied().unwrap_or(0.0);
+        let end = self
+            .locals
+            .get(&format!("\u{0}FOR{open}"))
+            .copied()
+            .unwrap_or(0.0);
         let v = self.var(&var).unwrap_or(0.0) + 1.0;
         self.assign(&var, v);
         if v <= end {
@@ -856,7 +898,13 @@ impl<'a> Reader<'a> {
             Some(&l) => l,
             None => {
                 if !(count >= 0.0 && count <= self.opts.max_repeat as f64) {
-                    return Err(Self::fault(b, 0, PathErrorKind::Limit, "bad repeat count", "P=<n>, 0 to the repeat limit"));
+                    return Err(Self::fault(
+                        b,
+                        0,
+                        PathErrorKind::Limit,
+                        "bad repeat count",
+                        "P=<n>, 0 to the repeat limit",
+                    ));
                 }
                 count as u64
             }
@@ -913,7 +961,13 @@ impl<'a> Reader<'a> {
             Some(i) => i,
             None => {
                 let text = crate::load::read_text(&path).map_err(|e| {
-                    Self::fault(b, at, PathErrorKind::Io, e.message, "a readable program file")
+                    Self::fault(
+                        b,
+                        at,
+                        PathErrorKind::Io,
+                        e.message,
+                        "a readable program file",
+                    )
                 })?;
                 let s = Self::source(shown, blocks(&text))?;
                 self.sources.push(s);
@@ -946,7 +1000,11 @@ impl<'a> Reader<'a> {
             base
         }];
         dirs.extend(self.opts.subroutine_path.iter().cloned());
-        let wanted = [format!("{name}.SPF"), format!("{name}.MPF"), name.to_string()];
+        let wanted = [
+            format!("{name}.SPF"),
+            format!("{name}.MPF"),
+            name.to_string(),
+        ];
         dirs.iter().find_map(|d| {
             let entries: Vec<PathBuf> = std::fs::read_dir(d)
                 .ok()?
@@ -1014,7 +1072,8 @@ impl<'a> Reader<'a> {
                 let t = v.map(|x| x.unwrap_or(0.0));
                 self.change_frame(b.line, |s| {
                     s.frame.rot = 0.0;
-                    s.frame.set_programmed_shift(std::array::from_fn(|k| s.trans[k] + t[k]));
+                    s.frame
+                        .set_programmed_shift(std::array::from_fn(|k| s.trans[k] + t[k]));
                 });
             }
             "ATRANS" => {
@@ -1024,7 +1083,8 @@ impl<'a> Reader<'a> {
                 let d = crate::part_frame::mul(&r, t);
                 let now = self.frame.programmed_shift();
                 self.change_frame(b.line, |s| {
-                    s.frame.set_programmed_shift(std::array::from_fn(|k| now[k] + d[k]));
+                    s.frame
+                        .set_programmed_shift(std::array::from_fn(|k| now[k] + d[k]));
                 });
             }
             "ROT" | "CROT" => {
@@ -1063,6 +1123,14 @@ impl<'a> Reader<'a> {
         let mut call: Option<(String, usize, Option<String>)> = None;
         let mut repeat = 1.0;
         let mut tool: Option<(u32, usize)> = None;
+        // The block's units apply to its own coordinates.
+        for w in &ws {
+            match (w.name.as_str(), &w.value) {
+                ("G", Value::Number(g)) if *g == 70.0 || *g == 700.0 => self.scale = 25.4,
+                ("G", Value::Number(g)) if *g == 71.0 || *g == 710.0 => self.scale = 1.0,
+                _ => {}
+            }
+        }
         for w in &ws {
             let name = w.name.as_str();
             match name {
@@ -1252,7 +1320,11 @@ impl<'a> Reader<'a> {
         }
         if let Some((f, _)) = feed {
             if !dwell {
-                self.feed = Some(if self.feed_mode == FeedMode::InverseTime { f } else { f * self.scale });
+                self.feed = Some(if self.feed_mode == FeedMode::InverseTime {
+                    f
+                } else {
+                    f * self.scale
+                });
             } else {
                 dwell_f = Some(f);
             }
@@ -1295,7 +1367,8 @@ impl<'a> Reader<'a> {
             let t = self.frame.direction(vector.map(|v| v.unwrap_or(0.0)));
             self.emit(b.line, Canon::ToolAxis(t));
         }
-        let moved = axes.iter().any(Option::is_some) || (self.motion >= 20 && (cr.is_some() || centre.iter().any(Option::is_some)));
+        let moved = axes.iter().any(Option::is_some)
+            || (self.motion >= 20 && (cr.is_some() || centre.iter().any(Option::is_some)));
         if moved && !dwell {
             self.motion_block(b, &axes, centre, inter, cr, turn, machine)?;
         }
@@ -1304,8 +1377,16 @@ impl<'a> Reader<'a> {
             match args {
                 Some(a) => self.cycle(b, &name, at, &a)?,
                 None => {
-                    if !(repeat >= 0.0 && repeat <= self.opts.max_repeat as f64) || repeat.fract() != 0.0 {
-                        return Err(Self::fault(b, at, PathErrorKind::Syntax, "bad repeat count P", "P and a whole number"));
+                    if !(repeat >= 0.0 && repeat <= self.opts.max_repeat as f64)
+                        || repeat.fract() != 0.0
+                    {
+                        return Err(Self::fault(
+                            b,
+                            at,
+                            PathErrorKind::Syntax,
+                            "bad repeat count P",
+                            "P and a whole number",
+                        ));
                     }
                     return self.call(b, index, &name, at, repeat as u64);
                 }
@@ -1325,7 +1406,11 @@ impl<'a> Reader<'a> {
                 2 | 30 => end = true,
                 17 => return self.ret(b.line),
                 0 | 1 | 3 | 4 | 6 | 7 | 8 | 9 | 19 | 40 | 41 | 42 | 70 => {}
-                _ => self.warn(b.line, b.col0 + at as u32 + 1, format!("M{m} is not read (a machine function swarf does not model)")),
+                _ => self.warn(
+                    b.line,
+                    b.col0 + at as u32 + 1,
+                    format!("M{m} is not read (a machine function swarf does not model)"),
+                ),
             }
         }
         if end {
@@ -1360,7 +1445,13 @@ impl<'a> Reader<'a> {
     fn coordinate(&self, b: &Block, w: &Word) -> Res<(f64, Option<bool>)> {
         if let Value::Expr(e) = &w.value {
             let at = w.at + w.name.len() + 1;
-            for (prefix, inc) in [("IC(", Some(true)), ("AC(", Some(false)), ("DC(", Some(false)), ("ACP(", Some(false)), ("ACN(", Some(false))] {
+            for (prefix, inc) in [
+                ("IC(", Some(true)),
+                ("AC(", Some(false)),
+                ("DC(", Some(false)),
+                ("ACP(", Some(false)),
+                ("ACN(", Some(false)),
+            ] {
                 if let Some(inner) = e.strip_prefix(prefix).and_then(|r| r.strip_suffix(')')) {
                     let v = self.eval(b, at + prefix.len(), inner)?;
                     return Ok((v, inc));
@@ -1372,7 +1463,13 @@ impl<'a> Reader<'a> {
 
     fn tell_feed(&mut self, b: &Block) -> Res<()> {
         let Some(f) = self.feed else {
-            return Err(Self::fault(b, 0, PathErrorKind::Semantic, "a feed move before any feed rate", "F<feed>"));
+            return Err(Self::fault(
+                b,
+                0,
+                PathErrorKind::Semantic,
+                "a feed move before any feed rate",
+                "F<feed>",
+            ));
         };
         let told = (self.feed_mode, f);
         if self.told_feed != Some(told) {
@@ -1408,10 +1505,16 @@ impl<'a> Reader<'a> {
                 self.warn_once("home", b.line, b.col0 + 1, "SUPA/G53 machine coordinates are taken from the machine's home, which is not given (--home X,Y,Z): they are read from the work origin".into());
             }
             let home = self.opts.home.unwrap_or([0.0; 3]);
-            let mut m = self.frame.machine_of([self.pos[0], self.pos[1], self.pos[2]]);
+            let mut m = self
+                .frame
+                .machine_of([self.pos[0], self.pos[1], self.pos[2]]);
             for k in 0..3 {
                 if let Some((v, inc, _)) = axes[k] {
-                    m[k] = if inc == Some(true) { m[k] + v } else { home[k] + v };
+                    m[k] = if inc == Some(true) {
+                        m[k] + v
+                    } else {
+                        home[k] + v
+                    };
                 }
             }
             let p = self.frame.program_of(m);
@@ -1433,7 +1536,16 @@ impl<'a> Reader<'a> {
                     Some(r) => {
                         let tol = self.arc_tolerance(r.abs());
                         crate::heidenhain::cr_centre(s, e, r, ccw, tol).ok_or_else(|| {
-                            Self::fault(b, 0, PathErrorKind::Semantic, format!("the radius {} mm is too small for the arc's chord", r.abs()), "CR at least half the chord")
+                            Self::fault(
+                                b,
+                                0,
+                                PathErrorKind::Semantic,
+                                format!(
+                                    "the radius {} mm is too small for the arc's chord",
+                                    r.abs()
+                                ),
+                                "CR at least half the chord",
+                            )
                         })?
                     }
                     None => {
@@ -1459,7 +1571,13 @@ impl<'a> Reader<'a> {
                     }
                 };
                 if !(turn >= 0.0 && turn <= self.opts.max_repeat as f64) || turn.fract() != 0.0 {
-                    return Err(Self::fault(b, 0, PathErrorKind::Syntax, "bad TURN", "TURN= a whole number of extra turns"));
+                    return Err(Self::fault(
+                        b,
+                        0,
+                        PathErrorKind::Syntax,
+                        "bad TURN",
+                        "TURN= a whole number of extra turns",
+                    ));
                 }
                 let turns = 1 + turn as i32;
                 self.arc_to(b.line, end, c, ccw, turns);
@@ -1476,7 +1594,13 @@ impl<'a> Reader<'a> {
                 let p0 = [self.pos[0], self.pos[1], self.pos[2]];
                 let p2 = [end[0], end[1], end[2]];
                 let Some((c, normal)) = circle3(p0, mid, p2) else {
-                    return Err(Self::fault(b, 0, PathErrorKind::Semantic, "CIP's three points lie on a line", "an intermediate point off the line"));
+                    return Err(Self::fault(
+                        b,
+                        0,
+                        PathErrorKind::Semantic,
+                        "CIP's three points lie on a line",
+                        "an intermediate point off the line",
+                    ));
                 };
                 // In a plane of the program frame: an ordinary arc; else about its own axis
                 // (the frame must then be a plain shift).
@@ -1487,7 +1611,15 @@ impl<'a> Reader<'a> {
                 } else if self.frame.rot == 0.0 && self.frame.tilt.is_none() {
                     self.pos = end;
                     self.tangent = None;
-                    self.emit(b.line, Canon::ArcAxis { end: Axes::from_array(end), center: c, normal, turns: 1 });
+                    self.emit(
+                        b.line,
+                        Canon::ArcAxis {
+                            end: Axes::from_array(end),
+                            center: c,
+                            normal,
+                            turns: 1,
+                        },
+                    );
                 } else {
                     return Err(Self::fault(b, 0, PathErrorKind::Unsupported, "a CIP arc out of the working plane under a rotated or tilted frame is not read", "CIP in the working plane"));
                 }
@@ -1496,7 +1628,13 @@ impl<'a> Reader<'a> {
                 // CT: tangent to the contour before.
                 self.tell_feed(b)?;
                 let Some(t) = self.tangent else {
-                    return Err(Self::fault(b, 0, PathErrorKind::Semantic, "CT without a contour element before it to be tangent to", "a line or arc in the working plane before CT"));
+                    return Err(Self::fault(
+                        b,
+                        0,
+                        PathErrorKind::Semantic,
+                        "CT without a contour element before it to be tangent to",
+                        "a line or arc in the working plane before CT",
+                    ));
                 };
                 let d = [end[i1] - self.pos[i1], end[i2] - self.pos[i2]];
                 let nrm = [-t[1], t[0]];
@@ -1515,7 +1653,11 @@ impl<'a> Reader<'a> {
 
     fn arc_tolerance(&self, r: f64) -> f64 {
         let tol = self.opts.arc_radius_tolerance;
-        let abs = if self.scale == 1.0 { tol.abs_mm } else { tol.abs_inch * 25.4 };
+        let abs = if self.scale == 1.0 {
+            tol.abs_mm
+        } else {
+            tol.abs_inch * 25.4
+        };
         abs.max(tol.relative * r)
     }
 
@@ -1528,7 +1670,14 @@ impl<'a> Reader<'a> {
         }
         self.pos = end;
         let end = Axes::from_array(end);
-        self.emit(line, if rapid { Canon::Traverse { end } } else { Canon::Feed { end } });
+        self.emit(
+            line,
+            if rapid {
+                Canon::Traverse { end }
+            } else {
+                Canon::Feed { end }
+            },
+        );
     }
 
     fn arc_to(&mut self, line: u32, end: [f64; 6], center: [f64; 2], ccw: bool, turns: i32) {
@@ -1589,7 +1738,10 @@ mod tests {
     fn blocks_keep_numbers_labels_and_lose_comments() {
         let b = blocks("N10 G1 X1 ; go\nSTART: G0 X0\n/N20 M30\n");
         assert_eq!((b[0].number, b[0].code.as_str()), (Some(10), "G1 X1"));
-        assert_eq!((b[1].label.as_deref(), b[1].code.as_str()), (Some("START"), "G0 X0"));
+        assert_eq!(
+            (b[1].label.as_deref(), b[1].code.as_str()),
+            (Some("START"), "G0 X0")
+        );
         assert!(b[2].deleted && b[2].code == "M30");
         assert_eq!(b[0].col0, 4);
     }

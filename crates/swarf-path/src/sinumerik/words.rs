@@ -233,12 +233,21 @@ mod tests {
                 ("M".into(), Number(30.0))
             ]
         );
-        assert_eq!(names("T=\"END MILL\""), [("T".into(), Expr("\"END MILL\"".into()))]);
-        assert_eq!(names("L100 P3"), [("L".into(), Number(100.0)), ("P".into(), Number(3.0))]);
+        assert_eq!(
+            names("T=\"END MILL\""),
+            [("T".into(), Expr("\"END MILL\"".into()))]
+        );
+        assert_eq!(
+            names("L100 P3"),
+            [("L".into(), Number(100.0)), ("P".into(), Number(3.0))]
+        );
         assert_eq!(names("R10=R1+1"), [("R10".into(), Expr("R1+1".into()))]);
         assert!(words("X=").is_err());
         assert!(words("MSG(\"a").is_err());
         assert!(words("X1.2.3").is_err());
-        assert_eq!(args("1,(2,3),\"a,b\",,5"), ["1", "(2,3)", "\"a,b\"", "", "5"]);
+        assert_eq!(
+            args("1,(2,3),\"a,b\",,5"),
+            ["1", "(2,3)", "\"a,b\"", "", "5"]
+        );
     }
 }

@@ -1,0 +1,41 @@
+//! Fuzz target `sinumerik`: any bytes, read as a Sinumerik program, must give
+//! events or an error — never a panic, a hang or unbounded memory. Run with
+//! `cargo +nightly fuzz run sinumerik` from `crates/swarf-path`. The events go through the
+//! move builder (arcs, swivelled planes, tool vectors). No file is read: the program
+//! has no folder and the subroutine path is empty, so a subprogram call fails cleanly.
+#![no_main]
+
+use libfuzzer_sys::fuzz_target;
+use swarf_path::gcode::GcodeOptions;
+use swarf_path::sinumerik::read_sinumerik;
+use swarf_path::{summarize, Canon, CanonSink, Machine, MoveBuilder, Warning};
+
+/// Checks the events as they come (no NaN position) and builds the moves.
+struct Check(MoveBuilder);
+
+impl CanonSink for Check {
+    fn emit(&mut self, line: u32, event: &Canon<'_>) {
+        if let Canon::Traverse { end } | Canon::Feed { end } | Canon::Arc { end, .. } = event {
+            assert!(
+                !end.to_array().iter().any(|v| v.is_nan()),
+                "NaN position {event:?}"
+            );
+        }
+        self.0.emit(line, event);
+    }
+    fn warn(&mut self, _warning: Warning) {}
+}
+
+fuzz_target!(|data: &[u8]| {
+    let text = String::from_utf8_lossy(data);
+    // Small limits: a fuzzed loop must end in milliseconds.
+    let opts = GcodeOptions {
+        max_loop_iterations: 20_000,
+        max_moves: 200_000,
+        max_repeat: 1_000,
+        ..GcodeOptions::default()
+    };
+    let mut sink = Check(MoveBuilder::new(Machine::three_axis(), "/fuzz.mpf"));
+    let _ = read_sinumerik(&text, "/nonexistent-dir/fuzz.mpf", &opts, &mut sink);
+    let _ = summarize(&sink.0.finish());
+});

@@ -1,0 +1,372 @@
+//! Siemens Sinumerik 840D programs: each figure below is worked out by hand from the
+//! control's rules (arcs by centre, radius and intermediate point, frames, the swivel cycle,
+//! drilling cycles, R parameters and program flow) and compared with the moves swarf reads.
+
+use std::f64::consts::PI;
+
+use swarf_geom::math::Vec3;
+use swarf_path::canon::Recorder;
+use swarf_path::gcode::GcodeOptions;
+use swarf_path::load::{read_program_str, ProgramFormat, ReadOptions};
+use swarf_path::sinumerik::read_sinumerik;
+use swarf_path::{Canon, FeedMode, Machine, MoveKind, PathError, PathErrorKind, Program};
+
+fn read_with(src: &str, opts: GcodeOptions) -> Result<Program, PathError> {
+    let o = ReadOptions {
+        gcode: opts,
+        ..ReadOptions::default()
+    };
+    read_program_str(src, "t.mpf", Machine::three_axis(), &o)
+}
+
+/// Reads `src` as a Sinumerik program (its first line makes the detection sure).
+fn read(src: &str) -> Program {
+    read_with(&format!("G500\n{src}"), GcodeOptions::default()).unwrap()
+}
+
+fn err(src: &str) -> PathError {
+    read_with(&format!("G500\n{src}"), GcodeOptions::default()).unwrap_err()
+}
+
+fn close(a: Vec3, b: [f64; 3], tol: f64) -> bool {
+    (a.x - b[0]).abs() < tol && (a.y - b[1]).abs() < tol && (a.z - b[2]).abs() < tol
+}
+
+fn tips(p: &Program) -> Vec<[f64; 3]> {
+    p.moves
+        .iter()
+        .map(|m| [m.end.tip.x, m.end.tip.y, m.end.tip.z])
+        .collect()
+}
+
+#[test]
+fn arcs_by_centre_radius_and_intermediate_point() {
+    let p = read(
+        "G90 G17 G710 G94\n\
+         G1 X50 Y-30 Z-2 F300\n\
+         G2 X60 Y-20 CR=10\n\
+         G3 X70 Y-10 I=AC(60) J=AC(-10)\n\
+         G2 X50 Y-10 I-10 J0\n\
+         CIP X30 Y-10 I1=40 J1=-10 K1=-12\n\
+         G3 X50 Y-10 I10 J0 Z-4 TURN=2",
+    );
+    let m = &p.moves;
+    // CR=10 clockwise the short way from (50, −30) to (60, −20): centre (60, −30), 90°.
+    let MoveKind::Arc(a) = m[1].kind else {
+        panic!()
+    };
+    assert!(close(a.center, [60.0, -30.0, -2.0], 1e-12) && a.normal.z < 0.0);
+    assert!((a.sweep - PI / 2.0).abs() < 1e-12);
+    // Absolute centre (60, −10).
+    let MoveKind::Arc(a) = m[2].kind else {
+        panic!()
+    };
+    assert!(close(a.center, [60.0, -10.0, -2.0], 1e-12) && a.normal.z > 0.0);
+    // Incremental centre: a clockwise half circle about (60, −10).
+    let MoveKind::Arc(a) = m[3].kind else {
+        panic!()
+    };
+    assert!(close(a.center, [60.0, -10.0, -2.0], 1e-12) && (a.sweep - PI).abs() < 1e-12);
+    // CIP through (40, −10, −12) from (50, −10, −2) to (30, −10, −2): the circle of radius 10
+    // about (40, −10, −2) in the plane Y = −10, a half turn.
+    let MoveKind::Arc(a) = m[4].kind else {
+        panic!("{:?}", m[4].kind)
+    };
+    assert!(close(a.center, [40.0, -10.0, -2.0], 1e-9), "{:?}", a.center);
+    assert!((a.sweep - PI).abs() < 1e-9 && a.normal.y.abs() > 1.0 - 1e-12);
+    // TURN=2: a half circle plus two turns, down 2 mm.
+    let MoveKind::Arc(a) = m[5].kind else {
+        panic!()
+    };
+    assert!((a.sweep - 5.0 * PI).abs() < 1e-9 && (a.helix + 2.0).abs() < 1e-12);
+    assert!(m[1..].iter().all(|m| m.feed == 300.0));
+}
+
+#[test]
+fn coordinates_units_and_feeds() {
+    let p = read(
+        "G91 G1 X10 Y10 F100\n\
+         X=AC(0) Y=IC(5)\n\
+         G90 G70 G1 X1 F10\n\
+         G71 G95 G1 X0 F0.1 S1000 M3\n\
+         G94 G4 F2.5\n\
+         G4 S10",
+    );
+    let t = tips(&p);
+    assert_eq!(&t[..2], [[10.0, 10.0, 0.0], [0.0, 15.0, 0.0]]);
+    assert!(close(p.moves[2].end.tip, [25.4, 15.0, 0.0], 1e-12));
+    assert!((p.moves[2].feed - 254.0).abs() < 1e-9);
+    assert_eq!(p.moves[3].feed_mode, FeedMode::PerRevolution);
+    // G4 F2.5 s and G4 S10 revolutions at 1000 rpm (0.6 s).
+    assert!((p.dwell_s - 3.1).abs() < 1e-12, "{}", p.dwell_s);
+}
+
+#[test]
+fn frames_shift_and_turn_the_program() {
+    let p = read(
+        "G1 F100\n\
+         TRANS X100 Y50\n\
+         AROT RPL=90\n\
+         G1 X10 Y0\n\
+         ATRANS X5\n\
+         G1 X10 Y0\n\
+         ROT\n\
+         G1 X10 Y0\n\
+         TRANS\n\
+         G1 X10 Y0",
+    );
+    let t = tips(&p);
+    assert!(
+        close(p.moves[0].end.tip, [100.0, 60.0, 0.0], 1e-12),
+        "{t:?}"
+    );
+    // ATRANS along the turned X: (0, 5).
+    assert!(
+        close(p.moves[1].end.tip, [100.0, 65.0, 0.0], 1e-12),
+        "{t:?}"
+    );
+    // ROT alone: a new programmable frame, nothing in it.
+    assert!(close(p.moves[2].end.tip, [10.0, 0.0, 0.0], 1e-12), "{t:?}");
+    assert!(close(p.moves[3].end.tip, [10.0, 0.0, 0.0], 1e-12), "{t:?}");
+}
+
+#[test]
+fn cycle800_tilts_the_plane_and_turns_the_tool() {
+    let p = read(
+        "G0 X0 Y0 Z50\n\
+         CYCLE800(1,\"TC1\",0,57,10,0,0,0,45,0,0,0,5,1,100,1)\n\
+         G0 X0 Y0 Z10\n\
+         CYCLE800()\n\
+         G0 Z50",
+    );
+    let s = 0.5f64.sqrt();
+    // Pivot at X10, turned 45° about Y, then 5 along the turned Z: the plane's origin is
+    // (10 + 5s, 0, 5s) and its Z (s, 0, s).
+    let m = &p.moves;
+    let o = [10.0 + 5.0 * s, 0.0, 5.0 * s];
+    assert!(
+        close(m[1].end.tip, [o[0] + 10.0 * s, 0.0, o[2] + 10.0 * s], 1e-9),
+        "{:?}",
+        tips(&p)
+    );
+    assert!(close(m[1].end.axis, [s, 0.0, s], 1e-12));
+    // Reset: the machine gives the axis again, the frame is the old one.
+    assert!(
+        close(m[2].end.tip, [o[0] + 10.0 * s, 0.0, 50.0], 1e-9),
+        "{:?}",
+        tips(&p)
+    );
+    assert!(close(m[2].end.axis, [0.0, 0.0, 1.0], 1e-12));
+}
+
+#[test]
+fn traori_takes_the_tool_vector() {
+    let p = read("TRAORI\nG1 X10 Y0 Z5 A3=0 B3=0 C3=1 F1000\nX12 A3=0.6 B3=0 C3=0.8\nTRAFOOF");
+    assert!(close(p.moves[0].end.axis, [0.0, 0.0, 1.0], 1e-12));
+    assert!(close(p.moves[1].end.axis, [0.6, 0.0, 0.8], 1e-12));
+}
+
+/// The heights of the moves at X20 Y20, and whether each is rapid.
+fn at_hole(p: &Program) -> Vec<(f64, bool)> {
+    p.moves
+        .iter()
+        .filter(|m| close(m.end.tip, [20.0, 20.0, m.end.tip.z], 1e-12))
+        .map(|m| (m.end.tip.z, m.kind == MoveKind::Rapid))
+        .collect()
+}
+
+#[test]
+fn drilling_cycles_run_where_the_tool_stands_and_under_mcall() {
+    // CYCLE81(RTP 30, RFP 0, SDIS 2, DP −10): down to 2 at rapid, fed to −10, out to 30.
+    let p = read("G0 X20 Y20 Z50 S1000 M3\nG1 F100\nCYCLE81(30,0,2,-10)\nM30");
+    assert_eq!(
+        at_hole(&p),
+        [(50.0, true), (2.0, true), (-10.0, false), (30.0, true)]
+    );
+    // CYCLE83 (deep hole, chip removal): first depth 4 below RFP, degression 1 → pecks of 4,
+    // 3, 2 (not below the degression's 1… but the hole ends at 9).
+    let p = read(
+        "G0 X20 Y20 Z50 S1000 M3\nG1 F100\n\
+         CYCLE83(30,0,2,-9,,,4,1,0,0,1,1)\nM30",
+    );
+    assert_eq!(
+        at_hole(&p),
+        [
+            (50.0, true),
+            (2.0, true),
+            (-4.0, false),
+            (2.0, true),
+            (-2.0, true),
+            (-7.0, false),
+            (2.0, true),
+            (-5.0, true),
+            (-9.0, false),
+            (30.0, true)
+        ]
+    );
+    // CYCLE84 M8: pitch 1.25, spindle-synchronised down and back.
+    let p = read("G0 X20 Y20 Z50 S500 M3\nG1 F100\nCYCLE84(30,0,2,-10,,0,3,8)\nM30");
+    let tap: Vec<&swarf_path::Move> = p
+        .moves
+        .iter()
+        .filter(|m| m.kind == MoveKind::Linear)
+        .collect();
+    assert_eq!(tap.len(), 2);
+    assert!(tap
+        .iter()
+        .all(|m| m.feed_mode == FeedMode::SpindleSynchronised && m.feed == 1.25));
+    // MCALL: the cycle at each position until MCALL alone.
+    let p = read(
+        "G0 X0 Y0 Z50 S1000 M3\nG1 F100\nMCALL CYCLE81(30,0,2,-5)\nG0 X20 Y20\nX40\nMCALL\nX60",
+    );
+    let bottoms: Vec<[f64; 3]> = tips(&p).into_iter().filter(|t| t[2] == -5.0).collect();
+    assert_eq!(bottoms, [[20.0, 20.0, -5.0], [40.0, 20.0, -5.0]]);
+}
+
+#[test]
+fn parameters_and_program_flow() {
+    let p = read(
+        "DEF REAL STEP=2.5, N\n\
+         R1=0\n\
+         G1 F100\n\
+         LOOP1: R1=R1+1\n\
+         G1 X=R1*STEP\n\
+         IF R1<3 GOTOB LOOP1\n\
+         FOR N=1 TO 2\n\
+         G1 Y=N\n\
+         ENDFOR\n\
+         WHILE R1<5\n\
+         R1=R1+1\n\
+         G1 Z=-R1\n\
+         ENDWHILE\n\
+         IF R1==5\n\
+         G1 X0\n\
+         ELSE\n\
+         G1 X99\n\
+         ENDIF\n\
+         GOTOF SKIP\n\
+         G1 X99\n\
+         SKIP: M30",
+    );
+    let t = tips(&p);
+    assert_eq!(
+        t,
+        [
+            [2.5, 0.0, 0.0],
+            [5.0, 0.0, 0.0],
+            [7.5, 0.0, 0.0],
+            [7.5, 1.0, 0.0],
+            [7.5, 2.0, 0.0],
+            [7.5, 2.0, -4.0],
+            [7.5, 2.0, -5.0],
+            [0.0, 2.0, -5.0]
+        ]
+    );
+}
+
+#[test]
+fn subprograms_are_called_from_beside_the_program() {
+    let dir = std::env::temp_dir().join(format!("swarf-sinu-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("HOLE.SPF"),
+        "PROC HOLE\nG91 G1 Z-5 F100\nG0 Z5\nG90\nM17\n",
+    )
+    .unwrap();
+    std::fs::write(dir.join("L20.spf"), "G91 G0 X1\nG90\nRET\n").unwrap();
+    let main = dir.join("MAIN.MPF");
+    let text = "G500\nG0 X10 Z2\nHOLE\nL20 P2\nHOLE P2\nM30\n";
+    let mut rec = Recorder::default();
+    read_sinumerik(
+        text,
+        &main.display().to_string(),
+        &GcodeOptions::default(),
+        &mut rec,
+    )
+    .unwrap();
+    let ends: Vec<(f64, f64)> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Feed { end } | Canon::Traverse { end } => Some((end.x, end.z)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        ends,
+        [
+            (10.0, 2.0),
+            (10.0, -3.0),
+            (10.0, 2.0),
+            (11.0, 2.0),
+            (12.0, 2.0),
+            (12.0, -3.0),
+            (12.0, 2.0),
+            (12.0, -3.0),
+            (12.0, 2.0)
+        ]
+    );
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn refused_and_wrong_blocks_are_errors_at_their_place() {
+    // (Line 1 is the G500 the helpers put first.)
+    let cases: [(&str, PathErrorKind, u32, u32, &str); 7] = [
+        (
+            "N10 G1 G41 X10 F100",
+            PathErrorKind::Unsupported,
+            2,
+            8,
+            "G41",
+        ),
+        (
+            "G1 X10 F100\nG2 X40 Y0 CR=5",
+            PathErrorKind::Semantic,
+            3,
+            1,
+            "G2",
+        ),
+        ("R1=10/(2-2)", PathErrorKind::Semantic, 2, 6, "10/(2-2)"),
+        ("G1 X10", PathErrorKind::Semantic, 2, 1, "G1"),
+        (
+            "POCKET3(1,2,3)",
+            PathErrorKind::Unsupported,
+            2,
+            1,
+            "POCKET3(1,2,3)",
+        ),
+        ("GOTOF NOWHERE", PathErrorKind::Semantic, 2, 7, "NOWHERE"),
+        (
+            "WHILE R1<5\nG1 X1 F100",
+            PathErrorKind::Syntax,
+            2,
+            1,
+            "WHILE",
+        ),
+    ];
+    for (body, kind, line, col, found) in cases {
+        let e = err(body);
+        assert_eq!(e.kind, kind, "{body}: {e}");
+        assert_eq!((e.pos.line, e.pos.column), (line, col), "{body}: {e}");
+        assert_eq!(e.found, found, "{body}: {e}");
+    }
+    let opts = GcodeOptions {
+        max_loop_iterations: 1000,
+        ..GcodeOptions::default()
+    };
+    let e = read_with("G500\nL1: G0 X1\nGOTOB L1\n", opts).unwrap_err();
+    assert_eq!(e.kind, PathErrorKind::Limit, "{e}");
+}
+
+#[test]
+fn siemens_text_is_recognised_whatever_the_extension() {
+    let text = "N10 G0 X0 Y0\nN20 G2 X10 Y10 CR=5\nN30 M30\n";
+    for name in ["a.mpf", "a.MPF", "a.nc", "a.ptp", "a"] {
+        assert_eq!(
+            ProgramFormat::detect(std::path::Path::new(name), text),
+            ProgramFormat::Sinumerik,
+            "{name}"
+        );
+    }
+}
