@@ -97,7 +97,8 @@ impl Parser<'_, '_> {
         if self.s[self.pos..].starts_with(k) {
             // A keyword must not run into a longer name (`SIN` in `SINX`).
             let after = self.s.get(self.pos + k.len());
-            if k[0].is_ascii_alphabetic() && after.is_some_and(u8::is_ascii_alphabetic) {
+            let continues = |c: &u8| c.is_ascii_alphabetic() || (self.siemens && *c == b'_');
+            if k[0].is_ascii_alphabetic() && after.is_some_and(continues) {
                 return false;
             }
             self.pos += k.len();
@@ -240,12 +241,29 @@ impl Parser<'_, '_> {
         let start = self.pos;
         if self.eat("(") {
             self.enter()?;
-            let v = self.sum()?;
+            let v = if self.siemens {
+                self.logic()?
+            } else {
+                self.sum()?
+            };
             self.depth -= 1;
             if !self.eat(")") {
                 return Err(self.err("missing closing parenthesis", "')'"));
             }
             return Ok(v);
+        }
+        // A name the program defined comes before a function of the same letters (a
+        // Sinumerik `DEF REAL SQ1`, `MAX_Z`).
+        let name_len = self.s[start..]
+            .iter()
+            .take_while(|c| c.is_ascii_alphanumeric() || (self.siemens && b"_$".contains(c)))
+            .count();
+        if name_len > 0 && self.s[start].is_ascii_alphabetic() {
+            let name = std::str::from_utf8(&self.s[start..start + name_len]).unwrap_or("");
+            if let Some(v) = (self.var)(name) {
+                self.pos = start + name_len;
+                return Ok(v);
+            }
         }
         if self.eat("PI") {
             return Ok(std::f64::consts::PI);

@@ -33,6 +33,7 @@ pub mod limit;
 pub mod load;
 pub mod moves;
 pub(crate) mod part_frame;
+pub(crate) mod reader_core;
 pub mod rewrite;
 pub mod sinumerik;
 pub mod spline;

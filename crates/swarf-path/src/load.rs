@@ -40,7 +40,9 @@ impl ProgramFormat {
         match ext.as_str() {
             // (`.ncl`: Creo's CL files.)
             "apt" | "cls" | "cl" | "cldata" | "aptsource" | "ncl" => return ProgramFormat::Apt,
-            "ngc" | "nc" | "gcode" | "g" | "gc" | "tap" | "cnc" | "ptp" | "mpf" | "h" | "eia" => {
+            // Siemens main programs and subprograms, whatever words they use.
+            "mpf" | "spf" => return ProgramFormat::Sinumerik,
+            "ngc" | "nc" | "gcode" | "g" | "gc" | "tap" | "cnc" | "ptp" | "h" | "eia" => {
                 return ProgramFormat::Gcode
             }
             _ => {}

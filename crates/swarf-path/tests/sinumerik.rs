@@ -87,16 +87,21 @@ fn coordinates_units_and_feeds() {
     let p = read(
         "G91 G1 X10 Y10 F100\n\
          X=AC(0) Y=IC(5)\n\
-         G90 G70 G1 X1 F10\n\
+         G90 G700 G1 X1 F10\n\
+         G70 G1 X2 F100\n\
          G71 G95 G1 X0 F0.1 S1000 M3\n\
          G94 G4 F2.5\n\
          G4 S10",
     );
     let t = tips(&p);
     assert_eq!(&t[..2], [[10.0, 10.0, 0.0], [0.0, 15.0, 0.0]]);
+    // G700: inch lengths and feeds; G70: inch lengths, the feed in the basic system (mm).
     assert!(close(p.moves[2].end.tip, [25.4, 15.0, 0.0], 1e-12));
     assert!((p.moves[2].feed - 254.0).abs() < 1e-9);
-    assert_eq!(p.moves[3].feed_mode, FeedMode::PerRevolution);
+    assert!(close(p.moves[3].end.tip, [50.8, 15.0, 0.0], 1e-12));
+    assert_eq!(p.moves[3].feed, 100.0);
+    assert_eq!(p.moves[4].feed_mode, FeedMode::PerRevolution);
+    assert_eq!(p.moves[4].feed, 0.1);
     // G4 F2.5 s and G4 S10 revolutions at 1000 rpm (0.6 s).
     assert!((p.dwell_s - 3.1).abs() < 1e-12, "{}", p.dwell_s);
 }
@@ -369,4 +374,91 @@ fn siemens_text_is_recognised_whatever_the_extension() {
             "{name}"
         );
     }
+}
+
+#[test]
+fn review_cases_read_as_the_control_reads_them() {
+    // A marker-free program with the control's archive header, named .MPF.
+    let o = ReadOptions::default();
+    let p = read_program_str(
+        "%_N_PART_MPF\n;$PATH=/_N_WKS_DIR/_N_PART_WPD\nG17 G90 G710 G94\nG0 X10 Y0 Z5\nG1 Z-1 F100\nM30\n",
+        "PART.MPF",
+        Machine::three_axis(),
+        &o,
+    )
+    .unwrap();
+    assert_eq!(p.moves.len(), 2);
+    // Both DP and DPR: the depth comes from DPR.
+    let p = read("G0 X20 Y20 Z50 S1000 M3\nG1 F100\nCYCLE81(10,0,2,-5,8)");
+    assert!(tips(&p).iter().any(|t| t[2] == -8.0) && !tips(&p).iter().any(|t| t[2] == -5.0));
+    // Parenthesised conditions, a variable named like a function, spaces in expressions.
+    let p = read(
+        "DEF REAL SQ1=3, MAX_Z=7\nR1 = 1\nIF (R1==1) GOTOF SKIP\nG0 X99\nSKIP: G0 X = SQ1 + 1 Y=MAX_Z\n\
+         WHILE(R1<3)\nR1=R1+1\nENDWHILE\nG0 Z=R1",
+    );
+    assert_eq!(tips(&p), [[4.0, 7.0, 0.0], [4.0, 7.0, 3.0]]);
+    // ROT RPL in G18 is refused; G75 goes at rapid to the home, its words in any order.
+    assert_eq!(err("G18\nROT RPL=90").kind, PathErrorKind::Unsupported);
+    let opts = GcodeOptions {
+        home: Some([0.0, 0.0, 100.0]),
+        ..GcodeOptions::default()
+    };
+    let p = read_with(
+        "G500\nG1 X5 Z5 F100\nZ1=0 G75 FP=1\nG642 ADIS=0.1 CTOL=0.01\n",
+        opts,
+    )
+    .unwrap();
+    assert_eq!(p.moves[1].kind, MoveKind::Rapid);
+    assert!(close(p.moves[1].end.tip, [5.0, 0.0, 100.0], 1e-12));
+    // Block numbers may repeat: GOTOF finds the next one.
+    let p = read("N10 G0 X1\nGOTOF N10\nG0 X2\nN10 G0 X3");
+    assert_eq!(tips(&p), [[1.0, 0.0, 0.0], [3.0, 0.0, 0.0]]);
+    assert_eq!(
+        err("L1: G0 X1\nREPEATB L1 P=2").kind,
+        PathErrorKind::Unsupported
+    );
+    // TRANS in a swivelled plane keeps CYCLE800's offset (here 5 along the turned X).
+    let p = read("CYCLE800(1,\"TC1\",0,57,0,0,0,0,0,90,5,0,0,1)\nTRANS X1\nG0 X0 Y0 Z0");
+    assert!(
+        close(p.moves[0].end.tip, [0.0, 6.0, 0.0], 1e-12),
+        "{:?}",
+        tips(&p)
+    );
+    // Rotary directions: shortest, positive, negative.
+    let p = read("G0 C350\nC=DC(10)\nC=ACP(0)\nC=ACN(350)");
+    let c: Vec<f64> = p.moves.iter().map(|m| m.end_joints.c).collect();
+    // (10° to 0° the positive way is +350°; 0° to 350° the negative way −10°.)
+    assert_eq!(c, [350.0, 370.0, 720.0, 710.0]);
+    // MCALL after a block moving Z only.
+    let p = read("G0 X20 Y20 Z50 S1000 M3\nG1 F100\nMCALL CYCLE81(30,0,2,-5)\nG0 Z40\nMCALL");
+    assert!(tips(&p).iter().any(|t| t[2] == -5.0));
+    // An axis twice, two motion codes, a call with arguments: errors.
+    assert_eq!(err("G1 X10 X20 F100").kind, PathErrorKind::Semantic);
+    assert_eq!(
+        err("G1 X10 F100 G2 X0 Y0 I99").kind,
+        PathErrorKind::Semantic
+    );
+    assert_eq!(err("POCK(5)").kind, PathErrorKind::Unsupported);
+    // Columns count characters.
+    let e = err("T=\"ÄÖÜ\" G0 X=*");
+    assert_eq!(e.pos.column, 14, "{e}");
+    // Nested repeats meet the loop limit.
+    let dir = std::env::temp_dir().join(format!("swarf-sinu-rep-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("SUBA.SPF"), "SUBB P=1000000\nM17\n").unwrap();
+    std::fs::write(dir.join("SUBB.SPF"), "R1=R1+1\nM17\n").unwrap();
+    let opts = GcodeOptions {
+        max_loop_iterations: 10_000,
+        ..GcodeOptions::default()
+    };
+    let mut rec = Recorder::default();
+    let e = read_sinumerik(
+        "G500\nSUBA P=1000000\nM30\n",
+        &dir.join("M.MPF").display().to_string(),
+        &opts,
+        &mut rec,
+    )
+    .unwrap_err();
+    assert_eq!(e.kind, PathErrorKind::Limit, "{e}");
+    std::fs::remove_dir_all(&dir).ok();
 }

@@ -9,25 +9,11 @@
 
 use libfuzzer_sys::fuzz_target;
 use swarf_path::gcode::{read_gcode, GcodeDialect, GcodeOptions};
-use swarf_path::{Canon, CanonSink, Machine, MoveBuilder, Warning};
+use swarf_path::{Machine, MoveBuilder};
 
-/// Checks the events as they come (every position is finite) and builds the moves.
-struct Check(MoveBuilder);
-
-impl CanonSink for Check {
-    fn emit(&mut self, line: u32, event: &Canon<'_>) {
-        if let Canon::Traverse { end } | Canon::Feed { end } | Canon::Arc { end, .. } = event {
-            // Infinite values can only come from overflowing arithmetic on huge inputs, which
-            // is allowed; NaN would mean an unchecked domain error.
-            assert!(
-                !end.to_array().iter().any(|v| v.is_nan()),
-                "NaN position {event:?}"
-            );
-        }
-        self.0.emit(line, event);
-    }
-    fn warn(&mut self, _warning: Warning) {}
-}
+#[path = "check.rs"]
+mod check;
+use check::Check;
 
 fuzz_target!(|data: &[u8]| {
     let (mode, data) = data.split_first().map_or((0, data), |(m, d)| (*m, d));

@@ -8,23 +8,11 @@
 use libfuzzer_sys::fuzz_target;
 use swarf_path::gcode::GcodeOptions;
 use swarf_path::sinumerik::read_sinumerik;
-use swarf_path::{summarize, Canon, CanonSink, Machine, MoveBuilder, Warning};
+use swarf_path::{summarize, Machine, MoveBuilder};
 
-/// Checks the events as they come (no NaN position) and builds the moves.
-struct Check(MoveBuilder);
-
-impl CanonSink for Check {
-    fn emit(&mut self, line: u32, event: &Canon<'_>) {
-        if let Canon::Traverse { end } | Canon::Feed { end } | Canon::Arc { end, .. } = event {
-            assert!(
-                !end.to_array().iter().any(|v| v.is_nan()),
-                "NaN position {event:?}"
-            );
-        }
-        self.0.emit(line, event);
-    }
-    fn warn(&mut self, _warning: Warning) {}
-}
+#[path = "check.rs"]
+mod check;
+use check::Check;
 
 fuzz_target!(|data: &[u8]| {
     let text = String::from_utf8_lossy(data);

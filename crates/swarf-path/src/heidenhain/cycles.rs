@@ -149,7 +149,7 @@ impl Reader<'_> {
                         _ => {}
                     }
                 }
-                if rot != self.frame.rot && self.plane != crate::Plane::XY {
+                if rot != self.frame.rot && self.c.plane != crate::Plane::XY {
                     return Err(Fault::at(
                         nt,
                         PathErrorKind::Unsupported,
@@ -277,18 +277,18 @@ impl Reader<'_> {
         self.m_before(&w, rest, b.line);
         let mut surface = None;
         if pos {
-            let (i1, i2, n) = self.plane.axes();
+            let (i1, i2, n) = self.c.plane.axes();
             let target = self.target(&w);
             surface = w.axes[n].map(|_| target[n]);
             // Up to the second set-up clearance first if below it, then over the hole.
             let safe = surface.unwrap_or(self.qd(203) * self.scale)
                 + (self.qd(204) * self.scale).max(self.qd(200) * self.scale);
-            if self.pos[n] < safe {
-                let mut up = self.pos;
+            if self.c.pos[n] < safe {
+                let mut up = self.c.pos;
                 up[n] = safe;
                 self.line_to(b.line, up, true);
             }
-            let mut over = self.pos;
+            let mut over = self.c.pos;
             (over[i1], over[i2]) = (target[i1], target[i2]);
             let rapid = !matches!(w.feed, Some(super::Feed::Value(_) | super::Feed::PerRev(_)));
             if !rapid {
@@ -315,8 +315,8 @@ impl Reader<'_> {
         let s = self.scale;
         let fs = self.feed_scale;
         let q = |n| self.qd(n);
-        let (_, _, axis) = self.plane.axes();
-        let here = self.pos[axis];
+        let (_, _, axis) = self.c.plane.axes();
+        let here = self.c.pos[axis];
         let drill = |surface_q: f64, retract: Option<f64>| Drill {
             surface: surface.unwrap_or(surface_q * s),
             clearance: q(200) * s,
@@ -474,16 +474,13 @@ impl Reader<'_> {
     }
 
     fn axis_to(&mut self, line: u32, to: f64, feed: Option<(FeedMode, f64)>) {
-        let (_, _, n) = self.plane.axes();
-        let mut end = self.pos;
+        let (_, _, n) = self.c.plane.axes();
+        let mut end = self.c.pos;
         end[n] = to;
         if let Some((mode, f)) = feed {
-            if self.told_feed != Some((mode, f)) {
-                if self.told_feed.map(|t| t.0) != Some(mode) {
-                    self.emit(line, Canon::FeedMode(mode));
-                }
-                self.emit(line, Canon::FeedRate(f));
-                self.told_feed = Some((mode, f));
+            let events: Vec<Canon<'static>> = self.c.feed(mode, f).collect();
+            for e in events {
+                self.emit(line, e);
             }
         }
         self.line_to(line, end, feed.is_none());

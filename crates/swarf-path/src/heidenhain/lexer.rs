@@ -82,7 +82,9 @@ pub(crate) fn blocks(text: &str) -> Res<Vec<Block>> {
         let rest = &upper[start..];
         let body_start = start + (rest.len() - rest.trim_start().len());
         let body = upper[body_start..].trim_end();
-        let toks = tokens(body, line, body_start as u32 + 1)?;
+        // Columns count characters, as the G-code reader's do.
+        let body_col = upper[..body_start].chars().count() as u32 + 1;
+        let toks = tokens(body, line, body_col)?;
         if continuing {
             if let Some(b) = out.last_mut() {
                 b.toks.extend(toks);
@@ -97,7 +99,7 @@ pub(crate) fn blocks(text: &str) -> Res<Vec<Block>> {
                 } else {
                     body.to_string()
                 },
-                code_col: body_start as u32 + 1,
+                code_col: body_col,
                 comment: if star {
                     Some(code[body_start + 1..].trim().to_string())
                 } else {
@@ -141,7 +143,7 @@ fn tokens(body: &str, line: u32, col0: u32) -> Res<Vec<Tok>> {
                 None => {
                     return Err(Fault {
                         line,
-                        col: col0 + start as u32,
+                        col: col0 + body[..start].chars().count() as u32,
                         kind: crate::PathErrorKind::Syntax,
                         message: "unclosed quoted name".into(),
                         found: body[start..].to_string(),
@@ -157,7 +159,7 @@ fn tokens(body: &str, line: u32, col0: u32) -> Res<Vec<Tok>> {
         out.push(Tok {
             text: body[start..i].to_string(),
             line,
-            col: col0 + start as u32,
+            col: col0 + body[..start].chars().count() as u32,
         });
     }
     Ok(out)

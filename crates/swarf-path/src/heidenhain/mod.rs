@@ -38,12 +38,13 @@ mod cycles;
 pub(crate) mod lexer;
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::rc::Rc;
 
 use crate::gcode::GcodeOptions;
 use crate::limit::MoveLimit;
 use crate::part_frame::PartFrame;
+use crate::reader_core::{self, Contour};
 use crate::{
     Axes, Canon, CanonSink, FeedMode, PathError, PathErrorKind, Plane, SourcePos, SpindleDir,
     Units, Warning,
@@ -223,20 +224,15 @@ struct Reader<'a> {
     /// mm per program unit; feed factor to mm/min.
     scale: f64,
     feed_scale: f64,
-    /// Position in the program frame: X Y Z mm, A B C degrees.
-    pos: [f64; 6],
+    /// Position, working plane and the contour's direction.
+    c: Contour,
     /// Datum shift, rotation and tilted plane.
     frame: PartFrame,
-    plane: Plane,
     pole: Option<[f64; 2]>,
-    /// The direction the contour ends in (plane axes), for `CT`.
-    tangent: Option<[f64; 2]>,
     /// Last arc direction (`DR+`: 1).
     dr: Option<f64>,
     feed: Option<f64>,
     feed_mode: FeedMode,
-    /// What was last told to the sink.
-    told_feed: Option<(FeedMode, f64)>,
     tool_feed: Option<f64>,
     rpm: f64,
     dir: SpindleDir,
@@ -272,15 +268,12 @@ impl<'a> Reader<'a> {
             q: HashMap::new(),
             scale: 1.0,
             feed_scale: 1.0,
-            pos,
+            c: Contour::new(pos),
             frame: PartFrame::default(),
-            plane: Plane::XY,
             pole: None,
-            tangent: None,
             dr: None,
             feed: None,
             feed_mode: FeedMode::PerMinute,
-            told_feed: None,
             tool_feed: None,
             rpm: 0.0,
             dir: SpindleDir::Stopped,
@@ -385,8 +378,8 @@ impl<'a> Reader<'a> {
         };
         self.emit(0, Canon::Units(units));
         self.emit_frame(0);
-        if self.pos != [0.0; 6] {
-            self.emit(0, Canon::SetPosition(Axes::from_array(self.pos)));
+        if self.c.pos != [0.0; 6] {
+            self.emit(0, Canon::SetPosition(Axes::from_array(self.c.pos)));
         }
         self.emit(0, Canon::Plane(Plane::XY));
         let mut pc = 0;
@@ -716,10 +709,10 @@ impl<'a> Reader<'a> {
                     ),
                 );
             }
-            if plane != self.plane {
-                self.plane = plane;
+            if plane != self.c.plane {
+                self.c.plane = plane;
                 self.pole = None;
-                self.tangent = None;
+                self.c.tangent = None;
                 self.emit(b.line, Canon::Plane(plane));
             }
             i += 1;
@@ -994,21 +987,21 @@ impl<'a> Reader<'a> {
     /// Changes the frame with `f`, keeping the machine position (and the pole's place on
     /// the part); tells the sink of the offsets when `offsets`.
     fn change_frame(&mut self, line: u32, offsets: bool, f: impl FnOnce(&mut Self)) {
-        let m = self.machine_of([self.pos[0], self.pos[1], self.pos[2]]);
-        let (i1, i2, _) = self.plane.axes();
+        let m = self.machine_of([self.c.pos[0], self.c.pos[1], self.c.pos[2]]);
+        let (i1, i2, _) = self.c.plane.axes();
         let pole = self.pole.map(|p| {
-            let mut q = [self.pos[0], self.pos[1], self.pos[2]];
+            let mut q = [self.c.pos[0], self.c.pos[1], self.c.pos[2]];
             (q[i1], q[i2]) = (p[0], p[1]);
             self.machine_of(q)
         });
         f(self);
         let p = self.program_of(m);
-        self.pos[..3].copy_from_slice(&p);
+        self.c.pos[..3].copy_from_slice(&p);
         if let Some(pm) = pole {
             let q = self.program_of(pm);
             self.pole = Some([q[i1], q[i2]]);
         }
-        self.tangent = None;
+        self.c.tangent = None;
         if offsets {
             self.emit_frame(line);
         }
@@ -1024,8 +1017,8 @@ impl<'a> Reader<'a> {
 
     fn pole(&mut self, b: &Block) -> Res<()> {
         let w = self.words(&b.toks[1..], b.line)?;
-        let (i1, i2, _) = self.plane.axes();
-        let mut p = [self.pos[i1], self.pos[i2]];
+        let (i1, i2, _) = self.c.plane.axes();
+        let mut p = [self.c.pos[i1], self.c.pos[i2]];
         for (k, a) in w.axes.iter().enumerate() {
             let Some((v, inc)) = *a else { continue };
             let slot = if k == i1 {
@@ -1041,7 +1034,7 @@ impl<'a> Reader<'a> {
                 ));
             };
             p[slot] = if inc {
-                [self.pos[i1], self.pos[i2]][slot] + v
+                [self.c.pos[i1], self.c.pos[i2]][slot] + v
             } else {
                 v
             };
@@ -1052,14 +1045,14 @@ impl<'a> Reader<'a> {
 
     /// The target of a block's axis words.
     fn target(&self, w: &Words) -> [f64; 6] {
-        let mut t = self.pos;
+        let mut t = self.c.pos;
         for (k, a) in w.axes.iter().enumerate() {
             if let Some((v, inc)) = *a {
                 t[k] = if inc {
-                    self.pos[k] + v
+                    self.c.pos[k] + v
                 } else if k >= 3 && self.shortest {
                     // Under M126 a rotary axis turns at most half a turn, either way.
-                    self.pos[k] + (v - self.pos[k] + 180.0).rem_euclid(360.0) - 180.0
+                    self.c.pos[k] + (v - self.c.pos[k] + 180.0).rem_euclid(360.0) - 180.0
                 } else {
                     v
                 };
@@ -1123,13 +1116,9 @@ impl<'a> Reader<'a> {
                 "F<feed> or FMAX",
             ));
         };
-        let told = (self.feed_mode, f);
-        if self.told_feed != Some(told) {
-            if self.told_feed.map(|t| t.0) != Some(self.feed_mode) {
-                self.emit(head.line, Canon::FeedMode(self.feed_mode));
-            }
-            self.emit(head.line, Canon::FeedRate(f));
-            self.told_feed = Some(told);
+        let events: Vec<Canon<'static>> = self.c.feed(self.feed_mode, f).collect();
+        for e in events {
+            self.emit(head.line, e);
         }
         Ok(())
     }
@@ -1146,8 +1135,8 @@ impl<'a> Reader<'a> {
             return self.after_motion(&w, b);
         }
         let rapid = self.feed_for(&w, head)?;
-        let (i1, i2, n) = self.plane.axes();
-        let start = self.pos;
+        let (i1, i2, n) = self.c.plane.axes();
+        let start = self.c.pos;
         match head.text.as_str() {
             "L" | "LN" => {
                 let mut end = self.target(&w);
@@ -1224,30 +1213,21 @@ impl<'a> Reader<'a> {
                             })?;
                         (c, ccw, 1)
                     }
-                    "CT" => {
-                        let Some(t) = self.tangent else {
+                    "CT" => match self.c.tangent_arc(end) {
+                        Some(Some((c, ccw))) => (c, ccw, 1),
+                        Some(None) => {
+                            self.line_to(b.line, end, false);
+                            return self.after_motion(&w, b);
+                        }
+                        None => {
                             return Err(Fault::at(
                                 head,
                                 PathErrorKind::Semantic,
                                 "CT without a contour element before it to be tangent to",
                                 "a line or arc in the working plane before CT",
-                            ));
-                        };
-                        let d = [end[i1] - start[i1], end[i2] - start[i2]];
-                        // Centre on the normal to the tangent, equidistant from both ends.
-                        let nrm = [-t[1], t[0]];
-                        let dn = d[0] * nrm[0] + d[1] * nrm[1];
-                        if dn.abs() < 1e-9 * (d[0].hypot(d[1]) + 1.0) {
-                            self.line_to(b.line, end, false);
-                            return self.after_motion(&w, b);
+                            ))
                         }
-                        let rho = (d[0] * d[0] + d[1] * d[1]) / (2.0 * dn);
-                        (
-                            [start[i1] + rho * nrm[0], start[i2] + rho * nrm[1]],
-                            rho > 0.0,
-                            1,
-                        )
-                    }
+                    },
                     _ => {
                         // CP: about the pole at the current radius.
                         let pole = self.need_pole(head)?;
@@ -1303,7 +1283,7 @@ impl<'a> Reader<'a> {
 
     fn after_motion(&mut self, w: &Words, b: &Block) -> Res<Flow> {
         let toks = &b.toks[1..];
-        let (i1, i2, _) = self.plane.axes();
+        let (i1, i2, _) = self.c.plane.axes();
         let moved_in_plane = w.axes[i1].is_some() || w.axes[i2].is_some();
         if self.modal_call && moved_in_plane && !w.has_m(99) {
             self.cycle_call(&b.toks[0], None)?;
@@ -1341,15 +1321,8 @@ impl<'a> Reader<'a> {
         }
     }
 
-    /// How far an arc's end may be off its circle (radius `r`): the G-code reader's tolerance.
     fn arc_tolerance(&self, r: f64) -> f64 {
-        let tol = self.opts.arc_radius_tolerance;
-        let abs = if self.scale == 1.0 {
-            tol.abs_mm
-        } else {
-            tol.abs_inch * 25.4
-        };
-        abs.max(tol.relative * r)
+        reader_core::arc_tolerance(self.opts, self.scale, r)
     }
 
     fn check_radius(&self, r0: f64, r1: f64, head: &Tok) -> Res<()> {
@@ -1368,42 +1341,13 @@ impl<'a> Reader<'a> {
     }
 
     fn line_to(&mut self, line: u32, end: [f64; 6], rapid: bool) {
-        let (i1, i2, _) = self.plane.axes();
-        let d = [end[i1] - self.pos[i1], end[i2] - self.pos[i2]];
-        let len = d[0].hypot(d[1]);
-        if len > 0.0 {
-            self.tangent = Some([d[0] / len, d[1] / len]);
-        }
-        self.pos = end;
-        let end = Axes::from_array(end);
-        self.emit(
-            line,
-            if rapid {
-                Canon::Traverse { end }
-            } else {
-                Canon::Feed { end }
-            },
-        );
+        let e = self.c.line(end, rapid);
+        self.emit(line, e);
     }
 
     fn arc_to(&mut self, line: u32, end: [f64; 6], center: [f64; 2], ccw: bool, turns: i32) {
-        let (i1, i2, _) = self.plane.axes();
-        let r = [end[i1] - center[0], end[i2] - center[1]];
-        let len = r[0].hypot(r[1]);
-        if len > 0.0 {
-            let s = if ccw { 1.0 } else { -1.0 };
-            self.tangent = Some([-s * r[1] / len, s * r[0] / len]);
-        }
-        self.pos = end;
-        self.emit(
-            line,
-            Canon::Arc {
-                end: Axes::from_array(end),
-                center,
-                rotation: if ccw { turns } else { -turns },
-                plane: self.plane,
-            },
-        );
+        let e = self.c.arc(end, center, ccw, turns);
+        self.emit(line, e);
     }
 
     /// `M91`/`M92`: the block's coordinates are machine coordinates (zero at the home).
@@ -1419,14 +1363,14 @@ impl<'a> Reader<'a> {
             );
         }
         let home = self.opts.home.unwrap_or([0.0; 3]);
-        let mut m = self.machine_of([self.pos[0], self.pos[1], self.pos[2]]);
-        let mut out = self.pos;
+        let mut m = self.machine_of([self.c.pos[0], self.c.pos[1], self.c.pos[2]]);
+        let mut out = self.c.pos;
         for (k, a) in w.axes.iter().enumerate() {
             let Some((v, inc)) = *a else { continue };
             if k < 3 {
                 m[k] = if inc { m[k] + v } else { home[k] + v };
             } else {
-                out[k] = if inc { self.pos[k] + v } else { v };
+                out[k] = if inc { self.c.pos[k] + v } else { v };
             }
         }
         let p = self.program_of(m);
@@ -1451,14 +1395,14 @@ impl<'a> Reader<'a> {
             return Ok(());
         }
         // Along the tool axis: the working plane's normal, turned as the program frame is.
-        let (_, _, n) = self.plane.axes();
+        let (_, _, n) = self.c.plane.axes();
         let dist = if w.mb_max {
             let mut axis = [0.0; 3];
             axis[n] = 1.0;
             let dir = self.machine_direction(axis);
             match self.opts.home {
                 Some(h) if dir[n] > 0.05 => {
-                    let m = self.machine_of([self.pos[0], self.pos[1], self.pos[2]]);
+                    let m = self.machine_of([self.c.pos[0], self.c.pos[1], self.c.pos[2]]);
                     ((h[n] - m[n]) / dir[n]).max(0.0)
                 }
                 _ => {
@@ -1480,7 +1424,7 @@ impl<'a> Reader<'a> {
             }
         };
         if dist != 0.0 {
-            let mut end = self.pos;
+            let mut end = self.c.pos;
             end[n] += dist;
             self.line_to(b.line, end, true);
         }
@@ -1838,36 +1782,13 @@ impl<'a> Reader<'a> {
     }
 
     /// The called program's file: `leaf` or `leaf.h` beside the program or in the subroutine
-    /// path, its case ignored (the control's file names are).
+    /// path, its case ignored.
     fn find_program(&self, leaf: &str) -> Option<PathBuf> {
-        let base = Path::new(self.file)
-            .parent()
-            .map(Path::to_path_buf)
-            .unwrap_or_default();
-        let mut dirs = vec![if base.as_os_str().is_empty() {
-            PathBuf::from(".")
-        } else {
-            base
-        }];
-        dirs.extend(self.opts.subroutine_path.iter().cloned());
-        let wanted = [leaf.to_string(), format!("{leaf}.h")];
-        dirs.iter().find_map(|d| {
-            let entries: Vec<PathBuf> = std::fs::read_dir(d)
-                .ok()?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .collect();
-            wanted.iter().find_map(|w| {
-                entries
-                    .iter()
-                    .find(|p| {
-                        p.is_file()
-                            && p.file_name()
-                                .and_then(|n| n.to_str())
-                                .is_some_and(|n| n.eq_ignore_ascii_case(w))
-                    })
-                    .cloned()
-            })
-        })
+        reader_core::find_program(
+            self.file,
+            self.opts,
+            &[leaf.to_string(), format!("{leaf}.h")],
+        )
     }
 }
 

@@ -56,7 +56,7 @@ impl Reader<'_> {
             self.warn_once(
                 "cycle832",
                 b.line,
-                b.col0 + at as u32 + 1,
+                super::col(b, at),
                 "CYCLE832 (path smoothing) is not read: swarf follows the programmed path \
                  exactly"
                     .into(),
@@ -108,6 +108,7 @@ impl Reader<'_> {
             self.change_frame(b.line, |s| {
                 s.frame.set_tilt(None);
                 s.frame.shift = base;
+                s.swivel_offset = [0.0; 3];
             });
             return Ok(());
         }
@@ -145,6 +146,7 @@ impl Reader<'_> {
             s.frame.shift = pivot;
             s.frame.set_tilt(Some(tilt));
             s.frame.set_programmed_shift(r1);
+            s.swivel_offset = r1;
         });
         Ok(())
     }
@@ -158,13 +160,14 @@ impl Reader<'_> {
     ) -> Res<()> {
         let s = self.scale;
         let (rtp, rfp, sdis) = (
-            get(0).unwrap_or(self.pos[self.plane.axes().2] / s) * s,
+            get(0).unwrap_or(self.c.pos[self.c.plane.axes().2] / s) * s,
             get(1).unwrap_or(0.0) * s,
             get(2).unwrap_or(0.0).abs() * s,
         );
+        // Both given: the depth comes from DPR.
         let depth = match (get(3), get(4)) {
-            (Some(dp), _) => dp * s,
-            (None, Some(dpr)) => rfp - dpr.abs() * s,
+            (_, Some(dpr)) => rfp - dpr.abs() * s,
+            (Some(dp), None) => dp * s,
             (None, None) => {
                 return Err(Reader::fault(
                     b,
@@ -361,16 +364,13 @@ impl Reader<'_> {
     }
 
     fn axis_to(&mut self, line: u32, to: f64, feed: Option<(f64, FeedMode)>) {
-        let (_, _, n) = self.plane.axes();
-        let mut end = self.pos;
+        let (_, _, n) = self.c.plane.axes();
+        let mut end = self.c.pos;
         end[n] = to;
         if let Some((f, mode)) = feed {
-            if self.told_feed != Some((mode, f)) {
-                if self.told_feed.map(|t| t.0) != Some(mode) {
-                    self.emit(line, Canon::FeedMode(mode));
-                }
-                self.emit(line, Canon::FeedRate(f));
-                self.told_feed = Some((mode, f));
+            let events: Vec<Canon<'static>> = self.c.feed(mode, f).collect();
+            for e in events {
+                self.emit(line, e);
             }
         }
         self.line_to(line, end, feed.is_none());

@@ -39,12 +39,13 @@ mod cycles;
 pub(crate) mod words;
 
 use std::collections::HashMap;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::rc::Rc;
 
 use crate::gcode::GcodeOptions;
 use crate::limit::MoveLimit;
 use crate::part_frame::PartFrame;
+use crate::reader_core::{self, Contour};
 use crate::{
     Axes, Canon, CanonSink, FeedMode, MessageKind, PathError, PathErrorKind, Plane, SourcePos,
     SpindleDir, Units, Warning,
@@ -69,7 +70,12 @@ type Res<T> = Result<T, Fault>;
 /// its first 200 lines).
 pub fn is_sinumerik(text: &str) -> bool {
     use crate::gcode::dialect::Dialect;
-    matches!(Dialect::detect(text, 200), Some((Dialect::Siemens840D, _)))
+    // The archive header the control writes: `%_N_NAME_MPF`.
+    let header = crate::gcode::lexer::lines(text)
+        .map(|l| l.trim_start_matches('\u{feff}').trim())
+        .find(|l| !l.is_empty())
+        .is_some_and(|l| l.starts_with("%_N_"));
+    header || matches!(Dialect::detect(text, 200), Some((Dialect::Siemens840D, _)))
 }
 
 /// One block: its line, the byte offset of its code in the line, the code (upper case, no
@@ -83,6 +89,13 @@ struct Block {
     number: Option<u64>,
     /// Skipped by block delete.
     deleted: bool,
+}
+
+/// The 1-based column (in characters, as the G-code reader counts) of byte `at` of `b`'s code.
+fn col(b: &Block, at: usize) -> u32 {
+    let at = at.min(b.code.len());
+    let chars = b.code.get(..at).map_or(at, |c| c.chars().count());
+    b.col0 + chars as u32 + 1
 }
 
 fn blocks(text: &str) -> Vec<Block> {
@@ -106,7 +119,12 @@ fn blocks(text: &str) -> Vec<Block> {
                 _ => {}
             }
         }
-        let upper = raw[..end].to_ascii_uppercase();
+        // The control's archive lines (`%_N_NAME_MPF`, `%MPF10`) are no blocks.
+        let upper = if raw.trim_start().starts_with('%') {
+            String::new()
+        } else {
+            raw[..end].to_ascii_uppercase()
+        };
         let mut at = upper.len() - upper.trim_start().len();
         let mut deleted = false;
         if upper[at..].starts_with('/') {
@@ -141,7 +159,7 @@ fn blocks(text: &str) -> Vec<Block> {
         }
         out.push(Block {
             line: u32::try_from(i + 1).unwrap_or(u32::MAX),
-            col0: at as u32,
+            col0: upper[..at].chars().count() as u32,
             code: upper[at..].trim_end().to_string(),
             label,
             number,
@@ -206,8 +224,8 @@ pub fn read_sinumerik(
 struct Source {
     name: String,
     blocks: Rc<Vec<Block>>,
-    /// Labels and block numbers → block index.
-    labels: HashMap<String, usize>,
+    /// Labels and block numbers → the blocks that carry them (block numbers may repeat).
+    labels: HashMap<String, Vec<usize>>,
     /// Structured control: the block each `IF`/`ELSE`/`WHILE`/`FOR`/`LOOP`/`REPEAT` and
     /// their ends jump to.
     pair: HashMap<usize, usize>,
@@ -240,23 +258,28 @@ struct Reader<'a> {
     jumps: u64,
     r: HashMap<u32, f64>,
     locals: HashMap<String, f64>,
-    /// mm per program unit.
+    /// mm per program unit of lengths, and of feeds (`G70` changes lengths only, `G700`
+    /// both).
     scale: f64,
-    pos: [f64; 6],
+    feed_scale: f64,
+    /// Position, working plane and the contour's direction.
+    c: Contour,
     frame: PartFrame,
     /// The settable offset's shift, under the programmable frame (TRANS/ATRANS/ROT).
     trans: [f64; 3],
     /// The shift before the first `CYCLE800` of a swivel: each new plane starts from it.
     swivel_base: Option<[f64; 3]>,
-    plane: Plane,
+    /// `CYCLE800`'s `_X1 _Y1 _Z1`: kept under the programmable frame (`TRANS` in the swivelled
+    /// plane adds to it).
+    swivel_offset: [f64; 3],
+    /// The block's rotary directions (`DC` 0, `ACP` 1, `ACN` −1).
+    turning: [Option<i8>; 6],
     absolute: bool,
     motion: u32,
     feed: Option<f64>,
     feed_mode: FeedMode,
-    told_feed: Option<(FeedMode, f64)>,
     rpm: f64,
     dir: SpindleDir,
-    tangent: Option<[f64; 2]>,
     tool_names: HashMap<String, u32>,
     selected: Option<u32>,
     has_m6: bool,
@@ -285,19 +308,19 @@ impl<'a> Reader<'a> {
             r: HashMap::new(),
             locals: HashMap::new(),
             scale: opts.initial_units.mm_per_unit(),
-            pos,
+            feed_scale: opts.initial_units.mm_per_unit(),
+            c: Contour::new(pos),
             frame: PartFrame::default(),
             trans: [0.0; 3],
             swivel_base: None,
-            plane: Plane::XY,
+            swivel_offset: [0.0; 3],
+            turning: [None; 6],
             absolute: true,
             motion: 0,
             feed: None,
             feed_mode: FeedMode::PerMinute,
-            told_feed: None,
             rpm: 0.0,
             dir: SpindleDir::Stopped,
-            tangent: None,
             tool_names: HashMap::new(),
             selected: None,
             has_m6: false,
@@ -346,7 +369,7 @@ impl<'a> Reader<'a> {
             .to_string();
         Fault {
             line: b.line,
-            col: b.col0 + at as u32 + 1,
+            col: col(b, at),
             kind,
             message: message.into(),
             found,
@@ -360,12 +383,19 @@ impl<'a> Reader<'a> {
         let mut open: Vec<(usize, &str)> = Vec::new();
         for (i, b) in blocks.iter().enumerate() {
             if let Some(l) = &b.label {
-                labels.entry(l.clone()).or_insert(i);
+                labels.entry(l.clone()).or_insert_with(Vec::new).push(i);
             }
             if let Some(n) = b.number {
-                labels.entry(format!("N{n}")).or_insert(i);
+                labels
+                    .entry(format!("N{n}"))
+                    .or_insert_with(Vec::new)
+                    .push(i);
             }
-            let head = b.code.split_whitespace().next().unwrap_or("");
+            let head = b
+                .code
+                .split(|c: char| c.is_whitespace() || c == '(' || c == '=')
+                .next()
+                .unwrap_or("");
             let goto_if = head == "IF" && b.code.contains("GOTO");
             let opener = match head {
                 "IF" if !goto_if => Some("IF"),
@@ -449,8 +479,8 @@ impl<'a> Reader<'a> {
         };
         self.emit(0, Canon::Units(units));
         self.emit_frame(0);
-        if self.pos != [0.0; 6] {
-            self.emit(0, Canon::SetPosition(Axes::from_array(self.pos)));
+        if self.c.pos != [0.0; 6] {
+            self.emit(0, Canon::SetPosition(Axes::from_array(self.c.pos)));
         }
         self.emit(0, Canon::Plane(Plane::XY));
         let mut pc = 0;
@@ -461,7 +491,8 @@ impl<'a> Reader<'a> {
             let blocks = Rc::clone(&self.sources[self.cur].blocks);
             let Some(b) = blocks.get(pc) else {
                 if !self.stack.is_empty() {
-                    let flow = self.ret(0)?;
+                    let last = blocks.last().cloned().unwrap_or_default();
+                    let flow = self.ret(&last)?;
                     if let Flow::Jump(s, p) = flow {
                         self.switch_to(s);
                         pc = p;
@@ -541,7 +572,7 @@ impl<'a> Reader<'a> {
     fn eval(&self, b: &Block, at: usize, text: &str) -> Res<f64> {
         crate::formula::eval_siemens(text, &|n| self.var(n)).map_err(|e| Fault {
             line: b.line,
-            col: b.col0 + (at + e.at) as u32 + 1,
+            col: col(b, at + e.at),
             kind: if e.message.contains("expected") {
                 PathErrorKind::Syntax
             } else {
@@ -589,7 +620,7 @@ impl<'a> Reader<'a> {
     fn change_frame(&mut self, line: u32, f: impl FnOnce(&mut Self)) {
         let m = self
             .frame
-            .machine_of([self.pos[0], self.pos[1], self.pos[2]]);
+            .machine_of([self.c.pos[0], self.c.pos[1], self.c.pos[2]]);
         let untilting = self.frame.tilt.is_some();
         f(self);
         if untilting && self.frame.tilt.is_none() {
@@ -597,8 +628,8 @@ impl<'a> Reader<'a> {
             self.emit(line, Canon::MachineAxis);
         }
         let p = self.frame.program_of(m);
-        self.pos[..3].copy_from_slice(&p);
-        self.tangent = None;
+        self.c.pos[..3].copy_from_slice(&p);
+        self.c.tangent = None;
         self.emit_frame(line);
     }
 
@@ -616,7 +647,7 @@ impl<'a> Reader<'a> {
             "" => Ok(Flow::Next),
             "PROC" => Ok(Flow::Next),
             "DEF" => self.define(b).map(|_| Flow::Next),
-            "GOTOF" | "GOTOB" | "GOTO" | "GOTOC" => self.goto(b, head, rest),
+            "GOTOF" | "GOTOB" | "GOTO" | "GOTOC" => self.goto(b, index, head, rest),
             "IF" => self.if_block(b, index, rest, rest_at),
             "ELSE" => Ok(Flow::Jump(self.cur, self.pair(index) + 1)),
             "ENDIF" => Ok(Flow::Next),
@@ -642,7 +673,14 @@ impl<'a> Reader<'a> {
             }
             "FOR" => self.for_block(b, index, rest, rest_at),
             "ENDFOR" => self.end_for(b, index),
-            "REPEAT" | "REPEATB" => self.repeat(b, index, rest),
+            "REPEAT" => self.repeat(b, index, rest),
+            "REPEATB" => Err(Self::fault(
+                b,
+                0,
+                PathErrorKind::Unsupported,
+                "REPEATB (one block repeated) is not read",
+                "REPEAT <label> P=<n>",
+            )),
             "MSG" => {
                 let text = rest
                     .trim_start_matches('(')
@@ -661,7 +699,7 @@ impl<'a> Reader<'a> {
                 }
                 Ok(Flow::Next)
             }
-            "RET" | "M17" => self.ret(b.line),
+            "RET" | "M17" => self.ret(b),
             "TRANS" | "ATRANS" | "ROT" | "AROT" | "SCALE" | "ASCALE" | "MIRROR" | "AMIRROR"
             | "CTRANS" | "CROT" => self.frame_block(b, head, rest_at).map(|_| Flow::Next),
             "MCALL" => {
@@ -756,46 +794,45 @@ impl<'a> Reader<'a> {
         Ok(())
     }
 
-    fn target_of(&self, b: &Block, name: &str) -> Res<usize> {
+    /// The block a jump from block `here` to `name` goes to: searching forward for `GOTOF`,
+    /// back for `GOTOB` (and `REPEAT`), forward then from the start for `GOTO`/`GOTOC`.
+    fn target_of(&self, b: &Block, here: usize, how: &str, name: &str) -> Res<usize> {
         let key = if name.starts_with('N') && name[1..].bytes().all(|c| c.is_ascii_digit()) {
             format!("N{}", name[1..].parse::<u64>().unwrap_or(0))
         } else {
             name.to_string()
         };
-        self.sources[self.cur]
-            .labels
-            .get(&key)
-            .copied()
-            .ok_or_else(|| {
-                let at = b.code.rfind(name).unwrap_or(0);
-                Self::fault(
-                    b,
-                    at,
-                    PathErrorKind::Semantic,
-                    format!("jump target {name} is not defined"),
-                    "a label (NAME:) or block number of this program",
-                )
-            })
-    }
-
-    fn goto(&mut self, b: &Block, how: &str, target: &str) -> Res<Flow> {
-        let name = target.split_whitespace().next().unwrap_or("");
-        let to = self.target_of(b, name)?;
-        // GOTOF searches forward, GOTOB back; GOTO/GOTOC both (the label is unique here).
-        let here = self.sources[self.cur]
-            .blocks
-            .iter()
-            .position(|x| std::ptr::eq(x, b))
-            .unwrap_or(0);
-        if (how == "GOTOF" && to <= here) || (how == "GOTOB" && to > here) {
+        let at = b.code.rfind(name).unwrap_or(0);
+        let Some(all) = self.sources[self.cur].labels.get(&key) else {
             return Err(Self::fault(
                 b,
-                0,
+                at,
+                PathErrorKind::Semantic,
+                format!("jump target {name} is not defined"),
+                "a label (NAME:) or block number of this program",
+            ));
+        };
+        let forward = all.iter().copied().find(|&i| i > here);
+        let back = all.iter().copied().rev().find(|&i| i <= here);
+        let to = match how {
+            "GOTOF" => forward,
+            "GOTOB" | "REPEAT" => back,
+            _ => forward.or_else(|| all.first().copied()),
+        };
+        to.ok_or_else(|| {
+            Self::fault(
+                b,
+                at,
                 PathErrorKind::Semantic,
                 format!("{how} to {name}, which is not in that direction"),
                 "GOTOF to a later block, GOTOB to an earlier one",
-            ));
-        }
+            )
+        })
+    }
+
+    fn goto(&mut self, b: &Block, here: usize, how: &str, target: &str) -> Res<Flow> {
+        let name = target.split_whitespace().next().unwrap_or("");
+        let to = self.target_of(b, here, how, name)?;
         if to <= here {
             self.jump(b)?;
         }
@@ -811,7 +848,7 @@ impl<'a> Reader<'a> {
             }
             let how = rest[g..].split_whitespace().next().unwrap_or("GOTO");
             let target = rest[g + how.len()..].trim();
-            return self.goto(b, how, target);
+            return self.goto(b, index, how, target);
         }
         if self.eval(b, rest_at, rest)? != 0.0 {
             Ok(Flow::Next)
@@ -892,7 +929,7 @@ impl<'a> Reader<'a> {
                 "REPEAT <label> P=<n> after the section",
             ));
         }
-        let start = self.target_of(b, from)?;
+        let start = self.target_of(b, index, "REPEAT", from)?;
         let k = (self.cur, index);
         let left = match self.repeats.get(&k) {
             Some(&l) => l,
@@ -919,14 +956,15 @@ impl<'a> Reader<'a> {
     }
 
     /// `M17`/`RET`, and the end of a subprogram's file.
-    fn ret(&mut self, line: u32) -> Res<Flow> {
+    fn ret(&mut self, b: &Block) -> Res<Flow> {
         let Some(top) = self.stack.last_mut() else {
-            let _ = line;
             return Ok(Flow::End);
         };
         if top.left > 0 {
             top.left -= 1;
             let start = top.start;
+            // (A repeat counts as a jump: nested repeats could otherwise run for ever.)
+            self.jump(b)?;
             return Ok(Flow::Jump(start.0, start.1));
         }
         let Some(top) = self.stack.pop() else {
@@ -987,41 +1025,15 @@ impl<'a> Reader<'a> {
         Ok(Flow::Jump(src, 0))
     }
 
-    /// `name`, `name.SPF` or `name.MPF` beside the program or on the subroutine path, its case
-    /// ignored.
+    /// `name.SPF`, `name.MPF` or `name` beside the program or on the subroutine path, its
+    /// case ignored.
     fn find_program(&self, name: &str) -> Option<PathBuf> {
-        let base = Path::new(self.file)
-            .parent()
-            .map(Path::to_path_buf)
-            .unwrap_or_default();
-        let mut dirs = vec![if base.as_os_str().is_empty() {
-            PathBuf::from(".")
-        } else {
-            base
-        }];
-        dirs.extend(self.opts.subroutine_path.iter().cloned());
         let wanted = [
             format!("{name}.SPF"),
             format!("{name}.MPF"),
             name.to_string(),
         ];
-        dirs.iter().find_map(|d| {
-            let entries: Vec<PathBuf> = std::fs::read_dir(d)
-                .ok()?
-                .filter_map(|e| e.ok().map(|e| e.path()))
-                .collect();
-            wanted.iter().find_map(|w| {
-                entries
-                    .iter()
-                    .find(|p| {
-                        p.is_file()
-                            && p.file_name()
-                                .and_then(|n| n.to_str())
-                                .is_some_and(|n| n.eq_ignore_ascii_case(w))
-                    })
-                    .cloned()
-            })
-        })
+        reader_core::find_program(self.file, self.opts, &wanted)
     }
 
     /// `TRANS`, `ATRANS`, `ROT`, `AROT` (and the refused mirror and scale).
@@ -1035,7 +1047,18 @@ impl<'a> Reader<'a> {
                     let k = usize::from(w.name.as_bytes()[0] - b'X');
                     v[k] = Some(self.number(b, w)? * self.scale);
                 }
-                "RPL" | "Z" if head.ends_with("ROT") => angle = Some(self.number(b, w)?),
+                "RPL" | "Z" if head.ends_with("ROT") => {
+                    if self.c.plane != Plane::XY && w.name == "RPL" {
+                        return Err(Self::fault(
+                            b,
+                            w.at,
+                            PathErrorKind::Unsupported,
+                            "a rotation in the G18 or G19 plane is not read",
+                            "ROT RPL=… in G17",
+                        ));
+                    }
+                    angle = Some(self.number(b, w)?)
+                }
                 "X" | "Y" if head.ends_with("ROT") => {
                     return Err(Self::fault(
                         b,
@@ -1070,10 +1093,11 @@ impl<'a> Reader<'a> {
             "TRANS" | "CTRANS" => {
                 // A new programmable frame: this translation alone.
                 let t = v.map(|x| x.unwrap_or(0.0));
+                let base = self.frame_base();
                 self.change_frame(b.line, |s| {
                     s.frame.rot = 0.0;
                     s.frame
-                        .set_programmed_shift(std::array::from_fn(|k| s.trans[k] + t[k]));
+                        .set_programmed_shift(std::array::from_fn(|k| base[k] + t[k]));
                 });
             }
             "ATRANS" => {
@@ -1089,7 +1113,7 @@ impl<'a> Reader<'a> {
             }
             "ROT" | "CROT" => {
                 let a = angle.unwrap_or(0.0);
-                let base = self.trans;
+                let base = self.frame_base();
                 self.change_frame(b.line, |s| {
                     s.frame.set_programmed_shift(base);
                     s.frame.rot = a;
@@ -1102,6 +1126,15 @@ impl<'a> Reader<'a> {
             }
         }
         Ok(())
+    }
+
+    /// Where the programmable frame starts: the settable offset, or in a swivelled plane
+    /// `CYCLE800`'s offset.
+    fn frame_base(&self) -> [f64; 3] {
+        match self.frame.tilt {
+            Some(_) => self.swivel_offset,
+            None => self.trans,
+        }
     }
 
     // ---- the word block ----
@@ -1123,11 +1156,22 @@ impl<'a> Reader<'a> {
         let mut call: Option<(String, usize, Option<String>)> = None;
         let mut repeat = 1.0;
         let mut tool: Option<(u32, usize)> = None;
+        let mut reference: Vec<(usize, usize)> = Vec::new();
+        let mut turning: [Option<i8>; 6] = [None; 6];
         // The block's units apply to its own coordinates.
         for w in &ws {
             match (w.name.as_str(), &w.value) {
-                ("G", Value::Number(g)) if *g == 70.0 || *g == 700.0 => self.scale = 25.4,
-                ("G", Value::Number(g)) if *g == 71.0 || *g == 710.0 => self.scale = 1.0,
+                // G70/G71: lengths only, feeds in the basic system (`--initial-units`).
+                ("G", Value::Number(g)) if *g == 70.0 || *g == 71.0 => {
+                    self.scale = if *g == 70.0 { 25.4 } else { 1.0 };
+                    self.feed_scale = self.opts.initial_units.mm_per_unit();
+                }
+                ("G", Value::Number(g)) if *g == 700.0 => {
+                    (self.scale, self.feed_scale) = (25.4, 25.4)
+                }
+                ("G", Value::Number(g)) if *g == 710.0 => {
+                    (self.scale, self.feed_scale) = (1.0, 1.0)
+                }
                 _ => {}
             }
         }
@@ -1156,9 +1200,25 @@ impl<'a> Reader<'a> {
                 }
                 "X" | "Y" | "Z" | "A" | "B" | "C" => {
                     let k = "XYZABC".find(name).unwrap_or(0);
+                    if axes[k].is_some() {
+                        return Err(Self::fault(
+                            b,
+                            w.at,
+                            PathErrorKind::Semantic,
+                            format!("{name} is programmed twice in the block"),
+                            "each axis once",
+                        ));
+                    }
                     let (v, inc) = self.coordinate(b, w)?;
                     let v = if k < 3 { v * self.scale } else { v };
                     axes[k] = Some((v, inc, w.at));
+                    // `DC()`, `ACP()`, `ACN()`: which way a rotary axis turns.
+                    if let Value::Expr(e) = &w.value {
+                        turning[k] = [("DC(", 0), ("ACP(", 1), ("ACN(", -1)]
+                            .into_iter()
+                            .find(|(p, _)| e.starts_with(p))
+                            .map(|(_, d)| d);
+                    }
                 }
                 "I" | "J" | "K" => {
                     let k = "IJK".find(name).unwrap_or(0);
@@ -1179,11 +1239,7 @@ impl<'a> Reader<'a> {
                 "F" => feed = Some((self.number(b, w)?, w.at)),
                 "S" | "S1" => dwell_s = Some(self.number(b, w)?),
                 // G74/G75 reference and fixed-point approach: to the home on those axes.
-                "X1" | "Y1" | "Z1" if gs.iter().any(|g| g.0 == 740 || g.0 == 750) => {
-                    let k = "XYZ".find(&name[..1]).unwrap_or(0);
-                    axes[k] = Some((0.0, Some(false), w.at));
-                    machine = true;
-                }
+                "X1" | "Y1" | "Z1" => reference.push(("XYZ".find(&name[..1]).unwrap_or(0), w.at)),
                 "T" => {
                     let n = match &w.value {
                         Value::Expr(e) if e.starts_with('"') => {
@@ -1191,17 +1247,26 @@ impl<'a> Reader<'a> {
                             let next = self.tool_names.len() as u32 + 1;
                             let n = *self.tool_names.entry(name.clone()).or_insert(next);
                             if n == next {
-                                self.warn(b.line, b.col0 + w.at as u32 + 1, format!("tool \"{name}\" is tool {n} for the tool library (--tools)"));
+                                self.warn(b.line, col(b, w.at), format!("tool \"{name}\" is tool {n} for the tool library (--tools)"));
                             }
                             n
                         }
-                        _ => self.number(b, w)?.max(0.0).min(f64::from(u32::MAX)) as u32,
+                        _ => {
+                            let n = self.number(b, w)?;
+                            if !(0.0..=f64::from(u32::MAX)).contains(&n) || n.fract() != 0.0 {
+                                return Err(Self::fault(b, w.at, PathErrorKind::Syntax, "bad tool number", "T and a whole number from 0, or T=\"name\""));
+                            }
+                            n as u32
+                        }
                     };
                     tool = Some((n, w.at));
                 }
                 "D" | "H" | "DL" => {}
                 "L" => {
                     let n = self.number(b, w)?;
+                    if !(0.0..=f64::from(u32::MAX)).contains(&n) || n.fract() != 0.0 {
+                        return Err(Self::fault(b, w.at, PathErrorKind::Syntax, "bad subprogram number", "L and a whole number"));
+                    }
                     call = Some((format!("L{}", n as u64), w.at, None));
                 }
                 "P" => repeat = self.number(b, w)?,
@@ -1209,7 +1274,7 @@ impl<'a> Reader<'a> {
                 "TRAORI" => self.warn_once(
                     "traori",
                     b.line,
-                    b.col0 + w.at as u32 + 1,
+                    col(b, w.at),
                     "TRAORI (5-axis transformation): X Y Z are tool-tip positions in the part \
                      frame, as a `-tcp` machine (--machine) reads them"
                         .into(),
@@ -1218,7 +1283,16 @@ impl<'a> Reader<'a> {
                 | "COMPON" | "COMPCURV" | "COMPCAD" | "COMPOF" | "UPATH" | "SPATH" | "FNORM"
                 | "FLIN" | "FCUB" | "ORIWKS" | "ORIMKS" | "ORIAXES" | "ORIVECT" | "ORIEULER"
                 | "ORIRPY" | "OST" | "STOPRE" | "WAITM" | "WAITS" | "SPOS" | "SPOSA" | "FGROUP"
-                | "FGREF" => {}
+                | "FGREF" | "ADIS" | "ADISPOS" | "CTOL" | "OTOL" | "CTOLG0" | "OTOLG0" | "STOLF"
+                | "ORISON" | "ORISOF" | "ORIC" | "ORID" | "TCOABS" | "TCOFR" | "TCARR" | "PAROT"
+                | "PAROTOF" | "TOROT" | "TOROTOF" | "LIMS" | "FP" | "WORKPIECE" | "SETMS"
+                | "SOFTA" | "BRISKA" | "FIFOCTRL" => {}
+                "TOFRAME" | "TOFRAMEX" | "TOFRAMEY" | "TOFRAMEZ" => self.warn_once(
+                    "toframe",
+                    b.line,
+                    col(b, w.at),
+                    format!("{name} (frame turned to the tool) is not read"),
+                ),
                 "CYCLE832" | "CYCLE800" | "CYCLE81" | "CYCLE82" | "CYCLE83" | "CYCLE84" | "CYCLE840"
                 | "CYCLE85" | "CYCLE86" | "CYCLE87" | "CYCLE88" | "CYCLE89" => {
                     let args = match &w.value {
@@ -1255,6 +1329,15 @@ impl<'a> Reader<'a> {
                     let v = self.number(b, w)?;
                     self.assign(n, v);
                 }
+                n if matches!(w.value, Value::Args(ref a) if !a.trim().is_empty()) => {
+                    return Err(Self::fault(
+                        b,
+                        w.at,
+                        PathErrorKind::Unsupported,
+                        format!("a call of {n} with arguments is not read (PROC parameters)"),
+                        "a subprogram call without arguments",
+                    ))
+                }
                 n if matches!(w.value, Value::None | Value::Args(_)) && n.len() > 1 => {
                     call = Some((n.to_string(), w.at, None));
                 }
@@ -1269,7 +1352,20 @@ impl<'a> Reader<'a> {
                 }
             }
         }
-        // Modal and non-modal G codes, in their order of effect.
+        // Modal and non-modal G codes, in their order of effect; one motion code a block.
+        let motions: Vec<&(u32, usize)> = gs
+            .iter()
+            .filter(|g| matches!(g.0, 0 | 10 | 20 | 30 | 9001 | 9002))
+            .collect();
+        if let Some(&&(_, at)) = motions.get(1) {
+            return Err(Self::fault(
+                b,
+                at,
+                PathErrorKind::Semantic,
+                "two motion codes in one block",
+                "one of G0 G1 G2 G3 CIP CT",
+            ));
+        }
         let mut dwell = false;
         for &(g, at) in &gs {
             match g {
@@ -1279,8 +1375,7 @@ impl<'a> Reader<'a> {
                 190 => self.set_plane(b, Plane::YZ),
                 900 => self.absolute = true,
                 910 => self.absolute = false,
-                700 | 7000 => self.scale = 25.4,
-                710 | 7100 => self.scale = 1.0,
+                700 | 710 | 7000 | 7100 => {}
                 930 => self.feed_mode = FeedMode::InverseTime,
                 940 => self.feed_mode = FeedMode::PerMinute,
                 950 => self.feed_mode = FeedMode::PerRevolution,
@@ -1302,7 +1397,7 @@ impl<'a> Reader<'a> {
                     return Err(Self::fault(b, at, PathErrorKind::Unsupported, "thread cutting is not read", "G0–G3"))
                 }
                 // Path control, exact stop, acceleration, working area: nothing swarf models.
-                600 | 640 | 6410 | 6420 | 6440 | 6450 | 6010 | 6020 | 6030 | 90 | 620 | 6210 | 250 | 260 | 1100 | 1110 | 1120 => {
+                600 | 640 | 6410 | 6420 | 6440 | 6450 | 6010 | 6020 | 6030 | 90 | 620 | 6210 | 250 | 260 | 4500 | 4510 | 960 | 970 | 1100 | 1110 | 1120 => {
                     if matches!(g, 1100 | 1110 | 1120) {
                         return Err(Self::fault(b, at, PathErrorKind::Unsupported, "polar coordinates (G110–G112) are not read", "X Y Z"));
                     }
@@ -1318,12 +1413,32 @@ impl<'a> Reader<'a> {
                 }
             }
         }
+        // G74/G75: at rapid to the home on the axes named (X1=0 …), in machine coordinates.
+        let to_home = gs.iter().any(|g| g.0 == 740 || g.0 == 750);
+        match (to_home, reference.first()) {
+            (true, _) => {
+                for &(k, at) in &reference {
+                    axes[k] = Some((0.0, Some(false), at));
+                }
+                machine = true;
+            }
+            (false, Some(&(_, at))) => {
+                return Err(Self::fault(
+                    b,
+                    at,
+                    PathErrorKind::Syntax,
+                    "a machine axis word (X1= Y1= Z1=) without G74 or G75",
+                    "G74 or G75 in the block",
+                ))
+            }
+            (false, None) => {}
+        }
         if let Some((f, _)) = feed {
             if !dwell {
                 self.feed = Some(if self.feed_mode == FeedMode::InverseTime {
                     f
                 } else {
-                    f * self.scale
+                    f * self.feed_scale
                 });
             } else {
                 dwell_f = Some(f);
@@ -1370,7 +1485,13 @@ impl<'a> Reader<'a> {
         let moved = axes.iter().any(Option::is_some)
             || (self.motion >= 20 && (cr.is_some() || centre.iter().any(Option::is_some)));
         if moved && !dwell {
+            let modal = self.motion;
+            if to_home {
+                self.motion = 0;
+            }
+            self.turning = turning;
             self.motion_block(b, &axes, centre, inter, cr, turn, machine)?;
+            self.motion = modal;
         }
         // Cycles: at the block's end, the modal one after a positioning block.
         if let Some((name, at, args)) = call {
@@ -1391,7 +1512,7 @@ impl<'a> Reader<'a> {
                     return self.call(b, index, &name, at, repeat as u64);
                 }
             }
-        } else if moved && (axes[0].is_some() || axes[1].is_some()) {
+        } else if moved {
             if let Some((name, args)) = self.mcall.clone() {
                 self.cycle(b, &name, 0, &args)?;
             }
@@ -1404,18 +1525,18 @@ impl<'a> Reader<'a> {
                     self.tell_spindle(b.line);
                 }
                 2 | 30 => end = true,
-                17 => return self.ret(b.line),
+                17 => return self.ret(b),
                 0 | 1 | 3 | 4 | 6 | 7 | 8 | 9 | 19 | 40 | 41 | 42 | 70 => {}
                 _ => self.warn(
                     b.line,
-                    b.col0 + at as u32 + 1,
+                    col(b, at),
                     format!("M{m} is not read (a machine function swarf does not model)"),
                 ),
             }
         }
         if end {
             if !self.stack.is_empty() {
-                return self.ret(b.line);
+                return self.ret(b);
             }
             return Ok(Flow::End);
         }
@@ -1423,9 +1544,9 @@ impl<'a> Reader<'a> {
     }
 
     fn set_plane(&mut self, b: &Block, p: Plane) {
-        if p != self.plane {
-            self.plane = p;
-            self.tangent = None;
+        if p != self.c.plane {
+            self.c.plane = p;
+            self.c.tangent = None;
             self.emit(b.line, Canon::Plane(p));
         }
     }
@@ -1471,13 +1592,9 @@ impl<'a> Reader<'a> {
                 "F<feed>",
             ));
         };
-        let told = (self.feed_mode, f);
-        if self.told_feed != Some(told) {
-            if self.told_feed.map(|t| t.0) != Some(self.feed_mode) {
-                self.emit(b.line, Canon::FeedMode(self.feed_mode));
-            }
-            self.emit(b.line, Canon::FeedRate(f));
-            self.told_feed = Some(told);
+        let events: Vec<Canon<'static>> = self.c.feed(self.feed_mode, f).collect();
+        for e in events {
+            self.emit(b.line, e);
         }
         Ok(())
     }
@@ -1493,11 +1610,19 @@ impl<'a> Reader<'a> {
         turn: f64,
         machine: bool,
     ) -> Res<()> {
-        let mut end = self.pos;
+        let mut end = self.c.pos;
         for (k, a) in axes.iter().enumerate() {
             if let Some((v, inc, _)) = *a {
                 let inc = inc.unwrap_or(!self.absolute);
-                end[k] = if inc { self.pos[k] + v } else { v };
+                let from = self.c.pos[k];
+                end[k] = match (inc, self.turning[k]) {
+                    (true, _) => from + v,
+                    (false, None) => v,
+                    // Shortest way, or the positive or negative way, to the angle.
+                    (false, Some(0)) => from + (v - from + 180.0).rem_euclid(360.0) - 180.0,
+                    (false, Some(1)) => from + (v - from).rem_euclid(360.0),
+                    (false, Some(_)) => from - (from - v).rem_euclid(360.0),
+                };
             }
         }
         if machine {
@@ -1507,7 +1632,7 @@ impl<'a> Reader<'a> {
             let home = self.opts.home.unwrap_or([0.0; 3]);
             let mut m = self
                 .frame
-                .machine_of([self.pos[0], self.pos[1], self.pos[2]]);
+                .machine_of([self.c.pos[0], self.c.pos[1], self.c.pos[2]]);
             for k in 0..3 {
                 if let Some((v, inc, _)) = axes[k] {
                     m[k] = if inc == Some(true) {
@@ -1520,7 +1645,7 @@ impl<'a> Reader<'a> {
             let p = self.frame.program_of(m);
             end[..3].copy_from_slice(&p);
         }
-        let (i1, i2, n) = self.plane.axes();
+        let (i1, i2, n) = self.c.plane.axes();
         match self.motion {
             0 => self.line_to(b.line, end, true),
             10 => {
@@ -1530,7 +1655,7 @@ impl<'a> Reader<'a> {
             20 | 30 => {
                 self.tell_feed(b)?;
                 let ccw = self.motion == 30;
-                let s = [self.pos[i1], self.pos[i2]];
+                let s = [self.c.pos[i1], self.c.pos[i2]];
                 let e = [end[i1], end[i2]];
                 let c = match cr {
                     Some(r) => {
@@ -1585,13 +1710,13 @@ impl<'a> Reader<'a> {
             9001 => {
                 // CIP: through the intermediate point.
                 self.tell_feed(b)?;
-                let mut mid = [self.pos[0], self.pos[1], self.pos[2]];
+                let mut mid = [self.c.pos[0], self.c.pos[1], self.c.pos[2]];
                 for k in 0..3 {
                     if let Some((v, inc)) = inter[k] {
-                        mid[k] = if inc { self.pos[k] + v } else { v };
+                        mid[k] = if inc { self.c.pos[k] + v } else { v };
                     }
                 }
-                let p0 = [self.pos[0], self.pos[1], self.pos[2]];
+                let p0 = [self.c.pos[0], self.c.pos[1], self.c.pos[2]];
                 let p2 = [end[0], end[1], end[2]];
                 let Some((c, normal)) = circle3(p0, mid, p2) else {
                     return Err(Self::fault(
@@ -1609,8 +1734,8 @@ impl<'a> Reader<'a> {
                     let ccw = normal[n] > 0.0;
                     self.arc_to(b.line, end, [c[i1], c[i2]], ccw, 1);
                 } else if self.frame.rot == 0.0 && self.frame.tilt.is_none() {
-                    self.pos = end;
-                    self.tangent = None;
+                    self.c.pos = end;
+                    self.c.tangent = None;
                     self.emit(
                         b.line,
                         Canon::ArcAxis {
@@ -1627,24 +1752,18 @@ impl<'a> Reader<'a> {
             _ => {
                 // CT: tangent to the contour before.
                 self.tell_feed(b)?;
-                let Some(t) = self.tangent else {
-                    return Err(Self::fault(
-                        b,
-                        0,
-                        PathErrorKind::Semantic,
-                        "CT without a contour element before it to be tangent to",
-                        "a line or arc in the working plane before CT",
-                    ));
-                };
-                let d = [end[i1] - self.pos[i1], end[i2] - self.pos[i2]];
-                let nrm = [-t[1], t[0]];
-                let dn = d[0] * nrm[0] + d[1] * nrm[1];
-                if dn.abs() < 1e-9 * (d[0].hypot(d[1]) + 1.0) {
-                    self.line_to(b.line, end, false);
-                } else {
-                    let rho = (d[0] * d[0] + d[1] * d[1]) / (2.0 * dn);
-                    let c = [self.pos[i1] + rho * nrm[0], self.pos[i2] + rho * nrm[1]];
-                    self.arc_to(b.line, end, c, rho > 0.0, 1);
+                match self.c.tangent_arc(end) {
+                    Some(Some((c, ccw))) => self.arc_to(b.line, end, c, ccw, 1),
+                    Some(None) => self.line_to(b.line, end, false),
+                    None => {
+                        return Err(Self::fault(
+                            b,
+                            0,
+                            PathErrorKind::Semantic,
+                            "CT without a contour element before it to be tangent to",
+                            "a line or arc in the working plane before CT",
+                        ))
+                    }
                 }
             }
         }
@@ -1652,52 +1771,17 @@ impl<'a> Reader<'a> {
     }
 
     fn arc_tolerance(&self, r: f64) -> f64 {
-        let tol = self.opts.arc_radius_tolerance;
-        let abs = if self.scale == 1.0 {
-            tol.abs_mm
-        } else {
-            tol.abs_inch * 25.4
-        };
-        abs.max(tol.relative * r)
+        reader_core::arc_tolerance(self.opts, self.scale, r)
     }
 
     fn line_to(&mut self, line: u32, end: [f64; 6], rapid: bool) {
-        let (i1, i2, _) = self.plane.axes();
-        let d = [end[i1] - self.pos[i1], end[i2] - self.pos[i2]];
-        let len = d[0].hypot(d[1]);
-        if len > 0.0 {
-            self.tangent = Some([d[0] / len, d[1] / len]);
-        }
-        self.pos = end;
-        let end = Axes::from_array(end);
-        self.emit(
-            line,
-            if rapid {
-                Canon::Traverse { end }
-            } else {
-                Canon::Feed { end }
-            },
-        );
+        let e = self.c.line(end, rapid);
+        self.emit(line, e);
     }
 
     fn arc_to(&mut self, line: u32, end: [f64; 6], center: [f64; 2], ccw: bool, turns: i32) {
-        let (i1, i2, _) = self.plane.axes();
-        let r = [end[i1] - center[0], end[i2] - center[1]];
-        let len = r[0].hypot(r[1]);
-        if len > 0.0 {
-            let s = if ccw { 1.0 } else { -1.0 };
-            self.tangent = Some([-s * r[1] / len, s * r[0] / len]);
-        }
-        self.pos = end;
-        self.emit(
-            line,
-            Canon::Arc {
-                end: Axes::from_array(end),
-                center,
-                rotation: if ccw { turns } else { -turns },
-                plane: self.plane,
-            },
-        );
+        let e = self.c.arc(end, center, ccw, turns);
+        self.emit(line, e);
     }
 }
 

@@ -63,7 +63,10 @@ pub(crate) fn words(code: &str) -> Result<Vec<Word>, WordError> {
             j += 1;
         }
         let next = b.get(j).copied();
-        if j > letters && matches!(next, Some(b'=') | Some(b'(')) {
+        // `R1 = 5`, `X = 20`: spaces before the `=` of an assignment.
+        let eq = skip_ws(b, j);
+        let assigns = b.get(eq) == Some(&b'=') && b.get(eq + 1) != Some(&b'=');
+        if assigns || (j > letters && matches!(next, Some(b'('))) {
             i = j;
         } else if j > letters
             && code[letters..j].bytes().all(|c| c.is_ascii_digit())
@@ -79,11 +82,11 @@ pub(crate) fn words(code: &str) -> Result<Vec<Word>, WordError> {
             }
         }
         let name = code[start..i].to_string();
-        let value = match b.get(i) {
-            Some(b'=') => {
-                i += 1;
-                let v = i;
-                i = expr_end(b, i)?;
+        let eq = skip_ws(b, i);
+        let value = match b.get(eq) {
+            Some(b'=') if b.get(eq + 1) != Some(&b'=') => {
+                let v = skip_ws(b, eq + 1);
+                i = expr_end(b, v)?;
                 Value::Expr(code[v..i].trim().to_string())
             }
             Some(b'(') => {
@@ -117,8 +120,18 @@ pub(crate) fn words(code: &str) -> Result<Vec<Word>, WordError> {
     Ok(out)
 }
 
-/// The end of an expression from `i`: the next space (or comma) outside parentheses and
-/// quotes.
+fn skip_ws(b: &[u8], mut i: usize) -> usize {
+    while b.get(i).is_some_and(u8::is_ascii_whitespace) {
+        i += 1;
+    }
+    i
+}
+
+/// Characters that join the terms of an expression across spaces (`R1 + 2`).
+const OPERATORS: &[u8] = b"+-*/<>=^";
+
+/// The end of an expression from `i`: the next space outside parentheses and quotes that
+/// neither follows nor precedes an operator.
 fn expr_end(b: &[u8], mut i: usize) -> Result<usize, WordError> {
     let start = i;
     let mut depth = 0usize;
@@ -130,7 +143,17 @@ fn expr_end(b: &[u8], mut i: usize) -> Result<usize, WordError> {
             b'(' | b'[' => depth += 1,
             b')' | b']' if depth == 0 => break,
             b')' | b']' => depth -= 1,
-            c if depth == 0 && c.is_ascii_whitespace() => break,
+            c if depth == 0 && c.is_ascii_whitespace() => {
+                let after = skip_ws(b, i);
+                let before = b[..i].iter().rev().find(|c| !c.is_ascii_whitespace());
+                let joined = before.is_some_and(|c| OPERATORS.contains(c))
+                    || b.get(after).is_some_and(|c| OPERATORS.contains(c));
+                if !joined || after >= b.len() {
+                    break;
+                }
+                i = after;
+                continue;
+            }
             _ => {}
         }
         i += 1;
@@ -242,6 +265,14 @@ mod tests {
             [("L".into(), Number(100.0)), ("P".into(), Number(3.0))]
         );
         assert_eq!(names("R10=R1+1"), [("R10".into(), Expr("R1+1".into()))]);
+        assert_eq!(
+            names("R1 = 5 X = R2 + 2 Y=3"),
+            [
+                ("R1".into(), Expr("5".into())),
+                ("X".into(), Expr("R2 + 2".into())),
+                ("Y".into(), Expr("3".into()))
+            ]
+        );
         assert!(words("X=").is_err());
         assert!(words("MSG(\"a").is_err());
         assert!(words("X1.2.3").is_err());

@@ -1,0 +1,174 @@
+//! What the Heidenhain and Sinumerik readers share besides the part frame
+//! ([`crate::part_frame`]) and the formulas ([`crate::formula`]): the tool's place on its
+//! contour (position, working plane, the direction the last element ended in) and the events
+//! of a line, an arc, a tangent arc and a feed change; the arc end tolerance; the search for a
+//! called program file.
+
+use std::path::{Path, PathBuf};
+
+use crate::gcode::GcodeOptions;
+use crate::{Axes, Canon, FeedMode, Plane};
+
+/// The tool's place on the contour it follows.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Contour {
+    /// Position in the program frame: X Y Z mm, A B C degrees.
+    pub(crate) pos: [f64; 6],
+    pub(crate) plane: Plane,
+    /// The direction the last element in the working plane ended in (plane axes), for
+    /// tangent arcs.
+    pub(crate) tangent: Option<[f64; 2]>,
+    /// The feed last told to the sink.
+    told_feed: Option<(FeedMode, f64)>,
+}
+
+impl Contour {
+    pub(crate) fn new(pos: [f64; 6]) -> Self {
+        Contour {
+            pos,
+            plane: Plane::XY,
+            tangent: None,
+            told_feed: None,
+        }
+    }
+
+    /// A straight move to `end` (rapid or fed).
+    pub(crate) fn line(&mut self, end: [f64; 6], rapid: bool) -> Canon<'static> {
+        let (i1, i2, _) = self.plane.axes();
+        let d = [end[i1] - self.pos[i1], end[i2] - self.pos[i2]];
+        let len = d[0].hypot(d[1]);
+        if len > 0.0 {
+            self.tangent = Some([d[0] / len, d[1] / len]);
+        }
+        self.pos = end;
+        let end = Axes::from_array(end);
+        if rapid {
+            Canon::Traverse { end }
+        } else {
+            Canon::Feed { end }
+        }
+    }
+
+    /// An arc in the working plane about `center` (plane axes) to `end`, `turns` ≥ 1.
+    pub(crate) fn arc(
+        &mut self,
+        end: [f64; 6],
+        center: [f64; 2],
+        ccw: bool,
+        turns: i32,
+    ) -> Canon<'static> {
+        let (i1, i2, _) = self.plane.axes();
+        let r = [end[i1] - center[0], end[i2] - center[1]];
+        let len = r[0].hypot(r[1]);
+        if len > 0.0 {
+            let s = if ccw { 1.0 } else { -1.0 };
+            self.tangent = Some([-s * r[1] / len, s * r[0] / len]);
+        }
+        self.pos = end;
+        Canon::Arc {
+            end: Axes::from_array(end),
+            center,
+            rotation: if ccw { turns } else { -turns },
+            plane: self.plane,
+        }
+    }
+
+    /// The arc from here to `end` tangent to the contour: its centre and direction, `Some(None)`
+    /// when `end` lies straight ahead (a line), `None` when no element gives a tangent. The
+    /// centre lies on the normal to the tangent, as far from both ends.
+    pub(crate) fn tangent_arc(&self, end: [f64; 6]) -> Option<Option<([f64; 2], bool)>> {
+        let t = self.tangent?;
+        let (i1, i2, _) = self.plane.axes();
+        let d = [end[i1] - self.pos[i1], end[i2] - self.pos[i2]];
+        let nrm = [-t[1], t[0]];
+        let dn = d[0] * nrm[0] + d[1] * nrm[1];
+        if dn.abs() < 1e-9 * (d[0].hypot(d[1]) + 1.0) {
+            return Some(None);
+        }
+        let rho = (d[0] * d[0] + d[1] * d[1]) / (2.0 * dn);
+        Some(Some((
+            [self.pos[i1] + rho * nrm[0], self.pos[i2] + rho * nrm[1]],
+            rho > 0.0,
+        )))
+    }
+
+    /// The events that tell the sink a feed of `f` in `mode` before a feed move: none when it
+    /// has them already.
+    pub(crate) fn feed(&mut self, mode: FeedMode, f: f64) -> impl Iterator<Item = Canon<'static>> {
+        let told = self.told_feed;
+        self.told_feed = Some((mode, f));
+        let changed = told != Some((mode, f));
+        let new_mode = changed && told.map(|t| t.0) != Some(mode);
+        new_mode
+            .then_some(Canon::FeedMode(mode))
+            .into_iter()
+            .chain(changed.then_some(Canon::FeedRate(f)))
+    }
+}
+
+/// How far an arc's end may be off its circle of radius `r` in a program of `scale` mm per
+/// unit: the G-code reader's tolerance.
+pub(crate) fn arc_tolerance(opts: &GcodeOptions, scale: f64, r: f64) -> f64 {
+    let tol = opts.arc_radius_tolerance;
+    let abs = if scale == 1.0 {
+        tol.abs_mm
+    } else {
+        tol.abs_inch * 25.4
+    };
+    abs.max(tol.relative * r)
+}
+
+/// The first of the file names `wanted` beside the program `file` or on the subroutine path,
+/// their case ignored (the controls' file names are).
+pub(crate) fn find_program(file: &str, opts: &GcodeOptions, wanted: &[String]) -> Option<PathBuf> {
+    let base = Path::new(file)
+        .parent()
+        .map(Path::to_path_buf)
+        .unwrap_or_default();
+    let mut dirs = vec![if base.as_os_str().is_empty() {
+        PathBuf::from(".")
+    } else {
+        base
+    }];
+    dirs.extend(opts.subroutine_path.iter().cloned());
+    dirs.iter().find_map(|d| {
+        let entries: Vec<PathBuf> = std::fs::read_dir(d)
+            .ok()?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .collect();
+        wanted.iter().find_map(|w| {
+            entries
+                .iter()
+                .find(|p| {
+                    p.is_file()
+                        && p.file_name()
+                            .and_then(|n| n.to_str())
+                            .is_some_and(|n| n.eq_ignore_ascii_case(w))
+                })
+                .cloned()
+        })
+    })
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn tangent_arcs_continue_the_contour() {
+        let mut c = Contour::new([0.0; 6]);
+        let _ = c.line([10.0, 0.0, 0.0, 0.0, 0.0, 0.0], false);
+        // Along +X to (10, 0); a tangent arc to (20, 10) turns left about (10, 10).
+        let (centre, ccw) = c
+            .tangent_arc([20.0, 10.0, 0.0, 0.0, 0.0, 0.0])
+            .unwrap()
+            .unwrap();
+        assert!((centre[0] - 10.0).abs() < 1e-12 && (centre[1] - 10.0).abs() < 1e-12 && ccw);
+        assert_eq!(c.tangent_arc([30.0, 0.0, 0.0, 0.0, 0.0, 0.0]), Some(None));
+        let _ = c.arc([20.0, 10.0, 0.0, 0.0, 0.0, 0.0], [10.0, 10.0], true, 1);
+        assert_eq!(c.tangent, Some([0.0, 1.0]));
+        assert_eq!(c.feed(FeedMode::PerMinute, 100.0).count(), 2);
+        assert_eq!(c.feed(FeedMode::PerMinute, 100.0).count(), 0);
+        assert_eq!(c.feed(FeedMode::PerMinute, 50.0).count(), 1);
+    }
+}
