@@ -26,12 +26,6 @@ impl ProgramFormat {
     /// A file whose first statement is `BEGIN PGM` is Heidenhain whatever its extension (CAM
     /// systems write them as `.h`, `.ptp`, `.nc`).
     pub fn detect(path: &Path, text: &str) -> Self {
-        if crate::heidenhain::is_heidenhain(text) {
-            return ProgramFormat::Heidenhain;
-        }
-        if crate::sinumerik::is_sinumerik(text) {
-            return ProgramFormat::Sinumerik;
-        }
         let ext = path
             .extension()
             .and_then(|e| e.to_str())
@@ -42,11 +36,28 @@ impl ProgramFormat {
             "apt" | "cls" | "cl" | "cldata" | "aptsource" | "ncl" => return ProgramFormat::Apt,
             // Siemens main programs and subprograms, whatever words they use.
             "mpf" | "spf" => return ProgramFormat::Sinumerik,
-            "ngc" | "nc" | "gcode" | "g" | "gc" | "tap" | "cnc" | "ptp" | "h" | "eia" => {
-                return ProgramFormat::Gcode
-            }
             _ => {}
         }
+        if crate::heidenhain::is_heidenhain(text) {
+            return ProgramFormat::Heidenhain;
+        }
+        let gcode_ext = matches!(
+            ext.as_str(),
+            "ngc" | "nc" | "gcode" | "g" | "gc" | "tap" | "cnc" | "ptp" | "h" | "eia"
+        );
+        // An APT file of unknown extension (whose records may mention Siemens words in their
+        // text) before the Sinumerik test.
+        if !gcode_ext && Self::apt_text(text) {
+            return ProgramFormat::Apt;
+        }
+        if crate::sinumerik::is_sinumerik(text) {
+            return ProgramFormat::Sinumerik;
+        }
+        ProgramFormat::Gcode
+    }
+
+    /// True when the first statements are APT records (`GOTO/`, `PARTNO`, `CUTTER/`, …).
+    fn apt_text(text: &str) -> bool {
         const APT_WORDS: [&str; 10] = [
             "GOTO/",
             "FROM/",
@@ -72,10 +83,10 @@ impl ProgramFormat {
             }
             .to_ascii_uppercase();
             if APT_WORDS.iter().any(|w| upper.starts_with(w)) {
-                return ProgramFormat::Apt;
+                return true;
             }
         }
-        ProgramFormat::Gcode
+        false
     }
 }
 

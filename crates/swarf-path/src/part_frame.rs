@@ -4,8 +4,8 @@
 //!
 //! Machine position = `tilt · Rz(rot) · p + shift`: the plane is tilted about the shifted
 //! datum, and a rotation turns within the (tilted) plane. A shift programmed while the plane
-//! is tilted moves along the tilted axes (the Heidenhain and Siemens rule): the frame keeps
-//! the shift the plane was tilted at and the tilted part apart. The sink hears the same as
+//! is tilted is measured along the tilted axes from the preset (the Heidenhain rule; an
+//! incremental one adds along them to the shift in effect). The sink hears the same as
 //! [`Canon::Offsets`] (the shift as G54's offset), [`Canon::XyRotation`] (the rotation, when
 //! nothing is tilted) and [`Canon::WorkPlane`] (the tilt with the rotation inside it, the tool
 //! turned to its Z).
@@ -81,10 +81,6 @@ pub(crate) struct PartFrame {
     pub(crate) rot: f64,
     /// The tilted plane: its columns are the plane's axes in machine axes.
     pub(crate) tilt: Option<Mat>,
-    /// Under a tilt: the shift when it was tilted, and the shift programmed since, along the
-    /// tilted axes.
-    shift_at_tilt: [f64; 3],
-    tilted_shift: [f64; 3],
 }
 
 impl PartFrame {
@@ -111,31 +107,15 @@ impl PartFrame {
         mul(&self.turn(), d)
     }
 
-    /// Tilts the plane (or untilts it) at the current shift.
-    pub(crate) fn set_tilt(&mut self, tilt: Option<Mat>) {
-        self.tilt = tilt;
-        self.shift_at_tilt = self.shift;
-        self.tilted_shift = [0.0; 3];
-    }
-
-    /// The shift as programmed now: along the tilted axes since the tilt, else machine axes.
+    /// The shift as programmed: along the tilted axes when tilted, else machine axes.
     pub(crate) fn programmed_shift(&self) -> [f64; 3] {
-        match self.tilt {
-            Some(_) => self.tilted_shift,
-            None => self.shift,
-        }
+        self.tilt
+            .map_or(self.shift, |t| mul(&transpose(&t), self.shift))
     }
 
     /// Sets the shift as programmed (see [`Self::programmed_shift`]).
     pub(crate) fn set_programmed_shift(&mut self, v: [f64; 3]) {
-        match self.tilt {
-            Some(t) => {
-                self.tilted_shift = v;
-                let d = mul(&t, v);
-                self.shift = std::array::from_fn(|k| self.shift_at_tilt[k] + d[k]);
-            }
-            None => self.shift = v,
-        }
+        self.shift = self.tilt.map_or(v, |t| mul(&t, v));
     }
 
     /// What the sink hears of the frame: the offsets, the rotation and, when tilted, the
@@ -190,12 +170,17 @@ mod tests {
     fn a_shift_in_a_tilted_plane_moves_along_its_axes() {
         let mut f = PartFrame {
             shift: [1.0, 2.0, 3.0],
+            tilt: Some(spatial(0.0, 90.0, 0.0)),
             ..PartFrame::default()
         };
-        f.set_tilt(Some(spatial(0.0, 90.0, 0.0)));
-        f.set_programmed_shift([10.0, 0.0, 0.0]);
-        // The tilted X is the machine's −Z.
+        // Incremental: along the tilted X (the machine's −Z) from the shift in effect.
+        let mut v = f.programmed_shift();
+        v[0] += 10.0;
+        f.set_programmed_shift(v);
         assert!((f.shift[0] - 1.0).abs() < 1e-12 && (f.shift[2] - (3.0 - 10.0)).abs() < 1e-12);
+        // Absolute: from the preset.
+        f.set_programmed_shift([10.0, 0.0, 0.0]);
+        assert!(f.shift[0].abs() < 1e-12 && (f.shift[2] + 10.0).abs() < 1e-12);
         let p = [1.0, 2.0, 3.0];
         let q = f.program_of(f.machine_of(p));
         assert!(p.iter().zip(q).all(|(a, b)| (a - b).abs() < 1e-12));

@@ -181,6 +181,27 @@ fn scan_heidenhain(line: &str) -> (Option<Result<FeedWord, usize>>, usize) {
     (found, code_end)
 }
 
+/// What a Sinumerik line holds: as [`scan_gcode`] (a `F=…` is an expression, refused on a
+/// line to rescale), but the `F` of a `G4` block is its dwell in seconds, no feed.
+fn scan_sinumerik(line: &str) -> (Option<Result<FeedWord, usize>>, usize) {
+    let (word, end) = scan_gcode(line);
+    let code = line.split(';').next().unwrap_or("").to_ascii_uppercase();
+    let b = code.as_bytes();
+    let dwell = ["G4", "G04"].iter().any(|g| {
+        code.match_indices(g).any(|(i, m)| {
+            let before = i.checked_sub(1).map(|j| b[j]);
+            let after = b.get(i + m.len()).copied();
+            !before.is_some_and(|c| c.is_ascii_alphanumeric() || c == b'_')
+                && !after.is_some_and(|c| c.is_ascii_digit() || c == b'.')
+        })
+    });
+    if dwell {
+        (None, end)
+    } else {
+        (word, end)
+    }
+}
+
 /// What a `CYCLE/` record does to the feed of the holes after it.
 enum CycleLine {
     Off,
@@ -459,8 +480,8 @@ pub fn rewrite_feeds(
             }
         }
         let (word, code_end) = match format {
-            // (A Sinumerik `F=…` is an expression, refused on a line to rescale.)
-            ProgramFormat::Gcode | ProgramFormat::Sinumerik => scan_gcode(body),
+            ProgramFormat::Gcode => scan_gcode(body),
+            ProgramFormat::Sinumerik => scan_sinumerik(body),
             ProgramFormat::Apt => (scan_apt(body), body.len()),
             ProgramFormat::Heidenhain => scan_heidenhain(body),
         };

@@ -629,3 +629,50 @@ fn schedule_puts_a_new_heidenhain_feed_before_the_m_functions() {
     .unwrap();
     assert_eq!(r.text.lines().nth(1), Some("1 L X+10 F1000 M128 F500"));
 }
+
+#[test]
+fn second_review_cases() {
+    // M140 in a motion block retracts at the block's end: the cut at Z0 stays.
+    let p = read(&pgm(
+        "TOOL CALL 1 Z S3000 F100\nL X+0 Y+0 Z+0 R0 F100\nL X+10 Y+10 R0 F100 M140 MB 50",
+    ));
+    assert_eq!(
+        tips(&p),
+        [[0.0, 0.0, 0.0], [10.0, 10.0, 0.0], [10.0, 10.0, 50.0]]
+    );
+    // An absolute datum shift in a tilted plane is measured from the preset: clearing it
+    // there clears the shift programmed before the tilt too.
+    let p = read(&pgm("TOOL CALL 1 Z S3000 F100\n\
+         CYCL DEF 7.0 DATUM SHIFT\n\
+         CYCL DEF 7.1 X+10\n\
+         PLANE SPATIAL SPA+0 SPB+30 SPC+0 TURN FMAX\n\
+         CYCL DEF 7.0 DATUM SHIFT\n\
+         CYCL DEF 7.1 X+0\n\
+         CYCL DEF 7.2 Y+0\n\
+         CYCL DEF 7.3 Z+0\n\
+         PLANE RESET TURN FMAX\n\
+         L X+0 Y+0 Z+50 F100"));
+    assert!(
+        close(p.moves.last().unwrap().end.tip, [0.0, 0.0, 50.0], 1e-12),
+        "{:?}",
+        tips(&p)
+    );
+    // An error in a called file names that file.
+    let dir = std::env::temp_dir().join(format!("swarf-heid2-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(
+        dir.join("SUB.h"),
+        "0 BEGIN PGM SUB MM\n1 LBL 1\n2 LBL 1\n3 END PGM SUB MM\n",
+    )
+    .unwrap();
+    let main = dir.join("MAIN.h").display().to_string();
+    let e = read_heidenhain(
+        &pgm("CALL PGM SUB"),
+        &main,
+        &GcodeOptions::default(),
+        &mut Recorder::default(),
+    )
+    .unwrap_err();
+    assert!(e.pos.file.ends_with("SUB.h") && e.pos.line == 3, "{e}");
+    std::fs::remove_dir_all(&dir).ok();
+}

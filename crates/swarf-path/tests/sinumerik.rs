@@ -462,3 +462,49 @@ fn review_cases_read_as_the_control_reads_them() {
     assert_eq!(e.kind, PathErrorKind::Limit, "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn second_review_cases() {
+    // The programmable frame sits inside the swivel: TRANS before or after CYCLE800, reset
+    // in either order, leaves nothing.
+    for prog in [
+        "TRANS X10\nCYCLE800(1,\"T\",0,57,0,0,0,0,30,0,0,0,0,1)\nTRANS\nCYCLE800()\nG1 X0 Y0 Z50 F100",
+        "TRANS X10\nCYCLE800(1,\"T\",0,57,0,0,0,0,30,0,0,0,0,1)\nCYCLE800()\nTRANS\nG1 X0 Y0 Z50 F100",
+    ] {
+        let p = read(prog);
+        assert!(close(p.moves.last().unwrap().end.tip, [0.0, 0.0, 50.0], 1e-12), "{prog}: {:?}", tips(&p));
+    }
+    // APT text that mentions Siemens words is still APT.
+    for name in ["a.cls", "a.txt"] {
+        assert_eq!(
+            ProgramFormat::detect(
+                std::path::Path::new(name),
+                "PARTNO TEST\nINSERT TRAORI\nPPRINT CR=5\nGOTO/1,2,3\nFINI\n"
+            ),
+            ProgramFormat::Apt,
+            "{name}"
+        );
+    }
+    // CYCLE85's feeds under G70 stay in the basic system.
+    let p = read("G0 X20 Y20 Z10 S1000 M3\nG70 G1 F100\nCYCLE85(1,0,0.1,-1,,0,100,100)");
+    assert!(p
+        .moves
+        .iter()
+        .filter(|m| m.kind == MoveKind::Linear)
+        .all(|m| m.feed == 100.0));
+    // Word operators with spaces.
+    let p = read("R1=10 MOD 3\nR2=R1==1 AND 1\nG0 X=R1 Y=R2");
+    assert!(close(p.moves[0].end.tip, [1.0, 1.0, 0.0], 1e-12));
+    // The F of a G4 block is its dwell: the schedule leaves it.
+    let text = "G500\nG1 X10 F100\nG4 F2\nG1 X20\nM30\n";
+    let factors = [(2, 1.0), (4, 0.5)].into_iter().collect();
+    let r = swarf_path::rewrite::rewrite_feeds(
+        text,
+        "t.mpf",
+        ProgramFormat::Sinumerik,
+        &factors,
+        &Default::default(),
+    )
+    .unwrap();
+    assert_eq!(r.text.lines().nth(3), Some("G1 X20 F50"));
+}

@@ -257,7 +257,7 @@ impl Reader<'_> {
             self.emit(line, Canon::WorkPlane(None));
         }
         // (The tilted plane, turned by any rotation, is stated with the offsets.)
-        self.change_frame(line, true, |s| s.frame.set_tilt(tilt));
+        self.change_frame(line, true, |s| s.frame.tilt = tilt);
     }
 
     /// `CYCL CALL`, `CYCL CALL POS X… Y… Z…`.

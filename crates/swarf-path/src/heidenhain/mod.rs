@@ -116,9 +116,11 @@ pub fn read_heidenhain(
         Err(f) => Err(f),
     };
     let file_of = |r: &Reader| {
-        r.sources
-            .get(r.cur)
-            .map_or(file.to_string(), |s| s.name.clone())
+        r.error_file.clone().unwrap_or_else(|| {
+            r.sources
+                .get(r.cur)
+                .map_or(file.to_string(), |s| s.name.clone())
+        })
     };
     let out = match result {
         Ok(()) if r.sink.over => Err(r.limit_error()),
@@ -248,6 +250,8 @@ struct Reader<'a> {
     tool_names: HashMap<String, u32>,
     warned: Vec<&'static str>,
     ended: bool,
+    /// The called file an error was found in while loading it.
+    error_file: Option<String>,
 }
 
 impl<'a> Reader<'a> {
@@ -286,6 +290,7 @@ impl<'a> Reader<'a> {
             tool_names: HashMap::new(),
             warned: Vec::new(),
             ended: false,
+            error_file: None,
         }
     }
 
@@ -1128,7 +1133,6 @@ impl<'a> Reader<'a> {
         let w = self.words(&b.toks[1..], b.line)?;
         let toks = &b.toks[1..];
         self.m_before(&w, toks, b.line);
-        self.retract(&w, b)?;
         if matches!(head.text.as_str(), "L" | "LN") && w.axes.iter().all(Option::is_none) {
             // A block of M functions (and maybe a feed) written as a line: no motion.
             self.take_feed(&w, head)?;
@@ -1288,6 +1292,8 @@ impl<'a> Reader<'a> {
         if self.modal_call && moved_in_plane && !w.has_m(99) {
             self.cycle_call(&b.toks[0], None)?;
         }
+        // M140 acts at the end of its block.
+        self.retract(w, b)?;
         Ok(if self.m_after(w, toks, b.line)? {
             Flow::End
         } else {
@@ -1763,13 +1769,9 @@ impl<'a> Reader<'a> {
                 let text = crate::load::read_text(&path).map_err(|e| {
                     Fault::at(nt, PathErrorKind::Io, e.message, "a readable program file")
                 })?;
-                let file = self.file;
-                let blocks = lexer::blocks(&text).map_err(|mut f| {
-                    f.message = format!("in {shown}: {}", f.message);
-                    f
-                })?;
-                let s = Self::source(shown, blocks)?;
-                let _ = file;
+                // (An error in the called file names that file.)
+                let read = lexer::blocks(&text).and_then(|b| Self::source(shown.clone(), b));
+                let s = read.inspect_err(|_| self.error_file = Some(shown))?;
                 self.sources.push(s);
                 self.sources.len() - 1
             }

@@ -101,21 +101,23 @@ impl Reader<'_> {
         let r1 = [g(10), g(11), g(12)].map(|x| x * self.scale);
         let reset = v.iter().all(Option::is_none)
             || (a == 0.0 && bb == 0.0 && c == 0.0 && r0 == [0.0; 3] && r1 == [0.0; 3]);
-        // The frame before the first swivel: a new plane starts from it.
-        let base = *self.swivel_base.get_or_insert(self.frame.shift);
         if reset {
-            self.swivel_base = None;
-            self.change_frame(b.line, |s| {
-                s.frame.set_tilt(None);
-                s.frame.shift = base;
-                s.swivel_offset = [0.0; 3];
-            });
+            self.swivel = None;
+            self.set_chain(b.line, self.trans, self.rot);
             return Ok(());
         }
         if mode & 0xC0 != 0 {
             return Err(refuse(
                 "CYCLE800 by solid or projection angles or by rotary axis positions is not read",
             ));
+        }
+        if g(0) != 0.0 {
+            self.warn_once(
+                "cycle800fr",
+                b.line,
+                super::col(b, at),
+                "CYCLE800's retract (_FR) is not made: the tool swivels where it stands".into(),
+            );
         }
         // The rotation axes, lowest bits first, each turning the frame turned before.
         let mut r: Mat = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
@@ -129,25 +131,17 @@ impl Reader<'_> {
             };
             r = mat(&r, &turn);
         }
+        // `_ST` ending in 1 adds to the swivel in effect: its pivot moved by _X0… along its
+        // turned axes, its turn turned further.
         let additive = (g(2) as i64) % 10 == 1;
-        let (from, tilt) = match (additive, self.frame.tilt) {
-            (true, Some(t)) => (self.frame.shift, mat(&t, &r)),
-            _ => (base, r),
-        };
-        // To _X0 _Y0 _Z0, turned, then _X1 _Y1 _Z1 along the turned axes.
-        let pivot: [f64; 3] = match (additive, self.frame.tilt) {
-            (true, Some(t)) => {
-                let d = crate::part_frame::mul(&t, r0);
-                std::array::from_fn(|k| from[k] + d[k])
+        self.swivel = Some(match (additive, self.swivel) {
+            (true, Some((p0, r0m, o0))) => {
+                let d = crate::part_frame::mul(&r0m, std::array::from_fn(|k| o0[k] + r0[k]));
+                (std::array::from_fn(|k| p0[k] + d[k]), mat(&r0m, &r), r1)
             }
-            _ => std::array::from_fn(|k| from[k] + r0[k]),
-        };
-        self.change_frame(b.line, |s| {
-            s.frame.shift = pivot;
-            s.frame.set_tilt(Some(tilt));
-            s.frame.set_programmed_shift(r1);
-            s.swivel_offset = r1;
+            _ => (r0, r, r1),
         });
+        self.set_chain(b.line, self.trans, self.rot);
         Ok(())
     }
 
@@ -200,7 +194,7 @@ impl Reader<'_> {
         let fs = if self.feed_mode == FeedMode::InverseTime {
             1.0
         } else {
-            s
+            self.feed_scale
         };
         // (feed, mode), retract (None: rapid), dwell at depth, first peck, degression, break.
         let (feed, retract, dwell, first, dam, chip_break) = match name {

@@ -184,10 +184,11 @@ pub fn read_sinumerik(
 ) -> Result<(), PathError> {
     let mut r = Reader::new(file, opts, sink);
     let result = r.run(blocks(text));
-    let name = r
-        .sources
-        .get(r.cur)
-        .map_or(file.to_string(), |s| s.name.clone());
+    let name = r.error_file.clone().unwrap_or_else(|| {
+        r.sources
+            .get(r.cur)
+            .map_or(file.to_string(), |s| s.name.clone())
+    });
     let out = match result {
         Ok(()) if r.sink.over => {
             let (message, expected) = crate::limit::move_limit_message(r.sink.max());
@@ -265,13 +266,13 @@ struct Reader<'a> {
     /// Position, working plane and the contour's direction.
     c: Contour,
     frame: PartFrame,
-    /// The settable offset's shift, under the programmable frame (TRANS/ATRANS/ROT).
+    /// The frame chain: the swivel (`CYCLE800`: pivot, turn, offset along the turned axes),
+    /// then the programmable frame (`TRANS`/`ATRANS` translation and `ROT`/`AROT` rotation)
+    /// within it. Machine = pivot + R·(offset + t + Rz(rot)·p); the part frame is made from
+    /// them.
+    swivel: Option<([f64; 3], crate::part_frame::Mat, [f64; 3])>,
     trans: [f64; 3],
-    /// The shift before the first `CYCLE800` of a swivel: each new plane starts from it.
-    swivel_base: Option<[f64; 3]>,
-    /// `CYCLE800`'s `_X1 _Y1 _Z1`: kept under the programmable frame (`TRANS` in the swivelled
-    /// plane adds to it).
-    swivel_offset: [f64; 3],
+    rot: f64,
     /// The block's rotary directions (`DC` 0, `ACP` 1, `ACN` −1).
     turning: [Option<i8>; 6],
     absolute: bool,
@@ -289,6 +290,8 @@ struct Reader<'a> {
     repeats: HashMap<(usize, usize), u64>,
     warned: Vec<String>,
     ended: bool,
+    /// The called file an error was found in while loading it.
+    error_file: Option<String>,
 }
 
 impl<'a> Reader<'a> {
@@ -312,8 +315,8 @@ impl<'a> Reader<'a> {
             c: Contour::new(pos),
             frame: PartFrame::default(),
             trans: [0.0; 3],
-            swivel_base: None,
-            swivel_offset: [0.0; 3],
+            swivel: None,
+            rot: 0.0,
             turning: [None; 6],
             absolute: true,
             motion: 0,
@@ -328,6 +331,7 @@ impl<'a> Reader<'a> {
             repeats: HashMap::new(),
             warned: Vec::new(),
             ended: false,
+            error_file: None,
         }
     }
 
@@ -1007,7 +1011,9 @@ impl<'a> Reader<'a> {
                         "a readable program file",
                     )
                 })?;
-                let s = Self::source(shown, blocks(&text))?;
+                // (An error in the called file names that file.)
+                let s = Self::source(shown.clone(), blocks(&text))
+                    .inspect_err(|_| self.error_file = Some(shown))?;
                 self.sources.push(s);
                 self.sources.len() - 1
             }
@@ -1093,48 +1099,43 @@ impl<'a> Reader<'a> {
             "TRANS" | "CTRANS" => {
                 // A new programmable frame: this translation alone.
                 let t = v.map(|x| x.unwrap_or(0.0));
-                let base = self.frame_base();
-                self.change_frame(b.line, |s| {
-                    s.frame.rot = 0.0;
-                    s.frame
-                        .set_programmed_shift(std::array::from_fn(|k| base[k] + t[k]));
-                });
+                self.set_chain(b.line, t, 0.0);
             }
             "ATRANS" => {
-                // Along the current (rotated) axes.
-                let t = v.map(|x| x.unwrap_or(0.0));
-                let r = crate::part_frame::rz(self.frame.rot);
-                let d = crate::part_frame::mul(&r, t);
-                let now = self.frame.programmed_shift();
-                self.change_frame(b.line, |s| {
-                    s.frame
-                        .set_programmed_shift(std::array::from_fn(|k| now[k] + d[k]));
-                });
+                // Along the programmable frame's (rotated) axes.
+                let d = crate::part_frame::mul(
+                    &crate::part_frame::rz(self.rot),
+                    v.map(|x| x.unwrap_or(0.0)),
+                );
+                let t = std::array::from_fn(|k| self.trans[k] + d[k]);
+                self.set_chain(b.line, t, self.rot);
             }
-            "ROT" | "CROT" => {
-                let a = angle.unwrap_or(0.0);
-                let base = self.frame_base();
-                self.change_frame(b.line, |s| {
-                    s.frame.set_programmed_shift(base);
-                    s.frame.rot = a;
-                });
-            }
+            "ROT" | "CROT" => self.set_chain(b.line, [0.0; 3], angle.unwrap_or(0.0)),
             _ => {
                 // AROT
-                let a = self.frame.rot + angle.unwrap_or(0.0);
-                self.change_frame(b.line, |s| s.frame.rot = a);
+                let r = self.rot + angle.unwrap_or(0.0);
+                self.set_chain(b.line, self.trans, r);
             }
         }
         Ok(())
     }
 
-    /// Where the programmable frame starts: the settable offset, or in a swivelled plane
-    /// `CYCLE800`'s offset.
-    fn frame_base(&self) -> [f64; 3] {
-        match self.frame.tilt {
-            Some(_) => self.swivel_offset,
-            None => self.trans,
-        }
+    /// Sets the programmable frame to translation `t` and rotation `rot` and makes the part
+    /// frame from the chain.
+    pub(super) fn set_chain(&mut self, line: u32, t: [f64; 3], rot: f64) {
+        (self.trans, self.rot) = (t, rot);
+        let (shift, tilt) = match self.swivel {
+            Some((pivot, r, offset)) => {
+                let d = crate::part_frame::mul(&r, std::array::from_fn(|k| offset[k] + t[k]));
+                (std::array::from_fn(|k| pivot[k] + d[k]), Some(r))
+            }
+            None => (t, None),
+        };
+        self.change_frame(line, |s| {
+            s.frame.shift = shift;
+            s.frame.tilt = tilt;
+            s.frame.rot = rot;
+        });
     }
 
     // ---- the word block ----

@@ -130,6 +130,9 @@ fn skip_ws(b: &[u8], mut i: usize) -> usize {
 /// Characters that join the terms of an expression across spaces (`R1 + 2`).
 const OPERATORS: &[u8] = b"+-*/<>=^";
 
+/// Words that do (`R3 = 10 MOD 3`).
+const WORD_OPERATORS: [&str; 6] = ["DIV", "MOD", "AND", "OR", "XOR", "NOT"];
+
 /// The end of an expression from `i`: the next space outside parentheses and quotes that
 /// neither follows nor precedes an operator.
 fn expr_end(b: &[u8], mut i: usize) -> Result<usize, WordError> {
@@ -146,8 +149,31 @@ fn expr_end(b: &[u8], mut i: usize) -> Result<usize, WordError> {
             c if depth == 0 && c.is_ascii_whitespace() => {
                 let after = skip_ws(b, i);
                 let before = b[..i].iter().rev().find(|c| !c.is_ascii_whitespace());
+                // The word operators too: `10 MOD 3`, `R1==0 AND R2==0`.
+                let word_at = |j: usize, back: bool| -> bool {
+                    let w: Vec<u8> = if back {
+                        let e = b[..j]
+                            .iter()
+                            .rposition(|c| !c.is_ascii_whitespace())
+                            .map_or(0, |k| k + 1);
+                        let s0 = b[..e]
+                            .iter()
+                            .rposition(|c| !c.is_ascii_alphabetic())
+                            .map_or(0, |k| k + 1);
+                        b[s0..e].to_vec()
+                    } else {
+                        b[j..]
+                            .iter()
+                            .take_while(|c| c.is_ascii_alphabetic())
+                            .copied()
+                            .collect()
+                    };
+                    WORD_OPERATORS.iter().any(|o| o.as_bytes() == w.as_slice())
+                };
                 let joined = before.is_some_and(|c| OPERATORS.contains(c))
-                    || b.get(after).is_some_and(|c| OPERATORS.contains(c));
+                    || b.get(after).is_some_and(|c| OPERATORS.contains(c))
+                    || word_at(i, true)
+                    || word_at(after, false);
                 if !joined || after >= b.len() {
                     break;
                 }
@@ -265,6 +291,14 @@ mod tests {
             [("L".into(), Number(100.0)), ("P".into(), Number(3.0))]
         );
         assert_eq!(names("R10=R1+1"), [("R10".into(), Expr("R1+1".into()))]);
+        assert_eq!(
+            names("R3=10 MOD 3 R5=R1==0 AND R2==0 X1"),
+            [
+                ("R3".into(), Expr("10 MOD 3".into())),
+                ("R5".into(), Expr("R1==0 AND R2==0".into())),
+                ("X".into(), Number(1.0))
+            ]
+        );
         assert_eq!(
             names("R1 = 5 X = R2 + 2 Y=3"),
             [
