@@ -7,7 +7,8 @@
 use std::path::{Path, PathBuf};
 
 use crate::gcode::GcodeOptions;
-use crate::{Axes, Canon, FeedMode, Plane};
+use crate::part_frame::PartFrame;
+use crate::{Axes, Canon, FeedMode, PathError, PathErrorKind, Plane, SourcePos, Units};
 
 /// The tool's place on the contour it follows.
 #[derive(Clone, Copy, Debug)]
@@ -104,6 +105,35 @@ impl Contour {
             .into_iter()
             .chain(changed.then_some(Canon::FeedRate(f)))
     }
+}
+
+/// The events a reader starts with: the units, the frame, where the tool stands (when not at
+/// the origin) and the XY plane.
+pub(crate) fn opening(scale: f64, frame: &PartFrame, pos: [f64; 6]) -> Vec<Canon<'static>> {
+    let units = if scale == 1.0 { Units::Mm } else { Units::Inch };
+    let mut out = vec![Canon::Units(units)];
+    out.extend(frame.events());
+    if pos != [0.0; 6] {
+        out.push(Canon::SetPosition(Axes::from_array(pos)));
+    }
+    out.push(Canon::Plane(Plane::XY));
+    out
+}
+
+/// The move limit's error for a program read from `file`.
+pub(crate) fn limit_error(file: &str, max: u64) -> PathError {
+    let (message, expected) = crate::limit::move_limit_message(max);
+    PathError::new(
+        SourcePos {
+            file: file.to_string(),
+            line: 0,
+            column: 0,
+        },
+        PathErrorKind::Limit,
+        message,
+        "",
+        expected,
+    )
 }
 
 /// How far an arc's end may be off its circle of radius `r` in a program of `scale` mm per

@@ -46,8 +46,7 @@ use crate::limit::MoveLimit;
 use crate::part_frame::PartFrame;
 use crate::reader_core::{self, Contour};
 use crate::{
-    Axes, Canon, CanonSink, FeedMode, PathError, PathErrorKind, Plane, SourcePos, SpindleDir,
-    Units, Warning,
+    Canon, CanonSink, FeedMode, PathError, PathErrorKind, Plane, SourcePos, SpindleDir, Warning,
 };
 use lexer::{Block, Tok, Val};
 
@@ -123,7 +122,7 @@ pub fn read_heidenhain(
         })
     };
     let out = match result {
-        Ok(()) if r.sink.over => Err(r.limit_error()),
+        Ok(()) if r.sink.over => Err(reader_core::limit_error(file, r.sink.max())),
         Ok(()) => Ok(()),
         Err(f) => Err(PathError::new(
             SourcePos {
@@ -294,21 +293,6 @@ impl<'a> Reader<'a> {
         }
     }
 
-    fn limit_error(&self) -> PathError {
-        let (message, expected) = crate::limit::move_limit_message(self.sink.max());
-        PathError::new(
-            SourcePos {
-                file: self.file.to_string(),
-                line: 0,
-                column: 0,
-            },
-            PathErrorKind::Limit,
-            message,
-            "",
-            expected,
-        )
-    }
-
     fn emit(&mut self, line: u32, e: Canon<'_>) {
         self.sink.emit(line, &e);
     }
@@ -376,17 +360,9 @@ impl<'a> Reader<'a> {
         self.scale = main.scale;
         self.feed_scale = if main.scale == 1.0 { 1.0 } else { 2.54 };
         self.sources.push(main);
-        let units = if self.scale == 1.0 {
-            Units::Mm
-        } else {
-            Units::Inch
-        };
-        self.emit(0, Canon::Units(units));
-        self.emit_frame(0);
-        if self.c.pos != [0.0; 6] {
-            self.emit(0, Canon::SetPosition(Axes::from_array(self.c.pos)));
+        for e in reader_core::opening(self.scale, &self.frame, self.c.pos) {
+            self.emit(0, e);
         }
-        self.emit(0, Canon::Plane(Plane::XY));
         let mut pc = 0;
         loop {
             if self.sink.over {

@@ -48,7 +48,7 @@ use crate::part_frame::PartFrame;
 use crate::reader_core::{self, Contour};
 use crate::{
     Axes, Canon, CanonSink, FeedMode, MessageKind, PathError, PathErrorKind, Plane, SourcePos,
-    SpindleDir, Units, Warning,
+    SpindleDir, Warning,
 };
 use words::{Value, Word};
 
@@ -190,20 +190,7 @@ pub fn read_sinumerik(
             .map_or(file.to_string(), |s| s.name.clone())
     });
     let out = match result {
-        Ok(()) if r.sink.over => {
-            let (message, expected) = crate::limit::move_limit_message(r.sink.max());
-            Err(PathError::new(
-                SourcePos {
-                    file: file.to_string(),
-                    line: 0,
-                    column: 0,
-                },
-                PathErrorKind::Limit,
-                message,
-                "",
-                expected,
-            ))
-        }
+        Ok(()) if r.sink.over => Err(reader_core::limit_error(file, r.sink.max())),
         Ok(()) => Ok(()),
         Err(f) => Err(PathError::new(
             SourcePos {
@@ -476,17 +463,9 @@ impl<'a> Reader<'a> {
         });
         let main = Self::source(self.file.to_string(), blocks)?;
         self.sources.push(main);
-        let units = if self.scale == 1.0 {
-            Units::Mm
-        } else {
-            Units::Inch
-        };
-        self.emit(0, Canon::Units(units));
-        self.emit_frame(0);
-        if self.c.pos != [0.0; 6] {
-            self.emit(0, Canon::SetPosition(Axes::from_array(self.c.pos)));
+        for e in reader_core::opening(self.scale, &self.frame, self.c.pos) {
+            self.emit(0, e);
         }
-        self.emit(0, Canon::Plane(Plane::XY));
         let mut pc = 0;
         loop {
             if self.sink.over {
