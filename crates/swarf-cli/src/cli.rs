@@ -22,7 +22,7 @@ pub(crate) struct SetupArgs {
     /// One cutter for every tool the program uses.
     #[arg(long, value_name = "SPEC", conflicts_with = "tools")]
     pub(crate) tool: Option<String>,
-    /// Tool library: swarf TOML, LinuxCNC .tbl or CAMotics .camotics.
+    /// Tool library: swarf TOML, LinuxCNC .tbl, CAMotics .camotics or Heidenhain TOOL.T.
     #[arg(long, value_name = "FILE")]
     pub(crate) tools: Option<PathBuf>,
     /// Units of a LinuxCNC .tbl tool table.

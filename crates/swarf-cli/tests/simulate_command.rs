@@ -576,3 +576,44 @@ fn a_sinumerik_program_is_simulated() {
         "{removed} vs {exact}"
     );
 }
+
+#[test]
+fn a_heidenhain_tool_table_gives_the_named_tools() {
+    let dir = temp_dir("heidenhain-tool-t");
+    let table = dir.join("TOOL.T");
+    std::fs::write(
+        &table,
+        "BEGIN TOOL    .T     MM\n\
+         T    NAME                L           R           R2          LCUTS   CUT  TYP\n\
+         0    NULLWERKZEUG        +0          +0          +0          +0      0    MILL\n\
+         2    BALL_D6             +60         +3          +3          +12     2    BALL\n\
+         [END]\n",
+    )
+    .unwrap();
+    let prog = dir.join("P.H");
+    // A 6 mm ball plunged 3 mm deep (a half sphere) and moved 10 mm (a half cylinder).
+    std::fs::write(
+        &prog,
+        "0 BEGIN PGM P MM\n1 BLK FORM 0.1 Z X-20 Y-10 Z-10\n2 BLK FORM 0.2 X+20 Y+10 Z+0\n\
+         3 TOOL CALL \"ball_d6\" Z S1000 F100\n4 L X+0 Y+0 Z+5 R0 FMAX M3\n5 L Z-3\n6 L X+10\n\
+         7 L Z+5 FMAX\n8 END PGM P MM\n",
+    )
+    .unwrap();
+    let o = swarf(&[
+        "simulate",
+        "--program",
+        prog.to_str().unwrap(),
+        "--tools",
+        table.to_str().unwrap(),
+        "--resolution",
+        "0.1",
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let removed = json(&o)["removed_volume_mm3"].as_f64().unwrap();
+    let exact = 2.0 / 3.0 * PI * 27.0 + 10.0 * PI * 9.0 / 2.0;
+    assert!(
+        (removed - exact).abs() < 0.005 * exact,
+        "{removed} vs {exact}"
+    );
+}

@@ -393,6 +393,12 @@ fn read_options(
             }
         }
     }
+    // Named tools (a Heidenhain TOOL.T): the programs' `TOOL CALL "NAME"` finds them.
+    for (n, t) in table.map(|t| &t.tools).into_iter().flatten() {
+        if let Some(name) = &t.name {
+            gcode.tool_names.insert(name.to_ascii_uppercase(), *n);
+        }
+    }
     ReadOptions {
         gcode: gcode.with_max_moves(options.max_moves),
         apt: AptOptions::default().with_max_moves(options.max_moves),

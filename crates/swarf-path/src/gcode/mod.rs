@@ -150,6 +150,9 @@ pub struct GcodeOptions {
     /// Tool diameters by tool number, mm: what cutter radius compensation (`G41`/`G42`, with
     /// `D<tool>` or the loaded tool) offsets by. LinuxCNC takes them from its tool table.
     pub tool_diameters: BTreeMap<u32, f64>,
+    /// Tool numbers by name (upper case), from a tool library that names its tools: what a
+    /// Heidenhain `TOOL CALL "NAME"` or a Sinumerik `T="NAME"` loads.
+    pub tool_names: BTreeMap<String, u32>,
     /// The diameter of a tool [`Self::tool_diameters`] does not list, mm (one cutter given for
     /// every tool); `None`: such a tool is an error when compensation needs it.
     pub default_tool_diameter: Option<f64>,
@@ -270,6 +273,7 @@ impl Default for GcodeOptions {
             arc_radius_tolerance: ArcTolerance::LINUXCNC,
             block_delete: true,
             tool_diameters: BTreeMap::new(),
+            tool_names: BTreeMap::new(),
             default_tool_diameter: None,
             subroutine_path: Vec::new(),
             parameter_units: None,

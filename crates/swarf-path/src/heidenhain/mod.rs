@@ -643,16 +643,7 @@ impl<'a> Reader<'a> {
             let s = tok.text.as_str();
             if s.starts_with('"') {
                 let name = s.trim_matches('"').to_string();
-                let next = self.tool_names.len() as u32 + 1;
-                let n = *self.tool_names.entry(name.clone()).or_insert(next);
-                if n == next {
-                    self.warn(
-                        b.line,
-                        tok.col,
-                        format!("tool \"{name}\" is tool {n} for the tool library (--tools)"),
-                    );
-                }
-                tool = Some(n);
+                tool = Some(self.named_tool(&name, b.line, tok.col));
                 i += 1;
             } else if let Some(v) = lexer::number(s) {
                 if v < 0.0 || v > f64::from(u32::MAX) {
@@ -733,6 +724,24 @@ impl<'a> Reader<'a> {
             self.emit(b.line, Canon::ToolChange { tool: n });
         }
         Ok(())
+    }
+
+    /// The number of the tool called by name: the tool library's, or numbered in order of
+    /// first call (with a warning).
+    fn named_tool(&mut self, name: &str, line: u32, col: u32) -> u32 {
+        if let Some(&n) = self.opts.tool_names.get(&name.to_ascii_uppercase()) {
+            return n;
+        }
+        let next = self.tool_names.len() as u32 + 1;
+        let n = *self.tool_names.entry(name.to_string()).or_insert(next);
+        if n == next {
+            self.warn(
+                line,
+                col,
+                format!("tool \"{name}\" is tool {n} for the tool library (--tools; a Heidenhain TOOL.T finds it by name)"),
+            );
+        }
+        n
     }
 
     fn tell_spindle(&mut self, line: u32) {

@@ -1224,12 +1224,17 @@ impl<'a> Reader<'a> {
                     let n = match &w.value {
                         Value::Expr(e) if e.starts_with('"') => {
                             let name = e.trim_matches('"').to_string();
-                            let next = self.tool_names.len() as u32 + 1;
-                            let n = *self.tool_names.entry(name.clone()).or_insert(next);
-                            if n == next {
-                                self.warn(b.line, col(b, w.at), format!("tool \"{name}\" is tool {n} for the tool library (--tools)"));
+                            match self.opts.tool_names.get(&name.to_ascii_uppercase()) {
+                                Some(&n) => n,
+                                None => {
+                                    let next = self.tool_names.len() as u32 + 1;
+                                    let n = *self.tool_names.entry(name.clone()).or_insert(next);
+                                    if n == next {
+                                        self.warn(b.line, col(b, w.at), format!("tool \"{name}\" is tool {n} for the tool library (--tools)"));
+                                    }
+                                    n
+                                }
                             }
-                            n
                         }
                         _ => {
                             let n = self.number(b, w)?;

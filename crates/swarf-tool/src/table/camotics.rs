@@ -155,6 +155,7 @@ pub fn parse_camotics(text: &str, file: &str) -> Result<ToolTable, TableError> {
             ToolEntry {
                 cutter,
                 description: tool.description.clone(),
+                name: None,
             },
         );
     }

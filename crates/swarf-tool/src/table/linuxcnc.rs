@@ -130,6 +130,7 @@ pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTa
             ToolEntry {
                 cutter,
                 description: comment.to_string(),
+                name: None,
             },
         );
     }

@@ -1,5 +1,5 @@
-//! Tool tables: numbered cutters read from swarf's TOML library, LinuxCNC `.tbl` files and
-//! CAMotics `.camotics` projects (one file per format).
+//! Tool tables: numbered cutters read from swarf's TOML library, LinuxCNC `.tbl` files,
+//! CAMotics `.camotics` projects and Heidenhain `TOOL.T` tables (one file per format).
 //!
 //! Every reader returns a [`ToolTable`] or a [`TableError`] carrying the file name, line and
 //! column, what was found and what was expected. Readers never panic; assumptions they make
@@ -7,10 +7,12 @@
 //! listed in [`ToolTable::warnings`].
 
 mod camotics;
+mod heidenhain;
 mod linuxcnc;
 mod toml_lib;
 
 pub use camotics::parse_camotics;
+pub use heidenhain::parse_heidenhain;
 pub use linuxcnc::parse_linuxcnc;
 pub use toml_lib::parse_toml_library;
 
@@ -47,6 +49,9 @@ pub struct ToolEntry {
     pub cutter: Cutter,
     /// Free text from the file (may be empty).
     pub description: String,
+    /// The tool's name, where the table gives one (a Heidenhain `TOOL CALL "NAME"` or a
+    /// Sinumerik `T="NAME"` finds the tool by it).
+    pub name: Option<String>,
 }
 
 /// Numbered tools, and the workpiece bounds when the file gives them.
@@ -66,7 +71,7 @@ pub struct ToolTable {
 
 impl ToolTable {
     /// Reads a table, choosing the format by extension: `.toml`, `.tbl` (LinuxCNC, in
-    /// `tbl_unit`), `.camotics`.
+    /// `tbl_unit`), `.camotics`, `.t` (Heidenhain `TOOL.T`).
     pub fn read(path: &Path, tbl_unit: LengthUnit) -> Result<ToolTable, TableError> {
         let file = path.display().to_string();
         let text = std::fs::read_to_string(path).map_err(|e| TableError::Io {
@@ -82,12 +87,13 @@ impl ToolTable {
             Some("toml") => parse_toml_library(&text, &file),
             Some("tbl") => parse_linuxcnc(&text, &file, tbl_unit),
             Some("camotics") => parse_camotics(&text, &file),
+            Some("t") => parse_heidenhain(&text, &file),
             other => Err(TableError::Parse {
                 file,
                 line: 0,
                 column: 0,
                 found: format!("extension {:?}", other.unwrap_or("")),
-                expected: "a .toml, .tbl or .camotics tool table".into(),
+                expected: "a .toml, .tbl, .camotics or .t (Heidenhain TOOL.T) tool table".into(),
             }),
         }
     }

@@ -150,6 +150,7 @@ pub fn parse_toml_library(text: &str, file: &str) -> Result<ToolTable, TableErro
             ToolEntry {
                 cutter,
                 description: row.description,
+                name: None,
             },
         );
     }

@@ -1,0 +1,260 @@
+//! Heidenhain tool tables (`TOOL.T`, iTNC 530 and TNC 640): `BEGIN TOOL .T MM|INCH`, a header
+//! line naming the columns, one tool per line in those columns, `[END]`.
+//!
+//! The columns are fixed-width, and a row's field is what stands between its column's start
+//! in the header and the next column's (so a `DOC` with spaces is one field). Read: `T` (the
+//! number), `NAME`, `L` (length: the overall length), `R` (radius), `R2` (corner radius),
+//! `LCUTS` (cutting length: the flute length), `CUT` (teeth), `TYP` (TNC 640: `DRILL`,
+//! `CENTER`, `CSINK` … are drills or countersinks), `T-ANGLE` (point angle), `DOC` (the
+//! description). The shape follows from the radii: `R2 = R` a ball-nose, `0 < R2 < R` a
+//! bull-nose, `R2 = 0` a flat end mill; a drilling type with a point angle is a drill. Rows
+//! whose radius is not positive (the null tool 0, empty places) carry no cutter and are left
+//! out, which the warnings count.
+
+use super::{LengthUnit, ToolEntry, ToolTable};
+use crate::cutter::{Cutter, CutterKind, CutterOptions};
+use crate::error::TableError;
+
+/// Parses a Heidenhain `TOOL.T` table; `file` names the source in errors.
+pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError> {
+    let err = |line: usize, column: usize, found: String, expected: &str| TableError::Parse {
+        file: file.to_string(),
+        line,
+        column,
+        found,
+        expected: expected.to_string(),
+    };
+    let mut lines = text
+        .lines()
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty());
+    let Some((_, begin)) = lines.next() else {
+        return Err(err(1, 1, "an empty file".into(), "BEGIN TOOL .T MM|INCH"));
+    };
+    let begin = begin.trim_start_matches('\u{feff}');
+    let words: Vec<String> = begin
+        .split_whitespace()
+        .map(str::to_ascii_uppercase)
+        .collect();
+    if words.first().map(String::as_str) != Some("BEGIN")
+        || !begin.to_ascii_uppercase().contains(".T")
+    {
+        return Err(err(
+            1,
+            1,
+            format!("{:?}", begin.trim()),
+            "BEGIN TOOL .T MM|INCH",
+        ));
+    }
+    let unit = match words.last().map(String::as_str) {
+        Some("INCH") => LengthUnit::Inch,
+        _ => LengthUnit::Mm,
+    };
+    let scale = unit.to_mm();
+    let Some((hi, header)) = lines.next() else {
+        return Err(err(
+            2,
+            1,
+            "no header line".into(),
+            "the column names (T NAME L R R2 …)",
+        ));
+    };
+    // Each column: its name and the character where it starts.
+    let chars: Vec<char> = header.chars().collect();
+    let mut columns: Vec<(String, usize)> = Vec::new();
+    let mut i = 0;
+    while i < chars.len() {
+        if chars[i].is_whitespace() {
+            i += 1;
+            continue;
+        }
+        let start = i;
+        while i < chars.len() && !chars[i].is_whitespace() {
+            i += 1;
+        }
+        columns.push((
+            chars[start..i]
+                .iter()
+                .collect::<String>()
+                .to_ascii_uppercase(),
+            start,
+        ));
+    }
+    let find = |name: &str| columns.iter().position(|(n, _)| n == name);
+    let (Some(t_col), Some(r_col)) = (find("T"), find("R")) else {
+        return Err(err(
+            hi + 1,
+            1,
+            format!("{:?}", header.trim()),
+            "a header with the columns T and R",
+        ));
+    };
+    let mut table = ToolTable::default();
+    let mut empty = 0;
+    for (li, raw) in lines {
+        let line = li + 1;
+        if raw.trim_start().starts_with("[END]") {
+            break;
+        }
+        let row: Vec<char> = raw.chars().collect();
+        let field = |c: usize| -> (String, usize) {
+            let start = columns[c].1;
+            let end = columns.get(c + 1).map_or(row.len(), |n| n.1).min(row.len());
+            let text: String = row
+                .get(start.min(row.len())..end)
+                .map_or(String::new(), |s| s.iter().collect());
+            (text.trim().to_string(), start + 1)
+        };
+        let number = |c: Option<usize>| -> Result<Option<f64>, TableError> {
+            let Some(c) = c else { return Ok(None) };
+            let (text, column) = field(c);
+            if text.is_empty() {
+                return Ok(None);
+            }
+            match text.parse::<f64>() {
+                Ok(v) if v.is_finite() => Ok(Some(v)),
+                _ => Err(err(
+                    line,
+                    column,
+                    format!("{text:?} in column {}", columns[c].0),
+                    "a number",
+                )),
+            }
+        };
+        let (t_text, t_column) = field(t_col);
+        let t = match t_text.parse::<f64>() {
+            Ok(v) if v >= 0.0 && v.fract() == 0.0 && v <= f64::from(u32::MAX) => v as u32,
+            _ => {
+                return Err(err(
+                    line,
+                    t_column,
+                    format!("{t_text:?} as the tool number"),
+                    "a whole tool number",
+                ))
+            }
+        };
+        let r = number(Some(r_col))?.unwrap_or(0.0) * scale;
+        if r <= 0.0 {
+            empty += 1;
+            continue;
+        }
+        if table.tools.contains_key(&t) {
+            return Err(err(
+                line,
+                t_column,
+                format!("tool {t} a second time"),
+                "unique tool numbers",
+            ));
+        }
+        let r2 = (number(find("R2"))?.unwrap_or(0.0) * scale).max(0.0);
+        let length = number(find("L"))?.map(|l| l * scale).filter(|l| *l > 0.0);
+        let cuts = number(find("LCUTS"))?
+            .map(|l| l * scale)
+            .filter(|l| *l > 0.0);
+        let teeth = number(find("CUT"))?
+            .filter(|n| *n >= 1.0 && *n <= 100.0)
+            .map(|n| n as u32);
+        let point = number(find("T-ANGLE"))?.filter(|a| *a > 0.0 && *a <= 180.0);
+        let typ = find("TYP")
+            .map(|c| field(c).0.to_ascii_uppercase())
+            .unwrap_or_default();
+        let name = find("NAME").map(|c| field(c).0).unwrap_or_default();
+        let doc = find("DOC").map(|c| field(c).0).unwrap_or_default();
+        let d = 2.0 * r;
+        let drilling = ["DRILL", "NC_DRILL", "CENTER", "CSINK", "REAM", "TAP"]
+            .iter()
+            .any(|k| typ.starts_with(k));
+        let (kind, nums): (CutterKind, Vec<f64>) = match (drilling, point) {
+            (true, Some(a)) => (CutterKind::Drill, vec![d, a]),
+            (true, None) if typ.starts_with("CSINK") || typ.starts_with("CENTER") => {
+                (CutterKind::Drill, vec![d, 90.0])
+            }
+            (true, None) if typ.starts_with("DRILL") || typ.starts_with("NC_DRILL") => {
+                (CutterKind::Drill, vec![d, 118.0])
+            }
+            _ if r2 >= r - 1e-9 => (CutterKind::Ball, vec![d]),
+            _ if r2 > 0.0 => (CutterKind::Bull, vec![d, r2]),
+            _ => (CutterKind::Flat, vec![d]),
+        };
+        let opts = CutterOptions {
+            overall_length: length,
+            flute_length: cuts.or(length.map(|l| l.min(3.0 * d))),
+            flutes: teeth,
+            ..CutterOptions::default()
+        };
+        let cutter = Cutter::named(kind, &nums, &opts)
+            .map_err(|e| err(line, t_column, e.to_string(), "a valid tool"))?;
+        let description = match (name.is_empty(), doc.is_empty()) {
+            (false, false) => format!("{name} {doc}"),
+            (false, true) => name.clone(),
+            _ => doc,
+        };
+        table.tools.insert(
+            t,
+            ToolEntry {
+                cutter,
+                description,
+                name: (!name.is_empty()).then_some(name),
+            },
+        );
+    }
+    if empty > 0 {
+        table.warnings.push(format!(
+            "{file}: {empty} row(s) with no radius (the null tool, empty places) define no cutter"
+        ));
+    }
+    Ok(table)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::cutter::CutterKind;
+
+    const TABLE: &str = "BEGIN TOOL    .T     MM\n\
+T    NAME                L           R           R2          DL      DR      LCUTS   CUT  TYP       T-ANGLE  DOC\n\
+0    NULLWERKZEUG        +0          +0          +0          +0      +0      +0      0    MILL      +0\n\
+1    MILL_D10            +75         +5          +0          +0      +0      +22     4    MILL      +0       end mill d10\n\
+2    BALL_D6             +60         +3          +3          +0      +0      +12     2    BALL      +0\n\
+3    TORUS_D12           +80         +6          +1          +0      +0      +30     3    TORUS     +0       bull nose, r1\n\
+4    DRILL_D8            +90         +4          +0          +0      +0      +40     2    DRILL     +118\n\
+[END]\n";
+
+    #[test]
+    fn reads_shapes_lengths_and_names_from_the_columns() {
+        let t = parse_heidenhain(TABLE, "TOOL.T").unwrap();
+        assert_eq!(t.tools.len(), 4);
+        let kind = |n: u32| t.tools[&n].cutter.kind();
+        assert_eq!(
+            [kind(1), kind(2), kind(3), kind(4)],
+            [
+                CutterKind::Flat,
+                CutterKind::Ball,
+                CutterKind::Bull,
+                CutterKind::Drill
+            ]
+        );
+        let p = t.tools[&3].cutter.apt_params();
+        assert!((p.d - 12.0).abs() < 1e-12 && (p.r - 1.0).abs() < 1e-12);
+        assert_eq!(t.tools[&1].description, "MILL_D10 end mill d10");
+        assert_eq!(t.tools[&3].description, "TORUS_D12 bull nose, r1");
+        assert_eq!(t.tools[&2].name.as_deref(), Some("BALL_D6"));
+        assert_eq!(t.warnings.len(), 1);
+        // Inch: lengths × 25.4.
+        let inch = TABLE.replace("MM\n", "INCH\n");
+        let t = parse_heidenhain(&inch, "TOOL.T").unwrap();
+        assert!((t.tools[&1].cutter.apt_params().d - 254.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn bad_tables_are_errors_at_their_place() {
+        let e = parse_heidenhain("G0 X1\n", "t.T").unwrap_err().to_string();
+        assert!(e.contains("t.T:1:"), "{e}");
+        let bad = TABLE.replace("+75         +5 ", "+75         +X ");
+        let e = parse_heidenhain(&bad, "t.T").unwrap_err().to_string();
+        assert!(e.contains("t.T:4:38") && e.contains("column R"), "{e}");
+        let twice = TABLE.replace("2    BALL", "1    BALL");
+        assert!(parse_heidenhain(&twice, "t.T").is_err());
+        assert!(parse_heidenhain("", "t.T").is_err());
+    }
+}
