@@ -676,3 +676,12 @@ fn second_review_cases() {
     assert!(e.pos.file.ends_with("SUB.h") && e.pos.line == 3, "{e}");
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn preset_and_table_selections_are_warned_not_refused() {
+    let text = pgm("PRESET SELECT #1\nSEL TABLE \"TNC:\\TABLE\\ZERO.D\"\nDECLARE STRING QS1 = \"A\"\nL X+1 F100");
+    let mut rec = Recorder::default();
+    read_heidenhain(&text, "t.h", &GcodeOptions::default(), &mut rec).unwrap();
+    assert_eq!(rec.warnings.len(), 3, "{:?}", rec.warnings);
+    assert_eq!(err(&pgm("PATTERN DEF")).kind, PathErrorKind::Unsupported);
+}

@@ -561,7 +561,24 @@ impl<'a> Reader<'a> {
                 "SPL spline blocks are not read",
                 "L, LN, C, CR, CT, LP or CP",
             )),
-            "PATTERN" | "SEL" | "DECLARE" | "PRESET" => Err(Fault::at(
+            // Tables and declarations the program selects: their contents are the control's.
+            "PRESET" => {
+                self.warn(
+                    b.line,
+                    head.col,
+                    format!(
+                        "{} is not read (the preset table is the control's): positions stay in \
+                         the current datum",
+                        b.code
+                    ),
+                );
+                Ok(Flow::Next)
+            }
+            "DECLARE" | "SEL" if head.text == "DECLARE" || second == Some("TABLE") => {
+                self.warn(b.line, head.col, format!("{} is not read", b.code));
+                Ok(Flow::Next)
+            }
+            "PATTERN" | "SEL" => Err(Fault::at(
                 head,
                 PathErrorKind::Unsupported,
                 format!("{} is not read", b.code),
