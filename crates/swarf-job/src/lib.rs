@@ -396,7 +396,11 @@ fn read_options(
     // Named tools (a Heidenhain TOOL.T): the programs' `TOOL CALL "NAME"` finds them.
     for (n, t) in table.map(|t| &t.tools).into_iter().flatten() {
         if let Some(name) = &t.name {
-            gcode.tool_names.insert(name.to_ascii_uppercase(), *n);
+            // (Two tools of one name: the first, as the control finds it.)
+            gcode
+                .tool_names
+                .entry(name.to_ascii_uppercase())
+                .or_insert(*n);
         }
     }
     ReadOptions {

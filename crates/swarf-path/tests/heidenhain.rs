@@ -685,3 +685,28 @@ fn preset_and_table_selections_are_warned_not_refused() {
     assert_eq!(rec.warnings.len(), 3, "{:?}", rec.warnings);
     assert_eq!(err(&pgm("PATTERN DEF")).kind, PathErrorKind::Unsupported);
 }
+
+#[test]
+fn a_name_the_tool_library_lacks_gets_a_number_it_does_not_use() {
+    let opts = GcodeOptions {
+        tool_names: [("MILL_D10".to_string(), 1), ("BALL_D6".to_string(), 7)]
+            .into_iter()
+            .collect(),
+        ..GcodeOptions::default()
+    };
+    let text =
+        pgm("TOOL CALL \"ball_d6\" Z S1000\nTOOL CALL \"NOSUCH\" Z S1000\nTOOL CALL \"nosuch\" Z");
+    let mut rec = Recorder::default();
+    read_heidenhain(&text, "t.h", &opts, &mut rec).unwrap();
+    let tools: Vec<u32> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::ToolChange { tool } => Some(*tool),
+            _ => None,
+        })
+        .collect();
+    // (Names are matched in any case: "NOSUCH" and "nosuch" are one tool, numbered above the
+    // library's 7.)
+    assert_eq!(tools, [7, 8, 8]);
+}

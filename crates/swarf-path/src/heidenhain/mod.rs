@@ -663,6 +663,13 @@ impl<'a> Reader<'a> {
                 tool = Some(self.named_tool(&name, b.line, tok.col));
                 i += 1;
             } else if let Some(v) = lexer::number(s) {
+                if v.fract() != 0.0 {
+                    self.warn(
+                        b.line,
+                        tok.col,
+                        format!("indexed tool {s} is read as tool {}", v.trunc()),
+                    );
+                }
                 if v < 0.0 || v > f64::from(u32::MAX) {
                     return Err(Fault::at(
                         tok,
@@ -749,7 +756,7 @@ impl<'a> Reader<'a> {
         if let Some(&n) = self.opts.tool_names.get(&name.to_ascii_uppercase()) {
             return n;
         }
-        let next = self.tool_names.len() as u32 + 1;
+        let next = unlisted_tool_number(self.opts, self.tool_names.len());
         let n = *self.tool_names.entry(name.to_string()).or_insert(next);
         if n == next {
             self.warn(
@@ -1794,6 +1801,19 @@ impl<'a> Reader<'a> {
             &[leaf.to_string(), format!("{leaf}.h")],
         )
     }
+}
+
+/// The number of the `k`-th named tool the tool library does not list: above every number
+/// the library uses, so that it stays undefined rather than taking a listed tool's cutter.
+pub(crate) fn unlisted_tool_number(opts: &GcodeOptions, k: usize) -> u32 {
+    let top = opts
+        .tool_names
+        .values()
+        .copied()
+        .chain(opts.tool_diameters.keys().copied())
+        .max()
+        .unwrap_or(0);
+    top.saturating_add(1).saturating_add(k as u32)
 }
 
 /// A label's key: a number without its leading zeros, or a name without its quotes.

@@ -1227,7 +1227,7 @@ impl<'a> Reader<'a> {
                             match self.opts.tool_names.get(&name.to_ascii_uppercase()) {
                                 Some(&n) => n,
                                 None => {
-                                    let next = self.tool_names.len() as u32 + 1;
+                                    let next = crate::heidenhain::unlisted_tool_number(self.opts, self.tool_names.len());
                                     let n = *self.tool_names.entry(name.clone()).or_insert(next);
                                     if n == next {
                                         self.warn(b.line, col(b, w.at), format!("tool \"{name}\" is tool {n} for the tool library (--tools)"));

@@ -46,9 +46,10 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
             "BEGIN TOOL .T MM|INCH",
         ));
     }
-    let unit = match words.last().map(String::as_str) {
-        Some("INCH") => LengthUnit::Inch,
-        _ => LengthUnit::Mm,
+    let unit = if words.iter().any(|w| w == "INCH") {
+        LengthUnit::Inch
+    } else {
+        LengthUnit::Mm
     };
     let scale = unit.to_mm();
     let Some((hi, header)) = lines.next() else {
@@ -79,6 +80,10 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
                 .to_ascii_uppercase(),
             start,
         ));
+    }
+    // The first column starts at the line's start, however the header is indented.
+    if let Some(first) = columns.first_mut() {
+        first.1 = 0;
     }
     let find = |name: &str| columns.iter().position(|(n, _)| n == name);
     let (Some(t_col), Some(r_col)) = (find("T"), find("R")) else {
@@ -124,6 +129,14 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
         let (t_text, t_column) = field(t_col);
         let t = match t_text.parse::<f64>() {
             Ok(v) if v >= 0.0 && v.fract() == 0.0 && v <= f64::from(u32::MAX) => v as u32,
+            // An indexed tool (`1.1`): a variant of tool 1, which the programs call by its
+            // number; left out.
+            Ok(v) if v >= 0.0 && v <= f64::from(u32::MAX) => {
+                table
+                    .warnings
+                    .push(format!("{file}:{line}: indexed tool {t_text} left out"));
+                continue;
+            }
             _ => {
                 return Err(err(
                     line,
@@ -154,7 +167,8 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
         let teeth = number(find("CUT"))?
             .filter(|n| *n >= 1.0 && *n <= 100.0)
             .map(|n| n as u32);
-        let point = number(find("T-ANGLE"))?.filter(|a| *a > 0.0 && *a <= 180.0);
+        let point =
+            number(find("T-ANGLE").or(find("T_ANGLE")))?.filter(|a| *a > 0.0 && *a <= 180.0);
         let typ = find("TYP")
             .map(|c| field(c).0.to_ascii_uppercase())
             .unwrap_or_default();
@@ -182,8 +196,23 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
             flutes: teeth,
             ..CutterOptions::default()
         };
-        let cutter = Cutter::named(kind, &nums, &opts)
-            .map_err(|e| err(line, t_column, e.to_string(), "a valid tool"))?;
+        // Lengths that do not fit the cutter (L stored relative to a master tool, LCUTS longer
+        // than L): the cutter without them, and a warning.
+        let cutter = match Cutter::named(kind, &nums, &opts) {
+            Ok(c) => c,
+            Err(first) => {
+                let plain = CutterOptions {
+                    flutes: teeth,
+                    ..CutterOptions::default()
+                };
+                let c = Cutter::named(kind, &nums, &plain)
+                    .map_err(|e| err(line, t_column, e.to_string(), "a valid tool"))?;
+                table.warnings.push(format!(
+                    "{file}:{line}: tool {t}: its lengths are left out ({first})"
+                ));
+                c
+            }
+        };
         let description = match (name.is_empty(), doc.is_empty()) {
             (false, false) => format!("{name} {doc}"),
             (false, true) => name.clone(),
@@ -244,6 +273,25 @@ T    NAME                L           R           R2          DL      DR      LCU
         let inch = TABLE.replace("MM\n", "INCH\n");
         let t = parse_heidenhain(&inch, "TOOL.T").unwrap();
         assert!((t.tools[&1].cutter.apt_params().d - 254.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn review_cases() {
+        // INCH with a version after it; an indented header; an indexed tool; T_ANGLE; L
+        // shorter than the cutter (relative to a master tool) left out with a warning.
+        let t = parse_heidenhain(
+            "BEGIN TOOL .T INCH V2\n   T NAME   L      R      R2     TYP    T_ANGLE\n\
+             1000 BIG    +3     +0.2   +0     MILL   +0\n\
+             1.1  IDX    +3     +0.2   +0     MILL   +0\n\
+             4    DRILL  +0.01  +0.2   +0     DRILL  +140\n[END]\n",
+            "TOOL.T",
+        )
+        .unwrap();
+        assert_eq!(t.tools.keys().copied().collect::<Vec<_>>(), [4, 1000]);
+        assert!((t.tools[&1000].cutter.apt_params().d - 0.4 * 25.4).abs() < 1e-9);
+        assert_eq!(t.tools[&4].cutter.kind(), CutterKind::Drill);
+        assert!((t.tools[&4].cutter.apt_params().alpha_deg - 20.0).abs() < 1e-9);
+        assert_eq!(t.warnings.len(), 2, "{:?}", t.warnings);
     }
 
     #[test]

@@ -74,10 +74,13 @@ impl ToolTable {
     /// `tbl_unit`), `.camotics`, `.t` (Heidenhain `TOOL.T`).
     pub fn read(path: &Path, tbl_unit: LengthUnit) -> Result<ToolTable, TableError> {
         let file = path.display().to_string();
-        let text = std::fs::read_to_string(path).map_err(|e| TableError::Io {
+        // (Bytes that are not UTF-8 — a Latin-1 description — are replaced, one character
+        // each: the columns of a fixed-width table stay where they are.)
+        let bytes = std::fs::read(path).map_err(|e| TableError::Io {
             file: file.clone(),
             message: e.to_string(),
         })?;
+        let text = String::from_utf8_lossy(&bytes).into_owned();
         match path
             .extension()
             .and_then(|e| e.to_str())
