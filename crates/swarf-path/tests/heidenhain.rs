@@ -4,7 +4,9 @@
 
 use std::f64::consts::PI;
 
-use swarf_geom::math::Vec3;
+mod common;
+
+use common::{close, tips};
 use swarf_path::canon::Recorder;
 use swarf_path::gcode::GcodeOptions;
 use swarf_path::heidenhain::read_heidenhain;
@@ -26,17 +28,6 @@ fn read(src: &str) -> Program {
 
 fn err(src: &str) -> PathError {
     read_with(src, Machine::three_axis(), GcodeOptions::default()).unwrap_err()
-}
-
-fn close(a: Vec3, b: [f64; 3], tol: f64) -> bool {
-    (a.x - b[0]).abs() < tol && (a.y - b[1]).abs() < tol && (a.z - b[2]).abs() < tol
-}
-
-fn tips(p: &Program) -> Vec<[f64; 3]> {
-    p.moves
-        .iter()
-        .map(|m| [m.end.tip.x, m.end.tip.y, m.end.tip.z])
-        .collect()
 }
 
 /// The program's blocks numbered from 0 between `BEGIN PGM` and `END PGM`, as a TNC writes

@@ -1,9 +1,10 @@
 //! Helpers shared by the reader tests.
 #![allow(dead_code)]
 
+use swarf_geom::math::Vec3;
 use swarf_path::apt::{read_apt, AptOptions};
 use swarf_path::canon::Recorder;
-use swarf_path::{Canon, PathError};
+use swarf_path::{Canon, PathError, Program};
 
 /// The events of an APT program that reads.
 pub(crate) fn apt_events(text: &str) -> Vec<Canon<'static>> {
@@ -16,4 +17,17 @@ pub(crate) fn apt_events(text: &str) -> Vec<Canon<'static>> {
 pub(crate) fn apt_err(text: &str) -> PathError {
     let mut rec = Recorder::default();
     read_apt(text, "t.apt", &AptOptions::default(), &mut rec).unwrap_err()
+}
+
+/// `a` within `tol` of `b` on every axis.
+pub(crate) fn close(a: Vec3, b: [f64; 3], tol: f64) -> bool {
+    (a.x - b[0]).abs() < tol && (a.y - b[1]).abs() < tol && (a.z - b[2]).abs() < tol
+}
+
+/// The tool tip at the end of every move.
+pub(crate) fn tips(p: &Program) -> Vec<[f64; 3]> {
+    p.moves
+        .iter()
+        .map(|m| [m.end.tip.x, m.end.tip.y, m.end.tip.z])
+        .collect()
 }
