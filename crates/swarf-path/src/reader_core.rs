@@ -4,6 +4,7 @@
 //! of a line, an arc, a tangent arc and a feed change; the arc end tolerance; the search for a
 //! called program file.
 
+use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
 use crate::gcode::GcodeOptions;
@@ -134,6 +135,37 @@ pub(crate) fn limit_error(file: &str, max: u64) -> PathError {
         "",
         expected,
     )
+}
+
+/// The number of the tool a program calls by `name`: the tool library's (its case ignored),
+/// else the number `given` it at its first call — above every number the library uses, so
+/// that it stays undefined rather than taking a listed tool's cutter — and, on that first
+/// call, the warning to give.
+pub(crate) fn tool_by_name(
+    opts: &GcodeOptions,
+    given: &mut HashMap<String, u32>,
+    name: &str,
+) -> (u32, Option<String>) {
+    if let Some(&n) = opts.tool_names.get(&name.to_ascii_uppercase()) {
+        return (n, None);
+    }
+    if let Some(&n) = given.get(name) {
+        return (n, None);
+    }
+    let top = opts
+        .tool_names
+        .values()
+        .copied()
+        .chain(opts.tool_diameters.keys().copied())
+        .max()
+        .unwrap_or(0);
+    let n = top.saturating_add(1).saturating_add(given.len() as u32);
+    given.insert(name.to_string(), n);
+    let warning = format!(
+        "tool \"{name}\" is tool {n} for the tool library (--tools; a Heidenhain TOOL.T finds \
+         it by name)"
+    );
+    (n, Some(warning))
 }
 
 /// How far an arc's end may be off its circle of radius `r` in a program of `scale` mm per

@@ -753,17 +753,9 @@ impl<'a> Reader<'a> {
     /// The number of the tool called by name: the tool library's, or numbered in order of
     /// first call (with a warning).
     fn named_tool(&mut self, name: &str, line: u32, col: u32) -> u32 {
-        if let Some(&n) = self.opts.tool_names.get(&name.to_ascii_uppercase()) {
-            return n;
-        }
-        let next = unlisted_tool_number(self.opts, self.tool_names.len());
-        let n = *self.tool_names.entry(name.to_string()).or_insert(next);
-        if n == next {
-            self.warn(
-                line,
-                col,
-                format!("tool \"{name}\" is tool {n} for the tool library (--tools; a Heidenhain TOOL.T finds it by name)"),
-            );
+        let (n, warning) = reader_core::tool_by_name(self.opts, &mut self.tool_names, name);
+        if let Some(w) = warning {
+            self.warn(line, col, w);
         }
         n
     }
@@ -1801,19 +1793,6 @@ impl<'a> Reader<'a> {
             &[leaf.to_string(), format!("{leaf}.h")],
         )
     }
-}
-
-/// The number of the `k`-th named tool the tool library does not list: above every number
-/// the library uses, so that it stays undefined rather than taking a listed tool's cutter.
-pub(crate) fn unlisted_tool_number(opts: &GcodeOptions, k: usize) -> u32 {
-    let top = opts
-        .tool_names
-        .values()
-        .copied()
-        .chain(opts.tool_diameters.keys().copied())
-        .max()
-        .unwrap_or(0);
-    top.saturating_add(1).saturating_add(k as u32)
 }
 
 /// A label's key: a number without its leading zeros, or a name without its quotes.

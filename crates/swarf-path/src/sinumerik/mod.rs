@@ -1224,17 +1224,12 @@ impl<'a> Reader<'a> {
                     let n = match &w.value {
                         Value::Expr(e) if e.starts_with('"') => {
                             let name = e.trim_matches('"').to_string();
-                            match self.opts.tool_names.get(&name.to_ascii_uppercase()) {
-                                Some(&n) => n,
-                                None => {
-                                    let next = crate::heidenhain::unlisted_tool_number(self.opts, self.tool_names.len());
-                                    let n = *self.tool_names.entry(name.clone()).or_insert(next);
-                                    if n == next {
-                                        self.warn(b.line, col(b, w.at), format!("tool \"{name}\" is tool {n} for the tool library (--tools)"));
-                                    }
-                                    n
-                                }
+                            let (n, warning) =
+                                reader_core::tool_by_name(self.opts, &mut self.tool_names, &name);
+                            if let Some(m) = warning {
+                                self.warn(b.line, col(b, w.at), m);
                             }
+                            n
                         }
                         _ => {
                             let n = self.number(b, w)?;
