@@ -99,6 +99,38 @@ impl swarf_geom::Observer for MovesProgress {
     }
 }
 
+static STDOUT_GONE: AtomicBool = AtomicBool::new(false);
+
+/// Writes one line of a command's text output on stdout (the [`say!`] macro). A reader that
+/// closed the pipe (`swarf path p.nc | head -3`) ends the printing, not the run: the later
+/// lines are dropped, the output files are still written and the exit status is the run's.
+/// (`println!` panics there.) Any other error writing stdout is told once on stderr.
+pub(crate) fn say_line(args: std::fmt::Arguments<'_>) {
+    if STDOUT_GONE.load(Ordering::Relaxed) {
+        return;
+    }
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = out.write_fmt(args).and_then(|()| out.write_all(b"\n")) {
+        STDOUT_GONE.store(true, Ordering::Relaxed);
+        if e.kind() != std::io::ErrorKind::BrokenPipe {
+            eprintln!(
+                "swarf: warning: writing to stdout: {e}; the rest of the text is not printed"
+            );
+        }
+    }
+}
+
+/// `println!` for a command's text output, through [`say_line`].
+macro_rules! say {
+    () => {
+        $crate::output::say_line(format_args!(""))
+    };
+    ($($arg:tt)*) => {
+        $crate::output::say_line(format_args!($($arg)*))
+    };
+}
+pub(crate) use say;
+
 /// Prints a value as pretty JSON on stdout.
 pub(crate) fn print_json<T: serde::Serialize>(value: &T) -> Result<()> {
     let mut out = std::io::stdout().lock();

@@ -256,3 +256,48 @@ fn a_camotics_automatic_workpiece_is_stated() {
     assert_eq!(w["max"], serde_json::json!([13.0, 3.0, 0.0]), "{w}");
     assert_eq!(w["automatic"], true, "{w}");
 }
+
+/// A reader that closes the pipe early (`swarf path p.nc | head -1`) ends the printing, not the
+/// run: no panic (`println!` panicked, exit 101), exit status 0, nothing on stderr.
+#[test]
+fn a_closed_stdout_is_not_an_error() {
+    let dir = temp_dir("path-closed-pipe");
+    let prog = dir.join("p.nc");
+    std::fs::write(&prog, "G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F100\nG1 X10\nM30\n").unwrap();
+    for extra in [&[][..], &["--json"], &["--canonical"]] {
+        let mut args = vec!["path", prog.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        let (status, err) = swarf_into_closed_pipe(&args);
+        assert!(status.success(), "{extra:?}: {status}, {err}");
+        assert!(err.is_empty(), "{extra:?}: {err}");
+    }
+}
+
+/// What the tool library's reader left out is told on stderr (it was kept in the table and
+/// never shown): here an indexed tool and the null tool's row.
+#[test]
+fn a_tool_library_s_warnings_are_printed() {
+    let dir = temp_dir("path-table-warnings");
+    let prog = dir.join("p.nc");
+    std::fs::write(&prog, "G21 G90\nT1 M6\nG0 X0 Y0 Z5\nG1 Z-1 F100\nM30\n").unwrap();
+    let table = dir.join("TOOL.T");
+    std::fs::write(
+        &table,
+        "BEGIN TOOL .T MM\nT    NAME     L      R\n0    NULL     +0     +0\n\
+         1    MILL     +60    +3\n1.1  MILL_B   +60    +3\n[END]\n",
+    )
+    .unwrap();
+    let o = swarf(&[
+        "path",
+        prog.to_str().unwrap(),
+        "--tools",
+        table.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let err = stderr(&o);
+    assert!(
+        err.contains("swarf: warning:") && err.contains("indexed tool 1.1 left out"),
+        "{err}"
+    );
+    assert!(err.contains("define no cutter"), "{err}");
+}

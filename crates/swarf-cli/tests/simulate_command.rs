@@ -617,3 +617,29 @@ fn a_heidenhain_tool_table_gives_the_named_tools() {
         "{removed} vs {exact}"
     );
 }
+
+/// With its stdout closed (`swarf simulate … | head -1`), a run still writes its files and ends
+/// with status 0: the closed pipe only ends the printing.
+#[test]
+fn a_closed_stdout_still_gets_the_files_written() {
+    let dir = temp_dir("simulate-closed-pipe");
+    let prog = dir.join("p.nc");
+    std::fs::write(&prog, "G21 G90\nG0 X5 Y5 Z5\nG1 Z-2 F100\nG1 X30\nM30\n").unwrap();
+    let out = dir.join("out");
+    let (status, err) = swarf_into_closed_pipe(&[
+        "simulate",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        prog.to_str().unwrap(),
+        "--tool",
+        "flat:d=6",
+        "--resolution",
+        "0.5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(status.success(), "{status}, {err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(out.join("summary.json").is_file(), "{err}");
+}

@@ -1,5 +1,6 @@
 //! `swarf engage`: the cutter–workpiece engagement at every cutter location of a program.
 
+use crate::output::say;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -252,7 +253,7 @@ pub(crate) fn run(args: &EngageArgs) -> Result<()> {
     if args.json {
         print_json(&summary)
     } else {
-        println!(
+        say!(
             "{} cutter locations, {} engaged; largest area {:.3} mm², deepest {:.3} mm; {:.3} mm³ removed; {:.2} s ({:.2} s cutting the stock)",
             summary.locations,
             summary.engaged_locations,

@@ -1,5 +1,6 @@
 //! `swarf envelope`: the swept envelope of a program's feed moves as STL and glb.
 
+use crate::output::say;
 use std::ops::Range;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -175,11 +176,14 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
     if args.json {
         return print_json(&summary);
     }
-    println!(
+    say!(
         "{} feed moves (indices {}..={}), {} fixed-axis pieces",
-        summary.moves, summary.first_move, summary.last_move, summary.fixed_axis_pieces
+        summary.moves,
+        summary.first_move,
+        summary.last_move,
+        summary.fixed_axis_pieces
     );
-    println!(
+    say!(
         "envelope: {} triangles, {:.3} mm³, h = {} mm, tolerance {} mm, {:.2} s",
         summary.triangles,
         summary.volume_mm3,
@@ -188,9 +192,9 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
         summary.elapsed_s
     );
     for s in &summary.self_intersections {
-        println!("warning: {}", s.message);
+        say!("warning: {}", s.message);
     }
-    println!("wrote {} and {}", stl.display(), glb.display());
+    say!("wrote {} and {}", stl.display(), glb.display());
     Ok(())
 }
 

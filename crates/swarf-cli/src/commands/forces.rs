@@ -1,5 +1,6 @@
 //! `swarf forces`: cutting forces, torque and power at every cutter location of a program.
 
+use crate::output::say;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -249,7 +250,7 @@ pub(crate) fn run(args: &ForcesArgs) -> Result<()> {
     if args.json {
         print_json(&summary)
     } else {
-        println!(
+        say!(
             "{} cutter locations, {} engaged; peak force {:.1} N, torque {:.3} N·m, power {:.0} W (mean {:.0} W); material {}; {:.2} s",
             summary.locations,
             summary.engaged_locations,
@@ -275,7 +276,7 @@ fn list_materials(json: bool) -> Result<()> {
         } else {
             "predicted from the tool's rake and helix (oblique transformation)"
         };
-        println!("{}: {kind}\n  source: {}", m.name, m.source);
+        say!("{}: {kind}\n  source: {}", m.name, m.source);
     }
     Ok(())
 }

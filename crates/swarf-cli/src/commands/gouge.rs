@@ -2,6 +2,7 @@
 //! the part or the check geometry, and how deep (`DIR/violations.csv`, `DIR/points.csv`,
 //! `DIR/summary.json`).
 
+use crate::output::say;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -117,7 +118,7 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
     if args.json {
         return print_json(&summary);
     }
-    println!(
+    say!(
         "{} points, {} moves ({} sub-moves): {} gouging moves (deepest {:.4} mm), {} interfering \
          moves (deepest {:.4} mm), tolerance {} mm, {:.2} s{}",
         summary.points,
@@ -146,7 +147,7 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         }
     );
     for v in report.violations.iter().take(20) {
-        println!(
+        say!(
             "  line {:>6}: {:<12} {:<7} {:.4} mm at s = {:.3} ({:.3}..{:.3}){}",
             v.line,
             v.kind.as_str(),
@@ -159,7 +160,7 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         );
     }
     if report.violations.len() > 20 {
-        println!(
+        say!(
             "  … {} more in {}",
             report.violations.len() - 20,
             args.out.join("violations.csv").display()

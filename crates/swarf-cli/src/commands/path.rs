@@ -1,5 +1,6 @@
 //! `swarf path PROGRAM`: read a program and print its summary or its canonical motion.
 
+use crate::output::say;
 use std::collections::BTreeMap;
 use std::io::BufWriter;
 use std::path::PathBuf;
@@ -15,7 +16,7 @@ use swarf_path::{summarize, ProgramSummary};
 use swarf_tool::{CutterDescription, ToolSet, ToolSource};
 
 use crate::cli::SetupArgs;
-use crate::commands::tools::job_error;
+use crate::commands::tools::{job_error, load_job_setup_with};
 use crate::output::print_json;
 
 /// `swarf path`.
@@ -76,7 +77,7 @@ struct ToolReport {
 pub(crate) fn run(args: &PathArgs) -> Result<()> {
     // Both outputs stream: no move is kept, so no move limit is needed unless one is given
     // (the loop limits still end a program that never ends).
-    let mut setup = JobSetup::load(&args.setup.job_options(u64::MAX)).map_err(job_error)?;
+    let mut setup = load_job_setup_with(&args.setup, u64::MAX)?;
     let program = args
         .program
         .as_ref()
@@ -179,37 +180,45 @@ impl PathReport {
 }
 
 fn print_human(s: &ProgramSummary, tools: &BTreeMap<u32, ToolReport>, undefined: &[u32]) {
-    println!(
+    say!(
         "{} moves: {} rapid, {} feed ({} arcs)",
-        s.moves, s.rapid_moves, s.feed_moves, s.arc_moves
+        s.moves,
+        s.rapid_moves,
+        s.feed_moves,
+        s.arc_moves
     );
-    println!("feed length  {:.3} mm", s.feed_length_mm);
-    println!("rapid length {:.3} mm", s.rapid_length_mm);
+    say!("feed length  {:.3} mm", s.feed_length_mm);
+    say!("rapid length {:.3} mm", s.rapid_length_mm);
     if let (Some(lo), Some(hi)) = (s.bbox_min, s.bbox_max) {
-        println!(
+        say!(
             "tool tip box X {:.3} .. {:.3}  Y {:.3} .. {:.3}  Z {:.3} .. {:.3} mm",
-            lo[0], hi[0], lo[1], hi[1], lo[2], hi[2]
+            lo[0],
+            hi[0],
+            lo[1],
+            hi[1],
+            lo[2],
+            hi[2]
         );
     }
     // Whole seconds, rounded once, so that both forms agree.
     let t = s.machining_time_s.round() as u64;
-    println!(
+    say!(
         "machining time {t} s ({}:{:02}:{:02})",
         t / 3600,
         t / 60 % 60,
         t % 60
     );
     if s.dwell_time_s > 0.0 {
-        println!("dwells {:.1} s", s.dwell_time_s);
+        say!("dwells {:.1} s", s.dwell_time_s);
     }
     for (n, r) in tools {
-        println!("T{n}: {} ({:?})", r.cutter.spec, r.source);
+        say!("T{n}: {} ({:?})", r.cutter.spec, r.source);
     }
     for n in undefined {
-        println!("T{n}: not defined (give --tool or --tools)");
+        say!("T{n}: not defined (give --tool or --tools)");
     }
     for w in &s.warnings {
-        println!("{w}");
+        say!("{w}");
     }
 }
 

@@ -2,6 +2,7 @@
 //! --from DIR`: the CLI collects what a command has (program, tools, stock, meshes, plots,
 //! summary) into a [`swarf_io::html::Report`], which builds and writes the page.
 
+use crate::output::say;
 use std::path::{Path, PathBuf};
 
 use anyhow::{Context, Result};
@@ -132,6 +133,6 @@ pub(crate) fn run(args: &ReportArgs) -> Result<()> {
         .clone()
         .unwrap_or_else(|| args.from.join("report.html"));
     write(&page, &out)?;
-    println!("{}", out.display());
+    say!("{}", out.display());
     Ok(())
 }

@@ -1,6 +1,7 @@
 //! `swarf schedule`: feeds per move that keep the predicted peak force, torque or power under a
 //! limit, written back into the program with only its feed words changed.
 
+use crate::output::say;
 use std::collections::BTreeMap;
 use std::path::PathBuf;
 use std::time::Instant;
@@ -346,7 +347,7 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
     if args.json {
         return print_json(&summary);
     }
-    println!(
+    say!(
         "{} of {} feed moves changed on {} lines; machining time {:.1} s -> {:.1} s; {} moves still over the limit (at the minimum feed, or following the spindle)",
         summary.moves_changed,
         schedule.moves.len(),

@@ -1,5 +1,6 @@
 //! `swarf simulate`: run a program on a tri-dexel stock and report what it removed.
 
+use crate::output::say;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
@@ -178,15 +179,18 @@ impl SimulateSummary {
     }
 
     fn print_human(&self) {
-        println!("stock   {:.3} mm³", self.stock_volume_mm3);
-        println!("removed {:.3} mm³", self.removed_volume_mm3);
-        println!("final   {:.3} mm³", self.final_volume_mm3);
-        println!(
+        say!("stock   {:.3} mm³", self.stock_volume_mm3);
+        say!("removed {:.3} mm³", self.removed_volume_mm3);
+        say!("final   {:.3} mm³", self.final_volume_mm3);
+        say!(
             "{} moves, {} rays, {} intervals, {:.2} s",
-            self.moves, self.rays, self.intervals, self.elapsed_s
+            self.moves,
+            self.rays,
+            self.intervals,
+            self.elapsed_s
         );
         for c in &self.collisions {
-            println!(
+            say!(
                 "{}:{}: {} collision, move {}, {:.3} mm³ removed",
                 c.collision.file,
                 c.collision.line,

@@ -1,5 +1,6 @@
 //! `swarf tool SPEC`: describe a cutter.
 
+use crate::output::say;
 use anyhow::{Context, Result};
 use clap::Args;
 use swarf_tool::Cutter;
@@ -24,8 +25,8 @@ pub(crate) fn run(args: &ToolArgs) -> Result<()> {
         return print_json(&d);
     }
     let a = &d.apt;
-    println!("{} ({})", d.spec, d.kind.spec_name());
-    println!(
+    say!("{} ({})", d.spec, d.kind.spec_name());
+    say!(
         "  APT CUTTER/{}, {}, {}, {}, {}, {}, {}",
         a.diameter_mm,
         a.corner_radius_mm,
@@ -40,14 +41,23 @@ pub(crate) fn run(args: &ToolArgs) -> Result<()> {
     } else {
         " (default; swarf forces needs flutes=N)"
     };
-    println!(
+    say!(
         "  {} flutes{default}, helix {}°, flute length {} mm, shank Ø{} mm, overall length {} mm",
-        d.flutes, d.helix_deg, d.flute_length_mm, d.shank_diameter_mm, d.overall_length_mm
+        d.flutes,
+        d.helix_deg,
+        d.flute_length_mm,
+        d.shank_diameter_mm,
+        d.overall_length_mm
     );
     for p in &d.pieces {
-        println!(
+        say!(
             "  {:<12} {:<8} z {:>9.4} .. {:<9.4} radius {:.4} .. {:.4}",
-            p.role, p.shape, p.z_min_mm, p.z_max_mm, p.radius_start_mm, p.radius_end_mm
+            p.role,
+            p.shape,
+            p.z_min_mm,
+            p.z_max_mm,
+            p.radius_start_mm,
+            p.radius_end_mm
         );
     }
     Ok(())

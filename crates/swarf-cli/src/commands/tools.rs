@@ -21,7 +21,21 @@ pub(crate) fn job_error(e: JobError) -> anyhow::Error {
 
 /// Loads the machine and cutter sources `setup` names.
 pub(crate) fn load_job_setup(setup: &SetupArgs) -> Result<JobSetup> {
-    JobSetup::load(&setup.job_options(DEFAULT_MAX_MOVES)).map_err(job_error)
+    load_job_setup_with(setup, DEFAULT_MAX_MOVES)
+}
+
+/// [`load_job_setup`] with a move limit of `max_moves`. What the tool library's reader left
+/// out or changed (a row without a radius, an indexed tool, a length that does not fit) is
+/// told on stderr, one `swarf: warning:` line each: a tool the program then calls is
+/// undefined, and the line says why.
+pub(crate) fn load_job_setup_with(setup: &SetupArgs, max_moves: u64) -> Result<JobSetup> {
+    let job = JobSetup::load(&setup.job_options(max_moves)).map_err(job_error)?;
+    if let (Some(table), Some(path)) = (&job.table, &setup.tools) {
+        for w in &table.warnings {
+            eprintln!("swarf: warning: {}: {w}", path.display());
+        }
+    }
+    Ok(job)
 }
 
 /// Reads `program` as `setup` says (machine, units, cutters) and resolves its tools.

@@ -1,6 +1,7 @@
 //! `swarf toolsize`: the largest gouge- and interference-free cutter at every CC point of a
 //! compound surface (3-axis), as `DIR/toolsize.csv` and a JSON summary.
 
+use crate::output::say;
 use std::path::PathBuf;
 
 use anyhow::{bail, Context, Result};
@@ -201,7 +202,7 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
     } else {
         // No bounded point: no radius to give (the JSON's null).
         let mm = |r: Option<f64>| r.map_or_else(|| "none".to_string(), |x| format!("{x:.3}"));
-        println!(
+        say!(
             "{} points, {} bounded, radius min {} median {} max {} mm, {:.0} evaluations/point, {:.2} s",
             summary.points,
             summary.bounded_points,

@@ -1,6 +1,7 @@
 //! `swarf verify`: simulate a program, then compare the machined part with the design part
 //! (`DIR/defects.csv`, `DIR/deviation.glb`, `DIR/summary.json`).
 
+use crate::output::say;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
@@ -363,7 +364,7 @@ fn defects_csv(v: &Verification, program: &Program) -> String {
 }
 
 fn print_human(v: &Verification, s: &VerifySummary<'_>, out: &Path) {
-    println!(
+    say!(
         "{} gouge regions (deepest {:.4} mm), {} excess regions (thickest {:.4} mm, {:.3} mm³ \
          left), tolerances {} / {} mm, {} ray ends, {} collisions, {:.2} s",
         s.gouge_regions,
@@ -389,7 +390,7 @@ fn print_human(v: &Verification, s: &VerifySummary<'_>, out: &Path) {
                 break;
             }
         }
-        println!(
+        say!(
             "  region {:>4}: {:<6} {:.4} mm, {:.3} mm², {:.4} mm³ at ({:.3}, {:.3}, {:.3}){}",
             r.id,
             r.kind.name(),
@@ -407,7 +408,7 @@ fn print_human(v: &Verification, s: &VerifySummary<'_>, out: &Path) {
         );
     }
     if v.regions.len() > 20 {
-        println!(
+        say!(
             "  … {} more in {}",
             v.regions.len() - 20,
             out.join("defects.csv").display()

@@ -87,3 +87,24 @@ pub(crate) fn boxes_stl(boxes: &[[[f64; 3]; 2]], drop: usize) -> String {
     s.push_str("endsolid boxes\n");
     s
 }
+
+/// Runs `swarf` with the arguments and its stdout closed before it writes anything (a reader
+/// that went away, as `| head` does): its exit status and stderr.
+pub(crate) fn swarf_into_closed_pipe(args: &[&str]) -> (std::process::ExitStatus, String) {
+    use std::io::Read;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_swarf"))
+        .args(args)
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("swarf runs");
+    drop(child.stdout.take());
+    let mut err = String::new();
+    child
+        .stderr
+        .take()
+        .expect("stderr piped")
+        .read_to_string(&mut err)
+        .expect("stderr read");
+    (child.wait().expect("swarf ends"), err)
+}

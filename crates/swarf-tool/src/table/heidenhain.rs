@@ -2,7 +2,8 @@
 //! line naming the columns, one tool per line in those columns, `[END]`.
 //!
 //! The columns are fixed-width, and a row's field is what stands between its column's start
-//! in the header and the next column's (so a `DOC` with spaces is one field). Read: `T` (the
+//! in the header and the next column's (so a `DOC` with spaces is one field); tabs count to
+//! stops of 8, and a table with one tab between its fields on every line is read by tabs. Read: `T` (the
 //! number), `NAME`, `L` (length: the overall length), `R` (radius), `R2` (corner radius),
 //! `LCUTS` (cutting length: the flute length), `CUT` (teeth), `TYP` (TNC 640: `DRILL`,
 //! `CENTER`, `CSINK` … are drills or countersinks), `T-ANGLE` (point angle), `DOC` (the
@@ -60,32 +61,17 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
             "the column names (T NAME L R R2 …)",
         ));
     };
-    // Each column: its name and the character where it starts.
-    let chars: Vec<char> = header.chars().collect();
-    let mut columns: Vec<(String, usize)> = Vec::new();
-    let mut i = 0;
-    while i < chars.len() {
-        if chars[i].is_whitespace() {
-            i += 1;
-            continue;
-        }
-        let start = i;
-        while i < chars.len() && !chars[i].is_whitespace() {
-            i += 1;
-        }
-        columns.push((
-            chars[start..i]
-                .iter()
-                .collect::<String>()
-                .to_ascii_uppercase(),
-            start,
-        ));
-    }
-    // The first column starts at the line's start, however the header is indented.
-    if let Some(first) = columns.first_mut() {
-        first.1 = 0;
-    }
-    let find = |name: &str| columns.iter().position(|(n, _)| n == name);
+    // The data rows (up to `[END]`), for the layout.
+    let rows: Vec<(usize, &str)> = lines
+        .take_while(|(_, l)| !l.trim_start().starts_with("[END]"))
+        .collect();
+    let layout = Layout::of(header, rows.iter().map(|(_, l)| *l));
+    let columns: Vec<String> = layout
+        .cells(header)
+        .into_iter()
+        .map(|(name, _)| name.to_ascii_uppercase())
+        .collect();
+    let find = |name: &str| columns.iter().position(|n| n == name);
     let (Some(t_col), Some(r_col)) = (find("T"), find("R")) else {
         return Err(err(
             hi + 1,
@@ -96,19 +82,14 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
     };
     let mut table = ToolTable::default();
     let mut empty = 0;
-    for (li, raw) in lines {
+    for (li, raw) in rows {
         let line = li + 1;
-        if raw.trim_start().starts_with("[END]") {
-            break;
-        }
-        let row: Vec<char> = raw.chars().collect();
+        let cells = layout.cells(raw);
         let field = |c: usize| -> (String, usize) {
-            let start = columns[c].1;
-            let end = columns.get(c + 1).map_or(row.len(), |n| n.1).min(row.len());
-            let text: String = row
-                .get(start.min(row.len())..end)
-                .map_or(String::new(), |s| s.iter().collect());
-            (text.trim().to_string(), start + 1)
+            cells
+                .get(c)
+                .cloned()
+                .unwrap_or((String::new(), raw.chars().count() + 1))
         };
         let number = |c: Option<usize>| -> Result<Option<f64>, TableError> {
             let Some(c) = c else { return Ok(None) };
@@ -121,7 +102,7 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
                 _ => Err(err(
                     line,
                     column,
-                    format!("{text:?} in column {}", columns[c].0),
+                    format!("{text:?} in column {}", columns[c]),
                     "a number",
                 )),
             }
@@ -235,6 +216,96 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
     Ok(table)
 }
 
+/// How a table's lines split into columns.
+#[derive(Debug)]
+enum Layout {
+    /// Fixed-width columns starting at these characters of the line with its tabs expanded
+    /// (stops every 8 characters: a table saved by an editor that turned runs of spaces into
+    /// tabs keeps its columns). A row's field is what stands between its column's start and
+    /// the next column's, so a `DOC` with spaces is one field.
+    Fixed(Vec<usize>),
+    /// One tab between fields (a table exported tab-separated): the header and every row have
+    /// the same number of tab-separated fields.
+    Tabs,
+}
+
+impl Layout {
+    fn of<'a>(header: &str, mut rows: impl Iterator<Item = &'a str>) -> Layout {
+        let n = header.split('\t').count();
+        if n > 1
+            && header.split('\t').all(|f| !f.trim().is_empty())
+            && rows.all(|r| r.split('\t').count() == n)
+        {
+            return Layout::Tabs;
+        }
+        // Each column starts where a name starts; the first at the line's start, however the
+        // header is indented.
+        let (chars, _) = expand_tabs(header);
+        let mut starts: Vec<usize> = (0..chars.len())
+            .filter(|&i| !chars[i].is_whitespace() && (i == 0 || chars[i - 1].is_whitespace()))
+            .collect();
+        if let Some(first) = starts.first_mut() {
+            *first = 0;
+        }
+        Layout::Fixed(starts)
+    }
+
+    /// The line's fields, trimmed, each with the (1-based) character column of the line where
+    /// its column starts.
+    fn cells(&self, line: &str) -> Vec<(String, usize)> {
+        match self {
+            Layout::Tabs => {
+                let mut at = 1;
+                line.split('\t')
+                    .map(|f| {
+                        let cell = (f.trim().to_string(), at);
+                        at += f.chars().count() + 1;
+                        cell
+                    })
+                    .collect()
+            }
+            Layout::Fixed(starts) => {
+                let (chars, origin) = expand_tabs(line);
+                let column = |i: usize| origin.get(i).map_or(chars.len() + 1, |o| o + 1);
+                starts
+                    .iter()
+                    .enumerate()
+                    .map(|(c, &start)| {
+                        let end = starts
+                            .get(c + 1)
+                            .map_or(chars.len(), |&n| n.min(chars.len()));
+                        let text: String = chars
+                            .get(start.min(chars.len())..end)
+                            .map_or(String::new(), |s| s.iter().collect());
+                        (text.trim().to_string(), column(start))
+                    })
+                    .collect()
+            }
+        }
+    }
+}
+
+/// The line's characters with each tab expanded to the next stop of 8, and for each of them the
+/// index of the character of the line it comes from.
+fn expand_tabs(line: &str) -> (Vec<char>, Vec<usize>) {
+    let (mut chars, mut origin) = (Vec::new(), Vec::new());
+    for (i, c) in line.chars().enumerate() {
+        if c == '\t' {
+            loop {
+                chars.push(' ');
+                origin.push(i);
+                if chars.len() % 8 == 0 {
+                    break;
+                }
+            }
+        } else {
+            chars.push(c);
+            origin.push(i);
+        }
+    }
+    (chars, origin)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -292,6 +363,40 @@ T    NAME                L           R           R2          DL      DR      LCU
         assert_eq!(t.tools[&4].cutter.kind(), CutterKind::Drill);
         assert!((t.tools[&4].cutter.apt_params().alpha_deg - 20.0).abs() < 1e-9);
         assert_eq!(t.warnings.len(), 2, "{:?}", t.warnings);
+    }
+
+    #[test]
+    fn tables_with_tabs_keep_their_columns() {
+        // An editor's tabs for runs of spaces (stops of 8): the table reads as with spaces.
+        let tabbed = "BEGIN TOOL .T MM\nT\tNAME\t\tL\tR\tR2\tDOC\n\
+                      2\tBALL_D6\t\t+60\t+3\t+3\tball six\n\
+                      3\tTORUS\t\t+80\t+6\t+1\n[END]\n";
+        let t = parse_heidenhain(tabbed, "TOOL.T").unwrap();
+        assert_eq!(t.tools[&2].cutter.kind(), CutterKind::Ball);
+        assert_eq!(t.tools[&2].description, "BALL_D6 ball six");
+        let p = t.tools[&3].cutter.apt_params();
+        assert!(
+            (p.d - 12.0).abs() < 1e-12 && (p.r - 1.0).abs() < 1e-12,
+            "{p:?}"
+        );
+        // One tab between fields, a name longer than a tab stop: read by tabs.
+        let delimited = "BEGIN TOOL .T MM\nT\tNAME\tL\tR\tR2\n\
+                         7\tBALL_D10_EXTRA_LONG\t+150\t+5\t+5\n\
+                         8\tX\t+50\t+2\t+0.5\n[END]\n";
+        let t = parse_heidenhain(delimited, "TOOL.T").unwrap();
+        assert_eq!(t.tools[&7].cutter.kind(), CutterKind::Ball);
+        assert!((t.tools[&7].cutter.apt_params().d - 10.0).abs() < 1e-12);
+        assert_eq!(t.tools[&7].name.as_deref(), Some("BALL_D10_EXTRA_LONG"));
+        assert_eq!(t.tools[&8].cutter.kind(), CutterKind::Bull);
+        // Errors name the field's column in the line as written (after the tabs).
+        let e = parse_heidenhain(&delimited.replace("+2\t", "+Q\t"), "t.T")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("t.T:4:9") && e.contains("column R"), "{e}");
+        let e = parse_heidenhain(&tabbed.replace("+6\t", "+Q\t"), "t.T")
+            .unwrap_err()
+            .to_string();
+        assert!(e.contains("t.T:4:14") && e.contains("column R"), "{e}");
     }
 
     #[test]
