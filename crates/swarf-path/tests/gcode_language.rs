@@ -821,22 +821,28 @@ fn grbl_system_commands_are_skipped_or_refused() {
 }
 
 /// A line that starts with `$` but is not GRBL's (LinuxCNC 2.8+'s spindle select `$1`, word
-/// order free) goes to the G-code reader, which does not read `$` (an error at the line, as
-/// before GRBL's lines were skipped), instead of being skipped with its spindle start.
+/// order free) goes to the G-code reader, which reads the `$` word: `$0` and `$-1` (every
+/// spindle) quietly, another spindle with a warning (one spindle is simulated); a malformed
+/// one is an error at its place.
 #[test]
 fn dollar_lines_outside_grbl_grammar_are_g_code() {
-    for src in [
-        "$1 M3 S1000\nG0 X1\n",
-        "$0M5\n",
-        "$12=\n",
-        "$1=2=3\n",
-        "$HQ\n",
-        "$SLPX\n",
+    let rec = run("$1 M3 S1000\nG0 X1\nM3 $0 S800\nM5 $-1\nM30\n");
+    assert_xyz(last_pos(&rec), 1.0, 0.0, 0.0);
+    let w: Vec<(u32, u32)> = rec.warnings.iter().map(|w| (w.line, w.column)).collect();
+    assert_eq!(w, [(1, 1)], "{:?}", rec.warnings);
+    assert!(rec.warnings[0].message.starts_with("$1: spindle 1 selected"));
+    run("$0M5\nM30\n");
+    for (src, column, what) in [
+        ("$12=\n", 4, "unexpected text"),
+        ("$1=2=3\n", 3, "unexpected text"),
+        ("$HQ\n", 1, "without a value"),
+        ("$SLPX\n", 1, "without a value"),
+        ("M3 $0.5\n", 4, "spindle $0.5"),
+        ("M3 $0 $1\n", 7, "two $ words"),
     ] {
         let e = err(src);
-        assert_eq!(e.kind, PathErrorKind::Syntax, "{src:?}: {e}");
-        assert_eq!((e.pos.line, e.pos.column), (1, 1), "{src:?}: {e}");
-        assert!(e.message.contains("unexpected text"), "{src:?}: {e}");
+        assert_eq!((e.pos.line, e.pos.column), (1, column), "{src:?}: {e}");
+        assert!(e.message.contains(what), "{src:?}: {e}");
     }
 }
 

@@ -846,7 +846,7 @@ impl TriDexel {
         let run = |scratch: &mut Scratch, (k, tj, row): (usize, usize, Row<'_>)| {
             // Only what touched the row is kept (a finishing move reaches a row for a few
             // dozen moves of a batch; growing the list one push at a time cost 3 % of a pass).
-            let mut out: Vec<(usize, usize, CutStats)> = Vec::with_capacity(64);
+            let mut out: Vec<(usize, usize, CutStats)> = Vec::with_capacity(moves.len().min(64));
             for (m, ((groups, plans), shared)) in moves.iter().zip(&plans).zip(&shared).enumerate()
             {
                 let tag = base

@@ -152,6 +152,9 @@ pub(crate) struct Block {
     pub(crate) fine_boring: bool,
     /// G70/G71 read as G20/G21 (Mach3's and old controls' inch/mm codes), with its code index.
     pub(crate) units_synonym: Option<(u16, u32, u32)>,
+    /// The spindle a `$` word selects (LinuxCNC 2.8's several spindles: `M3 $0 S1000`; −1 all
+    /// of them) and where the word starts.
+    pub(crate) spindle: Option<(i32, u32)>,
     /// Parameter assignments, applied after the line is read.
     pub(crate) assigns: [(Target, f64); MAX_ASSIGNS],
     /// How many of `assigns` are in use.
@@ -182,6 +185,7 @@ impl Default for Block {
             n_modes: 0,
             fine_boring: false,
             units_synonym: None,
+            spindle: None,
             assigns: [(Target::Num(0), 0.0); MAX_ASSIGNS],
             n_assigns: 0,
         }
@@ -205,6 +209,7 @@ impl Block {
         self.n_modes = 0;
         self.fine_boring = false;
         self.units_synonym = None;
+        self.spindle = None;
     }
     /// Whether letter `c` is present.
     #[inline]
@@ -419,6 +424,24 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                 }
                 b.assigns[b.n_assigns] = (target, v);
                 b.n_assigns += 1;
+            }
+            b'$' => {
+                c.i += 1;
+                let v = read_real(&mut c, params)?;
+                if b.spindle.is_some() {
+                    return Err(Fault::semantic(
+                        Span::Code(at, c.i),
+                        "two $ words on one line",
+                    ));
+                }
+                if !(v.fract() == 0.0 && (-1.0..=99.0).contains(&v)) {
+                    return Err(Fault::syntax(
+                        Span::Code(at, c.i),
+                        format!("spindle ${v}"),
+                        "a spindle number: $0, $1 … ($-1: every spindle)",
+                    ));
+                }
+                b.spindle = Some((v as i32, at as u32));
             }
             b'a'..=b'z' | b'@' | b'^' if !matches!(ch, b'n' | b'o') => {
                 c.i += 1;

@@ -644,6 +644,16 @@ impl<'t, 's> Interp<'t, 's> {
             return self.exec_macro_b(lb, o_at);
         }
         block::parse(lb, blk, &*self, self.fanuc)?;
+        if let Some((n, at)) = blk.spindle.filter(|&(n, _)| n > 0) {
+            // One spindle is simulated: the others' speeds and turns are read as its own.
+            self.later.push((
+                at as usize,
+                format!(
+                    "${n}: spindle {n} selected; swarf simulates one spindle, and this block's \
+                     spindle words (S, M3, M4, M5) are read as its own"
+                ),
+            ));
+        }
         self.execute(blk, lb)?;
         for (at, message) in std::mem::take(&mut self.later) {
             self.warn_code(lb, at, message);
