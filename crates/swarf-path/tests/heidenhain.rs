@@ -701,3 +701,18 @@ fn a_name_the_tool_library_lacks_gets_a_number_it_does_not_use() {
     // library's 7.)
     assert_eq!(tools, [7, 8, 8]);
 }
+
+/// M functions that take parameters (`M120 LA5`, `M124 T0.01`, M118's handwheel limits,
+/// M138's axes) keep them: the words after them are not the block's coordinates, and the path
+/// is the one without them. `SEL CORR-TABLE` is warned and passed, as `SEL TABLE` is.
+#[test]
+fn m_function_parameters_are_not_coordinates() {
+    let plain = read(&pgm("L X+0 Y+0 Z+10 R0 FMAX\nL X+5 F100\nL Y+3\nM30"));
+    let p = read(&pgm(
+        "L X+0 Y+0 Z+10 R0 FMAX M120 LA5\nM118 X1 Y2\nM124 T0.01\nL X+5 F100 M138 B C\n\
+         M112 T0.01 A10\nM94 C\nSEL CORR-TABLE TCS \"T.TCO\"\nL Y+3 M3 M120 LA2\nM30",
+    ));
+    assert_eq!(tips(&p), tips(&plain));
+    assert_eq!(p.warnings.len(), 1, "{:?}", p.warnings);
+    assert!(p.warnings[0].message.starts_with("SEL CORR-TABLE"), "{:?}", p.warnings);
+}

@@ -499,3 +499,26 @@ fn second_review_cases() {
     .unwrap();
     assert_eq!(r.text.lines().nth(3), Some("G1 X20 F50"));
 }
+
+/// Settings a CAM post writes that do not move the tool — the kind of radius compensation
+/// (`CUT3DC`, names with digits read whole), its approach (`NORM`, `KONT`), collision
+/// detection, working-area limits, `G643` — are read past; an orientation interpolation swarf
+/// does not follow is warned once; a transformation that changes what X Y Z mean is refused at
+/// its word.
+#[test]
+fn post_settings_without_motion_are_read_past() {
+    let p = read(
+        "G0 X0 Y0 Z10\nCUT3DC CDON NORM\nCUT2DF CDOF2 KONT\nORIVIRT1 ORIPLANE WALIMON\nG643\n\
+         G1 X5 F100\nM30",
+    );
+    assert_eq!(tips(&p).last().copied(), Some([5.0, 0.0, 10.0]));
+    assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+    let p = read("ORIPATH\nG1 X5 F100\nORICONCW\nM30");
+    assert_eq!(p.warnings.len(), 1, "{:?}", p.warnings);
+    assert!(p.warnings[0].message.contains("great circle"));
+    for (src, word) in [("TRACYL(40)\n", "TRACYL"), ("G0 X1\nDIAMON\n", "DIAMON")] {
+        let e = err(src);
+        assert_eq!(e.kind, PathErrorKind::Unsupported, "{e}");
+        assert!(e.message.starts_with(&format!("{word} is not read")), "{e}");
+    }
+}

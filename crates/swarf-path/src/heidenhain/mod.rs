@@ -574,7 +574,9 @@ impl<'a> Reader<'a> {
                 );
                 Ok(Flow::Next)
             }
-            "DECLARE" | "SEL" if head.text == "DECLARE" || second == Some("TABLE") => {
+            "DECLARE" | "SEL"
+                if head.text == "DECLARE" || matches!(second, Some("TABLE" | "CORR-TABLE")) =>
+            {
                 self.warn(b.line, head.col, format!("{} is not read", b.code));
                 Ok(Flow::Next)
             }
@@ -932,6 +934,21 @@ impl<'a> Reader<'a> {
                         ));
                     }
                     w.m.push((m as u32, i));
+                    // The parameters of M functions that take some (M120 LA, M124 T, M118's
+                    // handwheel limits, M138's axes …) stand after them: theirs, not the block's.
+                    let params: &[&str] = match m as u32 {
+                        120 => &["LA"],
+                        112 | 124 => &["T", "R", "A"],
+                        118 => &["X", "Y", "Z", "A", "B", "C"],
+                        94 | 138 => &["A", "B", "C"],
+                        _ => &[],
+                    };
+                    while let Some(t) = toks.get(i + 1) {
+                        match lexer::word(t) {
+                            Ok((n, _)) if params.contains(&n) => i += 1,
+                            _ => break,
+                        }
+                    }
                 }
                 "MB" => {
                     let next = toks.get(i + 1).map(|t| t.text.as_str());

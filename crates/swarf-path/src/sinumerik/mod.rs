@@ -1266,7 +1266,35 @@ impl<'a> Reader<'a> {
                 | "FGREF" | "ADIS" | "ADISPOS" | "CTOL" | "OTOL" | "CTOLG0" | "OTOLG0" | "STOLF"
                 | "ORISON" | "ORISOF" | "ORIC" | "ORID" | "TCOABS" | "TCOFR" | "TCARR" | "PAROT"
                 | "PAROTOF" | "TOROT" | "TOROTOF" | "LIMS" | "FP" | "WORKPIECE" | "SETMS"
-                | "SOFTA" | "BRISKA" | "FIFOCTRL" => {}
+                | "SOFTA" | "BRISKA" | "FIFOCTRL" | "ORIPLANE" | "ORIVIRT1" | "ORIVIRT2"
+                | "COMPSURF" | "WALIMON" | "WALIMOF" | "DIAMOF" | "FTOCON" | "FTOCOF" => {}
+                // The kind of tool radius compensation and how it approaches and leaves the
+                // contour: nothing without G41/G42, which are refused.
+                "CUT2D" | "CUT2DF" | "CUT3DC" | "CUT3DF" | "CUT3DFS" | "CUT3DFF" | "CDON"
+                | "CDOF" | "CDOF2" | "NORM" | "KONT" | "KONTC" | "KONTT" => {}
+                "ORIPATH" | "ORIPATHS" | "ORICONCW" | "ORICONCCW" | "ORICONIO" | "ORICONTO"
+                | "ORICURVE" => self.warn_once(
+                    "oriinterp",
+                    b.line,
+                    col(b, w.at),
+                    format!(
+                        "{name}: the tool axis is interpolated on the great circle between the \
+                         blocks' orientations (ORIVECT), not as {name} says"
+                    ),
+                ),
+                "DIAMON" | "DIAM90" | "DIAMCYCOF" | "TRACYL" | "TRANSMIT" | "TRACON" | "TRAANG"
+                | "CTAB" | "CTABDEF" | "CTABEND" => {
+                    return Err(Self::fault(
+                        b,
+                        w.at,
+                        PathErrorKind::Unsupported,
+                        format!(
+                            "{name} is not read (diameter programming, the cylinder and face \
+                             transformations and curve tables change what the axes' words mean)"
+                        ),
+                        "X Y Z as Cartesian positions",
+                    ))
+                }
                 "TOFRAME" | "TOFRAMEX" | "TOFRAMEY" | "TOFRAMEZ" => self.warn_once(
                     "toframe",
                     b.line,
@@ -1377,7 +1405,7 @@ impl<'a> Reader<'a> {
                     return Err(Self::fault(b, at, PathErrorKind::Unsupported, "thread cutting is not read", "G0–G3"))
                 }
                 // Path control, exact stop, acceleration, working area: nothing swarf models.
-                600 | 640 | 6410 | 6420 | 6440 | 6450 | 6010 | 6020 | 6030 | 90 | 620 | 6210 | 250 | 260 | 4500 | 4510 | 960 | 970 | 1100 | 1110 | 1120 => {
+                600 | 640 | 6410 | 6420 | 6430 | 6440 | 6450 | 6010 | 6020 | 6030 | 90 | 620 | 6210 | 250 | 260 | 4500 | 4510 | 960 | 970 | 1100 | 1110 | 1120 => {
                     if matches!(g, 1100 | 1110 | 1120) {
                         return Err(Self::fault(b, at, PathErrorKind::Unsupported, "polar coordinates (G110–G112) are not read", "X Y Z"));
                     }

@@ -63,6 +63,13 @@ pub(crate) fn words(code: &str) -> Result<Vec<Word>, WordError> {
             j += 1;
         }
         let next = b.get(j).copied();
+        if NAMES_WITH_DIGITS
+            .iter()
+            .any(|n| n.eq_ignore_ascii_case(&code[start..j]))
+        {
+            // `CUT3DC`, `CDOF2`: one name, not an address and a number.
+            i = j;
+        }
         // `R1 = 5`, `X = 20`: spaces before the `=` of an assignment.
         let eq = skip_ws(b, j);
         let assigns = b.get(eq) == Some(&b'=') && b.get(eq + 1) != Some(&b'=');
@@ -119,6 +126,12 @@ pub(crate) fn words(code: &str) -> Result<Vec<Word>, WordError> {
     }
     Ok(out)
 }
+
+/// Sinumerik keywords whose names end in digits or mix them with letters: read whole, not as
+/// an address with a number.
+const NAMES_WITH_DIGITS: [&str; 9] = [
+    "CUT2D", "CUT2DF", "CUT3DC", "CUT3DF", "CUT3DFS", "CUT3DFF", "CDOF2", "ORIVIRT1", "ORIVIRT2",
+];
 
 fn skip_ws(b: &[u8], mut i: usize) -> usize {
     while b.get(i).is_some_and(u8::is_ascii_whitespace) {
