@@ -745,11 +745,11 @@ fn block_deleted_lines_are_reported_once() {
 }
 
 /// I/O M codes are named for what they do and their words are theirs (not reported as
-/// unused); a pause points at its M word.
+/// unused), each at its first use only; a pause points at its M word.
 #[test]
 fn io_and_pause_m_codes_are_reported_at_their_words() {
     use swarf_path::load::{read_program_str, ReadOptions};
-    let src = "G21 G90\nM66 P0 L3 Q5\nM62 P1\nM67 E0 Q2.5\nG0 X1 M1\nM2\n";
+    let src = "G21 G90\nM66 P0 L3 Q5\nM62 P1\nM67 E0 Q2.5\nG0 X1 M1\nM62 P2\nM2\n";
     let p = read_program_str(
         src,
         "io.ngc",
@@ -768,17 +768,20 @@ fn io_and_pause_m_codes_are_reported_at_their_words() {
             (
                 2,
                 1,
-                "M66 (wait on input) ignored: it does not move the tool"
+                "M66 (wait on input) ignored: it does not move the tool (the first M66; later \
+                 ones are not reported)"
             ),
             (
                 3,
                 1,
-                "M62 (digital output) ignored: it does not move the tool"
+                "M62 (digital output) ignored: it does not move the tool (the first M62; later \
+                 ones are not reported)"
             ),
             (
                 4,
                 1,
-                "M67 (analog output) ignored: it does not move the tool"
+                "M67 (analog output) ignored: it does not move the tool (the first M67; later \
+                 ones are not reported)"
             ),
             (5, 7, "M1 (program pause) ignored: the simulation runs on"),
         ]
@@ -830,7 +833,9 @@ fn dollar_lines_outside_grbl_grammar_are_g_code() {
     assert_xyz(last_pos(&rec), 1.0, 0.0, 0.0);
     let w: Vec<(u32, u32)> = rec.warnings.iter().map(|w| (w.line, w.column)).collect();
     assert_eq!(w, [(1, 1)], "{:?}", rec.warnings);
-    assert!(rec.warnings[0].message.starts_with("$1: spindle 1 selected"));
+    assert!(rec.warnings[0]
+        .message
+        .starts_with("$1: spindle 1 selected"));
     run("$0M5\nM30\n");
     for (src, column, what) in [
         ("$12=\n", 4, "unexpected text"),

@@ -714,5 +714,9 @@ fn m_function_parameters_are_not_coordinates() {
     ));
     assert_eq!(tips(&p), tips(&plain));
     assert_eq!(p.warnings.len(), 1, "{:?}", p.warnings);
-    assert!(p.warnings[0].message.starts_with("SEL CORR-TABLE"), "{:?}", p.warnings);
+    assert!(
+        p.warnings[0].message.starts_with("SEL CORR-TABLE"),
+        "{:?}",
+        p.warnings
+    );
 }

@@ -26,7 +26,7 @@
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-use super::block::{group, Block};
+use super::block::{group, slot, Block};
 use super::interp::Interp;
 use super::{Fault, Res, Span};
 use crate::canon::OwnedCanon;
@@ -208,50 +208,84 @@ impl Interp<'_, '_> {
                 "cutter radius compensation works in the XY (G17) and XZ (G18) planes only",
             ));
         }
-        let radius =
-            if g == 411 || g == 421 {
-                // G41.1/G42.1: D is the diameter.
-                b.get(b'd').ok_or_else(|| {
-                    Fault::new(
+        let radius = if g == 411 || g == 421 {
+            // G41.1/G42.1: D is the diameter.
+            b.get(b'd').ok_or_else(|| {
+                Fault::new(
+                    PathErrorKind::Semantic,
+                    span,
+                    "G41.1/G42.1 need a D word (the tool diameter)",
+                    "D<diameter>",
+                )
+            })? * self.scale
+                / 2.0
+        } else {
+            // G41/G42: D names a tool of the table (default: the tool in the spindle).
+            let tool = match b.get(b'd') {
+                Some(d) if d < 0.0 || d.fract() != 0.0 || d > f64::from(u32::MAX) => {
+                    return Err(Fault::new(
                         PathErrorKind::Semantic,
-                        span,
-                        "G41.1/G42.1 need a D word (the tool diameter)",
-                        "D<diameter>",
-                    )
-                })? * self.scale
-                    / 2.0
+                        b.span(b'd'),
+                        "bad tool number in D",
+                        "D<tool number>",
+                    ))
+                }
+                Some(d) => d as u32,
+                None => self.read_only.loaded_tool,
+            };
+            // A Fanuc control's D registers are the control's own (the one cutter given
+            // for every tool is the simulation's, not a register's value).
+            let known = if self.fanuc {
+                self.tool_radii
+                    .get(&tool)
+                    .map(|r| 2.0 * r)
+                    .or_else(|| self.opts.tool_diameters.get(&tool).copied())
             } else {
-                // G41/G42: D names a tool of the table (default: the tool in the spindle).
-                let tool = match b.get(b'd') {
-                    Some(d) if d < 0.0 || d.fract() != 0.0 || d > f64::from(u32::MAX) => {
-                        return Err(Fault::new(
-                            PathErrorKind::Semantic,
-                            b.span(b'd'),
-                            "bad tool number in D",
-                            "D<tool number>",
-                        ))
+                self.tool_diameter(tool)
+            };
+            if tool == 0 {
+                0.0
+            } else {
+                match known {
+                    Some(d) => d / 2.0,
+                    None if self.fanuc => {
+                        if !self.comp_registers_told.contains(&tool) {
+                            self.comp_registers_told.push(tool);
+                            let at = if b.has(b'd') {
+                                b.at[slot(b'd')]
+                            } else {
+                                b.g_at[group::CUTTER_COMP]
+                            };
+                            self.later.push((
+                                at as usize,
+                                format!(
+                                    "G{} D{tool}: the offset in register D{tool} is the \
+                                         control's, not in the program or a tool table: the path \
+                                         is read as the tool centre's, as CAM systems write it for \
+                                         wear compensation (give the offsets in a tool table, \
+                                         --tools, to compensate by them)",
+                                    g / 10
+                                ),
+                            ));
+                        }
+                        0.0
                     }
-                    Some(d) => d as u32,
-                    None => self.read_only.loaded_tool,
-                };
-                if tool == 0 {
-                    0.0
-                } else {
-                    match self.tool_diameter(tool) {
-                        Some(d) => d / 2.0,
-                        None => return Err(Fault::new(
+                    None => {
+                        return Err(Fault::new(
                             PathErrorKind::Semantic,
                             if b.has(b'd') { b.span(b'd') } else { span },
                             format!(
                                 "cutter radius compensation needs the diameter of tool {tool}, \
                                  which the tool table does not give"
                             ),
-                            "a tool table with the tool (--tools), G10 L1 P<tool> R<radius>, or \
-                             G41.1/G42.1 D<diameter>",
-                        )),
+                            "a tool table with the tool (--tools), G10 L1 P<tool> R<radius>, \
+                             G41.1/G42.1 D<diameter>, or --dialect fanuc (D registers the \
+                             control's: the path read as the tool centre's)",
+                        ))
                     }
                 }
-            };
+            }
+        };
         if radius == 0.0 {
             // A zero radius leaves the path as programmed.
             return Ok(());

@@ -165,6 +165,11 @@ pub(crate) struct Interp<'t, 's> {
     /// Tool radii set by the program (G10 L1/L10/L11 R), mm: they win over the tool table's
     /// diameters for cutter compensation and parameter 5410.
     pub(crate) tool_radii: std::collections::BTreeMap<u32, f64>,
+    /// Fanuc D registers cutter compensation used without knowing their offset (told once
+    /// each).
+    pub(crate) comp_registers_told: Vec<u32>,
+    /// M codes that change nothing swarf models, told once each.
+    pub(crate) m_ignored_told: Vec<u16>,
     /// The tool length offset in effect (G43, G43.1; G49 clears it), machine frame. swarf's
     /// programs are tool-tip programs, so it moves no tip; it shifts the position the program
     /// reads (parameters 5420–5425, incremental words) as LinuxCNC's does.
@@ -306,6 +311,8 @@ impl<'t, 's> Interp<'t, 's> {
             homes: [[0.0; 6]; 2],
             tool_table: std::collections::BTreeMap::new(),
             tool_radii: std::collections::BTreeMap::new(),
+            comp_registers_told: Vec::new(),
+            m_ignored_told: Vec::new(),
             tlo: [0.0; 6],
             params: Params::default(),
             ctl: Vec::new(),
@@ -1016,11 +1023,19 @@ impl<'t, 's> Interp<'t, 's> {
                 100..=199 => format!("M{m} (user-defined M code)"),
                 _ => format!("M{m} (unknown M code)"),
             };
-            self.warn_code(
-                lb,
-                at as usize,
-                format!("{what} ignored: it does not move the tool"),
-            );
+            // Told at its first use only (a post's M8/M9 around every operation said the same
+            // thing a dozen times).
+            if !self.m_ignored_told.contains(&m) {
+                self.m_ignored_told.push(m);
+                self.warn_code(
+                    lb,
+                    at as usize,
+                    format!(
+                        "{what} ignored: it does not move the tool (the first M{m}; later ones \
+                         are not reported)"
+                    ),
+                );
+            }
         }
         for &(g, at) in &b.modes[..b.n_modes] {
             let (what, why) = block::fanuc_mode(g).unwrap_or_default();
