@@ -1216,3 +1216,54 @@ fn g33_and_rigid_tapping_follow_the_spindle() {
         ]
     );
 }
+
+/// Review cases (LinuxCNC's interpreter as the reference): under G90.1 a centre word left out
+/// is the start's coordinate (not 0); a line's parameter assignments are made before its
+/// comments are shown; an inch program's pecks are counted in inches.
+#[test]
+fn absolute_centres_messages_after_assignments_and_inch_pecks() {
+    // From (10, 0), `G2 X10 Y20 J10` under G90.1: centre (10, 10), a half circle (with the
+    // missing I as 0 the centre was (0, 10) and the arc three quarters of a circle).
+    let rec = run("G21 G17 G90 F100\nG0 X10 Y0 Z0\nG90.1\nG2 X10 Y20 J10\nM2\n");
+    let arc = rec
+        .events
+        .iter()
+        .find_map(|(_, e)| match e {
+            Canon::Arc { center, .. } => Some(*center),
+            _ => None,
+        })
+        .unwrap();
+    assert_eq!(arc, [10.0, 10.0]);
+    // `#1=5 (DEBUG,#1)`: 5, as LinuxCNC copies the line's assignments first.
+    let rec = run("#1=5 (DEBUG,#1)\n#<_n>=2 (DEBUG,#<_n>)\nM2\n");
+    let msgs: Vec<String> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Message { text, .. } => Some(text.to_string()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(msgs, ["5.000000", "2.000000"]);
+    // G83 R0.1 Z-0.6 Q0.05 in inches: pecks to -0.05 … -0.55 (13), then the bottom: 14
+    // feeds, the last at -0.6 in (in mm the 14th peck landed a rounding above the bottom and
+    // a 15th, degenerate one followed).
+    let rec = run("G20 F10\nG0 X0 Y0 Z1\nG98 G83 X0 Y0 R0.1 Z-0.6 Q0.05\nM2\n");
+    let feeds: Vec<f64> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Feed { end } => Some(end.z),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(feeds.len(), 14, "{feeds:?}");
+    for (k, z) in feeds.iter().enumerate() {
+        let want = if k < 13 {
+            0.1 - 0.05 * (k + 1) as f64
+        } else {
+            -0.6
+        };
+        assert!((z - want * 25.4).abs() < 1e-9, "feed {k}: {z}");
+    }
+}

@@ -341,15 +341,21 @@ impl Interp<'_, '_> {
                     self.cyc_traverse(aa, bb, clear);
                 }
                 730 | 830 => {
-                    let mut depth = r - delta;
-                    while depth > cc {
+                    // The pecks counted in the program's units, as LinuxCNC counts them: in mm
+                    // an inch program's last peck can land a rounding short of the bottom and
+                    // add a degenerate one (R0.1 Z-0.6 Q0.05: 14 feeds, not 15).
+                    let u = self.scale;
+                    let (r_u, cc_u, delta_u) = (r / u, cc / u, delta / u);
+                    let mut depth_u = r_u - delta_u;
+                    while depth_u > cc_u {
                         self.count_iteration(gspan)?;
+                        let depth = depth_u * u;
                         self.cyc_feed(aa, bb, depth);
                         if motion == 830 {
                             self.cyc_traverse(aa, bb, r);
                         }
                         self.cyc_traverse(aa, bb, depth + RAPID_DELTA_MM);
-                        depth -= delta;
+                        depth_u -= delta_u;
                     }
                     self.cyc_feed(aa, bb, cc);
                     self.cyc_traverse(aa, bb, clear);

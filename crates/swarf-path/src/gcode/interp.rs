@@ -589,30 +589,10 @@ impl<'t, 's> Interp<'t, 's> {
         Ok(())
     }
 
-    fn exec_line(&mut self, raw: &str, lb: &mut LineBuf, blk: &mut Block) -> Res<()> {
-        normalize(raw, lb)?;
-        if lb.deleted && self.opts.block_delete {
-            if !std::mem::replace(&mut self.deleted_warned, true) {
-                self.warn_at(
-                    1,
-                    "line skipped: block delete (`/`) is on, as LinuxCNC's switch is by \
-                     default (first such line; --no-block-delete reads them)"
-                        .into(),
-                );
-            }
-            return Ok(());
-        }
-        if is_grbl_command(&lb.code) {
-            return self.grbl_command(lb);
-        }
-        if lb.code.first() == Some(&b'%') {
-            // Tape markers: the first opens the program, the next one ends it.
-            if self.tape || self.seen_code {
-                self.ended = true;
-            }
-            self.tape = true;
-            return Ok(());
-        }
+    /// The line's comments, in order: `(ABORT,…)` ends the program with its message, active
+    /// comments (`MSG`, `DEBUG`, `PRINT`, `LOG`…) are messages with parameters substituted,
+    /// the others plain comments.
+    fn comments(&mut self, raw: &str, lb: &LineBuf) -> Res<()> {
         for &(a, b) in &lb.comments {
             let text = &raw[a as usize..b as usize];
             // LinuxCNC's `(ABORT,…)`: the program stops here with the message as its error.
@@ -639,18 +619,61 @@ impl<'t, 's> Interp<'t, 's> {
             };
             self.sink.emit(self.cur_line, &event);
         }
-        if lb.code.is_empty() {
+        Ok(())
+    }
+
+    fn exec_line(&mut self, raw: &str, lb: &mut LineBuf, blk: &mut Block) -> Res<()> {
+        normalize(raw, lb)?;
+        if lb.deleted && self.opts.block_delete {
+            if !std::mem::replace(&mut self.deleted_warned, true) {
+                self.warn_at(
+                    1,
+                    "line skipped: block delete (`/`) is on, as LinuxCNC's switch is by \
+                     default (first such line; --no-block-delete reads them)"
+                        .into(),
+                );
+            }
             return Ok(());
+        }
+        if is_grbl_command(&lb.code) {
+            return self.grbl_command(lb);
+        }
+        if lb.code.first() == Some(&b'%') {
+            // Tape markers: the first opens the program, the next one ends it.
+            if self.tape || self.seen_code {
+                self.ended = true;
+            }
+            self.tape = true;
+            return Ok(());
+        }
+        if lb.code.is_empty() {
+            return self.comments(raw, lb);
         }
         self.seen_code = true;
         let o_at = skip_line_number(&lb.code);
         if lb.code.get(o_at) == Some(&b'o') {
+            self.comments(raw, lb)?;
             return self.exec_oword(lb, o_at);
         }
         if self.fanuc && is_macro_b(&lb.code[o_at..]) {
+            self.comments(raw, lb)?;
             return self.exec_macro_b(lb, o_at);
         }
         block::parse(lb, blk, &*self, self.fanuc)?;
+        // Parameters assigned on the line take effect once all of it was read, before its
+        // comments: `#1=5 (DEBUG,#1)` prints 5, as LinuxCNC copies a line's assignments into
+        // its table before executing the block.
+        for &(t, v) in &blk.assigns[..blk.n_assigns] {
+            match t {
+                Target::Num(n) => self.set_numbered(n, v),
+                Target::Named(x, y) => {
+                    let name = std::str::from_utf8(&lb.code[x as usize..y as usize]).unwrap_or("");
+                    self.params.set_named(name, v);
+                }
+            }
+        }
+        self.comments(raw, lb)?;
+
         if let Some((n, at)) = blk.spindle.filter(|&(n, _)| n > 0) {
             // One spindle is simulated: the others' speeds and turns are read as its own.
             self.later.push((
@@ -890,17 +913,8 @@ impl<'t, 's> Interp<'t, 's> {
         self.p = self.program_of(&moved, &self.off, &self.g92, self.rot);
     }
 
+    /// The block's effects, its parameter assignments already made ([`Interp::exec_line`]).
     fn execute(&mut self, b: &Block, lb: &LineBuf) -> Res<()> {
-        // Parameters assigned on the line take effect now, after all of it was read.
-        for &(t, v) in &b.assigns[..b.n_assigns] {
-            match t {
-                Target::Num(n) => self.set_numbered(n, v),
-                Target::Named(x, y) => {
-                    let name = std::str::from_utf8(&lb.code[x as usize..y as usize]).unwrap_or("");
-                    self.params.set_named(name, v);
-                }
-            }
-        }
         if let Some(g) = b.g(group::FEED_MODE) {
             let m = match g {
                 930 => FeedMode::InverseTime,
@@ -1871,7 +1885,20 @@ impl<'t, 's> Interp<'t, 's> {
             let oi = b.get(offs[fi]).unwrap_or(0.0) * self.scale;
             let oj = b.get(offs[si]).unwrap_or(0.0) * self.scale;
             let c = if self.arc_absolute {
-                [self.scaled_position(fi, oi), self.scaled_position(si, oj)]
+                // A centre word left out stands for the start's coordinate (LinuxCNC takes the
+                // current position for it under G90.1, as 0 is the offset under G91.1).
+                [
+                    if b.has(offs[fi]) {
+                        self.scaled_position(fi, oi)
+                    } else {
+                        start2[0]
+                    },
+                    if b.has(offs[si]) {
+                        self.scaled_position(si, oj)
+                    } else {
+                        start2[1]
+                    },
+                ]
             } else {
                 [start2[0] + k * oi, start2[1] + k * oj]
             };
