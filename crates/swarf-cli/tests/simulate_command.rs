@@ -643,3 +643,49 @@ fn a_closed_stdout_still_gets_the_files_written() {
     assert!(!err.contains("panicked"), "{err}");
     assert!(out.join("summary.json").is_file(), "{err}");
 }
+
+/// A chordal tolerance far below an arc's rounding needs more chords than any cut can take:
+/// the arc is refused with its line (the chord count was infinite: a capacity overflow on a
+/// worker, and the process spun for ever).
+#[test]
+fn an_arc_below_its_rounding_is_refused_not_hung() {
+    let dir = temp_dir("simulate-tiny-tolerance");
+    let prog = dir.join("circ.ngc");
+    std::fs::write(
+        &prog,
+        "G21 G90\nG0 X5 Y10 Z5\nG1 Z-2 F300\nG2 X5 Y10 I10 J0 P2\nG0 Z5\nM30\n",
+    )
+    .unwrap();
+    let p = prog.to_str().unwrap();
+    for cmd in [
+        vec![
+            "simulate",
+            "--stock",
+            "box:0,0,-10,40,20,0",
+            "--tolerance",
+            "1e-300",
+        ],
+        vec!["envelope", "--tolerance", "1e-300"],
+    ] {
+        let out = dir.join(cmd[0]);
+        let mut args = cmd.clone();
+        args.extend([
+            "--program",
+            p,
+            "--tool",
+            "flat:d=4",
+            "--resolution",
+            "0.5",
+            "--out",
+            out.to_str().unwrap(),
+        ]);
+        let o = swarf(&args);
+        assert_eq!(o.status.code(), Some(1), "{cmd:?}: {}", stderr(&o));
+        let e = stderr(&o);
+        assert!(
+            e.contains("(line 4)") && e.contains("chords"),
+            "{cmd:?}: {e}"
+        );
+        assert!(!e.contains("panicked"), "{e}");
+    }
+}

@@ -204,6 +204,9 @@ pub fn fixed_axis_pieces(
         MoveKind::Arc(g) => {
             let r = g.start_radius.max(g.end_radius);
             let n = arc_chords(r, g.sweep, tol);
+            if n > swarf_sweep::MAX_CHORDS {
+                return Err(swarf_sweep::too_many_chords(index, m.line, r, tol).into());
+            }
             let step = g.sweep / n as f64;
             let sag = r * (1.0 - (0.5 * step).cos());
             let mut prev = m.start.tip;

@@ -55,10 +55,20 @@ pub fn hot<R: Send>(f: impl FnOnce() -> R + Send) -> R {
                 }
             });
         }
-        let out = f();
-        done.store(true, Ordering::Release);
-        out
+        // Set when `f` ends, returning or panicking: a panic unwinding past keepers that still
+        // spun would never let the scope end (the process hung instead of failing).
+        let _done = Done(&done);
+        f()
     })
+}
+
+/// Tells the kept-awake workers that the computation ended, when dropped.
+struct Done<'a>(&'a AtomicBool);
+
+impl Drop for Done<'_> {
+    fn drop(&mut self) {
+        self.0.store(true, Ordering::Release);
+    }
 }
 
 #[cfg(test)]
@@ -87,6 +97,15 @@ mod tests {
         // test `one_thread_pool.rs` does the same with a pool of one thread).
         let on_worker = std::thread::spawn(|| hot(|| rayon::current_thread_index().is_some()));
         assert!(on_worker.join().unwrap());
+    }
+
+    #[test]
+    fn a_panic_in_f_ends_the_call_with_the_panic() {
+        // The keepers must stop when `f` unwinds: the call then fails instead of hanging.
+        let r = swarf_testdata::on_threads(2, || {
+            std::panic::catch_unwind(|| hot(|| -> u32 { panic!("in f") }))
+        });
+        assert!(r.is_err());
     }
 
     #[test]

@@ -73,7 +73,7 @@ pub mod tangency;
 pub mod tolerance;
 pub mod tool_shape;
 
-pub use chords::arc_chords;
+pub use chords::{arc_chords, too_many_chords, MAX_CHORDS};
 pub use error::SweepError;
 pub use five_axis::{MotionBound, Reach, SubMove};
 pub use fold::{fold_check, SelfIntersection};

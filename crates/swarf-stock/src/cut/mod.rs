@@ -154,11 +154,13 @@ impl TriDexel {
                 total = self.cut_linear(tool, pose(s0), pose(s1), axis);
             }
             MoveKind::Arc(g) => {
-                let n = arc_chords(
-                    g.start_radius.max(g.end_radius),
-                    g.sweep * (s1 - s0),
-                    chordal_tol,
-                );
+                let radius = g.start_radius.max(g.end_radius);
+                let n = arc_chords(radius, g.sweep * (s1 - s0), chordal_tol);
+                if n > swarf_sweep::MAX_CHORDS {
+                    return Err(
+                        swarf_sweep::too_many_chords(index, m.line, radius, chordal_tol).into(),
+                    );
+                }
                 // The chords cut as one batch, as `simulate` cuts a run of straight moves: the
                 // same stock and figures as chord by chord, without a parallel section (and its
                 // barrier) per chord — an arc at the default 1 µm has one chord per ≈ 0.09 mm
