@@ -150,3 +150,40 @@ fn merged_blocks_of_cells_keep_the_envelope() {
         assert!(!out.exists(), "nothing written for --simplify {bad}");
     }
 }
+
+/// A ray spacing coarser than half the cutter's diameter is refused, as by the simulating
+/// commands (`--resolution 100` wrote a "closed" 12-triangle box of an eighth of the volume).
+#[test]
+fn a_resolution_coarser_than_the_cutter_is_refused() {
+    let dir = temp_dir("envelope-coarse");
+    let prog = dir.join("line.ngc");
+    std::fs::write(&prog, "G21 G90\nG0 X0 Y0 Z5\nG1 Z0 F100\nG1 X20\nM30\n").unwrap();
+    let out = dir.join("out");
+    let o = swarf(&[
+        "envelope",
+        "--program",
+        prog.to_str().unwrap(),
+        "--tool",
+        "flat:d=10",
+        "--resolution",
+        "100",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("coarser than half the smallest cutter"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(!out.exists());
+    let o = swarf(&[
+        "demo",
+        "--resolution",
+        "1000",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(!out.exists());
+}

@@ -190,6 +190,12 @@ fn require(ok: bool, param: &str, value: f64, requirement: &str) -> Result<(), T
     }
 }
 
+/// The largest cutter (and shank) diameter, mm (the largest face mills are about as large).
+pub const MAX_DIAMETER_MM: f64 = 500.0;
+
+/// The longest tool, mm (the default lengths of the largest cutter: 3 + 2 diameters).
+pub const MAX_LENGTH_MM: f64 = 2500.0;
+
 /// Default cutting length for named constructors: three diameters.
 const DEFAULT_FLUTE_DIAMETERS: f64 = 3.0;
 /// Default number of flutes.
@@ -427,6 +433,9 @@ impl Cutter {
         finite("β (side angle)", beta_deg)?;
         finite("h (height)", h)?;
         require(d > 0.0, "d (diameter)", d, "> 0 mm")?;
+        // A cutter of kilometres is a typing slip, and its sampling and sweeps ran for
+        // minutes or exhausted memory before any other check.
+        require(d <= MAX_DIAMETER_MM, "d (diameter)", d, "<= 500 mm")?;
         require(r >= 0.0, "r (corner radius)", r, ">= 0 mm")?;
         require(f >= 0.0, "f (corner centre height)", f, ">= 0 mm")?;
         require(h > 0.0, "h (height)", h, "> 0 mm")?;
@@ -526,20 +535,20 @@ impl Cutter {
             opts.shank_diameter.unwrap_or(2.0 * rho_top),
         )?;
         require(
-            shank_diameter > 0.0,
+            shank_diameter > 0.0 && shank_diameter <= MAX_DIAMETER_MM,
             "shank diameter",
             shank_diameter,
-            "> 0 mm",
+            "in (0, 500] mm",
         )?;
         let overall_length = finite(
             "overall length",
             opts.overall_length.unwrap_or(h + 2.0 * shank_diameter),
         )?;
         require(
-            overall_length > 0.0,
+            overall_length > 0.0 && overall_length <= MAX_LENGTH_MM,
             "overall length",
             overall_length,
-            "> 0 mm",
+            "in (0, 2500] mm",
         )?;
         if flute_length > overall_length {
             return Err(ToolError::LongerThan {

@@ -14,7 +14,7 @@ pub enum ToolError {
         value: f64,
     },
     /// A parameter that must be > 0 (or ≥ 0) is not.
-    #[error("{param} must be {requirement}, got {value}")]
+    #[error("{param} must be {requirement}, got {}", shown(*value))]
     OutOfRange {
         /// Parameter name.
         param: String,
@@ -140,4 +140,14 @@ pub enum TableError {
         /// What was expected.
         expected: String,
     },
+}
+
+/// A value as a reader wants it: plain, or with an exponent when it is huge or tiny (`1e300`
+/// printed in full was three hundred digits).
+fn shown(v: f64) -> String {
+    if v != 0.0 && !(1e-4..1e9).contains(&v.abs()) {
+        format!("{v:e}")
+    } else {
+        format!("{v}")
+    }
 }

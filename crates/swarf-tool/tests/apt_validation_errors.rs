@@ -19,6 +19,16 @@ fn out_of_range_values_name_parameter_and_value() {
     assert!(msg(Cutter::apt(10.0, 0.0, 5.0, 0.0, 0.0, 90.0, 10.0)).contains("β (side angle)"));
     assert!(msg(Cutter::chamfer(10.0, 200.0))
         .contains("angle (tip angle) must be in (0°, 180°], got 200"));
+    // Sizes no tool has (a slip of the exponent): refused before any sampling is set up, the
+    // value written with its exponent.
+    assert!(msg(Cutter::flat(1e300)).contains("d (diameter) must be <= 500 mm, got 1e300"));
+    assert!(Cutter::flat(500.0).is_ok());
+    let long = CutterOptions {
+        overall_length: Some(3000.0),
+        ..CutterOptions::default()
+    };
+    assert!(msg(Cutter::flat(10.0).and_then(|c| c.with_options(&long)))
+        .contains("overall length must be in (0, 2500] mm, got 3000"));
 }
 
 #[test]

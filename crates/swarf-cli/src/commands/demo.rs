@@ -104,6 +104,7 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     let job = setup.read_str(PROGRAM, "demo/demo.ngc")?;
     let path_report = PathReport::new(&job);
     let tools = defined_tools(&job)?;
+    crate::commands::tools::check_resolution(tools, args.resolution)?;
     let program = &job.program;
     let mut stock = StockSpec::parse(STOCK)?.build(args.resolution, MeshOptions::default())?;
     let report = simulate(program, tools, &mut stock, &SimOptions::default())?;

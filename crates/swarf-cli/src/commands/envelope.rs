@@ -118,6 +118,7 @@ pub(crate) fn run(args: &EnvelopeArgs) -> Result<()> {
     let t0 = Instant::now();
     let job = load_job(&args.setup, &args.program)?;
     let tools = defined_tools(&job)?;
+    crate::commands::tools::check_resolution(tools, args.resolution)?;
     let program = &job.program;
     let range = match &args.moves {
         Some(m) => parse_moves(m, program.moves.len())?,
