@@ -1,6 +1,7 @@
 //! Stock from a closed triangle mesh (an STL part or casting): every ray of the three families
 //! is cast against the mesh through parry's BVH, **all** crossings along it are collected and
-//! paired into intervals by parity.
+//! the material is where the shells' crossings, counted by their orientation, do not cancel:
+//! the union of the mesh's bodies ([`axis_line_intervals`]).
 //!
 //! Rays parallel to the axes pass through mesh vertices and edges often (meshes have round
 //! coordinates too); each cast is therefore made at the ray's position nudged by a tiny fixed
@@ -26,7 +27,8 @@ pub const NUDGE: [(f64, f64); 3] = [
 /// How to treat meshes.
 #[derive(Clone, Copy, Debug, Default, PartialEq, serde::Serialize)]
 pub struct MeshOptions {
-    /// Build even when the mesh is not closed (rays pair their crossings by parity anyway).
+    /// Build even when the mesh is not closed (a ray whose crossings do not balance pairs them
+    /// by parity).
     pub allow_open: bool,
 }
 
@@ -125,16 +127,22 @@ impl TriDexel {
 
 /// Pushes onto `out` the intervals of the closed mesh's solid along the line parallel to axis
 /// `k` through cross coordinates `(u, v)` (along `(k+1)%3` and `(k+2)%3`): every crossing
-/// found through the BVH, paired by parity, the line nudged by [`NUDGE`] times `cell` (the
-/// grid's cell sizes along the cross axes) and nudged again while the count is odd. `hits`
-/// is scratch space.
+/// found through the BVH, the line nudged by [`NUDGE`] times `cell` (the grid's cell sizes
+/// along the cross axes) and nudged again while the count is odd. `hits` is scratch space.
+///
+/// The solid is the **union** of the mesh's bodies: each crossing counts +1 where the line
+/// enters a shell and −1 where it leaves it (by its triangle's orientation), and the material
+/// is where the count is not zero — bodies that overlap or nest (a multi-body export) are one
+/// solid, not their parity (which made an overlap a void). Either orientation of the whole mesh
+/// serves. Where the orientations along the line are inconsistent (a flipped triangle: the
+/// count does not come back to zero, or changes sign), the crossings are paired by parity.
 pub fn axis_line_intervals(
     mesh: &TriMesh,
     k: usize,
     u: f64,
     v: f64,
     cell: (f64, f64),
-    hits: &mut Vec<f64>,
+    hits: &mut Vec<(f64, i32)>,
     out: &mut crate::Dexel,
 ) {
     let (ku, kv) = ((k + 1) % 3, (k + 2) % 3);
@@ -155,12 +163,35 @@ pub fn axis_line_intervals(
             break;
         }
     }
-    hits.sort_by(f64::total_cmp);
-    for pair in hits.chunks_exact(2) {
-        if pair[1] > pair[0] {
+    // At equal positions entries first: bodies that touch make one interval.
+    hits.sort_by(|a, b| a.0.total_cmp(&b.0).then(b.1.cmp(&a.1)));
+    let (mut w, mut pos, mut neg) = (0i32, false, false);
+    for &(_, s) in hits.iter() {
+        w += s;
+        pos |= w > 0;
+        neg |= w < 0;
+    }
+    if w != 0 || (pos && neg) {
+        for pair in hits.chunks_exact(2) {
+            if pair[1].0 > pair[0].0 {
+                out.push(Interval {
+                    enter: pair[0].0,
+                    exit: pair[1].0,
+                });
+            }
+        }
+        return;
+    }
+    let mut start = 0.0;
+    for &(t, s) in hits.iter() {
+        let before = w;
+        w += s;
+        if before == 0 {
+            start = t;
+        } else if w == 0 && t > start {
             out.push(Interval {
-                enter: pair[0],
-                exit: pair[1],
+                enter: start,
+                exit: t,
             });
         }
     }
@@ -169,7 +200,7 @@ pub fn axis_line_intervals(
 /// Where the line along axis `k` through cross coordinates `(pu, pv)` crosses triangle `t`
 /// (strictly inside its projection; the nudge keeps the line off edges), as the coordinate
 /// along `k`.
-fn axis_line_triangle(k: usize, pu: f64, pv: f64, t: &[Vec3; 3]) -> Option<f64> {
+fn axis_line_triangle(k: usize, pu: f64, pv: f64, t: &[Vec3; 3]) -> Option<(f64, i32)> {
     let (ku, kv) = ((k + 1) % 3, (k + 2) % 3);
     let p2 = |p: Vec3| (p[ku] - pu, p[kv] - pv);
     let (a, b, c) = (p2(t[0]), p2(t[1]), p2(t[2]));
@@ -181,7 +212,11 @@ fn axis_line_triangle(k: usize, pu: f64, pv: f64, t: &[Vec3; 3]) -> Option<f64> 
         return None;
     }
     let sum = wa + wb + wc;
-    Some((wa * t[0][k] + wb * t[1][k] + wc * t[2][k]) / sum)
+    // `sum` is twice the triangle's area projected across the line, signed as its normal's
+    // component along +k ((k, ku, kv) is right-handed): positive where an outward-facing
+    // triangle lets the line out.
+    let side = if pos { -1 } else { 1 };
+    Some(((wa * t[0][k] + wb * t[1][k] + wc * t[2][k]) / sum, side))
 }
 
 #[cfg(test)]
@@ -204,6 +239,43 @@ mod tests {
         for v in s.volumes() {
             assert!((v - 240.0).abs() < 1e-9, "{v}");
         }
+    }
+
+    /// Bodies that overlap or nest are one solid (their union), whichever way the mesh is
+    /// oriented; a flipped triangle falls back to parity along the rays it crosses.
+    #[test]
+    fn overlapping_and_nested_bodies_are_their_union() {
+        let v = |tris: &[[Vec3; 3]]| {
+            TriDexel::from_triangles(tris, 0.5, MeshOptions::default())
+                .unwrap()
+                .volumes()
+        };
+        let close = |got: [f64; 3], want: f64| {
+            for g in got {
+                assert!((g - want).abs() < 1e-6, "{got:?} want {want}");
+            }
+        };
+        // 25·20·10 + 25·16·9 − 10·16·9 = 5000 + 3600 − 1440 (the overlap counted once).
+        let mut two = box_tris(Vec3::new(0.0, 0.0, -10.0), Vec3::new(25.0, 20.0, 0.0));
+        two.extend(box_tris(
+            Vec3::new(15.0, 2.0, -9.0),
+            Vec3::new(40.0, 18.0, 0.0),
+        ));
+        close(v(&two), 7160.0);
+        // Inside out: the same solid.
+        let flipped: Vec<[Vec3; 3]> = two.iter().map(|t| [t[0], t[2], t[1]]).collect();
+        close(v(&flipped), 7160.0);
+        // A box inside a box: the outer one (parity made the inner one a void).
+        let mut nested = box_tris(Vec3::new(0.0, 0.0, -10.0), Vec3::new(40.0, 20.0, 0.0));
+        nested.extend(box_tris(
+            Vec3::new(10.0, 5.0, -8.0),
+            Vec3::new(30.0, 15.0, -3.0),
+        ));
+        close(v(&nested), 8000.0);
+        // One flipped triangle of a single box: the rays through it pair by parity.
+        let mut one = box_tris(Vec3::ZERO, Vec3::new(10.0, 6.0, 4.0));
+        one[0] = [one[0][0], one[0][2], one[0][1]];
+        close(v(&one), 240.0);
     }
 
     #[test]
