@@ -105,6 +105,7 @@ fn clamp_interference_and_floor_gouge_are_found_located_and_measured() {
         "nodes",
         "tolerance_mm",
         "accuracy_mm",
+        "accuracy_relative",
         "motion_tolerance_mm",
         "elapsed_s",
     ] {

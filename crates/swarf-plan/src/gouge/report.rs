@@ -53,8 +53,11 @@ pub struct GougeSummary {
     pub nodes: u64,
     /// The reporting tolerance, mm.
     pub tolerance_mm: f64,
-    /// The certificate gap on depths, mm.
+    /// The certificate gap on depths, mm (or [`GougeSummary::accuracy_relative`] times the
+    /// depth, if larger).
     pub accuracy_mm: f64,
+    /// The certificate gap on depths relative to the depth (0.001: 0.1 %).
+    pub accuracy_relative: f64,
     /// Bound on the distance between true and checked motion, mm.
     pub motion_tolerance_mm: f64,
     /// Wall-clock time, s.
@@ -103,6 +106,7 @@ impl GougeReport {
             nodes: self.nodes,
             tolerance_mm: opts.tolerance,
             accuracy_mm: opts.accuracy,
+            accuracy_relative: opts.relative_accuracy,
             motion_tolerance_mm: opts.motion_tolerance,
             elapsed_s,
         }
