@@ -93,8 +93,10 @@ impl EngageOptions {
         if !(self.step_mm.is_finite() && self.step_mm >= 0.0) {
             return bad("step", self.step_mm, "a non-negative number of mm");
         }
-        if !(self.dz_mm.is_finite() && self.dz_mm > 1e-4) {
-            return bad("dz", self.dz_mm, "a number of mm above 0.0001");
+        // Discs coarser than a millimetre misplace the engaged height by their size (a 5 mm
+        // slot read 6.5 mm deep at 3 mm discs, nothing at 100), and forces and feeds with it.
+        if !(self.dz_mm.is_finite() && self.dz_mm > 1e-4 && self.dz_mm <= 1.0) {
+            return bad("dz", self.dz_mm, "a number of mm above 0.0001, at most 1");
         }
         if !(self.dphi_deg.is_finite() && self.dphi_deg >= 0.01 && self.dphi_deg <= 30.0) {
             return bad("dphi", self.dphi_deg, "between 0.01 and 30 degrees");

@@ -54,6 +54,7 @@ fn options_out_of_range_are_refused() {
     for opts in [
         EngageOptions::default().with_step(-1.0),
         EngageOptions::default().with_dz(0.0),
+        EngageOptions::default().with_dz(3.0),
         EngageOptions::default().with_dphi(f64::NAN),
         EngageOptions::default().with_chordal_tolerance(0.0),
     ] {

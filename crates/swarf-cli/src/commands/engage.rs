@@ -45,7 +45,7 @@ pub(crate) struct RunArgs {
     /// Cutter locations every STEP mm of tool-tip travel along a feed move (0: move ends only).
     #[arg(long, value_name = "MM", default_value_t = swarf_engage::DEFAULT_STEP_MM, allow_negative_numbers = true)]
     step: f64,
-    /// Height of the axial discs (and width of the bottom rings), mm.
+    /// Height of the axial discs (and width of the bottom rings), mm, at most 1.
     #[arg(long, value_name = "MM", default_value_t = swarf_engage::DEFAULT_DZ_MM, allow_negative_numbers = true)]
     dz: f64,
     /// Immersion-angle sampling, degrees.
