@@ -593,3 +593,27 @@ fn schedule_rewrites_a_heidenhain_program() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(json(&o)["max_force_n"].as_f64().unwrap() <= 606.0);
 }
+
+/// `--out` naming the program itself is refused before anything is computed or written: the
+/// source keeps its feeds.
+#[test]
+fn schedule_never_replaces_its_program() {
+    let d = dir("self");
+    let prog = write(&d, "slot.ngc", SLOT);
+    let mat = write(&d, "al.toml", MATERIAL);
+    let same = format!("{}/./slot.ngc", d.display());
+    let o = schedule(
+        &prog,
+        "flat:d=10,flutes=4,helix=30",
+        &mat,
+        &same,
+        &["--limit-force", "300"],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("is the program itself"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(std::fs::read_to_string(&prog).unwrap(), SLOT);
+}

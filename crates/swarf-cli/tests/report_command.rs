@@ -609,3 +609,37 @@ fn simulate_and_gouge_pages_load_in_a_real_browser_and_draw() {
         );
     }
 }
+
+/// `swarf report --from D --out D/summary.json` would write the page over a result the report
+/// reads: refused, the summary kept; an .html name beside it is written.
+#[test]
+fn the_page_never_replaces_a_result() {
+    let (_, _, _, dir) = report("no-overwrite");
+    let out = dir.join("out");
+    let summary = out.join("summary.json");
+    let before = std::fs::read_to_string(&summary).unwrap();
+    let o = swarf(&[
+        "report",
+        "--from",
+        out.to_str().unwrap(),
+        "--out",
+        summary.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("would replace one of the results"),
+        "{}",
+        stderr(&o)
+    );
+    assert_eq!(std::fs::read_to_string(&summary).unwrap(), before);
+    let page = out.join("again.html");
+    let o = swarf(&[
+        "report",
+        "--from",
+        out.to_str().unwrap(),
+        "--out",
+        page.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(page.is_file());
+}

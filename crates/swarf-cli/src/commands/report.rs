@@ -132,6 +132,32 @@ pub(crate) fn run(args: &ReportArgs) -> Result<()> {
         .out
         .clone()
         .unwrap_or_else(|| args.from.join("report.html"));
+    // The page goes beside the results, never over one of them (`--out D/summary.json` left
+    // a folder that could not be reported again).
+    if let (Ok(dir), Some(Ok(parent))) = (
+        args.from.canonicalize(),
+        out.parent()
+            .map(|p| {
+                if p.as_os_str().is_empty() {
+                    std::path::Path::new(".")
+                } else {
+                    p
+                }
+            })
+            .map(std::path::Path::canonicalize),
+    ) {
+        let html = out
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"));
+        if parent.starts_with(&dir) && out.exists() && !html {
+            anyhow::bail!(
+                "--out {} would replace one of the results in {}: give an .html file",
+                out.display(),
+                args.from.display()
+            );
+        }
+    }
     write(&page, &out)?;
     say!("{}", out.display());
     Ok(())

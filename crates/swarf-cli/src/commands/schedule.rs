@@ -152,6 +152,15 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
     }
     let material = args.material.load()?;
     let file = args.run.program()?.to_path_buf();
+    // The scheduled program never replaces its source (its old feeds would be lost with it).
+    if let (Ok(a), Ok(b)) = (file.canonicalize(), args.out.canonicalize()) {
+        if a == b {
+            bail!(
+                "--out {} is the program itself: write the scheduled program to another file",
+                args.out.display()
+            );
+        }
+    }
     let text = swarf_path::load::read_text(&file)?;
     let format = ProgramFormat::detect(&file, &text);
     let mut run = args.run.prepare()?;
