@@ -43,7 +43,7 @@ mod tests {
     fn a_tolerance_below_the_radius_s_rounding_is_capped() {
         for tol in [1e-300, 1e-17, 0.0] {
             let n = arc_chords(10.0, 4.0 * std::f64::consts::PI, tol);
-            assert!(n >= 4 && n <= MAX_CHORDS + 1, "{tol}: {n}");
+            assert!((4..=MAX_CHORDS + 1).contains(&n), "{tol}: {n}");
         }
         assert_eq!(arc_chords(10.0, 1.0, 1e-300), MAX_CHORDS + 1);
     }
