@@ -161,6 +161,10 @@ pub(crate) fn output_set(dir: &Path, max_output_mb: u64) -> Result<swarf_io::Out
 /// the folder is removed whatever happens.
 pub(crate) struct Staging {
     path: std::path::PathBuf,
+    /// Plots and files of the command's own, removed at the commit where this run did not
+    /// write them ([`swarf_io::OutputSet::owns_files`], [`swarf_io::OutputSet::owns_file`]).
+    owned_plots: Vec<(&'static str, &'static [&'static str])>,
+    owned_files: Vec<&'static str>,
 }
 
 impl Staging {
@@ -176,7 +180,21 @@ impl Staging {
         let path = parent.join(format!(".{name}.swarf-staging-{}", std::process::id()));
         let _ = std::fs::remove_dir_all(&path);
         std::fs::create_dir_all(&path).with_context(|| format!("creating {}", path.display()))?;
-        Ok(Self { path })
+        Ok(Self {
+            path,
+            owned_plots: Vec::new(),
+            owned_files: Vec::new(),
+        })
+    }
+
+    /// PNG files of subfolder `rel` named with one of `prefixes` are the command's own.
+    pub(crate) fn owns_plots(&mut self, rel: &'static str, prefixes: &'static [&'static str]) {
+        self.owned_plots.push((rel, prefixes));
+    }
+
+    /// File `rel` is the command's own.
+    pub(crate) fn owns_file(&mut self, rel: &'static str) {
+        self.owned_files.push(rel);
     }
 
     /// The staging folder.
@@ -188,6 +206,12 @@ impl Staging {
     /// against `max_output_mb`).
     pub(crate) fn commit(self, dir: &Path, max_output_mb: u64) -> Result<()> {
         let mut set = output_set(dir, max_output_mb)?;
+        for &(rel, prefixes) in &self.owned_plots {
+            set.owns_files(rel, prefixes);
+        }
+        for rel in &self.owned_files {
+            set.owns_file(rel);
+        }
         let mut stack = vec![self.path.clone()];
         while let Some(d) = stack.pop() {
             for e in std::fs::read_dir(&d).with_context(|| format!("reading {}", d.display()))? {

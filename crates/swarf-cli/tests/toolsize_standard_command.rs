@@ -63,3 +63,49 @@ fn standard_cutters_inside_the_step_sphere() {
     assert!(dir.join("part.glb").is_file());
     std::fs::remove_dir_all(&dir).unwrap();
 }
+
+/// A folder reused without `--standard` keeps this run's results only: the earlier run's
+/// `standard.json` and standard-cutter maps are removed, a map of a patch this run does not
+/// have is removed, the user's own files stay.
+#[test]
+fn a_reused_folder_holds_this_run_s_results_only() {
+    let sphere = sphere_step(&temp_dir("toolsize-reuse-sphere"), 5.0);
+    let dir = temp_dir("toolsize-reuse");
+    let run = |standard: bool| {
+        let mut args = vec![
+            "toolsize",
+            "--surface",
+            &sphere,
+            "--cutter",
+            "ball",
+            "--flip",
+            "--grid",
+            "5",
+            "--out",
+            dir.to_str().unwrap(),
+        ];
+        if standard {
+            args.extend(["--standard", "10,6"]);
+        }
+        let o = swarf(&args);
+        assert!(o.status.success(), "{}", stderr(&o));
+    };
+    run(true);
+    assert!(dir.join("standard.json").is_file());
+    let maps = dir.join("maps");
+    std::fs::write(maps.join("patch_gone.png"), b"old").unwrap();
+    std::fs::write(maps.join("mine.png"), b"user").unwrap();
+    run(false);
+    assert!(!dir.join("standard.json").exists());
+    let names: Vec<String> = std::fs::read_dir(&maps)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    assert!(
+        names.iter().all(|n| !n.starts_with("standard_patch_")),
+        "{names:?}"
+    );
+    assert!(!names.contains(&"patch_gone.png".to_string()), "{names:?}");
+    assert!(names.contains(&"mine.png".to_string()), "{names:?}");
+    assert!(names.iter().any(|n| n.starts_with("patch_")), "{names:?}");
+}

@@ -80,6 +80,8 @@ pub struct OutputSet {
     /// Subfolders and the name prefixes of the files in them that are this command's (see
     /// [`OutputSet::owns_files`]).
     owned: Vec<(PathBuf, &'static [&'static str])>,
+    /// Files of the command's own ([`OutputSet::owns_file`]).
+    owned_files: Vec<PathBuf>,
     /// Set when the set is to stop (see [`OutputSet::stop_when`]).
     stop: Option<&'static AtomicBool>,
 }
@@ -101,6 +103,7 @@ impl OutputSet {
             max_bytes,
             staged: Vec::new(),
             owned: Vec::new(),
+            owned_files: Vec::new(),
             stop: None,
         })
     }
@@ -129,6 +132,13 @@ impl OutputSet {
     /// left.
     pub fn owns_files(&mut self, rel: &str, prefixes: &'static [&'static str]) {
         self.owned.push((self.dir.join(rel), prefixes));
+    }
+
+    /// Declares file `rel` (of the set's folder, any kind) the command's own: at the commit it
+    /// is removed if the set did not write it (a result this run does not make, such as
+    /// `standard.json` without `--standard`, would otherwise outlive the run that made it).
+    pub fn owns_file(&mut self, rel: &str) {
+        self.owned_files.push(self.dir.join(rel));
     }
 
     /// The folder the files go to.
@@ -276,6 +286,11 @@ impl OutputSet {
         } else {
             for (backup, _) in &aside {
                 let _ = std::fs::remove_file(backup);
+            }
+            for path in &self.owned_files {
+                if path.is_file() && !placed.contains(path) {
+                    let _ = std::fs::remove_file(path);
+                }
             }
             for (folder, prefixes) in &self.owned {
                 let Ok(entries) = std::fs::read_dir(folder) else {

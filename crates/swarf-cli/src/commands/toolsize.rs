@@ -177,7 +177,10 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
     let map = swarf_plan::size::allowable_map_prepared(&surface, &prep, &family, &ccs, &opts);
     // The library writes maps and meshes to paths: into a staging folder, moved into --out as
     // one set at the end (all of the files, or none).
-    let stage = crate::output::Staging::for_dir(&args.out)?;
+    let mut stage = crate::output::Staging::for_dir(&args.out)?;
+    // A folder reused from another run keeps this run's maps and results only.
+    stage.owns_plots("maps", &["patch_", "standard_patch_"]);
+    stage.owns_file("standard.json");
     let mut csv = Vec::new();
     match &standard {
         Some(c) => c.write_csv(&map, &surface, &mut csv),
