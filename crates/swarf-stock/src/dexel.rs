@@ -206,6 +206,10 @@ pub(crate) fn subtract_with<E: EndStore, F: FnMut(Interval)>(
         removed_piece(right);
     }
     let (keep_left, keep_right) = (l == Side::Keep, r == Side::Keep);
+    // An end the cut moved by no more than a sliver keeps the move that made it: a later
+    // pass along the same wall (a retract up the tool's own cut) recomputes it a rounding
+    // away, and was credited with cutting it.
+    let moved = |from: f64, to: f64| (from - to).abs() > MIN_INTERVAL_MM;
     let mut w = i;
     if keep_left {
         d[w] = left;
@@ -213,14 +217,22 @@ pub(crate) fn subtract_with<E: EndStore, F: FnMut(Interval)>(
             w,
             EndTags {
                 enter: first_ends.enter,
-                exit: tag,
+                exit: if moved(first.exit, lo) {
+                    tag
+                } else {
+                    first_ends.exit
+                },
             },
         );
         w += 1;
     }
     if keep_right {
         let right_ends = EndTags {
-            enter: tag,
+            enter: if moved(last.enter, hi) {
+                tag
+            } else {
+                last_ends.enter
+            },
             exit: last_ends.exit,
         };
         if w < k {
@@ -247,6 +259,41 @@ mod tests {
 
     fn iv(a: f64, b: f64) -> Interval {
         Interval { enter: a, exit: b }
+    }
+
+    /// A cut that moves an end by no more than a sliver (a retract up the wall its own move
+    /// cut, recomputed a rounding away) leaves the end's tag to the move that made it; one that
+    /// moves it further takes it.
+    #[test]
+    fn an_end_moved_by_a_rounding_keeps_its_tag() {
+        let mut d: Dexel = smallvec![iv(0.0, 10.0)];
+        let mut t: DexelTags = smallvec![EndTags::UNCUT];
+        subtract_with(&mut d, &mut t, 5.0, 20.0, 1, |_| {});
+        subtract_with(&mut d, &mut t, 5.0 - 1e-12, 20.0, 2, |_| {});
+        assert_eq!(d[0].exit, 5.0 - 1e-12);
+        assert_eq!(
+            t[0],
+            EndTags {
+                enter: UNCUT,
+                exit: 1
+            }
+        );
+        subtract_with(&mut d, &mut t, -5.0, 1e-12, 3, |_| {});
+        assert_eq!(
+            t[0],
+            EndTags {
+                enter: UNCUT,
+                exit: 1
+            }
+        );
+        subtract_with(&mut d, &mut t, 4.0, 20.0, 4, |_| {});
+        assert_eq!(
+            t[0],
+            EndTags {
+                enter: UNCUT,
+                exit: 4
+            }
+        );
     }
 
     /// The one-interval shortcut of `subtract` cuts exactly as the general `subtract_with`:
