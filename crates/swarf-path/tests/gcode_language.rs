@@ -1267,3 +1267,53 @@ fn absolute_centres_messages_after_assignments_and_inch_pecks() {
         assert!((z - want * 25.4).abs() < 1e-9, "feed {k}: {z}");
     }
 }
+
+/// A G87 repeated on a new hole without I J K keeps the last ones (LinuxCNC's `cycle_i/j/k`);
+/// LinuxCNC's G86 and G88 need their dwell P where the cycle starts (a Fanuc G86 has none).
+#[test]
+fn back_boring_repeats_and_boring_dwells() {
+    let rec = run(
+        "G21 G17 G90 F100 S1000 M3\nG0 X0 Y0 Z10\nG98 G87 X5 Y0 R2 Z-8 I1 J0 K-5\nX10\nG80\nM2\n",
+    );
+    // Each hole: two feeds, up to K then down to the bottom, at the hole's X.
+    let feeds: Vec<[f64; 3]> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Feed { end } => Some([end.x, end.y, end.z]),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        feeds,
+        [
+            [5.0, 0.0, -5.0],
+            [5.0, 0.0, -8.0],
+            [10.0, 0.0, -5.0],
+            [10.0, 0.0, -8.0]
+        ]
+    );
+    let e = err("G21 F100 S500 M3\nG0 Z5\nG86 X1 Y1 R2 Z-5\nM2\n");
+    assert_eq!((e.pos.line, e.pos.column), (3, 1), "{e}");
+    assert!(e.message.contains("dwell time P missing"), "{e}");
+    run("G21 F100 S500 M3\nG0 Z5\nG88 X1 Y1 R2 Z-5 P0.5\nX2\nG80\nM2\n");
+}
+
+/// G43.1 takes the offset along every axis given (a lathe's `G43.1 X Z`) and keeps the
+/// others: `G43.1 X1` from X5 puts the program's X at 4; a later `G43.1 Z2` keeps that X.
+#[test]
+fn dynamic_offsets_per_axis() {
+    let rec =
+        run("G21\nG0 X5 Z5\nG43.1 X1\n(DEBUG,#5420 #5422)\nG43.1 Z2\n(DEBUG,#5420 #5422)\nM2\n");
+    let msgs: Vec<String> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Message { text, .. } => Some(text.to_string()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(msgs, ["4.000000 5.000000", "4.000000 3.000000"]);
+    let e = err("G21\nG43.1\nM2\n");
+    assert!(e.message.contains("G43.1 needs an axis word"), "{e}");
+}

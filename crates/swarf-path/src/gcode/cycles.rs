@@ -192,14 +192,15 @@ impl Interp<'_, '_> {
                 "an F word",
             ));
         }
-        let dwell = if matches!(motion, 740 | 840 | 860 | 880) {
+        // LinuxCNC asks G86 and G88 for their dwell as G82 and G89 (a Fanuc G86 has none).
+        let dwell = if matches!(motion, 740 | 840) || (self.fanuc && matches!(motion, 860 | 880)) {
             match b.get(b'p') {
                 Some(p) if p >= 0.0 => self.dwell_seconds(b, b'p', p),
                 Some(_) => return Err(Fault::semantic(b.span(b'p'), "negative dwell time")),
                 None if same => self.cycle.p,
                 None => 0.0,
             }
-        } else if matches!(motion, 820 | 890) {
+        } else if matches!(motion, 820 | 890 | 860 | 880) {
             match b.get(b'p') {
                 Some(p) if p >= 0.0 => self.dwell_seconds(b, b'p', p),
                 Some(_) => return Err(Fault::semantic(b.span(b'p'), "negative dwell time")),
@@ -242,23 +243,30 @@ impl Interp<'_, '_> {
         } else {
             0.0
         };
+        let mut back_bore_words = self.cycle.back_bore;
         let (back_bore_offset, back_bore_k) = if motion == 870 {
             let off = [b'i', b'j', b'k'];
             let (oi, oj, ok) = (off[fi], off[si], off[ni]);
-            let need = |c: u8| {
-                b.get(c).map(|v| v * self.scale).ok_or_else(|| {
-                    Fault::new(
-                        PathErrorKind::Semantic,
-                        gspan,
-                        format!(
-                            "{} word missing in G87 back boring",
-                            (c as char).to_ascii_uppercase()
-                        ),
-                        "I, J (the offset to pass the hole) and K (the back bore's level)",
-                    )
-                })
+            // A G87 repeated without them keeps the last I J K (LinuxCNC's `cycle_i/j/k`).
+            let need = |c: u8, kept: f64| {
+                b.get(c)
+                    .map(|v| v * self.scale)
+                    .or(same.then_some(kept))
+                    .ok_or_else(|| {
+                        Fault::new(
+                            PathErrorKind::Semantic,
+                            gspan,
+                            format!(
+                                "{} word missing in G87 back boring",
+                                (c as char).to_ascii_uppercase()
+                            ),
+                            "I, J (the offset to pass the hole) and K (the back bore's level)",
+                        )
+                    })
             };
-            let (i, j, k) = (need(oi)?, need(oj)?, need(ok)?);
+            let kept = self.cycle.back_bore;
+            let (i, j, k) = (need(oi, kept[0])?, need(oj, kept[1])?, need(ok, kept[2])?);
+            back_bore_words = [i, j, k];
             let k = if self.absolute { k } else { self.p[ni] + k };
             (Some((i, j)), k)
         } else {
@@ -428,6 +436,7 @@ impl Interp<'_, '_> {
             cc: cc_word,
             p: dwell,
             q: delta,
+            back_bore: back_bore_words,
         };
         Ok(())
     }

@@ -69,6 +69,8 @@ pub(crate) struct CycleMemory {
     pub(crate) p: f64,
     /// Peck increment, mm.
     pub(crate) q: f64,
+    /// G87's I, J and K words as given (along the plane's axes and its normal), mm.
+    pub(crate) back_bore: [f64; 3],
 }
 
 /// Modes that change no motion, kept for LinuxCNC's predefined named parameters.
@@ -1181,18 +1183,23 @@ impl<'t, 's> Interp<'t, 's> {
                 self.emit(Canon::ToolLengthOffset(t[2]));
             }
             Some(431) => {
-                // G43.1: the offset is given along the tool axis (Z).
-                let z = b.get(b'z').ok_or_else(|| {
-                    Fault::new(
+                // G43.1: the offset along each axis given (Z for a mill; X and Z on a lathe),
+                // the others kept as they are (LinuxCNC starts from the offset in effect).
+                if !AXIS_LETTERS.iter().any(|&c| b.has(c)) {
+                    return Err(Fault::new(
                         PathErrorKind::Semantic,
                         b.g_span(group::TOOL_LENGTH),
-                        "G43.1 needs a Z word",
-                        "Z<offset>",
-                    )
-                })?;
+                        "G43.1 needs an axis word",
+                        "Z<offset> (or X Y A B C)",
+                    ));
+                }
                 axes_used_by_nonmotion = true;
-                let mut t = [0.0; 6];
-                t[2] = z * self.scale;
+                let mut t = self.tlo;
+                for (i, &c) in AXIS_LETTERS.iter().enumerate() {
+                    if let Some(v) = b.get(c) {
+                        t[i] = if i < 3 { v * self.scale } else { v };
+                    }
+                }
                 self.read_only.tlo_on = true;
                 self.set_tlo(t);
                 self.emit(Canon::ToolLengthOffset(t[2]));
