@@ -689,3 +689,30 @@ fn an_arc_below_its_rounding_is_refused_not_hung() {
         assert!(!e.contains("panicked"), "{e}");
     }
 }
+
+/// A tool nothing defines is named with the line where it first moves.
+#[test]
+fn an_undefined_tool_is_named_with_its_line() {
+    let dir = temp_dir("simulate-undefined-tool");
+    let prog = dir.join("ut.ngc");
+    std::fs::write(&prog, "G21 G90\nT5 M6\nG0 X0 Y0 Z5\nG1 Z-1 F100\nM30\n").unwrap();
+    let table = dir.join("tools.tbl");
+    std::fs::write(&table, "T1 P1 D6 ;flat\n").unwrap();
+    let o = swarf(&[
+        "simulate",
+        "--stock",
+        "box:-10,-10,-5,10,10,0",
+        "--program",
+        prog.to_str().unwrap(),
+        "--tools",
+        table.to_str().unwrap(),
+        "--resolution",
+        "0.5",
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("ut.ngc:3: the program uses tool 5, which nothing defines"),
+        "{e}"
+    );
+}

@@ -46,7 +46,31 @@ pub(crate) fn load_job(setup: &SetupArgs, program: &Path) -> Result<Job> {
 /// The tools of `job`, every one the program uses required to be defined: the error says how
 /// to define the first one missing.
 pub(crate) fn defined_tools(job: &Job) -> Result<&ToolSet> {
-    require_defined(&job.undefined_tools)?;
+    if let Some(&n) = job.undefined_tools.first() {
+        // Where the tool first moves: the line to look at (a rapid before the first tool
+        // change moves tool 0).
+        let p = &job.program;
+        let at = p
+            .moves
+            .iter()
+            .find(|m| m.tool == n)
+            .map(|m| {
+                let file = p.files.get(usize::from(m.file)).map_or("", String::as_str);
+                format!("{file}:{}: ", m.line)
+            })
+            .unwrap_or_default();
+        if n == 0 {
+            anyhow::bail!(
+                "{at}the program moves before it loads a tool (tool 0), which nothing defines: \
+                 give --tool SPEC (the cutter of every tool, tool 0 too), or --tools FILE with a \
+                 tool 0 (the spindle's cutter at the start)"
+            );
+        }
+        anyhow::bail!(
+            "{at}the program uses tool {n}, which nothing defines: give --tool SPEC for every \
+             tool, or --tools FILE with tool {n}"
+        );
+    }
     Ok(&job.tools)
 }
 
@@ -77,16 +101,6 @@ pub(crate) fn check_resolution(tools: &ToolSet, h: f64) -> Result<()> {
         eprintln!(
             "note: --resolution {h} mm is coarse for the smallest cutter (Ø{d} mm): volumes and \
              walls are resolved to about a ray spacing"
-        );
-    }
-    Ok(())
-}
-
-fn require_defined(undefined: &[u32]) -> Result<()> {
-    if let Some(n) = undefined.first() {
-        anyhow::bail!(
-            "the program uses tool {n}, which nothing defines: give --tool SPEC for every tool, \
-             or --tools FILE with tool {n}"
         );
     }
     Ok(())
