@@ -52,10 +52,17 @@ pub enum StockError {
         limit: u64,
     },
     /// The mesh has boundary edges (it is not closed).
-    #[error("the mesh is not closed: {count} open edge(s), e.g. {examples}")]
+    #[error(
+        "the mesh is not closed: {open} open edge(s), {non_manifold} non-manifold edge(s), e.g. \
+         {examples}"
+    )]
     OpenMesh {
-        /// Number of edges used by only one triangle (or more than two).
+        /// Number of edges used by only one triangle or more than two.
         count: usize,
+        /// Edges used by one triangle.
+        open: usize,
+        /// Edges used by more than two triangles.
+        non_manifold: usize,
         /// The first few edges' end points, as text.
         examples: String,
     },

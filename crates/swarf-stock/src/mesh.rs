@@ -95,6 +95,8 @@ impl TriDexel {
                 .join(", ");
             return Err(StockError::OpenMesh {
                 count: report.boundary_count(),
+                open: report.open,
+                non_manifold: report.non_manifold,
                 examples,
             });
         }
@@ -313,6 +315,20 @@ mod tests {
         let e = TriDexel::from_triangles(&t, 0.1, MeshOptions::default()).unwrap_err();
         let msg = e.to_string();
         assert!(matches!(e, StockError::OpenMesh { count: 3, .. }), "{msg}");
+        assert!(
+            msg.contains("3 open edge(s), 0 non-manifold edge(s)"),
+            "{msg}"
+        );
+        // An edge shared by four triangles (a box's copy along one edge): non-manifold, not open.
+        let mut t = box_tris(Vec3::ZERO, Vec3::ONE);
+        t.extend(box_tris(Vec3::new(1.0, 1.0, 0.0), Vec3::new(2.0, 2.0, 1.0)));
+        let msg = TriDexel::from_triangles(&t, 0.1, MeshOptions::default())
+            .unwrap_err()
+            .to_string();
+        assert!(
+            msg.contains("0 open edge(s), 1 non-manifold edge(s)"),
+            "{msg}"
+        );
         assert!(
             msg.contains("(1, 0, 1)") || msg.contains("(0, 1, 1)") || msg.contains("(1, 1, 1)"),
             "{msg}"
