@@ -616,7 +616,7 @@ impl Reader<'_, '_> {
                     ));
                 }
                 let axis = self.vector(Vec3::new(v[3], v[4], v[5]));
-                let Some(axis) = axis.try_normalize() else {
+                let Some(axis) = unit(axis) else {
                     return Err(self.error(
                         rec,
                         fields[3].off,
@@ -688,7 +688,7 @@ impl Reader<'_, '_> {
             }
             "TLAXIS" => match self.numbers(rec, &fields, "TLAXIS/") {
                 Ok(v) if v.len() == 3 => {
-                    let Some(a) = self.vector(Vec3::new(v[0], v[1], v[2])).try_normalize() else {
+                    let Some(a) = unit(self.vector(Vec3::new(v[0], v[1], v[2]))) else {
                         return Err(self.error(
                             rec,
                             minor_off,
@@ -940,7 +940,7 @@ impl Reader<'_, '_> {
         } else {
             self.axis
         };
-        let Some(axis) = axis.try_normalize() else {
+        let Some(axis) = unit(axis) else {
             return Err(bad(self, cf[3].off, "the circle's axis is zero"));
         };
         let radius = c[c.len() - 1] * self.scale;
@@ -1068,7 +1068,7 @@ impl Reader<'_, '_> {
         self.check_range(rec, fields, &v[..3], p, what)?;
         let axis = if v.len() >= 6 {
             let a = self.vector(Vec3::new(v[3], v[4], v[5]));
-            match a.try_normalize() {
+            match unit(a) {
                 Some(a) => Some(a),
                 None => {
                     return Err(self.error(
@@ -1422,4 +1422,15 @@ fn text_record(text: &str) -> Option<usize> {
         .iter()
         .any(|w| rest[..end].eq_ignore_ascii_case(w))
         .then_some(lead + end)
+}
+
+/// `v` made unit, scaled first by its largest component: a vector written with huge
+/// components (`0,0,1e155`) is a direction, whose squared length would overflow. `None` for
+/// a zero or non-finite vector.
+fn unit(v: Vec3) -> Option<Vec3> {
+    let m = v.abs().max_element();
+    if !(m > 0.0 && m.is_finite()) {
+        return None;
+    }
+    (v / m).try_normalize()
 }

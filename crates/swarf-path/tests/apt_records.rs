@@ -490,7 +490,9 @@ fn free_text_records_and_tlaxis() {
         ]
     );
     let mut rec = Recorder::default();
-    let text = "FROM/0,0,10\nTLAXIS/ 0.6, 0.0, 0.8\nGOTO/1,0,10\nGOTO/2,0,10,0,0,1\n";
+    // (A direction written with huge components is a direction: its squared length would
+    // overflow, and it read as a zero axis.)
+    let text = "FROM/0,0,10\nTLAXIS/ 0.6, 0.0, 0.8\nGOTO/1,0,10\nGOTO/2,0,10,0,0,1e155\n";
     read_apt(text, "t.apt", &AptOptions::default(), &mut rec).unwrap();
     let mut b = MoveBuilder::new(Machine::three_axis(), "t.apt");
     for (line, ev) in &rec.events {
