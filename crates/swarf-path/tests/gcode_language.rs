@@ -22,6 +22,17 @@ fn err(src: &str) -> PathError {
     run_with(src, &GcodeOptions::default()).expect_err("should fail")
 }
 
+/// The texts of the messages (`MSG`, `DEBUG`, `PRINT` comments), in order.
+fn message_texts(rec: &Recorder) -> Vec<String> {
+    rec.events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Message { text, .. } => Some(text.to_string()),
+            _ => None,
+        })
+        .collect()
+}
+
 /// The motion events only.
 fn motion(rec: &Recorder) -> Vec<OwnedCanon> {
     rec.events
@@ -1236,14 +1247,7 @@ fn absolute_centres_messages_after_assignments_and_inch_pecks() {
     assert_eq!(arc, [10.0, 10.0]);
     // `#1=5 (DEBUG,#1)`: 5, as LinuxCNC copies the line's assignments first.
     let rec = run("#1=5 (DEBUG,#1)\n#<_n>=2 (DEBUG,#<_n>)\nM2\n");
-    let msgs: Vec<String> = rec
-        .events
-        .iter()
-        .filter_map(|(_, e)| match e {
-            Canon::Message { text, .. } => Some(text.to_string()),
-            _ => None,
-        })
-        .collect();
+    let msgs = message_texts(&rec);
     assert_eq!(msgs, ["5.000000", "2.000000"]);
     // G83 R0.1 Z-0.6 Q0.05 in inches: pecks to -0.05 … -0.55 (13), then the bottom: 14
     // feeds, the last at -0.6 in (in mm the 14th peck landed a rounding above the bottom and
@@ -1305,14 +1309,7 @@ fn back_boring_repeats_and_boring_dwells() {
 fn dynamic_offsets_per_axis() {
     let rec =
         run("G21\nG0 X5 Z5\nG43.1 X1\n(DEBUG,#5420 #5422)\nG43.1 Z2\n(DEBUG,#5420 #5422)\nM2\n");
-    let msgs: Vec<String> = rec
-        .events
-        .iter()
-        .filter_map(|(_, e)| match e {
-            Canon::Message { text, .. } => Some(text.to_string()),
-            _ => None,
-        })
-        .collect();
+    let msgs = message_texts(&rec);
     assert_eq!(msgs, ["4.000000 5.000000", "4.000000 3.000000"]);
     let e = err("G21\nG43.1\nM2\n");
     assert!(e.message.contains("G43.1 needs an axis word"), "{e}");
