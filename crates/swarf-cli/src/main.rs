@@ -87,6 +87,11 @@ fn main() {
         Command::Demo(args) => commands::demo::run(&args),
         Command::Report(args) => commands::report::run(&args),
     };
+    // Text the run could not print (a full disk) is its result lost: a failure.
+    let result = result.and_then(|()| match output::stdout_failure() {
+        Some(e) => Err(anyhow::anyhow!("writing to stdout: {e}")),
+        None => Ok(()),
+    });
     if let Err(e) = result {
         // A closed pipe (`swarf path x --json | head`) is the reader's choice, not an error.
         let broken_pipe = e.chain().any(|c| {

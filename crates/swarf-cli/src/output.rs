@@ -101,10 +101,13 @@ impl swarf_geom::Observer for MovesProgress {
 
 static STDOUT_GONE: AtomicBool = AtomicBool::new(false);
 
+static STDOUT_FAILED: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
+
 /// Writes one line of a command's text output on stdout (the [`say!`] macro). A reader that
 /// closed the pipe (`swarf path p.nc | head -3`) ends the printing, not the run: the later
 /// lines are dropped, the output files are still written and the exit status is the run's.
-/// (`println!` panics there.) Any other error writing stdout is told once on stderr.
+/// (`println!` panics there.) Any other error writing stdout (a full disk) ends the printing
+/// too, and the run then fails with it ([`stdout_failure`]).
 pub(crate) fn say_line(args: std::fmt::Arguments<'_>) {
     if STDOUT_GONE.load(Ordering::Relaxed) {
         return;
@@ -113,11 +116,17 @@ pub(crate) fn say_line(args: std::fmt::Arguments<'_>) {
     if let Err(e) = out.write_fmt(args).and_then(|()| out.write_all(b"\n")) {
         STDOUT_GONE.store(true, Ordering::Relaxed);
         if e.kind() != std::io::ErrorKind::BrokenPipe {
-            eprintln!(
-                "swarf: warning: writing to stdout: {e}; the rest of the text is not printed"
-            );
+            if let Ok(mut f) = STDOUT_FAILED.lock() {
+                *f = Some(e.to_string());
+            }
         }
     }
+}
+
+/// Why the text output could not be written, other than a closed pipe: the run's result is
+/// on stdout, so the run fails.
+pub(crate) fn stdout_failure() -> Option<String> {
+    STDOUT_FAILED.lock().ok().and_then(|f| f.clone())
 }
 
 /// `println!` for a command's text output, through [`say_line`].

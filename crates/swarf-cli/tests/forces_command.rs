@@ -611,9 +611,19 @@ fn schedule_never_replaces_its_program() {
     );
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(
-        stderr(&o).contains("is the program itself"),
+        stderr(&o).contains("is one of the run's inputs"),
         "{}",
         stderr(&o)
     );
     assert_eq!(std::fs::read_to_string(&prog).unwrap(), SLOT);
+    // Nor the coefficients it reads.
+    let o = schedule(
+        &prog,
+        "flat:d=10,flutes=4,helix=30",
+        &mat,
+        &mat,
+        &["--limit-force", "300"],
+    );
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert_eq!(std::fs::read_to_string(&mat).unwrap(), MATERIAL);
 }

@@ -327,3 +327,23 @@ fn a_tool_library_s_warnings_are_printed() {
     );
     assert!(err.contains("define no cutter"), "{err}");
 }
+
+/// Text that cannot be written for another reason than a closed pipe (a full disk) is the
+/// result lost: the run fails (it ended with success after a warning).
+#[test]
+fn a_full_stdout_fails_the_run() {
+    let full = std::path::Path::new("/dev/full");
+    if !full.exists() {
+        return;
+    }
+    let dir = temp_dir("path-full");
+    let prog = dir.join("p.nc");
+    std::fs::write(&prog, "G21 G90\nG0 X0 Y0 Z5\nG1 Z-1 F100\nM30\n").unwrap();
+    let o = std::process::Command::new(env!("CARGO_BIN_EXE_swarf"))
+        .args(["path", prog.to_str().unwrap()])
+        .stdout(std::fs::OpenOptions::new().write(true).open(full).unwrap())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("writing to stdout"), "{}", stderr(&o));
+}

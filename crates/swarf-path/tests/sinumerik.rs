@@ -516,7 +516,13 @@ fn post_settings_without_motion_are_read_past() {
     let p = read("ORIPATH\nG1 X5 F100\nORICONCW\nM30");
     assert_eq!(p.warnings.len(), 1, "{:?}", p.warnings);
     assert!(p.warnings[0].message.contains("great circle"));
-    for (src, word) in [("TRACYL(40)\n", "TRACYL"), ("G0 X1\nDIAMON\n", "DIAMON")] {
+    let p = read("CUT3DCC CUT3DCCD\nG1 X5 F100\nM30");
+    assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+    for (src, word) in [
+        ("TRACYL(40)\n", "TRACYL"),
+        ("G0 X1\nDIAMON\n", "DIAMON"),
+        ("DIAM90\n", "DIAM90"),
+    ] {
         let e = err(src);
         assert_eq!(e.kind, PathErrorKind::Unsupported, "{e}");
         assert!(e.message.starts_with(&format!("{word} is not read")), "{e}");

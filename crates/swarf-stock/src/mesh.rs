@@ -165,10 +165,11 @@ pub fn axis_line_intervals(
             break;
         }
     }
-    // At equal positions entries first: bodies that touch make one interval.
-    hits.sort_by(|a, b| a.0.total_cmp(&b.0).then(b.1.cmp(&a.1)));
+    // Crossings at one position count together: bodies that touch (a face shared, either
+    // orientation of the mesh) make one interval, not two that meet.
+    hits.sort_by(|a, b| a.0.total_cmp(&b.0));
     let (mut w, mut pos, mut neg) = (0i32, false, false);
-    for &(_, s) in hits.iter() {
+    for (_, s) in groups(hits) {
         w += s;
         pos |= w > 0;
         neg |= w < 0;
@@ -185,18 +186,34 @@ pub fn axis_line_intervals(
         return;
     }
     let mut start = 0.0;
-    for &(t, s) in hits.iter() {
+    for (t, s) in groups(hits) {
         let before = w;
         w += s;
-        if before == 0 {
+        if before == 0 && w != 0 {
             start = t;
-        } else if w == 0 && t > start {
+        } else if before != 0 && w == 0 && t > start {
             out.push(Interval {
                 enter: start,
                 exit: t,
             });
         }
     }
+}
+
+/// The crossings `hits` (sorted) with those at one position — within
+/// [`crate::dexel::MIN_INTERVAL_MM`], as two faces at one place are computed a rounding apart —
+/// counted together.
+fn groups(hits: &[(f64, i32)]) -> impl Iterator<Item = (f64, i32)> + '_ {
+    let mut i = 0;
+    std::iter::from_fn(move || {
+        let t = hits.get(i)?.0;
+        let mut s = 0;
+        while i < hits.len() && hits[i].0 - t <= crate::dexel::MIN_INTERVAL_MM {
+            s += hits[i].1;
+            i += 1;
+        }
+        Some((t, s))
+    })
 }
 
 /// Where the line along axis `k` through cross coordinates `(pu, pv)` crosses triangle `t`
@@ -274,6 +291,25 @@ mod tests {
             Vec3::new(30.0, 15.0, -3.0),
         ));
         close(v(&nested), 8000.0);
+        // Two boxes sharing a face, inside out: one interval a ray across the face, as with
+        // the mesh the right way out (entries and exits at the face count together).
+        let mut touch = box_tris(Vec3::ZERO, Vec3::new(10.0, 6.0, 4.0));
+        touch.extend(box_tris(
+            Vec3::new(10.0, 0.0, 0.0),
+            Vec3::new(20.0, 6.0, 4.0),
+        ));
+        for tris in [
+            touch.clone(),
+            touch.iter().map(|t| [t[0], t[2], t[1]]).collect::<Vec<_>>(),
+        ] {
+            // (The shared face's edges are non-manifold: allowed.)
+            let open = MeshOptions { allow_open: true };
+            let s = TriDexel::from_triangles(&tris, 0.5, open).unwrap();
+            let x = s.family(0);
+            let (nu, nv) = x.dims();
+            assert_eq!(x.interval_count(), nu * nv, "one interval on every X ray");
+            close(s.volumes(), 480.0);
+        }
         // One flipped triangle of a single box: the rays through it pair by parity.
         let mut one = box_tris(Vec3::ZERO, Vec3::new(10.0, 6.0, 4.0));
         one[0] = [one[0][0], one[0][2], one[0][1]];

@@ -78,6 +78,22 @@ impl RunArgs {
         }
     }
 
+    /// The files this run reads that an output must not replace: the program, the stock and
+    /// machine files, the tool library.
+    pub(crate) fn input_files(&self) -> Vec<PathBuf> {
+        let mut files: Vec<PathBuf> = self.program.iter().cloned().collect();
+        files.extend(self.setup.tools.iter().cloned());
+        for spec in [self.stock.as_deref(), Some(self.setup.machine.as_str())]
+            .into_iter()
+            .flatten()
+        {
+            if Path::new(spec).is_file() {
+                files.push(PathBuf::from(spec));
+            }
+        }
+        files
+    }
+
     /// Whether the program starts in inches (before its first G20/G21).
     pub(crate) fn initial_inch(&self) -> bool {
         matches!(self.setup.initial_units, crate::cli::TableUnits::Inch)

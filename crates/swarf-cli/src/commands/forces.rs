@@ -31,6 +31,11 @@ pub(crate) struct MaterialArgs {
 }
 
 impl MaterialArgs {
+    /// The coefficient file, if one is given.
+    pub(crate) fn file(&self) -> Option<&Path> {
+        self.coefficients.as_deref()
+    }
+
     pub(crate) fn load(&self) -> Result<Material> {
         match (&self.material, &self.coefficients) {
             (Some(name), None) => Ok(swarf_force::builtin_material(name)?),

@@ -152,13 +152,23 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
     }
     let material = args.material.load()?;
     let file = args.run.program()?.to_path_buf();
-    // The scheduled program never replaces its source (its old feeds would be lost with it).
-    if let (Ok(a), Ok(b)) = (file.canonicalize(), args.out.canonicalize()) {
-        if a == b {
-            bail!(
-                "--out {} is the program itself: write the scheduled program to another file",
-                args.out.display()
-            );
+    // The scheduled program never replaces what the run reads (the program's old feeds, the
+    // tool library, the coefficients would be lost with it).
+    if let Ok(out) = args.out.canonicalize() {
+        let inputs = args.run.input_files();
+        let inputs = inputs
+            .iter()
+            .map(PathBuf::as_path)
+            .chain(args.material.file());
+        for input in inputs {
+            if input.canonicalize().is_ok_and(|i| i == out) {
+                bail!(
+                    "--out {} is one of the run's inputs ({}): write the scheduled program to \
+                     another file",
+                    args.out.display(),
+                    input.display()
+                );
+            }
         }
     }
     let text = swarf_path::load::read_text(&file)?;

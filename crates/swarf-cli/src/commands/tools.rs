@@ -30,9 +30,18 @@ pub(crate) fn load_job_setup(setup: &SetupArgs) -> Result<JobSetup> {
 /// undefined, and the line says why.
 pub(crate) fn load_job_setup_with(setup: &SetupArgs, max_moves: u64) -> Result<JobSetup> {
     let job = JobSetup::load(&setup.job_options(max_moves)).map_err(job_error)?;
-    if let (Some(table), Some(path)) = (&job.table, &setup.tools) {
-        for w in &table.warnings {
-            eprintln!("swarf: warning: {}: {w}", path.display());
+    // (Each warning names the file and line itself; a long table's first few stand for the
+    // rest.)
+    if let Some(table) = &job.table {
+        const SHOWN: usize = 5;
+        for w in table.warnings.iter().take(SHOWN) {
+            eprintln!("swarf: warning: {w}");
+        }
+        if table.warnings.len() > SHOWN {
+            eprintln!(
+                "swarf: warning: … and {} more about the tool library",
+                table.warnings.len() - SHOWN
+            );
         }
     }
     Ok(job)

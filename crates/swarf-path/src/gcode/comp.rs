@@ -233,13 +233,11 @@ impl Interp<'_, '_> {
                 Some(d) => d as u32,
                 None => self.read_only.loaded_tool,
             };
-            // A Fanuc control's D registers are the control's own (the one cutter given
-            // for every tool is the simulation's, not a register's value).
+            // A Fanuc control's D registers are the control's own: only the program sets
+            // them (G10). The tool library's cutters are the simulation's, not registers:
+            // taking their radius compensated a wear-compensation path a second time.
             let known = if self.fanuc {
-                self.tool_radii
-                    .get(&tool)
-                    .map(|r| 2.0 * r)
-                    .or_else(|| self.opts.tool_diameters.get(&tool).copied())
+                self.tool_radii.get(&tool).map(|r| 2.0 * r)
             } else {
                 self.tool_diameter(tool)
             };
@@ -251,19 +249,21 @@ impl Interp<'_, '_> {
                     None if self.fanuc => {
                         if !self.comp_registers_told.contains(&tool) {
                             self.comp_registers_told.push(tool);
-                            let at = if b.has(b'd') {
-                                b.at[slot(b'd')]
+                            let (at, named) = if b.has(b'd') {
+                                (b.at[slot(b'd')], format!("D{tool}"))
                             } else {
-                                b.g_at[group::CUTTER_COMP]
+                                (
+                                    b.g_at[group::CUTTER_COMP],
+                                    format!("(register D{tool}, the loaded tool's)"),
+                                )
                             };
                             self.later.push((
                                 at as usize,
                                 format!(
-                                    "G{} D{tool}: the offset in register D{tool} is the \
-                                         control's, not in the program or a tool table: the path \
-                                         is read as the tool centre's, as CAM systems write it for \
-                                         wear compensation (give the offsets in a tool table, \
-                                         --tools, to compensate by them)",
+                                    "G{} {named}: the offset in register D{tool} is the \
+                                     control's, not in the program: the path is read as the \
+                                     tool centre's, as CAM systems write it for wear \
+                                     compensation (a G10 in the program sets a register)",
                                     g / 10
                                 ),
                             ));

@@ -1270,7 +1270,7 @@ impl<'a> Reader<'a> {
                 | "COMPSURF" | "WALIMON" | "WALIMOF" | "DIAMOF" | "FTOCON" | "FTOCOF" => {}
                 // The kind of tool radius compensation and how it approaches and leaves the
                 // contour: nothing without G41/G42, which are refused.
-                "CUT2D" | "CUT2DF" | "CUT3DC" | "CUT3DF" | "CUT3DFS" | "CUT3DFF" | "CDON"
+                "CUT2D" | "CUT2DF" | "CUT3DC" | "CUT3DCC" | "CUT3DCCD" | "CUT3DF" | "CUT3DFS" | "CUT3DFF" | "CDON"
                 | "CDOF" | "CDOF2" | "NORM" | "KONT" | "KONTC" | "KONTT" => {}
                 "ORIPATH" | "ORIPATHS" | "ORICONCW" | "ORICONCCW" | "ORICONIO" | "ORICONTO"
                 | "ORICURVE" => self.warn_once(

@@ -129,8 +129,9 @@ pub(crate) fn words(code: &str) -> Result<Vec<Word>, WordError> {
 
 /// Sinumerik keywords whose names end in digits or mix them with letters: read whole, not as
 /// an address with a number.
-const NAMES_WITH_DIGITS: [&str; 9] = [
-    "CUT2D", "CUT2DF", "CUT3DC", "CUT3DF", "CUT3DFS", "CUT3DFF", "CDOF2", "ORIVIRT1", "ORIVIRT2",
+const NAMES_WITH_DIGITS: [&str; 12] = [
+    "CUT2D", "CUT2DF", "CUT3DC", "CUT3DCC", "CUT3DCCD", "CUT3DF", "CUT3DFS", "CUT3DFF", "CDOF2",
+    "ORIVIRT1", "ORIVIRT2", "DIAM90",
 ];
 
 fn skip_ws(b: &[u8], mut i: usize) -> usize {

@@ -65,9 +65,10 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
     let rows: Vec<(usize, &str)> = lines
         .take_while(|(_, l)| !l.trim_start().starts_with("[END]"))
         .collect();
-    let layout = Layout::of(header, rows.iter().map(|(_, l)| *l));
+    let layout = Layout::of(header);
+    let tabbed_header = header.contains('\t');
     let columns: Vec<String> = layout
-        .cells(header)
+        .cells(header, usize::MAX, tabbed_header)
         .into_iter()
         .map(|(name, _)| name.to_ascii_uppercase())
         .collect();
@@ -84,7 +85,7 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
     let mut empty = 0;
     for (li, raw) in rows {
         let line = li + 1;
-        let cells = layout.cells(raw);
+        let cells = layout.cells(raw, columns.len(), tabbed_header);
         let field = |c: usize| -> (String, usize) {
             cells
                 .get(c)
@@ -219,23 +220,22 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
 /// How a table's lines split into columns.
 #[derive(Debug)]
 enum Layout {
-    /// Fixed-width columns starting at these characters of the line with its tabs expanded
-    /// (stops every 8 characters: a table saved by an editor that turned runs of spaces into
-    /// tabs keeps its columns). A row's field is what stands between its column's start and
-    /// the next column's, so a `DOC` with spaces is one field.
+    /// Fixed-width columns starting at these characters of the line — with its tabs expanded
+    /// to stops every 8 characters when the header has tabs (a table saved by an editor that
+    /// turned runs of spaces into tabs keeps its columns). A row's field is what stands between
+    /// its column's start and the next column's, so a `DOC` with spaces is one field.
     Fixed(Vec<usize>),
-    /// One tab between fields (a table exported tab-separated): the header and every row have
-    /// the same number of tab-separated fields.
+    /// One tab between fields (a table exported tab-separated: the header's names each between
+    /// single tabs). A row with fewer fields has the others empty; with more, the extra ones
+    /// belong to its last field (a tab in a description).
     Tabs,
 }
 
 impl Layout {
-    fn of<'a>(header: &str, mut rows: impl Iterator<Item = &'a str>) -> Layout {
-        let n = header.split('\t').count();
-        if n > 1
-            && header.split('\t').all(|f| !f.trim().is_empty())
-            && rows.all(|r| r.split('\t').count() == n)
-        {
+    fn of(header: &str) -> Layout {
+        // Decided by the header alone: a row's tab (in a description) must not change how
+        // the others are read.
+        if header.contains('\t') && header.split('\t').all(|f| !f.trim().is_empty()) {
             return Layout::Tabs;
         }
         // Each column starts where a name starts; the first at the line's start, however the
@@ -252,20 +252,32 @@ impl Layout {
 
     /// The line's fields, trimmed, each with the (1-based) character column of the line where
     /// its column starts.
-    fn cells(&self, line: &str) -> Vec<(String, usize)> {
+    fn cells(&self, line: &str, columns: usize, expand: bool) -> Vec<(String, usize)> {
         match self {
             Layout::Tabs => {
                 let mut at = 1;
-                line.split('\t')
-                    .map(|f| {
-                        let cell = (f.trim().to_string(), at);
-                        at += f.chars().count() + 1;
-                        cell
-                    })
-                    .collect()
+                let mut cells: Vec<(String, usize)> = Vec::new();
+                for (i, f) in line.split('\t').enumerate() {
+                    if i < columns.max(1) {
+                        cells.push((f.trim().to_string(), at));
+                    } else if let Some(last) = cells.last_mut() {
+                        // More fields than columns: a tab inside the last one (a description).
+                        last.0 = format!("{}\t{}", last.0, f.trim()).trim().to_string();
+                    }
+                    at += f.chars().count() + 1;
+                }
+                cells
             }
             Layout::Fixed(starts) => {
-                let (chars, origin) = expand_tabs(line);
+                // A tab counts to the next stop of 8 where the header was written with tabs;
+                // in a table aligned with spaces, a tab (in a description) is one character.
+                let (chars, origin) = if expand {
+                    expand_tabs(line)
+                } else {
+                    let chars: Vec<char> = line.chars().collect();
+                    let origin = (0..chars.len()).collect();
+                    (chars, origin)
+                };
                 let column = |i: usize| origin.get(i).map_or(chars.len() + 1, |o| o + 1);
                 starts
                     .iter()
@@ -388,6 +400,20 @@ T    NAME                L           R           R2          DL      DR      LCU
         assert!((t.tools[&7].cutter.apt_params().d - 10.0).abs() < 1e-12);
         assert_eq!(t.tools[&7].name.as_deref(), Some("BALL_D10_EXTRA_LONG"));
         assert_eq!(t.tools[&8].cutter.kind(), CutterKind::Bull);
+        // A row without its last (empty) field, a description with a tab in it: the others as
+        // the header says.
+        let ragged = "BEGIN TOOL .T MM\nT\tNAME\tL\tR\tDOC\n\
+                      7\tB\t+150\t+5\n8\tX\t+50\t+2\ttwo\tparts\n[END]\n";
+        let t = parse_heidenhain(ragged, "TOOL.T").unwrap();
+        assert_eq!(t.tools[&7].description, "B");
+        assert_eq!(t.tools[&8].description, "X two\tparts");
+        // A table aligned with spaces whose description holds a tab: the tab is one character,
+        // the columns after it stay where the header puts them (a TNC writes DOC before TYP).
+        let spaced = "BEGIN TOOL .T MM\n\
+                      T    NAME      L      R      DOC          TYP       T-ANGLE\n\
+                      3    DR6       +60    +3     twist\tdril   DRILL     +118\n[END]\n";
+        let t = parse_heidenhain(spaced, "TOOL.T").unwrap();
+        assert_eq!(t.tools[&3].cutter.kind(), CutterKind::Drill);
         // Errors name the field's column in the line as written (after the tabs).
         let e = parse_heidenhain(&delimited.replace("+2\t", "+Q\t"), "t.T")
             .unwrap_err()
