@@ -676,7 +676,8 @@ impl<'t, 's> Interp<'t, 's> {
         }
         self.comments(raw, lb)?;
 
-        if let Some((n, at)) = blk.spindle.filter(|&(n, _)| n > 0) {
+        let spindle_words = blk.has(b's') || blk.m_spindle.is_some();
+        if let Some((n, at)) = blk.spindle.filter(|&(n, _)| n > 0 && spindle_words) {
             // One spindle is simulated: the others' speeds and turns are read as its own.
             self.later.push((
                 at as usize,
