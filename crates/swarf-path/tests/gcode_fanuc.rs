@@ -336,11 +336,23 @@ fn canned_cycle_repeats_with_k_and_k0_stores_the_cycle() {
 #[test]
 fn a_short_compensation_entry_is_taken_with_a_warning() {
     // Fanuc starts compensation on an entry move shorter than the radius (LinuxCNC refuses
-    // it): the tool ends the radius to the left of the entry's end, normal to it.
-    let src = "O1\nG21 G90\nG0 X3.6 Y2.6 Z0\nG1 G41 X3.5 D1 F100\nY5\nG40 X3.5 Y10\nM30\n";
-    let opts = fanuc().with_tool_diameter(1, 2.0);
+    // it): the tool ends the radius to the left of the entry's end, normal to it. The
+    // register D1 is set by the program (G10): a Fanuc register never comes from the tool
+    // library, whose cutters are the simulation's.
+    let body = "G0 X3.6 Y2.6 Z0\nG1 G41 X3.5 D1 F100\nY5\nG40 X3.5 Y10\nM30\n";
+    let src = format!("O1\nG21 G90\nG10 L1 P1 R1\n{body}");
+    let src = src.as_str();
+    let opts = fanuc();
     let m = moves(src, &opts).unwrap();
     assert_eq!(m[1], ('L', 3.5, 1.6, 0.0), "{m:?}");
+    // Without the G10, a tool library's diameter leaves the path as programmed (wear
+    // compensation), with a warning.
+    let m = moves(
+        &format!("O1\nG21 G90\n{body}"),
+        &fanuc().with_tool_diameter(1, 2.0),
+    )
+    .unwrap();
+    assert_eq!(m[1], ('L', 3.5, 2.6, 0.0), "{m:?}");
     let p = read_program_str(
         src,
         "fanuc.nc",
@@ -359,7 +371,7 @@ fn a_short_compensation_entry_is_taken_with_a_warning() {
     let linuxcnc = GcodeOptions::default()
         .with_dialect(GcodeDialect::LinuxCnc)
         .with_tool_diameter(1, 2.0);
-    let e = moves(&src.replace("O1\n", ""), &linuxcnc).unwrap_err();
+    let e = moves(&format!("G21 G90\n{body}"), &linuxcnc).unwrap_err();
     assert!(e.message.contains("entry move"), "{e}");
 }
 
