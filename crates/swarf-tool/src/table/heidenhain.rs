@@ -66,9 +66,8 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
         .take_while(|(_, l)| !l.trim_start().starts_with("[END]"))
         .collect();
     let layout = Layout::of(header);
-    let tabbed_header = header.contains('\t');
     let columns: Vec<String> = layout
-        .cells(header, usize::MAX, tabbed_header)
+        .cells(header, usize::MAX)
         .into_iter()
         .map(|(name, _)| name.to_ascii_uppercase())
         .collect();
@@ -85,7 +84,7 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
     let mut empty = 0;
     for (li, raw) in rows {
         let line = li + 1;
-        let cells = layout.cells(raw, columns.len(), tabbed_header);
+        let cells = layout.cells(raw, columns.len());
         let field = |c: usize| -> (String, usize) {
             cells
                 .get(c)
@@ -224,7 +223,12 @@ enum Layout {
     /// to stops every 8 characters when the header has tabs (a table saved by an editor that
     /// turned runs of spaces into tabs keeps its columns). A row's field is what stands between
     /// its column's start and the next column's, so a `DOC` with spaces is one field.
-    Fixed(Vec<usize>),
+    Fixed {
+        /// Where each column starts.
+        starts: Vec<usize>,
+        /// Whether tabs expand (the header has some).
+        expand: bool,
+    },
     /// One tab between fields (a table exported tab-separated: the header's names each between
     /// single tabs). A row with fewer fields has the others empty; with more, the extra ones
     /// belong to its last field (a tab in a description).
@@ -247,12 +251,15 @@ impl Layout {
         if let Some(first) = starts.first_mut() {
             *first = 0;
         }
-        Layout::Fixed(starts)
+        Layout::Fixed {
+            starts,
+            expand: header.contains('\t'),
+        }
     }
 
     /// The line's fields, trimmed, each with the (1-based) character column of the line where
     /// its column starts.
-    fn cells(&self, line: &str, columns: usize, expand: bool) -> Vec<(String, usize)> {
+    fn cells(&self, line: &str, columns: usize) -> Vec<(String, usize)> {
         match self {
             Layout::Tabs => {
                 let mut at = 1;
@@ -268,10 +275,10 @@ impl Layout {
                 }
                 cells
             }
-            Layout::Fixed(starts) => {
+            Layout::Fixed { starts, expand } => {
                 // A tab counts to the next stop of 8 where the header was written with tabs;
                 // in a table aligned with spaces, a tab (in a description) is one character.
-                let (chars, origin) = if expand {
+                let (chars, origin) = if *expand {
                     expand_tabs(line)
                 } else {
                     let chars: Vec<char> = line.chars().collect();
