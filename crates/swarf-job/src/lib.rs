@@ -405,7 +405,9 @@ fn read_options(
     }
     ReadOptions {
         gcode: gcode.with_max_moves(options.max_moves),
-        apt: AptOptions::default().with_max_moves(options.max_moves),
+        apt: AptOptions::default()
+            .with_max_moves(options.max_moves)
+            .with_initial_units(options.initial_units),
         ..ReadOptions::default()
     }
 }

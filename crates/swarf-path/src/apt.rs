@@ -36,10 +36,18 @@
 //! accepted silently (they do not change the tool's path). `CUTCOM/LEFT│RIGHT` warns: CL points
 //! are normally the compensated cutter path already, and swarf simulates the points as written,
 //! not what a controller doing radius compensation would add. `MSYS/` (where the MCS sits in
-//! absolute coordinates) warns when it is not the identity: points stay in the MCS, which is
-//! swarf's workpiece frame. `NURBS/`, `KNOT/`, `CNTRL/` and cycles other than the drilling
-//! family are errors: they make motion swarf does not generate, which a warning would silently
-//! drop. Other records are warnings; malformed records are [`PathError`]s.
+//! absolute coordinates) warns when it is not the identity: points stay in the first MCS, which
+//! is swarf's workpiece frame; the points of an operation under a later, different `MSYS/`
+//! (another setup, a 3+2 side face) are mapped into the first MCS, with a warning. `DELAY/t`
+//! dwells t seconds, `DELAY/n,REV` n spindle revolutions. `NURBS/`, `KNOT/`, `CNTRL/`, cycles
+//! other than the drilling family and APT part-program motion (`GOLFT/`, `GOFWD/`, `PSIS/`,
+//! any other `GO…` word) are errors: they make motion swarf does not generate, which a warning
+//! would silently drop. Other records are warnings; malformed records are [`PathError`]s.
+//!
+//! A cutter definition (`CUTTER/`, `TLDATA/`) that differs from the one the current tool has
+//! already cut with starts a tool of its own (see [`crate::moves::Program::cutter_definitions`]).
+//! Lengths are mm until a `UNITS/` record ([`AptOptions::initial_units`] otherwise); lines may end
+//! in LF, CRLF or a lone CR.
 //!
 //! # Decisions
 //! * **The first point.** CL data has no home position: the first `GOTO` (or `FROM`) only places
@@ -105,6 +113,9 @@ pub struct AptOptions {
     /// keeps the moves, default [`DEFAULT_MAX_MOVES`](crate::limit::DEFAULT_MAX_MOVES);
     /// `u64::MAX` for consumers that stream. See [`crate::limit`].
     pub max_moves: u64,
+    /// Length units before the file's first `UNITS/` record (CL data carries no units unless
+    /// it says so; inch files without the record exist).
+    pub initial_units: Units,
 }
 
 impl Default for AptOptions {
@@ -114,6 +125,7 @@ impl Default for AptOptions {
             apply_csys: true,
             arc_tolerance_mm: DEFAULT_ARC_TOLERANCE_MM,
             max_moves: crate::limit::DEFAULT_MAX_MOVES,
+            initial_units: Units::Mm,
         }
     }
 }
@@ -132,6 +144,11 @@ impl AptOptions {
     /// With another move limit ([`Self::max_moves`]).
     pub fn with_max_moves(mut self, n: u64) -> Self {
         self.max_moves = n;
+        self
+    }
+    /// With other units before the first `UNITS/` record.
+    pub fn with_initial_units(mut self, units: Units) -> Self {
+        self.initial_units = units;
         self
     }
     /// With another arc radius tolerance, mm.
@@ -181,6 +198,14 @@ pub fn read_apt(
 ) -> Result<(), PathError> {
     // Editors on Windows may leave a byte-order mark in front of the first record.
     let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    // Old Mac editors end lines with a lone CR: read as line ends (a file of them was one
+    // free-text record: no motion and no warning).
+    let text: Cow<'_, str> = if text.contains('\r') && text.replace("\r\n", "").contains('\r') {
+        Cow::Owned(text.replace("\r\n", "\n").replace('\r', "\n"))
+    } else {
+        Cow::Borrowed(text)
+    };
+    let text = text.as_ref();
     let clockwise = match options.circle_sense {
         CircleSense::Clockwise => true,
         CircleSense::CounterClockwise => false,
@@ -190,7 +215,10 @@ pub fn read_apt(
         file: file_name,
         options,
         sink: MoveLimit::new(sink, options.max_moves),
-        scale: 1.0,
+        scale: options.initial_units.mm_per_unit(),
+        units_stated: false,
+        inch_feed_warned: false,
+        msys: None,
         feed_mode: FeedMode::PerMinute,
         pos: None,
         axis: Vec3::Z,
@@ -254,13 +282,7 @@ pub fn read_apt(
         r.record(&record)?;
         r.check_move_limit(&record)?;
     }
-    if let Some(c) = r.circle.take() {
-        r.warn(
-            c.line,
-            c.column,
-            "CIRCLE/ not followed by a GOTO/ before the end: ignored".into(),
-        );
-    }
+    r.unused_circle();
     r.sink.finish();
     Ok(())
 }
@@ -335,6 +357,14 @@ struct Reader<'o, 's> {
     sink: MoveLimit<'s>,
     /// mm per program unit.
     scale: f64,
+    /// A `UNITS/` record has been read.
+    units_stated: bool,
+    /// An inch feed in a file without `UNITS/` has been warned about.
+    inch_feed_warned: bool,
+    /// NX's machine coordinate systems: the first `MSYS/` (origin and axes in absolute
+    /// coordinates, mm), which is swarf's workpiece frame, and the map from the current MCS to
+    /// it when a later one differs (rotation, translation in mm).
+    msys: Option<Msys>,
     feed_mode: FeedMode,
     /// Current tip (workpiece frame, mm); `None` until the first point.
     pos: Option<Vec3>,
@@ -357,6 +387,14 @@ struct Reader<'o, 's> {
     last_cycle: Option<cycle::Cycle>,
     /// The `FROM/` point, where `GOHOME` returns.
     from: Option<Vec3>,
+}
+
+/// The MCSs of an NX CLSF (see `Reader::msys`).
+struct Msys {
+    /// The first MCS: axes (columns), origin (mm), and the line that set it.
+    first: (Mat3, Vec3, u32),
+    /// From the current MCS to the first, when it differs.
+    to_first: Option<(Mat3, Vec3)>,
 }
 
 /// A point as joint values (X Y Z; rotary words are not used by CL data).
@@ -483,15 +521,23 @@ impl Reader<'_, '_> {
     /// A point from program units and the CL frame to the workpiece frame, mm.
     fn point(&self, p: Vec3) -> Vec3 {
         let p = p * self.scale;
-        match self.csys {
+        let p = match self.csys {
             Some((m, t)) => m * p + t * self.scale,
+            None => p,
+        };
+        match self.msys.as_ref().and_then(|m| m.to_first) {
+            Some((r, t)) => r * p + t,
             None => p,
         }
     }
 
     fn vector(&self, v: Vec3) -> Vec3 {
-        match self.csys {
+        let v = match self.csys {
             Some((m, _)) => m * v,
+            None => v,
+        };
+        match self.msys.as_ref().and_then(|m| m.to_first) {
+            Some((r, _)) => r * v,
             None => v,
         }
     }
@@ -725,6 +771,7 @@ impl Reader<'_, '_> {
                     }
                 };
                 self.scale = u.mm_per_unit();
+                self.units_stated = true;
                 self.sink.emit(line, &Canon::Units(u));
             }
             "LOADTL" => {
@@ -779,22 +826,7 @@ impl Reader<'_, '_> {
                     ),
                 ),
             },
-            "MSYS" => {
-                let v = self.numbers(rec, &fields, "MSYS/")?;
-                let identity = [0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0, 0.0];
-                let is_identity =
-                    v.len() == 9 && v.iter().zip(identity).all(|(a, b)| (a - b).abs() < 1e-9);
-                if !is_identity {
-                    self.warn(
-                        line,
-                        column,
-                        format!(
-                            "MSYS/{minor_text}: the MCS sits elsewhere in absolute coordinates; \
-                             points are used in the MCS, which is swarf's workpiece frame"
-                        ),
-                    );
-                }
-            }
+            "MSYS" => self.msys(rec, &fields, minor_off, line, column, minor_text)?,
             "CSYS" => self.csys(rec, &fields, minor_off, line, column)?,
             "TRNTYP" => {
                 if word(0).as_deref() != Some("WORLD") {
@@ -802,14 +834,11 @@ impl Reader<'_, '_> {
                 }
             }
             "FINI" => {
+                self.unused_circle();
                 self.sink.emit(line, &Canon::ProgramEnd);
                 return Ok(Flow::Stop);
             }
-            "DELAY" => {
-                let v = self.numbers(rec, &fields[..fields.len().min(1)], "DELAY/")?;
-                self.sink
-                    .emit(line, &Canon::Dwell(v.first().copied().unwrap_or(0.0)));
-            }
+            "DELAY" => self.delay(rec, &fields, minor_off, line)?,
             "CYCLE" => self.cycle_record(rec, &fields, minor_off)?,
             "NURBS" | "KNOT" | "CNTRL" => {
                 return Err(self.error(
@@ -822,6 +851,23 @@ impl Reader<'_, '_> {
                     "the path output as GOTO/ points (linearised in the CAM system)",
                 ));
             }
+            // APT part-program motion (ANSI X3.37: drive, part and check surfaces), and any
+            // other motion word: only the APT processor knows where it goes, and a warning
+            // would silently drop the motion.
+            m if m.starts_with("GO") || m == "PSIS" || m == "INDIRP" => {
+                return Err(self.error(
+                    rec,
+                    lead,
+                    PathErrorKind::Unsupported,
+                    format!(
+                        "`{major_raw}` is an APT part-program motion statement (or an unknown \
+                         motion word), not CL data: its motion cannot be read"
+                    ),
+                    text.trim(),
+                    "CL data (GOTO/, GODLTA/, CIRCLE/): run the part program through the APT \
+                     processor or the CAM system's CL output first",
+                ));
+            }
             _ => self.warn(
                 line,
                 column,
@@ -829,6 +875,153 @@ impl Reader<'_, '_> {
             ),
         }
         Ok(Flow::Go)
+    }
+
+    /// A pending `CIRCLE/` that no `GOTO/` used.
+    fn unused_circle(&mut self) {
+        if let Some(c) = self.circle.take() {
+            self.warn(
+                c.line,
+                c.column,
+                "CIRCLE/ not followed by a GOTO/ before the end: ignored".into(),
+            );
+        }
+    }
+
+    /// `DELAY/t` (seconds) or `DELAY/n,REV` (spindle revolutions).
+    fn delay(
+        &mut self,
+        rec: &Record<'_>,
+        fields: &[Field<'_>],
+        minor_off: usize,
+        line: u32,
+    ) -> Result<(), PathError> {
+        let Some(first) = fields.first() else {
+            return Err(self.count_error(rec, fields, minor_off, "DELAY/", "a time in seconds"));
+        };
+        let v = self.number(rec, *first, "DELAY/")?;
+        if v < 0.0 {
+            return Err(self.error(
+                rec,
+                first.off,
+                PathErrorKind::Semantic,
+                "DELAY/ with a negative time",
+                first.text,
+                "a time of 0 or more",
+            ));
+        }
+        let revolutions = match fields.get(1).map(|f| (f, f.text.to_ascii_uppercase())) {
+            None => false,
+            Some((_, w)) if w == "REV" || w == "REVS" => true,
+            Some((_, w)) if w == "SEC" || w == "SECS" => false,
+            Some((f, _)) => {
+                return Err(self.error(
+                    rec,
+                    f.off,
+                    PathErrorKind::Syntax,
+                    "unexpected DELAY/ word",
+                    f.text,
+                    "REV (revolutions) or nothing (seconds)",
+                ))
+            }
+        };
+        let seconds = if !revolutions {
+            v
+        } else if self.spindle_rpm > 0.0 {
+            v * 60.0 / self.spindle_rpm
+        } else {
+            let (l, c) = rec.locate(first.off);
+            self.warn(
+                l,
+                c,
+                format!("DELAY/{v},REV with the spindle stopped: no time counted"),
+            );
+            0.0
+        };
+        self.sink.emit(line, &Canon::Dwell(seconds));
+        Ok(())
+    }
+
+    /// `MSYS/x,y,z,xi,xj,xk,yi,yj,yk`: the MCS's origin and X and Y axes in absolute
+    /// coordinates (NX). Points are in the current MCS. The first MCS is swarf's workpiece
+    /// frame; the points of an operation under a different MCS (another setup, a 3+2 side
+    /// face) are mapped into it: `p₁ = M₁ᵀ(O₂ + M₂·p − O₁)`.
+    fn msys(
+        &mut self,
+        rec: &Record<'_>,
+        fields: &[Field<'_>],
+        minor_off: usize,
+        line: u32,
+        column: u32,
+        minor_text: &str,
+    ) -> Result<(), PathError> {
+        let v = self.numbers(rec, fields, "MSYS/")?;
+        if v.len() != 9 {
+            return Err(self.count_error(
+                rec,
+                fields,
+                minor_off,
+                "MSYS/",
+                "x,y,z,xi,xj,xk,yi,yj,yk (origin, X axis, Y axis)",
+            ));
+        }
+        let origin = Vec3::new(v[0], v[1], v[2]) * self.scale;
+        let axes = unit(Vec3::new(v[3], v[4], v[5])).zip(unit(Vec3::new(v[6], v[7], v[8])));
+        let frame = match axes {
+            Some((x, y)) if x.dot(y).abs() <= 1e-4 => {
+                // Posts print the axes to 6–7 digits: made exactly perpendicular.
+                let y = unit(y - x * x.dot(y)).unwrap_or(y);
+                Mat3::from_cols(x, y, x.cross(y))
+            }
+            _ => {
+                return Err(self.error(
+                    rec,
+                    fields[3].off,
+                    PathErrorKind::Semantic,
+                    "MSYS/ axes that are zero or not perpendicular",
+                    minor_text,
+                    "two perpendicular axes xi,xj,xk and yi,yj,yk",
+                ))
+            }
+        };
+        match &mut self.msys {
+            None => {
+                let identity = frame.abs_diff_eq(Mat3::IDENTITY, 1e-9) && origin.length() <= 1e-9;
+                if !identity {
+                    self.warn(
+                        line,
+                        column,
+                        format!(
+                            "MSYS/{minor_text}: the MCS sits elsewhere in absolute coordinates; \
+                             points are used in the MCS, which is swarf's workpiece frame"
+                        ),
+                    );
+                }
+                self.msys = Some(Msys {
+                    first: (frame, origin, line),
+                    to_first: None,
+                });
+            }
+            Some(m) => {
+                let (f1, o1, first_line) = m.first;
+                let r = f1.transpose() * frame;
+                let t = f1.transpose() * (origin - o1);
+                let same = r.abs_diff_eq(Mat3::IDENTITY, 1e-9) && t.length() <= 1e-9;
+                m.to_first = (!same).then_some((r, t));
+                if !same {
+                    self.warn(
+                        line,
+                        column,
+                        format!(
+                            "MSYS/{minor_text}: another MCS than the first (line {first_line}): \
+                             the points that follow are mapped into the first, swarf's \
+                             workpiece frame"
+                        ),
+                    );
+                }
+            }
+        }
+        Ok(())
     }
 
     /// CATIA's circular motion, `TLON,GOFWD/ (CIRCLE/ xc,yc,zc[,i,j,k],r), ON, (LINE/ x1,y1,z1,
@@ -1236,6 +1429,19 @@ impl Reader<'_, '_> {
                 "a feed rate, e.g. FEDRAT/MMPM,500",
             ));
         };
+        if let Some((_, s)) = mode {
+            if s != 1.0 && !self.units_stated && self.scale == 1.0 && !self.inch_feed_warned {
+                self.inch_feed_warned = true;
+                let (l, c) = rec.locate(minor_off);
+                self.warn(
+                    l,
+                    c,
+                    "an inch feed in a file that states no UNITS/: its lengths are read as mm \
+                     (give --initial-units inch if the file is in inches)"
+                        .into(),
+                );
+            }
+        }
         let (mode, scale) = mode.unwrap_or((FeedMode::PerMinute, self.scale));
         if mode != self.feed_mode {
             self.feed_mode = mode;

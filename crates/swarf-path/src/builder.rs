@@ -77,6 +77,9 @@ pub struct MoveBuilder {
     tools: Vec<u32>,
     cutter_definitions: Vec<(u32, [f64; 7])>,
     cutter_definition_lines: Vec<SourceLine>,
+    /// Tools that have moved with the cutter definition bound to them: a different definition
+    /// for one of them later is a cutter of its own (see `bind_cutter`).
+    defined_tools_moved: Vec<u32>,
     blank: Option<[[f64; 3]; 2]>,
     dwell_s: f64,
     warnings: Vec<Warning>,
@@ -115,6 +118,7 @@ impl MoveBuilder {
             tools: Vec::new(),
             cutter_definitions: Vec::new(),
             cutter_definition_lines: Vec::new(),
+            defined_tools_moved: Vec::new(),
             blank: None,
             dwell_s: 0.0,
             warnings: Vec::new(),
@@ -154,8 +158,12 @@ impl MoveBuilder {
 
     /// The program read so far.
     pub fn finish(mut self) -> Program {
+        // A definition after the last move cuts nothing: it only names the cutter of a tool
+        // that has none.
         if let Some(def) = self.pending_cutter.take() {
-            self.bind_cutter(self.tool, def);
+            if !self.cutter_definitions.iter().any(|(t, _)| *t == self.tool) {
+                self.bind_cutter(self.tool, def);
+            }
         }
         Program {
             cutter_definition_lines: self.cutter_definition_lines,
@@ -256,21 +264,57 @@ impl MoveBuilder {
         }
     }
 
-    fn bind_cutter(&mut self, tool: u32, (def, line): ([f64; 7], u32)) {
+    /// Binds a cutter definition to `tool`; returns the tool it was bound to. A definition
+    /// that differs from the one `tool` has already moved with is a different cutter (NX writes
+    /// a `TLDATA/` per operation, APT a `CUTTER/`, often with no `LOADTL/` between them): the
+    /// moves before it keep their cutter, and the moves after it are given a tool number of
+    /// their own, one above every number used so far, with a warning.
+    fn bind_cutter(&mut self, tool: u32, (def, line): ([f64; 7], u32)) -> u32 {
         let at = SourceLine {
             file: self.file,
             line,
         };
-        match self.cutter_definitions.iter().position(|(t, _)| *t == tool) {
-            Some(i) => {
+        let same = |a: &[f64; 7], b: &[f64; 7]| {
+            a.iter()
+                .zip(b)
+                .all(|(x, y)| (x - y).abs() <= 1e-9 * x.abs().max(y.abs()).max(1.0))
+        };
+        let mut tool = tool;
+        if let Some(i) = self.cutter_definitions.iter().position(|(t, _)| *t == tool) {
+            let moved = self.defined_tools_moved.contains(&tool);
+            if !moved || same(&self.cutter_definitions[i].1, &def) {
                 self.cutter_definitions[i].1 = def;
                 self.cutter_definition_lines[i] = at;
+                return tool;
             }
-            None => {
-                self.cutter_definitions.push((tool, def));
-                self.cutter_definition_lines.push(at);
+            let earlier = self.cutter_definition_lines[i].line;
+            let fresh = self
+                .tools
+                .iter()
+                .chain(self.cutter_definitions.iter().map(|(t, _)| t))
+                .chain([&tool])
+                .max()
+                .map_or(1, |t| t.saturating_add(1));
+            self.warn_at(
+                line,
+                format!(
+                    "a different cutter for {} than the one it cut with (defined at line \
+                     {earlier}): the moves from here are given tool {fresh}, a tool of its own, \
+                     and the moves before keep theirs",
+                    match tool {
+                        0 => "the tool in use (no tool change)".to_string(),
+                        n => format!("tool {n}"),
+                    }
+                ),
+            );
+            tool = fresh;
+            if !self.tools.contains(&tool) {
+                self.tools.push(tool);
             }
         }
+        self.cutter_definitions.push((tool, def));
+        self.cutter_definition_lines.push(at);
+        tool
     }
 
     fn warn_at(&mut self, line: u32, message: String) {
@@ -317,7 +361,12 @@ impl MoveBuilder {
     /// Appends a move from the current position to `end` (program coordinates).
     fn push(&mut self, line: u32, end: &Axes, kind: impl FnOnce(&Self, &Axes, &Axes) -> MoveKind) {
         if let Some(def) = self.pending_cutter.take() {
-            self.bind_cutter(self.tool, def);
+            self.tool = self.bind_cutter(self.tool, def);
+        }
+        if !self.defined_tools_moved.contains(&self.tool)
+            && self.cutter_definitions.iter().any(|(t, _)| *t == self.tool)
+        {
+            self.defined_tools_moved.push(self.tool);
         }
         let start_joints = self.joints(&self.pos);
         let end_joints = self.joints(end);
@@ -428,12 +477,12 @@ impl CanonSink for MoveBuilder {
                     self.tools.push(*tool);
                 }
                 if let Some(def) = self.pending_cutter.take() {
-                    self.bind_cutter(*tool, def);
+                    self.tool = self.bind_cutter(*tool, def);
                 }
             }
             Canon::CutterDefinition(def) => {
                 if let Some(prev) = self.pending_cutter.replace((*def, line)) {
-                    self.bind_cutter(self.tool, prev);
+                    self.tool = self.bind_cutter(self.tool, prev);
                 }
             }
             Canon::Spline {

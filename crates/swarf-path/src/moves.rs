@@ -128,7 +128,9 @@ pub struct Program {
     /// numbers d, r, e, f, α, β, h.
     pub cutter_definitions: Vec<(u32, [f64; 7])>,
     /// Where each of [`Program::cutter_definitions`] was written (the last record that defined
-    /// that tool), in the same order.
+    /// that tool), in the same order. A definition that differs from the one a tool has already
+    /// cut with makes a tool of its own (a number above all others, with a warning), so that
+    /// every move keeps the cutter it was written for.
     pub cutter_definition_lines: Vec<SourceLine>,
     /// Harmless things the reader did not act on.
     pub warnings: Vec<Warning>,

@@ -47,9 +47,26 @@ pub(crate) fn load_job_setup_with(setup: &SetupArgs, max_moves: u64) -> Result<J
     Ok(job)
 }
 
-/// Reads `program` as `setup` says (machine, units, cutters) and resolves its tools.
+/// Reads `program` as `setup` says (machine, units, cutters) and resolves its tools. What the
+/// reader did not act on or read by assumption (units never stated, a compensation register
+/// taken as zero, a cutter redefined) is told on stderr, the first few warnings and a count —
+/// `swarf path` lists them all: a simulation that hid them would look as sure as one that
+/// read every word.
 pub(crate) fn load_job(setup: &SetupArgs, program: &Path) -> Result<Job> {
-    load_job_setup(setup)?.read(program).map_err(job_error)
+    let job = load_job_setup(setup)?.read(program).map_err(job_error)?;
+    const SHOWN: usize = 5;
+    let warnings = &job.program.warnings;
+    for w in warnings.iter().take(SHOWN) {
+        eprintln!("swarf: {w}");
+    }
+    if warnings.len() > SHOWN {
+        eprintln!(
+            "swarf: … and {} more warnings about the program (`swarf path {}` lists them all)",
+            warnings.len() - SHOWN,
+            program.display()
+        );
+    }
+    Ok(job)
 }
 
 /// The tools of `job`, every one the program uses required to be defined: the error says how
