@@ -233,12 +233,14 @@ fn controller_modes_are_reported_and_left_out() {
     assert_eq!(moves(&src, &fanuc()).unwrap(), plain);
     let w = warnings(&src);
     let lines: Vec<u32> = w.iter().map(|(l, _)| *l).collect();
-    assert_eq!(lines, [3, 4, 5, 6, 7, 8, 9, 12], "{w:?}");
+    // (Line 10: X1, the first number without a decimal point.)
+    assert_eq!(lines, [3, 4, 5, 6, 7, 8, 9, 10, 12], "{w:?}");
     assert!(
         w[0].1.starts_with("G5.1 (AI contour control) ignored"),
         "{w:?}"
     );
     assert!(w[5].1.contains("current work offset stays"), "{w:?}");
+    assert!(w[7].1.starts_with("X1 has no decimal point"), "{w:?}");
     // In LinuxCNC, G5.1 is a quadratic spline and needs its end point.
     let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
     let e = moves(&src, &linuxcnc).unwrap_err();
@@ -268,9 +270,10 @@ fn tool_centre_point_and_fine_boring() {
             ('R', 5.0, 5.0, 10.0),
         ]
     );
+    // (And Z10's missing decimal point, line 3.)
     let w = warnings(src);
-    assert_eq!(w.len(), 1, "{w:?}");
-    assert!(w[0].1.starts_with("G76 (fine boring) read as G86"), "{w:?}");
+    assert_eq!(w.len(), 2, "{w:?}");
+    assert!(w[1].1.starts_with("G76 (fine boring) read as G86"), "{w:?}");
     // LinuxCNC has no G43.4.
     let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
     let e = moves("G21 G90\nG43.4 H1 Z50.\nM2\n", &linuxcnc).unwrap_err();
@@ -295,7 +298,8 @@ fn arcs_as_fanuc_reads_them() {
     );
     let w = warnings(src);
     let w: Vec<(u32, &str)> = w.iter().map(|(l, m)| (*l, &m[..2])).collect();
-    assert_eq!(w, [(5, "K0"), (6, "I-"), (6, "J0")]);
+    // (X10 at line 3: the program's first number without a decimal point.)
+    assert_eq!(w, [(3, "X1"), (5, "K0"), (6, "I-"), (6, "J0")]);
     // LinuxCNC refuses each of the three.
     let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
     for bad in [
@@ -323,7 +327,12 @@ fn canned_cycle_repeats_with_k_and_k0_stores_the_cycle() {
         holes(&moves(src, &fanuc()).unwrap()),
         [(5.0, -6.0), (10.0, -6.0)]
     );
-    assert!(warnings(src).is_empty());
+    // (Only Z10's missing decimal point is reported: not the repeat count K2.)
+    let w = warnings(src);
+    assert!(
+        w.len() == 1 && w[0].0 == 3 && w[0].1.starts_with("Z10 has no decimal point"),
+        "{w:?}"
+    );
     let src = "O1\nG21 G90\nG0 X0 Y0 Z10\nG98 G81 X5. Y5. Z-5. R1. F100 K0\nX10. Y10.\nG80\nM30\n";
     assert_eq!(holes(&moves(src, &fanuc()).unwrap()), [(10.0, -5.0)]);
     let src = "O1\nG21 G90\nG0 X0 Y0 Z10\nG98 G81 X5. Y5. Z-5. R1. F100 L0\nX10. Y10.\nG80\nM30\n";
@@ -363,8 +372,9 @@ fn a_short_compensation_entry_is_taken_with_a_warning() {
         },
     )
     .unwrap();
+    // (After R1's missing decimal point, line 3.)
     assert!(
-        p.warnings[0].message.contains("entry move"),
+        p.warnings[1].message.contains("entry move"),
         "{:?}",
         p.warnings
     );
@@ -673,9 +683,10 @@ fn m99_in_the_main_program_runs_it_again_until_m30() {
         .flat_map(|i| [('R', i as f64, 0.0, 1.0), ('L', i as f64, 0.0, 0.0)])
         .collect();
     assert_eq!(m, want);
+    // (The program states no units, and Z1 has no decimal point: lines 5.)
     let w = warnings(src);
-    assert_eq!(w.len(), 1, "{w:?}");
-    assert!(w[0].1.contains("run again from the top"), "{w:?}");
+    assert_eq!(w.len(), 3, "{w:?}");
+    assert!(w[2].1.contains("run again from the top"), "{w:?}");
     // The same with LinuxCNC's O-words.
     let src = "o1 if [#1 GE 2]\nM2\no1 endif\n#1 = [#1 + 1]\nG0 X#1\nM99\n";
     let lcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
@@ -813,4 +824,373 @@ fn a_pass_that_changes_only_control_state_runs_again() {
             .contains("no line numbered N5 in the main program"),
         "{e}"
     );
+}
+
+/// The moves (as [`moves`]) and the warnings (line, column, message) of a program read with
+/// `options`.
+#[allow(clippy::type_complexity)]
+fn read_with(
+    src: &str,
+    options: &GcodeOptions,
+) -> (Vec<(char, f64, f64, f64)>, Vec<(u32, u32, String)>) {
+    let mut rec = Recorder::default();
+    read_gcode(src, "fanuc.nc", options, &mut rec).unwrap_or_else(|e| panic!("{e}"));
+    let m = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Traverse { end } => Some(('R', end.x, end.y, end.z)),
+            Canon::Feed { end } => Some(('L', end.x, end.y, end.z)),
+            Canon::Arc { end, .. } => Some(('A', end.x, end.y, end.z)),
+            _ => None,
+        })
+        .collect();
+    let w = rec
+        .warnings
+        .into_iter()
+        .map(|w| (w.line, w.column, w.message))
+        .collect();
+    (m, w)
+}
+
+/// FANUC 0i-MF "Canned cycle", "Initial level and point R level": the initial level is the Z
+/// where the cycle mode starts (its first block after G80 or a G00–G03 cancel) and it stays
+/// until the cancel, so G98 returns to it after G99 holes; in G91, R is measured from the
+/// initial level and Z from R, for every hole. LinuxCNC keeps its own rule (R from the Z of
+/// each block, G98 back to the higher of that Z and R).
+#[test]
+fn canned_cycles_keep_the_initial_level_until_they_are_cancelled() {
+    let src = "%\nO0001\nG0 X0. Y0. Z50.\nG43 H1 Z20.\nG99 G81 X10. Y10. Z-5. R2. F100.\nX20.\n\
+               G98 Y20.\nG80\nM30\n%\n";
+    let mut want = vec![
+        ('R', 0.0, 0.0, 50.0),
+        ('R', 0.0, 0.0, 20.0),
+        // The first hole from the initial level Z20, back to R (G99).
+        ('R', 10.0, 10.0, 20.0),
+        ('R', 10.0, 10.0, 2.0),
+        ('L', 10.0, 10.0, -5.0),
+        ('R', 10.0, 10.0, 2.0),
+        // The second at the R level.
+        ('R', 20.0, 10.0, 2.0),
+        ('L', 20.0, 10.0, -5.0),
+        ('R', 20.0, 10.0, 2.0),
+        // The third (G98) back to the initial level, Z20, not Z2.
+        ('R', 20.0, 20.0, 2.0),
+        ('L', 20.0, 20.0, -5.0),
+        ('R', 20.0, 20.0, 20.0),
+    ];
+    assert_eq!(moves(src, &GcodeOptions::default()).unwrap(), want);
+    // LinuxCNC: G98 goes back to the Z the block started at (the R level of the G99 hole).
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let lcnc_src = src.replace("%\nO0001\n", "").replace("%\n", "");
+    *want.last_mut().unwrap() = ('R', 20.0, 20.0, 2.0);
+    assert_eq!(moves(&lcnc_src, &linuxcnc).unwrap(), want);
+
+    // G91: R-18. from the initial level Z20 is Z2, Z-7. from R is Z-5 — for the second hole
+    // too, although the tool waits at Z2.
+    let src = "%\nO0001\nG0 X0. Y0. Z20.\nG91 G99 G81 X10. Y0. Z-7. R-18. F100.\nX10.\n\
+               G90 G80 G0 Z50.\nM30\n%\n";
+    assert_eq!(
+        moves(src, &GcodeOptions::default()).unwrap(),
+        [
+            ('R', 0.0, 0.0, 20.0),
+            ('R', 10.0, 0.0, 20.0),
+            ('R', 10.0, 0.0, 2.0),
+            ('L', 10.0, 0.0, -5.0),
+            ('R', 10.0, 0.0, 2.0),
+            ('R', 20.0, 0.0, 2.0),
+            ('L', 20.0, 0.0, -5.0),
+            ('R', 20.0, 0.0, 2.0),
+            ('R', 20.0, 0.0, 50.0),
+        ]
+    );
+    // LinuxCNC measures R from Z2 for the second hole: R-16, bottom Z-23.
+    let lcnc_src = "G0 X0 Y0 Z20\nG91 G99 G81 X10 Y0 Z-7 R-18 F100\nX10\nG80\nG90 G0 Z50\nM2\n";
+    let m = moves(lcnc_src, &linuxcnc).unwrap();
+    assert_eq!(m[6], ('R', 20.0, 0.0, -16.0), "{m:?}");
+    assert_eq!(m[7], ('L', 20.0, 0.0, -23.0), "{m:?}");
+
+    // A G0 cancels the cycle mode: the next cycle's initial level is where that leaves the
+    // tool (Z30), not the first cycle's (Z20).
+    let src =
+        "%\nO0001\nG0 X0. Y0. Z20.\nG98 G81 X10. Z-5. R2. F100.\nG0 Z30.\nG99 G81 X20. Z-5. R2.\n\
+               G98 X30.\nG80\nM30\n%\n";
+    let m = moves(src, &GcodeOptions::default()).unwrap();
+    assert_eq!(m[4], ('R', 10.0, 0.0, 20.0), "{m:?}");
+    assert_eq!(m.last(), Some(&('R', 30.0, 0.0, 30.0)), "{m:?}");
+}
+
+/// FANUC 0i-MF "Additional workpiece coordinate systems (G54.1 or G54)": `G10 L20 Pn X Y Z`
+/// sets additional offset n (absolute values, as G10 L2 for G54–G59), `G54.1 Pn` — also
+/// written `G54 Pn`, and Haas's `G154 Pn` — selects it; G54 keeps its own offset. An
+/// additional offset the program never set is reported and the current offset stays.
+#[test]
+fn g10_l20_sets_the_additional_work_offsets_that_g54_1_selects() {
+    let src = "%\nO0001\nG21 G90\nG10 L2 P1 X5.\nG10 L20 P1 X100. Y50. Z-10.\nG10 L20 P7 X-20.\n\
+               G54 G0 X0. Y0. Z0.\nG54.1 P1 X0. Y0. Z0.\nG54 X1.\nG54 P7 X0.\nG154 P1 X0. Y0.\n\
+               G54.1 P2 X10.\nM30\n%\n";
+    let p = read_program_str(src, "f.nc", Machine::three_axis(), &ReadOptions::default()).unwrap();
+    let tips: Vec<[f64; 3]> = p
+        .moves
+        .iter()
+        .map(|m| [m.end.tip.x, m.end.tip.y, m.end.tip.z])
+        .collect();
+    assert_eq!(
+        tips,
+        [
+            [5.0, 0.0, 0.0],
+            [100.0, 50.0, -10.0],
+            [6.0, 50.0, -10.0],
+            [-20.0, 50.0, -10.0],
+            [100.0, 50.0, -10.0],
+            [110.0, 50.0, -10.0],
+        ]
+    );
+    let w: Vec<_> = p
+        .warnings
+        .iter()
+        .filter(|w| w.message.contains("G54.1") || w.message.contains("G154"))
+        .collect();
+    assert_eq!(w.len(), 1, "{:?}", p.warnings);
+    assert_eq!(w[0].line, 12, "{:?}", w);
+    assert_eq!(
+        w[0].message,
+        "G54.1 P2 (additional work offset 2) ignored: its values are not in the program (no \
+         G10 L20 P2 before it), so the current work offset stays"
+    );
+    // P beyond the 300 offsets a control has.
+    let e = moves("O1\nG21\nG10 L20 P301 X0.\nM30\n", &fanuc()).unwrap_err();
+    assert_eq!((e.pos.line, e.pos.column), (3, 9), "{e}");
+}
+
+/// FANUC 0i-MF "Machine coordinate system selection (G53)": G53 positions at rapid whatever
+/// the modal motion, which stays for the next block. LinuxCNC moves G53 with G0 or G1.
+#[test]
+fn g53_is_a_rapid_whatever_the_modal_motion() {
+    let src = "%\nO0001\nG21 G90\nG0 X10. Y10. Z5.\nG1 Z-1. F100.\nG53 Z0.\nX20.\nM30\n%\n";
+    assert_eq!(
+        moves(src, &GcodeOptions::default()).unwrap(),
+        [
+            ('R', 10.0, 10.0, 5.0),
+            ('L', 10.0, 10.0, -1.0),
+            ('R', 10.0, 10.0, 0.0),
+            ('L', 20.0, 10.0, 0.0),
+        ]
+    );
+    let src =
+        "%\nO0001\nG21 G90\nG0 X0. Y0. Z5.\nG2 X10. Y0. R5. F100.\nG53 Z0.\nX0. Y0. R5.\nM30\n%\n";
+    assert_eq!(
+        moves(src, &GcodeOptions::default()).unwrap(),
+        [
+            ('R', 0.0, 0.0, 5.0),
+            ('A', 10.0, 0.0, 5.0),
+            ('R', 10.0, 0.0, 0.0),
+            ('A', 0.0, 0.0, 0.0),
+        ]
+    );
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let m = moves(
+        "G21 G90\nG0 X10 Y10 Z5\nG1 Z-1 F100\nG53 Z0\nM2\n",
+        &linuxcnc,
+    )
+    .unwrap();
+    assert_eq!(m.last(), Some(&('L', 10.0, 10.0, 0.0)));
+    let e = moves(
+        "G21 G90\nG0 X0 Y0 Z5\nG2 X10 Y0 R5 F100\nG53 Z0\nM2\n",
+        &linuxcnc,
+    )
+    .unwrap_err();
+    assert!(e.message.contains("G53 needs G0 or G1"), "{e}");
+}
+
+/// The cancel codes of a Fanuc safe-start line (polar coordinates G15, programmable mirror
+/// image G50.1, modal macro call G67) cancel modes swarf never lets on: read past, G50.1's
+/// axis words with it (they name the axes, they move nothing). The codes that would turn the
+/// modes on stay refused.
+#[test]
+fn safe_start_cancel_codes_are_read_past() {
+    let src = "%\nO0001\nG15 G17 G21 G40 G49 G50 G50.1 G67 G69 G80 G90 G94\nG50.1 X0. Y0.\n\
+               G0 X10. Y10. Z5.\nG67\nG15\nM30\n%\n";
+    let (m, w) = read_with(src, &GcodeOptions::default());
+    assert_eq!(m, [('R', 10.0, 10.0, 5.0)]);
+    for code in ["G15", "G50.1", "G67"] {
+        let n = w.iter().filter(|(_, _, t)| t.contains(code)).count();
+        assert!(n <= 1, "{code}: {w:?}");
+    }
+    for bad in ["G51.1 X0.", "G16", "G66 P9000"] {
+        let e = moves(&format!("O1\nG21\n{bad}\nM30\n"), &fanuc()).unwrap_err();
+        assert_eq!(e.pos.line, 3, "{bad}: {e}");
+    }
+}
+
+/// Fanuc's ATAN gives 0° to 360° (parameter NAT = 0, the default) and the 30i's `ATAN[a,b]`
+/// means `ATAN[a]/[b]`; LinuxCNC's gives −180° to 180°.
+#[test]
+fn fanuc_atan_is_0_to_360_and_takes_a_comma() {
+    let src = "%\nO0001\nG21\n#9=ATAN[-1]/[-1]\n#10=ATAN[1,-1]\n#11=ATAN[-1,1]\nG0 X#9 Y#10 Z#11\nM30\n%\n";
+    let m = moves(src, &GcodeOptions::default()).unwrap();
+    assert_eq!(m.len(), 1);
+    let (x, y, z) = (m[0].1, m[0].2, m[0].3);
+    assert!((x - 225.0).abs() < 1e-9, "{m:?}");
+    assert!((y - 135.0).abs() < 1e-9, "{m:?}");
+    assert!((z - 315.0).abs() < 1e-9, "{m:?}");
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let m = moves("G21\n#9=[ATAN[-1]/[-1]]\nG0 X#9\nM2\n", &linuxcnc).unwrap();
+    assert!((m[0].1 + 135.0).abs() < 1e-9, "{m:?}");
+    assert!(moves("G21\n#9=[ATAN[1,-1]]\nM2\n", &linuxcnc).is_err());
+}
+
+/// More Fanuc habits decide the dialect: G05.1 Q, G43.4/G43.5, G54.1, G154, a dwell P in
+/// milliseconds (no decimal point, 100 or more: 100 s and more would be an odd LinuxCNC
+/// dwell, while `G4 P1` is an ordinary one); under LinuxCNC's rules the codes that are
+/// Fanuc's say how to read them.
+#[test]
+fn more_fanuc_habits_decide_the_dialect() {
+    for src in [
+        "G0 X0\nG05.1 Q1\n",
+        "G43.4 H1\n",
+        "G43.5 H1\n",
+        "G54.1 P1\n",
+        "G154 P2\n",
+        "G04 P500\n",
+        "G82 X1. Y1. Z-1. R1. P250 F100.\n",
+    ] {
+        assert_eq!(GcodeDialect::detect(src), GcodeDialect::Fanuc, "{src}");
+    }
+    for src in [
+        "G4 P1\n",
+        "G4 P0.5\n",
+        "G4 P2000.\n",
+        "G04 P500\no<x> sub\no<x> endsub\n",
+        "G5.1 X1 Y1 I1 J0\n",
+    ] {
+        assert_eq!(GcodeDialect::detect(src), GcodeDialect::LinuxCnc, "{src}");
+    }
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    for src in [
+        "G43.4 H1 Z50.\n",
+        "G43.5 H1 Z50.\n",
+        "G54.1 P1\n",
+        "G05.1 Q1\n",
+    ] {
+        let e = moves(&format!("G21 G90\n{src}M2\n"), &linuxcnc).unwrap_err();
+        assert!(e.message.contains("--dialect fanuc"), "{src}: {e}");
+        assert_eq!(e.pos.line, 2, "{e}");
+    }
+}
+
+/// A Fanuc control set for least-increment input (DPI = 0, its default) reads `X1000` as
+/// 1.000 mm; swarf reads 1000 mm, as a control set for calculator-type input does. The first
+/// such word is reported once, with both readings.
+#[test]
+fn a_number_without_a_decimal_point_is_reported_once() {
+    let src = "%\nO0001\nG21 G90\nG0 X0 Y0\nG04 P500\nG0 X1000 Y2000\nG1 X-5 F100\nM30\n%\n";
+    let (m, w) = read_with(src, &GcodeOptions::default());
+    assert_eq!(m[1], ('R', 1000.0, 2000.0, 0.0));
+    let dp: Vec<_> = w
+        .iter()
+        .filter(|(_, _, t)| t.contains("decimal point"))
+        .collect();
+    assert_eq!(
+        dp,
+        [&(
+            6,
+            4,
+            "X1000 has no decimal point: read as 1000 mm (calculator-type input); a Fanuc \
+             control set for least-increment input (DPI=0) reads 1.000 mm — check the program"
+                .to_string()
+        )],
+        "{w:?}"
+    );
+    // Inch (least increment 0.0001 in) and degrees (0.001°).
+    let (_, w) = read_with("O1\nG20 G90\nG0 Y-25\nM30\n", &fanuc());
+    assert!(
+        w.iter().any(|(l, _, t)| *l == 3
+            && t.starts_with("Y-25 has no decimal point: read as -25 in")
+            && t.contains("reads -0.0025 in")),
+        "{w:?}"
+    );
+    let (_, w) = read_with("O1\nG21 G90\nG0 A90\nM30\n", &fanuc());
+    assert!(
+        w.iter().any(
+            |(_, _, t)| t.starts_with("A90 has no decimal point: read as 90°")
+                && t.contains("reads 0.090°")
+        ),
+        "{w:?}"
+    );
+    // Words that are no lengths or angles: a repeat count K, a mode's Q, a dwell.
+    let src = "O1\nG21 G90\nG0 X0. Y0. Z10.\nG05.1 Q1\nG04 X2\nG98 G81 X5. Y0. Z-1. R1. K2 F100.\nG80\nM30\n";
+    let (_, w) = read_with(src, &fanuc());
+    assert!(
+        w.iter().all(|(_, _, t)| !t.contains("decimal point")),
+        "{w:?}"
+    );
+    // LinuxCNC reads numbers so by definition.
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let (_, w) = read_with("G21 G90\nG0 X1000\nM2\n", &linuxcnc);
+    assert!(w.is_empty(), "{w:?}");
+}
+
+/// A program that moves without stating its units (G20/G21, or G70/G71 read as them) is read
+/// in the initial units (`--initial-units`), which the first move's warning names.
+#[test]
+fn units_never_stated_are_reported_at_the_first_move() {
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let (_, w) = read_with("G90\nG0 X1 Y1\nG1 X2 F100\nM2\n", &linuxcnc);
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].0, 2, "{w:?}");
+    assert!(
+        w[0].2.contains("--initial-units") && w[0].2.contains("mm"),
+        "{w:?}"
+    );
+    let inch = linuxcnc.clone().with_initial_units(swarf_path::Units::Inch);
+    let (m, w) = read_with("G0 X1\nM2\n", &inch);
+    assert_eq!(m, [('R', 25.4, 0.0, 0.0)]);
+    assert!(
+        w.len() == 1 && w[0].2.contains("inch") && w[0].2.contains("--initial-units"),
+        "{w:?}"
+    );
+    let (_, w) = read_with(
+        "%\nO0001\nG90\nG0 X1. Y1.\nM30\n%\n",
+        &GcodeOptions::default(),
+    );
+    assert!(
+        w.iter()
+            .any(|(l, _, t)| *l == 4 && t.contains("--initial-units")),
+        "{w:?}"
+    );
+    // Stated, or no motion: nothing to say.
+    for (src, options) in [
+        ("G21\nG0 X1\nM2\n", &linuxcnc),
+        ("G70\nG0 X1.\nM2\n", &linuxcnc),
+        ("G4 P1\nM2\n", &linuxcnc),
+        ("O1\nG20\nG0 X1.\nM30\n", &fanuc()),
+    ] {
+        let (_, w) = read_with(src, options);
+        assert!(
+            w.iter().all(|(_, _, t)| !t.contains("--initial-units")),
+            "{src}: {w:?}"
+        );
+    }
+}
+
+/// A `WHILE … DOm` whose `ENDm` never comes is an error at the WHILE (a control stops with
+/// an alarm), and only DO1–DO3 exist.
+#[test]
+fn macro_b_loops_need_their_end_and_numbers_1_to_3() {
+    let e = moves(
+        "O1\nG21\n#1=0\nWHILE [#1 LT 3] DO1\n#1=#1+1\nM30\n",
+        &fanuc(),
+    )
+    .unwrap_err();
+    assert_eq!(e.pos.line, 4, "{e}");
+    assert!(e.message.contains("END1"), "{e}");
+    for src in [
+        "O1\nG21\n#1=0\nWHILE [#1 LT 3] DO4\n#1=#1+1\nEND4\nM30\n",
+        "O1\nG21\n#1=0\nWHILE [#1 LT 3] DO0\n#1=#1+1\nEND0\nM30\n",
+    ] {
+        let e = moves(src, &fanuc()).unwrap_err();
+        assert_eq!(e.pos.line, 4, "{src}: {e}");
+        assert!(e.message.contains("DO1"), "{e}");
+    }
 }

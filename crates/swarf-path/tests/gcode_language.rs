@@ -272,14 +272,14 @@ fn tool_length_and_spindle_events() {
 
 #[test]
 fn coolant_and_unknown_m_codes_warn_with_position() {
-    let rec = run("G0 X1 M8\nM428\nM9\nM2\n");
+    let rec = run("G21 G0 X1 M8\nM428\nM9\nM2\n");
     let w: Vec<_> = rec
         .warnings
         .iter()
         .map(|w| (w.line, w.column, w.message.clone()))
         .collect();
     assert_eq!(w.len(), 3, "{w:?}");
-    assert_eq!((w[0].0, w[0].1), (1, 7));
+    assert_eq!((w[0].0, w[0].1), (1, 11));
     assert!(w[1].2.contains("M428"));
 }
 
@@ -840,7 +840,7 @@ fn grbl_system_commands_are_skipped_or_refused() {
 /// one is an error at its place.
 #[test]
 fn dollar_lines_outside_grbl_grammar_are_g_code() {
-    let rec = run("$1 M3 S1000\nG0 X1\nM3 $0 S800\nM5 $-1\nM30\n");
+    let rec = run("$1 M3 S1000\nG21 G0 X1\nM3 $0 S800\nM5 $-1\nM30\n");
     assert_xyz(last_pos(&rec), 1.0, 0.0, 0.0);
     let w: Vec<(u32, u32)> = rec.warnings.iter().map(|w| (w.line, w.column)).collect();
     assert_eq!(w, [(1, 1)], "{:?}", rec.warnings);
@@ -883,7 +883,12 @@ fn post_processor_spellings_read_as_written() {
             [-0.5, 5.0, -1.0],
         ]
     );
-    assert!(rec.warnings.is_empty(), "{:?}", rec.warnings);
+    // (`G00 … G80` reads it by Fanuc's rules, which report `X 1 0`: no decimal point.)
+    let w: Vec<_> = rec.warnings.iter().map(|w| (w.line, w.column)).collect();
+    assert_eq!(w, [(6, 4)], "{:?}", rec.warnings);
+    assert!(rec.warnings[0]
+        .message
+        .starts_with("X10 has no decimal point"));
 }
 
 /// The noise of every CAM program is said once: a reference return with no home given, in any

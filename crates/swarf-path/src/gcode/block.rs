@@ -38,7 +38,7 @@ pub(crate) mod group {
     pub(crate) const TOOL_LENGTH: usize = 8;
     /// G98 G99.
     pub(crate) const RETRACT: usize = 10;
-    /// G54–G59.3.
+    /// G54–G59.3 (and Fanuc's G54.1, Haas's G154).
     pub(crate) const COORD: usize = 12;
     /// G61 G61.1 G64.
     pub(crate) const PATH: usize = 13;
@@ -68,7 +68,8 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
         400 | 410 | 420 | 411 | 421 => Ok(CUTTER_COMP),
         430 | 431 | 490 | 2340 => Ok(TOOL_LENGTH),
         980 | 990 => Ok(RETRACT),
-        540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 => Ok(COORD),
+        // (G54.1 and G154, Fanuc's and Haas's additional work offsets: Fanuc dialect only.)
+        540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 | 541 | 1540 => Ok(COORD),
         610 | 611 | 640 => Ok(PATH),
         960 | 970 => Ok(SPINDLE_MODE),
         330 | 331 => Ok(MOTION),
@@ -150,6 +151,9 @@ pub(crate) struct Block {
     pub(crate) n_modes: usize,
     /// Fanuc: the block's G76 (fine boring) is read as G86.
     pub(crate) fine_boring: bool,
+    /// Fanuc: the block has G50.1 (programmable mirror image cancel), whose axis words name
+    /// the axes it cancels and move nothing.
+    pub(crate) mirror_cancel: bool,
     /// G70/G71 read as G20/G21 (Mach3's and old controls' inch/mm codes), with its code index.
     pub(crate) units_synonym: Option<(u16, u32, u32)>,
     /// The spindle a `$` word selects (LinuxCNC 2.8's several spindles: `M3 $0 S1000`; −1 all
@@ -184,6 +188,7 @@ impl Default for Block {
             modes: [(0, 0); 4],
             n_modes: 0,
             fine_boring: false,
+            mirror_cancel: false,
             units_synonym: None,
             spindle: None,
             assigns: [(Target::Num(0), 0.0); MAX_ASSIGNS],
@@ -208,6 +213,7 @@ impl Block {
         self.g80_too = false;
         self.n_modes = 0;
         self.fine_boring = false;
+        self.mirror_cancel = false;
         self.units_synonym = None;
         self.spindle = None;
     }
@@ -284,6 +290,15 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                     ));
                 }
                 let mut code = code10 as u16;
+                if fanuc && matches!(code, 150 | 501 | 670) {
+                    // The cancels of a Fanuc safe-start line: polar coordinates (G15), the
+                    // programmable mirror image (G50.1), a modal macro call (G67). The modes
+                    // they cancel are refused (G16, G51.1, G66), so they are never on: read
+                    // past, as G69 and G50 are.
+                    b.mirror_cancel |= code == 501;
+                    first = false;
+                    continue;
+                }
                 if fanuc && fanuc_mode(code).is_some() {
                     if b.n_modes == b.modes.len() {
                         return Err(Fault::semantic(span, "too many controller-mode G codes"));
@@ -293,12 +308,16 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                     first = false;
                     continue;
                 }
-                if !fanuc && matches!(code, 434 | 435 | 2340) {
-                    // (Tool centre point control is Fanuc's (G43.4, G43.5) and Haas's (G234);
-                    // LinuxCNC has none.)
+                if !fanuc && matches!(code, 434 | 435 | 2340 | 541 | 1540) {
+                    // (Tool centre point control is Fanuc's (G43.4, G43.5) and Haas's (G234),
+                    // and so are the additional work offsets (G54.1, G154); LinuxCNC has
+                    // none.)
                     return Err(Fault::syntax(
                         span,
-                        format!("unknown G code {}", g_name(code)),
+                        format!(
+                            "unknown G code {} (a Fanuc/Haas code: --dialect fanuc reads it)",
+                            g_name(code)
+                        ),
                         "a G code",
                     ));
                 }
@@ -503,10 +522,9 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
 
 /// `G59.1` from 591.
 /// What a Fanuc/Haas controller-mode G code does, for the codes that change how the control
-/// follows the programmed path (look-ahead, smoothing, high-speed modes) or select a work
-/// offset whose values no program states, not the path itself: read in the Fanuc dialect,
-/// reported and left out, with their P, Q and E words. (In LinuxCNC, G5 and G5.1 are
-/// splines.)
+/// follows the programmed path (look-ahead, smoothing, high-speed modes), not the path itself:
+/// read in the Fanuc dialect, reported and left out, with their P, Q and E words. (In
+/// LinuxCNC, G5 and G5.1 are splines.)
 pub(crate) fn fanuc_mode(code: u16) -> Option<(&'static str, &'static str)> {
     const FOLLOWS: &str = "it changes how the control follows the path, not the path";
     Some(match code {
@@ -523,10 +541,6 @@ pub(crate) fn fanuc_mode(code: u16) -> Option<(&'static str, &'static str)> {
         2550 => (
             "Haas dynamic work offset cancel",
             "X Y Z are read as the machine (--machine) reads them throughout",
-        ),
-        541 | 1540 => (
-            "additional work offset",
-            "its values are not in the program, so the current work offset stays",
         ),
         _ => return None,
     })

@@ -14,6 +14,11 @@
 //! if the tool starts below the R level it first rises straight to R; then, for each repeat, it
 //! traverses to the hole at the current level, down to R if not there, runs the cycle body, and
 //! retracts to R (G99) or to the starting level (G98).
+//!
+//! The starting level differs: LinuxCNC's is the level of each block (G98 retracts to the
+//! higher of it and R; in G91, R is measured from it), Fanuc's *initial level* is the level where
+//! the cycle mode began, kept until G80 or a G00–G03 cancels the mode (G98 returns to it after
+//! G99 holes; in G91, R is measured from it and the bottom from R, for every hole).
 
 use super::block::{group, Block};
 use super::interp::{Interp, AXIS_LETTERS};
@@ -273,6 +278,20 @@ impl Interp<'_, '_> {
             (None, 0.0)
         };
         let mut old_cc = self.p[ni];
+        // Fanuc's initial level: where the cycle mode started (its first block after G80 or a
+        // G00–G03), kept for every later block of the mode — G98 returns to it even after G99
+        // holes, and G91's R counts from it. LinuxCNC counts both from the block's own start.
+        let initial = if self.fanuc {
+            let in_cycle_mode = matches!(old_motion, Some(730 | 740 | 810..=890));
+            let level = match self.initial_level {
+                Some(z) if in_cycle_mode => z,
+                _ => old_cc,
+            };
+            self.initial_level = Some(level);
+            level
+        } else {
+            old_cc
+        };
         let (mut aa, mut bb, aa_inc, bb_inc, r, cc);
         if self.absolute {
             aa_inc = 0.0;
@@ -290,7 +309,7 @@ impl Interp<'_, '_> {
         } else {
             aa_inc = b.get(fl).map_or(0.0, |v| v * self.scale);
             bb_inc = b.get(sl).map_or(0.0, |v| v * self.scale);
-            r = r_word + old_cc;
+            r = r_word + initial;
             cc = r + cc_word;
             aa = self.p[fi];
             bb = self.p[si];
@@ -327,7 +346,11 @@ impl Interp<'_, '_> {
             self.p = p;
             old_cc = r;
         }
-        let clear = if self.retract_r { r } else { old_cc };
+        let clear = match (self.retract_r, self.fanuc) {
+            (true, _) => r,
+            (false, true) => initial.max(r),
+            (false, false) => old_cc,
+        };
         for k in 0..repeats {
             if k > 0 {
                 self.count_iteration(gspan)?;
@@ -430,7 +453,10 @@ impl Interp<'_, '_> {
             }
             old_cc = clear;
         }
-        self.p = self.cycle_point(aa, bb, clear);
+        if repeats > 0 {
+            // (Fanuc's K0 stores the cycle's data and leaves the tool where it is.)
+            self.p = self.cycle_point(aa, bb, clear);
+        }
         self.cycle = super::interp::CycleMemory {
             r: r_word,
             cc: cc_word,

@@ -3,8 +3,9 @@
 //! The grammar and the arithmetic are LinuxCNC's: binary operators are left-associative with
 //! the precedence `**` > `* / MOD` > `+ -` > `EQ NE GT GE LT LE` > `AND OR XOR`; `EQ`/`NE`
 //! compare with LinuxCNC's tolerance of 0.0001; trigonometric functions work in degrees;
-//! `ATAN[y]/[x]` is the two-argument arc tangent; `ROUND` rounds half away from zero; `MOD`
-//! gives a result with the divisor's magnitude and a non-negative sign, like LinuxCNC.
+//! `ATAN[y]/[x]` is the two-argument arc tangent (Fanuc: 0° to 360°, also written `ATAN[y,x]`);
+//! `ROUND` rounds half away from zero; `MOD` gives a result with the divisor's magnitude and a
+//! non-negative sign, like LinuxCNC.
 
 use super::{Fault, Res, Span};
 use crate::PathErrorKind;
@@ -23,7 +24,7 @@ pub(crate) trait ParamRead {
     /// The value of a named parameter (name in lower case, without `#<` `>`), if it exists.
     fn named(&self, name: &str) -> Option<f64>;
     /// Read by Fanuc's rules: `FIX` truncates towards zero and `FUP` away from it (LinuxCNC
-    /// floors and ceils).
+    /// floors and ceils), `ATAN` gives 0° to 360° and takes `ATAN[y,x]`.
     fn fanuc(&self) -> bool {
         false
     }
@@ -428,6 +429,9 @@ fn function(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
         let nm = std::str::from_utf8(&c.code[a..b]).unwrap_or("");
         return Ok(truth(p.named(nm).is_some()));
     }
+    if name == b"atan" {
+        return atan(c, p, depth);
+    }
     let arg = real(c, p, depth)?;
     let span = Span::Code(start, c.i);
     let dom = |ok: bool, what: &str| -> Res<()> {
@@ -449,15 +453,6 @@ fn function(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
             dom((-1.0..=1.0).contains(&arg), "ASIN")?;
             arg.asin().to_degrees()
         }
-        b"atan" => {
-            // LinuxCNC's two-argument form `ATAN[y]/[x]`.
-            if c.peek() != Some(b'/') || c.code.get(c.i + 1) != Some(&b'[') {
-                return Err(c.unexpected("`/[x]` after ATAN[y]"));
-            }
-            c.i += 1;
-            let x = real(c, p, depth)?;
-            arg.atan2(x).to_degrees()
-        }
         b"abs" => arg.abs(),
         b"cos" => arg.to_radians().cos(),
         b"exp" => arg.exp(),
@@ -476,6 +471,40 @@ fn function(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
             arg.sqrt()
         }
         _ => arg.to_radians().tan(),
+    })
+}
+
+/// The two-argument arc tangent after `ATAN` (at its `[`), in degrees: `ATAN[y]/[x]`, and a
+/// Fanuc 30i's `ATAN[y,x]`, which means the same. LinuxCNC's result is −180° to 180°, a Fanuc
+/// control's 0° to 360° (parameter NAT = 0, its default): `ATAN[-1]/[-1]` is −135 and 225.
+fn atan(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
+    c.expect(b'[', "`[` after the function name")?;
+    let y = binary(c, p, depth + 1, 1)?;
+    let x = if p.fanuc() && c.peek() == Some(b',') {
+        c.i += 1;
+        let x = binary(c, p, depth + 1, 1)?;
+        c.expect(b']', "an operator or `]`")?;
+        x
+    } else {
+        c.expect(
+            b']',
+            if p.fanuc() {
+                "an operator, `,` or `]`"
+            } else {
+                "an operator or `]`"
+            },
+        )?;
+        if c.peek() != Some(b'/') || c.code.get(c.i + 1) != Some(&b'[') {
+            return Err(c.unexpected("`/[x]` after ATAN[y]"));
+        }
+        c.i += 1;
+        real(c, p, depth)?
+    };
+    let deg = y.atan2(x).to_degrees();
+    Ok(if p.fanuc() && deg < 0.0 {
+        deg + 360.0
+    } else {
+        deg
     })
 }
 

@@ -137,6 +137,9 @@ pub(crate) struct Interp<'t, 's> {
     /// G99: retract to R; G98: retract to the old level.
     pub(crate) retract_r: bool,
     pub(crate) cycle: CycleMemory,
+    /// Fanuc: the initial level of the canned-cycle mode in effect (along the plane's normal,
+    /// program coordinates, mm), set by the mode's first block (`cycles`).
+    pub(crate) initial_level: Option<f64>,
     pub(crate) rpm: f64,
     pub(crate) dir: SpindleDir,
     pub(crate) tool: u32,
@@ -152,6 +155,11 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) off: [f64; 6],
     /// The XY rotation of each coordinate system (G10 L2 R, parameters 5230, 5250, …), degrees.
     pub(crate) rot_table: [f64; 9],
+    /// Fanuc's additional work offsets (G54.1 P1–P300, Haas G154) the program set with
+    /// `G10 L20 Pn`, mm: a control's others are in its table, not in the program.
+    pub(crate) ext_table: std::collections::BTreeMap<u16, [f64; 6]>,
+    /// The additional work offset in effect (G54.1 Pn), in place of system [`Self::coord`].
+    pub(crate) ext_coord: Option<u16>,
     /// The XY rotation in effect, degrees.
     pub(crate) rot: f64,
     /// The G92 offset in effect.
@@ -216,6 +224,11 @@ pub(crate) struct Interp<'t, 's> {
     tlo_warned: bool,
     /// A G53 move with no work offset in effect has been reported.
     g53_warned: bool,
+    /// Fanuc: a length or angle written without a decimal point has been reported.
+    point_warned: bool,
+    /// The program stated its units (G20/G21, or G70/G71 read as them), or was told at its
+    /// first move that it had not.
+    units_stated: bool,
     /// Fanuc: the group 01 motion (G0–G3 × 10) that resumes after G80.
     pub(crate) group1: u16,
     /// Fanuc G68: the centre (X, Y, mm) and angle (degrees) of the coordinate rotation.
@@ -229,6 +242,9 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) held_axis: bool,
     /// Fanuc Macro B loops open (`macro_b`).
     pub(crate) macro_loops: Vec<super::macro_b::MacroLoop>,
+    /// Where reading goes on after each Macro B loop's `END m`, by the file and start of its
+    /// `WHILE` line (`macro_b`).
+    pub(crate) loop_ends: HashMap<(u32, usize), Cursor>,
     /// State only LinuxCNC's predefined named parameters read (`#<_ccomp>`, `#<_mist>`, …).
     pub(crate) read_only: ReadOnlyState,
     /// Fanuc G51: the centre (mm) and factor of each axis of the scaling.
@@ -262,12 +278,15 @@ impl<'t, 's> Interp<'t, 's> {
             home_warned: false,
             tlo_warned: false,
             g53_warned: false,
+            point_warned: false,
+            units_stated: false,
             group1: 0,
             g68: None,
             tilt: None,
             saved_modal: Vec::new(),
             read_only: ReadOnlyState::default(),
             macro_loops: Vec::new(),
+            loop_ends: HashMap::new(),
             held_axis: false,
             g51: None,
             g5_last: None,
@@ -297,6 +316,7 @@ impl<'t, 's> Interp<'t, 's> {
             motion: fanuc.then_some(0),
             retract_r: false,
             cycle: CycleMemory::default(),
+            initial_level: None,
             rpm: 0.0,
             dir: SpindleDir::Stopped,
             tool: 0,
@@ -306,6 +326,8 @@ impl<'t, 's> Interp<'t, 's> {
             g5x_table: [[0.0; 6]; 9],
             off: [0.0; 6],
             rot_table: [0.0; 9],
+            ext_table: std::collections::BTreeMap::new(),
+            ext_coord: None,
             rot: 0.0,
             g92: [0.0; 6],
             g92_saved: [0.0; 6],
@@ -491,14 +513,15 @@ impl<'t, 's> Interp<'t, 's> {
 
     #[inline]
     pub(crate) fn emit(&mut self, e: Canon<'_>) {
-        if !self.tool_loaded
-            && self.tool != 0
-            && matches!(
-                e,
-                Canon::Traverse { .. } | Canon::Feed { .. } | Canon::Arc { .. }
-            )
-        {
+        let moves = matches!(
+            e,
+            Canon::Traverse { .. } | Canon::Feed { .. } | Canon::Arc { .. }
+        );
+        if !self.tool_loaded && self.tool != 0 && moves {
             self.assume_prepared_tool_loaded();
+        }
+        if !self.units_stated && (moves || matches!(e, Canon::Spline { .. })) {
+            self.units_not_stated();
         }
         if self.comp.queue.is_empty() && self.comp.held_none() {
             self.sink.emit(self.cur_line, &e);
@@ -523,6 +546,79 @@ impl<'t, 's> Interp<'t, 's> {
                 "T{tool} was selected but never loaded with M6: it is assumed to be in the spindle"
             ),
         );
+    }
+
+    /// A program that moves before it says G20 or G21 is read in the initial units, which are
+    /// the machine's on a control and a command-line option here: said once, at the first move,
+    /// naming the units and the option.
+    #[cold]
+    fn units_not_stated(&mut self) {
+        self.units_stated = true;
+        let units = match self.opts.initial_units {
+            Units::Mm => "mm",
+            Units::Inch => "inches",
+        };
+        self.warn_at(
+            0,
+            format!(
+                "the program does not state its units (no G20 or G21 before its first move): \
+                 it is read in {units}, the initial units (--initial-units, mm by default)"
+            ),
+        );
+    }
+
+    /// Fanuc: the first length or angle word written as a whole number without a decimal point
+    /// (`X1000`, not `X0`, `X1000.` or `X#1`) is reported once. swarf reads it as that many
+    /// units, as a control set for calculator-type input does; a Fanuc control with its
+    /// default least-increment input (parameter DPI = 0) reads that many least increments
+    /// (0.001 mm, 0.0001 in, 0.001°). Words that are no length or angle are not: a cycle's
+    /// repeat count K, a controller mode's Q/R, G04's X (a time), G51's I J K (factors).
+    fn warn_without_point(&mut self, b: &Block, lb: &LineBuf, dwell_x: bool) {
+        if !self.fanuc || self.point_warned || b.no_point == 0 {
+            return;
+        }
+        let mode = b.g(group::MOTION).or(self.motion);
+        let cycle = matches!(mode, Some(730 | 740 | 810..=860 | 880 | 890));
+        let m_q = b.m_other[..b.n_other]
+            .iter()
+            .any(|&(m, _)| m == 61 || (62..=68).contains(&m));
+        for c in *b"xyzabcijkrq" {
+            if !b.without_point(c) || b.val[block::slot(c)] == 0.0 {
+                continue;
+            }
+            let not_length = match c {
+                b'x' => dwell_x,
+                b'q' | b'r' if b.n_modes > 0 => true,
+                b'q' => m_q,
+                b'k' if cycle => true,
+                b'i' | b'j' | b'k' => b.g(group::SCALING) == Some(510),
+                _ => false,
+            };
+            if not_length {
+                continue;
+            }
+            let angle = matches!(c, b'a' | b'b' | b'c')
+                || (c == b'r' && b.g(group::ROTATION) == Some(680))
+                || (matches!(c, b'i' | b'j' | b'k') && b.g(group::ROTATION) == Some(682));
+            let v = b.val[block::slot(c)];
+            let (read, fanuc) = match (angle, self.units) {
+                (true, _) => (format!("{v}°"), format!("{:.3}°", v * 0.001)),
+                (false, Units::Mm) => (format!("{v} mm"), format!("{:.3} mm", v * 0.001)),
+                (false, Units::Inch) => (format!("{v} in"), format!("{:.4} in", v * 0.0001)),
+            };
+            self.point_warned = true;
+            self.warn_code(
+                lb,
+                b.at[block::slot(c)] as usize,
+                format!(
+                    "{}{v} has no decimal point: read as {read} (calculator-type input); a \
+                     Fanuc control set for least-increment input (DPI=0) reads {fanuc} — check \
+                     the program",
+                    char::from(c.to_ascii_uppercase())
+                ),
+            );
+            return;
+        }
     }
 
     pub(crate) fn emit_offsets(&mut self) {
@@ -1074,6 +1170,7 @@ impl<'t, 's> Interp<'t, 's> {
         let nonmodal = b.g(group::NON_MODAL);
         // Fanuc: `G04 X1.5` dwells (X is the time, not an axis).
         let dwell_x = self.fanuc && nonmodal == Some(40) && !b.has(b'p') && b.has(b'x');
+        self.warn_without_point(b, lb, dwell_x);
         if nonmodal == Some(40) {
             let c = if dwell_x { b'x' } else { b'p' };
             let p = b.get(c).ok_or_else(|| {
@@ -1107,7 +1204,7 @@ impl<'t, 's> Interp<'t, 's> {
             };
             self.emit(Canon::Plane(self.plane));
         }
-        let mut axes_used_by_nonmotion = dwell_x;
+        let mut axes_used_by_nonmotion = dwell_x || b.mirror_cancel;
         if let Some(g) = b.g(group::UNITS) {
             if self.comp.on() {
                 return Err(Fault::semantic(
@@ -1116,6 +1213,7 @@ impl<'t, 's> Interp<'t, 's> {
                 ));
             }
             let units = if g == 200 { Units::Inch } else { Units::Mm };
+            self.units_stated = true;
             if let Some((code, at, _)) = b.units_synonym {
                 if units != self.units {
                     self.warn_code(
@@ -1249,7 +1347,9 @@ impl<'t, 's> Interp<'t, 's> {
             }
             None => {}
         }
-        if let Some(g) = b.g(group::COORD) {
+        if let Some(g) = b.g(group::COORD).filter(|&g| self.is_extended_select(b, g)) {
+            self.select_extended(b, g, lb)?;
+        } else if let Some(g) = b.g(group::COORD) {
             let idx = match g {
                 591 => 7,
                 592 => 8,
@@ -1257,6 +1357,7 @@ impl<'t, 's> Interp<'t, 's> {
                 _ => (g / 10 - 53) as usize,
             };
             self.coord = idx;
+            self.ext_coord = None;
             let off = self.g5x_table[idx - 1];
             self.set_frame(off, self.g92, self.rot_table[idx - 1]);
         }
@@ -1298,8 +1399,9 @@ impl<'t, 's> Interp<'t, 's> {
             self.held_axis = false;
             self.emit(Canon::MachineAxis);
         }
+        // (Fanuc's G10 L20 sets an additional offset to the values given, as L2 does.)
         let position_setting = matches!(nonmodal, Some(280 | 300 | 520 | 920))
-            || (nonmodal == Some(100) && b.get(b'l') == Some(20.0));
+            || (nonmodal == Some(100) && b.get(b'l') == Some(20.0) && !self.fanuc);
         if self.tilt.is_some() && position_setting {
             return Err(Fault::new(
                 PathErrorKind::Unsupported,
@@ -1433,6 +1535,8 @@ impl<'t, 's> Interp<'t, 's> {
                 b'q' => matches!(mode, Some(50 | 730 | 830)) || b.g(group::PATH) == Some(640),
                 b'p' => {
                     arc || cycle
+                        || b.g(group::COORD)
+                            .is_some_and(|g| self.is_extended_select(b, g))
                         || b.g(group::ROTATION) == Some(682)
                         || matches!(mode, Some(50 | 52))
                         || b.g(group::SCALING) == Some(510)
@@ -1509,6 +1613,13 @@ impl<'t, 's> Interp<'t, 's> {
                 }
             },
             None => None,
+        };
+        // Fanuc: G53 positions at rapid whatever the modal motion (G1, G2, a cycle), which
+        // stays for the next block; LinuxCNC moves it with G0 or G1 and refuses the others.
+        let mode = if self.fanuc && g53 && has_axes {
+            Some(0)
+        } else {
+            mode
         };
         if g53 && !matches!(mode, Some(0 | 10)) {
             return Err(Fault::semantic(
@@ -1969,6 +2080,9 @@ impl<'t, 's> Interp<'t, 's> {
                 "L2 or L20",
             ));
         }
+        if l == 20.0 && self.fanuc {
+            return self.g10_l20_fanuc(b);
+        }
         let p = b.get(b'p').unwrap_or(0.0);
         if !(0.0..=9.0).contains(&p) || p.fract() != 0.0 {
             return Err(Fault::new(
@@ -2002,9 +2116,102 @@ impl<'t, 's> Interp<'t, 's> {
         }
         self.g5x_table[k - 1] = t;
         self.rot_table[k - 1] = rot;
-        if k == self.coord {
+        if k == self.coord && self.ext_coord.is_none() {
             self.set_frame(t, self.g92, rot);
         }
+        Ok(())
+    }
+
+    /// Fanuc's `G10 L20 Pn X Y Z`: additional work offset n (1–300, selected by `G54.1 Pn`)
+    /// takes the given values, as G10 L2 sets G54–G59 (an axis not given keeps its value; G54
+    /// is untouched). LinuxCNC's L20 (the current position reads the values) is another code.
+    fn g10_l20_fanuc(&mut self, b: &Block) -> Res<()> {
+        let n = self.extended_number(b, "G10 L20")?;
+        let mut t = self.ext_table.get(&n).copied().unwrap_or([0.0; 6]);
+        for (i, &c) in AXIS_LETTERS.iter().enumerate() {
+            if let Some(v) = b.get(c) {
+                t[i] = self.mm_from_units(i, v);
+            }
+        }
+        self.ext_table.insert(n, t);
+        if self.ext_coord == Some(n) {
+            self.set_frame(t, self.g92, 0.0);
+        }
+        Ok(())
+    }
+
+    /// The additional work offset number of `what`'s P word: 1–300, as a Fanuc control has
+    /// (Haas: 1–99).
+    fn extended_number(&self, b: &Block, what: &str) -> Res<u16> {
+        match b.get(b'p') {
+            Some(p) if (1.0..=300.0).contains(&p) && p.fract() == 0.0 => Ok(p as u16),
+            p => Err(Fault::new(
+                PathErrorKind::Semantic,
+                if p.is_some() {
+                    b.span(b'p')
+                } else {
+                    b.g_span(group::NON_MODAL)
+                },
+                format!("{what} needs the additional work offset's number in P"),
+                "P1 to P300",
+            )),
+        }
+    }
+
+    /// Whether the block's coordinate system code `g` selects a Fanuc additional work offset:
+    /// G54.1 and G154 do, and so does Fanuc's `G54 Pn` when no other code of the block takes
+    /// the P (a dwell, a subprogram call, G10, a cycle's dwell).
+    fn is_extended_select(&self, b: &Block, g: u16) -> bool {
+        if !self.fanuc {
+            return false;
+        }
+        match g {
+            541 | 1540 => true,
+            540 => {
+                let p_elsewhere = b.m98
+                    || b.m97
+                    || b.m99
+                    || b.n_modes > 0
+                    || b.g(group::NON_MODAL).is_some()
+                    || matches!(b.g(group::MOTION), Some(730 | 740 | 810..=890))
+                    || matches!(self.motion, Some(730 | 740 | 810..=890) if b.mask & axis_mask() != 0);
+                b.has(b'p') && !p_elsewhere
+            }
+            _ => false,
+        }
+    }
+
+    /// `G54.1 Pn` (`G54 Pn`, Haas `G154 Pn`): additional work offset n in effect, when the
+    /// program set it (G10 L20 Pn); one it did not set has its values in the control's table
+    /// only, so the current offset stays, with a warning.
+    fn select_extended(&mut self, b: &Block, g: u16, lb: &LineBuf) -> Res<()> {
+        let name = block::g_name(g);
+        let at = b.g_at[group::COORD] as usize;
+        if g != 540 && !b.has(b'p') {
+            self.warn_code(
+                lb,
+                at,
+                format!(
+                    "{name} without P (additional work offset) ignored: which offset is not \
+                     said, so the current work offset stays"
+                ),
+            );
+            return Ok(());
+        }
+        let n = self.extended_number(b, &name)?;
+        let Some(off) = self.ext_table.get(&n).copied() else {
+            self.warn_code(
+                lb,
+                at,
+                format!(
+                    "{name} P{n} (additional work offset {n}) ignored: its values are not in \
+                     the program (no G10 L20 P{n} before it), so the current work offset stays"
+                ),
+            );
+            return Ok(());
+        };
+        self.ext_coord = Some(n);
+        self.set_frame(off, self.g92, 0.0);
         Ok(())
     }
 

@@ -5,8 +5,9 @@
 //! As a Fanuc control runs them: a `GOTO` goes to the first block numbered `N n` in the file
 //! (its number an expression); a `WHILE` whose condition is false goes on after its `END m`; an
 //! `END m` goes back to its `WHILE`, which tests the condition again; a `GOTO` may leave a loop.
-//! Each loop pass and each `GOTO` counts against the reader's loop limit, so a program that
-//! never ends stops with an error instead of hanging.
+//! A `WHILE` with no `END m` after it, and a loop numbered other than 1–3, are errors (alarms
+//! on the control). Each loop pass and each `GOTO` counts against the reader's loop limit, so a
+//! program that never ends stops with an error instead of hanging.
 
 use super::expr::{param_index, read_infix, read_real, Cur};
 use super::interp::Interp;
@@ -75,7 +76,7 @@ impl Interp<'_, '_> {
                 return Err(c.unexpected("DO m after the condition"));
             }
             c.i += 2;
-            let m = loop_number(&mut c)?;
+            let m = loop_number(&mut c, "DO")?;
             end_of_line(&c)?;
             let level = self.frames.len();
             let open = self.macro_loops.iter().position(|&l| l == (m, here, level));
@@ -86,18 +87,24 @@ impl Interp<'_, '_> {
                         self.macro_loops.truncate(k + 1);
                         self.count_iteration(span)?;
                     }
-                    None => self.macro_loops.push((m, here, level)),
+                    None => {
+                        // A loop whose END never comes is an alarm at its WHILE on a control,
+                        // not a program that runs once through.
+                        self.end_of_loop(m, span)?;
+                        self.macro_loops.push((m, here, level));
+                    }
                 }
                 return Ok(());
             }
             if let Some(k) = open {
                 self.macro_loops.truncate(k);
             }
-            return self.skip_to_end(m, span);
+            self.at = self.end_of_loop(m, span)?;
+            return Ok(());
         }
         if rest.starts_with(b"end") {
             c.i = at + 3;
-            let m = loop_number(&mut c)?;
+            let m = loop_number(&mut c, "END")?;
             end_of_line(&c)?;
             let level = self.frames.len();
             let open = self.macro_loops.iter().rev();
@@ -181,8 +188,14 @@ impl Interp<'_, '_> {
         map
     }
 
-    /// On after the `END m` that closes the loop whose `WHILE` is false.
-    fn skip_to_end(&mut self, m: u64, span: Span) -> Res<()> {
+    /// Where reading goes on after the `END m` that closes the loop of the `WHILE … DO m` just
+    /// read (the line after it): the first `END m` after the WHILE in its file, found once per
+    /// WHILE.
+    fn end_of_loop(&mut self, m: u64, span: Span) -> Res<Cursor> {
+        let key = (self.cur_file, self.cur_start);
+        if let Some(&at) = self.loop_ends.get(&key) {
+            return Ok(at);
+        }
         let text = self.text.clone();
         let mut buf = LineBuf::default();
         for (raw, _, at) in self.at.lines(&text) {
@@ -192,29 +205,39 @@ impl Interp<'_, '_> {
             let code = &buf.code[skip_line_number(&buf.code)..];
             if let Some(digits) = code.strip_prefix(b"end") {
                 let mut c = Cur::new(digits);
-                if loop_number(&mut c).ok() == Some(m) && c.at_end() {
-                    self.at = at;
-                    return Ok(());
+                if loop_number(&mut c, "END").ok() == Some(m) && c.at_end() {
+                    self.loop_ends.insert(key, at);
+                    return Ok(at);
                 }
             }
         }
         Err(Fault::semantic(
             span,
-            format!("WHILE … DO{m} without its END{m} in this file"),
+            format!("WHILE … DO{m} without its END{m} after it in this file"),
         ))
     }
 }
 
-/// A loop number `m` of `DO m` / `END m`: digits.
-fn loop_number(c: &mut Cur<'_>) -> Res<u64> {
+/// A loop number `m` of `DO m` / `END m` (`word`): 1, 2 or 3, as a Fanuc control numbers
+/// them (others are an alarm).
+fn loop_number(c: &mut Cur<'_>, word: &str) -> Res<u64> {
     let start = c.i;
     while matches!(c.peek(), Some(b'0'..=b'9')) {
         c.i += 1;
     }
-    std::str::from_utf8(&c.code[start..c.i])
+    let m: u64 = std::str::from_utf8(&c.code[start..c.i])
         .ok()
         .and_then(|s| s.parse().ok())
-        .ok_or_else(|| c.unexpected("a loop number (DO1, END1)"))
+        .ok_or_else(|| c.unexpected("a loop number (DO1, END1)"))?;
+    if !(1..=3).contains(&m) {
+        return Err(Fault::new(
+            crate::PathErrorKind::Semantic,
+            Span::Code(start, c.i),
+            format!("{word}{m}: Fanuc's loops are {word}1, {word}2 and {word}3"),
+            format!("{word}1, {word}2 or {word}3"),
+        ));
+    }
+    Ok(m)
 }
 
 fn end_of_line(c: &Cur<'_>) -> Res<()> {

@@ -24,7 +24,8 @@
 //! * Cutter radius compensation G40 G41 G42 G41.1 G42.1 in G17/G18 (`comp`), radii from
 //!   [`GcodeOptions::tool_diameters`].
 //! * State: G17–G19, G20/G21, G90/G91, G90.1/G91.1, G93/G94/G95, G54–G59.3, G10 L2/L20 with R
-//!   ([`Canon::XyRotation`]), G52, G92/G92.1/G92.2/G92.3, G43/G43.1/G49 (reported, positions not
+//!   ([`Canon::XyRotation`]) (Fanuc: G10 L20 sets the additional offsets G54.1 P1–P300, also
+//!   `G54 P`, Haas `G154 P`), G52, G92/G92.1/G92.2/G92.3, G43/G43.1/G49 (reported, positions not
 //!   shifted: tool-tip programs), G61/G61.1/G64, G96/G97, G4, F S T M3 M4 M5 M6 M2 M30 (M0 M1
 //!   M60 M7 M8 M9 and every other M code: warnings); Fanuc G68/G69 and G51/G50, and the
 //!   tilted working plane G68.2/G53.1 ([`Canon::WorkPlane`]) (`frames`).
@@ -197,7 +198,9 @@ pub enum GcodeDialect {
 impl GcodeDialect {
     /// The dialect of a program: Fanuc when its first lines show Fanuc habits (a bare `O1234`
     /// program number, `M98`/`M99`, `G80` sharing a block with `G0`/`G1`, a Macro B `WHILE`,
-    /// `IF`, `GOTO` or `END`) and nothing only
+    /// `IF`, `GOTO` or `END`, Fanuc's own codes `G05.1 Q`, G43.4, G43.5, G54.1 and Haas's G154,
+    /// a G04/G82 dwell `P` in milliseconds — no decimal point, 100 or more: `G4 P1` is an
+    /// ordinary LinuxCNC dwell of a second, `G04 P500` is not) and nothing only
     /// LinuxCNC reads (`o<name>`, O-word keywords, `#<name>`); LinuxCNC otherwise.
     pub fn detect(text: &str) -> Self {
         let (mut fanuc, mut linuxcnc) = (false, false);
@@ -250,7 +253,15 @@ impl GcodeDialect {
                 && gs
                     .iter()
                     .any(|&g| matches!(g as u32, 0..=3) && g.fract() == 0.0);
-            if g80_with_motion {
+            let has = |code: f64| gs.iter().any(|&g| (g - code).abs() < 1e-9);
+            let own_code = has(43.4)
+                || has(43.5)
+                || has(54.1)
+                || has(154.0)
+                || (has(5.1) && body.contains('q'));
+            let dwell_ms =
+                (has(4.0) || has(82.0)) && p_without_point(body).is_some_and(|p| p >= 100);
+            if g80_with_motion || own_code || dwell_ms {
                 fanuc = true;
             }
         }
@@ -260,6 +271,22 @@ impl GcodeDialect {
             GcodeDialect::LinuxCnc
         }
     }
+}
+
+/// The value of the first `P` word of a block's code (lower case, no spaces) written as a
+/// whole number without a decimal point, if there is one.
+fn p_without_point(body: &str) -> Option<u64> {
+    body.match_indices('p').find_map(|(i, _)| {
+        let num: String = body[i + 1..]
+            .chars()
+            .take_while(|c| c.is_ascii_digit() || *c == '.')
+            .collect();
+        if num.contains('.') {
+            None
+        } else {
+            num.parse().ok()
+        }
+    })
 }
 
 impl Default for GcodeOptions {

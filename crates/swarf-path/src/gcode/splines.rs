@@ -54,10 +54,17 @@ impl Interp<'_, '_> {
         match m {
             50 | 51 => {
                 if !(b.has(b'x') || b.has(b'y')) {
+                    // (`G05.1 Q1` is Fanuc's AI contour control, which that dialect reads.)
+                    let fanuc_mode = m == 51 && b.has(b'q');
                     return Err(Fault::new(
                         PathErrorKind::Semantic,
                         span,
-                        "a spline needs its end point",
+                        if fanuc_mode {
+                            "a spline needs its end point (`G05.1 Q…` is Fanuc's AI contour \
+                             control: --dialect fanuc reads it)"
+                        } else {
+                            "a spline needs its end point"
+                        },
                         "X and/or Y",
                     ));
                 }
