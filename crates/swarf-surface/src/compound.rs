@@ -270,13 +270,25 @@ pub enum UnhonouredTrim {
         /// Why its boundaries are not a trim.
         why: Arc<TrimFailure>,
     },
+    /// Another IGES entity that bounds the patch: a 143 bounded surface, a 510 face of a
+    /// manifold solid B-rep (`IGES 143 at D7 (why)`).
+    Iges {
+        /// The entity type.
+        kind: u32,
+        /// Its directory entry.
+        de: usize,
+        /// Why its boundaries are not a trim.
+        why: Arc<TrimFailure>,
+    },
 }
 
 impl UnhonouredTrim {
     /// Why the trim is not honoured.
     pub fn why(&self) -> &TrimFailure {
         match self {
-            UnhonouredTrim::StepFace { why, .. } | UnhonouredTrim::Iges144 { why, .. } => why,
+            UnhonouredTrim::StepFace { why, .. }
+            | UnhonouredTrim::Iges144 { why, .. }
+            | UnhonouredTrim::Iges { why, .. } => why,
         }
     }
 }
@@ -293,6 +305,10 @@ impl PartialEq for UnhonouredTrim {
             (UnhonouredTrim::Iges144 { de: a, .. }, UnhonouredTrim::Iges144 { de: b, .. }) => {
                 a == b
             }
+            (
+                UnhonouredTrim::Iges { kind: k, de: a, .. },
+                UnhonouredTrim::Iges { kind: l, de: b, .. },
+            ) => (k, a) == (l, b),
             _ => false,
         };
         same_entity && self.why().to_string() == other.why().to_string()
@@ -304,6 +320,7 @@ impl fmt::Display for UnhonouredTrim {
         match self {
             UnhonouredTrim::StepFace { face, why } => write!(f, "STEP face #{face} ({why})"),
             UnhonouredTrim::Iges144 { de, why } => write!(f, "IGES 144 at D{de} ({why})"),
+            UnhonouredTrim::Iges { kind, de, why } => write!(f, "IGES {kind} at D{de} ({why})"),
         }
     }
 }
@@ -649,7 +666,9 @@ mod tests {
             patch: 3,
             by: UnhonouredTrim::Iges144 {
                 de: 7,
-                why: Arc::new(TrimFailure::NoCurve { de: 5 }),
+                why: Arc::new(TrimFailure::NoCurve {
+                    de: crate::io::IgesBoundary { kind: 142, de: 5 },
+                }),
             },
         };
         assert_eq!(

@@ -258,28 +258,28 @@ pub enum TrimFailure {
     #[error("the loops span no area")]
     NoArea,
 
-    // IGES 142 boundaries.
-    /// A 142's model-space curve that jumps in the surface's parameters.
-    #[error("model-space curve of 142 at D{de} does not map to a continuous loop in the surface's parameters (it crosses a seam or a pole?)")]
+    // IGES boundaries (a 142 of a 144, a 141 of a 143).
+    /// A boundary's model-space curve that jumps in the surface's parameters.
+    #[error("model-space curve of {de} does not map to a continuous loop in the surface's parameters (it crosses a seam or a pole?)")]
     ModelJumps {
-        /// The 142.
-        de: usize,
+        /// The boundary (142 or 141).
+        de: IgesBoundary,
     },
-    /// A 142's model-space curve needs too many points.
-    #[error("model-space curve of 142 at D{de} needs more than {trim} points, or the file's trims more than {file}")]
+    /// A boundary's model-space curve needs too many points.
+    #[error("model-space curve of {de} needs more than {trim} points, or the file's trims more than {file}")]
     ModelTooManyPoints {
-        /// The 142.
-        de: usize,
+        /// The boundary (142 or 141).
+        de: IgesBoundary,
         /// The limit for one trim.
         trim: usize,
         /// The limit for the file.
         file: usize,
     },
-    /// A 142's model-space curve off the surface.
-    #[error("model-space curve of 142 at D{de} lies {distance:.3e} mm off the surface (at ({:.6}, {:.6}, {:.6}) mm; more than {tolerance:.1e} mm)", .point.x, .point.y, .point.z)]
+    /// A boundary's model-space curve off the surface.
+    #[error("model-space curve of {de} lies {distance:.3e} mm off the surface (at ({:.6}, {:.6}, {:.6}) mm; more than {tolerance:.1e} mm)", .point.x, .point.y, .point.z)]
     ModelOffSurface {
-        /// The 142.
-        de: usize,
+        /// The boundary (142 or 141).
+        de: IgesBoundary,
         /// The distance, mm.
         distance: f64,
         /// The point, mm.
@@ -287,67 +287,72 @@ pub enum TrimFailure {
         /// The largest distance accepted, mm.
         tolerance: f64,
     },
-    /// A 142's model-space curve needs more point searches than a trim may make.
-    #[error("model-space curve of 142 at D{de}: more than {limit} points needed a search for their parameters")]
+    /// A boundary's model-space curve needs more point searches than a trim may make.
+    #[error(
+        "model-space curve of {de}: more than {limit} points needed a search for their parameters"
+    )]
     ModelSearchesSpent {
-        /// The 142.
-        de: usize,
+        /// The boundary (142 or 141).
+        de: IgesBoundary,
         /// How many searches a trim may make.
         limit: usize,
     },
-    /// A 142's model-space curve maps to parameters that are not finite.
-    #[error("model-space curve of 142 at D{de} maps to non-finite parameters")]
+    /// A boundary's model-space curve maps to parameters that are not finite.
+    #[error("model-space curve of {de} maps to non-finite parameters")]
     ModelNonFinite {
-        /// The 142.
-        de: usize,
+        /// The boundary (142 or 141).
+        de: IgesBoundary,
     },
-    /// A 142's model-space curve gave no point.
-    #[error("model-space curve of 142 at D{de} maps to no point")]
+    /// A boundary's model-space curve gave no point.
+    #[error("model-space curve of {de} maps to no point")]
     ModelNoPoint {
-        /// The 142.
-        de: usize,
+        /// The boundary (142 or 141).
+        de: IgesBoundary,
     },
-    /// A 142's model-space curve maps to fewer than 3 distinct points.
-    #[error("model-space curve of 142 at D{de} maps to {points} distinct point(s) of the surface's parameters; a loop needs at least 3")]
+    /// A boundary's model-space curve maps to fewer than 3 distinct points.
+    #[error("model-space curve of {de} maps to {points} distinct point(s) of the surface's parameters; a loop needs at least 3")]
     ModelTooFewPoints {
-        /// The 142.
-        de: usize,
+        /// The boundary (142 or 141).
+        de: IgesBoundary,
         /// The distinct points.
         points: usize,
     },
-    /// A 142 whose curve fails, for `reason`.
-    #[error("142 at D{de}: {reason}")]
+    /// A boundary whose curve fails, for `reason`.
+    #[error("{de}: {reason}")]
     Boundary {
-        /// The 142.
-        de: usize,
+        /// The boundary (142 or 141).
+        de: IgesBoundary,
         /// Why.
         reason: Box<TrimFailure>,
     },
-    /// A 142 with neither curve.
-    #[error("142 at D{de} has neither a parameter-space nor a model-space curve")]
+    /// A boundary with neither curve.
+    #[error("{de} has neither a parameter-space nor a model-space curve")]
     NoCurve {
-        /// The 142.
-        de: usize,
+        /// The boundary (142 or 141).
+        de: IgesBoundary,
     },
-    /// A 142's model-space curve that is malformed.
-    #[error("142 at D{de}: its model-space curve cannot be read ({reason})")]
+    /// A boundary's model-space curve that is malformed.
+    #[error("{de}: its model-space curve cannot be read ({reason})")]
     ModelUnreadable {
-        /// The 142.
-        de: usize,
+        /// The boundary (142 or 141).
+        de: IgesBoundary,
         /// Why (in the message, not a separate source).
         reason: Box<ReadError>,
     },
-    /// A 142 whose parameter-space curve is of a kind not read and whose model-space curve
+    /// A boundary whose parameter-space curve is of a kind not read and whose model-space curve
     /// fails too.
-    #[error("142 at D{de}: {parameter}; {model}")]
+    #[error("{de}: {parameter}; {model}")]
     BothCurves {
-        /// The 142.
-        de: usize,
+        /// The boundary (142 or 141).
+        de: IgesBoundary,
         /// Why the parameter-space curve is not used.
         parameter: Box<TrimFailure>,
         /// Why the model-space curve is not used.
         model: Box<TrimFailure>,
     },
+    /// A face of a manifold solid B-rep (IGES 510), whose loops (508) are not read.
+    #[error("its loops (entity 508 of a manifold solid B-rep) are not read")]
+    FaceLoopsNotRead,
     /// More curves than a trim may have.
     #[error("its loops are made of more than {max} curves")]
     TooManyCurves {
@@ -395,7 +400,7 @@ pub enum TrimFailure {
 }
 
 impl TrimFailure {
-    /// True for the failures of a 142's model-space curve that name the 142 themselves.
+    /// True for the failures of a boundary's model-space curve that name the boundary themselves.
     pub(crate) fn names_its_boundary(&self) -> bool {
         matches!(
             self,
@@ -421,5 +426,21 @@ impl From<InvertError> for TrimFailure {
         match e {
             InvertError::GridSearchesSpent { limit } => TrimFailure::SearchesSpent { limit },
         }
+    }
+}
+
+/// An IGES boundary entity that a trim failure names: a 142 (curve on a parametric surface) of
+/// a 144, or a 141 (boundary) of a 143. Shown as `142 at D5`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct IgesBoundary {
+    /// The entity type (142 or 141).
+    pub kind: u32,
+    /// Its directory entry.
+    pub de: usize,
+}
+
+impl std::fmt::Display for IgesBoundary {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} at D{}", self.kind, self.de)
     }
 }

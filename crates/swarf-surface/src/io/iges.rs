@@ -36,7 +36,18 @@
 //! the wrong type, is an error at that parameter (in a model-space curve: a note, the patch
 //! untrimmed); so is a 144's surface pointer (PTS) that names no entry or an entry that is not a
 //! surface (one on a surface kind not read is skipped with that surface). [`IgesDocument::trims`]
-//! still lists every 144 as found.
+//! still lists every 144 as found. A 144's own transformation (124) places the patch it trims
+//! (its boundaries are in the surface's parameters or in the space the surface is defined in).
+//!
+//! **Other bounds.** A 143 (bounded surface) on a 128 trims it as a 144 does, through its 141
+//! boundaries: each 141 is a chain of curves, each read from its parameter-space curves when the
+//! boundary has them (TYPE 1), else from its model-space curve mapped onto the patch as above,
+//! reversed where its SENSE is 2; the loop enclosing the largest area in the parameters is the
+//! outer boundary, the others holes (the 143 does not say which is which). The faces (510) of a
+//! manifold solid B-rep (186) leave their surfaces untrimmed with a
+//! [`ReadNote::TrimNotHonoured`] each (their 508 loops are not read); a 108 plane is skipped
+//! with a [`ReadNote::UnsupportedSurface`]; a subfigure instance (408) is not applied, with a
+//! [`ReadNote::PlacementNotApplied`] (its subfigure's surfaces are read where it defines them).
 //!
 //! The fixed-column format: 80-column records, section letter in column 73 (S, G, D, P, T),
 //! sequence number in 74–80 (directory entries listed out of order are put in the order of
@@ -62,8 +73,8 @@ use std::sync::Arc;
 use swarf_geom::math::Vec3;
 
 use super::{
-    skipped_detail, Format, ReadError, TrimFailure, Uv, MAX_GRID_SEARCHES, MAX_HALVINGS,
-    MAX_TRIM_POINTS,
+    skipped_detail, Format, IgesBoundary, ReadError, TrimFailure, Uv, MAX_GRID_SEARCHES,
+    MAX_HALVINGS, MAX_TRIM_POINTS,
 };
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote, UnhonouredTrim};
 use crate::curve::{BSplineCurve, CurveError};
@@ -189,8 +200,15 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
             }
         }
     }
-    // A 128 trimmed by a 144 becomes a trimmed patch; a second 144 on the same 128 gets a copy.
+    // A 128 trimmed by a 144 becomes a trimmed patch; a second 144 on the same 128 gets a copy
+    // (of the surface as the 128 gives it: a 144's own transformation moves only its patch).
     let mut claimed = vec![false; doc.surface.patches.len()];
+    let originals: Vec<Surface> = doc
+        .surface
+        .patches
+        .iter()
+        .map(|p| p.surface.clone())
+        .collect();
     let mut points_left = MAX_FILE_TRIM_POINTS;
     for e in entries.iter().filter(|e| e.kind == 144) {
         let p = file.params(e)?;
@@ -203,67 +221,16 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
         let inner = (0..n2 as usize)
             .map(|k| p.int(5 + k, "PTI").map(|v| v as usize))
             .collect::<Result<Vec<_>, _>>()?;
-        // The surface: a 128 read above, or a surface of a kind not read (skipped with its
-        // note); anything else is a broken pointer, as a boundary's would be.
-        match entry_at(&entries, pts) {
-            None => {
-                return Err(p.error(
-                    1,
-                    format!("surface PTS points at D{pts}, which is not a directory entry"),
-                ))
-            }
-            Some(s) if s.kind != 128 && !SKIPPED_SURFACES.contains(&s.kind) => {
-                return Err(p.error(
-                    1,
-                    format!(
-                        "surface PTS points at D{pts}, an entity {}; expected a surface (128)",
-                        s.kind
-                    ),
-                ))
-            }
-            Some(_) => {}
-        }
+        check_surface_pointer(&entries, &p, 1, "PTS", pts)?;
         let mut patch = usize::try_from(pts)
             .ok()
             .and_then(|d| patch_of_de.get(&d).copied());
         if let Some(k) = patch {
-            let domain = doc.surface.patches[k].surface.domain();
-            let surface = &doc.surface.patches[k].surface;
-            let bb = surface.bounding_box();
-            let size = (bb.max - bb.min).length();
-            let size = if size.is_finite() { size } else { 1e3 };
-            let tol_on = 1e-4 * size + 1e-3;
-            let mut sampler = Sampler {
-                file: &file,
-                entries: &entries,
-                tol: 1e-6 * (domain.u[1] - domain.u[0]).hypot(domain.v[1] - domain.v[0]),
-                points_left: points_left.min(MAX_TRIM_POINTS),
-                curves_left: MAX_TRIM_CURVES,
-                bounds: {
-                    let (mu, mv) = (
-                        BOX_MARGIN * (domain.u[1] - domain.u[0]),
-                        BOX_MARGIN * (domain.v[1] - domain.v[0]),
-                    );
-                    [
-                        domain.u[0] - mu,
-                        domain.u[1] + mu,
-                        domain.v[0] - mv,
-                        domain.v[1] + mv,
-                    ]
-                },
-                unsupported: false,
-                model: ModelSpace {
-                    inverter: Inverter::new(surface, tol_on, MAX_GRID_SEARCHES),
-                    factor: global.factor,
-                    tol: (1e-5 * size).clamp(1e-9, 1e-3),
-                    tol_on,
-                    de: 0,
-                    last: None,
-                },
-                from_model: Vec::new(),
-            };
+            let patch_surface = originals[k].clone();
+            let mut sampler =
+                Sampler::new(&file, &entries, &patch_surface, global.factor, points_left);
             let budget = sampler.points_left;
-            let result = sampler.trim144(e, &p, &domain)?;
+            let result = sampler.trim144(e, &p, &patch_surface.domain())?;
             points_left -= budget - sampler.points_left;
             let by = match sampler.from_model.as_slice() {
                 [] => format!("IGES 144 at D{}", e.de),
@@ -271,50 +238,122 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
                     "IGES 144 at D{}, the loop{s} of the 142{s} at {} mapped from {} model-space curve{s}",
                     e.de,
                     des.iter()
-                        .map(|d| format!("D{d}"))
+                        .map(|d| format!("D{}", d.de))
                         .collect::<Vec<_>>()
                         .join(", "),
                     if des.len() == 1 { "its" } else { "their" },
                     s = if des.len() == 1 { "" } else { "s" },
                 ),
             };
-            match result {
-                Ok(trim) => {
-                    let target = if claimed[k] {
-                        let copy = doc.surface.patches[k].clone();
-                        doc.surface.patches.push(copy);
-                        doc.surface.patches.len() - 1
-                    } else {
-                        claimed[k] = true;
-                        k
-                    };
-                    doc.surface.notes.push(ReadNote::Trimmed {
-                        patch: target,
-                        by,
-                        loops: trim.loops().len(),
-                        points: trim.loops().iter().map(Vec::len).sum(),
-                    });
-                    doc.surface.patches[target].trim = Some(trim);
-                    patch = Some(target);
-                }
-                Err(why) => {
-                    // The whole patch stands for this face (once, however many 144s use it).
-                    claimed[k] = true;
-                    doc.surface.notes.push(ReadNote::TrimNotHonoured {
-                        patch: k,
-                        by: UnhonouredTrim::Iges144 {
-                            de: e.de,
-                            why: Arc::new(why),
-                        },
-                    });
-                }
+            let target = settle_trim(
+                &mut doc,
+                &mut claimed,
+                (k, &originals[k]),
+                result,
+                by,
+                |why| UnhonouredTrim::Iges144 { de: e.de, why },
+            );
+            // The 144's own transformation places the trimmed surface (its boundaries are in
+            // the surface's parameters, or in the space the surface is defined in).
+            if let Some(t) = file.transform(&entries, e)? {
+                let placed = transformed(&doc.surface.patches[target].surface, &t, global.factor)
+                    .map_err(|reason| ReadError::Surface {
+                    format: Format::Iges,
+                    line: e.line,
+                    entity: format!("entity 144 at D{}", e.de),
+                    reason,
+                })?;
+                doc.surface.patches[target].surface = placed;
             }
+            patch = Some(target);
         }
         doc.trims.push(IgesTrim {
             de: e.de,
             patch,
             outer: usize::try_from(pto).ok().filter(|&d| d > 0),
             inner,
+        });
+    }
+    // A 128 bounded by a 143 (its boundaries 141s) becomes a trimmed patch, as a 144's does.
+    for e in entries.iter().filter(|e| e.kind == 143) {
+        let p = file.params(e)?;
+        let sptr = p.int(2, "SPTR")?;
+        p.count(3, "N")?;
+        check_surface_pointer(&entries, &p, 2, "SPTR", sptr)?;
+        let Some(k) = usize::try_from(sptr)
+            .ok()
+            .and_then(|d| patch_of_de.get(&d).copied())
+        else {
+            continue;
+        };
+        let patch_surface = originals[k].clone();
+        let mut sampler = Sampler::new(&file, &entries, &patch_surface, global.factor, points_left);
+        let budget = sampler.points_left;
+        let result = sampler.trim143(e, &p, &patch_surface.domain())?;
+        points_left -= budget - sampler.points_left;
+        let by = match sampler.from_model.as_slice() {
+            [] => format!("IGES 143 at D{}", e.de),
+            des => format!(
+                "IGES 143 at D{}, the loop{s} of the 141{s} at {} mapped from model-space curves",
+                e.de,
+                des.iter()
+                    .map(|d| format!("D{}", d.de))
+                    .collect::<Vec<_>>()
+                    .join(", "),
+                s = if des.len() == 1 { "" } else { "s" },
+            ),
+        };
+        let target = settle_trim(
+            &mut doc,
+            &mut claimed,
+            (k, &originals[k]),
+            result,
+            by,
+            |why| UnhonouredTrim::Iges {
+                kind: 143,
+                de: e.de,
+                why,
+            },
+        );
+        if let Some(t) = file.transform(&entries, e)? {
+            let placed = transformed(&doc.surface.patches[target].surface, &t, global.factor)
+                .map_err(|reason| ReadError::Surface {
+                    format: Format::Iges,
+                    line: e.line,
+                    entity: format!("entity 143 at D{}", e.de),
+                    reason,
+                })?;
+            doc.surface.patches[target].surface = placed;
+        }
+    }
+    // The faces (510) of a manifold solid B-rep: their loops (508 of 504 edge lists) are not
+    // read, so the surface of each stands whole, said per face.
+    for e in entries.iter().filter(|e| e.kind == 510) {
+        let p = file.params(e)?;
+        let surf = p.int(1, "SURF")?;
+        if let Some(&k) = usize::try_from(surf).ok().and_then(|d| patch_of_de.get(&d)) {
+            claimed[k] = true;
+            doc.surface.notes.push(ReadNote::TrimNotHonoured {
+                patch: k,
+                by: UnhonouredTrim::Iges {
+                    kind: 510,
+                    de: e.de,
+                    why: Arc::new(TrimFailure::FaceLoopsNotRead),
+                },
+            });
+        }
+    }
+    // Subfigure instances (408) place the entities of a subfigure definition (308) elsewhere:
+    // not applied, so the geometry is read once, where it is defined.
+    for e in entries.iter().filter(|e| e.kind == 408) {
+        let p = file.params(e)?;
+        let def = p.int(1, "DE")?;
+        doc.surface.notes.push(ReadNote::PlacementNotApplied {
+            entity: format!("IGES 408 at D{}", e.de),
+            why: format!(
+                "subfigure instances are not applied: the surfaces of the subfigure D{def} are \
+                 read once, where it defines them"
+            ),
         });
     }
     if doc.surface.patches.is_empty() {
@@ -340,9 +379,110 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
     Ok(doc)
 }
 
+/// The surface pointer (parameter `i`, named `what`, value `de`) of a trimming entity: a 128
+/// read above, or a surface of a kind not read (skipped with its note); anything
+/// else is a broken pointer, as a boundary's would be.
+fn check_surface_pointer(
+    entries: &[Entry],
+    p: &Params,
+    i: usize,
+    what: &str,
+    de: i64,
+) -> Result<(), ReadError> {
+    match entry_at(entries, de) {
+        None => Err(p.error(
+            i,
+            format!("surface {what} points at D{de}, which is not a directory entry"),
+        )),
+        Some(s) if s.kind != 128 && !SKIPPED_SURFACES.contains(&s.kind) => Err(p.error(
+            i,
+            format!(
+                "surface {what} points at D{de}, an entity {}; expected a surface (128)",
+                s.kind
+            ),
+        )),
+        Some(_) => Ok(()),
+    }
+}
+
+/// Records what a trimming entity made of patch `k` (whose surface as the file gives it is
+/// `original`): the trimmed patch (the patch itself the first time, a copy of it after), or the
+/// whole patch with the note saying why not. Returns the patch that stands for the face.
+fn settle_trim(
+    doc: &mut IgesDocument,
+    claimed: &mut [bool],
+    (k, original): (usize, &Surface),
+    result: Built<Trim>,
+    by: String,
+    unhonoured: impl FnOnce(Arc<TrimFailure>) -> UnhonouredTrim,
+) -> usize {
+    match result {
+        Ok(trim) => {
+            let target = if claimed[k] {
+                let mut copy = doc.surface.patches[k].clone();
+                copy.surface = original.clone();
+                doc.surface.patches.push(copy);
+                doc.surface.patches.len() - 1
+            } else {
+                claimed[k] = true;
+                k
+            };
+            doc.surface.notes.push(ReadNote::Trimmed {
+                patch: target,
+                by,
+                loops: trim.loops().len(),
+                points: trim.loops().iter().map(Vec::len).sum(),
+            });
+            doc.surface.patches[target].trim = Some(trim);
+            target
+        }
+        Err(why) => {
+            // The whole patch stands for this face (once, however many entities use it).
+            claimed[k] = true;
+            doc.surface.notes.push(ReadNote::TrimNotHonoured {
+                patch: k,
+                by: unhonoured(Arc::new(why)),
+            });
+            k
+        }
+    }
+}
+
+/// `s` moved by the transformation matrix `t` (file units; `s` is in mm, `factor` mm per file
+/// unit).
+fn transformed(
+    s: &Surface,
+    t: &[f64; 12],
+    factor: f64,
+) -> Result<Surface, crate::surface::NurbsError> {
+    let Surface::Nurbs(n) = s else {
+        return Ok(s.clone());
+    };
+    let (nu, nv) = n.net_size();
+    let points: Vec<Vec<Vec3>> = (0..nu)
+        .map(|i| {
+            (0..nv)
+                .map(|j| apply(&Some(*t), n.control_point(i, j) / factor) * factor)
+                .collect()
+        })
+        .collect();
+    let weights: Vec<Vec<f64>> = (0..nu)
+        .map(|i| (0..nv).map(|j| n.weight(i, j)).collect())
+        .collect();
+    NurbsSurface::new(
+        n.degree_u(),
+        n.degree_v(),
+        n.knots_u().to_vec(),
+        n.knots_v().to_vec(),
+        &points,
+        Some(&weights),
+    )
+    .map(Surface::Nurbs)
+}
+
 /// Surface entities that are not read: a patch on one is skipped with a
 /// [`ReadNote::UnsupportedSurface`].
-const SKIPPED_SURFACES: [u32; 10] = [114, 118, 120, 122, 140, 190, 192, 194, 196, 198];
+const SKIPPED_SURFACES: [u32; 11] = [108, 114, 118, 120, 122, 140, 190, 192, 194, 196, 198];
 
 /// Most points of all the trims of a file (a guard against files that repeat a costly trim).
 const MAX_FILE_TRIM_POINTS: usize = 4_000_000;
@@ -397,8 +537,53 @@ struct Sampler<'s, 'a> {
     unsupported: bool,
     /// Maps model-space curves onto the patch.
     model: ModelSpace<'s>,
-    /// DEs of the 142s whose loops came from their model-space curves.
-    from_model: Vec<usize>,
+    /// The boundaries (142s, 141s) whose loops came from their model-space curves.
+    from_model: Vec<IgesBoundary>,
+}
+
+impl<'s, 'a> Sampler<'s, 'a> {
+    /// A sampler for the trims of a patch on `surface`, with `points_left` of the file's
+    /// budget of trim points.
+    fn new(
+        file: &'s Sections<'a>,
+        entries: &'s [Entry],
+        surface: &'s Surface,
+        factor: f64,
+        points_left: usize,
+    ) -> Self {
+        let domain = surface.domain();
+        let bb = surface.bounding_box();
+        let size = (bb.max - bb.min).length();
+        let size = if size.is_finite() { size } else { 1e3 };
+        let tol_on = 1e-4 * size + 1e-3;
+        let (mu, mv) = (
+            BOX_MARGIN * (domain.u[1] - domain.u[0]),
+            BOX_MARGIN * (domain.v[1] - domain.v[0]),
+        );
+        Sampler {
+            file,
+            entries,
+            tol: 1e-6 * (domain.u[1] - domain.u[0]).hypot(domain.v[1] - domain.v[0]),
+            points_left: points_left.min(MAX_TRIM_POINTS),
+            curves_left: MAX_TRIM_CURVES,
+            bounds: [
+                domain.u[0] - mu,
+                domain.u[1] + mu,
+                domain.v[0] - mv,
+                domain.v[1] + mv,
+            ],
+            unsupported: false,
+            model: ModelSpace {
+                inverter: Inverter::new(surface, tol_on, MAX_GRID_SEARCHES),
+                factor,
+                tol: (1e-5 * size).clamp(1e-9, 1e-3),
+                tol_on,
+                de: IgesBoundary { kind: 142, de: 0 },
+                last: None,
+            },
+            from_model: Vec::new(),
+        }
+    }
 }
 
 /// Where a curve lives: in the patch's parameters (a 142's BPTR) or in model space (CPTR).
@@ -429,7 +614,7 @@ struct ModelSpace<'s> {
     /// Farthest a sample may lie from the surface (mm).
     tol_on: f64,
     /// The 142 being mapped.
-    de: usize,
+    de: IgesBoundary,
     /// The parameters of the loop's latest sample (the seed of the next).
     last: Option<Uv>,
 }
@@ -623,6 +808,139 @@ impl Sampler<'_, '_> {
         })
     }
 
+    /// The trim of the 143 `e` (parameters `p`: TYPE, SPTR, N, then the N 141 boundaries) on a
+    /// patch over `domain`: the loop enclosing the largest area in the parameters is the outer
+    /// boundary, the others are holes (the 143 does not say which is which).
+    fn trim143(
+        &mut self,
+        e: &Entry,
+        p: &Params,
+        domain: &ParamBox,
+    ) -> Result<Built<Trim>, ReadError> {
+        let n = p.count(3, "N")?;
+        let mut loops = Vec::with_capacity(n);
+        for k in 0..n {
+            match self.boundary141(p, 4 + k)? {
+                Ok(l) => loops.push(l),
+                Err(why) => return Ok(Err(why)),
+            }
+        }
+        let area = |l: &[Uv]| {
+            l.iter()
+                .zip(l.iter().cycle().skip(1))
+                .map(|(a, b)| a[0] * b[1] - b[0] * a[1])
+                .sum::<f64>()
+                .abs()
+        };
+        let outer = (0..loops.len())
+            .max_by(|&a, &b| area(&loops[a]).total_cmp(&area(&loops[b])))
+            .map(|i| loops.remove(i));
+        Trim::new(domain, outer, loops)
+            .map(Ok)
+            .map_err(|err| syntax(e.line, 1, format!("entity 143 at D{}: {err}", e.de)))
+    }
+
+    /// The loop of the 141 named by parameter `i` of `p`: its curves in order (TYPE, PREF,
+    /// SPTR, N, then per curve CRVPT, SENSE, K and K parameter-space curves), each from its
+    /// parameter-space curves when the boundary has them (TYPE 1), else from its model-space
+    /// curve mapped onto the patch, reversed where SENSE is 2.
+    fn boundary141(&mut self, p: &Params, i: usize) -> Result<Built<Vec<Uv>>, ReadError> {
+        let de = p.int(i, "boundary BDPT")?;
+        let Some(e) = entry_at(self.entries, de).filter(|e| e.kind == 141) else {
+            return Err(p.error(
+                i,
+                match entry_at(self.entries, de) {
+                    Some(e) => format!(
+                        "boundary BDPT points at D{de}, an entity {}; expected a 141 (boundary)",
+                        e.kind
+                    ),
+                    None => {
+                        format!("boundary BDPT points at D{de}, which is not a directory entry")
+                    }
+                },
+            ));
+        };
+        let q = self.file.params(e)?;
+        let kind = q.int(1, "TYPE")?;
+        let n = q.count(4, "N")?;
+        let b141 = IgesBoundary {
+            kind: 141,
+            de: e.de,
+        };
+        self.model.de = b141;
+        self.model.last = None;
+        let mut out = Vec::new();
+        let mut at = 5;
+        let mut mapped = false;
+        for _ in 0..n {
+            let sense = q.int(at + 1, "SENSE")?;
+            let k = q.count(at + 2, "K")?;
+            let mut piece = None;
+            let mut failed = None;
+            if kind == 1 && k > 0 {
+                self.unsupported = false;
+                let mut pts = Vec::new();
+                for c in 0..k {
+                    match self.curve(&q, at + 3 + c, "PSCPT", None, 0, Space::Parameter)? {
+                        Ok(v) => append(&mut pts, v),
+                        Err(why) => {
+                            failed = Some(why);
+                            break;
+                        }
+                    }
+                }
+                if failed.is_none() {
+                    piece = Some(pts);
+                }
+            }
+            let piece = match (piece, failed) {
+                (Some(piece), _) => piece,
+                (None, Some(why)) if !self.unsupported => {
+                    return Ok(Err(TrimFailure::Boundary {
+                        de: b141,
+                        reason: Box::new(why),
+                    }))
+                }
+                (None, _) if q.int(at, "CRVPT")? == 0 => {
+                    return Ok(Err(TrimFailure::NoCurve { de: b141 }))
+                }
+                (None, _) => {
+                    mapped = true;
+                    match self.curve(&q, at, "CRVPT", None, 0, Space::Model) {
+                        Ok(Ok(v)) => v,
+                        Ok(Err(why)) if why.names_its_boundary() => return Ok(Err(why)),
+                        Ok(Err(why)) => {
+                            return Ok(Err(TrimFailure::Boundary {
+                                de: b141,
+                                reason: Box::new(why),
+                            }))
+                        }
+                        Err(err) => {
+                            return Ok(Err(TrimFailure::ModelUnreadable {
+                                de: b141,
+                                reason: Box::new(err),
+                            }))
+                        }
+                    }
+                }
+            };
+            let piece = if sense == 2 {
+                piece.into_iter().rev().collect()
+            } else {
+                piece
+            };
+            append(&mut out, piece);
+            at += 3 + k;
+        }
+        if mapped {
+            if let Err(why) = self.model.check_loop(&out) {
+                return Ok(Err(why));
+            }
+            self.from_model.push(b141);
+        }
+        Ok(Ok(out))
+    }
+
     /// The loop of the 142 named by parameter `i` of `p`: from its parameter-space curve
     /// (BPTR), or, when it has none or one of a kind not evaluated, from its model-space curve
     /// (CPTR) mapped onto the patch.
@@ -648,6 +966,10 @@ impl Sampler<'_, '_> {
         let q = self.file.params(e)?;
         let bptr = q.int(3, "BPTR")?;
         let cptr = q.int(4, "CPTR")?;
+        let b142 = IgesBoundary {
+            kind: 142,
+            de: e.de,
+        };
         let mut failed = None;
         if bptr != 0 {
             self.unsupported = false;
@@ -656,15 +978,15 @@ impl Sampler<'_, '_> {
                 Err(why) if self.unsupported && cptr != 0 => failed = Some(why),
                 Err(why) => {
                     return Ok(Err(TrimFailure::Boundary {
-                        de: e.de,
+                        de: b142,
                         reason: Box::new(why),
                     }))
                 }
             }
         } else if cptr == 0 {
-            return Ok(Err(TrimFailure::NoCurve { de: e.de }));
+            return Ok(Err(TrimFailure::NoCurve { de: b142 }));
         }
-        self.model.de = e.de;
+        self.model.de = b142;
         self.model.last = None;
         // A model-space curve that cannot be read leaves the patch untrimmed (as it was before
         // such curves were read), not the file unread.
@@ -672,22 +994,22 @@ impl Sampler<'_, '_> {
             Ok(Ok(l)) => self.model.check_loop(&l).map(|()| l),
             Ok(Err(why)) if why.names_its_boundary() => Err(why),
             Ok(Err(why)) => Err(TrimFailure::Boundary {
-                de: e.de,
+                de: b142,
                 reason: Box::new(why),
             }),
             Err(err) => Err(TrimFailure::ModelUnreadable {
-                de: e.de,
+                de: b142,
                 reason: Box::new(err),
             }),
         };
         Ok(match (mapped, failed) {
             (Ok(l), _) => {
-                self.from_model.push(e.de);
+                self.from_model.push(b142);
                 Ok(l)
             }
             (Err(why), None) => Err(why),
             (Err(why), Some(first)) => Err(TrimFailure::BothCurves {
-                de: e.de,
+                de: b142,
                 parameter: Box::new(first),
                 model: Box::new(why),
             }),

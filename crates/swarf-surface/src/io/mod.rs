@@ -8,7 +8,7 @@ pub mod iges;
 pub mod json;
 pub mod step;
 
-pub use failure::TrimFailure;
+pub use failure::{IgesBoundary, TrimFailure};
 
 use std::fmt;
 use std::path::{Path, PathBuf};
