@@ -396,6 +396,7 @@ impl MoveBuilder {
             file: self.file,
             line,
             axis_source,
+            tcp: self.machine.tcp,
         };
         self.tool_zero_moved |= m.tool == 0;
         self.moves.push(m);
@@ -609,6 +610,23 @@ impl CanonSink for MoveBuilder {
                             self.held_axis = true;
                         }
                     }
+                }
+            }
+            Canon::ToolCentrePoint(on) => {
+                // The tool stays where it is: its position is re-expressed in the new reading
+                // of X Y Z (tip in the part frame, or the machine's controlled point), so the
+                // next move starts where the last one ended.
+                if self.machine.tcp != *on
+                    && self.machine.has_rotary()
+                    && self.axis_source == AxisSource::Machine
+                {
+                    let joints = self.joints(&self.pos);
+                    let tip = self.machine.pose(&joints).tip;
+                    self.machine.tcp = *on;
+                    let moved = self.machine.joints_for_tip(tip, &joints);
+                    self.pos = self.program_of(&moved);
+                } else {
+                    self.machine.tcp = *on;
                 }
             }
             Canon::MachineAxis => {

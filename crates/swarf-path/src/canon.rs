@@ -199,6 +199,13 @@ pub enum Canon<'a> {
     /// tool keeps its axis until the program turns a rotary axis: this event, before that
     /// block's motion, hands the axis back to the machine's rotary joints.
     MachineAxis,
+    /// The program turns tool centre point control on (`true`: Fanuc G43.4 / G43.5, Haas
+    /// G234, Heidenhain M128 / FUNCTION TCPM, Sinumerik TRAORI) or off (G49 or a plain G43,
+    /// M129, TRAFOOF): while it is on, X Y Z are tool-tip positions in the part frame whatever
+    /// the rotary joints (as a `-tcp` machine reads them throughout); while off, the machine's
+    /// joint positions. The tool stays where it is. Nothing changes on a machine without rotary
+    /// joints, or while the program states its tool axis (CL data).
+    ToolCentrePoint(bool),
     /// The arc plane changed.
     Plane(Plane),
     /// Feed rate: mm/min, 1/min (inverse time) or mm/rev as the feed mode says.
@@ -358,6 +365,7 @@ impl Canon<'_> {
             Canon::Plane(p) => Canon::Plane(*p),
             Canon::WorkPlane(w) => Canon::WorkPlane(*w),
             Canon::MachineAxis => Canon::MachineAxis,
+            Canon::ToolCentrePoint(on) => Canon::ToolCentrePoint(*on),
             Canon::XyRotation(r) => Canon::XyRotation(*r),
             Canon::FeedRate(f) => Canon::FeedRate(*f),
             Canon::FeedMode(m) => Canon::FeedMode(*m),

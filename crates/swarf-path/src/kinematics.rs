@@ -41,8 +41,10 @@
 //! for machines that count the other way (ISO 841's "primed" table axes, for instance).
 //!
 //! # TCP
-//! With `tcp` (LinuxCNC's TCP kinematics, Fanuc G43.4, Heidenhain M128) the joint X Y Z are the
-//! tool tip in the workpiece frame and only the axis comes from the rotary joints. Without it,
+//! With `tcp` (LinuxCNC's TCP kinematics; programs switch it themselves with Fanuc G43.4,
+//! Heidenhain M128, Sinumerik TRAORI: [`crate::Canon::ToolCentrePoint`], and each move records
+//! its reading, [`crate::Move::tcp`]) the joint X Y Z are the tool tip in the workpiece frame and
+//! only the axis comes from the rotary joints. Without it,
 //! X Y Z position the controlled point in the machine frame: the tip is carried by the head
 //! joints about their pivots and mapped back into the rotating workpiece frame through the table
 //! joints.
@@ -442,6 +444,13 @@ impl Machine {
 
     /// Tool tip and axis in the workpiece frame for joint values `j` (program + offsets).
     pub fn pose(&self, j: &Axes) -> Pose {
+        self.pose_with(j, self.tcp)
+    }
+
+    /// [`Machine::pose`] with tool centre point control on or off (`tcp`) whatever the
+    /// machine's own setting: a program may turn it on and off ([`crate::Canon::ToolCentrePoint`];
+    /// each move says which, [`crate::Move::tcp`]).
+    pub fn pose_with(&self, j: &Axes, tcp: bool) -> Pose {
         let xyz = Vec3::new(j.x, j.y, j.z);
         if !self.has_rotary() {
             return Pose {
@@ -453,11 +462,7 @@ impl Machine {
         let (hr, ht) = self.head_motion(j);
         let tr_inv = tr.transpose();
         let axis = (tr_inv * (hr * Vec3::Z)).normalize();
-        let tip = if self.tcp {
-            xyz
-        } else {
-            tr_inv * (xyz + ht - tt)
-        };
+        let tip = if tcp { xyz } else { tr_inv * (xyz + ht - tt) };
         Pose { tip, axis }
     }
 
@@ -484,7 +489,12 @@ impl Machine {
     /// the workpiece frame — the rigid map that [`Machine::pose`] applies to the controlled
     /// point. Vectors map with the returned rotation.
     pub fn joint_space_to_workpiece(&self, rotary: &Axes) -> (Mat3, Vec3) {
-        if self.tcp || !self.has_rotary() {
+        self.joint_space_to_workpiece_with(rotary, self.tcp)
+    }
+
+    /// [`Machine::joint_space_to_workpiece`] with tool centre point control on or off (`tcp`).
+    pub fn joint_space_to_workpiece_with(&self, rotary: &Axes, tcp: bool) -> (Mat3, Vec3) {
+        if tcp || !self.has_rotary() {
             return (Mat3::IDENTITY, Vec3::ZERO);
         }
         let (tr, tt) = self.table_motion(rotary);

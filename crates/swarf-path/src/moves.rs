@@ -104,6 +104,11 @@ pub struct Move {
     /// G-code program changes it with a tilted working plane (G53.1 … G69) and CL data
     /// states its axes throughout.
     pub axis_source: AxisSource,
+    /// X Y Z of this move's joints are tool-tip positions in the part frame (tool centre
+    /// point control: a `-tcp` machine, or a program that turned it on,
+    /// [`Canon::ToolCentrePoint`](crate::Canon::ToolCentrePoint)); otherwise the machine's
+    /// controlled point. Only matters on a machine with rotary joints.
+    pub tcp: bool,
 }
 
 /// A line of a program's source: its file (an index into [`Program::files`]) and line.
@@ -217,9 +222,11 @@ impl Program {
                 } else if rotary {
                     // The arc is stated in the workpiece frame at the start's rotary position;
                     // carry the point back to joint space there, then move all joints.
-                    let (r, t) = self.machine.joint_space_to_workpiece(&m.start_joints);
+                    let (r, t) = self
+                        .machine
+                        .joint_space_to_workpiece_with(&m.start_joints, m.tcp);
                     let q = r.transpose() * (tip - t);
-                    self.machine.pose(&lerp_joints(Some(q)))
+                    self.machine.pose_with(&lerp_joints(Some(q)), m.tcp)
                 } else {
                     Pose {
                         tip,
@@ -229,7 +236,7 @@ impl Program {
             }
             MoveKind::Rapid | MoveKind::Linear => {
                 if rotary {
-                    self.machine.pose(&lerp_joints(None))
+                    self.machine.pose_with(&lerp_joints(None), m.tcp)
                 } else {
                     Pose {
                         tip: m.start.tip.lerp(m.end.tip, s),
@@ -265,7 +272,7 @@ impl Program {
     pub fn tip_path_is_curved(&self, m: &Move) -> bool {
         m.axis_source == AxisSource::Machine
             && m.start_joints.rotary_differs(&m.end_joints)
-            && !self.machine.tcp
+            && !m.tcp
     }
 }
 

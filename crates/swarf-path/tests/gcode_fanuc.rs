@@ -254,7 +254,7 @@ fn controller_modes_are_reported_and_left_out() {
 
 #[test]
 fn tool_centre_point_and_fine_boring() {
-    // G43.4 H1: a tool length offset with TCP, read as G43 (the tool table is empty: 0).
+    // G43.4 H1: a tool length offset with TCP (the tool table is empty: 0).
     let m = moves("O1\nG21 G90\nG43.4 H1 Z50.\nG1 X5 F100\nM30\n", &fanuc()).unwrap();
     assert_eq!(m, [('R', 0.0, 0.0, 50.0), ('L', 5.0, 0.0, 50.0)]);
     // G76 (fine boring) follows G86's path: down at feed, up at rapid.
@@ -624,16 +624,14 @@ fn g53_keeps_the_home_as_its_zero_after_g92_and_work_offsets() {
 
 #[test]
 fn haas_tcpc_and_dynamic_work_offset_are_read() {
-    // G234 is Haas's tool centre point control (read as G43.4); G254/G255 switch the dynamic
-    // work offset (left out, with a warning saying how X Y Z are read).
+    // G234 is Haas's tool centre point control (as G43.4: on until G49, with no warning, see
+    // tool_centre_point.rs); G254/G255 switch the dynamic work offset (left out, with a
+    // warning saying how X Y Z are read).
     let src = "O1\nG21 G90 G0 A30. X0 Y0 Z50.\nG254\nG234 H1 Z20.\nG1 X10. F100.\nG49\nG255\nM30\n";
     let m = moves(src, &fanuc()).unwrap();
     assert_eq!(m.last(), Some(&('L', 10.0, 0.0, 20.0)));
     let w = warnings(src);
-    assert!(
-        w.iter().any(|(l, m)| *l == 4 && m.starts_with("G234")),
-        "{w:?}"
-    );
+    assert!(!w.iter().any(|(_, m)| m.starts_with("G234")), "{w:?}");
     assert!(
         w.iter().any(|(l, m)| *l == 3 && m.contains("G254")),
         "{w:?}"

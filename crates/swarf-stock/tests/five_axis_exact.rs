@@ -53,6 +53,7 @@ fn one_move(
             file: 0,
             line: 7,
             axis_source: source,
+            tcp: machine.tcp,
         }],
         files: vec!["exact".into()],
         machine,

@@ -248,6 +248,7 @@ fn program(machine: Machine, source: AxisSource, mv: Move) -> Program {
     Program {
         moves: vec![Move {
             axis_source: source,
+            tcp: machine.tcp,
             ..mv
         }],
         files: vec!["test".into()],
@@ -271,6 +272,7 @@ fn blank_move(kind: MoveKind, start: Pose, end: Pose, j0: Axes, j1: Axes) -> Mov
         file: 0,
         line: 1,
         axis_source: AxisSource::Machine,
+        tcp: false,
     }
 }
 

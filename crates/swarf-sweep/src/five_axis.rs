@@ -311,7 +311,7 @@ impl MotionBound {
         let (js, je) = (m.start_joints, m.end_joints);
         let (slides, slides_at) = match m.kind {
             MoveKind::Arc(g) => {
-                let (r, t) = mach.joint_space_to_workpiece(&js);
+                let (r, t) = mach.joint_space_to_workpiece_with(&js, m.tcp);
                 (
                     Path::arc(&g),
                     SlidesAt::Arc {
@@ -332,7 +332,7 @@ impl MotionBound {
                 steps,
                 slides,
                 slides_at: Box::new(slides_at),
-                tcp: mach.tcp,
+                tcp: m.tcp,
             },
         }
     }
@@ -634,6 +634,7 @@ mod tests {
             file: 0,
             line: 1,
             axis_source: AxisSource::Machine,
+            tcp: mach.tcp,
         };
         Program {
             moves: vec![mv],
@@ -688,6 +689,7 @@ mod tests {
             let mut p = machine_move("3axis", j0, j1);
             p.moves[0].start = mach.pose(&j0);
             p.moves[0].end = mach.pose(&j1);
+            p.moves[0].tcp = mach.tcp;
             p.machine = mach;
             let m = &p.moves[0];
             let b = MotionBound::new(&p, m);

@@ -1246,16 +1246,10 @@ impl<'t, 's> Interp<'t, 's> {
         }
         match b.g(group::TOOL_LENGTH) {
             Some(g @ (430 | 434 | 435 | 2340)) => {
-                if g != 430 {
-                    self.warn_code(
-                        lb,
-                        b.g_at[group::TOOL_LENGTH] as usize,
-                        format!(
-                            "{} (tool centre point control) read as G43: X Y Z (and A B C) are \
-                             tool-tip positions, as a `-tcp` machine (--machine) reads them",
-                            block::g_name(g)
-                        ),
-                    );
+                // Fanuc's tool centre point control is a mode of the program: G43.4 / G43.5
+                // (Haas G234) turn it on, a plain G43 (or G49, below) off.
+                if self.fanuc {
+                    self.emit(Canon::ToolCentrePoint(g != 430));
                 }
                 let tool = match b.get(b'h') {
                     Some(h) if h >= 0.0 && h.fract() == 0.0 && h <= f64::from(u32::MAX) => h as u32,
@@ -1344,6 +1338,9 @@ impl<'t, 's> Interp<'t, 's> {
                 self.read_only.tlo_on = false;
                 self.set_tlo([0.0; 6]);
                 self.emit(Canon::ToolLengthOffset(0.0));
+                if self.fanuc {
+                    self.emit(Canon::ToolCentrePoint(false));
+                }
             }
             None => {}
         }

@@ -274,7 +274,7 @@ impl Reader<'_> {
         }
         let rest = &b.toks[if pos { 3 } else { 2 }..];
         let w = self.words(rest, b.line)?;
-        self.m_before(&w, rest, b.line);
+        self.m_before(&w, b.line);
         let mut surface = None;
         if pos {
             let (i1, i2, n) = self.c.plane.axes();

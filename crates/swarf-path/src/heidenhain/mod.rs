@@ -482,7 +482,10 @@ impl<'a> Reader<'a> {
             "PLANE" => self.plane_function(b).map(|_| Flow::Next),
             "FUNCTION" => {
                 match second {
-                    Some("TCPM") => self.tcpm(b.line, head.col),
+                    Some("TCPM") => self.tcpm(b.line, true),
+                    Some("RESET") if b.toks.get(2).is_some_and(|t| t.text == "TCPM") => {
+                        self.tcpm(b.line, false)
+                    }
                     Some("RESET") | Some("MODE") => {}
                     _ => self.warn(
                         b.line,
@@ -596,15 +599,10 @@ impl<'a> Reader<'a> {
         }
     }
 
-    fn tcpm(&mut self, line: u32, col: u32) {
-        self.warn_once(
-            "tcpm",
-            line,
-            col,
-            "tool centre point management (M128, FUNCTION TCPM): X Y Z are tool-tip positions \
-             in the part frame, as a `-tcp` machine (--machine) reads them"
-                .into(),
-        );
+    /// Tool centre point management on (M128, FUNCTION TCPM) or off (M129, FUNCTION RESET
+    /// TCPM): while on, X Y Z are tool-tip positions in the part frame.
+    fn tcpm(&mut self, line: u32, on: bool) {
+        self.emit(line, Canon::ToolCentrePoint(on));
     }
 
     /// `BLK FORM 0.1 Z X… Y… Z…` (least corner), `BLK FORM 0.2 X… Y… Z…` (greatest, or
@@ -773,12 +771,12 @@ impl<'a> Reader<'a> {
     }
 
     /// The M functions of a block that act before its motion.
-    fn m_before(&mut self, w: &Words, toks: &[Tok], line: u32) {
-        for &(m, ti) in &w.m {
+    fn m_before(&mut self, w: &Words, line: u32) {
+        for &(m, _) in &w.m {
             match m {
                 3 | 13 => self.dir = SpindleDir::Clockwise,
                 4 | 14 => self.dir = SpindleDir::CounterClockwise,
-                128 => self.tcpm(line, toks[ti].col),
+                128 => self.tcpm(line, true),
                 136 => self.m136 = true,
                 137 => self.m136 = false,
                 126 => self.shortest = true,
@@ -802,6 +800,8 @@ impl<'a> Reader<'a> {
                     self.tell_spindle(line);
                 }
                 2 | 30 => end = true,
+                // (M129 acts at the block's end.)
+                129 => self.tcpm(line, false),
                 99 => {
                     self.modal_call = false;
                     self.cycle_call(&toks[ti], None)?;
@@ -811,7 +811,7 @@ impl<'a> Reader<'a> {
                 // axes, display: nothing the path or its removal depends on.
                 0 | 1 | 6 | 7 | 8 | 9 | 19 | 94 | 97 | 101 | 102 | 103 | 104 | 105 | 107 | 108
                 | 109 | 110 | 111 | 112 | 113 | 114 | 115 | 116 | 117 | 118 | 120 | 124 | 126
-                | 127 | 129 | 130 | 138 | 141 | 142 | 143 | 144 | 145 | 148 | 149 | 150 => {}
+                | 127 | 130 | 138 | 141 | 142 | 143 | 144 | 145 | 148 | 149 | 150 => {}
                 _ => self.warn(
                     line,
                     toks[ti].col,
@@ -833,7 +833,7 @@ impl<'a> Reader<'a> {
                 "L before the coordinates",
             ));
         }
-        self.m_before(&w, &b.toks[skip..], b.line);
+        self.m_before(&w, b.line);
         self.retract(&w, b)?;
         Ok(if self.m_after(&w, &b.toks[skip..], b.line)? {
             Flow::End
@@ -1149,8 +1149,7 @@ impl<'a> Reader<'a> {
     fn motion(&mut self, b: &Block) -> Res<Flow> {
         let head = &b.toks[0];
         let w = self.words(&b.toks[1..], b.line)?;
-        let toks = &b.toks[1..];
-        self.m_before(&w, toks, b.line);
+        self.m_before(&w, b.line);
         if matches!(head.text.as_str(), "L" | "LN") && w.axes.iter().all(Option::is_none) {
             // A block of M functions (and maybe a feed) written as a line: no motion.
             self.take_feed(&w, head)?;

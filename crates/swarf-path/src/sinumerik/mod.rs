@@ -1251,15 +1251,11 @@ impl<'a> Reader<'a> {
                 }
                 "P" => repeat = self.number(b, w)?,
                 "SUPA" => machine = true,
-                "TRAORI" => self.warn_once(
-                    "traori",
-                    b.line,
-                    col(b, w.at),
-                    "TRAORI (5-axis transformation): X Y Z are tool-tip positions in the part \
-                     frame, as a `-tcp` machine (--machine) reads them"
-                        .into(),
-                ),
-                "TRAFOOF" | "CFC" | "CFTCP" | "CFIN" | "SOFT" | "BRISK" | "DRIVE" | "FFWON" | "FFWOF"
+                // The 5-axis transformation: while on, X Y Z are tool-tip positions in the
+                // part frame.
+                "TRAORI" => self.emit(b.line, Canon::ToolCentrePoint(true)),
+                "TRAFOOF" => self.emit(b.line, Canon::ToolCentrePoint(false)),
+                "CFC" | "CFTCP" | "CFIN" | "SOFT" | "BRISK" | "DRIVE" | "FFWON" | "FFWOF"
                 | "COMPON" | "COMPCURV" | "COMPCAD" | "COMPOF" | "UPATH" | "SPATH" | "FNORM"
                 | "FLIN" | "FCUB" | "ORIWKS" | "ORIMKS" | "ORIAXES" | "ORIVECT" | "ORIEULER"
                 | "ORIRPY" | "OST" | "STOPRE" | "WAITM" | "WAITS" | "SPOS" | "SPOSA" | "FGROUP"

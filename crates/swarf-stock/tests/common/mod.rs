@@ -43,6 +43,7 @@ pub fn moves(tips: &[Vec3], axis: Vec3, rapid: bool) -> Program {
             file: 0,
             line: i as u32 + 1,
             axis_source: Default::default(),
+            tcp: false,
         });
     }
     p
