@@ -183,3 +183,22 @@ fn solid_faces_planes_and_subfigures_are_said() {
         s.notes
     );
 }
+
+#[test]
+fn records_without_line_ends_or_with_lone_carriage_returns() {
+    let mut f = Iges::default();
+    let plate = f.add(128, PLATE);
+    let hole = polygon(&mut f, &[[0.4, 0.4], [0.6, 0.4], [0.6, 0.6], [0.4, 0.6]]);
+    let c = f.add(142, &format!("0,{plate},{hole},0,1"));
+    f.add(144, &format!("{plate},1,0,{c}"));
+    let text = f.text("2,2HMM");
+    let want = iges::parse(&text).unwrap();
+    assert!(want.patches[0].trim.is_some());
+    let records: Vec<&str> = text.lines().collect();
+    assert!(records.iter().all(|r| r.len() == 80));
+    for joined in [records.concat(), records.join("\r")] {
+        let got = iges::parse(&joined).unwrap_or_else(|e| panic!("{e}"));
+        assert_eq!(got.patches.len(), 1);
+        assert_eq!(got.patches[0].trim, want.patches[0].trim);
+    }
+}

@@ -49,7 +49,8 @@
 //! with a [`ReadNote::UnsupportedSurface`]; a subfigure instance (408) is not applied, with a
 //! [`ReadNote::PlacementNotApplied`] (its subfigure's surfaces are read where it defines them).
 //!
-//! The fixed-column format: 80-column records, section letter in column 73 (S, G, D, P, T),
+//! The fixed-column format: 80-column records (ending in LF, CRLF or a lone CR, or with no line
+//! ends at all, every 80 bytes), section letter in column 73 (S, G, D, P, T),
 //! sequence number in 74–80 (directory entries listed out of order are put in the order of
 //! their sequence numbers, which pointers name). Columns are bytes: text that is not ASCII (accents in the Start
 //! section and in strings of European files) is read one byte a column (Latin-1), or one UTF-8
@@ -1308,7 +1309,19 @@ impl<'a> Sections<'a> {
             rdelim: b';',
         };
         let mut seen_any = false;
-        for (i, raw) in text.split(|&b| b == b'\n').enumerate() {
+        // Records end in LF or CRLF; in a file with neither, in a lone CR (old Macs) or — a
+        // file of 80-byte records and no line ends at all, as some mainframe-era writers made
+        // them — every 80 bytes.
+        let records: Box<dyn Iterator<Item = &[u8]>> = if text.contains(&b'\n') {
+            Box::new(text.split(|&b| b == b'\n'))
+        } else if text.contains(&b'\r') {
+            Box::new(text.split(|&b| b == b'\r'))
+        } else if text.len() > 80 && text.len() % 80 == 0 {
+            Box::new(text.chunks(80))
+        } else {
+            Box::new(std::iter::once(text))
+        };
+        for (i, raw) in records.enumerate() {
             let line = i + 1;
             let raw = raw.strip_suffix(b"\r").unwrap_or(raw);
             if raw.iter().all(u8::is_ascii_whitespace) {
