@@ -1192,3 +1192,151 @@ fn macro_b_loops_need_their_end_and_numbers_1_to_3() {
         assert!(e.message.contains("DO1"), "{e}");
     }
 }
+
+/// Custom Macro B vacant variables (Fanuc Custom Macro B manual, "Vacant variables"): `#0`
+/// and the local and common variables never assigned are vacant. A word whose value is a
+/// vacant variable is not written (`G90 X#1` is `G90`); in arithmetic a vacant variable is 0,
+/// but a plain copy keeps it vacant; `EQ`/`NE` tell it from 0, `GE GT LE LT` take it as 0.
+/// The reviewer's program: the G1 moves Y alone (X#110 is not written), and `#111=#0` reads.
+#[test]
+fn a_word_holding_a_vacant_variable_is_not_written() {
+    let src = "%\nO0001\nG0 X10. Y10. Z5.\nG1 X#110 Y20. F100.\n#111=#0\nM30\n";
+    let want = [('R', 10.0, 10.0, 5.0), ('L', 10.0, 20.0, 5.0)];
+    assert_eq!(moves(src, &fanuc()).unwrap(), want);
+    // Detected as a Fanuc program (`O0001`), it reads the same.
+    assert_eq!(moves(src, &GcodeOptions::default()).unwrap(), want);
+    // #111 is vacant after `#111=#0`: its X is not written either, while `#112=0` is 0.
+    let src = "O0001\nG21 G90\nG0 X10. Y10. Z5.\n#111=#0\nG0 X#111 Z20.\n#112=0\nG0 X#112\nM30\n";
+    assert_eq!(
+        moves(src, &fanuc()).unwrap(),
+        [
+            ('R', 10.0, 10.0, 5.0),
+            ('R', 10.0, 10.0, 20.0),
+            ('R', 0.0, 10.0, 20.0)
+        ]
+    );
+    // `G90 X#1` is `G90` (a G word holding a vacant variable is not written either: the
+    // modal G0 moves), and `X[#1]` is an expression, whose vacant #1 is 0.
+    let src = "O1\nG21\nG91 G0 X2.\nG90 X#1\nG#1 X3.\nG0 X[#1] Y#500\nM30\n";
+    assert_eq!(
+        moves(src, &fanuc()).unwrap(),
+        [
+            ('R', 2.0, 0.0, 0.0),
+            ('R', 3.0, 0.0, 0.0),
+            ('R', 0.0, 0.0, 0.0)
+        ]
+    );
+}
+
+#[test]
+fn eq_and_ne_tell_a_vacant_variable_from_0() {
+    // #1 never set: `#1 EQ #0` holds, the GOTO skips the X move.
+    let src = "O1\nG21 G90\nIF [#1 EQ #0] GOTO 10\nG0 X1.\nN10 G0 Y1.\nM30\n";
+    assert_eq!(moves(src, &fanuc()).unwrap(), [('R', 0.0, 1.0, 0.0)]);
+    // After `#1=0` it does not.
+    let src = "O1\nG21 G90\n#1=0\nIF [#1 EQ #0] GOTO 10\nG0 X1.\nN10 G0 Y1.\nM30\n";
+    assert_eq!(
+        moves(src, &fanuc()).unwrap(),
+        [('R', 1.0, 0.0, 0.0), ('R', 1.0, 1.0, 0.0)]
+    );
+    // A vacant #1 is not EQ 0, and is NE 0.
+    let src = "O1\nG21 G90\nIF [#1 EQ 0] GOTO 10\nG0 X1.\nN10 IF [#1 NE 0] GOTO 20\nG0 Y1.\n\
+               N20 G0 Z1.\nM30\n";
+    assert_eq!(
+        moves(src, &fanuc()).unwrap(),
+        [('R', 1.0, 0.0, 0.0), ('R', 1.0, 0.0, 1.0)]
+    );
+    // IF … THEN on a common variable: #101 is set only once #100 is no longer vacant, and
+    // until then `X#101` is not written.
+    let src = "O1\nG21 G90\nIF [#100 NE #0] THEN #101=5.\nG0 X#101 Y1.\n#100=0\n\
+               IF [#100 NE #0] THEN #101=5.\nG0 X#101\nM30\n";
+    assert_eq!(
+        moves(src, &fanuc()).unwrap(),
+        [('R', 0.0, 1.0, 0.0), ('R', 5.0, 1.0, 0.0)]
+    );
+    // A loop that runs while #1 is vacant and sets it: one pass.
+    let src = "O1\nG21 G90\nWHILE [#1 EQ #0] DO1\nG0 X1.\n#1=2.\nEND1\nG0 Y#1\nM30\n";
+    assert_eq!(
+        moves(src, &fanuc()).unwrap(),
+        [('R', 1.0, 0.0, 0.0), ('R', 1.0, 2.0, 0.0)]
+    );
+}
+
+#[test]
+fn ge_gt_le_lt_take_a_vacant_variable_as_0() {
+    // Each IF that holds skips a move: #1 GE #0 (0 ≥ 0) and #0 LT 1 hold; #1 GT #0 (0 > 0) and
+    // #1 LE -1 do not.
+    let src = "O1\nG21 G90\nIF [#1 GE #0] GOTO 10\nG0 X1.\nN10 IF [#1 GT #0] GOTO 20\nG0 Y1.\n\
+               N20 IF [#0 LT 1] GOTO 30\nG0 Z1.\nN30 IF [#1 LE -1] GOTO 40\nG0 X2.\nN40 M30\n";
+    assert_eq!(
+        moves(src, &fanuc()).unwrap(),
+        [('R', 0.0, 1.0, 0.0), ('R', 2.0, 1.0, 0.0)]
+    );
+}
+
+#[test]
+fn a_copy_keeps_a_variable_vacant_and_arithmetic_makes_it_0() {
+    // `#2=#1` leaves #2 vacant (its X is not written); `#2=#1+0` makes it 0 (X0).
+    let src = "O1\nG21 G90\nG0 X5. Y5.\n#2=#1\nG1 X#2 Y7. F100.\n#2=#1+0\nG1 X#2 Y9.\nM30\n";
+    assert_eq!(
+        moves(src, &fanuc()).unwrap(),
+        [
+            ('R', 5.0, 5.0, 0.0),
+            ('L', 5.0, 7.0, 0.0),
+            ('L', 0.0, 9.0, 0.0)
+        ]
+    );
+    // `#1*5` and `#1+#1` are 0 too; `#3=#0` is vacant.
+    for value in ["#1*5", "#1+#1", "#0+0", "[#1]"] {
+        let src = format!("O1\nG21 G90\nG0 X5.\n#2={value}\nG0 X#2\nM30\n");
+        assert_eq!(
+            moves(&src, &fanuc()).unwrap(),
+            [('R', 5.0, 0.0, 0.0), ('R', 0.0, 0.0, 0.0)],
+            "{value}"
+        );
+    }
+    let src = "O1\nG21 G90\nG0 X5.\n#3=7\n#3=#0\nG0 X#3 Y1.\nM30\n";
+    assert_eq!(
+        moves(src, &fanuc()).unwrap(),
+        [('R', 5.0, 0.0, 0.0), ('R', 5.0, 1.0, 0.0)]
+    );
+}
+
+#[test]
+fn assigning_to_0_is_an_error_at_its_place() {
+    for (src, col) in [
+        ("O1\nG21\n#0=1\nM30\n", 1),
+        ("O1\nG21\nG0 X1. #0=1\nM30\n", 8),
+        // `#[#1]` with #1 vacant is #0.
+        ("O1\nG21\n#[#1]=1\nM30\n", 1),
+        ("O1\nG21\nIF [1 EQ 1] THEN #0=1\nM30\n", 18),
+    ] {
+        let e = moves(src, &fanuc()).unwrap_err();
+        assert_eq!(
+            (e.pos.file.as_str(), e.pos.line, e.pos.column),
+            ("fanuc.nc", 3, col),
+            "{src}: {e}"
+        );
+        assert!(
+            e.to_string().starts_with(&format!("fanuc.nc:3:{col}")),
+            "{e}"
+        );
+        assert!(
+            e.message.contains("#0") && e.message.contains("vacant"),
+            "{e}"
+        );
+    }
+    // LinuxCNC has no vacant variables: #0 is no parameter, and an unset one reads 0.
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    for src in ["G21\n#0=1\nM2\n", "G21\nG0 X#0\nM2\n"] {
+        let e = moves(src, &linuxcnc).unwrap_err();
+        assert!(
+            e.message.contains("parameter number 0 is out of range"),
+            "{e}"
+        );
+    }
+    assert_eq!(
+        moves("G21\nG0 X5\nG0 X#1 Y#110\nM2\n", &linuxcnc).unwrap(),
+        [('R', 5.0, 0.0, 0.0), ('R', 0.0, 0.0, 0.0)]
+    );
+}

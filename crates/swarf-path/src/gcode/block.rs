@@ -1,7 +1,7 @@
 //! One block (line) of G-code as words in fixed slots: letters with their values, the G codes of
 //! each modal group, the M codes, and the parameter assignments — no allocation per line.
 
-use super::expr::{param_index, read_infix, read_name, read_real, Cur, ParamRead};
+use super::expr::{assign_index, is_vacant, read_infix, read_name, read_real, Cur, ParamRead};
 use super::lexer::LineBuf;
 use super::params::{Target, MAX_ASSIGNS};
 use super::{Fault, Res, Span};
@@ -280,6 +280,11 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
             b'g' => {
                 c.i += 1;
                 let v = read_real(&mut c, params)?;
+                if is_vacant(v) {
+                    // Fanuc: a word whose value is a vacant variable is not written.
+                    first = false;
+                    continue;
+                }
                 let code10 = (v * 10.0).round();
                 let span = Span::Code(at, c.i);
                 if (v * 10.0 - code10).abs() > 1e-6 || !(0.0..=9999.0).contains(&code10) {
@@ -377,6 +382,10 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
             b'm' => {
                 c.i += 1;
                 let v = read_real(&mut c, params)?;
+                if is_vacant(v) {
+                    first = false;
+                    continue;
+                }
                 let span = Span::Code(at, c.i);
                 if v.fract() != 0.0 || !(0.0..=9999.0).contains(&v) {
                     return Err(Fault::syntax(
@@ -420,14 +429,15 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                     Target::Named(x as u32, y as u32)
                 } else {
                     let n = read_real(&mut c, params)?;
-                    Target::Num(param_index(n, Span::Code(at, c.i))?)
+                    Target::Num(assign_index(n, Span::Code(at, c.i), fanuc)?)
                 };
                 if c.peek() != Some(b'=') {
                     return Err(c.unexpected("`=` in a parameter assignment"));
                 }
                 c.i += 1;
                 c.word_start = c.i;
-                // Fanuc Macro B writes the value without brackets: `#500=#500+1`.
+                // Fanuc Macro B writes the value without brackets: `#500=#500+1`. A value
+                // that is a vacant variable alone (`#2=#1`) leaves the target vacant.
                 let v = if fanuc {
                     read_infix(&mut c, params)?
                 } else {
@@ -447,6 +457,10 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
             b'$' => {
                 c.i += 1;
                 let v = read_real(&mut c, params)?;
+                if is_vacant(v) {
+                    first = false;
+                    continue;
+                }
                 if b.spindle.is_some() {
                     return Err(Fault::semantic(
                         Span::Code(at, c.i),
@@ -465,6 +479,12 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
             b'a'..=b'z' | b'@' | b'^' if !matches!(ch, b'n' | b'o') => {
                 c.i += 1;
                 let v = read_real(&mut c, params)?;
+                if is_vacant(v) {
+                    // Fanuc: `G1 X#110 Y20.` with #110 vacant is `G1 Y20.` (not X0): as if
+                    // the word were not written, so it is no second X word either.
+                    first = false;
+                    continue;
+                }
                 let s = slot(ch);
                 if b.mask & (1 << s) != 0 {
                     return Err(Fault::semantic(

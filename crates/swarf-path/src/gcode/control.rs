@@ -12,7 +12,7 @@ use std::collections::HashMap;
 use std::rc::Rc;
 
 use super::block::Block;
-use super::expr::{read_real, Cur};
+use super::expr::{number, read_real, Cur};
 use super::interp::Interp;
 use super::lexer::{normalize, skip_line_number, LineBuf};
 use super::params::N_ARGS;
@@ -120,7 +120,8 @@ impl Interp<'_, '_> {
             if c.at_end() {
                 return Err(c.unexpected("a condition in brackets"));
             }
-            let v = read_real(&mut c, me)?;
+            // (A Fanuc vacant variable is 0 here.)
+            let v = number(read_real(&mut c, me)?);
             if !c.at_end() {
                 return Err(c.unexpected("end of line"));
             }
@@ -301,7 +302,7 @@ impl Interp<'_, '_> {
         let mut c = Cur::new(code);
         c.i = at + 1;
         c.word_start = at;
-        let v = read_real(&mut c, self)?;
+        let v = number(read_real(&mut c, self)?);
         let span = Span::Code(at, c.i);
         if !(0.0..1e15).contains(&v) || (v - v.round()).abs() > 1e-6 {
             return Err(Fault::semantic(

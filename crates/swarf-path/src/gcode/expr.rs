@@ -6,6 +6,12 @@
 //! `ATAN[y]/[x]` is the two-argument arc tangent (Fanuc: 0° to 360°, also written `ATAN[y,x]`);
 //! `ROUND` rounds half away from zero; `MOD` gives a result with the divisor's magnitude and a
 //! non-negative sign, like LinuxCNC.
+//!
+//! Fanuc Custom Macro B has *vacant* (null) variables: `#0`, and the local and common
+//! variables never assigned (see [`vacant`]). Where a value is a variable and nothing else it
+//! stays vacant (`#2=#1` copies the vacancy, `X#1` is a word not written); where it enters
+//! an operator, a function, a sign or brackets it is 0, except that `EQ` and `NE` tell it
+//! from 0 (`#1 EQ #0` holds only when #1 is vacant, `#1 EQ 0` does not then).
 
 use super::{Fault, Res, Span};
 use crate::PathErrorKind;
@@ -32,6 +38,42 @@ pub(crate) trait ParamRead {
 
 /// The highest parameter number (LinuxCNC's `RS274NGC_MAX_PARAMETERS` − 1).
 pub(crate) const MAX_PARAM: usize = 5601;
+
+/// The bits of [`vacant`]: a quiet NaN whose payload spells `VACANT` in ASCII.
+const VACANT_BITS: u64 = 0x7ff8_5641_4341_4e54;
+
+/// A Fanuc vacant variable's value, as the `f64` every value is.
+///
+/// Why a NaN payload rather than a separate bitset of vacant parameters or a tagged value:
+/// vacancy must travel with values in flight, not only sit in the table (`#2=#1` copies it
+/// into #2, `X#1` drops the word, `#1 EQ #0` compares it), so a bitset would still need the
+/// evaluator, the block's word slots and its assignments to carry a tag beside each number.
+/// As a NaN payload it rides in the same `f64` slots, and the LinuxCNC path keeps its types,
+/// storage and arithmetic unchanged: nothing there makes this payload (its parameters start
+/// at 0; `#0` is refused; a NaN from arithmetic on numbers carries the hardware's default
+/// payload), so the cost there is one compare of bits where a value enters an operator, a
+/// function or a word, never taken. It must never reach arithmetic (a NaN would propagate):
+/// every operator, function, sign and bracket reads it through [`number`] first.
+#[inline]
+pub(crate) fn vacant() -> f64 {
+    f64::from_bits(VACANT_BITS)
+}
+
+/// Whether `v` is a Fanuc vacant variable's value ([`vacant`]).
+#[inline]
+pub(crate) fn is_vacant(v: f64) -> bool {
+    v.to_bits() == VACANT_BITS
+}
+
+/// `v` as a number: a vacant variable is 0 in an expression (Fanuc).
+#[inline]
+pub(crate) fn number(v: f64) -> f64 {
+    if is_vacant(v) {
+        0.0
+    } else {
+        v
+    }
+}
 
 /// A cursor over normalised code.
 pub(crate) struct Cur<'a> {
@@ -118,12 +160,13 @@ fn real(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
             }
             let neg = c.peek() == Some(b'-');
             c.i += 1;
-            let v = real(c, p, depth + 1)?;
+            let v = number(real(c, p, depth + 1)?);
             Ok(if neg { -v } else { v })
         }
         Some(b'[') => {
+            // A bracketed expression is a number: `[#1]` of a vacant #1 is 0.
             c.i += 1;
-            let v = binary(c, p, depth + 1, 1)?;
+            let v = number(binary(c, p, depth + 1, 1)?);
             c.expect(b']', "an operator or `]`")?;
             Ok(v)
         }
@@ -212,7 +255,7 @@ const POW10: [f64; 23] = [
     1e17, 1e18, 1e19, 1e20, 1e21, 1e22,
 ];
 
-/// After `#`: `<name>` or a real value giving the parameter number.
+/// After `#`: `<name>` or a real value giving the parameter number. Fanuc: `#0` is vacant.
 fn read_param(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
     let start = c.i.saturating_sub(1);
     if c.peek() == Some(b'<') {
@@ -225,9 +268,17 @@ fn read_param(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
             )
         });
     }
-    let n = real(c, p, depth)?;
+    let n = number(real(c, p, depth)?);
+    if p.fanuc() && is_zero_index(n) {
+        return Ok(vacant());
+    }
     let idx = param_index(n, Span::Code(start, c.i))?;
     Ok(p.numbered(idx))
+}
+
+/// Whether `n` names parameter 0 (rounded as [`param_index`] rounds).
+fn is_zero_index(n: f64) -> bool {
+    n.round() == 0.0 && n.abs() <= 1e-6
 }
 
 /// Reads `<name>` at the cursor; returns the code range of the name.
@@ -271,6 +322,22 @@ pub(crate) fn param_index(n: f64, span: Span) -> Res<usize> {
         ));
     }
     Ok(r as usize)
+}
+
+/// The parameter an assignment writes, `n` read after its `#` (`span`: from the `#`): as
+/// [`param_index`], and under Fanuc's rules `#0`, always vacant, cannot be assigned (an
+/// alarm on the control). `n` may be a vacant variable's value (`#[#1]=…`), which is 0.
+pub(crate) fn assign_index(n: f64, span: Span, fanuc: bool) -> Res<usize> {
+    let n = number(n);
+    if fanuc && is_zero_index(n) {
+        return Err(Fault::new(
+            PathErrorKind::Semantic,
+            span,
+            "#0 is always vacant: it cannot be assigned",
+            format!("a variable from #1 to #{MAX_PARAM}"),
+        ));
+    }
+    param_index(n, span)
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -354,8 +421,11 @@ fn truth(b: bool) -> f64 {
     }
 }
 
-/// One binary operation, with LinuxCNC's domain errors.
+/// One binary operation, with LinuxCNC's domain errors. A vacant operand (Fanuc) is 0, but
+/// for `EQ` and `NE`, by which it equals only another vacant one.
 fn apply(op: Op, a: f64, b: f64) -> Result<f64, String> {
+    let (va, vb) = (is_vacant(a), is_vacant(b));
+    let (a, b) = (number(a), number(b));
     Ok(match op {
         Op::Pow => {
             if a < 0.0 && b.fract() != 0.0 {
@@ -383,6 +453,7 @@ fn apply(op: Op, a: f64, b: f64) -> Result<f64, String> {
         }
         Op::Add => a + b,
         Op::Sub => a - b,
+        Op::Eq | Op::Ne if va || vb => truth((va == vb) == (op == Op::Eq)),
         Op::Eq => truth((a - b).abs() < TOLERANCE_EQUAL),
         Op::Ne => truth((a - b).abs() >= TOLERANCE_EQUAL),
         Op::Gt => truth(a > b),
@@ -432,7 +503,7 @@ fn function(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
     if name == b"atan" {
         return atan(c, p, depth);
     }
-    let arg = real(c, p, depth)?;
+    let arg = number(real(c, p, depth)?);
     let span = Span::Code(start, c.i);
     let dom = |ok: bool, what: &str| -> Res<()> {
         if ok {
@@ -479,10 +550,10 @@ fn function(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
 /// control's 0° to 360° (parameter NAT = 0, its default): `ATAN[-1]/[-1]` is −135 and 225.
 fn atan(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
     c.expect(b'[', "`[` after the function name")?;
-    let y = binary(c, p, depth + 1, 1)?;
+    let y = number(binary(c, p, depth + 1, 1)?);
     let x = if p.fanuc() && c.peek() == Some(b',') {
         c.i += 1;
-        let x = binary(c, p, depth + 1, 1)?;
+        let x = number(binary(c, p, depth + 1, 1)?);
         c.expect(b']', "an operator or `]`")?;
         x
     } else {
@@ -498,7 +569,7 @@ fn atan(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
             return Err(c.unexpected("`/[x]` after ATAN[y]"));
         }
         c.i += 1;
-        real(c, p, depth)?
+        number(real(c, p, depth)?)
     };
     let deg = y.atan2(x).to_degrees();
     Ok(if p.fanuc() && deg < 0.0 {
@@ -590,6 +661,72 @@ mod tests {
         assert!(ev("acos[2]").is_err());
         assert!(ev("foo[1]").is_err());
         assert!(ev("[1+2").is_err());
+    }
+
+    /// Fanuc's rules, with #1 vacant and #2 = 0.
+    struct Fanuc;
+    impl ParamRead for Fanuc {
+        fn numbered(&self, n: usize) -> f64 {
+            if n == 1 {
+                vacant()
+            } else {
+                0.0
+            }
+        }
+        fn named(&self, _: &str) -> Option<f64> {
+            None
+        }
+        fn fanuc(&self) -> bool {
+            true
+        }
+    }
+
+    #[test]
+    fn vacant_variables() {
+        let ev = |s: &str| -> f64 {
+            let mut c = Cur::new(s.as_bytes());
+            let v = read_infix(&mut c, &Fanuc).unwrap();
+            assert!(c.at_end(), "left over in {s}");
+            v
+        };
+        // Alone, a variable keeps its vacancy; in arithmetic, signs, brackets and functions
+        // it is 0.
+        assert!(is_vacant(ev("#1")) && is_vacant(ev("#0")) && is_vacant(ev("#[#1]")));
+        assert!(!is_vacant(ev("#2")));
+        for s in [
+            "#1*5",
+            "#1+#1",
+            "-#1",
+            "[#1]",
+            "abs[#1]",
+            "atan[#1,1]",
+            "#0+0",
+        ] {
+            assert_eq!(number(ev(s)), 0.0, "{s}");
+            assert!(!ev(s).is_nan(), "{s}");
+        }
+        assert_eq!(ev("#1+2"), 2.0);
+        // EQ and NE tell vacant from 0; the other comparisons take it as 0.
+        let truth = |s: &str| ev(&format!("[{s}]"));
+        assert_eq!(truth("#1eq#0"), 1.0);
+        assert_eq!(truth("#2eq#0"), 0.0);
+        assert_eq!(truth("#1eq0"), 0.0);
+        assert_eq!(truth("#1ne0"), 1.0);
+        assert_eq!(truth("#1ne#0"), 0.0);
+        assert_eq!(truth("#2ne#0"), 1.0);
+        assert_eq!(truth("#1ge#0"), 1.0);
+        assert_eq!(truth("#1gt0"), 0.0);
+        assert_eq!(truth("#1lt1"), 1.0);
+        assert_eq!(truth("#1le-1"), 0.0);
+        assert_eq!(truth("[#1]eq0"), 1.0);
+        // The target of an assignment: #0 is refused by Fanuc's rules, by LinuxCNC's as out
+        // of range.
+        let e = assign_index(0.0, Span::Line, true).unwrap_err();
+        assert!(e.message.contains("vacant"), "{e:?}");
+        assert!(assign_index(vacant(), Span::Line, true).is_err());
+        let e = assign_index(0.0, Span::Line, false).unwrap_err();
+        assert!(e.message.contains("out of range"), "{e:?}");
+        assert_eq!(assign_index(7.0, Span::Line, true).unwrap(), 7);
     }
 
     #[test]

@@ -396,6 +396,11 @@ impl<'t, 's> Interp<'t, 's> {
             }
             start[..3].copy_from_slice(&home);
         }
+        if self.fanuc {
+            // Fanuc: the local and common variables are vacant until assigned (the
+            // parameters given set theirs).
+            self.params.start_vacant();
+        }
         for &(n, v) in &self.opts.parameters {
             if (1..=super::expr::MAX_PARAM).contains(&n) {
                 self.set_numbered(n, v);
@@ -893,7 +898,10 @@ impl<'t, 's> Interp<'t, 's> {
         }
     }
 
+    /// Sets numbered parameter `n`. A plain parameter stores `v` as it is (a Fanuc vacant
+    /// variable's value too); a view onto the control's state takes a vacant one as 0.
     pub(crate) fn set_numbered(&mut self, n: usize, v: f64) {
+        let (plain, v) = (v, super::expr::number(v));
         match n {
             5161..=5166 => self.homes[0][n - 5161] = self.mm_from_param_units(n - 5161, v),
             5181..=5186 => self.homes[1][n - 5181] = self.mm_from_param_units(n - 5181, v),
@@ -908,9 +916,9 @@ impl<'t, 's> Interp<'t, 's> {
             5021..=5026 | 5220 | 5400..=5409 | 5420..=5425 => {}
             // An O-word call's arguments are its own, put back when it returns.
             1..=super::params::N_ARGS if self.frames.iter().any(|f| f.fanuc.is_none()) => {
-                self.params.num[n] = v
+                self.params.num[n] = plain
             }
-            _ => self.params.set_num(n, v),
+            _ => self.params.set_num(n, plain),
         }
     }
 
@@ -2467,7 +2475,7 @@ impl Interp<'_, '_> {
                         .map(|c| c.to_ascii_lowercase())
                         .collect();
                     match self.named(&name) {
-                        Some(v) => out.push_str(&format!("{v:.6}")),
+                        Some(v) => out.push_str(&format!("{:.6}", super::expr::number(v))),
                         None => out.push_str("######"),
                     }
                     rest = &named[j + 1..];
@@ -2480,7 +2488,8 @@ impl Interp<'_, '_> {
                     .ok()
                     .filter(|n| (1..=super::expr::MAX_PARAM).contains(n))
                 {
-                    out.push_str(&format!("{:.6}", self.get_numbered(n)));
+                    let v = super::expr::number(self.get_numbered(n));
+                    out.push_str(&format!("{v:.6}"));
                     rest = &after[digits..];
                     continue;
                 }

@@ -9,7 +9,7 @@
 //! on the control). Each loop pass and each `GOTO` counts against the reader's loop limit, so a
 //! program that never ends stops with an error instead of hanging.
 
-use super::expr::{param_index, read_infix, read_real, Cur};
+use super::expr::{assign_index, number, read_infix, read_real, Cur};
 use super::interp::Interp;
 use super::lexer::{normalize, skip_line_number, LineBuf};
 use super::stack::{Cursor, Frame};
@@ -34,17 +34,18 @@ impl Interp<'_, '_> {
         let rest = &code[at..];
         if rest.starts_with(b"goto") {
             c.i = at + 4;
-            let n = read_real(&mut c, self)?;
+            let n = number(read_real(&mut c, self)?);
             end_of_line(&c)?;
             return self.macro_goto(n, span);
         }
         if rest.starts_with(b"if") {
             c.i = at + 2;
-            let cond = read_real(&mut c, self)?;
+            // (A vacant variable is 0 as a condition or a block number.)
+            let cond = number(read_real(&mut c, self)?);
             let then = &code[c.i..];
             if then.starts_with(b"goto") {
                 c.i += 4;
-                let n = read_real(&mut c, self)?;
+                let n = number(read_real(&mut c, self)?);
                 end_of_line(&c)?;
                 return if cond != 0.0 {
                     self.macro_goto(n, span)
@@ -54,8 +55,9 @@ impl Interp<'_, '_> {
             }
             if then.starts_with(b"then#") {
                 c.i += 5;
+                let hash = c.i - 1;
                 let n = read_real(&mut c, self)?;
-                let target = param_index(n, Span::Code(c.i, c.i))?;
+                let target = assign_index(n, Span::Code(hash, c.i), true)?;
                 if c.peek() != Some(b'=') {
                     return Err(c.unexpected("`=` in the assignment after THEN"));
                 }
@@ -71,7 +73,7 @@ impl Interp<'_, '_> {
         }
         if rest.starts_with(b"while") {
             c.i = at + 5;
-            let cond = read_real(&mut c, self)?;
+            let cond = number(read_real(&mut c, self)?);
             if !code[c.i..].starts_with(b"do") {
                 return Err(c.unexpected("DO m after the condition"));
             }

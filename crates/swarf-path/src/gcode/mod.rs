@@ -37,7 +37,14 @@
 //! * O-words: `sub`/`endsub`/`call`/`return` (arguments `#1`–`#30`, return values), `o[expr]
 //!   call`, subroutine files on [`GcodeOptions::subroutine_path`], `while`, `do`/`while`,
 //!   `repeat`, `if`/`elseif`/`else`/`endif`, `break`, `continue`; Fanuc `M98 P L`/`M99` and
-//!   Custom Macro B (`WHILE`/`DO`/`END`, `IF … GOTO`, `IF … THEN`, `GOTO`: `macro_b`).
+//!   Custom Macro B (`WHILE`/`DO`/`END`, `IF … GOTO`, `IF … THEN`, `GOTO`: `macro_b`), with
+//!   its vacant variables: `#0` always, the locals #1–#33 and commons #100–#199, #500–#999
+//!   until assigned (the others read 0, as in LinuxCNC). A word whose value is one is not
+//!   written (`G1 X#110 Y20.` moves Y alone), a plain copy keeps it vacant (`#2=#1`), an
+//!   operator, function, sign or bracket reads it as 0 (`#1*5`, `[#1]`), `EQ`/`NE` tell it
+//!   from 0 (`#1 EQ #0` holds only when #1 is vacant), `GE GT LE LT` take it as 0, and
+//!   `#0=…` is an error. Under LinuxCNC's rules nothing is vacant: an unset parameter is 0
+//!   and `#0` is out of range.
 //! * Comments in parentheses become [`Canon::Comment`], `(MSG,…)`/`(DEBUG,…)`/`(PRINT,…)`
 //!   [`Canon::Message`]; `;` comments, `N` numbers, `/` block delete and `%` tape markers are
 //!   understood; GRBL's `$` lines are skipped (or refused where they move the machine).

@@ -1,11 +1,17 @@
 //! Parameter storage: numbered parameters `#1`–`#5601`, named parameters (`#<name>` local to the
-//! subroutine level that assigns it, `#<_name>` global). The assignments of a line are collected
+//! subroutine level that assigns it, `#<_name>` global). Under Fanuc's rules a numbered
+//! parameter may hold a vacant variable's value ([`vacant`](super::expr::vacant)). The assignments of a line are collected
 //! in its [`Block`](super::block::Block) and applied only after the whole line has been read, as
 //! in LinuxCNC.
 
 use std::collections::HashMap;
 
-use super::expr::MAX_PARAM;
+use super::expr::{vacant, MAX_PARAM};
+
+/// The Fanuc variables that are vacant until assigned: the local (#1–#33) and common
+/// (#100–#199, #500–#999) variables. (`#0` is always vacant; the others are system
+/// variables, or LinuxCNC's parameters, which read 0 as in LinuxCNC.)
+const FANUC_VACANT: [std::ops::RangeInclusive<usize>; 3] = [1..=33, 100..=199, 500..=999];
 
 /// Numbered parameters that are arguments of an O-word subroutine call and local to it.
 pub(crate) const N_ARGS: usize = 30;
@@ -104,6 +110,14 @@ impl Params {
             self.globals.get(name).copied()
         } else {
             self.locals.first().and_then(|m| m.get(name).copied())
+        }
+    }
+
+    /// Fanuc: makes the local and common variables vacant ([`vacant`]), as they are when a
+    /// program starts.
+    pub(crate) fn start_vacant(&mut self) {
+        for r in FANUC_VACANT {
+            self.num[r].fill(vacant());
         }
     }
 
