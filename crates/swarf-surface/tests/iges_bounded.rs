@@ -101,7 +101,7 @@ fn a_141_from_model_space_curves_written_in_reverse() {
     assert!(
         s.notes[0]
             .to_string()
-            .contains("mapped from model-space curves"),
+            .contains("the loop of the 141 at D11 mapped from its model-space curve"),
         "{:?}",
         s.notes
     );

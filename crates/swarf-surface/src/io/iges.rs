@@ -227,45 +227,12 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
             .ok()
             .and_then(|d| patch_of_de.get(&d).copied());
         if let Some(k) = patch {
-            let patch_surface = originals[k].clone();
-            let mut sampler =
-                Sampler::new(&file, &entries, &patch_surface, global.factor, points_left);
-            let budget = sampler.points_left;
-            let result = sampler.trim144(e, &p, &patch_surface.domain())?;
-            points_left -= budget - sampler.points_left;
-            let by = match sampler.from_model.as_slice() {
-                [] => format!("IGES 144 at D{}", e.de),
-                des => format!(
-                    "IGES 144 at D{}, the loop{s} of the 142{s} at {} mapped from {} model-space curve{s}",
-                    e.de,
-                    des.iter()
-                        .map(|d| format!("D{}", d.de))
-                        .collect::<Vec<_>>()
-                        .join(", "),
-                    if des.len() == 1 { "its" } else { "their" },
-                    s = if des.len() == 1 { "" } else { "s" },
-                ),
-            };
-            let target = settle_trim(
-                &mut doc,
-                &mut claimed,
-                (k, &originals[k]),
-                result,
-                by,
-                |why| UnhonouredTrim::Iges144 { de: e.de, why },
-            );
-            // The 144's own transformation places the trimmed surface (its boundaries are in
-            // the surface's parameters, or in the space the surface is defined in).
-            if let Some(t) = file.transform(&entries, e)? {
-                let placed = transformed(&doc.surface.patches[target].surface, &t, global.factor)
-                    .map_err(|reason| ReadError::Surface {
-                    format: Format::Iges,
-                    line: e.line,
-                    entity: format!("entity 144 at D{}", e.de),
-                    reason,
-                })?;
-                doc.surface.patches[target].surface = placed;
-            }
+            let target = trim_patch(
+                (&file, &entries, global.factor),
+                (&mut doc, &mut claimed, &originals, &mut points_left),
+                (e, k),
+                |sampler, domain| sampler.trim144(e, &p, domain),
+            )?;
             patch = Some(target);
         }
         doc.trims.push(IgesTrim {
@@ -287,45 +254,12 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
         else {
             continue;
         };
-        let patch_surface = originals[k].clone();
-        let mut sampler = Sampler::new(&file, &entries, &patch_surface, global.factor, points_left);
-        let budget = sampler.points_left;
-        let result = sampler.trim143(e, &p, &patch_surface.domain())?;
-        points_left -= budget - sampler.points_left;
-        let by = match sampler.from_model.as_slice() {
-            [] => format!("IGES 143 at D{}", e.de),
-            des => format!(
-                "IGES 143 at D{}, the loop{s} of the 141{s} at {} mapped from model-space curves",
-                e.de,
-                des.iter()
-                    .map(|d| format!("D{}", d.de))
-                    .collect::<Vec<_>>()
-                    .join(", "),
-                s = if des.len() == 1 { "" } else { "s" },
-            ),
-        };
-        let target = settle_trim(
-            &mut doc,
-            &mut claimed,
-            (k, &originals[k]),
-            result,
-            by,
-            |why| UnhonouredTrim::Iges {
-                kind: 143,
-                de: e.de,
-                why,
-            },
-        );
-        if let Some(t) = file.transform(&entries, e)? {
-            let placed = transformed(&doc.surface.patches[target].surface, &t, global.factor)
-                .map_err(|reason| ReadError::Surface {
-                    format: Format::Iges,
-                    line: e.line,
-                    entity: format!("entity 143 at D{}", e.de),
-                    reason,
-                })?;
-            doc.surface.patches[target].surface = placed;
-        }
+        trim_patch(
+            (&file, &entries, global.factor),
+            (&mut doc, &mut claimed, &originals, &mut points_left),
+            (e, k),
+            |sampler, domain| sampler.trim143(e, &p, domain),
+        )?;
     }
     // The faces (510) of a manifold solid B-rep: their loops (508 of 504 edge lists) are not
     // read, so the surface of each stands whole, said per face.
@@ -404,6 +338,62 @@ fn check_surface_pointer(
         )),
         Some(_) => Ok(()),
     }
+}
+
+/// The trim that the trimming entity `e` (a 144 or a 143) gives patch `k`, made by `build`
+/// with a sampler on the patch's surface as the file gives it, recorded (`settle_trim`), and
+/// the patch placed by `e`'s own transformation. Returns the patch that stands for the face.
+fn trim_patch(
+    (file, entries, factor): (&Sections<'_>, &[Entry], f64),
+    (doc, claimed, originals, points_left): (
+        &mut IgesDocument,
+        &mut [bool],
+        &[Surface],
+        &mut usize,
+    ),
+    (e, k): (&Entry, usize),
+    build: impl FnOnce(&mut Sampler<'_, '_>, &ParamBox) -> Result<Built<Trim>, ReadError>,
+) -> Result<usize, ReadError> {
+    let surface = &originals[k];
+    let mut sampler = Sampler::new(file, entries, surface, factor, *points_left);
+    let budget = sampler.points_left;
+    let result = build(&mut sampler, &surface.domain())?;
+    *points_left -= budget - sampler.points_left;
+    let by = match sampler.from_model.as_slice() {
+        [] => format!("IGES {} at D{}", e.kind, e.de),
+        des => format!(
+            "IGES {} at D{}, the loop{s} of the {}{s} at {} mapped from {} model-space curve{s}",
+            e.kind,
+            e.de,
+            des[0].kind,
+            des.iter()
+                .map(|d| format!("D{}", d.de))
+                .collect::<Vec<_>>()
+                .join(", "),
+            if des.len() == 1 { "its" } else { "their" },
+            s = if des.len() == 1 { "" } else { "s" },
+        ),
+    };
+    let (kind, de) = (e.kind, e.de);
+    let target = settle_trim(doc, claimed, (k, surface), result, by, |why| match kind {
+        144 => UnhonouredTrim::Iges144 { de, why },
+        _ => UnhonouredTrim::Iges { kind, de, why },
+    });
+    // The entity's own transformation places the trimmed surface (its boundaries are in the
+    // surface's parameters, or in the space the surface is defined in).
+    if let Some(t) = file.transform(entries, e)? {
+        let placed =
+            transformed(&doc.surface.patches[target].surface, &t, factor).map_err(|reason| {
+                ReadError::Surface {
+                    format: Format::Iges,
+                    line: e.line,
+                    entity: format!("entity {} at D{}", e.kind, e.de),
+                    reason,
+                }
+            })?;
+        doc.surface.patches[target].surface = placed;
+    }
+    Ok(target)
 }
 
 /// Records what a trimming entity made of patch `k` (whose surface as the file gives it is
