@@ -148,6 +148,44 @@ fn rational_complex_entity_in_inches() {
 }
 
 #[test]
+fn an_inch_conversion_factor_as_a_complex_instance_reads_as_the_simple_one() {
+    // The factor written as `(LENGTH_MEASURE_WITH_UNIT() MEASURE_WITH_UNIT(value, unit))`
+    // (the subtype's part empty, the supertype's holding the value), as some exporters do
+    // (/tmp/geo-review/mk1.py, trough_inch2.stp): the same ×25.4 as the simple form.
+    let simple = "#91=LENGTH_MEASURE_WITH_UNIT(LENGTH_MEASURE(25.4),#90);";
+    let complex = "#91=( LENGTH_MEASURE_WITH_UNIT() MEASURE_WITH_UNIT(LENGTH_MEASURE(25.4),#90) );";
+    assert!(inch_context().contains(simple));
+    let text = |context: &str| {
+        format!(
+            "{HEAD}{context}#1=CARTESIAN_POINT('',(1.,0.,0.));#2=CARTESIAN_POINT('',(1.,0.,2.));\
+             #3=CARTESIAN_POINT('',(0.,1.,0.));#4=CARTESIAN_POINT('',(0.,1.,2.));\n\
+             #10=B_SPLINE_SURFACE_WITH_KNOTS('wall',1,1,((#1,#2),(#3,#4)),.UNSPECIFIED.,.F.,.F.,\
+             .F.,(2,2),(2,2),(0.,1.),(0.,1.),.UNSPECIFIED.);\n\
+             #11=SHAPE_REPRESENTATION('',(#10),#95);\nENDSEC;\nEND-ISO-10303-21;\n"
+        )
+    };
+    let a = step::parse(&text(inch_context())).unwrap();
+    let b = step::parse(&text(&inch_context().replace(simple, complex)))
+        .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(a.patches, b.patches);
+    assert_eq!(a.notes, b.notes);
+    assert!(b.notes.iter().any(|n| matches!(n, ReadNote::UnitsConverted { unit, factor } if unit == "INCH" && *factor == 25.4)));
+    // The corner (0, 1, 2) in is (0, 25.4, 50.8) mm.
+    let p = b.patches[0].surface.point(1.0, 1.0);
+    assert_eq!(p, Vec3::new(0.0, 25.4, 50.8));
+    // No part with the value at all: refused, naming the measure.
+    let e = err(&text(&inch_context().replace(
+        simple,
+        "#91=( LENGTH_MEASURE_WITH_UNIT() MEASURE_WITH_UNIT() );",
+    )));
+    let m = e.to_string();
+    assert!(
+        m.contains("#91") && m.contains("with a value and a unit"),
+        "{m}"
+    );
+}
+
+#[test]
 fn elementary_faces_take_their_bounds_and_orientation() {
     // A cylinder face (radius 3, between z = 1 and z = 4, two circle edges) with same_sense .F.
     // (material outside: the cutter is inside), a conical face and a plane face bounded by a

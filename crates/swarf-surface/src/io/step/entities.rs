@@ -224,13 +224,23 @@ impl Model<'_> {
             let label = Self::name(cb.first()).unwrap_or_else(|| "conversion-based unit".into());
             let m = self.reference(id, cb.get(1), "conversion factor")?;
             let mi = self.get(id, m)?;
+            // The part that holds (value, unit): in the complex form `(LENGTH_MEASURE_WITH_UNIT()
+            // MEASURE_WITH_UNIT(LENGTH_MEASURE(25.4),#1))` the subtype's part comes first and
+            // is empty, the supertype's holds them.
             let mp = mi
                 .parts
                 .iter()
-                .find(|(n, _)| n.ends_with("MEASURE_WITH_UNIT"))
+                .find(|(n, p)| n.ends_with("MEASURE_WITH_UNIT") && p.len() >= 2)
                 .map(|(_, p)| p.as_slice())
-                .filter(|p| p.len() >= 2)
-                .ok_or_else(|| self.bad(m, "expected a …_MEASURE_WITH_UNIT"))?;
+                .ok_or_else(|| {
+                    self.bad(
+                        m,
+                        format!(
+                            "found {}, expected a …_MEASURE_WITH_UNIT with a value and a unit",
+                            mi.first_name()
+                        ),
+                    )
+                })?;
             let v = self.num(m, mp.first(), "value")?;
             let u = self.reference(m, mp.get(1), "unit")?;
             let (f, _) = self.unit_factor(m, u, depth + 1)?;

@@ -43,7 +43,8 @@
 //!   the file) leave the patch untrimmed with a [`ReadNote::TrimNotHonoured`](crate::ReadNote::TrimNotHonoured) saying why.
 //! * **Units**: the length unit of the `GLOBAL_UNIT_ASSIGNED_CONTEXT` (`SI_UNIT` with any prefix,
 //!   or a `CONVERSION_BASED_UNIT` such as INCH or FOOT, resolved through its
-//!   `LENGTH_MEASURE_WITH_UNIT`) scales lengths to mm; the plane-angle unit scales cone angles.
+//!   `LENGTH_MEASURE_WITH_UNIT`, simple or complex with the value in its `MEASURE_WITH_UNIT`
+//!   part) scales lengths to mm; the plane-angle unit scales cone angles.
 //!   No unit: mm, with a [`ReadNote::UnitsAssumed`](crate::ReadNote::UnitsAssumed). When unit
 //!   contexts declare different length units, each face (each surface, in a file without
 //!   faces) is read in the units of the representation that holds it (`(name, items,
