@@ -408,6 +408,7 @@ impl Model<'_> {
             faces.clone()
         };
         let assembly = self.assembly(&contexts, &items)?;
+        let reversals = self.face_reversals()?;
         // Representations in different length units: each face is read in its own's.
         let units = matches!(out.notes.last(), Some(ReadNote::UnitsMixed { .. })).then(|| {
             let by_face = self.face_contexts(&contexts);
@@ -510,7 +511,20 @@ impl Model<'_> {
                     },
                     trim,
                 };
-                self.push_placed(&mut out, patch, notes, &assembly, fid)?;
+                // An oriented face or shell that reverses the face flips its material side
+                // only: the region its bounds enclose is the same (it reverses the bounds too),
+                // so the trim above is read with the face's own same_sense. A face its holders
+                // use both ways (two solids sharing it) is read once each way.
+                let ways = reversals.get(&fid).map_or(&[false][..], Vec::as_slice);
+                for &reversed in ways {
+                    let first = out.patches.len();
+                    let patch = Patch {
+                        flipped: patch.flipped != reversed,
+                        ..patch.clone()
+                    };
+                    let notes = notes.iter().map(|n| n.clone().for_patch(first)).collect();
+                    self.push_placed(&mut out, patch, notes, &assembly, fid)?;
+                }
             }
         }
         if out.patches.is_empty() {

@@ -8,6 +8,14 @@
 //!   named after the face (or its surface), flipped when the face's `same_sense` is `.F.`;
 //!   faces on other surface kinds are skipped with a [`ReadNote::UnsupportedSurface`](crate::ReadNote::UnsupportedSurface). A file
 //!   without faces gives one patch per surface instance.
+//! * **Orientation**: an `ORIENTED_FACE`, `ORIENTED_OPEN_SHELL` or `ORIENTED_CLOSED_SHELL`
+//!   with orientation `.F.` reverses its face (every face of its shell): the patch is flipped
+//!   the other way, as if the face's `same_sense` were the opposite; the region its bounds
+//!   enclose is the same. Reversals compose down the chain of solids, shells and oriented
+//!   faces that holds a face (a reversed face in a reversed shell is not reversed); the voids
+//!   of a `BREP_WITH_VOIDS` (`ORIENTED_CLOSED_SHELL(…, .F.)`) come out reversed. A face that
+//!   its holders use both ways (two solids sharing it) gives one patch each way. Styled items
+//!   and other references to a face do not count.
 //! * **Face trims**: a face's bounds become the patch's [`Trim`](crate::Trim) (in the surface's own
 //!   parameters), with a [`ReadNote::Trimmed`](crate::ReadNote::Trimmed): the `FACE_OUTER_BOUND` is the outer loop (no
 //!   such bound: the loop with the largest parameter box), the other bounds are holes;
@@ -121,6 +129,7 @@ mod assembly;
 mod curves;
 mod entities;
 mod lex;
+mod orient;
 mod trims;
 
 use super::ReadError;
