@@ -708,3 +708,134 @@ fn an_absurd_number_of_instances_is_refused_clearly() {
         "{notes:?}"
     );
 }
+
+/// `levels` levels of `fan` mapped items each above the part made by `faces`: `fan^levels`
+/// placed instances of it.
+fn fanned(levels: usize, fan: usize, faces: impl FnOnce(&mut Step) -> Vec<u64>) -> Step {
+    let mut s = Step::default();
+    let ctx = s.context(false);
+    let (mut rep, mut axis, _) = s.part(ctx, faces);
+    for level in 0..levels {
+        let mut items = vec![];
+        for k in 0..fan {
+            let at = [20.0 * (k * (level + 1)) as f64, 30.0 * k as f64, 0.0];
+            let t = s.axis(at, [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+            items.push(s.mapped(axis, rep, t));
+        }
+        axis = s.origin();
+        rep = s.add(format!(
+            "SHAPE_REPRESENTATION('level',(#{axis},{}),#{ctx})",
+            ids(&items)
+        ));
+    }
+    s
+}
+
+/// A bilinear B-spline face `net` of `n`×`n` control points over 10 × 10 mm.
+fn net_face(s: &mut Step, n: usize) -> u64 {
+    let mut rows = Vec::new();
+    for i in 0..n {
+        let row: Vec<u64> = (0..n)
+            .map(|j| {
+                let (x, y) = (
+                    10.0 * i as f64 / (n - 1) as f64,
+                    10.0 * j as f64 / (n - 1) as f64,
+                );
+                s.point([x, y, (i + j) as f64 % 2.0])
+            })
+            .collect();
+        rows.push(format!("({})", ids(&row)));
+    }
+    let knots: Vec<String> = (0..n).map(|k| format!("{k}.")).collect();
+    let mult: Vec<&str> = (0..n)
+        .map(|k| if k == 0 || k == n - 1 { "2" } else { "1" })
+        .collect();
+    let (m, k) = (mult.join(","), knots.join(","));
+    let surface = s.add(format!(
+        "B_SPLINE_SURFACE_WITH_KNOTS('',1,1,({}),.UNSPECIFIED.,.F.,.F.,.F.,({m}),({m}),({k}),\
+         ({k}),.UNSPECIFIED.)",
+        rows.join(",")
+    ));
+    s.add(format!("ADVANCED_FACE('net',(),#{surface},.T.)"))
+}
+
+#[test]
+fn placed_instances_copying_too_many_control_points_are_refused_before_the_copies() {
+    // The reviewer's mk18.py in small: a face of 40×40 control points in 7 levels of 4
+    // mapped items, 16 384 instances (under the 100 000 instances and the 500 000 patches):
+    // 26 214 400 control points to copy, past the 10 million. Refused at the face, before any
+    // copy (the walk only counts), naming the cap and what to do.
+    let s = fanned(7, 4, |s| vec![net_face(s, 40)]);
+    let face = s
+        .lines
+        .iter()
+        .position(|l| l.starts_with("ADVANCED_FACE('net'"))
+        .unwrap() as u64
+        + 1;
+    match step::parse(&s.text()) {
+        Err(ReadError::Entity {
+            entity, message, ..
+        }) => {
+            assert_eq!(entity, format!("#{face}"));
+            assert!(
+                message.starts_with(
+                    "placed 16384 times by the assembly, its 1600 control points take the \
+                     file's placed patches past 10000000 control points"
+                ),
+                "{message}"
+            );
+            assert!(
+                message.contains(
+                    "read the parts on their own, or export the assembly with fewer instances"
+                ),
+                "{message}"
+            );
+        }
+        Err(e) => panic!("{e}"),
+        Ok(r) => panic!("read {} patches", r.patches.len()),
+    }
+    // 4 levels, 256 instances, 409 600 control points: read, one patch per instance.
+    let r = fanned(4, 4, |s| vec![net_face(s, 40)]).parse();
+    assert_eq!(r.patches.len(), 256);
+    assert_eq!(applied(&r), Some((256, 1)));
+}
+
+#[test]
+fn placed_instances_copying_too_many_trim_points_are_refused_before_the_copies() {
+    // A plane face bounded by a circle of radius 1 m: its trim, copied to each of 4^8 = 65 536
+    // instances (87 381 with the levels', under the 100 000), would be past the 50 million
+    // trim points.
+    let disc = |s: &mut Step| {
+        let a = s.axis([0.0; 3], [0.0, 0.0, 1.0], [1.0, 0.0, 0.0]);
+        let plane = s.add(format!("PLANE('',#{a})"));
+        let circle = s.add(format!("CIRCLE('',#{a},1000.)"));
+        let p = s.point([1000.0, 0.0, 0.0]);
+        let v = s.add(format!("VERTEX_POINT('',#{p})"));
+        let e = s.add(format!("EDGE_CURVE('',#{v},#{v},#{circle},.T.)"));
+        let oe = s.add(format!("ORIENTED_EDGE('',*,*,#{e},.T.)"));
+        let l = s.add(format!("EDGE_LOOP('',(#{oe}))"));
+        let b = s.add(format!("FACE_OUTER_BOUND('',#{l},.T.)"));
+        vec![s.add(format!("ADVANCED_FACE('disc',(#{b}),#{plane},.T.)"))]
+    };
+    let one = alone(disc);
+    let points: usize = one.patches[0]
+        .trim
+        .as_ref()
+        .unwrap()
+        .loops()
+        .iter()
+        .map(Vec::len)
+        .sum();
+    assert!(points * 65_536 > 50_000_000, "{points}");
+    match step::parse(&fanned(8, 4, disc).text()) {
+        Err(ReadError::Entity { message, .. }) => assert!(
+            message.starts_with(&format!(
+                "placed 65536 times by the assembly, its {points} trim points take the file's \
+                 placed patches past 50000000 trim points"
+            )),
+            "{message}"
+        ),
+        Err(e) => panic!("{e}"),
+        Ok(r) => panic!("read {} patches", r.patches.len()),
+    }
+}

@@ -21,6 +21,25 @@ pub(super) const MAX_INSTANCES: usize = 100_000;
 /// Most patches the placed faces of a file may give, each once per placed instance.
 pub(super) const MAX_PLACED_PATCHES: usize = 500_000;
 
+/// Most control points of B-spline surfaces that the placed faces (surfaces) of a file may
+/// hold, counted once per placed instance (each instance copies its surface); beyond, the file
+/// is refused before they are made. The instance and patch caps above do not bound this: one
+/// 30×30 B-spline surface placed 16 384 times (7 levels of 4 mapped items, an 88 KB file) is
+/// 14.7 million control points, and took the toolsize command past 14 GB. A real assembly
+/// stays below: 2 000 faces placed 200 times (400 000 patches, under [`MAX_PLACED_PATCHES`]) at
+/// 25 control points a face on average — most faces are planes, cylinders and cones without
+/// any, B-spline faces of ordinary size have 4×4 to 8×8 — is 10 million; so is a part of 5 000
+/// B-spline faces of 10×10 placed 20 times. The reader holds 56 bytes a control point (the
+/// homogeneous and the given coordinates), 560 MB at the cap.
+pub(super) const MAX_PLACED_CONTROL_POINTS: usize = 10_000_000;
+
+/// Most points of trims' loops that the placed faces of a file may hold, counted once per
+/// placed instance (each instance copies its face's trim): what the trims of
+/// [`MAX_PLACED_PATCHES`] faces of 100 points each hold (an ordinary face's loops have tens to
+/// a few hundred points; one face may have 200 000, placed up to [`MAX_INSTANCES`] times).
+/// About 60 bytes a point, 3 GB at the cap.
+pub(super) const MAX_PLACED_TRIM_POINTS: usize = 50_000_000;
+
 /// Deepest nesting of placements (sub-assemblies in sub-assemblies) followed.
 pub(super) const MAX_NESTING: usize = 64;
 

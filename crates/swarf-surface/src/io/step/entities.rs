@@ -7,7 +7,7 @@ use std::sync::Arc;
 use swarf_geom::math::Vec3;
 use swarf_geom::Frame;
 
-use super::assembly::{place, Assembly};
+use super::assembly::{place, Assembly, MAX_PLACED_CONTROL_POINTS, MAX_PLACED_TRIM_POINTS};
 use super::lex::{refs, show, Instance, Param};
 use super::trims::{set_domain, MAX_FILE_TRIM_POINTS};
 use super::DEFAULT_LINEAR_RANGE;
@@ -418,6 +418,7 @@ impl Model<'_> {
         let mut defaulted = 0;
         let mut skipped = Vec::new();
         let mut budget = MAX_FILE_TRIM_POINTS;
+        let mut placed = [0; 2];
         if faces.is_empty() {
             for &id in &ids {
                 let inst = &self.map[&id];
@@ -448,7 +449,7 @@ impl Model<'_> {
                     },
                     trim: None,
                 };
-                self.push_placed(&mut out, patch, notes, &assembly, id)?;
+                self.push_placed(&mut out, patch, notes, &assembly, id, &mut placed)?;
             }
         } else {
             for &fid in &faces {
@@ -523,7 +524,7 @@ impl Model<'_> {
                         ..patch.clone()
                     };
                     let notes = notes.iter().map(|n| n.clone().for_patch(first)).collect();
-                    self.push_placed(&mut out, patch, notes, &assembly, fid)?;
+                    self.push_placed(&mut out, patch, notes, &assembly, fid, &mut placed)?;
                 }
             }
         }
@@ -554,6 +555,10 @@ impl Model<'_> {
     /// per placed instance of it (moved by the instance's placement, named with the instance's
     /// path when there are several, each note repeated for each patch), or once as it is when
     /// no placement reaches it.
+    ///
+    /// `placed` counts the control points and the trim points of the placed patches so far; a
+    /// face whose instances would take either past its cap ([`MAX_PLACED_CONTROL_POINTS`],
+    /// [`MAX_PLACED_TRIM_POINTS`]) refuses the file before they are made.
     fn push_placed(
         &self,
         out: &mut CompoundSurface,
@@ -561,12 +566,42 @@ impl Model<'_> {
         notes: Vec<ReadNote>,
         assembly: &Assembly,
         id: u64,
+        placed: &mut [usize; 2],
     ) -> R<()> {
         let Some(instances) = assembly.by_item.get(&id) else {
             out.patches.push(patch);
             out.notes.extend(notes);
             return Ok(());
         };
+        let control = match &patch.surface {
+            Surface::Nurbs(n) => n.net_size().0 * n.net_size().1,
+            _ => 0,
+        };
+        let trim = patch
+            .trim
+            .as_ref()
+            .map_or(0, |t| t.loops().iter().map(Vec::len).sum());
+        for (k, (own, cap, what)) in [
+            (control, MAX_PLACED_CONTROL_POINTS, "control points"),
+            (trim, MAX_PLACED_TRIM_POINTS, "trim points"),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            placed[k] = placed[k].saturating_add(own.saturating_mul(instances.len()));
+            if placed[k] > cap {
+                return Err(self.bad(
+                    id,
+                    format!(
+                        "placed {} times by the assembly, its {own} {what} take the file's \
+                         placed patches past {cap} {what} (each placed instance copies them); \
+                         refused: read the parts on their own, or export the assembly with \
+                         fewer instances",
+                        instances.len()
+                    ),
+                ));
+            }
+        }
         for (placement, path) in instances {
             let index = out.patches.len();
             let (surface, trim) =

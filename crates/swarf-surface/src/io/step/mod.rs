@@ -115,9 +115,11 @@
 //!   that no shape representation holds; an assembly occurrence with neither a
 //!   `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION` nor a mapped item placing its component;
 //!   nesting deeper than 64 levels; a placement of a representation that holds no faces while
-//!   some faces are read unplaced. More than 100 000 placed instances, or placed faces making
-//!   more than 500 000 patches, refuse the file. A face no placement reaches (every face of a
-//!   single-part file) is read once, in its own frame, as it is written.
+//!   some faces are read unplaced. More than 100 000 placed instances, placed faces making
+//!   more than 500 000 patches, or more than 10 million B-spline control points or 50 million
+//!   trim points summed over the placed instances (each instance copies its surface and its
+//!   trim) refuse the file, before the copies are made. A face no placement reaches (every
+//!   face of a single-part file) is read once, in its own frame, as it is written.
 //! * **Parameter boxes of elementary surfaces**: angles take their full range (u ∈ [0, 2π];
 //!   sphere v ∈ [−π/2, π/2]; torus v ∈ [0, 2π]); linear parameters (plane u, v; cylinder and
 //!   cone v) span the face's boundary: its vertices, the control points of its B-spline edges
