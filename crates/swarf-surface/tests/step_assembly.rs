@@ -763,7 +763,7 @@ fn net_face(s: &mut Step, n: usize) -> u64 {
 fn placed_instances_copying_too_many_control_points_are_refused_before_the_copies() {
     // The reviewer's mk18.py in small: a face of 40×40 control points in 7 levels of 4
     // mapped items, 16 384 instances (under the 100 000 instances and the 500 000 patches):
-    // 26 214 400 control points to copy, past the 10 million. Refused at the face, before any
+    // 26 214 400 control points to copy, past the 2 million. Refused at the face, before any
     // copy (the walk only counts), naming the cap and what to do.
     let s = fanned(7, 4, |s| vec![net_face(s, 40)]);
     let face = s
@@ -780,7 +780,7 @@ fn placed_instances_copying_too_many_control_points_are_refused_before_the_copie
             assert!(
                 message.starts_with(
                     "placed 16384 times by the assembly, its 1600 control points take the \
-                     file's placed patches past 10000000 control points"
+                     file's placed patches past 2000000 control points"
                 ),
                 "{message}"
             );

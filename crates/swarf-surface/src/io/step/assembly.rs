@@ -25,13 +25,15 @@ pub(super) const MAX_PLACED_PATCHES: usize = 500_000;
 /// hold, counted once per placed instance (each instance copies its surface); beyond, the file
 /// is refused before they are made. The instance and patch caps above do not bound this: one
 /// 30×30 B-spline surface placed 16 384 times (7 levels of 4 mapped items, an 88 KB file) is
-/// 14.7 million control points, and took the toolsize command past 14 GB. A real assembly
-/// stays below: 2 000 faces placed 200 times (400 000 patches, under [`MAX_PLACED_PATCHES`]) at
-/// 25 control points a face on average — most faces are planes, cylinders and cones without
-/// any, B-spline faces of ordinary size have 4×4 to 8×8 — is 10 million; so is a part of 5 000
-/// B-spline faces of 10×10 placed 20 times. The reader holds 56 bytes a control point (the
-/// homogeneous and the given coordinates), 560 MB at the cap.
-pub(super) const MAX_PLACED_CONTROL_POINTS: usize = 10_000_000;
+/// 14.7 million control points, and took the toolsize command past 14 GB. The reader holds 56
+/// bytes a control point (the homogeneous and the given coordinates), but the commands that
+/// decompose the surface into Bézier pieces and search them (`toolsize`, `gouge`) take about
+/// 1.5 KB a control point (measured: 0.92 million took `toolsize` to 1.4 GB), so the cap is 2
+/// million — about 3 GB there, on the 2-core, 24 GB machines the project is measured on. A
+/// machined part stays far below: 2 000 faces at 25 control points a face on average (most faces
+/// are planes, cylinders and cones without any; B-spline faces of ordinary size have 4×4 to 8×8)
+/// is 50 000, and may be placed 40 times; a part of 5 000 B-spline faces of 10×10 four times.
+pub(super) const MAX_PLACED_CONTROL_POINTS: usize = 2_000_000;
 
 /// Most points of trims' loops that the placed faces of a file may hold, counted once per
 /// placed instance (each instance copies its face's trim): what the trims of
