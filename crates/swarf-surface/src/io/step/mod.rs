@@ -116,7 +116,7 @@
 //!   `CONTEXT_DEPENDENT_SHAPE_REPRESENTATION` nor a mapped item placing its component;
 //!   nesting deeper than 64 levels; a placement of a representation that holds no faces while
 //!   some faces are read unplaced. More than 100 000 placed instances, placed faces making
-//!   more than 500 000 patches, or more than 10 million B-spline control points or 50 million
+//!   more than 500 000 patches, or more than 2 million B-spline control points or 50 million
 //!   trim points summed over the placed instances (each instance copies its surface and its
 //!   trim) refuse the file, before the copies are made. A face no placement reaches (every
 //!   face of a single-part file) is read once, in its own frame, as it is written.
