@@ -346,3 +346,36 @@ proptest! {
         }
     }
 }
+
+/// A full circle followed by a concave corner: LinuxCNC moves the circle's end back to where
+/// it meets the next move's offset line (`move_endpoint_and_flush`). The circle's compensated
+/// start and end differ by rounding only, which must not read as an arc of sweep ≈ 0 that
+/// cannot reach the meeting point (a false gouging error).
+#[test]
+fn a_full_circle_then_a_concave_corner_is_cut_back() {
+    let rec = read(
+        "G21 G17 G90 G40\nG0 X-10 Y-10 Z0\nG41.1 D2\nG1 X0 Y0 F100\nG3 X0 Y0 I5 J0\n\
+         G1 X10 Y-10\nG40\nM2\n",
+        &GcodeOptions::default(),
+    )
+    .unwrap();
+    // r = 1, tool on the left. The entry along (1, 1) ends a from (0, 0) on its left,
+    // (−a, a) with a = 1/√2; the circle (centre (5, 0), CCW, starting down) has the tool
+    // inside, at radius 4, starting at (1, 0): a right turn for a tool on the left, convex, so
+    // an arc about (0, 0). The last line along (1, −1) has its offset through (a, a): the
+    // point (a + t, a − t) lies at distance 4 from (5, 0) for t² − 5t + 5 − 5a = 0, the
+    // smaller root (≈ (1.0196, 0.3946)), where the circle ends.
+    let a = std::f64::consts::FRAC_1_SQRT_2;
+    let t = (5.0 - (5.0 + 20.0 * a).sqrt()) / 2.0;
+    assert_path(
+        &motion(&rec)[1..],
+        &[
+            ("L", -a, a),
+            ("A-", 1.0, 0.0),
+            ("A+", a + t, a - t),
+            ("L", 10.0 + a, -10.0 + a),
+        ],
+    );
+    let centres: Vec<_> = motion(&rec).iter().filter_map(|m| m.3).collect();
+    assert_eq!(centres, vec![[0.0, 0.0], [5.0, 0.0]]);
+}

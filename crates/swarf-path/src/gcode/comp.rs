@@ -505,8 +505,10 @@ impl Interp<'_, '_> {
                     a[0] * h.dir[0] + a[1] * h.dir[1] >= 0.0
                 }
                 Some((c, turn)) => {
-                    h.start == h.end
-                        || sweep(c, h.start, x, turn) <= sweep(c, h.start, h.end, turn) + 1e-9
+                    // A full circle (its compensated ends apart by rounding: the sweep from
+                    // start to end would read ≈ 0, not 2π) reaches every point.
+                    let full = dist(h.start, h.end) <= 1e-9 * (1.0 + dist(h.start, c));
+                    full || sweep(c, h.start, x, turn) <= sweep(c, h.start, h.end, turn) + 1e-9
                 }
             };
             let Some(x) = hits
