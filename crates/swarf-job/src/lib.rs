@@ -367,7 +367,8 @@ fn load_machine(arg: &str) -> Result<Machine, JobError> {
 }
 
 /// The reader options of `options`, with the tool diameters cutter compensation needs: the
-/// single cutter's for every tool, else the library's.
+/// single cutter's for every tool, else the library's; and the library's tool offsets and
+/// pockets.
 fn read_options(
     options: &JobOptions,
     single: Option<&Cutter>,
@@ -391,6 +392,16 @@ fn read_options(
             for (n, t) in table.map(|t| &t.tools).into_iter().flatten() {
                 gcode = gcode.with_tool_diameter(*n, t.cutter.apt_params().d);
             }
+        }
+    }
+    // The table's tool offsets (a LinuxCNC `.tbl`'s X Y Z A B C: G43 applies them) and
+    // pockets (`#<_current_pocket>`).
+    for (n, t) in table.map(|t| &t.tools).into_iter().flatten() {
+        if let Some(o) = t.offsets {
+            gcode = gcode.with_tool_offsets(*n, o);
+        }
+        if let Some(p) = t.pocket {
+            gcode = gcode.with_tool_pocket(*n, p);
         }
     }
     // Named tools (a Heidenhain TOOL.T): the programs' `TOOL CALL "NAME"` finds them.
@@ -470,6 +481,30 @@ mod tests {
             .read_str("G0 X1\nG0 X2\nG0 X3\nG0 X4\n", "t.ngc")
             .unwrap_err();
         assert!(matches!(e, JobError::MoveLimit(_)), "{e:?}");
+    }
+
+    /// A LinuxCNC table's Z column is the tool length G43 applies: with `T1 … Z10` under
+    /// G43, `G53 G0 Z0` puts the controlled point at machine Z0 and the tip at Z −10.
+    #[test]
+    fn the_tool_tables_offsets_reach_g43() {
+        let dir = std::env::temp_dir().join(format!("swarf-job-tbl-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let tbl = dir.join("tools.tbl");
+        std::fs::write(&tbl, "T1 P3 D2.0 Z10\n").unwrap();
+        let setup = JobSetup::load(&JobOptions {
+            tools: Some(tbl),
+            ..JobOptions::default()
+        })
+        .unwrap();
+        std::fs::remove_dir_all(&dir).ok();
+        let g = &setup.read.gcode;
+        assert_eq!(g.tool_offsets[&1], [0.0, 0.0, 10.0, 0.0, 0.0, 0.0]);
+        assert_eq!(g.tool_pockets[&1], 3);
+        let p = setup
+            .read_program_str("G21 G90\nT1 M6 G43 H1\nG53 G0 Z0\nM2\n", "t.ngc")
+            .unwrap();
+        let end = p.moves.last().unwrap().end.tip;
+        assert!((end.z + 10.0).abs() < 1e-12, "{end:?}");
     }
 
     #[test]

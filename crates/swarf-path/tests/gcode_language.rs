@@ -1319,3 +1319,185 @@ fn dynamic_offsets_per_axis() {
     let e = err("G21\nG43.1\nM2\n");
     assert!(e.message.contains("G43.1 needs an axis word"), "{e}");
 }
+
+/// G53, G28/G30 and G28.1/G30.1 work with the controlled point, as LinuxCNC's `find_ends`,
+/// `convert_home` and `convert_savehome`: the tool length offset is subtracted like the work
+/// and G92 offsets, so with a 10 mm tool under G43 `G53 G0 Z0` puts the tip (swarf's
+/// positions) at machine Z −10, and the machine position (#5023) does not move on a G43 that
+/// moves nothing.
+#[test]
+fn machine_coordinate_moves_subtract_the_tool_length_offset() {
+    // Tool 1 is 10 long; G43 leaves the controlled point at machine Z0, the tip reads Z −10.
+    let rec = run("G21 G90\nG10 L1 P1 Z10\nT1 M6 G43\nG53 G0 Z0\nG0 Z0\nG28\nM2\n");
+    assert_eq!(
+        tip_ends(&rec),
+        [
+            [0.0, 0.0, -10.0], // G53 Z0: controlled point at machine 0
+            [0.0, 0.0, 0.0],   // G0 Z0: the tip at the work's 0
+            [0.0, 0.0, 0.0],   // G28: through the current point
+            [0.0, 0.0, -10.0], // G28: home (0) is the controlled point's
+        ]
+    );
+    // G54 Z −50: at work Z5 the machine reads −45, before and after G43; G53 Z0 puts the tip
+    // at work Z 50 − 10 = 40 and G28.1 stores the controlled point (0), which G28 returns to
+    // (tip at 40 again); G49 keeps the controlled point, so the tip reads 50.
+    let rec = run(
+        "G21 G90\nG10 L1 P1 Z10\nG10 L2 P1 Z-50\nT1 M6\nG0 X0 Y0 Z5\n(DEBUG,#5422 #5023)\n\
+         G43\n(DEBUG,#5422 #5023)\nG53 G0 Z0\n(DEBUG,#5422 #5023)\nG28.1\n(DEBUG,#5163)\n\
+         G0 Z5\nG28\n(DEBUG,#5422 #5023)\nG49\n(DEBUG,#5422 #5023)\nM2\n",
+    );
+    assert_eq!(
+        rec.messages(),
+        [
+            "5.000000 -45.000000",
+            "-5.000000 -45.000000",
+            "40.000000 0.000000",
+            "0.000000",
+            "40.000000 0.000000",
+            "50.000000 0.000000",
+        ]
+    );
+    let z: Vec<f64> = tip_ends(&rec).iter().map(|e| e[2]).collect();
+    assert_eq!(z, [5.0, 40.0, 5.0, 5.0, 40.0]);
+    // G30 and a G28 intermediate point alike; G28 Z given: only Z goes home.
+    let rec = run("G21 G90\nG10 L1 P1 Z10\nT1 M6 G43\n#5183=20\nG0 X1 Z5\nG30 Z7\nM2\n");
+    assert_eq!(
+        tip_ends(&rec),
+        [[1.0, 0.0, 5.0], [1.0, 0.0, 7.0], [1.0, 0.0, 10.0]]
+    );
+}
+
+/// The tool table's offsets (a LinuxCNC `.tbl`'s Z column, [`GcodeOptions::tool_offsets`])
+/// are what G43 and G43 H apply and #5401–#5406 read, as `G10 L1` entries, which replace
+/// them.
+#[test]
+fn the_tool_tables_offsets_are_the_tool_length() {
+    let opts = GcodeOptions::default()
+        .with_tool_diameter(1, 2.0)
+        .with_tool_offsets(1, [0.0, 0.0, 10.0, 0.0, 0.0, 0.0]);
+    let msgs = |src: &str| {
+        run_with(src, &opts)
+            .unwrap_or_else(|e| panic!("{e}"))
+            .messages()
+    };
+    // At Z0, G43 H1 with a 10 mm tool: #5403 reads 10 and the tip's Z −10.
+    assert_eq!(
+        msgs("G21\nT1 M6\nG43 H1\n(DEBUG, #5403 z=#5422)\nM2\n"),
+        [" 10.000000 z=-10.000000"]
+    );
+    // G43 without H: the loaded tool's; G10 L1 replaces the table's entry.
+    assert_eq!(
+        msgs("G21\nT1 M6\nG43\n(DEBUG,#5422)\nG10 L1 P1 Z4\nG43\n(DEBUG,#5403 #5422)\nM2\n"),
+        ["-10.000000", "4.000000 -4.000000"]
+    );
+    // No warning that the table has no offset for the tool.
+    let rec = run_with("G21\nT1 M6\nG43 H1\nM2\n", &opts).unwrap();
+    assert!(
+        rec.warnings.iter().all(|w| !w.message.contains("G43")),
+        "{:?}",
+        rec.warnings
+    );
+}
+
+/// LinuxCNC's `#<_current_pocket>` and `#<_selected_pocket>`: the pockets of the loaded and
+/// selected tools in the tool table (the tool's number where the table gives none; no tool
+/// loaded: 0, none selected: −1, as `#<_selected_tool>`).
+#[test]
+fn current_and_selected_pockets() {
+    let opts = GcodeOptions::default().with_tool_pocket(3, 7);
+    let rec = run_with(
+        "G21\n(DEBUG,#<_current_pocket> #<_selected_pocket>)\nT3\n\
+         (DEBUG,#<_current_pocket> #<_selected_pocket>)\nM6\n\
+         (DEBUG,#<_current_pocket> #<_selected_pocket>)\nT5 M6\n\
+         (DEBUG,#<_current_pocket> #<_selected_pocket>)\nM2\n",
+        &opts,
+    )
+    .unwrap_or_else(|e| panic!("{e}"));
+    assert_eq!(
+        rec.messages(),
+        [
+            "0.000000 -1.000000",
+            "0.000000 7.000000",
+            "7.000000 7.000000",
+            "5.000000 5.000000"
+        ]
+    );
+}
+
+/// `#<_ini[…]…>` and `#<_hal[…]>` read LinuxCNC's INI file and HAL pins, which swarf does not
+/// have: refused, saying so and what to do.
+#[test]
+fn ini_and_hal_parameters_are_refused_with_the_reason() {
+    for src in [
+        "G21\n#2 = #<_ini[traj]max_velocity>\nM2\n",
+        "G21\n#2 = #<_hal[motion.spindle-speed-out]>\nM2\n",
+    ] {
+        let e = err(src);
+        assert_eq!(e.kind, PathErrorKind::Unsupported, "{e}");
+        assert_eq!(e.pos.line, 2);
+        let what = if src.contains("_ini") {
+            "INI file"
+        } else {
+            "HAL"
+        };
+        assert!(
+            e.message.contains(what) && e.message.contains("swarf does not have"),
+            "{e}"
+        );
+        assert!(
+            e.expected.contains("replace the parameter with the value"),
+            "{e}"
+        );
+    }
+}
+
+/// The words of G96 (D: the maximum spindle speed) and of user M codes (M100–M199 P Q) are
+/// not "ignored".
+#[test]
+fn g96_d_and_user_m_code_arguments_are_not_ignored_words() {
+    let rec = run("G21\nG96 S100 D2000 M3\nM101 P1 Q2\nM2\n");
+    let w: Vec<_> = rec.warnings.iter().map(|w| w.message.clone()).collect();
+    assert!(w.iter().all(|m| !m.contains("no meaning")), "{w:?}");
+    // D elsewhere still is.
+    let rec = run("G21\nG97 S100 D2000 M3\nM2\n");
+    assert!(
+        rec.warnings
+            .iter()
+            .any(|w| w.message.starts_with("D2000 ignored")),
+        "{:?}",
+        rec.warnings
+    );
+}
+
+/// LinuxCNC's `convert_comment`: blanks before the keyword are skipped, none may stand before
+/// the comma, the keyword's case does not matter.
+#[test]
+fn active_comments_need_the_keyword_right_before_the_comma() {
+    let rec = run("G21\n( msg , spaced)\n(  MsG,shown)\n(debug ,no)\n(\tPRINT,p)\nM2\n");
+    assert_eq!(rec.messages(), ["shown", "p"]);
+    let comments: Vec<_> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Comment(t) => Some(t.to_string()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(comments, [" msg , spaced", "debug ,no"]);
+    // (ABORT, …) alike.
+    assert!(run_with("G21\n(abort ,x)\nM2\n", &GcodeOptions::default()).is_ok());
+    assert_eq!(err("G21\n( ABORT,x)\nM2\n").pos.line, 2);
+}
+
+/// Messages that name the real cause: P turns over swarf's cap, and the G10 L forms read.
+#[test]
+fn arc_turn_cap_and_g10_l_forms_are_named() {
+    let e = err("G21 G0 X0 Y0\nG2 X0 Y0 I5 P1000000000 F100\n");
+    assert_eq!(e.kind, PathErrorKind::Limit, "{e}");
+    assert!(e.message.contains("cap of 1000000 turns"), "{e}");
+    // Not a positive integer: as before.
+    let e = err("G21 G0 X0 Y0\nG2 X0 Y0 I5 P0 F100\n");
+    assert!(e.expected.contains("positive integer"), "{e}");
+    let e = err("G21\nG10 L0 P1 X0\n");
+    assert_eq!(e.expected, "L1, L2, L10, L11 or L20", "{e}");
+}

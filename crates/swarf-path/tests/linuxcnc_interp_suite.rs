@@ -241,8 +241,8 @@ fn message_of(event: &Canon<'_>) -> Option<(bool, String)> {
 }
 
 /// What `rs274` was given: the INI's `SUBROUTINE_PATH` (relative to the test folder, where
-/// `rs274` ran) and the tool table's diameters (`T1 P1 D0.25 …`, in the table's units: the
-/// standalone interpreter's are inches).
+/// `rs274` ran) and the tool table's diameters, offsets and pockets (`T1 P1 D0.25 Z1 …`, in
+/// the table's units: the standalone interpreter's are inches).
 fn options_for(dir: &Path, run: &Run) -> GcodeOptions {
     // The standalone `rs274` keeps its offset parameters in inches.
     let mut o = GcodeOptions::default()
@@ -289,16 +289,31 @@ fn options_for(dir: &Path, run: &Run) -> GcodeOptions {
             let words = line.split(';').next().unwrap_or("");
             let mut tool = None;
             let mut dia = None;
+            let mut pocket = None;
+            let mut offsets = None;
             for w in words.split_whitespace() {
                 let (k, v) = w.split_at(1);
                 match k {
                     "T" | "t" => tool = v.parse::<u32>().ok(),
                     "D" | "d" => dia = v.parse::<f64>().ok(),
-                    _ => {}
+                    "P" | "p" => pocket = v.parse::<u32>().ok(),
+                    _ => {
+                        let i = "XYZABC".find(&*k.to_ascii_uppercase());
+                        if let (Some(i), Ok(v)) = (i, v.parse::<f64>()) {
+                            let e = offsets.get_or_insert([0.0; 6]);
+                            e[i] = if i < 3 { v * 25.4 } else { v };
+                        }
+                    }
                 }
             }
             if let (Some(t), Some(d)) = (tool, dia) {
                 o = o.with_tool_diameter(t, d * 25.4);
+            }
+            if let (Some(t), Some(e)) = (tool, offsets) {
+                o = o.with_tool_offsets(t, e);
+            }
+            if let (Some(t), Some(p)) = (tool, pocket) {
+                o = o.with_tool_pocket(t, p);
             }
         }
     }

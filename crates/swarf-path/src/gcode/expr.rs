@@ -262,10 +262,30 @@ fn read_param(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
         let (a, b) = read_name(c)?;
         let name = std::str::from_utf8(&c.code[a..b]).unwrap_or("");
         return p.named(name).ok_or_else(|| {
-            Fault::semantic(
-                Span::Code(start, c.i),
-                format!("named parameter #<{name}> is not defined"),
-            )
+            let lower = name.to_ascii_lowercase();
+            let source = if lower.starts_with("_ini[") {
+                Some("a value of LinuxCNC's INI file")
+            } else if lower.starts_with("_hal[") {
+                Some("a LinuxCNC HAL pin or parameter")
+            } else {
+                None
+            };
+            match source {
+                Some(what) => Fault::new(
+                    crate::PathErrorKind::Unsupported,
+                    Span::Code(start, c.i),
+                    format!(
+                        "#<{name}> reads {what}, which swarf does not have (it simulates the \
+                         program alone, with no INI file or HAL)"
+                    ),
+                    "a number in its place: replace the parameter with the value it has on \
+                     the machine",
+                ),
+                None => Fault::semantic(
+                    Span::Code(start, c.i),
+                    format!("named parameter #<{name}> is not defined"),
+                ),
+            }
         });
     }
     let n = number(real(c, p, depth)?);

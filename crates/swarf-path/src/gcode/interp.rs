@@ -388,6 +388,8 @@ impl<'t, 's> Interp<'t, 's> {
                 "RS274/NGC G-code",
             ));
         }
+        // The tool table's offsets, which G10 L1/L10/L11 replace.
+        self.tool_table = self.opts.tool_offsets.clone();
         // The tool starts at the machine's home (its origin unless given).
         let mut start = [0.0; 6];
         if let Some(home) = self.opts.home {
@@ -699,8 +701,8 @@ impl<'t, 's> Interp<'t, 's> {
         for &(a, b) in &lb.comments {
             let text = &raw[a as usize..b as usize];
             // LinuxCNC's `(ABORT,…)`: the program stops here with the message as its error.
-            if let Some((head, body)) = text.split_once(',') {
-                if head.trim().eq_ignore_ascii_case("abort") {
+            if let Some((head, body)) = comment_head(text) {
+                if head.eq_ignore_ascii_case("abort") {
                     return Err(Fault::new(
                         PathErrorKind::Semantic,
                         Span::Raw(a as usize, b as usize),
@@ -874,10 +876,11 @@ impl<'t, 's> Interp<'t, 's> {
             }
             5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20],
             5420..=5425 => self.to_units(n - 5420, self.p[n - 5420]),
-            // The machine position (G53 coordinates).
+            // The machine position (G53 coordinates) of the controlled point: a tool length
+            // offset that moves nothing leaves it alone.
             5021..=5026 => self.to_units(
                 n - 5021,
-                self.machine()[n - 5021] - self.g53_origin()[n - 5021],
+                self.controlled()[n - 5021] - self.g53_origin()[n - 5021],
             ),
             5400 => f64::from(self.read_only.loaded_tool),
             5401..=5406 => {
@@ -980,8 +983,24 @@ impl<'t, 's> Interp<'t, 's> {
         self.tilted(&std::array::from_fn(|i| q[i] - g92[i]))
     }
 
+    /// The tool tip's machine position (swarf's positions are the tip's).
     pub(crate) fn machine(&self) -> [f64; 6] {
         self.machine_of(&self.p)
+    }
+
+    /// The controlled point's machine position, LinuxCNC's machine position: the tip's plus
+    /// the tool length offset in effect ([`Self::tlo`]). G53, G28/G30 and G28.1/G30.1 work
+    /// with it.
+    pub(crate) fn controlled(&self) -> [f64; 6] {
+        let m = self.machine();
+        std::array::from_fn(|i| m[i] + self.tlo[i])
+    }
+
+    /// The tip's program position when the controlled point is at machine position `m`
+    /// (LinuxCNC subtracts the tool offset along with the work and G92 offsets).
+    pub(crate) fn program_of_controlled(&self, m: &[f64; 6]) -> [f64; 6] {
+        let tip: [f64; 6] = std::array::from_fn(|i| m[i] - self.tlo[i]);
+        self.program_of(&tip, &self.off, &self.g92, self.rot)
     }
 
     /// Where G53's zero is in swarf's machine frame (the work frame with no offsets): the home
@@ -1433,7 +1452,7 @@ impl<'t, 's> Interp<'t, 's> {
             }
             Some(281 | 301) => {
                 let k = usize::from(nonmodal == Some(301));
-                self.homes[k] = self.machine();
+                self.homes[k] = self.controlled();
             }
             Some(920) => {
                 self.g92(b)?;
@@ -1521,6 +1540,14 @@ impl<'t, 's> Interp<'t, 's> {
                 {
                     true
                 }
+                // The arguments of a user M code (LinuxCNC's M100–M199 P Q).
+                b'p' | b'q'
+                    if b.m_other[..b.n_other]
+                        .iter()
+                        .any(|&(m, _)| (100..=199).contains(&m)) =>
+                {
+                    true
+                }
                 b'q' if b.fine_boring => true,
                 b'q' if b.m_other[..b.n_other].iter().any(|&(m, _)| m == 61) => true,
                 b'i' | b'j' | b'k' => {
@@ -1554,7 +1581,8 @@ impl<'t, 's> Interp<'t, 's> {
                 }
                 b'l' => cycle || g10 || b.m98 || b.m97 || mode == Some(52),
                 b'h' => matches!(b.g(group::TOOL_LENGTH), Some(430 | 432 | 434 | 435 | 2340)),
-                b'd' => comp_d,
+                // (G96 D: the maximum spindle speed.)
+                b'd' => comp_d || b.g(group::SPINDLE_MODE) == Some(960),
                 _ => false,
             };
             if !used {
@@ -1859,14 +1887,15 @@ impl<'t, 's> Interp<'t, 's> {
             }
         }
         if g53 {
-            // The given axes in machine coordinates, the others where the machine is.
-            let mut m = self.machine();
+            // The given axes in machine coordinates (of the controlled point: the tool length
+            // offset is subtracted, as LinuxCNC's `find_ends`), the others where the machine is.
+            let mut m = self.controlled();
             for (i, &c) in AXIS_LETTERS.iter().enumerate() {
                 if b.has(c) {
                     m[i] = e[i];
                 }
             }
-            e = self.program_of(&m, &self.off, &self.g92, self.rot);
+            e = self.program_of_controlled(&m);
         }
         if b.has(b'@') || b.has(b'^') {
             if b.has(b'x') || b.has(b'y') {
@@ -1948,9 +1977,19 @@ impl<'t, 's> Interp<'t, 's> {
         }
         let end = self.find_ends(b, false)?;
         self.check_feed(b)?;
+        // swarf's cap on the turns: the repeat limit (and what the canon's count holds).
+        let cap = self.opts.max_repeat.min(i32::MAX as u64);
         let turns = match b.get(b'p') {
             None => 1,
-            Some(p) if p >= 1.0 && p.fract() == 0.0 && p <= self.opts.max_repeat as f64 => p as i32,
+            Some(p) if p >= 1.0 && p.fract() == 0.0 && p <= cap as f64 => p as i32,
+            Some(p) if p >= 1.0 && p.fract() == 0.0 => {
+                return Err(Fault::new(
+                    PathErrorKind::Limit,
+                    b.span(b'p'),
+                    format!("arc with P{p} turns, more than swarf's cap of {cap} turns"),
+                    format!("P ≤ {cap} (the repeat limit)"),
+                ))
+            }
             Some(_) => {
                 return Err(Fault::new(
                     PathErrorKind::Semantic,
@@ -2063,7 +2102,7 @@ impl<'t, 's> Interp<'t, 's> {
                 PathErrorKind::Semantic,
                 span,
                 "G10 needs an L word",
-                "L2 or L20",
+                "L1, L2, L10, L11 or L20",
             )
         })?;
         if l == 1.0 || l == 10.0 {
@@ -2082,7 +2121,7 @@ impl<'t, 's> Interp<'t, 's> {
                 PathErrorKind::Unsupported,
                 b.span(b'l'),
                 format!("G10 L{l} is not supported"),
-                "L2 or L20",
+                "L1, L2, L10, L11 or L20",
             ));
         }
         if l == 20.0 && self.fanuc {
@@ -2279,6 +2318,15 @@ impl<'t, 's> Interp<'t, 's> {
         Ok(())
     }
 
+    /// Tool `tool`'s pocket in the tool table, else its number (tool 0: pocket 0, the
+    /// spindle).
+    fn pocket_of(&self, tool: u32) -> u32 {
+        if tool == 0 {
+            return 0;
+        }
+        self.opts.tool_pockets.get(&tool).copied().unwrap_or(tool)
+    }
+
     /// Tool `tool`'s diameter, mm: set by G10 R, else the tool table's, else the one cutter
     /// given for every tool.
     pub(crate) fn tool_diameter(&self, tool: u32) -> Option<f64> {
@@ -2325,7 +2373,8 @@ impl<'t, 's> Interp<'t, 's> {
                     .into(),
             ));
         }
-        let home = self.program_of(&self.homes[k], &self.off, &self.g92, self.rot);
+        // The stored position is the controlled point's (LinuxCNC's `convert_home`).
+        let home = self.program_of_controlled(&self.homes[k]);
         if b.mask & axis_mask() == 0 {
             // LinuxCNC moves through the current point (a move of length zero), then home.
             self.emit(Canon::Traverse {
@@ -2392,6 +2441,13 @@ impl ParamRead for Interp<'_, '_> {
             "_rpm" => Some(self.rpm),
             "_current_tool" => Some(f64::from(ro.loaded_tool)),
             "_selected_tool" => Some(ro.selected_tool.map_or(-1.0, f64::from)),
+            // The pockets of those tools in the tool table (a tool the table does not list:
+            // its own number; no tool loaded: 0, none selected: -1).
+            "_current_pocket" => Some(f64::from(self.pocket_of(ro.loaded_tool))),
+            "_selected_pocket" => Some(
+                ro.selected_tool
+                    .map_or(-1.0, |t| f64::from(self.pocket_of(t))),
+            ),
             "_line" => Some(f64::from(self.cur_line)),
             "_u" | "_v" | "_w" | "_abs_u" | "_abs_v" | "_abs_w" => Some(0.0),
             "_motion_mode" => Some(f64::from(self.motion.unwrap_or(800))),
@@ -2445,11 +2501,20 @@ pub(crate) fn rotate_xy(mut v: [f64; 6], deg: f64) -> [f64; 6] {
     v
 }
 
-/// LinuxCNC's active comments: `(MSG,…)`, `(DEBUG,…)`, `(PRINT,…)` (any case), and the text
-/// after the comma.
+/// The keyword of an active comment and the text after its comma, by LinuxCNC's rule
+/// (`convert_comment`): blanks before the keyword are skipped, none may stand between it and
+/// the comma (`( msg,…)` is a message, `(msg ,…)` a plain comment).
+fn comment_head(text: &str) -> Option<(&str, &str)> {
+    let t = text.trim_start_matches([' ', '\t']);
+    let (head, body) = t.split_once(',')?;
+    (!head.is_empty() && head.bytes().all(|c| c.is_ascii_alphabetic())).then_some((head, body))
+}
+
+/// LinuxCNC's active comments: `(MSG,…)`, `(DEBUG,…)`, `(PRINT,…)` (any case, see
+/// [`comment_head`]), and the text after the comma.
 fn active_comment(text: &str) -> Option<(MessageKind, &str)> {
-    let (head, body) = text.split_once(',')?;
-    let kind = match head.trim() {
+    let (head, body) = comment_head(text)?;
+    let kind = match head {
         h if h.eq_ignore_ascii_case("msg") => MessageKind::Msg,
         h if h.eq_ignore_ascii_case("debug") => MessageKind::Debug,
         h if h.eq_ignore_ascii_case("print") => MessageKind::Print,

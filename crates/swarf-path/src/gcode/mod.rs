@@ -158,6 +158,13 @@ pub struct GcodeOptions {
     /// Tool diameters by tool number, mm: what cutter radius compensation (`G41`/`G42`, with
     /// `D<tool>` or the loaded tool) offsets by. LinuxCNC takes them from its tool table.
     pub tool_diameters: BTreeMap<u32, f64>,
+    /// Tool offsets by tool number (X Y Z mm, A B C degrees, machine frame): the tool table's
+    /// (LinuxCNC `.tbl` `X Y Z A B C` words; Z is the tool length), what `G43`/`G43 H` apply
+    /// and #5401–#5406 read, as entries `G10 L1` sets (which replace them).
+    pub tool_offsets: BTreeMap<u32, [f64; 6]>,
+    /// Tool pockets by tool number (a LinuxCNC `.tbl`'s `P`): what `#<_current_pocket>` and
+    /// `#<_selected_pocket>` read (a tool not listed: its own number, 0 for none).
+    pub tool_pockets: BTreeMap<u32, u32>,
     /// Tool numbers by name (upper case), from a tool library that names its tools: what a
     /// Heidenhain `TOOL CALL "NAME"` or a Sinumerik `T="NAME"` loads.
     pub tool_names: BTreeMap<String, u32>,
@@ -185,7 +192,10 @@ pub struct GcodeOptions {
     /// program's reference return (`G28 G91 Z0.`) on the work's Z0. Given, it is also the origin
     /// of the positions G53 moves to (and of #5021–#5026) for the whole program, whatever work
     /// offsets and G92 it sets (machine zero is the home on Fanuc, Haas, GRBL and Mach3
-    /// controls): `G53 G0 Z0.` goes to the home's Z.
+    /// controls): `G53 G0 Z0.` goes to the home's Z. G53, G28/G30 and the stored positions
+    /// are those of the controlled point, as in LinuxCNC: under a tool length offset the tip
+    /// ends that length below (`G53 G0 Z0.` with a 10 mm tool under G43: the tip at the home's
+    /// Z − 10).
     pub home: Option<[f64; 3]>,
 }
 
@@ -307,6 +317,8 @@ impl Default for GcodeOptions {
             arc_radius_tolerance: ArcTolerance::LINUXCNC,
             block_delete: true,
             tool_diameters: BTreeMap::new(),
+            tool_offsets: BTreeMap::new(),
+            tool_pockets: BTreeMap::new(),
             tool_names: BTreeMap::new(),
             default_tool_diameter: None,
             subroutine_path: Vec::new(),
@@ -347,6 +359,16 @@ impl GcodeOptions {
     /// Sets [`Self::arc_radius_tolerance`].
     pub fn with_arc_radius_tolerance(mut self, tol: ArcTolerance) -> Self {
         self.arc_radius_tolerance = tol;
+        self
+    }
+    /// Sets tool `tool`'s offsets in [`Self::tool_offsets`] (X Y Z mm, A B C degrees).
+    pub fn with_tool_offsets(mut self, tool: u32, offsets: [f64; 6]) -> Self {
+        self.tool_offsets.insert(tool, offsets);
+        self
+    }
+    /// Sets tool `tool`'s pocket in [`Self::tool_pockets`].
+    pub fn with_tool_pocket(mut self, tool: u32, pocket: u32) -> Self {
+        self.tool_pockets.insert(tool, pocket);
         self
     }
     /// Sets [`Self::home`].

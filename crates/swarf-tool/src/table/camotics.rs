@@ -156,6 +156,8 @@ pub fn parse_camotics(text: &str, file: &str) -> Result<ToolTable, TableError> {
                 cutter,
                 description: tool.description.clone(),
                 name: None,
+                offsets: None,
+                pocket: None,
             },
         );
     }

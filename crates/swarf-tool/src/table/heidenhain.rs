@@ -205,6 +205,8 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
                 cutter,
                 description,
                 name: (!name.is_empty()).then_some(name),
+                offsets: None,
+                pocket: None,
             },
         );
     }

@@ -2,7 +2,8 @@
 //!
 //! Words are a letter and a number: `T` tool number, `P` pocket, `X Y Z A B C U V W` offsets,
 //! `D` diameter, `I` front angle, `J` back angle, `Q` orientation; `;` starts the comment,
-//! which becomes the description. Lengths are in the machine's units, given by the caller.
+//! which becomes the description. The offsets `X Y Z A B C` and the pocket are kept
+//! ([`ToolEntry::offsets`], [`ToolEntry::pocket`]: G43 applies them; U V W are not). Lengths are in the machine's units, given by the caller.
 //! The table carries no shape, so every tool is taken as a **flat end mill** of diameter D
 //! (noted in the warnings); a positive Z offset (the tool length) becomes the overall length.
 //! A tool with no diameter, or a diameter that is not positive (probes, placeholders), is an
@@ -36,6 +37,9 @@ pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTa
         let mut number = None;
         let mut diameter = None;
         let mut z = None;
+        let mut pocket = None;
+        let mut offsets = [0.0; 6];
+        let mut has_offsets = false;
         let mut offset = 0;
         for word in body.split_whitespace() {
             let start = offset + body[offset..].find(word).unwrap_or(0);
@@ -76,7 +80,18 @@ pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTa
                     number = Some((value as u32, column));
                 }
                 'D' => diameter = Some((value * scale, column, start)),
-                'Z' => z = Some(value * scale),
+                'P' if value.fract() == 0.0 && (0.0..=u32::MAX as f64).contains(&value) => {
+                    pocket = Some(value as u32)
+                }
+                'X' | 'Y' | 'Z' | 'A' | 'B' | 'C' => {
+                    let i = "XYZABC".find(letter).unwrap_or(0);
+                    // Lengths in the table's unit, angles in degrees.
+                    offsets[i] = if i < 3 { value * scale } else { value };
+                    has_offsets = true;
+                    if letter == 'Z' {
+                        z = Some(value * scale);
+                    }
+                }
                 _ => {}
             }
         }
@@ -131,6 +146,8 @@ pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTa
                 cutter,
                 description: comment.to_string(),
                 name: None,
+                offsets: has_offsets.then_some(offsets),
+                pocket,
             },
         );
     }
@@ -140,6 +157,20 @@ pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTa
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The offsets (`X Y Z A B C`, lengths in the table's unit) and the pocket are kept.
+    #[test]
+    fn keeps_offsets_and_pocket() {
+        let text = "T1 P7 D0.125 Z+1.0 X-0.5 C90 U3\nT2 P2 D0.25\n";
+        let t = parse_linuxcnc(text, "tool.tbl", LengthUnit::Inch).unwrap();
+        assert_eq!(
+            t.tools[&1].offsets,
+            Some([-12.7, 0.0, 25.4, 0.0, 0.0, 90.0])
+        );
+        assert_eq!(t.tools[&1].pocket, Some(7));
+        assert_eq!(t.tools[&2].offsets, None);
+        assert_eq!(t.tools[&2].pocket, Some(2));
+    }
 
     #[test]
     fn reads_inch_table() {

@@ -52,6 +52,11 @@ pub struct ToolEntry {
     /// The tool's name, where the table gives one (a Heidenhain `TOOL CALL "NAME"` or a
     /// Sinumerik `T="NAME"` finds the tool by it).
     pub name: Option<String>,
+    /// The tool's offsets where the table gives them (a LinuxCNC `.tbl`'s `X Y Z A B C`
+    /// words: X Y Z in mm, A B C in degrees; Z is the tool length): what G43 applies.
+    pub offsets: Option<[f64; 6]>,
+    /// The tool's pocket where the table gives it (a LinuxCNC `.tbl`'s `P`).
+    pub pocket: Option<u32>,
 }
 
 /// Numbered tools, and the workpiece bounds when the file gives them.

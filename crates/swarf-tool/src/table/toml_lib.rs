@@ -151,6 +151,8 @@ pub fn parse_toml_library(text: &str, file: &str) -> Result<ToolTable, TableErro
                 cutter,
                 description: row.description,
                 name: None,
+                offsets: None,
+                pocket: None,
             },
         );
     }
