@@ -1014,11 +1014,15 @@ impl Reader<'_, '_> {
                         column,
                         format!(
                             "MSYS/{minor_text}: another MCS than the first (line {first_line}): \
-                             the points that follow are mapped into the first, swarf's \
-                             workpiece frame"
+                             the points and axes that follow are mapped into the first, \
+                             swarf's workpiece frame"
                         ),
                     );
                 }
+                // The GOTOs of the operation that give no axis have the MCS's Z (NX writes
+                // `GOTO/x,y,z` for fixed-axis operations): from the next move on, mapped.
+                let z = r * Vec3::Z;
+                self.state_axis(line, Some(z));
             }
         }
         Ok(())

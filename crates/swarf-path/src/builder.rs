@@ -34,6 +34,11 @@ use crate::kinematics::{Machine, RotaryWord};
 use crate::moves::{ArcGeom, AxisSource, Move, MoveKind, Pose, Program, SourceLine};
 use crate::Warning;
 
+/// The first tool number given to a cutter a program redefines after it has cut (see
+/// `MoveBuilder::bind_cutter`): far above the tool numbers programs load, so that a later tool
+/// change never finds it.
+pub const REDEFINED_TOOLS: u32 = 1_000_000;
+
 /// Builds a [`Program`] from canonical events. See the [module documentation](self).
 #[derive(Debug)]
 pub struct MoveBuilder {
@@ -268,7 +273,7 @@ impl MoveBuilder {
     /// that differs from the one `tool` has already moved with is a different cutter (NX writes
     /// a `TLDATA/` per operation, APT a `CUTTER/`, often with no `LOADTL/` between them): the
     /// moves before it keep their cutter, and the moves after it are given a tool number of
-    /// their own, one above every number used so far, with a warning.
+    /// their own, from [`REDEFINED_TOOLS`] up, with a warning.
     fn bind_cutter(&mut self, tool: u32, (def, line): ([f64; 7], u32)) -> u32 {
         let at = SourceLine {
             file: self.file,
@@ -288,13 +293,17 @@ impl MoveBuilder {
                 return tool;
             }
             let earlier = self.cutter_definition_lines[i].line;
+            // From a range of numbers programs do not load (a later `LOADTL/1` must not find
+            // this cutter).
             let fresh = self
                 .tools
                 .iter()
                 .chain(self.cutter_definitions.iter().map(|(t, _)| t))
                 .chain([&tool])
                 .max()
-                .map_or(1, |t| t.saturating_add(1));
+                .map_or(REDEFINED_TOOLS, |t| {
+                    t.saturating_add(1).max(REDEFINED_TOOLS)
+                });
             self.warn_at(
                 line,
                 format!(

@@ -39,7 +39,11 @@ fn a_cutter_redefined_without_a_tool_change_keeps_the_earlier_moves_cutter() {
     // The first operation's moves cut with the Ø10 flat end mill, the second's with the Ø4
     // ball; the third operation repeats the ball's definition: the same tool.
     let tools: Vec<u32> = p.moves.iter().map(|m| m.tool).collect();
-    assert_eq!(tools, vec![0, 0, 1, 1, 1, 1], "{tools:?}");
+    assert_eq!(
+        tools,
+        vec![0, 0, 1_000_000, 1_000_000, 1_000_000, 1_000_000],
+        "{tools:?}"
+    );
     let def = |t: u32| {
         p.cutter_definitions
             .iter()
@@ -47,20 +51,25 @@ fn a_cutter_redefined_without_a_tool_change_keeps_the_earlier_moves_cutter() {
             .map(|(_, d)| d[..2].to_vec())
     };
     assert_eq!(def(0), Some(vec![10.0, 0.0]));
-    assert_eq!(def(1), Some(vec![4.0, 2.0]));
+    assert_eq!(def(1_000_000), Some(vec![4.0, 2.0]));
     assert_eq!(p.cutter_definitions.len(), 2);
     let w: Vec<&str> = p.warnings.iter().map(|w| w.message.as_str()).collect();
     assert_eq!(w.len(), 1, "{w:?}");
-    assert!(w[0].contains("given tool 1"), "{w:?}");
+    assert!(w[0].contains("given tool 1000000"), "{w:?}");
     assert_eq!(p.warnings[0].line, 10);
 
     // Generic APT: `CUTTER/` twice, and with a tool number loaded.
-    let p = program("CUTTER/10\nFROM/0,0,5\nGOTO/10,0,5\nCUTTER/4,2\nGOTO/20,0,5\n");
+    // Its number is one a later tool change does not load: `LOADTL/1` is tool 1 (undefined
+    // here), not the redefined cutter.
+    let p = program(
+        "CUTTER/10\nFROM/0,0,5\nGOTO/10,0,5\nCUTTER/4,2\nGOTO/20,0,5\nLOADTL/1\nGOTO/30,0,5\n",
+    );
     let tools: Vec<u32> = p.moves.iter().map(|m| m.tool).collect();
-    assert_eq!(tools, vec![0, 1]);
+    assert_eq!(tools, vec![0, 1_000_000, 1]);
+    assert!(!p.cutter_definitions.iter().any(|(t, _)| *t == 1));
     let p = program("LOADTL/7\nCUTTER/10\nFROM/0,0,5\nGOTO/10,0,5\nCUTTER/4,2\nGOTO/20,0,5\n");
     let tools: Vec<u32> = p.moves.iter().map(|m| m.tool).collect();
-    assert_eq!(tools, vec![7, 8]);
+    assert_eq!(tools, vec![7, 1_000_000]);
     // A definition before any motion, then another before the first move: the last one holds
     // (nothing has cut yet), and one given after the last move names no tool.
     let p = program("CUTTER/10\nCUTTER/6\nFROM/0,0,5\nGOTO/10,0,5\nCUTTER/4\n");
@@ -96,8 +105,9 @@ fn operations_under_another_mcs_are_mapped_into_the_first() {
     assert!(close(g.center, [10.0, -10.0, 0.0], 1e-9), "{g:?}");
     assert!(close(g.normal.abs(), [0.0, 1.0, 0.0], 1e-12), "{g:?}");
     assert!((g.sweep - std::f64::consts::PI).abs() < 1e-9, "{g:?}");
-    // Back to the first MCS: points as written.
+    // Back to the first MCS: points as written, and the axis the MCS's Z again.
     assert!(close(Vec3::from(t[4]), [0.0, 0.0, 20.0], 1e-12), "{t:?}");
+    assert!(close(p.moves[4].end.axis, [0.0, 0.0, 1.0], 1e-12));
     let w: Vec<&str> = p.warnings.iter().map(|w| w.message.as_str()).collect();
     assert_eq!(w.len(), 1, "{w:?}");
     assert!(
@@ -170,4 +180,25 @@ fn dwells_in_revolutions_and_negative_dwells() {
     let p = program("GOTO/0,0,0\nCIRCLE/0,0,0,0,0,1,1\nFINI\n");
     assert_eq!(p.warnings.len(), 1);
     assert_eq!(p.warnings[0].line, 2);
+}
+
+#[test]
+fn gotos_without_an_axis_take_the_z_of_their_mcs() {
+    // NX writes `GOTO/x,y,z` for fixed-axis operations: under a second MCS whose Z is the
+    // first's +X (origin (100, 0, 0), X = world Y, Y = world Z), the tool points along +X.
+    let text = "MSYS/0,0,0,1,0,0,0,1,0\nRAPID\nGOTO/0,0,10\nGOTO/10,0,10\n\
+        MSYS/100,0,0,0,1,0,0,0,1\nRAPID\nGOTO/0,0,10\nGOTO/10,0,10\nFINI\n";
+    let p = program(text);
+    let t = tips(&p);
+    assert!(close(Vec3::from(t[1]), [110.0, 0.0, 0.0], 1e-12), "{t:?}");
+    assert!(close(Vec3::from(t[2]), [110.0, 10.0, 0.0], 1e-12), "{t:?}");
+    for m in &p.moves[1..] {
+        assert!(
+            close(m.end.axis, [1.0, 0.0, 0.0], 1e-12),
+            "{:?}",
+            m.end.axis
+        );
+    }
+    // The first operation's moves keep the first MCS's Z.
+    assert!(close(p.moves[0].end.axis, [0.0, 0.0, 1.0], 1e-12));
 }

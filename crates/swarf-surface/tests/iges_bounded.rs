@@ -202,3 +202,37 @@ fn records_without_line_ends_or_with_lone_carriage_returns() {
         assert_eq!(got.patches[0].trim, want.patches[0].trim);
     }
 }
+
+#[test]
+fn a_second_144_that_fails_keeps_its_own_placed_face() {
+    // One plate, two placed 144s: A (+100 in x) trims it by a square; B (+100 in y) has a 142
+    // with no curve at all, so its face is the whole plate — at its own place, while A's
+    // trimmed face stays where A put it.
+    let mut f = Iges::default();
+    let plate = f.add(128, PLATE);
+    let square = polygon(&mut f, &[[0.4, 0.4], [0.6, 0.4], [0.6, 0.6], [0.4, 0.6]]);
+    let good = f.add(142, &format!("0,{plate},{square},0,1"));
+    let bad = f.add(142, &format!("0,{plate},0,0,2"));
+    let ma = f.add(124, "1.,0.,0.,100.,0.,1.,0.,0.,0.,0.,1.,0.");
+    let mb = f.add(124, "1.,0.,0.,0.,0.,1.,0.,100.,0.,0.,1.,0.");
+    f.add_moved(144, &format!("{plate},1,0,{good}"), ma);
+    f.add_moved(144, &format!("{plate},1,0,{bad}"), mb);
+    let s = iges::parse(&f.text("2,2HMM")).unwrap();
+    assert_eq!(s.patches.len(), 2);
+    let at = |i: usize| s.patches[i].surface.point(0.5, 0.5);
+    assert!((at(0) - swarf_geom::math::Vec3::new(105.0, 5.0, 0.0)).length() < 1e-12);
+    assert!(s.patches[0].trim.is_some());
+    assert!((at(1) - swarf_geom::math::Vec3::new(5.0, 105.0, 0.0)).length() < 1e-12);
+    assert!(s.patches[1].trim.is_none());
+    assert!(
+        matches!(
+            &s.notes[..],
+            [
+                ReadNote::Trimmed { patch: 0, .. },
+                ReadNote::TrimNotHonoured { patch: 1, .. }
+            ]
+        ),
+        "{:?}",
+        s.notes
+    );
+}

@@ -375,13 +375,22 @@ fn trim_patch(
         ),
     };
     let (kind, de) = (e.kind, e.de);
-    let target = settle_trim(doc, claimed, (k, surface), result, by, |why| match kind {
-        144 => UnhonouredTrim::Iges144 { de, why },
-        _ => UnhonouredTrim::Iges { kind, de, why },
-    });
+    let transform = file.transform(entries, e)?;
+    let placed = transform.is_some();
+    let target = settle_trim(
+        doc,
+        claimed,
+        (k, surface, placed),
+        result,
+        by,
+        |why| match kind {
+            144 => UnhonouredTrim::Iges144 { de, why },
+            _ => UnhonouredTrim::Iges { kind, de, why },
+        },
+    );
     // The entity's own transformation places the trimmed surface (its boundaries are in the
     // surface's parameters, or in the space the surface is defined in).
-    if let Some(t) = file.transform(entries, e)? {
+    if let Some(t) = transform {
         let placed =
             transformed(&doc.surface.patches[target].surface, &t, factor).map_err(|reason| {
                 ReadError::Surface {
@@ -402,22 +411,28 @@ fn trim_patch(
 fn settle_trim(
     doc: &mut IgesDocument,
     claimed: &mut [bool],
-    (k, original): (usize, &Surface),
+    (k, original, placed): (usize, &Surface, bool),
     result: Built<Trim>,
     by: String,
     unhonoured: impl FnOnce(Arc<TrimFailure>) -> UnhonouredTrim,
 ) -> usize {
+    // A patch another entity has claimed is copied (from the surface as the file gives it, with
+    // no trim): the entity's face is its own, whatever became of the other's.
+    let own = |doc: &mut IgesDocument, claimed: &mut [bool]| {
+        if claimed[k] {
+            let mut copy = doc.surface.patches[k].clone();
+            copy.surface = original.clone();
+            copy.trim = None;
+            doc.surface.patches.push(copy);
+            doc.surface.patches.len() - 1
+        } else {
+            claimed[k] = true;
+            k
+        }
+    };
     match result {
         Ok(trim) => {
-            let target = if claimed[k] {
-                let mut copy = doc.surface.patches[k].clone();
-                copy.surface = original.clone();
-                doc.surface.patches.push(copy);
-                doc.surface.patches.len() - 1
-            } else {
-                claimed[k] = true;
-                k
-            };
+            let target = own(doc, claimed);
             doc.surface.notes.push(ReadNote::Trimmed {
                 patch: target,
                 by,
@@ -428,13 +443,15 @@ fn settle_trim(
             target
         }
         Err(why) => {
-            // The whole patch stands for this face (once, however many entities use it).
-            claimed[k] = true;
+            // The whole patch stands for this face: once, however many unplaced entities leave
+            // it whole; a placed one (its own 124) or one after a trimmed face gets a copy.
+            let whole_already = claimed[k] && doc.surface.patches[k].trim.is_none() && !placed;
+            let target = if whole_already { k } else { own(doc, claimed) };
             doc.surface.notes.push(ReadNote::TrimNotHonoured {
-                patch: k,
+                patch: target,
                 by: unhonoured(Arc::new(why)),
             });
-            k
+            target
         }
     }
 }
