@@ -4,63 +4,16 @@
 //! reversed, and a face two solids use both ways is read once each way. The region a face's
 //! bounds enclose does not change.
 
+mod common;
+use common::step::Step;
+
 use swarf_geom::math::Vec3;
 use swarf_surface::io::{step, ReadError};
-use swarf_surface::{CompoundSurface, ParametricSurface, Patch, SurfaceNormal, Tolerances};
+use swarf_surface::{ParametricSurface, Patch, SurfaceNormal, Tolerances};
 
 const TOL: Tolerances = Tolerances::DEFAULT;
 
-/// A STEP file written entity by entity.
-#[derive(Default)]
-struct Step {
-    lines: Vec<String>,
-}
-
 impl Step {
-    /// Adds `body` as the next instance; its number.
-    fn add(&mut self, body: impl AsRef<str>) -> u64 {
-        self.lines.push(body.as_ref().to_string());
-        self.lines.len() as u64
-    }
-
-    fn text(&self) -> String {
-        let mut t = String::from(
-            "ISO-10303-21;\nHEADER;\nFILE_SCHEMA(('AUTOMOTIVE_DESIGN'));\nENDSEC;\nDATA;\n",
-        );
-        for (k, l) in self.lines.iter().enumerate() {
-            t.push_str(&format!("#{}={};\n", k + 1, l));
-        }
-        t.push_str("ENDSEC;\nEND-ISO-10303-21;\n");
-        t
-    }
-
-    fn parse(&self) -> CompoundSurface {
-        step::parse(&self.text()).unwrap_or_else(|e| panic!("{e}\n{}", self.text()))
-    }
-
-    /// A millimetre unit context.
-    fn context(&mut self) -> u64 {
-        let mm = self.add("(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.))");
-        self.add(format!(
-            "(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#{mm})) \
-             REPRESENTATION_CONTEXT('',''))"
-        ))
-    }
-
-    fn point(&mut self, p: [f64; 3]) -> u64 {
-        self.add(format!(
-            "CARTESIAN_POINT('',({:?},{:?},{:?}))",
-            p[0], p[1], p[2]
-        ))
-    }
-
-    fn axis(&mut self, o: [f64; 3], z: [f64; 3], x: [f64; 3]) -> u64 {
-        let o = self.point(o);
-        let z = self.add(format!("DIRECTION('',({:?},{:?},{:?}))", z[0], z[1], z[2]));
-        let x = self.add(format!("DIRECTION('',({:?},{:?},{:?}))", x[0], x[1], x[2]));
-        self.add(format!("AXIS2_PLACEMENT_3D('',#{o},#{z},#{x})"))
-    }
-
     /// The reviewer's concave trough (`/tmp/geo-review/mk9.py`): the quarter of a cylinder of
     /// radius 10 along +y (axis at z = 10, 20 long) between ±45° around its lowest line,
     /// bounded by two arcs and two lines, with same_sense .F.: the material is below, the
@@ -115,7 +68,7 @@ impl Step {
 
     /// `SHELL_BASED_SURFACE_MODEL` of `shell` in a MANIFOLD_SURFACE_SHAPE_REPRESENTATION.
     fn surface_model(&mut self, shell: u64) {
-        let ctx = self.context();
+        let ctx = self.context(false);
         let m = self.add(format!("SHELL_BASED_SURFACE_MODEL('',(#{shell}))"));
         self.add(format!(
             "MANIFOLD_SURFACE_SHAPE_REPRESENTATION('',(#{m}),#{ctx})"
@@ -226,7 +179,7 @@ fn an_oriented_face_or_shell_reverses_the_face_s_side() {
         let shell = wrap(&mut s, f);
         // A closed shell is the outer shell of a solid; an open one a surface model's.
         if s.lines[shell as usize - 1].contains("CLOSED_SHELL") {
-            let ctx = s.context();
+            let ctx = s.context(false);
             let b = s.add(format!("MANIFOLD_SOLID_BREP('',#{shell})"));
             s.add(format!(
                 "ADVANCED_BREP_SHAPE_REPRESENTATION('',(#{b}),#{ctx})"
@@ -257,7 +210,7 @@ fn the_voids_of_a_brep_with_voids_come_out_reversed() {
     // listed as ORIENTED_CLOSED_SHELL .F., as the standard has it. On the void the material is
     // outside, so the cutter side is towards the centre.
     let mut s = Step::default();
-    let ctx = s.context();
+    let ctx = s.context(false);
     let outer_face = s.sphere("outer", 20.0);
     let void_face = s.sphere("void", 5.0);
     let outer = s.add(format!("CLOSED_SHELL('',(#{outer_face}))"));
@@ -288,7 +241,7 @@ fn a_face_two_solids_use_both_ways_is_read_once_each_way() {
     // The wall between two solids: the first solid's shell holds it as written, the second's
     // reversed. Material on both sides: one patch each way, same surface and trim.
     let mut s = Step::default();
-    let ctx = s.context();
+    let ctx = s.context(false);
     let f = s.trough();
     let a = s.add(format!("CLOSED_SHELL('',(#{f}))"));
     let o = s.add(format!("ORIENTED_FACE('',*,#{f},.F.)"));

@@ -2,6 +2,7 @@
 #![allow(dead_code, unreachable_pub)]
 
 pub mod iges;
+pub mod step;
 
 use swarf_geom::math::Vec3;
 use swarf_surface::{build, NurbsSurface, ParametricSurface};
