@@ -204,12 +204,9 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
     // A 128 trimmed by a 144 becomes a trimmed patch; a second 144 on the same 128 gets a copy
     // (of the surface as the 128 gives it: a 144's own transformation moves only its patch).
     let mut claimed = vec![false; doc.surface.patches.len()];
-    let originals: Vec<Surface> = doc
-        .surface
-        .patches
-        .iter()
-        .map(|p| p.surface.clone())
-        .collect();
+    // Each trimming entity's own transformation, applied once every trim is made: a copy of a
+    // patch another entity trimmed then starts from the surface as the 128 gives it.
+    let mut placements: Vec<Placement<'_>> = Vec::new();
     let mut points_left = MAX_FILE_TRIM_POINTS;
     for e in entries.iter().filter(|e| e.kind == 144) {
         let p = file.params(e)?;
@@ -229,7 +226,7 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
         if let Some(k) = patch {
             let target = trim_patch(
                 (&file, &entries, global.factor),
-                (&mut doc, &mut claimed, &originals, &mut points_left),
+                (&mut doc, &mut claimed, &mut placements, &mut points_left),
                 (e, k),
                 |sampler, domain| sampler.trim144(e, &p, domain),
             )?;
@@ -256,10 +253,21 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
         };
         trim_patch(
             (&file, &entries, global.factor),
-            (&mut doc, &mut claimed, &originals, &mut points_left),
+            (&mut doc, &mut claimed, &mut placements, &mut points_left),
             (e, k),
             |sampler, domain| sampler.trim143(e, &p, domain),
         )?;
+    }
+    for (target, t, e) in placements {
+        let placed = transformed(&doc.surface.patches[target].surface, &t, global.factor).map_err(
+            |reason| ReadError::Surface {
+                format: Format::Iges,
+                line: e.line,
+                entity: format!("entity {} at D{}", e.kind, e.de),
+                reason,
+            },
+        )?;
+        doc.surface.patches[target].surface = placed;
     }
     // The faces (510) of a manifold solid B-rep: their loops (508 of 504 edge lists) are not
     // read, so the surface of each stands whole, said per face.
@@ -340,21 +348,26 @@ fn check_surface_pointer(
     }
 }
 
+/// A trimming entity's own transformation, to move the patch that stands for its face: the
+/// patch, the matrix, the entity.
+type Placement<'e> = (usize, [f64; 12], &'e Entry);
+
 /// The trim that the trimming entity `e` (a 144 or a 143) gives patch `k`, made by `build`
 /// with a sampler on the patch's surface as the file gives it, recorded (`settle_trim`), and
-/// the patch placed by `e`'s own transformation. Returns the patch that stands for the face.
-fn trim_patch(
+/// `e`'s own transformation listed in `placements` for the patch that stands for the face
+/// (applied once every trim is made). Returns that patch.
+fn trim_patch<'e>(
     (file, entries, factor): (&Sections<'_>, &[Entry], f64),
-    (doc, claimed, originals, points_left): (
+    (doc, claimed, placements, points_left): (
         &mut IgesDocument,
         &mut [bool],
-        &[Surface],
+        &mut Vec<Placement<'e>>,
         &mut usize,
     ),
-    (e, k): (&Entry, usize),
+    (e, k): (&'e Entry, usize),
     build: impl FnOnce(&mut Sampler<'_, '_>, &ParamBox) -> Result<Built<Trim>, ReadError>,
 ) -> Result<usize, ReadError> {
-    let surface = &originals[k];
+    let surface = &doc.surface.patches[k].surface;
     let mut sampler = Sampler::new(file, entries, surface, factor, *points_left);
     let budget = sampler.points_left;
     let result = build(&mut sampler, &surface.domain())?;
@@ -377,41 +390,26 @@ fn trim_patch(
     let (kind, de) = (e.kind, e.de);
     let transform = file.transform(entries, e)?;
     let placed = transform.is_some();
-    let target = settle_trim(
-        doc,
-        claimed,
-        (k, surface, placed),
-        result,
-        by,
-        |why| match kind {
-            144 => UnhonouredTrim::Iges144 { de, why },
-            _ => UnhonouredTrim::Iges { kind, de, why },
-        },
-    );
+    let target = settle_trim(doc, claimed, (k, placed), result, by, |why| match kind {
+        144 => UnhonouredTrim::Iges144 { de, why },
+        _ => UnhonouredTrim::Iges { kind, de, why },
+    });
     // The entity's own transformation places the trimmed surface (its boundaries are in the
     // surface's parameters, or in the space the surface is defined in).
     if let Some(t) = transform {
-        let placed =
-            transformed(&doc.surface.patches[target].surface, &t, factor).map_err(|reason| {
-                ReadError::Surface {
-                    format: Format::Iges,
-                    line: e.line,
-                    entity: format!("entity {} at D{}", e.kind, e.de),
-                    reason,
-                }
-            })?;
-        doc.surface.patches[target].surface = placed;
+        placements.push((target, t, e));
     }
     Ok(target)
 }
 
-/// Records what a trimming entity made of patch `k` (whose surface as the file gives it is
-/// `original`): the trimmed patch (the patch itself the first time, a copy of it after), or the
-/// whole patch with the note saying why not. Returns the patch that stands for the face.
+/// Records what a trimming entity made of patch `k` (still as the file gives it: placements
+/// come after every trim): the trimmed patch (the patch itself the first time, a copy of it
+/// after), or the whole patch with the note saying why not; `placed` when the entity moves its
+/// face by a transformation of its own. Returns the patch that stands for the face.
 fn settle_trim(
     doc: &mut IgesDocument,
     claimed: &mut [bool],
-    (k, original, placed): (usize, &Surface, bool),
+    (k, placed): (usize, bool),
     result: Built<Trim>,
     by: String,
     unhonoured: impl FnOnce(Arc<TrimFailure>) -> UnhonouredTrim,
@@ -421,7 +419,6 @@ fn settle_trim(
     let own = |doc: &mut IgesDocument, claimed: &mut [bool]| {
         if claimed[k] {
             let mut copy = doc.surface.patches[k].clone();
-            copy.surface = original.clone();
             copy.trim = None;
             doc.surface.patches.push(copy);
             doc.surface.patches.len() - 1
