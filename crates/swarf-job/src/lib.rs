@@ -507,6 +507,49 @@ mod tests {
         assert!((end.z + 10.0).abs() < 1e-12, "{end:?}");
     }
 
+    /// NX operations with no tool change, the second's `TLDATA/MILL` a Ø6 ball with a 5°
+    /// taper: its moves cut with exactly swarf's `taper-ball:d=6,taper=5` (and a 118° drill's
+    /// with `drill:d=8,angle=118`), not with the first operation's Ø10 flat end mill.
+    #[test]
+    fn nx_tapered_and_drill_tldata_are_the_cutters_they_name() {
+        let text = "TOOL PATH/OP1,TOOL,D10\nTLDATA/MILL,10.0000,0.0000,75.0000,0.0000,0.0000\n\
+            MSYS/0,0,0,1,0,0,0,1,0\nRAPID\nGOTO/0,0,10,0,0,1\nFEDRAT/MMPM,250\nGOTO/0,0,-1\n\
+            GOTO/10,0,-1\nEND-OF-PATH\nTOOL PATH/OP2,TOOL,TB6\n\
+            TLDATA/MILL,6.0000,3.0000,50.0000,5.0000,0.0000\nMSYS/0,0,0,1,0,0,0,1,0\nRAPID\n\
+            GOTO/0,20,10,0,0,1\nFEDRAT/MMPM,250\nGOTO/0,20,-1\nGOTO/10,20,-1\nEND-OF-PATH\n\
+            TOOL PATH/OP3,TOOL,DR8\nTLDATA/DRILL,8.0000,0.0000,60.0000,118.0000,40.0000\n\
+            GOTO/20,20,-1\n";
+        let job = JobSetup::load(&JobOptions::default())
+            .unwrap()
+            .read_str(text, "t.cls")
+            .unwrap();
+        let tools = job.tools.resolved();
+        let cutter_of = |line: u32| {
+            let m = job.program.moves.iter().find(|m| m.line == line).unwrap();
+            tools[&m.tool].cutter.apt_params()
+        };
+        let spec = |s: &str| Cutter::from_spec(s).unwrap().apt_params();
+        let (ball, taper_ball) = (cutter_of(17), spec("taper-ball:d=6,taper=5"));
+        // The same profile (h is the record's length, the spec's its default).
+        for (got, want) in [
+            (ball.d, taper_ball.d),
+            (ball.r, taper_ball.r),
+            (ball.e, taper_ball.e),
+            (ball.f, taper_ball.f),
+            (ball.alpha_deg, taper_ball.alpha_deg),
+            (ball.beta_deg, taper_ball.beta_deg),
+        ] {
+            assert!((got - want).abs() < 1e-12, "{ball:?} != {taper_ball:?}");
+        }
+        assert_eq!(ball.h, 50.0);
+        assert_eq!(cutter_of(7).d, 10.0);
+        let (drill, want) = (cutter_of(21), spec("drill:d=8,angle=118"));
+        assert!(
+            (drill.f - want.f).abs() < 1e-12 && drill.alpha_deg == want.alpha_deg,
+            "{drill:?} != {want:?}"
+        );
+    }
+
     #[test]
     fn a_bad_cutter_definition_names_its_record() {
         let read = |text: &str| {

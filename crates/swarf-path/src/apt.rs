@@ -20,7 +20,7 @@
 //! | `GOHOME` | back to the `FROM/` point (a warning when there is none) |
 //! | `FEDRAT/f[,MMPM│IPM│MMPR│IPR]` (either order) | feed rate and mode |
 //! | `CIRCLE/xc,yc,zc,i,j,k[,r,…][,CLW│CCLW]` | the next `GOTO` is an arc about that centre and axis (a direction word states its sense) |
-//! | `CUTTER/d[,r,e,f,α,β,h]`, `TLDATA/MILL,d,r,h[,0,0]` | [`Canon::CutterDefinition`] |
+//! | `CUTTER/d[,r,e,f,α,β,h]`, `TLDATA/MILL,d,r,h[,taper,tip]`, `TLDATA/DRILL,d,r,h,point angle` | [`Canon::CutterDefinition`] (`TLDATA/` as `Reader::tldata` says) |
 //! | `LOADTL/n`, `LOAD/TOOL,n` | tool change |
 //! | `SPINDL/rpm[,RPM][,CLW│CCW]`, `SPINDL/OFF│ON` | spindle |
 //! | `UNITS/MM│INCHES`, `UNIT/…` | units (inch data is converted to mm) |
@@ -1508,6 +1508,24 @@ impl Reader<'_, '_> {
         Ok(())
     }
 
+    /// NX CLSF's tool record, converted to the APT generic cutter `CUTTER/` makes (d, r, e,
+    /// f, α, β, h): an operation that writes no `LOAD/TOOL` must cut with this cutter, not the
+    /// previous operation's, so what cannot be converted is an error here.
+    ///
+    /// * `TLDATA/MILL,D,R,L[,B,A]` (NX's 5-parameter mill as its CLSF writes it: diameter,
+    ///   lower radius, length, taper angle B of the side from the axis, tip angle A of the
+    ///   bottom from the horizontal). D is taken as the diameter through the lower radius'
+    ///   centre (e = D/2 − R): the ball's diameter for NX's ball mill (R = D/2, tapered or
+    ///   not, so the ball stays a ball) and the plain diameter of an untapered tool; the
+    ///   APT d, where the radius meets the side, is then 2·(e + R·cos B). (Assumption: for a
+    ///   tapered tool with 0 < R < D/2 NX's dialog may measure D elsewhere; we have not
+    ///   checked it against NX.)
+    /// * `TLDATA/DRILL,D,R,L,PA[,…]`: diameter, corner radius, length, point angle (the
+    ///   included angle, 118° for a common twist drill), then the flute length, unused. This
+    ///   order is NX's drill parameters D, R1, L, PA, FL as we believe its CLSF writes them
+    ///   (assumed from NX's tool dialog and posts' output, not from a specification).
+    ///
+    /// Other tool types (turning, threading…) keep the warning: swarf has no cutter for them.
     fn tldata(
         &mut self,
         rec: &Record<'_>,
@@ -1519,36 +1537,76 @@ impl Reader<'_, '_> {
             .first()
             .map(|f| f.text.to_ascii_uppercase())
             .unwrap_or_default();
-        if kind != "MILL" {
-            self.warn(line, column, format!("TLDATA/{kind}: tool type not converted; define it with CUTTER/ or a tool table"));
-            return Ok(());
-        }
-        let v = self.numbers(rec, &fields[1..], "TLDATA/MILL")?;
-        if v.len() < 2 {
-            return Err(self.count_error(
-                rec,
-                fields,
-                fields[0].off,
-                "TLDATA/",
-                "MILL,d,r[,h,taper,tip]",
-            ));
+        let (what, form, least) = match kind.as_str() {
+            "MILL" => ("TLDATA/MILL", "MILL,d,r[,h,taper,tip]", 2),
+            "DRILL" => ("TLDATA/DRILL", "DRILL,d,r,h,point angle[,…]", 4),
+            _ => {
+                self.warn(line, column, format!("TLDATA/{kind}: tool type not converted; define it with CUTTER/ or a tool table"));
+                return Ok(());
+            }
+        };
+        let v = self.numbers(rec, &fields[1..], what)?;
+        if v.len() < least {
+            return Err(self.count_error(rec, fields, fields[0].off, "TLDATA/", form));
         }
         let (d, r) = (v[0] * self.scale, v[1] * self.scale);
         let h = v.get(2).map_or(0.0, |h| h * self.scale);
-        let taper = v.get(3).copied().unwrap_or(0.0);
-        let tip = v.get(4).copied().unwrap_or(0.0);
-        if taper != 0.0 || tip != 0.0 {
-            self.warn(
-                line,
-                column,
-                "TLDATA/MILL with taper or tip angle not converted".into(),
-            );
-            return Ok(());
+        // The angles, degrees: β the side's from the axis, α the bottom's from the horizontal.
+        let (beta, alpha) = if kind == "DRILL" {
+            let point = v[3];
+            if !(point > 0.0 && point <= 180.0) {
+                return Err(self.error(
+                    rec,
+                    fields[4].off,
+                    PathErrorKind::Semantic,
+                    "TLDATA/DRILL point angle out of range",
+                    fields[4].text,
+                    "an included point angle in (0°, 180°] (118 for a twist drill)",
+                ));
+            }
+            (0.0, 90.0 - point / 2.0)
+        } else {
+            (
+                v.get(3).copied().unwrap_or(0.0),
+                v.get(4).copied().unwrap_or(0.0),
+            )
+        };
+        if kind == "MILL" {
+            // Angles an APT cutter cannot have: a side past the horizontal, a bottom dished
+            // upwards (negative tip angle) or steeper than the side it meets.
+            let bad = if !(beta > -90.0 && beta < 90.0) {
+                Some((4, "a taper angle in (-90°, 90°) from the tool axis"))
+            } else if !(0.0..90.0).contains(&alpha) {
+                Some((5, "a tip angle in [0°, 90°) from the horizontal"))
+            } else if alpha + beta > 90.0 {
+                Some((
+                    5,
+                    "a tip angle plus taper angle of at most 90° (the bottom meets the side)",
+                ))
+            } else {
+                None
+            };
+            if let Some((i, expected)) = bad {
+                return Err(self.error(
+                    rec,
+                    fields[i].off,
+                    PathErrorKind::Semantic,
+                    "TLDATA/MILL angle that makes no cutter",
+                    fields[i].text,
+                    expected,
+                ));
+            }
         }
-        // A torus cutter: corner centre at e = d/2 − r from the axis, f = r above the tip.
+        // The corner centre at e from the axis (see above), f above the tip where the bottom
+        // through the tip is tangent to the corner: the numbers `CUTTER/` states, which the
+        // cutter checks to 1e-4 mm.
+        let (a, b) = (alpha.to_radians(), beta.to_radians());
+        let e = d / 2.0 - r;
+        let f = (r + e * a.sin()) / a.cos();
+        let apt_d = 2.0 * (e + r * b.cos());
         self.sink.emit(
             line,
-            &Canon::CutterDefinition([d, r, d / 2.0 - r, r, 0.0, 0.0, h]),
+            &Canon::CutterDefinition([apt_d, r, e, f, alpha, beta, h]),
         );
         Ok(())
     }

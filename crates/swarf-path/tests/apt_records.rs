@@ -542,3 +542,91 @@ fn gohome_returns_to_the_from_point() {
         .iter()
         .any(|(_, e)| matches!(e, Canon::Feed { .. } | Canon::Traverse { .. })));
 }
+
+/// The cutter definitions `text` states, in order.
+fn definitions(text: &str) -> Vec<[f64; 7]> {
+    events(text)
+        .into_iter()
+        .filter_map(|e| match e {
+            Canon::CutterDefinition(c) => Some(c),
+            _ => None,
+        })
+        .collect()
+}
+
+fn assert_cutter(got: [f64; 7], want: [f64; 7]) {
+    assert!(
+        got.iter().zip(&want).all(|(g, w)| (g - w).abs() < 1e-12),
+        "{got:?} != {want:?}"
+    );
+}
+
+/// NX's `TLDATA/MILL,D,R,L,B,A` with a taper angle B or a tip angle A, and `TLDATA/DRILL`, are
+/// APT generic cutters (d, r, e, f, α, β, h) as `CUTTER/` states them — not a warning that left
+/// the operation cutting with the previous operation's cutter.
+#[test]
+fn tldata_taper_tip_and_drill_are_cutters() {
+    let c5 = 5f64.to_radians().cos();
+    let d = definitions(
+        "TLDATA/MILL,6.0000,3.0000,50.0000,5.0000,0.0000\n\
+         TLDATA/MILL,10,0,40,3,0\n\
+         TLDATA/MILL,10,1,40,0,10\n\
+         TLDATA/DRILL,8.0000,0.0000,60.0000,118.0000,40.0000\n\
+         TLDATA/MILL,10,2,40\n",
+    );
+    assert_eq!(d.len(), 5);
+    // A Ø6 tapered ball: the ball's centre on the axis, 3 above the tip; the side leaves it
+    // at Ø6·cos 5° (APT's d), as swarf's `taper-ball:d=6,taper=5`.
+    assert_cutter(d[0], [6.0 * c5, 3.0, 0.0, 3.0, 0.0, 5.0, 50.0]);
+    // A tapered flat end mill, Ø10 at the tip.
+    assert_cutter(d[1], [10.0, 0.0, 5.0, 0.0, 0.0, 3.0, 40.0]);
+    // A 10° tip angle: the bottom through the tip rises to the R1 corner centred 4 out.
+    let a = 10f64.to_radians();
+    assert_cutter(
+        d[2],
+        [
+            10.0,
+            1.0,
+            4.0,
+            (1.0 + 4.0 * a.sin()) / a.cos(),
+            10.0,
+            0.0,
+            40.0,
+        ],
+    );
+    // A 118° drill: a cone 31° from the horizontal to Ø8.
+    let a = 31f64.to_radians();
+    assert_cutter(d[3], [8.0, 0.0, 4.0, 4.0 * a.tan(), 31.0, 0.0, 60.0]);
+    // Without angles, as before: a torus.
+    assert_eq!(d[4], [10.0, 2.0, 3.0, 2.0, 0.0, 0.0, 40.0]);
+
+    // What makes no cutter is refused at its field, not left to the previous cutter.
+    let msg = |text: &str| err(text).to_string();
+    assert_eq!(
+        msg("TLDATA/MILL,6,3,50,95,0\n"),
+        "t.apt:1:20: TLDATA/MILL angle that makes no cutter (found `95`, expected a taper \
+         angle in (-90°, 90°) from the tool axis)"
+    );
+    assert!(
+        msg("TLDATA/MILL,10,0,50,0,-5\n").starts_with("t.apt:1:23: TLDATA/MILL angle"),
+        "{}",
+        msg("TLDATA/MILL,10,0,50,0,-5\n")
+    );
+    assert!(msg("TLDATA/MILL,10,0,50,30,70\n").contains("at most 90°"));
+    assert_eq!(
+        msg("TLDATA/DRILL,8,0,60,0,40\n"),
+        "t.apt:1:21: TLDATA/DRILL point angle out of range (found `0`, expected an included \
+         point angle in (0°, 180°] (118 for a twist drill))"
+    );
+    assert!(msg("TLDATA/DRILL,8,0,60\n").contains("expected DRILL,d,r,h,point angle"));
+    // Tool types swarf has no cutter for still warn.
+    let mut rec = Recorder::default();
+    read_apt(
+        "TLDATA/TURN,0.8,0,0\n",
+        "t.apt",
+        &AptOptions::default(),
+        &mut rec,
+    )
+    .unwrap();
+    assert!(rec.warnings[0].message.starts_with("TLDATA/TURN"));
+}
