@@ -17,6 +17,7 @@
 //! | `FROM/x,y,z[,i,j,k]` | start position, no move ([`Canon::SetPosition`]) |
 //! | `GODLTA/dx,dy,dz` | move by a delta |
 //! | `RAPID` | the next motion only is a rapid |
+//! | `GOHOME/x,y,z[,i,j,k]` | NX's: a move to that point (rapid after `RAPID`), new axis when i,j,k given |
 //! | `GOHOME` | back to the `FROM/` point (a warning when there is none) |
 //! | `FEDRAT/f[,MMPM│IPM│MMPR│IPR]` (either order) | feed rate and mode |
 //! | `CIRCLE/xc,yc,zc,i,j,k[,r,…][,CLW│CCLW]` | the next `GOTO` is an arc about that centre and axis (a direction word states its sense) |
@@ -608,7 +609,8 @@ impl Reader<'_, '_> {
         };
         let word = |i: usize| fields.get(i).map(|f| f.text.to_ascii_uppercase());
         match major.as_str() {
-            "GOTO" | "FROM" => self.goto(rec, &fields, major == "FROM")?,
+            "GOTO" => self.goto(rec, &fields, "GOTO/")?,
+            "FROM" => self.goto(rec, &fields, "FROM/")?,
             "GODLTA" => {
                 let v = self.numbers(rec, &fields, "GODLTA/")?;
                 if v.len() != 3 {
@@ -629,6 +631,9 @@ impl Reader<'_, '_> {
                 self.motion(rec, line, column, p + d, None)?;
             }
             "RAPID" => self.rapid_next = true,
+            // NX writes the home itself (`RAPID` then `GOHOME/x,y,z[,i,j,k]`): a move there,
+            // never a drilled hole. Only the bare record means the `FROM/` point.
+            "GOHOME" if !fields.is_empty() => self.goto(rec, &fields, "GOHOME/")?,
             "GOHOME" => match self.from {
                 Some(home) => self.motion(rec, line, column, home, None)?,
                 None => self.warn(
@@ -1244,9 +1249,11 @@ impl Reader<'_, '_> {
         &mut self,
         rec: &Record<'_>,
         fields: &[Field<'_>],
-        from: bool,
+        what: &'static str,
     ) -> Result<(), PathError> {
-        let what = if from { "FROM/" } else { "GOTO/" };
+        // `what` is the record: `GOTO/`, `FROM/` (a start, no move) or `GOHOME/` (a move that
+        // is no hole of a cycle).
+        let from = what == "FROM/";
         let v = self.numbers(rec, fields, what)?;
         let minor_off = fields.first().map_or(rec.text.len(), |f| f.off);
         if !(v.len() == 3 || v.len() >= 6) {
@@ -1281,7 +1288,7 @@ impl Reader<'_, '_> {
         } else {
             None
         };
-        if let (false, Some(c)) = (from, self.cycle) {
+        if let ("GOTO/", Some(c)) = (what, self.cycle) {
             self.drill(line, c, p, axis);
             return Ok(());
         }

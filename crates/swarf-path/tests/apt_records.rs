@@ -543,6 +543,60 @@ fn gohome_returns_to_the_from_point() {
         .any(|(_, e)| matches!(e, Canon::Feed { .. } | Canon::Traverse { .. })));
 }
 
+/// NX's `GOHOME/x,y,z[,i,j,k]` states the home itself: a move there (a rapid after `RAPID`, as
+/// NX writes it), with its axis, whether or not a `FROM/` came before — not the `FROM/` point,
+/// and not a warning. A cycle still on does not drill a hole there.
+#[test]
+fn gohome_with_coordinates_moves_to_them() {
+    let e = events("FROM/0,0,100\nGOTO/10,0,5\nRAPID\nGOHOME/5,5,50\n");
+    assert_eq!(
+        e.last(),
+        Some(&Canon::Traverse {
+            end: at(5.0, 5.0, 50.0)
+        })
+    );
+    let mut rec = Recorder::default();
+    read_apt(
+        "GOTO/10,0,5\nRAPID\nGOHOME/0,0,50,0.6,0,0.8\nGOTO/0,0,40\n",
+        "t.apt",
+        &AptOptions::default(),
+        &mut rec,
+    )
+    .unwrap();
+    assert!(rec.warnings.is_empty(), "{:?}", rec.warnings);
+    let e: Vec<_> = rec.events.into_iter().map(|(_, e)| e).collect();
+    assert_eq!(
+        e[2..],
+        [
+            Canon::ToolAxis([0.6, 0.0, 0.8]),
+            Canon::Traverse {
+                end: at(0.0, 0.0, 50.0)
+            },
+            // The rapid was that move's only.
+            Canon::Feed {
+                end: at(0.0, 0.0, 40.0)
+            },
+        ]
+    );
+    let e = events(
+        "FEDRAT/MMPM,500\nGOTO/0,0,50\nCYCLE/DRILL,FEDTO,-12,RAPTO,3,RTRCTO,AUTO,MMPM,100\n\
+         GOTO/10,0,0\nRAPID\nGOHOME/0,0,80\n",
+    );
+    assert_eq!(
+        e.last(),
+        Some(&Canon::Traverse {
+            end: at(0.0, 0.0, 80.0)
+        })
+    );
+    assert_eq!(
+        err("GOTO/0,0,5\nGOHOME/1,2\n")
+            .to_string()
+            .split(": ")
+            .nth(1),
+        Some("GOHOME/ with 2 value(s) (found `1,2`, expected x,y,z or x,y,z,i,j,k)")
+    );
+}
+
 /// The cutter definitions `text` states, in order.
 fn definitions(text: &str) -> Vec<[f64; 7]> {
     events(text)
