@@ -379,3 +379,38 @@ fn a_full_circle_then_a_concave_corner_is_cut_back() {
     let centres: Vec<_> = motion(&rec).iter().filter_map(|m| m.3).collect();
     assert_eq!(centres, vec![[0.0, 0.0], [5.0, 0.0]]);
 }
+
+#[test]
+fn after_g40_the_current_point_is_the_programmed_one() {
+    // LinuxCNC's `convert_cutter_compensation_off`: current = programmed point. The tool is at
+    // (20, 2) when G40 comes; the incremental Y10 counts from (20, 0), an omitted Y is the
+    // programmed 0, and a Z move goes to the programmed X Y.
+    let rec = read(
+        "G21 G90 F100\nG0 X-10 Y0 Z0\nG41.1 D4 G1 X0 Y0\nG1 X20\nG40\nG91 G1 Y10\nG1 X-30\n\
+         G90 G41.1 D4 G1 X0 Y0\nG1 X20\nG40\nG1 X30\nG41.1 D4 G1 X40 Y0\nG1 X50\nG40\nG0 Z5\nM2\n",
+        &GcodeOptions::default(),
+    )
+    .unwrap();
+    assert_path(
+        &motion(&rec),
+        &[
+            ("R", -10.0, 0.0),
+            ("L", 0.0, 2.0),
+            ("L", 20.0, 2.0),
+            ("L", 20.0, 10.0),
+            ("L", -10.0, 10.0),
+            // The diagonal entry's offset line (through (√2, √2), along (1, −1)) cut back to
+            // the next move's offset y = 2: x = 2√2 − 2.
+            ("L", 2.0 * 2f64.sqrt() - 2.0, 2.0),
+            ("L", 20.0, 2.0),
+            ("L", 30.0, 0.0),
+            ("L", 40.0, 2.0),
+            ("L", 50.0, 2.0),
+            ("R", 50.0, 0.0),
+        ],
+    );
+    // The move right after G40 must be straight.
+    let e = comp_error("G21 F100\nG0 X-10 Y0\nG41.1 D4\nG1 X0 Y0\nX20\nG40\nG2 X30 Y0 R6\nM2\n");
+    assert_eq!((e.kind, e.pos.line), (PathErrorKind::Semantic, 7), "{e}");
+    assert!(e.message.contains("must be"), "{e}");
+}

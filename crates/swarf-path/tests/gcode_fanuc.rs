@@ -44,6 +44,25 @@ fn the_dialect_is_detected_and_can_be_forced() {
         GcodeDialect::detect("G0 X1\nG1 X2 F3\n"),
         GcodeDialect::LinuxCnc
     );
+    // LinuxCNC runs M98/M99 programs too: its own comments tell them apart (a `;` at a
+    // block's end is Fanuc's end-of-block mark, a `;` inside a comment nothing).
+    for linuxcnc in [
+        "O1\nG0 X1 ; over the hole\nM98 P1\nM30\n",
+        "%\nM98 P2 L5\n(PRINT,X MAIN END: 1=#1)\nM30\nO2\nM99\n%\n",
+        "M98 P1\n( debug, #1)\nM30\n",
+    ] {
+        assert_eq!(
+            GcodeDialect::detect(linuxcnc),
+            GcodeDialect::LinuxCnc,
+            "{linuxcnc}"
+        );
+    }
+    for fanuc in [
+        "O1\nG0 X1. ;\nM98 P1 ;\nM30 ;\n",
+        "O1 (T1; 10 MM END MILL)\nM98 P1\n(MSG, CHECK)\nM30\n",
+    ] {
+        assert_eq!(GcodeDialect::detect(fanuc), GcodeDialect::Fanuc, "{fanuc}");
+    }
     // Forced: LinuxCNC rejects G80 with G0 in one block (both in its motion group).
     let e = moves(
         "G80 G0 Z5\n",

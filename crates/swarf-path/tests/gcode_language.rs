@@ -329,6 +329,20 @@ fn inverse_time_needs_f_on_every_feed_move() {
 }
 
 #[test]
+fn canned_cycles_retract_to_r_until_g98() {
+    // LinuxCNC's interpreter starts in G99: from Z5, a G81 with R1 retracts to Z1 and goes
+    // to the next hole there; after G98 back to the Z of the cycle's start.
+    let rec =
+        run("G21 F100 G0 X0 Y0 Z5\nG81 X1 Y1 Z-2 R1\nX2\nG80\nG0 Z5\nG98 G81 X3 Z-2 R1\nM2\n");
+    let zs: Vec<f64> = motion(&rec).iter().map(|e| end_of(e).z).collect();
+    assert_eq!(
+        zs,
+        [5.0, 5.0, 1.0, -2.0, 1.0, 1.0, -2.0, 1.0, 5.0, 5.0, 1.0, -2.0, 5.0],
+        "{zs:?}"
+    );
+}
+
+#[test]
 fn canned_cycles_peck_and_other_planes() {
     // G83 Z-1 R1 Q0.4 from Z5: pecks at 0.6, 0.2, -0.2, -0.6, then the bottom.
     let rec = run("F100 G0 Z5\nG98 G83 X1 Y1 Z-1 R1 Q0.4\n");
@@ -1106,7 +1120,8 @@ fn g43_2_adds_a_tool_length_offset() {
 
 /// LinuxCNC's predefined named parameters for the modes (G-code manual, "Predefined Named
 /// Parameters"): codes × 10 for motion, plane, compensation and coordinate system, 1/0 flags
-/// for the rest; the tool in the spindle changes at M6, the selected one at T.
+/// for the rest; the tool in the spindle changes at M6, the selected one at T. (The
+/// interpreter starts in G99: `_retract_r_plane` 1.)
 #[test]
 fn predefined_named_parameters_read_the_modes() {
     let names = [
@@ -1137,7 +1152,7 @@ fn predefined_named_parameters_read_the_modes() {
     assert_eq!(
         start,
         "800.000000 170.000000 400.000000 540.000000 0.000000 1.000000 0.000000 \
-         0.000000 1.000000 0.000000 0.000000 0.000000 0.000000 0.000000 1.000000 0.000000 \
+         1.000000 0.000000 0.000000 0.000000 0.000000 0.000000 0.000000 1.000000 0.000000 \
          0.000000 -1.000000 0.000000 0.000000 "
     );
     let later = text(&format!(

@@ -107,3 +107,36 @@ fn heidenhain_m128_and_sinumerik_traori_switch_it_too() {
         );
     }
 }
+
+#[test]
+fn fanuc_g43_5_takes_the_tool_direction_from_i_j_k() {
+    // Tool centre point control type 2: a straight move's I J K are the tool's direction in
+    // the part frame (an omitted one is 0, none keeps it); I J K alone turn the tool in place.
+    let text = "%\nO6001\nG21 G90 G17 G54\nT1 M6\nS1000 M3\n\
+        G43.5 H1 X0. Y0. Z50. I0 J0 K1.\nG1 X10. Z40. I0.6 K0.8 F500.\nG1 X20.\nJ-0.6 K0.8\n\
+        G49\nM30\n%\n";
+    let p = read(text, "t.nc", "table-ac");
+    assert_eq!(p.moves.len(), 4, "{:?}", p.moves);
+    let axes: Vec<Vec3> = p.moves.iter().map(|m| m.end.axis).collect();
+    let want = [
+        Vec3::Z,
+        Vec3::new(0.6, 0.0, 0.8),
+        Vec3::new(0.6, 0.0, 0.8),
+        Vec3::new(0.0, -0.6, 0.8),
+    ];
+    for (a, w) in axes.iter().zip(want) {
+        assert!((*a - w).length() < 1e-12, "{axes:?}");
+    }
+    // X Y Z are tip positions: the last move turns the tool about its tip at (20, 0, 40).
+    let last = &p.moves[3];
+    assert!((last.start.tip - Vec3::new(20.0, 0.0, 40.0)).length() < 1e-9);
+    assert!((last.end.tip - Vec3::new(20.0, 0.0, 40.0)).length() < 1e-9);
+    // No word is reported unused (I J K were read) and none as a length without a point.
+    assert!(
+        p.warnings
+            .iter()
+            .all(|w| !w.message.contains("ignored") && !w.message.contains("decimal point")),
+        "{:?}",
+        p.warnings
+    );
+}

@@ -17,7 +17,8 @@
 //!   `small` is LinuxCNC's `TOLERANCE_CONCAVE_CORNER`, 0.05 rad.
 //! * **Arcs** keep their centre; the tool runs on the radius `R + r` (outside) or `R − r`
 //!   (inside, an error when `R ≤ r`).
-//! * **Exit**: after G40 the held move is flushed and the next move goes straight from the
+//! * **Exit**: after G40 the held move is flushed, the interpreter's position is the
+//!   programmed one, and the next move (straight: an arc is an error) goes from the
 //!   compensated position to its programmed end.
 //!
 //! The interpreter's position (`Interp::p`) stays the *programmed* one while compensation is
@@ -190,9 +191,13 @@ impl Interp<'_, '_> {
         let span = b.g_span(group::CUTTER_COMP);
         if g == 400 {
             if self.comp.on() {
+                // As LinuxCNC's `convert_cutter_compensation_off`: the current point becomes
+                // the programmed one (the tool stays where it is until the next move, which
+                // goes from there to its programmed end, so incremental words and parameters
+                // count from the contour), and that move must be straight.
                 self.comp_flush();
-                self.p = self.with_plane(&self.p, self.comp.tool);
                 self.comp.side = None;
+                self.arc_not_allowed = true;
             }
             return Ok(());
         }

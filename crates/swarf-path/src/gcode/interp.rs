@@ -222,6 +222,11 @@ pub(crate) struct Interp<'t, 's> {
     home_warned: bool,
     /// A G43 H with no tool table entry has been reported.
     tlo_warned: bool,
+    /// Fanuc `G43.5` (tool centre point control, type 2) is on: a straight move's I J K are the
+    /// tool's direction.
+    tcp_vector: bool,
+    /// Cutter compensation was just turned off (G40): the next move must be straight.
+    pub(crate) arc_not_allowed: bool,
     /// A G53 move with no work offset in effect has been reported.
     g53_warned: bool,
     /// Fanuc: a length or angle written without a decimal point has been reported.
@@ -277,6 +282,8 @@ impl<'t, 's> Interp<'t, 's> {
             deleted_warned: false,
             home_warned: false,
             tlo_warned: false,
+            tcp_vector: false,
+            arc_not_allowed: false,
             g53_warned: false,
             point_warned: false,
             units_stated: false,
@@ -314,7 +321,9 @@ impl<'t, 's> Interp<'t, 's> {
             feed: 0.0,
             // Fanuc powers on in G0; LinuxCNC needs a motion code first.
             motion: fanuc.then_some(0),
-            retract_r: false,
+            // LinuxCNC's interpreter starts in G99 (`Interp::init`: retract to the R plane; Axis
+            // shows G99 at start-up); a Fanuc control powers on in G98.
+            retract_r: !fanuc,
             cycle: CycleMemory::default(),
             initial_level: None,
             rpm: 0.0,
@@ -598,7 +607,10 @@ impl<'t, 's> Interp<'t, 's> {
                 b'q' | b'r' if b.n_modes > 0 => true,
                 b'q' => m_q,
                 b'k' if cycle => true,
-                b'i' | b'j' | b'k' => b.g(group::SCALING) == Some(510),
+                b'i' | b'j' | b'k' => {
+                    let g435 = self.tcp_vector || b.g(group::TOOL_LENGTH) == Some(435);
+                    b.g(group::SCALING) == Some(510) || (g435 && matches!(mode, Some(0 | 10)))
+                }
                 _ => false,
             };
             if not_length {
@@ -1278,6 +1290,7 @@ impl<'t, 's> Interp<'t, 's> {
                 if self.fanuc {
                     self.emit(Canon::ToolCentrePoint(g != 430));
                 }
+                self.tcp_vector = self.fanuc && g == 435;
                 let tool = match b.get(b'h') {
                     Some(h) if h >= 0.0 && h.fract() == 0.0 && h <= f64::from(u32::MAX) => h as u32,
                     _ => self.read_only.loaded_tool,
@@ -1368,6 +1381,7 @@ impl<'t, 's> Interp<'t, 's> {
                 if self.fanuc {
                     self.emit(Canon::ToolCentrePoint(false));
                 }
+                self.tcp_vector = false;
             }
             None => {}
         }
@@ -1561,6 +1575,8 @@ impl<'t, 's> Interp<'t, 's> {
                         || (c == b'k' && matches!(mode, Some(330 | 331)))
                         || (c == b'i' && mode == Some(331))
                         || b.g(group::SCALING) == Some(510)
+                        || (self.tcp_vector
+                            && matches!(b.g(group::MOTION).or(self.motion), Some(0 | 10)))
                 }
                 b'r' => arc || cycle || g10 || b.g(group::ROTATION) == Some(680),
                 // (G64 P Q: LinuxCNC's blending and naive CAM tolerances.)
@@ -1625,8 +1641,15 @@ impl<'t, 's> Interp<'t, 's> {
                 "a motion G code and G10/G28/G30/G92/G43.1 both want the axis words of this line",
             ));
         }
+        // (G43.5: I J K alone turn the tool where it stands, in G0 or G1.)
+        let turn_only = self.tcp_vector
+            && !has_axes
+            && !axes_taken
+            && matches!(self.motion, Some(0 | 10))
+            && [b'i', b'j', b'k'].iter().any(|&c| b.has(c));
         let mode = match explicit {
             Some(m) => Some(m),
+            None if turn_only => self.motion,
             None if has_axes && !axes_taken => match self.motion {
                 Some(m) => Some(m),
                 None => {
@@ -1689,8 +1712,27 @@ impl<'t, 's> Interp<'t, 's> {
                 }
             }
             Some(0 | 10) => {
-                if has_axes {
-                    let end = self.find_ends(b, g53)?;
+                // Under G43.5 a straight move's I J K give the tool's direction in the workpiece
+                // frame (an omitted one is 0; none at all keeps the direction), and I J K alone
+                // turn the tool where it stands.
+                let vector = self.tcp_vector && [b'i', b'j', b'k'].iter().any(|&c| b.has(c));
+                if vector {
+                    let v = [b'i', b'j', b'k'].map(|c| b.get(c).unwrap_or(0.0));
+                    if v.iter().all(|&x| x == 0.0) {
+                        return Err(Fault::semantic(
+                            b.span(b'i'),
+                            "G43.5 tool direction I J K is the zero vector",
+                        ));
+                    }
+                    self.emit(Canon::ToolAxis(v));
+                }
+                if has_axes || vector {
+                    self.arc_not_allowed = false;
+                    let end = if has_axes {
+                        self.find_ends(b, g53)?
+                    } else {
+                        self.p
+                    };
                     if g53
                         && !self.g53_warned
                         && self.opts.home.is_none()
@@ -1731,7 +1773,19 @@ impl<'t, 's> Interp<'t, 's> {
                     self.p = end;
                 }
             }
-            Some(m @ (20 | 30)) => self.arc(b, m == 20)?,
+            Some(m @ (20 | 30)) => {
+                if self.arc_not_allowed && has_axes {
+                    return Err(Fault::new(
+                        PathErrorKind::Semantic,
+                        b.g_span(group::MOTION),
+                        "the move just after cutter compensation is turned off (G40) must be \
+                         straight: it takes the tool from its compensated position to the \
+                         programmed contour",
+                        "G0 or G1",
+                    ));
+                }
+                self.arc(b, m == 20)?
+            }
             Some(m @ (330 | 331)) => {
                 if has_axes {
                     self.spindle_synchronised(b, m == 331)?;

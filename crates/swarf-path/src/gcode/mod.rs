@@ -218,10 +218,15 @@ impl GcodeDialect {
     /// `IF`, `GOTO` or `END`, Fanuc's own codes `G05.1 Q`, G43.4, G43.5, G54.1 and Haas's G154,
     /// a G04/G82 dwell `P` in milliseconds — no decimal point, 100 or more: `G4 P1` is an
     /// ordinary LinuxCNC dwell of a second, `G04 P500` is not) and nothing only
-    /// LinuxCNC reads (`o<name>`, O-word keywords, `#<name>`); LinuxCNC otherwise.
+    /// LinuxCNC reads (`o<name>`, O-word keywords, `#<name>`, a `;` comment, `(debug,…)`,
+    /// `(print,…)` and LinuxCNC's other active comments: LinuxCNC runs `M98`/`M99` programs
+    /// too); LinuxCNC otherwise.
     pub fn detect(text: &str) -> Self {
         let (mut fanuc, mut linuxcnc) = (false, false);
         for line in lexer::lines(text).take(2000) {
+            if linuxcnc_comment(line) {
+                linuxcnc = true;
+            }
             let code: String = line
                 .split(';')
                 .next()
@@ -288,6 +293,39 @@ impl GcodeDialect {
             GcodeDialect::LinuxCnc
         }
     }
+}
+
+/// Whether a line holds a comment only LinuxCNC reads: a `;` comment with text (a Fanuc
+/// program has no `;` but as an end-of-block mark at the end of a line), or an active comment
+/// of LinuxCNC's own (`(debug,…)`, `(print,…)`, `(log…)`, `(probeopen …)`).
+fn linuxcnc_comment(line: &str) -> bool {
+    let mut depth = 0u32;
+    for (i, c) in line.char_indices() {
+        match c {
+            '(' => {
+                depth += 1;
+                let rest = line[i + 1..].trim_start().to_ascii_lowercase();
+                let active = [
+                    "debug,",
+                    "print,",
+                    "log,",
+                    "logopen,",
+                    "logappend,",
+                    "logclose",
+                ]
+                .iter()
+                .chain(&["probeopen", "probeclose"])
+                .any(|k| rest.starts_with(k));
+                if depth == 1 && active {
+                    return true;
+                }
+            }
+            ')' => depth = depth.saturating_sub(1),
+            ';' if depth == 0 => return !line[i + 1..].trim().is_empty(),
+            _ => {}
+        }
+    }
+    false
 }
 
 /// The value of the first `P` word of a block's code (lower case, no spaces) written as a
