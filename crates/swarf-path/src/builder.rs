@@ -609,6 +609,9 @@ impl CanonSink for MoveBuilder {
                         let a = self.direction(Vec3::Z);
                         (self.axis, self.target_axis) = (a, a);
                         (self.tilt_axis, self.held_axis) = (true, false);
+                        // A reset's hand-back not yet made (no move since) is void: the tool
+                        // turns to this plane instead.
+                        self.release_axis = false;
                     }
                     // A plane without G53.1 leaves the tool as it is.
                     Some(_) => {}

@@ -298,22 +298,7 @@ impl Parser<'_, '_> {
                 })
             }),
         ];
-        for (name, f) in FUNCTIONS {
-            if self.eat(name) {
-                let arg = self.unary()?;
-                return match f(arg) {
-                    Some(v) => finite(v, start),
-                    None => Err(ExprError {
-                        at: start,
-                        message: format!("{name} of {arg} is not defined"),
-                        expected: "an argument in the function's domain",
-                    }),
-                };
-            }
-        }
-        if self.eat("NEG") {
-            return Ok(-self.unary()?);
-        }
+        // (Before the one-argument functions: `ATAN` would take `ATAN2`'s name.)
         if self.siemens {
             type F2 = fn(f64, f64) -> f64;
             const TWO: [(&str, F2); 3] = [
@@ -339,6 +324,24 @@ impl Parser<'_, '_> {
                     return finite(f(a, b), start);
                 }
             }
+        }
+        for (name, f) in FUNCTIONS {
+            if self.eat(name) {
+                let arg = self.unary()?;
+                return match f(arg) {
+                    Some(v) => finite(v, start),
+                    None => Err(ExprError {
+                        at: start,
+                        message: format!("{name} of {arg} is not defined"),
+                        expected: "an argument in the function's domain",
+                    }),
+                };
+            }
+        }
+        if self.eat("NEG") {
+            return Ok(-self.unary()?);
+        }
+        if self.siemens {
             type F1 = fn(f64) -> f64;
             const ONE: [(&str, F1); 3] = [
                 ("POT", |x| x * x),
@@ -400,6 +403,15 @@ mod tests {
         assert!((ev("+1 ANG +1").unwrap() - 45.0).abs() < 1e-12);
         assert_eq!(ev("ABS -2.5").unwrap(), 2.5);
         assert!((ev("PI").unwrap() - std::f64::consts::PI).abs() < 1e-15);
+    }
+
+    #[test]
+    fn siemens_two_argument_functions_are_not_taken_for_one_argument_ones() {
+        let sv = |s: &str| eval_siemens(s, &|n| n.starts_with('R').then_some(1.0)).unwrap();
+        assert!((sv("ATAN2(1,1)") - 45.0).abs() < 1e-12);
+        assert!((sv("5*ATAN2(R2,-1)") - 675.0).abs() < 1e-12);
+        assert!((sv("ATAN(1)") - 45.0).abs() < 1e-12);
+        assert_eq!(sv("MIN(3,R1)"), 1.0);
     }
 
     #[test]

@@ -288,6 +288,20 @@ fn plane_spatial_turns_the_tool_and_reset_turns_it_back() {
 }
 
 #[test]
+fn a_plane_tilted_again_after_reset_turn_turns_the_tool_to_it() {
+    // No move between the reset and the next tilt (posts write this between operations).
+    let p = read(&pgm("TOOL CALL 1 Z S5000\n\
+         PLANE SPATIAL SPA+0 SPB+30 SPC+0 TURN FMAX\n\
+         PLANE RESET TURN FMAX\n\
+         PLANE SPATIAL SPA+0 SPB-45 SPC+0 TURN FMAX\n\
+         L X+0 Y+0 Z+10 R0 FMAX\nL Z-3 F500\nL Y+20"));
+    let s = 0.5f64.sqrt();
+    for m in &p.moves {
+        assert!(close(m.end.axis, [-s, 0.0, s], 1e-12), "{:?}", m.end.axis);
+    }
+}
+
+#[test]
 fn a_program_that_never_ends_meets_the_loop_limit() {
     let opts = GcodeOptions {
         max_loop_iterations: 1000,

@@ -146,13 +146,45 @@ fn cycle800_tilts_the_plane_and_turns_the_tool() {
         tips(&p)
     );
     assert!(close(m[1].end.axis, [s, 0.0, s], 1e-12));
-    // Reset: the machine gives the axis again, the frame is the old one.
+    // `CYCLE800()` deselects the swivel: the frame is the old one, the rotary axes stay,
+    // so the tool keeps its axis.
     assert!(
         close(m[2].end.tip, [o[0] + 10.0 * s, 0.0, 50.0], 1e-9),
         "{:?}",
         tips(&p)
     );
-    assert!(close(m[2].end.axis, [0.0, 0.0, 1.0], 1e-12));
+    assert!(close(m[2].end.axis, [s, 0.0, s], 1e-12));
+    // A reset to zero angles with a swivel direction turns the axes back: the machine's axis.
+    let p = read(
+        "CYCLE800(1,\"TC1\",0,57,0,0,0,0,45,0,0,0,0,1,100,1)\nG0 X0 Y0 Z10\n\
+         CYCLE800(1,\"TC1\",0,57,0,0,0,0,0,0,0,0,0,1,100,1)\nG0 Z50",
+    );
+    assert!(close(p.moves[0].end.axis, [s, 0.0, s], 1e-12));
+    assert!(close(p.moves[1].end.axis, [0.0, 0.0, 1.0], 1e-12));
+}
+
+#[test]
+fn a_plane_tilted_again_after_a_reset_turns_the_tool_to_it() {
+    // Posts write a reset between 3+2 operations, often with no move before the next tilt:
+    // the tool takes the second plane's axis (it kept the machine's).
+    let s = 0.5f64.sqrt();
+    for reset in [
+        "CYCLE800()",
+        "CYCLE800(1,\"TC1\",200000,57,0,0,0,0,0,0,0,0,0,1,100,1)",
+    ] {
+        let p = read(&format!(
+            "T1 M6\nCYCLE800(1,\"TC1\",200000,57,0,0,0,0,30,0,0,0,0,1,100,1)\n{reset}\n\
+             CYCLE800(1,\"TC1\",200000,57,0,0,0,0,-45,0,0,0,0,1,100,1)\n\
+             G0 X0 Y0 Z10\nG1 Z-3 F500\nY20"
+        ));
+        for m in &p.moves {
+            assert!(
+                close(m.end.axis, [-s, 0.0, s], 1e-12),
+                "{reset}: {:?}",
+                m.end.axis
+            );
+        }
+    }
 }
 
 #[test]

@@ -858,6 +858,10 @@ impl<'a> Reader<'a> {
                     let mut v = self.value(val, tok)?;
                     if k < 3 {
                         v *= self.scale;
+                    } else {
+                        // A rotary axis turned: a tool axis held from a plane reset with STAY
+                        // is the machine's again.
+                        self.emit(line, Canon::MachineAxis);
                     }
                     w.axes[k] = Some((v, inc));
                 }

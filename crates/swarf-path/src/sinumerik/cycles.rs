@@ -102,8 +102,13 @@ impl Reader<'_> {
         let reset = v.iter().all(Option::is_none)
             || (a == 0.0 && bb == 0.0 && c == 0.0 && r0 == [0.0; 3] && r1 == [0.0; 3]);
         if reset {
+            // `CYCLE800()` deselects the swivel data: the frames go, the rotary axes stay
+            // where they are (the tool keeps its axis until the program turns one); a reset
+            // to zero angles with a swivel direction (`_DIR` ≠ 0) turns them back.
             self.swivel = None;
+            self.swivel_stays = v.iter().all(Option::is_none) || g(13) == 0.0;
             self.set_chain(b.line, self.trans, self.rot);
+            self.swivel_stays = false;
             return Ok(());
         }
         if mode & 0xC0 != 0 {

@@ -258,6 +258,8 @@ struct Reader<'a> {
     /// within it. Machine = pivot + R·(offset + t + Rz(rot)·p); the part frame is made from
     /// them.
     swivel: Option<([f64; 3], crate::part_frame::Mat, [f64; 3])>,
+    /// The swivel being deselected leaves the rotary axes where they are (`CYCLE800()`).
+    swivel_stays: bool,
     trans: [f64; 3],
     rot: f64,
     /// The block's rotary directions (`DC` 0, `ACP` 1, `ACN` −1).
@@ -303,6 +305,7 @@ impl<'a> Reader<'a> {
             frame: PartFrame::default(),
             trans: [0.0; 3],
             swivel: None,
+            swivel_stays: false,
             rot: 0.0,
             turning: [None; 6],
             absolute: true,
@@ -608,7 +611,9 @@ impl<'a> Reader<'a> {
         f(self);
         if untilting && self.frame.tilt.is_none() {
             self.emit(line, Canon::WorkPlane(None));
-            self.emit(line, Canon::MachineAxis);
+            if !self.swivel_stays {
+                self.emit(line, Canon::MachineAxis);
+            }
         }
         let p = self.frame.program_of(m);
         self.c.pos[..3].copy_from_slice(&p);
@@ -1485,6 +1490,11 @@ impl<'a> Reader<'a> {
         if vector.iter().any(Option::is_some) {
             let t = self.frame.direction(vector.map(|v| v.unwrap_or(0.0)));
             self.emit(b.line, Canon::ToolAxis(t));
+        }
+        if axes[3..].iter().any(Option::is_some) {
+            // A rotary axis turned: a tool axis held after a swivel's deselection is the
+            // machine's again.
+            self.emit(b.line, Canon::MachineAxis);
         }
         let moved = axes.iter().any(Option::is_some)
             || (self.motion >= 20 && (cr.is_some() || centre.iter().any(Option::is_some)));
