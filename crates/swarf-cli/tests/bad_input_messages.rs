@@ -311,3 +311,40 @@ fn each_unreadable_input_file_is_named_once() {
         no_internals(&e);
     }
 }
+
+/// A CAMotics project with a spheroid (a shape swarf cannot model) still serves its other
+/// tools; a program that loads the spheroid is refused, the message naming the tool, its
+/// place in the project and why.
+#[test]
+fn a_camotics_spheroid_refuses_only_the_program_that_uses_it() {
+    let dir = temp_dir("camotics_spheroid");
+    let project = dir.join("p.camotics");
+    std::fs::write(
+        &project,
+        "{\"units\": \"metric\", \"tools\": {\n\
+         \"1\": {\"shape\": \"CYLINDRICAL\", \"length\": 20, \"diameter\": 4},\n\
+         \"3\": {\"shape\": \"spheroid\", \"length\": 10, \"diameter\": 6}}}\n",
+    )
+    .unwrap();
+    let project = project.display().to_string();
+    let run = |tool: &str| {
+        let p = program(
+            &format!("camotics_spheroid_t{tool}"),
+            &format!("G21 G90\nT{tool} M6\nG0 X2 Y5 Z5\nG1 Z-1 F100\nG1 X8\nM2\n"),
+        );
+        swarf(&on_block("simulate", &p, &["--tools", &project, "--json"]))
+    };
+    let o = run("1");
+    assert!(o.status.success(), "{}", stderr(&o));
+    let o = run("3");
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(
+        e.contains("the program uses tool 3, which the tool library defines but swarf cannot use")
+            && e.contains(
+                "p.camotics:3:1: tool 3 is a spheroid (an ellipsoid 6 mm wide, 10 mm long)"
+            ),
+        "{e}"
+    );
+    no_internals(&e);
+}

@@ -106,3 +106,57 @@ fn automatic_workpiece_has_no_bounds_and_bad_json_has_a_position() {
         "{missing}"
     );
 }
+
+/// An imperial project's workpiece bounds are mm all the same (CAMotics stores them in mm and
+/// shows them in the display units): the heart's −12.7 stays half an inch, not 12.7 inches.
+#[test]
+fn imperial_project_bounds_are_mm() {
+    let text = PROJECT.replace("\"units\": \"metric\"", "\"units\": \"imperial\"");
+    let t = parse_camotics(&text, "heart.camotics").unwrap();
+    check_heart(&t);
+}
+
+/// Shapes in any letter case; a spheroid, which swarf cannot model, leaves the project
+/// loading, its tool left out with why (file, line, column, tool).
+#[test]
+fn shape_case_and_spheroid() {
+    let text = PROJECT
+        .replace("\"ballnose\"", "\"Ballnose\"")
+        .replace("\"cylindrical\"", "\"CYLINDRICAL\"")
+        .replace(
+            "\"2\": {",
+            "\"3\": {\"units\": \"metric\", \"shape\": \"spheroid\", \"length\": 10, \
+             \"diameter\": 6},\n    \"2\": {",
+        );
+    let t = parse_camotics(&text, "heart.camotics").unwrap();
+    check_heart(&t);
+    assert!(!t.tools.contains_key(&3));
+    assert_eq!(
+        t.left_out[&3],
+        "heart.camotics:13:5: tool 3 is a spheroid (an ellipsoid 6 mm wide, 10 mm long), a \
+         shape swarf cannot model"
+    );
+    assert_eq!(t.left_out.len(), 1);
+}
+
+/// The project's `files` are not run: a warning names them and says what swarf runs.
+#[test]
+fn listed_files_are_warned_about() {
+    let t = parse_camotics(PROJECT, "heart.camotics").unwrap();
+    assert_eq!(
+        t.warnings,
+        vec![
+            "heart.camotics: the project runs heart.ngc, cutout.ngc in turn; swarf simulates \
+             only the program given to it (--program)"
+                .to_string()
+        ]
+    );
+    let none = PROJECT.replace(
+        "\"files\": [\"heart.ngc\", \"cutout.ngc\"]",
+        "\"files\": []",
+    );
+    assert!(parse_camotics(&none, "heart.camotics")
+        .unwrap()
+        .warnings
+        .is_empty());
+}

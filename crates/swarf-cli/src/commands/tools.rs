@@ -70,7 +70,7 @@ pub(crate) fn load_job(setup: &SetupArgs, program: &Path) -> Result<Job> {
 }
 
 /// The tools of `job`, every one the program uses required to be defined: the error says how
-/// to define the first one missing.
+/// to define the first one missing (and why the library left it out, when it did).
 pub(crate) fn defined_tools(job: &Job) -> Result<&ToolSet> {
     if let Some(&n) = job.undefined_tools.first() {
         // Where the tool first moves: the line to look at (a rapid before the first tool
@@ -85,6 +85,14 @@ pub(crate) fn defined_tools(job: &Job) -> Result<&ToolSet> {
                 format!("{file}:{}: ", m.line)
             })
             .unwrap_or_default();
+        // A tool the library defines but swarf cannot model (a CAMotics spheroid): its why.
+        if let Some(why) = job.setup.table.as_ref().and_then(|t| t.left_out.get(&n)) {
+            anyhow::bail!(
+                "{at}the program uses tool {n}, which the tool library defines but swarf cannot \
+                 use ({why}): give --tool SPEC for every tool, or a library whose tool {n} swarf \
+                 can model"
+            );
+        }
         if n == 0 {
             anyhow::bail!(
                 "{at}the program moves before it loads a tool (tool 0), which nothing defines: \

@@ -1,19 +1,26 @@
 //! CAMotics project files (`.camotics`, JSON): tools and workpiece bounds.
 //!
 //! Each tool has `units` (`imperial` = inches, `metric` = mm), `shape`, `length` (cutting
-//! length), `diameter` and, for `snubnose`, `snub_diameter`. Shapes map to APT cutters:
+//! length), `diameter` and, for `snubnose`, `snub_diameter`. Shapes, in any letter case
+//! (`"Ballnose"`, `"CYLINDRICAL"`), map to APT cutters:
 //!
 //! * `cylindrical` → flat end mill of `diameter`, h = `length`;
 //! * `ballnose` → ball end mill of `diameter`, h = `length`;
 //! * `snubnose` → tapered flat: flat bottom of `snub_diameter`, widening linearly to
 //!   `diameter` at `length` (β = atan((diameter − snub_diameter) / (2·length)));
 //! * `conical` → V-bit whose cone reaches `diameter` at `length` (tip angle
-//!   2·atan(diameter / (2·length))).
+//!   2·atan(diameter / (2·length)));
+//! * `spheroid` (an ellipsoid `diameter` wide and `length` long) is no APT cutter: the tool is
+//!   in [`ToolTable::left_out`], and only a program that uses it is refused.
 //!
-//! The workpiece `bounds` (project `units`) become [`ToolTable::workpiece`] unless
+//! The workpiece `bounds`, always mm (CAMotics keeps them in mm whatever the project's display
+//! `units`), become [`ToolTable::workpiece`] unless
 //! `"automatic": true`, which means CAMotics computes them from the tool path: its `margin`
 //! (per cent, default 5) becomes [`ToolTable::automatic_workpiece`], and the job makes the box
 //! as CAMotics does (`swarf_job::automatic_workpiece`).
+//!
+//! The project's `files` (the programs CAMotics runs one after the other) are not run: swarf
+//! simulates the one program given to it, and says so in [`ToolTable::warnings`].
 
 use super::{line_col, ToolEntry, ToolTable};
 use crate::cutter::{Cutter, CutterKind, CutterOptions};
@@ -36,6 +43,8 @@ struct Project {
     tools: BTreeMap<String, Tool>,
     #[serde(default)]
     workpiece: Option<Workpiece>,
+    #[serde(default)]
+    files: Vec<String>,
 }
 
 #[derive(serde::Deserialize, Clone, Copy, PartialEq)]
@@ -54,13 +63,30 @@ impl Units {
     }
 }
 
-#[derive(serde::Deserialize, Clone, Copy)]
-#[serde(rename_all = "lowercase")]
+#[derive(Clone, Copy)]
 enum Shape {
     Cylindrical,
     Ballnose,
     Snubnose,
     Conical,
+    Spheroid,
+}
+
+// CAMotics reads its shapes in any letter case (its own files have held `"BALLNOSE"` and
+// `"ballnose"`); so does swarf.
+impl<'de> serde::Deserialize<'de> for Shape {
+    fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        const SHAPES: &[&str] = &["cylindrical", "ballnose", "snubnose", "conical", "spheroid"];
+        let name = <std::borrow::Cow<'de, str>>::deserialize(d)?;
+        match name.to_ascii_lowercase().as_str() {
+            "cylindrical" => Ok(Shape::Cylindrical),
+            "ballnose" => Ok(Shape::Ballnose),
+            "snubnose" => Ok(Shape::Snubnose),
+            "conical" => Ok(Shape::Conical),
+            "spheroid" => Ok(Shape::Spheroid),
+            _ => Err(serde::de::Error::unknown_variant(&name, SHAPES)),
+        }
+    }
 }
 
 #[derive(serde::Deserialize)]
@@ -131,6 +157,18 @@ pub fn parse_camotics(text: &str, file: &str) -> Result<ToolTable, TableError> {
             ..CutterOptions::default()
         };
         let built = match tool.shape {
+            Shape::Spheroid => {
+                // A tool the project defines but swarf cannot model: left out, with why, so
+                // the rest of the project loads and only a program that calls it is refused.
+                table.left_out.insert(
+                    number,
+                    format!(
+                        "{file}:{line}:{column}: tool {key} is a spheroid (an ellipsoid {d} mm \
+                         wide, {len} mm long), a shape swarf cannot model"
+                    ),
+                );
+                continue;
+            }
             Shape::Cylindrical => Cutter::named(CutterKind::Flat, &[d], &opts),
             Shape::Ballnose => Cutter::named(CutterKind::Ball, &[d], &opts),
             Shape::Snubnose => {
@@ -188,9 +226,11 @@ pub fn parse_camotics(text: &str, file: &str) -> Result<ToolTable, TableError> {
         } else {
             match &w.bounds {
                 Some(b) => {
-                    let u = project_unit.to_mm();
-                    let min = Vec3::from_array(b.min) * u;
-                    let max = Vec3::from_array(b.max) * u;
+                    // mm whatever the project's `units`: those are CAMotics' display units,
+                    // and it stores the workpiece in mm (an imperial project's half-inch-deep
+                    // block is `-12.7`).
+                    let min = Vec3::from_array(b.min);
+                    let max = Vec3::from_array(b.max);
                     if !(min.is_finite() && max.is_finite() && min.cmple(max).all()) {
                         return Err(at_key(
                             "bounds",
@@ -205,6 +245,13 @@ pub fn parse_camotics(text: &str, file: &str) -> Result<ToolTable, TableError> {
                 )),
             }
         }
+    }
+    if !project.files.is_empty() {
+        table.warnings.push(format!(
+            "{file}: the project runs {} in turn; swarf simulates only the program given to it \
+             (--program)",
+            project.files.join(", ")
+        ));
     }
     Ok(table)
 }

@@ -72,6 +72,10 @@ pub struct ToolTable {
     pub automatic_workpiece: Option<f64>,
     /// Assumptions made while reading, one sentence each.
     pub warnings: Vec<String>,
+    /// Tools the file defines but swarf cannot model (a CAMotics spheroid), by number: why,
+    /// naming file, line and column. They are not in [`ToolTable::tools`]; a program that
+    /// uses one is refused with this text, and the rest of the table serves.
+    pub left_out: BTreeMap<u32, String>,
 }
 
 impl ToolTable {
