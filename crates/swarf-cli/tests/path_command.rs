@@ -347,3 +347,26 @@ fn a_full_stdout_fails_the_run() {
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert!(stderr(&o).contains("writing to stdout"), "{}", stderr(&o));
 }
+
+#[test]
+fn canonical_output_keeps_printed_lines_and_says_its_warnings_on_stderr() {
+    // rs274 writes `(print,…)` text among the calls; a reader's warning is no call, so it
+    // goes to stderr (it went nowhere).
+    let dir = temp_dir("canonical_print");
+    let ngc = dir.join("p.ngc");
+    std::fs::write(&ngc, "G21 F100\n(print,hello x=#<_x>)\n/G1 X1\nG1 X2\nM2\n").unwrap();
+    let o = swarf(&["path", ngc.to_str().unwrap(), "--canonical"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        stdout(&o).lines().collect::<Vec<_>>(),
+        [
+            "hello x=0.000000",
+            " N..... STRAIGHT_FEED(2.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)"
+        ]
+    );
+    assert!(
+        stderr(&o).contains("p.ngc:3:1: warning: line skipped"),
+        "{}",
+        stderr(&o)
+    );
+}

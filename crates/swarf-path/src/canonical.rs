@@ -38,6 +38,8 @@ pub struct CanonicalPrinter<W: Write> {
     out: W,
     units: Units,
     error: Option<io::Error>,
+    /// The reader's warnings, kept for the caller (they are no canonical call).
+    warnings: Vec<Warning>,
 }
 
 impl<W: Write> CanonicalPrinter<W> {
@@ -47,7 +49,13 @@ impl<W: Write> CanonicalPrinter<W> {
             out,
             units: Units::Mm,
             error: None,
+            warnings: Vec::new(),
         }
+    }
+
+    /// The warnings the reader gave so far.
+    pub fn warnings(&self) -> &[Warning] {
+        &self.warnings
     }
 
     /// The first write error, if any.
@@ -160,6 +168,11 @@ impl<W: Write> CanonicalPrinter<W> {
                 kind: MessageKind::Msg | MessageKind::Debug,
                 text,
             } => writeln!(self.out, " N..... MESSAGE(\"{text}\")")?,
+            // `(print,…)`: rs274 writes the text itself among the calls.
+            Canon::Message {
+                kind: MessageKind::Print,
+                text,
+            } => writeln!(self.out, "{text}")?,
             _ => {}
         }
         Ok(())
@@ -181,7 +194,9 @@ impl<W: Write> CanonSink for CanonicalPrinter<W> {
         }
     }
 
-    fn warn(&mut self, _warning: Warning) {}
+    fn warn(&mut self, warning: Warning) {
+        self.warnings.push(warning);
+    }
 }
 
 #[cfg(test)]

@@ -93,7 +93,12 @@ pub(crate) fn run(args: &PathArgs) -> Result<()> {
         setup
             .stream(&text, &file, &mut printer)
             .map_err(job_error)?;
+        // The reader's warnings are no canonical call: on stderr, after the calls.
+        let warnings = printer.warnings().to_vec();
         printer.finish().context("writing to stdout")?;
+        for w in &warnings {
+            eprintln!("{w}");
+        }
         return Ok(());
     }
 
