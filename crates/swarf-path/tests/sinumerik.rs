@@ -560,3 +560,29 @@ fn post_settings_without_motion_are_read_past() {
         assert!(e.message.starts_with(&format!("{word} is not read")), "{e}");
     }
 }
+
+#[test]
+fn a_skipped_block_is_said_and_siemens_words_tell_a_program_apart() {
+    let p = read("G0 X0 Y0 Z10\n/G1 X30 F100\nG1 X10 F100\nM30");
+    assert_eq!(p.moves.len(), 2);
+    assert!(
+        p.warnings
+            .iter()
+            .any(|w| w.line == 3 && w.message.contains("block delete")),
+        "{:?}",
+        p.warnings
+    );
+    // A `.nc` file whose only Siemens words are G710 and a tool by name: read as Sinumerik.
+    let src = "N10 G17 G90 G710\nT=\"EM10\" D1\nM6\nG0 X0 Y0 Z10\nG1 Z-1 F100\nX10\nM30\n";
+    assert_eq!(
+        ProgramFormat::detect(std::path::Path::new("part.nc"), src),
+        ProgramFormat::Sinumerik
+    );
+    // ATAN2 with two arguments (the one-argument ATAN took its name).
+    let p = read("R1=5*ATAN2(1,1)\nG0 X=R1\nM30");
+    assert!(
+        close(p.moves[0].end.tip, [225.0, 0.0, 0.0], 1e-9),
+        "{:?}",
+        tips(&p)
+    );
+}

@@ -74,7 +74,15 @@ impl Dialect {
                 .map_or(t, |r| r.trim_start_matches(|c: char| c.is_ascii_digit()));
             t.trim_start().to_string()
         };
-        const CALLS: [&str; 6] = ["MSG(", "MSG (", "CYCLE", "POCKET", "SLOT1(", "SLOT2("];
+        const CALLS: [&str; 7] = [
+            "MSG(",
+            "MSG (",
+            "CYCLE",
+            "POCKET",
+            "SLOT1(",
+            "SLOT2(",
+            "WORKPIECE(",
+        ];
         if CALLS.iter().any(|k| after_n.starts_with(k)) && after_n.contains('(') {
             return Some(Dialect::Siemens840D);
         }
@@ -99,6 +107,26 @@ impl Dialect {
             || tight.contains("=IC(")
             || tight_n.starts_with("G500")
         {
+            return Some(Dialect::Siemens840D);
+        }
+        // Words of the 840D's own that posts write at a program's head (look-ahead, units,
+        // acceleration, tools by name, system variables, jumps): whole words, or the text
+        // they start.
+        const WORDS: [&str; 16] = [
+            "G642", "G641", "G645", "G710", "G700", "SOFT", "BRISK", "FFWON", "FFWOF", "STOPRE",
+            "TRAFOOF", "ORIWKS", "ORIAXES", "COMPCAD", "COMPCURV", "COMPOF",
+        ];
+        const STARTS: [&str; 3] = ["T=\"", "GOTOF", "GOTOB"];
+        const SYSTEM: [&str; 5] = ["$P_", "$A_", "$AA_", "$MC_", "$TC_"];
+        if no_comments.split_whitespace().any(|w| {
+            let w = w
+                .strip_prefix('N')
+                .filter(|r| r.starts_with(|c: char| c.is_ascii_digit()))
+                .map_or(w, |r| r.trim_start_matches(|c: char| c.is_ascii_digit()));
+            WORDS.contains(&w)
+                || STARTS.iter().any(|k| w.starts_with(k))
+                || SYSTEM.iter().any(|k| w.contains(k))
+        }) {
             return Some(Dialect::Siemens840D);
         }
         None
@@ -145,6 +173,19 @@ mod tests {
         );
         assert_eq!(Dialect::of_line("TRAORI"), Some(Dialect::Siemens840D));
         assert_eq!(Dialect::of_line("G500"), Some(Dialect::Siemens840D));
+        for line in [
+            "N10 G17 G90 G710",
+            "G642 SOFT FFWON",
+            "T=\"EM10\" D1",
+            "N30 GOTOF END1",
+            "R1=$P_TOOLNO",
+            "WORKPIECE(,\"\",,\"BOX\",112,0,-50,-80,-50,-50,50,50)",
+        ] {
+            assert_eq!(Dialect::of_line(line), Some(Dialect::Siemens840D), "{line}");
+        }
+        // Not these: a Fanuc lathe G70, a comment.
+        assert_eq!(Dialect::of_line("G70 P100 Q200"), None);
+        assert_eq!(Dialect::of_line("G0 X1 (SOFT JAWS, G642)"), None);
         // RS274/NGC lines, including comments that mention the keywords.
         assert_eq!(Dialect::of_line("G1 X10 Y-5 F100"), None);
         assert_eq!(Dialect::of_line("(TOOL CALL 1, CR=5, MSG(x))"), None);

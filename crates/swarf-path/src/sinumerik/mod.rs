@@ -493,6 +493,15 @@ impl<'a> Reader<'a> {
             };
             pc += 1;
             if b.deleted && self.opts.block_delete {
+                let line = b.line;
+                self.warn_once(
+                    "blockdelete",
+                    line,
+                    1,
+                    "block skipped: block delete (`/`) is on, as the G-code reader's switch is \
+                     by default (first such block; --no-block-delete reads them)"
+                        .into(),
+                );
                 continue;
             }
             match self.block(b, pc - 1)? {
@@ -1315,7 +1324,7 @@ impl<'a> Reader<'a> {
                         b,
                         w.at,
                         PathErrorKind::Unsupported,
-                        format!("{n} is not read: its path is the control's (swarf runs CYCLE81–CYCLE85 and CYCLE800)"),
+                        format!("{n} is not read: its path is the control's (swarf runs CYCLE81–CYCLE86, CYCLE89 and CYCLE800)"),
                         "a drilling cycle or the path itself",
                     ))
                 }
