@@ -200,12 +200,23 @@ fn a_model_space_curve_off_the_surface_is_refused_with_the_distance() {
         "{n:?}"
     );
     assert!(n[0].ends_with("the trim is not honoured (the whole patch is used)"));
-    // Within the tolerance (1e-4 of the patch's size + 1e-3 mm) it is taken.
+    // Within the tolerance (1e-4 of the patch's size + 0.01 mm) it is taken.
     let text = plate_with(|f, plate| {
-        let arc = f.add(100, "0.0005,5.,5.,7.,5.,7.,5.");
+        let arc = f.add(100, "0.005,5.,5.,7.,5.,7.,5.");
         f.add(142, &format!("0,{plate},0,{arc},2"))
     });
     let s = iges::parse(&text).unwrap();
+    assert!(s.patches[0].trim.is_some(), "{:?}", notes(&s));
+    // 0.03 mm off: refused, unless the G section's minimum resolution (field 19) is coarser
+    // (0.05; the writer's 1e-6 replaced, same width).
+    let text = plate_with(|f, plate| {
+        let arc = f.add(100, "0.03,5.,5.,7.,5.,7.,5.");
+        f.add(142, &format!("0,{plate},0,{arc},2"))
+    });
+    let s = iges::parse(&text).unwrap();
+    assert!(s.patches[0].trim.is_none(), "{:?}", notes(&s));
+    assert_eq!(text.matches(",1e-6,").count(), 1);
+    let s = iges::parse(&text.replace(",1e-6,", ",0.05,")).unwrap();
     assert!(s.patches[0].trim.is_some(), "{:?}", notes(&s));
 }
 

@@ -1363,3 +1363,67 @@ fn window_part(window: bool) -> String {
     f.face(&bounds, ceiling);
     f.text()
 }
+
+/// A half cylinder (r 10, z 0…50) whose end arcs are polylines of `n` chords (they sag
+/// 10·(1 − cos(π/2n)) off the surface), in a file declaring `accuracy` mm.
+fn polyline_half_cylinder(n: usize, accuracy: Option<f64>) -> CompoundSurface {
+    let mut f = Step::new();
+    let a = f.axis([0., 0., 0.], [0., 0., 1.], [1., 0., 0.]);
+    let cyl = f.add(format!("CYLINDRICAL_SURFACE('',#{a},10.)"));
+    let v = [
+        f.vertex([10., 0., 0.]),
+        f.vertex([-10., 0., 0.]),
+        f.vertex([-10., 0., 50.]),
+        f.vertex([10., 0., 50.]),
+    ];
+    let arc = |z: f64| -> Vec<[f64; 3]> {
+        (0..=n)
+            .map(|k| {
+                let t = PI * k as f64 / n as f64;
+                [10.0 * t.cos(), 10.0 * t.sin(), z]
+            })
+            .collect()
+    };
+    let (p0, p1) = (f.polyline(&arc(0.0)), f.polyline(&arc(50.0)));
+    let bottom = f.edge(v[0], v[1], p0, true);
+    let l1 = f.line([-10., 0., 0.], [0., 0., 1.]);
+    let left = f.edge(v[1], v[2], l1, true);
+    let top = f.edge(v[3], v[2], p1, true);
+    let l2 = f.line([10., 0., 0.], [0., 0., 1.]);
+    let right = f.edge(v[0], v[3], l2, true);
+    let lp = f.loop_of(&[(bottom, true), (left, true), (top, false), (right, false)]);
+    let b = f.bound(lp, true);
+    f.face(&[b], cyl);
+    if let Some(acc) = accuracy {
+        let mm = f.add("(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.))");
+        let u = f.add(format!(
+            "UNCERTAINTY_MEASURE_WITH_UNIT(LENGTH_MEASURE({acc:?}),#{mm},\
+             'distance_accuracy_value','confusion accuracy')"
+        ));
+        f.add(format!(
+            "(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNCERTAINTY_ASSIGNED_CONTEXT((#{u})) \
+             GLOBAL_UNIT_ASSIGNED_CONTEXT((#{mm})) REPRESENTATION_CONTEXT('',''))"
+        ));
+    }
+    f.parse()
+}
+
+#[test]
+fn edges_a_few_microns_off_their_face_or_within_the_declared_accuracy_trim_it() {
+    let honoured = |s: &CompoundSurface| {
+        let t = s.patches[0].trim.as_ref();
+        t.is_some_and(|t| t.contains(0.5 * PI, 25.0) && !t.contains(1.5 * PI, 25.0))
+    };
+    // 40 chords sag 7.7 µm: CAD edges lie that far off their faces; the trim holds.
+    let s = polyline_half_cylinder(40, None);
+    assert!(honoured(&s), "{:?}", trimmed_notes(&s));
+    // 20 chords sag 31 µm: too far by default, within a declared 0.05 mm accuracy.
+    let s = polyline_half_cylinder(20, None);
+    assert!(!honoured(&s), "{:?}", trimmed_notes(&s));
+    assert!(s
+        .notes
+        .iter()
+        .any(|n| matches!(n, ReadNote::TrimNotHonoured { .. })));
+    let s = polyline_half_cylinder(20, Some(0.05));
+    assert!(honoured(&s), "{:?}", trimmed_notes(&s));
+}

@@ -22,7 +22,8 @@
 //! parameters lies within min(1e-3 mm, 1e-5 of the surface's size) of the curve's own point
 //! there; every sample is mapped to the patch's parameters by point inversion (Newton seeded by
 //! the previous sample, the first from a coarse grid; at most 256 grid searches per 144). A
-//! sample farther than 1e-4 of the surface's size + 1e-3 mm from the surface, a curve that does
+//! sample farther than 1e-4 of the surface's size + 0.01 mm (or the G section's minimum
+//! resolution, when coarser) from the surface, a curve that does
 //! not map to a continuous closed loop (a jump across a seam), fewer than 3 distinct points, or
 //! a model-space curve of a kind not read leaves the patch untrimmed with a
 //! [`ReadNote::TrimNotHonoured`] saying why (`model-space curve of 142 at D5 lies 1.000e0 mm
@@ -560,7 +561,7 @@ impl<'s, 'a> Sampler<'s, 'a> {
         let bb = surface.bounding_box();
         let size = (bb.max - bb.min).length();
         let size = if size.is_finite() { size } else { 1e3 };
-        let tol_on = 1e-4 * size + 1e-3;
+        let tol_on = crate::io::on_surface_tolerance(size, file.resolution);
         let (mu, mv) = (
             BOX_MARGIN * (domain.u[1] - domain.u[0]),
             BOX_MARGIN * (domain.v[1] - domain.v[0]),
@@ -1277,6 +1278,8 @@ struct Sections<'a> {
     p: Vec<Record<'a>>,
     pdelim: u8,
     rdelim: u8,
+    /// The G section's minimum resolution, mm (0 when not given), once it is read.
+    resolution: f64,
 }
 
 fn syntax(line: usize, column: usize, message: impl Into<String>) -> ReadError {
@@ -1311,6 +1314,7 @@ impl<'a> Sections<'a> {
             p: Vec::new(),
             pdelim: b',',
             rdelim: b';',
+            resolution: 0.0,
         };
         let mut seen_any = false;
         // Records end in LF or CRLF; in a file with neither, in a lone CR (old Macs) or — a
@@ -1502,6 +1506,14 @@ impl<'a> Sections<'a> {
                 ))
             }
         };
+        // Field 19 → index 16, the minimum user-intended resolution: the distance below
+        // which the file's points are one (a trimming curve may lie that far off its surface).
+        let resolution = fields
+            .get(16)
+            .and_then(|t| t.trim().replace(['D', 'd'], "E").parse::<f64>().ok())
+            .filter(|r| r.is_finite() && *r > 0.0)
+            .map_or(0.0, |r| r * factor);
+        self.resolution = resolution;
         Ok(Global {
             factor,
             unit: unit.into(),

@@ -26,6 +26,9 @@ pub(super) struct Model<'a> {
     pub(super) length: f64,
     /// Radians per file plane-angle unit.
     pub(super) angle: f64,
+    /// The distance accuracy the file declares (its `UNCERTAINTY_MEASURE_WITH_UNIT`), mm; 0
+    /// when it declares none.
+    pub(super) accuracy: f64,
 }
 
 pub(super) const SURFACES: [&str; 6] = [

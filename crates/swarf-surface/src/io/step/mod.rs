@@ -46,7 +46,8 @@
 //!   loop's points on the box's edges across an angle sit a hair (1e-9 of a turn) outside it,
 //!   so points on the seam inside a hole across it are off the part. Linear parameter ranges grow to
 //!   hold the loops. An edge curve of another kind, a sample more than 1e-4 of the surface's
-//!   size (+ 1e-3 mm) off the surface, edges that do not join, a loop that does not close in
+//!   size + 0.01 mm (or the file's declared `UNCERTAINTY_MEASURE_WITH_UNIT`, when coarser)
+//!   off the surface, edges that do not join, a loop that does not close in
 //!   the parameters or winds otherwise, or more than 200 000 points for a face (2 000 000 for
 //!   the file) leave the patch untrimmed with a [`ReadNote::TrimNotHonoured`](crate::ReadNote::TrimNotHonoured) saying why.
 //! * **Units**: the length unit of the `GLOBAL_UNIT_ASSIGNED_CONTEXT` (`SI_UNIT` with any prefix,
@@ -145,13 +146,15 @@ pub const DEFAULT_LINEAR_RANGE: [f64; 2] = [-100.0, 100.0];
 /// Parse STEP text.
 pub fn parse(text: &str) -> Result<CompoundSurface, ReadError> {
     let map = Lexer::new(text).instances()?;
-    Model {
+    let mut model = Model {
         text,
         map,
         length: 1.0,
         angle: 1.0,
-    }
-    .read()
+        accuracy: 0.0,
+    };
+    model.accuracy = model.declared_accuracy();
+    model.read()
 }
 
 #[cfg(test)]

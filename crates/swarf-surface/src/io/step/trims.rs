@@ -1,6 +1,7 @@
 //! Face bounds as trims: edge loops sampled on the face's surface, mapped to its parameters,
 //! through poles and seams, and assembled into the patch's [`Trim`] and parameter box.
 
+use crate::io::on_surface_tolerance;
 use std::collections::HashMap;
 
 use swarf_geom::math::Vec3;
@@ -177,6 +178,30 @@ pub(super) struct Bound {
 }
 
 impl Model<'_> {
+    /// The largest length uncertainty the file declares (`UNCERTAINTY_MEASURE_WITH_UNIT` of a
+    /// `LENGTH_MEASURE`, in its unit), mm; 0 when none reads.
+    pub(super) fn declared_accuracy(&self) -> f64 {
+        let mut best: f64 = 0.0;
+        for (&id, inst) in &self.map {
+            let Some(p) = inst.part("UNCERTAINTY_MEASURE_WITH_UNIT") else {
+                continue;
+            };
+            let length = matches!(p.first(), Some(Param::Typed(t, _)) if t == "LENGTH_MEASURE");
+            let (Ok(v), Ok(u)) = (
+                self.num(id, p.first(), "uncertainty"),
+                self.reference(id, p.get(1), "unit"),
+            ) else {
+                continue;
+            };
+            if let (true, Ok((f, _))) = (length, self.unit_factor(id, u, 0)) {
+                if (v * f).is_finite() && v * f > 0.0 {
+                    best = best.max(v * f);
+                }
+            }
+        }
+        best
+    }
+
     /// The trim of face `fid` on `surface` from its bounds, `None` when they hold no loop (only
     /// vertex loops), `Err(why)` when it cannot be honoured.
     pub(super) fn face_trim(
@@ -199,7 +224,7 @@ impl Model<'_> {
         let bb = surface.bounding_box();
         let size = (bb.max - bb.min).length();
         let size = if size.is_finite() { size } else { 1e3 };
-        let tol_on = 1e-4 * size + 1e-3;
+        let tol_on = on_surface_tolerance(size, self.accuracy);
         let mut m = Mapper {
             surface,
             period,
