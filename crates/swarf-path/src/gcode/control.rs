@@ -354,6 +354,13 @@ impl Interp<'_, '_> {
         if name.is_empty() || name.contains(['/', '\\']) || name.starts_with('.') {
             return None;
         }
+        self.load_named_file(&[format!("{name}.ngc")])
+    }
+
+    /// Finds the first of the file names `names` (tried in order in each folder) in the
+    /// program's folder, then in the subroutine path, reads it and returns its index in
+    /// `files` (a file already read keeps its index).
+    fn load_named_file(&mut self, names: &[String]) -> Option<u32> {
         let program = std::path::Path::new(&*self.files[0].0);
         let dirs = program
             .parent()
@@ -366,15 +373,21 @@ impl Interp<'_, '_> {
                     .map(std::path::PathBuf::as_path),
             );
         for dir in dirs {
-            let path = dir.join(format!("{name}.ngc"));
-            let shown: Rc<str> = Rc::from(path.display().to_string());
-            if let Some(i) = self.files.iter().position(|(n, _)| *n == shown) {
-                return Some(i as u32);
-            }
-            if let Ok(bytes) = std::fs::read(&path) {
-                let text: Rc<str> = Rc::from(super::without_bom(&crate::load::decode_text(bytes)));
-                self.files.push((shown, text));
-                return Some(self.files.len() as u32 - 1);
+            for name in names {
+                let path = dir.join(name);
+                let shown: Rc<str> = Rc::from(path.display().to_string());
+                if let Some(i) = self.files.iter().position(|(n, _)| *n == shown) {
+                    return Some(i as u32);
+                }
+                if !path.is_file() {
+                    continue;
+                }
+                if let Ok(bytes) = std::fs::read(&path) {
+                    let text: Rc<str> =
+                        Rc::from(super::without_bom(&crate::load::decode_text(bytes)));
+                    self.files.push((shown, text));
+                    return Some(self.files.len() as u32 - 1);
+                }
             }
         }
         None
@@ -591,8 +604,16 @@ impl Interp<'_, '_> {
                 "a non-negative integer",
             ));
         }
-        let (p, packed) = if self.fanuc && !b.m97 && !b.has(b'l') && p >= 10_000.0 {
-            // Fanuc `M98 Pxxxxyyyy`: xxxx repeats of program yyyy.
+        // Fanuc `M98 Pxxxxyyyy`: xxxx repeats of program yyyy — unless program O<P> itself
+        // exists (in this file or a file of its own): Haas numbers its programs O00000–O99999
+        // and repeats them with L, so `M98 P10005` there calls O10005.
+        let whole_exists = self.fanuc
+            && !b.m97
+            && !b.has(b'l')
+            && p >= 10_000.0
+            && self.m98_target(p as u64).is_some();
+        let (p, packed) = if self.fanuc && !b.m97 && !b.has(b'l') && p >= 10_000.0 && !whole_exists
+        {
             ((p % 10_000.0).round(), Some((p / 10_000.0).floor() as u64))
         } else {
             (p, None)
@@ -617,21 +638,26 @@ impl Interp<'_, '_> {
             return Ok(());
         }
         // Where the call goes: the line numbered N<p> (M97), or the one after O<p> (M98).
-        let kept = if b.m97 {
-            self.line_numbers.take()
+        let start = if b.m97 {
+            let map = self
+                .line_numbers
+                .take()
+                .unwrap_or_else(|| self.index_targets(true, false));
+            let start = map.get(&(p as u64)).copied();
+            self.line_numbers = Some(map);
+            start
         } else {
-            self.labels.take()
+            self.m98_target(p as u64)
         };
-        let map = kept.unwrap_or_else(|| self.index_targets(b.m97, false));
-        let start = map.get(&(p as u64)).copied();
-        *(if b.m97 {
-            &mut self.line_numbers
-        } else {
-            &mut self.labels
-        }) = Some(map);
         let start = start.ok_or_else(|| {
             let what = if b.m97 {
                 format!("no line numbered N{p} in this file")
+            } else if self.fanuc {
+                format!(
+                    "subprogram O{p} is not in this file, nor in a file O{p} or {p} (.nc, \
+                     .ngc, .tap, .txt or no extension) in the program's folder or the \
+                     subroutine path"
+                )
             } else {
                 format!("subprogram O{p} is not in this file")
             };
@@ -646,6 +672,62 @@ impl Interp<'_, '_> {
         });
         self.at = start;
         Ok(())
+    }
+
+    /// Where `M98 P<p>` goes: the line after the label `O<p>` of the program's file, else
+    /// (Fanuc) the subprogram's own file, found as `o<name> call` finds one (the program's
+    /// folder, then the subroutine path): `O<p>` or `<p>` (also with the number written with
+    /// four or five digits, `O0012`, `O00012`), with the extension .nc, .ngc, .tap, .txt or
+    /// none; in it, the line after its `O<p>` label, else its start. Found files' targets are
+    /// kept with the program's.
+    fn m98_target(&mut self, p: u64) -> Option<Cursor> {
+        let map = self
+            .labels
+            .take()
+            .unwrap_or_else(|| self.index_targets(false, false));
+        let start = map.get(&p).copied();
+        self.labels = Some(map);
+        if start.is_some() || !self.fanuc {
+            return start;
+        }
+        let mut stems = vec![format!("O{p}"), format!("{p}")];
+        for padded in [format!("{p:04}"), format!("{p:05}")] {
+            for stem in [format!("O{padded}"), padded] {
+                if !stems.contains(&stem) {
+                    stems.push(stem);
+                }
+            }
+        }
+        let names: Vec<String> = stems
+            .iter()
+            .flat_map(|s| {
+                ["nc", "ngc", "tap", "txt", "NC", "NGC", "TAP", "TXT", ""]
+                    .iter()
+                    .map(move |e| {
+                        if e.is_empty() {
+                            s.clone()
+                        } else {
+                            format!("{s}.{e}")
+                        }
+                    })
+            })
+            .collect();
+        let file = self.load_named_file(&names)?;
+        // The file's own `O<p>` label, else its first line.
+        let (saved_file, saved_text) = (self.cur_file, self.text.clone());
+        self.cur_file = file;
+        self.text = self.files[file as usize].1.clone();
+        let in_file = self.index_targets(false, false);
+        self.cur_file = saved_file;
+        self.text = saved_text;
+        let start = in_file
+            .get(&p)
+            .copied()
+            .unwrap_or_else(|| self.file_start(file));
+        if let Some(map) = self.labels.as_mut() {
+            map.insert(p, start);
+        }
+        Some(start)
     }
 
     /// `M99`: the end of an `M98` subprogram (repeat it or return), or in the main program a

@@ -49,8 +49,11 @@ impl Interp<'_, '_> {
     /// A tapping feed. LinuxCNC (its `g84` tests, G18 and G19) writes the feed moves of a
     /// tapping cycle in the ZX plane with the YZ plane's axes and the other way round; the
     /// control moves as its canonical calls say, so swarf does the same (and says so).
+    /// A Fanuc control taps along the plane's drilling axis as it drills, so under Fanuc's
+    /// rules the feeds are the plane's own.
     fn tap_feed(&mut self, aa: f64, bb: f64, cc: f64) {
         let swapped = match self.plane {
+            _ if self.fanuc => self.plane,
             Plane::XY => Plane::XY,
             Plane::XZ => Plane::YZ,
             Plane::YZ => Plane::XZ,
@@ -125,12 +128,24 @@ impl Interp<'_, '_> {
                 "G17 G90, or X and Y",
             ));
         }
-        for c in [b'a', b'b', b'c'] {
-            if b.has(c) {
-                return Err(Fault::semantic(
-                    b.span(c),
-                    "rotary axis words cannot be used in a canned cycle",
-                ));
+        // Fanuc and Haas (4th-axis drilling posts) turn a rotary axis the block names in the
+        // cycle's positioning step, with X and Y; LinuxCNC refuses it.
+        let mut rotary: [Option<f64>; 3] = [None; 3];
+        for (k, c) in [b'a', b'b', b'c'].into_iter().enumerate() {
+            if let Some(v) = b.get(c) {
+                if !self.fanuc {
+                    return Err(Fault::semantic(
+                        b.span(c),
+                        "rotary axis words cannot be used in a canned cycle",
+                    ));
+                }
+                if !v.is_finite() {
+                    return Err(Fault::semantic(
+                        b.span(c),
+                        "canned cycle positions are out of range (not finite numbers)",
+                    ));
+                }
+                rotary[k] = Some(v);
             }
         }
         if !same && !b.has(nl) {
@@ -357,6 +372,13 @@ impl Interp<'_, '_> {
             }
             aa += aa_inc;
             bb += bb_inc;
+            // The rotary words: an absolute angle, or (G91) an increment for each hole, as X
+            // and Y are.
+            for (k, v) in rotary.iter().enumerate() {
+                if let Some(v) = v {
+                    self.p[3 + k] = if self.absolute { *v } else { self.p[3 + k] + v };
+                }
+            }
             self.cyc_traverse(aa, bb, old_cc);
             if old_cc != r {
                 self.cyc_traverse(aa, bb, r);
@@ -402,9 +424,21 @@ impl Interp<'_, '_> {
                     self.cyc_spindle(SpindleDir::Stopped);
                     self.cyc_spindle(up);
                     self.emit(Canon::Dwell(dwell));
-                    self.tap_feed(aa, bb, clear);
-                    self.cyc_spindle(SpindleDir::Stopped);
-                    self.cyc_spindle(down);
+                    if self.fanuc {
+                        // A Fanuc control feeds out (spindle reversed) to R only, turns the
+                        // spindle forward again there, and rapids on to the initial level
+                        // under G98.
+                        self.tap_feed(aa, bb, r);
+                        self.cyc_spindle(SpindleDir::Stopped);
+                        self.cyc_spindle(down);
+                        if clear > r {
+                            self.cyc_traverse(aa, bb, clear);
+                        }
+                    } else {
+                        self.tap_feed(aa, bb, clear);
+                        self.cyc_spindle(SpindleDir::Stopped);
+                        self.cyc_spindle(down);
+                    }
                 }
                 860 | 880 => {
                     let dir = self.dir;

@@ -175,6 +175,19 @@ pub(crate) struct Interp<'t, 's> {
     /// Tool radii set by the program (G10 L1/L10/L11 R), mm: they win over the tool table's
     /// diameters for cutter compensation and parameter 5410.
     pub(crate) tool_radii: std::collections::BTreeMap<u32, f64>,
+    /// Fanuc: the last D and H words (#4107, #4111).
+    pub(crate) last_dh: [Option<f64>; 2],
+    /// Fanuc: system variables read that swarf does not model, to be told after the line
+    /// (reads happen where the interpreter is borrowed immutably), and those told.
+    pub(crate) sysvar_pending: std::cell::RefCell<Vec<usize>>,
+    pub(crate) sysvar_told: Vec<usize>,
+    /// Fanuc: system variables (#1000 and up) the program assigned: reading them back gives
+    /// what it stored, nothing to tell.
+    pub(crate) sysvar_written: Vec<usize>,
+    /// Fanuc's wear offsets set by `G10 L11`/`L13`, by (length register, number), mm: they
+    /// are included in the register's offset ([`Self::tool_table`]'s Z for H, [`Self::tool_radii`]
+    /// for D), kept apart so that a later L10/L12 (geometry) keeps them.
+    pub(crate) register_wear: std::collections::BTreeMap<(bool, u32), f64>,
     /// Fanuc D registers cutter compensation used without knowing their offset (told once
     /// each).
     pub(crate) comp_registers_told: Vec<u32>,
@@ -344,6 +357,11 @@ impl<'t, 's> Interp<'t, 's> {
             homes: [[0.0; 6]; 2],
             tool_table: std::collections::BTreeMap::new(),
             tool_radii: std::collections::BTreeMap::new(),
+            register_wear: std::collections::BTreeMap::new(),
+            last_dh: [None; 2],
+            sysvar_pending: std::cell::RefCell::new(Vec::new()),
+            sysvar_told: Vec::new(),
+            sysvar_written: Vec::new(),
             comp_registers_told: Vec::new(),
             m_ignored_told: Vec::new(),
             tlo: [0.0; 6],
@@ -454,6 +472,9 @@ impl<'t, 's> Interp<'t, 's> {
             self.cur_line = self.at.line;
             self.cur_start = start;
             let mut result = self.exec_line(raw, &mut lb, &mut blk);
+            if self.fanuc {
+                self.tell_unmodelled_reads();
+            }
             if result.is_ok() && self.sink.over {
                 result = Err(self.move_limit_fault());
             }
@@ -782,6 +803,9 @@ impl<'t, 's> Interp<'t, 's> {
         // its table before executing the block.
         for &(t, v) in &blk.assigns[..blk.n_assigns] {
             match t {
+                Target::Num(n) if self.fanuc && n >= 1000 => {
+                    self.fanuc_system_write(raw, lb, n, v)?
+                }
                 Target::Num(n) => self.set_numbered(n, v),
                 Target::Named(x, y) => {
                     let name = std::str::from_utf8(&lb.code[x as usize..y as usize]).unwrap_or("");
@@ -1051,8 +1075,58 @@ impl<'t, 's> Interp<'t, 's> {
         self.p = self.program_of(&moved, &self.off, &self.g92, self.rot);
     }
 
+    /// A Fanuc system variable assigned: `#3000 = n (MESSAGE)` is a macro alarm (the program
+    /// stops: an error here), `#3006 = n (MESSAGE)` a stop with a message (the operator
+    /// restarts it: a warning), the others stored (reading them back gives the value).
+    fn fanuc_system_write(&mut self, raw: &str, lb: &LineBuf, n: usize, v: f64) -> Res<()> {
+        let message = lb
+            .comments
+            .first()
+            .map_or("", |&(a, b)| raw[a as usize..b as usize].trim());
+        let at = find_code(&lb.code, format!("#{n}").as_bytes());
+        if n == 3000 || n == 3006 {
+            let v = super::expr::number(v);
+            if n == 3000 {
+                return Err(Fault::new(
+                    PathErrorKind::Semantic,
+                    at.map_or(Span::Line, |i| Span::Code(i, i + 5)),
+                    format!(
+                        "macro alarm {} ({}): #3000={v} stops the program here",
+                        3000.0 + v,
+                        if message.is_empty() {
+                            "no message"
+                        } else {
+                            message
+                        }
+                    ),
+                    "",
+                ));
+            }
+            self.later.push((
+                at.unwrap_or(0),
+                format!(
+                    "#3006={v} ({message}): the control stops here until cycle start is \
+                     pressed; read on"
+                ),
+            ));
+            return Ok(());
+        }
+        if !self.sysvar_written.contains(&n) {
+            self.sysvar_written.push(n);
+        }
+        self.set_numbered(n, v);
+        Ok(())
+    }
+
     /// The block's effects, its parameter assignments already made ([`Interp::exec_line`]).
     fn execute(&mut self, b: &Block, lb: &LineBuf) -> Res<()> {
+        if self.fanuc {
+            for (k, c) in [b'd', b'h'].into_iter().enumerate() {
+                if let Some(v) = b.get(c) {
+                    self.last_dh[k] = Some(v);
+                }
+            }
+        }
         if let Some(g) = b.g(group::FEED_MODE) {
             let m = match g {
                 930 => FeedMode::InverseTime,
@@ -2159,6 +2233,9 @@ impl<'t, 's> Interp<'t, 's> {
                 "L1, L2, L10, L11 or L20",
             )
         })?;
+        if self.fanuc && matches!(l as i64, 10..=13) && l.fract() == 0.0 {
+            return self.g10_fanuc_register(b, l as u8);
+        }
         if l == 1.0 || l == 10.0 {
             return self.g10_tool(b, l == 10.0);
         }
@@ -2175,7 +2252,11 @@ impl<'t, 's> Interp<'t, 's> {
                 PathErrorKind::Unsupported,
                 b.span(b'l'),
                 format!("G10 L{l} is not supported"),
-                "L1, L2, L10, L11 or L20",
+                if self.fanuc {
+                    "L2, L10 to L13 or L20"
+                } else {
+                    "L1, L2, L10, L11 or L20"
+                },
             ));
         }
         if l == 20.0 && self.fanuc {
@@ -2354,6 +2435,59 @@ impl<'t, 's> Interp<'t, 's> {
         self.g10_tool_radius(b)
     }
 
+    /// Fanuc's (memory C) and Haas's offset registers: `G10 L10 Pn R` sets length register Hn's
+    /// geometry, L11 its wear, L12 radius register Dn's geometry, L13 its wear (G91: R is added
+    /// to the value). A register's offset is its geometry plus its wear: what `G43 Hn` (the
+    /// length, kept as the tool table's Z) and `G41/G42 Dn` (the radius) use.
+    fn g10_fanuc_register(&mut self, b: &Block, l: u8) -> Res<()> {
+        let span = b.g_span(group::NON_MODAL);
+        let p = match b.get(b'p') {
+            Some(p) if p >= 1.0 && p.fract() == 0.0 && p <= f64::from(u32::MAX) => p as u32,
+            p => {
+                return Err(Fault::new(
+                    PathErrorKind::Semantic,
+                    if p.is_some() { b.span(b'p') } else { span },
+                    format!("G10 L{l} needs the offset register's number in P"),
+                    "P<register number ≥ 1>",
+                ))
+            }
+        };
+        let r = match b.get(b'r') {
+            Some(r) if r.is_finite() => self.mm_from_units(0, r),
+            r => {
+                return Err(Fault::new(
+                    PathErrorKind::Semantic,
+                    if r.is_some() { b.span(b'r') } else { span },
+                    format!("G10 L{l} needs the offset's value in R"),
+                    "R<offset>",
+                ))
+            }
+        };
+        let length = l <= 11;
+        let wear = l == 11 || l == 13;
+        let old_total = if length {
+            self.tool_table.get(&p).map_or(0.0, |e| e[2])
+        } else {
+            self.tool_radii.get(&p).copied().unwrap_or(0.0)
+        };
+        let old_wear = self.register_wear.get(&(length, p)).copied().unwrap_or(0.0);
+        let old_geometry = old_total - old_wear;
+        let (geometry, wear_value) = match (wear, self.absolute) {
+            (false, true) => (r, old_wear),
+            (false, false) => (old_geometry + r, old_wear),
+            (true, true) => (old_geometry, r),
+            (true, false) => (old_geometry, old_wear + r),
+        };
+        self.register_wear.insert((length, p), wear_value);
+        let total = geometry + wear_value;
+        if length {
+            self.tool_table.entry(p).or_insert([0.0; 6])[2] = total;
+        } else {
+            self.tool_radii.insert(p, total);
+        }
+        Ok(())
+    }
+
     /// The `R` of G10 L1/L10/L11: tool P's radius, which cutter compensation then uses.
     fn g10_tool_radius(&mut self, b: &Block) -> Res<()> {
         let (Some(r), Some(p)) = (b.get(b'r'), b.get(b'p')) else {
@@ -2458,12 +2592,114 @@ impl<'t, 's> Interp<'t, 's> {
     }
 }
 
+impl Interp<'_, '_> {
+    /// Whether LinuxCNC's parameter `n` is a view onto state swarf keeps (positions, offsets,
+    /// the tool): Fanuc numbers the same system variables alike (#5021 machine position,
+    /// #5221 G54 …).
+    fn modelled_view(n: usize) -> bool {
+        matches!(n, 5021..=5026 | 5161..=5166 | 5181..=5186 | 5210..=5216 | 5220 | 5400..=5425)
+            || (5221..=5390).contains(&n) && ((n - 5221) % 20 < 6 || (n - 5230) % 20 == 0)
+    }
+
+    /// Fanuc's system variables read from the interpreter's state, in program units: the
+    /// modal G code of each group (#4001–#4016, e.g. 1 for G01, 54.1 for G54.1), the last
+    /// D F H S T (#4107 #4109 #4111 #4119 #4120), the block end position and the current
+    /// position in the work coordinates (#5001–#5006, #5041–#5046: the same, as swarf reads
+    /// no block ahead). `None`: not one of these.
+    fn fanuc_system(&self, n: usize) -> Option<f64> {
+        let axis = |i: usize| self.to_units(i, self.p[i]);
+        let g = |code: u16| Some(f64::from(code) / 10.0);
+        match n {
+            4001 => g(self.group1),
+            4002 => g(match self.plane {
+                Plane::XY => 170,
+                Plane::XZ => 180,
+                Plane::YZ => 190,
+            }),
+            4003 => g(if self.absolute { 900 } else { 910 }),
+            4005 => g(match self.feed_mode {
+                FeedMode::InverseTime => 930,
+                FeedMode::PerMinute => 940,
+                FeedMode::PerRevolution | FeedMode::SpindleSynchronised => 950,
+            }),
+            4006 => g(if self.units == Units::Inch { 200 } else { 210 }),
+            4007 => g(self.read_only.ccomp),
+            4008 => g(if self.read_only.tlo_on { 430 } else { 490 }),
+            4009 => g(match self.motion {
+                Some(m @ (730 | 740 | 810..=890)) => m,
+                _ => 800,
+            }),
+            4010 => g(if self.retract_r { 990 } else { 980 }),
+            4011 => g(if self.g51.is_some() { 510 } else { 500 }),
+            4012 => g(670),
+            4013 => g(if self.read_only.css { 960 } else { 970 }),
+            4014 => g(match (self.ext_coord, self.coord) {
+                (Some(_), _) => 541,
+                (None, k @ 1..=6) => 530 + 10 * k as u16,
+                (None, k) => 590 + k as u16 - 6,
+            }),
+            4016 => g(if self.g68.is_some() || self.tilt.is_some() {
+                680
+            } else {
+                690
+            }),
+            4107 => Some(self.last_dh[0].unwrap_or(0.0)),
+            4109 => Some(if self.feed_mode == FeedMode::InverseTime {
+                self.feed
+            } else {
+                self.feed / self.scale
+            }),
+            4111 => Some(self.last_dh[1].unwrap_or(0.0)),
+            4119 => Some(self.rpm),
+            4120 => Some(f64::from(
+                self.read_only
+                    .selected_tool
+                    .unwrap_or(self.read_only.loaded_tool),
+            )),
+            5001..=5006 => Some(axis(n - 5001)),
+            5041..=5046 => Some(axis(n - 5041)),
+            _ => None,
+        }
+    }
+
+    /// Says once each system variable read that swarf does not model (it read 0, or what
+    /// the program stored in it).
+    fn tell_unmodelled_reads(&mut self) {
+        let pending = std::mem::take(&mut *self.sysvar_pending.borrow_mut());
+        for n in pending {
+            if self.sysvar_told.contains(&n) {
+                continue;
+            }
+            self.sysvar_told.push(n);
+            self.warn_at(
+                0,
+                format!(
+                    "system variable #{n} is the control's and swarf does not model it: read \
+                     as 0 (if the program's motion depends on it, the simulation may differ \
+                     from the machine's)"
+                ),
+            );
+        }
+    }
+}
+
 impl ParamRead for Interp<'_, '_> {
     fn fanuc(&self) -> bool {
         self.fanuc
     }
 
     fn numbered(&self, n: usize) -> f64 {
+        if self.fanuc && n >= 1000 {
+            if let Some(v) = self.fanuc_system(n) {
+                return v;
+            }
+            if !Self::modelled_view(n) && !self.sysvar_written.contains(&n) {
+                let mut pending = self.sysvar_pending.borrow_mut();
+                if !pending.contains(&n) {
+                    pending.push(n);
+                }
+            }
+        }
         self.get_numbered(n)
     }
     fn named(&self, name: &str) -> Option<f64> {
@@ -2545,6 +2781,11 @@ impl ParamRead for Interp<'_, '_> {
 }
 
 /// `v` with its X and Y turned by `deg` degrees counter-clockwise about Z.
+/// Where `needle` first appears in normalised code.
+fn find_code(code: &[u8], needle: &[u8]) -> Option<usize> {
+    code.windows(needle.len()).position(|w| w == needle)
+}
+
 pub(crate) fn rotate_xy(mut v: [f64; 6], deg: f64) -> [f64; 6] {
     if deg != 0.0 {
         let (s, c) = deg.to_radians().sin_cos();
