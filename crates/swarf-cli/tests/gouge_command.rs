@@ -100,6 +100,8 @@ fn clamp_interference_and_floor_gouge_are_found_located_and_measured() {
         "unresolved_searches",
         "skipped_faces",
         "skipped_face_notes",
+        "untrimmed_faces",
+        "untrimmed_face_notes",
         "unapplied_placements",
         "unapplied_placement_notes",
         "nodes",
@@ -203,8 +205,40 @@ fn without_the_clamp_the_pass_is_clear() {
 }
 
 #[test]
+fn a_face_checked_without_its_trim_is_not_certified() {
+    // A floor plane at z = 0 whose face is the disc of radius 10 about the origin, its circle
+    // edge 1 mm above the plane: the trim is not honoured and the whole plane is checked, so
+    // a gouge found may be outside the disc (no gouge of the part): not certified.
+    let dir = swarf_testdata::scratch_dir("gouge-untrimmed");
+    let step = "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n\
+        #1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));\n\
+        #4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=PLANE('',#4);\n\
+        #6=CARTESIAN_POINT('',(0.,0.,1.));#7=AXIS2_PLACEMENT_3D('',#6,#2,#3);#8=CIRCLE('',#7,10.);\n\
+        #9=CARTESIAN_POINT('',(10.,0.,1.));#10=VERTEX_POINT('',#9);\n\
+        #11=EDGE_CURVE('',#10,#10,#8,.T.);#12=ORIENTED_EDGE('',*,*,#11,.T.);\n\
+        #13=EDGE_LOOP('',(#12));#14=FACE_OUTER_BOUND('',#13,.T.);\n\
+        #15=ADVANCED_FACE('disc',(#14),#5,.T.);\n\
+        ENDSEC;\nEND-ISO-10303-21;\n";
+    std::fs::write(dir.join("part.step"), step).unwrap();
+    std::fs::write(dir.join("job.ngc"), "G0 X5 Y0 Z5\nG1 Z-0.5 F300\nG0 Z5\n").unwrap();
+    let o = gouge_flat(&dir, "part.step", &["--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = json(&o);
+    assert_eq!(s["untrimmed_faces"], 1, "{s}");
+    assert_eq!(s["skipped_faces"], 0, "{s}");
+    assert_eq!(s["certified"], false, "{s}");
+    assert!(s["max_gouge_mm"].as_f64().unwrap() > 0.4, "{s}");
+    let o = gouge_flat(&dir, "part.step", &[]);
+    assert!(
+        stdout(&o).contains("not certified: 1 face(s) were checked on their whole surface"),
+        "{}",
+        stdout(&o)
+    );
+}
+
+#[test]
 fn a_surface_with_skipped_faces_is_not_certified() {
-    // A STEP part of two faces: a floor plane at z = 0 and a wall on a surface kind the
+    // A STEP part of two faces: a floor plane at z = 0 and a face on a surface kind the
     // reader does not evaluate (skipped with a note on stderr). The summary said "certified":
     // true although the wall was never checked; it now lists the skipped face and withdraws
     // the certificate, in summary.json as in the printed JSON.
@@ -217,7 +251,7 @@ fn a_surface_with_skipped_faces_is_not_certified() {
         #10=VERTEX_LOOP('',#7);#11=FACE_BOUND('',#10,.T.);#12=VERTEX_LOOP('',#9);#13=FACE_BOUND('',#12,.T.);\n\
         #14=ADVANCED_FACE('floor',(#11,#13),#5,.T.);\n\
         #20=CARTESIAN_POINT('',(30.,0.,0.));#21=DIRECTION('',(0.,1.,0.));#22=VECTOR('',#21,1.);\n\
-        #23=LINE('',#20,#22);#24=VECTOR('',#2,10.);#25=SURFACE_OF_LINEAR_EXTRUSION('',#23,#24);\n\
+        #23=LINE('',#20,#22);#24=VECTOR('',#2,10.);#25=CURVE_BOUNDED_SURFACE('',#5,(),.F.);\n\
         #26=ADVANCED_FACE('wall',(),#25,.T.);\n\
         ENDSEC;\nEND-ISO-10303-21;\n";
     std::fs::write(dir.join("part.step"), step).unwrap();
@@ -228,7 +262,7 @@ fn a_surface_with_skipped_faces_is_not_certified() {
     .unwrap();
     let o = gouge_flat(&dir, "part.step", &["--json"]);
     assert!(o.status.success(), "{}", stderr(&o));
-    assert!(stderr(&o).contains("SURFACE_OF_LINEAR_EXTRUSION is not supported; skipped"));
+    assert!(stderr(&o).contains("CURVE_BOUNDED_SURFACE is not supported; skipped"));
     let printed = json(&o);
     let file: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("out/summary.json")).unwrap())
@@ -244,7 +278,7 @@ fn a_surface_with_skipped_faces_is_not_certified() {
             notes[0]
                 .as_str()
                 .unwrap()
-                .contains("#25 (face #26): surface type SURFACE_OF_LINEAR_EXTRUSION"),
+                .contains("#25 (face #26): surface type CURVE_BOUNDED_SURFACE"),
             "{s}"
         );
     }

@@ -133,15 +133,20 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         match (
             summary.skipped_faces,
             summary.unapplied_placements,
+            summary.untrimmed_faces,
             summary.unresolved_searches,
         ) {
-            (0, 0, 0) => String::new(),
-            (0, 0, _) => " (some searches ran out of budget: see unresolved_searches)".into(),
-            (0, n, _) => format!(
+            (0, 0, 0, 0) => String::new(),
+            (0, 0, 0, _) => " (some searches ran out of budget: see unresolved_searches)".into(),
+            (0, 0, n, _) => format!(
+                " (not certified: {n} face(s) were checked on their whole surface, their trim \
+                 not read: a violation there may lie outside the face, see untrimmed_faces)"
+            ),
+            (0, n, _, _) => format!(
                 " (not certified: {n} assembly placement(s) of the surface were not applied, \
                  see unapplied_placements)"
             ),
-            (n, _, _) => format!(
+            (n, _, _, _) => format!(
                 " (not certified: {n} face(s) of the surface were not read, see skipped_faces)"
             ),
         }
@@ -264,6 +269,7 @@ fn write_report(
                 "moves",
                 "certified",
                 "skipped_faces",
+                "untrimmed_faces",
                 "unapplied_placements",
             ],
         );

@@ -32,8 +32,9 @@ pub struct GougeSummary {
     /// Deepest interference, mm (0 when none).
     pub max_interference_mm: f64,
     /// Every search finished within its budget, every face of the surface file was read
-    /// (`skipped_faces` is 0) and every assembly placement in it applied
-    /// (`unapplied_placements` is 0): the clear stretches are proven clear.
+    /// (`skipped_faces` is 0) within its trim (`untrimmed_faces` is 0) and every assembly
+    /// placement in it applied (`unapplied_placements` is 0): the clear stretches are proven
+    /// clear and every violation is on the part.
     pub certified: bool,
     /// Searches whose budget ran out.
     pub unresolved_searches: usize,
@@ -43,6 +44,12 @@ pub struct GougeSummary {
     /// The reader's note on each skipped face (`#12 (face #40): surface type
     /// SURFACE_OF_REVOLUTION is not supported; skipped`).
     pub skipped_face_notes: Vec<String>,
+    /// Faces whose trim the reader could not honour, checked on their whole surface: nothing
+    /// is missed there, but a violation may lie on surface outside the face, so `certified`
+    /// is false when there is any.
+    pub untrimmed_faces: usize,
+    /// The reader's note on each (`patch 3 is trimmed by … the trim is not honoured …`).
+    pub untrimmed_face_notes: Vec<String>,
     /// STEP assembly placements its reader could not apply (an unsupported transformation, a
     /// chain it could not resolve): the parts they place may be misplaced, so `certified` is
     /// false when there is any.
@@ -86,6 +93,12 @@ impl GougeReport {
             .filter(|n| matches!(n, ReadNote::PlacementNotApplied { .. }))
             .map(ToString::to_string)
             .collect();
+        let untrimmed: Vec<String> = surface
+            .notes
+            .iter()
+            .filter(|n| matches!(n, ReadNote::TrimNotHonoured { .. }))
+            .map(ToString::to_string)
+            .collect();
         GougeSummary {
             points: self.points.len(),
             moves,
@@ -97,10 +110,15 @@ impl GougeReport {
             interfering_points: self.points_with(ViolationKind::Interference),
             max_gouge_mm: self.max_depth(ViolationKind::Gouge),
             max_interference_mm: self.max_depth(ViolationKind::Interference),
-            certified: self.unresolved == 0 && skipped.is_empty() && unplaced.is_empty(),
+            certified: self.unresolved == 0
+                && skipped.is_empty()
+                && untrimmed.is_empty()
+                && unplaced.is_empty(),
             unresolved_searches: self.unresolved,
             skipped_faces: skipped.len(),
             skipped_face_notes: skipped,
+            untrimmed_faces: untrimmed.len(),
+            untrimmed_face_notes: untrimmed,
             unapplied_placements: unplaced.len(),
             unapplied_placement_notes: unplaced,
             nodes: self.nodes,
