@@ -98,6 +98,11 @@ impl BSplineCurve {
         })
     }
 
+    /// The control points times their weights, and the weights: `(w·x, w·y, w·z, w)`.
+    pub fn homogeneous(&self) -> &[DVec4] {
+        &self.homogeneous
+    }
+
     /// The degree.
     pub fn degree(&self) -> usize {
         self.degree

@@ -64,6 +64,7 @@ pub mod io;
 pub mod mesh;
 mod placement;
 pub mod surface;
+mod sweep;
 pub mod trim;
 
 pub use bezier::{CheckMeshError, PreparedSurface};

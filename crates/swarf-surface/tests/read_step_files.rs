@@ -206,14 +206,14 @@ fn elementary_faces_take_their_bounds_and_orientation() {
          #24=ADVANCED_FACE('bore',(#22,#23),#5,.F.);\n\
          #30=PLANE('',#7);#31=FACE_OUTER_BOUND('',#20,.T.);#32=ADVANCED_FACE('',(#31),#30,.T.);\n\
          #40=CONICAL_SURFACE('',#4,3.,0.5);#41=ADVANCED_FACE('',(#22,#23),#40,.T.);\n\
-         #50=SURFACE_OF_REVOLUTION('',#8,#4);#51=ADVANCED_FACE('odd',(#22),#50,.T.);\n\
+         #50=CURVE_BOUNDED_SURFACE('',#30,(),.F.);#51=ADVANCED_FACE('odd',(#22),#50,.T.);\n\
          #60=TOROIDAL_SURFACE('',#4,10.,2.);#61=ADVANCED_FACE('',(#22),#60,.T.);\n\
          ENDSEC;\nEND-ISO-10303-21;\n"
     );
     let s = step::parse(&text).unwrap();
     assert_eq!(s.patches.len(), 4);
     assert!(s.notes.iter().any(|n| matches!(n, ReadNote::UnitsAssumed)));
-    assert!(s.notes.iter().any(|n| matches!(n, ReadNote::UnsupportedSurface { kind, .. } if kind == "SURFACE_OF_REVOLUTION")));
+    assert!(s.notes.iter().any(|n| matches!(n, ReadNote::UnsupportedSurface { kind, .. } if kind == "CURVE_BOUNDED_SURFACE")));
     // Bore: flipped, v from 1 to 4, normal towards the axis, concave curvature +1/3.
     let bore = &s.patches[0];
     assert_eq!(bore.name.as_deref(), Some("bore"));

@@ -9,6 +9,7 @@ use swarf_geom::Frame;
 
 use super::assembly::{place, Assembly, MAX_PLACED_CONTROL_POINTS, MAX_PLACED_TRIM_POINTS};
 use super::lex::{refs, show, Instance, Param};
+use super::swept::is_swept;
 use super::trims::{set_domain, MAX_FILE_TRIM_POINTS};
 use super::DEFAULT_LINEAR_RANGE;
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote, UnhonouredTrim};
@@ -402,10 +403,12 @@ impl Model<'_> {
             })
             .collect();
         // Assembly placements, in the file's units (each representation's, when they differ).
+        let bases = self.bases();
         let items: Vec<u64> = if faces.is_empty() {
             ids.iter()
                 .copied()
-                .filter(|id| supported(&self.map[id]))
+                .filter(|id| !bases.contains(id))
+                .filter(|id| supported(&self.map[id]) || is_swept(&self.map[id]))
                 .collect()
         } else {
             faces.clone()
@@ -425,10 +428,10 @@ impl Model<'_> {
         if faces.is_empty() {
             for &id in &ids {
                 let inst = &self.map[&id];
-                if !is_surface(inst) {
+                if !is_surface(inst) || bases.contains(&id) {
                     continue;
                 }
-                if !supported(inst) {
+                if !supported(inst) && !is_swept(inst) {
                     skipped.push(ReadNote::UnsupportedSurface {
                         entity: format!("#{id}"),
                         kind: kind_name(inst),
@@ -438,11 +441,21 @@ impl Model<'_> {
                 let index = out.patches.len();
                 (self.length, self.angle) = units_of(id, &units, &mut defaulted, file_units);
                 let mut notes = Vec::new();
-                let (surface, name) = self.surface(id, None, index, &mut notes)?;
+                let (surface, name, reversed) =
+                    match self.any_surface(id, None, index, &mut notes)? {
+                        Ok(s) => s,
+                        Err(why) => {
+                            skipped.push(ReadNote::UnsupportedSurface {
+                                entity: format!("#{id}"),
+                                kind: format!("{} ({why})", kind_name(inst)),
+                            });
+                            continue;
+                        }
+                    };
                 let patch = Patch {
                     name,
                     surface,
-                    flipped: false,
+                    flipped: reversed,
                     source: PatchSource {
                         file: None,
                         entity: EntityRef::Step {
@@ -464,7 +477,8 @@ impl Model<'_> {
                 let sid = self.reference(fid, p.get(2), "face geometry")?;
                 let same_sense = self.logical(fid, p.get(3), "same_sense")?;
                 let sinst = self.get(fid, sid)?;
-                if !supported(sinst) {
+                let skind = kind_name(sinst);
+                if !supported(sinst) && !is_swept(sinst) {
                     skipped.push(ReadNote::UnsupportedSurface {
                         entity: format!("#{sid} (face #{fid})"),
                         kind: kind_name(sinst),
@@ -475,8 +489,21 @@ impl Model<'_> {
                 let bounds = p.get(1).cloned();
                 (self.length, self.angle) = units_of(fid, &units, &mut defaulted, file_units);
                 let mut notes = Vec::new();
-                let (mut surface, sname) =
-                    self.surface(sid, bounds.as_ref().map(|b| (fid, b)), index, &mut notes)?;
+                let face = bounds.as_ref().map(|b| (fid, b));
+                let (mut surface, sname, reversed) =
+                    match self.any_surface(sid, face, index, &mut notes)? {
+                        Ok(s) => s,
+                        Err(why) => {
+                            skipped.push(ReadNote::UnsupportedSurface {
+                                entity: format!("#{sid} (face #{fid})"),
+                                kind: format!("{skind} ({why})"),
+                            });
+                            continue;
+                        }
+                    };
+                // A surface whose normal is the other way (a reversed rectangular trim): the
+                // face agrees with it the other way.
+                let same_sense = same_sense != reversed;
                 let by = format!("STEP face #{fid}");
                 let trim =
                     match self.face_trim(fid, bounds.as_ref(), same_sense, &surface, &mut budget) {

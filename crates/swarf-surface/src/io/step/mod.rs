@@ -2,7 +2,13 @@
 //!
 //! Read: `B_SPLINE_SURFACE_WITH_KNOTS` (simple, and the complex rational form with
 //! `RATIONAL_B_SPLINE_SURFACE`), `PLANE`, `CYLINDRICAL_SURFACE`, `CONICAL_SURFACE`,
-//! `SPHERICAL_SURFACE`, `TOROIDAL_SURFACE`.
+//! `SPHERICAL_SURFACE`, `TOROIDAL_SURFACE`; and, built on those or on curves (see `swept.rs`),
+//! `SURFACE_OF_REVOLUTION` and `SURFACE_OF_LINEAR_EXTRUSION` (exact NURBS of their swept line,
+//! conic, B-spline or polyline), `RECTANGULAR_TRIMMED_SURFACE` (its basis over the rectangle;
+//! one sense `.F.` reverses the normal, as ISO 10303-42 says), `OFFSET_SURFACE` of a plane,
+//! cylinder, cone, sphere or torus (the same kind; a B-spline's offset is skipped with a note)
+//! and `DEGENERATE_TOROIDAL_SURFACE` (the outer or the inner part). In a file without faces a
+//! surface that is the basis of a trim or an offset is read only through it.
 //!
 //! * **Patches**: when the file has faces (`ADVANCED_FACE`, `FACE_SURFACE`), one patch per face,
 //!   named after the face (or its surface), flipped when the face's `same_sense` is `.F.`;
@@ -133,6 +139,7 @@ mod curves;
 mod entities;
 mod lex;
 mod orient;
+mod swept;
 mod trims;
 
 use super::ReadError;
