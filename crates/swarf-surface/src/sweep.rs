@@ -1,3 +1,4 @@
+#![cfg_attr(not(test), allow(dead_code))] // `ruled` waits for the IGES 118 reader.
 //! Swept surfaces written exactly as NURBS: a curve (a rational B-spline; lines and conic arcs
 //! written as such) revolved about an axis, extruded along a vector, or ruled to a second curve.
 //! The STEP (`SURFACE_OF_REVOLUTION`, `SURFACE_OF_LINEAR_EXTRUSION`) and IGES (120, 122, 118)
