@@ -125,8 +125,12 @@ pub struct BadEdge {
 pub struct EdgeReport {
     /// Edges used by exactly one triangle.
     pub open: usize,
-    /// Edges used by three or more triangles.
+    /// Edges used by three or more triangles, not half of them each way.
     pub non_manifold: usize,
+    /// Edges used by four, six… triangles, half of them each way: closed bodies that touch
+    /// along an edge or a face (each body closed, the union's boundary well defined), not a
+    /// 2-manifold but no hole either.
+    pub touching: usize,
     /// Edges used by exactly two triangles that traverse it in the same direction (the two
     /// triangles are inconsistently oriented).
     pub misoriented: usize,
@@ -136,14 +140,15 @@ pub struct EdgeReport {
 }
 
 impl EdgeReport {
-    /// Open plus non-manifold edges.
+    /// Open plus non-manifold edges: those that leave the mesh without a well-defined inside
+    /// (edges where closed bodies touch do not).
     pub fn boundary_count(&self) -> usize {
         self.open + self.non_manifold
     }
 
     /// True when the mesh is closed, manifold at every edge and consistently oriented.
     pub fn is_clean(&self) -> bool {
-        self.open == 0 && self.non_manifold == 0 && self.misoriented == 0
+        self.open == 0 && self.non_manifold == 0 && self.misoriented == 0 && self.touching == 0
     }
 }
 
@@ -381,6 +386,7 @@ impl TriMesh {
                                 }
                             }
                             2 => {}
+                            n if n % 2 == 0 && 2 * forward == n => rep.touching += 1,
                             uses => {
                                 if uses == 1 {
                                     rep.open += 1;
@@ -403,6 +409,7 @@ impl TriMesh {
         for (r, m) in parts {
             rep.open += r.open;
             rep.non_manifold += r.non_manifold;
+            rep.touching += r.touching;
             rep.misoriented += r.misoriented;
             rep.examples.extend(r.examples);
             misoriented.extend(m);
@@ -465,9 +472,10 @@ impl TriMesh {
         let rep = self.edge_report();
         if !rep.is_clean() {
             return Some(format!(
-                "{} open, {} non-manifold, {} misoriented edges, e.g. {:?}",
+                "{} open, {} non-manifold ({} where bodies touch), {} misoriented edges, e.g. {:?}",
                 rep.open,
-                rep.non_manifold,
+                rep.non_manifold + rep.touching,
+                rep.touching,
                 rep.misoriented,
                 rep.examples.first()
             ));
@@ -1117,6 +1125,29 @@ mod tests {
     }
 
     #[test]
+    fn closed_bodies_touching_along_an_edge_leave_no_boundary() {
+        // Two tetrahedra sharing the edge 0–1, the second the first turned half a turn about
+        // X (its vertices 2, 3 at −Y, −Z, the same triangles): the shared edge is used four
+        // times, twice each way. Closed bodies that touch: no boundary, no 2-manifold either.
+        let mut two = tetra();
+        two.vertices
+            .extend([Vec3::new(0.0, -1.0, 0.0), Vec3::new(0.0, 0.0, -1.0)]);
+        two.triangles
+            .extend([[0, 4, 1], [0, 1, 5], [0, 5, 4], [1, 4, 5]]);
+        let r = two.edge_report();
+        assert_eq!((r.open, r.non_manifold, r.touching), (0, 0, 1), "{r:?}");
+        assert_eq!(r.boundary_count(), 0);
+        assert!(!r.is_clean());
+        assert!((two.volume() - 2.0 / 6.0).abs() < 1e-15);
+        // Three triangles on one edge (a fin) stay non-manifold.
+        let mut fin = tetra();
+        fin.vertices.push(Vec3::new(0.0, -1.0, 0.0));
+        fin.triangles.push([0, 1, 4]);
+        let r = fin.edge_report();
+        assert!(r.non_manifold > 0 && r.touching == 0, "{r:?}");
+    }
+
+    #[test]
     fn tetra_volume_area_closed() {
         let m = tetra();
         assert!((m.volume() - 1.0 / 6.0).abs() < 1e-15);
@@ -1213,7 +1244,8 @@ mod tests {
         keys.dedup();
         assert_eq!(keys.len(), 8);
         assert!((two.volume() - 2.0 / 6.0).abs() < 1e-6);
-        // Merging every coincident pair, as before, makes edges of four triangles.
+        // Merging every coincident pair, as before, makes edges of four triangles (two each
+        // way: bodies touching).
         let mut pinched = first;
         pinched.merge(&mirrored);
         for v in pinched.triangles.iter_mut().flatten() {
@@ -1221,7 +1253,7 @@ mod tests {
                 *v -= 4;
             }
         }
-        assert_eq!(pinched.edge_report().non_manifold, 3);
+        assert_eq!(pinched.edge_report().touching, 3);
     }
 
     #[test]
@@ -1314,6 +1346,7 @@ mod tests {
                     rep.open += 1;
                     bad.push(e);
                 }
+                (n, f) if n % 2 == 0 && 2 * f == n => rep.touching += 1,
                 _ => {
                     rep.non_manifold += 1;
                     bad.push(e);

@@ -124,7 +124,8 @@ impl MeshDesign {
     }
 
     /// The design bounded by `mesh`, which must be closed (every edge shared by exactly two
-    /// triangles) and consistently oriented; an inward-oriented mesh (negative volume) is
+    /// triangles, or by four, six… half of them each way where closed bodies touch) and
+    /// consistently oriented; an inward-oriented mesh (negative volume) is
     /// turned outwards.
     pub fn new(mesh: &swarf_io::TriMesh) -> Result<Self, VerifyError> {
         Self::named(mesh, Path::new("<mesh>"))
@@ -157,7 +158,9 @@ impl MeshDesign {
                 examples,
             });
         }
-        if !report.is_clean() {
+        // (Edges where closed bodies touch, used half each way, are no defect: the design is
+        // their union.)
+        if report.misoriented > 0 {
             return Err(bad(format!(
                 "{} edges whose two triangles disagree on orientation",
                 report.misoriented
@@ -251,5 +254,39 @@ impl Design for MeshDesign {
             self.mesh.indices().len(),
             self.volume
         )
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use swarf_geom::math::Vec3;
+
+    #[test]
+    fn closed_bodies_touching_along_an_edge_or_a_face_are_one_design() {
+        // Two boxes sharing a vertical edge, and two sharing a face, welded as an STL reader
+        // welds them: each body closed, the shared edges used four times (half each way).
+        let v = Vec3::new;
+        for (b, volume) in [
+            (
+                (v(20.0, 20.0, -20.0), v(40.0, 40.0, -1.0)),
+                2.0 * 400.0 * 19.0,
+            ),
+            (
+                (v(20.0, 0.0, -20.0), v(40.0, 20.0, -1.0)),
+                2.0 * 400.0 * 19.0,
+            ),
+        ] {
+            let mut m = swarf_io::TriMesh::cuboid(v(0.0, 0.0, -20.0), v(20.0, 20.0, -1.0));
+            m.merge(&swarf_io::TriMesh::cuboid(b.0, b.1));
+            let m = m.as_written();
+            assert!(m.edge_report().touching > 0);
+            let d = MeshDesign::new(&m).unwrap_or_else(|e| panic!("{e}"));
+            assert!((d.volume() - volume).abs() < 1e-9, "{}", d.volume());
+        }
+        // An open box is still refused.
+        let mut open = swarf_io::TriMesh::cuboid(Vec3::ZERO, Vec3::splat(1.0));
+        open.triangles.pop();
+        assert!(MeshDesign::new(&open).is_err());
     }
 }
