@@ -57,6 +57,27 @@ fn the_dialect_is_detected_and_can_be_forced() {
             "{linuxcnc}"
         );
     }
+    // The choice is said, at the line that decided it, unless the dialect is given.
+    let said = |src: &str, o: &GcodeOptions| -> Vec<(u32, String)> {
+        read_with(src, o)
+            .1
+            .into_iter()
+            .filter(|w| w.2.contains(" rules"))
+            .map(|w| (w.0, w.2))
+            .collect()
+    };
+    let w = said("G21 G90\nO1\nG0 X1.\nM30\n", &GcodeOptions::default());
+    assert!(
+        w.len() == 1 && w[0].0 == 2 && w[0].1.starts_with("read by Fanuc rules"),
+        "{w:?}"
+    );
+    let w = said("G21 (print,x)\nO1\nG0 X1.\nM30\n", &GcodeOptions::default());
+    assert!(
+        w.len() == 1 && w[0].1.contains("line 1 has something only LinuxCNC"),
+        "{w:?}"
+    );
+    assert!(said("G21 G90\nO1\nG0 X1.\nM30\n", &fanuc()).is_empty());
+    assert!(said("G21 G90\nG0 X1.\nM2\n", &GcodeOptions::default()).is_empty());
     for fanuc in [
         "O1\nG0 X1. ;\nM98 P1 ;\nM30 ;\n",
         "O1 (T1; 10 MM END MILL)\nM98 P1\n(MSG, CHECK)\nM30\n",

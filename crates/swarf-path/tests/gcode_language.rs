@@ -897,10 +897,12 @@ fn post_processor_spellings_read_as_written() {
             [-0.5, 5.0, -1.0],
         ]
     );
-    // (`G00 … G80` reads it by Fanuc's rules, which report `X 1 0`: no decimal point.)
+    // (`G00 … G80` reads it by Fanuc's rules, said at line 1, which report `X 1 0`: no
+    // decimal point.)
     let w: Vec<_> = rec.warnings.iter().map(|w| (w.line, w.column)).collect();
-    assert_eq!(w, [(6, 4)], "{:?}", rec.warnings);
-    assert!(rec.warnings[0]
+    assert_eq!(w, [(1, 1), (6, 4)], "{:?}", rec.warnings);
+    assert!(rec.warnings[0].message.starts_with("read by Fanuc rules"));
+    assert!(rec.warnings[1]
         .message
         .starts_with("X10 has no decimal point"));
 }

@@ -407,13 +407,40 @@ impl<'t, 's> Interp<'t, 's> {
                          programs through its own reader, which format detection chooses)"
                     ),
                     _ => format!(
-                        "this is a {d} program; swarf reads RS274/NGC (LinuxCNC), Fanuc-style \
-                         G-code and Heidenhain conversational programs"
+                        "this is a {d} program, read here as G-code (swarf reads RS274/NGC \
+                         (LinuxCNC), Fanuc-style G-code, Heidenhain conversational and Sinumerik \
+                         programs, each through its own reader, which format detection chooses)"
                     ),
                 },
                 raw.trim(),
                 "RS274/NGC G-code",
             ));
+        }
+        if self.opts.dialect.is_none() {
+            // Which rules the program is read by, and the line that decided it.
+            let (_, fanuc_at, linuxcnc_at) = GcodeDialect::detect_with_cues(&self.text);
+            let message = match (fanuc_at, linuxcnc_at) {
+                (Some(_), None) => Some(
+                    "read by Fanuc rules: this line shows a Fanuc habit (a bare program number, \
+                     M98/M99, Macro B, a Fanuc-only code or a dwell in milliseconds) and no line \
+                     has anything only LinuxCNC reads; --dialect linuxcnc reads it by LinuxCNC's"
+                        .to_string(),
+                ),
+                (Some(_), Some(l)) => Some(format!(
+                    "read by LinuxCNC rules although this line shows a Fanuc habit: line {l} has \
+                     something only LinuxCNC reads (o<name>, #<name>, a ; comment, (debug,…), \
+                     (print,…)); --dialect fanuc reads it by Fanuc's"
+                )),
+                _ => None,
+            };
+            if let (Some(message), Some(line)) = (message, fanuc_at) {
+                self.sink.warn(Warning {
+                    file: self.file.to_string(),
+                    line,
+                    column: 1,
+                    message,
+                });
+            }
         }
         // The tool table's offsets, which G10 L1/L10/L11 replace.
         self.tool_table = self.opts.tool_offsets.clone();

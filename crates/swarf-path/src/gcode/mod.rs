@@ -222,8 +222,36 @@ impl GcodeDialect {
     /// `(print,…)` and LinuxCNC's other active comments: LinuxCNC runs `M98`/`M99` programs
     /// too); LinuxCNC otherwise.
     pub fn detect(text: &str) -> Self {
+        Self::detect_with_cues(text).0
+    }
+
+    /// [`GcodeDialect::detect`], with the first line showing a Fanuc habit and the first
+    /// showing something only LinuxCNC reads (1-based), when there are such lines.
+    pub fn detect_with_cues(text: &str) -> (Self, Option<u32>, Option<u32>) {
+        let (mut fanuc_at, mut linuxcnc_at) = (None, None);
+        for (index, line) in lexer::lines(text).take(2000).enumerate() {
+            let (fanuc, linuxcnc) = Self::line_cues(line);
+            let n = index as u32 + 1;
+            if fanuc && fanuc_at.is_none() {
+                fanuc_at = Some(n);
+            }
+            if linuxcnc && linuxcnc_at.is_none() {
+                linuxcnc_at = Some(n);
+            }
+        }
+        let dialect = if fanuc_at.is_some() && linuxcnc_at.is_none() {
+            GcodeDialect::Fanuc
+        } else {
+            GcodeDialect::LinuxCnc
+        };
+        (dialect, fanuc_at, linuxcnc_at)
+    }
+
+    /// Whether one line shows a Fanuc habit, and whether it shows something only LinuxCNC
+    /// reads.
+    fn line_cues(line: &str) -> (bool, bool) {
         let (mut fanuc, mut linuxcnc) = (false, false);
-        for line in lexer::lines(text).take(2000) {
+        {
             if linuxcnc_comment(line) {
                 linuxcnc = true;
             }
@@ -287,11 +315,7 @@ impl GcodeDialect {
                 fanuc = true;
             }
         }
-        if fanuc && !linuxcnc {
-            GcodeDialect::Fanuc
-        } else {
-            GcodeDialect::LinuxCnc
-        }
+        (fanuc, linuxcnc)
     }
 }
 
