@@ -1,4 +1,3 @@
-#![cfg_attr(not(test), allow(dead_code))] // `ruled` waits for the IGES 118 reader.
 //! Swept surfaces written exactly as NURBS: a curve (a rational B-spline; lines and conic arcs
 //! written as such) revolved about an axis, extruded along a vector, or ruled to a second curve.
 //! The STEP (`SURFACE_OF_REVOLUTION`, `SURFACE_OF_LINEAR_EXTRUSION`) and IGES (120, 122, 118)
@@ -186,6 +185,50 @@ fn raised_line(pw: &[DVec4], p: usize) -> Option<(Vec<f64>, Vec<DVec4>)> {
     let mut knots = vec![0.0; p + 1];
     knots.extend(vec![1.0; p + 1]);
     Some((knots, pts))
+}
+
+/// The curves joined end to end into one (IGES 102): each member's parameters shifted to
+/// follow on from the last's, its weights scaled to meet the last's end weight (a rational
+/// curve is unchanged by scaling all its weights), a single line segment of a lower degree
+/// raised. `None` when the members differ in degree otherwise, one is not clamped (its ends
+/// not its end points), or one does not start within `tol` of where the last ends.
+pub(crate) fn join(curves: &[BSplineCurve], tol: f64) -> Option<BSplineCurve> {
+    let p = curves.iter().map(BSplineCurve::degree).max()?;
+    let mut knots: Vec<f64> = Vec::new();
+    let mut pw: Vec<DVec4> = Vec::new();
+    for c in curves {
+        let (t0, t1) = c.domain();
+        let (k, h) = if c.degree() < p {
+            let (k, h) = raised_line(c.homogeneous(), p)?;
+            (k.iter().map(|x| t0 + x * (t1 - t0)).collect(), h)
+        } else {
+            (c.knots().to_vec(), c.homogeneous().to_vec())
+        };
+        let n = h.len();
+        if k[..=p].iter().any(|&x| x != k[0]) || k[n..].iter().any(|&x| x != k[n]) {
+            return None;
+        }
+        match pw.last().copied() {
+            None => {
+                knots = k;
+                pw = h;
+            }
+            Some(last) => {
+                let (a, _) = split(last);
+                let (b, wb) = split(h[0]);
+                if !((a - b).length() <= tol) {
+                    return None;
+                }
+                let scale = last.w / wb;
+                let shift = knots[knots.len() - 1] - k[0];
+                knots.truncate(knots.len() - 1); // the joint: p copies
+                knots.extend(k[p + 1..].iter().map(|x| x + shift));
+                pw.extend(h[1..].iter().map(|q| *q * scale));
+            }
+        }
+    }
+    let (pts, ws): (Vec<Vec3>, Vec<f64>) = pw.iter().map(|&h| split(h)).unzip();
+    BSplineCurve::new(p, knots, &pts, &ws).ok()
 }
 
 /// The ruled surface from `c1` (v = 0) to `c2` (v = 1), joining the points of equal

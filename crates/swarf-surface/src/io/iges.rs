@@ -68,6 +68,8 @@
 //! by a 128 or a curve are applied. Hollerith strings (`5HHello`) and `D` exponents are
 //! understood.
 
+mod swept;
+
 use std::borrow::Cow;
 use std::collections::{HashMap, HashSet};
 use std::sync::Arc;
@@ -81,7 +83,7 @@ use super::{
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote, UnhonouredTrim};
 use crate::curve::{BSplineCurve, CurveError};
 use crate::surface::invert::{InvertError, Inverter};
-use crate::surface::{NurbsSurface, ParamBox, ParametricSurface, Surface};
+use crate::surface::{NurbsSurface, ParamBox, ParametricSurface, PlaneSurface, Surface};
 use crate::trim::{sample_curve, Trim, TrimError};
 
 /// A rational B-spline curve (entity 126), in mm (model-space curves) or in the surface's
@@ -161,6 +163,8 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
     let mut doc = IgesDocument::default();
     let mut patch_of_de = HashMap::new();
     let mut skipped = Vec::new();
+    // 108 planes with a bounding curve to map onto them: the entry, the patch, a hole.
+    let mut bounded = Vec::new();
     for e in &entries {
         match e.kind {
             128 => {
@@ -181,6 +185,40 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
                 });
             }
             126 => doc.curves.push(file.curve126(e, &entries, global.factor)?),
+            k if swept::READ.contains(&k) => {
+                match file.swept_surface(e, &entries, global.factor)? {
+                    Ok(m) => {
+                        let index = doc.surface.patches.len();
+                        patch_of_de.insert(e.de, index);
+                        if let Some(what) = m.defaulted {
+                            doc.surface.notes.push(ReadNote::DefaultParameterBox {
+                                patch: index,
+                                what: what.into(),
+                            });
+                        }
+                        if let Some(hole) = m.bound {
+                            bounded.push((e, index, hole));
+                        }
+                        doc.surface.patches.push(Patch {
+                            name: e.label.clone(),
+                            surface: m.surface,
+                            flipped: false,
+                            source: PatchSource {
+                                file: None,
+                                entity: EntityRef::Iges {
+                                    de: e.de,
+                                    entity_type: e.kind,
+                                },
+                            },
+                            trim: None,
+                        });
+                    }
+                    Err(why) => skipped.push(ReadNote::UnsupportedSurface {
+                        entity: format!("D{}", e.de),
+                        kind: format!("IGES {} ({why})", e.kind),
+                    }),
+                }
+            }
             k if SKIPPED_SURFACES.contains(&k) => skipped.push(ReadNote::UnsupportedSurface {
                 entity: format!("D{}", e.de),
                 kind: format!("IGES {}", e.kind),
@@ -209,6 +247,31 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
     // patch another entity trimmed then starts from the surface as the 128 gives it.
     let mut placements: Vec<Placement<'_>> = Vec::new();
     let mut points_left = MAX_FILE_TRIM_POINTS;
+    // A 108's bounding curve (form 1) or hole (form −1), in model space, mapped onto its plane.
+    for (e, k, hole) in bounded {
+        let p = file.params(e)?;
+        let t = file.transform(&entries, e)?;
+        let result = {
+            let surface = &doc.surface.patches[k].surface;
+            let mut sampler = Sampler::new(&file, &entries, surface, global.factor, points_left);
+            let budget = sampler.points_left;
+            let result = sampler.bound108(e, &p, t, hole, &surface.domain())?;
+            points_left -= budget - sampler.points_left;
+            result
+        };
+        let by = format!(
+            "IGES 108 at D{}, its {} mapped from its model-space curve",
+            e.de,
+            if hole { "hole" } else { "boundary" }
+        );
+        settle_trim(&mut doc, &mut claimed, (k, false), result, by, |why| {
+            UnhonouredTrim::Iges {
+                kind: 108,
+                de: e.de,
+                why,
+            }
+        });
+    }
     for e in entries.iter().filter(|e| e.kind == 144) {
         let p = file.params(e)?;
         let pts = p.int(1, "PTS")?;
@@ -338,13 +401,19 @@ fn check_surface_pointer(
             i,
             format!("surface {what} points at D{de}, which is not a directory entry"),
         )),
-        Some(s) if s.kind != 128 && !SKIPPED_SURFACES.contains(&s.kind) => Err(p.error(
+        Some(s)
+            if s.kind != 128
+                && !swept::READ.contains(&s.kind)
+                && !SKIPPED_SURFACES.contains(&s.kind) =>
+        {
+            Err(p.error(
             i,
             format!(
-                "surface {what} points at D{de}, an entity {}; expected a surface (128)",
-                s.kind
-            ),
-        )),
+                    "surface {what} points at D{de}, an entity {}; expected a surface (128, 108, 118, 120, 122 or 190)",
+                    s.kind
+                ),
+            ))
+        }
         Some(_) => Ok(()),
     }
 }
@@ -370,6 +439,9 @@ fn trim_patch<'e>(
 ) -> Result<usize, ReadError> {
     let surface = &doc.surface.patches[k].surface;
     let mut sampler = Sampler::new(file, entries, surface, factor, *points_left);
+    if let EntityRef::Iges { entity_type, .. } = doc.surface.patches[k].source.entity {
+        sampler.foreign = (entity_type != 128).then_some(entity_type);
+    }
     let budget = sampler.points_left;
     let result = build(&mut sampler, &surface.domain())?;
     *points_left -= budget - sampler.points_left;
@@ -461,8 +533,41 @@ fn transformed(
     t: &[f64; 12],
     factor: f64,
 ) -> Result<Surface, crate::surface::NurbsError> {
-    let Surface::Nurbs(n) = s else {
-        return Ok(s.clone());
+    let plane;
+    let n = match s {
+        Surface::Nurbs(n) => n,
+        Surface::Plane(pl) => {
+            // A rigid motion (or reflection) keeps it a plane; another map makes it a bilinear
+            // B-spline over its box, moved below.
+            let lin = |v: Vec3| apply(&Some(*t), v) - apply(&Some(*t), Vec3::ZERO);
+            let (x, y) = (lin(pl.frame.x), lin(pl.frame.y));
+            let unit = |a: f64| (a - 1.0).abs() <= 1e-9;
+            if unit(x.length()) && unit(y.length()) && x.dot(y).abs() <= 1e-9 {
+                let origin = apply(&Some(*t), pl.frame.origin / factor) * factor;
+                let frame = swarf_geom::Frame {
+                    origin,
+                    x,
+                    y,
+                    z: x.cross(y),
+                };
+                return Ok(Surface::Plane(PlaneSurface::new(frame, pl.domain)));
+            }
+            let d = pl.domain;
+            let corner = |u: f64, v: f64| pl.point(u, v);
+            plane = NurbsSurface::new(
+                1,
+                1,
+                vec![d.u[0], d.u[0], d.u[1], d.u[1]],
+                vec![d.v[0], d.v[0], d.v[1], d.v[1]],
+                &[
+                    vec![corner(d.u[0], d.v[0]), corner(d.u[0], d.v[1])],
+                    vec![corner(d.u[1], d.v[0]), corner(d.u[1], d.v[1])],
+                ],
+                None,
+            )?;
+            &plane
+        }
+        _ => return Ok(s.clone()),
     };
     let (nu, nv) = n.net_size();
     let points: Vec<Vec<Vec3>> = (0..nu)
@@ -488,7 +593,7 @@ fn transformed(
 
 /// Surface entities that are not read: a patch on one is skipped with a
 /// [`ReadNote::UnsupportedSurface`].
-const SKIPPED_SURFACES: [u32; 11] = [108, 114, 118, 120, 122, 140, 190, 192, 194, 196, 198];
+const SKIPPED_SURFACES: [u32; 6] = [114, 140, 192, 194, 196, 198];
 
 /// Most points of all the trims of a file (a guard against files that repeat a costly trim).
 const MAX_FILE_TRIM_POINTS: usize = 4_000_000;
@@ -545,6 +650,10 @@ struct Sampler<'s, 'a> {
     model: ModelSpace<'s>,
     /// The boundaries (142s, 141s) whose loops came from their model-space curves.
     from_model: Vec<IgesBoundary>,
+    /// The kind of surface whose parameters the patch does not share (its B-spline is not
+    /// parametrised as the IGES entity is: a 108, 118, 120, 122 or 190), if it is one: its
+    /// boundaries are read from their model-space curves.
+    foreign: Option<u32>,
 }
 
 impl<'s, 'a> Sampler<'s, 'a> {
@@ -588,6 +697,7 @@ impl<'s, 'a> Sampler<'s, 'a> {
                 last: None,
             },
             from_model: Vec::new(),
+            foreign: None,
         }
     }
 }
@@ -883,7 +993,7 @@ impl Sampler<'_, '_> {
             let k = q.count(at + 2, "K")?;
             let mut piece = None;
             let mut failed = None;
-            if kind == 1 && k > 0 {
+            if kind == 1 && k > 0 && self.foreign.is_none() {
                 self.unsupported = false;
                 let mut pts = Vec::new();
                 for c in 0..k {
@@ -905,6 +1015,12 @@ impl Sampler<'_, '_> {
                     return Ok(Err(TrimFailure::Boundary {
                         de: b141,
                         reason: Box::new(why),
+                    }))
+                }
+                (None, _) if q.int(at, "CRVPT")? == 0 && k > 0 && self.foreign.is_some() => {
+                    return Ok(Err(TrimFailure::Boundary {
+                        de: b141,
+                        reason: Box::new(self.foreign_parameters(e, q.int(at + 3, "PSCPT")?)),
                     }))
                 }
                 (None, _) if q.int(at, "CRVPT")? == 0 => {
@@ -947,6 +1063,66 @@ impl Sampler<'_, '_> {
         Ok(Ok(out))
     }
 
+    /// Why the parameter-space curve `de` of the boundary `e` is not used: the patch is not
+    /// parametrised as the IGES surface is.
+    fn foreign_parameters(&self, e: &Entry, de: i64) -> TrimFailure {
+        TrimFailure::Entity(Box::new(ReadError::Entity {
+            format: Format::Iges,
+            line: e.line,
+            entity: format!("its parameter-space curve D{de}"),
+            message: format!(
+                "it is in the parameters of the IGES {} surface, which its B-spline or plane here \
+                 does not share, and the boundary has no model-space curve",
+                self.foreign.unwrap_or(0)
+            ),
+        }))
+    }
+
+    /// The trim of the 108 `e` (parameters `p`, its own transformation `t`) by its bounding
+    /// curve PTR, in model space, mapped onto its plane over `domain`: the outer boundary, or a
+    /// hole (form −1).
+    fn bound108(
+        &mut self,
+        e: &Entry,
+        p: &Params,
+        t: Option<[f64; 12]>,
+        hole: bool,
+        domain: &ParamBox,
+    ) -> Result<Built<Trim>, ReadError> {
+        let b = IgesBoundary {
+            kind: 108,
+            de: e.de,
+        };
+        self.model.de = b;
+        self.model.last = None;
+        let l = match self.curve(p, 5, "PTR", t, 0, Space::Model) {
+            Ok(Ok(l)) => match self.model.check_loop(&l) {
+                Ok(()) => l,
+                Err(why) => return Ok(Err(why)),
+            },
+            Ok(Err(why)) if why.names_its_boundary() => return Ok(Err(why)),
+            Ok(Err(why)) => {
+                return Ok(Err(TrimFailure::Boundary {
+                    de: b,
+                    reason: Box::new(why),
+                }))
+            }
+            Err(err) => {
+                return Ok(Err(TrimFailure::ModelUnreadable {
+                    de: b,
+                    reason: Box::new(err),
+                }))
+            }
+        };
+        self.from_model.push(b);
+        let (outer, holes) = if hole {
+            (None, vec![l])
+        } else {
+            (Some(l), Vec::new())
+        };
+        Ok(Trim::new(domain, outer, holes).map_err(TrimFailure::Trim))
+    }
+
     /// The loop of the 142 named by parameter `i` of `p`: from its parameter-space curve
     /// (BPTR), or, when it has none or one of a kind not evaluated, from its model-space curve
     /// (CPTR) mapped onto the patch.
@@ -977,7 +1153,13 @@ impl Sampler<'_, '_> {
             de: e.de,
         };
         let mut failed = None;
-        if bptr != 0 {
+        if bptr != 0 && cptr == 0 && self.foreign.is_some() {
+            return Ok(Err(TrimFailure::Boundary {
+                de: b142,
+                reason: Box::new(self.foreign_parameters(e, bptr)),
+            }));
+        }
+        if bptr != 0 && self.foreign.is_none() {
             self.unsupported = false;
             match self.curve(&q, 3, "BPTR", None, 0, Space::Parameter)? {
                 Ok(l) => return Ok(Ok(l)),
@@ -1303,6 +1485,8 @@ struct Entry {
     pointer: usize,
     lines: usize,
     transform: usize,
+    /// The form number (DE field 15).
+    form: i64,
     label: Option<String>,
 }
 
@@ -1565,6 +1749,7 @@ impl<'a> Sections<'a> {
                 pointer: int(a, 1, "parameter data pointer")?,
                 lines: int(b, 3, "parameter line count")?,
                 transform: int(a, 6, "transformation matrix pointer")?,
+                form: field(b, 4).parse::<i64>().unwrap_or(0),
                 label: (!label.is_empty()).then_some(label),
             });
         }
