@@ -161,13 +161,28 @@ fn solid_faces_planes_and_subfigures_are_said() {
         "{:?}",
         s.notes
     );
-    // A 108 plane beside it: not read, and said (so a gouge check is not certified).
+    // A 108 plane beside it: read as the plane x = 50 over the default box, said.
     let mut f = Iges::default();
     f.add(128, PLATE);
     f.add(108, "1.,0.,0.,50.,0,0.,0.,0.,0.");
     let s = iges::parse(&f.text("2,2HMM")).unwrap();
     assert!(
-        matches!(&s.notes[..], [ReadNote::UnsupportedSurface { kind, .. }] if kind == "IGES 108"),
+        matches!(
+            &s.notes[..],
+            [ReadNote::DefaultParameterBox { patch: 1, .. }]
+        ),
+        "{:?}",
+        s.notes
+    );
+    assert!((s.patches[1].surface.point(3.0, -7.0).x - 50.0).abs() < 1e-12);
+    // A surface kind still not read (114, parametric spline surface): skipped, said (so a gouge
+    // check is not certified).
+    let mut f = Iges::default();
+    f.add(128, PLATE);
+    f.add(114, "1,1,1,1");
+    let s = iges::parse(&f.text("2,2HMM")).unwrap();
+    assert!(
+        matches!(&s.notes[..], [ReadNote::UnsupportedSurface { kind, .. }] if kind == "IGES 114"),
         "{:?}",
         s.notes
     );

@@ -46,9 +46,29 @@
 //! reversed where its SENSE is 2; the loop enclosing the largest area in the parameters is the
 //! outer boundary, the others holes (the 143 does not say which is which). The faces (510) of a
 //! manifold solid B-rep (186) leave their surfaces untrimmed with a
-//! [`ReadNote::TrimNotHonoured`] each (their 508 loops are not read); a 108 plane is skipped
-//! with a [`ReadNote::UnsupportedSurface`]; a subfigure instance (408) is not applied, with a
-//! [`ReadNote::PlacementNotApplied`] (its subfigure's surfaces are read where it defines them).
+//! [`ReadNote::TrimNotHonoured`] each (their 508 loops are not read); a subfigure instance (408)
+//! is not applied, with a [`ReadNote::PlacementNotApplied`] (its subfigure's surfaces are read
+//! where it defines them).
+//!
+//! **Swept surfaces and planes** (module `swept`). A 120 (surface of revolution; u the
+//! generatrix's parameter, v the turn from SA to TA, counter-clockwise about the axis line's
+//! direction), a 122 (tabulated cylinder; u the directrix's, v from 0 to 1 along the generatrix)
+//! and a 118 (ruled surface; u along the curves, v from the first to the second) are exact
+//! rational B-splines of their curves (110, 100, 126 within its range, 102 of these joined)
+//! built by `crate::sweep`. A 118 is read where its rulings can be made exactly: form 0 (equal
+//! relative arc length) between two lines or two circular arcs of one sweep, form 1 (equal
+//! relative parameter) between lines, 126s and 102s of them, or two arcs of one sweep (an arc's
+//! B-spline parameter is not its angle); otherwise, as for curves of other kinds, it is skipped
+//! with a [`ReadNote::UnsupportedSurface`] that says why. DEVFLG is not needed. A 190 (plane
+//! surface: its 116 point, 123 normal and, form 1, 123 reference direction along u) and a 108
+//! (plane Ax + By + Cz = D, about the foot of its display symbol) are planes over
+//! [`crate::io::step::DEFAULT_LINEAR_RANGE`]² with a [`ReadNote::DefaultParameterBox`]; a 108 of
+//! form 1 with a curve spans the box of the curve's control points and is trimmed by the curve
+//! (form −1: holed by it), mapped from model space as a 142's model-space curve is. Each is
+//! moved by its own 124 and scaled to mm as a 128. A 144 or 143 on one of them reads its
+//! boundaries through their model-space curves (the patch is not parametrised as the IGES
+//! surface is); a boundary with only a parameter-space curve leaves the patch untrimmed with a
+//! [`ReadNote::TrimNotHonoured`].
 //!
 //! The fixed-column format: 80-column records (ending in LF, CRLF or a lone CR, or with no line
 //! ends at all, every 80 bytes), section letter in column 73 (S, G, D, P, T),
