@@ -281,3 +281,51 @@ fn the_text_summary_prints_numbers_not_debug_options() {
         "{text}"
     );
 }
+
+#[test]
+fn faces_the_reader_could_not_carry_over_are_counted_and_said() {
+    // A floor plane and a face on a surface kind the STEP reader does not evaluate: the radii
+    // take no account of that face, which the summary (skipped_faces, with the note) and
+    // stderr say; verify with the same file as its design says it too.
+    let dir = swarf_testdata::scratch_dir("toolsize-caveats");
+    let step = "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n\
+        #1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));\n\
+        #4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=PLANE('',#4);\n\
+        #6=CARTESIAN_POINT('',(0.,0.,0.));#7=VERTEX_POINT('',#6);\n\
+        #8=CARTESIAN_POINT('',(20.,20.,0.));#9=VERTEX_POINT('',#8);\n\
+        #10=VERTEX_LOOP('',#7);#11=FACE_BOUND('',#10,.T.);#12=VERTEX_LOOP('',#9);#13=FACE_BOUND('',#12,.T.);\n\
+        #14=ADVANCED_FACE('floor',(#11,#13),#5,.T.);\n\
+        #25=CURVE_BOUNDED_SURFACE('',#5,(),.F.);#26=ADVANCED_FACE('odd',(),#25,.T.);\n\
+        ENDSEC;\nEND-ISO-10303-21;\n";
+    let surface = dir.join("part.step");
+    std::fs::write(&surface, step).unwrap();
+    let out = dir.join("out");
+    let o = swarf(&[
+        "toolsize",
+        "--surface",
+        surface.to_str().unwrap(),
+        "--cutter",
+        "ball",
+        "--grid",
+        "3",
+        "--out",
+        out.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(s["skipped_faces"], 1, "{s}");
+    assert_eq!(s["untrimmed_faces"], 0, "{s}");
+    assert!(s["skipped_face_notes"][0]
+        .as_str()
+        .unwrap()
+        .contains("CURVE_BOUNDED_SURFACE"));
+    assert!(
+        stderr(&o).contains("warning: 1 face(s) of the surface were not read"),
+        "{}",
+        stderr(&o)
+    );
+    let file: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(file["skipped_faces"], 1);
+}

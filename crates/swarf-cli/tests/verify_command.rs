@@ -313,3 +313,31 @@ fn a_design_exported_with_its_fixture_is_compared_where_the_stock_is() {
         stderr(&o)
     );
 }
+
+#[test]
+fn a_surface_design_with_faces_not_read_says_so() {
+    // The top of the part as a STEP plane at z = 10, and a face of a kind the reader does not
+    // evaluate: the summary counts it (skipped_faces) and stderr says what it means.
+    let dir = temp_dir("verify-caveats");
+    let (program, _) = gouging_program(&dir);
+    let step = "ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n\
+        #1=CARTESIAN_POINT('',(0.,0.,10.));#2=DIRECTION('',(0.,0.,1.));#3=DIRECTION('',(1.,0.,0.));\n\
+        #4=AXIS2_PLACEMENT_3D('',#1,#2,#3);#5=PLANE('',#4);\n\
+        #6=CARTESIAN_POINT('',(20.,20.,10.));#7=VERTEX_POINT('',#6);\n\
+        #8=CARTESIAN_POINT('',(60.,60.,10.));#9=VERTEX_POINT('',#8);\n\
+        #10=VERTEX_LOOP('',#7);#11=FACE_BOUND('',#10,.T.);#12=VERTEX_LOOP('',#9);#13=FACE_BOUND('',#12,.T.);\n\
+        #14=ADVANCED_FACE('top',(#11,#13),#5,.T.);\n\
+        #25=CURVE_BOUNDED_SURFACE('',#5,(),.F.);#26=ADVANCED_FACE('odd',(),#25,.T.);\n\
+        ENDSEC;\nEND-ISO-10303-21;\n";
+    let design = dir.join("part.step");
+    std::fs::write(&design, step).unwrap();
+    let o = run(&dir, &program, &design, &["--json", "--resolution", "1"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s: serde_json::Value = serde_json::from_str(&stdout(&o)).unwrap();
+    assert_eq!(s["skipped_faces"], 1, "{s}");
+    assert!(
+        stderr(&o).contains("warning: 1 face(s) of the surface were not read"),
+        "{}",
+        stderr(&o)
+    );
+}

@@ -463,7 +463,55 @@ pub fn file_safe(label: &str) -> String {
         .collect()
 }
 
+/// What a surface's reader could not carry over, by kind, with the reader's note on each:
+/// what a check on the surface cannot vouch for.
+#[derive(Clone, Debug, Default, PartialEq, serde::Serialize)]
+pub struct Caveats {
+    /// Faces (or surfaces) skipped, of kinds the reader does not evaluate: nothing is known
+    /// of them.
+    pub skipped_faces: usize,
+    /// The notes on them.
+    pub skipped_face_notes: Vec<String>,
+    /// Faces whose trim the reader could not honour, used on their whole surface.
+    pub untrimmed_faces: usize,
+    /// The notes on them.
+    pub untrimmed_face_notes: Vec<String>,
+    /// Assembly placements the reader could not apply (their parts may be misplaced).
+    pub unapplied_placements: usize,
+    /// The notes on them.
+    pub unapplied_placement_notes: Vec<String>,
+}
+
+impl Caveats {
+    /// Nothing was left out or approximated.
+    pub fn is_empty(&self) -> bool {
+        self.skipped_faces == 0 && self.untrimmed_faces == 0 && self.unapplied_placements == 0
+    }
+}
+
 impl CompoundSurface {
+    /// What the reader could not carry over ([`Caveats`]), from its notes.
+    pub fn caveats(&self) -> Caveats {
+        let of = |keep: fn(&ReadNote) -> bool| -> Vec<String> {
+            self.notes
+                .iter()
+                .filter(|n| keep(n))
+                .map(ToString::to_string)
+                .collect()
+        };
+        let skipped = of(|n| matches!(n, ReadNote::UnsupportedSurface { .. }));
+        let untrimmed = of(|n| matches!(n, ReadNote::TrimNotHonoured { .. }));
+        let unplaced = of(|n| matches!(n, ReadNote::PlacementNotApplied { .. }));
+        Caveats {
+            skipped_faces: skipped.len(),
+            skipped_face_notes: skipped,
+            untrimmed_faces: untrimmed.len(),
+            untrimmed_face_notes: untrimmed,
+            unapplied_placements: unplaced.len(),
+            unapplied_placement_notes: unplaced,
+        }
+    }
+
     /// The surface moved by the rigid motion `m` (a part placed in the program's frame): every
     /// patch's geometry moved, its parameters — and so its trim, name, orientation and source —
     /// as they are, the notes kept.

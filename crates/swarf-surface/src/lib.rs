@@ -69,7 +69,8 @@ pub mod trim;
 
 pub use bezier::{CheckMeshError, PreparedSurface};
 pub use compound::{
-    CcPoint, CcPointError, CompoundSurface, EntityRef, Patch, PatchSource, ReadNote, UnhonouredTrim,
+    Caveats, CcPoint, CcPointError, CompoundSurface, EntityRef, Patch, PatchSource, ReadNote,
+    UnhonouredTrim,
 };
 pub use curve::{BSplineCurve, CurveError};
 pub use mesh::{tessellate, SurfaceMesh};

@@ -120,6 +120,10 @@ struct VerifySummary<'a> {
     simulation: &'a SimulateSummary,
     regions: &'a [Region],
     histogram: &'a swarf_verify::Histogram,
+    /// What the design's reader could not carry over (a surface design; empty for a mesh):
+    /// `skipped_faces`, `untrimmed_faces`, `unapplied_placements` with their notes.
+    #[serde(flatten)]
+    design_caveats: swarf_surface::Caveats,
 }
 
 pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
@@ -139,7 +143,8 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
         positive_mm("color-range", r)?;
     }
     // The design first: a bad design file fails before any simulation.
-    let design = load_design(&args.design, args.flip, args.part_at.as_ref())?;
+    let (design, design_caveats) = load_design(&args.design, args.flip, args.part_at.as_ref())?;
+    crate::commands::toolsize::caveats_said(&design_caveats, "deviations");
     let job = load_job(&args.setup, &args.program)?;
     let tools = defined_tools(&job)?;
     let resolved = tools.resolved();
@@ -235,6 +240,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
         simulation: &sim,
         regions: &v.regions,
         histogram: &v.histogram,
+        design_caveats,
     };
     let mut json = serde_json::to_vec_pretty(&summary)?;
     json.push(b'\n');
@@ -290,7 +296,7 @@ fn load_design(
     path: &Path,
     flip: bool,
     at: Option<&swarf_geom::RigidMotion>,
-) -> Result<Box<dyn Design>> {
+) -> Result<(Box<dyn Design>, swarf_surface::Caveats)> {
     let ext = path
         .extension()
         .and_then(|e| e.to_str())
@@ -300,7 +306,10 @@ fn load_design(
         if flip {
             bail!("--flip applies to surface designs (JSON, STEP, IGES), not to an STL solid");
         }
-        return Ok(Box::new(MeshDesign::read_stl_at(path, at)?));
+        return Ok((
+            Box::new(MeshDesign::read_stl_at(path, at)?),
+            swarf_surface::Caveats::default(),
+        ));
     }
     if swarf_surface::io::Format::from_path(path).is_none() {
         bail!(
@@ -323,7 +332,7 @@ fn load_design(
             .map_err(|why| anyhow::anyhow!("design {}: placing it: {why}", path.display()))?;
     }
     match SurfaceDesign::new(&surface, 0.0) {
-        Some(d) => Ok(Box::new(d)),
+        Some(d) => Ok((Box::new(d), surface.caveats())),
         None => bail!("design {}: no surface patches", path.display()),
     }
 }

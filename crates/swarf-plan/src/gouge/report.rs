@@ -6,7 +6,7 @@ use std::io::{self, Write};
 use serde::Serialize;
 
 use super::{GougeOptions, GougeReport, SurfaceRef, ViolationKind};
-use swarf_surface::{CompoundSurface, ReadNote};
+use swarf_surface::CompoundSurface;
 
 /// The JSON summary (field names are a contract).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -81,24 +81,7 @@ impl GougeReport {
         moves: usize,
         elapsed_s: f64,
     ) -> GougeSummary {
-        let skipped: Vec<String> = surface
-            .notes
-            .iter()
-            .filter(|n| matches!(n, ReadNote::UnsupportedSurface { .. }))
-            .map(ToString::to_string)
-            .collect();
-        let unplaced: Vec<String> = surface
-            .notes
-            .iter()
-            .filter(|n| matches!(n, ReadNote::PlacementNotApplied { .. }))
-            .map(ToString::to_string)
-            .collect();
-        let untrimmed: Vec<String> = surface
-            .notes
-            .iter()
-            .filter(|n| matches!(n, ReadNote::TrimNotHonoured { .. }))
-            .map(ToString::to_string)
-            .collect();
+        let caveats = surface.caveats();
         GougeSummary {
             points: self.points.len(),
             moves,
@@ -110,17 +93,14 @@ impl GougeReport {
             interfering_points: self.points_with(ViolationKind::Interference),
             max_gouge_mm: self.max_depth(ViolationKind::Gouge),
             max_interference_mm: self.max_depth(ViolationKind::Interference),
-            certified: self.unresolved == 0
-                && skipped.is_empty()
-                && untrimmed.is_empty()
-                && unplaced.is_empty(),
+            certified: self.unresolved == 0 && caveats.is_empty(),
             unresolved_searches: self.unresolved,
-            skipped_faces: skipped.len(),
-            skipped_face_notes: skipped,
-            untrimmed_faces: untrimmed.len(),
-            untrimmed_face_notes: untrimmed,
-            unapplied_placements: unplaced.len(),
-            unapplied_placement_notes: unplaced,
+            skipped_faces: caveats.skipped_faces,
+            skipped_face_notes: caveats.skipped_face_notes,
+            untrimmed_faces: caveats.untrimmed_faces,
+            untrimmed_face_notes: caveats.untrimmed_face_notes,
+            unapplied_placements: caveats.unapplied_placements,
+            unapplied_placement_notes: caveats.unapplied_placement_notes,
             nodes: self.nodes,
             tolerance_mm: opts.tolerance,
             accuracy_mm: opts.accuracy,
