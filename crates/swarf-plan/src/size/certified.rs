@@ -232,7 +232,8 @@ impl Search<'_> {
     /// Rigorous lower bound of the imaginary size over the hull of the piece's control net, and
     /// the direction in which to split the piece next (the parameter along which the control
     /// net spreads most in the best separating direction: the other one does not limit the
-    /// bound, so splitting it would only multiply nodes along a line of ties).
+    /// bound, so splitting it would only multiply nodes along a line of ties; where the ball's
+    /// Bernstein bound is the better one, the parameter that bound needs, see [`SphereBound`]).
     fn lower_bound(&mut self, pc: &Piece) -> (f64, usize) {
         self.nodes += 1;
         let mut cps = std::mem::take(&mut self.cps);
@@ -343,13 +344,28 @@ impl Search<'_> {
             }
         }
         self.clipped = clipped;
-        let dir = if pc.check {
+        let mut dir = if pc.check {
             triangle_split_edge(pc.triangle(), c, best_nu)
         } else {
             split_direction(pc, &cps, c, best_nu)
         };
+        // Where the Bernstein bound beats the planes it is the one to refine: split along the
+        // parameter that brings its limiting coefficient to the polynomial (see
+        // [`SphereBound::dir`]), not along the planes' choice. On a line of ties across the
+        // parameter lines (a concave cylinder of the ball's radius, the tie circle at a CC point
+        // off the dyadic splits) the planes' choice and its aspect cap cut the line into
+        // thousands of short nodes the Bernstein bound never needed.
+        let sphere = |lb: &mut f64, dir: &mut usize| {
+            let s = sphere_bound(pc, c, self.c.normal, slack);
+            if s.lb > *lb {
+                *lb = s.lb;
+                if let Some(d) = s.dir {
+                    *dir = d;
+                }
+            }
+        };
         if *self.family == CutterFamily::Sphere {
-            lb = lb.max(sphere_bound(pc, c, self.c.normal, slack));
+            sphere(&mut lb, &mut dir);
         } else if let (CutterFamily::TaperBall { taper }, Regime::Ball) =
             (*self.family, self.regime)
         {
@@ -374,7 +390,7 @@ impl Search<'_> {
             let far = l_h.is_finite()
                 && dx.hypot(dy) > l_h * (1.0 + nh) + (zmax - c.z).max(0.0) * taper.tan() + slack;
             if lb >= l_h || far {
-                lb = lb.max(sphere_bound(pc, c, self.c.normal, slack));
+                sphere(&mut lb, &mut dir);
             }
         }
         self.cps = cps;
@@ -525,10 +541,22 @@ const WITNESS_STEPS: usize = 2;
 /// Largest ratio of a node's long side to its short side that the split choice tolerates.
 const MAX_ASPECT: f64 = 8.0;
 
+/// The Bernstein bound of a piece ([`sphere_bound`]) and where to split the piece to raise it.
+struct SphereBound {
+    lb: f64,
+    /// The parameter (0: u, 1: v) along which the limiting coefficient is farthest from the
+    /// polynomial (its second difference along that parameter, at the bound's level): halving
+    /// along it divides that difference by 4, halving along the other cannot move it at all
+    /// when the coefficient lies on an edge of the other parameter. `None` when nothing limits
+    /// the bound or the piece's net is too long and thin for more of the same (then the
+    /// planes' choice stands). Only speed depends on it, never the bound.
+    dir: Option<usize>,
+}
+
 /// Lower bound of the sphere-only imaginary size over a piece, by Bernstein positivity of
 /// `w²·(|S − C|² − 2L·n·(S − C))` (see the module docs). `slack` (mm): a coefficient of the
 /// normal offset this close to zero counts as touching.
-fn sphere_bound(pc: &Piece, c: Vec3, n: Vec3, slack: f64) -> f64 {
+fn sphere_bound(pc: &Piece, c: Vec3, n: Vec3, slack: f64) -> SphereBound {
     let (p, q) = (pc.p, pc.q);
     let (du, dv) = (2 * p + 1, 2 * q + 1);
     let mut a = vec![0.0; du * dv];
@@ -559,15 +587,73 @@ fn sphere_bound(pc: &Piece, c: Vec3, n: Vec3, slack: f64) -> f64 {
     let wmax = pc.net.iter().map(|h| h.w).fold(0.0, f64::max);
     let b_slack = slack * wmax * wmax;
     let mut lb = f64::INFINITY;
-    for (ak, bk) in a.iter().zip(&b) {
+    let mut at = None;
+    for (k, (ak, bk)) in a.iter().zip(&b).enumerate() {
         if *bk > b_slack {
-            lb = lb.min(ak / (2.0 * bk));
+            let l = ak / (2.0 * bk);
+            if l < lb {
+                lb = l;
+                at = Some(k);
+            }
         } else if *ak < 0.0 {
-            return 0.0;
+            lb = 0.0;
+            at = Some(k);
+            break;
         }
     }
-    lb.max(0.0)
+    let lb = lb.max(0.0);
+    let dir = at.and_then(|k| {
+        // The net's extents: past MAX_SPHERE_ASPECT the long side is split whatever the
+        // coefficients say, so that every node keeps getting smaller.
+        let (m, r) = (p, q);
+        let pt = |i: usize, j: usize| pc.point(i, j);
+        let eu = (pt(m, 0) - pt(0, 0))
+            .length()
+            .max((pt(m, r) - pt(0, r)).length());
+        let ev = (pt(0, r) - pt(0, 0))
+            .length()
+            .max((pt(m, r) - pt(m, 0)).length());
+        if eu > MAX_SPHERE_ASPECT * ev {
+            return Some(0);
+        }
+        if ev > MAX_SPHERE_ASPECT * eu {
+            return Some(1);
+        }
+        let f = |k: usize, l: usize| a[k * dv + l] - 2.0 * lb * b[k * dv + l];
+        let (k, l) = (k / dv, k % dv);
+        let second = |interior: bool, lo: f64, mid: f64, hi: f64| {
+            if interior {
+                (lo - 2.0 * mid + hi).abs()
+            } else {
+                0.0
+            }
+        };
+        let d_u = second(
+            k > 0 && k + 1 < du,
+            f(k.saturating_sub(1), l),
+            f(k, l),
+            f((k + 1).min(du - 1), l),
+        );
+        let d_v = second(
+            l > 0 && l + 1 < dv,
+            f(k, l.saturating_sub(1)),
+            f(k, l),
+            f(k, (l + 1).min(dv - 1)),
+        );
+        if d_u > d_v {
+            Some(0)
+        } else if d_v > d_u {
+            Some(1)
+        } else {
+            None
+        }
+    });
+    SphereBound { lb, dir }
 }
+
+/// Largest ratio of a node's long side to its short side that the Bernstein bound's split
+/// choice tolerates (a line of ties wants long thin nodes along it: 50 mm by a few µm).
+const MAX_SPHERE_ASPECT: f64 = 1e6;
 
 fn binomials(n: usize) -> Vec<f64> {
     let mut out = vec![1.0; n + 1];
