@@ -216,7 +216,7 @@ pub(crate) fn join(curves: &[BSplineCurve], tol: f64) -> Option<BSplineCurve> {
             Some(last) => {
                 let (a, _) = split(last);
                 let (b, wb) = split(h[0]);
-                if !((a - b).length() <= tol) {
+                if (a - b).length().is_nan() || (a - b).length() > tol {
                     return None;
                 }
                 let scale = last.w / wb;

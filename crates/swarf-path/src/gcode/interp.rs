@@ -2652,10 +2652,10 @@ impl Interp<'_, '_> {
             4006 => g(if self.units == Units::Inch { 200 } else { 210 }),
             4007 => g(self.read_only.ccomp),
             4008 => g(if self.read_only.tlo_on { 430 } else { 490 }),
-            4009 => g(match self.motion {
-                Some(m @ (730 | 740 | 810..=890)) => m,
-                _ => 800,
-            }),
+            4009 => g(self
+                .motion
+                .filter(|m| matches!(m, 730 | 740 | 810..=890))
+                .unwrap_or(800)),
             4010 => g(if self.retract_r { 990 } else { 980 }),
             4011 => g(if self.g51.is_some() { 510 } else { 500 }),
             4012 => g(670),

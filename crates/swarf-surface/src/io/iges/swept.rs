@@ -119,7 +119,7 @@ impl Sections<'_> {
         };
         let l = Vec3::new(p.real(2, "LX")?, p.real(3, "LY")?, p.real(4, "LZ")?) * factor;
         let v = l - c.point(c.domain().0);
-        if !(v.length() > 0.0) {
+        if v.length().is_nan() || v.length() <= 0.0 {
             return Ok(Err(
                 "its generatrix has no length (LX, LY, LZ is the directrix's start point)".into(),
             ));
@@ -188,7 +188,7 @@ impl Sections<'_> {
             Ok(v) => v,
             Err(why) => return Ok(Err(why)),
         };
-        if !(n.length() > 0.0) {
+        if n.length().is_nan() || n.length() <= 0.0 {
             return Ok(Err("its normal DENRML has no length".into()));
         }
         let frame = if e.form == 1 {
@@ -219,7 +219,7 @@ impl Sections<'_> {
             p.real(4, "D")?,
         );
         let n = Vec3::new(a, b, c);
-        if !(n.length() > 0.0) {
+        if n.length().is_nan() || n.length() <= 0.0 {
             return Ok(Err("its coefficients A, B, C are all zero".into()));
         }
         let ptr = if p.values.len() > 5 {
