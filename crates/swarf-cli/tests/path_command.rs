@@ -370,3 +370,21 @@ fn canonical_output_keeps_printed_lines_and_says_its_warnings_on_stderr() {
         stderr(&o)
     );
 }
+
+#[test]
+fn the_warnings_before_an_error_are_said_with_it() {
+    // A Fanuc macro alarm stops the program: the warnings up to it (the dialect, the system
+    // variable read as 0) explain it, in either output.
+    let dir = temp_dir("path_error_warnings");
+    let nc = dir.join("sv.nc");
+    std::fs::write(&nc, "O1\nG21 G90\n#1=#2001\n#3000=12 (BROKEN TOOL)\nM30\n").unwrap();
+    for extra in [&["--canonical"][..], &[][..]] {
+        let mut args = vec!["path", nc.to_str().unwrap()];
+        args.extend_from_slice(extra);
+        let o = swarf(&args);
+        assert!(!o.status.success());
+        let e = stderr(&o);
+        assert!(e.contains("sv.nc:3: warning: system variable #2001"), "{e}");
+        assert!(e.contains("macro alarm 3012"), "{e}");
+    }
+}

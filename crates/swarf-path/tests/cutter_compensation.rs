@@ -413,4 +413,14 @@ fn after_g40_the_current_point_is_the_programmed_one() {
     let e = comp_error("G21 F100\nG0 X-10 Y0\nG41.1 D4\nG1 X0 Y0\nX20\nG40\nG2 X30 Y0 R6\nM2\n");
     assert_eq!((e.kind, e.pos.line), (PathErrorKind::Semantic, 7), "{e}");
     assert!(e.message.contains("must be"), "{e}");
+    // Not when no compensated move was made between G41 and G40.
+    let rec = read(
+        "G21 G90 G17 F100\nG0 X0 Y0 Z5\nG41.1 D4\nG40\nG2 X10 Y0 I5 J0\nM2\n",
+        &GcodeOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(
+        motion(&rec).last().map(|m| m.0.clone()),
+        Some("A-".to_string())
+    );
 }

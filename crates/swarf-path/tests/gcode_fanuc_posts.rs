@@ -228,6 +228,15 @@ fn an_unmodelled_system_variable_is_told_once_by_number() {
     assert!(told[0].1.contains("#2001"), "{w:?}");
     assert_eq!(told[1].0, 4, "{w:?}");
     assert!(told[1].1.contains("#3901"), "{w:?}");
+    // LinuxCNC's tool parameters (#5400…) are Haas's tool timers: told too; the machine
+    // position (#5021) and G54's X (#5221) are modelled.
+    let w = warnings("O1\nG21 G90\n#1=#5401\n#2=#5021+#5221\nG00 X#2\nM30\n");
+    let told: Vec<_> = w
+        .iter()
+        .filter(|(_, m)| m.contains("system variable"))
+        .collect();
+    assert_eq!(told.len(), 1, "{w:?}");
+    assert!(told[0].1.contains("#5401"), "{w:?}");
 }
 
 #[test]

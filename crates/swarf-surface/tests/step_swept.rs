@@ -163,6 +163,12 @@ fn offsets_of_elementary_surfaces_are_the_same_kind_and_a_bspline_offset_is_said
     s.add(format!("OFFSET_SURFACE('cone',#{k},2.,.F.)"));
     let pl = s.add(format!("PLANE('',#{a})"));
     s.add(format!("OFFSET_SURFACE('up',#{pl},-4.,.F.)"));
+    // Along the basis's own normal: a rectangular trim with one sense .F. turns the plane's
+    // normal to −z, so 5 mm out is z = −5.
+    let rts = s.add(format!(
+        "RECTANGULAR_TRIMMED_SURFACE('',#{pl},10.,-10.,-10.,10.,.F.,.T.)"
+    ));
+    s.add(format!("OFFSET_SURFACE('down',#{rts},5.,.F.)"));
     let q: Vec<u64> = (0..4)
         .map(|i| s.point([i as f64 % 2.0, (i / 2) as f64, 0.0]))
         .collect();
@@ -188,6 +194,7 @@ fn offsets_of_elementary_surfaces_are_the_same_kind_and_a_bspline_offset_is_said
     check("sph7", &|q| q.length() - 7.0);
     check("tor6", &|q| (q.x.hypot(q.y) - 20.0).hypot(q.z) - 6.0);
     check("up", &|q| q.z + 4.0);
+    check("down", &|q| q.z + 5.0);
     // The cone 2 mm out along its normal: every point 2 mm from the basis cone (its distance
     // from the line through the apex at 30° to the axis).
     let (sa, ca) = (30f64.to_radians().sin(), 30f64.to_radians().cos());

@@ -167,6 +167,9 @@ impl MeshDesign {
             )));
         }
         let mut m = mesh.clone();
+        if report.touching > 0 {
+            m.triangles = without_shared_faces(&m.vertices, &m.triangles);
+        }
         let mut volume = m.volume();
         if volume < 0.0 {
             m.flip();
@@ -257,6 +260,80 @@ impl Design for MeshDesign {
     }
 }
 
+/// `triangles` (corners in `vertices`) without the faces that touching bodies share: where
+/// one body's triangles lie on another's, on one plane facing the other way, both are inside
+/// the union, and the distance to the design must not find them. (Only meshes whose every edge
+/// is used twice, or half each way where bodies touch, come here: a shared face is then wholly
+/// covered from both sides.) A triangle is shared when its centroid lies in a triangle of the
+/// opposite side of its plane, planes matched to 1e-9 in the normal and 1e-6 mm in offset.
+fn without_shared_faces(vertices: &[Vec3], triangles: &[[u32; 3]]) -> Vec<[u32; 3]> {
+    use std::collections::HashMap;
+    const N_STEP: f64 = 1e-9;
+    const D_STEP: f64 = 1e-6;
+    let plane = |t: [u32; 3]| {
+        let [a, b, c] = t.map(|i| vertices[i as usize]);
+        let n = (b - a).cross(c - a);
+        let len = n.length();
+        (len > 0.0 && len.is_finite()).then(|| {
+            let n = n / len;
+            (n, n.dot(a), (a + b + c) / 3.0)
+        })
+    };
+    let key = |n: Vec3, d: f64| -> [i64; 4] {
+        [
+            (n.x / N_STEP).round() as i64,
+            (n.y / N_STEP).round() as i64,
+            (n.z / N_STEP).round() as i64,
+            (d / D_STEP).round() as i64,
+        ]
+    };
+    let planes: Vec<Option<(Vec3, f64, Vec3)>> = triangles.iter().map(|&t| plane(t)).collect();
+    let mut by_plane: HashMap<[i64; 4], Vec<usize>> = HashMap::new();
+    for (i, p) in planes.iter().enumerate() {
+        if let Some((n, d, _)) = p {
+            by_plane.entry(key(*n, *d)).or_default().push(i);
+        }
+    }
+    // Whether `q` (on the triangle's plane) lies in triangle `t`, within 1e-6 mm of its edges.
+    let inside = |q: Vec3, t: [u32; 3]| {
+        let [a, b, c] = t.map(|i| vertices[i as usize]);
+        let m = (b - a).cross(c - a);
+        [(a, b), (b, c), (c, a)].iter().all(|&(p, r)| {
+            // The signed distance of `q` from the edge's line, in the plane: ≥ 0 inside.
+            (r - p).cross(q - p).dot(m) >= -D_STEP * m.length() * (r - p).length()
+        })
+    };
+    let mut shared = vec![false; triangles.len()];
+    for (i, p) in planes.iter().enumerate() {
+        let Some((n, d, centroid)) = *p else { continue };
+        let k = key(-n, -d);
+        // The bins around the opposite plane's (a value at a bin's edge rounds either way).
+        let mut found = false;
+        'search: for dx in -1..=1 {
+            for dy in -1..=1 {
+                for dz in -1..=1 {
+                    for dd in -1..=1 {
+                        let kk = [k[0] + dx, k[1] + dy, k[2] + dz, k[3] + dd];
+                        if let Some(js) = by_plane.get(&kk) {
+                            if js.iter().any(|&j| inside(centroid, triangles[j])) {
+                                found = true;
+                                break 'search;
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        shared[i] = found;
+    }
+    triangles
+        .iter()
+        .zip(&shared)
+        .filter(|(_, &s)| !s)
+        .map(|(&t, _)| t)
+        .collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -284,6 +361,61 @@ mod tests {
             let d = MeshDesign::new(&m).unwrap_or_else(|e| panic!("{e}"));
             assert!((d.volume() - volume).abs() < 1e-9, "{}", d.volume());
         }
+        // The face two boxes share is inside their union: no distance finds it. A point 1 mm
+        // inside the union, 0.5 mm from the shared face, is 1 mm from the design's boundary.
+        let mut m = swarf_io::TriMesh::cuboid(v(0.0, 0.0, 0.0), v(20.0, 20.0, 10.0));
+        m.merge(&swarf_io::TriMesh::cuboid(
+            v(20.0, 0.0, 0.0),
+            v(40.0, 20.0, 10.0),
+        ));
+        let d = MeshDesign::new(&m.as_written()).unwrap();
+        assert_eq!(
+            d.mesh.indices().len(),
+            20,
+            "the 4 shared triangles left out"
+        );
+        let p = d.project(v(20.5, 10.0, 9.0)).unwrap();
+        assert!((p.distance.abs() - 1.0).abs() < 1e-12, "{p:?}");
+        // The same with the second box's shared face split along its other diagonal
+        // (exporters triangulate each body on its own).
+        let mut b = swarf_io::TriMesh::cuboid(v(20.0, 0.0, 0.0), v(40.0, 20.0, 10.0));
+        let on_face: Vec<usize> = (0..b.triangles.len())
+            .filter(|&t| b.corners(t).iter().all(|c| c.x == 20.0))
+            .collect();
+        assert_eq!(on_face.len(), 2);
+        let corner =
+            |y: f64, z: f64| b.vertices.iter().position(|c| *c == v(20.0, y, z)).unwrap() as u32;
+        let [p00, p10, p01, p11] = [
+            corner(0.0, 0.0),
+            corner(20.0, 0.0),
+            corner(0.0, 10.0),
+            corner(20.0, 10.0),
+        ];
+        // Facing −x, the other diagonal than the cuboid's, the same turn.
+        let first = b.corners(on_face[0]);
+        let diagonal_00_11 =
+            first.contains(&v(20.0, 0.0, 0.0)) && first.contains(&v(20.0, 20.0, 10.0));
+        let (t0, t1) = if diagonal_00_11 {
+            ([p00, p01, p10], [p10, p01, p11])
+        } else {
+            ([p00, p11, p10], [p00, p01, p11])
+        };
+        b.triangles[on_face[0]] = t0;
+        b.triangles[on_face[1]] = t1;
+        let mut m = swarf_io::TriMesh::cuboid(v(0.0, 0.0, 0.0), v(20.0, 20.0, 10.0));
+        m.merge(&b);
+        let m = m.as_written();
+        assert_eq!(m.edge_report().boundary_count(), 0, "{:?}", m.edge_report());
+        assert_eq!(m.edge_report().misoriented, 0, "{:?}", m.edge_report());
+        let d = MeshDesign::new(&m).unwrap();
+        assert_eq!(
+            d.mesh.indices().len(),
+            20,
+            "the 4 shared triangles left out"
+        );
+        assert!((d.volume() - 8000.0).abs() < 1e-9);
+        let p = d.project(v(20.5, 10.0, 9.0)).unwrap();
+        assert!((p.distance.abs() - 1.0).abs() < 1e-12, "{p:?}");
         // An open box is still refused.
         let mut open = swarf_io::TriMesh::cuboid(Vec3::ZERO, Vec3::splat(1.0));
         open.triangles.pop();

@@ -90,20 +90,27 @@ pub(crate) fn run(args: &PathArgs) -> Result<()> {
     if args.canonical {
         let stdout = std::io::stdout().lock();
         let mut printer = CanonicalPrinter::new(BufWriter::new(stdout));
-        setup
-            .stream(&text, &file, &mut printer)
-            .map_err(job_error)?;
-        // The reader's warnings are no canonical call: on stderr, after the calls.
+        let read = setup.stream(&text, &file, &mut printer);
+        // The reader's warnings are no canonical call: on stderr, after the calls (those up to
+        // an error too, which they may explain).
         let warnings = printer.warnings().to_vec();
-        printer.finish().context("writing to stdout")?;
+        let written = printer.finish();
         for w in &warnings {
             eprintln!("{w}");
         }
+        read.map_err(job_error)?;
+        written.context("writing to stdout")?;
         return Ok(());
     }
 
     let mut sink = SummarySink::new(setup.machine.clone(), &file, &SummaryOptions::default());
-    setup.stream(&text, &file, &mut sink).map_err(job_error)?;
+    if let Err(e) = setup.stream(&text, &file, &mut sink) {
+        // The warnings up to the error, which they may explain.
+        for w in &sink.finish().program.warnings {
+            eprintln!("{w}");
+        }
+        return Err(job_error(e));
+    }
     drop(text);
     let streamed = sink.finish();
     let (tools, undefined) = setup

@@ -261,7 +261,6 @@ fn write_standard_and_maps(
     Ok(Some(report))
 }
 
-/// The JSON summary with the `standard` key added when there is a report.
 /// The summary with the surface's [`Caveats`](swarf_surface::Caveats) as keys of its own
 /// (`skipped_faces`, `untrimmed_faces`, `unapplied_placements`, each with its notes).
 pub(crate) fn with_caveats(
@@ -302,6 +301,7 @@ pub(crate) fn caveats_said(caveats: &swarf_surface::Caveats, what: &str) {
     }
 }
 
+/// The JSON summary with the `standard` key added when there is a report.
 fn with_standard(
     summary: &impl serde::Serialize,
     report: Option<&StandardReport>,

@@ -194,10 +194,11 @@ impl Interp<'_, '_> {
                 // As LinuxCNC's `convert_cutter_compensation_off`: the current point becomes
                 // the programmed one (the tool stays where it is until the next move, which
                 // goes from there to its programmed end, so incremental words and parameters
-                // count from the contour), and that move must be straight.
+                // count from the contour), and that move must be straight — once a compensated
+                // move was made (LinuxCNC leaves the rest alone before the first one).
                 self.comp_flush();
                 self.comp.side = None;
-                self.arc_not_allowed = true;
+                self.arc_not_allowed = !self.comp.first && self.comp.radius > 0.0;
             }
             return Ok(());
         }

@@ -2620,12 +2620,13 @@ impl<'t, 's> Interp<'t, 's> {
 }
 
 impl Interp<'_, '_> {
-    /// Whether LinuxCNC's parameter `n` is a view onto state swarf keeps (positions, offsets,
-    /// the tool): Fanuc numbers the same system variables alike (#5021 machine position,
-    /// #5221 G54 …).
+    /// Whether Fanuc's system variable `n` is one of LinuxCNC's parameters that swarf keeps
+    /// and Fanuc numbers alike: the machine position (#5021–#5026) and the work offsets G54–G59
+    /// (#5221–#5226, #5241–#5246 …). LinuxCNC's others in that range (G28/G30 positions, G92,
+    /// the tool at #5400…) mean something else on a Fanuc or Haas control (Haas's #5401… are
+    /// tool timers): read, they are warned about as any system variable swarf does not model.
     fn modelled_view(n: usize) -> bool {
-        matches!(n, 5021..=5026 | 5161..=5166 | 5181..=5186 | 5210..=5216 | 5220 | 5400..=5425)
-            || (5221..=5390).contains(&n) && ((n - 5221) % 20 < 6 || (n - 5230) % 20 == 0)
+        (5021..=5026).contains(&n) || (5221..=5346).contains(&n) && (n - 5221) % 20 < 6
     }
 
     /// Fanuc's system variables read from the interpreter's state, in program units: the
@@ -2807,12 +2808,12 @@ impl ParamRead for Interp<'_, '_> {
     }
 }
 
-/// `v` with its X and Y turned by `deg` degrees counter-clockwise about Z.
 /// Where `needle` first appears in normalised code.
 fn find_code(code: &[u8], needle: &[u8]) -> Option<usize> {
     code.windows(needle.len()).position(|w| w == needle)
 }
 
+/// `v` with its X and Y turned by `deg` degrees counter-clockwise about Z.
 pub(crate) fn rotate_xy(mut v: [f64; 6], deg: f64) -> [f64; 6] {
     if deg != 0.0 {
         let (s, c) = deg.to_radians().sin_cos();

@@ -172,7 +172,6 @@ pub fn parse(format: Format, text: &str) -> Result<CompoundSurface, ReadError> {
     }
 }
 
-/// `; skipped: …` listing what a reader skipped, for [`ReadError::Empty`].
 /// How far (mm) a trimming curve's sample may lie off its surface and still bound it: 1e-4 of
 /// the surface's size plus 0.01 mm (CAD edges commonly lie 1e-3 to 1e-2 mm off their faces),
 /// or the accuracy the file declares (STEP's `UNCERTAINTY_MEASURE_WITH_UNIT`, IGES's minimum
@@ -186,6 +185,7 @@ pub(crate) fn on_surface_tolerance(size: f64, declared: f64) -> f64 {
     }
 }
 
+/// `; skipped: …` listing what a reader skipped, for [`ReadError::Empty`].
 pub(crate) fn skipped_detail(skipped: &[ReadNote]) -> String {
     let list: Vec<String> = skipped.iter().map(ToString::to_string).collect();
     format!("; skipped: {}", list.join("; "))

@@ -32,7 +32,7 @@ pub(super) fn is_swept(inst: &Instance) -> bool {
 }
 
 /// A surface, its name, and whether its normal is the opposite of the one `Surface` gives
-/// (a `RECTANGULAR_TRIMMED_SURFACE` with one sense `.F.`, an offset past a cylinder's axis).
+/// (a `RECTANGULAR_TRIMMED_SURFACE` with one sense `.F.`).
 pub(super) type Sensed = (Surface, Option<String>, bool);
 
 /// Parameter ranges in the file's own parameters (STEP's), given by a rectangular trim.
@@ -67,7 +67,13 @@ impl Model<'_> {
             )));
         }
         if supported(inst) {
-            let (mut s, name) = self.surface(id, face, index, notes)?;
+            // A rectangular trim replaces the parameter box: the reader's notes on a box it
+            // chose are not the surface's then.
+            let mut own = Vec::new();
+            let (mut s, name) = self.surface(id, face, index, &mut own)?;
+            notes.extend(own.into_iter().filter(|n| {
+                ranges.is_none() || !matches!(n, ReadNote::DefaultParameterBox { .. })
+            }));
             if let Some((u, v)) = ranges {
                 match restrict(&mut s, u, v, depth == 0) {
                     Ok(()) => {}
@@ -114,7 +120,10 @@ impl Model<'_> {
             let out = self.sensed(basis, face, index, notes, ranges, depth + 1)?;
             let name = Self::name(p.first());
             return Ok(match out {
-                Ok((s, n, r)) => offset(s, d).map(|(s, r2)| (s, name.or(n), r != r2)),
+                // Along the basis's own normal: reversed (`r`), the offset goes the other way.
+                Ok((s, n, r)) => {
+                    offset(s, if r { -d } else { d }).map(|(s, r2)| (s, name.or(n), r != r2))
+                }
                 Err(why) => Err(why),
             });
         }
