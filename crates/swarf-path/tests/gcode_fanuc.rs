@@ -4,6 +4,8 @@
 //! position return (G28)"; "Coordinate system rotation (G68, G69)"; "Scaling (G50, G51)";
 //! "Optional block skip").
 
+mod common;
+use common::fanuc_warnings as warnings;
 use swarf_path::canon::Recorder;
 use swarf_path::gcode::{read_gcode, GcodeDialect, GcodeOptions};
 use swarf_path::load::{read_program_str, ReadOptions};
@@ -239,24 +241,6 @@ fn g70_and_g71_alone_are_units_and_with_words_lathe_cycles() {
             .any(|(l, m)| *l == 5 && m.starts_with("G71 read as G21")),
         "{w:?}"
     );
-}
-
-/// The warnings of a Fanuc program, as (line, message).
-fn warnings(src: &str) -> Vec<(u32, String)> {
-    let p = read_program_str(
-        src,
-        "fanuc.nc",
-        Machine::three_axis(),
-        &ReadOptions {
-            gcode: fanuc(),
-            ..ReadOptions::default()
-        },
-    )
-    .unwrap();
-    p.warnings
-        .into_iter()
-        .map(|w| (w.line, w.message))
-        .collect()
 }
 
 #[test]

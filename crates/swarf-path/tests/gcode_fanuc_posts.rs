@@ -3,10 +3,11 @@
 //! "Tool compensation values (G10)" memory C, "Tapping cycle (G84)", "System variables",
 //! "Subprogram call (M98)"; Haas mill operator's manual: G10, M98, 4th-axis drilling).
 
+mod common;
+use common::fanuc_warnings as warnings;
 use swarf_path::canon::Recorder;
 use swarf_path::gcode::{read_gcode, GcodeDialect, GcodeOptions};
-use swarf_path::load::{read_program_str, ReadOptions};
-use swarf_path::{Canon, Machine, PathError};
+use swarf_path::{Canon, PathError};
 
 /// The moves as (`R` rapid / `L` feed, x, y, z, a).
 fn moves(src: &str, options: &GcodeOptions) -> Result<Vec<(char, [f64; 4])>, PathError> {
@@ -35,24 +36,6 @@ fn close(got: &[(char, [f64; 4])], want: &[(char, [f64; 4])]) {
             "{got:?}\n{want:?}"
         );
     }
-}
-
-/// The warnings of a Fanuc program, as (line, message).
-fn warnings(src: &str) -> Vec<(u32, String)> {
-    let p = read_program_str(
-        src,
-        "fanuc.nc",
-        Machine::three_axis(),
-        &ReadOptions {
-            gcode: fanuc(),
-            ..ReadOptions::default()
-        },
-    )
-    .unwrap();
-    p.warnings
-        .into_iter()
-        .map(|w| (w.line, w.message))
-        .collect()
 }
 
 #[test]

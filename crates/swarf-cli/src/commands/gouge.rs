@@ -131,9 +131,9 @@ pub(crate) fn run(args: &GougeArgs) -> Result<()> {
         summary.tolerance_mm,
         summary.elapsed_s,
         match (
-            summary.skipped_faces,
-            summary.unapplied_placements,
-            summary.untrimmed_faces,
+            summary.caveats.skipped_faces,
+            summary.caveats.unapplied_placements,
+            summary.caveats.untrimmed_faces,
             summary.unresolved_searches,
         ) {
             (0, 0, 0, 0) => String::new(),

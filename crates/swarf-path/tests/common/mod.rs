@@ -31,3 +31,23 @@ pub(crate) fn tips(p: &Program) -> Vec<[f64; 3]> {
         .map(|m| [m.end.tip.x, m.end.tip.y, m.end.tip.z])
         .collect()
 }
+
+/// The warnings of a program read by Fanuc rules (a 3-axis machine), as (line, message).
+pub(crate) fn fanuc_warnings(src: &str) -> Vec<(u32, String)> {
+    use swarf_path::gcode::{GcodeDialect, GcodeOptions};
+    use swarf_path::load::{read_program_str, ReadOptions};
+    let p = read_program_str(
+        src,
+        "fanuc.nc",
+        swarf_path::Machine::three_axis(),
+        &ReadOptions {
+            gcode: GcodeOptions::default().with_dialect(GcodeDialect::Fanuc),
+            ..ReadOptions::default()
+        },
+    )
+    .unwrap();
+    p.warnings
+        .into_iter()
+        .map(|w| (w.line, w.message))
+        .collect()
+}

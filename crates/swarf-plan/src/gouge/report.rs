@@ -6,7 +6,7 @@ use std::io::{self, Write};
 use serde::Serialize;
 
 use super::{GougeOptions, GougeReport, SurfaceRef, ViolationKind};
-use swarf_surface::CompoundSurface;
+use swarf_surface::{Caveats, CompoundSurface};
 
 /// The JSON summary (field names are a contract).
 #[derive(Clone, Debug, PartialEq, Serialize)]
@@ -38,24 +38,12 @@ pub struct GougeSummary {
     pub certified: bool,
     /// Searches whose budget ran out.
     pub unresolved_searches: usize,
-    /// Faces (or surfaces) of the surface file its reader skipped (surface kinds it does not
-    /// evaluate): nothing is said about them, so `certified` is false when any was skipped.
-    pub skipped_faces: usize,
-    /// The reader's note on each skipped face (`#12 (face #40): surface type
-    /// SURFACE_OF_REVOLUTION is not supported; skipped`).
-    pub skipped_face_notes: Vec<String>,
-    /// Faces whose trim the reader could not honour, checked on their whole surface: nothing
-    /// is missed there, but a violation may lie on surface outside the face, so `certified`
-    /// is false when there is any.
-    pub untrimmed_faces: usize,
-    /// The reader's note on each (`patch 3 is trimmed by … the trim is not honoured …`).
-    pub untrimmed_face_notes: Vec<String>,
-    /// STEP assembly placements its reader could not apply (an unsupported transformation, a
-    /// chain it could not resolve): the parts they place may be misplaced, so `certified` is
-    /// false when there is any.
-    pub unapplied_placements: usize,
-    /// The reader's note on each (`MAPPED_ITEM #31: placement not applied: …`).
-    pub unapplied_placement_notes: Vec<String>,
+    /// What the surface's reader could not carry over (`skipped_faces`, `untrimmed_faces`,
+    /// `unapplied_placements`, each with its notes: [`Caveats`]); any makes `certified` false
+    /// (a face not read is not checked; one read without its trim may give violations outside
+    /// the face; a part not placed may be misplaced).
+    #[serde(flatten)]
+    pub caveats: Caveats,
     /// Search nodes expanded in all.
     pub nodes: u64,
     /// The reporting tolerance, mm.
@@ -94,13 +82,8 @@ impl GougeReport {
             max_gouge_mm: self.max_depth(ViolationKind::Gouge),
             max_interference_mm: self.max_depth(ViolationKind::Interference),
             certified: self.unresolved == 0 && caveats.is_empty(),
+            caveats,
             unresolved_searches: self.unresolved,
-            skipped_faces: caveats.skipped_faces,
-            skipped_face_notes: caveats.skipped_face_notes,
-            untrimmed_faces: caveats.untrimmed_faces,
-            untrimmed_face_notes: caveats.untrimmed_face_notes,
-            unapplied_placements: caveats.unapplied_placements,
-            unapplied_placement_notes: caveats.unapplied_placement_notes,
             nodes: self.nodes,
             tolerance_mm: opts.tolerance,
             accuracy_mm: opts.accuracy,
