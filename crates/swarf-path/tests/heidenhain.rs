@@ -734,3 +734,108 @@ fn m_function_parameters_are_not_coordinates() {
         p.warnings
     );
 }
+
+/// `got` equal to `want` within 1e-9 mm (heights and rapid or not).
+fn same_moves(got: &[(f64, bool)], want: &[(f64, bool)]) {
+    assert!(
+        got.len() == want.len()
+            && got
+                .iter()
+                .zip(want)
+                .all(|(a, b)| (a.0 - b.0).abs() < 1e-9 && a.1 == b.1),
+        "got {got:?}\nwant {want:?}"
+    );
+}
+
+/// Cycle 205 at X+20 Y+20 from Z+100 with the given Q parameters after the common ones
+/// (Q200 2, Q203 0, Q204 50, Q206 150, Q208 99999, Q211 0).
+fn cycle_205(qs: &str) -> Program {
+    let mut body = String::from(
+        "TOOL CALL 3 Z S2000\n\
+         L X+20 Y+20 Z+100 R0 FMAX M3\n\
+         CYCL DEF 205 UNIVERSAL PECKING ~\n\
+         \x20 Q200=+2 ~\n\
+         \x20 Q203=+0 ~\n\
+         \x20 Q204=+50 ~\n\
+         \x20 Q206=+150 ~\n\
+         \x20 Q208=+99999 ~\n",
+    );
+    for q in qs.split_whitespace() {
+        body.push_str(&format!("\x20 {q} ~\n"));
+    }
+    body.push_str("\x20 Q211=+0\nCYCL CALL");
+    read(&pgm(&body))
+}
+
+#[test]
+fn cycle_205_breaks_chips_and_reenters_at_its_advanced_stop_distances() {
+    // The review's program (h14.h): depth 20 in plunges of 10, Q258 = Q259 = 0.5, chip
+    // breaking every 4 mm (Q257) by 0.2 (Q256). The TNC manual's run of cycle 205: after each
+    // Q257 of a plunge back Q256 and on at the feed; after the plunge out to the set-up
+    // clearance, back in at rapid to the advanced stop distance above the depth reached;
+    // at the depth out to the set-up clearance at Q208, then to Q204 at rapid. (swarf made no
+    // chip breaks and re-entered at Q200, 2 above the depth.)
+    let p = cycle_205(
+        "Q201=-20 Q202=+10 Q212=+0 Q205=+0 Q258=+0.5 Q259=+0.5 Q257=+4 Q256=+0.2 Q379=+0 \
+         Q253=+750 Q395=+0",
+    );
+    same_moves(
+        &drill_moves(&p),
+        &[
+            (100.0, true),
+            (2.0, true),
+            (-4.0, false),
+            (-3.8, true),
+            (-8.0, false),
+            (-7.8, true),
+            (-10.0, false),
+            (2.0, true),
+            (-9.5, true),
+            (-14.0, false),
+            (-13.8, true),
+            (-18.0, false),
+            (-17.8, true),
+            (-20.0, false),
+            (2.0, false),
+            (50.0, true),
+        ],
+    );
+    // Q258 ≠ Q259: from 1 before the first re-entry (at 5) to 0.4 before the last (at 15),
+    // evenly between: 0.7 at 10. No chip breaking (Q257 = 0).
+    let p = cycle_205("Q201=-20 Q202=+5 Q212=+0 Q205=+0 Q258=+1 Q259=+0.4 Q257=+0 Q256=+0.2");
+    same_moves(
+        &drill_moves(&p),
+        &[
+            (100.0, true),
+            (2.0, true),
+            (-5.0, false),
+            (2.0, true),
+            (-4.0, true),
+            (-10.0, false),
+            (2.0, true),
+            (-9.3, true),
+            (-15.0, false),
+            (2.0, true),
+            (-14.6, true),
+            (-20.0, false),
+            (2.0, false),
+            (50.0, true),
+        ],
+    );
+    // One plunge (Q202 at least the depth) with chip breaking: breaks at 4 and 8 of 9.
+    let p = cycle_205("Q201=-9 Q202=+10 Q212=+0 Q205=+0 Q258=+0.5 Q259=+0.5 Q257=+4 Q256=+0.2");
+    same_moves(
+        &drill_moves(&p),
+        &[
+            (100.0, true),
+            (2.0, true),
+            (-4.0, false),
+            (-3.8, true),
+            (-8.0, false),
+            (-7.8, true),
+            (-9.0, false),
+            (2.0, false),
+            (50.0, true),
+        ],
+    );
+}

@@ -212,7 +212,9 @@ fn drilling_cycles_run_where_the_tool_stands_and_under_mcall() {
         [(50.0, true), (2.0, true), (-10.0, false), (30.0, true)]
     );
     // CYCLE83 (deep hole, chip removal): first depth 4 below RFP, degression 1 → pecks of 4,
-    // 3, 2 (not below the degression's 1… but the hole ends at 9).
+    // 3, 2 (not below the degression's 1… but the hole ends at 9); back in at rapid to the
+    // cycle's own advance distance above the depth reached (_DIS1 not given: 0.6 mm, the
+    // hole being under 30 mm deep).
     let p = read(
         "G0 X20 Y20 Z50 S1000 M3\nG1 F100\n\
          CYCLE83(30,0,2,-9,,,4,1,0,0,1,1)\nM30",
@@ -224,10 +226,10 @@ fn drilling_cycles_run_where_the_tool_stands_and_under_mcall() {
             (2.0, true),
             (-4.0, false),
             (2.0, true),
-            (-2.0, true),
+            (-4.0 + 0.6, true),
             (-7.0, false),
             (2.0, true),
-            (-5.0, true),
+            (-7.0 + 0.6, true),
             (-9.0, false),
             (30.0, true)
         ]
@@ -585,4 +587,194 @@ fn a_skipped_block_is_said_and_siemens_words_tell_a_program_apart() {
         "{:?}",
         tips(&p)
     );
+}
+
+/// What a cycle does along Z at its hole: rapid (`R`) or fed (`F`) to a height, a dwell
+/// (`D`), a new feed (`Rate`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+enum Z {
+    R(f64),
+    F(f64),
+    D(f64),
+    Rate(f64),
+}
+
+/// The cycle's events from the first move at (x, y) on (the positioning move at the hole
+/// left out), read by the Sinumerik reader.
+fn cycle_events(text: &str, x: f64, y: f64) -> Vec<Z> {
+    let mut rec = Recorder::default();
+    read_sinumerik(text, "t.mpf", &GcodeOptions::default(), &mut rec).unwrap();
+    let mut out = Vec::new();
+    let mut at_hole = false;
+    for (_, e) in &rec.events {
+        match e {
+            Canon::Traverse { end } | Canon::Feed { end } => {
+                let here = (end.x - x).abs() < 1e-12 && (end.y - y).abs() < 1e-12;
+                if !here {
+                    if at_hole {
+                        break;
+                    }
+                    continue;
+                }
+                if !at_hole {
+                    at_hole = true;
+                    continue;
+                }
+                out.push(match e {
+                    Canon::Traverse { .. } => Z::R(end.z),
+                    _ => Z::F(end.z),
+                });
+            }
+            Canon::Dwell(t) if at_hole => out.push(Z::D(*t)),
+            Canon::FeedRate(f) if at_hole => out.push(Z::Rate(*f)),
+            _ => {}
+        }
+    }
+    out
+}
+
+/// `got` and `want` equal to 1e-9.
+fn same_z(got: &[Z], want: &[Z]) {
+    let close = |a: &Z, b: &Z| match (a, b) {
+        (Z::R(p), Z::R(q)) | (Z::F(p), Z::F(q)) | (Z::D(p), Z::D(q)) | (Z::Rate(p), Z::Rate(q)) => {
+            (p - q).abs() < 1e-9
+        }
+        _ => false,
+    };
+    assert!(
+        got.len() == want.len() && got.iter().zip(want).all(|(a, b)| close(a, b)),
+        "got {got:?}\nwant {want:?}"
+    );
+}
+
+#[test]
+fn cycle83_chip_removal_reenters_at_the_advance_distance() {
+    use Z::*;
+    // The review's program (s8.mpf): RTP 50, RFP 0, SDIS 2, DP −20, FDEP −5, DAM 2, VARI 1,
+    // _DIS1 0. Pecks of 5, 3 (5 − 2), then 2 (not below DAM) to 20. The 840D cycles manual:
+    // out to SDIS above RFP at rapid, back in at rapid to the advance distance above the depth
+    // reached, which the cycle computes when _DIS1 is 0: 0.6 mm for a depth up to 30 mm.
+    // (swarf re-entered at SDIS, 2 above the depth.)
+    let s8 = "N10 G17 G90 G71\nN20 T1 M6\nN30 G0 X0 Y0 Z50 S1000 M3\nN40 F100\n\
+              N50 MCALL CYCLE83(50,0,2,-20,,-5,,2,0,0,1,1,0,0,0,0,0)\nN60 X10 Y10\n\
+              N70 X30 Y10\nN80 MCALL\nN90 X0 Y0\nN110 M30\n";
+    let mut want = vec![R(2.0), Rate(100.0), F(-5.0), R(2.0), R(-4.4), F(-8.0)];
+    for d in [10.0, 12.0, 14.0, 16.0, 18.0, 20.0] {
+        want.extend([R(2.0), R(-(d - 2.0) + 0.6), F(-d)]);
+    }
+    want.push(R(50.0));
+    same_z(&cycle_events(s8, 10.0, 10.0), &want);
+    same_z(
+        &cycle_events(s8, 30.0, 10.0),
+        &want[..1]
+            .iter()
+            .chain(&want[2..])
+            .copied()
+            .collect::<Vec<_>>(),
+    );
+
+    // Deeper than 30 mm: depth / 50, at most 7 mm. 150 deep in pecks of 60: 3 mm.
+    let deep = |dp: f64, fdpr: f64| {
+        format!("G0 X20 Y20 Z50 S1000 M3\nG1 F100\nCYCLE83(30,0,2,{dp},,,{fdpr},,0,0,1,1)\nM30")
+    };
+    same_z(
+        &cycle_events(&deep(-150.0, 60.0), 20.0, 20.0),
+        &[
+            R(2.0),
+            Rate(100.0),
+            F(-60.0),
+            R(2.0),
+            R(-57.0),
+            F(-120.0),
+            R(2.0),
+            R(-117.0),
+            F(-150.0),
+            R(30.0),
+        ],
+    );
+    // 400 deep (400 / 50 = 8): 7 mm.
+    same_z(
+        &cycle_events(&deep(-400.0, 200.0), 20.0, 20.0),
+        &[
+            R(2.0),
+            Rate(100.0),
+            F(-200.0),
+            R(2.0),
+            R(-193.0),
+            F(-400.0),
+            R(30.0),
+        ],
+    );
+    // _DIS1 given: 1.5 above the depth reached; DTS 0.25 s at the top after each chip
+    // removal; FRF 0.5 halves the feed to the first depth only.
+    same_z(
+        &cycle_events(
+            "G0 X20 Y20 Z50 S1000 M3\nG1 F100\n\
+             CYCLE83(30,0,2,-9,,,4,,0,0.25,0.5,1,0,0,0,0,1.5)\nM30",
+            20.0,
+            20.0,
+        ),
+        &[
+            R(2.0),
+            Rate(50.0),
+            F(-4.0),
+            R(2.0),
+            D(0.25),
+            R(-2.5),
+            Rate(100.0),
+            F(-8.0),
+            R(2.0),
+            D(0.25),
+            R(-6.5),
+            F(-9.0),
+            R(30.0),
+        ],
+    );
+}
+
+#[test]
+fn cycle83_chip_breaking_backs_by_vrt() {
+    use Z::*;
+    // VARI 0: back _VRT (0.5) after each depth at rapid, on from there at the feed; pecks of 4
+    // to 9. (swarf backed 1 mm whatever _VRT said.)
+    same_z(
+        &cycle_events(
+            "G0 X20 Y20 Z50 S1000 M3\nG1 F100\nCYCLE83(30,0,2,-9,,,4,,0,0,1,0,0,0,0.5)\nM30",
+            20.0,
+            20.0,
+        ),
+        &[
+            R(2.0),
+            Rate(100.0),
+            F(-4.0),
+            R(-3.5),
+            F(-8.0),
+            R(-7.5),
+            F(-9.0),
+            R(30.0),
+        ],
+    );
+    // _VRT 0 or not given: the manual's 1 mm.
+    for call in [
+        "CYCLE83(30,0,2,-9,,,4,,0,0,1,0,0,0,0)",
+        "CYCLE83(30,0,2,-9,,,4,,0,0,1,0)",
+    ] {
+        same_z(
+            &cycle_events(
+                &format!("G0 X20 Y20 Z50 S1000 M3\nG1 F100\n{call}\nM30"),
+                20.0,
+                20.0,
+            ),
+            &[
+                R(2.0),
+                Rate(100.0),
+                F(-4.0),
+                R(-3.0),
+                F(-8.0),
+                R(-7.0),
+                F(-9.0),
+                R(30.0),
+            ],
+        );
+    }
 }

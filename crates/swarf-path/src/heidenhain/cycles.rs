@@ -8,9 +8,10 @@
 //! called: the TNC 640's `~` definition sets them in its own block, a TNC 530's in the blocks
 //! that follow it. Along the tool axis, from the call position: rapid to the set-up clearance
 //! above the surface, plunge at the feed (pecks: back to the set-up clearance at rapid after
-//! each, then down again to the set-up clearance above the depth reached), dwell, back to the
-//! set-up clearance (at rapid, or at the retraction feed for reaming, boring and tapping), then
-//! to the second set-up clearance when it is higher.
+//! each, then down again to the set-up clearance above the depth reached; cycle 205: to its
+//! advanced stop distances `Q258`/`Q259` above it, with chip breaking by `Q256` every `Q257`),
+//! dwell, back to the set-up clearance (at rapid, or at the retraction feed for reaming, boring
+//! and tapping), then to the second set-up clearance when it is higher.
 
 use super::lexer::{self, Block, Tok};
 use super::{Fault, Reader, Res};
@@ -44,6 +45,12 @@ struct Drill {
     /// ones.
     breaks: u32,
     break_retract: f64,
+    /// Chip breaking by depth (cycle 205's Q257; 0: none): back `break_retract` after each
+    /// this much of a plunge.
+    break_depth: f64,
+    /// Advanced stop distances (cycle 205's Q258, Q259: before the first and the last
+    /// re-entry); `None`: the set-up clearance.
+    stops: Option<(f64, f64)>,
 }
 
 /// Splits a `PLANE` word (`SPA+30`, `P1X-5`, `TURN`) into its name and value.
@@ -333,6 +340,8 @@ impl Reader<'_> {
             peck_retract: None,
             breaks: 0,
             break_retract: 0.0,
+            break_depth: 0.0,
+            stops: None,
         };
         // Q208 = 0: out at the plunging feed.
         let q208 = if q(208) > 0.0 {
@@ -359,6 +368,8 @@ impl Reader<'_> {
                     0
                 },
                 break_retract: if q(256) > 0.0 { q(256) * s } else { 0.2 * s },
+                break_depth: if num == 205 { q(257).max(0.0) * s } else { 0.0 },
+                stops: (num == 205).then(|| (q(258).max(0.0) * s, q(259).max(0.0) * s)),
                 ..drill(q(203), Some(q208))
             },
             206 => {
@@ -409,6 +420,8 @@ impl Reader<'_> {
                     peck_retract: None,
                     breaks: 0,
                     break_retract: 0.0,
+                    break_depth: 0.0,
+                    stops: None,
                 }
             }
             _ => {
@@ -458,7 +471,9 @@ impl Reader<'_> {
         } else {
             d.peck
         };
-        if d.peck > 0.0 && d.depth / least > MAX_PECKS {
+        if (d.peck > 0.0 && d.depth / least > MAX_PECKS)
+            || (d.break_depth > 0.0 && d.depth / d.break_depth > MAX_PECKS)
+        {
             return Err(Fault::at(
                 at,
                 PathErrorKind::Limit,
@@ -486,6 +501,16 @@ impl Reader<'_> {
         self.line_to(line, end, feed.is_none());
     }
 
+    /// Runs drilling cycle `d` along the tool axis. Cycle 205 follows the TNC 640 / iTNC 530
+    /// cycle manuals' run of cycle 205: plunges of Q202 (less Q212 each time, not below Q205);
+    /// with a depth for chip breaking Q257 the tool goes back Q256 after each Q257 of a plunge
+    /// and feeds on, and after each plunge goes out to the set-up clearance Q200, then at rapid
+    /// down to the advanced stop distance above the depth reached: Q258 before the first
+    /// re-entry, Q259 before the last, the distance changing "at the same rate" between them
+    /// (read here as linear in the depth reached; with equal plunges the same as linear in the
+    /// plunge's count; with a decrement the manual is not exact). The manuals give no feed
+    /// for the Q256 retract, and differ on the full one between plunges (the iTNC 530 rapid,
+    /// the TNC 640 Q208): both stay at rapid as swarf had them.
     fn drill(&mut self, line: u32, d: &Drill) {
         let top = d.surface + d.clearance;
         let dwell = |r: &mut Self, t: f64| {
@@ -495,23 +520,57 @@ impl Reader<'_> {
         };
         self.axis_to(line, top, None);
         let feed = Some((d.mode, d.feed));
+        // The plunges' ends, below the surface (the caller bounds their count).
+        let mut ends = Vec::new();
         let mut reached = 0.0;
         let mut peck = d.peck;
-        let mut out = true;
-        let mut broken = 0;
         loop {
             let next = if peck > 0.0 {
                 (reached + peck).min(d.depth)
             } else {
                 d.depth
             };
+            ends.push(next);
+            reached = next;
+            if reached >= d.depth {
+                break;
+            }
+            if d.decrement > 0.0 {
+                peck = (peck - d.decrement).max(d.least.max(1e-3));
+            }
+        }
+        // The depths re-entered first and last (the ends of the first and the last but one
+        // plunges).
+        let (low_first, low_last) = (ends[0], ends[ends.len().saturating_sub(2)]);
+        let mut reached = 0.0;
+        let mut out = true;
+        let mut broken = 0;
+        for (i, &next) in ends.iter().enumerate() {
             if out && reached > 0.0 {
-                // Back down at rapid to the set-up clearance above the depth reached.
-                self.axis_to(line, (d.surface - reached + d.clearance).min(top), None);
+                // Back down at rapid to the advanced stop distance (or the set-up clearance)
+                // above the depth reached.
+                let stop = match d.stops {
+                    Some((upper, lower)) if low_last > low_first => {
+                        upper + (lower - upper) * (reached - low_first) / (low_last - low_first)
+                    }
+                    Some((upper, _)) => upper,
+                    None => d.clearance,
+                };
+                self.axis_to(line, (d.surface - reached + stop).min(top), None);
+            }
+            if d.break_depth > 0.0 {
+                // Chip breaking within the plunge: back a little after each break depth.
+                let mut k = 1.0;
+                while reached + k * d.break_depth < next - 1e-9 {
+                    let at = reached + k * d.break_depth;
+                    self.axis_to(line, d.surface - at, feed);
+                    self.axis_to(line, d.surface - at + d.break_retract, None);
+                    k += 1.0;
+                }
             }
             self.axis_to(line, d.surface - next, feed);
             reached = next;
-            if reached >= d.depth {
+            if i + 1 == ends.len() {
                 break;
             }
             out = broken >= d.breaks;
@@ -520,12 +579,9 @@ impl Reader<'_> {
                 self.axis_to(line, top, d.peck_retract.map(|f| (d.mode, f)));
                 dwell(self, d.dwell_top);
             } else {
-                // Chip breaking: back a little, and on.
+                // Chip breaking (cycle 203): back a little, and on.
                 broken += 1;
                 self.axis_to(line, d.surface - reached + d.break_retract, None);
-            }
-            if d.decrement > 0.0 {
-                peck = (peck - d.decrement).max(d.least.max(1e-3));
             }
         }
         dwell(self, d.dwell_depth);

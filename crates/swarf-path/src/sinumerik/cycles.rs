@@ -4,8 +4,10 @@
 //! Drilling parameters, by position: `RTP` retraction plane, `RFP` reference plane (the
 //! surface), `SDIS` safety distance, `DP` final depth (absolute) or `DPR` depth below `RFP`,
 //! then per cycle `DTB` (dwell at depth, s), `CYCLE83`'s `FDEP`/`FDPR` (first depth), `DAM`
-//! (degression) and `VARI` (0 chip breaking: back 1 mm; 1 chip removal: out to the safety
-//! distance), `CYCLE84`'s `MPIT`/`PIT` (thread size or pitch: the feed is the pitch per
+//! (degression), `DTS` (dwell at the top when removing chips), `FRF` (feed factor for the first
+//! depth), `VARI` (0 chip breaking: back `_VRT`, 1 mm by default; 1 chip removal: out to the
+//! safety distance, back in at rapid to `_DIS1` above the depth reached, by default the cycle's
+//! own 0.6 mm to 7 mm), `CYCLE84`'s `MPIT`/`PIT` (thread size or pitch: the feed is the pitch per
 //! spindle revolution), `CYCLE85`'s `FFR`/`RFF` (feeds in and out). The tool goes at rapid to
 //! the safety distance above `RFP`, feeds to the depth, and leaves at rapid (or the cycle's
 //! feed) to the retraction plane.
@@ -328,6 +330,38 @@ impl Reader<'_> {
         }
         let line = b.line;
         let top = rfp + sdis;
+        let c83 = name == "CYCLE83";
+        let arg = |i: usize| get(i).filter(|x| *x > 0.0);
+        // CYCLE83, by the 840D cycles manual (its sequence of motions and parameter list):
+        // - FRF (feed factor, 0.001…1) scales the feed to the first drilling depth only; 0 or
+        //   not given is 1.
+        // - VARI = 0 (chip breaking): back by _VRT after each depth, 0 or not given is the
+        //   manual's 1 mm. The manual's "1 mm" is taken in the program's units, as swarf did
+        //   before (an inch program backs 1 in); the manual does not say, so that stays.
+        // - VARI = 1 (chip removal): out to SDIS above RFP, dwell DTS there ("dwell at the
+        //   starting point and for chip removal"; seconds, only a positive value), then at rapid
+        //   to the advance distance _DIS1 above the depth reached. _DIS1 0 or not given: the
+        //   cycle's own, 0.6 mm up to a drilling depth of 30 mm, above that the drilling depth
+        //   / 50, at most 7 mm. "Drilling depth" is read as the hole's depth below RFP (the
+        //   manual's name for DP/DPR), so one distance serves the whole call; in the program's
+        //   units like _VRT's default.
+        // - DTB stays a dwell at the final depth only: the manual's sequence lists it after
+        //   the first depth and says the sequence repeats, but newer cycles move the final
+        //   depth's dwell to _DTD; ambiguous, so swarf's former reading stays.
+        let first_feed = if c83 {
+            (feed.0 * arg(10).unwrap_or(1.0), feed.1)
+        } else {
+            feed
+        };
+        let back = arg(14).unwrap_or(1.0) * s;
+        let ahead = match arg(16) {
+            Some(d) => d * s,
+            None => {
+                let d = total / s;
+                (if d <= 30.0 { 0.6 } else { (d / 50.0).min(7.0) }) * s
+            }
+        };
+        let at_top = if c83 { arg(9).unwrap_or(0.0) } else { 0.0 };
         self.axis_to(line, top, None);
         let mut reached = 0.0;
         let mut peck = first;
@@ -337,16 +371,20 @@ impl Reader<'_> {
             } else {
                 total
             };
-            self.axis_to(line, rfp - next, Some(feed));
+            let fd = if reached == 0.0 { first_feed } else { feed };
+            self.axis_to(line, rfp - next, Some(fd));
             reached = next;
             if reached >= total {
                 break;
             }
             if chip_break {
-                self.axis_to(line, rfp - reached + 1.0 * s, None);
+                self.axis_to(line, rfp - reached + back, None);
             } else {
                 self.axis_to(line, top, None);
-                self.axis_to(line, (rfp - reached + sdis).min(top), None);
+                if at_top > 0.0 {
+                    self.emit(line, Canon::Dwell(at_top));
+                }
+                self.axis_to(line, (rfp - reached + ahead).min(top), None);
             }
             if dam > 0.0 {
                 peck = (peck - dam).max(dam);
