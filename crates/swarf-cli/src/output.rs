@@ -265,3 +265,43 @@ pub(crate) fn csv_field(s: &str) -> String {
         s.to_string()
     }
 }
+
+/// The summary with the surface's [`Caveats`](swarf_surface::Caveats) as keys of its own
+/// (`skipped_faces`, `untrimmed_faces`, `unapplied_placements`, each with its notes).
+pub(crate) fn with_caveats(
+    mut v: serde_json::Value,
+    caveats: &swarf_surface::Caveats,
+) -> Result<serde_json::Value> {
+    if let (serde_json::Value::Object(c), Some(obj)) =
+        (serde_json::to_value(caveats)?, v.as_object_mut())
+    {
+        obj.extend(c);
+    }
+    Ok(v)
+}
+
+/// A line on stderr for each kind of caveat, saying what it means for `what` (the command's
+/// results).
+pub(crate) fn caveats_said(caveats: &swarf_surface::Caveats, what: &str) {
+    if caveats.skipped_faces > 0 {
+        eprintln!(
+            "warning: {} face(s) of the surface were not read (skipped_faces): the {what} \
+             take no account of them",
+            caveats.skipped_faces
+        );
+    }
+    if caveats.untrimmed_faces > 0 {
+        eprintln!(
+            "warning: {} face(s) were used on their whole surface, their trim not read \
+             (untrimmed_faces): the {what} near them may answer to surface outside the face",
+            caveats.untrimmed_faces
+        );
+    }
+    if caveats.unapplied_placements > 0 {
+        eprintln!(
+            "warning: {} assembly placement(s) were not applied (unapplied_placements): the \
+             parts they place may be misplaced",
+            caveats.unapplied_placements
+        );
+    }
+}

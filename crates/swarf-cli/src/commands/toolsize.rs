@@ -193,7 +193,7 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
     let summary = map.summary();
     let caveats = surface.caveats();
     let with_standard = |summary: &swarf_plan::size::MapSummary, r: Option<&StandardReport>| {
-        with_caveats(with_standard(summary, r)?, &caveats)
+        crate::output::with_caveats(with_standard(summary, r)?, &caveats)
     };
     // The summary too, as every command's --out holds one (`swarf report --from` reads it).
     let json = serde_json::to_vec_pretty(&with_standard(&summary, standard_report.as_ref())?)
@@ -220,7 +220,7 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
             summary.elapsed_s
         );
     }
-    caveats_said(&caveats, "radii");
+    crate::output::caveats_said(&caveats, "radii");
     let shank_hits = map
         .points
         .iter()
@@ -259,46 +259,6 @@ fn write_standard_and_maps(
     let json = serde_json::to_vec_pretty(&report).context("formatting standard.json")?;
     write_atomic(&out.join("standard.json"), &json)?;
     Ok(Some(report))
-}
-
-/// The summary with the surface's [`Caveats`](swarf_surface::Caveats) as keys of its own
-/// (`skipped_faces`, `untrimmed_faces`, `unapplied_placements`, each with its notes).
-pub(crate) fn with_caveats(
-    mut v: serde_json::Value,
-    caveats: &swarf_surface::Caveats,
-) -> Result<serde_json::Value> {
-    if let (serde_json::Value::Object(c), Some(obj)) =
-        (serde_json::to_value(caveats)?, v.as_object_mut())
-    {
-        obj.extend(c);
-    }
-    Ok(v)
-}
-
-/// A line on stderr for each kind of caveat, saying what it means for `what` (the command's
-/// results).
-pub(crate) fn caveats_said(caveats: &swarf_surface::Caveats, what: &str) {
-    if caveats.skipped_faces > 0 {
-        eprintln!(
-            "warning: {} face(s) of the surface were not read (skipped_faces): the {what} \
-             take no account of them",
-            caveats.skipped_faces
-        );
-    }
-    if caveats.untrimmed_faces > 0 {
-        eprintln!(
-            "warning: {} face(s) were used on their whole surface, their trim not read \
-             (untrimmed_faces): the {what} near them may answer to surface outside the face",
-            caveats.untrimmed_faces
-        );
-    }
-    if caveats.unapplied_placements > 0 {
-        eprintln!(
-            "warning: {} assembly placement(s) were not applied (unapplied_placements): the \
-             parts they place may be misplaced",
-            caveats.unapplied_placements
-        );
-    }
 }
 
 /// The JSON summary with the `standard` key added when there is a report.

@@ -144,7 +144,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
     }
     // The design first: a bad design file fails before any simulation.
     let (design, design_caveats) = load_design(&args.design, args.flip, args.part_at.as_ref())?;
-    crate::commands::toolsize::caveats_said(&design_caveats, "deviations");
+    crate::output::caveats_said(&design_caveats, "deviations");
     let job = load_job(&args.setup, &args.program)?;
     let tools = defined_tools(&job)?;
     let resolved = tools.resolved();

@@ -226,6 +226,9 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) skip_buf: LineBuf,
     /// Read by Fanuc's rules (see [`GcodeDialect`]).
     pub(crate) fanuc: bool,
+    /// The first line showing a Fanuc habit and the first showing something only LinuxCNC
+    /// reads, when the dialect was detected (`None`: given).
+    dialect_cues: Option<(Option<u32>, Option<u32>)>,
     /// Warnings raised where the line's text is not at hand, with the code index they point
     /// at: reported once the block has run.
     pub(crate) later: Vec<(usize, String)>,
@@ -286,11 +289,18 @@ impl<'t, 's> Interp<'t, 's> {
         sink: &'s mut dyn CanonSink,
     ) -> Self {
         let text = super::without_bom(text);
-        let fanuc =
-            opts.dialect.unwrap_or_else(|| GcodeDialect::detect(text)) == GcodeDialect::Fanuc;
+        // Detected once: the dialect and, when detected, the lines that decided it.
+        let (fanuc, dialect_cues) = match opts.dialect {
+            Some(d) => (d == GcodeDialect::Fanuc, None),
+            None => {
+                let (d, fanuc_at, linuxcnc_at) = GcodeDialect::detect_with_cues(text);
+                (d == GcodeDialect::Fanuc, Some((fanuc_at, linuxcnc_at)))
+            }
+        };
         let (text, file): (Rc<str>, Rc<str>) = (Rc::from(text), Rc::from(file));
         Self {
             fanuc,
+            dialect_cues,
             later: Vec::new(),
             deleted_warned: false,
             home_warned: false,
@@ -416,9 +426,8 @@ impl<'t, 's> Interp<'t, 's> {
                 "RS274/NGC G-code",
             ));
         }
-        if self.opts.dialect.is_none() {
+        if let Some((fanuc_at, linuxcnc_at)) = self.dialect_cues {
             // Which rules the program is read by, and the line that decided it.
-            let (_, fanuc_at, linuxcnc_at) = GcodeDialect::detect_with_cues(&self.text);
             let message = match (fanuc_at, linuxcnc_at) {
                 (Some(_), None) => Some(
                     "read by Fanuc rules: this line shows a Fanuc habit (a bare program number, \

@@ -107,10 +107,13 @@ impl Reader<'_> {
             // `CYCLE800()` deselects the swivel data: the frames go, the rotary axes stay
             // where they are (the tool keeps its axis until the program turns one); a reset
             // to zero angles with a swivel direction (`_DIR` ≠ 0) turns them back.
+            let tilted = self.frame.tilt.is_some();
             self.swivel = None;
-            self.swivel_stays = v.iter().all(Option::is_none) || g(13) == 0.0;
             self.set_chain(b.line, self.trans, self.rot);
-            self.swivel_stays = false;
+            let stays = v.iter().all(Option::is_none) || g(13) == 0.0;
+            if tilted && !stays {
+                self.emit(b.line, Canon::MachineAxis);
+            }
             return Ok(());
         }
         if mode & 0xC0 != 0 {

@@ -258,8 +258,6 @@ struct Reader<'a> {
     /// within it. Machine = pivot + R·(offset + t + Rz(rot)·p); the part frame is made from
     /// them.
     swivel: Option<([f64; 3], crate::part_frame::Mat, [f64; 3])>,
-    /// The swivel being deselected leaves the rotary axes where they are (`CYCLE800()`).
-    swivel_stays: bool,
     trans: [f64; 3],
     rot: f64,
     /// The block's rotary directions (`DC` 0, `ACP` 1, `ACN` −1).
@@ -305,7 +303,6 @@ impl<'a> Reader<'a> {
             frame: PartFrame::default(),
             trans: [0.0; 3],
             swivel: None,
-            swivel_stays: false,
             rot: 0.0,
             turning: [None; 6],
             absolute: true,
@@ -619,10 +616,8 @@ impl<'a> Reader<'a> {
         let untilting = self.frame.tilt.is_some();
         f(self);
         if untilting && self.frame.tilt.is_none() {
+            // (Whether the rotary axes turn back is the caller's: `CYCLE800`'s reset.)
             self.emit(line, Canon::WorkPlane(None));
-            if !self.swivel_stays {
-                self.emit(line, Canon::MachineAxis);
-            }
         }
         let p = self.frame.program_of(m);
         self.c.pos[..3].copy_from_slice(&p);
