@@ -136,18 +136,39 @@ impl LocationCap {
     }
 }
 
-/// Groups a move's locations into pieces: neighbours whose caps are within [`SPLIT_MERGE`] of
-/// the piece's smallest share it. `(s_end, cap, infeasible)` per piece; an unloaded location
-/// counts as uncapped.
+/// Groups a move's locations into pieces. Pieces end at locations, and what a piece's feed
+/// must hold for is every location it spans, **both ends included**: the location where a
+/// piece starts is the last one of the piece before, so the stretch between two neighbouring
+/// locations gets the cap of both of its ends (the smaller), and each piece the smallest cap of
+/// its stretches. (The first stretch starts where the move starts, which is no location of the
+/// move: it has the cap of the move's first location, as the unsplit move has its locations'.)
+/// Between two locations the engagement is known only at them, as everywhere along a program:
+/// `--step` sets how closely it is sampled. Neighbouring stretches whose caps are within
+/// [`SPLIT_MERGE`] of the piece's smallest share it. `(s_end, cap, infeasible)` per piece; an
+/// unloaded location counts as uncapped.
 fn pieces_of(locations: &[(f64, LocationCap)]) -> Vec<(f64, Option<f64>, bool)> {
+    let of = |cap: LocationCap| match cap {
+        LocationCap::Unloaded => (None, false),
+        LocationCap::Feed(f) => (Some(f), false),
+        LocationCap::OverAtAnyFeed => (Some(0.0), true),
+    };
     let mut out: Vec<(f64, Option<f64>, bool)> = Vec::new();
     let mut span: Option<(f64, f64)> = None;
+    let mut before: Option<(Option<f64>, bool)> = None;
     for &(s, cap) in locations {
-        let (c, bad) = match cap {
-            LocationCap::Unloaded => (None, false),
-            LocationCap::Feed(f) => (Some(f), false),
-            LocationCap::OverAtAnyFeed => (Some(0.0), true),
+        let here = of(cap);
+        // The stretch from the location before (its start) to this one.
+        let (c, bad) = match before {
+            Some((c0, bad0)) => (
+                match (c0, here.0) {
+                    (Some(a), Some(b)) => Some(a.min(b)),
+                    (a, b) => a.or(b),
+                },
+                bad0 || here.1,
+            ),
+            None => here,
         };
+        before = Some(here);
         let key = c.unwrap_or(f64::INFINITY);
         let joins = match (out.last(), span) {
             (Some(_), Some((lo, hi))) => {
@@ -290,30 +311,67 @@ mod tests {
     #[test]
     fn locations_group_into_pieces_by_their_caps() {
         use LocationCap::{Feed, OverAtAnyFeed, Unloaded};
+        // A stretch between two locations takes the smaller cap of its two ends.
         let locs = [
             (0.1, Unloaded),
             (0.2, Unloaded),
-            (0.3, Feed(500.0)),
-            (0.4, Feed(540.0)),
-            (0.5, Feed(560.0)), // 560 > 500·1.1: a new piece
+            (0.3, Feed(500.0)),  // stretch 0.2–0.3: 500
+            (0.4, Feed(540.0)),  // 0.3–0.4: 500
+            (0.5, Feed(600.0)),  // 0.4–0.5: 540, within 10 % of 500: the same piece
+            (0.55, Feed(600.0)), // 0.5–0.55: 600 > 500·1.1, a new piece
             (0.6, OverAtAnyFeed),
             (0.7, OverAtAnyFeed),
-            (0.8, Unloaded),
+            (0.8, Unloaded), // 0.7–0.8 starts at a location over the limit at any feed
         ];
         let p = pieces_of(&locs);
         assert_eq!(
             p,
             vec![
                 (0.2, None, false),
-                (0.4, Some(500.0), false),
-                (0.5, Some(560.0), false),
-                (0.7, Some(0.0), true),
-                (1.0, None, false),
+                (0.5, Some(500.0), false),
+                (0.55, Some(600.0), false),
+                (1.0, Some(0.0), true),
             ]
         );
         assert_eq!(
             pieces_of(&[(0.5, Feed(100.0)), (1.0, Feed(105.0))]),
             vec![(1.0, Some(100.0), false)]
         );
+    }
+
+    /// The reviewer's slot leaving the block (`--step 2` on a 44 mm move): the full slot's
+    /// last location caps 715.7 mm/min, the next (half out) 1050.5, then air. The piece that
+    /// starts at the full slot's last location spans it, so it may not go faster than 715.7:
+    /// every location a piece spans, both ends included, allows the piece's feed.
+    #[test]
+    fn a_piece_holds_at_the_location_where_it_starts() {
+        use LocationCap::{Feed, Unloaded};
+        let mut locs: Vec<(f64, LocationCap)> = vec![(2.0 / 44.0, Unloaded)];
+        for k in 2..=20 {
+            locs.push((2.0 * k as f64 / 44.0, Feed(715.702)));
+        }
+        locs.push((42.0 / 44.0, Feed(1050.5)));
+        locs.push((1.0, Unloaded));
+        let p = pieces_of(&locs);
+        assert_eq!(
+            p,
+            vec![
+                (2.0 / 44.0, None, false),
+                (42.0 / 44.0, Some(715.702), false),
+                (1.0, Some(1050.5), false),
+            ]
+        );
+        // The invariant, location by location.
+        let mut start = f64::NEG_INFINITY;
+        for &(end, cap, _) in &p {
+            for &(s, c) in &locs {
+                if s >= start && s <= end {
+                    if let (Some(cap), Feed(c)) = (cap, c) {
+                        assert!(cap <= c, "piece to {end} at {cap} spans {s} capped {c}");
+                    }
+                }
+            }
+            start = end;
+        }
     }
 }
