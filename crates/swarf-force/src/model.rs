@@ -12,7 +12,7 @@
 //! dF_t = K_tc h db + K_te db,  dF_r = K_rc h db + K_re db,  dF_a = K_ac h db + K_ae db
 //! ```
 //!
-//! with `db` the slab's profile length (the chip width; edge coefficients are per unit chip
+//! with `db` the element's profile length (the chip width; edge coefficients are per unit chip
 //! width, as the mechanistic tests calibrate them). On the tool, in the tool frame:
 //!
 //! ```text
@@ -21,7 +21,11 @@
 //! ```
 //!
 //! which on a cylinder (κ = 90°) is `Fx = −Ft cos φ − Fr sin φ, Fy = Ft sin φ − Fr cos φ, Fz =
-//! Fa` (../shared/data/forces/REFERENCE.md), and the spindle torque is `ρ·dF_t`.
+//! Fa` (../shared/data/forces/REFERENCE.md), and the spindle torque is `ρ·dF_t`. Over a slab the
+//! products of `h`, the directions and `ρ` are integrated along the profile — `∫ρ sin κ ds`,
+//! `∫sin²κ ds` and the like, in closed form per piece ([`crate::edges`]) — not taken at the
+//! slab's circle: where a ball or torus turns flat near the tip, `sin κ` changes by its own size
+//! across one disc.
 //!
 //! # Along the edge and over a revolution
 //! Flute `m` of `N` at spindle angle `θ` crosses a slab from immersion `θ + 2πm/N − ψ(lo)` at its
@@ -30,8 +34,9 @@
 //! component is a combination of `1, sin φ, cos φ, sin²φ, sin φ cos φ, cos²φ` with constant
 //! weights on a slab, so the force of a flute on a slab is the closed-form integral of those
 //! over the part of its angular span inside the slab's engaged intervals, divided by the span
-//! and times the width (a point value when the span is zero: no helix, or a flat bottom). The
-//! mean over a revolution does not depend on the lag: `N/2π · db · ∫_engaged f(φ) dφ`, exact.
+//! (a point value when the span is zero: no helix, or a flat bottom); the weights are already
+//! integrated along the slab's profile. The mean over a revolution does not depend on the lag:
+//! `N/2π · ∫_slab ∫_engaged f(φ) dφ ds`, exact.
 //!
 //! Everything is linear in the six coefficients, and the shear part linear in the feed per
 //! tooth, so a location is evaluated once per coefficient ([`UnitForces`]) and any material
@@ -141,7 +146,7 @@ impl UnitForces {
 
 /// A slab's engaged angles and weights, ready for sampling.
 struct SlabLoad {
-    /// `[coefficient][output][basis]` weights per unit angle (times the chip width).
+    /// `[coefficient][output][basis]` weights per unit angle (integrated over the slab).
     w: [[[f64; BASIS]; OUTPUTS]; COEFFS],
     lag: (f64, f64),
     /// Engaged intervals, radians, start in `[0, 2π)`.
@@ -213,40 +218,57 @@ fn add(acc: &mut [f64; BASIS], v: [f64; BASIS], f: f64) {
 }
 
 impl SlabLoad {
-    /// Weights of a slab with unit feed per tooth along `feed` (tool frame) and chip width
-    /// `slab.width`.
+    /// Weights of a slab with unit feed per tooth along `feed` (tool frame): every term
+    /// integrated along the slab's profile ([`crate::edges::ProfileIntegrals`]), exact for the
+    /// model whatever the slab's curvature.
     fn new(slab: &Slab, feed: Vec3, intervals: Vec<(f64, f64)>) -> Self {
-        let (sk, ck) = slab.kappa.sin_cos();
-        // h = A sin φ + B cos φ + C, as [1, sin, cos].
-        let h = [-feed.z * ck, feed.x * sk, feed.y * sk];
-        let one = [1.0, 0.0, 0.0];
+        let q = &slab.integrals;
+        // `∫ g·h ds` as [1, sin φ, cos φ] for a profile factor g: h = −c_z cos κ + c_x sin κ
+        // sin φ + c_y sin κ cos φ, so only `∫g cos κ ds` and `∫g sin κ ds` enter.
+        let h = |g_cos: f64, g_sin: f64| [-feed.z * g_cos, feed.x * g_sin, feed.y * g_sin];
         let mut w = [[[0.0; BASIS]; OUTPUTS]; COEFFS];
         for (k, wk) in w.iter_mut().enumerate() {
-            // The coefficient's elemental force: shear ones carry h, edge ones 1.
-            let l = if k < 3 { h } else { one };
+            // The coefficient's elemental force: shear ones carry h, edge ones 1, each with the
+            // profile factor of its direction (1, sin κ, cos κ or ρ) integrated along the slab.
+            let shear = k < 3;
+            let one = if shear {
+                h(q.cos, q.sin)
+            } else {
+                [q.len, 0.0, 0.0]
+            };
+            let by_sin = if shear {
+                h(q.sin_cos, q.sin2)
+            } else {
+                [q.sin, 0.0, 0.0]
+            };
+            let by_cos = if shear {
+                h(q.cos2, q.sin_cos)
+            } else {
+                [q.cos, 0.0, 0.0]
+            };
+            let by_rho = if shear {
+                h(q.rho_cos, q.rho_sin)
+            } else {
+                [q.rho, 0.0, 0.0]
+            };
             match k % 3 {
                 0 => {
                     // Tangential: (−cos φ, sin φ, 0), torque ρ/1000.
-                    add(&mut wk[0], times(l, 2), -1.0);
-                    add(&mut wk[1], times(l, 1), 1.0);
-                    add(&mut wk[3], times(l, 0), slab.rho * 1e-3);
+                    add(&mut wk[0], times(one, 2), -1.0);
+                    add(&mut wk[1], times(one, 1), 1.0);
+                    add(&mut wk[3], times(by_rho, 0), 1e-3);
                 }
                 1 => {
                     // Radial: (−sin κ sin φ, −sin κ cos φ, cos κ).
-                    add(&mut wk[0], times(l, 1), -sk);
-                    add(&mut wk[1], times(l, 2), -sk);
-                    add(&mut wk[2], times(l, 0), ck);
+                    add(&mut wk[0], times(by_sin, 1), -1.0);
+                    add(&mut wk[1], times(by_sin, 2), -1.0);
+                    add(&mut wk[2], times(by_cos, 0), 1.0);
                 }
                 _ => {
                     // Axial: (cos κ sin φ, cos κ cos φ, sin κ).
-                    add(&mut wk[0], times(l, 1), ck);
-                    add(&mut wk[1], times(l, 2), ck);
-                    add(&mut wk[2], times(l, 0), sk);
-                }
-            }
-            for o in wk.iter_mut() {
-                for v in o.iter_mut() {
-                    *v *= slab.width;
+                    add(&mut wk[0], times(by_cos, 1), 1.0);
+                    add(&mut wk[1], times(by_cos, 2), 1.0);
+                    add(&mut wk[2], times(by_sin, 0), 1.0);
                 }
             }
         }
@@ -285,7 +307,7 @@ fn engaged_slabs(e: &Engagement, edges: &CutterEdges) -> Vec<(Slab, Vec<(f64, f6
             if i + 1 == n && hi.is_finite() {
                 b = hi.clamp(slab.z, slab.range.1 + 0.5 * (slab.range.1 - slab.range.0));
             }
-            slab = slab.clipped(a.max(0.0), b);
+            slab = edges.clipped(StripKind::Side, &slab, a.max(0.0), b);
         }
         out.push((slab, to_rad(d)));
     }
@@ -334,10 +356,9 @@ pub fn unit_forces(e: &Engagement, edges: &CutterEdges, samples: usize) -> UnitF
             }
         }
         // Mean chip: h weights (coefficient ktc, tangential, torque-free) → use h directly.
-        let (sk, ck) = slab.kappa.sin_cos();
-        let h_int = -f.z * ck * full[0] + f.x * sk * full[1] + f.y * sk * full[2];
-        chip += slab.width * h_int;
-        engaged_len += slab.width * full[0];
+        let q = &slab.integrals;
+        chip += -f.z * q.cos * full[0] + f.x * q.sin * full[1] + f.y * q.sin * full[2];
+        engaged_len += q.len * full[0];
         let dlag = load.lag.1 - load.lag.0;
         for j in 0..period {
             let theta = TAU * j as f64 / samples as f64;

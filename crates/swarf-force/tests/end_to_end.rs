@@ -199,3 +199,80 @@ fn samples_per_revolution_out_of_range_are_refused() {
     }
     assert!(ForceModel::new(material(), &tools, &[0], &opts, 36_000).is_ok());
 }
+
+/// The closed-form mean forces and torque of a full slot `d` deep cut by the arc part of a
+/// profile — a ball (`a` = 0, `r` = R) or a bull-nose's torus (`a` = e, `r` = corner radius),
+/// `d ≤ r` — with `n` flutes at feed per tooth `c` along `x_L`.
+///
+/// On the arc at polar angle θ (= κ): ρ = a + r sin θ, z = r (1 − cos θ), ds = r dθ, and the
+/// slot engages φ ∈ [0, π] on every circle up to θ₁ = acos(1 − d/r) (no plunge: the bottom is
+/// not engaged). With h = c sin φ sin κ and the directions of the model, over φ ∈ [0, π]
+/// (∫1 = π, ∫sin = 2, ∫sin² = π/2, ∫sin cos = ∫cos = 0):
+///
+/// ```text
+/// F̄x = N/2π·(−π/2·Krc·c·S2 + π/2·Kac·c·SC − 2·Kre·Z + 2·Kae·P)
+/// F̄y = N/2π·(π/2·Ktc·c·Z + 2·Kte·L)
+/// F̄z = N/2π·(2·Krc·c·SC + 2·Kac·c·S2 + π·Kre·P + π·Kae·Z)
+/// T̄  = N/2π·(2·Ktc·c·∫ρ sin κ ds + π·Kte·∫ρ ds)
+/// ```
+///
+/// with Z = ∫sin κ ds = r(1 − cos θ₁) = d, P = ∫cos κ ds = r sin θ₁, L = r θ₁, S2 = ∫sin²κ ds =
+/// r(θ₁/2 − sin 2θ₁/4), SC = ∫sin κ cos κ ds = r sin²θ₁/2, ∫ρ sin κ ds = a·Z + r·S2,
+/// ∫ρ ds = a·L + r·Z.
+fn arc_slot_closed_form(n: f64, c: f64, a: f64, r: f64, d: f64) -> ([f64; 3], f64) {
+    let t = (1.0 - d / r).acos();
+    let z = r * (1.0 - t.cos());
+    let p = r * t.sin();
+    let l = r * t;
+    let s2 = r * (t / 2.0 - (2.0 * t).sin() / 4.0);
+    let sc = r * t.sin() * t.sin() / 2.0;
+    let (rz, rl) = (a * z + r * s2, a * l + r * z);
+    let k = n / (2.0 * PI);
+    let f = [
+        k * (-PI / 2.0 * K.krc * c * s2 + PI / 2.0 * K.kac * c * sc - 2.0 * K.kre * z
+            + 2.0 * K.kae * p),
+        k * (PI / 2.0 * K.ktc * c * z + 2.0 * K.kte * l),
+        k * (2.0 * K.krc * c * sc + 2.0 * K.kac * c * s2 + PI * K.kre * p + PI * K.kae * z),
+    ];
+    (f, k * (2.0 * K.ktc * c * rz + PI * K.kte * rl) * 1e-3)
+}
+
+/// Ball and bull-nose slots at the default discs (dz = 0.1 mm), against the closed forms of the
+/// model over the exact profile: the forces take `∫ρ sin κ ds` and the like over each slab
+/// (before, ρ and κ at the slab's circle times its profile length, which near the tip, where
+/// the profile turns flat, made the first disc 41 % too wide: here the mean torque came out
+/// 13.3 % high on the 0.3 mm ball slot, 1.4 % on the 2 mm one, 2.3 % on the bull-nose; now all
+/// within 0.01 %, the test allowing 0.1 %).
+#[test]
+fn ball_and_bull_nose_slots_match_the_closed_forms_over_the_profile() {
+    let head = "G21 G90 G94\nS1000 M3\n";
+    // 2 flutes, F 200 mm/min at 1000 rpm: c = 0.1 mm.
+    let c = 0.1;
+    for (spec, a, r, d) in [
+        ("ball:d=10,flutes=2,helix=30", 0.0, 5.0, 0.3),
+        ("ball:d=10,flutes=2,helix=30", 0.0, 5.0, 2.0),
+        ("bull:d=10,r=2,flutes=2,helix=30", 3.0, 2.0, 1.0),
+    ] {
+        let (e, f) = forces_at(
+            &format!("{head}G0 X-10 Y10 Z{}\nG1 X50 F200\n", -d),
+            [0.0, 0.0, -10.0],
+            [40.0, 20.0, 0.0],
+            spec,
+            [20.0, 10.0, -d],
+        );
+        assert!(e.bottom.is_empty(), "{spec}: the bottom does not cut");
+        assert!((f.feed_per_tooth_mm - c).abs() < 1e-12);
+        let (want, torque) = arc_slot_closed_form(2.0, c, a, r, d);
+        let what = format!("{spec} slot {d} mm");
+        println!(
+            "{what}: T {:.5} N·m (closed form {torque:.5})",
+            f.torque_mean_nm
+        );
+        check(f.mean_n, want, 0.001, &what);
+        assert!(
+            (f.torque_mean_nm - torque).abs() <= 0.001 * torque,
+            "{what}: torque {} vs {torque}",
+            f.torque_mean_nm
+        );
+    }
+}

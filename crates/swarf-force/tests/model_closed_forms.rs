@@ -358,10 +358,12 @@ fn symmetries_and_limits() {
 
 #[test]
 fn ball_end_chip_thins_towards_the_tip() {
-    // On the ball, h = c·sin φ·sin κ: the shear force of a disc at polar angle θ is sin θ times
-    // that of a cylinder disc of the same width and radius... checked through the mean Fz of a
-    // thin band, which only the axial component carries: F̄z = N/2π·db·∫(Kac·c·sin φ·sin κ·sin κ
-    // + Kae·sin κ + (Krc·c sin φ sin κ + Kre)·cos κ) dφ.
+    // On the ball, h = c·sin φ·sin κ, κ = θ the polar angle, ds = R dθ: the mean Fz of the disc
+    // whose slab is z ∈ [1, 1.1], engaged on φ ∈ [0, π], which only the axial components carry,
+    // is F̄z = N/2π·∫∫(Kac·c·sin φ·sin²κ + Kae·sin κ + (Krc·c·sin φ·sin κ + Kre)·cos κ) dφ ds,
+    // integrated along the profile over the slab (not at its circle):
+    // ∫sin²θ R dθ = R·[θ/2 − sin 2θ/4], ∫sin θ cos θ R dθ = R·[sin²θ/2], ∫sin θ R dθ = Δz,
+    // ∫cos θ R dθ = R·[sin θ].
     let opts = EngageOptions::default();
     let c = cutter("ball", 2, 0.0);
     let z = 1.05;
@@ -373,16 +375,18 @@ fn ball_end_chip_thins_towards_the_tip() {
     let r = 5.0f64;
     let (a, b) = (1.0f64, 1.1f64);
     let theta = |z: f64| (1.0 - z / r).acos();
-    let db = r * (theta(b) - theta(a));
-    let rho = (r * r - (r - z) * (r - z)).sqrt();
-    let sk = rho / r;
-    let ck = (r - z) / r;
+    let (ta, tb) = (theta(a), theta(b));
+    let br = |g: &dyn Fn(f64) -> f64| g(tb) - g(ta);
+    let sin2 = r * br(&|t| t / 2.0 - (2.0 * t).sin() / 4.0);
+    let sin_cos = r * br(&|t| t.sin() * t.sin() / 2.0);
+    let sin = b - a;
+    let cos = r * br(&f64::sin);
     // ∫_0^π sin φ = 2, ∫ 1 = π.
     let want = 2.0 / TAU
-        * db
-        * (K.kac * 0.1 * sk * 2.0 * sk
-            + K.kae * PI * sk
-            + (K.krc * 0.1 * sk * 2.0 + K.kre * PI) * ck);
+        * (K.kac * 0.1 * 2.0 * sin2
+            + K.kae * PI * sin
+            + K.krc * 0.1 * 2.0 * sin_cos
+            + K.kre * PI * cos);
     assert!(
         (f.means[2] - want).abs() < 1e-9 * want,
         "{} vs {want}",
