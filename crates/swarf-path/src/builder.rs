@@ -259,6 +259,39 @@ impl MoveBuilder {
         self.pos = self.program_of(&at);
     }
 
+    /// The tool axis is one a G-code-like program stated as a vector (the axis source is the
+    /// program, and not through a tilted plane's G53.1): a rotary word or the end of tool
+    /// centre point control hands it back to the machine. (CL data states every axis and has
+    /// no rotary words.)
+    fn axis_stated(&self) -> bool {
+        self.axis_source == AxisSource::Program && !self.tilt_axis && !self.held_axis
+    }
+
+    /// Hands a stated tool axis back to the machine where the tool stands: the rotary joints
+    /// that give the axis (nearest to the program's own rotary values), and X Y Z the machine's
+    /// reading of the tip for them.
+    fn axis_to_machine(&mut self, line: u32) {
+        let joints = self.joints(&self.pos);
+        let pose = Pose {
+            tip: Vec3::new(joints.x, joints.y, joints.z),
+            axis: self.axis,
+        };
+        match self.machine.inverse(&pose, &joints) {
+            Some(j) => self.pos = self.program_of(&j),
+            None => self.warn_at(
+                line,
+                format!(
+                    "machine `{}` cannot turn the tool to the axis the program stated                      ({:.4}, {:.4}, {:.4}): the rotary axes keep the program's values",
+                    self.machine.name, self.axis.x, self.axis.y, self.axis.z
+                ),
+            ),
+        }
+        self.axis_source = AxisSource::Machine;
+        self.release_axis = false;
+        let end = self.machine.pose(&self.joints(&self.pos)).axis;
+        (self.axis, self.target_axis) = (end, end);
+    }
+
     fn pose(&self, joints: &Axes, axis: Vec3) -> Pose {
         match self.axis_source {
             AxisSource::Machine => self.machine.pose(joints),
@@ -628,21 +661,29 @@ impl CanonSink for MoveBuilder {
                 // The tool stays where it is: its position is re-expressed in the new reading
                 // of X Y Z (tip in the part frame, or the machine's controlled point), so the
                 // next move starts where the last one ended.
-                if self.machine.tcp != *on
-                    && self.machine.has_rotary()
-                    && self.axis_source == AxisSource::Machine
-                {
+                let turns = self.machine.tcp != *on && self.machine.has_rotary();
+                if turns && self.axis_source == AxisSource::Machine {
                     let joints = self.joints(&self.pos);
                     let tip = self.machine.pose(&joints).tip;
                     self.machine.tcp = *on;
                     let moved = self.machine.joints_for_tip(tip, &joints);
                     self.pos = self.program_of(&moved);
+                } else if turns && !*on && self.axis_stated() {
+                    // The axis a program stated as a vector (LN TX TY TZ, A3= B3= C3=, G43.5
+                    // I J K) lives only under tool centre point control: once it is off, the
+                    // rotary axes hold the tool where the vector put it, and X Y Z are the
+                    // machine's controlled point for them.
+                    self.machine.tcp = false;
+                    self.axis_to_machine(line);
                 } else {
                     self.machine.tcp = *on;
                 }
             }
             Canon::MachineAxis => {
                 self.release_axis |= std::mem::take(&mut self.held_axis);
+                // A rotary word after a stated vector: the machine's axes set the tool axis
+                // again, from the next move on (which turns the tool from the stated axis).
+                self.release_axis |= self.axis_stated();
             }
             Canon::SetPosition(p) => {
                 self.pos = *p;
@@ -683,5 +724,9 @@ impl CanonSink for MoveBuilder {
 
     fn warn(&mut self, warning: Warning) {
         self.warnings.push(warning);
+    }
+
+    fn position(&self) -> Option<Axes> {
+        Some(self.pos)
     }
 }

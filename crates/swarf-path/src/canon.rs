@@ -319,6 +319,15 @@ pub trait CanonSink {
     fn emit(&mut self, line: u32, event: &Canon<'_>);
     /// A harmless thing the reader did not act on.
     fn warn(&mut self, warning: crate::Warning);
+    /// The program position the sink holds now, when it keeps one (a
+    /// [`MoveBuilder`](crate::builder::MoveBuilder), which knows the machine). Turning tool
+    /// centre point control on or off re-expresses the position where the tool stands
+    /// ([`Canon::ToolCentrePoint`]): a reader takes its X Y Z back from here, so that the axes a
+    /// later block leaves out (a `G53 G0 Z0` retract, an incremental move) start where the
+    /// machine is rather than from the coordinates of the other reading.
+    fn position(&self) -> Option<Axes> {
+        None
+    }
 }
 
 /// A sink that keeps every event (owned) — for tests and small programs.

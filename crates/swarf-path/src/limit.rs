@@ -117,6 +117,10 @@ impl CanonSink for MoveLimit<'_> {
         self.warned.insert(warning.clone());
         self.inner.warn(warning);
     }
+
+    fn position(&self) -> Option<crate::Axes> {
+        self.inner.position()
+    }
 }
 
 /// What the reader says when the move limit `max` is reached.

@@ -11,6 +11,18 @@ use crate::gcode::GcodeOptions;
 use crate::part_frame::PartFrame;
 use crate::{Axes, Canon, FeedMode, PathError, PathErrorKind, Plane, SourcePos, Units};
 
+/// Moves a reader's own position `pos` by what the sink's position changed from `before` to
+/// `after` around an event that re-expresses where the tool stands (tool centre point control
+/// on or off, [`crate::CanonSink::position`]): the axes a later block leaves out then start
+/// where the machine is, and the reader's own offsets (a tool length) stay in its position.
+pub(crate) fn follow_sink(pos: &mut [f64; 6], before: Option<Axes>, after: Option<Axes>) {
+    if let (Some(a), Some(b)) = (before, after) {
+        for ((p, a), b) in pos.iter_mut().zip(a.to_array()).zip(b.to_array()) {
+            *p += b - a;
+        }
+    }
+}
+
 /// The tool's place on the contour it follows.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Contour {

@@ -362,6 +362,9 @@ impl CanonSink for SummarySink {
     fn warn(&mut self, warning: Warning) {
         self.builder.warn(warning);
     }
+    fn position(&self) -> Option<crate::Axes> {
+        self.builder.position()
+    }
 }
 
 /// True when neither the tip nor the joints move.

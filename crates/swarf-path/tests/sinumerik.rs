@@ -778,3 +778,29 @@ fn cycle83_chip_breaking_backs_by_vrt() {
         );
     }
 }
+
+#[test]
+fn orientations_not_read_are_named_as_such() {
+    // Euler/RPY angles and lead/tilt angles state the tool's orientation in forms swarf does
+    // not read: the error says so and names the form it reads (it said "unexpected word").
+    for (text, word) in [
+        (
+            "G71 G90\nTRAORI\nORIEULER\nG1 X10 A2=0 B2=30 C2=0 F500\n",
+            "A2",
+        ),
+        (
+            "G71 G90\nTRAORI\nORIPATH\nG1 X10 LEAD=10 TILT=5 F500\n",
+            "LEAD",
+        ),
+    ] {
+        let e = err(text);
+        assert_eq!(e.kind, PathErrorKind::Unsupported, "{e}");
+        assert_eq!(e.pos.line, 5, "{e}");
+        let m = e.to_string();
+        assert!(
+            m.contains(&format!("{word}= states the tool orientation"))
+                && m.contains("A3= B3= C3="),
+            "{m}"
+        );
+    }
+}

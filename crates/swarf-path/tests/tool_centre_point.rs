@@ -140,3 +140,143 @@ fn fanuc_g43_5_takes_the_tool_direction_from_i_j_k() {
         p.warnings
     );
 }
+
+/// The last move's end: tip and axis.
+fn last_end(p: &Program) -> (Vec3, Vec3) {
+    let m = p.moves.last().expect("a move");
+    (m.end.tip, m.end.axis)
+}
+
+#[test]
+fn a_rotary_word_after_a_stated_tool_vector_gives_the_axis_back_to_the_machine() {
+    // The same programs with and without one move that states the tool's direction as a vector
+    // (Heidenhain LN … TX TY TZ, Sinumerik A3= B3= C3=, Fanuc G43.5 I J K): the rotary words
+    // after it set the tool axis again, so both end with the tool where the machine's axes put
+    // it. (The vector kept the axis for the rest of the program.)
+    let cases = [
+        (
+            "t.h",
+            "BEGIN PGM T MM\nTOOL CALL 1 Z S8000\nM128\nL X+0 Y+0 Z+50 A+0 C+0 R0 FMAX\n\
+             @ F500\nL X+10 Y+0 Z+50 R0 FMAX\nL X+10 Y+0 Z+50 A+90 C+0 R0 FMAX\n\
+             L X+10 Y+0 Z+5 R0 F500\nM129\nL X+0 Y+0 Z+100 A-45 C+90 R0 FMAX\nEND PGM T MM\n",
+            ["LN X+10 Y+0 Z+5 TX+0 TY+0 TZ+1", "L X+10 Y+0 Z+5"],
+        ),
+        (
+            "t.mpf",
+            "G90 G17 G71\nT1 D1\nM6\nTRAORI\nORIWKS\nG0 X10 Y0 Z50 A0 C0\nG1 Z5 F500\n@\n\
+             G1 X40 A90 C90\nTRAFOOF\nG0 X0 Y0 Z100 A-45 C90\nM30\n",
+            ["G1 X20 A3=0.6 B3=0 C3=0.8", "G1 X20 A0 C0"],
+        ),
+        (
+            "t.nc",
+            "%\nO1\nG21 G90 G17 G94\nT1 M6\nG43.4 H1\nG0 X0. Y0. Z50. A0. C0.\n@\nG49\n\
+             G43.4 H1\nG0 X10. Y0. Z50. A90. C0.\nG1 Z5. F500.\nG49\nG0 X0. Y0. Z100. A-45. C90.\n\
+             M30\n%\n",
+            [
+                "G43.5 H1 G1 X10. Z5. I0.6 J0 K0.8 F500.",
+                "G1 X10. Z5. F500.",
+            ],
+        ),
+    ];
+    for (file, text, [vector, plain]) in cases {
+        let with = read(&text.replace('@', vector), file, "table-ac");
+        let without = read(&text.replace('@', plain), file, "table-ac");
+        let (a, b) = (last_end(&with), last_end(&without));
+        assert!(
+            (a.0 - b.0).length() < 1e-9 && (a.1 - b.1).length() < 1e-12,
+            "{file}: {a:?} against {b:?}"
+        );
+        // At A-45 C90 without tool centre point control: the machine's point (0, 0, 100)
+        // seen from the turned table, the axis turned with it.
+        let h = std::f64::consts::FRAC_1_SQRT_2;
+        assert!(
+            (a.1 - Vec3::new(-h, 0.0, h)).length() < 1e-12,
+            "{file}: {a:?}"
+        );
+        assert!(
+            (a.0 - Vec3::new(-100.0 * h, 0.0, 100.0 * h)).length() < 1e-9,
+            "{file}: {a:?}"
+        );
+        // The moves between the vector and the rotary words kept the stated axis.
+        let stated = with
+            .moves
+            .iter()
+            .find(|m| (m.end.axis - Vec3::new(0.6, 0.0, 0.8)).length() < 1e-12);
+        assert!(file == "t.h" || stated.is_some(), "{file}");
+    }
+}
+
+#[test]
+fn after_tool_centre_point_control_the_axes_a_block_leaves_out_are_the_machines() {
+    // With the table at A-45 C90 and the tip at (20, 0, 5), turning tool centre point control
+    // off re-expresses X Y Z as the machine's point; an incremental Z100 then moves only the
+    // machine's Z: straight up the tool axis, 100 mm. (The readers kept the tip's X Y Z and
+    // put the machine's X Y where the tip had been.)
+    let cases = [
+        (
+            "t.nc",
+            "G21 G90 G17 G94\nT1 M6\nG0 A-45. C90.\nG43.4 H1\nG0 X20. Y0. Z50.\nG1 Z5. F500.\n\
+             G49\nG91 G0 Z100.\nG90\nM30\n",
+        ),
+        (
+            "t.h",
+            "BEGIN PGM M MM\nTOOL CALL 1 Z S8000\nL A-45 C+90 R0 FMAX\nM128\n\
+             L X+20 Y+0 Z+50 R0 FMAX\nL Z+5 F500\nM129\nL IZ+100 R0 FMAX\nEND PGM M MM\n",
+        ),
+        (
+            "t.mpf",
+            "G90 G17 G71\nT1 D1\nM6\nG0 A-45 C90\nTRAORI\nG0 X20 Y0 Z50\nG1 Z5 F500\nTRAFOOF\n\
+             G91 G0 Z100\nG90\nM30\n",
+        ),
+    ];
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    let axis = Vec3::new(-h, 0.0, h);
+    for (file, text) in cases {
+        let p = read(text, file, "table-ac");
+        let last = p.moves.last().unwrap();
+        assert!(
+            (last.start.tip - Vec3::new(20.0, 0.0, 5.0)).length() < 1e-9,
+            "{file}: {:?}",
+            last.start
+        );
+        let want = Vec3::new(20.0, 0.0, 5.0) + axis * 100.0;
+        assert!(
+            (last.end.tip - want).length() < 1e-9 && (last.end.axis - axis).length() < 1e-12,
+            "{file}: {:?} instead of {want:?}",
+            last.end
+        );
+    }
+}
+
+#[test]
+fn heidenhain_tcpm_axis_spat_reads_a_b_c_as_the_tools_spatial_angles() {
+    // FUNCTION TCPM … AXIS SPAT: A B C are spatial angles (about the fixed X, then Y, then Z);
+    // B+45 tilts the tool towards +X, whatever rotary axes the machine has. (They were read as
+    // the machine's B axis: towards −X on a B-C table.)
+    let text = "BEGIN PGM S MM\nTOOL CALL 1 Z S8000\n\
+        FUNCTION TCPM F CONT AXIS SPAT PATHCTRL VECTOR\nL X+0 Y+0 Z+50 R0 FMAX\n\
+        L X+10 Y+0 Z+5 A+0 B+45 C+0 F500\nL X+20 C+90\nL X+30 IB-45\nFUNCTION RESET TCPM\n\
+        END PGM S MM\n";
+    let h = std::f64::consts::FRAC_1_SQRT_2;
+    for machine in ["table-bc", "head-ac", "table-ac"] {
+        let p = read(text, "t.h", machine);
+        let axes: Vec<Vec3> = p.moves.iter().map(|m| m.end.axis).collect();
+        let want = [
+            Vec3::Z,
+            Vec3::new(h, 0.0, h),
+            // C+90 turns the B+45 tilt about Z: towards +Y.
+            Vec3::new(0.0, h, h),
+            Vec3::Z,
+        ];
+        assert_eq!(axes.len(), want.len(), "{machine}: {axes:?}");
+        for (a, w) in axes.iter().zip(want) {
+            assert!((*a - w).length() < 1e-12, "{machine}: {axes:?}");
+        }
+        // The tip is where X Y Z say.
+        let last = p.moves.last().unwrap();
+        assert!(
+            (last.end.tip - Vec3::new(30.0, 0.0, 5.0)).length() < 1e-9,
+            "{machine}"
+        );
+    }
+}

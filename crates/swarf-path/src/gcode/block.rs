@@ -555,8 +555,8 @@ pub(crate) fn fanuc_mode(code: u16) -> Option<(&'static str, &'static str)> {
         1870 => ("smoothness and corner tolerance", FOLLOWS),
         2540 => (
             "Haas dynamic work offset",
-            "X Y Z are taken as tool-tip positions in the part frame, as a `-tcp` machine \
-             (--machine) reads them",
+            "its offset is not applied: X Y Z are read as the machine (--machine) reads them, \
+             tool-tip positions in the part frame only on a `-tcp` machine",
         ),
         2550 => (
             "Haas dynamic work offset cancel",

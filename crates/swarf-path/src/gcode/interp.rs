@@ -1102,6 +1102,14 @@ impl<'t, 's> Interp<'t, 's> {
         self.emit_offsets();
     }
 
+    /// Fanuc's tool centre point control (G43.4/G43.5) on or off: the sink re-expresses the
+    /// position where the tool stands, and the program position follows it.
+    fn tool_centre_point(&mut self, on: bool) {
+        let before = self.sink.position();
+        self.emit(Canon::ToolCentrePoint(on));
+        crate::reader_core::follow_sink(&mut self.p, before, self.sink.position());
+    }
+
     /// Puts tool length offset `t` in effect: the controlled point stays where it is, so the
     /// program position reads the offset's change less.
     pub(crate) fn set_tlo(&mut self, t: [f64; 6]) {
@@ -1398,7 +1406,7 @@ impl<'t, 's> Interp<'t, 's> {
                 // Fanuc's tool centre point control is a mode of the program: G43.4 / G43.5
                 // (Haas G234) turn it on, a plain G43 (or G49, below) off.
                 if self.fanuc {
-                    self.emit(Canon::ToolCentrePoint(g != 430));
+                    self.tool_centre_point(g != 430);
                 }
                 self.tcp_vector = self.fanuc && g == 435;
                 let tool = match b.get(b'h') {
@@ -1489,7 +1497,7 @@ impl<'t, 's> Interp<'t, 's> {
                 self.set_tlo([0.0; 6]);
                 self.emit(Canon::ToolLengthOffset(0.0));
                 if self.fanuc {
-                    self.emit(Canon::ToolCentrePoint(false));
+                    self.tool_centre_point(false);
                 }
                 self.tcp_vector = false;
             }
@@ -1835,6 +1843,8 @@ impl<'t, 's> Interp<'t, 's> {
                         ));
                     }
                     self.emit(Canon::ToolAxis(v));
+                    // A later rotary word hands the axis back to the machine.
+                    self.held_axis = true;
                 }
                 if has_axes || vector {
                     self.arc_not_allowed = false;

@@ -244,6 +244,9 @@ struct Reader<'a> {
     m136: bool,
     /// M126: rotary axes take the shortest way to an absolute position.
     shortest: bool,
+    /// `FUNCTION TCPM … AXIS SPAT`: the A B C words are spatial angles of the tool (the last
+    /// ones given), not the machine's rotary axes; `None` under `AXIS POS`, M128 or no TCPM.
+    spat: Option<[f64; 3]>,
     /// The blank's least corner (`BLK FORM 0.1`).
     blank_min: Option<[f64; 3]>,
     tool_names: HashMap<String, u32>,
@@ -280,6 +283,7 @@ impl<'a> Reader<'a> {
             tool_feed: None,
             rpm: 0.0,
             dir: SpindleDir::Stopped,
+            spat: None,
             cycle: None,
             old_cycle: HashMap::new(),
             modal_call: false,
@@ -482,7 +486,18 @@ impl<'a> Reader<'a> {
             "PLANE" => self.plane_function(b).map(|_| Flow::Next),
             "FUNCTION" => {
                 match second {
-                    Some("TCPM") => self.tcpm(b.line, true),
+                    Some("TCPM") => {
+                        self.tcpm(b.line, true);
+                        // `AXIS SPAT`: A B C are spatial angles (`AXIS POS`, the default: the
+                        // rotary axes' positions).
+                        let spat = b
+                            .toks
+                            .windows(2)
+                            .any(|t| t[0].text == "AXIS" && t[1].text == "SPAT");
+                        if spat {
+                            self.spat = Some([0.0; 3]);
+                        }
+                    }
                     Some("RESET") if b.toks.get(2).is_some_and(|t| t.text == "TCPM") => {
                         self.tcpm(b.line, false)
                     }
@@ -602,7 +617,10 @@ impl<'a> Reader<'a> {
     /// Tool centre point management on (M128, FUNCTION TCPM) or off (M129, FUNCTION RESET
     /// TCPM): while on, X Y Z are tool-tip positions in the part frame.
     fn tcpm(&mut self, line: u32, on: bool) {
+        self.spat = None;
+        let before = self.sink.position();
         self.emit(line, Canon::ToolCentrePoint(on));
+        reader_core::follow_sink(&mut self.c.pos, before, self.sink.position());
     }
 
     /// `BLK FORM 0.1 Z X… Y… Z…` (least corner), `BLK FORM 0.2 X… Y… Z…` (greatest, or
@@ -858,7 +876,7 @@ impl<'a> Reader<'a> {
                     let mut v = self.value(val, tok)?;
                     if k < 3 {
                         v *= self.scale;
-                    } else {
+                    } else if self.spat.is_none() {
                         // A rotary axis turned: a tool axis held from a plane reset with STAY
                         // is the machine's again.
                         self.emit(line, Canon::MachineAxis);
@@ -1171,6 +1189,7 @@ impl<'a> Reader<'a> {
                 if head.text == "LN" {
                     self.tool_vector(&w, b.line)?;
                 }
+                self.spatial_axis(&w, &mut end, b.line);
                 self.line_to(b.line, end, rapid);
             }
             "LP" => {
@@ -1403,6 +1422,26 @@ impl<'a> Reader<'a> {
         let p = self.program_of(m);
         out[..3].copy_from_slice(&p);
         Ok(out)
+    }
+
+    /// Under `FUNCTION TCPM … AXIS SPAT` a block's A B C are the tool's spatial angles (about
+    /// the fixed X, then Y, then Z, as `PLANE SPATIAL`'s): they turn the tool axis, and the
+    /// rotary axes, which the control then chooses, are not the words' values.
+    fn spatial_axis(&mut self, w: &Words, end: &mut [f64; 6], line: u32) {
+        let Some(mut angles) = self.spat else { return };
+        if w.axes[3..].iter().all(Option::is_none) {
+            return;
+        }
+        for (a, word) in angles.iter_mut().zip(&w.axes[3..]) {
+            if let Some((v, inc)) = *word {
+                *a = if inc { *a + v } else { v };
+            }
+        }
+        self.spat = Some(angles);
+        end[3..].copy_from_slice(&self.c.pos[3..]);
+        let r = crate::part_frame::spatial(angles[0], angles[1], angles[2]);
+        let t = self.machine_direction([r[0][2], r[1][2], r[2][2]]);
+        self.emit(line, Canon::ToolAxis(t));
     }
 
     /// `LN … TX TY TZ`: the tool axis, turned as the program frame is.

@@ -1262,8 +1262,11 @@ impl<'a> Reader<'a> {
                 "SUPA" => machine = true,
                 // The 5-axis transformation: while on, X Y Z are tool-tip positions in the
                 // part frame.
-                "TRAORI" => self.emit(b.line, Canon::ToolCentrePoint(true)),
-                "TRAFOOF" => self.emit(b.line, Canon::ToolCentrePoint(false)),
+                "TRAORI" | "TRAFOOF" => {
+                    let before = self.sink.position();
+                    self.emit(b.line, Canon::ToolCentrePoint(name == "TRAORI"));
+                    reader_core::follow_sink(&mut self.c.pos, before, self.sink.position());
+                }
                 "CFC" | "CFTCP" | "CFIN" | "SOFT" | "BRISK" | "DRIVE" | "FFWON" | "FFWOF"
                 | "COMPON" | "COMPCURV" | "COMPCAD" | "COMPOF" | "UPATH" | "SPATH" | "FNORM"
                 | "FLIN" | "FCUB" | "ORIWKS" | "ORIMKS" | "ORIAXES" | "ORIVECT" | "ORIEULER"
@@ -1353,6 +1356,23 @@ impl<'a> Reader<'a> {
                 }
                 n if matches!(w.value, Value::None | Value::Args(_)) && n.len() > 1 => {
                     call = Some((n.to_string(), w.at, None));
+                }
+                // The tool's orientation as Euler or RPY angles (A2= B2= C2=, ORIEULER /
+                // ORIRPY), lead and tilt angles (LEAD= TILT=), or a second vector (XH= …):
+                // only the direction vector A3= B3= C3= and rotary axis words are read.
+                "A2" | "B2" | "C2" | "LEAD" | "TILT" | "THETA" | "XH" | "YH" | "ZH" | "A4" | "B4"
+                | "C4" | "A5" | "B5" | "C5" => {
+                    return Err(Self::fault(
+                        b,
+                        w.at,
+                        PathErrorKind::Unsupported,
+                        format!(
+                            "{name}= states the tool orientation in a form swarf does not read \
+                             (Euler or RPY angles, lead and tilt, a second point or the path's \
+                             normal)"
+                        ),
+                        "the orientation as a direction vector A3= B3= C3=, or rotary axis words",
+                    ))
                 }
                 _ => {
                     return Err(Self::fault(
