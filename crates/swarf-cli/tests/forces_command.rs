@@ -4,6 +4,7 @@
 
 mod common;
 
+use std::f64::consts::PI;
 use std::path::{Path, PathBuf};
 
 use common::{json, stderr, swarf};
@@ -626,4 +627,76 @@ fn schedule_never_replaces_its_program() {
     );
     assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
     assert_eq!(std::fs::read_to_string(&mat).unwrap(), MATERIAL);
+}
+
+/// A rapid through the material (line 5: `G0 X20` at Z−4 from x = −8, a 10 mm end mill at
+/// y = 10 in the 40 × 20 × 10 block) is reported by `engage`, `forces` and `schedule` as
+/// `simulate` reports it — `rapid_collisions`, `collisions` with its line and volume
+/// 4·(10·20 + π·5²/2) = 957.08 mm³ — and warned about on stderr; `schedule` says that no feed
+/// fixes it. Before, all three were silent (engage's `removed_volume_mm3` 1558 against 600 at
+/// the locations).
+#[test]
+fn a_rapid_through_the_material_is_reported_by_engage_forces_and_schedule() {
+    let d = dir("rapidthru");
+    let mat = write(&d, "al.toml", MATERIAL);
+    let prog = write(
+        &d,
+        "rapidthru.ngc",
+        "G21 G90 G94\nS8000 M3\nG0 X-8 Y10 Z5\nG0 Z-4\nG0 X20\nG1 X35 F1000\nG0 Z5\nM30\n",
+    );
+    let rapid = 4.0 * (10.0 * 20.0 + PI * 25.0 / 2.0);
+    let stock = ["--stock", "box:0,0,-10,40,20,0", "--program", &prog];
+    let tool = ["--tool", "flat:d=10,flutes=3"];
+    let (eng, frc, sch) = (d.join("eng"), d.join("frc"), d.join("s.ngc"));
+    let runs: [(Vec<&str>, &str); 3] = [
+        (
+            vec!["engage", "--out", eng.to_str().unwrap()],
+            "no cutter location",
+        ),
+        (
+            vec![
+                "forces",
+                "--coefficients",
+                &mat,
+                "--out",
+                frc.to_str().unwrap(),
+            ],
+            "no forces",
+        ),
+        (
+            vec![
+                "schedule",
+                "--coefficients",
+                &mat,
+                "--limit-force",
+                "250",
+                "--out",
+                sch.to_str().unwrap(),
+            ],
+            "not fixed by feeds",
+        ),
+    ];
+    for (args, note) in runs {
+        let mut a = args.clone();
+        a.extend(stock);
+        a.extend(tool);
+        a.push("--json");
+        let o = swarf(&a);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let s = json(&o);
+        let err = stderr(&o);
+        assert_eq!(s["rapid_collisions"], 1, "{}: {s}", args[0]);
+        assert_eq!(s["holder_collisions"], 0, "{}: {s}", args[0]);
+        let c = &s["collisions"][0];
+        assert_eq!(c["kind"], "rapid");
+        assert_eq!(c["line"], 5);
+        assert_eq!(c["move_index"], 2);
+        let v = c["volume_mm3"].as_f64().unwrap();
+        assert!((v - rapid).abs() < 0.005 * rapid, "{}: {v}", args[0]);
+        assert!(
+            err.contains("rapidthru.ngc:5: a rapid through the material") && err.contains(note),
+            "{}: {err}",
+            args[0]
+        );
+    }
 }

@@ -10,7 +10,7 @@ use swarf_geom::math::{lesser, Vec3};
 use swarf_geom::progress::{Observer, Quiet};
 use swarf_geom::Aabb;
 use swarf_path::{FeedMode, Move, MoveKind, Program};
-use swarf_stock::{StockError, TriDexel, DEFAULT_CHORDAL_TOLERANCE_MM};
+use swarf_stock::{Collision, StockError, TriDexel, DEFAULT_CHORDAL_TOLERANCE_MM};
 use swarf_sweep::MotionState;
 use swarf_sweep::ToolShape;
 use swarf_tool::{Cutter, ToolSet};
@@ -334,6 +334,12 @@ pub struct Engager<'a> {
     observer: &'a dyn Observer,
     /// Sample buffers kept from one location to the next (no allocation per location).
     scratch: Scratch,
+    /// Rapids whose cutting part entered the material, and moves whose shank or holder did,
+    /// as `swarf_stock::simulate` reports them.
+    rapid_collisions: Vec<Collision>,
+    holder_collisions: Vec<Collision>,
+    /// The largest error bound of the multi-axis cuts so far (for [`swarf_stock::collides`]).
+    error_bound_mm: f64,
 }
 
 /// The per-sample buffers of [`sample_strip`], reused.
@@ -409,7 +415,22 @@ impl<'a> Engager<'a> {
             stats: EngageStats::default(),
             failed: false,
             observer: &Quiet,
+            rapid_collisions: Vec::new(),
+            holder_collisions: Vec::new(),
+            error_bound_mm: 0.0,
         })
+    }
+
+    /// The rapids so far whose cutting part entered the material (the material is removed,
+    /// as `swarf_stock::simulate` does), one per move with the volume it removed (Z rays).
+    pub fn rapid_collisions(&self) -> &[Collision] {
+        &self.rapid_collisions
+    }
+
+    /// The moves so far whose shank or holder entered the material (removed too), one per
+    /// move with the volume they removed (Z rays), summed over the move's pieces.
+    pub fn holder_collisions(&self) -> &[Collision] {
+        &self.holder_collisions
     }
 
     /// This run, telling `observer` `progress(moves done, moves)` after each cutter location
@@ -447,6 +468,32 @@ impl<'a> Engager<'a> {
         let area = self.stock.ray_area(2);
         let removed = (cut.cutting.removed_length[2] + cut.non_cutting.removed_length[2]) * area;
         self.stats.removed_volume_mm3 += removed;
+        // Collisions, as the simulation tells them (a multi-axis cut's slivers are not).
+        self.error_bound_mm = self.error_bound_mm.max(cut.error_bound_mm);
+        let m = &self.program.moves[index];
+        let hit = |list: &mut Vec<Collision>, volume_mm3: f64| match list.last_mut() {
+            Some(c) if c.move_index == index => c.volume_mm3 += volume_mm3,
+            _ => list.push(Collision {
+                move_index: index,
+                file: file_of(self.program, m),
+                line: m.line,
+                volume_mm3,
+            }),
+        };
+        if matches!(m.kind, MoveKind::Rapid)
+            && swarf_stock::collides(&cut.cutting, self.error_bound_mm)
+        {
+            hit(
+                &mut self.rapid_collisions,
+                cut.cutting.removed_length[2] * area,
+            );
+        }
+        if swarf_stock::collides(&cut.non_cutting, self.error_bound_mm) {
+            hit(
+                &mut self.holder_collisions,
+                cut.non_cutting.removed_length[2] * area,
+            );
+        }
         Ok(removed)
     }
 

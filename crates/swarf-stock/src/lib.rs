@@ -105,7 +105,9 @@ pub use cut::{
 pub use dexel::{Dexel, DexelTags, EndTags, Interval, MoveTag, UNCUT};
 pub use error::StockError;
 pub use mesh::{axis_line_intervals, MeshOptions};
-pub use simulate::{simulate, simulate_observed, Collision, SimOptions, SimulationReport};
+pub use simulate::{
+    collides, simulate, simulate_observed, Collision, SimOptions, SimulationReport,
+};
 pub use spec::StockSpec;
 pub use tridexel::{
     CutStats, DexelFamily, Grid, LinearMove, Removal, RemovalVisitor, SegmentCut, StockStats,

@@ -270,7 +270,7 @@ fn simulate_on_worker(
 /// above a 0.2 mm skim at h = 0.5 — says nothing of its depth). Without multi-axis moves
 /// (`error_bound` 0) any removal over [`COLLISION_EPS_MM`] counts. (A sliver on a small
 /// convex radius is crossed longer by every family and may still be reported.)
-fn collides(st: &CutStats, error_bound: f64) -> bool {
+pub fn collides(st: &CutStats, error_bound: f64) -> bool {
     let sliver = 3f64.sqrt() * error_bound;
     st.removed_any(COLLISION_EPS_MM)
         && (error_bound == 0.0

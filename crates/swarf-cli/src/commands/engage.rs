@@ -16,7 +16,7 @@ use swarf_tool::ToolSet;
 
 use crate::cli::SetupArgs;
 use crate::commands::plots;
-use crate::commands::simulate::{build_stock, positive_mm};
+use crate::commands::simulate::{build_stock, collision_reports, positive_mm, CollisionReport};
 use crate::commands::tools::{defined_tools, job_error, load_job, load_job_setup};
 use crate::output::{csv_field, output_set, print_json, DEFAULT_MAX_OUTPUT_MB};
 
@@ -165,13 +165,48 @@ impl RunArgs {
     }
 }
 
+/// What the engagement's cuts hit besides cutting — rapids through the material, shanks or
+/// holders in it — with the keys of `simulate`'s summary (`rapid_collisions` and
+/// `holder_collisions` count them, `collisions` lists them). The material is removed, as
+/// `simulate` removes it.
+#[derive(Serialize)]
+pub(crate) struct Collisions {
+    rapid_collisions: usize,
+    holder_collisions: usize,
+    collisions: Vec<CollisionReport>,
+}
+
+impl Collisions {
+    /// Warns of each collision on stderr, `note` added to a rapid's warning (what the
+    /// command does or does not do about it).
+    pub(crate) fn warn(&self, rapid_note: &str, holder_note: &str) {
+        for c in &self.collisions {
+            let (what, note) = if c.kind == "rapid" {
+                ("a rapid through the material", rapid_note)
+            } else {
+                ("the shank or holder in the material", holder_note)
+            };
+            eprintln!(
+                "swarf: warning: {}:{}: {what} (move {}, {:.3} mm³ removed){note}",
+                c.collision.file, c.collision.line, c.collision.move_index, c.collision.volume_mm3
+            );
+        }
+    }
+}
+
+/// A walk's figures and collisions.
+pub(crate) struct Walked {
+    pub(crate) stats: swarf_engage::EngageStats,
+    pub(crate) collisions: Collisions,
+}
+
 /// Walks the engagement along the program, handing each location to `each`, with a progress
 /// bar and Ctrl-C (which stops the run with an error: no output is written).
 pub(crate) fn walk(
     run: &mut Prepared,
     file: &Path,
     mut each: impl FnMut(Engagement) -> Result<()>,
-) -> Result<swarf_engage::EngageStats> {
+) -> Result<Walked> {
     let progress = crate::output::MovesProgress::new(run.program.moves.len());
     let mut engager =
         Engager::new(&run.program, &run.tools, &mut run.stock, run.opts)?.observed(&progress);
@@ -186,7 +221,15 @@ pub(crate) fn walk(
         each(e)?;
     }
     progress.finish();
-    Ok(engager.stats())
+    let (rapid, holder) = (engager.rapid_collisions(), engager.holder_collisions());
+    Ok(Walked {
+        stats: engager.stats(),
+        collisions: Collisions {
+            rapid_collisions: rapid.len(),
+            holder_collisions: holder.len(),
+            collisions: collision_reports(rapid, holder),
+        },
+    })
 }
 
 #[derive(Debug, Args)]
@@ -222,6 +265,9 @@ struct EngageSummary {
     max_area_location: Option<usize>,
     resolution_mm: [f64; 3],
     options: EngageOptions,
+    /// Rapids and holders in the material, as `simulate` reports them.
+    #[serde(flatten)]
+    collisions: Collisions,
 }
 
 pub(crate) fn run(args: &EngageArgs) -> Result<()> {
@@ -230,10 +276,14 @@ pub(crate) fn run(args: &EngageArgs) -> Result<()> {
     let mut run = args.run.prepare()?;
     let opts = run.opts;
     let mut locations: Vec<Engagement> = Vec::new();
-    let stats = walk(&mut run, args.run.program()?, |e| {
+    let Walked { stats, collisions } = walk(&mut run, args.run.program()?, |e| {
         locations.push(e);
         Ok(())
     })?;
+    collisions.warn(
+        " — its volume is in removed_volume_mm3 but at no cutter location",
+        " — its volume is in removed_volume_mm3, not in the engagement",
+    );
     let resolution_mm = run.stock.grid().h;
     let largest = locations
         .iter()
@@ -250,6 +300,7 @@ pub(crate) fn run(args: &EngageArgs) -> Result<()> {
         max_area_location: largest.map(|e| e.location),
         resolution_mm,
         options: opts,
+        collisions,
     };
     write_outputs(
         &args.out,

@@ -12,7 +12,7 @@ use serde::Serialize;
 use swarf_engage::Engagement;
 use swarf_force::{ForceCurves, ForceModel, LocationForces, Material};
 
-use crate::commands::engage::{walk, Prepared, RunArgs};
+use crate::commands::engage::{walk, Prepared, RunArgs, Walked};
 use crate::commands::plots::{self, Series, PALETTE};
 use crate::output::{csv_field, output_set, print_json, DEFAULT_MAX_OUTPUT_MB};
 
@@ -76,10 +76,10 @@ pub(crate) fn walk_batches(
     run: &mut Prepared,
     file: &Path,
     mut each_batch: impl FnMut(&[Engagement]) -> Result<()>,
-) -> Result<swarf_engage::EngageStats> {
+) -> Result<Walked> {
     const BATCH: usize = 256;
     let mut batch = Vec::with_capacity(BATCH);
-    let stats = walk(run, file, |e| {
+    let walked = walk(run, file, |e| {
         batch.push(e);
         if batch.len() == BATCH {
             each_batch(&batch)?;
@@ -88,7 +88,7 @@ pub(crate) fn walk_batches(
         Ok(())
     })?;
     each_batch(&batch)?;
-    Ok(stats)
+    Ok(walked)
 }
 
 #[derive(Debug, Args)]
@@ -134,6 +134,9 @@ struct ForcesSummary {
     material_source: String,
     samples_per_rev: usize,
     engage_elapsed_s: f64,
+    /// Rapids and holders in the material, as `simulate` reports them.
+    #[serde(flatten)]
+    collisions: crate::commands::engage::Collisions,
 }
 
 /// One row of forces.csv.
@@ -165,7 +168,7 @@ pub(crate) fn run(args: &ForcesArgs) -> Result<()> {
     let mut curves: Vec<(usize, ForceCurves)> = Vec::new();
     let t_engage = Instant::now();
     let mut force_s = 0.0;
-    walk_batches(&mut run, run_args.program()?, |batch| {
+    let walked = walk_batches(&mut run, run_args.program()?, |batch| {
         let t = Instant::now();
         let done: Vec<(Row, Option<ForceCurves>)> = batch
             .par_iter()
@@ -202,6 +205,10 @@ pub(crate) fn run(args: &ForcesArgs) -> Result<()> {
             );
         }
     }
+    walked.collisions.warn(
+        " — no forces at a rapid: it has no cutter locations",
+        " — the force model counts the cutting part only",
+    );
     let engaged: Vec<&Row> = rows.iter().filter(|r| r.engaged).collect();
     let without_spindle = engaged.iter().filter(|r| !r.spindle).count();
     if without_spindle > 0 {
@@ -232,6 +239,7 @@ pub(crate) fn run(args: &ForcesArgs) -> Result<()> {
         material_source: model.material().source.clone(),
         samples_per_rev: model.samples_per_rev(),
         engage_elapsed_s: (t_engage.elapsed().as_secs_f64() - force_s).max(0.0),
+        collisions: walked.collisions,
     };
     write_outputs(out, &rows, &curves, &summary)?;
     if let Some(path) = &args.report {

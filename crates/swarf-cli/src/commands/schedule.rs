@@ -89,6 +89,9 @@ struct ScheduleSummary {
     limit: Limit,
     material: String,
     elapsed_s: f64,
+    /// Rapids and holders in the material, as `simulate` reports them: no feed fixes them.
+    #[serde(flatten)]
+    collisions: crate::commands::engage::Collisions,
 }
 
 /// Feed moves must run in the order of their lines in the program's own file: the rewrite
@@ -178,7 +181,7 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
     let model = model(&run, material, args.material.samples_per_rev)?;
     let mut caps = MoveCaps::new(run.program.moves.len());
     let max_feed = args.max_feed;
-    walk_batches(&mut run, &file, |batch| {
+    let walked = walk_batches(&mut run, &file, |batch| {
         let found: Vec<(usize, f64, LocationCap)> = batch
             .par_iter()
             .map(|e| {
@@ -344,7 +347,12 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
         limit,
         material: model.material().name.clone(),
         elapsed_s: t0.elapsed().as_secs_f64(),
+        collisions: walked.collisions,
     };
+    summary.collisions.warn(
+        " — not fixed by feeds: a rapid's speed is the machine's; change the program",
+        " — not fixed by feeds: a longer tool or another path",
+    );
     let mut json = serde_json::to_vec_pretty(&summary)?;
     json.push(b'\n');
     // The program and its summary as one set: both, or neither.

@@ -134,26 +134,34 @@ pub(crate) struct SimulateSummary {
     final_mesh_volume_mm3: Option<f64>,
 }
 
+/// One collision of a summary's `collisions`: `kind` (`rapid` or `holder`), move index, file,
+/// line, volume.
 #[derive(Serialize)]
-struct CollisionReport {
-    kind: &'static str,
+pub(crate) struct CollisionReport {
+    pub(crate) kind: &'static str,
     #[serde(flatten)]
-    collision: Collision,
+    pub(crate) collision: Collision,
+}
+
+/// The rapid and holder collisions as one list, in program order.
+pub(crate) fn collision_reports(rapid: &[Collision], holder: &[Collision]) -> Vec<CollisionReport> {
+    let kinded = |kind, cs: &[Collision]| {
+        cs.iter()
+            .map(move |c| CollisionReport {
+                kind,
+                collision: c.clone(),
+            })
+            .collect::<Vec<_>>()
+    };
+    let mut collisions = kinded("rapid", rapid);
+    collisions.extend(kinded("holder", holder));
+    collisions.sort_by_key(|c| c.collision.move_index);
+    collisions
 }
 
 impl SimulateSummary {
     pub(crate) fn new(r: &SimulationReport) -> Self {
-        let kinded = |kind, cs: &[Collision]| {
-            cs.iter()
-                .map(move |c| CollisionReport {
-                    kind,
-                    collision: c.clone(),
-                })
-                .collect::<Vec<_>>()
-        };
-        let mut collisions = kinded("rapid", &r.rapid_collisions);
-        collisions.extend(kinded("holder", &r.holder_collisions));
-        collisions.sort_by_key(|c| c.collision.move_index);
+        let collisions = collision_reports(&r.rapid_collisions, &r.holder_collisions);
         Self {
             stock_volume_mm3: r.stock_volume_mm3,
             removed_volume_mm3: r.removed_volume_mm3,
