@@ -700,3 +700,69 @@ fn a_rapid_through_the_material_is_reported_by_engage_forces_and_schedule() {
         );
     }
 }
+
+/// A LinuxCNC `.tbl` cannot hold a flute count: `forces` and `schedule` refuse its tools with a
+/// message naming the table and `--flutes`, and take `--flutes N` for them — the forces then
+/// equal those of the same cutter given as a spec with `flutes=N`. Before, the message asked
+/// for a `flutes = N` the table cannot hold, and there was no other way.
+#[test]
+fn library_tools_without_a_flute_count_take_the_flutes_option() {
+    let d = dir("tbl-flutes");
+    let mat = write(&d, "al.toml", MATERIAL);
+    let tbl = write(&d, "tools.tbl", "T1 P1 D10 Z+50 ;10mm flat\n");
+    let prog = write(
+        &d,
+        "t1.ngc",
+        "G21 G90 G94\nT1 M6\nS1000 M3\nG0 X-10 Y10 Z5\nG0 Z-4\nG1 X50 F400\nG0 Z10\nM30\n",
+    );
+    let run = |cmd: &str, tools: &[&str], extra: &[&str]| {
+        let out = d.join(format!("{cmd}-{}", extra.len()));
+        let mut a = vec![
+            cmd,
+            "--stock",
+            "box:0,0,-10,40,20,0",
+            "--program",
+            &prog,
+            "--coefficients",
+            &mat,
+        ];
+        a.extend(tools);
+        a.extend(extra);
+        let out = out.to_str().unwrap().to_string();
+        let mut a: Vec<String> = a.iter().map(|s| s.to_string()).collect();
+        a.extend(["--out".to_string(), out, "--json".to_string()]);
+        swarf(&a.iter().map(String::as_str).collect::<Vec<_>>())
+    };
+    for (cmd, extra) in [
+        ("forces", vec![]),
+        ("schedule", vec!["--limit-force", "300"]),
+    ] {
+        let o = run(cmd, &["--tools", &tbl], &extra);
+        assert_eq!(o.status.code(), Some(1), "{cmd}");
+        let err = stderr(&o);
+        assert!(
+            err.contains("tool 1 (flat Ø10 mm) has no flute count")
+                && err.contains(&format!("tool table {tbl}"))
+                && err.contains("--flutes N"),
+            "{cmd}: {err}"
+        );
+    }
+    let with_option = run("forces", &["--tools", &tbl], &["--flutes", "4"]);
+    assert!(with_option.status.success(), "{}", stderr(&with_option));
+    let spec = run("forces", &["--tool", "flat:d=10,flutes=4"], &[]);
+    let (a, b) = (json(&with_option), json(&spec));
+    for key in ["max_force_n", "max_torque_nm", "mean_power_w"] {
+        let (x, y) = (a[key].as_f64().unwrap(), b[key].as_f64().unwrap());
+        assert!(x > 0.0 && (x - y).abs() <= 1e-9 * y, "{key}: {x} vs {y}");
+    }
+    // A full slot 4 mm deep, 4 flutes at 0.1 mm a tooth: F̄y = N·a·(c·Ktc/4 + Kte/π), and the
+    // peak resultant at least that.
+    let fy = 4.0 * 4.0 * (0.1 * 796.0 / 4.0 + 27.7 / PI);
+    assert!(a["max_force_n"].as_f64().unwrap() >= fy * (1.0 - 1e-3));
+    let s = run(
+        "schedule",
+        &["--tools", &tbl],
+        &["--limit-force", "300", "--flutes", "4"],
+    );
+    assert!(s.status.success(), "{}", stderr(&s));
+}

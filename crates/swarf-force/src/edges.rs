@@ -152,9 +152,30 @@ impl CutterEdges {
     /// A cutter whose flute count was not given (the model needs it; a default would be a
     /// silent guess).
     pub fn new(cutter: &Cutter, opts: &EngageOptions, label: &str) -> Result<Self, ForceError> {
-        let flutes = cutter.flutes_given().ok_or_else(|| ForceError::NoFlutes {
-            tool: label.to_string(),
-        })?;
+        Self::with_default_flutes(cutter, opts, label, None, None)
+    }
+
+    /// [`CutterEdges::new`], with `default_flutes` for a cutter that states no flute count
+    /// (the user's own value for tools whose library cannot hold one: a LinuxCNC `.tbl`);
+    /// `number` is the tool's number, for the error.
+    ///
+    /// # Errors
+    /// A cutter whose flute count was not given, and no default.
+    pub fn with_default_flutes(
+        cutter: &Cutter,
+        opts: &EngageOptions,
+        label: &str,
+        number: Option<u32>,
+        default_flutes: Option<u32>,
+    ) -> Result<Self, ForceError> {
+        let flutes =
+            cutter
+                .flutes_given()
+                .or(default_flutes)
+                .ok_or_else(|| ForceError::NoFlutes {
+                    tool: label.to_string(),
+                    number,
+                })?;
         let pieces = cutter
             .pieces()
             .iter()

@@ -95,11 +95,13 @@ pub use schedule::{
 /// What can go wrong computing forces.
 #[derive(Debug, thiserror::Error)]
 pub enum ForceError {
-    /// A cutter with no flute count.
-    #[error("{tool} has no flute count: the force model needs it — add flutes=N to its spec or `flutes = N` to its tool-library entry")]
+    /// A cutter with no flute count (and no default given for one).
+    #[error("{tool} has no flute count: the force model needs it — add flutes=N to its spec or `flutes = N` to its tool-library entry, or give a default for the tools that state none")]
     NoFlutes {
         /// Which tool.
         tool: String,
+        /// Its number, when it is a numbered tool of the program (not the cutter for all).
+        number: Option<u32>,
     },
     /// A predicted material and a cutter with no rake angle.
     #[error("{tool} has no rake angle, which the coefficient prediction of material {material} needs — add rake=DEG to its spec or `rake_deg = DEG` to its tool-library entry")]

@@ -117,6 +117,22 @@ impl ForceModel {
         opts: &EngageOptions,
         samples_per_rev: usize,
     ) -> Result<Self, ForceError> {
+        Self::with_default_flutes(material, tools, tool_numbers, opts, samples_per_rev, None)
+    }
+
+    /// [`ForceModel::new`], with `default_flutes` for the tools that state no flute count
+    /// (tools from a LinuxCNC `.tbl`, which cannot hold one); a stated count wins.
+    ///
+    /// # Errors
+    /// As [`ForceModel::new`]; a tool without a flute count only when there is no default.
+    pub fn with_default_flutes(
+        material: Material,
+        tools: &ToolSet,
+        tool_numbers: &[u32],
+        opts: &EngageOptions,
+        samples_per_rev: usize,
+        default_flutes: Option<u32>,
+    ) -> Result<Self, ForceError> {
         if !(1..=MAX_SAMPLES_PER_REV).contains(&samples_per_rev) {
             return Err(ForceError::BadOption {
                 name: "samples-per-rev",
@@ -128,7 +144,13 @@ impl ForceModel {
         for &n in tool_numbers {
             if let Some(c) = tools.resolved().get(&n) {
                 let label = format!("tool {n} ({})", short(&c.cutter));
-                let e = CutterEdges::new(&c.cutter, opts, &label)?;
+                let e = CutterEdges::with_default_flutes(
+                    &c.cutter,
+                    opts,
+                    &label,
+                    Some(n),
+                    default_flutes,
+                )?;
                 check_rake(&material, &e, &label)?;
                 edges.insert(n, e);
             }
@@ -136,7 +158,7 @@ impl ForceModel {
         let fallback = match tools.fallback() {
             Some(c) => {
                 let label = format!("the cutter ({})", short(c));
-                let e = CutterEdges::new(c, opts, &label)?;
+                let e = CutterEdges::with_default_flutes(c, opts, &label, None, default_flutes)?;
                 check_rake(&material, &e, &label)?;
                 Some(e)
             }

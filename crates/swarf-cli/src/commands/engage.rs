@@ -95,6 +95,11 @@ impl RunArgs {
     }
 
     /// Whether the program starts in inches (before its first G20/G21).
+    /// The tool library given with --tools, if any.
+    pub(crate) fn tools_file(&self) -> Option<&Path> {
+        self.setup.tools.as_deref()
+    }
+
     pub(crate) fn initial_inch(&self) -> bool {
         matches!(self.setup.initial_units, crate::cli::TableUnits::Inch)
     }

@@ -11,6 +11,7 @@ use rayon::prelude::*;
 use serde::Serialize;
 use swarf_engage::Engagement;
 use swarf_force::{ForceCurves, ForceModel, LocationForces, Material};
+use swarf_tool::ToolSource;
 
 use crate::commands::engage::{walk, Prepared, RunArgs, Walked};
 use crate::commands::plots::{self, Series, PALETTE};
@@ -28,6 +29,10 @@ pub(crate) struct MaterialArgs {
     /// Spindle-angle samples per revolution.
     #[arg(long, value_name = "N", default_value_t = swarf_force::DEFAULT_SAMPLES_PER_REV)]
     pub(crate) samples_per_rev: usize,
+    /// Flute count of the library tools that state none (a LinuxCNC .tbl cannot hold one);
+    /// a count the spec or library gives wins.
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    pub(crate) flutes: Option<u32>,
 }
 
 impl MaterialArgs {
@@ -59,15 +64,56 @@ impl MaterialArgs {
     }
 }
 
-/// The force model of a prepared run.
-pub(crate) fn model(run: &Prepared, material: Material, samples: usize) -> Result<ForceModel> {
+/// The force model of a prepared run (`run_args` its options, `args` the material's).
+pub(crate) fn model(
+    run: &Prepared,
+    run_args: &RunArgs,
+    args: &MaterialArgs,
+    material: Material,
+) -> Result<ForceModel> {
     let mut used: Vec<u32> = run.program.tools.clone();
     used.extend(run.program.moves.iter().map(|m| m.tool));
     used.sort_unstable();
     used.dedup();
-    Ok(ForceModel::new(
-        material, &run.tools, &used, &run.opts, samples,
-    )?)
+    let model = ForceModel::with_default_flutes(
+        material,
+        &run.tools,
+        &used,
+        &run.opts,
+        args.samples_per_rev,
+        args.flutes,
+    );
+    match model {
+        Err(swarf_force::ForceError::NoFlutes { tool, number }) => {
+            // Say where the tool came from, and how to give its flutes there.
+            let source = number
+                .and_then(|n| run.tools.resolved().get(&n))
+                .map(|r| r.source);
+            let how = match (source, run_args.tools_file()) {
+                (Some(ToolSource::Table), Some(file)) => {
+                    let name = file.display();
+                    let tbl = file
+                        .extension()
+                        .is_some_and(|e| e.eq_ignore_ascii_case("tbl"));
+                    if tbl {
+                        format!(
+                            "the LinuxCNC tool table {name} cannot hold a flute count: give --flutes N for the library tools that state none"
+                        )
+                    } else {
+                        format!(
+                            "add `flutes = N` to its entry in the tool library {name}, or give --flutes N for the library tools that state none"
+                        )
+                    }
+                }
+                (Some(ToolSource::Program), _) => {
+                    "its CUTTER/ record in the program holds none: give --flutes N".to_string()
+                }
+                _ => "add flutes=N to its --tool spec".to_string(),
+            };
+            bail!("{tool} has no flute count, which the force model needs: {how}")
+        }
+        m => Ok(m?),
+    }
 }
 
 /// Hands the engagements to `each_batch` in batches, so that their forces can be computed in
@@ -163,7 +209,7 @@ pub(crate) fn run(args: &ForcesArgs) -> Result<()> {
     };
     let material = args.material.load()?;
     let mut run = run_args.prepare()?;
-    let model = model(&run, material, args.material.samples_per_rev)?;
+    let model = model(&run, run_args, &args.material, material)?;
     let mut rows: Vec<Row> = Vec::new();
     let mut curves: Vec<(usize, ForceCurves)> = Vec::new();
     let t_engage = Instant::now();

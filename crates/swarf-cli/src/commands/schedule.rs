@@ -178,7 +178,7 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
     let format = ProgramFormat::detect(&file, &text);
     let mut run = args.run.prepare()?;
     check_straight_line(&run.program)?;
-    let model = model(&run, material, args.material.samples_per_rev)?;
+    let model = model(&run, &args.run, &args.material, material)?;
     let mut caps = MoveCaps::new(run.program.moves.len());
     let max_feed = args.max_feed;
     let walked = walk_batches(&mut run, &file, |batch| {
