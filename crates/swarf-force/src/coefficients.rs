@@ -233,17 +233,26 @@ pub fn parse_material(text: &str, file: &str) -> Result<Material, ForceError> {
         .iter()
         .zip(c.as_array())
     {
-        if !v.is_finite() {
-            let at = text.find(key).unwrap_or(0);
-            let (line, column) = line_col(text, at);
-            return Err(ForceError::MaterialFile {
-                file: file.to_string(),
-                line,
-                column,
-                problem: format!("{key} = {v}"),
-                expected: "the coefficients are finite numbers".into(),
-            });
-        }
+        // The tangential and radial coefficients, shear and edge, are forces the chip and the
+        // edge's rubbing push against the tool along −t and −r: never negative (a negative one
+        // is a failed fit, and would make power negative or pull the tool into the wall). The
+        // axial ones may be negative: their sign follows the helix's hand and the chip flow,
+        // and the oblique prediction itself gives Kac < 0 where friction outweighs the helix.
+        let expected = if !v.is_finite() {
+            "the coefficients are finite numbers"
+        } else if v < 0.0 && !key.starts_with("ka") {
+            "the tangential and radial coefficients (ktc, krc, kte, kre) are at least 0; only              the axial ones (kac, kae) may be negative"
+        } else {
+            continue;
+        };
+        let (line, column) = line_col(text, key_offset(text, key));
+        return Err(ForceError::MaterialFile {
+            file: file.to_string(),
+            line,
+            column,
+            problem: format!("{key} = {v}"),
+            expected: expected.into(),
+        });
     }
     Ok(Material {
         name: m.name,
@@ -255,6 +264,21 @@ pub fn parse_material(text: &str, file: &str) -> Result<Material, ForceError> {
 }
 
 use swarf_geom::text::line_col;
+
+/// Byte offset of the line that sets `key` (the key at the start of a line, before `=`), or 0.
+fn key_offset(text: &str, key: &str) -> usize {
+    let mut at = 0;
+    for line in text.split_inclusive('\n') {
+        let t = line.trim_start();
+        if t.strip_prefix(key)
+            .is_some_and(|rest| rest.trim_start().starts_with('='))
+        {
+            return at + (line.len() - t.len());
+        }
+        at += line.len();
+    }
+    0
+}
 
 #[cfg(test)]
 mod tests {
@@ -294,6 +318,46 @@ mod tests {
         let e = parse_material("name = \"x\"\nktc = 1\n", "short.toml").unwrap_err();
         assert!(e.to_string().contains("krc"), "{e}");
         assert!(builtin_material("Ti6Al4V").is_ok());
+        // NaN and a negative tangential or radial coefficient are refused at their key.
+        let e = parse_material(
+            "name=\"x\"\nktc=nan\nkrc=1\nkac=1\nkte=0\nkre=0\nkae=0\n",
+            "nan.toml",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(e.starts_with("nan.toml:2:1: ktc = NaN"), "{e}");
+        assert!(e.contains("finite"), "{e}");
+        let base = [
+            "ktc = 796",
+            "krc = 168.8",
+            "kac = 222",
+            "kte = 27.7",
+            "kre = 30.8",
+            "kae = 1.8",
+        ];
+        for (i, key) in ["ktc", "krc", "kac", "kte", "kre", "kae"]
+            .iter()
+            .enumerate()
+        {
+            let mut lines = base.map(String::from);
+            lines[i] = format!("{key} = -5");
+            // The name mentions every key first: the error still points at the key's line.
+            let text = format!("name = \"ktc krc kac kte kre kae\"\n{}\n", lines.join("\n"));
+            let got = parse_material(&text, "neg.toml");
+            if key.starts_with("ka") {
+                let m = got.unwrap_or_else(|e| panic!("{key}: {e}"));
+                assert!(
+                    matches!(m.coefficients, CoefficientSource::Fixed(c) if c.as_array()[i] == -5.0)
+                );
+            } else {
+                let e = got.unwrap_err().to_string();
+                assert!(
+                    e.starts_with(&format!("neg.toml:{}:1: {key} = -5 (", i + 2)),
+                    "{key}: {e}"
+                );
+                assert!(e.contains("at least 0"), "{e}");
+            }
+        }
         let e = builtin_material("steel").unwrap_err().to_string();
         assert!(e.contains("ti6al4v"), "{e}");
     }
