@@ -4,7 +4,8 @@
 //! The rewrite walks the text in order, tracking the feed word in effect in the original
 //! (`F` in G-code, the first number of `FEDRAT/` in APT) and in the rewritten program: a line
 //! with moves gets the original value times `r` — in its own F word, replaced in place, or in
-//! one added at the end of its code (before any comment) when the value in effect differs; an
+//! one added after its last word (before a comment that follows it, `(…)` or `;`) when the
+//! value in effect differs; an
 //! APT move gets a `FEDRAT/` record inserted before it, in the form of the last one (a hole of
 //! an APT drilling cycle with a feed of its own gets the `CYCLE/` record restated before it
 //! with the new feed instead, as the cycle's feed is what its holes are fed at). Because the
@@ -38,36 +39,35 @@ struct FeedWord {
 }
 
 /// What a G-code line holds: its F word (`Err` with a column when it is not a plain number)
-/// and where its code ends (before a trailing comment).
+/// and where its code ends: after its last word, before any comment that follows it (`(…)`
+/// or `;`), so that an added F word goes with the code, not after the comment.
 fn scan_gcode(line: &str) -> (Option<Result<FeedWord, usize>>, usize) {
     let b = line.as_bytes();
     let (mut i, mut depth) = (0usize, 0usize);
-    let mut code_end = line.trim_end().len();
+    // End of the last byte of code seen (comments and blanks are not code).
+    let mut code_end = 0usize;
     let mut feed = None;
     while i < b.len() {
         match b[i] {
             b'(' if depth == 0 => match line[i..].find(')') {
                 Some(k) => i += k + 1,
-                None => {
-                    code_end = code_end.min(i);
-                    break;
-                }
+                None => break,
             },
-            b';' if depth == 0 => {
-                code_end = code_end.min(line[..i].trim_end().len());
-                break;
-            }
+            b';' if depth == 0 => break,
             b'[' => {
                 depth += 1;
                 i += 1;
+                code_end = i;
             }
             b']' => {
                 depth = depth.saturating_sub(1);
                 i += 1;
+                code_end = i;
             }
             // A named parameter `#<…>` or subroutine `o<…>`: its name holds no word.
             b'#' | b'o' | b'O' if b.get(i + 1) == Some(&b'<') => {
                 i += line[i..].find('>').map_or(b.len() - i, |k| k + 1);
+                code_end = i;
             }
             // Letters of a keyword (`o1 if`, `endif`, Macro B's `IF`, `FIX[…]`) are no F word.
             b'f' | b'F'
@@ -76,6 +76,7 @@ fn scan_gcode(line: &str) -> (Option<Result<FeedWord, usize>>, usize) {
                         || b.get(i + 1).is_some_and(u8::is_ascii_alphabetic)) =>
             {
                 i += 1;
+                code_end = i;
             }
             b'f' | b'F' if depth == 0 => {
                 let mut j = i + 1;
@@ -95,8 +96,14 @@ fn scan_gcode(line: &str) -> (Option<Result<FeedWord, usize>>, usize) {
                     _ => Err(i + 1),
                 });
                 i = j.max(i + 1);
+                code_end = i;
             }
-            _ => i += 1,
+            c => {
+                i += 1;
+                if !c.is_ascii_whitespace() {
+                    code_end = i;
+                }
+            }
         }
     }
     (feed, code_end)
@@ -686,6 +693,23 @@ mod tests {
             "G21 G90\r\nG1 X10 F300 (first)\r\nG1 X20 F600\r\nG1 X30 ; last\r\nG0 Z5\r\n"
         );
         assert_eq!(r.lines_changed, vec![2, 3]);
+        // An added F goes after the line's last word, before the comments that follow it
+        // (a parenthesised one too: it was appended after it, `X20 (comment) F300`), and after
+        // a comment that comes before the words.
+        let text =
+            "G1 X10 F600\nG1 X20 (comment)\nG1 X30 (a) ; b\n(lead) G1 X40 (trail)  \nG1 X50\t(x)\n";
+        let r = rewrite_feeds(
+            text,
+            "t.ngc",
+            ProgramFormat::Gcode,
+            &factors(&[(1, 1.0), (2, 0.5), (3, 1.0), (4, 0.5), (5, 1.0)]),
+            &BTreeMap::new(),
+        )
+        .unwrap();
+        assert_eq!(
+            r.text,
+            "G1 X10 F600\nG1 X20 F300 (comment)\nG1 X30 F600 (a) ; b\n(lead) G1 X40 F300 (trail)  \nG1 X50 F600\t(x)\n"
+        );
         // Unchanged factors change nothing.
         let same = rewrite_feeds(
             text,
