@@ -162,6 +162,11 @@ fn schedule_keeps_every_location_under_the_limit_and_only_touches_feeds() {
     assert!(s["time_after_s"].as_f64().unwrap() > 0.0);
     assert!(s["time_before_s"].as_f64().is_some());
     assert_eq!(s["still_over_limit"].as_array().unwrap().len(), 0);
+    // Without --split the summary still counts split moves and added pieces (README): 0.
+    assert_eq!(
+        (&s["moves_split"], &s["pieces_added"]),
+        (&0.into(), &0.into())
+    );
     let new = std::fs::read_to_string(&out1).unwrap();
     // Only F words differ: removing them (and the space before an added one) gives the input.
     let strip = |t: &str| -> String {

@@ -76,6 +76,17 @@ fn a_known_gouge_is_reported_with_its_line_and_the_outputs_hold_together() {
     ] {
         assert!(j.get(k).is_some(), "summary lacks {k}: {j}");
     }
+    // The design reader's caveats are there for an STL design too (README): 0, notes empty.
+    for k in ["skipped_faces", "untrimmed_faces", "unapplied_placements"] {
+        assert_eq!(j[k], 0, "{k}: {j}");
+    }
+    for k in [
+        "skipped_face_notes",
+        "untrimmed_face_notes",
+        "unapplied_placement_notes",
+    ] {
+        assert_eq!(j[k].as_array().map(Vec::len), Some(0), "{k}: {j}");
+    }
     assert!(
         (j["max_gouge_mm"].as_f64().unwrap() - 0.3).abs() < 1e-6,
         "{j}"
