@@ -149,9 +149,14 @@ fn errors_name_the_line_and_what_is_wrong() {
         "{e}"
     );
 
-    let e = comp_error("G21 F100\nG41.1 D4\nG2 X10 Y0 I5\nM2\n");
+    // An entry arc whose end is no farther than the radius (2) from its start.
+    let e = comp_error("G21 F100\nG41.1 D4\nG2 X1.5 Y0 I0.75\nM2\n");
     assert_eq!((e.pos.line, e.pos.column), (3, 1));
-    assert!(e.message.contains("cannot be an arc"), "{e}");
+    assert!(
+        e.message
+            .contains("entry arc is not greater than the tool radius"),
+        "{e}"
+    );
 
     // An inside arc of radius 1 with a tool of radius 2 (G41, counter-clockwise arc).
     let e = comp_error("G21 F100\nG0 X0 Y-10\nG41.1 D4\nG1 X0 Y0\nG3 X2 Y0 I1\nM2\n");

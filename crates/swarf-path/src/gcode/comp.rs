@@ -5,8 +5,16 @@
 //! The tool runs at the compensation radius `r` to the left (G41) or right (G42) of the
 //! programmed contour, looking along the motion; a negative radius swaps the sides.
 //!
-//! * **Entry**: the first move with an XY (plane) component after G41/G42 must be a straight
-//!   line longer than `r`; it ends `r` from its programmed end, perpendicular to it.
+//! * **Entry**: the first move with an XY (plane) component after G41/G42 ends `r` from its
+//!   programmed end: a straight line perpendicular to it, and must be longer than `r`; an arc
+//!   (`convert_arc_comp1`) keeps its centre (found from the current point: I J K, or R through
+//!   the current point and the programmed end) and ends on the ray from the centre through
+//!   the programmed end, `r` nearer the centre (tool inside) or farther; its end must be more
+//!   than `r` from its start ("radius of cutter compensation entry arc is not greater than the
+//!   tool radius"), and I J K must give an end radius, less or plus `r`, within the arc
+//!   tolerance of the start radius (`arc_data_comp_ijk`).
+//! * **Zero radius** (`G41 D0`, `G41.1 D0`): compensation is on (the side is set: G20, another
+//!   G41, G92 … are refused as with any radius) but moves are not offset.
 //! * **Corners**: the compensated move is held back (queued with every event that follows it)
 //!   until the next move shows the corner. With `θ` the direction from the programmed corner to
 //!   the tool, `α` the new move's start direction and `β` the angle between them less 90°
@@ -77,7 +85,15 @@ pub(crate) struct Comp {
     held: Option<Held>,
     /// Events held back behind the held move, with their lines.
     pub(crate) queue: Vec<(u32, OwnedCanon)>,
+    /// The frames (G5x offset, G92 offset, XY rotation) the queued events were made in, one
+    /// per change of frame since the held move (G10 L2/L20 of the active system): the events
+    /// up to the first [`Canon::Offsets`] are in the first, and so on; those after the last in
+    /// the current one.
+    queue_frames: Vec<Frame>,
 }
+
+/// A frame: G5x offset, G92 offset, XY rotation (degrees).
+pub(crate) type Frame = ([f64; 6], [f64; 6], f64);
 
 fn angle(v: [f64; 2]) -> f64 {
     v[1].atan2(v[0])
@@ -160,9 +176,19 @@ impl PlaneMove {
 }
 
 impl Comp {
-    /// True when compensation is on.
+    /// True when compensation is on (with any radius, 0 included: LinuxCNC's
+    /// `cutter_comp_side`, which the refusals of G20, G92, G54 … test).
     pub(crate) fn on(&self) -> bool {
         self.side.is_some()
+    }
+    /// True when moves are compensated: on, with a radius above zero (LinuxCNC's
+    /// `cutter_comp_side && cutter_comp_radius > 0.0` in `convert_straight`/`convert_arc`).
+    pub(crate) fn moving(&self) -> bool {
+        self.side.is_some() && self.radius > 0.0
+    }
+    /// The radius when the next move is the entry move of a compensation with a radius.
+    pub(crate) fn entry_radius(&self) -> Option<f64> {
+        (self.moving() && self.first).then_some(self.radius)
     }
     /// True when no move is held.
     #[inline]
@@ -292,10 +318,8 @@ impl Interp<'_, '_> {
                 }
             }
         };
-        if radius == 0.0 {
-            // A zero radius leaves the path as programmed.
-            return Ok(());
-        }
+        // A zero radius leaves the path as programmed, but compensation is on (LinuxCNC sets
+        // the side whatever the radius: G20, another G41, G92 … are refused until G40).
         let left = g == 410 || g == 411;
         let side = if (radius < 0.0) == left {
             Side::Right
@@ -310,9 +334,54 @@ impl Interp<'_, '_> {
         Ok(())
     }
 
+    /// The compensation's points (the tool, the held move's start, end, centre and a point
+    /// along its direction from its start) as machine positions, before a change of frame:
+    /// [`Self::comp_reframe`] re-expresses them in the new one. `None` when moves are not
+    /// compensated.
+    pub(crate) fn comp_points(&self) -> Option<[[f64; 6]; 5]> {
+        if !self.comp.moving() {
+            return None;
+        }
+        let h = self.comp.held.unwrap_or(Held {
+            start: self.comp.tool,
+            end: self.comp.tool,
+            arc: None,
+            rapid: false,
+            dir: [0.0; 2],
+        });
+        let c = h.arc.map_or(h.start, |(c, _)| c);
+        let d = [h.start[0] + h.dir[0], h.start[1] + h.dir[1]];
+        Some(
+            [self.comp.tool, h.start, h.end, c, d]
+                .map(|q| self.machine_of(&self.with_plane(&self.p, q))),
+        )
+    }
+
+    /// The frame changed under compensation (G10 L2/L20 of the active system, which LinuxCNC
+    /// accepts): the tool's point and the held move, `pts` from [`Self::comp_points`], are
+    /// re-expressed in the new frame, as the programmed point is, so the next corner is
+    /// judged between the two in one frame. (LinuxCNC's `convert_setup` moves its current
+    /// point, the tool's, and leaves the programmed point in the old frame, which makes the
+    /// next corner from points in two frames; swarf keeps both in step instead.) `old` is the
+    /// frame the queued events were made in.
+    pub(crate) fn comp_reframe(&mut self, pts: [[f64; 6]; 5], old: Frame) {
+        let q = pts.map(|m| self.plane_of(&self.program_of(&m, &self.off, &self.g92, self.rot)));
+        self.comp.tool = q[0];
+        if let Some(h) = &mut self.comp.held {
+            h.start = q[1];
+            h.end = q[2];
+            if let Some((c, _)) = &mut h.arc {
+                *c = q[3];
+            }
+            h.dir = sub(q[4], q[1]);
+            self.comp.queue_frames.push(old);
+        }
+    }
+
     /// Emits the held move and everything queued behind it.
     pub(crate) fn comp_flush(&mut self) {
         self.comp.held = None;
+        self.comp.queue_frames.clear();
         let queue = std::mem::take(&mut self.comp.queue);
         for (line, e) in &queue {
             self.sink.emit(*line, e);
@@ -367,12 +436,9 @@ impl Interp<'_, '_> {
             -FRAC_PI_2
         };
         if self.comp.first {
-            let Some(_) = arc.is_none().then_some(()) else {
-                return Err(Fault::semantic(
-                    span,
-                    "the first move after G41/G42 (the compensation entry move) cannot be an arc",
-                ));
-            };
+            if let Some((c, turn)) = arc {
+                return self.comp_entry_arc(end, span, c, turn);
+            }
             let from = self.comp.tool;
             let length = dist(from, mv.end);
             if self.fanuc && length > 0.0 && length <= r {
@@ -544,6 +610,97 @@ impl Interp<'_, '_> {
         self.comp_continue(end, start, new_circle, mv, r, normal, rapid)
     }
 
+    /// An arc as the entry move (LinuxCNC's `convert_arc_comp1`): its centre `c` is the one
+    /// found from the current point ([`Self::comp_entry_arc_checks`] ran before it was), it
+    /// ends `r` from its programmed end along the ray from the centre (towards the centre when
+    /// the tool is inside the arc), and goes from the current point there about `c`: with an
+    /// R word the two radii differ by `r` (a spiral, as LinuxCNC makes it).
+    fn comp_entry_arc(&mut self, end: [f64; 6], span: Span, c: [f64; 2], turn: i32) -> Res<()> {
+        if self.fanuc {
+            // Fanuc alarm PS0034: no start-up in a circular block.
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                span,
+                "the first move after G41/G42 (the compensation start-up) cannot be an arc on \
+                 a Fanuc control (alarm 034)",
+                "a G0 or G1 start-up move (or --dialect linuxcnc, whose entry arc ends the \
+                 radius from its programmed end)",
+            ));
+        }
+        let side = self.comp.side.expect("called with compensation on");
+        let r = self.comp.radius;
+        let from = self.comp.tool;
+        let end2 = self.plane_of(&end);
+        let inside = (side == Side::Left) == (turn > 0);
+        let rad = dist(from, c);
+        if inside && rad <= r {
+            return Err(Fault::semantic(
+                span,
+                format!(
+                    "tool radius ({r:.4} mm) not less than the arc radius ({rad:.4} mm) with \
+                     cutter radius compensation"
+                ),
+            ));
+        }
+        let gamma = if inside {
+            angle(sub(c, end2))
+        } else {
+            angle(sub(end2, c))
+        };
+        let to = polar(end2, r, gamma);
+        self.comp.first = false;
+        self.comp_hold(end, to, from, Some((c, turn)), false, [0.0; 2]);
+        Ok(())
+    }
+
+    /// The entry arc's own checks, made before its centre is found (LinuxCNC's order in
+    /// `convert_arc_comp1`): its programmed end must be more than the tool radius from the
+    /// current point. Returns what the I J K check adds to the end radius (`−r` with the tool
+    /// inside the arc, `+r` outside: `arc_data_comp_ijk` compares the start radius with the
+    /// offset end's), `None` when the arc is not an entry move.
+    pub(crate) fn comp_entry_arc_checks(
+        &self,
+        span: Span,
+        end: [f64; 2],
+        clockwise: bool,
+    ) -> Res<Option<f64>> {
+        let Some(r) = self.comp.entry_radius() else {
+            return Ok(None);
+        };
+        if self.fanuc {
+            return Ok(None);
+        }
+        if dist(self.comp.tool, end) <= r {
+            return Err(Fault::semantic(
+                span,
+                "radius of cutter compensation entry arc is not greater than the tool radius",
+            ));
+        }
+        let inside = (self.comp.side == Some(Side::Left)) != clockwise;
+        Ok(Some(if inside { -r } else { r }))
+    }
+
+    /// LinuxCNC's `arc_data_comp_r` check, before the centre of an R arc under compensation
+    /// is found: with the tool inside the arc, |R| must exceed the tool radius.
+    pub(crate) fn comp_r_check(&self, span: Span, radius: f64, clockwise: bool) -> Res<()> {
+        if !self.comp.moving() {
+            return Ok(());
+        }
+        let r = self.comp.radius;
+        let inside = (self.comp.side == Some(Side::Left)) != clockwise;
+        if inside && radius.abs() <= r {
+            return Err(Fault::semantic(
+                span,
+                format!(
+                    "tool radius ({r:.4} mm) not less than the arc radius ({:.4} mm) with \
+                     cutter radius compensation",
+                    radius.abs()
+                ),
+            ));
+        }
+        Ok(())
+    }
+
     /// Holds the new move: from `start` (plane) to its offset end.
     #[allow(clippy::too_many_arguments)]
     fn comp_continue(
@@ -612,9 +769,23 @@ impl Interp<'_, '_> {
     /// (moves along the plane's normal made where the held move ended: LinuxCNC's
     /// `move_endpoint_and_flush` changes them all — "moving into a concave corner, then up and
     /// back down, then continuing on: three moves to change").
+    ///
+    /// `x` is in the current frame; events made before a change of frame take it in theirs.
     fn comp_move_held_end(&mut self, x: [f64; 2]) {
         let (f, s, _) = self.plane.axes();
+        let m = self.machine_of(&self.with_plane(&self.p, x));
+        let xs: Vec<[f64; 2]> = self
+            .comp
+            .queue_frames
+            .iter()
+            .map(|(off, g92, rot)| self.plane_of(&self.program_of(&m, off, g92, *rot)))
+            .collect();
+        let mut segment = 0;
         for (_, e) in self.comp.queue.iter_mut() {
+            if let Canon::Offsets { .. } = e {
+                segment += 1;
+            }
+            let x = xs.get(segment).copied().unwrap_or(x);
             if let Canon::Traverse { end } | Canon::Feed { end } | Canon::Arc { end, .. } = e {
                 let mut a = end.to_array();
                 a[f] = x[0];

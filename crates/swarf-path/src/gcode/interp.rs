@@ -1093,12 +1093,18 @@ impl<'t, 's> Interp<'t, 's> {
     }
 
     /// Changes the offsets and the XY rotation in effect keeping the machine position.
+    /// Under cutter compensation the tool's point and the held move are re-expressed too.
     pub(crate) fn set_frame(&mut self, off: [f64; 6], g92: [f64; 6], rot: f64) {
         let m = self.machine();
+        let comp_points = self.comp_points();
+        let old = (self.off, self.g92, self.rot);
         self.off = off;
         self.g92 = g92;
         self.rot = rot;
         self.p = self.program_of(&m, &off, &g92, rot);
+        if let Some(pts) = comp_points {
+            self.comp_reframe(pts, old);
+        }
         self.emit_offsets();
     }
 
@@ -1503,6 +1509,13 @@ impl<'t, 's> Interp<'t, 's> {
             }
             None => {}
         }
+        if b.g(group::COORD).is_some() && self.comp.on() {
+            // LinuxCNC's `convert_coordinate_system`.
+            return Err(Fault::semantic(
+                b.g_span(group::COORD),
+                "cannot change coordinate systems with cutter radius compensation on",
+            ));
+        }
         if let Some(g) = b.g(group::COORD).filter(|&g| self.is_extended_select(b, g)) {
             self.select_extended(b, g, lb)?;
         } else if let Some(g) = b.g(group::COORD) {
@@ -1564,6 +1577,14 @@ impl<'t, 's> Interp<'t, 's> {
                 b.g_span(group::NON_MODAL),
                 "G28, G30, G52, G92 and G10 L20 are not read in a tilted working plane (G68.2)",
                 "G69 first",
+            ));
+        }
+        if matches!(nonmodal, Some(520 | 920..=923)) && self.comp.on() {
+            // LinuxCNC's `convert_axis_offsets` (G52, G92, G92.1, G92.2, G92.3): the tool and
+            // the programmed contour would be in different frames.
+            return Err(Fault::semantic(
+                b.g_span(group::NON_MODAL),
+                "cannot change axis offsets with cutter radius compensation on",
             ));
         }
         match nonmodal {
@@ -1871,7 +1892,7 @@ impl<'t, 's> Interp<'t, 's> {
                                 .into(),
                         ));
                     }
-                    if self.comp.on() {
+                    if self.comp.moving() {
                         if g53 {
                             return Err(Fault::semantic(
                                 b.g_span(group::NON_MODAL),
@@ -2176,6 +2197,8 @@ impl<'t, 's> Interp<'t, 's> {
         let start2 = [self.p[fi], self.p[si]];
         let end2 = [end[fi], end[si]];
         let k = self.arc_scale(gspan)?;
+        // A compensation entry arc: what the I J K check adds to the end radius.
+        let entry_shift = self.comp_entry_arc_checks(gspan, end2, cw)?;
         let center = if let Some(r) = b.get(b'r') {
             // (Fanuc: R wins, the centre words are reported unused.)
             if let Some(&c) = offs.iter().find(|&&c| b.has(c) && !self.fanuc) {
@@ -2184,6 +2207,7 @@ impl<'t, 's> Interp<'t, 's> {
                     "an arc cannot have both R and I/J/K words",
                 ));
             }
+            self.comp_r_check(b.span(b'r'), r * self.scale * k, cw)?;
             center_r(
                 start2,
                 end2,
@@ -2247,8 +2271,15 @@ impl<'t, 's> Interp<'t, 's> {
                     return Err(out_of_range(span, "the arc centre's coordinate", ck, "mm"));
                 }
             }
-            check_ijk(start2, end2, c, tol.abs_in_mm(self.units), tol.relative)
-                .map_err(|m| Fault::semantic(gspan, m))?;
+            check_ijk(
+                start2,
+                end2,
+                c,
+                entry_shift.unwrap_or(0.0),
+                tol.abs_in_mm(self.units),
+                tol.relative,
+            )
+            .map_err(|m| Fault::semantic(gspan, m))?;
             c
         };
         if let Some(&ck) = center.iter().find(|&&v| !in_machine_range(v)) {
@@ -2256,7 +2287,7 @@ impl<'t, 's> Interp<'t, 's> {
             return Err(out_of_range(span, "the arc centre's coordinate", ck, "mm"));
         }
         let rotation = if cw { -turns } else { turns };
-        if self.comp.on() {
+        if self.comp.moving() {
             return self.comp_move(b, end, false, Some((center, rotation)));
         }
         self.emit(Canon::Arc {
