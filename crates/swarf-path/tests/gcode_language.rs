@@ -308,9 +308,21 @@ fn cutter_compensation_needs_the_tool_radius() {
         "{:?}",
         rec.messages()
     );
-    let rec = run("G20 G10 L1 P1 R0.1\nT1 M6\n(debug,#5410)\nM2\n");
+    // #5410 reads the tool table's diameter, kept in the machine's units (the parameter
+    // units; G10 converts R on the way in): 0.2 in on an inch machine, 5.08 mm on a mm one.
+    let rec = run_with(
+        "G20 G10 L1 P1 R0.1\nT1 M6\n(debug,#5410)\nM2\n",
+        &GcodeOptions::default().with_parameter_units(swarf_path::Units::Inch),
+    )
+    .unwrap();
     assert!(
         rec.messages().iter().any(|m| m == "0.200000"),
+        "{:?}",
+        rec.messages()
+    );
+    let rec = run("G20 G10 L1 P1 R0.1\nT1 M6\n(debug,#5410)\nM2\n");
+    assert!(
+        rec.messages().iter().any(|m| m == "5.080000"),
         "{:?}",
         rec.messages()
     );

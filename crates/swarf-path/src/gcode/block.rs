@@ -253,6 +253,20 @@ impl Block {
 /// evaluated with `params`' values from before the line.
 ///
 /// With `fanuc`, G80 may share the block with another motion code (`b.g80_too`).
+/// What LinuxCNC's read-only numbered parameter `n` holds (`_readonly_parameters` in its
+/// interpreter: the tool in the spindle, its offsets, diameter, angles and orientation, and the
+/// current position); `None` for a parameter a program may set.
+pub(crate) fn read_only_number(n: usize) -> Option<&'static str> {
+    match n {
+        5400 => Some("the tool in the spindle"),
+        5401..=5409 => Some("an offset of the tool in the spindle"),
+        5410 => Some("the diameter of the tool in the spindle"),
+        5411..=5413 => Some("an angle or the orientation of the tool in the spindle"),
+        5420..=5428 => Some("the current position"),
+        _ => None,
+    }
+}
+
 pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: bool) -> Res<()> {
     b.clear();
     let mut c = Cur::new(&lb.code);
@@ -426,10 +440,32 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                 c.i += 1;
                 let target = if c.peek() == Some(b'<') {
                     let (x, y) = read_name(&mut c)?;
+                    let name = std::str::from_utf8(&lb.code[x..y]).unwrap_or("");
+                    if !fanuc && params.read_only_named(name) {
+                        return Err(Fault::new(
+                            PathErrorKind::Semantic,
+                            Span::Code(at, c.i),
+                            format!(
+                                "#<{name}> is one of LinuxCNC's predefined (system) parameters, \
+                                 which are read-only"
+                            ),
+                            "a parameter name of the program's own (a global: `_` and a name \
+                             LinuxCNC does not predefine)",
+                        ));
+                    }
                     Target::Named(x as u32, y as u32)
                 } else {
                     let n = read_real(&mut c, params)?;
-                    Target::Num(assign_index(n, Span::Code(at, c.i), fanuc)?)
+                    let n = assign_index(n, Span::Code(at, c.i), fanuc)?;
+                    if let Some(what) = read_only_number(n).filter(|_| !fanuc) {
+                        return Err(Fault::new(
+                            PathErrorKind::Semantic,
+                            Span::Code(at, c.i),
+                            format!("parameter #{n} ({what}) is read-only"),
+                            "a parameter other than #5400–#5413 and #5420–#5428",
+                        ));
+                    }
+                    Target::Num(n)
                 };
                 if c.peek() != Some(b'=') {
                     return Err(c.unexpected("`=` in a parameter assignment"));

@@ -29,6 +29,11 @@ pub(crate) trait ParamRead {
     fn numbered(&self, n: usize) -> f64;
     /// The value of a named parameter (name in lower case, without `#<` `>`), if it exists.
     fn named(&self, name: &str) -> Option<f64>;
+    /// True for a named parameter the interpreter predefines (`_x`, `_motion_mode` …): a
+    /// program cannot assign it.
+    fn read_only_named(&self, _name: &str) -> bool {
+        false
+    }
     /// Read by Fanuc's rules: `FIX` truncates towards zero and `FUP` away from it (LinuxCNC
     /// floors and ceils), `ATAN` gives 0° to 360° and takes `ATAN[y,x]`.
     fn fanuc(&self) -> bool {

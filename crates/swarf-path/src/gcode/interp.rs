@@ -89,6 +89,9 @@ pub(crate) struct ReadOnlyState {
     pub(crate) css: bool,
     /// A tool length offset is on (G43, G43.1, G43.2; off after G49).
     pub(crate) tlo_on: bool,
+    /// mm per program unit when the feed was set: `#<_feed>` reads the feed as the F word
+    /// gave it (LinuxCNC's `settings->feed_rate`, which G20/G21 do not convert).
+    pub(crate) feed_scale: f64,
 }
 
 impl Default for ReadOnlyState {
@@ -102,6 +105,7 @@ impl Default for ReadOnlyState {
             overrides: [true, true, false, false],
             css: false,
             tlo_on: false,
+            feed_scale: 1.0,
         }
     }
 }
@@ -375,7 +379,7 @@ impl<'t, 's> Interp<'t, 's> {
             comp_registers_told: Vec::new(),
             m_ignored_told: Vec::new(),
             tlo: [0.0; 6],
-            params: Params::default(),
+            params: Params::linuxcnc_or_fanuc(fanuc),
             ctl: Vec::new(),
             frames: Vec::new(),
             subs: HashMap::new(),
@@ -781,6 +785,10 @@ impl<'t, 's> Interp<'t, 's> {
                 }
             }
             let event = match active_comment(text) {
+                // LinuxCNC prints no DEBUG message while #5599 is 0 (its default is 1).
+                Some((MessageKind::Debug, _)) if !self.fanuc && self.params.num[5599] == 0.0 => {
+                    continue
+                }
                 Some((kind, body)) => Canon::Message {
                     kind,
                     text: if kind == MessageKind::Msg {
@@ -955,16 +963,18 @@ impl<'t, 's> Interp<'t, 's> {
                 self.controlled()[n - 5021] - self.g53_origin()[n - 5021],
             ),
             5400 => f64::from(self.read_only.loaded_tool),
+            // The tool's offsets and diameter, as LinuxCNC's tool table keeps them (in the
+            // machine's units, `PROGRAM_TO_USER_LEN`: G20/G21 do not change what they read).
             5401..=5406 => {
                 let e = self
                     .tool_table
                     .get(&self.read_only.loaded_tool)
                     .copied()
                     .unwrap_or([0.0; 6]);
-                self.to_units(n - 5401, e[n - 5401])
+                self.to_param_units(n - 5401, e[n - 5401])
             }
             5407..=5409 | 5411..=5413 => 0.0,
-            5410 => self.to_units(
+            5410 => self.to_param_units(
                 0,
                 self.tool_diameter(self.read_only.loaded_tool)
                     .unwrap_or(0.0),
@@ -988,7 +998,7 @@ impl<'t, 's> Interp<'t, 's> {
             }
             5230..=5390 if (n - 5230) % 20 == 0 => self.rot_table[(n - 5230) / 20] = v,
             // Read-only views: the machine position, the active system, the tool, the position.
-            5021..=5026 | 5220 | 5400..=5409 | 5420..=5425 => {}
+            5021..=5026 | 5220 | 5400..=5413 | 5420..=5428 => {}
             // An O-word call's arguments are its own, put back when it returns.
             1..=super::params::N_ARGS if self.frames.iter().any(|f| f.fanuc.is_none()) => {
                 self.params.num[n] = plain
@@ -1199,6 +1209,7 @@ impl<'t, 's> Interp<'t, 's> {
             } else {
                 f * self.scale
             };
+            self.read_only.feed_scale = self.scale;
             self.emit(Canon::FeedRate(self.feed));
         }
         if let Some(s) = b.get(b's') {
@@ -2781,6 +2792,23 @@ impl ParamRead for Interp<'_, '_> {
         self.get_numbered(n)
     }
     fn named(&self, name: &str) -> Option<f64> {
+        match name {
+            // LinuxCNC starts with no value returned.
+            "_value" | "_value_returned" => Some(self.params.get_named(name).unwrap_or(0.0)),
+            _ => self
+                .system_parameter(name)
+                .or_else(|| self.params.get_named(name)),
+        }
+    }
+    fn read_only_named(&self, name: &str) -> bool {
+        self.system_parameter(name).is_some()
+    }
+}
+
+impl Interp<'_, '_> {
+    /// LinuxCNC's predefined named parameters (read-only; `_value` and `_value_returned`,
+    /// which O-word returns set, are not among them).
+    fn system_parameter(&self, name: &str) -> Option<f64> {
         let flag = |b: bool| Some(f64::from(u8::from(b)));
         let ro = &self.read_only;
         match name {
@@ -2801,10 +2829,11 @@ impl ParamRead for Interp<'_, '_> {
             "_imperial" => flag(self.units == Units::Inch),
             "_absolute" => flag(self.absolute),
             "_incremental" => flag(!self.absolute),
+            // As the F word gave it: G20/G21 convert the position, not the feed.
             "_feed" => Some(if self.feed_mode == FeedMode::InverseTime {
                 self.feed
             } else {
-                self.feed / self.scale
+                self.feed / ro.feed_scale
             }),
             "_rpm" => Some(self.rpm),
             "_current_tool" => Some(f64::from(ro.loaded_tool)),
@@ -2851,9 +2880,7 @@ impl ParamRead for Interp<'_, '_> {
             "_feed_hold" => flag(ro.overrides[3]),
             "_call_level" => Some(self.frames.len() as f64),
             "_remap_level" | "_task" => Some(0.0),
-            // LinuxCNC starts with no value returned.
-            "_value" | "_value_returned" => Some(self.params.get_named(name).unwrap_or(0.0)),
-            _ => self.params.get_named(name),
+            _ => None,
         }
     }
 }

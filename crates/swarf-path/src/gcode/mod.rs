@@ -29,8 +29,9 @@
 //!   shifted: tool-tip programs), G61/G61.1/G64, G96/G97, G4, F S T M3 M4 M5 M6 M2 M30 (M0 M1
 //!   M60 M7 M8 M9 and every other M code: warnings); Fanuc G68/G69 and G51/G50, and the
 //!   tilted working plane G68.2/G53.1 ([`Canon::WorkPlane`]) (`frames`).
-//! * Parameters `#1`–`#5601` (5161–5386 are views onto the G28/G30 positions and offsets, in
-//!   [`GcodeOptions::parameter_units`]; 5021–5026 the machine position and 5420–5425 the
+//! * Parameters `#1`–`#5601` (5161–5386 are views onto the G28/G30 positions and offsets,
+//!   5401–5410 onto the loaded tool's offsets and diameter, in
+//!   [`GcodeOptions::parameter_units`]; 5400–5413 and 5420–5428 read-only; 5021–5026 the machine position and 5420–5425 the
 //!   position, in program units), `#<local>`, `#<_global>`, `#<_x>`, `#<_abs_x>` … and
 //!   `#<_value>`/`#<_value_returned>`; bracketed expressions with LinuxCNC's operators,
 //!   precedence and functions.
@@ -174,7 +175,8 @@ pub struct GcodeOptions {
     /// Folders searched, after the program's own, for `name.ngc` when `o<name> call` names a
     /// subroutine the program does not define (LinuxCNC's `SUBROUTINE_PATH`).
     pub subroutine_path: Vec<PathBuf>,
-    /// Units of the stored offset parameters (#5161–#5186, #5211–#5216, #5221–#5386): LinuxCNC
+    /// Units of the stored offset parameters (#5161–#5186, #5211–#5216, #5221–#5386) and of
+    /// the loaded tool's offsets and diameter (#5401–#5410): LinuxCNC
     /// keeps them in the machine's units (its INI's `LINEAR_UNITS`) whatever G20/G21 say.
     /// `None`: [`Self::initial_units`].
     pub parameter_units: Option<Units>,

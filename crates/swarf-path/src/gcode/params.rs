@@ -95,6 +95,16 @@ impl Default for Params {
 }
 
 impl Params {
+    /// The tables a program starts with: all 0 but LinuxCNC's #5599 (DEBUG messages shown),
+    /// which starts at 1.
+    pub(crate) fn linuxcnc_or_fanuc(fanuc: bool) -> Self {
+        let mut p = Self::default();
+        if !fanuc {
+            p.num[5599] = 1.0;
+        }
+        p
+    }
+
     /// A named parameter as stored (globals for `_` names, else the current level's locals).
     pub(crate) fn get_named(&self, name: &str) -> Option<f64> {
         if name.starts_with('_') {
