@@ -159,7 +159,7 @@ fn camotics_programs_count_their_moves() {
         // the CAMotics habit of selecting the tool with a lone `T` (taken as loaded, reported).
         assert!(
             rec.warnings.iter().all(|w| w.message.contains("M2/M30")
-                || w.message.contains("never loaded with M6")),
+                || w.message.contains("not loaded with M6 yet")),
             "{name}: {:?}",
             rec.warnings
         );

@@ -104,3 +104,51 @@ fn spline_errors_name_their_line() {
     assert_eq!(e.pos.line, 3);
     assert!(e.message.contains("G5.3"), "{e}");
 }
+
+/// LinuxCNC's checks on spline words (`convert_nurbs`, `convert_spline`): a NURBS has at
+/// least as many control points as its order, each with both X and Y; G5.1's control point is
+/// not its start.
+#[test]
+fn invalid_splines_are_refused_as_linuxcnc_refuses_them() {
+    let read = |src: &str| {
+        read_gcode(
+            src,
+            "s.ngc",
+            &GcodeOptions::default(),
+            &mut Recorder::default(),
+        )
+    };
+    // The start is the first control point: with n G5.2 points a NURBS has n + 1, refused
+    // at G5.3 below its order (L3, L4).
+    for order in [3_usize, 4] {
+        for n in 1..=order {
+            let points: String = (1..n).map(|k| format!("X{k} Y{k} P1\n")).collect();
+            let src = format!("G21 G90 F100\nG0 X0 Y0\nG5.2 X0 Y1 P1 L{order}\n{points}G5.3\nM2\n");
+            let r = read(&src);
+            if n + 1 < order {
+                let e = r.unwrap_err();
+                assert_eq!((e.pos.line, e.pos.column), (3 + n as u32, 1), "{e}");
+                assert!(
+                    e.message.contains(&format!("has {} control points", n + 1))
+                        && e.message.contains(&format!("order L = {order}")),
+                    "{e}"
+                );
+            } else {
+                assert!(r.is_ok(), "L{order}, {n} points: {r:?}");
+            }
+        }
+    }
+    // A control point with X but no Y (and the other way round), at the word given.
+    let e =
+        read("G21 G90 F100\nG0 X0 Y0\nG5.2 X1 Y1 P1 L3\nX2 P1\nX3 Y0 P1\nG5.3\nM2\n").unwrap_err();
+    assert_eq!((e.pos.line, e.pos.column), (4, 1), "{e}");
+    assert!(e.message.contains("both X and Y"), "{e}");
+    let e = read("G21 G90 F100\nG0 X0 Y0\nG5.2 Y1 P1 L3\nG5.3\nM2\n").unwrap_err();
+    assert_eq!((e.pos.line, e.pos.column), (3, 6), "{e}");
+    assert!(e.message.contains("both X and Y"), "{e}");
+    // G5.1 whose control point is its start.
+    let e = read("G21 G90 F100\nG0 X0 Y0\nG5.1 I0 J0 X10 Y0\nM2\n").unwrap_err();
+    assert_eq!((e.pos.line, e.pos.column), (3, 6), "{e}");
+    assert!(e.message.contains("I0 J0"), "{e}");
+    assert!(read("G21 G90 F100\nG0 X0 Y0\nG5.1 I0 J1 X10 Y0\nM2\n").is_ok());
+}

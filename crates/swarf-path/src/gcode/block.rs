@@ -78,6 +78,10 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
              program's G76 fine boring is read with --dialect fanuc)",
         ),
         382..=385 => unsupported("probing is not simulated"),
+        120 | 130 => unsupported(
+            "Mach3's circular pocket G12/G13 is not read (its path is the control's): write the \
+             pocket's moves (the CAM system's, or G2/G3 full circles such as `G2 I-5`)",
+        ),
         70 | 80 => unsupported("lathe diameter/radius modes (G7/G8) are not supported"),
         700 | 710 => unsupported(
             "G70/G71 with words are finishing and roughing cycles (Fanuc lathes, LinuxCNC 2.9), \
@@ -265,6 +269,45 @@ pub(crate) fn read_only_number(n: usize) -> Option<&'static str> {
         5420..=5428 => Some("the current position"),
         _ => None,
     }
+}
+
+/// `X1e3`: an `e` written straight after a number's digits (no blank between) and followed by
+/// a digit, a sign or a point is scientific notation, which G-code does not have: LinuxCNC
+/// reads `X1` and an E word, which would move the tool to 1 where 1000 was meant. An error at
+/// the number (code index `e_at` is the `e`).
+fn scientific_notation(lb: &LineBuf, e_at: usize) -> Res<()> {
+    let code = &lb.code;
+    let numeric = |i: usize| matches!(code.get(i), Some(b'0'..=b'9' | b'.'));
+    let adjacent = |i: usize| {
+        i > 0 && i < lb.offs.len() && lb.offs[i] == lb.offs[i - 1] + 1 // no blank between
+    };
+    if e_at == 0 || !numeric(e_at - 1) || !adjacent(e_at) {
+        return Ok(());
+    }
+    let mut end = e_at + 1;
+    if matches!(code.get(end), Some(b'+' | b'-')) {
+        end += 1;
+    }
+    if !numeric(end) || !adjacent(e_at + 1) {
+        return Ok(());
+    }
+    while numeric(end) {
+        end += 1;
+    }
+    let mut start = e_at;
+    while start > 0 && (numeric(start - 1) || matches!(code[start - 1], b'+' | b'-')) {
+        start -= 1;
+    }
+    let text = String::from_utf8_lossy(&code[start..end]).into_owned();
+    Err(Fault::new(
+        PathErrorKind::Syntax,
+        Span::Code(start, end),
+        format!(
+            "`{text}` is scientific notation, which G-code does not have (LinuxCNC reads the \
+             number before the `e` and an E word after it)"
+        ),
+        "a plain decimal number (1000, not 1e3)",
+    ))
 }
 
 pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: bool) -> Res<()> {
@@ -513,6 +556,9 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                 b.spindle = Some((v as i32, at as u32));
             }
             b'a'..=b'z' | b'@' | b'^' if !matches!(ch, b'n' | b'o') => {
+                if ch == b'e' {
+                    scientific_notation(lb, at)?;
+                }
                 c.i += 1;
                 let v = read_real(&mut c, params)?;
                 if is_vacant(v) {

@@ -295,7 +295,9 @@ impl Interp<'_, '_> {
                                     "G{} {named}: the offset in register D{tool} is the \
                                      control's, not in the program: the path is read as the \
                                      tool centre's, as CAM systems write it for wear \
-                                     compensation (a G10 in the program sets a register)",
+                                     compensation (a G10 in the program sets a register; \
+                                     --dialect linuxcnc reads D{tool} as tool {tool}, whose \
+                                     radius --tool or --tools gives)",
                                     g / 10
                                 ),
                             ));

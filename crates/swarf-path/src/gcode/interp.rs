@@ -564,7 +564,7 @@ impl<'t, 's> Interp<'t, 's> {
         } else {
             column_of(raw, a)
         };
-        let found = raw.get(a..b).unwrap_or("").trim().to_string();
+        let found = found_text(raw.get(a..b).unwrap_or(""));
         let (kind, message) = match (f.kind, Dialect::of_line(raw)) {
             (PathErrorKind::Syntax, Some(d)) => (
                 PathErrorKind::Unsupported,
@@ -617,12 +617,14 @@ impl<'t, 's> Interp<'t, 's> {
         let tool = self.tool;
         self.read_only.loaded_tool = tool;
         self.sink.emit(self.cur_line, &Canon::ToolChange { tool });
-        self.warn_at(
+        // Told after the block, at its first word (a column), as the block's own warnings.
+        self.later.push((
             0,
             format!(
-                "T{tool} was selected but never loaded with M6: it is assumed to be in the spindle"
+                "T{tool} was selected but not loaded with M6 yet at this move (it is assumed \
+                 to be in the spindle)"
             ),
-        );
+        ));
     }
 
     /// A program that moves before it says G20 or G21 is read in the initial units, which are
@@ -2882,6 +2884,35 @@ impl Interp<'_, '_> {
             "_remap_level" | "_task" => Some(0.0),
             _ => None,
         }
+    }
+}
+
+/// What an error found, for its message: the text, trimmed; an invisible character (a
+/// no-break space, a form feed, a zero-width space…) shown by its code point and name, where
+/// trimming would have left nothing ("found end of line").
+fn found_text(s: &str) -> String {
+    let t = s.trim_matches([' ', '\t']);
+    let Some(ch) = t.chars().next() else {
+        return String::new();
+    };
+    let name = match ch {
+        '\u{a0}' => Some("no-break space"),
+        '\u{c}' => Some("form feed"),
+        '\u{b}' => Some("vertical tab"),
+        '\u{200b}' => Some("zero-width space"),
+        '\u{feff}' => Some("zero-width no-break space, a byte-order mark"),
+        '\u{202f}' => Some("narrow no-break space"),
+        '\u{2007}' => Some("figure space"),
+        '\u{3000}' => Some("ideographic space"),
+        '\u{2000}'..='\u{200a}' => Some("a typographic space"),
+        '\u{ad}' => Some("soft hyphen"),
+        c if c.is_control() => Some("a control character"),
+        c if c.is_whitespace() => Some("a space character"),
+        _ => None,
+    };
+    match name {
+        Some(n) => format!("U+{:04X} ({n})", u32::from(ch)),
+        None => t.trim().to_string(),
     }
 }
 

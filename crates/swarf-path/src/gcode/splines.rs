@@ -114,6 +114,15 @@ impl Interp<'_, '_> {
                             "I J (the control point from the start)",
                         ));
                     };
+                    if i == 0.0 && j == 0.0 {
+                        // The control point at the start: LinuxCNC refuses it.
+                        return Err(Fault::new(
+                            PathErrorKind::Semantic,
+                            b.span(b'i'),
+                            "G5.1 with I0 J0: the control point is the start point",
+                            "I J, not both 0 (the control point from the start)",
+                        ));
+                    }
                     self.g5_last = None;
                     (
                         SplineKind::Quadratic,
@@ -134,6 +143,23 @@ impl Interp<'_, '_> {
                         ));
                     }
                     return Ok(());
+                }
+                if b.has(b'x') != b.has(b'y') {
+                    let (given, missing) = if b.has(b'x') {
+                        (b'x', 'Y')
+                    } else {
+                        (b'y', 'X')
+                    };
+                    return Err(Fault::new(
+                        PathErrorKind::Semantic,
+                        b.span(given),
+                        format!(
+                            "a NURBS control point needs both X and Y ({missing} is missing; \
+                             LinuxCNC: \"You must specify both X and Y coordinates for Control \
+                             Points\")"
+                        ),
+                        "X and Y",
+                    ));
                 }
                 let p = xy(self)?;
                 let w = b.get(b'p').unwrap_or(1.0);
@@ -185,6 +211,23 @@ impl Interp<'_, '_> {
                 let Some((pts, order)) = self.nurbs.take() else {
                     return Err(Fault::semantic(span, "G5.3 without an open G5.2"));
                 };
+                // The start is the first control point (LinuxCNC's list holds it too).
+                let count = pts.len() + 1;
+                if count < order as usize {
+                    return Err(Fault::new(
+                        PathErrorKind::Semantic,
+                        span,
+                        format!(
+                            "the NURBS has {count} control points (the start and {} given) for \
+                             its order L = {order}: it needs at least as many as its order",
+                            pts.len(),
+                        ),
+                        format!(
+                            "at least {} control points (G5.2 X Y lines) before G5.3",
+                            order - 1
+                        ),
+                    ));
+                }
                 let Some(last) = pts.last().copied() else {
                     return Ok(());
                 };

@@ -1,0 +1,129 @@
+//! What swarf says about hobby-CAM programs (Fusion, Vectric, Mach3 posts, hand edits): each
+//! message names the word or character it is about, with its column, and the way out.
+
+use swarf_path::canon::Recorder;
+use swarf_path::gcode::{read_gcode, GcodeDialect, GcodeOptions};
+use swarf_path::{PathError, PathErrorKind};
+
+fn read(src: &str, opts: &GcodeOptions) -> Result<Recorder, PathError> {
+    let mut rec = Recorder::default();
+    read_gcode(src, "h.nc", opts, &mut rec)?;
+    Ok(rec)
+}
+
+#[test]
+fn an_invisible_character_is_named_not_read_as_the_end_of_the_line() {
+    for (ch, shown) in [
+        ('\u{a0}', "U+00A0 (no-break space)"),
+        ('\u{c}', "U+000C (form feed)"),
+        ('\u{200b}', "U+200B (zero-width space)"),
+    ] {
+        let e = read(
+            &format!("G21 G90\nG0 X1{ch}Y2\nM30\n"),
+            &GcodeOptions::default(),
+        )
+        .unwrap_err();
+        // Column 6: after `G0 X1`, counted in characters.
+        assert_eq!((e.pos.line, e.pos.column), (2, 6), "{e}");
+        assert_eq!(e.found, shown, "{e}");
+    }
+}
+
+#[test]
+fn scientific_notation_is_an_error_at_the_number() {
+    for (line, column, text) in [
+        ("G1 X1e3 F100", 5, "1e3"),
+        ("G1 X1.5E-2 F100", 5, "1.5e-2"),
+        ("G1 Y-2e+1 F100", 5, "-2e+1"),
+    ] {
+        let e = read(&format!("G21 G90\n{line}\nM30\n"), &GcodeOptions::default()).unwrap_err();
+        assert_eq!(
+            (e.kind, e.pos.line, e.pos.column),
+            (PathErrorKind::Syntax, 2, column),
+            "{line}: {e}"
+        );
+        assert!(
+            e.message
+                .contains(&format!("`{text}` is scientific notation")),
+            "{line}: {e}"
+        );
+    }
+    // An E word after a blank is a word (warned as unused), not a number's exponent.
+    let rec = read("G21 G90\nG1 X1 E3 F100\nM30\n", &GcodeOptions::default()).unwrap();
+    assert!(rec
+        .warnings
+        .iter()
+        .any(|w| w.message.contains("E3 ignored")));
+}
+
+#[test]
+fn mach3_circular_pockets_are_named() {
+    for code in ["G12", "G13"] {
+        let e = read(
+            &format!("G21 G90\nG0 X10 Y10 Z1\nG1 Z-1 F100\n{code} I5\nM30\n"),
+            &GcodeOptions::default(),
+        )
+        .unwrap_err();
+        assert_eq!((e.pos.line, e.pos.column), (4, 1), "{e}");
+        assert!(
+            e.message
+                .contains("Mach3's circular pocket G12/G13 is not read")
+                && e.message.contains("G2/G3 full circles"),
+            "{e}"
+        );
+    }
+}
+
+#[test]
+fn a_tool_loaded_later_is_not_said_never_to_be_loaded() {
+    let rec = read(
+        "G21G90\nT1\nG0X1\nM6\nG0X2\nM30\n",
+        &GcodeOptions::default(),
+    )
+    .unwrap();
+    let w: Vec<_> = rec
+        .warnings
+        .iter()
+        .filter(|w| w.message.contains("T1 was selected"))
+        .collect();
+    assert_eq!(w.len(), 1, "{:?}", rec.warnings);
+    assert_eq!((w[0].line, w[0].column), (3, 1), "{w:?}");
+    assert!(
+        w[0].message.contains("not loaded with M6 yet at this move")
+            && !w[0].message.contains("never"),
+        "{w:?}"
+    );
+}
+
+#[test]
+fn a_fanuc_d_register_warning_names_the_linuxcnc_way() {
+    let src = "%\nO1001\nG21 G90\nT1 M6\nG0 X-5. Y0. Z5.\nG1 Z-1. F300.\nG41 D1 X0. Y0.\n\
+               G1 X20.\nG40 X30. Y30.\nM30\n%\n";
+    let rec = read(src, &GcodeOptions::default()).unwrap();
+    let w = rec
+        .warnings
+        .iter()
+        .find(|w| w.message.contains("register D1"))
+        .expect("the register warning");
+    assert_eq!((w.line, w.column), (7, 5), "{w:?}");
+    assert!(
+        w.message.contains(
+            "--dialect linuxcnc reads D1 as tool 1, whose radius --tool or --tools gives"
+        ),
+        "{w:?}"
+    );
+    // And so it does: with tool 1 of diameter 6, the first cut runs at y = 3.
+    let opts = GcodeOptions::default()
+        .with_dialect(GcodeDialect::LinuxCnc)
+        .with_tool_diameter(1, 6.0);
+    let rec = read(src, &opts).unwrap();
+    let ys: Vec<f64> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            swarf_path::Canon::Feed { end } => Some(end.y),
+            _ => None,
+        })
+        .collect();
+    assert!(ys.iter().any(|y| (y - 3.0).abs() < 1e-9), "{ys:?}");
+}
