@@ -65,7 +65,7 @@ fn inside_of_the_step_sphere_admits_a_ball_of_its_radius() {
     let mut rows = csv.lines();
     assert_eq!(
         rows.next().unwrap(),
-        "patch,u,v,x,y,z,nx,ny,nz,radius_mm,limit_x,limit_y,limit_z,limit"
+        "patch,u,v,x,y,z,nx,ny,nz,radius_mm,limit_x,limit_y,limit_z,limit,certified"
     );
     // Every reachable point of the lower half (normal pointing up into the sphere) gets 5.
     let mut checked = 0;

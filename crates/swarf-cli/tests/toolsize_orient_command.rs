@@ -49,9 +49,9 @@ fn axis4_y_writes_b_deg_and_reaches_the_curvature_radius() {
     assert!(lines
         .next()
         .unwrap()
-        .ends_with(",radius_mm,limit_x,limit_y,limit_z,limit,b_deg"));
+        .ends_with(",radius_mm,limit_x,limit_y,limit_z,limit,b_deg,certified"));
     for row in lines {
-        let b: f64 = row.rsplit(',').next().unwrap().parse().unwrap();
+        let b: f64 = row.rsplit(',').nth(1).unwrap().parse().unwrap();
         assert!((b - 90.0).abs() < 1e-3, "{row}");
     }
 }
@@ -61,10 +61,14 @@ fn five_axis_writes_lead_and_tilt_within_the_limits() {
     let (o, csv) = run("a5", &["--five-axis", "10,5"]);
     assert!(o.status.success(), "{}", stderr(&o));
     let mut lines = csv.lines();
-    assert!(lines.next().unwrap().ends_with(",limit,lead_deg,tilt_deg"));
+    assert!(lines
+        .next()
+        .unwrap()
+        .ends_with(",limit,lead_deg,tilt_deg,certified"));
     for row in lines {
         let f: Vec<f64> = row
             .rsplit(',')
+            .skip(1)
             .take(2)
             .map(|x| x.parse().unwrap())
             .collect();

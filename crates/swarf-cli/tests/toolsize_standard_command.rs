@@ -47,7 +47,7 @@ fn standard_cutters_inside_the_step_sphere() {
     let mut rows = csv.lines();
     assert_eq!(
         rows.next().unwrap(),
-        "patch,u,v,x,y,z,nx,ny,nz,radius_mm,limit_x,limit_y,limit_z,limit,standard_d_mm"
+        "patch,u,v,x,y,z,nx,ny,nz,radius_mm,limit_x,limit_y,limit_z,limit,certified,standard_d_mm"
     );
     for r in rows {
         let f: Vec<&str> = r.split(',').collect();
@@ -56,7 +56,7 @@ fn standard_cutters_inside_the_step_sphere() {
             Ok(x) if x >= 3.175 - 1e-6 => "6.35",
             _ => "",
         };
-        assert_eq!(f[14], want, "{r}");
+        assert_eq!(f[15], want, "{r}");
     }
     assert!(dir.join("maps/patch_0.png").is_file());
     assert!(dir.join("maps/standard_patch_0.png").is_file());

@@ -236,3 +236,26 @@ fn an_open_mesh_is_refused_with_its_open_edges() {
         "check mesh empty.stl is empty: it has no triangles"
     );
 }
+
+#[test]
+fn a_ball_beside_the_box_is_limited_by_its_top_edge_exactly() {
+    // The ball stands at (0, 0, R) on the floor; the box's wall x = 10 rises to z = 8 < R, so
+    // the ball meets the wall's top edge: 10² + (R − 8)² = R², R = 164/16 = 10.25. (The ball's
+    // Bernstein bound chose the split by a surface parameter, which on a check triangle named
+    // an edge: one edge was never split, the triangles became needles, the node budget ran out
+    // and the size was a bisection sample's, 0.1–0.5 mm too large, with no certificate.)
+    let id = |p: Vec3| p;
+    let part = floor(&id);
+    let c = centre(&part);
+    let prep = PreparedSurface::new(&part)
+        .with_check_mesh("box", &boxed(BOX_LO, BOX_HI, &id))
+        .unwrap();
+    for family in [CutterFamily::ball(), CutterFamily::ball_with_side()] {
+        let a = allowable_certified(&prep, &family, &c, &CertifiedOptions::DEFAULT);
+        assert!((a.size - 10.25).abs() < TOL && a.certified, "{a:?}");
+        assert_eq!(a.limit, Some(Limit::Interference));
+        assert!(a.nodes < MAX_NODES_BOX, "{} nodes", a.nodes);
+        let p = a.limit_point.unwrap();
+        assert!((p.x - 10.0).abs() < TOL && (p.z - 8.0).abs() < TOL, "{p}");
+    }
+}

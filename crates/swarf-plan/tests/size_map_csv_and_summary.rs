@@ -57,7 +57,7 @@ fn csv_rows_and_summary() {
     let mut lines = text.lines();
     assert_eq!(
         lines.next().unwrap(),
-        "patch,u,v,x,y,z,nx,ny,nz,radius_mm,limit_x,limit_y,limit_z,limit"
+        "patch,u,v,x,y,z,nx,ny,nz,radius_mm,limit_x,limit_y,limit_z,limit,certified"
     );
     assert_eq!(
         CSV_HEADER,
@@ -67,7 +67,14 @@ fn csv_rows_and_summary() {
     // Numbers are compared as numbers: the CSV writes shortest round-trip text.
     let num = |s: &str| s.parse::<f64>().unwrap_or(f64::NAN);
     assert_eq!(rows.len(), 27);
-    assert!(rows.iter().all(|r| r.len() == 14));
+    assert!(rows.iter().all(|r| r.len() == 15));
+    // Every solved point of the certified solver carries its certificate; the needle's
+    // (no normal, nothing solved) is empty.
+    assert!(
+        rows.iter()
+            .all(|r| r[14] == if r[0] == "2" { "" } else { "true" }),
+        "{rows:?}"
+    );
     // Floor centre (0, 0, 0): the wall at 10 mm limits, by interference.
     let centre = rows
         .iter()
@@ -91,7 +98,7 @@ fn csv_rows_and_summary() {
         .find(|r| r[0] == "1" && r[1] == "0.5" && r[2] == "0.5")
         .unwrap();
     assert_eq!(wall_mid[9], "inf");
-    assert_eq!(&wall_mid[10..], &["", "", "", ""]);
+    assert_eq!(&wall_mid[10..14], &["", "", "", ""]);
     // The needle: no normal, empty radius.
     let needle: Vec<_> = rows.iter().filter(|r| r[0] == "2").collect();
     assert_eq!(needle.len(), 9);
@@ -109,12 +116,14 @@ fn csv_rows_and_summary() {
         "min_radius_mm",
         "median_radius_mm",
         "max_radius_mm",
+        "uncertified_points",
         "evaluations_per_point",
         "elapsed_s",
     ] {
         assert!(json.get(key).is_some(), "missing {key}");
     }
-    assert_eq!(json.as_object().unwrap().len(), 7);
+    assert_eq!(json.as_object().unwrap().len(), 8);
+    assert_eq!(s.uncertified_points, 0);
 }
 
 #[test]
@@ -139,4 +148,7 @@ fn pso_agrees_with_certified_and_is_reproducible() {
         assert_eq!(p, q, "PSO is seeded: same result twice");
         assert!(p >= c - 1e-7 && p - c < 1e-3, "pso {p} vs certified {c}");
     }
+    // The swarm proves nothing: every point it solved is uncertified.
+    assert_eq!(a.summary().uncertified_points, 3);
+    assert_eq!(cert.summary().uncertified_points, 0);
 }

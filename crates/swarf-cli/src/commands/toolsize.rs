@@ -221,6 +221,14 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
         );
     }
     crate::output::caveats_said(&caveats, "radii");
+    if summary.uncertified_points > 0 && matches!(args.solver, SolverArg::Certified) {
+        eprintln!(
+            "warning: at {} of {} points the certified solver ran out of its node budget: their \
+             radius is the best it found, not certified (the CSV's `certified` column is false \
+             there)",
+            summary.uncertified_points, summary.points
+        );
+    }
     let shank_hits = map
         .points
         .iter()

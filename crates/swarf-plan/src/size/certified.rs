@@ -363,7 +363,9 @@ impl Search<'_> {
             let s = sphere_bound(pc, c, self.c.normal, slack);
             if s.lb > *lb {
                 *lb = s.lb;
-                if let Some(d) = s.dir {
+                // (A check triangle splits by its edges, which `dir` numbers there: the
+                // parameter direction would leave one edge never split.)
+                if let (Some(d), false) = (s.dir, pc.check) {
                     *dir = d;
                 }
             }

@@ -147,6 +147,9 @@ pub struct MapSummary {
     pub median_radius_mm: Option<f64>,
     /// Largest finite radius, mm.
     pub max_radius_mm: Option<f64>,
+    /// Points whose size carries no certificate: every point of the swarm (`pso`), and those
+    /// where the certified solver ran out of its node budget (their size is the best it found).
+    pub uncertified_points: usize,
     /// Mean objective evaluations per point.
     pub evaluations_per_point: f64,
     /// Wall-clock time, s.
@@ -392,7 +395,7 @@ impl ToolSizeMap {
             Axes::Four(_) => ",b_deg",
             Axes::Five(_) => ",lead_deg,tilt_deg",
         };
-        writeln!(w, "{CSV_HEADER}{extra}")?;
+        writeln!(w, "{CSV_HEADER}{extra},certified")?;
         let labels = surface.patch_labels();
         for p in &self.points {
             let label = labels
@@ -418,6 +421,9 @@ impl ToolSizeMap {
                 Some((q, l)) => (num(q.x), num(q.y), num(q.z), l.as_str().to_string()),
                 None => Default::default(),
             };
+            // A size the solver proved (`true`), or the best it found without a proof (the swarm,
+            // or the certified solver out of its node budget).
+            let certified = p.size.map_or(String::new(), |s| s.certified.to_string());
             let angles = match (self.axes, p.orientation) {
                 (Axes::Three, _) => String::new(),
                 (_, Some((ToolAngles::Rotary { b_deg }, _))) => format!(",{}", num(b_deg)),
@@ -429,7 +435,7 @@ impl ToolSizeMap {
             };
             writeln!(
                 w,
-                "{label},{:?},{:?},{:?},{:?},{:?},{nx},{ny},{nz},{radius},{lx},{ly},{lz},{lim}{angles}",
+                "{label},{:?},{:?},{:?},{:?},{:?},{nx},{ny},{nz},{radius},{lx},{ly},{lz},{lim}{angles},{certified}",
                 p.cc.u, p.cc.v, p.point.x, p.point.y, p.point.z
             )?;
         }
@@ -464,6 +470,11 @@ impl ToolSizeMap {
             min_radius_mm: finite.first().copied(),
             median_radius_mm: median,
             max_radius_mm: finite.last().copied(),
+            uncertified_points: self
+                .points
+                .iter()
+                .filter(|p| p.size.is_some_and(|s| !s.certified))
+                .count(),
             evaluations_per_point: if self.points.is_empty() {
                 0.0
             } else {

@@ -4,9 +4,10 @@
 //! # Model
 //! A [`CutterFamily`] is a cutter shape with one free size parameter `L`:
 //!
-//! * [`CutterFamily::ball`] and [`CutterFamily::taper_ball`]: the ball radius `r` is free (for
-//!   the ball, the cutting part is the sphere **and the cylinder above its equator**, i.e. the
-//!   tapered ball with taper 0 — a ball end mill has flutes on its side too);
+//! * [`CutterFamily::ball`], [`CutterFamily::ball_with_side`] and [`CutterFamily::taper_ball`]:
+//!   the ball radius `r` is free (`ball` is the sphere alone; `ball_with_side` adds the cylinder
+//!   above its equator, the tapered ball with taper 0 — a ball end mill has flutes on its side
+//!   too, so a wall the sphere clears may still stop its side);
 //! * [`CutterFamily::apt`] (and its special cases [`CutterFamily::flat`] and
 //!   [`CutterFamily::bull`]): corner radius `r`, taper `θ` and bottom cone angle `ψ` are fixed,
 //!   the distance `R` from the axis to the corner-circle centre is free.
