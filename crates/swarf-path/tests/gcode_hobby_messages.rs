@@ -127,3 +127,33 @@ fn a_fanuc_d_register_warning_names_the_linuxcnc_way() {
         .collect();
     assert!(ys.iter().any(|y| (y - 3.0).abs() < 1e-9), "{ys:?}");
 }
+
+#[test]
+fn the_dialect_warning_names_the_cue_its_line_shows() {
+    let fanuc_warning = |src: &str| {
+        let rec = read(src, &GcodeOptions::default()).unwrap();
+        rec.warnings
+            .into_iter()
+            .find(|w| w.message.starts_with("read by Fanuc rules"))
+            .expect("the dialect warning")
+    };
+    // Vectric's Mach3 header: G80 beside G00 in one block.
+    let w = fanuc_warning("(VECTRIC)\nG00G21G17G90G40G49G80\nG0 X1\nM30\n");
+    assert_eq!(w.line, 2, "{w:?}");
+    assert!(
+        w.message
+            .contains("this line shows G80 with G0/G1/G2/G3 in one block"),
+        "{w:?}"
+    );
+    let w = fanuc_warning("%\nO1001\nG21 G90\nG0 X1\nM30\n%\n");
+    assert_eq!(w.line, 2, "{w:?}");
+    assert!(
+        w.message
+            .contains("this line shows a bare program number, O1001"),
+        "{w:?}"
+    );
+    let w = fanuc_warning("G21 G90\nG4 P500\nM30\n");
+    assert!(w.message.contains("a dwell P without a point"), "{w:?}");
+    // No fixed list of every cue.
+    assert!(!w.message.contains("M98/M99, Macro B"), "{w:?}");
+}

@@ -433,12 +433,17 @@ impl<'t, 's> Interp<'t, 's> {
         if let Some((fanuc_at, linuxcnc_at)) = self.dialect_cues {
             // Which rules the program is read by, and the line that decided it.
             let message = match (fanuc_at, linuxcnc_at) {
-                (Some(_), None) => Some(
-                    "read by Fanuc rules: this line shows a Fanuc habit (a bare program number, \
-                     M98/M99, Macro B, a Fanuc-only code or a dwell in milliseconds) and no line \
-                     has anything only LinuxCNC reads; --dialect linuxcnc reads it by LinuxCNC's"
-                        .to_string(),
-                ),
+                (Some(f), None) => {
+                    let line = super::lexer::lines(&self.text)
+                        .nth(f as usize - 1)
+                        .unwrap_or("");
+                    let cue = GcodeDialect::fanuc_cue(line)
+                        .unwrap_or_else(|| "a Fanuc habit".to_string());
+                    Some(format!(
+                        "read by Fanuc rules: this line shows {cue}, and no line has anything \
+                         only LinuxCNC reads; --dialect linuxcnc reads it by LinuxCNC's"
+                    ))
+                }
                 (Some(_), Some(l)) => Some(format!(
                     "read by LinuxCNC rules although this line shows a Fanuc habit: line {l} has \
                      something only LinuxCNC reads (o<name>, #<name>, a ; comment, (debug,…), \

@@ -252,7 +252,18 @@ impl GcodeDialect {
     /// Whether one line shows a Fanuc habit, and whether it shows something only LinuxCNC
     /// reads.
     fn line_cues(line: &str) -> (bool, bool) {
-        let (mut fanuc, mut linuxcnc) = (false, false);
+        let (fanuc, linuxcnc) = Self::line_cue_names(line);
+        (fanuc.is_some(), linuxcnc)
+    }
+
+    /// The Fanuc habit line `line` shows, named for the dialect warning (`None`: none).
+    pub(crate) fn fanuc_cue(line: &str) -> Option<String> {
+        Self::line_cue_names(line).0
+    }
+
+    /// [`Self::line_cues`] with the Fanuc habit named.
+    fn line_cue_names(line: &str) -> (Option<String>, bool) {
+        let (mut fanuc, mut linuxcnc) = (None, false);
         {
             if linuxcnc_comment(line) {
                 linuxcnc = true;
@@ -281,14 +292,16 @@ impl GcodeDialect {
                 let after = rest.trim_start_matches(|c: char| c.is_ascii_digit());
                 if after.len() < rest.len() {
                     if after.is_empty() {
-                        fanuc = true;
+                        fanuc = Some(format!("a bare program number, {}", body.to_uppercase()));
                     } else {
                         linuxcnc = true;
                     }
                 }
             }
-            if body.contains("m98") || body.contains("m99") || interp::is_macro_b(body.as_bytes()) {
-                fanuc = true;
+            if body.contains("m98") || body.contains("m99") {
+                fanuc = Some("M98/M99, Fanuc's subprogram call and return".into());
+            } else if interp::is_macro_b(body.as_bytes()) {
+                fanuc = Some("a Custom Macro B statement".into());
             }
             // The G numbers of the block.
             let gs: Vec<f64> = body
@@ -313,8 +326,16 @@ impl GcodeDialect {
                 || (has(5.1) && body.contains('q'));
             let dwell_ms =
                 (has(4.0) || has(82.0)) && p_without_point(body).is_some_and(|p| p >= 100);
-            if g80_with_motion || own_code || dwell_ms {
-                fanuc = true;
+            if g80_with_motion {
+                fanuc = Some(
+                    "G80 with G0/G1/G2/G3 in one block, which a Fanuc control reads (LinuxCNC \
+                     refuses two codes of one modal group)"
+                        .into(),
+                );
+            } else if own_code {
+                fanuc = Some("a Fanuc-only code (G43.4, G43.5, G54.1, G154 or G5.1 Q)".into());
+            } else if dwell_ms {
+                fanuc = Some("a dwell P without a point, in milliseconds".into());
             }
         }
         (fanuc, linuxcnc)
