@@ -158,8 +158,10 @@ fn camotics_programs_count_their_moves() {
         // The only things these programs do that swarf does not act on: a missing M2/M30, and
         // the CAMotics habit of selecting the tool with a lone `T` (taken as loaded, reported).
         assert!(
-            rec.warnings.iter().all(|w| w.message.contains("M2/M30")
-                || w.message.contains("not loaded with M6 yet")),
+            rec.warnings
+                .iter()
+                .all(|w| w.message.contains("M2/M30")
+                    || w.message.contains("not loaded with M6 yet")),
             "{name}: {:?}",
             rec.warnings
         );
