@@ -27,6 +27,7 @@
 use rayon::prelude::*;
 use serde::Serialize;
 use swarf_geom::math::Vec3;
+use swarf_path::SpindleDir;
 
 use crate::strip::{Strip, StripKind};
 
@@ -510,6 +511,10 @@ pub struct Engagement {
     pub feed_mm_min: f64,
     /// Spindle speed, rpm (0 when stopped).
     pub spindle_rpm: f64,
+    /// Spindle direction. φ is a geometric angle (clockwise from `+y_L` seen from the spindle)
+    /// whatever the rotation; the entry and exit angles follow the rotation (M4: the first and
+    /// last engaged φ going counter-clockwise).
+    pub spindle_dir: SpindleDir,
     /// Engaged intervals per axial disc (engaged discs only), by height above the tip.
     pub discs: Vec<CircleEngagement>,
     /// Engaged intervals per bottom ring (flat bottoms; engaged rings only), by radius.
@@ -521,7 +526,9 @@ pub struct Engagement {
     /// Lowest and highest engaged height on the side, mm above the tip (interpolated between
     /// discs like `ap_mm`); `None` when the side is not engaged.
     pub side_extent_mm: Option<(f64, f64)>,
-    /// Entry angle on the disc (or ring) of largest engagement, degrees.
+    /// Entry angle on the disc (or ring) of largest engagement, degrees: the first engaged φ
+    /// in the rotation direction (clockwise for M3 and a stopped spindle, counter-clockwise
+    /// for M4).
     pub phi_entry_deg: Option<f64>,
     /// Exit angle on that disc, degrees.
     pub phi_exit_deg: Option<f64>,
@@ -557,6 +564,14 @@ impl Engagement {
                 .and_then(CircleEngagement::entry_exit)
         };
         let angles = widest(&side.circles).or_else(|| widest(&bottom.circles));
+        // `entry_exit` goes clockwise; a counter-clockwise edge meets the same interval from
+        // its other end.
+        let angles = match self.spindle_dir {
+            SpindleDir::CounterClockwise => {
+                angles.map(|(a, b)| if b - a >= 360.0 { (a, b) } else { (b, a) })
+            }
+            _ => angles,
+        };
         self.phi_entry_deg = angles.map(|a| a.0);
         self.phi_exit_deg = angles.map(|a| a.1);
         self.discs = side.circles;

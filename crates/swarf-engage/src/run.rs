@@ -617,6 +617,7 @@ impl<'a> Engager<'a> {
             axis_rate,
             feed_mm_min: feed_rate(m, length),
             spindle_rpm: m.spindle_rpm,
+            spindle_dir: m.spindle_dir,
             discs: Vec::new(),
             bottom: Vec::new(),
             area_mm2: 0.0,

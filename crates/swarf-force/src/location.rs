@@ -93,6 +93,8 @@ pub struct Evaluated {
     pub feed_per_tooth_mm: f64,
     /// Spindle speed, rpm.
     pub spindle_rpm: f64,
+    /// Spindle direction (the sign of the torque about `z_L` and of ω).
+    pub spindle_dir: swarf_path::SpindleDir,
     /// Flutes of the tool.
     pub flutes: u32,
     /// Helix, degrees.
@@ -193,6 +195,7 @@ impl ForceModel {
                 unit: UnitForces::default(),
                 feed_per_tooth_mm: 0.0,
                 spindle_rpm: e.spindle_rpm,
+                spindle_dir: e.spindle_dir,
                 flutes: 1,
                 helix_deg: 0.0,
                 rake_deg: None,
@@ -208,6 +211,7 @@ impl ForceModel {
             unit: unit_forces(e, edges, self.samples_per_rev),
             feed_per_tooth_mm: c,
             spindle_rpm: e.spindle_rpm,
+            spindle_dir: e.spindle_dir,
             flutes: edges.flutes,
             helix_deg: edges.helix_deg,
             rake_deg: edges.rake_deg,
@@ -229,7 +233,13 @@ impl ForceModel {
         let coef = self.coefficients_at(ev, c);
         let curves = ev.unit.combine(coef.as_array(), c);
         let peaks = curves.peaks();
+        // ω about z_L: negative for M4, whose torque about z_L is negative too.
         let omega = ev.spindle_rpm * std::f64::consts::TAU / 60.0;
+        let signed_omega = if ev.spindle_dir == swarf_path::SpindleDir::CounterClockwise {
+            -omega
+        } else {
+            omega
+        };
         let [x, y, z] = ev.frame;
         let world = x * curves.means[0] + y * curves.means[1] + z * curves.means[2];
         let f = LocationForces {
@@ -240,7 +250,7 @@ impl ForceModel {
             mean_world_n: [world.x, world.y, world.z],
             torque_mean_nm: curves.means[3],
             torque_peak_nm: peaks[3],
-            power_mean_w: curves.means[3] * omega,
+            power_mean_w: curves.means[3] * signed_omega,
             power_peak_w: peaks[3] * omega,
             coefficients: coef,
         };

@@ -43,10 +43,11 @@
 //! and feed are a weighted sum of those ([`UnitForces::combine`]) — which is what the feed
 //! scheduling needs.
 
-use std::f64::consts::TAU;
+use std::f64::consts::{PI, TAU};
 
 use swarf_engage::{CircleEngagement, Engagement, StripKind};
 use swarf_geom::math::Vec3;
+use swarf_path::SpindleDir;
 
 use crate::edges::{CutterEdges, Slab};
 
@@ -281,14 +282,26 @@ impl SlabLoad {
 }
 
 /// The slabs engaged at `e`, with their engaged intervals (radians), the side's lowest and
-/// highest engaged slabs stretched or cut to the engagement's interpolated axial extent.
-fn engaged_slabs(e: &Engagement, edges: &CutterEdges) -> Vec<(Slab, Vec<(f64, f64)>)> {
+/// highest engaged slabs stretched or cut to the engagement's interpolated axial extent. With
+/// `mirror`, each interval is mirrored, φ → π − φ (see [`unit_forces`]).
+fn engaged_slabs(
+    e: &Engagement,
+    edges: &CutterEdges,
+    mirror: bool,
+) -> Vec<(Slab, Vec<(f64, f64)>)> {
     let to_rad = |c: &CircleEngagement| -> Vec<(f64, f64)> {
         c.intervals
             .iter()
             .map(|iv| {
-                let s = iv.start_deg.to_radians();
-                (s, s + iv.len_deg().to_radians())
+                let (s, len) = (iv.start_deg.to_radians(), iv.len_deg().to_radians());
+                if mirror {
+                    (
+                        (PI - s - len).rem_euclid(TAU),
+                        (PI - s - len).rem_euclid(TAU) + len,
+                    )
+                } else {
+                    (s, s + len)
+                }
             })
             .collect()
     };
@@ -321,7 +334,21 @@ fn engaged_slabs(e: &Engagement, edges: &CutterEdges) -> Vec<(Slab, Vec<(f64, f6
 
 /// The forces at engagement `e` per unit coefficient and unit feed per tooth, at `samples`
 /// spindle angles over a revolution.
+///
+/// # Spindle direction
+/// The model is written for a clockwise spindle (M3: φ, measured clockwise from `+y_L`, grows
+/// as an edge turns). A counter-clockwise cutter (M4) is the mirror image, across the plane of
+/// `x_L` and `z_L`, of a clockwise one: the mirror `(x, y, z) → (x, −y, z)` takes the point at
+/// φ, `ρ(sin φ, cos φ)`, to `ρ(sin φ, −cos φ)`, the point at `π − φ`, turns the rotation
+/// clockwise, and keeps the feed's x and z parts (its y part changes sign). So an M4 location
+/// is computed as the clockwise cutter on the mirrored engagement (intervals `[a, b] →
+/// [π − b, π − a]`, feed `c_y → −c_y`), and its force mapped back through the mirror: `F_y`
+/// changes sign, `F_x` and `F_z` do not, and the torque about `z_L`, an axial vector, changes
+/// sign too (`τ = r × F` under a reflection `M` is `det M · M τ`): the power `τ·ω` stays
+/// positive, as ω does too. The curves are those of the mirrored cutter's spindle angle (their
+/// phase is arbitrary anyway).
 pub fn unit_forces(e: &Engagement, edges: &CutterEdges, samples: usize) -> UnitForces {
+    let mirror = e.spindle_dir == SpindleDir::CounterClockwise;
     let samples = samples.max(1);
     let flutes = edges.flutes.max(1) as usize;
     let period = if samples % flutes == 0 {
@@ -336,11 +363,12 @@ pub fn unit_forces(e: &Engagement, edges: &CutterEdges, samples: usize) -> UnitF
         ..Default::default()
     };
     // Feed per tooth direction in the tool frame, per mm of tip feed, at a slab's height.
-    let frame = |v: Vec3| Vec3::new(v.dot(e.x_l), v.dot(e.y_l), v.dot(e.axis));
+    let y_sign = if mirror { -1.0 } else { 1.0 };
+    let frame = |v: Vec3| Vec3::new(v.dot(e.x_l), y_sign * v.dot(e.y_l), v.dot(e.axis));
     let pitch = TAU / flutes as f64;
     let mut chip = 0.0;
     let mut engaged_len = 0.0;
-    for (slab, intervals) in engaged_slabs(e, edges) {
+    for (slab, intervals) in engaged_slabs(e, edges, mirror) {
         if slab.width <= 0.0 || intervals.is_empty() {
             continue;
         }
@@ -385,6 +413,18 @@ pub fn unit_forces(e: &Engagement, edges: &CutterEdges, samples: usize) -> UnitF
                     let val: f64 = (0..BASIS).map(|q| load.w[k][o][q] * b[q]).sum();
                     let i = u.idx(k, o, j);
                     u.curves[i] += val;
+                }
+            }
+        }
+    }
+    if mirror {
+        // Back through the mirror: F_y and the torque change sign.
+        for k in 0..COEFFS {
+            for o in [1, 3] {
+                u.means[k][o] = -u.means[k][o];
+                let i = u.idx(k, o, 0);
+                for v in &mut u.curves[i..i + period] {
+                    *v = -*v;
                 }
             }
         }

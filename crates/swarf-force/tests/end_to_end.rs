@@ -276,3 +276,69 @@ fn ball_and_bull_nose_slots_match_the_closed_forms_over_the_profile() {
         );
     }
 }
+
+/// M4 turns the cutter counter-clockwise. Beside a wall on `+y_L` (up-milling for M3, φ from 0
+/// to w = acos(1 − a_e/R)) an M4 cutter down-mills: it is the mirror image across the
+/// `x_L`–`z_L` plane (φ → π − φ, y → −y) of an M3 cutter down-milling beside a wall on
+/// `−y_L` (φ from π − w to π). So its mean forces are that closed form's with `F_y` negated,
+/// its torque negated (an axial vector under a reflection), its power the same; the entry and
+/// exit, the first and last engaged φ going counter-clockwise, are w and 0. The reviewer's
+/// hand values (10 mm, 4 flutes, S10000 F1000, a_e = 2, a_p = 5): F̄x = +48.59, F̄y = −132.17.
+#[test]
+fn m4_is_the_mirror_image_of_m3() {
+    let spec = "flat:d=10,flutes=4,helix=30";
+    let ae: f64 = 2.0;
+    let w = (1.0 - ae / 5.0).acos();
+    let (n, a, c) = (4.0, 5.0, 1000.0 / (10000.0 * 4.0));
+    let run = |m: &str, ymin: f64, ymax: f64| {
+        forces_at(
+            &format!("G21 G90 G94\nS10000 {m}\nG0 X-10 Y0 Z5\nG0 Z-5\nG1 X50 F1000\n"),
+            [0.0, ymin, -10.0],
+            [40.0, ymax, 0.0],
+            spec,
+            [20.0, 0.0, -5.0],
+        )
+    };
+    let (e_up4, up4) = run("M4", 3.0, 20.0);
+    let (e_down3, down3) = run("M3", -20.0, -3.0);
+    let (_, up3) = run("M3", 3.0, 20.0);
+    let down = closed_form(n, a, c, PI - w, PI);
+    check(
+        up4.mean_n,
+        [down[0], -down[1], down[2]],
+        0.001,
+        "M4 up-milling",
+    );
+    check(down3.mean_n, down, 0.001, "M3 down-milling");
+    check(
+        up3.mean_n,
+        closed_form(n, a, c, 0.0, w),
+        0.001,
+        "M3 up-milling",
+    );
+    assert!((up4.mean_n[0] - 48.59).abs() < 0.05 && (up4.mean_n[1] + 132.17).abs() < 0.05);
+    // Torque about z_L: negated; power the same (and positive).
+    println!(
+        "torque M4 up {:.5}, M3 down {:.5}; power {:.3} / {:.3} W",
+        up4.torque_mean_nm, down3.torque_mean_nm, up4.power_mean_w, down3.power_mean_w
+    );
+    assert!(down3.torque_mean_nm > 0.0);
+    assert!((up4.torque_mean_nm + down3.torque_mean_nm).abs() < 1e-3 * down3.torque_mean_nm);
+    assert!((up4.power_mean_w - down3.power_mean_w).abs() < 1e-3 * down3.power_mean_w);
+    assert!((up4.peak_resultant_n - down3.peak_resultant_n).abs() < 1e-2 * down3.peak_resultant_n);
+    // Entry and exit follow the rotation.
+    let deg = w.to_degrees();
+    let (en, ex) = (e_up4.phi_entry_deg.unwrap(), e_up4.phi_exit_deg.unwrap());
+    assert!(
+        (en - deg).abs() < 0.05 && ex.abs() < 0.05,
+        "M4 entry {en} exit {ex}"
+    );
+    let (en, ex) = (
+        e_down3.phi_entry_deg.unwrap(),
+        e_down3.phi_exit_deg.unwrap(),
+    );
+    assert!(
+        (en - (180.0 - deg)).abs() < 0.05 && (ex - 180.0).abs() < 0.05,
+        "{en} {ex}"
+    );
+}

@@ -67,6 +67,7 @@ fn engagement(z0: f64, z1: f64, start: f64, end: f64, opts: &EngageOptions) -> E
         axis_rate: Vec3::ZERO,
         feed_mm_min: 0.0,
         spindle_rpm: 0.0,
+        spindle_dir: swarf_path::SpindleDir::Clockwise,
         discs,
         bottom: vec![],
         area_mm2: 1.0,

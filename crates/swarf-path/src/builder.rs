@@ -65,6 +65,7 @@ pub struct MoveBuilder {
     feed: f64,
     feed_mode: FeedMode,
     spindle_rpm: f64,
+    spindle_dir: SpindleDir,
     tool: u32,
     /// Tool axis of the current position in CL mode.
     axis: Vec3,
@@ -112,6 +113,7 @@ impl MoveBuilder {
             feed: 0.0,
             feed_mode: FeedMode::PerMinute,
             spindle_rpm: 0.0,
+            spindle_dir: SpindleDir::Stopped,
             tool: 0,
             axis: Vec3::Z,
             target_axis: Vec3::Z,
@@ -434,6 +436,7 @@ impl MoveBuilder {
             feed: self.feed,
             feed_mode: self.feed_mode,
             spindle_rpm: self.spindle_rpm,
+            spindle_dir: self.spindle_dir,
             tool: self.tool,
             file: self.file,
             line,
@@ -513,6 +516,7 @@ impl CanonSink for MoveBuilder {
                 } else {
                     *rpm
                 };
+                self.spindle_dir = *dir;
             }
             Canon::ToolChange { tool } => {
                 self.tool = *tool;

@@ -3,7 +3,7 @@
 use serde::Serialize;
 use swarf_geom::math::Vec3;
 
-use crate::canon::{Axes, FeedMode};
+use crate::canon::{Axes, FeedMode, SpindleDir};
 use crate::kinematics::Machine;
 pub use crate::kinematics::Pose;
 use crate::Warning;
@@ -94,6 +94,9 @@ pub struct Move {
     pub feed_mode: FeedMode,
     /// Spindle speed, rpm (0 when stopped).
     pub spindle_rpm: f64,
+    /// Spindle direction (M3 / `SPINDL/…,CLW` clockwise seen from the spindle looking at the
+    /// tip, M4 / `CCLW` counter-clockwise; `Stopped` after M5 or before any spindle word).
+    pub spindle_dir: SpindleDir,
     /// Active tool number (0 when none was loaded).
     pub tool: u32,
     /// Index into [`Program::files`].

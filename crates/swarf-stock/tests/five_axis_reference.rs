@@ -268,6 +268,7 @@ fn blank_move(kind: MoveKind, start: Pose, end: Pose, j0: Axes, j1: Axes) -> Mov
         feed: 500.0,
         feed_mode: FeedMode::PerMinute,
         spindle_rpm: 10000.0,
+        spindle_dir: swarf_path::SpindleDir::Clockwise,
         tool: 1,
         file: 0,
         line: 1,

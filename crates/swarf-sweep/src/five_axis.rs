@@ -630,6 +630,7 @@ mod tests {
             feed: 100.0,
             feed_mode: FeedMode::PerMinute,
             spindle_rpm: 1000.0,
+            spindle_dir: swarf_path::SpindleDir::Clockwise,
             tool: 1,
             file: 0,
             line: 1,

@@ -39,6 +39,7 @@ pub fn moves(tips: &[Vec3], axis: Vec3, rapid: bool) -> Program {
             feed: 100.0,
             feed_mode: FeedMode::PerMinute,
             spindle_rpm: 10000.0,
+            spindle_dir: swarf_path::SpindleDir::Clockwise,
             tool: 1,
             file: 0,
             line: i as u32 + 1,
