@@ -157,3 +157,91 @@ fn the_dialect_warning_names_the_cue_its_line_shows() {
     // No fixed list of every cue.
     assert!(!w.message.contains("M98/M99, Macro B"), "{w:?}");
 }
+
+/// The straight moves' end points.
+fn ends(rec: &Recorder) -> Vec<[f64; 3]> {
+    rec.events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            swarf_path::Canon::Traverse { end } | swarf_path::Canon::Feed { end } => {
+                Some([end.x, end.y, end.z])
+            }
+            _ => None,
+        })
+        .collect()
+}
+
+#[test]
+fn code_after_the_programs_end_is_said_not_read() {
+    // Two programs joined, each closed by `%`, or after M30: a control stops at the end, so the
+    // second is not read — said once, at the end, with the count of code lines (it was silent:
+    // "removed 0 mm³" and no word).
+    for (text, line, n) in [
+        (
+            "%\nG21 G90\nG0 X1\n%\n%\nG21 G90\nG0 X50\nG1 Z-5 F100\nM30\n%\n",
+            4,
+            4,
+        ),
+        (
+            "G21 G90\nG0 X1\nM30\nG0 X50 (second)\nG1 Z-5 F100\nM30\n",
+            3,
+            3,
+        ),
+        ("G21 G0 X1\n%\nG0 X5\n", 2, 1),
+    ] {
+        let rec = read(text, &GcodeOptions::default()).unwrap();
+        assert_eq!(ends(&rec), [[1.0, 0.0, 0.0]], "{text}");
+        let w: Vec<_> = rec
+            .warnings
+            .iter()
+            .filter(|w| w.message.contains("after the program's end"))
+            .collect();
+        assert_eq!(w.len(), 1, "{:?}", rec.warnings);
+        assert_eq!(w[0].line, line, "{:?}", w[0]);
+        assert!(w[0].message.starts_with(&format!("{n} line")), "{:?}", w[0]);
+    }
+    // Subprograms after M30 (Fanuc) and comments are not code left unread.
+    let fanuc = "O1\nG21 G90\nM98 P2\nM30\n(the subprogram)\nO2\nG0 X3\nM99\n%\n";
+    let rec = read(fanuc, &GcodeOptions::default()).unwrap();
+    assert!(
+        rec.warnings
+            .iter()
+            .all(|w| !w.message.contains("after the program's end")),
+        "{:?}",
+        rec.warnings
+    );
+}
+
+#[test]
+fn a_probing_move_is_read_with_the_tool_staying_where_it_is() {
+    // A touch-off block at the top of a hobby program: the probe trips somewhere above its
+    // programmed end, which only the machine knows. The tool stays (a move to Z-10 would plunge
+    // through the touch plate), the offset set from there is applied, and a warning says so.
+    // (The whole program was refused: "probing is not simulated".)
+    let text = "G21 G90\nG0 X0 Y0 Z5\nG38.2 Z-10 F50\nG10 L20 P1 Z0\nG0 Z5\nG0 X10\nM30\n";
+    let rec = read(text, &GcodeOptions::default()).unwrap();
+    // Z0 set at the start point (machine Z5): Z5 is machine Z10, in the new frame 5.
+    assert_eq!(
+        ends(&rec),
+        [[0.0, 0.0, 5.0], [0.0, 0.0, 5.0], [10.0, 0.0, 5.0]]
+    );
+    let w: Vec<_> = rec
+        .warnings
+        .iter()
+        .filter(|w| w.message.starts_with("G38.2"))
+        .collect();
+    assert_eq!(w.len(), 1, "{:?}", rec.warnings);
+    assert_eq!((w[0].line, w[0].column), (3, 1), "{:?}", w[0]);
+    // LinuxCNC's refusals stay.
+    for (text, what) in [
+        (
+            "G21 G90\nG0 X0 Y0 Z5\nG41.1 D2\nG38.2 Z-10 F50\nM30\n",
+            "cutter radius compensation",
+        ),
+        ("G21 G90\nG0 X0 Y0 Z5\nG38.3 Z-10\nM30\n", "zero feed"),
+    ] {
+        let e = read(text, &GcodeOptions::default()).unwrap_err();
+        assert!(e.to_string().contains(what), "{e}");
+        assert_eq!(e.pos.line, 4 - u32::from(what == "zero feed"), "{e}");
+    }
+}

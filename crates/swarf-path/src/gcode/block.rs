@@ -72,12 +72,11 @@ fn g_group(code: u16) -> Result<usize, (PathErrorKind, &'static str)> {
         540 | 550 | 560 | 570 | 580 | 590 | 591 | 592 | 593 | 541 | 1540 => Ok(COORD),
         610 | 611 | 640 => Ok(PATH),
         960 | 970 => Ok(SPINDLE_MODE),
-        330 | 331 => Ok(MOTION),
+        330 | 331 | 382..=385 => Ok(MOTION),
         760 => unsupported(
             "G76 (LinuxCNC's lathe threading cycle) is not read: swarf simulates milling (a Fanuc \
              program's G76 fine boring is read with --dialect fanuc)",
         ),
-        382..=385 => unsupported("probing is not simulated"),
         120 | 130 => unsupported(
             "Mach3's circular pocket G12/G13 is not read (its path is the control's): write the \
              pocket's moves (the CAM system's, or G2/G3 full circles such as `G2 I-5`)",
@@ -716,9 +715,9 @@ mod tests {
         assert_eq!(e.span, Span::Code(4, 6));
         let e = parsed("G0 G1").unwrap_err();
         assert_eq!(e.kind, PathErrorKind::Semantic);
-        let e = parsed("G38.2 X1").unwrap_err();
-        assert_eq!(e.kind, PathErrorKind::Unsupported);
-        assert!(e.message.contains("probing is not simulated"));
+        // (Probing is a motion code: not with another one.)
+        let e = parsed("G38.2 G1 X1").unwrap_err();
+        assert_eq!(e.kind, PathErrorKind::Semantic);
         assert_eq!(parsed("G1.5").unwrap_err().kind, PathErrorKind::Syntax);
         assert_eq!(parsed("G1 X1.2.3").unwrap_err().span, Span::Code(2, 8));
         assert!(parsed("G1 X").is_err());

@@ -262,6 +262,8 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) tilt: Option<WorkPlane>,
     /// The modal state M70/M73 saved, per call level (`modal`).
     pub(crate) saved_modal: Vec<super::modal::Saved>,
+    /// A probing move (G38.x) was reported.
+    pub(crate) probe_warned: bool,
     /// G69 cancelled a plane G53.1 had turned the tool to: the next block with rotary words
     /// hands the tool axis back to the machine ([`Canon::MachineAxis`]).
     pub(crate) held_axis: bool,
@@ -322,6 +324,7 @@ impl<'t, 's> Interp<'t, 's> {
             macro_loops: Vec::new(),
             loop_ends: HashMap::new(),
             held_axis: false,
+            probe_warned: false,
             g51: None,
             g5_last: None,
             nurbs: None,
@@ -552,9 +555,51 @@ impl<'t, 's> Interp<'t, 's> {
                 ));
             }
             self.warn_at(0, "the program has no M2/M30 end".to_string());
+        } else if self.frames.is_empty() {
+            let n = self.code_after_end();
+            if n > 0 {
+                self.warn_at(
+                    0,
+                    format!(
+                        "{n} line{} with code after the program's end here {} not read (a \
+                         control stops at M2/M30 or the closing `%`; join programs without them)",
+                        if n == 1 { "" } else { "s" },
+                        if n == 1 { "is" } else { "are" }
+                    ),
+                );
+            }
         }
         self.sink.finish();
         Ok(())
+    }
+
+    /// Lines with code after the program's end in its main file, up to the first program or
+    /// subroutine that follows it (`O…`, `:…`: Fanuc programs keep their subprograms after M30).
+    fn code_after_end(&self) -> usize {
+        let Some(rest) = self.text.get(self.at.pos..) else {
+            return 0;
+        };
+        let mut n = 0;
+        for line in rest.lines() {
+            let mut code = String::new();
+            let mut depth = 0;
+            for ch in line.chars() {
+                match ch {
+                    ';' if depth == 0 => break,
+                    '(' => depth += 1,
+                    ')' if depth > 0 => depth -= 1,
+                    c if depth == 0 => code.push(c),
+                    _ => {}
+                }
+            }
+            let t = code.trim();
+            match t.bytes().next().map(|c| c.to_ascii_lowercase()) {
+                None | Some(b'%') => {}
+                Some(b'o' | b':') => break,
+                Some(_) => n += 1,
+            }
+        }
+        n
     }
 
     /// Turns an internal fault on the current line into a [`PathError`].
@@ -1658,7 +1703,7 @@ impl<'t, 's> Interp<'t, 's> {
             _ => {}
         }
         self.warn_unused_words(b, lb, nonmodal);
-        self.motion_step(b, nonmodal == Some(530), axes_used_by_nonmotion)?;
+        self.motion_step(b, lb, nonmodal == Some(530), axes_used_by_nonmotion)?;
         match b.m_stop {
             Some(0 | 1 | 60) => {
                 let m = b.m_stop.unwrap_or(0);
@@ -1773,7 +1818,7 @@ impl<'t, 's> Interp<'t, 's> {
         }
     }
 
-    fn motion_step(&mut self, b: &Block, g53: bool, axes_taken: bool) -> Res<()> {
+    fn motion_step(&mut self, b: &Block, lb: &LineBuf, g53: bool, axes_taken: bool) -> Res<()> {
         let mut explicit = b.g(group::MOTION);
         let has_axes = b.mask & axis_mask() != 0;
         if self.fanuc && (explicit == Some(800) || b.g80_too) {
@@ -1950,6 +1995,8 @@ impl<'t, 's> Interp<'t, 's> {
                     self.spindle_synchronised(b, m == 331)?;
                 }
             }
+            Some(m @ 382..=385) if has_axes => self.probe(b, lb, m)?,
+            Some(382..=385) => {}
             Some(m @ (50..=53)) => {
                 if m == 52 && explicit == Some(52) {
                     self.nurbs_start = [self.p[0], self.p[1]];
@@ -1957,6 +2004,51 @@ impl<'t, 's> Interp<'t, 's> {
                 self.spline(b, m, explicit == Some(m))?;
             }
             Some(m) => self.cycle(b, m, old_motion)?,
+        }
+        Ok(())
+    }
+
+    /// `G38.2`–`G38.5`: a probing move, which stops where the probe trips — a place only the
+    /// machine knows. The tool stays where it is (the trip point is unknown, and a move to the
+    /// programmed end would plunge into the touch plate or the part), with a warning at the first
+    /// one; offsets a program sets from the probed position (`G10 L20`, `G92`) are set from the
+    /// start point. LinuxCNC's refusals are kept: under cutter compensation, in inverse time, at
+    /// zero feed.
+    fn probe(&mut self, b: &Block, lb: &LineBuf, m: u16) -> Res<()> {
+        let span = b
+            .g(group::MOTION)
+            .map_or(Span::Line, |_| b.g_span(group::MOTION));
+        if self.read_only.ccomp != 400 {
+            return Err(Fault::semantic(
+                span,
+                "Cannot probe with cutter radius compensation on",
+            ));
+        }
+        if self.feed_mode == FeedMode::InverseTime {
+            return Err(Fault::semantic(
+                span,
+                "Cannot probe in inverse time feed mode",
+            ));
+        }
+        if self.feed <= 0.0 {
+            return Err(Fault::semantic(span, "Cannot probe with zero feed rate"));
+        }
+        if !self.probe_warned {
+            self.probe_warned = true;
+            let at = match span {
+                Span::Code(x, _) => x,
+                _ => 0,
+            };
+            self.warn_code(
+                lb,
+                at,
+                format!(
+                    "G38.{}: the probe's trip point is unknown, so the tool stays where it is \
+                     (offsets the program then sets from the probed position, G10 L20 or G92, \
+                     are set from here; the first probing move, others are not reported)",
+                    m - 380
+                ),
+            );
         }
         Ok(())
     }
