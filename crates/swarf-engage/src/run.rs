@@ -179,6 +179,8 @@ pub enum EngageError {
 #[derive(Clone, Debug)]
 struct Prepared {
     shape: ToolShape,
+    /// How far the tool reaches from its tip (the collisions' sliver zones).
+    reach: swarf_stock::Reach,
     side: Option<Strip>,
     bottom: Option<Strip>,
     radius: f64,
@@ -200,6 +202,7 @@ impl Prepared {
             .fold(cutter.apt_params().h, f64::max);
         Self {
             shape: ToolShape::new(cutter),
+            reach: swarf_stock::reach(cutter),
             radius: 0.5 * cutter.max_diameter(),
             height: top,
             side,
@@ -338,8 +341,9 @@ pub struct Engager<'a> {
     /// as `swarf_stock::simulate` reports them.
     rapid_collisions: Vec<Collision>,
     holder_collisions: Vec<Collision>,
-    /// The largest error bound of the multi-axis cuts so far (for [`swarf_stock::collides`]).
-    error_bound_mm: f64,
+    /// Where the multi-axis cuts so far may have left slivers (collisions judged as the
+    /// simulation judges them).
+    zones: swarf_stock::SliverZones,
 }
 
 /// The per-sample buffers of [`sample_strip`], reused.
@@ -417,7 +421,7 @@ impl<'a> Engager<'a> {
             observer: &Quiet,
             rapid_collisions: Vec::new(),
             holder_collisions: Vec::new(),
-            error_bound_mm: 0.0,
+            zones: swarf_stock::SliverZones::default(),
         })
     }
 
@@ -455,7 +459,8 @@ impl<'a> Engager<'a> {
     /// Cuts `[s0, s1]` of move `index`; returns the volume removed (mm³).
     fn cut(&mut self, index: usize, s0: f64, s1: f64) -> Result<f64, EngageError> {
         let t0 = Instant::now();
-        let shape = &self.tools.of(self.program, index)?.shape;
+        let prepared = self.tools.of(self.program, index)?;
+        let (shape, reach) = (&prepared.shape, prepared.reach);
         let cut = self.stock.cut_move_range(
             self.program,
             index,
@@ -469,7 +474,8 @@ impl<'a> Engager<'a> {
         let removed = (cut.cutting.removed_length[2] + cut.non_cutting.removed_length[2]) * area;
         self.stats.removed_volume_mm3 += removed;
         // Collisions, as the simulation tells them (a multi-axis cut's slivers are not).
-        self.error_bound_mm = self.error_bound_mm.max(cut.error_bound_mm);
+        self.zones
+            .record(self.program, index, reach, cut.error_bound_mm);
         let m = &self.program.moves[index];
         let hit = |list: &mut Vec<Collision>, volume_mm3: f64| match list.last_mut() {
             Some(c) if c.move_index == index => c.volume_mm3 += volume_mm3,
@@ -481,14 +487,19 @@ impl<'a> Engager<'a> {
             }),
         };
         if matches!(m.kind, MoveKind::Rapid)
-            && swarf_stock::collides(&cut.cutting, self.error_bound_mm)
+            && self
+                .zones
+                .collision(self.program, index, reach, &cut.cutting, true)
         {
             hit(
                 &mut self.rapid_collisions,
                 cut.cutting.removed_length[2] * area,
             );
         }
-        if swarf_stock::collides(&cut.non_cutting, self.error_bound_mm) {
+        if self
+            .zones
+            .collision(self.program, index, reach, &cut.non_cutting, false)
+        {
             hit(
                 &mut self.holder_collisions,
                 cut.non_cutting.removed_length[2] * area,

@@ -60,3 +60,43 @@ fn a_shank_in_the_material_is_reported_once_for_its_move() {
     println!("shank: {:.2} mm³ (exact {want:.2})", c[0].volume_mm3);
     assert!(rel(c[0].volume_mm3, want) < 0.01, "{}", c[0].volume_mm3);
 }
+
+/// After a rotary cut, the engagement judges a far rapid skim 5 µm deep as the simulation
+/// does: a collision (the rotary cut's sliver allowance holds near it only). Before, a running
+/// maximum of the multi-axis error bounds dropped every shallow removal for the rest of the
+/// program, and the simulation's rule differed from it.
+#[test]
+fn after_a_rotary_cut_a_far_skim_is_a_collision_as_simulate_says() {
+    let text = "G21 G90 G94\nS8000 M3\nG0 X-10 Y0 Z30 A0\nG0 X0 Z12\nG1 Z9 F200\n\
+        G1 X20 A360 F500\nG0 Z30\nG0 X120 Y5\nG0 Z9.995\nG0 X140\nG0 Z30\nM30\n";
+    let p = swarf_path::load::read_program_str(
+        text,
+        "far.ngc",
+        swarf_path::Machine::from_name("4axis-a").unwrap(),
+        &swarf_path::load::ReadOptions {
+            gcode: swarf_path::gcode::GcodeOptions::default().with_home([-10.0, 0.0, 30.0]),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let tools = ToolSet::single(Cutter::from_spec("flat:d=6").unwrap());
+    let opts = EngageOptions {
+        chordal_tolerance_mm: 0.01,
+        step_mm: 5.0,
+        ..EngageOptions::default()
+    };
+    let mut stock = block([0.0, -10.0, -10.0], [150.0, 10.0, 10.0], 0.5);
+    let mut engager = Engager::new(&p, &tools, &mut stock, opts).unwrap();
+    engager.by_ref().for_each(|e| drop(e.unwrap()));
+    let lines: Vec<u32> = engager.rapid_collisions().iter().map(|c| c.line).collect();
+    let sim = {
+        let mut stock = block([0.0, -10.0, -10.0], [150.0, 10.0, 10.0], 0.5);
+        let o = swarf_stock::SimOptions {
+            chordal_tolerance: 0.01,
+        };
+        swarf_stock::simulate(&p, &tools, &mut stock, &o).unwrap()
+    };
+    let sim_lines: Vec<u32> = sim.rapid_collisions.iter().map(|c| c.line).collect();
+    assert_eq!(lines, [9, 10], "{:?}", engager.rapid_collisions());
+    assert_eq!(lines, sim_lines);
+}

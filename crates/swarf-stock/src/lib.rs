@@ -106,7 +106,8 @@ pub use dexel::{Dexel, DexelTags, EndTags, Interval, MoveTag, UNCUT};
 pub use error::StockError;
 pub use mesh::{axis_line_intervals, MeshOptions};
 pub use simulate::{
-    collides, simulate, simulate_observed, Collision, SimOptions, SimulationReport,
+    collides, reach, simulate, simulate_observed, Collision, Reach, SimOptions, SimulationReport,
+    SliverZones,
 };
 pub use spec::StockSpec;
 pub use tridexel::{

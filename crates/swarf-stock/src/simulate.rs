@@ -5,10 +5,11 @@ use crate::error::StockError;
 use crate::tridexel::{CutStats, LinearMove, TriDexel};
 use std::collections::BTreeMap;
 use std::time::Instant;
+use swarf_geom::math::Vec3;
 use swarf_geom::progress::{Observer, Quiet};
-use swarf_path::{MoveKind, Program};
+use swarf_path::{Move, MoveKind, Program};
 use swarf_sweep::ToolShape;
-use swarf_tool::ToolSet;
+use swarf_tool::{Cutter, ToolSet};
 
 /// Simulation options; accuracy parameters with their defaults in one place.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -46,6 +47,113 @@ fn shapes_of(program: &Program, tools: &ToolSet) -> BTreeMap<u32, ToolShape> {
         }
     }
     shapes
+}
+
+/// The radii of spheres about the tool tip that hold its cutting part, and the whole tool
+/// (cutting part, shank and holder), in any orientation: each one's height plus its largest
+/// radius.
+pub fn reach(c: &Cutter) -> Reach {
+    let holder = c.holder().map_or((0.0, 0.0), |h| {
+        let top = h.base_z_mm + h.segments.iter().map(|s| s.length_mm).sum::<f64>();
+        let r = h
+            .segments
+            .iter()
+            .map(|s| 0.5 * s.bottom_diameter_mm.max(s.top_diameter_mm))
+            .fold(0.0, f64::max);
+        (top, r)
+    });
+    let height = c.overall_length().max(holder.0);
+    let radius = (0.5 * c.max_diameter())
+        .max(0.5 * c.shank_diameter())
+        .max(holder.1);
+    Reach {
+        cutting: c.flute_length().min(c.overall_length()) + 0.5 * c.max_diameter(),
+        whole: height + radius,
+    }
+}
+
+/// How far a tool reaches from its tip ([`reach`]), mm.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Reach {
+    /// The cutting part.
+    pub cutting: f64,
+    /// The whole tool: cutting part, shank and holder.
+    pub whole: f64,
+}
+
+/// A box holding everything the tool of reach `reach` sweeps on move `m`: its tip path
+/// sampled, grown by the reach and by the largest step between samples (the path between two
+/// samples stays within that of them).
+fn swept_box(program: &Program, m: &Move, reach: f64) -> (Vec3, Vec3) {
+    const SAMPLES: u32 = 16;
+    let (mut lo, mut hi) = (Vec3::splat(f64::INFINITY), Vec3::splat(f64::NEG_INFINITY));
+    let (mut prev, mut step) = (None::<Vec3>, 0.0f64);
+    for i in 0..=SAMPLES {
+        let p = program.pose_at(m, f64::from(i) / f64::from(SAMPLES)).tip;
+        (lo, hi) = (lo.min(p), hi.max(p));
+        if let Some(q) = prev {
+            step = step.max((p - q).length());
+        }
+        prev = Some(p);
+    }
+    let grow = Vec3::splat(reach + step);
+    (lo - grow, hi + grow)
+}
+
+/// Where multi-axis moves may have left slivers (see [`collides`]): the boxes their cutting
+/// parts and their whole tools swept, with their error bounds. The simulation and the
+/// engagement judge their rapids' and holders' removals with it alike.
+#[derive(Clone, Debug, Default)]
+pub struct SliverZones {
+    cutting: Vec<(Vec3, Vec3, f64)>,
+    whole: Vec<(Vec3, Vec3, f64)>,
+}
+
+impl SliverZones {
+    /// Move `index` of `program`, by a tool of reach `reach`, was cut within `error_bound` mm
+    /// of its sweep (0: exactly, nothing recorded).
+    pub fn record(&mut self, program: &Program, index: usize, reach: Reach, error_bound: f64) {
+        if error_bound > 0.0 {
+            let m = &program.moves[index];
+            let (lo, hi) = swept_box(program, m, reach.cutting);
+            self.cutting.push((lo, hi, error_bound));
+            let (lo, hi) = swept_box(program, m, reach.whole);
+            self.whole.push((lo, hi, error_bound));
+        }
+    }
+
+    /// Whether what move `index` removed is a collision ([`collides`], with the error bound of
+    /// the recorded moves whose sweeps meet its own): `cutting` its cutting part's removal (a
+    /// rapid's), else its shank's and holder's.
+    pub fn collision(
+        &self,
+        program: &Program,
+        index: usize,
+        reach: Reach,
+        st: &CutStats,
+        cutting: bool,
+    ) -> bool {
+        let (zones, r) = if cutting {
+            (&self.cutting, reach.cutting)
+        } else {
+            (&self.whole, reach.whole)
+        };
+        let bound = if zones.is_empty() || !st.removed_any(COLLISION_EPS_MM) {
+            0.0
+        } else {
+            bound_near(zones, swept_box(program, &program.moves[index], r))
+        };
+        collides(st, bound)
+    }
+}
+
+/// The largest error bound of `zones` whose boxes meet `(lo, hi)`.
+fn bound_near(zones: &[(Vec3, Vec3, f64)], (lo, hi): (Vec3, Vec3)) -> f64 {
+    zones
+        .iter()
+        .filter(|(a, b, _)| a.cmple(hi).all() && lo.cmple(*b).all())
+        .map(|z| z.2)
+        .fold(0.0, f64::max)
 }
 
 /// A move that brought a non-cutting thing into the material.
@@ -168,6 +276,11 @@ fn simulate_on_worker(
     let (mut five_moves, mut five_subs, mut five_err) = (0usize, 0u64, 0.0f64);
     let file_of = |f: u16| program.files.get(f as usize).cloned().unwrap_or_default();
     let shapes = shapes_of(program, tools);
+    let reaches: BTreeMap<u32, Reach> = shapes
+        .keys()
+        .filter_map(|&t| tools.get(t).map(|c| (t, reach(c))))
+        .collect();
+    let mut zones = SliverZones::default();
     let total = program.moves.len() as u64;
     let mut next = 0;
     while next < program.moves.len() {
@@ -207,17 +320,21 @@ fn simulate_on_worker(
         next = i0 + cuts.len();
         for (i, cut) in (i0..).zip(cuts) {
             let m = &program.moves[i];
+            let reach = reaches.get(&m.tool).copied().unwrap_or_default();
             if program.is_five_axis(m) {
                 five_moves += 1;
                 five_subs += cut.sub_moves;
                 five_err = five_err.max(cut.error_bound_mm);
+                zones.record(program, i, reach, cut.error_bound_mm);
             }
             let removed =
                 (cut.cutting.removed_length[2] + cut.non_cutting.removed_length[2]) * area_z;
             per_move.push(removed);
             tested += cut.cutting.rays_tested + cut.non_cutting.rays_tested;
             updates += cut.cutting.updates + cut.non_cutting.updates;
-            if matches!(m.kind, MoveKind::Rapid) && collides(&cut.cutting, five_err) {
+            if matches!(m.kind, MoveKind::Rapid)
+                && zones.collision(program, i, reach, &cut.cutting, true)
+            {
                 rapid_collisions.push(Collision {
                     move_index: i,
                     file: file_of(m.file),
@@ -225,7 +342,7 @@ fn simulate_on_worker(
                     volume_mm3: cut.cutting.removed_length[2] * area_z,
                 });
             }
-            if collides(&cut.non_cutting, five_err) {
+            if zones.collision(program, i, reach, &cut.non_cutting, false) {
                 holder_collisions.push(Collision {
                     move_index: i,
                     file: file_of(m.file),
@@ -261,9 +378,10 @@ fn simulate_on_worker(
 }
 
 /// Whether what a rapid or a holder removed is a collision, after multi-axis moves cut within
-/// `error_bound` mm of their sweeps. Those cuts may leave slivers up to `error_bound` thick
-/// along their surfaces, which the next move — often a rapid retract — takes away: that is the
-/// approximation's, not the program's. A flat sliver `ε` thick is crossed by a ray of the
+/// `error_bound` mm of their sweeps (the largest bound of those whose swept boxes meet this
+/// move's: a removal elsewhere cannot be their sliver). Those cuts may leave slivers up to
+/// `error_bound` thick along their surfaces, which the next move — often a rapid retract —
+/// takes away: that is the approximation's, not the program's. A flat sliver `ε` thick is crossed by a ray of the
 /// family closest to its normal (at most 54.7° off it) over at most `√3·ε`, so a removal with
 /// some family's longest piece within that is such a sliver; a collision must be deeper in
 /// every family that removed anything (a family whose rays miss a shallow cut — X and Y rays

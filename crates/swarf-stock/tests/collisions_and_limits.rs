@@ -239,3 +239,42 @@ fn slivers_a_rotary_cut_leaves_are_no_collision() {
     let lines: Vec<u32> = r.rapid_collisions.iter().map(|c| c.line).collect();
     assert_eq!(lines, [9, 10], "{:?}", r.rapid_collisions);
 }
+
+/// The sliver allowance of a rotary cut holds where that cut was, not over the whole part for
+/// the rest of the program: a rapid skimming 5 µm deep far from it (shallower than √3·ε, which
+/// near the rotary cut may be a sliver it left) is a collision. (It was dropped anywhere once
+/// any multi-axis move had been cut.)
+#[test]
+fn the_sliver_allowance_holds_only_near_the_multi_axis_cuts() {
+    let program = swarf_path::load::read_program_str(
+        "G21 G90 G94\nG0 X-10 Y0 Z30 A0\nG0 X0 Z12\nG1 Z9 F200\nG1 X20 A360 F500\n\
+         G0 Z30\nG0 X120 Y5\nG0 Z9.995\nG0 X140\nG0 Z30\nM30\n",
+        "far.ngc",
+        swarf_path::Machine::from_name("4axis-a").unwrap(),
+        &swarf_path::load::ReadOptions {
+            gcode: swarf_path::gcode::GcodeOptions::default().with_home([-10.0, 0.0, 30.0]),
+            ..Default::default()
+        },
+    )
+    .unwrap();
+    let tools = ToolSet::single(Cutter::flat(6.0).unwrap());
+    let mut block = TriDexel::from_box(
+        Vec3::new(0.0, -10.0, -10.0),
+        Vec3::new(150.0, 10.0, 10.0),
+        0.5,
+    )
+    .unwrap();
+    // A coarse tolerance: the rotary cut's slivers may be ~10 µm.
+    let opts = SimOptions {
+        chordal_tolerance: 0.01,
+    };
+    let r = simulate(&program, &tools, &mut block, &opts).unwrap();
+    // The skim is within what a sliver near the rotary cut could be.
+    assert!(3f64.sqrt() * r.five_axis_error_bound_mm > 0.005, "{r:?}");
+    let lines: Vec<u32> = r.rapid_collisions.iter().map(|c| c.line).collect();
+    assert_eq!(lines, [8, 9], "{:?}", r.rapid_collisions);
+    // The plunge takes a disc 5 µm thick, the skim a strip 20 mm long beside it.
+    let skim = r.rapid_collisions[1].volume_mm3;
+    let exact = 0.005 * 6.0 * 20.0;
+    assert!((skim - exact).abs() < 0.1 * exact, "{skim} vs {exact}");
+}
