@@ -241,7 +241,7 @@ pub fn parse_material(text: &str, file: &str) -> Result<Material, ForceError> {
         let expected = if !v.is_finite() {
             "the coefficients are finite numbers"
         } else if v < 0.0 && !key.starts_with("ka") {
-            "the tangential and radial coefficients (ktc, krc, kte, kre) are at least 0; only              the axial ones (kac, kae) may be negative"
+            "the tangential and radial coefficients (ktc, krc, kte, kre) are at least 0; only the axial ones (kac, kae) may be negative"
         } else {
             continue;
         };

@@ -280,13 +280,20 @@ impl MoveBuilder {
         };
         match self.machine.inverse(&pose, &joints) {
             Some(j) => self.pos = self.program_of(&j),
-            None => self.warn_at(
-                line,
-                format!(
-                    "machine `{}` cannot turn the tool to the axis the program stated                      ({:.4}, {:.4}, {:.4}): the rotary axes keep the program's values",
-                    self.machine.name, self.axis.x, self.axis.y, self.axis.z
-                ),
-            ),
+            None => {
+                // The tip stays where it is: X Y Z become the machine's reading of it with the
+                // rotary axes as the program left them.
+                let kept = self.machine.joints_for_tip(pose.tip, &joints);
+                self.pos = self.program_of(&kept);
+                self.warn_at(
+                    line,
+                    format!(
+                        "machine `{}` cannot turn the tool to the axis the program stated \
+                         ({:.4}, {:.4}, {:.4}): the rotary axes keep the program's values",
+                        self.machine.name, self.axis.x, self.axis.y, self.axis.z
+                    ),
+                );
+            }
         }
         self.axis_source = AxisSource::Machine;
         self.release_axis = false;

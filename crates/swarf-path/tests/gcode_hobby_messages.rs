@@ -200,16 +200,31 @@ fn code_after_the_programs_end_is_said_not_read() {
         assert_eq!(w[0].line, line, "{:?}", w[0]);
         assert!(w[0].message.starts_with(&format!("{n} line")), "{:?}", w[0]);
     }
-    // Subprograms after M30 (Fanuc) and comments are not code left unread.
-    let fanuc = "O1\nG21 G90\nM98 P2\nM30\n(the subprogram)\nO2\nG0 X3\nM99\n%\n";
-    let rec = read(fanuc, &GcodeOptions::default()).unwrap();
-    assert!(
-        rec.warnings
-            .iter()
-            .all(|w| !w.message.contains("after the program's end")),
-        "{:?}",
-        rec.warnings
-    );
+    // Two Fanuc programs joined (each with its number): the second's four code lines.
+    let joined = "%\nO1001\nG21 G90\nG0 X1\nM30\n%\n%\nO1002 (SECOND)\nG21 G90\nG0 X50\n\
+        G1 Z-5 F100\nM30\n%\n";
+    let rec = read(joined, &GcodeOptions::default()).unwrap();
+    let w: Vec<_> = rec
+        .warnings
+        .iter()
+        .filter(|w| w.message.contains("after the program's end"))
+        .collect();
+    assert_eq!(w.len(), 1, "{:?}", rec.warnings);
+    assert!(w[0].message.starts_with("4 lines"), "{:?}", w[0]);
+    // Subprograms after the end (Fanuc's, LinuxCNC's) and comments are not code left unread.
+    for text in [
+        "O1\nG21 G90\nM98 P2\nM30\n(the subprogram)\nO2\nG0 X3\nM99\n%\n",
+        "G21 G90\nG0 X1\nM2\no<s> sub\nG0 X2\no<s> endsub\n(end)\n",
+    ] {
+        let rec = read(text, &GcodeOptions::default()).unwrap();
+        assert!(
+            rec.warnings
+                .iter()
+                .all(|w| !w.message.contains("after the program's end")),
+            "{text}: {:?}",
+            rec.warnings
+        );
+    }
 }
 
 #[test]
@@ -232,16 +247,35 @@ fn a_probing_move_is_read_with_the_tool_staying_where_it_is() {
         .collect();
     assert_eq!(w.len(), 1, "{:?}", rec.warnings);
     assert_eq!((w[0].line, w[0].column), (3, 1), "{:?}", w[0]);
+    // The probe's result parameters read where the tool stands, in program units.
+    let rec = read(
+        "G20 G90\nG0 X1 Y2 Z0.5\nG38.2 Z-1 F5\n(debug,#5061 #5062 #5063 #5070)\nM30\n",
+        &GcodeOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(rec.messages(), ["1.000000 2.000000 0.500000 1.000000"]);
     // LinuxCNC's refusals stay.
-    for (text, what) in [
+    for (text, what, line) in [
         (
             "G21 G90\nG0 X0 Y0 Z5\nG41.1 D2\nG38.2 Z-10 F50\nM30\n",
             "cutter radius compensation",
+            4,
         ),
-        ("G21 G90\nG0 X0 Y0 Z5\nG38.3 Z-10\nM30\n", "zero feed"),
+        ("G21 G90\nG0 X0 Y0 Z5\nG38.3 Z-10\nM30\n", "zero feed", 3),
+        (
+            "G21 G90\nG0 X0 Y0 Z5\nG38.2 Z-10 A5 F50\nM30\n",
+            "rotary axes",
+            3,
+        ),
+        ("G21 G90\nG0 X0 Y0 Z5\nG38.2 F50\nM30\n", "all missing", 3),
+        (
+            "G21 G90\nG0 X0 Y0 Z5\nG38.2 Z4.9 F50\nM30\n",
+            "too close",
+            3,
+        ),
     ] {
         let e = read(text, &GcodeOptions::default()).unwrap_err();
         assert!(e.to_string().contains(what), "{e}");
-        assert_eq!(e.pos.line, 4 - u32::from(what == "zero feed"), "{e}");
+        assert_eq!(e.pos.line, line, "{e}");
     }
 }

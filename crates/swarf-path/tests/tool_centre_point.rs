@@ -280,3 +280,31 @@ fn heidenhain_tcpm_axis_spat_reads_a_b_c_as_the_tools_spatial_angles() {
         );
     }
 }
+
+#[test]
+fn a_stated_axis_the_machine_cannot_reach_keeps_the_tip_when_tcp_ends() {
+    // A table about X cannot tilt the tool towards X: when G49 ends the stated axis, the
+    // rotary axes keep the program's values (A0), with a warning, and the tip stays where it
+    // was (it jumped by the machine's reading of the old tip coordinates).
+    let text = "%\nO1\nG21 G90 G17\nT1 M6\nG43.5 H1 X0. Y0. Z50. I0 J0 K1.\n\
+        G1 X10. Z40. I0.6 K0.8 F500.\nG49\nG91 G0 Z100.\nG90\nM30\n%\n";
+    let p = read(text, "t.nc", "4axis-a");
+    let last = p.moves.last().unwrap();
+    assert!(
+        (last.start.tip - Vec3::new(10.0, 0.0, 40.0)).length() < 1e-9,
+        "{:?}",
+        last.start
+    );
+    assert!(
+        (last.end.tip - Vec3::new(10.0, 0.0, 140.0)).length() < 1e-9,
+        "{:?}",
+        last.end
+    );
+    assert!(
+        p.warnings
+            .iter()
+            .any(|w| w.message.contains("cannot turn the tool") && !w.message.contains("  ")),
+        "{:?}",
+        p.warnings
+    );
+}

@@ -573,13 +573,21 @@ impl<'t, 's> Interp<'t, 's> {
         Ok(())
     }
 
-    /// Lines with code after the program's end in its main file, up to the first program or
-    /// subroutine that follows it (`O…`, `:…`: Fanuc programs keep their subprograms after M30).
+    /// Lines with code after the program's end in its main file that no control would run:
+    /// those of programs joined after it, not those of its subprograms (a Fanuc `O…`/`:…`
+    /// program that returns with M99, a LinuxCNC `o… sub` … `endsub`).
     fn code_after_end(&self) -> usize {
         let Some(rest) = self.text.get(self.at.pos..) else {
             return 0;
         };
-        let mut n = 0;
+        // The code lines of the program being scanned, and whether it is a subprogram.
+        let mut block: Option<(usize, bool)> = None;
+        let mut total = 0;
+        let done = |b: Option<(usize, bool)>, total: &mut usize| {
+            if let Some((n, false)) = b {
+                *total += n;
+            }
+        };
         for line in rest.lines() {
             let mut code = String::new();
             let mut depth = 0;
@@ -588,18 +596,40 @@ impl<'t, 's> Interp<'t, 's> {
                     ';' if depth == 0 => break,
                     '(' => depth += 1,
                     ')' if depth > 0 => depth -= 1,
-                    c if depth == 0 => code.push(c),
+                    c if depth == 0 => code.push(c.to_ascii_lowercase()),
                     _ => {}
                 }
             }
             let t = code.trim();
-            match t.bytes().next().map(|c| c.to_ascii_lowercase()) {
+            let words: Vec<&str> = t.split_whitespace().collect();
+            let program_number = (t.starts_with('o') || t.starts_with(':'))
+                && t[1..].trim().bytes().all(|c| c.is_ascii_digit())
+                && t.len() > 1;
+            match t.bytes().next() {
                 None | Some(b'%') => {}
-                Some(b'o' | b':') => break,
-                Some(_) => n += 1,
+                Some(b'o') if words.contains(&"endsub") => {
+                    block = block.map(|(n, _)| (n, true));
+                    done(block.take(), &mut total);
+                }
+                Some(b'o') if words.contains(&"sub") => {
+                    done(block.take(), &mut total);
+                    block = Some((0, true));
+                }
+                _ if program_number => {
+                    done(block.take(), &mut total);
+                    block = Some((0, false));
+                }
+                _ => match &mut block {
+                    Some((n, sub)) => {
+                        *n += 1;
+                        *sub |= t.contains("m99");
+                    }
+                    None => total += 1,
+                },
             }
         }
-        n
+        done(block, &mut total);
+        total
     }
 
     /// Turns an internal fault on the current line into a [`PathError`].
@@ -1996,6 +2026,12 @@ impl<'t, 's> Interp<'t, 's> {
                 }
             }
             Some(m @ 382..=385) if has_axes => self.probe(b, lb, m)?,
+            Some(382..=385) if explicit.is_some() => {
+                return Err(Fault::semantic(
+                    b.g_span(group::MOTION),
+                    "X, Y, and Z words all missing with G38.2",
+                ))
+            }
             Some(382..=385) => {}
             Some(m @ (50..=53)) => {
                 if m == 52 && explicit == Some(52) {
@@ -2033,6 +2069,41 @@ impl<'t, 's> Interp<'t, 's> {
         if self.feed <= 0.0 {
             return Err(Fault::semantic(span, "Cannot probe with zero feed rate"));
         }
+        if let Some(&c) = b"abc".iter().find(|&&c| b.has(c)) {
+            return Err(Fault::semantic(
+                b.span(c),
+                "Cannot move rotary axes during probing",
+            ));
+        }
+        if b"xyz".iter().all(|&c| !b.has(c)) {
+            return Err(Fault::semantic(
+                span,
+                "X, Y, and Z words all missing with G38.2",
+            ));
+        }
+        let end = self.find_ends(b, false)?;
+        let d: f64 = (0..3)
+            .map(|i| (end[i] - self.p[i]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        // LinuxCNC's 0.01 inch.
+        if d < 0.254 {
+            return Err(Fault::semantic(
+                span,
+                "Start point too close to probe point",
+            ));
+        }
+        // The probe's result, #5061–#5069 in the program's units and frame, and #5070 (it
+        // tripped): where the tool stands.
+        for i in 0..9 {
+            let v = match i {
+                0..=2 => self.p[i] / self.scale,
+                3..=5 => self.p[i],
+                _ => 0.0,
+            };
+            self.params.set_num(5061 + i, v);
+        }
+        self.params.set_num(5070, 1.0);
         if !self.probe_warned {
             self.probe_warned = true;
             let at = match span {
@@ -2044,8 +2115,9 @@ impl<'t, 's> Interp<'t, 's> {
                 at,
                 format!(
                     "G38.{}: the probe's trip point is unknown, so the tool stays where it is \
-                     (offsets the program then sets from the probed position, G10 L20 or G92, \
-                     are set from here; the first probing move, others are not reported)",
+                     and #5061-#5069 read its position there (offsets the program then sets \
+                     from the probed position, G10 L20 or G92, are set from here; the first \
+                     probing move, others are not reported)",
                     m - 380
                 ),
             );

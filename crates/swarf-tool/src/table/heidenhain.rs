@@ -127,7 +127,11 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
                 ))
             }
         };
-        let r = number(Some(r_col))?.unwrap_or(0.0) * scale;
+        // The wear offsets DR, DR2 (the control adds them to R, R2): applied, as the control
+        // cuts with them.
+        let dr = number(find("DR"))?.unwrap_or(0.0) * scale;
+        let dr2 = number(find("DR2"))?.unwrap_or(0.0) * scale;
+        let r = (number(Some(r_col))?.unwrap_or(0.0) * scale + dr).max(0.0);
         if r <= 0.0 {
             empty += 1;
             continue;
@@ -140,7 +144,23 @@ pub fn parse_heidenhain(text: &str, file: &str) -> Result<ToolTable, TableError>
                 "unique tool numbers",
             ));
         }
-        let r2 = (number(find("R2"))?.unwrap_or(0.0) * scale).max(0.0);
+        let r2_col = find("R2");
+        let r2 = (number(r2_col)?.unwrap_or(0.0) * scale + dr2).max(0.0);
+        if dr != 0.0 || dr2 != 0.0 {
+            table.warnings.push(format!(
+                "{file}:{line}: tool {t}: its wear offsets DR {dr} mm, DR2 {dr2} mm are applied, \
+                 as the control applies them: R {r} mm, R2 {r2} mm"
+            ));
+        }
+        if r2 > r + 1e-9 {
+            let column = r2_col.map_or(1, |c| field(c).1);
+            return Err(err(
+                line,
+                column,
+                format!("tool {t}: R2 {r2} mm, larger than its radius R {r} mm"),
+                "a corner radius R2 no larger than R (R2 = R: a ball-nose cutter)",
+            ));
+        }
         let length = number(find("L"))?.map(|l| l * scale).filter(|l| *l > 0.0);
         let cuts = number(find("LCUTS"))?
             .map(|l| l * scale)
@@ -365,6 +385,33 @@ T    NAME                L           R           R2          DL      DR      LCU
         let inch = TABLE.replace("MM\n", "INCH\n");
         let t = parse_heidenhain(&inch, "TOOL.T").unwrap();
         assert!((t.tools[&1].cutter.apt_params().d - 254.0).abs() < 1e-9);
+    }
+
+    #[test]
+    fn wear_offsets_are_applied_and_a_corner_larger_than_the_radius_is_refused() {
+        // DR −0.5 on a 6 mm flat end mill: the control cuts with R 2.5; DR2 on a bull-nose
+        // corner likewise. (They were ignored, silently.)
+        let worn = "BEGIN TOOL .T MM\n\
+T    NAME   L      R      R2     DL     DR     DR2    TYP\n\
+1    WORN   +60    +3     +0     +0     -0.5   +0     MILL\n\
+2    TORUS  +60    +6     +1     +0     +0     +0.25  MILL\n\
+[END]\n";
+        let t = parse_heidenhain(worn, "TOOL.T").unwrap();
+        assert!((t.tools[&1].cutter.apt_params().d - 5.0).abs() < 1e-12);
+        let p = t.tools[&2].cutter.apt_params();
+        assert!(
+            (p.d - 12.0).abs() < 1e-12 && (p.r - 1.25).abs() < 1e-12,
+            "{p:?}"
+        );
+        assert_eq!(t.warnings.len(), 2, "{:?}", t.warnings);
+        assert!(t.warnings[0].contains("DR -0.5 mm"), "{:?}", t.warnings);
+        // R2 > R is no cutter (it was read as a ball end mill, the README saying flat).
+        let bad = "BEGIN TOOL .T MM\n\
+T    NAME   L      R      R2     TYP\n\
+2    WEIRD  +60    +3     +5     MILL\n\
+[END]\n";
+        let e = parse_heidenhain(bad, "TOOL.T").unwrap_err().to_string();
+        assert!(e.starts_with("TOOL.T:3:") && e.contains("R2 5 mm"), "{e}");
     }
 
     #[test]
