@@ -716,3 +716,41 @@ fn an_undefined_tool_is_named_with_its_line() {
         "{e}"
     );
 }
+
+#[test]
+fn a_program_that_never_reaches_the_stock_is_said() {
+    // A slot at X100–150 beside a block at X0–40: nothing removed, said (it was silent).
+    let dir = temp_dir("outside");
+    let prog = dir.join("outside.ngc");
+    std::fs::write(
+        &prog,
+        "G21 G90\nG0 X100 Y10 Z5\nG1 Z-3 F200\nG1 X150\nG0 Z5\nM30\n",
+    )
+    .unwrap();
+    let run = |stock: &str| {
+        swarf(&[
+            "simulate",
+            "--stock",
+            stock,
+            "--program",
+            prog.to_str().unwrap(),
+            "--tool",
+            "flat:d=6",
+            "--resolution",
+            "0.5",
+            "--json",
+        ])
+    };
+    let o = run("box:0,0,-10,40,20,0");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(json(&o)["removed_volume_mm3"].as_f64(), Some(0.0));
+    assert!(
+        stderr(&o).contains("no move removed material"),
+        "{}",
+        stderr(&o)
+    );
+    // Where it cuts, no such word.
+    let o = run("box:90,0,-10,160,20,0");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("no move removed"), "{}", stderr(&o));
+}

@@ -54,6 +54,14 @@ impl StockSpec {
             ("box", 6, "six numbers X0,Y0,Z0,X1,Y1,Z1")
         } else if lower.starts_with("cyl:") {
             ("cyl", 5, "five numbers CX,CY,Z0,R,H")
+        } else if !std::path::Path::new(spec).exists() && spec.contains([',', ':']) {
+            // Neither a file nor a shape: a misspelt shape (`cylinder:…`, `box 0,0,…`) is more
+            // likely than a file of that name.
+            return Err(StockError::Spec {
+                column: 1,
+                found: format!("`{spec}`, which is no file"),
+                expected: "`box:X0,Y0,Z0,X1,Y1,Z1`, `cyl:CX,CY,Z0,R,H` or a closed STL file".into(),
+            });
         } else {
             return Ok(StockSpec::Mesh(PathBuf::from(spec)));
         };
@@ -209,6 +217,23 @@ mod tests {
         assert!(matches!(
             StockSpec::parse("box:0,0,0,1,1,nan"),
             Err(StockError::Spec { .. })
+        ));
+        // A misspelt shape that is no file names the shapes (it was "No such file").
+        for spec in ["cylinder:0,0,0,5,10", "box 0,0,0,10,10,10"] {
+            match StockSpec::parse(spec) {
+                Err(StockError::Spec {
+                    column, expected, ..
+                }) => {
+                    assert_eq!(column, 1);
+                    assert!(expected.contains("box:") && expected.contains("cyl:"));
+                }
+                other => panic!("{spec}: {other:?}"),
+            }
+        }
+        // A plain file name is still a mesh stock (read, and refused, later).
+        assert!(matches!(
+            StockSpec::parse("part.stl"),
+            Ok(StockSpec::Mesh(_))
         ));
     }
 

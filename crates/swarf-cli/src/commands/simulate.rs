@@ -230,6 +230,18 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
     let report = simulate_with_progress(program, tools, &mut stock, &options)
         .with_context(|| format!("simulating {}", args.program.display()))?;
     let mut summary = SimulateSummary::new(&report);
+    // A program that never reaches the stock is more often a wrong stock, offset or unit than
+    // an intent.
+    let cuts = program
+        .moves
+        .iter()
+        .any(|m| !matches!(m.kind, swarf_path::MoveKind::Rapid));
+    if cuts && report.removed_volume_mm3 <= 0.0 {
+        eprintln!(
+            "swarf: warning: no move removed material: the program never reaches the stock (check \
+             --stock, the program's offsets and units)"
+        );
+    }
     if let Some(dir) = &args.out {
         let mut set = output_set(dir, args.max_output_mb)?;
         write_outputs(&mut set, program, &stock, &report, &mut summary, mesh_out)?;
