@@ -31,14 +31,14 @@ pub enum StockError {
         message: String,
     },
     /// A resolution that is not a positive finite number.
-    #[error("resolution must be a positive finite number of mm, got {0}")]
+    #[error("resolution must be a positive finite number of mm, got {0:?}")]
     BadResolution(f64),
     /// A stock shape with non-positive or non-finite dimensions.
     #[error("bad stock dimensions: {0}")]
     BadDimensions(String),
     /// The grid would hold more rays than [`crate::MAX_RAYS`].
     #[error(
-        "resolution {h} mm over a {size} mm stock needs {rays:.3e} rays, more than the limit \
+        "resolution {h:?} mm over a {size} mm stock needs {rays:.3e} rays, more than the limit \
          {limit}; give a coarser resolution"
     )]
     TooManyRays {

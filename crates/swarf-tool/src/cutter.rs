@@ -536,7 +536,13 @@ impl Cutter {
         )?;
         require(
             shank_diameter > 0.0 && shank_diameter <= MAX_DIAMETER_MM,
-            "shank diameter",
+            // A shank the spec did not give is the cutting part's top: say what made it.
+            if opts.shank_diameter.is_some() {
+                "shank diameter"
+            } else {
+                "shank diameter (the cutting part's diameter at its top, from the diameter, \
+                 taper and length given)"
+            },
             shank_diameter,
             "in (0, 500] mm",
         )?;

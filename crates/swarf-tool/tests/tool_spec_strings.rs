@@ -121,3 +121,23 @@ fn arbitrary_input_never_panics() {
         let _ = Cutter::from_spec(s);
     }
 }
+
+#[test]
+fn a_derived_shank_out_of_range_says_where_it_came_from() {
+    // A taper of 89.9° makes a cutting part 34 m wide at its top, the shank's default: the
+    // error says the shank was derived (it read as if a shank had been given).
+    let e = Cutter::from_spec("taper-flat:d=10,taper=89.9")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("the cutting part's diameter at its top") && e.contains("34387.4"),
+        "{e}"
+    );
+    let e = Cutter::from_spec("flat:d=10,shank=600")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("shank diameter must be") && !e.contains("at its top"),
+        "{e}"
+    );
+}
