@@ -40,6 +40,10 @@ pub struct CanonicalPrinter<W: Write> {
     error: Option<io::Error>,
     /// The reader's warnings, kept for the caller (they are no canonical call).
     warnings: Vec<Warning>,
+    /// The program's motion built on a machine, when one is given: it re-expresses the position
+    /// where tool centre point control turns on or off, as the simulation does, and the reader
+    /// takes it back ([`CanonSink::position`]).
+    tracker: Option<crate::builder::MoveBuilder>,
 }
 
 impl<W: Write> CanonicalPrinter<W> {
@@ -50,7 +54,16 @@ impl<W: Write> CanonicalPrinter<W> {
             units: Units::Mm,
             error: None,
             warnings: Vec::new(),
+            tracker: None,
         }
+    }
+
+    /// Prints the calls as a program runs on `machine` (file name `file`): after a program turns
+    /// tool centre point control on or off, the axes a block leaves out are where the machine
+    /// is, as `swarf simulate` moves them. (Without it, the program's own coordinates.)
+    pub fn with_machine(mut self, machine: crate::kinematics::Machine, file: &str) -> Self {
+        self.tracker = Some(crate::builder::MoveBuilder::new(machine, file));
+        self
     }
 
     /// The warnings the reader gave so far.
@@ -180,7 +193,12 @@ impl<W: Write> CanonicalPrinter<W> {
 }
 
 impl<W: Write> CanonSink for CanonicalPrinter<W> {
-    fn emit(&mut self, _line: u32, event: &Canon<'_>) {
+    fn emit(&mut self, line: u32, event: &Canon<'_>) {
+        if let Some(t) = &mut self.tracker {
+            t.emit(line, event);
+            // (Only the position matters here: the moves are dropped as they come.)
+            t.take_moves().for_each(drop);
+        }
         if self.error.is_some() {
             // Keep following the units so a later reader of the state is not confused, but
             // write nothing more after a failure.
@@ -196,6 +214,10 @@ impl<W: Write> CanonSink for CanonicalPrinter<W> {
 
     fn warn(&mut self, warning: Warning) {
         self.warnings.push(warning);
+    }
+
+    fn position(&self) -> Option<crate::Axes> {
+        self.tracker.as_ref().and_then(CanonSink::position)
     }
 }
 

@@ -308,3 +308,36 @@ fn a_stated_axis_the_machine_cannot_reach_keeps_the_tip_when_tcp_ends() {
         p.warnings
     );
 }
+
+#[test]
+fn the_canonical_print_on_a_machine_follows_the_simulation_after_tcp_ends() {
+    // Printed on the machine, the retract after G49 starts from the machine's point (its X Y
+    // where the machine is), as the simulated move does; it printed the tip's old X Y.
+    let text = "G21 G90 G17 G94\nT1 M6\nG0 A-45. C90.\nG43.4 H1\nG0 X20. Y0. Z50.\nG1 Z5. F500.\n\
+        G49\nG91 G0 Z100.\nG90\nM30\n";
+    let machine = Machine::from_name("table-ac").unwrap();
+    let mut printer = swarf_path::canonical::CanonicalPrinter::new(Vec::new())
+        .with_machine(machine.clone(), "t.nc");
+    swarf_path::gcode::read_gcode(
+        text,
+        "t.nc",
+        &swarf_path::gcode::GcodeOptions::default(),
+        &mut printer,
+    )
+    .unwrap();
+    let out = String::from_utf8(printer.finish().unwrap()).unwrap();
+    let last = out
+        .lines()
+        .rfind(|l| l.contains("STRAIGHT_TRAVERSE"))
+        .unwrap()
+        .to_string();
+    let p = read(text, "t.nc", "table-ac");
+    let j = p.moves.last().unwrap().end_joints;
+    let want = format!(
+        " N..... STRAIGHT_TRAVERSE({:.4}, {:.4}, {:.4}, {:.4}, {:.4}, {:.4})",
+        j.x, j.y, j.z, j.a, j.b, j.c
+    );
+    assert_eq!(last, want);
+    // The machine's X Y are not the tip's 20, 0 (the table is turned).
+    assert!((j.x - 20.0).abs() > 1.0 || j.y.abs() > 1.0, "{j:?}");
+}

@@ -89,7 +89,8 @@ pub(crate) fn run(args: &PathArgs) -> Result<()> {
 
     if args.canonical {
         let stdout = std::io::stdout().lock();
-        let mut printer = CanonicalPrinter::new(BufWriter::new(stdout));
+        let mut printer = CanonicalPrinter::new(BufWriter::new(stdout))
+            .with_machine(setup.machine.clone(), &file);
         let read = setup.stream(&text, &file, &mut printer);
         // The reader's warnings are no canonical call: on stderr, after the calls (those up to
         // an error too, which they may explain).
