@@ -81,10 +81,10 @@ pub struct Reach {
     pub whole: f64,
 }
 
-/// A box holding everything the tool of reach `reach` sweeps on move `m`: its tip path
-/// sampled, grown by the reach and by the largest step between samples (the path between two
-/// samples stays within that of them).
-fn swept_box(program: &Program, m: &Move, reach: f64) -> (Vec3, Vec3) {
+/// The box of move `m`'s tip path, sampled, grown by the largest step between samples (the path
+/// between two samples stays within that of them): grown further by a tool's reach, it holds
+/// everything the tool sweeps.
+fn tip_box(program: &Program, m: &Move) -> (Vec3, Vec3) {
     const SAMPLES: u32 = 16;
     let (mut lo, mut hi) = (Vec3::splat(f64::INFINITY), Vec3::splat(f64::NEG_INFINITY));
     let (mut prev, mut step) = (None::<Vec3>, 0.0f64);
@@ -96,8 +96,12 @@ fn swept_box(program: &Program, m: &Move, reach: f64) -> (Vec3, Vec3) {
         }
         prev = Some(p);
     }
-    let grow = Vec3::splat(reach + step);
-    (lo - grow, hi + grow)
+    (lo - Vec3::splat(step), hi + Vec3::splat(step))
+}
+
+/// `(lo, hi)` grown by `r` on every side.
+fn grown((lo, hi): (Vec3, Vec3), r: f64) -> (Vec3, Vec3) {
+    (lo - Vec3::splat(r), hi + Vec3::splat(r))
 }
 
 /// Where multi-axis moves may have left slivers (see [`collides`]): the boxes their cutting
@@ -114,10 +118,11 @@ impl SliverZones {
     /// of its sweep (0: exactly, nothing recorded).
     pub fn record(&mut self, program: &Program, index: usize, reach: Reach, error_bound: f64) {
         if error_bound > 0.0 {
-            let m = &program.moves[index];
-            let (lo, hi) = swept_box(program, m, reach.cutting);
+            // The tip path sampled once for both boxes.
+            let tip = tip_box(program, &program.moves[index]);
+            let (lo, hi) = grown(tip, reach.cutting);
             self.cutting.push((lo, hi, error_bound));
-            let (lo, hi) = swept_box(program, m, reach.whole);
+            let (lo, hi) = grown(tip, reach.whole);
             self.whole.push((lo, hi, error_bound));
         }
     }
@@ -141,7 +146,7 @@ impl SliverZones {
         let bound = if zones.is_empty() || !st.removed_any(COLLISION_EPS_MM) {
             0.0
         } else {
-            bound_near(zones, swept_box(program, &program.moves[index], r))
+            bound_near(zones, grown(tip_box(program, &program.moves[index]), r))
         };
         collides(st, bound)
     }

@@ -588,30 +588,24 @@ impl<'t, 's> Interp<'t, 's> {
                 *total += n;
             }
         };
-        for line in rest.lines() {
-            let mut code = String::new();
-            let mut depth = 0;
-            for ch in line.chars() {
-                match ch {
-                    ';' if depth == 0 => break,
-                    '(' => depth += 1,
-                    ')' if depth > 0 => depth -= 1,
-                    c if depth == 0 => code.push(c.to_ascii_lowercase()),
-                    _ => {}
-                }
-            }
-            let t = code.trim();
-            let words: Vec<&str> = t.split_whitespace().collect();
-            let program_number = (t.starts_with('o') || t.starts_with(':'))
-                && t[1..].trim().bytes().all(|c| c.is_ascii_digit())
-                && t.len() > 1;
-            match t.bytes().next() {
+        let mut lb = LineBuf::default();
+        for line in super::lexer::lines(rest) {
+            // The reader's own lexer: comments and blanks out, lower case. (A line it cannot
+            // read is code all the same.)
+            let code: &[u8] = match normalize(line, &mut lb) {
+                Ok(()) => &lb.code,
+                Err(_) => b"?",
+            };
+            let program_number = matches!(code.first(), Some(b'o' | b':'))
+                && code.len() > 1
+                && code[1..].iter().all(u8::is_ascii_digit);
+            match code.first() {
                 None | Some(b'%') => {}
-                Some(b'o') if words.contains(&"endsub") => {
+                Some(b'o') if code.ends_with(b"endsub") => {
                     block = block.map(|(n, _)| (n, true));
                     done(block.take(), &mut total);
                 }
-                Some(b'o') if words.contains(&"sub") => {
+                Some(b'o') if code.ends_with(b"sub") => {
                     done(block.take(), &mut total);
                     block = Some((0, true));
                 }
@@ -622,7 +616,7 @@ impl<'t, 's> Interp<'t, 's> {
                 _ => match &mut block {
                     Some((n, sub)) => {
                         *n += 1;
-                        *sub |= t.contains("m99");
+                        *sub |= code.windows(3).any(|w| w == b"m99");
                     }
                     None => total += 1,
                 },
