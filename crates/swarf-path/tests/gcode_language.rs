@@ -781,12 +781,14 @@ fn block_deleted_lines_are_reported_once() {
     assert!(off.warnings.is_empty(), "{:?}", off.warnings);
 }
 
-/// I/O M codes are named for what they do and their words are theirs (not reported as
-/// unused), each at its first use only; a pause points at its M word.
+/// I/O, override and spindle-orientation M codes are named for what they do and their words
+/// are theirs (not reported as unused), each at its first use only; a pause points at its M
+/// word.
 #[test]
 fn io_and_pause_m_codes_are_reported_at_their_words() {
     use swarf_path::load::{read_program_str, ReadOptions};
-    let src = "G21 G90\nM66 P0 L3 Q5\nM62 P1\nM67 E0 Q2.5\nG0 X1 M1\nM62 P2\nM2\n";
+    let src =
+        "G21 G90\nM66 P0 L3 Q5\nM62 P1\nM67 E0 Q2.5\nG0 X1 M1\nM62 P2\nM50 P0\nM19 R90 Q1 P0\nM2\n";
     let p = read_program_str(
         src,
         "io.ngc",
@@ -821,6 +823,18 @@ fn io_and_pause_m_codes_are_reported_at_their_words() {
                  ones are not reported)"
             ),
             (5, 7, "M1 (program pause) ignored: the simulation runs on"),
+            (
+                7,
+                1,
+                "M50 (override control) ignored: it does not move the tool (the first M50; \
+                 later ones are not reported)"
+            ),
+            (
+                8,
+                1,
+                "M19 (spindle orientation) ignored: it does not move the tool (the first M19; \
+                 later ones are not reported)"
+            ),
         ]
     );
 }

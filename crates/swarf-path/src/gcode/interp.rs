@@ -1780,14 +1780,17 @@ impl<'t, 's> Interp<'t, 's> {
                 {
                     true
                 }
-                // The arguments of a user M code (LinuxCNC's M100–M199 P Q).
+                // The arguments of a user M code (LinuxCNC's M100–M199 P Q) and of the override
+                // switches (M50 P0).
                 b'p' | b'q'
                     if b.m_other[..b.n_other]
                         .iter()
-                        .any(|&(m, _)| (100..=199).contains(&m)) =>
+                        .any(|&(m, _)| (100..=199).contains(&m) || (50..=53).contains(&m)) =>
                 {
                     true
                 }
+                // Spindle orientation: M19 R (angle) Q (time out) P (direction).
+                b'r' | b'q' | b'p' if b.m_other[..b.n_other].iter().any(|&(m, _)| m == 19) => true,
                 b'q' if b.fine_boring => true,
                 b'q' if b.m_other[..b.n_other].iter().any(|&(m, _)| m == 61) => true,
                 b'i' | b'j' | b'k' => {
