@@ -9,7 +9,7 @@ use rayon::prelude::*;
 use swarf_geom::math::{lesser, Vec3};
 use swarf_geom::progress::{Observer, Quiet};
 use swarf_geom::Aabb;
-use swarf_path::{FeedMode, Move, MoveKind, Program};
+use swarf_path::{Move, MoveKind, Program};
 use swarf_stock::{Collision, StockError, TriDexel, DEFAULT_CHORDAL_TOLERANCE_MM};
 use swarf_sweep::MotionState;
 use swarf_sweep::ToolShape;
@@ -544,7 +544,6 @@ impl<'a> Engager<'a> {
                     let (index, done, walk_length) = (walk.index, walk.done, walk.length);
                     let s0 = if done == 0 { 0.0 } else { walk.s(done - 1) };
                     let s1 = walk.s(done);
-                    let travel = walk.length * (s1 - s0);
                     walk.done += 1;
                     self.current = Some(walk);
                     // On a pool kept awake, so that each of the location's parallel sections
@@ -554,7 +553,12 @@ impl<'a> Engager<'a> {
                         e.removed_mm3 = self.cut(index, s0, s1)?;
                         Ok::<_, EngageError>(e)
                     })?;
-                    e.mrr_mm3_min = mrr(&self.program.moves[index], s1 - s0, travel, e.removed_mm3);
+                    e.mrr_mm3_min = mrr(
+                        &self.program.moves[index],
+                        s1 - s0,
+                        walk_length,
+                        e.removed_mm3,
+                    );
                     self.stats.locations += 1;
                     if e.is_engaged() {
                         self.stats.engaged_locations += 1;
@@ -1033,30 +1037,21 @@ pub fn path_length(program: &Program, m: &Move) -> f64 {
     }
 }
 
-/// The tip feed rate of `m` (tip path `length` mm), mm/min; 0 when undefined.
+/// The tip feed rate of `m` (tip path `length` mm), mm/min — its tip path over the time the
+/// controller takes for it ([`Move::feed_minutes`]: on a rotary move without tool centre point
+/// control the feed is the joints', not the tip's); 0 when undefined.
 pub fn feed_rate(m: &Move, length: f64) -> f64 {
-    let f = match m.feed_mode {
-        FeedMode::PerMinute => m.feed,
-        FeedMode::InverseTime => m.feed * length,
-        FeedMode::PerRevolution | FeedMode::SpindleSynchronised => m.feed * m.spindle_rpm,
-    };
-    if f.is_finite() && f > 0.0 {
-        f
-    } else {
-        0.0
+    match m.feed_minutes(length) {
+        Some(t) if t > 0.0 && (length / t).is_finite() => length / t,
+        _ => 0.0,
     }
 }
 
-/// Removal rate of `removed` mm³ over a part `ds` of move `m` (`travel` mm of tip path) at its
-/// programmed feed, mm³/min (0 at zero feed).
-fn mrr(m: &Move, ds: f64, travel: f64, removed: f64) -> f64 {
-    let minutes = match m.feed_mode {
-        FeedMode::PerMinute => travel / m.feed,
-        FeedMode::InverseTime => ds / m.feed,
-        FeedMode::PerRevolution | FeedMode::SpindleSynchronised => {
-            travel / (m.feed * m.spindle_rpm)
-        }
-    };
+/// Removal rate of `removed` mm³ over a part `ds` of move `m` (tip path `length` mm in all),
+/// mm³/min (0 at zero feed): the joints move linearly in the move's parameter, so the part
+/// takes `ds` of the move's time.
+fn mrr(m: &Move, ds: f64, length: f64, removed: f64) -> f64 {
+    let minutes = m.feed_minutes(length).map_or(f64::NAN, |t| t * ds);
     if minutes.is_finite() && minutes > 0.0 {
         removed / minutes
     } else {

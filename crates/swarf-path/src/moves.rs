@@ -114,6 +114,40 @@ pub struct Move {
     pub tcp: bool,
 }
 
+impl Move {
+    /// Minutes this feed move takes, its tip path being `tip_length` mm long in the workpiece
+    /// frame; `None` without a usable feed. The controller applies a feed per minute (or per
+    /// revolution) to the programmed X Y Z in joint space — the arc length for arcs — and to
+    /// the rotary angle (degrees) when X Y Z stand still, as LinuxCNC, Heidenhain and
+    /// Sinumerik (FGROUP X Y Z) do; on CL data and under tool centre point control the axes
+    /// are the tip's, so the feed is the tip's. Joint motion is linear in the move's
+    /// parameter, so a part `ds` of the move takes `ds` times this.
+    pub fn feed_minutes(&self, tip_length: f64) -> Option<f64> {
+        let (a, b) = (self.start_joints, self.end_joints);
+        let programmed = if self.axis_source == AxisSource::Program {
+            tip_length
+        } else {
+            let xyz = match self.kind {
+                MoveKind::Arc(g) => g.length(),
+                _ => Vec3::new(b.x - a.x, b.y - a.y, b.z - a.z).length(),
+            };
+            if xyz > crate::summary::ZERO_LENGTH_MM {
+                xyz
+            } else {
+                Vec3::new(b.a - a.a, b.b - a.b, b.c - a.c).length()
+            }
+        };
+        let t = match self.feed_mode {
+            FeedMode::PerMinute => programmed / self.feed,
+            FeedMode::InverseTime => 1.0 / self.feed,
+            FeedMode::PerRevolution | FeedMode::SpindleSynchronised => {
+                programmed / (self.feed * self.spindle_rpm)
+            }
+        };
+        (self.feed > 0.0 && t.is_finite() && t >= 0.0).then_some(t)
+    }
+}
+
 /// A line of a program's source: its file (an index into [`Program::files`]) and line.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Serialize)]
 pub struct SourceLine {

@@ -26,7 +26,7 @@ use std::f64::consts::TAU;
 use serde::Serialize;
 use swarf_geom::math::Vec3;
 
-use crate::canon::{Canon, CanonSink, FeedMode};
+use crate::canon::{Canon, CanonSink};
 use crate::moves::{ArcGeom, AxisSource, Move, MoveKind, Program};
 use crate::{Machine, MoveBuilder, Warning};
 
@@ -220,7 +220,7 @@ impl SummaryAccumulator {
                 self.feed.add(bb.min);
                 self.feed.add(bb.max);
                 if !zero {
-                    match feed_minutes(m, length) {
+                    match m.feed_minutes(length) {
                         Some(t) => self.minutes += t,
                         None => self.no_feed += 1,
                     }
@@ -563,32 +563,4 @@ impl Sampler<'_> {
         self.refine((s0, p0), (sm, pm), bb, depth + 1)
             + self.refine((sm, pm), (s1, p1), bb, depth + 1)
     }
-}
-
-/// Minutes the feed move `m` (tip path length `length`) takes, or `None` without a usable feed.
-fn feed_minutes(m: &Move, length: f64) -> Option<f64> {
-    let (a, b) = (m.start_joints, m.end_joints);
-    // The length the controller applies the feed to: programmed X Y Z in joint space (the arc
-    // length for arcs, which the workpiece-frame arc keeps), else the rotary angle.
-    let programmed = if m.axis_source == AxisSource::Program {
-        length
-    } else {
-        let xyz = match m.kind {
-            MoveKind::Arc(g) => g.length(),
-            _ => Vec3::new(b.x - a.x, b.y - a.y, b.z - a.z).length(),
-        };
-        if xyz > ZERO_LENGTH_MM {
-            xyz
-        } else {
-            Vec3::new(b.a - a.a, b.b - a.b, b.c - a.c).length()
-        }
-    };
-    let t = match m.feed_mode {
-        FeedMode::PerMinute => programmed / m.feed,
-        FeedMode::InverseTime => 1.0 / m.feed,
-        FeedMode::PerRevolution | FeedMode::SpindleSynchronised => {
-            programmed / (m.feed * m.spindle_rpm)
-        }
-    };
-    (m.feed > 0.0 && t.is_finite() && t >= 0.0).then_some(t)
 }
