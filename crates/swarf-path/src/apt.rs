@@ -221,6 +221,7 @@ pub fn read_apt(
         inch_feed_warned: false,
         msys: None,
         feed_mode: FeedMode::PerMinute,
+        feed_unit: None,
         pos: None,
         axis: Vec3::Z,
         axis_stated: false,
@@ -269,7 +270,7 @@ pub fn read_apt(
             continue;
         }
         let done = std::mem::take(&mut record);
-        if done.text.trim().is_empty() {
+        if is_blank(&done.text) {
             continue;
         }
         let flow = r.record(&done)?;
@@ -279,13 +280,19 @@ pub fn read_apt(
             return Ok(());
         }
     }
-    if !record.text.trim().is_empty() {
+    if !is_blank(&record.text) {
         r.record(&record)?;
         r.check_move_limit(&record)?;
     }
     r.unused_circle();
     r.sink.finish();
     Ok(())
+}
+
+/// A record of nothing but blanks and the Ctrl-Z (0x1a) that DOS tools and DNC senders put at
+/// the end of a file.
+fn is_blank(text: &str) -> bool {
+    text.chars().all(|c| c.is_whitespace() || c == '\u{1a}')
 }
 
 /// NX CLSF markers (see the module documentation on arc direction).
@@ -367,6 +374,9 @@ struct Reader<'o, 's> {
     /// it when a later one differs (rotation, translation in mm).
     msys: Option<Msys>,
     feed_mode: FeedMode,
+    /// mm per length unit of the last FEDRAT/ mode word (IPM, IPR: 25.4): a FEDRAT/ without
+    /// one keeps the mode and its unit, as posts read it. `None` before any: the file's unit.
+    feed_unit: Option<f64>,
     /// Current tip (workpiece frame, mm); `None` until the first point.
     pos: Option<Vec3>,
     axis: Vec3,
@@ -613,10 +623,20 @@ impl Reader<'_, '_> {
             "FROM" => self.goto(rec, &fields, "FROM/")?,
             "GODLTA" => {
                 let v = self.numbers(rec, &fields, "GODLTA/")?;
-                if v.len() != 3 {
-                    return Err(self.count_error(rec, &fields, minor_off, "GODLTA/", "dx,dy,dz"));
-                }
-                let d = self.vector(Vec3::new(v[0], v[1], v[2]) * self.scale);
+                let d = match v.len() {
+                    3 => self.vector(Vec3::new(v[0], v[1], v[2]) * self.scale),
+                    // One value: that far along the tool axis (APT's `GODLTA/d`).
+                    1 => self.axis * (v[0] * self.scale),
+                    _ => {
+                        return Err(self.count_error(
+                            rec,
+                            &fields,
+                            minor_off,
+                            "GODLTA/",
+                            "dx,dy,dz, or one distance along the tool axis",
+                        ))
+                    }
+                };
                 let Some(p) = self.pos else {
                     return Err(self.error(
                         rec,
@@ -901,10 +921,33 @@ impl Reader<'_, '_> {
         minor_off: usize,
         line: u32,
     ) -> Result<(), PathError> {
-        let Some(first) = fields.first() else {
+        // The unit word on either side of the time (`DELAY/5,REV`, `DELAY/REV,5`).
+        let mut revolutions = None;
+        let mut time = None;
+        for f in fields {
+            match f.text.to_ascii_uppercase().as_str() {
+                "REV" | "REVS" if revolutions.is_none() => revolutions = Some(true),
+                "SEC" | "SECS" if revolutions.is_none() => revolutions = Some(false),
+                w if time.is_none() && !w.chars().all(|c| c.is_ascii_alphabetic()) => {
+                    time = Some(f);
+                }
+                _ => {
+                    return Err(self.error(
+                        rec,
+                        f.off,
+                        PathErrorKind::Syntax,
+                        "unexpected DELAY/ word",
+                        f.text,
+                        "a time and REV (revolutions) or SEC (seconds, the default)",
+                    ))
+                }
+            }
+        }
+        let Some(first) = time else {
             return Err(self.count_error(rec, fields, minor_off, "DELAY/", "a time in seconds"));
         };
-        let v = self.number(rec, *first, "DELAY/")?;
+        let first = *first;
+        let v = self.number(rec, first, "DELAY/")?;
         if v < 0.0 {
             return Err(self.error(
                 rec,
@@ -915,21 +958,7 @@ impl Reader<'_, '_> {
                 "a time of 0 or more",
             ));
         }
-        let revolutions = match fields.get(1).map(|f| (f, f.text.to_ascii_uppercase())) {
-            None => false,
-            Some((_, w)) if w == "REV" || w == "REVS" => true,
-            Some((_, w)) if w == "SEC" || w == "SECS" => false,
-            Some((f, _)) => {
-                return Err(self.error(
-                    rec,
-                    f.off,
-                    PathErrorKind::Syntax,
-                    "unexpected DELAY/ word",
-                    f.text,
-                    "REV (revolutions) or nothing (seconds)",
-                ))
-            }
-        };
+        let revolutions = revolutions.unwrap_or(false);
         let seconds = if !revolutions {
             v
         } else if self.spindle_rpm > 0.0 {
@@ -1440,6 +1469,26 @@ impl Reader<'_, '_> {
                 "a feed rate, e.g. FEDRAT/MMPM,500",
             ));
         };
+        if v < 0.0 {
+            let f = fields
+                .iter()
+                .find(|f| {
+                    !matches!(
+                        f.text.to_ascii_uppercase().as_str(),
+                        "MMPM" | "IPM" | "MMPR" | "IPR"
+                    )
+                })
+                .copied()
+                .unwrap_or(fields[0]);
+            return Err(self.error(
+                rec,
+                f.off,
+                PathErrorKind::Semantic,
+                "FEDRAT/ with a negative feed rate",
+                f.text,
+                "a feed rate of 0 or more",
+            ));
+        }
         if let Some((_, s)) = mode {
             if s != 1.0 && !self.units_stated && self.scale == 1.0 && !self.inch_feed_warned {
                 self.inch_feed_warned = true;
@@ -1453,7 +1502,26 @@ impl Reader<'_, '_> {
                 );
             }
         }
-        let (mode, scale) = mode.unwrap_or((FeedMode::PerMinute, self.scale));
+        let (mode, scale) = match mode {
+            Some((m, s)) => {
+                self.feed_unit = Some(s);
+                (m, s)
+            }
+            None => {
+                if self.feed_mode == FeedMode::PerRevolution {
+                    let (l, c) = rec.locate(minor_off);
+                    self.warn(
+                        l,
+                        c,
+                        "FEDRAT/ without IPM, MMPM, IPR or MMPR read per revolution, the mode of \
+                         the FEDRAT/ before it (posts keep the mode until a record states \
+                         another)"
+                            .into(),
+                    );
+                }
+                (self.feed_mode, self.feed_unit.unwrap_or(self.scale))
+            }
+        };
         if mode != self.feed_mode {
             self.feed_mode = mode;
             self.sink.emit(line, &Canon::FeedMode(mode));
@@ -1606,10 +1674,34 @@ impl Reader<'_, '_> {
         }
         // The corner centre at e from the axis (see above), f above the tip where the bottom
         // through the tip is tangent to the corner: the numbers `CUTTER/` states, which the
-        // cutter checks to 1e-4 mm.
+        // cutter checks to 0.01 mm.
         let (a, b) = (alpha.to_radians(), beta.to_radians());
         let e = d / 2.0 - r;
         let f = (r + e * a.sin()) / a.cos();
+        // NX's 7- and 10-parameter mills go on with the lower radius' centre X1 Y1 (then an
+        // upper radius and its centre): read as the 5-parameter mill, which is exact where X1
+        // Y1 are the centre D and R imply; otherwise say what is left out.
+        if kind == "MILL" && v.len() > 5 {
+            let centre = (v[5] * self.scale, v.get(6).map(|y| y * self.scale));
+            // (To the printing of a post: the tolerance of the cutter's own check.)
+            let off = (centre.0 - e).abs() > 0.01 || centre.1.is_some_and(|y| (y - f).abs() > 0.01);
+            let upper = v.len() > 7 && v[7] != 0.0;
+            if off || upper {
+                self.warn(
+                    line,
+                    column,
+                    format!(
+                        "TLDATA/MILL with {} values: read as the 5-parameter mill (D, R, L, \
+                         taper, tip angle) whose lower radius' centre is at {:.4} mm from the \
+                         axis, {:.4} mm up; the file's centre X1 Y1{} is left out",
+                        v.len(),
+                        e,
+                        f,
+                        if upper { " and its upper radius" } else { "" },
+                    ),
+                );
+            }
+        }
         let apt_d = 2.0 * (e + r * b.cos());
         self.sink.emit(
             line,

@@ -46,15 +46,59 @@ fn inches_are_converted_and_feeds_in_both_orders() {
     assert_eq!(e[3], Canon::FeedRate(254.0));
     assert_eq!(e[4], Canon::FeedMode(FeedMode::PerRevolution));
     assert_eq!(e[5], Canon::FeedRate(0.1));
-    assert_eq!(e[6], Canon::FeedMode(FeedMode::PerMinute));
-    // A bare number is per minute in the current units.
-    assert_eq!(e[7], Canon::FeedRate(2.0 * 25.4));
+    // A bare number keeps the mode and unit of the FEDRAT/ before it (MMPR here).
+    assert_eq!(e[6], Canon::FeedRate(2.0));
     assert_eq!(
-        e[8],
+        e[7],
         Canon::Feed {
             end: at(25.4, 0.0, 25.4)
         }
     );
+}
+
+/// `FEDRAT/f` without a mode word keeps the last one, as posts read it: after `MMPR` a bare
+/// 0.2 is 0.2 mm/rev (it was 0.2 mm/min: 100 mm took 500 min instead of 30 s), said with a
+/// warning; after `IPM` a bare 20 is 20 in/min = 508 mm/min; before any, per minute in the
+/// file's units.
+#[test]
+fn a_feed_without_a_mode_word_keeps_the_last_mode() {
+    let e = events("SPINDL/1000,RPM\nFEDRAT/0.1,MMPR\nFEDRAT/0.2\nGOTO/100,0,0\n");
+    assert!(e.contains(&Canon::FeedMode(FeedMode::PerRevolution)));
+    assert!(e.contains(&Canon::FeedRate(0.2)));
+    assert!(!e.contains(&Canon::FeedMode(FeedMode::PerMinute)));
+    let p = swarf_path::load::read_program_str(
+        "SPINDL/1000,RPM\nFROM/0,0,0\nFEDRAT/0.1,MMPR\nGOTO/100,0,0\nFEDRAT/0.2\nGOTO/200,0,0\n",
+        "fedmode.apt",
+        swarf_path::Machine::three_axis(),
+        &Default::default(),
+    )
+    .unwrap();
+    let s = swarf_path::summary::summarize(&p);
+    // 100/(0.1·1000) + 100/(0.2·1000) minutes.
+    assert!(
+        (s.machining_time_s - 90.0).abs() < 1e-9,
+        "{}",
+        s.machining_time_s
+    );
+    let w: Vec<_> = p
+        .warnings
+        .iter()
+        .map(|w| (w.line, w.message.as_str()))
+        .collect();
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert_eq!(w[0].0, 5);
+    assert!(w[0].1.contains("read per revolution"), "{w:?}");
+    let e = events("FEDRAT/IPM,20\nFEDRAT/30\nFEDRAT/40,MMPM\nFEDRAT/50\n");
+    let rates: Vec<f64> = e
+        .iter()
+        .filter_map(|c| match c {
+            Canon::FeedRate(f) => Some(*f),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(rates, [508.0, 762.0, 40.0, 50.0]);
+    let e = events("UNITS/INCHES\nFEDRAT/10\n");
+    assert!(e.contains(&Canon::FeedRate(254.0)));
 }
 
 #[test]

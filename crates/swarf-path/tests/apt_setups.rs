@@ -176,6 +176,11 @@ fn dwells_in_revolutions_and_negative_dwells() {
     assert!((p.dwell_s - 3.0).abs() < 1e-12, "{}", p.dwell_s);
     let e = apt_err("DELAY/-5\n");
     assert_eq!((e.pos.line, e.kind), (1, PathErrorKind::Semantic), "{e}");
+    // The unit word first, as NX writes it (it was "not a number").
+    let p = program("SPINDL/600\nGOTO/0,0,0\nDELAY/REV,10\nDELAY/SEC,2\nGOTO/1,0,0\n");
+    assert!((p.dwell_s - 3.0).abs() < 1e-12, "{}", p.dwell_s);
+    let e = apt_err("DELAY/REV,SEC\n");
+    assert_eq!((e.pos.line, e.pos.column), (1, 11), "{e}");
     // A circle that nothing uses before FINI is said.
     let p = program("GOTO/0,0,0\nCIRCLE/0,0,0,0,0,1,1\nFINI\n");
     assert_eq!(p.warnings.len(), 1);
@@ -201,4 +206,41 @@ fn gotos_without_an_axis_take_the_z_of_their_mcs() {
     }
     // The first operation's moves keep the first MCS's Z.
     assert!(close(p.moves[0].end.axis, [0.0, 0.0, 1.0], 1e-12));
+}
+
+/// `GODLTA/d` moves d along the tool axis (it was refused: "GODLTA/ with 1 value(s)"); a
+/// Ctrl-Z after the last record is a blank, as in G-code; a negative feed is refused at its
+/// column (it was read and its moves left out of the time).
+#[test]
+fn one_value_godlta_ctrl_z_and_negative_feeds() {
+    let p = program("GOTO/0,0,0,0,0.6,0.8\nGODLTA/10\nGODLTA/-5\n\u{1a}");
+    let t = tips(&p);
+    assert!(close(Vec3::from(t[0]), [0.0, 6.0, 8.0], 1e-12), "{t:?}");
+    assert!(close(Vec3::from(t[1]), [0.0, 3.0, 4.0], 1e-12), "{t:?}");
+    let e = apt_err("FEDRAT/-100,MMPM\nGOTO/0,0,0\n");
+    assert_eq!(
+        (e.pos.line, e.pos.column, e.kind),
+        (1, 8, PathErrorKind::Semantic),
+        "{e}"
+    );
+    let e = apt_err("FEDRAT/MMPM,-100\n");
+    assert_eq!((e.pos.line, e.pos.column), (1, 13), "{e}");
+}
+
+/// NX's 7-parameter mill (`TLDATA/MILL,D,R,L,B,A,X1,Y1`) is read as the 5-parameter one; where
+/// X1 Y1 are not the centre D and R imply, a warning says they are left out (they were dropped
+/// silently).
+#[test]
+fn tldata_values_past_the_fifth_are_checked() {
+    let p = program("TLDATA/MILL,10,2,50,0,0,3,2\nGOTO/0,0,0\nGOTO/1,0,0\n");
+    assert!(p.warnings.is_empty(), "{:?}", p.warnings);
+    let p = program("TLDATA/MILL,10,2,50,0,0,2.5,2\nGOTO/0,0,0\nGOTO/1,0,0\n");
+    assert_eq!(p.warnings.len(), 1, "{:?}", p.warnings);
+    assert_eq!(p.warnings[0].line, 1);
+    assert!(
+        p.warnings[0].message.contains("centre X1 Y1 is left out"),
+        "{:?}",
+        p.warnings
+    );
+    assert_eq!(p.cutter_definitions[0].1[2], 3.0, "e = D/2 - R");
 }

@@ -61,8 +61,11 @@ use crate::solid::RevolvedSolid;
 use swarf_geom::math::{Vec2, Vec3};
 use swarf_geom::Ray;
 
-/// Tolerance (mm) for the two redundant APT numbers e and f.
-pub const APT_CONSISTENCY_TOL_MM: f64 = 1e-4;
+/// Tolerance (mm) for the two redundant APT numbers e and f: posts print them to 3 or 4
+/// decimals, in mm or inches (a 118° drill's f = 4·tan 31° = 2.40344 written `2.403`; half a
+/// unit of an inch file's fourth decimal is 0.00127 mm), and some to 2; a number
+/// misread or mistyped is off by far more. The pieces are then built from the implied values.
+pub const APT_CONSISTENCY_TOL_MM: f64 = 0.01;
 
 /// The seven APT numbers, as typed (mm and degrees).
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize, serde::Deserialize)]

@@ -101,3 +101,32 @@ fn lengths_must_nest() {
     }));
     assert!(m.contains("holder segment 1 bottom diameter"), "{m}");
 }
+
+/// The redundant e and f as posts print them: a 118° drill's f = 4·tan 31° = 2.403442…
+/// written `2.403` (3 decimals, 0.44 µm off) and an inch file's `.0751` for 0.075108 in are
+/// accepted, and the pieces are built from the exact values; 0.02 mm off is still refused.
+/// (Both were refused at the old 1e-4 mm: the whole program failed to read.)
+#[test]
+fn redundant_numbers_rounded_as_posts_print_them_are_accepted() {
+    let exact_f = 4.0 * 31f64.to_radians().tan();
+    let c = Cutter::apt(8.0, 0.0, 4.0, 2.403, 31.0, 0.0, 50.0).unwrap();
+    let p = c.apt_params();
+    assert!((p.f - exact_f).abs() < 1e-12, "{}", p.f);
+    let inch = 25.4;
+    let c = Cutter::apt(
+        0.25 * inch,
+        0.0,
+        0.125 * inch,
+        0.0751 * inch,
+        31.0,
+        0.0,
+        2.0 * inch,
+    )
+    .unwrap();
+    assert!((c.apt_params().f - 0.125 * inch * 31f64.to_radians().tan()).abs() < 1e-12);
+    let m = msg(Cutter::apt(8.0, 0.0, 4.0, exact_f + 0.02, 31.0, 0.0, 50.0));
+    assert!(
+        m.contains("f (corner centre height)") && m.contains("tolerance 0.01 mm"),
+        "{m}"
+    );
+}
