@@ -42,9 +42,13 @@ pub(crate) struct SetupArgs {
     /// Read G-code as this control does (default: decided from the program).
     #[arg(long, value_enum)]
     pub(crate) dialect: Option<Dialect>,
-    /// Read G-code lines starting with `/` (block delete off); by default they are skipped,
-    /// as with the block-delete switch on, and a warning says so.
-    #[arg(long)]
+    /// Skip G-code lines starting with `/` (the block-delete switch on); by default they are
+    /// read, as LinuxCNC, Fanuc and Sinumerik controls do with the switch off, their default,
+    /// and a warning says so at the first one.
+    #[arg(long, conflicts_with = "no_block_delete")]
+    pub(crate) block_delete: bool,
+    /// Read lines starting with `/` (the default; kept for scripts that state it).
+    #[arg(long, hide = true)]
     pub(crate) no_block_delete: bool,
     /// The machine's home, mm in the work frame with no offsets: where a G-code program starts,
     /// where G28/G30 return to, and the origin of G53's machine coordinates (Heidenhain's
@@ -79,7 +83,7 @@ impl SetupArgs {
                 Dialect::Linuxcnc => swarf_path::gcode::GcodeDialect::LinuxCnc,
                 Dialect::Fanuc => swarf_path::gcode::GcodeDialect::Fanuc,
             }),
-            block_delete: !self.no_block_delete,
+            block_delete: self.block_delete,
             home: self.home,
             max_moves: self.max_moves.unwrap_or(max_moves),
         }

@@ -62,8 +62,8 @@ pub struct JobOptions {
     pub subroutine_dirs: Vec<PathBuf>,
     /// Read G-code as this control does (default: decided from the program).
     pub dialect: Option<GcodeDialect>,
-    /// Skip G-code lines starting with `/` (the block-delete switch on, LinuxCNC's default).
-    /// Default true.
+    /// Skip G-code lines starting with `/` (the block-delete switch on). Default false: the
+    /// switch off, as LinuxCNC's rs274 and the controls start.
     pub block_delete: bool,
     /// The machine's home (where G-code programs start, and G28/G30 return to), mm, machine
     /// coordinates; `None`: the origin (LinuxCNC's default).
@@ -83,7 +83,7 @@ impl Default for JobOptions {
             initial_units: Units::Mm,
             subroutine_dirs: Vec::new(),
             dialect: None,
-            block_delete: true,
+            block_delete: false,
             home: None,
             max_moves: DEFAULT_MAX_MOVES,
         }
@@ -392,15 +392,26 @@ fn read_options(
             for (n, t) in table.map(|t| &t.tools).into_iter().flatten() {
                 gcode = gcode.with_tool_diameter(*n, t.cutter.apt_params().d);
             }
+            // (A tool without a diameter: 0, as LinuxCNC reads it.)
+            for n in table
+                .map(|t| t.left_out_offsets.keys())
+                .into_iter()
+                .flatten()
+            {
+                gcode = gcode.with_tool_diameter(*n, 0.0);
+            }
         }
     }
     // The table's tool offsets (a LinuxCNC `.tbl`'s X Y Z A B C: G43 applies them) and
     // pockets (`#<_current_pocket>`).
-    for (n, t) in table.map(|t| &t.tools).into_iter().flatten() {
-        if let Some(o) = t.offsets {
+    let kept = table.map(|t| &t.tools).into_iter().flatten();
+    let kept = kept.map(|(n, t)| (n, t.offsets, t.pocket));
+    let left_out = table.map(|t| &t.left_out_offsets).into_iter().flatten();
+    for (n, offsets, pocket) in kept.chain(left_out.map(|(n, &(o, p))| (n, o, p))) {
+        if let Some(o) = offsets {
             gcode = gcode.with_tool_offsets(*n, o);
         }
-        if let Some(p) = t.pocket {
+        if let Some(p) = pocket {
             gcode = gcode.with_tool_pocket(*n, p);
         }
     }

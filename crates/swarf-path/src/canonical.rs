@@ -13,9 +13,9 @@
 //!
 //! `ARC_FEED(first_end, second_end, first_axis, second_axis, rotation, axis_end_point, a, b, c)`
 //! uses LinuxCNC's plane order: X,Y about Z for G17; Z,X about Y for G18; Y,Z about X for G19.
-//! Splines print as LinuxCNC's canon calls for them: `SPLINE_FEED(x1, y1, x2, y2[, x3, y3])`
-//! with the control points of a quadratic or cubic, `NURBS_FEED(order, x, y, w, …)` with the
-//! control points after the start.
+//! Splines print as rs274 prints them: `NURBS_FEED(n, ...)`, n the number of control points
+//! with the start (4 for G5, 3 for G5.1, a G5.2 … G5.3 block's points and its start), the
+//! three dots as they are.
 //! An arc about an axis that is none of X, Y, Z (an APT `CIRCLE/` in a tilted plane), which
 //! LinuxCNC cannot make, prints as swarf's own
 //! `ARC_FEED_AXIS(x, y, z, centre x, y, z, normal i, j, k, turns)` (counter-clockwise about the
@@ -159,23 +159,11 @@ impl<W: Write> CanonicalPrinter<W> {
                     normal[2],
                 )?;
             }
-            Canon::Spline { kind, controls, .. } => {
-                let xy: Vec<String> = controls
-                    .iter()
-                    .map(|c| format!("{:.4}, {:.4}", self.u(c[0]), self.u(c[1])))
-                    .collect();
-                match kind {
-                    crate::spline::SplineKind::Nurbs { order } => {
-                        let pts: Vec<String> = controls
-                            .iter()
-                            .map(|c| {
-                                format!("{:.4}, {:.4}, {:.4}", self.u(c[0]), self.u(c[1]), c[2])
-                            })
-                            .collect();
-                        writeln!(self.out, " N..... NURBS_FEED({order}, {})", pts.join(", "))?;
-                    }
-                    _ => writeln!(self.out, " N..... SPLINE_FEED({})", xy.join(", "))?,
-                }
+            // rs274 prints a spline as its number of control points, the start included (4
+            // for G5, 3 for G5.1, the points of a G5.2 … G5.3 block and its start), and no
+            // numbers: `NURBS_FEED(4, ...)`.
+            Canon::Spline { controls, .. } => {
+                writeln!(self.out, " N..... NURBS_FEED({}, ...)", controls.len() + 1)?
             }
             Canon::Message {
                 kind: MessageKind::Msg | MessageKind::Debug,

@@ -170,6 +170,10 @@ fn sequence_numbers_and_block_skip_on_every_kind_of_line() {
     let src = "%\nO1\nN1 G90 G21\nN2 /G0 X99\n/N3 G0 X98\nN4 G0 X1\nN5 M98 P7\nN6 M30\nO7\nN70 G0 Y1\nN71 M99\n%\n";
     let m = moves(src, &fanuc()).unwrap();
     assert_eq!(m, vec![('R', 1.0, 0.0, 0.0), ('R', 1.0, 1.0, 0.0)]);
+    // With the switch off (the default) both are read.
+    let m = moves(src, &fanuc()).unwrap();
+    let xs: Vec<f64> = m.iter().map(|m| m.1).collect();
+    assert_eq!(xs, [99.0, 98.0, 1.0, 1.0]);
 }
 
 #[test]
@@ -219,7 +223,13 @@ fn g70_and_g71_alone_are_units_and_with_words_lathe_cycles() {
     // Fanuc lathes in G-code system B read them; with words they are lathe cycles, refused.
     for options in [fanuc(), GcodeOptions::default()] {
         let m = moves("N100G00G17G90\nN110G70G91.1\nN120X1.Y2.\nM30\n", &options).unwrap();
-        assert_eq!(m, [('R', 25.4, 50.8, 0.0)]);
+        // (LinuxCNC moves on the bare G00, a traverse of length zero, as rs274 prints it.)
+        let bare = if options.dialect == Some(GcodeDialect::Fanuc) {
+            vec![]
+        } else {
+            vec![('R', 0.0, 0.0, 0.0)]
+        };
+        assert_eq!(m, [bare, vec![('R', 25.4, 50.8, 0.0)]].concat());
         let m = moves("G20\nG71\nG0 X1. Y2.\nM30\n", &options).unwrap();
         assert_eq!(m, [('R', 1.0, 2.0, 0.0)]);
         let e = moves("G71 U2. R1.\n", &options).unwrap_err();
@@ -324,7 +334,7 @@ fn arcs_as_fanuc_reads_them() {
     let w: Vec<(u32, &str)> = w.iter().map(|(l, m)| (*l, &m[..2])).collect();
     // (X10 at line 3: the program's first number without a decimal point.)
     assert_eq!(w, [(3, "X1"), (5, "K0"), (6, "I-"), (6, "J0")]);
-    // LinuxCNC refuses each of the three.
+    // LinuxCNC refuses the last two; the first is a full circle in rs274 2.9 too.
     let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
     for bad in [
         "G2 I-10. F200",

@@ -268,14 +268,20 @@ fn a_probing_move_is_read_with_the_tool_staying_where_it_is() {
             3,
         ),
         ("G21 G90\nG0 X0 Y0 Z5\nG38.2 F50\nM30\n", "all missing", 3),
-        (
-            "G21 G90\nG0 X0 Y0 Z5\nG38.2 Z4.9 F50\nM30\n",
-            "too close",
-            3,
-        ),
+        ("G21 G90\nG0 X0 Y0 Z5\nG38.2 Z5 F50\nM30\n", "too close", 3),
+        ("G21 G90\nG0 X0 Y0 Z5\nG38.4 Z5 F50\nM30\n", "too close", 3),
     ] {
         let e = read(text, &GcodeOptions::default()).unwrap_err();
         assert!(e.to_string().contains(what), "{e}");
         assert_eq!(e.pos.line, line, "{e}");
+    }
+    // rs274 2.9 probes any distance, and G38.3/G38.5 (which may fail to trip) none at all
+    // (swarf refused anything under 0.254 mm: LinuxCNC's smartprobe.ngc stopped at line 39).
+    for text in [
+        "G21 G90\nG0 X0 Y0 Z5\nG38.2 Z4.9999 F50\nM30\n",
+        "G20 G90\nG0 X0 Y0 Z1\nG38.5 Z1 F5\nG38.5 Z1.005\nM30\n",
+        "G21 G90\nG0 X0 Y0 Z5\nG38.3 Z5 F50\nM30\n",
+    ] {
+        read(text, &GcodeOptions::default()).unwrap_or_else(|e| panic!("{text}: {e}"));
     }
 }

@@ -173,10 +173,30 @@ fn arc_radius_mismatch_is_an_error_with_linuxcnc_tolerance() {
         &GcodeOptions::default()
     )
     .is_err());
-    // Missing words.
-    assert!(err("G0 X1\nG2 I1 F10\n")
+    // Missing words: the R form needs its end point (rs274: "X and y words missing for arc in
+    // xy plane"); with a centre and no end point in the plane the arc is a full circle, as
+    // rs274 2.9 reads LinuxCNC's own 3dtest.ngc (`G2 I.5 J.5`).
+    assert!(err("G0 X1\nG2 R1 F10\n")
         .message
         .contains("X and Y words missing"));
+    let rec = run("G21 G0 X1 Y1\nG2 I.5 J.5 F100\nG91 G3 I1 Z-1\n");
+    let arcs: Vec<_> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Arc {
+                end,
+                center,
+                rotation,
+                ..
+            } => Some((end.x, end.y, end.z, center[0], center[1], *rotation)),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        arcs,
+        [(1.0, 1.0, 0.0, 1.5, 1.5, -1), (1.0, 1.0, -1.0, 2.0, 1.0, 1)]
+    );
     assert!(err("G2 X1 F10\n").message.contains("I and J words missing"));
     assert!(err("G2 X1 I1 K1 F10\n").message.contains("K word given"));
     assert!(err("G2 X1 I1 R1 F10\n")
@@ -688,9 +708,45 @@ fn active_comments_are_messages() {
     );
 }
 
+/// rs274 2.9's format words in `DEBUG`/`PRINT` texts (`%d`, `%f`, `%.Nf`, sticky to the end
+/// of the comment, printing nothing themselves; other `%` text as it is; `MSG` untouched), and
+/// a line's last comment only. Expected texts: rs274 2.9's output for the same lines. (swarf
+/// printed `%d3.700000` and both comments.)
+#[test]
+fn format_words_and_the_last_comment_as_rs274_prints_them() {
+    let src = "G21\n#1=3.7\n#2=-2.5\n(debug,a %d#1 b %d#2 c #1 d %.9f#1 e #2 f %.12f#1 g %.0f#1 \
+        h %x#1 i %% j %.1f #1 k %f#<_x>)\n(debug,l #1 %d)\n(msg,m %d#1)\n(print,p %d#1 %.3f#1)\n\
+        G1 X1 F100 (msg,first) (msg,second)\n(c) G1 X2 (debug,d)\nM2\n";
+    let rec = run(src);
+    let msgs: Vec<String> = rec
+        .events
+        .iter()
+        .filter_map(|(_, e)| match e {
+            Canon::Message { text, .. } => Some(text.to_string()),
+            _ => None,
+        })
+        .collect();
+    assert_eq!(
+        msgs,
+        [
+            "a 4 b -2 c 4 d 3.700000000 e -2.500000000 f .12f3.700000000 g 4 h %x4 i %% j  3.7 \
+             k 0.0000",
+            "l 3.700000 ",
+            "m %d#1",
+            "p 4 3.700",
+            "second",
+            "d",
+        ]
+    );
+}
+
 #[test]
 fn comments_block_delete_and_tape_markers() {
-    let rec = run("%\n(a note) G0 X1 ; not emitted\n/G0 X99\nG0 X2\n%\nG0 X3\n");
+    let rec = run_with(
+        "%\n(a note) G0 X1 ; not emitted\n/G0 X99\nG0 X2\n%\nG0 X3\n",
+        &GcodeOptions::default().with_block_delete(true),
+    )
+    .unwrap();
     let comments: Vec<_> = rec
         .events
         .iter()
@@ -704,11 +760,8 @@ fn comments_block_delete_and_tape_markers() {
         vec![1.0, 2.0],
         "block delete skips, the second % ends the program"
     );
-    let rec = run_with(
-        "/G0 X99\n",
-        &GcodeOptions::default().with_block_delete(false),
-    )
-    .unwrap();
+    // By default the switch is off, as rs274 starts: the line is read.
+    let rec = run("/G0 X99\n");
     assert_eq!(motion(&rec).len(), 1);
 }
 
@@ -757,9 +810,9 @@ fn a_byte_order_mark_is_skipped() {
     assert_eq!(a.events, b.events);
 }
 
-/// Lines starting with `/` are skipped (the block-delete switch on, LinuxCNC's default) and
-/// the first one is reported, so a program does not silently lose moves; with the switch off
-/// they are read.
+/// Lines starting with `/` are read by default (the block-delete switch off, as rs274 2.9
+/// starts: it prints their moves) and skipped with the switch on; either way the first one is
+/// reported. (They were skipped by default.)
 #[test]
 fn block_deleted_lines_are_reported_once() {
     use swarf_path::load::{read_program_str, ReadOptions};
@@ -778,7 +831,17 @@ fn block_deleted_lines_are_reported_once() {
     assert!(on.warnings[0].message.contains("block delete"));
     let off = read(false);
     assert_eq!(off.moves.len(), 4);
-    assert!(off.warnings.is_empty(), "{:?}", off.warnings);
+    assert_eq!(off.warnings.len(), 1, "{:?}", off.warnings);
+    assert_eq!(off.warnings[0].line, 3);
+    assert!(off.warnings[0].message.starts_with("line read"));
+    let default = read_program_str(
+        src,
+        "bd.ngc",
+        swarf_path::Machine::three_axis(),
+        &ReadOptions::default(),
+    )
+    .unwrap();
+    assert_eq!(default.moves.len(), 4);
 }
 
 /// I/O, override and spindle-orientation M codes are named for what they do and their words

@@ -845,9 +845,15 @@ impl<'t, 's> Interp<'t, 's> {
 
     /// The line's comments, in order: `(ABORT,…)` ends the program with its message, active
     /// comments (`MSG`, `DEBUG`, `PRINT`, `LOG`…) are messages with parameters substituted,
-    /// the others plain comments.
+    /// the others plain comments. LinuxCNC keeps a line's last comment only (rs274 prints
+    /// `MESSAGE("second")` alone for `(msg,first) (msg,second)`).
     fn comments(&mut self, raw: &str, lb: &LineBuf) -> Res<()> {
-        for &(a, b) in &lb.comments {
+        let first = if self.fanuc {
+            0
+        } else {
+            lb.comments.len().saturating_sub(1)
+        };
+        for &(a, b) in &lb.comments[first..] {
             let text = &raw[a as usize..b as usize];
             // LinuxCNC's `(ABORT,…)`: the program stops here with the message as its error.
             if let Some((head, body)) = comment_head(text) {
@@ -882,16 +888,24 @@ impl<'t, 's> Interp<'t, 's> {
 
     fn exec_line(&mut self, raw: &str, lb: &mut LineBuf, blk: &mut Block) -> Res<()> {
         normalize(raw, lb)?;
-        if lb.deleted && self.opts.block_delete {
+        if lb.deleted {
+            let skip = self.opts.block_delete;
             if !std::mem::replace(&mut self.deleted_warned, true) {
                 self.warn_at(
                     1,
-                    "line skipped: block delete (`/`) is on, as LinuxCNC's switch is by \
-                     default (first such line; --no-block-delete reads them)"
-                        .into(),
+                    if skip {
+                        "line skipped: block delete (`/`) is on (--block-delete; first such \
+                         line)"
+                    } else {
+                        "line read: it starts with `/` (block delete), and the switch is off, \
+                         as LinuxCNC's starts (first such line; --block-delete skips them)"
+                    }
+                    .into(),
                 );
             }
-            return Ok(());
+            if skip {
+                return Ok(());
+            }
         }
         if is_grbl_command(&lb.code) {
             return self.grbl_command(lb);
@@ -1957,7 +1971,17 @@ impl<'t, 's> Interp<'t, 's> {
                     // A later rotary word hands the axis back to the machine.
                     self.held_axis = true;
                 }
-                if has_axes || vector {
+                // LinuxCNC moves on a block that states G0 or G1 without axis words: a move of
+                // length zero (rs274 prints its STRAIGHT_TRAVERSE / STRAIGHT_FEED), which keeps
+                // the canonical calls in step with LinuxCNC's; a Fanuc control only sets the
+                // mode.
+                let bare = !has_axes
+                    && !vector
+                    && !self.fanuc
+                    && explicit.is_some()
+                    && !self.comp.moving()
+                    && !g53;
+                if has_axes || vector || bare {
                     self.arc_not_allowed = false;
                     let end = if has_axes {
                         self.find_ends(b, g53)?
@@ -2083,8 +2107,10 @@ impl<'t, 's> Interp<'t, 's> {
             .map(|i| (end[i] - self.p[i]).powi(2))
             .sum::<f64>()
             .sqrt();
-        // LinuxCNC's 0.01 inch.
-        if d < 0.254 {
+        // As rs274 2.9: only a probe that must trip (G38.2, G38.4) refuses to stand still; any
+        // length will do otherwise (LinuxCNC's smartprobe.ngc probes from where it stands
+        // with G38.5).
+        if d == 0.0 && matches!(m, 382 | 384) {
             return Err(Fault::semantic(
                 span,
                 "Start point too close to probe point",
@@ -2336,8 +2362,9 @@ impl<'t, 's> Interp<'t, 's> {
             .g(group::MOTION)
             .map_or(Span::Line, |_| b.g_span(group::MOTION));
         let polar = b.has(b'@') || b.has(b'^');
-        // Fanuc: an arc with its centre and no end point in the plane is a full circle.
-        let full_circle = self.fanuc && !b.has(b'r') && (b.has(offs[fi]) || b.has(offs[si]));
+        // An arc with its centre and no end point in the plane is a full circle (Fanuc, and
+        // LinuxCNC's `G2 I.5 J.5` of its 3dtest.ngc); the R form needs its end point.
+        let full_circle = !b.has(b'r') && (b.has(offs[fi]) || b.has(offs[si]));
         if !(b.has(AXIS_LETTERS[fi]) || b.has(AXIS_LETTERS[si]) || polar || full_circle) {
             return Err(Fault::new(
                 PathErrorKind::Semantic,
@@ -3122,13 +3149,34 @@ fn active_comment(text: &str) -> Option<(MessageKind, &str)> {
 
 impl Interp<'_, '_> {
     /// A `(DEBUG,…)`/`(PRINT,…)` text with `#123` and `#<name>` replaced by their values as
-    /// LinuxCNC prints them (`%f`; an undefined name prints `######`).
+    /// LinuxCNC 2.9 prints them: six decimals, or as the last format word before them in the
+    /// comment says — `%d` none, `%f` four, `%.Nf` N (one digit) — which prints nothing
+    /// itself; any other `%` is text (a `%.` not so read loses its `%`, as in rs274). An
+    /// undefined name prints `######`.
     fn substitute_parameters(&self, text: &str) -> String {
         let mut out = String::with_capacity(text.len() + 16);
+        let mut decimals = 6usize;
         let mut rest = text;
-        while let Some(i) = rest.find('#') {
+        while let Some(i) = rest.find(['#', '%']) {
             out.push_str(&rest[..i]);
             let after = &rest[i + 1..];
+            if rest.as_bytes()[i] == b'%' {
+                let b = after.as_bytes();
+                let (d, used) = match b {
+                    [b'd', ..] => (Some(0), 1),
+                    [b'f', ..] => (Some(4), 1),
+                    [b'.', n @ b'0'..=b'9', b'f', ..] => (Some(usize::from(n - b'0')), 3),
+                    _ => (None, 0),
+                };
+                match d {
+                    Some(d) => decimals = d,
+                    // (rs274 drops the `%` of a `%.` it cannot read: `%.12f` prints `.12f`.)
+                    None if b.first() == Some(&b'.') => {}
+                    None => out.push('%'),
+                }
+                rest = &after[used..];
+                continue;
+            }
             if let Some(named) = after.strip_prefix('<') {
                 if let Some(j) = named.find('>') {
                     let name: String = named[..j]
@@ -3137,7 +3185,9 @@ impl Interp<'_, '_> {
                         .map(|c| c.to_ascii_lowercase())
                         .collect();
                     match self.named(&name) {
-                        Some(v) => out.push_str(&format!("{:.6}", super::expr::number(v))),
+                        Some(v) => {
+                            out.push_str(&format!("{:.*}", decimals, super::expr::number(v)))
+                        }
                         None => out.push_str("######"),
                     }
                     rest = &named[j + 1..];
@@ -3151,7 +3201,7 @@ impl Interp<'_, '_> {
                     .filter(|n| (1..=super::expr::MAX_PARAM).contains(n))
                 {
                     let v = super::expr::number(self.get_numbered(n));
-                    out.push_str(&format!("{v:.6}"));
+                    out.push_str(&format!("{v:.decimals$}"));
                     rest = &after[digits..];
                     continue;
                 }

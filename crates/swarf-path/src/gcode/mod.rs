@@ -153,8 +153,9 @@ pub struct GcodeOptions {
     pub max_repeat: u64,
     /// Arc end-radius tolerance.
     pub arc_radius_tolerance: ArcTolerance,
-    /// When true (the default), lines starting with `/` are skipped, as with LinuxCNC's block
-    /// delete switch on.
+    /// When true, lines starting with `/` are skipped (the block-delete switch on); by default
+    /// they are read, as LinuxCNC's rs274 reads them (its switch starts off), with a warning at
+    /// the first.
     pub block_delete: bool,
     /// Tool diameters by tool number, mm: what cutter radius compensation (`G41`/`G42`, with
     /// `D<tool>` or the loaded tool) offsets by. LinuxCNC takes them from its tool table.
@@ -400,7 +401,7 @@ impl Default for GcodeOptions {
             max_call_depth: 64,
             max_repeat: 1_000_000,
             arc_radius_tolerance: ArcTolerance::LINUXCNC,
-            block_delete: true,
+            block_delete: false,
             tool_diameters: BTreeMap::new(),
             tool_offsets: BTreeMap::new(),
             tool_pockets: BTreeMap::new(),

@@ -489,17 +489,24 @@ impl<'a> Reader<'a> {
                 return Ok(());
             };
             pc += 1;
-            if b.deleted && self.opts.block_delete {
-                let line = b.line;
+            if b.deleted {
+                let (line, skip) = (b.line, self.opts.block_delete);
                 self.warn_once(
                     "blockdelete",
                     line,
                     1,
-                    "block skipped: block delete (`/`) is on, as the G-code reader's switch is \
-                     by default (first such block; --no-block-delete reads them)"
-                        .into(),
+                    if skip {
+                        "block skipped: block delete (`/`) is on (--block-delete; first such \
+                         block)"
+                    } else {
+                        "block read: it starts with `/` (skip), and the switch is off, as the \
+                         control starts (first such block; --block-delete skips them)"
+                    }
+                    .into(),
                 );
-                continue;
+                if skip {
+                    continue;
+                }
             }
             match self.block(b, pc - 1)? {
                 Flow::Next => {}

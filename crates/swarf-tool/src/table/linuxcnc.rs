@@ -111,6 +111,22 @@ pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTa
         }
         let d = match diameter {
             Some((d, _, _)) if d > 0.0 => d,
+            // No diameter, or D0: LinuxCNC's own tables have such lines (`T99999 … Z+0.1`, a
+            // probe); the table serves the other tools, and a program cutting with this one
+            // is refused then (its offsets still apply).
+            None | Some((0.0, _, _)) => {
+                table.left_out.insert(
+                    number,
+                    format!(
+                        "{file}:{line}: T{number} has no diameter (D) in a LinuxCNC table, so no \
+                         cutter; LinuxCNC reads it as 0"
+                    ),
+                );
+                table
+                    .left_out_offsets
+                    .insert(number, (has_offsets.then_some(offsets), pocket));
+                continue;
+            }
             Some((_, column, start)) => {
                 // (`start` is the word's byte offset: `column` counts characters.)
                 let word = body[start..].split_whitespace().next().unwrap_or("D");
@@ -119,13 +135,6 @@ pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTa
                     format!("T{number} with diameter {word}"),
                     "a positive diameter (D) for every tool in the table",
                 ));
-            }
-            None => {
-                return Err(err(
-                    body.chars().count() + 1,
-                    format!("T{number} without a diameter"),
-                    "a D word giving the tool's diameter",
-                ))
             }
         };
         let overall = z.filter(|&z| z > 0.0);
@@ -188,22 +197,43 @@ mod tests {
     }
 
     #[test]
-    fn a_tool_without_a_positive_diameter_is_an_error_at_its_line() {
-        // Was skipped with a warning nobody printed: the program then failed on an unknown tool.
-        let text = "T1 P1 D0.125\nT2 P2 D0 Z0 ;probe\n";
-        let (at, found, s) = parse_error(text, "tool.tbl", LengthUnit::Inch);
+    fn a_negative_diameter_is_an_error_at_its_line() {
+        let (at, found, s) =
+            parse_error("T1 P1 D0.125\nT2 P2 D-1 Z0\n", "tool.tbl", LengthUnit::Inch);
         assert_eq!(at, (2, 8), "{s}");
-        assert_eq!(found, "T2 with diameter D0");
+        assert_eq!(found, "T2 with diameter D-1");
         assert!(
             s.starts_with("tool.tbl:2:8") && s.contains("positive diameter"),
             "{s}"
         );
         let e = parse_linuxcnc("T1 D1\nT4 D-3\n", "t.tbl", LengthUnit::Mm).unwrap_err();
         assert!(e.to_string().starts_with("t.tbl:2:5"), "{e}");
-        let e = parse_linuxcnc("T1 D1\nT5 P5 Z1\n", "t.tbl", LengthUnit::Mm).unwrap_err();
+    }
+
+    /// LinuxCNC's own `tool.tbl` and `sim.tbl` end with `T99999 P99999 Z+0.1 ;big tool
+    /// number` (no diameter), and probes are often `D0`: the table serves its other tools, the
+    /// tool is left out with why (a program cutting with it is refused then), and its offsets
+    /// and pocket still count. (The whole table was refused: "T99999 without a diameter".)
+    #[test]
+    fn a_tool_without_a_diameter_is_left_out_with_its_offsets() {
+        let text = "T1 P1 D0.125 Z+0.511 ;1/8 end mill\nT2 P2 D0 Z+0.1 ;probe\n\
+            T99999 P99999 Z+0.1 ;big tool number\n";
+        let t = parse_linuxcnc(text, "tool.tbl", LengthUnit::Inch).unwrap();
+        assert_eq!(t.tools.keys().collect::<Vec<_>>(), [&1]);
+        assert_eq!(t.left_out.keys().collect::<Vec<_>>(), [&2, &99999]);
         assert!(
-            e.to_string().starts_with("t.tbl:2:9") && e.to_string().contains("without a diameter"),
-            "{e}"
+            t.left_out[&99999].starts_with("tool.tbl:3: T99999 has no diameter"),
+            "{}",
+            t.left_out[&99999]
+        );
+        let z = 0.1 * 25.4;
+        assert_eq!(
+            t.left_out_offsets[&2],
+            (Some([0.0, 0.0, z, 0.0, 0.0, 0.0]), Some(2))
+        );
+        assert_eq!(
+            t.left_out_offsets[&99999],
+            (Some([0.0, 0.0, z, 0.0, 0.0, 0.0]), Some(99999))
         );
     }
 
@@ -211,9 +241,9 @@ mod tests {
     fn a_bad_diameter_after_a_wide_space_is_reported_not_a_panic() {
         // Found by the `tbl` fuzz target: the word was cut at its character column as if it
         // were a byte offset, inside a multi-byte space (U+2000).
-        let (at, found, s) = parse_error("T6\u{2000}D0\n", "w.tbl", LengthUnit::Mm);
+        let (at, found, s) = parse_error("T6\u{2000}D-1\n", "w.tbl", LengthUnit::Mm);
         assert_eq!(at, (1, 5), "{s}");
-        assert_eq!(found, "T6 with diameter D0");
+        assert_eq!(found, "T6 with diameter D-1");
     }
 
     /// The position `(line, column)`, the `found` text and the message of the parse error

@@ -76,6 +76,11 @@ pub struct ToolTable {
     /// naming file, line and column. They are not in [`ToolTable::tools`]; a program that
     /// uses one is refused with this text, and the rest of the table serves.
     pub left_out: BTreeMap<u32, String>,
+    /// Of the tools left out, those whose offsets and pocket the file still gives (a LinuxCNC
+    /// `.tbl` line with no diameter or `D0`: a probe, or LinuxCNC's own `T99999 … Z+0.1`):
+    /// what G43 and `#<_current_pocket>` read, as for the others. Their diameter is 0, as
+    /// LinuxCNC takes it.
+    pub left_out_offsets: BTreeMap<u32, (Option<[f64; 6]>, Option<u32>)>,
 }
 
 impl ToolTable {
