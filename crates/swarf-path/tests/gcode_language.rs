@@ -1239,6 +1239,11 @@ fn predefined_named_parameters_read_the_modes() {
     ];
     let probe: String = names.iter().map(|n| format!("#<{n}> ")).collect();
     let text = |src: &str| run(src).messages().join("|");
+    // The version, as rs274 2.9 prints it for LinuxCNC's roparams.ngc (it printed ######).
+    assert_eq!(
+        text("(debug,#<_vmajor> #<_vminor>)\nM2\n"),
+        "2.900000 0.000000"
+    );
     let start = text(&format!("G21\n(debug,{probe})\nM2\n"));
     assert_eq!(
         start,

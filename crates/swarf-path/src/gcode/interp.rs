@@ -3075,6 +3075,10 @@ impl Interp<'_, '_> {
             "_feed_hold" => flag(ro.overrides[3]),
             "_call_level" => Some(self.frames.len() as f64),
             "_remap_level" | "_task" => Some(0.0),
+            // The LinuxCNC whose interpreter swarf follows (2.9, its tests and nc_files): a
+            // program may check it (`roparams.ngc`), rs274 2.9 reads 2.9 and 0.
+            "_vmajor" => Some(2.9),
+            "_vminor" => Some(0.0),
             _ => None,
         }
     }
