@@ -385,6 +385,188 @@ fn a_full_circle_then_a_concave_corner_is_cut_back() {
     assert_eq!(centres, vec![[0.0, 0.0], [5.0, 0.0]]);
 }
 
+/// `got` against rs274's canonical calls (four decimals printed): within 1e-4.
+fn assert_rs274(got: &[(String, f64, f64, Option<[f64; 2]>)], want: &[(&str, f64, f64)]) {
+    assert_eq!(got.len(), want.len(), "{got:?}");
+    for (g, w) in got.iter().zip(want) {
+        assert!(
+            g.0 == w.0 && (g.1 - w.1).abs() < 1e-4 && (g.2 - w.2).abs() < 1e-4,
+            "got {g:?}, want {w:?}\n{got:?}"
+        );
+    }
+}
+
+/// A full circle (a boss, tool outside) entered tangentially and left back down the lead-in:
+/// the concave corner at its end cuts the circle back to where the offset lead-out x = −9
+/// meets it. Of the two meeting points LinuxCNC's formula (`convert_straight_comp2`, arc to
+/// line) takes the one after ~325° of the circle, not the one ~35° in: the expected calls
+/// are rs274's (LinuxCNC 2.9) for this program.
+#[test]
+fn a_full_circle_then_a_reversing_move_keeps_the_circle() {
+    let rec = read(
+        "G21 G17 G90 G40 F100\nG0 X-10 Y-20 Z-1\nG41.1 D2\nG1 X-10 Y-10\nG1 X-10 Y0\n\
+         G2 X-10 Y0 I10 J0\nG1 X-10 Y-10\nG40 G1 X-10 Y-20\nM2\n",
+        &GcodeOptions::default(),
+    )
+    .unwrap();
+    let m = motion(&rec);
+    assert_rs274(
+        &m,
+        &[
+            ("R", -10.0, -20.0),
+            ("L", -11.0, -10.0),
+            ("L", -11.0, 0.0),
+            ("A-", -9.0, -6.3246),
+            ("L", -9.0, -10.0),
+            ("L", -10.0, -20.0),
+        ],
+    );
+    assert_eq!(m[3].3, Some([0.0, 0.0]));
+}
+
+/// Corners as LinuxCNC makes them, its formulas and checks rather than exact geometry; each
+/// expected path is rs274's (LinuxCNC 2.9) output for the program.
+#[test]
+fn corners_follow_linuxcncs_formulas_and_checks() {
+    let path = |src: &str| motion(&read(src, &GcodeOptions::default()).unwrap());
+
+    // Arc to line after an entry arc whose centre moved beyond its end: LinuxCNC's triangle
+    // takes the programmed corner to be r from the arc's end along the radius, which it is
+    // not here, so the arc ends 0.03 off the new offset line, at rs274's point.
+    let m = path(
+        "G21 G17 G90 G40 F100\nG0 X-17.5854 Y2.5469 Z0\nG41.1 D2\n\
+         G3 X-16.8986 Y-0.4424 I8.0015 J0.2647\nG1 X4.1459 Y8.5463\nG40 G1 X10 Y0\nM2\n",
+    );
+    assert_rs274(
+        &m[1..],
+        &[
+            ("A+", -36.9081, -7.8692),
+            ("L", 3.7531, 9.4659),
+            ("L", 10.0, 0.0),
+        ],
+    );
+    let c = m[1].3.unwrap();
+    assert!(
+        (c[0] + 26.2099).abs() < 1e-4 && (c[1] + 4.5846).abs() < 1e-4,
+        "{c:?}"
+    );
+
+    // The entry line queues its normal as its direction (`convert_straight_comp1`): cut back
+    // past its start it is not a gouge to LinuxCNC.
+    let m =
+        path("G21 G90 F100\nG0 X0 Y0 Z0\nG41.1 D2\nG1 X10 Y0\nG1 X-30 Y3\nG40 G1 X-30 Y20\nM2\n");
+    assert_rs274(
+        &m[1..],
+        &[
+            ("L", -16.7041, 1.0),
+            ("L", -30.0748, 2.0028),
+            ("L", -30.0, 20.0),
+        ],
+    );
+
+    // A convex corner before a rapid: a straight traverse to the offset start (there is no
+    // arc traverse), not an arc.
+    let m = path(
+        "G21 G90 F100\nG0 X0 Y-10 Z0\nG41.1 D2\nG1 X0 Y0\nG0 X10 Y0\nG1 X10 Y10\nG40 G0 X20 Y10\nM2\n",
+    );
+    assert_rs274(
+        &m[1..],
+        &[
+            ("L", -1.0, 0.0),
+            ("R", 0.0, 1.0),
+            ("R", 9.0, 1.0),
+            ("L", 9.0, 10.0),
+            ("R", 20.0, 10.0),
+        ],
+    );
+
+    // G40 flushes the held move as a moved end is checked: this one was cut back past its
+    // end (a 3 mm wide turn for a 6 mm tool) and runs backwards: rs274 refuses it at G40.
+    let e =
+        comp_error("G21 G90 F100\nG0 X0 Y0 Z0\nG41.1 D6\nG1 X20 Y0\nG1 X0 Y2\nG40 G1 X0 Y20\nM2\n");
+    assert_eq!((e.kind, e.pos.line), (PathErrorKind::Semantic, 6), "{e}");
+    assert!(
+        e.message.contains(
+            "straight feed in concave corner cannot be reached by the tool without gouging"
+        ),
+        "{e}"
+    );
+
+    // The entry move must move in the plane (`convert_straight_comp1`): a plunge first is
+    // refused, as rs274 refuses it; after the entry move a plunge stays where the tool is.
+    let e = comp_error("G21 G90 F100\nG0 X0 Y0 Z0\nG41.1 D2\nG1 Z-1\nG1 X10\nM2\n");
+    assert_eq!((e.pos.line, e.pos.column), (4, 1), "{e}");
+    assert!(
+        e.message
+            .contains("entry move is not greater than the tool radius"),
+        "{e}"
+    );
+}
+
+/// Arcs after the entry move as LinuxCNC makes their corners (`convert_arc_comp2`): each
+/// expected path is rs274's (LinuxCNC 2.9) output for the program.
+#[test]
+fn arc_corners_follow_linuxcncs_formulas() {
+    let path = |src: &str| motion(&read(src, &GcodeOptions::default()).unwrap());
+
+    // A full circle (boss, tool outside at radius 11), then a clockwise arc starting back
+    // down: the two compensated circles meet at (−10.3333, ±3.7712), equally near the
+    // circle's end; LinuxCNC's turns take the one after ~340° of the circle.
+    let m = path(
+        "G21 G17 G90 G40 F100\nG0 X-10 Y-20 Z-1\nG41.1 D2\nG1 X-10 Y-10\nG1 X-10 Y0\n\
+         G2 X-10 Y0 I10 J0\nG2 X-20 Y0 I-5 J0\nG40 G1 X-20 Y-20\nM2\n",
+    );
+    assert_rs274(
+        &m[1..],
+        &[
+            ("L", -11.0, -10.0),
+            ("L", -11.0, 0.0),
+            ("A-", -10.3333, -3.7712),
+            ("A-", -21.0, 0.0),
+            ("L", -20.0, -20.0),
+        ],
+    );
+
+    // Line to arc after the entry line, whose tool path is not parallel to the programmed
+    // line: LinuxCNC's formula ends the line at (7.3203, 10.1290), 0.001 from where the two
+    // offset paths cross.
+    let m = path(
+        "G21 G17 G90 G40 F100\nG0 X-2.4740 Y-7.1116 Z0\nG41.1 D6\nG1 X9.7188 Y8.3256\n\
+         G2 X11.5298 Y7.1122 I0.9005 J-0.6142\nG1 X14.2988 Y9.4906\nG1 X5.1098 Y-9.8353\n\
+         G40 G1 X7.9154 Y21.3620\nM2\n",
+    );
+    assert_rs274(
+        &m[1..],
+        &[
+            ("L", 7.3203, 10.1290),
+            ("A-", 12.0736, 11.5341),
+            ("L", 12.3441, 11.7663),
+            ("A-", 17.0081, 8.2024),
+            ("L", 7.8191, -11.1235),
+            ("L", 7.9154, 21.3620),
+        ],
+    );
+
+    // A full circle (tool outside) after the entry line, then a line and a plunge: the
+    // circle is cut back where the line leaves it, the plunge stays where the tool is.
+    let m = path(
+        "G21 G17 G90 G40 F100\nG0 X4.7523 Y18.3568 Z0\nG42.1 D4\nG1 X12.3999 Y16.3601\n\
+         G3 X12.3999 Y16.3601 I0.2630 J1.0075\nG1 X6.3061 Y-16.3100\nG1 Z-4.9318\n\
+         G1 X2.8915 Y-6.4098\nG40 G1 X5.8383 Y3.2787\nM2\n",
+    );
+    assert_rs274(
+        &m[1..],
+        &[
+            ("L", 11.8947, 14.4250),
+            ("A+", 10.2164, 15.5610),
+            ("L", 5.7282, -8.5006),
+            ("L", 5.7282, -8.5006),
+            ("L", 4.7822, -5.7577),
+            ("L", 5.8383, 3.2787),
+        ],
+    );
+}
+
 #[test]
 fn after_g40_the_current_point_is_the_programmed_one() {
     // LinuxCNC's `convert_cutter_compensation_off`: current = programmed point. The tool is at

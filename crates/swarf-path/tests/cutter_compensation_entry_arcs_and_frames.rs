@@ -59,51 +59,72 @@ fn assert_move(
     );
 }
 
+/// Within LinuxCNC's printing: rs274 prints four decimals.
+fn near(a: f64, b: f64) -> bool {
+    (a - b).abs() < 1e-4
+}
+
+/// `got` (from [`moves`]) is LinuxCNC's `(kind, end x, end y, centre)`, compared to 1e-4.
+fn assert_rs274(got: (&str, f64, f64, Option<[f64; 2]>), want: (&str, f64, f64, Option<[f64; 2]>)) {
+    let centre_ok = match (got.3, want.3) {
+        (Some(a), Some(b)) => near(a[0], b[0]) && near(a[1], b[1]),
+        (None, None) => true,
+        _ => false,
+    };
+    assert!(
+        got.0 == want.0 && near(got.1, want.1) && near(got.2, want.2) && centre_ok,
+        "got {got:?}, want {want:?}"
+    );
+}
+
 #[test]
-fn an_entry_arc_keeps_its_centre_and_ends_the_radius_from_its_programmed_end() {
-    // G41 (tool left), r = 1, counter-clockwise about (10, 0): the tool is inside the arc. The
-    // programmed end (10, 11) is 11 from the centre; the tool ends 1 nearer, at (10, 10), on
-    // the start's radius (10): LinuxCNC's ARC_FEED(10, 10, 10, 0, 1).
-    let rec = read("G21 G90 F100\nG0 X0 Y0\nG41.1 D2\nG3 X10 Y11 I10 J0\nG1 X0\nG40 G1 X-5\nM2\n")
-        .unwrap();
-    let m = moves(&rec);
-    assert_eq!(m.len(), 4, "{m:?}");
-    assert_move(m[1], "A+", 10.0, 10.0, Some([10.0, 0.0]));
-    // The arc ends going −X, as the next line does (tangent): the line is offset to y = 10.
-    assert_move(m[2], "L", 0.0, 10.0, None);
+fn an_entry_arc_is_made_round_about_a_centre_moved_to_be_as_far_from_its_start_as_its_end() {
+    // LinuxCNC's `convert_arc_comp1`: the tool ends r from the programmed end along the radius
+    // (towards the programmed centre with the tool inside), then the centre moves along that
+    // radius to where it is as far from the start as from the new end. The expected numbers
+    // are rs274's (LinuxCNC 2.9) canonical calls for each program.
+    let path = |src: &str| moves(&read(src).unwrap())[1..].to_vec();
 
-    // Clockwise with the tool on the left: outside. End radius 9 + 1 = the start's 10.
-    let rec = read("G21 G90 F100\nG0 X0 Y0\nG41.1 D2\nG2 X10 Y-9 I10 J0\nM2\n").unwrap();
-    assert_move(moves(&rec)[1], "A-", 10.0, -10.0, Some([10.0, 0.0]));
+    // R format, G2 with the tool on the left (outside), r = 1: the centre (5, 0) through the
+    // current point and the programmed end moves to (5.3667, 0.4889).
+    let m = path("G21 G90 F100\nG0 X0 Y0 Z0\nG41.1 D2\nG2 X8 Y4 R5\nG40 G1 X12 Y0\nM2\n");
+    assert_rs274(m[0], ("A-", 8.6, 4.8, Some([5.3667, 0.4889])));
+    assert_rs274(m[1], ("L", 12.0, 0.0, None));
 
-    // R form: the centre through the current point and the programmed end, (0, 10) for a
-    // counter-clockwise quarter from (0, 0) to (10, 10); the tool (inside) ends 1 nearer the
-    // centre, at (9, 10): the arc goes from radius 10 to radius 9, as LinuxCNC emits it.
-    let rec = read("G21 G90 F100\nG0 X0 Y0\nG41.1 D2\nG3 X10 Y10 R10\nM2\n").unwrap();
-    assert_move(moves(&rec)[1], "A+", 9.0, 10.0, Some([0.0, 10.0]));
+    // The same arc by I J K: start and end radii are both 5 (LinuxCNC's `arc_data_comp_ijk`
+    // compares the programmed radii); a concave corner then cuts it back onto x = 7.
+    let m =
+        path("G21 G90 F100\nG0 X0 Y0 Z0\nG41.1 D2\nG2 X8 Y4 I5 J0\nG1 X8 Y10\nG40 G1 X0 Y10\nM2\n");
+    assert_rs274(m[0], ("A-", 7.0, 5.6243, Some([5.3667, 0.4889])));
+    assert_rs274(m[1], ("L", 7.0, 10.0, None));
+    assert_rs274(m[2], ("L", 0.0, 10.0, None));
 
-    // G18 (Z first, X second): G41 counter-clockwise about (Z 0, X 10) seen from +Y.
-    let rec = read("G21 G90 F100 G18\nG0 X0 Z0\nG41.1 D2\nG3 X10 Z-11 I10 K0\nM2\n").unwrap();
-    let arc = rec
+    // A half circle with the tool inside: end radius 5 − 1, the centre moves to (4.5, 0).
+    let m = path(
+        "G21 G90 F100\nG0 X0 Y0 Z0\nG41.1 D2\nG3 X10 Y0 I5 J0\nG1 X10 Y10\nG40 G1 X0 Y10\nM2\n",
+    );
+    assert_rs274(m[0], ("A+", 9.0, 0.0, Some([4.5, 0.0])));
+    assert_rs274(m[1], ("L", 9.0, 10.0, None));
+
+    // R format with the tool inside: the centre (0, 10) moves to (−1.0556, 10).
+    let m = path("G21 G90 F100\nG0 X0 Y0\nG41.1 D2\nG3 X10 Y10 R10\nM2\n");
+    assert_rs274(m[0], ("A+", 9.0, 10.0, Some([-1.0556, 10.0])));
+
+    // G18: plane coordinates (Z, X). The centre (Z 0, X 10) moves to (Z 1.0556, X 10).
+    let rec =
+        read("G21 G90 F100 G18\nG0 X0 Z0\nG41.1 D2\nG3 X10 Z-10 I10 K0\nG1 X20\nM2\n").unwrap();
+    let arcs: Vec<_> = rec
         .events
         .iter()
-        .find_map(|(_, e)| match e {
-            OwnedCanon::Arc { end, center, .. } => Some((*end, *center)),
+        .filter_map(|(_, e)| match e {
+            OwnedCanon::Arc { end, center, .. } => Some((end.z, end.x, *center)),
             _ => None,
         })
-        .unwrap();
-    // The centre (Z 0, X 10); the end 11 from it along −Z, the tool 1 nearer or farther.
-    assert!(close(arc.1[0], 0.0) && close(arc.1[1], 10.0), "{arc:?}");
-    assert!(close(arc.0.x, 10.0), "{arc:?}");
+        .collect();
+    let (z, x, c) = arcs[0];
     assert!(
-        close(arc.0.z.abs(), 10.0) || close(arc.0.z.abs(), 12.0),
-        "{arc:?}"
-    );
-    let r_start = 10.0;
-    let r_end = (arc.0.z - arc.1[0]).hypot(arc.0.x - arc.1[1]);
-    assert!(
-        close(r_end, r_start),
-        "the IJK entry arc keeps its radius: {r_end}"
+        near(z, -9.0) && near(x, 10.0) && near(c[0], 1.0556) && near(c[1], 10.0),
+        "{arcs:?}"
     );
 }
 
@@ -122,12 +143,18 @@ fn entry_arc_errors_are_linuxcncs() {
         ),
         "{e}"
     );
-    // The end radius less r (inside) is 9, the start radius 10.
-    let e = err("G21 F100\nG41.1 D2\nG3 X10 Y10 I10 J0\nM2\n");
+    // Start radius 10, end radius 11: refused as any arc is (rs274 too).
+    let e = err("G21 F100\nG41.1 D2\nG3 X10 Y11 I10 J0\nM2\n");
     assert_eq!((e.pos.line, e.pos.column), (3, 1));
     assert!(e.message.contains("radius to end of arc differs"), "{e}");
-    // Inside an arc of radius 1 with a tool of radius 2 (end radius 1 + 2).
-    let e = err("G21 F100\nG41.1 D4\nG3 X1 Y3 I1 J0\nM2\n");
+    // Inside an arc of radius 1.5 with a tool of radius 2.
+    let e = err("G21 F100\nG41.1 D4\nG3 X3 Y0 I1.5 J0\nM2\n");
+    assert!(e.message.contains("not less than the arc radius"), "{e}");
+    // The offset end (1.8, 2.4) sees the start and the centre (5, 0) at a right angle: no
+    // centre on that radius is as far from both (rs274: "Tool radius not less than arc radius
+    // with comp").
+    let e = err("G21 F100\nG41.1 D2\nG3 X1 Y3 I5 J0\nM2\n");
+    assert_eq!((e.pos.line, e.pos.column), (3, 1));
     assert!(e.message.contains("not less than the arc radius"), "{e}");
     // R form: |R| = 2 with a tool of radius 2, inside.
     let e = err("G21 F100\nG41.1 D4\nG3 X4 Y0 R2\nM2\n");

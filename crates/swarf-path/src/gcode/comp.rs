@@ -5,29 +5,38 @@
 //! The tool runs at the compensation radius `r` to the left (G41) or right (G42) of the
 //! programmed contour, looking along the motion; a negative radius swaps the sides.
 //!
-//! * **Entry**: the first move with an XY (plane) component after G41/G42 ends `r` from its
-//!   programmed end: a straight line perpendicular to it, and must be longer than `r`; an arc
-//!   (`convert_arc_comp1`) keeps its centre (found from the current point: I J K, or R through
-//!   the current point and the programmed end) and ends on the ray from the centre through
-//!   the programmed end, `r` nearer the centre (tool inside) or farther; its end must be more
-//!   than `r` from its start ("radius of cutter compensation entry arc is not greater than the
-//!   tool radius"), and I J K must give an end radius, less or plus `r`, within the arc
-//!   tolerance of the start radius (`arc_data_comp_ijk`).
+//! * **Entry**: the first move after G41/G42 ends `r` from its programmed end. A straight
+//!   one (which must move in the plane, and be longer than `r`) ends on the normal to it. An
+//!   arc (`convert_arc_comp1`; its end must be more than `r` from its start, and its I J K are
+//!   checked as any arc's, programmed radius against programmed radius) ends on the radius
+//!   through its programmed end, `r` nearer the centre (tool inside) or farther, and its
+//!   centre moves along that radius to where it is as far from the start as from the new end,
+//!   so the entry arc is round. (Fanuc: the entry starts at the first move in the plane; an
+//!   entry arc is alarm 034.)
 //! * **Zero radius** (`G41 D0`, `G41.1 D0`): compensation is on (the side is set: G20, another
 //!   G41, G92 … are refused as with any radius) but moves are not offset.
 //! * **Corners**: the compensated move is held back (queued with every event that follows it)
-//!   until the next move shows the corner. With `θ` the direction from the programmed corner to
-//!   the tool, `α` the new move's start direction and `β` the angle between them less 90°
-//!   (LinuxCNC's quantities), a convex corner (`β > small`) gets an arc about the programmed
-//!   corner from the tool to the new move's offset start; a concave corner (`β < −small`,
-//!   `β > π + small`, or the "h" shape after an arc) moves the held move's end back to where it
-//!   meets the new offset move and flushes it; a near-tangent corner is flushed as it is.
-//!   `small` is LinuxCNC's `TOLERANCE_CONCAVE_CORNER`, 0.05 rad.
+//!   until the next move shows the corner (`convert_straight_comp2`, `convert_arc_comp2`),
+//!   with LinuxCNC's quantities: `θ` from the programmed corner to the tool, `α` the new move's
+//!   start direction, `β` the turn between them less 90°. A convex corner (`β > small`) gets
+//!   an arc about the programmed corner to the new move's offset start (a straight traverse
+//!   before a rapid); at a concave corner (`β < −small`, `β > π + small`, an "h" after an arc
+//!   with the tool outside, or a tangent arc with the tool outside) the held move's end moves
+//!   back to where LinuxCNC's formulas put it — line to line by the half corner's cotangent,
+//!   arc to line, line to arc and arc to arc by its triangles, the first two of which take
+//!   the tool to sit square to the programmed corner, `r` along the held arc's radius or
+//!   normal to the held line (not so after an entry move, whose tool path is not parallel to
+//!   its programmed one: the cut-back then lands off the exact crossing, as LinuxCNC's does);
+//!   of two crossings the turns choose, not the distance (a full circle keeps its turn). The
+//!   moved end is checked as `move_endpoint_and_flush` checks it: a line must not turn against
+//!   the direction it was queued with (the entry line's is its normal), an arc not sweep
+//!   farther than it was made to. A near-tangent corner is flushed as it is. `small` is
+//!   LinuxCNC's `TOLERANCE_CONCAVE_CORNER`, 0.05 rad.
 //! * **Arcs** keep their centre; the tool runs on the radius `R + r` (outside) or `R − r`
-//!   (inside, an error when `R ≤ r`).
-//! * **Exit**: after G40 the held move is flushed, the interpreter's position is the
-//!   programmed one, and the next move (straight: an arc is an error) goes from the
-//!   compensated position to its programmed end.
+//!   (inside, an error when the end radius `R ≤ r`).
+//! * **Exit**: after G40 the held move is flushed (checked as a moved end), the interpreter's
+//!   position is the programmed one, and the next move (straight: an arc is an error) goes
+//!   from the compensated position to its programmed end.
 //!
 //! The interpreter's position (`Interp::p`) stays the *programmed* one while compensation is
 //! on, so incremental words, arc centres and parameters read as LinuxCNC's do; the tool's
@@ -39,11 +48,15 @@ use super::block::{group, slot, Block};
 use super::interp::Interp;
 use super::{Fault, Res, Span};
 use crate::canon::OwnedCanon;
-use crate::{Axes, Canon, CanonSink, PathErrorKind, Plane};
+use crate::{Axes, Canon, CanonSink, PathErrorKind, Plane, Units};
 
 /// LinuxCNC's `TOLERANCE_CONCAVE_CORNER` (radians): corners within this of tangent get neither
 /// an arc nor a cut-back.
 const SMALL: f64 = 0.05;
+
+/// LinuxCNC's `TOLERANCE_EQUAL`: below this the cosine of the entry arc's triangle angle reads
+/// as zero (`convert_arc_comp1`).
+const TOLERANCE_EQUAL: f64 = 0.0001;
 
 /// Which side of the contour the tool runs on.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -54,19 +67,27 @@ pub(crate) enum Side {
     Right,
 }
 
-/// The compensated move held back until the next one shows its corner.
+/// The compensated move held back until the next one shows its corner (LinuxCNC's queue front,
+/// with its `endpoint`).
 #[derive(Clone, Copy, Debug)]
 struct Held {
-    /// Where the tool starts it (plane coordinates, mm).
+    /// Where the tool starts it (plane coordinates, mm): LinuxCNC's `endpoint`.
     start: [f64; 2],
+    /// False when LinuxCNC's `endpoint` is not valid (the entry arc's: `convert_arc_comp1` sets
+    /// none), which skips the checks of a moved end.
+    start_known: bool,
     /// Where it ends now (moved back at a concave corner).
     end: [f64; 2],
     /// Its centre and turn (positive counter-clockwise), for an arc.
     arc: Option<([f64; 2], i32)>,
+    /// For an arc, its sweep (radians, signed) as queued: `original_turns`, from the
+    /// programmed start and end (from the tool's start and end for the entry arc).
+    sweep: f64,
     /// A rapid (LinuxCNC words its error differently).
     rapid: bool,
-    /// For a line, its programmed direction: a cut-back retreats along it (for the entry move
-    /// it is not the direction the tool moves in).
+    /// For a line, the direction LinuxCNC queues with it (the programmed direction; for the
+    /// entry move the normal to it, towards the tool): a moved end that goes against it is a
+    /// gouge.
     dir: [f64; 2],
 }
 
@@ -111,68 +132,37 @@ fn dist(a: [f64; 2], b: [f64; 2]) -> f64 {
     (a[0] - b[0]).hypot(a[1] - b[1])
 }
 
-/// Intersections of the line through `p` along `d` with the circle (`c`, `r`).
-fn line_circle(p: [f64; 2], d: [f64; 2], c: [f64; 2], r: f64) -> Vec<[f64; 2]> {
-    let len = d[0].hypot(d[1]);
-    if len == 0.0 {
-        return Vec::new();
+/// LinuxCNC's `find_turn`: the signed sweep (radians) of an arc of `turn` turns from `p1` to
+/// `p2` about `c` (a whole turn when they coincide).
+fn find_turn(p1: [f64; 2], c: [f64; 2], turn: i32, p2: [f64; 2]) -> f64 {
+    if turn == 0 {
+        return 0.0;
     }
-    let u = [d[0] / len, d[1] / len];
-    let w = sub(p, c);
-    let b = w[0] * u[0] + w[1] * u[1];
-    let disc = b * b - (w[0] * w[0] + w[1] * w[1] - r * r);
-    if disc < 0.0 {
-        return Vec::new();
-    }
-    let s = disc.sqrt();
-    [-b - s, -b + s]
-        .iter()
-        .map(|t| [p[0] + t * u[0], p[1] + t * u[1]])
-        .collect()
-}
-
-/// Intersections of two circles.
-fn circle_circle(c1: [f64; 2], r1: f64, c2: [f64; 2], r2: f64) -> Vec<[f64; 2]> {
-    let d = dist(c1, c2);
-    if d == 0.0 || d > r1 + r2 || d < (r1 - r2).abs() {
-        return Vec::new();
-    }
-    let a = (r1 * r1 - r2 * r2 + d * d) / (2.0 * d);
-    let h = (r1 * r1 - a * a).max(0.0).sqrt();
-    let u = [(c2[0] - c1[0]) / d, (c2[1] - c1[1]) / d];
-    let m = [c1[0] + a * u[0], c1[1] + a * u[1]];
-    vec![
-        [m[0] - h * u[1], m[1] + h * u[0]],
-        [m[0] + h * u[1], m[1] - h * u[0]],
-    ]
-}
-
-/// The sweep (radians, in `0..2π`, in the arc's own direction) from `from` to `to` about `c`.
-fn sweep(c: [f64; 2], from: [f64; 2], to: [f64; 2], turn: i32) -> f64 {
-    let d = angle(sub(to, c)) - angle(sub(from, c));
-    let d = if turn > 0 { d } else { -d };
-    d.rem_euclid(TAU)
-}
-
-/// A new compensated move in plane coordinates: programmed start and end, and for an arc its
-/// centre and turn.
-#[derive(Clone, Copy, Debug)]
-pub(crate) struct PlaneMove {
-    pub(crate) start: [f64; 2],
-    pub(crate) end: [f64; 2],
-    pub(crate) arc: Option<([f64; 2], i32)>,
-}
-
-impl PlaneMove {
-    /// The direction of motion at the start (radians).
-    fn start_direction(&self) -> f64 {
-        match self.arc {
-            None => angle(sub(self.end, self.start)),
-            Some((c, turn)) => {
-                angle(sub(self.start, c)) + if turn > 0 { FRAC_PI_2 } else { -FRAC_PI_2 }
-            }
+    let mut alpha = angle(sub(p1, c));
+    let mut beta = angle(sub(p2, c));
+    if turn > 0 {
+        if beta <= alpha {
+            beta += TAU;
         }
+        beta - alpha + f64::from(turn - 1) * TAU
+    } else {
+        if alpha <= beta {
+            alpha += TAU;
+        }
+        beta - alpha + f64::from(turn + 1) * TAU
     }
+}
+
+/// LinuxCNC's `TOOL_INSIDE_ARC`: the tool on the side of the arc's centre.
+fn tool_inside(side: Side, turn: i32) -> bool {
+    (side == Side::Left && turn > 0) || (side == Side::Right && turn < 0)
+}
+
+/// A new compensated move's programmed start and end in plane coordinates.
+#[derive(Clone, Copy, Debug)]
+struct PlaneMove {
+    start: [f64; 2],
+    end: [f64; 2],
 }
 
 impl Comp {
@@ -221,7 +211,9 @@ impl Interp<'_, '_> {
                 // the programmed one (the tool stays where it is until the next move, which
                 // goes from there to its programmed end, so incremental words and parameters
                 // count from the contour), and that move must be straight — once a compensated
-                // move was made (LinuxCNC leaves the rest alone before the first one).
+                // move was made (LinuxCNC leaves the rest alone before the first one). The held
+                // move is flushed where it ends, checked as a moved end is.
+                self.comp_move_end_and_flush(self.comp.tool, span)?;
                 self.comp_flush();
                 self.comp.side = None;
                 self.arc_not_allowed = !self.comp.first && self.comp.radius > 0.0;
@@ -346,8 +338,10 @@ impl Interp<'_, '_> {
         }
         let h = self.comp.held.unwrap_or(Held {
             start: self.comp.tool,
+            start_known: false,
             end: self.comp.tool,
             arc: None,
+            sweep: 0.0,
             rapid: false,
             dir: [0.0; 2],
         });
@@ -411,13 +405,15 @@ impl Interp<'_, '_> {
         let mv = PlaneMove {
             start: self.plane_of(&self.p),
             end: self.plane_of(&end),
-            arc,
         };
         let side = self.comp.side.expect("called with compensation on");
         let r = self.comp.radius;
-        if arc.is_none() && mv.start == mv.end {
+        let plane_still = arc.is_none() && mv.start == mv.end;
+        if plane_still && (self.fanuc || !self.comp.first) {
             // No motion in the plane: the tool moves along the plane's normal (and rotary
-            // axes) where it is; corners are judged without it.
+            // axes) where it is; corners are judged without it. (A LinuxCNC entry move must
+            // move in the plane: `convert_straight_comp1` refuses it below; a Fanuc control
+            // starts up at the first block that does.)
             let p = self.with_plane(&end, self.comp.tool);
             let e = if rapid {
                 Canon::Traverse {
@@ -432,11 +428,6 @@ impl Interp<'_, '_> {
             self.p = end;
             return Ok(());
         }
-        let normal = if side == Side::Left {
-            FRAC_PI_2
-        } else {
-            -FRAC_PI_2
-        };
         if self.comp.first {
             if let Some((c, turn)) = arc {
                 return self.comp_entry_arc(end, span, c, turn);
@@ -461,28 +452,62 @@ impl Interp<'_, '_> {
                     "length of cutter compensation entry move is not greater than the tool radius",
                 ));
             }
-            let a = angle(sub(mv.end, from)) + normal;
+            // LinuxCNC's `convert_straight_comp1`: the move queues the normal (towards the
+            // tool) as its direction, which a later cut-back is tested against.
+            let a = angle(sub(mv.end, from))
+                + if side == Side::Left {
+                    FRAC_PI_2
+                } else {
+                    -FRAC_PI_2
+                };
             let to = polar(mv.end, r, a);
             self.comp.first = false;
-            self.comp_hold(end, to, from, None, rapid, sub(mv.end, from));
+            self.comp_hold(
+                end,
+                Held {
+                    start: from,
+                    start_known: true,
+                    end: to,
+                    arc: None,
+                    sweep: 0.0,
+                    rapid,
+                    dir: [a.cos(), a.sin()],
+                },
+            );
             return Ok(());
         }
-        let corner = mv.start;
+        match arc {
+            None => self.comp_straight(end, span, mv, rapid),
+            Some((c, turn)) => self.comp_arc(end, span, mv, c, turn),
+        }
+    }
+
+    /// A straight move after the entry move: LinuxCNC's `convert_straight_comp2`, its
+    /// quantities and formulas (`θ` the direction from the programmed corner to the tool, `α`
+    /// the move's, `β` the turn between the previous move and this one less 90°).
+    fn comp_straight(&mut self, end: [f64; 6], span: Span, mv: PlaneMove, rapid: bool) -> Res<()> {
+        let side = self.comp.side.expect("called with compensation on");
+        let r = self.comp.radius;
+        let op = mv.start;
         let tool = self.comp.tool;
-        let mut alpha = mv.start_direction();
-        let mut theta = angle(sub(tool, corner));
-        let beta = if side == Side::Left {
+        let mut theta = angle(sub(tool, op));
+        let mut alpha = angle(sub(mv.end, op));
+        let (beta, gamma) = if side == Side::Left {
             if theta < alpha {
                 theta += TAU;
             }
-            theta - alpha - FRAC_PI_2
+            (theta - alpha - FRAC_PI_2, FRAC_PI_2)
         } else {
             if alpha < theta {
                 alpha += TAU;
             }
-            alpha - theta - FRAC_PI_2
+            (alpha - theta - FRAC_PI_2, -FRAC_PI_2)
         };
+        let to = polar(mv.end, r, alpha + gamma);
+        let mid = polar(op, r, alpha + gamma);
         let held = self.comp.held;
+        // The "h" shape: round an arc with the tool outside it, then straight on alongside;
+        // LinuxCNC stays above and beside rather than loop around.
         let h_shape = beta > PI - SMALL
             && held.is_some_and(|h| {
                 h.arc.is_some_and(|(_, turn)| {
@@ -490,133 +515,278 @@ impl Interp<'_, '_> {
                 })
             });
         let concave = !(-SMALL..=PI + SMALL).contains(&beta) || h_shape;
-        let offset_start = polar(corner, r, alpha + normal);
-        // The new move's offset geometry: a line through its offset start, or a circle.
-        let new_circle = match arc {
-            None => None,
-            Some((c, turn)) => {
-                let inside = (side == Side::Left) == (turn > 0);
-                let rad = dist(mv.start, c);
-                if inside && rad <= r {
-                    return Err(Fault::semantic(
-                        span,
-                        format!(
-                            "tool radius ({r:.4} mm) not less than the arc radius ({rad:.4} mm) \
-                             with cutter radius compensation"
-                        ),
-                    ));
-                }
-                // The compensated arc is the circle through its end (its canonical form).
-                let rad_end = dist(mv.end, c);
-                Some((
-                    c,
-                    if inside { rad_end - r } else { rad_end + r },
-                    turn,
-                    inside,
-                ))
-            }
-        };
         let start = if !concave && beta > SMALL {
-            // Convex corner: an arc about the programmed corner.
+            // Convex: around the programmed corner to the new move's offset start (a rapid
+            // goes there straight: there is no arc traverse).
+            self.comp_move_end_and_flush(tool, span)?;
+            let p = self.corner_point(&end, mid);
+            let e = if rapid {
+                Canon::Traverse { end: p }
+            } else {
+                Canon::Arc {
+                    end: p,
+                    center: op,
+                    rotation: if side == Side::Left { -1 } else { 1 },
+                    plane: self.plane,
+                }
+            };
+            self.emit(e);
+            mid
+        } else if concave {
+            let x = match held {
+                None => {
+                    // Nothing held (LinuxCNC reads an empty queue here): flushed as it is.
+                    self.comp_flush();
+                    tool
+                }
+                Some(Held { arc: None, .. }) => {
+                    // Line to line: back along the held move by the half corner's cotangent.
+                    let half = (beta + PI) / 2.0;
+                    if half == 0.0 {
+                        return Err(Fault::semantic(
+                            span,
+                            "zero degree inside corner is invalid for cutter compensation",
+                        ));
+                    }
+                    polar(tool, r / half.tan(), theta + gamma)
+                }
+                Some(Held {
+                    arc: Some((pc, pturn)),
+                    end: pe,
+                    ..
+                }) => {
+                    // Arc to line: the held arc (compensated) meets the new offset line where
+                    // LinuxCNC's triangle puts it (taking the programmed corner `r` from the
+                    // tool's end, along its radius).
+                    let oldrad = dist(pc, pe);
+                    let base = angle(sub(mv.end, op));
+                    let th = if pturn > 0 {
+                        base + FRAC_PI_2
+                    } else {
+                        base - FRAC_PI_2
+                    };
+                    let phi = angle(sub(pc, op));
+                    let inside = tool_inside(side, pturn);
+                    let uncomp = if inside { oldrad + r } else { oldrad - r };
+                    let d = uncomp * (th - phi).cos();
+                    let l = if inside { d - r } else { d + r } / oldrad;
+                    if !(-1.0..=1.0).contains(&l) {
+                        return Err(Fault::semantic(
+                            span,
+                            "arc to straight motion makes a corner the compensated tool can't fit \
+                             in without gouging",
+                        ));
+                    }
+                    let a = if inside == (pturn > 0) {
+                        -l.acos()
+                    } else {
+                        l.acos()
+                    };
+                    polar(pc, oldrad, a + th + PI)
+                }
+            };
+            if held.is_some() {
+                self.comp_move_end_and_flush(x, span)?;
+            }
+            x
+        } else {
+            // Tangent, or colinear.
             self.comp_flush();
-            // The corner arc keeps the other axes where the tool is (LinuxCNC: current Z).
-            let p = self.with_plane(&self.p, offset_start);
-            let turn = if side == Side::Left { -1 } else { 1 };
+            tool
+        };
+        self.comp_hold(
+            end,
+            Held {
+                start,
+                start_known: true,
+                end: to,
+                arc: None,
+                sweep: 0.0,
+                rapid,
+                dir: sub(mv.end, op),
+            },
+        );
+        Ok(())
+    }
+
+    /// An arc after the entry move, about the programmed centre `c`: LinuxCNC's
+    /// `convert_arc_comp2`.
+    fn comp_arc(
+        &mut self,
+        end: [f64; 6],
+        span: Span,
+        mv: PlaneMove,
+        c: [f64; 2],
+        turn: i32,
+    ) -> Res<()> {
+        let side = self.comp.side.expect("called with compensation on");
+        let r = self.comp.radius;
+        let op = mv.start;
+        let tool = self.comp.tool;
+        let arc_radius = dist(c, mv.end);
+        let theta = angle(sub(tool, op))
+            + if side == Side::Left {
+                -FRAC_PI_2
+            } else {
+                FRAC_PI_2
+            };
+        let mut delta = angle(sub(c, op));
+        let alpha = if turn > 0 {
+            delta - FRAC_PI_2
+        } else {
+            delta + FRAC_PI_2
+        };
+        let mut beta = if side == Side::Left {
+            theta - alpha
+        } else {
+            alpha - theta
+        };
+        if beta > 1.5 * PI {
+            beta -= TAU;
+        } else if beta < -FRAC_PI_2 {
+            beta += TAU;
+        }
+        let inside = tool_inside(side, turn);
+        let gamma = if inside {
+            if arc_radius <= r {
+                return Err(Fault::semantic(
+                    span,
+                    format!(
+                        "tool radius ({r:.4} mm) not less than the arc radius ({arc_radius:.4} \
+                         mm) with cutter radius compensation"
+                    ),
+                ));
+            }
+            angle(sub(c, mv.end))
+        } else {
+            delta += PI;
+            angle(sub(mv.end, c))
+        };
+        let to = polar(mv.end, r, gamma);
+        let concave = !(-SMALL..=PI + SMALL).contains(&beta)
+            // A tangent reversal onto an arc with the tool outside it (atop the middle of an
+            // "m", or of an "h"): LinuxCNC takes it as concave.
+            || ((beta - PI).abs() < SMALL && !inside);
+        let start = if concave {
+            let x = match self.comp.held {
+                None => {
+                    // Nothing held (LinuxCNC reads an empty queue here): flushed as it is.
+                    self.comp_flush();
+                    tool
+                }
+                Some(Held { arc: None, .. }) => {
+                    // Line to arc.
+                    let cy = arc_radius * (beta - FRAC_PI_2).sin();
+                    let (d, toward) = if inside {
+                        (arc_radius - r, cy + r)
+                    } else {
+                        (arc_radius + r, cy - r)
+                    };
+                    let l = toward / d;
+                    if !(-1.0..=1.0).contains(&l) {
+                        return Err(Fault::semantic(
+                            span,
+                            "arc move in concave corner cannot be reached by the tool without \
+                             gouging",
+                        ));
+                    }
+                    let a = match (inside, turn > 0) {
+                        (true, true) => theta + l.asin(),
+                        (true, false) => theta - l.asin(),
+                        (false, true) => theta + PI - l.asin(),
+                        (false, false) => theta + PI + l.asin(),
+                    };
+                    polar(c, d, a)
+                }
+                Some(Held {
+                    arc: Some((pc, pturn)),
+                    end: pe,
+                    ..
+                }) => {
+                    // Arc to arc: where the two compensated circles meet, on the side the
+                    // turns give.
+                    let oldrad = dist(pc, pe);
+                    let newrad = if inside {
+                        arc_radius - r
+                    } else {
+                        arc_radius + r
+                    };
+                    let cc = dist(pc, c);
+                    if oldrad == 0.0 || cc == 0.0 {
+                        return Err(Fault::semantic(
+                            span,
+                            "arc to arc motion is invalid because the arcs have the same center",
+                        ));
+                    }
+                    let a = (oldrad * oldrad + cc * cc - newrad * newrad) / (2.0 * oldrad * cc);
+                    if !(-1.0..=1.0).contains(&a) {
+                        return Err(Fault::semantic(
+                            span,
+                            "arc to arc motion makes a corner the compensated tool can't fit in \
+                             without gouging",
+                        ));
+                    }
+                    let pullback = a.acos();
+                    let cc_dir = angle(sub(c, pc));
+                    let dir = if tool_inside(side, pturn) == (turn > 0) {
+                        cc_dir + pullback
+                    } else {
+                        cc_dir - pullback
+                    };
+                    polar(pc, oldrad, dir)
+                }
+            };
+            if self.comp.held.is_some() {
+                self.comp_move_end_and_flush(x, span)?;
+            }
+            x
+        } else if beta > SMALL {
+            // Convex: around the programmed corner to the arc's offset start.
+            let mid = polar(op, r, delta);
+            self.comp_flush();
             let e = Canon::Arc {
-                end: Axes::from_array(p),
-                center: corner,
-                rotation: turn,
+                end: self.corner_point(&end, mid),
+                center: op,
+                rotation: if side == Side::Left { -1 } else { 1 },
                 plane: self.plane,
             };
             self.emit(e);
-            offset_start
-        } else if concave {
-            let Some(h) = held else {
-                self.comp_flush();
-                return self.comp_continue(end, tool, new_circle, mv, r, normal, rapid);
-            };
-            let hits = match (h.arc, new_circle) {
-                (None, None) => {
-                    let d1 = h.dir;
-                    let d2 = sub(mv.end, mv.start);
-                    let den = d1[0] * d2[1] - d1[1] * d2[0];
-                    if den == 0.0 {
-                        vec![h.end]
-                    } else {
-                        let w = sub(offset_start, h.end);
-                        let s = (w[0] * d2[1] - w[1] * d2[0]) / den;
-                        vec![[h.end[0] + s * d1[0], h.end[1] + s * d1[1]]]
-                    }
-                }
-                (None, Some((c, rad, ..))) => line_circle(h.end, h.dir, c, rad),
-                (Some((c, _)), None) => {
-                    line_circle(offset_start, sub(mv.end, mv.start), c, dist(h.end, c))
-                }
-                (Some((c1, _)), Some((c2, rad2, ..))) => {
-                    circle_circle(c1, dist(h.end, c1), c2, rad2)
-                }
-            };
-            if hits.is_empty() {
-                let what = match (h.arc.is_some(), arc.is_some()) {
-                    (false, true) => "straight to arc",
-                    (true, false) => "arc to straight",
-                    (true, true) => "arc to arc",
-                    (false, false) => "straight to straight",
-                };
-                return Err(Fault::semantic(
-                    span,
-                    format!(
-                        "{what} motion makes a corner the compensated tool can't fit in \
-                         without gouging"
-                    ),
-                ));
-            }
-            // The held move must still go the same way after it is cut back: of the
-            // meeting points, the nearest to its end that it reaches going forward.
-            let forward = |x: [f64; 2]| match h.arc {
-                None => {
-                    let a = sub(x, h.start);
-                    a[0] * h.dir[0] + a[1] * h.dir[1] >= 0.0
-                }
-                Some((c, turn)) => {
-                    // A full circle (its compensated ends apart by rounding: the sweep from
-                    // start to end would read ≈ 0, not 2π) reaches every point.
-                    let full = dist(h.start, h.end) <= 1e-9 * (1.0 + dist(h.start, c));
-                    full || sweep(c, h.start, x, turn) <= sweep(c, h.start, h.end, turn) + 1e-9
-                }
-            };
-            let Some(x) = hits
-                .into_iter()
-                .filter(|&x| forward(x))
-                .min_by(|a, b| dist(*a, h.end).total_cmp(&dist(*b, h.end)))
-            else {
-                let what = match (h.arc, h.rapid) {
-                    (Some(_), _) => "arc move",
-                    (None, true) => "straight traverse",
-                    (None, false) => "straight feed",
-                };
-                return Err(Fault::semantic(
-                    span,
-                    format!(
-                        "{what} in concave corner cannot be reached by the tool without gouging"
-                    ),
-                ));
-            };
-            self.comp_move_held_end(x);
-            self.comp_flush();
-            x
+            mid
         } else {
             self.comp_flush();
             tool
         };
-        self.comp_continue(end, start, new_circle, mv, r, normal, rapid)
+        self.comp_hold(
+            end,
+            Held {
+                start,
+                start_known: true,
+                end: to,
+                arc: Some((c, turn)),
+                sweep: find_turn(op, c, turn, mv.end),
+                rapid: false,
+                dir: [0.0; 2],
+            },
+        );
+        Ok(())
     }
 
-    /// An arc as the entry move (LinuxCNC's `convert_arc_comp1`): its centre `c` is the one
-    /// found from the current point ([`Self::comp_entry_arc_checks`] ran before it was), it
-    /// ends `r` from its programmed end along the ray from the centre (towards the centre when
-    /// the tool is inside the arc), and goes from the current point there about `c`: with an
-    /// R word the two radii differ by `r` (a spiral, as LinuxCNC makes it).
+    /// The end of a corner's arc (or rapid) at `mid` in the plane: the axis along the plane's
+    /// normal where the tool is, the others (rotary, U V W) at the block's end, as LinuxCNC
+    /// enqueues it.
+    fn corner_point(&self, end: &[f64; 6], mid: [f64; 2]) -> Axes {
+        let (_, _, n) = self.plane.axes();
+        let mut p = self.with_plane(end, mid);
+        p[n] = self.p[n];
+        Axes::from_array(p)
+    }
+
+    /// An arc as the entry move (LinuxCNC's `convert_arc_comp1`): `c` is the centre found from
+    /// the current point ([`Self::comp_entry_arc_checks`] ran before it was). The tool ends `r`
+    /// from the programmed end along the ray from `c` (towards `c` when the tool is inside the
+    /// arc), and the arc is made round again: its centre moves along the line from that end
+    /// towards `c` to where it is as far from the start as from the end (the perpendicular
+    /// bisector of the two), so the entry arc is a true arc, not a spiral.
     fn comp_entry_arc(&mut self, end: [f64; 6], span: Span, c: [f64; 2], turn: i32) -> Res<()> {
         if self.fanuc {
             // Fanuc alarm PS0034: no start-up in a circular block.
@@ -650,21 +820,50 @@ impl Interp<'_, '_> {
             angle(sub(end2, c))
         };
         let to = polar(end2, r, gamma);
+        // LinuxCNC's triangle: A the tool's end, B the new centre, C the midpoint of the chord
+        // from the start to A; the angle at A is between the chord and the line from A to `c`.
+        let b_len = dist(from, to) / 2.0;
+        let ab = angle(sub(c, to));
+        let a_ang = angle(sub(from, to)) - ab;
+        if a_ang.cos().abs() < TOLERANCE_EQUAL {
+            // The chord is square to that line: no centre on it is as far from both ends.
+            return Err(Fault::semantic(
+                span,
+                format!(
+                    "tool radius ({r:.4} mm) not less than the arc radius with cutter radius \
+                     compensation: the entry arc's offset end ({:.4}, {:.4}) is square to its \
+                     start and centre, so no arc through both has its centre on the end's radius",
+                    to[0], to[1]
+                ),
+            ));
+        }
+        let centre = polar(to, b_len / a_ang.cos(), ab);
         self.comp.first = false;
-        self.comp_hold(end, to, from, Some((c, turn)), false, [0.0; 2]);
+        self.comp_hold(
+            end,
+            Held {
+                start: from,
+                start_known: false,
+                end: to,
+                arc: Some((centre, turn)),
+                sweep: find_turn(from, centre, turn, to),
+                rapid: false,
+                dir: [0.0; 2],
+            },
+        );
         Ok(())
     }
 
     /// The entry arc's own checks, made before its centre is found (LinuxCNC's order in
     /// `convert_arc_comp1`): its programmed end must be more than the tool radius from the
-    /// current point. Returns what the I J K check adds to the end radius (`−r` with the tool
-    /// inside the arc, `+r` outside: `arc_data_comp_ijk` compares the start radius with the
-    /// offset end's), `None` when the arc is not an entry move.
+    /// current point. Returns what the I J K check adds to the end radius: nothing
+    /// (`arc_data_comp_ijk` compares the programmed radii, from the current point and from the
+    /// programmed end, as `arc_data_ijk` does), `None` also when the arc is not an entry move.
     pub(crate) fn comp_entry_arc_checks(
         &self,
         span: Span,
         end: [f64; 2],
-        clockwise: bool,
+        _clockwise: bool,
     ) -> Res<Option<f64>> {
         let Some(r) = self.comp.entry_radius() else {
             return Ok(None);
@@ -678,8 +877,7 @@ impl Interp<'_, '_> {
                 "radius of cutter compensation entry arc is not greater than the tool radius",
             ));
         }
-        let inside = (self.comp.side == Some(Side::Left)) != clockwise;
-        Ok(Some(if inside { -r } else { r }))
+        Ok(None)
     }
 
     /// LinuxCNC's `arc_data_comp_r` check, before the centre of an R arc under compensation
@@ -703,68 +901,83 @@ impl Interp<'_, '_> {
         Ok(())
     }
 
-    /// Holds the new move: from `start` (plane) to its offset end.
-    #[allow(clippy::too_many_arguments)]
-    fn comp_continue(
-        &mut self,
-        end: [f64; 6],
-        start: [f64; 2],
-        circle: Option<([f64; 2], f64, i32, bool)>,
-        mv: PlaneMove,
-        r: f64,
-        normal: f64,
-        rapid: bool,
-    ) -> Res<()> {
-        match circle {
-            None => {
-                let a = angle(sub(mv.end, mv.start)) + normal;
-                let to = polar(mv.end, r, a);
-                self.comp_hold(end, to, start, None, rapid, sub(mv.end, mv.start));
-            }
-            Some((c, _, turn, inside)) => {
-                let rad_end = dist(mv.end, c);
-                let rad_end = if inside { rad_end - r } else { rad_end + r };
-                let to = polar(c, rad_end, angle(sub(mv.end, c)));
-                self.comp_hold(end, to, start, Some((c, turn)), rapid, [0.0; 2]);
-            }
-        }
-        Ok(())
-    }
-
-    /// Emits (into the queue) the compensated move ending at `to` and holds it.
-    #[allow(clippy::too_many_arguments)]
-    fn comp_hold(
-        &mut self,
-        end: [f64; 6],
-        to: [f64; 2],
-        from: [f64; 2],
-        arc: Option<([f64; 2], i32)>,
-        rapid: bool,
-        dir: [f64; 2],
-    ) {
-        let p = Axes::from_array(self.with_plane(&end, to));
-        let e = match arc {
+    /// Emits (into the queue) the compensated move `h` and holds it; `end` is the block's
+    /// programmed end (the other axes go there).
+    fn comp_hold(&mut self, end: [f64; 6], h: Held) {
+        let p = Axes::from_array(self.with_plane(&end, h.end));
+        let e = match h.arc {
             Some((center, rotation)) => Canon::Arc {
                 end: p,
                 center,
                 rotation,
                 plane: self.plane,
             },
-            None if rapid => Canon::Traverse { end: p },
+            None if h.rapid => Canon::Traverse { end: p },
             None => Canon::Feed { end: p },
         };
         debug_assert!(self.comp.queue.is_empty());
         // Through `emit` (tool bookkeeping), then into the queue.
-        self.comp.held = Some(Held {
-            start: from,
-            end: to,
-            arc,
-            rapid,
-            dir,
-        });
+        self.comp.held = Some(h);
         self.emit(e);
-        self.comp.tool = to;
+        self.comp.tool = h.end;
         self.p = end;
+    }
+
+    /// LinuxCNC's `move_endpoint_and_flush`: the held move now ends at `x`, checked first: an
+    /// arc must not sweep farther than it was made to (by more than 0.0254 rad in a millimetre
+    /// program, 0.001 in an inch one: LinuxCNC's length tolerance read as an angle), nor change
+    /// its radius by more than 0.01 program units; a line must not turn against its queued
+    /// direction.
+    fn comp_move_end_and_flush(&mut self, x: [f64; 2], span: Span) -> Res<()> {
+        let Some(h) = self.comp.held else {
+            return Ok(());
+        };
+        match h.arc {
+            Some((c, turn)) => {
+                let unit = if self.units == Units::Inch { 25.4 } else { 1.0 };
+                let (r1, r2) = (dist(h.end, c), dist(x, c));
+                if (r1 - r2).abs() > 0.01 * unit {
+                    return Err(Fault::semantic(
+                        span,
+                        format!(
+                            "cutter compensation made an arc with mismatched radii ({r1:.4} mm and \
+                             {r2:.4} mm)"
+                        ),
+                    ));
+                }
+                let tolerance = if self.units == Units::Inch {
+                    0.001
+                } else {
+                    0.0254
+                };
+                let swept = find_turn(h.start, c, turn, x);
+                if h.sweep != 0.0 && h.start_known && swept.abs() > h.sweep.abs() + tolerance {
+                    return Err(Fault::semantic(
+                        span,
+                        "arc move in concave corner cannot be reached by the tool without gouging",
+                    ));
+                }
+            }
+            None => {
+                let moved = sub(x, h.start);
+                if h.start_known && h.dir[0] * moved[0] + h.dir[1] * moved[1] < 0.0 {
+                    return Err(Fault::semantic(
+                        span,
+                        format!(
+                            "{} in concave corner cannot be reached by the tool without gouging",
+                            if h.rapid {
+                                "straight traverse"
+                            } else {
+                                "straight feed"
+                            }
+                        ),
+                    ));
+                }
+            }
+        }
+        self.comp_move_held_end(x);
+        self.comp_flush();
+        Ok(())
     }
 
     /// Moves the held move's end in the plane to `x`, and that of every move queued behind it
