@@ -888,8 +888,8 @@ fn read_with(
 /// FANUC 0i-MF "Canned cycle", "Initial level and point R level": the initial level is the Z
 /// where the cycle mode starts (its first block after G80 or a G00–G03 cancel) and it stays
 /// until the cancel, so G98 returns to it after G99 holes; in G91, R is measured from the
-/// initial level and Z from R, for every hole. LinuxCNC keeps its own rule (R from the Z of
-/// each block, G98 back to the higher of that Z and R).
+/// initial level and Z from R, for every hole. LinuxCNC 2.9 keeps an initial level too
+/// (`cycle_il`), but reaches each G98 hole at it (rs274's calls, written in below).
 #[test]
 fn canned_cycles_keep_the_initial_level_until_they_are_cancelled() {
     let src = "%\nO0001\nG0 X0. Y0. Z50.\nG43 H1 Z20.\nG99 G81 X10. Y10. Z-5. R2. F100.\nX20.\n\
@@ -912,10 +912,11 @@ fn canned_cycles_keep_the_initial_level_until_they_are_cancelled() {
         ('R', 20.0, 20.0, 20.0),
     ];
     assert_eq!(moves(src, &GcodeOptions::default()).unwrap(), want);
-    // LinuxCNC: G98 goes back to the Z the block started at (the R level of the G99 hole).
+    // LinuxCNC 2.9 (rs274): the G98 hole is reached at the initial level Z20, from the R
+    // level of the G99 hole, and the tool goes down to R there.
     let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
     let lcnc_src = src.replace("%\nO0001\n", "").replace("%\n", "");
-    *want.last_mut().unwrap() = ('R', 20.0, 20.0, 2.0);
+    want.splice(9..10, [('R', 20.0, 20.0, 20.0), ('R', 20.0, 20.0, 2.0)]);
     assert_eq!(moves(&lcnc_src, &linuxcnc).unwrap(), want);
 
     // G91: R-18. from the initial level Z20 is Z2, Z-7. from R is Z-5 — for the second hole
@@ -936,11 +937,12 @@ fn canned_cycles_keep_the_initial_level_until_they_are_cancelled() {
             ('R', 20.0, 0.0, 50.0),
         ]
     );
-    // LinuxCNC measures R from Z2 for the second hole: R-16, bottom Z-23.
+    // LinuxCNC 2.9 measures R from the initial level Z20 for the second hole too (rs274:
+    // R at Z2, the bottom at Z-5; 2.7 measured from the block's Z2).
     let lcnc_src = "G0 X0 Y0 Z20\nG91 G99 G81 X10 Y0 Z-7 R-18 F100\nX10\nG80\nG90 G0 Z50\nM2\n";
     let m = moves(lcnc_src, &linuxcnc).unwrap();
-    assert_eq!(m[6], ('R', 20.0, 0.0, -16.0), "{m:?}");
-    assert_eq!(m[7], ('L', 20.0, 0.0, -23.0), "{m:?}");
+    assert_eq!(m[5], ('R', 20.0, 0.0, 2.0), "{m:?}");
+    assert_eq!(m[6], ('L', 20.0, 0.0, -5.0), "{m:?}");
 
     // A G0 cancels the cycle mode: the next cycle's initial level is where that leaves the
     // tool (Z30), not the first cycle's (Z20).

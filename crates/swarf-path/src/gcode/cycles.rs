@@ -1,24 +1,30 @@
 //! Canned cycles G73 G74 G81–G89, expanded into traverses, feeds, dwells and spindle events
-//! exactly as LinuxCNC's `convert_cycle_xy`/`_zx`/`_yz` and `CYCLE_MACRO` do, in any plane,
-//! absolute or incremental, with `L` repeats and G98/G99 retract modes.
+//! exactly as LinuxCNC 2.9's `convert_cycle_xy`/`_zx`/`_yz` and `CYCLE_MACRO` do (checked call
+//! for call against its `rs274`), in any plane, absolute or incremental, with `L` repeats,
+//! G98/G99 retract modes and polar holes (`@` `^`, G17 only; in G91 the radius and the angle
+//! grow at every repeat: `G91 G81 ^60 L6` drills a bolt circle).
 //!
 //! Tapping (G84 right hand, G74 left hand) feeds down, reverses the spindle, dwells `P` and
-//! feeds back out at the same feed to the clearance level (R for G99, the starting level for
-//! G98), then restores the spindle. Boring: G86 stops the spindle at the bottom and rapids out;
-//! G88 stops it, pauses (the operator retracts by hand; swarf rapids out) and restarts it; G87
-//! (back boring) moves off by `I`/`J`, stops the spindle, rapids down to the bottom, comes back
-//! to the hole, starts the spindle, feeds up to `K`, feeds back down, stops, moves off again and
-//! rapids out — the twelve steps of the LinuxCNC manual's G87.
+//! feeds back out at the same feed to the clearance level (R for G99, the initial level for
+//! G98), then restores the spindle. Boring: G85 feeds out to R and rapids to the clearance
+//! level; G89 dwells and feeds all the way out to it; G86 stops the spindle at the bottom and
+//! rapids out; G88 stops it and pauses — the operator takes the tool out by hand, so there is
+//! no programmed move out: the tool is put at the clearance level without one
+//! ([`Canon::SetPosition`]) — and restarts it; G87 (back boring) moves off by `I`/`J`, stops
+//! the spindle, rapids down to the bottom, comes back to the hole, starts the spindle, feeds up
+//! to `K` (in G91 counted from the bottom), feeds back down, stops, moves off again and rapids
+//! out — the twelve steps of the LinuxCNC manual's G87.
 //!
 //! In the plane's own coordinates (`aa`, `bb` in the plane, `cc` along its normal — Z for G17):
-//! if the tool starts below the R level it first rises straight to R; then, for each repeat, it
-//! traverses to the hole at the current level, down to R if not there, runs the cycle body, and
-//! retracts to R (G99) or to the starting level (G98).
-//!
-//! The starting level differs: LinuxCNC's is the level of each block (G98 retracts to the
-//! higher of it and R; in G91, R is measured from it), Fanuc's *initial level* is the level where
-//! the cycle mode began, kept until G80 or a G00–G03 cancels the mode (G98 returns to it after
-//! G99 holes; in G91, R is measured from it and the bottom from R, for every hole).
+//! the *initial level* is the level where the cycle mode began, kept until G80 or a G00–G03
+//! cancels the mode (through changes of cycle, retract mode or plane); in G91, R is measured
+//! from it and the bottom from R, for every hole. LinuxCNC: if the initial level is below R
+//! the tool first rises to R where it stands (at every block of the mode, a move of no length
+//! once there); the first hole is reached at the clearance level (R for G99, the higher of the
+//! initial level and R for G98) or where the tool is if higher; then, for each repeat, it goes
+//! down to R if not there, runs the cycle body and retracts to the clearance level. Fanuc
+//! starts from the tool's own level, rising to R if below it, and G98 returns to the higher of
+//! the initial level and R.
 
 use super::block::{group, Block};
 use super::interp::{Interp, AXIS_LETTERS};
@@ -88,6 +94,29 @@ impl Interp<'_, '_> {
         });
     }
 
+    /// LinuxCNC's refusals, at the hole (after the moves to it): tapping needs the spindle
+    /// turning the tap's way, boring needs it turning.
+    fn check_spindle(&self, motion: u16, span: Span) -> Res<()> {
+        let g = motion / 10;
+        let problem = match (motion, self.dir) {
+            (840, SpindleDir::CounterClockwise) => "turning counterclockwise",
+            (740, SpindleDir::Clockwise) => "turning clockwise",
+            (740 | 840 | 860..=880, SpindleDir::Stopped) => "not turning",
+            _ => return Ok(()),
+        };
+        let fix = match motion {
+            840 => "M3 before a right-hand tapping cycle",
+            740 => "M4 before a left-hand tapping cycle",
+            _ => "M3 or M4 before the cycle",
+        };
+        Err(Fault::new(
+            PathErrorKind::Semantic,
+            span,
+            format!("spindle {problem} in G{g} canned cycle"),
+            fix,
+        ))
+    }
+
     /// Runs canned cycle `motion` (G code × 10) for one block; `old_motion` is the motion mode
     /// before the block (a repeated cycle may omit R and the depth).
     pub(crate) fn cycle(&mut self, b: &Block, motion: u16, old_motion: Option<u16>) -> Res<()> {
@@ -118,15 +147,27 @@ impl Interp<'_, '_> {
                 "canned cycles cannot be used in inverse time feed mode (G93)",
             ));
         }
+        // Polar holes (`@` radius, `^` angle, XY plane only): in G90 the hole's place from the
+        // origin, the missing one taken from where the tool is; in G91 increments of the
+        // radius and the angle applied at every repeat (a bolt circle: `G91 G81 ^60 L6`).
         let polar = b.has(b'@') || b.has(b'^');
-        if polar && !(self.absolute && self.plane == Plane::XY) {
+        if polar {
             let c = if b.has(b'@') { b'@' } else { b'^' };
-            return Err(Fault::new(
-                PathErrorKind::Unsupported,
-                b.span(c),
-                "polar coordinates in canned cycles are read in G17 with G90 only",
-                "G17 G90, or X and Y",
-            ));
+            if self.plane != Plane::XY {
+                return Err(Fault::new(
+                    PathErrorKind::Semantic,
+                    b.span(c),
+                    "polar coordinates (@ ^) cannot be used outside the G17 plane",
+                    "G17, or the plane's own axis words",
+                ));
+            }
+            if b.has(b'x') || b.has(b'y') {
+                let c = if b.has(b'x') { b'x' } else { b'y' };
+                return Err(Fault::semantic(
+                    b.span(c),
+                    "X or Y cannot be used with polar coordinates (@ ^)",
+                ));
+            }
         }
         // Fanuc and Haas (4th-axis drilling posts) turn a rotary axis the block names in the
         // cycle's positioning step, with X and Y; LinuxCNC refuses it.
@@ -169,6 +210,15 @@ impl Interp<'_, '_> {
                 ))
             }
         };
+        // LinuxCNC 2.9 leaves G74 out of the codes an L word may go with.
+        if !self.fanuc && motion == 740 && b.has(b'l') {
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                b.span(b'l'),
+                "L word with G74: LinuxCNC repeats no left-hand tapping cycle",
+                "one G74 block per hole",
+            ));
+        }
         // Fanuc counts repeats with K (L on older controls), and K0 / L0 stores the cycle's
         // data without drilling where the tool is.
         let (rw, least) = match self.fanuc {
@@ -287,27 +337,27 @@ impl Interp<'_, '_> {
             let kept = self.cycle.back_bore;
             let (i, j, k) = (need(oi, kept[0])?, need(oj, kept[1])?, need(ok, kept[2])?);
             back_bore_words = [i, j, k];
-            let k = if self.absolute { k } else { self.p[ni] + k };
             (Some((i, j)), k)
         } else {
             (None, 0.0)
         };
-        let mut old_cc = self.p[ni];
-        // Fanuc's initial level: where the cycle mode started (its first block after G80 or a
-        // G00–G03), kept for every later block of the mode — G98 returns to it even after G99
-        // holes, and G91's R counts from it. LinuxCNC counts both from the block's own start.
-        let initial = if self.fanuc {
-            let in_cycle_mode = matches!(old_motion, Some(730 | 740 | 810..=890));
-            let level = match self.initial_level {
-                Some(z) if in_cycle_mode => z,
-                _ => old_cc,
-            };
-            self.initial_level = Some(level);
-            level
-        } else {
-            old_cc
+        // The initial level: the level along the plane's normal where the canned-cycle mode
+        // began (its first block after G80 or a G00–G03), kept for every later block of the
+        // mode, through changes of cycle, retract mode or plane (LinuxCNC's `cycle_il`, Fanuc's
+        // initial point level). A G91 R counts from it. LinuxCNC starts each block's moves at
+        // it (first rising to R where the tool stands when it is below R), so G98 returns to
+        // it after G99 holes; Fanuc starts at the tool's level and returns to the higher of
+        // the initial level and R.
+        let current_cc = self.p[ni];
+        let in_cycle_mode = matches!(old_motion, Some(730 | 740 | 810..=890));
+        let initial = match self.initial_level {
+            Some(z) if in_cycle_mode => z,
+            _ => current_cc,
         };
+        self.initial_level = Some(initial);
+        let mut old_cc = if self.fanuc { current_cc } else { initial };
         let (mut aa, mut bb, aa_inc, bb_inc, r, cc);
+        let (mut radius_inc, mut theta_inc) = (0.0, 0.0);
         if self.absolute {
             aa_inc = 0.0;
             bb_inc = 0.0;
@@ -324,18 +374,31 @@ impl Interp<'_, '_> {
         } else {
             aa_inc = b.get(fl).map_or(0.0, |v| v * self.scale);
             bb_inc = b.get(sl).map_or(0.0, |v| v * self.scale);
+            if polar {
+                radius_inc = b.get(b'@').map_or(0.0, |v| v * self.scale);
+                theta_inc = b.get(b'^').map_or(0.0, f64::to_radians);
+            }
             r = r_word + initial;
             cc = r + cc_word;
             aa = self.p[fi];
             bb = self.p[si];
         }
+        // G87's K: the back bore's level, from the bottom of the hole in G91 (LinuxCNC).
+        let back_bore_k = if self.absolute {
+            back_bore_k
+        } else {
+            cc + back_bore_k
+        };
+        let n = repeats as f64;
         if ![
             aa,
             bb,
             r,
             cc,
-            aa + aa_inc * repeats as f64,
-            bb + bb_inc * repeats as f64,
+            back_bore_k,
+            aa + aa_inc * n,
+            bb + bb_inc * n,
+            aa.hypot(bb) + radius_inc.abs() * n,
         ]
         .iter()
         .all(|v| v.is_finite())
@@ -352,7 +415,8 @@ impl Interp<'_, '_> {
             ));
         }
         // Below the R level: rise to it first, where the tool is (Fanuc's K0 stores the
-        // cycle and moves nothing).
+        // cycle and moves nothing). LinuxCNC asks whether the initial level is below R, and
+        // then rises even from R itself (a move of no length) at every block of the mode.
         if old_cc < r && repeats > 0 {
             let p = self.cycle_point(self.p[fi], self.p[si], r);
             self.emit(Canon::Traverse {
@@ -366,12 +430,31 @@ impl Interp<'_, '_> {
             (false, true) => initial.max(r),
             (false, false) => old_cc,
         };
+        if !self.fanuc {
+            // LinuxCNC goes to the first hole at the clearance level, or where the tool is if
+            // that is higher (after G99 holes, G98 rises to the initial level on the way).
+            old_cc = self.p[ni].max(clear);
+        }
         for k in 0..repeats {
             if k > 0 {
                 self.count_iteration(gspan)?;
             }
             aa += aa_inc;
             bb += bb_inc;
+            if radius_inc != 0.0 || theta_inc != 0.0 {
+                // LinuxCNC's CYCLE_MACRO: the radius increment, then the angle's, each about
+                // the origin from the last hole.
+                if aa == 0.0 && bb == 0.0 {
+                    let c = if b.has(b'@') { b'@' } else { b'^' };
+                    return Err(Fault::semantic(
+                        b.span(c),
+                        "incremental motion with polar coordinates is indeterminate at the origin",
+                    ));
+                }
+                let radius = aa.hypot(bb) + radius_inc;
+                let theta = bb.atan2(aa) + theta_inc;
+                (aa, bb) = (radius * theta.cos(), radius * theta.sin());
+            }
             // The rotary words: an absolute angle, or (G91) an increment for each hole, as X
             // and Y are.
             for (k, v) in rotary.iter().enumerate() {
@@ -382,6 +465,9 @@ impl Interp<'_, '_> {
             self.cyc_traverse(aa, bb, old_cc);
             if old_cc != r {
                 self.cyc_traverse(aa, bb, r);
+            }
+            if !self.fanuc {
+                self.check_spindle(motion, gspan)?;
             }
             match motion {
                 810 => {
@@ -440,20 +526,35 @@ impl Interp<'_, '_> {
                         self.cyc_spindle(down);
                     }
                 }
-                860 | 880 => {
+                860 => {
                     let dir = self.dir;
                     self.cyc_feed(aa, bb, cc);
                     self.emit(Canon::Dwell(dwell));
                     self.cyc_spindle(SpindleDir::Stopped);
-                    if motion == 880 {
-                        self.warn_at(
-                            0,
-                            "G88 pauses for the operator to retract the tool by hand: the \
-                             simulation rapids out"
-                                .into(),
-                        );
-                    }
                     self.cyc_traverse(aa, bb, clear);
+                    self.cyc_spindle(dir);
+                }
+                880 => {
+                    // The control stops (LinuxCNC's PROGRAM_STOP) for the operator to take the
+                    // tool out by hand, and goes on from the clearance level: the program has
+                    // no move out, so the tool is put there without one. (Fanuc's G88, after
+                    // the operator's retract, rapids to the level.)
+                    let dir = self.dir;
+                    self.cyc_feed(aa, bb, cc);
+                    self.emit(Canon::Dwell(dwell));
+                    self.cyc_spindle(SpindleDir::Stopped);
+                    self.warn_at(
+                        0,
+                        "G88 pauses for the operator to retract the tool by hand: the \
+                         simulation takes it straight out to the clearance level"
+                            .into(),
+                    );
+                    if self.fanuc {
+                        self.cyc_traverse(aa, bb, clear);
+                    } else {
+                        let p = self.cycle_point(aa, bb, clear);
+                        self.emit(Canon::SetPosition(Axes::from_array(p)));
+                    }
                     self.cyc_spindle(dir);
                 }
                 870 => {
@@ -473,8 +574,9 @@ impl Interp<'_, '_> {
                     self.cyc_traverse(aa, bb, clear);
                     self.cyc_spindle(dir);
                 }
-                _ => {
-                    // G85 and G89: feed out to R, then rapid to the clearance level if higher.
+                _ if self.fanuc => {
+                    // Fanuc's G85 and G89: feed out to R, then rapid to the initial level
+                    // under G98.
                     self.cyc_feed(aa, bb, cc);
                     if motion == 890 {
                         self.emit(Canon::Dwell(dwell));
@@ -483,6 +585,19 @@ impl Interp<'_, '_> {
                     if clear > r {
                         self.cyc_traverse(aa, bb, clear);
                     }
+                }
+                850 => {
+                    // LinuxCNC's G85: feed out to R, then rapid to the clearance level (a
+                    // move of no length under G99).
+                    self.cyc_feed(aa, bb, cc);
+                    self.cyc_feed(aa, bb, r);
+                    self.cyc_traverse(aa, bb, clear);
+                }
+                _ => {
+                    // LinuxCNC's G89: dwell, then feed all the way out to the clearance level.
+                    self.cyc_feed(aa, bb, cc);
+                    self.emit(Canon::Dwell(dwell));
+                    self.cyc_feed(aa, bb, clear);
                 }
             }
             old_cc = clear;
