@@ -263,6 +263,14 @@ pub enum UnhonouredTrim {
         /// Why its bounds are not a trim.
         why: Arc<TrimFailure>,
     },
+    /// The boundaries of a STEP `CURVE_BOUNDED_SURFACE` (`STEP curve-bounded surface #12
+    /// (why)`).
+    StepBounded {
+        /// The curve-bounded surface's instance number.
+        surface: u64,
+        /// Why its boundaries are not a trim.
+        why: Arc<TrimFailure>,
+    },
     /// An IGES 144 trimmed surface (`IGES 144 at D7 (why)`).
     Iges144 {
         /// The 144's directory entry.
@@ -287,6 +295,7 @@ impl UnhonouredTrim {
     pub fn why(&self) -> &TrimFailure {
         match self {
             UnhonouredTrim::StepFace { why, .. }
+            | UnhonouredTrim::StepBounded { why, .. }
             | UnhonouredTrim::Iges144 { why, .. }
             | UnhonouredTrim::Iges { why, .. } => why,
         }
@@ -301,6 +310,10 @@ impl PartialEq for UnhonouredTrim {
             (
                 UnhonouredTrim::StepFace { face: a, .. },
                 UnhonouredTrim::StepFace { face: b, .. },
+            ) => a == b,
+            (
+                UnhonouredTrim::StepBounded { surface: a, .. },
+                UnhonouredTrim::StepBounded { surface: b, .. },
             ) => a == b,
             (UnhonouredTrim::Iges144 { de: a, .. }, UnhonouredTrim::Iges144 { de: b, .. }) => {
                 a == b
@@ -319,6 +332,9 @@ impl fmt::Display for UnhonouredTrim {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             UnhonouredTrim::StepFace { face, why } => write!(f, "STEP face #{face} ({why})"),
+            UnhonouredTrim::StepBounded { surface, why } => {
+                write!(f, "STEP curve-bounded surface #{surface} ({why})")
+            }
             UnhonouredTrim::Iges144 { de, why } => write!(f, "IGES 144 at D{de} ({why})"),
             UnhonouredTrim::Iges { kind, de, why } => write!(f, "IGES {kind} at D{de} ({why})"),
         }
@@ -660,6 +676,24 @@ impl CompoundSurface {
             }
         }
         out
+    }
+
+    /// The patches none of whose points of [`Self::grid`]`(n)` is on the part: a trimmed
+    /// region that lies between the grid's rows and columns (the readers fit each face's
+    /// parameter box to its trim, so this takes a sliver, or a region far from convex). A
+    /// caller that samples the surface on the grid gets no point on them, and should say so.
+    pub fn patches_off_grid(&self, n: usize) -> Vec<usize> {
+        let n = n.max(2);
+        (0..self.patches.len())
+            .filter(|&k| {
+                let p = &self.patches[k];
+                let d = p.surface.domain();
+                !(0..n).any(|i| {
+                    let u = d.u_at(i as f64 / (n - 1) as f64);
+                    (0..n).any(|j| p.on_part(u, d.v_at(j as f64 / (n - 1) as f64)))
+                })
+            })
+            .collect()
     }
 
     /// CC points from a list of `(patch, u, v)`, checked against the patches and their boxes.

@@ -124,3 +124,18 @@ fn mesh_has_consistent_triangles_and_cutter_side_normals() {
     // Every vertex is on its patch's surface.
     assert!((m.mesh.vertices[0] - s.patches[0].surface.point(0.0, 0.0)).length() < 1e-15);
 }
+
+#[test]
+fn patches_without_a_grid_point_on_the_part_are_named() {
+    // The octant's parameters are [0, 1]²; a triangle of the trim between the 5 × 5 grid's
+    // rows and columns (0.25 apart) holds none of its points, at 9 × 9 (0.125 apart) it holds
+    // (0.375, 0.375).
+    let mut s = part();
+    let d = s.patches[0].surface.domain();
+    let sliver = vec![[0.3, 0.3], [0.46, 0.3], [0.3, 0.46]];
+    s.patches[0].trim = Some(swarf_surface::Trim::new(&d, Some(sliver), Vec::new()).unwrap());
+    assert_eq!(s.patches_off_grid(5), vec![0]);
+    assert!(s.grid(5).iter().all(|c| c.patch == 1));
+    assert!(s.patches_off_grid(9).is_empty());
+    assert_eq!(s.grid(9).iter().filter(|c| c.patch == 0).count(), 1);
+}

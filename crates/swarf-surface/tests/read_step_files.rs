@@ -467,3 +467,171 @@ fn assembly_placements_are_applied() {
         ReadNote::PlacementsApplied { .. } | ReadNote::PlacementNotApplied { .. }
     )));
 }
+
+/// A STEP file of `body`'s instances.
+fn file(body: &str) -> String {
+    format!("ISO-10303-21;\nHEADER;\nENDSEC;\nDATA;\n{body}ENDSEC;\nEND-ISO-10303-21;\n")
+}
+
+#[test]
+fn names_are_decoded_as_iso_10303_21_writes_them() {
+    // \X2\ UCS-2 (a surrogate pair too), \X4\ UCS-4, \X\ and \S\ (ISO 8859-1), \\, a
+    // malformed escape left as written, and the doubled quote.
+    let names = [
+        (r"Face \X2\00E9\X0\ d''angle", "Face é d'angle"),
+        (r"\X2\D83DDE00\X0\ and \X4\0001F600\X0\", "😀 and 😀"),
+        (r"Fl\X\E4che \S\i", "Fläche é"),
+        (r"C:\\parts\\\X2\4F60597D\X0\", r"C:\parts\你好"),
+        (r"odd \Q\ and \X2\12\X0\", r"odd \Q\ and \X2\12\X0\"),
+    ];
+    let mut body = String::from(
+        "#1=CARTESIAN_POINT('',(0.,0.,0.));#2=DIRECTION('',(0.,0.,1.));\
+         #3=DIRECTION('',(1.,0.,0.));#4=AXIS2_PLACEMENT_3D('',#1,#2,#3);\n",
+    );
+    for (k, (raw, _)) in names.iter().enumerate() {
+        body.push_str(&format!(
+            "#{}=SPHERICAL_SURFACE('{raw}',#4,{}.);\n",
+            10 + k,
+            k + 1
+        ));
+    }
+    let s = step::parse(&file(&body)).unwrap();
+    let got: Vec<&str> = s
+        .patches
+        .iter()
+        .map(|p| p.name.as_deref().unwrap())
+        .collect();
+    let want: Vec<&str> = names.iter().map(|(_, n)| *n).collect();
+    assert_eq!(got, want);
+}
+
+#[test]
+fn uniform_quasi_uniform_and_bezier_surfaces_take_the_knots_their_kind_implies() {
+    // One net of 5 × 3 points, degrees 2 × 2, written with knots (B_SPLINE_SURFACE_WITH_KNOTS)
+    // and as each kind with implied knots (ISO 10303-42): quasi-uniform 0,0,0,1,2,3,3,3 and
+    // 0,0,0,1,1,1; uniform −2 … 5 and −2 … 3; Bézier (pieces of degree 2) 0,0,0,1,1,2,2,2 and
+    // 0,0,0,1,1,1. Each must be the surface its explicit knots give, point for point.
+    let mut body = String::new();
+    let mut pts = Vec::new();
+    for i in 0..5 {
+        let mut row = Vec::new();
+        for j in 0..3 {
+            let id = 100 + 3 * i + j;
+            let z = [
+                [0., 2., 1.],
+                [3., -1., 2.],
+                [1., 4., 0.],
+                [-2., 1., 3.],
+                [0., 0., 1.],
+            ][i][j];
+            body.push_str(&format!(
+                "#{id}=CARTESIAN_POINT('',({:?},{:?},{z:?}));\n",
+                10.0 * i as f64,
+                7.0 * j as f64
+            ));
+            row.push(format!("#{id}"));
+        }
+        pts.push(format!("({})", row.join(",")));
+    }
+    let net = pts.join(",");
+    let head = format!("2,2,({net}),.UNSPECIFIED.,.F.,.F.,.F.");
+    let knotted = |name: &str, um: &str, uk: &str, vm: &str, vk: &str| {
+        format!("B_SPLINE_SURFACE_WITH_KNOTS('{name}',{head},({um}),({vm}),({uk}),({vk}),.UNSPECIFIED.)")
+    };
+    let cases = [
+        (
+            format!(
+                "(BOUNDED_SURFACE() B_SPLINE_SURFACE({head}) QUASI_UNIFORM_SURFACE() \
+                 GEOMETRIC_REPRESENTATION_ITEM() REPRESENTATION_ITEM('quasi') SURFACE())"
+            ),
+            knotted("quasi knots", "3,1,1,3", "0.,1.,2.,3.", "3,3", "0.,1."),
+        ),
+        (
+            format!("UNIFORM_SURFACE('uniform',{head})"),
+            knotted(
+                "uniform knots",
+                "1,1,1,1,1,1,1,1",
+                "-2.,-1.,0.,1.,2.,3.,4.,5.",
+                "1,1,1,1,1,1",
+                "-2.,-1.,0.,1.,2.,3.",
+            ),
+        ),
+        (
+            format!("BEZIER_SURFACE('bezier',{head})"),
+            knotted("bezier knots", "3,2,3", "0.,1.,2.", "3,3", "0.,1."),
+        ),
+    ];
+    for (implied, explicit) in cases {
+        let text = file(&format!("{body}#1={implied};\n#2={explicit};\n"));
+        let s = step::parse(&text).unwrap_or_else(|e| panic!("{e}\n{implied}"));
+        assert_eq!(s.patches.len(), 2, "{:?}", s.notes);
+        let (a, b) = (&s.patches[0].surface, &s.patches[1].surface);
+        assert_eq!(a.domain(), b.domain(), "{implied}");
+        let d = a.domain();
+        for i in 0..=8 {
+            for j in 0..=8 {
+                let (u, v) = (d.u_at(i as f64 / 8.0), d.v_at(j as f64 / 8.0));
+                assert_eq!(a.point(u, v), b.point(u, v), "{implied} at ({u}, {v})");
+            }
+        }
+    }
+    // 5 points are no pieces of degree 3: refused, naming the kind.
+    let bad = file(&format!(
+        "{body}#1=BEZIER_SURFACE('',3,2,({net}),.UNSPECIFIED.,.F.,.F.,.F.);\n"
+    ));
+    let e = err(&bad).to_string();
+    assert!(
+        e.contains("#1: BEZIER_SURFACE") && e.contains("degree 3"),
+        "{e}"
+    );
+    // A B_SPLINE_SURFACE with no subtype has no knots at all: skipped under its own name.
+    let bare = file(&format!(
+        "{body}#1=(BOUNDED_SURFACE() B_SPLINE_SURFACE({head}) GEOMETRIC_REPRESENTATION_ITEM() \
+         REPRESENTATION_ITEM('') SURFACE());\n"
+    ));
+    match err(&bare) {
+        ReadError::Empty { detail, .. } => {
+            assert!(
+                detail.contains("surface type B_SPLINE_SURFACE is not"),
+                "{detail}"
+            )
+        }
+        e => panic!("{e}"),
+    }
+}
+
+#[test]
+fn a_misspelt_si_unit_name_is_refused_with_the_names_expected() {
+    // `.METER.` is no SI unit name: the file was read as if in mm, with only a note.
+    let body = |unit: &str| {
+        format!(
+            "#1=(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,{unit}));\n\
+             #2=(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#1)) \
+             REPRESENTATION_CONTEXT('',''));\n\
+             #3=CARTESIAN_POINT('',(0.,0.,0.));#4=DIRECTION('',(0.,0.,1.));\
+             #5=DIRECTION('',(1.,0.,0.));#6=AXIS2_PLACEMENT_3D('',#3,#4,#5);\n\
+             #7=SPHERICAL_SURFACE('',#6,5.);\n"
+        )
+    };
+    match err(&file(&body(".METER."))) {
+        ReadError::Entity {
+            line: 5,
+            entity,
+            message,
+            ..
+        } => {
+            assert_eq!(entity, "#1");
+            assert!(
+                message.contains(".METER.") && message.contains(".METRE."),
+                "{message}"
+            );
+        }
+        e => panic!("{e}"),
+    }
+    // An SI name, but not a length's.
+    let e = err(&file(&body(".SECOND."))).to_string();
+    assert!(e.contains(".SECOND.") && e.contains(".METRE."), "{e}");
+    // The metre reads.
+    let s = step::parse(&file(&body(".METRE."))).unwrap();
+    assert!(s.notes.is_empty(), "{:?}", s.notes);
+}

@@ -781,3 +781,47 @@ fn placed_instances_copying_too_many_trim_points_are_refused_before_the_copies()
         Ok(r) => panic!("read {} patches", r.patches.len()),
     }
 }
+
+#[test]
+fn an_axis_along_x_without_a_reference_direction_takes_y_as_iso_10303_42_says() {
+    // ISO 10303-42's first_proj_axis: with the reference direction omitted, x is (1, 0, 0)
+    // made square to the axis, unless the axis is (1, 0, 0) or (−1, 0, 0): then (0, 1, 0). A
+    // cylinder on such a placement: u = 0 at (0, 10, 0), u = π/2 at 10·(z × x).
+    for (sign, y) in [(1.0, Vec3::Z), (-1.0, -Vec3::Z)] {
+        let mut s = Step::default();
+        s.context(false);
+        let o = s.point([0.0; 3]);
+        let z = s.add(format!("DIRECTION('',({sign:?},0.,0.))"));
+        let a = s.add(format!("AXIS2_PLACEMENT_3D('',#{o},#{z},$)"));
+        s.add(format!("CYLINDRICAL_SURFACE('c',#{a},10.)"));
+        let r = s.parse();
+        let c = &r.patches[0].surface;
+        let (p0, p1) = (c.point(0.0, 0.0), c.point(std::f64::consts::FRAC_PI_2, 0.0));
+        assert!(
+            (p0 - Vec3::new(0.0, 10.0, 0.0)).length() < 1e-12,
+            "{sign}: {p0}"
+        );
+        assert!((p1 - 10.0 * y).length() < 1e-12, "{sign}: {p1}");
+    }
+    // The same rule for a transformation operator (base_axis): axis3 −X, axis1 omitted gives
+    // the axes (0, 1, 0), (0, 0, −1), (−1, 0, 0). It was refused as "axis1 parallel to axis3"
+    // and the part read unplaced.
+    let own = alone(|s| s.elementary_faces());
+    let mut s = Step::default();
+    let ctx = s.context(false);
+    let (part, part_axis, _) = s.part(ctx, |s| s.elementary_faces());
+    let o = s.point([3.0, 4.0, 5.0]);
+    let z = s.add("DIRECTION('',(-1.,0.,0.))");
+    let op = s.add(format!(
+        "CARTESIAN_TRANSFORMATION_OPERATOR_3D('',$,$,#{o},1.,#{z})"
+    ));
+    let m = s.mapped(part_axis, part, op);
+    s.add(format!("SHAPE_REPRESENTATION('assy',(#{m}),#{ctx})"));
+    let r = s.parse();
+    assert_eq!(applied(&r), Some((1, 1)), "{:?}", r.notes);
+    assert!(not_applied(&r).is_empty(), "{:?}", r.notes);
+    let m = |p: Vec3| Vec3::new(-p.z, p.x, -p.y) + Vec3::new(3.0, 4.0, 5.0);
+    for k in 0..2 {
+        assert_moved(&r.patches[k], &own.patches[k], &m);
+    }
+}

@@ -273,3 +273,128 @@ fn the_old_skip_remains_for_what_is_not_read() {
         other => panic!("{other:?}"),
     }
 }
+
+/// A context in mm and, when `degrees`, degrees (else radians).
+fn context_with_angles(s: &mut Step, degrees: bool) {
+    let mm = s.add("(LENGTH_UNIT() NAMED_UNIT(*) SI_UNIT(.MILLI.,.METRE.))");
+    let rad = s.add("(NAMED_UNIT(*) PLANE_ANGLE_UNIT() SI_UNIT($,.RADIAN.))");
+    let angle = if degrees {
+        let m = s.add(format!(
+            "PLANE_ANGLE_MEASURE_WITH_UNIT(PLANE_ANGLE_MEASURE({:?}),#{rad})",
+            PI / 180.0
+        ));
+        let d = s.add("DIMENSIONAL_EXPONENTS(0.,0.,0.,0.,0.,0.,0.)");
+        s.add(format!(
+            "(CONVERSION_BASED_UNIT('DEGREE',#{m}) NAMED_UNIT(#{d}) PLANE_ANGLE_UNIT())"
+        ))
+    } else {
+        rad
+    };
+    s.add(format!(
+        "(GEOMETRIC_REPRESENTATION_CONTEXT(3) GLOBAL_UNIT_ASSIGNED_CONTEXT((#{mm},#{angle})) \
+         REPRESENTATION_CONTEXT('',''))"
+    ));
+}
+
+#[test]
+fn a_trimmed_swept_curve_sweeps_only_what_its_trims_keep() {
+    // The circle of radius 10 about the x axis (x = (0, 1, 0), y = (0, 0, 1)) trimmed from π
+    // to 2π (the half with z ≤ 0), extruded 50 mm along x: a trough. The trims were dropped
+    // and the whole tube read, its top half a phantom wall.
+    for degrees in [false, true] {
+        let mut s = Step::default();
+        context_with_angles(&mut s, degrees);
+        let a = s.axis([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+        let c = s.add(format!("CIRCLE('',#{a},10.)"));
+        let k = if degrees { 180.0 } else { PI };
+        let t = s.add(format!(
+            "TRIMMED_CURVE('',#{c},(PARAMETER_VALUE({:?})),(PARAMETER_VALUE({:?})),.T.,.PARAMETER.)",
+            k,
+            2.0 * k
+        ));
+        let v = s.vector([1.0, 0.0, 0.0], 50.0);
+        s.add(format!("SURFACE_OF_LINEAR_EXTRUSION('trough',#{t},#{v})"));
+        let part = s.parse();
+        assert_eq!(part.patches.len(), 1, "{:?}", part.notes);
+        let pts = points(&part, 9);
+        let zmin = pts.iter().map(|(_, q)| q.z).fold(f64::INFINITY, f64::min);
+        for (_, q) in &pts {
+            assert!(
+                (q.y.hypot(q.z) - 10.0).abs() < 1e-9 && q.z <= 1e-9,
+                "{degrees}: {q}"
+            );
+        }
+        // From y = −10 (u's start) round the bottom to y = 10.
+        assert!((zmin + 10.0).abs() < 1e-9, "{zmin}");
+        let d = part.patches[0].surface.domain();
+        let ends = [d.u[0], d.u[1]].map(|u| part.patches[0].surface.point(u, 0.0));
+        assert!(
+            (ends[0] - Vec3::new(0.0, -10.0, 0.0)).length() < 1e-9,
+            "{ends:?}"
+        );
+        assert!(
+            (ends[1] - Vec3::new(0.0, 10.0, 0.0)).length() < 1e-9,
+            "{ends:?}"
+        );
+    }
+    // Trimmed by points, against the circle's sense: from (0, 10, 0) (t = 0) down to
+    // (0, 0, 10) (t = π/2) — three quarters, all but the quarter where y > 0 and z > 0.
+    let mut s = Step::default();
+    s.context(false);
+    let a = s.axis([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    let c = s.add(format!("CIRCLE('',#{a},10.)"));
+    let (p1, p2) = (s.point([0.0, 10.0, 0.0]), s.point([0.0, 0.0, 10.0]));
+    let t = s.add(format!(
+        "TRIMMED_CURVE('',#{c},(#{p1}),(#{p2}),.F.,.CARTESIAN.)"
+    ));
+    let v = s.vector([1.0, 0.0, 0.0], 50.0);
+    s.add(format!("SURFACE_OF_LINEAR_EXTRUSION('',#{t},#{v})"));
+    let part = s.parse();
+    let p = &part.patches[0];
+    let d = p.surface.domain();
+    assert!((d.u[1] - d.u[0] - 1.5 * PI).abs() < 1e-9, "{d:?}");
+    // Run backwards: from (0, 10, 0) to (0, 0, 10) the way round through y = −10.
+    let ends = [d.u[0], d.u[1]].map(|u| p.surface.point(u, 0.0));
+    assert!(
+        (ends[0] - Vec3::new(0.0, 10.0, 0.0)).length() < 1e-9,
+        "{ends:?}"
+    );
+    assert!(
+        (ends[1] - Vec3::new(0.0, 0.0, 10.0)).length() < 1e-9,
+        "{ends:?}"
+    );
+    for (_, q) in points(&part, 13) {
+        assert!(!(q.y > 1e-6 && q.z > 1e-6), "{q}");
+    }
+    // A line trimmed from 0 to 5 revolved about z: the band of the cylinder z ∈ [0, 5] (it
+    // was z ∈ [−100, 100], the default range of an unbounded line).
+    let mut s = Step::default();
+    s.context(false);
+    let l = s.line([10.0, 0.0, 0.0], [0.0, 0.0, 1.0]);
+    let t = s.add(format!(
+        "TRIMMED_CURVE('',#{l},(PARAMETER_VALUE(0.)),(PARAMETER_VALUE(5.)),.T.,.PARAMETER.)"
+    ));
+    let o = s.point([0.0; 3]);
+    let z = s.dir([0.0, 0.0, 1.0]);
+    let ax = s.add(format!("AXIS1_PLACEMENT('',#{o},#{z})"));
+    s.add(format!("SURFACE_OF_REVOLUTION('band',#{t},#{ax})"));
+    let part = s.parse();
+    assert!(
+        !part
+            .notes
+            .iter()
+            .any(|n| matches!(n, swarf_surface::ReadNote::DefaultParameterBox { .. })),
+        "{:?}",
+        part.notes
+    );
+    let pts = points(&part, 9);
+    let (zlo, zhi) = pts
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (_, q)| {
+            (a.min(q.z), b.max(q.z))
+        });
+    assert!(
+        zlo.abs() < 1e-12 && (zhi - 5.0).abs() < 1e-12,
+        "{zlo} {zhi}"
+    );
+}

@@ -16,7 +16,9 @@ use std::f64::consts::{PI, TAU};
 
 use swarf_geom::math::Vec3;
 use swarf_surface::io::{self, step};
-use swarf_surface::{CompoundSurface, NurbsSurface, ParametricSurface, Patch, ReadNote, Surface};
+use swarf_surface::{
+    CompoundSurface, NurbsSurface, ParamBox, ParametricSurface, Patch, ReadNote, Surface,
+};
 
 /// STEP text built entity by entity.
 struct Step {
@@ -222,10 +224,28 @@ fn logical(b: bool) -> &'static str {
     }
 }
 
-/// Share of an n × n grid over the patch's box that is on the part (with `strict`, only the
-/// points strictly inside the box).
+/// The box the shares below are of: the patch's, its angles a whole turn from where the box
+/// starts (a sphere's latitude all of its half turn) — the face's share of its whole surface,
+/// whatever box the reader fits to the face.
+fn whole(p: &Patch) -> ParamBox {
+    let mut d = p.surface.domain();
+    let per = periodic(p);
+    if per[0] {
+        d.u[1] = d.u[0] + TAU;
+    }
+    if per[1] {
+        d.v[1] = d.v[0] + TAU;
+    }
+    if matches!(p.surface, Surface::Sphere(_)) {
+        d.v = [-PI / 2.0, PI / 2.0];
+    }
+    d
+}
+
+/// Share of an n × n grid over the patch's [`whole`] box that is on the part (with `strict`,
+/// only the points strictly inside the box).
 fn fraction(p: &Patch, n: usize, strict: bool) -> f64 {
-    let d = p.surface.domain();
+    let d = whole(p);
     let (mut on, mut all) = (0, 0);
     let range = if strict { 1..n - 1 } else { 0..n };
     for i in range.clone() {
@@ -390,6 +410,12 @@ fn cylinder_bands_and_a_half_cylinder() {
     let s = cylinder("half");
     println!("half: {:?}", trimmed_notes(&s));
     let p = &s.patches[0];
+    // The box is the face's, u from 0 to π, not the whole turn.
+    let d = p.surface.domain();
+    assert!(
+        d.u[0].abs() < 1e-9 && (d.u[1] - PI).abs() < 1e-9 && d.v == [0.0, 50.0],
+        "{d:?}"
+    );
     let t = p.trim.as_ref().unwrap();
     assert!(t.contains(0.5 * PI, 25.0) && !t.contains(1.5 * PI, 25.0));
     let frac = fraction(p, 41, false);
@@ -577,11 +603,11 @@ fn eval(p: &Patch, q: [f64; 2]) -> Vec3 {
     p.surface.point(u, v)
 }
 
-/// The centres of an n × n grid of cells over the patch's box, each checked against `inside`
+/// The centres of an n × n grid of cells over the patch's [`whole`] box, each checked against `inside`
 /// (which says `None` for a centre too near the boundary to call); returns the share on the
 /// part.
 fn region(p: &Patch, n: usize, inside: impl Fn(f64, f64) -> Option<bool>) -> f64 {
-    let d = p.surface.domain();
+    let d = whole(p);
     let mut on = 0;
     for i in 0..n {
         for j in 0..n {
@@ -1255,14 +1281,15 @@ fn trimmed_curve_edges_keep_their_sense() {
         f.face(&[bd], pl);
         let s = f.parse();
         let p = trimmed_patch(&s, 0);
+        // The box is the half disc's, 40 × 20 mm: it covers π·20²/2 of its 800 mm².
+        let d = p.surface.domain();
+        let near = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs().max((a[1] - b[1]).abs()) < 1e-9;
+        assert!(near(d.u, [30.0, 70.0]) && near(d.v, [0.0, 20.0]), "{d:?}");
         let frac = region(p, 48, |x, y| {
             and(below((x - 50.0).hypot(y), 20.0, 2e-3), below(0.0, y, 1e-6))
         });
-        println!(
-            "half disc (arc's sense {sense}): {:?}, fraction {frac:.5}",
-            p.surface.domain()
-        );
-        assert!((frac - PI / 8.0).abs() < 0.01, "{frac}");
+        println!("half disc (arc's sense {sense}): {d:?}, fraction {frac:.5}");
+        assert!((frac - PI / 4.0).abs() < 0.01, "{frac}");
     }
 }
 
@@ -1426,4 +1453,63 @@ fn edges_a_few_microns_off_their_face_or_within_the_declared_accuracy_trim_it() 
         .any(|n| matches!(n, ReadNote::TrimNotHonoured { .. })));
     let s = polyline_half_cylinder(20, Some(0.05));
     assert!(honoured(&s), "{:?}", trimmed_notes(&s));
+}
+
+#[test]
+fn a_face_is_gridded_over_its_own_box_not_its_whole_surface() {
+    // A 14° window of the radius-10 cylinder, u ∈ [0.35, 0.35 + 14°], z ∈ [0, 30]: the
+    // parameter box was the whole turn, whose 21 × 21 grid (columns 18° apart, at 0.314 and
+    // 0.628) has no point on the face — toolsize gave it none, silently.
+    let w = 14f64.to_radians();
+    let mut f = Step::new();
+    let cyl = cylinder_surface(&mut f);
+    let l = cylinder_window(&mut f, (0.35, 0.35 + w), (0.0, 30.0));
+    let b = f.bound(l, true);
+    f.face(&[b], cyl);
+    let s = f.parse();
+    let p = trimmed_patch(&s, 0);
+    let d = p.surface.domain();
+    assert!(
+        (d.u[0] - 0.35).abs() < 1e-9 && (d.u[1] - 0.35 - w).abs() < 1e-9 && d.v == [0.0, 30.0],
+        "{d:?}"
+    );
+    let grid = s.grid(21);
+    assert_eq!(grid.len(), 21 * 21);
+    assert!(s.patches_off_grid(21).is_empty());
+    for c in &grid {
+        let q = p.surface.point(c.u, c.v);
+        let a = q.y.atan2(q.x);
+        assert!((0.35 - 1e-9..=0.35 + w + 1e-9).contains(&a), "{q}");
+    }
+    // A B-spline face (the plane z = 0 over [0, 100]², u = x/100, v = y/100) bounded by the
+    // square [20, 40] × [60, 70]: its surface is cut down to the square's box, exactly.
+    let mut f = Step::new();
+    let pts: Vec<Vec<u64>> = (0..2)
+        .map(|i| {
+            (0..2)
+                .map(|j| f.pt([100.0 * i as f64, 100.0 * j as f64, 0.0]))
+                .collect()
+        })
+        .collect();
+    let sid = f.add(format!(
+        "B_SPLINE_SURFACE_WITH_KNOTS('',1,1,((#{},#{}),(#{},#{})),.UNSPECIFIED.,.F.,.F.,.F.,\
+         (2,2),(2,2),(0.,1.),(0.,1.),.UNSPECIFIED.)",
+        pts[0][0], pts[0][1], pts[1][0], pts[1][1]
+    ));
+    let l = f.poly_loop(&[
+        [20., 60., 0.],
+        [40., 60., 0.],
+        [40., 70., 0.],
+        [20., 70., 0.],
+    ]);
+    let b = f.bound(l, true);
+    f.face(&[b], sid);
+    let s = f.parse();
+    let p = trimmed_patch(&s, 0);
+    let d = p.surface.domain();
+    let near = |a: [f64; 2], b: [f64; 2]| (a[0] - b[0]).abs().max((a[1] - b[1]).abs()) < 1e-9;
+    assert!(near(d.u, [0.2, 0.4]) && near(d.v, [0.6, 0.7]), "{d:?}");
+    assert_eq!(s.grid(5).len(), 25);
+    let q = p.surface.point(0.3, 0.65);
+    assert!((q - Vec3::new(30.0, 65.0, 0.0)).length() < 1e-9, "{q}");
 }

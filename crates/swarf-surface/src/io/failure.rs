@@ -258,6 +258,73 @@ pub enum TrimFailure {
     #[error("the loops span no area")]
     NoArea,
 
+    // STEP curve-bounded surfaces.
+    /// A boundary of a `CURVE_BOUNDED_SURFACE` that is not a boundary curve.
+    #[error("#{boundary} is a {kind}, expected BOUNDARY_CURVE or OUTER_BOUNDARY_CURVE")]
+    BoundaryKind {
+        /// The entity.
+        boundary: u64,
+        /// Its entity name.
+        kind: String,
+    },
+    /// A segment of a boundary curve that is not a composite curve segment.
+    #[error("segment #{segment} is a {kind}, expected COMPOSITE_CURVE_SEGMENT")]
+    SegmentKind {
+        /// The entity.
+        segment: u64,
+        /// Its entity name.
+        kind: String,
+    },
+    /// A `PCURVE` on another surface than the basis it bounds.
+    #[error("pcurve #{pcurve} lies on #{surface}, not on the basis surface #{basis}")]
+    PcurveElsewhere {
+        /// The pcurve.
+        pcurve: u64,
+        /// The surface it lies on.
+        surface: u64,
+        /// The basis surface.
+        basis: u64,
+    },
+    /// A `PCURVE` on a basis whose parameters the reader does not keep as the file's.
+    #[error(
+        "pcurve #{pcurve}: the parameters of a {kind} are not read as the file's (its boundary \
+         in model space would be)"
+    )]
+    PcurveParameters {
+        /// The pcurve.
+        pcurve: u64,
+        /// The kind of its basis surface.
+        kind: String,
+    },
+    /// A `PCURVE` whose curve is not given by a definitional representation.
+    #[error("pcurve #{pcurve}: its reference_to_curve is a {kind}, expected DEFINITIONAL_REPRESENTATION")]
+    PcurveRepresentation {
+        /// The pcurve.
+        pcurve: u64,
+        /// What it refers to.
+        kind: String,
+    },
+    /// A boundary segment along a whole (unbounded) line.
+    #[error("#{curve} is an unbounded line (a TRIMMED_CURVE of it would bound)")]
+    UnboundedLine {
+        /// The line.
+        curve: u64,
+    },
+    /// A `TRIMMED_CURVE` that is not read (the message names it).
+    #[error("{why}")]
+    TrimmedCurve {
+        /// Why.
+        why: String,
+    },
+    /// A boundary that cannot be honoured, for `reason`.
+    #[error("boundary #{boundary}: {reason}")]
+    InBoundary {
+        /// The boundary curve.
+        boundary: u64,
+        /// Why.
+        reason: Box<TrimFailure>,
+    },
+
     // IGES boundaries (a 142 of a 144, a 141 of a 143).
     /// A boundary's model-space curve that jumps in the surface's parameters.
     #[error("model-space curve of {de} does not map to a continuous loop in the surface's parameters (it crosses a seam or a pole?)")]

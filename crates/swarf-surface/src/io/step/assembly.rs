@@ -114,6 +114,26 @@ pub(super) fn shape_rep(inst: &Instance) -> Option<(&[Param], u64)> {
     })
 }
 
+/// The x axis of a placement whose z axis is the unit `z`, from its reference direction
+/// `arg` (`None`: omitted, `$`): ISO 10303-42's `first_proj_axis(z_axis, arg)`, which both
+/// `build_axes` (an `AXIS2_PLACEMENT_3D`'s axes) and `base_axis` (a
+/// `CARTESIAN_TRANSFORMATION_OPERATOR_3D`'s) call. The standard's function: without `arg`,
+/// v = (1, 0, 0) unless z is (1, 0, 0) or (−1, 0, 0), then v = (0, 1, 0); with it, v = arg
+/// (undefined when arg is parallel to z); the result is v less its component along z,
+/// normalised. So an axis along ±X with its reference direction omitted has x = (0, 1, 0).
+/// The standard compares z with ±(1, 0, 0) exactly; here z within 1e-12 of it counts as
+/// along it (there the exact rule would normalise a difference of length ~1e-12, whose
+/// direction is rounding). `None` when the given direction is parallel to z.
+pub(super) fn first_proj_axis(z: Vec3, arg: Option<Vec3>) -> Option<Vec3> {
+    let v = arg.unwrap_or(if z.y.abs() <= 1e-12 && z.z.abs() <= 1e-12 {
+        Vec3::Y
+    } else {
+        Vec3::X
+    });
+    let x = v - z * z.dot(v);
+    (x.length() > 1e-12 * v.length()).then(|| x.normalize())
+}
+
 /// What the walk from the roots found.
 pub(super) struct Assembly {
     /// The placed instances of each face (or surface) that a placement reaches; the others
@@ -145,8 +165,16 @@ impl Model<'_> {
         let loc = self.reference(id, a.get(1), "location")?;
         let origin = self.raw_point(id, loc)? * length;
         let z = self.direction(id, a.get(2), Vec3::Z)?;
-        let x = self.direction(id, a.get(3), Vec3::X)?;
-        Ok(Frame::from_axis_and_x(origin, z, x))
+        let given = match a.get(3) {
+            Some(Param::Null) | None => None,
+            other => Some(self.direction(id, other, Vec3::X)?),
+        };
+        Ok(match first_proj_axis(z, given) {
+            Some(x) => Frame::from_axis_and_x(origin, z, x),
+            // A reference direction along the axis: the standard leaves the placement
+            // undefined; any x square to the axis.
+            None => Frame::from_axis(origin, z),
+        })
     }
 
     /// A CARTESIAN_TRANSFORMATION_OPERATOR_3D (simple, its attributes `name, axis1, axis2,
@@ -188,21 +216,13 @@ impl Model<'_> {
             ));
         }
         let z = self.direction(id, head.get(4), Vec3::Z)?;
-        let x_hint = match head.first() {
-            Some(Param::Null) | None => {
-                if z == Vec3::X {
-                    Vec3::Y
-                } else {
-                    Vec3::X
-                }
-            }
-            other => self.direction(id, other, Vec3::X)?,
+        let given = match head.first() {
+            Some(Param::Null) | None => None,
+            other => Some(self.direction(id, other, Vec3::X)?),
         };
-        let x = x_hint - z * z.dot(x_hint);
-        if x.length() <= 1e-12 {
+        let Some(x) = first_proj_axis(z, given) else {
             return Ok(Err("its axis1 is parallel to its axis3".into()));
-        }
-        let x = x.normalize();
+        };
         let right = z.cross(x);
         let y = match head.get(1) {
             Some(Param::Null) | None => right,

@@ -5,7 +5,7 @@ use swarf_geom::math::Vec3;
 use swarf_geom::Frame;
 
 use super::entities::{Model, R};
-use super::lex::Param;
+use super::lex::{show, Param};
 use super::trims::Built;
 use crate::curve::BSplineCurve;
 use crate::io::TrimFailure;
@@ -193,9 +193,264 @@ impl Curve {
     }
 }
 
+/// Where a curve lies: in model space, or in a surface's parameters (a `PCURVE`'s curve).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Space {
+    Model,
+    Parameter,
+}
+
+/// The part of its basis curve a `TRIMMED_CURVE` keeps.
+pub(super) struct Kept {
+    /// The basis curve (itself, not run backwards).
+    pub(super) curve: Curve,
+    /// The basis's parameters kept, increasing (a conic's may pass 2π: the part from the
+    /// first to the second across the seam).
+    pub(super) range: [f64; 2],
+    /// True when the trimmed curve runs against its basis (`sense_agreement` `.F.`): from
+    /// `range[1]` down to `range[0]`.
+    pub(super) against: bool,
+}
+
 impl Model<'_> {
+    /// The frame and semi-axes of a parameter-space `CIRCLE` or `ELLIPSE` `id` with attributes
+    /// `c`: its `AXIS2_PLACEMENT_2D(name, location, ref_direction)` (x the reference
+    /// direction, or (1, 0) when omitted; y a quarter turn on), its radii as written.
+    fn conic_2d(&self, id: u64, c: &[Param]) -> R<(Frame, f64, f64)> {
+        let pid = self.reference(id, c.get(1), "position")?;
+        let pi = self.get(id, pid)?;
+        let ap = pi.part("AXIS2_PLACEMENT_2D").ok_or_else(|| {
+            self.bad(
+                pid,
+                format!("found {}, expected AXIS2_PLACEMENT_2D", pi.first_name()),
+            )
+        })?;
+        let o = self.reference(pid, ap.get(1), "location")?;
+        let origin = self.curve_point(pid, o, Space::Parameter)?;
+        let x = self.curve_direction(pid, ap.get(2), Vec3::X, Space::Parameter)?;
+        let f = Frame {
+            origin,
+            x,
+            y: Vec3::Z.cross(x),
+            z: Vec3::Z,
+        };
+        let a = self.num(id, c.get(2), "radius")?;
+        let b = match c.get(3) {
+            Some(p) => self.num(id, Some(p), "semi_axis_2")?,
+            None => a,
+        };
+        Ok((f, a, b))
+    }
+
+    /// The `TRIMMED_CURVE` `id` (attributes `p`: name, basis_curve, trim_1, trim_2,
+    /// sense_agreement, master_representation) as the part of its basis it keeps (ISO 10303-42
+    /// `trimmed_curve`): each trim is a `PARAMETER_VALUE` of the basis's parameter or a
+    /// `CARTESIAN_POINT` on it (both given: the one `master_representation` names, the
+    /// parameter when it names neither); with `sense_agreement` `.T.` the curve runs from
+    /// trim 1 up to trim 2, with `.F.` from trim 1 down to trim 2, across the seam of a conic
+    /// where it must (a conic's parameter is an angle, in the file's angle unit; equal trims
+    /// on a conic keep the whole turn). `Err(why)` for a basis or trims not read.
+    pub(super) fn kept(&self, id: u64, p: &[Param], space: Space) -> Result<Kept, String> {
+        let bid = self
+            .reference(id, p.get(1), "basis_curve")
+            .map_err(|e| e.to_string())?;
+        if self
+            .map
+            .get(&bid)
+            .and_then(|b| b.part("TRIMMED_CURVE"))
+            .is_some()
+        {
+            return Err(format!(
+                "#{id}: a trimmed curve of a trimmed curve (#{bid}) is not read"
+            ));
+        }
+        let curve = self
+            .curve_in(id, bid, 1, space)
+            .map_err(|e| format!("#{id}: {e}"))?;
+        let conic = matches!(curve, Curve::Conic { .. });
+        let master = match p.get(5) {
+            Some(Param::Enum(m)) => m.as_str(),
+            _ => "UNSPECIFIED",
+        };
+        let size = match &curve {
+            Curve::Conic { a, b, .. } => a.max(*b),
+            Curve::Spline(c) => {
+                let (t0, t1) = c.domain();
+                (c.point(t1) - c.point(t0)).length().max(
+                    c.homogeneous()
+                        .iter()
+                        .map(|h| (h.truncate() / h.w).length())
+                        .fold(0.0, f64::max),
+                )
+            }
+            Curve::Polyline(pts) => pts.iter().map(|q| q.length()).fold(0.0, f64::max),
+            Curve::Line { p, d } => p.length().max(d.length()),
+        };
+        let tol = match space {
+            Space::Model => crate::io::on_surface_tolerance(size, self.accuracy),
+            Space::Parameter => 1e-6 * size.max(1.0),
+        };
+        let trim = |k: usize| -> Result<f64, String> {
+            let list: Vec<&Param> = match p.get(k) {
+                Some(Param::List(l)) => l.iter().collect(),
+                Some(other) => vec![other],
+                None => Vec::new(),
+            };
+            let value = list.iter().find_map(|q| match q {
+                Param::Typed(t, v) if t == "PARAMETER_VALUE" => {
+                    self.num(id, v.first(), "parameter value").ok()
+                }
+                _ => None,
+            });
+            let point = list.iter().find_map(|q| match q {
+                Param::Ref(r) => Some(*r),
+                _ => None,
+            });
+            let by_point = |r: u64| -> Result<f64, String> {
+                let q = self.curve_point(id, r, space).map_err(|e| e.to_string())?;
+                let (t, off) = curve.param_of(q);
+                if off.is_nan() || off > tol {
+                    return Err(format!(
+                        "#{id}: its trim point #{r} is {off:.3e} off its basis curve"
+                    ));
+                }
+                Ok(t)
+            };
+            let scaled = |v: f64| if conic { v * self.angle } else { v };
+            match (value, point) {
+                (Some(v), Some(r)) if master == "CARTESIAN" => by_point(r).or(Ok(scaled(v))),
+                (Some(v), _) => Ok(scaled(v)),
+                (None, Some(r)) => by_point(r),
+                (None, None) => Err(format!(
+                    "#{id}: trim {} is neither a parameter value nor a point",
+                    k - 1
+                )),
+            }
+        };
+        let (t1, t2) = (trim(2)?, trim(3)?);
+        let sense = match p.get(4) {
+            Some(Param::Enum(e)) if e == "F" => false,
+            Some(Param::Enum(e)) if e == "T" => true,
+            other => {
+                return Err(format!(
+                    "#{id}: sense_agreement is {}, expected .T. or .F.",
+                    show(other)
+                ))
+            }
+        };
+        // Increasing: from the lower end of the run to its upper.
+        let (lo, mut hi) = if sense { (t1, t2) } else { (t2, t1) };
+        let tau = std::f64::consts::TAU;
+        if conic {
+            // Up from lo to hi, less than a turn; trims a whole number of turns apart (to
+            // rounding: 360° in a file's degrees is not 2π exactly) keep the whole turn.
+            let d = (hi - lo).rem_euclid(tau);
+            hi = lo
+                + if d <= 1e-9 * tau || tau - d <= 1e-9 * tau {
+                    tau
+                } else {
+                    d
+                };
+        }
+        if !(lo < hi && (hi - lo).is_finite()) {
+            return Err(format!(
+                "#{id}: its trims keep nothing of its basis (from {t1} to {t2}, {})",
+                if sense { "forwards" } else { "backwards" }
+            ));
+        }
+        if let Some((a, b)) = curve.range() {
+            let slack = 1e-9 * (b - a).abs().max(1.0);
+            if lo < a - slack || hi > b + slack {
+                return Err(format!(
+                    "#{id}: its trims {t1} and {t2} lie outside its basis's parameters [{a}, {b}]"
+                ));
+            }
+        }
+        Ok(Kept {
+            curve,
+            range: [lo, hi],
+            against: !sense,
+        })
+    }
+
     /// A curve for the edge geometry `id`.
     pub(super) fn curve(&self, from: u64, id: u64, depth: usize) -> Built<Curve> {
+        self.curve_in(from, id, depth, Space::Model)
+    }
+
+    /// A point of a curve in `space`: a model-space `CARTESIAN_POINT` in mm, or a
+    /// parameter-space one's two coordinates as they are written (z = 0).
+    fn curve_point(&self, from: u64, id: u64, space: Space) -> R<Vec3> {
+        match space {
+            Space::Model => self.point(from, id),
+            Space::Parameter => {
+                let inst = self.get(from, id)?;
+                let c = inst
+                    .part("CARTESIAN_POINT")
+                    .map(|p| self.list(id, p.get(1), "coordinates"))
+                    .transpose()?
+                    .filter(|c| c.len() == 2)
+                    .ok_or_else(|| {
+                        self.bad(
+                            id,
+                            format!(
+                                "found {}, expected a CARTESIAN_POINT of two coordinates (a \
+                                 point in a surface's parameters)",
+                                inst.first_name()
+                            ),
+                        )
+                    })?;
+                Ok(Vec3::new(
+                    self.num(id, c.first(), "u")?,
+                    self.num(id, c.get(1), "v")?,
+                    0.0,
+                ))
+            }
+        }
+    }
+
+    /// A direction of a curve in `space` (`default` when `$`): three ratios, or two (z = 0).
+    fn curve_direction(
+        &self,
+        from: u64,
+        p: Option<&Param>,
+        default: Vec3,
+        space: Space,
+    ) -> R<Vec3> {
+        if space == Space::Model || matches!(p, Some(Param::Null) | None) {
+            return self.direction(from, p, default);
+        }
+        let id = self.reference(from, p, "direction")?;
+        let inst = self.get(from, id)?;
+        let c = inst
+            .part("DIRECTION")
+            .map(|d| self.list(id, d.get(1), "direction ratios"))
+            .transpose()?
+            .filter(|c| c.len() == 2)
+            .ok_or_else(|| {
+                self.bad(
+                    id,
+                    format!(
+                        "found {}, expected a DIRECTION of two ratios",
+                        inst.first_name()
+                    ),
+                )
+            })?;
+        let v = Vec3::new(
+            self.num(id, c.first(), "x")?,
+            self.num(id, c.get(1), "y")?,
+            0.0,
+        );
+        if v.length() == 0.0 || !v.is_finite() {
+            return Err(self.bad(id, "zero-length direction"));
+        }
+        Ok(v.normalize())
+    }
+
+    /// A curve for the geometry `id` in `space`: model space (mm), or a surface's parameters
+    /// (the `(u, v)` of a `PCURVE`'s definitional representation as written, z = 0; conics on
+    /// an `AXIS2_PLACEMENT_2D`).
+    pub(super) fn curve_in(&self, from: u64, id: u64, depth: usize, space: Space) -> Built<Curve> {
         if depth > MAX_CURVE_DEPTH {
             return Err(TrimFailure::CurveNesting {
                 curve: id,
@@ -206,28 +461,33 @@ impl Model<'_> {
         for name in ["SURFACE_CURVE", "SEAM_CURVE", "INTERSECTION_CURVE"] {
             if let Some(p) = inst.part(name) {
                 let c = self.reference(id, p.get(1), "curve_3d")?;
-                return self.curve(id, c, depth + 1);
+                return self.curve_in(id, c, depth + 1, space);
             }
         }
         if let Some(p) = inst.part("TRIMMED_CURVE") {
             // The edge's vertices bound it; its sense_agreement .F. runs it against the basis
             // curve (the way round a conic between the vertices).
             let c = self.reference(id, p.get(1), "basis_curve")?;
-            let curve = self.curve(id, c, depth + 1)?;
+            let curve = self.curve_in(id, c, depth + 1, space)?;
             let against = matches!(p.get(4), Some(Param::Enum(e)) if e == "F");
             return Ok(if against { curve.reversed() } else { curve });
         }
         if let Some(p) = inst.part("LINE") {
             let origin = self.reference(id, p.get(1), "pnt")?;
-            let origin = self.point(id, origin)?;
+            let origin = self.curve_point(id, origin, space)?;
             let vid = self.reference(id, p.get(2), "dir")?;
             let vi = self.get(id, vid)?;
             let vp = vi.part("VECTOR").ok_or_else(|| TrimFailure::NotVector {
                 vector: vid,
                 found: vi.first_name().to_string(),
             })?;
-            let dir = self.direction(vid, vp.get(1), Vec3::X)?;
-            let mag = self.num(vid, vp.get(2), "magnitude")? * self.length;
+            let dir = self.curve_direction(vid, vp.get(1), Vec3::X, space)?;
+            let unit = if space == Space::Model {
+                self.length
+            } else {
+                1.0
+            };
+            let mag = self.num(vid, vp.get(2), "magnitude")? * unit;
             if !(mag.abs() > 0.0 && mag.is_finite()) {
                 return Err(TrimFailure::ZeroLine { vector: vid });
             }
@@ -237,7 +497,10 @@ impl Model<'_> {
             });
         }
         if let Some(c) = inst.part("CIRCLE").or_else(|| inst.part("ELLIPSE")) {
-            let (f, a, b) = self.conic(id, c)?;
+            let (f, a, b) = match space {
+                Space::Model => self.conic(id, c)?,
+                Space::Parameter => self.conic_2d(id, c)?,
+            };
             if !(a > 0.0 && b > 0.0 && a.is_finite() && b.is_finite()) {
                 return Err(TrimFailure::ConicRadii { curve: id });
             }
@@ -255,7 +518,7 @@ impl Model<'_> {
                 .iter()
                 .map(|q| {
                     let r = self.reference(id, Some(q), "point")?;
-                    self.point(id, r)
+                    self.curve_point(id, r, space)
                 })
                 .collect::<R<Vec<Vec3>>>()?;
             return Ok(Curve::Polyline(pts));
@@ -295,7 +558,7 @@ impl Model<'_> {
                 .iter()
                 .map(|q| {
                     let r = self.reference(id, Some(q), "control point")?;
-                    self.point(id, r)
+                    self.curve_point(id, r, space)
                 })
                 .collect::<R<Vec<Vec3>>>()?;
             let kv = self.knots(

@@ -11,6 +11,7 @@ use super::assembly::{place, Assembly, MAX_PLACED_CONTROL_POINTS, MAX_PLACED_TRI
 use super::lex::{refs, show, Instance, Param};
 use super::swept::is_swept;
 use super::trims::{set_domain, MAX_FILE_TRIM_POINTS};
+use super::trims::{Built, FaceTrim};
 use super::DEFAULT_LINEAR_RANGE;
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote, UnhonouredTrim};
 use crate::io::{line_col, skipped_detail, Format, ReadError};
@@ -32,8 +33,11 @@ pub(super) struct Model<'a> {
     pub(super) accuracy: f64,
 }
 
-pub(super) const SURFACES: [&str; 6] = [
+pub(super) const SURFACES: [&str; 9] = [
     "B_SPLINE_SURFACE_WITH_KNOTS",
+    "UNIFORM_SURFACE",
+    "QUASI_UNIFORM_SURFACE",
+    "BEZIER_SURFACE",
     "PLANE",
     "CYLINDRICAL_SURFACE",
     "CONICAL_SURFACE",
@@ -41,11 +45,16 @@ pub(super) const SURFACES: [&str; 6] = [
     "TOROIDAL_SURFACE",
 ];
 
-pub(super) const OTHER_SURFACES: [&str; 10] = [
-    "B_SPLINE_SURFACE",
-    "BEZIER_SURFACE",
+/// The B-spline surface kinds: with its knots, or with knots the kind implies.
+const BSPLINE_KINDS: [&str; 4] = [
+    "B_SPLINE_SURFACE_WITH_KNOTS",
     "UNIFORM_SURFACE",
     "QUASI_UNIFORM_SURFACE",
+    "BEZIER_SURFACE",
+];
+
+pub(super) const OTHER_SURFACES: [&str; 7] = [
+    "B_SPLINE_SURFACE",
     "SURFACE_OF_REVOLUTION",
     "SURFACE_OF_LINEAR_EXTRUSION",
     "OFFSET_SURFACE",
@@ -62,11 +71,15 @@ pub(super) fn is_surface(inst: &Instance) -> bool {
     supported(inst) || OTHER_SURFACES.iter().any(|s| inst.part(s).is_some())
 }
 
+/// The surface kind an instance is, by its most specific part: a complex B-spline surface is
+/// named by its subtype (`QUASI_UNIFORM_SURFACE`), not by `B_SPLINE_SURFACE`.
 pub(super) fn kind_name(inst: &Instance) -> String {
-    inst.parts
-        .iter()
-        .map(|(n, _)| n.as_str())
-        .find(|n| SURFACES.contains(n) || OTHER_SURFACES.contains(n))
+    let named = |n: &&str| SURFACES.contains(n) || OTHER_SURFACES.contains(n);
+    let names = || inst.parts.iter().map(|(n, _)| n.as_str());
+    names()
+        .filter(named)
+        .find(|n| *n != "B_SPLINE_SURFACE")
+        .or_else(|| names().find(named))
         .unwrap_or(inst.first_name())
         .to_string()
 }
@@ -218,6 +231,35 @@ impl Model<'_> {
                 Some(Param::Enum(n)) => (1.0, n.clone()),
                 other => return Err(self.bad(id, format!("SI unit name: found {}", show(other)))),
             };
+            // ISO 10303-41's si_unit_name: a name outside it (`.METER.`) is no unit at all, and
+            // a length or plane-angle unit must be the metre or the radian.
+            let wanted = if inst.part("LENGTH_UNIT").is_some() {
+                Some("METRE")
+            } else if inst.part("PLANE_ANGLE_UNIT").is_some() {
+                Some("RADIAN")
+            } else {
+                None
+            };
+            if !SI_UNIT_NAMES.contains(&name.as_str()) || wanted.is_some_and(|w| w != name) {
+                let expected = match wanted {
+                    Some(w) => format!(
+                        ".{w}. (the SI name of a {})",
+                        if w == "METRE" {
+                            "length unit"
+                        } else {
+                            "plane angle unit"
+                        }
+                    ),
+                    None => format!(
+                        "one of ISO 10303-41's SI unit names (.{}.)",
+                        SI_UNIT_NAMES.join("., .")
+                    ),
+                };
+                return Err(self.bad(
+                    id,
+                    format!("SI_UNIT name .{name}. is not {expected}; refused (the file's lengths or angles would be read in a unit it does not declare)"),
+                ));
+            }
             let label = match si.first() {
                 Some(Param::Enum(p)) => format!("{p} {name}"),
                 _ => name,
@@ -389,6 +431,72 @@ impl Model<'_> {
         out
     }
 
+    /// The surfaces of a file with faces that are read on their own, by instance number:
+    /// those a shape representation's items reach (through sets, shells and surface models;
+    /// not into faces, curves, mapped items, styled items or other representations), and those
+    /// nothing refers to — never a face's geometry (`geometry`), nor the basis of another
+    /// surface (`bases`), which are read through the face or that surface.
+    fn free_surfaces(&self, geometry: &HashSet<u64>, bases: &HashSet<u64>) -> Vec<u64> {
+        let mut referenced = HashSet::new();
+        let mut stack = Vec::new();
+        for inst in self.map.values() {
+            for (_, ps) in &inst.parts {
+                for p in ps {
+                    refs(p, &mut stack);
+                }
+            }
+            referenced.extend(stack.drain(..));
+        }
+        let mut reached = HashSet::new();
+        for inst in self.map.values() {
+            let Some((items, _)) = super::assembly::shape_rep(inst) else {
+                continue;
+            };
+            let mut seen = HashSet::new();
+            for item in items {
+                refs(item, &mut stack);
+            }
+            while let Some(i) = stack.pop() {
+                let Some(inst) = self.map.get(&i) else {
+                    continue;
+                };
+                if !seen.insert(i) || super::assembly::shape_rep(inst).is_some() {
+                    continue;
+                }
+                if inst.part("ADVANCED_FACE").is_some() || inst.part("FACE_SURFACE").is_some() {
+                    continue;
+                }
+                if is_surface(inst) {
+                    reached.insert(i);
+                    continue;
+                }
+                let name = inst.first_name();
+                let curve = inst.parts.iter().any(|(n, _)| n.ends_with("CURVE"));
+                if curve || name.contains("STYLED_ITEM") || not_entered(name) {
+                    continue;
+                }
+                for (_, ps) in &inst.parts {
+                    for p in ps {
+                        refs(p, &mut stack);
+                    }
+                }
+            }
+        }
+        let mut out: Vec<u64> = self
+            .map
+            .iter()
+            .filter(|(id, inst)| {
+                is_surface(inst)
+                    && (reached.contains(*id) || !referenced.contains(*id))
+                    && !geometry.contains(*id)
+                    && !bases.contains(*id)
+            })
+            .map(|(id, _)| *id)
+            .collect();
+        out.sort_unstable();
+        out
+    }
+
     pub(super) fn read(mut self) -> R<CompoundSurface> {
         let mut out = CompoundSurface::default();
         let contexts = self.units(&mut out.notes)?;
@@ -402,17 +510,39 @@ impl Model<'_> {
                 i.part("ADVANCED_FACE").is_some() || i.part("FACE_SURFACE").is_some()
             })
             .collect();
-        // Assembly placements, in the file's units (each representation's, when they differ).
         let bases = self.bases();
-        let items: Vec<u64> = if faces.is_empty() {
+        // Surfaces read on their own: in a file without faces every surface that is no other
+        // surface's basis; in a file with faces, the free ones besides them.
+        let free: Vec<u64> = if faces.is_empty() {
             ids.iter()
                 .copied()
-                .filter(|id| !bases.contains(id))
-                .filter(|id| supported(&self.map[id]) || is_swept(&self.map[id]))
+                .filter(|id| is_surface(&self.map[id]) && !bases.contains(id))
                 .collect()
         } else {
-            faces.clone()
+            let geometry: HashSet<u64> = faces
+                .iter()
+                .filter_map(|f| {
+                    let i = &self.map[f];
+                    match i
+                        .part("ADVANCED_FACE")
+                        .or_else(|| i.part("FACE_SURFACE"))?
+                        .get(2)
+                    {
+                        Some(Param::Ref(s)) => Some(*s),
+                        _ => None,
+                    }
+                })
+                .collect();
+            self.free_surfaces(&geometry, &bases)
         };
+        let readable =
+            |i: &Instance| supported(i) || is_swept(i) || i.part("CURVE_BOUNDED_SURFACE").is_some();
+        // Assembly placements, in the file's units (each representation's, when they differ).
+        let items: Vec<u64> = faces
+            .iter()
+            .copied()
+            .chain(free.iter().copied().filter(|id| readable(&self.map[id])))
+            .collect();
         let assembly = self.assembly(&contexts, &items)?;
         let reversals = self.face_reversals()?;
         // Representations in different length units: each face is read in its own's.
@@ -425,138 +555,134 @@ impl Model<'_> {
         let mut skipped = Vec::new();
         let mut budget = MAX_FILE_TRIM_POINTS;
         let mut placed = [0; 2];
-        if faces.is_empty() {
-            for &id in &ids {
-                let inst = &self.map[&id];
-                if !is_surface(inst) || bases.contains(&id) {
-                    continue;
-                }
-                if !supported(inst) && !is_swept(inst) {
+        for &fid in &faces {
+            let f = &self.map[&fid];
+            let p = f
+                .part("ADVANCED_FACE")
+                .or_else(|| f.part("FACE_SURFACE"))
+                .unwrap_or(&[]);
+            let sid = self.reference(fid, p.get(2), "face geometry")?;
+            let same_sense = self.logical(fid, p.get(3), "same_sense")?;
+            let sinst = self.get(fid, sid)?;
+            let skind = kind_name(sinst);
+            if !supported(sinst) && !is_swept(sinst) {
+                skipped.push(ReadNote::UnsupportedSurface {
+                    entity: format!("#{sid} (face #{fid})"),
+                    kind: kind_name(sinst),
+                });
+                continue;
+            }
+            let index = out.patches.len();
+            let bounds = p.get(1).cloned();
+            (self.length, self.angle) = units_of(fid, &units, &mut defaulted, file_units);
+            let mut notes = Vec::new();
+            let face = bounds.as_ref().map(|b| (fid, b));
+            let (mut surface, sname, reversed) =
+                match self.any_surface(sid, face, index, &mut notes)? {
+                    Ok(s) => s,
+                    Err(why) => {
+                        skipped.push(ReadNote::UnsupportedSurface {
+                            entity: format!("#{sid} (face #{fid})"),
+                            kind: format!("{skind} ({why})"),
+                        });
+                        continue;
+                    }
+                };
+            // A surface whose normal is the other way (a reversed rectangular trim): the
+            // face agrees with it the other way.
+            let same_sense = same_sense != reversed;
+            let trim = self.face_trim(fid, bounds.as_ref(), same_sense, &surface, &mut budget);
+            let trim = trimmed(
+                trim,
+                &mut surface,
+                &mut notes,
+                index,
+                format!("STEP face #{fid}"),
+                |why| UnhonouredTrim::StepFace { face: fid, why },
+            );
+            let patch = Patch {
+                name: Self::name(p.first()).or(sname),
+                surface,
+                flipped: !same_sense,
+                source: PatchSource {
+                    file: None,
+                    entity: EntityRef::Step {
+                        surface: sid,
+                        face: Some(fid),
+                    },
+                },
+                trim,
+            };
+            // An oriented face or shell that reverses the face flips its material side
+            // only: the region its bounds enclose is the same (it reverses the bounds too),
+            // so the trim above is read with the face's own same_sense. A face its holders
+            // use both ways (two solids sharing it) is read once each way.
+            let ways = reversals.get(&fid).map_or(&[false][..], Vec::as_slice);
+            for &reversed in ways {
+                let first = out.patches.len();
+                let patch = Patch {
+                    flipped: patch.flipped != reversed,
+                    ..patch.clone()
+                };
+                let notes = notes.iter().map(|n| n.clone().for_patch(first)).collect();
+                self.push_placed(&mut out, patch, notes, &assembly, fid, &mut placed)?;
+            }
+        }
+        for &id in &free {
+            let inst = &self.map[&id];
+            if !readable(inst) {
+                skipped.push(ReadNote::UnsupportedSurface {
+                    entity: format!("#{id}"),
+                    kind: kind_name(inst),
+                });
+                continue;
+            }
+            let index = out.patches.len();
+            (self.length, self.angle) = units_of(id, &units, &mut defaulted, file_units);
+            let mut notes = Vec::new();
+            let read = match inst.part("CURVE_BOUNDED_SURFACE") {
+                Some(p) => self
+                    .bounded(id, p, index, &mut notes, &mut budget)?
+                    .map(|(s, t)| (s, Some(t))),
+                None => self
+                    .any_surface(id, None, index, &mut notes)?
+                    .map(|s| (s, None)),
+            };
+            let ((mut surface, name, reversed), trim) = match read {
+                Ok(s) => s,
+                Err(why) => {
                     skipped.push(ReadNote::UnsupportedSurface {
                         entity: format!("#{id}"),
-                        kind: kind_name(inst),
+                        kind: format!("{} ({why})", kind_name(inst)),
                     });
                     continue;
                 }
-                let index = out.patches.len();
-                (self.length, self.angle) = units_of(id, &units, &mut defaulted, file_units);
-                let mut notes = Vec::new();
-                let (surface, name, reversed) =
-                    match self.any_surface(id, None, index, &mut notes)? {
-                        Ok(s) => s,
-                        Err(why) => {
-                            skipped.push(ReadNote::UnsupportedSurface {
-                                entity: format!("#{id}"),
-                                kind: format!("{} ({why})", kind_name(inst)),
-                            });
-                            continue;
-                        }
-                    };
-                let patch = Patch {
-                    name,
-                    surface,
-                    flipped: reversed,
-                    source: PatchSource {
-                        file: None,
-                        entity: EntityRef::Step {
-                            surface: id,
-                            face: None,
-                        },
+            };
+            let trim = match trim {
+                Some(t) => trimmed(
+                    t,
+                    &mut surface,
+                    &mut notes,
+                    index,
+                    format!("STEP curve-bounded surface #{id}"),
+                    |why| UnhonouredTrim::StepBounded { surface: id, why },
+                ),
+                None => None,
+            };
+            let patch = Patch {
+                name,
+                surface,
+                flipped: reversed,
+                source: PatchSource {
+                    file: None,
+                    entity: EntityRef::Step {
+                        surface: id,
+                        face: None,
                     },
-                    trim: None,
-                };
-                self.push_placed(&mut out, patch, notes, &assembly, id, &mut placed)?;
-            }
-        } else {
-            for &fid in &faces {
-                let f = &self.map[&fid];
-                let p = f
-                    .part("ADVANCED_FACE")
-                    .or_else(|| f.part("FACE_SURFACE"))
-                    .unwrap_or(&[]);
-                let sid = self.reference(fid, p.get(2), "face geometry")?;
-                let same_sense = self.logical(fid, p.get(3), "same_sense")?;
-                let sinst = self.get(fid, sid)?;
-                let skind = kind_name(sinst);
-                if !supported(sinst) && !is_swept(sinst) {
-                    skipped.push(ReadNote::UnsupportedSurface {
-                        entity: format!("#{sid} (face #{fid})"),
-                        kind: kind_name(sinst),
-                    });
-                    continue;
-                }
-                let index = out.patches.len();
-                let bounds = p.get(1).cloned();
-                (self.length, self.angle) = units_of(fid, &units, &mut defaulted, file_units);
-                let mut notes = Vec::new();
-                let face = bounds.as_ref().map(|b| (fid, b));
-                let (mut surface, sname, reversed) =
-                    match self.any_surface(sid, face, index, &mut notes)? {
-                        Ok(s) => s,
-                        Err(why) => {
-                            skipped.push(ReadNote::UnsupportedSurface {
-                                entity: format!("#{sid} (face #{fid})"),
-                                kind: format!("{skind} ({why})"),
-                            });
-                            continue;
-                        }
-                    };
-                // A surface whose normal is the other way (a reversed rectangular trim): the
-                // face agrees with it the other way.
-                let same_sense = same_sense != reversed;
-                let by = format!("STEP face #{fid}");
-                let trim =
-                    match self.face_trim(fid, bounds.as_ref(), same_sense, &surface, &mut budget) {
-                        Ok(Some(t)) => {
-                            notes.push(ReadNote::Trimmed {
-                                patch: index,
-                                by,
-                                loops: t.trim.loops().len(),
-                                points: t.trim.loops().iter().map(Vec::len).sum(),
-                            });
-                            set_domain(&mut surface, t.domain);
-                            Some(t.trim)
-                        }
-                        Ok(None) => None,
-                        Err(why) => {
-                            notes.push(ReadNote::TrimNotHonoured {
-                                patch: index,
-                                by: UnhonouredTrim::StepFace {
-                                    face: fid,
-                                    why: Arc::new(why),
-                                },
-                            });
-                            None
-                        }
-                    };
-                let patch = Patch {
-                    name: Self::name(p.first()).or(sname),
-                    surface,
-                    flipped: !same_sense,
-                    source: PatchSource {
-                        file: None,
-                        entity: EntityRef::Step {
-                            surface: sid,
-                            face: Some(fid),
-                        },
-                    },
-                    trim,
-                };
-                // An oriented face or shell that reverses the face flips its material side
-                // only: the region its bounds enclose is the same (it reverses the bounds too),
-                // so the trim above is read with the face's own same_sense. A face its holders
-                // use both ways (two solids sharing it) is read once each way.
-                let ways = reversals.get(&fid).map_or(&[false][..], Vec::as_slice);
-                for &reversed in ways {
-                    let first = out.patches.len();
-                    let patch = Patch {
-                        flipped: patch.flipped != reversed,
-                        ..patch.clone()
-                    };
-                    let notes = notes.iter().map(|n| n.clone().for_patch(first)).collect();
-                    self.push_placed(&mut out, patch, notes, &assembly, fid, &mut placed)?;
-                }
-            }
+                },
+                trim,
+            };
+            self.push_placed(&mut out, patch, notes, &assembly, id, &mut placed)?;
         }
         if out.patches.is_empty() {
             let detail = if skipped.is_empty() {
@@ -666,7 +792,7 @@ impl Model<'_> {
         notes: &mut Vec<ReadNote>,
     ) -> R<(Surface, Option<String>)> {
         let inst = &self.map[&id];
-        if inst.part("B_SPLINE_SURFACE_WITH_KNOTS").is_some() {
+        if BSPLINE_KINDS.iter().any(|k| inst.part(k).is_some()) {
             return self.bspline(id, inst);
         }
         let (kind, p) = inst
@@ -749,22 +875,25 @@ impl Model<'_> {
     }
 
     pub(super) fn bspline(&self, id: u64, inst: &Instance) -> R<(Surface, Option<String>)> {
-        // Simple entity: all attributes in one part; complex: split over parts.
-        let k = inst.part("B_SPLINE_SURFACE_WITH_KNOTS").unwrap_or(&[]);
+        // Simple entity: all attributes in one part; complex: split over parts. A uniform,
+        // quasi-uniform or Bézier surface has no knots of its own: its kind implies them.
+        let (kind, k) = BSPLINE_KINDS
+            .iter()
+            .find_map(|n| inst.part(n).map(|p| (*n, p)))
+            .unwrap_or(("B_SPLINE_SURFACE_WITH_KNOTS", &[]));
+        let with_knots = kind == "B_SPLINE_SURFACE_WITH_KNOTS";
         let (name, head, knots): (Option<String>, &[Param], &[Param]) =
             if let Some(b) = inst.part("B_SPLINE_SURFACE") {
                 let name = inst
                     .part("REPRESENTATION_ITEM")
                     .and_then(|r| Self::name(r.first()));
-                (name, b, k)
+                (name, b, if with_knots { k } else { &[] })
             } else {
-                if k.len() < 13 {
+                let expected = if with_knots { 13 } else { 8 };
+                if k.len() < expected {
                     return Err(self.bad(
                         id,
-                        format!(
-                            "B_SPLINE_SURFACE_WITH_KNOTS has {} attributes, expected 13",
-                            k.len()
-                        ),
+                        format!("{kind} has {} attributes, expected {expected}", k.len()),
                     ));
                 }
                 (Self::name(k.first()), &k[1..8], &k[8..])
@@ -794,8 +923,18 @@ impl Model<'_> {
         }
         let nu = points.len();
         let nv = points.first().map_or(0, Vec::len);
-        let knots_u = self.knots(id, knots.first(), knots.get(2), "u", nu + du + 1)?;
-        let knots_v = self.knots(id, knots.get(1), knots.get(3), "v", nv + dv + 1)?;
+        let (knots_u, knots_v) = if with_knots {
+            (
+                self.knots(id, knots.first(), knots.get(2), "u", nu + du + 1)?,
+                self.knots(id, knots.get(1), knots.get(3), "v", nv + dv + 1)?,
+            )
+        } else {
+            let implied = |n: usize, d: usize, dir: &str| {
+                implied_knots(kind, n, d)
+                    .ok_or_else(|| self.bad(id, format!("{kind}: {n} {dir} control points do not make pieces of degree {d} (a Bézier surface needs a multiple of the degree, plus one)")))
+            };
+            (implied(nu, du, "u")?, implied(nv, dv, "v")?)
+        };
         let weights = match inst.part("RATIONAL_B_SPLINE_SURFACE") {
             Some(w) => {
                 let rows = self.list(id, w.first(), "weights_data")?;
@@ -935,6 +1074,73 @@ impl Model<'_> {
     }
 }
 
+/// The knots ISO 10303-42 implies for `n` control points of degree `d` (`n > d`) of a
+/// `UNIFORM_SURFACE` (every knot once, a unit apart, the parameter range `[0, n − d]`: knots
+/// −d, −d + 1, …, n), a `QUASI_UNIFORM_SURFACE` (0 and n − d each d + 1 times, the integers
+/// between once) or a `BEZIER_SURFACE` (pieces of degree d: 0 and m = (n − 1)/d each d + 1
+/// times, 1 … m − 1 each d times; `None` when d does not divide n − 1).
+fn implied_knots(kind: &str, n: usize, d: usize) -> Option<Vec<f64>> {
+    if n <= d {
+        return None;
+    }
+    let mut k = Vec::with_capacity(n + d + 1);
+    match kind {
+        "UNIFORM_SURFACE" => k.extend((0..n + d + 1).map(|i| i as f64 - d as f64)),
+        "QUASI_UNIFORM_SURFACE" => {
+            let last = (n - d) as f64;
+            k.extend(std::iter::repeat(0.0).take(d + 1));
+            k.extend((1..n - d).map(|i| i as f64));
+            k.extend(std::iter::repeat(last).take(d + 1));
+        }
+        "BEZIER_SURFACE" => {
+            if (n - 1) % d != 0 {
+                return None;
+            }
+            let m = (n - 1) / d;
+            k.extend(std::iter::repeat(0.0).take(d + 1));
+            for i in 1..m {
+                k.extend(std::iter::repeat(i as f64).take(d));
+            }
+            k.extend(std::iter::repeat(m as f64).take(d + 1));
+        }
+        _ => return None,
+    }
+    Some(k)
+}
+
+/// A face's (or a curve-bounded surface's) trim as read: `Some(trim)`, the surface's box set
+/// to the trim's and a [`ReadNote::Trimmed`] by `by`; `None` without one, or with a
+/// [`ReadNote::TrimNotHonoured`] (`unhonoured`) when it cannot be honoured.
+fn trimmed(
+    trim: Built<Option<FaceTrim>>,
+    surface: &mut Surface,
+    notes: &mut Vec<ReadNote>,
+    index: usize,
+    by: String,
+    unhonoured: impl FnOnce(Arc<crate::io::TrimFailure>) -> UnhonouredTrim,
+) -> Option<crate::trim::Trim> {
+    match trim {
+        Ok(Some(t)) => {
+            notes.push(ReadNote::Trimmed {
+                patch: index,
+                by,
+                loops: t.trim.loops().len(),
+                points: t.trim.loops().iter().map(Vec::len).sum(),
+            });
+            set_domain(surface, t.domain);
+            Some(t.trim)
+        }
+        Ok(None) => None,
+        Err(why) => {
+            notes.push(ReadNote::TrimNotHonoured {
+                patch: index,
+                by: unhonoured(Arc::new(why)),
+            });
+            None
+        }
+    }
+}
+
 /// The units (mm per length unit, radians per angle unit) to read face or surface `id` in:
 /// its representation's context's, or the file's (`file`) where it has none or is ambiguous
 /// (counted in `defaulted`).
@@ -972,6 +1178,38 @@ fn is_representation(inst: &Instance, contexts: &Contexts) -> bool {
         matches!(p.as_slice(), [_, Param::List(_), Param::Ref(c)] if contexts.contains_key(c))
     })
 }
+
+/// ISO 10303-41's `si_unit_name`: the names an `SI_UNIT` may have.
+const SI_UNIT_NAMES: [&str; 28] = [
+    "METRE",
+    "GRAM",
+    "SECOND",
+    "AMPERE",
+    "KELVIN",
+    "MOLE",
+    "CANDELA",
+    "RADIAN",
+    "STERADIAN",
+    "HERTZ",
+    "NEWTON",
+    "PASCAL",
+    "JOULE",
+    "WATT",
+    "COULOMB",
+    "VOLT",
+    "FARAD",
+    "OHM",
+    "SIEMENS",
+    "WEBER",
+    "TESLA",
+    "HENRY",
+    "DEGREE_CELSIUS",
+    "LUMEN",
+    "LUX",
+    "BECQUEREL",
+    "GRAY",
+    "SIEVERT",
+];
 
 pub(super) fn si_prefix(p: &str) -> Option<f64> {
     Some(match p {

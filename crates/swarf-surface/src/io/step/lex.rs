@@ -304,7 +304,7 @@ impl<'a> Lexer<'a> {
                         s.push('\'');
                         self.pos += 1;
                     } else {
-                        return Ok(s);
+                        return Ok(decode(&s));
                     }
                 }
             }
@@ -377,6 +377,91 @@ impl<'a> Lexer<'a> {
             _ => Err(self.err(at, format!("found {}, expected a parameter", self.found()))),
         }
     }
+}
+
+/// A string's characters from its ISO 10303-21 encoding (section 6.4.3; the doubled quotes
+/// already undoubled): `\\` a backslash; `\S\c` the character `c` + 128 of the code page in
+/// force (ISO 8859-1 unless a `\P?\` directive names another page); `\X\hh` the ISO 8859-1
+/// character hh; `\X2\` … `\X0\` UCS-2 (UTF-16) code units, four hex digits each; `\X4\` …
+/// `\X0\` UCS-4 code points, eight each. `\S\` under a page other than ISO 8859-1 (`\PA\`),
+/// and any sequence that is not well formed, stay as written.
+pub(super) fn decode(raw: &str) -> String {
+    if !raw.contains('\\') {
+        return raw.to_string();
+    }
+    let mut out = String::with_capacity(raw.len());
+    let mut latin1 = true;
+    let mut rest = raw;
+    while let Some(c) = rest.chars().next() {
+        if c != '\\' {
+            out.push(c);
+            rest = &rest[c.len_utf8()..];
+            continue;
+        }
+        match escape(rest, &mut latin1) {
+            Some((text, used)) => {
+                out.push_str(&text);
+                rest = &rest[used..];
+            }
+            None => {
+                out.push('\\');
+                rest = &rest[1..];
+            }
+        }
+    }
+    out
+}
+
+/// The escape at the start of `s` (which starts with a backslash): what it stands for and
+/// the bytes it takes; `None` when it is not one. A code page directive sets `latin1`.
+fn escape(s: &str, latin1: &mut bool) -> Option<(String, usize)> {
+    let hex = |h: &str| -> Option<u32> {
+        h.bytes()
+            .all(|c| c.is_ascii_hexdigit())
+            .then(|| u32::from_str_radix(h, 16).ok())?
+    };
+    if s.starts_with("\\\\") {
+        return Some(("\\".into(), 2));
+    }
+    if let Some(r) = s.strip_prefix("\\S\\") {
+        let c = r.chars().next().filter(char::is_ascii)?;
+        return latin1.then(|| (char::from(c as u8 + 128).to_string(), 4));
+    }
+    if let Some(r) = s.strip_prefix("\\P") {
+        let b = r.as_bytes();
+        if b.len() >= 2 && b[0].is_ascii_uppercase() && b[1] == b'\\' {
+            *latin1 = b[0] == b'A';
+            return Some((String::new(), 4));
+        }
+        return None;
+    }
+    for (tag, width) in [("\\X2\\", 4), ("\\X4\\", 8)] {
+        let Some(r) = s.strip_prefix(tag) else {
+            continue;
+        };
+        let end = r.find("\\X0\\")?;
+        let body = &r[..end];
+        if body.len() % width != 0 || !body.is_ascii() {
+            return None;
+        }
+        let units = (0..body.len() / width)
+            .map(|k| hex(&body[k * width..(k + 1) * width]))
+            .collect::<Option<Vec<u32>>>()?;
+        let text = if width == 4 {
+            String::from_utf16(&units.iter().map(|&u| u as u16).collect::<Vec<_>>()).ok()?
+        } else {
+            units
+                .into_iter()
+                .map(char::from_u32)
+                .collect::<Option<String>>()?
+        };
+        return Some((text, tag.len() + end + 4));
+    }
+    if let Some(r) = s.strip_prefix("\\X\\") {
+        let c = char::from_u32(hex(r.get(..2)?)?)?;
+        return Some((c.to_string(), 5));
+    }
+    None
 }
 
 pub(super) fn refs(p: &Param, out: &mut Vec<u64>) {

@@ -1,19 +1,32 @@
 //! STEP (ISO 10303-21, AP203/AP214) surfaces.
 //!
 //! Read: `B_SPLINE_SURFACE_WITH_KNOTS` (simple, and the complex rational form with
-//! `RATIONAL_B_SPLINE_SURFACE`), `PLANE`, `CYLINDRICAL_SURFACE`, `CONICAL_SURFACE`,
+//! `RATIONAL_B_SPLINE_SURFACE`), `UNIFORM_SURFACE`, `QUASI_UNIFORM_SURFACE` and
+//! `BEZIER_SURFACE` (the same forms, with the knots ISO 10303-42 implies: uniform −d … n,
+//! quasi-uniform 0 and n − d at both ends d + 1 times, Bézier pieces of degree d, for n control
+//! points of degree d), `PLANE`, `CYLINDRICAL_SURFACE`, `CONICAL_SURFACE`,
 //! `SPHERICAL_SURFACE`, `TOROIDAL_SURFACE`; and, built on those or on curves (see `swept.rs`),
 //! `SURFACE_OF_REVOLUTION` and `SURFACE_OF_LINEAR_EXTRUSION` (exact NURBS of their swept line,
 //! conic, B-spline or polyline), `RECTANGULAR_TRIMMED_SURFACE` (its basis over the rectangle;
 //! one sense `.F.` reverses the normal, as ISO 10303-42 says), `OFFSET_SURFACE` of a plane,
 //! cylinder, cone, sphere or torus (the same kind; a B-spline's offset is skipped with a note)
-//! and `DEGENERATE_TOROIDAL_SURFACE` (the outer or the inner part). In a file without faces a
-//! surface that is the basis of a trim or an offset is read only through it.
+//! and `DEGENERATE_TOROIDAL_SURFACE` (the outer or the inner part); a swept `TRIMMED_CURVE`
+//! keeps what its trims keep of its basis. A `CURVE_BOUNDED_SURFACE` outside a face is its
+//! basis trimmed by its boundaries (`bounded.rs`). A surface that is the basis of a
+//! rectangular trim, an offset or a curve-bounded surface is read only through it (unless a
+//! face has it as its geometry).
 //!
 //! * **Patches**: when the file has faces (`ADVANCED_FACE`, `FACE_SURFACE`), one patch per face,
 //!   named after the face (or its surface), flipped when the face's `same_sense` is `.F.`;
-//!   faces on other surface kinds are skipped with a [`ReadNote::UnsupportedSurface`](crate::ReadNote::UnsupportedSurface). A file
-//!   without faces gives one patch per surface instance.
+//!   faces on other surface kinds (a `CURVE_BOUNDED_SURFACE` among them) are skipped with a
+//!   [`ReadNote::UnsupportedSurface`](crate::ReadNote::UnsupportedSurface). Then one patch per
+//!   free surface: one a shape representation's items reach outside faces (through geometric
+//!   sets, shells and surface models; not through curves, mapped items or styled items), or
+//!   that nothing refers to — never a face's own surface again; free surfaces of kinds not
+//!   read are skipped with the same note. A file without faces gives one patch per surface
+//!   instance.
+//! * **Text**: strings are decoded as ISO 10303-21 encodes them (`\X2\…\X0\`, `\X4\…\X0\`,
+//!   `\X\hh`, `\S\c`, `\\`), so names read as written in their CAD system.
 //! * **Orientation**: an `ORIENTED_FACE`, `ORIENTED_OPEN_SHELL` or `ORIENTED_CLOSED_SHELL`
 //!   with orientation `.F.` reverses its face (every face of its shell): the patch is flipped
 //!   the other way, as if the face's `same_sense` were the opposite; the region its bounds
@@ -59,7 +72,9 @@
 //! * **Units**: the length unit of the `GLOBAL_UNIT_ASSIGNED_CONTEXT` (`SI_UNIT` with any prefix,
 //!   or a `CONVERSION_BASED_UNIT` such as INCH or FOOT, resolved through its
 //!   `LENGTH_MEASURE_WITH_UNIT`, simple or complex with the value in its `MEASURE_WITH_UNIT`
-//!   part) scales lengths to mm; the plane-angle unit scales cone angles.
+//!   part) scales lengths to mm; the plane-angle unit scales cone angles. An `SI_UNIT` whose
+//!   name is not one of ISO 10303-41's (`.METER.`), or a length (plane-angle) unit not named
+//!   `.METRE.` (`.RADIAN.`), refuses the file.
 //!   No unit: mm, with a [`ReadNote::UnitsAssumed`](crate::ReadNote::UnitsAssumed). When unit
 //!   contexts declare different length units, each face (each surface, in a file without
 //!   faces) is read in the units of the representation that holds it (`(name, items,
@@ -133,8 +148,15 @@
 //!   and its circles and ellipses, projected — a range that holds the face, possibly larger.
 //!   Without a face, or with a boundary of zero extent, they take [`DEFAULT_LINEAR_RANGE`] and
 //!   a [`ReadNote::DefaultParameterBox`](crate::ReadNote::DefaultParameterBox) says so.
+//! * **A trimmed face's box** (every kind, B-splines too) is then cut down to its outer loop's
+//!   extent in the parameters (an angle range starting where the loop lies, as above), so that
+//!   the planner's grid over the box covers the face rather than its whole surface; a
+//!   B-spline surface is cut exactly ([`NurbsSurface::restricted`](crate::NurbsSurface::restricted)),
+//!   its parameters kept. A placement's reference direction left out (`$`) is ISO 10303-42's
+//!   `first_proj_axis`: (1, 0, 0) made square to the axis, (0, 1, 0) for an axis along ±X.
 
 mod assembly;
+mod bounded;
 mod curves;
 mod entities;
 mod lex;

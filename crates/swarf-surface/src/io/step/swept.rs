@@ -6,7 +6,7 @@
 
 use swarf_geom::math::Vec3;
 
-use super::curves::Curve;
+use super::curves::{Curve, Space};
 use super::entities::{kind_name, supported, Model, R};
 use super::lex::{Instance, Param};
 use super::DEFAULT_LINEAR_RANGE;
@@ -34,6 +34,10 @@ pub(super) fn is_swept(inst: &Instance) -> bool {
 /// A surface, its name, and whether its normal is the opposite of the one `Surface` gives
 /// (a `RECTANGULAR_TRIMMED_SURFACE` with one sense `.F.`).
 pub(super) type Sensed = (Surface, Option<String>, bool);
+
+/// A swept curve as a B-spline, and the range of its parameter to cut from the swept surface
+/// afterwards (a bounded curve's trimmed range).
+type SweptCurve = (BSplineCurve, Option<[f64; 2]>);
 
 /// Parameter ranges in the file's own parameters (STEP's), given by a rectangular trim.
 type Ranges = Option<([f64; 2], [f64; 2])>;
@@ -164,12 +168,16 @@ impl Model<'_> {
         Ok(Err(kind_name(inst)))
     }
 
-    /// The surfaces that are the basis of a rectangular trim or an offset: in a file without
-    /// faces, read only through those.
+    /// The surfaces that are the basis of a rectangular trim, an offset or a curve-bounded
+    /// surface: read only through those (unless a face has them as its geometry).
     pub(super) fn bases(&self) -> std::collections::HashSet<u64> {
         let mut out = std::collections::HashSet::new();
         for inst in self.map.values() {
-            for n in ["RECTANGULAR_TRIMMED_SURFACE", "OFFSET_SURFACE"] {
+            for n in [
+                "RECTANGULAR_TRIMMED_SURFACE",
+                "OFFSET_SURFACE",
+                "CURVE_BOUNDED_SURFACE",
+            ] {
                 if let Some(Param::Ref(b)) = inst.part(n).and_then(|p| p.get(1)) {
                     out.insert(*b);
                 }
@@ -180,18 +188,27 @@ impl Model<'_> {
 
     /// Millimetres (or radians) per file unit of the u and v parameters of surface `b`, and
     /// whether each is an angle (closed, a turn).
-    fn parameter_units(&self, b: &Instance) -> [(f64, bool); 2] {
+    pub(super) fn parameter_units(&self, b: &Instance) -> [(f64, bool); 2] {
         let (l, a) = ((self.length, false), (self.angle, true));
+        // A conic's parameter is an angle, a trimmed conic's too.
         let conic = |p: Option<&Param>| -> (f64, bool) {
-            match p {
-                Some(Param::Ref(c)) => self.map.get(c).map_or((1.0, false), |ci| {
-                    if ci.part("CIRCLE").is_some() || ci.part("ELLIPSE").is_some() {
-                        a
-                    } else {
-                        (1.0, false)
-                    }
-                }),
-                _ => (1.0, false),
+            let is_conic =
+                |ci: &Instance| ci.part("CIRCLE").is_some() || ci.part("ELLIPSE").is_some();
+            let curve = match p {
+                Some(Param::Ref(c)) => self.map.get(c),
+                _ => None,
+            };
+            let basis =
+                curve
+                    .and_then(|ci| ci.part("TRIMMED_CURVE"))
+                    .and_then(|t| match t.get(1) {
+                        Some(Param::Ref(b)) => self.map.get(b),
+                        _ => None,
+                    });
+            if curve.is_some_and(is_conic) || basis.is_some_and(is_conic) {
+                a
+            } else {
+                (1.0, false)
             }
         };
         if b.part("PLANE").is_some() {
@@ -214,20 +231,55 @@ impl Model<'_> {
 
     /// The swept curve `p[1]` of surface `id` as a B-spline over `range` (its STEP parameter)
     /// or, for a line (unbounded) without one, over `line_range(p, d)`; a conic without one
-    /// takes a full turn, a bounded curve its own range.
+    /// takes a full turn, a bounded curve its own range. A `TRIMMED_CURVE` keeps the part of
+    /// its basis its trims keep ([`Model::kept`]), run backwards when its sense disagrees (a
+    /// rectangular trim's range, when there is one, is then in the basis's parameter, and
+    /// must meet the trimmed part). With the spline, the range to cut from the swept surface
+    /// afterwards, in the spline's parameter (a bounded curve's, when it has one).
     fn swept_curve(
         &self,
         id: u64,
         p: &[Param],
         range: Option<[f64; 2]>,
         line_range: &mut dyn FnMut(Vec3, Vec3) -> [f64; 2],
-    ) -> R<Result<(BSplineCurve, bool), String>> {
+    ) -> R<Result<SweptCurve, String>> {
         let cid = self.reference(id, p.get(1), "swept_curve")?;
-        let curve = match self.curve(id, cid, 0) {
-            Ok(c) => c,
-            Err(why) => return Ok(Err(format!("swept curve #{cid}: {why}"))),
+        let trimmed = self.get(id, cid)?.part("TRIMMED_CURVE");
+        let (curve, range, against) = match trimmed {
+            Some(tp) => match self.kept(cid, tp, Space::Model) {
+                Ok(k) => {
+                    let r = match range {
+                        None => k.range,
+                        Some(r) if k.against => {
+                            return Ok(Err(format!(
+                                "swept curve #{cid}: a rectangular trim ({}..{}) of a surface \
+                                 swept along a trimmed curve that runs against its basis is not \
+                                 read",
+                                r[0], r[1]
+                            )))
+                        }
+                        Some(r) => match meet(r, k.range, matches!(k.curve, Curve::Conic { .. })) {
+                            Some(m) => m,
+                            None => {
+                                return Ok(Err(format!(
+                                    "swept curve #{cid}: the rectangle's range {}..{} misses \
+                                     the trimmed curve's {}..{}",
+                                    r[0], r[1], k.range[0], k.range[1]
+                                )))
+                            }
+                        },
+                    };
+                    (k.curve, Some(r), k.against)
+                }
+                Err(why) => return Ok(Err(format!("swept curve #{cid}: {why}"))),
+            },
+            None => match self.curve(id, cid, 0) {
+                Ok(c) => (c, range, false),
+                Err(why) => return Ok(Err(format!("swept curve #{cid}: {why}"))),
+            },
         };
         let tau = std::f64::consts::TAU;
+        let bounded = matches!(curve, Curve::Spline(_) | Curve::Polyline(_));
         let spline = match curve {
             Curve::Line { p, d } => {
                 let [a, b] = range.unwrap_or_else(|| line_range(p, d));
@@ -246,15 +298,16 @@ impl Model<'_> {
                 BSplineCurve::new(1, knots, &pts, &vec![1.0; n]).ok()
             }
         };
-        // A bounded curve restricted afterwards (on the surface, exactly).
-        let restrict_after = range.is_some()
-            && !matches!(
-                self.curve(id, cid, 0),
-                Ok(Curve::Line { .. } | Curve::Conic { .. })
-            );
-        Ok(spline
-            .map(|s| (s, restrict_after))
-            .ok_or_else(|| format!("swept curve #{cid}: an empty parameter range")))
+        let Some(spline) = spline else {
+            return Ok(Err(format!("swept curve #{cid}: an empty parameter range")));
+        };
+        // A bounded curve restricted afterwards (on the surface, exactly); run backwards, its
+        // parameter t is the basis's −t.
+        let after = range
+            .filter(|_| bounded)
+            .map(|[a, b]| if against { [-b, -a] } else { [a, b] });
+        let spline = if against { spline.reversed() } else { spline };
+        Ok(Ok((spline, after)))
     }
 
     fn revolution(
@@ -321,8 +374,8 @@ impl Model<'_> {
         }
         let s =
             sweep::revolve(&c, o, z, u[0], u[1]).map_err(|reason| self.nurbs_error(id, reason))?;
-        let s = match (restrict_v, v) {
-            (true, Some(v)) => match clipped(&s, s.domain().u, v) {
+        let s = match restrict_v {
+            Some(v) => match clipped(&s, s.domain().u, v) {
                 Ok(s) => s,
                 Err(why) => return Ok(Err(why)),
             },
@@ -414,8 +467,8 @@ impl Model<'_> {
         }
         let s = sweep::extrude(&c, vector, v[0], v[1])
             .map_err(|reason| self.nurbs_error(id, reason))?;
-        let s = match (restrict_u, u) {
-            (true, Some(u)) => match clipped(&s, u, s.domain().v) {
+        let s = match restrict_u {
+            Some(u) => match clipped(&s, u, s.domain().v) {
                 Ok(s) => s,
                 Err(why) => return Ok(Err(why)),
             },
@@ -432,6 +485,24 @@ impl Model<'_> {
             reason,
         }
     }
+}
+
+/// Where the range `r` meets `k`; on an angle (`periodic`) `r` moved whole turns to meet it
+/// most.
+fn meet(r: [f64; 2], k: [f64; 2], periodic: bool) -> Option<[f64; 2]> {
+    let tau = std::f64::consts::TAU;
+    // The turn that starts r at or after k's start, and the one before it.
+    let shift = if periodic {
+        ((k[0] - r[0]) / tau).ceil() * tau
+    } else {
+        0.0
+    };
+    let turns: &[f64] = if periodic { &[0.0, -tau] } else { &[0.0] };
+    turns
+        .iter()
+        .map(|t| [(r[0] + shift + t).max(k[0]), (r[1] + shift + t).min(k[1])])
+        .filter(|m| m[0] < m[1])
+        .max_by(|x, y| (x[1] - x[0]).total_cmp(&(y[1] - y[0])))
 }
 
 /// `[min, max]` of values with a positive extent.

@@ -25,8 +25,8 @@ pub(super) type Built<T> = Result<T, TrimFailure>;
 /// (a pole of a sphere, a cone's apex).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Sample {
-    uv: Uv,
-    free: bool,
+    pub(super) uv: Uv,
+    pub(super) free: bool,
 }
 
 /// Maps model-space points of a face's edges to its surface's parameters.
@@ -43,7 +43,102 @@ pub(super) struct Mapper<'s> {
     inverter: Inverter<'s>,
 }
 
-impl Mapper<'_> {
+impl<'s> Mapper<'s> {
+    /// A mapper onto `surface` for a file declaring the distance accuracy `accuracy` (mm, 0
+    /// when none), allowed `points` points: chords within min(1e-3 mm, 1e-5 of the surface's
+    /// size), points within [`on_surface_tolerance`] of it.
+    pub(super) fn new(surface: &'s Surface, accuracy: f64, points: usize) -> Self {
+        let tau = std::f64::consts::TAU;
+        let period = match surface {
+            Surface::Cylinder(_) | Surface::Cone(_) | Surface::Sphere(_) => [Some(tau), None],
+            Surface::Torus(_) => [Some(tau), Some(tau)],
+            _ => [None, None],
+        };
+        let bb = surface.bounding_box();
+        let size = (bb.max - bb.min).length();
+        let size = if size.is_finite() { size } else { 1e3 };
+        let tol_on = on_surface_tolerance(size, accuracy);
+        Mapper {
+            surface,
+            period,
+            tol: (1e-5 * size).clamp(1e-9, 1e-3),
+            tol_on,
+            points_left: points.min(MAX_TRIM_POINTS),
+            inverter: Inverter::new(surface, tol_on, MAX_GRID_SEARCHES),
+        }
+    }
+
+    /// Points it may still map.
+    pub(super) fn points_left(&self) -> usize {
+        self.points_left
+    }
+
+    /// Period of u and v (the angles of elementary surfaces).
+    pub(super) fn period(&self) -> [Option<f64>; 2] {
+        self.period
+    }
+
+    /// Samples a curve given in the surface's parameters, `f(t)`, at the parameters `ts` and
+    /// between them to the chord tolerance (as [`Mapper::sample`] does a model-space curve: the
+    /// chord between neighbouring samples, on the surface, stays within the tolerance of the
+    /// curve's own point there).
+    pub(super) fn sample_parameters(
+        &mut self,
+        f: &dyn Fn(f64) -> Uv,
+        ts: &[f64],
+    ) -> Built<Vec<Sample>> {
+        fn refine(
+            m: &mut Mapper,
+            f: &dyn Fn(f64) -> Uv,
+            (ta, a): (f64, Uv),
+            (tb, b): (f64, Uv),
+            depth: u32,
+            out: &mut Vec<Sample>,
+        ) -> Built<()> {
+            m.take_point()?;
+            let tm = 0.5 * (ta + tb);
+            let mid = f(tm);
+            let chord = m.eval([0.5 * (a[0] + b[0]), 0.5 * (a[1] + b[1])]);
+            let dev = (chord - m.eval(mid)).length();
+            if depth < MAX_HALVINGS && (dev.is_nan() || dev > m.tol) {
+                refine(m, f, (ta, a), (tm, mid), depth + 1, out)?;
+                refine(m, f, (tm, mid), (tb, b), depth + 1, out)?;
+            } else {
+                out.push(Sample { uv: b, free: false });
+            }
+            Ok(())
+        }
+        let mut out = Vec::new();
+        let mut prev: Option<(f64, Uv)> = None;
+        for &t in ts {
+            let uv = f(t);
+            if !(uv[0].is_finite() && uv[1].is_finite()) {
+                return Err(TrimFailure::NonFiniteParameters);
+            }
+            match prev {
+                None => {
+                    self.take_point()?;
+                    out.push(Sample { uv, free: false });
+                }
+                Some(p) => refine(self, f, p, (t, uv), 0, &mut out)?,
+            }
+            prev = Some((t, uv));
+        }
+        Ok(out)
+    }
+
+    /// Counts one more point against the budget.
+    fn take_point(&mut self) -> Built<()> {
+        if self.points_left == 0 {
+            return Err(TrimFailure::TooManyPoints {
+                trim: MAX_TRIM_POINTS,
+                file: MAX_FILE_TRIM_POINTS,
+            });
+        }
+        self.points_left -= 1;
+        Ok(())
+    }
+
     /// S(u, v), without clamping the angles into the parameter box.
     pub(super) fn eval(&self, [u, v]: Uv) -> Vec3 {
         let e = |f: &Frame, u: f64| u.cos() * f.x + u.sin() * f.y;
@@ -177,6 +272,28 @@ pub(super) struct Bound {
     samples: Vec<Sample>,
 }
 
+impl Bound {
+    /// A bound of its samples: the outer one or not, the face on its left (`sense`) or its
+    /// right; on a surface of a periodic u only (`period`), run along the box's edge through
+    /// a pole ([`through_poles`]).
+    pub(super) fn new(
+        outer: bool,
+        sense: bool,
+        samples: Vec<Sample>,
+        period: [Option<f64>; 2],
+    ) -> Bound {
+        let samples = match period {
+            [Some(t), None] => through_poles(samples, sense, t),
+            _ => samples,
+        };
+        Bound {
+            outer,
+            sense,
+            samples,
+        }
+    }
+}
+
 impl Model<'_> {
     /// The largest length uncertainty the file declares (`UNCERTAINTY_MEASURE_WITH_UNIT` of a
     /// `LENGTH_MEASURE`, in its unit), mm; 0 when none reads.
@@ -215,24 +332,7 @@ impl Model<'_> {
         let Some(Param::List(bounds)) = bounds else {
             return Ok(None);
         };
-        let tau = std::f64::consts::TAU;
-        let period = match surface {
-            Surface::Cylinder(_) | Surface::Cone(_) | Surface::Sphere(_) => [Some(tau), None],
-            Surface::Torus(_) => [Some(tau), Some(tau)],
-            _ => [None, None],
-        };
-        let bb = surface.bounding_box();
-        let size = (bb.max - bb.min).length();
-        let size = if size.is_finite() { size } else { 1e3 };
-        let tol_on = on_surface_tolerance(size, self.accuracy);
-        let mut m = Mapper {
-            surface,
-            period,
-            tol: (1e-5 * size).clamp(1e-9, 1e-3),
-            tol_on,
-            points_left: (*budget).min(MAX_TRIM_POINTS),
-            inverter: Inverter::new(surface, tol_on, MAX_GRID_SEARCHES),
-        };
+        let mut m = Mapper::new(surface, self.accuracy, *budget);
         let start_budget = m.points_left;
         let result = self.face_loops(fid, bounds, same_sense, &mut m);
         *budget -= start_budget - m.points_left;
@@ -240,7 +340,7 @@ impl Model<'_> {
         if loops.is_empty() {
             return Ok(None);
         }
-        assemble(surface, period, loops).map(Some)
+        assemble(surface, m.period, loops, false).map(Some)
     }
 
     /// The sampled loops of a face's bounds (vertex loops left out).
@@ -305,15 +405,7 @@ impl Model<'_> {
                 });
             };
             let sense = orientation == same_sense;
-            let samples = match m.period {
-                [Some(t), None] => through_poles(samples, sense, t),
-                _ => samples,
-            };
-            out.push(Bound {
-                outer,
-                sense,
-                samples,
-            });
+            out.push(Bound::new(outer, sense, samples, m.period));
         }
         Ok(out)
     }
@@ -562,11 +654,15 @@ pub(super) fn through_poles(s: Vec<Sample>, sense: bool, t: f64) -> Vec<Sample> 
 /// The trim from a face's sampled bounds: closed loops moved a period to lie in the parameter
 /// box (holes across its edge copied to the other side), loops winding once around an angle
 /// paired into one outer loop (or closed along the box edge on the face's side), the outer
-/// loop the face's outer bound (else the loop with the largest box).
+/// loop the face's outer bound (else the loop with the largest box; none when `holes_only`).
+/// The parameter box returned is cut down to the outer loop's (on every parameter, the seam
+/// handled: the box's angle range starts where the loop lies), so that a grid over the box
+/// covers the face, not its whole surface.
 pub(super) fn assemble(
     surface: &Surface,
     period: [Option<f64>; 2],
     bounds: Vec<Bound>,
+    holes_only: bool,
 ) -> Built<FaceTrim> {
     let mut dom = surface.domain();
     let span = [dom.u[1] - dom.u[0], dom.v[1] - dom.v[0]];
@@ -615,7 +711,7 @@ pub(super) fn assemble(
         return Err(TrimFailure::WindingNotRead);
     }
     // The outer closed loop (when no loop winds).
-    let outer_at = if wound > 0 {
+    let outer_at = if wound > 0 || holes_only {
         None
     } else {
         closed.iter().position(|c| c.0).or_else(|| {
@@ -809,6 +905,9 @@ pub(super) fn assemble(
         .filter(|(i, _)| Some(*i) != outer_at)
         .map(|(_, c)| c.1)
         .collect();
+    if let Some(o) = &outer {
+        dom = fitted(dom, o);
+    }
     if !(dom.u[0] < dom.u[1] && dom.v[0] < dom.v[1]) {
         return Err(TrimFailure::NoArea);
     }
@@ -816,10 +915,45 @@ pub(super) fn assemble(
     Ok(FaceTrim { trim, domain: dom })
 }
 
-/// Sets the parameter box of an elementary surface (a B-spline surface keeps its knots').
+/// The box `dom` cut down to the box of the loop `outer` (a side that would move by less than
+/// 1e-9 of the box's extent stays: the loop runs along it).
+fn fitted(dom: ParamBox, outer: &[Uv]) -> ParamBox {
+    let mut out = dom;
+    for d in 0..2 {
+        let r = if d == 0 { dom.u } else { dom.v };
+        let (lo, hi) = outer
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p[d]), b.max(p[d]))
+            });
+        let keep = 1e-9 * (r[1] - r[0]);
+        let cut = [
+            if lo > r[0] + keep { lo } else { r[0] },
+            if hi < r[1] - keep { hi } else { r[1] },
+        ];
+        if cut[0] >= cut[1] || cut[0].is_nan() || cut[1].is_nan() {
+            continue;
+        }
+        if d == 0 {
+            out.u = cut;
+        } else {
+            out.v = cut;
+        }
+    }
+    out
+}
+
+/// Sets the parameter box of a surface (a B-spline surface is cut down to it, exactly, its
+/// parameters kept; a box that is not within its knots' leaves it as it is).
 pub(super) fn set_domain(surface: &mut Surface, domain: ParamBox) {
     match surface {
-        Surface::Nurbs(_) => {}
+        Surface::Nurbs(n) => {
+            if n.domain() != domain {
+                if let Ok(r) = n.restricted(domain.u, domain.v) {
+                    *n = r;
+                }
+            }
+        }
         Surface::Plane(s) => s.domain = domain,
         Surface::Cylinder(s) => s.domain = domain,
         Surface::Cone(s) => s.domain = domain,
