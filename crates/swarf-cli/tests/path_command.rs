@@ -355,7 +355,12 @@ fn canonical_output_keeps_printed_lines_and_says_its_warnings_on_stderr() {
     let dir = temp_dir("canonical_print");
     let ngc = dir.join("p.ngc");
     std::fs::write(&ngc, "G21 F100\n(print,hello x=#<_x>)\n/G1 X1\nG1 X2\nM2\n").unwrap();
-    let o = swarf(&["path", ngc.to_str().unwrap(), "--canonical"]);
+    let o = swarf(&[
+        "path",
+        ngc.to_str().unwrap(),
+        "--canonical",
+        "--block-delete",
+    ]);
     assert!(o.status.success(), "{}", stderr(&o));
     assert_eq!(
         stdout(&o).lines().collect::<Vec<_>>(),
@@ -366,6 +371,18 @@ fn canonical_output_keeps_printed_lines_and_says_its_warnings_on_stderr() {
     );
     assert!(
         stderr(&o).contains("p.ngc:3:1: warning: line skipped"),
+        "{}",
+        stderr(&o)
+    );
+    // Without --block-delete the line is read, as rs274 reads it, and said.
+    let o = swarf(&["path", ngc.to_str().unwrap(), "--canonical"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert_eq!(
+        stdout(&o).lines().filter(|l| l.contains("FEED(")).count(),
+        2
+    );
+    assert!(
+        stderr(&o).contains("p.ngc:3:1: warning: line read"),
         "{}",
         stderr(&o)
     );

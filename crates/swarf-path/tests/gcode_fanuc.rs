@@ -168,7 +168,7 @@ fn g28_with_g91_goes_home_through_the_current_point() {
 #[test]
 fn sequence_numbers_and_block_skip_on_every_kind_of_line() {
     let src = "%\nO1\nN1 G90 G21\nN2 /G0 X99\n/N3 G0 X98\nN4 G0 X1\nN5 M98 P7\nN6 M30\nO7\nN70 G0 Y1\nN71 M99\n%\n";
-    let m = moves(src, &fanuc()).unwrap();
+    let m = moves(src, &fanuc().with_block_delete(true)).unwrap();
     assert_eq!(m, vec![('R', 1.0, 0.0, 0.0), ('R', 1.0, 1.0, 0.0)]);
     // With the switch off (the default) both are read.
     let m = moves(src, &fanuc()).unwrap();
@@ -336,11 +336,7 @@ fn arcs_as_fanuc_reads_them() {
     assert_eq!(w, [(3, "X1"), (5, "K0"), (6, "I-"), (6, "J0")]);
     // LinuxCNC refuses the last two; the first is a full circle in rs274 2.9 too.
     let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
-    for bad in [
-        "G2 I-10. F200",
-        "G2 X-10 Y0 I-10 J0 K0 F200",
-        "G2 X-10 Y0 I-10 R10 F200",
-    ] {
+    for bad in ["G2 X-10 Y0 I-10 J0 K0 F200", "G2 X-10 Y0 I-10 R10 F200"] {
         let src = format!("G21 G90 G17\nG0 X10 Y0 Z0\n{bad}\nM2\n");
         assert!(moves(&src, &linuxcnc).is_err(), "{bad}");
     }

@@ -20,19 +20,17 @@ pub(crate) fn r_tolerance_mm(units: Units) -> f64 {
 
 /// Checks a centre-format arc: both radii above zero, and the end radius within tolerance of
 /// the start radius (LinuxCNC's rule: reject when the difference exceeds `100 × abs`, or when
-/// it exceeds `abs` and the relative difference exceeds `rel`). `end_shift` is added to the
-/// end radius: a cutter compensation entry arc compares the start radius with its offset end's
-/// (`arc_data_comp_ijk`: `−r` with the tool inside the arc, `+r` outside), 0 otherwise.
+/// it exceeds `abs` and the relative difference exceeds `rel`). A cutter compensation entry
+/// arc is checked so too, on its programmed ends (rs274 2.9).
 pub(crate) fn check_ijk(
     start: [f64; 2],
     end: [f64; 2],
     center: [f64; 2],
-    end_shift: f64,
     abs: f64,
     rel: f64,
 ) -> Result<(), String> {
     let r1 = (center[0] - start[0]).hypot(center[1] - start[1]);
-    let r2 = (center[0] - end[0]).hypot(center[1] - end[1]) + end_shift;
+    let r2 = (center[0] - end[0]).hypot(center[1] - end[1]);
     if r1 < ZERO_RADIUS_MM || r2 < ZERO_RADIUS_MM {
         return Err("zero-radius arc".into());
     }
@@ -123,15 +121,15 @@ mod tests {
 
     #[test]
     fn ijk_tolerance() {
-        assert!(check_ijk([1.0, 0.0], [0.0, 1.0], [0.0, 0.0], 0.0, 0.02, 0.001).is_ok());
+        assert!(check_ijk([1.0, 0.0], [0.0, 1.0], [0.0, 0.0], 0.02, 0.001).is_ok());
         // 0.015 mm off on a 10 mm radius: under abs.
-        assert!(check_ijk([10.0, 0.0], [0.0, 10.015], [0.0, 0.0], 0.0, 0.02, 0.001).is_ok());
+        assert!(check_ijk([10.0, 0.0], [0.0, 10.015], [0.0, 0.0], 0.02, 0.001).is_ok());
         // 0.05 mm off on a 10 mm radius: over abs and over 0.1 %.
-        assert!(check_ijk([10.0, 0.0], [0.0, 10.05], [0.0, 0.0], 0.0, 0.02, 0.001).is_err());
+        assert!(check_ijk([10.0, 0.0], [0.0, 10.05], [0.0, 0.0], 0.02, 0.001).is_err());
         // 0.05 mm off on a 1000 mm radius: relative 0.005 % passes.
-        assert!(check_ijk([1000.0, 0.0], [0.0, 1000.05], [0.0, 0.0], 0.0, 0.02, 0.001).is_ok());
+        assert!(check_ijk([1000.0, 0.0], [0.0, 1000.05], [0.0, 0.0], 0.02, 0.001).is_ok());
         // 2.5 mm off is over 100 × abs whatever the radius.
-        assert!(check_ijk([10000.0, 0.0], [0.0, 10002.5], [0.0, 0.0], 0.0, 0.02, 0.001).is_err());
-        assert!(check_ijk([0.0, 0.0], [0.0, 0.0], [0.0, 0.0], 0.0, 0.02, 0.001).is_err());
+        assert!(check_ijk([10000.0, 0.0], [0.0, 10002.5], [0.0, 0.0], 0.02, 0.001).is_err());
+        assert!(check_ijk([0.0, 0.0], [0.0, 0.0], [0.0, 0.0], 0.02, 0.001).is_err());
     }
 }

@@ -856,20 +856,14 @@ impl Interp<'_, '_> {
 
     /// The entry arc's own checks, made before its centre is found (LinuxCNC's order in
     /// `convert_arc_comp1`): its programmed end must be more than the tool radius from the
-    /// current point. Returns what the I J K check adds to the end radius: nothing
-    /// (`arc_data_comp_ijk` compares the programmed radii, from the current point and from the
-    /// programmed end, as `arc_data_ijk` does), `None` also when the arc is not an entry move.
-    pub(crate) fn comp_entry_arc_checks(
-        &self,
-        span: Span,
-        end: [f64; 2],
-        _clockwise: bool,
-    ) -> Res<Option<f64>> {
+    /// current point. (Its I J K are checked as any arc's: `arc_data_comp_ijk` compares the
+    /// programmed radii, from the current point and from the programmed end.)
+    pub(crate) fn comp_entry_arc_checks(&self, span: Span, end: [f64; 2]) -> Res<()> {
         let Some(r) = self.comp.entry_radius() else {
-            return Ok(None);
+            return Ok(());
         };
         if self.fanuc {
-            return Ok(None);
+            return Ok(());
         }
         if dist(self.comp.tool, end) <= r {
             return Err(Fault::semantic(
@@ -877,7 +871,7 @@ impl Interp<'_, '_> {
                 "radius of cutter compensation entry arc is not greater than the tool radius",
             ));
         }
-        Ok(None)
+        Ok(())
     }
 
     /// LinuxCNC's `arc_data_comp_r` check, before the centre of an R arc under compensation

@@ -2403,8 +2403,8 @@ impl<'t, 's> Interp<'t, 's> {
         let start2 = [self.p[fi], self.p[si]];
         let end2 = [end[fi], end[si]];
         let k = self.arc_scale(gspan)?;
-        // A compensation entry arc: what the I J K check adds to the end radius.
-        let entry_shift = self.comp_entry_arc_checks(gspan, end2, cw)?;
+        // A compensation entry arc ending no farther than the radius from the tool.
+        self.comp_entry_arc_checks(gspan, end2)?;
         let center = if let Some(r) = b.get(b'r') {
             // (Fanuc: R wins, the centre words are reported unused.)
             if let Some(&c) = offs.iter().find(|&&c| b.has(c) && !self.fanuc) {
@@ -2477,15 +2477,8 @@ impl<'t, 's> Interp<'t, 's> {
                     return Err(out_of_range(span, "the arc centre's coordinate", ck, "mm"));
                 }
             }
-            check_ijk(
-                start2,
-                end2,
-                c,
-                entry_shift.unwrap_or(0.0),
-                tol.abs_in_mm(self.units),
-                tol.relative,
-            )
-            .map_err(|m| Fault::semantic(gspan, m))?;
+            check_ijk(start2, end2, c, tol.abs_in_mm(self.units), tol.relative)
+                .map_err(|m| Fault::semantic(gspan, m))?;
             c
         };
         if let Some(&ck) = center.iter().find(|&&v| !in_machine_range(v)) {
