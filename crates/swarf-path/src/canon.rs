@@ -294,8 +294,8 @@ pub enum Canon<'a> {
     /// program instead of from the machine's rotary joints (the positions are then tool tips in
     /// the workpiece frame). The axis turns from the previous one to this one over the next move.
     ToolAxis([f64; 3]),
-    /// CL data only (APT `FROM/`, or the first point of a CL file): the tool is at `pos` without
-    /// having moved there. No move is made.
+    /// The tool is at `pos` without having moved there (APT `FROM/`, the first point of a CL
+    /// file; G88's hand retract, which the operator makes). No move is made.
     SetPosition(Axes),
     /// CL data only (APT `CIRCLE/` with an axis that is not ±X, ±Y or ±Z): a circular or helical
     /// feed move about an arbitrary axis through `center`. The motion is counter-clockwise about

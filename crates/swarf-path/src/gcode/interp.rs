@@ -141,8 +141,9 @@ pub(crate) struct Interp<'t, 's> {
     /// G99: retract to R; G98: retract to the old level.
     pub(crate) retract_r: bool,
     pub(crate) cycle: CycleMemory,
-    /// Fanuc: the initial level of the canned-cycle mode in effect (along the plane's normal,
-    /// program coordinates, mm), set by the mode's first block (`cycles`).
+    /// The initial level of the canned-cycle mode in effect (along the plane's normal, program
+    /// coordinates, mm), set by the mode's first block (`cycles`): G91's R counts from it and
+    /// G98 returns to it, under Fanuc rules and LinuxCNC's (rs274 2.9's `cycle_il`) alike.
     pub(crate) initial_level: Option<f64>,
     pub(crate) rpm: f64,
     pub(crate) dir: SpindleDir,
