@@ -39,6 +39,10 @@ pub struct Report {
     pub figures: Vec<(String, String)>,
     /// The command's JSON summary, embedded whole (the page's figures are read from it).
     pub summary: serde_json::Value,
+    /// The summary's JSON text as the command wrote it, without white space between tokens
+    /// ([`Report::with_summary_json`]): embedded instead of `summary` when set, so that its
+    /// numbers and key order are the file's.
+    pub summary_text: Option<String>,
     /// The 3-D scene.
     pub scene: Scene,
     /// Plots (SVG documents or PNG images).
@@ -141,7 +145,11 @@ pub fn escape(s: &str) -> String {
 /// `\u003c`, `\u003e`, `\u0026` (JSON parsers read them back unchanged), and the line
 /// separators U+2028/U+2029 escaped.
 pub fn script_json(v: &serde_json::Value) -> String {
-    let s = v.to_string();
+    script_json_text(&v.to_string())
+}
+
+/// [`script_json`] of JSON text as it is.
+fn script_json_text(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
     for c in s.chars() {
         match c {
@@ -439,7 +447,9 @@ pub fn render(r: &Report) -> String {
         "<script type=\"application/json\" id=\"summary\">{}</script>\
          <script type=\"application/json\" id=\"data\">{}</script><script>{}</script>\
          </body></html>",
-        script_json(&r.summary),
+        r.summary_text
+            .as_deref()
+            .map_or_else(|| script_json(&r.summary), script_json_text),
         script_json(&data),
         VIEWER_JS
     );

@@ -73,7 +73,47 @@ impl Report {
         }
         self.figures = figures;
         self.summary = summary;
+        self.summary_text = None;
         self
+    }
+
+    /// Embeds the JSON summary `text` (an object, as the command wrote it) and shows its
+    /// figures: the keys `first` (those present) in that order, then every other top-level
+    /// figure in the text's order, each exactly as the text writes it (a number's digits as
+    /// they are — read into an `f64` and written again, some come out otherwise —, an array
+    /// without its white space, a string unquoted). The embedded copy is the text itself
+    /// without white space between its tokens, so its numbers and key order are the file's
+    /// too.
+    ///
+    /// # Errors
+    /// `text` is not a JSON object.
+    pub fn with_summary_json(mut self, text: &str, first: &[&str]) -> Result<Self, String> {
+        let summary: serde_json::Value = serde_json::from_str(text).map_err(|e| e.to_string())?;
+        let entries = raw_entries(text).ok_or("not a JSON object")?;
+        let shown = |(k, raw, v): &(String, &str, serde_json::Value)| {
+            is_figure(v).then(|| {
+                let text = match v {
+                    serde_json::Value::String(s) => s.clone(),
+                    _ => compact_json(raw),
+                };
+                (k.clone(), text)
+            })
+        };
+        let mut figures: Vec<(String, String)> = Vec::new();
+        for k in first {
+            if let Some(f) = entries.iter().find(|e| e.0 == *k).and_then(shown) {
+                figures.push(f);
+            }
+        }
+        for e in &entries {
+            if !first.contains(&e.0.as_str()) {
+                figures.extend(shown(e));
+            }
+        }
+        self.figures = figures;
+        self.summary = summary;
+        self.summary_text = Some(compact_json(text));
+        Ok(self)
     }
 
     /// Adds an input row.
@@ -184,14 +224,15 @@ impl Report {
         let summary_path = dir.join("summary.json");
         let text =
             std::fs::read_to_string(&summary_path).map_err(|e| IoError::io(&summary_path, e))?;
-        let summary: serde_json::Value = serde_json::from_str(&text).map_err(|e| {
-            IoError::malformed(&summary_path, e.to_string(), "a command's JSON summary")
-        })?;
         let name = dir
             .file_name()
             .map_or_else(|| dir.display().to_string(), |n| n.to_string_lossy().into());
+        // The figures as the file writes them, in its order.
         let mut r = Report::new(&format!("swarf report: {name}"))
-            .with_summary(summary, &[])
+            .with_summary_json(&text, &[])
+            .map_err(|e| {
+                IoError::malformed(&summary_path, e, "a command's JSON summary (an object)")
+            })?
             .with_input("folder", dir.display().to_string())
             .with_pngs_in(dir)?;
         let mut stls = Vec::new();
@@ -234,6 +275,75 @@ impl Report {
             .collect();
         Ok(r.with_sources(&sources))
     }
+}
+
+/// The top-level entries of the JSON object `text` in its order: key, the value's text as
+/// written, the value read; `None` when `text` is not one JSON object.
+fn raw_entries(text: &str) -> Option<Vec<(String, &str, serde_json::Value)>> {
+    let b = text.as_bytes();
+    let ws = |mut i: usize| {
+        while i < b.len() && b[i].is_ascii_whitespace() {
+            i += 1;
+        }
+        i
+    };
+    // One JSON value at `i`: it and where it ends (the reader stops after it).
+    let value_at = |i: usize| -> Option<(serde_json::Value, usize)> {
+        let mut values =
+            serde_json::Deserializer::from_str(&text[i..]).into_iter::<serde_json::Value>();
+        let v = values.next()?.ok()?;
+        Some((v, i + values.byte_offset()))
+    };
+    let mut i = ws(0);
+    if b.get(i) != Some(&b'{') {
+        return None;
+    }
+    i = ws(i + 1);
+    let mut out = Vec::new();
+    if b.get(i) == Some(&b'}') {
+        return (ws(i + 1) == b.len()).then_some(out);
+    }
+    loop {
+        let (serde_json::Value::String(key), end) = value_at(i)? else {
+            return None;
+        };
+        i = ws(end);
+        if b.get(i) != Some(&b':') {
+            return None;
+        }
+        i = ws(i + 1);
+        let (value, end) = value_at(i)?;
+        out.push((key, &text[i..end], value));
+        i = ws(end);
+        match b.get(i) {
+            Some(b',') => i = ws(i + 1),
+            Some(b'}') => break,
+            _ => return None,
+        }
+    }
+    (ws(i + 1) == b.len()).then_some(out)
+}
+
+/// JSON `text` without the white space between its tokens (strings kept as written).
+fn compact_json(text: &str) -> String {
+    let mut out = String::with_capacity(text.len());
+    let (mut in_string, mut escaped) = (false, false);
+    for c in text.chars() {
+        if in_string {
+            out.push(c);
+            if escaped {
+                escaped = false;
+            } else if c == '\\' {
+                escaped = true;
+            } else if c == '"' {
+                in_string = false;
+            }
+        } else if !c.is_ascii_whitespace() {
+            in_string = c == '"';
+            out.push(c);
+        }
+    }
+    out
 }
 
 /// Line `line` (1-based) of `file`'s text in `sources` (file name, text), counted as the
@@ -362,6 +472,54 @@ mod tests {
         );
         let html = super::super::render(&r);
         assert!(html.contains("<td data-key=\"a\">x&lt;y</td>"));
+    }
+
+    #[test]
+    fn a_summary_file_shows_its_own_numbers_in_its_own_order() {
+        // Numbers that reading into an f64 and writing again changed (…369, …672e-7), keys
+        // out of alphabetical order, an array over several lines, a string with an escape.
+        let text = "{\n  \"z_first\": 119.99998092651367,\n  \"a\": 1.4901158351676719e-7,\n  \
+                    \"m\": [\n    0.5,\n    2\n  ],\n  \"s\": \"x \\\"y\\\"\",\n  \"b\": true,\n  \
+                    \"nested\": {\"c\": 1},\n  \"n\": null\n}\n";
+        let dir = swarf_testdata::scratch_dir("report-order");
+        std::fs::write(dir.join("summary.json"), text).unwrap();
+        let r = Report::from_dir(&dir).unwrap();
+        let figures: Vec<(&str, &str)> = r
+            .figures
+            .iter()
+            .map(|(k, v)| (k.as_str(), v.as_str()))
+            .collect();
+        assert_eq!(
+            figures,
+            [
+                ("z_first", "119.99998092651367"),
+                ("a", "1.4901158351676719e-7"),
+                ("m", "[0.5,2]"),
+                ("s", "x \"y\""),
+                ("b", "true"),
+                ("n", "null"),
+            ]
+        );
+        // The embedded summary: the file's text without its white space.
+        let html = super::super::render(&r);
+        assert!(
+            html.contains(
+                "{\"z_first\":119.99998092651367,\"a\":1.4901158351676719e-7,\"m\":[0.5,2],\
+                 \"s\":\"x \\\"y\\\"\",\"b\":true,\"nested\":{\"c\":1},\"n\":null}"
+            ),
+            "{html}"
+        );
+        // The keys named first lead, the rest follow in the text's order.
+        let r = Report::new("t")
+            .with_summary_json(text, &["b", "missing"])
+            .unwrap();
+        let keys: Vec<&str> = r.figures.iter().map(|(k, _)| k.as_str()).collect();
+        assert_eq!(keys, ["b", "z_first", "a", "m", "s", "n"]);
+        // Not an object: an error, naming the file.
+        std::fs::write(dir.join("summary.json"), "[1, 2]").unwrap();
+        let e = Report::from_dir(&dir).unwrap_err().to_string();
+        assert!(e.contains("summary.json"), "{e}");
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 
     #[test]
