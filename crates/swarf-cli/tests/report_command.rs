@@ -74,7 +74,7 @@ fn figure(html: &str, key: &str) -> String {
 
 #[test]
 fn figures_equal_the_json_and_inputs_are_escaped() {
-    let (html, j, printed, _) = report("figures");
+    let (html, j, printed, dir) = report("figures");
     for key in [
         "max_gouge_mm",
         "max_excess_mm",
@@ -91,6 +91,34 @@ fn figures_equal_the_json_and_inputs_are_escaped() {
         assert_eq!(figure(&html, key), text, "{key}");
     }
     assert!(j["gouge_regions"].as_u64().unwrap() >= 1);
+    // Every top-level figure, not a list of twelve (the design's reach beyond the stock, the
+    // ray ends and the reader's caveats among them), in the JSON's order.
+    assert!(figures_equal(&html, &printed) >= 22);
+    for key in [
+        "design_beyond_stock_box",
+        "design_outside_stock_mm3",
+        "ends_unmatched",
+        "gouge_ends",
+        "excess_ends",
+        "skipped_faces",
+        "untrimmed_faces",
+        "unapplied_placements",
+    ] {
+        figure(&html, key);
+    }
+    assert_eq!(figure_keys(&html), top_level_keys(&printed, &html));
+    // `swarf report --from` the output folder: the same figures, as summary.json writes them,
+    // in its order (it showed them alphabetically, some numbers read and written otherwise).
+    let out = dir.join("out");
+    let o = swarf(&["report", "--from", out.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let from = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let summary = std::fs::read_to_string(out.join("summary.json")).unwrap();
+    assert_eq!(
+        figures_equal(&from, &summary),
+        figures_equal(&html, &printed)
+    );
+    assert_eq!(figure_keys(&from), figure_keys(&html));
     // The comment shows as text; the page's only scripts are its own three.
     assert!(!html.contains("<script>alert"), "unescaped program comment");
     assert!(html.contains("(&lt;script&gt;alert(1)&lt;/script&gt;)"));
@@ -249,6 +277,25 @@ fn figures_equal(html: &str, printed: &str) -> usize {
         "figures not in the JSON"
     );
     n
+}
+
+/// The keys of the page's figures, in its order.
+fn figure_keys(html: &str) -> Vec<String> {
+    html.split("<td data-key=\"")
+        .skip(1)
+        .map(|s| s[..s.find('"').unwrap()].to_string())
+        .collect()
+}
+
+/// The top-level keys of a pretty-printed JSON object that the page shows, in the text's
+/// order.
+fn top_level_keys(printed: &str, html: &str) -> Vec<String> {
+    printed
+        .lines()
+        .filter_map(|l| l.strip_prefix("  \""))
+        .filter_map(|l| l.split_once("\": ").map(|(k, _)| k.to_string()))
+        .filter(|k| html.contains(&format!("<td data-key=\"{k}\">")))
+        .collect()
 }
 
 /// Offline, self-contained, and nothing from the inputs became markup.

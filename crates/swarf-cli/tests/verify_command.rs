@@ -352,3 +352,33 @@ fn a_surface_design_with_faces_not_read_says_so() {
         stderr(&o)
     );
 }
+
+#[test]
+fn a_surface_design_with_no_excess_writes_a_volume_of_zero_not_minus_zero() {
+    // The part's top as a JSON plane at z = 10: the slot gouges it, nothing is left above it.
+    // The excess volume is the excess regions' added up — none: 0 (the sum of an empty list
+    // of floats was −0.0, printed "-0.0" and "-0.000 mm³ left").
+    let dir = temp_dir("verify-zero-excess");
+    let (program, _) = gouging_program(&dir);
+    let design = dir.join("top.json");
+    std::fs::write(
+        &design,
+        r#"{"units": "mm", "patches": [{"name": "top", "degree_u": 1, "degree_v": 1,
+            "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1], "control_points":
+            [[[20, 20, 10, 1], [20, 60, 10, 1]], [[60, 20, 10, 1], [60, 60, 10, 1]]]}]}"#,
+    )
+    .unwrap();
+    let o = run(&dir, &program, &design, &["--resolution", "1"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let said = stdout(&o);
+    assert!(
+        said.contains(" 0 excess regions (thickest 0.0000 mm, 0.000 mm³ left)"),
+        "{said}"
+    );
+    let text = std::fs::read_to_string(dir.join("out").join("summary.json")).unwrap();
+    assert!(text.contains("\n  \"excess_volume_mm3\": 0.0,\n"), "{text}");
+    assert!(
+        text.contains("\"volume_method\": \"surface-integral\""),
+        "{text}"
+    );
+}

@@ -1,17 +1,21 @@
 //! The design part the machined stock is compared with, and the one question verification asks
 //! of it: the signed distance from a point, exact to the design's own geometry.
 //!
-//! [`MeshDesign`] is a closed triangle mesh (an STL part): the nearest point is the exact
+//! [`MeshDesign`] is a closed triangle mesh (an STL part), read as the union of its bodies
+//! ([`crate::union`]: faces inside another body are left out, faces that cross are cut where
+//! they cross, flipped triangles turned outwards): the nearest point is the exact
 //! point–triangle projection found through parry's BVH, and the sign comes from the
 //! angle-weighted pseudo-normal of the nearest feature (face, edge or vertex; Bærentzen &
-//! Aanæs 2005), which is exact for a closed, consistently oriented mesh. Its solid also answers
+//! Aanæs 2005), which is exact for a closed, consistently oriented mesh — or, for the pieces
+//! of a union, which share no edges, from the nearest face's normal when the nearest point lies
+//! inside it, else from the crossings of the Z line through the point. Its solid also answers
 //! where an axis-parallel line crosses it, so volumes of excess and gouges are measured ray by
 //! ray like the stock's own volume.
 
 use std::path::Path;
 
 use parry3d_f64::query::{PointQueryWithLocation, Ray, RayCast};
-use parry3d_f64::shape::{TriMesh, TriMeshFlags};
+use parry3d_f64::shape::{TriMesh, TriMeshFlags, TrianglePointLocation};
 use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_geom::{Aabb, RigidMotion};
 use swarf_stock::Dexel;
@@ -91,12 +95,24 @@ pub trait Design: Sync {
 /// Steps [`Design::meet_along`]'s default takes before it gives up.
 pub const MEET_STEPS: usize = 64;
 
-/// A closed, outward-oriented triangle mesh as the design.
+/// A closed triangle mesh as the design: the union of its bodies (bodies that overlap, nest
+/// or touch are the solid they fill together; [`crate::union`]), outward.
 #[derive(Clone)]
 pub struct MeshDesign {
+    /// The union's boundary: the input mesh itself when it already is that, consistently
+    /// oriented (then `pseudo_normals`), else the pieces of it that bound the union.
     mesh: TriMesh,
+    /// The side of a point is told by the nearest feature's angle-weighted pseudo-normal
+    /// (exact for a closed, consistently oriented mesh); otherwise — pieces of several bodies,
+    /// which share no edges — by the nearest face's normal where the nearest point lies inside
+    /// a face, else by the crossings of the Z line through the point.
+    pseudo_normals: bool,
     bbox: Aabb,
     volume: f64,
+    /// Triangles of the input mesh.
+    input_triangles: usize,
+    /// What making the union changed, when it did.
+    union: Option<crate::union::Union>,
 }
 
 impl std::fmt::Debug for MeshDesign {
@@ -104,6 +120,10 @@ impl std::fmt::Debug for MeshDesign {
         write!(f, "MeshDesign({})", self.describe())
     }
 }
+
+/// Cell size handed to [`swarf_stock::axis_line_intervals`] when a point's side is told by
+/// the crossings of the Z line through it, mm: the line is nudged by a few millionths of it.
+const SIDE_LINE_CELL_MM: f64 = 1e-3;
 
 impl MeshDesign {
     /// Reads a closed STL part (binary or ASCII). Errors name the file.
@@ -124,9 +144,12 @@ impl MeshDesign {
     }
 
     /// The design bounded by `mesh`, which must be closed (every edge shared by exactly two
-    /// triangles, or by four, six… half of them each way where closed bodies touch) and
-    /// consistently oriented; an inward-oriented mesh (negative volume) is
-    /// turned outwards.
+    /// triangles, or by four, six… half of them each way where closed bodies touch). The
+    /// design is the union of its bodies, as for the stock: bodies that overlap or nest are
+    /// one solid (the faces inside it are left out, faces that cross are cut where they cross),
+    /// an inward-oriented mesh is turned outwards, and so is a triangle whose neighbours
+    /// disagree with it (a flipped triangle; the stock's rule: along a line whose crossings do
+    /// not balance they are paired by parity).
     pub fn new(mesh: &swarf_io::TriMesh) -> Result<Self, VerifyError> {
         Self::named(mesh, Path::new("<mesh>"))
     }
@@ -158,25 +181,9 @@ impl MeshDesign {
                 examples,
             });
         }
-        // (Edges where closed bodies touch, used half each way, are no defect: the design is
-        // their union.)
-        if report.misoriented > 0 {
-            return Err(bad(format!(
-                "{} edges whose two triangles disagree on orientation",
-                report.misoriented
-            )));
-        }
         let mut m = mesh.clone();
-        if report.touching > 0 {
-            m.triangles = without_shared_faces(&m.vertices, &m.triangles);
-        }
-        let mut volume = m.volume();
-        if volume < 0.0 {
+        if m.volume() < 0.0 {
             m.flip();
-            volume = -volume;
-        }
-        if !(volume > 0.0 && volume.is_finite()) {
-            return Err(bad(format!("encloses no volume ({volume} mm³)")));
         }
         let bbox = m.aabb().ok_or_else(|| bad("no vertices".into()))?;
         // The stock is held to the machine range; a design beyond it could be compared with
@@ -191,14 +198,99 @@ impl MeshDesign {
                 range: MACHINE_RANGE_MM,
             });
         }
-        let mesh = TriMesh::with_flags(m.vertices, m.triangles, TriMeshFlags::ORIENTED)
+        let input_triangles = m.triangles.len();
+        let raw = TriMesh::new(m.vertices.clone(), m.triangles.clone())
             .map_err(|e| bad(format!("{e:?}")))?;
-        Ok(Self { mesh, bbox, volume })
+        let mut union = crate::union::union_boundary(&raw, 1e-9 * reach.max(1.0));
+        let (mesh, pseudo_normals, volume, union) = if union.changed() || report.misoriented > 0 {
+            let volume = union.volume;
+            // The triangles live on in the mesh only.
+            let boundary = std::mem::take(&mut union.triangles);
+            let vertices: Vec<Vec3> = boundary.iter().flatten().copied().collect();
+            let indices: Vec<[u32; 3]> = (0..boundary.len() as u32)
+                .map(|t| [3 * t, 3 * t + 1, 3 * t + 2])
+                .collect();
+            if indices.is_empty() {
+                return Err(bad("no triangle bounds the union of its bodies".into()));
+            }
+            let mesh = TriMesh::new(vertices, indices).map_err(|e| bad(format!("{e:?}")))?;
+            (mesh, false, volume, Some(union))
+        } else {
+            let volume = m.volume();
+            let mesh = TriMesh::with_flags(m.vertices, m.triangles, TriMeshFlags::ORIENTED)
+                .map_err(|e| bad(format!("{e:?}")))?;
+            (mesh, true, volume, None)
+        };
+        if !(volume > 0.0 && volume.is_finite()) {
+            return Err(bad(format!("encloses no volume ({volume} mm³)")));
+        }
+        Ok(Self {
+            mesh,
+            pseudo_normals,
+            bbox,
+            volume,
+            input_triangles,
+            union,
+        })
     }
 
-    /// The enclosed volume, mm³.
+    /// The enclosed volume, mm³: that of the union of the mesh's bodies.
     pub fn volume(&self) -> f64 {
         self.volume
+    }
+
+    /// What reading the mesh as the union of its bodies changed, in words (`None` when the
+    /// mesh already bounded it, consistently oriented): how many triangles lie inside another
+    /// body (or on a face two bodies share) and are left out, how many are cut where another
+    /// body crosses them, and how many were turned outwards (the first by index and place).
+    pub fn repairs(&self) -> Option<String> {
+        let u = self.union.as_ref()?;
+        let mut said = Vec::new();
+        if u.inside > 0 {
+            said.push(format!(
+                "{} left out (wholly or partly inside another body, or on a face two bodies \
+                 share)",
+                u.inside
+            ));
+        }
+        if u.cut > 0 {
+            said.push(format!(
+                "{} cut where another body's surface crosses or lies on them",
+                u.cut
+            ));
+        }
+        if let Some((t, c)) = u.first_turned {
+            said.push(format!(
+                "{} turned outwards, their neighbours disagreeing on the inside (the first: \
+                 triangle {t}, centred at ({}, {}, {}))",
+                u.turned, c.x, c.y, c.z
+            ));
+        }
+        Some(format!(
+            "read as the union of its bodies; of its {} triangles {}",
+            self.input_triangles,
+            if said.is_empty() {
+                "none changed".to_string()
+            } else {
+                said.join(", ")
+            }
+        ))
+    }
+
+    /// True when `p` lies inside the union: the Z line through it, its crossings counted by
+    /// orientation ([`swarf_stock::axis_line_intervals`]).
+    fn contains(&self, p: Vec3) -> bool {
+        let mut line = Dexel::new();
+        swarf_stock::axis_line_intervals(
+            &self.mesh,
+            2,
+            p.x,
+            p.y,
+            (SIDE_LINE_CELL_MM, SIDE_LINE_CELL_MM),
+            &mut Vec::new(),
+            &mut line,
+        );
+        line.iter().any(|iv| iv.enter < p.z && p.z < iv.exit)
     }
 }
 
@@ -207,14 +299,23 @@ impl Design for MeshDesign {
         if !p.is_finite() {
             return None;
         }
-        let (proj, (tri, _)) = self.mesh.project_local_point_and_get_location(p, false);
+        let (proj, (tri, loc)) = self.mesh.project_local_point_and_get_location(p, false);
         let d = p - proj.point;
         let len = d.length();
-        let sign = if proj.is_inside { -1.0 } else { 1.0 };
+        let face = self.mesh.triangle(tri).normal();
+        let inside = if self.pseudo_normals {
+            proj.is_inside
+        } else {
+            match (loc, face) {
+                (TrianglePointLocation::OnFace(..), Some(n)) => d.dot(n) < 0.0,
+                _ => self.contains(p),
+            }
+        };
+        let sign = if inside { -1.0 } else { 1.0 };
         let normal = if len > 1e-12 {
             d / len * sign
         } else {
-            self.mesh.triangle(tri).normal().unwrap_or(Vec3::Z)
+            face.unwrap_or(Vec3::Z)
         };
         Some(Projection {
             distance: sign * len,
@@ -252,86 +353,20 @@ impl Design for MeshDesign {
     }
 
     fn describe(&self) -> String {
-        format!(
-            "closed mesh, {} triangles, {:.3} mm³",
-            self.mesh.indices().len(),
-            self.volume
-        )
-    }
-}
-
-/// `triangles` (corners in `vertices`) without the faces that touching bodies share: where
-/// one body's triangles lie on another's, on one plane facing the other way, both are inside
-/// the union, and the distance to the design must not find them. (Only meshes whose every edge
-/// is used twice, or half each way where bodies touch, come here: a shared face is then wholly
-/// covered from both sides.) A triangle is shared when its centroid lies in a triangle of the
-/// opposite side of its plane, planes matched to 1e-9 in the normal and 1e-6 mm in offset.
-fn without_shared_faces(vertices: &[Vec3], triangles: &[[u32; 3]]) -> Vec<[u32; 3]> {
-    use std::collections::HashMap;
-    const N_STEP: f64 = 1e-9;
-    const D_STEP: f64 = 1e-6;
-    let plane = |t: [u32; 3]| {
-        let [a, b, c] = t.map(|i| vertices[i as usize]);
-        let n = (b - a).cross(c - a);
-        let len = n.length();
-        (len > 0.0 && len.is_finite()).then(|| {
-            let n = n / len;
-            (n, n.dot(a), (a + b + c) / 3.0)
-        })
-    };
-    let key = |n: Vec3, d: f64| -> [i64; 4] {
-        [
-            (n.x / N_STEP).round() as i64,
-            (n.y / N_STEP).round() as i64,
-            (n.z / N_STEP).round() as i64,
-            (d / D_STEP).round() as i64,
-        ]
-    };
-    let planes: Vec<Option<(Vec3, f64, Vec3)>> = triangles.iter().map(|&t| plane(t)).collect();
-    let mut by_plane: HashMap<[i64; 4], Vec<usize>> = HashMap::new();
-    for (i, p) in planes.iter().enumerate() {
-        if let Some((n, d, _)) = p {
-            by_plane.entry(key(*n, *d)).or_default().push(i);
+        match &self.union {
+            None => format!(
+                "closed mesh, {} triangles, {:.3} mm³",
+                self.input_triangles, self.volume
+            ),
+            Some(_) => format!(
+                "closed mesh, {} triangles, {:.3} mm³ as the union of its bodies (bounded by {} \
+                 triangles)",
+                self.input_triangles,
+                self.volume,
+                self.mesh.indices().len()
+            ),
         }
     }
-    // Whether `q` (on the triangle's plane) lies in triangle `t`, within 1e-6 mm of its edges.
-    let inside = |q: Vec3, t: [u32; 3]| {
-        let [a, b, c] = t.map(|i| vertices[i as usize]);
-        let m = (b - a).cross(c - a);
-        [(a, b), (b, c), (c, a)].iter().all(|&(p, r)| {
-            // The signed distance of `q` from the edge's line, in the plane: ≥ 0 inside.
-            (r - p).cross(q - p).dot(m) >= -D_STEP * m.length() * (r - p).length()
-        })
-    };
-    let mut shared = vec![false; triangles.len()];
-    for (i, p) in planes.iter().enumerate() {
-        let Some((n, d, centroid)) = *p else { continue };
-        let k = key(-n, -d);
-        // The bins around the opposite plane's (a value at a bin's edge rounds either way).
-        let mut found = false;
-        'search: for dx in -1..=1 {
-            for dy in -1..=1 {
-                for dz in -1..=1 {
-                    for dd in -1..=1 {
-                        let kk = [k[0] + dx, k[1] + dy, k[2] + dz, k[3] + dd];
-                        if let Some(js) = by_plane.get(&kk) {
-                            if js.iter().any(|&j| inside(centroid, triangles[j])) {
-                                found = true;
-                                break 'search;
-                            }
-                        }
-                    }
-                }
-            }
-        }
-        shared[i] = found;
-    }
-    triangles
-        .iter()
-        .zip(&shared)
-        .filter(|(_, &s)| !s)
-        .map(|(&t, _)| t)
-        .collect()
 }
 
 #[cfg(test)]

@@ -21,7 +21,8 @@ pub enum VerifyError {
     /// The design mesh is not a closed solid boundary.
     #[error(
         "design {path}: not a closed mesh: {count} edges are not shared by exactly two \
-         triangles (e.g. {examples}); a design part must be a closed, consistently oriented solid"
+         triangles (e.g. {examples}); a design part must be the closed boundary of one or more \
+         solid bodies"
     )]
     OpenMesh {
         /// The design file (or `<mesh>`).
@@ -31,8 +32,10 @@ pub enum VerifyError {
         /// The first few, as coordinates.
         examples: String,
     },
-    /// The design mesh is empty, not finite, or inconsistently oriented.
-    #[error("design {path}: {what}; expected a closed, consistently oriented triangle mesh")]
+    /// The design mesh is empty, not finite, or bounds no volume.
+    #[error(
+        "design {path}: {what}; expected a closed triangle mesh bounding one or more solid bodies"
+    )]
     BadMesh {
         /// The design file (or `<mesh>`).
         path: PathBuf,

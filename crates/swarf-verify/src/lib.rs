@@ -44,6 +44,7 @@ pub mod deviation;
 pub mod error;
 pub mod report;
 pub mod surface;
+pub mod union;
 pub mod verify;
 
 pub use design::{Design, MeshDesign, Projection};
@@ -51,10 +52,11 @@ pub use deviation::{deviation_mesh, Legend};
 pub use error::VerifyError;
 pub use report::{html_report, ReportInputs};
 pub use surface::{SurfaceDesign, DEFAULT_SURFACE_ACCURACY_MM};
+pub use union::UNION_GAP_MM;
 pub use verify::{
     verify, verify_observed, DefectEnd, DefectKind, Histogram, Region, RegionMove, Verification,
     VerifyOptions, DEFAULT_EXCESS_TOLERANCE_MM, DEFAULT_GOUGE_TOLERANCE_MM, DEFAULT_LINK_CELLS,
-    MAX_REGION_MOVES,
+    MAX_REGION_MOVES, ROUNDING_MM,
 };
 
 use swarf_geom::math::Vec3;

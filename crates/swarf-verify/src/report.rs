@@ -27,8 +27,10 @@ pub struct ReportInputs<'a> {
     pub inputs: Vec<(String, String)>,
     /// The tools: number, description, cutter.
     pub tools: Vec<(u32, String, &'a Cutter)>,
-    /// The command's JSON summary (the figures are read from it).
-    pub summary: &'a serde_json::Value,
+    /// The command's JSON summary as `summary.json` holds it (the figures are read from it:
+    /// every top-level number, string, boolean and short array, the contract's keys first,
+    /// then the rest in the text's order, each as the text writes it).
+    pub summary: &'a str,
     /// The machined part coloured by deviation ([`crate::deviation_mesh`]) and its legend.
     pub part: (&'a TriMesh, &'a Legend),
 }
@@ -91,37 +93,41 @@ fn histogram_svg(v: &Verification, legend: &Legend) -> String {
     s
 }
 
-/// The figures of the summary, as its JSON writes them.
-const FIGURES: &[&str] = &[
+/// The summary's keys shown first: the contract of `summary.json` (the rest follow in its
+/// order).
+const FIRST_FIGURES: &[&str] = &[
     "max_gouge_mm",
     "max_excess_mm",
     "gouge_regions",
     "excess_regions",
     "excess_volume_mm3",
-    "gouge_volume_mm3",
     "tolerance_mm",
-    "excess_tolerance_mm",
     "collisions",
-    "ends_checked",
-    "volume_method",
     "elapsed_s",
 ];
+
+/// What the page says when the design reaches beyond the stock's box (also a figure,
+/// `design_beyond_stock_box`): part of the design is not compared.
+pub fn beyond_stock_note(v: &Verification) -> Option<String> {
+    v.design_beyond_stock_box.then(|| {
+        let outside = v.design_outside_stock_mm3.map_or(String::new(), |o| {
+            format!("; {o:.1} mm³ of it lies above or below the stock")
+        });
+        format!(
+            "the design reaches beyond the stock's box{outside}: what lies outside is not \
+             compared (a design in another frame than the program's, or fixtures exported with \
+             the part)"
+        )
+    })
+}
 
 /// The report page.
 pub fn html_report(v: &Verification, inputs: &ReportInputs<'_>) -> String {
     let program = inputs.program;
-    let figures = FIGURES
-        .iter()
-        .filter_map(|k| {
-            inputs.summary.get(*k).map(|x| {
-                let text = match x {
-                    serde_json::Value::String(s) => s.clone(),
-                    other => other.to_string(),
-                };
-                (k.to_string(), text)
-            })
-        })
-        .collect();
+    // A summary that is not a JSON object (not the command's) shows no figures.
+    let summary = swarf_io::html::Report::default()
+        .with_summary_json(inputs.summary, FIRST_FIGURES)
+        .unwrap_or_default();
     let mut defects = vec![DefectRow {
         cells: [
             "region",
@@ -194,6 +200,9 @@ pub fn html_report(v: &Verification, inputs: &ReportInputs<'_>) -> String {
         .collect();
     let (part, legend) = inputs.part;
     let mut all_inputs = inputs.inputs.clone();
+    if let Some(note) = beyond_stock_note(v) {
+        all_inputs.push(("warning".into(), note));
+    }
     all_inputs.push(("moves".into(), program.moves.len().to_string()));
     if v.regions.len() > MAX_REPORT_ROWS {
         all_inputs.push((
@@ -216,8 +225,9 @@ pub fn html_report(v: &Verification, inputs: &ReportInputs<'_>) -> String {
                 profile: c.half_profile(120),
             })
             .collect(),
-        figures,
-        summary: inputs.summary.clone(),
+        figures: summary.figures,
+        summary: summary.summary,
+        summary_text: summary.summary_text,
         scene: Scene {
             meshes: vec![("machined part".into(), part.clone())],
             paths: program.tip_polylines(8),
@@ -231,4 +241,106 @@ pub fn html_report(v: &Verification, inputs: &ReportInputs<'_>) -> String {
         source,
     };
     swarf_io::html::render(&report)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::{deviation_mesh, verify, MeshDesign, VerifyOptions};
+    use swarf_geom::math::Vec3;
+    use swarf_path::load::{read_program_str, ReadOptions};
+    use swarf_stock::TriDexel;
+
+    /// The texts of the page's figures, in the page's order.
+    fn figures(html: &str) -> Vec<(String, String)> {
+        html.split("<td data-key=\"")
+            .skip(1)
+            .map(|s| {
+                let (key, rest) = s.split_once("\">").unwrap();
+                (
+                    key.to_string(),
+                    rest[..rest.find("</td>").unwrap()].to_string(),
+                )
+            })
+            .collect()
+    }
+
+    #[test]
+    fn every_figure_of_the_summary_is_on_the_page_and_a_design_off_the_stock_is_said() {
+        // A design 100 mm away from the stock: nothing is compared with it.
+        let design = MeshDesign::new(&crate::box_mesh(
+            Vec3::new(100.0, 100.0, -10.0),
+            Vec3::new(120.0, 120.0, -1.0),
+        ))
+        .unwrap();
+        let stock = TriDexel::from_box(Vec3::new(0.0, 0.0, -10.0), Vec3::new(20.0, 20.0, 0.0), 1.0)
+            .unwrap();
+        let v = verify(&stock, &design, None, &VerifyOptions::default()).unwrap();
+        assert!(v.design_beyond_stock_box);
+        let program = read_program_str(
+            "G0 X0 Y0 Z5\n",
+            "p.ngc",
+            swarf_path::Machine::three_axis(),
+            &ReadOptions::default(),
+        )
+        .unwrap();
+        let (mesh, legend) = deviation_mesh(&stock, &design, 1.0);
+        // summary.json as `swarf verify` writes it (pretty, its own order), cut short.
+        let summary = "{\n  \"max_gouge_mm\": 0.0,\n  \"max_excess_mm\": 119.99998092651367,\n  \
+            \"gouge_regions\": 0,\n  \"excess_regions\": 1,\n  \"excess_volume_mm3\": 4000.0,\n  \
+            \"tolerance_mm\": 0.01,\n  \"collisions\": 0,\n  \"elapsed_s\": 0.5,\n  \
+            \"excess_tolerance_mm\": 0.01,\n  \"gouge_volume_mm3\": 0.0,\n  \
+            \"volume_method\": \"z-rays\",\n  \"design_outside_stock_mm3\": 0.0,\n  \
+            \"design_beyond_stock_box\": true,\n  \"ends_checked\": 2400,\n  \
+            \"ends_unmatched\": 0,\n  \"gouge_ends\": 0,\n  \"excess_ends\": 2400,\n  \
+            \"resolution_mm\": [\n    1.0,\n    1.0,\n    1.0\n  ],\n  \
+            \"design\": \"closed mesh, 12 triangles, 3600.000 mm³\",\n  \
+            \"regions\": [],\n  \"skipped_faces\": 0,\n  \"untrimmed_faces\": 0,\n  \
+            \"unapplied_placements\": 0,\n  \"notes\": []\n}\n";
+        let inputs = ReportInputs {
+            program: &program,
+            sources: &[],
+            inputs: Vec::new(),
+            tools: Vec::new(),
+            summary,
+            part: (&mesh, &legend),
+        };
+        let html = html_report(&v, &inputs);
+        let got = figures(&html);
+        let want: Vec<(String, String)> = [
+            ("max_gouge_mm", "0.0"),
+            ("max_excess_mm", "119.99998092651367"),
+            ("gouge_regions", "0"),
+            ("excess_regions", "1"),
+            ("excess_volume_mm3", "4000.0"),
+            ("tolerance_mm", "0.01"),
+            ("collisions", "0"),
+            ("elapsed_s", "0.5"),
+            ("excess_tolerance_mm", "0.01"),
+            ("gouge_volume_mm3", "0.0"),
+            ("volume_method", "z-rays"),
+            ("design_outside_stock_mm3", "0.0"),
+            ("design_beyond_stock_box", "true"),
+            ("ends_checked", "2400"),
+            ("ends_unmatched", "0"),
+            ("gouge_ends", "0"),
+            ("excess_ends", "2400"),
+            ("resolution_mm", "[1.0,1.0,1.0]"),
+            ("design", "closed mesh, 12 triangles, 3600.000 mm³"),
+            ("regions", "[]"),
+            ("skipped_faces", "0"),
+            ("untrimmed_faces", "0"),
+            ("unapplied_placements", "0"),
+            ("notes", "[]"),
+        ]
+        .map(|(k, v)| (k.to_string(), v.to_string()))
+        .to_vec();
+        assert_eq!(got, want);
+        // The design off the stock is said among the inputs, not only as a figure.
+        assert!(
+            html.contains("<th>warning</th><td>the design reaches beyond the stock&#39;s box"),
+            "{}",
+            &html[..html.len().min(4000)]
+        );
+    }
 }

@@ -22,6 +22,10 @@ pub const DEFAULT_EXCESS_TOLERANCE_MM: f64 = 0.01;
 /// than this belong to one region. Two cells join the ends of neighbouring rays of a family
 /// and of the other families on the same sheet (at most √3 cells apart on a flat face).
 pub const DEFAULT_LINK_CELLS: f64 = 2.0;
+/// Deviations no larger than this are rounding, not a defect, whatever the tolerances (mm): a
+/// machined surface that meets the design computes a few 1e-15 mm off it, and a tolerance of 0
+/// would make each such ray end a gouge or an excess.
+pub const ROUNDING_MM: f64 = 1e-9;
 
 /// Verification options; tolerances with their defaults in one place.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -169,21 +173,31 @@ pub struct Region {
     pub id: usize,
     /// Gouge or excess.
     pub kind: DefectKind,
-    /// Largest |deviation| of its ray ends, mm.
+    /// Largest |deviation| of its ray ends, mm; for excess material that no ray end bounds (a
+    /// cavity of the design that the stock fills), the farthest from the design of the
+    /// middles of its Z-ray pieces.
     pub depth_mm: f64,
-    /// Its footprint on the design's surface, mm² (see [`DefectEnd::area`]).
+    /// Its footprint on the design's surface, mm² (see [`DefectEnd::area`]); 0 for material
+    /// that no ray end bounds.
     pub area_mm2: f64,
     /// Volume of the gouge (part material missing) or excess (material left), mm³: with a
-    /// solid design, the Z rays' exact pieces of stock ∖ part (or part ∖ stock) that touch the
-    /// region, times their cell area; otherwise ∫ |deviation| dA over the region.
+    /// solid design, the Z rays' exact pieces of stock ∖ part (or part ∖ stock), times their
+    /// cell area — each piece near the region's ray ends, and each piece joined to those
+    /// through pieces of neighbouring rays (the material of a hole left undrilled, away from
+    /// the stock's surface), so that the excess regions' volumes add up to
+    /// [`Verification::excess_volume_mm3`] less material nowhere thicker than the tolerance
+    /// (a gouge's pieces that no gouge end reaches — nowhere deeper than the tolerance, or
+    /// behind stock no move cut — belong to no region); otherwise ∫ |deviation| dA over the
+    /// region.
     pub volume_mm3: f64,
     /// The deepest ray end.
     pub deepest: Vec3,
     /// The move that cut the deepest end last, if any.
     pub deepest_move: Option<usize>,
-    /// Ray ends in the region.
+    /// Ray ends in the region (0: material that no ray end bounds, a cavity of the design the
+    /// stock fills).
     pub ends: usize,
-    /// Lower corner of the region's ray ends.
+    /// Lower corner of the region's ray ends (of its Z-ray pieces when it has no ray end).
     pub bbox_min: Vec3,
     /// Upper corner.
     pub bbox_max: Vec3,
@@ -212,12 +226,15 @@ pub struct Verification {
     pub regions: Vec<Region>,
     /// Deepest gouge of any ray end, mm (0 when none lies inside the design).
     pub max_gouge_mm: f64,
-    /// Thickest excess of any ray end, mm (0 when none lies outside).
+    /// Thickest excess, mm: of any ray end, or of material no ray end bounds (a region's
+    /// [`Region::depth_mm`]); 0 when none lies outside.
     pub max_excess_mm: f64,
     /// Ray ends compared with the design.
     pub ends_checked: u64,
-    /// Ray ends about which the design says nothing: beyond a surface's edge, or (for a
-    /// surface, with provenance) uncut stock behind it.
+    /// Ray ends about which the design says nothing: beyond a surface's edge, or (with
+    /// provenance) stock no move cut lying inside the design — behind a surface the material
+    /// under the part, in a solid the design beyond the stock, which the program never had to
+    /// cut.
     pub ends_unmatched: u64,
     /// Ray ends beyond the gouge tolerance.
     pub gouge_ends: u64,
@@ -254,6 +271,30 @@ impl Verification {
     /// Excess regions.
     pub fn excesses(&self) -> impl Iterator<Item = &Region> {
         self.regions.iter().filter(|r| r.kind == DefectKind::Excess)
+    }
+
+    /// Material left outside the part, mm³: [`Verification::excess_volume_mm3`] for a solid
+    /// design, else the excess regions' volumes added up (0, never −0, when there are none).
+    pub fn excess_volume(&self) -> f64 {
+        self.excess_volume_mm3
+            .unwrap_or_else(|| self.excesses().fold(0.0, |a, r| a + r.volume_mm3))
+    }
+
+    /// Part material missing, mm³: [`Verification::gouge_volume_mm3`] for a solid design, else
+    /// the gouge regions' volumes added up (0 when there are none).
+    pub fn gouge_volume(&self) -> f64 {
+        self.gouge_volume_mm3
+            .unwrap_or_else(|| self.gouges().fold(0.0, |a, r| a + r.volume_mm3))
+    }
+
+    /// How the volumes were measured: `z-rays` (the exact pieces along the Z rays, a solid
+    /// design) or `surface-integral` (∫ |deviation| dA over the regions, a surface).
+    pub fn volume_method(&self) -> &'static str {
+        if self.excess_volume_mm3.is_some() {
+            "z-rays"
+        } else {
+            "surface-integral"
+        }
     }
 }
 
@@ -315,10 +356,16 @@ pub fn verify_observed(
     let rows: u64 = (0..3).map(|k| stock.family(k).dims().1 as u64).sum();
     let (rows_done, stopped) = (AtomicU64::new(0), AtomicBool::new(false));
     let grid = *stock.grid();
-    let (gt, et) = (options.gouge_tolerance, options.excess_tolerance);
-    // Behind a surface that bounds no solid, the stock's own faces that no move cut are the
-    // material under the part, not a gouge (only known when the stock tracked provenance).
-    let skip_uncut_behind = !design.bounds_solid() && stock.tracks_provenance();
+    // Deviations within rounding are no defect, whatever the tolerances.
+    let (gt, et) = (
+        options.gouge_tolerance.max(ROUNDING_MM),
+        options.excess_tolerance.max(ROUNDING_MM),
+    );
+    // The stock's own faces that no move cut, lying inside the design (deeper than rounding:
+    // on it, they are compared), are no gouge of the program: behind a surface that bounds no
+    // solid the material under the part, in a solid design part of it the stock never reached
+    // (a design wider than the stock) — only known when the stock tracked provenance.
+    let skip_uncut_behind = stock.tracks_provenance();
     let all = (0..3usize)
         .map(|k| {
             let fam = stock.family(k);
@@ -358,7 +405,7 @@ pub fn verify_observed(
                                     continue;
                                 };
                                 let d = pr.distance;
-                                if skip_uncut_behind && d < 0.0 && tag == UNCUT {
+                                if skip_uncut_behind && d < -ROUNDING_MM && tag == UNCUT {
                                     acc.unmatched += 1;
                                     continue;
                                 }
@@ -401,11 +448,16 @@ pub fn verify_observed(
     let (labels, count) = connect(&defects, link);
     weigh_by_crossings(&mut defects, &labels, count, design, stock);
     let mut regions = summarise(&defects, &labels, count, program);
-    let volumes = measure_volumes(stock, design, &defects, &labels, &regions, link);
-    if let Some((per_region, ..)) = &volumes {
-        for (r, v) in regions.iter_mut().zip(per_region) {
+    let volumes = measure_volumes(stock, design, &defects, &labels, &regions, link, et);
+    let mut max_excess = all.max_excess;
+    if let Some(vol) = &volumes {
+        for (r, v) in regions.iter_mut().zip(&vol.per_region) {
             r.volume_mm3 = *v;
         }
+        for r in &vol.cavities {
+            max_excess = max_excess.max(r.depth_mm);
+        }
+        regions.extend(vol.cavities.iter().cloned());
     } else {
         for (n, d) in defects.iter().enumerate() {
             regions[labels[n]].volume_mm3 += d.area * d.deviation.abs();
@@ -423,14 +475,14 @@ pub fn verify_observed(
     let gouge_ends = defects.iter().filter(|d| d.deviation < 0.0).count() as u64;
     Ok(Verification {
         max_gouge_mm: all.max_gouge.max(0.0),
-        max_excess_mm: all.max_excess.max(0.0),
+        max_excess_mm: max_excess.max(0.0),
         ends_checked: all.checked,
         ends_unmatched: all.unmatched,
         gouge_ends,
         excess_ends: defects.len() as u64 - gouge_ends,
-        excess_volume_mm3: volumes.as_ref().map(|v| v.1),
-        gouge_volume_mm3: volumes.as_ref().map(|v| v.2),
-        design_outside_stock_mm3: volumes.as_ref().map(|v| v.3),
+        excess_volume_mm3: volumes.as_ref().map(|v| v.excess),
+        gouge_volume_mm3: volumes.as_ref().map(|v| v.gouge),
+        design_outside_stock_mm3: volumes.as_ref().map(|v| v.outside),
         design_beyond_stock_box: beyond_box(&grid, &design.bounding_box()),
         histogram: histogram(&all.deviations),
         regions,
@@ -640,11 +692,41 @@ fn beyond_box(grid: &swarf_stock::Grid, b: &swarf_geom::Aabb) -> bool {
     })
 }
 
+/// One piece of stock ∖ part (excess) or part ∖ stock (gouge) along a Z ray.
+#[derive(Clone, Copy, Debug)]
+struct Piece {
+    /// The ray's cell.
+    i: u32,
+    j: u32,
+    lo: f64,
+    hi: f64,
+    kind: DefectKind,
+}
+
+/// What [`measure_volumes`] finds.
+struct Volumes {
+    /// Each region's volume, mm³ (in the order of the regions given).
+    per_region: Vec<f64>,
+    /// Excess material that no ray end bounds (a cavity of the design the stock fills), thicker
+    /// than the tolerance somewhere: a region each.
+    cavities: Vec<Region>,
+    /// stock ∖ part, mm³.
+    excess: f64,
+    /// part ∖ stock within the stock's box, mm³.
+    gouge: f64,
+    /// The design above or below the stock's box over its footprint, mm³.
+    outside: f64,
+}
+
 /// Exact volumes from the Z rays when the design bounds a solid: per ray, the pieces of
-/// stock ∖ part (excess) and part ∖ stock (gouge) within the stock's box; each piece goes to
-/// the region of the defect end that bounds it (or the nearest one of its kind within
-/// `2·link`). Returns the per-region volumes, the totals and the design's volume above or
-/// below the box, or `None` for a design without a solid.
+/// stock ∖ part (excess) and part ∖ stock (gouge) within the stock's box. A piece goes to the
+/// region of the defect end that bounds it (or the nearest one of its kind within `2·link` of
+/// its middle); a piece no end is that near — material away from the stock's surface, such as
+/// a hole left undrilled — goes to the region that reaches it first through pieces of its kind
+/// in neighbouring rays (the eight around, overlapping along Z). Excess pieces that no region
+/// reaches so make a region of each connected group (a cavity of the design, filled), unless
+/// no piece's middle lies farther than `excess_tolerance` from the design. Returns `None` for
+/// a design without a solid.
 fn measure_volumes(
     stock: &TriDexel,
     design: &dyn Design,
@@ -652,7 +734,8 @@ fn measure_volumes(
     labels: &[usize],
     regions: &[Region],
     link: f64,
-) -> Option<(Vec<f64>, f64, f64, f64)> {
+    excess_tolerance: f64,
+) -> Option<Volumes> {
     let grid = *stock.grid();
     let fam = stock.family(2);
     let (nu, nv) = fam.dims();
@@ -700,67 +783,172 @@ fn measure_volumes(
     };
     // The stock's box along Z: design material beyond it was never stock.
     let (z0, z1) = (grid.min[2], grid.max[2]);
-    let (per_region, excess, gouge, outside) = (0..nv)
+    // Per row of rays: its pieces (by ray, then along it) with their regions, and the totals.
+    type Row = (Vec<(Piece, Option<usize>)>, f64, f64, f64);
+    let rows: Vec<Row> = (0..nv)
         .into_par_iter()
-        .fold(
-            || (vec![0.0; regions.len()], 0.0, 0.0, 0.0),
-            |(mut per, mut ex, mut go, mut out), j| {
-                let mut part = Dexel::new();
-                let y = grid.center(1, j);
-                for i in 0..nu {
-                    let x = grid.center(0, i);
-                    part.clear();
-                    design.solid_intervals(2, x, y, cell, &mut part);
-                    part.retain(|iv| {
-                        let (a, b) = (iv.enter.max(z0), iv.exit.min(z1));
-                        out += iv.len() - (b - a).max(0.0);
-                        (iv.enter, iv.exit) = (a, b);
-                        b > a
-                    });
-                    let ray = fam.ray(i, j);
-                    for (kind, a, b) in [
-                        (DefectKind::Excess, ray, &part[..]),
-                        (DefectKind::Gouge, &part[..], ray),
-                    ] {
-                        for (lo, hi) in difference(a, b) {
-                            let len = hi - lo;
-                            match kind {
-                                DefectKind::Excess => ex += len,
-                                DefectKind::Gouge => go += len,
-                            }
-                            // The piece's ends that are stock ends, then its middle.
-                            let ends = [lo, hi]
-                                .into_iter()
-                                .filter(|t| ray.iter().any(|iv| iv.enter == *t || iv.exit == *t))
-                                .chain([0.5 * (lo + hi)]);
-                            if let Some(r) = ends
-                                .map(|t| nearest(Vec3::new(x, y, t), kind))
-                                .find(Option::is_some)
-                                .flatten()
-                            {
-                                per[r] += len;
-                            }
+        .map(|j| {
+            let (mut pieces, mut ex, mut go, mut out) = (Vec::new(), 0.0, 0.0, 0.0);
+            let mut part = Dexel::new();
+            let y = grid.center(1, j);
+            for i in 0..nu {
+                let x = grid.center(0, i);
+                part.clear();
+                design.solid_intervals(2, x, y, cell, &mut part);
+                part.retain(|iv| {
+                    let (a, b) = (iv.enter.max(z0), iv.exit.min(z1));
+                    out += iv.len() - (b - a).max(0.0);
+                    (iv.enter, iv.exit) = (a, b);
+                    b > a
+                });
+                let ray = fam.ray(i, j);
+                let first = pieces.len();
+                for (kind, a, b) in [
+                    (DefectKind::Excess, ray, &part[..]),
+                    (DefectKind::Gouge, &part[..], ray),
+                ] {
+                    for (lo, hi) in difference(a, b) {
+                        match kind {
+                            DefectKind::Excess => ex += hi - lo,
+                            DefectKind::Gouge => go += hi - lo,
                         }
+                        // The piece's ends that are stock ends, then its middle.
+                        let ends = [lo, hi]
+                            .into_iter()
+                            .filter(|t| ray.iter().any(|iv| iv.enter == *t || iv.exit == *t))
+                            .chain([0.5 * (lo + hi)]);
+                        let region = ends
+                            .map(|t| nearest(Vec3::new(x, y, t), kind))
+                            .find(Option::is_some)
+                            .flatten();
+                        let (i, j) = (i as u32, j as u32);
+                        let piece = Piece { i, j, lo, hi, kind };
+                        pieces.push((piece, region));
                     }
                 }
-                (per, ex, go, out)
-            },
-        )
-        .reduce(
-            || (vec![0.0; regions.len()], 0.0, 0.0, 0.0),
-            |(mut a, ea, ga, oa), (b, eb, gb, ob)| {
-                for (x, y) in a.iter_mut().zip(b) {
-                    *x += y;
+                pieces[first..].sort_by(|a, b| a.0.lo.total_cmp(&b.0.lo));
+            }
+            (pieces, ex, go, out)
+        })
+        .collect();
+    let (mut excess, mut gouge, mut outside) = (0.0, 0.0, 0.0);
+    let mut pieces: Vec<Piece> = Vec::new();
+    let mut owner: Vec<Option<usize>> = Vec::new();
+    for (row, ex, go, out) in rows {
+        excess += ex;
+        gouge += go;
+        outside += out;
+        for (p, r) in row {
+            pieces.push(p);
+            owner.push(r);
+        }
+    }
+    // Where each ray's pieces start (rays row by row), and a piece's neighbours: pieces of its
+    // kind in the eight rays around that overlap it along Z.
+    let mut start = vec![0u32; nu * nv + 1];
+    for p in &pieces {
+        start[p.j as usize * nu + p.i as usize + 1] += 1;
+    }
+    for r in 0..nu * nv {
+        start[r + 1] += start[r];
+    }
+    let neighbours = |n: usize, out: &mut Vec<usize>| {
+        out.clear();
+        let p = pieces[n];
+        for dj in -1i64..=1 {
+            for di in -1i64..=1 {
+                let (i, j) = (i64::from(p.i) + di, i64::from(p.j) + dj);
+                if (di, dj) == (0, 0) || i < 0 || j < 0 || i >= nu as i64 || j >= nv as i64 {
+                    continue;
                 }
-                (a, ea + eb, ga + gb, oa + ob)
-            },
-        );
-    Some((
-        per_region.into_iter().map(|l| l * area).collect(),
-        excess * area,
-        gouge * area,
-        outside * area,
-    ))
+                let r = j as usize * nu + i as usize;
+                let (first, end) = (start[r] as usize, start[r + 1] as usize);
+                for (m, q) in pieces[first..end].iter().enumerate() {
+                    if q.kind == p.kind && q.lo <= p.hi && p.lo <= q.hi {
+                        out.push(first + m);
+                    }
+                }
+            }
+        }
+    };
+    // Every region reaches out from its pieces at once, a ring of neighbours at a time.
+    let mut queue: std::collections::VecDeque<usize> =
+        (0..pieces.len()).filter(|&n| owner[n].is_some()).collect();
+    let mut next = Vec::new();
+    while let Some(n) = queue.pop_front() {
+        neighbours(n, &mut next);
+        for &m in &next {
+            if owner[m].is_none() {
+                owner[m] = owner[n];
+                queue.push_back(m);
+            }
+        }
+    }
+    let mut per_region = vec![0.0; regions.len()];
+    for (p, r) in pieces.iter().zip(&owner) {
+        if let Some(r) = r {
+            per_region[*r] += (p.hi - p.lo) * area;
+        }
+    }
+    // Excess no region reached: a region of each connected group thicker than the tolerance.
+    let mut cavities = Vec::new();
+    let mut seen = vec![false; pieces.len()];
+    for n in 0..pieces.len() {
+        if seen[n] || owner[n].is_some() || pieces[n].kind != DefectKind::Excess {
+            continue;
+        }
+        seen[n] = true;
+        let mut group = vec![n];
+        let mut at = 0;
+        while at < group.len() {
+            neighbours(group[at], &mut next);
+            for &m in &next {
+                if !seen[m] {
+                    seen[m] = true;
+                    group.push(m);
+                }
+            }
+            at += 1;
+        }
+        let mut r = Region {
+            id: 0,
+            kind: DefectKind::Excess,
+            depth_mm: 0.0,
+            area_mm2: 0.0,
+            volume_mm3: 0.0,
+            deepest: Vec3::ZERO,
+            deepest_move: None,
+            ends: 0,
+            bbox_min: Vec3::splat(f64::INFINITY),
+            bbox_max: Vec3::splat(f64::NEG_INFINITY),
+            moves: Vec::new(),
+            move_count: 0,
+        };
+        for &m in &group {
+            let p = pieces[m];
+            let (x, y) = (grid.center(0, p.i as usize), grid.center(1, p.j as usize));
+            r.volume_mm3 += (p.hi - p.lo) * area;
+            r.bbox_min = r.bbox_min.min(Vec3::new(x, y, p.lo));
+            r.bbox_max = r.bbox_max.max(Vec3::new(x, y, p.hi));
+            let mid = Vec3::new(x, y, 0.5 * (p.lo + p.hi));
+            if let Some(pr) = design.project(mid) {
+                if pr.distance > r.depth_mm {
+                    r.depth_mm = pr.distance;
+                    r.deepest = mid;
+                }
+            }
+        }
+        if r.depth_mm > excess_tolerance {
+            cavities.push(r);
+        }
+    }
+    Some(Volumes {
+        per_region,
+        cavities,
+        excess: excess * area,
+        gouge: gouge * area,
+        outside: outside * area,
+    })
 }
 
 /// The pieces of `a` not in `b` (both sorted, disjoint), as `(lo, hi)` pairs.

@@ -207,26 +207,18 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
     let glb = swarf_io::glb::GlbFile::new(&mesh, &options).context("encoding deviation.glb")?;
     set.write("deviation.glb", |w| glb.write_to(w))?;
     set.write_bytes("defects.csv", defects_csv(&v, program).as_bytes())?;
-    let (excess_volume, gouge_volume, method) = match (v.excess_volume_mm3, v.gouge_volume_mm3) {
-        (Some(e), Some(g)) => (e, g, "z-rays"),
-        _ => (
-            v.excesses().map(|r| r.volume_mm3).sum(),
-            v.gouges().map(|r| r.volume_mm3).sum(),
-            "surface-integral",
-        ),
-    };
     let summary = VerifySummary {
         max_gouge_mm: v.max_gouge_mm,
         max_excess_mm: v.max_excess_mm,
         gouge_regions: v.gouges().count(),
         excess_regions: v.excesses().count(),
-        excess_volume_mm3: excess_volume,
+        excess_volume_mm3: v.excess_volume(),
         tolerance_mm: args.tolerance,
         collisions: report.rapid_collisions.len() + report.holder_collisions.len(),
         elapsed_s: t0.elapsed().as_secs_f64(),
         excess_tolerance_mm: args.excess_tolerance,
-        gouge_volume_mm3: gouge_volume,
-        volume_method: method,
+        gouge_volume_mm3: v.gouge_volume(),
+        volume_method: v.volume_method(),
         design_outside_stock_mm3: v.design_outside_stock_mm3,
         design_beyond_stock_box: v.design_beyond_stock_box,
         ends_checked: v.ends_checked,
@@ -248,7 +240,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
     set.commit()?;
     if let Some(path) = &args.report {
         let sources = crate::commands::report::sources(program);
-        let value = serde_json::to_value(&summary)?;
+        let text = std::str::from_utf8(&json).context("summary.json is not UTF-8")?;
         let inputs = ReportInputs {
             program,
             sources: &sources,
@@ -278,7 +270,7 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
                     (*n, d, &r.cutter)
                 })
                 .collect(),
-            summary: &value,
+            summary: text,
             part: (&mesh, &legend),
         };
         crate::output::bail_if_stopped("the report")?;
@@ -306,10 +298,11 @@ fn load_design(
         if flip {
             bail!("--flip applies to surface designs (JSON, STEP, IGES), not to an STL solid");
         }
-        return Ok((
-            Box::new(MeshDesign::read_stl_at(path, at)?),
-            swarf_surface::Caveats::default(),
-        ));
+        let design = MeshDesign::read_stl_at(path, at)?;
+        if let Some(note) = design.repairs() {
+            eprintln!("note: design {}: {note}", path.display());
+        }
+        return Ok((Box::new(design), swarf_surface::Caveats::default()));
     }
     if swarf_surface::io::Format::from_path(path).is_none() {
         bail!(
