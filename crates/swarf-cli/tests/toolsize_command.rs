@@ -150,6 +150,52 @@ fn a_trimmed_wall_limits_only_where_it_is_left() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// A patch whose trimmed region falls between the grid's rows and columns gets no point: a
+/// warning names it (its sizes are missing from the map, silently before).
+#[test]
+fn a_patch_the_grid_misses_is_named() {
+    let dir = swarf_testdata::scratch_dir("toolsize-offgrid");
+    let surface = dir.join("island.json");
+    std::fs::write(
+        &surface,
+        r#"{"units": "mm", "patches": [
+  {"name": "floor", "degree_u": 1, "degree_v": 1, "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+   "control_points": [[[0, 0, 0, 1], [0, 20, 0, 1]], [[20, 0, 0, 1], [20, 20, 0, 1]]]},
+  {"name": "island", "degree_u": 1, "degree_v": 1, "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
+   "control_points": [[[20, 0, 0, 1], [20, 20, 0, 1]], [[20, 0, 10, 1], [20, 20, 10, 1]]],
+   "trim": {"outer": [[0.2, 0.2], [0.3, 0.2], [0.3, 0.3], [0.2, 0.3]]}}]}"#,
+    )
+    .unwrap();
+    let out = dir.join("out");
+    let run = |grid: &str| {
+        swarf(&[
+            "toolsize",
+            "--surface",
+            surface.to_str().unwrap(),
+            "--cutter",
+            "ball",
+            "--grid",
+            grid,
+            "--out",
+            out.to_str().unwrap(),
+        ])
+    };
+    let o = run("3");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains(
+            "warning: 1 of 2 patches get no grid point on the part at --grid 3 (patch 1 (island))"
+        ),
+        "{}",
+        stderr(&o)
+    );
+    // At --grid 21 the island holds grid points (u, v = 0.2, 0.25, 0.3).
+    let o = run("21");
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(!stderr(&o).contains("no grid point"), "{}", stderr(&o));
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 #[test]
 fn faces_that_share_a_name_keep_their_own_rows_and_maps() {
     // CAD systems name every face after the product ("PartBody"): each face must still get its

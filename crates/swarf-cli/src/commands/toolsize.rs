@@ -221,6 +221,28 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
         );
     }
     crate::output::caveats_said(&caveats, "radii");
+    // A face whose trimmed region falls between the grid's rows and columns gets no point: its
+    // sizes are not in the map, which only a warning can tell.
+    let off_grid = surface.patches_off_grid(args.grid);
+    if !off_grid.is_empty() {
+        let names: Vec<String> = off_grid
+            .iter()
+            .take(5)
+            .map(|&k| match &surface.patches[k].name {
+                Some(n) => format!("patch {k} ({n})"),
+                None => format!("patch {k}"),
+            })
+            .collect();
+        eprintln!(
+            "warning: {} of {} patches get no grid point on the part at --grid {} ({}{}): a \
+             larger --grid samples them",
+            off_grid.len(),
+            surface.patches.len(),
+            args.grid,
+            names.join(", "),
+            if off_grid.len() > 5 { ", …" } else { "" }
+        );
+    }
     if summary.uncertified_points > 0 && matches!(args.solver, SolverArg::Certified) {
         eprintln!(
             "warning: at {} of {} points the certified solver ran out of its node budget: their \
