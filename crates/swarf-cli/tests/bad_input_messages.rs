@@ -165,10 +165,10 @@ fn a_zero_feed_is_said_on_stderr_too() {
 }
 
 #[test]
-fn a_linuxcnc_tool_without_a_positive_diameter_is_an_error_at_its_line() {
+fn a_linuxcnc_tool_with_a_negative_diameter_is_an_error_at_its_line() {
     let dir = temp_dir("tbl");
     let tbl = dir.join("tools.tbl");
-    std::fs::write(&tbl, "T1 P1 D6 Z50\nT2 P2 D0 Z0 ;probe\n").unwrap();
+    std::fs::write(&tbl, "T1 P1 D6 Z50\nT2 P2 D-1 Z0\n").unwrap();
     let p = program(
         "tbl-program",
         "G21 G90 T1 M6\nG0 X0 Y0 Z5\nG1 Z-1 F100\nM2\n",
@@ -177,8 +177,22 @@ fn a_linuxcnc_tool_without_a_positive_diameter_is_an_error_at_its_line() {
     let e = stderr(&o);
     assert_eq!(o.status.code(), Some(1), "{e}");
     assert!(
-        e.contains("tools.tbl:2:8") && e.contains("positive diameter"),
+        e.contains("tools.tbl:2:8") && e.contains("a diameter (D) of 0 or more"),
         "{e}"
+    );
+    // A D0 probe is left out, the table serves, and the summary says why the probe is not
+    // defined when the program loads it.
+    std::fs::write(&tbl, "T1 P1 D6 Z50\nT2 P2 D0 Z0 ;probe\n").unwrap();
+    let p = program(
+        "tbl-probe",
+        "G21 G90 T1 M6\nG0 X0 Y0 Z5\nG1 Z-1 F100\nT2 M6\nG0 Z10\nM2\n",
+    );
+    let o = swarf(&["path", &p, "--tools", tbl.to_str().unwrap()]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let out = String::from_utf8_lossy(&o.stdout).to_string();
+    assert!(
+        out.contains("T2: left out of the tool library (") && out.contains("T2 has no diameter"),
+        "{out}"
     );
 }
 

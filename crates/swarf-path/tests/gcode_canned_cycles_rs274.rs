@@ -393,3 +393,26 @@ fn cycles_that_linuxcnc_refuses_for_the_spindle_or_an_l_word() {
         assert_eq!(e.pos.line, 3, "{e}");
     }
 }
+
+/// A G98 block after G99 holes, with its R lower than theirs: the tool stands at the old R
+/// (5), above the new one (2), and goes over to the hole there, not at the initial level (20);
+/// it returns to the initial level (G98). swarf rapided diagonally up to Z20 on the way (a
+/// reviewer's random cycle programs: 11 of 180 differed so).
+#[test]
+fn a_g98_block_with_a_lower_r_goes_over_where_the_tool_stands() {
+    let src = "G21 G17 G90 F100 M3 S1000\nG0 X0 Y0 Z20\nG99 G81 X10 Y0 R5 Z-5\n\
+               G98 G81 X20 R2 Z-5\nG80\nM2\n";
+    assert_rs274(
+        src,
+        "START_SPINDLE_CLOCKWISE(0)
+         STRAIGHT_TRAVERSE(0.0000, 0.0000, 20.0000, 0.0000, 0.0000, 0.0000)
+         STRAIGHT_TRAVERSE(10.0000, 0.0000, 20.0000, 0.0000, 0.0000, 0.0000)
+         STRAIGHT_TRAVERSE(10.0000, 0.0000, 5.0000, 0.0000, 0.0000, 0.0000)
+         STRAIGHT_FEED(10.0000, 0.0000, -5.0000, 0.0000, 0.0000, 0.0000)
+         STRAIGHT_TRAVERSE(10.0000, 0.0000, 5.0000, 0.0000, 0.0000, 0.0000)
+         STRAIGHT_TRAVERSE(20.0000, 0.0000, 5.0000, 0.0000, 0.0000, 0.0000)
+         STRAIGHT_TRAVERSE(20.0000, 0.0000, 2.0000, 0.0000, 0.0000, 0.0000)
+         STRAIGHT_FEED(20.0000, 0.0000, -5.0000, 0.0000, 0.0000, 0.0000)
+         STRAIGHT_TRAVERSE(20.0000, 0.0000, 20.0000, 0.0000, 0.0000, 0.0000)",
+    );
+}

@@ -683,17 +683,18 @@ impl CompoundSurface {
     /// parameter box to its trim, so this takes a sliver, or a region far from convex). A
     /// caller that samples the surface on the grid gets no point on them, and should say so.
     pub fn patches_off_grid(&self, n: usize) -> Vec<usize> {
-        let n = n.max(2);
-        (0..self.patches.len())
-            .filter(|&k| {
-                let p = &self.patches[k];
-                let d = p.surface.domain();
-                !(0..n).any(|i| {
-                    let u = d.u_at(i as f64 / (n - 1) as f64);
-                    (0..n).any(|j| p.on_part(u, d.v_at(j as f64 / (n - 1) as f64)))
-                })
-            })
-            .collect()
+        self.patches_without(&self.grid(n))
+    }
+
+    /// The patches that none of `points` (a [`Self::grid`] already made) is on, in order.
+    pub fn patches_without(&self, points: &[CcPoint]) -> Vec<usize> {
+        let mut has = vec![false; self.patches.len()];
+        for c in points {
+            if let Some(h) = has.get_mut(c.patch) {
+                *h = true;
+            }
+        }
+        (0..has.len()).filter(|&k| !has[k]).collect()
     }
 
     /// CC points from a list of `(patch, u, v)`, checked against the patches and their boxes.

@@ -131,7 +131,12 @@ fn free_surfaces_beside_faces_are_read_each_once() {
     s.add(format!(
         "GEOMETRICALLY_BOUNDED_SURFACE_SHAPE_REPRESENTATION('',(#{set}),#{ctx})"
     ));
+    // A plane nothing refers to (a datum an exporter left behind) is in no shape: not read
+    // (read, it added a ±100 mm plane at x = 0 to the design: gouges that are not).
+    let datum_axis = s.axis([0.0; 3], [1.0, 0.0, 0.0], [0.0, 1.0, 0.0]);
+    let datum = s.add(format!("PLANE('datum',#{datum_axis})"));
     let part = s.parse();
+    assert_eq!(from(&part, datum), 0);
     assert_eq!(part.patches.len(), 2, "{:?}", part.notes);
     assert_eq!(part.patches[0].name.as_deref(), Some("roof"));
     assert_eq!(part.patches[1].name.as_deref(), Some("floor"));

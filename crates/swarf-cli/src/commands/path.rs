@@ -56,6 +56,9 @@ pub(crate) struct PathReport {
     /// Workpiece bounds stated by the tool table (CAMotics projects), mm; absent otherwise.
     #[serde(skip_serializing_if = "Option::is_none")]
     workpiece: Option<Workpiece>,
+    /// Why the tool library left out the undefined tools it names (for the human summary).
+    #[serde(skip)]
+    left_out: BTreeMap<u32, String>,
 }
 
 #[derive(Serialize)]
@@ -179,20 +182,36 @@ impl PathReport {
                 max: b.max.to_array(),
                 automatic,
             });
+        let left_out = setup
+            .table
+            .as_ref()
+            .map(|t| t.left_out.clone())
+            .unwrap_or_default();
         Self {
             summary,
             tool_definitions,
             undefined_tools,
             workpiece,
+            left_out,
         }
     }
 
     pub(crate) fn print_human(&self) {
-        print_human(&self.summary, &self.tool_definitions, &self.undefined_tools);
+        print_human(
+            &self.summary,
+            &self.tool_definitions,
+            &self.undefined_tools,
+            &self.left_out,
+        );
     }
 }
 
-fn print_human(s: &ProgramSummary, tools: &BTreeMap<u32, ToolReport>, undefined: &[u32]) {
+fn print_human(
+    s: &ProgramSummary,
+    tools: &BTreeMap<u32, ToolReport>,
+    undefined: &[u32],
+    left_out: &BTreeMap<u32, String>,
+) {
     say!(
         "{} moves: {} rapid, {} feed ({} arcs)",
         s.moves,
@@ -228,7 +247,10 @@ fn print_human(s: &ProgramSummary, tools: &BTreeMap<u32, ToolReport>, undefined:
         say!("T{n}: {} ({:?})", r.cutter.spec, r.source);
     }
     for n in undefined {
-        say!("T{n}: not defined (give --tool or --tools)");
+        match left_out.get(n) {
+            Some(why) => say!("T{n}: left out of the tool library ({why})"),
+            None => say!("T{n}: not defined (give --tool or --tools)"),
+        }
     }
     for w in &s.warnings {
         say!("{w}");

@@ -223,7 +223,7 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
     crate::output::caveats_said(&caveats, "radii");
     // A face whose trimmed region falls between the grid's rows and columns gets no point: its
     // sizes are not in the map, which only a warning can tell.
-    let off_grid = surface.patches_off_grid(args.grid);
+    let off_grid = surface.patches_without(&ccs);
     if !off_grid.is_empty() {
         let names: Vec<String> = off_grid
             .iter()

@@ -431,9 +431,10 @@ impl Interp<'_, '_> {
             (false, false) => old_cc,
         };
         if !self.fanuc {
-            // LinuxCNC goes to the first hole at the clearance level, or where the tool is if
-            // that is higher (after G99 holes, G98 rises to the initial level on the way).
-            old_cc = self.p[ni].max(clear);
+            // LinuxCNC goes over to the first hole where the tool is when that is above R, else
+            // at the clearance level (after G99 holes at R, G98 rises to the initial level on
+            // the way; a G98 block whose R is lower passes at the old R level, as rs274 does).
+            old_cc = if self.p[ni] > r { self.p[ni] } else { clear };
         }
         for k in 0..repeats {
             if k > 0 {

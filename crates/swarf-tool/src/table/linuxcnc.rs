@@ -133,7 +133,7 @@ pub fn parse_linuxcnc(text: &str, file: &str, unit: LengthUnit) -> Result<ToolTa
                 return Err(err(
                     column + 1,
                     format!("T{number} with diameter {word}"),
-                    "a positive diameter (D) for every tool in the table",
+                    "a diameter (D) of 0 or more: a negative one makes no cutter",
                 ));
             }
         };
@@ -203,7 +203,7 @@ mod tests {
         assert_eq!(at, (2, 8), "{s}");
         assert_eq!(found, "T2 with diameter D-1");
         assert!(
-            s.starts_with("tool.tbl:2:8") && s.contains("positive diameter"),
+            s.starts_with("tool.tbl:2:8") && s.contains("a diameter (D) of 0 or more"),
             "{s}"
         );
         let e = parse_linuxcnc("T1 D1\nT4 D-3\n", "t.tbl", LengthUnit::Mm).unwrap_err();

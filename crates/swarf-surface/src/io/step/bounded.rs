@@ -39,6 +39,8 @@ impl Model<'_> {
         budget: &mut usize,
     ) -> R<Result<BoundedRead, String>> {
         let basis = self.reference(id, p.get(1), "basis_surface")?;
+        // (A basis that is no instance is this surface's error, at its line.)
+        self.get(id, basis)?;
         let implicit_outer = self.logical(id, p.get(3), "implicit_outer")?;
         let boundaries = self.list(id, p.get(2), "boundaries")?;
         let mut own = Vec::new();

@@ -433,20 +433,12 @@ impl Model<'_> {
 
     /// The surfaces of a file with faces that are read on their own, by instance number:
     /// those a shape representation's items reach (through sets, shells and surface models;
-    /// not into faces, curves, mapped items, styled items or other representations), and those
-    /// nothing refers to — never a face's geometry (`geometry`), nor the basis of another
-    /// surface (`bases`), which are read through the face or that surface.
+    /// not into faces, curves, mapped items, styled items or other representations) — never a
+    /// face's geometry (`geometry`), nor the basis of another surface (`bases`), which are read
+    /// through the face or that surface. A surface nothing refers to is in no shape (left-over
+    /// construction geometry beside a B-rep): not read.
     fn free_surfaces(&self, geometry: &HashSet<u64>, bases: &HashSet<u64>) -> Vec<u64> {
-        let mut referenced = HashSet::new();
         let mut stack = Vec::new();
-        for inst in self.map.values() {
-            for (_, ps) in &inst.parts {
-                for p in ps {
-                    refs(p, &mut stack);
-                }
-            }
-            referenced.extend(stack.drain(..));
-        }
         let mut reached = HashSet::new();
         for inst in self.map.values() {
             let Some((items, _)) = super::assembly::shape_rep(inst) else {
@@ -487,7 +479,7 @@ impl Model<'_> {
             .iter()
             .filter(|(id, inst)| {
                 is_surface(inst)
-                    && (reached.contains(*id) || !referenced.contains(*id))
+                    && reached.contains(*id)
                     && !geometry.contains(*id)
                     && !bases.contains(*id)
             })

@@ -21,10 +21,10 @@
 //!   faces on other surface kinds (a `CURVE_BOUNDED_SURFACE` among them) are skipped with a
 //!   [`ReadNote::UnsupportedSurface`](crate::ReadNote::UnsupportedSurface). Then one patch per
 //!   free surface: one a shape representation's items reach outside faces (through geometric
-//!   sets, shells and surface models; not through curves, mapped items or styled items), or
-//!   that nothing refers to — never a face's own surface again; free surfaces of kinds not
-//!   read are skipped with the same note. A file without faces gives one patch per surface
-//!   instance.
+//!   sets, shells and surface models; not through curves, mapped items or styled items) —
+//!   never a face's own surface again; free surfaces of kinds not read are skipped with the
+//!   same note; a surface nothing refers to is in no shape and is not read. A file without
+//!   faces gives one patch per surface instance.
 //! * **Text**: strings are decoded as ISO 10303-21 encodes them (`\X2\…\X0\`, `\X4\…\X0\`,
 //!   `\X\hh`, `\S\c`, `\\`), so names read as written in their CAD system.
 //! * **Orientation**: an `ORIENTED_FACE`, `ORIENTED_OPEN_SHELL` or `ORIENTED_CLOSED_SHELL`
