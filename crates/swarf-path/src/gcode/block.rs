@@ -309,8 +309,44 @@ fn scientific_notation(lb: &LineBuf, e_at: usize) -> Res<()> {
     ))
 }
 
+/// The parameters as a line's words read them: rs274 defines a named parameter when it reads
+/// `#<name> =` (read_named_parameter_setting adds it, 0, before its value is read), so the
+/// rest of the line, that value included, reads a name it did not know as 0.
+struct LineParams<'a> {
+    p: &'a dyn ParamRead,
+    code: &'a [u8],
+    defined: std::cell::RefCell<Vec<(usize, usize)>>,
+}
+
+impl ParamRead for LineParams<'_> {
+    fn numbered(&self, n: usize) -> f64 {
+        self.p.numbered(n)
+    }
+    fn named(&self, name: &str) -> Option<f64> {
+        self.p.named(name).or_else(|| {
+            self.defined
+                .borrow()
+                .iter()
+                .any(|&(x, y)| &self.code[x..y] == name.as_bytes())
+                .then_some(0.0)
+        })
+    }
+    fn read_only_named(&self, name: &str) -> bool {
+        self.p.read_only_named(name)
+    }
+    fn fanuc(&self) -> bool {
+        self.p.fanuc()
+    }
+}
+
 pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: bool) -> Res<()> {
     b.clear();
+    let line_params = LineParams {
+        p: params,
+        code: &lb.code,
+        defined: std::cell::RefCell::new(Vec::new()),
+    };
+    let params: &dyn ParamRead = if fanuc { params } else { &line_params };
     let mut c = Cur::new(&lb.code);
     let mut first = true;
     let mut units_clash = None;
@@ -494,6 +530,9 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                             "a parameter name of the program's own (a global: `_` and a name \
                              LinuxCNC does not predefine)",
                         ));
+                    }
+                    if !fanuc {
+                        line_params.defined.borrow_mut().push((x, y));
                     }
                     Target::Named(x as u32, y as u32)
                 } else {

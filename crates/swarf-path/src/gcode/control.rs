@@ -131,7 +131,11 @@ impl Interp<'_, '_> {
             Kw::Label => Ok(()),
             Kw::Sub => {
                 self.subs.insert(name.to_vec(), after);
-                self.skip_to(name, &[Kw::Endsub], span).map(|_| ())
+                self.skip_to(name, &[Kw::Endsub], span)?;
+                if !self.fanuc {
+                    self.read_skipped_returns(after, name)?;
+                }
+                Ok(())
             }
             Kw::Endsub | Kw::Return => {
                 let value = if i < code.len() {
@@ -492,6 +496,65 @@ impl Interp<'_, '_> {
         }
         self.skip_buf = buf;
         found
+    }
+
+    /// rs274 reads every `o<name> return` and `o<name> endsub` line of a subroutine it skips
+    /// past at its definition (read_o: the skip looks for that name), and reading one sets
+    /// `#<_value>` and `#<_value_returned>` from its value, or clears them: after a definition
+    /// they are those of its `endsub`, and an expression there that cannot be evaluated (a
+    /// division by zero) is an error even though the subroutine never runs. `from` is the
+    /// line after `o<name> sub`.
+    fn read_skipped_returns(&mut self, from: Cursor, name: &[u8]) -> Res<()> {
+        let mut buf = std::mem::take(&mut self.skip_buf);
+        let text = self.files[from.file as usize].1.clone();
+        let mut result = Ok(());
+        for (raw, _, _) in from.lines(&text) {
+            if !raw.bytes().any(|c| c | 0x20 == b'o')
+                || normalize(raw, &mut buf).is_err()
+                || (buf.deleted && self.opts.block_delete)
+            {
+                continue;
+            }
+            let o = skip_line_number(&buf.code);
+            if buf.code.get(o) != Some(&b'o') {
+                continue;
+            }
+            let Ok((a, b, kw, i)) = parse_oword(&buf.code, o) else {
+                continue;
+            };
+            if key(&buf.code[a..b]) != name || !matches!(kw, Kw::Return | Kw::Endsub) {
+                continue;
+            }
+            let value = if i < buf.code.len() && buf.code[i] == b'[' {
+                let mut c = Cur::new(&buf.code);
+                c.i = i;
+                match read_real(&mut c, self) {
+                    Ok(v) => Some(number(v)),
+                    Err(mut e) => {
+                        // Reported at the `sub` line, whose columns these are not.
+                        e.span = Span::Line;
+                        e.message = format!(
+                            "{} (in o{} {}, read where the subroutine is defined)",
+                            e.message,
+                            String::from_utf8_lossy(name),
+                            if kw == Kw::Endsub { "endsub" } else { "return" }
+                        );
+                        result = Err(e);
+                        break;
+                    }
+                }
+            } else {
+                None
+            };
+            self.params
+                .set_named("_value_returned", f64::from(u8::from(value.is_some())));
+            self.params.set_named("_value", value.unwrap_or(0.0));
+            if kw == Kw::Endsub {
+                break;
+            }
+        }
+        self.skip_buf = buf;
+        result
     }
 
     fn call_sub(&mut self, name: &[u8], args: [f64; N_ARGS], span: Span) -> Res<()> {

@@ -102,7 +102,9 @@ impl Default for ReadOnlyState {
             selected_tool: None,
             mist: false,
             flood: false,
-            overrides: [true, true, false, false],
+            // rs274 2.9 starts with feed hold enabled (synch reads
+            // GET_EXTERNAL_FEED_HOLD_ENABLE, 1): `#<_feed_hold>` reads 1 until M53 P0.
+            overrides: [true, true, false, true],
             css: false,
             tlo_on: false,
             feed_scale: 1.0,
@@ -1284,10 +1286,19 @@ impl<'t, 's> Interp<'t, 's> {
                 940 => FeedMode::PerMinute,
                 _ => FeedMode::PerRevolution,
             };
+            // LinuxCNC's convert_feed_mode forgets the feed rate at every G94 and G95, even
+            // in that mode already (not at G93, whose moves each carry their F); a Fanuc control
+            // when the mode changes.
+            let forget = if self.fanuc() {
+                m != self.feed_mode
+            } else {
+                m != FeedMode::InverseTime
+            };
+            if forget {
+                self.feed = 0.0;
+            }
             if m != self.feed_mode {
                 self.feed_mode = m;
-                // LinuxCNC forgets the feed rate when the feed mode changes.
-                self.feed = 0.0;
                 self.emit(Canon::FeedMode(m));
             }
         }
@@ -2015,7 +2026,7 @@ impl<'t, 's> Interp<'t, 's> {
                             ));
                         }
                         if mode == Some(10) {
-                            self.check_feed(b)?;
+                            self.check_move_feed(b)?;
                         }
                         return self.comp_move(b, end, mode == Some(0), None);
                     }
@@ -2023,7 +2034,7 @@ impl<'t, 's> Interp<'t, 's> {
                     if mode == Some(0) {
                         self.emit(Canon::Traverse { end: end_axes });
                     } else {
-                        self.check_feed(b)?;
+                        self.check_move_feed(b)?;
                         self.emit(Canon::Feed { end: end_axes });
                     }
                     self.p = end;
@@ -2269,6 +2280,25 @@ impl<'t, 's> Interp<'t, 's> {
         }
     }
 
+    /// The zero-feed rules of a G1 or arc move: [`Self::check_feed`], and under G95 LinuxCNC's
+    /// "Cannot feed with zero spindle speed in feed per rev mode" (convert_straight,
+    /// convert_arc: the S word, whether the spindle turns or not).
+    pub(crate) fn check_move_feed(&self, b: &Block) -> Res<()> {
+        self.check_feed(b)?;
+        if !self.fanuc && self.feed_mode == FeedMode::PerRevolution && self.rpm == 0.0 {
+            let span = b
+                .g(group::MOTION)
+                .map_or(Span::Line, |_| b.g_span(group::MOTION));
+            return Err(Fault::new(
+                PathErrorKind::Semantic,
+                span,
+                "cannot feed with zero spindle speed in feed per rev mode (G95)",
+                "an S word",
+            ));
+        }
+        Ok(())
+    }
+
     /// The end point of a straight or arc move (LinuxCNC's `find_ends`), including the polar
     /// words `@` (radius) and `^` (angle, degrees) in the XY plane.
     pub(crate) fn find_ends(&self, b: &Block, g53: bool) -> Res<[f64; 6]> {
@@ -2378,7 +2408,7 @@ impl<'t, 's> Interp<'t, 's> {
             ));
         }
         let end = self.find_ends(b, false)?;
-        self.check_feed(b)?;
+        self.check_move_feed(b)?;
         // swarf's cap on the turns: the repeat limit (and what the canon's count holds).
         let cap = self.opts.max_repeat.min(i32::MAX as u64);
         let turns = match b.get(b'p') {
@@ -2547,6 +2577,10 @@ impl<'t, 's> Interp<'t, 's> {
                 "bad coordinate system number",
                 "P0 to P9",
             ));
+        }
+        if l == 20.0 && b.has(b'r') {
+            // convert_setup: "R not allowed in G10 L20".
+            return Err(Fault::semantic(b.span(b'r'), "R not allowed in G10 L20"));
         }
         let k = if p == 0.0 { self.coord } else { p as usize };
         let mut t = self.g5x_table[k - 1];
@@ -3026,7 +3060,8 @@ impl Interp<'_, '_> {
             }),
             "_rpm" => Some(self.rpm),
             "_current_tool" => Some(f64::from(ro.loaded_tool)),
-            "_selected_tool" => Some(ro.selected_tool.map_or(-1.0, f64::from)),
+            // rs274 2.9's setup starts with selected_tool 0 (its pocket -1).
+            "_selected_tool" => Some(ro.selected_tool.map_or(0.0, f64::from)),
             // The pockets of those tools in the tool table (a tool the table does not list:
             // its own number; no tool loaded: 0, none selected: -1).
             "_current_pocket" => Some(f64::from(self.pocket_of(ro.loaded_tool))),

@@ -1,0 +1,129 @@
+//! LinuxCNC G-code read as LinuxCNC 2.9's `rs274` reads it, found by differential testing of
+//! random programs (motion, offsets, tools, O-words, parameters, messages) against the real
+//! `rs274 -g` (Debian's linuxcnc 2.9 interpreter, with `-t` a tool table in inches). Every
+//! expected listing below is what rs274 printed for the program above it, written in as it
+//! printed it (the motion calls and `MESSAGE`s); where rs274 stopped with an error, its message
+//! is quoted in a comment and swarf must stop at the same line.
+
+use swarf_path::canonical::CanonicalPrinter;
+use swarf_path::gcode::{read_gcode, GcodeOptions};
+use swarf_path::{PathError, Units};
+
+/// swarf's canonical print of `src`, as `swarf path --canonical` prints it, with the
+/// standalone rs274's offset parameters in inches; and the error that stopped it, if any.
+fn canon(src: &str) -> (String, Option<PathError>) {
+    let opts = GcodeOptions::default().with_parameter_units(Units::Inch);
+    let mut pr = CanonicalPrinter::new(Vec::new());
+    let r = read_gcode(src, "t.ngc", &opts, &mut pr);
+    let out = String::from_utf8(pr.finish().unwrap()).unwrap();
+    (out, r.err())
+}
+
+fn lines(expected: &str) -> String {
+    expected
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .map(|l| format!(" {l}\n"))
+        .collect()
+}
+
+#[track_caller]
+fn same(src: &str, expected: &str) {
+    let (out, err) = canon(src);
+    assert!(err.is_none(), "{err:?}");
+    assert_eq!(out, lines(expected));
+}
+
+#[track_caller]
+fn stops_at(src: &str, line: u32, expected: &str) -> PathError {
+    let (out, err) = canon(src);
+    let err = err.unwrap_or_else(|| panic!("no error; printed\n{out}"));
+    assert_eq!(err.pos.line, line, "{err}");
+    assert_eq!(out, lines(expected));
+    err
+}
+
+/// convert_feed_mode zeroes the feed rate at every G94 and G95, even in that mode already.
+#[test]
+fn g94_forgets_the_feed_even_in_g94() {
+    // rs274: "Cannot do g1 with zero feed rate" at `G1 X2`.
+    stops_at(
+        "G21 G94 F100\nG1 X1\nG94\nG1 X2\nM2\n",
+        4,
+        "N..... STRAIGHT_FEED(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+    // G93 keeps it (every G93 move carries its own F).
+    same(
+        "G21 G93\nG1 X1 F10\nG94 F50\nG1 X2\nM2\n",
+        "N..... STRAIGHT_FEED(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(2.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+}
+
+/// G95 feeds need a spindle speed (an S word; the spindle need not turn).
+#[test]
+fn g95_feeds_need_a_spindle_speed() {
+    // rs274: "Cannot feed with zero spindle speed in feed per rev mode" at `G1 X1`.
+    stops_at("G21 G95 F0.1\nS0 M3\nG1 X1\nM2\n", 3, "");
+    same(
+        "G21 G95 F0.1\nS100\nG1 X1\nG2 X3 R1\nM2\n",
+        "N..... STRAIGHT_FEED(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... ARC_FEED(3.0000, 0.0000, 2.0000, -0.0000, -1, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+    // rs274: "Cannot feed with zero spindle speed in feed per rev mode" at the arc.
+    stops_at("G21 G95 F0.1\nG2 X3 R2\nM2\n", 2, "");
+}
+
+/// convert_setup: "R not allowed in G10 L20".
+#[test]
+fn g10_l20_refuses_r() {
+    stops_at(
+        "G21\nG0 X1\nG10 L20 P1 X0 R10\nG0 X2\nM2\n",
+        3,
+        "N..... STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+}
+
+/// rs274 starts with feed hold enabled and selected tool 0.
+#[test]
+fn feed_hold_and_selected_tool_at_the_start() {
+    same(
+        "G21\n(DEBUG, #<_feed_hold> #<_selected_tool>)\nT3\n(DEBUG, #<_selected_tool>)\n\
+         M53 P0\n(DEBUG, #<_feed_hold>)\nM2\n",
+        r#"N..... MESSAGE(" 1.000000 0.000000")
+           N..... MESSAGE(" 3.000000")
+           N..... MESSAGE(" 0.000000")"#,
+    );
+}
+
+/// read_o reads a subroutine's `endsub [value]` (and `return [value]`) while it skips the
+/// definition: `#<_value>` and `#<_value_returned>` change, and a bad expression is an error.
+#[test]
+fn endsub_values_are_read_at_the_definition() {
+    let err = stops_at(
+        "G21\no<s> sub\no<s> endsub [7]\n(DEBUG, #<_value> #<_value_returned>)\n\
+         o<t> sub\no<t> endsub\n(DEBUG, #<_value> #<_value_returned>)\n\
+         o<u> sub\no<u> endsub [1/0]\nG0 X1\nM2\n",
+        // rs274: "Attempt to divide by zero" at `o<u> endsub [1/0]` (line 9); swarf stops at
+        // the definition's `sub` line, where it reads the endsub.
+        8,
+        r#"N..... MESSAGE(" 7.000000 1.000000")
+           N..... MESSAGE(" 0.000000 0.000000")"#,
+    );
+    assert!(err.to_string().contains("endsub"), "{err}");
+}
+
+/// read_named_parameter_setting defines `#<name>` (0) when it reads `#<name> =`, before the
+/// value: the rest of the line reads it as 0.
+#[test]
+fn a_named_assignment_defines_the_name_for_its_line() {
+    same(
+        "G21\n#<a> = #<a> #<b> = [#<a> + 1]\n(DEBUG, #<a> #<b>)\n#<c> = 5 #<d> = #<c>\n\
+         (DEBUG, #<c> #<d>)\nM2\n",
+        r#"N..... MESSAGE(" 0.000000 1.000000")
+           N..... MESSAGE(" 5.000000 0.000000")"#,
+    );
+    // rs274: "Named parameter #<f> not defined".
+    stops_at("G21\n#<e> = #<f>\nM2\n", 2, "");
+}
