@@ -729,6 +729,7 @@ impl CanonSink for MoveBuilder {
             | Canon::Dwell(_)
             | Canon::Comment(_)
             | Canon::Message { .. }
+            | Canon::RigidTap { .. }
             | Canon::ProgramEnd => {}
         }
     }

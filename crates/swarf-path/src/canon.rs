@@ -297,6 +297,14 @@ pub enum Canon<'a> {
     /// The tool is at `pos` without having moved there (APT `FROM/`, the first point of a CL
     /// file; G88's hand retract, which the operator makes). No move is made.
     SetPosition(Axes),
+    /// LinuxCNC's G33.1 rigid tap to `end` (rs274's `RIGID_TAP(x, y, z)`), announced before
+    /// the events that make it (over the hole, down, the spindle reversed, back out, the feed
+    /// mode restored), which follow as ordinary moves: a sink that follows the moves ignores
+    /// it; the canonical print prints it instead of them.
+    RigidTap {
+        /// The bottom of the tap.
+        end: Axes,
+    },
     /// CL data only (APT `CIRCLE/` with an axis that is not ±X, ±Y or ±Z): a circular or helical
     /// feed move about an arbitrary axis through `center`. The motion is counter-clockwise about
     /// `normal` (right-hand rule); `turns` ≥ 1 counts full or partial turns as `|rotation|` does
@@ -416,6 +424,7 @@ impl Canon<'_> {
             Canon::SourceFile(f) => Canon::SourceFile(Cow::Owned(f.to_string())),
             Canon::ToolAxis(a) => Canon::ToolAxis(*a),
             Canon::SetPosition(p) => Canon::SetPosition(*p),
+            Canon::RigidTap { end } => Canon::RigidTap { end: *end },
             Canon::ArcAxis {
                 end,
                 center,

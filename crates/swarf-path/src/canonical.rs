@@ -16,6 +16,8 @@
 //! Splines print as rs274 prints them: `NURBS_FEED(n, ...)`, n the number of control points
 //! with the start (4 for G5, 3 for G5.1, a G5.2 … G5.3 block's points and its start), the
 //! three dots as they are.
+//! A G33.1 rigid tap prints as rs274 prints it: `RIGID_TAP(x, y, z)`, the bottom of the tap,
+//! and not the moves that make it.
 //! An arc about an axis that is none of X, Y, Z (an APT `CIRCLE/` in a tilted plane), which
 //! LinuxCNC cannot make, prints as swarf's own
 //! `ARC_FEED_AXIS(x, y, z, centre x, y, z, normal i, j, k, turns)` (counter-clockwise about the
@@ -44,6 +46,9 @@ pub struct CanonicalPrinter<W: Write> {
     /// where tool centre point control turns on or off, as the simulation does, and the reader
     /// takes it back ([`CanonSink::position`]).
     tracker: Option<crate::builder::MoveBuilder>,
+    /// Inside a G33.1 rigid tap, printed as rs274's one `RIGID_TAP(x, y, z)`: its moves are
+    /// not printed until the feed mode is restored.
+    in_rigid_tap: bool,
 }
 
 impl<W: Write> CanonicalPrinter<W> {
@@ -55,6 +60,7 @@ impl<W: Write> CanonicalPrinter<W> {
             error: None,
             warnings: Vec::new(),
             tracker: None,
+            in_rigid_tap: false,
         }
     }
 
@@ -97,8 +103,29 @@ impl<W: Write> CanonicalPrinter<W> {
     }
 
     fn write_event(&mut self, event: &Canon<'_>) -> io::Result<()> {
+        if self.in_rigid_tap {
+            match event {
+                Canon::Units(u) => self.units = *u,
+                Canon::FeedMode(m) if *m != crate::FeedMode::SpindleSynchronised => {
+                    self.in_rigid_tap = false
+                }
+                _ => {}
+            }
+            return Ok(());
+        }
         match event {
             Canon::Units(u) => self.units = *u,
+            // rs274 prints the tap's bottom, X Y Z, and not the moves that make it.
+            Canon::RigidTap { end } => {
+                self.in_rigid_tap = true;
+                writeln!(
+                    self.out,
+                    " N..... RIGID_TAP({:.4}, {:.4}, {:.4})",
+                    self.u(end.x),
+                    self.u(end.y),
+                    self.u(end.z)
+                )?;
+            }
             Canon::Traverse { end } | Canon::Feed { end } => {
                 let name = if matches!(event, Canon::Traverse { .. }) {
                     "STRAIGHT_TRAVERSE"

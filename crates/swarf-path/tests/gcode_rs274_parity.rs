@@ -127,3 +127,16 @@ fn a_named_assignment_defines_the_name_for_its_line() {
     // rs274: "Named parameter #<f> not defined".
     stops_at("G21\n#<e> = #<f>\nM2\n", 2, "");
 }
+
+/// G33.1 prints as rs274's one `RIGID_TAP(x, y, z)` (the bottom of the tap), not as the moves
+/// swarf makes it of; the tool is back where it started.
+#[test]
+fn rigid_tap_prints_as_rs274() {
+    same(
+        "G21 G0 X1 Y1 Z1\nS500 M3\nG33.1 X3 Z-2 K1\nG0 X2\nG20\nG33.1 Z-0.2 K0.1\nM2\n",
+        "N..... STRAIGHT_TRAVERSE(1.0000, 1.0000, 1.0000, 0.0000, 0.0000, 0.0000)
+         N..... RIGID_TAP(3.0000, 1.0000, -2.0000)
+         N..... STRAIGHT_TRAVERSE(2.0000, 1.0000, 1.0000, 0.0000, 0.0000, 0.0000)
+         N..... RIGID_TAP(0.0787, 0.0394, -0.2000)",
+    );
+}

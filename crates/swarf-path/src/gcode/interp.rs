@@ -2220,6 +2220,11 @@ impl<'t, 's> Interp<'t, 's> {
             _ => 1.0,
         };
         let end = self.find_ends(b, false)?;
+        if rigid {
+            self.emit(Canon::RigidTap {
+                end: Axes::from_array(end),
+            });
+        }
         if rigid && (end[0] != self.p[0] || end[1] != self.p[1]) {
             // LinuxCNC goes over the hole first (a traverse at the current Z) and taps along Z.
             let mut over = self.p;
