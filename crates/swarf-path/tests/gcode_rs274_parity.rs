@@ -140,3 +140,18 @@ fn rigid_tap_prints_as_rs274() {
          N..... RIGID_TAP(0.0787, 0.0394, -0.2000)",
     );
 }
+
+/// convert_setup moves the current point into the changed active system without the G92
+/// offset (unrotated by the old rotation, offsets swapped, rotated by the new one): with a G92
+/// offset in effect a new rotation moves the program position as rs274 has it.
+#[test]
+fn g10_rotation_under_g92_moves_the_point_as_rs274() {
+    same(
+        "G21 G90 F100\nG0 X1 Y1\nG92 Y2.578\nG10 L2 P0 Y-17.290 R-60.93\n\
+         (DEBUG, #<_x> #<_y> #5420 #5421)\nG1 X[#<_x>+1] Y[#<_y>]\nG1 X0 Y0\nM2\n",
+        r#"N..... STRAIGHT_TRAVERSE(1.0000, 1.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+           N..... MESSAGE(" -16.879286 10.527447 -16.879286 10.527447")
+           N..... STRAIGHT_FEED(-15.8793, 10.5274, 0.0000, 0.0000, 0.0000, 0.0000)
+           N..... STRAIGHT_FEED(0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)"#,
+    );
+}

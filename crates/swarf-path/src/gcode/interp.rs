@@ -2612,7 +2612,21 @@ impl<'t, 's> Interp<'t, 's> {
         self.g5x_table[k - 1] = t;
         self.rot_table[k - 1] = rot;
         if k == self.coord && self.ext_coord.is_none() {
+            // rs274's convert_setup moves the current point into the changed system without
+            // the G92 offset: unrotated by the old rotation, the old offset added, the new one
+            // taken off, rotated by the new one. Where the rotation changes under a G92
+            // offset that is not where the tool stands (find_current_in_system, G92 and
+            // G54–G59.3 keep the offset inside the rotation); rs274's later moves start from
+            // it, and so do swarf's.
+            let lcnc = (!self.fanuc && rot != self.rot && self.g92 != [0.0; 6]).then(|| {
+                let q = rotate_xy(self.p, self.rot);
+                let q: [f64; 6] = std::array::from_fn(|i| q[i] + self.off[i] - t[i]);
+                rotate_xy(q, -rot)
+            });
             self.set_frame(t, self.g92, rot);
+            if let Some(p) = lcnc {
+                self.p = p;
+            }
         }
         Ok(())
     }
