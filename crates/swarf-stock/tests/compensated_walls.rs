@@ -2,8 +2,8 @@
 //! programmed with G41 (the tool outside, the contour clockwise), simulated with the tool's
 //! diameter from the tool table, remove exactly the band between the contour and its offset by
 //! the tool's diameter — for a convex polygon of perimeter P, `(P·2r + π·(2r)²)·depth` — within
-//! the ray grid's error. The entry is made above the stock and the cutter plunges at the
-//! compensated start (LinuxCNC moves a move queued behind a cut-back corner with it).
+//! the ray grid's error. The entry is made above the stock and the cutter plunges on the first
+//! edge, where the path runs straight on.
 
 mod common;
 
@@ -47,16 +47,22 @@ fn g41_leaves_the_programmed_contour_as_the_wall() {
         let len = e[0].hypot(e[1]);
         let out = [-e[1] / len, e[0] / len]; // left of the edge: outside for a clockwise contour
         let from = [mid[0] + 12.0 * out[0], mid[1] + 12.0 * out[1]];
+        // The plunge is made a quarter of the edge on, where the path runs straight on: a
+        // plunge at the entry's concave corner leaves it no move to cut back (LinuxCNC 2.9's
+        // rs274 refuses that program: "straight feed in concave corner cannot be reached by
+        // the tool without gouging", as swarf does since its compensation follows it).
+        let q0 = [mid[0] + 0.25 * e[0], mid[1] + 0.25 * e[1]];
         let mut text = format!(
-            "G21 G90 G17 F500 T1 M6\nG0 X{:.6} Y{:.6} Z5\nG41 D1\nG1 X{:.6} Y{:.6}\nG1 Z{}\n",
-            from[0], from[1], mid[0], mid[1], -depth
+            "G21 G90 G17 F500 T1 M6\nG0 X{:.6} Y{:.6} Z5\nG41 D1\nG1 X{:.6} Y{:.6}\n\
+             G1 X{:.6} Y{:.6}\nG1 Z{}\n",
+            from[0], from[1], mid[0], mid[1], q0[0], q0[1], -depth
         );
         for q in poly.iter().skip(1).chain(std::iter::once(&poly[0])) {
             text += &format!("G1 X{:.6} Y{:.6}\n", q[0], q[1]);
         }
         text += &format!(
             "G1 X{:.6} Y{:.6}\nG1 Z5\nG40 G1 X{:.6} Y{:.6}\nM2\n",
-            mid[0], mid[1], from[0], from[1]
+            q0[0], q0[1], from[0], from[1]
         );
         let opts = ReadOptions {
             gcode: GcodeOptions::default().with_tool_diameter(1, 2.0 * r),
