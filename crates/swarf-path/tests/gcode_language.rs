@@ -1048,10 +1048,12 @@ fn lone_carriage_returns_end_lines_and_ctrl_z_is_blank() {
 fn long_found_text_is_shortened_in_the_message() {
     let word = format!("Y{}", "1".repeat(5000));
     let e = err(&format!("G21 G90\nG0 X1\nG1 {word} F100\nM2\n"));
-    assert_eq!(e.found, word);
+    // (The number is infinite as a double: rs274's "Calculation resulted in 'infinity'", about
+    // the number after the Y.)
+    assert_eq!(e.found, word[1..]);
     let shown = e.to_string();
     assert!(shown.len() < 400, "{shown}");
-    assert!(shown.contains("… (4881 more characters)"), "{shown}");
+    assert!(shown.contains("… (4880 more characters)"), "{shown}");
 }
 
 #[test]

@@ -155,3 +155,46 @@ fn g10_rotation_under_g92_moves_the_point_as_rs274() {
            N..... STRAIGHT_FEED(0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)"#,
     );
 }
+
+/// read_real_value refuses a value that is infinite or not a number.
+#[test]
+fn infinite_values_are_errors() {
+    // rs274: "Calculation resulted in 'infinity'".
+    stops_at("G21\n#1=0\n#2=[#1 ** -0.5]\nG0 X1\nM2\n", 3, "");
+}
+
+/// While rs274 skips a definition an undefined named parameter reads 0 (defining_sub), in
+/// the endsub value it reads there too.
+#[test]
+fn undefined_names_read_zero_in_a_skipped_definition() {
+    same(
+        "G21\no<s> sub\no<s> endsub [#<nope> + 2]\n(DEBUG, #<_value> #<_value_returned>)\n\
+         G0 X1\nM2\n",
+        r#"N..... MESSAGE(" 2.000000 1.000000")
+           N..... STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)"#,
+    );
+}
+
+/// rs274 evaluates every `elseif` of an if whose branch was taken on its way to the endif:
+/// a condition that cannot be evaluated stops the program.
+#[test]
+fn elseif_conditions_after_a_taken_branch_are_evaluated() {
+    // rs274: "Attempt to divide by zero" at the elseif, each time.
+    stops_at(
+        "G21\n#1=0\no1 if [1]\nG0 X1\no1 elseif [1/#1]\nG0 X2\no1 endif\nG0 X3\nM2\n",
+        5,
+        "N..... STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+    stops_at(
+        "G21\n#1=0\no1 if [1]\nG0 X1\no1 elseif [0]\nG0 X2\no1 elseif [1/#1]\nG0 X2\no1 else\n\
+         G0 X4\no1 endif\nG0 X3\nM2\n",
+        7,
+        "N..... STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+    stops_at(
+        "G21\n#1=0\no1 if [0]\nG0 X1\no1 elseif [1]\nG0 X2\no1 elseif [1/#1]\nG0 X2\no1 else\n\
+         G0 X4\no1 endif\nG0 X3\nM2\n",
+        7,
+        "N..... STRAIGHT_TRAVERSE(2.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+}

@@ -12,7 +12,7 @@ use std::collections::HashMap;
 use std::rc::Rc;
 
 use super::block::Block;
-use super::expr::{number, read_real, Cur};
+use super::expr::{number, read_real, Cur, ParamRead};
 use super::interp::Interp;
 use super::lexer::{normalize, skip_line_number, LineBuf};
 use super::params::N_ARGS;
@@ -37,6 +37,25 @@ const KEYWORDS: [(&[u8], Kw); 15] = [
     (b"repeat", Kw::Repeat),
     (b"return", Kw::Return),
 ];
+
+/// The parameters as rs274 reads them while it skips a subroutine's definition: a named
+/// parameter that is not defined reads 0.
+struct Defining<'a>(&'a dyn ParamRead);
+
+impl ParamRead for Defining<'_> {
+    fn numbered(&self, n: usize) -> f64 {
+        self.0.numbered(n)
+    }
+    fn named(&self, name: &str) -> Option<f64> {
+        Some(self.0.named(name).unwrap_or(0.0))
+    }
+    fn read_only_named(&self, name: &str) -> bool {
+        self.0.read_only_named(name)
+    }
+    fn fanuc(&self) -> bool {
+        self.0.fanuc()
+    }
+}
 
 /// Parses `o<name> keyword …` at code index `at`: the name's code range, the keyword and the
 /// index after the keyword.
@@ -264,9 +283,25 @@ impl Interp<'_, '_> {
                         self.skip_if(name, span)?;
                     }
                     Ok(())
-                } else {
+                } else if self.fanuc {
                     // A branch was taken: the rest of the if is skipped.
                     self.skip_to(name, &[Kw::Endif], span).map(|_| ())
+                } else {
+                    // A branch was taken: the rest of the if is skipped, but rs274 reads every
+                    // `elseif` of it on the way (read_o evaluates the condition of an elseif
+                    // whose name it skips to), so a condition that cannot be evaluated (a
+                    // division by zero) is an error. The next elseif runs this again.
+                    cond(self)?;
+                    let (kw, before) =
+                        self.skip_to(name, &[Kw::Elseif, Kw::Else, Kw::Endif], span)?;
+                    match kw {
+                        Kw::Elseif => self.at = before,
+                        Kw::Else => {
+                            self.skip_to(name, &[Kw::Endif], span)?;
+                        }
+                        _ => {}
+                    }
+                    Ok(())
                 }
             }
             Kw::Else => self.skip_to(name, &[Kw::Endif], span).map(|_| ()),
@@ -528,7 +563,9 @@ impl Interp<'_, '_> {
             let value = if i < buf.code.len() && buf.code[i] == b'[' {
                 let mut c = Cur::new(&buf.code);
                 c.i = i;
-                match read_real(&mut c, self) {
+                // During a definition an undefined named parameter reads 0 (read_named_parameter
+                // does not require them while defining_sub).
+                match read_real(&mut c, &Defining(self)) {
                     Ok(v) => Some(number(v)),
                     Err(mut e) => {
                         // Reported at the `sub` line, whose columns these are not.

@@ -148,6 +148,24 @@ pub(crate) fn read_infix(c: &mut Cur<'_>, p: &dyn ParamRead) -> Res<f64> {
 }
 
 fn real(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
+    let start = c.i;
+    let v = real_value(c, p, depth)?;
+    // LinuxCNC's read_real_value refuses a value that is not a number or infinite (`0**-1`,
+    // `EXP[1000]`); a Fanuc vacant variable is a NaN and passes.
+    if !p.fanuc() && !v.is_finite() {
+        return Err(Fault::semantic(
+            Span::Code(start, c.i),
+            if v.is_nan() {
+                "calculation resulted in 'not a number'"
+            } else {
+                "calculation resulted in 'infinity'"
+            },
+        ));
+    }
+    Ok(v)
+}
+
+fn real_value(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
     if depth > MAX_DEPTH {
         return Err(Fault::new(
             PathErrorKind::Limit,
