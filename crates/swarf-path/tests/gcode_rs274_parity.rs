@@ -198,3 +198,25 @@ fn elseif_conditions_after_a_taken_branch_are_evaluated() {
         "N..... STRAIGHT_TRAVERSE(2.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
     );
 }
+
+/// rs274's O-word offset table: one name per if/while/repeat in a call level (a `while` may
+/// close its `do`; a subroutine's names are its own, for each call).
+#[test]
+fn o_names_are_not_reused_in_a_call_level() {
+    // rs274: "5: duplicate O-word label - already defined in line 2: 'o100 if [1]'".
+    let e = stops_at(
+        "G21\no100 if [1]\nG0 X1\no100 endif\no100 if [1]\nG0 X2\no100 endif\nM2\n",
+        5,
+        "N..... STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+    assert!(e.to_string().contains("duplicate O-word label"), "{e}");
+    same(
+        "G21\no<s> sub\no100 if [1]\nG0 X1\no100 endif\no<s> endsub\no<s> call\no<s> call\n\
+         o100 repeat [2]\nG0 X3\no100 endrepeat\no101 do\nG0 X4\no101 while [0]\nM2\n",
+        "N..... STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_TRAVERSE(3.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_TRAVERSE(3.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_TRAVERSE(4.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+}

@@ -183,6 +183,7 @@ impl Interp<'_, '_> {
                 self.call_sub(name, args, span)
             }
             Kw::Do => {
+                self.check_label(name, kw, here, span)?;
                 self.ctl.push(Ctl {
                     kind: LoopKind::Do,
                     name: name.to_vec(),
@@ -208,6 +209,7 @@ impl Interp<'_, '_> {
                     }
                     return Ok(());
                 }
+                self.check_label(name, kw, here, span)?;
                 let reentry = top.is_some_and(|t| t.kind == LoopKind::While && t.head == here);
                 if v != 0.0 {
                     if !reentry {
@@ -235,6 +237,7 @@ impl Interp<'_, '_> {
             }
             Kw::Repeat => {
                 let v = cond(self)?.round();
+                self.check_label(name, kw, here, span)?;
                 if v > self.opts.max_repeat as f64 {
                     return Err(Fault::new(
                         PathErrorKind::Limit,
@@ -272,7 +275,9 @@ impl Interp<'_, '_> {
                 Ok(())
             }
             Kw::If => {
-                if cond(self)? == 0.0 {
+                let v = cond(self)?;
+                self.check_label(name, kw, here, span)?;
+                if v == 0.0 {
                     self.skip_if(name, span)?;
                 }
                 Ok(())
@@ -332,6 +337,37 @@ impl Interp<'_, '_> {
                     self.at = at;
                     Ok(())
                 }
+            }
+        }
+    }
+
+    /// rs274's O-word offset table: in one call level an O name starts one `if`, `while` or
+    /// `repeat` (a `while` may close the `do` of its name), at one line; another line starting
+    /// one with that name is "duplicate O-word label". (The table outlives the loop: two
+    /// separate `o100 if` blocks are refused.)
+    fn check_label(&mut self, name: &[u8], kw: Kw, here: Cursor, span: Span) -> Res<()> {
+        if self.fanuc {
+            return Ok(());
+        }
+        let level = self.frames.len();
+        match self.o_labels.get(&(level, name.to_vec())) {
+            None => {
+                self.o_labels.insert((level, name.to_vec()), (kw, here));
+                Ok(())
+            }
+            Some(&(first, at)) => {
+                if at == here || kw == Kw::Do || (kw == Kw::While && first == Kw::Do) {
+                    return Ok(());
+                }
+                Err(Fault::semantic(
+                    span,
+                    format!(
+                        "duplicate O-word label o{}: already used at line {} (LinuxCNC gives each \
+                         if, while, do and repeat of a call level its own name)",
+                        String::from_utf8_lossy(name),
+                        at.line + 1
+                    ),
+                ))
             }
         }
     }
@@ -671,6 +707,9 @@ impl Interp<'_, '_> {
         }
         self.params.num[1..=N_ARGS].copy_from_slice(&f.saved);
         self.params.locals.pop();
+        // The call's O-word offset table goes with it.
+        let level = self.frames.len() + 1;
+        self.o_labels.retain(|(l, _), _| *l < level);
         self.ctl.truncate(f.ctl_len);
         self.params
             .set_named("_value_returned", f64::from(u8::from(value.is_some())));

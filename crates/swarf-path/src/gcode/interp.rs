@@ -19,7 +19,7 @@ use super::dialect::Dialect;
 use super::expr::ParamRead;
 use super::lexer::{column_of, normalize, skip_line_number, split_line, LineBuf};
 use super::params::{Params, Target};
-use super::stack::{Ctl, Cursor, Frame, ScanHit};
+use super::stack::{Ctl, Cursor, Frame, Kw, ScanHit};
 use super::{Fault, GcodeDialect, GcodeOptions, Res, Span};
 use crate::limit::{move_limit_message, MoveLimit};
 use crate::{
@@ -230,6 +230,9 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) seen_code: bool,
     /// Set when a false `if` jumps to an `elseif`, whose condition must then be tested.
     pub(crate) if_probe: bool,
+    /// The O names an `if`, `while`, `do` or `repeat` used at each call level, and where:
+    /// rs274 refuses one name for two of them in a level (its O-word offset table).
+    pub(crate) o_labels: HashMap<(usize, Vec<u8>), (Kw, Cursor)>,
     pub(crate) skip_buf: LineBuf,
     /// Read by Fanuc's rules (see [`GcodeDialect`]).
     pub(crate) fanuc: bool,
@@ -402,6 +405,7 @@ impl<'t, 's> Interp<'t, 's> {
             tape: false,
             seen_code: false,
             if_probe: false,
+            o_labels: HashMap::new(),
             skip_buf: LineBuf::default(),
             comp: Comp::default(),
             tap_quirk_warned: false,
