@@ -207,6 +207,27 @@ pub struct Region {
     pub move_count: usize,
 }
 
+impl Region {
+    /// A region of `kind` holding nothing yet, its depth `depth_mm` (what any end beats), its
+    /// box empty.
+    fn empty(kind: DefectKind, depth_mm: f64) -> Self {
+        Self {
+            id: 0,
+            kind,
+            depth_mm,
+            area_mm2: 0.0,
+            volume_mm3: 0.0,
+            deepest: Vec3::ZERO,
+            deepest_move: None,
+            ends: 0,
+            bbox_min: Vec3::splat(f64::INFINITY),
+            bbox_max: Vec3::splat(f64::NEG_INFINITY),
+            moves: Vec::new(),
+            move_count: 0,
+        }
+    }
+}
+
 /// Most moves a region lists (the deepest); [`Region::move_count`] counts them all.
 pub const MAX_REGION_MOVES: usize = 100;
 
@@ -575,20 +596,7 @@ fn summarise(
     program: Option<&Program>,
 ) -> Vec<Region> {
     let mut regions: Vec<Region> = (0..count)
-        .map(|_| Region {
-            id: 0,
-            kind: DefectKind::Gouge,
-            depth_mm: -1.0,
-            area_mm2: 0.0,
-            volume_mm3: 0.0,
-            deepest: Vec3::ZERO,
-            deepest_move: None,
-            ends: 0,
-            bbox_min: Vec3::splat(f64::INFINITY),
-            bbox_max: Vec3::splat(f64::NEG_INFINITY),
-            moves: Vec::new(),
-            move_count: 0,
-        })
+        .map(|_| Region::empty(DefectKind::Gouge, -1.0))
         .collect();
     let mut per_move: Vec<HashMap<MoveTag, (f64, usize)>> = vec![HashMap::new(); count];
     for (d, &l) in defects.iter().zip(labels) {
@@ -910,20 +918,7 @@ fn measure_volumes(
             }
             at += 1;
         }
-        let mut r = Region {
-            id: 0,
-            kind: DefectKind::Excess,
-            depth_mm: 0.0,
-            area_mm2: 0.0,
-            volume_mm3: 0.0,
-            deepest: Vec3::ZERO,
-            deepest_move: None,
-            ends: 0,
-            bbox_min: Vec3::splat(f64::INFINITY),
-            bbox_max: Vec3::splat(f64::NEG_INFINITY),
-            moves: Vec::new(),
-            move_count: 0,
-        };
+        let mut r = Region::empty(DefectKind::Excess, 0.0);
         for &m in &group {
             let p = pieces[m];
             let (x, y) = (grid.center(0, p.i as usize), grid.center(1, p.j as usize));

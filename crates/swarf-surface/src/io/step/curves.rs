@@ -383,30 +383,45 @@ impl Model<'_> {
     fn curve_point(&self, from: u64, id: u64, space: Space) -> R<Vec3> {
         match space {
             Space::Model => self.point(from, id),
-            Space::Parameter => {
-                let inst = self.get(from, id)?;
-                let c = inst
-                    .part("CARTESIAN_POINT")
-                    .map(|p| self.list(id, p.get(1), "coordinates"))
-                    .transpose()?
-                    .filter(|c| c.len() == 2)
-                    .ok_or_else(|| {
-                        self.bad(
-                            id,
-                            format!(
-                                "found {}, expected a CARTESIAN_POINT of two coordinates (a \
-                                 point in a surface's parameters)",
-                                inst.first_name()
-                            ),
-                        )
-                    })?;
-                Ok(Vec3::new(
-                    self.num(id, c.first(), "u")?,
-                    self.num(id, c.get(1), "v")?,
-                    0.0,
-                ))
-            }
+            Space::Parameter => self.pair(
+                from,
+                id,
+                "CARTESIAN_POINT",
+                "coordinates",
+                "a CARTESIAN_POINT of two coordinates (a point in a surface's parameters)",
+                ["u", "v"],
+            ),
         }
+    }
+
+    /// The two numbers of instance `id`'s `entity` (its list `what`) as (x, y, 0): a point or
+    /// direction in a surface's parameters; `expected` says what else was found.
+    fn pair(
+        &self,
+        from: u64,
+        id: u64,
+        entity: &str,
+        what: &str,
+        expected: &str,
+        names: [&str; 2],
+    ) -> R<Vec3> {
+        let inst = self.get(from, id)?;
+        let c = inst
+            .part(entity)
+            .map(|p| self.list(id, p.get(1), what))
+            .transpose()?
+            .filter(|c| c.len() == 2)
+            .ok_or_else(|| {
+                self.bad(
+                    id,
+                    format!("found {}, expected {expected}", inst.first_name()),
+                )
+            })?;
+        Ok(Vec3::new(
+            self.num(id, c.first(), names[0])?,
+            self.num(id, c.get(1), names[1])?,
+            0.0,
+        ))
     }
 
     /// A direction of a curve in `space` (`default` when `$`): three ratios, or two (z = 0).
@@ -421,26 +436,14 @@ impl Model<'_> {
             return self.direction(from, p, default);
         }
         let id = self.reference(from, p, "direction")?;
-        let inst = self.get(from, id)?;
-        let c = inst
-            .part("DIRECTION")
-            .map(|d| self.list(id, d.get(1), "direction ratios"))
-            .transpose()?
-            .filter(|c| c.len() == 2)
-            .ok_or_else(|| {
-                self.bad(
-                    id,
-                    format!(
-                        "found {}, expected a DIRECTION of two ratios",
-                        inst.first_name()
-                    ),
-                )
-            })?;
-        let v = Vec3::new(
-            self.num(id, c.first(), "x")?,
-            self.num(id, c.get(1), "y")?,
-            0.0,
-        );
+        let v = self.pair(
+            from,
+            id,
+            "DIRECTION",
+            "direction ratios",
+            "a DIRECTION of two ratios",
+            ["x", "y"],
+        )?;
         if v.length() == 0.0 || !v.is_finite() {
             return Err(self.bad(id, "zero-length direction"));
         }
