@@ -227,9 +227,12 @@ fn a_zero_radius_turns_compensation_on_without_offsetting() {
     let m = moves(&rec);
     assert_move(m[1], "L", 10.0, 0.0, None);
     assert_move(m[2], "A+", 20.0, 0.0, Some([15.0, 0.0]));
-    // ... but compensation is on: units, another G41 and a tool change are refused.
+    // ... but compensation is on: another G41 and a tool change are refused. (A change of
+    // units is not: rs274 2.9 takes `G20` under compensation and printed
+    // STRAIGHT_FEED(1.0000, 0.0000, …) for this program.)
+    let rec = read("G21\nG41.1 D0\nG20\nG1 X1 F10\nM2\n").unwrap();
+    assert_move(moves(&rec)[0], "L", 25.4, 0.0, None);
     for (src, what, line) in [
-        ("G21\nG41.1 D0\nG20\nM2\n", "cannot change units", 3),
         ("G21\nG41 D0\nG41.1 D2\nM2\n", "already on", 3),
         ("G21\nG41.1 D0\nT1 M6\nM2\n", "cannot change tools", 3),
     ] {

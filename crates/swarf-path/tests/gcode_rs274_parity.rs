@@ -220,3 +220,32 @@ fn o_names_are_not_reused_in_a_call_level() {
          N..... STRAIGHT_TRAVERSE(4.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
     );
 }
+
+/// rs274 2.9 changes units under cutter compensation; the move held for its corner prints in
+/// the new units.
+#[test]
+fn units_change_under_compensation() {
+    same(
+        "G21 G17 F100\nG0 X0 Y0\nG41.1 D2\nG1 X10\nG20\nG1 X1\nG40\nG1 X2\nM2\n",
+        "N..... STRAIGHT_TRAVERSE(0.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(0.3937, 0.0394, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(1.0000, 0.0394, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(2.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+}
+
+/// check_other_codes: an R word nothing in its block uses is an error, an `R3` alone in a
+/// canned cycle's mode too (swarf warned and went on with the cycle).
+#[test]
+fn an_r_word_alone_in_cycle_mode_is_an_error() {
+    // rs274: "R word with no g code that uses it" at `R3`.
+    stops_at(
+        "G21 F100\nG0 Z5\nG81 X1 Y1 Z-1 R2\nR3\nX2\nG80\nM2\n",
+        4,
+        "N..... STRAIGHT_TRAVERSE(0.0000, 0.0000, 5.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_TRAVERSE(1.0000, 1.0000, 5.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_TRAVERSE(1.0000, 1.0000, 2.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(1.0000, 1.0000, -1.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_TRAVERSE(1.0000, 1.0000, 2.0000, 0.0000, 0.0000, 0.0000)",
+    );
+}

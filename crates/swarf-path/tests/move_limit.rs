@@ -177,7 +177,8 @@ fn a_loop_that_warns_at_every_iteration_warns_once() {
 #[test]
 fn distinct_warnings_beyond_the_cap_are_counted_in_one_last_warning() {
     let n = swarf_path::limit::MAX_WARNINGS + 5;
-    let text = format!("G21 G90\n{}M30\n", "S100 R1\n".repeat(n));
+    // (An unused Q is a warning; an unused R is an error under LinuxCNC's rules.)
+    let text = format!("G21 G90\n{}M30\n", "S100 Q1\n".repeat(n));
     let mut count = Count::default();
     read_gcode(&text, "w.ngc", &GcodeOptions::default(), &mut count).unwrap();
     assert_eq!(count.warnings.len(), swarf_path::limit::MAX_WARNINGS + 1);

@@ -681,7 +681,9 @@ impl<'t, 's> Interp<'t, 's> {
         if !self.units_stated && (moves || matches!(e, Canon::Spline { .. })) {
             self.units_not_stated();
         }
-        if self.comp.queue.is_empty() && self.comp.held_none() {
+        // (A change of units is no motion: rs274 makes it at once, and the moves held behind
+        // a compensated one print in the new units.)
+        if self.comp.queue.is_empty() && self.comp.held_none() || matches!(e, Canon::Units(_)) {
             self.sink.emit(self.cur_line, &e);
         } else {
             // Behind a compensated move waiting for its corner.
@@ -1486,7 +1488,9 @@ impl<'t, 's> Interp<'t, 's> {
         }
         let mut axes_used_by_nonmotion = dwell_x || b.mirror_cancel;
         if let Some(g) = b.g(group::UNITS) {
-            if self.comp.on() {
+            // LinuxCNC 2.9 changes units under compensation (convert_length_units scales the
+            // radius and the held moves; swarf keeps them in mm); Fanuc controls refuse.
+            if self.comp.on() && self.fanuc {
                 return Err(Fault::semantic(
                     b.g_span(group::UNITS),
                     "cannot change units with cutter radius compensation on",
@@ -1756,7 +1760,7 @@ impl<'t, 's> Interp<'t, 's> {
             }
             _ => {}
         }
-        self.warn_unused_words(b, lb, nonmodal);
+        self.warn_unused_words(b, lb, nonmodal)?;
         self.motion_step(b, lb, nonmodal == Some(530), axes_used_by_nonmotion)?;
         match b.m_stop {
             Some(0 | 1 | 60) => {
@@ -1786,7 +1790,11 @@ impl<'t, 's> Interp<'t, 's> {
     /// Words that mean nothing in their block (an I without an arc, an E, an H without G43)
     /// are reported, never silently dropped: they often betray a program written for another
     /// machine or a post-processor bug.
-    fn warn_unused_words(&mut self, b: &Block, lb: &LineBuf, nonmodal: Option<u16>) {
+    ///
+    /// Under LinuxCNC's rules an R word nothing uses is an error, as rs274's check_other_codes
+    /// has it ("R word with no g code that uses it": an `R3` alone in a canned cycle's mode, a
+    /// `G0 X1 R2`).
+    fn warn_unused_words(&mut self, b: &Block, lb: &LineBuf, nonmodal: Option<u16>) -> Res<()> {
         let has_axes = b.mask & axis_mask() != 0;
         let mode = b
             .g(group::MOTION)
@@ -1863,6 +1871,20 @@ impl<'t, 's> Interp<'t, 's> {
             if !used {
                 let at = b.at[block::slot(c)] as usize;
                 let value = b.val[block::slot(c)];
+                // (G64 P R: newer LinuxCNC's planner tolerance, which LinuxCNC's own interpreter
+                // tests use; rs274 2.9 refuses it, swarf ignores it.)
+                if c == b'r'
+                    && !self.fanuc
+                    && !matches!(b.g(group::CUTTER_COMP), Some(411 | 421))
+                    && b.g(group::PATH) != Some(640)
+                {
+                    return Err(Fault::new(
+                        PathErrorKind::Semantic,
+                        Span::Code(at, at + 1),
+                        format!("R{value} with no G code that uses it"),
+                        "G2/G3 (radius), a canned cycle with axis words (retract level), G10",
+                    ));
+                }
                 self.warn_code(
                     lb,
                     at,
@@ -1873,6 +1895,7 @@ impl<'t, 's> Interp<'t, 's> {
                 );
             }
         }
+        Ok(())
     }
 
     fn motion_step(&mut self, b: &Block, lb: &LineBuf, g53: bool, axes_taken: bool) -> Res<()> {
