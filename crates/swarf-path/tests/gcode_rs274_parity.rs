@@ -249,3 +249,30 @@ fn an_r_word_alone_in_cycle_mode_is_an_error() {
          N..... STRAIGHT_TRAVERSE(1.0000, 1.0000, 2.0000, 0.0000, 0.0000, 0.0000)",
     );
 }
+
+/// `#<_abs_x>` … are the controlled point's machine position: rs274 adds the tool length
+/// offset (the tool table's T2 is Z0.1 inch).
+#[test]
+fn abs_positions_include_the_tool_length_offset() {
+    let opts = GcodeOptions::default()
+        .with_parameter_units(Units::Inch)
+        .with_tool_offsets(2, [0.0, 0.0, 2.54, 0.0, 0.0, 0.0]);
+    let mut pr = CanonicalPrinter::new(Vec::new());
+    read_gcode(
+        "G21\nG0 X1 Y2 Z3\nG43 H2\n(DEBUG, #<_abs_x> #<_abs_y> #<_abs_z> #<_z>)\n\
+         G43.1 Z-1\n(DEBUG, #<_abs_z> #<_z>)\nM2\n",
+        "t.ngc",
+        &opts,
+        &mut pr,
+    )
+    .unwrap();
+    let out = String::from_utf8(pr.finish().unwrap()).unwrap();
+    assert_eq!(
+        out,
+        lines(
+            r#"N..... STRAIGHT_TRAVERSE(1.0000, 2.0000, 3.0000, 0.0000, 0.0000, 0.0000)
+               N..... MESSAGE(" 1.000000 2.000000 3.000000 0.460000")
+               N..... MESSAGE(" 3.000000 4.000000")"#
+        )
+    );
+}

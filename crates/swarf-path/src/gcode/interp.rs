@@ -3089,7 +3089,8 @@ impl Interp<'_, '_> {
                     .iter()
                     .position(|&c| c == name.as_bytes()[5])
                     .unwrap_or(0);
-                Some(self.to_units(i, self.machine()[i]))
+                // The controlled point's: rs274 adds the tool length offset (NP_ABS_Z).
+                Some(self.to_units(i, self.controlled()[i]))
             }
             "_a" => Some(self.p[3]),
             "_b" => Some(self.p[4]),
