@@ -32,9 +32,14 @@ pub(crate) struct SetupArgs {
     /// head-ac, head-bc, head-table-ac, head-table-bc; add -tcp for TCP) or a TOML file.
     #[arg(long, value_name = "FILE|NAME", default_value = "3axis")]
     pub(crate) machine: String,
-    /// Length units before the program's first G20/G21.
-    #[arg(long, value_enum, default_value = "mm")]
-    pub(crate) initial_units: TableUnits,
+    /// Length units before the program's first G20/G21 (default: the --ini machine's, else mm).
+    #[arg(long, value_enum)]
+    pub(crate) initial_units: Option<TableUnits>,
+    /// A LinuxCNC machine INI: G-code runs as that machine runs it (its start-up code,
+    /// subroutine path, `#<_ini[…]>` values, units, M6 settings), and its TOOL_TABLE is the
+    /// tool library when --tool/--tools are not given.
+    #[arg(long, value_name = "FILE")]
+    pub(crate) ini: Option<PathBuf>,
     /// A folder searched for `name.ngc` when the program calls a subroutine it does not define
     /// (after the program's own folder; LinuxCNC's SUBROUTINE_PATH). May be repeated.
     #[arg(long, value_name = "DIR")]
@@ -77,7 +82,7 @@ impl SetupArgs {
             tool: self.tool.clone(),
             tools: self.tools.clone(),
             table_units: units(self.table_units).1,
-            initial_units: units(self.initial_units).0,
+            initial_units: self.initial_units.map(|u| units(u).0),
             subroutine_dirs: self.subroutine_path.clone(),
             dialect: self.dialect.map(|d| match d {
                 Dialect::Linuxcnc => swarf_path::gcode::GcodeDialect::LinuxCnc,
@@ -86,6 +91,7 @@ impl SetupArgs {
             block_delete: self.block_delete,
             home: self.home,
             max_moves: self.max_moves.unwrap_or(max_moves),
+            ini: self.ini.clone(),
         }
     }
 }

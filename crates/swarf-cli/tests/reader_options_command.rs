@@ -41,12 +41,13 @@ fn subroutines_are_found_on_the_subroutine_path() {
 
 #[test]
 fn the_dialect_can_be_forced() {
-    // G80 sharing a block with G0: a Fanuc habit LinuxCNC refuses (one modal group).
+    // Axis words after G80 with no motion code: a Fanuc control moves them with the last
+    // G0–G3; LinuxCNC refuses them ("cannot use axis values with G80").
     let d = dir("dialect");
     let prog = d.join("cycle.nc");
     std::fs::write(
         &prog,
-        "G21 G90 G17\nG0 X0 Y0 Z5\nG81 X0 Y0 Z-1 R1 F100\nX10\nG80 G0 X20\nM30\n",
+        "G21 G90 G17\nG0 X0 Y0 Z5\nG81 X0 Y0 Z-1 R1 F100\nX10\nG80\nX20\nM30\n",
     )
     .unwrap();
     let p = prog.to_str().unwrap();
@@ -96,4 +97,60 @@ fn compensation_takes_the_diameter_from_the_tools() {
         (lo - 2.0).abs() < 1e-9 && (hi - 18.0).abs() < 1e-9,
         "{lo} {hi}"
     );
+}
+
+/// `--ini`: a LinuxCNC machine's INI gives the subroutine path, the machine's units (a program
+/// without G20/G21 is read in its inches), the tool table (when no --tool/--tools) and the M6
+/// moves (TOOL_CHANGE_QUILL_UP: a rapid up to machine Z0 before the change).
+#[test]
+fn a_linuxcnc_ini_sets_up_the_machine() {
+    let d = dir("ini");
+    std::fs::create_dir_all(d.join("lib")).unwrap();
+    std::fs::write(
+        d.join("m.ini"),
+        "[RS274NGC]\nSUBROUTINE_PATH = lib\n[EMCIO]\nTOOL_TABLE = tools.tbl\n\
+         TOOL_CHANGE_QUILL_UP = 1\n[TRAJ]\nLINEAR_UNITS = inch\n",
+    )
+    .unwrap();
+    std::fs::write(d.join("tools.tbl"), "T1 P1 D0.25 Z1 ;quarter inch\n").unwrap();
+    std::fs::write(
+        d.join("lib").join("sq.ngc"),
+        "o<sq> sub\nG1 X1 F10\nY1\no<sq> endsub\n",
+    )
+    .unwrap();
+    let prog = d.join("p.ngc");
+    std::fs::write(&prog, "G0 X0 Y0 Z-0.5\nT1 M6\nG0 Z0.1\no<sq> call\nM2\n").unwrap();
+    let p = prog.to_str().unwrap();
+    let ini = d.join("m.ini");
+    let o = swarf(&["path", p, "--ini", ini.to_str().unwrap(), "--json"]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let j = json(&o);
+    // 1 in by 1 in, in inches; rapids 0.5 in down, 0.5 in up (quill up), 0.1 in up.
+    assert!(
+        (j["feed_length_mm"].as_f64().unwrap() - 50.8).abs() < 1e-9,
+        "{j}"
+    );
+    assert!(
+        (j["rapid_length_mm"].as_f64().unwrap() - 1.1 * 25.4).abs() < 1e-9,
+        "{j}"
+    );
+    // The table's T1 is a quarter inch.
+    assert!(stderr(&o).contains("6.35 mm"), "{}", stderr(&o));
+    // --initial-units wins over the machine's.
+    let o = swarf(&[
+        "path",
+        p,
+        "--ini",
+        ini.to_str().unwrap(),
+        "--initial-units",
+        "mm",
+        "--json",
+    ]);
+    assert!((json(&o)["feed_length_mm"].as_f64().unwrap() - 2.0).abs() < 1e-9);
+    // A bad setting names the INI's line.
+    std::fs::write(d.join("bad.ini"), "[EMCIO]\nTOOL_CHANGE_AT_G30 = maybe\n").unwrap();
+    let bad = d.join("bad.ini");
+    let o = swarf(&["path", p, "--ini", bad.to_str().unwrap()]);
+    assert_eq!(o.status.code(), Some(1));
+    assert!(stderr(&o).contains("bad.ini:2:1"), "{}", stderr(&o));
 }

@@ -36,7 +36,7 @@ mod workpiece;
 pub use workpiece::{automatic_workpiece, automatic_workpiece_of};
 
 use swarf_path::apt::AptOptions;
-use swarf_path::gcode::{GcodeDialect, GcodeOptions};
+use swarf_path::gcode::{GcodeDialect, GcodeOptions, LinuxCncIni};
 use swarf_path::kinematics::MachineError;
 use swarf_path::limit::{is_move_limit, DEFAULT_MAX_MOVES};
 use swarf_path::load::{read_program_str, read_text, stream_program, ProgramFormat, ReadOptions};
@@ -55,8 +55,9 @@ pub struct JobOptions {
     pub tools: Option<PathBuf>,
     /// Length unit of a library that does not state its own (LinuxCNC `.tbl`). Default mm.
     pub table_units: LengthUnit,
-    /// Length units before the program's first G20/G21. Default mm.
-    pub initial_units: Units,
+    /// Length units before the program's first G20/G21; `None`: the machine's (the INI's
+    /// `[TRAJ] LINEAR_UNITS`), else mm.
+    pub initial_units: Option<Units>,
     /// Folders searched for `name.ngc` when a program calls a subroutine it does not define
     /// (after the program's own folder).
     pub subroutine_dirs: Vec<PathBuf>,
@@ -71,6 +72,10 @@ pub struct JobOptions {
     /// Most moves a program may make: reading stops with [`JobError::MoveLimit`] at the first
     /// move over it. Default [`DEFAULT_MAX_MOVES`].
     pub max_moves: u64,
+    /// A LinuxCNC machine INI ([`swarf_path::gcode::LinuxCncIni`]): G-code runs under its
+    /// settings, and its `[EMCIO] TOOL_TABLE` is the tool library when neither
+    /// [`Self::tool`] nor [`Self::tools`] is given (in its `[TRAJ] LINEAR_UNITS`).
+    pub ini: Option<PathBuf>,
 }
 
 impl Default for JobOptions {
@@ -80,12 +85,13 @@ impl Default for JobOptions {
             tool: None,
             tools: None,
             table_units: LengthUnit::Mm,
-            initial_units: Units::Mm,
+            initial_units: None,
             subroutine_dirs: Vec::new(),
             dialect: None,
             block_delete: false,
             home: None,
             max_moves: DEFAULT_MAX_MOVES,
+            ini: None,
         }
     }
 }
@@ -122,6 +128,10 @@ pub enum JobError {
         #[source]
         source: SpecError,
     },
+    /// The LinuxCNC INI could not be read or holds a bad setting (the error names the file
+    /// and line).
+    #[error(transparent)]
+    Ini(PathError),
     /// The tool library could not be read.
     #[error("tool table")]
     ToolTable {
@@ -190,17 +200,34 @@ impl JobSetup {
                 })
             })
             .transpose()?;
-        let table = options
-            .tools
+        let ini = options
+            .ini
             .as_deref()
-            .map(|t| {
-                ToolTable::read(t, options.table_units).map_err(|source| JobError::ToolTable {
-                    path: t.to_path_buf(),
-                    source,
-                })
+            .map(LinuxCncIni::read)
+            .transpose()
+            .map_err(JobError::Ini)?;
+        // The machine's tool table when no tools are given: in the machine's units.
+        let ini_table = ini
+            .as_ref()
+            .filter(|_| options.tool.is_none() && options.tools.is_none())
+            .and_then(|i| {
+                let units = match i.linear_units() {
+                    Ok(Some(Units::Inch)) => LengthUnit::Inch,
+                    Ok(Some(Units::Mm)) => LengthUnit::Mm,
+                    _ => options.table_units,
+                };
+                i.tool_table().map(|t| (t, units))
+            });
+        let table = match (options.tools.as_deref(), ini_table) {
+            (Some(t), _) => Some((t.to_path_buf(), options.table_units)),
+            (None, t) => t,
+        };
+        let table = table
+            .map(|(t, units)| {
+                ToolTable::read(&t, units).map_err(|source| JobError::ToolTable { path: t, source })
             })
             .transpose()?;
-        let read = read_options(options, single.as_ref(), table.as_ref());
+        let read = read_options(options, ini, single.as_ref(), table.as_ref())?;
         Ok(Self {
             machine,
             single,
@@ -371,12 +398,18 @@ fn load_machine(arg: &str) -> Result<Machine, JobError> {
 /// pockets.
 fn read_options(
     options: &JobOptions,
+    ini: Option<LinuxCncIni>,
     single: Option<&Cutter>,
     table: Option<&ToolTable>,
-) -> ReadOptions {
-    let mut gcode = GcodeOptions::default()
-        .with_initial_units(options.initial_units)
-        .with_block_delete(options.block_delete);
+) -> Result<ReadOptions, JobError> {
+    let mut gcode = GcodeOptions::default().with_block_delete(options.block_delete);
+    if let Some(ini) = ini {
+        gcode = gcode.with_linuxcnc_ini(ini).map_err(JobError::Ini)?;
+    }
+    if let Some(u) = options.initial_units {
+        gcode = gcode.with_initial_units(u);
+    }
+    let initial_units = gcode.initial_units;
     if let Some(h) = options.home {
         gcode = gcode.with_home(h);
     }
@@ -425,13 +458,13 @@ fn read_options(
                 .or_insert(*n);
         }
     }
-    ReadOptions {
+    Ok(ReadOptions {
         gcode: gcode.with_max_moves(options.max_moves),
         apt: AptOptions::default()
             .with_max_moves(options.max_moves)
-            .with_initial_units(options.initial_units),
+            .with_initial_units(initial_units),
         ..ReadOptions::default()
-    }
+    })
 }
 
 /// Each tool number `program` uses (`program.tools`, and tool 0 first when `tool_zero_moved`)

@@ -86,13 +86,14 @@ fn the_dialect_is_detected_and_can_be_forced() {
     ] {
         assert_eq!(GcodeDialect::detect(fanuc), GcodeDialect::Fanuc, "{fanuc}");
     }
-    // Forced: LinuxCNC rejects G80 with G0 in one block (both in its motion group).
-    let e = moves(
-        "G80 G0 Z5\n",
-        &GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc),
-    )
-    .unwrap_err();
-    assert!(e.message.contains("same modal group"), "{e}");
+    // Forced: LinuxCNC reads G80 with G0 in one block too (rs274's read_g: G80 yields to the
+    // other motion code) but refuses axis words after G80 with no motion code, which a Fanuc
+    // control moves with the last G0–G3.
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    assert_eq!(moves("G80 G0 Z5\n", &linuxcnc).unwrap().len(), 1);
+    let e = moves("G0 X1\nG80\nZ5\n", &linuxcnc).unwrap_err();
+    assert!(e.message.contains("without a motion"), "{e}");
+    assert_eq!(moves("G0 X1\nG80\nZ5\n", &fanuc()).unwrap().len(), 2);
 }
 
 #[test]

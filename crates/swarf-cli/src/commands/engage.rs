@@ -94,14 +94,20 @@ impl RunArgs {
         files
     }
 
-    /// Whether the program starts in inches (before its first G20/G21).
     /// The tool library given with --tools, if any.
     pub(crate) fn tools_file(&self) -> Option<&Path> {
         self.setup.tools.as_deref()
     }
 
-    pub(crate) fn initial_inch(&self) -> bool {
-        matches!(self.setup.initial_units, crate::cli::TableUnits::Inch)
+    /// Whether the program starts in inches (before its first G20/G21): --initial-units, else
+    /// the --ini machine's units.
+    pub(crate) fn initial_inch(&self) -> Result<bool> {
+        Ok(match self.setup.initial_units {
+            Some(u) => matches!(u, crate::cli::TableUnits::Inch),
+            None => {
+                load_job_setup(&self.setup)?.read.gcode.initial_units == swarf_path::Units::Inch
+            }
+        })
     }
 
     /// Reads program text (`name` in messages) with this run's machine and units, its

@@ -213,7 +213,7 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
         split: args.split,
     };
     let program = &run.program;
-    let modes = swarf_path::rewrite::gcode_line_modes(&text, args.run.initial_inch());
+    let modes = swarf_path::rewrite::gcode_line_modes(&text, args.run.initial_inch()?);
     let mut per_line: BTreeMap<u32, usize> = BTreeMap::new();
     for m in &program.moves {
         *per_line.entry(m.line).or_default() += 1;

@@ -337,6 +337,9 @@ impl ParamRead for LineParams<'_> {
     fn fanuc(&self) -> bool {
         self.p.fanuc()
     }
+    fn ini_file(&self) -> Option<&std::path::Path> {
+        self.p.ini_file()
+    }
 }
 
 pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: bool) -> Res<()> {
@@ -448,6 +451,17 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                         first = false;
                         continue;
                     }
+                } else if !fanuc
+                    && grp == group::MOTION
+                    && b.g_mask & (1 << grp) != 0
+                    && (code == 800 || other == 800)
+                {
+                    // LinuxCNC (read_g): G80 beside another motion code yields to it, in
+                    // either order (`G80 G0`, `G81 G80 X…`).
+                    if code == 800 {
+                        first = false;
+                        continue;
+                    }
                 } else if b.g_mask & (1 << grp) != 0 {
                     // (G70/G71 by their own names: `G21 G71 U1.` is a lathe cycle, said below.)
                     let name = |code: u16, at: usize| match b.units_synonym {
@@ -519,6 +533,13 @@ pub(crate) fn parse(lb: &LineBuf, b: &mut Block, params: &dyn ParamRead, fanuc: 
                 let target = if c.peek() == Some(b'<') {
                     let (x, y) = read_name(&mut c)?;
                     let name = std::str::from_utf8(&lb.code[x..y]).unwrap_or("");
+                    if !fanuc && name.starts_with("_ini[") && params.read_only_named(name) {
+                        // rs274's message for a value the INI gives.
+                        return Err(Fault::semantic(
+                            Span::Code(at, c.i),
+                            format!("Cannot assign to read-only parameter #<{name}>"),
+                        ));
+                    }
                     if !fanuc && params.read_only_named(name) {
                         return Err(Fault::new(
                             PathErrorKind::Semantic,

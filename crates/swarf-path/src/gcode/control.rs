@@ -55,6 +55,9 @@ impl ParamRead for Defining<'_> {
     fn fanuc(&self) -> bool {
         self.0.fanuc()
     }
+    fn ini_file(&self) -> Option<&std::path::Path> {
+        self.0.ini_file()
+    }
 }
 
 /// Parses `o<name> keyword …` at code index `at`: the name's code range, the keyword and the
@@ -121,7 +124,7 @@ impl Interp<'_, '_> {
     /// Executes an O-word line; `at` is the index of the `o` in the normalised code.
     pub(crate) fn exec_oword(&mut self, lb: &LineBuf, at: usize) -> Res<()> {
         let code = &lb.code[..];
-        if code.get(at + 1) == Some(&b'[') {
+        if matches!(code.get(at + 1), Some(b'[' | b'#')) {
             return self.exec_computed_call(code, at);
         }
         let (a, b, kw, i) = parse_oword(code, at)?;
@@ -147,7 +150,7 @@ impl Interp<'_, '_> {
             Ok(v)
         };
         match kw {
-            Kw::Label => Ok(()),
+            Kw::Label => self.check_fanuc_subs("a bare O-word"),
             Kw::Sub => {
                 self.subs.insert(name.to_vec(), after);
                 self.skip_to(name, &[Kw::Endsub], span)?;
@@ -372,7 +375,8 @@ impl Interp<'_, '_> {
         }
     }
 
-    /// `o[expression] call …`: calls the subroutine whose number the expression gives.
+    /// `o[expression] call …` or `o#<name> call …`: calls the subroutine whose number the
+    /// expression or parameter gives (rs274 reads an O number as any integer value).
     fn exec_computed_call(&mut self, code: &[u8], at: usize) -> Res<()> {
         let mut c = Cur::new(code);
         c.i = at + 1;
@@ -719,10 +723,27 @@ impl Interp<'_, '_> {
         Ok(())
     }
 
+    /// rs274's refusal of Fanuc-style subprograms under the INI's `DISABLE_FANUC_STYLE_SUB`.
+    fn check_fanuc_subs(&self, what: &str) -> Res<()> {
+        match &self.opts.ini {
+            Some(ini) if !self.fanuc && ini.fanuc_subs_disabled() => Err(Fault::new(
+                PathErrorKind::Semantic,
+                Span::Line,
+                format!(
+                    "DISABLE_FANUC_STYLE_SUB set in INI file {}, but found {what}",
+                    ini.path.display()
+                ),
+                "O-word subroutines (o<name> sub … endsub, o<name> call)",
+            )),
+            _ => Ok(()),
+        }
+    }
+
     /// `M98 P<n> L<count>`: calls the subprogram labelled `O<n>`; Haas `M97 P<n> L<count>`
     /// (`b.m97`) the local subprogram starting at the line numbered `N<n>`. Both end with M99.
     pub(crate) fn m98(&mut self, b: &Block) -> Res<()> {
         let m = if b.m97 { "M97" } else { "M98" };
+        self.check_fanuc_subs(m)?;
         let p = b.get(b'p').ok_or_else(|| {
             Fault::new(
                 PathErrorKind::Semantic,
@@ -872,6 +893,7 @@ impl Interp<'_, '_> {
     /// `M99`: the end of an `M98` subprogram (repeat it or return), or in the main program a
     /// restart.
     pub(crate) fn m99(&mut self, b: &Block) -> Res<()> {
+        self.check_fanuc_subs("M99")?;
         if b.has(b'p') && !self.frames.is_empty() {
             return Err(Fault::new(
                 PathErrorKind::Unsupported,

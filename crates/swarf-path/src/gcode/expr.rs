@@ -39,6 +39,10 @@ pub(crate) trait ParamRead {
     fn fanuc(&self) -> bool {
         false
     }
+    /// The LinuxCNC INI file `#<_ini[…]>` reads, when one is given and read.
+    fn ini_file(&self) -> Option<&std::path::Path> {
+        None
+    }
 }
 
 /// The highest parameter number (LinuxCNC's `RS274NGC_MAX_PARAMETERS` − 1).
@@ -286,6 +290,16 @@ fn read_param(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
         let name = std::str::from_utf8(&c.code[a..b]).unwrap_or("");
         return p.named(name).ok_or_else(|| {
             let lower = name.to_ascii_lowercase();
+            if let (true, Some(ini)) = (lower.starts_with("_ini["), p.ini_file()) {
+                return Fault::semantic(
+                    Span::Code(start, c.i),
+                    format!(
+                        "#<{name}> is not a number of the INI file {} (named parameter \
+                         #<{name}> not defined)",
+                        ini.display()
+                    ),
+                );
+            }
             let source = if lower.starts_with("_ini[") {
                 Some("a value of LinuxCNC's INI file")
             } else if lower.starts_with("_hal[") {
@@ -537,7 +551,23 @@ fn function(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
     }
     if name == b"exists" {
         c.i += 1;
-        c.expect(b'#', "`#<name>`")?;
+        c.expect(b'#', "`#<name>` or `#number`")?;
+        if c.peek() != Some(b'<') {
+            // rs274 (read_parameter with check_exists): a numbered parameter exists when its
+            // number, read as any value (`EXISTS[##1]`), is in range; out of range is 0, not
+            // an error.
+            let at = c.i;
+            let n = number(real(c, p, depth)?);
+            c.expect(b']', "`]`")?;
+            let r = n.round();
+            if (n - r).abs() > 1e-4 {
+                return Err(Fault::semantic(
+                    Span::Code(at, c.i - 1),
+                    format!("parameter number {n} is not an integer"),
+                ));
+            }
+            return Ok(truth((1.0..=MAX_PARAM as f64).contains(&r)));
+        }
         let (a, b) = read_name(c)?;
         c.expect(b']', "`]`")?;
         let nm = std::str::from_utf8(&c.code[a..b]).unwrap_or("");
@@ -692,6 +722,14 @@ mod tests {
         assert_eq!(ev("abs[-3]").unwrap(), 3.0);
         assert_eq!(ev("exists[#<a>]").unwrap(), 1.0);
         assert_eq!(ev("exists[#<b>]").unwrap(), 0.0);
+        // Numbered parameters as rs274 2.9 (tests/interp/exists): in range exists, out of
+        // range reads 0; the number may itself be read from a parameter.
+        assert_eq!(ev("exists[#1]").unwrap(), 1.0);
+        assert_eq!(ev("exists[#5601]").unwrap(), 1.0);
+        assert_eq!(ev("exists[#99999]").unwrap(), 0.0);
+        assert_eq!(ev("exists[#0]").unwrap(), 0.0);
+        assert_eq!(ev("exists[#[2+3]]").unwrap(), 1.0);
+        assert!(ev("exists[#1.5]").is_err());
         assert_eq!(ev("#<a>").unwrap(), 2.5);
         assert_eq!(ev("#3").unwrap(), 30.0);
         assert_eq!(ev("-#[1+1]").unwrap(), -20.0);

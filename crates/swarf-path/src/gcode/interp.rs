@@ -509,6 +509,17 @@ impl<'t, 's> Interp<'t, 's> {
         self.pass_control = Some(super::control::PassControl::of(&self));
         let mut lb = LineBuf::default();
         let mut blk = Block::default();
+        let startup = self.opts.ini.as_ref().and_then(|i| i.startup_code());
+        if let Some((code, pos)) = startup.map(|(c, p)| (c.to_string(), p)) {
+            // LinuxCNC's task runs the INI's start-up code before each program.
+            if let Err(f) = self.exec_line(&code, &mut lb, &mut blk) {
+                let mut e = self.to_error(f, &code, &lb);
+                e.pos.file = pos.file;
+                e.pos.line = pos.line;
+                e.message = format!("{} (in the INI's RS274NGC_STARTUP_CODE)", e.message);
+                return Err(e);
+            }
+        }
         loop {
             if self.at.file != self.cur_file {
                 self.enter_file(self.at.file);
@@ -720,11 +731,16 @@ impl<'t, 's> Interp<'t, 's> {
             Units::Mm => "mm",
             Units::Inch => "inches",
         };
+        let whence = if self.opts.ini.is_some() {
+            "the machine's (the INI's LINEAR_UNITS, or --initial-units)"
+        } else {
+            "the initial units (--initial-units, mm by default)"
+        };
         self.warn_at(
             0,
             format!(
                 "the program does not state its units (no G20 or G21 before its first move): \
-                 it is read in {units}, the initial units (--initial-units, mm by default)"
+                 it is read in {units}, {whence}"
             ),
         );
     }
@@ -1225,6 +1241,47 @@ impl<'t, 's> Interp<'t, 's> {
         crate::reader_core::follow_sink(&mut self.p, before, self.sink.position());
     }
 
+    /// What LinuxCNC's `M6` does before the change (convert_tool_change): the spindle stops
+    /// (unless the INI's `TOOL_CHANGE_WITH_SPINDLE_ON`), Z rapids up to machine Z0
+    /// (`TOOL_CHANGE_QUILL_UP`), then every axis to the G30 position (`TOOL_CHANGE_AT_G30`).
+    fn tool_change_moves(&mut self) {
+        let how = self
+            .opts
+            .ini
+            .as_ref()
+            .and_then(|i| i.tool_change().ok())
+            .unwrap_or_default();
+        // The moves are made with the tool still in the spindle (none before the first M6):
+        // not the moment to take the selected one as loaded.
+        let selected = self.tool;
+        if !self.tool_loaded {
+            self.tool = 0;
+        }
+        if !how.with_spindle_on {
+            self.dir = SpindleDir::Stopped;
+            self.emit(Canon::Spindle {
+                rpm: self.rpm,
+                dir: SpindleDir::Stopped,
+            });
+        }
+        if how.quill_up {
+            let mut m = self.controlled();
+            m[2] = self.g53_origin()[2];
+            let up = self.program_of_controlled(&m);
+            self.p[2] = up[2];
+            self.emit(Canon::Traverse {
+                end: Axes::from_array(self.p),
+            });
+        }
+        if how.at_g30 {
+            self.p = self.program_of_controlled(&self.homes[1]);
+            self.emit(Canon::Traverse {
+                end: Axes::from_array(self.p),
+            });
+        }
+        self.tool = selected;
+    }
+
     /// Puts tool length offset `t` in effect: the controlled point stays where it is, so the
     /// program position reads the offset's change less.
     pub(crate) fn set_tlo(&mut self, t: [f64; 6]) {
@@ -1350,6 +1407,9 @@ impl<'t, 's> Interp<'t, 's> {
                     Span::Line,
                     "cannot change tools with cutter radius compensation on",
                 ));
+            }
+            if !self.fanuc {
+                self.tool_change_moves();
             }
             self.tool_loaded = true;
             self.read_only.loaded_tool = self.tool;
@@ -2575,16 +2635,8 @@ impl<'t, 's> Interp<'t, 's> {
         if self.fanuc && matches!(l as i64, 10..=13) && l.fract() == 0.0 {
             return self.g10_fanuc_register(b, l as u8);
         }
-        if l == 1.0 || l == 10.0 {
-            return self.g10_tool(b, l == 10.0);
-        }
-        if l == 11.0 {
-            self.g10_tool_radius(b)?;
-            self.warn_at(
-                0,
-                "G10 L11 (tool offsets relative to the fixture) ignored but for its R".to_string(),
-            );
-            return Ok(());
+        if l == 1.0 || l == 10.0 || l == 11.0 {
+            return self.g10_tool(b, l as u8);
         }
         if l != 2.0 && l != 20.0 {
             return Err(Fault::new(
@@ -2751,11 +2803,13 @@ impl<'t, 's> Interp<'t, 's> {
         Ok(())
     }
 
-    /// G10 L1 (set tool P's offsets to the given values) and L10 (set them so that the current
-    /// position, with them in effect, reads the given values), as LinuxCNC: offsets are kept in
-    /// the machine frame, the given values are in the program's (the XY rotation of the active
-    /// system applies), and an axis not given keeps its offset.
-    fn g10_tool(&mut self, b: &Block, relative: bool) -> Res<()> {
+    /// G10 L1 (set tool P's offsets to the given values), L10 (set them so that the current
+    /// position, with them in effect, reads the given values) and L11 (likewise in G59.3, the
+    /// touch-off fixture's system, without G92), as LinuxCNC's convert_setup_tool: offsets are
+    /// kept in the machine frame, the given values are in the destination system's (its XY
+    /// rotation applies), and an axis not given keeps its offset.
+    fn g10_tool(&mut self, b: &Block, l: u8) -> Res<()> {
+        let relative = l != 1;
         let p = b.get(b'p').unwrap_or(-1.0);
         if !(p >= 1.0 && p.fract() == 0.0 && p <= f64::from(u32::MAX)) {
             return Err(Fault::new(
@@ -2765,21 +2819,32 @@ impl<'t, 's> Interp<'t, 's> {
                 } else {
                     b.g_span(group::NON_MODAL)
                 },
-                "G10 L1/L10 needs the tool number in P",
+                "G10 L1/L10/L11 needs the tool number in P",
                 "P<tool number ≥ 1>",
             ));
         }
         let tool = p as u32;
         let entry = self.tool_table.get(&tool).copied().unwrap_or([0.0; 6]);
+        // The position without the offset in effect, in the destination system
+        // (find_current_in_system_without_tlo), and that system's rotation.
+        let (without, rot): ([f64; 6], f64) = if l == 11 {
+            let c = self.controlled();
+            let fixture = self.g5x_table[8];
+            (
+                rotate_xy(
+                    std::array::from_fn(|i| c[i] - fixture[i]),
+                    -self.rot_table[8],
+                ),
+                self.rot_table[8],
+            )
+        } else {
+            let back = rotate_xy(self.tlo, -self.rot);
+            (std::array::from_fn(|i| self.p[i] + back[i]), self.rot)
+        };
         let mut e = if relative {
-            rotate_xy(entry, -self.rot)
+            rotate_xy(entry, -rot)
         } else {
             entry
-        };
-        // The position without the offset in effect, in the program frame.
-        let without: [f64; 6] = {
-            let back = rotate_xy(self.tlo, -self.rot);
-            std::array::from_fn(|i| self.p[i] + back[i])
         };
         for (i, &c) in AXIS_LETTERS.iter().enumerate() {
             if let Some(v) = b.get(c) {
@@ -2787,7 +2852,7 @@ impl<'t, 's> Interp<'t, 's> {
                 e[i] = if relative { without[i] - v } else { v };
             }
         }
-        let e = if relative { rotate_xy(e, self.rot) } else { e };
+        let e = if relative { rotate_xy(e, rot) } else { e };
         self.tool_table.insert(tool, e);
         self.g10_tool_radius(b)
     }
@@ -3072,6 +3137,13 @@ impl ParamRead for Interp<'_, '_> {
     fn read_only_named(&self, name: &str) -> bool {
         self.system_parameter(name).is_some()
     }
+    fn ini_file(&self) -> Option<&std::path::Path> {
+        self.opts
+            .ini
+            .as_ref()
+            .filter(|i| i.ini_vars())
+            .map(|i| i.path.as_path())
+    }
 }
 
 impl Interp<'_, '_> {
@@ -3081,6 +3153,13 @@ impl Interp<'_, '_> {
         let flag = |b: bool| Some(f64::from(u8::from(b)));
         let ro = &self.read_only;
         match name {
+            // rs274 caches an INI value as a global, read-only parameter.
+            n if n.starts_with("_ini[") => self
+                .opts
+                .ini
+                .as_ref()
+                .filter(|i| i.ini_vars())
+                .and_then(|i| i.parameter(n)),
             "_x" => Some(self.to_units(0, self.p[0])),
             "_y" => Some(self.to_units(1, self.p[1])),
             "_z" => Some(self.to_units(2, self.p[2])),

@@ -74,6 +74,7 @@ mod cycles;
 pub(crate) mod dialect;
 mod expr;
 mod frames;
+mod ini;
 mod interp;
 pub(crate) mod lexer;
 mod macro_b;
@@ -91,6 +92,7 @@ use crate::{CanonSink, PathError, PathErrorKind, SourcePos, Units};
 use crate::Canon;
 
 pub use dialect::Dialect;
+pub use ini::{LinuxCncIni, ToolChangeMoves};
 
 /// How far the radius at the end of a centre-format arc may differ from the radius at its
 /// start, LinuxCNC's rule: an arc is rejected when the absolute difference exceeds
@@ -200,6 +202,11 @@ pub struct GcodeOptions {
     /// ends that length below (`G53 G0 Z0.` with a 10 mm tool under G43: the tip at the home's
     /// Z − 10).
     pub home: Option<[f64; 3]>,
+    /// The LinuxCNC machine configuration the program runs under ([`Self::with_linuxcnc_ini`]):
+    /// its start-up code runs first, `#<_ini[section]name>` reads its numbers, and its
+    /// `[EMCIO]` tool-change settings and `DISABLE_FANUC_STYLE_SUB` apply. `None`: LinuxCNC's
+    /// defaults (M6 stops the spindle and moves nothing).
+    pub ini: Option<LinuxCncIni>,
 }
 
 /// The controller whose rules a G-code program is read by, where LinuxCNC and Fanuc differ.
@@ -329,8 +336,8 @@ impl GcodeDialect {
                 (has(4.0) || has(82.0)) && p_without_point(body).is_some_and(|p| p >= 100);
             if g80_with_motion {
                 fanuc = Some(
-                    "G80 with G0/G1/G2/G3 in one block, which a Fanuc control reads (LinuxCNC \
-                     refuses two codes of one modal group)"
+                    "G80 with G0/G1/G2/G3 in one block, a Fanuc post's habit (LinuxCNC reads \
+                     it too, the other code winning)"
                         .into(),
                 );
             } else if own_code {
@@ -412,6 +419,7 @@ impl Default for GcodeOptions {
             home: None,
             parameters: Vec::new(),
             dialect: None,
+            ini: None,
         }
     }
 }
