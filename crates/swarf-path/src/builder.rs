@@ -64,6 +64,8 @@ pub struct MoveBuilder {
     spline_tolerance: f64,
     feed: f64,
     feed_mode: FeedMode,
+    /// [`Canon::RotaryFeedCombined`]'s rule, stamped on each move.
+    rotary_feed_combined: bool,
     spindle_rpm: f64,
     spindle_dir: SpindleDir,
     tool: u32,
@@ -112,6 +114,7 @@ impl MoveBuilder {
             spline_tolerance: crate::spline::DEFAULT_TOLERANCE_MM,
             feed: 0.0,
             feed_mode: FeedMode::PerMinute,
+            rotary_feed_combined: false,
             spindle_rpm: 0.0,
             spindle_dir: SpindleDir::Stopped,
             tool: 0,
@@ -449,6 +452,7 @@ impl MoveBuilder {
             line,
             axis_source,
             tcp: self.machine.tcp,
+            rotary_feed_combined: self.rotary_feed_combined,
         };
         self.tool_zero_moved |= m.tool == 0;
         self.moves.push(m);
@@ -517,6 +521,7 @@ impl CanonSink for MoveBuilder {
             }),
             Canon::FeedRate(f) => self.feed = *f,
             Canon::FeedMode(m) => self.feed_mode = *m,
+            Canon::RotaryFeedCombined(on) => self.rotary_feed_combined = *on,
             Canon::Spindle { rpm, dir } => {
                 self.spindle_rpm = if *dir == SpindleDir::Stopped {
                     0.0

@@ -212,6 +212,11 @@ pub enum Canon<'a> {
     FeedRate(f64),
     /// Feed mode changed.
     FeedMode(FeedMode),
+    /// How a per-minute or per-revolution feed applies to a move that turns rotary axes:
+    /// `true` (Fanuc, Haas, Mach3) to the combined distance of X Y Z and the rotary angles,
+    /// degrees counted as mm; `false` (LinuxCNC, Heidenhain, Sinumerik's `FGROUP(X,Y,Z)`, the
+    /// default) to X Y Z alone, and to the angles only when X Y Z stand still.
+    RotaryFeedCombined(bool),
     /// Spindle speed (rpm) and direction.
     Spindle {
         /// Revolutions per minute.
@@ -386,6 +391,7 @@ impl Canon<'_> {
             Canon::XyRotation(r) => Canon::XyRotation(*r),
             Canon::FeedRate(f) => Canon::FeedRate(*f),
             Canon::FeedMode(m) => Canon::FeedMode(*m),
+            Canon::RotaryFeedCombined(on) => Canon::RotaryFeedCombined(*on),
             Canon::Spindle { rpm, dir } => Canon::Spindle {
                 rpm: *rpm,
                 dir: *dir,

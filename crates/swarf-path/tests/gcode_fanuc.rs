@@ -1373,3 +1373,33 @@ fn assigning_to_0_is_an_error_at_its_place() {
         [('R', 5.0, 0.0, 0.0), ('R', 0.0, 0.0, 0.0)]
     );
 }
+
+/// Fanuc's (and Haas's) feed for a move that turns a rotary axis with linear ones: F applies
+/// to √(ΔX² + ΔY² + ΔZ² + ΔA²), degrees counted as mm (FANUC 0i-MF, "Feedrate for
+/// simultaneous linear and rotary axes"); LinuxCNC applies it to X Y Z alone. `G1 X10 A90
+/// F100`: 0.1 min by LinuxCNC's rule, √8200/100 = 0.90554 min by Fanuc's.
+#[test]
+fn a_rotary_move_feeds_over_the_combined_distance() {
+    use swarf_path::load::{read_program_str, ReadOptions};
+    use swarf_path::Machine;
+    let minutes = |src: &str, d: GcodeDialect| {
+        let opts = ReadOptions {
+            gcode: GcodeOptions::default().with_dialect(d),
+            ..ReadOptions::default()
+        };
+        let p =
+            read_program_str(src, "t.nc", Machine::from_name("4axis-a").unwrap(), &opts).unwrap();
+        let m = p.moves.last().unwrap();
+        m.feed_minutes(m.start.tip.distance(m.end.tip)).unwrap()
+    };
+    let src = "G21 G90 G94\nG0 X0 Y0 Z5 A0\nG1 X10 A90 F100\nM30\n";
+    let fanuc = minutes(src, GcodeDialect::Fanuc);
+    assert!((fanuc - 8200f64.sqrt() / 100.0).abs() < 1e-12, "{fanuc}");
+    let linuxcnc = minutes(src, GcodeDialect::LinuxCnc);
+    assert!((linuxcnc - 0.1).abs() < 1e-12, "{linuxcnc}");
+    // A rotary move alone: both rules give the angle over F.
+    let src = "G21 G90 G94\nG0 X0 Y0 Z5 A0\nG1 A90 F100\nM30\n";
+    for d in [GcodeDialect::Fanuc, GcodeDialect::LinuxCnc] {
+        assert!((minutes(src, d) - 0.9).abs() < 1e-12);
+    }
+}

@@ -55,6 +55,7 @@ fn one_move(
             line: 7,
             axis_source: source,
             tcp: machine.tcp,
+            rotary_feed_combined: false,
         }],
         files: vec!["exact".into()],
         machine,

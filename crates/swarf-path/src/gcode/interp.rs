@@ -506,6 +506,10 @@ impl<'t, 's> Interp<'t, 's> {
             self.emit(Canon::SetPosition(Axes::from_array(self.p)));
         }
         self.emit(Canon::Plane(Plane::XY));
+        if self.fanuc {
+            // Fanuc's (and Haas's) feed over linear and rotary axes together.
+            self.emit(Canon::RotaryFeedCombined(true));
+        }
         self.pass_control = Some(super::control::PassControl::of(&self));
         let mut lb = LineBuf::default();
         let mut blk = Block::default();
