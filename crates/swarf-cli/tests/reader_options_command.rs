@@ -147,6 +147,43 @@ fn a_linuxcnc_ini_sets_up_the_machine() {
         "--json",
     ]);
     assert!((json(&o)["feed_length_mm"].as_f64().unwrap() - 2.0).abs() < 1e-9);
+    // The first M6's quill-up rapid is the new tool's (the spindle held none): simulate runs.
+    let sim = d.join("sim.ngc");
+    std::fs::write(
+        &sim,
+        "G20 G90\nT1 M6\nG0 X0 Y0 Z0.1\nG1 Z-0.05 F10\nX0.5\nM2\n",
+    )
+    .unwrap();
+    let out = d.join("sim_out");
+    let o = swarf(&[
+        "simulate",
+        "--stock",
+        "box:-5,-5,-5,20,5,0",
+        "--program",
+        sim.to_str().unwrap(),
+        "--ini",
+        ini.to_str().unwrap(),
+        "--resolution",
+        "0.5",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    // CL data is the CAM system's: the machine's inches do not apply to it.
+    let apt = d.join("a.apt");
+    std::fs::write(
+        &apt,
+        "CUTTER/6\nFROM/0,0,5\nFEDRAT/100\nGOTO/10,0,5\nFINI\n",
+    )
+    .unwrap();
+    let o = swarf(&[
+        "path",
+        apt.to_str().unwrap(),
+        "--ini",
+        ini.to_str().unwrap(),
+        "--json",
+    ]);
+    assert!((json(&o)["feed_length_mm"].as_f64().unwrap() - 10.0).abs() < 1e-9);
     // A bad setting names the INI's line.
     std::fs::write(d.join("bad.ini"), "[EMCIO]\nTOOL_CHANGE_AT_G30 = maybe\n").unwrap();
     let bad = d.join("bad.ini");

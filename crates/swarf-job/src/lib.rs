@@ -216,15 +216,25 @@ impl JobSetup {
                     Ok(Some(Units::Mm)) => LengthUnit::Mm,
                     _ => options.table_units,
                 };
-                i.tool_table().map(|t| (t, units))
+                i.tool_table().map(|(t, at)| (t, units, Some(at)))
             });
         let table = match (options.tools.as_deref(), ini_table) {
-            (Some(t), _) => Some((t.to_path_buf(), options.table_units)),
+            (Some(t), _) => Some((t.to_path_buf(), options.table_units, None)),
             (None, t) => t,
         };
         let table = table
-            .map(|(t, units)| {
-                ToolTable::read(&t, units).map_err(|source| JobError::ToolTable { path: t, source })
+            .map(|(t, units, named_at)| {
+                ToolTable::read(&t, units).map_err(|source| match named_at {
+                    // The INI's line that names it, and why it cannot be read.
+                    Some(at) => JobError::Ini(PathError::new(
+                        at,
+                        swarf_path::PathErrorKind::Io,
+                        format!("cannot read the tool table [EMCIO] TOOL_TABLE names: {source}"),
+                        t.display().to_string(),
+                        "a LinuxCNC tool table",
+                    )),
+                    None => JobError::ToolTable { path: t, source },
+                })
             })
             .transpose()?;
         let read = read_options(options, ini, single.as_ref(), table.as_ref())?;
@@ -409,7 +419,8 @@ fn read_options(
     if let Some(u) = options.initial_units {
         gcode = gcode.with_initial_units(u);
     }
-    let initial_units = gcode.initial_units;
+    // CL data is the CAM system's, not the machine's: its units are not the INI's.
+    let apt_units = options.initial_units.unwrap_or(Units::Mm);
     if let Some(h) = options.home {
         gcode = gcode.with_home(h);
     }
@@ -462,7 +473,7 @@ fn read_options(
         gcode: gcode.with_max_moves(options.max_moves),
         apt: AptOptions::default()
             .with_max_moves(options.max_moves)
-            .with_initial_units(initial_units),
+            .with_initial_units(apt_units),
         ..ReadOptions::default()
     })
 }

@@ -122,6 +122,10 @@ fn ini_values_and_disabled_fanuc_subs() {
     let err = err.unwrap();
     assert_eq!(err.pos.line, 2, "{err}");
     assert!(err.message.contains("DISABLE_FANUC_STYLE_SUB"), "{err}");
+    // A main program's M99 is its loop, which the setting leaves alone (rs274 checks it in
+    // a call only): the pass sets nothing, so reading ends there.
+    let (_, err) = canon("G20\nG0 X1\nM99\n", Some(ini));
+    assert!(err.is_none(), "{err:?}");
     // rs274 (tests/interp/iniparam-failassign): "Cannot assign to read-only parameter".
     let (_, err) = canon("#<_ini[vars]safe> = 3\nM2\n", Some(ini));
     assert!(err.unwrap().message.contains("read-only"));
@@ -132,6 +136,12 @@ fn ini_values_and_disabled_fanuc_subs() {
         err.message.contains("not a number of the INI file"),
         "{err}"
     );
+    // INI_VARS = 0: not read, and the error says why.
+    let (_, err) = canon(
+        "G0 X#<_ini[vars]safe>\nM2\n",
+        Some("[RS274NGC]\nINI_VARS = 0\n[VARS]\nSAFE = 0.5\n"),
+    );
+    assert!(err.unwrap().message.contains("INI_VARS = 0"));
     // Without an INI, swarf says what it lacks.
     let (_, err) = canon("G0 X#<_ini[vars]safe>\nM2\n", None);
     assert!(err.unwrap().message.contains("INI"));
@@ -143,11 +153,17 @@ fn ini_values_and_disabled_fanuc_subs() {
 #[test]
 fn the_startup_code_runs_first() {
     let ini = "[RS274NGC]\nRS274NGC_STARTUP_CODE = G17 G20 G40 G49 G54 G80 G90 G94\n";
+    let src = "(debug,#<_imperial>)\nG0 X1\nM2\n";
     same(
-        "G0 X1\nM2\n",
+        src,
         Some(ini),
-        "N..... STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+        "N..... MESSAGE(\"1.000000\")
+         N..... STRAIGHT_TRAVERSE(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
     );
+    let (_, err) = canon(src, None);
+    assert!(err.is_none());
+    let (out, _) = canon(src, None);
+    assert!(out.contains("MESSAGE(\"0.000000\")"), "{out}");
     let ini = "[RS274NGC]\nRS274NGC_STARTUP_CODE = G17 G21 G99.5\n";
     let (_, err) = canon("G0 X1\nM2\n", Some(ini));
     let err = err.unwrap();

@@ -99,15 +99,18 @@ impl RunArgs {
         self.setup.tools.as_deref()
     }
 
-    /// Whether the program starts in inches (before its first G20/G21): --initial-units, else
-    /// the --ini machine's units.
-    pub(crate) fn initial_inch(&self) -> Result<bool> {
-        Ok(match self.setup.initial_units {
-            Some(u) => matches!(u, crate::cli::TableUnits::Inch),
-            None => {
-                load_job_setup(&self.setup)?.read.gcode.initial_units == swarf_path::Units::Inch
-            }
-        })
+    /// What holds before the program's first line: whether it is in inches (--initial-units,
+    /// else the --ini machine's units) and the --ini machine's start-up code, which runs
+    /// first.
+    pub(crate) fn initial_state(&self) -> Result<(bool, Option<String>)> {
+        let setup = load_job_setup(&self.setup)?;
+        let g = &setup.read.gcode;
+        let startup = g
+            .ini
+            .as_ref()
+            .and_then(|i| i.startup_code())
+            .map(|(c, _)| c.to_string());
+        Ok((g.initial_units == swarf_path::Units::Inch, startup))
     }
 
     /// Reads program text (`name` in messages) with this run's machine and units, its

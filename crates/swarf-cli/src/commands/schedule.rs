@@ -213,7 +213,15 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
         split: args.split,
     };
     let program = &run.program;
-    let modes = swarf_path::rewrite::gcode_line_modes(&text, args.run.initial_inch()?);
+    let modes = match args.run.initial_state()? {
+        // The machine's start-up code runs first: its G20/G91 hold at the program's first line.
+        (inch, Some(code)) => {
+            let mut m = swarf_path::rewrite::gcode_line_modes(&format!("{code}\n{text}"), inch);
+            m.remove(0);
+            m
+        }
+        (inch, None) => swarf_path::rewrite::gcode_line_modes(&text, inch),
+    };
     let mut per_line: BTreeMap<u32, usize> = BTreeMap::new();
     for m in &program.moves {
         *per_line.entry(m.line).or_default() += 1;

@@ -337,7 +337,7 @@ impl ParamRead for LineParams<'_> {
     fn fanuc(&self) -> bool {
         self.p.fanuc()
     }
-    fn ini_file(&self) -> Option<&std::path::Path> {
+    fn ini_file(&self) -> Option<(&std::path::Path, bool)> {
         self.p.ini_file()
     }
 }

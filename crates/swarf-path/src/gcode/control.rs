@@ -55,7 +55,7 @@ impl ParamRead for Defining<'_> {
     fn fanuc(&self) -> bool {
         self.0.fanuc()
     }
-    fn ini_file(&self) -> Option<&std::path::Path> {
+    fn ini_file(&self) -> Option<(&std::path::Path, bool)> {
         self.0.ini_file()
     }
 }
@@ -893,7 +893,10 @@ impl Interp<'_, '_> {
     /// `M99`: the end of an `M98` subprogram (repeat it or return), or in the main program a
     /// restart.
     pub(crate) fn m99(&mut self, b: &Block) -> Res<()> {
-        self.check_fanuc_subs("M99")?;
+        if !self.frames.is_empty() {
+            // (rs274 checks the setting in a call only: a main program's M99 is its loop.)
+            self.check_fanuc_subs("M99")?;
+        }
         if b.has(b'p') && !self.frames.is_empty() {
             return Err(Fault::new(
                 PathErrorKind::Unsupported,

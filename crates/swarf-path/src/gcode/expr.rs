@@ -39,8 +39,8 @@ pub(crate) trait ParamRead {
     fn fanuc(&self) -> bool {
         false
     }
-    /// The LinuxCNC INI file `#<_ini[…]>` reads, when one is given and read.
-    fn ini_file(&self) -> Option<&std::path::Path> {
+    /// The LinuxCNC INI file given, and whether `#<_ini[…]>` reads it (its `INI_VARS`).
+    fn ini_file(&self) -> Option<(&std::path::Path, bool)> {
         None
     }
 }
@@ -290,14 +290,21 @@ fn read_param(c: &mut Cur<'_>, p: &dyn ParamRead, depth: u32) -> Res<f64> {
         let name = std::str::from_utf8(&c.code[a..b]).unwrap_or("");
         return p.named(name).ok_or_else(|| {
             let lower = name.to_ascii_lowercase();
-            if let (true, Some(ini)) = (lower.starts_with("_ini["), p.ini_file()) {
+            if let (true, Some((ini, vars))) = (lower.starts_with("_ini["), p.ini_file()) {
                 return Fault::semantic(
                     Span::Code(start, c.i),
-                    format!(
-                        "#<{name}> is not a number of the INI file {} (named parameter \
-                         #<{name}> not defined)",
-                        ini.display()
-                    ),
+                    if vars {
+                        format!(
+                            "#<{name}> is not a number of the INI file {} (named parameter \
+                             #<{name}> not defined)",
+                            ini.display()
+                        )
+                    } else {
+                        format!(
+                            "#<{name}> is not read: the INI file {} sets [RS274NGC] INI_VARS = 0",
+                            ini.display()
+                        )
+                    },
                 );
             }
             let source = if lower.starts_with("_ini[") {

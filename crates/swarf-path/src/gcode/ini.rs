@@ -17,23 +17,36 @@
 //! | `[TRAJ] LINEAR_UNITS` | the machine's units: a program's units before its G20/G21, and the offset parameters' |
 //! | `[EMCIO] TOOL_TABLE` | the tool table (read by `swarf-job` when no tools are given) |
 //!
-//! The file is read as LinuxCNC's `IniFile` reads it: `[SECTION]` headers, `NAME = VALUE`
-//! lines (the first of a repeated name counts), `#` and `;` comment lines, a `\` at a line's
-//! end continuing the value; names and sections as written (LinuxCNC's are upper case, and
-//! `#<_ini[…]…>` looks them up in upper case).
+//! The file is read as LinuxCNC's `IniFile` reads it, value by value: a value is looked for
+//! after the first line that starts (after blanks) with `[SECTION]` and before the next line
+//! starting with `[`; its line starts with the name, then a blank or `=`; the value is what
+//! follows the `=`, blanks trimmed (a `#` or `;` after it is part of it); a `\` at a line's end
+//! joins the next line to it as it is. Names and sections are compared as written (LinuxCNC's
+//! are upper case, and `#<_ini[…]…>` looks them up in upper case). A yes/no setting is an
+//! integer (non-zero: yes), as LinuxCNC converts it; `#INCLUDE file` lines, which LinuxCNC's
+//! launcher expands, are expanded by [`LinuxCncIni::read`], and a path starting with `~` is in
+//! the home folder.
 
 use std::path::{Path, PathBuf};
 
 use super::{ArcTolerance, GcodeOptions};
 use crate::{PathError, PathErrorKind, SourcePos, Units};
 
-/// One `NAME = VALUE` of the file.
+/// One line of the file (continuations joined) and where it starts.
 #[derive(Clone, Debug, PartialEq)]
-struct Entry {
-    section: String,
-    name: String,
-    value: String,
+struct Line {
+    text: String,
+    /// Index into [`LinuxCncIni::files`].
+    file: usize,
     line: u32,
+}
+
+/// A value found: its text and where.
+struct Found<'a, 'b> {
+    value: &'a str,
+    at: &'a Line,
+    section: &'b str,
+    name: &'b str,
 }
 
 /// A LinuxCNC INI file, parsed (see the module's documentation for what swarf uses).
@@ -41,7 +54,9 @@ struct Entry {
 pub struct LinuxCncIni {
     /// The file, as given: error messages name it, relative paths in it start from its folder.
     pub path: PathBuf,
-    entries: Vec<Entry>,
+    /// The file and those it includes, in order of inclusion.
+    files: Vec<PathBuf>,
+    lines: Vec<Line>,
 }
 
 /// What `M6` does besides changing the tool, from `[EMCIO]`.
@@ -55,81 +70,171 @@ pub struct ToolChangeMoves {
     pub with_spindle_on: bool,
 }
 
+/// Deepest nesting of `#INCLUDE` (a file including itself ends there).
+const MAX_INCLUDE_DEPTH: usize = 8;
+
+fn io_error(path: &Path, e: &std::io::Error) -> PathError {
+    PathError::new(
+        SourcePos {
+            file: path.display().to_string(),
+            line: 0,
+            column: 0,
+        },
+        PathErrorKind::Io,
+        format!("cannot read the INI file: {e}"),
+        "",
+        "",
+    )
+}
+
+/// `~` or `~/…` in the home folder (LinuxCNC's `TildeExpansion`); other paths as written.
+fn tilde(p: &str) -> PathBuf {
+    let p = p.trim();
+    match (p.strip_prefix('~'), std::env::var_os("HOME")) {
+        (Some(rest), Some(home)) if rest.is_empty() || rest.starts_with('/') => {
+            PathBuf::from(home).join(rest.trim_start_matches('/'))
+        }
+        _ => PathBuf::from(p),
+    }
+}
+
 impl LinuxCncIni {
-    /// Reads and parses the INI file at `path`.
+    /// Reads and parses the INI file at `path`, its `#INCLUDE`s expanded.
     ///
     /// # Errors
-    /// [`PathErrorKind::Io`] when it cannot be read.
+    /// [`PathErrorKind::Io`] when it or a file it includes cannot be read (an include names
+    /// the line that asks for it).
     pub fn read(path: &Path) -> Result<Self, PathError> {
-        let text = std::fs::read(path).map_err(|e| {
-            PathError::new(
-                SourcePos {
-                    file: path.display().to_string(),
-                    line: 0,
-                    column: 0,
+        let text = std::fs::read(path).map_err(|e| io_error(path, &e))?;
+        let mut ini = Self::parse(&crate::load::decode_text(text), path);
+        ini.expand_includes(0)?;
+        Ok(ini)
+    }
+
+    /// Parses INI text; `path` is where it came from. Nothing in it is an error by itself:
+    /// LinuxCNC looks values up and ignores the rest. `#INCLUDE` lines are left as they are.
+    pub fn parse(text: &str, path: &Path) -> Self {
+        let mut ini = Self {
+            path: path.to_path_buf(),
+            files: vec![path.to_path_buf()],
+            lines: Vec::new(),
+        };
+        ini.lines = Self::lines_of(text, 0);
+        ini
+    }
+
+    fn lines_of(text: &str, file: usize) -> Vec<Line> {
+        let mut out: Vec<Line> = Vec::new();
+        let mut open: Option<Line> = None;
+        for (i, raw) in text.lines().enumerate() {
+            let raw = raw.strip_prefix('\u{feff}').unwrap_or(raw);
+            let (body, more) = match raw.strip_suffix('\\') {
+                Some(b) => (b, true),
+                None => (raw, false),
+            };
+            let line = match open.take() {
+                Some(mut l) => {
+                    l.text.push_str(body);
+                    l
+                }
+                None => Line {
+                    text: body.to_string(),
+                    file,
+                    line: i as u32 + 1,
                 },
+            };
+            if more {
+                open = Some(line);
+            } else {
+                out.push(line);
+            }
+        }
+        out.extend(open);
+        out
+    }
+
+    /// Expands `#INCLUDE file` lines (relative to the including file's folder), as LinuxCNC's
+    /// launcher does before anything reads the INI.
+    fn expand_includes(&mut self, depth: usize) -> Result<(), PathError> {
+        let Some(i) = self
+            .lines
+            .iter()
+            .position(|l| l.text.trim_start().starts_with("#INCLUDE"))
+        else {
+            return Ok(());
+        };
+        let at = self.lines[i].clone();
+        let name = at.text.trim_start()["#INCLUDE".len()..].trim();
+        let from = self.files[at.file].parent().unwrap_or(Path::new(""));
+        let target = {
+            let t = tilde(name);
+            if t.is_absolute() {
+                t
+            } else {
+                from.join(t)
+            }
+        };
+        let pos = SourcePos {
+            file: self.files[at.file].display().to_string(),
+            line: at.line,
+            column: 1,
+        };
+        if depth >= MAX_INCLUDE_DEPTH {
+            return Err(PathError::new(
+                pos,
+                PathErrorKind::Limit,
+                format!("#INCLUDE nested deeper than {MAX_INCLUDE_DEPTH} files"),
+                at.text.trim(),
+                "",
+            ));
+        }
+        let text = std::fs::read(&target).map_err(|e| {
+            PathError::new(
+                pos,
                 PathErrorKind::Io,
-                format!("cannot read the INI file: {e}"),
-                "",
-                "",
+                format!("cannot read the included file {}: {e}", target.display()),
+                at.text.trim(),
+                "a file beside the INI",
             )
         })?;
-        Ok(Self::parse(&crate::load::decode_text(text), path))
+        self.files.push(target);
+        let included = Self::lines_of(&crate::load::decode_text(text), self.files.len() - 1);
+        self.lines.splice(i..=i, included);
+        self.expand_includes(depth + 1)
     }
 
-    /// Parses INI text; `path` is where it came from. Lines that are neither a section, a
-    /// `NAME = VALUE` nor a comment are ignored, as LinuxCNC ignores them.
-    pub fn parse(text: &str, path: &Path) -> Self {
-        let mut entries = Vec::new();
-        let mut section = String::new();
-        let mut lines = text.lines().enumerate();
-        while let Some((i, line)) = lines.next() {
-            let t = line.trim().trim_start_matches('\u{feff}');
-            if t.is_empty() || t.starts_with('#') || t.starts_with(';') {
-                continue;
+    /// The value of `name` in `[section]`, found as `IniFile::Find` finds it.
+    fn find<'a, 'b>(&'a self, section: &'b str, name: &'b str) -> Option<Found<'a, 'b>> {
+        let header = format!("[{section}]");
+        let start = self
+            .lines
+            .iter()
+            .position(|l| l.text.trim_start().starts_with(&header))?;
+        for l in &self.lines[start + 1..] {
+            let t = l.text.trim_start();
+            if t.starts_with('[') {
+                return None;
             }
-            if let Some(rest) = t.strip_prefix('[') {
-                if let Some(end) = rest.find(']') {
-                    section = rest[..end].trim().to_string();
-                }
-                continue;
-            }
-            let Some((name, value)) = t.split_once('=') else {
+            let Some(rest) = t.strip_prefix(name) else {
                 continue;
             };
-            let mut value = value.trim().to_string();
-            while let Some(v) = value.strip_suffix('\\') {
-                value = v.trim_end().to_string();
-                match lines.next() {
-                    Some((_, more)) => {
-                        value.push(' ');
-                        value.push_str(more.trim());
-                    }
-                    None => break,
-                }
+            if !rest.starts_with([' ', '\t', '\r', '=']) {
+                continue;
             }
-            entries.push(Entry {
-                section: section.clone(),
-                name: name.trim().to_string(),
-                value,
-                line: i as u32 + 1,
+            let (_, value) = rest.split_once('=')?;
+            return Some(Found {
+                value: value.trim_start().trim_end_matches([' ', '\t', '\r']),
+                at: l,
+                section,
+                name,
             });
         }
-        Self {
-            path: path.to_path_buf(),
-            entries,
-        }
+        None
     }
 
-    fn entry(&self, section: &str, name: &str) -> Option<&Entry> {
-        self.entries
-            .iter()
-            .find(|e| e.section == section && e.name == name)
-    }
-
-    /// The value of `name` in `[section]` (the first, when repeated).
+    /// The value of `name` in `[section]`, as LinuxCNC finds it.
     pub fn get(&self, section: &str, name: &str) -> Option<&str> {
-        self.entry(section, name).map(|e| e.value.as_str())
+        self.find(section, name).map(|f| f.value)
     }
 
     /// The number `name` in `[section]` holds; `None` when absent or not a number.
@@ -151,7 +256,7 @@ impl LinuxCncIni {
         self.number(&section.to_ascii_uppercase(), &name.to_ascii_uppercase())
     }
 
-    /// Whether `#<_ini[…]>` reads the INI (`[RS274NGC] INI_VARS`, on unless set off).
+    /// Whether `#<_ini[…]>` reads the INI (`[RS274NGC] INI_VARS`, on unless set to 0).
     pub fn ini_vars(&self) -> bool {
         self.flag("RS274NGC", "INI_VARS")
             .ok()
@@ -159,67 +264,88 @@ impl LinuxCncIni {
             .unwrap_or(true)
     }
 
-    /// A yes/no setting (`1`/`0`, `TRUE`/`FALSE`, `YES`/`NO`, `ON`/`OFF`); `Ok(None)` when absent.
+    /// A yes/no setting, an integer as LinuxCNC converts it (non-zero: yes); `Ok(None)` when
+    /// absent.
+    ///
+    /// # Errors
+    /// A value that is not an integer (LinuxCNC would ignore it and keep its default, so
+    /// `TRUE` there means no: an error here says so).
     fn flag(&self, section: &str, name: &str) -> Result<Option<bool>, PathError> {
-        let Some(e) = self.entry(section, name) else {
+        let Some(f) = self.find(section, name) else {
             return Ok(None);
         };
-        match e.value.to_ascii_uppercase().as_str() {
-            "1" | "TRUE" | "YES" | "ON" => Ok(Some(true)),
-            "0" | "FALSE" | "NO" | "OFF" => Ok(Some(false)),
-            _ => Err(self.bad(e, "1 or 0 (TRUE/FALSE, YES/NO, ON/OFF)")),
+        match f.value.parse::<i64>() {
+            Ok(v) => Ok(Some(v != 0)),
+            Err(_) => Err(self.bad(
+                &f,
+                "an integer, 1 or 0 (LinuxCNC reads nothing else here and would keep its default)",
+            )),
         }
     }
 
-    fn positive(&self, section: &str, name: &str) -> Result<Option<f64>, PathError> {
-        let Some(e) = self.entry(section, name) else {
+    /// An arc tolerance, within LinuxCNC's bounds (`min` up to its default `max`).
+    fn tolerance(&self, name: &str, min: f64, max: f64) -> Result<Option<f64>, PathError> {
+        let Some(f) = self.find("RS274NGC", name) else {
             return Ok(None);
         };
-        match e.value.parse::<f64>() {
-            Ok(v) if v.is_finite() && v > 0.0 => Ok(Some(v)),
-            _ => Err(self.bad(e, "a positive number")),
+        match f.value.parse::<f64>() {
+            Ok(v) if (min..=max).contains(&v) => Ok(Some(v)),
+            _ => Err(self.bad(
+                &f,
+                &format!(
+                    "a number from {min} to {max:.6} (LinuxCNC refuses others and keeps {max:.6})"
+                ),
+            )),
         }
     }
 
-    fn bad(&self, e: &Entry, expected: &str) -> PathError {
+    fn bad(&self, f: &Found<'_, '_>, expected: &str) -> PathError {
         PathError::new(
-            SourcePos {
-                file: self.path.display().to_string(),
-                line: e.line,
-                column: 1,
-            },
+            self.pos(f.at),
             PathErrorKind::Semantic,
-            format!("bad [{}] {} in the INI file", e.section, e.name),
-            e.value.clone(),
+            format!("bad [{}] {} in the INI file", f.section, f.name),
+            f.value,
             expected,
         )
     }
 
-    /// The machine's linear units (`[TRAJ] LINEAR_UNITS`: `mm`, `metric`, `inch`, `in`,
-    /// `imperial`, or the units' length in mm, 1 or 25.4); `Ok(None)` when not stated.
+    fn pos(&self, l: &Line) -> SourcePos {
+        SourcePos {
+            file: self.files[l.file].display().to_string(),
+            line: l.line,
+            column: 1,
+        }
+    }
+
+    /// The machine's linear units (`[TRAJ] LINEAR_UNITS`: `mm`, `metric`, `in`, `inch`,
+    /// `imperial`, or units per mm, 1 or 1/25.4, as LinuxCNC's map has them); `Ok(None)` when
+    /// not stated.
     ///
     /// # Errors
     /// Another value, at its line.
     pub fn linear_units(&self) -> Result<Option<Units>, PathError> {
-        let Some(e) = self.entry("TRAJ", "LINEAR_UNITS") else {
+        let Some(f) = self.find("TRAJ", "LINEAR_UNITS") else {
             return Ok(None);
         };
-        let v = e.value.to_ascii_lowercase();
-        match v.as_str() {
-            "mm" | "metric" | "millimeter" | "millimetre" => Ok(Some(Units::Mm)),
-            "inch" | "in" | "imperial" => Ok(Some(Units::Inch)),
-            _ => match v.parse::<f64>() {
-                Ok(x) if (x - 1.0).abs() < 1e-9 => Ok(Some(Units::Mm)),
-                Ok(x) if (x - 25.4).abs() < 1e-9 => Ok(Some(Units::Inch)),
-                _ => Err(self.bad(e, "mm or inch")),
-            },
+        let v = f.value.to_ascii_lowercase();
+        let per_mm = match v.as_str() {
+            "mm" | "metric" => 1.0,
+            "in" | "inch" | "imperial" => 1.0 / 25.4,
+            _ => v.parse::<f64>().unwrap_or(f64::NAN),
+        };
+        if (per_mm - 1.0).abs() < 1e-6 {
+            Ok(Some(Units::Mm))
+        } else if (per_mm * 25.4 - 1.0).abs() < 1e-4 {
+            Ok(Some(Units::Inch))
+        } else {
+            Err(self.bad(&f, "mm or inch (or units per mm: 1 or 0.03937)"))
         }
     }
 
     /// What `M6` does besides changing the tool.
     ///
     /// # Errors
-    /// A setting that is not yes or no, at its line.
+    /// A setting that is not an integer, at its line.
     pub fn tool_change(&self) -> Result<ToolChangeMoves, PathError> {
         Ok(ToolChangeMoves {
             quill_up: self.flag("EMCIO", "TOOL_CHANGE_QUILL_UP")?.unwrap_or(false),
@@ -240,42 +366,38 @@ impl LinuxCncIni {
 
     /// The start-up G-code and where it is written (`[RS274NGC] RS274NGC_STARTUP_CODE`).
     pub fn startup_code(&self) -> Option<(&str, SourcePos)> {
-        let e = self.entry("RS274NGC", "RS274NGC_STARTUP_CODE")?;
-        (!e.value.trim().is_empty()).then(|| {
-            (
-                e.value.as_str(),
-                SourcePos {
-                    file: self.path.display().to_string(),
-                    line: e.line,
-                    column: 0,
-                },
-            )
+        let f = self.find("RS274NGC", "RS274NGC_STARTUP_CODE")?;
+        (!f.value.trim().is_empty()).then(|| {
+            let mut pos = self.pos(f.at);
+            pos.column = 0;
+            (f.value, pos)
         })
     }
 
-    /// A path the INI names, relative to the INI's folder unless absolute.
+    /// A path the INI names, relative to the INI's folder unless absolute (`~`: the home
+    /// folder).
     pub fn resolve(&self, p: &str) -> PathBuf {
-        let p = Path::new(p.trim());
+        let p = tilde(p);
         if p.is_absolute() {
-            p.to_path_buf()
+            p
         } else {
             self.path.parent().unwrap_or(Path::new("")).join(p)
         }
     }
 
-    /// The tool table it names (`[EMCIO] TOOL_TABLE`), resolved.
-    pub fn tool_table(&self) -> Option<PathBuf> {
-        self.get("EMCIO", "TOOL_TABLE")
-            .filter(|t| !t.trim().is_empty())
-            .map(|t| self.resolve(t))
+    /// The tool table it names (`[EMCIO] TOOL_TABLE`), resolved, and where it names it.
+    pub fn tool_table(&self) -> Option<(PathBuf, SourcePos)> {
+        let f = self.find("EMCIO", "TOOL_TABLE")?;
+        (!f.value.trim().is_empty()).then(|| (self.resolve(f.value), self.pos(f.at)))
     }
 }
 
 impl GcodeOptions {
     /// Reads programs as the machine `ini` configures (see [`LinuxCncIni`]), by LinuxCNC's
-    /// rules unless [`Self::dialect`] is already set: its subroutine path is searched, its arc tolerances and machine units apply (the units as
-    /// [`Self::initial_units`] and [`Self::parameter_units`]; a caller that has the user's own
-    /// units sets them afterwards), and [`Self::ini`] keeps it for the rest.
+    /// rules unless [`Self::dialect`] is already set: its subroutine path is searched, its arc
+    /// tolerances and machine units apply (the units as [`Self::initial_units`] and
+    /// [`Self::parameter_units`]; a caller that has the user's own units sets them
+    /// afterwards), and [`Self::ini`] keeps it for the rest.
     ///
     /// # Errors
     /// A setting with a value LinuxCNC would not take, at its line of the INI.
@@ -285,11 +407,13 @@ impl GcodeOptions {
                 self.subroutine_path.push(ini.resolve(d));
             }
         }
+        // LinuxCNC's bounds (interp_internal.hh): at least the minimum, at most the default.
         let mut tol: ArcTolerance = self.arc_radius_tolerance;
-        if let Some(v) = ini.positive("RS274NGC", "CENTER_ARC_RADIUS_TOLERANCE_INCH")? {
+        let d = ArcTolerance::LINUXCNC;
+        if let Some(v) = ini.tolerance("CENTER_ARC_RADIUS_TOLERANCE_INCH", 0.00004, d.abs_inch)? {
             tol.abs_inch = v;
         }
-        if let Some(v) = ini.positive("RS274NGC", "CENTER_ARC_RADIUS_TOLERANCE_MM")? {
+        if let Some(v) = ini.tolerance("CENTER_ARC_RADIUS_TOLERANCE_MM", 0.001, d.abs_mm)? {
             tol.abs_mm = v;
         }
         self.arc_radius_tolerance = tol;
@@ -313,10 +437,11 @@ mod tests {
     use super::*;
 
     const INI: &str =
-        "# a machine\n[EMC]\nDEBUG = 0\n\n[RS274NGC]\nSUBROUTINE_PATH = subs:../lib\n\
-        RS274NGC_STARTUP_CODE = G17 G20 \\\n   G40 G90\nINI_VARS = 1\n\n[VARS]\nTOOLCHANGE_X = 10\n\
-        TOOLCHANGE_X = 11\nNAME = text\n[EMCIO]\nTOOL_CHANGE_QUILL_UP = 1\nTOOL_TABLE = tool.tbl\n\
-        [TRAJ]\nLINEAR_UNITS = inch\n";
+        "# a machine\n[EMC]\nDEBUG = 0\n\n[RS274NGC]\nSUBROUTINE_PATH = subs:../lib:~/nc\n\
+        RS274NGC_STARTUP_CODE = G17 G20 \\\n G40 G90\nINI_VARS = 1\n\n[VARS]\nTOOLCHANGE_X = 10\n\
+        TOOLCHANGE_X = 11\nNAME = text\nJOINED = 1\\\n3\nWITH_NOTE = 4 # mm\n[EMCIO]\n\
+        TOOL_CHANGE_QUILL_UP = 2\nTOOL_TABLE = tool.tbl\n[TRAJ]\nLINEAR_UNITS = inch\n\
+        [EMCIO]\nTOOL_CHANGE_AT_G30 = 1\n";
 
     #[test]
     fn reads_what_linuxcnc_reads() {
@@ -325,29 +450,75 @@ mod tests {
         assert_eq!(ini.parameter("_ini[vars]name"), None);
         assert_eq!(ini.parameter("_ini[nosuch]toolchange_x"), None);
         assert_eq!(ini.parameter("_ini[vars]"), None);
+        // A continuation joins the next line as it is (inivar prints 13); a note after a
+        // value is part of it, so no number.
+        assert_eq!(ini.parameter("_ini[vars]joined"), Some(13.0));
+        assert_eq!(ini.parameter("_ini[vars]with_note"), None);
         let (code, pos) = ini.startup_code().unwrap();
-        assert_eq!(code, "G17 G20 G40 G90");
-        assert_eq!(pos.line, 7);
+        assert_eq!(code, "G17 G20  G40 G90");
+        assert_eq!((pos.line, pos.column), (7, 0));
+        // Any non-zero integer is yes; only the first [EMCIO] counts.
         assert!(ini.tool_change().unwrap().quill_up);
         assert!(!ini.tool_change().unwrap().at_g30);
-        assert_eq!(ini.tool_table(), Some(PathBuf::from("/m/tool.tbl")));
+        assert_eq!(ini.tool_table().unwrap().0, PathBuf::from("/m/tool.tbl"));
         assert_eq!(ini.linear_units().unwrap(), Some(Units::Inch));
         let o = GcodeOptions::default().with_linuxcnc_ini(ini).unwrap();
         assert_eq!(
-            o.subroutine_path,
-            vec![PathBuf::from("/m/subs"), PathBuf::from("/m/../lib")]
+            o.subroutine_path[..2],
+            [PathBuf::from("/m/subs"), PathBuf::from("/m/../lib")]
         );
+        if let Some(home) = std::env::var_os("HOME") {
+            assert_eq!(o.subroutine_path[2], PathBuf::from(home).join("nc"));
+        }
         assert_eq!(o.initial_units, Units::Inch);
         assert_eq!(o.parameter_units, Some(Units::Inch));
+        // Units per mm, as LinuxCNC's map gives them.
+        let per_mm = |v: &str| {
+            LinuxCncIni::parse(&format!("[TRAJ]\nLINEAR_UNITS = {v}\n"), Path::new("m.ini"))
+                .linear_units()
+        };
+        assert_eq!(per_mm("1").unwrap(), Some(Units::Mm));
+        assert_eq!(per_mm("0.03937").unwrap(), Some(Units::Inch));
+        assert!(per_mm("25.4").is_err());
     }
 
     #[test]
     fn a_bad_setting_names_its_line() {
-        let ini = LinuxCncIni::parse("[EMCIO]\nTOOL_CHANGE_AT_G30 = maybe\n", Path::new("m.ini"));
+        let ini = LinuxCncIni::parse("[EMCIO]\nTOOL_CHANGE_AT_G30 = TRUE\n", Path::new("m.ini"));
         let e = GcodeOptions::default().with_linuxcnc_ini(ini).unwrap_err();
         assert_eq!(e.pos.to_string(), "m.ini:2:1");
         assert!(e.message.contains("TOOL_CHANGE_AT_G30"), "{e}");
         let ini = LinuxCncIni::parse("[TRAJ]\nLINEAR_UNITS = furlong\n", Path::new("m.ini"));
         assert!(GcodeOptions::default().with_linuxcnc_ini(ini).is_err());
+        // Arc tolerances within LinuxCNC's bounds only.
+        for v in ["0.5", "0.0005"] {
+            let t = format!("[RS274NGC]\nCENTER_ARC_RADIUS_TOLERANCE_MM = {v}\n");
+            let ini = LinuxCncIni::parse(&t, Path::new("m.ini"));
+            assert!(
+                GcodeOptions::default().with_linuxcnc_ini(ini).is_err(),
+                "{v}"
+            );
+        }
+        let t = "[RS274NGC]\nCENTER_ARC_RADIUS_TOLERANCE_MM = 0.002\n";
+        let o = GcodeOptions::default()
+            .with_linuxcnc_ini(LinuxCncIni::parse(t, Path::new("m.ini")))
+            .unwrap();
+        assert_eq!(o.arc_radius_tolerance.abs_mm, 0.002);
+    }
+
+    #[test]
+    fn includes_are_expanded() {
+        let dir = std::env::temp_dir().join(format!("swarf-ini-{}", std::process::id()));
+        std::fs::create_dir_all(dir.join("inc")).unwrap();
+        std::fs::write(dir.join("m.ini"), "[EMC]\n#INCLUDE inc/traj.inc\n[EMCIO]\n").unwrap();
+        std::fs::write(dir.join("inc/traj.inc"), "[TRAJ]\nLINEAR_UNITS = inch\n").unwrap();
+        std::fs::write(dir.join("loop.ini"), "#INCLUDE loop.ini\n").unwrap();
+        let ini = LinuxCncIni::read(&dir.join("m.ini")).unwrap();
+        let looped = LinuxCncIni::read(&dir.join("loop.ini"));
+        let missing = LinuxCncIni::read(&dir.join("none.ini"));
+        std::fs::remove_dir_all(&dir).ok();
+        assert_eq!(ini.linear_units().unwrap(), Some(Units::Inch));
+        assert_eq!(looped.unwrap_err().kind, PathErrorKind::Limit);
+        assert_eq!(missing.unwrap_err().kind, PathErrorKind::Io);
     }
 }

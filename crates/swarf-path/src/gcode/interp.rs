@@ -520,6 +520,8 @@ impl<'t, 's> Interp<'t, 's> {
                 let mut e = self.to_error(f, &code, &lb);
                 e.pos.file = pos.file;
                 e.pos.line = pos.line;
+                // (A column would count within the code, not the INI's line.)
+                e.pos.column = 0;
                 e.message = format!("{} (in the INI's RS274NGC_STARTUP_CODE)", e.message);
                 return Err(e);
             }
@@ -1255,11 +1257,11 @@ impl<'t, 's> Interp<'t, 's> {
             .as_ref()
             .and_then(|i| i.tool_change().ok())
             .unwrap_or_default();
-        // The moves are made with the tool still in the spindle (none before the first M6):
-        // not the moment to take the selected one as loaded.
-        let selected = self.tool;
-        if !self.tool_loaded {
-            self.tool = 0;
+        // Before the first change the spindle holds no tool: the moves up are made with the
+        // one being loaded (they cut nothing), not with tool 0, which nothing defines.
+        if !self.tool_loaded && (how.quill_up || how.at_g30) {
+            self.tool_loaded = true;
+            self.emit(Canon::ToolChange { tool: self.tool });
         }
         if !how.with_spindle_on {
             self.dir = SpindleDir::Stopped;
@@ -1283,7 +1285,6 @@ impl<'t, 's> Interp<'t, 's> {
                 end: Axes::from_array(self.p),
             });
         }
-        self.tool = selected;
     }
 
     /// Puts tool length offset `t` in effect: the controlled point stays where it is, so the
@@ -3141,12 +3142,11 @@ impl ParamRead for Interp<'_, '_> {
     fn read_only_named(&self, name: &str) -> bool {
         self.system_parameter(name).is_some()
     }
-    fn ini_file(&self) -> Option<&std::path::Path> {
+    fn ini_file(&self) -> Option<(&std::path::Path, bool)> {
         self.opts
             .ini
             .as_ref()
-            .filter(|i| i.ini_vars())
-            .map(|i| i.path.as_path())
+            .map(|i| (i.path.as_path(), i.ini_vars()))
     }
 }
 
