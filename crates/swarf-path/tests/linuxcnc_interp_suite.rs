@@ -91,6 +91,7 @@ const PASSING_ELSEWHERE: &[&str] = &[
     "m98m99-05-M98-loops",
     "m98m99-06-error-mixed-sub-styles",
     "m98m99-08-sub-follows-main",
+    "m19",
     "magic_comments-param_format_printing",
     "oword-bug315",
     "oword-bug315-p2",
@@ -175,10 +176,11 @@ fn is_canonical_call(line: &str) -> bool {
             .strip_prefix('N')
             .is_some_and(|r| !r.is_empty() && r.chars().all(|c| c.is_ascii_digit() || c == '.'));
         let call = w[1].split('(').next().unwrap_or("");
+        // (Per-spindle calls have dots: `SPINDLE.0.WAIT_ORIENT_COMPLETE(2.0000)`.)
         n && w[1].contains('(')
             && call
                 .chars()
-                .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_')
+                .all(|c| c.is_ascii_uppercase() || c.is_ascii_digit() || c == '_' || c == '.')
     })
 }
 
