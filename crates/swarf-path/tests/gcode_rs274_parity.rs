@@ -276,3 +276,33 @@ fn abs_positions_include_the_tool_length_offset() {
         )
     );
 }
+
+/// Cutter compensation at the radius's own length, and the position after G40 and a tool
+/// change (nc_files' useful-subroutines.ngc, which rs274 runs and swarf refused): an entry move
+/// exactly as long as the tool radius and an arc the tool runs inside at exactly its radius are
+/// taken (rs274's radius comes a rounding under the nominal one through its unit conversions;
+/// swarf's millimetres compute the equality exactly), and a tool change right after G40
+/// re-reads the position where the tool stands (rs274 ends the block, the task re-synchronises):
+/// the `G0 Z` after it goes straight up from the compensated point.
+#[test]
+fn compensation_at_the_radius_and_the_position_after_a_change() {
+    // T1: a 1/8 in end mill (simtbl's), radius 0.0625 in.
+    let opts = GcodeOptions::default()
+        .with_parameter_units(Units::Inch)
+        .with_tool_diameter(1, 0.125 * 25.4);
+    let src = "g20 g17 g90\nt1 m6\nf60\ng0 z.01\ng0 x.3125 y.125\ng41 g0 x.25 y.125\n\
+               g3 x.25 y.125 i0 j-.0625\ng40\nt1 m6\ng0 z.02\nm2\n";
+    let mut pr = CanonicalPrinter::new(Vec::new());
+    read_gcode(src, "t.ngc", &opts, &mut pr).unwrap();
+    let out = String::from_utf8(pr.finish().unwrap()).unwrap();
+    assert_eq!(
+        out,
+        lines(
+            "N..... STRAIGHT_TRAVERSE(0.0000, 0.0000, 0.0100, 0.0000, 0.0000, 0.0000)
+             N..... STRAIGHT_TRAVERSE(0.3125, 0.1250, 0.0100, 0.0000, 0.0000, 0.0000)
+             N..... STRAIGHT_TRAVERSE(0.2500, 0.0625, 0.0100, 0.0000, 0.0000, 0.0000)
+             N..... ARC_FEED(0.2500, 0.0625, 0.2500, 0.0625, 1, 0.0100, 0.0000, 0.0000, 0.0000)
+             N..... STRAIGHT_TRAVERSE(0.2500, 0.0625, 0.0200, 0.0000, 0.0000, 0.0000)"
+        )
+    );
+}

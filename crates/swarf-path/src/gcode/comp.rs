@@ -33,16 +33,26 @@
 //!   farther than it was made to. A near-tangent corner is flushed as it is. `small` is
 //!   LinuxCNC's `TOLERANCE_CONCAVE_CORNER`, 0.05 rad.
 //! * **Arcs** keep their centre; the tool runs on the radius `R + r` (outside) or `R − r`
-//!   (inside, an error when the end radius `R ≤ r`).
+//!   (inside, an error when the end radius `R < r`: equal is taken, see [`EQUAL_RADIUS_MM`]).
 //! * **Exit**: after G40 the held move is flushed (checked as a moved end), the interpreter's
 //!   position is the programmed one, and the next move (straight: an arc is an error) goes
-//!   from the compensated position to its programmed end.
+//!   from the compensated position to its programmed end — unless a tool change comes first,
+//!   after which the position is re-read where the tool stands, as LinuxCNC's task does.
 //!
 //! The interpreter's position (`Interp::p`) stays the *programmed* one while compensation is
 //! on, so incremental words, arc centres and parameters read as LinuxCNC's do; the tool's
 //! position in the plane is kept here.
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
+
+/// How much shorter than the tool radius an entry move, an entry arc's radius or an arc the
+/// tool runs inside may be and still be taken as equal to it. rs274 refuses `distance <= radius`, but its radius comes through
+/// unit conversions of the tool table (inch to mm and back) that leave it a rounding under the
+/// nominal value, so an entry exactly as long as the radius runs on LinuxCNC (nc_files'
+/// useful-subroutines.ngc enters by one tool radius; rs274 2.9 takes a 0.25 in entry with a
+/// 0.5 in tool, and a 1.5875 mm one with a 0.125 in tool). A tolerance far under any
+/// machining quantity keeps that equality where swarf's millimetres compute it exactly.
+const EQUAL_RADIUS_MM: f64 = 1e-9;
 
 use super::block::{group, slot, Block};
 use super::interp::Interp;
@@ -200,6 +210,17 @@ impl Interp<'_, '_> {
         out[f] = q[0];
         out[s] = q[1];
         out
+    }
+
+    /// A tool change under LinuxCNC's rules: rs274 ends the block (INTERP_EXECUTE_FINISH) and
+    /// the task re-reads the position, which right after G40 is where the tool stands, the
+    /// compensated point, not the programmed one (nc_files' useful-subroutines.ngc: the next
+    /// `G0 Z` goes straight up there).
+    pub(crate) fn comp_resync_after_change(&mut self) {
+        if self.arc_not_allowed {
+            self.p = self.with_plane(&self.p, self.comp.tool);
+            self.arc_not_allowed = false;
+        }
     }
 
     /// G40/G41/G42/G41.1/G42.1 of a block (the cutter-compensation group).
@@ -446,7 +467,7 @@ impl Interp<'_, '_> {
                         ),
                     ));
                 }
-            } else if length <= r {
+            } else if length <= r - EQUAL_RADIUS_MM {
                 return Err(Fault::semantic(
                     span,
                     "length of cutter compensation entry move is not greater than the tool radius",
@@ -648,7 +669,7 @@ impl Interp<'_, '_> {
         }
         let inside = tool_inside(side, turn);
         let gamma = if inside {
-            if arc_radius <= r {
+            if arc_radius <= r - EQUAL_RADIUS_MM {
                 return Err(Fault::semantic(
                     span,
                     format!(
@@ -805,7 +826,7 @@ impl Interp<'_, '_> {
         let end2 = self.plane_of(&end);
         let inside = (side == Side::Left) == (turn > 0);
         let rad = dist(from, c);
-        if inside && rad <= r {
+        if inside && rad <= r - EQUAL_RADIUS_MM {
             return Err(Fault::semantic(
                 span,
                 format!(
@@ -865,7 +886,7 @@ impl Interp<'_, '_> {
         if self.fanuc {
             return Ok(());
         }
-        if dist(self.comp.tool, end) <= r {
+        if dist(self.comp.tool, end) <= r - EQUAL_RADIUS_MM {
             return Err(Fault::semantic(
                 span,
                 "radius of cutter compensation entry arc is not greater than the tool radius",

@@ -1250,7 +1250,8 @@ impl<'t, 's> Interp<'t, 's> {
     /// What LinuxCNC's `M6` does before the change (convert_tool_change): the spindle stops
     /// (unless the INI's `TOOL_CHANGE_WITH_SPINDLE_ON`), Z rapids up to machine Z0
     /// (`TOOL_CHANGE_QUILL_UP`), then every axis to the G30 position (`TOOL_CHANGE_AT_G30`).
-    fn tool_change_moves(&mut self) {
+    /// Whether it moved (from the programmed point, as rs274's moves start).
+    fn tool_change_moves(&mut self) -> bool {
         let how = self
             .opts
             .ini
@@ -1285,6 +1286,7 @@ impl<'t, 's> Interp<'t, 's> {
                 end: Axes::from_array(self.p),
             });
         }
+        how.quill_up || how.at_g30
     }
 
     /// Puts tool length offset `t` in effect: the controlled point stays where it is, so the
@@ -1414,7 +1416,11 @@ impl<'t, 's> Interp<'t, 's> {
                 ));
             }
             if !self.fanuc {
-                self.tool_change_moves();
+                if self.tool_change_moves() {
+                    self.arc_not_allowed = false;
+                } else {
+                    self.comp_resync_after_change();
+                }
             }
             self.tool_loaded = true;
             self.read_only.loaded_tool = self.tool;
