@@ -489,9 +489,6 @@ o20 while [#1 GT 0]
 o30 repeat [3]
   G0 Z#1
   #1=[#1+1]
-  o40 if [#1 GE 2]
-    o30 break
-  o40 endif
 o30 endrepeat
 M2
 ";
@@ -514,6 +511,15 @@ M2
         (5.0, 1.0, 1.0),
     ];
     assert_eq!(got, want);
+    // A break out of a repeat loop: rs274 2.9 refuses it ("no matching while/do label"), at
+    // the break's line, with the moves before it made.
+    let src = src.replace(
+        "  #1=[#1+1]\no30 endrepeat",
+        "  #1=[#1+1]\n  o40 if [#1 GE 2]\n    o30 break\n  o40 endif\no30 endrepeat",
+    );
+    let e = err(&src);
+    assert_eq!(e.pos.line, 20, "{e}");
+    assert!(e.message.contains("while/do"), "{e}");
 }
 
 #[test]

@@ -306,3 +306,49 @@ fn compensation_at_the_radius_and_the_position_after_a_change() {
         )
     );
 }
+
+/// rs274's `doing_break`: a `break` it reads sets it — also one it passes while skipping a
+/// `while` whose condition ended it (the break's `if` never ran) — and only the end of a `do`
+/// loop clears it, not looping back that once. So after a `while` loop with a `break` in it,
+/// the next do-while loop runs once (LinuxCNC 2.9's interp_o_word.cc; found by differential
+/// testing, 2 of 400 random programs). A `break` or `continue` naming a `repeat` is refused.
+#[test]
+fn a_break_in_a_while_loop_ends_the_next_do_loop_early() {
+    // The break never runs: the while ends by its condition.
+    same(
+        "G21\n#43 = 0\no436 while [#43 LT 2]\n#43 = [#43 + 1]\no1436 if [0]\no436 break\n\
+         o1436 endif\no436 endwhile\n#49 = 0\no946 do\n#49 = [#49 + 1]\n(debug,it #49)\n\
+         o946 while [#49 LT 3]\nM2\n",
+        "N..... MESSAGE(\"it 1.000000\")",
+    );
+    // The break runs: the next do loop runs once, the one after it as written.
+    same(
+        "G21\n#43 = 0\no436 while [#43 LT 5]\n#43 = [#43 + 1]\no1436 if [#43 EQ 2]\n\
+         o436 break\no1436 endif\no436 endwhile\n#49 = 0\no946 do\n#49 = [#49 + 1]\n\
+         (debug,it #49)\no946 while [#49 LT 3]\n#50 = 0\no947 do\n#50 = [#50 + 1]\n\
+         (debug,again #50)\no947 while [#50 LT 2]\nM2\n",
+        "N..... MESSAGE(\"it 1.000000\")
+         N..... MESSAGE(\"again 1.000000\")
+         N..... MESSAGE(\"again 2.000000\")",
+    );
+    // A do loop's own break is cleared at its end: the next do loop is whole.
+    same(
+        "G21\n#1 = 0\no1 do\n#1 = [#1 + 1]\no2 if [#1 EQ 2]\no1 break\no2 endif\n\
+         o1 while [#1 LT 5]\n#3 = 0\no3 do\n#3 = [#3 + 1]\n(debug,d #3)\no3 while [#3 LT 2]\nM2\n",
+        "N..... MESSAGE(\"d 1.000000\")
+         N..... MESSAGE(\"d 2.000000\")",
+    );
+    // rs274: "no matching while/do label: 'o436 break' (found 'repeat' in line 2)", at the
+    // break's line, also where the repeat's count skips its body.
+    stops_at(
+        "G21\no436 repeat [0]\no436 break\no436 endrepeat\nM2\n",
+        3,
+        "",
+    );
+    let e = stops_at(
+        "G21\no1 repeat [2]\n(debug,r)\no1 continue\no1 endrepeat\nM2\n",
+        4,
+        "N..... MESSAGE(\"r\")",
+    );
+    assert!(e.message.contains("repeat"), "{e}");
+}

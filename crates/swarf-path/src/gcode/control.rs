@@ -203,8 +203,9 @@ impl Interp<'_, '_> {
                     .clone()
                     .filter(|t| t.kind == LoopKind::Do && t.name == name)
                 {
-                    // The tail of a do-while loop.
-                    if v != 0.0 {
+                    // The tail of a do-while loop. (rs274 does not loop back while its
+                    // `doing_break` is set, and clears it here.)
+                    if v != 0.0 && !std::mem::take(&mut self.doing_break) {
                         self.count_iteration(span)?;
                         self.at = t.body;
                     } else {
@@ -229,7 +230,7 @@ impl Interp<'_, '_> {
                     if reentry {
                         self.ctl.pop();
                     }
-                    self.skip_to(name, &[Kw::Endwhile], span).map(|_| ())
+                    self.skip_loop_body(name, Kw::Endwhile, span)
                 }
             }
             Kw::Endwhile => {
@@ -262,7 +263,7 @@ impl Interp<'_, '_> {
                     });
                     Ok(())
                 } else {
-                    self.skip_to(name, &[Kw::Endrepeat], span).map(|_| ())
+                    self.skip_loop_body(name, Kw::Endrepeat, span)
                 }
             }
             Kw::Endrepeat => {
@@ -320,6 +321,14 @@ impl Interp<'_, '_> {
                     .rev()
                     .find(|&k| self.ctl[k].name == name)
                 else {
+                    let level = self.frames.len();
+                    let repeat = matches!(
+                        self.o_labels.get(&(level, name.to_vec())),
+                        Some((Kw::Repeat, _))
+                    );
+                    if repeat && !self.fanuc {
+                        return Err(Self::not_a_while_or_do(kw, name, span));
+                    }
                     return Err(Fault::semantic(
                         span,
                         format!(
@@ -330,7 +339,13 @@ impl Interp<'_, '_> {
                     ));
                 };
                 let kind = self.ctl[k].kind;
+                if kind == LoopKind::Repeat && !self.fanuc {
+                    return Err(Self::not_a_while_or_do(kw, name, span));
+                }
                 if kw == Kw::Break {
+                    // (Out of a `do`, rs274 skips to its closing `while`, which clears the
+                    // flag again; out of a `while` or `repeat` nothing clears it.)
+                    self.doing_break |= !self.fanuc && kind != LoopKind::Do;
                     self.ctl.truncate(k);
                     self.skip_to(name, &[kind.end()], span).map(|_| ())
                 } else {
@@ -342,6 +357,43 @@ impl Interp<'_, '_> {
                 }
             }
         }
+    }
+
+    /// Skips a `while` or `repeat` whose condition or count ends it, to the line after its
+    /// closing `end`. rs274 skips by reading every line of the loop's name on the way, and a
+    /// `break` of that name (in an `if` that never ran) sets its `doing_break` flag, which only
+    /// the end of a `do` loop clears: the next do-while loop then runs once (LinuxCNC 2.9,
+    /// interp_o_word.cc; seen in rs274's output for `o1 while [0]` … `o1 break` … `o1
+    /// endwhile` then `o2 do` … `o2 while [#1 LT 3]`).
+    /// A `break` or `continue` naming a `repeat` is an error there as anywhere.
+    fn skip_loop_body(&mut self, name: &[u8], end: Kw, span: Span) -> Res<()> {
+        if !self.fanuc {
+            while let Some((kw @ (Kw::Break | Kw::Continue), at, after)) =
+                self.scan(self.at, name, &[Kw::Break, Kw::Continue, end])
+            {
+                if end == Kw::Endrepeat {
+                    // Read from its own line, where it is refused.
+                    self.at = at;
+                    return Ok(());
+                }
+                self.doing_break |= kw == Kw::Break;
+                self.at = after;
+            }
+        }
+        self.skip_to(name, &[end], span).map(|_| ())
+    }
+
+    /// rs274's refusal of a `break` or `continue` whose name is a `repeat`'s.
+    fn not_a_while_or_do(kw: Kw, name: &[u8], span: Span) -> Fault {
+        Fault::semantic(
+            span,
+            format!(
+                "no matching while/do label: o{} {} names a repeat loop (LinuxCNC breaks out of, \
+                 or continues, while and do loops only)",
+                String::from_utf8_lossy(name),
+                if kw == Kw::Break { "break" } else { "continue" }
+            ),
+        )
     }
 
     /// rs274's O-word offset table: in one call level an O name starts one `if`, `while` or

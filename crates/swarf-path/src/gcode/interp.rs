@@ -230,6 +230,10 @@ pub(crate) struct Interp<'t, 's> {
     pub(crate) seen_code: bool,
     /// Set when a false `if` jumps to an `elseif`, whose condition must then be tested.
     pub(crate) if_probe: bool,
+    /// rs274's `doing_break`: set by a `break` it reads (also one it passes while skipping a
+    /// `while` or `repeat` of that name), cleared only by the end of a `do` loop, which then
+    /// does not loop back (see `control.rs`).
+    pub(crate) doing_break: bool,
     /// The O names an `if`, `while`, `do` or `repeat` used at each call level, and where:
     /// rs274 refuses one name for two of them in a level (its O-word offset table).
     pub(crate) o_labels: HashMap<(usize, Vec<u8>), (Kw, Cursor)>,
@@ -405,6 +409,7 @@ impl<'t, 's> Interp<'t, 's> {
             tape: false,
             seen_code: false,
             if_probe: false,
+            doing_break: false,
             o_labels: HashMap::new(),
             skip_buf: LineBuf::default(),
             comp: Comp::default(),
