@@ -139,6 +139,12 @@ pub struct ReadOptions {
 /// # Errors
 /// [`PathErrorKind::Io`] naming the file.
 pub fn read_text(path: &Path) -> Result<String, PathError> {
+    read_text_of(path, "the program")
+}
+
+/// [`read_text`] of a file that is `what` (`the program`, `the INI file`), which its error
+/// names.
+pub(crate) fn read_text_of(path: &Path, what: &str) -> Result<String, PathError> {
     let bytes = std::fs::read(path).map_err(|e| {
         PathError::new(
             SourcePos {
@@ -147,7 +153,7 @@ pub fn read_text(path: &Path) -> Result<String, PathError> {
                 column: 0,
             },
             PathErrorKind::Io,
-            format!("cannot read the program: {e}"),
+            format!("cannot read {what}: {e}"),
             "",
             "",
         )

@@ -6,7 +6,9 @@
 
 use std::path::Path;
 
-use swarf_path::canonical::CanonicalPrinter;
+mod common;
+
+use common::{canonical, listing as lines};
 use swarf_path::gcode::{read_gcode, GcodeOptions, LinuxCncIni};
 use swarf_path::{PathError, Units};
 
@@ -17,20 +19,7 @@ fn canon(src: &str, ini: Option<&str>) -> (String, Option<PathError>) {
         opts = opts.with_linuxcnc_ini(ini).unwrap();
     }
     // The standalone rs274 keeps its offset parameters in inches.
-    let opts = opts.with_parameter_units(Units::Inch);
-    let mut pr = CanonicalPrinter::new(Vec::new());
-    let r = read_gcode(src, "t.ngc", &opts, &mut pr);
-    let out = String::from_utf8(pr.finish().unwrap()).unwrap();
-    (out, r.err())
-}
-
-fn lines(expected: &str) -> String {
-    expected
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty())
-        .map(|l| format!(" {l}\n"))
-        .collect()
+    canonical(src, &opts.with_parameter_units(Units::Inch))
 }
 
 #[track_caller]

@@ -5,27 +5,19 @@
 //! printed it (the motion calls and `MESSAGE`s); where rs274 stopped with an error, its message
 //! is quoted in a comment and swarf must stop at the same line.
 
-use swarf_path::canonical::CanonicalPrinter;
-use swarf_path::gcode::{read_gcode, GcodeOptions};
+mod common;
+
+use common::{canonical, listing as lines};
+use swarf_path::gcode::GcodeOptions;
 use swarf_path::{PathError, Units};
 
 /// swarf's canonical print of `src`, as `swarf path --canonical` prints it, with the
 /// standalone rs274's offset parameters in inches; and the error that stopped it, if any.
 fn canon(src: &str) -> (String, Option<PathError>) {
-    let opts = GcodeOptions::default().with_parameter_units(Units::Inch);
-    let mut pr = CanonicalPrinter::new(Vec::new());
-    let r = read_gcode(src, "t.ngc", &opts, &mut pr);
-    let out = String::from_utf8(pr.finish().unwrap()).unwrap();
-    (out, r.err())
-}
-
-fn lines(expected: &str) -> String {
-    expected
-        .lines()
-        .map(str::trim)
-        .filter(|l| !l.is_empty())
-        .map(|l| format!(" {l}\n"))
-        .collect()
+    canonical(
+        src,
+        &GcodeOptions::default().with_parameter_units(Units::Inch),
+    )
 }
 
 #[track_caller]
@@ -257,16 +249,12 @@ fn abs_positions_include_the_tool_length_offset() {
     let opts = GcodeOptions::default()
         .with_parameter_units(Units::Inch)
         .with_tool_offsets(2, [0.0, 0.0, 2.54, 0.0, 0.0, 0.0]);
-    let mut pr = CanonicalPrinter::new(Vec::new());
-    read_gcode(
+    let (out, err) = canonical(
         "G21\nG0 X1 Y2 Z3\nG43 H2\n(DEBUG, #<_abs_x> #<_abs_y> #<_abs_z> #<_z>)\n\
          G43.1 Z-1\n(DEBUG, #<_abs_z> #<_z>)\nM2\n",
-        "t.ngc",
         &opts,
-        &mut pr,
-    )
-    .unwrap();
-    let out = String::from_utf8(pr.finish().unwrap()).unwrap();
+    );
+    assert!(err.is_none(), "{err:?}");
     assert_eq!(
         out,
         lines(
@@ -292,9 +280,8 @@ fn compensation_at_the_radius_and_the_position_after_a_change() {
         .with_tool_diameter(1, 0.125 * 25.4);
     let src = "g20 g17 g90\nt1 m6\nf60\ng0 z.01\ng0 x.3125 y.125\ng41 g0 x.25 y.125\n\
                g3 x.25 y.125 i0 j-.0625\ng40\nt1 m6\ng0 z.02\nm2\n";
-    let mut pr = CanonicalPrinter::new(Vec::new());
-    read_gcode(src, "t.ngc", &opts, &mut pr).unwrap();
-    let out = String::from_utf8(pr.finish().unwrap()).unwrap();
+    let (out, err) = canonical(src, &opts);
+    assert!(err.is_none(), "{err:?}");
     assert_eq!(
         out,
         lines(

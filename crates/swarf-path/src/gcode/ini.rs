@@ -73,20 +73,6 @@ pub struct ToolChangeMoves {
 /// Deepest nesting of `#INCLUDE` (a file including itself ends there).
 const MAX_INCLUDE_DEPTH: usize = 8;
 
-fn io_error(path: &Path, e: &std::io::Error) -> PathError {
-    PathError::new(
-        SourcePos {
-            file: path.display().to_string(),
-            line: 0,
-            column: 0,
-        },
-        PathErrorKind::Io,
-        format!("cannot read the INI file: {e}"),
-        "",
-        "",
-    )
-}
-
 /// `~` or `~/…` in the home folder (LinuxCNC's `TildeExpansion`); other paths as written.
 fn tilde(p: &str) -> PathBuf {
     let p = p.trim();
@@ -105,8 +91,8 @@ impl LinuxCncIni {
     /// [`PathErrorKind::Io`] when it or a file it includes cannot be read (an include names
     /// the line that asks for it).
     pub fn read(path: &Path) -> Result<Self, PathError> {
-        let text = std::fs::read(path).map_err(|e| io_error(path, &e))?;
-        let mut ini = Self::parse(&crate::load::decode_text(text), path);
+        let text = crate::load::read_text_of(path, "the INI file")?;
+        let mut ini = Self::parse(&text, path);
         ini.expand_includes(0)?;
         Ok(ini)
     }

@@ -4,6 +4,8 @@
 use swarf_geom::math::Vec3;
 use swarf_path::apt::{read_apt, AptOptions};
 use swarf_path::canon::Recorder;
+use swarf_path::canonical::CanonicalPrinter;
+use swarf_path::gcode::{read_gcode, GcodeOptions};
 use swarf_path::{Canon, PathError, Program};
 
 /// The events of an APT program that reads.
@@ -49,5 +51,25 @@ pub(crate) fn fanuc_warnings(src: &str) -> Vec<(u32, String)> {
     p.warnings
         .into_iter()
         .map(|w| (w.line, w.message))
+        .collect()
+}
+
+/// swarf's canonical print of G-code `src` read with `opts`, as `swarf path --canonical`
+/// prints it, and the error that stopped it, if any.
+pub(crate) fn canonical(src: &str, opts: &GcodeOptions) -> (String, Option<PathError>) {
+    let mut pr = CanonicalPrinter::new(Vec::new());
+    let r = read_gcode(src, "t.ngc", opts, &mut pr);
+    let out = String::from_utf8(pr.finish().unwrap()).unwrap();
+    (out, r.err())
+}
+
+/// An rs274 listing written into a test (one call a line, indented as the test likes) as the
+/// canonical printer prints it.
+pub(crate) fn listing(expected: &str) -> String {
+    expected
+        .lines()
+        .map(str::trim)
+        .filter(|l| !l.is_empty())
+        .map(|l| format!(" {l}\n"))
         .collect()
 }
