@@ -66,6 +66,9 @@ pub struct MoveBuilder {
     feed_mode: FeedMode,
     /// [`Canon::RotaryFeedCombined`]'s rule, stamped on each move.
     rotary_feed_combined: bool,
+    /// The program is in inches ([`Canon::Units`]): Fanuc's combined feed counts a degree as
+    /// an inch then.
+    inch: bool,
     spindle_rpm: f64,
     spindle_dir: SpindleDir,
     tool: u32,
@@ -115,6 +118,7 @@ impl MoveBuilder {
             feed: 0.0,
             feed_mode: FeedMode::PerMinute,
             rotary_feed_combined: false,
+            inch: false,
             spindle_rpm: 0.0,
             spindle_dir: SpindleDir::Stopped,
             tool: 0,
@@ -452,7 +456,11 @@ impl MoveBuilder {
             line,
             axis_source,
             tcp: self.machine.tcp,
-            rotary_feed_combined: self.rotary_feed_combined,
+            rotary_feed_combined: self.rotary_feed_combined.then_some(if self.inch {
+                25.4
+            } else {
+                1.0
+            }),
         };
         self.tool_zero_moved |= m.tool == 0;
         self.moves.push(m);
@@ -728,8 +736,8 @@ impl CanonSink for MoveBuilder {
             }
             // (A negative or non-finite dwell is no wait.)
             Canon::Dwell(s) if s.is_finite() && *s > 0.0 => self.dwell_s += s,
-            Canon::Units(_)
-            | Canon::Plane(_)
+            Canon::Units(u) => self.inch = *u == crate::Units::Inch,
+            Canon::Plane(_)
             | Canon::ToolLengthOffset(_)
             | Canon::Dwell(_)
             | Canon::Comment(_)

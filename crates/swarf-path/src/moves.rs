@@ -112,10 +112,12 @@ pub struct Move {
     /// [`Canon::ToolCentrePoint`](crate::Canon::ToolCentrePoint)); otherwise the machine's
     /// controlled point. Only matters on a machine with rotary joints.
     pub tcp: bool,
-    /// The feed applies to the combined distance of X Y Z and the rotary angles (degrees as
-    /// mm), as Fanuc and Haas controls apply it ([`Canon::RotaryFeedCombined`](crate::Canon::RotaryFeedCombined)); else to
-    /// X Y Z alone, and to the angles when X Y Z stand still.
-    pub rotary_feed_combined: bool,
+    /// `Some(mm)`: the feed applies to the combined distance of X Y Z and the rotary angles, a
+    /// degree counted as one program unit (`mm`: 1 in a millimetre program, 25.4 in an inch
+    /// one), as Fanuc and Haas controls apply it
+    /// ([`Canon::RotaryFeedCombined`](crate::Canon::RotaryFeedCombined)); `None`: to X Y Z
+    /// alone, and to the angles when X Y Z stand still.
+    pub rotary_feed_combined: Option<f64>,
 }
 
 impl Move {
@@ -124,8 +126,8 @@ impl Move {
     /// revolution) to the programmed X Y Z in joint space — the arc length for arcs — and to
     /// the rotary angle (degrees) when X Y Z stand still, as LinuxCNC, Heidenhain and
     /// Sinumerik (FGROUP X Y Z) do — or, under Fanuc's and Haas's rule
-    /// ([`Self::rotary_feed_combined`]), to √(ΔX² + ΔY² + ΔZ² + ΔA² + ΔB² + ΔC²), the angles in
-    /// degrees counted as mm; on CL data and under tool centre point control the axes
+    /// ([`Self::rotary_feed_combined`]), to √(ΔX² + ΔY² + ΔZ² + ΔA² + ΔB² + ΔC²) in program
+    /// units, a degree counted as one; on CL data and under tool centre point control the axes
     /// are the tip's, so the feed is the tip's. Joint motion is linear in the move's
     /// parameter, so a part `ds` of the move takes `ds` times this.
     pub fn feed_minutes(&self, tip_length: f64) -> Option<f64> {
@@ -138,8 +140,8 @@ impl Move {
                 _ => Vec3::new(b.x - a.x, b.y - a.y, b.z - a.z).length(),
             };
             let abc = Vec3::new(b.a - a.a, b.b - a.b, b.c - a.c).length();
-            if self.rotary_feed_combined {
-                xyz.hypot(abc)
+            if let (Some(mm_per_deg), false) = (self.rotary_feed_combined, self.tcp) {
+                xyz.hypot(abc * mm_per_deg)
             } else if xyz > crate::summary::ZERO_LENGTH_MM {
                 xyz
             } else {

@@ -1403,3 +1403,31 @@ fn a_rotary_move_feeds_over_the_combined_distance() {
         assert!((minutes(src, d) - 0.9).abs() < 1e-12);
     }
 }
+
+/// Fanuc's combined feed in an inch program counts a degree as an inch (√(1² + 90²)/10 =
+/// 9.0006 min for `G1 X1. A90. F10.` in G20), and under tool centre point control (G43.4) F is
+/// the tip's speed, the rotary axes left out.
+#[test]
+fn the_combined_feed_counts_degrees_in_program_units_and_not_under_tcp() {
+    use swarf_path::load::{read_program_str, ReadOptions};
+    use swarf_path::Machine;
+    let minutes = |src: &str, machine: &str| {
+        let opts = ReadOptions {
+            gcode: GcodeOptions::default().with_dialect(GcodeDialect::Fanuc),
+            ..ReadOptions::default()
+        };
+        let p = read_program_str(src, "t.nc", Machine::from_name(machine).unwrap(), &opts).unwrap();
+        let m = p.moves.last().unwrap();
+        m.feed_minutes(m.start.tip.distance(m.end.tip)).unwrap()
+    };
+    let t = minutes(
+        "G20 G90 G94\nG0 X0 Y0 Z1. A0\nG1 X1. A90. F10.\nM30\n",
+        "4axis-a",
+    );
+    assert!((t - 8101f64.sqrt() / 10.0).abs() < 1e-12, "{t}");
+    let t = minutes(
+        "G21 G90 G94\nG0 X0 Y0 Z50. A0 C0\nG43.4 H1\nG1 X10. A90. F100.\nM30\n",
+        "table-ac",
+    );
+    assert!((t - 0.1).abs() < 1e-9, "{t}");
+}

@@ -339,3 +339,76 @@ fn a_break_in_a_while_loop_ends_the_next_do_loop_early() {
     );
     assert!(e.message.contains("repeat"), "{e}");
 }
+
+/// The rest of rs274's `doing_break`, found by review: a do loop's end clears it even when it
+/// does not loop back (its condition false, or a break out of it, after which rs274 still
+/// reads the closing `while`), and a `continue` reads the breaks of its loop's name on its way
+/// to the loop's end, so one in an `if` that never runs still ends a do loop there.
+#[test]
+fn a_do_loops_end_clears_the_break_and_a_continue_reads_breaks() {
+    // (T1 is simtbl's 1/8 in end mill.)
+    let opts = GcodeOptions::default()
+        .with_parameter_units(Units::Inch)
+        .with_tool_diameter(1, 0.125 * 25.4);
+    let same_with = |src: &str, expected: &str| {
+        let (out, err) = canonical(src, &opts);
+        assert!(err.is_none(), "{err:?}");
+        assert_eq!(out, lines(expected));
+    };
+    let three = "N..... STRAIGHT_FEED(1.0000, 1.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+                 N..... STRAIGHT_FEED(2.0000, 1.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+                 N..... STRAIGHT_FEED(3.0000, 1.0000, 0.0000, 0.0000, 0.0000, 0.0000)";
+    same_with(
+        "G20 G17 G90 G94\no1 while [1]\n o1 break\no1 endwhile\no2 do\n G1 X1 F10\no2 while [0]\n\
+         #1=0\no3 do\n #1=[#1+1]\n G1 X#1 Y1\no3 while [#1 LT 3]\nM2\n",
+        &format!("N..... STRAIGHT_FEED(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n{three}"),
+    );
+    same_with(
+        "G20 G17 G90 G94 F10\no1 while [1]\n o1 break\no1 endwhile\no2 do\n G1 X1\n o2 break\n\
+         o2 while [1]\n#3=0\no3 do\n #3=[#3+1]\n G1 X#3 Y1\no3 while [#3 LT 3]\nM2\n",
+        &format!("N..... STRAIGHT_FEED(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)\n{three}"),
+    );
+    same_with(
+        "G20 G17 G90 G94 F10\n#1=0\no1 do\n #1=[#1+1]\n o2 if [#1 EQ 2]\n  o1 continue\n o2 endif\n\
+         G1 X#1\n o3 if [#1 GT 10]\n  o1 break\n o3 endif\no1 while [#1 LT 4]\nM2\n",
+        "N..... STRAIGHT_FEED(1.0000, 0.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+    // A move in the block of the tool change starts from the programmed point; the position is
+    // re-read after the block.
+    same_with(
+        "G20 G17 G90 G94 F10\nT1 M6\nG0 X1 Y1\nG41 G1 X1 Y0.5\nG1 X1.5 Y0.5\nG40\nT2 M6 G1 X3\n\
+         G1 Y2\nM2\n",
+        "N..... STRAIGHT_TRAVERSE(1.0000, 1.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(1.0625, 0.5625, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(1.5000, 0.5625, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(3.0000, 0.5000, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(3.0000, 2.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+    // rs274: "The move just after exiting cutter compensation mode must be straight, not an
+    // arc" — the change in between does not lift that.
+    let (_, err) = canonical(
+        "G20 G17 G90 G94 F10\nT1 M6\nG0 X1 Y1\nG41 G1 X1 Y0.5\nG1 X1.5 Y0.5\nG40\nT2 M6\n\
+         G2 X3 Y0.5 R1\nM2\n",
+        &opts,
+    );
+    assert_eq!(err.unwrap().pos.line, 8);
+    // An R arc the tool runs inside at exactly a table radius is taken, as an I J one.
+    same_with(
+        "G20 G17 G90 G94 F10\nT1 M6\nG0 X0 Y1\nG41 G1 X0 Y0\nG1 X1 Y0\nG3 X1 Y0.125 R0.0625\n\
+         G1 X0 Y0.125\nG40 G1 X0 Y1\nM2\n",
+        "N..... STRAIGHT_TRAVERSE(0.0000, 1.0000, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(0.0625, 0.0625, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(1.0000, 0.0625, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... ARC_FEED(1.0000, 0.0625, 1.0000, 0.0625, 1, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(-0.0000, 0.0625, 0.0000, 0.0000, 0.0000, 0.0000)
+         N..... STRAIGHT_FEED(0.0000, 1.0000, 0.0000, 0.0000, 0.0000, 0.0000)",
+    );
+    // G41.1's D is taken as written: an entry of exactly its radius is refused ("Length of
+    // cutter compensation entry move is not greater than the tool radius").
+    let (_, err) = canonical(
+        "G20 G17 G90 G94 F10\nG0 X0.3125 Y0.125\nG41.1 D0.125 G1 X0.25 Y0.125\nG1 X0 Y0.125\n\
+         G40 G1 X0 Y1\nM2\n",
+        &opts,
+    );
+    assert_eq!(err.unwrap().pos.line, 3);
+}

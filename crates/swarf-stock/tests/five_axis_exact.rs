@@ -55,7 +55,7 @@ fn one_move(
             line: 7,
             axis_source: source,
             tcp: machine.tcp,
-            rotary_feed_combined: false,
+            rotary_feed_combined: None,
         }],
         files: vec!["exact".into()],
         machine,

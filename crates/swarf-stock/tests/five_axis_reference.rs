@@ -274,7 +274,7 @@ fn blank_move(kind: MoveKind, start: Pose, end: Pose, j0: Axes, j1: Axes) -> Mov
         line: 1,
         axis_source: AxisSource::Machine,
         tcp: false,
-        rotary_feed_combined: false,
+        rotary_feed_combined: None,
     }
 }
 

@@ -636,7 +636,7 @@ mod tests {
             line: 1,
             axis_source: AxisSource::Machine,
             tcp: mach.tcp,
-            rotary_feed_combined: false,
+            rotary_feed_combined: None,
         };
         Program {
             moves: vec![mv],

@@ -45,8 +45,8 @@
 
 use std::f64::consts::{FRAC_PI_2, PI, TAU};
 
-/// How much shorter than the tool radius an entry move, an entry arc's radius or an arc the
-/// tool runs inside may be and still be taken as equal to it. rs274 refuses `distance <= radius`, but its radius comes through
+/// How much shorter than a tool table's radius an entry move, an entry arc's radius or an arc
+/// the tool runs inside may be and still be taken as equal to it. rs274 refuses `distance <= radius`, but its radius comes through
 /// unit conversions of the tool table (inch to mm and back) that leave it a rounding under the
 /// nominal value, so an entry exactly as long as the radius runs on LinuxCNC (nc_files'
 /// useful-subroutines.ngc enters by one tool radius; rs274 2.9 takes a 0.25 in entry with a
@@ -108,6 +108,9 @@ pub(crate) struct Comp {
     pub(crate) side: Option<Side>,
     /// The radius, mm, positive.
     radius: f64,
+    /// The radius is the tool table's, which reaches rs274 a rounding under its nominal value
+    /// (see [`EQUAL_RADIUS_MM`]); a G41.1/G42.1 `D` is taken as written.
+    from_table: bool,
     /// The next plane move is the entry move.
     first: bool,
     /// The tool's position in the plane (compensated), mm.
@@ -176,6 +179,18 @@ struct PlaneMove {
 }
 
 impl Comp {
+    /// How far under the radius a length still passes as longer than it: [`EQUAL_RADIUS_MM`]
+    /// for a tool table's radius (rs274 takes the equality), and for a G41.1/G42.1 `D`, which
+    /// rs274 takes as written and so refuses at equality, minus that (an equality that the
+    /// conversion to mm leaves a rounding over the radius is still refused).
+    fn equal_within(&self) -> f64 {
+        if self.from_table {
+            EQUAL_RADIUS_MM
+        } else {
+            -EQUAL_RADIUS_MM
+        }
+    }
+
     /// True when compensation is on (with any radius, 0 included: LinuxCNC's
     /// `cutter_comp_side`, which the refusals of G20, G92, G54 … test).
     pub(crate) fn on(&self) -> bool {
@@ -212,14 +227,14 @@ impl Interp<'_, '_> {
         out
     }
 
-    /// A tool change under LinuxCNC's rules: rs274 ends the block (INTERP_EXECUTE_FINISH) and
-    /// the task re-reads the position, which right after G40 is where the tool stands, the
-    /// compensated point, not the programmed one (nc_files' useful-subroutines.ngc: the next
-    /// `G0 Z` goes straight up there).
+    /// After a block with a tool change under LinuxCNC's rules: rs274 ends the block
+    /// (INTERP_EXECUTE_FINISH) and the task re-reads the position, which right after G40 (no
+    /// straight move since: `arc_not_allowed`) is where the tool stands, the compensated point,
+    /// not the programmed one (nc_files' useful-subroutines.ngc: the next `G0 Z` goes straight
+    /// up there). The move after G40 must still be straight.
     pub(crate) fn comp_resync_after_change(&mut self) {
         if self.arc_not_allowed {
             self.p = self.with_plane(&self.p, self.comp.tool);
-            self.arc_not_allowed = false;
         }
     }
 
@@ -343,6 +358,7 @@ impl Interp<'_, '_> {
         };
         self.comp.side = Some(side);
         self.comp.radius = radius.abs();
+        self.comp.from_table = !(g == 411 || g == 421);
         self.comp.first = true;
         self.comp.tool = self.plane_of(&self.p);
         self.comp.held = None;
@@ -467,7 +483,7 @@ impl Interp<'_, '_> {
                         ),
                     ));
                 }
-            } else if length <= r - EQUAL_RADIUS_MM {
+            } else if length <= r - self.comp.equal_within() {
                 return Err(Fault::semantic(
                     span,
                     "length of cutter compensation entry move is not greater than the tool radius",
@@ -669,7 +685,7 @@ impl Interp<'_, '_> {
         }
         let inside = tool_inside(side, turn);
         let gamma = if inside {
-            if arc_radius <= r - EQUAL_RADIUS_MM {
+            if arc_radius <= r - self.comp.equal_within() {
                 return Err(Fault::semantic(
                     span,
                     format!(
@@ -826,7 +842,7 @@ impl Interp<'_, '_> {
         let end2 = self.plane_of(&end);
         let inside = (side == Side::Left) == (turn > 0);
         let rad = dist(from, c);
-        if inside && rad <= r - EQUAL_RADIUS_MM {
+        if inside && rad <= r - self.comp.equal_within() {
             return Err(Fault::semantic(
                 span,
                 format!(
@@ -886,7 +902,7 @@ impl Interp<'_, '_> {
         if self.fanuc {
             return Ok(());
         }
-        if dist(self.comp.tool, end) <= r - EQUAL_RADIUS_MM {
+        if dist(self.comp.tool, end) <= r - self.comp.equal_within() {
             return Err(Fault::semantic(
                 span,
                 "radius of cutter compensation entry arc is not greater than the tool radius",
@@ -903,7 +919,7 @@ impl Interp<'_, '_> {
         }
         let r = self.comp.radius;
         let inside = (self.comp.side == Some(Side::Left)) != clockwise;
-        if inside && radius.abs() <= r {
+        if inside && radius.abs() <= r - self.comp.equal_within() {
             return Err(Fault::semantic(
                 span,
                 format!(

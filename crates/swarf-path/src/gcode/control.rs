@@ -204,8 +204,9 @@ impl Interp<'_, '_> {
                     .filter(|t| t.kind == LoopKind::Do && t.name == name)
                 {
                     // The tail of a do-while loop. (rs274 does not loop back while its
-                    // `doing_break` is set, and clears it here.)
-                    if v != 0.0 && !std::mem::take(&mut self.doing_break) {
+                    // `doing_break` is set, and clears it here, looping or not.)
+                    let broken = std::mem::take(&mut self.doing_break);
+                    if v != 0.0 && !broken {
                         self.count_iteration(span)?;
                         self.at = t.body;
                     } else {
@@ -230,7 +231,7 @@ impl Interp<'_, '_> {
                     if reentry {
                         self.ctl.pop();
                     }
-                    self.skip_loop_body(name, Kw::Endwhile, span)
+                    self.skip_loop_body(name, Kw::Endwhile, span).map(|_| ())
                 }
             }
             Kw::Endwhile => {
@@ -263,7 +264,7 @@ impl Interp<'_, '_> {
                     });
                     Ok(())
                 } else {
-                    self.skip_loop_body(name, Kw::Endrepeat, span)
+                    self.skip_loop_body(name, Kw::Endrepeat, span).map(|_| ())
                 }
             }
             Kw::Endrepeat => {
@@ -342,17 +343,21 @@ impl Interp<'_, '_> {
                 if kind == LoopKind::Repeat && !self.fanuc {
                     return Err(Self::not_a_while_or_do(kw, name, span));
                 }
-                if kw == Kw::Break {
-                    // (Out of a `do`, rs274 skips to its closing `while`, which clears the
-                    // flag again; out of a `while` or `repeat` nothing clears it.)
-                    self.doing_break |= !self.fanuc && kind != LoopKind::Do;
+                if kw == Kw::Break && (self.fanuc || kind != LoopKind::Do) {
+                    // (Out of a `while` nothing clears rs274's flag.)
+                    self.doing_break |= !self.fanuc;
                     self.ctl.truncate(k);
-                    self.skip_to(name, &[kind.end()], span).map(|_| ())
+                    self.skip_loop_body(name, kind.end(), span).map(|_| ())
                 } else {
-                    // Continue: run the loop's closing line, which loops or ends it.
+                    // Continue, or under LinuxCNC's rules a break out of a `do`: run the
+                    // loop's closing line, which loops or ends it — rs274 evaluates a do's
+                    // closing condition after a break too, its `doing_break` keeping it from
+                    // looping back — reading the breaks of the loop's name on the way.
+                    self.doing_break |= kw == Kw::Break;
                     self.ctl.truncate(k + 1);
-                    let (_, at) = self.skip_to(name, &[kind.end()], span)?;
-                    self.at = at;
+                    if let Some(end_line) = self.skip_loop_body(name, kind.end(), span)? {
+                        self.at = end_line;
+                    }
                     Ok(())
                 }
             }
@@ -365,8 +370,10 @@ impl Interp<'_, '_> {
     /// the end of a `do` loop clears: the next do-while loop then runs once (LinuxCNC 2.9,
     /// interp_o_word.cc; seen in rs274's output for `o1 while [0]` … `o1 break` … `o1
     /// endwhile` then `o2 do` … `o2 while [#1 LT 3]`).
-    /// A `break` or `continue` naming a `repeat` is an error there as anywhere.
-    fn skip_loop_body(&mut self, name: &[u8], end: Kw, span: Span) -> Res<()> {
+    /// A `break` or `continue` naming a `repeat` is an error there as anywhere: the reading
+    /// stops at it (`None`), to refuse it at its line. Otherwise the cursor is after the `end`
+    /// line, and the one before it is returned.
+    fn skip_loop_body(&mut self, name: &[u8], end: Kw, span: Span) -> Res<Option<Cursor>> {
         if !self.fanuc {
             while let Some((kw @ (Kw::Break | Kw::Continue), at, after)) =
                 self.scan(self.at, name, &[Kw::Break, Kw::Continue, end])
@@ -374,13 +381,14 @@ impl Interp<'_, '_> {
                 if end == Kw::Endrepeat {
                     // Read from its own line, where it is refused.
                     self.at = at;
-                    return Ok(());
+                    return Ok(None);
                 }
                 self.doing_break |= kw == Kw::Break;
                 self.at = after;
             }
         }
-        self.skip_to(name, &[end], span).map(|_| ())
+        self.skip_to(name, &[end], span)
+            .map(|(_, before)| Some(before))
     }
 
     /// rs274's refusal of a `break` or `continue` whose name is a `repeat`'s.

@@ -234,6 +234,9 @@ pub(crate) struct Interp<'t, 's> {
     /// `while` or `repeat` of that name), cleared only by the end of a `do` loop, which then
     /// does not loop back (see `control.rs`).
     pub(crate) doing_break: bool,
+    /// A tool change in the block being read: the position is re-read after it
+    /// ([`Self::comp_resync_after_change`]).
+    pub(crate) resync_after_block: bool,
     /// The O names an `if`, `while`, `do` or `repeat` used at each call level, and where:
     /// rs274 refuses one name for two of them in a level (its O-word offset table).
     pub(crate) o_labels: HashMap<(usize, Vec<u8>), (Kw, Cursor)>,
@@ -410,6 +413,7 @@ impl<'t, 's> Interp<'t, 's> {
             seen_code: false,
             if_probe: false,
             doing_break: false,
+            resync_after_block: false,
             o_labels: HashMap::new(),
             skip_buf: LineBuf::default(),
             comp: Comp::default(),
@@ -549,6 +553,9 @@ impl<'t, 's> Interp<'t, 's> {
             self.cur_line = self.at.line;
             self.cur_start = start;
             let mut result = self.exec_line(raw, &mut lb, &mut blk);
+            if std::mem::take(&mut self.resync_after_block) {
+                self.comp_resync_after_change();
+            }
             if self.fanuc {
                 self.tell_unmodelled_reads();
             }
@@ -1421,11 +1428,8 @@ impl<'t, 's> Interp<'t, 's> {
                 ));
             }
             if !self.fanuc {
-                if self.tool_change_moves() {
-                    self.arc_not_allowed = false;
-                } else {
-                    self.comp_resync_after_change();
-                }
+                // (After the block: a move in it starts from the programmed point.)
+                self.resync_after_block = !self.tool_change_moves();
             }
             self.tool_loaded = true;
             self.read_only.loaded_tool = self.tool;

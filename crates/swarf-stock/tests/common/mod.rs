@@ -45,7 +45,7 @@ pub fn moves(tips: &[Vec3], axis: Vec3, rapid: bool) -> Program {
             line: i as u32 + 1,
             axis_source: Default::default(),
             tcp: false,
-            rotary_feed_combined: false,
+            rotary_feed_combined: None,
         });
     }
     p
