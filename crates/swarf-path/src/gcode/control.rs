@@ -786,7 +786,7 @@ impl Interp<'_, '_> {
     /// rs274's refusal of Fanuc-style subprograms under the INI's `DISABLE_FANUC_STYLE_SUB`.
     fn check_fanuc_subs(&self, what: &str) -> Res<()> {
         match &self.opts.ini {
-            Some(ini) if !self.fanuc && ini.fanuc_subs_disabled() => Err(Fault::new(
+            Some(ini) if !self.fanuc && self.fanuc_subs_off => Err(Fault::new(
                 PathErrorKind::Semantic,
                 Span::Line,
                 format!(

@@ -234,6 +234,13 @@ pub(crate) struct Interp<'t, 's> {
     /// `while` or `repeat` of that name), cleared only by the end of a `do` loop, which then
     /// does not loop back (see `control.rs`).
     pub(crate) doing_break: bool,
+    /// The INI's M6 settings, and whether it refuses Fanuc subprograms and gives
+    /// `#<_ini[…]>` (read once: M98/M99 and parameter reads may run in long loops).
+    pub(crate) tool_change: super::ToolChangeMoves,
+    pub(crate) fanuc_subs_off: bool,
+    ini_vars: bool,
+    /// `#<_ini[…]>` values looked up so far (rs274 caches them too).
+    ini_values: std::cell::RefCell<HashMap<String, Option<f64>>>,
     /// A tool change in the block being read: the position is re-read after it
     /// ([`Self::comp_resync_after_change`]).
     pub(crate) resync_after_block: bool,
@@ -413,6 +420,14 @@ impl<'t, 's> Interp<'t, 's> {
             seen_code: false,
             if_probe: false,
             doing_break: false,
+            tool_change: opts
+                .ini
+                .as_ref()
+                .and_then(|i| i.tool_change().ok())
+                .unwrap_or_default(),
+            fanuc_subs_off: opts.ini.as_ref().is_some_and(|i| i.fanuc_subs_disabled()),
+            ini_vars: opts.ini.as_ref().is_some_and(|i| i.ini_vars()),
+            ini_values: std::cell::RefCell::new(HashMap::new()),
             resync_after_block: false,
             o_labels: HashMap::new(),
             skip_buf: LineBuf::default(),
@@ -1264,12 +1279,7 @@ impl<'t, 's> Interp<'t, 's> {
     /// (`TOOL_CHANGE_QUILL_UP`), then every axis to the G30 position (`TOOL_CHANGE_AT_G30`).
     /// Whether it moved (from the programmed point, as rs274's moves start).
     fn tool_change_moves(&mut self) -> bool {
-        let how = self
-            .opts
-            .ini
-            .as_ref()
-            .and_then(|i| i.tool_change().ok())
-            .unwrap_or_default();
+        let how = self.tool_change;
         // Before the first change the spindle holds no tool: the moves up are made with the
         // one being loaded (they cut nothing), not with tool 0, which nothing defines.
         if !self.tool_loaded && (how.quill_up || how.at_g30) {
@@ -3161,7 +3171,7 @@ impl ParamRead for Interp<'_, '_> {
         self.opts
             .ini
             .as_ref()
-            .map(|i| (i.path.as_path(), i.ini_vars()))
+            .map(|i| (i.path.as_path(), self.ini_vars))
     }
 }
 
@@ -3173,12 +3183,14 @@ impl Interp<'_, '_> {
         let ro = &self.read_only;
         match name {
             // rs274 caches an INI value as a global, read-only parameter.
-            n if n.starts_with("_ini[") => self
-                .opts
-                .ini
-                .as_ref()
-                .filter(|i| i.ini_vars())
-                .and_then(|i| i.parameter(n)),
+            n if n.starts_with("_ini[") => {
+                let ini = self.opts.ini.as_ref().filter(|_| self.ini_vars)?;
+                *self
+                    .ini_values
+                    .borrow_mut()
+                    .entry(n.to_string())
+                    .or_insert_with(|| ini.parameter(n))
+            }
             "_x" => Some(self.to_units(0, self.p[0])),
             "_y" => Some(self.to_units(1, self.p[1])),
             "_z" => Some(self.to_units(2, self.p[2])),
