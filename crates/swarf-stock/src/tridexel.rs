@@ -12,7 +12,8 @@ use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_geom::Aabb;
 use swarf_sweep::swept::{DexelRays, Scratch};
 use swarf_sweep::{
-    DexelKernel, Front, FrontBlock, InstanceSet, KernelTask, SweepShape, SweptConvex, ToolShape,
+    DexelKernel, Front, FrontBlock, InstanceSet, KernelTask, PlanarMember, SweepShape, SweptConvex,
+    ToolShape,
 };
 
 /// Side of the square tiles of rays (tiles are stored contiguously and carry a conservative
@@ -378,7 +379,10 @@ pub struct CutStats {
     pub removed_length: [f64; 3],
     /// The most material removed from one ray, per family, mm.
     pub longest_removal: [f64; 3],
-    /// Rays whose exact interval was computed (after the material-first rejection).
+    /// Rays whose exact interval was computed (after the material-first rejection). On the
+    /// rays normal to the plane of a run of ball-end moves, cut together
+    /// ([`swarf_sweep::PlanarMember`]), a move counts the rays whose chord it computed: those
+    /// the moves before it in the run had not already cut wider than it could.
     pub rays_tested: u64,
     /// Rays whose intervals changed.
     pub updates: u64,
@@ -786,6 +790,7 @@ impl TriDexel {
         let grid = self.grid;
         let base = self.tag;
         let exhaustive = self.exhaustive;
+        let tracked = self.tracks_provenance();
         let plans: Vec<[Option<Plan>; G]> = par_map(moves, |m, groups| {
             let chained = !exhaustive && chained.get(m).copied().unwrap_or(false);
             groups.map(|parts| Plan::new(&grid, parts, chained))
@@ -840,15 +845,87 @@ impl TriDexel {
                 }
             }
         }
+        // Moves of a ball end in a plane normal to a family, as that family sees them
+        // (`PlanarMember`): a run of them in one plane is cut together on a row (`cut_planar`).
+        // Only for a plain cut (no provenance, no visitor: their records are per move and
+        // ray), with the front test on (`exhaustive` keeps the move-by-move reference), and
+        // where the whole grid lies below the tool's top (the chords' exact range).
+        let plain = visitor.is_none() && !tracked;
+        let planar: Vec<[Option<PlanarMember>; 3]> = if plain && !exhaustive {
+            par_map(moves, |_, groups| {
+                std::array::from_fn(|k| match groups.first() {
+                    Some([p]) => p.planar(k).filter(|m| {
+                        let kt = m.tool_axis();
+                        m.top() >= grid.center(kt, grid.n[kt] - 1)
+                    }),
+                    _ => None,
+                })
+            })
+        } else {
+            Vec::new()
+        };
+        // Whether group `g` of move `m` reaches row `tj` of family `k`.
+        let reaches = |m: usize, g: usize, k: usize, tj: usize| {
+            plans[m][g]
+                .as_ref()
+                .and_then(|p| p.fam[k])
+                .is_some_and(|r| r.j.0 / TILE <= tj && tj <= r.j.1 / TILE)
+        };
+        // The end of the run of moves from `m` in one plane normal to family `k` of which at
+        // least two reach row `tj` (the others touch nothing there) and no other group does.
+        let planar_run = |m: usize, k: usize, tj: usize| -> Option<usize> {
+            let first = planar.get(m)?[k]?;
+            let alone = |m: usize| (1..G).all(|g| !reaches(m, g, k, tj));
+            if !reaches(m, 0, k, tj) || !alone(m) {
+                return None;
+            }
+            let (mut end, mut members) = (m + 1, 1);
+            while end < moves.len() {
+                match planar[end][k] {
+                    Some(p) if p.same_plane(&first) && alone(end) => {}
+                    _ => break,
+                }
+                members += usize::from(reaches(end, 0, k, tj));
+                end += 1;
+            }
+            (members >= 2).then_some(end)
+        };
         // One tile row through the whole sequence: every ray sees the moves in order, and the
         // row's tiles stay in cache from one move to the next. Returns what each (move, group)
         // that reached the row removed from it.
-        let run = |scratch: &mut Scratch, (k, tj, row): (usize, usize, Row<'_>)| {
+        let run = |scratch: &mut Scratch, (k, tj, mut row): (usize, usize, Row<'_>)| {
             // Only what touched the row is kept (a finishing move reaches a row for a few
             // dozen moves of a batch; growing the list one push at a time cost 3 % of a pass).
             let mut out: Vec<(usize, usize, CutStats)> = Vec::with_capacity(moves.len().min(64));
-            for (m, ((groups, plans), shared)) in moves.iter().zip(&plans).zip(&shared).enumerate()
-            {
+            let mut m = 0;
+            while m < moves.len() {
+                if let Some(end) = planar_run(m, k, tj) {
+                    let members: SmallVec<[PlanarCut; 32]> = (m..end)
+                        .filter(|&m| reaches(m, 0, k, tj))
+                        .filter_map(|m| {
+                            let range = plans[m][0].as_ref()?.fam[k]?;
+                            Some(PlanarCut {
+                                index: m,
+                                member: planar[m][k]?,
+                                range,
+                                stats: CutStats::default(),
+                            })
+                        })
+                        .collect();
+                    let mut members = members;
+                    cut_planar(&grid, k, tj, &mut row, &bins[k], &mut members);
+                    out.extend(
+                        members
+                            .iter()
+                            .filter(|c| c.stats != CutStats::default())
+                            .map(|c| (c.index, 0, c.stats)),
+                    );
+                    m = end;
+                    continue;
+                }
+                let (groups, plans, shared) = (&moves[m], &plans[m], &shared[m]);
+                m += 1;
+                let m = m - 1;
                 let tag = base
                     .saturating_add(step.saturating_mul(m as MoveTag))
                     .min(crate::dexel::UNCUT - 1);
@@ -1364,6 +1441,161 @@ impl TileCut<'_, '_, '_> {
     }
 }
 
+/// One move of a planar run on one row, and what it removed there.
+struct PlanarCut {
+    /// The move's index in the call.
+    index: usize,
+    member: PlanarMember,
+    range: FamilyRange,
+    stats: CutStats,
+}
+
+/// The moves of a planar run (`PlanarMember`: one plane normal to family `k`, in order) cut
+/// on row `tj` together: each ray is visited once for the run. Its chords are nested and
+/// centred on the plane, so move after move the ray changes only where a move's chord is
+/// wider than every earlier one and than the air about the plane: a move whose distance is
+/// not below the last change's is passed over, and one far from the ray (its box bound) is
+/// not even computed. Each change is subtracted and counted for its own move, as the moves
+/// cut one by one would.
+fn cut_planar(
+    grid: &Grid,
+    k: usize,
+    tj: usize,
+    row: &mut Row<'_>,
+    bins: &Bins,
+    members: &mut [PlanarCut],
+) {
+    let Some(first) = members.first().map(|m| m.member) else {
+        return;
+    };
+    #[cfg(test)]
+    tests::PLANAR_RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    let (c, r) = (first.plane(), first.radius());
+    let rr = r * r;
+    let (tlo, thi) = (c - r, c + r);
+    let mask = bins.mask(tlo, thi);
+    let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+    let span = |f: fn(&FamilyRange) -> (usize, usize)| {
+        members
+            .iter()
+            .map(|m| f(&m.range))
+            .fold((usize::MAX, 0), |a, b| (a.0.min(b.0), a.1.max(b.1)))
+    };
+    let (i0, i1) = span(|r| r.i);
+    let (j0, j1) = span(|r| r.j);
+    let (j_lo, j_hi) = (
+        j0.max(tj * TILE) - tj * TILE,
+        j1.min(tj * TILE + TILE - 1) - tj * TILE,
+    );
+    let mut cand: SmallVec<[usize; 32]> = SmallVec::new();
+    let mut boxes: SmallVec<[(f64, f64, f64); 32]> = SmallVec::new();
+    for ti in i0 / TILE..i1 / TILE + 1 {
+        if !row.bounds[ti].meets_mask(tlo, thi, mask) {
+            continue;
+        }
+        let (i_lo, i_hi) = (
+            i0.max(ti * TILE) - ti * TILE,
+            i1.min(ti * TILE + TILE - 1) - ti * TILE,
+        );
+        let cu = |ii: usize| grid.center(u, ti * TILE + ii);
+        let cv = |jj: usize| grid.center(v, tj * TILE + jj);
+        // The tile's rays in the plane, and the moves that can reach any of them.
+        let (a, b) = (
+            first.point(cu(i_lo), cv(j_lo)),
+            first.point(cu(i_hi), cv(j_hi)),
+        );
+        let (xs, zs) = ((a.0.min(b.0), a.0.max(b.0)), (a.1.min(b.1), a.1.max(b.1)));
+        // The candidates' boxes side by side (`x` range, lowest centre): most are passed over
+        // on their box alone, ray after ray.
+        cand.clear();
+        cand.extend((0..members.len()).filter(|&n| members[n].member.box_bound2(xs, zs) < rr));
+        if cand.is_empty() {
+            continue;
+        }
+        boxes.clear();
+        boxes.extend(cand.iter().map(|&n| members[n].member.extent()));
+        let tile = &mut row.rays[ti * TILE_RAYS..(ti + 1) * TILE_RAYS];
+        let mut changed = false;
+        for jj in j_lo..j_hi + 1 {
+            let cv = cv(jj);
+            for ii in i_lo..i_hi + 1 {
+                let d = &mut tile[jj * TILE + ii];
+                if !overlaps(d, tlo, thi) {
+                    continue;
+                }
+                let (x, z) = first.point(cu(ii), cv);
+                // A chord must reach past the air about the plane to change the ray.
+                let mut gap = f64::INFINITY;
+                for iv in d.iter() {
+                    if iv.exit < c {
+                        gap = c - iv.exit;
+                    } else {
+                        gap = gap.min((iv.enter - c).max(0.0));
+                        break;
+                    }
+                }
+                let mut beat = rr - gap * gap;
+                // Each change is measured on the ray as it was (`within`: its material within
+                // the chord grows by what the move takes), and the ray is cut once, by the
+                // widest chord: no move's chord waits for the last one's subtraction.
+                let (mut widest, mut taken, mut last) = (0.0, 0.0, usize::MAX);
+                for (&n, &(xmin, xmax, zlow)) in cand.iter().zip(&boxes) {
+                    let ex = (xmin - x).max(x - xmax).max(0.0);
+                    let ez = (zlow - z).max(0.0);
+                    if ex * ex + ez * ez >= beat {
+                        continue;
+                    }
+                    let pc = &mut members[n];
+                    let d2 = pc.member.dist2(x, z);
+                    pc.stats.visited_per_family[k] += 1;
+                    pc.stats.tested_per_family[k] += 1;
+                    pc.stats.rays_tested += 1;
+                    if d2 >= beat {
+                        continue;
+                    }
+                    beat = d2;
+                    widest = (rr - d2).sqrt();
+                    let now = within(d, c, widest);
+                    let removed = now - taken;
+                    taken = now;
+                    last = n;
+                    if removed > 0.0 {
+                        pc.stats.updates += 1;
+                        pc.stats.updates_per_family[k] += 1;
+                        pc.stats.removed_length[k] += removed;
+                        pc.stats.longest_removal[k] = pc.stats.longest_removal[k].max(removed);
+                    }
+                }
+                if last != usize::MAX {
+                    // What the cut drops beyond the measure (remainders under
+                    // `MIN_INTERVAL_MM`) goes to the move that cut last.
+                    let removed = subtract(d, c - widest, c + widest);
+                    changed |= removed > 0.0;
+                    if removed > taken {
+                        members[last].stats.removed_length[k] += removed - taken;
+                    }
+                }
+            }
+        }
+        // The tile's bound as a move's cut keeps it (`TileCut::run`).
+        if changed {
+            row.stale[ti] = true;
+        } else if row.stale[ti] {
+            row.bounds[ti] = tile_bound(tile, bins);
+            row.stale[ti] = false;
+        }
+    }
+}
+
+/// The length of the material of `d` within `[c − s, c + s]`.
+#[inline(always)]
+fn within(d: &[Interval], c: f64, s: f64) -> f64 {
+    let (lo, hi) = (c - s, c + s);
+    d.iter()
+        .map(|iv| (iv.exit.min(hi) - iv.enter.max(lo)).max(0.0))
+        .sum()
+}
+
 /// The point at `t` along the rays of family `k` and `(cu, cv)` across them. (Built from its
 /// three coordinates: set through an index, a point is passed on through memory, and its
 /// 16-byte reload of two 8-byte stores stalled a tenth of the tile's setup.)
@@ -1601,6 +1833,155 @@ mod tests {
             tip = go(&mut moves, tip + Vec3::new(0.0, over, 0.0));
         }
         moves
+    }
+
+    /// Runs of `cut_planar` (any test's).
+    pub(super) static PLANAR_RUNS: std::sync::atomic::AtomicUsize =
+        std::sync::atomic::AtomicUsize::new(0);
+
+    /// Moves of a ball end in a plane normal to a family, cut together on that family's rows
+    /// (`cut_planar`), leave the stock and each move's figures as the moves cut one by one do
+    /// (`set_exhaustive` keeps them one by one): passes along X (the Y rays' planes) and along
+    /// Y (the X rays'), plunges and lifts in them, step-overs and a diagonal between, in calls
+    /// of several lengths; a ball whose shank and holder reach the block (its other group
+    /// reaches the rows: cut move by move); a flute too short for the block (refused: the
+    /// top would cut the chords short).
+    #[test]
+    fn planar_runs_cut_as_the_moves_one_by_one() {
+        use swarf_tool::{Cutter, CutterKind, CutterOptions, Holder, HolderSegment};
+        let surface = |x: f64, y: f64| 2.4 + 0.5 * (x / 2.0).sin() * (y / 3.0).cos();
+        let mut pts = vec![Vec3::new(-3.0, 1.0, 7.0)];
+        for pass in 0..7 {
+            let y = 1.0 + 0.45 * pass as f64;
+            let x0 = if pass % 2 == 0 { -1.0 } else { 13.0 };
+            pts.push(Vec3::new(x0, y, 7.0));
+            for i in 0..=28 {
+                let x = if pass % 2 == 0 {
+                    x0 + 0.5 * i as f64
+                } else {
+                    x0 - 0.5 * i as f64
+                };
+                pts.push(Vec3::new(x, y, surface(x, y)));
+            }
+            let last = *pts.last().unwrap();
+            pts.push(Vec3::new(last.x, y, 7.0));
+        }
+        pts.push(Vec3::new(2.0, 4.0, 5.0));
+        for pass in 0..5 {
+            let x = 2.0 + 0.6 * pass as f64;
+            for i in 0..=20 {
+                let y = if pass % 2 == 0 {
+                    4.0 + 0.4 * i as f64
+                } else {
+                    12.0 - 0.4 * i as f64
+                };
+                pts.push(Vec3::new(x, y, surface(x, y) - 0.3));
+            }
+        }
+        let moves: Vec<LinearMove> = pts
+            .windows(2)
+            .map(|w| LinearMove {
+                tip0: w[0],
+                tip1: w[1],
+                axis: Vec3::Z,
+            })
+            .collect();
+        let held = CutterOptions {
+            flute_length: Some(2.0),
+            overall_length: Some(3.0),
+            shank_diameter: Some(2.5),
+            holder: Some(Holder {
+                base_z_mm: 3.0,
+                segments: vec![HolderSegment {
+                    length_mm: 5.0,
+                    bottom_diameter_mm: 5.0,
+                    top_diameter_mm: 8.0,
+                }],
+            }),
+            ..CutterOptions::default()
+        };
+        let short = CutterOptions {
+            flute_length: Some(3.2),
+            overall_length: Some(3.2),
+            ..CutterOptions::default()
+        };
+        let long = CutterOptions {
+            flute_length: Some(12.0),
+            ..CutterOptions::default()
+        };
+        let block = TriDexel::from_box(Vec3::ZERO, Vec3::new(13.0, 13.0, 8.0), 0.11).unwrap();
+        for (name, cutter, planar) in [
+            (
+                "ball",
+                Cutter::named(CutterKind::Ball, &[3.0], &long).unwrap(),
+                true,
+            ),
+            (
+                "held",
+                Cutter::named(CutterKind::Ball, &[3.0], &held).unwrap(),
+                false,
+            ),
+            (
+                "short",
+                Cutter::named(CutterKind::Ball, &[3.0], &short).unwrap(),
+                false,
+            ),
+        ] {
+            let tool = ToolShape::new(&cutter);
+            let mut one = block.clone();
+            one.set_exhaustive(true);
+            let want = one.cut_linear_batch(&tool, &moves);
+            if !planar {
+                // Nothing of the grid may rely on a chord the top would cut short.
+                let grid = block.grid();
+                let m = &moves[10];
+                let part = &tool.cutting().parts()[0];
+                let sw = SweptConvex::new(part, m.tip0, m.axis, m.tip1 - m.tip0);
+                let top = sw.planar(1).map_or(f64::NAN, |p| p.top());
+                assert!(
+                    name == "held" || top < grid.center(2, grid.n[2] - 1),
+                    "{name}: top {top}"
+                );
+            }
+            for chunk in [moves.len(), 40, 7] {
+                let before = PLANAR_RUNS.load(std::sync::atomic::Ordering::Relaxed);
+                let mut together = block.clone();
+                let got: Vec<SegmentCut> = moves
+                    .chunks(chunk)
+                    .flat_map(|c| together.cut_linear_batch(&tool, c))
+                    .collect();
+                if planar {
+                    assert!(PLANAR_RUNS.load(std::sync::atomic::Ordering::Relaxed) > before);
+                }
+                for (m, (a, b)) in got.iter().zip(&want).enumerate() {
+                    for (x, y) in [(a.cutting, b.cutting), (a.non_cutting, b.non_cutting)] {
+                        for k in 0..3 {
+                            assert!(
+                                (x.removed_length[k] - y.removed_length[k]).abs() < 1e-9
+                                    && (x.longest_removal[k] - y.longest_removal[k]).abs() < 1e-9,
+                                "{name}, calls of {chunk}: move {m}, family {k}: {x:?} vs {y:?}"
+                            );
+                        }
+                    }
+                }
+                for k in 0..3 {
+                    let (nu, nv) = together.family(k).dims();
+                    for j in 0..nv {
+                        for i in 0..nu {
+                            let (a, b) = (together.family(k).ray(i, j), one.family(k).ray(i, j));
+                            assert_eq!(a.len(), b.len(), "{name}: family {k} ray ({i}, {j})");
+                            for (p, q) in a.iter().zip(b) {
+                                assert!(
+                                    (p.enter - q.enter).abs() <= 1e-9
+                                        && (p.exit - q.exit).abs() <= 1e-9,
+                                    "{name}: family {k} ray ({i}, {j}): {a:?} vs {b:?}"
+                                );
+                            }
+                        }
+                    }
+                }
+            }
+        }
     }
 
     /// Every tile's bound holds its material between calls, and is exact unless a cut changed

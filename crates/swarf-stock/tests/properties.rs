@@ -2,7 +2,7 @@
 //! volume never increases; cutting a move twice removes nothing more; splitting a move in two
 //! gives the same stock; moves commute; nothing outside the sweep is removed; and whatever the
 //! stock's state, a batch leaves every ray exactly as an exact subtraction would (no bound ever
-//! skips a ray the sweep changes).
+//! skips a ray the sweep changes), moves in one plane cut together included.
 
 use proptest::prelude::*;
 use swarf_geom::math::Vec3;
@@ -316,5 +316,55 @@ proptest! {
         s.cut_linear_batch(&tool, &chain[..cut]);
         s.cut_linear_batch(&tool, &chain[cut..]);
         check_exact(&s, &state, &tool, &chain)?;
+    }
+
+    /// The same guard on the runs of ball-end moves in one plane normal to a ray family, cut
+    /// together on that family's rows (`swarf_sweep::PlanarMember`): a chained path in the
+    /// plane (any tool axis along a world axis, plunges and lifts included), after a random
+    /// state; flutes long enough for the chords to be exact over the whole stock, or short
+    /// (the runs refused where the tool's top could cut a chord short).
+    #[test]
+    fn planar_runs_are_cut_exactly(
+        before in prop::collection::vec(arb_move(), 0..3),
+        start in arb_point(),
+        steps in prop::collection::vec((-3.0f64..3.0, -2.0f64..2.0, 0u8..4), 2..12),
+        kt in 0usize..3,
+        side in 1usize..3,
+        d in 2.0f64..6.0,
+        long in any::<bool>(),
+    ) {
+        let k = (kt + side) % 3;
+        let a = 3 - k - kt;
+        let mut s = stock();
+        s.cut_linear_batch(&ToolShape::new(&cutter(0, 4.0)), &linear(&before));
+        let state = s.clone();
+        let opts = swarf_tool::CutterOptions {
+            flute_length: Some(if long { 40.0 } else { d }),
+            ..swarf_tool::CutterOptions::default()
+        };
+        let c = Cutter::named(swarf_tool::CutterKind::Ball, &[d], &opts).unwrap();
+        let tool = ToolShape::new(&c);
+        let mut axis = Vec3::ZERO;
+        axis[kt] = 1.0;
+        let mut p = start;
+        let mut moves = Vec::new();
+        for (da, dz, kind) in steps {
+            let mut q = p;
+            // Across the axis, along it, both, or not at all.
+            match kind {
+                0 => q[a] += da,
+                1 => q[kt] += dz,
+                2 => {
+                    q[a] += da;
+                    q[kt] += dz;
+                }
+                _ => {}
+            }
+            moves.push((p, q, axis));
+            p = q;
+        }
+        let moves = linear(&moves);
+        s.cut_linear_batch(&tool, &moves);
+        check_exact(&s, &state, &tool, &moves)?;
     }
 }

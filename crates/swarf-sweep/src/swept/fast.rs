@@ -20,6 +20,7 @@
 
 use super::capsule::line_capsule;
 use super::lozenge;
+use super::planar::PlanarMember;
 use super::slab::{self, AxisMove};
 use super::{ConvexProfile, Element};
 use swarf_geom::math::{greater, lesser, Vec3};
@@ -164,6 +165,13 @@ impl FastSweep {
             c0,
             delta,
         })
+    }
+
+    /// A ball end's move seen in its plane by the rays along world axis `k`, when that plane
+    /// is normal to them (`planar.rs`).
+    pub(crate) fn planar(&self, k: usize) -> Option<PlanarMember> {
+        let (f, r) = self.shape.sphere()?;
+        PlanarMember::new(k, self.kt, self.c0, self.delta, (f, r, self.shape.slab.2))
     }
 
     /// The constants shared by all rays along world axis `k`.

@@ -67,6 +67,7 @@ pub(crate) mod interval;
 pub(crate) mod kernel;
 pub(crate) mod line;
 pub(crate) mod lozenge;
+pub(crate) mod planar;
 pub(crate) mod profile;
 pub(crate) mod separation;
 pub(crate) mod slab;
@@ -80,6 +81,7 @@ pub use front::{Front, FrontBlock};
 pub use instance::{InstanceSet, SLIVER_MM};
 pub use interval::{overlaps, Interval};
 pub use kernel::{DexelKernel, KernelTask};
+pub use planar::PlanarMember;
 pub use profile::{ConvexProfile, Element, SweepShape};
 
 use smallvec::SmallVec;
@@ -681,6 +683,16 @@ impl<'a> SweptConvex<'a> {
         let qr = origin[j];
         let (lo, hi) = slab::stadium_chord((a0, b0), (a1, b1), r, qr)?;
         (lo <= hi).then_some((lo.max(full.0), hi.min(full.1)))
+    }
+
+    /// A ball end moving with its axis along a world axis, in a plane normal to the rays along
+    /// world axis `k`, seen in that plane: chords as distances, nested from one move to the
+    /// next in the same plane (`planar.rs`). `None` for other tools and moves.
+    pub fn planar(&self, k: usize) -> Option<PlanarMember> {
+        match &self.closed {
+            Some(ClosedForm::Axial(f)) => f.planar(k),
+            _ => None,
+        }
     }
 
     /// Queries for many lines sharing the direction `dir` (unit, workpiece frame): the
