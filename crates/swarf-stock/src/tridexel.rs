@@ -12,8 +12,8 @@ use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_geom::Aabb;
 use swarf_sweep::swept::{DexelRays, Scratch};
 use swarf_sweep::{
-    DexelKernel, Front, FrontBlock, InstanceSet, KernelTask, PlanarMember, SweepShape, SweptConvex,
-    ToolShape,
+    DexelKernel, Front, FrontBlock, InstanceSet, KernelTask, KeyBound, PlanarMember, SweepShape,
+    SweptConvex, ToolShape,
 };
 
 /// Side of the square tiles of rays (tiles are stored contiguously and carry a conservative
@@ -846,18 +846,16 @@ impl TriDexel {
             }
         }
         // Moves of a ball end in a plane normal to a family, as that family sees them
-        // (`PlanarMember`): a run of them in one plane is cut together on a row (`cut_planar`).
-        // Only for a plain cut (no provenance, no visitor: their records are per move and
-        // ray), with the front test on (`exhaustive` keeps the move-by-move reference), and
-        // where the whole grid lies below the tool's top (the chords' exact range).
+        // (`PlanarMember`): their chords nest, and a run of them in one plane is cut together on
+        // a row (`cut_planar`). Only for a plain cut (no provenance, no visitor: their records
+        // are per move and ray), with the front test on (`exhaustive` keeps the move-by-move
+        // reference), and where the whole stock lies below the tool's top (where the chords
+        // are exact).
         let plain = visitor.is_none() && !tracked;
         let planar: Vec<[Option<PlanarMember>; 3]> = if plain && !exhaustive {
             par_map(moves, |_, groups| {
                 std::array::from_fn(|k| match groups.first() {
-                    Some([p]) => p.planar(k).filter(|m| {
-                        let kt = m.tool_axis();
-                        m.top() >= grid.center(kt, grid.n[kt] - 1)
-                    }),
+                    Some([p]) => p.planar(k).filter(|m| m.top() >= grid.max[m.tool_axis()]),
                     _ => None,
                 })
             })
@@ -871,18 +869,28 @@ impl TriDexel {
                 .and_then(|p| p.fam[k])
                 .is_some_and(|r| r.j.0 / TILE <= tj && tj <= r.j.1 / TILE)
         };
-        // The end of the run of moves from `m` in one plane normal to family `k` of which at
-        // least two reach row `tj` (the others touch nothing there) and no other group does.
+        // Whether group `g` of move `m` may change row `tj` of family `k`: it reaches the row
+        // within the stock's extent along the rays (a shank above the stock does not).
+        let touches = |m: usize, g: usize, k: usize, tj: usize| {
+            reaches(m, g, k, tj)
+                && plans[m][g]
+                    .as_ref()
+                    .and_then(|p| p.fam[k])
+                    .is_some_and(|r| r.t.0 <= grid.max[k] && r.t.1 >= grid.min[k])
+        };
+        // The end of the run of moves from `m` in one plane normal to family `k`, of which at
+        // least two reach row `tj` (the others touch nothing there) and no other group may
+        // change it.
         let planar_run = |m: usize, k: usize, tj: usize| -> Option<usize> {
             let first = planar.get(m)?[k]?;
-            let alone = |m: usize| (1..G).all(|g| !reaches(m, g, k, tj));
+            let alone = |m: usize| (1..G).all(|g| !touches(m, g, k, tj));
             if !reaches(m, 0, k, tj) || !alone(m) {
                 return None;
             }
             let (mut end, mut members) = (m + 1, 1);
             while end < moves.len() {
                 match planar[end][k] {
-                    Some(p) if p.same_plane(&first) && alone(end) => {}
+                    Some(p) if p.nests_with(&first) && alone(end) => {}
                     _ => break,
                 }
                 members += usize::from(reaches(end, 0, k, tj));
@@ -900,19 +908,17 @@ impl TriDexel {
             let mut m = 0;
             while m < moves.len() {
                 if let Some(end) = planar_run(m, k, tj) {
-                    let members: SmallVec<[PlanarCut; 32]> = (m..end)
+                    let mut members: SmallVec<[PlanarCut; 32]> = (m..end)
                         .filter(|&m| reaches(m, 0, k, tj))
                         .filter_map(|m| {
-                            let range = plans[m][0].as_ref()?.fam[k]?;
                             Some(PlanarCut {
                                 index: m,
                                 member: planar[m][k]?,
-                                range,
+                                range: plans[m][0].as_ref()?.fam[k]?,
                                 stats: CutStats::default(),
                             })
                         })
                         .collect();
-                    let mut members = members;
                     cut_planar(&grid, k, tj, &mut row, &bins[k], &mut members);
                     out.extend(
                         members
@@ -1450,13 +1456,14 @@ struct PlanarCut {
     stats: CutStats,
 }
 
-/// The moves of a planar run (`PlanarMember`: one plane normal to family `k`, in order) cut
-/// on row `tj` together: each ray is visited once for the run. Its chords are nested and
-/// centred on the plane, so move after move the ray changes only where a move's chord is
-/// wider than every earlier one and than the air about the plane: a move whose distance is
-/// not below the last change's is passed over, and one far from the ray (its box bound) is
-/// not even computed. Each change is subtracted and counted for its own move, as the moves
-/// cut one by one would.
+/// The moves of a run in one plane normal to family `k` (`PlanarMember`), in order, cut on row
+/// `tj` together: each ray is visited once for the run. The moves' chords are nested and
+/// centred on the plane, so move after move the ray changes only where a move's chord is wider
+/// than every earlier one's and than the air about the plane (its key, a squared distance,
+/// under the ray's `beat`): a move whose bound cannot beat it is passed over, its chord not even
+/// computed. Each change is measured on the ray as it was (`within`: the material inside the
+/// chord grows by what the move takes) and counted for its move, as the moves cut one by one
+/// would count it; the ray is cut once, by the widest chord.
 fn cut_planar(
     grid: &Grid,
     k: usize,
@@ -1487,8 +1494,12 @@ fn cut_planar(
         j0.max(tj * TILE) - tj * TILE,
         j1.min(tj * TILE + TILE - 1) - tj * TILE,
     );
+    let cv = |jj: usize| grid.center(v, tj * TILE + jj);
+    let vs = (cv(j_lo), cv(j_hi));
+    // The members that can reach a tile, and their bounds side by side: most are passed over
+    // on their bound alone, ray after ray.
     let mut cand: SmallVec<[usize; 32]> = SmallVec::new();
-    let mut boxes: SmallVec<[(f64, f64, f64); 32]> = SmallVec::new();
+    let mut bounds: SmallVec<[KeyBound; 32]> = SmallVec::new();
     for ti in i0 / TILE..i1 / TILE + 1 {
         if !row.bounds[ti].meets_mask(tlo, thi, mask) {
             continue;
@@ -1498,22 +1509,19 @@ fn cut_planar(
             i1.min(ti * TILE + TILE - 1) - ti * TILE,
         );
         let cu = |ii: usize| grid.center(u, ti * TILE + ii);
-        let cv = |jj: usize| grid.center(v, tj * TILE + jj);
-        // The tile's rays in the plane, and the moves that can reach any of them.
-        let (a, b) = (
-            first.point(cu(i_lo), cv(j_lo)),
-            first.point(cu(i_hi), cv(j_hi)),
-        );
-        let (xs, zs) = ((a.0.min(b.0), a.0.max(b.0)), (a.1.min(b.1), a.1.max(b.1)));
-        // The candidates' boxes side by side (`x` range, lowest centre): most are passed over
-        // on their box alone, ray after ray.
+        let us = (cu(i_lo), cu(i_hi));
         cand.clear();
-        cand.extend((0..members.len()).filter(|&n| members[n].member.box_bound2(xs, zs) < rr));
+        bounds.clear();
+        for (n, m) in members.iter().enumerate() {
+            let b = m.member.bound();
+            if b.over(us, vs) < rr {
+                cand.push(n);
+                bounds.push(b);
+            }
+        }
         if cand.is_empty() {
             continue;
         }
-        boxes.clear();
-        boxes.extend(cand.iter().map(|&n| members[n].member.extent()));
         let tile = &mut row.rays[ti * TILE_RAYS..(ti + 1) * TILE_RAYS];
         let mut changed = false;
         for jj in j_lo..j_hi + 1 {
@@ -1523,39 +1531,26 @@ fn cut_planar(
                 if !overlaps(d, tlo, thi) {
                     continue;
                 }
-                let (x, z) = first.point(cu(ii), cv);
-                // A chord must reach past the air about the plane to change the ray.
-                let mut gap = f64::INFINITY;
-                for iv in d.iter() {
-                    if iv.exit < c {
-                        gap = c - iv.exit;
-                    } else {
-                        gap = gap.min((iv.enter - c).max(0.0));
-                        break;
-                    }
-                }
-                let mut beat = rr - gap * gap;
-                // Each change is measured on the ray as it was (`within`: its material within
-                // the chord grows by what the move takes), and the ray is cut once, by the
-                // widest chord: no move's chord waits for the last one's subtraction.
-                let (mut widest, mut taken, mut last) = (0.0, 0.0, usize::MAX);
-                for (&n, &(xmin, xmax, zlow)) in cand.iter().zip(&boxes) {
-                    let ex = (xmin - x).max(x - xmax).max(0.0);
-                    let ez = (zlow - z).max(0.0);
-                    if ex * ex + ez * ez >= beat {
+                let cu = cu(ii);
+                let Some(mut beat) = first.threshold(d.iter().map(|iv| (iv.enter, iv.exit))) else {
+                    continue;
+                };
+                let (mut taken, mut last) = (0.0, usize::MAX);
+                for (&n, b) in cand.iter().zip(&bounds) {
+                    if b.at(cu, cv) >= beat {
                         continue;
                     }
                     let pc = &mut members[n];
-                    let d2 = pc.member.dist2(x, z);
+                    let key = pc.member.key(cu, cv);
                     pc.stats.visited_per_family[k] += 1;
                     pc.stats.tested_per_family[k] += 1;
                     pc.stats.rays_tested += 1;
-                    if d2 >= beat {
+                    if key >= beat {
                         continue;
                     }
-                    beat = d2;
-                    widest = (rr - d2).sqrt();
-                    let now = within(d, c, widest);
+                    beat = key;
+                    let (lo, hi) = first.chord(key);
+                    let now = within(d, lo, hi);
                     let removed = now - taken;
                     taken = now;
                     last = n;
@@ -1569,7 +1564,8 @@ fn cut_planar(
                 if last != usize::MAX {
                     // What the cut drops beyond the measure (remainders under
                     // `MIN_INTERVAL_MM`) goes to the move that cut last.
-                    let removed = subtract(d, c - widest, c + widest);
+                    let (lo, hi) = first.chord(beat);
+                    let removed = subtract(d, lo, hi);
                     changed |= removed > 0.0;
                     if removed > taken {
                         members[last].stats.removed_length[k] += removed - taken;
@@ -1587,10 +1583,9 @@ fn cut_planar(
     }
 }
 
-/// The length of the material of `d` within `[c − s, c + s]`.
+/// The length of the material of `d` within `[lo, hi]`.
 #[inline(always)]
-fn within(d: &[Interval], c: f64, s: f64) -> f64 {
-    let (lo, hi) = (c - s, c + s);
+fn within(d: &[Interval], lo: f64, hi: f64) -> f64 {
     d.iter()
         .map(|iv| (iv.exit.min(hi) - iv.enter.max(lo)).max(0.0))
         .sum()
@@ -1844,8 +1839,8 @@ mod tests {
     /// (`set_exhaustive` keeps them one by one): passes along X (the Y rays' planes) and along
     /// Y (the X rays'), plunges and lifts in them, step-overs and a diagonal between, in calls
     /// of several lengths; a ball whose shank and holder reach the block (its other group
-    /// reaches the rows: cut move by move); a flute too short for the block (refused: the
-    /// top would cut the chords short).
+    /// reaches the rows: cut move by move); a flute too short for the block (refused: the top
+    /// would cut the chords short).
     #[test]
     fn planar_runs_cut_as_the_moves_one_by_one() {
         use swarf_tool::{Cutter, CutterKind, CutterOptions, Holder, HolderSegment};
@@ -1938,10 +1933,7 @@ mod tests {
                 let part = &tool.cutting().parts()[0];
                 let sw = SweptConvex::new(part, m.tip0, m.axis, m.tip1 - m.tip0);
                 let top = sw.planar(1).map_or(f64::NAN, |p| p.top());
-                assert!(
-                    name == "held" || top < grid.center(2, grid.n[2] - 1),
-                    "{name}: top {top}"
-                );
+                assert!(name == "held" || top < grid.max[2], "{name}: top {top}");
             }
             for chunk in [moves.len(), 40, 7] {
                 let before = PLANAR_RUNS.load(std::sync::atomic::Ordering::Relaxed);

@@ -80,8 +80,8 @@ pub use fold::{fold_check, SelfIntersection};
 pub use grazing::{grazing_points, GrazingPoint, GrazingSet, Harmonic, Roots};
 pub use kinematics::MotionState;
 pub use swept::{
-    ConvexProfile, DexelKernel, Element, Front, FrontBlock, InstanceSet, KernelTask, LineBatch,
-    PlanarMember, SignedDistance, SweepBound, SweepShape, SweptConvex,
+    ConvexProfile, DexelKernel, Element, Front, FrontBlock, InstanceSet, KernelTask, KeyBound,
+    LineBatch, PlanarMember, SignedDistance, SweepBound, SweepShape, SweptConvex,
 };
 pub use tangency::{
     aras_angles, feasible_contact, feed_angle, feed_range, motion_class, roles, tangency,

@@ -81,7 +81,7 @@ pub use front::{Front, FrontBlock};
 pub use instance::{InstanceSet, SLIVER_MM};
 pub use interval::{overlaps, Interval};
 pub use kernel::{DexelKernel, KernelTask};
-pub use planar::PlanarMember;
+pub use planar::{KeyBound, PlanarMember};
 pub use profile::{ConvexProfile, Element, SweepShape};
 
 use smallvec::SmallVec;
@@ -686,8 +686,9 @@ impl<'a> SweptConvex<'a> {
     }
 
     /// A ball end moving with its axis along a world axis, in a plane normal to the rays along
-    /// world axis `k`, seen in that plane: chords as distances, nested from one move to the
-    /// next in the same plane (`planar.rs`). `None` for other tools and moves.
+    /// world axis `k`, seen in that plane: chords nested from one move to the next in the same
+    /// plane, so that a run of them can be cut together (`planar.rs`). `None` for other tools,
+    /// moves and families.
     pub fn planar(&self, k: usize) -> Option<PlanarMember> {
         match &self.closed {
             Some(ClosedForm::Axial(f)) => f.planar(k),

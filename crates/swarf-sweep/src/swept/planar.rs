@@ -1,22 +1,53 @@
-//! A ball end's sweep on the rays normal to the plane of its motion: the chord as a distance
-//! in that plane, so that consecutive moves in one plane can be cut together.
+//! A ball end's sweep on the rays normal to the plane of its motion: chords nested from one
+//! move to the next, so that a run of moves in one plane can be cut together on those rays.
 //!
 //! A raster finishing pass (passes along X at fixed Y, a vertical tool) keeps the tool axis and
 //! the tip's path in one plane `x_k = c`, normal to one ray family `k` (the Y rays there). A
 //! point at `δ` from that plane lies in a ball-end instance — the points within `r` of the
 //! segment from the sphere's centre up the axis to the top `z1` — iff `δ² ≤ r² − w² −
 //! min(0, h − f)²` (`w` its in-plane distance from the axis, `h` its height over the tip, `f`
-//! the centre's height) and `h ≤ z1`. Below the tool's top, that is `δ² ≤ r² − D²` with `D`
-//! the in-plane distance from the point to the half-line up from the centre; swept along the
-//! move, `D` becomes the distance to the union of those half-lines — the region on and above
-//! the centre's path (its epigraph `E`, convex). So every ray of family `k` meets the sweep in
-//! the chord `c ± √(r² − D²)`, centred on the plane, and the sweeps of several moves in the
-//! same plane meet it in nested chords: the widest is their union, and the next move changes
-//! the ray only if its `D` is smaller than every earlier one's. The stock's batched cut
-//! (`swarf-stock`, `tridexel.rs`) uses that to cut a pass's moves together on those rays.
+//! the centre's height) and `h ≤ z1`. Below the tool's top, that is `δ² ≤ r² − D²` with `D` the
+//! in-plane distance from the point to the half-line up from the centre; swept along the move,
+//! `D` becomes the distance to the union of those half-lines — the region on and above the
+//! centre's path (its epigraph, convex). So every ray of family `k` meets the sweep in the chord
+//! `c ± √(r² − D²)`, centred on the plane, and the sweeps of several moves in the same plane
+//! meet it in nested chords: the widest is their union, and the next move changes the ray only
+//! if its `D` is smaller than every earlier one's and than the air about the plane allows. The
+//! stock's batched cut (`cut_planar`, `swarf-stock/src/tridexel.rs`) visits each ray once for a
+//! run of such moves and computes a move's chord only where its bound ([`KeyBound`]) can beat
+//! that.
 //!
-//! Exactly the chord of [`super::SweptConvex::axis_ray_interval`] where the ray lies below the
-//! tool's lowest top over the move ([`PlanarMember::top`]); the caller keeps to that.
+//! Exactly the chord of [`super::SweptConvex::axis_ray_interval`] (to rounding) where the ray
+//! lies below the tool's lowest top over the move ([`PlanarMember::top`]); the caller keeps to
+//! that.
+
+/// A bound on [`PlanarMember::dist2`] in a ray's cross coordinates, without computing it: at
+/// least `eu² + ev²`, `eu`, `ev` how far `cu`, `cv` lie outside the ranges `u` and `v`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct KeyBound {
+    /// Range of the first cross coordinate.
+    pub u: (f64, f64),
+    /// Range of the second.
+    pub v: (f64, f64),
+}
+
+impl KeyBound {
+    /// The bound at `(cu, cv)`.
+    #[inline(always)]
+    pub fn at(&self, cu: f64, cv: f64) -> f64 {
+        let eu = (self.u.0 - cu).max(cu - self.u.1).max(0.0);
+        let ev = (self.v.0 - cv).max(cv - self.v.1).max(0.0);
+        eu * eu + ev * ev
+    }
+
+    /// The bound over the box `us × vs` of cross coordinates.
+    #[inline]
+    pub fn over(&self, us: (f64, f64), vs: (f64, f64)) -> f64 {
+        let eu = (self.u.0 - us.1).max(us.0 - self.u.1).max(0.0);
+        let ev = (self.v.0 - vs.1).max(vs.0 - self.v.1).max(0.0);
+        eu * eu + ev * ev
+    }
+}
 
 /// One move of a ball end (sphere on a slab reaching its top) whose tool axis (a world axis)
 /// and motion lie in a plane normal to the ray family `k`, seen in that plane: coordinates
@@ -95,14 +126,15 @@ impl PlanarMember {
     }
 
     /// The highest coordinate along the tool axis at which a ray's chord is exact: the tool's
-    /// lowest top over the move (above it, the flat top would cut the chord short).
+    /// lowest top over the move (above it, the flat top would cut the chord short). A run is
+    /// cut together only where the stock lies below it.
     pub fn top(&self) -> f64 {
         self.top
     }
 
     /// Whether `o`'s chords and this one's are nested on every ray: the same family, tool
     /// axis, plane and radius.
-    pub fn same_plane(&self, o: &PlanarMember) -> bool {
+    pub fn nests_with(&self, o: &PlanarMember) -> bool {
         self.k == o.k && self.kt == o.kt && self.plane == o.plane && self.r == o.r
     }
 
@@ -116,20 +148,12 @@ impl PlanarMember {
         }
     }
 
-    /// The sphere centre path's `x` range and lowest height: the squared distance from
-    /// `(x, z)` is at least `ex² + ez²`, `ex` and `ez` how far `x` lies outside the range and
-    /// `z` below the height ([`PlanarMember::box_bound2`]).
-    #[inline(always)]
-    pub fn extent(&self) -> (f64, f64, f64) {
-        (self.xmin, self.xmax, self.zlow)
-    }
-
-    /// A lower bound of [`PlanarMember::dist2`] over the in-plane box `[x0, x1] × [z0, z1]`.
-    #[inline(always)]
-    pub fn box_bound2(&self, (x0, x1): (f64, f64), (_, z1): (f64, f64)) -> f64 {
-        let ex = (self.xmin - x1).max(x0 - self.xmax).max(0.0);
-        let ez = (self.zlow - z1).max(0.0);
-        ex * ex + ez * ez
+    /// [`PlanarMember::dist2`]'s bound in cross coordinates: `x` outside the sphere centre
+    /// path's range, `z` below its lowest height.
+    pub fn bound(&self) -> KeyBound {
+        let (x, z) = ((self.xmin, self.xmax), (self.zlow, f64::INFINITY));
+        let (u, v) = if self.height_is_u { (z, x) } else { (x, z) };
+        KeyBound { u, v }
     }
 
     /// The squared in-plane distance from `(x, z)` to the region on and above the sphere
@@ -162,17 +186,42 @@ impl PlanarMember {
         d2
     }
 
-    /// The chord's half-width for a squared distance `d2` from [`PlanarMember::dist2`]
-    /// (`None` when the ray misses or grazes the sweep).
+    /// [`PlanarMember::dist2`] of the ray through cross coordinates `(cu, cv)`.
     #[inline(always)]
-    pub fn half_width(&self, d2: f64) -> Option<f64> {
-        (d2 < self.rr).then(|| (self.rr - d2).sqrt())
+    pub fn key(&self, cu: f64, cv: f64) -> f64 {
+        let (x, z) = self.point(cu, cv);
+        self.dist2(x, z)
+    }
+
+    /// The squared distance a move's must be under to change a ray whose material is the
+    /// sorted intervals `ends` (`(enter, exit)`): `r² − gap²`, `gap` the air about the plane;
+    /// `None` when no chord can reach the material.
+    #[inline(always)]
+    pub fn threshold(&self, ends: impl Iterator<Item = (f64, f64)>) -> Option<f64> {
+        let c = self.plane;
+        let mut gap = f64::INFINITY;
+        for (enter, exit) in ends {
+            if exit < c {
+                gap = c - exit;
+            } else {
+                gap = gap.min((enter - c).max(0.0));
+                break;
+            }
+        }
+        (gap < self.r).then_some(self.rr - gap * gap)
+    }
+
+    /// The chord of a squared distance under `r²`.
+    #[inline(always)]
+    pub fn chord(&self, d2: f64) -> (f64, f64) {
+        let s = (self.rr - d2).max(0.0).sqrt();
+        (self.plane - s, self.plane + s)
     }
 }
 
 #[cfg(test)]
 mod tests {
-    use super::*;
+    use super::PlanarMember;
     use crate::swept::test_rng;
     use crate::{ConvexProfile, SweptConvex};
     use swarf_geom::math::Vec3;
@@ -200,7 +249,8 @@ mod tests {
                             _ => {}
                         }
                         let sw = SweptConvex::new(&prof, tip, Vec3::AXES[kt], delta);
-                        let m = sw.planar(k).expect("a ball in the plane");
+                        let m: PlanarMember = sw.planar(k).expect("a ball in the plane");
+                        let bound = m.bound();
                         for _ in 0..200 {
                             let mut o =
                                 tip + Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 24.0;
@@ -210,10 +260,10 @@ mod tests {
                             }
                             let (cu, cv) = (o[(k + 1) % 3], o[(k + 2) % 3]);
                             let (x, z) = m.point(cu, cv);
+                            assert!(bound.at(cu, cv) <= m.dist2(x, z) + 1e-12);
                             let exact = sw.axis_ray_interval(o, k);
-                            let mine = m
-                                .half_width(m.dist2(x, z))
-                                .map(|s| (m.plane() - s, m.plane() + s));
+                            let d2 = m.dist2(x, z);
+                            let mine = (d2 < m.radius() * m.radius()).then(|| m.chord(d2));
                             match (exact, mine) {
                                 (Some(e), Some(p)) => {
                                     assert!(
@@ -235,21 +285,29 @@ mod tests {
         assert!(compared.0 > 5000 && compared.1 > 5000, "{compared:?}");
     }
 
-    /// The tile bound never exceeds the distance of a point of the box.
+    /// The key bounds over a box and at a point never exceed the key of a point of the box.
     #[test]
-    fn box_bound_is_a_lower_bound() {
+    fn key_bounds_are_lower_bounds() {
         let mut rnd = test_rng(8);
-        for _ in 0..2000 {
-            let c0 = Vec3::new(rnd(), rnd(), rnd()) * 10.0;
+        let c = Cutter::from_spec("ball:d=10").unwrap();
+        let prof = ConvexProfile::from_solid(c.cutting_solid()).unwrap();
+        for n in 0..4000 {
+            let tip = Vec3::new(rnd(), rnd(), rnd()) * 10.0;
             let mut d = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 6.0;
-            d[1] = 0.0;
-            let m = PlanarMember::new(1, 2, c0, d, (5.0, 5.0, 30.0)).unwrap();
-            let (x0, z0) = (rnd() * 14.0 - 2.0, rnd() * 14.0 - 2.0);
-            let (x1, z1) = (x0 + rnd(), z0 + rnd());
-            let b = m.box_bound2((x0, x1), (z0, z1));
+            let k = n % 2;
+            d[k] = 0.0;
+            let sw = SweptConvex::new(&prof, tip, Vec3::Z, d);
+            let Some(m) = sw.planar(k) else {
+                continue;
+            };
+            let b = m.bound();
+            let (u0, v0) = (rnd() * 24.0 - 6.0, rnd() * 24.0 - 6.0);
+            let (u1, v1) = (u0 + rnd(), v0 + rnd());
+            let over = b.over((u0, u1), (v0, v1));
             for _ in 0..20 {
-                let (x, z) = (x0 + rnd() * (x1 - x0), z0 + rnd() * (z1 - z0));
-                assert!(b <= m.dist2(x, z) + 1e-12);
+                let (cu, cv) = (u0 + rnd() * (u1 - u0), v0 + rnd() * (v1 - v0));
+                let key = m.key(cu, cv);
+                assert!(over <= b.at(cu, cv) && b.at(cu, cv) <= key + 1e-12);
             }
         }
     }
