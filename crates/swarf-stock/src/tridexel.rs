@@ -1535,7 +1535,10 @@ fn cut_planar(
                 let Some(mut beat) = first.threshold(d.iter().map(|iv| (iv.enter, iv.exit))) else {
                     continue;
                 };
-                let (mut taken, mut last) = (0.0, usize::MAX);
+                // The moves that widen the chord, in order, with their keys; their chords are
+                // made after the loop (square roots independent of one another, not each
+                // waiting for the last comparison).
+                let mut wider: SmallVec<[(usize, f64); 32]> = SmallVec::new();
                 for (&n, b) in cand.iter().zip(&bounds) {
                     if b.at(cu, cv) >= beat {
                         continue;
@@ -1545,31 +1548,35 @@ fn cut_planar(
                     pc.stats.visited_per_family[k] += 1;
                     pc.stats.tested_per_family[k] += 1;
                     pc.stats.rays_tested += 1;
-                    if key >= beat {
-                        continue;
+                    if key < beat {
+                        beat = key;
+                        wider.push((n, key));
                     }
-                    beat = key;
+                }
+                let Some(&(last, widest)) = wider.last() else {
+                    continue;
+                };
+                let mut taken = 0.0;
+                for &(n, key) in &wider {
                     let (lo, hi) = first.chord(key);
                     let now = within(d, lo, hi);
                     let removed = now - taken;
                     taken = now;
-                    last = n;
                     if removed > 0.0 {
-                        pc.stats.updates += 1;
-                        pc.stats.updates_per_family[k] += 1;
-                        pc.stats.removed_length[k] += removed;
-                        pc.stats.longest_removal[k] = pc.stats.longest_removal[k].max(removed);
+                        let st = &mut members[n].stats;
+                        st.updates += 1;
+                        st.updates_per_family[k] += 1;
+                        st.removed_length[k] += removed;
+                        st.longest_removal[k] = st.longest_removal[k].max(removed);
                     }
                 }
-                if last != usize::MAX {
-                    // What the cut drops beyond the measure (remainders under
-                    // `MIN_INTERVAL_MM`) goes to the move that cut last.
-                    let (lo, hi) = first.chord(beat);
-                    let removed = subtract(d, lo, hi);
-                    changed |= removed > 0.0;
-                    if removed > taken {
-                        members[last].stats.removed_length[k] += removed - taken;
-                    }
+                // What the cut drops beyond the measure (remainders under `MIN_INTERVAL_MM`)
+                // goes to the move that cut last.
+                let (lo, hi) = first.chord(widest);
+                let removed = subtract(d, lo, hi);
+                changed |= removed > 0.0;
+                if removed > taken {
+                    members[last].stats.removed_length[k] += removed - taken;
                 }
             }
         }
