@@ -74,16 +74,8 @@ fn cpu_s() -> Option<f64> {
 
 /// Runs the moves (one batched call, as `simulate` does); returns the summed statistics.
 fn run(stock: &mut TriDexel, tool: &ToolShape, pts: &[Vec3]) -> CutStats {
-    let moves: Vec<LinearMove> = pts
-        .windows(2)
-        .map(|w| LinearMove {
-            tip0: w[0],
-            tip1: w[1],
-            axis: Vec3::Z,
-        })
-        .collect();
     stock
-        .cut_linear_batch(tool, &moves)
+        .cut_linear_batch(tool, &LinearMove::chain(pts, Vec3::Z))
         .into_iter()
         .fold(CutStats::default(), |st, c| {
             st.merged(c.cutting).merged(c.non_cutting)

@@ -1012,6 +1012,19 @@ pub struct LinearMove {
     pub axis: Vec3,
 }
 
+impl LinearMove {
+    /// The moves from each point of `tips` to the next, the tool along `axis`.
+    pub fn chain(tips: &[Vec3], axis: Vec3) -> Vec<LinearMove> {
+        tips.windows(2)
+            .map(|w| LinearMove {
+                tip0: w[0],
+                tip1: w[1],
+                axis,
+            })
+            .collect()
+    }
+}
+
 /// Moves prepared and subtracted together by [`TriDexel::cut_linear_batch`] (bounds the
 /// memory of the prepared sweeps; large enough that the per-call overhead vanishes).
 const BATCH_MOVES: usize = 256;
@@ -1880,14 +1893,7 @@ mod tests {
                 pts.push(Vec3::new(x, y, surface(x, y) - 0.3));
             }
         }
-        let moves: Vec<LinearMove> = pts
-            .windows(2)
-            .map(|w| LinearMove {
-                tip0: w[0],
-                tip1: w[1],
-                axis: Vec3::Z,
-            })
-            .collect();
+        let moves = LinearMove::chain(&pts, Vec3::Z);
         let held = CutterOptions {
             flute_length: Some(2.0),
             overall_length: Some(3.0),

@@ -21,13 +21,7 @@ fn raster() -> Vec<LinearMove> {
             pts.push(Vec3::new(x, y, surface(x, y)));
         }
     }
-    pts.windows(2)
-        .map(|w| LinearMove {
-            tip0: w[0],
-            tip1: w[1],
-            axis: Vec3::Z,
-        })
-        .collect()
+    LinearMove::chain(&pts, Vec3::Z)
 }
 
 fn visited(cuts: &[swarf_stock::SegmentCut]) -> u64 {

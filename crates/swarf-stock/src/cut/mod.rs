@@ -172,14 +172,7 @@ impl TriDexel {
                         i => pose(s0 + (s1 - s0) * (i as f64 / n as f64)),
                     })
                     .collect();
-                let chords: Vec<LinearMove> = tips
-                    .windows(2)
-                    .map(|w| LinearMove {
-                        tip0: w[0],
-                        tip1: w[1],
-                        axis,
-                    })
-                    .collect();
+                let chords = LinearMove::chain(&tips, axis);
                 for cut in self.cut_chords(tool, &chords) {
                     total.add(cut);
                 }
