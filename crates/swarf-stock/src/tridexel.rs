@@ -387,7 +387,7 @@ pub struct CutStats {
     /// Rays whose intervals changed.
     pub updates: u64,
     /// Rays visited per family (X, Y, Z): in a tile that survived the tile test, with material
-    /// in the sweep's bounding range.
+    /// in the sweep's bounding range (in a planar run, as [`CutStats::rays_tested`]).
     pub visited_per_family: [u64; 3],
     /// `rays_tested` per family (X, Y, Z).
     pub tested_per_family: [u64; 3],
@@ -605,8 +605,9 @@ impl TriDexel {
     }
 
     /// With `on`, every move queries every ray it may reach instead of only those the front
-    /// of an already cut start instance can reach (`swarf_sweep::Front`): the stock ends the
-    /// same (to rounding), slower. For checking the front test, and for timing it.
+    /// of an already cut start instance can reach (`swarf_sweep::Front`), and moves in one
+    /// plane are cut one by one, not as runs (`swarf_sweep::PlanarMember`): the stock ends the
+    /// same (to rounding), slower. The reference for checking both, and for timing them.
     pub fn set_exhaustive(&mut self, on: bool) {
         self.exhaustive = on;
     }
@@ -869,8 +870,8 @@ impl TriDexel {
                 .and_then(|p| p.fam[k])
                 .is_some_and(|r| r.j.0 / TILE <= tj && tj <= r.j.1 / TILE)
         };
-        // Whether group `g` of move `m` may change row `tj` of family `k`: it reaches the row
-        // within the stock's extent along the rays (a shank above the stock does not).
+        // Whether group `g` of move `m` may change row `tj` of family `k`: it reaches the row,
+        // and its range along the rays meets the stock's.
         let touches = |m: usize, g: usize, k: usize, tj: usize| {
             reaches(m, g, k, tj)
                 && plans[m][g]
@@ -1489,7 +1490,7 @@ fn cut_planar(
         return;
     };
     #[cfg(test)]
-    tests::PLANAR_RUNS.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
+    tests::count_run(grid, k);
     let (c, r) = (first.plane(), first.radius());
     let rr = r * r;
     let (tlo, thi) = (c - r, c + r);
@@ -1850,17 +1851,34 @@ mod tests {
         moves
     }
 
-    /// Runs of `cut_planar` (any test's).
-    pub(super) static PLANAR_RUNS: std::sync::atomic::AtomicUsize =
-        std::sync::atomic::AtomicUsize::new(0);
+    /// Runs of `cut_planar`, by the grid's cell counts and the family (a test's own grid tells
+    /// its runs from those of tests running beside it).
+    static PLANAR_RUNS: std::sync::Mutex<Vec<([usize; 3], usize, usize)>> =
+        std::sync::Mutex::new(Vec::new());
+
+    pub(super) fn count_run(grid: &Grid, k: usize) {
+        let mut runs = PLANAR_RUNS.lock().unwrap_or_else(|e| e.into_inner());
+        match runs.iter_mut().find(|r| r.0 == grid.n && r.1 == k) {
+            Some(r) => r.2 += 1,
+            None => runs.push((grid.n, k, 1)),
+        }
+    }
+
+    /// The runs counted so far on grids of `n` cells, family `k`.
+    fn runs(n: [usize; 3], k: usize) -> usize {
+        let runs = PLANAR_RUNS.lock().unwrap_or_else(|e| e.into_inner());
+        runs.iter()
+            .find(|r| r.0 == n && r.1 == k)
+            .map_or(0, |r| r.2)
+    }
 
     /// Moves of a ball end in a plane normal to a family, cut together on that family's rows
     /// (`cut_planar`), leave the stock and each move's figures as the moves cut one by one do
     /// (`set_exhaustive` keeps them one by one): passes along X (the Y rays' planes) and along
     /// Y (the X rays'), plunges and lifts in them, step-overs and a diagonal between, in calls
-    /// of several lengths; a ball whose shank and holder reach the block (its other group
-    /// reaches the rows: cut move by move); a flute too short for the block (refused: the top
-    /// would cut the chords short).
+    /// of several lengths; a ball with a short flute, shank and holder in the block, and one
+    /// whose flute is just too short for it (both refused: the top would cut the chords
+    /// short).
     #[test]
     fn planar_runs_cut_as_the_moves_one_by_one() {
         use swarf_tool::{Cutter, CutterKind, CutterOptions, Holder, HolderSegment};
@@ -1946,18 +1964,24 @@ mod tests {
                 let part = &tool.cutting().parts()[0];
                 let sw = SweptConvex::new(part, m.tip0, m.axis, m.tip1 - m.tip0);
                 let top = sw.planar(1).map_or(f64::NAN, |p| p.top());
-                assert!(name == "held" || top < grid.max[2], "{name}: top {top}");
+                assert!(top < grid.max[2], "{name}: top {top}");
             }
             for chunk in [moves.len(), 40, 7] {
-                let before = PLANAR_RUNS.load(std::sync::atomic::Ordering::Relaxed);
+                let n = block.grid().n;
+                let before = [runs(n, 0), runs(n, 1)];
                 let mut together = block.clone();
                 let got: Vec<SegmentCut> = moves
                     .chunks(chunk)
                     .flat_map(|c| together.cut_linear_batch(&tool, c))
                     .collect();
-                if planar {
-                    assert!(PLANAR_RUNS.load(std::sync::atomic::Ordering::Relaxed) > before);
-                }
+                // Both the passes along X (the Y rays) and along Y (the X rays) ran as runs;
+                // none ran for a tool refused.
+                let after = [runs(n, 0), runs(n, 1)];
+                assert_eq!(
+                    after[0] > before[0] && after[1] > before[1],
+                    planar,
+                    "{name}"
+                );
                 for (m, (a, b)) in got.iter().zip(&want).enumerate() {
                     for (x, y) in [(a.cutting, b.cutting), (a.non_cutting, b.non_cutting)] {
                         for k in 0..3 {
@@ -1983,6 +2007,95 @@ mod tests {
                                 );
                             }
                         }
+                    }
+                }
+            }
+        }
+    }
+
+    /// A second group of parts whose sweeps reach a planar run's rows (a part beside the ball,
+    /// crossing the Y rays the ball's run cuts) keeps those rows move by move: each group's
+    /// figures, the second's included, and the stock are the move-by-move reference's, and the
+    /// rows the second group does not reach still ran as runs.
+    #[test]
+    fn another_group_on_the_rows_keeps_the_moves_one_by_one() {
+        use swarf_sweep::ConvexProfile;
+        use swarf_tool::{Cutter, CutterKind, CutterOptions};
+        let long = CutterOptions {
+            flute_length: Some(12.0),
+            ..CutterOptions::default()
+        };
+        let ball = Cutter::named(CutterKind::Ball, &[3.0], &long).unwrap();
+        let flat = Cutter::flat(1.0).unwrap();
+        let (bp, fp) = (
+            ConvexProfile::from_solid(ball.cutting_solid()).unwrap(),
+            ConvexProfile::from_solid(flat.cutting_solid()).unwrap(),
+        );
+        // A pass along X at y = 3 over x 1..11; the flat end, 2 mm to the side (y = 5, its own
+        // plane) and 1 mm lower, moves with it over x 1..5 only.
+        let tips: Vec<Vec3> = (0..=20)
+            .map(|i| {
+                Vec3::new(
+                    1.0 + 0.5 * i as f64,
+                    3.0,
+                    2.5 + 0.3 * (i as f64 * 0.7).sin(),
+                )
+            })
+            .collect();
+        let balls: Vec<SweptConvex<'_>> = tips
+            .windows(2)
+            .map(|w| SweptConvex::new(&bp, w[0], Vec3::Z, w[1] - w[0]))
+            .collect();
+        let flats: Vec<SweptConvex<'_>> = tips
+            .windows(2)
+            .map(|w| {
+                let side = Vec3::new(0.0, 2.0, -1.0);
+                SweptConvex::new(&fp, w[0] + side, Vec3::Z, w[1] - w[0])
+            })
+            .collect();
+        let moves: Vec<[&[SweptConvex<'_>]; 2]> = (0..balls.len())
+            .map(|i| {
+                let second: &[SweptConvex<'_>] = if i < 8 { &flats[i..i + 1] } else { &[] };
+                [&balls[i..i + 1], second]
+            })
+            .collect();
+        let block = TriDexel::from_box(Vec3::ZERO, Vec3::new(12.1, 7.1, 4.1), 0.09).unwrap();
+        let mut one = block.clone();
+        one.set_exhaustive(true);
+        let want = one.subtract_moves(&moves);
+        let n = block.grid().n;
+        let before = runs(n, 1);
+        let mut together = block.clone();
+        let got = together.subtract_moves(&moves);
+        assert!(
+            runs(n, 1) > before,
+            "no run on the rows the second group leaves"
+        );
+        let held: f64 = want.iter().map(|m| m[1].removed_length[1]).sum();
+        assert!(held > 1.0, "the second group cuts the Y rays: {held} mm");
+        for (m, (a, b)) in got.iter().zip(&want).enumerate() {
+            for g in 0..2 {
+                for k in 0..3 {
+                    assert!(
+                        (a[g].removed_length[k] - b[g].removed_length[k]).abs() < 1e-9,
+                        "move {m}, group {g}, family {k}: {:?} vs {:?}",
+                        a[g],
+                        b[g]
+                    );
+                }
+            }
+        }
+        for k in 0..3 {
+            let (nu, nv) = together.family(k).dims();
+            for j in 0..nv {
+                for i in 0..nu {
+                    let (a, b) = (together.family(k).ray(i, j), one.family(k).ray(i, j));
+                    assert_eq!(a.len(), b.len(), "family {k} ray ({i}, {j})");
+                    for (p, q) in a.iter().zip(b) {
+                        assert!(
+                            (p.enter - q.enter).abs() <= 1e-9 && (p.exit - q.exit).abs() <= 1e-9,
+                            "family {k} ray ({i}, {j}): {a:?} vs {b:?}"
+                        );
                     }
                 }
             }
