@@ -1963,8 +1963,11 @@ mod tests {
                 let m = &moves[10];
                 let part = &tool.cutting().parts()[0];
                 let sw = SweptConvex::new(part, m.tip0, m.axis, m.tip1 - m.tip0);
-                let top = sw.planar(1).map_or(f64::NAN, |p| p.top());
-                assert!(top < grid.max[2], "{name}: top {top}");
+                let member = sw.planar(1);
+                assert!(
+                    member.is_none_or(|p| p.top() < grid.max[2]),
+                    "{name}: {member:?}"
+                );
             }
             for chunk in [moves.len(), 40, 7] {
                 let n = block.grid().n;

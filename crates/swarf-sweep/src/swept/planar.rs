@@ -237,7 +237,7 @@ mod tests {
             "ball:d=10",
             "ball:d=3,flute-length=20",
             "ball:d=12",
-            "ball:d=10,flute-length=6",
+            "ball:d=10,flute-length=10",
         ] {
             let c = Cutter::from_spec(spec).unwrap();
             let prof = ConvexProfile::from_solid(c.cutting_solid()).unwrap();
@@ -261,7 +261,7 @@ mod tests {
                                 tip + Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 24.0;
                             o[k] = 0.0;
                             // Every other ray within 1 mm under the tool's top, where a wrong
-                            // top would show (the short flute's: 1 mm over the sphere).
+                            // top would show (the short flute's: the sphere's top).
                             if i % 2 == 1 {
                                 o[kt] = m.top() - rnd();
                             }
