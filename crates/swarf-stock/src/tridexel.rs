@@ -1851,6 +1851,25 @@ mod tests {
         moves
     }
 
+    /// Every ray of `a` holds `b`'s intervals, ends within 1e-9 mm.
+    fn same_rays(a: &TriDexel, b: &TriDexel, what: &str) {
+        for k in 0..3 {
+            let (nu, nv) = a.family(k).dims();
+            for j in 0..nv {
+                for i in 0..nu {
+                    let (x, y) = (a.family(k).ray(i, j), b.family(k).ray(i, j));
+                    assert_eq!(x.len(), y.len(), "{what}: family {k} ray ({i}, {j})");
+                    for (p, q) in x.iter().zip(y) {
+                        assert!(
+                            (p.enter - q.enter).abs() <= 1e-9 && (p.exit - q.exit).abs() <= 1e-9,
+                            "{what}: family {k} ray ({i}, {j}): {x:?} vs {y:?}"
+                        );
+                    }
+                }
+            }
+        }
+    }
+
     /// Runs of `cut_planar`, by the grid's cell counts and the family (a test's own grid tells
     /// its runs from those of tests running beside it).
     static PLANAR_RUNS: std::sync::Mutex<Vec<([usize; 3], usize, usize)>> =
@@ -1996,22 +2015,7 @@ mod tests {
                         }
                     }
                 }
-                for k in 0..3 {
-                    let (nu, nv) = together.family(k).dims();
-                    for j in 0..nv {
-                        for i in 0..nu {
-                            let (a, b) = (together.family(k).ray(i, j), one.family(k).ray(i, j));
-                            assert_eq!(a.len(), b.len(), "{name}: family {k} ray ({i}, {j})");
-                            for (p, q) in a.iter().zip(b) {
-                                assert!(
-                                    (p.enter - q.enter).abs() <= 1e-9
-                                        && (p.exit - q.exit).abs() <= 1e-9,
-                                    "{name}: family {k} ray ({i}, {j}): {a:?} vs {b:?}"
-                                );
-                            }
-                        }
-                    }
-                }
+                same_rays(&together, &one, name);
             }
         }
     }
@@ -2088,21 +2092,7 @@ mod tests {
                 }
             }
         }
-        for k in 0..3 {
-            let (nu, nv) = together.family(k).dims();
-            for j in 0..nv {
-                for i in 0..nu {
-                    let (a, b) = (together.family(k).ray(i, j), one.family(k).ray(i, j));
-                    assert_eq!(a.len(), b.len(), "family {k} ray ({i}, {j})");
-                    for (p, q) in a.iter().zip(b) {
-                        assert!(
-                            (p.enter - q.enter).abs() <= 1e-9 && (p.exit - q.exit).abs() <= 1e-9,
-                            "family {k} ray ({i}, {j}): {a:?} vs {b:?}"
-                        );
-                    }
-                }
-            }
-        }
+        same_rays(&together, &one, "beside");
     }
 
     /// Every tile's bound holds its material between calls, and is exact unless a cut changed
