@@ -1514,6 +1514,7 @@ fn cut_planar(
     // on their bound alone, ray after ray.
     let mut cand: SmallVec<[usize; 32]> = SmallVec::new();
     let mut bounds: SmallVec<[KeyBound; 32]> = SmallVec::new();
+    let run_bounds: SmallVec<[KeyBound; 32]> = members.iter().map(|m| m.member.bound()).collect();
     for ti in i0 / TILE..i1 / TILE + 1 {
         if !row.bounds[ti].meets_mask(tlo, thi, mask) {
             continue;
@@ -1526,11 +1527,10 @@ fn cut_planar(
         let us = (cu(i_lo), cu(i_hi));
         cand.clear();
         bounds.clear();
-        for (n, m) in members.iter().enumerate() {
-            let b = m.member.bound();
+        for (n, b) in run_bounds.iter().enumerate() {
             if b.over(us, vs) < rr {
                 cand.push(n);
-                bounds.push(b);
+                bounds.push(*b);
             }
         }
         if cand.is_empty() {
@@ -1542,9 +1542,8 @@ fn cut_planar(
             let cv = cv(jj);
             for ii in i_lo..i_hi + 1 {
                 let d = &mut tile[jj * TILE + ii];
-                if !overlaps(d, tlo, thi) {
-                    continue;
-                }
+                // (No material within r of the plane, i.e. none in the open range (tlo, thi):
+                // no threshold — one scan of the ray decides both.)
                 let cu = cu(ii);
                 let Some(mut beat) = first.threshold(d.iter().map(|iv| (iv.enter, iv.exit))) else {
                     continue;
