@@ -12,8 +12,8 @@ use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_geom::Aabb;
 use swarf_sweep::swept::{DexelRays, Scratch};
 use swarf_sweep::{
-    DexelKernel, Front, FrontBlock, InstanceSet, KernelTask, KeyBound, PlanarMember, SweepShape,
-    SweptConvex, ToolShape,
+    DexelKernel, Front, FrontBlock, InstanceSet, KernelTask, KeyBound, PlanarMember, Progress,
+    SweepShape, SweptConvex, ToolShape,
 };
 
 /// Side of the square tiles of rays (tiles are stored contiguously and carry a conservative
@@ -1514,6 +1514,7 @@ fn cut_planar(
     // on their bound alone, ray after ray.
     let mut cand: SmallVec<[usize; 32]> = SmallVec::new();
     let mut bounds: SmallVec<[KeyBound; 32]> = SmallVec::new();
+    let mut spans: SmallVec<[(f64, f64); 32]> = SmallVec::new();
     let run_bounds: SmallVec<[KeyBound; 32]> = members.iter().map(|m| m.member.bound()).collect();
     for ti in i0 / TILE..i1 / TILE + 1 {
         if !row.bounds[ti].meets_mask(tlo, thi, mask) {
@@ -1527,15 +1528,20 @@ fn cut_planar(
         let us = (cu(i_lo), cu(i_hi));
         cand.clear();
         bounds.clear();
+        spans.clear();
         for (n, b) in run_bounds.iter().enumerate() {
             if b.over(us, vs) < rr {
                 cand.push(n);
                 bounds.push(*b);
+                spans.push(members[n].member.span());
             }
         }
         if cand.is_empty() {
             continue;
         }
+        // On a pass the members a ray can need are one stretch of them (`Progress`): most
+        // are left without checking their bounds.
+        let progress = Progress::of(&spans);
         let tile = &mut row.rays[ti * TILE_RAYS..(ti + 1) * TILE_RAYS];
         let mut changed = false;
         for jj in j_lo..j_hi + 1 {
@@ -1552,8 +1558,14 @@ fn cut_planar(
                 // made after the loop (square roots independent of one another, not each
                 // waiting for the last comparison).
                 let mut wider: SmallVec<[(usize, f64); 32]> = SmallVec::new();
-                for (&n, b) in cand.iter().zip(&bounds) {
+                let x = first.point(cu, cv).0;
+                let from = progress.first(&spans, x, beat);
+                for ((&n, b), &span) in cand[from..].iter().zip(&bounds[from..]).zip(&spans[from..])
+                {
                     if b.at(cu, cv) >= beat {
+                        if progress.past(span, x, beat) {
+                            break;
+                        }
                         continue;
                     }
                     let pc = &mut members[n];

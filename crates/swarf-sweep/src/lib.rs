@@ -81,7 +81,7 @@ pub use grazing::{grazing_points, GrazingPoint, GrazingSet, Harmonic, Roots};
 pub use kinematics::MotionState;
 pub use swept::{
     ConvexProfile, DexelKernel, Element, Front, FrontBlock, InstanceSet, KernelTask, KeyBound,
-    LineBatch, PlanarMember, SignedDistance, SweepBound, SweepShape, SweptConvex,
+    LineBatch, PlanarMember, Progress, SignedDistance, SweepBound, SweepShape, SweptConvex,
 };
 pub use tangency::{
     aras_angles, feasible_contact, feed_angle, feed_range, motion_class, roles, tangency,

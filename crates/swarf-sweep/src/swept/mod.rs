@@ -81,7 +81,7 @@ pub use front::{Front, FrontBlock};
 pub use instance::{InstanceSet, SLIVER_MM};
 pub use interval::{overlaps, Interval};
 pub use kernel::{DexelKernel, KernelTask};
-pub use planar::{KeyBound, PlanarMember};
+pub use planar::{KeyBound, PlanarMember, Progress};
 pub use profile::{ConvexProfile, Element, SweepShape};
 
 use smallvec::SmallVec;

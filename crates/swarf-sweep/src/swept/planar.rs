@@ -49,6 +49,64 @@ impl KeyBound {
     }
 }
 
+/// How the members of a run, in order, move along the plane's axis across the tool axis
+/// (`x`): on a raster pass their sphere centres' `x` ranges only advance or only retreat.
+/// Then the members a ray's [`KeyBound`] can let through are one stretch of the run: before it
+/// a member's range ends more than `√beat` behind the ray, and once one that fails its bound
+/// starts ahead of the ray by that much, every later one does.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Progress {
+    /// Both ends of the ranges never decrease.
+    Advancing,
+    /// Both ends never increase.
+    Retreating,
+    /// Neither: every member is checked.
+    Mixed,
+}
+
+impl Progress {
+    /// The progress of the ranges `spans` (`x` ranges, in the run's order).
+    pub fn of(spans: &[(f64, f64)]) -> Progress {
+        let pairs = || spans.windows(2).map(|w| (w[0], w[1]));
+        if pairs().all(|(a, b)| a.0 <= b.0 && a.1 <= b.1) {
+            Progress::Advancing
+        } else if pairs().all(|(a, b)| a.0 >= b.0 && a.1 >= b.1) {
+            Progress::Retreating
+        } else {
+            Progress::Mixed
+        }
+    }
+
+    /// The first member of `spans` whose bound at a ray at `x` can be under `beat` (those
+    /// before cannot, nor under any smaller `beat`): their ranges end more than `√beat`
+    /// behind the ray.
+    #[inline(always)]
+    pub fn first(self, spans: &[(f64, f64)], x: f64, beat: f64) -> usize {
+        // A margin on the square root: a member is left out only where its bound is clearly
+        // at least `beat`, so the members kept are exactly those the bound would keep.
+        let reach = beat.max(0.0).sqrt() * (1.0 + 1e-9) + 1e-12;
+        match self {
+            Progress::Advancing => spans.partition_point(|s| s.1 < x - reach),
+            Progress::Retreating => spans.partition_point(|s| s.0 > x + reach),
+            Progress::Mixed => 0,
+        }
+    }
+
+    /// Whether, a member of range `span` having failed its bound at a ray at `x` against
+    /// `beat`, every later member fails too: it starts ahead of the ray (in the direction of
+    /// progress) by at least `√beat`, and the later ones further.
+    #[inline(always)]
+    pub fn past(self, span: (f64, f64), x: f64, beat: f64) -> bool {
+        // The same difference the bound squares (`KeyBound::at`): later members' are larger.
+        let ahead = match self {
+            Progress::Advancing => span.0 - x,
+            Progress::Retreating => x - span.1,
+            Progress::Mixed => return false,
+        };
+        ahead > 0.0 && ahead * ahead >= beat
+    }
+}
+
 /// One move of a ball end (sphere on a slab reaching its top) whose tool axis (a world axis)
 /// and motion lie in a plane normal to the ray family `k`, seen in that plane: coordinates
 /// `x` (the third world axis) and `z` (along the tool axis).
@@ -136,6 +194,11 @@ impl PlanarMember {
     /// axis, plane and radius.
     pub fn nests_with(&self, o: &PlanarMember) -> bool {
         self.k == o.k && self.kt == o.kt && self.plane == o.plane && self.r == o.r
+    }
+
+    /// The sphere centre path's range along the plane's axis across the tool axis (`x`).
+    pub fn span(&self) -> (f64, f64) {
+        (self.xmin, self.xmax)
     }
 
     /// The in-plane point `(x, z)` of the ray through cross coordinates `(cu, cv)`.
@@ -293,6 +356,75 @@ mod tests {
             }
         }
         assert!(compared.0 > 5000 && compared.1 > 5000, "{compared:?}");
+    }
+
+    /// `Progress` leaves out only members whose bound is at least the ray's `beat`: before
+    /// `first` and, once `past` holds, every later one — on advancing, retreating and mixed
+    /// sequences of ranges, with rays inside, between and beyond them, and beats down to ranges'
+    /// distances (where a rounding would show).
+    #[test]
+    fn progress_leaves_out_only_members_that_cannot_beat() {
+        use super::{KeyBound, Progress};
+        let mut rnd = test_rng(9);
+        let mut seen = [0usize; 3];
+        let (mut skipped, mut broken) = (0, 0);
+        for n in 0..3000 {
+            let len = 1 + (rnd() * 30.0) as usize;
+            let mut x = rnd() * 20.0;
+            let step = if n % 3 == 2 { 0.0 } else { 0.5 * rnd() };
+            let mut spans = Vec::new();
+            // One width a sequence (a pass's moves), or none (plunges).
+            let width = if n % 7 == 0 { 0.0 } else { rnd() };
+            for _ in 0..len {
+                let w = if n % 3 == 2 { rnd() } else { width };
+                spans.push((x, x + w));
+                x += match n % 3 {
+                    0 => step,
+                    1 => -step,
+                    _ => (rnd() - 0.5) * 2.0,
+                };
+            }
+            let progress = Progress::of(&spans);
+            seen[match progress {
+                Progress::Advancing => 0,
+                Progress::Retreating => 1,
+                Progress::Mixed => 2,
+            }] += 1;
+            let bounds: Vec<KeyBound> = spans
+                .iter()
+                .map(|&s| KeyBound {
+                    u: s,
+                    v: (rnd() * 5.0, f64::INFINITY),
+                })
+                .collect();
+            for _ in 0..20 {
+                let (cu, cv) = (rnd() * 40.0 - 10.0, rnd() * 5.0);
+                // A beat at a member's squared distance now and then: the ties.
+                let beat = if rnd() < 0.3 {
+                    let s = spans[(rnd() * len as f64) as usize];
+                    let e = (s.0 - cu).max(cu - s.1).max(0.0);
+                    e * e
+                } else {
+                    rnd() * 30.0
+                };
+                let from = progress.first(&spans, cu, beat);
+                for b in &bounds[..from] {
+                    assert!(b.at(cu, cv) >= beat, "{progress:?} skipped a member");
+                    skipped += 1;
+                }
+                for (i, (b, &s)) in bounds.iter().zip(&spans).enumerate().skip(from) {
+                    if b.at(cu, cv) >= beat && progress.past(s, cu, beat) {
+                        for later in &bounds[i..] {
+                            assert!(later.at(cu, cv) >= beat, "{progress:?} broke too soon");
+                            broken += 1;
+                        }
+                        break;
+                    }
+                }
+            }
+        }
+        assert!(seen.iter().all(|&c| c > 500), "{seen:?}");
+        assert!(skipped > 10_000 && broken > 10_000, "{skipped} {broken}");
     }
 
     /// The key bounds over a box and at a point never exceed the key of a point of the box.
