@@ -7,9 +7,9 @@
 //! integer number of cells spans the box exactly), and each ray holds the sorted, disjoint
 //! intervals `[enter, exit]` of material along it, in workpiece coordinates along the ray's
 //! axis. A ray holds two intervals inline and spills to the heap once when it needs more; rays
-//! are stored in 8 × 8 tiles, each with a conservative bound of its material, so that a move
-//! touches only the tiles and rays that cross its swept volume's bounding box and that hold
-//! material in its range (nothing scans the whole grid per move).
+//! are stored in 10 × 10 tiles (`TILE`), each with a conservative bound of its material, so
+//! that a move touches only the tiles and rays that cross its swept volume's bounding box and
+//! that hold material in its range (nothing scans the whole grid per move).
 //!
 //! Conventions: millimetres; the **workpiece frame** of `swarf-path` (tool tip and axis of
 //! each move); the tool axis points from the tip to the spindle; volumes come from the Z rays
