@@ -122,6 +122,11 @@ pub struct DexelFamily {
     pub(crate) nv: usize,
     /// Tiles along u.
     pub(crate) ntu: usize,
+    /// A ray's index in `rays` is `at_u[i] + at_v[j]`: the tile-major layout's two halves,
+    /// tabled (a lookup by a point — the engagement's millions a location — otherwise divides
+    /// by `TILE` four times).
+    at_u: Box<[u32]>,
+    at_v: Box<[u32]>,
     /// Tile-major storage: tile `(ti, tj)` holds rays `(tj·ntu + ti)·TILE² ..`, row-major inside.
     pub(crate) rays: Vec<Dexel>,
     /// Per tile, where its material lies along the rays: always true, exact unless `stale`.
@@ -218,11 +223,16 @@ impl DexelFamily {
         let (u, v) = ((axis + 1) % 3, (axis + 2) % 3);
         let (nu, nv) = (grid.n[u], grid.n[v]);
         let (ntu, ntv) = (nu.div_ceil(TILE), nv.div_ceil(TILE));
+        // (Fits: `MAX_RAYS` and the tiles' padding stay far below 2³².)
+        let at =
+            |i: usize, stride: usize, step: usize| ((i / TILE) * stride + (i % TILE) * step) as u32;
         Self {
             axis,
             nu,
             nv,
             ntu,
+            at_u: (0..nu).map(|i| at(i, TILE_RAYS, 1)).collect(),
+            at_v: (0..nv).map(|j| at(j, ntu * TILE_RAYS, TILE)).collect(),
             // Made, not cloned: `vec![Dexel::new(); n]` clones each through `SmallVec`'s
             // `extend`, ≈ 75 instructions a ray: more than half of building a box stock.
             rays: std::iter::repeat_with(Dexel::new)
@@ -263,7 +273,7 @@ impl DexelFamily {
 
     #[inline]
     fn index(&self, i: usize, j: usize) -> usize {
-        ((j / TILE) * self.ntu + i / TILE) * TILE_RAYS + (j % TILE) * TILE + i % TILE
+        (self.at_u[i] + self.at_v[j]) as usize
     }
 
     /// Ray direction: 0 = X, 1 = Y, 2 = Z.
@@ -284,22 +294,14 @@ impl DexelFamily {
     }
 
     /// The four rays `(i, j)`, `(i + 1, j)`, `(i, j + 1)`, `(i + 1, j + 1)` around a point
-    /// (`i + 1`, `j + 1` within [`DexelFamily::dims`]); one index computation when they share
-    /// a tile, as most do.
+    /// (`i + 1`, `j + 1` within [`DexelFamily::dims`]): four table reads, across tile borders
+    /// as within a tile.
     #[inline]
     pub fn ray_quad(&self, i: usize, j: usize) -> [&[Interval]; 4] {
-        let a = self.index(i, j);
-        if i % TILE != TILE - 1 && j % TILE != TILE - 1 {
-            let r = &self.rays[a..a + TILE + 2];
-            [&r[0], &r[1], &r[TILE], &r[TILE + 1]]
-        } else {
-            [
-                &self.rays[a],
-                &self.rays[self.index(i + 1, j)],
-                &self.rays[self.index(i, j + 1)],
-                &self.rays[self.index(i + 1, j + 1)],
-            ]
-        }
+        let (u0, u1) = (self.at_u[i], self.at_u[i + 1]);
+        let (v0, v1) = (self.at_v[j], self.at_v[j + 1]);
+        let ray = |a: u32, b: u32| &self.rays[(a + b) as usize][..];
+        [ray(u0, v0), ray(u1, v0), ray(u0, v1), ray(u1, v1)]
     }
 
     /// The provenance of ray `(i, j)`'s intervals (one [`EndTags`] per interval of
@@ -329,6 +331,7 @@ impl DexelFamily {
                 .sum::<usize>()
             + self.bounds.capacity() * std::mem::size_of::<TileBound>()
             + self.stale.capacity()
+            + (self.at_u.len() + self.at_v.len()) * std::mem::size_of::<u32>()
             + self.tags.capacity() * std::mem::size_of::<DexelTags>()
             + self
                 .tags
