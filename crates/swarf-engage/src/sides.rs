@@ -10,13 +10,29 @@ pub(crate) fn words(n: usize) -> usize {
 }
 
 /// Packs `n` samples into `out` (`words(n)` words): bit `j` set where `set(j)`.
+///
+/// A word's samples are first written as 0/1 bytes (a loop without branches, which the
+/// compiler vectorises), then gathered eight at a time by one multiply: the product of eight
+/// 0/1 bytes `b₀ … b₇` (little-endian) with `0x0102040810204080` holds `bᵢ` at bit `56 + i`
+/// and nothing else in its top byte — byte `k` of the multiplier has only bit `7 − k` set, so
+/// the top byte collects exactly the terms `i + k = 7`, each at its own bit, without carries.
+/// (Bit by bit, a variable shift per sample, this was a twentieth of a location's work.)
 #[inline]
 pub(crate) fn pack(out: &mut [u64], n: usize, set: impl Fn(usize) -> bool) {
     for (w, word) in out.iter_mut().enumerate() {
         let base = w * 64;
-        *word = (base..(base + 64).min(n))
+        let mut bytes = [0u8; 64];
+        for (t, b) in bytes[..(n - base).min(64)].iter_mut().enumerate() {
+            *b = u8::from(set(base + t));
+        }
+        *word = bytes
+            .chunks_exact(8)
             .enumerate()
-            .fold(0u64, |acc, (b, j)| acc | (u64::from(set(j)) << b));
+            .map(|(c, eight)| {
+                let x = u64::from_le_bytes(eight.try_into().unwrap_or_default());
+                (x.wrapping_mul(0x0102_0408_1020_4080) >> 56) << (8 * c)
+            })
+            .fold(0, |a, b| a | b);
     }
 }
 
@@ -126,6 +142,33 @@ mod tests {
                 // Nothing past the circle's samples.
                 if n % 64 != 0 {
                     prop_assert_eq!(borders(&packed, rows, n, r, nw - 1) >> (n % 64), 0);
+                }
+            }
+        }
+    }
+
+    /// The packing is the definition, bit by bit, on every length up to three words and
+    /// random samples.
+    #[test]
+    fn packing_sets_exactly_the_samples_bits() {
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        for n in 1..=192 {
+            for _ in 0..20 {
+                let samples: Vec<bool> = (0..n)
+                    .map(|_| {
+                        state ^= state << 13;
+                        state ^= state >> 7;
+                        state ^= state << 17;
+                        state & 1 == 1
+                    })
+                    .collect();
+                let mut packed = vec![!0u64; words(n)];
+                pack(&mut packed, n, |j| samples[j]);
+                for (w, &word) in packed.iter().enumerate() {
+                    let want = (0..64)
+                        .filter(|b| samples.get(w * 64 + b) == Some(&true))
+                        .fold(0u64, |a, b| a | 1 << b);
+                    assert_eq!(word, want, "n {n} word {w}");
                 }
             }
         }
