@@ -903,8 +903,8 @@ fn sample_strip(
             for (s, &v) in side.iter_mut().zip(&*row) {
                 *s = u8::from(v > 0.0);
             }
-            sides::pack(side_bits, n, |j| side[j] != 0);
-            sides::pack(open_bits, n, |j| rfr[j] > 0.0 && !exhaustive);
+            sides::pack(side_bits, side, |&s| s != 0);
+            sides::pack(open_bits, rfr, |&v| v > 0.0 && !exhaustive);
             count
         })
         .sum();

@@ -9,7 +9,8 @@ pub(crate) fn words(n: usize) -> usize {
     n.div_ceil(64)
 }
 
-/// Packs `n` samples into `out` (`words(n)` words): bit `j` set where `set(j)`.
+/// Packs the samples `items` into `out` (`words(items.len())` words): bit `j` set where
+/// `set(&items[j])`.
 ///
 /// A word's samples are first written as 0/1 bytes (a loop without branches, which the
 /// compiler vectorises), then gathered eight at a time by one multiply: the product of eight
@@ -18,12 +19,11 @@ pub(crate) fn words(n: usize) -> usize {
 /// the top byte collects exactly the terms `i + k = 7`, each at its own bit, without carries.
 /// (Bit by bit, a variable shift per sample, this was a twentieth of a location's work.)
 #[inline]
-pub(crate) fn pack(out: &mut [u64], n: usize, set: impl Fn(usize) -> bool) {
-    for (w, word) in out.iter_mut().enumerate() {
-        let base = w * 64;
+pub(crate) fn pack<T>(out: &mut [u64], items: &[T], set: impl Fn(&T) -> bool) {
+    for (word, chunk) in out.iter_mut().zip(items.chunks(64)) {
         let mut bytes = [0u8; 64];
-        for (t, b) in bytes[..(n - base).min(64)].iter_mut().enumerate() {
-            *b = u8::from(set(base + t));
+        for (b, x) in bytes.iter_mut().zip(chunk) {
+            *b = u8::from(set(x));
         }
         *word = bytes
             .chunks_exact(8)
@@ -132,7 +132,7 @@ mod tests {
             let nw = words(n);
             let mut packed = vec![0u64; rows * nw];
             for (r, row) in sides.iter().enumerate() {
-                pack(&mut packed[r * nw..(r + 1) * nw], n, |j| row[j]);
+                pack(&mut packed[r * nw..(r + 1) * nw], row, |&b| b);
             }
             for r in 0..rows {
                 for j in 0..n {
@@ -163,7 +163,7 @@ mod tests {
                     })
                     .collect();
                 let mut packed = vec![!0u64; words(n)];
-                pack(&mut packed, n, |j| samples[j]);
+                pack(&mut packed, &samples, |&b| b);
                 for (w, &word) in packed.iter().enumerate() {
                     let want = (0..64)
                         .filter(|b| samples.get(w * 64 + b) == Some(&true))
@@ -181,7 +181,7 @@ mod tests {
         let nw = words(n);
         let mut packed = vec![0u64; rows * nw];
         for r in 0..rows {
-            pack(&mut packed[r * nw..(r + 1) * nw], n, |_| true);
+            pack(&mut packed[r * nw..(r + 1) * nw], &[(); 130], |_| true);
         }
         let count = |r: usize| {
             (0..nw)

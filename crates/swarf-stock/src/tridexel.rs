@@ -694,7 +694,8 @@ impl TriDexel {
 
     /// A conservative range `[lowest, highest]` along family `k`'s rays of the material of the
     /// rays that cross `bbox` (from the tiles' bounds: it may be wider than the material, never
-    /// narrower); `None` when those rays hold no material. Cost: one look per tile (`TILE` × `TILE` rays).
+    /// narrower); `None` when those rays hold no material. Cost: one look per tile (`TILE` ×
+    /// `TILE` rays).
     pub fn material_range(&self, k: usize, bbox: &Aabb) -> Option<(f64, f64)> {
         let (u, v) = ((k + 1) % 3, (k + 2) % 3);
         let fam = &self.families[k];
