@@ -224,8 +224,11 @@ impl DexelFamily {
         let (nu, nv) = (grid.n[u], grid.n[v]);
         let (ntu, ntv) = (nu.div_ceil(TILE), nv.div_ceil(TILE));
         // (Fits: `MAX_RAYS` and the tiles' padding stay far below 2³².)
-        let at =
-            |i: usize, stride: usize, step: usize| ((i / TILE) * stride + (i % TILE) * step) as u32;
+        let at = |i: usize, stride: usize, step: usize| {
+            let at = (i / TILE) * stride + (i % TILE) * step;
+            debug_assert!(u32::try_from(at).is_ok(), "a ray index beyond u32");
+            at as u32
+        };
         Self {
             axis,
             nu,
@@ -1135,8 +1138,9 @@ impl TriDexel {
     }
 }
 
-/// Below this many tiles (summed over the moves of a call) the work is not split.
-const PARALLEL_MIN_TILES: usize = 64;
+/// Below this many tiles (summed over the moves of a call) the work is not split: about 4,000
+/// rays, what 64 tiles of 8 × 8 held when it was tuned.
+const PARALLEL_MIN_TILES: usize = 4096 / TILE_RAYS;
 
 /// Below this many moves a call prepares them on the calling thread.
 const PARALLEL_MIN_MOVES: usize = 32;
@@ -1817,7 +1821,9 @@ mod tests {
 
     #[test]
     fn ray_quad_is_the_four_rays() {
-        // Every cell, across tile borders too: the same slices as four `ray` calls.
+        // Every cell, across tile borders too: each ray holds what was filled at its own
+        // centre (so the layout's index is the ray's), no two rays share a slot, and the quad
+        // is the same slices as four `ray` calls.
         let b = Aabb::new(Vec3::ZERO, Vec3::new(2.1, 1.7, 1.3));
         let stock = TriDexel::from_fn(b, 0.1, |k, cu, cv, d| {
             d.push(Interval {
@@ -1826,9 +1832,22 @@ mod tests {
             });
         })
         .unwrap();
+        let grid = *stock.grid();
         for k in 0..3 {
             let fam = stock.family(k);
             let (nu, nv) = fam.dims();
+            let mut slots = std::collections::HashSet::new();
+            for j in 0..nv {
+                for i in 0..nu {
+                    let (cu, cv) = (grid.center((k + 1) % 3, i), grid.center((k + 2) % 3, j));
+                    let want = cu + 10.0 * cv + 100.0 * k as f64;
+                    assert_eq!(fam.ray(i, j)[0].enter, want, "family {k}, ray ({i}, {j})");
+                    assert!(
+                        slots.insert(fam.ray(i, j).as_ptr()),
+                        "family {k}, ray ({i}, {j})"
+                    );
+                }
+            }
             for j in 0..nv - 1 {
                 for i in 0..nu - 1 {
                     let quad = fam.ray_quad(i, j);

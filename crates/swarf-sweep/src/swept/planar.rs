@@ -83,7 +83,7 @@ impl Progress {
     #[inline(always)]
     pub fn first(self, spans: &[(f64, f64)], x: f64, beat: f64) -> usize {
         // A margin on the square root: a member is left out only where its bound is clearly
-        // at least `beat`, so the members kept are exactly those the bound would keep.
+        // at least `beat`, so every member left out is one the bound would reject.
         let reach = beat.max(0.0).sqrt() * (1.0 + 1e-9) + 1e-12;
         match self {
             Progress::Advancing => spans.partition_point(|s| s.1 < x - reach),
@@ -94,7 +94,7 @@ impl Progress {
 
     /// Whether, a member of range `span` having failed its bound at a ray at `x` against
     /// `beat`, every later member fails too: it starts ahead of the ray (in the direction of
-    /// progress) by at least `√beat`, and the later ones further.
+    /// progress) by at least `√beat`, and the later ones at least as far.
     #[inline(always)]
     pub fn past(self, span: (f64, f64), x: f64, beat: f64) -> bool {
         // The same difference the bound squares (`KeyBound::at`): later members' are larger.
