@@ -1527,7 +1527,10 @@ fn cut_planar(
     let mut cand: SmallVec<[usize; 32]> = SmallVec::new();
     let mut bounds: SmallVec<[KeyBound; 32]> = SmallVec::new();
     let mut spans: SmallVec<[(f64, f64); 32]> = SmallVec::new();
-    let run_bounds: SmallVec<[KeyBound; 32]> = members.iter().map(|m| m.member.bound()).collect();
+    let run_bounds: SmallVec<[(KeyBound, (f64, f64)); 32]> = members
+        .iter()
+        .map(|m| (m.member.bound(), m.member.span()))
+        .collect();
     for ti in i0 / TILE..i1 / TILE + 1 {
         if !row.bounds[ti].meets_mask(tlo, thi, mask) {
             continue;
@@ -1541,11 +1544,11 @@ fn cut_planar(
         cand.clear();
         bounds.clear();
         spans.clear();
-        for (n, b) in run_bounds.iter().enumerate() {
+        for (n, &(b, span)) in run_bounds.iter().enumerate() {
             if b.over(us, vs) < rr {
                 cand.push(n);
-                bounds.push(*b);
-                spans.push(members[n].member.span());
+                bounds.push(b);
+                spans.push(span);
             }
         }
         if cand.is_empty() {

@@ -84,10 +84,17 @@ impl Progress {
     pub fn first(self, spans: &[(f64, f64)], x: f64, beat: f64) -> usize {
         // A margin on the square root: a member is left out only where its bound is clearly
         // at least `beat`, so every member left out is one the bound would reject.
-        let reach = beat.max(0.0).sqrt() * (1.0 + 1e-9) + 1e-12;
+        // (A mixed run needs no square root.)
+        let reach = || beat.max(0.0).sqrt() * (1.0 + 1e-9) + 1e-12;
         match self {
-            Progress::Advancing => spans.partition_point(|s| s.1 < x - reach),
-            Progress::Retreating => spans.partition_point(|s| s.0 > x + reach),
+            Progress::Advancing => {
+                let behind = x - reach();
+                spans.partition_point(|s| s.1 < behind)
+            }
+            Progress::Retreating => {
+                let ahead = x + reach();
+                spans.partition_point(|s| s.0 > ahead)
+            }
             Progress::Mixed => 0,
         }
     }
