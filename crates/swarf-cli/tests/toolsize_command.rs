@@ -151,7 +151,10 @@ fn a_trimmed_wall_limits_only_where_it_is_left() {
 }
 
 /// A patch whose trimmed region falls between the grid's rows and columns gets no point: a
-/// warning names it (its sizes are missing from the map, silently before).
+/// warning names it (its sizes are missing from the map, silently before). The grid spans the
+/// outer boundary's box (the readers cut the parameter box down to it), so a diamond touching
+/// that box's sides at their middles holds none of its corners (`--grid 2`) but its centre
+/// (`--grid 3`).
 #[test]
 fn a_patch_the_grid_misses_is_named() {
     let dir = swarf_testdata::scratch_dir("toolsize-offgrid");
@@ -163,7 +166,7 @@ fn a_patch_the_grid_misses_is_named() {
    "control_points": [[[0, 0, 0, 1], [0, 20, 0, 1]], [[20, 0, 0, 1], [20, 20, 0, 1]]]},
   {"name": "island", "degree_u": 1, "degree_v": 1, "knots_u": [0, 0, 1, 1], "knots_v": [0, 0, 1, 1],
    "control_points": [[[20, 0, 0, 1], [20, 20, 0, 1]], [[20, 0, 10, 1], [20, 20, 10, 1]]],
-   "trim": {"outer": [[0.2, 0.2], [0.3, 0.2], [0.3, 0.3], [0.2, 0.3]]}}]}"#,
+   "trim": {"outer": [[0.25, 0.2], [0.3, 0.25], [0.25, 0.3], [0.2, 0.25]]}}]}"#,
     )
     .unwrap();
     let out = dir.join("out");
@@ -180,17 +183,17 @@ fn a_patch_the_grid_misses_is_named() {
             out.to_str().unwrap(),
         ])
     };
-    let o = run("3");
+    let o = run("2");
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(
         stderr(&o).contains(
-            "warning: 1 of 2 patches get no grid point on the part at --grid 3 (patch 1 (island))"
+            "warning: 1 of 2 patches get no grid point on the part at --grid 2 (patch 1 (island))"
         ),
         "{}",
         stderr(&o)
     );
-    // At --grid 21 the island holds grid points (u, v = 0.2, 0.25, 0.3).
-    let o = run("21");
+    // At --grid 3 the island holds grid points (its centre and the middles of its box's sides).
+    let o = run("3");
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(!stderr(&o).contains("no grid point"), "{}", stderr(&o));
     std::fs::remove_dir_all(&dir).ok();

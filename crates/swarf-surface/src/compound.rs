@@ -10,7 +10,7 @@ use swarf_geom::math::Vec3;
 
 use crate::io::TrimFailure;
 use crate::surface::{
-    differential, LocalGeometry, ParametricSurface, Surface, SurfaceNormal, Tolerances,
+    differential, LocalGeometry, ParamBox, ParametricSurface, Surface, SurfaceNormal, Tolerances,
 };
 use crate::trim::Trim;
 
@@ -140,6 +140,35 @@ impl Patch {
     #[inline]
     pub fn on_part(&self, u: f64, v: f64) -> bool {
         self.trim.as_ref().map_or(true, |t| t.contains(u, v))
+    }
+
+    /// Cuts the parameter box down to the box of the trim's outer boundary, so that the grid
+    /// of [`CompoundSurface::grid`] spends its `n × n` points on the part rather than on the
+    /// surface the trim cuts away (a face that is a sliver of a large surface got a few points,
+    /// or none). A B-spline surface is cut exactly, its parameters kept; the trim is made again
+    /// on the new box. Nothing changes without an outer boundary, when the boundary's box is
+    /// not inside the parameter box's, or when a B-spline cannot be cut there (a box outside
+    /// its knots). The STEP reader fits its faces' boxes so as it reads them (across seams).
+    pub fn fit_domain_to_trim(&mut self) {
+        let Some(t) = self.trim.as_ref().filter(|t| t.outer().is_some()) else {
+            return;
+        };
+        let [u0, u1, v0, v1] = t.region_box();
+        let d = self.surface.domain();
+        let fitted = ParamBox::new(u0, u1, v0, v1);
+        if !(u0 < u1 && v0 < v1) || fitted == d {
+            return;
+        }
+        self.surface.set_domain(fitted);
+        let now = self.surface.domain();
+        if now == d {
+            return;
+        }
+        let (outer, holes) = (t.outer().map(<[_]>::to_vec), t.holes().to_vec());
+        // (The loops were accepted once: they are again, on any box.)
+        if let Ok(t) = Trim::new(&now, outer, holes) {
+            self.trim = Some(t);
+        }
     }
 
     /// A box containing the patch.
@@ -625,6 +654,11 @@ impl CompoundSurface {
         for p in &mut self.patches {
             p.flipped = !p.flipped;
         }
+    }
+
+    /// [`Patch::fit_domain_to_trim`] on every patch: the IGES and JSON readers' last step.
+    pub fn fit_domains_to_trims(&mut self) {
+        self.patches.iter_mut().for_each(Patch::fit_domain_to_trim);
     }
 
     /// One box per patch.

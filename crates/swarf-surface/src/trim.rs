@@ -242,6 +242,12 @@ impl Trim {
         self.outer.then(|| &self.loops[0][..])
     }
 
+    /// The box holding the part, `[u0, u1, v0, v1]`: the parameter box the trim was made on,
+    /// cut down to the outer boundary's box.
+    pub fn region_box(&self) -> [f64; 4] {
+        self.bbox
+    }
+
     /// The holes.
     pub fn holes(&self) -> &[Vec<[f64; 2]>] {
         &self.loops[usize::from(self.outer)..]

@@ -248,9 +248,20 @@ fn built_plate_with_holes_from_lines_a_spline_and_a_moved_arc() {
             let r = (q[0] - 0.8).hypot(q[1] - 0.8);
             assert!((r - 0.1).abs() < 1e-12, "{r}");
         }
-        // The second 144 trims a copy of the patch.
+        // The second 144 trims a copy of the patch: the same surface, its parameter box cut
+        // down to its outer boundary's `[0.1, 0.9]²` (the first keeps the whole box: no outer
+        // boundary).
         let t2 = s.patches[1].trim.as_ref().unwrap();
-        assert_eq!(s.patches[1].surface, s.patches[0].surface);
+        let (d0, d1) = (s.patches[0].surface.domain(), s.patches[1].surface.domain());
+        assert_eq!((d0.u, d0.v), ([0.0, 1.0], [0.0, 1.0]));
+        assert_eq!((d1.u, d1.v), ([0.1, 0.9], [0.1, 0.9]));
+        for (u, v) in [(0.1, 0.1), (0.37, 0.81), (0.9, 0.5)] {
+            let (a, b) = (
+                s.patches[0].surface.point(u, v),
+                s.patches[1].surface.point(u, v),
+            );
+            assert!(a.distance(b) < 1e-12 * scale, "({u}, {v}): {a} against {b}");
+        }
         assert!(t2.contains(0.5, 0.5) && !t2.contains(0.05, 0.5) && !t2.contains(0.95, 0.95));
         let trimmed: Vec<_> = s
             .notes

@@ -4,6 +4,7 @@
 mod common;
 
 use common::*;
+use swarf_geom::math::Vec3;
 use swarf_surface::io::json;
 use swarf_surface::{CompoundSurface, Coverage, ParametricSurface, Patch, Surface, Trim};
 
@@ -57,10 +58,56 @@ fn trims_read_as_documented() {
     let s = json::parse(&inch).unwrap();
     let t = s.patches[0].trim.as_ref().unwrap();
     assert!(t.contains(0.25, 0.5) && !t.contains(0.75, 0.5));
-    assert_eq!(s.patches[0].surface.point(1.0, 1.0).x, 254.0);
+    // (The parameter box is cut down to the outer boundary's: `[0, 0.5] × [0, 1]`.)
+    assert_eq!(s.patches[0].surface.point(0.5, 1.0).x, 127.0);
     // No trim: none.
     let s = json::parse(&floor("null")).unwrap();
     assert!(s.patches[0].trim.is_none());
+}
+
+#[test]
+fn a_trimmed_patch_is_gridded_over_its_outer_boundary_only() {
+    // A quarter disc in a corner of the 10 mm floor: its box is [0, 0.3]², 9 % of the patch's.
+    let quarter: Vec<String> = (0..=16)
+        .map(|k| {
+            let a = std::f64::consts::FRAC_PI_2 * k as f64 / 16.0;
+            format!("[{}, {}]", 0.3 * a.cos(), 0.3 * a.sin())
+        })
+        .chain(std::iter::once("[0, 0]".to_string()))
+        .collect();
+    let s = json::parse(&floor(&format!(r#"{{"outer": [{}]}}"#, quarter.join(", ")))).unwrap();
+    let d = s.patches[0].surface.domain();
+    assert_eq!((d.u, d.v), ([0.0, 0.3], [0.0, 0.3]));
+    // The geometry is the floor's: the point at (u, v) is (10u, 10v, 0).
+    for (u, v) in [(0.0, 0.0), (0.3, 0.1), (0.17, 0.29)] {
+        let p = s.patches[0].surface.point(u, v);
+        assert!(
+            (p - Vec3::new(10.0 * u, 10.0 * v, 0.0)).length() < 1e-12,
+            "{p}"
+        );
+    }
+    // A 21 × 21 grid over the box: the points (0.015 i, 0.015 j) inside the quarter circle,
+    // i² + j² < 20², and the polygon's two vertices on it, (20, 0) and (0, 20) — the other two
+    // on the circle, (12, 16) and (16, 12), lie outside the chords: 333, where the whole
+    // patch's grid had 35.
+    let n = 21;
+    let on = s.grid(n).len();
+    let count = (0..n * n)
+        .filter(|k| (k / n).pow(2) + (k % n).pow(2) < 400)
+        .count()
+        + 2;
+    assert_eq!((on, count), (333, 333));
+    // Every grid point is on the part's box, and the trim still says which are on it.
+    let t = s.patches[0].trim.as_ref().unwrap();
+    assert_eq!(t.region_box(), [0.0, 0.3, 0.0, 0.3]);
+    assert!(t.contains(0.1, 0.1) && !t.contains(0.29, 0.29));
+    // A trim without an outer boundary keeps the whole box.
+    let s = json::parse(&floor(
+        r#"{"holes": [[[0.4, 0.4], [0.6, 0.4], [0.5, 0.6]]]}"#,
+    ))
+    .unwrap();
+    let d = s.patches[0].surface.domain();
+    assert_eq!((d.u, d.v), ([0.0, 1.0], [0.0, 1.0]));
 }
 
 #[test]

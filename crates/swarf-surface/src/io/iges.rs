@@ -383,6 +383,9 @@ pub fn parse_document_bytes(bytes: &[u8]) -> Result<IgesDocument, ReadError> {
             ),
         });
     }
+    // Each trimmed face gridded over its own part (after the placements, which keep the
+    // parameters).
+    doc.surface.fit_domains_to_trims();
     if doc.surface.patches.is_empty() {
         return Err(ReadError::Empty {
             format: Format::Iges,

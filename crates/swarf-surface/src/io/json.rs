@@ -256,6 +256,7 @@ pub fn parse(text: &str) -> Result<CompoundSurface, ReadError> {
             trim: c.trim,
         });
     }
+    out.fit_domains_to_trims();
     Ok(out)
 }
 

@@ -169,6 +169,25 @@ impl Surface {
         }
     }
 
+    /// Sets the parameter box (a B-spline surface is cut down to it, exactly, its parameters
+    /// kept; a box that is not within its knots leaves it as it is).
+    pub fn set_domain(&mut self, domain: ParamBox) {
+        match self {
+            Surface::Nurbs(n) => {
+                if n.domain() != domain {
+                    if let Ok(r) = n.restricted(domain.u, domain.v) {
+                        *n = r;
+                    }
+                }
+            }
+            Surface::Plane(s) => s.domain = domain,
+            Surface::Cylinder(s) => s.domain = domain,
+            Surface::Cone(s) => s.domain = domain,
+            Surface::Sphere(s) => s.domain = domain,
+            Surface::Torus(s) => s.domain = domain,
+        }
+    }
+
     /// The differential geometry at `(u, v)` with the normal `S_u × S_v` (see
     /// [`differential`]).
     pub fn local(&self, u: f64, v: f64, tol: &Tolerances) -> LocalGeometry {

@@ -10,7 +10,7 @@ use swarf_geom::Frame;
 use super::assembly::{place, Assembly, MAX_PLACED_CONTROL_POINTS, MAX_PLACED_TRIM_POINTS};
 use super::lex::{refs, show, Instance, Param};
 use super::swept::is_swept;
-use super::trims::{set_domain, MAX_FILE_TRIM_POINTS};
+use super::trims::MAX_FILE_TRIM_POINTS;
 use super::trims::{Built, FaceTrim};
 use super::DEFAULT_LINEAR_RANGE;
 use crate::compound::{CompoundSurface, EntityRef, Patch, PatchSource, ReadNote, UnhonouredTrim};
@@ -1119,7 +1119,7 @@ fn trimmed(
                 loops: t.trim.loops().len(),
                 points: t.trim.loops().iter().map(Vec::len).sum(),
             });
-            set_domain(surface, t.domain);
+            surface.set_domain(t.domain);
             Some(t.trim)
         }
         Ok(None) => None,

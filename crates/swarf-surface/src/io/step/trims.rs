@@ -943,25 +943,6 @@ fn fitted(dom: ParamBox, outer: &[Uv]) -> ParamBox {
     out
 }
 
-/// Sets the parameter box of a surface (a B-spline surface is cut down to it, exactly, its
-/// parameters kept; a box that is not within its knots' leaves it as it is).
-pub(super) fn set_domain(surface: &mut Surface, domain: ParamBox) {
-    match surface {
-        Surface::Nurbs(n) => {
-            if n.domain() != domain {
-                if let Ok(r) = n.restricted(domain.u, domain.v) {
-                    *n = r;
-                }
-            }
-        }
-        Surface::Plane(s) => s.domain = domain,
-        Surface::Cylinder(s) => s.domain = domain,
-        Surface::Cone(s) => s.domain = domain,
-        Surface::Sphere(s) => s.domain = domain,
-        Surface::Torus(s) => s.domain = domain,
-    }
-}
-
 /// `p` with coordinate `d` set to `x`.
 pub(super) fn with(mut p: Uv, d: usize, x: f64) -> Uv {
     p[d] = x;
