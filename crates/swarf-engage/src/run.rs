@@ -760,8 +760,10 @@ fn sample_strip(
         centre_z - c.rho * horiz <= material.1 + 1e-9
             && centre_z + c.rho * horiz >= material.0 - 1e-9
     };
-    let rows: Vec<usize> = (0..strip.len()).filter(|&k| reachable(k)).collect();
-    let (Some(&lo), Some(&hi)) = (rows.first(), rows.last()) else {
+    let (Some(lo), Some(hi)) = (
+        (0..strip.len()).position(reachable),
+        (0..strip.len()).rposition(reachable),
+    ) else {
         return StripSamples {
             rows: (0, 0),
             n_phi: n,
