@@ -324,9 +324,9 @@ pub(crate) fn integrate(strip: &Strip, s: &StripSamples, dphi_deg: f64) -> Strip
     let n = s.n_phi;
     let dphi = dphi_deg.to_radians();
     let last = strip.len() - 1;
-    // Each row's first and last engaged sample, once (a row is also its neighbour's next): on
-    // this thread, a byte scan per row being cheaper than a split.
+    // Each row's first and last engaged sample, once (a row is also its neighbour's next).
     let engaged: Vec<Option<(usize, usize)>> = (s.rows.0..s.rows.1)
+        .into_par_iter()
         .map(|k| {
             let row = s.sides(k)?;
             let first = row.iter().position(|&v| v != 0)?;

@@ -942,19 +942,11 @@ fn sample_strip(
                 break;
             }
             let (rf_now, probed) = (&rf, &probed);
-            // Written in place (`par_extend` gathers its pieces in lists, allocated each
-            // time); a few probes on this thread.
             values.clear();
-            values.resize(todo.len(), 0.0);
-            let probe_at = |(v, &i): (&mut f64, &usize)| *v = probed(lo + i / n, i % n, rf_now[i]);
-            if todo.len() < SERIAL_PROBES {
-                values.iter_mut().zip(todo.iter()).for_each(probe_at);
-            } else {
-                values
-                    .par_iter_mut()
-                    .zip(todo.par_iter())
-                    .for_each(probe_at);
-            }
+            values.par_extend(
+                todo.par_iter()
+                    .map(|&i| probed(lo + i / n, i % n, rf_now[i])),
+            );
             counted += todo.len() as u64;
             scan.fill(false);
             for (&i, &v) in todo.iter().zip(values.iter()) {
@@ -1021,12 +1013,6 @@ impl Rub {
         }
     }
 }
-
-/// Fewer probes than this are made on the calling thread: the boundary's first round is split
-/// across threads, the rounds after it (the neighbours of the sides a probe flipped) cost less
-/// than waiting for a split. On the finishing benchmark's first 1,000 locations the first rounds
-/// held 256 probes or more (1,050 on average), 98 % of the later ones fewer than 64.
-const SERIAL_PROBES: usize = 256;
 
 /// Depths beyond this (mm) are reported as this: far enough from any boundary for any cutter.
 const FAR_MM: f64 = 1e6;

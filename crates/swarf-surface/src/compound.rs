@@ -10,7 +10,7 @@ use swarf_geom::math::Vec3;
 
 use crate::io::TrimFailure;
 use crate::surface::{
-    differential, LocalGeometry, ParamBox, ParametricSurface, Surface, SurfaceNormal, Tolerances,
+    differential, LocalGeometry, ParametricSurface, Surface, SurfaceNormal, Tolerances,
 };
 use crate::trim::Trim;
 
@@ -142,31 +142,31 @@ impl Patch {
         self.trim.as_ref().map_or(true, |t| t.contains(u, v))
     }
 
-    /// Cuts the parameter box down to the box of the trim's outer boundary, so that the grid
-    /// of [`CompoundSurface::grid`] spends its `n × n` points on the part rather than on the
-    /// surface the trim cuts away (a face that is a sliver of a large surface got a few points,
-    /// or none). A B-spline surface is cut exactly, its parameters kept; the trim is made again
-    /// on the new box. Nothing changes without an outer boundary, when the boundary's box is
-    /// not inside the parameter box's, or when a B-spline cannot be cut there (a box outside
-    /// its knots). The STEP reader fits its faces' boxes so as it reads them (across seams).
+    /// Cuts the parameter box down to the box of the trim's outer boundary (a side the
+    /// boundary runs along, within 1e-9 of the box's extent, or beyond, stays), so that the grid of [`CompoundSurface::grid`] spends its `n × n`
+    /// points on the part rather than on the surface the trim cuts away (a face that is a
+    /// sliver of a large surface got a few points, or none). A B-spline surface is cut exactly,
+    /// its parameters kept; the trim is made again on the new box (the same loops: only its
+    /// tolerances, relative to the box, change), as if the file had given that box. Nothing
+    /// changes without an outer boundary. The STEP reader fits its faces' boxes as it reads
+    /// them (across seams, in angles); the IGES and JSON readers call this on every patch.
     pub fn fit_domain_to_trim(&mut self) {
-        let Some(t) = self.trim.as_ref().filter(|t| t.outer().is_some()) else {
+        let Some((t, outer)) = self
+            .trim
+            .as_ref()
+            .and_then(|t| t.outer().map(|o| (t, o.to_vec())))
+        else {
             return;
         };
-        let [u0, u1, v0, v1] = t.region_box();
         let d = self.surface.domain();
-        let fitted = ParamBox::new(u0, u1, v0, v1);
-        if !(u0 < u1 && v0 < v1) || fitted == d {
+        let fitted = crate::trim::fitted_to_loop(d, &outer);
+        if fitted == d {
             return;
         }
         self.surface.set_domain(fitted);
         let now = self.surface.domain();
-        if now == d {
-            return;
-        }
-        let (outer, holes) = (t.outer().map(<[_]>::to_vec), t.holes().to_vec());
-        // (The loops were accepted once: they are again, on any box.)
-        if let Ok(t) = Trim::new(&now, outer, holes) {
+        // (The loops were accepted on the old box: they are on any box.)
+        if let Ok(t) = Trim::new(&now, Some(outer), t.holes().to_vec()) {
             self.trim = Some(t);
         }
     }
@@ -656,9 +656,19 @@ impl CompoundSurface {
         }
     }
 
-    /// [`Patch::fit_domain_to_trim`] on every patch: the IGES and JSON readers' last step.
+    /// [`Patch::fit_domain_to_trim`] on every patch: the IGES and JSON readers' last step. A
+    /// note that a patch's box was a default one ([`ReadNote::DefaultParameterBox`]) is
+    /// dropped when an outer boundary gives the patch its box, as the STEP reader drops it.
     pub fn fit_domains_to_trims(&mut self) {
         self.patches.iter_mut().for_each(Patch::fit_domain_to_trim);
+        let patches = &self.patches;
+        self.notes.retain(|n| match n {
+            ReadNote::DefaultParameterBox { patch, .. } => patches
+                .get(*patch)
+                .and_then(|p| p.trim.as_ref())
+                .map_or(true, |t| t.outer().is_none()),
+            _ => true,
+        });
     }
 
     /// One box per patch.

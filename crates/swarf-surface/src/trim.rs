@@ -79,6 +79,37 @@ pub struct Trim {
     resolution: f64,
 }
 
+/// The box `dom` cut down to the box of the loop `outer` (a side that would move by less than
+/// 1e-9 of the box's extent stays: the loop runs along it, a point inversion or a rounding a
+/// hair inside; a loop beyond a side leaves it). The readers fit a trimmed patch's parameter
+/// box with it: the STEP reader as it reads a face, [`crate::Patch::fit_domain_to_trim`] for the
+/// others.
+pub(crate) fn fitted_to_loop(dom: ParamBox, outer: &[Uv]) -> ParamBox {
+    let mut out = dom;
+    for d in 0..2 {
+        let r = if d == 0 { dom.u } else { dom.v };
+        let (lo, hi) = outer
+            .iter()
+            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
+                (a.min(p[d]), b.max(p[d]))
+            });
+        let keep = 1e-9 * (r[1] - r[0]);
+        let cut = [
+            if lo > r[0] + keep { lo } else { r[0] },
+            if hi < r[1] - keep { hi } else { r[1] },
+        ];
+        if cut[0] >= cut[1] || cut[0].is_nan() || cut[1].is_nan() {
+            continue;
+        }
+        if d == 0 {
+            out.u = cut;
+        } else {
+            out.v = cut;
+        }
+    }
+    out
+}
+
 impl Trim {
     /// Relative resolution of the boundary: a rectangle whose larger side is below this share of
     /// the patch's parameter box diagonal counts as on the part even when the boundary crosses

@@ -197,6 +197,62 @@ fn plane_surfaces_evaluate_on_their_plane() {
     assert!((q - Vec3::new(1.0, 5.0, 5.0)).length() < 1e-12, "{q}");
 }
 
+/// A 190 plane (over the default box) trimmed by a 144 whose outer boundary is a triangle
+/// (a model-space curve, mapped onto the plane): the box becomes the triangle's, and the
+/// default box's note goes (the boundary gives the box), as for a STEP face.
+#[test]
+fn a_plane_trimmed_by_a_144_takes_its_outer_boundary_s_box() {
+    let mut f = Iges::default();
+    let p = f.add(116, "1.,2.,0.");
+    let n = f.add(123, "0.,0.,1.");
+    let plane = f.add(190, &format!("{p},{n}"));
+    let tri = polygon(&mut f, &[[-10.0, 0.0], [30.0, 0.0], [-10.0, 20.0]]);
+    let c = f.add(142, &format!("0,{plane},0,{tri},2"));
+    f.add(144, &format!("{plane},1,0,{c}"));
+    let s = read(&f);
+    assert_eq!(s.patches.len(), 1, "{:?}", notes(&s));
+    let patch = &s.patches[0];
+    let t = patch
+        .trim
+        .as_ref()
+        .unwrap_or_else(|| panic!("{:?}", notes(&s)));
+    let d = patch.surface.domain();
+    // The box is the loop's (its extent, within the default ±100).
+    let outer = t.outer().unwrap();
+    let ext = |k: usize| {
+        outer
+            .iter()
+            .fold([f64::INFINITY, f64::NEG_INFINITY], |e, q| {
+                [e[0].min(q[k]), e[1].max(q[k])]
+            })
+    };
+    assert_eq!((d.u, d.v), (ext(0), ext(1)), "{:?}", notes(&s));
+    assert!(d.u[1] - d.u[0] < 50.0 && d.v[1] - d.v[0] < 50.0, "{d:?}");
+    assert!(
+        !s.notes
+            .iter()
+            .any(|n| matches!(n, ReadNote::DefaultParameterBox { .. })),
+        "{:?}",
+        notes(&s)
+    );
+    // The box's corners are the plane's points (z = 0), and the triangle fills about half
+    // of its box.
+    for (u, v) in [(d.u[0], d.v[0]), (d.u[1], d.v[1])] {
+        assert!(patch.surface.point(u, v).z.abs() < 1e-12);
+    }
+    let on = (0..=20)
+        .flat_map(|i| (0..=20).map(move |j| (i, j)))
+        .filter(|&(i, j)| {
+            t.contains(
+                d.u[0] + (d.u[1] - d.u[0]) * i as f64 / 20.0,
+                d.v[0] + (d.v[1] - d.v[0]) * j as f64 / 20.0,
+            )
+        })
+        .count();
+    // (Half of the 441 points is 220; the edges' points count as on it.)
+    assert!((200..=260).contains(&on), "{on}");
+}
+
 /// A bounded 108 (form 1) with a square 102 as its curve: the plane over the square's box,
 /// trimmed by it (mapped from model space), at z = 5.
 #[test]

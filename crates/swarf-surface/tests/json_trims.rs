@@ -101,6 +101,32 @@ fn a_trimmed_patch_is_gridded_over_its_outer_boundary_only() {
     let t = s.patches[0].trim.as_ref().unwrap();
     assert_eq!(t.region_box(), [0.0, 0.3, 0.0, 0.3]);
     assert!(t.contains(0.1, 0.1) && !t.contains(0.29, 0.29));
+    // Written and read again, flipped or not, the cut patch is the same part: the same box
+    // (a flipped one's u mirrored within it, u → 0.3 − u), the same points, the same trim.
+    for flipped in [false, true] {
+        let mut cut = s.clone();
+        cut.patches[0].flipped = flipped;
+        let back = json::parse(&json::to_string(&cut).unwrap()).unwrap();
+        let (p, q) = (&cut.patches[0], &back.patches[0]);
+        assert_eq!(q.surface.domain(), p.surface.domain(), "flipped {flipped}");
+        let (tp, tq) = (p.trim.as_ref().unwrap(), q.trim.as_ref().unwrap());
+        for i in 0..=30 {
+            for j in 0..=30 {
+                let (u, v) = (
+                    0.3 * (i as f64 + 0.37) / 31.0,
+                    0.3 * (j as f64 + 0.61) / 31.0,
+                );
+                let ub = if flipped { 0.3 - u } else { u };
+                assert_eq!(
+                    tp.contains(u, v),
+                    tq.contains(ub, v),
+                    "({u}, {v}) {flipped}"
+                );
+                let (a, b) = (p.surface.point(u, v), q.surface.point(ub, v));
+                assert!((a - b).length() < 1e-12, "({u}, {v}) {flipped}: {a} {b}");
+            }
+        }
+    }
     // A trim without an outer boundary keeps the whole box.
     let s = json::parse(&floor(
         r#"{"holes": [[[0.4, 0.4], [0.6, 0.4], [0.5, 0.6]]]}"#,

@@ -11,7 +11,10 @@
 //! a 110 line, a 100 circular arc or a 102 composite of these (nested up to 8 deep), each with
 //! its 124 transformation if it names one. Curves are sampled to a chord of 1e-6 of the patch's
 //! parameter box diagonal, at least 4 segments per knot span (and per quarter turn of an arc),
-//! into closed polygons; a [`ReadNote::Trimmed`] says how many loops and points.
+//! into closed polygons; a [`ReadNote::Trimmed`] says how many loops and points. Once every
+//! trim is made and placed, a patch with an outer boundary has its parameter box cut down to
+//! that boundary's box ([`crate::Patch::fit_domain_to_trim`]), so that its grids fall on the
+//! part.
 //!
 //! **Model-space boundaries.** A 142 without a parameter-space curve (BPTR = 0, as exporters
 //! write with PREF = 2), or whose parameter-space curve is (or holds) a kind not evaluated

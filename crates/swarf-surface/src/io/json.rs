@@ -16,7 +16,11 @@
 //! closing repeat of the first point is optional). Both keys are optional: without `outer` the
 //! outer boundary is the patch's parameter box. A point is on the part when a ray from it
 //! crosses the loops an odd number of times (the even–odd rule), so loops need no particular
-//! orientation. See [`crate::trim::Trim`].
+//! orientation. See [`crate::trim::Trim`]. A patch with an outer boundary is read with its
+//! parameter box cut down to that boundary's box ([`crate::Patch::fit_domain_to_trim`]: the
+//! B-spline cut exactly by knot insertion, its parameters kept), so that its grids fall on the
+//! part; written back, it is written so cut. A CC point `(patch, u, v)` beyond that box is
+//! refused as outside the patch's parameter box (it is off the part either way).
 
 use std::cell::Cell;
 use std::fmt;

@@ -170,8 +170,9 @@ impl Surface {
     }
 
     /// Sets the parameter box (a B-spline surface is cut down to it, exactly, its parameters
-    /// kept; a box that is not within its knots leaves it as it is).
-    pub fn set_domain(&mut self, domain: ParamBox) {
+    /// kept; a box that is not within its knots leaves it as it is). Unchecked: the readers
+    /// give it boxes within the surface's own.
+    pub(crate) fn set_domain(&mut self, domain: ParamBox) {
         match self {
             Surface::Nurbs(n) => {
                 if n.domain() != domain {

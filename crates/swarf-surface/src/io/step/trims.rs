@@ -13,7 +13,7 @@ use super::lex::Param;
 use crate::io::{TrimFailure, Uv, MAX_GRID_SEARCHES, MAX_HALVINGS, MAX_TRIM_POINTS};
 use crate::surface::invert::Inverter;
 use crate::surface::{ParamBox, ParametricSurface, Surface};
-use crate::trim::Trim;
+use crate::trim::{fitted_to_loop, Trim};
 
 /// Most points in all the trims of a file.
 pub(super) const MAX_FILE_TRIM_POINTS: usize = 2_000_000;
@@ -906,41 +906,13 @@ pub(super) fn assemble(
         .map(|(_, c)| c.1)
         .collect();
     if let Some(o) = &outer {
-        dom = fitted(dom, o);
+        dom = fitted_to_loop(dom, o);
     }
     if !(dom.u[0] < dom.u[1] && dom.v[0] < dom.v[1]) {
         return Err(TrimFailure::NoArea);
     }
     let trim = Trim::new(&dom, outer, holes)?;
     Ok(FaceTrim { trim, domain: dom })
-}
-
-/// The box `dom` cut down to the box of the loop `outer` (a side that would move by less than
-/// 1e-9 of the box's extent stays: the loop runs along it).
-fn fitted(dom: ParamBox, outer: &[Uv]) -> ParamBox {
-    let mut out = dom;
-    for d in 0..2 {
-        let r = if d == 0 { dom.u } else { dom.v };
-        let (lo, hi) = outer
-            .iter()
-            .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), p| {
-                (a.min(p[d]), b.max(p[d]))
-            });
-        let keep = 1e-9 * (r[1] - r[0]);
-        let cut = [
-            if lo > r[0] + keep { lo } else { r[0] },
-            if hi < r[1] - keep { hi } else { r[1] },
-        ];
-        if cut[0] >= cut[1] || cut[0].is_nan() || cut[1].is_nan() {
-            continue;
-        }
-        if d == 0 {
-            out.u = cut;
-        } else {
-            out.v = cut;
-        }
-    }
-    out
 }
 
 /// `p` with coordinate `d` set to `x`.
