@@ -143,9 +143,10 @@ impl Patch {
     }
 
     /// Cuts the parameter box down to the box of the trim's outer boundary (a side the
-    /// boundary runs along, within 1e-9 of the box's extent, or beyond, stays), so that the grid of [`CompoundSurface::grid`] spends its `n × n`
-    /// points on the part rather than on the surface the trim cuts away (a face that is a
-    /// sliver of a large surface got a few points, or none). A B-spline surface is cut exactly,
+    /// boundary runs along, within 1e-9 of the box's extent, or beyond, stays), so that the
+    /// grid of [`CompoundSurface::grid`] spends its `n × n` points on the part rather than on
+    /// the surface the trim cuts away (a face that is a sliver of a large surface got a few
+    /// points, or none). A B-spline surface is cut exactly,
     /// its parameters kept; the trim is made again on the new box (the same loops: only its
     /// tolerances, relative to the box, change), as if the file had given that box. Nothing
     /// changes without an outer boundary. The STEP reader fits its faces' boxes as it reads
