@@ -152,22 +152,21 @@ impl Patch {
     /// changes without an outer boundary. The STEP reader fits its faces' boxes as it reads
     /// them (across seams, in angles); the IGES and JSON readers call this on every patch.
     pub fn fit_domain_to_trim(&mut self) {
-        let Some((t, outer)) = self
-            .trim
-            .as_ref()
-            .and_then(|t| t.outer().map(|o| (t, o.to_vec())))
-        else {
+        let Some((t, outer)) = self.trim.as_ref().and_then(|t| Some((t, t.outer()?))) else {
             return;
         };
         let d = self.surface.domain();
-        let fitted = crate::trim::fitted_to_loop(d, &outer);
+        let fitted = crate::trim::fitted_to_loop(d, outer);
         if fitted == d {
             return;
         }
         self.surface.set_domain(fitted);
-        let now = self.surface.domain();
         // (The loops were accepted on the old box: they are on any box.)
-        if let Ok(t) = Trim::new(&now, Some(outer), t.holes().to_vec()) {
+        if let Ok(t) = Trim::new(
+            &self.surface.domain(),
+            Some(outer.to_vec()),
+            t.holes().to_vec(),
+        ) {
             self.trim = Some(t);
         }
     }
