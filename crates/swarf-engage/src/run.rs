@@ -10,7 +10,7 @@ use swarf_geom::math::{lesser, Vec3};
 use swarf_geom::progress::{Observer, Quiet};
 use swarf_geom::Aabb;
 use swarf_path::{Move, MoveKind, Program};
-use swarf_stock::{Collision, StockError, TriDexel, DEFAULT_CHORDAL_TOLERANCE_MM};
+use swarf_stock::{Collision, ColumnTops, StockError, TriDexel, DEFAULT_CHORDAL_TOLERANCE_MM};
 use swarf_sweep::MotionState;
 use swarf_sweep::ToolShape;
 use swarf_tool::{Cutter, ToolSet};
@@ -361,6 +361,11 @@ struct Scratch {
     scan: Vec<bool>,
     todo: Vec<usize>,
     values: Vec<f64>,
+    /// The stock's column map about the cutter, refilled at each location; read under a
+    /// ring of the strip's circles (`sample_strip`), and a row of no claims (+∞).
+    tops: ColumnTops,
+    ring: Vec<f64>,
+    no_claim: Vec<f64>,
 }
 
 impl<'a> Engager<'a> {
@@ -663,6 +668,8 @@ impl<'a> Engager<'a> {
         let Some(material) = self.stock.material_range(2, &bbox) else {
             return Ok(e);
         };
+        let mut tops = std::mem::take(&mut self.scratch.tops);
+        tops.fill(self.stock, &bbox);
         let mut probes = 0u64;
         let h = self.stock.grid().h;
         let rub = Rub::new(
@@ -681,6 +688,7 @@ impl<'a> Engager<'a> {
                 material,
                 rub,
                 self.opts.exhaustive,
+                &tops,
                 &mut probes,
                 scratch,
             );
@@ -694,6 +702,7 @@ impl<'a> Engager<'a> {
             .as_ref()
             .map(|s| run_strip(s, &mut self.scratch));
         self.stats.probes += probes;
+        self.scratch.tops = tops;
         e.set_from(
             side.filter(|r| r.area > 0.0 || !r.circles.is_empty()),
             bottom.filter(|r: &StripResult| r.area > 0.0 || !r.circles.is_empty()),
@@ -748,6 +757,7 @@ fn sample_strip(
     material: (f64, f64),
     rub: Rub,
     exhaustive: bool,
+    tops: &ColumnTops,
     probes: &mut u64,
     scratch: &mut Scratch,
 ) -> StripSamples {
@@ -773,6 +783,28 @@ fn sample_strip(
     };
     let (lo, hi) = (lo.saturating_sub(1), (hi + 2).min(strip.len()));
     let rows = hi - lo;
+    // A sample this far above the column map is air (`ColumnTops`): two ray spacings, so that
+    // the rays of any family beside it agree.
+    let h = probe.stock().grid().h.into_iter().fold(0.0, f64::max);
+    let (air_margin, near) = (2.0 * h, 1.25 * h);
+    // With the tool axis along +Z or −Z, the circles of one radius pass over the same points
+    // (x, y) at each angle, each circle at its own height: under the radius of the top row (the
+    // shank's, on most cutters) the column map (`ColumnTops`) is read once a location, and a
+    // sample of such a circle more than `air_margin` above it is air without a guess. (Along
+    // a radial line for the other circles, or per sample, the reads cost more than the guesses
+    // they spare.)
+    let mut ring = std::mem::take(&mut scratch.ring);
+    ring.clear();
+    let ring_rho = (f.z.x == 0.0 && f.z.y == 0.0 && !strip.circles.is_empty()).then(|| {
+        let rho = strip.circles[strip.len() - 1].rho;
+        ring.extend(angles.sin.iter().zip(&angles.cos).map(|(&sin, &cos)| {
+            let p = f.tip + (f.x * sin + f.y * cos) * rho;
+            tops.top_near(p.x, p.y, near)
+        }));
+        rho
+    });
+    let mut no_claim = std::mem::take(&mut scratch.no_claim);
+    no_claim.resize(n, f64::INFINITY);
     let vscale = state.v_tip.length() + state.omega.length() * radius;
     // The surface point of circle `k` at angle `j`, and its outward normal.
     let point = |k: usize, j: usize| {
@@ -882,14 +914,25 @@ fn sample_strip(
                 let centre = f.tip + f.z * c.z;
                 let (a, b) = (f.x * c.rho, f.y * c.rho);
                 let (na, nb, nz) = (f.x * c.normal.x, f.y * c.normal.x, f.z * c.normal.y);
-                for (((out, &rfj), &sin), &cos) in row
+                // The column map under the ring's samples, where this circle is one (else +∞:
+                // no claim); the circle's height over it.
+                let below = if ring_rho == Some(c.rho) {
+                    &ring[..]
+                } else {
+                    &no_claim[..]
+                };
+                let z_row = centre.z;
+                for ((((out, &rfj), &sin), &cos), &top) in row
                     .iter_mut()
                     .zip(rfr.iter())
                     .zip(&angles.sin)
                     .zip(&angles.cos)
+                    .zip(below)
                 {
                     *out = if rfj <= 0.0 {
                         rfj
+                    } else if z_row - top > air_margin {
+                        -GUESSED_OUTSIDE
                     } else {
                         let p = centre + a * sin + b * cos;
                         // The family most aligned with the normal (ties to the lower).
@@ -964,6 +1007,7 @@ fn sample_strip(
         }
     }
     (scratch.side_bits, scratch.open_bits) = (side_bits, open_bits);
+    (scratch.ring, scratch.no_claim) = (ring, no_claim);
     *probes += counted;
     scratch.rf = rf;
     StripSamples {

@@ -88,6 +88,7 @@
 //! assert!(cut.non_cutting.removed_length == [0.0; 3]);
 //! ```
 
+pub mod columns;
 pub mod contour;
 pub mod cut;
 pub mod dexel;
@@ -99,6 +100,7 @@ pub mod spec;
 pub mod tridexel;
 pub mod unite;
 
+pub use columns::ColumnTops;
 pub use cut::{
     DEFAULT_CHORDAL_TOLERANCE_MM, PIECES_PER_BATCH, RAPID_TOLERANCE_MM, SCREEN_TOLERANCE_MM,
 };

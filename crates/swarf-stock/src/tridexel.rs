@@ -279,6 +279,13 @@ impl DexelFamily {
         (self.at_u[i] + self.at_v[j]) as usize
     }
 
+    /// The highest material end among tile `(ti, tj)`'s rays, or above it (the tile's bound;
+    /// −∞ when they hold none).
+    #[inline]
+    pub(crate) fn tile_hi(&self, ti: usize, tj: usize) -> f64 {
+        self.bounds[tj * self.ntu + ti].hi
+    }
+
     /// Ray direction: 0 = X, 1 = Y, 2 = Z.
     pub fn axis(&self) -> usize {
         self.axis
