@@ -361,10 +361,11 @@ struct Scratch {
     scan: Vec<bool>,
     todo: Vec<usize>,
     values: Vec<f64>,
-    /// The stock's column map about the cutter, refilled at each location; read under a
-    /// ring of the strip's circles (`sample_strip`), and a row of no claims (+∞).
+    /// The stock's column map about the cutter (refilled at each location with a vertical
+    /// tool axis), the map under the circles of a strip's top-row radius, and a row of +∞
+    /// (no claim) for the other circles (`sample_strip`).
     tops: ColumnTops,
-    ring: Vec<f64>,
+    mapped_tops: Vec<f64>,
     no_claim: Vec<f64>,
 }
 
@@ -668,8 +669,11 @@ impl<'a> Engager<'a> {
         let Some(material) = self.stock.material_range(2, &bbox) else {
             return Ok(e);
         };
+        // The column map, for the guesses that `sample_strip` spares (vertical axis only).
         let mut tops = std::mem::take(&mut self.scratch.tops);
-        tops.fill(self.stock, &bbox);
+        if z.x == 0.0 && z.y == 0.0 && !self.opts.exhaustive {
+            tops.fill(self.stock, &bbox);
+        }
         let mut probes = 0u64;
         let h = self.stock.grid().h;
         let rub = Rub::new(
@@ -783,21 +787,26 @@ fn sample_strip(
     };
     let (lo, hi) = (lo.saturating_sub(1), (hi + 2).min(strip.len()));
     let rows = hi - lo;
-    // A sample this far above the column map is air (`ColumnTops`): two ray spacings, so that
-    // the rays of any family beside it agree.
+    // With the tool axis along +Z or −Z the circles' samples lie at their circle's height, and
+    // the circles of one radius pass over the same points (x, y) at each angle: under the
+    // radius of the strip's top row (the shank's, a flat end mill's whole side, a flat bottom's
+    // rim) the column map (`ColumnTops`) is read once a strip, and a feasible sample of
+    // such a circle more than two ray spacings above the tops of every Z ray within 1.25
+    // spacings of it is guessed outside without reading its ray. The guess's ray (of any
+    // family) passes within half a spacing of the sample; had it material there, the Z rays on
+    // either side of the sample along its direction would reach within half a spacing of that
+    // height, unless the material were a sliver between them. The sample stays open, so pass
+    // 3 probes it wherever it borders a side change, as any guess. (Read along a radial line
+    // for the other circles, or at each sample, the map costs more than the guesses it
+    // spares.)
     let h = probe.stock().grid().h.into_iter().fold(0.0, f64::max);
     let (air_margin, near) = (2.0 * h, 1.25 * h);
-    // With the tool axis along +Z or −Z, the circles of one radius pass over the same points
-    // (x, y) at each angle, each circle at its own height: under the radius of the top row (the
-    // shank's, on most cutters) the column map (`ColumnTops`) is read once a location, and a
-    // sample of such a circle more than `air_margin` above it is air without a guess. (Along
-    // a radial line for the other circles, or per sample, the reads cost more than the guesses
-    // they spare.)
-    let mut ring = std::mem::take(&mut scratch.ring);
-    ring.clear();
-    let ring_rho = (f.z.x == 0.0 && f.z.y == 0.0 && !strip.circles.is_empty()).then(|| {
+    let mut mapped_tops = std::mem::take(&mut scratch.mapped_tops);
+    mapped_tops.clear();
+    let vertical = f.z.x == 0.0 && f.z.y == 0.0;
+    let mapped_rho = (vertical && !exhaustive && !strip.circles.is_empty()).then(|| {
         let rho = strip.circles[strip.len() - 1].rho;
-        ring.extend(angles.sin.iter().zip(&angles.cos).map(|(&sin, &cos)| {
+        mapped_tops.extend(angles.sin.iter().zip(&angles.cos).map(|(&sin, &cos)| {
             let p = f.tip + (f.x * sin + f.y * cos) * rho;
             tops.top_near(p.x, p.y, near)
         }));
@@ -914,10 +923,10 @@ fn sample_strip(
                 let centre = f.tip + f.z * c.z;
                 let (a, b) = (f.x * c.rho, f.y * c.rho);
                 let (na, nb, nz) = (f.x * c.normal.x, f.y * c.normal.x, f.z * c.normal.y);
-                // The column map under the ring's samples, where this circle is one (else +∞:
-                // no claim); the circle's height over it.
-                let below = if ring_rho == Some(c.rho) {
-                    &ring[..]
+                // The column map under this circle's samples where it was read (else +∞: no
+                // claim), and the circle's height.
+                let below = if mapped_rho == Some(c.rho) {
+                    &mapped_tops[..]
                 } else {
                     &no_claim[..]
                 };
@@ -1007,7 +1016,7 @@ fn sample_strip(
         }
     }
     (scratch.side_bits, scratch.open_bits) = (side_bits, open_bits);
-    (scratch.ring, scratch.no_claim) = (ring, no_claim);
+    (scratch.mapped_tops, scratch.no_claim) = (mapped_tops, no_claim);
     *probes += counted;
     scratch.rf = rf;
     StripSamples {

@@ -1,9 +1,9 @@
 //! The adaptive sampling (each sample's side guessed from its nearest ray, the probe only
 //! around the side changes, grown until the guesses no longer touch the boundary) gives the
 //! same engagement as probing every sample, on programs that exercise every kind of boundary:
-//! slots, walls, arcs, a ramp, 3+2, a 5-axis sweep, a finishing raster over a wavy surface,
-//! and 5 cutter shapes. (Probing only the first ring of samples around the guessed boundary,
-//! without the growth, fails it.)
+//! slots, walls, arcs, a ramp, a plate only a shank reaches, 3+2, a 5-axis sweep, a finishing
+//! raster over a wavy surface, and 5 cutter shapes. (Probing only the first ring of samples
+//! around the guessed boundary, without the growth, fails it.)
 
 mod common;
 
@@ -146,6 +146,16 @@ fn adaptive_sampling_changes_nothing() {
             block_min,
             [40.0, 20.0, 0.0],
             Cutter::flat(10.0).unwrap(),
+        ),
+        // A plate 0.25 mm thick that only the shank's circles reach (the ball's equator at its
+        // underside): the samples the column map lets go unguessed (`ColumnTops`) must not
+        // include them — with a margin 0.8 mm short it does, and nothing is engaged.
+        (
+            "plate at the shank",
+            "G21 G90\nG0 X-10 Y10 Z-5.25\nG1 X50 F600\n".into(),
+            [0.0, 0.0, -0.25],
+            [40.0, 20.0, 0.0],
+            Cutter::ball(10.0).unwrap(),
         ),
     ];
     for (name, text, min, max, cutter) in cases {

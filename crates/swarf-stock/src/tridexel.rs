@@ -279,10 +279,16 @@ impl DexelFamily {
         (self.at_u[i] + self.at_v[j]) as usize
     }
 
+    /// The number of tiles along the two cross axes.
+    pub(crate) fn tile_dims(&self) -> (usize, usize) {
+        (self.ntu, self.bounds.len() / self.ntu)
+    }
+
     /// The highest material end among tile `(ti, tj)`'s rays, or above it (the tile's bound;
     /// −∞ when they hold none).
     #[inline]
     pub(crate) fn tile_hi(&self, ti: usize, tj: usize) -> f64 {
+        debug_assert!(ti < self.ntu, "tile {ti} of {}", self.ntu);
         self.bounds[tj * self.ntu + ti].hi
     }
 
