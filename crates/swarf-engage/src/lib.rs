@@ -29,10 +29,10 @@
 //! aligned with the cutter's normal there ([`MaterialProbe::inside_nearest_ray`], right except
 //! within about a ray spacing of the boundary); then every guessed sample next to a sample of
 //! the other side is probed, and again around any whose side the probe flipped, until no
-//! guess borders a side change. (With the tool axis vertical, a sample of a circle of its
-//! strip's top-row radius — a shank, a flat end mill's side — that stands more than two ray
-//! spacings above the tiles of every Z ray near it, `swarf_stock::ColumnTops` read once a
-//! strip, is guessed outside without reading its ray.) So every value the interpolation of the boundary uses is a
+//! guess borders a side change. (With the tool axis vertical, a sample that stands more than
+//! two ray spacings above the tiles of every Z ray near it — `swarf_stock::ColumnTops`, read
+//! once for each band of the circles' radii at each angle — is guessed outside without
+//! reading its ray.) So every value the interpolation of the boundary uses is a
 //! probed one, and the boundary is where probing every sample ([`EngageOptions::exhaustive`])
 //! puts it, except around a feature that every nearest ray misses (a sliver of material or air
 //! narrower than the ray spacing): tested equal on eight programs, and on the first 1,000

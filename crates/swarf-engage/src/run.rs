@@ -10,7 +10,9 @@ use swarf_geom::math::{lesser, Vec3};
 use swarf_geom::progress::{Observer, Quiet};
 use swarf_geom::Aabb;
 use swarf_path::{Move, MoveKind, Program};
-use swarf_stock::{Collision, ColumnTops, StockError, TriDexel, DEFAULT_CHORDAL_TOLERANCE_MM};
+use swarf_stock::{
+    Collision, ColumnTops, StockError, TriDexel, DEFAULT_CHORDAL_TOLERANCE_MM, TILE,
+};
 use swarf_sweep::MotionState;
 use swarf_sweep::ToolShape;
 use swarf_tool::{Cutter, ToolSet};
@@ -362,10 +364,11 @@ struct Scratch {
     todo: Vec<usize>,
     values: Vec<f64>,
     /// The stock's column map about the cutter (refilled at each location with a vertical
-    /// tool axis), the map under the circles of a strip's top-row radius, and a row of +∞
-    /// (no claim) for the other circles (`sample_strip`).
+    /// tool axis); its readings for the bands of a strip's circles, each row's band, and a row
+    /// of +∞ (no claim) for rows without one (`sample_strip`).
     tops: ColumnTops,
     mapped_tops: Vec<f64>,
+    band_of: Vec<u32>,
     no_claim: Vec<f64>,
 }
 
@@ -788,30 +791,51 @@ fn sample_strip(
     let (lo, hi) = (lo.saturating_sub(1), (hi + 2).min(strip.len()));
     let rows = hi - lo;
     // With the tool axis along +Z or −Z the circles' samples lie at their circle's height, and
-    // the circles of one radius pass over the same points (x, y) at each angle: under the
-    // radius of the strip's top row (the shank's, a flat end mill's whole side, a flat bottom's
-    // rim) the column map (`ColumnTops`) is read once a strip, and a feasible sample of
-    // such a circle more than two ray spacings above the tops of every Z ray within 1.25
-    // spacings of it is guessed outside without reading its ray. The guess's ray (of any
-    // family) passes within half a spacing of the sample; had it material there, the Z rays on
-    // either side of the sample along its direction would reach within half a spacing of that
-    // height, unless the material were a sliver between them. The sample stays open, so pass
-    // 3 probes it wherever it borders a side change, as any guess. (Read along a radial line
-    // for the other circles, or at each sample, the map costs more than the guesses it
-    // spares.)
+    // at each angle on one radial line: for the circles of a band of radii (`BAND_TILES`) the
+    // column map (`ColumnTops`) is read once an angle, over the square that holds the band's
+    // points at that angle grown by 1.25 ray spacings, and a feasible sample more than two
+    // ray spacings above it is guessed outside without reading its ray. The guess's ray (of
+    // any family) passes within half a spacing of the sample; had it material there, the Z
+    // rays on either side of the sample along its direction would reach within half a spacing
+    // of that height, unless the material were a sliver between them. The sample stays open,
+    // so pass 3 probes it wherever it borders a side change, as any guess. (Read at each
+    // sample, the map costs more than the guesses it spares.)
     let h = probe.stock().grid().h.into_iter().fold(0.0, f64::max);
     let (air_margin, near) = (2.0 * h, 1.25 * h);
+    // The rows in bands (runs of consecutive rows whose radii span at most the band's width);
+    // `band_of[r]` is row `lo + r`'s band (`u32::MAX`: none, no claim), `mapped_tops` the
+    // map's reading for a band at each angle.
     let mut mapped_tops = std::mem::take(&mut scratch.mapped_tops);
+    let mut band_of = std::mem::take(&mut scratch.band_of);
     mapped_tops.clear();
+    band_of.clear();
     let vertical = f.z.x == 0.0 && f.z.y == 0.0;
-    let mapped_rho = (vertical && !exhaustive && !strip.circles.is_empty()).then(|| {
-        let rho = strip.circles[strip.len() - 1].rho;
-        mapped_tops.extend(angles.sin.iter().zip(&angles.cos).map(|(&sin, &cos)| {
-            let p = f.tip + (f.x * sin + f.y * cos) * rho;
-            tops.top_near(p.x, p.y, near)
-        }));
-        rho
-    });
+    if vertical && !exhaustive {
+        let band_width = BAND_TILES * TILE as f64 * h;
+        let mut r = lo;
+        while r < hi {
+            let (mut a, mut b) = (strip.circles[r].rho, strip.circles[r].rho);
+            let mut e = r + 1;
+            while e < hi {
+                let rho = strip.circles[e].rho;
+                let (a2, b2) = (a.min(rho), b.max(rho));
+                if b2 - a2 > band_width {
+                    break;
+                }
+                (a, b, e) = (a2, b2, e + 1);
+            }
+            let band = (mapped_tops.len() / n) as u32;
+            band_of.resize(band_of.len() + (e - r), band);
+            let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+            mapped_tops.extend(angles.sin.iter().zip(&angles.cos).map(|(&sin, &cos)| {
+                let p = f.tip + (f.x * sin + f.y * cos) * mid;
+                tops.top_near(p.x, p.y, near + half)
+            }));
+            r = e;
+        }
+    } else {
+        band_of.resize(rows, u32::MAX);
+    }
     let mut no_claim = std::mem::take(&mut scratch.no_claim);
     no_claim.resize(n, f64::INFINITY);
     let vscale = state.v_tip.length() + state.omega.length() * radius;
@@ -925,10 +949,9 @@ fn sample_strip(
                 let (na, nb, nz) = (f.x * c.normal.x, f.y * c.normal.x, f.z * c.normal.y);
                 // The column map under this circle's samples where it was read (else +∞: no
                 // claim), and the circle's height.
-                let below = if mapped_rho == Some(c.rho) {
-                    &mapped_tops[..]
-                } else {
-                    &no_claim[..]
+                let below = match band_of[r] {
+                    u32::MAX => &no_claim[..],
+                    band => &mapped_tops[band as usize * n..(band as usize + 1) * n],
                 };
                 let z_row = centre.z;
                 for ((((out, &rfj), &sin), &cos), &top) in row
@@ -1017,6 +1040,7 @@ fn sample_strip(
     }
     (scratch.side_bits, scratch.open_bits) = (side_bits, open_bits);
     (scratch.mapped_tops, scratch.no_claim) = (mapped_tops, no_claim);
+    scratch.band_of = band_of;
     *probes += counted;
     scratch.rf = rf;
     StripSamples {
@@ -1073,6 +1097,12 @@ const FAR_MM: f64 = 1e6;
 /// The placeholder value of g at a feasible sample guessed outside the material (mm): never
 /// interpolated, since every sample next to a side change is probed.
 const GUESSED_OUTSIDE: f64 = 1.0;
+
+/// The widest band of radii whose circles share one reading of the column map, in the
+/// stock's tiles (`TILE` ray spacings). Wider, fewer readings certify less: on the finishing
+/// bench (1,000 locations, h = 0.1 mm) 0.25 / 0.6 / 1.2 / 2 / 3 mm gave 12.67 / 12.11 / 12.01 /
+/// 11.98 / 12.05 G instructions.
+const BAND_TILES: f64 = 2.0;
 
 /// Tool-tip path length of `m`, mm (arcs exact; curved 5-axis tips by 64 chords).
 pub fn path_length(program: &Program, m: &Move) -> f64 {
