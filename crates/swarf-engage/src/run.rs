@@ -20,7 +20,7 @@ use swarf_tool::{Cutter, ToolSet};
 use crate::engagement::{integrate, Engagement, StripResult, StripSamples};
 use crate::probe::MaterialProbe;
 use crate::sides;
-use crate::strip::Strip;
+use crate::strip::{Circle, Strip};
 
 /// Default spacing of cutter locations along a move, mm of tool-tip travel.
 pub const DEFAULT_STEP_MM: f64 = 1.0;
@@ -812,26 +812,13 @@ fn sample_strip(
     let vertical = f.z.x == 0.0 && f.z.y == 0.0;
     if vertical && !exhaustive {
         let band_width = BAND_TILES * TILE as f64 * h;
-        let mut r = lo;
-        while r < hi {
-            let (mut a, mut b) = (strip.circles[r].rho, strip.circles[r].rho);
-            let mut e = r + 1;
-            while e < hi {
-                let rho = strip.circles[e].rho;
-                let (a2, b2) = (a.min(rho), b.max(rho));
-                if b2 - a2 > band_width {
-                    break;
-                }
-                (a, b, e) = (a2, b2, e + 1);
-            }
+        for (start, end, mid, half) in radius_bands(&strip.circles[lo..hi], band_width) {
             let band = (mapped_tops.len() / n) as u32;
-            band_of.resize(band_of.len() + (e - r), band);
-            let (mid, half) = (0.5 * (a + b), 0.5 * (b - a));
+            band_of.resize(band_of.len() + (end - start), band);
             mapped_tops.extend(angles.sin.iter().zip(&angles.cos).map(|(&sin, &cos)| {
                 let p = f.tip + (f.x * sin + f.y * cos) * mid;
                 tops.top_near(p.x, p.y, near + half)
             }));
-            r = e;
         }
     } else {
         band_of.resize(rows, u32::MAX);
@@ -1051,6 +1038,33 @@ fn sample_strip(
     }
 }
 
+/// The runs of consecutive `circles` whose radii span at most `width`, in order, as (first,
+/// end, middle radius, half the span): every circle of a run lies within the half-span of the
+/// middle, so a square grown by it about the middle's point at an angle holds each circle's
+/// point there (with a vertical tool axis, the circles' points at one angle lie on one radial
+/// line).
+fn radius_bands(
+    circles: &[Circle],
+    width: f64,
+) -> impl Iterator<Item = (usize, usize, f64, f64)> + '_ {
+    let mut start = 0;
+    std::iter::from_fn(move || {
+        let first = circles.get(start)?;
+        let (mut a, mut b) = (first.rho, first.rho);
+        let mut end = start + 1;
+        while let Some(c) = circles.get(end) {
+            let (a2, b2) = (a.min(c.rho), b.max(c.rho));
+            if b2 - a2 > width {
+                break;
+            }
+            (a, b, end) = (a2, b2, end + 1);
+        }
+        let band = (start, end, 0.5 * (a + b), 0.5 * (b - a));
+        start = end;
+        Some(band)
+    })
+}
+
 /// Where contact is a **rub**, not engagement: the cutter grazing a wall from the air side —
 /// its outward normal against the wall's — no deeper than the stock's own uncertainty. A tool
 /// that comes back along a concave wall it cut before (each turn of a helix, a second pass round
@@ -1148,6 +1162,43 @@ fn mrr(m: &Move, ds: f64, length: f64, removed: f64) -> f64 {
 mod tests {
     use super::*;
     use crate::Depth;
+
+    #[test]
+    fn radius_bands_cover_the_rows_in_runs_that_hold_each_radius() {
+        // Radii as profiles give them: rising along a ball's arc, constant on a shank, falling
+        // along a taper, with jumps at the joints.
+        let circle = |rho: f64| Circle {
+            z: 0.0,
+            rho,
+            normal: swarf_geom::math::Vec2::new(1.0, 0.0),
+        };
+        let mut rhos: Vec<f64> = (0..60).map(|i| 5.0 * (i as f64 / 60.0).sqrt()).collect();
+        rhos.extend(std::iter::repeat(5.0).take(40));
+        rhos.extend((0..30).map(|i| 5.0 - 0.13 * i as f64));
+        rhos.extend([0.2, 4.9, 0.3, 0.3]);
+        let circles: Vec<Circle> = rhos.iter().map(|&r| circle(r)).collect();
+        for width in [0.0, 0.1, 0.25, 2.0, 10.0] {
+            let bands: Vec<_> = radius_bands(&circles, width).collect();
+            let mut next = 0;
+            for &(start, end, mid, half) in &bands {
+                assert_eq!(start, next, "width {width}: contiguous");
+                assert!(end > start && half <= 0.5 * width, "width {width}");
+                // (Within rounding, which `ColumnTops::top_near`'s grown square absorbs.)
+                for c in &circles[start..end] {
+                    assert!((c.rho - mid).abs() <= half + 1e-14 * c.rho, "width {width}");
+                }
+                // Maximal: the next radius would widen the run beyond `width`.
+                if let Some(c) = circles.get(end) {
+                    let (lo, hi) = (mid - half, mid + half);
+                    assert!(hi.max(c.rho) - lo.min(c.rho) > width * (1.0 - 1e-12));
+                }
+                next = end;
+            }
+            assert_eq!(next, circles.len(), "width {width}: every row");
+        }
+        assert_eq!(radius_bands(&circles, 10.0).count(), 1);
+        assert_eq!(radius_bands(&[], 1.0).count(), 0);
+    }
 
     #[test]
     fn a_rub_is_shallow_and_against_the_wall_and_nothing_else_is() {
