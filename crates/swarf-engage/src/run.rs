@@ -672,9 +672,12 @@ impl<'a> Engager<'a> {
         let Some(material) = self.stock.material_range(2, &bbox) else {
             return Ok(e);
         };
-        // The column map, for the guesses that `sample_strip` spares (vertical axis only).
+        // The column map, for the guesses that `sample_strip` spares: filled, and handed on,
+        // only where it is read (a vertical axis, samples guessed), so no strip can read one
+        // left from an earlier location.
         let mut tops = std::mem::take(&mut self.scratch.tops);
-        if z.x == 0.0 && z.y == 0.0 && !self.opts.exhaustive {
+        let mapped = z.x == 0.0 && z.y == 0.0 && !self.opts.exhaustive;
+        if mapped {
             tops.fill(self.stock, &bbox);
         }
         let mut probes = 0u64;
@@ -695,7 +698,7 @@ impl<'a> Engager<'a> {
                 material,
                 rub,
                 self.opts.exhaustive,
-                &tops,
+                mapped.then_some(&tops),
                 &mut probes,
                 scratch,
             );
@@ -764,7 +767,7 @@ fn sample_strip(
     material: (f64, f64),
     rub: Rub,
     exhaustive: bool,
-    tops: &ColumnTops,
+    tops: Option<&ColumnTops>,
     probes: &mut u64,
     scratch: &mut Scratch,
 ) -> StripSamples {
@@ -790,16 +793,17 @@ fn sample_strip(
     };
     let (lo, hi) = (lo.saturating_sub(1), (hi + 2).min(strip.len()));
     let rows = hi - lo;
-    // With the tool axis along +Z or −Z the circles' samples lie at their circle's height, and
-    // at each angle on one radial line: for the circles of a band of radii (`BAND_TILES`) the
-    // column map (`ColumnTops`) is read once an angle, over the square that holds the band's
-    // points at that angle grown by 1.25 ray spacings, and a feasible sample more than two
-    // ray spacings above it is guessed outside without reading its ray. The guess's ray (of
-    // any family) passes within half a spacing of the sample; had it material there, the Z
-    // rays on either side of the sample along its direction would reach within half a spacing
-    // of that height, unless the material were a sliver between them. The sample stays open,
-    // so pass 3 probes it wherever it borders a side change, as any guess. (Read at each
-    // sample, the map costs more than the guesses it spares.)
+    // With the tool axis along +Z or −Z (the only case where the column map `tops` is given)
+    // the circles' samples lie at their circle's height, and at each angle on one radial line:
+    // for the circles of a band of radii (`BAND_TILES`) the map (`ColumnTops`) is read once an
+    // angle, over the square that holds the band's points at that angle grown by 1.25 ray
+    // spacings, and a feasible sample more than two ray spacings above it is guessed outside
+    // without reading its ray. The guess's ray (of any family) passes within half a spacing of
+    // the sample; had it material there, the Z rays on either side of the sample along its
+    // direction would reach within half a spacing of that height, unless the material were a
+    // sliver between them. The sample stays open, so pass 3 probes it wherever it borders a
+    // side change, as any guess. (Read at each sample, the map costs more than the guesses it
+    // spares.)
     let h = probe.stock().grid().h.into_iter().fold(0.0, f64::max);
     let (air_margin, near) = (2.0 * h, 1.25 * h);
     // The rows in bands (runs of consecutive rows whose radii span at most the band's width);
@@ -809,8 +813,7 @@ fn sample_strip(
     let mut band_of = std::mem::take(&mut scratch.band_of);
     mapped_tops.clear();
     band_of.clear();
-    let vertical = f.z.x == 0.0 && f.z.y == 0.0;
-    if vertical && !exhaustive {
+    if let Some(tops) = tops {
         let band_width = BAND_TILES * TILE as f64 * h;
         for (start, end, mid, half) in radius_bands(&strip.circles[lo..hi], band_width) {
             let band = (mapped_tops.len() / n) as u32;
