@@ -903,18 +903,30 @@ impl TriDexel {
                     .and_then(|p| p.fam[k])
                     .is_some_and(|r| r.t.0 <= grid.max[k] && r.t.1 >= grid.min[k])
         };
-        // The end of the run of moves from `m` in one plane normal to family `k`, of which at
-        // least two reach row `tj` (the others touch nothing there) and no other group may
-        // change it.
-        let planar_run = |m: usize, k: usize, tj: usize| -> Option<usize> {
-            let first = planar.get(m)?[k]?;
+        // Move `m`'s member as family `k`'s rays see it: in a plane normal to them (`Across`),
+        // or in a plane parallel to them, along its in-plane axis (`Along`).
+        let member = |m: usize, k: usize, along: bool| -> Option<PlanarMember> {
+            let p = planar.get(m)?;
+            if along {
+                [(k + 1) % 3, (k + 2) % 3]
+                    .into_iter()
+                    .find_map(|n| p[n].filter(|q| q.in_plane_axis() == k))
+            } else {
+                p[k]
+            }
+        };
+        // The end of the run of moves from `m` in one plane normal to family `k` (or, `along`,
+        // one plane parallel to its rays), of which at least two reach row `tj` (the others
+        // touch nothing there) and no other group may change it.
+        let planar_run = |m: usize, k: usize, tj: usize, along: bool| -> Option<usize> {
+            let first = member(m, k, along)?;
             let alone = |m: usize| (1..G).all(|g| !touches(m, g, k, tj));
             if !reaches(m, 0, k, tj) || !alone(m) {
                 return None;
             }
             let (mut end, mut members) = (m + 1, 1);
             while end < moves.len() {
-                match planar[end][k] {
+                match member(end, k, along) {
                     Some(p) if p.nests_with(&first) && alone(end) => {}
                     _ => break,
                 }
@@ -932,19 +944,26 @@ impl TriDexel {
             let mut out: Vec<(usize, usize, CutStats)> = Vec::with_capacity(moves.len().min(64));
             let mut m = 0;
             while m < moves.len() {
-                if let Some(end) = planar_run(m, k, tj) {
+                let run = [false, true]
+                    .into_iter()
+                    .find_map(|along| Some((planar_run(m, k, tj, along)?, along)));
+                if let Some((end, along)) = run {
                     let mut members: SmallVec<[PlanarCut; 32]> = (m..end)
                         .filter(|&m| reaches(m, 0, k, tj))
                         .filter_map(|m| {
                             Some(PlanarCut {
                                 index: m,
-                                member: planar[m][k]?,
+                                member: member(m, k, along)?,
                                 range: plans[m][0].as_ref()?.fam[k]?,
                                 stats: CutStats::default(),
                             })
                         })
                         .collect();
-                    cut_planar(&grid, k, tj, &mut row, &bins[k], &mut members);
+                    if along {
+                        cut_along(&grid, k, tj, &mut row, &bins[k], &mut members);
+                    } else {
+                        cut_planar(&grid, k, tj, &mut row, &bins[k], &mut members);
+                    }
                     out.extend(
                         members
                             .iter()
@@ -1643,6 +1662,206 @@ fn cut_planar(
     }
 }
 
+/// The moves of a run in one plane parallel to family `k`'s rays, along the plane's in-plane
+/// axis (`PlanarMember::in_plane_axis` is `k`), in order, cut on row `tj` together: each ray is
+/// visited once for the run. A ray `δ` from the plane at height `z` meets a move's sweep in
+/// `PlanarMember::line_span` at `√(r² − δ²)`; the spans of the moves taken so far are kept as
+/// one interval, `taken`, not yet cut from the ray: a move's share is the material of its span
+/// outside `taken` (what it would remove, the earlier moves cut one by one), and a span that
+/// does not meet `taken` first has `taken` cut. On a pass the members a ray can need are one
+/// stretch of them (`Progress`: only those within `√(r² − δ²)` of the ray's material).
+fn cut_along(
+    grid: &Grid,
+    k: usize,
+    tj: usize,
+    row: &mut Row<'_>,
+    bins: &Bins,
+    members: &mut [PlanarCut],
+) {
+    let Some(first) = members.first().map(|m| m.member) else {
+        return;
+    };
+    #[cfg(test)]
+    tests::count_run(grid, k + 3);
+    let (c, r) = (first.plane(), first.radius());
+    let rr = r * r;
+    let (u, v) = ((k + 1) % 3, (k + 2) % 3);
+    // Which cross coordinate is the height along the tool axis (the other is the offset).
+    let height_is_u = u == first.tool_axis();
+    let fold = |f: fn(&PlanarCut) -> (usize, usize)| {
+        members
+            .iter()
+            .map(f)
+            .fold((usize::MAX, 0), |a, b| (a.0.min(b.0), a.1.max(b.1)))
+    };
+    let (i0, i1) = fold(|m| m.range.i);
+    let (j0, j1) = fold(|m| m.range.j);
+    let (tlo, thi) = members
+        .iter()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |a, m| {
+            (a.0.min(m.range.t.0), a.1.max(m.range.t.1))
+        });
+    let mask = bins.mask(tlo, thi);
+    let (j_lo, j_hi) = (
+        j0.max(tj * TILE) - tj * TILE,
+        j1.min(tj * TILE + TILE - 1) - tj * TILE,
+    );
+    let cv = |jj: usize| grid.center(v, tj * TILE + jj);
+    let spans: SmallVec<[(f64, f64); 32]> = members.iter().map(|m| m.member.span()).collect();
+    let progress = Progress::of(&spans);
+    let mut cand: SmallVec<[usize; 32]> = SmallVec::new();
+    let mut cand_spans: SmallVec<[(f64, f64); 32]> = SmallVec::new();
+    let mut gains: SmallVec<[(usize, f64); 32]> = SmallVec::new();
+    for ti in i0 / TILE..i1 / TILE + 1 {
+        if !row.bounds[ti].meets_mask(tlo, thi, mask) {
+            continue;
+        }
+        let (i_lo, i_hi) = (
+            i0.max(ti * TILE) - ti * TILE,
+            i1.min(ti * TILE + TILE - 1) - ti * TILE,
+        );
+        let cu = |ii: usize| grid.center(u, ti * TILE + ii);
+        // The members that can reach the tile's rays: the lowest centre within `r` of the
+        // tile's highest ray, the plane within `r` of its nearest.
+        let (us, vs) = ((cu(i_lo), cu(i_hi)), (cv(j_lo), cv(j_hi)));
+        let (zs, offs) = if height_is_u { (us, vs) } else { (vs, us) };
+        let near = (offs.0 - c).max(c - offs.1).max(0.0);
+        if near >= r {
+            continue;
+        }
+        let reach = (rr - near * near).sqrt();
+        cand.clear();
+        cand_spans.clear();
+        for (n, m) in members.iter().enumerate() {
+            if m.member.zlow() - zs.1 < reach {
+                cand.push(n);
+                cand_spans.push(spans[n]);
+            }
+        }
+        if cand.is_empty() {
+            continue;
+        }
+        let tile = &mut row.rays[ti * TILE_RAYS..(ti + 1) * TILE_RAYS];
+        let mut changed = false;
+        for jj in j_lo..j_hi + 1 {
+            let cv = cv(jj);
+            for ii in i_lo..i_hi + 1 {
+                let d = &mut tile[jj * TILE + ii];
+                if d.is_empty() {
+                    continue;
+                }
+                let (z, off) = if height_is_u {
+                    (cu(ii), cv - c)
+                } else {
+                    (cv, cu(ii) - c)
+                };
+                let rho2 = rr - off * off;
+                if rho2 <= 0.0 {
+                    continue;
+                }
+                let rho = rho2.sqrt();
+                // Each interval of material on its own: the members whose spans meet it are a
+                // stretch of them (`Progress`), and an earlier member's span matters to a later
+                // one's share only where both meet it.
+                let mats: SmallVec<[(f64, f64); 8]> =
+                    d.iter().map(|iv| (iv.enter, iv.exit)).collect();
+                gains.clear();
+                for (e, f) in mats {
+                    let x_from = if progress == Progress::Retreating {
+                        f
+                    } else {
+                        e
+                    };
+                    let from = progress.first(&cand_spans, x_from, rho2);
+                    // The union of the spans (within the material's interval) since the last
+                    // cut, what it holds of the material, and the member that last added to it.
+                    let mut taken: Option<(f64, f64)> = None;
+                    let (mut measured, mut last) = (0.0, usize::MAX);
+                    for (&n, &span) in cand[from..].iter().zip(&cand_spans[from..]) {
+                        // Out of reach of the material: on a pass, so is every later member.
+                        let (beyond, behind) = (span.0 - rho > f, span.1 + rho < e);
+                        if beyond || behind {
+                            match progress {
+                                Progress::Advancing if beyond => break,
+                                Progress::Retreating if behind => break,
+                                _ => continue,
+                            }
+                        }
+                        let pc = &mut members[n];
+                        let Some((a, b)) = pc.member.line_span(z, rho) else {
+                            continue;
+                        };
+                        pc.stats.visited_per_family[k] += 1;
+                        pc.stats.tested_per_family[k] += 1;
+                        pc.stats.rays_tested += 1;
+                        let (a, b) = (a.max(e), b.min(f));
+                        if a >= b {
+                            continue;
+                        }
+                        let removed = match taken {
+                            Some((ta, tb)) if a <= tb && b >= ta => {
+                                taken = Some((ta.min(a), tb.max(b)));
+                                within(d, a, ta.max(a)) + within(d, tb.min(b), b)
+                            }
+                            _ => {
+                                if let Some((ta, tb)) = taken {
+                                    let cut = subtract(d, ta, tb);
+                                    changed |= cut > 0.0;
+                                    credit_rest(members, last, k, cut - measured);
+                                    measured = 0.0;
+                                }
+                                taken = Some((a, b));
+                                within(d, a, b)
+                            }
+                        };
+                        if removed > 0.0 {
+                            gains.push((n, removed));
+                            measured += removed;
+                            last = n;
+                        }
+                    }
+                    if let Some((ta, tb)) = taken {
+                        let cut = subtract(d, ta, tb);
+                        changed |= cut > 0.0;
+                        credit_rest(members, last, k, cut - measured);
+                    }
+                }
+                // A move's figures count the ray once, with all it took of it.
+                gains.sort_by_key(|g| g.0);
+                let mut rest = &gains[..];
+                while let Some(&(n, _)) = rest.first() {
+                    let same = rest.iter().take_while(|g| g.0 == n).count();
+                    let removed: f64 = rest[..same].iter().map(|g| g.1).sum();
+                    rest = &rest[same..];
+                    let st = &mut members[n].stats;
+                    st.updates += 1;
+                    st.updates_per_family[k] += 1;
+                    st.removed_length[k] += removed;
+                    st.longest_removal[k] = st.longest_removal[k].max(removed);
+                }
+            }
+        }
+        // The tile's bound as a move's cut keeps it (`TileCut::run`).
+        if changed {
+            row.stale[ti] = true;
+        } else if row.stale[ti] {
+            row.bounds[ti] = tile_bound(tile, bins);
+            row.stale[ti] = false;
+        }
+    }
+}
+
+/// What a run's cut drops beyond the measure (remainders under `MIN_INTERVAL_MM`) goes to
+/// the move that cut last (`usize::MAX`: none did).
+#[inline(always)]
+fn credit_rest(members: &mut [PlanarCut], last: usize, k: usize, rest: f64) {
+    if rest > 0.0 {
+        if let Some(m) = members.get_mut(last) {
+            m.stats.removed_length[k] += rest;
+        }
+    }
+}
+
 /// The length of the material of `d` within `[lo, hi]`.
 #[inline(always)]
 fn within(d: &[Interval], lo: f64, hi: f64) -> f64 {
@@ -1924,8 +2143,8 @@ mod tests {
         }
     }
 
-    /// Runs of `cut_planar`, by the grid's cell counts and the family (a test's own grid tells
-    /// its runs from those of tests running beside it).
+    /// Runs of `cut_planar` (family `k`) and `cut_along` (`k + 3`), by the grid's cell counts
+    /// (a test's own grid tells its runs from those of tests running beside it).
     static PLANAR_RUNS: std::sync::Mutex<Vec<([usize; 3], usize, usize)>> =
         std::sync::Mutex::new(Vec::new());
 
@@ -2044,19 +2263,20 @@ mod tests {
             }
             for chunk in [moves.len(), 40, 7] {
                 let n = block.grid().n;
-                let before = [runs(n, 0), runs(n, 1)];
+                let before = [runs(n, 0), runs(n, 1), runs(n, 3), runs(n, 4)];
                 let mut together = block.clone();
                 let got: Vec<SegmentCut> = moves
                     .chunks(chunk)
                     .flat_map(|c| together.cut_linear_batch(&tool, c))
                     .collect();
-                // Both the passes along X (the Y rays) and along Y (the X rays) ran as runs;
-                // none ran for a tool refused.
-                let after = [runs(n, 0), runs(n, 1)];
+                // Both the passes along X (the Y rays across them, the X rays along them) and
+                // along Y (the X rays across, the Y rays along) ran as runs; none ran for a
+                // tool refused.
+                let after = [runs(n, 0), runs(n, 1), runs(n, 3), runs(n, 4)];
                 assert_eq!(
-                    after[0] > before[0] && after[1] > before[1],
+                    after.iter().zip(&before).all(|(a, b)| a > b),
                     planar,
-                    "{name}"
+                    "{name}: runs across X, Y, along X, Y {before:?} -> {after:?}"
                 );
                 for (m, (a, b)) in got.iter().zip(&want).enumerate() {
                     for (x, y) in [(a.cutting, b.cutting), (a.non_cutting, b.non_cutting)] {

@@ -17,6 +17,12 @@
 //! run of such moves and computes a move's chord only where its bound ([`KeyBound`]) can beat
 //! that.
 //!
+//! The rays of the family along the plane's other axis (`x`, across the tool axis: the X rays
+//! of that raster) lie in planes parallel to the motion's: at `δ` from it and height `z`, a ray
+//! meets the sweep where `D(x, z) ≤ √(r² − δ²)`, one interval of `x`
+//! ([`PlanarMember::line_span`], closed form). The stock's batched cut (`cut_along`) visits
+//! each such ray once for a run too, and measures each move's share of the spans.
+//!
 //! Exactly the chord of [`super::SweptConvex::axis_ray_interval`] (to rounding) where the ray
 //! lies below the tool's lowest top over the move ([`PlanarMember::top`]); the caller keeps to
 //! that.
@@ -130,6 +136,10 @@ pub struct PlanarMember {
     dx: f64,
     dz: f64,
     inv_dx: f64,
+    /// `1/dz` (0 for a level move) and `|dx|/√(dx² + dz²)`: the in-plane rays' tangent points
+    /// (`line_span`).
+    inv_dz: f64,
+    slope: f64,
     /// Its extent: `x` range and lowest height.
     xmin: f64,
     xmax: f64,
@@ -167,6 +177,12 @@ impl PlanarMember {
             dx,
             dz,
             inv_dx: if dx != 0.0 { 1.0 / dx } else { 0.0 },
+            inv_dz: if dz != 0.0 { 1.0 / dz } else { 0.0 },
+            slope: if dx != 0.0 {
+                dx.abs() / (dx * dx + dz * dz).sqrt()
+            } else {
+                0.0
+            },
             xmin: x0.min(x0 + dx),
             xmax: x0.max(x0 + dx),
             zlow: z0.min(z0 + dz),
@@ -287,6 +303,67 @@ impl PlanarMember {
         let s = (self.rr - d2).max(0.0).sqrt();
         (self.plane - s, self.plane + s)
     }
+
+    /// The world axis of the rays that lie in planes parallel to the move's (`x`, across the
+    /// tool axis): they meet the sweep in [`PlanarMember::line_span`]s.
+    pub fn in_plane_axis(&self) -> usize {
+        3 - self.k - self.kt
+    }
+
+    /// The sphere centre path's lowest height (along the tool axis): a ray at height `z` and
+    /// `ρ` from the plane-parallel section's edge meets the sweep only if `zlow − z < ρ`.
+    pub fn zlow(&self) -> f64 {
+        self.zlow
+    }
+
+    /// The interval along `x` of the in-plane-axis ray at height `z` (along the tool axis) and
+    /// `δ` from the plane, `rho = √(r² − δ²)`, inside the sweep, below the tool's top; `None`
+    /// where it misses (`rho` not positive, or the path's lowest centre `rho` or more above
+    /// `z`).
+    ///
+    /// The point `(x, z)` lies within `rho` of the region on and above the centre's path iff it
+    /// lies within `rho` of the half-line up from some centre `p(t)`, `t ∈ [0, 1]`: iff
+    /// `|x − p_x| ≤ w(g)`, `g = p_z − z`, `w = rho` for `g ≤ 0` and `√(rho² − g²)` for
+    /// `0 < g < rho`. So the interval's ends are `min p_x − w` and `max p_x + w` over `t`. `w(g)`
+    /// is concave (flat, then a quarter circle with a level tangent at `g = 0`) and `g` affine
+    /// in `t`, so `±p_x + w` is concave in `t`: its maximum is where the slope `±dx + w'(g)·dz`
+    /// vanishes, `g* = rho·|dx|/√(dx² + dz²)` (the circle's point whose normal is the path's),
+    /// clamped to the move, or an end of the move where the slope keeps its sign.
+    #[inline(always)]
+    pub fn line_span(&self, z: f64, rho: f64) -> Option<(f64, f64)> {
+        if rho.is_nan() || rho <= 0.0 || self.zlow - z >= rho {
+            return None;
+        }
+        let g0 = self.z0 - z;
+        let (dx, dz) = (self.dx, self.dz);
+        // The parameters maximising `∓dx·t + w(g0 + t·dz)` on [0, 1]: with the motion level,
+        // the end the motion heads for; else the lower end of the move, where `w` alone
+        // decides or where both terms agree (rising against the motion, falling with it), and
+        // the tangent point otherwise (the same `g*` for both signs).
+        let (tl, th) = if dz == 0.0 {
+            let ahead = f64::from(u8::from(dx > 0.0));
+            (1.0 - ahead, ahead)
+        } else {
+            let low = f64::from(u8::from(dz < 0.0));
+            let tangent = ((rho * self.slope - g0) * self.inv_dz).clamp(0.0, 1.0);
+            if dx == 0.0 {
+                (low, low)
+            } else if (dz > 0.0) == (dx > 0.0) {
+                (low, tangent)
+            } else {
+                (tangent, low)
+            }
+        };
+        let w = |t: f64| {
+            let g = g0 + t * dz;
+            if g <= 0.0 {
+                rho
+            } else {
+                (rho * rho - g * g).max(0.0).sqrt()
+            }
+        };
+        Some((self.x0 + tl * dx - w(tl), self.x0 + th * dx + w(th)))
+    }
 }
 
 #[cfg(test)]
@@ -363,6 +440,80 @@ mod tests {
             }
         }
         assert!(compared.0 > 5000 && compared.1 > 5000, "{compared:?}");
+    }
+
+    /// The in-plane rays' spans against the per-move exact kernel: random moves in planes normal
+    /// to each family, rays along the plane's other axis at random heights (a third within 1 mm
+    /// under the tool's top) and offsets from the plane (a third within 0.2 mm of the section's
+    /// edge, where the span shrinks to a point).
+    #[test]
+    fn line_spans_are_the_exact_kernels() {
+        let mut rnd = test_rng(11);
+        let mut compared = (0, 0);
+        for spec in [
+            "ball:d=10",
+            "ball:d=3,flute-length=20",
+            "ball:d=10,flute-length=10",
+        ] {
+            let c = Cutter::from_spec(spec).unwrap();
+            let prof = ConvexProfile::from_solid(c.cutting_solid()).unwrap();
+            for kt in 0..3 {
+                for k in (0..3).filter(|&k| k != kt) {
+                    let a = 3 - k - kt;
+                    for n in 0..80 {
+                        let tip = Vec3::new(rnd(), rnd(), rnd()) * 20.0;
+                        let mut delta = Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 6.0;
+                        delta[k] = 0.0;
+                        match n % 5 {
+                            0 => delta[a] = 0.0,
+                            1 => delta[kt] = 0.0,
+                            2 => delta = Vec3::ZERO,
+                            _ => {}
+                        }
+                        let sw = SweptConvex::new(&prof, tip, Vec3::AXES[kt], delta);
+                        let m: PlanarMember = sw.planar(k).expect("a ball in the plane");
+                        assert_eq!(m.in_plane_axis(), a);
+                        let r = m.radius();
+                        for i in 0..150 {
+                            let mut o =
+                                tip + Vec3::new(rnd() - 0.5, rnd() - 0.5, rnd() - 0.5) * 24.0;
+                            let off = match i % 3 {
+                                0 => (r - 0.2 * rnd()) * if rnd() < 0.5 { -1.0 } else { 1.0 },
+                                _ => (rnd() - 0.5) * 2.2 * r,
+                            };
+                            o[k] = m.plane() + off;
+                            if i % 3 == 1 {
+                                o[kt] = m.top() - rnd();
+                            }
+                            if o[kt] > m.top() {
+                                continue;
+                            }
+                            let exact = sw.axis_ray_interval(o, a);
+                            let rho = (r * r - off * off).max(0.0).sqrt();
+                            let mine = if off.abs() < r {
+                                m.line_span(o[kt], rho)
+                            } else {
+                                None
+                            };
+                            match (exact, mine) {
+                                (Some(e), Some(p)) => {
+                                    assert!(
+                                        (e.0 - p.0).abs() < 1e-9 && (e.1 - p.1).abs() < 1e-9,
+                                        "{spec} kt {kt} k {k} n {n}: {e:?} vs {p:?}"
+                                    );
+                                    compared.0 += 1;
+                                }
+                                (None, None) => compared.1 += 1,
+                                // A graze: a span of (numerically) no length either way.
+                                (Some(e), None) => assert!(e.1 - e.0 < 1e-6, "{e:?}"),
+                                (None, Some(p)) => assert!(p.1 - p.0 < 1e-6, "{p:?}"),
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        assert!(compared.0 > 5000 && compared.1 > 3000, "{compared:?}");
     }
 
     /// `Progress` leaves out only members whose bound is at least the ray's `beat`: before
