@@ -1,5 +1,6 @@
-//! A ball end's sweep on the rays normal to the plane of its motion: chords nested from one
-//! move to the next, so that a run of moves in one plane can be cut together on those rays.
+//! A ball end's sweep on the rays normal to the plane of its motion (chords nested from one
+//! move to the next) and on the rays along the plane (one span each, closed form), so that a
+//! run of moves in one plane can be cut together on those rays.
 //!
 //! A raster finishing pass (passes along X at fixed Y, a vertical tool) keeps the tool axis and
 //! the tip's path in one plane `x_k = c`, normal to one ray family `k` (the Y rays there). A
@@ -310,8 +311,9 @@ impl PlanarMember {
         3 - self.k - self.kt
     }
 
-    /// The sphere centre path's lowest height (along the tool axis): a ray at height `z` and
-    /// `ρ` from the plane-parallel section's edge meets the sweep only if `zlow − z < ρ`.
+    /// The sphere centre path's lowest height (along the tool axis): an in-plane-axis ray at
+    /// height `z` whose section of the sweep has half-width `ρ` (`√(r² − δ²)`, `δ` its offset
+    /// from the plane) meets the sweep only if `zlow − z < ρ`.
     pub fn zlow(&self) -> f64 {
         self.zlow
     }
@@ -345,7 +347,10 @@ impl PlanarMember {
             (1.0 - ahead, ahead)
         } else {
             let low = f64::from(u8::from(dz < 0.0));
-            let tangent = ((rho * self.slope - g0) * self.inv_dz).clamp(0.0, 1.0);
+            // (Not `clamp`: a subnormal `dz` makes `inv_dz` infinite and the product NaN
+            // where the numerator is 0; `max` takes that to the move's start.)
+            #[allow(clippy::manual_clamp)]
+            let tangent = ((rho * self.slope - g0) * self.inv_dz).max(0.0).min(1.0);
             if dx == 0.0 {
                 (low, low)
             } else if (dz > 0.0) == (dx > 0.0) {
