@@ -8,6 +8,7 @@ use crate::dexel::{
 use crate::error::StockError;
 use rayon::prelude::*;
 use smallvec::SmallVec;
+use std::sync::OnceLock;
 use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
 use swarf_geom::Aabb;
 use swarf_sweep::swept::{DexelRays, Scratch};
@@ -823,17 +824,16 @@ impl TriDexel {
         // Tiles the sequence may touch: small work stays on the calling thread.
         let tiles: usize = plans.iter().flatten().flatten().map(Plan::tiles).sum();
         let bins = [0, 1, 2].map(|k| self.families[k].bins);
-        // What each part's queries along each family share, made once per move and group.
-        let shared: Vec<[[SmallVec<[DexelRays; 2]>; 3]; G]> = par_map(moves, |m, groups| {
-            std::array::from_fn(|g| {
-                std::array::from_fn(|k| match &plans[m][g] {
-                    Some(plan) if plan.fam[k].is_some() => {
-                        groups[g].iter().map(|p| p.dexel_rays(k)).collect()
-                    }
-                    _ => SmallVec::new(),
-                })
-            })
-        });
+        // What each part's queries along each family share, made once per move, group and
+        // family, by the first row that cuts them one by one (a finishing move's rays normal to
+        // and along its plane are mostly cut in planar runs, and never need them).
+        let shared: Vec<[[LazyRays; 3]; G]> = moves
+            .iter()
+            .map(|_| std::array::from_fn(|_| std::array::from_fn(|_| OnceLock::new())))
+            .collect();
+        let shared_rays = |m: usize, g: usize, k: usize| -> &SmallVec<[DexelRays; 2]> {
+            shared[m][g][k].get_or_init(|| moves[m][g].iter().map(|p| p.dexel_rays(k)).collect())
+        };
         // The units of work: the tile rows of each family that some move reaches.
         let mut units: Vec<(usize, usize, Row<'_>)> = Vec::new();
         for fam in self.families.iter_mut() {
@@ -936,6 +936,20 @@ impl TriDexel {
             }
             (members >= 2).then_some(end)
         };
+        // Per family and move, the tile rows some group of the move reaches (none: an empty
+        // range), side by side: a row's loop passes over the moves that miss it on these alone.
+        let row_spans: [Vec<(usize, usize)>; 3] = std::array::from_fn(|k| {
+            plans
+                .iter()
+                .map(|p| {
+                    p.iter()
+                        .flatten()
+                        .filter_map(|p| p.fam[k])
+                        .map(|r| (r.j.0 / TILE, r.j.1 / TILE))
+                        .fold((usize::MAX, 0), |a, b| (a.0.min(b.0), a.1.max(b.1)))
+                })
+                .collect()
+        });
         // One tile row through the whole sequence: every ray sees the moves in order, and the
         // row's tiles stay in cache from one move to the next. Returns what each (move, group)
         // that reached the row removed from it.
@@ -943,23 +957,31 @@ impl TriDexel {
             // Only what touched the row is kept (a finishing move reaches a row for a few
             // dozen moves of a batch; growing the list one push at a time cost 3 % of a pass).
             let mut out: Vec<(usize, usize, CutStats)> = Vec::with_capacity(moves.len().min(64));
+            // The members of the row's planar runs, one run after another in one buffer (a
+            // run's list made afresh was copied whole, a few kilobytes a run).
+            let mut members: Vec<PlanarCut> = Vec::new();
+            let spans = &row_spans[k];
             let mut m = 0;
             while m < moves.len() {
+                // (A move that reaches no tile of the row has nothing to cut there, and no run
+                // to start.)
+                if !(spans[m].0 <= tj && tj <= spans[m].1) {
+                    m += 1;
+                    continue;
+                }
                 let run = [false, true]
                     .into_iter()
                     .find_map(|along| Some((planar_run(m, k, tj, along)?, along)));
                 if let Some((end, along)) = run {
-                    let mut members: SmallVec<[PlanarCut; 32]> = (m..end)
-                        .filter(|&m| reaches(m, 0, k, tj))
-                        .filter_map(|m| {
-                            Some(PlanarCut {
-                                index: m,
-                                member: member(m, k, along)?,
-                                range: plans[m][0].as_ref()?.fam[k]?,
-                                stats: CutStats::default(),
-                            })
+                    members.clear();
+                    members.extend((m..end).filter(|&m| reaches(m, 0, k, tj)).filter_map(|m| {
+                        Some(PlanarCut {
+                            index: m,
+                            member: member(m, k, along)?,
+                            range: plans[m][0].as_ref()?.fam[k]?,
+                            stats: CutStats::default(),
                         })
-                        .collect();
+                    }));
                     if along {
                         cut_along(&grid, k, tj, &mut row, &bins[k], &mut members);
                     } else {
@@ -974,7 +996,7 @@ impl TriDexel {
                     m = end;
                     continue;
                 }
-                let (groups, plans, shared) = (&moves[m], &plans[m], &shared[m]);
+                let (groups, plans) = (&moves[m], &plans[m]);
                 m += 1;
                 let m = m - 1;
                 let tag = base
@@ -991,7 +1013,7 @@ impl TriDexel {
                         k,
                         range: &r,
                         parts,
-                        rays: &shared[group][k],
+                        rays: shared_rays(m, group, k),
                         fronts: plan.fronts.as_deref(),
                         bins: &bins[k],
                         tag,
@@ -1193,6 +1215,10 @@ fn par_map<T: Sync, U: Send>(items: &[T], f: impl Fn(usize, &T) -> U + Sync + Se
             .collect()
     }
 }
+
+/// What the parts of one group of a move share along one family (`DexelRays`), made by the
+/// first row that needs it.
+type LazyRays = OnceLock<SmallVec<[DexelRays; 2]>>;
 
 /// One tile row of one family, owned by the worker that took it.
 struct Row<'a> {
@@ -1766,6 +1792,7 @@ fn cut_along(
                 // one's share only where both meet it.
                 let mats: SmallVec<[(f64, f64); 8]> =
                     d.iter().map(|iv| (iv.enter, iv.exit)).collect();
+                let intervals = mats.len();
                 gains.clear();
                 for (e, f) in mats {
                     let x_from = if progress == Progress::Retreating {
@@ -1831,8 +1858,11 @@ fn cut_along(
                         credit_rest(members, last, k, cut - measured);
                     }
                 }
-                // A move's figures count the ray once, with all it took of it.
-                gains.sort_by_key(|g| g.0);
+                // A move's figures count the ray once, with all it took of it. (One interval
+                // of material: the gains are in the members' order already.)
+                if intervals > 1 {
+                    gains.sort_by_key(|g| g.0);
+                }
                 let mut rest = &gains[..];
                 while let Some(&(n, _)) = rest.first() {
                     let same = rest.iter().take_while(|g| g.0 == n).count();
