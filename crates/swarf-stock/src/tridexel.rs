@@ -9,7 +9,7 @@ use crate::error::StockError;
 use rayon::prelude::*;
 use smallvec::SmallVec;
 use std::sync::OnceLock;
-use swarf_geom::math::{Vec3, MACHINE_RANGE_MM};
+use swarf_geom::math::{greater, lesser, Vec3, MACHINE_RANGE_MM};
 use swarf_geom::Aabb;
 use swarf_sweep::swept::{DexelRays, Scratch};
 use swarf_sweep::{
@@ -166,8 +166,8 @@ impl TileBound {
     /// Adds material `[lo, hi]`.
     #[inline]
     pub(crate) fn add(&mut self, lo: f64, hi: f64, bins: &Bins) {
-        self.lo = self.lo.min(lo);
-        self.hi = self.hi.max(hi);
+        self.lo = lesser(lo, self.lo);
+        self.hi = greater(hi, self.hi);
         self.bins |= bins.mask(lo, hi);
     }
 
@@ -1666,7 +1666,7 @@ fn cut_planar(
                         st.updates += 1;
                         st.updates_per_family[k] += 1;
                         st.removed_length[k] += removed;
-                        st.longest_removal[k] = st.longest_removal[k].max(removed);
+                        st.longest_removal[k] = greater(removed, st.longest_removal[k]);
                     }
                 }
                 // What the cut drops beyond the measure (remainders under `MIN_INTERVAL_MM`)
@@ -1823,14 +1823,14 @@ fn cut_along(
                         pc.stats.visited_per_family[k] += 1;
                         pc.stats.tested_per_family[k] += 1;
                         pc.stats.rays_tested += 1;
-                        let (a, b) = (a.max(e), b.min(f));
+                        let (a, b) = (greater(a, e), lesser(b, f));
                         if a >= b {
                             continue;
                         }
                         let removed = match taken {
                             Some((ta, tb)) if a <= tb && b >= ta => {
-                                taken = Some((ta.min(a), tb.max(b)));
-                                within(d, a, ta.max(a)) + within(d, tb.min(b), b)
+                                taken = Some((lesser(ta, a), greater(tb, b)));
+                                within(d, a, greater(ta, a)) + within(d, lesser(tb, b), b)
                             }
                             _ => {
                                 if let Some((ta, tb)) = taken {
@@ -1872,7 +1872,7 @@ fn cut_along(
                     st.updates += 1;
                     st.updates_per_family[k] += 1;
                     st.removed_length[k] += removed;
-                    st.longest_removal[k] = st.longest_removal[k].max(removed);
+                    st.longest_removal[k] = greater(removed, st.longest_removal[k]);
                 }
             }
         }
@@ -1901,7 +1901,7 @@ fn credit_rest(members: &mut [PlanarCut], last: usize, k: usize, rest: f64) {
 #[inline(always)]
 fn within(d: &[Interval], lo: f64, hi: f64) -> f64 {
     d.iter()
-        .map(|iv| (iv.exit.min(hi) - iv.enter.max(lo)).max(0.0))
+        .map(|iv| greater(lesser(iv.exit, hi) - greater(iv.enter, lo), 0.0))
         .sum()
 }
 
@@ -2008,7 +2008,7 @@ impl TileRows<'_, '_, '_, '_, '_> {
                 if removed > 0.0 {
                     updates += 1;
                     *removed_length += removed;
-                    *longest_removal = longest_removal.max(removed);
+                    *longest_removal = greater(removed, *longest_removal);
                 }
             }
         }

@@ -28,6 +28,8 @@
 //! lies below the tool's lowest top over the move ([`PlanarMember::top`]); the caller keeps to
 //! that.
 
+use swarf_geom::math::{greater, lesser};
+
 /// A bound on [`PlanarMember::dist2`] in a ray's cross coordinates, without computing it: at
 /// least `eu² + ev²`, `eu`, `ev` how far `cu`, `cv` lie outside the ranges `u` and `v`.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -42,8 +44,8 @@ impl KeyBound {
     /// The bound at `(cu, cv)`.
     #[inline(always)]
     pub fn at(&self, cu: f64, cv: f64) -> f64 {
-        let eu = (self.u.0 - cu).max(cu - self.u.1).max(0.0);
-        let ev = (self.v.0 - cv).max(cv - self.v.1).max(0.0);
+        let eu = greater(greater(self.u.0 - cu, cu - self.u.1), 0.0);
+        let ev = greater(greater(self.v.0 - cv, cv - self.v.1), 0.0);
         eu * eu + ev * ev
     }
 
@@ -92,7 +94,7 @@ impl Progress {
         // A margin on the square root: a member is left out only where its bound is clearly
         // at least `beat`, so every member left out is one the bound would reject.
         // (A mixed run needs no square root.)
-        let reach = || beat.max(0.0).sqrt() * (1.0 + 1e-9) + 1e-12;
+        let reach = || greater(beat, 0.0).sqrt() * (1.0 + 1e-9) + 1e-12;
         match self {
             Progress::Advancing => {
                 let behind = x - reach();
@@ -250,7 +252,7 @@ impl PlanarMember {
         let (px, pz) = (x - self.x0, z - self.z0);
         if self.dx == 0.0 {
             // A plunge, a lift or no motion: the half-line up from the lower centre.
-            let v = (self.zlow - z).max(0.0);
+            let v = greater(self.zlow - z, 0.0);
             return px * px + v * v;
         }
         let s = px * self.inv_dx;
@@ -264,11 +266,11 @@ impl PlanarMember {
         let (ex, ez) = (px - t * self.dx, pz - t * self.dz);
         let mut d2 = ex * ex + ez * ez;
         if pz >= 0.0 {
-            d2 = d2.min(px * px);
+            d2 = lesser(px * px, d2);
         }
         if pz >= self.dz {
             let qx = px - self.dx;
-            d2 = d2.min(qx * qx);
+            d2 = lesser(qx * qx, d2);
         }
         d2
     }
@@ -291,7 +293,7 @@ impl PlanarMember {
             if exit < c {
                 gap = c - exit;
             } else {
-                gap = gap.min((enter - c).max(0.0));
+                gap = lesser(greater(enter - c, 0.0), gap);
                 break;
             }
         }
@@ -301,7 +303,7 @@ impl PlanarMember {
     /// The chord of a squared distance under `r²`.
     #[inline(always)]
     pub fn chord(&self, d2: f64) -> (f64, f64) {
-        let s = (self.rr - d2).max(0.0).sqrt();
+        let s = greater(self.rr - d2, 0.0).sqrt();
         (self.plane - s, self.plane + s)
     }
 
@@ -348,9 +350,9 @@ impl PlanarMember {
         } else {
             let low = f64::from(u8::from(dz < 0.0));
             // (Not `clamp`: a subnormal `dz` makes `inv_dz` infinite and the product NaN
-            // where the numerator is 0; `max` takes that to the move's start.)
-            #[allow(clippy::manual_clamp)]
-            let tangent = ((rho * self.slope - g0) * self.inv_dz).max(0.0).min(1.0);
+            // where the numerator is 0; `greater` takes that to the move's start, as `max`
+            // would, in one comparison.)
+            let tangent = lesser(greater((rho * self.slope - g0) * self.inv_dz, 0.0), 1.0);
             if dx == 0.0 {
                 (low, low)
             } else if (dz > 0.0) == (dx > 0.0) {
@@ -364,7 +366,7 @@ impl PlanarMember {
             if g <= 0.0 {
                 rho
             } else {
-                (rho * rho - g * g).max(0.0).sqrt()
+                greater(rho * rho - g * g, 0.0).sqrt()
             }
         };
         Some((self.x0 + tl * dx - w(tl), self.x0 + th * dx + w(th)))
