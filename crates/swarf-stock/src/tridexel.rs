@@ -1625,7 +1625,11 @@ fn cut_planar(
                 // (No material within r of the plane, i.e. none in the open range (tlo, thi):
                 // no threshold — one scan of the ray decides both.)
                 let cu = cu(ii);
-                let Some(mut beat) = first.threshold(d.iter().map(|iv| (iv.enter, iv.exit))) else {
+                // (The ray's intervals read through one slice: each look through the `SmallVec`
+                // asks again where they live.)
+                let ivs: &[Interval] = d;
+                let Some(mut beat) = first.threshold(ivs.iter().map(|iv| (iv.enter, iv.exit)))
+                else {
                     continue;
                 };
                 // The moves that widen the chord, in order, with their keys; their chords are
@@ -1658,7 +1662,7 @@ fn cut_planar(
                 let mut taken = 0.0;
                 for &(n, key) in &wider {
                     let (lo, hi) = first.chord(key);
-                    let now = within(d, lo, hi);
+                    let now = within(ivs, lo, hi);
                     let removed = now - taken;
                     taken = now;
                     if removed > 0.0 {
@@ -1738,7 +1742,7 @@ fn cut_along(
     let progress = Progress::of(&spans);
     let mut cand: SmallVec<[usize; 32]> = SmallVec::new();
     let mut cand_spans: SmallVec<[(f64, f64); 32]> = SmallVec::new();
-    let mut gains: SmallVec<[(usize, f64); 32]> = SmallVec::new();
+    let mut gains: Vec<(usize, f64)> = Vec::with_capacity(members.len());
     for ti in i0 / TILE..i1 / TILE + 1 {
         if !row.bounds[ti].meets_mask(tlo, thi, mask) {
             continue;
@@ -1768,6 +1772,7 @@ fn cut_along(
         if cand.is_empty() {
             continue;
         }
+        let (cand, cand_spans) = (&cand[..], &cand_spans[..]);
         let tile = &mut row.rays[ti * TILE_RAYS..(ti + 1) * TILE_RAYS];
         let mut changed = false;
         for jj in j_lo..j_hi + 1 {
@@ -1794,13 +1799,15 @@ fn cut_along(
                     d.iter().map(|iv| (iv.enter, iv.exit)).collect();
                 let intervals = mats.len();
                 gains.clear();
+                // (The ray's intervals read through one slice, made again after each cut.)
+                let mut ivs: &[Interval] = d;
                 for (e, f) in mats {
                     let x_from = if progress == Progress::Retreating {
                         f
                     } else {
                         e
                     };
-                    let from = progress.first(&cand_spans, x_from, rho2);
+                    let from = progress.first(cand_spans, x_from, rho2);
                     // The union of the spans (within the material's interval) since the last
                     // cut, what it holds of the material, and the member that last added to it.
                     let mut taken: Option<(f64, f64)> = None;
@@ -1830,17 +1837,18 @@ fn cut_along(
                         let removed = match taken {
                             Some((ta, tb)) if a <= tb && b >= ta => {
                                 taken = Some((lesser(ta, a), greater(tb, b)));
-                                within(d, a, greater(ta, a)) + within(d, lesser(tb, b), b)
+                                within(ivs, a, greater(ta, a)) + within(ivs, lesser(tb, b), b)
                             }
                             _ => {
                                 if let Some((ta, tb)) = taken {
                                     let cut = subtract(d, ta, tb);
+                                    ivs = d;
                                     changed |= cut > 0.0;
                                     credit_rest(members, last, k, cut - measured);
                                     measured = 0.0;
                                 }
                                 taken = Some((a, b));
-                                within(d, a, b)
+                                within(ivs, a, b)
                             }
                         };
                         // (A sliver under `MIN_INTERVAL_MM` that an earlier move's cut would
@@ -1854,6 +1862,7 @@ fn cut_along(
                     }
                     if let Some((ta, tb)) = taken {
                         let cut = subtract(d, ta, tb);
+                        ivs = d;
                         changed |= cut > 0.0;
                         credit_rest(members, last, k, cut - measured);
                     }
