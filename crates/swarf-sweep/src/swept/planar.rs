@@ -139,6 +139,8 @@ pub struct PlanarMember {
     dx: f64,
     dz: f64,
     inv_dx: f64,
+    /// `1/(dx² + dz²)` (0 for a vertical or no move): the projection onto the path.
+    inv_ll: f64,
     /// `1/dz` (0 for a level move) and `|dx|/√(dx² + dz²)`: the in-plane rays' tangent points
     /// (`line_span`).
     inv_dz: f64,
@@ -180,6 +182,11 @@ impl PlanarMember {
             dx,
             dz,
             inv_dx: if dx != 0.0 { 1.0 / dx } else { 0.0 },
+            inv_ll: if dx != 0.0 {
+                1.0 / (dx * dx + dz * dz)
+            } else {
+                0.0
+            },
             inv_dz: if dz != 0.0 { 1.0 / dz } else { 0.0 },
             slope: if dx != 0.0 {
                 dx.abs() / (dx * dx + dz * dz).sqrt()
@@ -261,8 +268,7 @@ impl PlanarMember {
         }
         // Outside: the nearest point of the boundary — the path, or a half-line up from an
         // end the point is level with or above.
-        let ll = self.dx * self.dx + self.dz * self.dz;
-        let t = ((px * self.dx + pz * self.dz) / ll).clamp(0.0, 1.0);
+        let t = ((px * self.dx + pz * self.dz) * self.inv_ll).clamp(0.0, 1.0);
         let (ex, ez) = (px - t * self.dx, pz - t * self.dz);
         let mut d2 = ex * ex + ez * ez;
         if pz >= 0.0 {
