@@ -834,20 +834,29 @@ impl TriDexel {
         let shared_rays = |m: usize, g: usize, k: usize| -> &SmallVec<[DexelRays; 2]> {
             shared[m][g][k].get_or_init(|| moves[m][g].iter().map(|p| p.dexel_rays(k)).collect())
         };
+        // Per family and move, the tile rows some group of the move reaches (none: an empty
+        // range), side by side: a row's loop passes over the moves that miss it on these alone.
+        let row_spans: [Vec<(usize, usize)>; 3] = std::array::from_fn(|k| {
+            plans
+                .iter()
+                .map(|p| {
+                    hull(
+                        p.iter()
+                            .flatten()
+                            .filter_map(|p| p.fam[k])
+                            .map(|r| (r.j.0 / TILE, r.j.1 / TILE)),
+                    )
+                })
+                .collect()
+        });
         // The units of work: the tile rows of each family that some move reaches.
         let mut units: Vec<(usize, usize, Row<'_>)> = Vec::new();
         for fam in self.families.iter_mut() {
             let k = fam.axis;
-            let Some((lo, hi)) = plans
-                .iter()
-                .flatten()
-                .flatten()
-                .filter_map(|p| p.fam[k])
-                .map(|r| (r.j.0 / TILE, r.j.1 / TILE))
-                .reduce(|a, b| (a.0.min(b.0), a.1.max(b.1)))
-            else {
+            let (lo, hi) = hull(row_spans[k].iter().copied());
+            if lo > hi {
                 continue;
-            };
+            }
             let per_row = fam.ntu * TILE_RAYS;
             let mut tag_rows = fam.tags.chunks_mut(per_row);
             let mut stale_rows = fam.stale.chunks_mut(fam.ntu);
@@ -936,20 +945,6 @@ impl TriDexel {
             }
             (members >= 2).then_some(end)
         };
-        // Per family and move, the tile rows some group of the move reaches (none: an empty
-        // range), side by side: a row's loop passes over the moves that miss it on these alone.
-        let row_spans: [Vec<(usize, usize)>; 3] = std::array::from_fn(|k| {
-            plans
-                .iter()
-                .map(|p| {
-                    p.iter()
-                        .flatten()
-                        .filter_map(|p| p.fam[k])
-                        .map(|r| (r.j.0 / TILE, r.j.1 / TILE))
-                        .fold((usize::MAX, 0), |a, b| (a.0.min(b.0), a.1.max(b.1)))
-                })
-                .collect()
-        });
         // One tile row through the whole sequence: every ray sees the moves in order, and the
         // row's tiles stay in cache from one move to the next. Returns what each (move, group)
         // that reached the row removed from it.
@@ -1214,6 +1209,12 @@ fn par_map<T: Sync, U: Send>(items: &[T], f: impl Fn(usize, &T) -> U + Sync + Se
             .map(|(i, t)| f(i, t))
             .collect()
     }
+}
+
+/// The smallest index range holding every range of `ranges` (inclusive ends); `(usize::MAX,
+/// 0)`, empty, when there are none.
+fn hull(ranges: impl Iterator<Item = (usize, usize)>) -> (usize, usize) {
+    ranges.fold((usize::MAX, 0), |a, b| (a.0.min(b.0), a.1.max(b.1)))
 }
 
 /// What the parts of one group of a move share along one family (`DexelRays`), made by the
@@ -1567,12 +1568,7 @@ fn cut_planar(
     let (tlo, thi) = (c - r, c + r);
     let mask = bins.mask(tlo, thi);
     let (u, v) = ((k + 1) % 3, (k + 2) % 3);
-    let span = |f: fn(&FamilyRange) -> (usize, usize)| {
-        members
-            .iter()
-            .map(|m| f(&m.range))
-            .fold((usize::MAX, 0), |a, b| (a.0.min(b.0), a.1.max(b.1)))
-    };
+    let span = |f: fn(&FamilyRange) -> (usize, usize)| hull(members.iter().map(|m| f(&m.range)));
     let (i0, i1) = span(|r| r.i);
     let (j0, j1) = span(|r| r.j);
     let (j_lo, j_hi) = (
@@ -1719,12 +1715,7 @@ fn cut_along(
     let (u, v) = ((k + 1) % 3, (k + 2) % 3);
     // Which cross coordinate is the height along the tool axis (the other is the offset).
     let height_is_u = u == first.tool_axis();
-    let fold = |f: fn(&PlanarCut) -> (usize, usize)| {
-        members
-            .iter()
-            .map(f)
-            .fold((usize::MAX, 0), |a, b| (a.0.min(b.0), a.1.max(b.1)))
-    };
+    let fold = |f: fn(&PlanarCut) -> (usize, usize)| hull(members.iter().map(f));
     let (i0, i1) = fold(|m| m.range.i);
     let (j0, j1) = fold(|m| m.range.j);
     let (tlo, thi) = members
@@ -1906,11 +1897,12 @@ fn credit_rest(members: &mut [PlanarCut], last: usize, k: usize, rest: f64) {
     }
 }
 
-/// The length of the material of `d` within `[lo, hi]`.
+/// The length of the material of `d` within `[lo, hi]`. (`lo` and `hi` first: where one were
+/// NaN, `lesser`/`greater` drop it as `f64::min`/`max` would.)
 #[inline(always)]
 fn within(d: &[Interval], lo: f64, hi: f64) -> f64 {
     d.iter()
-        .map(|iv| greater(lesser(iv.exit, hi) - greater(iv.enter, lo), 0.0))
+        .map(|iv| greater(lesser(hi, iv.exit) - greater(lo, iv.enter), 0.0))
         .sum()
 }
 

@@ -171,6 +171,7 @@ impl PlanarMember {
         }
         let a = 3 - k - kt;
         let (x0, z0, dx, dz) = (c0[a], c0[kt], delta[a], delta[kt]);
+        let ll = dx * dx + dz * dz;
         Some(PlanarMember {
             k,
             kt,
@@ -182,17 +183,9 @@ impl PlanarMember {
             dx,
             dz,
             inv_dx: if dx != 0.0 { 1.0 / dx } else { 0.0 },
-            inv_ll: if dx != 0.0 {
-                1.0 / (dx * dx + dz * dz)
-            } else {
-                0.0
-            },
+            inv_ll: if dx != 0.0 { 1.0 / ll } else { 0.0 },
             inv_dz: if dz != 0.0 { 1.0 / dz } else { 0.0 },
-            slope: if dx != 0.0 {
-                dx.abs() / (dx * dx + dz * dz).sqrt()
-            } else {
-                0.0
-            },
+            slope: if dx != 0.0 { dx.abs() / ll.sqrt() } else { 0.0 },
             xmin: x0.min(x0 + dx),
             xmax: x0.max(x0 + dx),
             zlow: z0.min(z0 + dz),
