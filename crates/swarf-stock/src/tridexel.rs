@@ -1582,6 +1582,7 @@ fn cut_planar(
     let mut cand: SmallVec<[usize; 32]> = SmallVec::new();
     let mut bounds: SmallVec<[KeyBound; 32]> = SmallVec::new();
     let mut spans: SmallVec<[(f64, f64); 32]> = SmallVec::new();
+    let mut later: SmallVec<[KeyBound; 32]> = SmallVec::new();
     let run_bounds: SmallVec<[(KeyBound, (f64, f64)); 32]> = members
         .iter()
         .map(|m| (m.member.bound(), m.member.span()))
@@ -1609,6 +1610,22 @@ fn cut_planar(
         if cand.is_empty() {
             continue;
         }
+        // The bound of every candidate from each on (the hull of their ranges): once a ray
+        // fails it, no later member can widen its chord. (On a pass that is once the members
+        // start `√beat` ahead of the ray, or sooner where the later centres all stand higher
+        // than the ray by enough.)
+        later.clear();
+        later.extend(
+            bounds
+                .iter()
+                .rev()
+                .scan(None, |acc: &mut Option<KeyBound>, &b| {
+                    let h = acc.map_or(b, |a| a.hull(b));
+                    *acc = Some(h);
+                    Some(h)
+                }),
+        );
+        later.reverse();
         // On a pass the members a ray can need are one stretch of them (`Progress`): most
         // are left without checking their bounds.
         let progress = Progress::of(&spans);
@@ -1634,10 +1651,10 @@ fn cut_planar(
                 let mut wider: SmallVec<[(usize, f64); 32]> = SmallVec::new();
                 let x = first.point(cu, cv).0;
                 let from = progress.first(&spans, x, beat);
-                for ((&n, b), &span) in cand[from..].iter().zip(&bounds[from..]).zip(&spans[from..])
+                for ((&n, b), rest) in cand[from..].iter().zip(&bounds[from..]).zip(&later[from..])
                 {
                     if b.at(cu, cv) >= beat {
-                        if progress.past(span, x, beat) {
+                        if rest.at(cu, cv) >= beat {
                             break;
                         }
                         continue;

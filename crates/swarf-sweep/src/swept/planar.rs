@@ -49,6 +49,16 @@ impl KeyBound {
         eu * eu + ev * ev
     }
 
+    /// The smallest bound that is at most both `self` and `other` anywhere: the bound of the
+    /// hull of their ranges.
+    #[inline]
+    pub fn hull(self, other: KeyBound) -> KeyBound {
+        KeyBound {
+            u: (lesser(self.u.0, other.u.0), greater(self.u.1, other.u.1)),
+            v: (lesser(self.v.0, other.v.0), greater(self.v.1, other.v.1)),
+        }
+    }
+
     /// The bound over the box `us × vs` of cross coordinates.
     #[inline]
     pub fn over(&self, us: (f64, f64), vs: (f64, f64)) -> f64 {
@@ -60,9 +70,9 @@ impl KeyBound {
 
 /// How the members of a run, in order, move along the plane's axis across the tool axis
 /// (`x`): on a raster pass their sphere centres' `x` ranges only advance or only retreat.
-/// Then the members a ray's [`KeyBound`] can let through are one stretch of the run: before it
-/// a member's range ends more than `√beat` behind the ray, and once one that fails its bound
-/// starts ahead of the ray by that much, every later one does.
+/// Then the members a ray's [`KeyBound`] can let through begin where the ranges stop ending
+/// more than `√beat` behind the ray. (Where they end, the stock's loop finds from the hull of
+/// the later members' bounds, [`KeyBound::hull`].)
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Progress {
     /// Both ends of the ranges never decrease.
@@ -106,20 +116,6 @@ impl Progress {
             }
             Progress::Mixed => 0,
         }
-    }
-
-    /// Whether, a member of range `span` having failed its bound at a ray at `x` against
-    /// `beat`, every later member fails too: it starts ahead of the ray (in the direction of
-    /// progress) by at least `√beat`, and the later ones at least as far.
-    #[inline(always)]
-    pub fn past(self, span: (f64, f64), x: f64, beat: f64) -> bool {
-        // The same difference the bound squares (`KeyBound::at`): later members' are larger.
-        let ahead = match self {
-            Progress::Advancing => span.0 - x,
-            Progress::Retreating => x - span.1,
-            Progress::Mixed => return false,
-        };
-        ahead > 0.0 && ahead * ahead >= beat
     }
 }
 
@@ -522,8 +518,9 @@ mod tests {
         assert!(compared.0 > 5000 && compared.1 > 3000, "{compared:?}");
     }
 
-    /// `Progress` leaves out only members whose bound is at least the ray's `beat`: before
-    /// `first` and, once `past` holds, every later one — on advancing, retreating and mixed
+    /// The stock's planar loop leaves out only members whose bound is at least the ray's
+    /// `beat`: before `Progress::first` and, once the hull of the later members' bounds fails,
+    /// every later one — on advancing, retreating and mixed
     /// sequences of ranges, with rays inside, between and beyond them, and beats down to ranges'
     /// distances (where a rounding would show).
     #[test]
@@ -576,8 +573,13 @@ mod tests {
                     assert!(b.at(cu, cv) >= beat, "{progress:?} skipped a member");
                     skipped += 1;
                 }
-                for (i, (b, &s)) in bounds.iter().zip(&spans).enumerate().skip(from) {
-                    if b.at(cu, cv) >= beat && progress.past(s, cu, beat) {
+                // The stock's loop stops at the first member whose later members' hull
+                // bound (its own included) fails.
+                let hulls: Vec<KeyBound> = (0..len)
+                    .map(|i| bounds[i..].iter().copied().reduce(KeyBound::hull).unwrap())
+                    .collect();
+                for (i, h) in hulls.iter().enumerate().skip(from) {
+                    if h.at(cu, cv) >= beat {
                         for later in &bounds[i..] {
                             assert!(later.at(cu, cv) >= beat, "{progress:?} broke too soon");
                             broken += 1;
