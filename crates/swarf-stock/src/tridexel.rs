@@ -1558,6 +1558,21 @@ fn cut_planar(
     bins: &Bins,
     members: &mut [PlanarCut],
 ) {
+    let tally = RunTally::start(members, k);
+    cut_planar_rays(grid, k, tj, row, bins, members);
+    tally.finish(members, k);
+}
+
+/// [`cut_planar`]'s work, counting a member's rays tested and changed only in
+/// `tested_per_family` and `updates_per_family` ([`RunTally`]).
+fn cut_planar_rays(
+    grid: &Grid,
+    k: usize,
+    tj: usize,
+    row: &mut Row<'_>,
+    bins: &Bins,
+    members: &mut [PlanarCut],
+) {
     let Some(first) = members.first().map(|m| m.member) else {
         return;
     };
@@ -1661,9 +1676,7 @@ fn cut_planar(
                     }
                     let pc = &mut members[n];
                     let key = pc.member.key(cu, cv);
-                    pc.stats.visited_per_family[k] += 1;
                     pc.stats.tested_per_family[k] += 1;
-                    pc.stats.rays_tested += 1;
                     if key < beat {
                         beat = key;
                         wider.push((n, key));
@@ -1680,7 +1693,6 @@ fn cut_planar(
                     taken = now;
                     if removed > 0.0 {
                         let st = &mut members[n].stats;
-                        st.updates += 1;
                         st.updates_per_family[k] += 1;
                         st.removed_length[k] += removed;
                         st.longest_removal[k] = greater(removed, st.longest_removal[k]);
@@ -1715,6 +1727,20 @@ fn cut_planar(
 /// does not meet `taken` first has `taken` cut. On a pass the members a ray can need are one
 /// stretch of them (`Progress`: only those within `√(r² − δ²)` of the ray's material).
 fn cut_along(
+    grid: &Grid,
+    k: usize,
+    tj: usize,
+    row: &mut Row<'_>,
+    bins: &Bins,
+    members: &mut [PlanarCut],
+) {
+    let tally = RunTally::start(members, k);
+    cut_along_rays(grid, k, tj, row, bins, members);
+    tally.finish(members, k);
+}
+
+/// [`cut_along`]'s work, counting as [`cut_planar_rays`] does.
+fn cut_along_rays(
     grid: &Grid,
     k: usize,
     tj: usize,
@@ -1835,9 +1861,7 @@ fn cut_along(
                         let Some((a, b)) = pc.member.line_span(z, rho) else {
                             continue;
                         };
-                        pc.stats.visited_per_family[k] += 1;
                         pc.stats.tested_per_family[k] += 1;
-                        pc.stats.rays_tested += 1;
                         let (a, b) = (greater(a, e), lesser(b, f));
                         if a >= b {
                             continue;
@@ -1886,7 +1910,6 @@ fn cut_along(
                     let removed: f64 = rest[..same].iter().map(|g| g.1).sum();
                     rest = &rest[same..];
                     let st = &mut members[n].stats;
-                    st.updates += 1;
                     st.updates_per_family[k] += 1;
                     st.removed_length[k] += removed;
                     st.longest_removal[k] = greater(removed, st.longest_removal[k]);
@@ -1899,6 +1922,34 @@ fn cut_along(
         } else if row.stale[ti] {
             row.bounds[ti] = tile_bound(tile, bins);
             row.stale[ti] = false;
+        }
+    }
+}
+
+/// The counters that a planar run's members move together: a ray tested is counted in
+/// `tested_per_family` alone while the run's rays are cut, and `visited_per_family` and
+/// `rays_tested` take the same count after; a ray changed likewise in `updates_per_family`,
+/// then `updates`. (One increment for three on every ray a member is tested on.)
+struct RunTally {
+    before: SmallVec<[(u64, u64); 32]>,
+}
+
+impl RunTally {
+    fn start(members: &[PlanarCut], k: usize) -> RunTally {
+        let before = members
+            .iter()
+            .map(|m| (m.stats.tested_per_family[k], m.stats.updates_per_family[k]))
+            .collect();
+        RunTally { before }
+    }
+
+    fn finish(self, members: &mut [PlanarCut], k: usize) {
+        for (m, (tested, updated)) in members.iter_mut().zip(self.before) {
+            let st = &mut m.stats;
+            let tested = st.tested_per_family[k] - tested;
+            st.visited_per_family[k] += tested;
+            st.rays_tested += tested;
+            st.updates += st.updates_per_family[k] - updated;
         }
     }
 }
