@@ -982,6 +982,14 @@ impl TriDexel {
                     } else {
                         cut_planar(&grid, k, tj, &mut row, &bins[k], &mut members);
                     }
+                    // A run counts a member's rays tested and changed in one field each (one
+                    // increment where three moved together on every ray); the others follow.
+                    for c in members.iter_mut() {
+                        let st = &mut c.stats;
+                        st.visited_per_family[k] = st.tested_per_family[k];
+                        st.rays_tested = st.tested_per_family[k];
+                        st.updates = st.updates_per_family[k];
+                    }
                     out.extend(
                         members
                             .iter()
@@ -1549,23 +1557,10 @@ struct PlanarCut {
 /// under the ray's `beat`): a move whose bound cannot beat it is passed over, its chord not even
 /// computed. Each change is measured on the ray as it was (`within`: the material inside the
 /// chord grows by what the move takes) and counted for its move, as the moves cut one by one
-/// would count it; the ray is cut once, by the widest chord.
+/// would count it; the ray is cut once, by the widest chord. (A member's rays tested and
+/// changed are counted in `tested_per_family` and `updates_per_family` alone, here and in
+/// `cut_along`; the caller fills in the counters that move with them.)
 fn cut_planar(
-    grid: &Grid,
-    k: usize,
-    tj: usize,
-    row: &mut Row<'_>,
-    bins: &Bins,
-    members: &mut [PlanarCut],
-) {
-    let tally = RunTally::start(members, k);
-    cut_planar_rays(grid, k, tj, row, bins, members);
-    tally.finish(members, k);
-}
-
-/// [`cut_planar`]'s work, counting a member's rays tested and changed only in
-/// `tested_per_family` and `updates_per_family` ([`RunTally`]).
-fn cut_planar_rays(
     grid: &Grid,
     k: usize,
     tj: usize,
@@ -1727,20 +1722,6 @@ fn cut_planar_rays(
 /// does not meet `taken` first has `taken` cut. On a pass the members a ray can need are one
 /// stretch of them (`Progress`: only those within `√(r² − δ²)` of the ray's material).
 fn cut_along(
-    grid: &Grid,
-    k: usize,
-    tj: usize,
-    row: &mut Row<'_>,
-    bins: &Bins,
-    members: &mut [PlanarCut],
-) {
-    let tally = RunTally::start(members, k);
-    cut_along_rays(grid, k, tj, row, bins, members);
-    tally.finish(members, k);
-}
-
-/// [`cut_along`]'s work, counting as [`cut_planar_rays`] does.
-fn cut_along_rays(
     grid: &Grid,
     k: usize,
     tj: usize,
@@ -1922,34 +1903,6 @@ fn cut_along_rays(
         } else if row.stale[ti] {
             row.bounds[ti] = tile_bound(tile, bins);
             row.stale[ti] = false;
-        }
-    }
-}
-
-/// The counters that a planar run's members move together: a ray tested is counted in
-/// `tested_per_family` alone while the run's rays are cut, and `visited_per_family` and
-/// `rays_tested` take the same count after; a ray changed likewise in `updates_per_family`,
-/// then `updates`. (One increment for three on every ray a member is tested on.)
-struct RunTally {
-    before: SmallVec<[(u64, u64); 32]>,
-}
-
-impl RunTally {
-    fn start(members: &[PlanarCut], k: usize) -> RunTally {
-        let before = members
-            .iter()
-            .map(|m| (m.stats.tested_per_family[k], m.stats.updates_per_family[k]))
-            .collect();
-        RunTally { before }
-    }
-
-    fn finish(self, members: &mut [PlanarCut], k: usize) {
-        for (m, (tested, updated)) in members.iter_mut().zip(self.before) {
-            let st = &mut m.stats;
-            let tested = st.tested_per_family[k] - tested;
-            st.visited_per_family[k] += tested;
-            st.rays_tested += tested;
-            st.updates += st.updates_per_family[k] - updated;
         }
     }
 }
