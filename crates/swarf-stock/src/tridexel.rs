@@ -1625,16 +1625,10 @@ fn cut_planar(
         // start `√beat` ahead of the ray, or sooner where the later centres all stand higher
         // than the ray by enough.)
         later.clear();
-        later.extend(
-            bounds
-                .iter()
-                .rev()
-                .scan(None, |acc: &mut Option<KeyBound>, &b| {
-                    let h = acc.map_or(b, |a| a.hull(b));
-                    *acc = Some(h);
-                    Some(h)
-                }),
-        );
+        for &b in bounds.iter().rev() {
+            let h = later.last().map_or(b, |a: &KeyBound| a.hull(b));
+            later.push(h);
+        }
         later.reverse();
         // On a pass the members a ray can need are one stretch of them (`Progress`): most
         // are left without checking their bounds.

@@ -520,9 +520,9 @@ mod tests {
 
     /// The stock's planar loop leaves out only members whose bound is at least the ray's
     /// `beat`: before `Progress::first` and, once the hull of the later members' bounds fails,
-    /// every later one — on advancing, retreating and mixed
-    /// sequences of ranges, with rays inside, between and beyond them, and beats down to ranges'
-    /// distances (where a rounding would show).
+    /// every later one — on advancing, retreating and mixed sequences of ranges, with rays
+    /// inside, between and beyond them, and beats down to ranges' distances (where a rounding
+    /// would show).
     #[test]
     fn progress_leaves_out_only_members_that_cannot_beat() {
         use super::{KeyBound, Progress};
