@@ -311,8 +311,8 @@ impl<'a> MaterialProbe<'a> {
         let l = &self.lattice[k];
         let fam = self.stock.family(k);
         let pa = [p.x, p.y, p.z];
-        let fu = (pa[l.u] - l.min[0]) / l.h[0] - 0.5;
-        let fv = (pa[l.v] - l.min[1]) / l.h[1] - 0.5;
+        let fu = (pa[l.u] - l.min[0]) * l.inv_h[0] - 0.5;
+        let fv = (pa[l.v] - l.min[1]) * l.inv_h[1] - 0.5;
         let (i0, j0) = (floor(fu), floor(fv));
         let (wu, wv) = (fu - i0, fv - j0);
         let t = pa[k];
@@ -363,8 +363,8 @@ impl<'a> MaterialProbe<'a> {
         // than a sheet this family is fit to measure (ends of one kind on either side of a
         // wall along the rays — a top and a floor — are a step, not a sheet).
         let (su, sv) = (
-            greater((ends[1] - ends[0]).abs(), (ends[3] - ends[2]).abs()) / l.h[0],
-            greater((ends[2] - ends[0]).abs(), (ends[3] - ends[1]).abs()) / l.h[1],
+            greater((ends[1] - ends[0]).abs(), (ends[3] - ends[2]).abs()) * l.inv_h[0],
+            greater((ends[2] - ends[0]).abs(), (ends[3] - ends[1]).abs()) * l.inv_h[1],
         );
         let coherent = kind != 0
             && near
@@ -440,14 +440,11 @@ impl<'a> MaterialProbe<'a> {
             + ends[1] * wu * (1.0 - wv)
             + ends[2] * (1.0 - wu) * wv
             + ends[3] * wu * wv;
-        let de_du = ((ends[1] - ends[0]) * (1.0 - wv) + (ends[3] - ends[2]) * wv) / l.h[0];
-        let de_dv = ((ends[2] - ends[0]) * (1.0 - wu) + (ends[3] - ends[1]) * wu) / l.h[1];
+        let de_du = ((ends[1] - ends[0]) * (1.0 - wv) + (ends[3] - ends[2]) * wv) * l.inv_h[0];
+        let de_dv = ((ends[2] - ends[0]) * (1.0 - wu) + (ends[3] - ends[1]) * wu) * l.inv_h[1];
         let s = f64::from(kind);
-        let tilt = (1.0 + de_du * de_du + de_dv * de_dv).sqrt();
-        FamilyDepth::Coherent(
-            s * (t - e) / tilt,
-            sheet_normal(k, l, s, de_du, de_dv, tilt),
-        )
+        let along = s / (1.0 + de_du * de_du + de_dv * de_dv).sqrt();
+        FamilyDepth::Coherent((t - e) * along, sheet_normal(k, along, de_du, de_dv))
     }
 }
 
@@ -524,25 +521,25 @@ fn edge_distance(
     if steep.is_nan() || steep > MAX_SHEET_SLOPE * MAX_SHEET_SLOPE || diagonal_step {
         return None;
     }
-    let tilt = (1.0 + steep).sqrt();
-    let s = f64::from(kind);
-    Some((
-        s * (t - se / sw) / tilt,
-        sheet_normal(k, l, s, de_du, de_dv, tilt),
-    ))
+    let along = f64::from(kind) / (1.0 + steep).sqrt();
+    Some(((t - se / sw) * along, sheet_normal(k, along, de_du, de_dv)))
 }
 
 /// The outward normal (out of the material) of a sheet `t = e(u, v)` of family `k` with
-/// slopes `∂e/∂u`, `∂e/∂v` across it and `tilt = √(1 + |∇e|²)`, the material on the rays'
-/// side `s` of it: the distance grows into the material along `s·(e_k − ∂e/∂u·e_u −
-/// ∂e/∂v·e_v)/tilt`, and the normal is its opposite.
+/// slopes `∂e/∂u`, `∂e/∂v` across it, the material on the rays' side `s` of it, given
+/// `along = s/√(1 + |∇e|²)`: the distance grows into the material along `along·(e_k −
+/// ∂e/∂u·e_u − ∂e/∂v·e_v)`, and the normal is its opposite. (One division, made by the
+/// caller for the distance too; the components written by a constant index each, not by a
+/// run-time one, which stored and reloaded the vector.)
 #[inline(always)]
-fn sheet_normal(k: usize, l: &Lattice, s: f64, de_du: f64, de_dv: f64, tilt: f64) -> Vec3 {
-    let mut normal = Vec3::ZERO;
-    normal[k] = -s / tilt;
-    normal[l.u] = s * de_du / tilt;
-    normal[l.v] = s * de_dv / tilt;
-    normal
+fn sheet_normal(k: usize, along: f64, de_du: f64, de_dv: f64) -> Vec3 {
+    let (a, b, c) = (-along, along * de_du, along * de_dv);
+    // Family k's cross axes are u = k + 1 and v = k + 2 (mod 3).
+    match k {
+        0 => Vec3::new(a, b, c),
+        1 => Vec3::new(c, a, b),
+        _ => Vec3::new(b, c, a),
+    }
 }
 
 /// What the families' measures beside an edge (`(distance, outward normal, outer?)` each) say of
