@@ -930,48 +930,54 @@ fn sample_strip(
                         probed(lo + r, j, rfj)
                     };
                 }
-            } else {
-                // The circle's point at angle φ is `centre + sin φ·a + cos φ·b`, its normal
-                // `sin φ·na + cos φ·nb + nz` (as `point` computes them).
-                let c = strip.circles[lo + r];
-                let centre = f.tip + f.z * c.z;
-                let (a, b) = (f.x * c.rho, f.y * c.rho);
-                let (na, nb, nz) = (f.x * c.normal.x, f.y * c.normal.x, f.z * c.normal.y);
-                // The column map under this circle's samples where it was read (else +∞: no
-                // claim), and the circle's height.
-                let below = match band_of[r] {
-                    u32::MAX => &no_claim[..],
-                    band => &mapped_tops[band as usize * n..(band as usize + 1) * n],
-                };
-                let z_row = centre.z;
-                for ((((out, &rfj), &sin), &cos), &top) in row
-                    .iter_mut()
-                    .zip(rfr.iter())
-                    .zip(&angles.sin)
-                    .zip(&angles.cos)
-                    .zip(below)
-                {
-                    *out = if rfj <= 0.0 {
-                        rfj
-                    } else if z_row - top > air_margin {
-                        -GUESSED_OUTSIDE
-                    } else {
-                        let p = centre + a * sin + b * cos;
+                for (s, &v) in side.iter_mut().zip(&*row) {
+                    *s = u8::from(v > 0.0);
+                }
+                sides::pack(side_bits, side, |&s| s != 0);
+                open_bits.fill(0);
+                return count;
+            }
+            // Only the feasible samples are visited, a word of their bits at a time: about
+            // half of a circle is not, and there `g = R·(f − ε)`, no side (a loop over every
+            // sample spent a third of the sampling's instructions on them).
+            sides::pack(open_bits, rfr, |&v| v > 0.0);
+            row.copy_from_slice(rfr);
+            side.fill(0);
+            side_bits.fill(0);
+            // The circle's point at angle φ is `centre + sin φ·a + cos φ·b`, its normal
+            // `sin φ·na + cos φ·nb + nz` (as `point` computes them).
+            let c = strip.circles[lo + r];
+            let centre = f.tip + f.z * c.z;
+            let (a, b) = (f.x * c.rho, f.y * c.rho);
+            let (na, nb, nz) = (f.x * c.normal.x, f.y * c.normal.x, f.z * c.normal.y);
+            // The column map under this circle's samples where it was read (else +∞: no
+            // claim), and the circle's height.
+            let below = match band_of[r] {
+                u32::MAX => &no_claim[..],
+                band => &mapped_tops[band as usize * n..(band as usize + 1) * n],
+            };
+            let z_row = centre.z;
+            let (sin, cos) = (&angles.sin[..n], &angles.cos[..n]);
+            for (w, (&open, bits)) in open_bits.iter().zip(side_bits.iter_mut()).enumerate() {
+                let mut todo = open;
+                while todo != 0 {
+                    let bit = todo.trailing_zeros() as usize;
+                    todo &= todo - 1;
+                    let j = w * 64 + bit;
+                    let inside = z_row - below[j] <= air_margin && {
+                        let p = centre + a * sin[j] + b * cos[j];
                         // The family most aligned with the normal (ties to the lower).
-                        let k = (na * sin + nb * cos + nz).abs().max_position();
-                        if probe.inside_nearest_ray(k, p) {
-                            rfj
-                        } else {
-                            -GUESSED_OUTSIDE
-                        }
+                        let k = (na * sin[j] + nb * cos[j] + nz).abs().max_position();
+                        probe.inside_nearest_ray(k, p)
                     };
+                    if inside {
+                        side[j] = 1;
+                        *bits |= 1 << bit;
+                    } else {
+                        row[j] = -GUESSED_OUTSIDE;
+                    }
                 }
             }
-            for (s, &v) in side.iter_mut().zip(&*row) {
-                *s = u8::from(v > 0.0);
-            }
-            sides::pack(side_bits, side, |&s| s != 0);
-            sides::pack(open_bits, rfr, |&v| v > 0.0 && !exhaustive);
             count
         })
         .sum();
