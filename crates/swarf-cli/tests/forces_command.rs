@@ -401,6 +401,83 @@ fn schedule_rewrites_apt_fedrat_records_and_g95_feeds() {
     }
 }
 
+/// Small feed numbers — per revolution (G95) in inch, or an inverse time (G93) — are written
+/// with six significant digits: with six decimals an inch feed per revolution kept three
+/// (F0.000404), read back 1e-3 off, and the schedule stopped with an internal error.
+#[test]
+fn schedule_writes_small_feed_numbers_to_six_digits() {
+    let d = dir("small-feeds");
+    let mat = write(&d, "al.toml", MATERIAL);
+    let inch =
+        "G20 G90 G95\nS10000 M3\nG0 X-0.4 Y0.4 Z0.2\nG0 Z-0.15748031\nG1 X2.0 F0.004\nG0 Z0.4\n";
+    let inverse =
+        "G21 G90\nS10000 M3\nG0 X-10 Y10 Z5\nG0 Z-4\nG93 G1 X50 F16.6666667\nG94\nG0 Z5\n";
+    for (name, text, limit) in [("inch.ngc", inch, "300"), ("inverse.ngc", inverse, "100")] {
+        let prog = write(&d, name, text);
+        let out = d.join(format!("s-{name}"));
+        let o = schedule(
+            &prog,
+            "flat:d=10,flutes=4,helix=30",
+            &mat,
+            out.to_str().unwrap(),
+            &["--limit-force", limit, "--json"],
+        );
+        assert!(o.status.success(), "{name}: {}", stderr(&o));
+        assert_eq!(json(&o)["moves_changed"], 1, "{name}");
+        let new = std::fs::read_to_string(&out).unwrap();
+        let line = new
+            .lines()
+            .find(|l| l.contains(" X50") || l.contains(" X2.0"))
+            .unwrap();
+        let f = line.split(" F").nth(1).unwrap();
+        let significant = f.trim_start_matches(['0', '.']).replace('.', "");
+        assert!(significant.len() >= 6, "{name}: {line}");
+    }
+}
+
+/// A line that also starts the spindle (or sets S, M8, units…) is not split: pieces in front of
+/// it would cut before its words took effect — with the spindle still stopped.
+#[test]
+fn schedule_splits_no_line_with_other_words_and_warns_of_a_stopped_spindle() {
+    let d = dir("split-words");
+    let mat = write(&d, "al.toml", MATERIAL);
+    let text = "G21 G90 G94\nG0 X-10 Y10 Z5\nG0 Z-3\nG1 X50 F1000 M3 S10000\nG0 Z5\nM2\n";
+    let prog = write(&d, "m3.ngc", text);
+    let out = d.join("m3-s.ngc");
+    let o = schedule(
+        &prog,
+        "flat:d=10,flutes=4,helix=30",
+        &mat,
+        out.to_str().unwrap(),
+        &["--limit-force", "200", "--split", "--step", "2", "--json"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = json(&o);
+    assert_eq!(s["moves_split"], 0, "{s}");
+    assert_eq!(s["engaged_without_spindle"], 0, "{s}");
+    let new = std::fs::read_to_string(&out).unwrap();
+    assert!(!new.contains("G91"), "{new}");
+    // The same cut with the spindle never started: reported, not scheduled away.
+    let text = "G21 G90 G94\nG0 X-10 Y10 Z5\nG0 Z-3\nG1 X50 F1000\nG0 Z5\nM2\n";
+    let prog = write(&d, "stopped.ngc", text);
+    let out = d.join("stopped-s.ngc");
+    let o = schedule(
+        &prog,
+        "flat:d=10,flutes=4,helix=30",
+        &mat,
+        out.to_str().unwrap(),
+        &["--limit-force", "200", "--json"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    let s = json(&o);
+    assert!(s["engaged_without_spindle"].as_u64().unwrap() > 10, "{s}");
+    assert!(
+        stderr(&o).contains("spindle stopped") && stderr(&o).contains("stopped.ngc:4"),
+        "{}",
+        stderr(&o)
+    );
+}
+
 #[test]
 fn split_moves_get_their_own_feeds_and_stay_under_the_limit() {
     let d = dir("split");

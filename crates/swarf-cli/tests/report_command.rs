@@ -690,3 +690,34 @@ fn the_page_never_replaces_a_result() {
     assert!(o.status.success(), "{}", stderr(&o));
     assert!(page.is_file());
 }
+
+/// `--report` names an HTML page: given the run's own program or one of its results it is
+/// refused before any work, and the file is left as it was (it was replaced by the page, exit
+/// 0).
+#[test]
+fn a_report_never_replaces_an_input_or_a_result() {
+    let dir = report_dir("not-html");
+    let prog = dir.join("job.ngc");
+    let text = "G21 G90\nG0 X-10 Y10 Z-3\nG1 X50 F600\nG0 Z5\n";
+    std::fs::write(&prog, text).unwrap();
+    let out = dir.join("out");
+    for target in [prog.clone(), out.join("summary.json")] {
+        let o = swarf(&[
+            "engage",
+            "--stock",
+            "box:0,0,-10,40,20,0",
+            "--program",
+            prog.to_str().unwrap(),
+            "--tool",
+            "flat:d=10",
+            "--out",
+            out.to_str().unwrap(),
+            "--report",
+            target.to_str().unwrap(),
+        ]);
+        assert!(!o.status.success(), "{}", target.display());
+        assert!(stderr(&o).contains(".html"), "{}", stderr(&o));
+        assert!(!out.exists(), "{}: the run went on", target.display());
+    }
+    assert_eq!(std::fs::read_to_string(&prog).unwrap(), text);
+}

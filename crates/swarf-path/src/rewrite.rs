@@ -260,15 +260,14 @@ pub fn format_feed(v: f64) -> String {
     s.strip_suffix('.').unwrap_or(s).to_string()
 }
 
-/// Decimals of [`format_feed`]'s number: about six significant digits.
+/// Decimals of [`format_feed`]'s number: six significant digits (at least one decimal), below
+/// 1 too — a feed per revolution (G95, F0.1) or an inverse time (G93) is a small number, and
+/// six decimals left it four or five digits, 1e-4 off the scheduled feed.
 fn feed_decimals(v: f64) -> usize {
-    let digits = if v.abs() >= 1.0 {
-        // (Saturating: an infinite or huge value is refused before it is written.)
-        (v.abs().log10().floor() as i32).saturating_add(1)
-    } else {
-        0
-    };
-    6i32.saturating_sub(digits).clamp(1, 9) as usize
+    // Digits before the decimal point (0 or less below 1). (Saturating: an infinite or huge
+    // value is refused before it is written; a zero takes the most decimals, and prints 0.)
+    let digits = (v.abs().log10().floor() as i32).saturating_add(1);
+    6i32.saturating_sub(digits).clamp(1, 15) as usize
 }
 
 /// [`format_feed`] of a positive feed, rounded down at its last digit: a feed scheduled to a
@@ -321,6 +320,43 @@ pub struct LineModes {
     /// A rotation or scaling of the program frame (G68, G68.2, G51, G10 L2/L20 with R) was
     /// seen on this line or before it.
     pub transformed: bool,
+    /// The line's code is only a straight feed: `G1`, `X`, `Y`, `Z`, `F` and `N` words with
+    /// plain numbers (and comments). Pieces put in front of it run as the line's own motion
+    /// would; in front of a line with other words (`S`, `M3`, `M8`, `T`, a `G21`, a parameter)
+    /// they would run before those took effect.
+    pub plain: bool,
+}
+
+/// Whether a G-code line's code holds only `G1` (`G01`), `X`, `Y`, `Z`, `F` and `N` words whose
+/// numbers are plain (comments aside), and no block delete (`/`): see [`LineModes::plain`].
+fn plain_feed_line(line: &str) -> bool {
+    let code = strip_comments(line);
+    let letters = code.bytes().filter(u8::is_ascii_alphabetic).count();
+    let w = words(line);
+    // Every letter a word with a plain number (`X#1`, `F[…]`, `O100` fail it), nothing else.
+    letters == w.len()
+        && !code.contains(['#', '[', '<', '=', '/'])
+        && w.iter().all(|&(c, v)| match c {
+            'G' => v == 1.0,
+            'X' | 'Y' | 'Z' | 'F' | 'N' => true,
+            _ => false,
+        })
+}
+
+/// A G-code line without its `(…)` and `;` comments.
+fn strip_comments(line: &str) -> String {
+    let mut out = String::with_capacity(line.len());
+    let mut in_paren = false;
+    for c in line.chars() {
+        match c {
+            '(' if !in_paren => in_paren = true,
+            ')' if in_paren => in_paren = false,
+            ';' if !in_paren => break,
+            _ if !in_paren => out.push(c),
+            _ => {}
+        }
+    }
+    out
 }
 
 /// The letter–number words of a G-code line's code (comments and bracketed expressions
@@ -368,10 +404,12 @@ pub fn gcode_line_modes(text: &str, initial_inch: bool) -> Vec<LineModes> {
         absolute: true,
         inch: initial_inch,
         transformed: false,
+        plain: false,
     };
     crate::load::program_lines(text, ProgramFormat::Gcode)
         .map(|line| {
             let w = words(line);
+            m.plain = plain_feed_line(line);
             let g = |x: f64| w.iter().any(|&(c, v)| c == 'G' && (v - x).abs() < 1e-9);
             m.absolute = if g(91.0) {
                 false
@@ -886,6 +924,35 @@ mod tests {
     }
 
     #[test]
+    fn only_a_line_of_motion_and_feed_is_plain() {
+        let plain = |line: &str| gcode_line_modes(line, false)[0].plain;
+        for yes in [
+            "G1 X30 Y0",
+            "N20 G01 X30.5 Y-2 Z-3 F600 (comment: S1 M3)",
+            "x1 y2 ; M8 in a comment",
+            "G1X1Y2F3",
+        ] {
+            assert!(plain(yes), "{yes}");
+        }
+        for no in [
+            "G1 X50 F1000 M3 S10000",
+            "G21 G1 X10",
+            "G1 X10 M8",
+            "G1 X#1",
+            "G1 X[1+2]",
+            "G1 X#<x>",
+            "/G1 X10",
+            "T2 G1 X10",
+            "G1 X10 E3",
+            "G2 X10 I5",
+            "G91 G1 X10",
+            "O100 sub",
+        ] {
+            assert!(!plain(no), "{no}");
+        }
+    }
+
+    #[test]
     fn an_unchanged_feed_keeps_its_digits() {
         // Found by the fuzzer: F317.2802 at factor 1 was rounded to six digits.
         let text = "G1 X1 F317.2802\nG1 X2\nFEDRAT/ 123.456789\n";
@@ -919,12 +986,15 @@ mod tests {
     fn feed_numbers_keep_six_digits() {
         assert_eq!(format_feed(1234.5678), "1234.57");
         assert_eq!(format_feed(600.0), "600");
-        assert_eq!(format_feed(0.0123456), "0.012346");
+        assert_eq!(format_feed(0.0123456), "0.0123456");
+        assert_eq!(format_feed(0.10282176), "0.102822");
+        assert_eq!(format_feed(0.0), "0");
         assert_eq!(format_feed(25.0), "25");
         // Down at the last digit, never over the value asked for.
         assert_eq!(format_feed_down(1234.5678), "1234.56");
         assert_eq!(format_feed_down(600.0), "600");
-        assert_eq!(format_feed_down(0.0123456), "0.012345");
+        assert_eq!(format_feed_down(0.0123456), "0.0123456");
+        assert_eq!(format_feed_down(0.10282176), "0.102821");
         for v in [
             299.99999,
             299.9999999999,
@@ -934,6 +1004,17 @@ mod tests {
             5e4 / 7.0,
         ] {
             assert!(format_feed_down(v).parse::<f64>().unwrap() <= v, "{v}");
+        }
+        // Within 1e-5 of the value at every magnitude a feed word takes: mm/min, inch/min, a
+        // feed per revolution (G95) and an inverse time (G93) — `swarf schedule` reads its
+        // program back and checks each feed to that.
+        let mut v = 1.234_567_891e-4;
+        while v < 1e6 {
+            for x in [v, v * 1.000_009_9, v * 9.999_99] {
+                let w: f64 = format_feed_down(x).parse().unwrap();
+                assert!(w <= x && x - w < 1e-5 * x, "{x} written {w}");
+            }
+            v *= 1.37;
         }
     }
 }

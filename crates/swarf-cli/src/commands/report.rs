@@ -94,6 +94,24 @@ pub(crate) fn sources(program: &Program) -> Vec<(String, String)> {
 /// Makes `--report`'s folder, as `--out` makes its own, before any work: a report that could
 /// not be written must stop the run before the output set is written, not after.
 pub(crate) fn prepare(path: Option<&Path>) -> Result<()> {
+    // An HTML page, named so: `--report job.ngc` (or the run's own summary.json) replaced
+    // the file with the page, and exited 0.
+    if let Some(p) = path {
+        let html = p
+            .extension()
+            .and_then(|e| e.to_str())
+            .is_some_and(|e| e.eq_ignore_ascii_case("html") || e.eq_ignore_ascii_case("htm"));
+        if !html {
+            anyhow::bail!(
+                "--report {}: give a file ending in .html (the page replaces the file it is \
+                 written to)",
+                p.display()
+            );
+        }
+        if p.is_dir() {
+            anyhow::bail!("--report {}: a folder, not a file", p.display());
+        }
+    }
     let Some(dir) = path
         .and_then(Path::parent)
         .filter(|d| !d.as_os_str().is_empty())

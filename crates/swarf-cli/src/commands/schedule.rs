@@ -89,6 +89,8 @@ struct ScheduleSummary {
     limit: Limit,
     material: String,
     elapsed_s: f64,
+    /// Engaged cutter locations with the spindle stopped: no feed fixes them.
+    engaged_without_spindle: usize,
     /// Rapids and holders in the material, as `simulate` reports them: no feed fixes them.
     #[serde(flatten)]
     collisions: crate::commands::engage::Collisions,
@@ -181,7 +183,17 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
     let model = model(&run, &args.run, &args.material, material)?;
     let mut caps = MoveCaps::new(run.program.moves.len());
     let max_feed = args.max_feed;
+    // Engaged locations with the spindle stopped, and the first one's (file, line): no feed
+    // makes such a cut safe, so they are reported, not scheduled.
+    let (mut without_spindle, mut first_without_spindle) = (0usize, None);
     let walked = walk_batches(&mut run, &file, |batch| {
+        for e in batch
+            .iter()
+            .filter(|e| e.is_engaged() && e.spindle_rpm <= 0.0)
+        {
+            without_spindle += 1;
+            first_without_spindle.get_or_insert_with(|| (e.file.clone(), e.line));
+        }
         let found: Vec<(usize, f64, LocationCap)> = batch
             .par_iter()
             .map(|e| {
@@ -228,7 +240,8 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
     }
     // A move can be split when its pieces can be written as incremental straight moves: a
     // straight 3-axis G-code feed alone on its line, in G90, with no rotation or scaling of
-    // the program frame, not in inverse time.
+    // the program frame, not in inverse time, on a line of nothing but its motion and feed
+    // (pieces in front of `S… M3` or `G21` would run before those took effect).
     let can_split = |i: usize| {
         let m = &program.moves[i];
         let mode = modes.get(m.line as usize - 1);
@@ -238,7 +251,7 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
             && (m.start.axis - m.end.axis).length() < 1e-12
             && m.start_joints.to_array()[3..] == m.end_joints.to_array()[3..]
             && per_line.get(&m.line) == Some(&1)
-            && mode.is_some_and(|md| md.absolute && !md.transformed)
+            && mode.is_some_and(|md| md.absolute && !md.transformed && md.plain)
     };
     // A G33/G33.1 move's speed is its lead times the spindle speed: no feed word changes it.
     let fixed = |i: usize| program.moves[i].feed_mode == swarf_path::FeedMode::SpindleSynchronised;
@@ -355,12 +368,18 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
         limit,
         material: model.material().name.clone(),
         elapsed_s: t0.elapsed().as_secs_f64(),
+        engaged_without_spindle: without_spindle,
         collisions: walked.collisions,
     };
     summary.collisions.warn(
         " — not fixed by feeds: a rapid's speed is the machine's; change the program",
         " — not fixed by feeds: a longer tool or another path",
     );
+    if let Some((file, line)) = &first_without_spindle {
+        eprintln!(
+            "swarf: warning: {without_spindle} engaged cutter locations with the spindle stopped (no S word or M5), the first at {file}:{line}: not fixed by feeds; start the spindle before the cut"
+        );
+    }
     let mut json = serde_json::to_vec_pretty(&summary)?;
     json.push(b'\n');
     // The program and its summary as one set: both, or neither.
