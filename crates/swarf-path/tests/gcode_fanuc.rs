@@ -46,6 +46,16 @@ fn the_dialect_is_detected_and_can_be_forced() {
         GcodeDialect::detect("G0 X1\nG1 X2 F3\n"),
         GcodeDialect::LinuxCnc
     );
+    // M words by number: M098 is M98; M980, M990 and M999 (a machine's own codes) are not.
+    assert_eq!(GcodeDialect::detect("M098 P10\n"), GcodeDialect::Fanuc);
+    assert_eq!(GcodeDialect::detect("G0 Z5\nM99\n"), GcodeDialect::Fanuc);
+    for not_a_call in ["M980\n", "M981 P2\n", "G0 Z5\nM990\nM2\n", "M999\n"] {
+        assert_eq!(
+            GcodeDialect::detect(not_a_call),
+            GcodeDialect::LinuxCnc,
+            "{not_a_call}"
+        );
+    }
     // LinuxCNC runs M98/M99 programs too: its own comments tell them apart (a `;` at a
     // block's end is Fanuc's end-of-block mark, a `;` inside a comment nothing).
     for linuxcnc in [

@@ -306,7 +306,15 @@ impl GcodeDialect {
                     }
                 }
             }
-            if body.contains("m98") || body.contains("m99") {
+            // M words by number: M980 or M999 is no M98/M99 (M098 is).
+            let m98_99 = body.match_indices('m').any(|(i, _)| {
+                let num: String = body[i + 1..]
+                    .chars()
+                    .take_while(|c| c.is_ascii_digit() || *c == '.')
+                    .collect();
+                num.parse::<f64>().is_ok_and(|m| m == 98.0 || m == 99.0)
+            });
+            if m98_99 {
                 fanuc = Some("M98/M99, Fanuc's subprogram call and return".into());
             } else if interp::is_macro_b(body.as_bytes()) {
                 fanuc = Some("a Custom Macro B statement".into());
