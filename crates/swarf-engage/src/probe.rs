@@ -186,6 +186,17 @@ impl<'a> MaterialProbe<'a> {
         }
     }
 
+    /// The same probe measuring distances out to at least `reach` mm before it clamps them
+    /// (the precision cap `D₀`, `4h` by default, becomes `max(4h, reach)`). A caller that
+    /// interpolates the boundary between points `s` apart needs `reach ≥ s`: each of two points
+    /// either side of a face lies within `s` of it, and a clamped distance moves the
+    /// interpolated crossing (engagement discs 0.75 mm apart at h = 0.1 put a slot's floor
+    /// 0.054 mm off).
+    pub fn with_reach(mut self, reach: f64) -> Self {
+        self.cap = greater(self.cap, reach);
+        self
+    }
+
     /// The stock probed.
     pub fn stock(&self) -> &'a TriDexel {
         self.stock

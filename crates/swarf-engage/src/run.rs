@@ -661,7 +661,14 @@ impl<'a> Engager<'a> {
         };
         // The highest material over the cutter's footprint (conservative, from tile bounds):
         // circles above it cannot be engaged.
-        let probe = MaterialProbe::new(self.stock);
+        // Distances measured out to the samples' spacing (the discs' height, the arc between
+        // two angles at the tool's radius), so that a crossing interpolated between two
+        // samples is not pulled by a clamped distance.
+        let spacing = self
+            .opts
+            .dz_mm
+            .max(tool.radius * self.angles.dphi_deg.to_radians());
+        let probe = MaterialProbe::new(self.stock).with_reach(spacing);
         // The box of the cylinder that holds every sampled circle: the tip's and the top's
         // points grown by the radius.
         let top = pose.tip + z * tool.height;
