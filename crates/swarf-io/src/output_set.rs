@@ -219,6 +219,13 @@ impl OutputSet {
             ));
         }
         if let Some(parent) = target.parent() {
+            // (A file in the way of the output's folder: said so, not "File exists".)
+            if let Some(file) = parent.ancestors().find(|a| a.is_file()) {
+                return Err(IoError::io(
+                    file,
+                    std::io::Error::other("a file has the name of the output's folder"),
+                ));
+            }
             std::fs::create_dir_all(parent).map_err(|e| IoError::io(parent, e))?;
         }
         let tmp = temp_path(&target);

@@ -263,7 +263,17 @@ fn parse_ascii(bytes: &[u8], path: &Path) -> Result<TriMesh, IoError> {
         .flat_map(|(l, line)| line.split_whitespace().map(move |w| (l + 1, w)));
     let mut soup: Vec<[Vec3; 3]> = Vec::new();
     let eof = |expected: &str| IoError::malformed(path, "end of file", format!("`{expected}`"));
-    let found = |l: usize, w: &str| format!("line {l}: `{}`", shown(w));
+    // Line and column of a word (a slice of `text`), found only for an error.
+    let found = |l: usize, w: &str| {
+        let at = (w.as_ptr() as usize)
+            .checked_sub(text.as_ptr() as usize)
+            .filter(|&at| at <= text.len());
+        let column = at.map_or(1, |at| {
+            let start = text[..at].rfind(['\n', '\r']).map_or(0, |i| i + 1);
+            text[start..at].chars().count() + 1
+        });
+        format!("line {l}, column {column}: `{}`", shown(w))
+    };
     let expect = |tok: Option<(usize, &str)>, want: &str| -> Result<(), IoError> {
         match tok {
             Some((_, w)) if w.eq_ignore_ascii_case(want) => Ok(()),
@@ -375,7 +385,7 @@ mod tests {
         let bad = b"solid a\n facet normal 0 0 1\n outer loop\n vertex 0 0 zz\n";
         let e = parse_stl(bad, p).unwrap_err().to_string();
         assert!(
-            e.contains("line 4") && e.contains("`zz`") && e.contains("finite number"),
+            e.contains("line 4, column 13: `zz`") && e.contains("finite number"),
             "{e}"
         );
         let e = parse_stl(b"solid a\n facet normal 0 0 1\n", p)

@@ -201,3 +201,24 @@ fn a_set_asked_to_stop_starts_no_file_and_leaves_nothing() {
     assert_eq!(names(&d), ["a.txt"]);
     std::fs::remove_dir_all(&d).unwrap();
 }
+
+/// A file where a subfolder of the set must go is named as such (it was "File exists (os
+/// error 17)"), and the set writes nothing.
+#[test]
+fn a_file_in_the_way_of_a_subfolder_is_named() {
+    let d = temp_dir("file-in-the-way");
+    std::fs::create_dir_all(&d).unwrap();
+    std::fs::write(d.join("maps"), b"not a folder").unwrap();
+    let mut set = OutputSet::new(&d, 1_000_000).unwrap();
+    let e = set
+        .write_bytes("maps/a.png", b"png")
+        .unwrap_err()
+        .to_string();
+    assert!(
+        e.contains("maps") && e.contains("a file has the name of the output's folder"),
+        "{e}"
+    );
+    drop(set);
+    assert_eq!(names(&d), ["maps"]);
+    assert_eq!(std::fs::read(d.join("maps")).unwrap(), b"not a folder");
+}

@@ -19,7 +19,7 @@
 //! it. Errors carry the 1-based column of the offending text.
 
 use crate::cutter::{Cutter, CutterKind, CutterOptions};
-use crate::error::SpecError;
+use crate::error::{SpecError, ToolError};
 
 const COMMON_KEYS: [&str; 6] = ["flutes", "helix", "rake", "flute-length", "shank", "length"];
 
@@ -207,7 +207,25 @@ pub fn parse(spec: &str) -> Result<Cutter, SpecError> {
         overall_length: get("length"),
         holder: None,
     };
-    Ok(Cutter::named(kind, &nums, &opts)?)
+    // A value out of range is told at its column, as a syntax error is.
+    Cutter::named(kind, &nums, &opts).map_err(|e| {
+        let at = |param: &str| {
+            let key = param.split_whitespace().next().unwrap_or("");
+            given
+                .iter()
+                .find(|(k, _, _)| *k == key)
+                .map(|&(_, v, col)| (v, col))
+        };
+        match &e {
+            ToolError::OutOfRange {
+                param, requirement, ..
+            } => match at(param) {
+                Some((v, col)) => syntax(col, format!("{v}"), format!("{param} {requirement}")),
+                None => e.into(),
+            },
+            _ => e.into(),
+        }
+    })
 }
 
 /// The spec string of a cutter; [`parse`] of it rebuilds the same cutter (holder excepted).

@@ -96,6 +96,13 @@ fn errors_point_at_the_column() {
     assert_eq!(col, 10);
     let (col, found, _) = syntax("ball:d=NaN");
     assert_eq!((col, found.as_str()), (8, "\"NaN\""));
+    // A value out of its range, at its column.
+    let (col, found, expected) = syntax("flat:d=-10");
+    assert_eq!((col, found.as_str()), (8, "-10"));
+    assert_eq!(expected, "d (diameter) > 0 mm");
+    let (col, _, expected) = syntax("bull:d=16,r=-1");
+    assert_eq!(col, 13);
+    assert!(expected.starts_with("r "), "{expected}");
     // Valid syntax, invalid cutter: the tool error comes through.
     match Cutter::from_spec("bull:d=10,r=6") {
         Err(SpecError::Tool(e)) => assert!(e.to_string().contains("corner radius r = 6")),
@@ -136,8 +143,9 @@ fn a_derived_shank_out_of_range_says_where_it_came_from() {
     let e = Cutter::from_spec("flat:d=10,shank=600")
         .unwrap_err()
         .to_string();
+    // (Given, it is told at its column.)
     assert!(
-        e.contains("shank diameter must be") && !e.contains("at its top"),
+        e.contains("column 17: found 600, expected shank diameter") && !e.contains("at its top"),
         "{e}"
     );
 }

@@ -109,6 +109,14 @@ fn parse_moves(text: &str, len: usize) -> Result<Range<usize>> {
     if range.start >= range.end || range.start >= len {
         bail!("--moves `{text}` selects no move (the program has {len} moves, indices 0..{len})");
     }
+    // A range past the end is an error as a single index past it is (`1..100` of 4 moves
+    // was cut to `1..4` without a word).
+    if range.end > len {
+        bail!(
+            "--moves `{text}` runs past the last move (the program has {len} moves, indices 0..{len}): end it at {len} or leave the end out (`{}..`)",
+            range.start
+        );
+    }
     Ok(range)
 }
 
@@ -212,6 +220,9 @@ mod tests {
         assert_eq!(parse_moves("7", 10).unwrap(), 7..8);
         assert!(parse_moves("5..2", 10).is_err());
         assert!(parse_moves("12", 10).is_err());
+        assert!(parse_moves("1..100", 10).is_err());
+        assert!(parse_moves("0..=10", 10).is_err());
+        assert_eq!(parse_moves("0..=9", 10).unwrap(), 0..10);
         assert!(parse_moves("a..b", 10).is_err());
     }
 }

@@ -31,7 +31,7 @@ pub(crate) struct MaterialArgs {
     pub(crate) samples_per_rev: usize,
     /// Flute count of the library tools that state none (a LinuxCNC .tbl cannot hold one);
     /// a count the spec or library gives wins.
-    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..))]
+    #[arg(long, value_name = "N", value_parser = clap::value_parser!(u32).range(1..=1000))]
     pub(crate) flutes: Option<u32>,
 }
 

@@ -26,15 +26,26 @@ pub(crate) fn run(args: &ToolArgs) -> Result<()> {
     }
     let a = &d.apt;
     say!("{} ({})", d.spec, d.kind.spec_name());
+    // Ten decimals, trailing zeros dropped: a chamfer's 5 computed as 4.999999999999999 reads
+    // 5 (the JSON keeps every digit).
+    let n = |x: f64| {
+        let s = format!("{x:.10}");
+        let s = s.trim_end_matches('0').trim_end_matches('.');
+        if s == "-0" {
+            "0".to_string()
+        } else {
+            s.to_string()
+        }
+    };
     say!(
         "  APT CUTTER/{}, {}, {}, {}, {}, {}, {}",
-        a.diameter_mm,
-        a.corner_radius_mm,
-        a.corner_center_radial_mm,
-        a.corner_center_height_mm,
-        a.bottom_angle_deg,
-        a.side_angle_deg,
-        a.height_mm
+        n(a.diameter_mm),
+        n(a.corner_radius_mm),
+        n(a.corner_center_radial_mm),
+        n(a.corner_center_height_mm),
+        n(a.bottom_angle_deg),
+        n(a.side_angle_deg),
+        n(a.height_mm)
     );
     let default = if d.flutes_given {
         ""
