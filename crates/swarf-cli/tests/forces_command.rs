@@ -478,6 +478,32 @@ fn schedule_splits_no_line_with_other_words_and_warns_of_a_stopped_spindle() {
     );
 }
 
+/// A `--min-feed` above a programmed feed raises it — faster than programmed, which the
+/// schedule otherwise never is: said on stderr.
+#[test]
+fn a_minimum_feed_above_the_programmed_one_is_said() {
+    let d = dir("min-feed");
+    let mat = write(&d, "al.toml", MATERIAL);
+    let prog = write(&d, "slot.ngc", SLOT);
+    let out = d.join("slot-s.ngc");
+    let o = schedule(
+        &prog,
+        "flat:d=10,flutes=4,helix=30",
+        &mat,
+        out.to_str().unwrap(),
+        &["--limit-force", "100000", "--min-feed", "500"],
+    );
+    assert!(o.status.success(), "{}", stderr(&o));
+    assert!(
+        stderr(&o).contains("1 feed moves programmed slower than --min-feed 500"),
+        "{}",
+        stderr(&o)
+    );
+    assert!(std::fs::read_to_string(&out)
+        .unwrap()
+        .contains("G1 X50 F500"));
+}
+
 #[test]
 fn split_moves_get_their_own_feeds_and_stay_under_the_limit() {
     let d = dir("split");

@@ -375,6 +375,22 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
         " — not fixed by feeds: a rapid's speed is the machine's; change the program",
         " — not fixed by feeds: a longer tool or another path",
     );
+    // `--min-feed` wins over "never faster than programmed": say so where it did.
+    let raised = schedule
+        .moves
+        .iter()
+        .filter(|m| {
+            m.old_feed_mm_min > 0.0
+                && m.old_feed_mm_min < args.min_feed
+                && m.new_feed_mm_min > m.old_feed_mm_min
+        })
+        .count();
+    if raised > 0 && args.max_feed.is_none() {
+        eprintln!(
+            "swarf: warning: {raised} feed moves programmed slower than --min-feed {} mm/min now run at it, faster than programmed",
+            args.min_feed
+        );
+    }
     if let Some((file, line)) = &first_without_spindle {
         eprintln!(
             "swarf: warning: {without_spindle} engaged cutter locations with the spindle stopped (no S word or M5), the first at {file}:{line}: not fixed by feeds; start the spindle before the cut"
