@@ -1441,3 +1441,44 @@ fn the_combined_feed_counts_degrees_in_program_units_and_not_under_tcp() {
     );
     assert!((t - 0.1).abs() < 1e-9, "{t}");
 }
+
+/// An F word in the block that selects the units: a Fanuc control reads the whole block in the
+/// units it selects (F10. with G20 is 10 in/min); LinuxCNC sets the feed first (rs274's order:
+/// F at step 3, units at step 13), so there F10 is read in the units before — and says so.
+#[test]
+fn a_feed_beside_g20_is_read_in_the_blocks_units_by_fanuc() {
+    let feed = |src: &str, o: &GcodeOptions| -> (Vec<f64>, Vec<(u32, u32, String)>) {
+        let mut rec = Recorder::default();
+        read_gcode(src, "units.nc", o, &mut rec).unwrap_or_else(|e| panic!("{e}"));
+        let f = rec
+            .events
+            .iter()
+            .filter_map(|(_, e)| match e {
+                Canon::FeedRate(f) => Some(*f),
+                _ => None,
+            })
+            .collect();
+        let w = rec
+            .warnings
+            .into_iter()
+            .map(|w| (w.line, w.column, w.message))
+            .collect();
+        (f, w)
+    };
+    let src = "O1\nG20 G90 F10.\nG1 X1.\nM30\n";
+    let (f, w) = feed(src, &fanuc());
+    assert_eq!(f, [254.0]);
+    assert!(w.iter().all(|(_, _, m)| !m.contains("F read in")), "{w:?}");
+    let linuxcnc = GcodeOptions::default().with_dialect(GcodeDialect::LinuxCnc);
+    let (f, w) = feed("G21\nG20 G90 F10\nG1 X1\nM2\n", &linuxcnc);
+    assert_eq!(f, [10.0]);
+    let said: Vec<_> = w
+        .iter()
+        .filter(|(_, _, m)| m.contains("F read in"))
+        .collect();
+    assert_eq!(said.len(), 1, "{w:?}");
+    assert_eq!((said[0].0, said[0].1), (2, 9), "{said:?}");
+    // No word where the block's units are those already in force.
+    let (_, w) = feed("G20\nG20 G90 F10\nG1 X1\nM2\n", &linuxcnc);
+    assert!(w.iter().all(|(_, _, m)| !m.contains("F read in")), "{w:?}");
+}

@@ -215,6 +215,8 @@ fn code_after_the_programs_end_is_said_not_read() {
     for text in [
         "O1\nG21 G90\nM98 P2\nM30\n(the subprogram)\nO2\nG0 X3\nM99\n%\n",
         "G21 G90\nG0 X1\nM2\no<s> sub\nG0 X2\no<s> endsub\n(end)\n",
+        // Haas: an M97 local subprogram, N-numbered blocks after M30 up to its M99.
+        "O0001\nG21 G90 G0 X0 Y0 Z0\nM97 P100 L2\nM30\nN100 G91 G0 Z1.\nM99\n",
     ] {
         let rec = read(text, &GcodeOptions::default()).unwrap();
         assert!(

@@ -626,7 +626,8 @@ impl<'t, 's> Interp<'t, 's> {
 
     /// Lines with code after the program's end in its main file that no control would run:
     /// those of programs joined after it, not those of its subprograms (a Fanuc `O…`/`:…`
-    /// program that returns with M99, a LinuxCNC `o… sub` … `endsub`).
+    /// program that returns with M99, a LinuxCNC `o… sub` … `endsub`, a Haas M97 local
+    /// subprogram — `N…` blocks after M30 up to an M99).
     fn code_after_end(&self) -> usize {
         let Some(rest) = self.text.get(self.at.pos..) else {
             return 0;
@@ -634,6 +635,9 @@ impl<'t, 's> Interp<'t, 's> {
         // The code lines of the program being scanned, and whether it is a subprogram.
         let mut block: Option<(usize, bool)> = None;
         let mut total = 0;
+        // Code lines outside any numbered program since the last M99 there (which makes them
+        // a local subprogram, not code left over).
+        let mut loose = 0;
         let done = |b: Option<(usize, bool)>, total: &mut usize| {
             if let Some((n, false)) = b {
                 *total += n;
@@ -657,10 +661,12 @@ impl<'t, 's> Interp<'t, 's> {
                     done(block.take(), &mut total);
                 }
                 Some(b'o') if code.ends_with(b"sub") => {
+                    total += std::mem::take(&mut loose);
                     done(block.take(), &mut total);
                     block = Some((0, true));
                 }
                 _ if program_number => {
+                    total += std::mem::take(&mut loose);
                     done(block.take(), &mut total);
                     block = Some((0, false));
                 }
@@ -669,12 +675,13 @@ impl<'t, 's> Interp<'t, 's> {
                         *n += 1;
                         *sub |= code.windows(3).any(|w| w == b"m99");
                     }
-                    None => total += 1,
+                    None if code.windows(3).any(|w| w == b"m99") => loose = 0,
+                    None => loose += 1,
                 },
             }
         }
         done(block, &mut total);
-        total
+        total + loose
     }
 
     /// Turns an internal fault on the current line into a [`PathError`].
@@ -1398,12 +1405,40 @@ impl<'t, 's> Interp<'t, 's> {
             if f < 0.0 {
                 return Err(Fault::semantic(b.span(b'f'), "negative feed rate"));
             }
+            // The units the F word is read in: LinuxCNC sets the feed before the block's
+            // G20/G21 takes effect (rs274's order), a Fanuc control reads the whole block in
+            // the units it selects.
+            let block_units = b
+                .g(group::UNITS)
+                .map(|g| if g == 200 { Units::Inch } else { Units::Mm });
+            let scale =
+                match block_units {
+                    Some(u) if self.fanuc() => u.mm_per_unit(),
+                    Some(u) if u != self.units && self.feed_mode != FeedMode::InverseTime => {
+                        let at = match b.span(b'f') {
+                            Span::Code(a, _) => a,
+                            _ => 0,
+                        };
+                        self.warn_code(
+                            lb,
+                            at,
+                            format!(
+                            "F read in {} before this block's {} (LinuxCNC sets the feed first; a \
+                             Fanuc control reads it in the new units): give F on a later line",
+                            if self.units == Units::Inch { "inches" } else { "millimetres" },
+                            if u == Units::Inch { "G20" } else { "G21" }
+                        ),
+                        );
+                        self.scale
+                    }
+                    _ => self.scale,
+                };
             self.feed = if self.feed_mode == FeedMode::InverseTime {
                 f
             } else {
-                f * self.scale
+                f * scale
             };
-            self.read_only.feed_scale = self.scale;
+            self.read_only.feed_scale = scale;
             self.emit(Canon::FeedRate(self.feed));
         }
         if let Some(s) = b.get(b's') {
