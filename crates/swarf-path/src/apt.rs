@@ -284,6 +284,26 @@ pub fn read_apt(
         r.record(&record)?;
         r.check_move_limit(&record)?;
     }
+    // A last record continued (`$`) past the end: the file was cut short (a transfer that
+    // stopped), and reads as a shorter program, so it is said. (No FINI alone is not: CAM
+    // systems end CL files without one.)
+    let last = text
+        .split('\n')
+        .enumerate()
+        .filter(|(_, l)| !l.trim().is_empty())
+        .last();
+    if let Some((i, l)) = last {
+        let code = l.find("$$").map_or(l, |k| &l[..k]).trim_end();
+        if code.ends_with('$') {
+            r.warn(
+                u32::try_from(i + 1).unwrap_or(u32::MAX),
+                0,
+                "the last record goes on (`$`) past the end of the file: the file may be cut \
+                 short"
+                    .to_string(),
+            );
+        }
+    }
     r.unused_circle();
     r.sink.finish();
     Ok(())

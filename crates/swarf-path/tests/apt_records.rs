@@ -728,3 +728,38 @@ fn tldata_taper_tip_and_drill_are_cutters() {
     .unwrap();
     assert!(rec.warnings[0].message.starts_with("TLDATA/TURN"));
 }
+
+/// A file that ends inside a record continued with `$` was cut short: read, and said.
+#[test]
+fn a_record_continued_past_the_end_is_said() {
+    let mut rec = Recorder::default();
+    read_apt(
+        "UNITS/MM\nFEDRAT/MMPM,100\nGOTO/0,0,0\nGOTO/20,0,0,$\n",
+        "cut.apt",
+        &AptOptions::default(),
+        &mut rec,
+    )
+    .unwrap();
+    let said: Vec<_> = rec
+        .warnings
+        .iter()
+        .filter(|w| w.message.contains("past the end of the file"))
+        .collect();
+    assert_eq!(said.len(), 1, "{:?}", rec.warnings);
+    assert_eq!(said[0].line, 4);
+    // Ended with FINI, or simply without a continued record: nothing said.
+    for text in [
+        "GOTO/0,0,0\nGOTO/20,0,0\nFINI\n",
+        "GOTO/0,0,0\nGOTO/20,0,0\n",
+    ] {
+        let mut rec = Recorder::default();
+        read_apt(text, "ok.apt", &AptOptions::default(), &mut rec).unwrap();
+        assert!(
+            rec.warnings
+                .iter()
+                .all(|w| !w.message.contains("past the end")),
+            "{:?}",
+            rec.warnings
+        );
+    }
+}

@@ -400,8 +400,9 @@ fn other_programs_are_called_from_beside_the_program() {
 
 #[test]
 fn refused_and_wrong_blocks_are_errors_at_their_place() {
-    let cases: [(&str, PathErrorKind, u32, u32, &str); 8] = [
+    let cases: [(&str, PathErrorKind, u32, u32, &str); 9] = [
         ("L X+10 RL F100", PathErrorKind::Unsupported, 1, 10, "RL"),
+        ("L X+10 X+20 F100", PathErrorKind::Semantic, 1, 10, "X+20"),
         ("RND R2", PathErrorKind::Unsupported, 1, 3, "RND"),
         (
             "L X+10 Y+0 F100\nCC X+0 Y+0\nC X+0 Y+12 DR+",

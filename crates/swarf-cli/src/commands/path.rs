@@ -23,7 +23,7 @@ use crate::output::print_json;
 #[derive(Debug, Args)]
 pub(crate) struct PathArgs {
     /// The program: G-code (.ngc .nc .gcode .tap .ptp …), APT CL (.apt .cls .cl), Heidenhain
-    /// conversational (.h, any file starting with BEGIN PGM) or Sinumerik (.mpf .spf).
+    /// conversational (a file starting with BEGIN PGM, whatever its extension: .h, .ptp, .nc) or Sinumerik (.mpf .spf).
     #[arg(
         value_name = "PROGRAM",
         required_unless_present = "program_option",

@@ -873,6 +873,18 @@ impl<'a> Reader<'a> {
                 "X" | "Y" | "Z" | "A" | "B" | "C" | "IX" | "IY" | "IZ" | "IA" | "IB" | "IC" => {
                     let inc = name.len() == 2;
                     let k = axis(&name[name.len() - 1..]).unwrap_or(0);
+                    // (`L X+10 X+20` took the second: the control refuses it.)
+                    if w.axes[k].is_some() {
+                        return Err(Fault::at(
+                            tok,
+                            PathErrorKind::Semantic,
+                            format!(
+                                "{} is programmed twice in the block",
+                                &name[name.len() - 1..]
+                            ),
+                            "each axis once",
+                        ));
+                    }
                     let mut v = self.value(val, tok)?;
                     if k < 3 {
                         v *= self.scale;
