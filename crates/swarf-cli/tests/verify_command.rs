@@ -169,12 +169,23 @@ fn bad_designs_are_refused_with_the_file_named() {
     std::fs::write(&unknown, "v 0 0 0\n").unwrap();
     let bad_json = dir.join("part.json");
     std::fs::write(&bad_json, "{\"units\": \"mm\", \"patches\": [{]}").unwrap();
+    // A patch whose corners all coincide: no surface, so nothing to compare (it passed,
+    // with 0 ray ends compared).
+    let point = dir.join("point.json");
+    std::fs::write(
+        &point,
+        "{\"units\": \"mm\", \"patches\": [{\"name\": \"p\", \"degree_u\": 1, \"degree_v\": 1, \
+         \"knots_u\": [0, 0, 1, 1], \"knots_v\": [0, 0, 1, 1], \"control_points\": \
+         [[[30, 30, 10, 1], [30, 30, 10, 1]], [[30, 30, 10, 1], [30, 30, 10, 1]]]}]}",
+    )
+    .unwrap();
     for (path, expect) in [
         (&missing, "missing.stl"),
         (&garbage, "garbage.stl"),
         (&open, "not a closed mesh"),
         (&unknown, "unknown format"),
         (&bad_json, "part.json"),
+        (&point, "no ray end of the machined stock was compared"),
     ] {
         let o = run(&dir, &prog, path, &[]);
         assert_eq!(o.status.code(), Some(1), "{}", path.display());

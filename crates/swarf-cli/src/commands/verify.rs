@@ -167,6 +167,16 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
         .with_excess_tolerance(args.excess_tolerance);
     let v = verify(&stock, design.as_ref(), Some(program), &vopts)
         .with_context(|| format!("verifying against {}", args.design.display()))?;
+    // A comparison of nothing is no pass (a design of no area, or one far from the stock,
+    // reported 0 gouges and 0 excess).
+    if v.ends_checked == 0 {
+        bail!(
+            "no ray end of the machined stock was compared with the design {}: it has no \
+             surface near the stock (a design of no area, or in another frame: place it with \
+             --part-at)",
+            args.design.display()
+        );
+    }
     if v.design_beyond_stock_box {
         let b = design.bounding_box();
         let g = stock.grid();

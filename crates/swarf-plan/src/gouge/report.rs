@@ -144,9 +144,10 @@ impl GougeReport {
     /// `points.csv`: one row per program point, header
     /// `point,move,file,line,x,y,z,i,j,k,depth_mm,depth_upper_mm,status,part,surface`.
     /// `move` is empty for the program's start; `depth_mm` is the deepest point found (empty
-    /// when nothing was near, negative for a clearance); `depth_upper_mm` bounds the depth of
-    /// any point (at most the tolerance when clear); `status` is `clear`, `gouge` or
-    /// `interference`.
+    /// when nothing was near; at a clear point the search stops once it proves the depth under
+    /// the tolerance, so this is a surface point met on the way, not the clearance);
+    /// `depth_upper_mm` bounds the depth of any point (at most the tolerance when clear);
+    /// `status` is `clear`, `gouge` or `interference`.
     ///
     /// # Errors
     /// When `out` fails.
