@@ -872,8 +872,7 @@ fn read_with(
     src: &str,
     options: &GcodeOptions,
 ) -> (Vec<(char, f64, f64, f64)>, Vec<(u32, u32, String)>) {
-    let mut rec = Recorder::default();
-    read_gcode(src, "fanuc.nc", options, &mut rec).unwrap_or_else(|e| panic!("{e}"));
+    let (rec, w) = recorded(src, options);
     let m = rec
         .events
         .iter()
@@ -884,12 +883,19 @@ fn read_with(
             _ => None,
         })
         .collect();
-    let w = rec
-        .warnings
+    (m, w)
+}
+
+/// The recorded events of a program read with `options`, and its warnings (line, column,
+/// message).
+fn recorded(src: &str, options: &GcodeOptions) -> (Recorder, Vec<(u32, u32, String)>) {
+    let mut rec = Recorder::default();
+    read_gcode(src, "fanuc.nc", options, &mut rec).unwrap_or_else(|e| panic!("{e}"));
+    let w = std::mem::take(&mut rec.warnings)
         .into_iter()
         .map(|w| (w.line, w.column, w.message))
         .collect();
-    (m, w)
+    (rec, w)
 }
 
 /// FANUC 0i-MF "Canned cycle", "Initial level and point R level": the initial level is the Z
@@ -1448,8 +1454,7 @@ fn the_combined_feed_counts_degrees_in_program_units_and_not_under_tcp() {
 #[test]
 fn a_feed_beside_g20_is_read_in_the_blocks_units_by_fanuc() {
     let feed = |src: &str, o: &GcodeOptions| -> (Vec<f64>, Vec<(u32, u32, String)>) {
-        let mut rec = Recorder::default();
-        read_gcode(src, "units.nc", o, &mut rec).unwrap_or_else(|e| panic!("{e}"));
+        let (rec, w) = recorded(src, o);
         let f = rec
             .events
             .iter()
@@ -1457,11 +1462,6 @@ fn a_feed_beside_g20_is_read_in_the_blocks_units_by_fanuc() {
                 Canon::FeedRate(f) => Some(*f),
                 _ => None,
             })
-            .collect();
-        let w = rec
-            .warnings
-            .into_iter()
-            .map(|w| (w.line, w.column, w.message))
             .collect();
         (f, w)
     };
