@@ -24,6 +24,7 @@ fn inside_of_the_step_sphere_admits_a_ball_of_its_radius() {
     for k in [
         "points",
         "bounded_points",
+        "unreachable_points",
         "min_radius_mm",
         "median_radius_mm",
         "max_radius_mm",

@@ -210,9 +210,10 @@ pub(crate) fn run(args: &ToolsizeArgs) -> Result<()> {
         // No bounded point: no radius to give (the JSON's null).
         let mm = |r: Option<f64>| r.map_or_else(|| "none".to_string(), |x| format!("{x:.3}"));
         say!(
-            "{} points, {} bounded, radius min {} median {} max {} mm, {:.0} evaluations/point, {:.2} s",
+            "{} points, {} bounded ({} unreachable), radius min {} median {} max {} mm, {:.0} evaluations/point, {:.2} s",
             summary.points,
             summary.bounded_points,
+            summary.unreachable_points,
             mm(summary.min_radius_mm),
             mm(summary.median_radius_mm),
             mm(summary.max_radius_mm),
@@ -326,6 +327,7 @@ fn write_report(
             &[
                 "points",
                 "bounded_points",
+                "unreachable_points",
                 "min_radius_mm",
                 "median_radius_mm",
                 "max_radius_mm",

@@ -141,6 +141,10 @@ pub struct MapSummary {
     pub points: usize,
     /// Points with a finite allowable size.
     pub bounded_points: usize,
+    /// Points no cutter of the family reaches in this set-up (size 0: in 3-axis, where the
+    /// surface faces away from the tool or lies under an overhang); they count in the
+    /// minimum and the median, which they make 0.
+    pub unreachable_points: usize,
     /// Smallest finite radius, mm (`None` when no point is bounded).
     pub min_radius_mm: Option<f64>,
     /// Median of the finite radii, mm.
@@ -467,6 +471,7 @@ impl ToolSizeMap {
         MapSummary {
             points: self.points.len(),
             bounded_points: finite.len(),
+            unreachable_points: finite.iter().take_while(|&&r| r <= 0.0).count(),
             min_radius_mm: finite.first().copied(),
             median_radius_mm: median,
             max_radius_mm: finite.last().copied(),
