@@ -327,7 +327,7 @@ fn the_text_summary_prints_numbers_not_debug_options() {
     // On the plane: no bounded point, no radius to give.
     let text = run(plane.to_str().unwrap(), false);
     assert!(
-        text.contains("0 bounded, radius min none median none max none mm"),
+        text.contains("0 bounded (0 unreachable), radius min none median none max none mm"),
         "{text}"
     );
 }
