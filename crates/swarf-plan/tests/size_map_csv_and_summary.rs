@@ -113,6 +113,7 @@ fn csv_rows_and_summary() {
     for key in [
         "points",
         "bounded_points",
+        "unreachable_points",
         "min_radius_mm",
         "median_radius_mm",
         "max_radius_mm",
@@ -122,7 +123,7 @@ fn csv_rows_and_summary() {
     ] {
         assert!(json.get(key).is_some(), "missing {key}");
     }
-    assert_eq!(json.as_object().unwrap().len(), 8);
+    assert_eq!(json.as_object().unwrap().len(), 9);
     assert_eq!(s.uncertified_points, 0);
 }
 

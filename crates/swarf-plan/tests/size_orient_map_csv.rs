@@ -102,7 +102,8 @@ fn four_axis_map_adds_b_deg_and_reaches_the_curvature_radius() {
             "median_radius_mm",
             "min_radius_mm",
             "points",
-            "uncertified_points"
+            "uncertified_points",
+            "unreachable_points"
         ]
     );
     // 3-axis: the shank stands up into the trough's upper half everywhere.
