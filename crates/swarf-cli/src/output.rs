@@ -148,6 +148,18 @@ pub(crate) fn print_json<T: serde::Serialize>(value: &T) -> Result<()> {
     Ok(())
 }
 
+/// A number with `decimals` decimals, trailing zeros dropped and no negative zero, as a user
+/// would type it back (a chamfer's 5 computed as 4.999999999999999 reads 5 at ten).
+pub(crate) fn trimmed(v: f64, decimals: usize) -> String {
+    let s = format!("{v:.decimals$}");
+    let s = s.trim_end_matches('0').trim_end_matches('.');
+    if s == "-0" {
+        "0".to_string()
+    } else {
+        s.to_string()
+    }
+}
+
 /// Writes `bytes` to `path` whole or not at all (a temporary file and a rename).
 pub(crate) fn write_atomic(path: &Path, bytes: &[u8]) -> Result<()> {
     swarf_io::write_atomic(path, |w| w.write_all(bytes))

@@ -17,6 +17,7 @@
 
 use std::collections::BTreeMap;
 
+use crate::gcode::lexer::{normalize, LineBuf};
 use crate::load::ProgramFormat;
 use crate::{PathError, PathErrorKind, SourcePos};
 
@@ -329,34 +330,21 @@ pub struct LineModes {
 
 /// Whether a G-code line's code holds only `G1` (`G01`), `X`, `Y`, `Z`, `F` and `N` words whose
 /// numbers are plain (comments aside), and no block delete (`/`): see [`LineModes::plain`].
-fn plain_feed_line(line: &str) -> bool {
-    let code = strip_comments(line);
-    let letters = code.bytes().filter(u8::is_ascii_alphabetic).count();
-    let w = words(line);
+/// `w` is the line's [`words`]; `lb` a buffer for the reader's own lexer, which strips the
+/// comments.
+fn plain_feed_line(line: &str, w: &[(char, f64)], lb: &mut LineBuf) -> bool {
+    if normalize(line, lb).is_err() || lb.deleted {
+        return false;
+    }
+    let letters = lb.code.iter().filter(|c| c.is_ascii_alphabetic()).count();
     // Every letter a word with a plain number (`X#1`, `F[…]`, `O100` fail it), nothing else.
     letters == w.len()
-        && !code.contains(['#', '[', '<', '=', '/'])
+        && !lb.code.iter().any(|c| b"#[<=".contains(c))
         && w.iter().all(|&(c, v)| match c {
             'G' => v == 1.0,
             'X' | 'Y' | 'Z' | 'F' | 'N' => true,
             _ => false,
         })
-}
-
-/// A G-code line without its `(…)` and `;` comments.
-fn strip_comments(line: &str) -> String {
-    let mut out = String::with_capacity(line.len());
-    let mut in_paren = false;
-    for c in line.chars() {
-        match c {
-            '(' if !in_paren => in_paren = true,
-            ')' if in_paren => in_paren = false,
-            ';' if !in_paren => break,
-            _ if !in_paren => out.push(c),
-            _ => {}
-        }
-    }
-    out
 }
 
 /// The letter–number words of a G-code line's code (comments and bracketed expressions
@@ -406,10 +394,11 @@ pub fn gcode_line_modes(text: &str, initial_inch: bool) -> Vec<LineModes> {
         transformed: false,
         plain: false,
     };
+    let mut lb = LineBuf::default();
     crate::load::program_lines(text, ProgramFormat::Gcode)
         .map(|line| {
             let w = words(line);
-            m.plain = plain_feed_line(line);
+            m.plain = plain_feed_line(line, &w, &mut lb);
             let g = |x: f64| w.iter().any(|&(c, v)| c == 'G' && (v - x).abs() < 1e-9);
             m.absolute = if g(91.0) {
                 false

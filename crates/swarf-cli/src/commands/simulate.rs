@@ -308,17 +308,6 @@ pub(crate) fn simplify_mm(value: f64) -> Result<Option<f64>> {
     }
 }
 
-/// A length with four decimals and no trailing zeros, as a user would type it back.
-fn mm4(v: f64) -> String {
-    let s = format!("{v:.4}");
-    let s = s.trim_end_matches('0').trim_end_matches('.');
-    if s == "-0" {
-        "0".to_string()
-    } else {
-        s.to_string()
-    }
-}
-
 /// The stock `--stock` gives (or the CAMotics project's workpiece: its bounds, or the
 /// automatic one made from `program`'s cutting moves with `tools`) at ray spacing `resolution`.
 pub(crate) fn build_stock(
@@ -358,7 +347,7 @@ fn stock_spec(
             "swarf: note: stock box:{} (the program's BLK FORM)",
             min.iter()
                 .chain(&max)
-                .map(|v| mm4(*v))
+                .map(|v| crate::output::trimmed(*v, 4))
                 .collect::<Vec<_>>()
                 .join(",")
         );
@@ -377,7 +366,7 @@ fn stock_spec(
             )
             .into());
         };
-        let mm = mm4;
+        let mm = |v: f64| crate::output::trimmed(v, 4);
         eprintln!(
             "swarf: note: stock box:{},{},{},{},{},{} (the CAMotics project's automatic \
              workpiece: the cutting moves' tool box, top at Z0, grown by {margin} %)",

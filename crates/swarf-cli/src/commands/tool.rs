@@ -26,17 +26,8 @@ pub(crate) fn run(args: &ToolArgs) -> Result<()> {
     }
     let a = &d.apt;
     say!("{} ({})", d.spec, d.kind.spec_name());
-    // Ten decimals, trailing zeros dropped: a chamfer's 5 computed as 4.999999999999999 reads
-    // 5 (the JSON keeps every digit).
-    let n = |x: f64| {
-        let s = format!("{x:.10}");
-        let s = s.trim_end_matches('0').trim_end_matches('.');
-        if s == "-0" {
-            "0".to_string()
-        } else {
-            s.to_string()
-        }
-    };
+    // Ten decimals (the JSON keeps every digit).
+    let n = |x: f64| crate::output::trimmed(x, 10);
     say!(
         "  APT CUTTER/{}, {}, {}, {}, {}, {}, {}",
         n(a.diameter_mm),
