@@ -275,27 +275,30 @@ fn feed_decimals(v: f64) -> usize {
 /// limit must not be written a hair above it (rounded to nearest, a feed capped for 300 N
 /// gave 300.0003 N).
 pub fn format_feed_down(v: f64) -> String {
-    let scale = 10f64.powi(feed_decimals(v) as i32);
-    // A value already on a digit (600, 599.9999999999 from a product) keeps it when that is
-    // not above it; otherwise the digit below.
+    format_feed(round_down(v, 10f64.powi(feed_decimals(v) as i32)))
+}
+
+/// `v` rounded down to a multiple of `1/scale` — but a value on a digit but for the rounding
+/// of the product that made it (a feed of 1 scheduled as 1.7 × (1/1.7) = 0.9999999999999999)
+/// keeps that digit: within [`ON_A_DIGIT`] of it, relative. (Floored, `--min-feed 1` wrote
+/// F0.999999, under the minimum asked for.)
+fn round_down(v: f64, scale: f64) -> f64 {
     let nearest = (v * scale).round() / scale;
-    format_feed(if nearest <= v {
+    if nearest <= v * (1.0 + ON_A_DIGIT) {
         nearest
     } else {
         (v * scale).floor() / scale
-    })
+    }
 }
+
+/// How far above a feed (relative) its written digits may lie when they are the value it was
+/// meant to be: a few roundings of a product (a feed nearer its cap than that is on it).
+const ON_A_DIGIT: f64 = 4.0 * f64::EPSILON;
 
 /// A positive feed rounded down to at most `places` decimals (a Heidenhain control takes
 /// three), as [`format_feed_down`] rounds.
 fn format_feed_down_places(v: f64, places: i32) -> String {
-    let scale = 10f64.powi(places);
-    let nearest = (v * scale).round() / scale;
-    let x = if nearest <= v {
-        nearest
-    } else {
-        (v * scale).floor() / scale
-    };
+    let x = round_down(v, 10f64.powi(places));
     let s = format!("{x:.*}", places as usize);
     let s = s.trim_end_matches('0');
     s.strip_suffix('.').unwrap_or(s).to_string()
@@ -975,6 +978,14 @@ mod tests {
     fn feed_numbers_keep_six_digits() {
         assert_eq!(format_feed(1234.5678), "1234.57");
         assert_eq!(format_feed(600.0), "600");
+        // Rounded down, except where only a product's rounding put the value under a digit.
+        assert_eq!(format_feed_down(300.00049), "300");
+        assert_eq!(format_feed_down(299.99999), "299.999");
+        assert_eq!(format_feed_down(1.0 - 1e-16), "1");
+        assert_eq!(format_feed_down(1.7 * (1.0 / 1.7)), "1");
+        assert_eq!(format_feed_down(1.0 - 1e-9), "0.999999");
+        assert_eq!(format_feed_down_places(2.0 - 1e-15, 3), "2");
+        assert_eq!(format_feed_down_places(1.9999, 3), "1.999");
         assert_eq!(format_feed(0.0123456), "0.0123456");
         assert_eq!(format_feed(0.10282176), "0.102822");
         assert_eq!(format_feed(0.0), "0");
