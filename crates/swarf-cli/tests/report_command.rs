@@ -721,3 +721,34 @@ fn a_report_never_replaces_an_input_or_a_result() {
     }
     assert_eq!(std::fs::read_to_string(&prog).unwrap(), text);
 }
+
+/// A report page that cannot be written (here a name longer than a file system takes) stops
+/// the run before its work, with the page named: the outputs are not written first and the
+/// error left for the end.
+#[test]
+fn an_unwritable_report_stops_the_run_before_its_work() {
+    let dir = report_dir("unwritable");
+    let prog = dir.join("job.ngc");
+    std::fs::write(&prog, "G21 G90\nG0 X-10 Y10 Z-3\nG1 X50 F600\nG0 Z5\n").unwrap();
+    let out = dir.join("out");
+    let page = dir.join(format!("{}.html", "p".repeat(300)));
+    let o = swarf(&[
+        "simulate",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        prog.to_str().unwrap(),
+        "--tool",
+        "flat:d=10",
+        "--out",
+        out.to_str().unwrap(),
+        "--report",
+        page.to_str().unwrap(),
+    ]);
+    assert_eq!(o.status.code(), Some(1), "{}", stderr(&o));
+    assert!(stderr(&o).contains("--report"), "{}", stderr(&o));
+    assert!(!out.exists(), "the run went on");
+    // No temporary left beside it.
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().flatten().collect();
+    assert_eq!(left.len(), 1, "{left:?}");
+}

@@ -281,6 +281,18 @@ fn failed_writes_leave_nothing_behind() {
     assert!(r.is_err());
     assert_eq!(std::fs::read(d.join("keep.txt")).unwrap(), b"old");
     assert_eq!(files_in(&d), vec!["keep.txt", "taken.stl"]);
+    // A name as long as a file system takes (255 bytes): its temporary's name is shortened
+    // to fit too; one longer is refused by `check_writable` as by the writer, nothing left.
+    let long = format!("{}.stl", "é".repeat(125));
+    assert_eq!(long.len(), 254);
+    swarf_io::atomic::check_writable(&d.join(&long)).unwrap();
+    write_stl(&d.join(&long), &m).unwrap();
+    assert!(d.join(&long).is_file());
+    std::fs::remove_file(d.join(&long)).unwrap();
+    let too_long = d.join(format!("{}.stl", "x".repeat(300)));
+    assert!(swarf_io::atomic::check_writable(&too_long).is_err());
+    assert!(write_stl(&too_long, &m).is_err());
+    assert_eq!(files_in(&d), vec!["keep.txt", "taken.stl"]);
     // A folder that does not exist: an error naming it.
     let e = write_stl(&d.join("nope/x.stl"), &m)
         .unwrap_err()

@@ -112,14 +112,15 @@ pub(crate) fn prepare(path: Option<&Path>) -> Result<()> {
             anyhow::bail!("--report {}: a folder, not a file", p.display());
         }
     }
-    let Some(dir) = path
-        .and_then(Path::parent)
-        .filter(|d| !d.as_os_str().is_empty())
-    else {
+    let Some(path) = path else {
         return Ok(());
     };
-    std::fs::create_dir_all(dir)
-        .with_context(|| format!("making the report's folder {}", dir.display()))
+    if let Some(dir) = path.parent().filter(|d| !d.as_os_str().is_empty()) {
+        std::fs::create_dir_all(dir)
+            .with_context(|| format!("making the report's folder {}", dir.display()))?;
+    }
+    // A folder that takes no file (read-only) fails here, not after the run.
+    swarf_io::atomic::check_writable(path).context("--report")
 }
 
 /// Writes the page (not once Ctrl-C asked the run to stop: the outputs written before it
