@@ -353,13 +353,37 @@ fn errors_name_what_is_missing() {
         .contains("Budak"));
     let o = swarf(&["forces", "--list-materials"]);
     assert!(o.status.success());
+    // Disc heights out of range are refused before any work: `--dz 0` ran for ever (the
+    // model's edges at that height), `--dz 1e-7` took gigabytes before the check.
+    let mat = write(&d, "al.toml", MATERIAL);
+    for dz in ["0", "1e-7"] {
+        let o = run(&[
+            "--tool",
+            "flat:d=10,flutes=3",
+            "--coefficients",
+            &mat,
+            "--dz",
+            dz,
+        ]);
+        assert_eq!(o.status.code(), Some(1), "--dz {dz}");
+        assert!(stderr(&o).contains("--dz must be"), "{}", stderr(&o));
+        let o = schedule(
+            &prog,
+            "flat:d=10,flutes=4",
+            &mat,
+            d.join("dz.ngc").to_str().unwrap(),
+            &["--limit-force", "100", "--dz", dz],
+        );
+        assert_eq!(o.status.code(), Some(1), "--dz {dz}");
+        assert!(stderr(&o).contains("--dz must be"), "{}", stderr(&o));
+    }
+    assert!(!d.join("dz.ngc").exists());
     // A schedule over a loop is refused (the rewrite works on straight-line text).
     let looped = write(
         &d,
         "loop.ngc",
         "G21 G90\nS1000 M3\nG0 X-10 Y10 Z-4\n#1 = 0\no100 while [#1 LT 2]\nG1 X50 F400\nG1 X-10\n#1 = [#1 + 1]\no100 endwhile\nM30\n",
     );
-    let mat = write(&d, "al.toml", MATERIAL);
     let o = schedule(
         &looped,
         "flat:d=10,flutes=4",

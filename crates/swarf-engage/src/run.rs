@@ -88,7 +88,13 @@ impl EngageOptions {
         self
     }
 
-    fn check(&self) -> Result<(), EngageError> {
+    /// Whether every option is in range ([`Engager::new`] checks too; a caller that does other
+    /// work with the options first — a force model's edges at the discs' height — checks
+    /// before it).
+    ///
+    /// # Errors
+    /// The first option out of range.
+    pub fn check(&self) -> Result<(), EngageError> {
         let bad = |name: &'static str, value: f64, want: &'static str| {
             Err(EngageError::BadOption { name, value, want })
         };

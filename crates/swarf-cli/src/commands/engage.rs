@@ -149,6 +149,14 @@ impl RunArgs {
     /// Reads the program and tools, builds the stock and checks the options.
     pub(crate) fn prepare(&self) -> Result<Prepared> {
         positive_mm("resolution", self.resolution)?;
+        let opts = EngageOptions::default()
+            .with_step(self.step)
+            .with_dz(self.dz)
+            .with_dphi(self.dphi)
+            .with_chordal_tolerance(self.tolerance);
+        // Before any work: `forces` builds its edges at the discs' height (at `--dz 0` for
+        // ever) before the engagement would check it.
+        opts.check()?;
         let job = load_job(&self.setup, self.program()?)?;
         defined_tools(&job)?;
         let Job {
@@ -165,11 +173,6 @@ impl RunArgs {
             self.resolution,
             self.allow_open_mesh,
         )?;
-        let opts = EngageOptions::default()
-            .with_step(self.step)
-            .with_dz(self.dz)
-            .with_dphi(self.dphi)
-            .with_chordal_tolerance(self.tolerance);
         Ok(Prepared {
             program,
             tools,
