@@ -1,7 +1,7 @@
 //! Engagement along a program: cutter locations, the stock cut up to each, the engagement at
 //! each — an iterator the force model consumes without files.
 
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, VecDeque};
 use std::time::Instant;
 
 use rayon::prelude::*;
@@ -30,6 +30,8 @@ pub const DEFAULT_DZ_MM: f64 = 0.1;
 pub const DEFAULT_DPHI_DEG: f64 = 1.0;
 /// `f = N·V/|V|` at or below this is not pushing into the material (grazing or backward).
 pub const FEASIBLE_EPS: f64 = 1e-9;
+/// Default [`EngageOptions::lag_mm`], mm of tool-tip travel.
+pub const DEFAULT_LAG_MM: f64 = 0.5;
 
 /// Engagement options; accuracy parameters with their defaults in one place.
 #[derive(Clone, Copy, Debug, PartialEq, serde::Serialize)]
@@ -43,6 +45,17 @@ pub struct EngageOptions {
     pub dphi_deg: f64,
     /// Chordal tolerance of arcs and 5-axis moves when cutting the stock, mm.
     pub chordal_tolerance_mm: f64,
+    /// The stock a location is taken against is cut up to the location before, or up to this
+    /// far back along the path (mm of tool-tip travel) where that is nearer: a point of the cutter's front
+    /// lies in that stock by the travel times `f` — the chip a location sees — and a chip
+    /// thinner than the stock's uncertainty (the chordal tolerance and `h²/8R`, ≈ 1.25 µm) is
+    /// taken for a rub (a location 0.01 mm after the one before read a slot's entry 6° late
+    /// and its area 7 % short). Material the motion since then removed lies behind the front
+    /// surface, so the engaged region is that of the instant — but for a path curving tighter
+    /// than the tool's radius, whose recent poses cover points beside the front (a helix inside
+    /// the tool's radius: its entry angle is set by the drop since that stock's cut), so this is
+    /// short: at 0.5 mm a chip is missed within 0.14° of where the front starts.
+    pub lag_mm: f64,
     /// Probe every feasible sample, instead of guessing the side of those away from the
     /// boundary from their nearest ray (the same results except around features narrower
     /// than the ray spacing; this is the reference the fast path is tested against).
@@ -56,6 +69,7 @@ impl Default for EngageOptions {
             dz_mm: DEFAULT_DZ_MM,
             dphi_deg: DEFAULT_DPHI_DEG,
             chordal_tolerance_mm: DEFAULT_CHORDAL_TOLERANCE_MM,
+            lag_mm: DEFAULT_LAG_MM,
             exhaustive: false,
         }
     }
@@ -80,6 +94,11 @@ impl EngageOptions {
     /// With another chordal tolerance.
     pub fn with_chordal_tolerance(mut self, tol: f64) -> Self {
         self.chordal_tolerance_mm = tol;
+        self
+    }
+    /// With another lag (see [`EngageOptions::lag_mm`]).
+    pub fn with_lag(mut self, lag_mm: f64) -> Self {
+        self.lag_mm = lag_mm;
         self
     }
     /// Probing every sample (see [`EngageOptions::exhaustive`]).
@@ -108,6 +127,9 @@ impl EngageOptions {
         }
         if !(self.dphi_deg.is_finite() && self.dphi_deg >= 0.01 && self.dphi_deg <= 30.0) {
             return bad("dphi", self.dphi_deg, "between 0.01 and 30 degrees");
+        }
+        if !(self.lag_mm.is_finite() && self.lag_mm > 0.0 && self.lag_mm <= 1e3) {
+            return bad("lag", self.lag_mm, "a positive number of mm, at most 1000");
         }
         if !(self.chordal_tolerance_mm.is_finite() && self.chordal_tolerance_mm > 0.0) {
             return bad(
@@ -325,11 +347,15 @@ impl Angles {
 /// leaves it).
 ///
 /// For each feed move the locations lie every [`EngageOptions::step_mm`] of tool-tip travel
-/// and at its end. The engagement at a location is taken against the stock with every earlier
-/// move and this move up to the previous location cut: the part of the move between the two
-/// locations only removes material behind the cutter's forward surface, so this is the stock
-/// "at that instant" on the surface that can touch it, and the material there is still whole
-/// around the surface (its boundary is not the surface itself). Then that part is cut.
+/// and at its end. The engagement at a location is taken against the stock with the program
+/// cut up to the location before, or up to [`EngageOptions::lag_mm`] back along the path where
+/// that is nearer: the motion since then only removes
+/// material behind the cutter's forward surface, so this is the stock "at that instant" on
+/// the surface that can touch it, and the material there is still whole around the surface
+/// (its boundary is not the surface itself). The cuts run in the program's order, a piece per
+/// location (and per rapid) — in two where the lag falls inside it — so the stock and each
+/// location's removed volume are those of cutting location after location; a location is
+/// handed out once its piece is cut.
 pub struct Engager<'a> {
     program: &'a Program,
     stock: &'a mut TriDexel,
@@ -352,6 +378,30 @@ pub struct Engager<'a> {
     /// Where the multi-axis cuts so far may have left slivers (collisions judged as the
     /// simulation judges them).
     zones: swarf_stock::SliverZones,
+    /// Tool-tip travel along the program so far (feed moves and rapids), mm.
+    travel: f64,
+    /// The pieces of the path walked but not cut yet (the last `lag_mm` of travel), in order.
+    pending: VecDeque<Piece>,
+    /// Locations whose piece is cut, to hand out in order.
+    ready: VecDeque<Engagement>,
+    /// Locations computed so far (the next one's number).
+    computed: usize,
+}
+
+/// A piece of the path walked and not cut yet: `[s0, s1]` of move `index`, from `start` to
+/// `end` mm of travel into the program, and the location at its end with the parameter of the
+/// location before (`None`: a rapid's), whose removed volume is the piece's — `removed` of it
+/// cut already, where the piece was cut in part.
+struct Piece {
+    index: usize,
+    s0: f64,
+    s1: f64,
+    start: f64,
+    end: f64,
+    /// The move's tip path length, mm (for the removal rate).
+    length: f64,
+    removed: f64,
+    location: Option<(Engagement, f64)>,
 }
 
 /// The per-sample buffers of [`sample_strip`], reused.
@@ -437,6 +487,10 @@ impl<'a> Engager<'a> {
             rapid_collisions: Vec::new(),
             holder_collisions: Vec::new(),
             zones: swarf_stock::SliverZones::default(),
+            travel: 0.0,
+            pending: VecDeque::new(),
+            ready: VecDeque::new(),
+            computed: 0,
         })
     }
 
@@ -454,7 +508,7 @@ impl<'a> Engager<'a> {
 
     /// This run, telling `observer` `progress(moves done, moves)` after each cutter location
     /// (before the next is computed). When it answers `Break` the iterator yields
-    /// [`EngageError::Cancelled`] and ends; the stock is left cut up to the last location.
+    /// [`EngageError::Cancelled`] and ends; the stock is left cut up to the last location computed (those not handed out yet are dropped).
     #[must_use]
     pub fn observed(mut self, observer: &'a dyn Observer) -> Self {
         self.observer = observer;
@@ -552,8 +606,52 @@ impl<'a> Engager<'a> {
         })
     }
 
+    /// Cuts the path walked up to `travel` mm into the program (all of it at +∞), in order:
+    /// the pending pieces that end by then, and the part of the next one before it; the
+    /// locations of the pieces cut whole become ready.
+    fn cut_until(&mut self, travel: f64) -> Result<(), EngageError> {
+        // (A hair's slack: locations `lag_mm` apart, their travel summed, are that far apart.)
+        let limit = travel + 1e-9 * (1.0 + travel.abs());
+        while let Some(p) = self.pending.front() {
+            if p.end > limit {
+                // The piece's part before `travel` (its parameter in proportion to its travel).
+                if p.start < travel {
+                    let (index, s0, t) = (p.index, p.s0, (travel - p.start) / (p.end - p.start));
+                    let s = s0 + (p.s1 - s0) * t;
+                    let removed = self.cut(index, s0, s)?;
+                    if let Some(p) = self.pending.front_mut() {
+                        (p.s0, p.start, p.removed) = (s, travel, p.removed + removed);
+                    }
+                }
+                break;
+            }
+            let Some(p) = self.pending.pop_front() else {
+                break;
+            };
+            let removed = p.removed + self.cut(p.index, p.s0, p.s1)?;
+            if let Some((mut e, s_prev)) = p.location {
+                e.removed_mm3 = removed;
+                e.mrr_mm3_min = mrr(
+                    &self.program.moves[p.index],
+                    p.s1 - s_prev,
+                    p.length,
+                    removed,
+                );
+                self.ready.push_back(e);
+            }
+        }
+        Ok(())
+    }
+
     fn step(&mut self) -> Result<Option<Engagement>, EngageError> {
         loop {
+            if let Some(e) = self.ready.pop_front() {
+                self.stats.locations += 1;
+                if e.is_engaged() {
+                    self.stats.engaged_locations += 1;
+                }
+                return Ok(Some(e));
+            }
             if let Some(mut walk) = self.current.take() {
                 if walk.done < walk.count {
                     let (index, done, walk_length) = (walk.index, walk.done, walk.length);
@@ -561,38 +659,54 @@ impl<'a> Engager<'a> {
                     let s1 = walk.s(done);
                     walk.done += 1;
                     self.current = Some(walk);
+                    let end = self.travel + (s1 - s0) * walk_length;
+                    let lag = self.opts.lag_mm;
                     // On a pool kept awake, so that each of the location's parallel sections
                     // starts at once, without waking a worker and waiting for it.
-                    let mut e = swarf_stock::pool::hot(|| {
-                        let mut e = self.engagement_at(index, s1, walk_length)?;
-                        e.removed_mm3 = self.cut(index, s0, s1)?;
-                        Ok::<_, EngageError>(e)
+                    let e = swarf_stock::pool::hot(|| {
+                        self.cut_until(end - lag)?;
+                        self.engagement_at(index, s1, walk_length)
                     })?;
-                    e.mrr_mm3_min = mrr(
-                        &self.program.moves[index],
-                        s1 - s0,
-                        walk_length,
-                        e.removed_mm3,
-                    );
-                    self.stats.locations += 1;
-                    if e.is_engaged() {
-                        self.stats.engaged_locations += 1;
-                    }
-                    return Ok(Some(e));
+                    self.computed += 1;
+                    self.travel = end;
+                    self.pending.push_back(Piece {
+                        index,
+                        s0,
+                        s1,
+                        start: end - (s1 - s0) * walk_length,
+                        end,
+                        length: walk_length,
+                        removed: 0.0,
+                        location: Some((e, s0)),
+                    });
                 }
                 continue;
             }
             let index = self.next_move;
             if index >= self.program.moves.len() {
-                return Ok(None);
+                if self.pending.is_empty() {
+                    return Ok(None);
+                }
+                swarf_stock::pool::hot(|| self.cut_until(f64::INFINITY))?;
+                continue;
             }
             self.next_move += 1;
             let m = &self.program.moves[index];
+            let length = path_length(self.program, m);
             if matches!(m.kind, MoveKind::Rapid) {
-                self.cut(index, 0.0, 1.0)?;
+                self.pending.push_back(Piece {
+                    index,
+                    s0: 0.0,
+                    s1: 1.0,
+                    start: self.travel,
+                    end: self.travel + length,
+                    length,
+                    removed: 0.0,
+                    location: None,
+                });
+                self.travel += length;
                 continue;
             }
-            let length = path_length(self.program, m);
             self.current = Some(self.walk(index, length)?);
         }
     }
@@ -633,7 +747,7 @@ impl<'a> Engager<'a> {
         };
         let y = z.cross(x);
         let mut e = Engagement {
-            location: self.stats.locations,
+            location: self.computed,
             move_index: index,
             file: file_of(program, m),
             line: m.line,
@@ -744,6 +858,10 @@ impl Iterator for Engager<'_> {
         let (done, total) = (self.next_move as u64, self.program.moves.len() as u64);
         if self.stats.locations > 0 && self.observer.progress(done, total).is_break() {
             self.failed = true;
+            // The pieces walked are cut, so that the stock is left as the doc says.
+            if let Err(err) = swarf_stock::pool::hot(|| self.cut_until(f64::INFINITY)) {
+                return Some(Err(err));
+            }
             return Some(Err(EngageError::Cancelled {
                 locations: self.stats.locations,
             }));

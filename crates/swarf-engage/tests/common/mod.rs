@@ -198,8 +198,16 @@ pub(crate) fn helix_turn(
         &mut stock,
         opts.with_step(step),
     );
+    // Each location is taken against the stock cut up to the location before, or up to
+    // `lag_mm` of travel back where that is nearer: its drop is from there (the turns are
+    // helices √((2πa)² + 1) long, 1 mm of pitch).
+    let turn_length = (std::f64::consts::TAU * a).hypot(1.0);
+    let travel = |e: &Engagement| (e.move_index as f64 + e.s) * turn_length;
     locs.windows(2)
         .filter(|w| w[1].move_index == 4)
-        .map(|w| (w[1].clone(), w[0].tip.z - w[1].tip.z))
+        .map(|w| {
+            let back = (travel(&w[1]) - travel(&w[0])).max(opts.lag_mm);
+            (w[1].clone(), back / turn_length)
+        })
         .collect()
 }
