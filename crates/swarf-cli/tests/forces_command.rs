@@ -500,6 +500,25 @@ fn schedule_splits_no_line_with_other_words_and_warns_of_a_stopped_spindle() {
         "{}",
         stderr(&o)
     );
+    // `forces` names the first line too, and every cause (it blamed the S word alone).
+    let o = swarf(&[
+        "forces",
+        "--stock",
+        "box:0,0,-10,40,20,0",
+        "--program",
+        &prog,
+        "--tool",
+        "flat:d=10,flutes=4,helix=30",
+        "--coefficients",
+        &mat,
+        "--step",
+        "2",
+        "--out",
+        d.join("f-stopped").to_str().unwrap(),
+    ]);
+    assert!(o.status.success(), "{}", stderr(&o));
+    let e = stderr(&o);
+    assert!(e.contains("stopped.ngc:4") && e.contains("M6"), "{e}");
 }
 
 /// A `--min-feed` above a programmed feed raises it — faster than programmed, which the

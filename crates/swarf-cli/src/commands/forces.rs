@@ -186,6 +186,9 @@ struct ForcesSummary {
 }
 
 /// One row of forces.csv.
+/// What stops the spindle, for the warnings of `forces` and `schedule`.
+pub(crate) const SPINDLE_STOPPED: &str = "no S word, S0, M5, or an M6 that stops it";
+
 struct Row {
     location: usize,
     move_index: usize,
@@ -257,9 +260,10 @@ pub(crate) fn run(args: &ForcesArgs) -> Result<()> {
     );
     let engaged: Vec<&Row> = rows.iter().filter(|r| r.engaged).collect();
     let without_spindle = engaged.iter().filter(|r| !r.spindle).count();
-    if without_spindle > 0 {
+    if let Some(first) = engaged.iter().find(|r| !r.spindle) {
         eprintln!(
-            "swarf: warning: {without_spindle} engaged cutter locations with the spindle stopped (no S word or M5): no chip, edge forces only"
+            "swarf: warning: {without_spindle} engaged cutter locations with the spindle stopped ({SPINDLE_STOPPED}), the first at {}:{}: no chip, edge forces only",
+            first.file, first.line
         );
     }
     let max_by = |f: fn(&LocationForces) -> f64| rows.iter().map(|r| f(&r.f)).fold(0.0, f64::max);

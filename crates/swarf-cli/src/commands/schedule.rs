@@ -393,7 +393,8 @@ pub(crate) fn run(args: &ScheduleArgs) -> Result<()> {
     }
     if let Some((file, line)) = &first_without_spindle {
         eprintln!(
-            "swarf: warning: {without_spindle} engaged cutter locations with the spindle stopped (no S word or M5), the first at {file}:{line}: not fixed by feeds; start the spindle before the cut"
+            "swarf: warning: {without_spindle} engaged cutter locations with the spindle stopped ({}), the first at {file}:{line}: not fixed by feeds; start the spindle before the cut",
+            crate::commands::forces::SPINDLE_STOPPED
         );
     }
     let mut json = serde_json::to_vec_pretty(&summary)?;
