@@ -538,6 +538,10 @@ pub struct Engagement {
     pub mrr_mm3_min: f64,
 }
 
+/// An engaged area below this (mm²) with no engaged sample is the rounding of cells whose
+/// corners lie on the boundary (a cell at the defaults is ≈ 10⁻³ mm²).
+const RESIDUE_MM2: f64 = 1e-12;
+
 impl Engagement {
     /// True when any of the cutter is in the material.
     pub fn is_engaged(&self) -> bool {
@@ -547,6 +551,12 @@ impl Engagement {
     /// Fills area, depth, angles and circles from the strips' results.
     pub(crate) fn set_from(&mut self, side: Option<StripResult>, bottom: Option<StripResult>) {
         let (side, bottom) = (side.unwrap_or_default(), bottom.unwrap_or_default());
+        // Rounding's residue, no engagement: a drill's point on the stock's top face summed
+        // 1e-16 mm² of cells and counted the location engaged, with no angle to show.
+        let residue = |r: &StripResult| r.circles.is_empty() && r.area < RESIDUE_MM2;
+        if residue(&side) && residue(&bottom) {
+            return;
+        }
         self.area_mm2 = side.area + bottom.area;
         self.side_extent_mm = side.extent;
         let z_lo = if bottom.extent.is_some() {

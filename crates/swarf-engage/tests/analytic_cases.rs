@@ -514,3 +514,28 @@ fn slot_depths_between_the_discs() {
         }
     }
 }
+
+/// A pointed cutter whose point stands on the stock's top face (a rounding below it) touches
+/// nothing: not engaged, no area, no depth — it summed 10⁻¹⁶ mm² of cells and counted as
+/// engaged with no angle to show. The next location, 1.5 mm deep, is.
+#[test]
+fn a_point_on_the_top_face_is_not_engaged() {
+    for spec in ["drill:d=8,angle=118", "chamfer:d=10,angle=90"] {
+        let p = program("G21 G90\nG0 X20 Y10 Z5\nG1 Z-1.5 F100\n", "point.ngc");
+        let mut stock = block([0.0, 0.0, -10.0], [40.0, 20.0, 0.0], 0.1);
+        let opts = EngageOptions::default().with_step(5.0);
+        let locs = run(&p, Cutter::from_spec(spec).unwrap(), &mut stock, opts);
+        assert_eq!(locs.len(), 2, "{spec}");
+        assert!(locs[0].tip.z.abs() < 1e-12, "{spec}: {}", locs[0].tip.z);
+        let e = &locs[0];
+        assert!(
+            !e.is_engaged() && e.area_mm2 == 0.0 && e.ap_mm == 0.0,
+            "{spec}: {e:?}"
+        );
+        assert!(e.phi_entry_deg.is_none() && e.discs.is_empty(), "{spec}");
+        assert!(
+            locs[1].is_engaged() && (locs[1].ap_mm - 1.5).abs() < 1e-3,
+            "{spec}"
+        );
+    }
+}
