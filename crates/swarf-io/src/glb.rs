@@ -130,6 +130,11 @@ impl<'m> GlbFile<'m> {
         }
         let mut root = json::Root::default();
         root.asset.generator = Some(format!("swarf-io {}", env!("CARGO_PKG_VERSION")));
+        // No triangles (a stock machined away): a document of its asset alone, no BIN chunk —
+        // glTF wants at least one element in every accessor, view and buffer it has.
+        if mesh.triangles.is_empty() {
+            return Self::finish(root, mesh, None, 0, options);
+        }
         let buffer = root.push(json::Buffer {
             byte_length: USize64::from(bin_len),
             uri: None,
@@ -224,7 +229,18 @@ impl<'m> GlbFile<'m> {
             nodes: vec![node],
         });
         root.scene = Some(scene);
+        Self::finish(root, mesh, normals, bin_len, options)
+    }
 
+    /// The file of the document `root` (its `extras` from `options`) and a BIN chunk of
+    /// `bin_len` bytes (none at 0) of `mesh`'s arrays.
+    fn finish(
+        root: json::Root,
+        mesh: &'m TriMesh,
+        normals: Option<Vec<[f32; 3]>>,
+        bin_len: usize,
+        options: &GlbOptions,
+    ) -> Result<Self, IoError> {
         let json_error = |e| IoError::Json {
             path: Default::default(),
             reason: e,
@@ -252,7 +268,13 @@ impl<'m> GlbFile<'m> {
 
     /// The file's size in bytes.
     pub fn len(&self) -> usize {
-        12 + 8 + self.json.len() + 8 + self.bin_len
+        12 + 8
+            + self.json.len()
+            + if self.bin_len > 0 {
+                8 + self.bin_len
+            } else {
+                0
+            }
     }
 
     /// Never: a glb file has at least its header.
@@ -270,6 +292,9 @@ impl<'m> GlbFile<'m> {
         w.write_all(&le(self.json.len()))?;
         w.write_all(&CHUNK_JSON.to_le_bytes())?;
         w.write_all(&self.json)?;
+        if self.bin_len == 0 {
+            return Ok(());
+        }
         w.write_all(&le(self.bin_len))?;
         w.write_all(&CHUNK_BIN.to_le_bytes())?;
         let mut out = Words::new(w);

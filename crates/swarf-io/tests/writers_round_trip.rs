@@ -102,6 +102,30 @@ fn glb_extras_are_written_and_only_when_asked() {
     assert_eq!(a.bin, b.bin);
 }
 
+/// A mesh with no triangles (a stock machined away) is a glb of its asset alone, no BIN chunk:
+/// glTF forbids the empty accessor, view and buffer it was written with.
+#[test]
+fn an_empty_mesh_is_a_valid_glb_without_geometry() {
+    let m = TriMesh::from_parts(Vec::new(), Vec::new());
+    let legend = serde_json::json!({"note": "machined away"});
+    let bytes = glb_bytes(&m, &GlbOptions::default().with_extras(legend.clone())).unwrap();
+    assert_eq!(
+        swarf_io::glb::GlbFile::new(&m, &GlbOptions::default())
+            .unwrap()
+            .len(),
+        glb_bytes(&m, &GlbOptions::default()).unwrap().len()
+    );
+    let g = parse_glb(&bytes, Path::new("empty.glb")).unwrap();
+    assert!(g.bin.is_empty());
+    assert!(g.root.accessors.is_empty() && g.root.buffers.is_empty());
+    assert!(g.root.buffer_views.is_empty() && g.root.meshes.is_empty());
+    let n = u32::from_le_bytes([bytes[12], bytes[13], bytes[14], bytes[15]]) as usize;
+    assert_eq!(bytes.len(), 20 + n);
+    let doc: serde_json::Value = serde_json::from_slice(&bytes[20..20 + n]).unwrap();
+    assert_eq!(doc["asset"]["version"], "2.0");
+    assert_eq!(doc["extras"], legend);
+}
+
 /// The file written as it goes (`write_glb`) holds exactly the bytes built in memory, and its
 /// size is the one announced, for every shading and with colours.
 #[test]

@@ -674,7 +674,8 @@ impl TriDexel {
     /// Material volume estimated from family `k`, mm³ (for cross-checks: the three agree to
     /// the discretisation error).
     pub fn volume_from(&self, k: usize) -> f64 {
-        self.families[k].total_length() * self.ray_area(k)
+        // (+ 0: a sum of no lengths is −0, which a report printed as "-0.0".)
+        self.families[k].total_length() * self.ray_area(k) + 0.0
     }
 
     /// The volume estimates from the X, Y and Z families.
