@@ -193,6 +193,40 @@ fn rapid_into_the_stock_is_reported_with_its_line() {
     assert!(j["removed_volume_mm3"].as_f64().unwrap() > 0.0);
 }
 
+/// A feed move that cuts after M5 (or before any S word) crashes on the machine: counted in the
+/// summary and warned of with its line and volume (6 × 2 × 20 = 240 mm³ of slot); the same
+/// slot with the spindle running is neither.
+#[test]
+fn cutting_with_the_spindle_stopped_is_reported() {
+    let dir = temp_dir("spindle");
+    for (name, m5, count) in [("m5.ngc", "M5\n", 1), ("on.ngc", "", 0)] {
+        let prog = dir.join(name);
+        let text =
+            format!("G21 G90\nS1000 M3\nG0 X-10 Y10 Z5\nG1 Z-2 F300\n{m5}G1 X30\nG0 Z5\nM2\n");
+        std::fs::write(&prog, text).unwrap();
+        let o = swarf(&[
+            "simulate",
+            "--stock",
+            "box:0,0,-10,20,20,0",
+            "--program",
+            prog.to_str().unwrap(),
+            "--tool",
+            "flat:d=6",
+            "--resolution",
+            "0.25",
+            "--json",
+        ]);
+        assert!(o.status.success(), "{}", stderr(&o));
+        let j = json(&o);
+        assert_eq!(j["cut_without_spindle"], count, "{j}");
+        let e = stderr(&o);
+        assert_eq!(e.contains("spindle stopped"), count == 1, "{e}");
+        if count == 1 {
+            assert!(e.contains("m5.ngc:6") && e.contains("240.000 mm³"), "{e}");
+        }
+    }
+}
+
 #[test]
 fn bad_input_is_exit_1_with_a_clear_message() {
     let dir = temp_dir("bad");

@@ -108,7 +108,7 @@ pub(crate) fn run(args: &DemoArgs) -> Result<()> {
     let program = &job.program;
     let mut stock = StockSpec::parse(STOCK)?.build(args.resolution, MeshOptions::default())?;
     let report = simulate(program, tools, &mut stock, &SimOptions::default())?;
-    let mut summary = SimulateSummary::new(&report);
+    let mut summary = SimulateSummary::new(&report, program);
 
     let dir = &args.out;
     // Every file of the demo is written as one set: all of them, or none.

@@ -113,6 +113,11 @@ pub(crate) struct SimulateSummary {
     elapsed_s: f64,
     /// Every collision: kind, move index, file, line, volume.
     collisions: Vec<CollisionReport>,
+    /// Feed moves that removed material with the spindle stopped (a crash on the machine).
+    cut_without_spindle: usize,
+    /// Where the first of them is, and what they removed in all (for the warning).
+    #[serde(skip)]
+    first_without_spindle: Option<(String, u32, f64)>,
     /// Final volume from the X, Y and Z ray families (a cross-check of the discretisation).
     final_volume_xyz_mm3: [f64; 3],
     bytes_per_interval: f64,
@@ -160,9 +165,27 @@ pub(crate) fn collision_reports(rapid: &[Collision], holder: &[Collision]) -> Ve
 }
 
 impl SimulateSummary {
-    pub(crate) fn new(r: &SimulationReport) -> Self {
+    pub(crate) fn new(r: &SimulationReport, program: &Program) -> Self {
         let collisions = collision_reports(&r.rapid_collisions, &r.holder_collisions);
+        let stopped: Vec<(&swarf_path::Move, f64)> = program
+            .moves
+            .iter()
+            .zip(r.removed_per_move_mm3.iter().copied())
+            .filter(|(m, v)| {
+                !matches!(m.kind, swarf_path::MoveKind::Rapid) && *v > 0.0 && m.spindle_rpm <= 0.0
+            })
+            .collect();
+        let first_without_spindle = stopped.first().map(|(m, _)| {
+            let file = program.files.get(usize::from(m.file)).cloned();
+            (
+                file.unwrap_or_default(),
+                m.line,
+                stopped.iter().map(|(_, v)| v).sum(),
+            )
+        });
         Self {
+            cut_without_spindle: stopped.len(),
+            first_without_spindle,
             stock_volume_mm3: r.stock_volume_mm3,
             removed_volume_mm3: r.removed_volume_mm3,
             final_volume_mm3: r.final_volume_mm3,
@@ -183,6 +206,17 @@ impl SimulateSummary {
             five_axis_sub_moves: r.five_axis_sub_moves,
             five_axis_error_bound_mm: r.five_axis_error_bound_mm,
             final_mesh_volume_mm3: None,
+        }
+    }
+
+    /// Warns of the feed moves that cut with the spindle stopped, with the first one's line.
+    pub(crate) fn warn_spindle_stopped(&self) {
+        if let Some((file, line, volume)) = &self.first_without_spindle {
+            eprintln!(
+                "swarf: warning: {} feed moves removed {volume:.3} mm³ with the spindle stopped ({}), the first at {file}:{line}",
+                self.cut_without_spindle,
+                crate::commands::forces::SPINDLE_STOPPED
+            );
         }
     }
 
@@ -229,7 +263,8 @@ pub(crate) fn run(args: &SimulateArgs) -> Result<()> {
     let options = SimOptions::default().with_chordal_tolerance(args.tolerance);
     let report = simulate_with_progress(program, tools, &mut stock, &options)
         .with_context(|| format!("simulating {}", args.program.display()))?;
-    let mut summary = SimulateSummary::new(&report);
+    let mut summary = SimulateSummary::new(&report, program);
+    summary.warn_spindle_stopped();
     // A program that never reaches the stock is more often a wrong stock, offset or unit than
     // an intent.
     let cuts = program

@@ -161,7 +161,8 @@ pub(crate) fn run(args: &VerifyArgs) -> Result<()> {
     let options = SimOptions::default().with_chordal_tolerance(args.chordal_tolerance);
     let report = simulate_with_progress(program, tools, &mut stock, &options)
         .with_context(|| format!("simulating {}", args.program.display()))?;
-    let sim = SimulateSummary::new(&report);
+    let sim = SimulateSummary::new(&report, program);
+    sim.warn_spindle_stopped();
     let vopts = VerifyOptions::default()
         .with_gouge_tolerance(args.tolerance)
         .with_excess_tolerance(args.excess_tolerance);
