@@ -80,6 +80,12 @@ const KINDS: [CutterKind; 8] = [
 
 /// Parses a tool spec string into a validated cutter.
 pub fn parse(spec: &str) -> Result<Cutter, SpecError> {
+    parse_given(spec).map(|(c, _)| c)
+}
+
+/// [`parse`], and the options the string gives itself (`flutes=`, `helix=`, …; `None` where it
+/// leaves the default), so that a library row's own keys can be checked against them.
+pub fn parse_given(spec: &str) -> Result<(Cutter, CutterOptions), SpecError> {
     let col_of = |byte: usize| spec[..byte].chars().count() + 1;
     let Some(colon) = spec.find(':') else {
         return Err(syntax(
@@ -208,7 +214,7 @@ pub fn parse(spec: &str) -> Result<Cutter, SpecError> {
         holder: None,
     };
     // A value out of range is told at its column, as a syntax error is.
-    Cutter::named(kind, &nums, &opts).map_err(|e| {
+    let cutter = Cutter::named(kind, &nums, &opts).map_err(|e| {
         let at = |param: &str| {
             let key = param.split_whitespace().next().unwrap_or("");
             given
@@ -225,7 +231,8 @@ pub fn parse(spec: &str) -> Result<Cutter, SpecError> {
             },
             _ => e.into(),
         }
-    })
+    })?;
+    Ok((cutter, opts))
 }
 
 /// The spec string of a cutter; [`parse`] of it rebuilds the same cutter (holder excepted).

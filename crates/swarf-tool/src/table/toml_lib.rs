@@ -9,7 +9,7 @@
 //! [[tool]]
 //! number = 4
 //! apt = [10, 2, 3, 2, 0, 0, 30]   # or the seven APT numbers (d, r, e, f, α°, β°, h)
-//! flutes = 4                      # optional, override the spec's values
+//! flutes = 4                      # optional, beside what the spec leaves out
 //! helix_deg = 35
 //! rake_deg = 12                   # optional, normal rake (force coefficient prediction)
 //! flute_length_mm = 25
@@ -19,7 +19,9 @@
 //!     { length_mm = 20, bottom_diameter_mm = 25, top_diameter_mm = 40 } ] }
 //! ```
 //!
-//! Exactly one of `spec` and `apt` per tool; numbers are unique; unknown keys are errors.
+//! Exactly one of `spec` and `apt` per tool; numbers are unique; unknown keys are errors; a key
+//! that the spec string gives too must agree with it (`spec = "flat:d=10,flutes=4"` with
+//! `flutes = 2` is an error: one of the two is a mistake, and forces and feeds depend on it).
 
 use super::{line_col, ToolEntry, ToolTable};
 use crate::cutter::{Cutter, CutterKind, CutterOptions};
@@ -91,9 +93,10 @@ pub fn parse_toml_library(text: &str, file: &str) -> Result<ToolTable, TableErro
                 "unique tool numbers".into(),
             ));
         }
+        let mut in_spec = CutterOptions::default();
         let (cutter, at) = match (&row.spec, &row.apt) {
             (Some(spec), None) => {
-                let c = Cutter::from_spec(spec.get_ref()).map_err(|e| {
+                let (c, given) = crate::spec::parse_given(spec.get_ref()).map_err(|e| {
                     // Point at the column inside the quoted spec when the error has one.
                     let col = match &e {
                         crate::error::SpecError::Syntax { column, .. } => *column,
@@ -105,6 +108,7 @@ pub fn parse_toml_library(text: &str, file: &str) -> Result<ToolTable, TableErro
                         "a valid tool spec".into(),
                     )
                 })?;
+                in_spec = given;
                 (c, spec.span().start)
             }
             (None, Some(apt)) => {
@@ -133,6 +137,46 @@ pub fn parse_toml_library(text: &str, file: &str) -> Result<ToolTable, TableErro
                 ))
             }
         };
+        // A key given twice, in the spec and beside it, must agree.
+        let twice = [
+            (
+                "flutes",
+                "flutes",
+                row.flutes.map(f64::from),
+                in_spec.flutes.map(f64::from),
+            ),
+            ("helix_deg", "helix", row.helix_deg, in_spec.helix_deg),
+            ("rake_deg", "rake", row.rake_deg, in_spec.rake_deg),
+            (
+                "flute_length_mm",
+                "flute-length",
+                row.flute_length_mm,
+                in_spec.flute_length,
+            ),
+            (
+                "shank_diameter_mm",
+                "shank",
+                row.shank_diameter_mm,
+                in_spec.shank_diameter,
+            ),
+            (
+                "overall_length_mm",
+                "length",
+                row.overall_length_mm,
+                in_spec.overall_length,
+            ),
+        ];
+        for (key, spec_key, beside, inside) in twice {
+            if let (Some(a), Some(b)) = (beside, inside) {
+                if (a - b).abs() > 1e-9 * a.abs().max(b.abs()) {
+                    return Err(err_at(
+                        at,
+                        format!("{key} = {a} beside the spec's {spec_key}={b}"),
+                        format!("one value: give {key} in the spec or beside it, not both"),
+                    ));
+                }
+            }
+        }
         let opts = CutterOptions {
             flutes: row.flutes.or(cutter.flutes_given()),
             helix_deg: Some(row.helix_deg.unwrap_or(cutter.helix_deg())),
@@ -229,5 +273,38 @@ holder = { base_z_mm = 50, segments = [ { length_mm = 20, bottom_diameter_mm = 2
         )
         .unwrap_err();
         assert!(e.to_string().contains("exactly 7"), "{e}");
+    }
+
+    /// A key the spec gives and the row gives again must agree (the row's silently won: a
+    /// 4-flute spec with `flutes = 2` took the forces of 2 flutes); the same value twice, or a
+    /// key the spec leaves out, is fine.
+    #[test]
+    fn a_key_in_the_spec_and_beside_it_must_agree() {
+        let lib = |spec: &str, extra: &str| {
+            parse_toml_library(
+                &format!("[[tool]]\nnumber = 1\nspec = \"{spec}\"\n{extra}\n"),
+                "lib.toml",
+            )
+        };
+        for (spec, extra, key) in [
+            ("flat:d=10,flutes=4,helix=0", "flutes = 2", "flutes = 2"),
+            ("flat:d=10,helix=30", "helix_deg = 0", "helix_deg = 0"),
+            ("flat:d=10,rake=12", "rake_deg = 5", "rake_deg = 5"),
+            (
+                "flat:d=10,length=60",
+                "overall_length_mm = 70",
+                "overall_length_mm = 70",
+            ),
+        ] {
+            let e = lib(spec, extra).unwrap_err();
+            assert!(matches!(e, TableError::Parse { line: 3, .. }), "{e}");
+            assert!(
+                e.to_string().contains(key) && e.to_string().contains("spec's"),
+                "{e}"
+            );
+        }
+        let t = lib("flat:d=10,flutes=4", "flutes = 4\nhelix_deg = 45").unwrap();
+        assert_eq!(t.tools[&1].cutter.flutes(), 4);
+        assert_eq!(t.tools[&1].cutter.helix_deg(), 45.0);
     }
 }
