@@ -549,7 +549,12 @@ impl Engagement {
     }
 
     /// Fills area, depth, angles and circles from the strips' results.
-    pub(crate) fn set_from(&mut self, side: Option<StripResult>, bottom: Option<StripResult>) {
+    pub(crate) fn set_from(
+        &mut self,
+        side: Option<StripResult>,
+        bottom: Option<StripResult>,
+        dphi_deg: f64,
+    ) {
         let (side, bottom) = (side.unwrap_or_default(), bottom.unwrap_or_default());
         // Rounding's residue, no engagement: a drill's point on the stock's top face summed
         // 1e-16 mm² of cells and counted the location engaged, with no angle to show.
@@ -568,10 +573,20 @@ impl Engagement {
             (Some(lo), Some((_, hi))) => hi - lo,
             _ => 0.0,
         };
+        // The disc of largest engagement; where several are as wide within a quarter of the
+        // angular step (a wall's height, all engaged alike), the middle one of those: the
+        // widest alone is the one whose sampling erred wide, as the disc under a boss's top
+        // face, whose exit read 0.13° late beside a top edge the others do not see.
         let widest = |c: &[CircleEngagement]| {
-            c.iter()
-                .max_by(|a, b| a.engaged_deg().total_cmp(&b.engaged_deg()))
-                .and_then(CircleEngagement::entry_exit)
+            let most = c
+                .iter()
+                .map(CircleEngagement::engaged_deg)
+                .fold(0.0, f64::max);
+            let near: Vec<&CircleEngagement> = c
+                .iter()
+                .filter(|d| d.engaged_deg() >= most - 0.25 * dphi_deg)
+                .collect();
+            near.get(near.len() / 2).and_then(|d| d.entry_exit())
         };
         let angles = widest(&side.circles).or_else(|| widest(&bottom.circles));
         // `entry_exit` goes clockwise; a counter-clockwise edge meets the same interval from

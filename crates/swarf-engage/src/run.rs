@@ -843,6 +843,7 @@ impl<'a> Engager<'a> {
         e.set_from(
             side.filter(|r| r.area > 0.0 || !r.circles.is_empty()),
             bottom.filter(|r: &StripResult| r.area > 0.0 || !r.circles.is_empty()),
+            self.angles.dphi_deg,
         );
         Ok(e)
     }
